@@ -1,0 +1,3 @@
+"""screwkit: singularities of parallel robots with screw theory and Grassmann–Cayley algebra."""
+
+__version__ = "0.1.0"

@@ -1,0 +1,517 @@
+"""The only module where numeric and symbolic code differ.
+
+Every other module writes one kernel with ``+ - * @``, :func:`numpy.cross`, :func:`numpy.concatenate`
+and indexing, which numpy supports both for ``float64`` arrays and for ``object`` arrays of sympy
+expressions. What those operators cannot do (input validation and promotion, norms, determinants,
+ranks, null spaces, zero tests, simplification) lives here, each with a numeric and a symbolic
+branch (design.md §4).
+
+Rank decisions
+--------------
+A screw ``(s; s0)`` mixes a dimensionless direction and a moment with the unit of length. Before any
+rank decision the moment half is divided by a characteristic length ``length_scale`` and every row is
+normalised to unit length (row scaling does not change a rank). The rank is then the number of
+singular values above ``rtol`` times the largest one. With ``length_scale`` given in the same unit as
+the coordinates, the answer is the same in millimetres and in metres. When ``length_scale`` is None
+it is taken from the data: the largest ``|s0| / |s|`` over rows with a non-zero direction (a length
+in the data's own unit), or 1 if every row is a couple.
+
+Examples
+--------
+>>> import numpy as np
+>>> from screwkit import _backend as B
+>>> B.screw_rank(np.array([[0, 0, 1, 0, 0, 0], [0, 0, 2, 0, 0, 0]]))
+1
+>>> import sympy
+>>> B.is_symbolic(np.array([sympy.Symbol("x"), 1], dtype=object))
+True
+"""
+
+from __future__ import annotations
+
+from numbers import Number
+from typing import Any
+
+import numpy as np
+import sympy
+
+from .exceptions import ScrewkitTypeError, ScrewkitValueError
+
+__all__ = [
+    "DEFAULT_RTOL",
+    "as_array",
+    "cross",
+    "det",
+    "dot",
+    "is_symbolic",
+    "is_zero",
+    "matrix_nullspace",
+    "norm",
+    "promote",
+    "scale_moments",
+    "screw_nullspace",
+    "screw_rank",
+    "screw_singular_values",
+    "simplify",
+    "to_sympy",
+]
+
+#: Default relative tolerance of every rank and zero decision (documented in each public function).
+DEFAULT_RTOL = 1e-9
+
+Array = np.ndarray
+
+
+def is_symbolic(*arrays: Any) -> bool:
+    """Return True if any argument is, or contains, a sympy expression.
+
+    Parameters
+    ----------
+    *arrays : array_like or sympy.Basic
+        Anything :func:`as_array` accepts.
+
+    Returns
+    -------
+    bool
+
+    Examples
+    --------
+    >>> is_symbolic([1.0, 2.0], 3)
+    False
+    >>> is_symbolic([sympy.Symbol("t"), 2.0])
+    True
+    """
+    for value in arrays:
+        if isinstance(value, sympy.Basic):
+            return True
+        if isinstance(value, np.ndarray):
+            if value.dtype == object and any(isinstance(v, sympy.Basic) for v in value.flat):
+                return True
+            continue
+        if isinstance(value, list | tuple) and is_symbolic(*value):
+            return True
+    return False
+
+
+def to_sympy(value: Any) -> sympy.Expr:
+    """Convert one scalar to an exact sympy number or leave an expression alone.
+
+    Floats become the rational of their shortest decimal representation, so ``0.1`` becomes
+    ``1/10``; a float never leaks into a symbolic result.
+
+    Examples
+    --------
+    >>> to_sympy(0.1)
+    1/10
+    >>> to_sympy(3)
+    3
+    """
+    if isinstance(value, sympy.Basic):
+        return value
+    if isinstance(value, bool | np.bool_):
+        raise ScrewkitTypeError(f"Expected a number or a sympy expression, got a boolean {value!r}.")
+    if isinstance(value, int | np.integer):
+        return sympy.Integer(int(value))
+    if isinstance(value, float | np.floating):
+        if not np.isfinite(value):
+            raise ScrewkitValueError(f"Expected a finite number, got {value!r}.")
+        return sympy.Rational(repr(float(value)))
+    raise ScrewkitTypeError(
+        f"Expected a number or a sympy expression, got {type(value).__name__} {value!r}."
+    )
+
+
+def _describe_shape(shape: tuple[int | None, ...]) -> str:
+    parts = ["..."] + ["n" if s is None else str(s) for s in shape]
+    return "(" + ", ".join(parts) + ")"
+
+
+def as_array(
+    value: Any,
+    name: str,
+    shape: tuple[int | None, ...] = (),
+    *,
+    symbolic: bool | None = None,
+) -> Array:
+    """Validate an argument and return it as a float64 or sympy-object array.
+
+    Parameters
+    ----------
+    value : array_like
+        The argument: numbers, sequences of numbers, numpy arrays, sympy expressions.
+    name : str
+        The argument's name, used in error messages.
+    shape : tuple of int or None
+        The required trailing shape, e.g. ``(6,)`` for screws; None matches any length.
+    symbolic : bool or None
+        Force the symbolic (True) or numeric (False) branch; None decides from ``value``.
+
+    Returns
+    -------
+    numpy.ndarray
+        A new ``float64`` array, or an ``object`` array of sympy expressions.
+
+    Raises
+    ------
+    ScrewkitTypeError
+        If ``value`` holds something that is not a number.
+    ScrewkitValueError
+        If the trailing shape is wrong or a number is NaN or infinite.
+
+    Examples
+    --------
+    >>> as_array([1, 2, 3], "point", (3,))
+    array([1., 2., 3.])
+    >>> as_array([1, 2], "point", (3,))
+    Traceback (most recent call last):
+    ...
+    screwkit.exceptions.ScrewkitValueError: Expected `point` to have shape (..., 3), got (2,).
+    """
+    if isinstance(value, str | bytes):
+        raise ScrewkitTypeError(f"Expected `{name}` to be numeric, got the string {value!r}.")
+    want_symbolic = is_symbolic(value) if symbolic is None else symbolic
+    if want_symbolic:
+        try:
+            raw = np.array(value, dtype=object)
+        except (ValueError, TypeError) as err:
+            raise ScrewkitValueError(f"Expected `{name}` to be a regular array: {err}.") from err
+        flat = [_checked_sympy(v, name) for v in raw.flat]
+        array = np.empty(raw.shape, dtype=object)
+        for i, v in enumerate(flat):
+            array.flat[i] = v
+    else:
+        try:
+            array = np.array(value, dtype=float)
+        except (ValueError, TypeError) as err:
+            raise ScrewkitTypeError(
+                f"Expected `{name}` to be an array of numbers, got {type(value).__name__}: {err}."
+            ) from err
+        if not np.all(np.isfinite(array)):
+            raise ScrewkitValueError(
+                f"Expected `{name}` to hold finite numbers, got NaN or infinity in {array.tolist()}."
+            )
+    tail = array.shape[array.ndim - len(shape) :] if len(shape) <= array.ndim else None
+    if tail is None or any(w is not None and w != g for w, g in zip(shape, tail, strict=True)):
+        raise ScrewkitValueError(
+            f"Expected `{name}` to have shape {_describe_shape(shape)}, got {array.shape}."
+        )
+    return array
+
+
+def _checked_sympy(value: Any, name: str) -> sympy.Expr:
+    try:
+        expr = to_sympy(value)
+    except (ScrewkitTypeError, ScrewkitValueError) as err:
+        raise type(err)(f"In `{name}`: {err}") from err
+    if expr.has(sympy.nan, sympy.oo, -sympy.oo, sympy.zoo):
+        raise ScrewkitValueError(f"Expected `{name}` to hold finite expressions, got {expr}.")
+    return expr
+
+
+def promote(*arrays: Array) -> tuple[Array, ...]:
+    """Bring validated arrays to one branch: all float64, or all sympy-object if any is symbolic.
+
+    Examples
+    --------
+    >>> a, b = promote(np.array([1.5]), np.array([sympy.Symbol("x")], dtype=object))
+    >>> a.dtype, a[0]
+    (dtype('O'), 3/2)
+    """
+    if any(a.dtype == object for a in arrays):
+        out = []
+        for a in arrays:
+            if a.dtype == object:
+                out.append(a)
+            else:
+                converted = np.empty(a.shape, dtype=object)
+                for i, v in enumerate(a.flat):
+                    converted.flat[i] = to_sympy(float(v))
+                out.append(converted)
+        return tuple(out)
+    return arrays
+
+
+def cross(a: Array, b: Array) -> Array:
+    """Cross product over the last axis for float and sympy-object arrays alike.
+
+    ``numpy.cross`` refuses object arrays in numpy 2, so the three components are written out.
+
+    Examples
+    --------
+    >>> cross(np.array([1.0, 0, 0]), np.array([0, 1.0, 0]))
+    array([0., 0., 1.])
+    """
+    if a.dtype != object and b.dtype != object:
+        return np.cross(a, b)
+    a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
+    b0, b1, b2 = b[..., 0], b[..., 1], b[..., 2]
+    return np.stack([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0], axis=-1)
+
+
+def dot(a: Array, b: Array) -> Array:
+    """Dot product over the last axis, batched.
+
+    Examples
+    --------
+    >>> dot(np.array([1.0, 2, 3]), np.array([4.0, 5, 6]))
+    np.float64(32.0)
+    """
+    return (a * b).sum(axis=-1)
+
+
+def norm(a: Array) -> Array:
+    """Euclidean norm over the last axis (``sympy.sqrt`` of the sum of squares when symbolic).
+
+    Examples
+    --------
+    >>> norm(np.array([3.0, 4.0]))
+    np.float64(5.0)
+    """
+    if a.dtype == object:
+        squares = dot(a, a)
+        if isinstance(squares, np.ndarray):
+            return np.vectorize(lambda v: sympy.sqrt(v), otypes=[object])(squares)
+        return sympy.sqrt(squares)
+    return np.linalg.norm(a, axis=-1)
+
+
+def det(matrix: Array) -> Any:
+    """Determinant of a square matrix over the last two axes (batched when numeric).
+
+    Examples
+    --------
+    >>> det(np.eye(3) * 2)
+    np.float64(7.999999999999998)
+    >>> x = sympy.Symbol("x")
+    >>> det(np.array([[x, 1], [1, x]], dtype=object))
+    x**2 - 1
+    """
+    if matrix.dtype == object:
+        if matrix.ndim != 2:
+            raise ScrewkitValueError(
+                f"Expected a single symbolic square matrix, got shape {matrix.shape}."
+            )
+        return sympy.expand(sympy.Matrix(matrix).det(method="berkowitz"))
+    return np.linalg.det(matrix)
+
+
+def simplify(value: Any) -> Any:
+    """Simplify a sympy expression, or each element of an object array; floats pass through.
+
+    Examples
+    --------
+    >>> x = sympy.Symbol("x")
+    >>> simplify(sympy.sin(x) ** 2 + sympy.cos(x) ** 2)
+    1
+    """
+    if isinstance(value, np.ndarray) and value.dtype == object:
+        return np.vectorize(lambda v: sympy.simplify(v), otypes=[object])(value)
+    if isinstance(value, sympy.Basic):
+        return sympy.simplify(value)
+    return value
+
+
+def is_zero(value: Any, *, atol: float) -> Any:
+    """Decide whether a value is zero: ``|value| <= atol`` numerically, exactly when symbolic.
+
+    Parameters
+    ----------
+    value : float, array or sympy expression
+    atol : float
+        Absolute tolerance of the numeric branch (ignored by the symbolic branch).
+
+    Returns
+    -------
+    bool or numpy.ndarray of bool
+
+    Raises
+    ------
+    ScrewkitValueError
+        If a symbolic value cannot be decided (it depends on free symbols): substitute values.
+
+    Examples
+    --------
+    >>> is_zero(1e-12, atol=1e-9)
+    True
+    >>> x = sympy.Symbol("x")
+    >>> is_zero((x + 1) ** 2 - x**2 - 2 * x - 1, atol=0)
+    True
+    """
+    if isinstance(value, np.ndarray) and value.dtype == object:
+        return np.vectorize(lambda v: is_zero(v, atol=atol), otypes=[bool])(value)
+    if isinstance(value, sympy.Basic):
+        reduced = sympy.simplify(value)
+        if reduced == 0:
+            return True
+        if reduced.free_symbols:
+            raise ScrewkitValueError(
+                f"Cannot decide whether {reduced} is zero: it depends on "
+                f"{sorted(map(str, reduced.free_symbols))}; substitute values first."
+            )
+        return bool(abs(complex(reduced)) == 0)
+    result = np.abs(value) <= atol
+    return bool(result) if np.ndim(result) == 0 else result
+
+
+def scale_moments(rows: Array, length_scale: float | None) -> tuple[Array, float]:
+    """Divide the moment half of screws ``(..., 6)`` by a characteristic length.
+
+    Parameters
+    ----------
+    rows : numpy.ndarray, shape (..., 6)
+    length_scale : float or None
+        The characteristic length; None derives it from the data (see the module docstring).
+
+    Returns
+    -------
+    scaled : numpy.ndarray, shape (..., 6)
+    length_scale : float
+        The length actually used.
+
+    Examples
+    --------
+    >>> scale_moments(np.array([[1.0, 0, 0, 0, 0, 500.0]]), None)[1]
+    500.0
+    """
+    if length_scale is None:
+        directions = np.linalg.norm(rows[..., :3], axis=-1)
+        moments = np.linalg.norm(rows[..., 3:], axis=-1)
+        has_direction = directions > 0
+        ratios = moments[has_direction] / directions[has_direction]
+        length_scale = float(ratios.max()) if ratios.size and ratios.max() > 0 else 1.0
+    elif not (isinstance(length_scale, Number) and np.isfinite(length_scale) and length_scale > 0):
+        raise ScrewkitValueError(
+            f"Expected `length_scale` to be a positive finite number or None, got {length_scale!r}."
+        )
+    scaled = np.array(rows, dtype=float)
+    scaled[..., 3:] /= length_scale
+    return scaled, float(length_scale)
+
+
+def _check_rtol(rtol: float) -> None:
+    if not (isinstance(rtol, Number) and 0 <= float(rtol) < 1):  # type: ignore[arg-type]
+        raise ScrewkitValueError(f"Expected `rtol` to be a number in [0, 1), got {rtol!r}.")
+
+
+def screw_singular_values(rows: Array, *, length_scale: float | None = None) -> Array:
+    """Singular values of screws ``(..., k, 6)`` after moment scaling and row normalisation.
+
+    The largest is between 1 and sqrt(k); their ratios are frame-sensitive but unit-invariant.
+    Zero rows are kept as zero rows. Batched over leading axes.
+
+    Examples
+    --------
+    >>> screw_singular_values(np.array([[1.0, 0, 0, 0, 0, 0], [0, 1.0, 0, 0, 0, 0]]))
+    array([1., 1.])
+    """
+    scaled, _ = scale_moments(np.asarray(rows, dtype=float), length_scale)
+    lengths = np.linalg.norm(scaled, axis=-1, keepdims=True)
+    safe = np.where(lengths > 0, lengths, 1.0)
+    return np.linalg.svd(scaled / safe, compute_uv=False)
+
+
+def screw_rank(
+    rows: Array, *, rtol: float = DEFAULT_RTOL, length_scale: float | None = None
+) -> Any:
+    """Rank of a set of screws ``(..., k, 6)``: numeric at a pose, generic when symbolic.
+
+    Parameters
+    ----------
+    rows : numpy.ndarray, shape (..., k, 6)
+    rtol : float, default 1e-9
+        Singular values at most ``rtol`` times the largest count as zero.
+    length_scale : float or None
+        See the module docstring.
+
+    Returns
+    -------
+    int or numpy.ndarray of int
+        Batched over leading axes when numeric. The symbolic rank is the *generic* rank
+        (sympy's): it says nothing about special values of the symbols.
+
+    Examples
+    --------
+    >>> screw_rank(np.zeros((0, 6)))
+    0
+    """
+    _check_rtol(rtol)
+    if rows.dtype == object:
+        return sympy.Matrix(rows).rank(simplify=True) if rows.size else 0
+    if rows.shape[-2] == 0:
+        return 0 if rows.ndim == 2 else np.zeros(rows.shape[:-2], dtype=int)
+    values = screw_singular_values(rows, length_scale=length_scale)
+    largest = values[..., :1]
+    counted = (values > rtol * largest) & (largest > 0)
+    result = counted.sum(axis=-1)
+    return int(result) if np.ndim(result) == 0 else result
+
+
+_SWAP = np.block([[np.zeros((3, 3)), np.eye(3)], [np.eye(3), np.zeros((3, 3))]])
+
+
+def screw_nullspace(
+    rows: Array,
+    *,
+    rtol: float = DEFAULT_RTOL,
+    length_scale: float | None = None,
+) -> Array:
+    """Basis of the screws reciprocal to every row of ``rows`` (shape ``(k, 6)``).
+
+    Parameters
+    ----------
+    rows : numpy.ndarray, shape (k, 6)
+    rtol, length_scale
+        As in :func:`screw_rank`.
+
+    Returns
+    -------
+    numpy.ndarray, shape (6 - rank, 6)
+        Numeric rows are an orthonormal basis in scaled coordinates, mapped back to the caller's
+        unit; symbolic rows are sympy's null space.
+
+    Examples
+    --------
+    >>> screw_nullspace(np.array([[0.0, 0, 0, 0, 0, 1]])).shape
+    (5, 6)
+    """
+    _check_rtol(rtol)
+    if rows.dtype == object:
+        if rows.shape[0] == 0:
+            return np.array(sympy.eye(6).tolist(), dtype=object)
+        return matrix_nullspace(rows @ _SWAP.astype(int), rtol=rtol)
+    if rows.shape[0] == 0:
+        return np.eye(6)
+    scaled, length = scale_moments(rows, length_scale)
+    lengths = np.linalg.norm(scaled, axis=-1, keepdims=True)
+    scaled = scaled / np.where(lengths > 0, lengths, 1.0)
+    basis = matrix_nullspace(scaled @ _SWAP, rtol=rtol)
+    # In scaled coordinates x' = (x_s; x_m / L); reciprocity a∘x = L (a'∘x') is preserved.
+    basis[:, 3:] *= length
+    return basis
+
+
+def matrix_nullspace(matrix: Array, *, rtol: float = DEFAULT_RTOL) -> Array:
+    """Basis of ``{x : matrix @ x = 0}`` as rows, for any ``(m, n)`` matrix.
+
+    Numeric: the right singular vectors whose singular values are at most ``rtol`` times the
+    largest (an orthonormal basis). Symbolic: sympy's generic null space, simplified. The caller
+    scales rows beforehand if they carry different units (row scaling keeps the null space).
+
+    Examples
+    --------
+    >>> matrix_nullspace(np.array([[1.0, 1.0]]))
+    array([[-0.70710678,  0.70710678]])
+    """
+    _check_rtol(rtol)
+    if matrix.dtype == object:
+        vectors = sympy.Matrix(matrix).nullspace(simplify=True)
+        out = np.empty((len(vectors), matrix.shape[1]), dtype=object)
+        for i, vector in enumerate(vectors):
+            for j in range(matrix.shape[1]):
+                out[i, j] = sympy.simplify(vector[j])
+        return out
+    if matrix.shape[0] == 0:
+        return np.eye(matrix.shape[1])
+    _, values, vt = np.linalg.svd(matrix)
+    rank = int(((values > rtol * values[:1]) & (values[:1] > 0)).sum())
+    return vt[rank:].copy()
