@@ -109,7 +109,9 @@ def to_sympy(value: Any) -> sympy.Expr:
     if isinstance(value, sympy.Basic):
         return value
     if isinstance(value, bool | np.bool_):
-        raise ScrewkitTypeError(f"Expected a number or a sympy expression, got a boolean {value!r}.")
+        raise ScrewkitTypeError(
+            f"Expected a number or a sympy expression, got a boolean {value!r}."
+        )
     if isinstance(value, int | np.integer):
         return sympy.Integer(int(value))
     if isinstance(value, float | np.floating):
@@ -171,10 +173,7 @@ def as_array(
         raise ScrewkitTypeError(f"Expected `{name}` to be numeric, got the string {value!r}.")
     want_symbolic = is_symbolic(value) if symbolic is None else symbolic
     if want_symbolic:
-        try:
-            raw = np.array(value, dtype=object)
-        except (ValueError, TypeError) as err:
-            raise ScrewkitValueError(f"Expected `{name}` to be a regular array: {err}.") from err
+        raw = np.array(value, dtype=object)  # ragged input becomes an array of lists: refused below
         flat = [_checked_sympy(v, name) for v in raw.flat]
         array = np.empty(raw.shape, dtype=object)
         for i, v in enumerate(flat):
@@ -190,8 +189,10 @@ def as_array(
             raise ScrewkitValueError(
                 f"Expected `{name}` to hold finite numbers, got NaN or infinity in {array.tolist()}."
             )
-    tail = array.shape[array.ndim - len(shape) :] if len(shape) <= array.ndim else None
-    if tail is None or any(w is not None and w != g for w, g in zip(shape, tail, strict=True)):
+    tail: tuple[int, ...] | None = (
+        tuple(array.shape[array.ndim - len(shape) :]) if len(shape) <= array.ndim else None
+    )
+    if tail is None or any(want is not None and want != got for want, got in zip(shape, tail, strict=True)):
         raise ScrewkitValueError(
             f"Expected `{name}` to have shape {_describe_shape(shape)}, got {array.shape}."
         )
@@ -248,15 +249,17 @@ def cross(a: Array, b: Array) -> Array:
     return np.stack([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0], axis=-1)
 
 
-def dot(a: Array, b: Array) -> Array:
-    """Dot product over the last axis, batched.
+def dot(a: Array, b: Array, *, keepdims: bool = False) -> Any:
+    """Dot product over the last axis, batched; ``keepdims`` keeps a trailing axis of length 1.
 
     Examples
     --------
     >>> dot(np.array([1.0, 2, 3]), np.array([4.0, 5, 6]))
     np.float64(32.0)
+    >>> dot(np.array([1.0, 2, 3]), np.array([4.0, 5, 6]), keepdims=True)
+    array([32.])
     """
-    return (a * b).sum(axis=-1)
+    return (a * b).sum(axis=-1, keepdims=keepdims)
 
 
 def norm(a: Array) -> Array:
@@ -389,7 +392,7 @@ def scale_moments(rows: Array, length_scale: float | None) -> tuple[Array, float
 
 
 def _check_rtol(rtol: float) -> None:
-    if not (isinstance(rtol, Number) and 0 <= float(rtol) < 1):  # type: ignore[arg-type]
+    if not (isinstance(rtol, int | float) and 0 <= float(rtol) < 1):
         raise ScrewkitValueError(f"Expected `rtol` to be a number in [0, 1), got {rtol!r}.")
 
 

@@ -1,0 +1,1 @@
+"""Parametric mechanism families with closed-form kinematics."""

@@ -1,0 +1,456 @@
+"""Screw systems: the linear spans of screws, their sums, intersections and reciprocals.
+
+A screw system of order n (an n-system) is the set of screws linearly dependent on n independent
+screws (paper 002, §3). For a serial chain the twist system is the sum of the joints' twist systems
+and the wrench system the intersection of theirs (paper 002, Eq. 1); across parallel chains the
+roles swap (Eq. 2). Twist and wrench systems of a chain are reciprocal: ``T = W^⊥``, ``W = T^⊥``,
+and ``order(W) = 6 - order(T)``.
+
+Every rank decision takes ``rtol`` and ``length_scale`` (``screwkit._backend``); a system keeps
+the values it was built with and passes them on to the systems it produces, so a whole analysis uses
+one characteristic length. Symbolic systems use sympy's exact (generic) rank.
+
+Examples
+--------
+>>> from screwkit.screw import couple, force
+>>> wrenches = ScrewSystem.span([force([1, 0, 0], [0, 0, 0]), couple([0, 0, 1])])
+>>> wrenches.order, wrenches.reciprocal().order
+(2, 4)
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from . import _backend as B
+from .exceptions import ScrewkitTypeError, ScrewkitValueError
+from .screw import Screw
+
+__all__ = ["ScrewSystem"]
+
+Array = np.ndarray
+_COUPLES = np.hstack([np.zeros((3, 3)), np.eye(3)])
+
+
+def _independent_rows(rows: Array, rtol: float, length_scale: float | None) -> Array:
+    """The rows that raise the rank, in order (a basis made of the given generators)."""
+    chosen: list[Array] = []
+    rank = 0
+    for row in rows:
+        trial = np.array([*chosen, row], dtype=rows.dtype)
+        new_rank = B.screw_rank(trial, rtol=rtol, length_scale=length_scale)
+        if new_rank > rank:
+            chosen.append(row)
+            rank = new_rank
+            if rank == 6:
+                break
+    return np.array(chosen, dtype=rows.dtype).reshape(len(chosen), 6)
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class ScrewSystem:
+    """A screw system, held as a basis of rows ``(order, 6)``.
+
+    Build one with :meth:`span` (which picks an independent subset of the generators); the
+    constructor expects an already independent basis.
+
+    Parameters
+    ----------
+    basis : array_like, shape (k, 6)
+        Independent screws (numbers or sympy expressions). Stored read-only.
+    rtol : float, default 1e-9
+        Relative tolerance of every rank decision made with this system.
+    length_scale : float or None
+        Characteristic length (see ``screwkit._backend``); None derives it from the basis.
+
+    Examples
+    --------
+    >>> from screwkit.screw import revolute_twist
+    >>> hinge = ScrewSystem.span([revolute_twist([0, 0, 1], [0, 0, 0])])
+    >>> hinge.order, hinge.reciprocal().order
+    (1, 5)
+    """
+
+    basis: Array = field()
+    rtol: float = B.DEFAULT_RTOL
+    length_scale: float | None = None
+
+    def __post_init__(self) -> None:
+        rows = B.as_array(self.basis, "basis", (6,)).reshape(-1, 6)
+        if rows.dtype != object:
+            _, length = B.scale_moments(rows, self.length_scale)
+            object.__setattr__(self, "length_scale", length)
+            if B.screw_rank(rows, rtol=self.rtol, length_scale=length) != rows.shape[0]:
+                raise ScrewkitValueError(
+                    f"Expected `basis` to hold independent screws, got {rows.shape[0]} rows of "
+                    f"rank {B.screw_rank(rows, rtol=self.rtol, length_scale=length)}; "
+                    "use ScrewSystem.span to pick a basis."
+                )
+        rows = rows.copy()
+        rows.flags.writeable = False
+        object.__setattr__(self, "basis", rows)
+
+    # constructors -------------------------------------------------------------------------
+    @classmethod
+    def span(
+        cls,
+        screws: Any,
+        *,
+        rtol: float = B.DEFAULT_RTOL,
+        length_scale: float | None = None,
+    ) -> ScrewSystem:
+        """The system spanned by screws: a sequence of :class:`Screw` or an array ``(k, 6)``.
+
+        The basis is the maximal independent subset of the generators, in their order.
+
+        Examples
+        --------
+        >>> from screwkit.screw import prismatic_twist
+        >>> ScrewSystem.span([prismatic_twist([1, 0, 0]), prismatic_twist([2, 0, 0])]).order
+        1
+        """
+        rows = _rows(screws, "screws")
+        if rows.dtype != object:
+            _, length_scale = B.scale_moments(rows, length_scale)
+        basis = _independent_rows(rows, rtol, length_scale) if rows.shape[0] else rows
+        return cls(basis, rtol=rtol, length_scale=length_scale)
+
+    @classmethod
+    def full(
+        cls, *, rtol: float = B.DEFAULT_RTOL, length_scale: float | None = None
+    ) -> ScrewSystem:
+        """The 6-system of all screws.
+
+        Examples
+        --------
+        >>> ScrewSystem.full().order
+        6
+        """
+        return cls(np.eye(6), rtol=rtol, length_scale=length_scale)
+
+    @classmethod
+    def zero(
+        cls, *, rtol: float = B.DEFAULT_RTOL, length_scale: float | None = None
+    ) -> ScrewSystem:
+        """The 0-system.
+
+        Examples
+        --------
+        >>> ScrewSystem.zero().reciprocal().order
+        6
+        """
+        return cls(np.zeros((0, 6)), rtol=rtol, length_scale=length_scale)
+
+    # basic properties ---------------------------------------------------------------------
+    @property
+    def order(self) -> int:
+        """The order n of the n-system (the number of basis screws)."""
+        return int(self.basis.shape[0])
+
+    @property
+    def is_symbolic(self) -> bool:
+        """True when the basis holds sympy expressions."""
+        return self.basis.dtype == object
+
+    def screws(self) -> list[Screw]:
+        """The basis as :class:`~screwkit.screw.Screw` values.
+
+        Examples
+        --------
+        >>> len(ScrewSystem.full().screws())
+        6
+        """
+        return [Screw(row) for row in self.basis]
+
+    def _like(self, rows: Array) -> ScrewSystem:
+        return ScrewSystem.span(rows, rtol=self.rtol, length_scale=self.length_scale)
+
+    def _other(self, other: Any) -> ScrewSystem:
+        if isinstance(other, ScrewSystem):
+            return other
+        raise ScrewkitTypeError(
+            f"Expected `other` to be a ScrewSystem, got {type(other).__name__}."
+        )
+
+    def _stack(self, *parts: Array) -> Array:
+        promoted = B.promote(*[np.asarray(p).reshape(-1, 6) for p in parts])
+        return np.concatenate(promoted, axis=0)
+
+    # algebra ------------------------------------------------------------------------------
+    def reciprocal(self) -> ScrewSystem:
+        """The reciprocal system: every screw whose reciprocal product with all of ``self`` is 0.
+
+        ``order(S) + order(S^⊥) = 6`` and ``(S^⊥)^⊥ = S`` (paper 002, §3).
+
+        Examples
+        --------
+        >>> from screwkit.screw import line
+        >>> lines = ScrewSystem.span([line([1, 0, 0], [0, 0, 0]), line([0, 1, 0], [0, 0, 0])])
+        >>> lines.reciprocal().order
+        4
+        """
+        rows = B.screw_nullspace(self.basis, rtol=self.rtol, length_scale=self.length_scale)
+        return ScrewSystem(rows, rtol=self.rtol, length_scale=self.length_scale)
+
+    def sum(self, other: ScrewSystem) -> ScrewSystem:
+        """The smallest system holding both (span of the union); also ``self + other``.
+
+        Examples
+        --------
+        >>> from screwkit.screw import couple
+        >>> (ScrewSystem.span([couple([1, 0, 0])]) + ScrewSystem.span([couple([0, 1, 0])])).order
+        2
+        """
+        return self._like(self._stack(self.basis, self._other(other).basis))
+
+    __add__ = sum
+
+    def intersection(self, other: ScrewSystem) -> ScrewSystem:
+        """The screws common to both: ``(A^⊥ + B^⊥)^⊥``; also ``self & other``.
+
+        Examples
+        --------
+        >>> from screwkit.screw import couple
+        >>> a = ScrewSystem.span([couple([1, 0, 0]), couple([0, 1, 0])])
+        >>> b = ScrewSystem.span([couple([0, 1, 0]), couple([0, 0, 1])])
+        >>> (a & b).order
+        1
+        """
+        return (self.reciprocal() + self._other(other).reciprocal()).reciprocal()
+
+    __and__ = intersection
+
+    def contains(self, item: Screw | ScrewSystem | Any) -> bool:
+        """True if a screw (or every screw of a system, or rows ``(k, 6)``) lies in ``self``.
+
+        Examples
+        --------
+        >>> from screwkit.screw import couple
+        >>> plane = ScrewSystem.span([couple([1, 0, 0]), couple([0, 1, 0])])
+        >>> plane.contains(Screw.couple([1, 1, 0])), plane.contains(Screw.couple([0, 0, 1]))
+        (True, False)
+        """
+        if isinstance(item, ScrewSystem):
+            rows = item.basis
+        elif isinstance(item, Screw):
+            rows = item.coords.reshape(1, 6)
+        else:
+            rows = _rows(item, "item")
+        stacked = self._stack(self.basis, rows)
+        rank = B.screw_rank(stacked, rtol=self.rtol, length_scale=self.length_scale)
+        return bool(rank == self.order)
+
+    def is_equivalent(self, other: ScrewSystem) -> bool:
+        """True if both systems are the same set of screws.
+
+        Examples
+        --------
+        >>> from screwkit.screw import couple
+        >>> a = ScrewSystem.span([couple([1, 0, 0]), couple([0, 1, 0])])
+        >>> a.is_equivalent(ScrewSystem.span([couple([1, 1, 0]), couple([1, -1, 0])]))
+        True
+        """
+        other = self._other(other)
+        return other.order == self.order and self.contains(other)
+
+    # readable presentation ----------------------------------------------------------------
+    def couple_subsystem(self) -> ScrewSystem:
+        """The screws of infinite pitch in ``self`` (a linear subsystem: ``self ∩ couples``).
+
+        Examples
+        --------
+        >>> from screwkit.screw import couple, force
+        >>> ScrewSystem.span([force([1, 0, 0], [0, 0, 0]), couple([0, 1, 0])]).couple_subsystem().order
+        1
+        """
+        couples = ScrewSystem(_COUPLES, rtol=self.rtol, length_scale=self.length_scale)
+        return self.intersection(couples)
+
+    def readable_basis(self) -> Array:
+        """A basis that prefers pure couples/translations and pure forces/rotations.
+
+        The infinite-pitch subsystem comes first (unit moments); then each remaining generator,
+        shifted by a couple of the system to zero pitch when one allows it; then pairs of
+        generators are replaced by the two lines of their pencil (the real roots of the pitch
+        quadric, Hunt's cylindroid) when those exist. Lines are scaled to unit direction.
+
+        Returns
+        -------
+        numpy.ndarray, shape (order, 6)
+
+        Examples
+        --------
+        >>> from screwkit.screw import couple, force
+        >>> mixed = [force([1, 0, 0], [0, 0, 0]) + couple([1, 0, 0]), couple([1, 0, 0])]
+        >>> ScrewSystem.span(mixed).readable_basis() + 0.0
+        array([[0., 0., 0., 1., 0., 0.],
+               [1., 0., 0., 0., 0., 0.]])
+        """
+        if self.is_symbolic:
+            return _pick(self._stack(self.couple_subsystem().basis, self.basis), self.order, self)
+        couples = _orthonormal_couples(self.couple_subsystem().basis)
+        moments = couples[:, 3:]
+        others: list[Array] = []
+        for row in self.basis:
+            s, s0 = row[:3], row[3:]
+            if moments.size and np.any(np.abs(moments @ s) > 0):
+                best = moments[np.argmax(np.abs(moments @ s))]
+                row = row - np.concatenate([np.zeros(3), best]) * (s @ s0) / (s @ best)
+            others.append(row)
+        others = _pencil_lines(others, self)
+        candidates = self._stack(couples, *sorted(others, key=lambda r: not _is_line(r, self)))
+        return _pick(candidates, self.order, self)
+
+    def pitch_range(self) -> tuple[float, float]:
+        """Least and greatest pitch of the screws of ``self`` with a non-zero direction.
+
+        The pitch is the Rayleigh quotient ``s·s0 / s·s`` over the system; its extreme values
+        are the principal pitches (for a 2-system, those of its cylindroid). When the system
+        holds a couple that can change the pitch of a finite screw, the range is unbounded.
+
+        Returns
+        -------
+        (float, float)
+            In the system's unit of length; ``(nan, nan)`` is never returned: a pure-couple
+            system raises instead.
+
+        Raises
+        ------
+        ScrewkitValueError
+            If every screw of the system has infinite pitch (or the system is empty).
+
+        Examples
+        --------
+        >>> from screwkit.screw import helical_twist
+        >>> pair = [helical_twist([1, 0, 0], [0, 0, 0], 1.0), helical_twist([0, 1, 0], [0, 0, 0], -2.0)]
+        >>> ScrewSystem.span(pair).pitch_range()
+        (-2.0, 1.0)
+        """
+        if self.is_symbolic:
+            raise ScrewkitTypeError(
+                "pitch_range is numeric; substitute values into the system first."
+            )
+        length = float(self.length_scale or 1.0)
+        scaled, _ = B.scale_moments(self.basis, length)
+        if scaled.shape[0]:
+            scaled = np.linalg.qr(scaled.T)[0].T  # orthonormal basis of the same span
+        dirs, mom = scaled[:, :3], scaled[:, 3:]
+        gram = dirs @ dirs.T
+        form = 0.5 * (dirs @ mom.T + mom @ dirs.T)
+        values, vectors = np.linalg.eigh(gram)
+        tol = self.rtol * max(1.0, float(values.max(initial=0.0)))
+        finite = vectors[:, values > tol]
+        if finite.shape[1] == 0:
+            raise ScrewkitValueError(
+                "Expected a system holding a screw of finite pitch, got only couples "
+                f"(order {self.order})."
+            )
+        kernel = vectors[:, values <= tol]
+        if kernel.size and np.abs(kernel.T @ form @ finite).max() > tol:
+            return (-np.inf, np.inf)
+        reduced_gram = finite.T @ gram @ finite
+        reduced_form = finite.T @ form @ finite
+        root = np.linalg.cholesky(reduced_gram)
+        inv = np.linalg.inv(root)
+        pitches = np.linalg.eigvalsh(inv @ reduced_form @ inv.T) * length
+        return (float(pitches[0]), float(pitches[-1]))
+
+    def contains_pitch(self, value: float) -> bool:
+        """True if the system holds a screw of pitch ``value`` (``math.inf`` for couples).
+
+        Examples
+        --------
+        >>> from screwkit.screw import couple, line
+        >>> system = ScrewSystem.span([line([1, 0, 0], [0, 0, 0]), couple([0, 0, 1])])
+        >>> system.contains_pitch(0.0), system.contains_pitch(float("inf"))
+        (True, True)
+        """
+        if np.isinf(value):
+            return self.couple_subsystem().order > 0
+        try:
+            low, high = self.pitch_range()
+        except ScrewkitValueError:
+            return False
+        slack = self.rtol * float(self.length_scale or 1.0)
+        return bool(low - slack <= value <= high + slack)
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready description: order and readable basis.
+
+        Examples
+        --------
+        >>> ScrewSystem.zero().to_dict()
+        {'order': 0, 'basis': []}
+        """
+        return {"order": self.order, "basis": [Screw(r).to_dict() for r in self.readable_basis()]}
+
+    def __str__(self) -> str:
+        rows = "; ".join(str(Screw(r)) for r in self.readable_basis())
+        return f"{self.order}-system [{rows}]"
+
+    def __repr__(self) -> str:
+        return f"ScrewSystem(order={self.order}, basis={self.basis!r})"
+
+
+def _rows(screws: Any, name: str) -> Array:
+    if isinstance(screws, ScrewSystem):
+        return screws.basis
+    if isinstance(screws, Screw):
+        return screws.coords.reshape(1, 6)
+    if isinstance(screws, list | tuple) and screws and all(isinstance(s, Screw) for s in screws):
+        return np.concatenate(B.promote(*[s.coords.reshape(1, 6) for s in screws]), axis=0)
+    if isinstance(screws, list | tuple) and not screws:
+        return np.zeros((0, 6))
+    return B.as_array(screws, name, (6,)).reshape(-1, 6)
+
+
+def _orthonormal_couples(rows: Array) -> Array:
+    if rows.shape[0] == 0:
+        return np.zeros((0, 6))
+    moments = np.linalg.svd(rows[:, 3:])[2][: rows.shape[0]]
+    return np.hstack([np.zeros_like(moments), moments])
+
+
+def _is_line(row: Array, system: ScrewSystem) -> bool:
+    s, s0 = row[:3], row[3:] / float(system.length_scale or 1.0)
+    size = np.linalg.norm(np.concatenate([s, s0]))
+    return bool(np.linalg.norm(s) > system.rtol * size and abs(s @ s0) <= system.rtol * size**2)
+
+
+def _pencil_lines(rows: list[Array], system: ScrewSystem) -> list[Array]:
+    """Replace pairs of non-line screws by the two lines of their pencil, where real."""
+    rows = list(rows)
+    length = float(system.length_scale or 1.0)
+    for i in range(len(rows)):
+        for j in range(i + 1, len(rows)):
+            x, y = rows[i], rows[j]
+            if _is_line(x, system) or _is_line(y, system):
+                continue
+            xs, x0, ys, y0 = x[:3], x[3:] / length, y[:3], y[3:] / length
+            a, b, c = xs @ x0, xs @ y0 + ys @ x0, ys @ y0
+            disc = b * b - 4 * a * c
+            if disc <= 0 or a == 0:
+                continue
+            roots = [(-b + sign * np.sqrt(disc)) / (2 * a) for sign in (1.0, -1.0)]
+            # a x + t y with a = root, t = 1: both lines of the cylindroid
+            rows[i], rows[j] = roots[0] * x + y, roots[1] * x + y
+    return rows
+
+
+def _pick(candidates: Array, order: int, system: ScrewSystem) -> Array:
+    picked = _independent_rows(candidates, system.rtol, system.length_scale)
+    if picked.shape[0] != order:  # pragma: no cover - guarded by construction
+        raise ScrewkitValueError(
+            f"Internal error: readable basis of order {picked.shape[0]} != {order}."
+        )
+    if system.is_symbolic:
+        return picked
+    sizes = np.linalg.norm(picked[:, :3], axis=1)
+    moments = np.linalg.norm(picked[:, 3:], axis=1)
+    scale = np.where(
+        sizes > system.rtol * moments / float(system.length_scale or 1.0), sizes, moments
+    )
+    return picked / scale[:, None]
