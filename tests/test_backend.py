@@ -9,7 +9,7 @@ from screwkit.exceptions import ScrewkitTypeError, ScrewkitValueError
 
 
 def test_promotion_turns_floats_into_exact_rationals():
-    numeric, symbolic = B.promote(np.array([0.1, 2.5]), np.array([sympy.Symbol("x")], dtype=object))
+    numeric, _ = B.promote(np.array([0.1, 2.5]), np.array([sympy.Symbol("x")], dtype=object))
     assert numeric.dtype == object and numeric[0] == sympy.Rational(1, 10) and numeric[1] == sympy.Rational(5, 2)
 
 
