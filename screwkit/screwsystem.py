@@ -294,9 +294,13 @@ class ScrewSystem:
         couples = _orthonormal_couples(self.couple_subsystem().basis)
         moments = couples[:, 3:]
         others: list[Array] = []
+        length = float(self.length_scale or 1.0)
         for row in self.basis:
             s, s0 = row[:3], row[3:]
-            if moments.size and np.any(np.abs(moments @ s) > 0):
+            size = np.linalg.norm(np.concatenate([s, s0 / length]))
+            if np.linalg.norm(s) <= self.rtol * size:
+                continue  # a couple: already in the infinite-pitch subsystem
+            if moments.size and np.max(np.abs(moments @ s)) > self.rtol * np.linalg.norm(s):
                 best = moments[np.argmax(np.abs(moments @ s))]
                 row = row - np.concatenate([np.zeros(3), best]) * (s @ s0) / (s @ best)
             others.append(row)

@@ -1,0 +1,113 @@
+"""The physical twist graph of a four-limb SMG (H4, Quattro, V4, Veloce, Ragnar) at one pose.
+
+Each limb is modelled as paper 002 models the H4's (§4.1, Fig. 2): ``R–(4S)``, an actuated revolute
+joint ``A<i>`` (axis ``u_i`` through ``A_i``) and a parallelogram of two rods with **explicit
+spherical joints** at its four corners ``m, n`` (on the arm) and ``p, q`` (on the sub-platform).
+The closed 4S loops are *not* typed in as virtual chains: the equivalent twist graph derives them
+(:func:`screwkit.twistgraph.equivalent_twist_graph`).
+
+The articulated platform joins the two sub-platforms ``b_I`` and ``b_II`` to the end effector by
+joints ``R_I`` and ``R_II`` (revolute, or helical for the screw-pair platforms of the Veloce and
+Ragnar) on the axes given by :class:`~screwkit.families.four_limb.FourLimbConfiguration`.
+
+Limb numbering follows paper 004 (``A1`` … ``A4``). Paper 002 numbers the H4's legs differently:
+its ``b_I`` carries legs ``l1, l2`` and ``b_II`` carries ``l3, l4``, whereas in paper 004's Table 1
+the sub-platform of limbs with ``sgn(cos η_i) > 0`` carries limbs 1 and 4. So paper 002's
+``(l1, l2, l3, l4)`` are paper 004's limbs ``(1, 4, 2, 3)`` (:data:`PAPER_002_LEGS`).
+
+Examples
+--------
+>>> import numpy as np
+>>> from screwkit.families.four_limb import FourLimbParameters, inverse_kinematics
+>>> h4 = FourLimbParameters(name="H4", platform_kind="articulated_z", arm_length=375, rod_length=800,
+...     alpha=0, beta=np.pi / 2, platform_radius=80, platform_offset=70, base_radius=275)
+>>> G = four_limb_twist_graph(inverse_kinematics(h4, [0, 0, -700, 0]))
+>>> G.number_of_nodes(), G.number_of_edges(), G.graph["dof"]
+(16, 22, 4)
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import networkx as nx
+import numpy as np
+
+from ..exceptions import ScrewkitValueError
+from ..joints import helical, revolute, spherical
+from ..twistgraph import twist_graph
+from .four_limb import FourLimbConfiguration
+
+__all__ = ["PAPER_002_LEGS", "SUBPLATFORMS", "four_limb_twist_graph"]
+
+#: Paper 002's H4 legs l1..l4 as paper 004's limbs (1-based): (1, 4, 2, 3).
+PAPER_002_LEGS = {"l1": 1, "l2": 4, "l3": 2, "l4": 3}
+#: Names of the sub-platform links and of the joints joining them to the end effector.
+SUBPLATFORMS = (("b_I", "R_I"), ("b_II", "R_II"))
+
+
+def _single(config: FourLimbConfiguration, index: tuple[int, ...]) -> dict[str, np.ndarray]:
+    batch = config.pose.shape[:-1]
+    if len(index) != len(batch) or any(not (0 <= i < n) for i, n in zip(index, batch, strict=True)):
+        raise ScrewkitValueError(
+            f"Expected `index` to pick one pose of the batch of shape {batch}, got {index!r}."
+        )
+    names = ("a", "u", "elbow_corners", "platform_corners", "platform_joint_points", "platform_joint_axis")
+    return {name: np.asarray(getattr(config, name))[index] for name in names}
+
+
+def four_limb_twist_graph(config: FourLimbConfiguration, index: tuple[int, ...] = ()) -> nx.MultiDiGraph:
+    """The twist graph of the physical mechanism at one pose of a configuration.
+
+    Parameters
+    ----------
+    config : FourLimbConfiguration
+        From :func:`~screwkit.families.four_limb.inverse_kinematics`.
+    index : tuple of int
+        Which pose of a batched configuration (empty for a single pose).
+
+    Returns
+    -------
+    networkx.MultiDiGraph
+        Links ``base``, ``arm<i>``, ``rod<i>a``, ``rod<i>b``, ``b_I``, ``b_II``, ``end_effector``;
+        joints ``A<i>`` (actuated R), ``S<i>m``, ``S<i>p``, ``S<i>n``, ``S<i>q`` (S), ``R_I``,
+        ``R_II``; ``dof = 4``.
+
+    Raises
+    ------
+    ScrewkitValueError
+        If ``index`` does not pick one pose of the batch.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from screwkit.families.four_limb import FourLimbParameters, inverse_kinematics
+    >>> h4 = FourLimbParameters(name="H4", platform_kind="articulated_z", arm_length=375,
+    ...     rod_length=800, alpha=0, beta=np.pi / 2, platform_radius=80, platform_offset=70,
+    ...     base_radius=275)
+    >>> cfg = inverse_kinematics(h4, [[0, 0, -700, 0], [50, 0, -700, 0.2]])
+    >>> sorted(four_limb_twist_graph(cfg, (1,)).successors("b_I"))
+    ['end_effector']
+    """
+    geometry: dict[str, Any] = _single(config, tuple(index))
+    joints = []
+    limb_platform = {}
+    for (link, _), limbs in zip(SUBPLATFORMS, config.subplatform_limbs, strict=True):
+        for limb in limbs:
+            limb_platform[limb] = link
+    for limb in range(4):
+        i = limb + 1
+        arm = f"arm{i}"
+        joints.append(
+            ("base", arm, revolute(f"A{i}", geometry["u"][limb], geometry["a"][limb], actuated=True))
+        )
+        (m, n), (p, q) = geometry["elbow_corners"][limb], geometry["platform_corners"][limb]
+        for rod, elbow_corner, platform_corner, tag in ((f"rod{i}a", m, p, "mp"), (f"rod{i}b", n, q, "nq")):
+            joints.append((arm, rod, spherical(f"S{i}{tag[0]}", elbow_corner)))
+            joints.append((rod, limb_platform[limb], spherical(f"S{i}{tag[1]}", platform_corner)))
+    axis = geometry["platform_joint_axis"]
+    for k, (link, name) in enumerate(SUBPLATFORMS):
+        point, pitch = geometry["platform_joint_points"][k], config.platform_joint_pitches[k]
+        joint = revolute(name, axis, point) if pitch == 0 else helical(name, axis, point, pitch)
+        joints.append((link, "end_effector", joint))
+    return twist_graph("base", "end_effector", joints, dof=4)

@@ -1,0 +1,1278 @@
+"""Planar 3-RRP parallel manipulator: kinematics, instant centres, Jacobians and singularities.
+
+Source: paper 003 (S. Zarkandi, "A study of the instantaneous centers of rotation in
+singularities of 3-DOF fully parallel planar manipulators"), file
+``/work/shared/papers/003_37bb0c9b229f0566.txt``. Equation numbers below are that paper's. The
+paper gives no dimensions; the model is general and :data:`EXAMPLE_PARAMETERS` are *our* choice
+(see there).
+
+The model
+---------
+Links carry the paper's labels (Fig. 1b): ``1`` base, ``2, 4, 6`` the first (actuated) link of limbs
+1, 2, 3, ``3, 5, 7`` their second link, ``8`` the end effector (platform). Limb ``k`` (``k = 1, 2,
+3``, first link ``i = 2k``, second link ``j = i + 1``) is
+
+``base --R (actuated, at M_k = C_1i)--> link i --R (elbow A_k = C_ij)--> link j --P (b_k)--> 8``.
+
+The prismatic joint keeps link ``j`` at the platform's orientation (Eq. 7b uses the platform's
+``ω`` for link ``j``), so the elbow ``A_k`` slides on a *guide line fixed in the platform*: it
+passes through the platform point ``P_k`` and has the direction ``b_k = R(φ) (cos β_k, sin β_k)``.
+
+* pose ``(x, y, φ)``: position of the platform's reference point ``C`` and its orientation;
+  twist ``t = (ω, ẋ, ẏ) = (φ̇, ẋ, ẏ)`` in the paper's order (Eq. 3, angular rate first: note
+  the different order of the pose);
+* joint angle ``θ_k``: the angle of ``M_k A_k`` from the base x axis, ``A_k = M_k + l_k u(θ_k)``;
+* closure (our form of Eq. 1): ``f_k = n_k·(A_k - C) - n⁰_k·P_k = 0`` with ``n_k = E b_k``,
+  ``E`` the 90° rotation of Eq. (6);
+* inverse kinematics: line-circle intersection, ``A_k = Q_k + γ_k b_k``, ``Q_k = C + R(φ) P_k``,
+  ``γ_k = -(Q_k - M_k)·b_k + σ_k sqrt(l_k² - h_k²)`` with ``h_k = (Q_k - M_k)·n_k``; the working
+  mode ``σ = (σ_1, σ_2, σ_3)`` (each ``±1``) is the sign of ``J_kk``, since
+  ``J_kk = σ_k sqrt(l_k² - h_k²)``;
+* forward kinematics: with ``θ`` given, the three closure equations are linear in ``C``; they are
+  consistent iff ``P cos φ + Q sin φ = S`` (the 2×2 minors of the normals do not depend on
+  ``φ``), so there are at most two assembly modes, found in closed form.
+
+Velocities, Eqs. (4)-(11): ``J θ̇ + K t = 0`` with ``J = diag(b_kᵀ(C_ij - C_1i))`` (Eq. 11a) and rows
+``K_k = [b_kᵀ(C - C_ij), b_kᵀE]`` (Eq. 11b). We keep the paper's letters: *its* ``J`` multiplies the
+actuator rates and *its* ``K`` the twist, so ``det J = 0`` is the inverse (type-1, serial) and
+``det K = 0`` the direct (type-2, parallel) singularity; some texts, and our task brief, swap the
+letters. Both matrices equal the partial derivatives of ``f`` (Eq. 3), and the tests check them
+against finite differences.
+
+Instant centres
+---------------
+Planar points are homogeneous ``(x, y, w)``: finite ``(p, 1)``, at infinity ``(d, 0)`` (the
+direction ``d`` of the pencil of parallel lines through it). The centre of links ``q, r`` whose
+relative twist is ``(ω, v_O)`` (angular rate, velocity of the point at the origin) is
+``(E v_O, ω)`` (Eq. 5 solved for the point of zero relative velocity). Joint centres do not
+depend on the motion: ``C_1i = (M_k, 1)``, ``C_ij = (A_k, 1)``, ``C_j8 = (E b_k, 0)``. In these
+coordinates
+
+* ``J_kk = det[C_1i; C_ij; C_j8]``: limb ``k`` is inverse-singular iff its three joint centres are
+  collinear (Eq. 12: first link ⟂ guide);
+* ``det K = -det[L_1; L_2; L_3]`` with the Kennedy lines ``L_k = C_ij × C_j8`` (through the elbow,
+  perpendicular to the guide; the paper's ``t_i``): direct-singular iff they are concurrent (at
+  ``D``, then ``C_18 = D`` with the actuators locked) or parallel (impossible here, Sec. 4.2).
+
+Where paper 003 is garbled or wrong (each is checked in ``tests/test_families_planar_3rrp.py``)
+-------------------------------------------------------------------------------------------------
+1. Eqs. (7a), (11a): the OCR prints ``C_li``; it is ``C_1i`` (the actuated joint on link 1, Eq. 12).
+2. Eq. (3): ``t ≡ X`` lost its dot, ``t = Ẋ`` with ``X = (φ, C)``; finite differences of the IK
+   confirm Eq. (10) for ``t = (φ̇, ẋ, ẏ)``.
+3. Eq. (17): with ``d = CD`` (Eq. 14) and ``t_i`` from ``C_ij`` to ``D`` (Fig. 3), ``C - C_ij =
+   t_i - d``, not ``d + t_i``. The conclusion (Eq. 18) survives because ``b_iᵀ t_i = 0`` (Eq. 15)
+   leaves ``b_iᵀ(C - C_ij) = -b_iᵀ d`` for every ``i``; the test measures both sides.
+4. Eq. (13): "since the three vectors ``b_i`` are coplanar" is not the reason; it needs ``b_2``,
+   ``b_4`` not parallel (``α_1, α_2`` exist then).
+5. Sec. 4.3, "while none of the rows of ``K`` vanishes": ``|b_kᵀE| = 1``, so no row of ``K`` can
+   vanish; the condition is void for this manipulator.
+6. Sec. 4.2, second case (all ``b_i`` parallel): ``b_k`` turn together with the platform, so it
+   never happens unless the guides are parallel in the platform, and then it happens at *every*
+   pose. Such parameters are rejected (:class:`Planar3RRPParameters`).
+
+The claims of Secs. 4.1-4.2 survive a rank computation (tests): at an inverse singularity of limb
+``k``, driving only actuator ``k`` leaves the platform at rest and ``C_i8 = C_1i``; at a direct
+singularity the null twist of ``K`` is a rotation about the concurrency point ``D = C_18``.
+
+Examples
+--------
+>>> import numpy as np
+>>> from screwkit.families.planar_3rrp import (EXAMPLE_PARAMETERS, Planar3RRPConfiguration,
+...     classify, jacobians)
+>>> config = Planar3RRPConfiguration.from_pose(EXAMPLE_PARAMETERS, [0.0, 0.0, 0.0])
+>>> J, K = jacobians(config)
+>>> np.round(np.diag(J), 4)
+array([0.4975, 0.4975, 0.4975])
+>>> str(classify(config).kind)
+'regular'
+"""
+
+from __future__ import annotations
+
+import itertools
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Any, Literal
+
+import numpy as np
+
+from .._backend import DEFAULT_RTOL, as_array
+from ..exceptions import (
+    CatalogError,
+    DegenerateGeometryError,
+    ScrewkitTypeError,
+    ScrewkitValueError,
+    UnreachablePoseError,
+)
+
+__all__ = [
+    "EXAMPLE_PARAMETERS",
+    "JOINT_PAIRS",
+    "LINK_NAMES",
+    "WORKING_MODES",
+    "ForwardKinematicsSolutions",
+    "JointGeometry",
+    "Planar3RRPConfiguration",
+    "Planar3RRPParameters",
+    "SingularityClassification",
+    "classify",
+    "complete_velocity",
+    "forward_kinematics",
+    "instant_center",
+    "instant_centers",
+    "inverse_kinematics",
+    "jacobians",
+    "limb_joints",
+    "link_twists",
+    "reach_margin",
+]
+
+#: Link names by the paper's label (Fig. 1b): ``LINK_NAMES[label - 1]``.
+LINK_NAMES = (
+    "base",
+    "limb1_link1",
+    "limb1_link2",
+    "limb2_link1",
+    "limb2_link2",
+    "limb3_link1",
+    "limb3_link2",
+    "platform",
+)
+
+#: The joints as pairs of paper labels, per limb from base to platform: actuated R, passive R, P.
+JOINT_PAIRS = (
+    ((1, 2), (2, 3), (3, 8)),
+    ((1, 4), (4, 5), (5, 8)),
+    ((1, 6), (6, 7), (7, 8)),
+)
+
+#: The eight working modes (signs of ``J_kk``), shape ``(8, 3)``; broadcast a pose against it.
+WORKING_MODES = np.array(list(itertools.product((1.0, -1.0), repeat=3)))
+WORKING_MODES.flags.writeable = False
+
+_FIELDS = ("base_points", "link_lengths", "platform_points", "guide_angles")
+_FIELD_SHAPES = {
+    "base_points": (3, 2),
+    "link_lengths": (3,),
+    "platform_points": (3, 2),
+    "guide_angles": (3,),
+}
+
+
+def _perp(v: np.ndarray) -> np.ndarray:
+    """``E v`` of Eq. (6): rotate planar vectors ``(..., 2)`` by +90°."""
+    return np.stack([-v[..., 1], v[..., 0]], axis=-1)
+
+
+def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    return (a * b).sum(axis=-1)
+
+
+def _unit(angle: np.ndarray) -> np.ndarray:
+    return np.stack([np.cos(angle), np.sin(angle)], axis=-1)
+
+
+def _readonly(array: np.ndarray) -> np.ndarray:
+    array = np.array(array)
+    array.flags.writeable = False
+    return array
+
+
+def _check_rtol(rtol: Any, name: str = "rtol") -> float:
+    if isinstance(rtol, bool) or not isinstance(rtol, int | float | np.floating):
+        raise ScrewkitTypeError(f"Expected `{name}` to be a number in [0, 1), got {rtol!r}.")
+    if not 0.0 <= float(rtol) < 1.0:
+        raise ScrewkitValueError(f"Expected `{name}` to be a number in [0, 1), got {rtol!r}.")
+    return float(rtol)
+
+
+def _first_index(mask: np.ndarray) -> tuple[int, ...]:
+    return tuple(int(i) for i in np.argwhere(mask)[0])
+
+
+# --------------------------------------------------------------------------------------------------
+# Parameters
+# --------------------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True, eq=False, slots=True)
+class Planar3RRPParameters:
+    """Geometry of a planar 3-RRP manipulator (paper 003, Fig. 1a).
+
+    Parameters
+    ----------
+    base_points : array_like, shape (3, 2)
+        Actuated joint centres ``M_k = C_1i`` in the base frame.
+    link_lengths : array_like, shape (3,)
+        Lengths ``l_k = |A_k - M_k|`` of the first links, > 0.
+    platform_points : array_like, shape (3, 2)
+        A point ``P_k`` of each guide line, in the platform frame (origin = reference point ``C``).
+    guide_angles : array_like, shape (3,)
+        Directions ``β_k`` of the guides in the platform frame, radians.
+
+    Raises
+    ------
+    ScrewkitValueError
+        If a field has the wrong shape or non-finite values, a link length is not positive, or the
+        three guides are parallel (``|sin(β_k - β_1)| <= DEFAULT_RTOL`` for ``k = 2, 3``): such a
+        manipulator translates freely along the guides at every pose (paper 003, Sec. 4.2).
+
+    Examples
+    --------
+    >>> p = Planar3RRPParameters([[0, 0], [1, 0], [0, 1]], [0.5, 0.5, 0.5],
+    ...     [[0, 0], [0.1, 0], [0, 0.1]], [0.0, 1.0, 2.0])
+    >>> p.length_scale
+    0.5
+    """
+
+    base_points: np.ndarray
+    link_lengths: np.ndarray
+    platform_points: np.ndarray
+    guide_angles: np.ndarray
+
+    def __post_init__(self) -> None:
+        for name in _FIELDS:
+            shape = _FIELD_SHAPES[name]
+            value = as_array(getattr(self, name), name, shape)
+            if value.shape != shape:
+                raise ScrewkitValueError(
+                    f"Expected `{name}` to have shape {shape}, got {value.shape}."
+                )
+            object.__setattr__(self, name, _readonly(value))
+        if np.any(self.link_lengths <= 0):
+            raise ScrewkitValueError(
+                f"Expected `link_lengths` to be > 0, got {self.link_lengths.tolist()}."
+            )
+        spread = np.abs(np.sin(self.guide_angles[1:] - self.guide_angles[0]))
+        if np.all(spread <= DEFAULT_RTOL):
+            raise ScrewkitValueError(
+                "Expected `guide_angles` not all parallel (mod π), got "
+                f"{self.guide_angles.tolist()}: the platform would translate freely along the "
+                "guides at every pose (paper 003, Sec. 4.2)."
+            )
+
+    @property
+    def length_scale(self) -> float:
+        """Characteristic length: the longest first link, ``max l_k`` (scales tolerances)."""
+        return float(self.link_lengths.max())
+
+    @classmethod
+    def from_mapping(
+        cls, mapping: Mapping[str, Any], *, source: str = "<mapping>"
+    ) -> Planar3RRPParameters:
+        """Build parameters from a mapping such as a parsed TOML table.
+
+        Parameters
+        ----------
+        mapping : Mapping
+            Exactly the fields ``base_points`` (3 pairs), ``link_lengths`` (3 numbers),
+            ``platform_points`` (3 pairs), ``guide_angles`` (3 numbers, radians).
+        source : str
+            Where the mapping comes from (a file name), quoted in error messages.
+
+        Raises
+        ------
+        CatalogError
+            If ``mapping`` is not a mapping, or a field is missing, unknown, not a (nested) list
+            of real numbers, or of the wrong length.
+        ScrewkitValueError
+            If a value is out of range (see the class); the message starts with ``source``.
+
+        Examples
+        --------
+        >>> p = Planar3RRPParameters.from_mapping({"base_points": [[0, 0], [1, 0], [0, 1]],
+        ...     "link_lengths": [0.5, 0.5, 0.5], "platform_points": [[0, 0], [0, 0], [0, 0]],
+        ...     "guide_angles": [0, 1, 2]}, source="demo.toml")
+        >>> p.link_lengths
+        array([0.5, 0.5, 0.5])
+        >>> Planar3RRPParameters.from_mapping({"link_lengths": [1, 1, 1]}, source="demo.toml")
+        Traceback (most recent call last):
+        ...
+        screwkit.exceptions.CatalogError: demo.toml: missing field `base_points` ...
+        """
+        if not isinstance(mapping, Mapping):
+            raise CatalogError(
+                f"{source}: expected a mapping of the fields {list(_FIELDS)}, "
+                f"got {type(mapping).__name__}."
+            )
+        for name in mapping:
+            if name not in _FIELDS:
+                raise CatalogError(
+                    f"{source}: unknown field `{name}`; expected only {list(_FIELDS)}."
+                )
+        values = {}
+        for name in _FIELDS:
+            if name not in mapping:
+                raise CatalogError(
+                    f"{source}: missing field `{name}` (expected shape {_FIELD_SHAPES[name]})."
+                )
+            values[name] = _catalog_field(mapping[name], name, _FIELD_SHAPES[name], source)
+        try:
+            return cls(**values)
+        except ScrewkitValueError as err:
+            raise ScrewkitValueError(f"{source}: {err}") from err
+
+
+def _catalog_field(value: Any, name: str, shape: tuple[int, ...], source: str) -> np.ndarray:
+    """Check that a catalog value is a nested list of real numbers of the given shape."""
+
+    def fail(got: str) -> CatalogError:
+        what = "a list of 3 numbers" if len(shape) == 1 else "a list of 3 [x, y] pairs"
+        return CatalogError(f"{source}: field `{name}` must be {what}, got {got}.")
+
+    def check(item: Any, depth: int) -> None:
+        if depth == len(shape):
+            if isinstance(item, bool) or not isinstance(item, int | float):
+                raise fail(f"{type(item).__name__} {item!r} inside {value!r}")
+            return
+        if not isinstance(item, list | tuple) or len(item) != shape[depth]:
+            raise fail(repr(item))
+        for sub in item:
+            check(sub, depth + 1)
+
+    check(value, 0)
+    return np.array(value, dtype=float)
+
+
+#: Example dimensions (our choice; paper 003 gives none): base joints on a circle of radius 1 at
+#: 210°, 330°, 90°; first links 0.9; guides tangent to a circle of radius 0.25 of the platform, the
+#: guide of limb ``k`` through ``0.25 u(α_k)`` with direction ``β_k = α_k + 90°``. At the home pose
+#: ``(0, 0, 0)`` every limb has ``J_kk = ±sqrt(0.9² - 0.75²) ≈ ±0.4975``.
+EXAMPLE_PARAMETERS = Planar3RRPParameters(
+    base_points=_unit(np.radians([210.0, 330.0, 90.0])),
+    link_lengths=np.full(3, 0.9),
+    platform_points=0.25 * _unit(np.radians([210.0, 330.0, 90.0])),
+    guide_angles=np.radians([300.0, 60.0, 180.0]),
+)
+
+
+# --------------------------------------------------------------------------------------------------
+# Position kinematics
+# --------------------------------------------------------------------------------------------------
+
+
+def _guides(parameters: Planar3RRPParameters, pose: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Guide points ``Q_k = C + R(φ) P_k`` and directions ``b_k``, each ``(..., 3, 2)``."""
+    phi = pose[..., 2:3]
+    c, s = np.cos(phi), np.sin(phi)
+    px, py = parameters.platform_points[:, 0], parameters.platform_points[:, 1]
+    q = pose[..., None, :2] + np.stack([c * px - s * py, s * px + c * py], axis=-1)
+    return q, _unit(phi + parameters.guide_angles)
+
+
+def _working_mode(value: Any) -> np.ndarray:
+    mode = as_array(value, "working_mode", (3,))
+    if not np.all(np.abs(mode) == 1):
+        raise ScrewkitValueError(
+            "Expected `working_mode` entries to be +1 or -1 (sign of J_kk per limb), "
+            f"got {mode.tolist()}."
+        )
+    return mode
+
+
+def reach_margin(parameters: Planar3RRPParameters, pose: Any) -> np.ndarray:
+    """Normalised reach ``(l_k² - h_k²) / l_k²`` of each limb at the given poses.
+
+    ``h_k`` is the distance from ``M_k`` to the guide line of limb ``k``. The margin is positive
+    where limb ``k`` reaches its guide at two elbow points, zero on the boundary, negative outside.
+    Where it is reachable it equals ``(J_kk / l_k)²`` (Eq. 11a), so its zeros are the inverse
+    (type-1) singularities, Eq. (12); it continues ``det J`` analytically past the boundary.
+
+    Parameters
+    ----------
+    parameters : Planar3RRPParameters
+    pose : array_like, shape (..., 3)
+        ``(x, y, φ)``.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 3)
+
+    Examples
+    --------
+    >>> round(float(reach_margin(EXAMPLE_PARAMETERS, [0.0, 0.0, 0.0])[0]), 6)  # 1 - 0.75²/0.9²
+    0.305556
+    """
+    pose = as_array(pose, "pose", (3,))
+    q, b = _guides(parameters, pose)
+    h = _dot(q - parameters.base_points, _perp(b))
+    lengths = parameters.link_lengths
+    return (lengths**2 - h**2) / lengths**2
+
+
+def inverse_kinematics(
+    parameters: Planar3RRPParameters,
+    pose: Any,
+    working_mode: Any = (1, 1, 1),
+    *,
+    rtol: float = DEFAULT_RTOL,
+) -> np.ndarray:
+    """Actuated joint angles ``θ`` of the given poses in the given working modes.
+
+    Limb ``k`` meets its guide line where the circle of radius ``l_k`` about ``M_k`` cuts it:
+    ``γ_k = -(Q_k - M_k)·b_k + σ_k sqrt(l_k² - h_k²)``, ``A_k = Q_k + γ_k b_k`` (module docstring).
+
+    Parameters
+    ----------
+    parameters : Planar3RRPParameters
+    pose : array_like, shape (..., 3)
+        ``(x, y, φ)``.
+    working_mode : array_like, shape (..., 3)
+        Sign ``σ_k = ±1`` of ``J_kk`` per limb; broadcast against ``pose``. All eight branches:
+        ``inverse_kinematics(p, pose[..., None, :], WORKING_MODES)``.
+    rtol : float, default 1e-9
+        A limb with ``reach_margin >= -rtol`` is on the boundary (both branches coincide).
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 3)
+        ``θ_k`` in ``(-π, π]``.
+
+    Raises
+    ------
+    UnreachablePoseError
+        If a limb cannot reach its guide line; the message names the limb and the batch index.
+    ScrewkitValueError
+        If ``working_mode`` has an entry other than ±1.
+
+    Examples
+    --------
+    >>> theta = inverse_kinematics(EXAMPLE_PARAMETERS, [0.0, 0.0, 0.0])
+    >>> np.round(np.degrees(theta), 3)  # 30° - atan(sqrt(0.2475) / 0.75), then +120°, +240°
+    array([ -3.557, 116.443, -123.557])
+    >>> inverse_kinematics(EXAMPLE_PARAMETERS, [0.0, 0.0, 0.0], WORKING_MODES).shape
+    (8, 3)
+    """
+    pose = as_array(pose, "pose", (3,))
+    mode = _working_mode(working_mode)
+    rtol = _check_rtol(rtol)
+    margin = reach_margin(parameters, pose)
+    outside = margin < -rtol
+    if np.any(outside):
+        index = _first_index(outside)
+        limb = index[-1]
+        raise UnreachablePoseError(
+            f"Limb {limb + 1} cannot reach pose {pose[index[:-1]].tolist()} (batch index "
+            f"{index[:-1]}): the distance from M{limb + 1} to its guide line exceeds the link "
+            f"length {parameters.link_lengths[limb]:g} (reach margin {margin[index]:.3g} < 0)."
+        )
+    q, b = _guides(parameters, pose)
+    d = q - parameters.base_points
+    lengths = parameters.link_lengths
+    gamma = -_dot(d, b) + mode * lengths * np.sqrt(np.maximum(margin, 0.0))
+    elbow_offset = d + gamma[..., None] * b
+    return np.arctan2(elbow_offset[..., 1], elbow_offset[..., 0])
+
+
+@dataclass(frozen=True, eq=False, slots=True)
+class ForwardKinematicsSolutions:
+    """The (at most two) assembly modes of given actuated joint angles.
+
+    Attributes
+    ----------
+    poses : numpy.ndarray, shape (..., 2, 3)
+        ``(x, y, φ)`` of each solution, ``φ`` in ``[-π, π)``; zeros where ``valid`` is False.
+    valid : numpy.ndarray of bool, shape (..., 2)
+        Whether each solution exists. At a direct singularity the two coincide.
+    """
+
+    poses: np.ndarray
+    valid: np.ndarray
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dictionary.
+
+        Examples
+        --------
+        >>> fk = forward_kinematics(EXAMPLE_PARAMETERS, [0.1, 2.2, -2.0])
+        >>> sorted(fk.to_dict())
+        ['poses', 'valid']
+        """
+        return {"poses": self.poses.tolist(), "valid": self.valid.tolist()}
+
+    def __str__(self) -> str:
+        return (
+            f"ForwardKinematicsSolutions: {int(self.valid.sum())} valid of "
+            f"{self.valid.size} (batch shape {self.valid.shape[:-1]})"
+        )
+
+
+def forward_kinematics(
+    parameters: Planar3RRPParameters, joint_angles: Any, *, rtol: float = DEFAULT_RTOL
+) -> ForwardKinematicsSolutions:
+    """All platform poses of given actuated joint angles, in closed form.
+
+    With the elbows ``A_k`` fixed by ``θ``, the closures ``n_k(φ)·C = n_k(φ)·A_k - c_k`` (module
+    docstring) are three linear equations in ``C``. Expanding ``det[n_k, n_k·A_k - c_k]`` along its
+    last column, the cofactors ``n_k × n_l`` do not depend on ``φ``, so consistency reads
+    ``P cos φ + Q sin φ = S`` with ``P = Σ s_k n⁰_k·A_k``, ``Q = Σ s_k (E n⁰_k)·A_k``,
+    ``S = Σ s_k n⁰_k·P_k``, ``s_k = n⁰_{k+1} × n⁰_{k+2}``: at most two roots ``φ``, then ``C`` by
+    least squares. These are all the solutions.
+
+    Parameters
+    ----------
+    parameters : Planar3RRPParameters
+    joint_angles : array_like, shape (..., 3)
+    rtol : float, default 1e-9
+        ``|S| <= (1 + rtol) sqrt(P² + Q²)`` counts as solvable; ``P, Q, S`` all below
+        ``rtol * length_scale`` is a self-motion.
+
+    Returns
+    -------
+    ForwardKinematicsSolutions
+
+    Raises
+    ------
+    DegenerateGeometryError
+        If the joint angles admit a continuum of poses (the platform turns about the common point of
+        concurrent guides with coincident elbows).
+
+    Examples
+    --------
+    >>> theta = inverse_kinematics(EXAMPLE_PARAMETERS, [0.05, -0.02, 0.1])
+    >>> fk = forward_kinematics(EXAMPLE_PARAMETERS, theta)
+    >>> fk.valid
+    array([ True,  True])
+    >>> bool(np.any(np.all(np.isclose(fk.poses, [0.05, -0.02, 0.1]), axis=-1)))
+    True
+    """
+    theta = as_array(joint_angles, "joint_angles", (3,))
+    rtol = _check_rtol(rtol)
+    elbows = parameters.base_points + parameters.link_lengths[:, None] * _unit(theta)
+    normals0 = _perp(_unit(parameters.guide_angles))
+    offsets = _dot(normals0, parameters.platform_points)
+    shifted1, shifted2 = np.roll(normals0, -1, axis=0), np.roll(normals0, -2, axis=0)
+    cofactors = shifted1[:, 0] * shifted2[:, 1] - shifted1[:, 1] * shifted2[:, 0]
+    p_coef = _dot(_dot(normals0, elbows), cofactors)
+    q_coef = _dot(_dot(_perp(normals0), elbows), cofactors)
+    s_coef = float(_dot(cofactors, offsets))
+    radius = np.hypot(p_coef, q_coef)
+    scale = rtol * parameters.length_scale
+    continuum = (radius <= scale) & (abs(s_coef) <= scale)
+    if np.any(continuum):
+        index = _first_index(continuum)
+        raise DegenerateGeometryError(
+            f"`joint_angles` {theta[index].tolist()} (batch index {index}) admit a continuum of "
+            "platform poses: the consistency condition P cos φ + Q sin φ = S vanishes identically "
+            "(the platform turns about the common point of its guides)."
+        )
+    safe = np.where(radius > 0, radius, 1.0)
+    valid_one = (radius > 0) & (abs(s_coef) <= (1.0 + rtol) * radius)
+    half_width = np.arccos(np.clip(s_coef / safe, -1.0, 1.0))
+    phi = np.arctan2(q_coef, p_coef)[..., None] + np.stack([half_width, -half_width], axis=-1)
+    phi = np.mod(phi + np.pi, 2.0 * np.pi) - np.pi
+    normals = _perp(_unit(phi[..., None] + parameters.guide_angles))  # (..., 2, 3, 2)
+    rhs = _dot(normals, elbows[..., None, :, :]) - offsets
+    gram = np.einsum("...ka,...kb->...ab", normals, normals)
+    centre = np.linalg.solve(gram, np.einsum("...ka,...k->...a", normals, rhs)[..., None])[..., 0]
+    valid = np.broadcast_to(valid_one[..., None], phi.shape)
+    poses = np.where(valid[..., None], np.concatenate([centre, phi[..., None]], axis=-1), 0.0)
+    return ForwardKinematicsSolutions(poses=_readonly(poses), valid=_readonly(valid))
+
+
+# --------------------------------------------------------------------------------------------------
+# Configurations
+# --------------------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True, eq=False, slots=True)
+class Planar3RRPConfiguration:
+    """A pose together with its actuated joint angles (one or a batch).
+
+    Parameters
+    ----------
+    parameters : Planar3RRPParameters
+    pose : array_like, shape (..., 3)
+        ``(x, y, φ)``.
+    joint_angles : array_like, shape (..., 3)
+        ``θ_k``; broadcast against ``pose``.
+    closure_rtol : float, default 1e-9
+        Each elbow ``A_k = M_k + l_k u(θ_k)`` must lie within ``closure_rtol * length_scale`` of its
+        guide line.
+
+    Attributes
+    ----------
+    base_points, elbow_points, guide_directions : numpy.ndarray, shape (..., 3, 2)
+        ``M_k = C_1i``, ``A_k = C_ij`` and the unit guide directions ``b_k`` (base frame).
+    platform_point : numpy.ndarray, shape (..., 2)
+        The reference point ``C``.
+    slider_positions : numpy.ndarray, shape (..., 3)
+        ``γ_k`` with ``A_k = C + R(φ) P_k + γ_k b_k``.
+
+    Raises
+    ------
+    ScrewkitValueError
+        If an elbow is off its guide line (names the limb and batch index).
+
+    Examples
+    --------
+    >>> c = Planar3RRPConfiguration.from_pose(EXAMPLE_PARAMETERS, [[0, 0, 0], [0.1, 0, 0.2]])
+    >>> c.elbow_points.shape, c.slider_positions.shape
+    ((2, 3, 2), (2, 3))
+    """
+
+    parameters: Planar3RRPParameters
+    pose: np.ndarray
+    joint_angles: np.ndarray
+    closure_rtol: float = DEFAULT_RTOL
+    base_points: np.ndarray = field(init=False)
+    elbow_points: np.ndarray = field(init=False)
+    guide_directions: np.ndarray = field(init=False)
+    platform_point: np.ndarray = field(init=False)
+    slider_positions: np.ndarray = field(init=False)
+
+    def __post_init__(self) -> None:
+        params = self.parameters
+        if not isinstance(params, Planar3RRPParameters):
+            raise ScrewkitTypeError(
+                f"Expected `parameters` to be Planar3RRPParameters, got {type(params).__name__}."
+            )
+        rtol = _check_rtol(self.closure_rtol, "closure_rtol")
+        pose = as_array(self.pose, "pose", (3,))
+        theta = as_array(self.joint_angles, "joint_angles", (3,))
+        shape = np.broadcast_shapes(pose.shape[:-1], theta.shape[:-1])
+        pose = np.broadcast_to(pose, (*shape, 3))
+        theta = np.broadcast_to(theta, (*shape, 3))
+        q, b = _guides(params, pose)
+        base = np.broadcast_to(params.base_points, (*shape, 3, 2))
+        elbows = base + params.link_lengths[:, None] * _unit(theta)
+        residual = np.abs(_dot(elbows - q, _perp(b)))
+        off = residual > rtol * params.length_scale
+        if np.any(off):
+            index = _first_index(off)
+            raise ScrewkitValueError(
+                f"Expected the elbow of limb {index[-1] + 1} on its guide line, but it is "
+                f"{residual[index]:.3g} away at batch index {index[:-1]} (more than closure_rtol "
+                f"* length_scale = {rtol * params.length_scale:.3g}): `joint_angles` do not match "
+                "`pose`."
+            )
+        for name, value in (
+            ("pose", pose),
+            ("joint_angles", theta),
+            ("base_points", base),
+            ("elbow_points", elbows),
+            ("guide_directions", b),
+            ("platform_point", pose[..., :2]),
+            ("slider_positions", _dot(elbows - q, b)),
+        ):
+            object.__setattr__(self, name, _readonly(value))
+
+    @classmethod
+    def from_pose(
+        cls,
+        parameters: Planar3RRPParameters,
+        pose: Any,
+        working_mode: Any = (1, 1, 1),
+        *,
+        rtol: float = DEFAULT_RTOL,
+    ) -> Planar3RRPConfiguration:
+        """The configuration of ``pose`` in ``working_mode`` (see :func:`inverse_kinematics`).
+
+        Examples
+        --------
+        >>> c = Planar3RRPConfiguration.from_pose(EXAMPLE_PARAMETERS, [0, 0, 0], (1, -1, 1))
+        >>> c.joint_angles.shape
+        (3,)
+        """
+        theta = inverse_kinematics(parameters, pose, working_mode, rtol=rtol)
+        return cls(parameters, np.broadcast_to(as_array(pose, "pose", (3,)), theta.shape), theta)
+
+    @property
+    def batch_shape(self) -> tuple[int, ...]:
+        """Leading batch shape of the configuration."""
+        return tuple(self.pose.shape[:-1])
+
+
+def _check_config(config: Any) -> Planar3RRPConfiguration:
+    if not isinstance(config, Planar3RRPConfiguration):
+        raise ScrewkitTypeError(
+            f"Expected `config` to be a Planar3RRPConfiguration, got {type(config).__name__}."
+        )
+    return config
+
+
+# --------------------------------------------------------------------------------------------------
+# Jacobians, Eqs. (4)-(11)
+# --------------------------------------------------------------------------------------------------
+
+
+def _joint_centers(config: Planar3RRPConfiguration) -> np.ndarray:
+    """Homogeneous joint centres ``(..., limb, joint, 3)``: ``(M, 1)``, ``(A, 1)``, ``(E b, 0)``."""
+    ones = np.ones((*config.batch_shape, 3, 1))
+    return np.stack(
+        [
+            np.concatenate([config.base_points, ones], axis=-1),
+            np.concatenate([config.elbow_points, ones], axis=-1),
+            np.concatenate([_perp(config.guide_directions), 0.0 * ones], axis=-1),
+        ],
+        axis=-2,
+    )
+
+
+def jacobians(
+    config: Planar3RRPConfiguration,
+    *,
+    method: Literal["instant_centers", "velocity_loop"] = "instant_centers",
+) -> tuple[np.ndarray, np.ndarray]:
+    """The Jacobians of Eq. (10), ``J θ̇ + K t = 0``, with ``t = (ω, ẋ, ẏ)``.
+
+    Parameters
+    ----------
+    config : Planar3RRPConfiguration
+    method : {"instant_centers", "velocity_loop"}
+        ``"instant_centers"``: Eq. (11) as printed, from the joint centres ``C_1i``, ``C_ij`` and
+        ``C_j8 = (E b_i, 0)`` (so ``b_i = -E`` times its first two coordinates).
+        ``"velocity_loop"``: the loop ``θ̇_k $_1 + ψ̇_k $_2 + γ̇_k $_3 = t_O`` of each limb (planar
+        twists ``(ω, v_O)`` about the base origin, the sum behind Eq. 4), with the passive rates
+        eliminated by ``w_k = $_2 × $_3``, which annihilates both passive twists; then
+        ``J_kk = w_k·$_1`` and ``K_k = -w_kᵀ T(C)``, ``T`` mapping ``(ω, Ċ)`` to ``(ω, v_O)``.
+
+    Returns
+    -------
+    J : numpy.ndarray, shape (..., 3, 3)
+        Diagonal, ``J_kk = b_kᵀ(C_ij - C_1i)`` (Eq. 11a).
+    K : numpy.ndarray, shape (..., 3, 3)
+        Rows ``[b_kᵀ(C - C_ij), b_kᵀE]`` (Eq. 11b).
+
+    Raises
+    ------
+    ScrewkitValueError
+        If ``method`` is unknown.
+
+    Examples
+    --------
+    >>> c = Planar3RRPConfiguration.from_pose(EXAMPLE_PARAMETERS, [0.05, 0.0, 0.1])
+    >>> J1, K1 = jacobians(c)
+    >>> J2, K2 = jacobians(c, method="velocity_loop")
+    >>> bool(np.allclose(J1, J2) and np.allclose(K1, K2))
+    True
+    """
+    config = _check_config(config)
+    centre = config.platform_point[..., None, :]
+    if method == "instant_centers":
+        centers = _joint_centers(config)
+        c1i = centers[..., 0, :2] / centers[..., 0, 2:]
+        cij = centers[..., 1, :2] / centers[..., 1, 2:]
+        b = -_perp(centers[..., 2, :2])
+        diagonal = _dot(b, cij - c1i)  # Eq. (11a)
+        k_matrix = np.concatenate(  # Eq. (11b); b^T E = (b_y, -b_x)
+            [_dot(b, centre - cij)[..., None], -_perp(b)], axis=-1
+        )
+    elif method == "velocity_loop":
+        ones = np.ones((*config.batch_shape, 3))
+        base, elbow, b = config.base_points, config.elbow_points, config.guide_directions
+        actuated = np.stack([ones, base[..., 1], -base[..., 0]], axis=-1)
+        passive_r = np.stack([ones, elbow[..., 1], -elbow[..., 0]], axis=-1)
+        passive_p = np.stack([0.0 * ones, b[..., 0], b[..., 1]], axis=-1)
+        reciprocal = np.cross(passive_r, passive_p)
+        diagonal = _dot(reciprocal, actuated)
+        x, y = config.platform_point[..., 0], config.platform_point[..., 1]
+        zeros, unit = np.zeros_like(x), np.ones_like(x)
+        to_origin = np.stack(
+            [
+                np.stack([unit, zeros, zeros], -1),
+                np.stack([y, unit, zeros], -1),
+                np.stack([-x, zeros, unit], -1),
+            ],
+            axis=-2,
+        )
+        k_matrix = -reciprocal @ to_origin
+    else:
+        raise ScrewkitValueError(
+            f"Expected `method` to be 'instant_centers' or 'velocity_loop', got {method!r}."
+        )
+    j_matrix = diagonal[..., None] * np.eye(3)
+    return j_matrix, k_matrix
+
+
+# --------------------------------------------------------------------------------------------------
+# Velocities and instant centres, Eqs. (5), (7)
+# --------------------------------------------------------------------------------------------------
+
+
+def _scaled_k(config: Planar3RRPConfiguration, k_matrix: np.ndarray) -> np.ndarray:
+    """``K`` with moments about the elbows' centroid ``G`` divided by ``length_scale``.
+
+    Moving the reference point adds multiples of columns 2, 3 to column 1 and scaling a column keeps
+    the rank, so this matrix is singular exactly when ``K`` is; its singular values do not depend on
+    the base frame, the platform frame or the length unit.
+    """
+    b = config.guide_directions
+    elbows = config.elbow_points
+    centroid = elbows.mean(axis=-2, keepdims=True)
+    moments = _dot(b, centroid - elbows) / config.parameters.length_scale
+    return np.concatenate([moments[..., None], k_matrix[..., 1:]], axis=-1)
+
+
+def _k_spectrum(
+    config: Planar3RRPConfiguration, k_matrix: np.ndarray, rtol: float
+) -> tuple[np.ndarray, np.ndarray]:
+    """Singular values of :func:`_scaled_k` and the rank they give with tolerance ``rtol``."""
+    values = np.linalg.svd(_scaled_k(config, k_matrix), compute_uv=False)
+    return values, (values > rtol * values[..., :1]).sum(axis=-1)
+
+
+def complete_velocity(
+    config: Planar3RRPConfiguration,
+    *,
+    joint_rates: Any = None,
+    twist: Any = None,
+    rtol: float = DEFAULT_RTOL,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Actuator rates and platform twist satisfying Eq. (10), from either (or check both).
+
+    Parameters
+    ----------
+    config : Planar3RRPConfiguration
+    joint_rates : array_like, shape (..., 3), optional
+        ``θ̇``; with ``twist`` absent, ``t = -K⁻¹ J θ̇``.
+    twist : array_like, shape (..., 3), optional
+        ``t = (ω, ẋ, ẏ)``; with ``joint_rates`` absent, ``θ̇_k = -K_k t / J_kk``.
+    rtol : float, default 1e-9
+        Rank tolerance (as in :func:`classify`) and, with both given, the allowed residual of limb
+        ``k`` relative to ``l_k |θ̇_k| + |C - A_k| |ω| + |Ċ|``.
+
+    Returns
+    -------
+    joint_rates, twist : numpy.ndarray, shape (..., 3)
+
+    Raises
+    ------
+    ScrewkitValueError
+        If neither is given, or both are given and violate Eq. (10) (names the limb).
+    DegenerateGeometryError
+        If the given half does not determine the other: ``joint_rates`` at a direct singularity,
+        ``twist`` at an inverse singularity (names the limb).
+
+    Examples
+    --------
+    >>> c = Planar3RRPConfiguration.from_pose(EXAMPLE_PARAMETERS, [0.0, 0.0, 0.0])
+    >>> rates, t = complete_velocity(c, twist=[1.0, 0.0, 0.0])
+    >>> np.allclose(complete_velocity(c, joint_rates=rates)[1], [1.0, 0.0, 0.0])
+    True
+    """
+    config = _check_config(config)
+    rtol = _check_rtol(rtol)
+    j_matrix, k_matrix = jacobians(config)
+    diagonal = np.diagonal(j_matrix, axis1=-2, axis2=-1)
+    if joint_rates is None and twist is None:
+        raise ScrewkitValueError("Expected `joint_rates` or `twist` (or both), got neither.")
+    if twist is None:
+        rates = as_array(joint_rates, "joint_rates", (3,))
+        rank_deficient = _k_spectrum(config, k_matrix, rtol)[1] < 3
+        if np.any(rank_deficient):
+            index = _first_index(rank_deficient)
+            raise DegenerateGeometryError(
+                f"`joint_rates` do not determine the twist at batch index {index}: the "
+                "configuration is a direct (type-2) singularity, det K = 0 (Eq. 11b); pass `twist`."
+            )
+        rhs = -(diagonal * rates)
+        shape = np.broadcast_shapes(k_matrix.shape[:-2], rhs.shape[:-1])
+        solved = np.linalg.solve(
+            np.broadcast_to(k_matrix, (*shape, 3, 3)), np.broadcast_to(rhs, (*shape, 3))[..., None]
+        )
+        return np.broadcast_to(rates, (*shape, 3)).copy(), solved[..., 0]
+    t = as_array(twist, "twist", (3,))
+    drive = np.einsum("...kc,...c->...k", k_matrix, t)
+    if joint_rates is None:
+        cosines = np.abs(diagonal) / config.parameters.link_lengths
+        stuck = np.broadcast_to(cosines <= rtol, drive.shape)
+        if np.any(stuck):
+            index = _first_index(stuck)
+            raise DegenerateGeometryError(
+                f"The twist does not determine the rate of actuator {index[-1] + 1} at batch index "
+                f"{index[:-1]}: limb {index[-1] + 1} is at an inverse (type-1) singularity, "
+                "J_kk = 0 (Eq. 12); pass `joint_rates`."
+            )
+        safe = np.where(cosines > rtol, diagonal, 1.0)
+        return -drive / safe, np.broadcast_to(t, drive.shape).copy()
+    rates = as_array(joint_rates, "joint_rates", (3,))
+    residual = np.abs(diagonal * rates + drive)
+    offsets = np.linalg.norm(config.platform_point[..., None, :] - config.elbow_points, axis=-1)
+    size = (
+        config.parameters.link_lengths * np.abs(rates)
+        + offsets * np.abs(t[..., :1])
+        + np.linalg.norm(t[..., 1:], axis=-1, keepdims=True)
+    )
+    violated = residual > rtol * size
+    if np.any(violated):
+        index = _first_index(violated)
+        raise ScrewkitValueError(
+            f"Expected `joint_rates` and `twist` to satisfy J θ̇ + K t = 0 (Eq. 10), but limb "
+            f"{index[-1] + 1} at batch index {index[:-1]} leaves a residual {residual[index]:.3g}."
+        )
+    shape = residual.shape
+    return np.broadcast_to(rates, shape).copy(), np.broadcast_to(t, shape).copy()
+
+
+def link_twists(config: Planar3RRPConfiguration, joint_rates: Any, twist: Any) -> np.ndarray:
+    """Planar twists ``(ω, v_Ox, v_Oy)`` of the eight links relative to the base.
+
+    ``v_O`` is the velocity of the link point at the base origin. Link ``i`` turns about ``M_k`` at
+    ``θ̇_k``; link ``j`` turns at the platform's ``ω`` and moves its elbow point at
+    ``θ̇_k E(A_k - M_k)`` (Eq. 7a); the platform moves at ``t`` (Eq. 3). Pass a consistent pair
+    (see :func:`complete_velocity`); this function does not check Eq. (10).
+
+    Parameters
+    ----------
+    config : Planar3RRPConfiguration
+    joint_rates, twist : array_like, shape (..., 3)
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 8, 3)
+        Row ``label - 1`` for the paper's link ``label`` (:data:`LINK_NAMES`).
+
+    Examples
+    --------
+    >>> c = Planar3RRPConfiguration.from_pose(EXAMPLE_PARAMETERS, [0.0, 0.0, 0.0])
+    >>> link_twists(c, [0.0, 0.0, 0.0], [0.0, 0.0, 0.0]).shape
+    (8, 3)
+    """
+    config = _check_config(config)
+    rates = as_array(joint_rates, "joint_rates", (3,))
+    t = as_array(twist, "twist", (3,))
+    shape = np.broadcast_shapes(config.batch_shape, rates.shape[:-1], t.shape[:-1])
+    rates = np.broadcast_to(rates, (*shape, 3))
+    t = np.broadcast_to(t, (*shape, 3))
+    omega = t[..., :1]
+    base, elbow = config.base_points, config.elbow_points
+    first = rates[..., None] * np.concatenate(
+        [np.ones((*config.batch_shape, 3, 1)), -_perp(base)], axis=-1
+    )
+    elbow_velocity = rates[..., None] * _perp(elbow - base)
+    second = np.concatenate(
+        [
+            np.broadcast_to(omega[..., None], (*shape, 3, 1)),
+            elbow_velocity - omega[..., None] * _perp(elbow),
+        ],
+        axis=-1,
+    )
+    platform = np.concatenate([omega, t[..., 1:] - omega * _perp(config.platform_point)], axis=-1)
+    out = np.zeros((*shape, 8, 3))
+    out[..., 1:7:2, :] = first
+    out[..., 2:7:2, :] = second
+    out[..., 7, :] = platform
+    return out
+
+
+def instant_centers(
+    config: Planar3RRPConfiguration,
+    *,
+    joint_rates: Any = None,
+    twist: Any = None,
+    rtol: float = DEFAULT_RTOL,
+) -> np.ndarray:
+    """All 28 instant centres of the eight links for a motion, as homogeneous points.
+
+    The centre of links ``q, r`` is ``(E v, ω)`` for their relative twist ``(ω, v)``
+    (:func:`link_twists`, Eq. 5): finite when they turn relative to each other, at infinity in the
+    direction ``E v`` (perpendicular to the velocity) when they translate. Joint centres
+    (:data:`JOINT_PAIRS`) are taken from the joints, ``(M_k, 1)``, ``(A_k, 1)``, ``(E b_k, 0)``,
+    whatever the motion. Any three centres ``C_qr, C_rs, C_qs`` are collinear (Aronhold-Kennedy,
+    Sec. 2.1). Centres of non-adjacent links depend on the motion, fixed by ``joint_rates`` and/or
+    ``twist`` through :func:`complete_velocity`; the paper's "lock all actuators but ``k``" is
+    ``joint_rates = e_k``.
+
+    Parameters
+    ----------
+    config : Planar3RRPConfiguration
+    joint_rates, twist : array_like, shape (..., 3), optional
+        See :func:`complete_velocity`.
+    rtol : float, default 1e-9
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 8, 8, 3)
+        ``[..., q - 1, r - 1, :]`` is ``C_qr`` (up to a non-zero factor; ``C_rq = -C_qr``). The
+        zero vector means the two links do not move relative to each other (every point is a
+        centre): the diagonal, and e.g. two links both at rest.
+
+    Examples
+    --------
+    >>> c = Planar3RRPConfiguration.from_pose(EXAMPLE_PARAMETERS, [0.0, 0.0, 0.0])
+    >>> centers = instant_centers(c, twist=[1.0, 0.0, 0.0])
+    >>> centers[0, 7]  # the platform turns about C = origin relative to the base
+    array([0., 0., 1.])
+    """
+    rates, t = complete_velocity(config, joint_rates=joint_rates, twist=twist, rtol=rtol)
+    twists = link_twists(config, rates, t)
+    relative = twists[..., None, :, :] - twists[..., :, None, :]  # [q, r]: r relative to q
+    centers = np.concatenate([_perp(relative[..., 1:]), relative[..., :1]], axis=-1)
+    joint_centers = np.broadcast_to(_joint_centers(config), (*centers.shape[:-3], 3, 3, 3))
+    for limb, pairs in enumerate(JOINT_PAIRS):
+        for joint, (q, r) in enumerate(pairs):
+            centers[..., q - 1, r - 1, :] = joint_centers[..., limb, joint, :]
+            centers[..., r - 1, q - 1, :] = -joint_centers[..., limb, joint, :]
+    return centers
+
+
+def instant_center(
+    config: Planar3RRPConfiguration,
+    pair: tuple[int, int],
+    *,
+    joint_rates: Any = None,
+    twist: Any = None,
+    rtol: float = DEFAULT_RTOL,
+) -> np.ndarray:
+    """The instant centre ``C_qr`` of one pair of links (paper labels 1..8).
+
+    For a joint pair (:data:`JOINT_PAIRS`) no motion is needed; otherwise give ``joint_rates``
+    and/or ``twist`` as in :func:`instant_centers`.
+
+    Parameters
+    ----------
+    config : Planar3RRPConfiguration
+    pair : (int, int)
+        Two distinct labels ``q, r`` in 1..8.
+    joint_rates, twist : array_like, shape (..., 3), optional
+    rtol : float, default 1e-9
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 3)
+        Homogeneous ``(x, y, w)``, as in :func:`instant_centers`.
+
+    Raises
+    ------
+    ScrewkitValueError
+        If ``pair`` is not two distinct labels in 1..8, or it is not a joint pair and no motion
+        is given.
+
+    Examples
+    --------
+    >>> c = Planar3RRPConfiguration.from_pose(EXAMPLE_PARAMETERS, [0.0, 0.0, 0.0])
+    >>> instant_center(c, (1, 2))  # C_12 = M_1
+    array([-0.8660254, -0.5      ,  1.       ])
+    """
+    config = _check_config(config)
+    if (
+        not isinstance(pair, tuple | list)
+        or len(pair) != 2
+        or any(isinstance(v, bool) or not isinstance(v, int | np.integer) for v in pair)
+        or not all(1 <= v <= 8 for v in pair)
+        or pair[0] == pair[1]
+    ):
+        raise ScrewkitValueError(
+            f"Expected `pair` to be two distinct link labels in 1..8, got {pair!r}."
+        )
+    q, r = int(pair[0]), int(pair[1])
+    for limb, pairs in enumerate(JOINT_PAIRS):
+        for joint, joint_pair in enumerate(pairs):
+            if {q, r} == set(joint_pair):
+                sign = 1.0 if (q, r) == joint_pair else -1.0
+                return sign * _joint_centers(config)[..., limb, joint, :]
+    if joint_rates is None and twist is None:
+        raise ScrewkitValueError(
+            f"The instant centre C_{q}{r} of non-adjacent links depends on the motion; pass "
+            "`joint_rates` or `twist`."
+        )
+    centers = instant_centers(config, joint_rates=joint_rates, twist=twist, rtol=rtol)
+    return centers[..., q - 1, r - 1, :]
+
+
+# --------------------------------------------------------------------------------------------------
+# Singularities, Sec. 4
+# --------------------------------------------------------------------------------------------------
+
+_KINDS = np.array([["regular", "direct"], ["inverse", "combined"]])
+
+
+@dataclass(frozen=True, eq=False, slots=True)
+class SingularityClassification:
+    """Singularity type of each configuration (paper 003, Sec. 4).
+
+    Attributes
+    ----------
+    kind : numpy.ndarray of str, shape (...)
+        ``"regular"``, ``"inverse"`` (type 1: ``J`` rank-deficient, ``K`` not, Sec. 4.1),
+        ``"direct"`` (type 2, Sec. 4.2) or ``"combined"`` (type 3, Sec. 4.3).
+    inverse_closeness : numpy.ndarray, shape (...)
+        ``min_k |J_kk| / l_k``, the smallest ``|cos|`` of the angle between a first link and its
+        guide, in ``[0, 1]``; 0 at an inverse singularity.
+    direct_closeness : numpy.ndarray, shape (...)
+        ``σ_min / σ_max`` of ``K`` with its moments taken about the elbows' centroid and divided
+        by ``length_scale`` (same rank as ``K``), in ``[0, 1]``; 0 at a direct singularity.
+    rank_j, rank_k : numpy.ndarray of int, shape (...)
+        Ranks with tolerance ``rtol`` (``|J_kk| / l_k > rtol``, ``σ > rtol σ_max``).
+    singular_limbs : numpy.ndarray of bool, shape (..., 3)
+        Limbs with ``|J_kk| / l_k <= rtol`` (Eq. 12).
+    rtol : float
+
+    Both closeness values are invariant under rigid motions of the base frame and changes of the
+    length unit (ratios of lengths and cosines).
+    """
+
+    kind: np.ndarray
+    inverse_closeness: np.ndarray
+    direct_closeness: np.ndarray
+    rank_j: np.ndarray
+    rank_k: np.ndarray
+    singular_limbs: np.ndarray
+    rtol: float
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dictionary.
+
+        Examples
+        --------
+        >>> c = Planar3RRPConfiguration.from_pose(EXAMPLE_PARAMETERS, [0.0, 0.0, 0.0])
+        >>> classify(c).to_dict()["kind"]
+        'regular'
+        """
+        return {
+            "kind": self.kind.tolist(),
+            "inverse_closeness": self.inverse_closeness.tolist(),
+            "direct_closeness": self.direct_closeness.tolist(),
+            "rank_j": self.rank_j.tolist(),
+            "rank_k": self.rank_k.tolist(),
+            "singular_limbs": self.singular_limbs.tolist(),
+            "rtol": self.rtol,
+        }
+
+    def __str__(self) -> str:
+        if self.kind.ndim == 0:
+            return (
+                f"{self.kind}: rank J = {self.rank_j}, rank K = {self.rank_k}, inverse closeness "
+                f"{self.inverse_closeness:.3g}, direct closeness {self.direct_closeness:.3g}"
+            )
+        names, numbers = np.unique(self.kind, return_counts=True)
+        counts = {str(k): int(n) for k, n in zip(names, numbers, strict=True)}
+        return f"SingularityClassification over {self.kind.shape}: {counts}"
+
+
+def classify(
+    config: Planar3RRPConfiguration, *, rtol: float = DEFAULT_RTOL
+) -> SingularityClassification:
+    """Classify configurations as regular, inverse, direct or combined singularities (Sec. 4).
+
+    In instant centres (module docstring): limb ``k`` is inverse-singular when ``C_1i``, ``C_ij``,
+    ``C_j8`` are collinear (first link ⟂ guide, Eq. 12); driving actuator ``k`` alone then leaves
+    the platform at rest and ``C_i8 = C_1i``. The configuration is direct-singular when the three
+    lines ``C_ij C_j8`` (through the elbows, ⟂ the guides) are concurrent: with the actuators
+    locked the platform can turn about that point, ``C_18``. Combined: both at once.
+
+    Parameters
+    ----------
+    config : Planar3RRPConfiguration
+    rtol : float, default 1e-9
+        Rank tolerance on the closeness measures (see :class:`SingularityClassification`).
+
+    Returns
+    -------
+    SingularityClassification
+
+    Examples
+    --------
+    >>> c = Planar3RRPConfiguration.from_pose(EXAMPLE_PARAMETERS, [0.0, 0.0, 0.0])
+    >>> print(classify(c))
+    regular: rank J = 3, rank K = 3, inverse closeness 0.553, direct closeness ...
+    """
+    config = _check_config(config)
+    rtol = _check_rtol(rtol)
+    j_matrix, k_matrix = jacobians(config)
+    cosines = np.abs(np.diagonal(j_matrix, axis1=-2, axis2=-1)) / config.parameters.link_lengths
+    singular_limbs = cosines <= rtol
+    values, rank_k = _k_spectrum(config, k_matrix, rtol)
+    rank_j = 3 - singular_limbs.sum(axis=-1)
+    kind = _KINDS[(rank_j < 3).astype(int), (rank_k < 3).astype(int)]
+    return SingularityClassification(
+        kind=_readonly(kind),
+        inverse_closeness=_readonly(cosines.min(axis=-1)),
+        direct_closeness=_readonly(values[..., -1] / values[..., 0]),
+        rank_j=_readonly(rank_j),
+        rank_k=_readonly(rank_k),
+        singular_limbs=_readonly(singular_limbs),
+        rtol=rtol,
+    )
+
+
+# --------------------------------------------------------------------------------------------------
+# Data for the twist graph
+# --------------------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True, eq=False, slots=True)
+class JointGeometry:
+    """One joint at the current configuration, for building the planar twist graph.
+
+    Attributes
+    ----------
+    name : str
+        ``"limb{k}_{R1|R2|P}"``.
+    kind : {"R", "P"}
+    actuated : bool
+    links : (int, int)
+        Paper labels (from, to), base side first (:data:`LINK_NAMES`).
+    point : numpy.ndarray, shape (..., 3)
+        A point of the axis, ``z = 0``: the joint centre of an R joint, the elbow for the P joint
+        (any point would do for an infinite-pitch screw).
+    direction : numpy.ndarray, shape (..., 3)
+        ``(0, 0, 1)`` for R joints, ``(b_k, 0)`` for the P joint.
+    """
+
+    name: str
+    kind: str
+    actuated: bool
+    links: tuple[int, int]
+    point: np.ndarray
+    direction: np.ndarray
+
+    @property
+    def screw(self) -> np.ndarray:
+        """Unit joint screw ``(s; s0)``, shape ``(..., 6)``, direction first (design.md §3).
+
+        R: ``(z; r × z)`` (pitch 0); P: ``(0; d)`` (infinite pitch).
+
+        Examples
+        --------
+        >>> c = Planar3RRPConfiguration.from_pose(EXAMPLE_PARAMETERS, [0.0, 0.0, 0.0])
+        >>> limb_joints(c)[0][0].screw
+        array([ 0.       ,  0.       ,  1.       , -0.5      ,  0.8660254,  0.       ])
+        """
+        if self.kind == "P":
+            return np.concatenate([np.zeros_like(self.direction), self.direction], axis=-1)
+        return np.concatenate([self.direction, np.cross(self.point, self.direction)], axis=-1)
+
+
+def limb_joints(config: Planar3RRPConfiguration) -> tuple[tuple[JointGeometry, ...], ...]:
+    """Per limb, its three joints from base to platform (actuated R, passive R, P).
+
+    Parameters
+    ----------
+    config : Planar3RRPConfiguration
+
+    Returns
+    -------
+    tuple of 3 tuples of 3 JointGeometry
+        Arrays batched like ``config``.
+
+    Examples
+    --------
+    >>> c = Planar3RRPConfiguration.from_pose(EXAMPLE_PARAMETERS, [0.0, 0.0, 0.0])
+    >>> [(j.name, j.kind, j.links) for j in limb_joints(c)[1]]
+    [('limb2_R1', 'R', (1, 4)), ('limb2_R2', 'R', (4, 5)), ('limb2_P', 'P', (5, 8))]
+    """
+    config = _check_config(config)
+    zeros = np.zeros((*config.batch_shape, 3, 1))
+    base = np.concatenate([config.base_points, zeros], axis=-1)
+    elbow = np.concatenate([config.elbow_points, zeros], axis=-1)
+    guide = np.concatenate([config.guide_directions, zeros], axis=-1)
+    axis_z = np.broadcast_to(np.array([0.0, 0.0, 1.0]), base.shape)
+    limbs = []
+    for k, pairs in enumerate(JOINT_PAIRS):
+        rows = (("R1", "R", base, axis_z), ("R2", "R", elbow, axis_z), ("P", "P", elbow, guide))
+        limbs.append(
+            tuple(
+                JointGeometry(
+                    name=f"limb{k + 1}_{label}",
+                    kind=kind,
+                    actuated=label == "R1",
+                    links=pair,
+                    point=_readonly(point[..., k, :]),
+                    direction=_readonly(direction[..., k, :]),
+                )
+                for (label, kind, point, direction), pair in zip(rows, pairs, strict=True)
+            )
+        )
+    return tuple(limbs)

@@ -1,0 +1,359 @@
+"""Joints: each gives the unit twists of its child link relative to its parent, at one configuration.
+
+A joint of a twist graph (design.md §5) is a frozen :class:`Joint`: its type, the screws of its
+twist system at the current configuration (rows ``(dof, 6)``, conventions in
+:mod:`screwkit.screw`), whether it is actuated, whether it is *virtual* (a member of an equivalent
+chain derived by :func:`screwkit.twistgraph.equivalent_twist_graph`, paper 002 Fig. 2b–3), and the
+geometric data it was built from (kept for reports and for saving graphs).
+
+=========  ======  =================================================================================
+type       dof     twists (paper 002 §3; Hunt 1978)
+=========  ======  =================================================================================
+``R``      1       zero-pitch screw on the axis
+``P``      1       infinite-pitch screw ``(0; d)``
+``H``      1       screw of pitch h on the axis (h = lead / 2π)
+``C``      2       the R and the P of one axis
+``U``      2       two zero-pitch screws through the centre
+``S``      3       three zero-pitch screws through the centre
+``Pa``     1       planar parallelogram Π: the coupler translates along ``hinge × rod`` (paper 004 §2)
+``virtual``k       any screws (an equivalent chain's member); type ``"vR"``/``"vP"``/``"vH"`` by pitch
+=========  ======  =================================================================================
+
+Examples
+--------
+>>> hinge = revolute("A1", axis=[1, 0, 0], point=[0, 0, 0], actuated=True)
+>>> hinge.dof, hinge.actuated
+(1, True)
+>>> spherical("S_m", center=[1, 2, 3]).screws.shape
+(3, 6)
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+import sympy
+
+from . import _backend as B
+from . import screw as S
+from .exceptions import ScrewkitTypeError, ScrewkitValueError
+
+__all__ = [
+    "JOINT_TYPES",
+    "Joint",
+    "cylindrical",
+    "helical",
+    "lead_to_pitch",
+    "parallelogram",
+    "prismatic",
+    "revolute",
+    "spherical",
+    "universal",
+    "virtual",
+]
+
+#: Joint types and their degrees of freedom (None: any, for virtual joints).
+JOINT_TYPES: dict[str, int | None] = {
+    "R": 1,
+    "P": 1,
+    "H": 1,
+    "C": 2,
+    "U": 2,
+    "S": 3,
+    "Pa": 1,
+    "vR": 1,
+    "vP": 1,
+    "vH": 1,
+}
+
+Array = np.ndarray
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class Joint:
+    """A joint at one configuration: the unit twists it allows (child relative to parent).
+
+    Build joints with the module's constructors (:func:`revolute`, ...), which check their input.
+
+    Parameters
+    ----------
+    name : str
+        Unique within a twist graph (it is the edge key).
+    type : str
+        One of :data:`JOINT_TYPES`.
+    screws : array_like, shape (dof, 6)
+        Twists of the joint at the current configuration, in the graph's frame.
+    actuated : bool
+        True for an actuated (input) joint; only one-degree-of-freedom joints can be actuated.
+    virtual : bool
+        True for the members of an equivalent chain derived from a closed sub-loop.
+    geometry : dict
+        The data the joint was built from (axis, point, pitch, ...), plain floats.
+
+    Examples
+    --------
+    >>> joint = prismatic("P1", direction=[0, 0, 2])
+    >>> joint.screws
+    array([[0., 0., 0., 0., 0., 1.]])
+    >>> joint.screws[0, 0] = 1
+    Traceback (most recent call last):
+    ...
+    ValueError: assignment destination is read-only
+    """
+
+    name: str
+    type: str
+    screws: Array
+    actuated: bool = False
+    virtual: bool = False
+    geometry: dict[str, Any] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.name, str) or not self.name:
+            raise ScrewkitTypeError(f"Expected the joint `name` to be a non-empty string, got {self.name!r}.")
+        if self.type not in JOINT_TYPES:
+            raise ScrewkitValueError(
+                f"Joint {self.name!r}: expected `type` to be one of {sorted(JOINT_TYPES)}, got {self.type!r}."
+            )
+        rows = B.as_array(self.screws, f"screws of joint {self.name!r}", (6,)).reshape(-1, 6)
+        expected = JOINT_TYPES[self.type]
+        if expected is not None and rows.shape[0] != expected:
+            raise ScrewkitValueError(
+                f"Joint {self.name!r} of type {self.type}: expected {expected} screw(s), got {rows.shape[0]}."
+            )
+        if rows.dtype != object and np.any(np.linalg.norm(rows, axis=1) == 0):
+            raise ScrewkitValueError(f"Joint {self.name!r}: expected non-zero screws, got a zero row.")
+        if self.actuated and rows.shape[0] != 1:
+            raise ScrewkitValueError(
+                f"Joint {self.name!r}: only one-degree-of-freedom joints can be actuated, "
+                f"got a {self.type} joint with {rows.shape[0]}."
+            )
+        rows = rows.copy()
+        rows.flags.writeable = False
+        object.__setattr__(self, "screws", rows)
+        object.__setattr__(self, "geometry", dict(self.geometry))
+
+    @property
+    def dof(self) -> int:
+        """Degrees of freedom: the number of screws."""
+        return int(self.screws.shape[0])
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready description (used to save graphs with ``nx.node_link_data``).
+
+        Examples
+        --------
+        >>> revolute("R1", [0, 0, 1], [1, 0, 0]).to_dict()["type"]
+        'R'
+        """
+        return {
+            "name": self.name,
+            "type": self.type,
+            "actuated": self.actuated,
+            "virtual": self.virtual,
+            "screws": [[_plain(v) for v in row] for row in self.screws],
+            "geometry": self.geometry,
+        }
+
+    @classmethod
+    def from_dict(cls, data: dict[str, Any]) -> Joint:
+        """Rebuild a joint from :meth:`to_dict` output (plain data only; nothing is evaluated).
+
+        Examples
+        --------
+        >>> joint = revolute("R1", [0, 0, 1], [1, 0, 0])
+        >>> Joint.from_dict(joint.to_dict()).screws
+        array([[ 0.,  0.,  1.,  0., -1.,  0.]])
+        """
+        missing = {"name", "type", "screws"} - set(data)
+        if missing:
+            raise ScrewkitValueError(
+                f"Expected joint data with fields {sorted(missing)}, got {sorted(data)}."
+            )
+        return cls(
+            name=data["name"],
+            type=data["type"],
+            screws=np.array(data["screws"], dtype=float),
+            actuated=bool(data.get("actuated", False)),
+            virtual=bool(data.get("virtual", False)),
+            geometry=dict(data.get("geometry", {})),
+        )
+
+    def __str__(self) -> str:
+        flags = " actuated" if self.actuated else ""
+        flags += " virtual" if self.virtual else ""
+        return f"{self.type} joint {self.name!r}{flags}"
+
+
+def _plain(value: Any) -> Any:
+    return float(value) if not hasattr(value, "free_symbols") else str(value)
+
+
+def _geometry(**values: Any) -> dict[str, Any]:
+    return {
+        k: np.asarray(v, dtype=float).tolist()
+        for k, v in values.items()
+    }
+
+
+def _numeric_or_none(*values: Any) -> bool:
+    return not B.is_symbolic(*values)
+
+
+def revolute(name: str, axis: Any, point: Any, *, actuated: bool = False) -> Joint:
+    """A revolute joint R: the zero-pitch twist on its axis.
+
+    Examples
+    --------
+    >>> revolute("R1", [0, 0, 1], [1, 0, 0]).screws
+    array([[ 0.,  0.,  1.,  0., -1.,  0.]])
+    """
+    twist = S.revolute_twist(axis, point)
+    geometry = _geometry(axis=axis, point=point) if _numeric_or_none(axis, point) else {}
+    return Joint(name, "R", twist.reshape(1, 6), actuated=actuated, geometry=geometry)
+
+
+def prismatic(name: str, direction: Any, *, actuated: bool = False) -> Joint:
+    """A prismatic joint P: the infinite-pitch twist ``(0; d/|d|)``.
+
+    Examples
+    --------
+    >>> prismatic("P1", [3, 0, 4]).screws
+    array([[0. , 0. , 0. , 0.6, 0. , 0.8]])
+    """
+    twist = S.normalize(S.prismatic_twist(direction))
+    geometry = _geometry(direction=direction) if _numeric_or_none(direction) else {}
+    return Joint(name, "P", twist.reshape(1, 6), actuated=actuated, geometry=geometry)
+
+
+def helical(name: str, axis: Any, point: Any, pitch: Any, *, actuated: bool = False) -> Joint:
+    """A helical (screw) joint H of pitch ``h`` (length per radian: lead / 2π).
+
+    Examples
+    --------
+    >>> helical("H1", [0, 0, 1], [0, 0, 0], lead_to_pitch(2 * math.pi)).screws
+    array([[0., 0., 1., 0., 0., 1.]])
+    """
+    twist = S.helical_twist(S.normalize(S.line(axis, [0, 0, 0]))[:3], point, pitch)
+    geometry = _geometry(axis=axis, point=point, pitch=pitch) if _numeric_or_none(axis, point, pitch) else {}
+    return Joint(name, "H", twist.reshape(1, 6), actuated=actuated, geometry=geometry)
+
+
+def lead_to_pitch(lead: float) -> float:
+    """Pitch (per radian) of a screw pair from its lead (per turn): ``h = lead / 2π``.
+
+    Examples
+    --------
+    >>> round(lead_to_pitch(20.0), 6)
+    3.183099
+    """
+    return float(lead) / (2 * math.pi)
+
+
+def cylindrical(name: str, axis: Any, point: Any) -> Joint:
+    """A cylindrical joint C: rotation about and translation along one axis.
+
+    Examples
+    --------
+    >>> cylindrical("C1", [0, 0, 1], [0, 0, 0]).dof
+    2
+    """
+    unit = S.normalize(S.line(axis, [0, 0, 0]))[:3]
+    rows = np.stack([S.revolute_twist(unit, point), S.prismatic_twist(unit)])
+    geometry = _geometry(axis=axis, point=point) if _numeric_or_none(axis, point) else {}
+    return Joint(name, "C", rows, geometry=geometry)
+
+
+def universal(name: str, first_axis: Any, second_axis: Any, center: Any) -> Joint:
+    """A universal joint U: two revolute axes through one centre (the first on the parent side).
+
+    Raises
+    ------
+    ScrewkitValueError
+        If the two axes are parallel (a U joint needs two independent rotations).
+
+    Examples
+    --------
+    >>> universal("U1", [1, 0, 0], [0, 1, 0], [0, 0, 1]).dof
+    2
+    """
+    rows = np.stack([S.revolute_twist(first_axis, center), S.revolute_twist(second_axis, center)])
+    if rows.dtype != object and np.linalg.norm(np.cross(rows[0, :3], rows[1, :3])) <= 1e-12 * np.prod(
+        np.linalg.norm(rows[:, :3], axis=1)
+    ):
+        raise ScrewkitValueError(
+            f"Universal joint {name!r}: expected two non-parallel axes, got parallel axes."
+        )
+    geometry = (
+        _geometry(first_axis=first_axis, second_axis=second_axis, center=center)
+        if _numeric_or_none(first_axis, second_axis, center)
+        else {}
+    )
+    return Joint(name, "U", rows, geometry=geometry)
+
+
+def spherical(name: str, center: Any) -> Joint:
+    """A spherical joint S: three rotations about axes through its centre.
+
+    Examples
+    --------
+    >>> spherical("S1", [0, 0, 0]).screws[:, :3]
+    array([[1., 0., 0.],
+           [0., 1., 0.],
+           [0., 0., 1.]])
+    """
+    axes = np.eye(3, dtype=object) if B.is_symbolic(center) else np.eye(3)
+    rows = np.stack([S.revolute_twist(a, center) for a in axes])
+    geometry = _geometry(center=center) if _numeric_or_none(center) else {}
+    return Joint(name, "S", rows, geometry=geometry)
+
+
+def parallelogram(name: str, hinge_axis: Any, rod_direction: Any, *, actuated: bool = False) -> Joint:
+    """A planar parallelogram Π with revolute hinges: the coupler translates along ``hinge × rod``.
+
+    The four hinge axes are parallel to ``hinge_axis`` and the rods to ``rod_direction``; the
+    coupler keeps its orientation and moves on a circle (a curvilinear translation, paper 004 §2),
+    so its instantaneous twist is the pure translation ``(0; a × w)``.
+
+    Raises
+    ------
+    ScrewkitValueError
+        If the rods are parallel to the hinges (no parallelogram).
+
+    Examples
+    --------
+    >>> parallelogram("Pi1", [1, 0, 0], [0, 0, -1]).screws + 0.0
+    array([[0., 0., 0., 0., 1., 0.]])
+    """
+    a = B.as_array(hinge_axis, "hinge_axis", (3,))
+    w = B.as_array(rod_direction, "rod_direction", (3,))
+    a, w = B.promote(a, w)
+    velocity = B.cross(a, w)
+    if velocity.dtype != object and np.linalg.norm(velocity) <= 1e-12 * np.linalg.norm(a) * np.linalg.norm(w):
+        raise ScrewkitValueError(
+            f"Parallelogram {name!r}: expected rods not parallel to the hinge axes, got parallel ones."
+        )
+    twist = S.prismatic_twist(velocity)
+    if twist.dtype != object:
+        twist = S.normalize(twist)
+    geometry = _geometry(hinge_axis=a, rod_direction=w) if _numeric_or_none(a, w) else {}
+    return Joint(name, "Pa", twist.reshape(1, 6), actuated=actuated, geometry=geometry)
+
+
+def virtual(name: str, screw: Any) -> Joint:
+    """A virtual one-degree-of-freedom joint carrying one screw, typed by its pitch (vR, vP, vH).
+
+    Examples
+    --------
+    >>> virtual("v1", [0, 0, 0, 0, 0, 1]).type
+    'vP'
+    """
+    row = B.as_array(screw, "screw", (6,)).reshape(1, 6)
+    if row.dtype == object:
+        kind = "vR" if S.pitch(row[0]) == 0 else ("vP" if S.pitch(row[0]) == sympy.oo else "vH")
+    else:
+        kind = "vP" if S.is_infinite_pitch(row[0]) else ("vR" if S.is_zero_pitch(row[0]) else "vH")
+    return Joint(name, kind, row, virtual=True)
