@@ -10,6 +10,7 @@ n_i = u_i × w_i of the parallelograms, Eq. (6) and Eq. (7) of paper 002 in vect
 """
 
 import functools
+import itertools
 
 import networkx as nx
 import numpy as np
@@ -139,10 +140,10 @@ def test_equivalent_graph_has_virtual_rrpp_chains():
     equivalent = equivalent_twist_graph(graph)
     for i, sub in ((1, "b_I"), (2, "b_II"), (3, "b_II"), (4, "b_I")):
         path = nx.shortest_path(equivalent, f"arm{i}", sub)
-        types = sorted(equivalent.edges[u, v, k]["joint"].type for u, v in zip(path, path[1:], strict=False)
+        types = sorted(equivalent.edges[u, v, k]["joint"].type for u, v in itertools.pairwise(path)
                        for k in equivalent[u][v])
         assert types == ["vP", "vP", "vR", "vR"]  # paper 002 Fig. 2b: R1, R2, P1, P2 (virtual)
-        assert all(equivalent.edges[u, v, k]["joint"].virtual for u, v in zip(path, path[1:], strict=False)
+        assert all(equivalent.edges[u, v, k]["joint"].virtual for u, v in itertools.pairwise(path)
                    for k in equivalent[u][v])
     # the same platform twist system both ways, on the physical and on the equivalent graph
     for candidate in (graph, equivalent):
