@@ -266,7 +266,7 @@ def load_mechanism(name_or_path: str | Path) -> Mechanism:
     >>> load_mechanism("h5")
     Traceback (most recent call last):
     ...
-    screwkit.exceptions.CatalogError: unknown mechanism 'h5': expected one of ['h4'] or a path to a .toml file.
+    screwkit.exceptions.CatalogError: unknown mechanism 'h5': expected one of [...] or a path to a .toml file.
     """
     text = str(name_or_path)
     if text.endswith(".toml"):
@@ -288,7 +288,7 @@ def mechanism_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>"
     >>> mechanism_from_mapping({"mechanism": {"kind": "family", "name": "X", "family": "nope"}})
     Traceback (most recent call last):
     ...
-    screwkit.exceptions.CatalogError: <mapping>: [mechanism]: field `family`: expected one of ['four_limb'], got 'nope'.
+    screwkit.exceptions.CatalogError: <mapping>: [mechanism]: field `family`: expected one of [...]
     """
     header = _table(data, "mechanism", source)
     kind = header.get("kind", "family")
