@@ -288,7 +288,7 @@ def mechanism_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>"
     >>> mechanism_from_mapping({"mechanism": {"kind": "family", "name": "X", "family": "nope"}})
     Traceback (most recent call last):
     ...
-    screwkit.exceptions.CatalogError: <mapping>: [mechanism]: field `family`: expected one of [...]
+    screwkit.exceptions.CatalogError: <mapping>: [mechanism]: field `family`: expected one of ...
     """
     header = _table(data, "mechanism", source)
     kind = header.get("kind", "family")
