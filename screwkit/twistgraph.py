@@ -51,6 +51,7 @@ __all__ = [
     "equivalent_twist_graph",
     "from_data",
     "fundamental_loops",
+    "axes_frame",
     "graph_frame",
     "joint_screws_along",
     "loop_closure_matrix",
@@ -212,19 +213,37 @@ def graph_frame(graph: nx.MultiDiGraph, *, joint_key: str = "joint") -> tuple[Ar
     stacked = np.concatenate(rows) if rows else np.zeros((0, 6))
     if stacked.dtype == object:
         return np.zeros(3), 1.0
-    directions = stacked[:, :3]
-    finite = np.linalg.norm(directions, axis=1) > 0
-    if not finite.any():
-        return np.zeros(3), 1.0
-    units = directions[finite] / np.linalg.norm(directions[finite], axis=1, keepdims=True)
-    feet = (
-        np.cross(directions[finite], stacked[finite, 3:]) / np.sum(directions[finite] ** 2, axis=1)[:, None]
-    )
-    projectors = np.eye(3)[None] - units[:, :, None] * units[:, None, :]
-    point = np.linalg.lstsq(projectors.sum(axis=0), np.einsum("kij,kj->i", projectors, feet), rcond=None)[0]
-    offsets = np.einsum("kij,kj->ki", projectors, point - feet)
-    length = float(np.sqrt(np.mean(np.sum(offsets**2, axis=1))))
-    return point, (length if length > 0 else 1.0)
+    point, length = axes_frame(stacked)
+    return point, float(length)
+
+
+def axes_frame(screws: Array) -> tuple[Array, Array]:
+    """The kernel of :func:`graph_frame`, batched: screws ``(..., n, 6)`` → points ``(..., 3)``, lengths.
+
+    Screws of infinite pitch are ignored; with none left the point is the origin and the length 1.
+
+    Examples
+    --------
+    >>> rows = np.array([[0, 0, 1, 0, -100.0, 0], [0, 1, 0, 0, 0, 0]])
+    >>> point, length = axes_frame(np.stack([rows, rows]))
+    >>> point.round(6) + 0.0, length
+    (array([[50.,  0.,  0.],
+           [50.,  0.,  0.]]), array([50., 50.]))
+    """
+    directions, moments = screws[..., :3], screws[..., 3:]
+    sizes = np.sum(directions**2, axis=-1)
+    finite = sizes > 0
+    safe = np.where(finite, sizes, 1.0)[..., None]
+    units = directions / np.sqrt(safe)
+    feet = np.cross(directions, moments) / safe
+    projectors = (np.eye(3) - units[..., :, None] * units[..., None, :]) * finite[..., None, None]
+    normal = projectors.sum(axis=-3)
+    rhs = np.einsum("...kij,...kj->...i", projectors, feet)
+    point = (np.linalg.pinv(normal) @ rhs[..., None])[..., 0]
+    offsets = np.einsum("...kij,...kj->...ki", projectors, point[..., None, :] - feet)
+    count = np.maximum(finite.sum(axis=-1), 1)
+    length = np.sqrt(np.sum(offsets**2, axis=(-2, -1)) / count)
+    return point, np.where(length > 0, length, 1.0)
 
 
 # loops and loop closure ---------------------------------------------------------------------------
@@ -379,8 +398,15 @@ def _loop_closure_twists(
     column_norm = np.linalg.norm(np.vstack([scaled, _scaled_rows(path_matrix, length_scale)]), axis=0)
     scaled = scaled.reshape(-1, len(free)) if scaled.size else np.zeros((0, len(free)))
     column_norm[column_norm == 0] = 1.0
-    rates = B.matrix_nullspace(scaled / column_norm, rtol=rtol) / column_norm
-    return ScrewSystem.span((path_matrix @ rates.T).T, rtol=rtol, length_scale=length_scale)
+    scaled_path = _scaled_rows(path_matrix, length_scale) / column_norm
+    rates = B.matrix_nullspace(scaled / column_norm, rtol=rtol)  # orthonormal, in scaled coordinates
+    # Rank of the platform twists relative to the size of the path's columns, not to themselves:
+    # internal motions (e.g. a rod spinning between two S joints) map to round-off, not to a twist.
+    u, values, _ = np.linalg.svd(scaled_path @ rates.T, full_matrices=False)
+    keep = values > rtol * np.linalg.norm(scaled_path, 2)
+    twists = (u[:, keep] * values[keep]).T
+    twists[:, 3:] *= length_scale
+    return ScrewSystem.span(twists, rtol=rtol, length_scale=length_scale)
 
 
 def _scaled_rows(path_matrix: Array, length_scale: float) -> Array:
@@ -617,7 +643,8 @@ def equivalent_twist_graph(
         elif node.kind == "series":
             for child in node.children:
                 expand(child)
-        elif base in (a, b):
+        elif base in (a, b) or node.system.order == 0:
+            # limbs from the base are kept; so is a rigid sub-loop (no virtual chain can weld a to b)
             for child in node.children:
                 expand(child)
         else:
@@ -627,9 +654,6 @@ def equivalent_twist_graph(
                 name = f"v{next(counter)}[{a}~{b}]"
                 joint = virtual(name, screw)
                 result.add_edge(links[i], links[i + 1], key=name, **{joint_key: joint})
-            if not len(screws):
-                result.add_node(a)
-                result.add_node(b)
 
     expand(tree)
     return result

@@ -28,17 +28,16 @@ Examples
 
 from __future__ import annotations
 
-from typing import Any
-
 import networkx as nx
 import numpy as np
 
+from .. import screw as S
 from ..exceptions import ScrewkitValueError
-from ..joints import helical, revolute, spherical
+from ..joints import Joint
 from ..twistgraph import twist_graph
 from .four_limb import FourLimbConfiguration
 
-__all__ = ["PAPER_002_LEGS", "SUBPLATFORMS", "four_limb_twist_graph"]
+__all__ = ["PAPER_002_LEGS", "SUBPLATFORMS", "four_limb_joints", "four_limb_twist_graph"]
 
 #: Paper 002's H4 legs l1..l4 as paper 004's limbs (1-based): (1, 4, 2, 3).
 PAPER_002_LEGS = {"l1": 1, "l2": 4, "l3": 2, "l4": 3}
@@ -46,14 +45,60 @@ PAPER_002_LEGS = {"l1": 1, "l2": 4, "l3": 2, "l4": 3}
 SUBPLATFORMS = (("b_I", "R_I"), ("b_II", "R_II"))
 
 
-def _single(config: FourLimbConfiguration, index: tuple[int, ...]) -> dict[str, np.ndarray]:
-    batch = config.pose.shape[:-1]
-    if len(index) != len(batch) or any(not (0 <= i < n) for i, n in zip(index, batch, strict=True)):
-        raise ScrewkitValueError(
-            f"Expected `index` to pick one pose of the batch of shape {batch}, got {index!r}."
-        )
-    names = ("a", "u", "elbow_corners", "platform_corners", "platform_joint_points", "platform_joint_axis")
-    return {name: np.asarray(getattr(config, name))[index] for name in names}
+def four_limb_joints(config: FourLimbConfiguration) -> list[tuple[str, str, str, str, np.ndarray, bool]]:
+    """The joints of the physical mechanism with their screws over the whole batch of poses.
+
+    Returns
+    -------
+    list of (parent, child, name, type, screws, actuated)
+        ``screws`` has shape ``(..., dof, 6)`` over the configuration's batch shape ``...``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from screwkit.families.four_limb import FourLimbParameters, inverse_kinematics
+    >>> h4 = FourLimbParameters(name="H4", platform_kind="articulated_z", arm_length=375,
+    ...     rod_length=800, alpha=0, beta=np.pi / 2, platform_radius=80, platform_offset=70,
+    ...     base_radius=275)
+    >>> table = four_limb_joints(inverse_kinematics(h4, np.zeros((5, 4)) + [0, 0, -700, 0]))
+    >>> len(table), table[1][2], table[1][4].shape
+    (22, 'S1m', (5, 3, 6))
+    """
+    eye = np.eye(3)
+
+    def spheres(centres: np.ndarray) -> np.ndarray:
+        return S.revolute_twist(eye, centres[..., None, :])
+
+    limb_platform = {}
+    for (link, _), limbs in zip(SUBPLATFORMS, config.subplatform_limbs, strict=True):
+        for limb in limbs:
+            limb_platform[limb] = link
+    table = []
+    for limb in range(4):
+        i = limb + 1
+        arm = f"arm{i}"
+        actuated = S.revolute_twist(config.u[..., limb, :], config.a[..., limb, :])[..., None, :]
+        table.append(("base", arm, f"A{i}", "R", actuated, True))
+        for rod, corner, (first, second) in ((f"rod{i}a", 0, "mp"), (f"rod{i}b", 1, "nq")):
+            table.append(
+                (arm, rod, f"S{i}{first}", "S", spheres(config.elbow_corners[..., limb, corner, :]), False)
+            )
+            table.append(
+                (
+                    rod,
+                    limb_platform[limb],
+                    f"S{i}{second}",
+                    "S",
+                    spheres(config.platform_corners[..., limb, corner, :]),
+                    False,
+                )
+            )
+    axis = config.platform_joint_axis
+    for k, (link, name) in enumerate(SUBPLATFORMS):
+        point, pitch = config.platform_joint_points[..., k, :], config.platform_joint_pitches[k]
+        screw = S.helical_twist(axis, point, pitch) if pitch else S.revolute_twist(axis, point)
+        table.append((link, "end_effector", name, "H" if pitch else "R", screw[..., None, :], False))
+    return table
 
 
 def four_limb_twist_graph(config: FourLimbConfiguration, index: tuple[int, ...] = ()) -> nx.MultiDiGraph:
@@ -89,25 +134,14 @@ def four_limb_twist_graph(config: FourLimbConfiguration, index: tuple[int, ...] 
     >>> sorted(four_limb_twist_graph(cfg, (1,)).successors("b_I"))
     ['end_effector']
     """
-    geometry: dict[str, Any] = _single(config, tuple(index))
-    joints = []
-    limb_platform = {}
-    for (link, _), limbs in zip(SUBPLATFORMS, config.subplatform_limbs, strict=True):
-        for limb in limbs:
-            limb_platform[limb] = link
-    for limb in range(4):
-        i = limb + 1
-        arm = f"arm{i}"
-        joints.append(
-            ("base", arm, revolute(f"A{i}", geometry["u"][limb], geometry["a"][limb], actuated=True))
+    batch = config.pose.shape[:-1]
+    index = tuple(index)
+    if len(index) != len(batch) or any(not (0 <= i < n) for i, n in zip(index, batch, strict=True)):
+        raise ScrewkitValueError(
+            f"Expected `index` to pick one pose of the batch of shape {batch}, got {index!r}."
         )
-        (m, n), (p, q) = geometry["elbow_corners"][limb], geometry["platform_corners"][limb]
-        for rod, elbow_corner, platform_corner, tag in ((f"rod{i}a", m, p, "mp"), (f"rod{i}b", n, q, "nq")):
-            joints.append((arm, rod, spherical(f"S{i}{tag[0]}", elbow_corner)))
-            joints.append((rod, limb_platform[limb], spherical(f"S{i}{tag[1]}", platform_corner)))
-    axis = geometry["platform_joint_axis"]
-    for k, (link, name) in enumerate(SUBPLATFORMS):
-        point, pitch = geometry["platform_joint_points"][k], config.platform_joint_pitches[k]
-        joint = revolute(name, axis, point) if pitch == 0 else helical(name, axis, point, pitch)
-        joints.append((link, "end_effector", joint))
+    joints = [
+        (parent, child, Joint(name, kind, screws[index], actuated=actuated))
+        for parent, child, name, kind, screws, actuated in four_limb_joints(config)
+    ]
     return twist_graph("base", "end_effector", joints, dof=4)

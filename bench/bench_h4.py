@@ -1,0 +1,55 @@
+"""Speed of the H4 analysis: one pose at a time (readable screw systems) and batched (vectorized).
+
+Run: python bench/bench_h4.py  (prints figures for the README; not a test).
+"""
+
+import time
+
+import numpy as np
+
+from screwkit.batch import classify_poses
+from screwkit.catalog import load_mechanism
+from screwkit.families.four_limb import reachable
+from screwkit.families.four_limb_graph import four_limb_joints, four_limb_twist_graph
+from screwkit.singularity import classify
+
+
+def best_of(repeats, function):
+    times = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        function()
+        times.append(time.perf_counter() - start)
+    return min(times)
+
+
+def main():
+    h4 = load_mechanism("h4")
+    rng = np.random.default_rng(0)
+    low, high = zip(*(h4.workspace[c] for c in h4.pose_names), strict=True)
+    poses = rng.uniform(low, high, size=(12000, 4))
+    poses = poses[reachable(h4.parameters, poses)][:10000]
+    graph = h4.twist_graph()
+
+    single = best_of(3, lambda: classify(h4.twist_graph(poses[0])))
+    print(
+        f"one pose (IK + twist graph + wrench systems + labels): {single * 1e3:.1f} ms, "
+        f"{1 / single:.0f} analyses/s"
+    )
+    for count in (100, 1000, 10000):
+        chosen = poses[:count]
+
+        def run(chosen=chosen):
+            config = h4.configuration(chosen)
+            screws = {name: s for _, _, name, _, s, _ in four_limb_joints(config)}
+            return classify_poses(graph, screws)
+
+        seconds = best_of(3, run)
+        rate = count / seconds
+        print(f"batched, {count:>5} poses (IK + screws + labels): {seconds:.3f} s, {rate:,.0f} poses/s")
+    graph_only = best_of(3, lambda: four_limb_twist_graph(h4.configuration(poses[0])))
+    print(f"building one twist graph: {graph_only * 1e3:.2f} ms")
+
+
+if __name__ == "__main__":
+    main()
