@@ -11,6 +11,8 @@ Examples
 4
 """
 
+from .batch import PoseBatchReport, classify_poses
+from .catalog import Mechanism, list_mechanisms, load_mechanism, load_snapshot
 from .exceptions import (
     CatalogError,
     DegenerateGeometryError,
@@ -19,6 +21,17 @@ from .exceptions import (
     ScrewkitValueError,
     TwistGraphError,
     UnreachablePoseError,
+)
+from .joints import (
+    Joint,
+    cylindrical,
+    helical,
+    parallelogram,
+    prismatic,
+    revolute,
+    spherical,
+    universal,
+    virtual,
 )
 from .projective import (
     are_collinear,
@@ -38,33 +51,68 @@ from .projective import (
 )
 from .screw import Screw, reciprocal_product
 from .screwsystem import ScrewSystem
+from .singularity import SingularityReport, classify
+from .twistgraph import (
+    equivalent_twist_graph,
+    fundamental_loops,
+    loop_closure_matrix,
+    platform_twist_system,
+    series_parallel_tree,
+    twist_graph,
+)
+from .wrenches import WrenchAnalysis, wrench_analysis
 
 __version__ = "0.1.0"
 
 __all__ = [
     "CatalogError",
     "DegenerateGeometryError",
+    "Joint",
+    "Mechanism",
+    "PoseBatchReport",
     "Screw",
     "ScrewSystem",
     "ScrewkitError",
     "ScrewkitTypeError",
     "ScrewkitValueError",
+    "SingularityReport",
     "TwistGraphError",
     "UnreachablePoseError",
+    "WrenchAnalysis",
     "__version__",
     "are_collinear",
     "are_coplanar",
     "bracket",
+    "classify",
+    "classify_poses",
+    "cylindrical",
+    "equivalent_twist_graph",
     "finite_point",
+    "fundamental_loops",
+    "helical",
     "infinite_point",
     "is_at_infinity",
     "join",
     "line_points",
     "lines_intersect",
+    "list_mechanisms",
+    "load_mechanism",
+    "load_snapshot",
+    "loop_closure_matrix",
     "meet_line_plane",
     "meet_planes",
+    "parallelogram",
     "plane",
     "plane_through",
+    "platform_twist_system",
     "point_on_line",
+    "prismatic",
     "reciprocal_product",
+    "revolute",
+    "series_parallel_tree",
+    "spherical",
+    "twist_graph",
+    "universal",
+    "virtual",
+    "wrench_analysis",
 ]
