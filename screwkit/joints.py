@@ -173,10 +173,17 @@ class Joint:
             raise ScrewkitValueError(
                 f"Expected joint data with fields {sorted(missing)}, got {sorted(data)}."
             )
+        try:
+            screws = np.array(data["screws"], dtype=float)
+        except (TypeError, ValueError) as err:
+            raise ScrewkitValueError(
+                f"Joint {data['name']!r}: expected numeric screws, got {data['screws']!r} "
+                "(symbolic joints are not loaded: nothing is evaluated)."
+            ) from err
         return cls(
             name=data["name"],
             type=data["type"],
-            screws=np.array(data["screws"], dtype=float),
+            screws=screws,
             actuated=bool(data.get("actuated", False)),
             virtual=bool(data.get("virtual", False)),
             geometry=dict(data.get("geometry", {})),
@@ -203,15 +210,23 @@ def _numeric_or_none(*values: Any) -> bool:
     return not B.is_symbolic(*values)
 
 
+def _unit_axis(axis: Any) -> Any:
+    """A numeric axis scaled to unit length (zero axes are refused by the screw kernels); a symbolic
+    axis is kept as given, so that symbolic screws stay polynomial."""
+    if B.is_symbolic(axis):
+        return axis
+    return S.normalize(S.line(axis, [0, 0, 0]))[:3]
+
+
 def revolute(name: str, axis: Any, point: Any, *, actuated: bool = False) -> Joint:
     """A revolute joint R: the zero-pitch twist on its axis.
 
     Examples
     --------
-    >>> revolute("R1", [0, 0, 1], [1, 0, 0]).screws
+    >>> revolute("R1", [0, 0, 2], [1, 0, 0]).screws  # unit twist: the axis is normalised
     array([[ 0.,  0.,  1.,  0., -1.,  0.]])
     """
-    twist = S.revolute_twist(axis, point)
+    twist = S.revolute_twist(_unit_axis(axis), point)
     geometry = _geometry(axis=axis, point=point) if _numeric_or_none(axis, point) else {}
     return Joint(name, "R", twist.reshape(1, 6), actuated=actuated, geometry=geometry)
 
@@ -280,7 +295,9 @@ def universal(name: str, first_axis: Any, second_axis: Any, center: Any) -> Join
     >>> universal("U1", [1, 0, 0], [0, 1, 0], [0, 0, 1]).dof
     2
     """
-    rows = np.stack([S.revolute_twist(first_axis, center), S.revolute_twist(second_axis, center)])
+    rows = np.stack(
+        [S.revolute_twist(_unit_axis(first_axis), center), S.revolute_twist(_unit_axis(second_axis), center)]
+    )
     if rows.dtype != object and np.linalg.norm(np.cross(rows[0, :3], rows[1, :3])) <= 1e-12 * np.prod(
         np.linalg.norm(rows[:, :3], axis=1)
     ):

@@ -47,11 +47,11 @@ __all__ = [
     "LoopEdge",
     "SeriesParallelNode",
     "add_joint",
+    "axes_frame",
     "check_twist_graph",
     "equivalent_twist_graph",
     "from_data",
     "fundamental_loops",
-    "axes_frame",
     "graph_frame",
     "joint_screws_along",
     "loop_closure_matrix",
@@ -137,7 +137,8 @@ def check_twist_graph(graph: Any, *, joint_key: str = "joint") -> None:
 
     Checks: a MultiDiGraph; ``base`` and ``platform`` attributes naming distinct links of the
     graph; every edge carrying a :class:`Joint` under ``joint_key`` whose name is the edge key;
-    unique joint names; all links connected to the base; a valid ``dof`` if given.
+    unique joint names; no joint from a link to itself; all links connected to the base; a valid
+    ``dof`` if given.
 
     Examples
     --------
@@ -171,6 +172,8 @@ def check_twist_graph(graph: Any, *, joint_key: str = "joint") -> None:
             )
         if key in names:
             raise TwistGraphError(f"Duplicate joint name {key!r} on edges {names[key]} and {(u, v)}.")
+        if u == v:
+            raise TwistGraphError(f"Joint {key!r}: expected two different links, got {u!r} twice.")
         names[key] = (u, v)
     unreached = set(graph) - nx.node_connected_component(
         graph.to_undirected(as_view=True), graph.graph["base"]
@@ -288,7 +291,7 @@ def _tree_path(parent_edge: dict[Any, LoopEdge | None], start: Any, stop: Any) -
     return path
 
 
-def fundamental_loops(graph: nx.MultiDiGraph) -> list[list[LoopEdge]]:
+def fundamental_loops(graph: nx.MultiDiGraph, *, joint_key: str = "joint") -> list[list[LoopEdge]]:
     """A basis of the graph's cycles, one loop per edge outside a spanning tree from the base.
 
     ``nx.cycle_basis`` does not accept multigraphs (parallel joints are loops too), so loops are
@@ -303,7 +306,7 @@ def fundamental_loops(graph: nx.MultiDiGraph) -> list[list[LoopEdge]]:
     >>> fundamental_loops(G)
     [[('B', 'E', 'R2', 'forward'), ('B', 'E', 'R1', 'reverse')]]
     """
-    check_twist_graph(graph)
+    check_twist_graph(graph, joint_key=joint_key)
     parent_edge = _spanning_tree(graph)
     tree = {(e[0], e[1], e[2]) for e in parent_edge.values() if e is not None}
     loops = []
@@ -361,7 +364,7 @@ def loop_closure_matrix(
     >>> matrix.shape, [c[2] for c in columns]
     ((6, 2), ['R1', 'R2'])
     """
-    loops = fundamental_loops(graph)
+    loops = fundamental_loops(graph, joint_key=joint_key)
     columns = _columns(graph, joint_key)
     index = {c: i for i, c in enumerate(columns)}
     symbolic = any(graph.edges[u, v, k][joint_key].screws.dtype == object for u, v, k, _ in columns)
@@ -444,12 +447,13 @@ class SeriesParallelNode:
     joints: tuple[str, ...] = field(default=())
 
     def reversed(self) -> SeriesParallelNode:
-        """The same node seen from its other end."""
+        """The same node seen from its other end (its children too)."""
+        children = tuple(child.reversed() for child in self.children)
         return SeriesParallelNode(
             self.kind,
             (self.ends[1], self.ends[0]),
             self.system,
-            tuple(reversed(self.children)) if self.kind == "series" else self.children,
+            tuple(reversed(children)) if self.kind == "series" else children,
             tuple(reversed(self.links)),
             self.edge,
             self.joints,
