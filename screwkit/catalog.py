@@ -171,6 +171,48 @@ class Mechanism:
         chosen = self.default_pose if pose is None else pose
         return _families()[self.family].configuration(self.parameters, chosen, **options)
 
+    def random_poses(self, rng: np.random.Generator, count: int) -> Array:
+        """Poses drawn uniformly in the operational workspace (radians), ``(count, n)``.
+
+        Examples
+        --------
+        >>> load_mechanism("h4").random_poses(np.random.default_rng(0), 3).shape
+        (3, 4)
+        """
+        low, high = zip(*(self.workspace[c] for c in self.pose_names), strict=True)
+        return rng.uniform(low, high, size=(count, len(low)))
+
+    def wrench_diagram(
+        self, pose: Any = None
+    ) -> tuple[Any, Callable[[np.random.Generator], dict[str, Array]]]:
+        """The wrench diagram at a pose, and a sampler of its recipes at random workspace poses.
+
+        The sampler draws poses in the operational workspace until the diagram's points all
+        exist there (at most 50 draws), for :func:`screwkit.diagram.superbracket_analysis`.
+
+        Examples
+        --------
+        >>> diagram, sampler = load_mechanism("h4").wrench_diagram()
+        >>> sorted(sampler(np.random.default_rng(1)))[:3]
+        ['a', 'b', 'c']
+        """
+        from .diagram import diagram_points, wrench_diagram
+        from .wrenches import wrench_analysis
+
+        diagram = wrench_diagram(wrench_analysis(self.twist_graph(pose)))
+
+        def sampler(rng: np.random.Generator) -> dict[str, Array]:
+            for candidate in self.random_poses(rng, 50):
+                try:
+                    return diagram_points(diagram.points, wrench_analysis(self.twist_graph(candidate)))
+                except ScrewkitError:
+                    continue
+            raise CatalogError(
+                f"{self.source}: none of 50 random workspace poses gives the diagram's points."
+            )
+
+        return diagram, sampler
+
     def twist_graph(self, pose: Any = None, **options: Any) -> nx.MultiDiGraph:
         """The twist graph of the physical mechanism at a pose (default: the default pose).
 

@@ -39,13 +39,16 @@ def _independent_rows(rows: Array, rtol: float, length_scale: float | None) -> A
     """The rows that raise the rank, in order (a basis made of the given generators)."""
     chosen: list[Array] = []
     rank = 0
+    total = B.screw_rank(rows, rtol=rtol, length_scale=length_scale) if rows.shape[0] else 0
+    if total == rows.shape[0]:
+        return rows.copy()
     for row in rows:
         trial = np.array([*chosen, row], dtype=rows.dtype)
         new_rank = B.screw_rank(trial, rtol=rtol, length_scale=length_scale)
         if new_rank > rank:
             chosen.append(row)
             rank = new_rank
-            if rank == 6:
+            if rank == total:
                 break
     return np.array(chosen, dtype=rows.dtype).reshape(len(chosen), 6)
 

@@ -507,6 +507,9 @@ def series_parallel_tree(
         for a, b in {tuple(sorted((u, v), key=str)) for u, v in work.edges()}:
             if work.number_of_edges(a, b) > 1:
                 members = [_oriented(d["node"], a) for d in work.get_edge_data(a, b).values()]
+                # parallel composition is associative: one parallel node per pair of links, whose
+                # children are the branches (not an earlier parallel node and a later branch)
+                members = [c for m in members for c in (m.children if m.kind == "parallel" else (m,))]
                 system = members[0].system
                 for member in members[1:]:
                     system = system & member.system

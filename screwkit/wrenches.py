@@ -192,6 +192,9 @@ class WrenchAnalysis:
         One per actuated joint.
     global_wrenches : ScrewSystem
         ``W^c + W^a`` (paper 002 Eq. 4).
+    tree : SeriesParallelNode or None
+        The series-parallel decomposition, about the reference point (None if the graph is not
+        series-parallel).
     """
 
     graph: nx.MultiDiGraph
@@ -204,6 +207,7 @@ class WrenchAnalysis:
     compound_legs: tuple[CompoundLeg, ...]
     limbs: tuple[Limb, ...]
     global_wrenches: ScrewSystem
+    tree: SeriesParallelNode | None = None
 
     @property
     def actuation_wrenches(self) -> Array:
@@ -309,7 +313,7 @@ def wrench_analysis(
             CompoundLeg(node.joints, node.system, node.system.reciprocal()) for node in _compound_legs(tree)
         ]
     except TwistGraphError:
-        legs = []
+        tree, legs = None, []
     paths = simple_paths(centred)
     limbs = []
     for name in actuated:
@@ -374,4 +378,5 @@ def wrench_analysis(
             for limb in limbs
         ),
         global_wrenches=_user_frame(global_system, back),
+        tree=tree,
     )
