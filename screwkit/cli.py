@@ -1,7 +1,18 @@
 """The ``screwkit`` command line: a thin layer over the public API (design.md §7).
 
-``main(argv=None) -> int`` returns the exit status: 0 success, 1 analysis error, 2 usage error.
+``main(argv=None) -> int`` returns the exit status: 0 success, 1 analysis error (e.g. a pose out of
+reach), 2 usage error (unknown mechanism, malformed arguments). Errors are one line on stderr.
 One ``run_*`` function per command; each prints text by default and JSON with ``--json``.
+
+Commands
+--------
+``screwkit analyze NAME|FILE.toml [--pose X Y Z PHI] [--json]``
+    The whole analysis (:func:`screwkit.report.analyze`): twist graph, wrench systems, wrench
+    diagram, superbracket, conditions, verdict. Lengths in the catalog file's unit, angle in degrees.
+``screwkit list [--json]``
+    The catalog.
+``screwkit screw (--revolute SX SY SZ --point X Y Z | --prismatic DX DY DZ | --plucker C*6)``
+    Describe one screw.
 
 Examples
 --------
@@ -14,14 +25,31 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import sys
 from collections.abc import Sequence
+from typing import Any, NoReturn
+
+import numpy as np
 
 from . import __version__
-from .exceptions import ScrewkitError
+from .catalog import list_mechanisms, load_mechanism
+from .exceptions import CatalogError, ScrewkitError
+from .report import analyze
 from .screw import Screw
 
-__all__ = ["get_parser", "main", "run_screw"]
+__all__ = ["get_parser", "main", "run_analyze", "run_list", "run_screw"]
+
+
+class _UsageError(Exception):
+    """A malformed command line (exit status 2)."""
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse with one-line errors (the usage is in ``--help``)."""
+
+    def error(self, message: str) -> NoReturn:
+        raise _UsageError(f"{self.prog}: error: {message} (see --help)")
 
 
 def get_parser() -> argparse.ArgumentParser:
@@ -32,13 +60,35 @@ def get_parser() -> argparse.ArgumentParser:
     >>> get_parser().prog
     'screwkit'
     """
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog="screwkit",
         description="Find and explain the singularities of parallel robots with screw theory "
         "and Grassmann-Cayley algebra.",
     )
     parser.add_argument("--version", action="version", version=f"screwkit {__version__}")
-    commands = parser.add_subparsers(dest="command", metavar="COMMAND")
+    commands = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
+    analyze_parser = commands.add_parser(
+        "analyze",
+        help="analyse a mechanism at a pose: wrench systems, diagram, superbracket, labelled conditions",
+        description="Analyse a catalog mechanism (by name, see `screwkit list`) or a catalog/snapshot "
+        "TOML file: twist graph, constraint and actuation wrenches, wrench diagram, factored "
+        "superbracket, geometric and vector-form conditions with their labels, and the verdict.",
+    )
+    analyze_parser.add_argument("mechanism", help="a catalog name (e.g. h4) or a .toml file")
+    analyze_parser.add_argument(
+        "--pose",
+        nargs="+",
+        type=float,
+        metavar="Q",
+        help="the pose, e.g. X Y Z PHI for an SMG: lengths in the catalog file's length unit "
+        "(mm for h4), the angle in DEGREES; default: the catalog's default pose",
+    )
+    analyze_parser.add_argument("--json", action="store_true", help="print the whole report as JSON")
+    analyze_parser.add_argument(
+        "--no-superbracket", action="store_true", help="skip the superbracket expansion (faster)"
+    )
+    listing = commands.add_parser("list", help="list the catalog's mechanisms")
+    listing.add_argument("--json", action="store_true", help="print JSON instead of text")
     screw = commands.add_parser(
         "screw",
         help="describe one screw (a joint twist or a wrench): coordinates, pitch, axis",
@@ -54,18 +104,10 @@ def get_parser() -> argparse.ArgumentParser:
         help="axis direction of a revolute joint (needs --point)",
     )
     kind.add_argument(
-        "--prismatic",
-        nargs=3,
-        type=float,
-        metavar=("DX", "DY", "DZ"),
-        help="direction of a prismatic joint",
+        "--prismatic", nargs=3, type=float, metavar=("DX", "DY", "DZ"), help="direction of a prismatic joint"
     )
     kind.add_argument(
-        "--plucker",
-        nargs=6,
-        type=float,
-        metavar="C",
-        help="the six coordinates (s; s0), direction first",
+        "--plucker", nargs=6, type=float, metavar="C", help="the six coordinates (s; s0), direction first"
     )
     screw.add_argument(
         "--point", nargs=3, type=float, metavar=("X", "Y", "Z"), help="a point of the revolute axis"
@@ -82,8 +124,7 @@ def run_screw(args: argparse.Namespace) -> int:
     """Describe one screw; see ``screwkit screw --help``."""
     if args.revolute is not None:
         if args.point is None:
-            print("screwkit screw: error: --revolute needs --point X Y Z", file=sys.stderr)
-            return 2
+            raise _UsageError("screwkit screw: error: --revolute needs --point X Y Z")
         screw = Screw.revolute(args.revolute, args.point)
     elif args.prismatic is not None:
         screw = Screw.prismatic(args.prismatic)
@@ -103,6 +144,71 @@ def run_screw(args: argparse.Namespace) -> int:
     return 0
 
 
+def _pose(args: argparse.Namespace) -> Any:
+    """The --pose in the API's units (angles from degrees to radians), checked against the mechanism."""
+    if args.pose is None:
+        return None
+    if args.mechanism.endswith(".toml"):
+        from .catalog import load_toml
+
+        if load_toml(args.mechanism).get("mechanism", {}).get("kind") == "snapshot":
+            raise _UsageError(
+                f"screwkit analyze: error: {args.mechanism} is a snapshot (one configuration); "
+                "--pose does not apply"
+            )
+    mechanism = load_mechanism(args.mechanism)
+    names = mechanism.pose_names
+    if len(args.pose) != len(names) or not all(math.isfinite(v) for v in args.pose):
+        expected = " ".join(n.upper() for n in names)
+        got = " ".join(map(str, args.pose))
+        raise _UsageError(
+            f"screwkit analyze: error: --pose expects {len(names)} finite numbers ({expected}), got {got}"
+        )
+    angles = {"phi", "theta", "psi"}
+    return np.array([math.radians(v) if n in angles else v for n, v in zip(names, args.pose, strict=True)])
+
+
+def run_analyze(args: argparse.Namespace) -> int:
+    """The main job; see ``screwkit analyze --help``."""
+    try:
+        pose = _pose(args)
+    except CatalogError as err:
+        raise _UsageError(f"screwkit analyze: error: {err}") from err
+    if not args.mechanism.endswith(".toml") and args.mechanism.lower() not in list_mechanisms():
+        raise _UsageError(
+            f"screwkit analyze: error: unknown mechanism {args.mechanism!r}: expected one of "
+            f"{list_mechanisms()} or a .toml file"
+        )
+    report = analyze(args.mechanism, pose, superbracket=not args.no_superbracket)
+    print(json.dumps(report.to_dict(), indent=2, ensure_ascii=False) if args.json else report)
+    return 0
+
+
+def run_list(args: argparse.Namespace) -> int:
+    """List the catalog; see ``screwkit list --help``."""
+    entries = []
+    for name in list_mechanisms():
+        mechanism = load_mechanism(name)
+        entries.append(
+            {
+                "name": name,
+                "title": mechanism.name,
+                "family": mechanism.family,
+                "length_unit": mechanism.length_unit,
+                "sources": list(mechanism.sources),
+            }
+        )
+    if args.json:
+        print(json.dumps(entries, indent=2))
+    else:
+        for entry in entries:
+            print(
+                f"{entry['name']:<12} {entry['title']:<12} family {entry['family']}, lengths in "
+                f"{entry['length_unit']}"
+            )
+    return 0
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; returns the exit status (0 ok, 1 analysis error, 2 usage error).
 
@@ -114,12 +220,17 @@ def main(argv: Sequence[str] | None = None) -> int:
     SystemExit: 0
     """
     parser = get_parser()
-    args = parser.parse_args(argv)
-    if args.command is None:
-        parser.print_help()
-        return 0
     try:
-        return run_screw(args)
+        args = parser.parse_args(argv)
+        if args.command is None:
+            parser.print_help()
+            return 0
+        runners = {"analyze": run_analyze, "list": run_list, "screw": run_screw}
+        return runners[args.command](args)
+    except _UsageError as err:
+        print(str(err), file=sys.stderr)
+        return 2
     except ScrewkitError as err:
-        print(f"screwkit {args.command}: error: {err}", file=sys.stderr)
+        message = " ".join(str(err).split())
+        print(f"screwkit {args.command}: error: {message}", file=sys.stderr)
         return 1

@@ -171,14 +171,8 @@ def _canonical_direction(v: Array) -> Array:
 
 
 def _legs(analysis: WrenchAnalysis) -> list[tuple[str, tuple[str, ...], Any]]:
-    """(name, joints, constraint system) of each compound leg, ordered by first actuated joint."""
-    actuated = sorted(limb.actuated_joint for limb in analysis.limbs)
-    legs = []
-    for leg in analysis.compound_legs:
-        own = sorted(j for j in actuated if j in leg.joints)
-        legs.append(
-            (", ".join(own) or ", ".join(sorted(leg.joints)[:2]), leg.joints, leg.constraint_wrenches)
-        )
+    """(name, joints, constraint system) of each compound leg, in the order of their names."""
+    legs = [(leg.name, leg.joints, leg.constraint_wrenches) for leg in analysis.compound_legs]
     return sorted(legs, key=lambda item: item[0])
 
 
@@ -269,7 +263,7 @@ def _lines_and_roles(
     for leg_name, joints, wrenches in legs:
         if wrenches.order != 1:
             problems.append(
-                f"the constraint system of the leg through {leg_name} has order {wrenches.order}, not 1: "
+                f"the constraint system of the {leg_name} has order {wrenches.order}, not 1: "
                 "its wrench is not one line here"
             )
             continue

@@ -107,12 +107,8 @@ class AnalysisReport:
         return {
             "platform_twist_order": self.analysis.platform_twists.order,
             "constraint": [
-                {"leg": ", ".join(sorted(leg.joints)[:0]) or name, **describe_wrench(w, length_scale=scale)}
-                for name, leg in zip(
-                    self.diagram.line_names[-len(self.analysis.compound_legs) :] or [],
-                    self.analysis.compound_legs,
-                    strict=False,
-                )
+                {"leg": leg.name, **describe_wrench(w, length_scale=scale)}
+                for leg in sorted(self.analysis.compound_legs, key=lambda leg: leg.name)
                 for w in leg.constraint_wrenches.readable_basis()
             ]
             if self.analysis.compound_legs

@@ -161,11 +161,19 @@ class CompoundLeg:
     joints : tuple of str
     twist_system : ScrewSystem
     constraint_wrenches : ScrewSystem
+    actuated : tuple of str
+        Its actuated joints, sorted.
     """
 
     joints: tuple[str, ...]
     twist_system: ScrewSystem
     constraint_wrenches: ScrewSystem
+    actuated: tuple[str, ...] = ()
+
+    @property
+    def name(self) -> str:
+        """``"leg through A1, A4"`` (its actuated joints), or its first joints if it has none."""
+        return "leg through " + ", ".join(self.actuated or sorted(self.joints)[:2])
 
 
 @dataclass(frozen=True, eq=False)
@@ -310,7 +318,13 @@ def wrench_analysis(
     try:
         tree = series_parallel_tree(centred, joint_key=joint_key, rtol=rtol, length_scale=length)
         legs = [
-            CompoundLeg(node.joints, node.system, node.system.reciprocal()) for node in _compound_legs(tree)
+            CompoundLeg(
+                node.joints,
+                node.system,
+                node.system.reciprocal(),
+                tuple(sorted(j for j in actuated if j in node.joints)),
+            )
+            for node in _compound_legs(tree)
         ]
     except TwistGraphError:
         tree, legs = None, []

@@ -1,12 +1,81 @@
-"""Tests of the command line: compared with the library's own results."""
+"""The command line: output compared with the library's own report; bad arguments."""
 
 import json
+import math
 
 import numpy as np
 import pytest
 
 from screwkit import Screw
+from screwkit.catalog import list_mechanisms, load_mechanism
 from screwkit.cli import main
+from screwkit.report import analyze
+
+from .test_h4 import singular_pose
+
+
+@pytest.fixture(scope="module")
+def h4_json():
+    """`screwkit analyze h4 --pose ... --json` output, and the library's report at the same pose."""
+    import contextlib
+    import io
+
+    output = io.StringIO()
+    with contextlib.redirect_stdout(output):
+        status = main(["analyze", "h4", "--pose", "30", "-20", "-750", "17", "--json"])
+    pose = np.array([30.0, -20.0, -750.0, math.radians(17.0)])
+    return status, json.loads(output.getvalue()), analyze("h4", pose)
+
+
+def test_analyze_json_equals_the_library_report(h4_json):
+    status, printed, report = h4_json
+    assert status == 0
+    assert printed == json.loads(json.dumps(report.to_dict(), ensure_ascii=False))
+
+
+def test_analyze_json_content_is_the_h4_of_paper_002(h4_json):
+    _, printed, _ = h4_json
+    assert printed["pose"]["phi"] == pytest.approx(math.radians(17.0))
+    assert printed["diagram"]["lines"] == ["ab", "cd", "ef", "gh", "ij", "kj"]
+    assert printed["superbracket"]["simplification"]["factored"]["text"] == "-[gikj][a b d ḟ][c g ḣ j]"
+    labels = [c["label"] for c in printed["superbracket"]["conditions"]]
+    assert labels == ["constraint", "actuation"]
+    assert printed["verdict"]["verdict"] == "regular"
+    assert printed["wrenches"]["global_order"] == 6
+    kinds = [w["kind"] for w in printed["wrenches"]["actuation"]]
+    assert kinds == ["force (finite line)"] * 4
+
+
+def test_analyze_text_has_every_section(capsys):
+    assert main(["analyze", "h4"]) == 0
+    text = capsys.readouterr().out
+    for heading in ("twist graph", "wrench systems", "wrench diagram", "superbracket", "conditions", "verdict"):
+        assert f"\n{heading}" in text
+    assert str(analyze("h4")) == text.rstrip("\n")
+
+
+def test_analyze_a_singular_pose_reports_the_label(capsys):
+    pose = singular_pose(1)  # a root of paper 002's Eq. (7)
+    args = [repr(float(pose[0])), repr(float(pose[1])), repr(float(pose[2])), repr(math.degrees(pose[3]))]
+    assert main(["analyze", "h4", "--no-superbracket", "--json", "--pose", *args]) == 0
+    printed = json.loads(capsys.readouterr().out)
+    assert printed["verdict"]["labels"] == ["actuation"]
+    assert printed["superbracket"] is None and printed["superbracket_note"] == "not computed"
+
+
+def test_analyze_a_snapshot_file(capsys, tmp_path):
+    from .test_catalog import EXAMPLES
+
+    assert main(["analyze", str(EXAMPLES / "planar_3rpr.toml"), "--json"]) == 0
+    printed = json.loads(capsys.readouterr().out)
+    assert printed["verdict"]["verdict"] == "regular" and printed["pose"] is None
+
+
+def test_list(capsys):
+    assert main(["list", "--json"]) == 0
+    entries = json.loads(capsys.readouterr().out)
+    assert [e["name"] for e in entries] == list_mechanisms()
+    assert entries[0]["title"] == load_mechanism(entries[0]["name"]).name
 
 
 def test_screw_command_json_matches_library(capsys):
@@ -15,12 +84,6 @@ def test_screw_command_json_matches_library(capsys):
     expected = Screw.revolute([0, 0, 2], [1, 2, 3]).to_dict()
     assert printed["kind"] == expected["kind"] == "zero pitch"
     np.testing.assert_allclose(printed["coords"], expected["coords"])
-    np.testing.assert_allclose(printed["point"], [1, 2, 0])
-
-
-def test_screw_command_text(capsys):
-    assert main(["screw", "--prismatic", "0", "1", "0"]) == 0
-    assert "pitch inf  kind infinite pitch" in capsys.readouterr().out
 
 
 def test_no_command_prints_help(capsys):
@@ -28,18 +91,27 @@ def test_no_command_prints_help(capsys):
     assert "usage: screwkit" in capsys.readouterr().out
 
 
-def test_error_revolute_without_point(capsys):
-    assert main(["screw", "--revolute", "0", "0", "1"]) == 2
-    assert capsys.readouterr().err.strip() == "screwkit screw: error: --revolute needs --point X Y Z"
+@pytest.mark.parametrize(
+    ("argv", "status", "message"),
+    [
+        (["analyze", "h5"], 2, "screwkit analyze: error: unknown mechanism 'h5': expected one of"),
+        (["analyze", "h4", "--pose", "1", "2", "3"], 2, "--pose expects 4 finite numbers (X Y Z PHI), got 1.0 2.0 3.0"),
+        (["analyze", "h4", "--pose", "0", "0", "x", "0"], 2, "argument --pose: invalid float value: 'x'"),
+        (["analyze", "h4", "--pose", "0", "0", "nan", "0"], 2, "--pose expects 4 finite numbers"),
+        (["analyze", "h4", "--pose", "0", "0", "-2000", "0"], 1, "screwkit analyze: error: Pose [0.0, 0.0, -2000.0, 0.0] is out of reach"),
+        (["analyze", "missing.toml"], 1, "missing.toml: cannot read the file"),
+        (["frobnicate"], 2, "invalid choice: 'frobnicate'"),
+        (["screw", "--revolute", "0", "0", "1"], 2, "screwkit screw: error: --revolute needs --point X Y Z"),
+        (["screw", "--prismatic", "0", "0", "0"], 1, "Expected `direction` to be a non-zero direction"),
+    ],
+)
+def test_bad_arguments_exit_non_zero_with_one_line(argv, status, message, capsys):
+    assert main(argv) == status
+    captured = capsys.readouterr()
+    assert captured.out == ""
+    assert captured.err.count("\n") == 1 and message in captured.err, captured.err
 
 
-def test_error_zero_direction_is_one_line_on_stderr(capsys):
-    assert main(["screw", "--prismatic", "0", "0", "0"]) == 1
-    err = capsys.readouterr().err
-    assert err.count("\n") == 1 and "Expected `direction` to be a non-zero direction" in err
-
-
-def test_error_unparsable_number_exits_2():
-    with pytest.raises(SystemExit) as exit_info:
-        main(["screw", "--prismatic", "0", "x", "0"])
-    assert exit_info.value.code == 2
+def test_out_of_reach_names_the_limbs(capsys):
+    main(["analyze", "h4", "--pose", "0", "0", "-2000", "0"])
+    assert "limb(s) 1, 2, 3, 4" in capsys.readouterr().err
