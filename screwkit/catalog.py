@@ -187,8 +187,8 @@ class Mechanism:
     ) -> tuple[Any, Callable[[np.random.Generator], dict[str, Array]]]:
         """The wrench diagram at a pose, and a sampler of its recipes at random workspace poses.
 
-        The sampler draws poses in the operational workspace until the diagram's points all
-        exist there (at most 50 draws), for :func:`screwkit.diagram.superbracket_analysis`.
+        The sampler (:func:`screwkit.diagram.graph_sampler`) draws poses in the operational
+        workspace until the diagram's points all exist there (at most 50 draws).
 
         Examples
         --------
@@ -196,21 +196,11 @@ class Mechanism:
         >>> sorted(sampler(np.random.default_rng(1)))[:3]
         ['a', 'b', 'c']
         """
-        from .diagram import diagram_points, wrench_diagram
+        from .diagram import graph_sampler, wrench_diagram
         from .wrenches import wrench_analysis
 
         diagram = wrench_diagram(wrench_analysis(self.twist_graph(pose)))
-
-        def sampler(rng: np.random.Generator) -> dict[str, Array]:
-            for candidate in self.random_poses(rng, 50):
-                try:
-                    return diagram_points(diagram.points, wrench_analysis(self.twist_graph(candidate)))
-                except ScrewkitError:
-                    continue
-            raise CatalogError(
-                f"{self.source}: none of 50 random workspace poses gives the diagram's points."
-            )
-
+        sampler = graph_sampler(diagram.points, lambda rng: self.twist_graph(self.random_poses(rng, 1)[0]))
         return diagram, sampler
 
     def twist_graph(self, pose: Any = None, **options: Any) -> nx.MultiDiGraph:

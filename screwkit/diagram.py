@@ -43,16 +43,17 @@ import numpy as np
 from . import projective as P
 from . import screw as S
 from .conditions import Condition, conditions
-from .exceptions import DegenerateGeometryError, ScrewkitValueError
+from .exceptions import DegenerateGeometryError, ScrewkitError, ScrewkitValueError
 from .gca import Simplification, simplify_superbracket
 from .twistgraph import SeriesParallelNode
-from .wrenches import WrenchAnalysis
+from .wrenches import WrenchAnalysis, wrench_analysis
 
 __all__ = [
     "DiagramPoint",
     "SuperbracketAnalysis",
     "WrenchDiagram",
     "diagram_points",
+    "graph_sampler",
     "superbracket_analysis",
     "wrench_diagram",
 ]
@@ -260,19 +261,30 @@ def _lines_and_roles(
                 problems.append(f"the limb of {name} is at a serial singularity: it has no actuation wrench")
                 continue
             lines.append((f"actuation {name}", "actuation", wrench, joints))
-    for leg_name, joints, wrenches in legs:
-        if wrenches.order != 1:
-            problems.append(
-                f"the constraint system of the {leg_name} has order {wrenches.order}, not 1: "
-                "its wrench is not one line here"
-            )
-            continue
-        lines.append(
-            (f"constraint of the leg through {leg_name}", "constraint", wrenches.readable_basis()[0], joints)
+    nominal = 6 - analysis.dof
+    own_lines = sum(wrenches.order for _, _, wrenches in legs)
+    overconstrained = (
+        bool(legs)
+        and all(wrenches.is_equivalent(analysis.constraint_wrenches) for _, _, wrenches in legs)
+        and len(legs) > 1
+        and analysis.constraint_wrenches.order > 0
+    )
+    if legs and own_lines == nominal and not overconstrained:
+        for leg_name, joints, wrenches in legs:
+            for k, wrench in enumerate(wrenches.readable_basis()):
+                suffix = f" ({k + 1})" if wrenches.order > 1 else ""
+                lines.append((f"constraint of the {leg_name}{suffix}", "constraint", wrench, joints))
+    elif not legs or overconstrained:
+        # every leg transmits the same constraint system (e.g. a planar mechanism): use it once
+        every_joint = tuple(k for _, _, k in analysis.graph.edges(keys=True))
+        for k, wrench in enumerate(analysis.constraint_wrenches.readable_basis()):
+            lines.append((f"constraint wrench {k + 1} of the mechanism", "constraint", wrench, every_joint))
+    else:
+        orders = ", ".join(f"{name}: {wrenches.order}" for name, _, wrenches in legs)
+        problems.append(
+            f"the legs' constraint systems (orders {orders}) do not add up to the nominal {nominal}: "
+            "the constraint wrenches are not the lines of the diagram here"
         )
-    if not legs:
-        for wrench in analysis.constraint_wrenches.readable_basis():
-            lines.append(("constraint", "constraint", wrench, tuple(analysis.graph.edges(keys=True))))
     if len(lines) != 6 and not problems:
         problems.append(f"the global wrench system has {len(lines)} generators, not 6")
     for name, _, wrench, _ in lines:
@@ -307,7 +319,7 @@ def wrench_diagram(analysis: WrenchAnalysis) -> WrenchDiagram:
     couple_lines = [
         w for _, _, w, _ in lines if S.is_infinite_pitch(w, rtol=1e-7, length_scale=analysis.length_scale)
     ]
-    axes_everywhere = _single_freedom_axes(analysis, tuple(k for _, _, k in analysis.graph.edges(keys=True)))
+    axes_everywhere = _distinct_directions(_all_axes(analysis))
     recipes: list[tuple[tuple[str, ...], tuple[str, ...]]] = []
     names, roles = [], []
     for index, (name, role, wrench, joints) in enumerate(lines):
@@ -315,15 +327,7 @@ def wrench_diagram(analysis: WrenchAnalysis) -> WrenchDiagram:
         names.append(name)
         roles.append(role)
         if not S.is_infinite_pitch(wrench, rtol=1e-7, length_scale=analysis.length_scale):
-            meet = next(
-                (
-                    ("meet", name, key)
-                    for key, screw in _single_freedom_axes(analysis, joints)
-                    if _meet_point(wrench, screw, analysis.length_scale) is not None
-                ),
-                ("foot", name),
-            )
-            recipes.append((meet, ("direction", name)))
+            recipes.append(_finite_line_recipe(name, wrench, joints, analysis, recipes))
             continue
         moment = _unit(wrench[3:])
         own = [
@@ -345,19 +349,38 @@ def wrench_diagram(analysis: WrenchAnalysis) -> WrenchDiagram:
             ),
         )
         choice = (own + shared)[:2]
-        if len(choice) < 2:
-            problems.append(f"line {line_id} ({name}): fewer than two structural points at infinity found")
+        if len(choice) == 1:
+            choice.append(("perp", name, *choice[0]))
+        if not choice:
+            problems.append(f"line {line_id} ({name}): no structural point at infinity found")
             recipes.append((("couple", name, "1"), ("couple", name, "2")))
         else:
             recipes.append((choice[0], choice[1]))
     labels: dict[tuple[str, ...], str] = {}
+    aliases: dict[tuple[str, ...], tuple[str, ...]] = {}
+    centres = dict(_centres(analysis, tuple(k for _, _, k in analysis.graph.edges(keys=True))))
     letters = iter(string.ascii_lowercase)
     for pair in recipes:
         for key in pair:
-            if key not in labels:
+            if key in labels or key in aliases:
+                continue
+            twin = next(
+                (
+                    other
+                    for other in labels
+                    if key[0] == other[0] == "centre"
+                    and np.linalg.norm(centres[key[1]] - centres[other[1]])
+                    <= INCIDENCE_RTOL * analysis.length_scale
+                ),
+                None,
+            )
+            if twin is not None:
+                aliases[key] = twin  # concentric joints (e.g. a 3-2-1 platform's shared sphere centre)
+            else:
                 labels[key] = next(letters)
+    recipes = [(aliases.get(a, a), aliases.get(b, b)) for a, b in recipes]
     points = tuple(
-        DiagramPoint(label, key, key[0] not in ("meet", "foot"), _describe(key, normals))
+        DiagramPoint(label, key, key[0] not in ("meet", "foot", "centre"), _describe(key, normals))
         for key, label in labels.items()
     )
     diagram_lines = tuple((labels[a], labels[b]) for a, b in recipes)
@@ -369,8 +392,81 @@ def wrench_diagram(analysis: WrenchAnalysis) -> WrenchDiagram:
     return WrenchDiagram(points, diagram_lines, tuple(names), tuple(roles), coordinates, tuple(problems))
 
 
+def _all_axes(analysis: WrenchAnalysis) -> list[tuple[str, Array]]:
+    """Every structural axis direction: one-freedom joints (``"R1"``) and each axis of a U (``"U1/2"``)."""
+    axes = _single_freedom_axes(analysis, tuple(k for _, _, k in analysis.graph.edges(keys=True)))
+    for _, _, key, joint in sorted(analysis.graph.edges(keys=True, data="joint"), key=lambda e: str(e[2])):
+        if joint.type == "U":
+            axes += [(f"{key}/{k + 1}", joint.screws[k]) for k in range(2)]
+    return axes
+
+
+def _distinct_directions(axes: list[tuple[str, Array]]) -> list[tuple[str, Array]]:
+    """One joint per axis direction (parallel axes share their point at infinity), in order."""
+    kept: list[tuple[str, Array]] = []
+    for key, screw in axes:
+        if all(
+            np.linalg.norm(np.cross(_unit(screw[:3]), _unit(other[:3]))) >= INCIDENCE_RTOL
+            for _, other in kept
+        ):
+            kept.append((key, screw))
+    return kept
+
+
+def _centres(analysis: WrenchAnalysis, joints: tuple[str, ...]) -> list[tuple[str, Array]]:
+    """(name, centre) of the spherical and universal joints among ``joints``."""
+    found = []
+    for _, _, key, joint in analysis.graph.edges(keys=True, data="joint"):
+        if key in joints and joint.type in ("S", "U"):
+            found.append((key, _joint_centre(joint.screws)))
+    return sorted(found, key=lambda item: item[0])
+
+
+def _joint_centre(screws: Array) -> Array:
+    """The common point of a spherical or universal joint's axes (its first two)."""
+    first, second = (S.line(row[:3], S.axis(row)[0]) for row in screws[:2])
+    normal = np.cross(first[:3], second[:3])
+    plane = P.plane(np.cross(normal, second[:3]), S.axis(second)[0])
+    point = P.meet_line_plane(first, plane)
+    return point[:3] / point[3]
+
+
+def _finite_line_recipe(
+    name: str,
+    wrench: Array,
+    joints: tuple[str, ...],
+    analysis: WrenchAnalysis,
+    earlier: list[tuple[tuple[str, ...], tuple[str, ...]]],
+) -> tuple[tuple[str, ...], tuple[str, ...]]:
+    """Two points of a finite line: joint centres on it (shared ones first), a meet, its direction."""
+    used = {key for pair in earlier for key in pair}
+    on_line = [
+        ("centre", key)
+        for key, centre in _centres(analysis, joints)
+        if P.point_on_line(
+            np.append(centre, 1.0), wrench, rtol=INCIDENCE_RTOL, length_scale=analysis.length_scale
+        )
+    ]
+    on_line.sort(key=lambda key: key not in used)
+    meets = [
+        ("meet", name, key)
+        for key, screw in _single_freedom_axes(analysis, joints)
+        if _meet_point(wrench, screw, analysis.length_scale) is not None
+    ]
+    direction: tuple[str, ...] = ("direction", name)
+    for key, screw in _single_freedom_axes(analysis, tuple(k for _, _, k in analysis.graph.edges(keys=True))):
+        if np.linalg.norm(np.cross(_unit(screw[:3]), _unit(wrench[:3]))) < INCIDENCE_RTOL:
+            direction = ("axis", key)  # the line is parallel to a joint axis: share that point
+            break
+    finite = on_line + meets + [("foot", name)]
+    if len(on_line) >= 2:
+        return on_line[0], on_line[1]
+    return finite[0], direction
+
+
 def _key_direction(key: tuple[str, ...], analysis: WrenchAnalysis) -> Array:
-    screw = analysis.graph.edges[_edge(analysis, key[1])]["joint"].screws[0]
+    name, _, index = key[1].partition("/")
+    screw = analysis.graph.edges[_edge(analysis, name)]["joint"].screws[int(index) - 1 if index else 0]
     return screw[:3]
 
 
@@ -381,11 +477,17 @@ def _describe(key: tuple[str, ...], normals: Mapping[tuple[str, str], tuple[Arra
     if kind == "direction":
         return f"the point at infinity of the {key[1]}"
     if kind == "axis":
-        return f"the point at infinity of the axis of {key[1]}"
+        name, _, index = key[1].partition("/")
+        return f"the point at infinity of the axis of {name}" + (f" (its axis {index})" if index else "")
     if kind == "normals":
         return f"the point at infinity of {normals[(key[1], key[2])][1]}"
     if kind == "foot":
         return f"the point of the {key[1]} nearest the mechanism's reference point"
+    if kind == "centre":
+        return f"the centre of joint {key[1]}"
+    if kind == "perp":
+        other = _describe(key[2:], normals).removeprefix("the point at infinity of ")
+        return f"the point at infinity normal to the {key[1]}'s moment and to {other}"
     return f"a point at infinity of the {key[1]} (no structural choice)"
 
 
@@ -439,6 +541,17 @@ def diagram_points(
             )
         elif kind == "foot" and key[1] in by_name:
             value = np.append(S.axis(by_name[key[1]])[0], 1.0)
+        elif kind == "centre":
+            joint = analysis.graph.edges[_edge(analysis, key[1])]["joint"]
+            value = np.append(_joint_centre(joint.screws), 1.0)
+        elif kind == "perp" and key[1] in by_name:
+            other = diagram_points((DiagramPoint("_", key[2:], True, ""),), analysis, lines=lines)["_"]
+            cross = np.cross(by_name[key[1]][3:], other[:3])
+            value = (
+                None
+                if np.linalg.norm(cross) < INCIDENCE_RTOL * np.linalg.norm(by_name[key[1]][3:])
+                else np.append(_canonical_direction(cross), 0.0)
+            )
         else:
             value = None
         if value is None:
@@ -447,6 +560,59 @@ def diagram_points(
             )
         coordinates[point.label] = value
     return coordinates
+
+
+def graph_sampler(
+    points: tuple[DiagramPoint, ...],
+    build: Callable[[np.random.Generator], Any],
+    *,
+    attempts: int = 50,
+) -> Callable[[np.random.Generator], dict[str, Array]]:
+    """A sampler of a diagram's points at random configurations of the same mechanism.
+
+    Parameters
+    ----------
+    points : tuple of DiagramPoint
+        A diagram's points (their recipes).
+    build : callable
+        ``rng -> twist graph`` of the same mechanism (same joint names) at a random configuration;
+        it may raise a :class:`~screwkit.exceptions.ScrewkitError` for configurations it cannot
+        build (e.g. out of reach), which are skipped.
+    attempts : int, default 50
+        Configurations tried before giving up.
+
+    Returns
+    -------
+    callable
+        ``rng -> {label: point}``, for :func:`superbracket_analysis`.
+
+    Raises
+    ------
+    ScrewkitValueError
+        (when called) if no configuration of ``attempts`` gives every point.
+
+    Examples
+    --------
+    >>> from screwkit.catalog import load_mechanism
+    >>> from screwkit.wrenches import wrench_analysis
+    >>> h4 = load_mechanism("h4")
+    >>> diagram = wrench_diagram(wrench_analysis(h4.twist_graph()))
+    >>> sampler = graph_sampler(diagram.points, lambda rng: h4.twist_graph(h4.random_poses(rng, 1)[0]))
+    >>> len(sampler(np.random.default_rng(0)))
+    11
+    """
+
+    def sampler(rng: np.random.Generator) -> dict[str, Array]:
+        for _ in range(attempts):
+            try:
+                return diagram_points(points, wrench_analysis(build(rng)))
+            except ScrewkitError:
+                continue
+        raise ScrewkitValueError(
+            f"Expected a configuration giving every diagram point, got none in {attempts}."
+        )
+
+    return sampler
 
 
 # the superbracket pipeline -----------------------------------------------------------------------

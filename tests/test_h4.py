@@ -238,12 +238,10 @@ def test_six_by_six_determinant_is_equation_6_times_equation_7(rng):
     assert abs(ratios[0]) == pytest.approx(1.0, rel=1e-9)
 
 
-def test_paper_case_b_is_not_a_constraint_singularity_of_the_end_effector():
-    # Paper 002 §5.3 case (b): s12 ∥ z "the constraint wrench system becomes a 1-system". A rank
-    # computation disagrees: with n1, n4 horizontal, l12's constraint couples are both horizontal,
-    # so W_I is the 2-system of horizontal couples (not τ∞I = 0) and W^c stays of order 2; what the
-    # nacelle gains is an internal rotation of b_I about z. The paper's determinant vanishes (its
-    # τ∞I row is zero) although the mechanism is regular: the representation degenerates.
+@functools.cache
+def case_b_pose():
+    """A reachable pose of paper 002's case (b): n1, n4 horizontal, so s12 = n1 × n4 ∥ z."""
+
     def residual(pose):  # w1 ⟂ y and w4 ⟂ x make n1 = u1 × w1 and n4 = u4 × w4 horizontal
         cfg = inverse_kinematics(H4, pose)
         return np.array([cfg.w[0, 1], cfg.w[3, 0]])
@@ -254,14 +252,30 @@ def test_paper_case_b_is_not_a_constraint_singularity_of_the_end_effector():
         jac = np.column_stack([(residual(pose + e * 1e-5 * k) - value) / (1e-5 * k) for e, k in zip(np.eye(4), scale, strict=True)])
         pose = pose - np.linalg.pinv(jac * scale) @ value * scale
     assert np.abs(residual(pose)).max() < 1e-12
+    return pose
+
+
+def test_paper_case_b_is_an_actuation_and_serial_singularity_not_a_constraint_one():
+    # Paper 002 §5.3 case (b): s12 ∥ z "the constraint wrench system becomes a 1-system". A rank
+    # computation disagrees: with n1, n4 horizontal, l14's constraint couples are both horizontal,
+    # so W_I is the 2-system of horizontal couples (not τ∞I = 0) and W^c stays of order 2. What does
+    # happen: Z_I is parallel to the plane of parallelogram 1, so limb 1's actuation force (in that
+    # plane, meeting Z_I) does not exist; its passive wrenches shrink to the couple (0, n1), which is
+    # reciprocal to the actuated twist (n1 ⟂ u1): a serial singularity of limb 1, and an actuation
+    # singularity of the mechanism (the rotation about z is uncontrolled). The paper's 6×6
+    # determinant vanishes too (its τ∞I row is zero), for the wrong reason.
+    pose = case_b_pose()
     cfg = inverse_kinematics(H4, pose)
     _, _, s12, _ = paper_002_conditions(cfg)
     assert np.linalg.norm(np.cross(unit(s12), Z)) < 1e-9
     assert abs(np.linalg.det(paper_wrench_matrix(cfg))) < 1e-9
     report = classify(four_limb_twist_graph(cfg))
-    assert report.constraint_order == 2 and "constraint" not in report.labels
+    assert report.constraint_order == 2 and report.labels == ("actuation", "serial")
     leg_I = next(leg for leg in report.analysis.compound_legs if "R_I" in leg.joints)
     assert leg_I.constraint_wrenches.order == 2
+    assert [s.actuated_joint for s in report.serial] == ["A1"]
+    uncontrolled = report.uncontrolled_twists[0]
+    assert np.linalg.norm(np.cross(unit(uncontrolled[:3]), Z)) < 1e-9  # a rotation about a vertical axis
 
 
 # invariance (hypothesis) -------------------------------------------------------------------------
