@@ -107,17 +107,40 @@ class Family:
 
 
 def _families() -> dict[str, Family]:
-    from .families import four_limb
+    """The families a catalog entry can name. Each family module provides ``twist_graph(config)``."""
+    from .families import four_limb, mcgill_smg, peppermill, planar_3rrp
     from .families.four_limb_graph import four_limb_twist_graph
 
+    smg_pose = ("x", "y", "z", "phi")
     return {
         "four_limb": Family(
             parameters=four_limb.FourLimbParameters.from_mapping,
             configuration=four_limb.inverse_kinematics,
             twist_graph=four_limb_twist_graph,
-            pose_names=("x", "y", "z", "phi"),
+            pose_names=smg_pose,
             angle_names=("phi",),
-        )
+        ),
+        "mcgill_smg": Family(
+            parameters=mcgill_smg.McGillParameters.from_mapping,
+            configuration=mcgill_smg.inverse_kinematics,
+            twist_graph=lambda config: mcgill_smg.twist_graph(config),  # type: ignore[attr-defined]
+            pose_names=smg_pose,
+            angle_names=("phi",),
+        ),
+        "peppermill": Family(
+            parameters=peppermill.PeppermillParameters.from_mapping,
+            configuration=peppermill.inverse_kinematics,
+            twist_graph=lambda config: peppermill.twist_graph(config),  # type: ignore[attr-defined]
+            pose_names=smg_pose,
+            angle_names=("phi",),
+        ),
+        "planar_3rrp": Family(
+            parameters=planar_3rrp.Planar3RRPParameters.from_mapping,
+            configuration=planar_3rrp.Planar3RRPConfiguration.from_pose,
+            twist_graph=lambda config: planar_3rrp.twist_graph(config),  # type: ignore[attr-defined]
+            pose_names=("x", "y", "phi"),
+            angle_names=("phi",),
+        ),
     }
 
 
