@@ -97,7 +97,19 @@ Array = np.ndarray
 
 @dataclass(frozen=True)
 class Family:
-    """How a family turns parameters and a pose into a configuration and a twist graph."""
+    """How a family turns parameters and a pose into a configuration and a twist graph.
+
+    Attributes
+    ----------
+    parameters : callable
+        ``(mapping, *, source) -> parameters`` (the family's validating constructor).
+    configuration : callable
+        ``(parameters, pose, **options) -> configuration`` (inverse kinematics).
+    twist_graph : callable
+        ``configuration -> networkx.MultiDiGraph`` of the physical mechanism.
+    pose_names, angle_names : tuple of str
+        The pose coordinates, and which of them are angles (degrees in files, radians in the API).
+    """
 
     parameters: Callable[..., Any]
     configuration: Callable[..., Any]

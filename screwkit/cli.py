@@ -121,7 +121,14 @@ def _number(value: float) -> str:
 
 
 def run_screw(args: argparse.Namespace) -> int:
-    """Describe one screw; see ``screwkit screw --help``."""
+    """Describe one screw; see ``screwkit screw --help``.
+
+    Examples
+    --------
+    >>> run_screw(get_parser().parse_args(["screw", "--prismatic", "0", "0", "2"]))
+    screw (0, 0, 0; 0, 0, 2)  pitch inf  kind infinite pitch
+    0
+    """
     if args.revolute is not None:
         if args.point is None:
             raise _UsageError("screwkit screw: error: --revolute needs --point X Y Z")
@@ -169,7 +176,16 @@ def _pose(args: argparse.Namespace) -> Any:
 
 
 def run_analyze(args: argparse.Namespace) -> int:
-    """The main job; see ``screwkit analyze --help``."""
+    """The main job; see ``screwkit analyze --help``.
+
+    Examples
+    --------
+    >>> args = get_parser().parse_args(["analyze", "h4", "--no-superbracket"])
+    >>> run_analyze(args)  # doctest: +ELLIPSIS
+    H4  (...h4.toml)
+    ...
+    0
+    """
     try:
         pose = _pose(args)
     except CatalogError as err:
@@ -185,7 +201,14 @@ def run_analyze(args: argparse.Namespace) -> int:
 
 
 def run_list(args: argparse.Namespace) -> int:
-    """List the catalog; see ``screwkit list --help``."""
+    """List the catalog; see ``screwkit list --help``.
+
+    Examples
+    --------
+    >>> run_list(get_parser().parse_args(["list"]))  # doctest: +ELLIPSIS
+    h4           H4           family four_limb, lengths in mm
+    ...0
+    """
     entries = []
     for name in list_mechanisms():
         mechanism = load_mechanism(name)

@@ -70,7 +70,24 @@ def describe_wrench(wrench: Array, *, length_scale: float) -> dict[str, Any]:
 
 @dataclass(frozen=True, eq=False)
 class AnalysisReport:
-    """Everything :func:`analyze` found (see the module docstring)."""
+    """Everything :func:`analyze` found (see the module docstring).
+
+    Attributes
+    ----------
+    name, source, length_unit : str
+    pose : numpy.ndarray or None
+        In the length unit and radians (None for a snapshot).
+    pose_names : tuple of str
+    graph, equivalent : networkx.MultiDiGraph
+        The physical twist graph and its equivalent graph (closed sub-loops as virtual chains).
+    analysis : WrenchAnalysis
+    verdict : SingularityReport
+    diagram : WrenchDiagram
+    superbracket : SuperbracketAnalysis or None
+        None when not computed or when the diagram is degenerate at the pose.
+    superbracket_note : str
+        How structural zeros were confirmed, or why there is no factorization.
+    """
 
     name: str
     source: str

@@ -912,14 +912,28 @@ def _expand(mask: np.ndarray, like: np.ndarray) -> np.ndarray:
 
 
 class FourLimbJacobians(NamedTuple):
-    """Forward and inverse Jacobians of Eq. (6), ``A χ̇ = B θ̇``, each (..., 4, 4)."""
+    """Forward and inverse Jacobians of Eq. (6), ``A χ̇ = B θ̇``, each (..., 4, 4).
+
+    Attributes
+    ----------
+    A : numpy.ndarray, shape (..., 4, 4)
+        Rows ``e_i = [w_i, r w_i·s_i]`` (Eq. 8).
+    B : numpy.ndarray, shape (..., 4, 4)
+        ``diag(h_i)`` (Eq. 7b).
+    """
 
     A: np.ndarray
     B: np.ndarray
 
 
 class TransmissionIndices(NamedTuple):
-    """Motion index ``κ``, force index ``ζ`` (Eq. 15) and LTI ``η = min(κ, ζ)`` (Eq. 16)."""
+    """Motion index ``κ``, force index ``ζ`` (Eq. 15) and LTI ``η = min(κ, ζ)`` (Eq. 16).
+
+    Attributes
+    ----------
+    kappa, zeta, eta : numpy.ndarray
+        Each of the pose batch's shape, in [0, 1].
+    """
 
     kappa: np.ndarray
     zeta: np.ndarray
