@@ -657,7 +657,7 @@ def superbracket_analysis(
     diagram: WrenchDiagram,
     sampler: Callable[[np.random.Generator], Mapping[str, Array]],
     *,
-    n_samples: int = 10,
+    n_samples: int = 6,
     rng: int = 0,
 ) -> SuperbracketAnalysis:
     """Expand, simplify and factor a diagram's superbracket; interpret and label each factor.
@@ -675,10 +675,11 @@ def superbracket_analysis(
     sampler : callable
         ``rng -> {label: point}``: the diagram's recipes at random poses of the same mechanism
         (:meth:`screwkit.catalog.Mechanism.wrench_diagram`), on which zeros are confirmed.
-    n_samples : int, default 10
+    n_samples : int, default 6
         Configurations that decide structural zeros (a bracket polynomial that is not identically
-        zero on the incidence variety vanishes at a random configuration with probability 0), and
-        as many fresh ones for the checks; drawn once and shared by both orderings.
+        zero on the incidence variety vanishes at a random configuration with probability 0, so
+        one would already decide; six guard against a configuration near a singularity), and as
+        many fresh ones for the checks; drawn once and shared by both orderings.
     rng : int, default 0
 
     Raises
