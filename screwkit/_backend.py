@@ -40,6 +40,7 @@ from .exceptions import ScrewkitTypeError, ScrewkitValueError
 __all__ = [
     "DEFAULT_RTOL",
     "as_array",
+    "as_arrays",
     "cross",
     "det",
     "dot",
@@ -230,6 +231,18 @@ def promote(*arrays: Array) -> tuple[Array, ...]:
                 out.append(converted)
         return tuple(out)
     return arrays
+
+
+def as_arrays(shape: tuple[int | None, ...], *named: tuple[Any, str]) -> tuple[Array, ...]:
+    """Validate several ``(value, name)`` arguments of one trailing shape and promote them together.
+
+    Examples
+    --------
+    >>> a, b = as_arrays((3,), ([1, 2, 3], "p"), ([0, sympy.Symbol("t"), 0], "q"))
+    >>> a.dtype, b[1]
+    (dtype('O'), t)
+    """
+    return promote(*(as_array(value, name, shape) for value, name in named))
 
 
 def cross(a: Array, b: Array) -> Array:

@@ -54,10 +54,6 @@ __all__ = [
 Array = np.ndarray
 
 
-def _points(*named: tuple[Any, str]) -> tuple[Array, ...]:
-    return B.promote(*(B.as_array(value, name, (4,)) for value, name in named))
-
-
 def _is_zero_vector(values: Array, *, rtol: float, reference: Array) -> Array:
     """Numeric: ``|values| <= rtol * reference``; symbolic: every component simplifies to 0."""
     if values.dtype == object:
@@ -111,7 +107,7 @@ def is_at_infinity(points: Any, *, rtol: float = B.DEFAULT_RTOL, length_scale: f
     >>> is_at_infinity([[1, 0, 0, 0], [1, 0, 0, 1]])
     array([ True, False])
     """
-    (p,) = _points((points, "points"))
+    (p,) = B.as_arrays((4,), (points, "points"))
     unit = _unit_points(p, length_scale)
     result = np.abs(unit[..., 3]) <= rtol
     return bool(result) if np.ndim(result) == 0 else result
@@ -159,7 +155,7 @@ def join(p: Any, q: Any, *, rtol: float = B.DEFAULT_RTOL) -> Array:
     ...
     screwkit.exceptions.DegenerateGeometryError: Expected `p` and `q` to be distinct points, ...
     """
-    pp, qq = _points((p, "p"), (q, "q"))
+    pp, qq = B.as_arrays((4,), (p, "p"), (q, "q"))
     pp, qq = np.broadcast_arrays(pp, qq)
     direction = pp[..., 3:] * qq[..., :3] - qq[..., 3:] * pp[..., :3]
     result = np.concatenate([direction, B.cross(pp[..., :3], qq[..., :3])], axis=-1)
@@ -262,7 +258,7 @@ def plane_through(p: Any, q: Any, r: Any, *, rtol: float = B.DEFAULT_RTOL) -> Ar
     >>> plane_through([0, 0, 0, 1], [1, 0, 0, 1], [0, 1, 0, 1]) + 0.0
     array([ 0.,  0., -1.,  0.])
     """
-    pp, qq, rr = _points((p, "p"), (q, "q"), (r, "r"))
+    pp, qq, rr = B.as_arrays((4,), (p, "p"), (q, "q"), (r, "r"))
     pp, qq, rr = np.broadcast_arrays(pp, qq, rr)
     columns = [[1, 2, 3], [0, 2, 3], [0, 1, 3], [0, 1, 2]]
     # Laplace expansion of det[p; q; r; x] along its last row: π_j = (−1)^(3+j) minor_j.
@@ -291,7 +287,7 @@ def bracket(p: Any, q: Any, r: Any, s: Any) -> Any:
     >>> float(bracket([1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]))
     1.0
     """
-    pts = _points((p, "p"), (q, "q"), (r, "r"), (s, "s"))
+    pts = B.as_arrays((4,), (p, "p"), (q, "q"), (r, "r"), (s, "s"))
     pts = np.broadcast_arrays(*pts)
     if pts[0].dtype == object:
         plane_pqr = plane_through_unchecked(pts[0], pts[1], pts[2])
@@ -412,7 +408,7 @@ def are_coplanar(
     >>> are_coplanar([0, 0, 0, 1], [1, 0, 0, 1], [0, 1, 0, 1], [5, 5, 0, 1])
     True
     """
-    pts = [_unit_points(x, length_scale) for x in _points((p, "p"), (q, "q"), (r, "r"), (s, "s"))]
+    pts = [_unit_points(x, length_scale) for x in B.as_arrays((4,), (p, "p"), (q, "q"), (r, "r"), (s, "s"))]
     result = np.abs(np.linalg.det(np.stack(np.broadcast_arrays(*pts), axis=-2))) <= rtol
     return bool(result) if np.ndim(result) == 0 else result
 
@@ -427,7 +423,7 @@ def are_collinear(
     >>> are_collinear([0, 0, 0, 1], [1, 1, 1, 1], [1, 1, 1, 0])
     True
     """
-    pts = [_unit_points(x, length_scale) for x in _points((p, "p"), (q, "q"), (r, "r"))]
+    pts = [_unit_points(x, length_scale) for x in B.as_arrays((4,), (p, "p"), (q, "q"), (r, "r"))]
     values = np.linalg.svd(np.stack(np.broadcast_arrays(*pts), axis=-2), compute_uv=False)
     result = values[..., 2] <= rtol * values[..., 0]
     return bool(result) if np.ndim(result) == 0 else result

@@ -68,11 +68,6 @@ __all__ = [
 Array = np.ndarray
 
 
-def _vectors(*named: tuple[Any, str]) -> tuple[Array, ...]:
-    """Validate 3-vectors and promote them together to one branch."""
-    return B.promote(*(B.as_array(value, name, (3,)) for value, name in named))
-
-
 def _nonzero_direction(direction: Array, name: str) -> None:
     if direction.dtype == object:
         zero = [bool(sympy.simplify(B.dot(d, d)) == 0) for d in direction.reshape(-1, 3)]
@@ -111,7 +106,7 @@ def line(direction: Any, point: Any) -> Array:
     >>> line([0, 0, 1], [1, 2, 0])
     array([ 0.,  0.,  1.,  2., -1.,  0.])
     """
-    s, r = _vectors((direction, "direction"), (point, "point"))
+    s, r = B.as_arrays((3,), (direction, "direction"), (point, "point"))
     _nonzero_direction(s, "direction")
     s, r = np.broadcast_arrays(s, r)
     return np.concatenate([s, B.cross(r, s)], axis=-1)
@@ -173,7 +168,7 @@ def prismatic_twist(direction: Any) -> Array:
     >>> prismatic_twist([0, 1, 0])
     array([0., 0., 0., 0., 1., 0.])
     """
-    (d,) = _vectors((direction, "direction"))
+    (d,) = B.as_arrays((3,), (direction, "direction"))
     _nonzero_direction(d, "direction")
     return np.concatenate([np.zeros_like(d) if d.dtype != object else d * 0, d], axis=-1)
 
@@ -210,7 +205,7 @@ def from_plucker(direction: Any, moment_vector: Any) -> Array:
     >>> from_plucker([0, 0, 1], [1, 0, 0])
     array([0., 0., 1., 1., 0., 0.])
     """
-    s, s0 = _vectors((direction, "direction"), (moment_vector, "moment"))
+    s, s0 = B.as_arrays((3,), (direction, "direction"), (moment_vector, "moment"))
     s, s0 = np.broadcast_arrays(s, s0)
     return np.concatenate([s, s0], axis=-1)
 
