@@ -371,11 +371,16 @@ def loop_closure_matrix(
     matrix = np.zeros((6 * len(loops), len(columns)), dtype=object if symbolic else float)
     for row, loop in enumerate(loops):
         for u, v, key, direction in loop:
-            screws = graph.edges[u, v, key][joint_key].screws
+            screws = _promoted(graph.edges[u, v, key][joint_key].screws, symbolic)
             sign = 1 if direction == "forward" else -1
             for i, screw in enumerate(screws):
                 matrix[6 * row : 6 * row + 6, index[(u, v, key, i)]] += sign * screw
     return matrix, columns
+
+
+def _promoted(screws: Array, symbolic: bool) -> Array:
+    """Numeric screws as exact sympy numbers when the matrix is symbolic (no floats leak in)."""
+    return B.promote(screws, np.empty(0, dtype=object))[0] if symbolic else screws
 
 
 def _loop_closure_twists(
@@ -388,7 +393,8 @@ def _loop_closure_twists(
     index = {c: i for i, c in enumerate(columns)}
     path_matrix = np.zeros((6, len(columns)), dtype=matrix.dtype)
     for u, v, key, direction in path:
-        for i, screw in enumerate(graph.edges[u, v, key][joint_key].screws):
+        screws = _promoted(graph.edges[u, v, key][joint_key].screws, matrix.dtype == object)
+        for i, screw in enumerate(screws):
             path_matrix[:, index[(u, v, key, i)]] += screw if direction == "forward" else -screw
     matrix, path_matrix = matrix[:, free], path_matrix[:, free]
     if not free:
