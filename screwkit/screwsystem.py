@@ -122,9 +122,27 @@ class ScrewSystem:
         return cls(basis, rtol=rtol, length_scale=length_scale)
 
     @classmethod
-    def full(
-        cls, *, rtol: float = B.DEFAULT_RTOL, length_scale: float | None = None
+    def from_independent(
+        cls, basis: Any, *, rtol: float = B.DEFAULT_RTOL, length_scale: float | None = None
     ) -> ScrewSystem:
+        """A system from rows known to be independent (e.g. moved by a rigid motion), unchecked.
+
+        Examples
+        --------
+        >>> from screwkit.screw import couple
+        >>> ScrewSystem.from_independent([couple([0, 0, 1])], length_scale=1.0).order
+        1
+        """
+        rows = B.as_array(basis, "basis", (6,)).reshape(-1, 6).copy()
+        rows.flags.writeable = False
+        system = object.__new__(cls)
+        object.__setattr__(system, "basis", rows)
+        object.__setattr__(system, "rtol", rtol)
+        object.__setattr__(system, "length_scale", length_scale)
+        return system
+
+    @classmethod
+    def full(cls, *, rtol: float = B.DEFAULT_RTOL, length_scale: float | None = None) -> ScrewSystem:
         """The 6-system of all screws.
 
         Examples
@@ -135,9 +153,7 @@ class ScrewSystem:
         return cls(np.eye(6), rtol=rtol, length_scale=length_scale)
 
     @classmethod
-    def zero(
-        cls, *, rtol: float = B.DEFAULT_RTOL, length_scale: float | None = None
-    ) -> ScrewSystem:
+    def zero(cls, *, rtol: float = B.DEFAULT_RTOL, length_scale: float | None = None) -> ScrewSystem:
         """The 0-system.
 
         Examples
@@ -174,9 +190,7 @@ class ScrewSystem:
     def _other(self, other: Any) -> ScrewSystem:
         if isinstance(other, ScrewSystem):
             return other
-        raise ScrewkitTypeError(
-            f"Expected `other` to be a ScrewSystem, got {type(other).__name__}."
-        )
+        raise ScrewkitTypeError(f"Expected `other` to be a ScrewSystem, got {type(other).__name__}.")
 
     def _stack(self, *parts: Array) -> Array:
         promoted = B.promote(*[np.asarray(p).reshape(-1, 6) for p in parts])
@@ -337,9 +351,7 @@ class ScrewSystem:
         (-2.0, 1.0)
         """
         if self.is_symbolic:
-            raise ScrewkitTypeError(
-                "pitch_range is numeric; substitute values into the system first."
-            )
+            raise ScrewkitTypeError("pitch_range is numeric; substitute values into the system first.")
         length = float(self.length_scale or 1.0)
         scaled, _ = B.scale_moments(self.basis, length)
         if scaled.shape[0]:
@@ -352,8 +364,7 @@ class ScrewSystem:
         finite = vectors[:, values > tol]
         if finite.shape[1] == 0:
             raise ScrewkitValueError(
-                "Expected a system holding a screw of finite pitch, got only couples "
-                f"(order {self.order})."
+                f"Expected a system holding a screw of finite pitch, got only couples (order {self.order})."
             )
         kernel = vectors[:, values <= tol]
         if kernel.size and np.abs(kernel.T @ form @ finite).max() > tol:
@@ -450,14 +461,10 @@ def _pencil_lines(rows: list[Array], system: ScrewSystem) -> list[Array]:
 def _pick(candidates: Array, order: int, system: ScrewSystem) -> Array:
     picked = _independent_rows(candidates, system.rtol, system.length_scale)
     if picked.shape[0] != order:  # pragma: no cover - guarded by construction
-        raise ScrewkitValueError(
-            f"Internal error: readable basis of order {picked.shape[0]} != {order}."
-        )
+        raise ScrewkitValueError(f"Internal error: readable basis of order {picked.shape[0]} != {order}.")
     if system.is_symbolic:
         return picked
     sizes = np.linalg.norm(picked[:, :3], axis=1)
     moments = np.linalg.norm(picked[:, 3:], axis=1)
-    scale = np.where(
-        sizes > system.rtol * moments / float(system.length_scale or 1.0), sizes, moments
-    )
+    scale = np.where(sizes > system.rtol * moments / float(system.length_scale or 1.0), sizes, moments)
     return picked / scale[:, None]

@@ -19,9 +19,9 @@ Closeness measures (all in [0, 1], unit-free, computed about the mechanism's own
 and length (:func:`~screwkit.twistgraph.graph_frame`), so they follow rigid motions and changes of
 unit; 0 at the singularity):
 
-* ``constraint``: σ_c0 / σ_1 of the stacked constraint wrenches of the compound legs, with
-  ``c0 = 6 − dof`` (moments over the length, rows normalised);
-* ``actuation``: σ_6 / σ_1 of those wrenches stacked with the actuation wrenches;
+* ``constraint``: σ_c0 / σ_1 of orthonormal bases of the compound legs' constraint systems,
+  stacked, with ``c0 = 6 − dof`` (about the reference point, moments over the length);
+* ``actuation``: σ_6 / σ_1 of those bases stacked with the unit actuation wrenches;
 * ``serial``: the smallest normalised reciprocal product of an actuation wrench with its actuated
   twist (:func:`~screwkit.wrenches.normalized_reciprocal_product`; for lines, mutual moment over the
   length, which can exceed 1 for limbs far from the reference point).
@@ -176,13 +176,32 @@ class SingularityReport:
         return "\n".join(lines)
 
 
-def _ratio(rows: Array, index: int, length_scale: float) -> float:
-    """σ_index / σ_1 of screws about the reference point (0 if there are fewer rows)."""
+def _constraint_systems(analysis: WrenchAnalysis) -> list[ScrewSystem]:
+    """The compound legs' constraint systems, or the mechanism's when it is not series-parallel."""
+    return [leg.constraint_wrenches for leg in analysis.compound_legs] or [analysis.constraint_wrenches]
+
+
+def _orthonormal(rows: Array, analysis: WrenchAnalysis, *, each: bool = False) -> Array:
+    """Rows about the reference point, moments over the length, then an orthonormal basis of their
+    span (or, with ``each``, each row normalised): a metric rigid motions and changes of unit keep,
+    so the measures below depend on the subspaces only, not on the bases chosen for them."""
+    rows = np.asarray(rows, dtype=float).reshape(-1, 6)
+    if rows.shape[0] == 0:
+        return rows
+    scaled = S.transform(rows, np.eye(3), -analysis.reference_point)
+    scaled[:, 3:] /= analysis.length_scale
+    if each:
+        return scaled / np.linalg.norm(scaled, axis=1, keepdims=True)
+    return np.linalg.qr(scaled.T)[0].T
+
+
+def _ratio(rows: Array, index: int) -> float:
+    """σ_index / σ_1 of rows already about the reference point and scaled (0 if fewer rows)."""
     if index <= 0:
         return 1.0
     if rows.shape[0] < index:
         return 0.0
-    values = B.screw_singular_values(rows, length_scale=length_scale)
+    values = np.linalg.svd(rows, compute_uv=False)
     return float(values[index - 1] / values[0]) if values[0] > 0 else 0.0
 
 
@@ -214,18 +233,14 @@ def classify_analysis(analysis: WrenchAnalysis) -> SingularityReport:
     if serial:
         labels.append("serial")
     uncontrolled = analysis.global_wrenches.reciprocal()
-    centre = analysis.reference_point
-
-    def centred(rows: Array) -> Array:
-        rows = np.asarray(rows, dtype=float).reshape(-1, 6)
-        return S.transform(rows, np.eye(3), -centre) if rows.shape[0] else rows
-
-    generators = centred(analysis.constraint_generators())
-    stacked = np.vstack([generators, centred(analysis.actuation_wrenches)])
+    generators = np.vstack(
+        [_orthonormal(system.basis, analysis) for system in _constraint_systems(analysis)]
+    ).reshape(-1, 6)
+    stacked = np.vstack([generators, _orthonormal(analysis.actuation_wrenches, analysis, each=True)])
     transmissions = [limb.transmission for limb in analysis.limbs]
     closeness = {
-        "constraint": _ratio(generators, nominal, analysis.length_scale),
-        "actuation": _ratio(stacked, 6, analysis.length_scale),
+        "constraint": _ratio(generators, nominal),
+        "actuation": _ratio(stacked, 6),
         "serial": float(min(transmissions)) if transmissions else 1.0,
     }
     return SingularityReport(

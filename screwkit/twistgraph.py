@@ -195,8 +195,9 @@ def graph_frame(graph: nx.MultiDiGraph, *, joint_key: str = "joint") -> tuple[Ar
     is the root-mean-square distance of those axes from it (or 1 if it is 0). Both follow any
     rigid motion of the mechanism and any change of unit, so rank decisions and closeness
     measures made about them do not depend on where the user put the origin or which unit they
-    used. (With all axes parallel, the point is fixed only across the axes; along them the
-    least-squares solution nearest the origin is taken.)
+    used. With all axes parallel (a planar mechanism) the screws fix the point only across the
+    axes; along them it is the mean of the joints' own points (their ``geometry``, set by the
+    constructors of :mod:`screwkit.joints`), or the solution nearest the origin without them.
 
     Returns
     -------
@@ -217,13 +218,39 @@ def graph_frame(graph: nx.MultiDiGraph, *, joint_key: str = "joint") -> tuple[Ar
     if stacked.dtype == object:
         return np.zeros(3), 1.0
     point, length = axes_frame(stacked)
-    return point, float(length)
+    return _anchored(point, stacked, graph, joint_key), float(length)
+
+
+def _anchored(point: Array, screws: Array, graph: nx.MultiDiGraph, joint_key: str) -> Array:
+    """With all finite axes parallel (a planar mechanism), nothing in the screws fixes the point
+    along their direction; take it from the joints' own points (their ``geometry``), which follow
+    the mechanism, when they have them."""
+    directions = screws[:, :3][np.linalg.norm(screws[:, :3], axis=1) > 0]
+    if len(directions) == 0:
+        return point
+    units = directions / np.linalg.norm(directions, axis=1, keepdims=True)
+    common = units[0]
+    if np.linalg.norm(np.cross(units, common), axis=1).max() > 1e-9:  # not all parallel
+        return point
+    anchors = [
+        data[joint_key].geometry[key]
+        for _, _, data in graph.edges(data=True)
+        for key in ("point", "center")
+        if key in data[joint_key].geometry
+    ]
+    if not anchors:
+        return point
+    return point + common * float((np.mean(anchors, axis=0) - point) @ common)
 
 
 def axes_frame(screws: Array) -> tuple[Array, Array]:
     """The kernel of :func:`graph_frame`, batched: screws ``(..., n, 6)`` → points ``(..., 3)``, lengths.
 
     Screws of infinite pitch are ignored; with none left the point is the origin and the length 1.
+    When every axis passes through one point (a spherical mechanism) the root-mean-square distance
+    is round-off: below ``1e-12`` of the coordinates' own size it is replaced by that size (the
+    farthest foot of an axis from the origin, or 1 when it is 0), a length that still follows the
+    unit; moments about the common point are then zero whatever the length.
 
     Examples
     --------
@@ -246,7 +273,10 @@ def axes_frame(screws: Array) -> tuple[Array, Array]:
     offsets = np.einsum("...kij,...kj->...ki", projectors, point[..., None, :] - feet)
     count = np.maximum(finite.sum(axis=-1), 1)
     length = np.sqrt(np.sum(offsets**2, axis=(-2, -1)) / count)
-    return point, np.where(length > 0, length, 1.0)
+    size = np.maximum(np.linalg.norm(feet, axis=-1).max(axis=-1, initial=0.0), np.linalg.norm(point, axis=-1))
+    round_off = length <= 1e-12 * size
+    fallback = np.where(size > 0, size, 1.0)
+    return point, np.where(round_off | (length == 0), fallback, length)
 
 
 # loops and loop closure ---------------------------------------------------------------------------

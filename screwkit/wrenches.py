@@ -82,7 +82,11 @@ def translated_graph(graph: nx.MultiDiGraph, offset: Any, *, joint_key: str = "j
     for u, v, key, data in graph.edges(keys=True, data=True):
         joint: Joint = data[joint_key]
         screws = S.transform(joint.screws, np.eye(3), shift)
-        copy = Joint(joint.name, joint.type, screws, joint.actuated, joint.virtual, joint.geometry)
+        geometry = {
+            key: (np.asarray(value) + shift).tolist() if key in ("point", "center") else value
+            for key, value in joint.geometry.items()
+        }
+        copy = Joint(joint.name, joint.type, screws, joint.actuated, joint.virtual, geometry)
         moved.add_edge(u, v, key=key, **{**data, joint_key: copy})
     return moved
 
@@ -242,24 +246,72 @@ def _system(rows: Array, rtol: float, length_scale: float) -> ScrewSystem:
 
 
 def _user_frame(system: ScrewSystem, reference: Array) -> ScrewSystem:
+    """The same system after the translation back to the user's frame (ranks were decided about
+    the reference point; a rigid motion keeps independence, so they are not decided again)."""
     if system.order == 0:
         return system
     moved = S.transform(system.basis, np.eye(3), reference)
-    return ScrewSystem(moved, rtol=system.rtol, length_scale=system.length_scale)
+    return ScrewSystem.from_independent(moved, rtol=system.rtol, length_scale=system.length_scale)
 
 
 def _choose_actuation_wrench(
-    passive: ScrewSystem, actuated_twist: Array, length_scale: float, rtol: float
+    passive: ScrewSystem, constraint: ScrewSystem, actuated_twist: Array, length_scale: float, rtol: float
 ) -> tuple[Array | None, float]:
+    """The actuation wrench: the passive wrench least reciprocal to the actuated twist, made canonical.
+
+    It is defined up to the limb's constraint wrenches. The representative is the component
+    orthogonal to them (in coordinates about the reference point with moments over the length, a
+    metric rigid motions keep, so the choice follows the mechanism); when that is not a line, the
+    nearest line obtained by adding one constraint wrench, if any.
+    """
     if passive.order == 0:
         return None, 0.0
     candidates = passive.readable_basis()
     scores = normalized_reciprocal_product(candidates, actuated_twist, length_scale=length_scale, rtol=rtol)
-    lines = S.is_zero_pitch(candidates, rtol=1e-6, length_scale=length_scale)
-    best = int(np.argmax(np.where(lines & (scores > rtol), scores + 10.0, scores)))
+    best = int(np.argmax(scores))
     if scores[best] <= rtol:
         return None, float(scores[best])
-    return candidates[best], float(scores[best])
+    wrench = _orthogonal_to(candidates[best], constraint.basis, length_scale)
+    if constraint.order and not S.is_zero_pitch(wrench, rtol=LINE_RTOL, length_scale=length_scale):
+        wrench = _nearest_line(wrench, constraint.basis, length_scale)
+    score = normalized_reciprocal_product(wrench, actuated_twist, length_scale=length_scale, rtol=rtol)
+    return wrench, float(score)
+
+
+#: Relative tolerance deciding that a chosen actuation wrench is a line (zero pitch).
+LINE_RTOL = 1e-6
+
+
+def _scaled(rows: Array, length_scale: float) -> Array:
+    out = np.array(rows, dtype=float)
+    out[..., 3:] /= length_scale
+    return out
+
+
+def _orthogonal_to(wrench: Array, others: Array, length_scale: float) -> Array:
+    if others.shape[0] == 0:
+        return wrench
+    basis = np.linalg.qr(_scaled(others, length_scale).T)[0]
+    scaled = _scaled(wrench, length_scale)
+    scaled = scaled - basis @ (basis.T @ scaled)
+    scaled[3:] *= length_scale
+    return scaled
+
+
+def _nearest_line(wrench: Array, others: Array, length_scale: float) -> Array:
+    """``wrench + α c`` of zero pitch with the smallest ``|α c|`` over single constraint wrenches c."""
+    best, best_size = wrench, np.inf
+    for other in others:
+        # pitch numerator (s + α s_c)·(m + α m_c) = a α² + b α + c0
+        a = other[:3] @ other[3:]
+        b = wrench[:3] @ other[3:] + other[:3] @ wrench[3:]
+        c0 = wrench[:3] @ wrench[3:]
+        roots = np.roots([a, b, c0]) if abs(a) > 0 or abs(b) > 0 else np.array([])
+        for alpha in roots[np.isreal(roots)].real:
+            size = abs(alpha) * np.linalg.norm(_scaled(other, length_scale))
+            if size < best_size:
+                best, best_size = wrench + alpha * other, size
+    return best
 
 
 def _compound_legs(tree: SeriesParallelNode) -> list[SeriesParallelNode]:
@@ -342,7 +394,9 @@ def wrench_analysis(
         passive = platform_twist_system(
             limb_graph, joint_key=joint_key, rtol=rtol, length_scale=length, locked=[name]
         ).reciprocal()
-        wrench, transmission = _choose_actuation_wrench(passive, actuated_twist, length, rtol)
+        wrench, transmission = _choose_actuation_wrench(
+            passive, limb_twists.reciprocal(), actuated_twist, length, rtol
+        )
         limbs.append(
             Limb(
                 actuated_joint=name,

@@ -170,7 +170,11 @@ def moved(graph, rotation=None, translation=(0.0, 0.0, 0.0), factor=1.0, joint_k
         rows = S.transform(np.array(joint.screws, dtype=float), rotation, translation)
         rows[:, 3:] *= factor
         rows = S.normalize(rows)
-        copy = Joint(joint.name, joint.type, rows, joint.actuated, joint.virtual)
+        geometry = {  # the joints' points move with the mechanism (and scale with the unit)
+            key: ((rotation @ np.asarray(value) + translation) * factor).tolist()
+            for key, value in joint.geometry.items() if key in ("point", "center")
+        }
+        copy = Joint(joint.name, joint.type, rows, joint.actuated, joint.virtual, geometry)
         result.add_edge(u, v, key=key, **{**data, joint_key: copy})
     return result
 

@@ -332,7 +332,6 @@ def test_closeness_along_the_gough_stewart_path_tracks_the_determinant():
     assert dets[0] > dets[1] > dets[2] > 0
 
 
-@pytest.mark.xfail(strict=True, reason="bug: closeness of a planar 3-RPR changes under a rigid motion")
 def test_closeness_of_a_planar_mechanism_follows_rigid_motions():
     # the module docstring promises closeness that follows rigid motions; for the 3-RPR the
     # measures depend on which representatives of the legs' wrench systems are picked, and those

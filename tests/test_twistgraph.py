@@ -173,7 +173,6 @@ def test_graph_frame_of_two_perpendicular_skew_axes():
     assert length == 1.0
 
 
-@pytest.mark.xfail(strict=True, reason="bug: graph_frame's length is round-off (~1e-16), not 1, when all axes meet")
 def test_graph_frame_of_concurrent_axes_is_usable():
     # a spherical wrist R-R-R with axes through c: the length of graph_frame is the RMS distance
     # of the axes from c, i.e. zero, which should fall back to 1; it comes out as ~1e-16, and the

@@ -304,7 +304,6 @@ def test_equivalent_graph_gives_the_same_wrench_systems():
 
 
 # bugs ------------------------------------------------------------------------------------------
-@pytest.mark.xfail(strict=True, reason="bug: the actuation wrench chosen (and Limb.transmission) depend on the frame")
 def test_actuation_wrench_of_a_planar_leg_does_not_depend_on_the_frame():
     # In its own frame each 3-RPR leg gets the leg line and transmission 1. Turned by 0.7 rad
     # about x, limb P1 gets a tilted line (the leg line plus a force normal to the plane, another
@@ -336,7 +335,6 @@ def test_planar_mechanism_turned_by_a_tiny_angle():
             assert np.linalg.norm(point - analysis.reference_point) < 10 * analysis.length_scale
 
 
-@pytest.mark.xfail(strict=True, reason="bug: _user_frame re-decides ranks in the user's frame and raises far from the origin")
 def test_wrench_analysis_of_a_mechanism_far_from_the_origin():
     # ranks are decided about graph_frame's point (module docstring), but the results are rebuilt
     # as ScrewSystem in the user's frame, whose constructor re-checks independence there:
@@ -346,7 +344,6 @@ def test_wrench_analysis_of_a_mechanism_far_from_the_origin():
     assert _orders(wrench_analysis(far)) == _orders(wrench_analysis(G))
 
 
-@pytest.mark.xfail(strict=True, reason="bug: translated_graph moves the screws but keeps the old joint geometry")
 def test_translated_graph_moves_the_joint_geometry_too():
     G = twist_graph("B", "E", [("B", "E", revolute("R", [0, 0, 1], [1, 0, 0]))])
     joint = translated_graph(G, [0.5, 2.0, -1.0]).edges["B", "E", "R"]["joint"]
