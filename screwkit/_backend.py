@@ -13,8 +13,8 @@ rank decision the moment half is divided by a characteristic length ``length_sca
 normalised to unit length (row scaling does not change a rank). The rank is then the number of
 singular values above ``rtol`` times the largest one. With ``length_scale`` given in the same unit as
 the coordinates, the answer is the same in millimetres and in metres. When ``length_scale`` is None
-it is taken from the data: the largest ``|s0| / |s|`` over rows with a non-zero direction (a length
-in the data's own unit), or 1 if every row is a couple.
+it is taken from the data: the largest ``|s0| / |s|`` over rows whose direction is not round-off
+(``|s| > 1e-9 |s0|``; a length in the data's own unit), or 1 if every row is a couple.
 
 Examples
 --------
@@ -392,7 +392,7 @@ def scale_moments(rows: Array, length_scale: float | None) -> tuple[Array, float
     if length_scale is None:
         directions = np.linalg.norm(rows[..., :3], axis=-1)
         moments = np.linalg.norm(rows[..., 3:], axis=-1)
-        has_direction = directions > 0
+        has_direction = directions > DEFAULT_RTOL * moments  # a couple's round-off direction is not one
         ratios = moments[has_direction] / directions[has_direction]
         length_scale = float(ratios.max()) if ratios.size and ratios.max() > 0 else 1.0
     elif not (isinstance(length_scale, Number) and np.isfinite(length_scale) and length_scale > 0):

@@ -135,21 +135,21 @@ def _families() -> dict[str, Family]:
         "mcgill_smg": Family(
             parameters=mcgill_smg.McGillParameters.from_mapping,
             configuration=mcgill_smg.inverse_kinematics,
-            twist_graph=lambda config: mcgill_smg.twist_graph(config),  # type: ignore[attr-defined]
+            twist_graph=mcgill_smg.twist_graph,
             pose_names=smg_pose,
             angle_names=("phi",),
         ),
         "peppermill": Family(
             parameters=peppermill.PeppermillParameters.from_mapping,
             configuration=peppermill.inverse_kinematics,
-            twist_graph=lambda config: peppermill.twist_graph(config),  # type: ignore[attr-defined]
+            twist_graph=peppermill.twist_graph,
             pose_names=smg_pose,
             angle_names=("phi",),
         ),
         "planar_3rrp": Family(
             parameters=planar_3rrp.Planar3RRPParameters.from_mapping,
             configuration=planar_3rrp.Planar3RRPConfiguration.from_pose,
-            twist_graph=lambda config: planar_3rrp.twist_graph(config),  # type: ignore[attr-defined]
+            twist_graph=lambda config: planar_3rrp.twist_graph(config),  # type: ignore[attr-defined,unused-ignore]
             pose_names=("x", "y", "phi"),
             angle_names=("phi",),
         ),
@@ -222,6 +222,9 @@ class Mechanism:
     ) -> tuple[Any, Callable[[np.random.Generator], dict[str, Array]]]:
         """The wrench diagram at a pose, and a sampler of its recipes at random workspace poses.
 
+        Which points lines share is decided at a generic (random, seeded) workspace pose, then the
+        diagram is placed at ``pose`` (:func:`screwkit.diagram.diagram_at`).
+
         The sampler (:func:`screwkit.diagram.graph_sampler`) draws poses in the operational
         workspace until the diagram's points all exist there (at most 50 draws).
 
@@ -231,11 +234,26 @@ class Mechanism:
         >>> sorted(sampler(np.random.default_rng(1)))[:3]
         ['a', 'b', 'c']
         """
-        from .diagram import graph_sampler, wrench_diagram
+        from .diagram import diagram_at, graph_sampler, wrench_diagram
         from .wrenches import wrench_analysis
 
-        diagram = wrench_diagram(wrench_analysis(self.twist_graph(pose)))
-        sampler = graph_sampler(diagram.points, lambda rng: self.twist_graph(self.random_poses(rng, 1)[0]))
+        def random_graph(rng: np.random.Generator) -> nx.MultiDiGraph:
+            return self.twist_graph(self.random_poses(rng, 1)[0])
+
+        reference = None  # the recipes, decided at a generic pose (no coincidence taken for structure)
+        generator = np.random.default_rng(2026)
+        for _ in range(50):
+            try:
+                candidate = wrench_diagram(wrench_analysis(random_graph(generator)))
+            except ScrewkitError:
+                continue
+            if not candidate.degenerate:
+                reference = candidate
+                break
+        if reference is None:
+            raise CatalogError(f"{self.source}: no generic workspace pose of 50 gives a wrench diagram.")
+        diagram = diagram_at(reference, wrench_analysis(self.twist_graph(pose)))
+        sampler = graph_sampler(diagram.points, random_graph)
         return diagram, sampler
 
     def twist_graph(self, pose: Any = None, **options: Any) -> nx.MultiDiGraph:

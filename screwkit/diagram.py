@@ -52,6 +52,7 @@ __all__ = [
     "DiagramPoint",
     "SuperbracketAnalysis",
     "WrenchDiagram",
+    "diagram_at",
     "diagram_points",
     "graph_sampler",
     "superbracket_analysis",
@@ -462,6 +463,38 @@ def _finite_line_recipe(
     if len(on_line) >= 2:
         return on_line[0], on_line[1]
     return finite[0], direction
+
+
+def diagram_at(reference: WrenchDiagram, analysis: WrenchAnalysis) -> WrenchDiagram:
+    """The diagram of ``reference`` (its recipes, labels and lines) at another pose of the mechanism.
+
+    Building a diagram decides which points lines share (parallel axes, concentric joints) at the
+    analysed pose; at a special pose a coincidence could pass for structure. Build the reference at
+    a generic pose and use this to place it at the pose of interest; where a recipe has no point
+    there, or the lines are not the reference's, ``degenerate`` says why.
+
+    Examples
+    --------
+    >>> from screwkit.catalog import load_mechanism
+    >>> from screwkit.wrenches import wrench_analysis
+    >>> h4 = load_mechanism("h4")
+    >>> generic = wrench_diagram(wrench_analysis(h4.twist_graph([40.0, -60.0, -700.0, 0.3])))
+    >>> diagram_at(generic, wrench_analysis(h4.twist_graph())).line_text()
+    '[ab, cd, ef, gh, ij, kj]'
+    """
+    lines, problems = _lines_and_roles(analysis)
+    names = tuple(name for name, _, _, _ in lines)
+    if names != reference.line_names and not problems:
+        problems.append(f"the wrench lines here ({', '.join(names)}) are not the diagram's")
+    coordinates: dict[str, Array] = {}
+    if not problems:
+        try:
+            coordinates = diagram_points(reference.points, analysis, lines=lines)
+        except DegenerateGeometryError as err:
+            problems.append(str(err))
+    return WrenchDiagram(
+        reference.points, reference.lines, reference.line_names, reference.roles, coordinates, tuple(problems)
+    )
 
 
 def _key_direction(key: tuple[str, ...], analysis: WrenchAnalysis) -> Array:

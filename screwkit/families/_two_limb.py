@@ -8,6 +8,8 @@ re-export what users need. It holds
   the screw convention of :mod:`screwkit.screw`, the two links it joins) with its unit twist;
 * :class:`ForwardSolutions`, every assembly mode of a forward-kinematics problem;
 * :class:`Jacobians` and :class:`Classification`: the Gosselin-Angeles types from ``A t = B θ̇``;
+* :func:`joint_twist_graph`, the twist graph of the physical mechanism built from those joints,
+  and :func:`gosselin_angeles_label`, which names a twist-graph verdict in the papers' terms;
 * :func:`bisect_segment`, the root search used to locate singularities along a path;
 * :func:`pick_and_place_cycle`, the SCARA test cycle of papers 001 (Sec. 6) and 000 (Sec. 1).
 
@@ -36,15 +38,18 @@ Examples
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import MISSING, dataclass, fields
 from typing import Any, TypeVar
 
+import networkx as nx
 import numpy as np
 
+from .. import joints as J
 from .. import screw as S
 from .._backend import DEFAULT_RTOL, as_array
 from ..exceptions import CatalogError, ScrewkitTypeError, ScrewkitValueError
+from ..twistgraph import twist_graph
 
 __all__ = [
     "JOINT_KINDS",
@@ -59,6 +64,8 @@ __all__ = [
     "classify_jacobians",
     "describe_indices",
     "frozen",
+    "gosselin_angeles_label",
+    "joint_twist_graph",
     "parameters_from_mapping",
     "pick_and_place_cycle",
     "wrap_angle",
@@ -70,6 +77,8 @@ JOINT_KINDS = ("R", "H", "P")
 LABELS = ("regular", "inverse", "direct", "combined")
 
 _P = TypeVar("_P")
+#: Metadata a catalog passes with the parameters (checked, not stored).
+_METADATA = ("name", "length_unit")
 
 
 def frozen(value: Any, dtype: Any = float) -> np.ndarray:
@@ -195,7 +204,10 @@ def parameters_from_mapping(cls: type[_P], mapping: Any, source: str) -> _P:
     cls : type
         A dataclass whose fields are all real numbers.
     mapping : Mapping
-        Field name to value, e.g. a table read with :mod:`tomllib`.
+        Field name to value, e.g. a table read with :mod:`tomllib`; optionally the metadata
+        ``name`` and ``length_unit`` (non-empty strings), which
+        :func:`screwkit.catalog.load_mechanism` passes to every family (not stored here: the
+        catalog's :class:`~screwkit.catalog.Mechanism` keeps them).
     source : str
         Where the mapping comes from (a file name), quoted in error messages.
 
@@ -216,6 +228,8 @@ def parameters_from_mapping(cls: type[_P], mapping: Any, source: str) -> _P:
     Traceback (most recent call last):
     ...
     screwkit.exceptions.CatalogError: robot.toml: expected field `length` of Link to be a real ...
+    >>> parameters_from_mapping(Link, {"length": 2.0, "name": "arm", "length_unit": "m"}, "r.toml")
+    Link(length=2.0)
     """
     owner = cls.__name__
     if not isinstance(mapping, Mapping):
@@ -223,6 +237,13 @@ def parameters_from_mapping(cls: type[_P], mapping: Any, source: str) -> _P:
             f"{source}: expected a mapping of {owner} fields, got {type(mapping).__name__}."
         )
     names = [f.name for f in fields(cls)]  # type: ignore[arg-type]
+    for key in _METADATA:
+        if key in mapping and (not isinstance(mapping[key], str) or not mapping[key].strip()):
+            raise CatalogError(
+                f"{source}: expected metadata field `{key}` to be a non-empty string, got "
+                f"{mapping[key]!r}."
+            )
+    mapping = {key: value for key, value in mapping.items() if key not in _METADATA}
     unknown = sorted(str(key) for key in mapping if key not in names)
     if unknown:
         raise CatalogError(
@@ -504,6 +525,128 @@ def classify_jacobians(
     if not (_is_real(rtol) and 0 <= float(rtol) < 1):
         raise ScrewkitValueError(f"Expected `rtol` to be a number in [0, 1), got {rtol!r}.")
     return Classification(_closeness(B), _closeness(A), float(rtol))
+
+
+# --------------------------------------------------------------------------------------------------
+# Twist graphs of the physical mechanisms
+# --------------------------------------------------------------------------------------------------
+
+
+def _checked_index(index: Any, batch: tuple[int, ...]) -> tuple[int, ...]:
+    picked = (index,) if isinstance(index, int | np.integer) else index
+    try:
+        picked = tuple(int(i) for i in picked)
+    except (TypeError, ValueError):
+        picked = None
+    if (
+        picked is None
+        or len(picked) != len(batch)
+        or any(not 0 <= i < n for i, n in zip(picked, batch, strict=True))
+    ):
+        raise ScrewkitValueError(
+            f"Expected `index` to pick one pose of the batch of shape {batch}, got {index!r}."
+        )
+    return picked
+
+
+def joint_twist_graph(
+    joints: Sequence[JointAxis],
+    index: Any = (),
+    *,
+    base: str = "base",
+    platform: str = "platform",
+    dof: int = 4,
+) -> nx.MultiDiGraph:
+    """The twist graph of a physical mechanism from its joints, at one pose of a batch.
+
+    Each :class:`JointAxis` becomes one edge ``parent → child`` keyed by its name, carrying a
+    :class:`screwkit.joints.Joint` built by :func:`~screwkit.joints.revolute`,
+    :func:`~screwkit.joints.prismatic` or :func:`~screwkit.joints.helical` (same axis, point,
+    pitch and ``actuated`` flag). Nothing is reduced: closed sub-loops (parallelograms) stay loops,
+    for :func:`screwkit.twistgraph.equivalent_twist_graph` to find.
+
+    Parameters
+    ----------
+    joints : sequence of JointAxis
+        E.g. ``config.joints`` of a McGill SMG or Peppermill configuration.
+    index : tuple of int or int, default ()
+        Which pose of the batch (empty for a single pose).
+    base, platform : str
+        Names of the fixed link and of the end effector.
+    dof : int, default 4
+        Nominal mobility of the platform (a Schönflies motion: 3T1R).
+
+    Returns
+    -------
+    networkx.MultiDiGraph
+
+    Raises
+    ------
+    ScrewkitValueError
+        ``index`` does not pick one pose of the joints' batch.
+
+    Examples
+    --------
+    >>> spin = JointAxis("spin", "R", "base", "arm", [0, 0, 0], [0, 0, 1], actuated=True)
+    >>> slide = JointAxis("slide", "P", "arm", "platform", [[0, 0, 0], [1, 0, 0]], [1, 0, 0])
+    >>> G = joint_twist_graph([spin, slide], (1,), dof=2)
+    >>> sorted(G.edges(keys=True)), G.graph["dof"]
+    ([('arm', 'platform', 'slide'), ('base', 'arm', 'spin')], 2)
+    >>> joint_twist_graph([spin, slide], (2,))
+    Traceback (most recent call last):
+    ...
+    screwkit.exceptions.ScrewkitValueError: Expected `index` to pick one pose of the batch of ...
+    """
+    batch = np.broadcast_shapes(*(j.point.shape[:-1] for j in joints),
+                                *(j.direction.shape[:-1] for j in joints))
+    picked = _checked_index(index, tuple(batch))
+    triples = []
+    for joint in joints:
+        point = np.broadcast_to(joint.point, (*batch, 3))[picked]
+        direction = np.broadcast_to(joint.direction, (*batch, 3))[picked]
+        if joint.kind == "P":
+            built = J.prismatic(joint.name, direction, actuated=joint.actuated)
+        elif joint.kind == "R":
+            built = J.revolute(joint.name, direction, point, actuated=joint.actuated)
+        else:
+            built = J.helical(joint.name, direction, point, joint.pitch, actuated=joint.actuated)
+        triples.append((joint.parent, joint.child, built))
+    return twist_graph(base, platform, triples, dof=dof)
+
+
+def gosselin_angeles_label(report: Any) -> str:
+    """Name a twist-graph verdict (:func:`screwkit.singularity.classify`) in the papers' terms.
+
+    A *serial* (limb) singularity, where an actuator cannot move the platform, is the inverse
+    (first-kind) singularity of ``B``; a *constraint* or *actuation* singularity, where the
+    platform moves with every actuator locked, is the direct (second-kind) singularity of ``A``;
+    both at once is the combined (third-kind) one.
+
+    Parameters
+    ----------
+    report : SingularityReport
+        Anything with a ``labels`` tuple drawn from ``"constraint"``, ``"actuation"``,
+        ``"serial"``.
+
+    Returns
+    -------
+    str
+        One of :data:`LABELS`.
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace
+    >>> gosselin_angeles_label(SimpleNamespace(labels=("actuation", "serial")))
+    'combined'
+    """
+    labels = tuple(report.labels)
+    unknown = sorted(set(labels) - {"constraint", "actuation", "serial"})
+    if unknown:
+        raise ScrewkitValueError(
+            f"Expected labels among 'constraint', 'actuation', 'serial', got {unknown}."
+        )
+    direct = "constraint" in labels or "actuation" in labels
+    return LABELS[int("serial" in labels) + 2 * int(direct)]
 
 
 # --------------------------------------------------------------------------------------------------

@@ -96,6 +96,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any, NamedTuple
 
+import networkx as nx
 import numpy as np
 
 from .._backend import DEFAULT_RTOL, as_array
@@ -111,6 +112,7 @@ from ._two_limb import (
     classify_jacobians,
     describe_indices,
     frozen,
+    joint_twist_graph,
     parameters_from_mapping,
     pick_and_place_cycle,
     wrap_angle,
@@ -131,6 +133,7 @@ __all__ = [
     "locate_direct_singularity",
     "pick_and_place_cycle",
     "singularity_factors",
+    "twist_graph",
 ]
 
 #: Leg names, in the order of every leg axis of this module.
@@ -931,3 +934,55 @@ def locate_direct_singularity(
         return singularity_factors(config, length_scale=length_scale).parallel
 
     return bisect_segment(factor, start, end)
+
+
+# --------------------------------------------------------------------------------------------------
+# The twist graph of the physical mechanism
+# --------------------------------------------------------------------------------------------------
+
+
+def twist_graph(config: McGillConfiguration, index: Any = ()) -> nx.MultiDiGraph:
+    """The twist graph of the physical McGill SMG at one pose (design.md §5).
+
+    Each leg is the R-Π-Π-R chain of paper 001 (Sec. 3) with each Π joint modelled by its four
+    revolute joints (:attr:`McGillConfiguration.joints`): two closed loops per leg, which
+    :func:`screwkit.twistgraph.equivalent_twist_graph` reduces to virtual translations. Links:
+    ``base``, per leg ``J.carrier``, ``J.proximal_a``, ``J.proximal_b``, ``J.elbow``,
+    ``J.distal_a``, ``J.distal_b``, ``J.wrist``, and ``platform`` (16); joints: 20, of which
+    ``J.pan`` and ``J.proximal.a`` (the tilt) are actuated; five independent loops; ``dof = 4``.
+
+    Unlike the Π joint of Eqs. (6)-(19), which always translates, a physical parallelogram whose
+    long links lie along its short sides (here: vertical long links, see the module docstring) is
+    *flat*: its four axes are coplanar and the twist graph lets its coupler turn too. Alone, in
+    one leg, that changes no label (the other leg still supplies both horizontal couples); with
+    both distal links vertical and parallel leg planes (Fig. 8a) the twist graph reports a
+    constraint singularity (the plate gains a rotation about ``f_J``) where ``A`` is
+    rank-deficient; with short sides tilted from the vertical it reports an actuation singularity
+    (``tests/test_two_limb_catalog.py``).
+
+    Parameters
+    ----------
+    config : McGillConfiguration
+    index : tuple of int, default ()
+        Which pose of a batched configuration (empty for a single pose).
+
+    Returns
+    -------
+    networkx.MultiDiGraph
+
+    Raises
+    ------
+    ScrewkitValueError
+        ``index`` does not pick one pose of the batch.
+
+    Examples
+    --------
+    >>> from screwkit.twistgraph import platform_twist_system
+    >>> p = McGillParameters(1000, 450, 600, 282.843, 200, -50, -50, 80, 60)
+    >>> G = twist_graph(inverse_kinematics(p, [0.0, 0.0, -800.0, 0.0]))
+    >>> G.number_of_nodes(), G.number_of_edges(), G.graph["dof"]
+    (16, 20, 4)
+    >>> platform_twist_system(G).order, platform_twist_system(G, method="reduction").order
+    (4, 4)
+    """
+    return joint_twist_graph(config.joints, index, dof=4)

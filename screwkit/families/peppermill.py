@@ -75,6 +75,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, fields
 from typing import Any
 
+import networkx as nx
 import numpy as np
 
 from .._backend import DEFAULT_RTOL, as_array
@@ -90,6 +91,7 @@ from ._two_limb import (
     classify_jacobians,
     describe_indices,
     frozen,
+    joint_twist_graph,
     parameters_from_mapping,
     pick_and_place_cycle,
     wrap_angle,
@@ -109,6 +111,7 @@ __all__ = [
     "locate_direct_singularity",
     "pick_and_place_cycle",
     "singularity_factors",
+    "twist_graph",
 ]
 
 #: ``(sgn sin λ_1, sgn sin λ_2)`` of the four inverse-kinematics branches.
@@ -699,3 +702,51 @@ def locate_direct_singularity(
         start,
         end,
     )
+
+
+# --------------------------------------------------------------------------------------------------
+# The twist graph of the physical mechanism
+# --------------------------------------------------------------------------------------------------
+
+
+def twist_graph(config: PeppermillConfiguration, index: Any = ()) -> nx.MultiDiGraph:
+    """The twist graph of the physical Peppermill at one pose (design.md §5).
+
+    The single loop C-R-R-H-H-R-R-C of paper 000 (Sec. 2) with the joints of
+    :attr:`PeppermillConfiguration.joints`: links ``base``, per limb ``i.slider``, ``i.proximal``,
+    ``i.distal``, ``i.nut``, and ``platform`` (10); joints ``i.slide`` (P) and ``i.turn`` (R),
+    ``i.elbow``, ``i.wrist`` (R), ``i.screw`` (H, pitch ``-p_i/2π``, both H joints on the plate's
+    axis ``k``); one loop; ``dof = 4``.
+
+    The C joint has two actuated freedoms, which one :class:`screwkit.joints.Joint` cannot carry
+    (only one-freedom joints are actuated). Paper 000's Appendix A drives ``(d_i, θ_i)`` by two
+    motors through a constant invertible matrix (Eq. A.5), so actuating the slide and the turn
+    is equivalent to actuating the motors: each C joint is an actuated P followed by an actuated
+    R on the same axis, through the massless link ``i.slider``.
+
+    Parameters
+    ----------
+    config : PeppermillConfiguration
+    index : tuple of int, default ()
+        Which pose of a batched configuration (empty for a single pose).
+
+    Returns
+    -------
+    networkx.MultiDiGraph
+
+    Raises
+    ------
+    ScrewkitValueError
+        ``index`` does not pick one pose of the batch.
+
+    Examples
+    --------
+    >>> from screwkit.twistgraph import fundamental_loops, platform_twist_system
+    >>> p = PeppermillParameters(250, 250, 400, 400, 50, 40, -40)
+    >>> G = twist_graph(inverse_kinematics(p, [30.0, -20.0, -450.0, 0.5]))
+    >>> G.number_of_nodes(), G.number_of_edges(), len(fundamental_loops(G)), G.graph["dof"]
+    (10, 10, 1, 4)
+    >>> platform_twist_system(G).order, platform_twist_system(G, method="reduction").order
+    (4, 4)
+    """
+    return joint_twist_graph(config.joints, index, dof=4)
