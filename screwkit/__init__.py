@@ -22,6 +22,7 @@ from .exceptions import (
     TwistGraphError,
     UnreachablePoseError,
 )
+from .jacobians import WrenchJacobians, jacobians_from_wrenches, schoenflies_basis
 from .joints import (
     Joint,
     cylindrical,
@@ -79,6 +80,7 @@ __all__ = [
     "TwistGraphError",
     "UnreachablePoseError",
     "WrenchAnalysis",
+    "WrenchJacobians",
     "__version__",
     "are_collinear",
     "are_coplanar",
@@ -92,6 +94,7 @@ __all__ = [
     "helical",
     "infinite_point",
     "is_at_infinity",
+    "jacobians_from_wrenches",
     "join",
     "line_points",
     "lines_intersect",
@@ -109,6 +112,7 @@ __all__ = [
     "prismatic",
     "reciprocal_product",
     "revolute",
+    "schoenflies_basis",
     "series_parallel_tree",
     "spherical",
     "twist_graph",

@@ -45,7 +45,7 @@ from .twistgraph import (
     simple_paths,
 )
 
-__all__ = ["PoseBatchReport", "classify_poses"]
+__all__ = ["LoopClosureLayout", "PoseBatchReport", "checked_screws", "classify_poses"]
 
 Array = np.ndarray
 _SWAP = np.block([[np.zeros((3, 3)), np.eye(3)], [np.eye(3), np.zeros((3, 3))]])
@@ -93,8 +93,28 @@ class PoseBatchReport:
         ]
 
 
-class _Structure:
-    """Column layout of a (sub)graph's loop-closure system, reused over the batch."""
+class LoopClosureLayout:
+    """Column layout of a (sub)graph's loop-closure system, reused over a batch of poses.
+
+    Parameters
+    ----------
+    graph : networkx.MultiDiGraph
+        The template twist graph.
+    edges : list of (u, v, key)
+        The edges of the subgraph (e.g. one limb).
+    base, platform : hashable
+        The subgraph's terminal links.
+
+    Examples
+    --------
+    >>> from screwkit.joints import revolute
+    >>> from screwkit.twistgraph import twist_graph
+    >>> G = twist_graph("B", "E", [("B", "E", revolute("R", [0, 0, 1], [0, 0, 0], actuated=True))])
+    >>> layout = LoopClosureLayout(G, list(G.edges(keys=True)), "B", "E")
+    >>> closure, platform = layout.matrices({"R": np.zeros((2, 1, 6))}, frozenset())
+    >>> closure.shape, platform.shape
+    ((2, 0, 1), (2, 6, 1))
+    """
 
     def __init__(self, graph: nx.MultiDiGraph, edges: list[tuple[Any, Any, str]], base: Any, platform: Any):
         sub = nx.MultiDiGraph(graph.edge_subgraph(edges))
@@ -181,9 +201,19 @@ def _sigma_ratio(rows: Array, index: int) -> Array:
     )
 
 
-def _check_screws(
+def checked_screws(
     graph: nx.MultiDiGraph, screws: Mapping[str, Any]
 ) -> tuple[dict[str, Array], tuple[int, ...]]:
+    """Validate batched joint screws against a template graph: ``{name: (..., dof, 6)}``, batch shape.
+
+    Examples
+    --------
+    >>> from screwkit.joints import prismatic
+    >>> from screwkit.twistgraph import twist_graph
+    >>> G = twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))])
+    >>> checked_screws(G, {"P": np.zeros((3, 1, 6))})[1]
+    (3,)
+    """
     names = {key: joint for _, _, key, joint in graph.edges(keys=True, data="joint")}
     missing, unknown = set(names) - set(screws), set(screws) - set(names)
     if missing or unknown:
@@ -246,7 +276,7 @@ def classify_poses(
     (array([5, 5]), array([6, 6]))
     """
     check_twist_graph(graph)
-    arrays, batch = _check_screws(graph, screws)
+    arrays, batch = checked_screws(graph, screws)
     flat = {key: value.reshape(-1, *value.shape[-2:]) for key, value in arrays.items()}
     base, platform = graph.graph["base"], graph.graph["platform"]
     actuated = tuple(
@@ -264,7 +294,7 @@ def classify_poses(
         moved[..., 3:] /= length[:, None, None]
         scaled[key] = moved
     all_edges = list(graph.edges(keys=True))
-    whole = _Structure(graph, all_edges, base, platform)
+    whole = LoopClosureLayout(graph, all_edges, base, platform)
     closure, plat = whole.matrices(scaled, frozenset())
     constraint_order = 6 - _twist_order(closure, plat, rtol)
     closure_locked, plat_locked = whole.matrices(scaled, frozenset(actuated))
@@ -278,7 +308,7 @@ def classify_poses(
         leg_edges = [all_edges]
     generators = []
     for edges in leg_edges:
-        structure = _Structure(graph, edges, base, platform)
+        structure = LoopClosureLayout(graph, edges, base, platform)
         c, p = structure.matrices(scaled, frozenset())
         order = int(_twist_order(c, p, rtol).max())
         generators.append(_reciprocal_basis(_twist_basis(c, p, order), order))
@@ -290,7 +320,7 @@ def classify_poses(
         edges = sorted({e[:3] for p in paths if any(x[2] == name for x in p) for e in p}, key=str)
         if not edges:
             raise TwistGraphError(f"Actuated joint {name!r} lies on no path from the base to the platform.")
-        structure = _Structure(graph, edges, base, platform)
+        structure = LoopClosureLayout(graph, edges, base, platform)
         c, p = structure.matrices(scaled, frozenset())
         c_locked, p_locked = structure.matrices(scaled, frozenset({name}))
         free_order, locked_order = _twist_order(c, p, rtol), _twist_order(c_locked, p_locked, rtol)

@@ -1,0 +1,978 @@
+"""Forward and inverse Jacobians ``A χ̇ = B θ̇`` from the wrench systems; Gosselin–Angeles types.
+
+Derivation
+----------
+Let ``t_1 … t_dof`` be a basis of the platform's twists (rows ``(dof, 6)``, e.g.
+:func:`schoenflies_basis`) and ``t = Σ_k χ̇_k t_k`` the twist of the platform. Limb ``j`` has the
+actuated joint twist ``$_j`` and, from :func:`~screwkit.wrenches.wrench_analysis`, an actuation
+wrench ``w_j``: reciprocal to every twist the limb allows with its actuator locked (its *passive*
+wrench system, paper 002 §4.3). Along the limb the platform's twist is ``t = θ̇_j $_j + t_p`` with
+``t_p`` a twist of the locked limb, so ``w_j ∘ t = θ̇_j (w_j ∘ $_j)`` (reciprocal product, conventions
+in :mod:`screwkit.screw`; Joshi & Tsai, "Jacobian analysis of limited-DOF parallel manipulators",
+ASME J. Mech. Des. 124(2), 2002). Stacking the limbs,
+
+* ``A_jk = w_j ∘ t_k``  (n_actuated × dof, the *forward* or direct Jacobian),
+* ``B = diag(w_j ∘ $_j)`` (n × n, the *inverse* Jacobian),
+
+and ``A χ̇ = B θ̇``, the form of paper 004 Eq. (6). This needs the actuated joint *in series* in
+its limb (on no closed loop of the limb), which is checked. Each ``w_j`` is defined up to a factor
+(and up to the limb's constraint wrenches, which are reciprocal to every ``t_k``), so ``A`` and
+``B`` are defined up to a common diagonal row scaling ``D``; ``A⁻¹B`` is not. Here every ``w_j``
+is scaled to a unit force ``|f| = 1`` (a unit moment ``|m| = 1`` if it is a pure couple) and signed
+so that ``B_jj ≥ 0``. For the four-limb SMGs of paper 004 this gives exactly ``A_paper = D A``,
+``B_paper = D B`` with ``D = diag(sgn h_i) = −I`` in the paper's working mode (its rows
+``e_i = [w_iᵀ, r w_iᵀs_i]`` have unit ``w_i``; Eqs. 6–8).
+
+Serial singularities (no actuation wrench)
+------------------------------------------
+Where the actuated twist is reciprocal to the whole passive wrench system of its limb,
+:func:`~screwkit.wrenches.wrench_analysis` finds no actuation wrench (``Limb.actuation_wrench is
+None``). The row of ``A`` is then built on the passive wrench that acts most on the twist basis (the
+top singular direction of the passive wrenches' normalised products with the ``t_k``; with a
+passive system of order 1, its only wrench, the limit of the actuation wrench), and ``B_jj = 0``
+exactly: the limb still constrains the platform (``w_j ∘ t = 0``) but its actuator cannot move it.
+Such rows are listed in ``serial_limbs``; nothing is NaN.
+
+Gosselin–Angeles types and their tolerances
+-------------------------------------------
+Gosselin & Angeles, "Singularity analysis of closed-loop kinematic chains", IEEE Trans. Robot.
+Autom. 6(3), 1990; paper 004 §4.2 (type 1: ``|B| = 0``, type 2: ``|A| = 0``). The decisions use
+unit-free matrices, in the spirit of :mod:`screwkit.singularity`'s closeness measures:
+
+* ``Â_jk = (w_j ∘ t_k) / (N(w_j) N(t_k) L)`` with ``L`` the mechanism's characteristic length and
+  ``N`` the size of :func:`~screwkit.wrenches.normalized_reciprocal_product` (``|s|``, or ``|s0|/L``
+  for a couple or translation). For a force and a translation it is a cosine, for a force and a
+  rotation the mutual moment over ``L``. ``Â`` does not change under rigid motions or changes of
+  unit (it does depend on the choice of ``L``, as any conditioning of a dimensionally
+  inhomogeneous Jacobian does; the *zero* decision does not).
+* closeness ``"direct"`` = σ_dof(Â) / σ_1(Â) (0 if there are fewer actuation rows than ``dof``);
+* closeness ``"inverse"`` = min_j ``|B_jj| / (N(w_j) N($_j) L)``, the smallest limb transmission
+  (equal to :mod:`screwkit.singularity`'s ``"serial"`` closeness), 0 for a limb in ``serial_limbs``.
+
+A pose is ``"direct"`` (type 2, parallel: ``A`` loses rank, the platform keeps an uncontrolled
+twist of the basis with the actuators locked) when the direct closeness is ``≤ rtol``,
+``"inverse"`` (type 1, serial) when the inverse closeness is ``≤ rtol``, ``"combined"`` when both,
+else ``"regular"``. The default ``rtol`` is the analysis's (1e-9): ``"inverse"`` is then the
+decision behind :func:`~screwkit.singularity.classify`'s ``"serial"`` label (same measure, same
+tolerance), and a rank-deficient ``A`` goes with its ``"actuation"`` label, though the two are
+decided on different matrices (``Â`` here, the global wrench system there).
+
+The basis is checked: its rows must be independent (rank ``dof`` at ``rtol``) and lie in the
+platform's twist system (relative residual ``≤ basis_rtol``, default 1e-6). The membership check is
+skipped at a pose with a limb at a serial singularity, where the platform's instantaneous twist
+system has lost the twists that limb can no longer drive.
+
+What ``det A`` sees and what it misses (the H4, papers 002 and 004)
+-------------------------------------------------------------------
+``A`` only tests the twists of the basis. Complete the Schoenflies basis ``T`` (4 × 6) with two
+rotations ``T' = {(i; 0), (j; 0)}`` and stack the mechanism's constraint wrenches ``C`` (2 × 6) on
+the actuation wrenches ``W`` (4 × 6). Since ``C ∘ T = 0``, the matrix of reciprocal products is
+block triangular::
+
+    [C; W] ∘ [T; T'] = [[0, C ∘ T'], [A, W ∘ T']],   so   det[C; W] = ± det(C ∘ T') · det A
+
+(the sign from ``det[T; T']`` and the swap of the screw halves). For the H4, ``C`` spans the
+couples ``(0; z × s12)``, ``(0; z × s34)`` (paper 002 Eq. 3) and ``det(C ∘ T') = (s12 × s34)·z``
+is paper 002's Eq. (6); ``det A`` (paper 004 Eq. 12, ``2r (w14 × w23)ᵀs``) is *minus* paper 002's
+Eq. (7) identically, because ``(r_g − r_c) × z = 2r s`` for the points ``r_c`` on ``Z_I`` and
+``r_g`` on ``Z_II``. With paper 002's normalisation of the six wrenches the global determinant is
+``Eq.(6) · det A = −Eq.(6) · Eq.(7)`` (the known ``±Eq.(6)·Eq.(7)`` with its sign fixed):
+
+* ``det A`` (and the ``"direct"`` type) sees the actuation singularities (roots of Eq. 7) and misses
+  the constraint singularities (roots of Eq. 6), where the platform gains a twist outside the
+  Schoenflies basis: there ``A`` stays regular;
+* the 6 × 6 determinant (:mod:`screwkit.singularity`'s global order) sees both kinds and cannot
+  tell them apart; the constraint order alone sees Eq. (6).
+
+``tests/test_jacobians.py`` keeps the evidence (identities at random poses, labels at the roots).
+
+Examples
+--------
+>>> from screwkit.joints import prismatic
+>>> from screwkit.twistgraph import twist_graph
+>>> from screwkit.wrenches import wrench_analysis
+>>> G = twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))])
+>>> result = jacobians_from_wrenches(wrench_analysis(G), [[0, 0, 0, 1, 0, 0]])
+>>> result.A, result.B, result.type
+(array([[1.]]), array([[1.]]), 'regular')
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+import networkx as nx
+import numpy as np
+
+from . import _backend as B
+from . import screw as S
+from .batch import LoopClosureLayout, checked_screws
+from .exceptions import DegenerateGeometryError, ScrewkitTypeError, ScrewkitValueError, TwistGraphError
+from .twistgraph import axes_frame, check_twist_graph, simple_paths
+from .wrenches import WrenchAnalysis
+
+__all__ = [
+    "GOSSELIN_ANGELES_TYPES",
+    "PoseBatchJacobians",
+    "WrenchJacobians",
+    "jacobians_from_wrenches",
+    "jacobians_over_poses",
+    "schoenflies_basis",
+]
+
+Array = np.ndarray
+
+#: The four Gosselin–Angeles types, indexed by ``2 * direct + inverse``.
+GOSSELIN_ANGELES_TYPES = ("regular", "inverse", "direct", "combined")
+
+#: Default tolerance of the twist-basis membership check (module docstring of each function).
+DEFAULT_BASIS_RTOL = 1e-6
+
+_SWAP = np.block([[np.zeros((3, 3)), np.eye(3)], [np.eye(3), np.zeros((3, 3))]])
+
+
+# --------------------------------------------------------------------------------------------------
+# Kernels (batched over leading axes)
+# --------------------------------------------------------------------------------------------------
+
+
+def schoenflies_basis(point: Any, axis: Any = (0.0, 0.0, 1.0)) -> Array:
+    """Unit-rate twists of a Schoenflies motion: three translations and a rotation about ``axis``.
+
+    The rows are the twists of the end effector (user frame, conventions of :mod:`screwkit.screw`)
+    for ``ẋ = 1``, ``ẏ = 1``, ``ż = 1`` and ``φ̇ = 1``: ``(0; i)``, ``(0; j)``, ``(0; k)`` and the
+    rotation ``(a; p × a)`` about the axis through ``point`` (the platform's reference point ``p``)
+    along ``axis`` ``a``. With ``χ = (x, y, z, φ)`` the platform's twist is ``Σ_k χ̇_k t_k``, the
+    column order of paper 004's ``A`` (Eq. 7a).
+
+    Parameters
+    ----------
+    point : array_like, shape (..., 3)
+        A point of the rotation axis (the point whose velocity is ``(ẋ, ẏ, ż)``).
+    axis : array_like, shape (..., 3), default (0, 0, 1)
+        Direction of the rotation axis; its length is the angular rate per unit ``φ̇``.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 4, 6)
+
+    Raises
+    ------
+    DegenerateGeometryError
+        If ``axis`` is zero.
+
+    Examples
+    --------
+    >>> schoenflies_basis([100.0, 0.0, -700.0])
+    array([[   0.,    0.,    0.,    1.,    0.,    0.],
+           [   0.,    0.,    0.,    0.,    1.,    0.],
+           [   0.,    0.,    0.,    0.,    0.,    1.],
+           [   0.,    0.,    1.,    0., -100.,    0.]])
+    """
+    p = B.as_array(point, "point", (3,), symbolic=False)
+    a = B.as_array(axis, "axis", (3,), symbolic=False)
+    if np.any(np.all(a == 0, axis=-1)):
+        raise DegenerateGeometryError(f"Expected `axis` to be a non-zero direction, got {a.tolist()}.")
+    rotation = S.revolute_twist(a, p)
+    batch = rotation.shape[:-1]
+    translations = np.concatenate([np.zeros((3, 3)), np.eye(3)], axis=-1)
+    return np.concatenate([np.broadcast_to(translations, (*batch, 3, 6)), rotation[..., None, :]], axis=-2)
+
+
+def _products(first: Array, second: Array) -> Array:
+    """Reciprocal products of rows ``(..., n, 6)`` and ``(..., m, 6)``: ``(..., n, m)``."""
+    return (first @ _SWAP) @ np.swapaxes(second, -1, -2)
+
+
+def _size(rows: Array, length: Array, rtol: float) -> Array:
+    """``N`` of :func:`~screwkit.wrenches.normalized_reciprocal_product`, rows ``(..., k, 6)``."""
+    directions = np.linalg.norm(rows[..., :3], axis=-1)
+    moments = np.linalg.norm(rows[..., 3:], axis=-1) / length[..., None]
+    return np.where(directions > rtol * moments, directions, moments)
+
+
+def _safe_divide(numerator: Array, denominator: Array) -> Array:
+    return np.divide(
+        numerator,
+        denominator,
+        out=np.zeros(np.broadcast_shapes(numerator.shape, denominator.shape)),
+        where=denominator > 0,
+    )
+
+
+def _to_scaled(rows: Array, centre: Array, length: Array) -> Array:
+    """Screws ``(..., k, 6)`` about ``centre`` with their moments over ``length``."""
+    moved = S.transform(rows, np.eye(3), -centre[..., None, :])
+    moved[..., 3:] /= length[..., None, None]
+    return moved
+
+
+def _from_scaled(rows: Array, centre: Array, length: Array) -> Array:
+    moved = np.array(rows, dtype=float)
+    moved[..., 3:] *= length[..., None, None]
+    return S.transform(moved, np.eye(3), centre[..., None, :])
+
+
+def _most_acting(passive: Array, basis: Array, length: Array, rtol: float) -> Array:
+    """The unit combination of orthonormal scaled rows ``(..., k, 6)`` acting most on the basis."""
+    if passive.shape[-2] == 0:
+        return np.zeros((*passive.shape[:-2], 6))
+    sizes = _size(basis, length, rtol)[..., None, :]  # scaled basis: N(t) of the user frame / 1
+    normalized = _safe_divide(_products(passive, basis), sizes)  # (..., k, dof)
+    if normalized.shape[-1] == 0:
+        return passive[..., 0, :]
+    left = np.linalg.svd(normalized)[0][..., :, 0]  # (..., k)
+    return np.einsum("...k,...kj->...j", left, passive)
+
+
+def _jacobian_arrays(
+    wrenches: Array, twists: Array, basis: Array, length: Array, substituted: Array, rtol: float
+) -> dict[str, Array]:
+    """A, B, closeness measures and serial flags from chosen wrenches (user frame), batched.
+
+    ``wrenches, twists``: (..., n, 6); ``basis``: (..., dof, 6); ``length``: (...,);
+    ``substituted``: (..., n) bool, rows built on a passive wrench (``B_jj`` set to 0).
+    """
+    sizes = np.linalg.norm(wrenches[..., :3], axis=-1)
+    couples = np.linalg.norm(wrenches[..., 3:], axis=-1)
+    is_couple = ~(sizes > rtol * couples / length[..., None])
+    scale = np.where(is_couple, couples, sizes)
+    wrenches = _safe_divide(wrenches, scale[..., None])
+    forward = _products(wrenches, basis)  # (..., n, dof)
+    inverse = np.einsum("...ij,...ij->...i", wrenches @ _SWAP, twists)  # (..., n)
+    w_size, b_size = _size(wrenches, length, rtol), _size(basis, length, rtol)
+    hat = _safe_divide(forward, w_size[..., :, None] * b_size[..., None, :] * length[..., None, None])
+    transmission = _safe_divide(np.abs(inverse), w_size * _size(twists, length, rtol) * length[..., None])
+    transmission = np.where(substituted, 0.0, transmission)
+    # signs: B_jj >= 0; for a substituted row, the largest entry of its normalised A row positive
+    largest = (
+        np.take_along_axis(hat, np.argmax(np.abs(hat), axis=-1)[..., None], axis=-1)[..., 0]
+        if (hat.shape[-1])
+        else np.ones(hat.shape[:-1])
+    )
+    sign = np.where(
+        substituted | (inverse == 0), np.where(largest < 0, -1.0, 1.0), np.where(inverse < 0, -1.0, 1.0)
+    )
+    wrenches, forward, hat = wrenches * sign[..., None], forward * sign[..., None], hat * sign[..., None]
+    inverse = np.where(substituted, 0.0, inverse * sign)
+    n, dof = forward.shape[-2], forward.shape[-1]
+    if dof == 0:
+        direct = np.ones(forward.shape[:-2])
+    elif n < dof:
+        direct = np.zeros(forward.shape[:-2])
+    else:
+        values = np.linalg.svd(hat, compute_uv=False)
+        direct = _safe_divide(values[..., dof - 1], values[..., 0])
+    inverse_closeness = transmission.min(axis=-1) if n else np.ones(forward.shape[:-2])
+    return dict(
+        A=forward,
+        B=inverse[..., :, None] * np.eye(n),
+        wrenches=wrenches,
+        direct=direct,
+        inverse=inverse_closeness,
+        serial=transmission <= rtol,
+        transmission=transmission,
+    )
+
+
+def _type_index(direct: Any, inverse: Any, rtol: float) -> Array:
+    return 2 * (np.asarray(direct) <= rtol).astype(int) + (np.asarray(inverse) <= rtol).astype(int)
+
+
+def _check_tolerance(value: Any, name: str) -> float:
+    if isinstance(value, bool) or not (isinstance(value, int | float) and 0 <= float(value) < 1):
+        raise ScrewkitValueError(f"Expected `{name}` to be a number in [0, 1), got {value!r}.")
+    return float(value)
+
+
+def _check_in_series(name: str, edges: list[tuple[Any, Any, str]]) -> None:
+    """The actuated joint must be a bridge of its limb (B_jj = w_j ∘ $_j needs it)."""
+    graph = nx.MultiGraph()
+    graph.add_edges_from((u, v, key) for u, v, key in edges if key != name)
+    ends = next((u, v) for u, v, key in edges if key == name)
+    if all(node in graph for node in ends) and nx.has_path(graph, *ends):
+        raise TwistGraphError(
+            f"Expected actuated joint {name!r} to be in series in its limb (on no closed loop of the "
+            "limb), got a loop through it; B_jj = w_j ∘ $_j needs it (screwkit.jacobians docstring)."
+        )
+
+
+# --------------------------------------------------------------------------------------------------
+# One pose
+# --------------------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True, eq=False)
+class WrenchJacobians:
+    """Forward and inverse Jacobians at one pose, ``A χ̇ = B θ̇`` (see the module docstring).
+
+    Attributes
+    ----------
+    A : numpy.ndarray, shape (n, dof)
+        ``A_jk = w_j ∘ t_k`` (forward Jacobian, paper 004 Eq. 6).
+    B : numpy.ndarray, shape (n, n)
+        ``diag(w_j ∘ $_j)``, ``≥ 0`` (inverse Jacobian); 0 for a limb in ``serial_limbs``.
+    wrenches : numpy.ndarray, shape (n, 6)
+        The rows ``w_j``: unit force (or unit couple), user frame.
+    twist_basis : numpy.ndarray, shape (dof, 6)
+    actuated_joints : tuple of str
+        Row order (the analysis's limb order).
+    serial_limbs : tuple of str
+        Actuated joints whose limb is at a serial singularity (``B_jj = 0`` or transmission
+        ``≤ rtol``).
+    type : str
+        One of :data:`GOSSELIN_ANGELES_TYPES`.
+    closeness : dict of str to float
+        ``"direct"`` (in [0, 1]) and ``"inverse"`` (≥ 0; a mutual moment over the length, which can
+        exceed 1), module docstring; 0 at the singularity.
+    rtol : float
+    analysis : WrenchAnalysis
+
+    Examples
+    --------
+    >>> from screwkit.joints import prismatic
+    >>> from screwkit.twistgraph import twist_graph
+    >>> from screwkit.wrenches import wrench_analysis
+    >>> G = twist_graph("B", "E", [("B", "E", prismatic("P", [0, 1, 0], actuated=True))])
+    >>> result = jacobians_from_wrenches(wrench_analysis(G), [[0, 0, 0, 0, 1, 0]])
+    >>> result.wrenches, result.serial_limbs
+    (array([[0., 1., 0., 0., 0., 0.]]), ())
+    """
+
+    A: Array
+    B: Array
+    wrenches: Array
+    twist_basis: Array
+    actuated_joints: tuple[str, ...]
+    serial_limbs: tuple[str, ...]
+    type: str
+    closeness: dict[str, float]
+    rtol: float
+    analysis: WrenchAnalysis = field(repr=False)
+
+    def __post_init__(self) -> None:
+        for name in ("A", "B", "wrenches", "twist_basis"):
+            array = np.array(getattr(self, name), dtype=float)
+            array.flags.writeable = False
+            object.__setattr__(self, name, array)
+
+    @property
+    def det_A(self) -> float:
+        """``det A`` (unit: length to the number of rotations in the basis).
+
+        Raises
+        ------
+        ScrewkitValueError
+            If ``A`` is not square.
+
+        Examples
+        --------
+        >>> from screwkit.joints import prismatic
+        >>> from screwkit.twistgraph import twist_graph
+        >>> from screwkit.wrenches import wrench_analysis
+        >>> G = twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))])
+        >>> jacobians_from_wrenches(wrench_analysis(G), [[0, 0, 0, 2, 0, 0]]).det_A
+        2.0
+        """
+        _require_square(self.A)
+        return float(np.linalg.det(self.A))
+
+    @property
+    def det_B(self) -> float:
+        """``det B = Π_j B_jj`` (paper 004 Eq. 10 up to the row scaling).
+
+        Examples
+        --------
+        >>> from screwkit.joints import prismatic
+        >>> from screwkit.twistgraph import twist_graph
+        >>> from screwkit.wrenches import wrench_analysis
+        >>> G = twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))])
+        >>> jacobians_from_wrenches(wrench_analysis(G), [[0, 0, 0, 1, 0, 0]]).det_B
+        1.0
+        """
+        return float(np.prod(np.diag(self.B)))
+
+    def kinematic_jacobian(self) -> Array:
+        """``J = A⁻¹B`` with ``χ̇ = J θ̇`` (paper 004 Eq. 9); independent of the row scaling.
+
+        Returns
+        -------
+        numpy.ndarray, shape (dof, n)
+
+        Raises
+        ------
+        ScrewkitValueError
+            If ``A`` is not square.
+        DegenerateGeometryError
+            If ``A`` is singular (type ``"direct"`` or ``"combined"``).
+
+        Examples
+        --------
+        >>> from screwkit.joints import prismatic
+        >>> from screwkit.twistgraph import twist_graph
+        >>> from screwkit.wrenches import wrench_analysis
+        >>> G = twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))])
+        >>> jacobians_from_wrenches(wrench_analysis(G), [[0, 0, 0, 0.5, 0, 0]]).kinematic_jacobian()
+        array([[2.]])
+        """
+        _require_square(self.A)
+        if self.closeness["direct"] <= self.rtol:
+            raise DegenerateGeometryError(
+                "The kinematic Jacobian A⁻¹B does not exist at this pose: A is singular "
+                f"(Gosselin-Angeles type {self.type!r}, direct closeness "
+                f"{self.closeness['direct']:.3g} <= rtol {self.rtol:g})."
+            )
+        return np.linalg.solve(self.A, self.B)
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dictionary.
+
+        Examples
+        --------
+        >>> from screwkit.joints import prismatic
+        >>> from screwkit.twistgraph import twist_graph
+        >>> from screwkit.wrenches import wrench_analysis
+        >>> G = twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))])
+        >>> jacobians_from_wrenches(wrench_analysis(G), [[0, 0, 0, 1, 0, 0]]).to_dict()["type"]
+        'regular'
+        """
+        return {
+            "type": self.type,
+            "A": self.A.tolist(),
+            "B": self.B.tolist(),
+            "wrenches": self.wrenches.tolist(),
+            "twist_basis": self.twist_basis.tolist(),
+            "actuated_joints": list(self.actuated_joints),
+            "serial_limbs": list(self.serial_limbs),
+            "closeness": dict(self.closeness),
+            "rtol": self.rtol,
+        }
+
+    def __str__(self) -> str:
+        n, dof = self.A.shape
+        head = "regular" if self.type == "regular" else f"{self.type} singularity"
+        lines = [
+            f"{head} (Gosselin-Angeles): A {n}x{dof}, B {n}x{n}; closeness direct "
+            f"{self.closeness['direct']:.3g}, inverse {self.closeness['inverse']:.3g}"
+        ]
+        lines.extend(f"  serial singularity of the limb of {name!r} (B_jj = 0)" for name in self.serial_limbs)
+        return "\n".join(lines)
+
+
+def _require_square(A: Array) -> None:
+    if A.shape[-1] != A.shape[-2]:
+        raise ScrewkitValueError(
+            f"Expected a square A for A⁻¹B and det A, got A of shape {A.shape[-2:]} "
+            f"({A.shape[-2]} actuated joints, {A.shape[-1]} twists in the basis)."
+        )
+
+
+def _where(mask: Array, batch: tuple[int, ...]) -> str:
+    if not batch:
+        return ""
+    indices = [tuple(int(i) for i in index) for index in np.argwhere(mask.reshape(batch))[:3]]
+    return f" at batch indices {indices}" + (" and more" if mask.sum() > 3 else "")
+
+
+def _check_independent(scaled: Array, dof: int, rtol: float, batch: tuple[int, ...] = ()) -> None:
+    """The rows of a scaled twist basis ``(..., dof, 6)`` are independent (rank ``dof``)."""
+    if not dof:
+        return
+    values = B.screw_singular_values(scaled, length_scale=1.0)
+    rank = ((values > rtol * values[..., :1]) & (values[..., :1] > 0)).sum(axis=-1)
+    if np.any(rank < dof):
+        raise ScrewkitValueError(
+            f"Expected the {dof} rows of `twist_basis` to be independent twists, got rank "
+            f"{int(np.min(rank))}{_where(rank < dof, batch)}."
+        )
+
+
+def _check_inside(
+    scaled: Array, span: Array, skip: Any, basis_rtol: float, batch: tuple[int, ...] = ()
+) -> None:
+    """Scaled basis twists ``(..., dof, 6)`` lie in an orthonormal span ``(..., k, 6)`` (rows may be
+    zero), except at the poses ``skip`` (a limb at a serial singularity: there the platform's
+    instantaneous twist system has lost the twists that limb can no longer drive)."""
+    if not scaled.shape[-2]:
+        return
+    inside = scaled @ np.swapaxes(span, -1, -2) @ span  # orthogonal projection on the span
+    residual = np.linalg.norm(scaled - inside, axis=-1) / np.linalg.norm(scaled, axis=-1)
+    worst = np.where(skip, 0.0, residual.max(axis=-1))
+    if np.any(worst > basis_rtol):
+        raise ScrewkitValueError(
+            "Expected `twist_basis` to lie in the platform's twist system, got a twist with a relative "
+            f"residual {float(np.max(worst)):.3g} > basis_rtol = {basis_rtol:g} outside it"
+            f"{_where(worst > basis_rtol, batch)}."
+        )
+
+
+def jacobians_from_wrenches(
+    analysis: WrenchAnalysis,
+    twist_basis: Any,
+    *,
+    rtol: float | None = None,
+    basis_rtol: float = DEFAULT_BASIS_RTOL,
+) -> WrenchJacobians:
+    """Forward and inverse Jacobians from a wrench analysis and a basis of the platform's twists.
+
+    ``A_jk = w_j ∘ t_k`` and ``B = diag(w_j ∘ $_j)`` (module docstring: derivation, the treatment
+    of limbs at a serial singularity, the row scaling, the tolerances).
+
+    Parameters
+    ----------
+    analysis : WrenchAnalysis
+        From :func:`~screwkit.wrenches.wrench_analysis` at the pose.
+    twist_basis : array_like, shape (dof, 6)
+        Unit-rate twists of the platform, user frame, one per degree of freedom of the analysis
+        (e.g. :func:`schoenflies_basis`); they define the columns of ``A`` and the meaning of
+        ``χ̇``.
+    rtol : float, optional
+        Tolerance of the type decisions (closeness ``≤ rtol``); default the analysis's ``rtol``.
+    basis_rtol : float, default 1e-6
+        The basis is refused if a row, as a unit screw about the reference point with its moment
+        over the length, lies farther than this from the platform's twist system (relative
+        residual of its orthogonal projection). Looser than ``rtol``: at a pose just above the rank
+        tolerance the platform's twist system is only known to about machine epsilon / ``rtol``.
+
+    Returns
+    -------
+    WrenchJacobians
+
+    Raises
+    ------
+    ScrewkitTypeError
+        If ``analysis`` is not a WrenchAnalysis.
+    ScrewkitValueError
+        If ``twist_basis`` has the wrong shape, dependent rows or a row outside the platform's
+        twist system, or a tolerance is out of range.
+    TwistGraphError
+        If an actuated joint is not in series in its limb.
+
+    Examples
+    --------
+    A slider-crank: a crank of length 1 (actuated revolute joint ``A`` at the origin, axis ``z``)
+    pushes a slider along ``x`` through a coupler of length 2; the platform is the slider, its
+    twist basis the translation ``(0; i)``, so ``A χ̇ = B θ̇`` relates ``ẋ`` to ``θ̇``.
+
+    >>> import numpy as np
+    >>> from screwkit.joints import prismatic, revolute
+    >>> from screwkit.twistgraph import twist_graph
+    >>> from screwkit.wrenches import wrench_analysis
+    >>> def slider_crank(theta):
+    ...     pin = [np.cos(theta), np.sin(theta), 0.0]
+    ...     slider = [pin[0] + np.sqrt(4.0 - pin[1] ** 2), 0.0, 0.0]
+    ...     return twist_graph("ground", "slider", [
+    ...         ("ground", "crank", revolute("A", [0, 0, 1], [0, 0, 0], actuated=True)),
+    ...         ("crank", "coupler", revolute("R1", [0, 0, 1], pin)),
+    ...         ("coupler", "slider", revolute("R2", [0, 0, 1], slider)),
+    ...         ("ground", "slider", prismatic("P", [1, 0, 0]))], dof=1)
+    >>> result = jacobians_from_wrenches(wrench_analysis(slider_crank(np.pi / 2)), [[0, 0, 0, 1, 0, 0]])
+    >>> result.type, result.kinematic_jacobian()  # ẋ = -θ̇ with the crank upright
+    ('regular', array([[-1.]]))
+    >>> print(jacobians_from_wrenches(wrench_analysis(slider_crank(0.0)), [[0, 0, 0, 1, 0, 0]]))
+    inverse singularity (Gosselin-Angeles): A 1x1, B 1x1; closeness direct 1, inverse 0
+      serial singularity of the limb of 'A' (B_jj = 0)
+    """
+    if not isinstance(analysis, WrenchAnalysis):
+        raise ScrewkitTypeError(f"Expected `analysis` to be a WrenchAnalysis, got {type(analysis).__name__}.")
+    tolerance = analysis.rtol if rtol is None else _check_tolerance(rtol, "rtol")
+    basis_tolerance = _check_tolerance(basis_rtol, "basis_rtol")
+    dof = analysis.dof
+    basis = B.as_array(twist_basis, "twist_basis", (None, 6), symbolic=False)
+    if basis.shape != (dof, 6):
+        raise ScrewkitValueError(
+            f"Expected `twist_basis` to have shape ({dof}, 6), one twist per degree of freedom of "
+            f"the analysis, got {basis.shape}."
+        )
+    centre = np.asarray(analysis.reference_point, dtype=float)
+    length = np.asarray(analysis.length_scale, dtype=float)
+    scaled_basis = _to_scaled(basis, centre, length)
+    _check_independent(scaled_basis, dof, tolerance)
+    rows, twists, substituted = [], [], []
+    for limb in analysis.limbs:
+        edges = sorted({edge[:3] for path in limb.paths for edge in path}, key=str)
+        _check_in_series(limb.actuated_joint, edges)
+        if limb.actuation_wrench is not None:
+            rows.append(np.asarray(limb.actuation_wrench, dtype=float))
+        else:
+            passive = np.asarray(limb.passive_wrenches.basis, dtype=float).reshape(-1, 6)
+            scaled = _to_scaled(passive, centre, length)
+            if scaled.shape[0]:
+                scaled = np.linalg.svd(scaled, full_matrices=False)[2]  # orthonormal rows
+            chosen = _most_acting(scaled, scaled_basis, np.ones(()), tolerance)
+            rows.append(_from_scaled(chosen[None, :], centre, length)[0])
+        twists.append(np.asarray(limb.actuated_twist, dtype=float))
+        substituted.append(limb.actuation_wrench is None)
+    n = len(rows)
+    arrays = _jacobian_arrays(
+        np.array(rows).reshape(n, 6),
+        np.array(twists).reshape(n, 6),
+        basis,
+        length,
+        np.array(substituted, dtype=bool),
+        tolerance,
+    )
+    platform_rows = np.asarray(analysis.platform_twists.basis, dtype=float).reshape(-1, 6)
+    platform = _to_scaled(platform_rows, centre, length)
+    span = np.linalg.svd(platform, full_matrices=False)[2] if platform.shape[0] else platform
+    _check_inside(scaled_basis, span, np.any(arrays["serial"]), basis_tolerance)
+    names = tuple(limb.actuated_joint for limb in analysis.limbs)
+    closeness = {"direct": float(arrays["direct"]), "inverse": float(arrays["inverse"])}
+    return WrenchJacobians(
+        A=arrays["A"],
+        B=arrays["B"],
+        wrenches=arrays["wrenches"],
+        twist_basis=basis,
+        actuated_joints=names,
+        serial_limbs=tuple(name for name, flag in zip(names, arrays["serial"], strict=True) if flag),
+        type=GOSSELIN_ANGELES_TYPES[int(_type_index(closeness["direct"], closeness["inverse"], tolerance))],
+        closeness=closeness,
+        rtol=tolerance,
+        analysis=analysis,
+    )
+
+
+# --------------------------------------------------------------------------------------------------
+# Many poses
+# --------------------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True, eq=False)
+class PoseBatchJacobians:
+    """Forward and inverse Jacobians over a batch of poses (leading axes ``...``).
+
+    Attributes
+    ----------
+    A : numpy.ndarray, shape (..., n, dof)
+    B : numpy.ndarray, shape (..., n, n)
+    wrenches : numpy.ndarray, shape (..., n, 6)
+    actuated_joints : tuple of str
+        Row order (sorted joint names, as :class:`~screwkit.batch.PoseBatchReport`).
+    serial : numpy.ndarray of bool, shape (..., n)
+        True where that limb is at a serial singularity (``B_jj = 0`` or transmission ``≤ rtol``).
+    closeness : dict of str to numpy.ndarray
+        ``"direct"`` and ``"inverse"``, shape (...,).
+    rtol : float
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from screwkit.joints import prismatic
+    >>> from screwkit.twistgraph import twist_graph
+    >>> G = twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))])
+    >>> screws = {"P": np.tile([0, 0, 0, 1.0, 0, 0], (2, 3, 1, 1))}
+    >>> print(jacobians_over_poses(G, screws, [[0, 0, 0, 1, 0, 0]]))
+    Jacobians over a batch of shape (2, 3): 1 actuated joint(s), dof 1; 6 regular
+    """
+
+    A: Array
+    B: Array
+    wrenches: Array
+    actuated_joints: tuple[str, ...]
+    serial: Array
+    closeness: dict[str, Array]
+    rtol: float
+
+    def __post_init__(self) -> None:
+        for name in ("A", "B", "wrenches", "serial"):
+            array = np.array(getattr(self, name))
+            array.flags.writeable = False
+            object.__setattr__(self, name, array)
+
+    @property
+    def types(self) -> Array:
+        """Gosselin–Angeles type per pose, an array of str of the batch shape.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from screwkit.joints import prismatic
+        >>> from screwkit.twistgraph import twist_graph
+        >>> G = twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))])
+        >>> screws = {"P": np.array([[[0, 0, 0, 1.0, 0, 0]], [[0, 0, 0, 0, 1.0, 0]]])}
+        >>> jacobians_over_poses(G, screws, [[[0, 0, 0, 1, 0, 0]], [[0, 0, 0, 0, 2, 0]]]).types
+        array(['regular', 'regular'], dtype='<U8')
+        """
+        index = _type_index(self.closeness["direct"], self.closeness["inverse"], self.rtol)
+        return np.asarray(GOSSELIN_ANGELES_TYPES)[index]
+
+    @property
+    def det_A(self) -> Array:
+        """``det A`` per pose, shape (...,).
+
+        Raises
+        ------
+        ScrewkitValueError
+            If ``A`` is not square.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from screwkit.joints import prismatic
+        >>> from screwkit.twistgraph import twist_graph
+        >>> G = twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))])
+        >>> screws = {"P": np.tile([0, 0, 0, 1.0, 0, 0], (2, 1, 1))}
+        >>> jacobians_over_poses(G, screws, [[[0, 0, 0, 1, 0, 0]], [[0, 0, 0, 3, 0, 0]]]).det_A
+        array([1., 3.])
+        """
+        _require_square(self.A)
+        return np.linalg.det(self.A)
+
+    @property
+    def det_B(self) -> Array:
+        """``det B = Π_j B_jj`` per pose, shape (...,).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from screwkit.joints import prismatic
+        >>> from screwkit.twistgraph import twist_graph
+        >>> G = twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))])
+        >>> screws = {"P": np.tile([0, 0, 0, 2.0, 0, 0], (2, 1, 1))}
+        >>> jacobians_over_poses(G, screws, [[0, 0, 0, 1, 0, 0]]).det_B
+        array([2., 2.])
+        """
+        return np.prod(np.diagonal(self.B, axis1=-2, axis2=-1), axis=-1)
+
+    def kinematic_jacobian(self) -> Array:
+        """``A⁻¹B`` per pose, shape (..., dof, n).
+
+        Raises
+        ------
+        ScrewkitValueError
+            If ``A`` is not square.
+        DegenerateGeometryError
+            If ``A`` is singular at some pose (names the first batch indices).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from screwkit.joints import prismatic
+        >>> from screwkit.twistgraph import twist_graph
+        >>> G = twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))])
+        >>> screws = {"P": np.array([[[0, 0, 0, 1.0, 0, 0]]])}
+        >>> jacobians_over_poses(G, screws, [[0, 0, 0, 1, 0, 0]]).kinematic_jacobian()
+        array([[[1.]]])
+        """
+        _require_square(self.A)
+        singular = self.closeness["direct"] <= self.rtol
+        if np.any(singular):
+            indices = [tuple(int(i) for i in index) for index in np.argwhere(singular)[:5]]
+            raise DegenerateGeometryError(
+                f"The kinematic Jacobian A⁻¹B does not exist at {int(singular.sum())} poses of the batch "
+                f"(first batch indices {indices}): A is singular there (direct closeness <= rtol "
+                f"{self.rtol:g})."
+            )
+        return np.linalg.solve(self.A, self.B)
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dictionary (arrays as nested lists).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from screwkit.joints import prismatic
+        >>> from screwkit.twistgraph import twist_graph
+        >>> G = twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))])
+        >>> screws = {"P": np.tile([0, 0, 0, 1.0, 0, 0], (2, 1, 1))}
+        >>> jacobians_over_poses(G, screws, [[0, 0, 0, 1, 0, 0]]).to_dict()["types"]
+        ['regular', 'regular']
+        """
+        return {
+            "types": self.types.tolist(),
+            "A": self.A.tolist(),
+            "B": self.B.tolist(),
+            "actuated_joints": list(self.actuated_joints),
+            "serial": self.serial.tolist(),
+            "closeness": {key: value.tolist() for key, value in self.closeness.items()},
+            "rtol": self.rtol,
+        }
+
+    def __str__(self) -> str:
+        names, counts = np.unique(self.types, return_counts=True)
+        pairs = zip(names.tolist(), counts.tolist(), strict=True)
+        tally = ", ".join(f"{count} {name}" for name, count in pairs)
+        return (
+            f"Jacobians over a batch of shape {self.closeness['direct'].shape}: "
+            f"{len(self.actuated_joints)} actuated joint(s), dof {self.A.shape[-1]}; {tally}"
+        )
+
+
+def _normalized_columns(closure: Array, path: Array) -> tuple[Array, Array]:
+    size = np.linalg.norm(np.concatenate([closure, path], axis=-2), axis=-2, keepdims=True)
+    size = np.where(size > 0, size, 1.0)
+    return closure / size, path / size
+
+
+def _span(closure: Array, path: Array, rtol: float) -> tuple[Array, Array]:
+    """Per pose, an orthonormal basis of the platform's twists (rows ``(N, 6, 6)``, unused rows zero)
+    from the loop-closure matrix ``M`` and the path map ``P`` (scaled coordinates), and its order.
+
+    The null space of ``M`` is taken at each pose's own rank, so poses of different mobility can
+    share a batch.
+    """
+    closure, path = _normalized_columns(closure, path)
+    count, columns = path.shape[0], path.shape[-1]
+    if columns == 0:
+        return np.zeros((count, 6, 6)), np.zeros(count, dtype=int)
+    if closure.shape[-2]:
+        _, values, vt = np.linalg.svd(closure)
+        rank = ((values > rtol * values[..., :1]) & (values[..., :1] > 0)).sum(axis=-1)
+        rates = vt * (np.arange(columns) >= rank[:, None])[..., None]
+    else:
+        rates = np.broadcast_to(np.eye(columns), (count, columns, columns))
+    u, values, _ = np.linalg.svd(path @ np.swapaxes(rates, -1, -2), full_matrices=False)
+    order = ((values > rtol * values[..., :1]) & (values[..., :1] > 0)).sum(axis=-1)
+    rows = np.zeros((count, 6, 6))
+    rows[:, : u.shape[-1]] = np.swapaxes(u, -1, -2)
+    return rows * (np.arange(6) < order[:, None])[..., None], order
+
+
+def _reciprocal(span: Array, order: Array) -> Array:
+    """Per pose, an orthonormal basis of the screws reciprocal to a masked span (unused rows zero)."""
+    vt = np.linalg.svd(span @ _SWAP)[2]
+    return vt * (np.arange(6) >= order[:, None])[..., None]
+
+
+def jacobians_over_poses(
+    graph: nx.MultiDiGraph,
+    screws: Mapping[str, Any],
+    twist_basis: Any,
+    *,
+    dof: int | None = None,
+    rtol: float = B.DEFAULT_RTOL,
+    basis_rtol: float = DEFAULT_BASIS_RTOL,
+) -> PoseBatchJacobians:
+    """:func:`jacobians_from_wrenches` over a batch of poses, vectorized (no loop over poses).
+
+    As :func:`~screwkit.batch.classify_poses`, the graph is a template (topology, names,
+    actuated flags) and ``screws`` holds every joint's screws over the batch. At each pose, about
+    the frame of :func:`~screwkit.twistgraph.axes_frame` (moments over its length): the platform's
+    twists and each limb's twists with its actuator locked come from the loop-closure equations
+    (null space at that pose's own rank); the passive wrenches are the reciprocal of the latter;
+    the actuation wrench is the passive wrench least reciprocal to the actuated twist (its
+    projection on the passive wrenches), or, where none is (transmission ``≤ rtol``), the passive
+    wrench acting most on the basis, with ``B_jj = 0``. Row scaling, signs, closeness measures and
+    types as in the module docstring.
+
+    Parameters
+    ----------
+    graph : networkx.MultiDiGraph
+        A twist graph of the mechanism (any pose).
+    screws : mapping of joint name to array_like, shape (..., dof_j, 6)
+        E.g. from :func:`~screwkit.families.four_limb_graph.four_limb_joints`.
+    twist_basis : array_like, shape (..., dof, 6)
+        Broadcast against the batch shape (e.g. :func:`schoenflies_basis` of the poses).
+    dof : int, optional
+        Nominal mobility; default the graph's ``dof``, else the number of actuated joints.
+    rtol : float, default 1e-9
+        Rank tolerance of the loop-closure equations and of the type decisions.
+    basis_rtol : float, default 1e-6
+        Membership check of the basis, as in :func:`jacobians_from_wrenches`.
+
+    Returns
+    -------
+    PoseBatchJacobians
+
+    Raises
+    ------
+    ScrewkitValueError
+        If the screws do not match the graph, or the basis has the wrong shape, dependent rows or
+        a row outside the platform's twist system.
+    TwistGraphError
+        If ``dof`` is invalid or an actuated joint is not in series in its limb.
+
+    Examples
+    --------
+    The slider-crank of :func:`jacobians_from_wrenches` at three crank angles at once:
+
+    >>> import numpy as np
+    >>> from screwkit.joints import prismatic, revolute
+    >>> from screwkit.twistgraph import twist_graph
+    >>> from screwkit.screw import revolute_twist
+    >>> theta = np.array([0.0, np.pi / 2, np.pi])
+    >>> pins = np.stack([np.cos(theta), np.sin(theta), 0 * theta], axis=-1)
+    >>> sliders = np.stack([pins[:, 0] + np.sqrt(4 - pins[:, 1] ** 2), 0 * theta, 0 * theta], axis=-1)
+    >>> G = twist_graph("ground", "slider", [
+    ...     ("ground", "crank", revolute("A", [0, 0, 1], [0, 0, 0], actuated=True)),
+    ...     ("crank", "coupler", revolute("R1", [0, 0, 1], pins[1])),
+    ...     ("coupler", "slider", revolute("R2", [0, 0, 1], sliders[1])),
+    ...     ("ground", "slider", prismatic("P", [1, 0, 0]))], dof=1)
+    >>> z = [0.0, 0.0, 1.0]
+    >>> screws = {"A": np.tile(revolute_twist(z, [0, 0, 0]), (3, 1, 1)),
+    ...           "R1": revolute_twist(z, pins)[:, None], "R2": revolute_twist(z, sliders)[:, None],
+    ...           "P": np.tile([0, 0, 0, 1.0, 0, 0], (3, 1, 1))}
+    >>> result = jacobians_over_poses(G, screws, [[0, 0, 0, 1, 0, 0]])
+    >>> result.types
+    array(['inverse', 'regular', 'inverse'], dtype='<U8')
+    >>> result.B[:, 0, 0] / result.A[:, 0, 0]  # dx/dθ = -sin θ (1 + cos θ / sqrt(4 - sin² θ))
+    array([ 0., -1.,  0.])
+    """
+    check_twist_graph(graph)
+    tolerance = _check_tolerance(rtol, "rtol")
+    basis_tolerance = _check_tolerance(basis_rtol, "basis_rtol")
+    arrays, batch = checked_screws(graph, screws)
+    actuated = tuple(
+        sorted(key for _, _, key, joint in graph.edges(keys=True, data="joint") if joint.actuated)
+    )
+    nominal = dof if dof is not None else graph.graph.get("dof", len(actuated))
+    if not (isinstance(nominal, int) and not isinstance(nominal, bool) and 0 <= nominal <= 6):
+        raise TwistGraphError(f"Expected `dof` to be an integer in 0..6, got {nominal!r}.")
+    raw_basis = B.as_array(twist_basis, "twist_basis", (None, 6), symbolic=False)
+    try:
+        basis = np.broadcast_to(raw_basis, (*batch, nominal, 6)).reshape(-1, nominal, 6)
+    except ValueError as err:
+        raise ScrewkitValueError(
+            f"Expected `twist_basis` to have shape (..., {nominal}, 6) broadcastable to the batch shape "
+            f"{batch}, got {raw_basis.shape}."
+        ) from err
+    flat = {key: value.reshape(-1, *value.shape[-2:]) for key, value in arrays.items()}
+    centre, length = axes_frame(np.concatenate(list(flat.values()), axis=-2))
+    scaled = {key: _to_scaled(value, centre, length) for key, value in flat.items()}
+    base, platform = graph.graph["base"], graph.graph["platform"]
+    whole = LoopClosureLayout(graph, list(graph.edges(keys=True)), base, platform)
+    scaled_basis = _to_scaled(basis, centre, length)
+    _check_independent(scaled_basis, nominal, tolerance, batch)
+    unit = np.ones(len(basis))
+    paths = simple_paths(graph)
+    rows, twists, substituted = [], [], []
+    for name in actuated:
+        edges = sorted({e[:3] for p in paths if any(x[2] == name for x in p) for e in p}, key=str)
+        if not edges:
+            raise TwistGraphError(f"Actuated joint {name!r} lies on no path from the base to the platform.")
+        _check_in_series(name, edges)
+        structure = LoopClosureLayout(graph, edges, base, platform)
+        passive = _reciprocal(*_span(*structure.matrices(scaled, frozenset({name})), tolerance))
+        twist = scaled[name][:, :1, :]  # (N, 1, 6)
+        projection = (_products(passive, twist) * passive).sum(axis=-2)  # (N, 6)
+        transmission = _safe_divide(
+            np.abs(_products(projection[:, None, :], twist)[:, 0, 0]),
+            _size(projection[:, None, :], unit, tolerance)[:, 0] * _size(twist, unit, tolerance)[:, 0],
+        )
+        none = transmission <= tolerance
+        chosen = np.where(none[:, None], _most_acting(passive, scaled_basis, unit, tolerance), projection)
+        rows.append(_from_scaled(chosen[:, None, :], centre, length)[:, 0])
+        twists.append(flat[name][:, 0, :])
+        substituted.append(none)
+    count, n = len(basis), len(actuated)
+    result = _jacobian_arrays(
+        np.stack(rows, axis=1) if n else np.zeros((count, 0, 6)),
+        np.stack(twists, axis=1) if n else np.zeros((count, 0, 6)),
+        basis,
+        length,
+        np.stack(substituted, axis=1) if n else np.zeros((count, 0), dtype=bool),
+        tolerance,
+    )
+    platform_span, _ = _span(*whole.matrices(scaled, frozenset()), tolerance)
+    _check_inside(scaled_basis, platform_span, result["serial"].any(axis=-1), basis_tolerance, batch)
+    return PoseBatchJacobians(
+        A=result["A"].reshape(*batch, n, nominal),
+        B=result["B"].reshape(*batch, n, n),
+        wrenches=result["wrenches"].reshape(*batch, n, 6),
+        actuated_joints=actuated,
+        serial=result["serial"].reshape(*batch, n),
+        closeness={"direct": result["direct"].reshape(batch), "inverse": result["inverse"].reshape(batch)},
+        rtol=tolerance,
+    )
