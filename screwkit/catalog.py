@@ -70,7 +70,7 @@ from __future__ import annotations
 import math
 import tomllib
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from importlib import resources
 from pathlib import Path
 from typing import Any
@@ -89,6 +89,7 @@ __all__ = [
     "load_mechanism",
     "load_snapshot",
     "load_toml",
+    "mechanism_from_mapping",
     "snapshot_from_mapping",
 ]
 
@@ -149,7 +150,7 @@ def _families() -> dict[str, Family]:
         "planar_3rrp": Family(
             parameters=planar_3rrp.Planar3RRPParameters.from_mapping,
             configuration=planar_3rrp.Planar3RRPConfiguration.from_pose,
-            twist_graph=lambda config: planar_3rrp.twist_graph(config),  # type: ignore[attr-defined,unused-ignore]
+            twist_graph=planar_3rrp.twist_graph,
             pose_names=("x", "y", "phi"),
             angle_names=("phi",),
         ),
@@ -250,9 +251,12 @@ class Mechanism:
             if not candidate.degenerate:
                 reference = candidate
                 break
-        if reference is None:
-            raise CatalogError(f"{self.source}: no generic workspace pose of 50 gives a wrench diagram.")
-        diagram = diagram_at(reference, wrench_analysis(self.twist_graph(pose)))
+        analysis = wrench_analysis(self.twist_graph(pose))
+        if reference is None:  # e.g. a mechanism whose wrenches are never six lines: say why, here
+            diagram = wrench_diagram(analysis)
+            reason = "no generic workspace pose (of 50 drawn) gives a non-degenerate diagram"
+            return replace(diagram, degenerate=(*diagram.degenerate, reason)), _no_sampler
+        diagram = diagram_at(reference, analysis)
         sampler = graph_sampler(diagram.points, random_graph)
         return diagram, sampler
 
@@ -268,6 +272,14 @@ class Mechanism:
         graph.graph["name"] = self.name
         graph.graph["length_unit"] = self.length_unit
         return graph
+
+
+def _no_sampler(rng: np.random.Generator) -> dict[str, Array]:
+    """The sampler of a diagram that has no generic reference: always refuses (never called when
+    the diagram is reported degenerate).
+
+    """
+    raise CatalogError("no generic pose gives this mechanism a wrench diagram to sample.")
 
 
 def _error(source: str, where: str, message: str) -> CatalogError:
@@ -313,6 +325,12 @@ def _number(value: Any, source: str, where: str, key: str) -> float:
     if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value):
         raise _error(source, where, f"field `{key}`: expected a finite number, got {value!r}.")
     return float(value)
+
+
+def _radians(value: Any, source: str, where: str) -> Any:
+    if isinstance(value, list):
+        return [_radians(item, source, where) for item in value]
+    return math.radians(_number(value, source, where, "value"))
 
 
 def _vector(data: Mapping[str, Any], key: str, source: str, where: str, length: int = 3) -> list[float]:
@@ -404,8 +422,8 @@ def mechanism_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>"
         if unknown:
             raise _error(source, where, f"unknown field(s) {sorted(unknown)}.")
         value = entry["value"]
-        if entry["unit"] == "deg":
-            value = math.radians(_number(value, source, where, "value"))
+        if entry["unit"] == "deg":  # a number or a (nested) list of numbers, in degrees
+            value = _radians(value, source, where)
         values[key] = value
         documented[key] = dict(entry)
     try:

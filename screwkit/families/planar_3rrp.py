@@ -74,6 +74,19 @@ The claims of Secs. 4.1-4.2 survive a rank computation (tests): at an inverse si
 ``k``, driving only actuator ``k`` leaves the platform at rest and ``C_i8 = C_1i``; at a direct
 singularity the null twist of ``K`` is a rotation about the concurrency point ``D = C_18``.
 
+The physical twist graph
+------------------------
+:func:`twist_graph` embeds the mechanism in space (plane ``z = 0``): R joints are zero-pitch screws
+along ``z`` through their centres, P joints infinite-pitch screws along ``(b_k, 0)``. Its wrench
+systems (:mod:`screwkit.wrenches`) have a constraint system of order 3 (forces along ``z`` and
+couples about horizontal axes, the planarity constraints) and, per limb, an actuation wrench that is
+the planar force through the elbow ``A_k`` perpendicular to the guide: the Kennedy line ``L_k``.
+The labels of :func:`screwkit.singularity.classify` then match the instant-centre classification:
+inverse (``J_kk = 0``) ↔ ``"serial"`` (that limb's twist system drops to order 2, so the platform
+is locked in one direction rather than uncontrolled: ``lost_dof = 1``, the global system stays a
+6-system); direct (``L_1, L_2, L_3`` concurrent) ↔ ``"actuation"``; combined ↔ both. The tests
+(``tests/test_planar_catalog.py``) check this at poses found by root search.
+
 Examples
 --------
 >>> import numpy as np
@@ -94,8 +107,11 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any, Literal
 
+import networkx as nx
 import numpy as np
 
+from .. import joints as _joints
+from .. import twistgraph as _twistgraph
 from .._backend import DEFAULT_RTOL, as_array
 from ..exceptions import (
     CatalogError,
@@ -125,6 +141,7 @@ __all__ = [
     "limb_joints",
     "link_twists",
     "reach_margin",
+    "twist_graph",
 ]
 
 #: Link names by the paper's label (Fig. 1b): ``LINK_NAMES[label - 1]``.
@@ -151,6 +168,8 @@ WORKING_MODES = np.array(list(itertools.product((1.0, -1.0), repeat=3)))
 WORKING_MODES.flags.writeable = False
 
 _FIELDS = ("base_points", "link_lengths", "platform_points", "guide_angles")
+#: Metadata keys a catalog entry passes along with the geometry (checked, not stored).
+_METADATA = ("name", "length_unit")
 _FIELD_SHAPES = {
     "base_points": (3, 2),
     "link_lengths": (3,),
@@ -266,7 +285,10 @@ class Planar3RRPParameters:
         ----------
         mapping : Mapping
             Exactly the fields ``base_points`` (3 pairs), ``link_lengths`` (3 numbers),
-            ``platform_points`` (3 pairs), ``guide_angles`` (3 numbers, radians).
+            ``platform_points`` (3 pairs), ``guide_angles`` (3 numbers, radians); optionally the
+            metadata ``name`` and ``length_unit`` (non-empty strings, which
+            :func:`screwkit.catalog.load_mechanism` passes to every family; not stored here, the
+            catalog's :class:`~screwkit.catalog.Mechanism` keeps them).
         source : str
             Where the mapping comes from (a file name), quoted in error messages.
 
@@ -274,7 +296,7 @@ class Planar3RRPParameters:
         ------
         CatalogError
             If ``mapping`` is not a mapping, or a field is missing, unknown, not a (nested) list
-            of real numbers, or of the wrong length.
+            of real numbers, or of the wrong length, or a metadata field is not a non-empty string.
         ScrewkitValueError
             If a value is out of range (see the class); the message starts with ``source``.
 
@@ -296,7 +318,12 @@ class Planar3RRPParameters:
                 f"got {type(mapping).__name__}."
             )
         for name in mapping:
-            if name not in _FIELDS:
+            if name in _METADATA:
+                if not isinstance(mapping[name], str) or not mapping[name].strip():
+                    raise CatalogError(
+                        f"{source}: field `{name}` must be a non-empty string, got {mapping[name]!r}."
+                    )
+            elif name not in _FIELDS:
                 raise CatalogError(
                     f"{source}: unknown field `{name}`; expected only {list(_FIELDS)}."
                 )
@@ -1276,3 +1303,75 @@ def limb_joints(config: Planar3RRPConfiguration) -> tuple[tuple[JointGeometry, .
             )
         )
     return tuple(limbs)
+
+
+def twist_graph(config: Planar3RRPConfiguration, index: tuple[int, ...] = ()) -> nx.MultiDiGraph:
+    """The twist graph of the physical mechanism at one configuration (design.md §5).
+
+    Links are :data:`LINK_NAMES`; per limb ``k`` (:func:`limb_joints`, base to platform) the
+    joints are ``limb{k}_R1`` (actuated revolute, axis ``z`` through ``M_k``), ``limb{k}_R2``
+    (revolute, axis ``z`` through the elbow ``A_k``) and ``limb{k}_P`` (prismatic along the guide
+    ``(b_k, 0)``, an infinite-pitch screw). The mechanism lies in the plane ``z = 0``; its nominal
+    mobility is ``dof = 3`` (planar motions).
+
+    Parameters
+    ----------
+    config : Planar3RRPConfiguration
+    index : tuple of int, optional
+        Which configuration of a batch (empty, the default, for a single configuration).
+
+    Returns
+    -------
+    networkx.MultiDiGraph
+        Base ``"base"``, platform ``"platform"``, nine joints, three loops, ``dof = 3``.
+
+    Raises
+    ------
+    ScrewkitValueError
+        If ``index`` does not pick one configuration of the batch.
+    ScrewkitTypeError
+        If ``config`` is not a :class:`Planar3RRPConfiguration`.
+
+    Examples
+    --------
+    >>> from screwkit.singularity import classify as classify_graph
+    >>> c = Planar3RRPConfiguration.from_pose(EXAMPLE_PARAMETERS, [0.0, 0.0, 0.0])
+    >>> G = twist_graph(c)
+    >>> G.number_of_nodes(), G.number_of_edges(), G.graph["dof"]
+    (8, 9, 3)
+    >>> G.edges["base", "limb1_link1", "limb1_R1"]["joint"].screws  # axis z through M_1
+    array([[ 0.       ,  0.       ,  1.       , -0.5      ,  0.8660254,  0.       ]])
+    >>> classify_graph(G).labels
+    ()
+    >>> twist_graph(Planar3RRPConfiguration.from_pose(EXAMPLE_PARAMETERS, [[0, 0, 0], [0, 0, 0.1]]))
+    Traceback (most recent call last):
+    ...
+    screwkit.exceptions.ScrewkitValueError: Expected `index` to pick one configuration of the batch ...
+    """
+    config = _check_config(config)
+    batch = config.batch_shape
+    chosen = tuple(index) if isinstance(index, tuple | list) else None
+    if (
+        chosen is None
+        or len(chosen) != len(batch)
+        or any(
+            isinstance(i, bool) or not isinstance(i, int | np.integer) or not 0 <= i < n
+            for i, n in zip(chosen, batch, strict=True)
+        )
+    ):
+        raise ScrewkitValueError(
+            f"Expected `index` to pick one configuration of the batch of shape {batch}, got {index!r}."
+        )
+    joints = []
+    for limb in limb_joints(config):
+        for geometry in limb:
+            parent, child = (LINK_NAMES[label - 1] for label in geometry.links)
+            direction = geometry.direction[chosen]
+            if geometry.kind == "R":
+                joint = _joints.revolute(
+                    geometry.name, direction, geometry.point[chosen], actuated=geometry.actuated
+                )
+            else:
+                joint = _joints.prismatic(geometry.name, direction, actuated=geometry.actuated)
+            joints.append((parent, child, joint))
+    return _twistgraph.twist_graph(LINK_NAMES[0], LINK_NAMES[-1], joints, dof=3)
