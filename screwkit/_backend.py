@@ -44,6 +44,7 @@ __all__ = [
     "cross",
     "det",
     "dot",
+    "is_dof",
     "is_symbolic",
     "is_zero",
     "matrix_nullspace",
@@ -110,18 +111,14 @@ def to_sympy(value: Any) -> sympy.Expr:
     if isinstance(value, sympy.Basic):
         return value
     if isinstance(value, bool | np.bool_):
-        raise ScrewkitTypeError(
-            f"Expected a number or a sympy expression, got a boolean {value!r}."
-        )
+        raise ScrewkitTypeError(f"Expected a number or a sympy expression, got a boolean {value!r}.")
     if isinstance(value, int | np.integer):
         return sympy.Integer(int(value))
     if isinstance(value, float | np.floating):
         if not np.isfinite(value):
             raise ScrewkitValueError(f"Expected a finite number, got {value!r}.")
         return sympy.Rational(repr(float(value)))
-    raise ScrewkitTypeError(
-        f"Expected a number or a sympy expression, got {type(value).__name__} {value!r}."
-    )
+    raise ScrewkitTypeError(f"Expected a number or a sympy expression, got {type(value).__name__} {value!r}.")
 
 
 def _describe_shape(shape: tuple[int | None, ...]) -> str:
@@ -245,6 +242,19 @@ def as_arrays(shape: tuple[int | None, ...], *named: tuple[Any, str]) -> tuple[A
     return promote(*(as_array(value, name, shape) for value, name in named))
 
 
+def is_dof(value: Any) -> bool:
+    """True for an integer (Python or numpy, not a boolean) from 0 to 6: a mobility.
+
+    Examples
+    --------
+    >>> is_dof(4), is_dof(np.int64(6)), is_dof(True), is_dof(7)
+    (True, True, False, False)
+    """
+    return bool(
+        isinstance(value, int | np.integer) and not isinstance(value, bool | np.bool_) and 0 <= value <= 6
+    )
+
+
 def cross(a: Array, b: Array) -> Array:
     """Cross product over the last axis for float and sympy-object arrays alike.
 
@@ -304,9 +314,7 @@ def det(matrix: Array) -> Any:
     """
     if matrix.dtype == object:
         if matrix.ndim != 2:
-            raise ScrewkitValueError(
-                f"Expected a single symbolic square matrix, got shape {matrix.shape}."
-            )
+            raise ScrewkitValueError(f"Expected a single symbolic square matrix, got shape {matrix.shape}.")
         return sympy.expand(sympy.Matrix(matrix).det(method="berkowitz"))
     return np.linalg.det(matrix)
 
@@ -426,9 +434,7 @@ def screw_singular_values(rows: Array, *, length_scale: float | None = None) -> 
     return np.linalg.svd(scaled / safe, compute_uv=False)
 
 
-def screw_rank(
-    rows: Array, *, rtol: float = DEFAULT_RTOL, length_scale: float | None = None
-) -> Any:
+def screw_rank(rows: Array, *, rtol: float = DEFAULT_RTOL, length_scale: float | None = None) -> Any:
     """Rank of a set of screws ``(..., k, 6)``: numeric at a pose, generic when symbolic.
 
     Parameters

@@ -283,7 +283,7 @@ def classify_poses(
         sorted(key for _, _, key, joint in graph.edges(keys=True, data="joint") if joint.actuated)
     )
     nominal_dof = dof if dof is not None else graph.graph.get("dof", len(actuated))
-    if not (isinstance(nominal_dof, int) and 0 <= nominal_dof <= 6):
+    if not B.is_dof(nominal_dof):
         raise TwistGraphError(f"Expected `dof` to be an integer in 0..6, got {nominal_dof!r}.")
     # the frame: centre on the reference point, moments over the length (as singularity.py)
     stacked = np.concatenate(list(flat.values()), axis=-2)

@@ -918,7 +918,7 @@ def jacobians_over_poses(
         sorted(key for _, _, key, joint in graph.edges(keys=True, data="joint") if joint.actuated)
     )
     nominal = dof if dof is not None else graph.graph.get("dof", len(actuated))
-    if not (isinstance(nominal, int) and not isinstance(nominal, bool) and 0 <= nominal <= 6):
+    if not B.is_dof(nominal):
         raise TwistGraphError(f"Expected `dof` to be an integer in 0..6, got {nominal!r}.")
     raw_basis = B.as_array(twist_basis, "twist_basis", (None, 6), symbolic=False)
     try:

@@ -43,6 +43,7 @@ from .exceptions import ScrewkitTypeError, ScrewkitValueError
 
 __all__ = [
     "JOINT_TYPES",
+    "PARALLEL_RTOL",
     "Joint",
     "cylindrical",
     "helical",
@@ -70,6 +71,10 @@ JOINT_TYPES: dict[str, int | None] = {
 }
 
 Array = np.ndarray
+
+#: Relative tolerance below which two axes count as parallel when a joint is built (a U joint
+#: needs non-parallel axes, a parallelogram rods not parallel to its hinges): the sine of the angle.
+PARALLEL_RTOL = 1e-12
 
 
 @dataclass(frozen=True, slots=True, eq=False)
@@ -200,10 +205,7 @@ def _plain(value: Any) -> Any:
 
 
 def _geometry(**values: Any) -> dict[str, Any]:
-    return {
-        k: np.asarray(v, dtype=float).tolist()
-        for k, v in values.items()
-    }
+    return {k: np.asarray(v, dtype=float).tolist() for k, v in values.items()}
 
 
 def _numeric_or_none(*values: Any) -> bool:
@@ -298,7 +300,7 @@ def universal(name: str, first_axis: Any, second_axis: Any, center: Any) -> Join
     rows = np.stack(
         [S.revolute_twist(_unit_axis(first_axis), center), S.revolute_twist(_unit_axis(second_axis), center)]
     )
-    if rows.dtype != object and np.linalg.norm(np.cross(rows[0, :3], rows[1, :3])) <= 1e-12 * np.prod(
+    if rows.dtype != object and np.linalg.norm(np.cross(rows[0, :3], rows[1, :3])) <= PARALLEL_RTOL * np.prod(
         np.linalg.norm(rows[:, :3], axis=1)
     ):
         raise ScrewkitValueError(
@@ -349,7 +351,9 @@ def parallelogram(name: str, hinge_axis: Any, rod_direction: Any, *, actuated: b
     w = B.as_array(rod_direction, "rod_direction", (3,))
     a, w = B.promote(a, w)
     velocity = B.cross(a, w)
-    if velocity.dtype != object and np.linalg.norm(velocity) <= 1e-12 * np.linalg.norm(a) * np.linalg.norm(w):
+    if velocity.dtype != object and np.linalg.norm(velocity) <= PARALLEL_RTOL * np.linalg.norm(
+        a
+    ) * np.linalg.norm(w):
         raise ScrewkitValueError(
             f"Parallelogram {name!r}: expected rods not parallel to the hinge axes, got parallel ones."
         )

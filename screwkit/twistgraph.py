@@ -184,7 +184,7 @@ def check_twist_graph(graph: Any, *, joint_key: str = "joint") -> None:
             f"{sorted(map(str, unreached))}."
         )
     dof = graph.graph.get("dof")
-    if dof is not None and not (isinstance(dof, int) and 0 <= dof <= 6):
+    if dof is not None and not B.is_dof(dof):
         raise TwistGraphError(f"Expected graph attribute 'dof' to be an integer in 0..6, got {dof!r}.")
 
 

@@ -39,7 +39,7 @@ import numpy as np
 
 from . import _backend as B
 from . import screw as S
-from .exceptions import TwistGraphError
+from .exceptions import DegenerateGeometryError, TwistGraphError
 from .joints import Joint
 from .screwsystem import ScrewSystem
 from .twistgraph import (
@@ -116,6 +116,9 @@ def normalized_reciprocal_product(
     """
     a = B.as_array(first, "first", (6,))
     b = B.as_array(second, "second", (6,))
+    for name, rows in (("first", a), ("second", b)):
+        if np.any(np.all(rows == 0, axis=-1)):
+            raise DegenerateGeometryError(f"Expected `{name}` to hold non-zero screws, got the zero screw.")
     product = np.abs(B.dot(a[..., :3], b[..., 3:]) + B.dot(a[..., 3:], b[..., :3]))
     return product / (_magnitude(a, length_scale, rtol) * _magnitude(b, length_scale, rtol) * length_scale)
 
@@ -363,7 +366,7 @@ def wrench_analysis(
     centred = translated_graph(graph, -reference, joint_key=joint_key)
     actuated = sorted(key for _, _, key, j in centred.edges(keys=True, data=joint_key) if j.actuated)
     nominal = dof if dof is not None else graph.graph.get("dof", len(actuated))
-    if not (isinstance(nominal, int) and 0 <= nominal <= 6):
+    if not B.is_dof(nominal):
         raise TwistGraphError(f"Expected `dof` to be an integer in 0..6, got {nominal!r}.")
     platform = platform_twist_system(centred, joint_key=joint_key, rtol=rtol, length_scale=length)
     constraints = platform.reciprocal()

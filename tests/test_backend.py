@@ -70,3 +70,8 @@ def test_error_ragged_symbolic_array():
 def test_error_symbolic_nan():
     with pytest.raises(ScrewkitValueError, match="Expected `v` to hold finite expressions, got nan"):
         B.as_array([sympy.nan, sympy.Symbol("x")], "v", (2,))
+
+
+def test_is_dof_accepts_numpy_integers_and_rejects_booleans():
+    assert B.is_dof(np.int64(4)) and B.is_dof(0) and not B.is_dof(True) and not B.is_dof(np.bool_(True))
+    assert not B.is_dof(4.0) and not B.is_dof(-1)

@@ -385,3 +385,11 @@ def test_graph_frame_is_the_analysis_frame():
     np.testing.assert_allclose(analysis.reference_point, point, atol=1e-12)
     assert analysis.length_scale == length and analysis.rtol == RTOL
     assert analysis.graph is G
+
+
+def test_error_normalized_reciprocal_product_of_a_zero_screw():
+    from screwkit.exceptions import DegenerateGeometryError
+    from screwkit.wrenches import normalized_reciprocal_product
+
+    with pytest.raises(DegenerateGeometryError, match="Expected `second` to hold non-zero screws, got the zero screw"):
+        normalized_reciprocal_product([0, 0, 1, 0, 0, 0], [0, 0, 0, 0, 0, 0], length_scale=1.0)
