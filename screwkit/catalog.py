@@ -79,8 +79,11 @@ import networkx as nx
 import numpy as np
 
 from . import joints as J
+from ._backend import is_dof
 from .exceptions import CatalogError, ScrewkitError
+from .jacobians import WrenchJacobians, jacobians_from_wrenches
 from .twistgraph import add_joint, check_twist_graph
+from .wrenches import wrench_analysis
 
 __all__ = [
     "Family",
@@ -110,6 +113,10 @@ class Family:
         ``configuration -> networkx.MultiDiGraph`` of the physical mechanism.
     pose_names, angle_names : tuple of str
         The pose coordinates, and which of them are angles (degrees in files, radians in the API).
+    twist_basis : callable
+        ``configuration -> numpy.ndarray (dof, 6)``: the platform's nominal twists at the pose, one
+        per pose coordinate and in the same order (user frame), the columns of ``A`` in
+        :func:`screwkit.jacobians.jacobians_from_wrenches`.
     """
 
     parameters: Callable[..., Any]
@@ -117,21 +124,23 @@ class Family:
     twist_graph: Callable[..., nx.MultiDiGraph]
     pose_names: tuple[str, ...]
     angle_names: tuple[str, ...]
+    twist_basis: Callable[..., Array]
 
 
 def _families() -> dict[str, Family]:
-    """The families a catalog entry can name. Each family module provides ``twist_graph(config)``."""
-    from .families import four_limb, mcgill_smg, peppermill, planar_3rrp
-    from .families.four_limb_graph import four_limb_twist_graph
+    """The families a catalog entry can name. Each family module provides ``twist_graph(config)`` and
+    ``twist_basis(config)``."""
+    from .families import four_limb, four_limb_graph, mcgill_smg, peppermill, planar_3rrp
 
     smg_pose = ("x", "y", "z", "phi")
     return {
         "four_limb": Family(
             parameters=four_limb.FourLimbParameters.from_mapping,
             configuration=four_limb.inverse_kinematics,
-            twist_graph=four_limb_twist_graph,
+            twist_graph=four_limb_graph.four_limb_twist_graph,
             pose_names=smg_pose,
             angle_names=("phi",),
+            twist_basis=four_limb_graph.twist_basis,
         ),
         "mcgill_smg": Family(
             parameters=mcgill_smg.McGillParameters.from_mapping,
@@ -139,6 +148,7 @@ def _families() -> dict[str, Family]:
             twist_graph=mcgill_smg.twist_graph,
             pose_names=smg_pose,
             angle_names=("phi",),
+            twist_basis=mcgill_smg.twist_basis,
         ),
         "peppermill": Family(
             parameters=peppermill.PeppermillParameters.from_mapping,
@@ -146,6 +156,7 @@ def _families() -> dict[str, Family]:
             twist_graph=peppermill.twist_graph,
             pose_names=smg_pose,
             angle_names=("phi",),
+            twist_basis=peppermill.twist_basis,
         ),
         "planar_3rrp": Family(
             parameters=planar_3rrp.Planar3RRPParameters.from_mapping,
@@ -153,6 +164,7 @@ def _families() -> dict[str, Family]:
             twist_graph=planar_3rrp.twist_graph,
             pose_names=("x", "y", "phi"),
             angle_names=("phi",),
+            twist_basis=planar_3rrp.twist_basis,
         ),
     }
 
@@ -272,6 +284,49 @@ class Mechanism:
         graph.graph["name"] = self.name
         graph.graph["length_unit"] = self.length_unit
         return graph
+
+    def twist_basis(self, pose: Any = None, **options: Any) -> Array:
+        """The platform's nominal twists at a pose (default: the default pose), rows ``(dof, 6)``.
+
+        One twist per pose coordinate, in the order of :attr:`pose_names` (unit rate of that
+        coordinate, user frame): for the Schönflies-motion generators the three translations and
+        the rotation about the end effector's own axis through its reference point, for the planar
+        3-RRP the translations ``x``, ``y`` and the rotation about ``z`` through the platform point.
+        ``options`` go to :meth:`configuration` (e.g. a working mode).
+
+        Examples
+        --------
+        >>> load_mechanism("v4").twist_basis()[3]  # the V4's end effector turns about j
+        array([  0.,   1.,   0., 750.,   0.,   0.])
+        """
+        return _families()[self.family].twist_basis(self.configuration(pose, **options))
+
+    def jacobians(self, pose: Any = None, **options: Any) -> WrenchJacobians:
+        """Forward and inverse Jacobians ``A χ̇ = B θ̇`` from the wrench systems at a pose.
+
+        :func:`screwkit.jacobians.jacobians_from_wrenches` of the wrench analysis of
+        :meth:`twist_graph` over :meth:`twist_basis` (so ``χ̇`` are the rates of the pose
+        coordinates), with its Gosselin–Angeles type and closeness measures. ``options`` go to
+        :meth:`configuration`.
+
+        Raises
+        ------
+        ScrewkitError
+            If the pose is out of reach (naming the limb), or the basis is refused at this pose
+            (:func:`~screwkit.jacobians.jacobians_from_wrenches`).
+
+        Examples
+        --------
+        >>> jac = load_mechanism("planar_3rrp").jacobians()
+        >>> jac.type, jac.A.shape, jac.actuated_joints
+        ('regular', (3, 3), ('limb1_R1', 'limb2_R1', 'limb3_R1'))
+        """
+        config = self.configuration(pose, **options)
+        family = _families()[self.family]
+        graph = family.twist_graph(config)
+        graph.graph["name"] = self.name
+        graph.graph["length_unit"] = self.length_unit
+        return jacobians_from_wrenches(wrench_analysis(graph), family.twist_basis(config))
 
 
 def _no_sampler(rng: np.random.Generator) -> dict[str, Array]:
@@ -554,7 +609,7 @@ def snapshot_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>")
     base = _string(header, "base", source, "[mechanism]")
     platform = _string(header, "platform", source, "[mechanism]")
     dof = header.get("dof")
-    if dof is not None and (isinstance(dof, bool) or not isinstance(dof, int) or not 0 <= dof <= 6):
+    if dof is not None and not is_dof(dof):
         raise _error(source, "[mechanism]", f"field `dof`: expected an integer in 0..6, got {dof!r}.")
     entries = data.get("joints")
     if not isinstance(entries, list) or not entries:

@@ -6,6 +6,14 @@ what the mechanism is, which wrenches act on its platform (each as a line: kind,
 pitch), the diagram's twelve points in words, the factored superbracket, each factor as a geometric
 statement and a vector form with its label, and the verdict with its closeness measures.
 
+For a catalog mechanism it also gives the Jacobians ``A χ̇ = B θ̇`` built on the same actuation
+wrenches (:func:`screwkit.jacobians.jacobians_from_wrenches`) over the family's nominal twists at the
+pose (:meth:`screwkit.catalog.Mechanism.twist_basis`, one per pose coordinate), with their
+Gosselin–Angeles type (``"inverse"`` goes with the ``serial`` label, ``"direct"`` with
+``actuation``; a ``constraint`` singularity, where the platform gains a twist outside the nominal
+ones, leaves ``A`` regular), ``det A``, ``det B`` and the two closeness measures. A snapshot has no
+family to give its nominal twists: there the Jacobians are None.
+
 For a catalog mechanism, structural zeros of the superbracket are confirmed on random poses of its
 workspace; for a snapshot (one configuration only) they are read from that configuration, which the
 report states.
@@ -15,6 +23,8 @@ Examples
 >>> report = analyze("h4")
 >>> report.verdict.verdict, report.superbracket.simplification.factored.to_dict()["text"]
 ('regular', '-[gikj][a b d ḟ][c g ḣ j]')
+>>> report.jacobians.type, report.jacobians.actuated_joints
+('regular', ('A1', 'A2', 'A3', 'A4'))
 """
 
 from __future__ import annotations
@@ -32,6 +42,7 @@ from . import screw as S
 from .catalog import Mechanism, load_mechanism, load_snapshot, load_toml
 from .diagram import SuperbracketAnalysis, WrenchDiagram, superbracket_analysis, wrench_diagram
 from .exceptions import ScrewkitError, ScrewkitValueError
+from .jacobians import WrenchJacobians, jacobians_from_wrenches
 from .singularity import SingularityReport, classify_analysis
 from .twistgraph import equivalent_twist_graph, fundamental_loops
 from .wrenches import WrenchAnalysis, wrench_analysis
@@ -68,6 +79,9 @@ def describe_wrench(wrench: Array, *, length_scale: float) -> dict[str, Any]:
     }
 
 
+_SNAPSHOT_JACOBIANS = "not computed: a snapshot has no family to give the platform's nominal twists"
+
+
 @dataclass(frozen=True, eq=False)
 class AnalysisReport:
     """Everything :func:`analyze` found (see the module docstring).
@@ -87,6 +101,11 @@ class AnalysisReport:
         None when not computed or when the diagram is degenerate at the pose.
     superbracket_note : str
         How structural zeros were confirmed, or why there is no factorization.
+    jacobians : WrenchJacobians or None
+        ``A χ̇ = B θ̇`` over the family's nominal twists at the pose, with the Gosselin–Angeles
+        type (module docstring); None for a snapshot, or when the basis is refused at the pose.
+    jacobians_note : str
+        What the Jacobians' columns are, or why there are none.
     """
 
     name: str
@@ -101,6 +120,8 @@ class AnalysisReport:
     diagram: WrenchDiagram
     superbracket: SuperbracketAnalysis | None
     superbracket_note: str
+    jacobians: WrenchJacobians | None = None
+    jacobians_note: str = _SNAPSHOT_JACOBIANS
 
     def graph_summary(self) -> dict[str, Any]:
         """Links, joints by type, actuated joints, loops; and the equivalent graph's virtual joints."""
@@ -147,6 +168,36 @@ class AnalysisReport:
             "global_order": self.analysis.global_wrenches.order,
         }
 
+    def jacobian_summary(self) -> dict[str, Any] | None:
+        """The Gosselin–Angeles type, ``det A``, ``det B``, closeness, ``A``, ``B`` (None: snapshot).
+
+        Every key is present for a catalog mechanism; the values are None when the Jacobians were
+        not computed (``note`` says why).
+
+        Examples
+        --------
+        >>> summary = analyze("planar_3rrp", superbracket=False).jacobian_summary()
+        >>> summary["type"], summary["actuated_joints"]
+        ('regular', ['limb1_R1', 'limb2_R1', 'limb3_R1'])
+        """
+        if self.pose is None:
+            return None
+        jac = self.jacobians
+        square = jac is not None and jac.A.shape[0] == jac.A.shape[1]
+        return {
+            "type": None if jac is None else jac.type,
+            "det_A": jac.det_A if jac is not None and square else None,
+            "det_B": None if jac is None else jac.det_B,
+            "closeness": None if jac is None else dict(jac.closeness),
+            "actuated_joints": None if jac is None else list(jac.actuated_joints),
+            "serial_limbs": None if jac is None else list(jac.serial_limbs),
+            "twist_basis": None if jac is None else jac.twist_basis.tolist(),
+            "A": None if jac is None else jac.A.tolist(),
+            "B": None if jac is None else jac.B.tolist(),
+            "rtol": None if jac is None else jac.rtol,
+            "note": self.jacobians_note,
+        }
+
     def to_dict(self) -> dict[str, Any]:
         """The whole report as JSON-ready data (documented in the README)."""
         return {
@@ -160,6 +211,7 @@ class AnalysisReport:
             "superbracket": None if self.superbracket is None else self.superbracket.to_dict(),
             "superbracket_note": self.superbracket_note,
             "verdict": self.verdict.to_dict(),
+            "jacobians": self.jacobian_summary(),
         }
 
     def __str__(self) -> str:
@@ -212,7 +264,45 @@ class AnalysisReport:
         out += ["", "verdict", *("  " + line for line in str(self.verdict).splitlines())]
         measures = ", ".join(f"{k} {v:.3g}" for k, v in self.verdict.closeness.items())
         out.append(f"  closeness (0 at a singularity): {measures}")
+        if self.pose is not None:
+            out += ["", *self._jacobian_lines()]
         return "\n".join(out)
+
+    def _jacobian_lines(self) -> list[str]:
+        jac = self.jacobians
+        out = [f"jacobians (Gosselin-Angeles): A χ̇ = B θ̇, χ = ({', '.join(self.pose_names)})"]
+        if jac is None:
+            return [*out, f"  {self.jacobians_note}"]
+        head = "regular" if jac.type == "regular" else f"{jac.type} singularity"
+        out.append(f"  type: {head}; rows (actuated joints): {', '.join(jac.actuated_joints)}")
+        units = _determinant_units(jac, self.length_unit)
+        det_a = f"det A = {jac.det_A:.6g}{units[0]}, " if jac.A.shape[0] == jac.A.shape[1] else ""
+        out.append(f"  {det_a}det B = {jac.det_B:.6g}{units[1]}")
+        out.append(
+            f"  closeness (0 at a singularity): direct {jac.closeness['direct']:.3g}, "
+            f"inverse {jac.closeness['inverse']:.3g}"
+        )
+        out.extend(f"  serial singularity of the limb of {name!r} (B_jj = 0)" for name in jac.serial_limbs)
+        if "constraint" in self.verdict.labels and jac.type in ("regular", "inverse"):
+            out.append(
+                "  A only tests the nominal twists: the constraint singularity (a gained twist outside "
+                "them) leaves it regular"
+            )
+        return out
+
+
+def _determinant_units(jac: WrenchJacobians, unit: str) -> tuple[str, str]:
+    """Units of det A and det B: the length to the number of rotations among the basis twists (A) and
+    the actuated twists (B), when every row is a unit force (no units are claimed otherwise)."""
+    if not unit or np.any(np.linalg.norm(jac.wrenches[:, :3], axis=-1) == 0):
+        return "", ""
+    twists = np.array([limb.actuated_twist for limb in jac.analysis.limbs]).reshape(-1, 6)
+
+    def power(rows: Array) -> str:
+        count = int(np.count_nonzero(np.linalg.norm(rows[:, :3], axis=-1)))
+        return "" if count == 0 else f" {unit}" if count == 1 else f" {unit}^{count}"
+
+    return power(jac.twist_basis), power(twists)
 
 
 def _line_text(item: dict[str, Any], unit: str) -> str:
@@ -284,6 +374,16 @@ def analyze(target: str | Path | Mechanism, pose: Any = None, *, superbracket: b
     graph = mechanism.twist_graph(chosen)
     analysis = wrench_analysis(graph)
     diagram, sampler = mechanism.wrench_diagram(chosen)
+    jacobians: WrenchJacobians | None = None
+    try:
+        jacobians = jacobians_from_wrenches(analysis, mechanism.twist_basis(chosen))
+        jacobians_note = (
+            "rows: the actuation wrenches (unit force, or unit couple, signed so that B_jj >= 0); columns: "
+            "the platform's nominal twists at the pose, one per pose coordinate "
+            "(screwkit.catalog.Mechanism.twist_basis)"
+        )
+    except ScrewkitError as err:
+        jacobians_note = f"not computed: {err}"
     return _finish(
         mechanism.name,
         mechanism.source,
@@ -296,6 +396,8 @@ def analyze(target: str | Path | Mechanism, pose: Any = None, *, superbracket: b
         sampler if superbracket else None,
         "structural zeros confirmed on random poses of the workspace; each stage equals the 6×6 "
         "determinant on fresh poses",
+        jacobians,
+        jacobians_note,
     )
 
 
@@ -310,6 +412,8 @@ def _finish(
     diagram: WrenchDiagram,
     sampler: Any,
     note: str,
+    jacobians: WrenchJacobians | None = None,
+    jacobians_note: str = _SNAPSHOT_JACOBIANS,
 ) -> AnalysisReport:
     result = None
     if sampler is None:
@@ -334,4 +438,6 @@ def _finish(
         diagram,
         result,
         note,
+        jacobians,
+        jacobians_note,
     )

@@ -10,6 +10,9 @@ The articulated platform joins the two sub-platforms ``b_I`` and ``b_II`` to the
 joints ``R_I`` and ``R_II`` (revolute, or helical for the screw-pair platforms of the Veloce and
 Ragnar) on the axes given by :class:`~screwkit.families.four_limb.FourLimbConfiguration`.
 
+:func:`twist_basis` gives the end effector's nominal (Schoenflies) twists at a pose, the columns of
+the forward Jacobian of :func:`screwkit.jacobians.jacobians_from_wrenches`.
+
 Limb numbering follows paper 004 (``A1`` … ``A4``). Paper 002 numbers the H4's legs differently:
 its ``b_I`` carries legs ``l1, l2`` and ``b_II`` carries ``l3, l4``, whereas in paper 004's Table 1
 the sub-platform of limbs with ``sgn(cos η_i) > 0`` carries limbs 1 and 4. So paper 002's
@@ -33,11 +36,12 @@ import numpy as np
 
 from .. import screw as S
 from ..exceptions import ScrewkitValueError
+from ..jacobians import schoenflies_basis
 from ..joints import Joint
 from ..twistgraph import twist_graph
 from .four_limb import FourLimbConfiguration
 
-__all__ = ["PAPER_002_LEGS", "SUBPLATFORMS", "four_limb_joints", "four_limb_twist_graph"]
+__all__ = ["PAPER_002_LEGS", "SUBPLATFORMS", "four_limb_joints", "four_limb_twist_graph", "twist_basis"]
 
 #: Paper 002's H4 legs l1..l4 as paper 004's limbs (1-based): (1, 4, 2, 3).
 PAPER_002_LEGS = {"l1": 1, "l2": 4, "l3": 2, "l4": 3}
@@ -101,6 +105,16 @@ def four_limb_joints(config: FourLimbConfiguration) -> list[tuple[str, str, str,
     return table
 
 
+def _checked_index(config: FourLimbConfiguration, index: tuple[int, ...]) -> tuple[int, ...]:
+    batch = config.pose.shape[:-1]
+    index = tuple(index)
+    if len(index) != len(batch) or any(not (0 <= i < n) for i, n in zip(index, batch, strict=True)):
+        raise ScrewkitValueError(
+            f"Expected `index` to pick one pose of the batch of shape {batch}, got {index!r}."
+        )
+    return index
+
+
 def four_limb_twist_graph(config: FourLimbConfiguration, index: tuple[int, ...] = ()) -> nx.MultiDiGraph:
     """The twist graph of the physical mechanism at one pose of a configuration.
 
@@ -134,14 +148,49 @@ def four_limb_twist_graph(config: FourLimbConfiguration, index: tuple[int, ...] 
     >>> sorted(four_limb_twist_graph(cfg, (1,)).successors("b_I"))
     ['end_effector']
     """
-    batch = config.pose.shape[:-1]
-    index = tuple(index)
-    if len(index) != len(batch) or any(not (0 <= i < n) for i, n in zip(index, batch, strict=True)):
-        raise ScrewkitValueError(
-            f"Expected `index` to pick one pose of the batch of shape {batch}, got {index!r}."
-        )
+    index = _checked_index(config, index)
     joints = [
         (parent, child, Joint(name, kind, screws[index], actuated=actuated))
         for parent, child, name, kind, screws, actuated in four_limb_joints(config)
     ]
     return twist_graph("base", "end_effector", joints, dof=4)
+
+
+def twist_basis(config: FourLimbConfiguration, index: tuple[int, ...] = ()) -> np.ndarray:
+    """The end effector's nominal twists at one pose: a Schoenflies basis (user frame).
+
+    Rows, for ``ẋ = 1``, ``ẏ = 1``, ``ż = 1`` and ``φ̇ = 1`` with ``χ = (x, y, z, φ)``: the three
+    translations and the rotation about the end effector's own axis of rotation,
+    ``config.platform_joint_axis`` (``k`` for the Quattro, H4, Veloce and Ragnar, ``j`` for the
+    V4) through the end-effector point ``p`` (:func:`screwkit.jacobians.schoenflies_basis`). They
+    are the columns of ``A`` in :func:`screwkit.jacobians.jacobians_from_wrenches`, in paper 004's
+    order (Eq. 7a).
+
+    Parameters
+    ----------
+    config : FourLimbConfiguration
+        From :func:`~screwkit.families.four_limb.inverse_kinematics`.
+    index : tuple of int
+        Which pose of a batched configuration (empty for a single pose).
+
+    Returns
+    -------
+    numpy.ndarray, shape (4, 6)
+
+    Raises
+    ------
+    ScrewkitValueError
+        If ``index`` does not pick one pose of the batch.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from screwkit.families.four_limb import FourLimbParameters, inverse_kinematics
+    >>> v4 = FourLimbParameters(name="V4", platform_kind="articulated_y", arm_length=375,
+    ...     rod_length=800, alpha=0, beta=np.pi / 2, platform_radius=80, platform_offset=70,
+    ...     base_radius=275)
+    >>> twist_basis(inverse_kinematics(v4, [[0, 0, -700, 0], [50, 0, -700, 0.2]]), (1,))[3]  # about j
+    array([  0.,   1.,   0., 700.,   0.,  50.])
+    """
+    index = _checked_index(config, index)
+    return schoenflies_basis(config.pose[index][:3], config.platform_joint_axis[index])

@@ -101,11 +101,13 @@ import numpy as np
 
 from .._backend import DEFAULT_RTOL, as_array
 from ..exceptions import DegenerateGeometryError, ScrewkitValueError, UnreachablePoseError
+from ..jacobians import schoenflies_basis
 from ._two_limb import (
     Classification,
     ForwardSolutions,
     Jacobians,
     JointAxis,
+    _checked_index,
     bisect_segment,
     check_parameters,
     checked_mode,
@@ -133,6 +135,7 @@ __all__ = [
     "locate_direct_singularity",
     "pick_and_place_cycle",
     "singularity_factors",
+    "twist_basis",
     "twist_graph",
 ]
 
@@ -986,3 +989,37 @@ def twist_graph(config: McGillConfiguration, index: Any = ()) -> nx.MultiDiGraph
     (4, 4)
     """
     return joint_twist_graph(config.joints, index, dof=4)
+
+
+def twist_basis(config: McGillConfiguration, index: Any = ()) -> np.ndarray:
+    """The moving plate's nominal twists at one pose: a Schoenflies basis (user frame).
+
+    Rows, for ``ẋ = 1``, ``ẏ = 1``, ``ż = 1`` and ``φ̇ = 1`` with the pose ``(x, y, z, φ)``: the three
+    translations and the rotation about the vertical axis ``k`` (the wrist axes' direction) through
+    the operation point ``P`` (:func:`screwkit.jacobians.schoenflies_basis`). They are the columns
+    of ``A`` in :func:`screwkit.jacobians.jacobians_from_wrenches`; paper 001's twist is
+    ``t = (φ̇, ṗ/L)`` (Eq. 17b), the same motion in other coordinates.
+
+    Parameters
+    ----------
+    config : McGillConfiguration
+    index : tuple of int, default ()
+        Which pose of a batched configuration (empty for a single pose).
+
+    Returns
+    -------
+    numpy.ndarray, shape (4, 6)
+
+    Raises
+    ------
+    ScrewkitValueError
+        ``index`` does not pick one pose of the batch.
+
+    Examples
+    --------
+    >>> p = McGillParameters(1000, 450, 600, 282.843, 200, -50, -50, 80, 60)
+    >>> twist_basis(inverse_kinematics(p, [10.0, 0.0, -800.0, 0.0]))[3]  # about k through P
+    array([  0.,   0.,   1.,   0., -10.,   0.])
+    """
+    picked = _checked_index(index, config.batch_shape)
+    return schoenflies_basis(config.platform_point[picked], config.pan_axis[picked][0])

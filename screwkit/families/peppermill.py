@@ -80,11 +80,13 @@ import numpy as np
 
 from .._backend import DEFAULT_RTOL, as_array
 from ..exceptions import DegenerateGeometryError, ScrewkitValueError, UnreachablePoseError
+from ..jacobians import schoenflies_basis
 from ._two_limb import (
     Classification,
     ForwardSolutions,
     Jacobians,
     JointAxis,
+    _checked_index,
     bisect_segment,
     check_parameters,
     checked_mode,
@@ -111,6 +113,7 @@ __all__ = [
     "locate_direct_singularity",
     "pick_and_place_cycle",
     "singularity_factors",
+    "twist_basis",
     "twist_graph",
 ]
 
@@ -750,3 +753,37 @@ def twist_graph(config: PeppermillConfiguration, index: Any = ()) -> nx.MultiDiG
     (4, 4)
     """
     return joint_twist_graph(config.joints, index, dof=4)
+
+
+def twist_basis(config: PeppermillConfiguration, index: Any = ()) -> np.ndarray:
+    """The plate's nominal twists at one pose: a Schoenflies basis (user frame).
+
+    Rows, for ``δx``, ``δy``, ``δz`` and ``δφ`` of Eq. (44): the three translations and the
+    rotation about the plate's axis ``k`` (the axis of both H joints) through ``C``
+    (:func:`screwkit.jacobians.schoenflies_basis`). They are the columns of ``A`` in
+    :func:`screwkit.jacobians.jacobians_from_wrenches`, in the order of the columns of paper 000's
+    ``A`` (Eq. 47).
+
+    Parameters
+    ----------
+    config : PeppermillConfiguration
+    index : tuple of int, default ()
+        Which pose of a batched configuration (empty for a single pose).
+
+    Returns
+    -------
+    numpy.ndarray, shape (4, 6)
+
+    Raises
+    ------
+    ScrewkitValueError
+        ``index`` does not pick one pose of the batch.
+
+    Examples
+    --------
+    >>> p = PeppermillParameters(250, 250, 400, 400, 50, 40, -40)
+    >>> twist_basis(inverse_kinematics(p, [30.0, -20.0, -450.0, 0.5]))[3]  # about k through C
+    array([  0.,   0.,   1., -20., -30.,   0.])
+    """
+    picked = _checked_index(index, config.batch_shape)
+    return schoenflies_basis(config.platform_point[picked], config.platform_axis[picked])

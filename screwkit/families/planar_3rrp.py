@@ -141,6 +141,7 @@ __all__ = [
     "limb_joints",
     "link_twists",
     "reach_margin",
+    "twist_basis",
     "twist_graph",
 ]
 
@@ -1305,6 +1306,23 @@ def limb_joints(config: Planar3RRPConfiguration) -> tuple[tuple[JointGeometry, .
     return tuple(limbs)
 
 
+def _checked_index(config: Planar3RRPConfiguration, index: Any) -> tuple[int, ...]:
+    batch = config.batch_shape
+    chosen = tuple(index) if isinstance(index, tuple | list) else None
+    if (
+        chosen is None
+        or len(chosen) != len(batch)
+        or any(
+            isinstance(i, bool) or not isinstance(i, int | np.integer) or not 0 <= i < n
+            for i, n in zip(chosen, batch, strict=True)
+        )
+    ):
+        raise ScrewkitValueError(
+            f"Expected `index` to pick one configuration of the batch of shape {batch}, got {index!r}."
+        )
+    return chosen
+
+
 def twist_graph(config: Planar3RRPConfiguration, index: tuple[int, ...] = ()) -> nx.MultiDiGraph:
     """The twist graph of the physical mechanism at one configuration (design.md §5).
 
@@ -1349,19 +1367,7 @@ def twist_graph(config: Planar3RRPConfiguration, index: tuple[int, ...] = ()) ->
     screwkit.exceptions.ScrewkitValueError: Expected `index` to pick one configuration of the batch ...
     """
     config = _check_config(config)
-    batch = config.batch_shape
-    chosen = tuple(index) if isinstance(index, tuple | list) else None
-    if (
-        chosen is None
-        or len(chosen) != len(batch)
-        or any(
-            isinstance(i, bool) or not isinstance(i, int | np.integer) or not 0 <= i < n
-            for i, n in zip(chosen, batch, strict=True)
-        )
-    ):
-        raise ScrewkitValueError(
-            f"Expected `index` to pick one configuration of the batch of shape {batch}, got {index!r}."
-        )
+    chosen = _checked_index(config, index)
     joints = []
     for limb in limb_joints(config):
         for geometry in limb:
@@ -1375,3 +1381,45 @@ def twist_graph(config: Planar3RRPConfiguration, index: tuple[int, ...] = ()) ->
                 joint = _joints.prismatic(geometry.name, direction, actuated=geometry.actuated)
             joints.append((parent, child, joint))
     return _twistgraph.twist_graph(LINK_NAMES[0], LINK_NAMES[-1], joints, dof=3)
+
+
+def twist_basis(config: Planar3RRPConfiguration, index: tuple[int, ...] = ()) -> np.ndarray:
+    """The platform's nominal (planar) twists at one configuration, embedded in space (user frame).
+
+    Rows, for ``ẋ = 1``, ``ẏ = 1`` and ``φ̇ = 1`` (the pose order ``(x, y, φ)``): the translations
+    ``(0; i)``, ``(0; j)`` and the rotation ``(k; C × k)`` about the axis ``z`` through the platform
+    point ``C = (x, y, 0)``. They are the columns of ``A`` in
+    :func:`screwkit.jacobians.jacobians_from_wrenches`. Paper 003's twist ``t = (ω, ẋ, ẏ)`` (Eq. 3)
+    lists the same rates with the angular rate first.
+
+    Parameters
+    ----------
+    config : Planar3RRPConfiguration
+    index : tuple of int, optional
+        Which configuration of a batch (empty, the default, for a single configuration).
+
+    Returns
+    -------
+    numpy.ndarray, shape (3, 6)
+
+    Raises
+    ------
+    ScrewkitValueError
+        If ``index`` does not pick one configuration of the batch.
+    ScrewkitTypeError
+        If ``config`` is not a :class:`Planar3RRPConfiguration`.
+
+    Examples
+    --------
+    >>> twist_basis(Planar3RRPConfiguration.from_pose(EXAMPLE_PARAMETERS, [0.05, -0.03, 0.1]))
+    array([[ 0.  ,  0.  ,  0.  ,  1.  ,  0.  ,  0.  ],
+           [ 0.  ,  0.  ,  0.  ,  0.  ,  1.  ,  0.  ],
+           [ 0.  ,  0.  ,  1.  , -0.03, -0.05,  0.  ]])
+    """
+    config = _check_config(config)
+    chosen = _checked_index(config, index)
+    x, y = config.platform_point[chosen]
+    rows = np.zeros((3, 6))
+    rows[0, 3] = rows[1, 4] = rows[2, 2] = 1.0
+    rows[2, 3:5] = y, -x  # C × k = (y, -x, 0)
+    return rows
