@@ -29,8 +29,7 @@ True
 
 from __future__ import annotations
 
-from numbers import Number
-from typing import Any
+from typing import Any, Literal, overload
 
 import numpy as np
 import sympy
@@ -41,6 +40,7 @@ __all__ = [
     "DEFAULT_RTOL",
     "as_array",
     "as_arrays",
+    "checked_length_scale",
     "cross",
     "det",
     "dot",
@@ -242,6 +242,35 @@ def as_arrays(shape: tuple[int | None, ...], *named: tuple[Any, str]) -> tuple[A
     return promote(*(as_array(value, name, shape) for value, name in named))
 
 
+@overload
+def checked_length_scale(value: Any, *, allow_none: Literal[False] = False) -> float: ...
+
+
+@overload
+def checked_length_scale(value: Any, *, allow_none: Literal[True]) -> float | None: ...
+
+
+def checked_length_scale(value: Any, *, allow_none: bool = False) -> float | None:
+    """Validate a characteristic length: a positive finite number (or None where a default exists).
+
+    Examples
+    --------
+    >>> checked_length_scale(2)
+    2.0
+    >>> checked_length_scale(0)
+    Traceback (most recent call last):
+    ...
+    screwkit.exceptions.ScrewkitValueError: Expected `length_scale` to be a positive finite number, got 0.
+    """
+    if value is None and allow_none:
+        return None
+    ok = isinstance(value, int | float | np.integer | np.floating) and not isinstance(value, bool)
+    if not (ok and np.isfinite(value) and value > 0):
+        expected = "a positive finite number or None" if allow_none else "a positive finite number"
+        raise ScrewkitValueError(f"Expected `length_scale` to be {expected}, got {value!r}.")
+    return float(value)
+
+
 def is_dof(value: Any) -> bool:
     """True for an integer (Python or numpy, not a boolean) from 0 to 6: a mobility.
 
@@ -402,14 +431,14 @@ def scale_moments(rows: Array, length_scale: float | None) -> tuple[Array, float
         moments = np.linalg.norm(rows[..., 3:], axis=-1)
         has_direction = directions > DEFAULT_RTOL * moments  # a couple's round-off direction is not one
         ratios = moments[has_direction] / directions[has_direction]
-        length_scale = float(ratios.max()) if ratios.size and ratios.max() > 0 else 1.0
-    elif not (isinstance(length_scale, Number) and np.isfinite(length_scale) and length_scale > 0):
-        raise ScrewkitValueError(
-            f"Expected `length_scale` to be a positive finite number or None, got {length_scale!r}."
-        )
+        length = float(ratios.max()) if ratios.size and ratios.max() > 0 else 1.0
+    else:
+        checked = checked_length_scale(length_scale, allow_none=True)  # its message mentions None
+        assert checked is not None  # None took the branch above
+        length = checked
     scaled = np.array(rows, dtype=float)
-    scaled[..., 3:] /= length_scale
-    return scaled, float(length_scale)
+    scaled[..., 3:] /= length
+    return scaled, length
 
 
 def _check_rtol(rtol: float) -> None:

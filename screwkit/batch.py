@@ -45,7 +45,7 @@ from .twistgraph import (
     simple_paths,
 )
 
-__all__ = ["LoopClosureLayout", "PoseBatchReport", "checked_screws", "classify_poses"]
+__all__ = ["LoopClosureLayout", "PoseBatchReport", "checked_screws", "classify_poses", "normalized_columns"]
 
 Array = np.ndarray
 _SWAP = np.block([[np.zeros((3, 3)), np.eye(3)], [np.eye(3), np.zeros((3, 3))]])
@@ -155,20 +155,30 @@ def _rank(matrix: Array, rtol: float) -> Array:
     return ((values > rtol * values[..., :1]) & (values[..., :1] > 0)).sum(axis=-1)
 
 
-def _normalized_columns(closure: Array, platform: Array) -> tuple[Array, Array]:
+def normalized_columns(closure: Array, platform: Array) -> tuple[Array, Array]:
+    """Scale each joint-rate column of ``[M; P]`` to unit norm (the null space of M and the span of
+    the platform's twists P·ker M do not change), batched over leading axes.
+
+    Examples
+    --------
+    >>> closure, platform = normalized_columns(np.zeros((1, 0, 2)), np.array([[[3.0, 0], [4.0, 2]]]))
+    >>> platform
+    array([[[0.6, 0. ],
+            [0.8, 1. ]]])
+    """
     size = np.linalg.norm(np.concatenate([closure, platform], axis=-2), axis=-2, keepdims=True)
     size = np.where(size > 0, size, 1.0)
     return closure / size, platform / size
 
 
 def _twist_order(closure: Array, platform: Array, rtol: float) -> Array:
-    closure, platform = _normalized_columns(closure, platform)
+    closure, platform = normalized_columns(closure, platform)
     return _rank(np.concatenate([closure, platform], axis=-2), rtol) - _rank(closure, rtol)
 
 
 def _twist_basis(closure: Array, platform: Array, order: int) -> Array:
     """An orthonormal basis (rows ``(..., order, 6)``) of the platform twists of nominal order."""
-    closure, platform = _normalized_columns(closure, platform)
+    closure, platform = normalized_columns(closure, platform)
     columns = closure.shape[-1]
     if closure.shape[-2]:
         _, values, vt = np.linalg.svd(closure)

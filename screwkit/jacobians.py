@@ -108,7 +108,7 @@ import numpy as np
 
 from . import _backend as B
 from . import screw as S
-from .batch import LoopClosureLayout, checked_screws
+from .batch import LoopClosureLayout, checked_screws, normalized_columns
 from .exceptions import DegenerateGeometryError, ScrewkitTypeError, ScrewkitValueError, TwistGraphError
 from .twistgraph import axes_frame, check_twist_graph, simple_paths
 from .wrenches import WrenchAnalysis
@@ -800,12 +800,6 @@ class PoseBatchJacobians:
         )
 
 
-def _normalized_columns(closure: Array, path: Array) -> tuple[Array, Array]:
-    size = np.linalg.norm(np.concatenate([closure, path], axis=-2), axis=-2, keepdims=True)
-    size = np.where(size > 0, size, 1.0)
-    return closure / size, path / size
-
-
 def _span(closure: Array, path: Array, rtol: float) -> tuple[Array, Array]:
     """Per pose, an orthonormal basis of the platform's twists (rows ``(N, 6, 6)``, unused rows zero)
     from the loop-closure matrix ``M`` and the path map ``P`` (scaled coordinates), and its order.
@@ -813,7 +807,7 @@ def _span(closure: Array, path: Array, rtol: float) -> tuple[Array, Array]:
     The null space of ``M`` is taken at each pose's own rank, so poses of different mobility can
     share a batch.
     """
-    closure, path = _normalized_columns(closure, path)
+    closure, path = normalized_columns(closure, path)
     count, columns = path.shape[0], path.shape[-1]
     if columns == 0:
         return np.zeros((count, 6, 6)), np.zeros(count, dtype=int)

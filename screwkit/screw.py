@@ -379,12 +379,7 @@ def axis(screws: Any) -> tuple[Array, Array]:
 
 
 def _unit_scaled(arr: Array, length_scale: float) -> Array:
-    if not (
-        isinstance(length_scale, int | float) and np.isfinite(length_scale) and length_scale > 0
-    ):
-        raise ScrewkitValueError(
-            f"Expected `length_scale` to be a positive finite number, got {length_scale!r}."
-        )
+    B.checked_length_scale(length_scale)
     scaled = np.array(arr, dtype=float)
     scaled[..., 3:] /= length_scale
     size = np.linalg.norm(scaled, axis=-1, keepdims=True)

@@ -99,7 +99,7 @@ from typing import Any, NamedTuple
 import networkx as nx
 import numpy as np
 
-from .._backend import DEFAULT_RTOL, as_array
+from .._backend import DEFAULT_RTOL, as_array, checked_length_scale
 from ..exceptions import DegenerateGeometryError, ScrewkitValueError, UnreachablePoseError
 from ..jacobians import schoenflies_basis
 from ._two_limb import (
@@ -718,12 +718,7 @@ def forward_kinematics(
 def _length(config: McGillConfiguration, length_scale: float | None) -> float:
     if length_scale is None:
         return config.params.radius
-    if not (isinstance(length_scale, int | float) and np.isfinite(length_scale)
-            and length_scale > 0):
-        raise ScrewkitValueError(
-            f"Expected `length_scale` to be a positive finite length or None, got {length_scale!r}."
-        )
-    return float(length_scale)
+    return checked_length_scale(length_scale)
 
 
 def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:

@@ -78,7 +78,7 @@ from typing import Any
 import networkx as nx
 import numpy as np
 
-from .._backend import DEFAULT_RTOL, as_array
+from .._backend import DEFAULT_RTOL, as_array, checked_length_scale
 from ..exceptions import DegenerateGeometryError, ScrewkitValueError, UnreachablePoseError
 from ..jacobians import schoenflies_basis
 from ._two_limb import (
@@ -624,12 +624,7 @@ def _length_scale(params: PeppermillParameters, length_scale: float | None) -> f
         _, _, leads = params.lengths
         mean = float(np.abs(leads).mean())
         return mean if mean > 0 else 1.0
-    if not (isinstance(length_scale, int | float) and np.isfinite(length_scale)
-            and length_scale > 0):
-        raise ScrewkitValueError(
-            f"Expected `length_scale` to be a positive finite length or None, got {length_scale!r}."
-        )
-    return float(length_scale)
+    return checked_length_scale(length_scale)
 
 
 def classify(
