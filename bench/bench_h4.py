@@ -7,11 +7,10 @@ import time
 
 import numpy as np
 
-from screwkit.batch import classify_poses
 from screwkit.catalog import load_mechanism
 from screwkit.families.four_limb import reachable
 from screwkit.families.four_limb_graph import four_limb_joints, four_limb_twist_graph
-from screwkit.singularity import classify
+from screwkit.singularity import classify, classify_poses
 
 
 def best_of(repeats, function):

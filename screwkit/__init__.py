@@ -11,7 +11,6 @@ Examples
 4
 """
 
-from .batch import PoseBatchReport, classify_poses
 from .catalog import Mechanism, list_mechanisms, load_mechanism, load_snapshot
 from .exceptions import (
     CatalogError,
@@ -25,6 +24,7 @@ from .exceptions import (
 from .jacobians import WrenchJacobians, jacobians_from_wrenches, schoenflies_basis
 from .joints import (
     Joint,
+    JointTable,
     cylindrical,
     helical,
     parallelogram,
@@ -52,7 +52,7 @@ from .projective import (
 )
 from .screw import Screw, reciprocal_product
 from .screwsystem import ScrewSystem
-from .singularity import SingularityReport, classify
+from .singularity import SingularityReport, classify, classify_poses, classify_table
 from .twistgraph import (
     equivalent_twist_graph,
     fundamental_loops,
@@ -61,7 +61,7 @@ from .twistgraph import (
     series_parallel_tree,
     twist_graph,
 )
-from .wrenches import WrenchAnalysis, wrench_analysis
+from .wrenches import WrenchAnalysis, analyze_table, wrench_analysis
 
 __version__ = "0.1.0"
 
@@ -69,8 +69,8 @@ __all__ = [
     "CatalogError",
     "DegenerateGeometryError",
     "Joint",
+    "JointTable",
     "Mechanism",
-    "PoseBatchReport",
     "Screw",
     "ScrewSystem",
     "ScrewkitError",
@@ -82,11 +82,13 @@ __all__ = [
     "WrenchAnalysis",
     "WrenchJacobians",
     "__version__",
+    "analyze_table",
     "are_collinear",
     "are_coplanar",
     "bracket",
     "classify",
     "classify_poses",
+    "classify_table",
     "cylindrical",
     "equivalent_twist_graph",
     "finite_point",

@@ -107,15 +107,13 @@ import networkx as nx
 import numpy as np
 
 from . import _backend as B
+from . import _frames as F
 from . import screw as S
-from .batch import LoopClosureLayout, checked_screws, normalized_columns
 from .exceptions import DegenerateGeometryError, ScrewkitTypeError, ScrewkitValueError, TwistGraphError
-from .twistgraph import axes_frame, check_twist_graph, simple_paths
-from .wrenches import WrenchAnalysis
+from .wrenches import WrenchAnalysis, checked_rtol
 
 __all__ = [
     "GOSSELIN_ANGELES_TYPES",
-    "PoseBatchJacobians",
     "WrenchJacobians",
     "jacobians_from_wrenches",
     "jacobians_over_poses",
@@ -130,7 +128,7 @@ GOSSELIN_ANGELES_TYPES = ("regular", "inverse", "direct", "combined")
 #: Default tolerance of the twist-basis membership check (module docstring of each function).
 DEFAULT_BASIS_RTOL = 1e-6
 
-_SWAP = np.block([[np.zeros((3, 3)), np.eye(3)], [np.eye(3), np.zeros((3, 3))]])
+_SWAP = F.SWAP
 
 
 # --------------------------------------------------------------------------------------------------
@@ -202,19 +200,6 @@ def _safe_divide(numerator: Array, denominator: Array) -> Array:
     )
 
 
-def _to_scaled(rows: Array, centre: Array, length: Array) -> Array:
-    """Screws ``(..., k, 6)`` about ``centre`` with their moments over ``length``."""
-    moved = S.transform(rows, np.eye(3), -centre[..., None, :])
-    moved[..., 3:] /= length[..., None, None]
-    return moved
-
-
-def _from_scaled(rows: Array, centre: Array, length: Array) -> Array:
-    moved = np.array(rows, dtype=float)
-    moved[..., 3:] *= length[..., None, None]
-    return S.transform(moved, np.eye(3), centre[..., None, :])
-
-
 def _most_acting(passive: Array, basis: Array, length: Array, rtol: float) -> Array:
     """The unit combination of orthonormal scaled rows ``(..., k, 6)`` acting most on the basis."""
     if passive.shape[-2] == 0:
@@ -281,12 +266,6 @@ def _type_index(direct: Any, inverse: Any, rtol: float) -> Array:
     return 2 * (np.asarray(direct) <= rtol).astype(int) + (np.asarray(inverse) <= rtol).astype(int)
 
 
-def _check_tolerance(value: Any, name: str) -> float:
-    if isinstance(value, bool) or not (isinstance(value, int | float) and 0 <= float(value) < 1):
-        raise ScrewkitValueError(f"Expected `{name}` to be a number in [0, 1), got {value!r}.")
-    return float(value)
-
-
 def _check_in_series(name: str, edges: list[tuple[Any, Any, str]]) -> None:
     """The actuated joint must be a bridge of its limb (B_jj = w_j ∘ $_j needs it)."""
     graph = nx.MultiGraph()
@@ -300,31 +279,30 @@ def _check_in_series(name: str, edges: list[tuple[Any, Any, str]]) -> None:
 
 
 # --------------------------------------------------------------------------------------------------
-# One pose
+# The result (one class, leading batch shape)
 # --------------------------------------------------------------------------------------------------
 
 
 @dataclass(frozen=True, eq=False)
 class WrenchJacobians:
-    """Forward and inverse Jacobians at one pose, ``A χ̇ = B θ̇`` (see the module docstring).
+    """Forward and inverse Jacobians ``A χ̇ = B θ̇`` over a batch of poses (shape ``()`` for one).
+
+    Index it (``jac[3]``) for one pose.
 
     Attributes
     ----------
-    A : numpy.ndarray, shape (n, dof)
+    A : numpy.ndarray, shape (..., n, dof)
         ``A_jk = w_j ∘ t_k`` (forward Jacobian, paper 004 Eq. 6).
-    B : numpy.ndarray, shape (n, n)
-        ``diag(w_j ∘ $_j)``, ``≥ 0`` (inverse Jacobian); 0 for a limb in ``serial_limbs``.
-    wrenches : numpy.ndarray, shape (n, 6)
+    B : numpy.ndarray, shape (..., n, n)
+        ``diag(w_j ∘ $_j)``, ``≥ 0`` (inverse Jacobian); 0 for a limb at a serial singularity.
+    wrenches : numpy.ndarray, shape (..., n, 6)
         The rows ``w_j``: unit force (or unit couple), user frame.
-    twist_basis : numpy.ndarray, shape (dof, 6)
+    twist_basis : numpy.ndarray, shape (..., dof, 6)
     actuated_joints : tuple of str
-        Row order (the analysis's limb order).
-    serial_limbs : tuple of str
-        Actuated joints whose limb is at a serial singularity (``B_jj = 0`` or transmission
-        ``≤ rtol``).
-    type : str
-        One of :data:`GOSSELIN_ANGELES_TYPES`.
-    closeness : dict of str to float
+        Row order (the analysis's limb order: sorted names).
+    serial : numpy.ndarray of bool, shape (..., n)
+        True where that limb is at a serial singularity (``B_jj = 0`` or transmission ``≤ rtol``).
+    closeness : dict of str to float or numpy.ndarray
         ``"direct"`` (in [0, 1]) and ``"inverse"`` (≥ 0; a mutual moment over the length, which can
         exceed 1), module docstring; 0 at the singularity.
     rtol : float
@@ -346,21 +324,80 @@ class WrenchJacobians:
     wrenches: Array
     twist_basis: Array
     actuated_joints: tuple[str, ...]
-    serial_limbs: tuple[str, ...]
-    type: str
-    closeness: dict[str, float]
+    serial: Array
+    closeness: dict[str, Any]
     rtol: float
     analysis: WrenchAnalysis = field(repr=False)
 
     def __post_init__(self) -> None:
-        for name in ("A", "B", "wrenches", "twist_basis"):
-            array = np.array(getattr(self, name), dtype=float)
+        for name in ("A", "B", "wrenches", "twist_basis", "serial"):
+            array = np.array(getattr(self, name))
             array.flags.writeable = False
             object.__setattr__(self, name, array)
 
     @property
-    def det_A(self) -> float:
-        """``det A`` (unit: length to the number of rotations in the basis).
+    def shape(self) -> tuple[int, ...]:
+        """The batch shape (``()`` for one pose)."""
+        return self.A.shape[:-2]
+
+    @property
+    def single(self) -> bool:
+        """True for one pose."""
+        return self.shape == ()
+
+    def __len__(self) -> int:
+        if self.single:
+            raise TypeError("the Jacobians of one pose have no length")
+        return self.shape[0]
+
+    def __getitem__(self, index: Any) -> WrenchJacobians:
+        return WrenchJacobians(
+            self.A[index],
+            self.B[index],
+            self.wrenches[index],
+            self.twist_basis[index],
+            self.actuated_joints,
+            self.serial[index],
+            {k: _plain(np.asarray(v)[index]) for k, v in self.closeness.items()},
+            self.rtol,
+            self.analysis[index],
+        )
+
+    @property
+    def types(self) -> Array:
+        """Gosselin–Angeles type per pose, an array of str of the batch shape.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from screwkit.joints import prismatic
+        >>> from screwkit.twistgraph import twist_graph
+        >>> G = twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))])
+        >>> screws = {"P": np.array([[[0, 0, 0, 1.0, 0, 0]], [[0, 0, 0, 0, 1.0, 0]]])}
+        >>> jacobians_over_poses(G, screws, [[[0, 0, 0, 1, 0, 0]], [[0, 0, 0, 0, 2, 0]]]).types
+        array(['regular', 'regular'], dtype='<U8')
+        """
+        index = _type_index(self.closeness["direct"], self.closeness["inverse"], self.rtol)
+        return np.asarray(GOSSELIN_ANGELES_TYPES)[index]
+
+    @property
+    def type(self) -> Any:
+        """The Gosselin–Angeles type (a str for one pose; :attr:`types` over a batch)."""
+        types = self.types
+        return str(types) if self.single else types
+
+    @property
+    def serial_limbs(self) -> tuple[str, ...]:
+        """Actuated joints whose limb is at a serial singularity (one pose)."""
+        if not self.single:
+            raise ScrewkitTypeError(
+                f"Expected one pose for `serial_limbs`, got a batch of shape {self.shape}."
+            )
+        return tuple(name for name, flag in zip(self.actuated_joints, self.serial, strict=True) if flag)
+
+    @property
+    def det_A(self) -> Any:
+        """``det A`` per pose (unit: length to the number of rotations in the basis).
 
         Raises
         ------
@@ -377,11 +414,11 @@ class WrenchJacobians:
         2.0
         """
         _require_square(self.A)
-        return float(np.linalg.det(self.A))
+        return _plain(np.linalg.det(self.A))
 
     @property
-    def det_B(self) -> float:
-        """``det B = Π_j B_jj`` (paper 004 Eq. 10 up to the row scaling).
+    def det_B(self) -> Any:
+        """``det B = Π_j B_jj`` per pose (paper 004 Eq. 10 up to the row scaling).
 
         Examples
         --------
@@ -392,21 +429,22 @@ class WrenchJacobians:
         >>> jacobians_from_wrenches(wrench_analysis(G), [[0, 0, 0, 1, 0, 0]]).det_B
         1.0
         """
-        return float(np.prod(np.diag(self.B)))
+        return _plain(np.prod(np.diagonal(self.B, axis1=-2, axis2=-1), axis=-1))
 
     def kinematic_jacobian(self) -> Array:
-        """``J = A⁻¹B`` with ``χ̇ = J θ̇`` (paper 004 Eq. 9); independent of the row scaling.
+        """``J = A⁻¹B`` with ``χ̇ = J θ̇`` (paper 004 Eq. 9), per pose; independent of the row scaling.
 
         Returns
         -------
-        numpy.ndarray, shape (dof, n)
+        numpy.ndarray, shape (..., dof, n)
 
         Raises
         ------
         ScrewkitValueError
             If ``A`` is not square.
         DegenerateGeometryError
-            If ``A`` is singular (type ``"direct"`` or ``"combined"``).
+            If ``A`` is singular at some pose (type ``"direct"`` or ``"combined"``; names the first
+            batch indices).
 
         Examples
         --------
@@ -418,16 +456,24 @@ class WrenchJacobians:
         array([[2.]])
         """
         _require_square(self.A)
-        if self.closeness["direct"] <= self.rtol:
+        singular = np.asarray(self.closeness["direct"]) <= self.rtol
+        if np.any(singular):
+            if self.single:
+                raise DegenerateGeometryError(
+                    "The kinematic Jacobian A⁻¹B does not exist at this pose: A is singular "
+                    f"(Gosselin-Angeles type {self.type!r}, direct closeness "
+                    f"{self.closeness['direct']:.3g} <= rtol {self.rtol:g})."
+                )
+            indices = [tuple(int(i) for i in index) for index in np.argwhere(singular)[:5]]
             raise DegenerateGeometryError(
-                "The kinematic Jacobian A⁻¹B does not exist at this pose: A is singular "
-                f"(Gosselin-Angeles type {self.type!r}, direct closeness "
-                f"{self.closeness['direct']:.3g} <= rtol {self.rtol:g})."
+                f"The kinematic Jacobian A⁻¹B does not exist at {int(singular.sum())} poses of the batch "
+                f"(first batch indices {indices}): A is singular there (direct closeness <= rtol "
+                f"{self.rtol:g})."
             )
         return np.linalg.solve(self.A, self.B)
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dictionary.
+        """JSON-ready dictionary (arrays as nested lists).
 
         Examples
         --------
@@ -438,20 +484,30 @@ class WrenchJacobians:
         >>> jacobians_from_wrenches(wrench_analysis(G), [[0, 0, 0, 1, 0, 0]]).to_dict()["type"]
         'regular'
         """
-        return {
-            "type": self.type,
+        result = {
+            "type": self.type if self.single else self.types.tolist(),
             "A": self.A.tolist(),
             "B": self.B.tolist(),
             "wrenches": self.wrenches.tolist(),
             "twist_basis": self.twist_basis.tolist(),
             "actuated_joints": list(self.actuated_joints),
-            "serial_limbs": list(self.serial_limbs),
-            "closeness": dict(self.closeness),
+            "closeness": {k: np.asarray(v).tolist() for k, v in self.closeness.items()},
             "rtol": self.rtol,
         }
+        if self.single:
+            result["serial_limbs"] = list(self.serial_limbs)
+        else:
+            result["serial"] = self.serial.tolist()
+        return result
 
     def __str__(self) -> str:
-        n, dof = self.A.shape
+        n, dof = self.A.shape[-2:]
+        if not self.single:
+            names, counts = np.unique(self.types, return_counts=True)
+            tally = ", ".join(
+                f"{count} {name}" for name, count in zip(names.tolist(), counts.tolist(), strict=True)
+            )
+            return f"Jacobians over a batch of shape {self.shape}: {n} actuated joint(s), dof {dof}; {tally}"
         head = "regular" if self.type == "regular" else f"{self.type} singularity"
         lines = [
             f"{head} (Gosselin-Angeles): A {n}x{dof}, B {n}x{n}; closeness direct "
@@ -459,6 +515,11 @@ class WrenchJacobians:
         ]
         lines.extend(f"  serial singularity of the limb of {name!r} (B_jj = 0)" for name in self.serial_limbs)
         return "\n".join(lines)
+
+
+def _plain(value: Any) -> Any:
+    array = np.asarray(value)
+    return float(array) if array.ndim == 0 else array
 
 
 def _require_square(A: Array) -> None:
@@ -523,8 +584,9 @@ def jacobians_from_wrenches(
     Parameters
     ----------
     analysis : WrenchAnalysis
-        From :func:`~screwkit.wrenches.wrench_analysis` at the pose.
-    twist_basis : array_like, shape (dof, 6)
+        From :func:`~screwkit.wrenches.wrench_analysis` (one pose) or
+        :func:`~screwkit.wrenches.analyze_table` (a batch).
+    twist_basis : array_like, shape (..., dof, 6)
         Unit-rate twists of the platform, user frame, one per degree of freedom of the analysis
         (e.g. :func:`schoenflies_basis`); they define the columns of ``A`` and the meaning of
         ``χ̇``.
@@ -577,257 +639,52 @@ def jacobians_from_wrenches(
     """
     if not isinstance(analysis, WrenchAnalysis):
         raise ScrewkitTypeError(f"Expected `analysis` to be a WrenchAnalysis, got {type(analysis).__name__}.")
-    tolerance = analysis.rtol if rtol is None else _check_tolerance(rtol, "rtol")
-    basis_tolerance = _check_tolerance(basis_rtol, "basis_rtol")
-    dof = analysis.dof
-    basis = B.as_array(twist_basis, "twist_basis", (None, 6), symbolic=False)
-    if basis.shape != (dof, 6):
+    tolerance = analysis.rtol if rtol is None else checked_rtol(rtol, "rtol")
+    basis_tolerance = checked_rtol(basis_rtol, "basis_rtol")
+    dof, batch = analysis.dof, analysis.shape
+    raw = B.as_array(twist_basis, "twist_basis", (None, 6), symbolic=False)
+    if raw.ndim < 2 or raw.shape[-2] != dof:
         raise ScrewkitValueError(
-            f"Expected `twist_basis` to have shape ({dof}, 6), one twist per degree of freedom of "
-            f"the analysis, got {basis.shape}."
+            f"Expected `twist_basis` to have shape (..., {dof}, 6), one twist per degree of freedom of "
+            f"the analysis, got {raw.shape}."
         )
+    try:
+        basis = np.broadcast_to(raw, (*batch, dof, 6))
+    except ValueError as err:
+        raise ScrewkitValueError(
+            f"Expected `twist_basis` to have shape (..., {dof}, 6) broadcastable to the batch shape "
+            f"{batch}, got {raw.shape}."
+        ) from err
+    specs = {spec.name: spec for spec in analysis.table.specs}
+    for plan in analysis.topology.limbs:
+        _check_in_series(plan.actuated_joint, [(specs[j].parent, specs[j].child, j) for j in plan.joints])
     centre = np.asarray(analysis.reference_point, dtype=float)
     length = np.asarray(analysis.length_scale, dtype=float)
-    scaled_basis = _to_scaled(basis, centre, length)
-    _check_independent(scaled_basis, dof, tolerance)
-    rows, twists, substituted = [], [], []
-    for limb in analysis.limbs:
-        edges = sorted({edge[:3] for path in limb.paths for edge in path}, key=str)
-        _check_in_series(limb.actuated_joint, edges)
-        if limb.actuation_wrench is not None:
-            rows.append(np.asarray(limb.actuation_wrench, dtype=float))
-        else:
-            passive = np.asarray(limb.passive_wrenches.basis, dtype=float).reshape(-1, 6)
-            scaled = _to_scaled(passive, centre, length)
-            if scaled.shape[0]:
-                scaled = np.linalg.svd(scaled, full_matrices=False)[2]  # orthonormal rows
-            chosen = _most_acting(scaled, scaled_basis, np.ones(()), tolerance)
-            rows.append(_from_scaled(chosen[None, :], centre, length)[0])
-        twists.append(np.asarray(limb.actuated_twist, dtype=float))
-        substituted.append(limb.actuation_wrench is None)
-    n = len(rows)
-    arrays = _jacobian_arrays(
-        np.array(rows).reshape(n, 6),
-        np.array(twists).reshape(n, 6),
-        basis,
-        length,
-        np.array(substituted, dtype=bool),
-        tolerance,
-    )
-    platform_rows = np.asarray(analysis.platform_twists.basis, dtype=float).reshape(-1, 6)
-    platform = _to_scaled(platform_rows, centre, length)
-    span = np.linalg.svd(platform, full_matrices=False)[2] if platform.shape[0] else platform
-    _check_inside(scaled_basis, span, np.any(arrays["serial"]), basis_tolerance)
-    names = tuple(limb.actuated_joint for limb in analysis.limbs)
-    closeness = {"direct": float(arrays["direct"]), "inverse": float(arrays["inverse"])}
+    scaled_basis = F.to_scaled(basis, centre, length)
+    _check_independent(scaled_basis, dof, tolerance, batch)
+    serial = np.asarray(analysis.serial)
+    n = serial.shape[-1]
+    rows = np.array(analysis.actuation_rows, dtype=float)
+    for k in range(n):
+        if serial[..., k].any():
+            passive, _ = analysis.frames[f"limb{k}:passive"]
+            chosen = _most_acting(passive, scaled_basis, np.ones(batch), tolerance)
+            substitute = F.from_scaled(chosen[..., None, :], centre, length)[..., 0, :]
+            rows[..., k, :] = np.where(serial[..., k, None], substitute, rows[..., k, :])
+    arrays = _jacobian_arrays(rows, np.asarray(analysis.actuated_twists), basis, length, serial, tolerance)
+    platform_rows, _ = analysis.frames["platform"]
+    _check_inside(scaled_basis, platform_rows, np.any(arrays["serial"], axis=-1), basis_tolerance, batch)
     return WrenchJacobians(
         A=arrays["A"],
         B=arrays["B"],
         wrenches=arrays["wrenches"],
         twist_basis=basis,
-        actuated_joints=names,
-        serial_limbs=tuple(name for name, flag in zip(names, arrays["serial"], strict=True) if flag),
-        type=GOSSELIN_ANGELES_TYPES[int(_type_index(closeness["direct"], closeness["inverse"], tolerance))],
-        closeness=closeness,
+        actuated_joints=analysis.topology.actuated,
+        serial=arrays["serial"],
+        closeness={"direct": _plain(arrays["direct"]), "inverse": _plain(arrays["inverse"])},
         rtol=tolerance,
         analysis=analysis,
     )
-
-
-# --------------------------------------------------------------------------------------------------
-# Many poses
-# --------------------------------------------------------------------------------------------------
-
-
-@dataclass(frozen=True, eq=False)
-class PoseBatchJacobians:
-    """Forward and inverse Jacobians over a batch of poses (leading axes ``...``).
-
-    Attributes
-    ----------
-    A : numpy.ndarray, shape (..., n, dof)
-    B : numpy.ndarray, shape (..., n, n)
-    wrenches : numpy.ndarray, shape (..., n, 6)
-    actuated_joints : tuple of str
-        Row order (sorted joint names, as :class:`~screwkit.batch.PoseBatchReport`).
-    serial : numpy.ndarray of bool, shape (..., n)
-        True where that limb is at a serial singularity (``B_jj = 0`` or transmission ``≤ rtol``).
-    closeness : dict of str to numpy.ndarray
-        ``"direct"`` and ``"inverse"``, shape (...,).
-    rtol : float
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> from screwkit.joints import prismatic
-    >>> from screwkit.twistgraph import twist_graph
-    >>> G = twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))])
-    >>> screws = {"P": np.tile([0, 0, 0, 1.0, 0, 0], (2, 3, 1, 1))}
-    >>> print(jacobians_over_poses(G, screws, [[0, 0, 0, 1, 0, 0]]))
-    Jacobians over a batch of shape (2, 3): 1 actuated joint(s), dof 1; 6 regular
-    """
-
-    A: Array
-    B: Array
-    wrenches: Array
-    actuated_joints: tuple[str, ...]
-    serial: Array
-    closeness: dict[str, Array]
-    rtol: float
-
-    def __post_init__(self) -> None:
-        for name in ("A", "B", "wrenches", "serial"):
-            array = np.array(getattr(self, name))
-            array.flags.writeable = False
-            object.__setattr__(self, name, array)
-
-    @property
-    def types(self) -> Array:
-        """Gosselin–Angeles type per pose, an array of str of the batch shape.
-
-        Examples
-        --------
-        >>> import numpy as np
-        >>> from screwkit.joints import prismatic
-        >>> from screwkit.twistgraph import twist_graph
-        >>> G = twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))])
-        >>> screws = {"P": np.array([[[0, 0, 0, 1.0, 0, 0]], [[0, 0, 0, 0, 1.0, 0]]])}
-        >>> jacobians_over_poses(G, screws, [[[0, 0, 0, 1, 0, 0]], [[0, 0, 0, 0, 2, 0]]]).types
-        array(['regular', 'regular'], dtype='<U8')
-        """
-        index = _type_index(self.closeness["direct"], self.closeness["inverse"], self.rtol)
-        return np.asarray(GOSSELIN_ANGELES_TYPES)[index]
-
-    @property
-    def det_A(self) -> Array:
-        """``det A`` per pose, shape (...,).
-
-        Raises
-        ------
-        ScrewkitValueError
-            If ``A`` is not square.
-
-        Examples
-        --------
-        >>> import numpy as np
-        >>> from screwkit.joints import prismatic
-        >>> from screwkit.twistgraph import twist_graph
-        >>> G = twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))])
-        >>> screws = {"P": np.tile([0, 0, 0, 1.0, 0, 0], (2, 1, 1))}
-        >>> jacobians_over_poses(G, screws, [[[0, 0, 0, 1, 0, 0]], [[0, 0, 0, 3, 0, 0]]]).det_A
-        array([1., 3.])
-        """
-        _require_square(self.A)
-        return np.linalg.det(self.A)
-
-    @property
-    def det_B(self) -> Array:
-        """``det B = Π_j B_jj`` per pose, shape (...,).
-
-        Examples
-        --------
-        >>> import numpy as np
-        >>> from screwkit.joints import prismatic
-        >>> from screwkit.twistgraph import twist_graph
-        >>> G = twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))])
-        >>> screws = {"P": np.tile([0, 0, 0, 2.0, 0, 0], (2, 1, 1))}
-        >>> jacobians_over_poses(G, screws, [[0, 0, 0, 1, 0, 0]]).det_B
-        array([2., 2.])
-        """
-        return np.prod(np.diagonal(self.B, axis1=-2, axis2=-1), axis=-1)
-
-    def kinematic_jacobian(self) -> Array:
-        """``A⁻¹B`` per pose, shape (..., dof, n).
-
-        Raises
-        ------
-        ScrewkitValueError
-            If ``A`` is not square.
-        DegenerateGeometryError
-            If ``A`` is singular at some pose (names the first batch indices).
-
-        Examples
-        --------
-        >>> import numpy as np
-        >>> from screwkit.joints import prismatic
-        >>> from screwkit.twistgraph import twist_graph
-        >>> G = twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))])
-        >>> screws = {"P": np.array([[[0, 0, 0, 1.0, 0, 0]]])}
-        >>> jacobians_over_poses(G, screws, [[0, 0, 0, 1, 0, 0]]).kinematic_jacobian()
-        array([[[1.]]])
-        """
-        _require_square(self.A)
-        singular = self.closeness["direct"] <= self.rtol
-        if np.any(singular):
-            indices = [tuple(int(i) for i in index) for index in np.argwhere(singular)[:5]]
-            raise DegenerateGeometryError(
-                f"The kinematic Jacobian A⁻¹B does not exist at {int(singular.sum())} poses of the batch "
-                f"(first batch indices {indices}): A is singular there (direct closeness <= rtol "
-                f"{self.rtol:g})."
-            )
-        return np.linalg.solve(self.A, self.B)
-
-    def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dictionary (arrays as nested lists).
-
-        Examples
-        --------
-        >>> import numpy as np
-        >>> from screwkit.joints import prismatic
-        >>> from screwkit.twistgraph import twist_graph
-        >>> G = twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))])
-        >>> screws = {"P": np.tile([0, 0, 0, 1.0, 0, 0], (2, 1, 1))}
-        >>> jacobians_over_poses(G, screws, [[0, 0, 0, 1, 0, 0]]).to_dict()["types"]
-        ['regular', 'regular']
-        """
-        return {
-            "types": self.types.tolist(),
-            "A": self.A.tolist(),
-            "B": self.B.tolist(),
-            "actuated_joints": list(self.actuated_joints),
-            "serial": self.serial.tolist(),
-            "closeness": {key: value.tolist() for key, value in self.closeness.items()},
-            "rtol": self.rtol,
-        }
-
-    def __str__(self) -> str:
-        names, counts = np.unique(self.types, return_counts=True)
-        pairs = zip(names.tolist(), counts.tolist(), strict=True)
-        tally = ", ".join(f"{count} {name}" for name, count in pairs)
-        return (
-            f"Jacobians over a batch of shape {self.closeness['direct'].shape}: "
-            f"{len(self.actuated_joints)} actuated joint(s), dof {self.A.shape[-1]}; {tally}"
-        )
-
-
-def _span(closure: Array, path: Array, rtol: float) -> tuple[Array, Array]:
-    """Per pose, an orthonormal basis of the platform's twists (rows ``(N, 6, 6)``, unused rows zero)
-    from the loop-closure matrix ``M`` and the path map ``P`` (scaled coordinates), and its order.
-
-    The null space of ``M`` is taken at each pose's own rank, so poses of different mobility can
-    share a batch.
-    """
-    closure, path = normalized_columns(closure, path)
-    count, columns = path.shape[0], path.shape[-1]
-    if columns == 0:
-        return np.zeros((count, 6, 6)), np.zeros(count, dtype=int)
-    if closure.shape[-2]:
-        _, values, vt = np.linalg.svd(closure)
-        rank = ((values > rtol * values[..., :1]) & (values[..., :1] > 0)).sum(axis=-1)
-        rates = vt * (np.arange(columns) >= rank[:, None])[..., None]
-    else:
-        rates = np.broadcast_to(np.eye(columns), (count, columns, columns))
-    u, values, _ = np.linalg.svd(path @ np.swapaxes(rates, -1, -2), full_matrices=False)
-    order = ((values > rtol * values[..., :1]) & (values[..., :1] > 0)).sum(axis=-1)
-    rows = np.zeros((count, 6, 6))
-    rows[:, : u.shape[-1]] = np.swapaxes(u, -1, -2)
-    return rows * (np.arange(6) < order[:, None])[..., None], order
-
-
-def _reciprocal(span: Array, order: Array) -> Array:
-    """Per pose, an orthonormal basis of the screws reciprocal to a masked span (unused rows zero)."""
-    vt = np.linalg.svd(span @ _SWAP)[2]
-    return vt * (np.arange(6) >= order[:, None])[..., None]
 
 
 def jacobians_over_poses(
@@ -838,18 +695,15 @@ def jacobians_over_poses(
     dof: int | None = None,
     rtol: float = B.DEFAULT_RTOL,
     basis_rtol: float = DEFAULT_BASIS_RTOL,
-) -> PoseBatchJacobians:
+) -> WrenchJacobians:
     """:func:`jacobians_from_wrenches` over a batch of poses, vectorized (no loop over poses).
 
-    As :func:`~screwkit.batch.classify_poses`, the graph is a template (topology, names,
-    actuated flags) and ``screws`` holds every joint's screws over the batch. At each pose, about
-    the frame of :func:`~screwkit.twistgraph.axes_frame` (moments over its length): the platform's
-    twists and each limb's twists with its actuator locked come from the loop-closure equations
-    (null space at that pose's own rank); the passive wrenches are the reciprocal of the latter;
-    the actuation wrench is the passive wrench least reciprocal to the actuated twist (its
-    projection on the passive wrenches), or, where none is (transmission ``≤ rtol``), the passive
-    wrench acting most on the basis, with ``B_jj = 0``. Row scaling, signs, closeness measures and
-    types as in the module docstring.
+    As :func:`~screwkit.singularity.classify_poses`, the graph is a template (topology, names,
+    actuated flags) and ``screws`` holds every joint's screws over the batch; the wrenches come from
+    the one analysis core (:func:`~screwkit.wrenches.analyze_table`), so they are those of the
+    single-pose path. Where a limb has no actuation wrench (transmission ``≤ rtol``) its row is the
+    passive wrench acting most on the basis, with ``B_jj = 0``. Row scaling, signs, closeness
+    measures and types as in the module docstring.
 
     Parameters
     ----------
@@ -868,7 +722,8 @@ def jacobians_over_poses(
 
     Returns
     -------
-    PoseBatchJacobians
+    WrenchJacobians
+        Over the batch.
 
     Raises
     ------
@@ -904,69 +759,8 @@ def jacobians_over_poses(
     >>> result.B[:, 0, 0] / result.A[:, 0, 0]  # dx/dθ = -sin θ (1 + cos θ / sqrt(4 - sin² θ))
     array([ 0., -1.,  0.])
     """
-    check_twist_graph(graph)
-    tolerance = _check_tolerance(rtol, "rtol")
-    basis_tolerance = _check_tolerance(basis_rtol, "basis_rtol")
-    arrays, batch = checked_screws(graph, screws)
-    actuated = tuple(
-        sorted(key for _, _, key, joint in graph.edges(keys=True, data="joint") if joint.actuated)
-    )
-    nominal = dof if dof is not None else graph.graph.get("dof", len(actuated))
-    if not B.is_dof(nominal):
-        raise TwistGraphError(f"Expected `dof` to be an integer in 0..6, got {nominal!r}.")
-    raw_basis = B.as_array(twist_basis, "twist_basis", (None, 6), symbolic=False)
-    try:
-        basis = np.broadcast_to(raw_basis, (*batch, nominal, 6)).reshape(-1, nominal, 6)
-    except ValueError as err:
-        raise ScrewkitValueError(
-            f"Expected `twist_basis` to have shape (..., {nominal}, 6) broadcastable to the batch shape "
-            f"{batch}, got {raw_basis.shape}."
-        ) from err
-    flat = {key: value.reshape(-1, *value.shape[-2:]) for key, value in arrays.items()}
-    centre, length = axes_frame(np.concatenate(list(flat.values()), axis=-2))
-    scaled = {key: _to_scaled(value, centre, length) for key, value in flat.items()}
-    base, platform = graph.graph["base"], graph.graph["platform"]
-    whole = LoopClosureLayout(graph, list(graph.edges(keys=True)), base, platform)
-    scaled_basis = _to_scaled(basis, centre, length)
-    _check_independent(scaled_basis, nominal, tolerance, batch)
-    unit = np.ones(len(basis))
-    paths = simple_paths(graph)
-    rows, twists, substituted = [], [], []
-    for name in actuated:
-        edges = sorted({e[:3] for p in paths if any(x[2] == name for x in p) for e in p}, key=str)
-        if not edges:
-            raise TwistGraphError(f"Actuated joint {name!r} lies on no path from the base to the platform.")
-        _check_in_series(name, edges)
-        structure = LoopClosureLayout(graph, edges, base, platform)
-        passive = _reciprocal(*_span(*structure.matrices(scaled, frozenset({name})), tolerance))
-        twist = scaled[name][:, :1, :]  # (N, 1, 6)
-        projection = (_products(passive, twist) * passive).sum(axis=-2)  # (N, 6)
-        transmission = _safe_divide(
-            np.abs(_products(projection[:, None, :], twist)[:, 0, 0]),
-            _size(projection[:, None, :], unit, tolerance)[:, 0] * _size(twist, unit, tolerance)[:, 0],
-        )
-        none = transmission <= tolerance
-        chosen = np.where(none[:, None], _most_acting(passive, scaled_basis, unit, tolerance), projection)
-        rows.append(_from_scaled(chosen[:, None, :], centre, length)[:, 0])
-        twists.append(flat[name][:, 0, :])
-        substituted.append(none)
-    count, n = len(basis), len(actuated)
-    result = _jacobian_arrays(
-        np.stack(rows, axis=1) if n else np.zeros((count, 0, 6)),
-        np.stack(twists, axis=1) if n else np.zeros((count, 0, 6)),
-        basis,
-        length,
-        np.stack(substituted, axis=1) if n else np.zeros((count, 0), dtype=bool),
-        tolerance,
-    )
-    platform_span, _ = _span(*whole.matrices(scaled, frozenset()), tolerance)
-    _check_inside(scaled_basis, platform_span, result["serial"].any(axis=-1), basis_tolerance, batch)
-    return PoseBatchJacobians(
-        A=result["A"].reshape(*batch, n, nominal),
-        B=result["B"].reshape(*batch, n, n),
-        wrenches=result["wrenches"].reshape(*batch, n, 6),
-        actuated_joints=actuated,
-        serial=result["serial"].reshape(*batch, n),
-        closeness={"direct": result["direct"].reshape(batch), "inverse": result["inverse"].reshape(batch)},
-        rtol=tolerance,
-    )
+    from .singularity import classify_poses
+
+    tolerance = checked_rtol(rtol, "rtol")
+    analysis = classify_poses(graph, screws, dof=dof, rtol=tolerance).analysis
+    return jacobians_from_wrenches(analysis, twist_basis, basis_rtol=basis_rtol)

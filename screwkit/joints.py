@@ -45,6 +45,8 @@ __all__ = [
     "JOINT_TYPES",
     "PARALLEL_RTOL",
     "Joint",
+    "JointSpec",
+    "JointTable",
     "cylindrical",
     "helical",
     "lead_to_pitch",
@@ -378,3 +380,198 @@ def virtual(name: str, screw: Any) -> Joint:
     else:
         kind = "vP" if S.is_infinite_pitch(row[0]) else ("vR" if S.is_zero_pitch(row[0]) else "vH")
     return Joint(name, kind, row, virtual=True)
+
+
+@dataclass(frozen=True)
+class JointSpec:
+    """One joint of a mechanism's structure: everything but its screws (hashable).
+
+    Attributes
+    ----------
+    name : str
+    type : str
+        One of :data:`JOINT_TYPES`.
+    parent, child : hashable
+        The links it joins (its twists are the child's relative to the parent).
+    dof : int
+    actuated : bool
+
+    Examples
+    --------
+    >>> JointSpec("A1", "R", "base", "arm1", 1, True).dof
+    1
+    """
+
+    name: str
+    type: str
+    parent: Any
+    child: Any
+    dof: int
+    actuated: bool = False
+
+
+@dataclass(frozen=True, eq=False)
+class JointTable:
+    """A mechanism's joints over a batch of configurations: the structure once, the screws batched.
+
+    The input of the analysis core (design.md §1a): a family's ``joints(config)`` returns one, and
+    :meth:`from_graph` makes one (a batch of one) from any twist graph.
+
+    Attributes
+    ----------
+    base, platform : hashable
+    specs : tuple of JointSpec
+    screws : numpy.ndarray, shape (..., rows, 6)
+        Every joint's screws stacked in the order of ``specs`` (read-only floats).
+    dof : int or None
+        The platform's nominal mobility (None: the number of actuated joints).
+    anchor : numpy.ndarray, shape (..., 3), or None
+        A point that moves with the mechanism, fixing its reference point along the axes when they
+        are all parallel (a planar mechanism; :func:`screwkit.twistgraph.graph_frame`).
+
+    Examples
+    --------
+    >>> table = JointTable.from_rows("B", "E", [("B", "E", "P", "P", [[[0, 0, 0, 1.0, 0, 0]]] * 2, True)])
+    >>> table.batch_shape, table.joint_screws("P").shape
+    ((2,), (2, 1, 6))
+    >>> table[1].graph().edges["B", "E", "P"]["joint"].actuated
+    True
+    """
+
+    base: Any
+    platform: Any
+    specs: tuple[JointSpec, ...]
+    screws: Array
+    dof: int | None = None
+    anchor: Array | None = None
+
+    def __post_init__(self) -> None:
+        rows = sum(spec.dof for spec in self.specs)
+        screws = np.array(self.screws, dtype=float)
+        if screws.ndim < 2 or screws.shape[-2:] != (rows, 6):
+            raise ScrewkitValueError(
+                f"Expected `screws` of shape (..., {rows}, 6) for the table's joints, got {screws.shape}."
+            )
+        if not np.all(np.isfinite(screws)):
+            raise ScrewkitValueError("Expected finite joint screws, got NaN or infinity.")
+        screws.flags.writeable = False
+        object.__setattr__(self, "screws", screws)
+        if self.anchor is not None:
+            anchor = np.broadcast_to(np.asarray(self.anchor, dtype=float), (*screws.shape[:-2], 3)).copy()
+            anchor.flags.writeable = False
+            object.__setattr__(self, "anchor", anchor)
+
+    @classmethod
+    def from_rows(
+        cls,
+        base: Any,
+        platform: Any,
+        rows: list[tuple[Any, Any, str, str, Any, bool]],
+        *,
+        dof: int | None = None,
+        anchor: Any = None,
+    ) -> JointTable:
+        """A table from ``(parent, child, name, type, screws (..., dof_j, 6), actuated)`` rows.
+
+        Examples
+        --------
+        >>> JointTable.from_rows("B", "E", [("B", "E", "R", "R", [[0, 0, 1.0, 0, 0, 0]], False)]).specs[0]
+        JointSpec(name='R', type='R', parent='B', child='E', dof=1, actuated=False)
+        """
+        arrays = [np.asarray(screws, dtype=float) for *_, screws, _ in rows]
+        batch = np.broadcast_shapes(*(a.shape[:-2] for a in arrays)) if arrays else ()
+        specs = tuple(
+            JointSpec(name, kind, parent, child, array.shape[-2], bool(actuated))
+            for (parent, child, name, kind, _, actuated), array in zip(rows, arrays, strict=True)
+        )
+        stacked = (
+            np.concatenate([np.broadcast_to(a, (*batch, *a.shape[-2:])) for a in arrays], axis=-2)
+            if arrays
+            else np.zeros((0, 6))
+        )
+        return cls(base, platform, specs, stacked, dof, anchor)
+
+    @classmethod
+    def from_graph(cls, graph: Any, *, joint_key: str = "joint") -> JointTable:
+        """The table of a twist graph at its configuration (a batch of one pose: shape ``()``).
+
+        Examples
+        --------
+        >>> from screwkit.twistgraph import twist_graph
+        >>> G = twist_graph("B", "E", [("B", "E", revolute("R", [0, 0, 1], [0, 0, 0]))])
+        >>> JointTable.from_graph(G).batch_shape
+        ()
+        """
+        from .twistgraph import check_twist_graph, graph_anchor
+
+        check_twist_graph(graph, joint_key=joint_key)
+        joints = sorted(graph.edges(keys=True, data=joint_key), key=lambda e: str(e[2]))
+        rows = [
+            (u, v, key, joint.type, np.asarray(joint.screws, dtype=float), joint.actuated)
+            for u, v, key, joint in joints
+        ]
+        return cls.from_rows(
+            graph.graph["base"],
+            graph.graph["platform"],
+            rows,
+            dof=graph.graph.get("dof"),
+            anchor=graph_anchor(graph, joint_key=joint_key),
+        )
+
+    @property
+    def batch_shape(self) -> tuple[int, ...]:
+        """The leading batch shape of :attr:`screws`."""
+        return self.screws.shape[:-2]
+
+    def __len__(self) -> int:
+        if not self.batch_shape:
+            raise TypeError("a JointTable of one configuration has no length")
+        return self.batch_shape[0]
+
+    def __getitem__(self, index: Any) -> JointTable:
+        anchor = None if self.anchor is None else self.anchor[index]
+        return JointTable(self.base, self.platform, self.specs, self.screws[index], self.dof, anchor)
+
+    def joint_screws(self, name: str) -> Array:
+        """The screws of one joint over the batch, ``(..., dof_j, 6)``.
+
+        Examples
+        --------
+        >>> table = JointTable.from_rows("B", "E", [("B", "E", "R", "R", [[0, 0, 1.0, 0, 0, 0]], 0)])
+        >>> table.joint_screws("R")
+        array([[0., 0., 1., 0., 0., 0.]])
+        """
+        start = 0
+        for spec in self.specs:
+            if spec.name == name:
+                return self.screws[..., start : start + spec.dof, :]
+            start += spec.dof
+        raise ScrewkitValueError(f"Expected the name of a joint of the table, got {name!r}.")
+
+    def graph(self, index: Any = ()) -> Any:
+        """The twist graph (:class:`networkx.MultiDiGraph`) of one configuration of the batch.
+
+        Examples
+        --------
+        >>> table = JointTable.from_rows("B", "E", [("B", "E", "R", "R", [[0, 0, 1.0, 0, 0, 0]], 0)])
+        >>> sorted(table.graph().edges(keys=True))
+        [('B', 'E', 'R')]
+        """
+        from .twistgraph import twist_graph
+
+        one = self[index] if index != () else self
+        if one.batch_shape:
+            raise ScrewkitValueError(
+                f"Expected `index` to pick one configuration of the batch of shape {self.batch_shape}, "
+                f"got {index!r}."
+            )
+        joints, start = [], 0
+        for spec in one.specs:
+            screws = one.screws[start : start + spec.dof]
+            start += spec.dof
+            joint = Joint(spec.name, spec.type, screws, spec.actuated, spec.type.startswith("v"))
+            joints.append((spec.parent, spec.child, joint))
+        graph = twist_graph(one.base, one.platform, joints, dof=one.dof)
+        if one.anchor is not None:
+            graph.graph["anchor"] = one.anchor.tolist()
+        return graph

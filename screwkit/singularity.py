@@ -1,4 +1,4 @@
-"""Labels at a pose: regular, constraint, actuation or serial (limb) singularity (numeric).
+"""Labels over poses: regular, constraint, actuation or serial (limb) singularity (numeric).
 
 From a :class:`~screwkit.wrenches.WrenchAnalysis` (paper 002 §4–5; Zlatanov, Bonev & Gosselin
 2002 for the constraint/actuation distinction):
@@ -15,9 +15,12 @@ From a :class:`~screwkit.wrenches.WrenchAnalysis` (paper 002 §4–5; Zlatanov, 
 The *uncontrolled twists* are the platform twists reciprocal to every constraint and actuation
 wrench: the motions left with all actuators locked (empty at a regular pose).
 
+One pose and many go through the same kernels (:func:`screwkit.wrenches.analyze_table`):
+:func:`classify` is a batch of one, :func:`classify_poses` and :func:`classify_table` a batch.
+
 Closeness measures (all in [0, 1], unit-free, computed about the mechanism's own reference point
-and length (:func:`~screwkit.twistgraph.graph_frame`), so they follow rigid motions and changes of
-unit; 0 at the singularity):
+and length (:func:`~screwkit.twistgraph.mechanism_frame`), so they follow rigid motions and
+changes of unit; 0 at the singularity):
 
 * ``constraint``: σ_c0 / σ_1 of orthonormal bases of the compound legs' constraint systems,
   stacked, with ``c0 = 6 − dof`` (about the reference point, moments over the length);
@@ -37,6 +40,7 @@ regular (dof 1): constraint order 5/5, global order 6/6
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -45,12 +49,27 @@ import numpy as np
 
 from . import _backend as B
 from . import screw as S
+from .exceptions import ScrewkitTypeError, ScrewkitValueError
+from .joints import JointTable
 from .screwsystem import ScrewSystem
-from .wrenches import WrenchAnalysis, wrench_analysis
+from .twistgraph import check_twist_graph
+from .wrenches import WrenchAnalysis, analyze_table, wrench_analysis
 
-__all__ = ["SerialSingularity", "SingularityReport", "classify", "classify_analysis"]
+__all__ = [
+    "LABELS",
+    "SerialSingularity",
+    "SingularityReport",
+    "checked_screws",
+    "classify",
+    "classify_analysis",
+    "classify_poses",
+    "classify_table",
+]
 
 Array = np.ndarray
+
+#: The labels, and their bit in :attr:`SingularityReport.codes`: constraint 1, actuation 2, serial 4.
+LABELS = ("constraint", "actuation", "serial")
 
 
 @dataclass(frozen=True, eq=False)
@@ -73,58 +92,156 @@ class SerialSingularity:
 
 @dataclass(frozen=True, eq=False)
 class SingularityReport:
-    """The verdict at one pose. ``labels`` is empty at a regular pose.
+    """The verdicts over a batch of poses (shape ``()`` for one pose), from a wrench analysis.
+
+    Index it (``report[3]``) for one pose. ``labels`` is empty at a regular pose.
 
     Attributes
     ----------
-    labels : tuple of str
-        Any of ``"constraint"``, ``"actuation"``, ``"serial"``.
-    dof : int
-        Nominal mobility.
-    constraint_order, nominal_constraint_order : int
-    global_order : int
-    gained_dof : int
-        Freedoms the platform gains from the loss of constraints (``nominal − order(W^c)``, ≥ 0).
-    lost_dof : int
-        Freedoms the platform lacks at this pose (``order(W^c) − nominal``, ≥ 0): a mechanism
-        locked or overconstrained here; not a singularity label, but reported.
-    uncontrolled_dof : int
-        ``6 − order(W^c + W^a)``: the freedoms left with all actuators locked.
-    uncontrolled_twists : numpy.ndarray, shape (uncontrolled_dof, 6)
-        A readable basis of those twists (user frame).
-    serial : tuple of SerialSingularity
-    closeness : dict
-        ``{"constraint": float, "actuation": float, "serial": float}`` (module docstring).
     analysis : WrenchAnalysis
     """
 
-    labels: tuple[str, ...]
-    dof: int
-    constraint_order: int
-    nominal_constraint_order: int
-    global_order: int
-    gained_dof: int
-    lost_dof: int
-    uncontrolled_dof: int
-    uncontrolled_twists: Array
-    serial: tuple[SerialSingularity, ...]
-    closeness: dict[str, float]
     analysis: WrenchAnalysis = field(repr=False)
 
+    # --- arrays over the batch -------------------------------------------------------------------
     @property
-    def is_singular(self) -> bool:
-        """True when any label applies."""
-        return bool(self.labels)
+    def shape(self) -> tuple[int, ...]:
+        """The batch shape."""
+        return self.analysis.shape
 
     @property
-    def verdict(self) -> str:
-        """``"regular"`` or the labels joined, e.g. ``"constraint singularity"``."""
-        if not self.labels:
-            return "regular"
-        return " + ".join(self.labels) + " singularity"
+    def single(self) -> bool:
+        """True for one pose."""
+        return self.analysis.single
+
+    def __len__(self) -> int:
+        return len(self.analysis)
+
+    def __getitem__(self, index: Any) -> SingularityReport:
+        return SingularityReport(self.analysis[index])
+
+    @property
+    def dof(self) -> int:
+        """Nominal mobility."""
+        return self.analysis.dof
+
+    @property
+    def nominal_constraint_order(self) -> int:
+        """``6 − dof``."""
+        return 6 - self.analysis.dof
+
+    @property
+    def constraint_order(self) -> Any:
+        """Order of ``W^c`` (int, or an array over the batch)."""
+        return self.analysis.constraint_order
+
+    @property
+    def global_order(self) -> Any:
+        """Order of ``W^c + W^a``."""
+        return self.analysis.global_order
+
+    @property
+    def gained_dof(self) -> Any:
+        """Freedoms the platform gains from the loss of constraints (``nominal − order(W^c)``, ≥ 0)."""
+        return _same_kind(np.maximum(self.nominal_constraint_order - np.asarray(self.constraint_order), 0))
+
+    @property
+    def lost_dof(self) -> Any:
+        """Freedoms the platform lacks here (``order(W^c) − nominal``, ≥ 0): a mechanism locked or
+        overconstrained here; not a singularity label, but reported."""
+        return _same_kind(np.maximum(np.asarray(self.constraint_order) - self.nominal_constraint_order, 0))
+
+    @property
+    def uncontrolled_dof(self) -> Any:
+        """``6 − order(W^c + W^a)``: the freedoms left with all actuators locked."""
+        return _same_kind(6 - np.asarray(self.global_order))
+
+    @property
+    def serial_flags(self) -> Array:
+        """``(..., n_actuated)``: True where that limb is serially singular (joint order:
+        :attr:`actuated_joints`)."""
+        return self.analysis.serial
+
+    @property
+    def actuated_joints(self) -> tuple[str, ...]:
+        """The actuated joints, sorted (the limbs' order)."""
+        return self.analysis.topology.actuated
+
+    @property
+    def closeness(self) -> dict[str, Any]:
+        """``{"constraint", "actuation", "serial"}`` (module docstring): floats or arrays."""
+        return self.analysis.closeness
+
+    @property
+    def constraint(self) -> Any:
+        """True where the constraint system is below its nominal order."""
+        return _same_kind(np.asarray(self.constraint_order) < self.nominal_constraint_order)
+
+    @property
+    def actuation(self) -> Any:
+        """True where the constraint system is nominal but the global system is below 6."""
+        return _same_kind(~np.asarray(self.constraint) & (np.asarray(self.global_order) < 6))
+
+    @property
+    def codes(self) -> Array:
+        """An integer per pose: bit 1 constraint, 2 actuation, 4 serial (0 regular)."""
+        constraint = np.asarray(self.constraint_order) < self.nominal_constraint_order
+        actuation = ~constraint & (np.asarray(self.global_order) < 6)
+        serial = np.asarray(self.analysis.serial).any(axis=-1)
+        return constraint * 1 + actuation * 2 + serial * 4
+
+    @property
+    def labels(self) -> Any:
+        """A tuple of labels for one pose; over a batch, an object array of such tuples."""
+        codes = np.asarray(self.codes)
+        tuples = [tuple(name for bit, name in enumerate(LABELS) if code >> bit & 1) for code in codes.ravel()]
+        if self.single:
+            return tuples[0]
+        out = np.empty(len(tuples), dtype=object)
+        out[:] = tuples
+        return out.reshape(codes.shape)
+
+    @property
+    def is_singular(self) -> Any:
+        """True where any label applies."""
+        return _same_kind(np.asarray(self.codes) > 0)
+
+    @property
+    def verdict(self) -> Any:
+        """``"regular"`` or the labels joined, e.g. ``"constraint singularity"`` (an array of such
+        strings over a batch)."""
+        names = [_verdict(code) for code in range(8)]
+        if self.single:
+            return names[int(self.codes)]
+        return np.asarray(names, dtype=object)[np.asarray(self.codes)]
+
+    # --- one pose --------------------------------------------------------------------------------
+    def _require_single(self, what: str) -> None:
+        if not self.single:
+            raise ScrewkitTypeError(
+                f"Expected one pose for `{what}`, got a batch of shape {self.shape}; index the report first."
+            )
+
+    @property
+    def uncontrolled_twists(self) -> Array:
+        """A readable basis ``(uncontrolled_dof, 6)`` of the twists left with the actuators locked
+        (user frame; one pose)."""
+        self._require_single("uncontrolled_twists")
+        system = self.analysis.uncontrolled_twists
+        return system.readable_basis() if system.order else np.zeros((0, 6))
+
+    @property
+    def serial(self) -> tuple[SerialSingularity, ...]:
+        """The serially singular limbs (one pose)."""
+        self._require_single("serial")
+        return tuple(
+            SerialSingularity(limb.actuated_joint, limb.constraint_wrenches, limb.transmission)
+            for limb in self.analysis.limbs
+            if limb.actuation_wrench is None
+        )
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready report.
+        """JSON-ready report of one pose.
 
         Examples
         --------
@@ -134,16 +251,17 @@ class SingularityReport:
         >>> classify(G).to_dict()["verdict"]
         'regular'
         """
+        self._require_single("to_dict")
         return {
             "verdict": self.verdict,
             "labels": list(self.labels),
             "dof": self.dof,
-            "constraint_order": self.constraint_order,
+            "constraint_order": int(self.constraint_order),
             "nominal_constraint_order": self.nominal_constraint_order,
-            "global_order": self.global_order,
-            "gained_dof": self.gained_dof,
-            "lost_dof": self.lost_dof,
-            "uncontrolled_dof": self.uncontrolled_dof,
+            "global_order": int(self.global_order),
+            "gained_dof": int(self.gained_dof),
+            "lost_dof": int(self.lost_dof),
+            "uncontrolled_dof": int(self.uncontrolled_dof),
             "uncontrolled_twists": [S.Screw(t).to_dict() for t in self.uncontrolled_twists],
             "serial": [
                 {
@@ -153,10 +271,19 @@ class SingularityReport:
                 }
                 for s in self.serial
             ],
-            "closeness": dict(self.closeness),
+            "closeness": {k: float(v) for k, v in self.closeness.items()},
         }
 
+    def __repr__(self) -> str:
+        if self.single:
+            return f"SingularityReport({self.verdict!r})"
+        return f"SingularityReport(shape={self.shape})"
+
     def __str__(self) -> str:
+        if not self.single:
+            codes = np.asarray(self.codes).ravel()
+            counts = ", ".join(f"{_verdict(c)} {int((codes == c).sum())}" for c in np.unique(codes))
+            return f"{codes.size} poses (dof {self.dof}): {counts}"
         lines = [
             f"{self.verdict} (dof {self.dof}): constraint order {self.constraint_order}/"
             f"{self.nominal_constraint_order}, global order {self.global_order}/6"
@@ -176,33 +303,13 @@ class SingularityReport:
         return "\n".join(lines)
 
 
-def _constraint_systems(analysis: WrenchAnalysis) -> list[ScrewSystem]:
-    """The compound legs' constraint systems, or the mechanism's when it is not series-parallel."""
-    return [leg.constraint_wrenches for leg in analysis.compound_legs] or [analysis.constraint_wrenches]
+def _verdict(code: int) -> str:
+    names = [name for bit, name in enumerate(LABELS) if code >> bit & 1]
+    return " + ".join(names) + " singularity" if names else "regular"
 
 
-def _orthonormal(rows: Array, analysis: WrenchAnalysis, *, each: bool = False) -> Array:
-    """Rows about the reference point, moments over the length, then an orthonormal basis of their
-    span (or, with ``each``, each row normalised): a metric rigid motions and changes of unit keep,
-    so the measures below depend on the subspaces only, not on the bases chosen for them."""
-    rows = np.asarray(rows, dtype=float).reshape(-1, 6)
-    if rows.shape[0] == 0:
-        return rows
-    scaled = S.transform(rows, np.eye(3), -analysis.reference_point)
-    scaled[:, 3:] /= analysis.length_scale
-    if each:
-        return scaled / np.linalg.norm(scaled, axis=1, keepdims=True)
-    return np.linalg.qr(scaled.T)[0].T
-
-
-def _ratio(rows: Array, index: int) -> float:
-    """σ_index / σ_1 of rows already about the reference point and scaled (0 if fewer rows)."""
-    if index <= 0:
-        return 1.0
-    if rows.shape[0] < index:
-        return 0.0
-    values = np.linalg.svd(rows, compute_uv=False)
-    return float(values[index - 1] / values[0]) if values[0] > 0 else 0.0
+def _same_kind(value: Array) -> Any:
+    return value.item() if value.ndim == 0 else value
 
 
 def classify_analysis(analysis: WrenchAnalysis) -> SingularityReport:
@@ -212,51 +319,13 @@ def classify_analysis(analysis: WrenchAnalysis) -> SingularityReport:
     --------
     >>> from screwkit.joints import prismatic
     >>> from screwkit.twistgraph import twist_graph
-    >>> from screwkit.wrenches import wrench_analysis
     >>> G = twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))])
     >>> classify_analysis(wrench_analysis(G)).labels
     ()
     """
-    nominal = 6 - analysis.dof
-    order = analysis.constraint_wrenches.order
-    global_order = analysis.global_wrenches.order
-    labels = []
-    if order < nominal:
-        labels.append("constraint")
-    elif global_order < 6:
-        labels.append("actuation")
-    serial = tuple(
-        SerialSingularity(limb.actuated_joint, limb.constraint_wrenches, limb.transmission)
-        for limb in analysis.limbs
-        if limb.actuation_wrench is None
-    )
-    if serial:
-        labels.append("serial")
-    uncontrolled = analysis.global_wrenches.reciprocal()
-    generators = np.vstack(
-        [_orthonormal(system.basis, analysis) for system in _constraint_systems(analysis)]
-    ).reshape(-1, 6)
-    stacked = np.vstack([generators, _orthonormal(analysis.actuation_wrenches, analysis, each=True)])
-    transmissions = [limb.transmission for limb in analysis.limbs]
-    closeness = {
-        "constraint": _ratio(generators, nominal),
-        "actuation": _ratio(stacked, 6),
-        "serial": float(min(transmissions)) if transmissions else 1.0,
-    }
-    return SingularityReport(
-        labels=tuple(labels),
-        dof=analysis.dof,
-        constraint_order=order,
-        nominal_constraint_order=nominal,
-        global_order=global_order,
-        gained_dof=max(nominal - order, 0),
-        lost_dof=max(order - nominal, 0),
-        uncontrolled_dof=6 - global_order,
-        uncontrolled_twists=uncontrolled.readable_basis() if uncontrolled.order else np.zeros((0, 6)),
-        serial=serial,
-        closeness=closeness,
-        analysis=analysis,
-    )
+    if not isinstance(analysis, WrenchAnalysis):
+        raise ScrewkitTypeError(f"Expected `analysis` to be a WrenchAnalysis, got {type(analysis).__name__}.")
+    return SingularityReport(analysis)
 
 
 def classify(
@@ -271,12 +340,12 @@ def classify(
         Nominal mobility (see :func:`~screwkit.wrenches.wrench_analysis`).
     joint_key : str
     rtol : float, default 1e-9
-        Relative tolerance of every rank decision (singular values about the mechanism's reference
-        point, moments over its length).
+        Relative tolerance of every rank decision (:mod:`screwkit._frames`).
 
     Returns
     -------
     SingularityReport
+        Of one pose.
 
     Examples
     --------
@@ -288,4 +357,168 @@ def classify(
     >>> report.labels, report.constraint_order, report.lost_dof
     ((), 6, 1)
     """
-    return classify_analysis(wrench_analysis(graph, dof=dof, joint_key=joint_key, rtol=rtol))
+    return SingularityReport(wrench_analysis(graph, dof=dof, joint_key=joint_key, rtol=rtol))
+
+
+def classify_table(
+    table: JointTable, *, dof: int | None = None, rtol: float = B.DEFAULT_RTOL, chunk: int = 4096
+) -> SingularityReport:
+    """Label every configuration of a joint table, in chunks of the batch (bounded memory).
+
+    Parameters
+    ----------
+    table : JointTable
+    dof : int, optional
+    rtol : float, default 1e-9
+    chunk : int, default 4096
+        Configurations analysed at once.
+
+    Returns
+    -------
+    SingularityReport
+
+    Examples
+    --------
+    >>> from screwkit.joints import JointTable
+    >>> table = JointTable.from_rows("B", "E", [("B", "E", "P", "P", [[[0, 0, 0, 1.0, 0, 0]]] * 5, True)])
+    >>> classify_table(table, chunk=2).verdict.tolist()
+    ['regular', 'regular', 'regular', 'regular', 'regular']
+    """
+    if isinstance(chunk, bool) or not isinstance(chunk, int | np.integer) or chunk < 1:
+        raise ScrewkitValueError(f"Expected `chunk` to be a positive integer, got {chunk!r}.")
+    shape = table.batch_shape
+    if not shape:
+        raise ScrewkitValueError("Expected a table with a batch axis, got one configuration; use classify().")
+    flat = table.screws.reshape(-1, *table.screws.shape[-2:])
+    anchor = None if table.anchor is None else table.anchor.reshape(-1, 3)
+    parts = []
+    for start in range(0, max(len(flat), 1), chunk):
+        piece = JointTable(
+            table.base,
+            table.platform,
+            table.specs,
+            flat[start : start + chunk],
+            table.dof,
+            None if anchor is None else anchor[start : start + chunk],
+        )
+        parts.append(analyze_table(piece, dof=dof, rtol=rtol, views=False))
+    return SingularityReport(_joined(parts, table, shape))
+
+
+def _joined(parts: list[WrenchAnalysis], table: JointTable, shape: tuple[int, ...]) -> WrenchAnalysis:
+    """One analysis from chunks of a flattened batch, reshaped to ``shape``."""
+    first = parts[0]
+
+    def cat(values: list[Any]) -> Array:
+        return np.concatenate([np.asarray(v) for v in values]).reshape(
+            *shape, *np.asarray(values[0]).shape[1:]
+        )
+
+    frames = {
+        key: (cat([p.frames[key][0] for p in parts]), cat([p.frames[key][1] for p in parts]))
+        for key in first.frames
+    }
+    return WrenchAnalysis(
+        table=table,
+        topology=first.topology,
+        rtol=first.rtol,
+        dof=first.dof,
+        reference_point=cat([p.reference_point for p in parts]),
+        length_scale=cat([p.length_scale for p in parts]),
+        platform_order=cat([p.platform_order for p in parts]),
+        constraint_order=cat([p.constraint_order for p in parts]),
+        global_order=cat([p.global_order for p in parts]),
+        serial=cat([p.serial for p in parts]),
+        transmissions=cat([p.transmissions for p in parts]),
+        actuation_rows=cat([p.actuation_rows for p in parts]),
+        actuated_twists=cat([p.actuated_twists for p in parts]),
+        frames=frames,
+        closeness={k: cat([p.closeness[k] for p in parts]) for k in first.closeness},
+    )
+
+
+def checked_screws(
+    graph: nx.MultiDiGraph, screws: Mapping[str, Any]
+) -> tuple[dict[str, Array], tuple[int, ...]]:
+    """Validate batched joint screws against a template graph: ``{name: (..., dof, 6)}``, batch shape.
+
+    Examples
+    --------
+    >>> from screwkit.joints import prismatic
+    >>> from screwkit.twistgraph import twist_graph
+    >>> G = twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))])
+    >>> checked_screws(G, {"P": np.zeros((3, 1, 6))})[1]
+    (3,)
+    """
+    names = {key: joint for _, _, key, joint in graph.edges(keys=True, data="joint")}
+    if not isinstance(screws, Mapping):
+        raise ScrewkitTypeError(
+            f"Expected `screws` to map joint names to arrays, got {type(screws).__name__}."
+        )
+    missing, unknown = set(names) - set(screws), set(screws) - set(names)
+    if missing or unknown:
+        raise ScrewkitValueError(
+            f"Expected `screws` for exactly the graph's joints, got missing {sorted(missing)} and unknown "
+            f"{sorted(unknown, key=str)}."
+        )
+    arrays = {
+        key: B.as_array(value, f"screws[{key!r}]", (names[key].dof, 6), symbolic=False)
+        for key, value in sorted(screws.items())
+    }
+    shapes = [array.shape[:-2] for array in arrays.values()]
+    batch = max(set(shapes), key=shapes.count)  # the odd one out is the one named
+    for key, array in arrays.items():
+        if array.shape[:-2] != batch or not batch:
+            raise ScrewkitValueError(
+                f"Expected `screws[{key!r}]` of shape {(*batch, names[key].dof, 6)} with a batch axis, "
+                f"got {array.shape}."
+            )
+    return arrays, batch
+
+
+def classify_poses(
+    graph: nx.MultiDiGraph,
+    screws: Mapping[str, Any],
+    *,
+    dof: int | None = None,
+    rtol: float = B.DEFAULT_RTOL,
+) -> SingularityReport:
+    """Label a batch of poses of one mechanism given as a template graph and batched screws.
+
+    Parameters
+    ----------
+    graph : networkx.MultiDiGraph
+        A twist graph of the mechanism (any pose): its topology, names and actuated flags.
+    screws : mapping of joint name to array_like, shape (..., dof_j, 6)
+        The joints' screws over the batch.
+    dof : int, optional
+        Nominal mobility; default: the graph's ``dof``, else the number of actuated joints.
+    rtol : float, default 1e-9
+
+    Returns
+    -------
+    SingularityReport
+        Over the batch (:func:`classify_table`).
+
+    Raises
+    ------
+    ScrewkitValueError
+        If the screws do not match the graph's joints or their shapes disagree.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from screwkit.joints import revolute
+    >>> from screwkit.twistgraph import twist_graph
+    >>> G = twist_graph("B", "E", [("B", "E", revolute("R", [0, 0, 1], [0, 0, 0], actuated=True))])
+    >>> report = classify_poses(G, {"R": np.array([[[0, 0, 1, 0, 0, 0.0]], [[0, 0, 1, 1, 0, 0.0]]])})
+    >>> report.constraint_order, report.global_order
+    (array([5, 5]), array([6, 6]))
+    """
+    check_twist_graph(graph)
+    arrays, batch = checked_screws(graph, screws)
+    template = JointTable.from_graph(graph)
+    stacked = np.concatenate([arrays[spec.name] for spec in template.specs], axis=-2)
+    anchor = None if template.anchor is None else np.broadcast_to(template.anchor, (*batch, 3))
+    table = JointTable(template.base, template.platform, template.specs, stacked, template.dof, anchor)
+    return classify_table(table, dof=dof, rtol=rtol)

@@ -52,9 +52,11 @@ __all__ = [
     "equivalent_twist_graph",
     "from_data",
     "fundamental_loops",
+    "graph_anchor",
     "graph_frame",
     "joint_screws_along",
     "loop_closure_matrix",
+    "mechanism_frame",
     "platform_twist_system",
     "series_parallel_tree",
     "simple_paths",
@@ -196,8 +198,8 @@ def graph_frame(graph: nx.MultiDiGraph, *, joint_key: str = "joint") -> tuple[Ar
     rigid motion of the mechanism and any change of unit, so rank decisions and closeness
     measures made about them do not depend on where the user put the origin or which unit they
     used. With all axes parallel (a planar mechanism) the screws fix the point only across the
-    axes; along them it is the mean of the joints' own points (their ``geometry``, set by the
-    constructors of :mod:`screwkit.joints`), or the solution nearest the origin without them.
+    axes; along them it is taken from :func:`graph_anchor`, or is the solution nearest the origin
+    without one.
 
     Returns
     -------
@@ -213,34 +215,65 @@ def graph_frame(graph: nx.MultiDiGraph, *, joint_key: str = "joint") -> tuple[Ar
     >>> point.round(6) + 0.0, round(length, 6)
     (array([50.,  0.,  0.]), 50.0)
     """
-    rows = [data[joint_key].screws for _, _, data in graph.edges(data=True)]
+    joints = sorted(graph.edges(keys=True, data=joint_key), key=lambda e: str(e[2]))  # the core's order
+    rows = [joint.screws for _, _, _, joint in joints]
     stacked = np.concatenate(rows) if rows else np.zeros((0, 6))
     if stacked.dtype == object:
         return np.zeros(3), 1.0
-    point, length = axes_frame(stacked)
-    return _anchored(point, stacked, graph, joint_key), float(length)
+    anchor = graph_anchor(graph, joint_key=joint_key)
+    point, length = mechanism_frame(stacked[None], None if anchor is None else anchor[None])  # as the core
+    return point[0], float(length[0])
 
 
-def _anchored(point: Array, screws: Array, graph: nx.MultiDiGraph, joint_key: str) -> Array:
-    """With all finite axes parallel (a planar mechanism), nothing in the screws fixes the point
-    along their direction; take it from the joints' own points (their ``geometry``), which follow
-    the mechanism, when they have them."""
-    directions = screws[:, :3][np.linalg.norm(screws[:, :3], axis=1) > 0]
-    if len(directions) == 0:
-        return point
-    units = directions / np.linalg.norm(directions, axis=1, keepdims=True)
-    common = units[0]
-    if np.linalg.norm(np.cross(units, common), axis=1).max() > 1e-9:  # not all parallel
-        return point
+def graph_anchor(graph: nx.MultiDiGraph, *, joint_key: str = "joint") -> Array | None:
+    """A point that moves with the mechanism: the graph's ``anchor`` attribute if set, else the
+    mean of the joints' own points (their ``geometry``), else None.
+
+    Examples
+    --------
+    >>> from screwkit.joints import revolute
+    >>> graph_anchor(twist_graph("B", "E", [("B", "E", revolute("R", [0, 0, 1], [2.0, 0, 0]))]))
+    array([2., 0., 0.])
+    """
+    if graph.graph.get("anchor") is not None:
+        return np.asarray(graph.graph["anchor"], dtype=float)
     anchors = [
         data[joint_key].geometry[key]
         for _, _, data in graph.edges(data=True)
         for key in ("point", "center")
         if key in data[joint_key].geometry
     ]
-    if not anchors:
-        return point
-    return point + common * float((np.mean(anchors, axis=0) - point) @ common)
+    return np.mean(np.asarray(anchors, dtype=float), axis=0) if anchors else None
+
+
+def mechanism_frame(screws: Array, anchor: Array | None = None) -> tuple[Array, Array]:
+    """:func:`axes_frame` of screws ``(..., n, 6)``, with the point moved along the axes to the
+    ``anchor`` ``(..., 3)`` when all finite axes are parallel (the batched kernel of
+    :func:`graph_frame`).
+
+    Examples
+    --------
+    >>> rows = np.array([[0, 0, 1, 0, 0, 0], [0, 0, 1, 1, 0, 0.0]])
+    >>> mechanism_frame(rows, np.array([0, 0, 5.0]))[0].round(6) + 0.0
+    array([0. , 0.5, 5. ])
+    """
+    point, length = axes_frame(screws)
+    if anchor is None:
+        return point, length
+    directions = screws[..., :3]
+    sizes = np.linalg.norm(directions, axis=-1)
+    finite = sizes > 0
+    units = directions / np.where(finite, sizes, 1.0)[..., None]
+    first = np.take_along_axis(units, np.argmax(finite, axis=-1)[..., None, None], axis=-2)[..., 0, :]
+    spread = np.where(finite, np.linalg.norm(np.cross(units, first[..., None, :]), axis=-1), 0.0)
+    planar = finite.any(axis=-1) & (spread.max(axis=-1, initial=0.0) <= PARALLEL_AXES_RTOL)
+    along = np.einsum("...i,...i->...", np.asarray(anchor, dtype=float) - point, first)
+    return np.where(planar[..., None], point + first * along[..., None], point), length
+
+
+#: Sine of the largest angle between finite axes for which they count as all parallel (a planar
+#: mechanism) in :func:`mechanism_frame`.
+PARALLEL_AXES_RTOL = 1e-9
 
 
 def axes_frame(screws: Array) -> tuple[Array, Array]:

@@ -1,22 +1,27 @@
-"""Constraint and actuation wrench systems of a parallel mechanism (paper 002 §4.2–4.3).
+"""Constraint and actuation wrench systems of a parallel mechanism: the one batched core.
 
-For a twist graph at one configuration:
+For a mechanism's joint table over a batch of configurations (a single twist graph is a batch of
+one, :func:`wrench_analysis`), with the structure analysed once (:mod:`screwkit.topology`):
 
-* each **limb**, i.e. each actuated joint with the union of the simple base-to-platform paths
-  through it (compound legs through a nacelle included), has a twist system (the sum of its
-  joints' twists, paper 002 Eq. 1) and a constraint wrench system (its reciprocal);
-* the **actuation wrench** of an actuated joint is reciprocal to every twist of its limb except the
-  actuated joint's, and not reciprocal to that one (paper 002 §4.3); it is defined up to the limb's
-  constraint wrenches, and chosen as a line where one exists;
-* each **compound leg** (a branch of the series-parallel decomposition between base and platform,
-  such as the H4's ``L_I = l12 − R_I``) has its own twist and constraint systems; their
-  constraint systems add up to the mechanism's (paper 002 Eqs. 2–3);
-* the **global wrench system** is the sum of the mechanism's constraint wrenches and all
-  actuation wrenches (paper 002 Eq. 4); it is a 6-system at a regular pose.
+* the **platform's twist system** by series-parallel reduction (paper 002 Eqs. 1–2: the sum of
+  twist systems along a chain; across parallel branches their constraint systems add up, the
+  dual of the intersection), or by loop closure when the graph does not reduce;
+* each **limb** (an actuated joint with every base-to-platform path through it, paper 002
+  §4.3): its twist system with the actuator locked (the *passive* wrenches are its reciprocal),
+  with it free (the limb's constraint wrenches are its reciprocal), and its **actuation wrench**:
+  the passive wrench most reciprocal-productive with the actuated twist. In the scaled metric
+  (:mod:`screwkit._frames`) that is ``SWAP·t⊥`` with ``t⊥`` the actuated twist's component
+  orthogonal to the locked twist system, defined up to the limb's constraint wrenches and made a
+  line where adding one of them can (the representative drawn in diagrams). The actuator
+  cannot move the platform (a *serial singularity* of the limb) when ``t⊥`` vanishes;
+* each **compound leg** (a branch of the root of the series-parallel tree, such as the H4's
+  ``L_I = l12 − R_I``) has its own constraint system; they add up to the mechanism's
+  ``W^c`` (paper 002 Eq. 3);
+* the **global wrench system** ``W^c + W^a`` (paper 002 Eq. 4): a 6-system at a regular pose.
 
-All ranks are decided about the reference point and length of
-:func:`screwkit.twistgraph.graph_frame`, so they follow rigid motions and changes of unit; results
-are reported in the user's frame.
+Every decision is one rank rule (:mod:`screwkit._frames`), made about the reference point and
+length of :func:`screwkit.twistgraph.mechanism_frame` so that it follows rigid motions and
+changes of unit; results are reported in the user's frame.
 
 Examples
 --------
@@ -31,38 +36,38 @@ Examples
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+import functools
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import networkx as nx
 import numpy as np
 
 from . import _backend as B
+from . import _frames as F
 from . import screw as S
-from .exceptions import DegenerateGeometryError, TwistGraphError
-from .joints import Joint
+from .exceptions import DegenerateGeometryError, ScrewkitTypeError, ScrewkitValueError, TwistGraphError
+from .joints import Joint, JointTable
 from .screwsystem import ScrewSystem
-from .twistgraph import (
-    LoopEdge,
-    SeriesParallelNode,
-    check_twist_graph,
-    graph_frame,
-    joint_screws_along,
-    platform_twist_system,
-    series_parallel_tree,
-    simple_paths,
-)
+from .topology import Topology, network_layout, topology
+from .twistgraph import SeriesParallelNode, mechanism_frame
 
 __all__ = [
     "CompoundLeg",
     "Limb",
     "WrenchAnalysis",
+    "analyze_table",
+    "checked_rtol",
     "normalized_reciprocal_product",
     "translated_graph",
     "wrench_analysis",
 ]
 
 Array = np.ndarray
+Frame = tuple[Array, Array]
+
+#: Relative tolerance deciding that a chosen actuation wrench is a line (zero pitch).
+LINE_RTOL = 1e-6
 
 
 def translated_graph(graph: nx.MultiDiGraph, offset: Any, *, joint_key: str = "joint") -> nx.MultiDiGraph:
@@ -79,6 +84,8 @@ def translated_graph(graph: nx.MultiDiGraph, offset: Any, *, joint_key: str = "j
     shift = B.as_array(offset, "offset", (3,))
     moved = nx.MultiDiGraph(**graph.graph)
     moved.add_nodes_from(graph.nodes(data=True))
+    if moved.graph.get("anchor") is not None:
+        moved.graph["anchor"] = (np.asarray(moved.graph["anchor"], dtype=float) + shift).tolist()
     for u, v, key, data in graph.edges(keys=True, data=True):
         joint: Joint = data[joint_key]
         screws = S.transform(joint.screws, np.eye(3), shift)
@@ -91,7 +98,7 @@ def translated_graph(graph: nx.MultiDiGraph, offset: Any, *, joint_key: str = "j
     return moved
 
 
-def _magnitude(rows: Array, length_scale: float, rtol: float) -> Array:
+def _magnitude(rows: Array, length_scale: Any, rtol: float) -> Array:
     directions = np.linalg.norm(rows[..., :3], axis=-1)
     moments = np.linalg.norm(rows[..., 3:], axis=-1) / length_scale
     return np.where(directions > rtol * moments, directions, moments)
@@ -123,16 +130,22 @@ def normalized_reciprocal_product(
     return product / (_magnitude(a, length_scale, rtol) * _magnitude(b, length_scale, rtol) * length_scale)
 
 
+# --------------------------------------------------------------------------------------------------
+# Per-pose views (built from the batched arrays of one pose; no decision is made again)
+# --------------------------------------------------------------------------------------------------
+
+
 @dataclass(frozen=True, eq=False)
 class Limb:
-    """One actuated joint with its limb (every base-to-platform path through it).
+    """One actuated joint with its limb (every base-to-platform path through it), at one pose.
 
     Attributes
     ----------
     actuated_joint : str
     joints : tuple of str
         The joints of the limb, the actuated one included.
-    paths : tuple of tuple of LoopEdge
+    edges : tuple of (u, v, key)
+        The limb's edges in the twist graph.
     twist_system : ScrewSystem
         Sum of the twists of the limb's joints (paper 002 Eq. 1).
     constraint_wrenches : ScrewSystem
@@ -150,7 +163,7 @@ class Limb:
 
     actuated_joint: str
     joints: tuple[str, ...]
-    paths: tuple[tuple[LoopEdge, ...], ...]
+    edges: tuple[tuple[Any, Any, str], ...]
     twist_system: ScrewSystem
     constraint_wrenches: ScrewSystem
     passive_wrenches: ScrewSystem
@@ -183,51 +196,178 @@ class CompoundLeg:
         return "leg through " + ", ".join(self.actuated or sorted(self.joints)[:2])
 
 
+# --------------------------------------------------------------------------------------------------
+# The batched result
+# --------------------------------------------------------------------------------------------------
+
+
 @dataclass(frozen=True, eq=False)
 class WrenchAnalysis:
-    """Wrench systems of a mechanism at one configuration (see the module docstring).
+    """Wrench systems of a mechanism over a batch of configurations (see the module docstring).
 
-    Every screw system here is expressed in the user's frame.
+    Arrays have the leading batch shape :attr:`shape` (``()`` for one pose). Index it like an
+    array (``analysis[3]``) for one pose; the per-pose views (:attr:`platform_twists`,
+    :attr:`limbs`, :attr:`graph`, ...) need a single pose.
 
     Attributes
     ----------
-    graph : networkx.MultiDiGraph
-        The analysed twist graph.
-    reference_point, length_scale : numpy.ndarray (3,), float
-        From :func:`~screwkit.twistgraph.graph_frame`.
+    table : JointTable
+    topology : Topology
     rtol : float
     dof : int
         The nominal mobility of the platform.
-    platform_twists : ScrewSystem
-    constraint_wrenches : ScrewSystem
-        The mechanism's constraint wrench system ``W^c = T^⊥`` (paper 002 Eq. 3).
-    compound_legs : tuple of CompoundLeg
-        Empty when the graph is not series-parallel.
-    limbs : tuple of Limb
-        One per actuated joint.
-    global_wrenches : ScrewSystem
-        ``W^c + W^a`` (paper 002 Eq. 4).
-    tree : SeriesParallelNode or None
-        The series-parallel decomposition, about the reference point (None if the graph is not
-        series-parallel).
+    reference_point : numpy.ndarray, shape (..., 3)
+    length_scale : numpy.ndarray or float, shape (...)
+        From :func:`~screwkit.twistgraph.mechanism_frame`.
+    platform_order, constraint_order, global_order : numpy.ndarray of int, shape (...)
+    serial : numpy.ndarray of bool, shape (..., n_actuated)
+        True where the limb's actuator cannot move the platform.
+    transmissions : numpy.ndarray, shape (..., n_actuated)
+    actuation_rows : numpy.ndarray, shape (..., n_actuated, 6)
+        The actuation wrenches, user frame, each a unit force or unit couple (zero where serial).
+    actuated_twists : numpy.ndarray, shape (..., n_actuated, 6)
     """
 
-    graph: nx.MultiDiGraph
-    reference_point: Array
-    length_scale: float
+    table: JointTable = field(repr=False)
+    topology: Topology = field(repr=False)
     rtol: float
     dof: int
-    platform_twists: ScrewSystem
-    constraint_wrenches: ScrewSystem
-    compound_legs: tuple[CompoundLeg, ...]
-    limbs: tuple[Limb, ...]
-    global_wrenches: ScrewSystem
-    tree: SeriesParallelNode | None = None
+    reference_point: Array = field(repr=False)
+    length_scale: Any = field(repr=False)
+    platform_order: Array
+    constraint_order: Array
+    global_order: Array
+    serial: Array
+    transmissions: Array = field(repr=False)
+    actuation_rows: Array = field(repr=False)
+    actuated_twists: Array = field(repr=False)
+    frames: dict[str, Frame] = field(repr=False)
+    closeness: dict[str, Array] = field(repr=False)
+
+    # --- batch behaviour -------------------------------------------------------------------------
+    @property
+    def shape(self) -> tuple[int, ...]:
+        """The batch shape (``()`` for one pose)."""
+        return tuple(np.shape(self.platform_order))
+
+    @property
+    def single(self) -> bool:
+        """True for one pose."""
+        return self.shape == ()
+
+    def __len__(self) -> int:
+        if self.single:
+            raise TypeError("a WrenchAnalysis of one pose has no length")
+        return self.shape[0]
+
+    def __getitem__(self, index: Any) -> WrenchAnalysis:
+        def pick(value: Any) -> Any:
+            return value[index]
+
+        return replace(
+            self,
+            table=self.table[index],
+            reference_point=pick(self.reference_point),
+            length_scale=_scalar(pick(np.asarray(self.length_scale))),
+            platform_order=_scalar(pick(self.platform_order)),
+            constraint_order=_scalar(pick(self.constraint_order)),
+            global_order=_scalar(pick(self.global_order)),
+            serial=pick(self.serial),
+            transmissions=pick(self.transmissions),
+            actuation_rows=pick(self.actuation_rows),
+            actuated_twists=pick(self.actuated_twists),
+            frames={k: (rows[index], _scalar(order[index])) for k, (rows, order) in self.frames.items()},
+            closeness={k: _scalar(v[index]) for k, v in self.closeness.items()},
+        )
+
+    def __repr__(self) -> str:
+        return f"WrenchAnalysis(shape={self.shape}, dof={self.dof}, actuated={self.topology.actuated})"
+
+    # --- per-pose views --------------------------------------------------------------------------
+    def _require_single(self, what: str) -> None:
+        if not self.single:
+            raise ScrewkitTypeError(
+                f"Expected one pose for `{what}`, got a batch of shape {self.shape}; "
+                "index the analysis first."
+            )
+
+    def _system(self, key: str) -> ScrewSystem:
+        self._require_single(key)
+        rows, order = self.frames[key]
+        user = F.from_scaled(rows[: int(order)], self.reference_point, np.asarray(self.length_scale))
+        return ScrewSystem.from_independent(user, rtol=self.rtol, length_scale=float(self.length_scale))
+
+    @functools.cached_property
+    def graph(self) -> nx.MultiDiGraph:
+        """The analysed twist graph (one pose)."""
+        self._require_single("graph")
+        return self.table.graph()
+
+    @property
+    def platform_twists(self) -> ScrewSystem:
+        """The platform's twist system (one pose)."""
+        return self._system("platform")
+
+    @property
+    def constraint_wrenches(self) -> ScrewSystem:
+        """The mechanism's constraint wrench system ``W^c = T^⊥`` (paper 002 Eq. 3; one pose)."""
+        return self._system("constraint")
+
+    @property
+    def global_wrenches(self) -> ScrewSystem:
+        """``W^c + W^a`` (paper 002 Eq. 4; one pose)."""
+        return self._system("global")
+
+    @property
+    def uncontrolled_twists(self) -> ScrewSystem:
+        """The platform twists left with every actuator locked: reciprocal to ``W^c + W^a``."""
+        return self._system("uncontrolled")
+
+    @property
+    def compound_legs(self) -> tuple[CompoundLeg, ...]:
+        """The compound legs (empty when the graph is not series-parallel; one pose)."""
+        self._require_single("compound_legs")
+        if self.topology.network:
+            return ()
+        actuated = set(self.topology.actuated)
+        return tuple(
+            CompoundLeg(
+                node.joints,
+                self._system(f"leg{k}:T"),
+                self._system(f"leg{k}:W"),
+                tuple(sorted(j for j in node.joints if j in actuated)),
+            )
+            for k, node in enumerate(self.topology.nodes[i] for i in self.topology.legs)
+        )
+
+    @property
+    def limbs(self) -> tuple[Limb, ...]:
+        """One :class:`Limb` per actuated joint, sorted by name (one pose)."""
+        self._require_single("limbs")
+        edges = {spec.name: (spec.parent, spec.child, spec.name) for spec in self.table.specs}
+        result = []
+        for k, plan in enumerate(self.topology.limbs):
+            wrench = None if self.serial[k] else np.array(self.actuation_rows[k])
+            result.append(
+                Limb(
+                    actuated_joint=plan.actuated_joint,
+                    joints=plan.joints,
+                    edges=tuple(edges[name] for name in plan.joints),
+                    twist_system=self._system(f"limb{k}:T"),
+                    constraint_wrenches=self._system(f"limb{k}:W"),
+                    passive_wrenches=self._system(f"limb{k}:passive"),
+                    actuation_wrench=wrench,
+                    actuated_twist=np.array(self.actuated_twists[k]),
+                    transmission=float(self.transmissions[k]),
+                )
+            )
+        return tuple(result)
 
     @property
     def actuation_wrenches(self) -> Array:
-        """The actuation wrenches that exist, rows ``(k, 6)`` in limb order."""
-        rows = [limb.actuation_wrench for limb in self.limbs if limb.actuation_wrench is not None]
+        """The actuation wrenches that exist, rows ``(k, 6)`` in limb order (one pose)."""
+        self._require_single("actuation_wrenches")
+        rows = [row for row, serial in zip(self.actuation_rows, self.serial, strict=True) if not serial]
         return np.array(rows).reshape(len(rows), 6)
 
     def constraint_generators(self) -> Array:
@@ -236,89 +376,391 @@ class WrenchAnalysis:
         Falls back to a basis of :attr:`constraint_wrenches` when the graph is not
         series-parallel.
         """
-        if not self.compound_legs:
+        legs = self.compound_legs
+        if not legs:
             return np.asarray(self.constraint_wrenches.basis, dtype=float)
-        rows = [leg.constraint_wrenches.readable_basis() for leg in self.compound_legs]
+        rows = [leg.constraint_wrenches.readable_basis() for leg in legs]
         return np.concatenate(rows).reshape(-1, 6)
 
+    @functools.cached_property
+    def tree(self) -> SeriesParallelNode | None:
+        """The series-parallel decomposition with each node's twist system (None for a network).
 
-def _system(rows: Array, rtol: float, length_scale: float) -> ScrewSystem:
-    return ScrewSystem.span(
-        np.asarray(rows, dtype=float).reshape(-1, 6), rtol=rtol, length_scale=length_scale
-    )
+        Computed for this pose through the same kernels (a batch of one).
+        """
+        self._require_single("tree")
+        if self.topology.network:
+            return None
+        scaled = _normalized(F.to_scaled(self.table.screws[None], self.reference_point[None], _lengths(self)))
+        core = _Evaluation(self.topology, scaled, self.rtol)
+        nodes: list[SeriesParallelNode] = []
+        for index, node in enumerate(self.topology.nodes):
+            rows, order = core.twists(index)
+            user = F.from_scaled(
+                rows[0, : int(order[0])], self.reference_point, np.asarray(self.length_scale)
+            )
+            system = ScrewSystem.from_independent(user, rtol=self.rtol, length_scale=float(self.length_scale))
+            children = tuple(nodes[c] for c in node.children)
+            edge = None
+            if node.joint is not None:
+                spec = self.table.specs[node.joint]
+                edge = (spec.parent, spec.child, spec.name)
+            nodes.append(
+                SeriesParallelNode(node.kind, node.ends, system, children, node.links, edge, node.joints)
+            )
+        return nodes[self.topology.root] if self.topology.root is not None else None
 
 
-def _user_frame(system: ScrewSystem, reference: Array) -> ScrewSystem:
-    """The same system after the translation back to the user's frame (ranks were decided about
-    the reference point; a rigid motion keeps independence, so they are not decided again)."""
-    if system.order == 0:
-        return system
-    moved = S.transform(system.basis, np.eye(3), reference)
-    return ScrewSystem.from_independent(moved, rtol=system.rtol, length_scale=system.length_scale)
+def _scalar(value: Any) -> Any:
+    array = np.asarray(value)
+    return array.item() if array.ndim == 0 else value
 
 
-def _choose_actuation_wrench(
-    passive: ScrewSystem, constraint: ScrewSystem, actuated_twist: Array, length_scale: float, rtol: float
-) -> tuple[Array | None, float]:
-    """The actuation wrench: the passive wrench least reciprocal to the actuated twist, made canonical.
+def _lengths(analysis: WrenchAnalysis) -> Array:
+    return np.asarray(analysis.length_scale, dtype=float)[None]
 
-    It is defined up to the limb's constraint wrenches. The representative is the component
-    orthogonal to them (in coordinates about the reference point with moments over the length, a
-    metric rigid motions keep, so the choice follows the mechanism); when that is not a line, the
-    nearest line obtained by adding one constraint wrench, if any.
+
+def _normalized(rows: Array) -> Array:
+    size = np.linalg.norm(rows, axis=-1, keepdims=True)
+    return rows / np.where(size > 0, size, 1.0)
+
+
+# --------------------------------------------------------------------------------------------------
+# The kernels
+# --------------------------------------------------------------------------------------------------
+
+
+class _Evaluation:
+    """Lazy, cached evaluation of a topology's frames over one batch of scaled, unit joint screws."""
+
+    def __init__(self, top: Topology, scaled: Array, rtol: float):
+        self.top, self.scaled, self.rtol = top, scaled, rtol
+        self.batch = scaled.shape[:-2]
+        self.columns = top.columns
+        self._twists: dict[int, Frame] = {}
+        self._wrenches: dict[int, Frame] = {}
+        self._bounds: dict[int, int] = {}
+
+    def joint_rows(self, index: int) -> Array:
+        start = self.columns[index]
+        return self.scaled[..., start : start + self.top.specs[index].dof, :]
+
+    def bound(self, index: int) -> int:
+        """A static upper bound on a node's twist order (zero rows beyond it are dropped)."""
+        if index not in self._bounds:
+            node = self.top.nodes[index]
+            if node.kind == "joint":
+                assert node.joint is not None
+                value = self.top.specs[node.joint].dof
+            elif node.kind == "series":
+                value = sum(self.bound(c) for c in node.children)
+            else:
+                value = min(self.bound(c) for c in node.children)
+            self._bounds[index] = min(value, 6)
+        return self._bounds[index]
+
+    def generators(self, index: int) -> Array:
+        """What a node adds to a sum of twist systems: a joint's screws, else its frame's rows."""
+        node = self.top.nodes[index]
+        if node.kind == "joint":
+            assert node.joint is not None
+            return self.joint_rows(node.joint)
+        return self.twists(index)[0][..., : self.bound(index), :]
+
+    def twists(self, index: int) -> Frame:
+        if index not in self._twists:
+            node = self.top.nodes[index]
+            if node.kind == "parallel":
+                self._twists[index] = F.reciprocal(*self.wrenches(index))
+            else:
+                parts = (
+                    [self.generators(index)]
+                    if node.kind == "joint"
+                    else [self.generators(c) for c in node.children]
+                )
+                self._twists[index] = F.span(np.concatenate(parts, axis=-2), self.rtol)
+        return self._twists[index]
+
+    def wrenches(self, index: int) -> Frame:
+        if index not in self._wrenches:
+            node = self.top.nodes[index]
+            if node.kind == "parallel":
+                rows = [self.wrenches(c)[0] for c in node.children]
+                self._wrenches[index] = F.span(np.concatenate(rows, axis=-2), self.rtol)
+            else:
+                self._wrenches[index] = F.reciprocal(*self.twists(index))
+        return self._wrenches[index]
+
+    def sum_of(self, nodes: tuple[int, ...]) -> Frame:
+        if not nodes:
+            return F.empty(self.batch)
+        return F.span(np.concatenate([self.generators(n) for n in nodes], axis=-2), self.rtol)
+
+    def network(self, joints: tuple[int, ...], locked: int | None = None) -> Frame:
+        """The platform's twist system of a sub-network by loop closure: ``rank[M; P] − rank M``
+        decides the null space of the loop-closure matrix ``M``; ``P`` maps it to the platform."""
+        kept = tuple(j for j in joints if j != locked)
+        loops, path = network_layout(self.top.base, self.top.platform, self.top.specs, kept)
+        columns = [(j, r) for j in kept for r in range(self.top.specs[j].dof)]
+        index = {c: k for k, c in enumerate(columns)}
+        closure = np.zeros((*self.batch, 6 * len(loops), len(columns)))
+        for row, loop in enumerate(loops):
+            for joint, sign in loop:
+                for r in range(self.top.specs[joint].dof):
+                    closure[..., 6 * row : 6 * row + 6, index[(joint, r)]] += (
+                        sign * self.joint_rows(joint)[..., r, :]
+                    )
+        platform = np.zeros((*self.batch, 6, len(columns)))
+        for joint, sign in path:
+            for r in range(self.top.specs[joint].dof):
+                platform[..., :, index[(joint, r)]] += sign * self.joint_rows(joint)[..., r, :]
+        if not columns or not path:
+            return F.empty(self.batch)
+        if closure.shape[-2]:
+            _, values, vt = np.linalg.svd(closure)
+            top_value = values[..., :1]
+            rank = ((values > self.rtol * top_value) & (top_value > 0)).sum(axis=-1)
+            keep = np.arange(len(columns)) >= rank[..., None]  # rows of vt spanning the null space
+            rates = vt * keep[..., :, None]
+        else:
+            rates = np.broadcast_to(np.eye(len(columns)), (*self.batch, len(columns), len(columns)))
+        twists = np.swapaxes(platform @ np.swapaxes(rates, -1, -2), -1, -2)  # (..., columns, 6)
+        return F.span(twists, self.rtol)
+
+
+def _nearest_lines(wrench: Array, constraints: Array, order: Array) -> Array:
+    """``wrench + c`` of zero pitch with ``c`` the smallest constraint wrench found that makes it a
+    line, where the wrench is not already one (batched; rows orthonormal, scaled).
+
+    The pitch numerator of ``w + C α`` is the quadratic ``αᵀQα + bᵀα + p0`` (``Q`` the symmetric
+    part of ``C_s C_mᵀ``). Along a direction ``u`` it is a quadratic in one variable; the
+    directions tried are the frame's rows, the gradient ``b`` (steepest descent) and the
+    eigenvectors of ``Q``, and the root of smallest ``|α|`` wins.
     """
-    if passive.order == 0:
-        return None, 0.0
-    candidates = passive.readable_basis()
-    scores = normalized_reciprocal_product(candidates, actuated_twist, length_scale=length_scale, rtol=rtol)
-    best = int(np.argmax(scores))
-    if scores[best] <= rtol:
-        return None, float(scores[best])
-    wrench = _orthogonal_to(candidates[best], constraint.basis, length_scale)
-    if constraint.order and not S.is_zero_pitch(wrench, rtol=LINE_RTOL, length_scale=length_scale):
-        wrench = _nearest_line(wrench, constraint.basis, length_scale)
-    score = normalized_reciprocal_product(wrench, actuated_twist, length_scale=length_scale, rtol=rtol)
-    return wrench, float(score)
-
-
-#: Relative tolerance deciding that a chosen actuation wrench is a line (zero pitch).
-LINE_RTOL = 1e-6
-
-
-def _scaled(rows: Array, length_scale: float) -> Array:
-    out = np.array(rows, dtype=float)
-    out[..., 3:] /= length_scale
-    return out
-
-
-def _orthogonal_to(wrench: Array, others: Array, length_scale: float) -> Array:
-    if others.shape[0] == 0:
-        return wrench
-    basis = np.linalg.qr(_scaled(others, length_scale).T)[0]
-    scaled = _scaled(wrench, length_scale)
-    scaled = scaled - basis @ (basis.T @ scaled)
-    scaled[3:] *= length_scale
-    return scaled
-
-
-def _nearest_line(wrench: Array, others: Array, length_scale: float) -> Array:
-    """``wrench + α c`` of zero pitch with the smallest ``|α c|`` over single constraint wrenches c."""
-    best, best_size = wrench, np.inf
-    for other in others:
-        # pitch numerator (s + α s_c)·(m + α m_c) = a α² + b α + c0
-        a = other[:3] @ other[3:]
-        b = wrench[:3] @ other[3:] + other[:3] @ wrench[3:]
-        c0 = wrench[:3] @ wrench[3:]
-        roots = np.roots([a, b, c0]) if abs(a) > 0 or abs(b) > 0 else np.array([])
-        for alpha in roots[np.isreal(roots)].real:
-            size = abs(alpha) * np.linalg.norm(_scaled(other, length_scale))
-            if size < best_size:
-                best, best_size = wrench + alpha * other, size
+    s, m = wrench[..., :3], wrench[..., 3:]
+    size = np.linalg.norm(s, axis=-1)
+    pitch = np.einsum("...i,...i->...", s, m)
+    not_line = np.abs(pitch) > LINE_RTOL * np.maximum(size, 1e-300) * np.linalg.norm(wrench, axis=-1)
+    mask = np.arange(constraints.shape[-2]) < np.asarray(order)[..., None]
+    rows = constraints * mask[..., None]
+    gradient = np.einsum("...i,...ki->...k", s, rows[..., 3:]) + np.einsum(
+        "...ki,...i->...k", rows[..., :3], m
+    )
+    q = np.einsum("...ki,...li->...kl", rows[..., :3], rows[..., 3:])
+    _, vectors = np.linalg.eigh((q + np.swapaxes(q, -1, -2)) / 2)
+    directions = np.concatenate(
+        [
+            np.broadcast_to(np.eye(rows.shape[-2]), vectors.shape),
+            gradient[..., None, :],
+            np.swapaxes(vectors, -1, -2),
+        ],
+        axis=-2,
+    )
+    best, best_size = wrench.copy(), np.full(wrench.shape[:-1], np.inf)
+    for k in range(directions.shape[-2]):
+        u = directions[..., k, :] * mask
+        norm_u = np.linalg.norm(u, axis=-1)
+        c = np.einsum("...k,...ki->...i", u / np.where(norm_u > 0, norm_u, 1.0)[..., None], rows)
+        usable = not_line & (norm_u > 0)
+        a = np.einsum("...i,...i->...", c[..., :3], c[..., 3:])
+        b = np.einsum("...i,...i->...", s, c[..., 3:]) + np.einsum("...i,...i->...", c[..., :3], m)
+        disc = b * b - 4 * a * pitch
+        # the stable pair of roots (Numerical Recipes §5.6): q = -(b + sgn(b) √disc) / 2, α = q/a, p/q
+        q = -(b + np.where(b < 0, -1.0, 1.0) * np.sqrt(np.where(disc >= 0, disc, 0.0))) / 2
+        real = usable & (disc >= 0)
+        with np.errstate(over="ignore"):  # a root past the float range is no candidate (inf)
+            roots = (
+                np.where(np.abs(a) > 0, q / np.where(np.abs(a) > 0, a, 1.0), np.inf),
+                np.where(np.abs(q) > 0, pitch / np.where(np.abs(q) > 0, q, 1.0), np.inf),
+            )
+        for alpha in roots:
+            better = real & np.isfinite(alpha) & (np.abs(alpha) < best_size)
+            best = np.where(better[..., None], wrench + np.where(better, alpha, 0.0)[..., None] * c, best)
+            best_size = np.where(better, np.abs(alpha), best_size)
     return best
 
 
-def _compound_legs(tree: SeriesParallelNode) -> list[SeriesParallelNode]:
-    return list(tree.children) if tree.kind == "parallel" else [tree]
+def _unit_force_or_couple(rows: Array, length: Array) -> Array:
+    """User-frame rows scaled to a unit force (or a unit couple if the force vanishes)."""
+    forces = np.linalg.norm(rows[..., :3], axis=-1)
+    moments = np.linalg.norm(rows[..., 3:], axis=-1)
+    is_couple = forces <= B.DEFAULT_RTOL * moments / length[..., None]
+    size = np.where(is_couple, moments, forces)
+    return rows / np.where(size > 0, size, 1.0)[..., None]
+
+
+def checked_rtol(value: Any, name: str = "rtol") -> float:
+    """A relative tolerance: a real number in ``[0, 1)``.
+
+    Examples
+    --------
+    >>> checked_rtol(5)
+    Traceback (most recent call last):
+    ...
+    screwkit.exceptions.ScrewkitValueError: Expected `rtol` to be a number in [0, 1), got 5.
+    """
+    if (
+        isinstance(value, bool)
+        or not isinstance(value, int | float | np.floating)
+        or not 0 <= float(value) < 1
+    ):
+        raise ScrewkitValueError(f"Expected `{name}` to be a number in [0, 1), got {value!r}.")
+    return float(value)
+
+
+def _checked_dof(dof: Any, table: JointTable, top: Topology) -> int:
+    nominal = dof if dof is not None else (table.dof if table.dof is not None else len(top.limbs))
+    if not B.is_dof(nominal):
+        raise TwistGraphError(f"Expected `dof` to be an integer in 0..6, got {nominal!r}.")
+    return int(nominal)
+
+
+def analyze_table(
+    table: JointTable, *, dof: int | None = None, rtol: float = B.DEFAULT_RTOL, views: bool = True
+) -> WrenchAnalysis:
+    """The wrench systems of a mechanism over a batch of configurations (the one core).
+
+    Parameters
+    ----------
+    table : JointTable
+        The joints and their screws over the batch (e.g. a family's ``joints(config)``).
+    dof : int, optional
+        Nominal mobility; default: the table's ``dof``, else the number of actuated joints.
+    rtol : float, default 1e-9
+        Relative tolerance of every rank decision (:mod:`screwkit._frames`).
+    views : bool, default True
+        Keep the frames that the per-pose views need (every limb's and leg's systems); False keeps
+        only orders, verdict inputs and actuation wrenches (less memory for large batches).
+
+    Returns
+    -------
+    WrenchAnalysis
+
+    Raises
+    ------
+    TwistGraphError
+        If an actuated joint lies on no base-to-platform path, or ``dof`` is invalid.
+
+    Examples
+    --------
+    >>> from screwkit.joints import JointTable
+    >>> line = [0, 0, 1.0, 0, 0, 0]
+    >>> table = JointTable.from_rows("B", "E", [("B", "E", "R", "R", [[line]] * 3, True)])
+    >>> analyze_table(table).constraint_order
+    array([5, 5, 5])
+    """
+    if not isinstance(table, JointTable):
+        raise ScrewkitTypeError(f"Expected `table` to be a JointTable, got {type(table).__name__}.")
+    rtol = checked_rtol(rtol)
+    top = topology(table.base, table.platform, table.specs)
+    nominal = _checked_dof(dof, table, top)
+    batch = table.batch_shape
+    screws = table.screws
+    centre, length = mechanism_frame(screws, table.anchor)
+    scaled = _normalized(F.to_scaled(screws, centre, length))
+    core = _Evaluation(top, scaled, rtol)
+    frames: dict[str, Frame] = {}
+    if top.network:
+        platform = core.network(tuple(range(len(top.specs))))
+        leg_wrenches = [F.reciprocal(*platform)]
+        leg_twists = [platform]
+    else:
+        assert top.root is not None
+        platform = core.twists(top.root)
+        leg_twists = [core.twists(i) for i in top.legs]
+        leg_wrenches = [core.wrenches(i) for i in top.legs]
+    constraint = F.reciprocal(*platform)
+    serial, wrenches, twists, transmissions = [], [], [], []
+    for k, plan in enumerate(top.limbs):
+        actuated = plan.sign * core.joint_rows(plan.index)[..., 0, :]
+        if top.network:
+            locked = core.network(plan.network_edges, locked=plan.index)
+            free = core.network(plan.network_edges)
+            perpendicular = F.residual(actuated[..., None, :], locked[0])[..., 0, :]
+            is_serial = free[1] == locked[1]
+        else:
+            locked = core.sum_of(plan.siblings)
+            perpendicular = F.residual(actuated[..., None, :], locked[0])[..., 0, :]
+            size = np.linalg.norm(perpendicular, axis=-1)
+            is_serial = size <= rtol
+            rows, order = locked[0].copy(), locked[1].copy()
+            unit = perpendicular / np.where(size > 0, size, 1.0)[..., None]
+            slot = np.minimum(order, 5)[..., None, None]
+            np.put_along_axis(
+                rows,
+                slot,
+                np.where(is_serial[..., None, None], np.take_along_axis(rows, slot, -2), unit[..., None, :]),
+                -2,
+            )
+            free = (rows, order + ~is_serial)
+        limb_constraint = F.reciprocal(*free)
+        passive = F.reciprocal(*locked)
+        # SWAP t⊥ lies in the passive system; projecting it there keeps a clean passive wrench even
+        # when t⊥ is round-off (a serial singularity), so w ∘ t is then round-off too
+        swapped = perpendicular @ F.SWAP
+        direction = _normalized(
+            np.einsum("...k,...ks->...s", np.einsum("...ks,...s->...k", passive[0], swapped), passive[0])
+        )
+        line = _nearest_lines(direction, *limb_constraint)
+        wrench = _normalized(line)
+        product = np.abs(np.einsum("...s,...s->...", wrench, actuated @ F.SWAP))
+        transmissions.append(_scaled_transmission(wrench, actuated, product, rtol))
+        wrench = np.where(is_serial[..., None], 0.0, wrench)
+        serial.append(is_serial)
+        wrenches.append(wrench)
+        twists.append(actuated)
+        frames[f"limb{k}:passive"] = passive  # the Jacobians' rows at serial singularities
+        if views:
+            frames[f"limb{k}:T"] = free
+            frames[f"limb{k}:W"] = limb_constraint
+    n = len(top.limbs)
+    wrench_rows = np.stack(wrenches, axis=-2) if n else np.zeros((*batch, 0, 6))
+    global_frame = F.span(np.concatenate([constraint[0], wrench_rows], axis=-2), rtol)
+    legs_stacked = np.concatenate([w[0] for w in leg_wrenches], axis=-2)
+    closeness = {
+        "constraint": F.singular_ratio(legs_stacked, 6 - nominal),
+        "actuation": F.singular_ratio(np.concatenate([legs_stacked, wrench_rows], axis=-2), 6),
+        "serial": np.min(np.stack(transmissions, axis=-1), axis=-1) if n else np.ones(batch),
+    }
+    frames.update(
+        platform=platform,
+        constraint=constraint,
+        uncontrolled=F.reciprocal(*global_frame),
+    )
+    frames["global"] = global_frame
+    if views:
+        for k, (twist_frame, wrench_frame) in enumerate(zip(leg_twists, leg_wrenches, strict=True)):
+            frames[f"leg{k}:T"] = twist_frame
+            frames[f"leg{k}:W"] = wrench_frame
+    user_wrenches = _unit_force_or_couple(F.from_scaled(wrench_rows, centre, length), length)
+    return WrenchAnalysis(
+        table=table,
+        topology=top,
+        rtol=rtol,
+        dof=nominal,
+        reference_point=centre,
+        length_scale=_scalar(length),
+        platform_order=_scalar(platform[1]),
+        constraint_order=_scalar(constraint[1]),
+        global_order=_scalar(global_frame[1]),
+        serial=np.stack(serial, axis=-1) if n else np.zeros((*batch, 0), dtype=bool),
+        transmissions=np.stack(transmissions, axis=-1) if n else np.zeros((*batch, 0)),
+        actuation_rows=np.where(np.stack(serial, axis=-1)[..., None], 0.0, user_wrenches)
+        if n
+        else wrench_rows,
+        actuated_twists=np.stack([p.sign * screws[..., top.columns[p.index], :] for p in top.limbs], axis=-2)
+        if n
+        else np.zeros((*batch, 0, 6)),
+        frames=frames,
+        closeness={k: _scalar(v) for k, v in closeness.items()},
+    )
+
+
+def _scaled_transmission(wrench: Array, twist: Array, product: Array, rtol: float) -> Array:
+    """:func:`normalized_reciprocal_product` in scaled coordinates (the length is then 1), given the
+    reciprocal product ``|w ∘ t|``."""
+    denominator = _magnitude(wrench, 1.0, rtol) * _magnitude(twist, 1.0, rtol)
+    return np.where(denominator > 0, product / np.where(denominator > 0, denominator, 1.0), 0.0)
 
 
 def wrench_analysis(
@@ -329,6 +771,8 @@ def wrench_analysis(
     rtol: float = B.DEFAULT_RTOL,
 ) -> WrenchAnalysis:
     """Constraint, actuation and global wrench systems of a twist graph at its configuration.
+
+    The graph is a batch of one pose through :func:`analyze_table`.
 
     Parameters
     ----------
@@ -344,6 +788,7 @@ def wrench_analysis(
     Returns
     -------
     WrenchAnalysis
+        Of one pose (shape ``()``).
 
     Raises
     ------
@@ -361,93 +806,15 @@ def wrench_analysis(
     >>> limb.passive_wrenches.order, S.is_zero_pitch(limb.actuation_wrench)
     (5, True)
     """
-    check_twist_graph(graph, joint_key=joint_key)
-    reference, length = graph_frame(graph, joint_key=joint_key)
-    centred = translated_graph(graph, -reference, joint_key=joint_key)
-    actuated = sorted(key for _, _, key, j in centred.edges(keys=True, data=joint_key) if j.actuated)
-    nominal = dof if dof is not None else graph.graph.get("dof", len(actuated))
-    if not B.is_dof(nominal):
-        raise TwistGraphError(f"Expected `dof` to be an integer in 0..6, got {nominal!r}.")
-    platform = platform_twist_system(centred, joint_key=joint_key, rtol=rtol, length_scale=length)
-    constraints = platform.reciprocal()
-    try:
-        tree = series_parallel_tree(centred, joint_key=joint_key, rtol=rtol, length_scale=length)
-        legs = [
-            CompoundLeg(
-                node.joints,
-                node.system,
-                node.system.reciprocal(),
-                tuple(sorted(j for j in actuated if j in node.joints)),
-            )
-            for node in _compound_legs(tree)
-        ]
-    except TwistGraphError:
-        tree, legs = None, []
-    paths = simple_paths(centred)
-    limbs = []
-    for name in actuated:
-        through = [p for p in paths if any(edge[2] == name for edge in p)]
-        if not through:
-            raise TwistGraphError(f"Actuated joint {name!r} lies on no path from the base to the platform.")
-        edges = {edge[:3]: edge for path in through for edge in path}
-        limb_graph = centred.edge_subgraph(edges)
-        actuated_edge = next(e for key, e in edges.items() if key[2] == name)
-        actuated_twist = joint_screws_along(centred, [actuated_edge], joint_key=joint_key)[0]
-        limb_twists = platform_twist_system(limb_graph, joint_key=joint_key, rtol=rtol, length_scale=length)
-        passive = platform_twist_system(
-            limb_graph, joint_key=joint_key, rtol=rtol, length_scale=length, locked=[name]
-        ).reciprocal()
-        wrench, transmission = _choose_actuation_wrench(
-            passive, limb_twists.reciprocal(), actuated_twist, length, rtol
-        )
-        limbs.append(
-            Limb(
-                actuated_joint=name,
-                joints=tuple(key[2] for key in edges),
-                paths=tuple(tuple(p) for p in through),
-                twist_system=limb_twists,
-                constraint_wrenches=limb_twists.reciprocal(),
-                passive_wrenches=passive,
-                actuation_wrench=wrench,
-                actuated_twist=actuated_twist,
-                transmission=transmission,
-            )
-        )
-    actuation_rows = [limb.actuation_wrench for limb in limbs if limb.actuation_wrench is not None]
-    global_system = _system(np.vstack([constraints.basis.reshape(-1, 6), *actuation_rows]), rtol, length)
-    back = reference  # back to the user's frame: translate by +reference
-
-    def shift(row: Array | None) -> Array | None:
-        return None if row is None else S.transform(row, np.eye(3), back)
-
-    return WrenchAnalysis(
-        graph=graph,
-        reference_point=reference,
-        length_scale=length,
-        rtol=rtol,
-        dof=nominal,
-        platform_twists=_user_frame(platform, back),
-        constraint_wrenches=_user_frame(constraints, back),
-        compound_legs=tuple(
-            CompoundLeg(
-                leg.joints, _user_frame(leg.twist_system, back), _user_frame(leg.constraint_wrenches, back)
-            )
-            for leg in legs
-        ),
-        limbs=tuple(
-            Limb(
-                limb.actuated_joint,
-                limb.joints,
-                limb.paths,
-                _user_frame(limb.twist_system, back),
-                _user_frame(limb.constraint_wrenches, back),
-                _user_frame(limb.passive_wrenches, back),
-                shift(limb.actuation_wrench),
-                S.transform(limb.actuated_twist, np.eye(3), back),
-                limb.transmission,
-            )
-            for limb in limbs
-        ),
-        global_wrenches=_user_frame(global_system, back),
-        tree=tree,
+    table = JointTable.from_graph(graph, joint_key=joint_key)
+    one = JointTable(
+        table.base,
+        table.platform,
+        table.specs,
+        table.screws[None],
+        table.dof,
+        None if table.anchor is None else table.anchor[None],
     )
+    analysis = analyze_table(one, dof=dof, rtol=rtol)[0]
+    object.__setattr__(analysis, "graph", graph)  # the caller's own graph object (cached view)
+    return analysis

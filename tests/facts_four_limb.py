@@ -29,7 +29,6 @@ import numpy as np
 import pytest
 
 from screwkit import screw as S
-from screwkit.batch import classify_poses
 from screwkit.families.four_limb import (
     force_pressure_angle,
     inverse_kinematics,
@@ -40,6 +39,7 @@ from screwkit.families.four_limb import (
     transmission_indices,
 )
 from screwkit.families.four_limb_graph import four_limb_joints, four_limb_twist_graph
+from screwkit.singularity import classify_poses
 from screwkit.wrenches import wrench_analysis
 
 K = np.array([0.0, 0.0, 1.0])
@@ -84,7 +84,7 @@ def batch_labels(config) -> list[tuple[str, ...]]:
     """Labels of :func:`screwkit.batch.classify_poses` over a batched configuration (vectorized)."""
     template = four_limb_twist_graph(config, (0,) * len(config.batch_shape))
     screws = {name: value for _, _, name, _, value, _ in four_limb_joints(config)}
-    return classify_poses(template, screws).labels()
+    return classify_poses(template, screws).labels.ravel().tolist()
 
 
 def compare(computed: dict[str, Any], fact: dict[str, Any]) -> tuple[dict[str, Any], dict[str, Any]]:

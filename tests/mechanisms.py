@@ -251,15 +251,3 @@ def bisect_root(function, low, high, *, xtol=1e-15, iterations=200):
         if high - low <= xtol * max(1.0, abs(low)):
             break
     return 0.5 * (low + high)
-
-
-def near_zero_entries(rotation, *, below=1e-4):
-    """True if ``rotation`` has an entry that is tiny but not zero (0 < |R_ij| < ``below``).
-
-    Such motions give the planar mechanisms' screws tiny non-zero components, which hit known
-    bugs of ``ScrewSystem.readable_basis`` (a near-couple becomes a line 1e8 lengths away, or an
-    "Internal error: readable basis of order 5 != 4"); see the strict xfail tests in
-    test_wrenches.py and test_singularity.py. Property tests of planar mechanisms skip them.
-    """
-    values = np.abs(np.asarray(rotation))
-    return bool(np.any((values > 0) & (values < below)))

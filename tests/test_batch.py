@@ -3,11 +3,10 @@
 import numpy as np
 import pytest
 
-from screwkit.batch import classify_poses
 from screwkit.exceptions import ScrewkitValueError
 from screwkit.families.four_limb import inverse_kinematics
 from screwkit.families.four_limb_graph import four_limb_joints, four_limb_twist_graph
-from screwkit.singularity import classify
+from screwkit.singularity import classify, classify_poses
 
 from .test_h4 import H4, random_poses, singular_pose
 
@@ -26,7 +25,7 @@ def test_batch_matches_single_pose_analysis(rng):
     poses = np.vstack([random_poses(rng, 30), singular_pose(0), singular_pose(1)])
     cfg, graph, screws = batch_inputs(poses)
     batch = classify_poses(graph, screws)
-    labels = batch.labels()
+    labels = batch.labels.ravel().tolist()
     for i in range(len(poses)):
         single = classify(four_limb_twist_graph(cfg, (i,)))
         assert labels[i] == single.labels
@@ -41,7 +40,7 @@ def test_batch_shape_is_kept(rng):
     poses = random_poses(rng, 12).reshape(3, 4, 4)
     _, graph, screws = batch_inputs(poses)
     report = classify_poses(graph, screws)
-    assert report.constraint_order.shape == (3, 4) and report.serial.shape == (3, 4, 4)
+    assert report.constraint_order.shape == (3, 4) and report.serial_flags.shape == (3, 4, 4)
     assert report.closeness["actuation"].shape == (3, 4)
 
 

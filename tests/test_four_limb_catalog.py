@@ -17,7 +17,6 @@ import math
 import numpy as np
 import pytest
 
-from screwkit.batch import classify_poses
 from screwkit.catalog import list_mechanisms, load_mechanism
 from screwkit.cli import main
 from screwkit.diagram import diagram_points
@@ -29,7 +28,7 @@ from screwkit.families.four_limb import (
 )
 from screwkit.families.four_limb_graph import four_limb_joints, four_limb_twist_graph
 from screwkit.report import analyze
-from screwkit.singularity import classify
+from screwkit.singularity import classify, classify_poses
 from screwkit.wrenches import wrench_analysis
 
 PI = math.pi
@@ -227,7 +226,7 @@ def test_random_workspace_poses_are_regular_batch_and_single(entries, name, rng)
     poses = poses[reachable(mechanism.parameters, poses)]
     indices = transmission_indices(mechanism.configuration(poses))
     report = batch_report(mechanism, poses)
-    labels = report.labels()
+    labels = report.labels.ravel().tolist()
     # regular where paper 004's index says so (eta > 0.005: far from both types)
     assert all(label == () for label, eta in zip(labels, indices.eta, strict=True) if eta > 0.005)
     assert sum(eta > 0.005 for eta in indices.eta) >= 100
@@ -240,7 +239,7 @@ def test_quattro_spiral_trajectory_labels(entries):
     quattro = entries["quattro"]
     poses = spiral_trajectory(401)
     config = quattro.configuration(poses)
-    labels = batch_report(quattro, poses).labels()
+    labels = batch_report(quattro, poses).labels.ravel().tolist()
     det = np.linalg.det(jacobians(config).A)
     crossing = int(np.flatnonzero(np.sign(det[:-1]) != np.sign(det[1:]))[0])
     assert crossing == 3  # between phi = -88.65 and -88.2 deg: the type-2 root of the fixture
@@ -330,7 +329,7 @@ def test_quattro_constraint_singularity_is_paper_002_condition(entries):
     coplanarity = normals[:, 2] / np.linalg.norm(normals, axis=-1)
     assert abs(coplanarity[4]) < 1e-12 and np.all(np.abs(np.delete(coplanarity, 4)) > 1e-4)
     assert np.all(np.sign(coplanarity[:4]) == -np.sign(coplanarity[5:]))  # it changes sign: a surface
-    labels = batch_report(quattro, poses).labels()
+    labels = batch_report(quattro, poses).labels.ravel().tolist()
     assert labels == [()] * 4 + [("constraint",)] + [()] * 4
     # the gained freedom: the end effector's rotations span two directions (z and a horizontal one)
     for pose, rotations in ((poses[4], 2), (poses[3], 1)):

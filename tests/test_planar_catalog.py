@@ -15,7 +15,6 @@ import numpy as np
 import pytest
 
 from screwkit import screw as S
-from screwkit.batch import classify_poses
 from screwkit.catalog import load_mechanism
 from screwkit.cli import main
 from screwkit.exceptions import CatalogError, ScrewkitTypeError, ScrewkitValueError
@@ -34,6 +33,7 @@ from screwkit.families.planar_3rrp import (
 )
 from screwkit.report import analyze
 from screwkit.singularity import classify as classify_graph
+from screwkit.singularity import classify_poses
 from screwkit.twistgraph import fundamental_loops
 
 P = EXAMPLE_PARAMETERS
@@ -254,7 +254,7 @@ def test_trajectory_through_a_direct_singularity_vectorized(direct_singular):
     poses = np.column_stack([np.full(42, 0.05), np.full(42, -0.03), phis])
     config = Planar3RRPConfiguration.from_pose(P, poses, (1, 1, -1))
     report = classify_poses(twist_graph(config, (0,)), joint_screws(config), dof=3)
-    labels = report.labels()
+    labels = report.labels.ravel().tolist()
     kinds = classify(config).kind
     at_root = int(np.flatnonzero(phis == root)[0])
     assert labels[at_root] == ("actuation",) and str(kinds[at_root]) == "direct"
@@ -270,7 +270,7 @@ def test_regular_poses_in_every_working_mode(planar, rng):
     config = Planar3RRPConfiguration.from_pose(P, poses[:, None, :], WORKING_MODES)
     assert np.all(classify(config).kind == "regular")
     report = classify_poses(twist_graph(config, (0, 0)), joint_screws(config), dof=3)
-    assert report.labels() == [()] * 240
+    assert report.labels.ravel().tolist() == [()] * 240
     for index in ((0, 0), (7, 3), (29, 7)):  # the vectorized verdicts are the single-pose ones
         assert classify_graph(twist_graph(config, index)).labels == ()
 

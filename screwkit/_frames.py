@@ -1,0 +1,192 @@
+"""Batched orthonormal frames of screw systems: the arithmetic under every pose (private).
+
+Every rank decision of the analysis core is made here, over a leading batch axis, on screws
+expressed about the mechanism's own reference point with moments divided by its characteristic
+length (*scaled coordinates*, :func:`to_scaled`). In those coordinates a rigid motion about the
+reference point acts as ``diag(R, R)``, an orthogonal map, and a change of unit does nothing,
+so Euclidean norms, orthogonality and every decision below follow the mechanism, not the user's
+frame.
+
+A **frame** is a pair ``(rows, order)``: ``rows`` of shape ``(..., 6, 6)`` whose first ``order``
+rows are an orthonormal basis of the system and whose other rows are zero.
+
+**The rank rule** (one rule for the whole analysis): a system is spanned by generators with
+Gram–Schmidt and column pivoting (QR with column pivoting, Golub & Van Loan, *Matrix
+Computations*, 4th ed., §5.4.2), each pivot re-orthogonalised once (CGS2, Giraud et al., *Numer.
+Math.* 101, 2005); the pivot joins the basis while its distance from the span of those already
+chosen exceeds ``rtol`` times the largest generator's norm. Pivoting makes the result independent
+of the generators' order up to ties.
+
+Reciprocity in scaled coordinates is the Euclidean product with the halves swapped
+(``a ∘ b = a · (SWAP b)``, ``SWAP`` orthogonal and symmetric), so the system reciprocal to a frame
+is ``SWAP`` applied to its orthogonal complement: no rank decision is needed for it.
+
+Examples
+--------
+>>> import numpy as np
+>>> rows, order = span(np.array([[[1.0, 0, 0, 0, 0, 0], [2.0, 0, 0, 0, 0, 0]]]), 1e-9)
+>>> order
+array([1])
+>>> reciprocal(rows, order)[1]
+array([5])
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = [
+    "SWAP",
+    "complement",
+    "empty",
+    "from_scaled",
+    "reciprocal",
+    "residual",
+    "singular_ratio",
+    "span",
+    "to_scaled",
+]
+
+Array = np.ndarray
+
+#: ``a ∘ b = a · (SWAP b)``: the reciprocal product as a Euclidean one.
+SWAP = np.block([[np.zeros((3, 3)), np.eye(3)], [np.eye(3), np.zeros((3, 3))]])
+SWAP.flags.writeable = False
+
+
+def to_scaled(screws: Array, centre: Array, length: Array) -> Array:
+    """Screws ``(..., k, 6)`` about ``centre`` ``(..., 3)`` with moments over ``length`` ``(...)``.
+
+    Examples
+    --------
+    >>> to_scaled(np.array([[0, 0, 1.0, 2.0, 0, 0]]), np.array([0, 2.0, 0]), np.array(2.0))
+    array([[0., 0., 1., 0., 0., 0.]])
+    """
+    directions = screws[..., :3]
+    moments = screws[..., 3:] - np.cross(centre[..., None, :], directions)
+    return np.concatenate([directions, moments / length[..., None, None]], axis=-1)
+
+
+def from_scaled(rows: Array, centre: Array, length: Array) -> Array:
+    """The inverse of :func:`to_scaled`: rows ``(..., k, 6)`` back to the user's frame and unit.
+
+    Examples
+    --------
+    >>> from_scaled(np.array([[0, 0, 1.0, 0, 0, 0]]), np.array([0, 2.0, 0]), np.array(2.0))
+    array([[0., 0., 1., 2., 0., 0.]])
+    """
+    directions = rows[..., :3]
+    moments = rows[..., 3:] * length[..., None, None] + np.cross(centre[..., None, :], directions)
+    return np.concatenate([directions, moments], axis=-1)
+
+
+def empty(batch: tuple[int, ...]) -> tuple[Array, Array]:
+    """The frame of the 0-system over a batch.
+
+    Examples
+    --------
+    >>> empty((2,))[1]
+    array([0, 0])
+    """
+    return np.zeros((*batch, 6, 6)), np.zeros(batch, dtype=int)
+
+
+def _project_out(vectors: Array, rows: Array) -> Array:
+    """``vectors (..., k, 6)`` minus their projections on the orthonormal (or zero) ``rows``."""
+    coefficients = np.einsum("...ks,...rs->...kr", vectors, rows)
+    return vectors - np.einsum("...kr,...rs->...ks", coefficients, rows)
+
+
+def span(generators: Array, rtol: float) -> tuple[Array, Array]:
+    """The frame of the system spanned by ``generators`` ``(..., k, 6)`` (the module's rank rule).
+
+    Examples
+    --------
+    >>> rows, order = span(np.array([[1.0, 0, 0, 0, 0, 0], [1.0, 1e-12, 0, 0, 0, 0]]), 1e-9)
+    >>> int(order), rows[0]
+    (1, array([1., 0., 0., 0., 0., 0.]))
+    """
+    work = np.array(generators, dtype=float)
+    batch = work.shape[:-2]
+    rows, order = empty(batch)
+    if work.shape[-2] == 0:
+        return rows, order
+    norms = np.sqrt(np.einsum("...ks,...ks->...k", work, work))
+    threshold = rtol * norms.max(axis=-1)
+    active = np.ones(batch, dtype=bool)
+    for step in range(min(work.shape[-2], 6)):
+        pick = np.argmax(norms, axis=-1)
+        pivot = np.take_along_axis(work, pick[..., None, None], axis=-2)[..., 0, :]
+        pivot = pivot - np.einsum(
+            "...r,...rs->...s", np.einsum("...rs,...s->...r", rows, pivot), rows
+        )  # CGS2
+        size = np.sqrt(np.einsum("...s,...s->...", pivot, pivot))
+        active &= (size > threshold) & (size > 0)
+        unit = np.where(active[..., None], pivot / np.where(size > 0, size, 1.0)[..., None], 0.0)
+        rows[..., step, :] = unit
+        order += active
+        work = work - np.einsum("...ks,...s->...k", work, unit)[..., None] * unit[..., None, :]
+        norms = np.sqrt(np.einsum("...ks,...ks->...k", work, work))
+    return rows, order
+
+
+def complement(rows: Array, order: Array) -> tuple[Array, Array]:
+    """An orthonormal frame of the orthogonal complement of a frame (order ``6 − order``).
+
+    The complete Householder QR of the frame's rows as columns: its first ``order`` columns span
+    the frame, the others its complement (no rank decision is made).
+
+    Examples
+    --------
+    >>> rows, order = complement(np.diag([1.0, 0, 0, 0, 0, 0]), np.array(1))
+    >>> int(order), float(np.abs(rows[:5, 0]).max()), float(np.abs(rows[5]).max())
+    (5, 0.0, 0.0)
+    """
+    q = np.linalg.qr(np.swapaxes(rows, -1, -2), mode="complete")[0]  # (..., 6, 6), columns
+    wanted = 6 - order
+    index = order[..., None] + np.arange(6)  # row k of the complement is column order + k of q
+    picked = np.take_along_axis(np.swapaxes(q, -1, -2), np.minimum(index, 5)[..., None], axis=-2)
+    return np.where((index < 6)[..., None], picked, 0.0), wanted
+
+
+def reciprocal(rows: Array, order: Array) -> tuple[Array, Array]:
+    """The frame of the reciprocal system: ``SWAP`` applied to the complement.
+
+    Examples
+    --------
+    >>> line = np.zeros((6, 6)); line[0, 2] = 1.0           # the z axis through the reference point
+    >>> rows, order = reciprocal(line, np.array(1))
+    >>> int(order), bool(np.abs(rows[:5] @ SWAP @ line[0]).max() < 1e-15)
+    (5, True)
+    """
+    out, wanted = complement(rows, order)
+    return out @ SWAP, wanted
+
+
+def residual(vectors: Array, rows: Array) -> Array:
+    """``vectors (..., k, 6)`` minus their projections on a frame's rows (re-orthogonalised once).
+
+    Examples
+    --------
+    >>> residual(np.array([[1.0, 1.0, 0, 0, 0, 0]]), np.eye(6)[:1])
+    array([[0., 1., 0., 0., 0., 0.]])
+    """
+    return _project_out(_project_out(vectors, rows), rows)
+
+
+def singular_ratio(rows: Array, index: int) -> Array:
+    """``σ_index / σ_1`` of rows ``(..., k, 6)`` (1 for ``index ≤ 0``, 0 when ``k < index``).
+
+    Examples
+    --------
+    >>> float(singular_ratio(np.array([[1.0, 0, 0, 0, 0, 0], [0, 0.5, 0, 0, 0, 0]]), 2))
+    0.5
+    """
+    batch = rows.shape[:-2]
+    if index <= 0:
+        return np.ones(batch)
+    if rows.shape[-2] < index:
+        return np.zeros(batch)
+    values = np.linalg.svd(rows, compute_uv=False)
+    top = values[..., 0]
+    return np.where(top > 0, values[..., index - 1] / np.where(top > 0, top, 1.0), 0.0)
