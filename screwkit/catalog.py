@@ -70,7 +70,7 @@ from __future__ import annotations
 import math
 import tomllib
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
 from typing import Any
@@ -80,13 +80,13 @@ import numpy as np
 
 from . import joints as J
 from ._backend import is_dof
-from .exceptions import CatalogError, ScrewkitError
-from .jacobians import WrenchJacobians, jacobians_from_wrenches
+from .exceptions import CatalogError, ScrewkitError, ScrewkitValueError
+from .families import Family, families
+from .jacobians import WrenchJacobians
+from .joints import JointTable
 from .twistgraph import add_joint, check_twist_graph
-from .wrenches import wrench_analysis
 
 __all__ = [
-    "Family",
     "Mechanism",
     "list_mechanisms",
     "load_mechanism",
@@ -97,76 +97,6 @@ __all__ = [
 ]
 
 Array = np.ndarray
-
-
-@dataclass(frozen=True)
-class Family:
-    """How a family turns parameters and a pose into a configuration and a twist graph.
-
-    Attributes
-    ----------
-    parameters : callable
-        ``(mapping, *, source) -> parameters`` (the family's validating constructor).
-    configuration : callable
-        ``(parameters, pose, **options) -> configuration`` (inverse kinematics).
-    twist_graph : callable
-        ``configuration -> networkx.MultiDiGraph`` of the physical mechanism.
-    pose_names, angle_names : tuple of str
-        The pose coordinates, and which of them are angles (degrees in files, radians in the API).
-    twist_basis : callable
-        ``configuration -> numpy.ndarray (dof, 6)``: the platform's nominal twists at the pose, one
-        per pose coordinate and in the same order (user frame), the columns of ``A`` in
-        :func:`screwkit.jacobians.jacobians_from_wrenches`.
-    """
-
-    parameters: Callable[..., Any]
-    configuration: Callable[..., Any]
-    twist_graph: Callable[..., nx.MultiDiGraph]
-    pose_names: tuple[str, ...]
-    angle_names: tuple[str, ...]
-    twist_basis: Callable[..., Array]
-
-
-def _families() -> dict[str, Family]:
-    """The families a catalog entry can name. Each family module provides ``twist_graph(config)`` and
-    ``twist_basis(config)``."""
-    from .families import four_limb, four_limb_graph, mcgill_smg, peppermill, planar_3rrp
-
-    smg_pose = ("x", "y", "z", "phi")
-    return {
-        "four_limb": Family(
-            parameters=four_limb.FourLimbParameters.from_mapping,
-            configuration=four_limb.inverse_kinematics,
-            twist_graph=four_limb_graph.four_limb_twist_graph,
-            pose_names=smg_pose,
-            angle_names=("phi",),
-            twist_basis=four_limb_graph.twist_basis,
-        ),
-        "mcgill_smg": Family(
-            parameters=mcgill_smg.McGillParameters.from_mapping,
-            configuration=mcgill_smg.inverse_kinematics,
-            twist_graph=mcgill_smg.twist_graph,
-            pose_names=smg_pose,
-            angle_names=("phi",),
-            twist_basis=mcgill_smg.twist_basis,
-        ),
-        "peppermill": Family(
-            parameters=peppermill.PeppermillParameters.from_mapping,
-            configuration=peppermill.inverse_kinematics,
-            twist_graph=peppermill.twist_graph,
-            pose_names=smg_pose,
-            angle_names=("phi",),
-            twist_basis=peppermill.twist_basis,
-        ),
-        "planar_3rrp": Family(
-            parameters=planar_3rrp.Planar3RRPParameters.from_mapping,
-            configuration=planar_3rrp.Planar3RRPConfiguration.from_pose,
-            twist_graph=planar_3rrp.twist_graph,
-            pose_names=("x", "y", "phi"),
-            angle_names=("phi",),
-            twist_basis=planar_3rrp.twist_basis,
-        ),
-    }
 
 
 @dataclass(frozen=True, eq=False)
@@ -204,12 +134,23 @@ class Mechanism:
     expected: tuple[dict[str, Any], ...] = field(default=())
 
     @property
+    def family_protocol(self) -> Family:
+        """The family's four functions (:mod:`screwkit.families`)."""
+        return families()[self.family]
+
+    @property
     def pose_names(self) -> tuple[str, ...]:
         """Names of the pose coordinates, e.g. ``('x', 'y', 'z', 'phi')``."""
-        return _families()[self.family].pose_names
+        return self.family_protocol.pose_names
+
+    @property
+    def angle_names(self) -> tuple[str, ...]:
+        """The pose coordinates that are angles (radians in the API, degrees in files and the CLI)."""
+        return self.family_protocol.angle_names
 
     def configuration(self, pose: Any = None, **options: Any) -> Any:
-        """The family's configuration (inverse kinematics) at a pose (default: the default pose).
+        """The family's configuration (inverse kinematics) at a pose or a batch ``(..., n)``
+        (default: the default pose).
 
         Examples
         --------
@@ -217,7 +158,43 @@ class Mechanism:
         (4,)
         """
         chosen = self.default_pose if pose is None else pose
-        return _families()[self.family].configuration(self.parameters, chosen, **options)
+        return self.family_protocol.inverse_kinematics(self.parameters, chosen, **options)
+
+    def joints(self, pose: Any = None, **options: Any) -> JointTable:
+        """The joint table at a pose or a batch of poses (the input of the analysis core).
+
+        Examples
+        --------
+        >>> table = load_mechanism("h4").joints(np.zeros((3, 4)) + [0, 0, -750, 0])
+        >>> table.batch_shape, len(table.specs)
+        ((3,), 22)
+        """
+        return self.family_protocol.joints(self.configuration(pose, **options))
+
+    def at(self, poses: Any = None, *, rtol: float | None = None, **options: Any) -> Any:
+        """The mechanism at a batch of poses: a frozen :class:`~screwkit.posed.PosedMechanism` whose
+        stages (IK, joints, wrench systems, verdicts, Jacobians) are computed once, on demand.
+
+        Parameters
+        ----------
+        poses : array_like, shape (..., n), optional
+            In the file's length unit and radians; default: the default pose.
+        rtol : float, optional
+            Relative tolerance of every rank decision (default 1e-9).
+        **options
+            Passed to the inverse kinematics (a working mode).
+
+        Examples
+        --------
+        >>> posed = load_mechanism("h4").at([[0, 0, -750, 0], [50, 20, -800, 0.3]])
+        >>> posed.verdicts.tolist()
+        ['regular', 'regular']
+        >>> print(posed[1].singularity)
+        regular (dof 4): constraint order 2/2, global order 6/6
+        """
+        from .posed import PosedMechanism
+
+        return PosedMechanism.create(self, poses, rtol=rtol, options=options)
 
     def random_poses(self, rng: np.random.Generator, count: int) -> Array:
         """Poses drawn uniformly in the operational workspace (radians), ``(count, n)``.
@@ -233,13 +210,8 @@ class Mechanism:
     def wrench_diagram(
         self, pose: Any = None
     ) -> tuple[Any, Callable[[np.random.Generator], dict[str, Array]]]:
-        """The wrench diagram at a pose, and a sampler of its recipes at random workspace poses.
-
-        Which points lines share is decided at a generic (random, seeded) workspace pose, then the
-        diagram is placed at ``pose`` (:func:`screwkit.diagram.diagram_at`).
-
-        The sampler (:func:`screwkit.diagram.graph_sampler`) draws poses in the operational
-        workspace until the diagram's points all exist there (at most 50 draws).
+        """The wrench diagram at a pose, and a sampler of its recipes at random workspace poses
+        (:meth:`screwkit.posed.Pose.diagram_and_sampler`).
 
         Examples
         --------
@@ -247,43 +219,17 @@ class Mechanism:
         >>> sorted(sampler(np.random.default_rng(1)))[:3]
         ['a', 'b', 'c']
         """
-        from .diagram import diagram_at, graph_sampler, wrench_diagram
-        from .wrenches import wrench_analysis
-
-        def random_graph(rng: np.random.Generator) -> nx.MultiDiGraph:
-            return self.twist_graph(self.random_poses(rng, 1)[0])
-
-        reference = None  # the recipes, decided at a generic pose (no coincidence taken for structure)
-        generator = np.random.default_rng(2026)
-        for _ in range(50):
-            try:
-                candidate = wrench_diagram(wrench_analysis(random_graph(generator)))
-            except ScrewkitError:
-                continue
-            if not candidate.degenerate:
-                reference = candidate
-                break
-        analysis = wrench_analysis(self.twist_graph(pose))
-        if reference is None:  # e.g. a mechanism whose wrenches are never six lines: say why, here
-            diagram = wrench_diagram(analysis)
-            reason = "no generic workspace pose (of 50 drawn) gives a non-degenerate diagram"
-            return replace(diagram, degenerate=(*diagram.degenerate, reason)), _no_sampler
-        diagram = diagram_at(reference, analysis)
-        sampler = graph_sampler(diagram.points, random_graph)
-        return diagram, sampler
+        return self.at(None if pose is None else np.asarray(pose, dtype=float)[None])[0].diagram_and_sampler()
 
     def twist_graph(self, pose: Any = None, **options: Any) -> nx.MultiDiGraph:
-        """The twist graph of the physical mechanism at a pose (default: the default pose).
+        """The twist graph of the physical mechanism at one pose (default: the default pose).
 
         Examples
         --------
         >>> load_mechanism("h4").twist_graph().graph["dof"]
         4
         """
-        graph = _families()[self.family].twist_graph(self.configuration(pose, **options))
-        graph.graph["name"] = self.name
-        graph.graph["length_unit"] = self.length_unit
-        return graph
+        return self._one(pose, options).graph
 
     def twist_basis(self, pose: Any = None, **options: Any) -> Array:
         """The platform's nominal twists at a pose (default: the default pose), rows ``(dof, 6)``.
@@ -299,15 +245,14 @@ class Mechanism:
         >>> load_mechanism("v4").twist_basis()[3]  # the V4's end effector turns about j
         array([  0.,   1.,   0., 750.,   0.,   0.])
         """
-        return _families()[self.family].twist_basis(self.configuration(pose, **options))
+        return self._one(pose, options).twist_basis
 
     def jacobians(self, pose: Any = None, **options: Any) -> WrenchJacobians:
         """Forward and inverse Jacobians ``A χ̇ = B θ̇`` from the wrench systems at a pose.
 
-        :func:`screwkit.jacobians.jacobians_from_wrenches` of the wrench analysis of
-        :meth:`twist_graph` over :meth:`twist_basis` (so ``χ̇`` are the rates of the pose
-        coordinates), with its Gosselin–Angeles type and closeness measures. ``options`` go to
-        :meth:`configuration`.
+        :func:`screwkit.jacobians.jacobians_from_wrenches` of the wrench analysis over
+        :meth:`twist_basis` (so ``χ̇`` are the rates of the pose coordinates), with its
+        Gosselin–Angeles type and closeness measures. ``options`` go to :meth:`configuration`.
 
         Raises
         ------
@@ -321,20 +266,17 @@ class Mechanism:
         >>> jac.type, jac.A.shape, jac.actuated_joints
         ('regular', (3, 3), ('limb1_R1', 'limb2_R1', 'limb3_R1'))
         """
-        config = self.configuration(pose, **options)
-        family = _families()[self.family]
-        graph = family.twist_graph(config)
-        graph.graph["name"] = self.name
-        graph.graph["length_unit"] = self.length_unit
-        return jacobians_from_wrenches(wrench_analysis(graph), family.twist_basis(config))
+        return self._one(pose, options).jacobians
 
-
-def _no_sampler(rng: np.random.Generator) -> dict[str, Array]:
-    """The sampler of a diagram that has no generic reference: always refuses (never called when
-    the diagram is reported degenerate).
-
-    """
-    raise CatalogError("no generic pose gives this mechanism a wrench diagram to sample.")
+    def _one(self, pose: Any, options: dict[str, Any]) -> Any:
+        """One pose through the composer (:meth:`at`)."""
+        chosen = None if pose is None else np.asarray(pose, dtype=float)
+        if chosen is not None and chosen.ndim != 1:
+            raise ScrewkitValueError(
+                f"Expected one pose of shape ({len(self.pose_names)},), got {chosen.shape}; "
+                "use at() for batches."
+            )
+        return self.at(chosen, **options)[0]
 
 
 def _error(source: str, where: str, message: str) -> CatalogError:
@@ -454,12 +396,12 @@ def mechanism_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>"
         raise _error(source, "[mechanism]", f"field `kind`: expected 'family' here, got {kind!r}.")
     name = _string(header, "name", source, "[mechanism]")
     family_name = _string(header, "family", source, "[mechanism]")
-    families = _families()
-    if family_name not in families:
+    known = families()
+    if family_name not in known:
         raise _error(
-            source, "[mechanism]", f"field `family`: expected one of {sorted(families)}, got {family_name!r}."
+            source, "[mechanism]", f"field `family`: expected one of {sorted(known)}, got {family_name!r}."
         )
-    family = families[family_name]
+    family = known[family_name]
     length_unit = _string(header, "length_unit", source, "[mechanism]")
     sources = header.get("sources", [])
     if not isinstance(sources, list) or not all(isinstance(s, str) for s in sources):

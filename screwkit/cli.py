@@ -6,7 +6,7 @@ One ``run_*`` function per command; each prints text by default and JSON with ``
 
 Commands
 --------
-``screwkit analyze NAME|FILE.toml [--pose X Y Z PHI] [--json]``
+``screwkit analyze NAME|FILE.toml [--pose X Y Z PHI] [--rtol R] [--json]``
     The whole analysis (:func:`screwkit.report.analyze`): twist graph, wrench systems, wrench
     diagram, superbracket, conditions, verdict. Lengths in the catalog file's unit, angle in degrees.
 ``screwkit list [--json]``
@@ -33,8 +33,8 @@ from typing import Any, NoReturn
 import numpy as np
 
 from . import __version__
-from .catalog import list_mechanisms, load_mechanism
-from .exceptions import CatalogError, ScrewkitError
+from .catalog import list_mechanisms, load_mechanism, load_toml
+from .exceptions import ScrewkitError
 from .report import analyze
 from .screw import Screw
 
@@ -82,6 +82,13 @@ def get_parser() -> argparse.ArgumentParser:
         metavar="Q",
         help="the pose, e.g. X Y Z PHI for an SMG: lengths in the catalog file's length unit "
         "(mm for h4), the angle in DEGREES; default: the catalog's default pose",
+    )
+    analyze_parser.add_argument(
+        "--rtol",
+        type=float,
+        default=None,
+        metavar="R",
+        help="relative tolerance of every rank decision, in [0, 1) (default 1e-9)",
     )
     analyze_parser.add_argument("--json", action="store_true", help="print the whole report as JSON")
     analyze_parser.add_argument(
@@ -151,19 +158,10 @@ def run_screw(args: argparse.Namespace) -> int:
     return 0
 
 
-def _pose(args: argparse.Namespace) -> Any:
-    """The --pose in the API's units (angles from degrees to radians), checked against the mechanism."""
+def _pose(args: argparse.Namespace, mechanism: Any) -> Any:
+    """The --pose in the API's units (the family's angles from degrees to radians)."""
     if args.pose is None:
         return None
-    if args.mechanism.endswith(".toml"):
-        from .catalog import load_toml
-
-        if load_toml(args.mechanism).get("mechanism", {}).get("kind") == "snapshot":
-            raise _UsageError(
-                f"screwkit analyze: error: {args.mechanism} is a snapshot (one configuration); "
-                "--pose does not apply"
-            )
-    mechanism = load_mechanism(args.mechanism)
     names = mechanism.pose_names
     if len(args.pose) != len(names) or not all(math.isfinite(v) for v in args.pose):
         expected = " ".join(n.upper() for n in names)
@@ -171,7 +169,7 @@ def _pose(args: argparse.Namespace) -> Any:
         raise _UsageError(
             f"screwkit analyze: error: --pose expects {len(names)} finite numbers ({expected}), got {got}"
         )
-    angles = {"phi", "theta", "psi"}
+    angles = set(mechanism.angle_names)
     return np.array([math.radians(v) if n in angles else v for n, v in zip(names, args.pose, strict=True)])
 
 
@@ -186,18 +184,33 @@ def run_analyze(args: argparse.Namespace) -> int:
     ...
     0
     """
-    try:
-        pose = _pose(args)
-    except CatalogError as err:
-        raise _UsageError(f"screwkit analyze: error: {err}") from err
-    if not args.mechanism.endswith(".toml") and args.mechanism.lower() not in list_mechanisms():
+    if args.rtol is not None and not 0 <= args.rtol < 1:
+        raise _UsageError(f"screwkit analyze: error: --rtol expects a number in [0, 1), got {args.rtol:g}")
+    target: Any = args.mechanism
+    snapshot = args.mechanism.endswith(".toml") and (_toml_kind(args.mechanism) == "snapshot")
+    if not snapshot:
+        if not args.mechanism.endswith(".toml") and args.mechanism.lower() not in list_mechanisms():
+            raise _UsageError(
+                f"screwkit analyze: error: unknown mechanism {args.mechanism!r}: expected one of "
+                f"{list_mechanisms()} or a .toml file"
+            )
+        target = load_mechanism(args.mechanism)  # a malformed file is an analysis error (exit 1)
+        pose = _pose(args, target)
+    elif args.pose is not None:
         raise _UsageError(
-            f"screwkit analyze: error: unknown mechanism {args.mechanism!r}: expected one of "
-            f"{list_mechanisms()} or a .toml file"
+            f"screwkit analyze: error: {args.mechanism} is a snapshot (one configuration); "
+            "--pose does not apply"
         )
-    report = analyze(args.mechanism, pose, superbracket=not args.no_superbracket)
+    else:
+        pose = None
+    report = analyze(target, pose, rtol=args.rtol, superbracket=not args.no_superbracket)
     print(json.dumps(report.to_dict(), indent=2, ensure_ascii=False) if args.json else report)
     return 0
+
+
+def _toml_kind(path: str) -> Any:
+    header = load_toml(path).get("mechanism", {})
+    return header.get("kind") if isinstance(header, dict) else None
 
 
 def run_list(args: argparse.Namespace) -> int:

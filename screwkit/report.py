@@ -38,16 +38,17 @@ from typing import Any
 import networkx as nx
 import numpy as np
 
+from . import _backend as B
 from . import screw as S
 from .catalog import Mechanism, load_mechanism, load_snapshot, load_toml
 from .diagram import SuperbracketAnalysis, WrenchDiagram, superbracket_analysis, wrench_diagram
-from .exceptions import ScrewkitError, ScrewkitValueError
-from .jacobians import WrenchJacobians, jacobians_from_wrenches
+from .exceptions import ScrewkitError, ScrewkitTypeError, ScrewkitValueError
+from .jacobians import WrenchJacobians
 from .singularity import SingularityReport, classify_analysis
 from .twistgraph import equivalent_twist_graph, fundamental_loops
-from .wrenches import WrenchAnalysis, wrench_analysis
+from .wrenches import WrenchAnalysis, checked_rtol, wrench_analysis
 
-__all__ = ["AnalysisReport", "analyze", "describe_wrench"]
+__all__ = ["AnalysisReport", "analyze", "describe_wrench", "pose_report"]
 
 Array = np.ndarray
 
@@ -320,16 +321,21 @@ def _vector(values: list[float]) -> str:
     return "(" + ", ".join(f"{v:.4g}" for v in values) + ")"
 
 
-def analyze(target: str | Path | Mechanism, pose: Any = None, *, superbracket: bool = True) -> AnalysisReport:
-    """Analyse a catalog mechanism (by name, file or object) at a pose, or a snapshot file.
+def analyze(
+    target: Any, pose: Any = None, *, rtol: float | None = None, superbracket: bool = True
+) -> AnalysisReport:
+    """Analyse a mechanism at a pose: the one composer the CLI calls.
 
     Parameters
     ----------
-    target : str, pathlib.Path or Mechanism
-        A catalog name (``"h4"``), a catalog or snapshot ``.toml`` file, or a :class:`Mechanism`.
+    target : str, pathlib.Path, Mechanism or networkx.MultiDiGraph
+        A catalog name (``"h4"``), a catalog or snapshot ``.toml`` file, a :class:`Mechanism`, or a
+        twist graph built in Python (analysed at its configuration, like a snapshot).
     pose : array_like, optional
         In the mechanism's length unit and radians; default: the catalog's default pose. Not
-        accepted for snapshots (their configuration is in the file).
+        accepted for snapshots and graphs (their configuration is given).
+    rtol : float, optional
+        Relative tolerance of every rank decision (default 1e-9).
     superbracket : bool, default True
         Also expand and factor the superbracket (skip for speed).
 
@@ -347,36 +353,57 @@ def analyze(target: str | Path | Mechanism, pose: Any = None, *, superbracket: b
     >>> analyze("h4", [0.0, 0.0, -750.0, 0.0], superbracket=False).verdict.labels
     ()
     """
+    tolerance = B.DEFAULT_RTOL if rtol is None else checked_rtol(rtol)
+    if isinstance(target, nx.MultiDiGraph):
+        return _graph_report(target, "<graph>", pose, tolerance, superbracket, "a twist graph")
+    if not isinstance(target, str | Path | Mechanism):
+        raise ScrewkitTypeError(
+            "Expected `target` to be a catalog name, a .toml path, a Mechanism or a twist graph "
+            f"(networkx.MultiDiGraph), got {type(target).__name__}."
+        )
     text = str(target) if not isinstance(target, Mechanism) else ""
     if text.endswith(".toml") and load_toml(text).get("mechanism", {}).get("kind") == "snapshot":
-        if pose is not None:
-            raise ScrewkitValueError(
-                f"{text}: a snapshot is one configuration; expected no pose, got {pose!r}."
-            )
-        graph = load_snapshot(text)
-        analysis = wrench_analysis(graph)
-        diagram = wrench_diagram(analysis)
-        points = dict(diagram.coordinates)
-        return _finish(
-            graph.graph.get("name", text),
-            text,
-            graph.graph.get("length_unit", ""),
-            None,
-            (),
-            graph,
-            analysis,
-            diagram,
-            (lambda _: points) if superbracket else None,
-            "structural zeros read from this one configuration (a snapshot)",
-        )
+        return _graph_report(load_snapshot(text), text, pose, tolerance, superbracket, "a snapshot")
     mechanism = target if isinstance(target, Mechanism) else load_mechanism(target)
-    chosen = mechanism.default_pose if pose is None else np.asarray(pose, dtype=float)
-    graph = mechanism.twist_graph(chosen)
-    analysis = wrench_analysis(graph)
-    diagram, sampler = mechanism.wrench_diagram(chosen)
+    return mechanism.at(pose, rtol=tolerance)[0].report(superbracket=superbracket)
+
+
+def _graph_report(
+    graph: nx.MultiDiGraph, source: str, pose: Any, rtol: float, superbracket: bool, what: str
+) -> AnalysisReport:
+    if pose is not None:
+        raise ScrewkitValueError(f"{source}: {what} is one configuration; expected no pose, got {pose!r}.")
+    analysis = wrench_analysis(graph, rtol=rtol)
+    diagram = wrench_diagram(analysis)
+    points = dict(diagram.coordinates)
+    return _finish(
+        graph.graph.get("name", source),
+        source,
+        graph.graph.get("length_unit", ""),
+        None,
+        (),
+        graph,
+        analysis,
+        diagram,
+        (lambda _: points) if superbracket else None,
+        f"structural zeros read from this one configuration ({what})",
+    )
+
+
+def pose_report(pose: Any, *, superbracket: bool = True) -> AnalysisReport:
+    """The report of one pose of a posed mechanism (:meth:`screwkit.posed.Pose.report`).
+
+    Examples
+    --------
+    >>> from screwkit.catalog import load_mechanism
+    >>> pose_report(load_mechanism("v4").at()[0], superbracket=False).verdict.verdict
+    'regular'
+    """
+    mechanism = pose.mechanism
+    diagram, sampler = pose.diagram_and_sampler()
     jacobians: WrenchJacobians | None = None
     try:
-        jacobians = jacobians_from_wrenches(analysis, mechanism.twist_basis(chosen))
+        jacobians = pose.jacobians
         jacobians_note = (
             "rows: the actuation wrenches (unit force, or unit couple, signed so that B_jj >= 0); columns: "
             "the platform's nominal twists at the pose, one per pose coordinate "
@@ -388,14 +415,14 @@ def analyze(target: str | Path | Mechanism, pose: Any = None, *, superbracket: b
         mechanism.name,
         mechanism.source,
         mechanism.length_unit,
-        chosen,
+        np.asarray(pose.pose),
         mechanism.pose_names,
-        graph,
-        analysis,
+        pose.graph,
+        pose.analysis,
         diagram,
         sampler if superbracket else None,
-        "structural zeros confirmed on random poses of the workspace; each stage equals the 6×6 "
-        "determinant on fresh poses",
+        "structural zeros confirmed on random poses of the workspace (drawn and analysed as one batch); "
+        "each stage equals the 6×6 determinant on fresh poses",
         jacobians,
         jacobians_note,
     )

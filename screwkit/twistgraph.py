@@ -47,7 +47,6 @@ __all__ = [
     "LoopEdge",
     "SeriesParallelNode",
     "add_joint",
-    "axes_frame",
     "check_twist_graph",
     "equivalent_twist_graph",
     "from_data",
@@ -247,51 +246,30 @@ def graph_anchor(graph: nx.MultiDiGraph, *, joint_key: str = "joint") -> Array |
 
 
 def mechanism_frame(screws: Array, anchor: Array | None = None) -> tuple[Array, Array]:
-    """:func:`axes_frame` of screws ``(..., n, 6)``, with the point moved along the axes to the
-    ``anchor`` ``(..., 3)`` when all finite axes are parallel (the batched kernel of
-    :func:`graph_frame`).
+    """The batched kernel of :func:`graph_frame`: screws ``(..., n, 6)`` → points ``(..., 3)``,
+    lengths ``(...)``.
 
-    Examples
-    --------
-    >>> rows = np.array([[0, 0, 1, 0, 0, 0], [0, 0, 1, 1, 0, 0.0]])
-    >>> mechanism_frame(rows, np.array([0, 0, 5.0]))[0].round(6) + 0.0
-    array([0. , 0.5, 5. ])
-    """
-    point, length = axes_frame(screws)
-    if anchor is None:
-        return point, length
-    directions = screws[..., :3]
-    sizes = np.linalg.norm(directions, axis=-1)
-    finite = sizes > 0
-    units = directions / np.where(finite, sizes, 1.0)[..., None]
-    first = np.take_along_axis(units, np.argmax(finite, axis=-1)[..., None, None], axis=-2)[..., 0, :]
-    spread = np.where(finite, np.linalg.norm(np.cross(units, first[..., None, :]), axis=-1), 0.0)
-    planar = finite.any(axis=-1) & (spread.max(axis=-1, initial=0.0) <= PARALLEL_AXES_RTOL)
-    along = np.einsum("...i,...i->...", np.asarray(anchor, dtype=float) - point, first)
-    return np.where(planar[..., None], point + first * along[..., None], point), length
-
-
-#: Sine of the largest angle between finite axes for which they count as all parallel (a planar
-#: mechanism) in :func:`mechanism_frame`.
-PARALLEL_AXES_RTOL = 1e-9
-
-
-def axes_frame(screws: Array) -> tuple[Array, Array]:
-    """The kernel of :func:`graph_frame`, batched: screws ``(..., n, 6)`` → points ``(..., 3)``, lengths.
-
-    Screws of infinite pitch are ignored; with none left the point is the origin and the length 1.
-    When every axis passes through one point (a spherical mechanism) the root-mean-square distance
-    is round-off: below ``1e-12`` of the coordinates' own size it is replaced by that size (the
+    The point is the least-squares point nearest to the finite axes (screws of infinite pitch are
+    ignored). Directions along which the axes do not fix it (all axes parallel: a planar
+    mechanism; eigenvalues of the normal matrix below :data:`UNDETERMINED_RTOL` of the largest)
+    take the ``anchor`` ``(..., 3)``'s coordinate when one is given (a point that moves with the
+    mechanism), else the solution nearest the origin. The length is the root-mean-square distance
+    of the axes from the point; when every axis passes through it (a spherical mechanism) that is
+    round-off, and below ``1e-12`` of the coordinates' own size it is replaced by that size (the
     farthest foot of an axis from the origin, or 1 when it is 0), a length that still follows the
-    unit; moments about the common point are then zero whatever the length.
+    unit; moments about the common point are then zero whatever the length. With no finite axis,
+    the point is the origin and the length 1.
 
     Examples
     --------
     >>> rows = np.array([[0, 0, 1, 0, -100.0, 0], [0, 1, 0, 0, 0, 0]])
-    >>> point, length = axes_frame(np.stack([rows, rows]))
+    >>> point, length = mechanism_frame(np.stack([rows, rows]))
     >>> point.round(6) + 0.0, length
     (array([[50.,  0.,  0.],
            [50.,  0.,  0.]]), array([50., 50.]))
+    >>> planar = np.array([[0, 0, 1, 0, 0, 0], [0, 0, 1, 1, 0, 0.0]])
+    >>> mechanism_frame(planar, np.array([0, 0, 5.0]))[0].round(6) + 0.0
+    array([0. , 0.5, 5. ])
     """
     directions, moments = screws[..., :3], screws[..., 3:]
     sizes = np.sum(directions**2, axis=-1)
@@ -302,7 +280,14 @@ def axes_frame(screws: Array) -> tuple[Array, Array]:
     projectors = (np.eye(3) - units[..., :, None] * units[..., None, :]) * finite[..., None, None]
     normal = projectors.sum(axis=-3)
     rhs = np.einsum("...kij,...kj->...i", projectors, feet)
-    point = (np.linalg.pinv(normal) @ rhs[..., None])[..., 0]
+    values, vectors = np.linalg.eigh(normal)
+    determined = values > UNDETERMINED_RTOL * values[..., -1:]
+    inverse = np.where(determined, 1.0 / np.where(determined, values, 1.0), 0.0)
+    coordinates = np.einsum("...ji,...j->...i", vectors, rhs) * inverse  # in the eigenbasis
+    if anchor is not None:
+        along = np.einsum("...ji,...j->...i", vectors, np.asarray(anchor, dtype=float))
+        coordinates = np.where(determined, coordinates, along)
+    point = np.einsum("...ij,...j->...i", vectors, coordinates)
     offsets = np.einsum("...kij,...kj->...ki", projectors, point[..., None, :] - feet)
     count = np.maximum(finite.sum(axis=-1), 1)
     length = np.sqrt(np.sum(offsets**2, axis=(-2, -1)) / count)
@@ -310,6 +295,12 @@ def axes_frame(screws: Array) -> tuple[Array, Array]:
     round_off = length <= 1e-12 * size
     fallback = np.where(size > 0, size, 1.0)
     return point, np.where(round_off | (length == 0), fallback, length)
+
+
+#: Directions in which the joint axes fix the reference point too weakly to be used (eigenvalues of
+#: the least-squares normal matrix below this fraction of the largest: axes within about 1e-5 rad
+#: of all parallel) take the anchor's coordinate (:func:`mechanism_frame`).
+UNDETERMINED_RTOL = 1e-10
 
 
 # loops and loop closure ---------------------------------------------------------------------------

@@ -23,6 +23,7 @@ from screwkit.cli import main
 from screwkit.exceptions import ScrewkitValueError
 from screwkit.families import four_limb_graph, mcgill_smg, peppermill, planar_3rrp
 from screwkit.families.four_limb import inverse_kinematics, reachable
+from screwkit.posed import PosedMechanism
 from screwkit.report import analyze
 
 from .test_h4 import singular_pose
@@ -204,7 +205,8 @@ def test_snapshot_report_has_no_jacobians():
 
 def test_report_says_why_when_the_basis_is_refused(monkeypatch):
     # a basis outside the platform's twists (here: a rotation about x for the planar platform)
-    monkeypatch.setattr(Mechanism, "twist_basis", lambda self, pose=None: np.eye(6)[[0, 3, 4]])
+    # (the composer takes the basis from the posed mechanism: screwkit.posed.PosedMechanism.twist_basis)
+    monkeypatch.setattr(PosedMechanism, "twist_basis", property(lambda self: np.eye(6)[[0, 3, 4]]))
     report = analyze("planar_3rrp", superbracket=False)
     summary = report.to_dict()["jacobians"]
     assert report.jacobians is None and summary["type"] is None and summary["A"] is None

@@ -1,0 +1,360 @@
+"""A mechanism at a batch of poses: every stage computed once, on demand (design.md §1a).
+
+:meth:`screwkit.catalog.Mechanism.at` returns a frozen :class:`PosedMechanism`. Its stages are
+cached properties over the whole batch, each built on the one before:
+
+``configuration`` (the family's inverse kinematics) → ``joints`` (a
+:class:`~screwkit.joints.JointTable`) → ``singularities`` (labels, orders, closeness: the analysis
+core in chunks, :func:`~screwkit.singularity.classify_table`) → ``jacobians`` (``A χ̇ = B θ̇`` over
+the family's nominal twists).
+
+Indexing gives one :class:`Pose`: its graph, wrench analysis (a batch of one through the same
+kernels), verdict, Jacobians, wrench diagram, superbracket and :meth:`Pose.report`. The
+superbracket's generic samples are drawn as one batch (:func:`generic_samples`).
+
+Examples
+--------
+>>> from screwkit.catalog import load_mechanism
+>>> posed = load_mechanism("h4").at([[0, 0, -750, 0], [30, -20, -750, 0.3]])
+>>> posed.shape, posed.singularities.constraint_order.tolist()
+((2,), [2, 2])
+>>> posed[0].singularity.verdict
+'regular'
+"""
+
+from __future__ import annotations
+
+import functools
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+import networkx as nx
+import numpy as np
+
+from . import _backend as B
+from .exceptions import ScrewkitError, ScrewkitValueError
+from .jacobians import WrenchJacobians, jacobians_from_wrenches
+from .joints import JointTable
+from .singularity import SingularityReport, classify_table
+from .wrenches import WrenchAnalysis, analyze_table, checked_rtol
+
+__all__ = ["Pose", "PosedMechanism", "generic_samples"]
+
+Array = np.ndarray
+
+#: Random workspace poses drawn (in one batch) to find a generic configuration for a diagram.
+GENERIC_DRAWS = 50
+#: Generic samples of a diagram's points drawn (in one batch) for the superbracket: its structural
+#: zeros and its checks take 12 (screwkit.diagram.superbracket_analysis).
+SAMPLES = 24
+
+
+class _Replay:
+    """``rng -> {label: point}`` handing out samples drawn :data:`SAMPLES` at a time, each time as
+    one batch (the ``rng`` argument is unused: the samples come from their own seeded stream)."""
+
+    def __init__(self, produce: Callable[[np.random.Generator], list[dict[str, Array]]]):
+        self.produce, self.stream = produce, np.random.default_rng(0)
+        self.drawn: list[dict[str, Array]] = []
+
+    def __call__(self, rng: np.random.Generator) -> dict[str, Array]:
+        if not self.drawn:
+            self.drawn = self.produce(self.stream)
+        return self.drawn.pop(0)
+
+
+def _checked_poses(mechanism: Any, poses: Any) -> Array:
+    names = mechanism.pose_names
+    if poses is None:
+        return np.asarray(mechanism.default_pose, dtype=float)[None]
+    array = B.as_array(poses, "poses", (len(names),), symbolic=False).astype(float)
+    if array.ndim == 1:
+        array = array[None]
+    return array
+
+
+@dataclass(frozen=True, eq=False)
+class PosedMechanism:
+    """A catalog mechanism at a batch of poses (see the module docstring).
+
+    Attributes
+    ----------
+    mechanism : Mechanism
+    poses : numpy.ndarray, shape (..., n)
+        Length unit of the file, radians; read-only.
+    rtol : float
+    options : dict
+        Passed to the inverse kinematics (a working mode).
+    """
+
+    mechanism: Any = field(repr=False)
+    poses: Array
+    rtol: float
+    options: dict[str, Any] = field(default_factory=dict, repr=False)
+
+    @classmethod
+    def create(
+        cls, mechanism: Any, poses: Any, *, rtol: float | None = None, options: Any = None
+    ) -> PosedMechanism:
+        """Validate and build (what :meth:`screwkit.catalog.Mechanism.at` calls).
+
+        Examples
+        --------
+        >>> from screwkit.catalog import load_mechanism
+        >>> PosedMechanism.create(load_mechanism("h4"), [0, 0, -750])
+        Traceback (most recent call last):
+        ...
+        screwkit.exceptions.ScrewkitValueError: Expected `poses` to have shape (..., 4), got (3,).
+        """
+        array = _checked_poses(mechanism, poses)
+        array.flags.writeable = False
+        tolerance = B.DEFAULT_RTOL if rtol is None else checked_rtol(rtol)
+        return cls(mechanism, array, tolerance, dict(options or {}))
+
+    @property
+    def shape(self) -> tuple[int, ...]:
+        """The batch shape."""
+        return self.poses.shape[:-1]
+
+    def __len__(self) -> int:
+        return self.shape[0]
+
+    def __repr__(self) -> str:
+        return f"PosedMechanism({self.mechanism.name!r}, shape={self.shape}, rtol={self.rtol:g})"
+
+    @functools.cached_property
+    def configuration(self) -> Any:
+        """The family's configuration over the batch (inverse kinematics)."""
+        try:
+            return self.mechanism.configuration(self.poses, **self.options)
+        except ScrewkitError:
+            if self.poses.shape[:-1] == (1,):  # one pose: the family's own single-pose message
+                self.mechanism.configuration(self.poses[0], **self.options)
+            raise
+
+    @functools.cached_property
+    def joints(self) -> JointTable:
+        """The joint table over the batch."""
+        return self.mechanism.family_protocol.joints(self.configuration)
+
+    @functools.cached_property
+    def twist_basis(self) -> Array:
+        """The platform's nominal twists ``(..., dof, 6)``, one per pose coordinate."""
+        return np.asarray(self.mechanism.family_protocol.twist_basis(self.configuration), dtype=float)
+
+    @functools.cached_property
+    def singularities(self) -> SingularityReport:
+        """Labels, orders and closeness over the batch (the analysis core, in chunks)."""
+        return classify_table(self.joints, rtol=self.rtol)
+
+    @property
+    def verdicts(self) -> Array:
+        """``"regular"``, ``"constraint singularity"``, ... per pose (an object array)."""
+        return np.asarray(self.singularities.verdict)
+
+    @property
+    def codes(self) -> Array:
+        """Per pose: bit 1 constraint, 2 actuation, 4 serial (:attr:`SingularityReport.codes`)."""
+        return self.singularities.codes
+
+    @property
+    def closeness(self) -> dict[str, Array]:
+        """The closeness measures per pose (:mod:`screwkit.singularity`)."""
+        return self.singularities.closeness
+
+    @functools.cached_property
+    def jacobians(self) -> WrenchJacobians:
+        """``A χ̇ = B θ̇`` per pose over the family's nominal twists."""
+        return jacobians_from_wrenches(self.singularities.analysis, self.twist_basis, rtol=self.rtol)
+
+    def __getitem__(self, index: Any) -> Pose:
+        try:
+            flat = np.arange(int(np.prod(self.shape))).reshape(self.shape)[index]
+        except (IndexError, TypeError, ValueError) as err:
+            raise ScrewkitValueError(
+                f"Expected `index` to pick one pose of the batch of shape {self.shape}, got {index!r}."
+            ) from err
+        if np.ndim(flat) != 0:
+            raise ScrewkitValueError(
+                f"Expected `index` to pick one pose of the batch of shape {self.shape}, got {index!r}."
+            )
+        return Pose(self, np.asarray(self.poses[index]), self.joints[index], int(flat))
+
+
+@dataclass(frozen=True, eq=False)
+class Pose:
+    """One pose of a :class:`PosedMechanism`: the per-pose graph, analysis, diagram, report.
+
+    Attributes
+    ----------
+    posed : PosedMechanism
+    pose : numpy.ndarray, shape (n,)
+    table : JointTable
+        This pose's joints (batch shape ``()``).
+    flat_index : int
+        Its index in the flattened batch.
+    """
+
+    posed: PosedMechanism = field(repr=False)
+    pose: Array
+    table: JointTable = field(repr=False)
+    flat_index: int = 0
+
+    @property
+    def mechanism(self) -> Any:
+        """The catalog mechanism."""
+        return self.posed.mechanism
+
+    @functools.cached_property
+    def graph(self) -> nx.MultiDiGraph:
+        """The twist graph of the physical mechanism at this pose."""
+        graph = self.table.graph()
+        graph.graph["name"] = self.mechanism.name
+        graph.graph["length_unit"] = self.mechanism.length_unit
+        return graph
+
+    @functools.cached_property
+    def analysis(self) -> WrenchAnalysis:
+        """The wrench systems (a batch of one through the core, with the per-pose views)."""
+        one = self.table[None] if self.table.batch_shape == () else self.table
+        result = analyze_table(one, rtol=self.posed.rtol)[0]
+        object.__setattr__(result, "graph", self.graph)
+        return result
+
+    @functools.cached_property
+    def singularity(self) -> SingularityReport:
+        """The verdict at this pose."""
+        return SingularityReport(self.analysis)
+
+    @functools.cached_property
+    def twist_basis(self) -> Array:
+        """The platform's nominal twists at this pose, ``(dof, 6)``."""
+        basis = self.posed.twist_basis
+        return basis.reshape(-1, *basis.shape[-2:])[self.flat_index]
+
+    @functools.cached_property
+    def jacobians(self) -> WrenchJacobians:
+        """``A χ̇ = B θ̇`` at this pose."""
+        return jacobians_from_wrenches(self.analysis, self.twist_basis, rtol=self.posed.rtol)
+
+    def diagram_and_sampler(self) -> tuple[Any, Callable[[np.random.Generator], dict[str, Array]]]:
+        """The wrench diagram at this pose and a sampler of its recipes at generic poses.
+
+        Which points lines share is decided at a generic (random, seeded) workspace pose, the
+        first of :data:`GENERIC_DRAWS` drawn as one batch whose diagram is not degenerate; the
+        diagram is then placed at this pose (:func:`screwkit.diagram.diagram_at`). The sampler
+        replays recipes evaluated at random workspace poses, drawn and analysed as one batch
+        (:func:`generic_samples`).
+        """
+        from dataclasses import replace
+
+        from .diagram import diagram_at, wrench_diagram
+
+        reference = None
+        analyses = _batch_analyses(
+            self.mechanism, np.random.default_rng(2026), GENERIC_DRAWS, self.posed.rtol
+        )
+        for analysis in analyses:
+            try:
+                candidate = wrench_diagram(analysis)
+            except ScrewkitError:
+                continue
+            if not candidate.degenerate:
+                reference = candidate
+                break
+        if reference is None:  # e.g. a mechanism whose wrenches are never six lines: say why, here
+            diagram = wrench_diagram(self.analysis)
+            reason = f"no generic workspace pose (of {GENERIC_DRAWS} drawn) gives a non-degenerate diagram"
+            return replace(diagram, degenerate=(*diagram.degenerate, reason)), _no_sampler
+        diagram = diagram_at(reference, self.analysis)
+        mechanism, rtol = self.mechanism, self.posed.rtol
+        return diagram, _Replay(
+            lambda stream: generic_samples(mechanism, diagram.points, stream, SAMPLES, rtol)
+        )
+
+    def report(self, *, superbracket: bool = True) -> Any:
+        """The whole analysis report at this pose (:class:`screwkit.report.AnalysisReport`).
+
+        Examples
+        --------
+        >>> from screwkit.catalog import load_mechanism
+        >>> load_mechanism("h4").at()[0].report(superbracket=False).verdict.verdict
+        'regular'
+        """
+        from .report import pose_report
+
+        return pose_report(self, superbracket=superbracket)
+
+
+def _batch_analyses(
+    mechanism: Any, rng: np.random.Generator, count: int, rtol: float
+) -> list[WrenchAnalysis]:
+    """Per-pose analyses at ``count`` random workspace poses, computed as one batch (the poses out
+    of reach are dropped)."""
+    poses = mechanism.random_poses(rng, count)
+    try:
+        table = mechanism.joints(poses)
+    except ScrewkitError:  # some pose out of reach: keep those the IK accepts one by one
+        kept = []
+        for pose in poses:
+            try:
+                mechanism.configuration(pose)
+            except ScrewkitError:
+                continue
+            kept.append(pose)
+        if not kept:
+            return []
+        table = mechanism.joints(np.array(kept))
+    batch = analyze_table(table, rtol=rtol)
+    out = []
+    for i in range(len(batch)):
+        one = batch[i]
+        graph = table.graph(i)
+        graph.graph["name"] = mechanism.name
+        object.__setattr__(one, "graph", graph)
+        out.append(one)
+    return out
+
+
+def generic_samples(
+    mechanism: Any, points: Any, rng: np.random.Generator, count: int, rtol: float = B.DEFAULT_RTOL
+) -> list[dict[str, Array]]:
+    """A diagram's points (``{label: (4,)}``) at random workspace poses, analysed as one batch.
+
+    Poses where a point does not exist are skipped; at most ``2 * count`` poses are drawn.
+
+    Raises
+    ------
+    ScrewkitValueError
+        If no drawn pose gives every point.
+
+    Examples
+    --------
+    >>> from screwkit.catalog import load_mechanism
+    >>> h4 = load_mechanism("h4")
+    >>> diagram, _ = h4.wrench_diagram()
+    >>> len(generic_samples(h4, diagram.points, np.random.default_rng(0), 3))
+    3
+    """
+    from .diagram import diagram_points
+
+    samples = []
+    for analysis in _batch_analyses(mechanism, rng, 2 * count, rtol):
+        try:
+            samples.append(diagram_points(points, analysis))
+        except ScrewkitError:
+            continue
+        if len(samples) == count:
+            break
+    if not samples:
+        raise ScrewkitValueError(
+            f"Expected a workspace pose giving every diagram point, got none of {2 * count}."
+        )
+    return samples
+
+
+def _no_sampler(rng: np.random.Generator) -> dict[str, Array]:
+    """The sampler of a diagram that has no generic reference: always refuses (never called when
+    the diagram is reported degenerate)."""
+    raise ScrewkitValueError("no generic pose gives this mechanism a wrench diagram to sample.")
