@@ -123,8 +123,10 @@ def surface_roots(rng, surface, count):
 
         t = bisect_root(along, _GRID[k], _GRID[k + 1])
         root = start + t * (stop - start)
-        if surface == "serial" and not reachable(H4.parameters, root):
-            t = np.nextafter(t, 0.0)  # keep the root itself reachable (the midpoint may be just out)
+        for _ in range(10_000):  # keep a serial root reachable: step back from the edge by ulps of t
+            if surface != "serial" or reachable(H4.parameters, root):
+                break
+            t = np.nextafter(t, 0.0)
             root = start + t * (stop - start)
         direction = (stop - start) / SCALE
         roots.append(root)
@@ -185,5 +187,6 @@ def all_near_surface_poses(rng, count_per_surface, surfaces=SURFACES, distances=
     """Near-surface poses of every surface (``count_per_surface`` roots each), and the roots."""
     roots = {surface: surface_roots(rng, surface, count_per_surface) for surface in surfaces}
     near = NearSurfacePoses.concatenate([near_surface_poses(r, distances) for r in roots.values()])
+    assert all(reachable(H4.parameters, r.poses).all() for r in roots.values())
     assert reachable(H4.parameters, near.poses).all()
     return near, roots

@@ -10,7 +10,7 @@ The pose set (built once per module): generic poses of the catalog workspace, th
 constraint, actuation and serial surfaces of :mod:`tests.singular_surfaces`, and poses at relative
 distances 1e-12 … 1e-4 on both sides of each root (only inside the reach for the serial surface).
 
-The *correct* verdict is checked independently where it is clear-cut (``TRUTH_MARGIN``):
+The *correct* verdict is checked independently where it is clear-cut (margins ``CONSTRAINT_MARGIN``, ``ACTUATION_MARGIN``):
 
 * **constraint**: the H4's constraint system is spanned by the two horizontal couples
   ``z × s12`` and ``z × s34`` of its compound legs (paper 002 Eq. 3; checked in
