@@ -1,0 +1,153 @@
+"""Speed and memory of the batched H4 verdicts against one batched SVD, and the cost of ``import``.
+
+Run: ``python bench/bench_core.py [--sizes 1000 10000 100000 1000000] [--repeats 21]`` from the
+repository root (prints a table; not a test). Every figure is single-threaded: the BLAS/OpenMP
+thread counts are set to 1 before numpy is imported.
+
+Figures (the issue's targets in brackets):
+
+* ``svd``: one batched ``np.linalg.svd(W, compute_uv=False)`` of the same poses' 6×6 global wrench
+  matrices ``W`` (paper 002 Eq. 4: the two constraint couples ``z × s12``, ``z × s34`` and the four
+  actuation forces along ``w_i`` through the points where they meet the vertical axes, built here
+  vectorised as ``tests/test_h4.paper_wrench_matrix`` does for one pose; building ``W`` is not
+  timed), in poses/s;
+* ``verdicts``: :func:`verdicts` over the same poses, chunked (``CHUNK`` poses per call), rate and
+  the ratio to the SVD's rate [≥ 0.2];
+* memory: ``tracemalloc`` peak of one chunk's :func:`verdicts` / ``CHUNK``, KiB per pose [≤ 3];
+* import: CPU time (user + sys of the child, ``resource.getrusage(RUSAGE_CHILDREN)`` deltas) of
+  ``python -c "import screwkit"`` against ``python -c "import numpy, networkx"`` in fresh
+  subprocesses, min and median over the repeats, ratio of the medians [≤ 1.2].
+"""
+
+import os
+
+for _name in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS", "NUMEXPR_NUM_THREADS",
+              "VECLIB_MAXIMUM_THREADS", "BLIS_NUM_THREADS"):
+    os.environ[_name] = "1"
+
+import argparse  # noqa: E402
+import resource  # noqa: E402
+import statistics  # noqa: E402
+import subprocess  # noqa: E402
+import sys  # noqa: E402
+import time  # noqa: E402
+import tracemalloc  # noqa: E402
+
+import numpy as np  # noqa: E402
+
+import screwkit as sk  # noqa: E402
+from screwkit.batch import classify_poses  # noqa: E402
+from screwkit.families.four_limb import reachable  # noqa: E402
+from screwkit.families.four_limb_graph import PAPER_002_LEGS, four_limb_joints  # noqa: E402
+
+CHUNK = 10_000
+
+
+def verdicts(h4, poses):
+    """The batched verdicts of the H4 at ``poses`` (n, 4): today IK + joint screws + classify_poses.
+
+    The one place to swap in the new core: ``return h4.at(poses).verdicts``.
+    """
+    screws = {name: s for _, _, name, _, s, _ in four_limb_joints(h4.configuration(poses))}
+    return classify_poses(h4.twist_graph(), screws)
+
+
+def wrench_matrices(h4, poses):
+    """The paper's six wrenches (rows) at every pose, ``(n, 6, 6)`` (paper 002 Eq. 4)."""
+    cfg = h4.configuration(poses)
+    z = np.array([0.0, 0.0, 1.0])
+    normals = np.cross(cfg.u, cfg.w)
+    normals /= np.linalg.norm(normals, axis=-1, keepdims=True)
+    leg = {k: v - 1 for k, v in PAPER_002_LEGS.items()}
+    s12 = np.cross(normals[:, leg["l1"]], normals[:, leg["l2"]])
+    s34 = np.cross(normals[:, leg["l3"]], normals[:, leg["l4"]])
+    rows = [np.concatenate([np.zeros_like(s), np.cross(z, s)], axis=-1) for s in (s12, s34)]
+    axis_of = {1: 0, 4: 0, 2: 1, 3: 1}  # limb -> the vertical axis (Z_I, Z_II) its force meets
+    for paper_leg in ("l1", "l2", "l3", "l4"):
+        limb = PAPER_002_LEGS[paper_leg] - 1
+        point = cfg.platform_joint_points[:, axis_of[limb + 1]]
+        n = normals[:, limb]
+        t = np.einsum("ni,ni->n", n, cfg.b[:, limb] - point) / n[:, 2]
+        point = point + t[:, None] * z
+        direction = cfg.w[:, limb]
+        rows.append(np.concatenate([direction, np.cross(point, direction)], axis=-1))
+    return np.stack(rows, axis=-2)
+
+
+def workspace_poses(h4, count, seed=0):
+    rng = np.random.default_rng(seed)
+    chosen = []
+    while sum(len(c) for c in chosen) < count:
+        poses = h4.random_poses(rng, min(count, 10**6) + 1000)
+        chosen.append(poses[reachable(h4.parameters, poses)])
+    return np.concatenate(chosen)[:count]
+
+
+def best_time(function, repeats):
+    times = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        function()
+        times.append(time.perf_counter() - start)
+    return min(times)
+
+
+def chunked(function, poses):
+    for begin in range(0, len(poses), CHUNK):
+        function(poses[begin : begin + CHUNK])
+
+
+def child_cpu(code, repeats):
+    """User + sys CPU seconds of fresh ``python -c code`` processes (one figure per repeat)."""
+    figures = []
+    for _ in range(repeats):
+        before = resource.getrusage(resource.RUSAGE_CHILDREN)
+        subprocess.run([sys.executable, "-c", code], check=True, env=os.environ.copy())
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        figures.append(after.ru_utime - before.ru_utime + after.ru_stime - before.ru_stime)
+    return figures
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--sizes", type=int, nargs="+", default=[10**3, 10**4, 10**5, 10**6])
+    parser.add_argument("--repeats", type=int, default=21, help="import-time subprocesses per command")
+    args = parser.parse_args(argv)
+    h4 = sk.load_mechanism("h4")
+    poses = workspace_poses(h4, max(args.sizes))
+    verdicts(h4, poses[:100])  # warm caches (template graph, imports) outside the timings
+
+    print(f"H4, poses in the catalog workspace, single-threaded; chunks of {CHUNK:,} poses")
+    print(f"{'N':>9} | {'svd (poses/s)':>14} | {'verdicts (poses/s)':>18} | {'ratio':>6} | seconds")
+    for count in args.sizes:
+        chosen = poses[:count]
+        matrices = np.concatenate(
+            [wrench_matrices(h4, chosen[b : b + CHUNK]) for b in range(0, count, CHUNK)]
+        )
+        svd = best_time(lambda m=matrices: np.linalg.svd(m, compute_uv=False), 3 if count <= 10**5 else 1)
+        ours = best_time(lambda c=chosen: chunked(lambda p: verdicts(h4, p), c), 2 if count <= 10**4 else 1)
+        print(
+            f"{count:>9,} | {count / svd:>14,.0f} | {count / ours:>18,.0f} | {svd / ours:>6.4f} | {ours:.2f}"
+        )
+
+    chunk = poses[:CHUNK]
+    tracemalloc.start()
+    verdicts(h4, chunk)
+    _, peak = tracemalloc.get_traced_memory()
+    tracemalloc.stop()
+    per_pose = peak / len(chunk) / 1024
+    print(f"memory: tracemalloc peak of one chunk / {len(chunk):,} poses = {per_pose:.2f} KiB/pose")
+
+    ours = child_cpu("import screwkit", args.repeats)
+    base = child_cpu("import numpy, networkx", args.repeats)
+    bare = child_cpu("pass", args.repeats)
+    print(f"import CPU (user+sys, {args.repeats} fresh processes; min / median):")
+    rows = (("import screwkit", ours), ("import numpy, networkx", base), ("python -c pass", bare))
+    for label, figures in rows:
+        print(f"  {label:24s} {min(figures) * 1e3:7.1f} / {statistics.median(figures) * 1e3:7.1f} ms")
+    print(f"  ratio screwkit / (numpy, networkx): min {min(ours) / min(base):.2f}, "
+          f"median {statistics.median(ours) / statistics.median(base):.2f}")
+
+
+if __name__ == "__main__":
+    main()
