@@ -1,8 +1,8 @@
 """Single-pose and batched verdicts agree everywhere, also near the H4's singular surfaces (issue 8).
 
 The single-pose answer is ``sk.classify(h4.twist_graph(pose))``; the batched answer is
-:func:`screwkit.batch.classify_poses` over the same poses (one template graph, the joints' screws
-from :func:`~screwkit.families.four_limb_graph.four_limb_joints` of the batched inverse kinematics).
+``h4.at(poses).singularities`` over the same poses (the batched inverse kinematics, the joint
+table, the analysis core in chunks).
 They must be **identical**: labels, constraint order, global order and serial flags exactly,
 closeness values within 1e-12 absolute.
 
@@ -29,23 +29,11 @@ The *correct* verdict is checked independently where it is clear-cut (margins ``
   bounds it); with the margin, ≥ ``ACTUATION_MARGIN · rtol`` means global order 6 and ≤
   ``rtol / ACTUATION_MARGIN`` means global order 5.
 
-The full parity test makes 10,060 single-pose calls (~30 ms each today: the module takes ~6 to
-11 minutes on the 2-core machine); the fast variant covers 300 poses (~10 s) and passes today.
-
-**What fails today** (seed 20261121; 4,300 generic poses, 120 roots per surface):
-
-* constraint surface (Eq. 6), d = 1e-6 and 1e-7, both sides (328 poses): the single-pose path
-  says ``("constraint",)`` (constraint order 1), the batched path ``()`` (or ``("actuation",)``
-  at some d = 1e-7 poses); their constraint closeness there is ~1e-7…1e-6 in both paths. Where
-  the 50-digit closeness is ≥ 100·rtol, only the single-pose verdict is wrong.
-* actuation surface (Eq. 7), d = 1e-8 (184 poses) and two at 1e-7: the single-pose path says
-  ``()``, the batched ``("actuation",)``; the actuation closeness is ~1e-9 (= rtol) there, so
-  neither verdict is clearly wrong, but they differ.
-* serial surface (reach edge), the roots themselves (d = 0): 14 serial flags (batched: serial,
-  single: not; serial closeness ~2e-8 in both), 8 constraint orders; and the closeness measures
-  near it: constraint closeness differs by up to ~0.2 (d = 0) and by more than 1e-12 down to
-  d = 1e-6 inside, actuation closeness down to d = 1e-8, serial closeness at 2 roots (0.15 vs 2e-8).
-* generic workspace poses, and every surface at d ≥ 1e-5: identical in every field.
+The full parity test makes 10,060 single-pose calls. Before the one core (issue 8) the two paths
+disagreed in every field near the surfaces: at the constraint surface (d = 1e-6, 1e-7) the
+single-pose path said "constraint" where the 50-digit truth says regular; at the actuation
+surface (d = 1e-8) and at the reach edge serial flags, orders and closeness differed. Now a single
+pose is a batch of one through the same kernels (:func:`screwkit.wrenches.analyze_table`).
 """
 
 from collections import Counter
@@ -55,8 +43,7 @@ import numpy as np
 import pytest
 
 import screwkit as sk
-from screwkit.batch import classify_poses
-from screwkit.families.four_limb_graph import PAPER_002_LEGS, four_limb_joints
+from screwkit.families.four_limb_graph import PAPER_002_LEGS
 
 from .singular_surfaces import (
     DISTANCES,
@@ -73,7 +60,6 @@ CLOSENESS_ATOL = 1e-12
 CONSTRAINT_MARGIN = 1e2  # the closed form is exact and frame-free
 ACTUATION_MARGIN = 1e3  # our frame is not the library's (a factor < 10 between them, tested below)
 KEYS = ("constraint", "actuation", "serial")
-ISSUE_8 = "two numeric cores disagree near singular surfaces (issue 8)"
 
 
 # the pose set ------------------------------------------------------------------------------------
@@ -111,19 +97,15 @@ def single_answers(poses, actuated):
     }
 
 
-def batch_answers(poses, chunk=2000):
-    graph = H4.twist_graph()
-    parts = []
-    for begin in range(0, len(poses), chunk):
-        table = four_limb_joints(H4.configuration(poses[begin : begin + chunk]))
-        parts.append(classify_poses(graph, {name: s for _, _, name, _, s, _ in table}))
+def batch_answers(poses):
+    report = H4.at(poses).singularities  # the whole batch, chunked inside
     return {
-        "labels": [labels for part in parts for labels in part.labels()],
-        "constraint_order": np.concatenate([p.constraint_order for p in parts]),
-        "global_order": np.concatenate([p.global_order for p in parts]),
-        "serial": np.concatenate([p.serial for p in parts]),
-        "closeness": {k: np.concatenate([p.closeness[k] for p in parts]) for k in KEYS},
-        "actuated_joints": parts[0].actuated_joints,
+        "labels": report.labels.tolist(),
+        "constraint_order": report.constraint_order,
+        "global_order": report.global_order,
+        "serial": report.serial_flags,
+        "closeness": {k: report.closeness[k] for k in KEYS},
+        "actuated_joints": report.actuated_joints,
     }
 
 
@@ -245,14 +227,9 @@ def fast_answers(fast_poses):
 
 # parity ------------------------------------------------------------------------------------------
 FIELDS = ["labels", "constraint_order", "global_order", "serial", *(f"closeness:{k}" for k in KEYS)]
-FAILING_TODAY = set(FIELDS)  # every field differs somewhere today (the module docstring says where)
 
 
-@pytest.mark.parametrize(
-    "field",
-    [pytest.param(f, marks=pytest.mark.xfail(strict=True, reason=ISSUE_8)) if f in FAILING_TODAY else f
-     for f in FIELDS],
-)
+@pytest.mark.parametrize("field", FIELDS)
 def test_single_and_batched_answers_are_identical(field, full_poses, full_single, full_batch):
     check_parity(field, full_poses, full_single, full_batch)
 
@@ -334,7 +311,6 @@ def test_batched_verdicts_are_correct(full_poses, full_batch, truth):
     assert not wrong.any(), f"{wrong.sum()} wrong verdicts: {where(full_poses, wrong)}"
 
 
-@pytest.mark.xfail(strict=True, reason=ISSUE_8)
 def test_single_pose_verdicts_are_correct(full_poses, full_single, truth):
     wrong = truth_violations(full_single, full_poses, truth)
     assert not wrong.any(), f"{wrong.sum()} wrong verdicts: {where(full_poses, wrong)}"
