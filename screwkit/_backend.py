@@ -29,10 +29,10 @@ True
 
 from __future__ import annotations
 
-from typing import Any, Literal, overload
+import sys
+from typing import TYPE_CHECKING, Any, Literal, overload
 
 import numpy as np
-import sympy
 
 from .exceptions import ScrewkitTypeError, ScrewkitValueError
 
@@ -55,6 +55,7 @@ __all__ = [
     "screw_rank",
     "screw_singular_values",
     "simplify",
+    "sympy_module",
     "to_sympy",
 ]
 
@@ -62,6 +63,22 @@ __all__ = [
 DEFAULT_RTOL = 1e-9
 
 Array = np.ndarray
+
+if TYPE_CHECKING:
+    import sympy
+
+
+def sympy_module() -> Any:
+    """The :mod:`sympy` module, imported on first use: ``import screwkit`` does not import sympy.
+
+    Examples
+    --------
+    >>> sympy_module().Integer(2) / 4
+    1/2
+    """
+    import sympy
+
+    return sympy
 
 
 def is_symbolic(*arrays: Any) -> bool:
@@ -80,14 +97,18 @@ def is_symbolic(*arrays: Any) -> bool:
     --------
     >>> is_symbolic([1.0, 2.0], 3)
     False
+    >>> import sympy
     >>> is_symbolic([sympy.Symbol("t"), 2.0])
     True
     """
+    sp = sys.modules.get("sympy")
+    if sp is None:  # never imported: no value can be a sympy object
+        return False
     for value in arrays:
-        if isinstance(value, sympy.Basic):
+        if isinstance(value, sp.Basic):
             return True
         if isinstance(value, np.ndarray):
-            if value.dtype == object and any(isinstance(v, sympy.Basic) for v in value.flat):
+            if value.dtype == object and any(isinstance(v, sp.Basic) for v in value.flat):
                 return True
             continue
         if isinstance(value, list | tuple) and is_symbolic(*value):
@@ -108,16 +129,17 @@ def to_sympy(value: Any) -> sympy.Expr:
     >>> to_sympy(3)
     3
     """
-    if isinstance(value, sympy.Basic):
+    sp = sympy_module()
+    if isinstance(value, sp.Basic):
         return value
     if isinstance(value, bool | np.bool_):
         raise ScrewkitTypeError(f"Expected a number or a sympy expression, got a boolean {value!r}.")
     if isinstance(value, int | np.integer):
-        return sympy.Integer(int(value))
+        return sp.Integer(int(value))
     if isinstance(value, float | np.floating):
         if not np.isfinite(value):
             raise ScrewkitValueError(f"Expected a finite number, got {value!r}.")
-        return sympy.Rational(repr(float(value)))
+        return sp.Rational(repr(float(value)))
     raise ScrewkitTypeError(f"Expected a number or a sympy expression, got {type(value).__name__} {value!r}.")
 
 
@@ -202,7 +224,8 @@ def _checked_sympy(value: Any, name: str) -> sympy.Expr:
         expr = to_sympy(value)
     except (ScrewkitTypeError, ScrewkitValueError) as err:
         raise type(err)(f"In `{name}`: {err}") from err
-    if expr.has(sympy.nan, sympy.oo, -sympy.oo, sympy.zoo):
+    sp = sympy_module()
+    if expr.has(sp.nan, sp.oo, -sp.oo, sp.zoo):
         raise ScrewkitValueError(f"Expected `{name}` to hold finite expressions, got {expr}.")
     return expr
 
@@ -212,6 +235,7 @@ def promote(*arrays: Array) -> tuple[Array, ...]:
 
     Examples
     --------
+    >>> import sympy
     >>> a, b = promote(np.array([1.5]), np.array([sympy.Symbol("x")], dtype=object))
     >>> a.dtype, a[0]
     (dtype('O'), 3/2)
@@ -235,6 +259,7 @@ def as_arrays(shape: tuple[int | None, ...], *named: tuple[Any, str]) -> tuple[A
 
     Examples
     --------
+    >>> import sympy
     >>> a, b = as_arrays((3,), ([1, 2, 3], "p"), ([0, sympy.Symbol("t"), 0], "q"))
     >>> a.dtype, b[1]
     (dtype('O'), t)
@@ -323,10 +348,11 @@ def norm(a: Array) -> Array:
     np.float64(5.0)
     """
     if a.dtype == object:
+        sp = sympy_module()
         squares = dot(a, a)
         if isinstance(squares, np.ndarray):
-            return np.vectorize(lambda v: sympy.sqrt(v), otypes=[object])(squares)
-        return sympy.sqrt(squares)
+            return np.vectorize(lambda v: sp.sqrt(v), otypes=[object])(squares)
+        return sp.sqrt(squares)
     return np.linalg.norm(a, axis=-1)
 
 
@@ -337,6 +363,7 @@ def det(matrix: Array) -> Any:
     --------
     >>> det(np.eye(3) * 2)
     np.float64(7.999999999999998)
+    >>> import sympy
     >>> x = sympy.Symbol("x")
     >>> det(np.array([[x, 1], [1, x]], dtype=object))
     x**2 - 1
@@ -344,7 +371,8 @@ def det(matrix: Array) -> Any:
     if matrix.dtype == object:
         if matrix.ndim != 2:
             raise ScrewkitValueError(f"Expected a single symbolic square matrix, got shape {matrix.shape}.")
-        return sympy.expand(sympy.Matrix(matrix).det(method="berkowitz"))
+        sp = sympy_module()
+        return sp.expand(sp.Matrix(matrix).det(method="berkowitz"))
     return np.linalg.det(matrix)
 
 
@@ -353,14 +381,15 @@ def simplify(value: Any) -> Any:
 
     Examples
     --------
+    >>> import sympy
     >>> x = sympy.Symbol("x")
     >>> simplify(sympy.sin(x) ** 2 + sympy.cos(x) ** 2)
     1
     """
     if isinstance(value, np.ndarray) and value.dtype == object:
-        return np.vectorize(lambda v: sympy.simplify(v), otypes=[object])(value)
-    if isinstance(value, sympy.Basic):
-        return sympy.simplify(value)
+        return np.vectorize(sympy_module().simplify, otypes=[object])(value)
+    if is_symbolic(value):
+        return sympy_module().simplify(value)
     return value
 
 
@@ -386,14 +415,15 @@ def is_zero(value: Any, *, atol: float) -> Any:
     --------
     >>> is_zero(1e-12, atol=1e-9)
     True
+    >>> import sympy
     >>> x = sympy.Symbol("x")
     >>> is_zero((x + 1) ** 2 - x**2 - 2 * x - 1, atol=0)
     True
     """
     if isinstance(value, np.ndarray) and value.dtype == object:
         return np.vectorize(lambda v: is_zero(v, atol=atol), otypes=[bool])(value)
-    if isinstance(value, sympy.Basic):
-        reduced = sympy.simplify(value)
+    if is_symbolic(value):
+        reduced = sympy_module().simplify(value)
         if reduced == 0:
             return True
         if reduced.free_symbols:
@@ -487,7 +517,7 @@ def screw_rank(rows: Array, *, rtol: float = DEFAULT_RTOL, length_scale: float |
     """
     _check_rtol(rtol)
     if rows.dtype == object:
-        return sympy.Matrix(rows).rank(simplify=True) if rows.size else 0
+        return sympy_module().Matrix(rows).rank(simplify=True) if rows.size else 0
     if rows.shape[-2] == 0:
         return 0 if rows.ndim == 2 else np.zeros(rows.shape[:-2], dtype=int)
     values = screw_singular_values(rows, length_scale=length_scale)
@@ -528,7 +558,7 @@ def screw_nullspace(
     _check_rtol(rtol)
     if rows.dtype == object:
         if rows.shape[0] == 0:
-            return np.array(sympy.eye(6).tolist(), dtype=object)
+            return np.array(sympy_module().eye(6).tolist(), dtype=object)
         return matrix_nullspace(rows @ _SWAP.astype(int), rtol=rtol)
     if rows.shape[0] == 0:
         return np.eye(6)
@@ -555,11 +585,12 @@ def matrix_nullspace(matrix: Array, *, rtol: float = DEFAULT_RTOL) -> Array:
     """
     _check_rtol(rtol)
     if matrix.dtype == object:
-        vectors = sympy.Matrix(matrix).nullspace(simplify=True)
+        sp = sympy_module()
+        vectors = sp.Matrix(matrix).nullspace(simplify=True)
         out = np.empty((len(vectors), matrix.shape[1]), dtype=object)
         for i, vector in enumerate(vectors):
             for j in range(matrix.shape[1]):
-                out[i, j] = sympy.simplify(vector[j])
+                out[i, j] = sp.simplify(vector[j])
         return out
     if matrix.shape[0] == 0:
         return np.eye(matrix.shape[1])

@@ -74,13 +74,15 @@ from collections import Counter
 from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from fractions import Fraction
-from typing import Any, Protocol
+from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
-import sympy
 
 from . import _backend as B
 from .exceptions import DegenerateGeometryError, ScrewkitTypeError, ScrewkitValueError
+
+if TYPE_CHECKING:
+    import sympy
 
 __all__ = [
     "Bracket",
@@ -173,7 +175,7 @@ def _coefficient(value: Any, name: str) -> Fraction:
         raise ScrewkitTypeError(f"Expected `{name}` to be an integer or a fraction, got {value!r}.")
     if isinstance(value, int | np.integer | Fraction):
         return Fraction(int(value)) if isinstance(value, np.integer) else Fraction(value)
-    if isinstance(value, sympy.Rational):
+    if B.is_symbolic(value) and value.is_Rational:
         return Fraction(int(value.p), int(value.q))
     raise ScrewkitTypeError(
         f"Expected `{name}` to be an integer or a fraction (coefficients are exact), "
@@ -182,9 +184,8 @@ def _coefficient(value: Any, name: str) -> Fraction:
 
 
 def _is_scalar(value: Any) -> bool:
-    return isinstance(value, int | np.integer | Fraction | sympy.Rational) and not isinstance(
-        value, bool | np.bool_
-    )
+    exact = isinstance(value, int | np.integer | Fraction) or (B.is_symbolic(value) and value.is_Rational)
+    return exact and not isinstance(value, bool | np.bool_)
 
 
 def _format_magnitude(value: Fraction, *, latex: bool, alone: bool) -> str:
@@ -469,7 +470,7 @@ class _Algebra:
                 "Expected `points` to be single points of shape (4,) for to_sympy, got batches "
                 f"{ {label: a.shape for label, a in arrays.items()} }."
             )
-        return sympy.Add(*polynomial._term_values(arrays))
+        return B.sympy_module().Add(*polynomial._term_values(arrays))
 
 
 @dataclass(frozen=True, eq=False, slots=True, init=False)
@@ -740,7 +741,7 @@ class BracketPolynomial(_Algebra):
         for monomial in self.terms:
             coefficient, keys = monomial.canonical
             value: Any = (
-                sympy.Rational(coefficient.numerator, coefficient.denominator)
+                B.sympy_module().Rational(coefficient.numerator, coefficient.denominator)
                 if symbolic
                 else float(coefficient)
             )
@@ -776,7 +777,7 @@ class BracketPolynomial(_Algebra):
 def _zero(arrays: Mapping[str, np.ndarray]) -> Any:
     """The additive zero matching the branch (sympy zero or a float 0)."""
     if any(a.dtype == object for a in arrays.values()):
-        return sympy.Integer(0)
+        return B.sympy_module().Integer(0)
     return 0.0
 
 

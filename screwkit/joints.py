@@ -35,7 +35,6 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
-import sympy
 
 from . import _backend as B
 from . import screw as S
@@ -374,7 +373,7 @@ def virtual(name: str, screw: Any) -> Joint:
     """
     row = B.as_array(screw, "screw", (6,)).reshape(1, 6)
     if row.dtype == object:
-        kind = "vR" if S.pitch(row[0]) == 0 else ("vP" if S.pitch(row[0]) == sympy.oo else "vH")
+        kind = "vR" if S.pitch(row[0]) == 0 else ("vP" if S.pitch(row[0]) == B.sympy_module().oo else "vH")
     else:
         kind = "vP" if S.is_infinite_pitch(row[0]) else ("vR" if S.is_zero_pitch(row[0]) else "vH")
     return Joint(name, kind, row, virtual=True)

@@ -39,7 +39,6 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
-import sympy
 
 from . import _backend as B
 from .exceptions import DegenerateGeometryError, ScrewkitTypeError, ScrewkitValueError
@@ -70,7 +69,7 @@ Array = np.ndarray
 
 def _nonzero_direction(direction: Array, name: str) -> None:
     if direction.dtype == object:
-        zero = [bool(sympy.simplify(B.dot(d, d)) == 0) for d in direction.reshape(-1, 3)]
+        zero = [bool(B.sympy_module().simplify(B.dot(d, d)) == 0) for d in direction.reshape(-1, 3)]
     else:
         zero = list(np.all(direction.reshape(-1, 3) == 0, axis=-1))
     if any(zero):
@@ -282,9 +281,10 @@ def pitch(screws: Any) -> Any:
     if arr.dtype == object:
         if arr.ndim != 1:
             return np.vectorize(pitch, signature="(6)->()", otypes=[object])(arr)
-        if all(sympy.simplify(v) == 0 for v in arr):
+        sp = B.sympy_module()
+        if all(sp.simplify(v) == 0 for v in arr):
             raise DegenerateGeometryError("Expected a non-zero screw, got the zero screw.")
-        return sympy.oo if sympy.simplify(ss) == 0 else sympy.simplify(ss0 / ss)
+        return sp.oo if sp.simplify(ss) == 0 else sp.simplify(ss0 / ss)
     if np.any(np.all(arr == 0, axis=-1)):
         raise DegenerateGeometryError("Expected non-zero screws, got the zero screw.")
     safe = np.where(ss > 0, ss, 1.0)
@@ -307,7 +307,7 @@ def magnitude(screws: Any) -> Any:
     if arr.dtype == object:
         if arr.ndim != 1:
             return np.vectorize(magnitude, signature="(6)->()", otypes=[object])(arr)
-        return ns0 if sympy.simplify(ns) == 0 else ns
+        return ns0 if B.sympy_module().simplify(ns) == 0 else ns
     result = np.where(ns > 0, ns, ns0)
     return float(result) if np.ndim(result) == 0 else result
 
@@ -330,9 +330,9 @@ def normalize(screws: Any) -> Array:
     if arr.dtype == object:
         if arr.ndim != 1:
             return np.stack([normalize(row) for row in arr.reshape(-1, 6)]).reshape(arr.shape)
-        if sympy.simplify(size) == 0:
+        if B.sympy_module().simplify(size) == 0:
             raise DegenerateGeometryError("Expected a non-zero screw, got the zero screw.")
-        return np.array([sympy.simplify(v / size) for v in arr], dtype=object)
+        return np.array([B.sympy_module().simplify(v / size) for v in arr], dtype=object)
     if np.any(np.asarray(size) == 0):
         raise DegenerateGeometryError("Expected non-zero screws, got the zero screw.")
     return arr / np.asarray(size)[..., None]
@@ -365,7 +365,7 @@ def axis(screws: Any) -> tuple[Array, Array]:
     ss = B.dot(s, s)
     if arr.dtype == object:
         flat = np.atleast_1d(ss)
-        if any(sympy.simplify(v) == 0 for v in flat.flat):
+        if any(B.sympy_module().simplify(v) == 0 for v in flat.flat):
             raise DegenerateGeometryError(
                 "Expected a screw of finite pitch, got s = 0 (a line at infinity has no finite point)."
             )
@@ -703,7 +703,7 @@ class Screw:
 
 
 def _jsonable(value: Any) -> Any:
-    return str(value) if isinstance(value, sympy.Basic) else float(value)
+    return str(value) if B.is_symbolic(value) else float(value)
 
 
 def _as_screw(value: Any, name: str) -> Screw:
