@@ -29,7 +29,9 @@ True
 
 from __future__ import annotations
 
+import math
 import sys
+from fractions import Fraction
 from typing import TYPE_CHECKING, Any, Literal, overload
 
 import numpy as np
@@ -44,11 +46,17 @@ __all__ = [
     "cross",
     "det",
     "dot",
+    "exact_fraction",
+    "from_fraction",
+    "infinity",
     "is_dof",
+    "is_exactly_zero",
+    "is_infinite",
     "is_symbolic",
     "is_zero",
     "matrix_nullspace",
     "norm",
+    "ones_like",
     "promote",
     "scale_moments",
     "screw_nullspace",
@@ -57,6 +65,7 @@ __all__ = [
     "simplify",
     "sympy_module",
     "to_sympy",
+    "zeros_like",
 ]
 
 #: Default relative tolerance of every rank and zero decision (documented in each public function).
@@ -141,6 +150,108 @@ def to_sympy(value: Any) -> sympy.Expr:
             raise ScrewkitValueError(f"Expected a finite number, got {value!r}.")
         return sp.Rational(repr(float(value)))
     raise ScrewkitTypeError(f"Expected a number or a sympy expression, got {type(value).__name__} {value!r}.")
+
+
+def exact_fraction(value: Any) -> Fraction | None:
+    """The exact rational of an integer, a :class:`~fractions.Fraction` or a sympy ``Rational``; else None.
+
+    Booleans are not numbers here (None). Deciding needs no sympy import.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> exact_fraction(sympy.Rational(3, 4)), exact_fraction(np.int64(2)), exact_fraction(0.5)
+    (Fraction(3, 4), Fraction(2, 1), None)
+    """
+    if isinstance(value, bool | np.bool_):
+        return None
+    if isinstance(value, int | np.integer):
+        return Fraction(int(value))
+    if isinstance(value, Fraction):
+        return value
+    if is_symbolic(value) and value.is_Rational:
+        return Fraction(int(value.p), int(value.q))
+    return None
+
+
+def from_fraction(value: Fraction, *, symbolic: bool) -> Any:
+    """An exact rational in the chosen branch: a sympy ``Rational``, or a float.
+
+    Examples
+    --------
+    >>> from fractions import Fraction
+    >>> from_fraction(Fraction(1, 4), symbolic=True), from_fraction(Fraction(1, 4), symbolic=False)
+    (1/4, 0.25)
+    """
+    if symbolic:
+        return sympy_module().Rational(value.numerator, value.denominator)
+    return float(value)
+
+
+def infinity(*, symbolic: bool) -> Any:
+    """Infinity in the chosen branch: ``sympy.oo`` or ``math.inf`` (an infinite pitch).
+
+    Examples
+    --------
+    >>> infinity(symbolic=True), infinity(symbolic=False)
+    (oo, inf)
+    """
+    return sympy_module().oo if symbolic else math.inf
+
+
+def is_infinite(value: Any) -> bool:
+    """True for ``math.inf``, ``-math.inf``, ``sympy.oo`` or ``-sympy.oo`` (a scalar).
+
+    Examples
+    --------
+    >>> import sympy
+    >>> is_infinite(sympy.oo), is_infinite(float("inf")), is_infinite(sympy.Symbol("h")), is_infinite(2.0)
+    (True, True, False, False)
+    """
+    if is_symbolic(value):
+        return bool(value.is_infinite)
+    return bool(np.isinf(value))
+
+
+def is_exactly_zero(value: Any) -> bool:
+    """Exact zero test of a scalar: ``value == 0`` for numbers, ``simplify(value) == 0`` for sympy.
+
+    Unlike :func:`is_zero`, a symbolic value that depends on symbols is *generically* decided
+    (``x`` is not zero) rather than refused; no tolerance is involved.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> x = sympy.Symbol("x")
+    >>> is_exactly_zero(sympy.sin(x) ** 2 + sympy.cos(x) ** 2 - 1), is_exactly_zero(x), is_exactly_zero(0.0)
+    (True, False, True)
+    """
+    if is_symbolic(value):
+        return bool(sympy_module().simplify(value) == 0)
+    return bool(value == 0)
+
+
+def zeros_like(a: Array) -> Array:
+    """Zeros of ``a``'s shape in its branch: float64 zeros, or exact sympy zeros in an object array.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> zeros_like(np.array([sympy.Symbol("x")], dtype=object))
+    array([0], dtype=object)
+    """
+    return a * 0 if is_symbolic(a) else np.zeros_like(a, dtype=float)
+
+
+def ones_like(a: Array) -> Array:
+    """Ones of ``a``'s shape in its branch: float64 ones, or exact sympy ones in an object array.
+
+    Examples
+    --------
+    >>> ones_like(np.zeros(2))
+    array([1., 1.])
+    """
+    return a * 0 + to_sympy(1) if is_symbolic(a) else np.ones_like(a, dtype=float)
 
 
 def _describe_shape(shape: tuple[int | None, ...]) -> str:

@@ -173,10 +173,9 @@ def _sort_sign(items: tuple[Any, ...]) -> int:
 def _coefficient(value: Any, name: str) -> Fraction:
     if isinstance(value, bool | np.bool_):
         raise ScrewkitTypeError(f"Expected `{name}` to be an integer or a fraction, got {value!r}.")
-    if isinstance(value, int | np.integer | Fraction):
-        return Fraction(int(value)) if isinstance(value, np.integer) else Fraction(value)
-    if B.is_symbolic(value) and value.is_Rational:
-        return Fraction(int(value.p), int(value.q))
+    exact = B.exact_fraction(value)
+    if exact is not None:
+        return exact
     raise ScrewkitTypeError(
         f"Expected `{name}` to be an integer or a fraction (coefficients are exact), "
         f"got {type(value).__name__} {value!r}."
@@ -184,8 +183,7 @@ def _coefficient(value: Any, name: str) -> Fraction:
 
 
 def _is_scalar(value: Any) -> bool:
-    exact = isinstance(value, int | np.integer | Fraction) or (B.is_symbolic(value) and value.is_Rational)
-    return exact and not isinstance(value, bool | np.bool_)
+    return B.exact_fraction(value) is not None
 
 
 def _format_magnitude(value: Fraction, *, latex: bool, alone: bool) -> str:
@@ -736,15 +734,11 @@ class BracketPolynomial(_Algebra):
     def _term_values(self, arrays: Mapping[str, np.ndarray]) -> list[Any]:
         """Value of each canonical term (signed coefficient × sorted brackets), brackets cached."""
         cache: dict[tuple[str, ...], Any] = {}
-        symbolic = any(a.dtype == object for a in arrays.values())
+        symbolic = B.is_symbolic(*arrays.values())
         values = []
         for monomial in self.terms:
             coefficient, keys = monomial.canonical
-            value: Any = (
-                B.sympy_module().Rational(coefficient.numerator, coefficient.denominator)
-                if symbolic
-                else float(coefficient)
-            )
+            value: Any = B.from_fraction(coefficient, symbolic=symbolic)
             for key in keys:
                 if key not in cache:
                     cache[key] = _det4(*(arrays[label] for label in key))
@@ -776,9 +770,7 @@ class BracketPolynomial(_Algebra):
 
 def _zero(arrays: Mapping[str, np.ndarray]) -> Any:
     """The additive zero matching the branch (sympy zero or a float 0)."""
-    if any(a.dtype == object for a in arrays.values()):
-        return B.sympy_module().Integer(0)
-    return 0.0
+    return B.from_fraction(Fraction(0), symbolic=B.is_symbolic(*arrays.values()))
 
 
 # --------------------------------------------------------------------------------------------------
@@ -1162,14 +1154,12 @@ def superbracket(points: Mapping[str, Any], lines: Sequence[Sequence[str] | str]
     pairs = _lines(lines)
     arrays = _point_arrays(points, [label for line in pairs for label in line])
     matrix = np.stack([_plucker(arrays[p], arrays[q]) for p, q in pairs], axis=-2)
-    if matrix.dtype == object:
-        if matrix.ndim != 2:
-            raise ScrewkitValueError(
-                f"Expected sympy `points` to be single points of shape (4,), got batch shape "
-                f"{matrix.shape[:-2]}."
-            )
-        return B.det(matrix)
-    return _scalar(np.linalg.det(matrix))
+    if B.is_symbolic(matrix) and matrix.ndim != 2:
+        raise ScrewkitValueError(
+            f"Expected sympy `points` to be single points of shape (4,), got batch shape "
+            f"{matrix.shape[:-2]}."
+        )
+    return _scalar(B.det(matrix))
 
 
 # --------------------------------------------------------------------------------------------------

@@ -56,7 +56,7 @@ Array = np.ndarray
 
 def _is_zero_vector(values: Array, *, rtol: float, reference: Array) -> Array:
     """Numeric: ``|values| <= rtol * reference``; symbolic: every component simplifies to 0."""
-    if values.dtype == object:
+    if B.is_symbolic(values):
         return np.array(
             [all(B.is_zero(v, atol=0) for v in row) for row in values.reshape(-1, values.shape[-1])]
         ).reshape(values.shape[:-1])
@@ -72,10 +72,7 @@ def finite_point(position: Any) -> Array:
     array([1., 2., 3., 1.])
     """
     r = B.as_array(position, "position", (3,))
-    one = np.ones((*r.shape[:-1], 1), dtype=r.dtype)
-    if r.dtype == object:
-        one = one * B.to_sympy(1)
-    return np.concatenate([r, one], axis=-1)
+    return np.concatenate([r, B.ones_like(r[..., :1])], axis=-1)
 
 
 def infinite_point(direction: Any) -> Array:
@@ -96,7 +93,7 @@ def infinite_point(direction: Any) -> Array:
         raise DegenerateGeometryError(
             "Expected `direction` to be non-zero, got a zero vector: (0, 0, 0, 0) is not a point."
         )
-    return np.concatenate([d, np.zeros((*d.shape[:-1], 1), dtype=d.dtype) * d[..., :1]], axis=-1)
+    return np.concatenate([d, B.zeros_like(d[..., :1])], axis=-1)
 
 
 def is_at_infinity(points: Any, *, rtol: float = B.DEFAULT_RTOL, length_scale: float = 1.0) -> Any:
@@ -155,7 +152,7 @@ def join(p: Any, q: Any, *, rtol: float = B.DEFAULT_RTOL) -> Array:
     direction = pp[..., 3:] * qq[..., :3] - qq[..., 3:] * pp[..., :3]
     result = np.concatenate([direction, B.cross(pp[..., :3], qq[..., :3])], axis=-1)
     reference = np.zeros(result.shape[:-1])
-    if result.dtype != object:
+    if not B.is_symbolic(result):
         reference = np.linalg.norm(pp, axis=-1) * np.linalg.norm(qq, axis=-1)
     if np.any(_is_zero_vector(result, rtol=rtol, reference=reference)):
         raise DegenerateGeometryError(
@@ -185,7 +182,7 @@ def line_points(line: Any, *, rtol: float = B.DEFAULT_RTOL) -> tuple[Array, Arra
     if values.ndim != 1:
         raise ScrewkitValueError(f"Expected `line` to have shape (6,), got {values.shape}.")
     s, m = values[:3], values[3:]
-    if values.dtype != object:
+    if not B.is_symbolic(values):
         if abs(s @ m) > rtol * (np.linalg.norm(s) * np.linalg.norm(m)):
             raise ScrewkitValueError(
                 f"Expected `line` to be a line (s·m = 0), got s·m = {s @ m:.6g}: a screw of "
@@ -263,7 +260,7 @@ def plane_through(p: Any, q: Any, r: Any, *, rtol: float = B.DEFAULT_RTOL) -> Ar
     ]
     result = np.stack(coefficients, axis=-1)
     reference = np.zeros(result.shape[:-1])
-    if result.dtype != object:
+    if not B.is_symbolic(result):
         reference = np.prod([np.linalg.norm(v, axis=-1) for v in (pp, qq, rr)], axis=0)
     if np.any(_is_zero_vector(result, rtol=rtol, reference=reference)):
         raise DegenerateGeometryError(
@@ -284,7 +281,7 @@ def bracket(p: Any, q: Any, r: Any, s: Any) -> Any:
     """
     pts = B.as_arrays((4,), (p, "p"), (q, "q"), (r, "r"), (s, "s"))
     pts = np.broadcast_arrays(*pts)
-    if pts[0].dtype == object:
+    if B.is_symbolic(pts[0]):
         plane_pqr = plane_through_unchecked(pts[0], pts[1], pts[2])
         return B.dot(plane_pqr, pts[3])
     return np.linalg.det(np.stack(pts, axis=-2))
@@ -335,7 +332,7 @@ def meet_line_plane(
     lv, pl = B.promote(lv, pl)
     s, m, n, delta = lv[..., :3], lv[..., 3:], pl[..., :3], pl[..., 3:]
     point = np.concatenate([B.cross(n, m) - delta * s, B.dot(n, s, keepdims=True)], axis=-1)
-    if point.dtype == object:
+    if B.is_symbolic(point):
         return point
     unit_l = np.linalg.norm(lv, axis=-1)
     unit_p = np.linalg.norm(pl, axis=-1)
@@ -377,7 +374,7 @@ def meet_planes(
     a, b = B.promote(a, b)
     n1, d1, n2, d2 = a[..., :3], a[..., 3:], b[..., :3], b[..., 3:]
     result = np.concatenate([B.cross(n1, n2), d1 * n2 - d2 * n1], axis=-1)
-    if result.dtype == object:
+    if B.is_symbolic(result):
         return result
     scale = np.linalg.norm(a, axis=-1) * np.linalg.norm(b, axis=-1)
     if np.any(np.linalg.norm(result, axis=-1) <= rtol * scale):
