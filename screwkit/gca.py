@@ -79,6 +79,7 @@ from typing import TYPE_CHECKING, Any, Protocol
 import numpy as np
 
 from . import _backend as B
+from . import projective as P
 from .exceptions import DegenerateGeometryError, ScrewkitTypeError, ScrewkitValueError
 
 if TYPE_CHECKING:
@@ -297,35 +298,8 @@ def _parse(text: Any) -> list[ParsedTerm]:
 
 
 # --------------------------------------------------------------------------------------------------
-# Evaluation kernels (one kernel for float64 and sympy-object arrays)
+# Points for evaluation (brackets and joins are screwkit.projective's kernels)
 # --------------------------------------------------------------------------------------------------
-
-# Laplace expansion of a 4×4 determinant along its first two rows: (columns of rows 0-1, the
-# complementary columns of rows 2-3, sign (-1)^(i+j+1) with 0-based column indices i, j).
-_LAPLACE = (
-    ((0, 1), (2, 3), 1),
-    ((0, 2), (1, 3), -1),
-    ((0, 3), (1, 2), 1),
-    ((1, 2), (0, 3), 1),
-    ((1, 3), (0, 2), -1),
-    ((2, 3), (0, 1), 1),
-)
-
-
-def _det4(p: np.ndarray, q: np.ndarray, r: np.ndarray, s: np.ndarray) -> Any:
-    """``[pqrs]`` for points ``(..., 4)`` (broadcast), float or sympy-object alike."""
-    total: Any = 0
-    for (i, j), (k, m), sign in _LAPLACE:
-        upper = p[..., i] * q[..., j] - p[..., j] * q[..., i]
-        lower = r[..., k] * s[..., m] - r[..., m] * s[..., k]
-        total = total + sign * upper * lower
-    return total
-
-
-def _plucker(p: np.ndarray, q: np.ndarray) -> np.ndarray:
-    """``L(p, q) = (p_w q − q_w p ; p × q)`` over the last axis (``gca.md`` §1)."""
-    direction = p[..., 3:] * q[..., :3] - q[..., 3:] * p[..., :3]
-    return np.concatenate([direction, B.cross(p[..., :3], q[..., :3])], axis=-1)
 
 
 def _point_arrays(
@@ -556,7 +530,7 @@ class Bracket(_Algebra):
         float, numpy.ndarray or sympy.Expr
         """
         arrays = _point_arrays(points, self.labels)
-        return _scalar(_det4(*(arrays[label] for label in self.labels)))
+        return _scalar(P.bracket_unchecked(*(arrays[label] for label in self.labels)))
 
 
 def _relabel(label: str, mapping: Mapping[str, str]) -> str:
@@ -741,7 +715,7 @@ class BracketPolynomial(_Algebra):
             value: Any = B.from_fraction(coefficient, symbolic=symbolic)
             for key in keys:
                 if key not in cache:
-                    cache[key] = _det4(*(arrays[label] for label in key))
+                    cache[key] = P.bracket_unchecked(*(arrays[label] for label in key))
                 value = value * cache[key]
             values.append(value)
         return values
@@ -1153,7 +1127,7 @@ def superbracket(points: Mapping[str, Any], lines: Sequence[Sequence[str] | str]
     """
     pairs = _lines(lines)
     arrays = _point_arrays(points, [label for line in pairs for label in line])
-    matrix = np.stack([_plucker(arrays[p], arrays[q]) for p, q in pairs], axis=-2)
+    matrix = np.stack([P.join_unchecked(arrays[p], arrays[q]) for p, q in pairs], axis=-2)
     if B.is_symbolic(matrix) and matrix.ndim != 2:
         raise ScrewkitValueError(
             f"Expected sympy `points` to be single points of shape (4,), got batch shape "
@@ -1233,7 +1207,7 @@ def _relative_brackets(
     stacked = np.stack([samples[label] for label in labels])  # (n_labels, n_samples, 4)
     rows = np.array([[index[label] for label in quad] for quad in quads])  # (n_quads, 4)
     gathered = stacked[rows]  # (n_quads, 4, n_samples, 4)
-    values = _det4(*(gathered[:, i] for i in range(4)))
+    values = P.bracket_unchecked(*(gathered[:, i] for i in range(4)))
     norms = np.linalg.norm(gathered, axis=-1).prod(axis=1)
     return (np.abs(values) / norms).T
 
@@ -2148,7 +2122,7 @@ def simplify_superbracket(
     factored = replace(factored, coefficient=sign * factored.coefficient)
 
     fresh = _draw(sampler, n_samples, generator, labels)
-    rows = np.stack([_plucker(fresh[p], fresh[q]) for p, q in pairs], axis=-2)
+    rows = np.stack([P.join_unchecked(fresh[p], fresh[q]) for p, q in pairs], axis=-2)
     truth = np.linalg.det(rows)
     if reduced.terms:
         stages = {"expansion": expansion, "survivors": survivors, "reduced": reduced}

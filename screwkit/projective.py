@@ -149,8 +149,7 @@ def join(p: Any, q: Any, *, rtol: float = B.DEFAULT_RTOL) -> Array:
     """
     pp, qq = B.as_arrays((4,), (p, "p"), (q, "q"))
     pp, qq = np.broadcast_arrays(pp, qq)
-    direction = pp[..., 3:] * qq[..., :3] - qq[..., 3:] * pp[..., :3]
-    result = np.concatenate([direction, B.cross(pp[..., :3], qq[..., :3])], axis=-1)
+    result = join_unchecked(pp, qq)
     reference = np.zeros(result.shape[:-1])
     if not B.is_symbolic(result):
         reference = np.linalg.norm(pp, axis=-1) * np.linalg.norm(qq, axis=-1)
@@ -280,11 +279,53 @@ def bracket(p: Any, q: Any, r: Any, s: Any) -> Any:
     1.0
     """
     pts = B.as_arrays((4,), (p, "p"), (q, "q"), (r, "r"), (s, "s"))
-    pts = np.broadcast_arrays(*pts)
-    if B.is_symbolic(pts[0]):
-        plane_pqr = plane_through_unchecked(pts[0], pts[1], pts[2])
-        return B.dot(plane_pqr, pts[3])
-    return np.linalg.det(np.stack(pts, axis=-2))
+    return bracket_unchecked(*np.broadcast_arrays(*pts))
+
+
+# Laplace expansion of a 4×4 determinant along its first two rows: (columns of rows 0-1, the
+# complementary columns of rows 2-3, sign (-1)^(i+j+1) with 0-based column indices i, j).
+_LAPLACE = (
+    ((0, 1), (2, 3), 1),
+    ((0, 2), (1, 3), -1),
+    ((0, 3), (1, 2), 1),
+    ((1, 2), (0, 3), 1),
+    ((1, 3), (0, 2), -1),
+    ((2, 3), (0, 1), 1),
+)
+
+
+def bracket_unchecked(p: Array, q: Array, r: Array, s: Array) -> Any:
+    """:func:`bracket` on validated, promoted arrays ``(..., 4)`` (broadcast).
+
+    The Laplace expansion along the first two rows (``+ - *`` only), so batches of float64 points and
+    sympy-object points go through the same code.
+
+    Examples
+    --------
+    >>> e = np.eye(4)
+    >>> float(bracket_unchecked(e[1], e[0], e[2], e[3]))
+    -1.0
+    """
+    total: Any = 0
+    for (i, j), (k, m), sign in _LAPLACE:
+        upper = p[..., i] * q[..., j] - p[..., j] * q[..., i]
+        lower = r[..., k] * s[..., m] - r[..., m] * s[..., k]
+        total = total + sign * upper * lower
+    return total
+
+
+def join_unchecked(p: Array, q: Array) -> Array:
+    """:func:`join` on validated, promoted arrays ``(..., 4)``, without the coincidence check.
+
+    Coincident points give the zero line.
+
+    Examples
+    --------
+    >>> join_unchecked(np.array([1.0, 2, 3, 1]), np.array([2.0, 4, 6, 2]))
+    array([0., 0., 0., 0., 0., 0.])
+    """
+    direction = p[..., 3:] * q[..., :3] - q[..., 3:] * p[..., :3]
+    return np.concatenate([direction, B.cross(p[..., :3], q[..., :3])], axis=-1)
 
 
 def plane_through_unchecked(p: Array, q: Array, r: Array) -> Array:
