@@ -11,6 +11,8 @@ Examples
 4
 """
 
+from pkgutil import extend_path
+
 from .catalog import Mechanism, list_mechanisms, load_mechanism, load_snapshot
 from .exceptions import (
     CatalogError,
@@ -64,6 +66,11 @@ from .twistgraph import (
 from .wrenches import WrenchAnalysis, analyze_table, wrench_analysis
 
 __version__ = "0.1.0"
+
+# The catalog (top-level ``mechanisms/``) is installed as ``screwkit.mechanisms`` by a setuptools
+# package-dir mapping; when this source tree shadows a non-editable install (``python -m pytest`` from the
+# repository root), the installed ``screwkit/`` folder is searched for it too.
+__path__ = extend_path(__path__, __name__)
 
 __all__ = [
     "CatalogError",

@@ -29,10 +29,12 @@ True
 
 from __future__ import annotations
 
-from typing import Any, Literal, overload
+import math
+import sys
+from fractions import Fraction
+from typing import TYPE_CHECKING, Any, Literal, overload
 
 import numpy as np
-import sympy
 
 from .exceptions import ScrewkitTypeError, ScrewkitValueError
 
@@ -44,24 +46,48 @@ __all__ = [
     "cross",
     "det",
     "dot",
+    "exact_fraction",
+    "from_fraction",
+    "infinity",
     "is_dof",
+    "is_exactly_zero",
+    "is_infinite",
     "is_symbolic",
     "is_zero",
     "matrix_nullspace",
     "norm",
+    "ones_like",
     "promote",
     "scale_moments",
     "screw_nullspace",
     "screw_rank",
     "screw_singular_values",
     "simplify",
+    "sympy_module",
     "to_sympy",
+    "zeros_like",
 ]
 
 #: Default relative tolerance of every rank and zero decision (documented in each public function).
 DEFAULT_RTOL = 1e-9
 
 Array = np.ndarray
+
+if TYPE_CHECKING:
+    import sympy
+
+
+def sympy_module() -> Any:
+    """The :mod:`sympy` module, imported on first use: ``import screwkit`` does not import sympy.
+
+    Examples
+    --------
+    >>> sympy_module().Integer(2) / 4
+    1/2
+    """
+    import sympy
+
+    return sympy
 
 
 def is_symbolic(*arrays: Any) -> bool:
@@ -80,14 +106,18 @@ def is_symbolic(*arrays: Any) -> bool:
     --------
     >>> is_symbolic([1.0, 2.0], 3)
     False
+    >>> import sympy
     >>> is_symbolic([sympy.Symbol("t"), 2.0])
     True
     """
+    sp = sys.modules.get("sympy")
+    if sp is None:  # never imported: no value can be a sympy object
+        return False
     for value in arrays:
-        if isinstance(value, sympy.Basic):
+        if isinstance(value, sp.Basic):
             return True
         if isinstance(value, np.ndarray):
-            if value.dtype == object and any(isinstance(v, sympy.Basic) for v in value.flat):
+            if value.dtype == object and any(isinstance(v, sp.Basic) for v in value.flat):
                 return True
             continue
         if isinstance(value, list | tuple) and is_symbolic(*value):
@@ -108,17 +138,120 @@ def to_sympy(value: Any) -> sympy.Expr:
     >>> to_sympy(3)
     3
     """
-    if isinstance(value, sympy.Basic):
+    sp = sympy_module()
+    if isinstance(value, sp.Basic):
         return value
     if isinstance(value, bool | np.bool_):
         raise ScrewkitTypeError(f"Expected a number or a sympy expression, got a boolean {value!r}.")
     if isinstance(value, int | np.integer):
-        return sympy.Integer(int(value))
+        return sp.Integer(int(value))
     if isinstance(value, float | np.floating):
         if not np.isfinite(value):
             raise ScrewkitValueError(f"Expected a finite number, got {value!r}.")
-        return sympy.Rational(repr(float(value)))
+        return sp.Rational(repr(float(value)))
     raise ScrewkitTypeError(f"Expected a number or a sympy expression, got {type(value).__name__} {value!r}.")
+
+
+def exact_fraction(value: Any) -> Fraction | None:
+    """The exact rational of an integer, a :class:`~fractions.Fraction` or a sympy ``Rational``; else None.
+
+    Booleans are not numbers here (None). Deciding needs no sympy import.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> exact_fraction(sympy.Rational(3, 4)), exact_fraction(np.int64(2)), exact_fraction(0.5)
+    (Fraction(3, 4), Fraction(2, 1), None)
+    """
+    if isinstance(value, bool | np.bool_):
+        return None
+    if isinstance(value, int | np.integer):
+        return Fraction(int(value))
+    if isinstance(value, Fraction):
+        return value
+    if is_symbolic(value) and value.is_Rational:
+        return Fraction(int(value.p), int(value.q))
+    return None
+
+
+def from_fraction(value: Fraction, *, symbolic: bool) -> Any:
+    """An exact rational in the chosen branch: a sympy ``Rational``, or a float.
+
+    Examples
+    --------
+    >>> from fractions import Fraction
+    >>> from_fraction(Fraction(1, 4), symbolic=True), from_fraction(Fraction(1, 4), symbolic=False)
+    (1/4, 0.25)
+    """
+    if symbolic:
+        return sympy_module().Rational(value.numerator, value.denominator)
+    return float(value)
+
+
+def infinity(*, symbolic: bool) -> Any:
+    """Infinity in the chosen branch: ``sympy.oo`` or ``math.inf`` (an infinite pitch).
+
+    Examples
+    --------
+    >>> infinity(symbolic=True), infinity(symbolic=False)
+    (oo, inf)
+    """
+    return sympy_module().oo if symbolic else math.inf
+
+
+def is_infinite(value: Any) -> bool:
+    """True for ``math.inf``, ``-math.inf``, ``sympy.oo`` or ``-sympy.oo`` (a scalar).
+
+    Examples
+    --------
+    >>> import sympy
+    >>> is_infinite(sympy.oo), is_infinite(float("inf")), is_infinite(sympy.Symbol("h")), is_infinite(2.0)
+    (True, True, False, False)
+    """
+    if is_symbolic(value):
+        return bool(value.is_infinite)
+    return bool(np.isinf(value))
+
+
+def is_exactly_zero(value: Any) -> bool:
+    """Exact zero test of a scalar: ``value == 0`` for numbers, ``simplify(value) == 0`` for sympy.
+
+    Unlike :func:`is_zero`, a symbolic value that depends on symbols is *generically* decided
+    (``x`` is not zero) rather than refused; no tolerance is involved.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> x = sympy.Symbol("x")
+    >>> is_exactly_zero(sympy.sin(x) ** 2 + sympy.cos(x) ** 2 - 1), is_exactly_zero(x), is_exactly_zero(0.0)
+    (True, False, True)
+    """
+    if is_symbolic(value):
+        return bool(sympy_module().simplify(value) == 0)
+    return bool(value == 0)
+
+
+def zeros_like(a: Array) -> Array:
+    """Zeros of ``a``'s shape in its branch: float64 zeros, or exact sympy zeros in an object array.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> zeros_like(np.array([sympy.Symbol("x")], dtype=object))
+    array([0], dtype=object)
+    """
+    return a * 0 if is_symbolic(a) else np.zeros_like(a, dtype=float)
+
+
+def ones_like(a: Array) -> Array:
+    """Ones of ``a``'s shape in its branch: float64 ones, or exact sympy ones in an object array.
+
+    Examples
+    --------
+    >>> ones_like(np.zeros(2))
+    array([1., 1.])
+    """
+    return a * 0 + to_sympy(1) if is_symbolic(a) else np.ones_like(a, dtype=float)
 
 
 def _describe_shape(shape: tuple[int | None, ...]) -> str:
@@ -202,7 +335,8 @@ def _checked_sympy(value: Any, name: str) -> sympy.Expr:
         expr = to_sympy(value)
     except (ScrewkitTypeError, ScrewkitValueError) as err:
         raise type(err)(f"In `{name}`: {err}") from err
-    if expr.has(sympy.nan, sympy.oo, -sympy.oo, sympy.zoo):
+    sp = sympy_module()
+    if expr.has(sp.nan, sp.oo, -sp.oo, sp.zoo):
         raise ScrewkitValueError(f"Expected `{name}` to hold finite expressions, got {expr}.")
     return expr
 
@@ -212,6 +346,7 @@ def promote(*arrays: Array) -> tuple[Array, ...]:
 
     Examples
     --------
+    >>> import sympy
     >>> a, b = promote(np.array([1.5]), np.array([sympy.Symbol("x")], dtype=object))
     >>> a.dtype, a[0]
     (dtype('O'), 3/2)
@@ -235,6 +370,7 @@ def as_arrays(shape: tuple[int | None, ...], *named: tuple[Any, str]) -> tuple[A
 
     Examples
     --------
+    >>> import sympy
     >>> a, b = as_arrays((3,), ([1, 2, 3], "p"), ([0, sympy.Symbol("t"), 0], "q"))
     >>> a.dtype, b[1]
     (dtype('O'), t)
@@ -323,10 +459,11 @@ def norm(a: Array) -> Array:
     np.float64(5.0)
     """
     if a.dtype == object:
+        sp = sympy_module()
         squares = dot(a, a)
         if isinstance(squares, np.ndarray):
-            return np.vectorize(lambda v: sympy.sqrt(v), otypes=[object])(squares)
-        return sympy.sqrt(squares)
+            return np.vectorize(lambda v: sp.sqrt(v), otypes=[object])(squares)
+        return sp.sqrt(squares)
     return np.linalg.norm(a, axis=-1)
 
 
@@ -337,6 +474,7 @@ def det(matrix: Array) -> Any:
     --------
     >>> det(np.eye(3) * 2)
     np.float64(7.999999999999998)
+    >>> import sympy
     >>> x = sympy.Symbol("x")
     >>> det(np.array([[x, 1], [1, x]], dtype=object))
     x**2 - 1
@@ -344,7 +482,8 @@ def det(matrix: Array) -> Any:
     if matrix.dtype == object:
         if matrix.ndim != 2:
             raise ScrewkitValueError(f"Expected a single symbolic square matrix, got shape {matrix.shape}.")
-        return sympy.expand(sympy.Matrix(matrix).det(method="berkowitz"))
+        sp = sympy_module()
+        return sp.expand(sp.Matrix(matrix).det(method="berkowitz"))
     return np.linalg.det(matrix)
 
 
@@ -353,14 +492,15 @@ def simplify(value: Any) -> Any:
 
     Examples
     --------
+    >>> import sympy
     >>> x = sympy.Symbol("x")
     >>> simplify(sympy.sin(x) ** 2 + sympy.cos(x) ** 2)
     1
     """
     if isinstance(value, np.ndarray) and value.dtype == object:
-        return np.vectorize(lambda v: sympy.simplify(v), otypes=[object])(value)
-    if isinstance(value, sympy.Basic):
-        return sympy.simplify(value)
+        return np.vectorize(sympy_module().simplify, otypes=[object])(value)
+    if is_symbolic(value):
+        return sympy_module().simplify(value)
     return value
 
 
@@ -386,14 +526,15 @@ def is_zero(value: Any, *, atol: float) -> Any:
     --------
     >>> is_zero(1e-12, atol=1e-9)
     True
+    >>> import sympy
     >>> x = sympy.Symbol("x")
     >>> is_zero((x + 1) ** 2 - x**2 - 2 * x - 1, atol=0)
     True
     """
     if isinstance(value, np.ndarray) and value.dtype == object:
         return np.vectorize(lambda v: is_zero(v, atol=atol), otypes=[bool])(value)
-    if isinstance(value, sympy.Basic):
-        reduced = sympy.simplify(value)
+    if is_symbolic(value):
+        reduced = sympy_module().simplify(value)
         if reduced == 0:
             return True
         if reduced.free_symbols:
@@ -487,7 +628,7 @@ def screw_rank(rows: Array, *, rtol: float = DEFAULT_RTOL, length_scale: float |
     """
     _check_rtol(rtol)
     if rows.dtype == object:
-        return sympy.Matrix(rows).rank(simplify=True) if rows.size else 0
+        return sympy_module().Matrix(rows).rank(simplify=True) if rows.size else 0
     if rows.shape[-2] == 0:
         return 0 if rows.ndim == 2 else np.zeros(rows.shape[:-2], dtype=int)
     values = screw_singular_values(rows, length_scale=length_scale)
@@ -528,7 +669,7 @@ def screw_nullspace(
     _check_rtol(rtol)
     if rows.dtype == object:
         if rows.shape[0] == 0:
-            return np.array(sympy.eye(6).tolist(), dtype=object)
+            return np.array(sympy_module().eye(6).tolist(), dtype=object)
         return matrix_nullspace(rows @ _SWAP.astype(int), rtol=rtol)
     if rows.shape[0] == 0:
         return np.eye(6)
@@ -555,11 +696,12 @@ def matrix_nullspace(matrix: Array, *, rtol: float = DEFAULT_RTOL) -> Array:
     """
     _check_rtol(rtol)
     if matrix.dtype == object:
-        vectors = sympy.Matrix(matrix).nullspace(simplify=True)
+        sp = sympy_module()
+        vectors = sp.Matrix(matrix).nullspace(simplify=True)
         out = np.empty((len(vectors), matrix.shape[1]), dtype=object)
         for i, vector in enumerate(vectors):
             for j in range(matrix.shape[1]):
-                out[i, j] = sympy.simplify(vector[j])
+                out[i, j] = sp.simplify(vector[j])
         return out
     if matrix.shape[0] == 0:
         return np.eye(matrix.shape[1])

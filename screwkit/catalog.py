@@ -2,7 +2,7 @@
 
 Two kinds of file, told apart by ``[mechanism] kind``:
 
-**Catalog entries** (``kind = "family"``, shipped in ``screwkit/mechanisms/``): a robot of a
+**Catalog entries** (``kind = "family"``, shipped in the top-level ``mechanisms/`` folder): a robot of a
 parametric family in :mod:`screwkit.families`::
 
     [mechanism]

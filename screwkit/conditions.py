@@ -28,6 +28,10 @@ infinite; the bracket is the constant times the form):
 
 Any other factor gets the generic form: its expansion with every bracket replaced by its form.
 
+This module is symbolic by nature (its vector forms are sympy expressions, and :class:`VectorDiff`,
+:class:`VectorCross`, :class:`VectorDot` subclass ``sympy.Function``), so importing it imports sympy;
+:mod:`screwkit.diagram` imports it only when conditions are asked for.
+
 Examples
 --------
 >>> from screwkit.gca import Bracket

@@ -36,17 +36,19 @@ import itertools
 import string
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from . import projective as P
 from . import screw as S
-from .conditions import Condition, conditions
 from .exceptions import DegenerateGeometryError, ScrewkitError, ScrewkitValueError
 from .gca import Simplification, simplify_superbracket
 from .twistgraph import SeriesParallelNode
 from .wrenches import WrenchAnalysis, wrench_analysis
+
+if TYPE_CHECKING:  # conditions are sympy expressions: that module (and sympy) loads on first use
+    from .conditions import Condition
 
 __all__ = [
     "DiagramPoint",
@@ -754,6 +756,8 @@ def superbracket_analysis(
         for search in (False, True)
     ]
     simplification = min(candidates, key=lambda c: (len(c.factored.rest.terms), len(c.survivors)))
+    from .conditions import conditions
+
     found = conditions(simplification.factored, finite=diagram.finite, infinite=diagram.infinite)
     constraint = diagram.constraint_labels
     labels = tuple("constraint" if set(c.vectors) <= constraint else "actuation" for c in found)

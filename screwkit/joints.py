@@ -35,7 +35,6 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
-import sympy
 
 from . import _backend as B
 from . import screw as S
@@ -131,7 +130,7 @@ class Joint:
             raise ScrewkitValueError(
                 f"Joint {self.name!r} of type {self.type}: expected {expected} screw(s), got {rows.shape[0]}."
             )
-        if rows.dtype != object and np.any(np.linalg.norm(rows, axis=1) == 0):
+        if not B.is_symbolic(rows) and np.any(np.linalg.norm(rows, axis=1) == 0):
             raise ScrewkitValueError(f"Joint {self.name!r}: expected non-zero screws, got a zero row.")
         if self.actuated and rows.shape[0] != 1:
             raise ScrewkitValueError(
@@ -302,8 +301,9 @@ def universal(name: str, first_axis: Any, second_axis: Any, center: Any) -> Join
     rows = np.stack(
         [S.revolute_twist(_unit_axis(first_axis), center), S.revolute_twist(_unit_axis(second_axis), center)]
     )
-    if rows.dtype != object and np.linalg.norm(np.cross(rows[0, :3], rows[1, :3])) <= PARALLEL_RTOL * np.prod(
-        np.linalg.norm(rows[:, :3], axis=1)
+    directions = rows[:, :3]
+    if not B.is_symbolic(rows) and np.linalg.norm(np.cross(directions[0], directions[1])) <= (
+        PARALLEL_RTOL * np.prod(np.linalg.norm(directions, axis=1))
     ):
         raise ScrewkitValueError(
             f"Universal joint {name!r}: expected two non-parallel axes, got parallel axes."
@@ -353,14 +353,14 @@ def parallelogram(name: str, hinge_axis: Any, rod_direction: Any, *, actuated: b
     w = B.as_array(rod_direction, "rod_direction", (3,))
     a, w = B.promote(a, w)
     velocity = B.cross(a, w)
-    if velocity.dtype != object and np.linalg.norm(velocity) <= PARALLEL_RTOL * np.linalg.norm(
+    if not B.is_symbolic(velocity) and np.linalg.norm(velocity) <= PARALLEL_RTOL * np.linalg.norm(
         a
     ) * np.linalg.norm(w):
         raise ScrewkitValueError(
             f"Parallelogram {name!r}: expected rods not parallel to the hinge axes, got parallel ones."
         )
     twist = S.prismatic_twist(velocity)
-    if twist.dtype != object:
+    if not B.is_symbolic(twist):
         twist = S.normalize(twist)
     geometry = _geometry(hinge_axis=a, rod_direction=w) if _numeric_or_none(a, w) else {}
     return Joint(name, "Pa", twist.reshape(1, 6), actuated=actuated, geometry=geometry)
@@ -375,8 +375,8 @@ def virtual(name: str, screw: Any) -> Joint:
     'vP'
     """
     row = B.as_array(screw, "screw", (6,)).reshape(1, 6)
-    if row.dtype == object:
-        kind = "vR" if S.pitch(row[0]) == 0 else ("vP" if S.pitch(row[0]) == sympy.oo else "vH")
+    if B.is_symbolic(row):
+        kind = "vR" if S.pitch(row[0]) == 0 else ("vP" if B.is_infinite(S.pitch(row[0])) else "vH")
     else:
         kind = "vP" if S.is_infinite_pitch(row[0]) else ("vR" if S.is_zero_pitch(row[0]) else "vH")
     return Joint(name, kind, row, virtual=True)

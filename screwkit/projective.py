@@ -56,7 +56,7 @@ Array = np.ndarray
 
 def _is_zero_vector(values: Array, *, rtol: float, reference: Array) -> Array:
     """Numeric: ``|values| <= rtol * reference``; symbolic: every component simplifies to 0."""
-    if values.dtype == object:
+    if B.is_symbolic(values):
         return np.array(
             [all(B.is_zero(v, atol=0) for v in row) for row in values.reshape(-1, values.shape[-1])]
         ).reshape(values.shape[:-1])
@@ -72,10 +72,7 @@ def finite_point(position: Any) -> Array:
     array([1., 2., 3., 1.])
     """
     r = B.as_array(position, "position", (3,))
-    one = np.ones((*r.shape[:-1], 1), dtype=r.dtype)
-    if r.dtype == object:
-        one = one * B.to_sympy(1)
-    return np.concatenate([r, one], axis=-1)
+    return np.concatenate([r, B.ones_like(r[..., :1])], axis=-1)
 
 
 def infinite_point(direction: Any) -> Array:
@@ -96,7 +93,7 @@ def infinite_point(direction: Any) -> Array:
         raise DegenerateGeometryError(
             "Expected `direction` to be non-zero, got a zero vector: (0, 0, 0, 0) is not a point."
         )
-    return np.concatenate([d, np.zeros((*d.shape[:-1], 1), dtype=d.dtype) * d[..., :1]], axis=-1)
+    return np.concatenate([d, B.zeros_like(d[..., :1])], axis=-1)
 
 
 def is_at_infinity(points: Any, *, rtol: float = B.DEFAULT_RTOL, length_scale: float = 1.0) -> Any:
@@ -152,10 +149,9 @@ def join(p: Any, q: Any, *, rtol: float = B.DEFAULT_RTOL) -> Array:
     """
     pp, qq = B.as_arrays((4,), (p, "p"), (q, "q"))
     pp, qq = np.broadcast_arrays(pp, qq)
-    direction = pp[..., 3:] * qq[..., :3] - qq[..., 3:] * pp[..., :3]
-    result = np.concatenate([direction, B.cross(pp[..., :3], qq[..., :3])], axis=-1)
+    result = join_unchecked(pp, qq)
     reference = np.zeros(result.shape[:-1])
-    if result.dtype != object:
+    if not B.is_symbolic(result):
         reference = np.linalg.norm(pp, axis=-1) * np.linalg.norm(qq, axis=-1)
     if np.any(_is_zero_vector(result, rtol=rtol, reference=reference)):
         raise DegenerateGeometryError(
@@ -185,7 +181,7 @@ def line_points(line: Any, *, rtol: float = B.DEFAULT_RTOL) -> tuple[Array, Arra
     if values.ndim != 1:
         raise ScrewkitValueError(f"Expected `line` to have shape (6,), got {values.shape}.")
     s, m = values[:3], values[3:]
-    if values.dtype != object:
+    if not B.is_symbolic(values):
         if abs(s @ m) > rtol * (np.linalg.norm(s) * np.linalg.norm(m)):
             raise ScrewkitValueError(
                 f"Expected `line` to be a line (s·m = 0), got s·m = {s @ m:.6g}: a screw of "
@@ -263,7 +259,7 @@ def plane_through(p: Any, q: Any, r: Any, *, rtol: float = B.DEFAULT_RTOL) -> Ar
     ]
     result = np.stack(coefficients, axis=-1)
     reference = np.zeros(result.shape[:-1])
-    if result.dtype != object:
+    if not B.is_symbolic(result):
         reference = np.prod([np.linalg.norm(v, axis=-1) for v in (pp, qq, rr)], axis=0)
     if np.any(_is_zero_vector(result, rtol=rtol, reference=reference)):
         raise DegenerateGeometryError(
@@ -283,11 +279,53 @@ def bracket(p: Any, q: Any, r: Any, s: Any) -> Any:
     1.0
     """
     pts = B.as_arrays((4,), (p, "p"), (q, "q"), (r, "r"), (s, "s"))
-    pts = np.broadcast_arrays(*pts)
-    if pts[0].dtype == object:
-        plane_pqr = plane_through_unchecked(pts[0], pts[1], pts[2])
-        return B.dot(plane_pqr, pts[3])
-    return np.linalg.det(np.stack(pts, axis=-2))
+    return bracket_unchecked(*np.broadcast_arrays(*pts))
+
+
+# Laplace expansion of a 4×4 determinant along its first two rows: (columns of rows 0-1, the
+# complementary columns of rows 2-3, sign (-1)^(i+j+1) with 0-based column indices i, j).
+_LAPLACE = (
+    ((0, 1), (2, 3), 1),
+    ((0, 2), (1, 3), -1),
+    ((0, 3), (1, 2), 1),
+    ((1, 2), (0, 3), 1),
+    ((1, 3), (0, 2), -1),
+    ((2, 3), (0, 1), 1),
+)
+
+
+def bracket_unchecked(p: Array, q: Array, r: Array, s: Array) -> Any:
+    """:func:`bracket` on validated, promoted arrays ``(..., 4)`` (broadcast).
+
+    The Laplace expansion along the first two rows (``+ - *`` only), so batches of float64 points and
+    sympy-object points go through the same code.
+
+    Examples
+    --------
+    >>> e = np.eye(4)
+    >>> float(bracket_unchecked(e[1], e[0], e[2], e[3]))
+    -1.0
+    """
+    total: Any = 0
+    for (i, j), (k, m), sign in _LAPLACE:
+        upper = p[..., i] * q[..., j] - p[..., j] * q[..., i]
+        lower = r[..., k] * s[..., m] - r[..., m] * s[..., k]
+        total = total + sign * upper * lower
+    return total
+
+
+def join_unchecked(p: Array, q: Array) -> Array:
+    """:func:`join` on validated, promoted arrays ``(..., 4)``, without the coincidence check.
+
+    Coincident points give the zero line.
+
+    Examples
+    --------
+    >>> join_unchecked(np.array([1.0, 2, 3, 1]), np.array([2.0, 4, 6, 2]))
+    array([0., 0., 0., 0., 0., 0.])
+    """
+    direction = p[..., 3:] * q[..., :3] - q[..., 3:] * p[..., :3]
+    return np.concatenate([direction, B.cross(p[..., :3], q[..., :3])], axis=-1)
 
 
 def plane_through_unchecked(p: Array, q: Array, r: Array) -> Array:
@@ -335,7 +373,7 @@ def meet_line_plane(
     lv, pl = B.promote(lv, pl)
     s, m, n, delta = lv[..., :3], lv[..., 3:], pl[..., :3], pl[..., 3:]
     point = np.concatenate([B.cross(n, m) - delta * s, B.dot(n, s, keepdims=True)], axis=-1)
-    if point.dtype == object:
+    if B.is_symbolic(point):
         return point
     unit_l = np.linalg.norm(lv, axis=-1)
     unit_p = np.linalg.norm(pl, axis=-1)
@@ -377,7 +415,7 @@ def meet_planes(
     a, b = B.promote(a, b)
     n1, d1, n2, d2 = a[..., :3], a[..., 3:], b[..., :3], b[..., 3:]
     result = np.concatenate([B.cross(n1, n2), d1 * n2 - d2 * n1], axis=-1)
-    if result.dtype == object:
+    if B.is_symbolic(result):
         return result
     scale = np.linalg.norm(a, axis=-1) * np.linalg.norm(b, axis=-1)
     if np.any(np.linalg.norm(result, axis=-1) <= rtol * scale):

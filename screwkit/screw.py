@@ -39,7 +39,6 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
-import sympy
 
 from . import _backend as B
 from .exceptions import DegenerateGeometryError, ScrewkitTypeError, ScrewkitValueError
@@ -69,10 +68,7 @@ Array = np.ndarray
 
 
 def _nonzero_direction(direction: Array, name: str) -> None:
-    if direction.dtype == object:
-        zero = [bool(sympy.simplify(B.dot(d, d)) == 0) for d in direction.reshape(-1, 3)]
-    else:
-        zero = list(np.all(direction.reshape(-1, 3) == 0, axis=-1))
+    zero = [all(B.is_exactly_zero(v) for v in d) for d in direction.reshape(-1, 3)]
     if any(zero):
         raise DegenerateGeometryError(
             f"Expected `{name}` to be a non-zero direction, got a zero vector "
@@ -154,7 +150,7 @@ def helical_twist(axis: Any, point: Any, pitch: Any) -> Array:
     array([0. , 0. , 1. , 0. , 0. , 0.5])
     """
     base = line(axis, point)
-    (h,) = B.promote(B.as_array(pitch, "pitch", (), symbolic=base.dtype == object))
+    (h,) = B.promote(B.as_array(pitch, "pitch", (), symbolic=B.is_symbolic(base)))
     base, h = B.promote(base, h)
     s = base[..., :3]
     return np.concatenate([s, base[..., 3:] + np.asarray(h)[..., None] * s], axis=-1)
@@ -170,7 +166,7 @@ def prismatic_twist(direction: Any) -> Array:
     """
     (d,) = B.as_arrays((3,), (direction, "direction"))
     _nonzero_direction(d, "direction")
-    return np.concatenate([np.zeros_like(d) if d.dtype != object else d * 0, d], axis=-1)
+    return np.concatenate([B.zeros_like(d), d], axis=-1)
 
 
 def force(direction: Any, point: Any) -> Array:
@@ -279,12 +275,12 @@ def pitch(screws: Any) -> Any:
     arr = _screws(screws)
     s, s0 = arr[..., :3], arr[..., 3:]
     ss, ss0 = B.dot(s, s), B.dot(s, s0)
-    if arr.dtype == object:
+    if B.is_symbolic(arr):
         if arr.ndim != 1:
             return np.vectorize(pitch, signature="(6)->()", otypes=[object])(arr)
-        if all(sympy.simplify(v) == 0 for v in arr):
+        if all(B.is_exactly_zero(v) for v in arr):
             raise DegenerateGeometryError("Expected a non-zero screw, got the zero screw.")
-        return sympy.oo if sympy.simplify(ss) == 0 else sympy.simplify(ss0 / ss)
+        return B.infinity(symbolic=True) if B.is_exactly_zero(ss) else B.simplify(ss0 / ss)
     if np.any(np.all(arr == 0, axis=-1)):
         raise DegenerateGeometryError("Expected non-zero screws, got the zero screw.")
     safe = np.where(ss > 0, ss, 1.0)
@@ -304,10 +300,10 @@ def magnitude(screws: Any) -> Any:
     """
     arr = _screws(screws)
     ns, ns0 = B.norm(arr[..., :3]), B.norm(arr[..., 3:])
-    if arr.dtype == object:
+    if B.is_symbolic(arr):
         if arr.ndim != 1:
             return np.vectorize(magnitude, signature="(6)->()", otypes=[object])(arr)
-        return ns0 if sympy.simplify(ns) == 0 else ns
+        return ns0 if B.is_exactly_zero(ns) else ns
     result = np.where(ns > 0, ns, ns0)
     return float(result) if np.ndim(result) == 0 else result
 
@@ -327,12 +323,12 @@ def normalize(screws: Any) -> Array:
     """
     arr = _screws(screws)
     size = magnitude(arr)
-    if arr.dtype == object:
+    if B.is_symbolic(arr):
         if arr.ndim != 1:
             return np.stack([normalize(row) for row in arr.reshape(-1, 6)]).reshape(arr.shape)
-        if sympy.simplify(size) == 0:
+        if B.is_exactly_zero(size):
             raise DegenerateGeometryError("Expected a non-zero screw, got the zero screw.")
-        return np.array([sympy.simplify(v / size) for v in arr], dtype=object)
+        return B.simplify(arr / size)
     if np.any(np.asarray(size) == 0):
         raise DegenerateGeometryError("Expected non-zero screws, got the zero screw.")
     return arr / np.asarray(size)[..., None]
@@ -363,9 +359,8 @@ def axis(screws: Any) -> tuple[Array, Array]:
     arr = _screws(screws)
     s, s0 = arr[..., :3], arr[..., 3:]
     ss = B.dot(s, s)
-    if arr.dtype == object:
-        flat = np.atleast_1d(ss)
-        if any(sympy.simplify(v) == 0 for v in flat.flat):
+    if B.is_symbolic(arr):
+        if any(B.is_exactly_zero(v) for v in np.atleast_1d(ss).flat):
             raise DegenerateGeometryError(
                 "Expected a screw of finite pitch, got s = 0 (a line at infinity has no finite point)."
             )
@@ -389,7 +384,7 @@ def _unit_scaled(arr: Array, length_scale: float) -> Array:
 
 
 def _numeric_only(arr: Array, what: str) -> None:
-    if arr.dtype == object:
+    if B.is_symbolic(arr):
         raise ScrewkitTypeError(
             f"{what} is a tolerance decision for numeric screws; for symbolic screws use "
             "`pitch` and decide the resulting expression."
@@ -478,7 +473,7 @@ def transform(screws: Any, rotation: Any, translation: Any) -> Array:
     rot = B.as_array(rotation, "rotation", (3, 3))
     t = B.as_array(translation, "translation", (3,))
     arr, rot, t = B.promote(arr, rot, t)
-    if rot.dtype != object:
+    if not B.is_symbolic(rot):
         product = np.swapaxes(rot, -1, -2) @ rot
         if not (np.allclose(product, np.eye(3), atol=1e-9) and np.all(np.linalg.det(rot) > 0)):
             raise ScrewkitValueError(
@@ -598,7 +593,7 @@ class Screw:
     @property
     def is_symbolic(self) -> bool:
         """True when the coordinates are sympy expressions."""
-        return self.coords.dtype == object
+        return B.is_symbolic(self.coords)
 
     @property
     def direction(self) -> Array:
@@ -703,7 +698,7 @@ class Screw:
 
 
 def _jsonable(value: Any) -> Any:
-    return str(value) if isinstance(value, sympy.Basic) else float(value)
+    return str(value) if B.is_symbolic(value) else float(value)
 
 
 def _as_screw(value: Any, name: str) -> Screw:

@@ -83,7 +83,7 @@ class ScrewSystem:
 
     def __post_init__(self) -> None:
         rows = B.as_array(self.basis, "basis", (6,)).reshape(-1, 6)
-        if rows.dtype != object:
+        if not B.is_symbolic(rows):
             _, length = B.scale_moments(rows, self.length_scale)
             object.__setattr__(self, "length_scale", length)
             if B.screw_rank(rows, rtol=self.rtol, length_scale=length) != rows.shape[0]:
@@ -116,7 +116,7 @@ class ScrewSystem:
         1
         """
         rows = _rows(screws, "screws")
-        if rows.dtype != object:
+        if not B.is_symbolic(rows):
             _, length_scale = B.scale_moments(rows, length_scale)
         basis = _independent_rows(rows, rtol, length_scale) if rows.shape[0] else rows
         return cls(basis, rtol=rtol, length_scale=length_scale)
@@ -172,7 +172,7 @@ class ScrewSystem:
     @property
     def is_symbolic(self) -> bool:
         """True when the basis holds sympy expressions."""
-        return self.basis.dtype == object
+        return B.is_symbolic(self.basis)
 
     def screws(self) -> list[Screw]:
         """The basis as :class:`~screwkit.screw.Screw` values.

@@ -75,3 +75,55 @@ def test_error_symbolic_nan():
 def test_is_dof_accepts_numpy_integers_and_rejects_booleans():
     assert B.is_dof(np.int64(4)) and B.is_dof(0) and not B.is_dof(True) and not B.is_dof(np.bool_(True))
     assert not B.is_dof(4.0) and not B.is_dof(-1)
+
+
+# --- the named numeric/symbolic branch points (design.md §4) ---------------------------------------
+
+x = sympy.Symbol("x")
+
+
+def test_exact_fraction_known_values():
+    from fractions import Fraction
+
+    assert B.exact_fraction(sympy.Rational(-3, 4)) == Fraction(-3, 4)
+    assert B.exact_fraction(np.int32(5)) == Fraction(5) and B.exact_fraction(Fraction(1, 3)) == Fraction(1, 3)
+    for not_exact in (0.5, True, np.bool_(False), x, sympy.sqrt(2), "1"):
+        assert B.exact_fraction(not_exact) is None
+
+
+def test_from_fraction_parity():
+    from fractions import Fraction
+
+    exact = B.from_fraction(Fraction(-7, 8), symbolic=True)
+    assert isinstance(exact, sympy.Rational) and exact == sympy.Rational(-7, 8)
+    assert B.from_fraction(Fraction(-7, 8), symbolic=False) == float(exact) == -0.875
+
+
+def test_infinity_and_is_infinite_parity():
+    assert B.infinity(symbolic=True) is sympy.oo and B.infinity(symbolic=False) == float("inf")
+    for symbolic in (True, False):
+        assert B.is_infinite(B.infinity(symbolic=symbolic)) and B.is_infinite(-B.infinity(symbolic=symbolic))
+    assert not B.is_infinite(x) and not B.is_infinite(sympy.Integer(3)) and not B.is_infinite(3.0)
+
+
+def test_is_exactly_zero_is_generic_and_exact():
+    assert B.is_exactly_zero((x + 1) ** 2 - x**2 - 2 * x - 1)
+    assert not B.is_exactly_zero(x)  # generically non-zero: decided, unlike is_zero which refuses
+    assert B.is_exactly_zero(0.0) and B.is_exactly_zero(np.float64(-0.0))
+    assert not B.is_exactly_zero(1e-300)  # no tolerance
+
+
+def test_zeros_and_ones_like_keep_the_branch():
+    numeric = np.array([[2.0, 3.0]])
+    symbolic = np.array([[x, sympy.Integer(3)]], dtype=object)
+    np.testing.assert_array_equal(B.zeros_like(numeric), [[0.0, 0.0]])
+    np.testing.assert_array_equal(B.ones_like(numeric), [[1.0, 1.0]])
+    for made, value in ((B.zeros_like(symbolic), 0), (B.ones_like(symbolic), 1)):
+        assert made.dtype == object and made.shape == (1, 2)
+        assert all(isinstance(v, sympy.Integer) and v == value for v in made.flat)
+    assert B.zeros_like(numeric).dtype == B.ones_like(numeric).dtype == np.float64
+
+
+def test_is_symbolic_without_sympy_objects_is_false():
+    assert not B.is_symbolic(np.array([1, 2], dtype=object), [1.0, (2, 3)], 4)
+    assert B.is_symbolic([1.0, (2, x)])

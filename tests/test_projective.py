@@ -234,3 +234,15 @@ def test_error_nan_point():
 def test_error_zero_normal():
     with pytest.raises(DegenerateGeometryError, match="Expected `normal` to be non-zero"):
         P.plane([0, 0, 0], [1, 1, 1])
+
+
+def test_bracket_kernel_matches_the_determinant_and_is_exact(rng):
+    from screwkit.projective import bracket_unchecked, join_unchecked
+
+    points = rng.normal(size=(4, 5, 4))  # a batch of 5 quadruples
+    expected = np.linalg.det(np.stack(list(points), axis=-2))
+    np.testing.assert_allclose(bracket_unchecked(*points), expected, rtol=1e-12, atol=1e-12)
+    t = sympy.Symbol("t")
+    exact = [np.array(v, dtype=object) for v in ([t, 0, 0, 1], [0, 1, 0, 1], [0, 0, 1, 1], [0, 0, 0, 1])]
+    assert sympy.expand(bracket_unchecked(*exact) - sympy.Matrix(np.stack(exact)).det()) == 0
+    np.testing.assert_array_equal(join_unchecked(points[0], points[0]), np.zeros((5, 6)))
