@@ -34,9 +34,9 @@ import time  # noqa: E402
 import tracemalloc  # noqa: E402
 
 import numpy as np  # noqa: E402
+from screwkit.batch import classify_poses  # noqa: E402
 
 import screwkit as sk  # noqa: E402
-from screwkit.batch import classify_poses  # noqa: E402
 from screwkit.families.four_limb import reachable  # noqa: E402
 from screwkit.families.four_limb_graph import PAPER_002_LEGS, four_limb_joints  # noqa: E402
 

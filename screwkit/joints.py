@@ -505,7 +505,7 @@ class JointTable:
         from .twistgraph import check_twist_graph, graph_anchor
 
         check_twist_graph(graph, joint_key=joint_key)
-        joints = sorted(graph.edges(keys=True, data=joint_key), key=lambda e: str(e[2]))
+        joints = list(graph.edges(keys=True, data=joint_key))  # the graph's order: a table's round trip
         rows = [
             (u, v, key, joint.type, np.asarray(joint.screws, dtype=float), joint.actuated)
             for u, v, key, joint in joints

@@ -37,6 +37,7 @@ Examples
 from __future__ import annotations
 
 import functools
+import itertools
 from dataclasses import dataclass, field, replace
 from typing import Any
 
@@ -608,6 +609,19 @@ def checked_rtol(value: Any, name: str = "rtol") -> float:
     return float(value)
 
 
+def _canonical(table: JointTable) -> JointTable:
+    """The table with its joints sorted by name: every route to the same mechanism (a family's
+    table, a graph's, a graph rebuilt from a table) then runs the same arithmetic in the same order,
+    bit for bit."""
+    order = sorted(range(len(table.specs)), key=lambda k: table.specs[k].name)
+    if order == list(range(len(order))):
+        return table
+    starts = list(itertools.accumulate((spec.dof for spec in table.specs), initial=0))
+    rows = [r for k in order for r in range(starts[k], starts[k + 1])]
+    specs = tuple(table.specs[k] for k in order)
+    return JointTable(table.base, table.platform, specs, table.screws[..., rows, :], table.dof, table.anchor)
+
+
 def _checked_dof(dof: Any, table: JointTable, top: Topology) -> int:
     nominal = dof if dof is not None else (table.dof if table.dof is not None else len(top.limbs))
     if not B.is_dof(nominal):
@@ -652,6 +666,7 @@ def analyze_table(
     if not isinstance(table, JointTable):
         raise ScrewkitTypeError(f"Expected `table` to be a JointTable, got {type(table).__name__}.")
     rtol = checked_rtol(rtol)
+    table = _canonical(table)
     top = topology(table.base, table.platform, table.specs)
     nominal = _checked_dof(dof, table, top)
     batch = table.batch_shape
@@ -697,13 +712,13 @@ def analyze_table(
         passive = F.reciprocal(*locked)
         # SWAP t⊥ lies in the passive system; projecting it there keeps a clean passive wrench even
         # when t⊥ is round-off (a serial singularity), so w ∘ t is then round-off too
-        swapped = perpendicular @ F.SWAP
+        swapped = F.swapped(perpendicular)
         direction = _normalized(
             np.einsum("...k,...ks->...s", np.einsum("...ks,...s->...k", passive[0], swapped), passive[0])
         )
         line = _nearest_lines(direction, *limb_constraint)
         wrench = _normalized(line)
-        product = np.abs(np.einsum("...s,...s->...", wrench, actuated @ F.SWAP))
+        product = np.abs(np.einsum("...s,...s->...", wrench, F.swapped(actuated)))
         transmissions.append(_scaled_transmission(wrench, actuated, product, rtol))
         wrench = np.where(is_serial[..., None], 0.0, wrench)
         serial.append(is_serial)
