@@ -33,13 +33,13 @@ from screwkit.families.four_limb import (
     force_pressure_angle,
     inverse_kinematics,
     jacobians,
+    joints,
     motion_pressure_angles,
     reachable,
     spiral_trajectory,
     transmission_indices,
 )
-from screwkit.families.four_limb_graph import four_limb_joints, four_limb_twist_graph
-from screwkit.singularity import classify_poses
+from screwkit.singularity import classify_table
 from screwkit.wrenches import wrench_analysis
 
 K = np.array([0.0, 0.0, 1.0])
@@ -81,10 +81,8 @@ def random_configuration(mechanism, count: int, seed: int = SEED):
 
 
 def batch_labels(config) -> list[tuple[str, ...]]:
-    """Labels of :func:`screwkit.batch.classify_poses` over a batched configuration (vectorized)."""
-    template = four_limb_twist_graph(config, (0,) * len(config.batch_shape))
-    screws = {name: value for _, _, name, _, value, _ in four_limb_joints(config)}
-    return classify_poses(template, screws).labels.ravel().tolist()
+    """Labels of :func:`screwkit.singularity.classify_table` over a batched configuration (vectorized)."""
+    return classify_table(joints(config)).labels.ravel().tolist()
 
 
 def compare(computed: dict[str, Any], fact: dict[str, Any]) -> tuple[dict[str, Any], dict[str, Any]]:
@@ -228,7 +226,7 @@ CANDIDATE_POSES = {
 
 
 def check_constraint_singular_poses(mechanism, fact):
-    """Which families of poses are constraint-singular (labels of :func:`classify_poses`).
+    """Which families of poses are constraint-singular (labels of :func:`classify_table`).
 
     ``"everywhere"`` when every one of 150 random workspace poses is; otherwise the candidate
     families (:data:`CANDIDATE_POSES`, reachable poses only) that are constraint-singular throughout,

@@ -2,7 +2,7 @@
 
 Known values are the paper's (Tables 1, 3, 4, Sec. 5); the singularity types of Sec. 4.2 (type 1:
 ``|B| = 0``, type 2: ``|A| = 0``) are compared with the labels of the twist graph
-(:func:`screwkit.singularity.classify`, one pose; :func:`screwkit.batch.classify_poses`, many) at poses
+(:func:`screwkit.singularity.classify`, one pose; :func:`screwkit.singularity.classify_table`, many) at poses
 found by root search. An independent numpy computation of the platform's twist system (intersections
 and sums of joint-screw spans, no screwkit screw systems) confirms the constraint singularities the
 entries document (Quattro: a surface through the workspace centre; Ragnar: every pose).
@@ -26,9 +26,8 @@ from screwkit.families.four_limb import (
     spiral_trajectory,
     transmission_indices,
 )
-from screwkit.families.four_limb_graph import four_limb_joints, four_limb_twist_graph
 from screwkit.report import analyze
-from screwkit.singularity import classify, classify_poses
+from screwkit.singularity import classify, classify_table
 from screwkit.wrenches import wrench_analysis
 
 PI = math.pi
@@ -60,10 +59,7 @@ def det_a(mechanism, pose):
 
 
 def batch_report(mechanism, poses, **options):
-    config = mechanism.configuration(poses)
-    template = four_limb_twist_graph(config, (0,))
-    screws = {name: value for _, _, name, _, value, _ in four_limb_joints(config)}
-    return classify_poses(template, screws, **options)
+    return classify_table(mechanism.joints(poses), **options)
 
 
 # -------------------------------------------------------------------------------------------------

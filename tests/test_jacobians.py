@@ -26,10 +26,10 @@ from screwkit.families.four_limb import (
     FourLimbParameters,
     inverse_kinematics,
     jacobians,
+    joints,
     reachable,
     transmission_indices,
 )
-from screwkit.families.four_limb_graph import four_limb_joints, four_limb_twist_graph
 from screwkit.jacobians import (
     GOSSELIN_ANGELES_TYPES,
     jacobians_from_wrenches,
@@ -66,14 +66,15 @@ def basis_of(cfg):
 
 def single(params, pose, **kwargs):
     cfg = inverse_kinematics(params, pose)
-    analysis = wrench_analysis(four_limb_twist_graph(cfg), rtol=kwargs.pop("analysis_rtol", 1e-9))
+    analysis = wrench_analysis(joints(cfg).graph(), rtol=kwargs.pop("analysis_rtol", 1e-9))
     return cfg, analysis, jacobians_from_wrenches(analysis, basis_of(cfg), **kwargs)
 
 
 def batch_inputs(params, poses):
     cfg = inverse_kinematics(params, poses)
-    graph = four_limb_twist_graph(cfg, (0,) * (np.ndim(poses) - 1))
-    screws = {name: s for _, _, name, _, s, _ in four_limb_joints(cfg)}
+    table = joints(cfg)
+    graph = table.graph((0,) * (np.ndim(poses) - 1))
+    screws = {spec.name: table.joint_screws(spec.name) for spec in table.specs}
     return cfg, graph, screws
 
 
@@ -481,7 +482,7 @@ def test_row_scaling_convention(seed):
 @functools.cache
 def h4_regular():
     cfg = inverse_kinematics(H4, [30.0, -20.0, -750.0, 0.3])
-    return cfg, wrench_analysis(four_limb_twist_graph(cfg))
+    return cfg, wrench_analysis(joints(cfg).graph())
 
 
 def test_error_analysis_type():

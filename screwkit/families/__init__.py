@@ -66,19 +66,6 @@ class Family:
     angle_names: tuple[str, ...]
 
 
-def _four_limb_joints(config: Any) -> JointTable:
-    from .four_limb_graph import four_limb_joints
-
-    rows = [(p, c, name, kind, screws, act) for p, c, name, kind, screws, act in four_limb_joints(config)]
-    return JointTable.from_rows("base", "end_effector", rows, dof=4)
-
-
-def _four_limb_basis(config: Any) -> np.ndarray:
-    from ..jacobians import schoenflies_basis
-
-    return schoenflies_basis(config.pose[..., :3], config.platform_joint_axis)
-
-
 def _axis_joints(config: Any) -> JointTable:
     """The McGill SMG's and the Peppermill's joints (``config.joints``: batched axes)."""
     rows = []
@@ -139,8 +126,8 @@ def families() -> dict[str, Family]:
             "four_limb",
             four_limb.FourLimbParameters.from_mapping,
             four_limb.inverse_kinematics,
-            _four_limb_joints,
-            _four_limb_basis,
+            four_limb.joints,
+            four_limb.twist_basis,
             smg,
             ("phi",),
         ),

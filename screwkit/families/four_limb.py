@@ -80,7 +80,16 @@ Where paper 004 is garbled or wrong (each is checked in ``tests/test_families_fo
    the spiral (Eqs. 17-18). Only approximately: ``|A|`` changes sign at ``φ = -88.3°`` and at
    ``φ = +90°`` we find σ = 88.3° (ζ = 0.03).
 
-Paper 002 (Amine et al., H4) numbers the H4 limbs differently: there ``b_I`` carries limbs 1, 2.
+The joint table
+---------------
+:func:`joints` gives the physical mechanism as paper 002 models the H4 (§4.1, Fig. 2): per limb an
+actuated revolute joint and a parallelogram with explicit spherical joints at its four corners; the
+sub-platforms join the end effector by ``R_I`` and ``R_II``. :func:`twist_basis` gives the end
+effector's nominal (Schoenflies) twists, the columns of the forward Jacobian of
+:func:`screwkit.jacobians.jacobians_from_wrenches`. Paper 002 numbers the H4's legs differently: its
+``b_I`` carries legs ``l1, l2`` and ``b_II`` carries ``l3, l4``, whereas here (Table 1) sub-platform
+I carries limbs 1 and 4; paper 002's ``(l1, l2, l3, l4)`` are limbs ``(1, 4, 2, 3)``
+(:data:`PAPER_002_LEGS`).
 
 Examples
 --------
@@ -105,6 +114,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
+from .. import screw as S
 from .._backend import as_array
 from ..exceptions import (
     CatalogError,
@@ -112,10 +122,14 @@ from ..exceptions import (
     ScrewkitValueError,
     UnreachablePoseError,
 )
+from ..jacobians import schoenflies_basis
+from ..joints import JointTable
 
 __all__ = [
     "DEFAULT_PARALLELOGRAM_WIDTH_MM",
+    "PAPER_002_LEGS",
     "PLATFORM_KINDS",
+    "SUBPLATFORMS",
     "ForwardKinematicsError",
     "FourLimbConfiguration",
     "FourLimbJacobians",
@@ -126,10 +140,12 @@ __all__ = [
     "forward_kinematics",
     "inverse_kinematics",
     "jacobians",
+    "joints",
     "motion_pressure_angles",
     "reachable",
     "spiral_trajectory",
     "transmission_indices",
+    "twist_basis",
 ]
 
 #: The platform variants of Table 1 (paper 004).
@@ -904,6 +920,121 @@ def _first_indices(mask: np.ndarray, count: int = 5) -> str:
 def _expand(mask: np.ndarray, like: np.ndarray) -> np.ndarray:
     """Reshape a batch mask to broadcast against an array with trailing axes."""
     return mask.reshape(mask.shape + (1,) * (like.ndim - mask.ndim))
+
+
+# --------------------------------------------------------------------------------------------------
+# The joint table and the nominal twists (the family protocol, screwkit.families)
+# --------------------------------------------------------------------------------------------------
+
+#: Paper 002's H4 legs l1..l4 as paper 004's limbs (1-based): (1, 4, 2, 3).
+PAPER_002_LEGS = {"l1": 1, "l2": 4, "l3": 2, "l4": 3}
+#: Names of the sub-platform links and of the joints joining them to the end effector.
+SUBPLATFORMS = (("b_I", "R_I"), ("b_II", "R_II"))
+
+
+def joints(config: FourLimbConfiguration) -> JointTable:
+    """The joints of the physical mechanism with their screws over the whole batch of poses.
+
+    Each limb is modelled as paper 002 models the H4's (§4.1, Fig. 2): ``R–(4S)``, an actuated
+    revolute joint ``A<i>`` (axis ``u_i`` through ``A_i``) and a parallelogram of two rods with
+    **explicit spherical joints** at its four corners ``m, n`` (on the arm) and ``p, q`` (on the
+    sub-platform). The closed 4S loops are *not* typed in as virtual chains: the equivalent twist
+    graph derives them (:func:`screwkit.twistgraph.equivalent_twist_graph`). The sub-platforms
+    ``b_I`` and ``b_II`` join the end effector by joints ``R_I`` and ``R_II`` (revolute, or helical
+    for the screw-pair platforms) on the axes of :class:`FourLimbConfiguration`.
+
+    Parameters
+    ----------
+    config : FourLimbConfiguration
+        From :func:`inverse_kinematics` (any batch shape ``...``).
+
+    Returns
+    -------
+    JointTable
+        Links ``base``, ``arm<i>``, ``rod<i>a``, ``rod<i>b``, ``b_I``, ``b_II``, ``end_effector``;
+        joints ``A<i>`` (actuated R), ``S<i>m``, ``S<i>p``, ``S<i>n``, ``S<i>q`` (S), ``R_I``,
+        ``R_II``; ``dof = 4``; screws ``(..., rows, 6)``.
+
+    Raises
+    ------
+    ScrewkitTypeError
+        If ``config`` is not a :class:`FourLimbConfiguration`.
+
+    Examples
+    --------
+    >>> h4 = FourLimbParameters(name="H4", platform_kind="articulated_z", arm_length=375,
+    ...     rod_length=800, alpha=0, beta=np.pi / 2, platform_radius=80, platform_offset=70,
+    ...     base_radius=275)
+    >>> table = joints(inverse_kinematics(h4, np.zeros((5, 4)) + [0, 0, -700, 0]))
+    >>> len(table.specs), table.specs[1].name, table.joint_screws("S1m").shape
+    (22, 'S1m', (5, 3, 6))
+    >>> G = table.graph(1)
+    >>> G.number_of_nodes(), G.number_of_edges(), G.graph["dof"], sorted(G.successors("b_I"))
+    (16, 22, 4, ['end_effector'])
+    """
+    _require(config, FourLimbConfiguration, "config")
+    eye = np.eye(3)
+
+    def spheres(centres: np.ndarray) -> np.ndarray:
+        return S.revolute_twist(eye, centres[..., None, :])
+
+    limb_platform = {}
+    for (link, _), limbs in zip(SUBPLATFORMS, config.subplatform_limbs, strict=True):
+        for limb in limbs:
+            limb_platform[limb] = link
+    rows: list[tuple[str, str, str, str, np.ndarray, bool]] = []
+    for limb in range(4):
+        i = limb + 1
+        arm = f"arm{i}"
+        actuated = S.revolute_twist(config.u[..., limb, :], config.a[..., limb, :])[..., None, :]
+        rows.append(("base", arm, f"A{i}", "R", actuated, True))
+        for rod, corner, (first, second) in ((f"rod{i}a", 0, "mp"), (f"rod{i}b", 1, "nq")):
+            elbow, platform = (config.elbow_corners[..., limb, corner, :],
+                               config.platform_corners[..., limb, corner, :])
+            rows.append((arm, rod, f"S{i}{first}", "S", spheres(elbow), False))
+            rows.append((rod, limb_platform[limb], f"S{i}{second}", "S", spheres(platform), False))
+    axis = config.platform_joint_axis
+    for k, (link, name) in enumerate(SUBPLATFORMS):
+        point, pitch = config.platform_joint_points[..., k, :], config.platform_joint_pitches[k]
+        screw = S.helical_twist(axis, point, pitch) if pitch else S.revolute_twist(axis, point)
+        rows.append((link, "end_effector", name, "H" if pitch else "R", screw[..., None, :], False))
+    return JointTable.from_rows("base", "end_effector", rows, dof=4)
+
+
+def twist_basis(config: FourLimbConfiguration) -> np.ndarray:
+    """The end effector's nominal twists over the batch: a Schoenflies basis (user frame).
+
+    Rows, for ``ẋ = 1``, ``ẏ = 1``, ``ż = 1`` and ``φ̇ = 1`` with ``χ = (x, y, z, φ)``: the three
+    translations and the rotation about the end effector's own axis of rotation,
+    ``config.platform_joint_axis`` (``k`` for the Quattro, H4, Veloce and Ragnar, ``j`` for the
+    V4) through the end-effector point ``p`` (:func:`screwkit.jacobians.schoenflies_basis`). They
+    are the columns of ``A`` in :func:`screwkit.jacobians.jacobians_from_wrenches`, in paper 004's
+    order (Eq. 7a).
+
+    Parameters
+    ----------
+    config : FourLimbConfiguration
+        From :func:`inverse_kinematics` (any batch shape ``...``).
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 4, 6)
+
+    Raises
+    ------
+    ScrewkitTypeError
+        If ``config`` is not a :class:`FourLimbConfiguration`.
+
+    Examples
+    --------
+    >>> v4 = FourLimbParameters(name="V4", platform_kind="articulated_y", arm_length=375,
+    ...     rod_length=800, alpha=0, beta=np.pi / 2, platform_radius=80, platform_offset=70,
+    ...     base_radius=275)
+    >>> twist_basis(inverse_kinematics(v4, [[0, 0, -700, 0], [50, 0, -700, 0.2]]))[1, 3]  # about j
+    array([  0.,   1.,   0., 700.,   0.,  50.])
+    """
+    _require(config, FourLimbConfiguration, "config")
+    return schoenflies_basis(config.pose[..., :3], config.platform_joint_axis)
 
 
 # --------------------------------------------------------------------------------------------------
