@@ -41,6 +41,7 @@ import pytest
 
 from screwkit.catalog import load_mechanism
 from screwkit.exceptions import UnreachablePoseError
+from screwkit.families import families
 from screwkit.families import mcgill_smg as smg
 from screwkit.families import peppermill as pm
 from screwkit.families import planar_3rrp as planar
@@ -62,7 +63,9 @@ combined_singular = planar_catalog.combined_singular
 
 def ours(module, config, rtol=1e-9):
     """The wrench-derived Jacobians of a configuration over its family's twist basis."""
-    return jacobians_from_wrenches(wrench_analysis(module.twist_graph(config), rtol=rtol), module.twist_basis(config))
+    family = families()[module.__name__.rsplit(".", 1)[-1]]  # the module's registered protocol
+    graph = family.joints(config).graph()
+    return jacobians_from_wrenches(wrench_analysis(graph, rtol=rtol), family.twist_basis(config))
 
 
 def null_vector(matrix: np.ndarray) -> np.ndarray:

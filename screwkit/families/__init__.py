@@ -88,27 +88,6 @@ def _peppermill_basis(config: Any) -> np.ndarray:
     return schoenflies_basis(config.platform_point, config.platform_axis)
 
 
-def _planar_joints(config: Any) -> JointTable:
-    from .planar_3rrp import LINK_NAMES, limb_joints
-
-    rows, anchors = [], []
-    for limb in limb_joints(config):
-        for joint in limb:
-            parent, child = (LINK_NAMES[link - 1] for link in joint.links)
-            rows.append((parent, child, joint.name, joint.kind, joint.screw[..., None, :], joint.actuated))
-            if joint.kind == "R":
-                anchors.append(joint.point)
-    return JointTable.from_rows("base", "platform", rows, dof=3, anchor=np.mean(anchors, axis=0))
-
-
-def _planar_basis(config: Any) -> np.ndarray:
-    x, y = np.moveaxis(config.platform_point, -1, 0)
-    rows = np.zeros((*x.shape, 3, 6))
-    rows[..., 0, 3] = rows[..., 1, 4] = rows[..., 2, 2] = 1.0
-    rows[..., 2, 3], rows[..., 2, 4] = y, -x  # the rotation about z through C: C × k = (y, -x, 0)
-    return rows
-
-
 @functools.cache
 def families() -> dict[str, Family]:
     """The families a catalog entry can name, by name (imported on first use).
@@ -153,8 +132,8 @@ def families() -> dict[str, Family]:
             "planar_3rrp",
             planar_3rrp.Planar3RRPParameters.from_mapping,
             planar_3rrp.Planar3RRPConfiguration.from_pose,
-            _planar_joints,
-            _planar_basis,
+            planar_3rrp.joints,
+            planar_3rrp.twist_basis,
             ("x", "y", "phi"),
             ("phi",),
         ),

@@ -74,9 +74,9 @@ The claims of Secs. 4.1-4.2 survive a rank computation (tests): at an inverse si
 ``k``, driving only actuator ``k`` leaves the platform at rest and ``C_i8 = C_1i``; at a direct
 singularity the null twist of ``K`` is a rotation about the concurrency point ``D = C_18``.
 
-The physical twist graph
-------------------------
-:func:`twist_graph` embeds the mechanism in space (plane ``z = 0``): R joints are zero-pitch screws
+The joint table
+---------------
+:func:`joints` embeds the mechanism in space (plane ``z = 0``): R joints are zero-pitch screws
 along ``z`` through their centres, P joints infinite-pitch screws along ``(b_k, 0)``. Its wrench
 systems (:mod:`screwkit.wrenches`) have a constraint system of order 3 (forces along ``z`` and
 couples about horizontal axes, the planarity constraints) and, per limb, an actuation wrench that is
@@ -107,11 +107,9 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any, Literal
 
-import networkx as nx
 import numpy as np
 
-from .. import joints as _joints
-from .. import twistgraph as _twistgraph
+from .. import screw as S
 from .._backend import DEFAULT_RTOL, as_array
 from ..exceptions import (
     CatalogError,
@@ -120,6 +118,7 @@ from ..exceptions import (
     ScrewkitValueError,
     UnreachablePoseError,
 )
+from ..joints import JointTable
 
 __all__ = [
     "EXAMPLE_PARAMETERS",
@@ -127,7 +126,6 @@ __all__ = [
     "LINK_NAMES",
     "WORKING_MODES",
     "ForwardKinematicsSolutions",
-    "JointGeometry",
     "Planar3RRPConfiguration",
     "Planar3RRPParameters",
     "SingularityClassification",
@@ -138,11 +136,10 @@ __all__ = [
     "instant_centers",
     "inverse_kinematics",
     "jacobians",
-    "limb_joints",
+    "joints",
     "link_twists",
     "reach_margin",
     "twist_basis",
-    "twist_graph",
 ]
 
 #: Link names by the paper's label (Fig. 1b): ``LINK_NAMES[label - 1]``.
@@ -1216,175 +1213,76 @@ def classify(
 
 
 # --------------------------------------------------------------------------------------------------
-# Data for the twist graph
+# The joint table and the nominal twists (the family protocol, screwkit.families)
 # --------------------------------------------------------------------------------------------------
 
-
-@dataclass(frozen=True, eq=False, slots=True)
-class JointGeometry:
-    """One joint at the current configuration, for building the planar twist graph.
-
-    Attributes
-    ----------
-    name : str
-        ``"limb{k}_{R1|R2|P}"``.
-    kind : {"R", "P"}
-    actuated : bool
-    links : (int, int)
-        Paper labels (from, to), base side first (:data:`LINK_NAMES`).
-    point : numpy.ndarray, shape (..., 3)
-        A point of the axis, ``z = 0``: the joint centre of an R joint, the elbow for the P joint
-        (any point would do for an infinite-pitch screw).
-    direction : numpy.ndarray, shape (..., 3)
-        ``(0, 0, 1)`` for R joints, ``(b_k, 0)`` for the P joint.
-    """
-
-    name: str
-    kind: str
-    actuated: bool
-    links: tuple[int, int]
-    point: np.ndarray
-    direction: np.ndarray
-
-    @property
-    def screw(self) -> np.ndarray:
-        """Unit joint screw ``(s; s0)``, shape ``(..., 6)``, direction first (design.md §3).
-
-        R: ``(z; r × z)`` (pitch 0); P: ``(0; d)`` (infinite pitch).
-
-        Examples
-        --------
-        >>> c = Planar3RRPConfiguration.from_pose(EXAMPLE_PARAMETERS, [0.0, 0.0, 0.0])
-        >>> limb_joints(c)[0][0].screw
-        array([ 0.       ,  0.       ,  1.       , -0.5      ,  0.8660254,  0.       ])
-        """
-        if self.kind == "P":
-            return np.concatenate([np.zeros_like(self.direction), self.direction], axis=-1)
-        return np.concatenate([self.direction, np.cross(self.point, self.direction)], axis=-1)
+_AXIS_Z = np.array([0.0, 0.0, 1.0])
 
 
-def limb_joints(config: Planar3RRPConfiguration) -> tuple[tuple[JointGeometry, ...], ...]:
-    """Per limb, its three joints from base to platform (actuated R, passive R, P).
+def _in_space(planar: np.ndarray) -> np.ndarray:
+    """Planar points or directions ``(..., 2)`` in the plane ``z = 0`` of space, ``(..., 3)``."""
+    return np.concatenate([planar, np.zeros((*planar.shape[:-1], 1))], axis=-1)
+
+
+def joints(config: Planar3RRPConfiguration) -> JointTable:
+    """The joints of the physical mechanism over the batch (design.md §1a, §5).
+
+    Links are :data:`LINK_NAMES`; per limb ``k`` (:data:`JOINT_PAIRS`, base to platform) the joints
+    are ``limb{k}_R1`` (actuated revolute, axis ``z`` through ``M_k``: the screw ``(z; M_k × z)``),
+    ``limb{k}_R2`` (revolute, axis ``z`` through the elbow ``A_k``) and ``limb{k}_P`` (prismatic
+    along the guide, the infinite-pitch screw ``(0; b_k)``). The mechanism lies in the plane
+    ``z = 0``; its nominal mobility is ``dof = 3`` (planar motions). The table's ``anchor`` is the
+    mean of the six revolute centres, a point of that plane that moves with the mechanism (it fixes
+    the reference point along ``z``, where the parallel axes do not; :func:`screwkit.twistgraph.graph_frame`).
 
     Parameters
     ----------
     config : Planar3RRPConfiguration
+        Any batch shape ``...``.
 
     Returns
     -------
-    tuple of 3 tuples of 3 JointGeometry
-        Arrays batched like ``config``.
-
-    Examples
-    --------
-    >>> c = Planar3RRPConfiguration.from_pose(EXAMPLE_PARAMETERS, [0.0, 0.0, 0.0])
-    >>> [(j.name, j.kind, j.links) for j in limb_joints(c)[1]]
-    [('limb2_R1', 'R', (1, 4)), ('limb2_R2', 'R', (4, 5)), ('limb2_P', 'P', (5, 8))]
-    """
-    config = _check_config(config)
-    zeros = np.zeros((*config.batch_shape, 3, 1))
-    base = np.concatenate([config.base_points, zeros], axis=-1)
-    elbow = np.concatenate([config.elbow_points, zeros], axis=-1)
-    guide = np.concatenate([config.guide_directions, zeros], axis=-1)
-    axis_z = np.broadcast_to(np.array([0.0, 0.0, 1.0]), base.shape)
-    limbs = []
-    for k, pairs in enumerate(JOINT_PAIRS):
-        rows = (("R1", "R", base, axis_z), ("R2", "R", elbow, axis_z), ("P", "P", elbow, guide))
-        limbs.append(
-            tuple(
-                JointGeometry(
-                    name=f"limb{k + 1}_{label}",
-                    kind=kind,
-                    actuated=label == "R1",
-                    links=pair,
-                    point=_readonly(point[..., k, :]),
-                    direction=_readonly(direction[..., k, :]),
-                )
-                for (label, kind, point, direction), pair in zip(rows, pairs, strict=True)
-            )
-        )
-    return tuple(limbs)
-
-
-def _checked_index(config: Planar3RRPConfiguration, index: Any) -> tuple[int, ...]:
-    batch = config.batch_shape
-    chosen = tuple(index) if isinstance(index, tuple | list) else None
-    if (
-        chosen is None
-        or len(chosen) != len(batch)
-        or any(
-            isinstance(i, bool) or not isinstance(i, int | np.integer) or not 0 <= i < n
-            for i, n in zip(chosen, batch, strict=True)
-        )
-    ):
-        raise ScrewkitValueError(
-            f"Expected `index` to pick one configuration of the batch of shape {batch}, got {index!r}."
-        )
-    return chosen
-
-
-def twist_graph(config: Planar3RRPConfiguration, index: tuple[int, ...] = ()) -> nx.MultiDiGraph:
-    """The twist graph of the physical mechanism at one configuration (design.md §5).
-
-    Links are :data:`LINK_NAMES`; per limb ``k`` (:func:`limb_joints`, base to platform) the
-    joints are ``limb{k}_R1`` (actuated revolute, axis ``z`` through ``M_k``), ``limb{k}_R2``
-    (revolute, axis ``z`` through the elbow ``A_k``) and ``limb{k}_P`` (prismatic along the guide
-    ``(b_k, 0)``, an infinite-pitch screw). The mechanism lies in the plane ``z = 0``; its nominal
-    mobility is ``dof = 3`` (planar motions).
-
-    Parameters
-    ----------
-    config : Planar3RRPConfiguration
-    index : tuple of int, optional
-        Which configuration of a batch (empty, the default, for a single configuration).
-
-    Returns
-    -------
-    networkx.MultiDiGraph
-        Base ``"base"``, platform ``"platform"``, nine joints, three loops, ``dof = 3``.
+    JointTable
+        Base ``"base"``, platform ``"platform"``, nine joints (three loops), ``dof = 3``; screws
+        ``(..., 9, 6)``.
 
     Raises
     ------
-    ScrewkitValueError
-        If ``index`` does not pick one configuration of the batch.
     ScrewkitTypeError
         If ``config`` is not a :class:`Planar3RRPConfiguration`.
 
     Examples
     --------
-    >>> from screwkit.singularity import classify as classify_graph
+    >>> from screwkit.singularity import classify
     >>> c = Planar3RRPConfiguration.from_pose(EXAMPLE_PARAMETERS, [0.0, 0.0, 0.0])
-    >>> G = twist_graph(c)
-    >>> G.number_of_nodes(), G.number_of_edges(), G.graph["dof"]
-    (8, 9, 3)
-    >>> G.edges["base", "limb1_link1", "limb1_R1"]["joint"].screws  # axis z through M_1
+    >>> table = joints(c)
+    >>> [(spec.name, spec.type, spec.actuated) for spec in table.specs[:3]]
+    [('limb1_R1', 'R', True), ('limb1_R2', 'R', False), ('limb1_P', 'P', False)]
+    >>> table.joint_screws("limb1_R1")  # axis z through M_1
     array([[ 0.       ,  0.       ,  1.       , -0.5      ,  0.8660254,  0.       ]])
-    >>> classify_graph(G).labels
-    ()
-    >>> twist_graph(Planar3RRPConfiguration.from_pose(EXAMPLE_PARAMETERS, [[0, 0, 0], [0, 0, 0.1]]))
-    Traceback (most recent call last):
-    ...
-    screwkit.exceptions.ScrewkitValueError: Expected `index` to pick one configuration of the batch ...
+    >>> G = table.graph()
+    >>> G.number_of_nodes(), G.number_of_edges(), G.graph["dof"], classify(G).labels
+    (8, 9, 3, ())
     """
     config = _check_config(config)
-    chosen = _checked_index(config, index)
-    joints = []
-    for limb in limb_joints(config):
-        for geometry in limb:
-            parent, child = (LINK_NAMES[label - 1] for label in geometry.links)
-            direction = geometry.direction[chosen]
-            if geometry.kind == "R":
-                joint = _joints.revolute(
-                    geometry.name, direction, geometry.point[chosen], actuated=geometry.actuated
-                )
-            else:
-                joint = _joints.prismatic(geometry.name, direction, actuated=geometry.actuated)
-            joints.append((parent, child, joint))
-    return _twistgraph.twist_graph(LINK_NAMES[0], LINK_NAMES[-1], joints, dof=3)
+    base, elbow = _in_space(config.base_points), _in_space(config.elbow_points)
+    screws = {
+        "R1": S.revolute_twist(_AXIS_Z, base),
+        "R2": S.revolute_twist(_AXIS_Z, elbow),
+        "P": S.prismatic_twist(_in_space(config.guide_directions)),
+    }
+    rows = [
+        (LINK_NAMES[parent - 1], LINK_NAMES[child - 1], f"limb{k + 1}_{label}", label[0],
+         screws[label][..., k, None, :], label == "R1")
+        for k, pairs in enumerate(JOINT_PAIRS)
+        for label, (parent, child) in zip(("R1", "R2", "P"), pairs, strict=True)
+    ]
+    anchor = np.concatenate([base, elbow], axis=-2).mean(axis=-2)
+    return JointTable.from_rows(LINK_NAMES[0], LINK_NAMES[-1], rows, dof=3, anchor=anchor)
 
 
-def twist_basis(config: Planar3RRPConfiguration, index: tuple[int, ...] = ()) -> np.ndarray:
-    """The platform's nominal (planar) twists at one configuration, embedded in space (user frame).
+def twist_basis(config: Planar3RRPConfiguration) -> np.ndarray:
+    """The platform's nominal (planar) twists over the batch, embedded in space (user frame).
 
     Rows, for ``ẋ = 1``, ``ẏ = 1`` and ``φ̇ = 1`` (the pose order ``(x, y, φ)``): the translations
     ``(0; i)``, ``(0; j)`` and the rotation ``(k; C × k)`` about the axis ``z`` through the platform
@@ -1395,17 +1293,14 @@ def twist_basis(config: Planar3RRPConfiguration, index: tuple[int, ...] = ()) ->
     Parameters
     ----------
     config : Planar3RRPConfiguration
-    index : tuple of int, optional
-        Which configuration of a batch (empty, the default, for a single configuration).
+        Any batch shape ``...``.
 
     Returns
     -------
-    numpy.ndarray, shape (3, 6)
+    numpy.ndarray, shape (..., 3, 6)
 
     Raises
     ------
-    ScrewkitValueError
-        If ``index`` does not pick one configuration of the batch.
     ScrewkitTypeError
         If ``config`` is not a :class:`Planar3RRPConfiguration`.
 
@@ -1417,9 +1312,8 @@ def twist_basis(config: Planar3RRPConfiguration, index: tuple[int, ...] = ()) ->
            [ 0.  ,  0.  ,  1.  , -0.03, -0.05,  0.  ]])
     """
     config = _check_config(config)
-    chosen = _checked_index(config, index)
-    x, y = config.platform_point[chosen]
-    rows = np.zeros((3, 6))
-    rows[0, 3] = rows[1, 4] = rows[2, 2] = 1.0
-    rows[2, 3:5] = y, -x  # C × k = (y, -x, 0)
+    x, y = np.moveaxis(config.platform_point, -1, 0)
+    rows = np.zeros((*x.shape, 3, 6))
+    rows[..., 0, 3] = rows[..., 1, 4] = rows[..., 2, 2] = 1.0
+    rows[..., 2, 3], rows[..., 2, 4] = y, -x  # C × k = (y, -x, 0)
     return rows
