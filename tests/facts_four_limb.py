@@ -30,17 +30,20 @@ import pytest
 
 from screwkit import screw as S
 from screwkit.families.four_limb import (
-    force_pressure_angle,
     inverse_kinematics,
-    jacobians,
     joints,
-    motion_pressure_angles,
     reachable,
-    spiral_trajectory,
+)
+from screwkit.indices import (
+    force_pressure_angle,
+    four_limb_jacobians,
+    motion_pressure_angles,
     transmission_indices,
 )
 from screwkit.singularity import classify_table
 from screwkit.wrenches import wrench_analysis
+
+from .paper_004 import spiral_trajectory
 
 K = np.array([0.0, 0.0, 1.0])
 SEED = 20261121
@@ -129,7 +132,7 @@ CLOSED_FORMS: dict[str, Callable[[Any], np.ndarray]] = {
 def check_det_a_closed_form(mechanism, fact):
     """The named closed form equals ``numpy.linalg.det(A)`` (Eq. 6) at random workspace poses."""
     config = random_configuration(mechanism, 60)
-    numeric = np.linalg.det(jacobians(config).A)
+    numeric = np.linalg.det(four_limb_jacobians(config).A)
     error = np.abs(CLOSED_FORMS[fact["value"]](config) - numeric).max() / np.abs(numeric).max()
     return (fact["value"] if error <= 1e-9 else f"differs from det A by {error:.2e} (relative)"), fact[
         "value"
@@ -150,7 +153,7 @@ def check_det_a_table_2_as_printed(mechanism, fact):
         printed = mechanism.parameters.lead * phi / (2.0 * math.pi) * normal[..., 2]
     else:
         raise AssertionError(f"{mechanism.source}: no printed Table 2 form is checked for {kind!r}")
-    numeric = np.linalg.det(jacobians(config).A)
+    numeric = np.linalg.det(four_limb_jacobians(config).A)
     return bool(np.abs(printed - numeric).max() <= 1e-9 * np.abs(numeric).max()), fact["value"]
 
 
@@ -196,7 +199,7 @@ def check_spiral_mu_range_deg(mechanism, fact):
 def check_spiral_type_2_phi_deg(mechanism, fact):
     """Sec. 5.1: the angles phi where det A (Eq. 6, numerically) changes sign along the spiral."""
     config = spiral_configuration(mechanism.parameters)
-    det_a = np.linalg.det(jacobians(config).A)
+    det_a = np.linalg.det(four_limb_jacobians(config).A)
     phi = np.degrees(config.pose[:, 3])
     crossings = np.flatnonzero(np.sign(det_a[:-1]) != np.sign(det_a[1:]))
     roots = phi[crossings] - det_a[crossings] * (phi[crossings + 1] - phi[crossings]) / (

@@ -21,14 +21,17 @@ from screwkit.catalog import list_mechanisms, load_mechanism
 from screwkit.cli import main
 from screwkit.diagram import diagram_points
 from screwkit.families.four_limb import (
-    jacobians,
     reachable,
-    spiral_trajectory,
+)
+from screwkit.indices import (
+    four_limb_jacobians,
     transmission_indices,
 )
 from screwkit.report import analyze
 from screwkit.singularity import classify, classify_table
 from screwkit.wrenches import wrench_analysis
+
+from .paper_004 import spiral_trajectory
 
 PI = math.pi
 NAMES = ["quattro", "v4", "veloce", "ragnar"]
@@ -55,7 +58,7 @@ def bisect(function, lo, hi, iterations=100):
 
 
 def det_a(mechanism, pose):
-    return float(np.linalg.det(jacobians(mechanism.configuration(pose)).A))
+    return float(np.linalg.det(four_limb_jacobians(mechanism.configuration(pose)).A))
 
 
 def batch_report(mechanism, poses, **options):
@@ -171,7 +174,7 @@ def type_2_poses(entries):
 def test_type_2_is_an_actuation_singularity(entries, type_2_poses, name):
     mechanism, pose = entries[name], type_2_poses[name]
     config = mechanism.configuration(pose)
-    assert abs(np.linalg.det(jacobians(config).A)) < 1e-12 * mechanism.parameters.rod_length
+    assert abs(np.linalg.det(four_limb_jacobians(config).A)) < 1e-12 * mechanism.parameters.rod_length
     assert transmission_indices(config).zeta < 1e-12  # sigma = 90 deg (Sec. 4.2)
     report = classify(mechanism.twist_graph(pose))
     assert report.labels == ("actuation",)
@@ -182,7 +185,7 @@ def test_type_2_is_an_actuation_singularity(entries, type_2_poses, name):
     p = config.pose[:3]
     velocity = twist[3:] + np.cross(twist[:3], p)  # of the end-effector point at p
     rate_vector = np.concatenate([velocity, [twist[:3] @ config.platform_joint_axis]])
-    null = np.linalg.svd(jacobians(config).A)[2][-1]
+    null = np.linalg.svd(four_limb_jacobians(config).A)[2][-1]
     assert abs(abs(rate_vector @ null) / np.linalg.norm(rate_vector) - 1.0) < 1e-6
     if name == "quattro":  # Sec. 5.1: "Type-2 singularity when |phi| = pi/2": here -88.3 deg
         assert math.degrees(pose[3]) == pytest.approx(-88.27, abs=0.01)
@@ -236,7 +239,7 @@ def test_quattro_spiral_trajectory_labels(entries):
     poses = spiral_trajectory(401)
     config = quattro.configuration(poses)
     labels = batch_report(quattro, poses).labels.ravel().tolist()
-    det = np.linalg.det(jacobians(config).A)
+    det = np.linalg.det(four_limb_jacobians(config).A)
     crossing = int(np.flatnonzero(np.sign(det[:-1]) != np.sign(det[1:]))[0])
     assert crossing == 3  # between phi = -88.65 and -88.2 deg: the type-2 root of the fixture
     assert labels[0] == ("constraint",)  # the start (0, 0, -975, -90 deg) is on the z axis
