@@ -1,7 +1,7 @@
 """Family facts of the planar 3-RRP catalog entry (paper 003), evaluated by tests/test_catalog.py.
 
 ``FACTS = {fact name: check(mechanism, fact) -> (got, expected)}``. The twist-graph results are
-compared with the family's instant-centre and Jacobian results (paper 003's own quantities), which
+compared with paper 003's own instant-centre and Jacobian results (``tests/paper_003.py``), which
 are computed without screw systems.
 """
 
@@ -17,12 +17,12 @@ from screwkit.diagram import diagram_points, superbracket_analysis
 from screwkit.families.planar_3rrp import (
     WORKING_MODES,
     Planar3RRPConfiguration,
-    classify,
-    jacobians,
     joints,
 )
 from screwkit.singularity import classify_table
 from screwkit.wrenches import wrench_analysis
+
+from .paper_003 import classify, jacobians
 
 SEED = 20261121
 

@@ -1,5 +1,5 @@
-"""Tests of the planar 3-RRP family (paper 003, Zarkandi): kinematics, instant centres, Jacobians,
-singularities. Expected values come from hand derivations (stated next to each) or from independent
+"""Tests of the planar 3-RRP family (paper 003, Zarkandi): kinematics and joint table; and of the
+paper's instant centres, Jacobians and singularities (``tests/paper_003.py``). Expected values come from hand derivations (stated next to each) or from independent
 computations (finite differences, Kennedy constructions with cross products, ranks)."""
 
 import itertools
@@ -24,17 +24,13 @@ from screwkit.families.planar_3rrp import (
     WORKING_MODES,
     Planar3RRPConfiguration,
     Planar3RRPParameters,
-    classify,
-    complete_velocity,
     forward_kinematics,
-    instant_center,
-    instant_centers,
     inverse_kinematics,
-    jacobians,
     joints,
-    link_twists,
     reach_margin,
 )
+
+from .paper_003 import classify, complete_velocity, instant_center, instant_centers, jacobians, link_twists
 
 P = EXAMPLE_PARAMETERS
 SQRT3 = np.sqrt(3.0)
@@ -727,6 +723,7 @@ POSES = np.array([[0.0, 0.0, 0.0], [0.05, -0.03, 0.1], [-0.1, 0.08, -0.3]])
     log_scale=st.floats(-3, 3),
     mode=st.sampled_from([tuple(m) for m in WORKING_MODES]),
 )
+
 def test_rigid_motion_and_unit_invariance(rho, shift, log_scale, mode):
     scale = 10.0**log_scale
     rotation = np.array([[np.cos(rho), -np.sin(rho)], [np.sin(rho), np.cos(rho)]])

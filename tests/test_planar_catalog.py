@@ -2,7 +2,7 @@
 
 The twist-graph labels (:func:`screwkit.singularity.classify` with ``dof = 3``; vectorized
 :func:`screwkit.singularity.classify_table`) are compared with the family's instant-centre classification
-(:func:`screwkit.families.planar_3rrp.classify`, paper 003 Sec. 4) at singular configurations found
+(``tests/paper_003.classify``, paper 003 Sec. 4) at singular configurations found
 by root search: inverse <-> serial, direct <-> actuation, combined <-> both; and the wrenches with
 paper 003's geometry (the lines t_k through the elbows, the concurrency point D = C_18).
 """
@@ -25,16 +25,16 @@ from screwkit.families.planar_3rrp import (
     WORKING_MODES,
     Planar3RRPConfiguration,
     Planar3RRPParameters,
-    classify,
     forward_kinematics,
     inverse_kinematics,
-    jacobians,
     joints,
 )
 from screwkit.report import analyze
 from screwkit.singularity import classify as classify_graph
 from screwkit.singularity import classify_table
 from screwkit.twistgraph import fundamental_loops
+
+from .paper_003 import classify, jacobians
 
 P = EXAMPLE_PARAMETERS
 
