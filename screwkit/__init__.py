@@ -21,6 +21,7 @@ from .exceptions import (
     TwistGraphError,
     UnreachablePoseError,
 )
+from .families import Family, register
 from .jacobians import WrenchJacobians, jacobians_from_wrenches, schoenflies_basis
 from .joints import (
     Joint,
@@ -68,6 +69,7 @@ __version__ = "0.1.0"
 __all__ = [
     "CatalogError",
     "DegenerateGeometryError",
+    "Family",
     "Joint",
     "JointTable",
     "Mechanism",
@@ -113,6 +115,7 @@ __all__ = [
     "point_on_line",
     "prismatic",
     "reciprocal_product",
+    "register",
     "revolute",
     "schoenflies_basis",
     "series_parallel_tree",
