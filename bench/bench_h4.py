@@ -8,9 +8,8 @@ import time
 import numpy as np
 
 from screwkit.catalog import load_mechanism
-from screwkit.families.four_limb import reachable
-from screwkit.families.four_limb_graph import four_limb_joints, four_limb_twist_graph
-from screwkit.singularity import classify, classify_poses
+from screwkit.families.four_limb import joints, reachable
+from screwkit.singularity import classify, classify_table
 
 
 def best_of(repeats, function):
@@ -28,7 +27,6 @@ def main():
     low, high = zip(*(h4.workspace[c] for c in h4.pose_names), strict=True)
     poses = rng.uniform(low, high, size=(12000, 4))
     poses = poses[reachable(h4.parameters, poses)][:10000]
-    graph = h4.twist_graph()
 
     single = best_of(3, lambda: classify(h4.twist_graph(poses[0])))
     print(
@@ -39,14 +37,12 @@ def main():
         chosen = poses[:count]
 
         def run(chosen=chosen):
-            config = h4.configuration(chosen)
-            screws = {name: s for _, _, name, _, s, _ in four_limb_joints(config)}
-            return classify_poses(graph, screws)
+            return classify_table(h4.joints(chosen))
 
         seconds = best_of(3, run)
         rate = count / seconds
         print(f"batched, {count:>5} poses (IK + screws + labels): {seconds:.3f} s, {rate:,.0f} poses/s")
-    graph_only = best_of(3, lambda: four_limb_twist_graph(h4.configuration(poses[0])))
+    graph_only = best_of(3, lambda: joints(h4.configuration(poses[0])).graph())
     print(f"building one twist graph: {graph_only * 1e3:.2f} ms")
 
 

@@ -23,6 +23,7 @@ from .exceptions import (
     TwistGraphError,
     UnreachablePoseError,
 )
+from .families import Family, register
 from .jacobians import WrenchJacobians, jacobians_from_wrenches, schoenflies_basis
 from .joints import (
     Joint,
@@ -75,6 +76,7 @@ __path__ = extend_path(__path__, __name__)
 __all__ = [
     "CatalogError",
     "DegenerateGeometryError",
+    "Family",
     "Joint",
     "JointTable",
     "Mechanism",
@@ -120,6 +122,7 @@ __all__ = [
     "point_on_line",
     "prismatic",
     "reciprocal_product",
+    "register",
     "revolute",
     "schoenflies_basis",
     "series_parallel_tree",

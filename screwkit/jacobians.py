@@ -710,7 +710,8 @@ def jacobians_over_poses(
     graph : networkx.MultiDiGraph
         A twist graph of the mechanism (any pose).
     screws : mapping of joint name to array_like, shape (..., dof_j, 6)
-        E.g. from :func:`~screwkit.families.four_limb_graph.four_limb_joints`.
+        E.g. :meth:`JointTable.joint_screws <screwkit.joints.JointTable.joint_screws>` of every joint of
+        :meth:`screwkit.catalog.Mechanism.joints`.
     twist_basis : array_like, shape (..., dof, 6)
         Broadcast against the batch shape (e.g. :func:`schoenflies_basis` of the poses).
     dof : int, optional

@@ -551,6 +551,11 @@ class JointTable:
     def graph(self, index: Any = ()) -> Any:
         """The twist graph (:class:`networkx.MultiDiGraph`) of one configuration of the batch.
 
+        Raises
+        ------
+        ScrewkitValueError
+            If ``index`` does not pick exactly one configuration of the batch.
+
         Examples
         --------
         >>> table = JointTable.from_rows("B", "E", [("B", "E", "R", "R", [[0, 0, 1.0, 0, 0, 0]], 0)])
@@ -559,12 +564,17 @@ class JointTable:
         """
         from .twistgraph import twist_graph
 
-        one = self[index] if index != () else self
-        if one.batch_shape:
-            raise ScrewkitValueError(
-                f"Expected `index` to pick one configuration of the batch of shape {self.batch_shape}, "
-                f"got {index!r}."
-            )
+        wrong = ScrewkitValueError(
+            f"Expected `index` to pick one configuration of the batch of shape {self.batch_shape}, "
+            f"got {index!r}."
+        )
+        try:
+            picked = self.screws[index]
+        except (IndexError, TypeError) as err:  # out of range, or not an index
+            raise wrong from err
+        if picked.shape != self.screws.shape[-2:]:  # several configurations, or too many indices
+            raise wrong
+        one = self[index]
         joints, start = [], 0
         for spec in one.specs:
             screws = one.screws[start : start + spec.dof]

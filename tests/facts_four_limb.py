@@ -30,17 +30,20 @@ import pytest
 
 from screwkit import screw as S
 from screwkit.families.four_limb import (
-    force_pressure_angle,
     inverse_kinematics,
-    jacobians,
-    motion_pressure_angles,
+    joints,
     reachable,
-    spiral_trajectory,
+)
+from screwkit.indices import (
+    force_pressure_angle,
+    four_limb_jacobians,
+    motion_pressure_angles,
     transmission_indices,
 )
-from screwkit.families.four_limb_graph import four_limb_joints, four_limb_twist_graph
-from screwkit.singularity import classify_poses
+from screwkit.singularity import classify_table
 from screwkit.wrenches import wrench_analysis
+
+from .paper_004 import spiral_trajectory
 
 K = np.array([0.0, 0.0, 1.0])
 SEED = 20261121
@@ -81,10 +84,8 @@ def random_configuration(mechanism, count: int, seed: int = SEED):
 
 
 def batch_labels(config) -> list[tuple[str, ...]]:
-    """Labels of :func:`screwkit.batch.classify_poses` over a batched configuration (vectorized)."""
-    template = four_limb_twist_graph(config, (0,) * len(config.batch_shape))
-    screws = {name: value for _, _, name, _, value, _ in four_limb_joints(config)}
-    return classify_poses(template, screws).labels.ravel().tolist()
+    """Labels of :func:`screwkit.singularity.classify_table` over a batched configuration (vectorized)."""
+    return classify_table(joints(config)).labels.ravel().tolist()
 
 
 def compare(computed: dict[str, Any], fact: dict[str, Any]) -> tuple[dict[str, Any], dict[str, Any]]:
@@ -131,7 +132,7 @@ CLOSED_FORMS: dict[str, Callable[[Any], np.ndarray]] = {
 def check_det_a_closed_form(mechanism, fact):
     """The named closed form equals ``numpy.linalg.det(A)`` (Eq. 6) at random workspace poses."""
     config = random_configuration(mechanism, 60)
-    numeric = np.linalg.det(jacobians(config).A)
+    numeric = np.linalg.det(four_limb_jacobians(config).A)
     error = np.abs(CLOSED_FORMS[fact["value"]](config) - numeric).max() / np.abs(numeric).max()
     return (fact["value"] if error <= 1e-9 else f"differs from det A by {error:.2e} (relative)"), fact[
         "value"
@@ -152,7 +153,7 @@ def check_det_a_table_2_as_printed(mechanism, fact):
         printed = mechanism.parameters.lead * phi / (2.0 * math.pi) * normal[..., 2]
     else:
         raise AssertionError(f"{mechanism.source}: no printed Table 2 form is checked for {kind!r}")
-    numeric = np.linalg.det(jacobians(config).A)
+    numeric = np.linalg.det(four_limb_jacobians(config).A)
     return bool(np.abs(printed - numeric).max() <= 1e-9 * np.abs(numeric).max()), fact["value"]
 
 
@@ -198,7 +199,7 @@ def check_spiral_mu_range_deg(mechanism, fact):
 def check_spiral_type_2_phi_deg(mechanism, fact):
     """Sec. 5.1: the angles phi where det A (Eq. 6, numerically) changes sign along the spiral."""
     config = spiral_configuration(mechanism.parameters)
-    det_a = np.linalg.det(jacobians(config).A)
+    det_a = np.linalg.det(four_limb_jacobians(config).A)
     phi = np.degrees(config.pose[:, 3])
     crossings = np.flatnonzero(np.sign(det_a[:-1]) != np.sign(det_a[1:]))
     roots = phi[crossings] - det_a[crossings] * (phi[crossings + 1] - phi[crossings]) / (
@@ -228,7 +229,7 @@ CANDIDATE_POSES = {
 
 
 def check_constraint_singular_poses(mechanism, fact):
-    """Which families of poses are constraint-singular (labels of :func:`classify_poses`).
+    """Which families of poses are constraint-singular (labels of :func:`classify_table`).
 
     ``"everywhere"`` when every one of 150 random workspace poses is; otherwise the candidate
     families (:data:`CANDIDATE_POSES`, reachable poses only) that are constraint-singular throughout,

@@ -1,7 +1,7 @@
 """Family facts of the planar 3-RRP catalog entry (paper 003), evaluated by tests/test_catalog.py.
 
 ``FACTS = {fact name: check(mechanism, fact) -> (got, expected)}``. The twist-graph results are
-compared with the family's instant-centre and Jacobian results (paper 003's own quantities), which
+compared with paper 003's own instant-centre and Jacobian results (``tests/paper_003.py``), which
 are computed without screw systems.
 """
 
@@ -17,13 +17,12 @@ from screwkit.diagram import diagram_points, superbracket_analysis
 from screwkit.families.planar_3rrp import (
     WORKING_MODES,
     Planar3RRPConfiguration,
-    classify,
-    jacobians,
-    limb_joints,
-    twist_graph,
+    joints,
 )
-from screwkit.singularity import classify_poses
+from screwkit.singularity import classify_table
 from screwkit.wrenches import wrench_analysis
+
+from .paper_003 import classify, jacobians
 
 SEED = 20261121
 
@@ -33,18 +32,13 @@ def random_configuration(mechanism, count: int, seed: int = SEED):
     return mechanism.configuration(mechanism.random_poses(np.random.default_rng(seed), count))
 
 
-def joint_screws(config) -> dict[str, np.ndarray]:
-    """``{joint name: (..., 1, 6)}`` over a batched configuration, for :func:`classify_poses`."""
-    return {joint.name: joint.screw[..., None, :] for limb in limb_joints(config) for joint in limb}
-
-
 def check_actuation_wrenches_are_kennedy_lines(mechanism, fact):
     """At random workspace poses the actuation wrench of limb k is a zero-pitch line through the
     elbow A_k = C_ij, perpendicular to the guide b_k and in the plane z = 0 (paper 003's t_k)."""
     config = random_configuration(mechanism, 8)
     ok = True
     for index in range(8):
-        analysis = wrench_analysis(twist_graph(config, (index,)))
+        analysis = wrench_analysis(joints(config).graph((index,)))
         for k, limb in enumerate(analysis.limbs):
             assert limb.actuated_joint == f"limb{k + 1}_R1"
             point, direction = S.axis(limb.actuation_wrench)
@@ -58,12 +52,12 @@ def check_actuation_wrenches_are_kennedy_lines(mechanism, fact):
 
 def check_labels_match_instant_centre_types(mechanism, fact):
     """Over random workspace poses in all eight working modes, the twist-graph labels (vectorized
-    :func:`classify_poses`) agree with the family's classification: regular <-> no label, inverse
+    :func:`classify_table`) agree with the family's classification: regular <-> no label, inverse
     <-> serial, direct <-> actuation, combined <-> both."""
     poses = mechanism.random_poses(np.random.default_rng(SEED), 40)
     config = Planar3RRPConfiguration.from_pose(mechanism.parameters, poses[:, None, :], WORKING_MODES)
     kinds = classify(config).kind.ravel()
-    labels = classify_poses(twist_graph(config, (0, 0)), joint_screws(config), dof=3).labels.ravel().tolist()
+    labels = classify_table(joints(config)).labels.ravel().tolist()
     expected = {
         "regular": (),
         "inverse": ("serial",),
@@ -87,7 +81,7 @@ def condition_values(mechanism, count: int = 12) -> tuple[np.ndarray, np.ndarray
     config = random_configuration(mechanism, count)
     values = []
     for index in range(count):
-        points = diagram_points(diagram.points, wrench_analysis(twist_graph(config, (index,))))
+        points = diagram_points(diagram.points, wrench_analysis(joints(config).graph((index,))))
         values.append([float(c.evaluate(points)) for c in result.conditions])
     det_k = np.linalg.det(jacobians(config)[1])
     return np.array(values), det_k

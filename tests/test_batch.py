@@ -4,8 +4,7 @@ import numpy as np
 import pytest
 
 from screwkit.exceptions import ScrewkitValueError
-from screwkit.families.four_limb import inverse_kinematics
-from screwkit.families.four_limb_graph import four_limb_joints, four_limb_twist_graph
+from screwkit.families.four_limb import inverse_kinematics, joints
 from screwkit.singularity import classify, classify_poses
 
 from .test_h4 import H4, random_poses, singular_pose
@@ -13,11 +12,11 @@ from .test_h4 import H4, random_poses, singular_pose
 
 def batch_inputs(poses):
     cfg = inverse_kinematics(H4, poses)
-    table = four_limb_joints(cfg)
+    table = joints(cfg)
     return (
         cfg,
-        four_limb_twist_graph(cfg, (0,) * (poses.ndim - 1)),
-        {name: s for _, _, name, _, s, _ in table},
+        table.graph((0,) * (poses.ndim - 1)),
+        {spec.name: table.joint_screws(spec.name) for spec in table.specs},
     )
 
 
@@ -27,7 +26,7 @@ def test_batch_matches_single_pose_analysis(rng):
     batch = classify_poses(graph, screws)
     labels = batch.labels.ravel().tolist()
     for i in range(len(poses)):
-        single = classify(four_limb_twist_graph(cfg, (i,)))
+        single = classify(joints(cfg).graph((i,)))
         assert labels[i] == single.labels
         assert batch.constraint_order[i] == single.constraint_order
         assert batch.global_order[i] == single.global_order

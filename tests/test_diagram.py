@@ -12,8 +12,7 @@ import pytest
 from screwkit.catalog import load_mechanism
 from screwkit.diagram import diagram_points, graph_sampler, superbracket_analysis, wrench_diagram
 from screwkit.exceptions import ScrewkitValueError
-from screwkit.families.four_limb import inverse_kinematics
-from screwkit.families.four_limb_graph import four_limb_twist_graph
+from screwkit.families.four_limb import inverse_kinematics, joints
 from screwkit.gca import BracketPolynomial, DottedMonomial, check_proportional
 from screwkit.report import analyze
 from screwkit.singularity import classify
@@ -117,7 +116,7 @@ def test_h4_factors_vanish_exactly_where_the_labels_say(h4_result, rng):
 def test_h4_degenerate_representation_is_reported_not_factored():
     # paper 002 case (b), found in test_h4: s12 ∥ z, where the leg L_I has two constraint couples
     cfg = inverse_kinematics(H4, case_b_pose())
-    diagram = wrench_diagram(wrench_analysis(four_limb_twist_graph(cfg)))
+    diagram = wrench_diagram(wrench_analysis(joints(cfg).graph()))
     assert any("do not add up to the nominal 2" in reason for reason in diagram.degenerate)
     assert any("the limb of A1 is at a serial singularity" in reason for reason in diagram.degenerate)
     with pytest.raises(ScrewkitValueError, match="The wrench diagram is degenerate at this pose"):

@@ -1,4 +1,4 @@
-"""Tests of screwkit.families.four_limb against paper 004 (Wu, Bai, Caro 2018).
+"""Tests of screwkit.families.four_limb and screwkit.indices against paper 004 (Wu, Bai, Caro 2018).
 
 Known values come from the paper (Tables 2-4, Sec. 5.1) or from hand derivations written out here;
 independent computations (rotation matrices, finite differences) check the closed forms.
@@ -24,16 +24,19 @@ from screwkit.exceptions import (
 from screwkit.families.four_limb import (
     ForwardKinematicsError,
     FourLimbParameters,
-    det_A_closed_form,
-    force_pressure_angle,
     forward_kinematics,
     inverse_kinematics,
-    jacobians,
-    motion_pressure_angles,
     reachable,
-    spiral_trajectory,
+)
+from screwkit.indices import (
+    det_A_closed_form,
+    force_pressure_angle,
+    four_limb_jacobians,
+    motion_pressure_angles,
     transmission_indices,
 )
+
+from .paper_004 import spiral_trajectory
 
 PI = math.pi
 
@@ -223,7 +226,7 @@ def test_batch_shapes_are_kept(rng):
     assert config.elbow_corners.shape == config.platform_corners.shape == (2, 3, 4, 2, 3)
     assert config.platform_joint_points.shape == (2, 3, 2, 3)
     assert config.platform_joint_axis.shape == (2, 3, 3)
-    A, B = jacobians(config)
+    A, B = four_limb_jacobians(config)
     assert A.shape == B.shape == (2, 3, 4, 4)
     single = inverse_kinematics(params, poses[1, 2])
     np.testing.assert_allclose(single.theta, config.theta[1, 2], atol=1e-12)
@@ -321,7 +324,7 @@ def test_jacobians_against_finite_differences(name, rng):
     # A chi_dot = B theta_dot (Eq. 6), so A = B dtheta/dchi; dtheta/dchi by central differences.
     params = ROBOTS[name]
     poses = central_poses(params, rng, 10)
-    A, B = jacobians(inverse_kinematics(params, poses))
+    A, B = four_limb_jacobians(inverse_kinematics(params, poses))
     step = 1e-5
     columns = []
     for k in range(4):
@@ -359,7 +362,7 @@ def test_s_i_is_the_phi_derivative_of_c_i(name, rng):
 def test_det_A_closed_form_table_2(name, rng):
     params = ROBOTS[name]
     config = inverse_kinematics(params, central_poses(params, rng, 50))
-    numeric = np.linalg.det(jacobians(config).A)
+    numeric = np.linalg.det(four_limb_jacobians(config).A)
     np.testing.assert_allclose(det_A_closed_form(config), numeric, atol=1e-9 * np.abs(numeric).max())
 
 
@@ -372,7 +375,7 @@ def test_table_2_veloce_entry_as_printed_is_wrong():
         "...i,i->...", np.cross(np.cross(w[:, 0], w[:, 2]), np.cross(w[:, 1], w[:, 3])), K3
     )
     printed = 20.0 * config.pose[:, 3] / (2 * PI) * triple
-    numeric = np.linalg.det(jacobians(config).A)
+    numeric = np.linalg.det(four_limb_jacobians(config).A)
     assert printed[0] == 0.0 and abs(numeric[0]) > 1.0
     np.testing.assert_allclose(20.0 / (2 * PI) * triple, -numeric, rtol=1e-9)
 
@@ -382,14 +385,14 @@ def test_table_2_factor_two_r_quattro():
     config = inverse_kinematics(ROBOTS["Quattro"], [120.0, -80.0, -760.0, 0.4])
     w, s = config.w, config.platform_s
     closed = 2 * 80.0 * np.cross(np.cross(w[0], w[3]), np.cross(w[1], w[2])) @ s
-    assert closed == pytest.approx(np.linalg.det(jacobians(config).A), rel=1e-10)
+    assert closed == pytest.approx(np.linalg.det(four_limb_jacobians(config).A), rel=1e-10)
 
 
 @pytest.mark.parametrize("name", NAMES)
 def test_det_B_is_product_of_h_eq_10(name, rng):
     params = ROBOTS[name]
     config = inverse_kinematics(params, central_poses(params, rng, 20))
-    _, B = jacobians(config)
+    _, B = four_limb_jacobians(config)
     u_cross_v = np.cross(config.u, config.v)
     eq10 = 375.0**4 * np.prod(np.sum(config.w * u_cross_v, axis=-1), axis=-1)
     np.testing.assert_allclose(np.linalg.det(B), eq10, rtol=1e-10)
@@ -556,7 +559,7 @@ def test_unit_invariance(name, pose):
     factor = np.array([1000.0, 1000.0, 1000.0, 1.0])
     small_cfg, big_cfg = inverse_kinematics(params, pose), inverse_kinematics(big, pose * factor)
     np.testing.assert_allclose(big_cfg.theta, small_cfg.theta, atol=1e-9)
-    small_a, big_a = jacobians(small_cfg).A, jacobians(big_cfg).A
+    small_a, big_a = four_limb_jacobians(small_cfg).A, four_limb_jacobians(big_cfg).A
     np.testing.assert_allclose(big_a[:, :3], small_a[:, :3], atol=1e-9)
     np.testing.assert_allclose(big_a[:, 3], 1000.0 * small_a[:, 3], rtol=1e-8, atol=1e-8)
     np.testing.assert_allclose(transmission_indices(big_cfg).eta,
@@ -667,7 +670,7 @@ def test_wrong_argument_types():
         inverse_kinematics(H4_TABLE, [0, 0, -700, 0])  # type: ignore[arg-type]
     with pytest.raises(ScrewkitTypeError, match=r"Expected `config` to be a FourLimbConfiguration, "
                                                 r"got ndarray"):
-        jacobians(np.zeros((4, 4)))  # type: ignore[arg-type]
+        four_limb_jacobians(np.zeros((4, 4)))  # type: ignore[arg-type]
 
 
 def test_pose_shape_error():

@@ -1,5 +1,5 @@
-"""Tests of the planar 3-RRP family (paper 003, Zarkandi): kinematics, instant centres, Jacobians,
-singularities. Expected values come from hand derivations (stated next to each) or from independent
+"""Tests of the planar 3-RRP family (paper 003, Zarkandi): kinematics and joint table; and of the
+paper's instant centres, Jacobians and singularities (``tests/paper_003.py``). Expected values come from hand derivations (stated next to each) or from independent
 computations (finite differences, Kennedy constructions with cross products, ranks)."""
 
 import itertools
@@ -24,17 +24,13 @@ from screwkit.families.planar_3rrp import (
     WORKING_MODES,
     Planar3RRPConfiguration,
     Planar3RRPParameters,
-    classify,
-    complete_velocity,
     forward_kinematics,
-    instant_center,
-    instant_centers,
     inverse_kinematics,
-    jacobians,
-    limb_joints,
-    link_twists,
+    joints,
     reach_margin,
 )
+
+from .paper_003 import classify, complete_velocity, instant_center, instant_centers, jacobians, link_twists
 
 P = EXAMPLE_PARAMETERS
 SQRT3 = np.sqrt(3.0)
@@ -727,6 +723,7 @@ POSES = np.array([[0.0, 0.0, 0.0], [0.05, -0.03, 0.1], [-0.1, 0.08, -0.3]])
     log_scale=st.floats(-3, 3),
     mode=st.sampled_from([tuple(m) for m in WORKING_MODES]),
 )
+
 def test_rigid_motion_and_unit_invariance(rho, shift, log_scale, mode):
     scale = 10.0**log_scale
     rotation = np.array([[np.cos(rho), -np.sin(rho)], [np.sin(rho), np.cos(rho)]])
@@ -774,22 +771,34 @@ def test_rigid_motion_and_unit_invariance(rho, shift, log_scale, mode):
 
 
 # --------------------------------------------------------------------------------------------------
-# Data for the twist graph
+# The joint table
 # --------------------------------------------------------------------------------------------------
 
 
-def test_limb_joints_layout():
+def limb_screws(table, k):
+    """The screws of limb ``k`` (0-based), base to platform (actuated R, passive R, P): (..., 3, 6)."""
+    return np.stack([table.joint_screws(f"limb{k + 1}_{label}")[..., 0, :] for label in ("R1", "R2", "P")], -2)
+
+
+def test_joints_layout():
     config = Planar3RRPConfiguration.from_pose(P, POSES)
-    limbs = limb_joints(config)
-    assert [[j.kind for j in limb] for limb in limbs] == [["R", "R", "P"]] * 3
+    table = joints(config)
+    limbs = [table.specs[3 * k : 3 * k + 3] for k in range(3)]
+    assert [[j.type for j in limb] for limb in limbs] == [["R", "R", "P"]] * 3
     assert [[j.actuated for j in limb] for limb in limbs] == [[True, False, False]] * 3
-    assert tuple(tuple(j.links for j in limb) for limb in limbs) == JOINT_PAIRS
-    first = limbs[0]
-    np.testing.assert_allclose(first[0].point[..., :2], config.base_points[:, 0], atol=0)
-    np.testing.assert_allclose(first[1].point[..., :2], config.elbow_points[:, 0], atol=0)
-    np.testing.assert_allclose(first[2].direction[..., :2], config.guide_directions[:, 0], atol=0)
-    np.testing.assert_allclose(first[0].direction, np.broadcast_to([0.0, 0.0, 1.0], (3, 3)), atol=0)
-    assert first[0].point.shape == (3, 3) and first[0].screw.shape == (3, 6)
+    labels = tuple(tuple((LINK_NAMES.index(j.parent) + 1, LINK_NAMES.index(j.child) + 1) for j in limb)
+                   for limb in limbs)
+    assert labels == JOINT_PAIRS
+    first = limb_screws(table, 0)  # R: (z; r × z), r × z = (r_y, -r_x, 0) = -E r; P: (0; b)
+    np.testing.assert_allclose(first[..., 0, 3:5], -E(config.base_points[:, 0]), atol=0)
+    np.testing.assert_allclose(first[..., 1, 3:5], -E(config.elbow_points[:, 0]), atol=0)
+    np.testing.assert_allclose(first[..., 2, 3:5], config.guide_directions[:, 0], atol=0)
+    np.testing.assert_allclose(first[..., :2, :3], np.broadcast_to([0.0, 0.0, 1.0], (3, 2, 3)), atol=0)
+    np.testing.assert_allclose(first[..., 2, :3], 0.0, atol=0)
+    assert first.shape == (3, 3, 6) and table.screws.shape == (3, 9, 6)
+    # the anchor: a point of the plane z = 0, the mean of the six revolute centres
+    centres = np.concatenate([config.base_points, config.elbow_points], axis=-2).mean(axis=-2)
+    np.testing.assert_allclose(table.anchor, np.column_stack([centres, np.zeros(3)]), atol=1e-15)
 
 
 def test_limb_joint_screws_span_the_platform_twist(rng):
@@ -802,8 +811,9 @@ def test_limb_joint_screws_span_the_platform_twist(rng):
     platform_screw = np.column_stack(
         [np.zeros((5, 2)), platform[:, :1], platform[:, 1:], np.zeros(5)]
     )
-    for limb in limb_joints(config):
-        screws = np.stack([joint.screw for joint in limb], axis=-2)
+    table = joints(config)
+    for k in range(3):
+        screws = limb_screws(table, k)
         np.testing.assert_allclose(
             np.sum(screws[:, :2, :3] * screws[:, :2, 3:], -1), 0.0, atol=EXACT
         )

@@ -2,7 +2,7 @@
 
 Known values are the paper's (Tables 1, 3, 4, Sec. 5); the singularity types of Sec. 4.2 (type 1:
 ``|B| = 0``, type 2: ``|A| = 0``) are compared with the labels of the twist graph
-(:func:`screwkit.singularity.classify`, one pose; :func:`screwkit.batch.classify_poses`, many) at poses
+(:func:`screwkit.singularity.classify`, one pose; :func:`screwkit.singularity.classify_table`, many) at poses
 found by root search. An independent numpy computation of the platform's twist system (intersections
 and sums of joint-screw spans, no screwkit screw systems) confirms the constraint singularities the
 entries document (Quattro: a surface through the workspace centre; Ragnar: every pose).
@@ -21,15 +21,17 @@ from screwkit.catalog import list_mechanisms, load_mechanism
 from screwkit.cli import main
 from screwkit.diagram import diagram_points
 from screwkit.families.four_limb import (
-    jacobians,
     reachable,
-    spiral_trajectory,
+)
+from screwkit.indices import (
+    four_limb_jacobians,
     transmission_indices,
 )
-from screwkit.families.four_limb_graph import four_limb_joints, four_limb_twist_graph
 from screwkit.report import analyze
-from screwkit.singularity import classify, classify_poses
+from screwkit.singularity import classify, classify_table
 from screwkit.wrenches import wrench_analysis
+
+from .paper_004 import spiral_trajectory
 
 PI = math.pi
 NAMES = ["quattro", "v4", "veloce", "ragnar"]
@@ -56,14 +58,11 @@ def bisect(function, lo, hi, iterations=100):
 
 
 def det_a(mechanism, pose):
-    return float(np.linalg.det(jacobians(mechanism.configuration(pose)).A))
+    return float(np.linalg.det(four_limb_jacobians(mechanism.configuration(pose)).A))
 
 
 def batch_report(mechanism, poses, **options):
-    config = mechanism.configuration(poses)
-    template = four_limb_twist_graph(config, (0,))
-    screws = {name: value for _, _, name, _, value, _ in four_limb_joints(config)}
-    return classify_poses(template, screws, **options)
+    return classify_table(mechanism.joints(poses), **options)
 
 
 # -------------------------------------------------------------------------------------------------
@@ -175,7 +174,7 @@ def type_2_poses(entries):
 def test_type_2_is_an_actuation_singularity(entries, type_2_poses, name):
     mechanism, pose = entries[name], type_2_poses[name]
     config = mechanism.configuration(pose)
-    assert abs(np.linalg.det(jacobians(config).A)) < 1e-12 * mechanism.parameters.rod_length
+    assert abs(np.linalg.det(four_limb_jacobians(config).A)) < 1e-12 * mechanism.parameters.rod_length
     assert transmission_indices(config).zeta < 1e-12  # sigma = 90 deg (Sec. 4.2)
     report = classify(mechanism.twist_graph(pose))
     assert report.labels == ("actuation",)
@@ -186,7 +185,7 @@ def test_type_2_is_an_actuation_singularity(entries, type_2_poses, name):
     p = config.pose[:3]
     velocity = twist[3:] + np.cross(twist[:3], p)  # of the end-effector point at p
     rate_vector = np.concatenate([velocity, [twist[:3] @ config.platform_joint_axis]])
-    null = np.linalg.svd(jacobians(config).A)[2][-1]
+    null = np.linalg.svd(four_limb_jacobians(config).A)[2][-1]
     assert abs(abs(rate_vector @ null) / np.linalg.norm(rate_vector) - 1.0) < 1e-6
     if name == "quattro":  # Sec. 5.1: "Type-2 singularity when |phi| = pi/2": here -88.3 deg
         assert math.degrees(pose[3]) == pytest.approx(-88.27, abs=0.01)
@@ -240,7 +239,7 @@ def test_quattro_spiral_trajectory_labels(entries):
     poses = spiral_trajectory(401)
     config = quattro.configuration(poses)
     labels = batch_report(quattro, poses).labels.ravel().tolist()
-    det = np.linalg.det(jacobians(config).A)
+    det = np.linalg.det(four_limb_jacobians(config).A)
     crossing = int(np.flatnonzero(np.sign(det[:-1]) != np.sign(det[1:]))[0])
     assert crossing == 3  # between phi = -88.65 and -88.2 deg: the type-2 root of the fixture
     assert labels[0] == ("constraint",)  # the start (0, 0, -975, -90 deg) is on the z axis

@@ -2,7 +2,7 @@
 
 Geometry from paper 004 (Table 1 "Quattro, H4", Table 3 "H4": α = 0, β = π/2, r = 80, c = 70 mm;
 R = 275, b = 375, l = 800 mm; working mode h_i < 0). Limbs use paper 004's numbering; paper 002's
-legs (l1, l2 | l3, l4) are paper 004's limbs (1, 4 | 2, 3) (screwkit.families.four_limb_graph).
+legs (l1, l2 | l3, l4) are paper 004's limbs (1, 4 | 2, 3) (screwkit.families.four_limb.PAPER_002_LEGS).
 
 Every expected value is computed here independently of the code under test: plane normals
 n_i = u_i × w_i of the parallelograms, Eq. (6) and Eq. (7) of paper 002 in vector form, and the
@@ -20,8 +20,13 @@ from hypothesis import strategies as st
 
 from screwkit import projective as P
 from screwkit import screw as S
-from screwkit.families.four_limb import FourLimbParameters, inverse_kinematics, reachable
-from screwkit.families.four_limb_graph import PAPER_002_LEGS, four_limb_twist_graph
+from screwkit.families.four_limb import (
+    PAPER_002_LEGS,
+    FourLimbParameters,
+    inverse_kinematics,
+    joints,
+    reachable,
+)
 from screwkit.screwsystem import ScrewSystem
 from screwkit.singularity import classify
 from screwkit.twistgraph import equivalent_twist_graph, platform_twist_system, twist_graph
@@ -101,7 +106,7 @@ def test_structure_at_fifty_random_poses(rng):
     assert len(poses) == 50
     for pose in poses:
         cfg = inverse_kinematics(H4, pose)
-        graph = four_limb_twist_graph(cfg)
+        graph = joints(cfg).graph()
         analysis = wrench_analysis(graph)
         n = normals(cfg)
         # each leg R–(4S), base to its sub-platform: constraint system span(0, n_i)
@@ -136,7 +141,7 @@ def test_structure_at_fifty_random_poses(rng):
 
 
 def test_equivalent_graph_has_virtual_rrpp_chains():
-    graph = four_limb_twist_graph(inverse_kinematics(H4, [40.0, -30.0, -750.0, 0.4]))
+    graph = joints(inverse_kinematics(H4, [40.0, -30.0, -750.0, 0.4])).graph()
     equivalent = equivalent_twist_graph(graph)
     for i, sub in ((1, "b_I"), (2, "b_II"), (3, "b_II"), (4, "b_I")):
         path = nx.shortest_path(equivalent, f"arm{i}", sub)
@@ -195,7 +200,7 @@ def test_constraint_singularities_where_equation_6_holds(rng):
         cfg = inverse_kinematics(H4, pose)
         eq6, eq7, _, _ = paper_002_conditions(cfg)
         assert abs(eq6) < 1e-12 and abs(eq7) > 1.0  # on (6) only
-        report = classify(four_limb_twist_graph(cfg))
+        report = classify(joints(cfg).graph())
         assert report.labels == ("constraint",)
         assert report.constraint_order == 1 and report.gained_dof == 1 and report.global_order == 5
         # the gained twist is reciprocal to the remaining constraint couple and every actuation force
@@ -206,7 +211,7 @@ def test_constraint_singularities_where_equation_6_holds(rng):
         # and it is not a Schoenflies motion: it tilts the end effector (its rotation is not ∥ z)
         assert np.linalg.norm(np.cross(unit(gained[0, :3]), Z)) > 1e-3
         # the regular neighbour on the path is labelled regular
-        assert classify(four_limb_twist_graph(inverse_kinematics(H4, start))).labels == ()
+        assert classify(joints(inverse_kinematics(H4, start)).graph()).labels == ()
 
 
 def test_actuation_singularities_where_equation_7_holds(rng):
@@ -217,11 +222,11 @@ def test_actuation_singularities_where_equation_7_holds(rng):
         cfg = inverse_kinematics(H4, pose)
         eq6, eq7, _, _ = paper_002_conditions(cfg)
         assert abs(eq7) < 1e-9 and abs(eq6) > 1e-3
-        report = classify(four_limb_twist_graph(cfg))
+        report = classify(joints(cfg).graph())
         assert report.labels == ("actuation",)
         assert report.constraint_order == 2 and report.global_order == 5 and report.gained_dof == 0
         assert report.uncontrolled_dof == 1
-        assert classify(four_limb_twist_graph(inverse_kinematics(H4, start))).labels == ()
+        assert classify(joints(inverse_kinematics(H4, start)).graph()).labels == ()
 
 
 def test_six_by_six_determinant_is_equation_6_times_equation_7(rng):
@@ -269,7 +274,7 @@ def test_paper_case_b_is_an_actuation_and_serial_singularity_not_a_constraint_on
     _, _, s12, _ = paper_002_conditions(cfg)
     assert np.linalg.norm(np.cross(unit(s12), Z)) < 1e-9
     assert abs(np.linalg.det(paper_wrench_matrix(cfg))) < 1e-9
-    report = classify(four_limb_twist_graph(cfg))
+    report = classify(joints(cfg).graph())
     assert report.constraint_order == 2 and report.labels == ("actuation", "serial")
     leg_I = next(leg for leg in report.analysis.compound_legs if "R_I" in leg.joints)
     assert leg_I.constraint_wrenches.order == 2
@@ -293,7 +298,7 @@ def moved_graph(graph, motion, unit_factor):
 @given(rigid_motions(), unit_factors, st.sampled_from(["regular", "eq6", "eq7"]))
 def test_labels_invariant_under_motion_and_unit(motion, unit_factor, which):
     poses = {"regular": np.array([30.0, -20.0, -750.0, 0.3]), "eq6": singular_pose(0), "eq7": singular_pose(1)}
-    graph = four_limb_twist_graph(inverse_kinematics(H4, poses[which]))
+    graph = joints(inverse_kinematics(H4, poses[which])).graph()
     reference = classify(graph)
     rotation, translation = motion
     report = classify(moved_graph(graph, (rotation, translation * 500), unit_factor))
@@ -312,7 +317,7 @@ def singular_pose(which):
 
 
 def test_translated_graph_keeps_the_analysis():
-    graph = four_limb_twist_graph(inverse_kinematics(H4, [10.0, 20.0, -700.0, -0.5]))
+    graph = joints(inverse_kinematics(H4, [10.0, 20.0, -700.0, -0.5])).graph()
     moved = translated_graph(graph, [1e4, -3e3, 2e3])
     assert classify(moved).labels == classify(graph).labels == ()
     assert wrench_analysis(moved).platform_twists.order == 4

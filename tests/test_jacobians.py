@@ -25,11 +25,13 @@ from screwkit.exceptions import (
 from screwkit.families.four_limb import (
     FourLimbParameters,
     inverse_kinematics,
-    jacobians,
+    joints,
     reachable,
+)
+from screwkit.indices import (
+    four_limb_jacobians,
     transmission_indices,
 )
-from screwkit.families.four_limb_graph import four_limb_joints, four_limb_twist_graph
 from screwkit.jacobians import (
     GOSSELIN_ANGELES_TYPES,
     jacobians_from_wrenches,
@@ -66,14 +68,15 @@ def basis_of(cfg):
 
 def single(params, pose, **kwargs):
     cfg = inverse_kinematics(params, pose)
-    analysis = wrench_analysis(four_limb_twist_graph(cfg), rtol=kwargs.pop("analysis_rtol", 1e-9))
+    analysis = wrench_analysis(joints(cfg).graph(), rtol=kwargs.pop("analysis_rtol", 1e-9))
     return cfg, analysis, jacobians_from_wrenches(analysis, basis_of(cfg), **kwargs)
 
 
 def batch_inputs(params, poses):
     cfg = inverse_kinematics(params, poses)
-    graph = four_limb_twist_graph(cfg, (0,) * (np.ndim(poses) - 1))
-    screws = {name: s for _, _, name, _, s, _ in four_limb_joints(cfg)}
+    table = joints(cfg)
+    graph = table.graph((0,) * (np.ndim(poses) - 1))
+    screws = {spec.name: table.joint_screws(spec.name) for spec in table.specs}
     return cfg, graph, screws
 
 
@@ -106,7 +109,7 @@ def test_paper_jacobians_up_to_row_scaling(name, rng):
     params = ROBOTS[name]
     poses = central_poses(params, rng, 40)
     cfg, result = batch(params, poses)
-    A_paper, B_paper = jacobians(cfg)
+    A_paper, B_paper = four_limb_jacobians(cfg)
     h = np.diagonal(B_paper, axis1=-2, axis2=-1)
     ours = np.diagonal(result.B, axis1=-2, axis2=-1)
     D = h / ours  # A_paper = D A_ours, B_paper = D B_ours
@@ -137,7 +140,7 @@ def test_other_platforms_of_table_1(name, rng):
     params = OTHER_PLATFORMS[name]
     poses = central_poses(params, rng, 15)
     cfg, result = batch(params, poses)
-    A_paper, B_paper = jacobians(cfg)
+    A_paper, B_paper = four_limb_jacobians(cfg)
     np.testing.assert_allclose(-result.A, A_paper, atol=1e-9 * 375)
     np.testing.assert_allclose(-result.B, B_paper, atol=1e-9 * 375)
     np.testing.assert_allclose(np.linalg.solve(result.B, result.A), dtheta_dchi(params, poses), atol=1e-6)
@@ -148,7 +151,7 @@ def test_single_pose_path_matches_the_paper(name, rng):
     params = ROBOTS[name]
     for pose in central_poses(params, rng, 3):
         cfg, _, result = single(params, pose)
-        A_paper, B_paper = jacobians(cfg)
+        A_paper, B_paper = four_limb_jacobians(cfg)
         assert result.actuated_joints == ("A1", "A2", "A3", "A4")
         np.testing.assert_allclose(-result.A, A_paper, atol=1e-9 * 375)
         np.testing.assert_allclose(-result.B, B_paper, atol=1e-9 * 375)
@@ -253,7 +256,7 @@ def test_quattro_serial_pose_is_inverse():
     report = classify_analysis(analysis)
     assert report.labels == ("serial",) and [s.actuated_joint for s in report.serial] == [f"A{limb + 1}"]
     # A stays what it was: the row is the limit of the actuation wrench (the paper's e_i, up to sign)
-    A_paper, _ = jacobians(cfg)
+    A_paper, _ = four_limb_jacobians(cfg)
     np.testing.assert_allclose(np.abs(result.A), np.abs(A_paper), atol=1e-6)
     # the kinematic Jacobian exists; its column for the stuck limb is zero (B_jj = 0)
     np.testing.assert_allclose(result.kinematic_jacobian()[:, limb], 0.0)
@@ -481,7 +484,7 @@ def test_row_scaling_convention(seed):
 @functools.cache
 def h4_regular():
     cfg = inverse_kinematics(H4, [30.0, -20.0, -750.0, 0.3])
-    return cfg, wrench_analysis(four_limb_twist_graph(cfg))
+    return cfg, wrench_analysis(joints(cfg).graph())
 
 
 def test_error_analysis_type():

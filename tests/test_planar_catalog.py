@@ -1,8 +1,8 @@
 """The planar 3-RRP catalog entry (paper 003) and its physical twist graph.
 
 The twist-graph labels (:func:`screwkit.singularity.classify` with ``dof = 3``; vectorized
-:func:`screwkit.batch.classify_poses`) are compared with the family's instant-centre classification
-(:func:`screwkit.families.planar_3rrp.classify`, paper 003 Sec. 4) at singular configurations found
+:func:`screwkit.singularity.classify_table`) are compared with the family's instant-centre classification
+(``tests/paper_003.classify``, paper 003 Sec. 4) at singular configurations found
 by root search: inverse <-> serial, direct <-> actuation, combined <-> both; and the wrenches with
 paper 003's geometry (the lines t_k through the elbows, the concurrency point D = C_18).
 """
@@ -20,21 +20,21 @@ from screwkit.cli import main
 from screwkit.exceptions import CatalogError, ScrewkitTypeError, ScrewkitValueError
 from screwkit.families.planar_3rrp import (
     EXAMPLE_PARAMETERS,
+    JOINT_PAIRS,
     LINK_NAMES,
     WORKING_MODES,
     Planar3RRPConfiguration,
     Planar3RRPParameters,
-    classify,
     forward_kinematics,
     inverse_kinematics,
-    jacobians,
-    limb_joints,
-    twist_graph,
+    joints,
 )
 from screwkit.report import analyze
 from screwkit.singularity import classify as classify_graph
-from screwkit.singularity import classify_poses
+from screwkit.singularity import classify_table
 from screwkit.twistgraph import fundamental_loops
+
+from .paper_003 import classify, jacobians
 
 P = EXAMPLE_PARAMETERS
 
@@ -56,10 +56,6 @@ def bisect(function, lo, hi, iterations=100):
         else:
             hi = mid
     return lo
-
-
-def joint_screws(config):
-    return {joint.name: joint.screw[..., None, :] for limb in limb_joints(config) for joint in limb}
 
 
 def kennedy_point(config):
@@ -90,32 +86,31 @@ def test_entry_is_the_family_example(planar):
 
 def test_twist_graph_structure(planar):
     config = planar.configuration([0.05, -0.03, 0.1])
-    graph = twist_graph(config)
+    graph = joints(config).graph()
     assert set(graph.nodes) == set(LINK_NAMES)
     assert (graph.graph["base"], graph.graph["platform"], graph.graph["dof"]) == ("base", "platform", 3)
     # E - V + 1 = 9 - 8 + 1 = 2 independent loops
     assert graph.number_of_edges() == 9 and len(fundamental_loops(graph)) == 2
-    for limb in limb_joints(config):
-        for joint in limb:
-            parent, child = (LINK_NAMES[label - 1] for label in joint.links)
-            edge = graph.edges[parent, child, joint.name]["joint"]
-            assert edge.type == joint.kind and edge.actuated == (joint.name.endswith("_R1"))
-            np.testing.assert_allclose(edge.screws[0], joint.screw, atol=1e-15)
-            if joint.kind == "R":  # axis z through the joint centre, pitch 0
+    centres = {"R1": config.base_points, "R2": config.elbow_points}  # M_k = C_1i, A_k = C_ij
+    for k, pairs in enumerate(JOINT_PAIRS):
+        for label, kind, (parent, child) in zip(("R1", "R2", "P"), "RRP", pairs, strict=True):
+            edge = graph.edges[LINK_NAMES[parent - 1], LINK_NAMES[child - 1], f"limb{k + 1}_{label}"]["joint"]
+            assert edge.type == kind and edge.actuated == (label == "R1")
+            if kind == "R":  # axis z through the joint centre, pitch 0
                 np.testing.assert_allclose(edge.screws[0][:3], [0.0, 0.0, 1.0])
                 point, _ = S.axis(edge.screws[0])
-                np.testing.assert_allclose(point[:2], joint.point[:2], atol=1e-15)
+                np.testing.assert_allclose(point[:2], centres[label][k], atol=1e-15)
             else:  # an infinite-pitch screw along the guide b_k
                 np.testing.assert_allclose(edge.screws[0][:3], 0.0)
-                np.testing.assert_allclose(edge.screws[0][3:], joint.direction, atol=1e-15)
+                np.testing.assert_allclose(edge.screws[0][3:], [*config.guide_directions[k], 0.0], atol=1e-15)
     # the catalog builds the same graph
     assert sorted(planar.twist_graph([0.05, -0.03, 0.1]).edges(keys=True)) == sorted(graph.edges(keys=True))
 
 
 def test_twist_graph_of_a_batch_entry():
     config = Planar3RRPConfiguration.from_pose(P, np.array([[0.0, 0.0, 0.0], [0.05, -0.03, 0.1]]))
-    single = twist_graph(Planar3RRPConfiguration.from_pose(P, [0.05, -0.03, 0.1]))
-    batch = twist_graph(config, (1,))
+    single = joints(Planar3RRPConfiguration.from_pose(P, [0.05, -0.03, 0.1])).graph()
+    batch = joints(config).graph((1,))
     for u, v, key, joint in single.edges(keys=True, data="joint"):
         np.testing.assert_allclose(batch.edges[u, v, key]["joint"].screws, joint.screws, atol=1e-15)
 
@@ -146,8 +141,8 @@ def test_labels_and_closeness_do_not_depend_on_the_unit_or_frame(factor):
     )
     pose = np.array([0.05, -0.03, 0.1])
     moved_pose = np.append(factor * (rotation @ pose[:2] + shift), pose[2] + turn)
-    one = classify_graph(twist_graph(Planar3RRPConfiguration.from_pose(P, pose)))
-    two = classify_graph(twist_graph(Planar3RRPConfiguration.from_pose(moved, moved_pose)))
+    one = classify_graph(joints(Planar3RRPConfiguration.from_pose(P, pose)).graph())
+    two = classify_graph(joints(Planar3RRPConfiguration.from_pose(moved, moved_pose)).graph())
     assert one.labels == two.labels
     for key in one.closeness:
         assert two.closeness[key] == pytest.approx(one.closeness[key], abs=1e-9)
@@ -212,7 +207,7 @@ def combined_singular():
 
 def test_inverse_singularity_is_serial(inverse_singular):
     assert str(classify(inverse_singular).kind) == "inverse"
-    report = classify_graph(twist_graph(inverse_singular))
+    report = classify_graph(joints(inverse_singular).graph())
     assert report.labels == ("serial",)
     assert [s.actuated_joint for s in report.serial] == ["limb1_R1"]
     # the limb locks one direction rather than leaving one uncontrolled: its actuation line t_1 (through
@@ -230,7 +225,7 @@ def test_inverse_singularity_is_serial(inverse_singular):
 
 def test_direct_singularity_is_actuation(direct_singular):
     assert str(classify(direct_singular).kind) == "direct"
-    report = classify_graph(twist_graph(direct_singular))
+    report = classify_graph(joints(direct_singular).graph())
     assert report.labels == ("actuation",)
     assert (report.constraint_order, report.global_order, report.uncontrolled_dof) == (3, 5, 1)
     # Sec. 4.2: with the actuators locked the platform turns about D = C_18, the common point of t_k
@@ -242,7 +237,7 @@ def test_direct_singularity_is_actuation(direct_singular):
 
 def test_combined_singularity_is_both(combined_singular):
     assert str(classify(combined_singular).kind) == "combined"
-    report = classify_graph(twist_graph(combined_singular))
+    report = classify_graph(joints(combined_singular).graph())
     assert report.labels == ("actuation", "serial")
     assert [s.actuated_joint for s in report.serial] == ["limb1_R1"]
 
@@ -253,7 +248,7 @@ def test_trajectory_through_a_direct_singularity_vectorized(direct_singular):
     phis = np.sort(np.append(np.linspace(-0.6, 0.6, 41), root))
     poses = np.column_stack([np.full(42, 0.05), np.full(42, -0.03), phis])
     config = Planar3RRPConfiguration.from_pose(P, poses, (1, 1, -1))
-    report = classify_poses(twist_graph(config, (0,)), joint_screws(config), dof=3)
+    report = classify_table(joints(config))
     labels = report.labels.ravel().tolist()
     kinds = classify(config).kind
     at_root = int(np.flatnonzero(phis == root)[0])
@@ -269,10 +264,10 @@ def test_regular_poses_in_every_working_mode(planar, rng):
     poses = planar.random_poses(rng, 30)
     config = Planar3RRPConfiguration.from_pose(P, poses[:, None, :], WORKING_MODES)
     assert np.all(classify(config).kind == "regular")
-    report = classify_poses(twist_graph(config, (0, 0)), joint_screws(config), dof=3)
+    report = classify_table(joints(config))
     assert report.labels.ravel().tolist() == [()] * 240
     for index in ((0, 0), (7, 3), (29, 7)):  # the vectorized verdicts are the single-pose ones
-        assert classify_graph(twist_graph(config, index)).labels == ()
+        assert classify_graph(joints(config).graph(index)).labels == ()
 
 
 # -------------------------------------------------------------------------------------------------
@@ -310,14 +305,14 @@ def test_twist_graph_index_error():
             ScrewkitValueError,
             match=r"Expected `index` to pick one configuration of the batch of shape \(2,\)",
         ):
-            twist_graph(config, index)
+            joints(config).graph(index)
 
 
 def test_twist_graph_type_error():
     with pytest.raises(
         ScrewkitTypeError, match=r"Expected `config` to be a Planar3RRPConfiguration, got ndarray"
     ):
-        twist_graph(np.zeros(3))
+        joints(np.zeros(3))
 
 
 def test_from_mapping_metadata_error():

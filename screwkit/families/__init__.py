@@ -14,8 +14,8 @@ A family is four functions and the names of its pose coordinates:
     The platform's nominal twists ``(..., dof, 6)``, one per pose coordinate (the columns of
     ``A`` in :func:`screwkit.jacobians.jacobians_from_wrenches`).
 
-Adding a robot: write those four functions in a module, add a :class:`Family` to
-:func:`families` (``CONTRIBUTING.md`` has a worked example), and a catalog file naming it.
+Adding a robot: write those four functions, wrap them in a :class:`Family` and :func:`register` it
+(``CONTRIBUTING.md`` has a worked example); a catalog mapping or file can then name it.
 
 Examples
 --------
@@ -34,9 +34,10 @@ from typing import Any
 
 import numpy as np
 
+from ..exceptions import ScrewkitTypeError, ScrewkitValueError
 from ..joints import JointTable
 
-__all__ = ["Family", "families"]
+__all__ = ["Family", "families", "register"]
 
 
 @dataclass(frozen=True)
@@ -66,19 +67,6 @@ class Family:
     angle_names: tuple[str, ...]
 
 
-def _four_limb_joints(config: Any) -> JointTable:
-    from .four_limb_graph import four_limb_joints
-
-    rows = [(p, c, name, kind, screws, act) for p, c, name, kind, screws, act in four_limb_joints(config)]
-    return JointTable.from_rows("base", "end_effector", rows, dof=4)
-
-
-def _four_limb_basis(config: Any) -> np.ndarray:
-    from ..jacobians import schoenflies_basis
-
-    return schoenflies_basis(config.pose[..., :3], config.platform_joint_axis)
-
-
 def _axis_joints(config: Any) -> JointTable:
     """The McGill SMG's and the Peppermill's joints (``config.joints``: batched axes)."""
     rows = []
@@ -101,30 +89,9 @@ def _peppermill_basis(config: Any) -> np.ndarray:
     return schoenflies_basis(config.platform_point, config.platform_axis)
 
 
-def _planar_joints(config: Any) -> JointTable:
-    from .planar_3rrp import LINK_NAMES, limb_joints
-
-    rows, anchors = [], []
-    for limb in limb_joints(config):
-        for joint in limb:
-            parent, child = (LINK_NAMES[link - 1] for link in joint.links)
-            rows.append((parent, child, joint.name, joint.kind, joint.screw[..., None, :], joint.actuated))
-            if joint.kind == "R":
-                anchors.append(joint.point)
-    return JointTable.from_rows("base", "platform", rows, dof=3, anchor=np.mean(anchors, axis=0))
-
-
-def _planar_basis(config: Any) -> np.ndarray:
-    x, y = np.moveaxis(config.platform_point, -1, 0)
-    rows = np.zeros((*x.shape, 3, 6))
-    rows[..., 0, 3] = rows[..., 1, 4] = rows[..., 2, 2] = 1.0
-    rows[..., 2, 3], rows[..., 2, 4] = y, -x  # the rotation about z through C: C × k = (y, -x, 0)
-    return rows
-
-
 @functools.cache
 def families() -> dict[str, Family]:
-    """The families a catalog entry can name, by name (imported on first use).
+    """The families a catalog entry can name, by name (imported on first use; :func:`register` adds more).
 
     Examples
     --------
@@ -139,8 +106,8 @@ def families() -> dict[str, Family]:
             "four_limb",
             four_limb.FourLimbParameters.from_mapping,
             four_limb.inverse_kinematics,
-            _four_limb_joints,
-            _four_limb_basis,
+            four_limb.joints,
+            four_limb.twist_basis,
             smg,
             ("phi",),
         ),
@@ -166,9 +133,70 @@ def families() -> dict[str, Family]:
             "planar_3rrp",
             planar_3rrp.Planar3RRPParameters.from_mapping,
             planar_3rrp.Planar3RRPConfiguration.from_pose,
-            _planar_joints,
-            _planar_basis,
+            planar_3rrp.joints,
+            planar_3rrp.twist_basis,
             ("x", "y", "phi"),
             ("phi",),
         ),
     }
+
+
+def register(family: Family) -> Family:
+    """Add a family to :func:`families`, so that catalog entries can name it (and return it).
+
+    Parameters
+    ----------
+    family : Family
+        Its four functions and pose names; ``name`` must be new.
+
+    Returns
+    -------
+    Family
+        The family itself.
+
+    Raises
+    ------
+    ScrewkitTypeError
+        If ``family`` is not a :class:`Family`, or one of its fields has the wrong type.
+    ScrewkitValueError
+        If a family of that name is already registered, or an angle is not a pose coordinate.
+
+    Examples
+    --------
+    >>> register(families()["four_limb"])
+    Traceback (most recent call last):
+    ...
+    screwkit.exceptions.ScrewkitValueError: Expected a new family name, got 'four_limb', which is ...
+    >>> register({"name": "five_bar"})
+    Traceback (most recent call last):
+    ...
+    screwkit.exceptions.ScrewkitTypeError: Expected `family` to be a screwkit.families.Family, got dict.
+    """
+    if not isinstance(family, Family):
+        raise ScrewkitTypeError(
+            f"Expected `family` to be a screwkit.families.Family, got {type(family).__name__}."
+        )
+    if not isinstance(family.name, str) or not family.name.isidentifier():
+        raise ScrewkitTypeError(f"Expected `family.name` to be an identifier, got {family.name!r}.")
+    for field in ("parameters", "inverse_kinematics", "joints", "twist_basis"):
+        if not callable(getattr(family, field)):
+            raise ScrewkitTypeError(
+                f"Expected `family.{field}` to be callable, got {type(getattr(family, field)).__name__}."
+            )
+    for field in ("pose_names", "angle_names"):
+        names = getattr(family, field)
+        if not isinstance(names, tuple) or not all(isinstance(n, str) for n in names):
+            raise ScrewkitTypeError(f"Expected `family.{field}` to be a tuple of str, got {names!r}.")
+    if not family.pose_names or not set(family.angle_names) <= set(family.pose_names):
+        raise ScrewkitValueError(
+            f"Expected `family.angle_names` to be some of the pose coordinates {family.pose_names}, "
+            f"got {family.angle_names}."
+        )
+    known = families()
+    if family.name in known:
+        raise ScrewkitValueError(
+            f"Expected a new family name, got {family.name!r}, which is already registered "
+            f"({', '.join(sorted(known))})."
+        )
+    known[family.name] = family
+    return family

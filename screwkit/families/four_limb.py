@@ -62,25 +62,24 @@ Where paper 004 is garbled or wrong (each is checked in ``tests/test_families_fo
    (first sign) or 0.811 (second), against the paper's 0.872. With the right-handed ``R_y``,
    ``s = ∂(R_y(φ) i)/∂φ = -R_y(φ) k``; Table 1's ``s = R_y(φ) k`` corresponds to measuring ``φ``
    about ``-j``. The indices are even in ``φ``, so Table 4 cannot tell the two apart.
-4. Table 2, Veloce, printed ``hφ/(2π) (w_13 × w_24)ᵀk``: it would make every pose with ``φ = 0``
-   singular. Laplace expansion with the corrected ``s_i`` gives ``|A| = -h/(2π) (w_13 × w_24)ᵀk``.
-   The Quattro/H4/V4 entry ``2r (w_14 × w_23)ᵀs`` (Eq. 12) is right, factor 2 and sign included.
-5. Eq. (11) prints ``μ_i = cos⁻¹(w_iᵀ(u_i × v_i))``; in the paper's working mode (``h_i < 0``) that
-   lies in (90°, 180°], yet Sec. 5.1 reports ``μ_i ∈ [0, 65°]``. The paper evidently uses the acute
-   angle ``cos⁻¹|w_iᵀ(u_i × v_i)|``, which is what :func:`motion_pressure_angles` returns (``κ`` of
-   Eq. 15 takes ``|cos μ_i|`` anyway). Eq. (13) likewise: as printed it gives σ = 180° at the
-   spiral's ``φ = 0`` pose where Sec. 5.1 says σ = 0; :func:`force_pressure_angle` returns the
-   acute angle.
 6. Ragnar (text after Table 4): "``u_i`` parallel to the x-z plane" with ``u_i = R_z(α_i) i`` means
    ``u_i = ±i``, i.e. ``α = 0``, ``β = π`` (the arms then point away from the x axis). With this
    reading the Ragnar values of Table 4 are *not* reproduced (η_max 0.937 against 0.892 over the
    super-ellipsoid of Eq. 19); the real Ragnar has inclined actuated axes, which this family does not
    model.
-7. Sec. 5.1 says the Quattro "encounters Type-2 singularity when |φ| = π/2 at the end points" of
-   the spiral (Eqs. 17-18). Only approximately: ``|A|`` changes sign at ``φ = -88.3°`` and at
-   ``φ = +90°`` we find σ = 88.3° (ζ = 0.03).
+Items 4, 5 and 7 (Table 2, Eqs. 11 and 13, Sec. 5.1) concern the Jacobians and the transmission
+indices of Sec. 4, which live in :mod:`screwkit.indices` with the rest of that erratum list.
 
-Paper 002 (Amine et al., H4) numbers the H4 limbs differently: there ``b_I`` carries limbs 1, 2.
+The joint table
+---------------
+:func:`joints` gives the physical mechanism as paper 002 models the H4 (§4.1, Fig. 2): per limb an
+actuated revolute joint and a parallelogram with explicit spherical joints at its four corners; the
+sub-platforms join the end effector by ``R_I`` and ``R_II``. :func:`twist_basis` gives the end
+effector's nominal (Schoenflies) twists, the columns of the forward Jacobian of
+:func:`screwkit.jacobians.jacobians_from_wrenches`. Paper 002 numbers the H4's legs differently: its
+``b_I`` carries legs ``l1, l2`` and ``b_II`` carries ``l3, l4``, whereas here (Table 1) sub-platform
+I carries limbs 1 and 4; paper 002's ``(l1, l2, l3, l4)`` are limbs ``(1, 4, 2, 3)``
+(:data:`PAPER_002_LEGS`).
 
 Examples
 --------
@@ -105,6 +104,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
+from .. import screw as S
 from .._backend import as_array
 from ..exceptions import (
     CatalogError,
@@ -112,24 +112,22 @@ from ..exceptions import (
     ScrewkitValueError,
     UnreachablePoseError,
 )
+from ..jacobians import schoenflies_basis
+from ..joints import JointTable
 
 __all__ = [
     "DEFAULT_PARALLELOGRAM_WIDTH_MM",
+    "PAPER_002_LEGS",
     "PLATFORM_KINDS",
+    "SUBPLATFORMS",
     "ForwardKinematicsError",
     "FourLimbConfiguration",
-    "FourLimbJacobians",
     "FourLimbParameters",
-    "TransmissionIndices",
-    "det_A_closed_form",
-    "force_pressure_angle",
     "forward_kinematics",
     "inverse_kinematics",
-    "jacobians",
-    "motion_pressure_angles",
+    "joints",
     "reachable",
-    "spiral_trajectory",
-    "transmission_indices",
+    "twist_basis",
 ]
 
 #: The platform variants of Table 1 (paper 004).
@@ -907,199 +905,115 @@ def _expand(mask: np.ndarray, like: np.ndarray) -> np.ndarray:
 
 
 # --------------------------------------------------------------------------------------------------
-# Jacobians and transmission indices
+# The joint table and the nominal twists (the family protocol, screwkit.families)
 # --------------------------------------------------------------------------------------------------
 
-
-class FourLimbJacobians(NamedTuple):
-    """Forward and inverse Jacobians of Eq. (6), ``A χ̇ = B θ̇``, each (..., 4, 4).
-
-    Attributes
-    ----------
-    A : numpy.ndarray, shape (..., 4, 4)
-        Rows ``e_i = [w_i, r w_i·s_i]`` (Eq. 8).
-    B : numpy.ndarray, shape (..., 4, 4)
-        ``diag(h_i)`` (Eq. 7b).
-    """
-
-    A: np.ndarray
-    B: np.ndarray
+#: Paper 002's H4 legs l1..l4 as paper 004's limbs (1-based): (1, 4, 2, 3).
+PAPER_002_LEGS = {"l1": 1, "l2": 4, "l3": 2, "l4": 3}
+#: Names of the sub-platform links and of the joints joining them to the end effector.
+SUBPLATFORMS = (("b_I", "R_I"), ("b_II", "R_II"))
 
 
-class TransmissionIndices(NamedTuple):
-    """Motion index ``κ``, force index ``ζ`` (Eq. 15) and LTI ``η = min(κ, ζ)`` (Eq. 16).
+def joints(config: FourLimbConfiguration) -> JointTable:
+    """The joints of the physical mechanism with their screws over the whole batch of poses.
 
-    Attributes
-    ----------
-    kappa, zeta, eta : numpy.ndarray
-        Each of the pose batch's shape, in [0, 1].
-    """
-
-    kappa: np.ndarray
-    zeta: np.ndarray
-    eta: np.ndarray
-
-
-def jacobians(config: FourLimbConfiguration) -> FourLimbJacobians:
-    """Forward Jacobian ``A`` (rows ``e_i = [w_iᵀ, r w_iᵀs_i]``) and ``B = diag(h_i)``, Eqs. (6)-(8).
-
-    Columns of ``A`` are ordered ``(x, y, z, φ)``; the last column has the unit of length.
-
-    Examples
-    --------
-    >>> cfg = inverse_kinematics(FourLimbParameters(name="H4", platform_kind="articulated_z",
-    ...     arm_length=375, rod_length=800, alpha=0, beta=np.pi / 2, platform_radius=80,
-    ...     platform_offset=70, base_radius=275), [0, 0, -700, 0])
-    >>> A, B = jacobians(cfg)
-    >>> A.shape, bool(np.allclose(np.diag(B), cfg.h))
-    ((4, 4), True)
-    """
-    _require(config, FourLimbConfiguration, "config")
-    rotation_column = config.params.platform_radius * np.sum(config.w * config.s, axis=-1)
-    forward = np.concatenate([config.w, rotation_column[..., None]], axis=-1)
-    inverse = config.h[..., None] * np.eye(4)
-    return FourLimbJacobians(forward, inverse)
-
-
-def _paired_normals(config: FourLimbConfiguration) -> np.ndarray:
-    """``w_I × w_II`` with ``w_I = w_i × w_j`` over the limbs of sub-platform I (Eq. 12, Table 2)."""
-    (i1, i2), (j1, j2) = config.subplatform_limbs
-    w = config.w
-    return np.cross(np.cross(w[..., i1, :], w[..., i2, :]), np.cross(w[..., j1, :], w[..., j2, :]))
-
-
-def det_A_closed_form(config: FourLimbConfiguration) -> np.ndarray:
-    """``|A|`` of Table 2 / Eq. (12) (paper 004), corrected for the Veloce platform.
-
-    * articulated platforms: ``|A| = 2r (w_14 × w_23)ᵀ s`` (Eq. 12; verified, factor and sign);
-    * screw pair: ``|A| = -h/(2π) (w_13 × w_24)ᵀ k`` (Table 2 prints ``hφ/(2π)(...)`` with no minus
-      sign; Laplace expansion of ``A`` with ``r s_i = mod(i, 2) h/(2π) k`` gives this form).
-
-    Returns
-    -------
-    (...,) ndarray
-        In units of length (like ``np.linalg.det`` of ``A``).
-
-    Examples
-    --------
-    >>> cfg = inverse_kinematics(FourLimbParameters(name="H4", platform_kind="articulated_z",
-    ...     arm_length=375, rod_length=800, alpha=0, beta=np.pi / 2, platform_radius=80,
-    ...     platform_offset=70, base_radius=275), [30, 10, -700, 0.2])
-    >>> bool(np.isclose(det_A_closed_form(cfg), np.linalg.det(jacobians(cfg).A)))
-    True
-    """
-    _require(config, FourLimbConfiguration, "config")
-    normals = _paired_normals(config)
-    params = config.params
-    if params.platform_kind == "screw_pair":
-        assert params.lead is not None
-        return -params.lead / (2.0 * np.pi) * normals[..., 2]
-    return 2.0 * params.platform_radius * np.sum(normals * config.platform_s, axis=-1)
-
-
-def motion_pressure_angles(config: FourLimbConfiguration) -> np.ndarray:
-    """Pressure angles ``μ_i`` between ``u_i × v_i`` and ``w_i``, Eq. (11), as acute angles.
-
-    ``μ_i = cos⁻¹|w_iᵀ(u_i × v_i)| = cos⁻¹(|h_i| / b)`` in ``[0, π/2]``; ``μ_i = π/2`` is a type-1
-    (serial) singularity. Eq. (11) as printed has no absolute value, which in the paper's working
-    mode ``h_i < 0`` would put ``μ_i`` above 90°, against the paper's own range [0, 65°] (Sec. 5.1).
-
-    Returns
-    -------
-    (..., 4) ndarray, radians
-
-    Examples
-    --------
-    >>> cfg = inverse_kinematics(FourLimbParameters(name="H4", platform_kind="articulated_z",
-    ...     arm_length=375, rod_length=800, alpha=0, beta=np.pi / 2, platform_radius=80,
-    ...     platform_offset=70, base_radius=275), [0, 0, -700, 0])
-    >>> bool(np.all((0 <= motion_pressure_angles(cfg)) & (motion_pressure_angles(cfg) <= np.pi / 2)))
-    True
-    """
-    _require(config, FourLimbConfiguration, "config")
-    return np.arccos(np.clip(np.abs(config.h) / config.params.arm_length, 0.0, 1.0))
-
-
-def force_pressure_angle(config: FourLimbConfiguration) -> np.ndarray:
-    """Pressure angle ``σ`` among limbs, Eq. (13) (paper 004), as an acute angle.
-
-    ``cos σ = |(w_I × w_II)ᵀ s| / ‖w_I × w_II‖`` with ``w_I × w_II = w_14 × w_23`` (articulated) or
-    ``w_13 × w_24`` (screw pair, ``s = k``), the pairing of Table 2 ("by the same token" in Sec.
-    4.1). ``σ = π/2`` is a type-2 singularity (``|A| = 0``); it is also returned where
-    ``w_I × w_II = 0`` exactly, where ``|A| = 0`` and Eq. (13) is undefined.
-
-    Returns
-    -------
-    (...,) ndarray, radians
-
-    Examples
-    --------
-    >>> cfg = inverse_kinematics(FourLimbParameters(name="H4", platform_kind="articulated_z",
-    ...     arm_length=375, rod_length=800, alpha=0, beta=np.pi / 2, platform_radius=80,
-    ...     platform_offset=70, base_radius=275), [0, 0, -700, 0])
-    >>> float(np.degrees(force_pressure_angle(cfg))) < 90
-    True
-    """
-    _require(config, FourLimbConfiguration, "config")
-    normals = _paired_normals(config)
-    length = np.linalg.norm(normals, axis=-1)
-    projection = np.abs(np.sum(normals * config.platform_s, axis=-1))
-    cosine = np.divide(projection, length, out=np.zeros_like(length), where=length > 0)
-    return np.arccos(np.clip(cosine, 0.0, 1.0))
-
-
-def transmission_indices(config: FourLimbConfiguration) -> TransmissionIndices:
-    """``κ = min_i |cos μ_i|``, ``ζ = |cos σ|`` (Eq. 15) and the LTI ``η = min(κ, ζ)`` (Eq. 16).
-
-    Each lies in ``[0, 1]``; larger is better, 0 is a singularity.
-
-    Examples
-    --------
-    >>> cfg = inverse_kinematics(FourLimbParameters(name="H4", platform_kind="articulated_z",
-    ...     arm_length=375, rod_length=800, alpha=0, beta=np.pi / 2, platform_radius=80,
-    ...     platform_offset=70, base_radius=275), [[0, 0, -700, 0], [0, 0, -700, 1.0]])
-    >>> ti = transmission_indices(cfg)
-    >>> ti.eta.shape, bool(np.all(ti.eta == np.minimum(ti.kappa, ti.zeta)))
-    ((2,), True)
-    """
-    _require(config, FourLimbConfiguration, "config")
-    kappa = np.min(np.cos(motion_pressure_angles(config)), axis=-1)
-    zeta = np.cos(force_pressure_angle(config))
-    return TransmissionIndices(kappa, zeta, np.minimum(kappa, zeta))
-
-
-def spiral_trajectory(n: int) -> np.ndarray:
-    """The Quattro test path of Eqs. (17)-(18) (paper 004), in mm and radians.
-
-    ``x = 650ρ cos ϑ``, ``y = 650ρ sin ϑ``, ``z = -975 + 500ρ``, ``φ = πρ - π/2`` with
-    ``ρ = ϑ/(4π)`` and ``ϑ`` evenly spaced on ``[0, 4π]`` (both ends included).
+    Each limb is modelled as paper 002 models the H4's (§4.1, Fig. 2): ``R–(4S)``, an actuated
+    revolute joint ``A<i>`` (axis ``u_i`` through ``A_i``) and a parallelogram of two rods with
+    **explicit spherical joints** at its four corners ``m, n`` (on the arm) and ``p, q`` (on the
+    sub-platform). The closed 4S loops are *not* typed in as virtual chains: the equivalent twist
+    graph derives them (:func:`screwkit.twistgraph.equivalent_twist_graph`). The sub-platforms
+    ``b_I`` and ``b_II`` join the end effector by joints ``R_I`` and ``R_II`` (revolute, or helical
+    for the screw-pair platforms) on the axes of :class:`FourLimbConfiguration`.
 
     Parameters
     ----------
-    n : int
-        Number of poses, at least 2.
+    config : FourLimbConfiguration
+        From :func:`inverse_kinematics` (any batch shape ``...``).
 
     Returns
     -------
-    (n, 4) ndarray
+    JointTable
+        Links ``base``, ``arm<i>``, ``rod<i>a``, ``rod<i>b``, ``b_I``, ``b_II``, ``end_effector``;
+        joints ``A<i>`` (actuated R), ``S<i>m``, ``S<i>p``, ``S<i>n``, ``S<i>q`` (S), ``R_I``,
+        ``R_II``; ``dof = 4``; screws ``(..., rows, 6)``.
+
+    Raises
+    ------
+    ScrewkitTypeError
+        If ``config`` is not a :class:`FourLimbConfiguration`.
 
     Examples
     --------
-    >>> spiral_trajectory(3).round(6)
-    array([[    0.      ,     0.      ,  -975.      ,    -1.570796],
-           [  325.      ,    -0.      ,  -725.      ,     0.      ],
-           [  650.      ,    -0.      ,  -475.      ,     1.570796]])
+    >>> h4 = FourLimbParameters(name="H4", platform_kind="articulated_z", arm_length=375,
+    ...     rod_length=800, alpha=0, beta=np.pi / 2, platform_radius=80, platform_offset=70,
+    ...     base_radius=275)
+    >>> table = joints(inverse_kinematics(h4, np.zeros((5, 4)) + [0, 0, -700, 0]))
+    >>> len(table.specs), table.specs[1].name, table.joint_screws("S1m").shape
+    (22, 'S1m', (5, 3, 6))
+    >>> G = table.graph(1)
+    >>> G.number_of_nodes(), G.number_of_edges(), G.graph["dof"], sorted(G.successors("b_I"))
+    (16, 22, 4, ['end_effector'])
     """
-    if not isinstance(n, int | np.integer) or isinstance(n, bool) or n < 2:
-        raise ScrewkitValueError(f"Expected `n` to be an integer >= 2, got {n!r}.")
-    vartheta = np.linspace(0.0, 4.0 * np.pi, int(n))
-    rho = vartheta / (4.0 * np.pi)
-    return np.stack(
-        [
-            650.0 * rho * np.cos(vartheta),
-            650.0 * rho * np.sin(vartheta),
-            -975.0 + 500.0 * rho,
-            np.pi * rho - np.pi / 2.0,
-        ],
-        axis=-1,
-    )
+    _require(config, FourLimbConfiguration, "config")
+    eye = np.eye(3)
+
+    def spheres(centres: np.ndarray) -> np.ndarray:
+        return S.revolute_twist(eye, centres[..., None, :])
+
+    limb_platform = {}
+    for (link, _), limbs in zip(SUBPLATFORMS, config.subplatform_limbs, strict=True):
+        for limb in limbs:
+            limb_platform[limb] = link
+    rows: list[tuple[str, str, str, str, np.ndarray, bool]] = []
+    for limb in range(4):
+        i = limb + 1
+        arm = f"arm{i}"
+        actuated = S.revolute_twist(config.u[..., limb, :], config.a[..., limb, :])[..., None, :]
+        rows.append(("base", arm, f"A{i}", "R", actuated, True))
+        for rod, corner, (first, second) in ((f"rod{i}a", 0, "mp"), (f"rod{i}b", 1, "nq")):
+            elbow, platform = (config.elbow_corners[..., limb, corner, :],
+                               config.platform_corners[..., limb, corner, :])
+            rows.append((arm, rod, f"S{i}{first}", "S", spheres(elbow), False))
+            rows.append((rod, limb_platform[limb], f"S{i}{second}", "S", spheres(platform), False))
+    axis = config.platform_joint_axis
+    for k, (link, name) in enumerate(SUBPLATFORMS):
+        point, pitch = config.platform_joint_points[..., k, :], config.platform_joint_pitches[k]
+        screw = S.helical_twist(axis, point, pitch) if pitch else S.revolute_twist(axis, point)
+        rows.append((link, "end_effector", name, "H" if pitch else "R", screw[..., None, :], False))
+    return JointTable.from_rows("base", "end_effector", rows, dof=4)
+
+
+def twist_basis(config: FourLimbConfiguration) -> np.ndarray:
+    """The end effector's nominal twists over the batch: a Schoenflies basis (user frame).
+
+    Rows, for ``ẋ = 1``, ``ẏ = 1``, ``ż = 1`` and ``φ̇ = 1`` with ``χ = (x, y, z, φ)``: the three
+    translations and the rotation about the end effector's own axis of rotation,
+    ``config.platform_joint_axis`` (``k`` for the Quattro, H4, Veloce and Ragnar, ``j`` for the
+    V4) through the end-effector point ``p`` (:func:`screwkit.jacobians.schoenflies_basis`). They
+    are the columns of ``A`` in :func:`screwkit.jacobians.jacobians_from_wrenches`, in paper 004's
+    order (Eq. 7a).
+
+    Parameters
+    ----------
+    config : FourLimbConfiguration
+        From :func:`inverse_kinematics` (any batch shape ``...``).
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 4, 6)
+
+    Raises
+    ------
+    ScrewkitTypeError
+        If ``config`` is not a :class:`FourLimbConfiguration`.
+
+    Examples
+    --------
+    >>> v4 = FourLimbParameters(name="V4", platform_kind="articulated_y", arm_length=375,
+    ...     rod_length=800, alpha=0, beta=np.pi / 2, platform_radius=80, platform_offset=70,
+    ...     base_radius=275)
+    >>> twist_basis(inverse_kinematics(v4, [[0, 0, -700, 0], [50, 0, -700, 0.2]]))[1, 3]  # about j
+    array([  0.,   1.,   0., 700.,   0.,  50.])
+    """
+    _require(config, FourLimbConfiguration, "config")
+    return schoenflies_basis(config.pose[..., :3], config.platform_joint_axis)
