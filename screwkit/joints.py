@@ -559,12 +559,16 @@ class JointTable:
         """
         from .twistgraph import twist_graph
 
-        one = self[index] if index != () else self
+        message = (
+            f"Expected `index` to pick one configuration of the batch of shape {self.batch_shape}, "
+            f"got {index!r}."
+        )
+        try:
+            one = self[index] if index != () else self
+        except IndexError as err:
+            raise ScrewkitValueError(message) from err
         if one.batch_shape:
-            raise ScrewkitValueError(
-                f"Expected `index` to pick one configuration of the batch of shape {self.batch_shape}, "
-                f"got {index!r}."
-            )
+            raise ScrewkitValueError(message)
         joints, start = [], 0
         for spec in one.specs:
             screws = one.screws[start : start + spec.dof]
