@@ -1,7 +1,7 @@
 """Machinery shared by the two-limb Schönflies-motion generators (McGill SMG and Peppermill).
 
-Private module: :mod:`screwkit.families.mcgill_smg` and :mod:`screwkit.families.peppermill`
-re-export what users need. It holds the robot-model plumbing only (design.md §1a: families hold the
+Private module: :mod:`screwkit.families.mcgill_smg` and :mod:`screwkit.families.peppermill` build
+on it. It holds the robot-model plumbing only (design.md §1a: families hold the
 model; paper-specific analyses live in the stage modules or beside the tests that check them):
 
 * parameter validation (``from_mapping`` of a TOML table, range checks in ``__post_init__``) and
