@@ -34,22 +34,17 @@ import time  # noqa: E402
 import tracemalloc  # noqa: E402
 
 import numpy as np  # noqa: E402
-from screwkit.batch import classify_poses  # noqa: E402
 
 import screwkit as sk  # noqa: E402
-from screwkit.families.four_limb import reachable  # noqa: E402
-from screwkit.families.four_limb_graph import PAPER_002_LEGS, four_limb_joints  # noqa: E402
+from screwkit.families.four_limb import PAPER_002_LEGS, reachable  # noqa: E402
 
 CHUNK = 10_000
 
 
 def verdicts(h4, poses):
-    """The batched verdicts of the H4 at ``poses`` (n, 4): today IK + joint screws + classify_poses.
-
-    The one place to swap in the new core: ``return h4.at(poses).verdicts``.
-    """
-    screws = {name: s for _, _, name, _, s, _ in four_limb_joints(h4.configuration(poses))}
-    return classify_poses(h4.twist_graph(), screws)
+    """The batched verdicts of the H4 at ``poses`` (n, 4): IK, joint table and the analysis core
+    (chunked inside), through the one composer."""
+    return h4.at(poses).singularities
 
 
 def wrench_matrices(h4, poses):

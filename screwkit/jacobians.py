@@ -114,7 +114,10 @@ from .wrenches import WrenchAnalysis, checked_rtol
 
 __all__ = [
     "GOSSELIN_ANGELES_TYPES",
+    "JacobianClassification",
     "WrenchJacobians",
+    "classify_jacobians",
+    "gosselin_angeles_label",
     "jacobians_from_wrenches",
     "jacobians_over_poses",
     "schoenflies_basis",
@@ -765,3 +768,160 @@ def jacobians_over_poses(
     tolerance = checked_rtol(rtol, "rtol")
     analysis = classify_poses(graph, screws, dof=dof, rtol=tolerance).analysis
     return jacobians_from_wrenches(analysis, twist_basis, basis_rtol=basis_rtol)
+
+
+# --------------------------------------------------------------------------------------------------
+# Gosselin–Angeles types of given matrices A, B (e.g. a paper's own Jacobians)
+# --------------------------------------------------------------------------------------------------
+
+
+def _closeness(matrix: Array) -> Array:
+    """``σ_min / σ_max`` over a batch of matrices ``(..., m, n)`` (0 for a zero matrix)."""
+    values = np.linalg.svd(matrix, compute_uv=False)
+    return _safe_divide(values[..., -1], values[..., 0])
+
+
+def _read_only(value: Any) -> Array:
+    array = np.array(value, dtype=float)
+    array.flags.writeable = False
+    return array
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class JacobianClassification:
+    """Gosselin–Angeles type of one or many configurations from their matrices ``A`` and ``B``.
+
+    Attributes
+    ----------
+    inverse_closeness, direct_closeness : (...) ndarray
+        ``σ_min/σ_max`` of ``B`` and of ``A`` (:func:`classify_jacobians`), in ``[0, 1]``.
+    rtol : float
+        A matrix counts as singular when its closeness is at most ``rtol``.
+
+    Examples
+    --------
+    >>> c = JacobianClassification(np.array([0.5, 0.0]), np.array([0.0, 0.0]), 1e-9)
+    >>> c.label.tolist()
+    ['direct', 'combined']
+    """
+
+    inverse_closeness: Array
+    direct_closeness: Array
+    rtol: float
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "inverse_closeness", _read_only(self.inverse_closeness))
+        object.__setattr__(self, "direct_closeness", _read_only(self.direct_closeness))
+
+    @property
+    def inverse(self) -> Array:
+        """True where ``B`` is rank-deficient (inverse-kinematic, serial, first kind)."""
+        return np.asarray(self.inverse_closeness <= self.rtol)
+
+    @property
+    def direct(self) -> Array:
+        """True where ``A`` is rank-deficient (direct-kinematic, parallel, second kind)."""
+        return np.asarray(self.direct_closeness <= self.rtol)
+
+    @property
+    def label(self) -> Array:
+        """One of :data:`GOSSELIN_ANGELES_TYPES` per configuration (``"combined"``: both; third kind)."""
+        index = _type_index(self.direct_closeness, self.inverse_closeness, self.rtol)
+        return np.asarray(np.asarray(GOSSELIN_ANGELES_TYPES)[index])
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dictionary."""
+        return {
+            "label": self.label.tolist(),
+            "inverse_closeness": self.inverse_closeness.tolist(),
+            "direct_closeness": self.direct_closeness.tolist(),
+            "rtol": self.rtol,
+        }
+
+    def __str__(self) -> str:
+        return (
+            f"JacobianClassification(label={self.label.tolist()}, "
+            f"inverse_closeness={np.round(self.inverse_closeness, 6).tolist()}, "
+            f"direct_closeness={np.round(self.direct_closeness, 6).tolist()})"
+        )
+
+
+def classify_jacobians(A: Any, B: Any, *, rtol: float = B.DEFAULT_RTOL) -> JacobianClassification:
+    """Gosselin–Angeles type from given (dimensionless) Jacobians ``A``, ``B`` of ``A t = B θ̇``.
+
+    For matrices that come from elsewhere than :func:`jacobians_from_wrenches` (a paper's own
+    ``A`` and ``B``, e.g.), whatever their shapes. The closeness of each matrix to rank deficiency
+    is its *inverse condition number* ``σ_min / σ_max``: it lies in ``[0, 1]`` and is 0 exactly
+    when the matrix loses rank (Gosselin & Angeles 1990: ``B`` inverse/serial, ``A``
+    direct/parallel, both: combined); it does not change under a rigid motion of the base frame
+    (which multiplies ``A`` and ``B`` by orthogonal matrices), nor with the unit of length provided
+    the characteristic length that makes the matrices dimensionless is given in the same unit.
+
+    Parameters
+    ----------
+    A, B : (..., m, n) array_like
+    rtol : float, default 1e-9
+        Threshold on ``σ_min/σ_max``; must lie in ``[0, 1)``.
+
+    Returns
+    -------
+    JacobianClassification
+
+    Raises
+    ------
+    ScrewkitValueError
+        ``rtol`` is not a number in ``[0, 1)``.
+
+    References
+    ----------
+    Gosselin & Angeles, "Singularity analysis of closed-loop kinematic chains", IEEE Trans. Robot.
+    Autom. 6(3), 1990.
+
+    Examples
+    --------
+    >>> classify_jacobians(np.eye(3), np.eye(3)).label.tolist()
+    'regular'
+    >>> str(classify_jacobians(np.eye(4), np.diag([1.0, 1.0, 0.0, 1.0]), rtol=1e-9).label)
+    'inverse'
+    """
+    tolerance = checked_rtol(rtol, "rtol")
+    a, b = np.asarray(A, dtype=float), np.asarray(B, dtype=float)
+    return JacobianClassification(_closeness(b), _closeness(a), tolerance)
+
+
+def gosselin_angeles_label(report: Any) -> str:
+    """Name a twist-graph verdict (:func:`screwkit.singularity.classify`) as a Gosselin–Angeles type.
+
+    A *serial* (limb) singularity, where an actuator cannot move the platform, is the inverse
+    (first-kind) singularity of ``B``; a *constraint* or *actuation* singularity, where the
+    platform moves with every actuator locked, is the direct (second-kind) singularity of ``A``;
+    both at once is the combined (third-kind) one.
+
+    Parameters
+    ----------
+    report : SingularityReport
+        Anything with a ``labels`` tuple drawn from ``"constraint"``, ``"actuation"``,
+        ``"serial"``.
+
+    Returns
+    -------
+    str
+        One of :data:`GOSSELIN_ANGELES_TYPES`.
+
+    Raises
+    ------
+    ScrewkitValueError
+        A label outside those three.
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace
+    >>> gosselin_angeles_label(SimpleNamespace(labels=("actuation", "serial")))
+    'combined'
+    """
+    labels = tuple(report.labels)
+    unknown = sorted(set(labels) - {"constraint", "actuation", "serial"})
+    if unknown:
+        raise ScrewkitValueError(f"Expected labels among 'constraint', 'actuation', 'serial', got {unknown}.")
+    direct = "constraint" in labels or "actuation" in labels
+    return GOSSELIN_ANGELES_TYPES[int("serial" in labels) + 2 * int(direct)]

@@ -27,9 +27,12 @@ from screwkit.catalog import load_mechanism
 from screwkit.diagram import diagram_points, superbracket_analysis
 from screwkit.families import mcgill_smg as smg
 from screwkit.families import peppermill as pm
-from screwkit.families._two_limb import bisect_segment, gosselin_angeles_label
+from screwkit.jacobians import gosselin_angeles_label
 from screwkit.singularity import classify as classify_graph
 from screwkit.wrenches import wrench_analysis
+
+from . import paper_000, paper_001
+from .two_limb_papers import bisect_segment
 
 # --------------------------------------------------------------------------------------------------
 # McGill SMG: singular poses
@@ -60,7 +63,7 @@ def _on_leg_one(params: smg.McGillParameters, factor: Callable[[Any], Any],
 def mcgill_singular_configs(params: smg.McGillParameters, default_pose: Any) -> dict[str, Any]:
     """Configurations at singularities of each kind (for the catalog's dimensions)."""
     deg = np.radians
-    factors = smg.singularity_factors
+    factors = paper_001.singularity_factors
     turned = np.array(default_pose, dtype=float)
     return {
         # O_I3 on the pan axis (κ_I = 0), leg I's distal link 25-30° from the vertical
@@ -70,7 +73,7 @@ def mcgill_singular_configs(params: smg.McGillParameters, default_pose: Any) -> 
         "serial_tilt": _on_leg_one(params, lambda c: factors(c).delta[0],
                                    [0.1, deg(-60), 0.2, np.pi], [0.1, deg(-60), -0.2, np.pi]),
         # the plate turned from the default pose until A loses rank
-        "direct": smg.inverse_kinematics(params, smg.locate_direct_singularity(
+        "direct": smg.inverse_kinematics(params, paper_001.locate_direct_singularity(
             params, turned, turned + np.array([0.0, 0.0, 0.0, deg(80)]))),
         # leg I extended and the plate turned about O_I3 until A loses rank as well
         "combined": _on_leg_one(params, lambda c: factors(c).parallel,
@@ -115,7 +118,7 @@ def peppermill_singular_configs(params: pm.PeppermillParameters, default_pose: A
     t = bisect_segment(v2z, [-21.75], [-21.5])
     return {
         "serial_turn": pm.inverse_kinematics(params, extended),
-        "direct": pm.inverse_kinematics(params, pm.locate_direct_singularity(
+        "direct": pm.inverse_kinematics(params, paper_000.locate_direct_singularity(
             params, [0.0, 150.0, -150.0, 0.0], [0.0, 300.0, -150.0, 0.0])),
         "combined": pm.inverse_kinematics(params, keeping_q1(t), (1, -1)),
     }
@@ -141,14 +144,19 @@ def singular_configs(mechanism: Any) -> dict[str, Any]:
 
 
 def family_module(mechanism: Any) -> Any:
+    """The robot model: :mod:`screwkit.families.mcgill_smg` or :mod:`screwkit.families.peppermill`."""
     return {"mcgill_smg": smg, "peppermill": pm}[mechanism.family]
 
 
+def paper_module(mechanism: Any) -> Any:
+    """The paper's own Jacobians and their classification: :mod:`tests.paper_001` or :mod:`tests.paper_000`."""
+    return {"mcgill_smg": paper_001, "peppermill": paper_000}[mechanism.family]
+
+
 def labels(mechanism: Any, config: Any, *, rtol: float = 1e-9) -> tuple[Any, str]:
-    """(twist-graph report, the family's Jacobian label) at a configuration."""
-    family = family_module(mechanism)
-    report = classify_graph(family.twist_graph(config), rtol=rtol)
-    return report, str(family.classify(config, rtol=rtol).label)
+    """(twist-graph report, the paper's Jacobian label) at a configuration."""
+    report = classify_graph(family_module(mechanism).joints(config).graph(), rtol=rtol)
+    return report, str(paper_module(mechanism).classify(config, rtol=rtol).label)
 
 
 # --------------------------------------------------------------------------------------------------
@@ -163,7 +171,7 @@ def _nonzero_columns(block: np.ndarray) -> list[int]:
 def check_jacobian_shapes(mechanism: Any, fact: dict[str, Any]) -> tuple[Any, Any]:
     """Shapes of A and B; for McGill also of the leg blocks A_J, B_J (their non-zero columns)."""
     config = mechanism.configuration()
-    jac = family_module(mechanism).jacobians(config)
+    jac = paper_module(mechanism).jacobians(config)
     got: dict[str, list[Any]] = {"A": list(jac.A.shape), "B": list(jac.B.shape)}
     if mechanism.family == "mcgill_smg":
         # leg I's rows: A_I acts on all of t; B_I only on (θ_I1, θ_I2) (Eq. 19's zero blocks)
@@ -181,7 +189,7 @@ def check_det_a(mechanism: Any, fact: dict[str, Any]) -> tuple[Any, Any]:
     for mode in pm.WORKING_MODES:
         config = pm.inverse_kinematics(params, poses, mode)
         expected = config.v[:, 0, 2] * config.v[:, 1, 2] * (params.p2 - params.p1) / (2 * np.pi)
-        got = np.linalg.det(pm.jacobians(config).A)
+        got = np.linalg.det(paper_000.jacobians(config).A)
         if not np.allclose(got, expected, rtol=1e-12, atol=1e-12 * abs(params.p2 - params.p1)):
             return f"differs in mode {mode}: {got[:2]} vs {expected[:2]}", fact["value"]
     return fact["value"], fact["value"]
@@ -192,7 +200,7 @@ def check_det_b(mechanism: Any, fact: dict[str, Any]) -> tuple[Any, Any]:
     poses = mechanism.random_poses(np.random.default_rng(1), 20)
     for mode in pm.WORKING_MODES:
         config = pm.inverse_kinematics(mechanism.parameters, poses, mode)
-        got = np.linalg.det(pm.jacobians(config).B)
+        got = np.linalg.det(paper_000.jacobians(config).B)
         if not np.allclose(got, np.prod(np.sin(config.passive), axis=-1), rtol=0, atol=1e-12):
             return f"differs in mode {mode}", fact["value"]
     return fact["value"], fact["value"]
@@ -236,7 +244,7 @@ def check_paper_eq_22(mechanism: Any, fact: dict[str, Any]) -> tuple[Any, Any]:
     f, rho3 = config.tilt_axis, config.wrist - config.elbow
     phi = np.cross(f, rho3)
     sine = np.linalg.norm(np.cross(phi[0], phi[1])) / np.prod(np.linalg.norm(phi, axis=-1))
-    singular = smg.classify(config).label == "direct"
+    singular = paper_001.classify(config).label == "direct"
     return {"necessary": bool(singular and sine < 1e-6), "direct_singular_here": bool(singular)}, fact["value"]
 
 
@@ -283,7 +291,7 @@ def condition_values(mechanism: Any, configs: list[Any]) -> np.ndarray:
     family = family_module(mechanism)
     rows = []
     for config in configs:
-        points = diagram_points(diagram.points, wrench_analysis(family.twist_graph(config)))
+        points = diagram_points(diagram.points, wrench_analysis(family.joints(config).graph()))
         rows.append([float(c.evaluate(points)) for c in result.conditions])
     return np.array(rows)
 
@@ -296,8 +304,8 @@ def random_configs(mechanism: Any, count: int = 8, seed: int = 3) -> list[Any]:
 def direct_factor(config: Any) -> float:
     """The Jacobian's direct factor: McGill det[φ_I, φ_II, ½ k × (σ_I − σ_II)]; Peppermill det A."""
     if isinstance(config, smg.McGillConfiguration):
-        return float(smg.singularity_factors(config).parallel)
-    return float(pm.singularity_factors(config).det_a)
+        return float(paper_001.singularity_factors(config).parallel)
+    return float(paper_000.singularity_factors(config).det_a)
 
 
 def check_superbracket_factor_labels(mechanism: Any, fact: dict[str, Any]) -> tuple[Any, Any]:

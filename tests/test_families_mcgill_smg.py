@@ -12,6 +12,7 @@ import pytest
 from hypothesis import assume, given
 from hypothesis import strategies as st
 
+from screwkit import screw as S
 from screwkit.exceptions import (
     CatalogError,
     DegenerateGeometryError,
@@ -20,13 +21,11 @@ from screwkit.exceptions import (
     UnreachablePoseError,
 )
 from screwkit.families import mcgill_smg as smg
-from screwkit.families._two_limb import (
-    JointAxis,
-    bisect_segment,
-    checked_mode,
-    classify_jacobians,
-    pick_and_place_cycle,
-)
+from screwkit.families._two_limb import checked_mode, joint_row
+from screwkit.jacobians import classify_jacobians
+
+from . import paper_001 as paper
+from .two_limb_papers import bisect_segment, pick_and_place_cycle
 
 # R, l2 and l3 = √2 R: paper 001, Sec. 6. l0, l1, b4, b5 and the widths: our choice (not published).
 PARAMS = smg.McGillParameters(
@@ -278,7 +277,7 @@ def test_forward_kinematics_continuum_is_refused():
         pose = smg.leg_pose(PARAMS, "I", leg_one)
         config = smg.inverse_kinematics(PARAMS, pose, (*leg_mode(leg_one, 0), *leg_mode(leg_two, 1)))
         np.testing.assert_allclose(wrap(config.actuated - actuated), 0.0, atol=1e-9)
-        assert rank(smg.jacobians(config).A) == 3
+        assert rank(paper.jacobians(config).A) == 3
 
 
 # --------------------------------------------------------------------------------------------------
@@ -294,7 +293,7 @@ def test_jacobians_against_finite_differences(rng, mode):
     ahead = smg.inverse_kinematics(PARAMS, poses + step * rates, mode).actuated
     behind = smg.inverse_kinematics(PARAMS, poses - step * rates, mode).actuated
     theta_dot = wrap(ahead - behind) / (2 * step)
-    jac = smg.jacobians(smg.inverse_kinematics(PARAMS, poses, mode))
+    jac = paper.jacobians(smg.inverse_kinematics(PARAMS, poses, mode))
     twist = np.column_stack([rates[:, 3], rates[:, :3] / PARAMS.radius])  # t = (φ̇, ṗ/L)
     lhs = np.einsum("nij,nj->ni", jac.A, twist)
     rhs = np.einsum("nij,nj->ni", jac.B, theta_dot)
@@ -305,7 +304,7 @@ def test_jacobian_blocks_have_the_shapes_eq_19_needs(rng):
     # Eq. (17a) prints A_J ∈ R^{3×2} and B_J ∈ R^{2×4}; A_J t must equal φ_J × σ̇_J (Eq. 15) for
     # t ∈ R^4, so A_J is 3×4, and B_J γ̇_J ∈ R^3 with γ̇_J ∈ R^2, so B_J is 3×2.
     config = smg.inverse_kinematics(PARAMS, random_poses(rng, 5))
-    jac = smg.jacobians(config)
+    jac = paper.jacobians(config)
     assert jac.A.shape == (5, 6, 4) and jac.B.shape == (5, 6, 4)
     np.testing.assert_array_equal(jac.B[:, :3, 2:], 0.0)
     np.testing.assert_array_equal(jac.B[:, 3:, :2], 0.0)
@@ -328,8 +327,8 @@ def test_jacobian_blocks_have_the_shapes_eq_19_needs(rng):
 def test_v_and_delta_hand_identities(rng):
     # From Eq. (10): v_J = (ρ_J1 × k) × φ_J = -(κ_J/L) ρ_J3; from Eq. (11): Δ_J = -(l2 l3/L²) sin θ_J3.
     config = smg.inverse_kinematics(PARAMS, random_poses(rng, 10), (1, -1, -1, 1))
-    jac = smg.jacobians(config)
-    factors = smg.singularity_factors(config)
+    jac = paper.jacobians(config)
+    factors = paper.singularity_factors(config)
     r = PARAMS.radius
     for leg in (0, 1):
         v = leg_vectors(config, leg)
@@ -344,14 +343,14 @@ def test_v_and_delta_hand_identities(rng):
 
 def test_length_scale(rng):
     config = smg.inverse_kinematics(PARAMS, random_poses(rng, 5))
-    default, other = smg.classify(config), smg.classify(config, length_scale=650.0)
+    default, other = paper.classify(config), paper.classify(config, length_scale=650.0)
     # B's entries all scale as 1/L², A's first column as 1/L² and the rest as 1/L.
     np.testing.assert_allclose(other.inverse_closeness, default.inverse_closeness, rtol=1e-12)
     assert np.abs(other.direct_closeness - default.direct_closeness).max() > 1e-3
-    jac = smg.jacobians(config, length_scale=400.0)
-    np.testing.assert_allclose(jac.B, smg.jacobians(config).B / 4.0, atol=1e-15)
+    jac = paper.jacobians(config, length_scale=400.0)
+    np.testing.assert_allclose(jac.B, paper.jacobians(config).B / 4.0, atol=1e-15)
     with pytest.raises(ScrewkitValueError, match=r"Expected `length_scale` to be a positive"):
-        smg.jacobians(config, length_scale=-1.0)
+        paper.jacobians(config, length_scale=-1.0)
 
 
 # --------------------------------------------------------------------------------------------------
@@ -371,16 +370,16 @@ def test_fig_7a_aligned_points_are_not_singular():
     v = leg_vectors(config, 0)
     aligned = np.linalg.norm(np.cross(v["rho3"], v["rho1"])) / np.linalg.norm(v["rho1"])
     assert aligned < 1e-10
-    jac = smg.jacobians(config)
+    jac = paper.jacobians(config)
     assert rank(jac.B) == 4 and closeness(jac.B) > REGULAR  # the paper's Fig. 7(a) is regular
-    assert smg.classify(config).label.tolist() == "regular"
+    assert paper.classify(config).label.tolist() == "regular"
 
 
 def test_fig_7b_vertical_distal_link_is_not_singular():
     config = config_from_leg_one([0.2, -0.6, -np.pi / 2 + 0.6, 0.0], (-1, -1))  # θ_I23 = -π/2
     v = leg_vectors(config, 0)
     assert np.linalg.norm(np.cross(v["rho3"], K)) < 1e-12  # ρ_I3 ∥ k (Eq. 21b)
-    jac = smg.jacobians(config)
+    jac = paper.jacobians(config)
     assert rank(jac.B) == 4 and closeness(jac.B) > REGULAR
 
 
@@ -391,7 +390,7 @@ def test_eqs_21a_and_21b_together_are_singular():
     v = leg_vectors(config, 0)
     assert abs(np.dot(v["f"], np.cross(v["rho3"], v["rho1"]))) < 1e-12
     assert abs(np.dot(v["f"], np.cross(v["rho3"], K))) < 1e-12
-    jac = smg.jacobians(config)
+    jac = paper.jacobians(config)
     assert rank(jac.B) == 3 and closeness(jac.B) < SINGULAR
     assert np.linalg.norm(jac.B[:3, 0]) < 1e-12  # v_I = 0
 
@@ -404,11 +403,11 @@ def test_wrist_on_the_pan_axis_is_singular_at_any_inclination():
     config = config_from_leg_one([0.0, tilt, distal - tilt, 0.4], (-1, -1))
     v = leg_vectors(config, 0)
     assert abs(np.dot(v["f"], np.cross(v["rho3"], K))) > 0.5 * np.linalg.norm(v["rho3"])
-    factors = smg.singularity_factors(config)
+    factors = paper.singularity_factors(config)
     assert abs(factors.reach[0]) < 1e-12
-    jac = smg.jacobians(config)
+    jac = paper.jacobians(config)
     assert rank(jac.B) == 3 and closeness(jac.B) < SINGULAR
-    assert smg.classify(config).label.tolist() == "inverse"
+    assert paper.classify(config).label.tolist() == "inverse"
 
 
 @pytest.mark.parametrize(
@@ -416,9 +415,9 @@ def test_wrist_on_the_pan_axis_is_singular_at_any_inclination():
 )
 def test_extended_or_folded_leg_is_singular(distal, described):
     config = config_from_leg_one([0.3, -1.0, distal, 0.2], (-1, -1))
-    factors = smg.singularity_factors(config)
+    factors = paper.singularity_factors(config)
     assert abs(factors.delta[0]) < 1e-12, described  # Δ_I = 0 (Eq. 20b)
-    jac = smg.jacobians(config)
+    jac = paper.jacobians(config)
     assert rank(jac.B) == 3 and closeness(jac.B) < SINGULAR
     assert rank(jac.A) == 4
 
@@ -442,7 +441,7 @@ def parallel_check(config: smg.McGillConfiguration) -> tuple[float, float]:
     """(sine of the angle between φ_I and φ_II, closeness of A)."""
     phi_one, phi_two = leg_vectors(config, 0)["phi"], leg_vectors(config, 1)["phi"]
     sine = np.linalg.norm(np.cross(phi_one, phi_two)) / np.linalg.norm(phi_one)
-    return float(sine / np.linalg.norm(phi_two)), closeness(smg.jacobians(config).A)
+    return float(sine / np.linalg.norm(phi_two)), closeness(paper.jacobians(config).A)
 
 
 @pytest.mark.parametrize("x", [0.0, 150.0])
@@ -460,7 +459,7 @@ def test_fig_8a_two_vertical_distal_links(x):
         assert np.linalg.norm(np.cross(leg_vectors(config, leg)["rho3"], K)) < 1e-9
     sine, a_closeness = parallel_check(config)
     planes = np.linalg.norm(np.cross(config.tilt_axis[0], config.tilt_axis[1]))
-    assert a_closeness < SINGULAR and rank(smg.jacobians(config).A) == 3
+    assert a_closeness < SINGULAR and rank(paper.jacobians(config).A) == 3
     if x == 0.0:
         assert planes < 1e-12 and sine < 1e-9
     else:
@@ -479,7 +478,7 @@ def test_fig_8b_two_horizontal_distal_links(x):
         assert abs(leg_vectors(config, leg)["rho3"][2]) < 1e-9
     sine, a_closeness = parallel_check(config)
     assert a_closeness < SINGULAR and sine < 1e-9
-    assert smg.classify(config).label.tolist() == "direct"
+    assert paper.classify(config).label.tolist() == "direct"
 
 
 @pytest.mark.parametrize(
@@ -504,37 +503,37 @@ def test_eq_24_holds_at_any_common_inclination(mode, z, ends):
 
 
 def test_eq_22_is_sufficient_but_not_necessary():
-    pose = smg.locate_direct_singularity(PARAMS, [30.0, -20.0, -600.0, 0.2],
+    pose = paper.locate_direct_singularity(PARAMS, [30.0, -20.0, -600.0, 0.2],
                                          [30.0, -20.0, -600.0, 1.2])
     config = smg.inverse_kinematics(PARAMS, pose)
     sine, a_closeness = parallel_check(config)
-    assert a_closeness < SINGULAR and rank(smg.jacobians(config).A) == 3
+    assert a_closeness < SINGULAR and rank(paper.jacobians(config).A) == 3
     assert sine > 0.1  # φ_I ∦ φ_II
-    assert abs(smg.singularity_factors(config).parallel) < 1e-12
+    assert abs(paper.singularity_factors(config).parallel) < 1e-12
 
 
 def test_parallel_factor_vanishes_exactly_where_a_loses_rank(rng):
     config = smg.inverse_kinematics(PARAMS, random_poses(rng, 40), (1, -1, -1, 1))
-    factor = smg.singularity_factors(config).parallel
-    a_closeness = smg.classify(config).direct_closeness
+    factor = paper.singularity_factors(config).parallel
+    a_closeness = paper.classify(config).direct_closeness
     assert np.all((np.abs(factor) > 1e-4) == (a_closeness > 1e-4))
     # The two measures vanish to the same (first) order along a path through a singularity.
     start, end = np.array([30.0, -20.0, -600.0, 0.2]), np.array([30.0, -20.0, -600.0, 1.2])
-    pose = smg.locate_direct_singularity(PARAMS, start, end)
+    pose = paper.locate_direct_singularity(PARAMS, start, end)
     near = pose + np.outer([1e-4, 2e-4], end - start)
     near_config = smg.inverse_kinematics(PARAMS, near)
-    ratio = smg.singularity_factors(near_config).parallel / smg.classify(near_config).direct_closeness
+    ratio = paper.singularity_factors(near_config).parallel / paper.classify(near_config).direct_closeness
     assert ratio[1] / ratio[0] == pytest.approx(1.0, rel=1e-3)
 
 
 def test_combined_singularity():
     # Leg I extended (B singular) and the bar turned about O_I3 until A is singular.
     def parallel(angles: np.ndarray) -> np.ndarray:
-        return smg.singularity_factors(config_from_leg_one(list(angles), (-1, -1))).parallel
+        return paper.singularity_factors(config_from_leg_one(list(angles), (-1, -1))).parallel
 
     angles = bisect_segment(parallel, [0.0, -1.0, 0.0, -1.5], [0.0, -1.0, 0.0, -1.0])
     config = config_from_leg_one(list(angles), (-1, -1))
-    label = smg.classify(config)
+    label = paper.classify(config)
     assert label.label.tolist() == "combined"
     assert label.inverse_closeness < SINGULAR and label.direct_closeness < SINGULAR
 
@@ -552,8 +551,8 @@ def test_change_of_length_unit(scale, index):
     scaled_poses = poses * np.array([scale, scale, scale, 1.0])
     scaled = smg.inverse_kinematics(PARAMS.scaled(scale), scaled_poses, mode)
     np.testing.assert_allclose(wrap(scaled.joint_angles - config.joint_angles), 0.0, atol=1e-9)
-    np.testing.assert_allclose(smg.jacobians(scaled).A, smg.jacobians(config).A, atol=1e-9)
-    one, two = smg.classify(config), smg.classify(scaled)
+    np.testing.assert_allclose(paper.jacobians(scaled).A, paper.jacobians(config).A, atol=1e-9)
+    one, two = paper.classify(config), paper.classify(scaled)
     np.testing.assert_allclose(two.direct_closeness, one.direct_closeness, rtol=1e-8)
     np.testing.assert_allclose(two.inverse_closeness, one.inverse_closeness, rtol=1e-8)
 
@@ -586,11 +585,11 @@ def test_rigid_motion_of_the_base_frame(quaternion, shift, index):
     }
     other = smg.McGillConfiguration(config.params, config.mode, config.pose, config.joint_angles,
                                     **moved)
-    for a, b in zip((smg.jacobians(config).A, smg.jacobians(config).B),
-                    (smg.jacobians(other).A, smg.jacobians(other).B), strict=True):
+    for a, b in zip((paper.jacobians(config).A, paper.jacobians(config).B),
+                    (paper.jacobians(other).A, paper.jacobians(other).B), strict=True):
         np.testing.assert_allclose(np.linalg.svd(b, compute_uv=False),
                                    np.linalg.svd(a, compute_uv=False), atol=1e-9)
-    f_one, f_two = smg.singularity_factors(config), smg.singularity_factors(other)
+    f_one, f_two = paper.singularity_factors(config), paper.singularity_factors(other)
     np.testing.assert_allclose(f_two.parallel, f_one.parallel, atol=1e-9)
     np.testing.assert_allclose(f_two.reach, f_one.reach, atol=1e-9)
 
@@ -601,7 +600,7 @@ def test_rigid_motion_of_the_base_frame(quaternion, shift, index):
 
 
 def test_joint_graph_has_the_expected_loops():
-    joints = smg.inverse_kinematics(PARAMS, HOME).joints
+    joints = smg.joints(smg.inverse_kinematics(PARAMS, HOME)).specs
     graph = nx.MultiGraph()
     for joint in joints:
         graph.add_edge(joint.parent, joint.child, key=joint.name)
@@ -613,12 +612,12 @@ def test_joint_graph_has_the_expected_loops():
 
 
 def test_parallelogram_corners(rng):
-    config = smg.inverse_kinematics(PARAMS, random_poses(rng, 3))
-    joints = {j.name: j for j in config.joints}
+    # each hinge's point nearest the origin: the corners differ by vectors normal to the hinges f_J
+    table = smg.joints(smg.inverse_kinematics(PARAMS, random_poses(rng, 3)))
     for leg in smg.LEGS:
         for part, length, width in (("proximal", PARAMS.l2, PARAMS.proximal_width),
                                     ("distal", PARAMS.l3, PARAMS.distal_width)):
-            a, b, c, d = (joints[f"{leg}.{part}.{t}"].point for t in "abcd")
+            a, b, c, d = (S.axis(table.joint_screws(f"{leg}.{part}.{t}")[:, 0])[0] for t in "abcd")
             np.testing.assert_allclose(c - a, d - b, atol=1e-9)
             np.testing.assert_allclose(np.linalg.norm(c - a, axis=-1), length)
             np.testing.assert_allclose(np.linalg.norm(b - a, axis=-1), width)
@@ -636,28 +635,26 @@ def test_joint_screws_reproduce_the_platform_twist(rng):
     ) / (2 * step)
     omega = rates[3] * K
     twist = np.concatenate([omega, rates[:3] - np.cross(omega, pose[:3])])
-    joints = {j.name: j for j in config.joints}
+    table = smg.joints(config)
     for leg, name in enumerate(smg.LEGS):
         t1, t2, t3, t4 = angles_rate[leg]
         for side in (("a", "c"), ("b", "d")):
             chain = [(f"{name}.pan", t1), (f"{name}.proximal.{side[0]}", t2),
                      (f"{name}.proximal.{side[1]}", -t2), (f"{name}.distal.{side[0]}", t2 + t3),
                      (f"{name}.distal.{side[1]}", -(t2 + t3)), (f"{name}.wrist", t4)]
-            total = sum(rate * joints[joint].screw() for joint, rate in chain)
+            total = sum(rate * table.joint_screws(joint)[0] for joint, rate in chain)
             np.testing.assert_allclose(total, twist, atol=1e-6)
 
 
-def test_joint_axis_errors():
+def test_joint_row_errors():
     with pytest.raises(ScrewkitValueError, match=r"Expected `kind` of joint 'x' to be one of"):
-        JointAxis("x", "C", "a", "b", [0, 0, 0], [0, 0, 1])
+        joint_row("a", "b", "x", "C", [0, 0, 0], [0, 0, 1])
     with pytest.raises(ScrewkitValueError, match=r"Expected `pitch` of R joint 'x' to be 0, got 1"):
-        JointAxis("x", "R", "a", "b", [0, 0, 0], [0, 0, 1], pitch=1.0)
-    with pytest.raises(ScrewkitValueError, match=r"Expected `direction` of joint 'x' to be a unit"):
-        JointAxis("x", "R", "a", "b", [0, 0, 0], [0, 0, 2])
-    with pytest.raises(ScrewkitValueError, match=r"Expected `point of joint 'x'` to have shape"):
-        JointAxis("x", "R", "a", "b", [0, 0], [0, 0, 1])
-    prismatic = JointAxis("x", "P", "a", "b", [1, 2, 3], [0, 1, 0])
-    np.testing.assert_array_equal(prismatic.screw(), [0, 0, 0, 0, 1, 0])
+        joint_row("a", "b", "x", "R", [0, 0, 0], [0, 0, 1], pitch=1.0)
+    with pytest.raises(ScrewkitValueError, match=r"Expected `point` to have shape"):
+        joint_row("a", "b", "x", "R", [0, 0], [0, 0, 1])
+    prismatic = joint_row("a", "b", "x", "P", [1, 2, 3], [0, 1, 0])
+    np.testing.assert_array_equal(prismatic[4], [[0, 0, 0, 0, 1, 0]])
 
 
 # --------------------------------------------------------------------------------------------------
@@ -669,7 +666,7 @@ def test_classification_to_dict_and_errors():
     result = classify_jacobians(np.eye(4), np.diag([1.0, 0.0, 1.0, 1.0]), rtol=1e-9)
     assert result.to_dict()["label"] == "inverse" and "inverse" in str(result)
     with pytest.raises(ScrewkitValueError, match=r"Expected `rtol` to be a number in \[0, 1\)"):
-        smg.classify(smg.inverse_kinematics(PARAMS, HOME), rtol=1.5)
+        paper.classify(smg.inverse_kinematics(PARAMS, HOME), rtol=1.5)
     with pytest.raises(ScrewkitValueError, match=r"signs \(\+1 or -1\), got 5"):
         checked_mode(5, "mode", 2)
 
@@ -702,9 +699,9 @@ def test_test_cycle_with_our_dimensions():
     # on those unpublished dimensions; in the mirror-symmetric modes the 180° turn comes close to,
     # or crosses, a parallel singularity.
     path = pick_and_place_cycle([0.0, -150.0, -500.0, 0.0], np.pi / 2, samples_per_segment=40)
-    result = smg.classify(smg.inverse_kinematics(PARAMS, path, (1, 1, -1, 1)))
+    result = paper.classify(smg.inverse_kinematics(PARAMS, path, (1, 1, -1, 1)))
     assert result.direct_closeness.min() > 0.1 and result.inverse_closeness.min() > 0.1
-    symmetric = smg.classify(smg.inverse_kinematics(PARAMS, path, smg.DEFAULT_MODE))
+    symmetric = paper.classify(smg.inverse_kinematics(PARAMS, path, smg.DEFAULT_MODE))
     assert symmetric.direct_closeness.min() < 0.05
 
 
@@ -720,19 +717,19 @@ def with_changes(**changes: float) -> smg.McGillParameters:
 def test_what_depends_on_our_choices(rng):
     poses = random_poses(rng, 10)
     reference = smg.inverse_kinematics(PARAMS, poses)
-    jac = smg.jacobians(reference)
+    jac = paper.jacobians(reference)
     # Widths: only the corner axes of the parallelograms move.
     wide = smg.inverse_kinematics(with_changes(proximal_width=10.0, distal_width=200.0), poses)
     np.testing.assert_array_equal(wide.joint_angles, reference.joint_angles)
-    np.testing.assert_array_equal(smg.jacobians(wide).A, jac.A)
+    np.testing.assert_array_equal(paper.jacobians(wide).A, jac.A)
     # b4 + b5: a vertical translation of the workspace; the split only moves O_J4 on its axis.
     shifted = smg.inverse_kinematics(with_changes(b4=-150.0, b5=20.0), poses - [0, 0, 30.0, 0])
     np.testing.assert_allclose(shifted.joint_angles, reference.joint_angles, atol=1e-12)
-    np.testing.assert_allclose(smg.jacobians(shifted).A, jac.A, atol=1e-12)
+    np.testing.assert_allclose(paper.jacobians(shifted).A, jac.A, atol=1e-12)
     # l0 and l1 change the joint angles, the Jacobians and so the singularity loci.
     for changes in ({"l0": 500.0}, {"l1": 50.0}):
         other = smg.inverse_kinematics(with_changes(**changes), poses)
-        assert np.abs(smg.jacobians(other).A - jac.A).max() > 1e-2
+        assert np.abs(paper.jacobians(other).A - jac.A).max() > 1e-2
 
 
 @given(
@@ -755,10 +752,10 @@ def test_jacobian_identities_hold_for_any_dimensions(dims, angles, mode_two):
     delta = rates * [step, step, step, step / (l2 + l3)]
     ahead = smg.inverse_kinematics(params, pose + delta, config.mode).actuated
     behind = smg.inverse_kinematics(params, pose - delta, config.mode).actuated
-    jac = smg.jacobians(config)
+    jac = paper.jacobians(config)
     twist = np.concatenate([[delta[3]], delta[:3] / radius])
     lhs, rhs = jac.A @ twist, jac.B @ (wrap(ahead - behind) / 2)
     assert np.abs(lhs - rhs).max() <= 1e-5 * (np.abs(lhs).max() + np.abs(rhs).max()) + 1e-12
-    factors = smg.singularity_factors(config)
+    factors = paper.singularity_factors(config)
     np.testing.assert_allclose(factors.delta, -l2 * l3 / radius**2 * np.sin(
         config.joint_angles[:, 2]), atol=1e-9 * l2 * l3 / radius**2)

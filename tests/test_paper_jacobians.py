@@ -48,7 +48,7 @@ from screwkit.families import planar_3rrp as planar
 from screwkit.jacobians import jacobians_from_wrenches
 from screwkit.wrenches import wrench_analysis
 
-from . import paper_003
+from . import paper_000, paper_001, paper_003
 from . import test_planar_catalog as planar_catalog
 from .facts_two_limb import singular_configs
 
@@ -82,7 +82,7 @@ def close(a, b, scale):
 # McGill SMG (paper 001)
 # --------------------------------------------------------------------------------------------------
 
-L = MCGILL.parameters.radius  # the default length_scale of smg.jacobians (paper 001's L)
+L = MCGILL.parameters.radius  # the default length_scale of paper_001.jacobians (paper 001's L)
 #: t = (φ̇, ṗ/L) = T χ̇ with χ̇ = (ẋ, ẏ, ż, φ̇) (Eqs. 14, 17b)
 T = np.zeros((4, 4))
 T[0, 3], T[1:, :3] = 1.0, np.eye(3) / L
@@ -125,8 +125,8 @@ def mcgill_poses(mode, rng, count):
 @pytest.mark.parametrize("mode", smg.WORKING_MODES)
 def test_mcgill_paper_jacobians_are_m_times_ours(mode, rng):
     for config in mcgill_poses(mode, rng, 2):
-        paper, wrench = smg.jacobians(config), ours(smg, config)
-        assert wrench.type == str(smg.classify(config).label) == "regular"
+        paper, wrench = paper_001.jacobians(config), ours(smg, config)
+        assert wrench.type == str(paper_001.classify(config).label) == "regular"
         m = mcgill_m(config)
         assert close(paper.A @ T, m @ wrench.A, np.abs(paper.A).max())
         assert close(paper.B, m @ wrench.B, np.abs(paper.B).max())
@@ -151,9 +151,9 @@ MCGILL_CASES = {  # located pose -> (type, the stuck actuator)
 @pytest.mark.parametrize("kind", MCGILL_CASES)
 def test_mcgill_types_agree_at_the_located_singularities(kind):
     config = singular_configs(MCGILL)[kind]
-    paper, wrench = smg.jacobians(config), ours(smg, config, rtol=1e-7)
+    paper, wrench = paper_001.jacobians(config), ours(smg, config, rtol=1e-7)
     expected, stuck = MCGILL_CASES[kind]
-    assert wrench.type == str(smg.classify(config, rtol=1e-7).label) == expected
+    assert wrench.type == str(paper_001.classify(config, rtol=1e-7).label) == expected
     m = mcgill_m(config)
     if stuck is None:  # the relation holds, and gives the same motion with the actuators locked
         assert close(paper.A @ T, m @ wrench.A, np.abs(paper.A).max())
@@ -175,7 +175,7 @@ PI = np.eye(4)[[0, 2, 1, 3]]
 
 
 def peppermill_relation(config, wrench):
-    paper = pm.jacobians(config)
+    paper = paper_000.jacobians(config)
     params = config.params
     d = np.diag([1.0, config.mode[0], 1.0, config.mode[1]])
     r = np.diag([1.0, 1.0, params.r1, params.r2])
@@ -203,7 +203,7 @@ def peppermill_configs(rng):
 def test_peppermill_paper_jacobians_equal_ours_up_to_signs_order_and_r(rng):
     for config in peppermill_configs(rng):
         wrench = ours(pm, config)
-        assert wrench.type == str(pm.classify(config).label) == "regular"
+        assert wrench.type == str(paper_000.classify(config).label) == "regular"
         paper, _, r = peppermill_relation(config, wrench)
         # the same kinematic map: δx = A⁻¹B δθ with δθ = R Πᵀ θ̇
         np.testing.assert_allclose(wrench.kinematic_jacobian(), np.linalg.solve(paper.A, paper.B) @ r @ PI.T,
@@ -218,8 +218,8 @@ def test_peppermill_types_agree_at_the_located_singularities(kind):
     config = singular_configs(PEPPERMILL)[kind]
     wrench = ours(pm, config, rtol=1e-7)
     expected, stuck = PEPPERMILL_CASES[kind]
-    assert wrench.type == str(pm.classify(config, rtol=1e-7).label) == expected
-    paper = pm.jacobians(config)
+    assert wrench.type == str(paper_000.classify(config, rtol=1e-7).label) == expected
+    paper = paper_000.jacobians(config)
     if stuck is None:
         peppermill_relation(config, wrench)
         np.testing.assert_allclose(null_vector(wrench.A), null_vector(paper.A), atol=1e-6)

@@ -44,7 +44,7 @@ import numpy as np
 import pytest
 
 import screwkit as sk
-from screwkit.families.four_limb_graph import PAPER_002_LEGS
+from screwkit.families.four_limb import PAPER_002_LEGS
 
 from .singular_surfaces import (
     DISTANCES,

@@ -20,8 +20,6 @@ import pytest
 
 from screwkit.catalog import Mechanism, list_mechanisms, load_mechanism
 from screwkit.cli import main
-from screwkit.exceptions import ScrewkitValueError
-from screwkit.families import mcgill_smg, peppermill
 from screwkit.families.four_limb import inverse_kinematics, reachable
 from screwkit.posed import PosedMechanism
 from screwkit.report import analyze
@@ -247,12 +245,3 @@ def test_cli_text_has_the_jacobians_section(capsys, reports):
 # Errors
 # --------------------------------------------------------------------------------------------------
 
-
-def test_twist_basis_index_errors():
-    cases = {"mcgill_smg": (mcgill_smg, "pose"), "peppermill": (peppermill, "pose")}
-    for name, (family, what) in cases.items():
-        mechanism = load_mechanism(name)
-        config = mechanism.configuration(mechanism.random_poses(np.random.default_rng(2), 2))
-        with pytest.raises(ScrewkitValueError, match=rf"Expected `index` to pick one {what} of the batch of "
-                                                     rf"shape \(2,\), got \(2,\)"):
-            family.twist_basis(config, (2,))

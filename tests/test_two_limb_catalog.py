@@ -25,14 +25,16 @@ from screwkit.diagram import wrench_diagram
 from screwkit.exceptions import CatalogError, ScrewkitValueError
 from screwkit.families import mcgill_smg as smg
 from screwkit.families import peppermill as pm
-from screwkit.families._two_limb import JointAxis, gosselin_angeles_label, joint_twist_graph
+from screwkit.jacobians import gosselin_angeles_label
+from screwkit.joints import JointTable
 from screwkit.report import analyze
 from screwkit.screwsystem import ScrewSystem
 from screwkit.singularity import classify
 from screwkit.twistgraph import equivalent_twist_graph, fundamental_loops, platform_twist_system
 from screwkit.wrenches import wrench_analysis
 
-from .facts_two_limb import family_module, labels, singular_configs
+from .facts_two_limb import family_module, labels, paper_module, singular_configs
+from .two_limb_papers import bisect_segment
 
 MCGILL = load_mechanism("mcgill_smg")
 PEPPERMILL = load_mechanism("peppermill")
@@ -105,8 +107,8 @@ def test_platform_twist_system_is_schoenflies_at_random_poses(name, rng):
     mechanism = ROBOTS[name]
     modes = pm.WORKING_MODES if name == "peppermill" else (smg.DEFAULT_MODE,)
     for index, pose in enumerate(mechanism.random_poses(rng, 6)):
-        graph = family_module(mechanism).twist_graph(
-            mechanism.configuration(pose, mode=modes[index % len(modes)]))
+        graph = family_module(mechanism).joints(
+            mechanism.configuration(pose, mode=modes[index % len(modes)])).graph()
         for method in ("loop_closure", "reduction"):
             system = platform_twist_system(graph, method=method)
             assert system.order == 4 and system.is_equivalent(ScrewSystem.span(SCHOENFLIES)), method
@@ -141,7 +143,7 @@ def test_mcgill_actuation_wrenches_are_the_lines_of_eqs_9_to_11(rng):
     for pose in MCGILL.random_poses(rng, 3):
         config = MCGILL.configuration(pose)
         scale = MCGILL.parameters.l2
-        for limb in wrench_analysis(smg.twist_graph(config)).limbs:
+        for limb in wrench_analysis(smg.joints(config).graph()).limbs:
             leg = smg.LEGS.index(limb.actuated_joint.split(".")[0])
             wrench = limb.actuation_wrench
             assert abs(S.pitch(wrench)) < 1e-9 * scale
@@ -161,7 +163,7 @@ def test_peppermill_actuation_wrenches_are_the_lines_of_eq_43(rng):
     for pose in PEPPERMILL.random_poses(rng, 3):
         config = PEPPERMILL.configuration(pose)
         scale = PEPPERMILL.parameters.l1
-        for limb in wrench_analysis(pm.twist_graph(config)).limbs:
+        for limb in wrench_analysis(pm.joints(config).graph()).limbs:
             index = int(limb.actuated_joint[0]) - 1
             wrench, axis = limb.actuation_wrench, config.drive_axis[index]
             assert abs(S.pitch(wrench)) < 1e-9 * scale
@@ -192,11 +194,11 @@ def test_workspace_is_reachable_and_free_of_singularities(name, rng):
     modes = pm.WORKING_MODES if name == "peppermill" else (smg.DEFAULT_MODE,)
     for mode in modes:
         config = family.inverse_kinematics(mechanism.parameters, poses, mode)  # raises if out of reach
-        result = family.classify(config)
+        result = paper_module(mechanism).classify(config)
         assert np.all(result.label == "regular")
         assert result.direct_closeness.min() > 0.05 and result.inverse_closeness.min() > 0.2
         if name == "mcgill_smg":
-            factors = smg.singularity_factors(config)
+            factors = paper_module(mechanism).singularity_factors(config)
             assert len(np.unique(np.sign(factors.parallel))) == 1
             # no flat parallelogram: long links at least 10° away from the (vertical) short sides
             for lower, upper in ((config.shoulder, config.elbow), (config.elbow, config.wrist)):
@@ -229,7 +231,7 @@ B_COLUMNS = {"mcgill_smg": ("I.pan", "I.proximal.a", "II.pan", "II.proximal.a"),
 
 def platform_twist_from_a(mechanism, config) -> np.ndarray:
     """The null vector of A as a twist (ω; v_O): the motion left with the actuators locked."""
-    jac = family_module(mechanism).jacobians(config)
+    jac = paper_module(mechanism).jacobians(config)
     null = np.linalg.svd(jac.A)[2][-1]
     if mechanism.family == "mcgill_smg":  # t = (φ̇, ṗ/L) with L = R (Eq. 17b)
         rate, velocity = null[0], null[1:] * mechanism.parameters.radius
@@ -246,7 +248,7 @@ def test_singular_poses_are_labelled_like_the_jacobians(name, kind, expected, se
     report, jacobian = labels(mechanism, config, rtol=1e-7)
     assert report.labels == expected
     assert gosselin_angeles_label(report) == jacobian
-    jac = family_module(mechanism).jacobians(config)
+    jac = paper_module(mechanism).jacobians(config)
     if "serial" in expected:
         # the platform loses a freedom, and the disabled actuator is B's null direction
         assert report.lost_dof == 1 and [s.actuated_joint for s in report.serial] == [serial_joint]
@@ -277,14 +279,14 @@ def test_global_wrench_system_degenerates_like_det_a(name):
     # Finite steps h, 2h away from the located parallel singularity: the 6×6 determinant of the
     # global wrench system vanishes to first order, in a constant ratio to the Jacobian's factor.
     mechanism = ROBOTS[name]
-    family = family_module(mechanism)
+    paper = paper_module(mechanism)
     pose = singular_configs(mechanism)["direct"].pose
     step = np.array([0, 0, 0, 1e-4]) if name == "mcgill_smg" else np.array([0, 1e-2, 0, 0])
     near = [pose + h * step for h in (1, 2)]
     wrenches = [global_wrench_determinant(mechanism, p) for p in near]
-    jacobian = [abs(float(family.singularity_factors(mechanism.configuration(p)).parallel
+    jacobian = [abs(float(paper.singularity_factors(mechanism.configuration(p)).parallel
                           if name == "mcgill_smg" else
-                          family.singularity_factors(mechanism.configuration(p)).det_a)) for p in near]
+                          paper.singularity_factors(mechanism.configuration(p)).det_a)) for p in near]
     assert wrenches[0] > 1e-9 and global_wrench_determinant(mechanism, pose) < 1e-9 * wrenches[0] * 1e4
     assert wrenches[1] / wrenches[0] == pytest.approx(2.0, rel=1e-3)
     assert wrenches[1] / jacobian[1] == pytest.approx(wrenches[0] / jacobian[0], rel=1e-3)
@@ -295,7 +297,7 @@ def test_peppermill_equal_leads_are_an_actuation_singularity_everywhere(rng):
     # along its axis relative to both nuts with every actuator locked
     params = dataclasses.replace(PEPPERMILL.parameters, p2=PEPPERMILL.parameters.p1)
     for pose in PEPPERMILL.random_poses(rng, 3):
-        graph = pm.twist_graph(pm.inverse_kinematics(params, pose))
+        graph = pm.joints(pm.inverse_kinematics(params, pose)).graph()
         report = classify(graph)
         assert report.labels == ("actuation",) and report.uncontrolled_dof == 1
         nut = graph.edges["1.nut", "platform", "1.screw"]["joint"].screws[0]
@@ -310,7 +312,6 @@ def test_peppermill_equal_leads_are_an_actuation_singularity_everywhere(rng):
 
 def distal_pose(x: float, component: str) -> np.ndarray:
     """Default working mode, φ = 0: both distal links horizontal ('v') or vertical ('h')."""
-    from screwkit.families._two_limb import bisect_segment
 
     def value(pose: np.ndarray) -> np.ndarray:
         config = smg.inverse_kinematics(MCGILL.parameters, pose)
@@ -323,22 +324,24 @@ def distal_pose(x: float, component: str) -> np.ndarray:
     return bisect_segment(value, [x, 0.0, z[0], 0.0], [x, 0.0, z[1], 0.0])
 
 
-def tilted_short_sides(config: smg.McGillConfiguration, degrees: float) -> list[JointAxis]:
+def tilted_short_sides(config: smg.McGillConfiguration, degrees: float) -> JointTable:
     """The joints with every parallelogram's short sides turned by ``degrees`` from the vertical,
     within the leg plane (the hinges b, d move; the kinematics and A, B do not change)."""
     params, angle = config.params, np.radians(degrees)
-    out = []
-    for joint in config.joints:
-        leg, part, *tag = joint.name.split(".")
-        point = joint.point
+    table = smg.joints(config)
+    rows = []
+    for spec in table.specs:
+        leg, part, *tag = spec.name.split(".")
+        screws = table.joint_screws(spec.name)
         if tag and tag[0] in "bd":
             index = smg.LEGS.index(leg)
             width = params.proximal_width if part == "proximal" else params.distal_width
             side = np.cos(angle) * K + np.sin(angle) * np.cross(K, config.tilt_axis[index])
-            point = point - width * K + width * side
-        out.append(JointAxis(joint.name, joint.kind, joint.parent, joint.child, point,
-                             joint.direction, joint.pitch, joint.actuated))
-    return out
+            shift = width * side - width * K  # the hinge's point moves by this: (s; r × s) gains shift × s
+            direction = screws[..., :3]
+            screws = np.concatenate([direction, screws[..., 3:] + np.cross(shift, direction)], axis=-1)
+        rows.append((spec.parent, spec.child, spec.name, spec.type, screws, spec.actuated))
+    return JointTable.from_rows(table.base, table.platform, rows, dof=table.dof)
 
 
 def test_fig_8a_flat_parallelograms_are_a_constraint_singularity_of_the_physical_legs():
@@ -352,7 +355,7 @@ def test_fig_8a_flat_parallelograms_are_a_constraint_singularity_of_the_physical
     assert report.gained_dof == 1 and report.constraint_order == 1
     assert parallel(report.uncontrolled_twists[0][:3], config.tilt_axis[0])
     # with short sides 45° from the vertical no parallelogram is flat: an actuation singularity
-    tilted = classify(joint_twist_graph(tilted_short_sides(config, 45.0)))
+    tilted = classify(tilted_short_sides(config, 45.0).graph())
     assert tilted.labels == ("actuation",) and tilted.gained_dof == 0
 
 
@@ -383,7 +386,7 @@ def test_mcgill_results_do_not_depend_on_the_parallelogram_widths(widths):
     configs = [MCGILL.configuration(), *(singular_configs(MCGILL)[k] for k in ("serial_pan", "direct"))]
     for config in configs:
         other = smg.inverse_kinematics(changed, config.pose, config.mode)
-        (one, spans_one), (two, spans_two) = (wrench_summary(smg.twist_graph(c)) for c in (config, other))
+        (one, spans_one), (two, spans_two) = (wrench_summary(smg.joints(c).graph()) for c in (config, other))
         assert two.labels == one.labels
         assert (two.constraint_order, two.global_order) == (one.constraint_order, one.global_order)
         # each actuation wrench is the same line modulo the constraint couples
@@ -401,19 +404,19 @@ def test_structural_results_hold_for_other_dimensions(name, changes, rng):
     # twist-graph labels agreeing with the Jacobians.
     mechanism = ROBOTS[name]
     params = dataclasses.replace(mechanism.parameters, **changes)
-    family = family_module(mechanism)
+    family, paper = family_module(mechanism), paper_module(mechanism)
     poses = mechanism.random_poses(rng, 4)
     if name == "mcgill_smg":
         poses = poses * [1, 1, 0, 1] + [0, 0, -600.0, 0]  # reachable with l0 = 600, l1 = 100
     for pose in poses:
         config = family.inverse_kinematics(params, pose)
-        report = classify(family.twist_graph(config))
+        report = classify(family.joints(config).graph())
         analysis = report.analysis
         scale = analysis.length_scale
         assert analysis.platform_twists.is_equivalent(ScrewSystem.span(SCHOENFLIES))
         assert S.is_infinite_pitch(analysis.constraint_wrenches.basis, length_scale=scale).sum() == 2
         assert S.is_zero_pitch(analysis.actuation_wrenches, length_scale=scale).sum() == 4
-        assert gosselin_angeles_label(report) == str(family.classify(config).label)
+        assert gosselin_angeles_label(report) == str(paper.classify(config).label)
 
 
 @pytest.mark.parametrize("name", ["mcgill_smg", "peppermill"])
@@ -423,7 +426,7 @@ def test_labels_and_closeness_do_not_depend_on_the_unit_of_length(name):
     for config in (mechanism.configuration(), singular_configs(mechanism)["direct"]):
         metres = family.inverse_kinematics(mechanism.parameters.scaled(1e-3),
                                            config.pose * [1e-3, 1e-3, 1e-3, 1.0], config.mode)
-        one, two = classify(family.twist_graph(config)), classify(family.twist_graph(metres))
+        one, two = classify(family.joints(config).graph()), classify(family.joints(metres).graph())
         assert one.labels == two.labels
         assert (one.constraint_order, one.global_order) == (two.constraint_order, two.global_order)
         # (the actuation closeness needs each actuation wrench's representative modulo the
@@ -444,7 +447,7 @@ def test_diagram_exists_at_the_default_pose_and_degenerates_at_a_serial_singular
     assert diagram.degenerate == () and len(diagram.lines) == 6
     assert diagram.roles.count("actuation") == 4 and diagram.roles.count("constraint") == 2
     serial = next(v for k, v in singular_configs(mechanism).items() if k.startswith("serial"))
-    broken = wrench_diagram(wrench_analysis(family_module(mechanism).twist_graph(serial)))
+    broken = wrench_diagram(wrench_analysis(family_module(mechanism).joints(serial).graph()))
     joint = {"mcgill_smg": "I.pan", "peppermill": "1.turn"}[name]
     assert f"the limb of {joint} is at a serial singularity: it has no actuation wrench" in broken.degenerate
 
@@ -491,11 +494,11 @@ def test_cli_analyze_out_of_reach_names_the_leg(capsys):
 
 
 def test_twist_graph_index_must_pick_one_pose():
-    config = MCGILL.configuration(MCGILL.random_poses(np.random.default_rng(0), 2))
-    assert smg.twist_graph(config, (1,)).number_of_edges() == 20
-    with pytest.raises(ScrewkitValueError, match=r"Expected `index` to pick one pose of the batch of "
-                                                 r"shape \(2,\), got \(2,\)"):
-        smg.twist_graph(config, (2,))
+    table = smg.joints(MCGILL.configuration(MCGILL.random_poses(np.random.default_rng(0), 2)))
+    assert table.graph((1,)).number_of_edges() == 20
+    with pytest.raises(ScrewkitValueError, match=r"Expected `index` to pick one configuration of the batch "
+                                                 r"of shape \(2,\), got \(2,\)"):
+        table.graph((2,))
 
 
 def test_gosselin_angeles_label_refuses_unknown_labels():

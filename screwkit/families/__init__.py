@@ -67,28 +67,6 @@ class Family:
     angle_names: tuple[str, ...]
 
 
-def _axis_joints(config: Any) -> JointTable:
-    """The McGill SMG's and the Peppermill's joints (``config.joints``: batched axes)."""
-    rows = []
-    batch = config.batch_shape
-    for joint in config.joints:
-        screw = np.broadcast_to(joint.screw(), (*batch, 6))[..., None, :]
-        rows.append((joint.parent, joint.child, joint.name, joint.kind, screw, joint.actuated))
-    return JointTable.from_rows("base", "platform", rows, dof=4)
-
-
-def _mcgill_basis(config: Any) -> np.ndarray:
-    from ..jacobians import schoenflies_basis
-
-    return schoenflies_basis(config.platform_point, config.pan_axis[..., 0, :])
-
-
-def _peppermill_basis(config: Any) -> np.ndarray:
-    from ..jacobians import schoenflies_basis
-
-    return schoenflies_basis(config.platform_point, config.platform_axis)
-
-
 @functools.cache
 def families() -> dict[str, Family]:
     """The families a catalog entry can name, by name (imported on first use; :func:`register` adds more).
@@ -115,8 +93,8 @@ def families() -> dict[str, Family]:
             "mcgill_smg",
             mcgill_smg.McGillParameters.from_mapping,
             mcgill_smg.inverse_kinematics,
-            _axis_joints,
-            _mcgill_basis,
+            mcgill_smg.joints,
+            mcgill_smg.twist_basis,
             smg,
             ("phi",),
         ),
@@ -124,8 +102,8 @@ def families() -> dict[str, Family]:
             "peppermill",
             peppermill.PeppermillParameters.from_mapping,
             peppermill.inverse_kinematics,
-            _axis_joints,
-            _peppermill_basis,
+            peppermill.joints,
+            peppermill.twist_basis,
             smg,
             ("phi",),
         ),

@@ -47,46 +47,27 @@ elbows away from the other leg. Mode ``(1, 1, -1, 1)`` makes the two legs transl
 which is a parallel singularity (Eq. 24) whenever ``P`` lies midway between the pan axes with
 ``φ = 0``.
 
-Where paper 001 is garbled or wrong (each item is demonstrated in the tests)
----------------------------------------------------------------------------
-1. Eq. (17a) prints ``A_J ∈ R^{3×2}`` and ``B_J ∈ R^{2×4}``. ``A_J = [½ s(J) Φ_J (k × (σ_I - σ_II)),
-   Φ_J]`` is 3×4 and ``B_J = [v_J, Δ_J f_J]`` is 3×2, as Eq. (19) (``A, B ∈ R^{6×4}``, zero blocks
-   ``O_32``) requires.
-2. Sec. 4.2 says the null spaces of ``Φ_I``, ``Φ_II`` are "spanned by vectors ``Φ_I`` and ``Φ_II``":
-   they are spanned by ``φ_I``, ``φ_II`` (lower case, Eq. 17b).
-3. Eqs. (20a)-(21b) and Figs. 7(a), 7(b). From Eq. (10), ``v_J = (ρ_J1 × k) × φ_J``; since
-   ``ρ_J1 × k = (κ_J/L) f_J`` and ``f_J · ρ_J3 = 0``, ``v_J = -(κ_J/L) ρ_J3``. Hence ``v_J = 0``
-   (Eq. 20a) if and only if ``κ_J = 0``: the point ``O_J3`` lies on the pan axis. The paper's
-   "(20a) iff (21a) and (21b)" tacitly assumes ``ρ_J1 ∦ k``; each of ``ρ_J3 ∥ ρ_J1`` (Fig. 7a,
-   ``O_J0, O_J2, O_J3`` aligned) and ``ρ_J3 ∥ k`` (Fig. 7b, distal link vertical) *alone* leaves
-   ``B`` of full rank, and ``κ_J = 0`` is singular whatever the inclination of the distal link.
-4. Eq. (20b): ``Δ_J = -(l2 l3 / L²) sin θ_J3`` vanishes for a fully extended leg (Fig. 7c) and also
-   for a folded one (``θ_J3 = π``), which the paper omits.
-5. Eqs. (22)-(24). ``A t = 0`` means ``σ̇_J ∥ φ_J`` for both legs with ``σ̇_I - σ̇_II =
-   φ̇ k × (σ_I - σ_II)`` (Eq. 12), so ``A`` is rank-deficient if and only if
-   ``det[φ_I, φ_II, k × (σ_I - σ_II)] = 0`` (:func:`singularity_factors`, ``parallel``).
-   ``φ_I ∥ φ_II`` (Eq. 22) is sufficient, not necessary: e.g. two vertical distal links make
-   ``A`` singular for *any* pan angles (``φ_I``, ``φ_II`` and ``k × (σ_I - σ_II)`` are all
-   horizontal), and generic singular poses have ``φ_I ∦ φ_II``. Eq. (24) with parallel leg planes
-   is singular at *any* common inclination of the distal links, not only "both vertical or
-   horizontal"; two horizontal distal links are singular for any leg planes (``φ_J ∥ k``).
-6. Table 1 puts the origin of ``F`` at ``O_I0`` (so does the ``+ l0 j`` of Eq. 3b) while
-   Eqs. (1)-(2) put it midway; we follow Eqs. (1)-(2). Only differences of positions enter ``A``.
-
-The pick-and-place cycle of Sec. 6 is :func:`pick_and_place_cycle` (its start pose and direction are
-not given by the paper; see there).
+Where paper 001 is garbled or wrong
+-----------------------------------
+Table 1 puts the origin of ``F`` at ``O_I0`` (so does the ``+ l0 j`` of Eq. 3b) while Eqs. (1)-(2)
+put it midway; we follow Eqs. (1)-(2). Paper 001's Jacobians ``A``, ``B`` (Eqs. 16-19), the factors
+of their singularities and what the paper gets wrong about them (the printed block shapes of
+Eq. 17a, Figs. 7a-7b, Eq. 22) are a paper analysis, not the robot model: they live in
+``tests/paper_001.py`` beside the tests that check them. The mechanism's own Jacobians and labels
+come from the analysis core (:meth:`screwkit.catalog.Mechanism.at`).
 
 Examples
 --------
 >>> import numpy as np
->>> from screwkit.families.mcgill_smg import McGillParameters, inverse_kinematics, classify
+>>> from screwkit.families.mcgill_smg import McGillParameters, inverse_kinematics, joints
+>>> from screwkit.singularity import classify_table
 >>> smg = McGillParameters(l0=600.0, l1=100.0, l2=600.0, l3=200.0 * np.sqrt(2), radius=200.0,
 ...     b4=-50.0, b5=-50.0, proximal_width=80.0, distal_width=60.0)
->>> config = inverse_kinematics(smg, [0.0, 0.0, -600.0, 0.0])
->>> config.joint_angles[:, 0]  # pan angles: O_I3 and O_II3 lie on the y axis
+>>> config = inverse_kinematics(smg, [[0.0, 0.0, -600.0, 0.0]])
+>>> config.joint_angles[0, :, 0]  # pan angles: O_I3 and O_II3 lie on the y axis
 array([0., 0.])
->>> classify(config).label.tolist()
-'regular'
+>>> classify_table(joints(config)).verdict.tolist()
+['regular']
 """
 
 from __future__ import annotations
@@ -94,29 +75,22 @@ from __future__ import annotations
 import itertools
 from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any, NamedTuple
+from typing import Any
 
-import networkx as nx
 import numpy as np
 
-from .._backend import DEFAULT_RTOL, as_array, checked_length_scale
+from .._backend import as_array
 from ..exceptions import DegenerateGeometryError, ScrewkitValueError, UnreachablePoseError
 from ..jacobians import schoenflies_basis
+from ..joints import JointTable
 from ._two_limb import (
-    Classification,
     ForwardSolutions,
-    Jacobians,
-    JointAxis,
-    _checked_index,
-    bisect_segment,
     check_parameters,
     checked_mode,
-    classify_jacobians,
     describe_indices,
     frozen,
-    joint_twist_graph,
+    joint_row,
     parameters_from_mapping,
-    pick_and_place_cycle,
     wrap_angle,
 )
 
@@ -126,17 +100,11 @@ __all__ = [
     "WORKING_MODES",
     "McGillConfiguration",
     "McGillParameters",
-    "McGillSingularityFactors",
-    "classify",
     "forward_kinematics",
     "inverse_kinematics",
-    "jacobians",
+    "joints",
     "leg_pose",
-    "locate_direct_singularity",
-    "pick_and_place_cycle",
-    "singularity_factors",
     "twist_basis",
-    "twist_graph",
 ]
 
 #: Leg names, in the order of every leg axis of this module.
@@ -174,7 +142,7 @@ class McGillParameters:
         Not given by the paper; only ``b4 + b5`` enters the kinematics.
     proximal_width, distal_width : float
         Short (vertical) sides of the two parallelograms, > 0. Our choice; only the joint axes of
-        :attr:`McGillConfiguration.joints` depend on them.
+        :func:`joints` depend on them.
 
     Examples
     --------
@@ -340,8 +308,8 @@ class McGillConfiguration:
     --------
     >>> p = McGillParameters(600, 100, 600, 282.843, 200, -50, -50, 80, 60)
     >>> config = inverse_kinematics(p, [[0.0, 0.0, -600.0, 0.0], [10.0, 0.0, -600.0, 0.1]])
-    >>> config.batch_shape, config.wrist.shape, len(config.joints)
-    ((2,), (2, 2, 3), 20)
+    >>> config.batch_shape, config.wrist.shape
+    ((2,), (2, 2, 3))
     """
 
     params: McGillParameters
@@ -373,44 +341,6 @@ class McGillConfiguration:
     def actuated(self) -> np.ndarray:
         """``(θ_I1, θ_I2, θ_II1, θ_II2)``, shape (..., 4): the vector ``θ`` of Eq. (19)."""
         return np.asarray(self.joint_angles[..., :2].reshape(*self.batch_shape, 4))
-
-    @property
-    def joints(self) -> tuple[JointAxis, ...]:
-        """The 20 physical joints (10 per leg), as needed to build the twist graph.
-
-        Per leg ``J``: ``J.pan`` (base → ``J.carrier``, actuated), the proximal parallelogram
-        ``J.proximal.a`` (``J.carrier`` → ``J.proximal_a`` at ``O_J1``, actuated tilt),
-        ``J.proximal.b`` (``J.carrier`` → ``J.proximal_b`` at ``O_J1 + w k``), ``J.proximal.c``
-        (``J.proximal_a`` → ``J.elbow`` at ``O_J2``), ``J.proximal.d`` (``J.proximal_b`` →
-        ``J.elbow`` at ``O_J2 + w k``), the distal parallelogram ``J.distal.a``-``d`` likewise from
-        ``J.elbow`` to ``J.wrist`` (corners ``O_J2``, ``O_J2 + w k``, ``O_J3``, ``O_J3 + w k``),
-        and ``J.wrist`` (``J.wrist`` → ``platform``, axis ``k`` through ``O_J4``).
-        """
-        out: list[JointAxis] = []
-        for index, leg in enumerate(LEGS):
-            k = self.pan_axis[..., index, :]
-            f = self.tilt_axis[..., index, :]
-            out.append(JointAxis(f"{leg}.pan", "R", "base", f"{leg}.carrier",
-                                 self.pan_point[..., index, :], k, actuated=True))
-            for part, start, end, width, first, last in (
-                ("proximal", self.shoulder, self.elbow, self.params.proximal_width,
-                 f"{leg}.carrier", f"{leg}.elbow"),
-                ("distal", self.elbow, self.wrist, self.params.distal_width,
-                 f"{leg}.elbow", f"{leg}.wrist"),
-            ):
-                lower, upper = start[..., index, :], end[..., index, :]
-                corners = (
-                    ("a", first, f"{leg}.{part}_a", lower),
-                    ("b", first, f"{leg}.{part}_b", lower + width * k),
-                    ("c", f"{leg}.{part}_a", last, upper),
-                    ("d", f"{leg}.{part}_b", last, upper + width * k),
-                )
-                for tag, parent, child, point in corners:
-                    out.append(JointAxis(f"{leg}.{part}.{tag}", "R", parent, child, point, f,
-                                         actuated=(part, tag) == ("proximal", "a")))
-            out.append(JointAxis(f"{leg}.wrist", "R", f"{leg}.wrist", "platform",
-                                 self.wrist_joint[..., index, :], k))
-        return tuple(out)
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dictionary of the pose, the mode and the joint angles."""
@@ -711,243 +641,26 @@ def forward_kinematics(
 
 
 # --------------------------------------------------------------------------------------------------
-# Jacobians and singularities
+# The family protocol: joints and twist basis (screwkit.families)
 # --------------------------------------------------------------------------------------------------
 
 
-def _length(config: McGillConfiguration, length_scale: float | None) -> float:
-    if length_scale is None:
-        return config.params.radius
-    return checked_length_scale(length_scale)
-
-
-def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    return np.asarray(np.sum(a * b, axis=-1))
-
-
-class _Vectors(NamedTuple):
-    k: np.ndarray  # (..., 2, 3) pan axes
-    f: np.ndarray  # (..., 2, 3) f_J
-    rho1: np.ndarray  # (..., 2, 3) ρ_J1 = r_J1 / L, r_J1 = a_J1 + a_J2 + a_J3 (Eqs. 6, 8a)
-    rho2: np.ndarray  # ρ_J2, r_J2 = a_J2 + a_J3
-    phi: np.ndarray  # φ_J = f_J × ρ_J3, r_J3 = a_J3 (Eq. 17b)
-    w: np.ndarray  # (..., 3) ½ k × (σ_I - σ_II) (Eq. 12)
-
-
-def _vectors(config: McGillConfiguration, length_scale: float | None) -> _Vectors:
-    scale = _length(config, length_scale)
-    k, f = config.pan_axis, config.tilt_axis
-    rho3 = (config.wrist - config.elbow) / scale
-    sigma_gap = (config.wrist[..., 0, :] - config.wrist[..., 1, :]) / scale
-    return _Vectors(
-        k=k,
-        f=f,
-        rho1=(config.wrist - config.pan_point) / scale,
-        rho2=(config.wrist - config.shoulder) / scale,
-        phi=np.cross(f, rho3),
-        w=0.5 * np.cross(k[..., 0, :], sigma_gap),
-    )
-
-
-def jacobians(config: McGillConfiguration, *, length_scale: float | None = None) -> Jacobians:
-    """Forward and inverse Jacobians ``A``, ``B`` of Eqs. (16)-(19): ``A t = B θ̇``.
-
-    ``t = (φ̇, ṗ/L)`` (Eq. 17b, ``σ = p/L``, Eq. 14), ``θ̇ = (θ̇_I1, θ̇_I2, θ̇_II1, θ̇_II2)``
-    (Eq. 19), ``A = [A_I; A_II]`` with ``A_J = [½ s(J) Φ_J (k × (σ_I - σ_II)), Φ_J]`` (3×4, not the
-    printed 3×2) and ``B = diag(B_I, B_II)`` with ``B_J = [v_J, Δ_J f_J]`` (3×2, not the printed
-    2×4); ``v_J``, ``Δ_J`` from Eqs. (10)-(11). Computed from the joint axes of ``config``, so they
-    follow any rigid motion applied to it.
-
-    Parameters
-    ----------
-    config : McGillConfiguration
-    length_scale : float, optional
-        The characteristic length ``L`` of Eq. (8), "as yet to be determined" in the paper. Default:
-        ``R``, which makes ``‖½ k × (σ_I - σ_II)‖ = 1``.
-
-    Returns
-    -------
-    Jacobians
-        ``A`` and ``B``, each of shape (..., 6, 4), dimensionless.
-
-    Examples
-    --------
-    >>> p = McGillParameters(600, 100, 600, 282.843, 200, -50, -50, 80, 60)
-    >>> jac = jacobians(inverse_kinematics(p, [0.0, 0.0, -600.0, 0.0]))
-    >>> jac.A.shape, jac.B.shape, int(np.linalg.matrix_rank(jac.A))
-    ((6, 4), (6, 4), 4)
-    """
-    vec = _vectors(config, length_scale)
-    phi = vec.phi
-    v = _dot(phi, vec.rho1)[..., None] * vec.k - _dot(phi, vec.k)[..., None] * vec.rho1  # Eq. (10)
-    delta = _dot(phi, vec.rho2)  # Eq. (11)
-    rotation = _SIGN[:, None] * np.cross(phi, vec.w[..., None, :])  # ½ s(J) Φ_J (k × (σ_I - σ_II))
-    phi_matrix = np.swapaxes(np.cross(phi[..., None, :], np.eye(3)), -1, -2)  # Φ_J x = φ_J × x
-    a_legs = np.concatenate([rotation[..., None], phi_matrix], axis=-1)  # (..., 2, 3, 4)
-    batch = config.batch_shape
-    a = a_legs.reshape(*batch, 6, 4)
-    b_legs = np.stack([v, delta[..., None] * vec.f], axis=-1)  # (..., 2, 3, 2)
-    b = np.zeros((*batch, 6, 4))
-    b[..., :3, :2] = b_legs[..., 0, :, :]
-    b[..., 3:, 2:] = b_legs[..., 1, :, :]
-    return Jacobians(a, b)
-
-
-@dataclass(frozen=True, slots=True, eq=False)
-class McGillSingularityFactors:
-    """Scalar factors whose zeros are the singularities (module docstring, items 3-5).
-
-    Attributes
-    ----------
-    reach : (..., 2) ndarray
-        ``κ_J / L``: signed horizontal distance from the pan axis to ``O_J3``. ``v_J = -(κ_J/L)
-        ρ_J3``; zero: serial singularity (``O_J3`` on the pan axis).
-    delta : (..., 2) ndarray
-        ``Δ_J = [f_J, ρ_J3, ρ_J2] = -(l2 l3 / L²) sin θ_J3`` (Eq. 11); zero: serial singularity
-        (leg extended or folded).
-    parallel : (...) ndarray
-        ``det[φ_I, φ_II, ½ k × (σ_I - σ_II)]``; zero if and only if ``A`` is rank-deficient.
-
-    Examples
-    --------
-    >>> p = McGillParameters(600, 100, 600, 282.843, 200, -50, -50, 80, 60)
-    >>> factors = singularity_factors(inverse_kinematics(p, [0.0, 0.0, -600.0, 0.0]))
-    >>> factors.reach.round(6)
-    array([ 0.5, -0.5])
-    """
-
-    reach: np.ndarray
-    delta: np.ndarray
-    parallel: np.ndarray
-
-    def __post_init__(self) -> None:
-        for name in ("reach", "delta", "parallel"):
-            object.__setattr__(self, name, frozen(getattr(self, name)))
-
-
-def singularity_factors(
-    config: McGillConfiguration, *, length_scale: float | None = None
-) -> McGillSingularityFactors:
-    """The factors of :class:`McGillSingularityFactors` (``L`` as in :func:`jacobians`).
-
-    Parameters
-    ----------
-    config : McGillConfiguration
-    length_scale : float, optional
-        ``L`` (default ``R``).
-
-    Returns
-    -------
-    McGillSingularityFactors
-
-    Examples
-    --------
-    >>> p = McGillParameters(600, 100, 600, 282.843, 200, -50, -50, 80, 60)
-    >>> singularity_factors(inverse_kinematics(p, [0.0, 0.0, -600.0, 0.0])).delta.shape
-    (2,)
-    """
-    vec = _vectors(config, length_scale)
-    reach = _dot(vec.rho1, np.cross(vec.k, vec.f))  # k × f_J = e(θ_J1)
-    delta = _dot(vec.phi, vec.rho2)  # Eq. (11)
-    parallel = np.linalg.det(np.stack([vec.phi[..., 0, :], vec.phi[..., 1, :], vec.w], axis=-2))
-    return McGillSingularityFactors(reach, delta, parallel)
-
-
-def classify(
-    config: McGillConfiguration,
-    *,
-    rtol: float = DEFAULT_RTOL,
-    length_scale: float | None = None,
-) -> Classification:
-    """Gosselin-Angeles type of each configuration: serial (``B``), parallel (``A``), combined.
-
-    The closeness of each matrix is ``σ_min/σ_max`` of the dimensionless ``A`` or ``B`` of
-    :func:`jacobians` (see :mod:`screwkit.families._two_limb`): it does not depend on the unit of
-    length or on a rigid motion of the base frame. ``B``'s closeness does not depend on ``L``
-    either (all its entries scale as ``1/L²``); ``A``'s does (its first column carries ``R/L``).
-
-    Parameters
-    ----------
-    config : McGillConfiguration
-    rtol : float, default 1e-9
-        Closeness at or below which a matrix counts as rank-deficient.
-    length_scale : float, optional
-        ``L`` (default ``R``).
-
-    Returns
-    -------
-    Classification
-        Labels ``"inverse"`` (serial, ``B`` rank-deficient), ``"direct"`` (parallel, ``A``),
-        ``"combined"`` or ``"regular"``.
-
-    Examples
-    --------
-    >>> p = McGillParameters(600, 100, 600, 282.843, 200, -50, -50, 80, 60)
-    >>> # mode (1, 1, -1, 1): the legs are translates of each other, Eq. (24) holds
-    >>> c = classify(inverse_kinematics(p, [0.0, 0.0, -600.0, 0.0], mode=(1, 1, -1, 1)))
-    >>> c.label.tolist()
-    'direct'
-    """
-    jac = jacobians(config, length_scale=length_scale)
-    return classify_jacobians(jac.A, jac.B, rtol=rtol)
-
-
-def locate_direct_singularity(
-    params: McGillParameters,
-    start: Any,
-    end: Any,
-    *,
-    mode: Any = DEFAULT_MODE,
-    length_scale: float | None = None,
-) -> np.ndarray:
-    """Pose where the straight path ``start → end`` crosses a parallel singularity (bisection).
-
-    Bisection on :attr:`McGillSingularityFactors.parallel` along the segment, in one working mode.
-    (Within a working mode ``κ_J`` and ``Δ_J`` keep their signs, so serial singularities are only
-    met on the boundary between modes, never crossed.)
-
-    Parameters
-    ----------
-    params : McGillParameters
-    start, end : (..., 4) array_like
-        Poses with opposite signs of the parallel factor.
-    mode, length_scale
-        As in :func:`inverse_kinematics` and :func:`jacobians`.
-
-    Returns
-    -------
-    (..., 4) ndarray
-
-    Examples
-    --------
-    >>> p = McGillParameters(600, 100, 600, 282.843, 200, -50, -50, 80, 60)
-    >>> pose = locate_direct_singularity(p, [0, 0, -600, 0.2], [0, 0, -600, 1.2])
-    >>> classify(inverse_kinematics(p, pose)).label.tolist()
-    'direct'
-    """
-    checked = checked_mode(mode, "mode", 4)
-
-    def factor(pose: np.ndarray) -> np.ndarray:
-        config = inverse_kinematics(params, pose, checked)
-        return singularity_factors(config, length_scale=length_scale).parallel
-
-    return bisect_segment(factor, start, end)
-
-
-# --------------------------------------------------------------------------------------------------
-# The twist graph of the physical mechanism
-# --------------------------------------------------------------------------------------------------
-
-
-def twist_graph(config: McGillConfiguration, index: Any = ()) -> nx.MultiDiGraph:
-    """The twist graph of the physical McGill SMG at one pose (design.md §5).
+def joints(config: McGillConfiguration) -> JointTable:
+    """The 20 physical joints of the McGill SMG over the batch of ``config`` (design.md §1a, §5).
 
     Each leg is the R-Π-Π-R chain of paper 001 (Sec. 3) with each Π joint modelled by its four
-    revolute joints (:attr:`McGillConfiguration.joints`): two closed loops per leg, which
-    :func:`screwkit.twistgraph.equivalent_twist_graph` reduces to virtual translations. Links:
-    ``base``, per leg ``J.carrier``, ``J.proximal_a``, ``J.proximal_b``, ``J.elbow``,
-    ``J.distal_a``, ``J.distal_b``, ``J.wrist``, and ``platform`` (16); joints: 20, of which
-    ``J.pan`` and ``J.proximal.a`` (the tilt) are actuated; five independent loops; ``dof = 4``.
+    revolute joints; nothing is reduced, so each leg keeps two closed loops, which
+    :func:`screwkit.twistgraph.equivalent_twist_graph` reduces to virtual translations. Per leg
+    ``J``: ``J.pan`` (``base`` → ``J.carrier``, axis ``k`` through ``O_J0``, actuated), the
+    proximal parallelogram ``J.proximal.a`` (``J.carrier`` → ``J.proximal_a`` at ``O_J1``,
+    actuated tilt), ``J.proximal.b`` (``J.carrier`` → ``J.proximal_b`` at ``O_J1 + w k``),
+    ``J.proximal.c`` (``J.proximal_a`` → ``J.elbow`` at ``O_J2``), ``J.proximal.d``
+    (``J.proximal_b`` → ``J.elbow`` at ``O_J2 + w k``), all along ``f_J``; the distal parallelogram
+    ``J.distal.a``-``d`` likewise from ``J.elbow`` to ``J.wrist`` (corners ``O_J2``,
+    ``O_J2 + w k``, ``O_J3``, ``O_J3 + w k``); and ``J.wrist`` (``J.wrist`` → ``platform``, axis
+    ``k`` through ``O_J4``). Links: ``base``, per leg ``J.carrier``, ``J.proximal_a``,
+    ``J.proximal_b``, ``J.elbow``, ``J.distal_a``, ``J.distal_b``, ``J.wrist``, and ``platform``
+    (16); five independent loops; ``dof = 4``.
 
     Unlike the Π joint of Eqs. (6)-(19), which always translates, a physical parallelogram whose
     long links lie along its short sides (here: vertical long links, see the module docstring) is
@@ -961,33 +674,55 @@ def twist_graph(config: McGillConfiguration, index: Any = ()) -> nx.MultiDiGraph
     Parameters
     ----------
     config : McGillConfiguration
-    index : tuple of int, default ()
-        Which pose of a batched configuration (empty for a single pose).
 
     Returns
     -------
-    networkx.MultiDiGraph
-
-    Raises
-    ------
-    ScrewkitValueError
-        ``index`` does not pick one pose of the batch.
+    JointTable
+        Screws ``(..., 20, 6)`` over the batch of ``config``; ``table.graph(index)`` is the twist
+        graph of one pose.
 
     Examples
     --------
     >>> from screwkit.twistgraph import platform_twist_system
     >>> p = McGillParameters(1000, 450, 600, 282.843, 200, -50, -50, 80, 60)
-    >>> G = twist_graph(inverse_kinematics(p, [0.0, 0.0, -800.0, 0.0]))
+    >>> table = joints(inverse_kinematics(p, [[0.0, 0.0, -800.0, 0.0], [10.0, 0.0, -800.0, 0.1]]))
+    >>> table.batch_shape, [s.name for s in table.specs if s.actuated]
+    ((2,), ['I.pan', 'I.proximal.a', 'II.pan', 'II.proximal.a'])
+    >>> G = table.graph(0)
     >>> G.number_of_nodes(), G.number_of_edges(), G.graph["dof"]
     (16, 20, 4)
     >>> platform_twist_system(G).order, platform_twist_system(G, method="reduction").order
     (4, 4)
     """
-    return joint_twist_graph(config.joints, index, dof=4)
+    rows = []
+    for index, leg in enumerate(LEGS):
+        k = config.pan_axis[..., index, :]
+        f = config.tilt_axis[..., index, :]
+        rows.append(joint_row("base", f"{leg}.carrier", f"{leg}.pan", "R",
+                              config.pan_point[..., index, :], k, actuated=True))
+        for part, start, end, width, first, last in (
+            ("proximal", config.shoulder, config.elbow, config.params.proximal_width,
+             f"{leg}.carrier", f"{leg}.elbow"),
+            ("distal", config.elbow, config.wrist, config.params.distal_width,
+             f"{leg}.elbow", f"{leg}.wrist"),
+        ):
+            lower, upper = start[..., index, :], end[..., index, :]
+            corners = (
+                ("a", first, f"{leg}.{part}_a", lower),
+                ("b", first, f"{leg}.{part}_b", lower + width * k),
+                ("c", f"{leg}.{part}_a", last, upper),
+                ("d", f"{leg}.{part}_b", last, upper + width * k),
+            )
+            for tag, parent, child, point in corners:
+                rows.append(joint_row(parent, child, f"{leg}.{part}.{tag}", "R", point, f,
+                                      actuated=(part, tag) == ("proximal", "a")))
+        rows.append(joint_row(f"{leg}.wrist", "platform", f"{leg}.wrist", "R",
+                              config.wrist_joint[..., index, :], k))
+    return JointTable.from_rows("base", "platform", rows, dof=4)
 
 
-def twist_basis(config: McGillConfiguration, index: Any = ()) -> np.ndarray:
-    """The moving plate's nominal twists at one pose: a Schoenflies basis (user frame).
+def twist_basis(config: McGillConfiguration) -> np.ndarray:
+    """The moving plate's nominal twists over the batch: a Schoenflies basis (user frame).
 
     Rows, for ``ẋ = 1``, ``ẏ = 1``, ``ż = 1`` and ``φ̇ = 1`` with the pose ``(x, y, z, φ)``: the three
     translations and the rotation about the vertical axis ``k`` (the wrist axes' direction) through
@@ -998,17 +733,10 @@ def twist_basis(config: McGillConfiguration, index: Any = ()) -> np.ndarray:
     Parameters
     ----------
     config : McGillConfiguration
-    index : tuple of int, default ()
-        Which pose of a batched configuration (empty for a single pose).
 
     Returns
     -------
-    numpy.ndarray, shape (4, 6)
-
-    Raises
-    ------
-    ScrewkitValueError
-        ``index`` does not pick one pose of the batch.
+    numpy.ndarray, shape (..., 4, 6)
 
     Examples
     --------
@@ -1016,5 +744,4 @@ def twist_basis(config: McGillConfiguration, index: Any = ()) -> np.ndarray:
     >>> twist_basis(inverse_kinematics(p, [10.0, 0.0, -800.0, 0.0]))[3]  # about k through P
     array([  0.,   0.,   1.,   0., -10.,   0.])
     """
-    picked = _checked_index(index, config.batch_shape)
-    return schoenflies_basis(config.platform_point[picked], config.pan_axis[picked][0])
+    return schoenflies_basis(config.platform_point, config.pan_axis[..., 0, :])

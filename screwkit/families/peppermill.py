@@ -40,33 +40,28 @@ Where paper 000 is garbled or wrong (each item is demonstrated in the tests)
 1. Eq. (3): the third expression ``O_1A_1 = d_2 j`` should read ``O_2A_2 = d_2 j``.
 2. Eq. (13) prints ``-b0 k`` for both limbs; it is ``-o_i``: ``+b0 k`` for limb 1 (as Eqs. 17,
    29, 34a and 35 use) and ``-b0 k`` for limb 2.
-3. Eq. (45) prints ``u_θ2 = [u_θ2z, 0, u_θ2z]``; from Eq. (38) it is ``[u_θ2x, 0, u_θ2z] =
-   [cos θ_2, 0, -sin θ_2]``.
-4. Sec. 4.2 calls ``v_i`` the unit vector of the proximal link and ``u_i`` that of the distal one;
-   Sec. 2 defines the opposite. ``v_i · u_θi = sin λ_i`` vanishes when the two links are aligned:
-   extended (``λ_i = 0``) or folded (``λ_i = π``).
-5. Eqs. (32)-(33) give one assembly mode: the principal ``arcsin`` and ``arccos`` force
+3. Eqs. (32)-(33) give one assembly mode: the principal ``arcsin`` and ``arccos`` force
    ``v_2z = cos(θ_2 + λ_2) >= 0`` and ``v_1z = sin(θ_1 + λ_1) >= 0``. :func:`forward_kinematics`
    returns all four (``π - arcsin``, ``-arccos``).
-6. The vector ``δθ`` of Eq. (46) is ``(δd_1, δd_2, r_1 δθ_1, r_2 δθ_2)`` (Eq. 44), not
-   ``(δd_1, δd_2, δθ_1, δθ_2)``; ``B`` of Eq. (47) multiplies the former.
-7. Sec. 4.4 gives no condition for the third kind. From Eqs. (47)-(48) it is ``sin λ_j = 0`` and
-   ``v_iz = 0`` (or ``p_1 = p_2``) for some ``i, j``: within one limb (aligned links lying
-   horizontal) or across the limbs; both occur.
-8. Fig. 1's caption reads "CRRHRRRC".
+4. Fig. 1's caption reads "CRRHRRRC".
 
-The pick-and-place cycle of Sec. 1 is :func:`pick_and_place_cycle`.
+Paper 000's Jacobians ``A``, ``B`` (Eqs. 44-48), the factors of ``det A`` and ``det B`` and what
+the paper gets wrong about them (Eqs. 45 and 46, the swapped ``u_i``/``v_i`` of Sec. 4.2, the
+missing third-kind condition of Sec. 4.4) are a paper analysis, not the robot model: they live in
+``tests/paper_000.py`` beside the tests that check them. The mechanism's own Jacobians and labels
+come from the analysis core (:meth:`screwkit.catalog.Mechanism.at`).
 
 Examples
 --------
 >>> import numpy as np
->>> from screwkit.families.peppermill import PeppermillParameters, inverse_kinematics, classify
+>>> from screwkit.families.peppermill import PeppermillParameters, inverse_kinematics, joints
+>>> from screwkit.singularity import classify_table
 >>> mill = PeppermillParameters(r1=250.0, r2=250.0, l1=400.0, l2=400.0, b0=50.0, p1=40.0, p2=-40.0)
->>> config = inverse_kinematics(mill, [30.0, -20.0, -450.0, 0.5])
->>> config.actuated[:2]  # Eq. (19): d_1 = x, d_2 = y
+>>> config = inverse_kinematics(mill, [[30.0, -20.0, -450.0, 0.5]])
+>>> config.actuated[0, :2]  # Eq. (19): d_1 = x, d_2 = y
 array([ 30., -20.])
->>> classify(config).label.tolist()
-'regular'
+>>> classify_table(joints(config)).verdict.tolist()
+['regular']
 """
 
 from __future__ import annotations
@@ -75,27 +70,20 @@ from collections.abc import Mapping
 from dataclasses import dataclass, fields
 from typing import Any
 
-import networkx as nx
 import numpy as np
 
-from .._backend import DEFAULT_RTOL, as_array, checked_length_scale
+from .._backend import as_array
 from ..exceptions import DegenerateGeometryError, ScrewkitValueError, UnreachablePoseError
 from ..jacobians import schoenflies_basis
+from ..joints import JointTable
 from ._two_limb import (
-    Classification,
     ForwardSolutions,
-    Jacobians,
-    JointAxis,
-    _checked_index,
-    bisect_segment,
     check_parameters,
     checked_mode,
-    classify_jacobians,
     describe_indices,
     frozen,
-    joint_twist_graph,
+    joint_row,
     parameters_from_mapping,
-    pick_and_place_cycle,
     wrap_angle,
 )
 
@@ -105,16 +93,10 @@ __all__ = [
     "WORKING_MODES",
     "PeppermillConfiguration",
     "PeppermillParameters",
-    "PeppermillSingularityFactors",
-    "classify",
     "forward_kinematics",
     "inverse_kinematics",
-    "jacobians",
-    "locate_direct_singularity",
-    "pick_and_place_cycle",
-    "singularity_factors",
+    "joints",
     "twist_basis",
-    "twist_graph",
 ]
 
 #: ``(sgn sin λ_1, sgn sin λ_2)`` of the four inverse-kinematics branches.
@@ -257,8 +239,8 @@ class PeppermillConfiguration:
     --------
     >>> p = PeppermillParameters(250, 250, 400, 400, 50, 40, -40)
     >>> config = inverse_kinematics(p, [[30.0, -20.0, -450.0, 0.5], [0.0, 0.0, -450.0, 0.0]])
-    >>> config.batch_shape, config.wrist.shape, len(config.joints)
-    ((2,), (2, 2, 3), 10)
+    >>> config.batch_shape, config.wrist.shape
+    ((2,), (2, 2, 3))
     """
 
     params: PeppermillParameters
@@ -288,34 +270,6 @@ class PeppermillConfiguration:
     def batch_shape(self) -> tuple[int, ...]:
         """Shape of the batch of poses."""
         return tuple(self.pose.shape[:-1])
-
-    @property
-    def joints(self) -> tuple[JointAxis, ...]:
-        """The joints of the single loop C-R-R-H-H-R-R-C, each C listed as its two freedoms.
-
-        Per limb ``i``: ``i.slide`` (P, ``base`` → ``i.slider``, along ``a_i``, actuated ``d_i``)
-        and ``i.turn`` (R, ``i.slider`` → ``i.proximal``, axis ``a_i`` through ``O_i``, actuated
-        ``θ_i``), together the C joint; ``i.elbow`` (R, ``i.proximal`` → ``i.distal`` at ``B_i``)
-        and ``i.wrist`` (R, ``i.distal`` → ``i.nut`` at ``P_i``), both along ``a_i``; ``i.screw``
-        (H, ``i.nut`` → ``platform``, axis ``k`` through ``C``, pitch ``-p_i/2π``).
-        """
-        _, _, leads = self.params.lengths
-        out: list[JointAxis] = []
-        for index, limb in enumerate(("1", "2")):
-            axis, origin = self.drive_axis[..., index, :], self.drive_point[..., index, :]
-            out += [
-                JointAxis(f"{limb}.slide", "P", "base", f"{limb}.slider", origin, axis,
-                          actuated=True),
-                JointAxis(f"{limb}.turn", "R", f"{limb}.slider", f"{limb}.proximal", origin, axis,
-                          actuated=True),
-                JointAxis(f"{limb}.elbow", "R", f"{limb}.proximal", f"{limb}.distal",
-                          self.elbow[..., index, :], axis),
-                JointAxis(f"{limb}.wrist", "R", f"{limb}.distal", f"{limb}.nut",
-                          self.wrist[..., index, :], axis),
-                JointAxis(f"{limb}.screw", "H", f"{limb}.nut", "platform", self.platform_point,
-                          self.platform_axis, pitch=-leads[index]),
-            ]
-        return tuple(out)
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dictionary of the pose, the mode and the joint values."""
@@ -516,205 +470,20 @@ def forward_kinematics(params: PeppermillParameters, actuated: Any) -> ForwardSo
 
 
 # --------------------------------------------------------------------------------------------------
-# Jacobians and singularities
+# The family protocol: joints and twist basis (screwkit.families)
 # --------------------------------------------------------------------------------------------------
 
 
-def jacobians(config: PeppermillConfiguration) -> Jacobians:
-    """Forward and inverse Jacobians of Eqs. (44)-(47): ``A δx = B δθ``.
+def joints(config: PeppermillConfiguration) -> JointTable:
+    """The joints of the single loop C-R-R-H-H-R-R-C over the batch of ``config`` (design.md §5).
 
-    ``δx = (δx, δy, δz, δφ)`` and ``δθ = (δd_1, δd_2, r_1 δθ_1, r_2 δθ_2)`` (Eq. 44). The rows of
-    ``A`` are ``[a_i^T, 0]`` and ``[v_i^T, (p_i/2π) v_i·k]``; ``B = diag(1, 1, v_1·u_θ1,
-    v_2·u_θ2)``. Computed from the axes of ``config`` (Eq. 44 form), which in the base frame is
-    Eq. (47) entry by entry.
-
-    Returns
-    -------
-    Jacobians
-        ``A`` and ``B``, each of shape (..., 4, 4); the last column of ``A`` has the unit of length.
-
-    Examples
-    --------
-    >>> p = PeppermillParameters(250, 250, 400, 400, 50, 40, -40)
-    >>> jac = jacobians(inverse_kinematics(p, [30.0, -20.0, -450.0, 0.5]))
-    >>> jac.A[:2]
-    array([[1., 0., 0., 0.],
-           [0., 1., 0., 0.]])
-    """
-    _, _, leads = config.params.lengths
-    k = config.platform_axis[..., None, :]
-    v, a = config.v, config.drive_axis
-    top = np.concatenate([a, np.zeros((*a.shape[:-1], 1))], axis=-1)
-    bottom = np.concatenate([v, (leads * np.sum(v * k, axis=-1))[..., None]], axis=-1)
-    a_matrix = np.concatenate([top, bottom], axis=-2)
-    diagonal = np.concatenate(
-        [np.ones((*config.batch_shape, 2)), np.sum(v * config.u_theta, axis=-1)], axis=-1
-    )
-    b_matrix = diagonal[..., None] * np.eye(4)
-    return Jacobians(a_matrix, b_matrix)
-
-
-@dataclass(frozen=True, slots=True, eq=False)
-class PeppermillSingularityFactors:
-    """The factors of ``det A`` and ``det B`` (Eqs. 47-48).
-
-    Attributes
-    ----------
-    sin_lambda : (..., 2) ndarray
-        ``v_i · u_θi = sin λ_i``; ``det B = sin λ_1 sin λ_2`` (first kind).
-    v_z : (..., 2) ndarray
-        ``v_iz``; ``det A = v_1z v_2z (p_2 - p_1)/2π`` (second kind, Eq. 48).
-    lead_difference : float
-        ``(p_2 - p_1)/2π``; zero: architecture singularity.
-
-    Examples
-    --------
-    >>> p = PeppermillParameters(250, 250, 400, 400, 50, 40, -40)
-    >>> f = singularity_factors(inverse_kinematics(p, [30.0, -20.0, -450.0, 0.5]))
-    >>> round(float(f.lead_difference), 6), f.det_a.shape
-    (-12.732395, ())
-    """
-
-    sin_lambda: np.ndarray
-    v_z: np.ndarray
-    lead_difference: float
-
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "sin_lambda", frozen(self.sin_lambda))
-        object.__setattr__(self, "v_z", frozen(self.v_z))
-
-    @property
-    def det_a(self) -> np.ndarray:
-        """``det A = v_1z v_2z (p_2 - p_1)/2π`` (Eq. 48), shape (...)."""
-        return np.asarray(self.v_z[..., 0] * self.v_z[..., 1] * self.lead_difference)
-
-    @property
-    def det_b(self) -> np.ndarray:
-        """``det B = sin λ_1 sin λ_2``, shape (...)."""
-        return np.asarray(self.sin_lambda[..., 0] * self.sin_lambda[..., 1])
-
-
-def singularity_factors(config: PeppermillConfiguration) -> PeppermillSingularityFactors:
-    """The factors of :class:`PeppermillSingularityFactors` at ``config``.
-
-    Parameters
-    ----------
-    config : PeppermillConfiguration
-
-    Returns
-    -------
-    PeppermillSingularityFactors
-
-    Examples
-    --------
-    >>> p = PeppermillParameters(250, 250, 400, 400, 50, 40, -40)
-    >>> singularity_factors(inverse_kinematics(p, [30.0, -20.0, -450.0, 0.5])).v_z.shape
-    (2,)
-    """
-    _, _, leads = config.params.lengths
-    return PeppermillSingularityFactors(
-        sin_lambda=np.sum(config.v * config.u_theta, axis=-1),
-        v_z=np.sum(config.v * config.platform_axis[..., None, :], axis=-1),
-        lead_difference=float(leads[1] - leads[0]),
-    )
-
-
-def _length_scale(params: PeppermillParameters, length_scale: float | None) -> float:
-    if length_scale is None:
-        _, _, leads = params.lengths
-        mean = float(np.abs(leads).mean())
-        return mean if mean > 0 else 1.0
-    return checked_length_scale(length_scale)
-
-
-def classify(
-    config: PeppermillConfiguration,
-    *,
-    rtol: float = DEFAULT_RTOL,
-    length_scale: float | None = None,
-) -> Classification:
-    """Gosselin-Angeles type: first kind (``B``), second kind (``A``), third kind (both).
-
-    ``B`` of Eq. (47) is dimensionless; ``A``'s last column (the ``δφ`` column) has the unit of
-    length and is divided by ``length_scale`` before taking ``σ_min/σ_max``, which makes the
-    closeness independent of the unit and of a rotation of the base frame. The default,
-    ``(|p_1| + |p_2|)/(4π)`` (the mean lead per radian), turns that column into ``±v_iz`` when
-    ``p_2 = -p_1``; when both leads vanish the column is zero and any scale gives closeness 0
-    (1 is used).
-
-    Parameters
-    ----------
-    config : PeppermillConfiguration
-    rtol : float, default 1e-9
-    length_scale : float, optional
-
-    Returns
-    -------
-    Classification
-        ``"inverse"`` (first kind), ``"direct"`` (second kind), ``"combined"`` (third kind) or
-        ``"regular"``.
-
-    Examples
-    --------
-    >>> p = PeppermillParameters(250, 250, 400, 400, 50, 40, -40)
-    >>> # q_1 = (0, y, b0 + z + p1 φ/2π) = (0, 390, -520) has length r1 + l1 = 650: limb 1 extended
-    >>> classify(inverse_kinematics(p, [0.0, 390.0, -570.0, 0.0])).label.tolist()
-    'inverse'
-    """
-    jac = jacobians(config)
-    scale = np.array([1.0, 1.0, 1.0, 1.0 / _length_scale(config.params, length_scale)])
-    return classify_jacobians(jac.A * scale, jac.B, rtol=rtol)
-
-
-def locate_direct_singularity(
-    params: PeppermillParameters, start: Any, end: Any, *, mode: Any = DEFAULT_MODE
-) -> np.ndarray:
-    """Pose where the straight path ``start → end`` crosses a second-kind singularity (bisection).
-
-    Bisection on ``det A`` (Eq. 48) in one working mode; ``det A`` must change sign, i.e. one
-    ``v_iz`` crosses zero. (Within a working mode ``sin λ_i`` keeps its sign: first-kind
-    singularities bound the modes and are not crossed.)
-
-    Parameters
-    ----------
-    params : PeppermillParameters
-    start, end : (..., 4) array_like
-        Poses at which ``det A`` has opposite signs.
-    mode : tuple of 2 int, default ``(1, 1)``
-
-    Returns
-    -------
-    (..., 4) ndarray
-
-    Examples
-    --------
-    >>> p = PeppermillParameters(250, 250, 400, 400, 50, 40, -40)
-    >>> # y only moves limb 1 (q_1 = (0, y, ...)); its distal link turns horizontal on the way
-    >>> pose = locate_direct_singularity(p, [0.0, 150.0, -150.0, 0.0], [0.0, 300.0, -150.0, 0.0])
-    >>> classify(inverse_kinematics(p, pose)).label.tolist()
-    'direct'
-    """
-    checked = checked_mode(mode, "mode", 2)
-    return bisect_segment(
-        lambda pose: singularity_factors(inverse_kinematics(params, pose, checked)).det_a,
-        start,
-        end,
-    )
-
-
-# --------------------------------------------------------------------------------------------------
-# The twist graph of the physical mechanism
-# --------------------------------------------------------------------------------------------------
-
-
-def twist_graph(config: PeppermillConfiguration, index: Any = ()) -> nx.MultiDiGraph:
-    """The twist graph of the physical Peppermill at one pose (design.md §5).
-
-    The single loop C-R-R-H-H-R-R-C of paper 000 (Sec. 2) with the joints of
-    :attr:`PeppermillConfiguration.joints`: links ``base``, per limb ``i.slider``, ``i.proximal``,
-    ``i.distal``, ``i.nut``, and ``platform`` (10); joints ``i.slide`` (P) and ``i.turn`` (R),
-    ``i.elbow``, ``i.wrist`` (R), ``i.screw`` (H, pitch ``-p_i/2π``, both H joints on the plate's
-    axis ``k``); one loop; ``dof = 4``.
+    Per limb ``i``: ``i.slide`` (P, ``base`` → ``i.slider``, along ``a_i``, actuated ``d_i``) and
+    ``i.turn`` (R, ``i.slider`` → ``i.proximal``, axis ``a_i`` through ``O_i``, actuated ``θ_i``),
+    together the C joint; ``i.elbow`` (R, ``i.proximal`` → ``i.distal`` at ``B_i``) and ``i.wrist``
+    (R, ``i.distal`` → ``i.nut`` at ``P_i``), both along ``a_i``; ``i.screw`` (H, ``i.nut`` →
+    ``platform``, axis ``k`` through ``C``, pitch ``-p_i/2π``, both H joints on the plate's axis).
+    Links: ``base``, per limb ``i.slider``, ``i.proximal``, ``i.distal``, ``i.nut``, and
+    ``platform`` (10); one loop; ``dof = 4``.
 
     The C joint has two actuated freedoms, which one :class:`screwkit.joints.Joint` cannot carry
     (only one-freedom joints are actuated). Paper 000's Appendix A drives ``(d_i, θ_i)`` by two
@@ -725,33 +494,46 @@ def twist_graph(config: PeppermillConfiguration, index: Any = ()) -> nx.MultiDiG
     Parameters
     ----------
     config : PeppermillConfiguration
-    index : tuple of int, default ()
-        Which pose of a batched configuration (empty for a single pose).
 
     Returns
     -------
-    networkx.MultiDiGraph
-
-    Raises
-    ------
-    ScrewkitValueError
-        ``index`` does not pick one pose of the batch.
+    JointTable
+        Screws ``(..., 10, 6)`` over the batch of ``config``; ``table.graph(index)`` is the twist
+        graph of one pose.
 
     Examples
     --------
     >>> from screwkit.twistgraph import fundamental_loops, platform_twist_system
     >>> p = PeppermillParameters(250, 250, 400, 400, 50, 40, -40)
-    >>> G = twist_graph(inverse_kinematics(p, [30.0, -20.0, -450.0, 0.5]))
+    >>> table = joints(inverse_kinematics(p, [30.0, -20.0, -450.0, 0.5]))
+    >>> [spec.type for spec in table.specs]
+    ['P', 'R', 'R', 'R', 'H', 'P', 'R', 'R', 'R', 'H']
+    >>> G = table.graph()
     >>> G.number_of_nodes(), G.number_of_edges(), len(fundamental_loops(G)), G.graph["dof"]
     (10, 10, 1, 4)
     >>> platform_twist_system(G).order, platform_twist_system(G, method="reduction").order
     (4, 4)
     """
-    return joint_twist_graph(config.joints, index, dof=4)
+    _, _, leads = config.params.lengths
+    rows = []
+    for index, limb in enumerate(("1", "2")):
+        axis, origin = config.drive_axis[..., index, :], config.drive_point[..., index, :]
+        rows += [
+            joint_row("base", f"{limb}.slider", f"{limb}.slide", "P", origin, axis, actuated=True),
+            joint_row(f"{limb}.slider", f"{limb}.proximal", f"{limb}.turn", "R", origin, axis,
+                      actuated=True),
+            joint_row(f"{limb}.proximal", f"{limb}.distal", f"{limb}.elbow", "R",
+                      config.elbow[..., index, :], axis),
+            joint_row(f"{limb}.distal", f"{limb}.nut", f"{limb}.wrist", "R",
+                      config.wrist[..., index, :], axis),
+            joint_row(f"{limb}.nut", "platform", f"{limb}.screw", "H", config.platform_point,
+                      config.platform_axis, pitch=-float(leads[index])),
+        ]
+    return JointTable.from_rows("base", "platform", rows, dof=4)
 
 
-def twist_basis(config: PeppermillConfiguration, index: Any = ()) -> np.ndarray:
-    """The plate's nominal twists at one pose: a Schoenflies basis (user frame).
+def twist_basis(config: PeppermillConfiguration) -> np.ndarray:
+    """The plate's nominal twists over the batch: a Schoenflies basis (user frame).
 
     Rows, for ``δx``, ``δy``, ``δz`` and ``δφ`` of Eq. (44): the three translations and the
     rotation about the plate's axis ``k`` (the axis of both H joints) through ``C``
@@ -762,17 +544,10 @@ def twist_basis(config: PeppermillConfiguration, index: Any = ()) -> np.ndarray:
     Parameters
     ----------
     config : PeppermillConfiguration
-    index : tuple of int, default ()
-        Which pose of a batched configuration (empty for a single pose).
 
     Returns
     -------
-    numpy.ndarray, shape (4, 6)
-
-    Raises
-    ------
-    ScrewkitValueError
-        ``index`` does not pick one pose of the batch.
+    numpy.ndarray, shape (..., 4, 6)
 
     Examples
     --------
@@ -780,5 +555,4 @@ def twist_basis(config: PeppermillConfiguration, index: Any = ()) -> np.ndarray:
     >>> twist_basis(inverse_kinematics(p, [30.0, -20.0, -450.0, 0.5]))[3]  # about k through C
     array([  0.,   0.,   1., -20., -30.,   0.])
     """
-    picked = _checked_index(index, config.batch_shape)
-    return schoenflies_basis(config.platform_point[picked], config.platform_axis[picked])
+    return schoenflies_basis(config.platform_point, config.platform_axis)
