@@ -24,6 +24,7 @@ from .exceptions import (
     UnreachablePoseError,
 )
 from .families import Family, register
+from .posed import Pose, PosedMechanism
 from .jacobians import WrenchJacobians, jacobians_from_wrenches, schoenflies_basis
 from .joints import (
     Joint,
@@ -55,6 +56,7 @@ from .projective import (
 )
 from .screw import Screw, reciprocal_product
 from .screwsystem import ScrewSystem
+from .report import AnalysisReport, analyze
 from .singularity import SingularityReport, classify, classify_poses, classify_table
 from .twistgraph import (
     equivalent_twist_graph,
@@ -76,8 +78,11 @@ __path__ = extend_path(__path__, __name__)
 __all__ = [
     "CatalogError",
     "DegenerateGeometryError",
+    "AnalysisReport",
     "Family",
     "Joint",
+    "Pose",
+    "PosedMechanism",
     "JointTable",
     "Mechanism",
     "Screw",
@@ -91,6 +96,7 @@ __all__ = [
     "WrenchAnalysis",
     "WrenchJacobians",
     "__version__",
+    "analyze",
     "analyze_table",
     "are_collinear",
     "are_coplanar",

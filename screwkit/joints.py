@@ -382,6 +382,15 @@ def virtual(name: str, screw: Any) -> Joint:
     return Joint(name, kind, row, virtual=True)
 
 
+def _refuse_symbolic(*screws: Any) -> None:
+    if B.is_symbolic(*screws):
+        raise ScrewkitTypeError(
+            "Expected numeric joint screws for the analysis core, got symbolic entries; substitute "
+            "values for the symbols (sympy's subs) first, or use the symbolic screw systems "
+            "(screwkit.ScrewSystem, screwkit.twistgraph.series_parallel_tree)."
+        )
+
+
 @dataclass(frozen=True)
 class JointSpec:
     """One joint of a mechanism's structure: everything but its screws (hashable).
@@ -447,6 +456,7 @@ class JointTable:
 
     def __post_init__(self) -> None:
         rows = sum(spec.dof for spec in self.specs)
+        _refuse_symbolic(self.screws)
         screws = np.array(self.screws, dtype=float)
         if screws.ndim < 2 or screws.shape[-2:] != (rows, 6):
             raise ScrewkitValueError(
@@ -478,6 +488,7 @@ class JointTable:
         >>> JointTable.from_rows("B", "E", [("B", "E", "R", "R", [[0, 0, 1.0, 0, 0, 0]], False)]).specs[0]
         JointSpec(name='R', type='R', parent='B', child='E', dof=1, actuated=False)
         """
+        _refuse_symbolic(*(screws for *_, screws, _ in rows))
         arrays = [np.asarray(screws, dtype=float) for *_, screws, _ in rows]
         batch = np.broadcast_shapes(*(a.shape[:-2] for a in arrays)) if arrays else ()
         specs = tuple(
@@ -505,10 +516,9 @@ class JointTable:
         from .twistgraph import check_twist_graph, graph_anchor
 
         check_twist_graph(graph, joint_key=joint_key)
-        joints = list(graph.edges(keys=True, data=joint_key))  # the graph's order: a table's round trip
+        joints = list(graph.edges(keys=True, data=joint_key))  # any order: the core sorts by name
         rows = [
-            (u, v, key, joint.type, np.asarray(joint.screws, dtype=float), joint.actuated)
-            for u, v, key, joint in joints
+            (u, v, key, joint.type, joint.screws, joint.actuated) for u, v, key, joint in joints
         ]
         return cls.from_rows(
             graph.graph["base"],

@@ -362,3 +362,17 @@ def test_error_parallelogram_rods_parallel_to_hinges():
 def test_error_zero_axis(make):
     with pytest.raises(DegenerateGeometryError, match="non-zero direction"):
         make()
+
+
+def test_error_symbolic_screws_in_the_analysis_core():
+    import sympy
+
+    from screwkit.joints import JointTable, revolute
+    from screwkit.singularity import classify
+    from screwkit.twistgraph import twist_graph
+
+    graph = twist_graph("B", "E", [("B", "E", revolute("R", [0, 0, 1], [sympy.Symbol("a"), 0, 0], actuated=True))])
+    with pytest.raises(ScrewkitTypeError, match=r"Expected numeric joint screws for the analysis core, got symbolic"):
+        classify(graph)
+    with pytest.raises(ScrewkitTypeError, match=r"substitute values for the symbols"):
+        JointTable.from_graph(graph)
