@@ -24,7 +24,6 @@ from .exceptions import (
     UnreachablePoseError,
 )
 from .families import Family, register
-from .posed import Pose, PosedMechanism
 from .jacobians import WrenchJacobians, jacobians_from_wrenches, schoenflies_basis
 from .joints import (
     Joint,
@@ -38,6 +37,7 @@ from .joints import (
     universal,
     virtual,
 )
+from .posed import Pose, PosedMechanism
 from .projective import (
     are_collinear,
     are_coplanar,
@@ -54,9 +54,9 @@ from .projective import (
     plane_through,
     point_on_line,
 )
+from .report import AnalysisReport, analyze
 from .screw import Screw, reciprocal_product
 from .screwsystem import ScrewSystem
-from .report import AnalysisReport, analyze
 from .singularity import SingularityReport, classify, classify_poses, classify_table
 from .twistgraph import (
     equivalent_twist_graph,
@@ -76,15 +76,15 @@ __version__ = "0.1.0"
 __path__ = extend_path(__path__, __name__)
 
 __all__ = [
+    "AnalysisReport",
     "CatalogError",
     "DegenerateGeometryError",
-    "AnalysisReport",
     "Family",
     "Joint",
-    "Pose",
-    "PosedMechanism",
     "JointTable",
     "Mechanism",
+    "Pose",
+    "PosedMechanism",
     "Screw",
     "ScrewSystem",
     "ScrewkitError",
