@@ -12,6 +12,7 @@ Examples
 """
 
 from pkgutil import extend_path
+from typing import Any
 
 from .catalog import Mechanism, list_mechanisms, load_mechanism, load_snapshot
 from .exceptions import (
@@ -24,7 +25,6 @@ from .exceptions import (
     UnreachablePoseError,
 )
 from .families import Family, register
-from .jacobians import WrenchJacobians, jacobians_from_wrenches, schoenflies_basis
 from .joints import (
     Joint,
     JointTable,
@@ -37,7 +37,6 @@ from .joints import (
     universal,
     virtual,
 )
-from .posed import Pose, PosedMechanism
 from .projective import (
     are_collinear,
     are_coplanar,
@@ -54,7 +53,6 @@ from .projective import (
     plane_through,
     point_on_line,
 )
-from .report import AnalysisReport, analyze
 from .screw import Screw, reciprocal_product
 from .screwsystem import ScrewSystem
 from .singularity import SingularityReport, classify, classify_poses, classify_table
@@ -67,6 +65,32 @@ from .twistgraph import (
     twist_graph,
 )
 from .wrenches import WrenchAnalysis, analyze_table, wrench_analysis
+
+#: Names loaded on first use (the Jacobians, the composer and its report are not a cost of
+#: ``import screwkit``; PEP 562).
+_LAZY = {
+    "WrenchJacobians": "jacobians",
+    "jacobians_from_wrenches": "jacobians",
+    "schoenflies_basis": "jacobians",
+    "Pose": "posed",
+    "PosedMechanism": "posed",
+    "AnalysisReport": "report",
+    "analyze": "report",
+}
+
+
+def __getattr__(name: str) -> Any:
+    if name in _LAZY:
+        import importlib
+
+        value = getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'screwkit' has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_LAZY))
 
 __version__ = "0.1.0"
 

@@ -68,12 +68,11 @@ Examples
 from __future__ import annotations
 
 import math
-import tomllib
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import networkx as nx
 import numpy as np
@@ -82,9 +81,11 @@ from . import joints as J
 from ._backend import is_dof
 from .exceptions import CatalogError, ScrewkitError, ScrewkitValueError
 from .families import Family, families
-from .jacobians import WrenchJacobians
 from .joints import JointTable
 from .twistgraph import add_joint, check_twist_graph
+
+if TYPE_CHECKING:
+    from .jacobians import WrenchJacobians
 
 __all__ = [
     "Mechanism",
@@ -293,6 +294,8 @@ def load_toml(path: str | Path) -> dict[str, Any]:
     ...
     screwkit.exceptions.CatalogError: /nonexistent.toml: cannot read the file: No such file or directory.
     """
+    import tomllib  # on first use: not a cost of `import screwkit`
+
     name = str(path)
     try:
         with open(path, "rb") as stream:

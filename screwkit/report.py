@@ -33,7 +33,7 @@ import math
 from collections import Counter
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import networkx as nx
 import numpy as np
@@ -41,12 +41,14 @@ import numpy as np
 from . import _backend as B
 from . import screw as S
 from .catalog import Mechanism, load_mechanism, load_snapshot, load_toml
-from .diagram import SuperbracketAnalysis, WrenchDiagram, superbracket_analysis, wrench_diagram
 from .exceptions import ScrewkitError, ScrewkitTypeError, ScrewkitValueError
 from .jacobians import WrenchJacobians
 from .singularity import SingularityReport, classify_analysis
 from .twistgraph import equivalent_twist_graph, fundamental_loops
 from .wrenches import WrenchAnalysis, checked_rtol, wrench_analysis
+
+if TYPE_CHECKING:  # the diagram and GCA stack loads when a report is made, not on `import screwkit`
+    from .diagram import SuperbracketAnalysis, WrenchDiagram
 
 __all__ = ["AnalysisReport", "analyze", "describe_wrench", "pose_report"]
 
@@ -374,6 +376,8 @@ def _graph_report(
     if pose is not None:
         raise ScrewkitValueError(f"{source}: {what} is one configuration; expected no pose, got {pose!r}.")
     analysis = wrench_analysis(graph, rtol=rtol)
+    from .diagram import wrench_diagram
+
     diagram = wrench_diagram(analysis)
     points = dict(diagram.coordinates)
     return _finish(
@@ -449,6 +453,8 @@ def _finish(
         note = "the diagram is degenerate at this pose: " + "; ".join(diagram.degenerate)
     else:
         try:
+            from .diagram import superbracket_analysis
+
             result = superbracket_analysis(diagram, sampler)
         except ScrewkitError as err:
             note = f"not factored: {err}"
