@@ -392,14 +392,19 @@ class WrenchAnalysis:
         self._require_single("tree")
         if self.topology.network:
             return None
-        scaled = _normalized(F.to_scaled(self.table.screws[None], self.reference_point[None], _lengths(self)))
-        core = _Evaluation(self.topology, scaled, self.rtol)
-        nodes: list[SeriesParallelNode] = []
-        for index, node in enumerate(self.topology.nodes):
-            rows, order = core.twists(index)
-            user = F.from_scaled(
-                rows[0, : int(order[0])], self.reference_point, np.asarray(self.length_scale)
+        if "node0" in self.frames:  # kept by analyze_table(views=True)
+            frames = [self.frames[f"node{i}"] for i in range(len(self.topology.nodes))]
+        else:
+            scaled = _normalized(
+                F.to_scaled(self.table.screws[None], self.reference_point[None], _lengths(self))
             )
+            core = _Evaluation(self.topology, scaled, self.rtol)
+            frames = [
+                (rows[0], order[0]) for rows, order in map(core.twists, range(len(self.topology.nodes)))
+            ]
+        nodes: list[SeriesParallelNode] = []
+        for (rows, order), node in zip(frames, self.topology.nodes, strict=True):
+            user = F.from_scaled(rows[: int(order)], self.reference_point, np.asarray(self.length_scale))
             system = ScrewSystem.from_independent(user, rtol=self.rtol, length_scale=float(self.length_scale))
             children = tuple(nodes[c] for c in node.children)
             edge = None
@@ -743,6 +748,9 @@ def analyze_table(
         uncontrolled=F.reciprocal(*global_frame),
     )
     frames["global"] = global_frame
+    if views and not top.network:  # every node's twists, for the per-pose series-parallel tree
+        for index in range(len(top.nodes)):
+            frames[f"node{index}"] = core.twists(index)
     if views:
         for k, (twist_frame, wrench_frame) in enumerate(zip(leg_twists, leg_wrenches, strict=True)):
             frames[f"leg{k}:T"] = twist_frame
