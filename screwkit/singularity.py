@@ -361,7 +361,7 @@ def classify(
 
 
 def classify_table(
-    table: JointTable, *, dof: int | None = None, rtol: float = B.DEFAULT_RTOL, chunk: int = 4096
+    table: JointTable, *, dof: int | None = None, rtol: float = B.DEFAULT_RTOL, chunk: int = 1024
 ) -> SingularityReport:
     """Label every configuration of a joint table, in chunks of the batch (bounded memory).
 
@@ -370,7 +370,7 @@ def classify_table(
     table : JointTable
     dof : int, optional
     rtol : float, default 1e-9
-    chunk : int, default 4096
+    chunk : int, default 1024
         Configurations analysed at once.
 
     Returns

@@ -439,8 +439,9 @@ def _normalized(rows: Array) -> Array:
 class _Evaluation:
     """Lazy, cached evaluation of a topology's frames over one batch of scaled, unit joint screws."""
 
-    def __init__(self, top: Topology, scaled: Array, rtol: float):
+    def __init__(self, top: Topology, scaled: Array, rtol: float, keep: frozenset[int] | None = None):
         self.top, self.scaled, self.rtol = top, scaled, rtol
+        self.keep = keep  # nodes whose frames outlive their parent's evaluation (None: all)
         self.batch = scaled.shape[:-2]
         self.columns = top.columns
         self._twists: dict[int, Frame] = {}
@@ -485,7 +486,17 @@ class _Evaluation:
                     else [self.generators(c) for c in node.children]
                 )
                 self._twists[index] = F.span(np.concatenate(parts, axis=-2), self.rtol)
+                self._release(node.children)
         return self._twists[index]
+
+    def _release(self, children: tuple[int, ...]) -> None:
+        """Free children's frames once their parent has them (bounded memory over large batches)."""
+        if self.keep is None:
+            return
+        for child in children:
+            if child not in self.keep:
+                self._twists.pop(child, None)
+                self._wrenches.pop(child, None)
 
     def wrenches(self, index: int) -> Frame:
         if index not in self._wrenches:
@@ -493,6 +504,7 @@ class _Evaluation:
             if node.kind == "parallel":
                 rows = [self.wrenches(c)[0] for c in node.children]
                 self._wrenches[index] = F.span(np.concatenate(rows, axis=-2), self.rtol)
+                self._release(node.children)
             else:
                 self._wrenches[index] = F.reciprocal(*self.twists(index))
         return self._wrenches[index]
@@ -678,7 +690,8 @@ def analyze_table(
     screws = table.screws
     centre, length = mechanism_frame(screws, table.anchor)
     scaled = _normalized(F.to_scaled(screws, centre, length))
-    core = _Evaluation(top, scaled, rtol)
+    keep = None if views else frozenset([*top.legs, *(s for limb in top.limbs for s in limb.siblings)])
+    core = _Evaluation(top, scaled, rtol, keep)
     frames: dict[str, Frame] = {}
     if top.network:
         platform = core.network(tuple(range(len(top.specs))))
