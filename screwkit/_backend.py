@@ -122,6 +122,8 @@ def is_symbolic(*arrays: Any) -> bool:
             continue
         if isinstance(value, list | tuple) and is_symbolic(*value):
             return True
+        if hasattr(value, "__array__") and is_symbolic(np.asarray(value)):  # e.g. a Screw
+            return True
     return False
 
 

@@ -522,6 +522,20 @@ class Screw:
         arr.flags.writeable = False
         object.__setattr__(self, "coords", arr)
 
+    def __array__(self, dtype: Any = None, copy: Any = None) -> Array:
+        """The ``(6,)`` coordinates, so that numpy and every function taking screws accept a Screw.
+
+        Examples
+        --------
+        >>> np.asarray(Screw.couple([0, 0, 1]))
+        array([0., 0., 0., 0., 0., 1.])
+        >>> float(reciprocal_product(Screw.force([1, 0, 0], [0, 0, 0]), Screw.prismatic([1, 0, 0])))
+        1.0
+        """
+        if dtype is None and not copy:
+            return self.coords
+        return np.array(self.coords, dtype=dtype)
+
     # constructors -------------------------------------------------------------------------
     @classmethod
     def revolute(cls, axis: Any, point: Any) -> Screw:

@@ -247,3 +247,15 @@ def test_error_screw_needs_one_screw():
 def test_error_reciprocal_with_non_screw():
     with pytest.raises(ScrewkitTypeError, match="Expected `other` to be a Screw, got list"):
         Screw.couple([0, 0, 1]).reciprocal_product([0, 0, 0, 0, 0, 1])
+
+
+def test_screw_objects_are_arrays_for_every_kernel():
+    # design.md §1a: np.asarray(screw) is its (6,) array, and functions taking screws accept Screws
+    force, couple = S.Screw.force([1, 0, 0], [0, 0, 2.0]), S.Screw.couple([0, 1, 0])
+    assert np.asarray(force).dtype == float and np.asarray(force).shape == (6,)
+    assert float(S.reciprocal_product(force, S.Screw.revolute([0, 1, 0], [0, 0, 0]))) == pytest.approx(2.0)  # (0, 2, 0)·(0, 1, 0)
+    assert float(S.reciprocal_product(force, couple)) == 0.0
+    np.testing.assert_array_equal(S.reciprocal_product([force, couple], np.asarray(couple)), [0.0, 0.0])
+    symbol = sympy.Symbol("h")
+    symbolic = S.Screw([1, 0, 0, symbol, 0, 0])
+    assert sympy.simplify(S.reciprocal_product(symbolic, S.Screw.force([1, 0, 0], [0, 0, 0])) - symbol) == 0
