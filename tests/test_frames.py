@@ -179,3 +179,27 @@ def test_numba_is_the_default_and_imported_lazily():
     )
     env = {"SCREWKIT_NUMBA": "1"}
     assert _probe(code, env) == ["False", "numba", "True"]
+
+
+@needs_numba
+def test_both_paths_classify_the_h4_alike():
+    # the whole core in each path (a fresh interpreter per path): identical verdicts and orders on
+    # generic poses, closeness within round-off
+    code = (
+        "import numpy as np, screwkit as sk\nfrom screwkit.families.four_limb import reachable\n"
+        "h4 = sk.load_mechanism('h4'); p = h4.random_poses(np.random.default_rng(3), 600)\n"
+        "p = p[reachable(h4.parameters, p)][:400]\nr = sk.classify_table(h4.joints(p))\n"
+        "out = {k: np.asarray(getattr(r, k)).tolist() for k in"
+        " ('constraint_order', 'global_order', 'serial_flags', 'codes', 'uncontrolled_dof')}\n"
+        "out.update({k: np.asarray(v).tolist() for k, v in r.closeness.items()})\nprint(repr(out))"
+    )
+    import ast
+
+    outputs = [ast.literal_eval(" ".join(_probe(code, {"SCREWKIT_NUMBA": flag}))) for flag in ("0", "1")]
+    assert outputs[0].keys() == outputs[1].keys() and outputs[0]
+    for key in outputs[0]:
+        a, b = np.asarray(outputs[0][key]), np.asarray(outputs[1][key])
+        if a.dtype.kind == "f":
+            np.testing.assert_allclose(a, b, atol=1e-9, err_msg=key)
+        else:
+            np.testing.assert_array_equal(a, b, err_msg=key)
