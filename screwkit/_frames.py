@@ -21,6 +21,16 @@ Reciprocity in scaled coordinates is the Euclidean product with the halves swapp
 (``a ∘ b = a · (SWAP b)``, ``SWAP`` orthogonal and symmetric), so the system reciprocal to a frame
 is ``SWAP`` applied to its orthogonal complement: no rank decision is needed for it.
 
+**Two implementations, one rule.** :func:`span`, :func:`complement`, :func:`reciprocal` and
+:func:`residual` have a numpy path (vectorized over the batch) and, when numba is installed (the
+``fast`` extra), compiled per-pose loops (:mod:`screwkit._frames_numba`) that follow the same rule
+and agree with the numpy path up to round-off. The choice is made once per process and never
+depends on the batch size, so single-pose and batched answers stay bit-identical. numba is
+imported on the first kernel call, not with :mod:`screwkit`; its compiled code is cached on disk.
+The environment variable ``SCREWKIT_NUMBA``, read once when this module is imported, forces the
+choice: ``0`` (or ``false``, ``no``, ``off``) the numpy path, anything else the default (numba if
+it imports).
+
 Examples
 --------
 >>> import numpy as np
@@ -32,6 +42,10 @@ array([5])
 """
 
 from __future__ import annotations
+
+import importlib.util
+import os
+from types import ModuleType
 
 import numpy as np
 
@@ -53,6 +67,43 @@ Array = np.ndarray
 #: ``a ∘ b = a · (SWAP b)``: the reciprocal product as a Euclidean one.
 SWAP = np.block([[np.zeros((3, 3)), np.eye(3)], [np.eye(3), np.zeros((3, 3))]])
 SWAP.flags.writeable = False
+
+#: ``SCREWKIT_NUMBA=0`` forces the numpy path (read once, here).
+_NUMBA_WANTED = os.environ.get("SCREWKIT_NUMBA", "1").strip().lower() not in {"0", "false", "no", "off"}
+_kernels: ModuleType | None = None
+_resolved = False
+
+
+def _numba_kernels() -> ModuleType | None:
+    """The numba kernels, imported on first use; None for the numpy path (decided once)."""
+    global _kernels, _resolved
+    if not _resolved:
+        _resolved = True
+        if _NUMBA_WANTED and importlib.util.find_spec("numba") is not None:
+            try:
+                from . import _frames_numba
+            except ImportError:  # a broken numba install: the numpy path, for the whole process
+                return None
+            _kernels = _frames_numba
+    return _kernels
+
+
+def _import_kernels() -> ModuleType:
+    """The numba kernels, whatever this process's choice (the numba path; tests call it directly)."""
+    from . import _frames_numba
+
+    return _frames_numba
+
+
+def backend() -> str:
+    """``"numba"`` or ``"numpy"``: the implementation the kernels use in this process.
+
+    Examples
+    --------
+    >>> backend() in {"numba", "numpy"}
+    True
+    """
+    return "numpy" if _numba_kernels() is None else "numba"
 
 
 def to_scaled(screws: Array, centre: Array, length: Array) -> Array:
@@ -119,6 +170,22 @@ def span(generators: Array, rtol: float) -> tuple[Array, Array]:
     >>> int(order), rows[0]
     (1, array([1., 0., 0., 0., 0., 0.]))
     """
+    return (_span_numpy if _numba_kernels() is None else _span_numba)(generators, rtol)
+
+
+def _span_numba(generators: Array, rtol: float) -> tuple[Array, Array]:
+    """:func:`span` by the compiled per-pose loop."""
+    work = np.array(generators, dtype=float)
+    batch, k = work.shape[:-2], work.shape[-2]
+    if k == 0 or 0 in batch:
+        return empty(batch)
+    kernels = _kernels or _import_kernels()
+    rows, order = kernels.span(np.ascontiguousarray(work.reshape(-1, k, 6)), float(rtol))
+    return rows.reshape(*batch, 6, 6), order.reshape(batch)
+
+
+def _span_numpy(generators: Array, rtol: float) -> tuple[Array, Array]:
+    """:func:`span` vectorized over the batch with numpy."""
     work = np.array(generators, dtype=float)
     batch = work.shape[:-2]
     rows, order = empty(batch)
@@ -155,6 +222,24 @@ def complement(rows: Array, order: Array) -> tuple[Array, Array]:
     >>> int(order), float(np.abs(rows[:5, 0]).max()), float(np.abs(rows[5]).max())
     (5, 0.0, 0.0)
     """
+    return (_complement_numpy if _numba_kernels() is None else _complement_numba)(rows, order)
+
+
+def _complement_numba(rows: Array, order: Array, *, swap: bool = False) -> tuple[Array, Array]:
+    """:func:`complement` (or, with ``swap``, :func:`reciprocal`) by the compiled per-pose loop."""
+    rows = np.asarray(rows, dtype=float)
+    order = np.asarray(order)
+    batch = rows.shape[:-2]
+    if 0 in batch:
+        return np.zeros((*batch, 6, 6)), 6 - order
+    flat_order = np.ascontiguousarray(np.broadcast_to(order, batch).reshape(-1), dtype=np.int64)
+    kernels = _kernels or _import_kernels()
+    out = kernels.complement(np.ascontiguousarray(rows.reshape(-1, 6, 6)), flat_order, swap)
+    return out.reshape(*batch, 6, 6), 6 - order
+
+
+def _complement_numpy(rows: Array, order: Array) -> tuple[Array, Array]:
+    """:func:`complement` by numpy's batched complete QR."""
     q = np.linalg.qr(np.swapaxes(rows, -1, -2), mode="complete")[0]  # (..., 6, 6), columns
     wanted = 6 - order
     index = order[..., None] + np.arange(6)  # row k of the complement is column order + k of q
@@ -172,8 +257,10 @@ def reciprocal(rows: Array, order: Array) -> tuple[Array, Array]:
     >>> int(order), bool(np.abs(rows[:5] @ SWAP @ line[0]).max() < 1e-15)
     (5, True)
     """
-    out, wanted = complement(rows, order)
-    return swapped(out), wanted
+    if _numba_kernels() is None:
+        out, wanted = _complement_numpy(rows, order)
+        return swapped(out), wanted
+    return _complement_numba(rows, order, swap=True)
 
 
 def residual(vectors: Array, rows: Array) -> Array:
@@ -184,6 +271,23 @@ def residual(vectors: Array, rows: Array) -> Array:
     >>> residual(np.array([[1.0, 1.0, 0, 0, 0, 0]]), np.eye(6)[:1])
     array([[0., 1., 0., 0., 0., 0.]])
     """
+    return (_residual_numpy if _numba_kernels() is None else _residual_numba)(vectors, rows)
+
+
+def _residual_numba(vectors: Array, rows: Array) -> Array:
+    """:func:`residual` by the compiled per-pose loop."""
+    vectors, rows = np.asarray(vectors, dtype=float), np.asarray(rows, dtype=float)
+    batch = np.broadcast_shapes(vectors.shape[:-2], rows.shape[:-2])
+    k, m = vectors.shape[-2], rows.shape[-2]
+    if 0 in batch or k == 0:
+        return np.zeros((*batch, k, 6))
+    flat_vectors = np.ascontiguousarray(np.broadcast_to(vectors, (*batch, k, 6)).reshape(-1, k, 6))
+    flat_rows = np.ascontiguousarray(np.broadcast_to(rows, (*batch, m, 6)).reshape(-1, m, 6))
+    return (_kernels or _import_kernels()).residual(flat_vectors, flat_rows).reshape(*batch, k, 6)
+
+
+def _residual_numpy(vectors: Array, rows: Array) -> Array:
+    """:func:`residual` vectorized over the batch with numpy."""
     return _project_out(_project_out(vectors, rows), rows)
 
 

@@ -275,11 +275,12 @@ def mechanism_frame(screws: Array, anchor: Array | None = None) -> tuple[Array, 
     sizes = np.sum(directions**2, axis=-1)
     finite = sizes > 0
     safe = np.where(finite, sizes, 1.0)[..., None]
-    units = directions / np.sqrt(safe)
+    units = directions / np.sqrt(safe) * finite[..., None]  # zero for infinite pitch
     feet = np.cross(directions, moments) / safe
-    projectors = (np.eye(3) - units[..., :, None] * units[..., None, :]) * finite[..., None, None]
-    normal = projectors.sum(axis=-3)
-    rhs = np.einsum("...kij,...kj->...i", projectors, feet)
+    # the projectors P_k = I − u_k u_kᵀ (finite axes only), never formed: their sum and P_k x
+    count = finite.sum(axis=-1)
+    normal = count[..., None, None] * np.eye(3) - np.sum(units[..., :, None] * units[..., None, :], axis=-3)
+    rhs = np.sum((feet - units * np.sum(units * feet, axis=-1, keepdims=True)) * finite[..., None], axis=-2)
     values, vectors = np.linalg.eigh(normal)
     determined = values > UNDETERMINED_RTOL * values[..., -1:]
     inverse = np.where(determined, 1.0 / np.where(determined, values, 1.0), 0.0)
@@ -288,9 +289,9 @@ def mechanism_frame(screws: Array, anchor: Array | None = None) -> tuple[Array, 
         along = np.einsum("...ji,...j->...i", vectors, np.asarray(anchor, dtype=float))
         coordinates = np.where(determined, coordinates, along)
     point = np.einsum("...ij,...j->...i", vectors, coordinates)
-    offsets = np.einsum("...kij,...kj->...ki", projectors, point[..., None, :] - feet)
-    count = np.maximum(finite.sum(axis=-1), 1)
-    length = np.sqrt(np.sum(offsets**2, axis=(-2, -1)) / count)
+    away = point[..., None, :] - feet
+    offsets = (away - units * np.sum(units * away, axis=-1, keepdims=True)) * finite[..., None]
+    length = np.sqrt(np.sum(offsets**2, axis=(-2, -1)) / np.maximum(count, 1))
     size = np.maximum(np.linalg.norm(feet, axis=-1).max(axis=-1, initial=0.0), np.linalg.norm(point, axis=-1))
     round_off = length <= 1e-12 * size
     fallback = np.where(size > 0, size, 1.0)

@@ -1,0 +1,205 @@
+"""The two implementations of :mod:`screwkit._frames` (numpy and numba) follow one rule.
+
+Both paths run here whatever this process chose: the numpy kernels are called directly
+(``_frames._span_numpy`` …) and so are the numba ones (skipped, with the reason, when numba is not
+installed). They must give the same orders and the same subspaces (to 1e-12) on random generators,
+rank-deficient and near-deficient ones, zero rows, and batch shapes ``()``, ``(1,)``, ``(3, 4)``.
+"""
+
+import importlib.util
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from screwkit import _frames as F
+
+HAS_NUMBA = importlib.util.find_spec("numba") is not None
+needs_numba = pytest.mark.skipif(not HAS_NUMBA, reason="numba is not installed (the `fast` extra)")
+
+RTOL = 1e-9
+ATOL = 1e-12
+BATCHES = [(), (1,), (3, 4)]
+
+
+def generators(rng, batch, k, rank, *, near=0.0, zero_rows=0):
+    """``(*batch, k, 6)`` generators of the given rank (plus ``near`` times noise), with the last
+    ``zero_rows`` rows zero, scaled per pose so the threshold follows the largest norm."""
+    basis = rng.standard_normal((*batch, rank, 6))
+    mix = rng.standard_normal((*batch, k, rank))
+    rows = mix @ basis + near * rng.standard_normal((*batch, k, 6))
+    if zero_rows:
+        rows[..., k - zero_rows :, :] = 0.0
+    return rows * rng.uniform(0.1, 10.0, (*batch, 1, 1))
+
+
+def projector(rows, order):
+    """The orthogonal projector on a frame's span: ``(..., 6, 6)``."""
+    mask = np.arange(6) < np.asarray(order)[..., None]
+    kept = rows * mask[..., None]
+    return np.swapaxes(kept, -1, -2) @ kept
+
+
+def check_frame(rows, order):
+    """Orthonormal first ``order`` rows, zero rows after."""
+    mask = np.arange(6) < np.asarray(order)[..., None]
+    gram = rows @ np.swapaxes(rows, -1, -2)
+    expected = np.eye(6) * (mask[..., :, None] & mask[..., None, :])
+    np.testing.assert_allclose(gram, expected, atol=ATOL)
+
+
+CASES = [
+    # (k, rank, near, zero_rows)
+    (1, 1, 0.0, 0),
+    (3, 3, 0.0, 0),
+    (6, 6, 0.0, 0),
+    (9, 6, 0.0, 0),
+    (5, 2, 0.0, 0),  # rank-deficient
+    (8, 4, 0.0, 2),  # rank-deficient with zero rows
+    (4, 3, 1e-13, 0),  # near-deficient, below the threshold
+    (4, 3, 1e-6, 0),  # near-deficient, above it
+    (3, 0, 0.0, 3),  # all zero
+]
+
+
+def _span_numba(generators, rtol):
+    if not HAS_NUMBA:
+        pytest.skip("numba is not installed (the `fast` extra)")
+    return F._span_numba(generators, rtol)
+
+
+@needs_numba
+@pytest.mark.parametrize("batch", BATCHES)
+@pytest.mark.parametrize(("k", "rank", "near", "zero_rows"), CASES)
+def test_span_numba_matches_numpy(rng, batch, k, rank, near, zero_rows):
+    work = generators(rng, batch, k, rank, near=near, zero_rows=zero_rows)
+    rows_np, order_np = F._span_numpy(work, RTOL)
+    rows_nb, order_nb = F._span_numba(work, RTOL)
+    assert rows_nb.shape == rows_np.shape == (*batch, 6, 6)
+    assert order_nb.shape == order_np.shape == batch
+    np.testing.assert_array_equal(order_nb, order_np)
+    if near != 1e-6:
+        np.testing.assert_array_equal(order_np, np.full(batch, rank))
+    check_frame(rows_nb, order_nb)
+    np.testing.assert_allclose(projector(rows_nb, order_nb), projector(rows_np, order_np), atol=ATOL)
+    assert np.all(rows_nb[..., :, :] * (np.arange(6) >= order_nb[..., None])[..., None] == 0)
+
+
+@pytest.mark.parametrize("batch", BATCHES)
+@pytest.mark.parametrize(("k", "rank", "near", "zero_rows"), CASES)
+def test_span_numpy_is_a_frame_of_the_generators(rng, batch, k, rank, near, zero_rows):
+    work = generators(rng, batch, k, rank, near=near, zero_rows=zero_rows)
+    rows, order = F._span_numpy(work, RTOL)
+    check_frame(rows, order)
+    if near == 0.0:  # exact rank: the generators lie in the span
+        inside = np.einsum("...ks,...st->...kt", work, projector(rows, order))
+        np.testing.assert_allclose(inside, work, atol=1e-12 * np.abs(work).max(initial=1.0))
+
+
+@pytest.mark.parametrize("implementation", ["numpy", "numba"])
+def test_span_of_no_generators(implementation):
+    kernel = F._span_numpy if implementation == "numpy" else _span_numba
+    rows, order = kernel(np.zeros((3, 4, 0, 6)), RTOL)
+    assert rows.shape == (3, 4, 6, 6) and order.shape == (3, 4)
+    assert not rows.any() and not order.any()
+
+
+def _complements(frame_rows, order, implementation):
+    if implementation == "numpy":
+        return F._complement_numpy(frame_rows, order)
+    if not HAS_NUMBA:
+        pytest.skip("numba is not installed (the `fast` extra)")
+    return F._complement_numba(frame_rows, order)
+
+
+@pytest.mark.parametrize("implementation", ["numpy", "numba"])
+@pytest.mark.parametrize("batch", BATCHES)
+@pytest.mark.parametrize(("k", "rank", "near", "zero_rows"), CASES)
+def test_complement_is_the_orthogonal_complement(rng, implementation, batch, k, rank, near, zero_rows):
+    frame = F._span_numpy(generators(rng, batch, k, rank, near=near, zero_rows=zero_rows), RTOL)
+    rows, order = _complements(*frame, implementation)
+    np.testing.assert_array_equal(order, 6 - frame[1])
+    check_frame(rows, order)  # orthonormal, ordered 0..5-order, zeros after
+    np.testing.assert_allclose(projector(rows, order) + projector(*frame), np.broadcast_to(np.eye(6), rows.shape), atol=ATOL)
+
+
+@needs_numba
+@pytest.mark.parametrize("batch", BATCHES)
+def test_reciprocal_numba_matches_numpy(rng, batch):
+    frame = F._span_numpy(generators(rng, batch, 4, 3), RTOL)
+    expected = F._complement_numpy(*frame)
+    rows, order = F._complement_numba(*frame, swap=True)
+    np.testing.assert_array_equal(order, expected[1])
+    np.testing.assert_allclose(projector(F.swapped(rows), order), projector(*expected), atol=ATOL)
+
+
+@needs_numba
+@pytest.mark.parametrize("batch", BATCHES)
+@pytest.mark.parametrize("order", [0, 2, 6])
+def test_residual_numba_matches_numpy(rng, batch, order):
+    frame_rows, _ = F._span_numpy(generators(rng, batch, order, order), RTOL)
+    vectors = rng.standard_normal((*batch, 3, 6))
+    np.testing.assert_allclose(
+        F._residual_numba(vectors, frame_rows), F._residual_numpy(vectors, frame_rows), atol=ATOL
+    )
+
+
+@needs_numba
+def test_numba_single_and_batched_are_bit_identical(rng):
+    work = generators(rng, (50,), 7, 5, near=1e-10)
+    rows, order = F._span_numba(work, RTOL)
+    for i in (0, 17, 49):
+        one_rows, one_order = F._span_numba(work[i], RTOL)
+        assert one_order == order[i] and np.array_equal(one_rows, rows[i])
+        assert np.array_equal(F._complement_numba(one_rows, one_order)[0], F._complement_numba(rows, order)[0][i])
+
+
+def _probe(code, env):
+    result = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, timeout=300, check=True,
+        env={**__import__("os").environ, **env},
+    )
+    return result.stdout.split()
+
+
+def test_screwkit_numba_0_selects_numpy():
+    code = (
+        "import sys, numpy as np\nfrom screwkit import _frames as F\n"
+        "F.span(np.eye(6)[:2], 1e-9)\nprint(F.backend(), 'numba' in sys.modules)"
+    )
+    assert _probe(code, {"SCREWKIT_NUMBA": "0"}) == ["numpy", "False"]
+
+
+@needs_numba
+def test_numba_is_the_default_and_imported_lazily():
+    code = (
+        "import sys, numpy as np, screwkit\nfrom screwkit import _frames as F\nprint('numba' in sys.modules)\n"
+        "F.span(np.eye(6)[:2], 1e-9)\nprint(F.backend(), 'numba' in sys.modules)"
+    )
+    env = {"SCREWKIT_NUMBA": "1"}
+    assert _probe(code, env) == ["False", "numba", "True"]
+
+
+@needs_numba
+def test_both_paths_classify_the_h4_alike():
+    # the whole core in each path (a fresh interpreter per path): identical verdicts and orders on
+    # generic poses, closeness within round-off
+    code = (
+        "import numpy as np, screwkit as sk\nfrom screwkit.families.four_limb import reachable\n"
+        "h4 = sk.load_mechanism('h4'); p = h4.random_poses(np.random.default_rng(3), 600)\n"
+        "p = p[reachable(h4.parameters, p)][:400]\nr = sk.classify_table(h4.joints(p))\n"
+        "out = {k: np.asarray(getattr(r, k)).tolist() for k in"
+        " ('constraint_order', 'global_order', 'serial_flags', 'codes', 'uncontrolled_dof')}\n"
+        "out.update({k: np.asarray(v).tolist() for k, v in r.closeness.items()})\nprint(repr(out))"
+    )
+    import ast
+
+    outputs = [ast.literal_eval(" ".join(_probe(code, {"SCREWKIT_NUMBA": flag}))) for flag in ("0", "1")]
+    assert outputs[0].keys() == outputs[1].keys() and outputs[0]
+    for key in outputs[0]:
+        a, b = np.asarray(outputs[0][key]), np.asarray(outputs[1][key])
+        if a.dtype.kind == "f":
+            np.testing.assert_allclose(a, b, atol=1e-9, err_msg=key)
+        else:
+            np.testing.assert_array_equal(a, b, err_msg=key)
