@@ -30,10 +30,10 @@ import resource  # noqa: E402
 import statistics  # noqa: E402
 import subprocess  # noqa: E402
 import sys  # noqa: E402
-import time  # noqa: E402
 import tracemalloc  # noqa: E402
 
 import numpy as np  # noqa: E402
+from _timing import best_of  # noqa: E402  (bench/ is the script folder)
 
 import screwkit as sk  # noqa: E402
 from screwkit.families.four_limb import PAPER_002_LEGS, reachable  # noqa: E402
@@ -78,15 +78,6 @@ def workspace_poses(h4, count, seed=0):
     return np.concatenate(chosen)[:count]
 
 
-def best_time(function, repeats):
-    times = []
-    for _ in range(repeats):
-        start = time.perf_counter()
-        function()
-        times.append(time.perf_counter() - start)
-    return min(times)
-
-
 def chunked(function, poses):
     for begin in range(0, len(poses), CHUNK):
         function(poses[begin : begin + CHUNK])
@@ -119,8 +110,8 @@ def main(argv=None):
         matrices = np.concatenate(
             [wrench_matrices(h4, chosen[b : b + CHUNK]) for b in range(0, count, CHUNK)]
         )
-        svd = best_time(lambda m=matrices: np.linalg.svd(m, compute_uv=False), 3 if count <= 10**5 else 1)
-        ours = best_time(lambda c=chosen: chunked(lambda p: verdicts(h4, p), c), 2 if count <= 10**4 else 1)
+        svd = best_of(3 if count <= 10**5 else 1, lambda m=matrices: np.linalg.svd(m, compute_uv=False))
+        ours = best_of(2 if count <= 10**4 else 1, lambda c=chosen: chunked(lambda p: verdicts(h4, p), c))
         print(
             f"{count:>9,} | {count / svd:>14,.0f} | {count / ours:>18,.0f} | {svd / ours:>6.4f} | {ours:.2f}"
         )

@@ -3,22 +3,13 @@
 Run: python bench/bench_h4.py  (prints figures for the README; not a test).
 """
 
-import time
 
 import numpy as np
+from _timing import best_of
 
 from screwkit.catalog import load_mechanism
 from screwkit.families.four_limb import joints, reachable
 from screwkit.singularity import classify, classify_table
-
-
-def best_of(repeats, function):
-    times = []
-    for _ in range(repeats):
-        start = time.perf_counter()
-        function()
-        times.append(time.perf_counter() - start)
-    return min(times)
 
 
 def main():
