@@ -65,6 +65,7 @@ __all__ = [
     "simplify",
     "sympy_module",
     "to_sympy",
+    "zeros",
     "zeros_like",
 ]
 
@@ -231,6 +232,21 @@ def is_exactly_zero(value: Any) -> bool:
     if is_symbolic(value):
         return bool(sympy_module().simplify(value) == 0)
     return bool(value == 0)
+
+
+def zeros(shape: tuple[int, ...], *, symbolic: bool) -> Array:
+    """Zeros of a shape in a branch: float64, or exact sympy zeros in an object array.
+
+    Examples
+    --------
+    >>> zeros((2,), symbolic=True)
+    array([0, 0], dtype=object)
+    """
+    if not symbolic:
+        return np.zeros(shape)
+    out = np.empty(shape, dtype=object)
+    out.fill(to_sympy(0))
+    return out
 
 
 def zeros_like(a: Array) -> Array:

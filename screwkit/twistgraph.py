@@ -217,7 +217,7 @@ def graph_frame(graph: nx.MultiDiGraph, *, joint_key: str = "joint") -> tuple[Ar
     joints = sorted(graph.edges(keys=True, data=joint_key), key=lambda e: str(e[2]))  # the core's order
     rows = [joint.screws for _, _, _, joint in joints]
     stacked = np.concatenate(rows) if rows else np.zeros((0, 6))
-    if stacked.dtype == object:
+    if B.is_symbolic(stacked):
         return np.zeros(3), 1.0
     anchor = graph_anchor(graph, joint_key=joint_key)
     point, length = mechanism_frame(stacked[None], None if anchor is None else anchor[None])  # as the core
@@ -422,8 +422,8 @@ def loop_closure_matrix(
     loops = fundamental_loops(graph, joint_key=joint_key)
     columns = _columns(graph, joint_key)
     index = {c: i for i, c in enumerate(columns)}
-    symbolic = any(graph.edges[u, v, k][joint_key].screws.dtype == object for u, v, k, _ in columns)
-    matrix = np.zeros((6 * len(loops), len(columns)), dtype=object if symbolic else float)
+    symbolic = B.is_symbolic(*(graph.edges[u, v, k][joint_key].screws for u, v, k, _ in columns))
+    matrix = B.zeros((6 * len(loops), len(columns)), symbolic=symbolic)
     for row, loop in enumerate(loops):
         for u, v, key, direction in loop:
             screws = _promoted(graph.edges[u, v, key][joint_key].screws, symbolic)
@@ -435,7 +435,7 @@ def loop_closure_matrix(
 
 def _promoted(screws: Array, symbolic: bool) -> Array:
     """Numeric screws as exact sympy numbers when the matrix is symbolic (no floats leak in)."""
-    return B.promote(screws, np.empty(0, dtype=object))[0] if symbolic else screws
+    return B.promote(screws, B.zeros((0,), symbolic=True))[0] if symbolic else screws
 
 
 def _loop_closure_twists(
@@ -446,16 +446,21 @@ def _loop_closure_twists(
     parent_edge = _spanning_tree(graph)
     path = _tree_path(parent_edge, graph.graph["base"], graph.graph["platform"])
     index = {c: i for i, c in enumerate(columns)}
-    path_matrix = np.zeros((6, len(columns)), dtype=matrix.dtype)
+    symbolic = B.is_symbolic(*(joint.screws for _, _, joint in graph.edges(data=joint_key)))
+    path_matrix = B.zeros((6, len(columns)), symbolic=symbolic)
     for u, v, key, direction in path:
-        screws = _promoted(graph.edges[u, v, key][joint_key].screws, matrix.dtype == object)
+        screws = _promoted(graph.edges[u, v, key][joint_key].screws, symbolic)
         for i, screw in enumerate(screws):
             path_matrix[:, index[(u, v, key, i)]] += screw if direction == "forward" else -screw
     matrix, path_matrix = matrix[:, free], path_matrix[:, free]
     if not free:
         return ScrewSystem.zero(rtol=rtol, length_scale=length_scale)
-    if matrix.dtype == object:
-        rates = B.matrix_nullspace(matrix, rtol=rtol) if matrix.shape[0] else np.eye(len(free), dtype=object)
+    if symbolic:
+        rates = (
+            B.matrix_nullspace(matrix, rtol=rtol)
+            if matrix.shape[0]
+            else np.eye(len(free), dtype=int) + B.zeros((len(free), len(free)), symbolic=True)
+        )
         return ScrewSystem.span((path_matrix @ rates.T).T, rtol=rtol)
     scaled = matrix.copy()
     scaled.reshape(-1, 6, len(free))[:, 3:, :] /= length_scale  # moments to the length scale
