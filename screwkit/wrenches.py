@@ -294,9 +294,17 @@ class WrenchAnalysis:
 
     def _system(self, key: str) -> ScrewSystem:
         self._require_single(key)
+        if key not in self.frames:
+            self._add_views()
         rows, order = self.frames[key]
         user = F.from_scaled(rows[: int(order)], self.reference_point, np.asarray(self.length_scale))
         return ScrewSystem.from_independent(user, rtol=self.rtol, length_scale=float(self.length_scale))
+
+    def _add_views(self) -> None:
+        """The per-pose frames a batch analysed without views did not keep (classify_table): this
+        pose again, as a batch of one through the same kernels (the same arithmetic, same answers)."""
+        one = analyze_table(self.table[None], dof=self.dof, rtol=self.rtol)
+        self.frames.update({key: (rows[0], order[0]) for key, (rows, order) in one.frames.items()})
 
     @functools.cached_property
     def graph(self) -> nx.MultiDiGraph:

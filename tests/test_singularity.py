@@ -10,7 +10,7 @@ from screwkit import _frames as F
 from screwkit import screw as S
 from screwkit.exceptions import TwistGraphError
 from screwkit.joints import prismatic, revolute
-from screwkit.singularity import SingularityReport, classify, classify_analysis
+from screwkit.singularity import SingularityReport, classify, classify_analysis, classify_table
 from screwkit.twistgraph import equivalent_twist_graph, twist_graph
 from screwkit.wrenches import normalized_reciprocal_product, wrench_analysis
 
@@ -363,3 +363,18 @@ def test_error_bad_dof_is_passed_on():
     G = twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))])
     with pytest.raises(TwistGraphError, match=r"Expected `dof` to be an integer in 0\.\.6, got 9"):
         classify(G, dof=9)
+
+
+def test_one_pose_of_a_batch_report_has_the_single_pose_views():
+    # classify_table keeps no per-limb frames (bounded memory); indexing one pose recomputes them
+    # through the same kernels, so its serial limbs and uncontrolled twists are those of classify
+    from screwkit.catalog import load_mechanism
+
+    h4 = load_mechanism("h4")
+    poses = np.array([[0.0, 0.0, -750.0, 0.0], [30.0, -20.0, -800.0, 0.3]])
+    batch = classify_table(h4.joints(poses))
+    for i, pose in enumerate(poses):
+        single = classify(h4.twist_graph(pose))
+        assert batch[i].serial == () == single.serial
+        np.testing.assert_array_equal(batch[i].uncontrolled_twists, single.uncontrolled_twists)
+        assert [limb.actuated_joint for limb in batch[i].analysis.limbs] == ["A1", "A2", "A3", "A4"]
