@@ -26,6 +26,7 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import re
 import sys
 from collections.abc import Sequence
 from typing import Any, NoReturn
@@ -45,8 +46,18 @@ class _UsageError(Exception):
     """A malformed command line (exit status 2)."""
 
 
+#: What the command line takes for a negative number (argparse's own pattern misses exponents, so
+#: ``--pose 0 0 -7.5e2 0`` read ``-7.5e2`` as an option).
+_NEGATIVE_NUMBER = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$")
+
+
 class _Parser(argparse.ArgumentParser):
-    """argparse with one-line errors (the usage is in ``--help``)."""
+    """argparse with one-line errors (the usage is in ``--help``) and negative numbers in any
+    decimal form."""
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        self._negative_number_matcher = _NEGATIVE_NUMBER
 
     def error(self, message: str) -> NoReturn:
         raise _UsageError(f"{self.prog}: error: {message} (see --help)")
@@ -204,13 +215,23 @@ def run_analyze(args: argparse.Namespace) -> int:
     else:
         pose = None
     report = analyze(target, pose, rtol=args.rtol, superbracket=not args.no_superbracket)
-    print(json.dumps(report.to_dict(), indent=2, ensure_ascii=False) if args.json else report)
+    _print(json.dumps(report.to_dict(), indent=2, ensure_ascii=False) if args.json else str(report))
     return 0
 
 
 def _toml_kind(path: str) -> Any:
     header = load_toml(path).get("mechanism", {})
     return header.get("kind") if isinstance(header, dict) else None
+
+
+def _print(text: str) -> None:
+    """Print, falling back to escapes where stdout cannot encode a character (ḟ, χ̇, θ̇ on an
+    ASCII or Latin-1 terminal) instead of failing."""
+    try:
+        print(text)
+    except UnicodeEncodeError:
+        encoding = getattr(sys.stdout, "encoding", None) or "ascii"
+        print(text.encode(encoding, errors="backslashreplace").decode(encoding))
 
 
 def run_list(args: argparse.Namespace) -> int:

@@ -132,6 +132,18 @@ class Joint:
             )
         if not B.is_symbolic(rows) and np.any(np.linalg.norm(rows, axis=1) == 0):
             raise ScrewkitValueError(f"Joint {self.name!r}: expected non-zero screws, got a zero row.")
+        if not isinstance(self.actuated, bool | np.bool_) or not isinstance(self.virtual, bool | np.bool_):
+            flag, value = (
+                ("actuated", self.actuated)
+                if not isinstance(self.actuated, bool | np.bool_)
+                else (
+                    "virtual",
+                    self.virtual,
+                )
+            )
+            raise ScrewkitTypeError(
+                f"Joint {self.name!r}: expected `{flag}` to be True or False, got {value!r}."
+            )
         if self.actuated and rows.shape[0] != 1:
             raise ScrewkitValueError(
                 f"Joint {self.name!r}: only one-degree-of-freedom joints can be actuated, "
@@ -517,9 +529,7 @@ class JointTable:
 
         check_twist_graph(graph, joint_key=joint_key)
         joints = list(graph.edges(keys=True, data=joint_key))  # any order: the core sorts by name
-        rows = [
-            (u, v, key, joint.type, joint.screws, joint.actuated) for u, v, key, joint in joints
-        ]
+        rows = [(u, v, key, joint.type, joint.screws, joint.actuated) for u, v, key, joint in joints]
         return cls.from_rows(
             graph.graph["base"],
             graph.graph["platform"],

@@ -115,3 +115,22 @@ def test_bad_arguments_exit_non_zero_with_one_line(argv, status, message, capsys
 def test_out_of_reach_names_the_limbs(capsys):
     main(["analyze", "h4", "--pose", "0", "0", "-2000", "0"])
     assert "limb(s) 1, 2, 3, 4" in capsys.readouterr().err
+
+
+def test_negative_pose_coordinates_in_exponent_form(capsys):
+    # argparse's own pattern took -7.5e2 for an option ("unrecognized arguments")
+    assert main(["analyze", "h4", "--pose", "0", "0", "-7.5e2", "-1e1", "--no-superbracket", "--json"]) == 0
+    pose = json.loads(capsys.readouterr().out)["pose"]
+    assert pose["z"] == -750.0 and pose["phi"] == pytest.approx(math.radians(-10.0))
+
+
+def test_text_report_falls_back_where_stdout_cannot_encode(capsys, monkeypatch):
+    import io
+    import sys
+
+    stream = io.TextIOWrapper(io.BytesIO(), encoding="ascii")
+    monkeypatch.setattr(sys, "stdout", stream)
+    assert main(["analyze", "h4"]) == 0
+    stream.flush()
+    text = stream.buffer.getvalue().decode("ascii")
+    assert "\\u1e1f" in text  # the dotted f of the factored superbracket, escaped

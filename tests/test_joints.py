@@ -376,3 +376,11 @@ def test_error_symbolic_screws_in_the_analysis_core():
         classify(graph)
     with pytest.raises(ScrewkitTypeError, match=r"substitute values for the symbols"):
         JointTable.from_graph(graph)
+
+
+@pytest.mark.parametrize("flag", ["no", 1, None])
+def test_error_actuated_flag_must_be_a_bool(flag):
+    from screwkit.joints import revolute
+
+    with pytest.raises(ScrewkitTypeError, match=rf"Joint 'R': expected `actuated` to be True or False, got {flag!r}"):
+        revolute("R", [0, 0, 1], [0, 0, 0], actuated=flag)
