@@ -3,11 +3,15 @@
 One fused loop over a flat batch of poses does, pose by pose, paper 004's inverse kinematics (Eq. 3,
 closed form of :func:`screwkit.families.four_limb.inverse_kinematics`) and the indices ``κ``, ``ζ``
 (Eq. 15) of :func:`screwkit.indices.transmission_indices`, without building a configuration and
-without trigonometric calls per limb: with ``cos ψ = P/ρ``, ``sin ψ = Q/ρ``, ``cos δ = K/ρ``,
-``sin δ = √(1 - cos² δ)`` the root ``θ = ψ - m δ`` of the working mode ``m`` has
-``cos θ = cos ψ cos δ + m sin ψ sin δ`` and ``sin θ = sin ψ cos δ - m cos ψ sin δ``. The numpy path
+without trigonometric calls per limb: with ``cos ψ = P/ρ``, ``sin ψ = Q/ρ``, ``cos δ = K/ρ`` and
+``ρ sin δ = √(ρ² - K²)`` the root ``θ = ψ - m δ`` of the working mode ``m`` has
+``cos θ = (P K + m Q √(ρ² - K²)) / ρ²`` and ``sin θ = (Q K - m P √(ρ² - K²)) / ρ²``: one square
+root and one division per limb. The numpy path
 (the configuration, then :func:`screwkit.indices.transmission_indices`) is the reference; the tests
-check that the two agree to round-off. ``cache=True`` stores the compiled code beside this file.
+check that the two agree to round-off. ``cache=True`` stores the compiled code beside this file;
+``error_model="numpy"`` drops Python's division checks (every division is by a checked non-zero
+length) and ``fastmath`` lets the compiler reorder the few dozen flops per limb (round-off only:
+the inputs are finite, checked by the caller).
 """
 
 from __future__ import annotations
@@ -20,14 +24,14 @@ from numba import njit
 Array = np.ndarray
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy", fastmath=True)
 def _cross_into(a0: float, a1: float, a2: float, b0: float, b1: float, b2: float, out: Array) -> None:
     out[0] = a1 * b2 - a2 * b1
     out[1] = a2 * b0 - a0 * b2
     out[2] = a0 * b1 - a1 * b0
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy", fastmath=True)
 def transmission(  # pragma: no cover - compiled
     poses: Array,
     base: Array,
@@ -50,6 +54,7 @@ def transmission(  # pragma: no cover - compiled
     zeta = np.zeros(n)
     ok = np.zeros(n, dtype=np.bool_)
     arm, rod, radius, rise = lengths[0], lengths[1], lengths[2], lengths[3]
+    half_inverse_arm, inverse_rod = 0.5 / arm, 1.0 / rod
     w = np.empty((4, 3))
     c = np.empty(3)
     first = np.empty(3)
@@ -82,22 +87,21 @@ def transmission(  # pragma: no cover - compiled
             d0, d1, d2 = c[0] - base[i, 0, 0], c[1] - base[i, 0, 1], c[2] - base[i, 0, 2]
             big_p = d0 * base[i, 1, 0] + d1 * base[i, 1, 1] + d2 * base[i, 1, 2]
             big_q = d0 * base[i, 2, 0] + d1 * base[i, 2, 1] + d2 * base[i, 2, 2]
-            big_k = (d0 * d0 + d1 * d1 + d2 * d2 + arm * arm - rod * rod) / (2.0 * arm)
-            rho = math.hypot(big_p, big_q)
-            if not (rho > 0.0 and abs(big_k) <= rho):
+            big_k = (d0 * d0 + d1 * d1 + d2 * d2 + arm * arm - rod * rod) * half_inverse_arm
+            rho_squared = big_p * big_p + big_q * big_q
+            slack = rho_squared - big_k * big_k  # ρ² sin² δ
+            if not (rho_squared > 0.0 and slack >= 0.0):
                 reach = False
                 break
-            cos_psi, sin_psi = big_p / rho, big_q / rho
-            cos_delta = min(1.0, max(-1.0, big_k / rho))
-            sin_delta = math.sqrt(1.0 - cos_delta * cos_delta)
-            m = mode[i]
-            cos_t = cos_psi * cos_delta + m * sin_psi * sin_delta
-            sin_t = sin_psi * cos_delta - m * cos_psi * sin_delta
+            root = mode[i] * math.sqrt(slack)  # m ρ sin δ
+            inverse = 1.0 / rho_squared
+            cos_t = (big_p * big_k + big_q * root) * inverse  # cos(ψ - m δ)
+            sin_t = (big_q * big_k - big_p * root) * inverse  # sin(ψ - m δ)
             h_sum = 0.0
             for k in range(3):
                 v = cos_t * base[i, 1, k] + sin_t * base[i, 2, k]  # F_i R_x(θ) j (Eq. 2)
                 u_cross_v = -sin_t * base[i, 1, k] + cos_t * base[i, 2, k]
-                w[i, k] = (c[k] - base[i, 0, k] - arm * v) / rod
+                w[i, k] = (c[k] - base[i, 0, k] - arm * v) * inverse_rod
                 h_sum += w[i, k] * u_cross_v
             smallest = min(smallest, abs(h_sum))  # |cos μ_i| = |w_i·(u_i × v_i)| (Eq. 11)
         if not reach:
