@@ -42,7 +42,8 @@ def straightforward(params, poses, mode=(-1, -1, -1, -1)):
     r = params.platform_radius
     if params.platform_kind == "screw_pair":  # Table 1, Veloce row (corrected, four_limb item 2)
         radial = np.stack([np.cos(FL._ETA), np.sin(FL._ETA), np.zeros(4)], axis=-1)
-        c = r * radial + (FL._ODD_LIMB * params.lead / (2 * np.pi))[:, None] * phi[:, None, None] * [0, 0, 1] + x
+        rise = (FL._ODD_LIMB * params.lead / (2 * np.pi))[:, None] * phi[:, None, None]
+        c = r * radial + rise * [0, 0, 1] + x
         s = np.broadcast_to([0.0, 0.0, 1.0], (len(poses), 3))
     else:  # Quattro, H4: R_z(phi); V4: R_y(phi) (item 3)
         cos, sin, zero = np.cos(phi), np.sin(phi), np.zeros_like(phi)
@@ -50,8 +51,8 @@ def straightforward(params, poses, mode=(-1, -1, -1, -1)):
             bar, s = np.stack([cos, sin, zero], -1), np.stack([-sin, cos, zero], -1)
         else:
             bar, s = np.stack([cos, zero, -sin], -1), np.stack([-sin, zero, -cos], -1)
-        c = (FL._SGN_COS_ETA[:, None] * r * bar[:, None, :] + (FL._SGN_SIN_ETA * params.platform_offset)[:, None]
-             * [0, 1, 0] + x)
+        offsets = (FL._SGN_SIN_ETA * params.platform_offset)[:, None] * [0, 1, 0]
+        c = FL._SGN_COS_ETA[:, None] * r * bar[:, None, :] + offsets + x
     d = c - base.a
     big_p, big_q = np.sum(d * base.j_rot, -1), np.sum(d * base.k_rot, -1)
     big_k = (np.sum(d * d, -1) + params.arm_length**2 - params.rod_length**2) / (2 * params.arm_length)
@@ -96,7 +97,8 @@ def main():
         kappa, zeta, ok = kernels.transmission(poses, *packed)
         ref_kappa, ref_zeta = straightforward(params, poses)
         assert np.array_equal(ok, np.isfinite(ref_kappa)), "reachability differs"
-        assert np.allclose(kappa[ok], ref_kappa[ok], atol=1e-12) and np.allclose(zeta[ok], ref_zeta[ok], atol=1e-12)
+        assert np.allclose(kappa[ok], ref_kappa[ok], atol=1e-12)
+        assert np.allclose(zeta[ok], ref_zeta[ok], atol=1e-12)
         plain = I._transmission_numpy(params, poses, mode)
         assert np.allclose(plain[0], kappa, atol=1e-12) and np.array_equal(plain[2], ok)
         times = [
@@ -104,7 +106,8 @@ def main():
             best_of(args.repeats, lambda poses=poses: I._transmission_numpy(params, poses, mode)),
             best_of(args.repeats, lambda poses=poses: kernels.transmission(poses, *packed)),
         ]
-        rates = "".join(f" {len(poses) / t / 1e6:>{w}.2f} M/s" for t, w in zip(times, (20, 13, 13), strict=True))
+        widths = (20, 13, 13)
+        rates = "".join(f" {len(poses) / t / 1e6:>{w}.2f} M/s" for t, w in zip(times, widths, strict=True))
         print(f"{len(poses):>9} {ok.mean():>9.2f} |{rates} | {times[0] / times[2]:>26.1f}x")
 
 
