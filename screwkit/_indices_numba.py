@@ -54,9 +54,8 @@ def transmission(  # pragma: no cover - compiled
     zeta = np.zeros(n)
     ok = np.zeros(n, dtype=np.bool_)
     arm, rod, radius, rise = lengths[0], lengths[1], lengths[2], lengths[3]
-    half_inverse_arm, inverse_rod = 0.5 / arm, 1.0 / rod
+    half_inverse_arm, inverse_rod, lengths_term = 0.5 / arm, 1.0 / rod, arm * arm - rod * rod
     w = np.empty((4, 3))
-    c = np.empty(3)
     first = np.empty(3)
     second = np.empty(3)
     normal = np.empty(3)
@@ -77,17 +76,16 @@ def transmission(  # pragma: no cover - compiled
         for i in range(4):
             factor = platform[i, 1, 0]
             if kind == 2:
-                c[0] = platform[i, 0, 0] + x
-                c[1] = platform[i, 0, 1] + y
-                c[2] = platform[i, 0, 2] + z + factor * rise * phi
+                d0 = platform[i, 0, 0] + x - base[i, 0, 0]
+                d1 = platform[i, 0, 1] + y - base[i, 0, 1]
+                d2 = platform[i, 0, 2] + z + factor * rise * phi - base[i, 0, 2]
             else:
-                c[0] = factor * radius * bar0 + platform[i, 0, 0] + x
-                c[1] = factor * radius * bar1 + platform[i, 0, 1] + y
-                c[2] = factor * radius * bar2 + platform[i, 0, 2] + z
-            d0, d1, d2 = c[0] - base[i, 0, 0], c[1] - base[i, 0, 1], c[2] - base[i, 0, 2]
+                d0 = factor * radius * bar0 + platform[i, 0, 0] + x - base[i, 0, 0]
+                d1 = factor * radius * bar1 + platform[i, 0, 1] + y - base[i, 0, 1]
+                d2 = factor * radius * bar2 + platform[i, 0, 2] + z - base[i, 0, 2]
             big_p = d0 * base[i, 1, 0] + d1 * base[i, 1, 1] + d2 * base[i, 1, 2]
             big_q = d0 * base[i, 2, 0] + d1 * base[i, 2, 1] + d2 * base[i, 2, 2]
-            big_k = (d0 * d0 + d1 * d1 + d2 * d2 + arm * arm - rod * rod) * half_inverse_arm
+            big_k = (d0 * d0 + d1 * d1 + d2 * d2 + lengths_term) * half_inverse_arm
             rho_squared = big_p * big_p + big_q * big_q
             slack = rho_squared - big_k * big_k  # ρ² sin² δ
             if not (rho_squared > 0.0 and slack >= 0.0):
@@ -98,10 +96,10 @@ def transmission(  # pragma: no cover - compiled
             cos_t = (big_p * big_k + big_q * root) * inverse  # cos(ψ - m δ)
             sin_t = (big_q * big_k - big_p * root) * inverse  # sin(ψ - m δ)
             h_sum = 0.0
-            for k in range(3):
+            for k, d_k in ((0, d0), (1, d1), (2, d2)):
                 v = cos_t * base[i, 1, k] + sin_t * base[i, 2, k]  # F_i R_x(θ) j (Eq. 2)
                 u_cross_v = -sin_t * base[i, 1, k] + cos_t * base[i, 2, k]
-                w[i, k] = (c[k] - base[i, 0, k] - arm * v) * inverse_rod
+                w[i, k] = (d_k - arm * v) * inverse_rod  # (c_i - b_i)/l
                 h_sum += w[i, k] * u_cross_v
             smallest = min(smallest, abs(h_sum))  # |cos μ_i| = |w_i·(u_i × v_i)| (Eq. 11)
         if not reach:
