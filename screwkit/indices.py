@@ -1,8 +1,22 @@
-"""Transmission indices of four-limb Schönflies-motion generators, and the Jacobians they rest on.
+"""Transmission indices: paper 004's for the four-limb robots, and one for any mechanism.
+
+What is here, along the data flow:
+
+* paper 004's pressure angles and indices of a four-limb configuration (:func:`motion_pressure_angles`,
+  :func:`force_pressure_angle`, :func:`transmission_indices`, the Jacobians of Eq. 6), below;
+* :func:`transmission`: the same ``κ`` (input), ``ζ`` (output) and LTI ``η`` for a batch of poses
+  of a catalog mechanism (or ``mechanism.at(poses)``), inverse kinematics included, through one fused
+  compiled kernel when numba is installed (:mod:`screwkit._indices_numba`; the numpy path is the
+  tested fallback, ``SCREWKIT_NUMBA=0`` forces it): the entry point for maps;
+* :func:`index_extremes` over a :class:`Region` (grid and local refinement) and :func:`table_4`,
+  paper 004's Table 4 regenerated with the paper's values beside ours (``screwkit table4``);
+* :func:`transmission_ratio` and :func:`wrench_transmission`: input and output transmission per
+  actuated joint from the actuation wrenches and the platform twists (Wang, Wu & Liu 2010; range
+  [0, 1]), for any family or twist graph; ``posed.wrench_transmission`` and the report use it.
 
 Source: paper 004 (Wu, Bai, Caro, "A transmission quality index for a class of four-limb parallel
 Schönflies motion generators", JMR 10(5), 2018), file ``/work/shared/papers/004_60e52c5ada55e36d.txt``;
-equation and table numbers are that paper's. Every function takes a four-limb configuration
+equation and table numbers are that paper's. Its functions here take a four-limb configuration
 (:class:`screwkit.families.four_limb.FourLimbConfiguration`, from the family's inverse kinematics or
 :meth:`screwkit.catalog.Mechanism.configuration`) of any batch shape ``...`` and returns arrays over
 that batch. The configuration's ``w_i`` (unit parallelogram directions), ``h_i`` (Eq. 8), ``s_i``
@@ -158,16 +172,18 @@ class TransmissionIndices(NamedTuple):
     Attributes
     ----------
     kappa, zeta, eta : numpy.ndarray
-        Each of the pose batch's shape, in [0, 1].
-    reachable : numpy.ndarray of bool or None
-        From :func:`transmission` with ``unreachable="nan"``: False where the pose is out of reach
-        (there the indices are NaN, by request); None otherwise (every pose reachable).
+        Each of the pose batch's shape, in [0, 1]; NaN only where :func:`transmission` was asked
+        (``unreachable="nan"``) to mark a pose out of reach.
     """
 
     kappa: np.ndarray
     zeta: np.ndarray
     eta: np.ndarray
-    reachable: np.ndarray | None = None
+
+    @property
+    def reachable(self) -> np.ndarray:
+        """False where the pose was out of reach (the indices are NaN there, by request)."""
+        return ~np.isnan(np.asarray(self.eta, dtype=float))
 
     @property
     def input(self) -> np.ndarray:
@@ -185,7 +201,7 @@ class TransmissionIndices(NamedTuple):
         return self.eta
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready: ``input``, ``output``, ``lti`` (nested lists; NaN as None) and ``reachable``."""
+        """JSON-ready: ``input``, ``output``, ``lti`` (nested lists; NaN as None), ``reachable``."""
 
         def plain(values: np.ndarray) -> Any:
             array = np.asarray(values, dtype=float)
@@ -193,10 +209,8 @@ class TransmissionIndices(NamedTuple):
                 plain(item) for item in array
             ]
 
-        out = {"input": plain(self.kappa), "output": plain(self.zeta), "lti": plain(self.eta)}
-        if self.reachable is not None:
-            out["reachable"] = np.asarray(self.reachable).tolist()
-        return out
+        return {"input": plain(self.kappa), "output": plain(self.zeta), "lti": plain(self.eta),
+                "reachable": self.reachable.tolist()}
 
 
 def four_limb_jacobians(config: FourLimbGeometry) -> FourLimbJacobians:
@@ -440,7 +454,7 @@ def transmission(
         Signs of ``h_i`` (Eq. 8); default the paper's ``(-1, -1, -1, -1)``.
     unreachable : {"raise", "nan"}
         ``"raise"``: an :class:`~screwkit.exceptions.UnreachablePoseError` naming the poses and
-        limbs. ``"nan"``: the indices are NaN there and the result's ``reachable`` mask says where.
+        limbs. ``"nan"``: the indices are NaN there (the result's ``reachable`` says where).
 
     Returns
     -------
@@ -498,12 +512,8 @@ def transmission(
             inverse_kinematics(params, chi, working_mode=mode)  # raises the family's message
             raise UnreachablePoseError("A pose is out of reach.")  # pragma: no cover - unreachable
         kappa, zeta = np.where(ok, kappa, np.nan), np.where(ok, zeta, np.nan)
-    return TransmissionIndices(
-        kappa.reshape(batch),
-        zeta.reshape(batch),
-        np.minimum(kappa, zeta).reshape(batch),
-        reachable=ok.reshape(batch) if unreachable == "nan" else None,
-    )
+    eta = np.minimum(kappa, zeta)
+    return TransmissionIndices(kappa.reshape(batch), zeta.reshape(batch), eta.reshape(batch))
 
 
 # --------------------------------------------------------------------------------------------------

@@ -76,7 +76,7 @@ def test_transmission_is_paper_004_closed_form(robots, name):
     np.testing.assert_allclose(result.input.ravel(), kappa, rtol=0, atol=1e-12)
     np.testing.assert_allclose(result.output.ravel(), zeta, rtol=0, atol=1e-12)
     np.testing.assert_array_equal(result.lti, np.minimum(result.input, result.output))
-    assert result.lti.shape == (len(poses) // 2, 2) and result.reachable is None
+    assert result.lti.shape == (len(poses) // 2, 2) and result.reachable.all() and len(result) == 3
 
 
 @pytest.mark.parametrize("name", FOUR_LIMB)
