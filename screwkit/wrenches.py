@@ -38,6 +38,7 @@ from __future__ import annotations
 
 import functools
 import itertools
+from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from typing import Any
 
@@ -212,7 +213,9 @@ class WrenchAnalysis:
 
     Attributes
     ----------
-    table : JointTable
+    table_source : JointTable or callable
+        The analysed joint table, or a function returning it (a batch analysed chunk by chunk
+        keeps no table; :attr:`table` asks for it when a per-pose view needs it).
     topology : Topology
     rtol : float
     dof : int
@@ -229,7 +232,7 @@ class WrenchAnalysis:
     actuated_twists : numpy.ndarray, shape (..., n_actuated, 6)
     """
 
-    table: JointTable = field(repr=False)
+    table_source: JointTable | Callable[[], JointTable] = field(repr=False)
     topology: Topology = field(repr=False)
     rtol: float
     dof: int
@@ -246,6 +249,12 @@ class WrenchAnalysis:
     closeness: dict[str, Array] = field(repr=False)
 
     # --- batch behaviour -------------------------------------------------------------------------
+    @functools.cached_property
+    def table(self) -> JointTable:
+        """The analysed joint table (computed on first use when the analysis kept none)."""
+        source = self.table_source
+        return source if isinstance(source, JointTable) else source()
+
     @property
     def shape(self) -> tuple[int, ...]:
         """The batch shape (``()`` for one pose)."""
@@ -265,9 +274,12 @@ class WrenchAnalysis:
         def pick(value: Any) -> Any:
             return value[index]
 
+        source = self.table_source
         return replace(
             self,
-            table=self.table[index],
+            table_source=source[index]
+            if isinstance(source, JointTable)
+            else functools.partial(_indexed_table, self, index),
             reference_point=pick(self.reference_point),
             length_scale=_scalar(pick(np.asarray(self.length_scale))),
             platform_order=_scalar(pick(self.platform_order)),
@@ -423,6 +435,11 @@ class WrenchAnalysis:
                 SeriesParallelNode(node.kind, node.ends, system, children, node.links, edge, node.joints)
             )
         return nodes[self.topology.root] if self.topology.root is not None else None
+
+
+def _indexed_table(analysis: WrenchAnalysis, index: Any) -> JointTable:
+    """``analysis.table[index]`` (the table source of an indexed analysis that kept no table)."""
+    return analysis.table[index]
 
 
 def _scalar(value: Any) -> Any:
@@ -668,8 +685,11 @@ def analyze_table(
     rtol : float, default 1e-9
         Relative tolerance of every rank decision (:mod:`screwkit._frames`).
     views : bool, default True
-        Keep the frames that the per-pose views need (every limb's and leg's systems); False keeps
-        only orders, verdict inputs and actuation wrenches (less memory for large batches).
+        Keep the frames that the per-pose views need (every limb's and leg's systems, the
+        constraint, global and uncontrolled systems); False keeps only orders, verdict inputs,
+        actuation wrenches and the frames the Jacobians need (the platform's twists, each limb's
+        passive wrenches): less memory for large batches, the other views recomputed for the one
+        pose that asks.
 
     Returns
     -------
@@ -763,12 +783,10 @@ def analyze_table(
         "actuation": F.singular_ratio(np.concatenate([legs_stacked, wrench_rows], axis=-2), 6),
         "serial": np.min(np.stack(transmissions, axis=-1), axis=-1) if n else np.ones(batch),
     }
-    frames.update(
-        platform=platform,
-        constraint=constraint,
-        uncontrolled=F.reciprocal(*global_frame),
-    )
-    frames["global"] = global_frame
+    frames["platform"] = platform  # the Jacobians' nominal twists are checked against it
+    if views:  # else recomputed for the one pose that asks (WrenchAnalysis._add_views)
+        frames.update(constraint=constraint, uncontrolled=F.reciprocal(*global_frame))
+        frames["global"] = global_frame
     if views and not top.network:  # every node's twists, for the per-pose series-parallel tree
         for index in range(len(top.nodes)):
             frames[f"node{index}"] = core.twists(index)
@@ -778,7 +796,7 @@ def analyze_table(
             frames[f"leg{k}:W"] = wrench_frame
     user_wrenches = _unit_force_or_couple(F.from_scaled(wrench_rows, centre, length), length)
     return WrenchAnalysis(
-        table=table,
+        table_source=table,
         topology=top,
         rtol=rtol,
         dof=nominal,
