@@ -44,7 +44,7 @@ __all__ = ["Pose", "PosedMechanism", "generic_samples"]
 Array = np.ndarray
 
 #: Poses taken through the inverse kinematics, joint table and analysis core at once.
-CHUNK = 1024
+CHUNK = 256
 #: Random workspace poses drawn (in one batch) to find a generic configuration for a diagram.
 GENERIC_DRAWS = 50
 #: Generic samples of a diagram's points drawn (in one batch) for the superbracket: its structural
