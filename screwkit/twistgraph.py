@@ -276,7 +276,7 @@ def mechanism_frame(screws: Array, anchor: Array | None = None) -> tuple[Array, 
     finite = sizes > 0
     safe = np.where(finite, sizes, 1.0)[..., None]
     units = directions / np.sqrt(safe) * finite[..., None]  # zero for infinite pitch
-    feet = B.cross(directions, moments) / safe
+    feet = np.cross(directions, moments) / safe
     # the projectors P_k = I − u_k u_kᵀ (finite axes only), never formed: their sum and P_k x
     count = finite.sum(axis=-1)
     normal = count[..., None, None] * np.eye(3) - np.sum(units[..., :, None] * units[..., None, :], axis=-3)
