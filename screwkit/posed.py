@@ -4,9 +4,10 @@
 cached properties over the whole batch, each built on the one before:
 
 ``configuration`` (the family's inverse kinematics) → ``joints`` (a
-:class:`~screwkit.joints.JointTable`) → ``singularities`` (labels, orders, closeness: the analysis
-core in chunks, :func:`~screwkit.singularity.classify_table`) → ``jacobians`` (``A χ̇ = B θ̇`` over
-the family's nominal twists).
+:class:`~screwkit.joints.JointTable`) → ``singularities`` (labels, orders, closeness: the inverse
+kinematics, joint table and analysis core chunk by chunk, :func:`~screwkit.singularity.classify_chunks`,
+so that a large batch never holds its whole table) → ``jacobians`` (``A χ̇ = B θ̇`` over the family's
+nominal twists).
 
 Indexing gives one :class:`Pose`: its graph, wrench analysis (a batch of one through the same
 kernels), verdict, Jacobians, wrench diagram, superbracket and :meth:`Pose.report`. The
