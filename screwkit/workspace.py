@@ -102,8 +102,12 @@ ACCEPT = 1e-6
 CHUNK = 4096
 #: The kinds of singularity, by bit of the core's codes.
 KINDS = ("constraint", "actuation", "serial")
-_BISECTIONS = 60
-_GOLDEN_STEPS = 80
+#: Refinement stops when a bracket (in the line's parameter, 0..1) is this narrow ...
+XTOL = 4e-16
+#: ... or after this many steps (each one batch through the core).
+MAX_STEPS = 80
+#: Poses of one surface tried for its factor (where the diagram's points exist).
+_FACTOR_TRIES = 5
 _GOLDEN = (math.sqrt(5.0) - 1.0) / 2.0
 
 
@@ -205,8 +209,24 @@ def _quantity(quantity: Any) -> str:
 
 
 def _reachable(mechanism: Any, poses: Array, options: dict[str, Any]) -> Array:
-    """Which poses ``(m, n)`` (API units) the inverse kinematics accepts: one batch call, halved
-    where a batch is refused (:class:`~screwkit.exceptions.UnreachablePoseError`)."""
+    """Which poses ``(m, n)`` (API units) the inverse kinematics accepts.
+
+    The family module's own vectorised ``reachable(parameters, poses)`` when it has one and no
+    option changes the inverse kinematics' domain (the four-limb family: every working mode
+    reaches the same poses), else one batch call, halved where a batch is refused
+    (:class:`~screwkit.exceptions.UnreachablePoseError`).
+    """
+    if len(poses) == 0:
+        return np.zeros(0, dtype=bool)
+    family_module = sys.modules.get(getattr(mechanism.family_protocol.inverse_kinematics, "__module__", ""))
+    test = getattr(family_module, "reachable", None)
+    if callable(test) and set(options) <= {"working_mode"}:
+        return np.asarray(test(mechanism.parameters, poses), dtype=bool).reshape(len(poses))
+    return _reachable_by_halving(mechanism, poses, options)
+
+
+def _reachable_by_halving(mechanism: Any, poses: Array, options: dict[str, Any]) -> Array:
+    """:func:`_reachable` by the inverse kinematics alone."""
     if len(poses) == 0:
         return np.zeros(0, dtype=bool)
     try:
@@ -216,7 +236,10 @@ def _reachable(mechanism: Any, poses: Array, options: dict[str, Any]) -> Array:
             return np.zeros(1, dtype=bool)
         half = len(poses) // 2
         return np.concatenate(
-            [_reachable(mechanism, poses[:half], options), _reachable(mechanism, poses[half:], options)]
+            [
+                _reachable_by_halving(mechanism, poses[:half], options),
+                _reachable_by_halving(mechanism, poses[half:], options),
+            ]
         )
     return np.ones(len(poses), dtype=bool)
 
@@ -780,73 +803,95 @@ def _refine(
     *,
     keep_edges: bool = False,
 ) -> list[_Root]:
-    """Refine every bracket at once (each step one batch through the core) and keep the roots the
-    core labels singular or whose closeness is below :data:`ACCEPT` (and, with ``keep_edges``, the
-    reach edges that are no singularity, as kind ``"unreachable"``).
+    """Refine every bracket at once and keep the roots the core labels singular or whose closeness
+    is below :data:`ACCEPT` (and, with ``keep_edges``, the reach edges that are no singularity, as
+    kind ``"unreachable"``).
 
     ``along(lines, t)`` gives API-unit poses ``(m, n)`` on lines ``lines`` at parameters ``t``.
-    Bisection for det A sign changes (on the sign) and reach edges (on reachability),
-    golden-section search for closeness minima.
+    Each step is one batch through the core, for all brackets: false position (Illinois) on det A
+    for its sign changes, bisection on reachability for reach edges, and for closeness minima a
+    golden-section search whose steps are replaced by the apex of the ``|s (t − t₀)|`` fit through
+    the bracket when that lands inside (a closeness measure vanishes like the distance to a simple
+    root, design of :mod:`screwkit.singularity`). Stops when every bracket is narrower than
+    :data:`XTOL` or after :data:`MAX_STEPS` steps.
     """
     if not brackets:
         return []
     lines = np.array([b[0] for b in brackets])
-    low = np.array([b[1] for b in brackets])
-    high = np.array([b[2] for b in brackets])
     method = np.array([b[3] for b in brackets])
-    sign_based = (method == "det_A") | (method == "edge")
-    golden = np.char.startswith(method.astype(str), "min:")
+    kind_index = np.array([KINDS.index(m[4:]) if m.startswith("min:") else 0 for m in method])
+    is_det, is_edge = method == "det_A", method == "edge"
+    is_min = np.char.startswith(method.astype(str), "min:")
+    everyone = np.arange(len(brackets))
 
-    def sign_of(t: Array, index: Array) -> Array:
-        s = _measure(mechanism, along(lines[index], t), options, rtol)
-        det = s.det_A if s.det_A is not None else np.zeros(len(t))
-        return np.where(method[index] == "edge", np.where(s.ok, 1.0, -1.0), np.sign(np.nan_to_num(det)))
+    def score(t: Array, which: Array = everyone) -> Array:
+        """Per bracket ``which``: det A, ±1 reachability, or its kind's closeness (inf out of reach)."""
+        s = _measure(mechanism, along(lines[which], t[which]), options, rtol)
+        det = np.zeros(len(which)) if s.det_A is None else np.nan_to_num(s.det_A)
+        closeness = np.stack([s.closeness[k] for k in KINDS], axis=-1)[np.arange(len(which)), kind_index[which]]
+        values = np.where(is_edge[which], np.where(s.ok, 1.0, -1.0), np.where(s.ok, closeness, np.inf))
+        out = np.full(len(t), np.nan)
+        out[which] = np.where(is_det[which], det, values)
+        return out
 
-    index = np.nonzero(sign_based)[0]
-    if len(index):
-        a, b = low[index].copy(), high[index].copy()
-        sign_a = sign_of(a, index)
-        for _ in range(_BISECTIONS):
-            middle = 0.5 * (a + b)
-            sign_m = sign_of(middle, index)
-            same = sign_m == sign_a
-            a, b = np.where(same, middle, a), np.where(same, b, middle)
-        # for an edge keep the reachable end; for det A the end of smaller |det A|
-        edge = method[index] == "edge"
-        s_a = _measure(mechanism, along(lines[index], a), options, rtol)
-        s_b = _measure(mechanism, along(lines[index], b), options, rtol)
-        reach_a = s_a.ok
-        pick_a = np.where(edge, reach_a, _abs_le(s_a.det_A, s_b.det_A))
-        low[index] = high[index] = np.where(pick_a, a, b)
-    index = np.nonzero(golden)[0]
-    if len(index):
-        kinds = np.array([m.split(":")[1] for m in method[index]])
-
-        def closeness_at(t: Array) -> Array:
-            s = _measure(mechanism, along(lines[index], t), options, rtol)
-            c = np.stack([s.closeness[k] for k in KINDS], axis=-1)
-            pick = c[np.arange(len(t)), [KINDS.index(k) for k in kinds]]
-            return np.where(s.ok, pick, np.inf)
-
-        a, b = low[index].copy(), high[index].copy()
-        c = b - _GOLDEN * (b - a)
-        d = a + _GOLDEN * (b - a)
-        fc, fd = closeness_at(c), closeness_at(d)
-        for _ in range(_GOLDEN_STEPS):
-            left = fc < fd
-            b = np.where(left, d, b)
-            a = np.where(left, a, c)
-            new = np.where(left, b - _GOLDEN * (b - a), a + _GOLDEN * (b - a))
-            c, d = np.where(left, new, d), np.where(left, c, new)
-            f_new = closeness_at(new)
-            fc, fd = np.where(left, f_new, fd), np.where(left, fc, f_new)
-        ends = np.stack([low[index], high[index], 0.5 * (a + b)], axis=-1)
-        values = np.stack([closeness_at(ends[:, j]) for j in range(3)], axis=-1)
-        best = ends[np.arange(len(index)), np.argmin(values, axis=-1)]
-        low[index] = high[index] = best
-    final = _measure(mechanism, along(lines, low), options, rtol)
+    a = np.array([b[1] for b in brackets])
+    b = np.array([b[2] for b in brackets])
+    fa, fb = score(a), score(b)
+    m = 0.5 * (a + b)
+    fm = score(m)
+    side = np.zeros(len(a))  # Illinois: which end was kept last
+    for step in range(MAX_STEPS):
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+            left, right = (fm - fa) / (m - a), (fb - fm) / (b - m)
+            steep = np.nan_to_num(np.maximum(-left, right), nan=np.inf)
+            illinois = (a * fb - b * fa) / (fb - fa)
+            # a minimum that cannot reach ACCEPT unless the slope doubles within the bracket: no root
+            smooth = is_min & (fm - 2.0 * steep * (b - a) > ACCEPT)  # inf - inf: not smooth
+        done = ((b - a) <= XTOL) | (is_min & (fm == 0.0)) | smooth
+        if done.all():
+            break
+        # the next point of each bracket
+        illinois = np.where(is_det & (illinois > a) & (illinois < b), illinois, 0.5 * (a + b))
+        with np.errstate(invalid="ignore", divide="ignore"):
+            apex = np.where(-left >= right, m + fm / steep, m - fm / steep)
+        golden = np.where(m - a > b - m, m - (1 - _GOLDEN) * (m - a), m + (1 - _GOLDEN) * (b - m))
+        use_apex = (step % 3 != 2) & np.isfinite(apex) & (apex > a) & (apex < b) & (np.abs(apex - m) > XTOL / 4)
+        trial = np.where(is_det, illinois, np.where(is_edge, 0.5 * (a + b), np.where(use_apex, apex, golden)))
+        f = score(trial, np.nonzero(~done)[0])
+        # sign brackets: keep the end whose sign differs from the trial's
+        same_as_a = np.sign(f) == np.sign(fa)
+        new_a = np.where(same_as_a, trial, a)
+        new_b = np.where(same_as_a, b, trial)
+        new_fa = np.where(same_as_a, f, np.where(is_det & (side == -1), 0.5 * fa, fa))
+        new_fb = np.where(same_as_a, np.where(is_det & (side == 1), 0.5 * fb, fb), f)
+        new_side = np.where(same_as_a, 1.0, -1.0)
+        # minimum brackets: a <= m <= b with f(m) <= f(a), f(b)
+        better = f < fm
+        above = trial > m
+        min_a = np.where(better, np.where(above, m, a), np.where(above, a, trial))
+        min_b = np.where(better, np.where(above, b, m), np.where(above, trial, b))
+        min_fa = np.where(better, np.where(above, fm, fa), np.where(above, fa, f))
+        min_fb = np.where(better, np.where(above, fb, fm), np.where(above, f, fb))
+        min_m, min_fm = np.where(better, trial, m), np.where(better, f, fm)
+        sign = is_det | is_edge
+        keep = done  # a converged bracket stays as it is
+        a = np.where(keep, a, np.where(sign, new_a, min_a))
+        b = np.where(keep, b, np.where(sign, new_b, min_b))
+        fa = np.where(keep, fa, np.where(sign, new_fa, min_fa))
+        fb = np.where(keep, fb, np.where(sign, new_fb, min_fb))
+        m = np.where(keep | sign, m, min_m)
+        fm = np.where(keep | sign, fm, min_fm)
+        side = np.where(keep, side, new_side)
+    # the refined parameter: an edge's reachable end, det A's end of smaller |det A|, the minimum
+    t = np.where(
+        is_edge,
+        np.where(fa > 0, a, b),
+        np.where(is_det, np.where(np.abs(fa) <= np.abs(fb), a, b), m),
+    )
+    t = np.where(method == "sample", a, t)
+    final = _measure(mechanism, along(lines, t), options, rtol)
+    poses = along(lines, t)
     roots = []
-    poses = along(lines, low)
     for k in range(len(brackets)):
         if not final.ok[k]:
             continue
@@ -856,36 +901,36 @@ def _refine(
         smallest = min(measures, key=measures.__getitem__)
         if labelled or measures[smallest] < ACCEPT:
             kind = labelled[0] if labelled else smallest
-            roots.append(_Root(int(lines[k]), float(low[k]), poses[k], kind, measures[kind]))
+            roots.append(_Root(int(lines[k]), float(t[k]), poses[k], kind, measures[kind]))
         elif keep_edges and method[k] == "edge":
-            roots.append(_Root(int(lines[k]), float(low[k]), poses[k], "unreachable", math.nan))
+            roots.append(_Root(int(lines[k]), float(t[k]), poses[k], "unreachable", math.nan))
     return roots
 
 
-def _abs_le(first: Array | None, second: Array | None) -> Array:
-    if first is None or second is None:
-        return np.ones(0 if first is None else len(first), dtype=bool)
-    return np.abs(np.nan_to_num(first, nan=np.inf)) <= np.abs(np.nan_to_num(second, nan=np.inf))
-
-
-def _factor(mechanism: Any, pose: Array, kind: str, options: dict[str, Any], rtol: Any) -> str | None:
-    """The superbracket condition vanishing at an API-unit pose: the smallest value relative to its
-    value at the default pose (among conditions of the same kind when any); None if the
-    conditions cannot be had for this mechanism."""
+def _factor(mechanism: Any, poses: Array, kind: str, options: dict[str, Any], rtol: Any) -> str | None:
+    """The superbracket condition vanishing at API-unit poses ``(k, n)`` of one surface: at the
+    first pose where the diagram's points exist, the condition of that kind with the smallest value
+    relative to its value at the default pose. None for a serial singularity (a limb's, not the
+    superbracket's) or when the conditions cannot be had for this mechanism."""
     from .diagram import diagram_points
 
+    if kind not in ("constraint", "actuation"):
+        return None
     try:
         diagram, conditions, labels, reference = _conditions(mechanism, options)
-        points = diagram_points(diagram.points, mechanism.at(pose[None], rtol=rtol, **options)[0].analysis)
     except ScrewkitError:
         return None
-    if not conditions:
-        return None
-    ratios = []
-    for condition, label, value in zip(conditions, labels, reference, strict=True):
-        ratio = abs(float(condition.evaluate(points))) / abs(value) if value else math.inf
-        ratios.append((label != kind, ratio, str(condition.factor)))
-    return min(ratios)[2]
+    candidates = [i for i, label in enumerate(labels) if label == kind and reference[i] != 0]
+    for pose in poses[:_FACTOR_TRIES]:
+        try:
+            points = diagram_points(diagram.points, mechanism.at(pose[None], rtol=rtol, **options)[0].analysis)
+        except ScrewkitError:  # a point of the diagram does not exist at this pose: try the next
+            continue
+        if not candidates:
+            return None
+        ratios = [abs(float(conditions[i].evaluate(points)) / reference[i]) for i in candidates]
+        return str(conditions[candidates[int(np.argmin(ratios))]].factor)
+    return None
 
 
 # --------------------------------------------------------------------------------------------------
@@ -988,8 +1033,8 @@ def loci(
         points, closeness = points[order], closeness[order]
         keep = np.ones(len(points), dtype=bool)
         keep[1:] = np.any(np.abs(np.diff(points, axis=0)) > 1e-9 * (1 + np.abs(points[1:])), axis=1)
-        best = mine[int(np.argmin([c for _, c in mine]))][0]
-        factor = _factor(mechanism, best * scale, kind, grid.options, rtol)
+        closest = np.array([p for p, _ in mine])[np.argsort([c for _, c in mine])]
+        factor = _factor(mechanism, closest * scale, kind, grid.options, rtol)
         out.append(Locus(kind, factor, grid.x_name, grid.y_name, points[keep], closeness[keep]))
     return tuple(out)
 
@@ -1127,7 +1172,7 @@ def check_path(
     crossing = None
     if roots:
         root = min(roots, key=lambda r: r.t)
-        factor = None if root.kind == "unreachable" else _factor(mechanism, root.pose, root.kind, options, rtol)
+        factor = _factor(mechanism, root.pose[None], root.kind, options, rtol)
         crossing = Crossing(root.t, _as_dict(mechanism, root.pose / scale), root.kind, factor, root.closeness)
     return PathCheck(
         crossing is None, crossing, _as_dict(mechanism, first), _as_dict(mechanism, last), int(samples)
