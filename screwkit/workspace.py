@@ -143,7 +143,9 @@ def _scale(mechanism: Any, angles: str) -> Array:
 
 
 def _units(mechanism: Any, angles: str) -> dict[str, str]:
-    return {n: (angles if n in mechanism.angle_names else mechanism.length_unit) for n in mechanism.pose_names}
+    return {
+        n: (angles if n in mechanism.angle_names else mechanism.length_unit) for n in mechanism.pose_names
+    }
 
 
 def _default(mechanism: Any, angles: str) -> Array:
@@ -268,7 +270,10 @@ def _condition_values(mechanism: Any, index: int, posed: Any) -> Array:
             f"factors at the default pose), got K = {index}."
         )
     return np.array(
-        [conditions[index].evaluate(diagram_points(diagram.points, posed[i].analysis)) for i in range(len(posed))],
+        [
+            conditions[index].evaluate(diagram_points(diagram.points, posed[i].analysis))
+            for i in range(len(posed))
+        ],
         dtype=float,
     )
 
@@ -276,7 +281,9 @@ def _condition_values(mechanism: Any, index: int, posed: Any) -> Array:
 _CONDITIONS: dict[tuple[Any, ...], tuple[Any, tuple[Any, ...], tuple[str, ...], Array]] = {}
 
 
-def _conditions(mechanism: Any, options: Mapping[str, Any]) -> tuple[Any, tuple[Any, ...], tuple[str, ...], Array]:
+def _conditions(
+    mechanism: Any, options: Mapping[str, Any]
+) -> tuple[Any, tuple[Any, ...], tuple[str, ...], Array]:
     """The wrench diagram, superbracket conditions, their labels and their values at the default
     pose (factored once per mechanism and mode)."""
     from .diagram import superbracket_analysis
@@ -361,8 +368,9 @@ def _run_chunks(
             raise ScrewkitTypeError(
                 f"Expected `client` to be a dask.distributed Client, got {type(client).__name__}."
             )
-        futures = client.map(function, [mechanism] * len(pieces), pieces, *([a] * len(pieces) for a in args),
-                             pure=False)
+        futures = client.map(
+            function, [mechanism] * len(pieces), pieces, *([a] * len(pieces) for a in args), pure=False
+        )
         parts = []
         for piece, future in zip(pieces, futures, strict=True):
             parts.append(future.result())
@@ -450,7 +458,9 @@ class _Slice:
         x_name, x_values = _axis(mechanism, x, "x")
         y_name, y_values = _axis(mechanism, y, "y")
         if x_name == y_name:
-            raise ScrewkitValueError(f"Expected `x` and `y` over different coordinates, got {x_name!r} twice.")
+            raise ScrewkitValueError(
+                f"Expected `x` and `y` over different coordinates, got {x_name!r} twice."
+            )
         given = {} if fixed is None else fixed
         if not isinstance(given, Mapping):
             raise ScrewkitTypeError(f"Expected `fixed` to be a dict, got {type(given).__name__}.")
@@ -602,7 +612,7 @@ def _save_png(wmap: WorkspaceMap, target: Path) -> None:
         import matplotlib
 
         matplotlib.use("Agg")
-        from . import plot  # type: ignore[attr-defined]
+        from . import plot
     except ImportError as err:
         raise ScrewkitValueError(
             f"Expected matplotlib and screwkit.plot to write {str(target)!r} (pip install "
@@ -681,9 +691,13 @@ def grid_map(
     """
     name = _quantity(quantity)
     grid = _Slice.create(mechanism, x, y, fixed, mode, angles)
+    if name == "lti" or name.startswith("condition:"):  # refuse before the map, not in its chunks
+        _values(mechanism.at(None, **grid.options), name)
     user = grid.poses()
     flat = user.reshape(-1, user.shape[-1]) * grid.scale
-    values, ok = _run_chunks(_chunk_values, mechanism, flat, (name, grid.options, rtol), chunk, client, progress)
+    values, ok = _run_chunks(
+        _chunk_values, mechanism, flat, (name, grid.options, rtol), chunk, client, progress
+    )
     shape = user.shape[:2]
     values, ok = values.reshape(shape), ok.reshape(shape)
     minimum = maximum = float("nan")
@@ -691,9 +705,14 @@ def grid_map(
     argmax: dict[str, float] = {}
     candidates = ok & (np.isfinite(values) if values.dtype.kind == "f" else ok)
     if candidates.any():
-        masked_low = np.where(candidates, values, np.inf if values.dtype.kind == "f" else np.iinfo(np.int64).max)
+        masked_low = np.where(
+            candidates, values, np.inf if values.dtype.kind == "f" else np.iinfo(np.int64).max
+        )
         masked_high = np.where(candidates, values, -np.inf if values.dtype.kind == "f" else -2)
-        low, high = np.unravel_index(np.argmin(masked_low), shape), np.unravel_index(np.argmax(masked_high), shape)
+        low, high = (
+            np.unravel_index(np.argmin(masked_low), shape),
+            np.unravel_index(np.argmax(masked_high), shape),
+        )
         minimum, maximum = values[low].item(), values[high].item()
         argmin, argmax = _as_dict(mechanism, user[low]), _as_dict(mechanism, user[high])
     return WorkspaceMap(
@@ -828,7 +847,9 @@ def _refine(
         """Per bracket ``which``: det A, ±1 reachability, or its kind's closeness (inf out of reach)."""
         s = _measure(mechanism, along(lines[which], t[which]), options, rtol)
         det = np.zeros(len(which)) if s.det_A is None else np.nan_to_num(s.det_A)
-        closeness = np.stack([s.closeness[k] for k in KINDS], axis=-1)[np.arange(len(which)), kind_index[which]]
+        closeness = np.stack([s.closeness[k] for k in KINDS], axis=-1)[
+            np.arange(len(which)), kind_index[which]
+        ]
         values = np.where(is_edge[which], np.where(s.ok, 1.0, -1.0), np.where(s.ok, closeness, np.inf))
         out = np.full(len(t), np.nan)
         out[which] = np.where(is_det[which], det, values)
@@ -855,7 +876,9 @@ def _refine(
         with np.errstate(invalid="ignore", divide="ignore"):
             apex = np.where(-left >= right, m + fm / steep, m - fm / steep)
         golden = np.where(m - a > b - m, m - (1 - _GOLDEN) * (m - a), m + (1 - _GOLDEN) * (b - m))
-        use_apex = (step % 3 != 2) & np.isfinite(apex) & (apex > a) & (apex < b) & (np.abs(apex - m) > XTOL / 4)
+        use_apex = (
+            (step % 3 != 2) & np.isfinite(apex) & (apex > a) & (apex < b) & (np.abs(apex - m) > XTOL / 4)
+        )
         trial = np.where(is_det, illinois, np.where(is_edge, 0.5 * (a + b), np.where(use_apex, apex, golden)))
         f = score(trial, np.nonzero(~done)[0])
         # sign brackets: keep the end whose sign differs from the trial's
@@ -923,7 +946,9 @@ def _factor(mechanism: Any, poses: Array, kind: str, options: dict[str, Any], rt
     candidates = [i for i, label in enumerate(labels) if label == kind and reference[i] != 0]
     for pose in poses[:_FACTOR_TRIES]:
         try:
-            points = diagram_points(diagram.points, mechanism.at(pose[None], rtol=rtol, **options)[0].analysis)
+            points = diagram_points(
+                diagram.points, mechanism.at(pose[None], rtol=rtol, **options)[0].analysis
+            )
         except ScrewkitError:  # a point of the diagram does not exist at this pose: try the next
             continue
         if not candidates:
