@@ -61,7 +61,7 @@ import json
 import math
 import sys
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -608,21 +608,27 @@ class WorkspaceMap:
 
 
 def _save_png(wmap: WorkspaceMap, target: Path) -> None:
+    """Draw with :mod:`screwkit.plot` (verdict colours, or isocontours) and write a PNG."""
     try:
         import matplotlib
 
         matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+
         from . import plot
-    except ImportError as err:
+    except (ImportError, ScrewkitError) as err:
         raise ScrewkitValueError(
             f"Expected matplotlib and screwkit.plot to write {str(target)!r} (pip install "
             f"'screwkit[plot]'); got: {err}. Save .npz or .json instead."
         ) from err
-    figure = plot.plot_map(wmap).figure
-    figure.savefig(target, dpi=120, bbox_inches="tight")
-    import matplotlib.pyplot as plt
-
-    plt.close(figure)
+    in_radians = tuple(n for n, unit in wmap.units.items() if unit == "rad")  # drawn in degrees
+    if wmap.quantity == "verdict":  # the plot takes codes 0..7; out of reach is the mask's to say
+        drawn = replace(wmap, values=np.where(wmap.reachable, wmap.values, 0))
+        ax = plot.plot_verdicts(drawn, degrees=in_radians)
+    else:
+        ax = plot.plot_map(wmap, degrees=in_radians)
+    ax.figure.savefig(target, dpi=120, bbox_inches="tight")
+    plt.close(ax.figure)
 
 
 def _plain(value: Any) -> Any:

@@ -438,3 +438,29 @@ def test_other_errors():
         W.check_path(H4, {}, {"z": -700}, mode="up")
     with pytest.raises(sk.ScrewkitValueError, match=r"Expected `path` to end in \.npz, \.json or \.png"):
         W.grid_map(H4, "verdict", x=("z", -900, -600, 2), y=("phi", -10, 10, 2)).save("m.csv")
+
+
+def test_png_through_screwkit_plot(tmp_path):
+    pytest.importorskip("matplotlib")
+    pytest.importorskip("screwkit.plot")
+    for quantity in ("verdict", "lti"):
+        m = W.grid_map(H4, quantity, x=("z", -900, -600, 4), y=("phi", -30, 30, 3))
+        written = m.save(tmp_path / f"{quantity}.png")
+        assert written.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_png_without_the_plot_extra_says_what_to_install(monkeypatch, tmp_path):
+    import sys
+
+    monkeypatch.setitem(sys.modules, "screwkit.plot", None)  # import screwkit.plot fails
+    m = W.grid_map(H4, "verdict", x=("z", -900, -600, 2), y=("phi", -10, 10, 2))
+    with pytest.raises(sk.ScrewkitValueError, match=r"pip install 'screwkit\[plot\]'"):
+        m.save(tmp_path / "m.png")
+
+
+def test_progress_line_on_request(capsys):
+    W.grid_map(H4, "verdict", x=("z", -900, -600, 4), y=("phi", -10, 10, 3), chunk=5, progress=True)
+    err = capsys.readouterr().err
+    assert "12/12" in err.replace(" ", "")  # tqdm's bar or the plain line, both count the poses
+    W.grid_map(H4, "verdict", x=("z", -900, -600, 4), y=("phi", -10, 10, 3), chunk=5, progress=False)
+    assert capsys.readouterr().err == ""
