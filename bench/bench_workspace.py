@@ -52,7 +52,8 @@ def main():
     grid = {"x": ("z", -1000, -550, 100), "y": ("phi", -45, 45, 100), "fixed": {"x": 0, "y": 0}}
     mapped = best_of(args.repeats, lambda: W.grid_map(h4, "verdict", **grid))
     print(f"core, 10,000 poses:          {len(poses) / core:10.0f} poses/s")
-    print(f"verdict map, 100 x 100:      {len(poses) / mapped:10.0f} poses/s  ({core / mapped:.2f} x the core)")
+    ratio = core / mapped
+    print(f"verdict map, 100 x 100:      {len(poses) / mapped:10.0f} poses/s  ({ratio:.2f} x the core)")
 
     before = peak_mib()
     start = time.perf_counter()
@@ -80,7 +81,8 @@ def main():
     slice_ = {"x": ("z", -1100, -450, 30), "y": ("phi", -90, 90, 30), "fixed": {"x": 300, "y": 300}}
     loci_time = best_of(1, lambda: W.loci(h4, **slice_))
     found = W.loci(h4, **slice_)
-    print(f"loci, 30 x 30 slice:         {loci_time:8.2f} s  ({', '.join(f'{lo.kind} {len(lo.points)}' for lo in found)})")
+    counts = ", ".join(f"{lo.kind} {len(lo.points)}" for lo in found)
+    print(f"loci, 30 x 30 slice:         {loci_time:8.2f} s  ({counts})")
 
 
 if __name__ == "__main__":
