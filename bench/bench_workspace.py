@@ -44,7 +44,7 @@ def main():
     parser.add_argument("--repeats", type=int, default=3)
     args = parser.parse_args()
     h4 = sk.load_mechanism("h4")
-    h4.at([[0, 0, -750, 0]]).codes  # warm up (numba compile, imports)
+    _ = h4.at([[0, 0, -750, 0]]).codes  # warm up (numba compile, imports)
 
     z, phi = np.meshgrid(np.linspace(-1000, -550, 100), np.radians(np.linspace(-45, 45, 100)))
     poses = np.stack([np.zeros_like(z), np.zeros_like(z), z, phi], axis=-1).reshape(-1, 4)
