@@ -80,6 +80,7 @@ __all__ = [
     "evaluate",
     "grid_map",
     "loci",
+    "sweep",
 ]
 
 Array = np.ndarray
@@ -349,39 +350,44 @@ def evaluate(
 
 def _run_chunks(
     function: Callable[..., tuple[Array, Array]],
-    mechanism: Any,
-    poses: Array,
-    args: tuple[Any, ...],
+    jobs: Sequence[tuple[Any, Array, tuple[Any, ...]]],
     chunk: int | None,
     client: Any,
     progress: Any,
-) -> tuple[Array, Array]:
-    """``function(mechanism, poses[chunk], *args)`` over chunks of the batch, in process or on a
-    Dask client, with an optional progress line; the parts joined in order."""
+) -> list[tuple[Array, Array]]:
+    """``function(mechanism, poses[chunk], *args)`` over chunks of each job's batch, in process or
+    on a Dask client (every chunk of every job submitted at once), with an optional progress line;
+    per job, the parts joined in order."""
     size = CHUNK if chunk is None else chunk
     if isinstance(size, bool) or not isinstance(size, int | np.integer) or size < 1:
         raise ScrewkitValueError(f"Expected `chunk` to be a positive integer, got {chunk!r}.")
-    pieces = [poses[i : i + size] for i in range(0, len(poses), size)]
-    bar = _Progress(len(poses), progress)
-    if client is not None:
-        if not hasattr(client, "map") or not hasattr(client, "gather"):
-            raise ScrewkitTypeError(
-                f"Expected `client` to be a dask.distributed Client, got {type(client).__name__}."
-            )
-        futures = client.map(
-            function, [mechanism] * len(pieces), pieces, *([a] * len(pieces) for a in args), pure=False
+    if client is not None and not (hasattr(client, "submit") and hasattr(client, "gather")):
+        raise ScrewkitTypeError(
+            f"Expected `client` to be a dask.distributed Client, got {type(client).__name__}."
         )
-        parts = []
-        for piece, future in zip(pieces, futures, strict=True):
-            parts.append(future.result())
+    tasks = [
+        (job, mechanism, poses[i : i + size], args)
+        for job, (mechanism, poses, args) in enumerate(jobs)
+        for i in range(0, len(poses), size)
+    ]
+    bar = _Progress(sum(len(poses) for _, poses, _ in jobs), progress)
+    if client is not None:
+        futures = [client.submit(function, m, piece, *args, pure=False) for _, m, piece, args in tasks]
+        results = []
+        for (_, _, piece, _), future in zip(tasks, futures, strict=True):
+            results.append(future.result())
             bar.update(len(piece))
     else:
-        parts = []
-        for piece in pieces:
-            parts.append(function(mechanism, piece, *args))
+        results = []
+        for _, m, piece, args in tasks:
+            results.append(function(m, piece, *args))
             bar.update(len(piece))
     bar.close()
-    return np.concatenate([p[0] for p in parts]), np.concatenate([p[1] for p in parts])
+    out = []
+    for job in range(len(jobs)):
+        parts = [r for (owner, _, _, _), r in zip(tasks, results, strict=True) if owner == job]
+        out.append((np.concatenate([p[0] for p in parts]), np.concatenate([p[1] for p in parts])))
+    return out
 
 
 def _chunk_values(mechanism: Any, poses: Array, quantity: str, mode: Any, rtol: Any) -> tuple[Array, Array]:
@@ -695,30 +701,39 @@ def grid_map(
     >>> bool(0 < m.minimum <= m.maximum <= 1)
     True
     """
+    name, grid, job = _map_job(mechanism, quantity, x, y, fixed, mode, angles, rtol)
+    ((values, ok),) = _run_chunks(_chunk_values, [job], chunk, client, progress)
+    return _assembled(mechanism, name, grid, values, ok)
+
+
+def _map_job(
+    mechanism: Any, quantity: Any, x: Any, y: Any, fixed: Any, mode: Any, angles: str, rtol: Any
+) -> tuple[str, _Slice, tuple[Any, Array, tuple[Any, ...]]]:
+    """A map's quantity, slice and chunk job (its API-unit poses, flattened)."""
     name = _quantity(quantity)
     grid = _Slice.create(mechanism, x, y, fixed, mode, angles)
     if name == "lti" or name.startswith("condition:"):  # refuse before the map, not in its chunks
         _values(mechanism.at(None, **grid.options), name)
     user = grid.poses()
     flat = user.reshape(-1, user.shape[-1]) * grid.scale
-    values, ok = _run_chunks(
-        _chunk_values, mechanism, flat, (name, grid.options, rtol), chunk, client, progress
-    )
+    return name, grid, (mechanism, flat, (name, grid.options, rtol))
+
+
+def _assembled(mechanism: Any, name: str, grid: _Slice, values: Array, ok: Array) -> WorkspaceMap:
+    """The map from its flat values: extrema over the reachable poses and where they occur."""
+    user = grid.poses()
     shape = user.shape[:2]
     values, ok = values.reshape(shape), ok.reshape(shape)
     minimum = maximum = float("nan")
     argmin: dict[str, float] = {}
     argmax: dict[str, float] = {}
-    candidates = ok & (np.isfinite(values) if values.dtype.kind == "f" else ok)
+    floating = values.dtype.kind == "f"
+    candidates = ok & np.isfinite(values) if floating else ok
     if candidates.any():
-        masked_low = np.where(
-            candidates, values, np.inf if values.dtype.kind == "f" else np.iinfo(np.int64).max
-        )
-        masked_high = np.where(candidates, values, -np.inf if values.dtype.kind == "f" else -2)
-        low, high = (
-            np.unravel_index(np.argmin(masked_low), shape),
-            np.unravel_index(np.argmax(masked_high), shape),
-        )
+        masked_low = np.where(candidates, values, np.inf if floating else np.iinfo(np.int64).max)
+        masked_high = np.where(candidates, values, -np.inf if floating else -2)
+        low = np.unravel_index(np.argmin(masked_low), shape)
+        high = np.unravel_index(np.argmax(masked_high), shape)
         minimum, maximum = values[low].item(), values[high].item()
         argmin, argmax = _as_dict(mechanism, user[low]), _as_dict(mechanism, user[high])
     return WorkspaceMap(
@@ -735,8 +750,48 @@ def grid_map(
         maximum,
         argmin,
         argmax,
-        _units(mechanism, angles),
+        _units(mechanism, grid.angles),
         mechanism.name,
+    )
+
+
+def sweep(
+    mechanisms: Sequence[Any],
+    quantity: str,
+    *,
+    x: Any = ("z", -1000.0, -550.0, 50),
+    y: Any = ("phi", -45.0, 45.0, 50),
+    fixed: Any = None,
+    mode: Any = None,
+    chunk: int | None = None,
+    client: Any = None,
+    progress: Any = None,
+    angles: str = "deg",
+    rtol: float | None = None,
+) -> tuple[WorkspaceMap, ...]:
+    """A parameter sweep: the same map for each mechanism (e.g. a family's parameters varied with
+    :func:`screwkit.catalog.mechanism_from_mapping`), every chunk of every map submitted at once
+    when a Dask ``client`` is given.
+
+    Parameters are those of :func:`grid_map`.
+
+    Examples
+    --------
+    >>> from screwkit.catalog import load_mechanism
+    >>> maps = sweep([load_mechanism("h4"), load_mechanism("quattro")], "lti",
+    ...              x=("z", -900, -600, 3), y=("phi", -20, 20, 2))
+    >>> [m.mechanism for m in maps]
+    ['H4', 'Quattro']
+    """
+    if isinstance(mechanisms, str) or not isinstance(mechanisms, Sequence) or not mechanisms:
+        raise ScrewkitTypeError(
+            f"Expected `mechanisms` to be a non-empty sequence of mechanisms, got {mechanisms!r}."
+        )
+    prepared = [_map_job(m, quantity, x, y, fixed, mode, angles, rtol) for m in mechanisms]
+    results = _run_chunks(_chunk_values, [job for _, _, job in prepared], chunk, client, progress)
+    return tuple(
+        _assembled(mechanism, name, grid, values, ok)
+        for mechanism, (name, grid, _), (values, ok) in zip(mechanisms, prepared, results, strict=True)
     )
 
 

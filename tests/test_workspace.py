@@ -110,7 +110,11 @@ def test_dask_local_cluster_gives_the_in_process_result():
     ):
         remote = W.grid_map(H4, "verdict", **SLICE, chunk=10, client=client)
         closeness = W.grid_map(H4, "closeness", **SLICE, chunk=7, client=client)
+        swept = W.sweep([H4, metres()], "lti", **SLICE, chunk=6, client=client)
     np.testing.assert_array_equal(remote.values, plain.values)
+    for remote_map, plain_map in zip(swept, W.sweep([H4, metres()], "lti", **SLICE), strict=True):
+        np.testing.assert_array_equal(remote_map.values, plain_map.values)
+        np.testing.assert_array_equal(remote_map.reachable, plain_map.reachable)
     np.testing.assert_array_equal(remote.reachable, plain.reachable)
     np.testing.assert_array_equal(closeness.values, W.grid_map(H4, "closeness", **SLICE).values)
 
@@ -127,6 +131,16 @@ def metres():
         data["pose"][key] /= 1000.0
         data["workspace"][key] = [v / 1000.0 for v in data["workspace"][key]]
     return mechanism_from_mapping(data, source="h4 in metres")
+
+
+def test_sweep_is_one_map_per_mechanism():
+    maps = W.sweep([H4, sk.load_mechanism("quattro")], "det_A", x=("z", -900, -600, 3), y=("phi", -20, 20, 2))
+    for m, mechanism in zip(maps, (H4, sk.load_mechanism("quattro")), strict=True):
+        alone = W.grid_map(mechanism, "det_A", x=("z", -900, -600, 3), y=("phi", -20, 20, 2))
+        np.testing.assert_array_equal(m.values, alone.values)
+        assert m.mechanism == mechanism.name
+    with pytest.raises(sk.ScrewkitTypeError, match="Expected `mechanisms` to be a non-empty sequence"):
+        W.sweep([], "verdict")
 
 
 def test_maps_and_crossings_do_not_depend_on_the_length_unit():
