@@ -73,8 +73,8 @@ def main():
         f"{before:.0f} -> {peak_mib():.0f} MiB (chunk {args.chunk}); codes {np.unique(big.values).tolist()}"
     )
 
-    start_pose = {"x": 300, "y": 300, "z": -900, "phi": -80}
-    end_pose = {"x": 300, "y": 300, "z": -900, "phi": 0}
+    start_pose = {"x": 300, "y": 300, "z": -800, "phi": -80}
+    end_pose = {"x": 300, "y": 300, "z": -800, "phi": 0}
     path = best_of(1, lambda: W.check_path(h4, start_pose, end_pose))  # first call factors once
     path = best_of(args.repeats, lambda: W.check_path(h4, start_pose, end_pose))
     print(f"path, 200 samples, refined:  {path:8.2f} s  ({W.check_path(h4, start_pose, end_pose)})")

@@ -75,11 +75,13 @@ __all__ = [
     "Crossing",
     "Locus",
     "PathCheck",
+    "Surface",
     "WorkspaceMap",
     "check_path",
     "evaluate",
     "grid_map",
     "loci",
+    "surfaces",
     "sweep",
 ]
 
@@ -1123,6 +1125,85 @@ def loci(
         factor = _factor(mechanism, closest * scale, kind, grid.options, rtol)
         out.append(Locus(kind, factor, grid.x_name, grid.y_name, points[keep], closeness[keep]))
     return tuple(out)
+
+
+@dataclass(frozen=True, eq=False)
+class Surface:
+    """Points of one singular surface in a 3-D region, each refined onto the surface.
+
+    Attributes
+    ----------
+    kind : str
+    factor : str or None
+    names : tuple of 3 str
+        The coordinates of the points' columns.
+    points : numpy.ndarray, shape (m, 3)
+        User units.
+    closeness : numpy.ndarray, shape (m,)
+    """
+
+    kind: str
+    factor: str | None
+    names: tuple[str, str, str]
+    points: Array
+    closeness: Array
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready."""
+        return {
+            "kind": self.kind,
+            "factor": self.factor,
+            "names": list(self.names),
+            "points": self.points.tolist(),
+            "closeness": self.closeness.tolist(),
+        }
+
+
+def surfaces(
+    mechanism: Any,
+    *,
+    x: Any = ("z", -1000.0, -550.0, 20),
+    y: Any = ("phi", -45.0, 45.0, 20),
+    z: Any = ("x", -350.0, 350.0, 5),
+    fixed: Any = None,
+    mode: Any = None,
+    angles: str = "deg",
+    rtol: float | None = None,
+) -> tuple[Surface, ...]:
+    """The singular surfaces of a 3-D region: the :func:`loci` of its ``(x, y)`` slices at every
+    value of ``z``, stacked (each point refined onto the surface within its slice).
+
+    Examples
+    --------
+    >>> from screwkit.catalog import load_mechanism
+    >>> surfaces(load_mechanism("h4"), x=("z", -1000, -550, 4), y=("phi", -45, 45, 3), z=("x", -50, 50, 2))
+    ()
+    """
+    z_name, z_values = _axis(mechanism, z, "z")
+    if fixed is not None and not isinstance(fixed, Mapping):
+        raise ScrewkitTypeError(f"Expected `fixed` to be a dict, got {type(fixed).__name__}.")
+    given = dict(fixed or {})
+    if z_name in given:
+        raise ScrewkitValueError(f"Expected `fixed` not to set the region's axes, got [{z_name!r}].")
+    found: dict[str, list[tuple[Array, Array, str | None]]] = {kind: [] for kind in KINDS}
+    names: tuple[str, str, str] = (str(x[0]), str(y[0]), z_name)
+    for value in z_values:
+        for locus in loci(
+            mechanism, x=x, y=y, fixed={**given, z_name: float(value)}, mode=mode, angles=angles, rtol=rtol
+        ):
+            column = np.full((len(locus.points), 1), float(value))
+            found[locus.kind].append((np.hstack([locus.points, column]), locus.closeness, locus.factor))
+    return tuple(
+        Surface(
+            kind,
+            next((factor for _, _, factor in parts if factor is not None), None),
+            names,
+            np.vstack([p for p, _, _ in parts]),
+            np.concatenate([c for _, c, _ in parts]),
+        )
+        for kind, parts in found.items()
+        if parts
+    )
 
 
 # --------------------------------------------------------------------------------------------------

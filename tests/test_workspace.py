@@ -153,12 +153,12 @@ def test_maps_and_crossings_do_not_depend_on_the_length_unit():
     np.testing.assert_array_equal(
         W.grid_map(h4_m, "verdict", **metre_slice).values, W.grid_map(H4, "verdict", **SLICE).values
     )
-    start, end = {"x": 300, "y": 300, "z": -900, "phi": -80}, {"x": 300, "y": 300, "z": -900, "phi": 0}
+    start, end = {"x": 300, "y": 300, "z": -800, "phi": -80}, {"x": 300, "y": 300, "z": -800, "phi": 0}
     in_mm = W.check_path(H4, start, end, samples=30)
     in_m = W.check_path(
-        h4_m, {**start, "x": 0.3, "y": 0.3, "z": -0.9}, {**end, "x": 0.3, "y": 0.3, "z": -0.9}, samples=30
+        h4_m, {**start, "x": 0.3, "y": 0.3, "z": -0.8}, {**end, "x": 0.3, "y": 0.3, "z": -0.8}, samples=30
     )
-    assert in_mm.crossing is not None and in_m.crossing is not None
+    assert in_mm.crossing.kind == "actuation"
     assert in_mm.crossing.kind == in_m.crossing.kind
     assert abs(in_mm.crossing.parameter - in_m.crossing.parameter) < 1e-9
 
@@ -242,6 +242,32 @@ def test_core_calls_the_vertical_parallelogram_pose_regular():
     assert abs(det_A_closed_form(cfg)) > 40 and abs(conditions(VERTICAL_PLANE_POSE)[1]) > 40
     assert (np.abs(cfg.h) > 200).all()
     assert H4.at(VERTICAL_PLANE_POSE[None]).codes[0] == 0
+
+
+def test_surfaces_stack_slices_onto_paper_002_surfaces():
+    found = {
+        surface.kind: surface
+        for surface in W.surfaces(
+            H4, x=("z", -1100, -450, 6), y=("phi", -90, 90, 4), z=("x", 250, 300, 2), fixed={"y": 300}
+        )
+    }
+    assert {"constraint", "actuation"} <= set(found)
+    for kind, equation in (("constraint", 0), ("actuation", 1)):
+        surface = found[kind]
+        assert surface.names == ("z", "phi", "x") and set(surface.points[:, 2]) == {250.0, 300.0}
+        poses = api(
+            np.column_stack(
+                [surface.points[:, 2], np.full(len(surface.points), 300.0), surface.points[:, :2]]
+            )
+        )
+        keep = ~((H4.at(poses).codes & 4 > 0) & vertical_parallelogram(poses))
+        values = np.abs(conditions(poses[keep])[equation])
+        reference = np.abs(conditions(api([[275.0, 300.0, -800.0, 0.0]]))[equation]).max()
+        assert values.max() < 1e-9 * reference, kind
+    with pytest.raises(
+        sk.ScrewkitValueError, match=r"Expected `fixed` not to set the region's axes, got \['x'\]"
+    ):
+        W.surfaces(H4, fixed={"x": 0})
 
 
 def test_serial_locus_is_the_reach_edge(slice_loci):
@@ -364,10 +390,11 @@ def test_cli_map_writes_json_and_npz(tmp_path, capsys):
 
 
 def test_cli_path_json(capsys):
-    argv = ["path", "h4", "--from", "300", "300", "-900", "-80", "--to", "300", "300", "-900", "0", "--json"]
+    argv = ["path", "h4", "--from", "300", "300", "-800", "-80", "--to", "300", "300", "-800", "0", "--json"]
     assert main(argv) == 0
     data = json.loads(capsys.readouterr().out)
-    assert data["singularity_free"] is False
+    assert data["singularity_free"] is False and data["crossing"]["kind"] == "actuation"
+    assert data["crossing"]["pose"]["z"] == -800 and -80 < data["crossing"]["pose"]["phi"] < 0
     assert {"parameter", "pose", "kind", "factor", "closeness"} <= set(data["crossing"])
     assert main(["path", "h4", "--from", "0", "0", "-800", "0", "--to", "0", "0", "-700", "20"]) == 0
     assert "singularity-free" in capsys.readouterr().out
