@@ -99,7 +99,15 @@ _LAZY = {
 }
 
 
+#: Submodules loaded on first use (``sk.workspace.grid_map``).
+_LAZY_MODULES = ("workspace",)
+
+
 def __getattr__(name: str) -> Any:
+    if name in _LAZY_MODULES:
+        import importlib
+
+        return importlib.import_module(f".{name}", __name__)
     if name in _LAZY:
         import importlib
 
@@ -110,7 +118,7 @@ def __getattr__(name: str) -> Any:
 
 
 def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(_LAZY))
+    return sorted(set(globals()) | set(_LAZY) | set(_LAZY_MODULES))
 
 __version__ = "0.1.0"
 
