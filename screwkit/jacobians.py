@@ -216,20 +216,29 @@ def _most_acting(passive: Array, basis: Array, length: Array, rtol: float) -> Ar
 
 
 def _jacobian_arrays(
-    wrenches: Array, twists: Array, basis: Array, length: Array, substituted: Array, rtol: float
+    wrenches: Array,
+    branches: Array,
+    twists: Array,
+    basis: Array,
+    length: Array,
+    substituted: Array,
+    rtol: float,
 ) -> dict[str, Array]:
     """A, B, closeness measures and serial flags from chosen wrenches (user frame), batched.
 
-    ``wrenches, twists``: (..., n, 6); ``basis``: (..., dof, 6); ``length``: (...,);
-    ``substituted``: (..., n) bool, rows built on a passive wrench (``B_jj`` set to 0).
+    ``wrenches, branches, twists``: (..., n, 6) (``branches``: the part of each wrench reaching
+    its actuated joint, :attr:`~screwkit.wrenches.WrenchAnalysis.branch_rows`); ``basis``:
+    (..., dof, 6); ``length``: (...,); ``substituted``: (..., n) bool, rows built on a passive
+    wrench (``B_jj`` set to 0).
     """
     sizes = np.linalg.norm(wrenches[..., :3], axis=-1)
     couples = np.linalg.norm(wrenches[..., 3:], axis=-1)
     is_couple = ~(sizes > rtol * couples / length[..., None])
     scale = np.where(is_couple, couples, sizes)
     wrenches = _safe_divide(wrenches, scale[..., None])
+    branches = _safe_divide(branches, scale[..., None])
     forward = _products(wrenches, basis)  # (..., n, dof)
-    inverse = np.einsum("...ij,...ij->...i", wrenches @ _SWAP, twists)  # (..., n)
+    inverse = np.einsum("...ij,...ij->...i", branches @ _SWAP, twists)  # (..., n)
     w_size, b_size = _size(wrenches, length, rtol), _size(basis, length, rtol)
     hat = _safe_divide(forward, w_size[..., :, None] * b_size[..., None, :] * length[..., None, None])
     transmission = _safe_divide(np.abs(inverse), w_size * _size(twists, length, rtol) * length[..., None])
@@ -668,13 +677,16 @@ def jacobians_from_wrenches(
     serial = np.asarray(analysis.serial)
     n = serial.shape[-1]
     rows = np.array(analysis.actuation_rows, dtype=float)
+    branches = np.array(analysis.branch_rows, dtype=float)
     for k in range(n):
         if serial[..., k].any():
             passive, _ = analysis.frames[f"limb{k}:passive"]
             chosen = _most_acting(passive, scaled_basis, np.ones(batch), tolerance)
             substitute = F.from_scaled(chosen[..., None, :], centre, length)[..., 0, :]
             rows[..., k, :] = np.where(serial[..., k, None], substitute, rows[..., k, :])
-    arrays = _jacobian_arrays(rows, np.asarray(analysis.actuated_twists), basis, length, serial, tolerance)
+            branches[..., k, :] = np.where(serial[..., k, None], substitute, branches[..., k, :])
+    twists = np.asarray(analysis.actuated_twists)
+    arrays = _jacobian_arrays(rows, branches, twists, basis, length, serial, tolerance)
     platform_rows, _ = analysis.frames["platform"]
     _check_inside(scaled_basis, platform_rows, np.any(arrays["serial"], axis=-1), basis_tolerance, batch)
     return WrenchJacobians(

@@ -476,6 +476,7 @@ _BATCH_FIELDS = (
     "transmissions",
     "actuation_rows",
     "actuated_twists",
+    "branch_rows",
 )
 
 

@@ -31,7 +31,7 @@ from __future__ import annotations
 import functools
 import itertools
 from collections.abc import Hashable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any, Literal
 
 import networkx as nx
@@ -91,6 +91,13 @@ class LimbPlan:
         Every joint of the limb, the actuated one included.
     network_edges : tuple of int
         For a network (non-series-parallel) topology: the joint indices of the limb's subgraph.
+    path : tuple of int
+        Tree nodes from the root down to the actuated joint's leaf (empty for a network).
+    partners : tuple of int
+        Indices into :attr:`Topology.limbs` of the actuated joints in *another branch of a parallel
+        node* on :attr:`path` (the H4's ``A4`` for ``A1``: both arms carry the nacelle ``b_I``).
+        The limb's own wrench ignores their motions; a compound leg with partners is analysed as a
+        whole where that wrench fails (:func:`screwkit.wrenches.analyze_table`).
     """
 
     actuated_joint: str
@@ -99,6 +106,8 @@ class LimbPlan:
     siblings: tuple[int, ...]
     joints: tuple[str, ...]
     network_edges: tuple[int, ...] = ()
+    path: tuple[int, ...] = ()
+    partners: tuple[int, ...] = ()
 
 
 @dataclass(frozen=True, eq=False)
@@ -238,10 +247,26 @@ def topology(base: Hashable, platform: Hashable, specs: tuple[JointSpec, ...]) -
         leaf = next((i for i, n in enumerate(tree) if n.joint == index), None)
         if leaf is None:
             raise TwistGraphError(f"Actuated joint {name!r} lies on no path from the base to the platform.")
-        siblings, joints = _limb_siblings(tree, root_index, leaf)
+        siblings, joints, path = _limb_siblings(tree, root_index, leaf)
         sign = _leaf_sign(tree, root_index, leaf, base, specs[index])
-        limbs.append(LimbPlan(name, index, sign, siblings, tuple(sorted({name, *joints}, key=names.index))))
-    return Topology(base, platform, specs, tree, root_index, tuple(legs), tuple(limbs))
+        limb_joints = tuple(sorted({name, *joints}, key=names.index))
+        limbs.append(LimbPlan(name, index, sign, siblings, limb_joints, (), path))
+    return Topology(base, platform, specs, tree, root_index, tuple(legs), _with_partners(tree, limbs))
+
+
+def _with_partners(tree: tuple[Node, ...], limbs: list[LimbPlan]) -> tuple[LimbPlan, ...]:
+    """Each limb with the actuated joints in other branches of the parallel nodes on its path
+    below the root (the root's branches are the compound legs, which do not share a link)."""
+    result = []
+    for plan in limbs:
+        beside = [
+            set(tree[node].joints) - set(tree[child].joints)
+            for node, child in itertools.pairwise(plan.path[1:])
+            if tree[node].kind == "parallel"
+        ]
+        partners = tuple(k for k, other in enumerate(limbs) if any(other.actuated_joint in b for b in beside))
+        result.append(replace(plan, partners=partners))
+    return tuple(result)
 
 
 def _chain(nodes: list[Node], orientation: dict[int, tuple[Any, Any]], index: int, start: Any) -> list[int]:
@@ -275,8 +300,11 @@ def _from_base(stored: tuple[Any, Any], ends: tuple[Any, Any]) -> tuple[Any, Any
     return ends if ends == stored else stored
 
 
-def _limb_siblings(tree: tuple[Node, ...], root: int, leaf: int) -> tuple[tuple[int, ...], tuple[str, ...]]:
-    """Siblings met at series nodes on the way from the root to the leaf, and their joints."""
+def _limb_siblings(
+    tree: tuple[Node, ...], root: int, leaf: int
+) -> tuple[tuple[int, ...], tuple[str, ...], tuple[int, ...]]:
+    """Siblings met at series nodes on the way from the root to the leaf, their joints, and the
+    path (root first)."""
     parent = {c: i for i, n in enumerate(tree) for c in n.children}
     path = [leaf]
     while path[-1] != root:
@@ -287,7 +315,7 @@ def _limb_siblings(tree: tuple[Node, ...], root: int, leaf: int) -> tuple[tuple[
         if node.kind == "series":
             siblings.extend(c for c in node.children if c != child)
     joints = tuple(itertools.chain.from_iterable(tree[s].joints for s in siblings))
-    return tuple(sorted(siblings)), joints
+    return tuple(sorted(siblings)), joints, tuple(reversed(path))
 
 
 def _leaf_sign(tree: tuple[Node, ...], root: int, leaf: int, base: Any, spec: JointSpec) -> int:

@@ -40,7 +40,7 @@ import functools
 import itertools
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
-from typing import Any
+from typing import Any, NamedTuple
 
 import networkx as nx
 import numpy as np
@@ -70,6 +70,10 @@ Frame = tuple[Array, Array]
 
 #: Relative tolerance deciding that a chosen actuation wrench is a line (zero pitch).
 LINE_RTOL = 1e-6
+
+#: A limb with partners whose own actuation wrench (unit, scaled) lies this close to its compound
+#: leg's constraint system has its leg analysed as a whole (:func:`_compound_legs`).
+COMPOUND_RTOL = 1e-6
 
 
 def translated_graph(graph: nx.MultiDiGraph, offset: Any, *, joint_key: str = "joint") -> nx.MultiDiGraph:
@@ -230,6 +234,10 @@ class WrenchAnalysis:
     actuation_rows : numpy.ndarray, shape (..., n_actuated, 6)
         The actuation wrenches, user frame, each a unit force or unit couple (zero where serial).
     actuated_twists : numpy.ndarray, shape (..., n_actuated, 6)
+    branch_rows : numpy.ndarray, shape (..., n_actuated, 6)
+        The part of each actuation wrench carried by its actuated joint's own branch, scaled as
+        :attr:`actuation_rows`: ``B_jj = branch_j ∘ $_j`` (:mod:`screwkit.jacobians`). Equal to
+        the actuation wrench except in a compound leg analysed as a whole (:func:`analyze_table`).
     """
 
     table_source: JointTable | Callable[[], JointTable] = field(repr=False)
@@ -245,6 +253,7 @@ class WrenchAnalysis:
     transmissions: Array = field(repr=False)
     actuation_rows: Array = field(repr=False)
     actuated_twists: Array = field(repr=False)
+    branch_rows: Array = field(repr=False)
     frames: dict[str, Frame] = field(repr=False)
     closeness: dict[str, Array] = field(repr=False)
 
@@ -289,6 +298,7 @@ class WrenchAnalysis:
             transmissions=pick(self.transmissions),
             actuation_rows=pick(self.actuation_rows),
             actuated_twists=pick(self.actuated_twists),
+            branch_rows=pick(self.branch_rows),
             frames={k: (rows[index], _scalar(order[index])) for k, (rows, order) in self.frames.items()},
             closeness={k: _scalar(v[index]) for k, v in self.closeness.items()},
         )
@@ -640,13 +650,14 @@ def _line_search(wrench: Array, constraints: Array, order: Array) -> Array:
     )
 
 
-def _unit_force_or_couple(rows: Array, length: Array) -> Array:
-    """User-frame rows scaled to a unit force (or a unit couple if the force vanishes)."""
+def _unit_size(rows: Array, length: Array) -> Array:
+    """``(..., k, 1)``: what divides user-frame rows into a unit force (or a unit couple if the
+    force vanishes)."""
     forces = np.linalg.norm(rows[..., :3], axis=-1)
     moments = np.linalg.norm(rows[..., 3:], axis=-1)
     is_couple = forces <= B.DEFAULT_RTOL * moments / length[..., None]
     size = np.where(is_couple, moments, forces)
-    return rows / np.where(size > 0, size, 1.0)[..., None]
+    return np.where(size > 0, size, 1.0)[..., None]
 
 
 def checked_rtol(value: Any, name: str = "rtol") -> float:
@@ -793,6 +804,10 @@ def analyze_table(
         wrench = _normalized(_nearest_lines(direction, *limb_constraint))
         product = np.abs(np.einsum("...s,...s->...", wrench, F.swapped(actuated)))
         transmissions = _scaled_transmission(wrench, actuated, product, rtol)
+        branch, locked_legs = wrench, None
+        compound = _compound_legs(top, scaled, rtol, leg_wrenches, actuated, (wrench, serial, transmissions))
+        if compound is not None:
+            serial, wrench, branch, transmissions, locked_legs = compound
         wrench_rows = np.where(serial[..., None], 0.0, wrench)
         for k in range(n):
             frames[f"limb{k}:passive"] = _limb(passive, k)  # the Jacobians' rows at serial singularities
@@ -801,14 +816,19 @@ def analyze_table(
                 frames[f"limb{k}:W"] = _limb(limb_constraint, k)
     else:
         serial, transmissions = np.zeros((*batch, 0), dtype=bool), np.zeros((*batch, 0))
-        wrench_rows = np.zeros((*batch, 0, 6))
+        wrench_rows = branch = np.zeros((*batch, 0, 6))
+        locked_legs = None
     global_frame = F.span(np.concatenate([constraint[0], wrench_rows], axis=-2), rtol)
     legs_stacked = np.concatenate([w[0] for w in leg_wrenches], axis=-2)
     closeness = {
         "constraint": F.singular_ratio(legs_stacked, 6 - nominal),
-        "actuation": F.singular_ratio(np.concatenate([legs_stacked, wrench_rows], axis=-2), 6),
+        "actuation": F.singular_ratio(
+            np.concatenate([legs_stacked, _apart_from_legs(top, wrench_rows, leg_wrenches)], axis=-2), 6
+        ),
         "serial": np.min(transmissions, axis=-1) if n else np.ones(batch),
     }
+    if locked_legs is not None:  # where a compound leg was analysed as a whole
+        locked_legs.add_to(global_frame, constraint, wrench_rows, rtol)
     frames["platform"] = platform  # the Jacobians' nominal twists are checked against it
     if views:  # else recomputed for the one pose that asks (WrenchAnalysis._add_views)
         frames.update(constraint=constraint, uncontrolled=F.reciprocal(*global_frame))
@@ -820,7 +840,9 @@ def analyze_table(
         for k, (twist_frame, wrench_frame) in enumerate(zip(leg_twists, leg_wrenches, strict=True)):
             frames[f"leg{k}:T"] = twist_frame
             frames[f"leg{k}:W"] = wrench_frame
-    user_wrenches = _unit_force_or_couple(F.from_scaled(wrench_rows, centre, length), length)
+    user_rows = F.from_scaled(wrench_rows, centre, length)
+    size = _unit_size(user_rows, length)
+    user_branches = np.where(serial[..., None], 0.0, F.from_scaled(branch, centre, length) / size)
     return WrenchAnalysis(
         table_source=table,
         topology=top,
@@ -833,13 +855,196 @@ def analyze_table(
         global_order=_scalar(global_frame[1]),
         serial=serial,
         transmissions=transmissions,
-        actuation_rows=np.where(serial[..., None], 0.0, user_wrenches),
+        actuation_rows=np.where(serial[..., None], 0.0, user_rows / size),
+        branch_rows=user_branches,
         actuated_twists=np.stack([p.sign * screws[..., top.columns[p.index], :] for p in top.limbs], axis=-2)
         if n
         else np.zeros((*batch, 0, 6)),
         frames=frames,
         closeness={k: _scalar(v) for k, v in closeness.items()},
     )
+
+
+class _LockedLegs(NamedTuple):
+    """Where compound legs were analysed as a whole (:func:`_compound_legs`), each such leg's
+    ``W_locked`` there: rows ``(m, 6 q, 6)``, orthonormal, zero beyond each leg's order."""
+
+    where: Array
+    rows: Array
+
+    def add_to(self, global_frame: Frame, constraint: Frame, rows: Array, rtol: float) -> None:
+        """The global system ``W^c + Σ_L W_L,locked`` at those poses (in place; one rank rule)."""
+        where = self.where
+        frame = F.span(np.concatenate([constraint[0][where], rows[where], self.rows], axis=-2), rtol)
+        global_frame[0][where], global_frame[1][where] = frame
+
+
+def _apart_from_legs(top: Topology, rows: Array, leg_wrenches: list[Frame]) -> Array:
+    """Unit scaled wrench rows ``(..., n, 6)`` with each limb that has partners less its part in its
+    compound leg's constraint system (renormalised): the actuation closeness's rows. A limb's own
+    wrench may lie close to that system where the leg as a whole transmits well (the H4 near
+    ``n1·z = 0``, :func:`_compound_legs`), which would fake a near-singularity."""
+    out = rows
+    for k, plan in enumerate(top.limbs):
+        if plan.partners and not top.network:
+            if out is rows:
+                out = rows.copy()
+            frame = leg_wrenches[_leg_of(top, k)][0]
+            out[..., k, :] = _normalized(F.residual(rows[..., k, None, :], frame)[..., 0, :])
+    return out
+
+
+def _leg_of(top: Topology, k: int) -> int:
+    """The index in :attr:`Topology.legs` of limb ``k``'s compound leg."""
+    return next(i for i, leg in enumerate(top.legs) if leg in top.limbs[k].path)
+
+
+def _compound_legs(
+    top: Topology,
+    scaled: Array,
+    rtol: float,
+    leg_wrenches: list[Frame],
+    actuated: Array,
+    limbs: tuple[Array, Array, Array],
+) -> tuple[Array, Array, Array, Array, _LockedLegs] | None:
+    """Compound legs whose actuators share a link, analysed as a whole where a limb's own
+    actuation wrench fails: ``serial, wrench, branch, transmissions`` over the batch and the
+    quotients (None where no limb's wrench fails). ``limbs``: the limbs' own ``wrench, serial,
+    transmissions`` (scaled).
+
+    **Why.** A limb with *partners* (:attr:`screwkit.topology.LimbPlan.partners`; the H4's
+    ``A1`` and ``A4`` both carry the nacelle ``b_I``, which joins the end effector by ``R_I``) gets
+    its actuation wrench from its own chain (``A1``, parallelogram 1, ``R_I``): the wrench reciprocal
+    to that chain's passive joints, paper 002's force along the rods through the point where it
+    meets ``R_I``'s axis (§4.3). Where parallelogram 1's plane contains the vertical (``n1·z = 0``)
+    that line goes to infinity and becomes the couple ``C_n1``, which is also leg I's constraint
+    wrench (paper 002 Eq. 3): the chain alone then says "serial" (``A1``'s twist in the span of
+    its chain's passive twists) and the global system loses a rank ("actuation"). Yet the pose
+    is regular: paper 004 Eq. (12) gives ``|A| = −47.9`` and paper 002 Eq. (7) ``47.9`` at
+    ``(300, 300, −473.80 mm, 30°)`` (tests/test_workspace.py). With the end effector fixed and
+    ``A4`` locked, ``b_I`` cannot turn about ``R_I`` (parallelogram 4's couple ``C_n4`` has
+    ``n4·z ≠ 0``), so ``A1`` cannot move; with all four arms locked leg I transmits three
+    independent wrenches (``C_n1``, ``F_w1 − (m1/n4z) C_n4``, ``F_w4 − (m4/n4z) C_n4``), leg II
+    three. What fails is only the chain's assumption that its wrench does no work on the motion
+    of the partner ``A4``.
+
+    **The leg as a whole.** For a compound leg ``L`` with ``n_L`` actuators, ``W_free`` is its
+    constraint system and ``W_locked`` the reciprocal of its twist system with its actuators
+    locked. A wrench ``W`` of ``W_locked`` reaches the base through the leg's branches: split at
+    each parallel node into the branches' locked wrench systems (least squares; unique when they
+    are independent), the part reaching actuator ``j`` loads it with ``τ_j(W) = branch_j ∘ $_j``,
+    and every motion of the leg has ``W ∘ t = Σ_j τ_j(W) θ̇_j`` (virtual work). So:
+
+    * the leg is **serial** (an actuator moves with the platform fixed) iff ``τ`` loses rank on
+      ``W_locked / W_free`` (of order ``ord W_locked − ord W_free ≤ n_L``); actuator ``k`` is
+      among the serial ones iff no element of the quotient loads ``k`` without loading the
+      others: ``c_k``, the part of ``k``'s column of ``τ`` orthogonal to the other actuators'
+      columns, is ``≤ rtol`` (the rule of the limb's ``t⊥``);
+    * otherwise ``W_k = Σ_i c_k,i Q_i`` loads ``k`` alone, so ``B`` of the leg stays diagonal,
+      ``B_kk = τ_k(W_k)`` (stored as the branch row, :mod:`screwkit.jacobians`); drawn as a line
+      where adding a constraint wrench can make it one (:func:`_nearest_lines`; at ``n1·z = 0``
+      it cannot: the H4's ``W_1`` has pitch there);
+    * the global system is ``W^c + Σ_L W_L,locked`` (the quotients added; one rank rule).
+
+    Generically a limb's own wrench lies in ``W_locked``, outside ``W_free``, and loads no
+    partner, so it is kept: the leg is analysed as a whole only at the poses where a limb with
+    partners is serial by its chain or its wrench lies within :data:`COMPOUND_RTOL` of ``W_free``,
+    and only its failing limbs are replaced.
+    """
+    coupled = [k for k, plan in enumerate(top.limbs) if plan.partners]
+    if not coupled or top.network:
+        return None
+    wrench, serial, transmissions = limbs
+    failing = np.zeros(serial.shape, dtype=bool)
+    for k in coupled:
+        rows = leg_wrenches[_leg_of(top, k)][0]
+        rest = np.linalg.norm(F.residual(wrench[..., k, None, :], rows)[..., 0, :], axis=-1)
+        failing[..., k] = serial[..., k] | (rest <= COMPOUND_RTOL)
+    where = failing.any(axis=-1)
+    if not where.any():
+        return None
+    locked_scaled = scaled[where].copy()
+    for plan in top.limbs:
+        start = top.columns[plan.index]
+        locked_scaled[:, start : start + top.specs[plan.index].dof, :] = 0.0
+    locked = _Evaluation(top, locked_scaled, rtol)
+    twists = actuated[where]
+    fixed_serial, fixed_wrench = serial[where], wrench[where]
+    fixed_branch, fixed_transmissions = fixed_wrench.copy(), transmissions[where]
+    lockeds = []
+    for leg in sorted({_leg_of(top, k) for k in coupled}):
+        members = [k for k in range(len(top.limbs)) if _leg_of(top, k) == leg]
+        free = (leg_wrenches[leg][0][where], leg_wrenches[leg][1][where])
+        leg_locked = locked.wrenches(top.legs[leg])[0]  # (m, 6, 6), zero beyond its order
+        lockeds.append(leg_locked)
+        paths = {k: _leg_path(top, k, leg) for k in members}
+        loads = np.stack(  # τ_j(L_i) over the rows L_i of W_locked, (m, 6, n_L)
+            [
+                np.einsum(
+                    "...is,...s->...i",
+                    _branch_part(top, locked, paths[j], leg_locked, rtol),
+                    F.swapped(twists[:, j]),
+                )
+                for j in members
+            ],
+            axis=-1,
+        )
+        for position, k in enumerate(members):
+            replace_k = failing[where][:, k]
+            if not replace_k.any():
+                continue
+            others = np.swapaxes(np.delete(loads, position, axis=-1), -1, -2)  # (m, n_L - 1, 6)
+            alone = F.residual(loads[:, None, :, position], F.span(others, rtol)[0])[:, 0, :]
+            size = np.linalg.norm(alone, axis=-1)
+            is_serial = size <= rtol
+            direction = _normalized(np.einsum("...i,...is->...s", alone, leg_locked))
+            chosen = _normalized(_nearest_lines(direction, *free))
+            part = _branch_part(top, locked, paths[k], chosen[:, None, :], rtol)[:, 0, :]
+            product = np.abs(np.einsum("...s,...s->...", part, F.swapped(twists[:, k])))
+            new = replace_k & ~is_serial  # a serial actuator keeps its limb's (unused) wrench
+            fixed_serial[:, k] = np.where(replace_k, is_serial, fixed_serial[:, k])
+            fixed_wrench[:, k] = np.where(new[:, None], chosen, fixed_wrench[:, k])
+            fixed_branch[:, k] = np.where(new[:, None], part, fixed_branch[:, k])
+            transmission = np.where(  # serial: of the unit c_k·L, whose load is |c_k| (continuous)
+                is_serial,
+                _scaled_transmission(direction, twists[:, k], size, rtol),
+                _scaled_transmission(chosen, twists[:, k], product, rtol),
+            )
+            fixed_transmissions[:, k] = np.where(replace_k, transmission, fixed_transmissions[:, k])
+    serial, wrench, transmissions = serial.copy(), wrench.copy(), transmissions.copy()
+    branch = wrench.copy()
+    serial[where], wrench[where], branch[where], transmissions[where] = (
+        fixed_serial,
+        fixed_wrench,
+        fixed_branch,
+        fixed_transmissions,
+    )
+    return serial, wrench, branch, transmissions, _LockedLegs(where, np.concatenate(lockeds, axis=-2))
+
+
+def _leg_path(top: Topology, k: int, leg: int) -> tuple[int, ...]:
+    """Limb ``k``'s path from its compound leg's node down to its actuated joint."""
+    path = top.limbs[k].path
+    return path[path.index(top.legs[leg]) :]
+
+
+def _branch_part(
+    top: Topology, locked: _Evaluation, path: tuple[int, ...], wrenches: Array, rtol: float
+) -> Array:
+    """The part of wrenches ``(m, k, 6)`` of a leg's locked system that reaches the end of
+    ``path``: split at each parallel node into its branches' locked wrench systems (minimum-norm
+    least squares), the path's branch kept."""
+    for node_index, child in itertools.pairwise(path):
+        node = top.nodes[node_index]
+        if node.kind != "parallel":
+            continue
+        blocks = np.concatenate([locked.wrenches(c)[0] for c in node.children], axis=-2)  # (m, 6p, 6)
+        coefficients = np.einsum("...ks,...sr->...kr", wrenches, np.linalg.pinv(blocks, rcond=rtol))
+        at = 6 * node.children.index(child)
+        wrenches = np.einsum(
+            "...kr,...rs->...ks", coefficients[..., at : at + 6], blocks[..., at : at + 6, :]
+        )
+    return wrenches
 
 
 def _stacked(frames: list[Frame]) -> Frame:
