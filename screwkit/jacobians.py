@@ -14,7 +14,12 @@ ASME J. Mech. Des. 124(2), 2002). Stacking the limbs,
 * ``A_jk = w_j ∘ t_k``  (n_actuated × dof, the *forward* or direct Jacobian),
 * ``B = diag(w_j ∘ $_j)`` (n × n, the *inverse* Jacobian),
 
-and ``A χ̇ = B θ̇``, the form of paper 004 Eq. (6). This needs the actuated joint *in series* in
+and ``A χ̇ = B θ̇``, the form of paper 004 Eq. (6). In a compound leg whose actuators share a link
+(the H4's ``A1``, ``A4`` on the nacelle ``b_I``), where a limb's own wrench fails the core picks
+``w_j`` from the leg as a whole, loading ``A_j`` alone (:func:`screwkit.wrenches.analyze_table`):
+``w_j`` then splits between the leg's parallel branches and ``B_jj`` is the part on ``A_j``'s branch
+times ``$_j`` (:attr:`~screwkit.wrenches.WrenchAnalysis.branch_rows`); ``B`` stays diagonal and its
+zeros are the leg's serial singularities. This needs the actuated joint *in series* in
 its limb (on no closed loop of the limb), which is checked. Each ``w_j`` is defined up to a factor
 (and up to the limb's constraint wrenches, which are reciprocal to every ``t_k``), so ``A`` and
 ``B`` are defined up to a common diagonal row scaling ``D``; ``A⁻¹B`` is not. Here every ``w_j``

@@ -10,7 +10,9 @@ From a :class:`~screwkit.wrenches.WrenchAnalysis` (paper 002 §4–5; Zlatanov, 
   with the actuators locked the platform keeps an uncontrolled twist (paper 002 §5.3, condition 2);
 * **serial (limb) singularity**: an actuated joint's twist lies in the span of the other twists of
   its limb, so its actuation wrench is reciprocal to it: the actuator cannot move the platform
-  (Gosselin & Angeles' inverse type).
+  (Gosselin & Angeles' inverse type). In a compound leg whose actuators share a link, decided on
+  the leg as a whole where the limb's own wrench fails: the actuator moves with the platform fixed
+  (:func:`screwkit.wrenches.analyze_table`).
 
 The *uncontrolled twists* are the platform twists reciprocal to every constraint and actuation
 wrench: the motions left with all actuators locked (empty at a regular pose).

@@ -13,7 +13,9 @@ one, :func:`wrench_analysis`), with the structure analysed once (:mod:`screwkit.
   (:mod:`screwkit._frames`) that is ``SWAP·t⊥`` with ``t⊥`` the actuated twist's component
   orthogonal to the locked twist system, defined up to the limb's constraint wrenches and made a
   line where adding one of them can (the representative drawn in diagrams). The actuator
-  cannot move the platform (a *serial singularity* of the limb) when ``t⊥`` vanishes;
+  cannot move the platform (a *serial singularity* of the limb) when ``t⊥`` vanishes. Where
+  actuators share a link (the H4's nacelle) and a limb's own wrench fails, its compound leg is
+  analysed as a whole (:func:`_compound_legs`);
 * each **compound leg** (a branch of the root of the series-parallel tree, such as the H4's
   ``L_I = l12 − R_I``) has its own constraint system; they add up to the mechanism's
   ``W^c`` (paper 002 Eq. 3);
@@ -160,7 +162,9 @@ class Limb:
         Reciprocal to every twist of the limb but the actuated one's (with the actuator locked).
     actuation_wrench : numpy.ndarray, shape (6,), or None
         An element of ``passive_wrenches`` not reciprocal to the actuated twist (a line where one
-        exists), None at a serial singularity of this limb.
+        exists), None at a serial singularity of this limb. Where the limb's compound leg is
+        analysed as a whole, the leg's wrench that loads this actuator alone (it may then lie
+        outside ``passive_wrenches`` and have a pitch; :func:`_compound_legs`).
     actuated_twist : numpy.ndarray, shape (6,)
     transmission : float
         :func:`normalized_reciprocal_product` of the actuation wrench and the actuated twist (0 at
@@ -936,15 +940,26 @@ def _compound_legs(
     and every motion of the leg has ``W ∘ t = Σ_j τ_j(W) θ̇_j`` (virtual work). So:
 
     * the leg is **serial** (an actuator moves with the platform fixed) iff ``τ`` loses rank on
-      ``W_locked / W_free`` (of order ``ord W_locked − ord W_free ≤ n_L``); actuator ``k`` is
-      among the serial ones iff no element of the quotient loads ``k`` without loading the
-      others: ``c_k``, the part of ``k``'s column of ``τ`` orthogonal to the other actuators'
-      columns, is ``≤ rtol`` (the rule of the limb's ``t⊥``);
-    * otherwise ``W_k = Σ_i c_k,i Q_i`` loads ``k`` alone, so ``B`` of the leg stays diagonal,
-      ``B_kk = τ_k(W_k)`` (stored as the branch row, :mod:`screwkit.jacobians`); drawn as a line
-      where adding a constraint wrench can make it one (:func:`_nearest_lines`; at ``n1·z = 0``
-      it cannot: the H4's ``W_1`` has pitch there);
-    * the global system is ``W^c + Σ_L W_L,locked`` (the quotients added; one rank rule).
+      ``W_locked / W_free`` (``τ`` vanishes on ``W_free``; that quotient has order
+      ``ord W_locked − ord W_free ≤ n_L``); actuator ``k`` is among the serial ones iff no
+      wrench of ``W_locked`` loads ``k`` without loading the others: with ``τ`` evaluated on the
+      orthonormal rows ``L_i`` of ``W_locked``, ``c_k``, the part of ``k``'s column orthogonal to
+      the other actuators' columns, is ``≤ rtol`` (the rule of the limb's ``t⊥``; its
+      transmission is then that of ``Σ_i c_k,i L_i``, ``~|c_k|``, continuous up to the
+      singularity);
+    * otherwise ``W_k = Σ_i c_k,i L_i`` loads ``k`` alone (``τ_k(W_k) = |c_k|²``), so ``B`` of the
+      leg stays diagonal, ``B_kk = τ_k(W_k)`` (the branch row, :mod:`screwkit.jacobians`); drawn
+      as a line where adding a constraint wrench can make it one (:func:`_nearest_lines`; at
+      ``n1·z = 0`` it cannot: the H4's ``W_1`` has a pitch there);
+    * the global system is ``W^c + Σ_L W_L,locked`` (each such leg's ``W_locked`` added; one rank
+      rule).
+
+    Evidence (tests/test_compound_legs.py): at the H4 pose above the core now says regular; its
+    ``det A`` equals paper 004's Eq. (12), its ``B`` paper 004's ``diag(−h_i)`` (Eq. 8), ``B⁻¹A``
+    the finite differences of the inverse kinematics, and the six locked-leg wrenches written out
+    by hand have rank 6; where both of ``b_I``'s parallelograms are vertical the nacelle spins about
+    ``R_I`` with the end effector and ``A4`` fixed, turning ``A1``: a serial singularity of ``A1``
+    that paper 004's model, whose sub-platforms do not turn, cannot see (its ``h_1 ≠ 0`` there).
 
     Generically a limb's own wrench lies in ``W_locked``, outside ``W_free``, and loads no
     partner, so it is kept: the leg is analysed as a whole only at the poses where a limb with
@@ -960,7 +975,7 @@ def _compound_legs(
         rows = leg_wrenches[_leg_of(top, k)][0]
         rest = np.linalg.norm(F.residual(wrench[..., k, None, :], rows)[..., 0, :], axis=-1)
         failing[..., k] = serial[..., k] | (rest <= COMPOUND_RTOL)
-    where = failing.any(axis=-1)
+    where = np.asarray(failing.any(axis=-1))
     if not where.any():
         return None
     locked_scaled = scaled[where].copy()

@@ -21,7 +21,7 @@ from screwkit.wrenches import analyze_table
 
 from .mechanisms import bisect_root
 from .strategies import rigid_motions, unit_factors
-from .test_h4 import moved_graph, normals, paper_002_conditions
+from .test_h4 import moved_graph, normals, paper_002_conditions, paper_wrench_matrix
 
 H4 = sk.load_mechanism("h4")
 Z = np.array([0.0, 0.0, 1.0])
@@ -231,3 +231,20 @@ def test_leg_partners_are_the_actuators_sharing_a_sub_platform():
     for name in ("mcgill_smg", "peppermill"):  # their legs' actuators are in series: no partners
         mechanism = sk.load_mechanism(name)
         assert not any(p.partners for p in analyze_table(mechanism.joints()).topology.limbs)
+
+
+def test_paper_002_superbracket_lines_coincide_on_the_vertical_plane():
+    """Paper 002's actuation line of limb 1 (along its rods through the point where they meet R_I's
+    axis) is at infinity there, the line of leg I's constraint couple: the six lines' superbracket
+    (unit Plücker rows) vanishes at this regular pose. Eq. (7) takes its points from limbs 4 and 3
+    only, so ``Eq.(6)·Eq.(7)`` (the paper-normalised determinant) does not; the core's diagram
+    reports the pose degenerate (limb 1's wrench has a pitch) rather than singular."""
+    cfg = H4.configuration(VERTICAL)
+    rows = paper_wrench_matrix(cfg)
+    eq6, eq7, _, _ = paper_002_conditions(cfg)
+    assert np.linalg.det(rows) == pytest.approx(-eq6 * eq7, rel=1e-9) and abs(eq6 * eq7) > 0.5
+    unit = rows / np.linalg.norm(rows * [1, 1, 1, 1e-3, 1e-3, 1e-3], axis=1, keepdims=True)
+    unit[:, 3:] *= 1e-3
+    assert abs(np.linalg.det(unit)) < 1e-12
+    diagram, _ = H4.wrench_diagram(VERTICAL)
+    assert any("actuation A1 wrench has pitch" in problem for problem in diagram.degenerate)
