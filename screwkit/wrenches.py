@@ -77,6 +77,12 @@ LINE_RTOL = 1e-6
 #: leg's constraint system has its leg analysed as a whole (:func:`_compound_legs`).
 COMPOUND_RTOL = 1e-6
 
+#: A compound leg's actuation wrench (unit, scaled) is drawn as a line only if the constraint
+#: wrench that makes it one is at most this large: where none of moderate size exists (the H4's
+#: ``W_1`` at ``n1·z = 0``, whose pitch no multiple of ``C_n1`` changes), the root found is
+#: round-off divided by round-off, and the "line" would be the constraint couple itself.
+COMPOUND_LINE_REACH = 1e3
+
 
 def translated_graph(graph: nx.MultiDiGraph, offset: Any, *, joint_key: str = "joint") -> nx.MultiDiGraph:
     """A copy of a twist graph with every joint moved by a translation (screws via the adjoint).
@@ -1013,7 +1019,9 @@ def _compound_legs(
             size = np.linalg.norm(alone, axis=-1)
             is_serial = size <= rtol
             direction = _normalized(np.einsum("...i,...is->...s", alone, leg_locked))
-            chosen = _normalized(_nearest_lines(direction, *free))
+            line = _nearest_lines(direction, *free)  # a line only if the constraint added stays small
+            near = np.linalg.norm(line - direction, axis=-1) <= COMPOUND_LINE_REACH
+            chosen = _normalized(np.where(near[:, None], line, direction))
             part = _branch_part(top, locked, paths[k], chosen[:, None, :], rtol)[:, 0, :]
             product = np.abs(np.einsum("...s,...s->...", part, F.swapped(twists[:, k])))
             new = replace_k & ~is_serial  # a serial actuator keeps its limb's (unused) wrench

@@ -16,6 +16,7 @@ from hypothesis import strategies as st
 
 import screwkit as sk
 from screwkit import screw as S
+from screwkit.families.four_limb import reachable
 from screwkit.singularity import classify
 from screwkit.wrenches import analyze_table
 
@@ -248,3 +249,33 @@ def test_paper_002_superbracket_lines_coincide_on_the_vertical_plane():
     assert abs(np.linalg.det(unit)) < 1e-12
     diagram, _ = H4.wrench_diagram(VERTICAL)
     assert any("actuation A1 wrench has pitch" in problem for problem in diagram.degenerate)
+
+
+def test_poses_on_and_beside_every_vertical_plane_are_regular_with_papers_jacobians(rng):
+    """Roots of n_i·z = 0 for each limb (bisection along z from random reachable poses, all at once),
+    and poses 1e-9 … 1e-3 mm beside them: regular, det A = paper 004 Eq. (12), B = diag(−h_i)."""
+    starts = rng.uniform([-400, -400, -1000, -1.5], [400, 400, -450, 1.5], size=(400, 4))
+    ends = starts + 60.0 * UP
+    keep = reachable(H4.parameters, starts) & reachable(H4.parameters, ends)
+    starts, ends = starts[keep], ends[keep]
+    roots = []
+    for limb in range(4):
+        low, high = np.zeros(len(starts)), np.ones(len(starts))
+        sign = np.sign(plane_normals_z(starts)[:, limb])
+        crossing = sign != np.sign(plane_normals_z(ends)[:, limb])
+        for _ in range(60):
+            middle = (low + high) / 2
+            same = np.sign(plane_normals_z(starts + middle[:, None] * (ends - starts))[:, limb]) == sign
+            low, high = np.where(same, middle, low), np.where(same, high, middle)
+        roots.append((starts + low[:, None] * (ends - starts))[crossing][:4])
+    roots = np.concatenate(roots)
+    assert len(roots) >= 8
+    poses = np.concatenate([roots + d * UP for d in (-1e-3, -1e-6, -1e-9, 0.0, 1e-9, 1e-6, 1e-3)])
+    poses = poses[reachable(H4.parameters, poses)]
+    cfg = H4.configuration(poses)
+    assert (np.abs(normals(cfg)[..., 2]).min(axis=-1) < 1e-5).all()
+    posed = H4.at(poses)
+    assert (posed.codes == 0).all()
+    jac = posed.jacobians
+    np.testing.assert_allclose(jac.det_A, paper_004_det_A(cfg), rtol=1e-6)
+    np.testing.assert_allclose(np.diagonal(jac.B, axis1=-2, axis2=-1), -paper_004_h(cfg), rtol=1e-8)
