@@ -60,6 +60,7 @@ from __future__ import annotations
 import json
 import math
 import sys
+import weakref
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
@@ -281,7 +282,9 @@ def _condition_values(mechanism: Any, index: int, posed: Any) -> Array:
     )
 
 
-_CONDITIONS: dict[tuple[Any, ...], tuple[Any, tuple[Any, ...], tuple[str, ...], Array]] = {}
+#: Per mechanism (held weakly: a cache entry dies with its mechanism) and options: the factored
+#: superbracket's diagram, conditions, labels and values at the default pose.
+_CONDITIONS: weakref.WeakKeyDictionary[Any, dict[tuple[Any, ...], Any]] = weakref.WeakKeyDictionary()
 
 
 def _conditions(
@@ -291,8 +294,9 @@ def _conditions(
     pose (factored once per mechanism and mode)."""
     from .diagram import superbracket_analysis
 
-    key = (id(mechanism), tuple(sorted((k, repr(v)) for k, v in options.items())))
-    if key not in _CONDITIONS:
+    key = tuple(sorted((k, repr(v)) for k, v in options.items()))
+    cache = _CONDITIONS.setdefault(mechanism, {})
+    if key not in cache:
         pose = mechanism.at(None, **options)[0]
         diagram, sampler = pose.diagram_and_sampler()
         if diagram.degenerate:
@@ -301,8 +305,8 @@ def _conditions(
                 f"{'; '.join(diagram.degenerate)}."
             )
         result = superbracket_analysis(diagram, sampler)
-        _CONDITIONS[key] = (diagram, result.conditions, result.labels, np.array(result.values, dtype=float))
-    return _CONDITIONS[key]
+        cache[key] = (diagram, result.conditions, result.labels, np.array(result.values, dtype=float))
+    return cache[key]
 
 
 def _values(posed: Any, quantity: str) -> Array:
