@@ -24,7 +24,7 @@ Quantities (:data:`QUANTITIES`)
     (:class:`screwkit.jacobians.WrenchJacobians`; paper 004 Eq. 6).
 ``"lti"``
     The local transmission index ``η = min(κ, ζ)`` of paper 004 Eq. (16)
-    (:func:`screwkit.indices.transmission_indices`; four-limb families).
+    (:func:`screwkit.indices.transmission`; four-limb families).
 ``"condition:K"``
     The vector form of the K-th factor of the superbracket (:mod:`screwkit.conditions`), factored
     once at the default pose and evaluated on each pose's wrench diagram (one pose at a time: slow).
@@ -251,16 +251,17 @@ def _reachable_by_halving(mechanism: Any, poses: Array, options: dict[str, Any])
 
 
 def _lti(posed: Any) -> Array:
-    """The local transmission index ``η`` of paper 004 Eq. (16) over a posed batch (the one place
-    the maps take it from)."""
-    from .indices import FourLimbGeometry, transmission_indices
+    """The local transmission index ``η`` of paper 004 Eq. (16) over a posed batch: the one place
+    the maps take it from (:func:`screwkit.indices.transmission`, the batched entry point, fused
+    and compiled with the ``fast`` extra)."""
+    from .indices import FourLimbGeometry, transmission
 
     if not isinstance(posed.configuration, FourLimbGeometry):
         raise ScrewkitValueError(
             f"Expected a four-limb mechanism for quantity 'lti' (paper 004), got family "
             f"{posed.mechanism.family!r}."
         )
-    return np.asarray(transmission_indices(posed.configuration).eta, dtype=float)
+    return np.asarray(transmission(posed).lti, dtype=float)
 
 
 def _condition_values(mechanism: Any, index: int, posed: Any) -> Array:
