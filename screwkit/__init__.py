@@ -92,10 +92,22 @@ _LAZY = {
     "diagram_at": "diagram",
     "SuperbracketAnalysis": "diagram",
     "superbracket_analysis": "diagram",
+    "TransmissionIndices": "indices",
+    "transmission": "indices",
+    "index_extremes": "indices",
+    "wrench_transmission": "indices",
 }
 
 
+#: Submodules loaded on first use (``sk.workspace.grid_map``).
+_LAZY_MODULES = ("workspace",)
+
+
 def __getattr__(name: str) -> Any:
+    if name in _LAZY_MODULES:
+        import importlib
+
+        return importlib.import_module(f".{name}", __name__)
     if name in _LAZY:
         import importlib
 
@@ -106,7 +118,7 @@ def __getattr__(name: str) -> Any:
 
 
 def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(_LAZY))
+    return sorted(set(globals()) | set(_LAZY) | set(_LAZY_MODULES))
 
 __version__ = "0.1.0"
 
@@ -132,6 +144,7 @@ __all__ = [
     "ScrewkitValueError",
     "SingularityReport",
     "SuperbracketAnalysis",
+    "TransmissionIndices",
     "TwistGraphError",
     "UnreachablePoseError",
     "WrenchAnalysis",
@@ -154,6 +167,7 @@ __all__ = [
     "graph_dot",
     "graph_json",
     "helical",
+    "index_extremes",
     "infinite_point",
     "is_at_infinity",
     "jacobians_from_wrenches",
@@ -181,9 +195,11 @@ __all__ = [
     "snapshot_text",
     "spherical",
     "superbracket_analysis",
+    "transmission",
     "twist_graph",
     "universal",
     "virtual",
     "wrench_analysis",
     "wrench_diagram",
+    "wrench_transmission",
 ]
