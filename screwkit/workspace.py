@@ -7,8 +7,9 @@ cluster (optional extra ``dask``): pass ``client=``; the results are identical t
 
 Units
 -----
-Poses here are in the **catalog file's units**: lengths in the file's length unit, angles in
-**degrees** (as in the TOML files and on the command line), unless ``angles="rad"`` is passed. A
+Poses here are in the API's units (design.md §3): lengths in the catalog file's length unit, angles
+in **radians**, as everywhere in the Python API; pass ``angles="deg"`` to give ranges, fixed
+coordinates and paths in degrees (as in the TOML files and on the command line, which passes it). A
 pose is a dict ``{name: value}`` over :attr:`~screwkit.catalog.Mechanism.pose_names` (missing
 coordinates take the default pose) or an array in that order.
 
@@ -48,10 +49,10 @@ Examples
 --------
 >>> from screwkit.catalog import load_mechanism
 >>> h4 = load_mechanism("h4")
->>> m = grid_map(h4, "verdict", x=("z", -1000, -550, 4), y=("phi", -45, 45, 3))
+>>> m = grid_map(h4, "verdict", x=("z", -1000, -550, 4), y=("phi", -45, 45, 3), angles="deg")
 >>> m.values.shape, int(m.maximum), bool(m.reachable.all())
 ((3, 4), 0, True)
->>> check_path(h4, {"z": -800, "phi": 0}, {"z": -700, "phi": 30}, samples=20).singularity_free
+>>> check_path(h4, {"z": -800, "phi": 0}, {"z": -700, "phi": 30}, samples=20, angles="deg").singularity_free
 True
 """
 
@@ -670,7 +671,7 @@ def grid_map(
     chunk: int | None = None,
     client: Any = None,
     progress: Any = None,
-    angles: str = "deg",
+    angles: str = "rad",
     rtol: float | None = None,
 ) -> WorkspaceMap:
     """A quantity over a 2-D grid of the pose space, through the core in chunks.
@@ -681,7 +682,7 @@ def grid_map(
     quantity : str
         See :data:`QUANTITIES` (``"detA"``/``"detB"`` and ``"condition"`` = ``"condition:0"`` too).
     x, y : tuple (name, low, high, count)
-        The axes (user units: angles in degrees by default).
+        The axes (user units: angles in radians unless ``angles="deg"``).
     fixed : dict, optional
         The other coordinates (default: the default pose), e.g. ``{"x": 0.0, "y": 0.0}``.
     mode : mapping or sequence, optional
@@ -709,7 +710,7 @@ def grid_map(
     --------
     >>> from screwkit.catalog import load_mechanism
     >>> m = grid_map(load_mechanism("h4"), "lti", x=("x", -100, 100, 3), y=("y", -100, 100, 3),
-    ...              fixed={"z": -750, "phi": 0})
+    ...              fixed={"z": -750, "phi": 0}, angles="deg")
     >>> print(m.region)
     H4: x in [-100, 100] mm (3 values) x y in [-100, 100] mm (3 values), z = -750 mm, phi = 0 deg
     >>> bool(0 < m.minimum <= m.maximum <= 1)
@@ -780,7 +781,7 @@ def sweep(
     chunk: int | None = None,
     client: Any = None,
     progress: Any = None,
-    angles: str = "deg",
+    angles: str = "rad",
     rtol: float | None = None,
 ) -> tuple[WorkspaceMap, ...]:
     """A parameter sweep: the same map for each mechanism (e.g. a family's parameters varied with
@@ -793,7 +794,7 @@ def sweep(
     --------
     >>> from screwkit.catalog import load_mechanism
     >>> maps = sweep([load_mechanism("h4"), load_mechanism("quattro")], "lti",
-    ...              x=("z", -900, -600, 3), y=("phi", -20, 20, 2))
+    ...              x=("z", -900, -600, 3), y=("phi", -20, 20, 2), angles="deg")
     >>> [m.mechanism for m in maps]
     ['H4', 'Quattro']
     """
@@ -1081,7 +1082,7 @@ def loci(
     y: Any = ("phi", -45.0, 45.0, 50),
     fixed: Any = None,
     mode: Any = None,
-    angles: str = "deg",
+    angles: str = "rad",
     rtol: float | None = None,
 ) -> tuple[Locus, ...]:
     """The singular curves of a 2-D slice: along every grid row and column, det A sign changes,
@@ -1100,7 +1101,7 @@ def loci(
     Examples
     --------
     >>> from screwkit.catalog import load_mechanism
-    >>> found = loci(load_mechanism("h4"), x=("z", -1000, -550, 6), y=("phi", -45, 45, 5))
+    >>> found = loci(load_mechanism("h4"), x=("z", -1000, -550, 6), y=("phi", -45, 45, 5), angles="deg")
     >>> [locus.kind for locus in found]  # the catalog's box holds no singular surface at x = y = 0
     []
     """
@@ -1179,7 +1180,7 @@ def surfaces(
     z: Any = ("x", -350.0, 350.0, 5),
     fixed: Any = None,
     mode: Any = None,
-    angles: str = "deg",
+    angles: str = "rad",
     rtol: float | None = None,
 ) -> tuple[Surface, ...]:
     """The singular surfaces of a 3-D region: the :func:`loci` of its ``(x, y)`` slices at every
@@ -1188,7 +1189,8 @@ def surfaces(
     Examples
     --------
     >>> from screwkit.catalog import load_mechanism
-    >>> surfaces(load_mechanism("h4"), x=("z", -1000, -550, 4), y=("phi", -45, 45, 3), z=("x", -50, 50, 2))
+    >>> surfaces(load_mechanism("h4"), x=("z", -1000, -550, 4), y=("phi", -45, 45, 3), z=("x", -50, 50, 2),
+    ...          angles="deg")
     ()
     """
     z_name, z_values = _axis(mechanism, z, "z")
@@ -1304,7 +1306,7 @@ def check_path(
     *,
     samples: int = 200,
     mode: Any = None,
-    angles: str = "deg",
+    angles: str = "rad",
     rtol: float | None = None,
 ) -> PathCheck:
     """Check the straight path ``start → end`` (pose coordinates) for singularities.
@@ -1317,7 +1319,8 @@ def check_path(
     ----------
     mechanism : Mechanism
     start, end : dict or array_like
-        User units (angles in degrees by default); a dict's missing coordinates take the default pose.
+        User units (angles in radians unless ``angles="deg"``); a dict's missing coordinates take
+        the default pose.
     samples : int, default 200
     mode, angles, rtol
         As in :func:`grid_map`.
