@@ -93,6 +93,36 @@ def three_prs(rotation, position, *, base_radius=1.0, platform_radius=0.5, drop=
     return twist_graph("base", "platform", joints, dof=3), np.array(forces)
 
 
+def three_prs_lines(rotation, position, **options):
+    """A 3-PRS graph and its six wrench lines written from the geometry: each leg's rod line (its
+    actuation force: through the R axis and the S centre) and its constraint force."""
+    graph, forces = three_prs(rotation, position, **options)
+    joints = {k: j for _, _, k, j in graph.edges(keys=True, data="joint")}
+    rods = []
+    for i in (1, 2, 3):
+        s, c = np.asarray(joints[f"R{i}"].geometry["point"]), np.asarray(joints[f"S{i}"].geometry["center"])
+        rods.append(np.concatenate([M.unit(c - s), np.cross(s, M.unit(c - s))]))
+    return graph, np.concatenate([rods, forces])
+
+
+#: The tilt axis, position and R height below the platform of :func:`singular_three_prs_tilt`.
+PRS_TILT_AXIS, PRS_POSITION, PRS_DROP = [1.0, 0.3, 0.0], [0.02, 0.03, 1.0], 0.3
+
+
+def singular_three_prs_tilt():
+    """A tilt angle at which the 6×6 determinant of :func:`three_prs_lines` vanishes (bisection
+    between a sign change found on a grid)."""
+
+    def det(angle):
+        rotation = M.rotation_about(PRS_TILT_AXIS, angle)
+        return np.linalg.det(three_prs_lines(rotation, PRS_POSITION, drop=PRS_DROP)[1])
+
+    grid = np.linspace(0.2, 1.0, 33)
+    values = [det(a) for a in grid]
+    k = next(k for k in range(len(grid) - 1) if values[k] * values[k + 1] < 0)
+    return M.bisect_root(det, grid[k], grid[k + 1])
+
+
 def octahedral_points(rotation=None, position=(0.0, 0.0, 1.0)):
     """An octahedral (3-3) Gough-Stewart: base vertices at 90°, 210°, 330° (radius 1), platform
     vertices at 30°, 150°, 270° (radius 0.5); each base vertex joins the two platform vertices next
