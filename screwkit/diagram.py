@@ -395,7 +395,9 @@ def wrench_diagram(analysis: WrenchAnalysis) -> WrenchDiagram:
     recipes: list[tuple[tuple[str, ...], tuple[str, ...]]] = []
     for (name, _, wrench, joints), couple in zip(lines, infinite, strict=True):
         if couple:
-            recipes.append(_couple_line_recipe(name, wrench, joints, lines, infinite, normals, analysis, recipes))
+            recipes.append(
+                _couple_line_recipe(name, wrench, joints, lines, infinite, normals, analysis, recipes)
+            )
         else:
             recipes.append(_finite_line_recipe(name, wrench, joints, analysis, recipes))
     names = [name for name, _, _, _ in lines]
@@ -489,9 +491,9 @@ def _couple_line_recipe(
 
     First the direction common to two parallel branches of its own leg (paper 002 §5.1, ``n1 × n4``);
     then, most shared first (the number of the diagram's couple lines through the point, then of
-    all its lines, then whether an earlier line already uses it): joint-axis directions (passive, then actuated), directions of
-    the diagram's finite lines, and the points where it meets another couple line (``m × m'``);
-    with fewer than two of those, a direction normal to ``m`` and to the one found (``perp``), or
+    all its lines, then whether an earlier line already uses it): joint-axis directions (passive,
+    then actuated), directions of the diagram's finite lines, and the points where it meets
+    another couple line (``m × m'``); with fewer than two of those, a direction normal to ``m`` and to the one found (``perp``), or
     two such directions with no structural meaning (``free``).
     """
     moment = _unit(wrench[3:])
@@ -500,10 +502,13 @@ def _couple_line_recipe(
         for (a, b), (d, _) in normals.items()
         if set((a, b)) <= set(joints) and abs(_unit(d) @ moment) < INCIDENCE_RTOL
     ]
-    options: list[tuple[tuple[str, ...], Array]] = [
-        (("axis", key), screw[:3]) for key, screw in _distinct_directions(_all_axes(analysis) + _actuated_axes(analysis))
+    axes = _distinct_directions(_all_axes(analysis) + _actuated_axes(analysis))
+    options: list[tuple[tuple[str, ...], Array]] = [(("axis", key), screw[:3]) for key, screw in axes]
+    options += [
+        (("direction", other), w[:3])
+        for (other, _, w, _), inf in zip(lines, infinite, strict=True)
+        if not inf
     ]
-    options += [(("direction", other), w[:3]) for (other, _, w, _), inf in zip(lines, infinite, strict=True) if not inf]
     position = next(i for i, line in enumerate(lines) if line[0] == name)
     for k, ((other, _, w, _), inf) in enumerate(zip(lines, infinite, strict=True)):
         if inf and k != position:
@@ -514,7 +519,11 @@ def _couple_line_recipe(
     def through(direction: Array) -> tuple[int, int]:
         """(couple lines, then all lines) of the diagram through the point at infinity ``direction``."""
         d = _unit(direction)
-        couples = sum(abs(d @ _unit(w[3:])) < INCIDENCE_RTOL for (_, _, w, _), inf in zip(lines, infinite) if inf)
+        couples = sum(
+            abs(d @ _unit(w[3:])) < INCIDENCE_RTOL
+            for (_, _, w, _), inf in zip(lines, infinite, strict=True)
+            if inf
+        )
         finite = sum(
             np.linalg.norm(np.cross(d, _unit(w[:3]))) < INCIDENCE_RTOL
             for (_, _, w, _), inf in zip(lines, infinite, strict=True)
@@ -525,7 +534,8 @@ def _couple_line_recipe(
     on_line = [
         (key, d)
         for key, d in options
-        if np.linalg.norm(d) > INCIDENCE_RTOL * max(1.0, np.linalg.norm(wrench[3:])) and abs(_unit(d) @ moment) < INCIDENCE_RTOL
+        if np.linalg.norm(d) > INCIDENCE_RTOL * max(1.0, float(np.linalg.norm(wrench[3:])))
+        and abs(_unit(d) @ moment) < INCIDENCE_RTOL
     ]
     ranked = sorted(
         enumerate(on_line), key=lambda item: (*through(item[1][1]), item[1][0] not in used, item[0])
@@ -704,7 +714,8 @@ def diagram_points(
             first, second = by_name[key[1]][3:], by_name[key[2]][3:]
             cross = np.cross(_unit(first), _unit(second))
             # two couple lines that coincide here meet everywhere along it: any point of it will do
-            value = np.append(_canonical_direction(cross if np.linalg.norm(cross) >= INCIDENCE_RTOL else _free(first)[0]), 0.0)
+            meet = cross if np.linalg.norm(cross) >= INCIDENCE_RTOL else _free(first)[0]
+            value = np.append(_canonical_direction(meet), 0.0)
         elif kind == "free" and key[1] in by_name:
             value = np.append(_free(by_name[key[1]][3:])[int(key[2]) - 1], 0.0)
         elif kind == "perp" and key[1] in by_name:
@@ -765,7 +776,8 @@ def generic_reference(analyses: list[WrenchAnalysis]) -> tuple[WrenchDiagram | N
         return None, ("no generic configuration of the mechanism could be reached to choose its diagram",)
     tried = min(len(analyses), REFERENCE_TRIES)
     return None, tuple(
-        f"the mechanism has no wrench diagram (at {tried} generic configurations): {reason}" for reason in first
+        f"the mechanism has no wrench diagram (at {tried} generic configurations): {reason}"
+        for reason in first
     )
 
 

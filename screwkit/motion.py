@@ -357,7 +357,8 @@ def generic_analyses(
     Examples
     --------
     >>> from screwkit.catalog import load_mechanism
-    >>> [a.global_order for a in generic_analyses(load_mechanism("h4").twist_graph(), np.random.default_rng(1), 2)]
+    >>> graph = load_mechanism("h4").twist_graph()
+    >>> [a.global_order for a in generic_analyses(graph, np.random.default_rng(1), 2)]
     [6, 6]
     """
     table = generic_configurations(graph, rng, count)
