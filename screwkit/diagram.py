@@ -6,20 +6,32 @@ a line at infinity, given by two infinite points chosen to expose structure (the
 two parallelogram planes, the direction of the vertical axes shared by both couples). This module
 makes the same choices automatically, from a :class:`~screwkit.wrenches.WrenchAnalysis`:
 
-* **lines**: the actuation wrenches grouped by compound leg (the legs in the order of their first
-  actuated joint), then the compound legs' constraint wrenches (paper 002 Eq. 4);
-* **points on a finite line**: where it meets the axis of a one-freedom joint of its compound leg
-  (the joint nearest the platform first), and its point at infinity;
+* **lines**: the actuation wrenches grouped by compound leg (the legs in the order of their
+  names), then a *line basis* of the mechanism's constraint system ``W^c`` taken from the compound
+  legs' own constraint lines (paper 002 Eqs. 3–4): a leg line is kept when it raises the rank, so
+  legs whose constraint systems overlap (an overconstrained mechanism, a planar one) give one line
+  per dimension of ``W^c``, each named after the leg it comes from;
+* **points on a finite line**: joint centres on it, where it meets the axis of a one-freedom joint
+  of its compound leg (the joint nearest the platform first), else its point nearest the reference
+  point; and its point at infinity (shared with a joint axis parallel to it);
 * **points on a line at infinity** (a couple ``(0; m)``): the direction common to the constraint
-  couples of two parallel branches inside its compound leg (e.g. ``n1 × n4``), then a joint-axis
-  direction lying on it, preferring one shared with another couple line (a shared point);
+  couples of two parallel branches inside its compound leg (e.g. ``n1 × n4``), then the most shared
+  of: joint-axis directions lying on it, directions of the diagram's finite lines, and the points
+  where it meets the other couple lines (``m × m'``);
 * **labels** ``a, b, c, …`` in line order, a shared point keeping its first label.
 
-Each point is a *recipe* with a meaning (``DiagramPoint.key``): the same recipe evaluated at other
-poses of the same mechanism gives the random configurations on which structural zeros are confirmed
-(gca.md §6). Where a recipe has no point at this pose (a force parallel to the axis it should meet,
-a cross product that vanishes, a compound leg whose constraint system is not one line), the diagram
-says so in ``degenerate`` (gca.md §7) and no factorization is claimed for it.
+Each line and each point is a *recipe* with a meaning (a line's name, ``DiagramPoint.key``). The
+recipes are chosen at a *generic* configuration of the mechanism (:func:`generic_reference`:
+random workspace poses of a catalog robot, or configurations reached by moving any twist graph
+along its own mobility, :mod:`screwkit.motion`) and evaluated at the pose (:func:`diagram_at`), so
+what is decided (which lines, which shared points) never depends on a special pose: where two
+lines coincide at the pose (the H4's two constraint couples at a constraint singularity) both are
+still there, and the factor that vanishes is valued. The same recipes at further generic
+configurations give the samples on which structural zeros are decided (gca.md §6). Where a recipe
+has no value at the pose (a limb at a serial singularity, a leg whose constraint system changes
+order), ``degenerate`` says so (gca.md §7); where the mechanism has no diagram at all (a global
+wrench system of order below 6 everywhere, a constraint system not spanned by lines), the reasons
+found at generic configurations say so, as properties of the mechanism.
 
 Examples
 --------
@@ -68,6 +80,9 @@ __all__ = [
 Array = np.ndarray
 #: Relative tolerance of the incidence decisions made while choosing points.
 INCIDENCE_RTOL = 1e-7
+#: A condition vanishes at the pose when its value there is at most this times its median size on
+#: the generic samples (:attr:`SuperbracketAnalysis.vanishing`).
+VANISHING_RTOL = 1e-7
 #: Recipes that give finite points (every other recipe gives a point at infinity).
 FINITE_KINDS = ("meet", "foot", "centre")
 
@@ -493,8 +508,8 @@ def _couple_line_recipe(
     then, most shared first (the number of the diagram's couple lines through the point, then of
     all its lines, then whether an earlier line already uses it): joint-axis directions (passive,
     then actuated), directions of the diagram's finite lines, and the points where it meets
-    another couple line (``m × m'``); with fewer than two of those, a direction normal to ``m`` and to the one found (``perp``), or
-    two such directions with no structural meaning (``free``).
+    another couple line (``m × m'``); with fewer than two of those, a direction normal to ``m``
+    and to the one found (``perp``), or two such directions with no structural meaning (``free``).
     """
     moment = _unit(wrench[3:])
     own = [
@@ -789,6 +804,12 @@ class ReplaySampler:
     ----------
     produce : callable
         ``rng -> list of {label: point}``: a batch of a diagram's points at generic configurations.
+
+    Examples
+    --------
+    >>> sampler = ReplaySampler(lambda rng: [{"a": k} for k in range(2)])
+    >>> [sampler(None), sampler(None), sampler(None)]
+    [{'a': 0}, {'a': 1}, {'a': 0}]
     """
 
     def __init__(self, produce: Callable[[np.random.Generator], list[dict[str, Array]]]):
@@ -926,6 +947,10 @@ class SuperbracketAnalysis:
         Each condition's vector form at the diagram's pose.
     collinear : tuple of str
         Triples of labels found collinear on every sample (declared to the factoring step).
+    vanishing : tuple of bool
+        Per condition: True when it vanishes at the pose, i.e. its value there is at most
+        :data:`VANISHING_RTOL` times its median size on the generic samples (a singular pose keeps
+        the factored form of a regular one; these factors are the ones that vanish).
     """
 
     diagram: WrenchDiagram
@@ -934,6 +959,7 @@ class SuperbracketAnalysis:
     labels: tuple[str, ...]
     values: tuple[float, ...]
     collinear: tuple[str, ...] = ()
+    vanishing: tuple[bool, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready summary."""
@@ -941,8 +967,10 @@ class SuperbracketAnalysis:
             "superbracket": self.diagram.line_text(),
             "simplification": self.simplification.to_dict(),
             "conditions": [
-                {**c.to_dict(), "label": label, "value_at_pose": value}
-                for c, label, value in zip(self.conditions, self.labels, self.values, strict=True)
+                {**c.to_dict(), "label": label, "value_at_pose": value, "vanishes_at_pose": vanishes}
+                for c, label, value, vanishes in zip(
+                    self.conditions, self.labels, self.values, self.vanishing, strict=True
+                )
             ],
         }
 
@@ -1021,7 +1049,9 @@ def superbracket_analysis(
     constraint = diagram.constraint_labels
     labels = tuple("constraint" if set(c.vectors) <= constraint else "actuation" for c in found)
     values = tuple(float(c.evaluate(diagram.coordinates)) for c in found)
-    return SuperbracketAnalysis(diagram, simplification, found, labels, values, collinear)
+    typical = [float(np.median([abs(float(c.evaluate(sample))) for sample in drawn])) for c in found]
+    vanishing = tuple(abs(v) <= VANISHING_RTOL * size for v, size in zip(values, typical, strict=True))
+    return SuperbracketAnalysis(diagram, simplification, found, labels, values, collinear, vanishing)
 
 
 def _collinear_triples(diagram: WrenchDiagram, samples: list[dict[str, Array]]) -> tuple[str, ...]:

@@ -260,10 +260,12 @@ class AnalysisReport:
             )
             out.append(f"  {self.superbracket_note}")
             out += ["", "conditions"]
-            for condition, label, value in zip(
-                self.superbracket.conditions, self.superbracket.labels, self.superbracket.values, strict=True
+            result = self.superbracket
+            for condition, label, value, vanishes in zip(
+                result.conditions, result.labels, result.values, result.vanishing, strict=True
             ):
-                out.append(f"  {label} singularity when {condition.factor} = 0")
+                flag = "  <- vanishes at this pose" if vanishes else ""
+                out.append(f"  {label} singularity when {condition.factor} = 0{flag}")
                 out.append(f"    {condition.statement}")
                 out.append(f"    vector form: {condition.expression} = 0   (here: {value:.6g})")
         out += ["", "verdict", *("  " + line for line in str(self.verdict).splitlines())]

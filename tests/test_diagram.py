@@ -358,6 +358,7 @@ def test_h4_at_a_singularity_has_the_regular_factored_form_with_the_factor_value
     values = dict(zip(result.labels, result.values, strict=True))
     other = "actuation" if vanishing == "constraint" else "constraint"
     assert abs(values[vanishing]) < 1e-8 * abs(values[other]) and abs(values[other]) > 1e-6
+    assert result.vanishing == tuple(label == vanishing for label in result.labels)
     labels = analyze("h4", pose, superbracket=False).verdict.labels
     assert vanishing in labels and other not in labels
 
@@ -375,6 +376,8 @@ def test_singular_snapshot_through_the_cli_shows_the_factor_of_its_verdict(tmp_p
     assert "0 = 0" not in text and "constraint singularity when" not in text
     statements = [line for line in text.splitlines() if "vector form:" in line]
     assert len(statements) == 1 and "actuation singularity when" in text
+    assert any(line.startswith("  actuation singularity when") and line.endswith("<- vanishes at this pose")
+               for line in text.splitlines())
     assert abs(float(statements[0].rsplit("(here: ", 1)[1].rstrip(")"))) < 1e-9
     assert text.split("verdict", 1)[1].splitlines()[1].strip().startswith("actuation singularity")
 
