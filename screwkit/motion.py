@@ -301,6 +301,14 @@ def generic_configurations(
     ------
     ScrewkitValueError
         If the mechanism cannot move (its loops admit no joint motion), or no loop could be closed.
+
+    Examples
+    --------
+    >>> from screwkit.catalog import load_mechanism
+    >>> graph = load_mechanism("planar_3rrp").twist_graph()
+    >>> table = generic_configurations(graph, np.random.default_rng(0), 3)
+    >>> table.batch_shape, bool(np.allclose(table.screws[0], table.screws[1]))
+    ((3,), False)
     """
     model = _Kinematics(graph, joint_key)
     n = len(model.columns)
