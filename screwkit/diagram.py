@@ -775,11 +775,15 @@ def generic_reference(analyses: list[WrenchAnalysis]) -> tuple[WrenchDiagram | N
 
     Examples
     --------
-    >>> from screwkit.catalog import load_mechanism
+    >>> from screwkit.joints import revolute
+    >>> from screwkit.twistgraph import twist_graph
     >>> from screwkit.wrenches import wrench_analysis
-    >>> reference, _ = generic_reference([wrench_analysis(load_mechanism("ragnar").twist_graph())])
-    >>> reference is None
-    True
+    >>> arm = twist_graph("ground", "hand", [  # two freedoms, one actuator
+    ...     ("ground", "link", revolute("A", [0, 0, 1], [0, 0, 0], actuated=True)),
+    ...     ("link", "hand", revolute("B", [0, 0, 1], [1, 0, 0]))], dof=2)
+    >>> reference, reasons = generic_reference([wrench_analysis(arm)])
+    >>> reference is None, reasons[0].split(": ")[1]
+    (True, 'the global wrench system has order 5, not 6')
     """
     first: tuple[str, ...] = ()
     for analysis in analyses[:REFERENCE_TRIES]:

@@ -6,6 +6,8 @@ textbook results (a 3-RPR is singular when its legs are concurrent; Tsai's 3-UPU
 constraint when its three couples become dependent).
 """
 
+import dataclasses
+
 import numpy as np
 import pytest
 
@@ -383,12 +385,17 @@ def test_singular_snapshot_through_the_cli_shows_the_factor_of_its_verdict(tmp_p
 
 
 def test_a_mechanism_without_a_diagram_says_why_as_a_property_of_the_mechanism():
-    # the catalog's Ragnar reading keeps an uncontrolled rotation about x at every pose
-    diagram, _ = load_mechanism("ragnar").wrench_diagram()
+    # the Ragnar read with horizontal actuated axes (ragnar.toml's header) keeps an uncontrolled
+    # rotation about x at every pose: its global wrench system is never a 6-system
+    ragnar = load_mechanism("ragnar")
+    horizontal = dataclasses.replace(ragnar, parameters=dataclasses.replace(ragnar.parameters, axis_inclination=0.0))
+    diagram, _ = horizontal.wrench_diagram()
     assert diagram.degenerate and all(r.startswith("the mechanism has no wrench diagram") for r in diagram.degenerate)
     assert any("global wrench system has order 5, not 6" in r for r in diagram.degenerate)
-    report = analyze("ragnar")
+    report = analyze(horizontal)
     assert report.superbracket is None and "the mechanism has no wrench diagram" in report.superbracket_note
+    # the catalog's Ragnar (inclined axes) is a Schönflies-motion generator: it has one
+    assert not ragnar.wrench_diagram()[0].degenerate
 
 
 def test_constraint_lines_are_named_after_the_actuated_joints_of_their_leg():
