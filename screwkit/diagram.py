@@ -787,7 +787,11 @@ def generic_reference(analyses: list[WrenchAnalysis]) -> tuple[WrenchDiagram | N
     """
     first: tuple[str, ...] = ()
     for analysis in analyses[:REFERENCE_TRIES]:
-        candidate = wrench_diagram(analysis)
+        try:
+            candidate = wrench_diagram(analysis)
+        except ScrewkitError as err:  # e.g. a joint whose centre is not defined
+            first = first or (str(err),)
+            continue
         if not candidate.degenerate:
             return candidate, ()
         first = first or candidate.degenerate

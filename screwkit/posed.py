@@ -44,8 +44,9 @@ __all__ = ["Pose", "PosedMechanism", "generic_samples"]
 
 Array = np.ndarray
 
-#: Random workspace poses drawn (in one batch) to find a generic configuration for a diagram.
-GENERIC_DRAWS = 50
+#: Random workspace poses drawn (in one batch) to find a generic configuration for a diagram (the
+#: first few reachable ones are tried: screwkit.diagram.REFERENCE_TRIES).
+GENERIC_DRAWS = 12
 #: Generic samples of a diagram's points drawn (in one batch) for the superbracket: its structural
 #: zeros and its checks take 12 (screwkit.diagram.superbracket_analysis).
 SAMPLES = 24
