@@ -638,6 +638,14 @@ def diagram_at(reference: WrenchDiagram, analysis: WrenchAnalysis) -> WrenchDiag
             coordinates = diagram_points(reference.points, analysis, lines=lines)
         except DegenerateGeometryError as err:
             problems.append(str(err))
+    if coordinates:  # each line is the join of its two points (the recipes keep their incidences)
+        scale = float(analysis.length_scale)
+        for (first, second), (name, _, wrench, _) in zip(reference.lines, lines, strict=True):
+            join = P.join_unchecked(coordinates[first], coordinates[second])
+            if np.linalg.norm(join) <= INCIDENCE_RTOL or not S.Screw(join).is_equivalent(
+                S.Screw(wrench), rtol=1e-6, length_scale=scale
+            ):
+                problems.append(f"the points {first}, {second} do not give the {name} here")
     return WrenchDiagram(
         reference.points, reference.lines, reference.line_names, reference.roles, coordinates, tuple(problems)
     )
