@@ -728,8 +728,10 @@ def diagram_points(
                 if np.linalg.norm(direction) < INCIDENCE_RTOL
                 else np.append(_canonical_direction(direction), 0.0)
             )
-        elif kind == "foot" and key[1] in by_name:
-            value = np.append(S.axis(by_name[key[1]])[0], 1.0)
+        elif kind == "foot" and key[1] in by_name:  # nearest the reference point: frame-covariant
+            nearest, direction = S.axis(by_name[key[1]])
+            offset = np.asarray(analysis.reference_point, dtype=float) - nearest
+            value = np.append(nearest + direction * (offset @ direction) / (direction @ direction), 1.0)
         elif kind == "centre":
             joint = analysis.graph.edges[_edge(analysis, key[1])]["joint"]
             value = np.append(_joint_centre(joint.screws), 1.0)

@@ -402,3 +402,16 @@ def test_constraint_lines_are_named_after_the_actuated_joints_of_their_leg():
     diagram, _ = load_mechanism("mcgill_smg").wrench_diagram()
     constraint = [n for n, r in zip(diagram.line_names, diagram.roles, strict=True) if r == "constraint"]
     assert constraint and all("leg through I.pan, I.proximal.a" in n or "leg through II.pan" in n for n in constraint)
+
+
+@pytest.mark.parametrize("name", ["delta", "3-PRS"])
+def test_generic_diagram_follows_rigid_motions_and_units(name):
+    graph, _ = MECHANISMS[name]()
+    rotation, translation = M.rotation_about([1.0, -2.0, 0.5], 1.1), np.array([3.0, -1.0, 0.5])
+    plain, _ = graph_diagram(wrench_analysis(graph))
+    moved, _ = graph_diagram(wrench_analysis(M.moved(graph, rotation, translation, 1000.0)))
+    assert moved.line_text() == plain.line_text() and moved.line_names == plain.line_names
+    assert [p.key for p in moved.points] == [p.key for p in plain.points] and not moved.degenerate
+    for label, point in plain.coordinates.items():  # points at infinity turn; finite ones move and scale
+        expected = rotation @ point[:3] if point[3] == 0 else (rotation @ point[:3] + translation) * 1000.0
+        assert np.allclose(np.abs(moved.coordinates[label][:3]), np.abs(expected), rtol=1e-7, atol=1e-6)
