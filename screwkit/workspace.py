@@ -22,9 +22,9 @@ Quantities (:data:`QUANTITIES`)
 ``"det_A"``, ``"det_B"``
     Determinants of the forward and inverse Jacobians ``A χ̇ = B θ̇``
     (:class:`screwkit.jacobians.WrenchJacobians`; paper 004 Eq. 6).
-``"lti"``
-    The local transmission index ``η = min(κ, ζ)`` of paper 004 Eq. (16)
-    (:func:`screwkit.indices.transmission_indices`; four-limb families).
+``"lti"``, ``"kappa"``, ``"zeta"``
+    The local transmission index ``η = min(κ, ζ)`` of paper 004 Eq. (16), its motion index ``κ``
+    and force index ``ζ`` (Eq. 15) (:func:`screwkit.indices.transmission`; four-limb families).
 ``"condition:K"``
     The vector form of the K-th factor of the superbracket (:mod:`screwkit.conditions`), factored
     once at the default pose and evaluated on each pose's wrench diagram (one pose at a time: slow).
@@ -60,6 +60,7 @@ from __future__ import annotations
 import json
 import math
 import sys
+import weakref
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
@@ -97,6 +98,8 @@ QUANTITIES = (
     "det_A",
     "det_B",
     "lti",
+    "kappa",
+    "zeta",
 )
 #: A refined pose with a closeness measure below this is a singularity even if the core's rank
 #: decision (relative tolerance ``rtol``) did not label it.
@@ -249,17 +252,23 @@ def _reachable_by_halving(mechanism: Any, poses: Array, options: dict[str, Any])
     return np.ones(len(poses), dtype=bool)
 
 
-def _lti(posed: Any) -> Array:
-    """The local transmission index ``η`` of paper 004 Eq. (16) over a posed batch (the one place
-    the maps take it from)."""
-    from .indices import FourLimbGeometry, transmission_indices
+#: The transmission indices a map can show, by their field of
+#: :class:`screwkit.indices.TransmissionIndices` (paper 004 Eqs. 15-16).
+_INDICES = {"lti": "eta", "kappa": "kappa", "zeta": "zeta"}
+
+
+def _transmission_index(posed: Any, quantity: str) -> Array:
+    """Paper 004's ``η`` (Eq. 16), ``κ`` or ``ζ`` (Eq. 15) over a posed batch: the one place the
+    maps take them from (:func:`screwkit.indices.transmission`, the batched entry point, fused
+    and compiled with the ``fast`` extra)."""
+    from .indices import FourLimbGeometry, transmission
 
     if not isinstance(posed.configuration, FourLimbGeometry):
         raise ScrewkitValueError(
-            f"Expected a four-limb mechanism for quantity 'lti' (paper 004), got family "
+            f"Expected a four-limb mechanism for quantity {quantity!r} (paper 004), got family "
             f"{posed.mechanism.family!r}."
         )
-    return np.asarray(transmission_indices(posed.configuration).eta, dtype=float)
+    return np.asarray(getattr(transmission(posed), _INDICES[quantity]), dtype=float)
 
 
 def _condition_values(mechanism: Any, index: int, posed: Any) -> Array:
@@ -281,7 +290,9 @@ def _condition_values(mechanism: Any, index: int, posed: Any) -> Array:
     )
 
 
-_CONDITIONS: dict[tuple[Any, ...], tuple[Any, tuple[Any, ...], tuple[str, ...], Array]] = {}
+#: Per mechanism (held weakly: a cache entry dies with its mechanism) and options: the factored
+#: superbracket's diagram, conditions, labels and values at the default pose.
+_CONDITIONS: weakref.WeakKeyDictionary[Any, dict[tuple[Any, ...], Any]] = weakref.WeakKeyDictionary()
 
 
 def _conditions(
@@ -291,8 +302,9 @@ def _conditions(
     pose (factored once per mechanism and mode)."""
     from .diagram import superbracket_analysis
 
-    key = (id(mechanism), tuple(sorted((k, repr(v)) for k, v in options.items())))
-    if key not in _CONDITIONS:
+    key = tuple(sorted((k, repr(v)) for k, v in options.items()))
+    cache = _CONDITIONS.setdefault(mechanism, {})
+    if key not in cache:
         pose = mechanism.at(None, **options)[0]
         diagram, sampler = pose.diagram_and_sampler()
         if diagram.degenerate:
@@ -301,8 +313,8 @@ def _conditions(
                 f"{'; '.join(diagram.degenerate)}."
             )
         result = superbracket_analysis(diagram, sampler)
-        _CONDITIONS[key] = (diagram, result.conditions, result.labels, np.array(result.values, dtype=float))
-    return _CONDITIONS[key]
+        cache[key] = (diagram, result.conditions, result.labels, np.array(result.values, dtype=float))
+    return cache[key]
 
 
 def _values(posed: Any, quantity: str) -> Array:
@@ -315,8 +327,8 @@ def _values(posed: Any, quantity: str) -> Array:
         return np.asarray(posed.closeness[quantity.split(":")[1]], dtype=float)
     if quantity in ("det_A", "det_B"):
         return np.asarray(getattr(posed.jacobians, quantity), dtype=float)
-    if quantity == "lti":
-        return _lti(posed)
+    if quantity in _INDICES:
+        return _transmission_index(posed, quantity)
     return _condition_values(posed.mechanism, int(quantity.split(":")[1]), posed)
 
 
@@ -714,7 +726,7 @@ def _map_job(
     """A map's quantity, slice and chunk job (its API-unit poses, flattened)."""
     name = _quantity(quantity)
     grid = _Slice.create(mechanism, x, y, fixed, mode, angles)
-    if name == "lti" or name.startswith("condition:"):  # refuse before the map, not in its chunks
+    if name in _INDICES or name.startswith("condition:"):  # refuse before the map, not in its chunks
         _values(mechanism.at(None, **grid.options), name)
     user = grid.poses()
     flat = user.reshape(-1, user.shape[-1]) * grid.scale

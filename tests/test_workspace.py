@@ -45,7 +45,9 @@ def grid_poses(m):
 # --- maps ----------------------------------------------------------------------------------------
 
 
-@pytest.mark.parametrize("quantity", ["verdict", "closeness", "closeness:actuation", "det_A", "det_B", "lti"])
+@pytest.mark.parametrize(
+    "quantity", ["verdict", "closeness", "closeness:actuation", "det_A", "det_B", "lti", "kappa", "zeta"]
+)
 def test_map_equals_the_core_pointwise(quantity):
     m = W.grid_map(H4, quantity, **SLICE)
     poses = api(grid_poses(m))
@@ -60,7 +62,16 @@ def test_map_equals_the_core_pointwise(quantity):
         "det_A": posed.jacobians.det_A,
         "det_B": posed.jacobians.det_B,
         "lti": transmission_indices(posed.configuration).eta,
+        "kappa": transmission_indices(posed.configuration).kappa,
+        "zeta": transmission_indices(posed.configuration).zeta,
     }[quantity]
+    if quantity in (
+        "lti",
+        "kappa",
+        "zeta",
+    ):  # the maps use the fused kernel (indices.transmission): equal to round-off
+        np.testing.assert_allclose(m.values[expected_ok], core, rtol=1e-12, atol=1e-14)
+        core = m.values[expected_ok]
     np.testing.assert_array_equal(m.values[expected_ok], core)
     if quantity == "verdict":
         assert m.values.dtype.kind == "i" and (m.values[~expected_ok] == -1).all()
