@@ -143,25 +143,3 @@ def singular_gough_stewart_angle():
     values = [det(a) for a in grid]
     k = next(k for k in range(len(grid) - 1) if values[k] * values[k + 1] < 0)
     return M.bisect_root(det, grid[k], grid[k + 1])
-
-
-def snapshot_toml(graph, name, *, dof=None):
-    """A snapshot TOML file's text for a graph built from joint builders (their ``geometry``)."""
-    fields = {"R": ("axis", "point"), "P": ("direction",), "U": ("first_axis", "second_axis", "center"), "S": ("center",)}
-    lines = [
-        "[mechanism]",
-        'kind = "snapshot"',
-        f'name = "{name}"',
-        f'base = "{graph.graph["base"]}"',
-        f'platform = "{graph.graph["platform"]}"',
-    ]
-    if dof is not None:
-        lines.append(f"dof = {dof}")
-    for u, v, key, joint in graph.edges(keys=True, data="joint"):
-        lines += ["", "[[joints]]", f'name = "{key}"', f'type = "{joint.type}"', f'parent = "{u}"', f'child = "{v}"']
-        for field in fields[joint.type]:
-            values = ", ".join(repr(float(x)) for x in joint.geometry[field])
-            lines.append(f"{field} = [{values}]")
-        if joint.actuated:
-            lines.append("actuated = true")
-    return "\n".join(lines) + "\n"

@@ -23,6 +23,7 @@ from screwkit.diagram import (
     wrench_diagram,
 )
 from screwkit.exceptions import ScrewkitValueError
+from screwkit.export import save_snapshot
 from screwkit.families.four_limb import inverse_kinematics, joints
 from screwkit.gca import BracketPolynomial, DottedMonomial, check_proportional
 from screwkit.report import analyze
@@ -370,8 +371,8 @@ def test_singular_snapshot_through_the_cli_shows_the_factor_of_its_verdict(tmp_p
     angle = X.singular_three_prs_tilt()
     graph, lines = X.three_prs_lines(M.rotation_about(X.PRS_TILT_AXIS, angle), X.PRS_POSITION, drop=X.PRS_DROP)
     assert abs(np.linalg.det(lines)) < 1e-12
-    path = tmp_path / "prs_singular.toml"
-    path.write_text(X.snapshot_toml(graph, "3-PRS at an actuation singularity", dof=3))
+    graph.graph["dof"] = 3
+    path = save_snapshot(graph, tmp_path / "prs_singular.toml", name="3-PRS at an actuation singularity")
     assert main(["analyze", str(path)]) == 0
     text = capsys.readouterr().out
     # structural zeros come from generic configurations: no factor is "0 = 0" here
