@@ -67,9 +67,11 @@ Examples
 
 from __future__ import annotations
 
+import difflib
 import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
+from fractions import Fraction
 from importlib import resources
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -79,7 +81,14 @@ import numpy as np
 
 from . import joints as J
 from ._backend import is_dof
-from .exceptions import CatalogError, ScrewkitError, ScrewkitValueError
+from .exceptions import (
+    CatalogError,
+    ScrewkitError,
+    ScrewkitTypeError,
+    ScrewkitValueError,
+    TwistGraphError,
+    UnreachablePoseError,
+)
 from .families import Family, families
 from .joints import JointTable
 from .twistgraph import add_joint, check_twist_graph
@@ -88,7 +97,13 @@ if TYPE_CHECKING:
     from .jacobians import WrenchJacobians
 
 __all__ = [
+    "LENGTH_UNITS",
+    "MAX_FILE_BYTES",
+    "MAX_JOINTS",
     "Mechanism",
+    "check_dof",
+    "degrees_to_radians",
+    "file_kind",
     "list_mechanisms",
     "load_mechanism",
     "load_snapshot",
@@ -284,6 +299,65 @@ def _error(source: str, where: str, message: str) -> CatalogError:
     return CatalogError(f"{source}: {where}: {message}")
 
 
+#: The length units a file may name, as exact fractions of a metre (conversions are exact up to one
+#: rounding of the result).
+LENGTH_UNITS: dict[str, Fraction] = {
+    "km": Fraction(1000),
+    "m": Fraction(1),
+    "dm": Fraction(1, 10),
+    "cm": Fraction(1, 100),
+    "mm": Fraction(1, 1000),
+    "um": Fraction(1, 10**6),
+    "µm": Fraction(1, 10**6),
+    "nm": Fraction(1, 10**9),
+    "in": Fraction(254, 10**4),
+    "ft": Fraction(3048, 10**4),
+}
+#: Units of angles and of pure numbers in ``[parameters.*] unit``.
+ANGLE_UNITS = ("deg", "rad")
+NUMBER_UNITS = ("-", "1")
+#: Resource caps: a larger file, or a snapshot with more joints, is refused before it is parsed.
+MAX_FILE_BYTES = 1 << 20
+MAX_JOINTS = 2000
+#: Nesting depth of lists in a parameter value (a ``(4, 3)`` table of points is depth 2).
+_MAX_LIST_DEPTH = 3
+
+
+def _check_keys(table: Mapping[str, Any], known: Any, source: str, where: str) -> None:
+    """Refuse keys outside ``known``, naming the closest known key."""
+    for key in table:
+        if key not in known:
+            close = difflib.get_close_matches(str(key), sorted(known), n=1)
+            hint = f" (did you mean `{close[0]}`?)" if close else ""
+            raise _error(
+                source, where, f"unknown field `{key}`{hint}; expected some of {sorted(known)}."
+            )
+
+
+def degrees_to_radians(value: float) -> float:
+    """Degrees to radians, reduced modulo 360° first (exactly: :func:`math.fmod`), so that a huge angle
+    is the angle it names and not whatever ``value · π/180`` rounds to.
+
+    Examples
+    --------
+    >>> degrees_to_radians(1e20) == math.radians(280.0)   # 10**20 ≡ 280 (mod 360)
+    True
+    """
+    return math.radians(math.fmod(value, 360.0))
+
+
+def file_kind(data: Mapping[str, Any]) -> Any:
+    """``[mechanism] kind`` of parsed TOML (None where there is none): ``"family"`` or ``"snapshot"``.
+
+    Examples
+    --------
+    >>> file_kind({"mechanism": {"kind": "snapshot"}}), file_kind({"mechanism": 5})
+    ('snapshot', None)
+    """
+    header = data.get("mechanism") if isinstance(data, Mapping) else None
+    return header.get("kind") if isinstance(header, Mapping) else None
+
+
 def load_toml(path: str | Path) -> dict[str, Any]:
     """Read a TOML file as plain data, with errors that name the file.
 
@@ -296,14 +370,31 @@ def load_toml(path: str | Path) -> dict[str, Any]:
     """
     import tomllib  # on first use: not a cost of `import screwkit`
 
+    if not isinstance(path, str | Path):
+        raise ScrewkitTypeError(f"Expected `path` to be a str or pathlib.Path, got {type(path).__name__}.")
     name = str(path)
     try:
         with open(path, "rb") as stream:
-            return tomllib.load(stream)
+            raw = stream.read(MAX_FILE_BYTES + 1)
     except OSError as err:
-        raise CatalogError(f"{name}: cannot read the file: {err.strerror}.") from err
+        raise CatalogError(f"{name}: cannot read the file: {err.strerror or err}.") from err
+    except ValueError as err:  # e.g. a NUL character in the path
+        raise CatalogError(f"{name}: cannot read the file: {err}.") from err
+    if len(raw) > MAX_FILE_BYTES:
+        raise CatalogError(f"{name}: expected a file of at most {MAX_FILE_BYTES} bytes, got a larger one.")
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as err:
+        raise CatalogError(
+            f"{name}: expected UTF-8 text (TOML), got byte 0x{raw[err.start]:02x} at offset {err.start} "
+            "(a binary file, or another encoding such as UTF-16)."
+        ) from err
+    try:
+        return tomllib.loads(text)
     except tomllib.TOMLDecodeError as err:
         raise CatalogError(f"{name}: not valid TOML: {err}.") from err
+    except RecursionError as err:
+        raise CatalogError(f"{name}: not valid TOML here: arrays or tables nested too deeply.") from err
 
 
 def _table(data: Mapping[str, Any], key: str, source: str, where: str = "") -> dict[str, Any]:
@@ -327,17 +418,50 @@ def _number(value: Any, source: str, where: str, key: str) -> float:
     return float(value)
 
 
-def _radians(value: Any, source: str, where: str) -> Any:
-    if isinstance(value, list):
-        return [_radians(item, source, where) for item in value]
-    return math.radians(_number(value, source, where, "value"))
-
-
 def _vector(data: Mapping[str, Any], key: str, source: str, where: str, length: int = 3) -> list[float]:
     value = data.get(key)
     if not isinstance(value, list) or len(value) != length:
         raise _error(source, where, f"field `{key}`: expected a list of {length} numbers, got {value!r}.")
     return [_number(v, source, where, key) for v in value]
+
+
+def _length_unit(header: Mapping[str, Any], source: str) -> str:
+    unit = header.get("length_unit")
+    if not isinstance(unit, str) or unit not in LENGTH_UNITS:
+        raise _error(
+            source, "[mechanism]", f"field `length_unit`: expected one of {list(LENGTH_UNITS)}, got {unit!r}."
+        )
+    return unit
+
+
+def _parameter_value(value: Any, unit: str, kind: str | None, length_unit: str, source: str, where: str) -> Any:
+    """A parameter's value in the file's length unit and radians, its ``unit`` checked against the
+    family's kind of the parameter (``"length"``, ``"angle"``, ``"number"``; None: not declared)."""
+    units = {"length": tuple(LENGTH_UNITS), "angle": ANGLE_UNITS, "number": NUMBER_UNITS}
+    allowed = units[kind] if kind else (*LENGTH_UNITS, *ANGLE_UNITS, *NUMBER_UNITS)
+    if unit not in allowed:
+        what = f"a {kind}" if kind else "a parameter"
+        raise _error(source, where, f"field `unit`: expected one of {list(allowed)} for {what}, got {unit!r}.")
+    if unit in LENGTH_UNITS:
+        factor = LENGTH_UNITS[unit] / LENGTH_UNITS[length_unit]
+        return _scaled(value, lambda v: float(Fraction(v) * factor), source, where)
+    if unit == "deg":
+        return _scaled(value, degrees_to_radians, source, where)
+    if unit == "rad":
+        return _scaled(value, float, source, where)
+    return value
+
+
+def _scaled(value: Any, convert: Callable[[float], float], source: str, where: str, depth: int = 0) -> Any:
+    """``convert`` applied to a number or to every number of a (nested) list."""
+    if isinstance(value, list):
+        if depth >= _MAX_LIST_DEPTH:
+            raise _error(source, where, f"field `value`: expected lists nested at most {_MAX_LIST_DEPTH} deep.")
+        return [_scaled(item, convert, source, where, depth + 1) for item in value]
+    result = convert(_number(value, source, where, "value"))
+    if not math.isfinite(result):
+        raise _error(source, where, f"field `value`: {value!r} overflows when converted to the file's unit.")
+    return result
 
 
 def _package_file(name: str) -> Path:
@@ -393,7 +517,11 @@ def mechanism_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>"
     ...
     screwkit.exceptions.CatalogError: <mapping>: [mechanism]: field `family`: expected one of ...
     """
+    if not isinstance(data, Mapping):
+        raise CatalogError(f"{source}: expected a mapping of TOML tables, got {type(data).__name__}.")
+    _check_keys(data, ("mechanism", "parameters", "pose", "workspace", "expected"), source, "top level")
     header = _table(data, "mechanism", source)
+    _check_keys(header, ("kind", "name", "family", "length_unit", "sources", "description"), source, "[mechanism]")
     kind = header.get("kind", "family")
     if kind != "family":
         raise _error(source, "[mechanism]", f"field `kind`: expected 'family' here, got {kind!r}.")
@@ -405,7 +533,9 @@ def mechanism_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>"
             source, "[mechanism]", f"field `family`: expected one of {sorted(known)}, got {family_name!r}."
         )
     family = known[family_name]
-    length_unit = _string(header, "length_unit", source, "[mechanism]")
+    length_unit = _length_unit(header, source)
+    if "description" in header:
+        _string(header, "description", source, "[mechanism]")
     sources = header.get("sources", [])
     if not isinstance(sources, list) or not all(isinstance(s, str) for s in sources):
         raise _error(source, "[mechanism]", f"field `sources`: expected a list of strings, got {sources!r}.")
@@ -416,15 +546,12 @@ def mechanism_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>"
         where = f"[parameters.{key}]"
         if not isinstance(entry, dict) or "value" not in entry:
             raise _error(source, where, f"expected a table with `value`, `unit` and `source`, got {entry!r}.")
+        _check_keys(entry, ("value", "unit", "source", "note"), source, where)
         for required in ("unit", "source"):
             _string(entry, required, source, where)
-        unknown = set(entry) - {"value", "unit", "source", "note"}
-        if unknown:
-            raise _error(source, where, f"unknown field(s) {sorted(unknown)}.")
-        value = entry["value"]
-        if entry["unit"] == "deg":  # a number or a (nested) list of numbers, in degrees
-            value = _radians(value, source, where)
-        values[key] = value
+        values[key] = _parameter_value(
+            entry["value"], entry["unit"], family.parameter_kinds.get(key), length_unit, source, where
+        )
         documented[key] = dict(entry)
     try:
         parameters = family.parameters(values, source=f"{source}: [parameters]")
@@ -432,18 +559,19 @@ def mechanism_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>"
         raise
     except ScrewkitError as err:
         raise CatalogError(f"{source}: [parameters]: {err}") from err
+    keys = [f"{c}_deg" if c in family.angle_names else c for c in family.pose_names]
     pose_table = _table(data, "pose", source)
+    _check_keys(pose_table, keys, source, "[pose]")
     pose = []
-    for coordinate in family.pose_names:
-        key = f"{coordinate}_deg" if coordinate in family.angle_names else coordinate
+    for coordinate, key in zip(family.pose_names, keys, strict=True):
         if key not in pose_table:
             raise _error(source, "[pose]", f"field `{key}`: missing.")
         number = _number(pose_table[key], source, "[pose]", key)
-        pose.append(math.radians(number) if coordinate in family.angle_names else number)
+        pose.append(degrees_to_radians(number) if coordinate in family.angle_names else number)
     workspace_table = _table(data, "workspace", source)
+    _check_keys(workspace_table, keys, source, "[workspace]")
     workspace = {}
-    for coordinate in family.pose_names:
-        key = f"{coordinate}_deg" if coordinate in family.angle_names else coordinate
+    for coordinate, key in zip(family.pose_names, keys, strict=True):
         low, high = _vector(workspace_table, key, source, "[workspace]", length=2)
         if not low < high:
             raise _error(source, "[workspace]", f"field `{key}`: expected low < high, got [{low}, {high}].")
@@ -454,6 +582,7 @@ def mechanism_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>"
         raise _error(source, "[[expected]]", f"expected an array of tables, got {type(expected).__name__}.")
     for index, fact in enumerate(expected):
         where = f"[[expected]] #{index + 1}"
+        _check_keys(fact, ("fact", "value", "source", "note", "tolerance", "region", "not_reproduced"), source, where)
         _string(fact, "fact", source, where)
         _string(fact, "source", source, where)
         if "value" not in fact:
@@ -499,13 +628,7 @@ def _snapshot_joint(entry: Any, index: int, source: str) -> tuple[str, str, J.Jo
     actuated = entry.get("actuated", False)
     if not isinstance(actuated, bool):
         raise _error(source, where, f"field `actuated`: expected true or false, got {actuated!r}.")
-    unknown = set(entry) - _COMMON_FIELDS - set(_JOINT_FIELDS[kind])
-    if unknown:
-        raise _error(
-            source,
-            where,
-            f"unknown field(s) {sorted(unknown)} for a {kind} joint (expected {list(_JOINT_FIELDS[kind])}).",
-        )
+    _check_keys(entry, (*_COMMON_FIELDS, *_JOINT_FIELDS[kind]), source, f"{where} ({kind} joint)")
     values: dict[str, Any] = {}
     for key in _JOINT_FIELDS[kind]:
         if key not in entry:
@@ -546,7 +669,16 @@ def snapshot_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>")
     >>> graph.graph["name"], graph.number_of_edges()
     ('slider', 1)
     """
+    if not isinstance(data, Mapping):
+        raise CatalogError(f"{source}: expected a mapping of TOML tables, got {type(data).__name__}.")
+    _check_keys(data, ("mechanism", "joints"), source, "top level")
     header = _table(data, "mechanism", source)
+    _check_keys(
+        header,
+        ("kind", "name", "base", "platform", "dof", "length_unit", "description", "sources"),
+        source,
+        "[mechanism]",
+    )
     kind = header.get("kind")
     if kind != "snapshot":
         raise _error(source, "[mechanism]", f"field `kind`: expected 'snapshot', got {kind!r}.")
@@ -556,17 +688,55 @@ def snapshot_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>")
     dof = header.get("dof")
     if dof is not None and not is_dof(dof):
         raise _error(source, "[mechanism]", f"field `dof`: expected an integer in 0..6, got {dof!r}.")
+    length_unit = _length_unit(header, source) if "length_unit" in header else ""
     entries = data.get("joints")
     if not isinstance(entries, list) or not entries:
         raise _error(source, "[[joints]]", "expected at least one [[joints]] table, got none.")
+    if len(entries) > MAX_JOINTS:
+        raise _error(source, "[[joints]]", f"expected at most {MAX_JOINTS} joints, got {len(entries)}.")
     triples = [_snapshot_joint(entry, i, source) for i, entry in enumerate(entries)]
     try:
         graph = _checked_graph(base, platform, triples, dof)
+        check_dof(graph)
     except ScrewkitError as err:
         raise CatalogError(f"{source}: {err}") from err
     graph.graph["name"] = name
-    graph.graph["length_unit"] = header.get("length_unit", "")
+    graph.graph["length_unit"] = length_unit
     return graph
+
+
+def check_dof(graph: nx.MultiDiGraph, *, joint_key: str = "joint") -> None:
+    """Refuse a twist graph whose ``dof`` contradicts its actuators.
+
+    screwkit analyses non-redundantly actuated mechanisms: with actuated joints, ``dof`` (the nominal
+    mobility of the platform) must equal their number, else every verdict would rest on a wrong
+    nominal order (a false constraint or actuation singularity). A graph with no actuated joint is
+    analysed for its mobility only, and any ``dof`` is its stated mobility.
+
+    Raises
+    ------
+    TwistGraphError
+        Naming both numbers.
+
+    Examples
+    --------
+    >>> from screwkit.twistgraph import twist_graph
+    >>> from screwkit.joints import prismatic
+    >>> check_dof(twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))], dof=2))
+    Traceback (most recent call last):
+    ...
+    screwkit.exceptions.TwistGraphError: Expected `dof` to equal the number of actuated joints (1: P), got dof = 2; ...
+    """
+    dof = graph.graph.get("dof")
+    actuated = sorted(
+        str(data[joint_key].name) for *_, data in graph.edges(data=True) if getattr(data[joint_key], "actuated", False)
+    )
+    if dof is not None and actuated and dof != len(actuated):
+        raise TwistGraphError(
+            f"Expected `dof` to equal the number of actuated joints ({len(actuated)}: {', '.join(actuated)}), "
+            f"got dof = {dof}; screwkit analyses non-redundantly actuated mechanisms: fix `dof` or the "
+            "`actuated` flags."
+        )
 
 
 def _checked_graph(

@@ -34,7 +34,7 @@ from typing import Any, NoReturn
 import numpy as np
 
 from . import __version__
-from .catalog import list_mechanisms, load_mechanism, load_toml
+from .catalog import file_kind, list_mechanisms, load_mechanism, load_toml
 from .exceptions import ScrewkitError
 from .report import analyze
 from .screw import Screw
@@ -220,8 +220,7 @@ def run_analyze(args: argparse.Namespace) -> int:
 
 
 def _toml_kind(path: str) -> Any:
-    header = load_toml(path).get("mechanism", {})
-    return header.get("kind") if isinstance(header, dict) else None
+    return file_kind(load_toml(path))
 
 
 def _print(text: str) -> None:

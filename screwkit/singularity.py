@@ -183,11 +183,25 @@ class SingularityReport:
         return _same_kind(~np.asarray(self.constraint) & (np.asarray(self.global_order) < 6))
 
     @property
+    def actuation_assessed(self) -> bool:
+        """False for a mechanism with no actuated joint: it is analysed for its mobility only (its
+        legs' constraint systems, the platform's freedoms, constraint singularities); the actuation
+        and serial labels are not assessed."""
+        return bool(self.actuated_joints)
+
+    @property
     def codes(self) -> Array:
-        """An integer per pose: bit 1 constraint, 2 actuation, 4 serial (0 regular)."""
+        """An integer per pose: bit 1 constraint, 2 actuation, 4 serial (0 regular).
+
+        A platform with fewer freedoms than nominal (``lost_dof > 0``, e.g. a stretched limb at the
+        boundary of its workspace) is a serial singularity, Gosselin & Angeles' type 1 (the output
+        loses a direction of motion), whether or not one limb's actuator is found idle."""
         constraint = np.asarray(self.constraint_order) < self.nominal_constraint_order
+        if not self.actuation_assessed:
+            return constraint * 1
         actuation = ~constraint & (np.asarray(self.global_order) < 6)
-        serial = np.asarray(self.analysis.serial).any(axis=-1)
+        lost = np.asarray(self.constraint_order) > self.nominal_constraint_order
+        serial = np.asarray(self.analysis.serial).any(axis=-1) | lost
         return constraint * 1 + actuation * 2 + serial * 4
 
     @property
@@ -256,6 +270,7 @@ class SingularityReport:
             "verdict": self.verdict,
             "labels": list(self.labels),
             "dof": self.dof,
+            "actuation_assessed": self.actuation_assessed,
             "constraint_order": int(self.constraint_order),
             "nominal_constraint_order": self.nominal_constraint_order,
             "global_order": int(self.global_order),
@@ -290,9 +305,14 @@ class SingularityReport:
         ]
         if self.gained_dof:
             lines.append(f"  the platform gains {self.gained_dof} DOF (constraints lost)")
+        if not self.actuation_assessed:
+            lines.append("  no actuated joint: mobility analysis only, actuation not assessed")
         if self.lost_dof:
-            lines.append(f"  the platform has {self.lost_dof} DOF fewer than nominal (locked)")
-        if self.uncontrolled_dof:
+            lines.append(
+                f"  the platform has {self.lost_dof} DOF fewer than nominal"
+                + (" (a serial singularity: a limb at the boundary of its workspace)" if self.actuation_assessed else "")
+            )
+        if self.uncontrolled_dof and self.actuation_assessed:
             lines.append(f"  uncontrolled with actuators locked: {self.uncontrolled_dof} twist(s)")
             lines.extend(f"    {S.Screw(t)}" for t in self.uncontrolled_twists)
         for item in self.serial:
