@@ -98,8 +98,10 @@ if TYPE_CHECKING:
 
 __all__ = [
     "LENGTH_UNITS",
+    "MAX_COORDINATE",
     "MAX_FILE_BYTES",
     "MAX_JOINTS",
+    "MAX_REJECTION_ROUNDS",
     "Mechanism",
     "check_dof",
     "degrees_to_radians",
@@ -210,18 +212,66 @@ class Mechanism:
         """
         from .posed import PosedMechanism
 
+        if poses is not None and not isinstance(poses, str):
+            with np.errstate(all="ignore"):
+                try:
+                    size = np.nanmax(np.abs(np.asarray(poses, dtype=float)), initial=0.0)
+                except (TypeError, ValueError):  # not numeric: PosedMechanism names it
+                    size = 0.0
+            if np.isfinite(size) and size > MAX_COORDINATE:
+                raise ScrewkitValueError(
+                    f"Expected pose coordinates up to {MAX_COORDINATE:g} in size ({self.length_unit}, "
+                    f"radians), got {size:g}."
+                )
         return PosedMechanism.create(self, poses, rtol=rtol, options=options)
 
     def random_poses(self, rng: np.random.Generator, count: int) -> Array:
-        """Poses drawn uniformly in the operational workspace (radians), ``(count, n)``.
+        """Poses drawn uniformly in the *reachable* part of the operational workspace (radians),
+        ``(count, n)``: draws whose inverse kinematics has no solution are drawn again (rejection keeps
+        the distribution uniform; the first ``count`` draws are returned when all are reachable).
+
+        Raises
+        ------
+        ScrewkitValueError
+            If ``count`` is not a non-negative integer, or fewer than 1 draw in
+            :data:`MAX_REJECTION_ROUNDS` is reachable (the workspace box is mostly out of reach).
 
         Examples
         --------
-        >>> load_mechanism("h4").random_poses(np.random.default_rng(0), 3).shape
+        >>> poses = load_mechanism("h4").random_poses(np.random.default_rng(0), 3)
+        >>> poses.shape
         (3, 4)
         """
+        if not isinstance(rng, np.random.Generator):
+            raise ScrewkitTypeError(f"Expected `rng` to be a numpy.random.Generator, got {type(rng).__name__}.")
+        if isinstance(count, bool) or not isinstance(count, int | np.integer) or not 0 <= count <= 10**7:
+            raise ScrewkitValueError(f"Expected `count` to be an integer in 0..10**7, got {count!r}.")
         low, high = zip(*(self.workspace[c] for c in self.pose_names), strict=True)
-        return rng.uniform(low, high, size=(count, len(low)))
+        kept = np.empty((0, len(low)))
+        for _ in range(MAX_REJECTION_ROUNDS):
+            if len(kept) >= count:
+                return kept[:count]
+            draws = rng.uniform(low, high, size=(count - len(kept), len(low)))
+            kept = np.concatenate([kept, draws[self._reachable(draws)]])
+        if len(kept) >= count:
+            return kept[:count]
+        raise ScrewkitValueError(
+            f"{self.source}: [workspace]: only {len(kept)} of the poses drawn in {MAX_REJECTION_ROUNDS} rounds "
+            f"are reachable, {count} wanted: the workspace box is mostly out of reach."
+        )
+
+    def _reachable(self, poses: Array) -> Array:
+        """True where the inverse kinematics has a solution (the batch bisected around failures)."""
+        if len(poses) == 0:
+            return np.zeros(0, dtype=bool)
+        try:
+            self.configuration(poses)
+            return np.ones(len(poses), dtype=bool)
+        except UnreachablePoseError:
+            if len(poses) == 1:
+                return np.zeros(1, dtype=bool)
+        half = len(poses) // 2
+        return np.concatenate([self._reachable(poses[:half]), self._reachable(poses[half:])])
 
     def wrench_diagram(
         self, pose: Any = None
@@ -316,6 +366,11 @@ LENGTH_UNITS: dict[str, Fraction] = {
 #: Units of angles and of pure numbers in ``[parameters.*] unit``.
 ANGLE_UNITS = ("deg", "rad")
 NUMBER_UNITS = ("-", "1")
+#: Largest coordinate (point, pitch) a snapshot may give, in its length unit: products of a few
+#: coordinates must stay far from overflow in the rank kernels and the superbracket.
+MAX_COORDINATE = 1e100
+#: Rounds of redrawing in :meth:`Mechanism.random_poses` before a mostly unreachable workspace is refused.
+MAX_REJECTION_ROUNDS = 50
 #: Resource caps: a larger file, or a snapshot with more joints, is refused before it is parsed.
 MAX_FILE_BYTES = 1 << 20
 MAX_JOINTS = 2000
@@ -415,6 +470,8 @@ def _string(data: Mapping[str, Any], key: str, source: str, where: str) -> str:
 def _number(value: Any, source: str, where: str, key: str) -> float:
     if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value):
         raise _error(source, where, f"field `{key}`: expected a finite number, got {value!r}.")
+    if abs(value) > 1e300:  # a TOML integer may exceed every float
+        raise _error(source, where, f"field `{key}`: expected a magnitude up to 1e300, got {value!r}.")
     return float(value)
 
 
@@ -459,9 +516,21 @@ def _scaled(value: Any, convert: Callable[[float], float], source: str, where: s
             raise _error(source, where, f"field `value`: expected lists nested at most {_MAX_LIST_DEPTH} deep.")
         return [_scaled(item, convert, source, where, depth + 1) for item in value]
     result = convert(_number(value, source, where, "value"))
-    if not math.isfinite(result):
-        raise _error(source, where, f"field `value`: {value!r} overflows when converted to the file's unit.")
+    if not abs(result) <= MAX_COORDINATE:
+        raise _error(
+            source, where, f"field `value`: expected a magnitude up to {MAX_COORDINATE:g} in the file's unit, got {value!r}."
+        )
     return result
+
+
+def _direction(vector: list[float]) -> list[float]:
+    """A direction scaled by a power of two (exactly) so that its largest component lies in [0.5, 1):
+    an axis of length 1e-170 or 1e300 is still an axis (its norm would underflow or overflow)."""
+    largest = max(abs(v) for v in vector)
+    if largest == 0:
+        return vector
+    exponent = math.frexp(largest)[1]
+    return [math.ldexp(v, -exponent) for v in vector]
 
 
 def _package_file(name: str) -> Path:
@@ -635,9 +704,16 @@ def _snapshot_joint(entry: Any, index: int, source: str) -> tuple[str, str, J.Jo
             raise _error(
                 source, where, f"field `{key}`: missing (a {kind} joint needs {list(_JOINT_FIELDS[kind])})."
             )
-        values[key] = (
-            _number(entry[key], source, where, key) if key == "pitch" else _vector(entry, key, source, where)
-        )
+        if key == "pitch":
+            values[key] = _number(entry[key], source, where, key)
+        elif key in ("point", "center"):
+            values[key] = _vector(entry, key, source, where)
+        else:  # a direction: only its direction counts, so scale it exactly (a power of two) to size ~1
+            values[key] = _direction(_vector(entry, key, source, where))
+        if any(abs(v) > MAX_COORDINATE for v in np.ravel(values[key])):
+            raise _error(
+                source, where, f"field `{key}`: expected magnitudes up to {MAX_COORDINATE:g}, got {entry[key]!r}."
+            )
     builders: dict[str, Callable[..., J.Joint]] = {
         "R": lambda: J.revolute(name, values["axis"], values["point"], actuated=actuated),
         "P": lambda: J.prismatic(name, values["direction"], actuated=actuated),

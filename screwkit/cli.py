@@ -34,7 +34,7 @@ from typing import Any, NoReturn
 import numpy as np
 
 from . import __version__
-from .catalog import file_kind, list_mechanisms, load_mechanism, load_toml
+from .catalog import degrees_to_radians, file_kind, list_mechanisms, load_mechanism, load_toml
 from .exceptions import ScrewkitError
 from .report import analyze
 from .screw import Screw
@@ -181,7 +181,7 @@ def _pose(args: argparse.Namespace, mechanism: Any) -> Any:
             f"screwkit analyze: error: --pose expects {len(names)} finite numbers ({expected}), got {got}"
         )
     angles = set(mechanism.angle_names)
-    return np.array([math.radians(v) if n in angles else v for n, v in zip(names, args.pose, strict=True)])
+    return np.array([degrees_to_radians(v) if n in angles else v for n, v in zip(names, args.pose, strict=True)])
 
 
 def run_analyze(args: argparse.Namespace) -> int:
