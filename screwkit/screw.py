@@ -360,15 +360,15 @@ def axis(screws: Any) -> tuple[Array, Array]:
     """
     arr = _screws(screws)
     s, s0 = arr[..., :3], arr[..., 3:]
-    ss = B.dot(s, s)
     if B.is_symbolic(arr):
+        ss = B.dot(s, s)
         if any(B.is_exactly_zero(v) for v in np.atleast_1d(ss).flat):
             raise DegenerateGeometryError(
                 "Expected a screw of finite pitch, got s = 0 (a line at infinity has no finite point)."
             )
         point = B.simplify(B.cross(s, s0) / np.asarray(ss)[..., None])
         return point, B.simplify(s / B.norm(s)[..., None] if s.ndim > 1 else s / B.norm(s))
-    if np.any(ss == 0):
+    if np.any(np.all(s == 0, axis=-1)):
         raise DegenerateGeometryError(
             "Expected screws of finite pitch, got s = 0 (a line at infinity has no finite point)."
         )
