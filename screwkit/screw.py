@@ -389,10 +389,11 @@ def _unit_scaled(arr: Array, length_scale: float) -> Array:
     B.checked_length_scale(length_scale)
     scaled = np.array(arr, dtype=float)
     scaled[..., 3:] /= length_scale
-    size = np.linalg.norm(scaled, axis=-1, keepdims=True)
-    if np.any(size == 0):
+    largest = np.max(np.abs(scaled), axis=-1, keepdims=True)
+    if np.any(largest == 0):
         raise DegenerateGeometryError("Expected non-zero screws, got the zero screw.")
-    return scaled / size
+    scaled = np.ldexp(scaled, -np.frexp(largest)[1])  # exact: the norm neither underflows nor overflows
+    return scaled / np.linalg.norm(scaled, axis=-1, keepdims=True)
 
 
 def _numeric_only(arr: Array, what: str) -> None:
