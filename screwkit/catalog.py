@@ -68,6 +68,7 @@ Examples
 from __future__ import annotations
 
 import difflib
+import inspect
 import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
@@ -176,7 +177,18 @@ class Mechanism:
         (4,)
         """
         chosen = self.default_pose if pose is None else pose
-        return self.family_protocol.inverse_kinematics(self.parameters, chosen, **options)
+        solve = self.family_protocol.inverse_kinematics
+        accepted = [
+            p.name for p in list(inspect.signature(solve).parameters.values())[2:]
+            if p.kind in (p.KEYWORD_ONLY, p.POSITIONAL_OR_KEYWORD)
+        ]
+        unknown = sorted(set(options) - set(accepted))
+        if unknown:
+            raise ScrewkitTypeError(
+                f"Expected inverse-kinematics options of the {self.family} family among {accepted}, "
+                f"got {unknown}."
+            )
+        return solve(self.parameters, chosen, **options)
 
     def joints(self, pose: Any = None, **options: Any) -> JointTable:
         """The joint table at a pose or a batch of poses (the input of the analysis core).
@@ -564,6 +576,10 @@ def load_mechanism(name_or_path: str | Path) -> Mechanism:
     ...
     screwkit.exceptions.CatalogError: unknown mechanism 'h5': expected one of [...] or a path to a .toml file.
     """
+    if not isinstance(name_or_path, str | Path):
+        raise ScrewkitTypeError(
+            f"Expected a catalog name or a .toml path (str or pathlib.Path), got {type(name_or_path).__name__}."
+        )
     text = str(name_or_path)
     if text.endswith(".toml"):
         path = Path(text)

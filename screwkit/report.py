@@ -356,6 +356,8 @@ def analyze(
     ()
     """
     tolerance = B.DEFAULT_RTOL if rtol is None else checked_rtol(rtol)
+    if not isinstance(superbracket, bool | np.bool_):
+        raise ScrewkitTypeError(f"Expected `superbracket` to be True or False, got {superbracket!r}.")
     if isinstance(target, nx.MultiDiGraph):
         return _graph_report(target, "<graph>", pose, tolerance, superbracket, "a twist graph")
     if not isinstance(target, str | Path | Mechanism):

@@ -404,6 +404,8 @@ def classify_table(
     >>> classify_table(table, chunk=2).verdict.tolist()
     ['regular', 'regular', 'regular', 'regular', 'regular']
     """
+    if not isinstance(table, JointTable):
+        raise ScrewkitTypeError(f"Expected `table` to be a JointTable, got {type(table).__name__}.")
     if isinstance(chunk, bool) or not isinstance(chunk, int | np.integer) or chunk < 1:
         raise ScrewkitValueError(f"Expected `chunk` to be a positive integer, got {chunk!r}.")
     shape = table.batch_shape
