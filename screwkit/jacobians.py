@@ -888,8 +888,8 @@ def classify_jacobians(A: Any, B: Any, *, rtol: float = B.DEFAULT_RTOL) -> Jacob
     tolerance = checked_rtol(rtol, "rtol")
     a, b = (as_array(value, name, (None, None), symbolic=False) for value, name in ((A, "A"), (B, "B")))
     for matrix, name in ((a, "A"), (b, "B")):
-        if matrix.shape[-1] != matrix.shape[-2] or matrix.shape[-1] == 0:
-            raise ScrewkitValueError(f"Expected `{name}` to be square, shape (..., n, n), got {matrix.shape}.")
+        if 0 in matrix.shape[-2:]:
+            raise ScrewkitValueError(f"Expected `{name}` to be a non-empty matrix (..., m, n), got {matrix.shape}.")
     return JacobianClassification(_closeness(b), _closeness(a), tolerance)
 
 
