@@ -373,9 +373,9 @@ def classify(
     >>> from screwkit.twistgraph import twist_graph
     >>> G = twist_graph("B", "E", [("B", "E", revolute("R", [0, 0, 1], [0, 0, 0], actuated=True)),
     ...                            ("B", "E", revolute("R2", [0, 0, 1], [1, 0, 0]))], dof=1)
-    >>> report = classify(G)  # two parallel hinges on different axes lock the platform
+    >>> report = classify(G)  # two parallel hinges on different axes lock the platform: it lacks a freedom
     >>> report.labels, report.constraint_order, report.lost_dof
-    ((), 6, 1)
+    (('serial',), 6, 1)
     """
     return SingularityReport(wrench_analysis(graph, dof=dof, joint_key=joint_key, rtol=rtol))
 
