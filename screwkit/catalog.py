@@ -177,9 +177,15 @@ class Mechanism:
         (4,)
         """
         chosen = self.default_pose if pose is None else pose
+        self._check_options(options)
+        return self.family_protocol.inverse_kinematics(self.parameters, chosen, **options)
+
+    def _check_options(self, options: Mapping[str, Any]) -> None:
+        """Refuse inverse-kinematics options the family's solver does not take (naming those it does)."""
         solve = self.family_protocol.inverse_kinematics
         accepted = [
-            p.name for p in list(inspect.signature(solve).parameters.values())[2:]
+            p.name
+            for p in list(inspect.signature(solve).parameters.values())[2:]
             if p.kind in (p.KEYWORD_ONLY, p.POSITIONAL_OR_KEYWORD)
         ]
         unknown = sorted(set(options) - set(accepted))
@@ -188,7 +194,6 @@ class Mechanism:
                 f"Expected inverse-kinematics options of the {self.family} family among {accepted}, "
                 f"got {unknown}."
             )
-        return solve(self.parameters, chosen, **options)
 
     def joints(self, pose: Any = None, **options: Any) -> JointTable:
         """The joint table at a pose or a batch of poses (the input of the analysis core).
@@ -224,6 +229,7 @@ class Mechanism:
         """
         from .posed import PosedMechanism
 
+        self._check_options(options)
         if poses is not None and not isinstance(poses, str):
             with np.errstate(all="ignore"):
                 try:
@@ -414,15 +420,19 @@ def degrees_to_radians(value: float) -> float:
 
 
 def file_kind(data: Mapping[str, Any]) -> Any:
-    """``[mechanism] kind`` of parsed TOML (None where there is none): ``"family"`` or ``"snapshot"``.
+    """``[mechanism] kind`` of parsed TOML: ``"family"`` or ``"snapshot"`` (a file without a kind but
+    with ``[[joints]]`` is read as a snapshot, so that its errors speak of snapshots); None otherwise.
 
     Examples
     --------
-    >>> file_kind({"mechanism": {"kind": "snapshot"}}), file_kind({"mechanism": 5})
-    ('snapshot', None)
+    >>> file_kind({"mechanism": {"kind": "snapshot"}}), file_kind({"mechanism": 5}), file_kind({"joints": []})
+    ('snapshot', None, 'snapshot')
     """
-    header = data.get("mechanism") if isinstance(data, Mapping) else None
-    return header.get("kind") if isinstance(header, Mapping) else None
+    if not isinstance(data, Mapping):
+        return None
+    header = data.get("mechanism")
+    kind = header.get("kind") if isinstance(header, Mapping) else None
+    return "snapshot" if kind is None and "joints" in data else kind
 
 
 def load_toml(path: str | Path) -> dict[str, Any]:
@@ -480,10 +490,12 @@ def _string(data: Mapping[str, Any], key: str, source: str, where: str) -> str:
 
 
 def _number(value: Any, source: str, where: str, key: str) -> float:
-    if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value):
+    if isinstance(value, bool) or not isinstance(value, int | float):
         raise _error(source, where, f"field `{key}`: expected a finite number, got {value!r}.")
-    if abs(value) > 1e300:  # a TOML integer may exceed every float
-        raise _error(source, where, f"field `{key}`: expected a magnitude up to 1e300, got {value!r}.")
+    if isinstance(value, int) and abs(value) > 10**300:  # a TOML integer may exceed every float
+        raise _error(source, where, f"field `{key}`: expected a magnitude up to 1e300, got an integer of {len(str(abs(value)))} digits.")
+    if not math.isfinite(value):
+        raise _error(source, where, f"field `{key}`: expected a finite number, got {value!r}.")
     return float(value)
 
 
