@@ -519,3 +519,96 @@ def test_corpus_size():
         + 2 * len(FILE_CONTENT_CASES) + 5 + len(CLI_CASES) + len(API_CASES)
     )
     assert cases >= 200, cases
+
+
+# --- answers that used to be silently wrong ------------------------------------------------------
+def tripteron(stretched):
+    """A Tripteron-like 3-PRRR translator: leg i has an actuated P along e_i and three R axes along
+    e_i (a planar RRR chain in the plane normal to e_i). ``stretched`` puts leg 1's three R axes in
+    one plane (the chain fully extended: the boundary of its workspace)."""
+    e = np.eye(3)
+    offsets = {0: [[0, 0, 0], [0, 1, 0], [0, 1, 1]], 1: [[0, 0, 0], [0, 0, 1], [1, 0, 1]], 2: [[0, 0, 0], [1, 0, 0], [1, 1, 0]]}
+    if stretched:
+        offsets[0] = [[0, 0, 0], [0, 1, 0], [0, 2, 0]]
+    joints = []
+    for i in range(3):
+        joints.append(("base", f"s{i}", sk.prismatic(f"P{i}", e[i], actuated=True)))
+        links = [f"s{i}", f"a{i}", f"b{i}", "platform"]
+        for k in range(3):
+            joints.append((links[k], links[k + 1], sk.revolute(f"R{i}{k}", e[i], np.add(offsets[i][k], [5.0 * i, 0, 0]))))
+    return sk.twist_graph("base", "platform", joints)
+
+
+def test_a_stretched_limb_that_loses_a_freedom_is_a_serial_singularity():
+    assert sk.classify(tripteron(False)).labels == ()
+    report = sk.classify(tripteron(True))
+    # independent: leg 1's twists (P along x and three x-axis hinges through collinear points) span 3, not 4
+    rows = np.array([[0, 0, 0, 1, 0, 0]] + [np.r_[[1.0, 0, 0], np.cross([0, k, 0], [1.0, 0, 0])] for k in range(3)])
+    assert np.linalg.matrix_rank(rows, tol=1e-12) == 3
+    assert report.lost_dof == 1 and "serial" in report.labels
+    assert "1 DOF fewer than nominal (a serial singularity" in str(report)
+
+
+def test_a_snapshot_without_actuators_gets_a_mobility_analysis():
+    passive = changed(SNAPSHOT, lambda d: [j.pop("actuated", None) for j in d["joints"]] and d["mechanism"].pop("dof"))
+    report = sk.analyze(snapshot_from_mapping(passive), superbracket=False)
+    # three RPR legs in the plane with every joint free: the platform keeps its three planar freedoms
+    assert report.verdict.dof == 3 and report.verdict.constraint_order == 3
+    assert report.verdict.labels == () and report.verdict.actuation_assessed is False
+    assert "actuation not assessed" in str(report.verdict)
+    assert report.verdict.to_dict()["actuation_assessed"] is False
+
+
+def test_random_poses_are_reachable_and_the_first_draws_when_all_are():
+    for name in ("h4", "v4"):
+        mechanism = load_mechanism(name)
+        poses = mechanism.random_poses(np.random.default_rng(3), 300)
+        mechanism.configuration(poses)  # raises UnreachablePoseError if any is out of reach
+        low, high = np.array([mechanism.workspace[c] for c in mechanism.pose_names]).T
+        assert poses.shape == (300, 4) and np.all((poses >= low) & (poses <= high))
+    smg = load_mechanism("mcgill_smg")  # its workspace box is reachable: the plain uniform draws
+    low, high = zip(*(smg.workspace[c] for c in smg.pose_names))
+    expected = np.random.default_rng(5).uniform(low, high, size=(20, 4))
+    assert np.array_equal(smg.random_poses(np.random.default_rng(5), 20), expected)
+
+
+def test_huge_degrees_at_the_cli_are_reduced_exactly(capsys):
+    assert main(["analyze", "h4", "--pose", "10", "20", "-750", "1e20", "--json", "--no-superbracket"]) == 0
+    huge = capsys.readouterr().out
+    assert main(["analyze", "h4", "--pose", "10", "20", "-750", "280", "--json", "--no-superbracket"]) == 0
+    assert huge == capsys.readouterr().out
+
+
+def test_tiny_and_huge_axes_keep_their_pitch_and_axis():
+    assert sk.Screw([1e-170, 0, 0, 1e-170, 0, 1e-170]).to_dict()["point"] == [0.0, -1.0, 0.0]
+    assert float(sk.screw.pitch(np.array([1e-170, 0, 0, 2e-170, 0, 0]))) == 2.0
+    assert float(sk.screw.pitch(np.array([1e200, 0, 0, 3e200, 0, 0]))) == 3.0
+    tiny = changed(SNAPSHOT, joint_setter(0, "axis", [0.0, 0.0, 1e-170]))
+    assert sk.classify(snapshot_from_mapping(tiny)).labels == sk.classify(snapshot_from_mapping(SNAPSHOT)).labels
+
+
+def _moved(data, offset):
+    def change(d):
+        for joint in d["joints"]:
+            for key in ("point", "center"):
+                if key in joint:
+                    joint[key] = list(np.add(joint[key], offset))
+
+    return changed(data, change)
+
+
+@pytest.mark.parametrize("offset", [[1e4, -1e4, 3e3], [-2e4, 5e3, 1e4]])  # 10-20 km from the origin (m)
+def test_labels_and_orders_survive_a_move_far_from_the_origin(offset):
+    near, far = (sk.classify(snapshot_from_mapping(d)) for d in (SNAPSHOT, _moved(SNAPSHOT, offset)))
+    assert (near.labels, near.constraint_order, near.global_order) == (far.labels, far.constraint_order, far.global_order)
+
+
+def test_joint_names_with_slashes_reach_the_diagram():
+    from tests.mechanisms import tsai_3upu
+
+    graph = tsai_3upu([0.1, 0.05, 1.0])
+    renamed = sk.twist_graph("base", "platform", [
+        (u, v, __import__("dataclasses").replace(j, name=f"leg/{k}/1")) for u, v, k, j in graph.edges(keys=True, data="joint")
+    ])
+    text = str(sk.analyze(renamed, superbracket=False))
+    assert "the point at infinity of the axis of leg/Ub1/1 (its axis 2)" in text
