@@ -261,7 +261,9 @@ class Mechanism:
         (3, 4)
         """
         if not isinstance(rng, np.random.Generator):
-            raise ScrewkitTypeError(f"Expected `rng` to be a numpy.random.Generator, got {type(rng).__name__}.")
+            raise ScrewkitTypeError(
+                f"Expected `rng` to be a numpy.random.Generator, got {type(rng).__name__}."
+            )
         if isinstance(count, bool) or not isinstance(count, int | np.integer) or not 0 <= count <= 10**7:
             raise ScrewkitValueError(f"Expected `count` to be an integer in 0..10**7, got {count!r}.")
         low, high = zip(*(self.workspace[c] for c in self.pose_names), strict=True)
@@ -274,7 +276,8 @@ class Mechanism:
         if len(kept) >= count:
             return kept[:count]
         raise ScrewkitValueError(
-            f"{self.source}: [workspace]: only {len(kept)} of the poses drawn in {MAX_REJECTION_ROUNDS} rounds "
+            f"{self.source}: [workspace]: only {len(kept)} of the poses drawn in {MAX_REJECTION_ROUNDS} "
+            "rounds "
             f"are reachable, {count} wanted: the workspace box is mostly out of reach."
         )
 
@@ -493,7 +496,10 @@ def _number(value: Any, source: str, where: str, key: str) -> float:
     if isinstance(value, bool) or not isinstance(value, int | float):
         raise _error(source, where, f"field `{key}`: expected a finite number, got {value!r}.")
     if isinstance(value, int) and abs(value) > 10**300:  # a TOML integer may exceed every float
-        raise _error(source, where, f"field `{key}`: expected a magnitude up to 1e300, got an integer of {len(str(abs(value)))} digits.")
+        digits = len(str(abs(value)))
+        raise _error(
+            source, where, f"field `{key}`: expected a magnitude up to 1e300, got a {digits}-digit integer."
+        )
     if not math.isfinite(value):
         raise _error(source, where, f"field `{key}`: expected a finite number, got {value!r}.")
     return float(value)
@@ -515,14 +521,18 @@ def _length_unit(header: Mapping[str, Any], source: str) -> str:
     return unit
 
 
-def _parameter_value(value: Any, unit: str, kind: str | None, length_unit: str, source: str, where: str) -> Any:
+def _parameter_value(
+    value: Any, unit: str, kind: str | None, length_unit: str, source: str, where: str
+) -> Any:
     """A parameter's value in the file's length unit and radians, its ``unit`` checked against the
     family's kind of the parameter (``"length"``, ``"angle"``, ``"number"``; None: not declared)."""
     units = {"length": tuple(LENGTH_UNITS), "angle": ANGLE_UNITS, "number": NUMBER_UNITS}
     allowed = units[kind] if kind else (*LENGTH_UNITS, *ANGLE_UNITS, *NUMBER_UNITS)
     if unit not in allowed:
         what = f"a {kind}" if kind else "a parameter"
-        raise _error(source, where, f"field `unit`: expected one of {list(allowed)} for {what}, got {unit!r}.")
+        raise _error(
+            source, where, f"field `unit`: expected one of {list(allowed)} for {what}, got {unit!r}."
+        )
     if unit in LENGTH_UNITS:
         factor = LENGTH_UNITS[unit] / LENGTH_UNITS[length_unit]
         return _scaled(value, lambda v: float(Fraction(v) * factor), source, where)
@@ -537,12 +547,17 @@ def _scaled(value: Any, convert: Callable[[float], float], source: str, where: s
     """``convert`` applied to a number or to every number of a (nested) list."""
     if isinstance(value, list):
         if depth >= _MAX_LIST_DEPTH:
-            raise _error(source, where, f"field `value`: expected lists nested at most {_MAX_LIST_DEPTH} deep.")
+            raise _error(
+                source, where, f"field `value`: expected lists nested at most {_MAX_LIST_DEPTH} deep."
+            )
         return [_scaled(item, convert, source, where, depth + 1) for item in value]
     result = convert(_number(value, source, where, "value"))
     if not abs(result) <= MAX_COORDINATE:
         raise _error(
-            source, where, f"field `value`: expected a magnitude up to {MAX_COORDINATE:g} in the file's unit, got {value!r}."
+            source,
+            where,
+            f"field `value`: expected a magnitude up to {MAX_COORDINATE:g} in the file's unit, "
+            f"got {value!r}.",
         )
     return result
 
@@ -590,7 +605,8 @@ def load_mechanism(name_or_path: str | Path) -> Mechanism:
     """
     if not isinstance(name_or_path, str | Path):
         raise ScrewkitTypeError(
-            f"Expected a catalog name or a .toml path (str or pathlib.Path), got {type(name_or_path).__name__}."
+            "Expected a catalog name or a .toml path (str or pathlib.Path), got "
+            f"{type(name_or_path).__name__}."
         )
     text = str(name_or_path)
     if text.endswith(".toml"):
@@ -618,7 +634,9 @@ def mechanism_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>"
         raise CatalogError(f"{source}: expected a mapping of TOML tables, got {type(data).__name__}.")
     _check_keys(data, ("mechanism", "parameters", "pose", "workspace", "expected"), source, "top level")
     header = _table(data, "mechanism", source)
-    _check_keys(header, ("kind", "name", "family", "length_unit", "sources", "description"), source, "[mechanism]")
+    _check_keys(
+        header, ("kind", "name", "family", "length_unit", "sources", "description"), source, "[mechanism]"
+    )
     kind = header.get("kind", "family")
     if kind != "family":
         raise _error(source, "[mechanism]", f"field `kind`: expected 'family' here, got {kind!r}.")
@@ -679,7 +697,8 @@ def mechanism_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>"
         raise _error(source, "[[expected]]", f"expected an array of tables, got {type(expected).__name__}.")
     for index, fact in enumerate(expected):
         where = f"[[expected]] #{index + 1}"
-        _check_keys(fact, ("fact", "value", "source", "note", "tolerance", "region", "not_reproduced"), source, where)
+        fields = ("fact", "value", "source", "note", "tolerance", "region", "not_reproduced")
+        _check_keys(fact, fields, source, where)
         _string(fact, "fact", source, where)
         _string(fact, "source", source, where)
         if "value" not in fact:
@@ -740,7 +759,9 @@ def _snapshot_joint(entry: Any, index: int, source: str) -> tuple[str, str, J.Jo
             values[key] = _direction(_vector(entry, key, source, where))
         if any(abs(v) > MAX_COORDINATE for v in np.ravel(values[key])):
             raise _error(
-                source, where, f"field `{key}`: expected magnitudes up to {MAX_COORDINATE:g}, got {entry[key]!r}."
+                source,
+                where,
+                f"field `{key}`: expected magnitudes up to {MAX_COORDINATE:g}, got {entry[key]!r}.",
             )
     builders: dict[str, Callable[..., J.Joint]] = {
         "R": lambda: J.revolute(name, values["axis"], values["point"], actuated=actuated),
@@ -829,15 +850,18 @@ def check_dof(graph: nx.MultiDiGraph, *, joint_key: str = "joint") -> None:
     >>> check_dof(twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))], dof=2))
     Traceback (most recent call last):
     ...
-    screwkit.exceptions.TwistGraphError: Expected `dof` to equal the number of actuated joints (1: P), got dof = 2; ...
+    screwkit.exceptions.TwistGraphError: Expected `dof` to equal the number of actuated joints (1: P), got ...
     """
     dof = graph.graph.get("dof")
     actuated = sorted(
-        str(data[joint_key].name) for *_, data in graph.edges(data=True) if getattr(data[joint_key], "actuated", False)
+        str(data[joint_key].name)
+        for *_, data in graph.edges(data=True)
+        if getattr(data[joint_key], "actuated", False)
     )
     if dof is not None and actuated and dof != len(actuated):
         raise TwistGraphError(
-            f"Expected `dof` to equal the number of actuated joints ({len(actuated)}: {', '.join(actuated)}), "
+            f"Expected `dof` to equal the number of actuated joints ({len(actuated)}: "
+            f"{', '.join(actuated)}), "
             f"got dof = {dof}; screwkit analyses non-redundantly actuated mechanisms: fix `dof` or the "
             "`actuated` flags."
         )

@@ -181,7 +181,8 @@ def _pose(args: argparse.Namespace, mechanism: Any) -> Any:
             f"screwkit analyze: error: --pose expects {len(names)} finite numbers ({expected}), got {got}"
         )
     angles = set(mechanism.angle_names)
-    return np.array([degrees_to_radians(v) if n in angles else v for n, v in zip(names, args.pose, strict=True)])
+    pairs = zip(names, args.pose, strict=True)
+    return np.array([degrees_to_radians(v) if n in angles else v for n, v in pairs])
 
 
 def run_analyze(args: argparse.Namespace) -> int:

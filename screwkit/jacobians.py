@@ -889,7 +889,9 @@ def classify_jacobians(A: Any, B: Any, *, rtol: float = B.DEFAULT_RTOL) -> Jacob
     a, b = (as_array(value, name, (None, None), symbolic=False) for value, name in ((A, "A"), (B, "B")))
     for matrix, name in ((a, "A"), (b, "B")):
         if 0 in matrix.shape[-2:]:
-            raise ScrewkitValueError(f"Expected `{name}` to be a non-empty matrix (..., m, n), got {matrix.shape}.")
+            raise ScrewkitValueError(
+                f"Expected `{name}` to be a non-empty matrix (..., m, n), got {matrix.shape}."
+            )
     return JacobianClassification(_closeness(b), _closeness(a), tolerance)
 
 

@@ -310,7 +310,7 @@ class SingularityReport:
         if self.lost_dof:
             lines.append(
                 f"  the platform has {self.lost_dof} DOF fewer than nominal"
-                + (" (a serial singularity: a limb at the boundary of its workspace)" if self.actuation_assessed else "")
+                + (" (a serial singularity: a limb at its reach)" if self.actuation_assessed else "")
             )
         if self.uncontrolled_dof and self.actuation_assessed:
             lines.append(f"  uncontrolled with actuators locked: {self.uncontrolled_dof} twist(s)")

@@ -567,7 +567,7 @@ def test_random_poses_are_reachable_and_the_first_draws_when_all_are():
         low, high = np.array([mechanism.workspace[c] for c in mechanism.pose_names]).T
         assert poses.shape == (300, 4) and np.all((poses >= low) & (poses <= high))
     smg = load_mechanism("mcgill_smg")  # its workspace box is reachable: the plain uniform draws
-    low, high = zip(*(smg.workspace[c] for c in smg.pose_names))
+    low, high = zip(*(smg.workspace[c] for c in smg.pose_names), strict=True)
     expected = np.random.default_rng(5).uniform(low, high, size=(20, 4))
     assert np.array_equal(smg.random_poses(np.random.default_rng(5), 20), expected)
 
@@ -612,3 +612,15 @@ def test_joint_names_with_slashes_reach_the_diagram():
     ])
     text = str(sk.analyze(renamed, superbracket=False))
     assert "the point at infinity of the axis of leg/Ub1/1 (its axis 2)" in text
+
+
+def test_a_stretched_leg_from_its_pose_is_exactly_stretched_and_reads_serial():
+    from tests.facts_two_limb import singular_configs
+
+    smg = load_mechanism("mcgill_smg")
+    combined = singular_configs(smg)["combined"]  # built from leg I's angles with θ_I3 = 0 exactly
+    pose = np.asarray(combined.pose)
+    again = smg.configuration(pose)
+    assert np.asarray(again.joint_angles)[0, 2] == 0.0  # not ~1e-8: the leg is put at its reach
+    # on main this read "regular" (serial closeness 4e-8 > rtol 1e-9)
+    assert smg.at(pose).verdicts.tolist() == ["actuation + serial singularity"]

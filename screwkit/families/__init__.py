@@ -173,15 +173,14 @@ def register(family: Family) -> Family:
         )
     if not isinstance(family.name, str) or not family.name.isidentifier():
         raise ScrewkitTypeError(f"Expected `family.name` to be an identifier, got {family.name!r}.")
-    for field in ("parameters", "inverse_kinematics", "joints", "twist_basis"):
-        if not callable(getattr(family, field)):
-            raise ScrewkitTypeError(
-                f"Expected `family.{field}` to be callable, got {type(getattr(family, field)).__name__}."
-            )
-    for field in ("pose_names", "angle_names"):
-        names = getattr(family, field)
+    for attribute in ("parameters", "inverse_kinematics", "joints", "twist_basis"):
+        if not callable(getattr(family, attribute)):
+            got = type(getattr(family, attribute)).__name__
+            raise ScrewkitTypeError(f"Expected `family.{attribute}` to be callable, got {got}.")
+    for attribute in ("pose_names", "angle_names"):
+        names = getattr(family, attribute)
         if not isinstance(names, tuple) or not all(isinstance(n, str) for n in names):
-            raise ScrewkitTypeError(f"Expected `family.{field}` to be a tuple of str, got {names!r}.")
+            raise ScrewkitTypeError(f"Expected `family.{attribute}` to be a tuple of str, got {names!r}.")
     kinds = family.parameter_kinds
     if not isinstance(kinds, Mapping) or not set(kinds.values()) <= {"length", "angle", "number"}:
         raise ScrewkitTypeError(
