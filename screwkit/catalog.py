@@ -100,6 +100,7 @@ if TYPE_CHECKING:
 __all__ = [
     "LENGTH_UNITS",
     "MAX_COORDINATE",
+    "MAX_FAR_OVER_SPREAD",
     "MAX_FILE_BYTES",
     "MAX_JOINTS",
     "MAX_REJECTION_ROUNDS",
@@ -390,6 +391,9 @@ NUMBER_UNITS = ("-", "1")
 #: Largest coordinate (point, pitch) a snapshot may give, in its length unit: products of a few
 #: coordinates must stay far from overflow in the rank kernels and the superbracket.
 MAX_COORDINATE = 1e100
+#: How far from the origin a snapshot's joints may lie, in units of their spread (1e7: float64 then
+#: keeps about 9 significant digits of the geometry, as the default rtol 1e-9 needs).
+MAX_FAR_OVER_SPREAD = 1e7
 #: Rounds of redrawing in :meth:`Mechanism.random_poses` before a mostly unreachable workspace is refused.
 MAX_REJECTION_ROUNDS = 50
 #: Resource caps: a larger file, or a snapshot with more joints, is refused before it is parsed.
@@ -819,6 +823,7 @@ def snapshot_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>")
         raise _error(source, "[[joints]]", "expected at least one [[joints]] table, got none.")
     if len(entries) > MAX_JOINTS:
         raise _error(source, "[[joints]]", f"expected at most {MAX_JOINTS} joints, got {len(entries)}.")
+    _check_precision(entries, source)
     triples = [_snapshot_joint(entry, i, source) for i, entry in enumerate(entries)]
     try:
         graph = _checked_graph(base, platform, triples, dof)
@@ -828,6 +833,37 @@ def snapshot_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>")
     graph.graph["name"] = name
     graph.graph["length_unit"] = length_unit
     return graph
+
+
+def _check_precision(entries: list[Any], source: str) -> None:
+    """Refuse joints so far from the origin, for their spread, that float64 keeps fewer than ~9
+    significant digits of the geometry (:data:`MAX_FAR_OVER_SPREAD`): the rank decisions (rtol
+    1e-9) would judge rounding, not the mechanism."""
+    points = np.array(
+        [
+            entry[key]
+            for entry in entries
+            if isinstance(entry, dict)
+            for key in ("point", "center")
+            if isinstance(entry.get(key), list)
+            and len(entry[key]) == 3
+            and all(isinstance(v, int | float) and not isinstance(v, bool) and abs(v) <= MAX_COORDINATE
+                    for v in entry[key])
+        ],
+        dtype=float,
+    ).reshape(-1, 3)
+    if len(points) < 2:
+        return
+    far = float(np.abs(points).max())
+    spread = float(np.ptp(points, axis=0).max())
+    if spread > 0 and far > MAX_FAR_OVER_SPREAD * spread:
+        raise _error(
+            source,
+            "[[joints]]",
+            f"expected joints within {MAX_FAR_OVER_SPREAD:g} times their spread of the origin, got points "
+            f"{far:g} from it spanning only {spread:g}: float64 keeps too few digits of the geometry "
+            "there; put the origin near the mechanism.",
+        )
 
 
 def check_dof(graph: nx.MultiDiGraph, *, joint_key: str = "joint") -> None:

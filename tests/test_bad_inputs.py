@@ -603,6 +603,13 @@ def test_labels_and_orders_survive_a_move_far_from_the_origin(offset):
     assert (near.labels, near.constraint_order, near.global_order) == (far.labels, far.constraint_order, far.global_order)
 
 
+@pytest.mark.parametrize("offset", [[1e12, 0, 0], [0, -3e8, 1e8]])
+def test_joints_too_far_from_the_origin_for_their_spread_are_refused(offset):
+    # the 3-RPR's joint points span 1 m in x and y: 3e8 m away float64 keeps ~7 digits of them, 1e12 m away ~4
+    with pytest.raises(CatalogError, match=r"s\.toml: \[\[joints\]\]: expected joints within 1e\+07 times their spread of the origin, got points [0-9.e+]+ from it spanning only 1: "):
+        snapshot_from_mapping(_moved(SNAPSHOT, offset), source="s.toml")
+
+
 def test_joint_names_with_slashes_reach_the_diagram():
     from tests.mechanisms import tsai_3upu
 
