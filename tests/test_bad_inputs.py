@@ -631,3 +631,15 @@ def test_a_stretched_leg_from_its_pose_is_exactly_stretched_and_reads_serial():
     assert np.asarray(again.joint_angles)[0, 2] == 0.0  # not ~1e-8: the leg is put at its reach
     # on main this read "regular" (serial closeness 4e-8 > rtol 1e-9)
     assert smg.at(pose).verdicts.tolist() == ["actuation + serial singularity"]
+
+
+# --- never a hang -----------------------------------------------------------------------------------
+def test_large_factors_are_checked_at_integer_points_not_expanded(monkeypatch):
+    from screwkit import conditions as C
+    from screwkit.gca import DottedMonomial
+
+    factor = DottedMonomial.parse("[a b d ḟ][c g ḣ j]")  # paper 002 Eq. (7): the constant is -1
+    exact = C.condition(factor, finite="acg", infinite="bdfhj")
+    monkeypatch.setattr(C, "MAX_EXPANDED_TERMS", 0)  # force the sampled check
+    sampled = C.condition(factor, finite="acg", infinite="bdfhj")
+    assert exact.constant == sampled.constant == -1
