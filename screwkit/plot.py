@@ -63,6 +63,7 @@ from .twistgraph import check_twist_graph
 
 __all__ = [
     "KIND_COLOURS",
+    "UNREACHABLE_COLOUR",
     "VERDICT_COLOURS",
     "plot_map",
     "plot_twist_graph",
