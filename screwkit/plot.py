@@ -178,7 +178,7 @@ def plot_map(
     ax: Any = None,
     levels: int | Iterable[float] = 10,
     loci: Iterable[Any] = (),
-    degrees: Collection[str] = ("phi",),
+    degrees: Collection[str] = (),
     filled: bool = True,
     cmap: str = "viridis",
 ) -> Any:
@@ -200,8 +200,9 @@ def plot_map(
         The contour levels (as for :func:`matplotlib.pyplot.contour`).
     loci : iterable of Locus
         Each with ``kind``, ``factor``, ``x_name``, ``y_name`` (the map's) and ``points (m, 2)``.
-    degrees : collection of str, default ("phi",)
-        Pose coordinates in radians to draw in degrees.
+    degrees : collection of str, default ()
+        Pose coordinates stored in radians, to draw in degrees (:func:`screwkit.workspace.grid_map`
+        stores angles in degrees unless asked for radians: then pass their names here).
     filled : bool, default True
         Fill between the contour lines (the lines are drawn and labelled either way).
     cmap : str, default "viridis"
@@ -257,24 +258,28 @@ def plot_map(
     return ax
 
 
-def _codes(values: Any) -> Array:
+def _codes(values: Any, reachable: Array) -> Array:
+    """Verdict codes 0..7 from codes or verdict strings; unreachable cells (any value) become 0."""
     array = np.asarray(values)
     if array.dtype.kind in "iub":
-        codes = array.astype(int)
+        codes = np.where(reachable, array.astype(int), 0)
     else:
         names = {_verdict_name(code): code for code in range(8)}
-        flat = [names.get(str(v)) for v in array.ravel()]
-        unknown = sorted({str(v) for v, c in zip(array.ravel(), flat, strict=True) if c is None})
+        flat = [
+            names.get(str(v), -1) if ok else 0 for v, ok in zip(array.ravel(), reachable.ravel(), strict=True)
+        ]
+        codes = np.array(flat, dtype=int).reshape(array.shape)
+        unknown = sorted({str(v) for v in array[codes < 0]})
         if unknown:
             raise ScrewkitValueError(
                 f"Expected `workspace_map.values` to be verdict codes or verdicts {sorted(names)}, "
                 f"got {unknown[:3]}."
             )
-        codes = np.array(flat, dtype=int).reshape(array.shape)
-    if codes.size and (codes.min() < 0 or codes.max() > 7):
+    bad = (codes < 0) | (codes > 7)
+    if bad.any():
         raise ScrewkitValueError(
-            f"Expected verdict codes in 0..7 (bits: 1 constraint, 2 actuation, 4 serial), got "
-            f"{sorted(set(codes[(codes < 0) | (codes > 7)].tolist()))[:3]}."
+            f"Expected verdict codes in 0..7 (bits: 1 constraint, 2 actuation, 4 serial) where "
+            f"reachable, got {sorted(set(codes[bad].tolist()))[:3]}."
         )
     return codes
 
@@ -284,7 +289,7 @@ def plot_verdicts(
     *,
     ax: Any = None,
     loci: Iterable[Any] = (),
-    degrees: Collection[str] = ("phi",),
+    degrees: Collection[str] = (),
 ) -> Any:
     """A map of verdicts: each grid cell coloured by its label (:data:`VERDICT_COLOURS`).
 
@@ -292,11 +297,13 @@ def plot_verdicts(
     ----------
     workspace_map : WorkspaceMap
         As for :func:`plot_map`, with ``values`` the verdict codes (bit 1 constraint, 2 actuation,
-        4 serial; :attr:`screwkit.singularity.SingularityReport.codes`) or the verdict strings.
+        4 serial; :attr:`screwkit.singularity.SingularityReport.codes`) or the verdict strings;
+        unreachable cells may hold anything (e.g. ``-1``).
     ax : matplotlib.axes.Axes, optional
     loci : iterable of Locus
         Drawn on top, as in :func:`plot_map`.
-    degrees : collection of str, default ("phi",)
+    degrees : collection of str, default ()
+        As for :func:`plot_map`.
 
     Returns
     -------
@@ -322,7 +329,7 @@ def plot_verdicts(
     """
     ax = _new_axes(ax)
     x, y, reachable, x_label, y_label = _grid(workspace_map, degrees)
-    codes = _codes(workspace_map.values)
+    codes = _codes(workspace_map.values, reachable)
     ax.set_facecolor(UNREACHABLE_COLOUR)
     ax.pcolormesh(
         x,

@@ -70,7 +70,7 @@ def _contour_sets(ax):
 
 # maps ---------------------------------------------------------------------------------------------
 def test_map_contour_levels_and_loci(tmp_path):
-    ax = plot_map(_map(), levels=[0.5, 0.7, 0.9], loci=[_locus(), _locus("actuation", m=3)])
+    ax = plot_map(_map(), levels=[0.5, 0.7, 0.9], loci=[_locus(), _locus("actuation", m=3)], degrees=("phi",))
     ax.figure.savefig(tmp_path / "map.png")
     assert (tmp_path / "map.png").stat().st_size > 0
     filled, lines = _contour_sets(ax)
@@ -101,7 +101,7 @@ def test_map_leaves_unreachable_points_blank():
 def test_map_degrees_can_be_off_and_inputs_are_not_changed():
     m = _map()
     before = m.y_values.copy()
-    ax = plot_map(m, degrees=(), filled=False, levels=4)
+    ax = plot_map(m, filled=False, levels=4)  # angles drawn as stored by default
     assert np.array_equal(m.y_values, before)
     assert ax.get_ylabel() == "phi" and len(_contour_sets(ax)) == 1
 
@@ -136,7 +136,7 @@ def test_verdict_map_colours_and_legend(tmp_path):
     codes = np.zeros((11, 21), int)
     codes[5, :] = 2  # a row of actuation singularities
     codes[:, 10] = 1  # a column of constraint singularities
-    codes[0, 0] = 4  # a serial one, unreachable: not in the legend
+    codes[0, 0] = -1  # unreachable: any value, not in the legend
     reachable = np.ones((11, 21), bool)
     reachable[0, 0] = False
     ax = plot_verdicts(_map(values=codes, reachable=reachable), loci=[_locus()])
@@ -146,7 +146,7 @@ def test_verdict_map_colours_and_legend(tmp_path):
     (mesh,) = ax.collections
     shown = mesh.get_array()
     assert shown.mask.sum() == 1  # the unreachable cell
-    assert np.array_equal(shown.data.reshape(11, 21), codes)
+    assert np.array_equal(shown.data.reshape(11, 21)[reachable], codes[reachable])
     # each code is drawn in its own colour
     rgba = mesh.to_rgba(np.array([0, 1, 2]))
     assert np.allclose(rgba, [matplotlib.colors.to_rgba(VERDICT_COLOURS[c]) for c in (0, 1, 2)])
