@@ -244,7 +244,7 @@ def plot_map(
     ax.set_facecolor(UNREACHABLE_COLOUR)
     chosen = levels if isinstance(levels, int) else np.asarray(list(levels), dtype=float)
     if filled:
-        fill = ax.contourf(x, y, shown, levels=chosen, cmap=cmap)
+        fill = ax.contourf(x, y, shown, levels=chosen, cmap=cmap, extend="both")  # values off the levels too
         plt.colorbar(fill, ax=ax, label=str(workspace_map.quantity))
         chosen = fill.levels
     lines = ax.contour(x, y, shown, levels=chosen, colors="black", linewidths=0.7)

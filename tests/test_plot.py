@@ -75,6 +75,7 @@ def test_map_contour_levels_and_loci(tmp_path):
     assert (tmp_path / "map.png").stat().st_size > 0
     filled, lines = _contour_sets(ax)
     assert filled.filled and not lines.filled
+    assert filled.extend == "both"  # values beyond the levels are coloured, not left blank as unreachable
     assert lines.levels.tolist() == [0.5, 0.7, 0.9]
     # one marker line per locus, its points the locus's, phi drawn in degrees
     constraint, actuation = ax.lines
