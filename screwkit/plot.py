@@ -168,7 +168,7 @@ def _draw_loci(ax: Any, workspace_map: Any, loci: Iterable[Any], degrees: Collec
             marker=".",
             markersize=3,
             color=KIND_COLOURS.get(str(locus.kind), "black"),
-            label=f"{locus.kind} locus: {locus.factor}",
+            label=f"{locus.kind} locus" + (f": {locus.factor}" if locus.factor else ""),
         )
 
 
