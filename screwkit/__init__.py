@@ -85,6 +85,10 @@ _LAZY = {
     "diagram_at": "diagram",
     "SuperbracketAnalysis": "diagram",
     "superbracket_analysis": "diagram",
+    "TransmissionIndices": "indices",
+    "transmission": "indices",
+    "index_extremes": "indices",
+    "wrench_transmission": "indices",
 }
 
 
@@ -125,6 +129,7 @@ __all__ = [
     "ScrewkitValueError",
     "SingularityReport",
     "SuperbracketAnalysis",
+    "TransmissionIndices",
     "TwistGraphError",
     "UnreachablePoseError",
     "WrenchAnalysis",
@@ -147,6 +152,7 @@ __all__ = [
     "graph_dot",
     "graph_json",
     "helical",
+    "index_extremes",
     "infinite_point",
     "is_at_infinity",
     "jacobians_from_wrenches",
@@ -174,9 +180,11 @@ __all__ = [
     "snapshot_text",
     "spherical",
     "superbracket_analysis",
+    "transmission",
     "twist_graph",
     "universal",
     "virtual",
     "wrench_analysis",
     "wrench_diagram",
+    "wrench_transmission",
 ]
