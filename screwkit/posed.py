@@ -4,9 +4,10 @@
 cached properties over the whole batch, each built on the one before:
 
 ``configuration`` (the family's inverse kinematics) → ``joints`` (a
-:class:`~screwkit.joints.JointTable`) → ``singularities`` (labels, orders, closeness: the analysis
-core in chunks, :func:`~screwkit.singularity.classify_table`) → ``jacobians`` (``A χ̇ = B θ̇`` over
-the family's nominal twists) → ``transmission`` (paper 004's κ, ζ, LTI; four-limb family) and
+:class:`~screwkit.joints.JointTable`) → ``singularities`` (labels, orders, closeness: the inverse
+kinematics, joint table and analysis core chunk by chunk, :func:`~screwkit.singularity.classify_chunks`,
+so that a large batch never holds its whole table) → ``jacobians`` (``A χ̇ = B θ̇`` over the family's
+nominal twists) → ``transmission`` (paper 004's κ, ζ, LTI; four-limb family) and
 ``wrench_transmission`` (input/output transmission from the actuation wrenches, any family).
 
 Indexing gives one :class:`Pose`: its graph, wrench analysis (a batch of one through the same
@@ -37,13 +38,15 @@ from . import _backend as B
 from .exceptions import ScrewkitError, ScrewkitValueError
 from .jacobians import WrenchJacobians, jacobians_from_wrenches
 from .joints import JointTable
-from .singularity import SingularityReport, classify_table
+from .singularity import SingularityReport, classify_chunks, classify_table
 from .wrenches import WrenchAnalysis, analyze_table, checked_rtol
 
 __all__ = ["Pose", "PosedMechanism", "generic_samples"]
 
 Array = np.ndarray
 
+#: Poses taken through the inverse kinematics, joint table and analysis core at once.
+CHUNK = 256
 #: Random workspace poses drawn (in one batch) to find a generic configuration for a diagram.
 GENERIC_DRAWS = 50
 #: Generic samples of a diagram's points drawn (in one batch) for the superbracket: its structural
@@ -146,8 +149,28 @@ class PosedMechanism:
 
     @functools.cached_property
     def singularities(self) -> SingularityReport:
-        """Labels, orders and closeness over the batch (the analysis core, in chunks)."""
-        return classify_table(self.joints, rtol=self.rtol)
+        """Labels, orders and closeness over the batch (the analysis core, in chunks).
+
+        Unless the joint table is already there, each chunk of :data:`CHUNK` poses goes through
+        the inverse kinematics, its joint table and the core in turn, so memory stays bounded by
+        the chunk and the results; the whole table is computed only if a per-pose view asks.
+        """
+        if "joints" in self.__dict__:
+            return classify_table(self.joints, rtol=self.rtol, chunk=CHUNK)
+        flat = self.poses.reshape(-1, self.poses.shape[-1])
+        try:
+            protocol = self.mechanism.family_protocol
+            pieces = (
+                protocol.joints(self.mechanism.configuration(flat[start : start + CHUNK], **self.options))
+                for start in range(0, max(len(flat), 1), CHUNK)
+            )
+            return classify_chunks(pieces, self._joint_table, self.shape, rtol=self.rtol)
+        except ScrewkitError:
+            _ = self.configuration  # raises the whole batch's message (the failing pose's index)
+            raise
+
+    def _joint_table(self) -> JointTable:
+        return self.joints
 
     @property
     def verdicts(self) -> Array:
