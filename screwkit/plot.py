@@ -136,16 +136,26 @@ def _grid(workspace_map: Any, degrees: Collection[str]) -> tuple[Array, Array, A
     for name, values in zip(names, (x, y), strict=True):
         if name in degrees:
             values[...] = np.degrees(values)
-        labels.append(f"{name} (deg)" if name in degrees else name)
+        unit = _unit_of(workspace_map, name, degrees)
+        labels.append(f"{name} ({unit})" if unit else name)
     return x, y, reachable, labels[0], labels[1]
+
+
+def _unit_of(workspace_map: Any, name: str, degrees: Collection[str]) -> str:
+    """The unit a coordinate is drawn in: "deg" if converted, else the map's ``units`` entry (if any)."""
+    if name in degrees:
+        return "deg"
+    units = getattr(workspace_map, "units", None) or {}
+    return str(units.get(name, "")) if isinstance(units, dict) else ""
 
 
 def _title(workspace_map: Any, what: str, degrees: Collection[str]) -> str:
     fixed = dict(getattr(workspace_map, "fixed", {}) or {})
-    parts = [
-        f"{name} = {np.degrees(value):.4g}°" if name in degrees else f"{name} = {value:.4g}"
-        for name, value in fixed.items()
-    ]
+    parts = []
+    for name, value in fixed.items():
+        unit = _unit_of(workspace_map, name, degrees)
+        shown = np.degrees(value) if name in degrees else value
+        parts.append(f"{name} = {shown:.4g}" + (f" {unit}" if unit else ""))
     return what + (f" at {', '.join(parts)}" if parts else "")
 
 
@@ -193,7 +203,8 @@ def plot_map(
     ----------
     workspace_map : WorkspaceMap
         Attributes ``quantity``, ``x_name``, ``x_values (nx,)``, ``y_name``, ``y_values (ny,)``,
-        ``values (ny, nx)``, ``reachable (ny, nx)``, ``fixed`` (see the module docstring).
+        ``values (ny, nx)``, ``reachable (ny, nx)``, ``fixed`` (see the module docstring), and
+        optionally ``units`` (``{name: unit}``, shown on the axes and in the title).
     ax : matplotlib.axes.Axes, optional
         Default: a new figure.
     levels : int or sequence of float, default 10

@@ -91,6 +91,15 @@ def test_map_contour_levels_and_loci(tmp_path):
     assert {t.get_text() for t in ax.texts} <= {"0.5", "0.7", "0.9"} and ax.texts
 
 
+def test_map_shows_the_units_of_the_map():
+    m = _map()
+    m.units = {"x": "mm", "y": "mm", "z": "mm", "phi": "rad"}
+    ax = plot_map(m, levels=3)
+    assert (ax.get_xlabel(), ax.get_ylabel()) == ("x (mm)", "phi (rad)")
+    assert ax.get_title() == "lti at z = -800 mm, y = 0 mm"
+    assert plot_map(m, levels=3, degrees=("phi",)).get_ylabel() == "phi (deg)"
+
+
 def test_map_leaves_unreachable_points_blank():
     reachable = np.zeros((11, 21), bool)
     reachable[:, :10] = True  # the left half only
