@@ -466,6 +466,7 @@ def run_map(args: argparse.Namespace) -> int:
         fixed=fixed,
         chunk=args.chunk,
         progress=False if args.no_progress else None,
+        angles="deg",
     )
     result.save(args.out)
 
@@ -501,7 +502,7 @@ def run_path(args: argparse.Namespace) -> int:
                 f"screwkit path: error: {option} expects {len(names)} finite numbers "
                 f"({' '.join(n.upper() for n in names)}), got {' '.join(map(str, values))}"
             )
-    result = check_path(mechanism, args.start, args.end, samples=args.samples)
+    result = check_path(mechanism, args.start, args.end, samples=args.samples, angles="deg")
     _print(json.dumps(result.to_dict(), indent=2, ensure_ascii=False) if args.json else str(result))
     return 0
 
