@@ -47,7 +47,7 @@ from typing import Any, NoReturn
 import numpy as np
 
 from . import __version__
-from .catalog import list_mechanisms, load_mechanism, load_snapshot, load_toml
+from .catalog import degrees_to_radians, file_kind, list_mechanisms, load_mechanism, load_snapshot, load_toml
 from .exceptions import ScrewkitError
 from .export import graph_dot, graph_json, snapshot_text
 from .report import analyze
@@ -308,7 +308,8 @@ def _pose(args: argparse.Namespace, mechanism: Any) -> Any:
             f"got {got}"
         )
     angles = set(mechanism.angle_names)
-    return np.array([math.radians(v) if n in angles else v for n, v in zip(names, args.pose, strict=True)])
+    pairs = zip(names, args.pose, strict=True)
+    return np.array([degrees_to_radians(v) if n in angles else v for n, v in pairs])
 
 
 def _target_and_pose(args: argparse.Namespace) -> tuple[Any, Any]:
@@ -377,8 +378,7 @@ def run_graph(args: argparse.Namespace) -> int:
 
 
 def _toml_kind(path: str) -> Any:
-    header = load_toml(path).get("mechanism", {})
-    return header.get("kind") if isinstance(header, dict) else None
+    return file_kind(load_toml(path))
 
 
 def _print(text: str) -> None:

@@ -652,9 +652,16 @@ def diagram_at(reference: WrenchDiagram, analysis: WrenchAnalysis) -> WrenchDiag
 
 
 def _key_direction(key: tuple[str, ...], analysis: WrenchAnalysis) -> Array:
-    name, _, index = key[1].partition("/")
+    joints = {k for _, _, k in analysis.graph.edges(keys=True)}
+    name, index = (key[1], "") if key[1] in joints else _axis_of(key[1])  # joint names may hold "/"
     screw = analysis.graph.edges[_edge(analysis, name)]["joint"].screws[int(index) - 1 if index else 0]
     return screw[:3]
+
+
+def _axis_of(text: str) -> tuple[str, str]:
+    """``"U/1/2"`` -> ``("U/1", "2")`` (axis 2 of the U joint named ``"U/1"``); ``"R1"`` -> ``("R1", "")``."""
+    name, _, index = text.rpartition("/")
+    return (name, index) if index in ("1", "2") and name else (text, "")
 
 
 def _describe(key: tuple[str, ...], normals: Mapping[tuple[str, str], tuple[Array, str]]) -> str:
@@ -664,7 +671,7 @@ def _describe(key: tuple[str, ...], normals: Mapping[tuple[str, str], tuple[Arra
     if kind == "direction":
         return f"the point at infinity of the {key[1]}"
     if kind == "axis":
-        name, _, index = key[1].partition("/")
+        name, index = _axis_of(key[1])
         return f"the point at infinity of the axis of {name}" + (f" (its axis {index})" if index else "")
     if kind == "normals":
         return f"the point at infinity of {normals[(key[1], key[2])][1]}"

@@ -42,7 +42,7 @@ import numpy as np
 
 from . import _backend as B
 from . import screw as S
-from .catalog import Mechanism, load_mechanism, load_snapshot, load_toml
+from .catalog import Mechanism, check_dof, file_kind, load_mechanism, load_snapshot, load_toml
 from .exceptions import ScrewkitError, ScrewkitTypeError, ScrewkitValueError
 from .jacobians import WrenchJacobians
 from .singularity import SingularityReport, classify_analysis
@@ -386,6 +386,8 @@ def analyze(
     ()
     """
     tolerance = B.DEFAULT_RTOL if rtol is None else checked_rtol(rtol)
+    if not isinstance(superbracket, bool | np.bool_):
+        raise ScrewkitTypeError(f"Expected `superbracket` to be True or False, got {superbracket!r}.")
     if isinstance(target, nx.MultiDiGraph):
         return _graph_report(target, "<graph>", pose, tolerance, superbracket, "a twist graph")
     if not isinstance(target, str | Path | Mechanism):
@@ -394,7 +396,7 @@ def analyze(
             f"(networkx.MultiDiGraph), got {type(target).__name__}."
         )
     text = str(target) if not isinstance(target, Mechanism) else ""
-    if text.endswith(".toml") and load_toml(text).get("mechanism", {}).get("kind") == "snapshot":
+    if text.endswith(".toml") and file_kind(load_toml(text)) == "snapshot":
         return _graph_report(load_snapshot(text), text, pose, tolerance, superbracket, "a snapshot")
     mechanism = target if isinstance(target, Mechanism) else load_mechanism(target)
     return mechanism.at(pose, rtol=tolerance)[0].report(superbracket=superbracket)
@@ -405,7 +407,11 @@ def _graph_report(
 ) -> AnalysisReport:
     if pose is not None:
         raise ScrewkitValueError(f"{source}: {what} is one configuration; expected no pose, got {pose!r}.")
+    check_dof(graph)
     analysis = wrench_analysis(graph, rtol=rtol)
+    if not analysis.topology.actuated and graph.graph.get("dof") is None:
+        # mobility analysis: the nominal mobility is the platform's freedom at this configuration
+        analysis = wrench_analysis(graph, dof=6 - int(analysis.constraint_order), rtol=rtol)
     from .diagram import graph_diagram
 
     diagram, sampler = graph_diagram(analysis)
