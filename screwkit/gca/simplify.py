@@ -188,18 +188,26 @@ def _pair_dotted(
     """
     items = list(items)
     substitutions: list[tuple[Bracket, Bracket]] = []
+    memo: dict[tuple[Any, ...], BracketPolynomial] = {}  # the rescans after a merge reuse these
+
+    def canonical(item: DottedMonomial) -> BracketPolynomial:
+        key = (item.brackets, item.dots, item.coefficient)
+        if key not in memo:
+            memo[key] = rules.canonical(item.expand())
+        return memo[key]
+
     merged = True
     while merged:
         merged = False
-        forms = [rules.canonical(item.expand()) for item in items]
-        index = {form: j for j, form in enumerate(forms)}
+        forms = [canonical(item) for item in items]
+        negated = {-1 * form: j for j, form in enumerate(forms)}  # B = −(A with x↔y) looked up
         for i, item in enumerate(items):
             for dotted, swapped in _transpositions(item):
-                target = rules.canonical(swapped.expand())
-                j = index.get(-1 * target) if target else None
+                target = canonical(swapped)
+                j = negated.get(target) if target else None
                 if j is None or j == i:
                     continue
-                if rules.canonical(dotted.expand()) != forms[i] + forms[j]:
+                if canonical(dotted) != forms[i] + forms[j]:
                     continue
                 old = [Bracket(b) for b in items[j].brackets]
                 for pair in rules.differences(old, [Bracket(b) for b in swapped.brackets]):
