@@ -69,6 +69,8 @@ __all__ = [
     "VectorDot",
     "condition",
     "conditions",
+    "label",
+    "latex",
 ]
 
 
@@ -397,7 +399,37 @@ def _two_planes(term: DottedMonomial, types: _Types) -> tuple[sympy.Expr, str] |
         f"line {_word([x, y])} meets the line where planes {_word(planes[0])} and "
         f"{_word(planes[1])} intersect"
     )
-    return expr, statement
+    return expr, statement + _refinement(planes, x, y, types)
+
+
+def _refinement(planes: list[list[str]], x: str, y: str, types: _Types) -> str:
+    """The same condition in the words of the literature, when the planes allow it.
+
+    * Each plane is a finite point and two directions, and x, y are directions: the plane at
+      infinity holds three lines (uv, x y, u'v'), and the condition is their concurrency, i.e. the
+      three normals u × v, x × y, u' × v' are parallel to one plane (e.g. three constraint couples
+      become dependent; ``gca.md`` §5.2, triangle of infinite lines).
+    * The planes share one point o: ``P ∩ Q`` is the line through o that meets the lines P − o
+      and Q − o, so the condition is that one line through o meets three lines.
+    """
+    infinite = [[p for p in plane if p in types.infinite] for plane in planes]
+    if x in types.infinite and y in types.infinite and all(len(d) == 2 for d in infinite):
+        (u, v), (s, t) = infinite
+        return (
+            f"; i.e. the lines at infinity {_word([u, v])}, {_word([x, y])} and {_word([s, t])} "
+            f"are concurrent (the normals {u} × {v}, {x} × {y} and {s} × {t} are parallel to one "
+            "plane)"
+        )
+    shared = sorted(set(planes[0]) & set(planes[1]))
+    if len(shared) == 1:
+        (o,) = shared
+        first, second = ([p for p in plane if p != o] for plane in planes)
+        through = f"parallel to direction {o}" if o in types.infinite else f"through {o}"
+        return (
+            f"; i.e. a line {through} meets the three lines {_word(first)}, {_word(second)} and "
+            f"{_word([x, y])} (if these lie in one plane not containing {o}: they are concurrent)"
+        )
+    return ""
 
 
 # --------------------------------------------------------------------------------------------------
@@ -651,6 +683,46 @@ def conditions(
         kind, evidence = ("", "") if roles is None else label(c.vectors, lines or (), roles)
         found.append(replace(c, multiplicity=multiplicity, label=kind, evidence=evidence))
     return tuple(found)
+
+
+def latex(factored: FactoredForm, found: Sequence[Condition], lines: str = "") -> str:
+    """The factored superbracket and its conditions as one LaTeX ``align*`` block (amsmath).
+
+    Parameters
+    ----------
+    factored : FactoredForm
+    found : sequence of Condition
+        Its conditions (:func:`conditions`).
+    lines : str, default ""
+        The superbracket's argument, e.g. ``"[ab, cd, ef, gh, ij, kj]"``, printed on the left.
+
+    Examples
+    --------
+    >>> from screwkit.gca import BracketPolynomial, collect_factors
+    >>> f = collect_factors(BracketPolynomial.parse("[gikj][abdf]"))
+    >>> print(latex(f, conditions(f, finite="ag", infinite="bdfijk")))  # doctest: +ELLIPSIS
+    \\begin{align*}
+     &= [gikj][abdf] \\\\
+    [gikj] = 0 &\\iff \\left(\\mathbf{i} \\times \\mathbf{k}\\right) \\cdot \\mathbf{j} = 0 ...
+    \\end{align*}
+    """
+    left = lines.replace(", ", ",\\,")
+    rows = [rf"{left} &= {factored.to_latex()}" + " \\\\"]
+    for c in found:
+        head = rf"\text{{{c.label}}}:\quad " if c.label else ""
+        rows.append(
+            rf"{head}{c.factor_latex()} &\iff {c.to_latex()} "
+            rf"\quad\text{{({_latex_text(c.statement)})}}" + " \\\\"
+        )
+    return "\\begin{align*}\n" + "\n".join(rows) + "\n\\end{align*}"
+
+
+def _latex_text(text: str) -> str:
+    """Plain words for ``\\text{}``: escape LaTeX specials, spell × and ·."""
+    for old, new in (("\\", r"\textbackslash{}"), ("_", r"\_"), ("&", r"\&"), ("%", r"\%"),
+                     ("#", r"\#"), ("×", r"$\times$"), ("·", r"$\cdot$"), ("−", "-")):
+        text = text.replace(old, new)
+    return text
 
 
 def _line_pairs(lines: Any) -> list[tuple[str, ...]] | None:
