@@ -25,12 +25,12 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from _timing import best_of  # noqa: E402
+from _timing import best_of
 
-from screwkit.catalog import list_mechanisms, load_mechanism  # noqa: E402
-from screwkit.conditions import conditions  # noqa: E402
-from screwkit.diagram import superbracket_analysis  # noqa: E402
-from screwkit.gca import simplify_superbracket  # noqa: E402
+from screwkit.catalog import list_mechanisms, load_mechanism
+from screwkit.conditions import conditions
+from screwkit.diagram import superbracket_analysis
+from screwkit.gca import simplify_superbracket
 
 Z = np.array([0.0, 0.0, 1.0])
 
@@ -96,7 +96,8 @@ def main(argv=None):
     for name, case in GCA_CASES.items():
         factored, found = gca_chain(*case)
         seconds = best_of(args.repeats, lambda case=case: gca_chain(*case))
-        labels = ", ".join(f"{c.label}{'^' + str(c.multiplicity) if c.multiplicity > 1 else ''}" for c in found)
+        powers = [f"^{c.multiplicity}" if c.multiplicity > 1 else "" for c in found]
+        labels = ", ".join(c.label + power for c, power in zip(found, powers, strict=True))
         print(f"{name:16s} | {seconds:7.3f} | {factored}  [{labels}]")
     print(f"\n{'robot':16s} | {'sampling':>8} | {'GCA':>7} | factored form and labels (catalog default pose)")
     for name in list_mechanisms():

@@ -221,7 +221,9 @@ def run_analyze(args: argparse.Namespace) -> int:
     else:
         pose = None
     if args.latex and args.no_superbracket:
-        raise _UsageError("screwkit analyze: error: --latex prints the superbracket's conditions; drop --no-superbracket")
+        raise _UsageError(
+            "screwkit analyze: error: --latex prints the superbracket's conditions; drop --no-superbracket"
+        )
     report = analyze(target, pose, rtol=args.rtol, superbracket=not args.no_superbracket)
     if args.latex:
         _print(_latex(report))

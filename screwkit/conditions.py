@@ -631,9 +631,10 @@ def label(
             f"lines, got {list(roles)}."
         )
     used = set(vectors)
-    on = {kind: {x for line, r in zip(pairs, roles, strict=True) if r == kind for x in line} for kind in ("constraint", "actuation")}
+    kinds = list(zip(pairs, roles, strict=True))
+    on = {kind: {x for line, r in kinds if r == kind for x in line} for kind in ("constraint", "actuation")}
     involved = {
-        kind: [_word(line) for line, r in zip(pairs, roles, strict=True) if r == kind and used & set(line)]
+        kind: [_word(line) for line, r in kinds if r == kind and used & set(line)]
         for kind in ("actuation", "constraint")
     }
     text = "involves lines " + ", ".join(
@@ -805,8 +806,7 @@ def _plane_triples(
     if not triples:
         return set()
     values = np.atleast_1d(poly.evaluate({x: np.array(v) for x, v in batch.items()}))
-    allowed = {t for t, v in zip(triples, values, strict=True) if abs(v) <= 1e-9 * scale}
-    return allowed
+    return {tuple(t) for t, v in zip(triples, values, strict=True) if abs(v) <= 1e-9 * scale}
 
 
 def _plane_vector(triple: Sequence[str], points: Mapping[str, np.ndarray]) -> np.ndarray:
@@ -849,7 +849,7 @@ def _four_planes(poly: BracketPolynomial, types: _Types) -> tuple[sympy.Expr, st
     with np.errstate(divide="ignore", invalid="ignore"):
         ratios = np.array(values)[:, None] / dets
     close = np.isfinite(ratios).all(axis=0) & np.isclose(ratios[0], ratios[1], rtol=1e-8, atol=0)
-    for k in np.flatnonzero(close):
+    for k in np.flatnonzero(close).tolist():
         candidate = candidates[k]
         normals = [_plane(t, types) for t in candidate]
         terms = []
