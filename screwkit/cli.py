@@ -9,10 +9,15 @@ Commands
 ``screwkit analyze NAME|FILE.toml [--pose X Y Z PHI] [--rtol R] [--json]``
     The whole analysis (:func:`screwkit.report.analyze`): twist graph, wrench systems, wrench
     diagram, superbracket, conditions, verdict. Lengths in the catalog file's unit, angle in degrees.
+``screwkit graph NAME|FILE.toml [--pose ...] [--equivalent] [--format dot|json|toml] [--out FILE]``
+    The twist graph (or its equivalent graph) as Graphviz DOT, JSON or a snapshot file.
 ``screwkit list [--json]``
     The catalog.
 ``screwkit screw (--revolute SX SY SZ --point X Y Z | --prismatic DX DY DZ | --plucker C*6)``
     Describe one screw.
+``screwkit table4 [--grid N] [--refine K] [--robot NAME ...] [--json]``
+    Paper 004's Table 4 regenerated (:func:`screwkit.indices.table_4`): each min/max LTI beside
+    ours, the difference, and why they differ where they do.
 
 Examples
 --------
@@ -26,20 +31,24 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import os
 import re
 import sys
 from collections.abc import Sequence
+from pathlib import Path
 from typing import Any, NoReturn
 
 import numpy as np
 
 from . import __version__
-from .catalog import list_mechanisms, load_mechanism, load_toml
+from .catalog import list_mechanisms, load_mechanism, load_snapshot, load_toml
 from .exceptions import ScrewkitError
+from .export import graph_dot, graph_json, snapshot_text
 from .report import analyze
 from .screw import Screw
+from .twistgraph import equivalent_twist_graph
 
-__all__ = ["get_parser", "main", "run_analyze", "run_list", "run_screw"]
+__all__ = ["get_parser", "main", "run_analyze", "run_graph", "run_list", "run_screw", "run_table4"]
 
 
 class _UsageError(Exception):
@@ -86,14 +95,7 @@ def get_parser() -> argparse.ArgumentParser:
         "superbracket, geometric and vector-form conditions with their labels, and the verdict.",
     )
     analyze_parser.add_argument("mechanism", help="a catalog name (e.g. h4) or a .toml file")
-    analyze_parser.add_argument(
-        "--pose",
-        nargs="+",
-        type=float,
-        metavar="Q",
-        help="the pose, e.g. X Y Z PHI for an SMG: lengths in the catalog file's length unit "
-        "(mm for h4), the angle in DEGREES; default: the catalog's default pose",
-    )
+    _add_pose_argument(analyze_parser)
     analyze_parser.add_argument(
         "--rtol",
         type=float,
@@ -111,6 +113,23 @@ def get_parser() -> argparse.ArgumentParser:
     analyze_parser.add_argument(
         "--no-superbracket", action="store_true", help="skip the superbracket expansion (faster)"
     )
+    graph = commands.add_parser(
+        "graph",
+        help="export the twist graph (or its equivalent graph) as DOT, JSON or a snapshot TOML file",
+        description="Write a mechanism's twist graph at a pose: Graphviz DOT (links as nodes, joints as "
+        "labelled edges), JSON (screwkit.twistgraph.to_data) or a snapshot TOML file that `screwkit "
+        "analyze` reads back. --equivalent writes the equivalent graph instead, closed sub-loops "
+        "(parallelograms, 4S) replaced by virtual serial chains.",
+    )
+    graph.add_argument("mechanism", help="a catalog name (e.g. h4) or a .toml file")
+    _add_pose_argument(graph)
+    graph.add_argument(
+        "--format", choices=("dot", "json", "toml"), default="dot", help="output format (default dot)"
+    )
+    graph.add_argument(
+        "--equivalent", action="store_true", help="the equivalent graph (closed sub-loops reduced)"
+    )
+    graph.add_argument("--out", metavar="FILE", help="write to FILE instead of standard output")
     listing = commands.add_parser("list", help="list the catalog's mechanisms")
     listing.add_argument("--json", action="store_true", help="print JSON instead of text")
     screw = commands.add_parser(
@@ -137,7 +156,35 @@ def get_parser() -> argparse.ArgumentParser:
         "--point", nargs=3, type=float, metavar=("X", "Y", "Z"), help="a point of the revolute axis"
     )
     screw.add_argument("--json", action="store_true", help="print JSON instead of text")
+    table4 = commands.add_parser(
+        "table4",
+        help="paper 004's Table 4 (min/max LTI) regenerated, the paper's values beside ours",
+        description="Regenerate paper 004's Table 4: the extremes of the local transmission index "
+        "(Eq. 16) over each robot's workspace, by a grid and a local refinement "
+        "(screwkit.indices.index_extremes); the paper's value, ours, the difference and its cause.",
+    )
+    table4.add_argument("--grid", type=int, default=41, metavar="N", help="grid points per axis (default 41)")
+    table4.add_argument(
+        "--refine", type=int, default=12, metavar="K",
+        help="rounds of local refinement (default 12; 0: grid only)",
+    )
+    table4.add_argument(
+        "--robot", action="append", default=None, metavar="NAME",
+        help="a catalog name (quattro, h4, veloce, v4, ragnar); repeat for several (default all)",
+    )
+    table4.add_argument("--json", action="store_true", help="print JSON instead of text")
     return parser
+
+
+def _add_pose_argument(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument(
+        "--pose",
+        nargs="+",
+        type=float,
+        metavar="Q",
+        help="the pose, e.g. X Y Z PHI for an SMG: lengths in the catalog file's length unit "
+        "(mm for h4), the angle in DEGREES; default: the catalog's default pose",
+    )
 
 
 def _number(value: float) -> str:
@@ -184,10 +231,29 @@ def _pose(args: argparse.Namespace, mechanism: Any) -> Any:
         expected = " ".join(n.upper() for n in names)
         got = " ".join(map(str, args.pose))
         raise _UsageError(
-            f"screwkit analyze: error: --pose expects {len(names)} finite numbers ({expected}), got {got}"
+            f"screwkit {args.command}: error: --pose expects {len(names)} finite numbers ({expected}), "
+            f"got {got}"
         )
     angles = set(mechanism.angle_names)
     return np.array([math.radians(v) if n in angles else v for n, v in zip(names, args.pose, strict=True)])
+
+
+def _target_and_pose(args: argparse.Namespace) -> tuple[Any, Any]:
+    """The mechanism (a :class:`Mechanism`, or a snapshot's path) and the pose of ``analyze``/``graph``."""
+    if args.mechanism.endswith(".toml") and _toml_kind(args.mechanism) == "snapshot":
+        if args.pose is not None:
+            raise _UsageError(
+                f"screwkit {args.command}: error: {args.mechanism} is a snapshot (one configuration); "
+                "--pose does not apply"
+            )
+        return args.mechanism, None
+    if not args.mechanism.endswith(".toml") and args.mechanism.lower() not in list_mechanisms():
+        raise _UsageError(
+            f"screwkit {args.command}: error: unknown mechanism {args.mechanism!r}: expected one of "
+            f"{list_mechanisms()} or a .toml file"
+        )
+    mechanism = load_mechanism(args.mechanism)  # a malformed file is an analysis error (exit 1)
+    return mechanism, _pose(args, mechanism)
 
 
 def run_analyze(args: argparse.Namespace) -> int:
@@ -203,27 +269,11 @@ def run_analyze(args: argparse.Namespace) -> int:
     """
     if args.rtol is not None and not 0 <= args.rtol < 1:
         raise _UsageError(f"screwkit analyze: error: --rtol expects a number in [0, 1), got {args.rtol:g}")
-    target: Any = args.mechanism
-    snapshot = args.mechanism.endswith(".toml") and (_toml_kind(args.mechanism) == "snapshot")
-    if not snapshot:
-        if not args.mechanism.endswith(".toml") and args.mechanism.lower() not in list_mechanisms():
-            raise _UsageError(
-                f"screwkit analyze: error: unknown mechanism {args.mechanism!r}: expected one of "
-                f"{list_mechanisms()} or a .toml file"
-            )
-        target = load_mechanism(args.mechanism)  # a malformed file is an analysis error (exit 1)
-        pose = _pose(args, target)
-    elif args.pose is not None:
-        raise _UsageError(
-            f"screwkit analyze: error: {args.mechanism} is a snapshot (one configuration); "
-            "--pose does not apply"
-        )
-    else:
-        pose = None
     if args.latex and args.no_superbracket:
         raise _UsageError(
             "screwkit analyze: error: --latex prints the superbracket's conditions; drop --no-superbracket"
         )
+    target, pose = _target_and_pose(args)
     report = analyze(target, pose, rtol=args.rtol, superbracket=not args.no_superbracket)
     if args.latex:
         _print(_latex(report))
@@ -240,6 +290,34 @@ def _latex(report: Any) -> str:
 
     result = report.superbracket
     return latex(result.simplification.factored, result.conditions, result.diagram.line_text())
+
+
+def run_graph(args: argparse.Namespace) -> int:
+    """Export a twist graph; see ``screwkit graph --help``.
+
+    Examples
+    --------
+    >>> run_graph(get_parser().parse_args(["graph", "h4", "--format", "dot"]))  # doctest: +ELLIPSIS
+    digraph "H4" {
+    ...
+      "base" -> "arm1" [label="A1 (R)", style=bold];
+    ...
+    0
+    """
+    target, pose = _target_and_pose(args)
+    twist_graph = load_snapshot(target) if isinstance(target, str) else target.twist_graph(pose)
+    if args.equivalent:
+        twist_graph = equivalent_twist_graph(twist_graph)
+    writers = {"dot": graph_dot, "json": graph_json, "toml": snapshot_text}
+    text = writers[args.format](twist_graph)
+    if args.out is None:
+        _print(text.rstrip("\n"))
+        return 0
+    try:
+        Path(args.out).write_text(text, encoding="utf-8")
+    except OSError as err:
+        raise _UsageError(f"screwkit graph: error: --out {args.out}: cannot write: {err.strerror}") from err
+    return 0
 
 
 def _toml_kind(path: str) -> Any:
@@ -289,6 +367,53 @@ def run_list(args: argparse.Namespace) -> int:
     return 0
 
 
+def run_table4(args: argparse.Namespace) -> int:
+    """Paper 004's Table 4 regenerated; see ``screwkit table4 --help``.
+
+    Examples
+    --------
+    >>> run_table4(get_parser().parse_args(["table4", "--robot", "veloce", "--grid", "11", "--refine", "0"]))
+    ... # doctest: +ELLIPSIS
+    paper 004, Table 4: ...
+    Veloce       0 deg  cone     0.287 ...
+    0
+    """
+    from .indices import TABLE_4, table_4
+
+    known = sorted({row[1] for row in TABLE_4})
+    for name in args.robot or []:
+        if name not in known:
+            raise _UsageError(f"screwkit table4: error: unknown robot {name!r}; expected one of {known}.")
+    for option, value, least in (("--grid", args.grid, 2), ("--refine", args.refine, 0)):
+        if value < least:
+            raise _UsageError(f"screwkit table4: error: expected {option} >= {least}, got {value}.")
+    rows = table_4(grid=args.grid, refine=args.refine, robots=args.robot)
+    if args.json:
+        print(json.dumps([row.to_dict() for row in rows], indent=2))
+        return 0
+    print(
+        f"paper 004, Table 4: min/max LTI (Eq. 16) over the workspace; ours: {args.grid}^3 grid + "
+        f"{args.refine} rounds of refinement (screwkit.indices.index_extremes)"
+    )
+    print(f"{'robot':<10} {'phi':>5}      {'region':<8} {'min: paper':>10} {'ours':>7} {'diff':>7}"
+          f"   {'max: paper':>10} {'ours':>7} {'diff':>7}")
+    notes = []
+    for row in rows:
+        region = "eq_19" if row.region.startswith("super") else "cone"
+        print(
+            f"{row.robot:<10} {row.phi_deg:>5.0f} deg  {region:<8} {row.paper_min:>10.3f} "
+            f"{row.ours.minimum:>7.3f} {row.ours.minimum - row.paper_min:>+7.3f}   {row.paper_max:>10.3f} "
+            f"{row.ours.maximum:>7.3f} {row.ours.maximum - row.paper_max:>+7.3f}"
+        )
+        notes += [f"  {row.robot} {row.phi_deg:g} deg {key}: {text}" for key, text in row.notes.items()]
+    print("regions: cone = the assumed workspace (paper 004's Fig. 6 is missing), eq_19 = Eq. (19)")
+    if notes:
+        print("where ours differs from the paper's by more than 0.002:")
+        for note in notes:
+            print(note)
+    return 0
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; returns the exit status (0 ok, 1 analysis error, 2 usage error).
 
@@ -305,11 +430,20 @@ def main(argv: Sequence[str] | None = None) -> int:
         if args.command is None:
             parser.print_help()
             return 0
-        runners = {"analyze": run_analyze, "list": run_list, "screw": run_screw}
+        runners = {
+            "analyze": run_analyze,
+            "graph": run_graph,
+            "list": run_list,
+            "screw": run_screw,
+            "table4": run_table4,
+        }
         return runners[args.command](args)
     except _UsageError as err:
         print(str(err), file=sys.stderr)
         return 2
+    except BrokenPipeError:  # the reader closed the pipe (`screwkit graph h4 | head`): not an error
+        sys.stdout = open(os.devnull, "w")  # the final flush stays silent
+        return 0
     except ScrewkitError as err:
         message = " ".join(str(err).split())
         print(f"screwkit {args.command}: error: {message}", file=sys.stderr)

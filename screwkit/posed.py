@@ -6,7 +6,8 @@ cached properties over the whole batch, each built on the one before:
 ``configuration`` (the family's inverse kinematics) → ``joints`` (a
 :class:`~screwkit.joints.JointTable`) → ``singularities`` (labels, orders, closeness: the analysis
 core in chunks, :func:`~screwkit.singularity.classify_table`) → ``jacobians`` (``A χ̇ = B θ̇`` over
-the family's nominal twists).
+the family's nominal twists) → ``transmission`` (paper 004's κ, ζ, LTI; four-limb family) and
+``wrench_transmission`` (input/output transmission from the actuation wrenches, any family).
 
 Indexing gives one :class:`Pose`: its graph, wrench analysis (a batch of one through the same
 kernels), verdict, Jacobians, wrench diagram, superbracket and :meth:`Pose.report`. The
@@ -167,6 +168,22 @@ class PosedMechanism:
     def jacobians(self) -> WrenchJacobians:
         """``A χ̇ = B θ̇`` per pose over the family's nominal twists."""
         return jacobians_from_wrenches(self.singularities.analysis, self.twist_basis, rtol=self.rtol)
+
+    @functools.cached_property
+    def transmission(self) -> Any:
+        """Paper 004's ``κ`` (input), ``ζ`` (output) and LTI ``η`` per pose
+        (:func:`screwkit.indices.transmission`; four-limb family only, ScrewkitValueError otherwise)."""
+        from .indices import transmission
+
+        return transmission(self)
+
+    @functools.cached_property
+    def wrench_transmission(self) -> Any:
+        """Input/output transmission per actuated joint and their LTI, from the actuation wrenches and
+        the nominal twists, for any family (:func:`screwkit.indices.wrench_transmission`)."""
+        from .indices import application_points, wrench_transmission
+
+        return wrench_transmission(self.jacobians, input_points=application_points(self.configuration))
 
     def __getitem__(self, index: Any) -> Pose:
         try:

@@ -29,6 +29,7 @@ Examples
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections import Counter
 from dataclasses import dataclass
@@ -109,6 +110,10 @@ class AnalysisReport:
         type (module docstring); None for a snapshot, or when the basis is refused at the pose.
     jacobians_note : str
         What the Jacobians' columns are, or why there are none.
+    transmission : dict or None
+        The transmission indices at the pose (:func:`screwkit.indices.transmission_summary`: the
+        wrench-based ITI/OTI/LTI, and paper 004's κ, ζ, η for the four-limb family); None for a
+        snapshot.
     """
 
     name: str
@@ -125,6 +130,7 @@ class AnalysisReport:
     superbracket_note: str
     jacobians: WrenchJacobians | None = None
     jacobians_note: str = _SNAPSHOT_JACOBIANS
+    transmission: dict[str, Any] | None = None
 
     def graph_summary(self) -> dict[str, Any]:
         """Links, joints by type, actuated joints, loops; and the equivalent graph's virtual joints."""
@@ -215,6 +221,7 @@ class AnalysisReport:
             "superbracket_note": self.superbracket_note,
             "verdict": self.verdict.to_dict(),
             "jacobians": self.jacobian_summary(),
+            "transmission": self.transmission,
         }
 
     def __str__(self) -> str:
@@ -269,6 +276,8 @@ class AnalysisReport:
         out.append(f"  closeness (0 at a singularity): {measures}")
         if self.pose is not None:
             out += ["", *self._jacobian_lines()]
+        if self.transmission is not None:
+            out += ["", *_transmission_lines(self.transmission)]
         return "\n".join(out)
 
     def _jacobian_lines(self) -> list[str]:
@@ -292,6 +301,23 @@ class AnalysisReport:
                 "them) leaves it regular"
             )
         return out
+
+
+def _transmission_lines(summary: dict[str, Any]) -> list[str]:
+    out = ["transmission (in [0, 1]; 0 at a singularity)"]
+    wrench, paper = summary["wrench"], summary["paper_004"]
+    if wrench is not None:
+        names = wrench["actuated_joints"]
+        for key in ("input", "output"):
+            values = ", ".join(f"{n} {v:.3g}" for n, v in zip(names, wrench[key], strict=True))
+            out.append(f"  {key} (wrench-based): {values}")
+        out.append(f"  LTI (wrench-based): {wrench['lti']:.3g}")
+    if paper is not None:
+        out.append(
+            f"  paper 004: kappa {paper['input']:.3g}, zeta {paper['output']:.3g}, LTI eta {paper['lti']:.3g}"
+        )
+    out.append(f"  ({summary['note']})")
+    return out
 
 
 def _determinant_units(jac: WrenchJacobians, unit: str) -> tuple[str, str]:
@@ -415,7 +441,7 @@ def pose_report(pose: Any, *, superbracket: bool = True) -> AnalysisReport:
         )
     except ScrewkitError as err:
         jacobians_note = f"not computed: {err}"
-    return _finish(
+    report = _finish(
         mechanism.name,
         mechanism.source,
         mechanism.length_unit,
@@ -430,6 +456,9 @@ def pose_report(pose: Any, *, superbracket: bool = True) -> AnalysisReport:
         jacobians,
         jacobians_note,
     )
+    from .indices import transmission_summary
+
+    return dataclasses.replace(report, transmission=transmission_summary(mechanism, report.pose, jacobians))
 
 
 def _finish(
