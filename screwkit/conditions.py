@@ -595,12 +595,12 @@ def label(
 ) -> tuple[str, str]:
     """Label a factor by the roles of the lines whose points its vector form uses.
 
-    A factor whose form uses only points of constraint lines vanishes with a property of the
-    constraint wrenches alone: ``"constraint"`` (paper 002 §5.3, condition 1, [gikj] in the H4).
-    If one of its points lies only on actuation lines it involves the actuation wrenches:
-    ``"actuation"`` (condition 2). If its points all lie on constraint lines but some also on
-    actuation lines (a shared point, e.g. a joint centre both kinds of wrench pass through), the
-    lines' roles cannot tell: ``"constraint or actuation"``.
+    A factor whose form uses only points of constraint lines is a function of the constraint
+    wrenches alone: ``"constraint"`` (paper 002 §5.3, condition 1, [gikj] in the H4), even if
+    some of those points also lie on actuation lines. If one of its points lies only on actuation
+    lines it involves the actuation wrenches: ``"actuation"`` (condition 2). If every one of its
+    points lies on lines of both kinds (e.g. joint centres both kinds of wrench pass through), it is
+    a function of either kind alone and the roles cannot tell: ``"constraint or actuation"``.
 
     Parameters
     ----------
@@ -645,11 +645,12 @@ def label(
     if only_actuation:
         verb = "lies" if len(only_actuation) == 1 else "lie"
         return "actuation", f"{text}; {', '.join(only_actuation)} {verb} only on actuation lines"
-    if shared:
+    if shared and used <= on["actuation"]:
         return "constraint or actuation", (
-            f"{text}; its points lie on constraint lines, {', '.join(shared)} on actuation lines too"
+            f"{text}; each of its points, {', '.join(shared)}, lies on constraint and on actuation lines"
         )
-    return "constraint", f"{text}; its points lie only on constraint lines"
+    also = f" ({', '.join(shared)} on actuation lines too)" if shared else ""
+    return "constraint", f"{text}; its points lie on constraint lines{also}"
 
 
 def conditions(

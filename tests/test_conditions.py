@@ -299,7 +299,7 @@ def test_3upu_factors_as_actuation_times_constraint(rng):
         "are parallel to one plane)"
     )
     assert found[1].evidence == (
-        "involves lines gh, ij, kl (constraint); its points lie only on constraint lines"
+        "involves lines gh, ij, kl (constraint); its points lie on constraint lines"
     )
     for seed in range(3):
         points = rational_points(np.random.default_rng(seed), finite, infinite)
@@ -398,17 +398,23 @@ def test_generic_statement_names_the_lines_and_points():
     )
 
 
+H4_LIKE = ["ab", "cd", "ef", "gk", "ij", "kj"]  # k on the actuation line gk and on a couple
+SHARED = ["ab", "cd", "ef", "gk", "dk", "kj"]  # d and k each on lines of both kinds
+
+
 @pytest.mark.parametrize(
-    ("vectors", "expected"),
+    ("lines", "vectors", "expected"),
     [
-        ("ij", ("constraint", "involves lines ij, kj (constraint); its points lie only on constraint lines")),
-        ("bj", ("actuation", "involves lines ab (actuation), ij, kj (constraint); b lies only on actuation lines")),
-        ("ik", ("constraint or actuation", "involves lines gk (actuation), ij, kj (constraint); its points lie "
-                "on constraint lines, k on actuation lines too")),
+        (H4_LIKE, "ij", ("constraint", "involves lines ij, kj (constraint); its points lie on constraint lines")),
+        (H4_LIKE, "ik", ("constraint", "involves lines gk (actuation), ij, kj (constraint); its points lie on "
+                         "constraint lines (k on actuation lines too)")),
+        (H4_LIKE, "bj", ("actuation", "involves lines ab (actuation), ij, kj (constraint); b lies only on "
+                         "actuation lines")),
+        (SHARED, "kd", ("constraint or actuation", "involves lines cd, gk (actuation), dk, kj (constraint); each "
+                        "of its points, d, k, lies on constraint and on actuation lines")),
     ],
 )
-def test_labels_follow_the_roles_of_the_lines(vectors, expected):
-    lines = ["ab", "cd", "ef", "gk", "ij", "kj"]  # k shared by the actuation line gk and a couple
+def test_labels_follow_the_roles_of_the_lines(lines, vectors, expected):
     assert label(list(vectors), lines, ["actuation"] * 4 + ["constraint"] * 2) == expected
 
 
