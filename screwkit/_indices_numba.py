@@ -83,8 +83,8 @@ def transmission(  # pragma: no cover - compiled
                 d0 = factor * radius * bar0 + platform[i, 0, 0] + x - base[i, 0, 0]
                 d1 = factor * radius * bar1 + platform[i, 0, 1] + y - base[i, 0, 1]
                 d2 = factor * radius * bar2 + platform[i, 0, 2] + z - base[i, 0, 2]
-            big_p = d0 * base[i, 1, 0] + d1 * base[i, 1, 1] + d2 * base[i, 1, 2]
-            big_q = d0 * base[i, 2, 0] + d1 * base[i, 2, 1] + d2 * base[i, 2, 2]
+            big_p = d0 * base[i, 1, 0] + d1 * base[i, 1, 1] + d2 * base[i, 1, 2]  # d_i·F_i j
+            big_q = d0 * base[i, 2, 0] + d1 * base[i, 2, 1] + d2 * base[i, 2, 2]  # d_i·F_i k
             big_k = (d0 * d0 + d1 * d1 + d2 * d2 + lengths_term) * half_inverse_arm
             rho_squared = big_p * big_p + big_q * big_q
             slack = rho_squared - big_k * big_k  # ρ² sin² δ
@@ -95,12 +95,17 @@ def transmission(  # pragma: no cover - compiled
             inverse = 1.0 / rho_squared
             cos_t = (big_p * big_k + big_q * root) * inverse  # cos(ψ - m δ)
             sin_t = (big_q * big_k - big_p * root) * inverse  # sin(ψ - m δ)
-            h_sum = 0.0
-            for k, d_k in ((0, d0), (1, d1), (2, d2)):
-                v = cos_t * base[i, 1, k] + sin_t * base[i, 2, k]  # F_i R_x(θ) j (Eq. 2)
-                u_cross_v = -sin_t * base[i, 1, k] + cos_t * base[i, 2, k]
-                w[i, k] = (d_k - arm * v) * inverse_rod  # (c_i - b_i)/l
-                h_sum += w[i, k] * u_cross_v
+            j0, j1, j2 = base[i, 1, 0], base[i, 1, 1], base[i, 1, 2]
+            k0, k1, k2 = base[i, 2, 0], base[i, 2, 1], base[i, 2, 2]
+            w0 = (d0 - arm * (cos_t * j0 + sin_t * k0)) * inverse_rod  # (c_i - b_i)/l, v_i (Eq. 2)
+            w1 = (d1 - arm * (cos_t * j1 + sin_t * k1)) * inverse_rod
+            w2 = (d2 - arm * (cos_t * j2 + sin_t * k2)) * inverse_rod
+            w[i, 0], w[i, 1], w[i, 2] = w0, w1, w2
+            h_sum = (  # w_i·(u_i × v_i), u_i × v_i = F_i R_x(θ) k
+                w0 * (cos_t * k0 - sin_t * j0)
+                + w1 * (cos_t * k1 - sin_t * j1)
+                + w2 * (cos_t * k2 - sin_t * j2)
+            )
             smallest = min(smallest, abs(h_sum))  # |cos μ_i| = |w_i·(u_i × v_i)| (Eq. 11)
         if not reach:
             continue

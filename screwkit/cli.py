@@ -18,6 +18,12 @@ Commands
 ``screwkit table4 [--grid N] [--refine K] [--robot NAME ...] [--json]``
     Paper 004's Table 4 regenerated (:func:`screwkit.indices.table_4`): each min/max LTI beside
     ours, the difference, and why they differ where they do.
+``screwkit map NAME|FILE.toml --quantity Q --Z LO HI [N] --PHI LO HI [N] [--X V ...] [--grid N] --out F``
+    A map of a quantity over a 2-D slice (:func:`screwkit.workspace.grid_map`): two pose
+    coordinates given as ranges, the others fixed (default: the default pose); writes .png, .npz or
+    .json and prints the region, minimum and maximum and where they occur.
+``screwkit path NAME|FILE.toml --from Q... --to Q... [--samples N] [--json]``
+    Check a straight path for singularities (:func:`screwkit.workspace.check_path`).
 
 Examples
 --------
@@ -48,7 +54,17 @@ from .report import analyze
 from .screw import Screw
 from .twistgraph import equivalent_twist_graph
 
-__all__ = ["get_parser", "main", "run_analyze", "run_graph", "run_list", "run_screw", "run_table4"]
+__all__ = [
+    "get_parser",
+    "main",
+    "run_analyze",
+    "run_graph",
+    "run_list",
+    "run_map",
+    "run_path",
+    "run_screw",
+    "run_table4",
+]
 
 
 class _UsageError(Exception):
@@ -173,7 +189,70 @@ def get_parser() -> argparse.ArgumentParser:
         help="a catalog name (quattro, h4, veloce, v4, ragnar); repeat for several (default all)",
     )
     table4.add_argument("--json", action="store_true", help="print JSON instead of text")
+    _add_workspace_commands(commands)
     return parser
+
+
+def _pose_coordinates() -> list[str]:
+    """Every family's pose coordinates (the map command takes one option per coordinate)."""
+    from .families import families
+
+    names: list[str] = []
+    for family in families().values():
+        names.extend(n for n in family.pose_names if n not in names)
+    return names
+
+
+def _add_workspace_commands(commands: Any) -> None:
+    """The ``map`` and ``path`` subcommands (:mod:`screwkit.workspace`)."""
+    from .workspace import QUANTITIES
+
+    mapping = commands.add_parser(
+        "map",
+        help="map a quantity (verdict, closeness, det A/B, LTI, a condition) over a 2-D slice of poses",
+        description="Map a quantity over a slice of the pose space through the batched core. Give two "
+        "coordinates as ranges (LO HI [N]) and optionally fix others (one value; default: the default "
+        "pose). Lengths in the catalog file's unit, angles in DEGREES.",
+    )
+    mapping.add_argument("mechanism", help="a catalog name (e.g. h4) or a .toml file")
+    mapping.add_argument(
+        "--quantity",
+        required=True,
+        metavar="Q",
+        help=f"one of {', '.join(QUANTITIES)}, detA, detB, condition (= condition:0) or condition:K",
+    )
+    for name in _pose_coordinates():
+        mapping.add_argument(
+            f"--{name}",
+            nargs="+",
+            type=float,
+            metavar="V",
+            help=f"{name}: LO HI [N] for an axis, or one value",
+        )
+    mapping.add_argument(
+        "--grid", type=int, default=50, metavar="N", help="values per axis given as LO HI (default 50)"
+    )
+    mapping.add_argument("--out", required=True, metavar="FILE", help="FILE.png, FILE.npz or FILE.json")
+    mapping.add_argument(
+        "--chunk", type=int, default=None, metavar="C", help="poses per chunk (bounded memory)"
+    )
+    mapping.add_argument("--no-progress", action="store_true", help="no progress line on stderr")
+    path = commands.add_parser(
+        "path",
+        help="check a straight path in pose space for singularities (the first crossing, refined)",
+        description="Check the straight path between two poses: samples through the core, sign changes "
+        "of det A, closeness minima and the reach edge refined by root finding. Lengths in the catalog "
+        "file's unit, angles in DEGREES.",
+    )
+    path.add_argument("mechanism", help="a catalog name (e.g. h4) or a .toml file")
+    path.add_argument(
+        "--from", dest="start", nargs="+", type=float, required=True, metavar="Q", help="start pose"
+    )
+    path.add_argument("--to", dest="end", nargs="+", type=float, required=True, metavar="Q", help="end pose")
+    path.add_argument(
+        "--samples", type=int, default=200, metavar="N", help="samples along the path (default 200)"
+    )
+    path.add_argument("--json", action="store_true", help="print JSON instead of text")
 
 
 def _add_pose_argument(parser: argparse.ArgumentParser) -> None:
@@ -335,6 +414,122 @@ def _print(text: str) -> None:
         print(text.encode(encoding, errors="backslashreplace").decode(encoding))
 
 
+def _catalog_mechanism(command: str, name: str) -> Any:
+    """A catalog mechanism by name or file (a snapshot has no pose space to map)."""
+    if name.endswith(".toml"):
+        if _toml_kind(name) == "snapshot":
+            raise _UsageError(
+                f"screwkit {command}: error: {name} is a snapshot (one configuration); no poses to vary"
+            )
+    elif name.lower() not in list_mechanisms():
+        raise _UsageError(
+            f"screwkit {command}: error: unknown mechanism {name!r}: expected one of "
+            f"{list_mechanisms()} or a .toml file"
+        )
+    return load_mechanism(name)
+
+
+def run_map(args: argparse.Namespace) -> int:
+    """Map a quantity over a 2-D slice; see ``screwkit map --help``.
+
+    Examples
+    --------
+    >>> import tempfile, os
+    >>> out = os.path.join(tempfile.mkdtemp(), "m.json")
+    >>> main(["map", "h4", "--quantity", "verdict", "--z", "-900", "-600", "2", "--phi", "-10", "10", "2",
+    ...       "--out", out])  # doctest: +ELLIPSIS
+    verdict over H4: z in [-900, -600] mm (2 values) x phi in [-10, 10] deg (2 values), x = 0 mm, y = 0 mm
+      minimum 0 at ...
+    0
+    """
+    from .workspace import _quantity, grid_map
+
+    try:
+        quantity = _quantity(args.quantity)
+    except ScrewkitError as err:
+        raise _UsageError(f"screwkit map: error: --quantity: {err}") from err
+    if not args.out.lower().endswith((".png", ".npz", ".json")):
+        raise _UsageError(f"screwkit map: error: --out expects FILE.npz, .json or .png, got {args.out!r}")
+    if args.grid < 2:
+        raise _UsageError(f"screwkit map: error: --grid expects an integer >= 2, got {args.grid}")
+    mechanism = _catalog_mechanism("map", args.mechanism)
+    axes, fixed = [], {}
+    for name in _pose_coordinates():
+        values = getattr(args, name)
+        if values is None:
+            continue
+        if name not in mechanism.pose_names:
+            raise _UsageError(
+                f"screwkit map: error: --{name}: {mechanism.name} has pose coordinates "
+                f"{list(mechanism.pose_names)}"
+            )
+        if len(values) not in (1, 2, 3) or not all(math.isfinite(v) for v in values):
+            raise _UsageError(
+                f"screwkit map: error: --{name} expects LO HI [N] or one value, got "
+                f"{' '.join(map(str, values))}"
+            )
+        if len(values) == 1:
+            fixed[name] = values[0]
+        else:
+            count = args.grid if len(values) == 2 else values[2]
+            if count != int(count) or count < 2:
+                raise _UsageError(f"screwkit map: error: --{name}: N must be an integer >= 2, got {count:g}")
+            axes.append((name, values[0], values[1], int(count)))
+    if len(axes) != 2:
+        raise _UsageError(
+            "screwkit map: error: expected exactly two ranges (LO HI [N]) among "
+            f"--{' --'.join(mechanism.pose_names)}, "
+            f"got {len(axes)}"
+        )
+    result = grid_map(
+        mechanism,
+        quantity,
+        x=axes[0],
+        y=axes[1],
+        fixed=fixed,
+        chunk=args.chunk,
+        progress=False if args.no_progress else None,
+        angles="deg",
+    )
+    result.save(args.out)
+
+    def where(pose: dict[str, float]) -> str:
+        return ", ".join(f"{k} = {v:g}" for k, v in pose.items()) or "-"
+
+    print(f"{quantity} over {result.region}")
+    print(f"  minimum {result.minimum:g} at {where(result.argmin)}")
+    print(f"  maximum {result.maximum:g} at {where(result.argmax)}")
+    print(f"  reachable {result.reachable.mean():.1%}; written to {args.out}")
+    return 0
+
+
+def run_path(args: argparse.Namespace) -> int:
+    """Check a straight path; see ``screwkit path --help``.
+
+    Examples
+    --------
+    >>> main(["path", "h4", "--from", "0", "0", "-800", "0", "--to", "0", "0", "-700", "20",
+    ...       "--samples", "20"])
+    singularity-free (20 samples, refined)
+    0
+    """
+    from .workspace import check_path
+
+    if args.samples < 2:
+        raise _UsageError(f"screwkit path: error: --samples expects an integer >= 2, got {args.samples}")
+    mechanism = _catalog_mechanism("path", args.mechanism)
+    names = mechanism.pose_names
+    for option, values in (("--from", args.start), ("--to", args.end)):
+        if len(values) != len(names) or not all(math.isfinite(v) for v in values):
+            raise _UsageError(
+                f"screwkit path: error: {option} expects {len(names)} finite numbers "
+                f"({' '.join(n.upper() for n in names)}), got {' '.join(map(str, values))}"
+            )
+    result = check_path(mechanism, args.start, args.end, samples=args.samples, angles="deg")
+    _print(json.dumps(result.to_dict(), indent=2, ensure_ascii=False) if args.json else str(result))
+    return 0
+
+
 def run_list(args: argparse.Namespace) -> int:
     """List the catalog; see ``screwkit list --help``.
 
@@ -434,6 +629,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             "analyze": run_analyze,
             "graph": run_graph,
             "list": run_list,
+            "map": run_map,
+            "path": run_path,
             "screw": run_screw,
             "table4": run_table4,
         }

@@ -14,9 +14,10 @@ Gosselin–Angeles type (``"inverse"`` goes with the ``serial`` label, ``"direct
 ones, leaves ``A`` regular), ``det A``, ``det B`` and the two closeness measures. A snapshot has no
 family to give its nominal twists: there the Jacobians are None.
 
-For a catalog mechanism, structural zeros of the superbracket are confirmed on random poses of its
-workspace; for a snapshot (one configuration only) they are read from that configuration, which the
-report states.
+Structural zeros of the superbracket are decided on generic configurations, never at the analysed
+pose: random poses of the workspace for a catalog mechanism, configurations reached by moving the
+mechanism along its own mobility for a snapshot or a graph (:mod:`screwkit.motion`). At a singular
+pose the factored form is the one of a regular pose, with the vanishing factors valued (~0) there.
 
 Examples
 --------
@@ -102,7 +103,8 @@ class AnalysisReport:
     verdict : SingularityReport
     diagram : WrenchDiagram
     superbracket : SuperbracketAnalysis or None
-        None when not computed or when the diagram is degenerate at the pose.
+        None when not computed, when the mechanism has no diagram, or when its diagram does not
+        exist at the pose (e.g. a limb at a serial singularity); ``superbracket_note`` says which.
     superbracket_note : str
         How structural zeros were confirmed, or why there is no factorization.
     jacobians : WrenchJacobians or None
@@ -265,10 +267,12 @@ class AnalysisReport:
             )
             out.append(f"  {self.superbracket_note}")
             out += ["", "conditions"]
-            for condition, label, value in zip(
-                self.superbracket.conditions, self.superbracket.labels, self.superbracket.values, strict=True
+            result = self.superbracket
+            for condition, label, value, vanishes in zip(
+                result.conditions, result.labels, result.values, result.vanishing, strict=True
             ):
-                out.append(f"  {label} singularity when {condition.factor} = 0")
+                flag = "  <- vanishes at this pose" if vanishes else ""
+                out.append(f"  {label} singularity when {condition.factor} = 0{flag}")
                 out.append(f"    {condition.statement}")
                 out.append(f"    vector form: {condition.expression} = 0   (here: {value:.6g})")
         out += ["", "verdict", *("  " + line for line in str(self.verdict).splitlines())]
@@ -402,10 +406,9 @@ def _graph_report(
     if pose is not None:
         raise ScrewkitValueError(f"{source}: {what} is one configuration; expected no pose, got {pose!r}.")
     analysis = wrench_analysis(graph, rtol=rtol)
-    from .diagram import wrench_diagram
+    from .diagram import graph_diagram
 
-    diagram = wrench_diagram(analysis)
-    points = dict(diagram.coordinates)
+    diagram, sampler = graph_diagram(analysis)
     return _finish(
         graph.graph.get("name", source),
         source,
@@ -415,8 +418,9 @@ def _graph_report(
         graph,
         analysis,
         diagram,
-        (lambda _: points) if superbracket else None,
-        f"structural zeros read from this one configuration ({what})",
+        sampler if superbracket else None,
+        f"structural zeros confirmed on generic configurations of {what}, reached by moving the mechanism "
+        "and closing its loops again (screwkit.motion); each stage equals the 6×6 determinant on fresh ones",
     )
 
 
@@ -476,10 +480,10 @@ def _finish(
     jacobians_note: str = _SNAPSHOT_JACOBIANS,
 ) -> AnalysisReport:
     result = None
-    if sampler is None:
+    if diagram.degenerate:
+        note = "no factorization: " + "; ".join(diagram.degenerate)
+    elif sampler is None:
         note = "not computed"
-    elif diagram.degenerate:
-        note = "the diagram is degenerate at this pose: " + "; ".join(diagram.degenerate)
     else:
         try:
             from .diagram import superbracket_analysis

@@ -68,7 +68,11 @@ Array = np.ndarray
 
 
 def _nonzero_direction(direction: Array, name: str) -> None:
-    zero = [all(B.is_exactly_zero(v) for v in d) for d in direction.reshape(-1, 3)]
+    rows = direction.reshape(-1, 3)
+    if B.is_symbolic(direction):  # each entry decided exactly
+        zero = [all(B.is_exactly_zero(v) for v in d) for d in rows]
+    else:  # numbers: one vectorised comparison over the batch
+        zero = np.all(rows == 0, axis=-1).tolist()
     if any(zero):
         raise DegenerateGeometryError(
             f"Expected `{name}` to be a non-zero direction, got a zero vector "
