@@ -10,9 +10,10 @@ some singular configurations. :func:`condition` turns one factor into a :class:`
   products :class:`VectorCross`, :class:`VectorDot` and the difference :class:`VectorDiff`
   (e.g. paper 002 Eq. 6, ``(s12 × s34)·z``, and Eq. 7,
   ``((s1 × s2) × ((r_g − r_c) × z))·(s3 × s4)``);
-* the exact constant with ``factor = constant × vector form``, proved at construction by expanding
-  both sides in coordinates with sympy (for finite points of weight 1);
-* a numeric evaluator compiled once with :func:`sympy.lambdify`, vectorised over batches, and LaTeX.
+* the exact constant with ``factor = constant × vector form``, proved at construction by exact
+  integer evaluation of both sides at random configurations (Schwartz–Zippel, :data:`PROOF_CHECKS`;
+  no symbolic expansion, so a general Gough–Stewart factor takes a second, not minutes);
+* a numeric evaluator (the same small evaluator, vectorised over batches) and LaTeX.
 
 The vector forms used (reference convention of ``gca.md`` §1; p, q, r, s finite, u, v, w
 infinite; the bracket is the constant times the form):
