@@ -142,13 +142,6 @@ class WrenchDiagram:
         """Labels of the points at infinity."""
         return tuple(p.label for p in self.points if p.at_infinity)
 
-    @property
-    def constraint_labels(self) -> frozenset[str]:
-        """Labels of the points on constraint lines."""
-        return frozenset(
-            x for line, role in zip(self.lines, self.roles, strict=True) if role == "constraint" for x in line
-        )
-
     def line_text(self) -> str:
         """The superbracket's argument, e.g. ``'[ab, cd, ef, gh, ij, kj]'``."""
         return "[" + ", ".join("".join(line) for line in self.lines) + "]"
