@@ -47,7 +47,7 @@ from typing import Any, NoReturn
 import numpy as np
 
 from . import __version__
-from .catalog import list_mechanisms, load_mechanism, load_snapshot, load_toml
+from .catalog import degrees_to_radians, file_kind, list_mechanisms, load_mechanism, load_snapshot, load_toml
 from .exceptions import ScrewkitError
 from .export import graph_dot, graph_json, snapshot_text
 from .report import analyze
@@ -119,7 +119,13 @@ def get_parser() -> argparse.ArgumentParser:
         metavar="R",
         help="relative tolerance of every rank decision, in [0, 1) (default 1e-9)",
     )
-    analyze_parser.add_argument("--json", action="store_true", help="print the whole report as JSON")
+    output = analyze_parser.add_mutually_exclusive_group()
+    output.add_argument("--json", action="store_true", help="print the whole report as JSON")
+    output.add_argument(
+        "--latex",
+        action="store_true",
+        help="print the factored superbracket and its labelled conditions as a LaTeX align* block",
+    )
     analyze_parser.add_argument(
         "--no-superbracket", action="store_true", help="skip the superbracket expansion (faster)"
     )
@@ -308,7 +314,8 @@ def _pose(args: argparse.Namespace, mechanism: Any) -> Any:
             f"got {got}"
         )
     angles = set(mechanism.angle_names)
-    return np.array([math.radians(v) if n in angles else v for n, v in zip(names, args.pose, strict=True)])
+    pairs = zip(names, args.pose, strict=True)
+    return np.array([degrees_to_radians(v) if n in angles else v for n, v in pairs])
 
 
 def _target_and_pose(args: argparse.Namespace) -> tuple[Any, Any]:
@@ -342,10 +349,27 @@ def run_analyze(args: argparse.Namespace) -> int:
     """
     if args.rtol is not None and not 0 <= args.rtol < 1:
         raise _UsageError(f"screwkit analyze: error: --rtol expects a number in [0, 1), got {args.rtol:g}")
+    if args.latex and args.no_superbracket:
+        raise _UsageError(
+            "screwkit analyze: error: --latex prints the superbracket's conditions; drop --no-superbracket"
+        )
     target, pose = _target_and_pose(args)
     report = analyze(target, pose, rtol=args.rtol, superbracket=not args.no_superbracket)
-    _print(json.dumps(report.to_dict(), indent=2, ensure_ascii=False) if args.json else str(report))
+    if args.latex:
+        _print(_latex(report))
+    else:
+        _print(json.dumps(report.to_dict(), indent=2, ensure_ascii=False) if args.json else str(report))
     return 0
+
+
+def _latex(report: Any) -> str:
+    """The superbracket's conditions in LaTeX, or a LaTeX comment saying why there are none."""
+    if report.superbracket is None:
+        return f"% no superbracket conditions: {report.superbracket_note}"
+    from .conditions import latex
+
+    result = report.superbracket
+    return latex(result.simplification.factored, result.conditions, result.diagram.line_text())
 
 
 def run_graph(args: argparse.Namespace) -> int:
@@ -377,8 +401,7 @@ def run_graph(args: argparse.Namespace) -> int:
 
 
 def _toml_kind(path: str) -> Any:
-    header = load_toml(path).get("mechanism", {})
-    return header.get("kind") if isinstance(header, dict) else None
+    return file_kind(load_toml(path))
 
 
 def _print(text: str) -> None:
@@ -466,6 +489,7 @@ def run_map(args: argparse.Namespace) -> int:
         fixed=fixed,
         chunk=args.chunk,
         progress=False if args.no_progress else None,
+        angles="deg",
     )
     result.save(args.out)
 
@@ -501,7 +525,7 @@ def run_path(args: argparse.Namespace) -> int:
                 f"screwkit path: error: {option} expects {len(names)} finite numbers "
                 f"({' '.join(n.upper() for n in names)}), got {' '.join(map(str, values))}"
             )
-    result = check_path(mechanism, args.start, args.end, samples=args.samples)
+    result = check_path(mechanism, args.start, args.end, samples=args.samples, angles="deg")
     _print(json.dumps(result.to_dict(), indent=2, ensure_ascii=False) if args.json else str(result))
     return 0
 

@@ -47,25 +47,12 @@ Array = np.ndarray
 
 #: Poses taken through the inverse kinematics, joint table and analysis core at once.
 CHUNK = 256
-#: Random workspace poses drawn (in one batch) to find a generic configuration for a diagram.
-GENERIC_DRAWS = 50
+#: Random workspace poses drawn (in one batch) to find a generic configuration for a diagram (the
+#: first few reachable ones are tried: screwkit.diagram.REFERENCE_TRIES).
+GENERIC_DRAWS = 12
 #: Generic samples of a diagram's points drawn (in one batch) for the superbracket: its structural
 #: zeros and its checks take 12 (screwkit.diagram.superbracket_analysis).
 SAMPLES = 24
-
-
-class _Replay:
-    """``rng -> {label: point}`` handing out samples drawn :data:`SAMPLES` at a time, each time as
-    one batch (the ``rng`` argument is unused: the samples come from their own seeded stream)."""
-
-    def __init__(self, produce: Callable[[np.random.Generator], list[dict[str, Array]]]):
-        self.produce, self.stream = produce, np.random.default_rng(0)
-        self.drawn: list[dict[str, Array]] = []
-
-    def __call__(self, rng: np.random.Generator) -> dict[str, Array]:
-        if not self.drawn:
-            self.drawn = self.produce(self.stream)
-        return self.drawn.pop(0)
 
 
 def _checked_poses(mechanism: Any, poses: Any) -> Array:
@@ -281,35 +268,29 @@ class Pose:
     def diagram_and_sampler(self) -> tuple[Any, Callable[[np.random.Generator], dict[str, Array]]]:
         """The wrench diagram at this pose and a sampler of its recipes at generic poses.
 
-        Which points lines share is decided at a generic (random, seeded) workspace pose, the
-        first of :data:`GENERIC_DRAWS` drawn as one batch whose diagram is not degenerate; the
-        diagram is then placed at this pose (:func:`screwkit.diagram.diagram_at`). The sampler
+        Which lines make the diagram and which points they share is decided at a generic (random,
+        seeded) workspace pose of :data:`GENERIC_DRAWS` drawn as one batch
+        (:func:`screwkit.diagram.generic_reference`); the diagram is then placed at this pose
+        (:func:`screwkit.diagram.diagram_at`), where lines that coincide still appear. When the
+        mechanism has no diagram (e.g. a wrench system not spanned by lines), the reasons found at
+        the generic poses are given as ``degenerate``. The sampler
         replays recipes evaluated at random workspace poses, drawn and analysed as one batch
         (:func:`generic_samples`).
         """
         from dataclasses import replace
 
-        from .diagram import diagram_at, wrench_diagram
+        from .diagram import ReplaySampler, diagram_at, generic_reference, wrench_diagram
 
-        reference = None
         analyses = _batch_analyses(
             self.mechanism, np.random.default_rng(2026), GENERIC_DRAWS, self.posed.rtol
         )
-        for analysis in analyses:
-            try:
-                candidate = wrench_diagram(analysis)
-            except ScrewkitError:
-                continue
-            if not candidate.degenerate:
-                reference = candidate
-                break
-        if reference is None:  # e.g. a mechanism whose wrenches are never six lines: say why, here
+        reference, reasons = generic_reference(analyses)
+        if reference is None:  # a property of the mechanism, found at generic poses: say so
             diagram = wrench_diagram(self.analysis)
-            reason = f"no generic workspace pose (of {GENERIC_DRAWS} drawn) gives a non-degenerate diagram"
-            return replace(diagram, degenerate=(*diagram.degenerate, reason)), _no_sampler
+            return replace(diagram, coordinates={}, degenerate=reasons), _no_sampler
         diagram = diagram_at(reference, self.analysis)
         mechanism, rtol = self.mechanism, self.posed.rtol
-        return diagram, _Replay(
+        return diagram, ReplaySampler(
             lambda stream: generic_samples(mechanism, diagram.points, stream, SAMPLES, rtol)
         )
 

@@ -14,9 +14,10 @@ Gosselin–Angeles type (``"inverse"`` goes with the ``serial`` label, ``"direct
 ones, leaves ``A`` regular), ``det A``, ``det B`` and the two closeness measures. A snapshot has no
 family to give its nominal twists: there the Jacobians are None.
 
-For a catalog mechanism, structural zeros of the superbracket are confirmed on random poses of its
-workspace; for a snapshot (one configuration only) they are read from that configuration, which the
-report states.
+Structural zeros of the superbracket are decided on generic configurations, never at the analysed
+pose: random poses of the workspace for a catalog mechanism, configurations reached by moving the
+mechanism along its own mobility for a snapshot or a graph (:mod:`screwkit.motion`). At a singular
+pose the factored form is the one of a regular pose, with the vanishing factors valued (~0) there.
 
 Examples
 --------
@@ -41,7 +42,7 @@ import numpy as np
 
 from . import _backend as B
 from . import screw as S
-from .catalog import Mechanism, load_mechanism, load_snapshot, load_toml
+from .catalog import Mechanism, check_dof, file_kind, load_mechanism, load_snapshot, load_toml
 from .exceptions import ScrewkitError, ScrewkitTypeError, ScrewkitValueError
 from .jacobians import WrenchJacobians
 from .singularity import SingularityReport, classify_analysis
@@ -102,7 +103,8 @@ class AnalysisReport:
     verdict : SingularityReport
     diagram : WrenchDiagram
     superbracket : SuperbracketAnalysis or None
-        None when not computed or when the diagram is degenerate at the pose.
+        None when not computed, when the mechanism has no diagram, or when its diagram does not
+        exist at the pose (e.g. a limb at a serial singularity); ``superbracket_note`` says which.
     superbracket_note : str
         How structural zeros were confirmed, or why there is no factorization.
     jacobians : WrenchJacobians or None
@@ -265,10 +267,12 @@ class AnalysisReport:
             )
             out.append(f"  {self.superbracket_note}")
             out += ["", "conditions"]
-            for condition, label, value in zip(
-                self.superbracket.conditions, self.superbracket.labels, self.superbracket.values, strict=True
+            result = self.superbracket
+            for condition, label, value, vanishes in zip(
+                result.conditions, result.labels, result.values, result.vanishing, strict=True
             ):
-                out.append(f"  {label} singularity when {condition.factor} = 0")
+                flag = "  <- vanishes at this pose" if vanishes else ""
+                out.append(f"  {label} singularity when {condition.factor} = 0{flag}")
                 out.append(f"    {condition.statement}")
                 out.append(f"    vector form: {condition.expression} = 0   (here: {value:.6g})")
         out += ["", "verdict", *("  " + line for line in str(self.verdict).splitlines())]
@@ -382,6 +386,8 @@ def analyze(
     ()
     """
     tolerance = B.DEFAULT_RTOL if rtol is None else checked_rtol(rtol)
+    if not isinstance(superbracket, bool | np.bool_):
+        raise ScrewkitTypeError(f"Expected `superbracket` to be True or False, got {superbracket!r}.")
     if isinstance(target, nx.MultiDiGraph):
         return _graph_report(target, "<graph>", pose, tolerance, superbracket, "a twist graph")
     if not isinstance(target, str | Path | Mechanism):
@@ -390,7 +396,7 @@ def analyze(
             f"(networkx.MultiDiGraph), got {type(target).__name__}."
         )
     text = str(target) if not isinstance(target, Mechanism) else ""
-    if text.endswith(".toml") and load_toml(text).get("mechanism", {}).get("kind") == "snapshot":
+    if text.endswith(".toml") and file_kind(load_toml(text)) == "snapshot":
         return _graph_report(load_snapshot(text), text, pose, tolerance, superbracket, "a snapshot")
     mechanism = target if isinstance(target, Mechanism) else load_mechanism(target)
     return mechanism.at(pose, rtol=tolerance)[0].report(superbracket=superbracket)
@@ -401,11 +407,14 @@ def _graph_report(
 ) -> AnalysisReport:
     if pose is not None:
         raise ScrewkitValueError(f"{source}: {what} is one configuration; expected no pose, got {pose!r}.")
+    check_dof(graph)
     analysis = wrench_analysis(graph, rtol=rtol)
-    from .diagram import wrench_diagram
+    if not analysis.topology.actuated and graph.graph.get("dof") is None:
+        # mobility analysis: the nominal mobility is the platform's freedom at this configuration
+        analysis = wrench_analysis(graph, dof=6 - int(analysis.constraint_order), rtol=rtol)
+    from .diagram import graph_diagram
 
-    diagram = wrench_diagram(analysis)
-    points = dict(diagram.coordinates)
+    diagram, sampler = graph_diagram(analysis)
     return _finish(
         graph.graph.get("name", source),
         source,
@@ -415,8 +424,9 @@ def _graph_report(
         graph,
         analysis,
         diagram,
-        (lambda _: points) if superbracket else None,
-        f"structural zeros read from this one configuration ({what})",
+        sampler if superbracket else None,
+        f"structural zeros confirmed on generic configurations of {what}, reached by moving the mechanism "
+        "and closing its loops again (screwkit.motion); each stage equals the 6×6 determinant on fresh ones",
     )
 
 
@@ -476,10 +486,10 @@ def _finish(
     jacobians_note: str = _SNAPSHOT_JACOBIANS,
 ) -> AnalysisReport:
     result = None
-    if sampler is None:
+    if diagram.degenerate:
+        note = "no factorization: " + "; ".join(diagram.degenerate)
+    elif sampler is None:
         note = "not computed"
-    elif diagram.degenerate:
-        note = "the diagram is degenerate at this pose: " + "; ".join(diagram.degenerate)
     else:
         try:
             from .diagram import superbracket_analysis

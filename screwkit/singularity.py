@@ -186,11 +186,25 @@ class SingularityReport:
         return _same_kind(~np.asarray(self.constraint) & (np.asarray(self.global_order) < 6))
 
     @property
+    def actuation_assessed(self) -> bool:
+        """False for a mechanism with no actuated joint: it is analysed for its mobility only (its
+        legs' constraint systems, the platform's freedoms, constraint singularities); the actuation
+        and serial labels are not assessed."""
+        return bool(self.actuated_joints)
+
+    @property
     def codes(self) -> Array:
-        """An integer per pose: bit 1 constraint, 2 actuation, 4 serial (0 regular)."""
+        """An integer per pose: bit 1 constraint, 2 actuation, 4 serial (0 regular).
+
+        A platform with fewer freedoms than nominal (``lost_dof > 0``, e.g. a stretched limb at the
+        boundary of its workspace) is a serial singularity, Gosselin & Angeles' type 1 (the output
+        loses a direction of motion), whether or not one limb's actuator is found idle."""
         constraint = np.asarray(self.constraint_order) < self.nominal_constraint_order
+        if not self.actuation_assessed:
+            return constraint * 1
         actuation = ~constraint & (np.asarray(self.global_order) < 6)
-        serial = np.asarray(self.analysis.serial).any(axis=-1)
+        lost = np.asarray(self.constraint_order) > self.nominal_constraint_order
+        serial = np.asarray(self.analysis.serial).any(axis=-1) | lost
         return constraint * 1 + actuation * 2 + serial * 4
 
     @property
@@ -259,6 +273,7 @@ class SingularityReport:
             "verdict": self.verdict,
             "labels": list(self.labels),
             "dof": self.dof,
+            "actuation_assessed": self.actuation_assessed,
             "constraint_order": int(self.constraint_order),
             "nominal_constraint_order": self.nominal_constraint_order,
             "global_order": int(self.global_order),
@@ -293,9 +308,14 @@ class SingularityReport:
         ]
         if self.gained_dof:
             lines.append(f"  the platform gains {self.gained_dof} DOF (constraints lost)")
+        if not self.actuation_assessed:
+            lines.append("  no actuated joint: mobility analysis only, actuation not assessed")
         if self.lost_dof:
-            lines.append(f"  the platform has {self.lost_dof} DOF fewer than nominal (locked)")
-        if self.uncontrolled_dof:
+            lines.append(
+                f"  the platform has {self.lost_dof} DOF fewer than nominal"
+                + (" (a serial singularity: a limb at its reach)" if self.actuation_assessed else "")
+            )
+        if self.uncontrolled_dof and self.actuation_assessed:
             lines.append(f"  uncontrolled with actuators locked: {self.uncontrolled_dof} twist(s)")
             lines.extend(f"    {S.Screw(t)}" for t in self.uncontrolled_twists)
         for item in self.serial:
@@ -356,9 +376,9 @@ def classify(
     >>> from screwkit.twistgraph import twist_graph
     >>> G = twist_graph("B", "E", [("B", "E", revolute("R", [0, 0, 1], [0, 0, 0], actuated=True)),
     ...                            ("B", "E", revolute("R2", [0, 0, 1], [1, 0, 0]))], dof=1)
-    >>> report = classify(G)  # two parallel hinges on different axes lock the platform
+    >>> report = classify(G)  # two parallel hinges on different axes lock the platform: it lacks a freedom
     >>> report.labels, report.constraint_order, report.lost_dof
-    ((), 6, 1)
+    (('serial',), 6, 1)
     """
     return SingularityReport(wrench_analysis(graph, dof=dof, joint_key=joint_key, rtol=rtol))
 
@@ -387,6 +407,8 @@ def classify_table(
     >>> classify_table(table, chunk=2).verdict.tolist()
     ['regular', 'regular', 'regular', 'regular', 'regular']
     """
+    if not isinstance(table, JointTable):
+        raise ScrewkitTypeError(f"Expected `table` to be a JointTable, got {type(table).__name__}.")
     if isinstance(chunk, bool) or not isinstance(chunk, int | np.integer) or chunk < 1:
         raise ScrewkitValueError(f"Expected `chunk` to be a positive integer, got {chunk!r}.")
     shape = table.batch_shape

@@ -7,8 +7,9 @@ cluster (optional extra ``dask``): pass ``client=``; the results are identical t
 
 Units
 -----
-Poses here are in the **catalog file's units**: lengths in the file's length unit, angles in
-**degrees** (as in the TOML files and on the command line), unless ``angles="rad"`` is passed. A
+Poses here are in the API's units (design.md §3): lengths in the catalog file's length unit, angles
+in **radians**, as everywhere in the Python API; pass ``angles="deg"`` to give ranges, fixed
+coordinates and paths in degrees (as in the TOML files and on the command line, which passes it). A
 pose is a dict ``{name: value}`` over :attr:`~screwkit.catalog.Mechanism.pose_names` (missing
 coordinates take the default pose) or an array in that order.
 
@@ -22,9 +23,9 @@ Quantities (:data:`QUANTITIES`)
 ``"det_A"``, ``"det_B"``
     Determinants of the forward and inverse Jacobians ``A χ̇ = B θ̇``
     (:class:`screwkit.jacobians.WrenchJacobians`; paper 004 Eq. 6).
-``"lti"``
-    The local transmission index ``η = min(κ, ζ)`` of paper 004 Eq. (16)
-    (:func:`screwkit.indices.transmission_indices`; four-limb families).
+``"lti"``, ``"kappa"``, ``"zeta"``
+    The local transmission index ``η = min(κ, ζ)`` of paper 004 Eq. (16), its motion index ``κ``
+    and force index ``ζ`` (Eq. 15) (:func:`screwkit.indices.transmission`; four-limb families).
 ``"condition:K"``
     The vector form of the K-th factor of the superbracket (:mod:`screwkit.conditions`), factored
     once at the default pose and evaluated on each pose's wrench diagram (one pose at a time: slow).
@@ -48,10 +49,10 @@ Examples
 --------
 >>> from screwkit.catalog import load_mechanism
 >>> h4 = load_mechanism("h4")
->>> m = grid_map(h4, "verdict", x=("z", -1000, -550, 4), y=("phi", -45, 45, 3))
+>>> m = grid_map(h4, "verdict", x=("z", -1000, -550, 4), y=("phi", -45, 45, 3), angles="deg")
 >>> m.values.shape, int(m.maximum), bool(m.reachable.all())
 ((3, 4), 0, True)
->>> check_path(h4, {"z": -800, "phi": 0}, {"z": -700, "phi": 30}, samples=20).singularity_free
+>>> check_path(h4, {"z": -800, "phi": 0}, {"z": -700, "phi": 30}, samples=20, angles="deg").singularity_free
 True
 """
 
@@ -60,6 +61,7 @@ from __future__ import annotations
 import json
 import math
 import sys
+import weakref
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
@@ -97,6 +99,8 @@ QUANTITIES = (
     "det_A",
     "det_B",
     "lti",
+    "kappa",
+    "zeta",
 )
 #: A refined pose with a closeness measure below this is a singularity even if the core's rank
 #: decision (relative tolerance ``rtol``) did not label it.
@@ -249,17 +253,23 @@ def _reachable_by_halving(mechanism: Any, poses: Array, options: dict[str, Any])
     return np.ones(len(poses), dtype=bool)
 
 
-def _lti(posed: Any) -> Array:
-    """The local transmission index ``η`` of paper 004 Eq. (16) over a posed batch (the one place
-    the maps take it from)."""
-    from .indices import FourLimbGeometry, transmission_indices
+#: The transmission indices a map can show, by their field of
+#: :class:`screwkit.indices.TransmissionIndices` (paper 004 Eqs. 15-16).
+_INDICES = {"lti": "eta", "kappa": "kappa", "zeta": "zeta"}
+
+
+def _transmission_index(posed: Any, quantity: str) -> Array:
+    """Paper 004's ``η`` (Eq. 16), ``κ`` or ``ζ`` (Eq. 15) over a posed batch: the one place the
+    maps take them from (:func:`screwkit.indices.transmission`, the batched entry point, fused
+    and compiled with the ``fast`` extra)."""
+    from .indices import FourLimbGeometry, transmission
 
     if not isinstance(posed.configuration, FourLimbGeometry):
         raise ScrewkitValueError(
-            f"Expected a four-limb mechanism for quantity 'lti' (paper 004), got family "
+            f"Expected a four-limb mechanism for quantity {quantity!r} (paper 004), got family "
             f"{posed.mechanism.family!r}."
         )
-    return np.asarray(transmission_indices(posed.configuration).eta, dtype=float)
+    return np.asarray(getattr(transmission(posed), _INDICES[quantity]), dtype=float)
 
 
 def _condition_values(mechanism: Any, index: int, posed: Any) -> Array:
@@ -281,7 +291,9 @@ def _condition_values(mechanism: Any, index: int, posed: Any) -> Array:
     )
 
 
-_CONDITIONS: dict[tuple[Any, ...], tuple[Any, tuple[Any, ...], tuple[str, ...], Array]] = {}
+#: Per mechanism (held weakly: a cache entry dies with its mechanism) and options: the factored
+#: superbracket's diagram, conditions, labels and values at the default pose.
+_CONDITIONS: weakref.WeakKeyDictionary[Any, dict[tuple[Any, ...], Any]] = weakref.WeakKeyDictionary()
 
 
 def _conditions(
@@ -291,8 +303,9 @@ def _conditions(
     pose (factored once per mechanism and mode)."""
     from .diagram import superbracket_analysis
 
-    key = (id(mechanism), tuple(sorted((k, repr(v)) for k, v in options.items())))
-    if key not in _CONDITIONS:
+    key = tuple(sorted((k, repr(v)) for k, v in options.items()))
+    cache = _CONDITIONS.setdefault(mechanism, {})
+    if key not in cache:
         pose = mechanism.at(None, **options)[0]
         diagram, sampler = pose.diagram_and_sampler()
         if diagram.degenerate:
@@ -301,8 +314,8 @@ def _conditions(
                 f"{'; '.join(diagram.degenerate)}."
             )
         result = superbracket_analysis(diagram, sampler)
-        _CONDITIONS[key] = (diagram, result.conditions, result.labels, np.array(result.values, dtype=float))
-    return _CONDITIONS[key]
+        cache[key] = (diagram, result.conditions, result.labels, np.array(result.values, dtype=float))
+    return cache[key]
 
 
 def _values(posed: Any, quantity: str) -> Array:
@@ -315,8 +328,8 @@ def _values(posed: Any, quantity: str) -> Array:
         return np.asarray(posed.closeness[quantity.split(":")[1]], dtype=float)
     if quantity in ("det_A", "det_B"):
         return np.asarray(getattr(posed.jacobians, quantity), dtype=float)
-    if quantity == "lti":
-        return _lti(posed)
+    if quantity in _INDICES:
+        return _transmission_index(posed, quantity)
     return _condition_values(posed.mechanism, int(quantity.split(":")[1]), posed)
 
 
@@ -658,7 +671,7 @@ def grid_map(
     chunk: int | None = None,
     client: Any = None,
     progress: Any = None,
-    angles: str = "deg",
+    angles: str = "rad",
     rtol: float | None = None,
 ) -> WorkspaceMap:
     """A quantity over a 2-D grid of the pose space, through the core in chunks.
@@ -669,7 +682,7 @@ def grid_map(
     quantity : str
         See :data:`QUANTITIES` (``"detA"``/``"detB"`` and ``"condition"`` = ``"condition:0"`` too).
     x, y : tuple (name, low, high, count)
-        The axes (user units: angles in degrees by default).
+        The axes (user units: angles in radians unless ``angles="deg"``).
     fixed : dict, optional
         The other coordinates (default: the default pose), e.g. ``{"x": 0.0, "y": 0.0}``.
     mode : mapping or sequence, optional
@@ -697,7 +710,7 @@ def grid_map(
     --------
     >>> from screwkit.catalog import load_mechanism
     >>> m = grid_map(load_mechanism("h4"), "lti", x=("x", -100, 100, 3), y=("y", -100, 100, 3),
-    ...              fixed={"z": -750, "phi": 0})
+    ...              fixed={"z": -750, "phi": 0}, angles="deg")
     >>> print(m.region)
     H4: x in [-100, 100] mm (3 values) x y in [-100, 100] mm (3 values), z = -750 mm, phi = 0 deg
     >>> bool(0 < m.minimum <= m.maximum <= 1)
@@ -714,7 +727,7 @@ def _map_job(
     """A map's quantity, slice and chunk job (its API-unit poses, flattened)."""
     name = _quantity(quantity)
     grid = _Slice.create(mechanism, x, y, fixed, mode, angles)
-    if name == "lti" or name.startswith("condition:"):  # refuse before the map, not in its chunks
+    if name in _INDICES or name.startswith("condition:"):  # refuse before the map, not in its chunks
         _values(mechanism.at(None, **grid.options), name)
     user = grid.poses()
     flat = user.reshape(-1, user.shape[-1]) * grid.scale
@@ -768,7 +781,7 @@ def sweep(
     chunk: int | None = None,
     client: Any = None,
     progress: Any = None,
-    angles: str = "deg",
+    angles: str = "rad",
     rtol: float | None = None,
 ) -> tuple[WorkspaceMap, ...]:
     """A parameter sweep: the same map for each mechanism (e.g. a family's parameters varied with
@@ -781,7 +794,7 @@ def sweep(
     --------
     >>> from screwkit.catalog import load_mechanism
     >>> maps = sweep([load_mechanism("h4"), load_mechanism("quattro")], "lti",
-    ...              x=("z", -900, -600, 3), y=("phi", -20, 20, 2))
+    ...              x=("z", -900, -600, 3), y=("phi", -20, 20, 2), angles="deg")
     >>> [m.mechanism for m in maps]
     ['H4', 'Quattro']
     """
@@ -1069,7 +1082,7 @@ def loci(
     y: Any = ("phi", -45.0, 45.0, 50),
     fixed: Any = None,
     mode: Any = None,
-    angles: str = "deg",
+    angles: str = "rad",
     rtol: float | None = None,
 ) -> tuple[Locus, ...]:
     """The singular curves of a 2-D slice: along every grid row and column, det A sign changes,
@@ -1088,7 +1101,7 @@ def loci(
     Examples
     --------
     >>> from screwkit.catalog import load_mechanism
-    >>> found = loci(load_mechanism("h4"), x=("z", -1000, -550, 6), y=("phi", -45, 45, 5))
+    >>> found = loci(load_mechanism("h4"), x=("z", -1000, -550, 6), y=("phi", -45, 45, 5), angles="deg")
     >>> [locus.kind for locus in found]  # the catalog's box holds no singular surface at x = y = 0
     []
     """
@@ -1167,7 +1180,7 @@ def surfaces(
     z: Any = ("x", -350.0, 350.0, 5),
     fixed: Any = None,
     mode: Any = None,
-    angles: str = "deg",
+    angles: str = "rad",
     rtol: float | None = None,
 ) -> tuple[Surface, ...]:
     """The singular surfaces of a 3-D region: the :func:`loci` of its ``(x, y)`` slices at every
@@ -1176,7 +1189,8 @@ def surfaces(
     Examples
     --------
     >>> from screwkit.catalog import load_mechanism
-    >>> surfaces(load_mechanism("h4"), x=("z", -1000, -550, 4), y=("phi", -45, 45, 3), z=("x", -50, 50, 2))
+    >>> surfaces(load_mechanism("h4"), x=("z", -1000, -550, 4), y=("phi", -45, 45, 3), z=("x", -50, 50, 2),
+    ...          angles="deg")
     ()
     """
     z_name, z_values = _axis(mechanism, z, "z")
@@ -1292,7 +1306,7 @@ def check_path(
     *,
     samples: int = 200,
     mode: Any = None,
-    angles: str = "deg",
+    angles: str = "rad",
     rtol: float | None = None,
 ) -> PathCheck:
     """Check the straight path ``start → end`` (pose coordinates) for singularities.
@@ -1305,7 +1319,8 @@ def check_path(
     ----------
     mechanism : Mechanism
     start, end : dict or array_like
-        User units (angles in degrees by default); a dict's missing coordinates take the default pose.
+        User units (angles in radians unless ``angles="deg"``); a dict's missing coordinates take
+        the default pose.
     samples : int, default 200
     mode, angles, rtol
         As in :func:`grid_map`.

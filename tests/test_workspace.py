@@ -45,9 +45,11 @@ def grid_poses(m):
 # --- maps ----------------------------------------------------------------------------------------
 
 
-@pytest.mark.parametrize("quantity", ["verdict", "closeness", "closeness:actuation", "det_A", "det_B", "lti"])
+@pytest.mark.parametrize(
+    "quantity", ["verdict", "closeness", "closeness:actuation", "det_A", "det_B", "lti", "kappa", "zeta"]
+)
 def test_map_equals_the_core_pointwise(quantity):
-    m = W.grid_map(H4, quantity, **SLICE)
+    m = W.grid_map(H4, quantity, **SLICE, angles="deg")
     poses = api(grid_poses(m))
     expected_ok = reachable(H4.parameters, poses)
     assert 0 < expected_ok.sum() < expected_ok.size  # the slice reaches beyond the workspace
@@ -60,7 +62,16 @@ def test_map_equals_the_core_pointwise(quantity):
         "det_A": posed.jacobians.det_A,
         "det_B": posed.jacobians.det_B,
         "lti": transmission_indices(posed.configuration).eta,
+        "kappa": transmission_indices(posed.configuration).kappa,
+        "zeta": transmission_indices(posed.configuration).zeta,
     }[quantity]
+    if quantity in (
+        "lti",
+        "kappa",
+        "zeta",
+    ):  # the maps use the fused kernel (indices.transmission): equal to round-off
+        np.testing.assert_allclose(m.values[expected_ok], core, rtol=1e-12, atol=1e-14)
+        core = m.values[expected_ok]
     np.testing.assert_array_equal(m.values[expected_ok], core)
     if quantity == "verdict":
         assert m.values.dtype.kind == "i" and (m.values[~expected_ok] == -1).all()
@@ -74,8 +85,7 @@ def test_map_equals_the_core_pointwise(quantity):
 
 def test_map_condition_values_change_sign_with_paper_002_eq_6():
     m = W.grid_map(
-        H4, "condition:0", x=("z", -560, -470, 4), y=("phi", 60, 90, 4), fixed={"x": 300, "y": 300}
-    )
+        H4, "condition:0", x=("z", -560, -470, 4), y=("phi", 60, 90, 4), fixed={"x": 300, "y": 300}, angles="deg")
     ok = m.reachable
     eq6, _ = conditions(api(grid_poses(m))[ok])
     assert (eq6 > 0).any() and (eq6 < 0).any()  # the slice crosses the constraint surface
@@ -86,8 +96,8 @@ def test_map_condition_values_change_sign_with_paper_002_eq_6():
 
 
 def test_map_chunks_and_json_and_npz(tmp_path):
-    whole = W.grid_map(H4, "closeness", **SLICE)
-    chunked = W.grid_map(H4, "closeness", **SLICE, chunk=5)
+    whole = W.grid_map(H4, "closeness", **SLICE, angles="deg")
+    chunked = W.grid_map(H4, "closeness", **SLICE, chunk=5, angles="deg")
     np.testing.assert_array_equal(whole.values, chunked.values)
     data = json.loads(whole.to_json())
     assert {"region", "minimum", "maximum", "argmin", "argmax", "values", "units"} <= set(data)
@@ -101,22 +111,22 @@ def test_map_chunks_and_json_and_npz(tmp_path):
 
 def test_dask_local_cluster_gives_the_in_process_result():
     distributed = pytest.importorskip("distributed")
-    plain = W.grid_map(H4, "verdict", **SLICE, chunk=10)
+    plain = W.grid_map(H4, "verdict", **SLICE, chunk=10, angles="deg")
     with (
         distributed.LocalCluster(
             n_workers=1, threads_per_worker=1, processes=False, dashboard_address=None
         ) as cluster,
         distributed.Client(cluster) as client,
     ):
-        remote = W.grid_map(H4, "verdict", **SLICE, chunk=10, client=client)
-        closeness = W.grid_map(H4, "closeness", **SLICE, chunk=7, client=client)
-        swept = W.sweep([H4, metres()], "lti", **SLICE, chunk=6, client=client)
+        remote = W.grid_map(H4, "verdict", **SLICE, chunk=10, client=client, angles="deg")
+        closeness = W.grid_map(H4, "closeness", **SLICE, chunk=7, client=client, angles="deg")
+        swept = W.sweep([H4, metres()], "lti", **SLICE, chunk=6, client=client, angles="deg")
     np.testing.assert_array_equal(remote.values, plain.values)
-    for remote_map, plain_map in zip(swept, W.sweep([H4, metres()], "lti", **SLICE), strict=True):
+    for remote_map, plain_map in zip(swept, W.sweep([H4, metres()], "lti", **SLICE, angles="deg"), strict=True):
         np.testing.assert_array_equal(remote_map.values, plain_map.values)
         np.testing.assert_array_equal(remote_map.reachable, plain_map.reachable)
     np.testing.assert_array_equal(remote.reachable, plain.reachable)
-    np.testing.assert_array_equal(closeness.values, W.grid_map(H4, "closeness", **SLICE).values)
+    np.testing.assert_array_equal(closeness.values, W.grid_map(H4, "closeness", **SLICE, angles="deg").values)
 
 
 def metres():
@@ -134,30 +144,29 @@ def metres():
 
 
 def test_sweep_is_one_map_per_mechanism():
-    maps = W.sweep([H4, sk.load_mechanism("quattro")], "det_A", x=("z", -900, -600, 3), y=("phi", -20, 20, 2))
+    maps = W.sweep([H4, sk.load_mechanism("quattro")], "det_A", x=("z", -900, -600, 3), y=("phi", -20, 20, 2), angles="deg")
     for m, mechanism in zip(maps, (H4, sk.load_mechanism("quattro")), strict=True):
-        alone = W.grid_map(mechanism, "det_A", x=("z", -900, -600, 3), y=("phi", -20, 20, 2))
+        alone = W.grid_map(mechanism, "det_A", x=("z", -900, -600, 3), y=("phi", -20, 20, 2), angles="deg")
         np.testing.assert_array_equal(m.values, alone.values)
         assert m.mechanism == mechanism.name
     with pytest.raises(sk.ScrewkitTypeError, match="Expected `mechanisms` to be a non-empty sequence"):
-        W.sweep([], "verdict")
+        W.sweep([], "verdict", angles="deg")
 
 
 def test_maps_and_crossings_do_not_depend_on_the_length_unit():
     h4_m = metres()
-    mm = W.grid_map(H4, "closeness", **SLICE)
+    mm = W.grid_map(H4, "closeness", **SLICE, angles="deg")
     metre_slice = {"x": ("z", -1.1, -0.45, 9), "y": SLICE["y"], "fixed": {"x": 0.3, "y": 0.3}}
-    m = W.grid_map(h4_m, "closeness", **metre_slice)
+    m = W.grid_map(h4_m, "closeness", **metre_slice, angles="deg")
     np.testing.assert_array_equal(m.reachable, mm.reachable)
     np.testing.assert_allclose(m.values[m.reachable], mm.values[mm.reachable], rtol=1e-7, atol=1e-12)
     np.testing.assert_array_equal(
-        W.grid_map(h4_m, "verdict", **metre_slice).values, W.grid_map(H4, "verdict", **SLICE).values
+        W.grid_map(h4_m, "verdict", **metre_slice, angles="deg").values, W.grid_map(H4, "verdict", **SLICE, angles="deg").values
     )
     start, end = {"x": 300, "y": 300, "z": -800, "phi": -80}, {"x": 300, "y": 300, "z": -800, "phi": 0}
-    in_mm = W.check_path(H4, start, end, samples=30)
+    in_mm = W.check_path(H4, start, end, samples=30, angles="deg")
     in_m = W.check_path(
-        h4_m, {**start, "x": 0.3, "y": 0.3, "z": -0.8}, {**end, "x": 0.3, "y": 0.3, "z": -0.8}, samples=30
-    )
+        h4_m, {**start, "x": 0.3, "y": 0.3, "z": -0.8}, {**end, "x": 0.3, "y": 0.3, "z": -0.8}, samples=30, angles="deg")
     assert in_mm.crossing.kind == "actuation"
     assert in_mm.crossing.kind == in_m.crossing.kind
     assert abs(in_mm.crossing.parameter - in_m.crossing.parameter) < 1e-9
@@ -168,13 +177,13 @@ def test_maps_and_crossings_do_not_depend_on_the_length_unit():
 
 @pytest.fixture(scope="module")
 def slice_loci():
-    return {locus.kind: locus for locus in W.loci(H4, **SLICE)}
+    return {locus.kind: locus for locus in W.loci(H4, **SLICE, angles="deg")}
 
 
 def test_loci_lie_on_paper_002_surfaces_and_the_verdict_changes_across(slice_loci):
     found = slice_loci
     assert {"constraint", "actuation", "serial"} <= set(found)
-    grid = api(grid_poses(W.grid_map(H4, "verdict", **SLICE)))
+    grid = api(grid_poses(W.grid_map(H4, "verdict", **SLICE, angles="deg")))
     ok = reachable(H4.parameters, grid)
     scale = {
         k: np.abs(v).max() for k, v in zip(("constraint", "actuation"), conditions(grid[ok]), strict=True)
@@ -241,8 +250,7 @@ def test_surfaces_stack_slices_onto_paper_002_surfaces():
     found = {
         surface.kind: surface
         for surface in W.surfaces(
-            H4, x=("z", -1100, -450, 6), y=("phi", -90, 90, 4), z=("x", 250, 300, 2), fixed={"y": 300}
-        )
+            H4, x=("z", -1100, -450, 6), y=("phi", -90, 90, 4), z=("x", 250, 300, 2), fixed={"y": 300}, angles="deg")
     }
     assert {"constraint", "actuation"} <= set(found)
     for kind, equation in (("constraint", 0), ("actuation", 1)):
@@ -259,7 +267,7 @@ def test_surfaces_stack_slices_onto_paper_002_surfaces():
     with pytest.raises(
         sk.ScrewkitValueError, match=r"Expected `fixed` not to set the region's axes, got \['x'\]"
     ):
-        W.surfaces(H4, fixed={"x": 0})
+        W.surfaces(H4, fixed={"x": 0}, angles="deg")
 
 
 def test_serial_locus_is_the_reach_edge(slice_loci):
@@ -309,13 +317,13 @@ def test_path_inside_the_catalog_box_is_singularity_free():
     dense = api(np.linspace([*start.values()], [*end.values()], 2000))
     eq6, eq7 = conditions(dense)  # independently: no sign change of Eq. (6) or (7) on the path
     assert (eq6 < 0).all() and (eq7 > 0).all() and reachable(H4.parameters, dense).all()
-    check = W.check_path(H4, start, end, samples=50)
+    check = W.check_path(H4, start, end, samples=50, angles="deg")
     assert check.singularity_free and check.crossing is None
     assert check.start == start and check.end == end
 
 
 def test_path_leaving_the_reach_reports_the_serial_edge():
-    check = W.check_path(H4, {"z": -750.0}, {"z": -5000.0}, samples=20)
+    check = W.check_path(H4, {"z": -750.0}, {"z": -5000.0}, samples=20, angles="deg")
 
     def inside(t):
         return 1.0 if reachable(H4.parameters, [0, 0, -750.0 - 4250.0 * t, 0])[()] else -1.0
@@ -451,7 +459,8 @@ def test_cli_bad_arguments(argv, message, capsys, tmp_path, monkeypatch):
     ],
 )
 def test_grid_map_errors(kwargs, message):
-    arguments = {"quantity": "verdict", "x": ("z", -900, -600, 2), "y": ("phi", -10, 10, 2), **kwargs}
+    arguments = {"quantity": "verdict", "x": ("z", -900, -600, 2), "y": ("phi", -10, 10, 2), "angles": "deg",
+                 **kwargs}
     quantity = arguments.pop("quantity")
     with pytest.raises(sk.ScrewkitError) as info:
         W.grid_map(H4, quantity, **arguments)
@@ -460,24 +469,24 @@ def test_grid_map_errors(kwargs, message):
 
 def test_other_errors():
     with pytest.raises(sk.ScrewkitValueError, match="four-limb mechanism for quantity 'lti'"):
-        W.grid_map(sk.load_mechanism("planar_3rrp"), "lti", x=("x", -1, 1, 2), y=("y", -1, 1, 2))
+        W.grid_map(sk.load_mechanism("planar_3rrp"), "lti", x=("x", -1, 1, 2), y=("y", -1, 1, 2), angles="deg")
     with pytest.raises(sk.ScrewkitValueError, match=r"Expected `samples` to be an integer >= 2, got 1"):
-        W.check_path(H4, {}, {"z": -700}, samples=1)
+        W.check_path(H4, {}, {"z": -700}, samples=1, angles="deg")
     with pytest.raises(sk.ScrewkitValueError, match=r"Expected `start` to have shape \(4,\)"):
-        W.check_path(H4, [0, 0, -700], {"z": -700})
+        W.check_path(H4, [0, 0, -700], {"z": -700}, angles="deg")
     with pytest.raises(sk.ScrewkitTypeError, match="Expected `end\\['z'\\]` to be a number"):
-        W.check_path(H4, {}, {"z": "low"})
+        W.check_path(H4, {}, {"z": "low"}, angles="deg")
     with pytest.raises(sk.ScrewkitTypeError, match="Expected `mode` to be None"):
-        W.check_path(H4, {}, {"z": -700}, mode="up")
+        W.check_path(H4, {}, {"z": -700}, mode="up", angles="deg")
     with pytest.raises(sk.ScrewkitValueError, match=r"Expected `path` to end in \.npz, \.json or \.png"):
-        W.grid_map(H4, "verdict", x=("z", -900, -600, 2), y=("phi", -10, 10, 2)).save("m.csv")
+        W.grid_map(H4, "verdict", x=("z", -900, -600, 2), y=("phi", -10, 10, 2), angles="deg").save("m.csv")
 
 
 def test_png_through_screwkit_plot(tmp_path):
     pytest.importorskip("matplotlib")
     pytest.importorskip("screwkit.plot")
     for quantity in ("verdict", "lti"):
-        m = W.grid_map(H4, quantity, x=("z", -900, -600, 4), y=("phi", -30, 30, 3))
+        m = W.grid_map(H4, quantity, x=("z", -900, -600, 4), y=("phi", -30, 30, 3), angles="deg")
         written = m.save(tmp_path / f"{quantity}.png")
         assert written.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
@@ -486,14 +495,23 @@ def test_png_without_the_plot_extra_says_what_to_install(monkeypatch, tmp_path):
     import sys
 
     monkeypatch.setitem(sys.modules, "screwkit.plot", None)  # import screwkit.plot fails
-    m = W.grid_map(H4, "verdict", x=("z", -900, -600, 2), y=("phi", -10, 10, 2))
+    monkeypatch.delattr(sk, "plot", raising=False)  # also once an earlier test has imported it
+    m = W.grid_map(H4, "verdict", x=("z", -900, -600, 2), y=("phi", -10, 10, 2), angles="deg")
     with pytest.raises(sk.ScrewkitValueError, match=r"pip install 'screwkit\[plot\]'"):
         m.save(tmp_path / "m.png")
 
 
 def test_progress_line_on_request(capsys):
-    W.grid_map(H4, "verdict", x=("z", -900, -600, 4), y=("phi", -10, 10, 3), chunk=5, progress=True)
+    W.grid_map(H4, "verdict", x=("z", -900, -600, 4), y=("phi", -10, 10, 3), chunk=5, progress=True, angles="deg")
     err = capsys.readouterr().err
     assert "12/12" in err.replace(" ", "")  # tqdm's bar or the plain line, both count the poses
-    W.grid_map(H4, "verdict", x=("z", -900, -600, 4), y=("phi", -10, 10, 3), chunk=5, progress=False)
+    W.grid_map(H4, "verdict", x=("z", -900, -600, 4), y=("phi", -10, 10, 3), chunk=5, progress=False, angles="deg")
     assert capsys.readouterr().err == ""
+
+
+def test_angles_are_radians_by_default_like_the_rest_of_the_api():
+    # design.md §3: the Python API takes radians; angles="deg" is the CLI's and the TOML files' unit
+    in_degrees = W.grid_map(H4, "det_A", x=("z", -900, -600, 3), y=("phi", -30, 30, 3), angles="deg")
+    in_radians = W.grid_map(H4, "det_A", x=("z", -900, -600, 3), y=("phi", -np.pi / 6, np.pi / 6, 3))
+    np.testing.assert_allclose(in_radians.values, in_degrees.values, rtol=1e-12)
+    np.testing.assert_allclose(in_radians.y_values, np.radians(in_degrees.y_values), rtol=1e-15)

@@ -123,6 +123,7 @@ from ..exceptions import (
 )
 from ..jacobians import schoenflies_basis
 from ..joints import JointTable
+from ._two_limb import at_reach
 
 __all__ = [
     "DEFAULT_PARALLELOGRAM_WIDTH_MM",
@@ -729,7 +730,8 @@ def inverse_kinematics(
             f"root, |K_i| > hypot(P_i, Q_i)): {detail}."
         )
     psi = np.arctan2(terms.q, terms.p)
-    delta = np.arccos(np.clip(terms.k / terms.rho, -1.0, 1.0))
+    a = params.arm_length
+    delta = np.arccos(at_reach(terms.k / terms.rho, (terms.k * a + params.rod_length**2) / (a * terms.rho)))
     theta = _wrap(psi - np.array(mode, dtype=float) * delta)
     return _assemble(params, chi, theta, mode, terms.platform)
 
