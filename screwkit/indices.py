@@ -991,7 +991,9 @@ def transmission_ratio(
     return np.minimum(ratio, 1.0)
 
 
-def _driven_link_points(jacobians: Any, *, output: bool = False) -> tuple[np.ndarray, np.ndarray]:
+def _driven_link_points(
+    jacobians: Any, wrenches: np.ndarray, *, output: bool = False
+) -> tuple[np.ndarray, np.ndarray]:
     """Per limb, where the actuation wrench acts on the link the actuator drives (``output``: on the
     platform): the point of the wrench's line nearest (least squares) to the zero-pitch axes of that
     link's other joints in the limb (a spherical joint's three axes meet at its centre; a
@@ -1001,7 +1003,6 @@ def _driven_link_points(jacobians: Any, *, output: bool = False) -> tuple[np.nda
     table = analysis.table
     specs = {spec.name: spec for spec in table.specs}
     offsets = dict(zip(specs, np.cumsum([0] + [spec.dof for spec in table.specs[:-1]]).tolist(), strict=True))
-    wrenches = np.asarray(jacobians.wrenches)
     screws = np.asarray(table.screws, dtype=float)
     points = np.zeros((*wrenches.shape[:-1], 3))
     found = np.zeros(wrenches.shape[:-1], dtype=bool)
@@ -1163,6 +1164,9 @@ def wrench_transmission(
             f"A of shape {(n, dof)}."
         )
     wrenches = np.asarray(jacobians.wrenches)
+    # what the driven link receives: the wrench, or in a compound leg analysed as a whole its part
+    # on the actuator's own branch (screwkit.wrenches.WrenchAnalysis.branch_rows)
+    branches = np.asarray(jacobians.analysis.branch_rows, dtype=float)
     twists = np.asarray(jacobians.analysis.actuated_twists, dtype=float)
     basis = np.asarray(jacobians.twist_basis)
     points = [None if p is None else B.as_array(p, name, (None, 3), symbolic=False)
@@ -1171,14 +1175,14 @@ def wrench_transmission(
         if array is not None and array.shape[-2] != n:
             raise ScrewkitValueError(f"Expected `{name}` to have shape (..., {n}, 3), got {array.shape}.")
     if points[0] is None and n:
-        found, located = _driven_link_points(jacobians)
+        found, located = _driven_link_points(jacobians, branches)
         iti = np.where(
             located,
-            transmission_ratio(wrenches, twists, point=found),
-            transmission_ratio(wrenches, twists),
+            transmission_ratio(branches, twists, point=found),
+            transmission_ratio(branches, twists),
         )
     else:
-        iti = transmission_ratio(wrenches, twists, point=points[0]) if n else np.zeros(forward.shape[:-1])
+        iti = transmission_ratio(branches, twists, point=points[0]) if n else np.zeros(forward.shape[:-1])
     iti = np.where(np.asarray(jacobians.serial), 0.0, iti)
     if n == 0:
         return WrenchTransmission(iti, iti, np.ones(forward.shape[:-2]), jacobians.actuated_joints)
@@ -1191,7 +1195,7 @@ def wrench_transmission(
         coefficients = np.ones((*forward.shape[:-2], 1, 1))
     output_twists = np.einsum("...jk,...kc->...jc", coefficients, basis)
     if points[1] is None:
-        found, located = _driven_link_points(jacobians, output=True)
+        found, located = _driven_link_points(jacobians, wrenches, output=True)
         oti = np.where(
             located,
             transmission_ratio(wrenches, output_twists, point=found),

@@ -139,6 +139,8 @@ def test_core_calls_the_vertical_plane_pose_regular_with_papers_jacobians():
     wrench = report.analysis.actuation_rows[0]
     assert np.linalg.norm(np.cross(wrench[:3], cfg.w[0])) < 1e-9
     assert abs(S.pitch(wrench)) > 1.0
+    # its part on A1's own branch is what arm 1 receives: paper 004's |cos μ_i| = |h_i| / b (Eq. 11)
+    np.testing.assert_allclose(posed.wrench_transmission.input[0], np.abs(paper_004_h(cfg)) / 375.0, rtol=1e-9)
 
 
 def test_kinematic_jacobian_matches_finite_differences_of_the_inverse_kinematics():
@@ -248,7 +250,7 @@ def test_paper_002_superbracket_lines_coincide_on_the_vertical_plane():
     unit[:, 3:] *= 1e-3
     assert abs(np.linalg.det(unit)) < 1e-12
     diagram, _ = H4.wrench_diagram(VERTICAL)
-    assert any("actuation A1 wrench has pitch" in problem for problem in diagram.degenerate)
+    assert diagram.degenerate and all("actuation A1" in problem for problem in diagram.degenerate)
 
 
 def test_poses_on_and_beside_every_vertical_plane_are_regular_with_papers_jacobians(rng):
