@@ -26,7 +26,10 @@ changes of unit; 0 at the singularity):
 
 * ``constraint``: σ_c0 / σ_1 of orthonormal bases of the compound legs' constraint systems,
   stacked, with ``c0 = 6 − dof`` (about the reference point, moments over the length);
-* ``actuation``: σ_6 / σ_1 of those bases stacked with the unit actuation wrenches;
+* ``actuation``: σ_6 / σ_1 of those bases stacked with the unit actuation wrenches (the wrench of
+  a limb whose actuator shares a link with others, less its part in its compound leg's constraint
+  system: otherwise the H4 near a vertical parallelogram plane would look near-singular,
+  :func:`screwkit.wrenches.analyze_table`);
 * ``serial``: the smallest normalised reciprocal product of an actuation wrench with its actuated
   twist (:func:`~screwkit.wrenches.normalized_reciprocal_product`; for lines, mutual moment over the
   length, which can exceed 1 for limbs far from the reference point).
