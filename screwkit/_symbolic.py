@@ -142,8 +142,10 @@ class GenericPoint:
         import mpmath
 
         with mpmath.workdps(_DIGITS):
-            return [[mpmath.mpf(v.numerator) / v.denominator if isinstance(v, Fraction) else v for v in row]
-                    for row in numbers]
+            return [
+                [mpmath.mpf(v.numerator) / v.denominator if isinstance(v, Fraction) else v for v in row]
+                for row in numbers
+            ]
 
 
 @functools.lru_cache(maxsize=32)
@@ -268,12 +270,12 @@ def primitive(vector: list[Any]) -> list[Any]:
     return out
 
 
-def nullspace(matrix: Any, point: GenericPoint | None = None) -> Array:
+def nullspace(matrix: Any, point: GenericPoint | None = None, *, reduce: bool = True) -> Array:
     """A generic basis of ``{x : matrix @ x = 0}`` (``(m, n)`` object array), as rows.
 
     Cramer's rule on a pivot block chosen at the random point: for a free column ``f`` the vector
     has ``det(K_RP)`` at ``f`` and ``−det(K_RP with column i replaced by K_Rf)`` at the pivot
-    column ``i``. Each vector is then made :func:`primitive`.
+    column ``i``. Each vector is then made :func:`primitive` (unless ``reduce`` is False).
 
     Examples
     --------
@@ -302,7 +304,7 @@ def nullspace(matrix: Any, point: GenericPoint | None = None) -> Array:
             replaced = block.copy()
             replaced[:, k] = sp.Matrix([array[r, f] for r in rows])
             vector[c] = -replaced.det(method="berkowitz")
-        vectors.append(primitive(vector))
+        vectors.append(primitive(vector) if reduce else vector)
     return np.array(vectors, dtype=object).reshape(len(vectors), n)
 
 
@@ -330,7 +332,9 @@ def reciprocal_within(basis: Any, others: Any, point: GenericPoint | None = None
         [[sp.expand(sum(o[_SWAP[j]] * b[j] for j in range(6))) for b in basis] for o in others], dtype=object
     )
     point = point or generic_point(basis, others)
-    coefficients = nullspace(products, point)
-    rows = [primitive([sum(c * b[j] for c, b in zip(vector, basis, strict=True)) for j in range(6)])
-            for vector in coefficients]
+    coefficients = nullspace(products, point, reduce=False)  # the rows are made primitive below
+    rows = [
+        primitive([sum(c * b[j] for c, b in zip(vector, basis, strict=True)) for j in range(6)])
+        for vector in coefficients
+    ]
     return np.array(rows, dtype=object).reshape(len(rows), 6)

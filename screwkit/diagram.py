@@ -640,7 +640,9 @@ def graph_sampler(
     def sampler(rng: np.random.Generator) -> dict[str, Array]:
         for _ in range(attempts):
             try:
-                return diagram_points(points, wrench_analysis(build(rng)))
+                analysis = wrench_analysis(build(rng))
+                assert isinstance(analysis, WrenchAnalysis)  # numeric graphs (a symbolic one is generic)
+                return diagram_points(points, analysis)
             except ScrewkitError:
                 continue
         raise ScrewkitValueError(

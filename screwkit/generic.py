@@ -208,8 +208,11 @@ class GenericAnalysis:
             "constraint_wrenches": self.constraint_wrenches.to_dict(),
             "global_order": self.global_order,
             "compound_legs": [
-                {"leg": leg.name, "motion_type": motion_type(leg.twist_system),
-                 "constraint_wrenches": leg.constraint_wrenches.to_dict()}
+                {
+                    "leg": leg.name,
+                    "motion_type": motion_type(leg.twist_system),
+                    "constraint_wrenches": leg.constraint_wrenches.to_dict(),
+                }
                 for leg in self.compound_legs
             ],
             "limbs": [
@@ -235,7 +238,9 @@ class GenericAnalysis:
             f"  constraint wrenches: {self.constraint_wrenches}",
         ]
         for leg in self.compound_legs:
-            lines.append(f"  {leg.name}: {motion_type(leg.twist_system)}; constraints {leg.constraint_wrenches}")
+            lines.append(
+                f"  {leg.name}: {motion_type(leg.twist_system)}; constraints {leg.constraint_wrenches}"
+            )
         for limb in self.limbs:
             lines.append(
                 f"  limb of {limb.actuated_joint}: {motion_type(limb.twist_system)}; "
@@ -254,8 +259,12 @@ def _specs_and_screws(graph: nx.MultiDiGraph, joint_key: str) -> tuple[tuple[Joi
     specs = tuple(
         JointSpec(key, joint.type, u, v, joint.dof, bool(joint.actuated)) for u, v, key, joint in joints
     )
-    blocks = [B.as_array(joint.screws, f"screws of {key!r}", (6,), symbolic=True) for _, _, key, joint in joints]
-    screws = np.concatenate([b.reshape(-1, 6) for b in blocks], axis=0) if blocks else np.zeros((0, 6), object)
+    blocks = [
+        B.as_array(joint.screws, f"screws of {key!r}", (6,), symbolic=True) for _, _, key, joint in joints
+    ]
+    screws = (
+        np.concatenate([b.reshape(-1, 6) for b in blocks], axis=0) if blocks else np.zeros((0, 6), object)
+    )
     return specs, screws
 
 
@@ -317,7 +326,9 @@ class _GenericEvaluation:
         return self.within(self.wrenches(largest), [*(self.twists(c) for c in nodes if c != largest), *extra])
 
 
-def generic_analysis(graph: nx.MultiDiGraph, *, dof: int | None = None, joint_key: str = "joint") -> GenericAnalysis:
+def generic_analysis(
+    graph: nx.MultiDiGraph, *, dof: int | None = None, joint_key: str = "joint"
+) -> GenericAnalysis:
     """The generic wrench analysis of a symbolic twist graph (see the module docstring).
 
     Parameters
@@ -381,7 +392,9 @@ def generic_analysis(graph: nx.MultiDiGraph, *, dof: int | None = None, joint_ke
     for plan in top.limbs:
         actuated = plan.sign * core.joint_rows(plan.index)[0]
         locked = core.span(
-            np.concatenate([core.twists(n) for n in plan.siblings], axis=0) if plan.siblings else np.zeros((0, 6))
+            np.concatenate([core.twists(n) for n in plan.siblings], axis=0)
+            if plan.siblings
+            else np.zeros((0, 6))
         )
         free = core.span(np.concatenate([locked.reshape(-1, 6), actuated[None]], axis=0))
         passive = core.reciprocal_of_sum(plan.siblings, [])

@@ -45,12 +45,13 @@ from .exceptions import ScrewkitError, ScrewkitTypeError, ScrewkitValueError
 from .jacobians import WrenchJacobians
 from .singularity import SingularityReport, classify_analysis
 from .twistgraph import equivalent_twist_graph, fundamental_loops
+from .screwsystem import motion_type
 from .wrenches import WrenchAnalysis, checked_rtol, wrench_analysis
 
 if TYPE_CHECKING:  # the diagram and GCA stack loads when a report is made, not on `import screwkit`
     from .diagram import SuperbracketAnalysis, WrenchDiagram
 
-__all__ = ["AnalysisReport", "analyze", "describe_wrench", "pose_report"]
+__all__ = ["AnalysisReport", "analyze", "describe_twist", "describe_wrench", "pose_report"]
 
 Array = np.ndarray
 
@@ -80,6 +81,24 @@ def describe_wrench(wrench: Array, *, length_scale: float) -> dict[str, Any]:
         "point": (point + 0.0).round(9).tolist(),
         "pitch": round(pitch, 12) + 0.0,
     }
+
+
+def describe_twist(twist: Array, *, length_scale: float) -> dict[str, Any]:
+    """A twist as :func:`describe_wrench` does a wrench, named as a motion: translation, rotation
+    or screw motion.
+
+    Examples
+    --------
+    >>> describe_twist(S.prismatic_twist([0, 0, 1]), length_scale=1.0)["kind"]
+    'translation'
+    """
+    described = describe_wrench(twist, length_scale=length_scale)
+    kinds = {
+        "couple (line at infinity)": "translation",
+        "force (finite line)": "rotation",
+        "screw of finite pitch": "screw motion",
+    }
+    return {**described, "kind": kinds[described["kind"]]}
 
 
 _SNAPSHOT_JACOBIANS = "not computed: a snapshot has no family to give the platform's nominal twists"
@@ -145,8 +164,20 @@ class AnalysisReport:
     def wrenches(self) -> dict[str, Any]:
         """The platform's twist order and every wrench as a line."""
         scale = self.analysis.length_scale
+        platform = self.analysis.platform_twists
         return {
-            "platform_twist_order": self.analysis.platform_twists.order,
+            "platform_twist_order": platform.order,
+            "platform_twists": {
+                "motion_type": motion_type(platform),
+                "basis": [
+                    describe_twist(t, length_scale=scale)
+                    for t in platform.readable_basis(near=self.analysis.reference_point)
+                ],
+            },
+            "leg_motion_types": {
+                leg.name: motion_type(leg.twist_system)
+                for leg in sorted(self.analysis.compound_legs, key=lambda leg: leg.name)
+            },
             "constraint": [
                 {"leg": leg.name, **describe_wrench(w, length_scale=scale)}
                 for leg in sorted(self.analysis.compound_legs, key=lambda leg: leg.name)
@@ -240,6 +271,13 @@ class AnalysisReport:
         virtual = ", ".join(f"{count} {kind}" for kind, count in eq["virtual_joints"].items()) or "none"
         out.append(f"  equivalent graph: {eq['links']} links, {eq['loops']} loops, virtual joints: {virtual}")
         wrenches = self.wrenches()
+        twists = wrenches["platform_twists"]
+        out += [
+            "",
+            f"platform twist system: {twists['motion_type']} (order {wrenches['platform_twist_order']})",
+            *(f"  {_line_text(item, unit)}" for item in twists["basis"]),
+            *(f"  {leg}: {kind}" for leg, kind in wrenches["leg_motion_types"].items()),
+        ]
         out += ["", f"wrench systems (platform twist system of order {wrenches['platform_twist_order']})"]
         for item in wrenches["constraint"]:
             out.append(f"  constraint ({item['leg']}): {_line_text(item, unit)}")
@@ -376,6 +414,11 @@ def _graph_report(
     if pose is not None:
         raise ScrewkitValueError(f"{source}: {what} is one configuration; expected no pose, got {pose!r}.")
     analysis = wrench_analysis(graph, rtol=rtol)
+    if not isinstance(analysis, WrenchAnalysis):
+        raise ScrewkitTypeError(
+            f"{source}: expected numeric joint screws for a report at a pose, got symbols; "
+            "use screwkit.generic.generic_analysis for a family's generic answers."
+        )
     from .diagram import wrench_diagram
 
     diagram = wrench_diagram(analysis)
