@@ -43,6 +43,7 @@ import numpy as np
 
 __all__ = [
     "FLOAT_RTOL",
+    "MAX_CRAMER",
     "SAMPLE_RANGE",
     "GenericPoint",
     "generic_point",
@@ -59,6 +60,8 @@ Array = np.ndarray
 SAMPLE_RANGE = 2**62
 #: Relative pivot threshold when an entry could not be evaluated exactly (60-digit arithmetic).
 FLOAT_RTOL = 1e-40
+#: Largest pivot block solved by Cramer's rule (screw systems need at most 6).
+MAX_CRAMER = 6
 _DIGITS = 60
 _SEED = 20261123
 _SWAP = [3, 4, 5, 0, 1, 2]
@@ -275,7 +278,8 @@ def nullspace(matrix: Any, point: GenericPoint | None = None, *, reduce: bool = 
 
     Cramer's rule on a pivot block chosen at the random point: for a free column ``f`` the vector
     has ``det(K_RP)`` at ``f`` and ``−det(K_RP with column i replaced by K_Rf)`` at the pivot
-    column ``i``. Each vector is then made :func:`primitive` (unless ``reduce`` is False).
+    column ``i``. Each vector is then made :func:`primitive` (unless ``reduce`` is False). A pivot
+    block larger than :data:`MAX_CRAMER` (a loop-closure matrix) goes to sympy's elimination.
 
     Examples
     --------
@@ -293,6 +297,9 @@ def nullspace(matrix: Any, point: GenericPoint | None = None, *, reduce: bool = 
     numbers = point.matrix(array)
     rows, _ = _echelon(numbers)
     columns = _echelon([list(c) for c in zip(*[numbers[r] for r in rows], strict=True)])[0]
+    if len(rows) > MAX_CRAMER:  # a large system (a loop-closure matrix): sympy's elimination
+        vectors = [primitive(list(v)) for v in sp.Matrix(array).nullspace(simplify=True)]
+        return np.array(vectors, dtype=object).reshape(len(vectors), n)
     block = sp.Matrix([[array[r, c] for c in columns] for r in rows])
     free = [c for c in range(n) if c not in columns]
     determinant = sp.expand(block.det(method="berkowitz")) if rows else sp.Integer(1)
