@@ -2,7 +2,9 @@
 
 Run: ``python bench/bench_core.py [--sizes 1000 10000 100000 1000000] [--repeats 21]`` from the
 repository root (prints a table; not a test). Every figure is single-threaded: the BLAS/OpenMP
-thread counts are set to 1 before numpy is imported.
+thread counts are set to 1 before numpy is imported, and the rates are this process's CPU time
+(``time.process_time``, the best of a few runs), which is the wall time on an idle machine and,
+unlike it, is not inflated by other processes on a shared one.
 
 Figures (the issue's targets in brackets):
 
@@ -16,7 +18,8 @@ Figures (the issue's targets in brackets):
 * memory: ``tracemalloc`` peak of one chunk's :func:`verdicts` / ``CHUNK``, KiB per pose [≤ 3];
 * import: CPU time (user + sys of the child, ``resource.getrusage(RUSAGE_CHILDREN)`` deltas) of
   ``python -c "import screwkit"`` against ``python -c "import numpy, networkx"`` in fresh
-  subprocesses, min and median over the repeats, ratio of the medians [≤ 1.2].
+  subprocesses run in turn, each from its bytecode cache (:func:`child_cpu`), min and median over
+  the repeats, ratio of the medians [≤ 1.2].
 """
 
 import os
@@ -30,6 +33,7 @@ import resource  # noqa: E402
 import statistics  # noqa: E402
 import subprocess  # noqa: E402
 import sys  # noqa: E402
+import time  # noqa: E402
 import tracemalloc  # noqa: E402
 
 import numpy as np  # noqa: E402
@@ -83,14 +87,24 @@ def chunked(function, poses):
         function(poses[begin : begin + CHUNK])
 
 
-def child_cpu(code, repeats):
-    """User + sys CPU seconds of fresh ``python -c code`` processes (one figure per repeat)."""
-    figures = []
+def child_cpu(codes, repeats):
+    """User + sys CPU seconds of fresh ``python -c code`` processes, one list per code (the codes
+    run in turn, repeat by repeat, so that load drifting over the run hits each alike).
+
+    Every code runs once first, unmeasured, with bytecode writing allowed: screwkit is then timed
+    from its ``__pycache__`` as numpy and networkx are from theirs (``pip install`` compiles them;
+    with ``PYTHONDONTWRITEBYTECODE`` set, an editable checkout would be recompiled on every import).
+    """
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
+    for code in codes:
+        subprocess.run([sys.executable, "-c", code], check=True, env=env)
+    figures = [[] for _ in codes]
     for _ in range(repeats):
-        before = resource.getrusage(resource.RUSAGE_CHILDREN)
-        subprocess.run([sys.executable, "-c", code], check=True, env=os.environ.copy())
-        after = resource.getrusage(resource.RUSAGE_CHILDREN)
-        figures.append(after.ru_utime - before.ru_utime + after.ru_stime - before.ru_stime)
+        for code, figure in zip(codes, figures, strict=True):
+            before = resource.getrusage(resource.RUSAGE_CHILDREN)
+            subprocess.run([sys.executable, "-c", code], check=True, env=env)
+            after = resource.getrusage(resource.RUSAGE_CHILDREN)
+            figure.append(after.ru_utime - before.ru_utime + after.ru_stime - before.ru_stime)
     return figures
 
 
@@ -110,8 +124,16 @@ def main(argv=None):
         matrices = np.concatenate(
             [wrench_matrices(h4, chosen[b : b + CHUNK]) for b in range(0, count, CHUNK)]
         )
-        svd = best_of(3 if count <= 10**5 else 1, lambda m=matrices: np.linalg.svd(m, compute_uv=False))
-        ours = best_of(2 if count <= 10**4 else 1, lambda c=chosen: chunked(lambda p: verdicts(h4, p), c))
+        svd = best_of(
+            3 if count <= 10**5 else 1,
+            lambda m=matrices: np.linalg.svd(m, compute_uv=False),
+            clock=time.process_time,
+        )
+        ours = best_of(
+            2 if count <= 10**4 else 1,
+            lambda c=chosen: chunked(lambda p: verdicts(h4, p), c),
+            clock=time.process_time,
+        )
         print(
             f"{count:>9,} | {count / svd:>14,.0f} | {count / ours:>18,.0f} | {svd / ours:>6.4f} | {ours:.2f}"
         )
@@ -124,9 +146,7 @@ def main(argv=None):
     per_pose = peak / len(chunk) / 1024
     print(f"memory: tracemalloc peak of one chunk / {len(chunk):,} poses = {per_pose:.2f} KiB/pose")
 
-    ours = child_cpu("import screwkit", args.repeats)
-    base = child_cpu("import numpy, networkx", args.repeats)
-    bare = child_cpu("pass", args.repeats)
+    ours, base, bare = child_cpu(["import screwkit", "import numpy, networkx", "pass"], args.repeats)
     print(f"import CPU (user+sys, {args.repeats} fresh processes; min / median):")
     rows = (("import screwkit", ours), ("import numpy, networkx", base), ("python -c pass", bare))
     for label, figures in rows:

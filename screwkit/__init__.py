@@ -14,7 +14,6 @@ Examples
 from pkgutil import extend_path
 from typing import Any
 
-from .catalog import Mechanism, list_mechanisms, load_mechanism, load_snapshot
 from .exceptions import (
     CatalogError,
     DegenerateGeometryError,
@@ -24,7 +23,6 @@ from .exceptions import (
     TwistGraphError,
     UnreachablePoseError,
 )
-from .families import Family, register
 from .joints import (
     Joint,
     JointTable,
@@ -36,22 +34,6 @@ from .joints import (
     spherical,
     universal,
     virtual,
-)
-from .projective import (
-    are_collinear,
-    are_coplanar,
-    bracket,
-    finite_point,
-    infinite_point,
-    is_at_infinity,
-    join,
-    line_points,
-    lines_intersect,
-    meet_line_plane,
-    meet_planes,
-    plane,
-    plane_through,
-    point_on_line,
 )
 from .screw import Screw, reciprocal_product
 from .screwsystem import ScrewSystem
@@ -66,9 +48,34 @@ from .twistgraph import (
 )
 from .wrenches import WrenchAnalysis, analyze_table, wrench_analysis
 
-#: Names loaded on first use (the Jacobians, the composer and its report are not a cost of
-#: ``import screwkit``; PEP 562).
+#: Names loaded on first use (the catalog and its families, the projective helpers, the
+#: Jacobians, the composer and its report are not a cost of ``import screwkit``; PEP 562).
 _LAZY = {
+    "Mechanism": "catalog",
+    "list_mechanisms": "catalog",
+    "load_mechanism": "catalog",
+    "load_snapshot": "catalog",
+    "Family": "families",
+    "register": "families",
+    **dict.fromkeys(
+        (
+            "are_collinear",
+            "are_coplanar",
+            "bracket",
+            "finite_point",
+            "infinite_point",
+            "is_at_infinity",
+            "join",
+            "line_points",
+            "lines_intersect",
+            "meet_line_plane",
+            "meet_planes",
+            "plane",
+            "plane_through",
+            "point_on_line",
+        ),
+        "projective",
+    ),
     "WrenchJacobians": "jacobians",
     "jacobians_from_wrenches": "jacobians",
     "schoenflies_basis": "jacobians",
@@ -76,10 +83,31 @@ _LAZY = {
     "PosedMechanism": "posed",
     "AnalysisReport": "report",
     "analyze": "report",
+    "graph_dot": "export",
+    "graph_json": "export",
+    "save_snapshot": "export",
+    "snapshot_text": "export",
+    "WrenchDiagram": "diagram",
+    "wrench_diagram": "diagram",
+    "diagram_at": "diagram",
+    "SuperbracketAnalysis": "diagram",
+    "superbracket_analysis": "diagram",
+    "TransmissionIndices": "indices",
+    "transmission": "indices",
+    "index_extremes": "indices",
+    "wrench_transmission": "indices",
 }
 
 
+#: Submodules loaded on first use (``sk.workspace.grid_map``).
+_LAZY_MODULES = ("workspace",)
+
+
 def __getattr__(name: str) -> Any:
+    if name in _LAZY_MODULES:
+        import importlib
+
+        return importlib.import_module(f".{name}", __name__)
     if name in _LAZY:
         import importlib
 
@@ -90,7 +118,7 @@ def __getattr__(name: str) -> Any:
 
 
 def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(_LAZY))
+    return sorted(set(globals()) | set(_LAZY) | set(_LAZY_MODULES))
 
 __version__ = "0.1.0"
 
@@ -115,9 +143,12 @@ __all__ = [
     "ScrewkitTypeError",
     "ScrewkitValueError",
     "SingularityReport",
+    "SuperbracketAnalysis",
+    "TransmissionIndices",
     "TwistGraphError",
     "UnreachablePoseError",
     "WrenchAnalysis",
+    "WrenchDiagram",
     "WrenchJacobians",
     "__version__",
     "analyze",
@@ -129,10 +160,14 @@ __all__ = [
     "classify_poses",
     "classify_table",
     "cylindrical",
+    "diagram_at",
     "equivalent_twist_graph",
     "finite_point",
     "fundamental_loops",
+    "graph_dot",
+    "graph_json",
     "helical",
+    "index_extremes",
     "infinite_point",
     "is_at_infinity",
     "jacobians_from_wrenches",
@@ -154,11 +189,17 @@ __all__ = [
     "reciprocal_product",
     "register",
     "revolute",
+    "save_snapshot",
     "schoenflies_basis",
     "series_parallel_tree",
+    "snapshot_text",
     "spherical",
+    "superbracket_analysis",
+    "transmission",
     "twist_graph",
     "universal",
     "virtual",
     "wrench_analysis",
+    "wrench_diagram",
+    "wrench_transmission",
 ]

@@ -67,9 +67,12 @@ Examples
 
 from __future__ import annotations
 
+import difflib
+import inspect
 import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
+from fractions import Fraction
 from importlib import resources
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -79,7 +82,14 @@ import numpy as np
 
 from . import joints as J
 from ._backend import is_dof
-from .exceptions import CatalogError, ScrewkitError, ScrewkitValueError
+from .exceptions import (
+    CatalogError,
+    ScrewkitError,
+    ScrewkitTypeError,
+    ScrewkitValueError,
+    TwistGraphError,
+    UnreachablePoseError,
+)
 from .families import Family, families
 from .joints import JointTable
 from .twistgraph import add_joint, check_twist_graph
@@ -88,7 +98,16 @@ if TYPE_CHECKING:
     from .jacobians import WrenchJacobians
 
 __all__ = [
+    "LENGTH_UNITS",
+    "MAX_COORDINATE",
+    "MAX_FAR_OVER_SPREAD",
+    "MAX_FILE_BYTES",
+    "MAX_JOINTS",
+    "MAX_REJECTION_ROUNDS",
     "Mechanism",
+    "check_dof",
+    "degrees_to_radians",
+    "file_kind",
     "list_mechanisms",
     "load_mechanism",
     "load_snapshot",
@@ -159,7 +178,23 @@ class Mechanism:
         (4,)
         """
         chosen = self.default_pose if pose is None else pose
+        self._check_options(options)
         return self.family_protocol.inverse_kinematics(self.parameters, chosen, **options)
+
+    def _check_options(self, options: Mapping[str, Any]) -> None:
+        """Refuse inverse-kinematics options the family's solver does not take (naming those it does)."""
+        solve = self.family_protocol.inverse_kinematics
+        accepted = [
+            p.name
+            for p in list(inspect.signature(solve).parameters.values())[2:]
+            if p.kind in (p.KEYWORD_ONLY, p.POSITIONAL_OR_KEYWORD)
+        ]
+        unknown = sorted(set(options) - set(accepted))
+        if unknown:
+            raise ScrewkitTypeError(
+                f"Expected inverse-kinematics options of the {self.family} family among {accepted}, "
+                f"got {unknown}."
+            )
 
     def joints(self, pose: Any = None, **options: Any) -> JointTable:
         """The joint table at a pose or a batch of poses (the input of the analysis core).
@@ -195,18 +230,70 @@ class Mechanism:
         """
         from .posed import PosedMechanism
 
+        self._check_options(options)
+        if poses is not None and not isinstance(poses, str):
+            with np.errstate(all="ignore"):
+                try:
+                    size = np.nanmax(np.abs(np.asarray(poses, dtype=float)), initial=0.0)
+                except (TypeError, ValueError):  # not numeric: PosedMechanism names it
+                    size = 0.0
+            if np.isfinite(size) and size > MAX_COORDINATE:
+                raise ScrewkitValueError(
+                    f"Expected pose coordinates up to {MAX_COORDINATE:g} in size ({self.length_unit}, "
+                    f"radians), got {size:g}."
+                )
         return PosedMechanism.create(self, poses, rtol=rtol, options=options)
 
     def random_poses(self, rng: np.random.Generator, count: int) -> Array:
-        """Poses drawn uniformly in the operational workspace (radians), ``(count, n)``.
+        """Poses drawn uniformly in the *reachable* part of the operational workspace (radians),
+        ``(count, n)``: draws whose inverse kinematics has no solution are drawn again (rejection keeps
+        the distribution uniform; the first ``count`` draws are returned when all are reachable).
+
+        Raises
+        ------
+        ScrewkitValueError
+            If ``count`` is not a non-negative integer, or fewer than 1 draw in
+            :data:`MAX_REJECTION_ROUNDS` is reachable (the workspace box is mostly out of reach).
 
         Examples
         --------
-        >>> load_mechanism("h4").random_poses(np.random.default_rng(0), 3).shape
+        >>> poses = load_mechanism("h4").random_poses(np.random.default_rng(0), 3)
+        >>> poses.shape
         (3, 4)
         """
+        if not isinstance(rng, np.random.Generator):
+            raise ScrewkitTypeError(
+                f"Expected `rng` to be a numpy.random.Generator, got {type(rng).__name__}."
+            )
+        if isinstance(count, bool) or not isinstance(count, int | np.integer) or not 0 <= count <= 10**7:
+            raise ScrewkitValueError(f"Expected `count` to be an integer in 0..10**7, got {count!r}.")
         low, high = zip(*(self.workspace[c] for c in self.pose_names), strict=True)
-        return rng.uniform(low, high, size=(count, len(low)))
+        kept = np.empty((0, len(low)))
+        for _ in range(MAX_REJECTION_ROUNDS):
+            if len(kept) >= count:
+                return kept[:count]
+            draws = rng.uniform(low, high, size=(count - len(kept), len(low)))
+            kept = np.concatenate([kept, draws[self._reachable(draws)]])
+        if len(kept) >= count:
+            return kept[:count]
+        raise ScrewkitValueError(
+            f"{self.source}: [workspace]: only {len(kept)} of the poses drawn in {MAX_REJECTION_ROUNDS} "
+            "rounds "
+            f"are reachable, {count} wanted: the workspace box is mostly out of reach."
+        )
+
+    def _reachable(self, poses: Array) -> Array:
+        """True where the inverse kinematics has a solution (the batch bisected around failures)."""
+        if len(poses) == 0:
+            return np.zeros(0, dtype=bool)
+        try:
+            self.configuration(poses)
+            return np.ones(len(poses), dtype=bool)
+        except UnreachablePoseError:
+            if len(poses) == 1:
+                return np.zeros(1, dtype=bool)
+        half = len(poses) // 2
+        return np.concatenate([self._reachable(poses[:half]), self._reachable(poses[half:])])
 
     def wrench_diagram(
         self, pose: Any = None
@@ -284,6 +371,77 @@ def _error(source: str, where: str, message: str) -> CatalogError:
     return CatalogError(f"{source}: {where}: {message}")
 
 
+#: The length units a file may name, as exact fractions of a metre (conversions are exact up to one
+#: rounding of the result).
+LENGTH_UNITS: dict[str, Fraction] = {
+    "km": Fraction(1000),
+    "m": Fraction(1),
+    "dm": Fraction(1, 10),
+    "cm": Fraction(1, 100),
+    "mm": Fraction(1, 1000),
+    "um": Fraction(1, 10**6),
+    "µm": Fraction(1, 10**6),
+    "nm": Fraction(1, 10**9),
+    "in": Fraction(254, 10**4),
+    "ft": Fraction(3048, 10**4),
+}
+#: Units of angles and of pure numbers in ``[parameters.*] unit``.
+ANGLE_UNITS = ("deg", "rad")
+NUMBER_UNITS = ("-", "1")
+#: Largest coordinate (point, pitch) a snapshot may give, in its length unit: products of a few
+#: coordinates must stay far from overflow in the rank kernels and the superbracket.
+MAX_COORDINATE = 1e100
+#: How far from the origin a snapshot's joints may lie, in units of their spread (1e7: float64 then
+#: keeps about 9 significant digits of the geometry, as the default rtol 1e-9 needs).
+MAX_FAR_OVER_SPREAD = 1e7
+#: Rounds of redrawing in :meth:`Mechanism.random_poses` before a mostly unreachable workspace is refused.
+MAX_REJECTION_ROUNDS = 50
+#: Resource caps: a larger file, or a snapshot with more joints, is refused before it is parsed.
+MAX_FILE_BYTES = 1 << 20
+MAX_JOINTS = 2000
+#: Nesting depth of lists in a parameter value (a ``(4, 3)`` table of points is depth 2).
+_MAX_LIST_DEPTH = 3
+
+
+def _check_keys(table: Mapping[str, Any], known: Any, source: str, where: str) -> None:
+    """Refuse keys outside ``known``, naming the closest known key."""
+    for key in table:
+        if key not in known:
+            close = difflib.get_close_matches(str(key), sorted(known), n=1)
+            hint = f" (did you mean `{close[0]}`?)" if close else ""
+            raise _error(
+                source, where, f"unknown field `{key}`{hint}; expected some of {sorted(known)}."
+            )
+
+
+def degrees_to_radians(value: float) -> float:
+    """Degrees to radians, reduced modulo 360° first (exactly: :func:`math.fmod`), so that a huge angle
+    is the angle it names and not whatever ``value · π/180`` rounds to.
+
+    Examples
+    --------
+    >>> degrees_to_radians(1e20) == math.radians(280.0)   # 10**20 ≡ 280 (mod 360)
+    True
+    """
+    return math.radians(math.fmod(value, 360.0))
+
+
+def file_kind(data: Mapping[str, Any]) -> Any:
+    """``[mechanism] kind`` of parsed TOML: ``"family"`` or ``"snapshot"`` (a file without a kind but
+    with ``[[joints]]`` is read as a snapshot, so that its errors speak of snapshots); None otherwise.
+
+    Examples
+    --------
+    >>> file_kind({"mechanism": {"kind": "snapshot"}}), file_kind({"mechanism": 5}), file_kind({"joints": []})
+    ('snapshot', None, 'snapshot')
+    """
+    if not isinstance(data, Mapping):
+        return None
+    header = data.get("mechanism")
+    kind = header.get("kind") if isinstance(header, Mapping) else None
+    return "snapshot" if kind is None and "joints" in data else kind
+
+
 def load_toml(path: str | Path) -> dict[str, Any]:
     """Read a TOML file as plain data, with errors that name the file.
 
@@ -296,14 +454,31 @@ def load_toml(path: str | Path) -> dict[str, Any]:
     """
     import tomllib  # on first use: not a cost of `import screwkit`
 
+    if not isinstance(path, str | Path):
+        raise ScrewkitTypeError(f"Expected `path` to be a str or pathlib.Path, got {type(path).__name__}.")
     name = str(path)
     try:
         with open(path, "rb") as stream:
-            return tomllib.load(stream)
+            raw = stream.read(MAX_FILE_BYTES + 1)
     except OSError as err:
-        raise CatalogError(f"{name}: cannot read the file: {err.strerror}.") from err
+        raise CatalogError(f"{name}: cannot read the file: {err.strerror or err}.") from err
+    except ValueError as err:  # e.g. a NUL character in the path
+        raise CatalogError(f"{name}: cannot read the file: {err}.") from err
+    if len(raw) > MAX_FILE_BYTES:
+        raise CatalogError(f"{name}: expected a file of at most {MAX_FILE_BYTES} bytes, got a larger one.")
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as err:
+        raise CatalogError(
+            f"{name}: expected UTF-8 text (TOML), got byte 0x{raw[err.start]:02x} at offset {err.start} "
+            "(a binary file, or another encoding such as UTF-16)."
+        ) from err
+    try:
+        return tomllib.loads(text)
     except tomllib.TOMLDecodeError as err:
         raise CatalogError(f"{name}: not valid TOML: {err}.") from err
+    except RecursionError as err:
+        raise CatalogError(f"{name}: not valid TOML here: arrays or tables nested too deeply.") from err
 
 
 def _table(data: Mapping[str, Any], key: str, source: str, where: str = "") -> dict[str, Any]:
@@ -322,15 +497,16 @@ def _string(data: Mapping[str, Any], key: str, source: str, where: str) -> str:
 
 
 def _number(value: Any, source: str, where: str, key: str) -> float:
-    if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value):
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        raise _error(source, where, f"field `{key}`: expected a finite number, got {value!r}.")
+    if isinstance(value, int) and abs(value) > 10**300:  # a TOML integer may exceed every float
+        digits = len(str(abs(value)))
+        raise _error(
+            source, where, f"field `{key}`: expected a magnitude up to 1e300, got a {digits}-digit integer."
+        )
+    if not math.isfinite(value):
         raise _error(source, where, f"field `{key}`: expected a finite number, got {value!r}.")
     return float(value)
-
-
-def _radians(value: Any, source: str, where: str) -> Any:
-    if isinstance(value, list):
-        return [_radians(item, source, where) for item in value]
-    return math.radians(_number(value, source, where, "value"))
 
 
 def _vector(data: Mapping[str, Any], key: str, source: str, where: str, length: int = 3) -> list[float]:
@@ -338,6 +514,66 @@ def _vector(data: Mapping[str, Any], key: str, source: str, where: str, length: 
     if not isinstance(value, list) or len(value) != length:
         raise _error(source, where, f"field `{key}`: expected a list of {length} numbers, got {value!r}.")
     return [_number(v, source, where, key) for v in value]
+
+
+def _length_unit(header: Mapping[str, Any], source: str) -> str:
+    unit = header.get("length_unit")
+    if not isinstance(unit, str) or unit not in LENGTH_UNITS:
+        raise _error(
+            source, "[mechanism]", f"field `length_unit`: expected one of {list(LENGTH_UNITS)}, got {unit!r}."
+        )
+    return unit
+
+
+def _parameter_value(
+    value: Any, unit: str, kind: str | None, length_unit: str, source: str, where: str
+) -> Any:
+    """A parameter's value in the file's length unit and radians, its ``unit`` checked against the
+    family's kind of the parameter (``"length"``, ``"angle"``, ``"number"``; None: not declared)."""
+    units = {"length": tuple(LENGTH_UNITS), "angle": ANGLE_UNITS, "number": NUMBER_UNITS}
+    allowed = units[kind] if kind else (*LENGTH_UNITS, *ANGLE_UNITS, *NUMBER_UNITS)
+    if unit not in allowed:
+        what = f"a {kind}" if kind else "a parameter"
+        raise _error(
+            source, where, f"field `unit`: expected one of {list(allowed)} for {what}, got {unit!r}."
+        )
+    if unit in LENGTH_UNITS:
+        factor = LENGTH_UNITS[unit] / LENGTH_UNITS[length_unit]
+        return _scaled(value, lambda v: float(Fraction(v) * factor), source, where)
+    if unit == "deg":
+        return _scaled(value, degrees_to_radians, source, where)
+    if unit == "rad":
+        return _scaled(value, float, source, where)
+    return value
+
+
+def _scaled(value: Any, convert: Callable[[float], float], source: str, where: str, depth: int = 0) -> Any:
+    """``convert`` applied to a number or to every number of a (nested) list."""
+    if isinstance(value, list):
+        if depth >= _MAX_LIST_DEPTH:
+            raise _error(
+                source, where, f"field `value`: expected lists nested at most {_MAX_LIST_DEPTH} deep."
+            )
+        return [_scaled(item, convert, source, where, depth + 1) for item in value]
+    result = convert(_number(value, source, where, "value"))
+    if not abs(result) <= MAX_COORDINATE:
+        raise _error(
+            source,
+            where,
+            f"field `value`: expected a magnitude up to {MAX_COORDINATE:g} in the file's unit, "
+            f"got {value!r}.",
+        )
+    return result
+
+
+def _direction(vector: list[float]) -> list[float]:
+    """A direction scaled by a power of two (exactly) so that its largest component lies in [0.5, 1):
+    an axis of length 1e-170 or 1e300 is still an axis (its norm would underflow or overflow)."""
+    largest = max(abs(v) for v in vector)
+    if largest == 0:
+        return vector
+    exponent = math.frexp(largest)[1]
+    return [math.ldexp(v, -exponent) for v in vector]
 
 
 def _package_file(name: str) -> Path:
@@ -371,6 +607,11 @@ def load_mechanism(name_or_path: str | Path) -> Mechanism:
     ...
     screwkit.exceptions.CatalogError: unknown mechanism 'h5': expected one of [...] or a path to a .toml file.
     """
+    if not isinstance(name_or_path, str | Path):
+        raise ScrewkitTypeError(
+            "Expected a catalog name or a .toml path (str or pathlib.Path), got "
+            f"{type(name_or_path).__name__}."
+        )
     text = str(name_or_path)
     if text.endswith(".toml"):
         path = Path(text)
@@ -393,7 +634,13 @@ def mechanism_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>"
     ...
     screwkit.exceptions.CatalogError: <mapping>: [mechanism]: field `family`: expected one of ...
     """
+    if not isinstance(data, Mapping):
+        raise CatalogError(f"{source}: expected a mapping of TOML tables, got {type(data).__name__}.")
+    _check_keys(data, ("mechanism", "parameters", "pose", "workspace", "expected"), source, "top level")
     header = _table(data, "mechanism", source)
+    _check_keys(
+        header, ("kind", "name", "family", "length_unit", "sources", "description"), source, "[mechanism]"
+    )
     kind = header.get("kind", "family")
     if kind != "family":
         raise _error(source, "[mechanism]", f"field `kind`: expected 'family' here, got {kind!r}.")
@@ -405,7 +652,9 @@ def mechanism_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>"
             source, "[mechanism]", f"field `family`: expected one of {sorted(known)}, got {family_name!r}."
         )
     family = known[family_name]
-    length_unit = _string(header, "length_unit", source, "[mechanism]")
+    length_unit = _length_unit(header, source)
+    if "description" in header:
+        _string(header, "description", source, "[mechanism]")
     sources = header.get("sources", [])
     if not isinstance(sources, list) or not all(isinstance(s, str) for s in sources):
         raise _error(source, "[mechanism]", f"field `sources`: expected a list of strings, got {sources!r}.")
@@ -416,15 +665,12 @@ def mechanism_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>"
         where = f"[parameters.{key}]"
         if not isinstance(entry, dict) or "value" not in entry:
             raise _error(source, where, f"expected a table with `value`, `unit` and `source`, got {entry!r}.")
+        _check_keys(entry, ("value", "unit", "source", "note"), source, where)
         for required in ("unit", "source"):
             _string(entry, required, source, where)
-        unknown = set(entry) - {"value", "unit", "source", "note"}
-        if unknown:
-            raise _error(source, where, f"unknown field(s) {sorted(unknown)}.")
-        value = entry["value"]
-        if entry["unit"] == "deg":  # a number or a (nested) list of numbers, in degrees
-            value = _radians(value, source, where)
-        values[key] = value
+        values[key] = _parameter_value(
+            entry["value"], entry["unit"], family.parameter_kinds.get(key), length_unit, source, where
+        )
         documented[key] = dict(entry)
     try:
         parameters = family.parameters(values, source=f"{source}: [parameters]")
@@ -432,18 +678,19 @@ def mechanism_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>"
         raise
     except ScrewkitError as err:
         raise CatalogError(f"{source}: [parameters]: {err}") from err
+    keys = [f"{c}_deg" if c in family.angle_names else c for c in family.pose_names]
     pose_table = _table(data, "pose", source)
+    _check_keys(pose_table, keys, source, "[pose]")
     pose = []
-    for coordinate in family.pose_names:
-        key = f"{coordinate}_deg" if coordinate in family.angle_names else coordinate
+    for coordinate, key in zip(family.pose_names, keys, strict=True):
         if key not in pose_table:
             raise _error(source, "[pose]", f"field `{key}`: missing.")
         number = _number(pose_table[key], source, "[pose]", key)
-        pose.append(math.radians(number) if coordinate in family.angle_names else number)
+        pose.append(degrees_to_radians(number) if coordinate in family.angle_names else number)
     workspace_table = _table(data, "workspace", source)
+    _check_keys(workspace_table, keys, source, "[workspace]")
     workspace = {}
-    for coordinate in family.pose_names:
-        key = f"{coordinate}_deg" if coordinate in family.angle_names else coordinate
+    for coordinate, key in zip(family.pose_names, keys, strict=True):
         low, high = _vector(workspace_table, key, source, "[workspace]", length=2)
         if not low < high:
             raise _error(source, "[workspace]", f"field `{key}`: expected low < high, got [{low}, {high}].")
@@ -454,6 +701,8 @@ def mechanism_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>"
         raise _error(source, "[[expected]]", f"expected an array of tables, got {type(expected).__name__}.")
     for index, fact in enumerate(expected):
         where = f"[[expected]] #{index + 1}"
+        fields = ("fact", "value", "source", "note", "tolerance", "region", "not_reproduced")
+        _check_keys(fact, fields, source, where)
         _string(fact, "fact", source, where)
         _string(fact, "source", source, where)
         if "value" not in fact:
@@ -499,22 +748,25 @@ def _snapshot_joint(entry: Any, index: int, source: str) -> tuple[str, str, J.Jo
     actuated = entry.get("actuated", False)
     if not isinstance(actuated, bool):
         raise _error(source, where, f"field `actuated`: expected true or false, got {actuated!r}.")
-    unknown = set(entry) - _COMMON_FIELDS - set(_JOINT_FIELDS[kind])
-    if unknown:
-        raise _error(
-            source,
-            where,
-            f"unknown field(s) {sorted(unknown)} for a {kind} joint (expected {list(_JOINT_FIELDS[kind])}).",
-        )
+    _check_keys(entry, (*_COMMON_FIELDS, *_JOINT_FIELDS[kind]), source, f"{where} ({kind} joint)")
     values: dict[str, Any] = {}
     for key in _JOINT_FIELDS[kind]:
         if key not in entry:
             raise _error(
                 source, where, f"field `{key}`: missing (a {kind} joint needs {list(_JOINT_FIELDS[kind])})."
             )
-        values[key] = (
-            _number(entry[key], source, where, key) if key == "pitch" else _vector(entry, key, source, where)
-        )
+        if key == "pitch":
+            values[key] = _number(entry[key], source, where, key)
+        elif key in ("point", "center"):
+            values[key] = _vector(entry, key, source, where)
+        else:  # a direction: only its direction counts, so scale it exactly (a power of two) to size ~1
+            values[key] = _direction(_vector(entry, key, source, where))
+        if any(abs(v) > MAX_COORDINATE for v in np.ravel(values[key])):
+            raise _error(
+                source,
+                where,
+                f"field `{key}`: expected magnitudes up to {MAX_COORDINATE:g}, got {entry[key]!r}.",
+            )
     builders: dict[str, Callable[..., J.Joint]] = {
         "R": lambda: J.revolute(name, values["axis"], values["point"], actuated=actuated),
         "P": lambda: J.prismatic(name, values["direction"], actuated=actuated),
@@ -546,7 +798,16 @@ def snapshot_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>")
     >>> graph.graph["name"], graph.number_of_edges()
     ('slider', 1)
     """
+    if not isinstance(data, Mapping):
+        raise CatalogError(f"{source}: expected a mapping of TOML tables, got {type(data).__name__}.")
+    _check_keys(data, ("mechanism", "joints"), source, "top level")
     header = _table(data, "mechanism", source)
+    _check_keys(
+        header,
+        ("kind", "name", "base", "platform", "dof", "length_unit", "description", "sources"),
+        source,
+        "[mechanism]",
+    )
     kind = header.get("kind")
     if kind != "snapshot":
         raise _error(source, "[mechanism]", f"field `kind`: expected 'snapshot', got {kind!r}.")
@@ -556,17 +817,90 @@ def snapshot_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>")
     dof = header.get("dof")
     if dof is not None and not is_dof(dof):
         raise _error(source, "[mechanism]", f"field `dof`: expected an integer in 0..6, got {dof!r}.")
+    length_unit = _length_unit(header, source) if "length_unit" in header else ""
     entries = data.get("joints")
     if not isinstance(entries, list) or not entries:
         raise _error(source, "[[joints]]", "expected at least one [[joints]] table, got none.")
+    if len(entries) > MAX_JOINTS:
+        raise _error(source, "[[joints]]", f"expected at most {MAX_JOINTS} joints, got {len(entries)}.")
+    _check_precision(entries, source)
     triples = [_snapshot_joint(entry, i, source) for i, entry in enumerate(entries)]
     try:
         graph = _checked_graph(base, platform, triples, dof)
+        check_dof(graph)
     except ScrewkitError as err:
         raise CatalogError(f"{source}: {err}") from err
     graph.graph["name"] = name
-    graph.graph["length_unit"] = header.get("length_unit", "")
+    graph.graph["length_unit"] = length_unit
     return graph
+
+
+def _check_precision(entries: list[Any], source: str) -> None:
+    """Refuse joints so far from the origin, for their spread, that float64 keeps fewer than ~9
+    significant digits of the geometry (:data:`MAX_FAR_OVER_SPREAD`): the rank decisions (rtol
+    1e-9) would judge rounding, not the mechanism."""
+    points = np.array(
+        [
+            entry[key]
+            for entry in entries
+            if isinstance(entry, dict)
+            for key in ("point", "center")
+            if isinstance(entry.get(key), list)
+            and len(entry[key]) == 3
+            and all(isinstance(v, int | float) and not isinstance(v, bool) and abs(v) <= MAX_COORDINATE
+                    for v in entry[key])
+        ],
+        dtype=float,
+    ).reshape(-1, 3)
+    if len(points) < 2:
+        return
+    far = float(np.abs(points).max())
+    spread = float(np.ptp(points, axis=0).max())
+    if spread > 0 and far > MAX_FAR_OVER_SPREAD * spread:
+        raise _error(
+            source,
+            "[[joints]]",
+            f"expected joints within {MAX_FAR_OVER_SPREAD:g} times their spread of the origin, got points "
+            f"{far:g} from it spanning only {spread:g}: float64 keeps too few digits of the geometry "
+            "there; put the origin near the mechanism.",
+        )
+
+
+def check_dof(graph: nx.MultiDiGraph, *, joint_key: str = "joint") -> None:
+    """Refuse a twist graph whose ``dof`` contradicts its actuators.
+
+    screwkit analyses non-redundantly actuated mechanisms: with actuated joints, ``dof`` (the nominal
+    mobility of the platform) must equal their number, else every verdict would rest on a wrong
+    nominal order (a false constraint or actuation singularity). A graph with no actuated joint is
+    analysed for its mobility only, and any ``dof`` is its stated mobility.
+
+    Raises
+    ------
+    TwistGraphError
+        Naming both numbers.
+
+    Examples
+    --------
+    >>> from screwkit.twistgraph import twist_graph
+    >>> from screwkit.joints import prismatic
+    >>> check_dof(twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))], dof=2))
+    Traceback (most recent call last):
+    ...
+    screwkit.exceptions.TwistGraphError: Expected `dof` to equal the number of actuated joints (1: P), got ...
+    """
+    dof = graph.graph.get("dof")
+    actuated = sorted(
+        str(data[joint_key].name)
+        for *_, data in graph.edges(data=True)
+        if getattr(data[joint_key], "actuated", False)
+    )
+    if dof is not None and actuated and dof != len(actuated):
+        raise TwistGraphError(
+            f"Expected `dof` to equal the number of actuated joints ({len(actuated)}: "
+            f"{', '.join(actuated)}), "
+            f"got dof = {dof}; screwkit analyses non-redundantly actuated mechanisms: fix `dof` or the "
+            "`actuated` flags."
+        )
 
 
 def _checked_graph(

@@ -9,10 +9,21 @@ Commands
 ``screwkit analyze NAME|FILE.toml [--pose X Y Z PHI] [--rtol R] [--json]``
     The whole analysis (:func:`screwkit.report.analyze`): twist graph, wrench systems, wrench
     diagram, superbracket, conditions, verdict. Lengths in the catalog file's unit, angle in degrees.
+``screwkit graph NAME|FILE.toml [--pose ...] [--equivalent] [--format dot|json|toml] [--out FILE]``
+    The twist graph (or its equivalent graph) as Graphviz DOT, JSON or a snapshot file.
 ``screwkit list [--json]``
     The catalog.
 ``screwkit screw (--revolute SX SY SZ --point X Y Z | --prismatic DX DY DZ | --plucker C*6)``
     Describe one screw.
+``screwkit table4 [--grid N] [--refine K] [--robot NAME ...] [--json]``
+    Paper 004's Table 4 regenerated (:func:`screwkit.indices.table_4`): each min/max LTI beside
+    ours, the difference, and why they differ where they do.
+``screwkit map NAME|FILE.toml --quantity Q --Z LO HI [N] --PHI LO HI [N] [--X V ...] [--grid N] --out F``
+    A map of a quantity over a 2-D slice (:func:`screwkit.workspace.grid_map`): two pose
+    coordinates given as ranges, the others fixed (default: the default pose); writes .png, .npz or
+    .json and prints the region, minimum and maximum and where they occur.
+``screwkit path NAME|FILE.toml --from Q... --to Q... [--samples N] [--json]``
+    Check a straight path for singularities (:func:`screwkit.workspace.check_path`).
 
 Examples
 --------
@@ -26,20 +37,34 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import os
 import re
 import sys
 from collections.abc import Sequence
+from pathlib import Path
 from typing import Any, NoReturn
 
 import numpy as np
 
 from . import __version__
-from .catalog import list_mechanisms, load_mechanism, load_toml
+from .catalog import degrees_to_radians, file_kind, list_mechanisms, load_mechanism, load_snapshot, load_toml
 from .exceptions import ScrewkitError
+from .export import graph_dot, graph_json, snapshot_text
 from .report import analyze
 from .screw import Screw
+from .twistgraph import equivalent_twist_graph
 
-__all__ = ["get_parser", "main", "run_analyze", "run_list", "run_screw"]
+__all__ = [
+    "get_parser",
+    "main",
+    "run_analyze",
+    "run_graph",
+    "run_list",
+    "run_map",
+    "run_path",
+    "run_screw",
+    "run_table4",
+]
 
 
 class _UsageError(Exception):
@@ -86,14 +111,7 @@ def get_parser() -> argparse.ArgumentParser:
         "superbracket, geometric and vector-form conditions with their labels, and the verdict.",
     )
     analyze_parser.add_argument("mechanism", help="a catalog name (e.g. h4) or a .toml file")
-    analyze_parser.add_argument(
-        "--pose",
-        nargs="+",
-        type=float,
-        metavar="Q",
-        help="the pose, e.g. X Y Z PHI for an SMG: lengths in the catalog file's length unit "
-        "(mm for h4), the angle in DEGREES; default: the catalog's default pose",
-    )
+    _add_pose_argument(analyze_parser)
     analyze_parser.add_argument(
         "--rtol",
         type=float,
@@ -105,6 +123,23 @@ def get_parser() -> argparse.ArgumentParser:
     analyze_parser.add_argument(
         "--no-superbracket", action="store_true", help="skip the superbracket expansion (faster)"
     )
+    graph = commands.add_parser(
+        "graph",
+        help="export the twist graph (or its equivalent graph) as DOT, JSON or a snapshot TOML file",
+        description="Write a mechanism's twist graph at a pose: Graphviz DOT (links as nodes, joints as "
+        "labelled edges), JSON (screwkit.twistgraph.to_data) or a snapshot TOML file that `screwkit "
+        "analyze` reads back. --equivalent writes the equivalent graph instead, closed sub-loops "
+        "(parallelograms, 4S) replaced by virtual serial chains.",
+    )
+    graph.add_argument("mechanism", help="a catalog name (e.g. h4) or a .toml file")
+    _add_pose_argument(graph)
+    graph.add_argument(
+        "--format", choices=("dot", "json", "toml"), default="dot", help="output format (default dot)"
+    )
+    graph.add_argument(
+        "--equivalent", action="store_true", help="the equivalent graph (closed sub-loops reduced)"
+    )
+    graph.add_argument("--out", metavar="FILE", help="write to FILE instead of standard output")
     listing = commands.add_parser("list", help="list the catalog's mechanisms")
     listing.add_argument("--json", action="store_true", help="print JSON instead of text")
     screw = commands.add_parser(
@@ -131,7 +166,98 @@ def get_parser() -> argparse.ArgumentParser:
         "--point", nargs=3, type=float, metavar=("X", "Y", "Z"), help="a point of the revolute axis"
     )
     screw.add_argument("--json", action="store_true", help="print JSON instead of text")
+    table4 = commands.add_parser(
+        "table4",
+        help="paper 004's Table 4 (min/max LTI) regenerated, the paper's values beside ours",
+        description="Regenerate paper 004's Table 4: the extremes of the local transmission index "
+        "(Eq. 16) over each robot's workspace, by a grid and a local refinement "
+        "(screwkit.indices.index_extremes); the paper's value, ours, the difference and its cause.",
+    )
+    table4.add_argument("--grid", type=int, default=41, metavar="N", help="grid points per axis (default 41)")
+    table4.add_argument(
+        "--refine", type=int, default=12, metavar="K",
+        help="rounds of local refinement (default 12; 0: grid only)",
+    )
+    table4.add_argument(
+        "--robot", action="append", default=None, metavar="NAME",
+        help="a catalog name (quattro, h4, veloce, v4, ragnar); repeat for several (default all)",
+    )
+    table4.add_argument("--json", action="store_true", help="print JSON instead of text")
+    _add_workspace_commands(commands)
     return parser
+
+
+def _pose_coordinates() -> list[str]:
+    """Every family's pose coordinates (the map command takes one option per coordinate)."""
+    from .families import families
+
+    names: list[str] = []
+    for family in families().values():
+        names.extend(n for n in family.pose_names if n not in names)
+    return names
+
+
+def _add_workspace_commands(commands: Any) -> None:
+    """The ``map`` and ``path`` subcommands (:mod:`screwkit.workspace`)."""
+    from .workspace import QUANTITIES
+
+    mapping = commands.add_parser(
+        "map",
+        help="map a quantity (verdict, closeness, det A/B, LTI, a condition) over a 2-D slice of poses",
+        description="Map a quantity over a slice of the pose space through the batched core. Give two "
+        "coordinates as ranges (LO HI [N]) and optionally fix others (one value; default: the default "
+        "pose). Lengths in the catalog file's unit, angles in DEGREES.",
+    )
+    mapping.add_argument("mechanism", help="a catalog name (e.g. h4) or a .toml file")
+    mapping.add_argument(
+        "--quantity",
+        required=True,
+        metavar="Q",
+        help=f"one of {', '.join(QUANTITIES)}, detA, detB, condition (= condition:0) or condition:K",
+    )
+    for name in _pose_coordinates():
+        mapping.add_argument(
+            f"--{name}",
+            nargs="+",
+            type=float,
+            metavar="V",
+            help=f"{name}: LO HI [N] for an axis, or one value",
+        )
+    mapping.add_argument(
+        "--grid", type=int, default=50, metavar="N", help="values per axis given as LO HI (default 50)"
+    )
+    mapping.add_argument("--out", required=True, metavar="FILE", help="FILE.png, FILE.npz or FILE.json")
+    mapping.add_argument(
+        "--chunk", type=int, default=None, metavar="C", help="poses per chunk (bounded memory)"
+    )
+    mapping.add_argument("--no-progress", action="store_true", help="no progress line on stderr")
+    path = commands.add_parser(
+        "path",
+        help="check a straight path in pose space for singularities (the first crossing, refined)",
+        description="Check the straight path between two poses: samples through the core, sign changes "
+        "of det A, closeness minima and the reach edge refined by root finding. Lengths in the catalog "
+        "file's unit, angles in DEGREES.",
+    )
+    path.add_argument("mechanism", help="a catalog name (e.g. h4) or a .toml file")
+    path.add_argument(
+        "--from", dest="start", nargs="+", type=float, required=True, metavar="Q", help="start pose"
+    )
+    path.add_argument("--to", dest="end", nargs="+", type=float, required=True, metavar="Q", help="end pose")
+    path.add_argument(
+        "--samples", type=int, default=200, metavar="N", help="samples along the path (default 200)"
+    )
+    path.add_argument("--json", action="store_true", help="print JSON instead of text")
+
+
+def _add_pose_argument(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument(
+        "--pose",
+        nargs="+",
+        type=float,
+        metavar="Q",
+        help="the pose, e.g. X Y Z PHI for an SMG: lengths in the catalog file's length unit "
+        "(mm for h4), the angle in DEGREES; default: the catalog's default pose",
+    )
 
 
 def _number(value: float) -> str:
@@ -178,10 +304,30 @@ def _pose(args: argparse.Namespace, mechanism: Any) -> Any:
         expected = " ".join(n.upper() for n in names)
         got = " ".join(map(str, args.pose))
         raise _UsageError(
-            f"screwkit analyze: error: --pose expects {len(names)} finite numbers ({expected}), got {got}"
+            f"screwkit {args.command}: error: --pose expects {len(names)} finite numbers ({expected}), "
+            f"got {got}"
         )
     angles = set(mechanism.angle_names)
-    return np.array([math.radians(v) if n in angles else v for n, v in zip(names, args.pose, strict=True)])
+    pairs = zip(names, args.pose, strict=True)
+    return np.array([degrees_to_radians(v) if n in angles else v for n, v in pairs])
+
+
+def _target_and_pose(args: argparse.Namespace) -> tuple[Any, Any]:
+    """The mechanism (a :class:`Mechanism`, or a snapshot's path) and the pose of ``analyze``/``graph``."""
+    if args.mechanism.endswith(".toml") and _toml_kind(args.mechanism) == "snapshot":
+        if args.pose is not None:
+            raise _UsageError(
+                f"screwkit {args.command}: error: {args.mechanism} is a snapshot (one configuration); "
+                "--pose does not apply"
+            )
+        return args.mechanism, None
+    if not args.mechanism.endswith(".toml") and args.mechanism.lower() not in list_mechanisms():
+        raise _UsageError(
+            f"screwkit {args.command}: error: unknown mechanism {args.mechanism!r}: expected one of "
+            f"{list_mechanisms()} or a .toml file"
+        )
+    mechanism = load_mechanism(args.mechanism)  # a malformed file is an analysis error (exit 1)
+    return mechanism, _pose(args, mechanism)
 
 
 def run_analyze(args: argparse.Namespace) -> int:
@@ -197,31 +343,42 @@ def run_analyze(args: argparse.Namespace) -> int:
     """
     if args.rtol is not None and not 0 <= args.rtol < 1:
         raise _UsageError(f"screwkit analyze: error: --rtol expects a number in [0, 1), got {args.rtol:g}")
-    target: Any = args.mechanism
-    snapshot = args.mechanism.endswith(".toml") and (_toml_kind(args.mechanism) == "snapshot")
-    if not snapshot:
-        if not args.mechanism.endswith(".toml") and args.mechanism.lower() not in list_mechanisms():
-            raise _UsageError(
-                f"screwkit analyze: error: unknown mechanism {args.mechanism!r}: expected one of "
-                f"{list_mechanisms()} or a .toml file"
-            )
-        target = load_mechanism(args.mechanism)  # a malformed file is an analysis error (exit 1)
-        pose = _pose(args, target)
-    elif args.pose is not None:
-        raise _UsageError(
-            f"screwkit analyze: error: {args.mechanism} is a snapshot (one configuration); "
-            "--pose does not apply"
-        )
-    else:
-        pose = None
+    target, pose = _target_and_pose(args)
     report = analyze(target, pose, rtol=args.rtol, superbracket=not args.no_superbracket)
     _print(json.dumps(report.to_dict(), indent=2, ensure_ascii=False) if args.json else str(report))
     return 0
 
 
+def run_graph(args: argparse.Namespace) -> int:
+    """Export a twist graph; see ``screwkit graph --help``.
+
+    Examples
+    --------
+    >>> run_graph(get_parser().parse_args(["graph", "h4", "--format", "dot"]))  # doctest: +ELLIPSIS
+    digraph "H4" {
+    ...
+      "base" -> "arm1" [label="A1 (R)", style=bold];
+    ...
+    0
+    """
+    target, pose = _target_and_pose(args)
+    twist_graph = load_snapshot(target) if isinstance(target, str) else target.twist_graph(pose)
+    if args.equivalent:
+        twist_graph = equivalent_twist_graph(twist_graph)
+    writers = {"dot": graph_dot, "json": graph_json, "toml": snapshot_text}
+    text = writers[args.format](twist_graph)
+    if args.out is None:
+        _print(text.rstrip("\n"))
+        return 0
+    try:
+        Path(args.out).write_text(text, encoding="utf-8")
+    except OSError as err:
+        raise _UsageError(f"screwkit graph: error: --out {args.out}: cannot write: {err.strerror}") from err
+    return 0
+
+
 def _toml_kind(path: str) -> Any:
-    header = load_toml(path).get("mechanism", {})
-    return header.get("kind") if isinstance(header, dict) else None
+    return file_kind(load_toml(path))
 
 
 def _print(text: str) -> None:
@@ -232,6 +389,122 @@ def _print(text: str) -> None:
     except UnicodeEncodeError:
         encoding = getattr(sys.stdout, "encoding", None) or "ascii"
         print(text.encode(encoding, errors="backslashreplace").decode(encoding))
+
+
+def _catalog_mechanism(command: str, name: str) -> Any:
+    """A catalog mechanism by name or file (a snapshot has no pose space to map)."""
+    if name.endswith(".toml"):
+        if _toml_kind(name) == "snapshot":
+            raise _UsageError(
+                f"screwkit {command}: error: {name} is a snapshot (one configuration); no poses to vary"
+            )
+    elif name.lower() not in list_mechanisms():
+        raise _UsageError(
+            f"screwkit {command}: error: unknown mechanism {name!r}: expected one of "
+            f"{list_mechanisms()} or a .toml file"
+        )
+    return load_mechanism(name)
+
+
+def run_map(args: argparse.Namespace) -> int:
+    """Map a quantity over a 2-D slice; see ``screwkit map --help``.
+
+    Examples
+    --------
+    >>> import tempfile, os
+    >>> out = os.path.join(tempfile.mkdtemp(), "m.json")
+    >>> main(["map", "h4", "--quantity", "verdict", "--z", "-900", "-600", "2", "--phi", "-10", "10", "2",
+    ...       "--out", out])  # doctest: +ELLIPSIS
+    verdict over H4: z in [-900, -600] mm (2 values) x phi in [-10, 10] deg (2 values), x = 0 mm, y = 0 mm
+      minimum 0 at ...
+    0
+    """
+    from .workspace import _quantity, grid_map
+
+    try:
+        quantity = _quantity(args.quantity)
+    except ScrewkitError as err:
+        raise _UsageError(f"screwkit map: error: --quantity: {err}") from err
+    if not args.out.lower().endswith((".png", ".npz", ".json")):
+        raise _UsageError(f"screwkit map: error: --out expects FILE.npz, .json or .png, got {args.out!r}")
+    if args.grid < 2:
+        raise _UsageError(f"screwkit map: error: --grid expects an integer >= 2, got {args.grid}")
+    mechanism = _catalog_mechanism("map", args.mechanism)
+    axes, fixed = [], {}
+    for name in _pose_coordinates():
+        values = getattr(args, name)
+        if values is None:
+            continue
+        if name not in mechanism.pose_names:
+            raise _UsageError(
+                f"screwkit map: error: --{name}: {mechanism.name} has pose coordinates "
+                f"{list(mechanism.pose_names)}"
+            )
+        if len(values) not in (1, 2, 3) or not all(math.isfinite(v) for v in values):
+            raise _UsageError(
+                f"screwkit map: error: --{name} expects LO HI [N] or one value, got "
+                f"{' '.join(map(str, values))}"
+            )
+        if len(values) == 1:
+            fixed[name] = values[0]
+        else:
+            count = args.grid if len(values) == 2 else values[2]
+            if count != int(count) or count < 2:
+                raise _UsageError(f"screwkit map: error: --{name}: N must be an integer >= 2, got {count:g}")
+            axes.append((name, values[0], values[1], int(count)))
+    if len(axes) != 2:
+        raise _UsageError(
+            "screwkit map: error: expected exactly two ranges (LO HI [N]) among "
+            f"--{' --'.join(mechanism.pose_names)}, "
+            f"got {len(axes)}"
+        )
+    result = grid_map(
+        mechanism,
+        quantity,
+        x=axes[0],
+        y=axes[1],
+        fixed=fixed,
+        chunk=args.chunk,
+        progress=False if args.no_progress else None,
+        angles="deg",
+    )
+    result.save(args.out)
+
+    def where(pose: dict[str, float]) -> str:
+        return ", ".join(f"{k} = {v:g}" for k, v in pose.items()) or "-"
+
+    print(f"{quantity} over {result.region}")
+    print(f"  minimum {result.minimum:g} at {where(result.argmin)}")
+    print(f"  maximum {result.maximum:g} at {where(result.argmax)}")
+    print(f"  reachable {result.reachable.mean():.1%}; written to {args.out}")
+    return 0
+
+
+def run_path(args: argparse.Namespace) -> int:
+    """Check a straight path; see ``screwkit path --help``.
+
+    Examples
+    --------
+    >>> main(["path", "h4", "--from", "0", "0", "-800", "0", "--to", "0", "0", "-700", "20",
+    ...       "--samples", "20"])
+    singularity-free (20 samples, refined)
+    0
+    """
+    from .workspace import check_path
+
+    if args.samples < 2:
+        raise _UsageError(f"screwkit path: error: --samples expects an integer >= 2, got {args.samples}")
+    mechanism = _catalog_mechanism("path", args.mechanism)
+    names = mechanism.pose_names
+    for option, values in (("--from", args.start), ("--to", args.end)):
+        if len(values) != len(names) or not all(math.isfinite(v) for v in values):
+            raise _UsageError(
+                f"screwkit path: error: {option} expects {len(names)} finite numbers "
+                f"({' '.join(n.upper() for n in names)}), got {' '.join(map(str, values))}"
+            )
+    result = check_path(mechanism, args.start, args.end, samples=args.samples, angles="deg")
+    _print(json.dumps(result.to_dict(), indent=2, ensure_ascii=False) if args.json else str(result))
+    return 0
 
 
 def run_list(args: argparse.Namespace) -> int:
@@ -266,6 +539,53 @@ def run_list(args: argparse.Namespace) -> int:
     return 0
 
 
+def run_table4(args: argparse.Namespace) -> int:
+    """Paper 004's Table 4 regenerated; see ``screwkit table4 --help``.
+
+    Examples
+    --------
+    >>> run_table4(get_parser().parse_args(["table4", "--robot", "veloce", "--grid", "11", "--refine", "0"]))
+    ... # doctest: +ELLIPSIS
+    paper 004, Table 4: ...
+    Veloce       0 deg  cone     0.287 ...
+    0
+    """
+    from .indices import TABLE_4, table_4
+
+    known = sorted({row[1] for row in TABLE_4})
+    for name in args.robot or []:
+        if name not in known:
+            raise _UsageError(f"screwkit table4: error: unknown robot {name!r}; expected one of {known}.")
+    for option, value, least in (("--grid", args.grid, 2), ("--refine", args.refine, 0)):
+        if value < least:
+            raise _UsageError(f"screwkit table4: error: expected {option} >= {least}, got {value}.")
+    rows = table_4(grid=args.grid, refine=args.refine, robots=args.robot)
+    if args.json:
+        print(json.dumps([row.to_dict() for row in rows], indent=2))
+        return 0
+    print(
+        f"paper 004, Table 4: min/max LTI (Eq. 16) over the workspace; ours: {args.grid}^3 grid + "
+        f"{args.refine} rounds of refinement (screwkit.indices.index_extremes)"
+    )
+    print(f"{'robot':<10} {'phi':>5}      {'region':<8} {'min: paper':>10} {'ours':>7} {'diff':>7}"
+          f"   {'max: paper':>10} {'ours':>7} {'diff':>7}")
+    notes = []
+    for row in rows:
+        region = "eq_19" if row.region.startswith("super") else "cone"
+        print(
+            f"{row.robot:<10} {row.phi_deg:>5.0f} deg  {region:<8} {row.paper_min:>10.3f} "
+            f"{row.ours.minimum:>7.3f} {row.ours.minimum - row.paper_min:>+7.3f}   {row.paper_max:>10.3f} "
+            f"{row.ours.maximum:>7.3f} {row.ours.maximum - row.paper_max:>+7.3f}"
+        )
+        notes += [f"  {row.robot} {row.phi_deg:g} deg {key}: {text}" for key, text in row.notes.items()]
+    print("regions: cone = the assumed workspace (paper 004's Fig. 6 is missing), eq_19 = Eq. (19)")
+    if notes:
+        print("where ours differs from the paper's by more than 0.002:")
+        for note in notes:
+            print(note)
+    return 0
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; returns the exit status (0 ok, 1 analysis error, 2 usage error).
 
@@ -282,11 +602,22 @@ def main(argv: Sequence[str] | None = None) -> int:
         if args.command is None:
             parser.print_help()
             return 0
-        runners = {"analyze": run_analyze, "list": run_list, "screw": run_screw}
+        runners = {
+            "analyze": run_analyze,
+            "graph": run_graph,
+            "list": run_list,
+            "map": run_map,
+            "path": run_path,
+            "screw": run_screw,
+            "table4": run_table4,
+        }
         return runners[args.command](args)
     except _UsageError as err:
         print(str(err), file=sys.stderr)
         return 2
+    except BrokenPipeError:  # the reader closed the pipe (`screwkit graph h4 | head`): not an error
+        sys.stdout = open(os.devnull, "w")  # the final flush stays silent
+        return 0
     except ScrewkitError as err:
         message = " ".join(str(err).split())
         print(f"screwkit {args.command}: error: {message}", file=sys.stderr)

@@ -409,10 +409,13 @@ def condition(factor: Factor, *, finite: Any, infinite: Any) -> Condition:
         x: [*vectors[sympy.Symbol(x)], sympy.Integer(0 if x in types.infinite else 1)]
         for x in labels
     }
-    exact = sympy.expand(_polynomial(factor).to_sympy(points))
+    polynomial = _polynomial(factor)
     if expr is None:
         expr, constant = sympy.Integer(0), sympy.Integer(0)
+    elif sum(24 ** len(m.brackets) for m in polynomial) > MAX_EXPANDED_TERMS:
+        constant = _sampled_ratio(polynomial, expr, vectors, points, labels)
     else:
+        exact = sympy.expand(polynomial.to_sympy(points))
         ratio = sympy.cancel(exact / sympy.expand(_components(expr, vectors)))
         if not ratio.is_Rational or ratio == 0:
             raise ScrewkitValueError(
@@ -425,6 +428,35 @@ def condition(factor: Factor, *, finite: Any, infinite: Any) -> Condition:
     components = _components(expr, {s: vectors[s] for s in expr.free_symbols})
     compiled = sympy.lambdify(arguments, components, modules="numpy")
     return Condition(factor, statement, expr, constant, used, compiled)
+
+
+#: Largest expansion (bounded by 24 terms per bracket of every monomial) that :func:`condition` checks
+#: symbolically; beyond it (e.g. the 24-term factor of a general Gough-Stewart platform, ~3e5 terms)
+#: the expansion would take minutes, so the proportionality is checked exactly at integer points.
+MAX_EXPANDED_TERMS = 20_000
+
+
+def _sampled_ratio(
+    polynomial: BracketPolynomial, expr: sympy.Expr, vectors: Any, points: Any, labels: list[str]
+) -> sympy.Rational:
+    """The constant ``polynomial / expr``, in exact integer arithmetic at five seeded random integer
+    points (a polynomial identity that holds at random points holds, Schwartz-Zippel); refuses a
+    ratio that is not one constant."""
+    rng = np.random.default_rng(2026)
+    ratios = set()
+    for _ in range(5):
+        values = {x: [sympy.Integer(int(v)) for v in rng.integers(-9, 10, 3)] for x in labels}
+        at = {c: v for x in labels for c, v in zip(vectors[sympy.Symbol(x)], values[x], strict=True)}
+        numeric = {x: [*values[x], points[x][3]] for x in labels}
+        form = sympy.Integer(_components(expr, vectors).subs(at))
+        if form == 0:
+            continue
+        ratios.add(sympy.Rational(polynomial.to_sympy(numeric)) / form)
+    if len(ratios) != 1 or 0 in ratios:
+        raise ScrewkitValueError(
+            f"Expected the vector form {expr} to be proportional to the factor, got ratios {sorted(ratios)}."
+        )
+    return ratios.pop()
 
 
 def conditions(factored: FactoredForm, *, finite: Any, infinite: Any) -> tuple[Condition, ...]:

@@ -6,20 +6,32 @@ a line at infinity, given by two infinite points chosen to expose structure (the
 two parallelogram planes, the direction of the vertical axes shared by both couples). This module
 makes the same choices automatically, from a :class:`~screwkit.wrenches.WrenchAnalysis`:
 
-* **lines**: the actuation wrenches grouped by compound leg (the legs in the order of their first
-  actuated joint), then the compound legs' constraint wrenches (paper 002 Eq. 4);
-* **points on a finite line**: where it meets the axis of a one-freedom joint of its compound leg
-  (the joint nearest the platform first), and its point at infinity;
+* **lines**: the actuation wrenches grouped by compound leg (the legs in the order of their
+  names), then a *line basis* of the mechanism's constraint system ``W^c`` taken from the compound
+  legs' own constraint lines (paper 002 Eqs. 3–4): a leg line is kept when it raises the rank, so
+  legs whose constraint systems overlap (an overconstrained mechanism, a planar one) give one line
+  per dimension of ``W^c``, each named after the leg it comes from;
+* **points on a finite line**: joint centres on it, where it meets the axis of a one-freedom joint
+  of its compound leg (the joint nearest the platform first), else its point nearest the reference
+  point; and its point at infinity (shared with a joint axis parallel to it);
 * **points on a line at infinity** (a couple ``(0; m)``): the direction common to the constraint
-  couples of two parallel branches inside its compound leg (e.g. ``n1 × n4``), then a joint-axis
-  direction lying on it, preferring one shared with another couple line (a shared point);
+  couples of two parallel branches inside its compound leg (e.g. ``n1 × n4``), then the most shared
+  of: joint-axis directions lying on it, directions of the diagram's finite lines, and the points
+  where it meets the other couple lines (``m × m'``);
 * **labels** ``a, b, c, …`` in line order, a shared point keeping its first label.
 
-Each point is a *recipe* with a meaning (``DiagramPoint.key``): the same recipe evaluated at other
-poses of the same mechanism gives the random configurations on which structural zeros are confirmed
-(gca.md §6). Where a recipe has no point at this pose (a force parallel to the axis it should meet,
-a cross product that vanishes, a compound leg whose constraint system is not one line), the diagram
-says so in ``degenerate`` (gca.md §7) and no factorization is claimed for it.
+Each line and each point is a *recipe* with a meaning (a line's name, ``DiagramPoint.key``). The
+recipes are chosen at a *generic* configuration of the mechanism (:func:`generic_reference`:
+random workspace poses of a catalog robot, or configurations reached by moving any twist graph
+along its own mobility, :mod:`screwkit.motion`) and evaluated at the pose (:func:`diagram_at`), so
+what is decided (which lines, which shared points) never depends on a special pose: where two
+lines coincide at the pose (the H4's two constraint couples at a constraint singularity) both are
+still there, and the factor that vanishes is valued. The same recipes at further generic
+configurations give the samples on which structural zeros are decided (gca.md §6). Where a recipe
+has no value at the pose (a limb at a serial singularity, a leg whose constraint system changes
+order), ``degenerate`` says so (gca.md §7); where the mechanism has no diagram at all (a global
+wrench system of order below 6 everywhere, a constraint system not spanned by lines), the reasons
+found at generic configurations say so, as properties of the mechanism.
 
 Examples
 --------
@@ -35,11 +47,12 @@ from __future__ import annotations
 import itertools
 import string
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from . import _backend as B
 from . import projective as P
 from . import screw as S
 from .exceptions import DegenerateGeometryError, ScrewkitError, ScrewkitValueError
@@ -52,10 +65,13 @@ if TYPE_CHECKING:  # conditions are sympy expressions: that module (and sympy) l
 
 __all__ = [
     "DiagramPoint",
+    "ReplaySampler",
     "SuperbracketAnalysis",
     "WrenchDiagram",
     "diagram_at",
     "diagram_points",
+    "generic_reference",
+    "graph_diagram",
     "graph_sampler",
     "superbracket_analysis",
     "wrench_diagram",
@@ -64,6 +80,11 @@ __all__ = [
 Array = np.ndarray
 #: Relative tolerance of the incidence decisions made while choosing points.
 INCIDENCE_RTOL = 1e-7
+#: A condition vanishes at the pose when its value there is at most this times its median size on
+#: the generic samples (:attr:`SuperbracketAnalysis.vanishing`).
+VANISHING_RTOL = 1e-7
+#: Recipes that give finite points (every other recipe gives a point at infinity).
+FINITE_KINDS = ("meet", "foot", "centre")
 
 
 @dataclass(frozen=True)
@@ -249,51 +270,116 @@ def _meet_point(line: Array, screw: Array, length_scale: float) -> Array | None:
     return None if abs(point[3]) < 1e-12 else point / point[3]
 
 
-def _lines_and_roles(
-    analysis: WrenchAnalysis,
-) -> tuple[list[tuple[str, str, Array, tuple[str, ...]]], list[str]]:
-    """(name, role, wrench, leg joints) of the six lines, and reasons the selection fails."""
-    problems: list[str] = []
-    lines: list[tuple[str, str, Array, tuple[str, ...]]] = []
+Line = tuple[str, str, Array, tuple[str, ...]]  # (name, role, wrench, joints of its leg or limb)
+
+
+def _is_line(wrench: Array, length_scale: float) -> bool:
+    """A force (zero pitch) or a couple (infinite pitch): a projective line."""
+    return bool(
+        S.is_infinite_pitch(wrench, rtol=1e-7, length_scale=length_scale)
+        or S.is_zero_pitch(wrench, rtol=1e-7, length_scale=length_scale)
+    )
+
+
+def _candidate_lines(analysis: WrenchAnalysis) -> dict[str, tuple[str, Array | None, tuple[str, ...]]]:
+    """Every line a diagram may use, by name, at this pose: ``{name: (role, wrench, joints)}``.
+
+    The actuation wrenches, grouped by compound leg (legs in the order of their names, the limbs of
+    a network after them), then each compound leg's constraint lines (its readable basis), then a
+    readable basis of the mechanism's constraint system (for graphs without compound legs). A limb
+    at a serial singularity has the wrench None.
+    """
+    found: dict[str, tuple[str, Array | None, tuple[str, ...]]] = {}
     legs = _legs(analysis)
     limbs = {limb.actuated_joint: limb for limb in analysis.limbs}
-    for _, joints, _ in legs:
-        for name in sorted(j for j in limbs if j in joints):
-            wrench = limbs[name].actuation_wrench
-            if wrench is None:
-                problems.append(f"the limb of {name} is at a serial singularity: it has no actuation wrench")
-                continue
-            lines.append((f"actuation {name}", "actuation", wrench, joints))
-    nominal = 6 - analysis.dof
-    own_lines = sum(wrenches.order for _, _, wrenches in legs)
-    overconstrained = (
-        bool(legs)
-        and all(wrenches.is_equivalent(analysis.constraint_wrenches) for _, _, wrenches in legs)
-        and len(legs) > 1
-        and analysis.constraint_wrenches.order > 0
-    )
-    if legs and own_lines == nominal and not overconstrained:
-        for leg_name, joints, wrenches in legs:
-            for k, wrench in enumerate(wrenches.readable_basis()):
-                suffix = f" ({k + 1})" if wrenches.order > 1 else ""
-                lines.append((f"constraint of the {leg_name}{suffix}", "constraint", wrench, joints))
-    elif not legs or overconstrained:
-        # every leg transmits the same constraint system (e.g. a planar mechanism): use it once
-        every_joint = tuple(k for _, _, k in analysis.graph.edges(keys=True))
-        for k, wrench in enumerate(analysis.constraint_wrenches.readable_basis()):
-            lines.append((f"constraint wrench {k + 1} of the mechanism", "constraint", wrench, every_joint))
-    else:
-        orders = ", ".join(f"{name}: {wrenches.order}" for name, _, wrenches in legs)
-        problems.append(
-            f"the legs' constraint systems (orders {orders}) do not add up to the nominal {nominal}: "
-            "the constraint wrenches are not the lines of the diagram here"
-        )
-    if len(lines) != 6 and not problems:
-        problems.append(f"the global wrench system has {len(lines)} generators, not 6")
-    for name, _, wrench, _ in lines:
-        finite = not S.is_infinite_pitch(wrench, rtol=1e-7, length_scale=analysis.length_scale)
-        if finite and not S.is_zero_pitch(wrench, rtol=1e-7, length_scale=analysis.length_scale):
+    grouped = [name for _, joints, _ in legs for name in sorted(j for j in limbs if j in joints)]
+    every_joint = tuple(k for _, _, k in analysis.graph.edges(keys=True))
+    for name in grouped + [j for j in limbs if j not in grouped]:
+        joints = next((joints for _, joints, _ in legs if name in joints), limbs[name].joints)
+        found[f"actuation {name}"] = ("actuation", limbs[name].actuation_wrench, joints)
+    for leg_name, joints, wrenches in legs:
+        basis = wrenches.readable_basis()
+        for k, wrench in enumerate(basis):
+            suffix = f" ({k + 1})" if len(basis) > 1 else ""
+            found[f"constraint of the {leg_name}{suffix}"] = ("constraint", wrench, joints)
+    for k, wrench in enumerate(analysis.constraint_wrenches.readable_basis()):
+        found[f"constraint wrench {k + 1} of the mechanism"] = ("constraint", wrench, every_joint)
+    return found
+
+
+def _rank(rows: list[Array], analysis: WrenchAnalysis) -> int:
+    if not rows:
+        return 0
+    return int(B.screw_rank(np.array(rows), rtol=1e-7, length_scale=float(analysis.length_scale)))
+
+
+def _select_lines(analysis: WrenchAnalysis) -> tuple[list[Line], list[str]]:
+    """The six lines of the diagram, chosen at a (generic) configuration, and why there are none.
+
+    Every actuation wrench, then a line basis of the mechanism's constraint system ``W^c`` taken
+    from the compound legs' constraint lines in order (a line is kept when it raises the rank: an
+    overconstrained mechanism, whose legs' constraint systems overlap, keeps one line per
+    dimension of ``W^c``, each named after the leg it comes from; paper 002 Eqs. 3–4), else from a
+    readable basis of ``W^c`` itself. The reasons returned describe the mechanism at this
+    configuration: at a generic one, they say why it has no diagram at all.
+    """
+    problems: list[str] = []
+    scale = float(analysis.length_scale)
+    lines: list[Line] = []
+    candidates = _candidate_lines(analysis)
+    for name, (role, wrench, joints) in candidates.items():
+        if role != "actuation":
+            continue
+        if wrench is None:
+            problems.append(f"the limb of {name.removeprefix('actuation ')} is at a serial singularity: "
+                            "it has no actuation wrench")
+        elif not _is_line(wrench, scale):
             problems.append(f"the {name} wrench has pitch {S.pitch(wrench):.4g}: it is not a line")
+        else:
+            lines.append((name, role, wrench, joints))
+    target = int(analysis.constraint_order)
+    chosen: list[Line] = []
+    for prefix in ("constraint of the ", "constraint wrench "):
+        chosen = []
+        for name, (role, wrench, joints) in candidates.items():
+            if not name.startswith(prefix) or wrench is None or not _is_line(wrench, scale):
+                continue
+            if _rank([w for _, _, w, _ in chosen] + [wrench], analysis) > len(chosen):
+                chosen.append((name, role, wrench, joints))
+            if len(chosen) == target:
+                break
+        if len(chosen) == target:
+            break
+    if len(chosen) < target:
+        problems.append(
+            f"the constraint wrench system (order {target}) is not spanned by lines of its legs: "
+            f"only {len(chosen)} independent force or couple lines were found"
+        )
+    lines += chosen
+    if int(analysis.global_order) < 6:
+        problems.append(
+            f"the global wrench system has order {int(analysis.global_order)}, not 6: with its actuators "
+            "locked the platform keeps an uncontrolled twist"
+        )
+    elif len(lines) != 6 and not problems:
+        problems.append(f"the global wrench system has {len(lines)} line generators, not 6")
+    return lines, problems
+
+
+def _lines_at(names: tuple[str, ...], analysis: WrenchAnalysis) -> tuple[list[Line], list[str]]:
+    """The lines of a diagram (by name) at another configuration, and what is missing there."""
+    candidates = _candidate_lines(analysis)
+    lines, problems = [], []
+    for name in names:
+        if name not in candidates:
+            problems.append(f"the {name} is not one line here (its leg's constraint system changed order)")
+            continue
+        role, wrench, joints = candidates[name]
+        if wrench is None:
+            problems.append(f"the limb of {name.removeprefix('actuation ')} is at a serial singularity here: "
+                            "it has no actuation wrench")
+            continue
+        lines.append((name, role, wrench, joints))
     return lines, problems
 
 
@@ -317,48 +403,20 @@ def wrench_diagram(analysis: WrenchAnalysis) -> WrenchDiagram:
     >>> [p.description for p in diagram.points][:2]
     ['where the actuation A1 meets the axis of R_I', 'the point at infinity of the actuation A1']
     """
-    lines, problems = _lines_and_roles(analysis)
+    lines, problems = _select_lines(analysis)
+    scale = float(analysis.length_scale)
     normals = _branch_normals(analysis)
-    couple_lines = [
-        w for _, _, w, _ in lines if S.is_infinite_pitch(w, rtol=1e-7, length_scale=analysis.length_scale)
-    ]
-    axes_everywhere = _distinct_directions(_all_axes(analysis))
+    infinite = [S.is_infinite_pitch(w, rtol=1e-7, length_scale=scale) for _, _, w, _ in lines]
     recipes: list[tuple[tuple[str, ...], tuple[str, ...]]] = []
-    names, roles = [], []
-    for index, (name, role, wrench, joints) in enumerate(lines):
-        line_id = f"L{index + 1}"
-        names.append(name)
-        roles.append(role)
-        if not S.is_infinite_pitch(wrench, rtol=1e-7, length_scale=analysis.length_scale):
-            recipes.append(_finite_line_recipe(name, wrench, joints, analysis, recipes))
-            continue
-        moment = _unit(wrench[3:])
-        own = [
-            ("normals", a, b)
-            for (a, b), (d, _) in normals.items()
-            if set((a, b)) <= set(joints) and abs(_unit(d) @ moment) < INCIDENCE_RTOL
-        ]
-        shared = sorted(
-            (
-                ("axis", key)
-                for key, screw in axes_everywhere
-                if abs(_unit(screw[:3]) @ moment) < INCIDENCE_RTOL
-            ),
-            key=lambda k: (
-                -sum(
-                    abs(_unit(_key_direction(k, analysis)) @ _unit(c[3:])) < INCIDENCE_RTOL
-                    for c in couple_lines
-                )
-            ),
-        )
-        choice = (own + shared)[:2]
-        if len(choice) == 1:
-            choice.append(("perp", name, *choice[0]))
-        if not choice:
-            problems.append(f"line {line_id} ({name}): no structural point at infinity found")
-            recipes.append((("couple", name, "1"), ("couple", name, "2")))
+    for (name, _, wrench, joints), couple in zip(lines, infinite, strict=True):
+        if couple:
+            recipes.append(
+                _couple_line_recipe(name, wrench, joints, lines, infinite, normals, analysis, recipes)
+            )
         else:
-            recipes.append((choice[0], choice[1]))
+            recipes.append(_finite_line_recipe(name, wrench, joints, analysis, recipes))
+    names = [name for name, _, _, _ in lines]
+    roles = [role for _, role, _, _ in lines]
     labels: dict[tuple[str, ...], str] = {}
     aliases: dict[tuple[str, ...], tuple[str, ...]] = {}
     centres = dict(_centres(analysis, tuple(k for _, _, k in analysis.graph.edges(keys=True))))
@@ -383,7 +441,7 @@ def wrench_diagram(analysis: WrenchAnalysis) -> WrenchDiagram:
                 labels[key] = next(letters)
     recipes = [(aliases.get(a, a), aliases.get(b, b)) for a, b in recipes]
     points = tuple(
-        DiagramPoint(label, key, key[0] not in ("meet", "foot", "centre"), _describe(key, normals))
+        DiagramPoint(label, key, key[0] not in FINITE_KINDS, _describe(key, normals))
         for key, label in labels.items()
     )
     diagram_lines = tuple((labels[a], labels[b]) for a, b in recipes)
@@ -432,6 +490,95 @@ def _joint_centre(screws: Array) -> Array:
     plane = P.plane(np.cross(normal, second[:3]), S.axis(second)[0])
     point = P.meet_line_plane(first, plane)
     return point[:3] / point[3]
+
+
+def _couple_line_recipe(
+    name: str,
+    wrench: Array,
+    joints: tuple[str, ...],
+    lines: list[Line],
+    infinite: list[bool],
+    normals: Mapping[tuple[str, str], tuple[Array, str]],
+    analysis: WrenchAnalysis,
+    earlier: list[tuple[tuple[str, ...], tuple[str, ...]]],
+) -> tuple[tuple[str, ...], tuple[str, ...]]:
+    """Two points at infinity of a couple line ``(0; m)``: directions normal to ``m``.
+
+    First the direction common to two parallel branches of its own leg (paper 002 §5.1, ``n1 × n4``);
+    then, most shared first (the number of the diagram's couple lines through the point, then of
+    all its lines, then whether an earlier line already uses it): joint-axis directions (passive,
+    then actuated), directions of the diagram's finite lines, and the points where it meets
+    another couple line (``m × m'``); with fewer than two of those, a direction normal to ``m``
+    and to the one found (``perp``), or two such directions with no structural meaning (``free``).
+    """
+    moment = _unit(wrench[3:])
+    own = [
+        ("normals", a, b)
+        for (a, b), (d, _) in normals.items()
+        if set((a, b)) <= set(joints) and abs(_unit(d) @ moment) < INCIDENCE_RTOL
+    ]
+    axes = _distinct_directions(_all_axes(analysis) + _actuated_axes(analysis))
+    options: list[tuple[tuple[str, ...], Array]] = [(("axis", key), screw[:3]) for key, screw in axes]
+    options += [
+        (("direction", other), w[:3])
+        for (other, _, w, _), inf in zip(lines, infinite, strict=True)
+        if not inf
+    ]
+    position = next(i for i, line in enumerate(lines) if line[0] == name)
+    for k, ((other, _, w, _), inf) in enumerate(zip(lines, infinite, strict=True)):
+        if inf and k != position:
+            pair = (name, other) if position < k else (other, name)
+            options.append((("couples", *pair), np.cross(wrench[3:], w[3:])))
+    used = {key for pair in earlier for key in pair}
+
+    def through(direction: Array) -> tuple[int, int]:
+        """(couple lines, then all lines) of the diagram through the point at infinity ``direction``."""
+        d = _unit(direction)
+        couples = sum(
+            abs(d @ _unit(w[3:])) < INCIDENCE_RTOL
+            for (_, _, w, _), inf in zip(lines, infinite, strict=True)
+            if inf
+        )
+        finite = sum(
+            np.linalg.norm(np.cross(d, _unit(w[:3]))) < INCIDENCE_RTOL
+            for (_, _, w, _), inf in zip(lines, infinite, strict=True)
+            if not inf
+        )
+        return -couples, -(couples + finite)
+
+    on_line = [
+        (key, d)
+        for key, d in options
+        if np.linalg.norm(d) > INCIDENCE_RTOL * max(1.0, float(np.linalg.norm(wrench[3:])))
+        and abs(_unit(d) @ moment) < INCIDENCE_RTOL
+    ]
+    ranked = sorted(
+        enumerate(on_line), key=lambda item: (*through(item[1][1]), item[1][0] not in used, item[0])
+    )
+    chosen: list[tuple[tuple[str, ...], Array | None]] = [(key, None) for key in own]
+    directions = [normals[(key[1], key[2])][0] for key in own]
+    for _, (key, d) in ranked:
+        if all(np.linalg.norm(np.cross(_unit(d), _unit(e))) >= INCIDENCE_RTOL for e in directions):
+            chosen.append((key, d))
+            directions.append(d)
+    keys = [key for key, _ in chosen][:2]
+    if len(keys) == 1:
+        keys.append(("perp", name, *keys[0]))
+    if not keys:
+        keys = [("free", name, "1"), ("free", name, "2")]
+    return keys[0], keys[1]
+
+
+def _actuated_axes(analysis: WrenchAnalysis) -> list[tuple[str, Array]]:
+    """The axes of actuated one-freedom joints of finite pitch, by name."""
+    return sorted(
+        (
+            (key, joint.screws[0])
+            for _, _, key, joint in analysis.graph.edges(keys=True, data="joint")
+            if joint.actuated and not S.is_infinite_pitch(joint.screws[0], length_scale=analysis.length_scale)
+        ),
+        key=lambda item: item[0],
+    )
 
 
 def _finite_line_recipe(
@@ -484,25 +631,37 @@ def diagram_at(reference: WrenchDiagram, analysis: WrenchAnalysis) -> WrenchDiag
     >>> diagram_at(generic, wrench_analysis(h4.twist_graph())).line_text()
     '[ab, cd, ef, gh, ij, kj]'
     """
-    lines, problems = _lines_and_roles(analysis)
-    names = tuple(name for name, _, _, _ in lines)
-    if names != reference.line_names and not problems:
-        problems.append(f"the wrench lines here ({', '.join(names)}) are not the diagram's")
+    lines, problems = _lines_at(reference.line_names, analysis)
     coordinates: dict[str, Array] = {}
     if not problems:
         try:
             coordinates = diagram_points(reference.points, analysis, lines=lines)
         except DegenerateGeometryError as err:
             problems.append(str(err))
+    if coordinates:  # each line is the join of its two points (the recipes keep their incidences)
+        scale = float(analysis.length_scale)
+        for (first, second), (name, _, wrench, _) in zip(reference.lines, lines, strict=True):
+            join = P.join_unchecked(coordinates[first], coordinates[second])
+            if np.linalg.norm(join) <= INCIDENCE_RTOL or not S.Screw(join).is_equivalent(
+                S.Screw(wrench), rtol=1e-6, length_scale=scale
+            ):
+                problems.append(f"the points {first}, {second} do not give the {name} here")
     return WrenchDiagram(
         reference.points, reference.lines, reference.line_names, reference.roles, coordinates, tuple(problems)
     )
 
 
 def _key_direction(key: tuple[str, ...], analysis: WrenchAnalysis) -> Array:
-    name, _, index = key[1].partition("/")
+    joints = {k for _, _, k in analysis.graph.edges(keys=True)}
+    name, index = (key[1], "") if key[1] in joints else _axis_of(key[1])  # joint names may hold "/"
     screw = analysis.graph.edges[_edge(analysis, name)]["joint"].screws[int(index) - 1 if index else 0]
     return screw[:3]
+
+
+def _axis_of(text: str) -> tuple[str, str]:
+    """``"U/1/2"`` -> ``("U/1", "2")`` (axis 2 of the U joint named ``"U/1"``); ``"R1"`` -> ``("R1", "")``."""
+    name, _, index = text.rpartition("/")
+    return (name, index) if index in ("1", "2") and name else (text, "")
 
 
 def _describe(key: tuple[str, ...], normals: Mapping[tuple[str, str], tuple[Array, str]]) -> str:
@@ -512,7 +671,7 @@ def _describe(key: tuple[str, ...], normals: Mapping[tuple[str, str], tuple[Arra
     if kind == "direction":
         return f"the point at infinity of the {key[1]}"
     if kind == "axis":
-        name, _, index = key[1].partition("/")
+        name, index = _axis_of(key[1])
         return f"the point at infinity of the axis of {name}" + (f" (its axis {index})" if index else "")
     if kind == "normals":
         return f"the point at infinity of {normals[(key[1], key[2])][1]}"
@@ -520,6 +679,8 @@ def _describe(key: tuple[str, ...], normals: Mapping[tuple[str, str], tuple[Arra
         return f"the point of the {key[1]} nearest the mechanism's reference point"
     if kind == "centre":
         return f"the centre of joint {key[1]}"
+    if kind == "couples":
+        return f"the point at infinity where the {key[1]} meets the {key[2]}"
     if kind == "perp":
         other = _describe(key[2:], normals).removeprefix("the point at infinity of ")
         return f"the point at infinity normal to the {key[1]}'s moment and to {other}"
@@ -550,7 +711,7 @@ def diagram_points(
     array([0., 0., 1., 0.])
     """
     if lines is None:
-        lines = _lines_and_roles(analysis)[0]
+        lines = [(n, r, w, j) for n, (r, w, j) in _candidate_lines(analysis).items() if w is not None]
     by_name = {name: wrench for name, _, wrench, _ in lines}
     normals = _branch_normals(analysis)
     coordinates = {}
@@ -574,11 +735,21 @@ def diagram_points(
                 if np.linalg.norm(direction) < INCIDENCE_RTOL
                 else np.append(_canonical_direction(direction), 0.0)
             )
-        elif kind == "foot" and key[1] in by_name:
-            value = np.append(S.axis(by_name[key[1]])[0], 1.0)
+        elif kind == "foot" and key[1] in by_name:  # nearest the reference point: frame-covariant
+            nearest, direction = S.axis(by_name[key[1]])
+            offset = np.asarray(analysis.reference_point, dtype=float) - nearest
+            value = np.append(nearest + direction * (offset @ direction) / (direction @ direction), 1.0)
         elif kind == "centre":
             joint = analysis.graph.edges[_edge(analysis, key[1])]["joint"]
             value = np.append(_joint_centre(joint.screws), 1.0)
+        elif kind == "couples" and key[1] in by_name and key[2] in by_name:
+            first, second = by_name[key[1]][3:], by_name[key[2]][3:]
+            cross = np.cross(_unit(first), _unit(second))
+            # two couple lines that coincide here meet everywhere along it: any point of it will do
+            meet = cross if np.linalg.norm(cross) >= INCIDENCE_RTOL else _free(first)[0]
+            value = np.append(_canonical_direction(meet), 0.0)
+        elif kind == "free" and key[1] in by_name:
+            value = np.append(_free(by_name[key[1]][3:])[int(key[2]) - 1], 0.0)
         elif kind == "perp" and key[1] in by_name:
             other = diagram_points((DiagramPoint("_", key[2:], True, ""),), analysis, lines=lines)["_"]
             cross = np.cross(by_name[key[1]][3:], other[:3])
@@ -595,6 +766,140 @@ def diagram_points(
             )
         coordinates[point.label] = value
     return coordinates
+
+
+def _free(moment: Array) -> tuple[Array, Array]:
+    """Two unit directions normal to ``moment`` and to each other (the coordinate axis least
+    aligned with it first): points of the couple line ``(0; moment)`` with no structural meaning."""
+    m = _unit(moment)
+    first = _unit(np.cross(m, np.eye(3)[int(np.argmin(np.abs(m)))]))
+    return first, np.cross(m, first)
+
+
+#: Generic configurations whose diagrams are tried before a mechanism is said to have none.
+REFERENCE_TRIES = 3
+
+
+def generic_reference(analyses: list[WrenchAnalysis]) -> tuple[WrenchDiagram | None, tuple[str, ...]]:
+    """The diagram of a mechanism at a generic configuration, or why the mechanism has none.
+
+    The lines (a line basis of the wrench system, with the legs they come from) and the points
+    they share are chosen at generic configurations, never at the analysed one: the first of
+    ``analyses`` (random configurations of the same mechanism) whose diagram holds is returned.
+    When none of the first :data:`REFERENCE_TRIES` does, the reasons found at the first are
+    properties of the mechanism (a global wrench system of order below 6 everywhere, a constraint
+    system not spanned by lines, ...) and are returned with ``None``.
+
+    Examples
+    --------
+    >>> from screwkit.joints import revolute
+    >>> from screwkit.twistgraph import twist_graph
+    >>> from screwkit.wrenches import wrench_analysis
+    >>> arm = twist_graph("ground", "hand", [  # two freedoms, one actuator
+    ...     ("ground", "link", revolute("A", [0, 0, 1], [0, 0, 0], actuated=True)),
+    ...     ("link", "hand", revolute("B", [0, 0, 1], [1, 0, 0]))], dof=2)
+    >>> reference, reasons = generic_reference([wrench_analysis(arm)])
+    >>> reference is None, reasons[0].split(": ")[1]
+    (True, 'the global wrench system has order 5, not 6')
+    """
+    first: tuple[str, ...] = ()
+    for analysis in analyses[:REFERENCE_TRIES]:
+        try:
+            candidate = wrench_diagram(analysis)
+        except ScrewkitError as err:  # e.g. a joint whose centre is not defined
+            first = first or (str(err),)
+            continue
+        if not candidate.degenerate:
+            return candidate, ()
+        first = first or candidate.degenerate
+    if not analyses:
+        return None, ("no generic configuration of the mechanism could be reached to choose its diagram",)
+    tried = min(len(analyses), REFERENCE_TRIES)
+    return None, tuple(
+        f"the mechanism has no wrench diagram (at {tried} generic configurations): {reason}"
+        for reason in first
+    )
+
+
+class ReplaySampler:
+    """``rng -> {label: point}`` handing out samples produced a batch at a time (the ``rng``
+    argument is unused: the samples come from their own seeded stream).
+
+    Parameters
+    ----------
+    produce : callable
+        ``rng -> list of {label: point}``: a batch of a diagram's points at generic configurations.
+
+    Examples
+    --------
+    >>> sampler = ReplaySampler(lambda rng: [{"a": k} for k in range(2)])
+    >>> [sampler(None), sampler(None), sampler(None)]
+    [{'a': 0}, {'a': 1}, {'a': 0}]
+    """
+
+    def __init__(self, produce: Callable[[np.random.Generator], list[dict[str, Array]]]):
+        self.produce, self.stream = produce, np.random.default_rng(0)
+        self.drawn: list[dict[str, Array]] = []
+
+    def __call__(self, rng: np.random.Generator) -> dict[str, Array]:
+        if not self.drawn:
+            self.drawn = self.produce(self.stream)
+        return self.drawn.pop(0)
+
+
+def graph_diagram(
+    analysis: WrenchAnalysis, *, rng: int = 2026, samples: int = 24
+) -> tuple[WrenchDiagram, Callable[[np.random.Generator], dict[str, Array]] | None]:
+    """The wrench diagram of a twist graph's mechanism at its configuration, and a generic sampler.
+
+    Generic configurations come from the mechanism itself: it is moved along its own mobility and
+    its loops are closed again (:func:`screwkit.motion.generic_configurations`), so a snapshot or
+    a graph built in Python is treated like a catalog robot: the diagram is chosen at a generic
+    configuration (:func:`generic_reference`) and placed at this one (:func:`diagram_at`); the
+    sampler hands out its points at further generic configurations, ``samples`` at a time
+    (analysed as one batch), on which structural zeros are decided.
+
+    Returns
+    -------
+    diagram : WrenchDiagram
+        With the mechanism's reasons in ``degenerate`` when it has no diagram.
+    sampler : callable or None
+        None when there is no diagram.
+
+    Examples
+    --------
+    >>> from screwkit.catalog import load_mechanism
+    >>> from screwkit.wrenches import wrench_analysis
+    >>> diagram, sampler = graph_diagram(wrench_analysis(load_mechanism("h4").twist_graph()))
+    >>> diagram.line_text(), len(sampler(np.random.default_rng(0)))
+    ('[ab, cd, ef, gh, ij, kj]', 11)
+    """
+    from .motion import generic_analyses
+
+    graph = analysis.graph
+    try:
+        analyses = generic_analyses(graph, np.random.default_rng(rng), REFERENCE_TRIES, rtol=analysis.rtol)
+        reference, reasons = generic_reference(analyses)
+    except ScrewkitError as err:
+        reference, reasons = None, (f"no generic configuration of the mechanism: {err}",)
+    if reference is None:
+        return replace(wrench_diagram(analysis), coordinates={}, degenerate=reasons), None
+    diagram = diagram_at(reference, analysis)
+
+    def produce(stream: np.random.Generator) -> list[dict[str, Array]]:
+        found = []
+        for one in generic_analyses(graph, stream, samples, rtol=analysis.rtol):
+            try:
+                found.append(diagram_points(diagram.points, one))
+            except ScrewkitError:
+                continue
+        if not found:
+            raise ScrewkitValueError(
+                f"Expected a generic configuration giving every diagram point, got none of {samples}."
+            )
+        return found
+
+    return diagram, ReplaySampler(produce)
 
 
 def graph_sampler(
@@ -669,6 +974,10 @@ class SuperbracketAnalysis:
         Each condition's vector form at the diagram's pose.
     collinear : tuple of str
         Triples of labels found collinear on every sample (declared to the factoring step).
+    vanishing : tuple of bool
+        Per condition: True when it vanishes at the pose, i.e. its value there is at most
+        :data:`VANISHING_RTOL` times its median size on the generic samples (a singular pose keeps
+        the factored form of a regular one; these factors are the ones that vanish).
     """
 
     diagram: WrenchDiagram
@@ -677,6 +986,7 @@ class SuperbracketAnalysis:
     labels: tuple[str, ...]
     values: tuple[float, ...]
     collinear: tuple[str, ...] = ()
+    vanishing: tuple[bool, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready summary."""
@@ -684,8 +994,10 @@ class SuperbracketAnalysis:
             "superbracket": self.diagram.line_text(),
             "simplification": self.simplification.to_dict(),
             "conditions": [
-                {**c.to_dict(), "label": label, "value_at_pose": value}
-                for c, label, value in zip(self.conditions, self.labels, self.values, strict=True)
+                {**c.to_dict(), "label": label, "value_at_pose": value, "vanishes_at_pose": vanishes}
+                for c, label, value, vanishes in zip(
+                    self.conditions, self.labels, self.values, self.vanishing, strict=True
+                )
             ],
         }
 
@@ -764,7 +1076,9 @@ def superbracket_analysis(
     constraint = diagram.constraint_labels
     labels = tuple("constraint" if set(c.vectors) <= constraint else "actuation" for c in found)
     values = tuple(float(c.evaluate(diagram.coordinates)) for c in found)
-    return SuperbracketAnalysis(diagram, simplification, found, labels, values, collinear)
+    typical = [float(np.median([abs(float(c.evaluate(sample))) for sample in drawn])) for c in found]
+    vanishing = tuple(abs(v) <= VANISHING_RTOL * size for v, size in zip(values, typical, strict=True))
+    return SuperbracketAnalysis(diagram, simplification, found, labels, values, collinear, vanishing)
 
 
 def _collinear_triples(diagram: WrenchDiagram, samples: list[dict[str, Array]]) -> tuple[str, ...]:

@@ -109,6 +109,7 @@ import numpy as np
 from . import _backend as B
 from . import _frames as F
 from . import screw as S
+from ._backend import as_array
 from .exceptions import DegenerateGeometryError, ScrewkitTypeError, ScrewkitValueError, TwistGraphError
 from .wrenches import WrenchAnalysis, checked_rtol
 
@@ -885,7 +886,12 @@ def classify_jacobians(A: Any, B: Any, *, rtol: float = B.DEFAULT_RTOL) -> Jacob
     'inverse'
     """
     tolerance = checked_rtol(rtol, "rtol")
-    a, b = np.asarray(A, dtype=float), np.asarray(B, dtype=float)
+    a, b = (as_array(value, name, (None, None), symbolic=False) for value, name in ((A, "A"), (B, "B")))
+    for matrix, name in ((a, "A"), (b, "B")):
+        if 0 in matrix.shape[-2:]:
+            raise ScrewkitValueError(
+                f"Expected `{name}` to be a non-empty matrix (..., m, n), got {matrix.shape}."
+            )
     return JacobianClassification(_closeness(b), _closeness(a), tolerance)
 
 

@@ -431,6 +431,11 @@ class JointSpec:
     actuated: bool = False
 
 
+#: Largest screw coordinate a :class:`JointTable` takes (a point 1e100 length units away): beyond it
+#: the rank kernels' norms and the superbracket's products would overflow.
+MAX_SCREW_MAGNITUDE = 1e100
+
+
 @dataclass(frozen=True, eq=False)
 class JointTable:
     """A mechanism's joints over a batch of configurations: the structure once, the screws batched.
@@ -476,6 +481,20 @@ class JointTable:
             )
         if not np.all(np.isfinite(screws)):
             raise ScrewkitValueError("Expected finite joint screws, got NaN or infinity.")
+        if screws.size and np.abs(screws).max() > MAX_SCREW_MAGNITUDE:
+            raise ScrewkitValueError(
+                f"Expected joint screw coordinates up to {MAX_SCREW_MAGNITUDE:g} in size (norms and "
+                f"products must not overflow), got {np.abs(screws).max():g}."
+            )
+        zero = np.all(screws == 0, axis=-1)
+        if zero.any():
+            where = np.argwhere(zero)[0]
+            row, starts = int(where[-1]), np.cumsum([spec.dof for spec in self.specs])
+            name = self.specs[int(np.searchsorted(starts, row, side="right"))].name
+            raise ScrewkitValueError(
+                f"Joint {name!r}: expected non-zero screws, got a zero row"
+                + (f" at batch index {tuple(int(i) for i in where[:-1])}." if len(where) > 1 else ".")
+            )
         screws.flags.writeable = False
         object.__setattr__(self, "screws", screws)
         if self.anchor is not None:

@@ -4,9 +4,11 @@
 cached properties over the whole batch, each built on the one before:
 
 ``configuration`` (the family's inverse kinematics) → ``joints`` (a
-:class:`~screwkit.joints.JointTable`) → ``singularities`` (labels, orders, closeness: the analysis
-core in chunks, :func:`~screwkit.singularity.classify_table`) → ``jacobians`` (``A χ̇ = B θ̇`` over
-the family's nominal twists).
+:class:`~screwkit.joints.JointTable`) → ``singularities`` (labels, orders, closeness: the inverse
+kinematics, joint table and analysis core chunk by chunk, :func:`~screwkit.singularity.classify_chunks`,
+so that a large batch never holds its whole table) → ``jacobians`` (``A χ̇ = B θ̇`` over the family's
+nominal twists) → ``transmission`` (paper 004's κ, ζ, LTI; four-limb family) and
+``wrench_transmission`` (input/output transmission from the actuation wrenches, any family).
 
 Indexing gives one :class:`Pose`: its graph, wrench analysis (a batch of one through the same
 kernels), verdict, Jacobians, wrench diagram, superbracket and :meth:`Pose.report`. The
@@ -36,32 +38,21 @@ from . import _backend as B
 from .exceptions import ScrewkitError, ScrewkitValueError
 from .jacobians import WrenchJacobians, jacobians_from_wrenches
 from .joints import JointTable
-from .singularity import SingularityReport, classify_table
+from .singularity import SingularityReport, classify_chunks, classify_table
 from .wrenches import WrenchAnalysis, analyze_table, checked_rtol
 
 __all__ = ["Pose", "PosedMechanism", "generic_samples"]
 
 Array = np.ndarray
 
-#: Random workspace poses drawn (in one batch) to find a generic configuration for a diagram.
-GENERIC_DRAWS = 50
+#: Poses taken through the inverse kinematics, joint table and analysis core at once.
+CHUNK = 256
+#: Random workspace poses drawn (in one batch) to find a generic configuration for a diagram (the
+#: first few reachable ones are tried: screwkit.diagram.REFERENCE_TRIES).
+GENERIC_DRAWS = 12
 #: Generic samples of a diagram's points drawn (in one batch) for the superbracket: its structural
 #: zeros and its checks take 12 (screwkit.diagram.superbracket_analysis).
 SAMPLES = 24
-
-
-class _Replay:
-    """``rng -> {label: point}`` handing out samples drawn :data:`SAMPLES` at a time, each time as
-    one batch (the ``rng`` argument is unused: the samples come from their own seeded stream)."""
-
-    def __init__(self, produce: Callable[[np.random.Generator], list[dict[str, Array]]]):
-        self.produce, self.stream = produce, np.random.default_rng(0)
-        self.drawn: list[dict[str, Array]] = []
-
-    def __call__(self, rng: np.random.Generator) -> dict[str, Array]:
-        if not self.drawn:
-            self.drawn = self.produce(self.stream)
-        return self.drawn.pop(0)
 
 
 def _checked_poses(mechanism: Any, poses: Any) -> Array:
@@ -145,8 +136,28 @@ class PosedMechanism:
 
     @functools.cached_property
     def singularities(self) -> SingularityReport:
-        """Labels, orders and closeness over the batch (the analysis core, in chunks)."""
-        return classify_table(self.joints, rtol=self.rtol)
+        """Labels, orders and closeness over the batch (the analysis core, in chunks).
+
+        Unless the joint table is already there, each chunk of :data:`CHUNK` poses goes through
+        the inverse kinematics, its joint table and the core in turn, so memory stays bounded by
+        the chunk and the results; the whole table is computed only if a per-pose view asks.
+        """
+        if "joints" in self.__dict__:
+            return classify_table(self.joints, rtol=self.rtol, chunk=CHUNK)
+        flat = self.poses.reshape(-1, self.poses.shape[-1])
+        try:
+            protocol = self.mechanism.family_protocol
+            pieces = (
+                protocol.joints(self.mechanism.configuration(flat[start : start + CHUNK], **self.options))
+                for start in range(0, max(len(flat), 1), CHUNK)
+            )
+            return classify_chunks(pieces, self._joint_table, self.shape, rtol=self.rtol)
+        except ScrewkitError:
+            _ = self.configuration  # raises the whole batch's message (the failing pose's index)
+            raise
+
+    def _joint_table(self) -> JointTable:
+        return self.joints
 
     @property
     def verdicts(self) -> Array:
@@ -167,6 +178,22 @@ class PosedMechanism:
     def jacobians(self) -> WrenchJacobians:
         """``A χ̇ = B θ̇`` per pose over the family's nominal twists."""
         return jacobians_from_wrenches(self.singularities.analysis, self.twist_basis, rtol=self.rtol)
+
+    @functools.cached_property
+    def transmission(self) -> Any:
+        """Paper 004's ``κ`` (input), ``ζ`` (output) and LTI ``η`` per pose
+        (:func:`screwkit.indices.transmission`; four-limb family only, ScrewkitValueError otherwise)."""
+        from .indices import transmission
+
+        return transmission(self)
+
+    @functools.cached_property
+    def wrench_transmission(self) -> Any:
+        """Input/output transmission per actuated joint and their LTI, from the actuation wrenches and
+        the nominal twists, for any family (:func:`screwkit.indices.wrench_transmission`)."""
+        from .indices import application_points, wrench_transmission
+
+        return wrench_transmission(self.jacobians, input_points=application_points(self.configuration))
 
     def __getitem__(self, index: Any) -> Pose:
         try:
@@ -241,35 +268,29 @@ class Pose:
     def diagram_and_sampler(self) -> tuple[Any, Callable[[np.random.Generator], dict[str, Array]]]:
         """The wrench diagram at this pose and a sampler of its recipes at generic poses.
 
-        Which points lines share is decided at a generic (random, seeded) workspace pose, the
-        first of :data:`GENERIC_DRAWS` drawn as one batch whose diagram is not degenerate; the
-        diagram is then placed at this pose (:func:`screwkit.diagram.diagram_at`). The sampler
+        Which lines make the diagram and which points they share is decided at a generic (random,
+        seeded) workspace pose of :data:`GENERIC_DRAWS` drawn as one batch
+        (:func:`screwkit.diagram.generic_reference`); the diagram is then placed at this pose
+        (:func:`screwkit.diagram.diagram_at`), where lines that coincide still appear. When the
+        mechanism has no diagram (e.g. a wrench system not spanned by lines), the reasons found at
+        the generic poses are given as ``degenerate``. The sampler
         replays recipes evaluated at random workspace poses, drawn and analysed as one batch
         (:func:`generic_samples`).
         """
         from dataclasses import replace
 
-        from .diagram import diagram_at, wrench_diagram
+        from .diagram import ReplaySampler, diagram_at, generic_reference, wrench_diagram
 
-        reference = None
         analyses = _batch_analyses(
             self.mechanism, np.random.default_rng(2026), GENERIC_DRAWS, self.posed.rtol
         )
-        for analysis in analyses:
-            try:
-                candidate = wrench_diagram(analysis)
-            except ScrewkitError:
-                continue
-            if not candidate.degenerate:
-                reference = candidate
-                break
-        if reference is None:  # e.g. a mechanism whose wrenches are never six lines: say why, here
+        reference, reasons = generic_reference(analyses)
+        if reference is None:  # a property of the mechanism, found at generic poses: say so
             diagram = wrench_diagram(self.analysis)
-            reason = f"no generic workspace pose (of {GENERIC_DRAWS} drawn) gives a non-degenerate diagram"
-            return replace(diagram, degenerate=(*diagram.degenerate, reason)), _no_sampler
+            return replace(diagram, coordinates={}, degenerate=reasons), _no_sampler
         diagram = diagram_at(reference, self.analysis)
         mechanism, rtol = self.mechanism, self.posed.rtol
-        return diagram, _Replay(
+        return diagram, ReplaySampler(
             lambda stream: generic_samples(mechanism, diagram.points, stream, SAMPLES, rtol)
         )
 

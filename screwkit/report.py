@@ -14,9 +14,10 @@ Gosselin–Angeles type (``"inverse"`` goes with the ``serial`` label, ``"direct
 ones, leaves ``A`` regular), ``det A``, ``det B`` and the two closeness measures. A snapshot has no
 family to give its nominal twists: there the Jacobians are None.
 
-For a catalog mechanism, structural zeros of the superbracket are confirmed on random poses of its
-workspace; for a snapshot (one configuration only) they are read from that configuration, which the
-report states.
+Structural zeros of the superbracket are decided on generic configurations, never at the analysed
+pose: random poses of the workspace for a catalog mechanism, configurations reached by moving the
+mechanism along its own mobility for a snapshot or a graph (:mod:`screwkit.motion`). At a singular
+pose the factored form is the one of a regular pose, with the vanishing factors valued (~0) there.
 
 Examples
 --------
@@ -29,6 +30,7 @@ Examples
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections import Counter
 from dataclasses import dataclass
@@ -40,7 +42,7 @@ import numpy as np
 
 from . import _backend as B
 from . import screw as S
-from .catalog import Mechanism, load_mechanism, load_snapshot, load_toml
+from .catalog import Mechanism, check_dof, file_kind, load_mechanism, load_snapshot, load_toml
 from .exceptions import ScrewkitError, ScrewkitTypeError, ScrewkitValueError
 from .jacobians import WrenchJacobians
 from .singularity import SingularityReport, classify_analysis
@@ -120,7 +122,8 @@ class AnalysisReport:
     verdict : SingularityReport
     diagram : WrenchDiagram
     superbracket : SuperbracketAnalysis or None
-        None when not computed or when the diagram is degenerate at the pose.
+        None when not computed, when the mechanism has no diagram, or when its diagram does not
+        exist at the pose (e.g. a limb at a serial singularity); ``superbracket_note`` says which.
     superbracket_note : str
         How structural zeros were confirmed, or why there is no factorization.
     jacobians : WrenchJacobians or None
@@ -128,6 +131,10 @@ class AnalysisReport:
         type (module docstring); None for a snapshot, or when the basis is refused at the pose.
     jacobians_note : str
         What the Jacobians' columns are, or why there are none.
+    transmission : dict or None
+        The transmission indices at the pose (:func:`screwkit.indices.transmission_summary`: the
+        wrench-based ITI/OTI/LTI, and paper 004's κ, ζ, η for the four-limb family); None for a
+        snapshot.
     """
 
     name: str
@@ -144,6 +151,7 @@ class AnalysisReport:
     superbracket_note: str
     jacobians: WrenchJacobians | None = None
     jacobians_note: str = _SNAPSHOT_JACOBIANS
+    transmission: dict[str, Any] | None = None
 
     def graph_summary(self) -> dict[str, Any]:
         """Links, joints by type, actuated joints, loops; and the equivalent graph's virtual joints."""
@@ -246,6 +254,7 @@ class AnalysisReport:
             "superbracket_note": self.superbracket_note,
             "verdict": self.verdict.to_dict(),
             "jacobians": self.jacobian_summary(),
+            "transmission": self.transmission,
         }
 
     def __str__(self) -> str:
@@ -296,10 +305,12 @@ class AnalysisReport:
             )
             out.append(f"  {self.superbracket_note}")
             out += ["", "conditions"]
-            for condition, label, value in zip(
-                self.superbracket.conditions, self.superbracket.labels, self.superbracket.values, strict=True
+            result = self.superbracket
+            for condition, label, value, vanishes in zip(
+                result.conditions, result.labels, result.values, result.vanishing, strict=True
             ):
-                out.append(f"  {label} singularity when {condition.factor} = 0")
+                flag = "  <- vanishes at this pose" if vanishes else ""
+                out.append(f"  {label} singularity when {condition.factor} = 0{flag}")
                 out.append(f"    {condition.statement}")
                 out.append(f"    vector form: {condition.expression} = 0   (here: {value:.6g})")
         out += ["", "verdict", *("  " + line for line in str(self.verdict).splitlines())]
@@ -307,6 +318,8 @@ class AnalysisReport:
         out.append(f"  closeness (0 at a singularity): {measures}")
         if self.pose is not None:
             out += ["", *self._jacobian_lines()]
+        if self.transmission is not None:
+            out += ["", *_transmission_lines(self.transmission)]
         return "\n".join(out)
 
     def _jacobian_lines(self) -> list[str]:
@@ -330,6 +343,23 @@ class AnalysisReport:
                 "them) leaves it regular"
             )
         return out
+
+
+def _transmission_lines(summary: dict[str, Any]) -> list[str]:
+    out = ["transmission (in [0, 1]; 0 at a singularity)"]
+    wrench, paper = summary["wrench"], summary["paper_004"]
+    if wrench is not None:
+        names = wrench["actuated_joints"]
+        for key in ("input", "output"):
+            values = ", ".join(f"{n} {v:.3g}" for n, v in zip(names, wrench[key], strict=True))
+            out.append(f"  {key} (wrench-based): {values}")
+        out.append(f"  LTI (wrench-based): {wrench['lti']:.3g}")
+    if paper is not None:
+        out.append(
+            f"  paper 004: kappa {paper['input']:.3g}, zeta {paper['output']:.3g}, LTI eta {paper['lti']:.3g}"
+        )
+    out.append(f"  ({summary['note']})")
+    return out
 
 
 def _determinant_units(jac: WrenchJacobians, unit: str) -> tuple[str, str]:
@@ -394,6 +424,8 @@ def analyze(
     ()
     """
     tolerance = B.DEFAULT_RTOL if rtol is None else checked_rtol(rtol)
+    if not isinstance(superbracket, bool | np.bool_):
+        raise ScrewkitTypeError(f"Expected `superbracket` to be True or False, got {superbracket!r}.")
     if isinstance(target, nx.MultiDiGraph):
         return _graph_report(target, "<graph>", pose, tolerance, superbracket, "a twist graph")
     if not isinstance(target, str | Path | Mechanism):
@@ -402,7 +434,7 @@ def analyze(
             f"(networkx.MultiDiGraph), got {type(target).__name__}."
         )
     text = str(target) if not isinstance(target, Mechanism) else ""
-    if text.endswith(".toml") and load_toml(text).get("mechanism", {}).get("kind") == "snapshot":
+    if text.endswith(".toml") and file_kind(load_toml(text)) == "snapshot":
         return _graph_report(load_snapshot(text), text, pose, tolerance, superbracket, "a snapshot")
     mechanism = target if isinstance(target, Mechanism) else load_mechanism(target)
     return mechanism.at(pose, rtol=tolerance)[0].report(superbracket=superbracket)
@@ -413,16 +445,20 @@ def _graph_report(
 ) -> AnalysisReport:
     if pose is not None:
         raise ScrewkitValueError(f"{source}: {what} is one configuration; expected no pose, got {pose!r}.")
+    check_dof(graph)
     analysis = wrench_analysis(graph, rtol=rtol)
     if not isinstance(analysis, WrenchAnalysis):
         raise ScrewkitTypeError(
             f"{source}: expected numeric joint screws for a report at a pose, got symbols; "
             "use screwkit.generic.generic_analysis for a family's generic answers."
         )
-    from .diagram import wrench_diagram
+    if not analysis.topology.actuated and graph.graph.get("dof") is None:
+        # mobility analysis: the nominal mobility is the platform's freedom at this configuration
+        analysis = wrench_analysis(graph, dof=6 - int(analysis.constraint_order), rtol=rtol)
+        assert isinstance(analysis, WrenchAnalysis)  # the same numeric graph
+    from .diagram import graph_diagram
 
-    diagram = wrench_diagram(analysis)
-    points = dict(diagram.coordinates)
+    diagram, sampler = graph_diagram(analysis)
     return _finish(
         graph.graph.get("name", source),
         source,
@@ -432,8 +468,9 @@ def _graph_report(
         graph,
         analysis,
         diagram,
-        (lambda _: points) if superbracket else None,
-        f"structural zeros read from this one configuration ({what})",
+        sampler if superbracket else None,
+        f"structural zeros confirmed on generic configurations of {what}, reached by moving the mechanism "
+        "and closing its loops again (screwkit.motion); each stage equals the 6×6 determinant on fresh ones",
     )
 
 
@@ -458,7 +495,7 @@ def pose_report(pose: Any, *, superbracket: bool = True) -> AnalysisReport:
         )
     except ScrewkitError as err:
         jacobians_note = f"not computed: {err}"
-    return _finish(
+    report = _finish(
         mechanism.name,
         mechanism.source,
         mechanism.length_unit,
@@ -473,6 +510,9 @@ def pose_report(pose: Any, *, superbracket: bool = True) -> AnalysisReport:
         jacobians,
         jacobians_note,
     )
+    from .indices import transmission_summary
+
+    return dataclasses.replace(report, transmission=transmission_summary(mechanism, report.pose, jacobians))
 
 
 def _finish(
@@ -490,10 +530,10 @@ def _finish(
     jacobians_note: str = _SNAPSHOT_JACOBIANS,
 ) -> AnalysisReport:
     result = None
-    if sampler is None:
+    if diagram.degenerate:
+        note = "no factorization: " + "; ".join(diagram.degenerate)
+    elif sampler is None:
         note = "not computed"
-    elif diagram.degenerate:
-        note = "the diagram is degenerate at this pose: " + "; ".join(diagram.degenerate)
     else:
         try:
             from .diagram import superbracket_analysis

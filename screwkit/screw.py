@@ -68,7 +68,11 @@ Array = np.ndarray
 
 
 def _nonzero_direction(direction: Array, name: str) -> None:
-    zero = [all(B.is_exactly_zero(v) for v in d) for d in direction.reshape(-1, 3)]
+    rows = direction.reshape(-1, 3)
+    if B.is_symbolic(direction):  # each entry decided exactly
+        zero = [all(B.is_exactly_zero(v) for v in d) for d in rows]
+    else:  # numbers: one vectorised comparison over the batch
+        zero = np.all(rows == 0, axis=-1).tolist()
     if any(zero):
         raise DegenerateGeometryError(
             f"Expected `{name}` to be a non-zero direction, got a zero vector "
@@ -274,8 +278,8 @@ def pitch(screws: Any) -> Any:
     """
     arr = _screws(screws)
     s, s0 = arr[..., :3], arr[..., 3:]
-    ss, ss0 = B.dot(s, s), B.dot(s, s0)
     if B.is_symbolic(arr):
+        ss, ss0 = B.dot(s, s), B.dot(s, s0)
         if arr.ndim != 1:
             return np.vectorize(pitch, signature="(6)->()", otypes=[object])(arr)
         if all(B.is_exactly_zero(v) for v in arr):
@@ -283,6 +287,8 @@ def pitch(screws: Any) -> Any:
         return B.infinity(symbolic=True) if B.is_exactly_zero(ss) else B.simplify(ss0 / ss)
     if np.any(np.all(arr == 0, axis=-1)):
         raise DegenerateGeometryError("Expected non-zero screws, got the zero screw.")
+    s, s0 = _direction_scaled(s, s0)  # the pitch s·s0 / s·s is unchanged by a common factor
+    ss, ss0 = np.sum(s * s, axis=-1), np.sum(s * s0, axis=-1)
     safe = np.where(ss > 0, ss, 1.0)
     result = np.where(ss > 0, ss0 / safe, math.inf)
     return float(result) if np.ndim(result) == 0 else result
@@ -358,29 +364,40 @@ def axis(screws: Any) -> tuple[Array, Array]:
     """
     arr = _screws(screws)
     s, s0 = arr[..., :3], arr[..., 3:]
-    ss = B.dot(s, s)
     if B.is_symbolic(arr):
+        ss = B.dot(s, s)
         if any(B.is_exactly_zero(v) for v in np.atleast_1d(ss).flat):
             raise DegenerateGeometryError(
                 "Expected a screw of finite pitch, got s = 0 (a line at infinity has no finite point)."
             )
         point = B.simplify(B.cross(s, s0) / np.asarray(ss)[..., None])
         return point, B.simplify(s / B.norm(s)[..., None] if s.ndim > 1 else s / B.norm(s))
-    if np.any(ss == 0):
+    if np.any(np.all(s == 0, axis=-1)):
         raise DegenerateGeometryError(
             "Expected screws of finite pitch, got s = 0 (a line at infinity has no finite point)."
         )
+    s, s0 = _direction_scaled(s, s0)  # the point s × s0 / s·s is unchanged by a common factor
+    ss = np.sum(s * s, axis=-1)
     return B.cross(s, s0) / ss[..., None], s / np.sqrt(ss)[..., None]
+
+
+def _direction_scaled(s: Array, s0: Array) -> tuple[Array, Array]:
+    """``(s, s0)`` times a power of two (exact) per screw, so that ``|s|`` lies in [0.5, 2): ``s·s``
+    neither underflows (a 1e-170 axis) nor overflows."""
+    largest = np.max(np.abs(s), axis=-1, keepdims=True)
+    shift = np.frexp(np.where(largest > 0, largest, 1.0))[1]
+    return np.ldexp(s, -shift), np.ldexp(s0, -shift)
 
 
 def _unit_scaled(arr: Array, length_scale: float) -> Array:
     B.checked_length_scale(length_scale)
     scaled = np.array(arr, dtype=float)
     scaled[..., 3:] /= length_scale
-    size = np.linalg.norm(scaled, axis=-1, keepdims=True)
-    if np.any(size == 0):
+    largest = np.max(np.abs(scaled), axis=-1, keepdims=True)
+    if np.any(largest == 0):
         raise DegenerateGeometryError("Expected non-zero screws, got the zero screw.")
-    return scaled / size
+    scaled = np.ldexp(scaled, -np.frexp(largest)[1])  # exact: the norm neither underflows nor overflows
+    return scaled / np.linalg.norm(scaled, axis=-1, keepdims=True)
 
 
 def _numeric_only(arr: Array, what: str) -> None:

@@ -40,8 +40,8 @@ regular (dof 1): constraint order 5/5, global order 6/6
 
 from __future__ import annotations
 
-from collections.abc import Mapping
-from dataclasses import dataclass, field
+from collections.abc import Callable, Iterable, Mapping
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import networkx as nx
@@ -63,6 +63,7 @@ __all__ = [
     "checked_screws",
     "classify",
     "classify_analysis",
+    "classify_chunks",
     "classify_poses",
     "classify_table",
 ]
@@ -184,11 +185,25 @@ class SingularityReport:
         return _same_kind(~np.asarray(self.constraint) & (np.asarray(self.global_order) < 6))
 
     @property
+    def actuation_assessed(self) -> bool:
+        """False for a mechanism with no actuated joint: it is analysed for its mobility only (its
+        legs' constraint systems, the platform's freedoms, constraint singularities); the actuation
+        and serial labels are not assessed."""
+        return bool(self.actuated_joints)
+
+    @property
     def codes(self) -> Array:
-        """An integer per pose: bit 1 constraint, 2 actuation, 4 serial (0 regular)."""
+        """An integer per pose: bit 1 constraint, 2 actuation, 4 serial (0 regular).
+
+        A platform with fewer freedoms than nominal (``lost_dof > 0``, e.g. a stretched limb at the
+        boundary of its workspace) is a serial singularity, Gosselin & Angeles' type 1 (the output
+        loses a direction of motion), whether or not one limb's actuator is found idle."""
         constraint = np.asarray(self.constraint_order) < self.nominal_constraint_order
+        if not self.actuation_assessed:
+            return constraint * 1
         actuation = ~constraint & (np.asarray(self.global_order) < 6)
-        serial = np.asarray(self.analysis.serial).any(axis=-1)
+        lost = np.asarray(self.constraint_order) > self.nominal_constraint_order
+        serial = np.asarray(self.analysis.serial).any(axis=-1) | lost
         return constraint * 1 + actuation * 2 + serial * 4
 
     @property
@@ -257,6 +272,7 @@ class SingularityReport:
             "verdict": self.verdict,
             "labels": list(self.labels),
             "dof": self.dof,
+            "actuation_assessed": self.actuation_assessed,
             "constraint_order": int(self.constraint_order),
             "nominal_constraint_order": self.nominal_constraint_order,
             "global_order": int(self.global_order),
@@ -291,9 +307,14 @@ class SingularityReport:
         ]
         if self.gained_dof:
             lines.append(f"  the platform gains {self.gained_dof} DOF (constraints lost)")
+        if not self.actuation_assessed:
+            lines.append("  no actuated joint: mobility analysis only, actuation not assessed")
         if self.lost_dof:
-            lines.append(f"  the platform has {self.lost_dof} DOF fewer than nominal (locked)")
-        if self.uncontrolled_dof:
+            lines.append(
+                f"  the platform has {self.lost_dof} DOF fewer than nominal"
+                + (" (a serial singularity: a limb at its reach)" if self.actuation_assessed else "")
+            )
+        if self.uncontrolled_dof and self.actuation_assessed:
             lines.append(f"  uncontrolled with actuators locked: {self.uncontrolled_dof} twist(s)")
             lines.extend(f"    {S.Screw(t)}" for t in self.uncontrolled_twists)
         for item in self.serial:
@@ -356,9 +377,9 @@ def classify(
     >>> from screwkit.twistgraph import twist_graph
     >>> G = twist_graph("B", "E", [("B", "E", revolute("R", [0, 0, 1], [0, 0, 0], actuated=True)),
     ...                            ("B", "E", revolute("R2", [0, 0, 1], [1, 0, 0]))], dof=1)
-    >>> report = classify(G)  # two parallel hinges on different axes lock the platform
+    >>> report = classify(G)  # two parallel hinges on different axes lock the platform: it lacks a freedom
     >>> report.labels, report.constraint_order, report.lost_dof
-    ((), 6, 1)
+    (('serial',), 6, 1)
     """
     analysis = wrench_analysis(graph, dof=dof, joint_key=joint_key, rtol=rtol)
     if not isinstance(analysis, WrenchAnalysis):
@@ -390,6 +411,8 @@ def classify_table(
     >>> classify_table(table, chunk=2).verdict.tolist()
     ['regular', 'regular', 'regular', 'regular', 'regular']
     """
+    if not isinstance(table, JointTable):
+        raise ScrewkitTypeError(f"Expected `table` to be a JointTable, got {type(table).__name__}.")
     if isinstance(chunk, bool) or not isinstance(chunk, int | np.integer) or chunk < 1:
         raise ScrewkitValueError(f"Expected `chunk` to be a positive integer, got {chunk!r}.")
     shape = table.batch_shape
@@ -397,9 +420,8 @@ def classify_table(
         raise ScrewkitValueError("Expected a table with a batch axis, got one configuration; use classify().")
     flat = table.screws.reshape(-1, *table.screws.shape[-2:])
     anchor = None if table.anchor is None else table.anchor.reshape(-1, 3)
-    parts = []
-    for start in range(0, max(len(flat), 1), chunk):
-        piece = JointTable(
+    pieces = (
+        JointTable(
             table.base,
             table.platform,
             table.specs,
@@ -407,40 +429,91 @@ def classify_table(
             table.dof,
             None if anchor is None else anchor[start : start + chunk],
         )
-        parts.append(analyze_table(piece, dof=dof, rtol=rtol, views=False))
-    return SingularityReport(_joined(parts, table, shape))
-
-
-def _joined(parts: list[WrenchAnalysis], table: JointTable, shape: tuple[int, ...]) -> WrenchAnalysis:
-    """One analysis from chunks of a flattened batch, reshaped to ``shape``."""
-    first = parts[0]
-
-    def cat(values: list[Any]) -> Array:
-        return np.concatenate([np.asarray(v) for v in values]).reshape(
-            *shape, *np.asarray(values[0]).shape[1:]
-        )
-
-    frames = {
-        key: (cat([p.frames[key][0] for p in parts]), cat([p.frames[key][1] for p in parts]))
-        for key in first.frames
-    }
-    return WrenchAnalysis(
-        table=table,
-        topology=first.topology,
-        rtol=first.rtol,
-        dof=first.dof,
-        reference_point=cat([p.reference_point for p in parts]),
-        length_scale=cat([p.length_scale for p in parts]),
-        platform_order=cat([p.platform_order for p in parts]),
-        constraint_order=cat([p.constraint_order for p in parts]),
-        global_order=cat([p.global_order for p in parts]),
-        serial=cat([p.serial for p in parts]),
-        transmissions=cat([p.transmissions for p in parts]),
-        actuation_rows=cat([p.actuation_rows for p in parts]),
-        actuated_twists=cat([p.actuated_twists for p in parts]),
-        frames=frames,
-        closeness={k: cat([p.closeness[k] for p in parts]) for k in first.closeness},
+        for start in range(0, max(len(flat), 1), chunk)
     )
+    return classify_chunks(pieces, table, shape, dof=dof, rtol=rtol)
+
+
+def classify_chunks(
+    tables: Iterable[JointTable],
+    table_source: JointTable | Callable[[], JointTable],
+    shape: tuple[int, ...],
+    *,
+    dof: int | None = None,
+    rtol: float = B.DEFAULT_RTOL,
+) -> SingularityReport:
+    """Label a flattened batch given chunk by chunk (the tables in order, one batch axis each).
+
+    Each chunk goes through :func:`~screwkit.wrenches.analyze_table` without its per-pose views,
+    and its results are copied into arrays allocated for the whole batch once the first chunk
+    gives their shapes, so no chunk outlives its turn and the results are never concatenated.
+
+    Parameters
+    ----------
+    tables : iterable of JointTable
+        The chunks, with ``prod(shape)`` configurations in all.
+    table_source : JointTable or callable
+        The whole batch's table, or a function returning it (asked only by per-pose views).
+    shape : tuple of int
+        The batch shape of the result.
+    dof : int, optional
+    rtol : float, default 1e-9
+
+    Examples
+    --------
+    >>> from screwkit.joints import JointTable
+    >>> table = JointTable.from_rows("B", "E", [("B", "E", "P", "P", [[[0, 0, 0, 1.0, 0, 0]]] * 4, True)])
+    >>> classify_chunks([table[:3], table[3:]], table, (2, 2)).global_order
+    array([[6, 6],
+           [6, 6]])
+    """
+    total = int(np.prod(shape))
+    out: dict[str, Any] = {}
+    filled, first = 0, None
+    for piece in tables:
+        part = analyze_table(piece, dof=dof, rtol=rtol, views=False)
+        arrays = _batch_arrays(part)
+        if first is None:
+            first = part
+            out = {key: np.empty((total, *value.shape[1:]), value.dtype) for key, value in arrays.items()}
+        for key, value in arrays.items():
+            out[key][filled : filled + len(value)] = value
+        filled += len(part)
+    if first is None or filled != total:
+        raise ScrewkitValueError(f"Expected chunks of {total} configurations in all, got {filled}.")
+    whole = {key: value.reshape(*shape, *value.shape[1:]) for key, value in out.items()}
+    return SingularityReport(
+        replace(
+            first,
+            table_source=table_source,
+            **{key: whole[key] for key in _BATCH_FIELDS},
+            frames={key: (whole[f"frame:{key}"], whole[f"order:{key}"]) for key in first.frames},
+            closeness={key: whole[f"closeness:{key}"] for key in first.closeness},
+        )
+    )
+
+
+#: The per-pose array fields of a :class:`~screwkit.wrenches.WrenchAnalysis`.
+_BATCH_FIELDS = (
+    "reference_point",
+    "length_scale",
+    "platform_order",
+    "constraint_order",
+    "global_order",
+    "serial",
+    "transmissions",
+    "actuation_rows",
+    "actuated_twists",
+)
+
+
+def _batch_arrays(analysis: WrenchAnalysis) -> dict[str, Array]:
+    """Every per-pose array of a batch analysis, by a flat name."""
+    arrays = {key: np.asarray(getattr(analysis, key)) for key in _BATCH_FIELDS}
+    for key, (rows, order) in analysis.frames.items():
+        arrays[f"frame:{key}"], arrays[f"order:{key}"] = rows, np.asarray(order)
+    arrays.update({f"closeness:{key}": np.asarray(value) for key, value in analysis.closeness.items()})
+    return arrays
 
 
 def checked_screws(

@@ -38,6 +38,7 @@ from __future__ import annotations
 
 import functools
 import itertools
+from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any
 
@@ -215,7 +216,9 @@ class WrenchAnalysis:
 
     Attributes
     ----------
-    table : JointTable
+    table_source : JointTable or callable
+        The analysed joint table, or a function returning it (a batch analysed chunk by chunk
+        keeps no table; :attr:`table` asks for it when a per-pose view needs it).
     topology : Topology
     rtol : float
     dof : int
@@ -232,7 +235,7 @@ class WrenchAnalysis:
     actuated_twists : numpy.ndarray, shape (..., n_actuated, 6)
     """
 
-    table: JointTable = field(repr=False)
+    table_source: JointTable | Callable[[], JointTable] = field(repr=False)
     topology: Topology = field(repr=False)
     rtol: float
     dof: int
@@ -249,6 +252,12 @@ class WrenchAnalysis:
     closeness: dict[str, Array] = field(repr=False)
 
     # --- batch behaviour -------------------------------------------------------------------------
+    @functools.cached_property
+    def table(self) -> JointTable:
+        """The analysed joint table (computed on first use when the analysis kept none)."""
+        source = self.table_source
+        return source if isinstance(source, JointTable) else source()
+
     @property
     def shape(self) -> tuple[int, ...]:
         """The batch shape (``()`` for one pose)."""
@@ -268,9 +277,12 @@ class WrenchAnalysis:
         def pick(value: Any) -> Any:
             return value[index]
 
+        source = self.table_source
         return replace(
             self,
-            table=self.table[index],
+            table_source=source[index]
+            if isinstance(source, JointTable)
+            else functools.partial(_indexed_table, self, index),
             reference_point=pick(self.reference_point),
             length_scale=_scalar(pick(np.asarray(self.length_scale))),
             platform_order=_scalar(pick(self.platform_order)),
@@ -428,6 +440,11 @@ class WrenchAnalysis:
         return nodes[self.topology.root] if self.topology.root is not None else None
 
 
+def _indexed_table(analysis: WrenchAnalysis, index: Any) -> JointTable:
+    """``analysis.table[index]`` (the table source of an indexed analysis that kept no table)."""
+    return analysis.table[index]
+
+
 def _scalar(value: Any) -> Any:
     array = np.asarray(value)
     return array.item() if array.ndim == 0 else value
@@ -564,13 +581,25 @@ def _nearest_lines(wrench: Array, constraints: Array, order: Array) -> Array:
     The pitch numerator of ``w + C α`` is the quadratic ``αᵀQα + bᵀα + p0`` (``Q`` the symmetric
     part of ``C_s C_mᵀ``). Along a direction ``u`` it is a quadratic in one variable; the
     directions tried are the frame's rows, the gradient ``b`` (steepest descent) and the
-    eigenvectors of ``Q``, and the root of smallest ``|α|`` wins.
+    eigenvectors of ``Q``, and the root of smallest ``|α|`` wins. Only the wrenches that are not
+    lines and have constraint wrenches to add are searched (each on its own: a pose's answer does
+    not depend on the others).
     """
-    s, m = wrench[..., :3], wrench[..., 3:]
-    size = np.linalg.norm(s, axis=-1)
-    pitch = np.einsum("...i,...i->...", s, m)
+    size = np.linalg.norm(wrench[..., :3], axis=-1)
+    pitch = np.einsum("...i,...i->...", wrench[..., :3], wrench[..., 3:])
     not_line = np.abs(pitch) > LINE_RTOL * np.maximum(size, 1e-300) * np.linalg.norm(wrench, axis=-1)
-    mask = np.arange(constraints.shape[-2]) < np.asarray(order)[..., None]
+    searched = not_line & (np.asarray(order) > 0)
+    best = wrench.copy()
+    if searched.any():
+        best[searched] = _line_search(wrench[searched], constraints[searched], np.asarray(order)[searched])
+    return best
+
+
+def _line_search(wrench: Array, constraints: Array, order: Array) -> Array:
+    """:func:`_nearest_lines` over wrenches ``(n, 6)`` that are not lines, constraints ``(n, k, 6)``."""
+    s, m = wrench[..., :3], wrench[..., 3:]
+    pitch = np.einsum("...i,...i->...", s, m)
+    mask = np.arange(constraints.shape[-2]) < order[..., None]
     rows = constraints * mask[..., None]
     gradient = np.einsum("...i,...ki->...k", s, rows[..., 3:]) + np.einsum(
         "...ki,...i->...k", rows[..., :3], m
@@ -584,29 +613,34 @@ def _nearest_lines(wrench: Array, constraints: Array, order: Array) -> Array:
             np.swapaxes(vectors, -1, -2),
         ],
         axis=-2,
-    )
-    best, best_size = wrench.copy(), np.full(wrench.shape[:-1], np.inf)
-    for k in range(directions.shape[-2]):
-        u = directions[..., k, :] * mask
-        norm_u = np.linalg.norm(u, axis=-1)
-        c = np.einsum("...k,...ki->...i", u / np.where(norm_u > 0, norm_u, 1.0)[..., None], rows)
-        usable = not_line & (norm_u > 0)
-        a = np.einsum("...i,...i->...", c[..., :3], c[..., 3:])
-        b = np.einsum("...i,...i->...", s, c[..., 3:]) + np.einsum("...i,...i->...", c[..., :3], m)
-        disc = b * b - 4 * a * pitch
-        # the stable pair of roots (Numerical Recipes §5.6): q = -(b + sgn(b) √disc) / 2, α = q/a, p/q
-        q = -(b + np.where(b < 0, -1.0, 1.0) * np.sqrt(np.where(disc >= 0, disc, 0.0))) / 2
-        real = usable & (disc >= 0)
-        with np.errstate(over="ignore"):  # a root past the float range is no candidate (inf)
-            roots = (
+    )  # (..., d, k): every direction tried, on an axis of their own
+    u = directions * mask[..., None, :]
+    norm_u = np.linalg.norm(u, axis=-1)
+    c = np.einsum("...dk,...ki->...di", u / np.where(norm_u > 0, norm_u, 1.0)[..., None], rows)
+    usable = norm_u > 0
+    a = np.einsum("...i,...i->...", c[..., :3], c[..., 3:])
+    b = np.einsum("...i,...di->...d", s, c[..., 3:]) + np.einsum("...di,...i->...d", c[..., :3], m)
+    p0 = pitch[..., None]
+    disc = b * b - 4 * a * p0
+    # the stable pair of roots (Numerical Recipes §5.6): q = -(b + sgn(b) √disc) / 2, α = q/a, p/q
+    q = -(b + np.where(b < 0, -1.0, 1.0) * np.sqrt(np.where(disc >= 0, disc, 0.0))) / 2
+    real = usable & (disc >= 0)
+    with np.errstate(over="ignore"):  # a root past the float range is no candidate (inf)
+        roots = np.stack(
+            [
                 np.where(np.abs(a) > 0, q / np.where(np.abs(a) > 0, a, 1.0), np.inf),
-                np.where(np.abs(q) > 0, pitch / np.where(np.abs(q) > 0, q, 1.0), np.inf),
-            )
-        for alpha in roots:
-            better = real & np.isfinite(alpha) & (np.abs(alpha) < best_size)
-            best = np.where(better[..., None], wrench + np.where(better, alpha, 0.0)[..., None] * c, best)
-            best_size = np.where(better, np.abs(alpha), best_size)
-    return best
+                np.where(np.abs(q) > 0, p0 / np.where(np.abs(q) > 0, q, 1.0), np.inf),
+            ],
+            axis=-1,
+        ).reshape(*q.shape[:-1], -1)  # (..., 2d): direction by direction, both roots of each
+    sizes = np.where(np.repeat(real, 2, axis=-1) & np.isfinite(roots), np.abs(roots), np.inf)
+    pick = np.argmin(sizes, axis=-1)[..., None]  # the smallest |α|, the first of equals
+    alpha = np.take_along_axis(roots, pick, -1)[..., 0]
+    found = np.isfinite(np.take_along_axis(sizes, pick, -1)[..., 0])
+    chosen = np.take_along_axis(c, (pick // 2)[..., None], -2)[..., 0, :]
+    return np.where(
+        found[..., None], wrench + np.where(found, alpha, 0.0)[..., None] * chosen, wrench
+    )
 
 
 def _unit_force_or_couple(rows: Array, length: Array) -> Array:
@@ -671,8 +705,11 @@ def analyze_table(
     rtol : float, default 1e-9
         Relative tolerance of every rank decision (:mod:`screwkit._frames`).
     views : bool, default True
-        Keep the frames that the per-pose views need (every limb's and leg's systems); False keeps
-        only orders, verdict inputs and actuation wrenches (less memory for large batches).
+        Keep the frames that the per-pose views need (every limb's and leg's systems, the
+        constraint, global and uncontrolled systems); False keeps only orders, verdict inputs,
+        actuation wrenches and the frames the Jacobians need (the platform's twists, each limb's
+        passive wrenches): less memory for large batches, the other views recomputed for the one
+        pose that asks.
 
     Returns
     -------
@@ -714,8 +751,8 @@ def analyze_table(
         leg_twists = [core.twists(i) for i in top.legs]
         leg_wrenches = [core.wrenches(i) for i in top.legs]
     constraint = F.reciprocal(*platform)
-    serial, wrenches, twists, transmissions = [], [], [], []
-    for k, plan in enumerate(top.limbs):
+    lockeds, frees, perpendiculars, serials, twists = [], [], [], [], []
+    for plan in top.limbs:  # each limb's own structure; the rest below runs on all limbs at once
         actuated = plan.sign * core.joint_rows(plan.index)[..., 0, :]
         if top.network:
             locked = core.network(plan.network_edges, locked=plan.index)
@@ -737,41 +774,48 @@ def analyze_table(
                 -2,
             )
             free = (rows, order + ~is_serial)
+        lockeds.append(locked)
+        frees.append(free)
+        perpendiculars.append(perpendicular)
+        serials.append(is_serial)
+        twists.append(actuated)
+    n = len(top.limbs)
+    if n:  # the limbs on an axis of their own (..., n, ...)
+        serial = np.stack(serials, axis=-1)
+        actuated = np.stack(twists, axis=-2)
+        locked = _stacked(lockeds)
+        free = _stacked(frees)
         limb_constraint = F.reciprocal(*free)
         passive = F.reciprocal(*locked)
         # SWAP t⊥ lies in the passive system; projecting it there keeps a clean passive wrench even
         # when t⊥ is round-off (a serial singularity), so w ∘ t is then round-off too
-        swapped = F.swapped(perpendicular)
+        swapped = F.swapped(np.stack(perpendiculars, axis=-2))
         direction = _normalized(
             np.einsum("...k,...ks->...s", np.einsum("...ks,...s->...k", passive[0], swapped), passive[0])
         )
-        line = _nearest_lines(direction, *limb_constraint)
-        wrench = _normalized(line)
+        wrench = _normalized(_nearest_lines(direction, *limb_constraint))
         product = np.abs(np.einsum("...s,...s->...", wrench, F.swapped(actuated)))
-        transmissions.append(_scaled_transmission(wrench, actuated, product, rtol))
-        wrench = np.where(is_serial[..., None], 0.0, wrench)
-        serial.append(is_serial)
-        wrenches.append(wrench)
-        twists.append(actuated)
-        frames[f"limb{k}:passive"] = passive  # the Jacobians' rows at serial singularities
-        if views:
-            frames[f"limb{k}:T"] = free
-            frames[f"limb{k}:W"] = limb_constraint
-    n = len(top.limbs)
-    wrench_rows = np.stack(wrenches, axis=-2) if n else np.zeros((*batch, 0, 6))
+        transmissions = _scaled_transmission(wrench, actuated, product, rtol)
+        wrench_rows = np.where(serial[..., None], 0.0, wrench)
+        for k in range(n):
+            frames[f"limb{k}:passive"] = _limb(passive, k)  # the Jacobians' rows at serial singularities
+            if views:
+                frames[f"limb{k}:T"] = _limb(free, k)
+                frames[f"limb{k}:W"] = _limb(limb_constraint, k)
+    else:
+        serial, transmissions = np.zeros((*batch, 0), dtype=bool), np.zeros((*batch, 0))
+        wrench_rows = np.zeros((*batch, 0, 6))
     global_frame = F.span(np.concatenate([constraint[0], wrench_rows], axis=-2), rtol)
     legs_stacked = np.concatenate([w[0] for w in leg_wrenches], axis=-2)
     closeness = {
         "constraint": F.singular_ratio(legs_stacked, 6 - nominal),
         "actuation": F.singular_ratio(np.concatenate([legs_stacked, wrench_rows], axis=-2), 6),
-        "serial": np.min(np.stack(transmissions, axis=-1), axis=-1) if n else np.ones(batch),
+        "serial": np.min(transmissions, axis=-1) if n else np.ones(batch),
     }
-    frames.update(
-        platform=platform,
-        constraint=constraint,
-        uncontrolled=F.reciprocal(*global_frame),
-    )
-    frames["global"] = global_frame
+    frames["platform"] = platform  # the Jacobians' nominal twists are checked against it
+    if views:  # else recomputed for the one pose that asks (WrenchAnalysis._add_views)
+        frames.update(constraint=constraint, uncontrolled=F.reciprocal(*global_frame))
+        frames["global"] = global_frame
     if views and not top.network:  # every node's twists, for the per-pose series-parallel tree
         for index in range(len(top.nodes)):
             frames[f"node{index}"] = core.twists(index)
@@ -781,7 +825,7 @@ def analyze_table(
             frames[f"leg{k}:W"] = wrench_frame
     user_wrenches = _unit_force_or_couple(F.from_scaled(wrench_rows, centre, length), length)
     return WrenchAnalysis(
-        table=table,
+        table_source=table,
         topology=top,
         rtol=rtol,
         dof=nominal,
@@ -790,17 +834,25 @@ def analyze_table(
         platform_order=_scalar(platform[1]),
         constraint_order=_scalar(constraint[1]),
         global_order=_scalar(global_frame[1]),
-        serial=np.stack(serial, axis=-1) if n else np.zeros((*batch, 0), dtype=bool),
-        transmissions=np.stack(transmissions, axis=-1) if n else np.zeros((*batch, 0)),
-        actuation_rows=np.where(np.stack(serial, axis=-1)[..., None], 0.0, user_wrenches)
-        if n
-        else wrench_rows,
+        serial=serial,
+        transmissions=transmissions,
+        actuation_rows=np.where(serial[..., None], 0.0, user_wrenches),
         actuated_twists=np.stack([p.sign * screws[..., top.columns[p.index], :] for p in top.limbs], axis=-2)
         if n
         else np.zeros((*batch, 0, 6)),
         frames=frames,
         closeness={k: _scalar(v) for k, v in closeness.items()},
     )
+
+
+def _stacked(frames: list[Frame]) -> Frame:
+    """Frames of the limbs on an axis of their own: rows ``(..., n, 6, 6)``, orders ``(..., n)``."""
+    return np.stack([rows for rows, _ in frames], axis=-3), np.stack([order for _, order in frames], axis=-1)
+
+
+def _limb(frame: Frame, k: int) -> Frame:
+    """Limb ``k``'s frame from :func:`_stacked` frames."""
+    return frame[0][..., k, :, :], frame[1][..., k]
 
 
 def _scaled_transmission(wrench: Array, twist: Array, product: Array, rtol: float) -> Array:

@@ -8,7 +8,7 @@ import numpy as np
 
 from screwkit.exceptions import ScrewkitValueError
 
-__all__ = ["spiral_trajectory"]
+__all__ = ["TABLE_4", "spiral_trajectory"]
 
 
 def spiral_trajectory(n: int) -> np.ndarray:
@@ -46,3 +46,20 @@ def spiral_trajectory(n: int) -> np.ndarray:
         ],
         axis=-1,
     )
+
+
+#: Paper 004, Table 4 ("The min-/maximum LTI within the operational workspace"), as printed:
+#: ``{(robot, phi in degrees): (eta_min, eta_max)}``; the Veloce's and the Ragnar's phi = 360 deg
+#: column is for h = 20 mm.
+TABLE_4 = {
+    ("Quattro", 0.0): (0.380, 1.0),
+    ("Quattro", 45.0): (0.173, 0.750),
+    ("H4", 0.0): (0.031, 0.917),
+    ("H4", 45.0): (0.0, 0.847),
+    ("Veloce", 0.0): (0.287, 1.0),
+    ("Veloce", 360.0): (0.268, 0.999),
+    ("V4", 0.0): (0.008, 0.872),
+    ("V4", 45.0): (0.0, 0.804),
+    ("Ragnar", 0.0): (0.238, 0.892),
+    ("Ragnar", 360.0): (0.175, 0.885),
+}

@@ -3,9 +3,12 @@
 import numpy as np
 import pytest
 
-from screwkit.exceptions import ScrewkitValueError
+import screwkit as sk
+from screwkit.exceptions import ScrewkitValueError, UnreachablePoseError
 from screwkit.families.four_limb import inverse_kinematics, joints
-from screwkit.singularity import classify, classify_poses
+from screwkit.posed import CHUNK
+from screwkit.singularity import classify, classify_chunks, classify_poses, classify_table
+from screwkit.wrenches import analyze_table
 
 from .test_h4 import H4, random_poses, singular_pose
 
@@ -67,3 +70,58 @@ def test_error_nan_screws(rng):
     screws["S1m"][0, 0, 0] = np.nan
     with pytest.raises(ScrewkitValueError, match=r"Expected `screws\['S1m'\]` to hold finite numbers"):
         classify_poses(graph, screws)
+
+
+# the posed batch: IK, joint table and core chunk by chunk (issue 8) ------------------------------
+def h4_poses(rng, count):
+    mechanism = sk.load_mechanism("h4")
+    return mechanism, random_poses(rng, count)
+
+
+def test_posed_chunks_match_the_whole_table(rng):
+    mechanism, poses = h4_poses(rng, 2 * CHUNK + 37)  # two full chunks and a short one
+    posed = mechanism.at(poses)
+    chunked = posed.singularities
+    assert "joints" not in posed.__dict__ and "configuration" not in posed.__dict__
+    whole = classify_table(mechanism.joints(poses))  # one IK over the batch, then the core
+    np.testing.assert_array_equal(chunked.codes, whole.codes)
+    for name in ("constraint_order", "global_order", "serial_flags"):
+        np.testing.assert_array_equal(getattr(chunked, name), getattr(whole, name))
+    for key in ("constraint", "actuation", "serial"):
+        np.testing.assert_array_equal(chunked.closeness[key], whole.closeness[key])
+    np.testing.assert_array_equal(chunked.analysis.actuation_rows, whole.analysis.actuation_rows)
+    for key, (rows, order) in whole.analysis.frames.items():
+        np.testing.assert_array_equal(chunked.analysis.frames[key][0], rows)
+        np.testing.assert_array_equal(chunked.analysis.frames[key][1], order)
+
+
+def test_posed_chunks_ask_for_the_table_only_for_a_view(rng):
+    mechanism, poses = h4_poses(rng, 5)
+    posed = mechanism.at(poses)
+    report = posed.singularities
+    assert set(report.analysis.frames) == {"platform", *(f"limb{k}:passive" for k in range(4))}
+    one = report[3]
+    assert "joints" not in posed.__dict__
+    assert one.uncontrolled_twists.shape == (0, 6)  # a view: the table is computed now
+    assert report.analysis.table is posed.joints
+    full = analyze_table(mechanism.joints(poses))[3]
+    for key in ("global", "uncontrolled", "constraint"):
+        np.testing.assert_array_equal(one.analysis.frames[key][0], full.frames[key][0])
+        assert one.analysis.frames[key][1] == full.frames[key][1]
+
+
+def test_posed_chunks_name_the_unreachable_pose_of_the_whole_batch(rng):
+    mechanism, poses = h4_poses(rng, CHUNK + 10)
+    poses[CHUNK + 3] = [0.0, 0.0, -2000.0, 0.0]
+    with pytest.raises(UnreachablePoseError) as whole:
+        mechanism.configuration(poses)
+    with pytest.raises(UnreachablePoseError) as chunked:
+        _ = mechanism.at(poses).singularities
+    assert str(chunked.value) == str(whole.value)
+    assert f"{CHUNK + 3}" in str(chunked.value)
+
+
+def test_error_chunks_of_the_wrong_size():
+    table = sk.load_mechanism("h4").joints(np.array([[0.0, 0.0, -750.0, 0.0]] * 3))
+    with pytest.raises(ScrewkitValueError, match=r"Expected chunks of 4 configurations in all, got 3\."):
+        classify_chunks([table], table, (4,))

@@ -6,12 +6,24 @@ textbook results (a 3-RPR is singular when its legs are concurrent; Tsai's 3-UPU
 constraint when its three couples become dependent).
 """
 
+import dataclasses
+
 import numpy as np
 import pytest
 
+from screwkit import screw as S
 from screwkit.catalog import load_mechanism
-from screwkit.diagram import diagram_points, graph_sampler, superbracket_analysis, wrench_diagram
+from screwkit.cli import main
+from screwkit.diagram import (
+    diagram_at,
+    diagram_points,
+    graph_diagram,
+    graph_sampler,
+    superbracket_analysis,
+    wrench_diagram,
+)
 from screwkit.exceptions import ScrewkitValueError
+from screwkit.export import save_snapshot
 from screwkit.families.four_limb import inverse_kinematics, joints
 from screwkit.gca import BracketPolynomial, DottedMonomial, check_proportional
 from screwkit.report import analyze
@@ -19,6 +31,7 @@ from screwkit.singularity import classify
 from screwkit.wrenches import wrench_analysis
 
 from . import mechanisms as M
+from . import mechanisms_extra as X
 from .test_h4 import H4, case_b_pose, paper_002_conditions, random_poses, singular_pose
 
 
@@ -115,14 +128,17 @@ def test_h4_factors_vanish_exactly_where_the_labels_say(h4_result, rng):
 
 def test_h4_degenerate_representation_is_reported_not_factored():
     # paper 002 case (b), found in test_h4: s12 ∥ z, where the leg L_I has two constraint couples
+    # and the limb of A1 is at a serial singularity: the generic diagram has no lines there
+    h4 = load_mechanism("h4")
+    generic, _ = h4.wrench_diagram()
     cfg = inverse_kinematics(H4, case_b_pose())
-    diagram = wrench_diagram(wrench_analysis(joints(cfg).graph()))
-    assert any("do not add up to the nominal 2" in reason for reason in diagram.degenerate)
-    assert any("the limb of A1 is at a serial singularity" in reason for reason in diagram.degenerate)
+    diagram = diagram_at(generic, wrench_analysis(joints(cfg).graph()))
+    assert any("the limb of A1 is at a serial singularity here" in reason for reason in diagram.degenerate)
+    assert any("leg through A1, A4 is not one line here" in reason for reason in diagram.degenerate)
     with pytest.raises(ScrewkitValueError, match="The wrench diagram is degenerate at this pose"):
         superbracket_analysis(diagram, lambda rng: {})
     report = analyze("h4", case_b_pose())
-    assert report.superbracket is None and report.superbracket_note.startswith("the diagram is degenerate")
+    assert report.superbracket is None and "serial singularity here" in report.superbracket_note
     # the ranks decide what the pose is: an actuation and serial singularity, not a constraint one
     assert report.verdict.labels == ("actuation", "serial") and report.verdict.constraint_order == 2
 
@@ -203,3 +219,200 @@ def test_gough_stewart_3_2_1_uses_the_shared_joint_centres():
         assert six_by_six(points, diagram.lines) == pytest.approx(
             float(result.simplification.factored.evaluate(points)), rel=1e-8, abs=1e-12
         )
+
+
+# diagrams of any mechanism, chosen at generic configurations (screwkit.motion) -------------------
+def plucker_rows(points, lines):
+    """The diagram's lines as Plücker rows (p_w q − q_w p ; p × q), written here independently."""
+    rows = []
+    for p, q in lines:
+        a, b = np.asarray(points[p]), np.asarray(points[q])
+        rows.append(np.concatenate([a[3] * b[:3] - b[3] * a[:3], np.cross(a[:3], b[:3])]))
+    return np.array(rows)
+
+
+def unit_rows(rows):
+    """Each row scaled to a unit direction (a force) or a unit moment (a couple)."""
+    rows = np.asarray(rows, dtype=float)
+    size = np.linalg.norm(rows[:, :3], axis=1)
+    size = np.where(size > 1e-12 * np.linalg.norm(rows, axis=1), size, np.linalg.norm(rows[:, 3:], axis=1))
+    return rows / size[:, None]
+
+
+def rank(rows, tol=1e-8):
+    """Rank of unit rows (every test mechanism is about one unit in size, near the origin)."""
+    return int(np.linalg.matrix_rank(unit_rows(rows), tol=tol))
+
+
+def upu_lines(position):
+    graph = M.tsai_3upu(position)
+    centres = {k: np.asarray(j.geometry["center"]) for _, _, k, j in graph.edges(keys=True, data="joint") if j.type == "U"}
+    legs = [S.line(M.unit(centres[f"Up{i}"] - centres[f"Ub{i}"]), centres[f"Ub{i}"]) for i in (1, 2, 3)]
+    return graph, np.concatenate([legs, M.tsai_constraint_couples(position)])
+
+
+def delta_lines(position):
+    graph = X.delta(position)
+    return graph, np.concatenate([X.delta_actuation_lines(graph), X.delta_couples(graph)])
+
+
+TILT = M.rotation_about([0.2, 1.0, 0.1], 0.1)
+#: Each mechanism at a regular configuration, with its six wrench lines written independently here
+#: (leg lines, constraint couples/forces from the geometry); None where the constraint system has
+#: no canonical basis (the planar 3-RPR's is the plane's 3-system).
+MECHANISMS = {
+    "delta": lambda: delta_lines([0.1, -0.05, -1.8]),
+    "3-UPU": lambda: upu_lines([0.05, 0.1, 1.0]),
+    "3-PRS": lambda: X.three_prs_lines(M.rotation_about([1.0, 0.3, 0.0], 0.15), [0.02, 0.03, 1.0]),
+    "octahedral Gough-Stewart": lambda: (
+        M.gough_stewart(*X.octahedral_points(TILT, [0.05, 0.02, 1.0])),
+        M.leg_lines(*X.octahedral_points(TILT, [0.05, 0.02, 1.0])),
+    ),
+    "6-6 Gough-Stewart": lambda: (
+        M.gough_stewart(*M.gough_stewart_points(TILT, [0.05, 0.02, 1.0])),
+        M.leg_lines(*M.gough_stewart_points(TILT, [0.05, 0.02, 1.0])),
+    ),
+    "planar 3-RPR": lambda: (M.planar_3rpr(M.PLANAR_BASE, M.PLANAR_PLATFORM), None),
+}
+
+
+@pytest.mark.parametrize("name", sorted(MECHANISMS))
+def test_every_mechanism_gets_a_diagram_spanning_its_wrench_system(name):
+    graph, independent = MECHANISMS[name]()
+    analysis = wrench_analysis(graph)
+    diagram, sampler = graph_diagram(analysis)
+    assert not diagram.degenerate and len(diagram.lines) == 6 and sampler is not None
+    rows = plucker_rows(diagram.coordinates, diagram.lines)
+    # the six lines span the core's global wrench system, and its constraint lines the core's W^c
+    core = analysis.global_wrenches.basis
+    assert rank(rows) == rank(np.concatenate([rows, core])) == analysis.global_order == 6
+    constraint = rows[[role == "constraint" for role in diagram.roles]]
+    wc = analysis.constraint_wrenches.basis
+    assert len(constraint) == rank(constraint) == rank(np.concatenate([constraint, wc.reshape(-1, 6)])) == len(wc)
+    if independent is None:
+        return
+    assert abs(np.linalg.det(unit_rows(independent))) > 1e-6  # a regular configuration
+    # each line of the diagram is the one written here (legs in order), its actuation lines up to
+    # the constraint wrench of their own leg
+    n_act = diagram.roles.count("actuation")
+    for k, row in enumerate(rows):
+        own = independent[[k, n_act + k]] if k < n_act and len(independent) > n_act else independent[[k]]
+        assert rank(np.concatenate([own, row[None]])) == rank(own)
+    if name != "3-PRS":
+        # forces change only by couples (constraint systems of couples, or none), which leave the
+        # unit direction alone: the diagram's superbracket (6×6 determinant of its joins) is the
+        # determinant of the unit lines written here times the joins' own scales
+        joins = np.linalg.det(rows) / np.linalg.det(unit_rows(rows))
+        assert abs(six_by_six(diagram.coordinates, diagram.lines)) == pytest.approx(
+            abs(np.linalg.det(unit_rows(independent)) * joins), rel=1e-8
+        )
+    else:  # its actuation lines are defined up to the leg's constraint force: up to a nonzero scalar
+        ratio = six_by_six(diagram.coordinates, diagram.lines) / np.linalg.det(independent)
+        assert np.isfinite(ratio) and abs(ratio) > 1e-6
+
+
+def test_delta_superbracket_has_the_constraint_factor_of_its_three_couples():
+    graph, independent = delta_lines([0.1, -0.05, -1.8])
+    diagram, sampler = graph_diagram(wrench_analysis(graph))
+    # the three couple lines meet pairwise in the plane at infinity: a triangle of shared points
+    couples = [line for line, role in zip(diagram.lines, diagram.roles, strict=True) if role == "constraint"]
+    labels = "".join("".join(line) for line in couples)
+    assert len(set(labels)) == 3 and all(p in diagram.infinite for p in labels)
+    result = superbracket_analysis(diagram, sampler)
+    assert "constraint" in result.labels and "actuation" in result.labels
+    value = six_by_six(diagram.coordinates, diagram.lines)
+    assert float(result.simplification.factored.evaluate(diagram.coordinates)) == pytest.approx(value, rel=1e-8)
+    # hand derivation: the couple line through the unit directions p, q has moment p × q = ±|p × q| n
+    # (n its leg's parallelogram normal), and det(g × h, g × i, h × i) = det(g, h, i)², so the
+    # product of the constraint factors ([e g h i] = ±det(g, h, i), e of weight 1) is
+    # ±det(n1, n2, n3) times the three |p × q|
+    normals = unit_rows(independent[3:])[:, 3:]
+    sizes = [np.linalg.norm(np.cross(diagram.coordinates[p][:3], diagram.coordinates[q][:3])) for p, q in couples]
+    product = np.prod([v for v, label in zip(result.values, result.labels, strict=True) if label == "constraint"])
+    assert abs(product) == pytest.approx(abs(np.linalg.det(normals)) * np.prod(sizes), rel=1e-8)
+
+
+def test_singular_gough_stewart_keeps_six_lines_and_values_the_vanishing_factor():
+    angle = X.singular_gough_stewart_angle()
+    base, platform = M.gough_stewart_points(M.rotation_z(angle))
+    assert abs(np.linalg.det(M.leg_lines(base, platform))) < 1e-12  # the independent determinant
+    graph = M.gough_stewart(base, platform)
+    analysis = wrench_analysis(graph)
+    diagram, _ = graph_diagram(analysis)
+    assert not diagram.degenerate and len(diagram.lines) == 6
+    rows = plucker_rows(diagram.coordinates, diagram.lines)
+    assert rank(rows, 1e-7) == rank(np.concatenate([rows, analysis.global_wrenches.basis]), 1e-7) == 5
+    regular, _ = graph_diagram(wrench_analysis(M.gough_stewart(*M.gough_stewart_points(TILT, [0.05, 0.02, 1.0]))))
+    scale = abs(six_by_six(regular.coordinates, regular.lines))
+    assert abs(six_by_six(diagram.coordinates, diagram.lines)) < 1e-10 * scale
+
+
+@pytest.mark.parametrize(("which", "vanishing"), [(0, "constraint"), (1, "actuation")])
+def test_h4_at_a_singularity_has_the_regular_factored_form_with_the_factor_valued(which, vanishing):
+    h4 = load_mechanism("h4")
+    pose = singular_pose(which)
+    diagram, sampler = h4.wrench_diagram(pose)
+    assert not diagram.degenerate and diagram.line_text() == "[ab, cd, ef, gh, ij, kj]"
+    if which == 0:  # the two legs' constraint couples coincide: both lines are still there
+        rows = unit_rows(plucker_rows(diagram.coordinates, diagram.lines))
+        assert np.allclose(np.abs(rows[4]), np.abs(rows[5]), atol=1e-9)
+    result = superbracket_analysis(diagram, sampler)
+    assert str(result.simplification.factored) == "-[gikj][a b d ḟ][c g ḣ j]"
+    values = dict(zip(result.labels, result.values, strict=True))
+    other = "actuation" if vanishing == "constraint" else "constraint"
+    assert abs(values[vanishing]) < 1e-8 * abs(values[other]) and abs(values[other]) > 1e-6
+    assert result.vanishing == tuple(label == vanishing for label in result.labels)
+    labels = analyze("h4", pose, superbracket=False).verdict.labels
+    assert vanishing in labels and other not in labels
+
+
+def test_singular_snapshot_through_the_cli_shows_the_factor_of_its_verdict(tmp_path, capsys):
+    # a 3-PRS where the determinant of its six lines (written from the geometry) vanishes
+    angle = X.singular_three_prs_tilt()
+    graph, lines = X.three_prs_lines(M.rotation_about(X.PRS_TILT_AXIS, angle), X.PRS_POSITION, drop=X.PRS_DROP)
+    assert abs(np.linalg.det(lines)) < 1e-12
+    graph.graph["dof"] = 3
+    path = save_snapshot(graph, tmp_path / "prs_singular.toml", name="3-PRS at an actuation singularity")
+    assert main(["analyze", str(path)]) == 0
+    text = capsys.readouterr().out
+    # structural zeros come from generic configurations: no factor is "0 = 0" here
+    assert "0 = 0" not in text and "constraint singularity when" not in text
+    statements = [line for line in text.splitlines() if "vector form:" in line]
+    assert len(statements) == 1 and "actuation singularity when" in text
+    assert any(line.startswith("  actuation singularity when") and line.endswith("<- vanishes at this pose")
+               for line in text.splitlines())
+    assert abs(float(statements[0].rsplit("(here: ", 1)[1].rstrip(")"))) < 1e-9
+    assert text.split("verdict", 1)[1].splitlines()[1].strip().startswith("actuation singularity")
+
+
+def test_a_mechanism_without_a_diagram_says_why_as_a_property_of_the_mechanism():
+    # the Ragnar read with horizontal actuated axes (ragnar.toml's header) keeps an uncontrolled
+    # rotation about x at every pose: its global wrench system is never a 6-system
+    ragnar = load_mechanism("ragnar")
+    horizontal = dataclasses.replace(ragnar, parameters=dataclasses.replace(ragnar.parameters, axis_inclination=0.0))
+    diagram, _ = horizontal.wrench_diagram()
+    assert diagram.degenerate and all(r.startswith("the mechanism has no wrench diagram") for r in diagram.degenerate)
+    assert any("global wrench system has order 5, not 6" in r for r in diagram.degenerate)
+    report = analyze(horizontal)
+    assert report.superbracket is None and "the mechanism has no wrench diagram" in report.superbracket_note
+    # the catalog's Ragnar (inclined axes) is a Schönflies-motion generator: it has one
+    assert not ragnar.wrench_diagram()[0].degenerate
+
+
+def test_constraint_lines_are_named_after_the_actuated_joints_of_their_leg():
+    diagram, _ = load_mechanism("mcgill_smg").wrench_diagram()
+    constraint = [n for n, r in zip(diagram.line_names, diagram.roles, strict=True) if r == "constraint"]
+    assert constraint and all("leg through I.pan, I.proximal.a" in n or "leg through II.pan" in n for n in constraint)
+
+
+@pytest.mark.parametrize("name", ["delta", "3-PRS"])
+def test_generic_diagram_follows_rigid_motions_and_units(name):
+    graph, _ = MECHANISMS[name]()
+    rotation, translation = M.rotation_about([1.0, -2.0, 0.5], 1.1), np.array([3.0, -1.0, 0.5])
+    plain, _ = graph_diagram(wrench_analysis(graph))
+    moved, _ = graph_diagram(wrench_analysis(M.moved(graph, rotation, translation, 1000.0)))
+    assert moved.line_text() == plain.line_text() and moved.line_names == plain.line_names
+    assert [p.key for p in moved.points] == [p.key for p in plain.points] and not moved.degenerate
+    for label, point in plain.coordinates.items():  # points at infinity turn; finite ones move and scale
+        expected = rotation @ point[:3] if point[3] == 0 else (rotation @ point[:3] + translation) * 1000.0
+        assert np.allclose(np.abs(moved.coordinates[label][:3]), np.abs(expected), rtol=1e-7, atol=1e-6)

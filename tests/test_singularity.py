@@ -211,8 +211,9 @@ def test_two_parallel_hinges_lock_the_platform():
         ("B", "E", revolute("R2", [0, 0, 1], [1, 0, 0])),
     ], dof=1)
     report = classify(G)
-    assert report.labels == () and (report.constraint_order, report.lost_dof) == (6, 1)
-    assert "1 DOF fewer than nominal" in str(report)
+    # the platform lacks its nominal freedom: a serial (type-1) singularity, not "regular" (issue 11)
+    assert report.labels == ("serial",) and (report.constraint_order, report.lost_dof) == (6, 1)
+    assert report.serial == () and "1 DOF fewer than nominal (a serial singularity" in str(report)
 
 
 def test_nominal_dof_from_argument_graph_attribute_and_actuator_count():

@@ -28,8 +28,8 @@ Examples
 from __future__ import annotations
 
 import functools
-from collections.abc import Callable
-from dataclasses import dataclass
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -51,6 +51,11 @@ class Family:
     pose_names, angle_names : tuple of str
         The pose coordinates, and which of them are angles (degrees in files and on the command
         line, radians in the API).
+    parameter_kinds : mapping of str to str
+        ``{parameter: "length" | "angle" | "number"}``: what a catalog file's ``unit`` of that
+        parameter may be (:mod:`screwkit.catalog` converts lengths to the file's length unit and
+        angles to radians, and refuses a unit of the wrong kind); parameters not named here take
+        any known unit.
 
     Examples
     --------
@@ -65,6 +70,7 @@ class Family:
     twist_basis: Callable[[Any], np.ndarray]
     pose_names: tuple[str, ...]
     angle_names: tuple[str, ...]
+    parameter_kinds: Mapping[str, str] = field(default_factory=dict)
 
 
 @functools.cache
@@ -79,6 +85,13 @@ def families() -> dict[str, Family]:
     from . import four_limb, mcgill_smg, peppermill, planar_3rrp
 
     smg = ("x", "y", "z", "phi")
+    four_limb_kinds = dict.fromkeys(
+        ("base_radius", "base_points", "arm_length", "rod_length", "platform_radius", "platform_offset",
+         "lead", "parallelogram_width"),
+        "length",
+    ) | {"alpha": "angle", "beta": "angle", "platform_kind": "number"}
+    mcgill_lengths = ("l0", "l1", "l2", "l3", "radius", "b4", "b5", "proximal_width", "distal_width")
+    planar_kinds = dict.fromkeys(("base_points", "link_lengths", "platform_points"), "length")
     return {
         "four_limb": Family(
             "four_limb",
@@ -88,6 +101,7 @@ def families() -> dict[str, Family]:
             four_limb.twist_basis,
             smg,
             ("phi",),
+            four_limb_kinds,
         ),
         "mcgill_smg": Family(
             "mcgill_smg",
@@ -97,6 +111,7 @@ def families() -> dict[str, Family]:
             mcgill_smg.twist_basis,
             smg,
             ("phi",),
+            dict.fromkeys(mcgill_lengths, "length"),
         ),
         "peppermill": Family(
             "peppermill",
@@ -106,6 +121,7 @@ def families() -> dict[str, Family]:
             peppermill.twist_basis,
             smg,
             ("phi",),
+            dict.fromkeys(("r1", "r2", "l1", "l2", "b0", "p1", "p2"), "length"),
         ),
         "planar_3rrp": Family(
             "planar_3rrp",
@@ -115,6 +131,7 @@ def families() -> dict[str, Family]:
             planar_3rrp.twist_basis,
             ("x", "y", "phi"),
             ("phi",),
+            planar_kinds | {"guide_angles": "angle"},
         ),
     }
 
@@ -156,15 +173,20 @@ def register(family: Family) -> Family:
         )
     if not isinstance(family.name, str) or not family.name.isidentifier():
         raise ScrewkitTypeError(f"Expected `family.name` to be an identifier, got {family.name!r}.")
-    for field in ("parameters", "inverse_kinematics", "joints", "twist_basis"):
-        if not callable(getattr(family, field)):
-            raise ScrewkitTypeError(
-                f"Expected `family.{field}` to be callable, got {type(getattr(family, field)).__name__}."
-            )
-    for field in ("pose_names", "angle_names"):
-        names = getattr(family, field)
+    for attribute in ("parameters", "inverse_kinematics", "joints", "twist_basis"):
+        if not callable(getattr(family, attribute)):
+            got = type(getattr(family, attribute)).__name__
+            raise ScrewkitTypeError(f"Expected `family.{attribute}` to be callable, got {got}.")
+    for attribute in ("pose_names", "angle_names"):
+        names = getattr(family, attribute)
         if not isinstance(names, tuple) or not all(isinstance(n, str) for n in names):
-            raise ScrewkitTypeError(f"Expected `family.{field}` to be a tuple of str, got {names!r}.")
+            raise ScrewkitTypeError(f"Expected `family.{attribute}` to be a tuple of str, got {names!r}.")
+    kinds = family.parameter_kinds
+    if not isinstance(kinds, Mapping) or not set(kinds.values()) <= {"length", "angle", "number"}:
+        raise ScrewkitTypeError(
+            "Expected `family.parameter_kinds` to map parameter names to 'length', 'angle' or 'number', "
+            f"got {kinds!r}."
+        )
     if not family.pose_names or not set(family.angle_names) <= set(family.pose_names):
         raise ScrewkitValueError(
             f"Expected `family.angle_names` to be some of the pose coordinates {family.pose_names}, "

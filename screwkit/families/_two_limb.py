@@ -33,7 +33,9 @@ from ..exceptions import CatalogError, ScrewkitTypeError, ScrewkitValueError
 
 __all__ = [
     "JOINT_KINDS",
+    "REACH_ULPS",
     "ForwardSolutions",
+    "at_reach",
     "check_parameters",
     "checked_mode",
     "describe_indices",
@@ -62,6 +64,34 @@ def frozen(value: Any, dtype: Any = float) -> np.ndarray:
     array = np.array(value, dtype=dtype, copy=True)
     array.setflags(write=False)
     return array
+
+
+#: Rounding units within which a limb counts as at its reach (stretched or folded). Near its reach a
+#: limb angle ``θ = arccos(c)`` is ill-conditioned: a rounding error ``δ`` of ``c`` moves ``θ`` by
+#: ``sqrt(2 δ)`` (``~2e-8`` for ``δ = eps``), so an inverse kinematics that returns ``θ ~ 1e-8`` at a
+#: stretched limb is as accurate as the pose allows, yet far above the rank tolerance 1e-9: the limb's
+#: serial singularity would read "regular". Where ``1 - |c|`` is within this many rounding units of
+#: ``c``'s computation, the limb is put at its reach exactly; its loop closes to the same rounding
+#: (the closure error of the snapped angle is ``O(δ)``, quadratic in the angle change). README,
+#: "Tolerance policy".
+REACH_ULPS = 8.0
+
+
+def at_reach(cosine: np.ndarray, condition: np.ndarray) -> np.ndarray:
+    """A limb angle's cosine clipped to [-1, 1], and put at ±1 exactly where it lies within
+    :data:`REACH_ULPS` rounding units of ±1 (``condition``: the sum of the absolute values of the terms
+    of its numerator over its denominator, the relative size of its rounding error).
+
+    Examples
+    --------
+    >>> at_reach(np.array([1.0 - 4e-16, 0.5, -1.0 + 1e-15, 1.0 + 1e-14]), np.ones(4))
+    array([ 1. ,  0.5, -1. ,  1. ])
+    >>> bool(at_reach(np.array([1.0 - 1e-12]), np.ones(1))[0] < 1.0)  # a bent limb keeps its angle
+    True
+    """
+    clipped = np.clip(cosine, -1.0, 1.0)
+    near = 1.0 - np.abs(clipped) <= REACH_ULPS * np.finfo(float).eps * np.abs(condition)
+    return np.where(near, np.sign(clipped), clipped)
 
 
 def wrap_angle(angle: np.ndarray) -> np.ndarray:

@@ -12,8 +12,10 @@ Each limb is ``R-R-Π-R-R``: an actuated revolute joint at ``A_i`` (axis ``u_i``
 
 * ``a_i = R [cos η_i, sin η_i, 0]``, ``η_i = (2i - 1)π/4`` (Eq. 1), or explicit points (Ragnar,
   text after Table 4);
-* ``u_i = R_z(α_i) i``, ``α_1 = -α_2 = α``, ``α_3 = -α_4 = β`` (Sec. 2);
-* ``v_i = R_z(α_i) R_x(θ_i) j``, ``b_i = a_i + b v_i`` (Eq. 2);
+* ``u_i = R_z(α_i) i``, ``α_1 = -α_2 = α``, ``α_3 = -α_4 = β`` (Sec. 2), generalised to inclined
+  actuated axes ``u_i = F_i i`` with ``F_i = R_z(α_i) R_y(ε_i)``, ``ε_1 = -ε_2 = ε_3 = -ε_4 = ε``
+  (``axis_inclination``, 0 for every robot of Table 3; the Ragnar, item 6);
+* ``v_i = F_i R_x(θ_i) j``, ``b_i = a_i + b v_i`` (Eq. 2; ``F_i = R_z(α_i)`` when ``ε = 0``);
 * ``c_i`` from Table 1 (corrected, see below); ``|c_i - b_i| = l`` (Eq. 3);
 * ``w_i = (c_i - b_i)/l``, ``A χ̇ = B θ̇`` with rows ``e_i = [w_i, r w_i·s_i]`` and
   ``B = diag(h_i)``, ``h_i = b w_i·(u_i × v_i)`` (Eqs. 6-8).
@@ -63,10 +65,17 @@ Where paper 004 is garbled or wrong (each is checked in ``tests/test_families_fo
    ``s = ∂(R_y(φ) i)/∂φ = -R_y(φ) k``; Table 1's ``s = R_y(φ) k`` corresponds to measuring ``φ``
    about ``-j``. The indices are even in ``φ``, so Table 4 cannot tell the two apart.
 6. Ragnar (text after Table 4): "``u_i`` parallel to the x-z plane" with ``u_i = R_z(α_i) i`` means
-   ``u_i = ±i``, i.e. ``α = 0``, ``β = π`` (the arms then point away from the x axis). With this
-   reading the Ragnar values of Table 4 are *not* reproduced (η_max 0.937 against 0.892 over the
-   super-ellipsoid of Eq. 19); the real Ragnar has inclined actuated axes, which this family does not
-   model.
+   ``u_i = ±i``, i.e. ``α = 0``, ``β = π`` (the arms then point away from the x axis). With these
+   horizontal axes all four parallelogram couples ``u_i × w_i`` are normal to ``i``: nothing
+   constrains a rotation about ``x`` (a 5-DOF platform) and Table 4's Ragnar values are not
+   reproduced (η_max 0.937 against 0.892 over Eq. 19). The real Ragnar (paper 004's ref. [15]) has
+   its actuated axes *inclined* out of the base plane, in planes parallel to x-z. ``axis_inclination``
+   ``ε`` models this: ``u_i = R_z(α_i) R_y(ε_i) i`` with ``ε_1 = -ε_2 = ε_3 = -ε_4 = ε``, the sign
+   pattern that makes the Ragnar (``α = 0``, ``β = π``) symmetric under both mirrors ``x → -x``
+   (limbs 1 ↔ 2, 3 ↔ 4) and ``y → -y`` (1 ↔ 4, 2 ↔ 3). Then ``u_1 ∦ u_3`` and ``u_2 ∦ u_4``: each
+   sub-platform of the screw pair may only turn about one axis ``n_I`` (``n_II``), and the end
+   effector, joined to both by joints of axis ``k``, only about ``span(n_I, k) ∩ span(n_II, k) = k``.
+   Paper 004 does not print ``ε``; ``mechanisms/ragnar.toml`` says where its value comes from.
 Items 4, 5 and 7 (Table 2, Eqs. 11 and 13, Sec. 5.1) concern the Jacobians and the transmission
 indices of Sec. 4, which live in :mod:`screwkit.indices` with the rest of that erratum list.
 
@@ -114,6 +123,7 @@ from ..exceptions import (
 )
 from ..jacobians import schoenflies_basis
 from ..joints import JointTable
+from ._two_limb import at_reach
 
 __all__ = [
     "DEFAULT_PARALLELOGRAM_WIDTH_MM",
@@ -196,7 +206,7 @@ def _normalised_fields(
             raise type_error(
                 f"{source}: expected field `{key}` to be a non-empty string, got {out.get(key)!r}."
             )
-    for key in (*_POSITIVE_LENGTHS, "alpha", "beta"):
+    for key in (*_POSITIVE_LENGTHS, "alpha", "beta", "axis_inclination"):
         value = out.get(key)
         if value is None:
             continue
@@ -286,6 +296,9 @@ class FourLimbParameters:
         ``l``, length of the parallelogram ``B_i C_i``.
     alpha, beta : float
         ``α``, ``β`` of Table 3: ``α_1 = -α_2 = α``, ``α_3 = -α_4 = β``, ``u_i = R_z(α_i) i``.
+    axis_inclination : float, optional
+        ``ε``: the actuated axes leave the base plane, ``u_i = R_z(α_i) R_y(ε_i) i`` with
+        ``ε_1 = -ε_2 = ε_3 = -ε_4 = ε`` (module docstring, item 6). Default 0 (Table 3's robots).
     platform_radius : float
         ``r`` of Table 3.
     platform_offset : float, optional
@@ -332,6 +345,7 @@ class FourLimbParameters:
     base_points: tuple[tuple[float, float, float], ...] | None = None
     parallelogram_width: float | None = None
     length_unit: str = "mm"
+    axis_inclination: float = 0.0
 
     def __post_init__(self) -> None:
         values = {f.name: getattr(self, f.name) for f in fields(self)}
@@ -388,6 +402,11 @@ class FourLimbParameters:
     def limb_alphas(self) -> np.ndarray:
         """``α_i = (α, -α, β, -β)`` (Sec. 2), shape (4,)."""
         return np.array([self.alpha, -self.alpha, self.beta, -self.beta])
+
+    @property
+    def limb_inclinations(self) -> np.ndarray:
+        """``ε_i = (ε, -ε, ε, -ε)`` (module docstring, item 6), shape (4,)."""
+        return self.axis_inclination * np.array([1.0, -1.0, 1.0, -1.0])
 
 
 # --------------------------------------------------------------------------------------------------
@@ -511,18 +530,26 @@ class _Platform(NamedTuple):
     joint_axis: np.ndarray  # (..., 3)
 
 
-def _base(params: FourLimbParameters) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """``a_i`` (Eq. 1 or explicit), ``u_i = R_z(α_i) i`` and ``R_z(α_i) j``, each (4, 3)."""
+class _Base(NamedTuple):
+    a: np.ndarray  # (4, 3) actuated joint points A_i
+    u: np.ndarray  # (4, 3) F_i i, the actuated axes
+    j_rot: np.ndarray  # (4, 3) F_i j = R_z(α_i) j (R_y leaves j fixed)
+    k_rot: np.ndarray  # (4, 3) F_i k = R_z(α_i) R_y(ε_i) k (k when ε = 0)
+
+
+def _base(params: FourLimbParameters) -> _Base:
+    """``a_i`` (Eq. 1 or explicit) and the limb frames ``F_i = R_z(α_i) R_y(ε_i)`` (item 6)."""
     if params.base_points is not None:
         a = np.array(params.base_points, dtype=float)
     else:
         assert params.base_radius is not None  # guaranteed by validation
         a = params.base_radius * np.stack([np.cos(_ETA), np.sin(_ETA), np.zeros(4)], axis=-1)
-    alphas = params.limb_alphas
-    zeros = np.zeros(4)
-    u = np.stack([np.cos(alphas), np.sin(alphas), zeros], axis=-1)
-    j_rot = np.stack([-np.sin(alphas), np.cos(alphas), zeros], axis=-1)
-    return a, u, j_rot
+    alphas, tilts = params.limb_alphas, params.limb_inclinations
+    ca, sa, ce, se = np.cos(alphas), np.sin(alphas), np.cos(tilts), np.sin(tilts)
+    u = np.stack([ca * ce, sa * ce, -se], axis=-1)
+    j_rot = np.stack([-sa, ca, np.zeros(4)], axis=-1)
+    k_rot = np.stack([ca * se, sa * se, ce], axis=-1)
+    return _Base(a, u, j_rot, k_rot)
 
 
 def _platform(params: FourLimbParameters, pose: np.ndarray) -> _Platform:
@@ -590,11 +617,11 @@ def _assemble(
     platform: _Platform,
 ) -> FourLimbConfiguration:
     """Build the configuration from a pose and the actuated angles that close it."""
-    a, u, j_rot = _base(params)
+    a, u, j_rot, k_rot = _base(params)
     batch = pose.shape[:-1]
     cos, sin = np.cos(theta)[..., None], np.sin(theta)[..., None]
-    v = cos * j_rot + sin * _K  # R_z(α_i) R_x(θ_i) j (Eq. 2)
-    u_cross_v = -sin * j_rot + cos * _K  # R_z(α_i) R_x(θ_i) k
+    v = cos * j_rot + sin * k_rot  # F_i R_x(θ_i) j (Eq. 2)
+    u_cross_v = -sin * j_rot + cos * k_rot  # F_i R_x(θ_i) k
     b = a + params.arm_length * v
     w = (platform.c - b) / params.rod_length
     h = params.arm_length * np.sum(w * u_cross_v, axis=-1)  # Eq. (8)
@@ -646,7 +673,8 @@ def inverse_kinematics(
     """Closed-form inverse kinematics of Eq. (3) (paper 004), vectorised over the pose batch.
 
     With ``d_i = c_i - a_i``, Eq. (3) reads ``P_i cos θ_i + Q_i sin θ_i = K_i`` where
-    ``P_i = d_i·R_z(α_i) j``, ``Q_i = d_i·k`` and ``K_i = (|d_i|² + b² - l²)/(2b)``. With
+    ``P_i = d_i·F_i j``, ``Q_i = d_i·F_i k`` (``F_i = R_z(α_i)`` for horizontal axes, item 6) and
+    ``K_i = (|d_i|² + b² - l²)/(2b)``. With
     ``ρ_i = hypot(P_i, Q_i)``, ``ψ_i = atan2(Q_i, P_i)`` and ``δ_i = cos⁻¹(K_i/ρ_i)``, the two roots
     are ``θ_i = ψ_i ∓ δ_i``, and ``h_i = (b ρ_i / l) sin(ψ_i - θ_i)`` (Eq. 8), so
     ``θ_i = ψ_i - m_i δ_i`` is the root with ``sgn(h_i) = m_i``.
@@ -702,15 +730,16 @@ def inverse_kinematics(
             f"root, |K_i| > hypot(P_i, Q_i)): {detail}."
         )
     psi = np.arctan2(terms.q, terms.p)
-    delta = np.arccos(np.clip(terms.k / terms.rho, -1.0, 1.0))
+    a = params.arm_length
+    delta = np.arccos(at_reach(terms.k / terms.rho, (terms.k * a + params.rod_length**2) / (a * terms.rho)))
     theta = _wrap(psi - np.array(mode, dtype=float) * delta)
     return _assemble(params, chi, theta, mode, terms.platform)
 
 
 class _IKTerms(NamedTuple):
     platform: _Platform
-    p: np.ndarray  # P_i = d_i·R_z(α_i) j
-    q: np.ndarray  # Q_i = d_i·k
+    p: np.ndarray  # P_i = d_i·F_i j
+    q: np.ndarray  # Q_i = d_i·F_i k
     k: np.ndarray  # K_i = (|d_i|² + b² - l²) / (2b)
     rho: np.ndarray  # hypot(P_i, Q_i)
     reachable: np.ndarray  # (..., 4) bool
@@ -719,10 +748,10 @@ class _IKTerms(NamedTuple):
 def _ik_terms(params: FourLimbParameters, chi: np.ndarray) -> _IKTerms:
     """Coefficients of ``P_i cos θ_i + Q_i sin θ_i = K_i``, Eq. (3) rewritten (paper 004)."""
     platform = _platform(params, chi)
-    a, _, j_rot = _base(params)
-    d = platform.c - a
-    big_p = np.sum(d * j_rot, axis=-1)
-    big_q = d[..., 2]
+    base = _base(params)
+    d = platform.c - base.a
+    big_p = np.sum(d * base.j_rot, axis=-1)
+    big_q = np.sum(d * base.k_rot, axis=-1)
     big_k = (np.sum(d * d, axis=-1) + params.arm_length**2 - params.rod_length**2) / (
         2.0 * params.arm_length
     )
@@ -823,9 +852,9 @@ def forward_kinematics(
         )
     th = as_array(theta, "theta", (4,), symbolic=False)
     batch = th.shape[:-1]
-    a, _, j_rot = _base(params)
+    a, _, j_rot, k_rot = _base(params)
     elbows = a + params.arm_length * (
-        np.cos(th)[..., None] * j_rot + np.sin(th)[..., None] * _K
+        np.cos(th)[..., None] * j_rot + np.sin(th)[..., None] * k_rot
     )
     if initial_pose is None:
         offsets = _platform(params, np.zeros(4)).c

@@ -85,6 +85,7 @@ from ..jacobians import schoenflies_basis
 from ..joints import JointTable
 from ._two_limb import (
     ForwardSolutions,
+    at_reach,
     check_parameters,
     checked_mode,
     describe_indices,
@@ -450,7 +451,7 @@ def inverse_kinematics(
                 f"O_{leg}1 to O_{leg}3 is {distance[:3].round(6).tolist()}, expected within "
                 f"[|l2 - l3|, l2 + l3] = [{abs(l2 - l3):.6g}, {l2 + l3:.6g}]."
             )
-    cos3 = np.clip(cos3, -1.0, 1.0)
+    cos3 = at_reach(cos3, (u**2 + w**2 + l2**2 + l3**2) / (2.0 * l2 * l3))  # a stretched leg exactly
     sin3 = elbow * np.sqrt(1.0 - cos3**2)
     theta3 = np.arctan2(sin3, cos3)
     theta2 = np.arctan2(w, u) - np.arctan2(l3 * sin3, l2 + l3 * cos3)

@@ -78,6 +78,7 @@ from ..jacobians import schoenflies_basis
 from ..joints import JointTable
 from ._two_limb import (
     ForwardSolutions,
+    at_reach,
     check_parameters,
     checked_mode,
     describe_indices,
@@ -391,7 +392,8 @@ def inverse_kinematics(
                 f"‖q_{index + 1}‖ (Eq. 20) is {distance[..., index][bad][:3].round(6).tolist()}, "
                 f"expected within [|r - l|, r + l] = [{low[index]:.6g}, {high[index]:.6g}]."
             )
-    cosine = np.clip(-e3 / np.where(distance > 0, distance, 1.0), -1.0, 1.0)
+    safe = np.where(distance > 0, distance, 1.0)
+    cosine = at_reach(-e3 / safe, (distance**2 + radius**2 + length**2) / (2.0 * radius * safe))
     theta = np.arctan2(e1, e2) - signs * np.arccos(cosine)  # Eq. (25), see the docstring
     u = np.cos(theta)[..., None] * _X + np.sin(theta)[..., None] * _Y
     v = (q - radius[:, None] * u) / length[:, None]  # Eq. (27)

@@ -88,6 +88,7 @@ from ..exceptions import (
     UnreachablePoseError,
 )
 from ..joints import JointTable
+from ._two_limb import REACH_ULPS
 
 __all__ = [
     "EXAMPLE_PARAMETERS",
@@ -446,7 +447,9 @@ def inverse_kinematics(
     q, b = _guides(parameters, pose)
     d = q - parameters.base_points
     lengths = parameters.link_lengths
-    gamma = -_dot(d, b) + mode * lengths * np.sqrt(np.maximum(margin, 0.0))
+    # a limb within rounding of its reach is put at its reach exactly (1 - h²/l² has condition ~2)
+    margin = np.where(margin <= 2.0 * REACH_ULPS * np.finfo(float).eps, 0.0, margin)
+    gamma = -_dot(d, b) + mode * lengths * np.sqrt(margin)
     elbow_offset = d + gamma[..., None] * b
     return np.arctan2(elbow_offset[..., 1], elbow_offset[..., 0])
 

@@ -1,0 +1,115 @@
+"""Speed of LTI maps (paper 004's κ, ζ, η over a grid of poses): the fused kernel against numpy.
+
+Run: ``python bench/bench_indices.py [--sizes 100000 1000000] [--repeats 5] [--robot ragnar]`` from
+the repository root (prints a table; not a test). Single-threaded (BLAS/OpenMP threads set to 1;
+the numba kernel is a plain loop, no ``parallel``).
+
+Three implementations over the same poses (a grid over the robot's workspace box, all four
+coordinates varying), each checked against the first:
+
+* ``numpy (straightforward)``: written out here as one would from paper 004 -- the closed-form
+  inverse kinematics of Eq. (3) (``θ_i = atan2(Q_i, P_i) - m_i acos(K_i/ρ_i)``), ``v_i``,
+  ``w_i = (c_i - b_i)/l``, ``κ = min_i |w_i·(u_i × v_i)|`` (Eqs. 11, 15) and
+  ``ζ = |(w_I × w_II)·s| / ‖w_I × w_II‖`` (Eqs. 13, 15), vectorised over the batch;
+* ``numpy (screwkit)``: :func:`screwkit.indices.transmission` with ``SCREWKIT_NUMBA=0``'s path
+  (the family's inverse kinematics, a full configuration, then the indices);
+* ``numba (screwkit)``: :func:`screwkit.indices.transmission` with the fused compiled kernel
+  (:mod:`screwkit._indices_numba`; compiled once before timing).
+
+The issue's target: the fused kernel ≥ 35× the straightforward numpy implementation.
+"""
+
+import os
+
+for _name in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS", "NUMEXPR_NUM_THREADS",
+              "VECLIB_MAXIMUM_THREADS", "BLIS_NUM_THREADS"):
+    os.environ[_name] = "1"
+
+import argparse  # noqa: E402
+
+import numpy as np  # noqa: E402
+from _timing import best_of  # noqa: E402  (bench/ is the script folder)
+
+from screwkit import indices as I  # noqa: E402
+from screwkit.catalog import load_mechanism  # noqa: E402
+from screwkit.families import four_limb as FL  # noqa: E402
+
+
+def straightforward(params, poses, mode=(-1, -1, -1, -1)):
+    """κ, ζ over ``poses (n, 4)`` as written out from paper 004 (module docstring); NaN out of reach."""
+    base = FL._base(params)
+    x, phi = poses[:, None, :3], poses[:, 3]
+    r = params.platform_radius
+    if params.platform_kind == "screw_pair":  # Table 1, Veloce row (corrected, four_limb item 2)
+        radial = np.stack([np.cos(FL._ETA), np.sin(FL._ETA), np.zeros(4)], axis=-1)
+        rise = (FL._ODD_LIMB * params.lead / (2 * np.pi))[:, None] * phi[:, None, None]
+        c = r * radial + rise * [0, 0, 1] + x
+        s = np.broadcast_to([0.0, 0.0, 1.0], (len(poses), 3))
+    else:  # Quattro, H4: R_z(phi); V4: R_y(phi) (item 3)
+        cos, sin, zero = np.cos(phi), np.sin(phi), np.zeros_like(phi)
+        if params.platform_kind == "articulated_z":
+            bar, s = np.stack([cos, sin, zero], -1), np.stack([-sin, cos, zero], -1)
+        else:
+            bar, s = np.stack([cos, zero, -sin], -1), np.stack([-sin, zero, -cos], -1)
+        offsets = (FL._SGN_SIN_ETA * params.platform_offset)[:, None] * [0, 1, 0]
+        c = FL._SGN_COS_ETA[:, None] * r * bar[:, None, :] + offsets + x
+    d = c - base.a
+    big_p, big_q = np.sum(d * base.j_rot, -1), np.sum(d * base.k_rot, -1)
+    big_k = (np.sum(d * d, -1) + params.arm_length**2 - params.rod_length**2) / (2 * params.arm_length)
+    rho = np.hypot(big_p, big_q)
+    with np.errstate(invalid="ignore"):
+        theta = np.arctan2(big_q, big_p) - np.array(mode) * np.arccos(big_k / rho)  # Eq. (3)
+    v = np.cos(theta)[..., None] * base.j_rot + np.sin(theta)[..., None] * base.k_rot  # Eq. (2)
+    u_cross_v = -np.sin(theta)[..., None] * base.j_rot + np.cos(theta)[..., None] * base.k_rot
+    w = (c - base.a - params.arm_length * v) / params.rod_length
+    kappa = np.min(np.abs(np.sum(w * u_cross_v, -1)), -1)  # Eqs. (11), (15)
+    (i1, i2), (j1, j2) = params.subplatform_limbs
+    normal = np.cross(np.cross(w[:, i1], w[:, i2]), np.cross(w[:, j1], w[:, j2]))
+    zeta = np.abs(np.sum(normal * s, -1)) / np.linalg.norm(normal, axis=-1)  # Eqs. (13), (15)
+    return kappa, zeta
+
+
+def grid(mechanism, count):
+    """About ``count`` poses on a grid over the workspace box (x, y, z, phi)."""
+    side = max(2, round(count ** 0.25))
+    axes = [np.linspace(*mechanism.workspace[c], side) for c in mechanism.pose_names]
+    return np.stack(np.meshgrid(*axes, indexing="ij"), -1).reshape(-1, 4)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--sizes", type=int, nargs="+", default=[100_000, 1_000_000])
+    parser.add_argument("--repeats", type=int, default=5)
+    parser.add_argument("--robot", default="ragnar")
+    args = parser.parse_args()
+    mechanism = load_mechanism(args.robot)
+    params, mode = mechanism.parameters, (-1, -1, -1, -1)
+    kernels = I._numba_kernels()
+    if kernels is None:
+        raise SystemExit("numba is not available (install the `fast` extra); nothing to compare")
+    packed = I._kernel_arguments(params, mode)
+    kernels.transmission(grid(mechanism, 16), *packed)  # compile (or load the cache) before timing
+    print(f"LTI maps of {mechanism.name} (paper 004 Eqs. 3, 11-16), single-threaded, best of {args.repeats}")
+    print(f"{'poses':>9} {'reachable':>9} | {'numpy (straightforward)':>24} {'numpy (screwkit)':>17} "
+          f"{'numba (screwkit)':>17} | {'speed-up vs straightforward':>27}")
+    for size in args.sizes:
+        poses = grid(mechanism, size)
+        kappa, zeta, ok = kernels.transmission(poses, *packed)
+        ref_kappa, ref_zeta = straightforward(params, poses)
+        assert np.array_equal(ok, np.isfinite(ref_kappa)), "reachability differs"
+        assert np.allclose(kappa[ok], ref_kappa[ok], atol=1e-12)
+        assert np.allclose(zeta[ok], ref_zeta[ok], atol=1e-12)
+        plain = I._transmission_numpy(params, poses, mode)
+        assert np.allclose(plain[0], kappa, atol=1e-12) and np.array_equal(plain[2], ok)
+        times = [
+            best_of(args.repeats, lambda poses=poses: straightforward(params, poses)),
+            best_of(args.repeats, lambda poses=poses: I._transmission_numpy(params, poses, mode)),
+            best_of(args.repeats, lambda poses=poses: kernels.transmission(poses, *packed)),
+        ]
+        widths = (20, 13, 13)
+        rates = "".join(f" {len(poses) / t / 1e6:>{w}.2f} M/s" for t, w in zip(times, widths, strict=True))
+        print(f"{len(poses):>9} {ok.mean():>9.2f} |{rates} | {times[0] / times[2]:>26.1f}x")
+
+
+if __name__ == "__main__":
+    main()
