@@ -45,9 +45,9 @@ from . import screw as S
 from .catalog import Mechanism, check_dof, file_kind, load_mechanism, load_snapshot, load_toml
 from .exceptions import ScrewkitError, ScrewkitTypeError, ScrewkitValueError
 from .jacobians import WrenchJacobians
+from .screwsystem import motion_type
 from .singularity import SingularityReport, classify_analysis
 from .twistgraph import equivalent_twist_graph, fundamental_loops
-from .screwsystem import motion_type
 from .wrenches import WrenchAnalysis, checked_rtol, wrench_analysis
 
 if TYPE_CHECKING:  # the diagram and GCA stack loads when a report is made, not on `import screwkit`

@@ -331,7 +331,7 @@ class ScrewSystem:
                [ 0.,  0.,  1.,  2., -1.,  0.]])
         """
         if self.is_symbolic:
-            return _pick(self._stack(self.couple_subsystem().basis, self.basis), self.order, self)
+            return self._readable_symbolic(near)
         centre = np.zeros(3) if near is None else B.as_array(near, "near", (3,), symbolic=False)
         if centre.shape != (3,):
             raise ScrewkitValueError(f"Expected `near` to have shape (3,), got {centre.shape}.")
@@ -339,6 +339,24 @@ class ScrewSystem:
         finite = _finite_candidates(self.basis, couples, centre, self.rtol, float(self.length_scale or 1.0))
         rows = np.concatenate([np.hstack([np.zeros_like(couples), couples]), *finite]).reshape(-1, 6)
         return _pick(self._stack(rows, self.basis), self.order, self)
+
+    def _readable_symbolic(self, near: Any) -> Array:
+        """The symbolic readable basis (generic decisions, :mod:`screwkit._symbolic`): the frame's
+        translations where the system holds them; with all three, the other rows become lines
+        through ``near`` (the origin by default); else the couple subsystem, then the basis."""
+        axes = [row for row in _COUPLES.astype(int) if self.contains(row)]
+        stacked = self._stack(self.basis, _COUPLES.astype(int))
+        translations = self.order + 3 - int(B.screw_rank(stacked))
+        couples = (
+            np.array(axes).reshape(-1, 6) if len(axes) == translations else self.couple_subsystem().basis
+        )
+        rows = self.basis
+        if translations == 3:
+            centre = B.as_array(np.zeros(3) if near is None else near, "near", (3,), symbolic=True)
+            rows = np.concatenate(
+                [rows[:, :3], B.cross(np.broadcast_to(centre, rows[:, :3].shape), rows[:, :3])], axis=1
+            )
+        return _pick(self._stack(couples, rows), self.order, self)
 
     def pitch_range(self) -> tuple[float, float]:
         """Least and greatest pitch of the screws of ``self`` with a non-zero direction.
