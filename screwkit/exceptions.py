@@ -16,6 +16,7 @@ from __future__ import annotations
 __all__ = [
     "CatalogError",
     "DegenerateGeometryError",
+    "MissingDependencyError",
     "ScrewkitError",
     "ScrewkitTypeError",
     "ScrewkitValueError",
@@ -54,3 +55,7 @@ class UnreachablePoseError(ScrewkitValueError):
 
 class CatalogError(ScrewkitValueError):
     """A catalog or snapshot file is malformed; the message names the file and the field."""
+
+
+class MissingDependencyError(ScrewkitError, ImportError):
+    """An optional dependency is not installed; the message names the extra that installs it."""
