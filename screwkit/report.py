@@ -284,7 +284,12 @@ class AnalysisReport:
         out += [
             "",
             f"platform twist system: {twists['motion_type']} (order {wrenches['platform_twist_order']})",
-            *(f"  {_line_text(item, unit)}" for item in twists["basis"]),
+            *(
+                f"  translation along {_vector(item['direction'])}"
+                if item["kind"] == "translation"
+                else f"  {_line_text(item, unit)}"
+                for item in twists["basis"]
+            ),
             *(f"  {leg}: {kind}" for leg, kind in wrenches["leg_motion_types"].items()),
         ]
         out += ["", f"wrench systems (platform twist system of order {wrenches['platform_twist_order']})"]
