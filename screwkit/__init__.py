@@ -23,6 +23,7 @@ from .exceptions import (
     TwistGraphError,
     UnreachablePoseError,
 )
+from .generic import GenericAnalysis, generic_analysis
 from .joints import (
     Joint,
     JointTable,
@@ -36,7 +37,6 @@ from .joints import (
     virtual,
 )
 from .screw import Screw, reciprocal_product
-from .generic import GenericAnalysis, generic_analysis
 from .screwsystem import ScrewSystem, motion_type
 from .singularity import SingularityReport, classify, classify_poses, classify_table
 from .twistgraph import (
