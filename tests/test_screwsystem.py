@@ -325,3 +325,24 @@ def test_motion_type_is_batched_and_symbolic():
     symbolic = np.array([[0, 0, 1, 0, 0, 0], [0, 0, 1, 0, -a, 0]], dtype=object)
     assert motion_type(symbolic) == "1T1R"  # generic: a ≠ 0
     assert motion_type(ScrewSystem.zero()) == "0"
+
+
+def test_motion_type_is_invariant_under_rigid_motions_and_units(rng):
+    systems = [
+        [*(S.prismatic_twist(e) for e in np.eye(3)), S.revolute_twist([0, 0, 1], [1, 0, 0])],
+        [
+            S.revolute_twist([1, 0, 0], [0, 0, 0]),
+            S.revolute_twist([0, 1, 0], [0, 0, 0]),
+            S.prismatic_twist([0, 0, 1]),
+        ],
+        [S.revolute_twist([0, 0, 1], [0, 0, 0]), S.revolute_twist([0, 0, 1], [1, 0, 0])],
+    ]
+    for generators in systems:
+        rows = np.array(generators)
+        expected = motion_type(rows)
+        for _ in range(5):
+            rotation, _ = np.linalg.qr(rng.normal(size=(3, 3)))
+            rotation *= np.sign(np.linalg.det(rotation))  # a proper rotation
+            moved = S.transform(rows, rotation, rng.normal(size=3) * 10)
+            scaled = moved * np.r_[np.ones(3), np.full(3, 1000.0)]  # metres to millimetres
+            assert motion_type(moved) == expected and motion_type(scaled) == expected
