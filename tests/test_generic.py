@@ -54,7 +54,7 @@ def delta_3ruu(values=None):
     return twist_graph("base", "platform", joints, dof=3)
 
 
-def four_limb_smg():
+def four_limb_smg(values=None):
     """An H4-like family (paper 002 Fig. 2): four R-(4S) limbs on two sub-platforms joined to the end
     effector by revolute joints about z. Symbols: every joint position (a_i, elbow m_i, rods of
     length l_i along the fixed direction d_i, short sides along u_i), the sub-platform joints'
@@ -63,8 +63,10 @@ def four_limb_smg():
     ds = [(1, 2, -5), (-2, 1, -4), (3, -1, -5), (-1, -3, -6)]
     joints = []
     for i, (u, d, sub) in enumerate(zip(us, ds, ("b_I", "b_II", "b_II", "b_I"), strict=True), start=1):
-        a, m = point(f"a{i}"), point(f"m{i}")
+        a, m = point(f"a{i}", values), point(f"m{i}", values)
         side, rod = sympy.symbols(f"s{i} l{i}")
+        if values is not None:
+            side, rod = values[side], values[rod]
         n = [mj + side * uj for mj, uj in zip(m, u, strict=True)]
         p = [mj + rod * dj for mj, dj in zip(m, d, strict=True)]
         q = [nj + rod * dj for nj, dj in zip(n, d, strict=True)]
@@ -76,15 +78,18 @@ def four_limb_smg():
             (f"rod{i}b", sub, spherical(f"S{i}q", q)),
         ]
     joints += [
-        ("b_I", "ee", revolute("R_I", (0, 0, 1), point("r1"))),
-        ("b_II", "ee", revolute("R_II", (0, 0, 1), point("r2"))),
+        ("b_I", "ee", revolute("R_I", (0, 0, 1), point("r1", values))),
+        ("b_II", "ee", revolute("R_II", (0, 0, 1), point("r2", values))),
     ]
     return twist_graph("base", "ee", joints, dof=4)
 
 
 def numeric_values(rng):
     """Random values for every symbol the builders use (some never reach a screw)."""
-    names = [f"{n}{i}{c}" for n in "abc" for i in (1, 2, 3) for c in "xyz"] + [f"theta{i}" for i in (1, 2, 3)]
+    names = [f"{n}{i}{c}" for n in "abcm" for i in (1, 2, 3, 4) for c in "xyz"] + [
+        f"theta{i}" for i in (1, 2, 3)
+    ]
+    names += [f"r{i}{c}" for i in (1, 2) for c in "xyz"] + [f"{n}{i}" for n in "sl" for i in (1, 2, 3, 4)]
     return {sympy.Symbol(name): float(rng.uniform(-2, 2)) for name in names}
 
 
@@ -184,3 +189,22 @@ def test_error_loop_closure_graph_is_refused_symbolically():
     ]
     with pytest.raises(ScrewkitTypeError, match="reduces to series and parallel parts"):
         generic_analysis(twist_graph("B", "E", joints, dof=1))
+
+
+def test_four_limb_family_matches_the_numeric_core_at_substituted_values(smg, rng):
+    values = numeric_values(rng)
+    numeric = wrench_analysis(four_limb_smg(values))  # the same builder fed numbers
+    assert isinstance(numeric, WrenchAnalysis)
+
+    def at(system):
+        rows = np.array([[float(sympy.sympify(x).subs(values)) for x in row] for row in system.basis])
+        return ScrewSystem.span(rows, length_scale=float(numeric.length_scale))
+
+    assert at(smg.platform_twists).is_equivalent(numeric.platform_twists)
+    assert at(smg.constraint_wrenches).is_equivalent(numeric.constraint_wrenches)
+    assert int(numeric.global_order) == smg.global_order
+    for generic_leg, leg in zip(smg.compound_legs, numeric.compound_legs, strict=True):
+        assert generic_leg.joints == leg.joints
+        assert at(generic_leg.constraint_wrenches).is_equivalent(leg.constraint_wrenches)
+    for generic_limb, limb in zip(smg.limbs, numeric.limbs, strict=True):
+        assert at(generic_limb.passive_wrenches).is_equivalent(limb.passive_wrenches)
