@@ -1,24 +1,41 @@
-"""Time the whole H4 superbracket simplification (paper 002 §5, Fig. 4c) and print the figures.
+"""Time diagram → factored, stated, labelled conditions (issue 9, item 5) and print the figures.
 
-Run: ``python bench/bench_gca.py`` from the repository root. Not a test.
+Run: ``python bench/bench_gca.py [--repeats 3]`` from the repository root. Not a test.
+
+Two groups:
+
+* the catalog robots: ``Mechanism.wrench_diagram()`` (diagram and sampler) and the 12
+  configurations its sampler draws ("sampling"), then :func:`screwkit.diagram.superbracket_analysis`
+  on those configurations ("GCA": ordering search, expansion, zeros, factoring, statements, exact
+  proofs, labels);
+* diagrams built from their points (gca level): the H4 of paper 002, Tsai's 3-UPU, the 3-RPS, the
+  octahedral 3-3 and a general 6-6 Gough–Stewart: :func:`screwkit.gca.simplify_superbracket` then
+  :func:`screwkit.conditions.conditions` with the lines' roles.
+
+The first call of a process pays for imports (sympy is imported on the first condition); the
+figure reported is the best of the repeats after one warm-up call.
 """
 
+import argparse
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+sys.path.insert(0, str(Path(__file__).resolve().parent))
 
+from _timing import best_of
+
+from screwkit.catalog import list_mechanisms, load_mechanism
+from screwkit.conditions import conditions
+from screwkit.diagram import superbracket_analysis
 from screwkit.gca import simplify_superbracket
 
 Z = np.array([0.0, 0.0, 1.0])
-H4 = [("a", "b"), ("c", "d"), ("e", "f"), ("g", "h"), ("i", "j"), ("k", "j")]
-DECLARED = {"finite": "aceg", "infinite": "bdfhijk", "collinear": ["acj", "egj"]}
 
 
-def h4_sampler(rng: np.random.Generator) -> dict[str, np.ndarray]:
+def h4_sampler(rng):
     """a, c on the vertical axis Z_I; e, g on Z_II; j = (z, 0); the rest random directions."""
     a, e = np.r_[rng.normal(size=3), 1.0], np.r_[rng.normal(size=3), 1.0]
     points = {"a": a, "c": a + np.r_[rng.normal() * Z, 0.0], "e": e, "j": np.r_[Z, 0.0]}
@@ -27,20 +44,76 @@ def h4_sampler(rng: np.random.Generator) -> dict[str, np.ndarray]:
     return points
 
 
-def best_of(repeats: int, **options: object) -> tuple[float, float, str]:
-    times = []
-    for _ in range(repeats):
-        start = time.perf_counter()
-        result = simplify_superbracket(H4, h4_sampler, **DECLARED, **options)  # type: ignore[arg-type]
-        times.append(time.perf_counter() - start)
-    return times[0], min(times), str(result.factored)
+def generic_sampler(finite, infinite):
+    def sampler(rng):
+        out = {x: np.r_[rng.normal(size=3), 1.0] for x in finite}
+        return out | {x: np.r_[rng.normal(size=3), 0.0] for x in infinite}
+
+    return sampler
 
 
-def main() -> None:
-    for label, options in [("paper's order", {"search": False}), ("ordering search", {})]:
-        first, best, factored = best_of(5, **options)
-        print(f"H4, {label:16s}: first {first * 1e3:7.1f} ms, best of 5 {best * 1e3:7.1f} ms"
-              f"  ->  {factored}")
+#: name: (lines, finite, infinite, collinear, sampler, number of actuation lines)
+GCA_CASES = {
+    "H4 (paper 002)": (
+        ["ab", "cd", "ef", "gh", "ij", "kj"], "aceg", "bdfhijk", ["acj", "egj"], h4_sampler, 4
+    ),
+    "3-UPU": (["ab", "cd", "ef", "gh", "ij", "kl"], "ace", "bdfghijkl", [], None, 3),
+    "3-RPS": (["ap", "bq", "cr", "pu", "qv", "rw"], "abcpqr", "uvw", [], None, 3),
+    "octahedral 3-3": (["ad", "ae", "be", "bf", "cf", "cd"], "abcdef", "", [], None, 6),
+    "general 6-6": (["ab", "cd", "ef", "gh", "ij", "kl"], "abcdefghijkl", "", [], None, 6),
+}
+
+
+def gca_chain(lines, finite, infinite, collinear, sampler, n_actuation):
+    sampler = sampler or generic_sampler(finite, infinite)
+    result = simplify_superbracket(lines, sampler, finite=finite, infinite=infinite, collinear=collinear)
+    roles = ["actuation"] * n_actuation + ["constraint"] * (6 - n_actuation)
+    found = conditions(result.factored, finite=finite, infinite=infinite, lines=lines, roles=roles)
+    return result.factored, found
+
+
+def catalog_samples(name):
+    """The diagram at the default pose and the 12 configurations its sampler draws (rng 0)."""
+    diagram, sampler = load_mechanism(name).wrench_diagram()
+    if diagram.degenerate:
+        return None, []
+    rng = np.random.default_rng(0)
+    return diagram, [sampler(rng) for _ in range(12)]
+
+
+def catalog_chain(diagram, drawn):
+    """superbracket_analysis on pre-drawn configurations (the sampling is timed apart)."""
+    iterator = iter(drawn)
+    return superbracket_analysis(diagram, lambda _: next(iterator))
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeats", type=int, default=3)
+    args = parser.parse_args(argv)
+    print(f"diagram -> factored, stated, labelled conditions; best of {args.repeats} after a warm-up")
+    print(f"{'mechanism':16s} | {'seconds':>7} | factored form and labels")
+    for name, case in GCA_CASES.items():
+        factored, found = gca_chain(*case)
+        seconds = best_of(args.repeats, lambda case=case: gca_chain(*case))
+        powers = [f"^{c.multiplicity}" if c.multiplicity > 1 else "" for c in found]
+        labels = ", ".join(c.label + power for c, power in zip(found, powers, strict=True))
+        print(f"{name:16s} | {seconds:7.3f} | {factored}  [{labels}]")
+    print(f"\n{'robot':16s} | {'sampling':>8} | {'GCA':>7} | factored form and labels (catalog default pose)")
+    for name in list_mechanisms():
+        try:
+            diagram, drawn = catalog_samples(name)
+            if diagram is None:
+                print(f"{name:16s} |        - |       - | degenerate diagram at the default pose")
+                continue
+            result = catalog_chain(diagram, drawn)
+        except Exception as err:  # a robot the superbracket does not apply to (reported, not timed)
+            print(f"{name:16s} |        - |       - | {type(err).__name__}: {str(err)[:80]}")
+            continue
+        sampling = best_of(args.repeats, lambda name=name: catalog_samples(name))
+        gca = best_of(args.repeats, lambda d=diagram, s=drawn: catalog_chain(d, s))
+        labels = ", ".join(result.labels)
+        print(f"{name:16s} | {sampling:8.3f} | {gca:7.3f} | {result.simplification.factored}  [{labels}]")
 
 
 if __name__ == "__main__":

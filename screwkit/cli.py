@@ -119,7 +119,13 @@ def get_parser() -> argparse.ArgumentParser:
         metavar="R",
         help="relative tolerance of every rank decision, in [0, 1) (default 1e-9)",
     )
-    analyze_parser.add_argument("--json", action="store_true", help="print the whole report as JSON")
+    output = analyze_parser.add_mutually_exclusive_group()
+    output.add_argument("--json", action="store_true", help="print the whole report as JSON")
+    output.add_argument(
+        "--latex",
+        action="store_true",
+        help="print the factored superbracket and its labelled conditions as a LaTeX align* block",
+    )
     analyze_parser.add_argument(
         "--no-superbracket", action="store_true", help="skip the superbracket expansion (faster)"
     )
@@ -343,10 +349,27 @@ def run_analyze(args: argparse.Namespace) -> int:
     """
     if args.rtol is not None and not 0 <= args.rtol < 1:
         raise _UsageError(f"screwkit analyze: error: --rtol expects a number in [0, 1), got {args.rtol:g}")
+    if args.latex and args.no_superbracket:
+        raise _UsageError(
+            "screwkit analyze: error: --latex prints the superbracket's conditions; drop --no-superbracket"
+        )
     target, pose = _target_and_pose(args)
     report = analyze(target, pose, rtol=args.rtol, superbracket=not args.no_superbracket)
-    _print(json.dumps(report.to_dict(), indent=2, ensure_ascii=False) if args.json else str(report))
+    if args.latex:
+        _print(_latex(report))
+    else:
+        _print(json.dumps(report.to_dict(), indent=2, ensure_ascii=False) if args.json else str(report))
     return 0
+
+
+def _latex(report: Any) -> str:
+    """The superbracket's conditions in LaTeX, or a LaTeX comment saying why there are none."""
+    if report.superbracket is None:
+        return f"% no superbracket conditions: {report.superbracket_note}"
+    from .conditions import latex
+
+    result = report.superbracket
+    return latex(result.simplification.factored, result.conditions, result.diagram.line_text())
 
 
 def run_graph(args: argparse.Namespace) -> int:

@@ -142,13 +142,6 @@ class WrenchDiagram:
         """Labels of the points at infinity."""
         return tuple(p.label for p in self.points if p.at_infinity)
 
-    @property
-    def constraint_labels(self) -> frozenset[str]:
-        """Labels of the points on constraint lines."""
-        return frozenset(
-            x for line, role in zip(self.lines, self.roles, strict=True) if role == "constraint" for x in line
-        )
-
     def line_text(self) -> str:
         """The superbracket's argument, e.g. ``'[ab, cd, ef, gh, ij, kj]'``."""
         return "[" + ", ".join("".join(line) for line in self.lines) + "]"
@@ -968,8 +961,9 @@ class SuperbracketAnalysis:
     simplification : Simplification
     conditions : tuple of Condition
     labels : tuple of str
-        Per condition: ``"constraint"`` when its factor involves only points of constraint lines
-        (paper 002 §5.3, condition 1), else ``"actuation"``.
+        Per condition: ``"constraint"``, ``"actuation"`` or ``"constraint or actuation"``, from the
+        roles of the lines whose points its vector form uses (:func:`screwkit.conditions.label`;
+        the evidence is in each condition's ``evidence``).
     values : tuple of float
         Each condition's vector form at the diagram's pose.
     collinear : tuple of str
@@ -1072,9 +1066,14 @@ def superbracket_analysis(
     simplification = min(candidates, key=lambda c: (len(c.factored.rest.terms), len(c.survivors)))
     from .conditions import conditions
 
-    found = conditions(simplification.factored, finite=diagram.finite, infinite=diagram.infinite)
-    constraint = diagram.constraint_labels
-    labels = tuple("constraint" if set(c.vectors) <= constraint else "actuation" for c in found)
+    found = conditions(
+        simplification.factored,
+        finite=diagram.finite,
+        infinite=diagram.infinite,
+        lines=diagram.lines,
+        roles=diagram.roles,
+    )
+    labels = tuple(c.label for c in found)
     values = tuple(float(c.evaluate(diagram.coordinates)) for c in found)
     typical = [float(np.median([abs(float(c.evaluate(sample))) for sample in drawn])) for c in found]
     vanishing = tuple(abs(v) <= VANISHING_RTOL * size for v, size in zip(values, typical, strict=True))

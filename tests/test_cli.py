@@ -54,6 +54,16 @@ def test_analyze_text_has_every_section(capsys):
     assert str(analyze("h4")) == text.rstrip("\n")
 
 
+def test_analyze_latex_prints_the_h4_conditions(capsys):
+    assert main(["analyze", "h4", "--latex"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[0] == r"\begin{align*}" and lines[-1] == r"\end{align*}"
+    assert lines[1] == r"[ab,\,cd,\,ef,\,gh,\,ij,\,kj] &= -[gikj][abd\dot{f}][cg\dot{h}j] \\"
+    # paper 002 Eqs. (6) and (7), labelled constraint and actuation
+    assert lines[2].startswith(r"\text{constraint}:\quad [gikj] = 0 &\iff \left(\mathbf{i} \times")
+    assert lines[3].startswith(r"\text{actuation}:\quad [abd\dot{f}][cg\dot{h}j] = 0 &\iff")
+
+
 def test_analyze_a_singular_pose_reports_the_label(capsys):
     pose = singular_pose(1)  # a root of paper 002's Eq. (7)
     args = [repr(float(pose[0])), repr(float(pose[1])), repr(float(pose[2])), repr(math.degrees(pose[3]))]
@@ -101,6 +111,8 @@ def test_no_command_prints_help(capsys):
         (["analyze", "h4", "--pose", "0", "0", "-2000", "0"], 1, "screwkit analyze: error: Pose [0.0, 0.0, -2000.0, 0.0] is out of reach"),
         (["analyze", "missing.toml"], 1, "missing.toml: cannot read the file"),
         (["frobnicate"], 2, "invalid choice: 'frobnicate'"),
+        (["analyze", "h4", "--latex", "--no-superbracket"], 2, "--latex prints the superbracket's conditions"),
+        (["analyze", "h4", "--latex", "--json"], 2, "argument --json: not allowed with argument --latex"),
         (["screw", "--revolute", "0", "0", "1"], 2, "screwkit screw: error: --revolute needs --point X Y Z"),
         (["screw", "--prismatic", "0", "0", "0"], 1, "Expected `direction` to be a non-zero direction"),
     ],

@@ -14,7 +14,7 @@ import sympy
 from hypothesis import given
 from hypothesis import strategies as st
 
-from screwkit.conditions import Condition, condition, conditions
+from screwkit.conditions import Condition, VectorDot, condition, conditions, label
 from screwkit.exceptions import ScrewkitTypeError, ScrewkitValueError
 from screwkit.gca import (
     Bracket,
@@ -226,3 +226,208 @@ def test_conditions_of_a_collected_form():
 def test_errors(call, error, match):
     with pytest.raises(error, match=match):
         call()
+
+
+# patterns of the literature on mechanisms where they are known --------------------------------------
+# Each diagram is built here from its points (gca level); the factored superbracket is compared, at
+# exact random rational configurations, with the 6×6 determinant of the lines' Plücker vectors
+# (gca.md §1) computed independently with sympy, and with the hand-derived product.
+
+
+def rational_points(rng, finite, infinite, planar=()):
+    def number():
+        return sympy.Rational(int(rng.integers(-60, 61)), int(rng.integers(1, 8)))
+
+    out = {x: [number(), number(), sympy.Integer(0) if x in planar else number(), 1] for x in finite}
+    out |= {x: [number(), number(), number(), 0] for x in infinite}
+    return out
+
+
+def plucker_det(points, lines):
+    rows = []
+    for p, q in lines:
+        a, b = sympy.Matrix(points[p]), sympy.Matrix(points[q])
+        direction = a[3] * b[:3, 0] - b[3] * a[:3, 0]
+        rows.append([*direction, *a[:3, 0].cross(b[:3, 0])])
+    return sympy.Matrix(rows).det()
+
+
+def factored_value(factored, points):
+    value = sympy.Rational(factored.coefficient.numerator, factored.coefficient.denominator)
+    for factor, power in zip(factored.factors, factored.multiplicities, strict=True):
+        poly = factor if isinstance(factor, Bracket) else factor.expand()
+        value *= poly.to_sympy(points) ** power
+    return sympy.expand(value)
+
+
+def vec(points, x):
+    return sympy.Matrix(points[x][:3])
+
+
+def plane(points, triple):
+    """Plane coordinates π with π·x = [p q r x], as cofactors (independent of the package)."""
+    rows = sympy.Matrix([points[x] for x in triple])
+    return [(-1) ** (k + 1) * rows[:, [j for j in range(4) if j != k]].det() for k in range(4)]
+
+
+def random_sampler(finite, infinite, planar=()):
+    def sampler(rng):
+        out = {x: np.r_[rng.normal(size=3), 1.0] for x in finite}
+        for x in planar:
+            out[x][2] = 0.0
+        return out | {x: np.r_[rng.normal(size=3), 0.0] for x in infinite}
+
+    return sampler
+
+
+UPU_LINES = ["ab", "cd", "ef", "gh", "ij", "kl"]  # legs a + t·b …; couples at infinity gh, ij, kl
+UPU_ROLES = ["actuation"] * 3 + ["constraint"] * 3
+
+
+def test_3upu_factors_as_actuation_times_constraint(rng):
+    """Tsai's 3-UPU: three leg forces (a_i; direction s_i) and three couples (0; m_i). The 6×6 matrix
+    is block triangular, so det = det(s₁, s₂, s₃)·det(m₁, m₂, m₃) (by hand), m_i = g×h, i×j, k×l."""
+    finite, infinite = "ace", "bdfghijkl"
+    result = simplify_superbracket(UPU_LINES, random_sampler(finite, infinite), finite=finite, infinite=infinite)
+    found = conditions(result.factored, finite=finite, infinite=infinite, lines=UPU_LINES, roles=UPU_ROLES)
+    assert [c.label for c in found] == ["actuation", "constraint"]
+    assert [c.multiplicity for c in found] == [1, 1]
+    assert found[0].statement.startswith("b, d and f are collinear in the plane at infinity")
+    assert found[0].evidence == "involves lines ab, cd, ef (actuation); b, d, f lie only on actuation lines"
+    assert found[1].statement.endswith(
+        "i.e. the lines at infinity gh, ij and kl are concurrent (the normals g × h, i × j and k × l "
+        "are parallel to one plane)"
+    )
+    assert found[1].evidence == (
+        "involves lines gh, ij, kl (constraint); its points lie on constraint lines"
+    )
+    for seed in range(3):
+        points = rational_points(np.random.default_rng(seed), finite, infinite)
+        det = plucker_det(points, UPU_LINES)
+        s = sympy.Matrix.hstack(*(vec(points, x) for x in "bdf")).det()
+        moments = [vec(points, x).cross(vec(points, y)) for x, y in ["gh", "ij", "kl"]]
+        assert det == s * sympy.Matrix.hstack(*moments).det() != 0
+        assert factored_value(result.factored, points) == det
+
+
+def test_squared_factor_is_one_condition_with_multiplicity_two():
+    """3-UPU with its couples as a triangle of lines at infinity gh, hi, ig: det(m₁, m₂, m₃) =
+    det(g×h, h×i, i×g) = det(g, h, i)² (gca.md §5.2, triangle of infinite lines)."""
+    lines, finite, infinite = ["ab", "cd", "ef", "gh", "hi", "ig"], "ace", "bdfghi"
+    result = simplify_superbracket(lines, random_sampler(finite, infinite), finite=finite, infinite=infinite)
+    found = conditions(result.factored, finite=finite, infinite=infinite, lines=lines, roles=UPU_ROLES)
+    assert [(c.label, c.multiplicity) for c in found] == [("actuation", 1), ("constraint", 2)]
+    assert str(found[1].expression) == "(g × h)·i" and "(multiplicity 2)" in str(found[1])
+    assert found[1].factor_latex().endswith("^{2} = 0")
+    for seed in range(3):
+        points = rational_points(np.random.default_rng(seed), finite, infinite)
+        s = sympy.Matrix.hstack(*(vec(points, x) for x in "bdf")).det()
+        ghi = sympy.Matrix.hstack(*(vec(points, x) for x in "ghi")).det()
+        assert plucker_det(points, lines) == s * ghi**2 == factored_value(result.factored, points)
+
+
+@pytest.mark.parametrize(
+    ("name", "lines", "finite", "infinite", "planes"),
+    [
+        # octahedral (3-3) Gough–Stewart: base a, b, c; platform d, e, f; the alternate faces
+        ("octahedral", ["ad", "ae", "be", "bf", "cf", "cd"], "abcdef", "", ["abc", "ade", "bef", "cdf"]),
+        # 3-RPS: base joints a, b, c, sphere centres p, q, r, R-axis directions u, v, w; constraint
+        # forces through the sphere centres along the R axes; leg planes apu, … and the platform
+        ("3-RPS", ["ap", "bq", "cr", "pu", "qv", "rw"], "abcpqr", "uvw", ["apu", "bqv", "crw", "pqr"]),
+    ],
+)
+def test_four_planes_through_one_point(name, lines, finite, infinite, planes):
+    result = simplify_superbracket(lines, random_sampler(finite, infinite), finite=finite, infinite=infinite)
+    (found,) = conditions(result.factored, finite=finite, infinite=infinite)
+    assert found.statement == (
+        f"planes {', '.join(planes[:3])} and {planes[3]} pass through one point (possibly at infinity)"
+    )
+    ratios = set()
+    for seed in range(3):
+        points = rational_points(np.random.default_rng(seed), finite, infinite)
+        det = plucker_det(points, lines)
+        assert factored_value(result.factored, points) == det
+        ratios.add(det / sympy.Matrix([plane(points, p) for p in planes]).det())
+    assert len(ratios) == 1 and 0 not in ratios  # det of the 6 lines = constant × det of the 4 planes
+
+
+def test_planar_legs_concurrent_is_a_line_meeting_three_lines():
+    """3-RPR (legs ab, cd, ef in the plane z = 0; planar constraint force oz, couples yz, zx): the
+    textbook condition, the three legs concurrent."""
+    lines, finite, infinite = ["ab", "cd", "ef", "oz", "yz", "zx"], "abcdefo", "xyz"
+
+    def sampler(rng):
+        points = random_sampler("abcdefo", "", planar="abcdef")(rng)
+        return points | {x: np.r_[np.eye(3)[k], 0.0] for k, x in enumerate("xyz")}
+
+    result = simplify_superbracket(lines, sampler, finite=finite, infinite=infinite)
+    found = conditions(result.factored, finite=finite, infinite=infinite)
+    legs = next(c for c in found if "a" in c.vectors)
+    assert legs.statement.endswith(
+        "i.e. a line parallel to direction z meets the three lines ab, ef and cd (if these lie in one "
+        "plane not containing z: they are concurrent)"
+    )
+    # concurrent legs through (1, 2, 0) make it vanish; moving one leg off makes it non-zero
+    o = np.array([1.0, 2.0, 0.0, 1.0])
+    points = sampler(np.random.default_rng(3))
+    for first, second in ["ab", "cd", "ef"]:
+        points[second] = o + 1.7 * (points[first] - o)
+    assert abs(legs.evaluate(points)) < 1e-9
+    points["f"] = points["f"] + np.array([0.3, 0.0, 0.0, 0.0])
+    assert abs(legs.evaluate(points)) > 1e-3
+
+
+def test_general_gough_stewart_names_the_linear_complex():
+    labels = "abcdefghijkl"
+    result = simplify_superbracket(UPU_LINES, random_sampler(labels, ""), finite=labels)
+    (found,) = conditions(result.factored, finite=labels, infinite="", lines=UPU_LINES, roles=["actuation"] * 6)
+    assert found.statement.startswith(
+        "the six lines ab, cd, ef, gh, ij and kl are linearly dependent (they belong to one linear line complex)"
+    )
+    assert found.label == "actuation"
+    points = rational_points(np.random.default_rng(0), labels, "")
+    assert factored_value(result.factored, points) == plucker_det(points, UPU_LINES)
+
+
+def test_generic_statement_names_the_lines_and_points():
+    poly = BracketPolynomial.parse("[abcd][efgh] - [abce][dfgh]")
+    cond = condition(poly, finite="ace", infinite="bdfgh", lines=["ab", "cd", "ef", "gh", "xy", "zw"])
+    assert cond.statement == (
+        "the bracket expression [abcd][efgh] - [abce][dfgh] vanishes (it involves lines ab, cd, ef, gh "
+        "through the points a, b, c, d, e, f, g, h)"
+    )
+
+
+H4_LIKE = ["ab", "cd", "ef", "gk", "ij", "kj"]  # k on the actuation line gk and on a couple
+SHARED = ["ab", "cd", "ef", "gk", "dk", "kj"]  # d and k each on lines of both kinds
+
+
+@pytest.mark.parametrize(
+    ("lines", "vectors", "expected"),
+    [
+        (H4_LIKE, "ij", ("constraint", "involves lines ij, kj (constraint); its points lie on constraint lines")),
+        (H4_LIKE, "ik", ("constraint", "involves lines gk (actuation), ij, kj (constraint); its points lie on "
+                         "constraint lines (k on actuation lines too)")),
+        (H4_LIKE, "bj", ("actuation", "involves lines ab (actuation), ij, kj (constraint); b lies only on "
+                         "actuation lines")),
+        (SHARED, "kd", ("constraint or actuation", "involves lines cd, gk (actuation), dk, kj (constraint); each "
+                        "of its points, d, k, lies on constraint and on actuation lines")),
+    ],
+)
+def test_labels_follow_the_roles_of_the_lines(lines, vectors, expected):
+    assert label(list(vectors), lines, ["actuation"] * 4 + ["constraint"] * 2) == expected
+
+
+def test_label_errors():
+    with pytest.raises(ScrewkitValueError, match=r"`roles` to give 'constraint' or 'actuation' for each of the 2 lines"):
+        label(["a"], ["ab", "cd"], ["constraint"])
+    with pytest.raises(ScrewkitTypeError, match=r"`lines` to be a sequence of pairs of labels, got str"):
+        label(["a"], "abcd", ["constraint"])
+
+
+def test_proof_rejects_a_wrong_vector_form():
+    from screwkit.conditions import _prove_proportional, _Types
+
+    wrong = sympy.Symbol("b")  # not a scalar form of [abcd]: fails at the exact configurations
+    with pytest.raises(ScrewkitValueError, match="to be proportional to"):
+        _prove_proportional(BracketPolynomial.parse("[abcd]"), VectorDot(wrong, wrong), _Types("abcd", ""))

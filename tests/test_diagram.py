@@ -328,7 +328,9 @@ def test_delta_superbracket_has_the_constraint_factor_of_its_three_couples():
     # ±det(n1, n2, n3) times the three |p × q|
     normals = unit_rows(independent[3:])[:, 3:]
     sizes = [np.linalg.norm(np.cross(diagram.coordinates[p][:3], diagram.coordinates[q][:3])) for p, q in couples]
-    product = np.prod([v for v, label in zip(result.values, result.labels, strict=True) if label == "constraint"])
+    # the squared [e g h i] is one condition with multiplicity 2 (issue 9, item 3)
+    found = zip(result.values, result.labels, result.conditions, strict=True)
+    product = np.prod([v**c.multiplicity for v, label, c in found if label == "constraint"])
     assert abs(product) == pytest.approx(abs(np.linalg.det(normals)) * np.prod(sizes), rel=1e-8)
 
 

@@ -1089,3 +1089,37 @@ def test_errors(call, error, match):
 def test_floats_are_refused_in_equality_quietly():
     assert (Bracket("abcd") == 1.0) is False
     assert gca.BracketPolynomial() == 0
+
+
+# products of sums and powers (collect_factors, step 4) ---------------------------------------------
+def test_collect_factors_splits_a_product_of_sums_exactly():
+    a = BracketPolynomial.parse("[abcd] - [abce]")
+    b = BracketPolynomial.parse("[efgh] + 2[efgi]")
+    c = BracketPolynomial.parse("[ijkl] - [ijkm]")
+    f = collect_factors(-3 * a * b * c)
+    assert f.expand() == -3 * a * b * c
+    found = [p.expand() for p, _ in f.parts]
+    assert len(found) == 3 and all(e in found or -1 * e in found for e in (a, b, c))
+    assert f.multiplicities == (1, 1, 1)
+    product = BracketPolynomial.parse("1")
+    for part, power in f.parts:
+        product = product * part.expand() ** power if power > 1 else product * part.expand()
+    assert f.coefficient * product == f.expand()
+
+
+def test_collect_factors_keeps_a_power_once():
+    a = BracketPolynomial.parse("[abcd] - [abce]")  # shares its variables with itself: sympy's factoring
+    b = BracketPolynomial.parse("[efgh] + 2[efgi]")
+    f = collect_factors(a * a * b)
+    assert [(str(p), k) for p, k in f.parts] == [("[efgh] + 2 [efgi]", 1), ("[abcd] - [abce]", 2)]
+    assert str(f) == "([efgh] + 2 [efgi])([abcd] - [abce])^2"
+    assert f.to_latex() == r"\left([efgh] + 2 [efgi]\right)\left([abcd] - [abce]\right)^{2}"
+    square = collect_factors(Bracket("abcd") * Bracket("abcd") * b)
+    assert [str(x) for x in square.factors] == ["[abcd]", "[efgh] + 2 [efgi]"]
+    assert square.multiplicities == (2, 1)
+
+
+def test_collect_factors_leaves_an_irreducible_sum_whole():
+    poly = superbracket_expansion(["ab", "cd", "ef", "gh", "ij", "kl"])  # the general 6-6 platform
+    f = collect_factors(poly)
+    assert f.parts == () and len(f.factors) == 1 and f.expand() == poly

@@ -16,6 +16,7 @@ from typing import Any, Protocol
 
 import numpy as np
 
+from .. import _backend as B
 from .. import projective as P
 from ..exceptions import DegenerateGeometryError, ScrewkitTypeError, ScrewkitValueError
 from .brackets import Bracket, BracketMonomial, BracketPolynomial, _labels
@@ -187,18 +188,26 @@ def _pair_dotted(
     """
     items = list(items)
     substitutions: list[tuple[Bracket, Bracket]] = []
+    memo: dict[tuple[Any, ...], BracketPolynomial] = {}  # the rescans after a merge reuse these
+
+    def canonical(item: DottedMonomial) -> BracketPolynomial:
+        key = (item.brackets, item.dots, item.coefficient)
+        if key not in memo:
+            memo[key] = rules.canonical(item.expand())
+        return memo[key]
+
     merged = True
     while merged:
         merged = False
-        forms = [rules.canonical(item.expand()) for item in items]
-        index = {form: j for j, form in enumerate(forms)}
+        forms = [canonical(item) for item in items]
+        negated = {-1 * form: j for j, form in enumerate(forms)}  # B = −(A with x↔y) looked up
         for i, item in enumerate(items):
             for dotted, swapped in _transpositions(item):
-                target = rules.canonical(swapped.expand())
-                j = index.get(-1 * target) if target else None
+                target = canonical(swapped)
+                j = negated.get(target) if target else None
                 if j is None or j == i:
                     continue
-                if rules.canonical(dotted.expand()) != forms[i] + forms[j]:
+                if canonical(dotted) != forms[i] + forms[j]:
                     continue
                 old = [Bracket(b) for b in items[j].brackets]
                 for pair in rules.differences(old, [Bracket(b) for b in swapped.brackets]):
@@ -213,6 +222,144 @@ def _pair_dotted(
     return items, substitutions
 
 
+Monomial = tuple[tuple[str, ...], ...]
+Polynomial = dict[Monomial, Fraction]
+
+
+def _leading(poly: Polynomial) -> Monomial:
+    """The leading monomial in lex order (monomials are sorted tuples of variables; compared from
+    their largest variable down, which is lex order of exponent vectors for equal degrees)."""
+    return max(poly, key=lambda m: m[::-1])
+
+
+def _quotient_monomial(monomial: Monomial, divisor: Monomial) -> Monomial | None:
+    rest = Counter(monomial)
+    rest.subtract(divisor)
+    if any(count < 0 for count in rest.values()):
+        return None
+    return tuple(sorted(rest.elements()))
+
+
+def _divide(poly: Polynomial, divisor: Polynomial) -> Polynomial | None:
+    """``poly / divisor`` if the division is exact, else None (multivariate long division)."""
+    remainder, quotient = dict(poly), Counter[Monomial]()
+    lead = _leading(divisor)
+    while remainder:
+        top = _leading(remainder)
+        q = _quotient_monomial(top, lead)
+        if q is None:
+            return None
+        c = remainder[top] / divisor[lead]
+        quotient[q] += c  # type: ignore[assignment]
+        for m, cm in divisor.items():
+            key = tuple(sorted(q + m))
+            value = remainder.get(key, Fraction(0)) - c * cm
+            if value:
+                remainder[key] = value
+            else:
+                remainder.pop(key, None)
+    return {m: Fraction(c) for m, c in quotient.items() if c}
+
+
+def _primitive(poly: Polynomial) -> tuple[Fraction, Polynomial]:
+    """``(content, primitive part)``, the primitive part's leading coefficient positive."""
+    values = list(poly.values())
+    content = Fraction(
+        math.gcd(*(v.numerator for v in values)), math.lcm(*(v.denominator for v in values))
+    )
+    if poly[_leading(poly)] < 0:
+        content = -content
+    return content, {m: c / content for m, c in poly.items()}
+
+
+def _split(poly: Polynomial) -> list[Polynomial]:
+    """Factors of a homogeneous polynomial in bracket variables, found as linear factors.
+
+    A bracket monomial of the 24-term expansion has three brackets, so a product of non-constant
+    sums has a factor of degree 1 in the brackets. For each bracket ``b`` of the first monomial
+    ``m``, the candidate linear factor collects the monomials ``(m / b)·b'``; it is accepted only if
+    it divides ``poly`` exactly (long division over the rationals), then the quotient is split
+    again. Factors that exist only modulo the syzygies among brackets are not found here (the
+    ordering search exposes them, ``gca.md`` §6.4).
+    """
+    first = min(poly)
+    if len(poly) < 2 or len(first) < 2:
+        return [poly]
+    for variable in sorted(set(first)):
+        cofactor = _quotient_monomial(first, (variable,))
+        assert cofactor is not None
+        linear: Polynomial = {}
+        for m, c in poly.items():
+            q = _quotient_monomial(m, cofactor)
+            if q is not None and len(q) == 1:
+                linear[q] = c
+        if len(linear) < 2:
+            continue
+        quotient = _divide(poly, linear)
+        if quotient is not None:
+            return [linear, *_split(quotient)]
+    return [poly]
+
+
+#: Largest number of distinct brackets for which sympy's multivariate factoring is tried on a factor
+#: that :func:`_split` cannot split (it takes ~0.1 s there, seconds for 30 brackets).
+SYMPY_FACTOR_MAX_BRACKETS = 12
+
+
+def _sympy_factors(poly: Polynomial) -> list[Polynomial]:
+    """Irreducible factors over the rationals (sympy ``factor_list``), repeated by multiplicity;
+    brackets are independent variables there, so a factorisation found is exact."""
+    variables = sorted({v for m in poly for v in m})
+    if len(poly) < 3 or len(variables) > SYMPY_FACTOR_MAX_BRACKETS:
+        return [poly]
+    sympy = B.sympy_module()
+    symbols = sympy.symbols(f"x0:{len(variables)}")
+    index = {v: s for v, s in zip(variables, symbols, strict=True)}
+    expr = sympy.Add(
+        *(
+            sympy.Rational(c.numerator, c.denominator) * sympy.Mul(*(index[v] for v in m))
+            for m, c in poly.items()
+        )
+    )
+    content, factors = sympy.factor_list(expr, *symbols)
+    if len(factors) == 1 and factors[0][1] == 1:
+        return [poly]
+    found: list[Polynomial] = [{(): Fraction(int(content.p), int(content.q))}]
+    for factor, multiplicity in factors:
+        terms = sympy.Poly(factor, *symbols).terms()
+        converted = {
+            tuple(v for v, e in zip(variables, exponents, strict=True) for _ in range(e)): Fraction(
+                int(c.p), int(c.q)
+            )
+            for exponents, c in terms
+        }
+        found += [converted] * multiplicity
+    return found
+
+
+def _factor_polynomial(poly: BracketPolynomial) -> tuple[Fraction, list[tuple[Polynomial, int]]]:
+    """``poly = content × ∏ factor**multiplicity`` (primitive factors, each listed once)."""
+    content = Fraction(1)
+    found: list[tuple[Polynomial, int]] = []
+    for factor in (f for part in _split(dict(poly._canonical())) for f in _sympy_factors(part)):
+        if set(factor) == {()}:
+            content *= factor[()]
+            continue
+        scale, primitive = _primitive(factor)
+        content *= scale
+        for k, (known, multiplicity) in enumerate(found):
+            if known == primitive:
+                found[k] = (known, multiplicity + 1)
+                break
+        else:
+            found.append((primitive, 1))
+    return content, found
+
+
+def _as_bracket_polynomial(poly: Polynomial) -> BracketPolynomial:
+    return BracketPolynomial(BracketMonomial(m, c) for m, c in poly.items())
+
+
 @dataclass(frozen=True, slots=True)
 class FactoredForm:
     """``coefficient × common brackets × (a sum of dotted monomials)`` (:func:`collect_factors`).
@@ -222,29 +369,57 @@ class FactoredForm:
     coefficient : Fraction
         The constant factor (sign and content).
     common : tuple of Bracket
-        The brackets common to every monomial.
+        The brackets common to every monomial (a repeated bracket appears as often as it divides).
     rest : DottedSum
-        The remaining sum; its first term has a positive coefficient.
+        The remaining sum; its first term has a positive coefficient (unless it splits into
+        ``parts``: then ``rest`` is their product exactly and the content is in ``coefficient``).
     substitutions : tuple of (Bracket, Bracket)
         The bracket identities used, ``old = new``: valid for finite points of weight 1 and the
         declared collinear triples (``gca.md`` §5.1). Without them :meth:`expand` reproduces the
         factored polynomial exactly; with them, its value on such configurations.
+    parts : tuple of (DottedSum, int)
+        When ``rest`` is itself a product of sums: its factors, each once with its multiplicity
+        (``rest = ∏ part**multiplicity``); empty when ``rest`` does not split.
     """
 
     coefficient: Fraction
     common: tuple[Bracket, ...]
     rest: DottedSum
     substitutions: tuple[tuple[Bracket, Bracket], ...] = ()
+    parts: tuple[tuple[DottedSum, int], ...] = ()
 
     @property
     def factors(self) -> tuple[Bracket | DottedSum, ...]:
-        """The non-constant factors: each common bracket, then the rest unless it is 1.
+        """The distinct non-constant factors: each common bracket, then the rest unless it is 1
+        (or its parts, when it splits); see :attr:`multiplicities`.
 
         A rest made of one undotted monomial is split into its brackets.
         """
-        if len(self.rest.terms) == 1 and not any(any(d) for d in self.rest.terms[0].dots):
-            return self.common + tuple(Bracket(b) for b in self.rest.terms[0].brackets)
-        return (*self.common, self.rest)
+        return tuple(factor for factor, _ in self._powers())
+
+    @property
+    def multiplicities(self) -> tuple[int, ...]:
+        """How often each of :attr:`factors` divides the form (2 for a squared factor)."""
+        return tuple(multiplicity for _, multiplicity in self._powers())
+
+    def _powers(self) -> list[tuple[Bracket | DottedSum, int]]:
+        items: list[tuple[Bracket | DottedSum, int]] = [(b, 1) for b in self.common]
+        if self.parts:
+            items += list(self.parts)
+        elif len(self.rest.terms) == 1 and not any(any(d) for d in self.rest.terms[0].dots):
+            items += [(Bracket(b), 1) for b in self.rest.terms[0].brackets]
+        else:
+            items.append((self.rest, 1))
+        merged: list[tuple[Bracket | DottedSum, int]] = []
+        for factor, multiplicity in items:
+            key = factor.sorted_labels if isinstance(factor, Bracket) else None
+            for k, (known, count) in enumerate(merged):
+                if key is not None and isinstance(known, Bracket) and known.sorted_labels == key:
+                    merged[k] = (known, count + multiplicity)
+                    break
+            else:
+                merged.append((factor, multiplicity))
+        return merged
 
     def expand(self) -> BracketPolynomial:
         """The bracket polynomial ``coefficient × common × rest``."""
@@ -258,6 +433,7 @@ class FactoredForm:
             "coefficient": str(self.coefficient),
             "common": [str(b) for b in self.common],
             "rest": str(self.rest),
+            "parts": [[str(part), multiplicity] for part, multiplicity in self.parts],
             "substitutions": [[str(old), str(new)] for old, new in self.substitutions],
         }
 
@@ -270,11 +446,12 @@ class FactoredForm:
             return "0"
         head = "".join(_format_bracket(b.labels, (0,) * 4, latex=latex) for b in self.common)
         terms = self.rest.terms
-        if len(terms) == 1 and terms[0].coefficient == 1:
+        if self.parts:
+            body = head + "".join(_power(part, k, latex=latex) for part, k in self.parts)
+        elif len(terms) == 1 and terms[0].coefficient == 1:
             body = head + terms[0]._body(latex=latex)
         else:
-            rest = self.rest.to_latex() if latex else str(self.rest)
-            body = head + (r"\left(" + rest + r"\right)" if latex else f"({rest})")
+            body = head + _power(self.rest, 1, latex=latex)
         return _format_sum([(self.coefficient, body)], latex=latex)
 
     def __str__(self) -> str:
@@ -283,6 +460,16 @@ class FactoredForm:
     def to_latex(self) -> str:
         """LaTeX of the factored form."""
         return self._text(latex=True)
+
+
+def _power(part: DottedSum, multiplicity: int, *, latex: bool) -> str:
+    """One factor of a product: ``(sum)``, ``(sum)²`` / ``\\left(sum\\right)^{2}``."""
+    single = len(part.terms) == 1 and part.terms[0].coefficient == 1
+    if latex:
+        text = part.terms[0]._body(latex=True) if single else rf"\left({part.to_latex()}\right)"
+        return text + (f"^{{{multiplicity}}}" if multiplicity > 1 else "")
+    text = part.terms[0]._body(latex=False) if single else f"({part})"
+    return text + (f"^{multiplicity}" if multiplicity > 1 else "")
 
 
 def collect_factors(
@@ -303,6 +490,9 @@ def collect_factors(
     3. Pairs ``A + B`` with ``B = −(A with x↔y)`` (x, y in different brackets) become one dotted
        monomial, repeatedly (new dot kinds), each merge checked with
        :meth:`DottedMonomial.expand` (exactly, up to the equal brackets of step 1).
+    4. If the remaining sum is a product of sums in the bracket variables (a linear factor divides
+       it exactly, found by long division over the rationals), it is split into its factors, each
+       kept once with its multiplicity (:attr:`FactoredForm.parts`) and paired as in step 3.
 
     Parameters
     ----------
@@ -353,8 +543,24 @@ def collect_factors(
     )
     if paired[0].coefficient < 0:
         content = -content
+    split_content, split = _factor_polynomial(
+        BracketPolynomial(m for t in rest for m in t.expand().terms)
+    )
+    parts: list[tuple[DottedSum, int]] = []
+    if len(split) > 1 or (split and split[0][1] > 1):  # a product of sums, or a power: one part per factor
+        content = split_content
+        for factor, multiplicity in split:
+            monomials = [DottedMonomial.from_monomial(m) for m in _as_bracket_polynomial(factor)]
+            part, more = _pair_dotted(monomials, rules)
+            substitutions += [pair for pair in more if pair not in substitutions]
+            if part[0].coefficient < 0:  # print each part with a positive first term
+                part = [DottedMonomial(t.brackets, t.dots, -t.coefficient) for t in part]
+                content *= (-1) ** multiplicity
+            parts.append((DottedSum(part), multiplicity))
     terms = [DottedMonomial(t.brackets, t.dots, t.coefficient / content) for t in paired]
-    return FactoredForm(content, tuple(common), DottedSum(terms), tuple(substitutions))
+    return FactoredForm(
+        content, tuple(common), DottedSum(terms), tuple(substitutions), tuple(parts)
+    )
 
 
 # --------------------------------------------------------------------------------------------------
