@@ -48,7 +48,7 @@ import numpy as np
 
 from . import __version__
 from .catalog import degrees_to_radians, file_kind, list_mechanisms, load_mechanism, load_snapshot, load_toml
-from .exceptions import ScrewkitError
+from .exceptions import ScrewkitError, ScrewkitValueError
 from .export import graph_dot, graph_json, snapshot_text
 from .report import analyze
 from .screw import Screw
@@ -315,7 +315,10 @@ def _pose(args: argparse.Namespace, mechanism: Any) -> Any:
         )
     angles = set(mechanism.angle_names)
     pairs = zip(names, args.pose, strict=True)
-    return np.array([degrees_to_radians(v) if n in angles else v for n, v in pairs])
+    try:
+        return np.array([degrees_to_radians(v) if n in angles else v for n, v in pairs])
+    except ScrewkitValueError as err:
+        raise _UsageError(f"screwkit {args.command}: error: --pose: {err}") from err
 
 
 def _target_and_pose(args: argparse.Namespace) -> tuple[Any, Any]:
