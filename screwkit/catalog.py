@@ -114,6 +114,7 @@ __all__ = [
     "load_toml",
     "mechanism_from_mapping",
     "snapshot_from_mapping",
+    "unknown_mechanism",
 ]
 
 Array = np.ndarray
@@ -643,10 +644,24 @@ def load_mechanism(name_or_path: str | Path) -> Mechanism:
     elif text.lower() in list_mechanisms():
         path = _package_file(text.lower())
     else:
-        raise CatalogError(
-            f"unknown mechanism {text!r}: expected one of {list_mechanisms()} or a path to a .toml file."
-        )
+        raise CatalogError(unknown_mechanism(text))
     return mechanism_from_mapping(load_toml(path), source=str(path))
+
+
+def unknown_mechanism(name: str) -> str:
+    """The message for a name that is neither a catalog entry nor a ``.toml`` path, with the closest
+    entry when there is one.
+
+    Examples
+    --------
+    >>> unknown_mechanism("quatro")  # doctest: +ELLIPSIS
+    "unknown mechanism 'quatro' (did you mean 'quattro'?): expected one of [...] or a path to a .toml file."
+    """
+    import difflib
+
+    close = difflib.get_close_matches(name.lower(), list_mechanisms(), n=1)
+    hint = f" (did you mean {close[0]!r}?)" if close else ""
+    return f"unknown mechanism {name!r}{hint}: expected one of {list_mechanisms()} or a path to a .toml file."
 
 
 def mechanism_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>") -> Mechanism:
