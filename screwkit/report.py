@@ -311,9 +311,18 @@ class AnalysisReport:
             out.append(f"  {self.superbracket_note}")
             out += ["", "conditions"]
             result = self.superbracket
-            for condition, label, value, vanishes in zip(
-                result.conditions, result.labels, result.values, result.vanishing, strict=True
+            for condition, label, value, vanishes, constant in zip(
+                result.conditions, result.labels, result.values, result.vanishing, result.constant,
+                strict=True,
             ):
+                if constant:
+                    out.append(
+                        f"  {condition.factor} never vanishes on this mechanism: the same value on "
+                        "every generic configuration (a structural factor, not a singularity condition)"
+                    )
+                    out.append(f"    {condition.statement} (never, for this mechanism)")
+                    out.append(f"    vector form: {condition.expression}   (here: {value:.6g})")
+                    continue
                 flag = "  <- vanishes at this pose" if vanishes else ""
                 out.append(f"  {label} singularity when {condition.factor} = 0{flag}")
                 out.append(f"    {condition.statement}")
