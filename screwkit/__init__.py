@@ -23,6 +23,7 @@ from .exceptions import (
     TwistGraphError,
     UnreachablePoseError,
 )
+from .generic import GenericAnalysis, generic_analysis
 from .joints import (
     Joint,
     JointTable,
@@ -36,7 +37,7 @@ from .joints import (
     virtual,
 )
 from .screw import Screw, reciprocal_product
-from .screwsystem import ScrewSystem
+from .screwsystem import ScrewSystem, motion_type
 from .singularity import SingularityReport, classify, classify_poses, classify_table
 from .twistgraph import (
     equivalent_twist_graph,
@@ -132,6 +133,7 @@ __all__ = [
     "CatalogError",
     "DegenerateGeometryError",
     "Family",
+    "GenericAnalysis",
     "Joint",
     "JointTable",
     "Mechanism",
@@ -164,6 +166,7 @@ __all__ = [
     "equivalent_twist_graph",
     "finite_point",
     "fundamental_loops",
+    "generic_analysis",
     "graph_dot",
     "graph_json",
     "helical",
@@ -180,6 +183,7 @@ __all__ = [
     "loop_closure_matrix",
     "meet_line_plane",
     "meet_planes",
+    "motion_type",
     "parallelogram",
     "plane",
     "plane_through",

@@ -636,8 +636,9 @@ def screw_rank(rows: Array, *, rtol: float = DEFAULT_RTOL, length_scale: float |
     Returns
     -------
     int or numpy.ndarray of int
-        Batched over leading axes when numeric. The symbolic rank is the *generic* rank
-        (sympy's): it says nothing about special values of the symbols.
+        Batched over leading axes when numeric. The symbolic rank is the *generic* rank, decided
+        exactly at a random rational point (Schwartz–Zippel, :mod:`screwkit._symbolic`): it says
+        nothing about special values of the symbols.
 
     Examples
     --------
@@ -646,7 +647,9 @@ def screw_rank(rows: Array, *, rtol: float = DEFAULT_RTOL, length_scale: float |
     """
     _check_rtol(rtol)
     if rows.dtype == object:
-        return sympy_module().Matrix(rows).rank(simplify=True) if rows.size else 0
+        from . import _symbolic
+
+        return _symbolic.generic_rank(rows.reshape(-1, rows.shape[-1])) if rows.size else 0
     if rows.shape[-2] == 0:
         return 0 if rows.ndim == 2 else np.zeros(rows.shape[:-2], dtype=int)
     values = screw_singular_values(rows, length_scale=length_scale)
@@ -677,7 +680,7 @@ def screw_nullspace(
     -------
     numpy.ndarray, shape (6 - rank, 6)
         Numeric rows are an orthonormal basis in scaled coordinates, mapped back to the caller's
-        unit; symbolic rows are sympy's null space.
+        unit; symbolic rows the generic null space (:func:`matrix_nullspace`).
 
     Examples
     --------
@@ -704,7 +707,8 @@ def matrix_nullspace(matrix: Array, *, rtol: float = DEFAULT_RTOL) -> Array:
     """Basis of ``{x : matrix @ x = 0}`` as rows, for any ``(m, n)`` matrix.
 
     Numeric: the right singular vectors whose singular values are at most ``rtol`` times the
-    largest (an orthonormal basis). Symbolic: sympy's generic null space, simplified. The caller
+    largest (an orthonormal basis). Symbolic: the generic null space by Cramer's rule on a pivot
+    block chosen at an exact random point (:mod:`screwkit._symbolic`), each vector primitive. The caller
     scales rows beforehand if they carry different units (row scaling keeps the null space).
 
     Examples
@@ -714,13 +718,9 @@ def matrix_nullspace(matrix: Array, *, rtol: float = DEFAULT_RTOL) -> Array:
     """
     _check_rtol(rtol)
     if matrix.dtype == object:
-        sp = sympy_module()
-        vectors = sp.Matrix(matrix).nullspace(simplify=True)
-        out = np.empty((len(vectors), matrix.shape[1]), dtype=object)
-        for i, vector in enumerate(vectors):
-            for j in range(matrix.shape[1]):
-                out[i, j] = sp.simplify(vector[j])
-        return out
+        from . import _symbolic
+
+        return _symbolic.nullspace(matrix)
     if matrix.shape[0] == 0:
         return np.eye(matrix.shape[1])
     _, values, vt = np.linalg.svd(matrix)

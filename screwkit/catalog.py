@@ -114,6 +114,7 @@ __all__ = [
     "load_toml",
     "mechanism_from_mapping",
     "snapshot_from_mapping",
+    "unknown_mechanism",
 ]
 
 Array = np.ndarray
@@ -414,16 +415,36 @@ def _check_keys(table: Mapping[str, Any], known: Any, source: str, where: str) -
             )
 
 
+#: The largest angle, in degrees, that files and ``--pose`` take: a double holds an angle up to it to
+#: ~1e-11 rad (its ulp), below every tolerance of the analysis; beyond, ``value · π/180`` names some
+#: other angle. Angles are not reduced modulo 360°: a screw-pair platform (the Veloce, the Ragnar's
+#: φ over ±360°) is in another configuration after a whole turn.
+MAX_ANGLE_DEGREES = 1e6
+
+
 def degrees_to_radians(value: float) -> float:
-    """Degrees to radians, reduced modulo 360° first (exactly: :func:`math.fmod`), so that a huge angle
-    is the angle it names and not whatever ``value · π/180`` rounds to.
+    """Degrees to radians, whole turns kept (``360`` is ``2π``, not ``0``).
+
+    Raises
+    ------
+    ScrewkitValueError
+        For a magnitude above :data:`MAX_ANGLE_DEGREES`.
 
     Examples
     --------
-    >>> degrees_to_radians(1e20) == math.radians(280.0)   # 10**20 ≡ 280 (mod 360)
+    >>> degrees_to_radians(360.0) == 2 * math.pi
     True
+    >>> degrees_to_radians(1e20)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    screwkit.exceptions.ScrewkitValueError: Expected an angle of at most 1e+06 degrees in magnitude ...
     """
-    return math.radians(math.fmod(value, 360.0))
+    if not abs(value) <= MAX_ANGLE_DEGREES:
+        raise ScrewkitValueError(
+            f"Expected an angle of at most {MAX_ANGLE_DEGREES:g} degrees in magnitude (beyond it a double "
+            f"no longer holds the angle to the analysis's precision), got {value:g}."
+        )
+    return math.radians(value)
 
 
 def file_kind(data: Mapping[str, Any]) -> Any:
@@ -555,7 +576,12 @@ def _scaled(value: Any, convert: Callable[[float], float], source: str, where: s
                 source, where, f"field `value`: expected lists nested at most {_MAX_LIST_DEPTH} deep."
             )
         return [_scaled(item, convert, source, where, depth + 1) for item in value]
-    result = convert(_number(value, source, where, "value"))
+    try:
+        result = convert(_number(value, source, where, "value"))
+    except ScrewkitValueError as err:
+        if isinstance(err, CatalogError):
+            raise
+        raise _error(source, where, f"field `value`: {err}") from err
     if not abs(result) <= MAX_COORDINATE:
         raise _error(
             source,
@@ -618,10 +644,24 @@ def load_mechanism(name_or_path: str | Path) -> Mechanism:
     elif text.lower() in list_mechanisms():
         path = _package_file(text.lower())
     else:
-        raise CatalogError(
-            f"unknown mechanism {text!r}: expected one of {list_mechanisms()} or a path to a .toml file."
-        )
+        raise CatalogError(unknown_mechanism(text))
     return mechanism_from_mapping(load_toml(path), source=str(path))
+
+
+def unknown_mechanism(name: str) -> str:
+    """The message for a name that is neither a catalog entry nor a ``.toml`` path, with the closest
+    entry when there is one.
+
+    Examples
+    --------
+    >>> unknown_mechanism("quatro")  # doctest: +ELLIPSIS
+    "unknown mechanism 'quatro' (did you mean 'quattro'?): expected one of [...] or a path to a .toml file."
+    """
+    import difflib
+
+    close = difflib.get_close_matches(name.lower(), list_mechanisms(), n=1)
+    hint = f" (did you mean {close[0]!r}?)" if close else ""
+    return f"unknown mechanism {name!r}{hint}: expected one of {list_mechanisms()} or a path to a .toml file."
 
 
 def mechanism_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>") -> Mechanism:
@@ -686,7 +726,10 @@ def mechanism_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>"
         if key not in pose_table:
             raise _error(source, "[pose]", f"field `{key}`: missing.")
         number = _number(pose_table[key], source, "[pose]", key)
-        pose.append(degrees_to_radians(number) if coordinate in family.angle_names else number)
+        try:
+            pose.append(degrees_to_radians(number) if coordinate in family.angle_names else number)
+        except ScrewkitValueError as err:
+            raise _error(source, "[pose]", f"field `{key}`: {err}") from err
     workspace_table = _table(data, "workspace", source)
     _check_keys(workspace_table, keys, source, "[workspace]")
     workspace = {}

@@ -47,8 +47,16 @@ from typing import Any, NoReturn
 import numpy as np
 
 from . import __version__
-from .catalog import degrees_to_radians, file_kind, list_mechanisms, load_mechanism, load_snapshot, load_toml
-from .exceptions import ScrewkitError
+from .catalog import (
+    degrees_to_radians,
+    file_kind,
+    list_mechanisms,
+    load_mechanism,
+    load_snapshot,
+    load_toml,
+    unknown_mechanism,
+)
+from .exceptions import ScrewkitError, ScrewkitValueError
 from .export import graph_dot, graph_json, snapshot_text
 from .report import analyze
 from .screw import Screw
@@ -315,7 +323,10 @@ def _pose(args: argparse.Namespace, mechanism: Any) -> Any:
         )
     angles = set(mechanism.angle_names)
     pairs = zip(names, args.pose, strict=True)
-    return np.array([degrees_to_radians(v) if n in angles else v for n, v in pairs])
+    try:
+        return np.array([degrees_to_radians(v) if n in angles else v for n, v in pairs])
+    except ScrewkitValueError as err:
+        raise _UsageError(f"screwkit {args.command}: error: --pose: {err}") from err
 
 
 def _target_and_pose(args: argparse.Namespace) -> tuple[Any, Any]:
@@ -328,10 +339,7 @@ def _target_and_pose(args: argparse.Namespace) -> tuple[Any, Any]:
             )
         return args.mechanism, None
     if not args.mechanism.endswith(".toml") and args.mechanism.lower() not in list_mechanisms():
-        raise _UsageError(
-            f"screwkit {args.command}: error: unknown mechanism {args.mechanism!r}: expected one of "
-            f"{list_mechanisms()} or a .toml file"
-        )
+        raise _UsageError(f"screwkit {args.command}: error: {unknown_mechanism(args.mechanism)}")
     mechanism = load_mechanism(args.mechanism)  # a malformed file is an analysis error (exit 1)
     return mechanism, _pose(args, mechanism)
 
@@ -422,10 +430,7 @@ def _catalog_mechanism(command: str, name: str) -> Any:
                 f"screwkit {command}: error: {name} is a snapshot (one configuration); no poses to vary"
             )
     elif name.lower() not in list_mechanisms():
-        raise _UsageError(
-            f"screwkit {command}: error: unknown mechanism {name!r}: expected one of "
-            f"{list_mechanisms()} or a .toml file"
-        )
+        raise _UsageError(f"screwkit {command}: error: {unknown_mechanism(name)}")
     return load_mechanism(name)
 
 

@@ -938,7 +938,9 @@ def graph_sampler(
     def sampler(rng: np.random.Generator) -> dict[str, Array]:
         for _ in range(attempts):
             try:
-                return diagram_points(points, wrench_analysis(build(rng)))
+                analysis = wrench_analysis(build(rng))
+                assert isinstance(analysis, WrenchAnalysis)  # numeric graphs (a symbolic one is generic)
+                return diagram_points(points, analysis)
             except ScrewkitError:
                 continue
         raise ScrewkitValueError(
@@ -970,6 +972,11 @@ class SuperbracketAnalysis:
         Per condition: True when it vanishes at the pose, i.e. its value there is at most
         :data:`VANISHING_RTOL` times its median size on the generic samples (a singular pose keeps
         the factored form of a regular one; these factors are the ones that vanish).
+    constant : tuple of bool
+        Per condition: True when it takes one non-zero magnitude (within :data:`INCIDENCE_RTOL`) on
+        every generic sample and at the pose: a structural factor of this mechanism that never vanishes
+        (e.g. the planar mechanisms' constraint couples and force, the same lines at every pose),
+        reported as such rather than as a singularity condition.
     """
 
     diagram: WrenchDiagram
@@ -979,6 +986,7 @@ class SuperbracketAnalysis:
     values: tuple[float, ...]
     collinear: tuple[str, ...] = ()
     vanishing: tuple[bool, ...] = ()
+    constant: tuple[bool, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready summary."""
@@ -986,9 +994,15 @@ class SuperbracketAnalysis:
             "superbracket": self.diagram.line_text(),
             "simplification": self.simplification.to_dict(),
             "conditions": [
-                {**c.to_dict(), "label": label, "value_at_pose": value, "vanishes_at_pose": vanishes}
-                for c, label, value, vanishes in zip(
-                    self.conditions, self.labels, self.values, self.vanishing, strict=True
+                {
+                    **c.to_dict(),
+                    "label": label,
+                    "value_at_pose": value,
+                    "vanishes_at_pose": vanishes,
+                    "never_vanishes": constant,
+                }
+                for c, label, value, vanishes, constant in zip(
+                    self.conditions, self.labels, self.values, self.vanishing, self.constant, strict=True
                 )
             ],
         }
@@ -1073,9 +1087,18 @@ def superbracket_analysis(
     )
     labels = tuple(c.label for c in found)
     values = tuple(float(c.evaluate(diagram.coordinates)) for c in found)
-    typical = [float(np.median([abs(float(c.evaluate(sample))) for sample in drawn])) for c in found]
+    on_samples = [np.array([float(c.evaluate(sample)) for sample in drawn]) for c in found]
+    typical = [float(np.median(np.abs(v))) for v in on_samples]
     vanishing = tuple(abs(v) <= VANISHING_RTOL * size for v, size in zip(values, typical, strict=True))
-    return SuperbracketAnalysis(diagram, simplification, found, labels, values, collinear, vanishing)
+    # the magnitude: a point at infinity is a direction up to sign, so a structural factor may flip sign
+    constant = tuple(
+        size > 0
+        and bool(np.all(np.abs(np.abs(np.append(sampled, value)) - size) <= INCIDENCE_RTOL * size))
+        for sampled, value, size in zip(on_samples, values, typical, strict=True)
+    )
+    return SuperbracketAnalysis(
+        diagram, simplification, found, labels, values, collinear, vanishing, constant
+    )
 
 
 def _collinear_triples(diagram: WrenchDiagram, samples: list[dict[str, Array]]) -> tuple[str, ...]:

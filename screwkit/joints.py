@@ -398,8 +398,8 @@ def _refuse_symbolic(*screws: Any) -> None:
     if B.is_symbolic(*screws):
         raise ScrewkitTypeError(
             "Expected numeric joint screws for the analysis core, got symbolic entries; substitute "
-            "values for the symbols (sympy's subs) first, or use the symbolic screw systems "
-            "(screwkit.ScrewSystem, screwkit.twistgraph.series_parallel_tree)."
+            "values for the symbols (sympy's subs) first, or use screwkit.generic_analysis (a family's "
+            "generic answers; also what wrench_analysis and classify return for a symbolic graph)."
         )
 
 

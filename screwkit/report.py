@@ -45,6 +45,7 @@ from . import screw as S
 from .catalog import Mechanism, check_dof, file_kind, load_mechanism, load_snapshot, load_toml
 from .exceptions import ScrewkitError, ScrewkitTypeError, ScrewkitValueError
 from .jacobians import WrenchJacobians
+from .screwsystem import motion_type
 from .singularity import SingularityReport, classify_analysis
 from .twistgraph import equivalent_twist_graph, fundamental_loops
 from .wrenches import WrenchAnalysis, checked_rtol, wrench_analysis
@@ -52,7 +53,7 @@ from .wrenches import WrenchAnalysis, checked_rtol, wrench_analysis
 if TYPE_CHECKING:  # the diagram and GCA stack loads when a report is made, not on `import screwkit`
     from .diagram import SuperbracketAnalysis, WrenchDiagram
 
-__all__ = ["AnalysisReport", "analyze", "describe_wrench", "pose_report"]
+__all__ = ["AnalysisReport", "analyze", "describe_twist", "describe_wrench", "pose_report"]
 
 Array = np.ndarray
 
@@ -82,6 +83,24 @@ def describe_wrench(wrench: Array, *, length_scale: float) -> dict[str, Any]:
         "point": (point + 0.0).round(9).tolist(),
         "pitch": round(pitch, 12) + 0.0,
     }
+
+
+def describe_twist(twist: Array, *, length_scale: float) -> dict[str, Any]:
+    """A twist as :func:`describe_wrench` does a wrench, named as a motion: translation, rotation
+    or screw motion.
+
+    Examples
+    --------
+    >>> describe_twist(S.prismatic_twist([0, 0, 1]), length_scale=1.0)["kind"]
+    'translation'
+    """
+    described = describe_wrench(twist, length_scale=length_scale)
+    kinds = {
+        "couple (line at infinity)": "translation",
+        "force (finite line)": "rotation",
+        "screw of finite pitch": "screw motion",
+    }
+    return {**described, "kind": kinds[described["kind"]]}
 
 
 _SNAPSHOT_JACOBIANS = "not computed: a snapshot has no family to give the platform's nominal twists"
@@ -153,8 +172,20 @@ class AnalysisReport:
     def wrenches(self) -> dict[str, Any]:
         """The platform's twist order and every wrench as a line."""
         scale = self.analysis.length_scale
+        platform = self.analysis.platform_twists
         return {
-            "platform_twist_order": self.analysis.platform_twists.order,
+            "platform_twist_order": platform.order,
+            "platform_twists": {
+                "motion_type": motion_type(platform),
+                "basis": [
+                    describe_twist(t, length_scale=scale)
+                    for t in platform.readable_basis(near=self.analysis.reference_point)
+                ],
+            },
+            "leg_motion_types": {
+                leg.name: motion_type(leg.twist_system)
+                for leg in sorted(self.analysis.compound_legs, key=lambda leg: leg.name)
+            },
             "constraint": [
                 {"leg": leg.name, **describe_wrench(w, length_scale=scale)}
                 for leg in sorted(self.analysis.compound_legs, key=lambda leg: leg.name)
@@ -249,6 +280,18 @@ class AnalysisReport:
         virtual = ", ".join(f"{count} {kind}" for kind, count in eq["virtual_joints"].items()) or "none"
         out.append(f"  equivalent graph: {eq['links']} links, {eq['loops']} loops, virtual joints: {virtual}")
         wrenches = self.wrenches()
+        twists = wrenches["platform_twists"]
+        out += [
+            "",
+            f"platform twist system: {twists['motion_type']} (order {wrenches['platform_twist_order']})",
+            *(
+                f"  translation along {_vector(item['direction'])}"
+                if item["kind"] == "translation"
+                else f"  {_line_text(item, unit)}"
+                for item in twists["basis"]
+            ),
+            *(f"  {leg}: {kind}" for leg, kind in wrenches["leg_motion_types"].items()),
+        ]
         out += ["", f"wrench systems (platform twist system of order {wrenches['platform_twist_order']})"]
         for item in wrenches["constraint"]:
             out.append(f"  constraint ({item['leg']}): {_line_text(item, unit)}")
@@ -268,9 +311,18 @@ class AnalysisReport:
             out.append(f"  {self.superbracket_note}")
             out += ["", "conditions"]
             result = self.superbracket
-            for condition, label, value, vanishes in zip(
-                result.conditions, result.labels, result.values, result.vanishing, strict=True
+            for condition, label, value, vanishes, constant in zip(
+                result.conditions, result.labels, result.values, result.vanishing, result.constant,
+                strict=True,
             ):
+                if constant:
+                    out.append(
+                        f"  {condition.factor} never vanishes on this mechanism: the same value on "
+                        "every generic configuration (a structural factor, not a singularity condition)"
+                    )
+                    out.append(f"    {condition.statement} (never, for this mechanism)")
+                    out.append(f"    vector form: {condition.expression}   (here: {value:.6g})")
+                    continue
                 flag = "  <- vanishes at this pose" if vanishes else ""
                 out.append(f"  {label} singularity when {condition.factor} = 0{flag}")
                 out.append(f"    {condition.statement}")
@@ -409,9 +461,15 @@ def _graph_report(
         raise ScrewkitValueError(f"{source}: {what} is one configuration; expected no pose, got {pose!r}.")
     check_dof(graph)
     analysis = wrench_analysis(graph, rtol=rtol)
+    if not isinstance(analysis, WrenchAnalysis):
+        raise ScrewkitTypeError(
+            f"{source}: expected numeric joint screws for a report at a pose, got symbols; "
+            "use screwkit.generic.generic_analysis for a family's generic answers."
+        )
     if not analysis.topology.actuated and graph.graph.get("dof") is None:
         # mobility analysis: the nominal mobility is the platform's freedom at this configuration
         analysis = wrench_analysis(graph, dof=6 - int(analysis.constraint_order), rtol=rtol)
+        assert isinstance(analysis, WrenchAnalysis)  # the same numeric graph
     from .diagram import graph_diagram
 
     diagram, sampler = graph_diagram(analysis)

@@ -29,7 +29,7 @@ from . import _backend as B
 from .exceptions import ScrewkitTypeError, ScrewkitValueError
 from .screw import Screw
 
-__all__ = ["ScrewSystem"]
+__all__ = ["ScrewSystem", "motion_type"]
 
 Array = np.ndarray
 _COUPLES = np.hstack([np.zeros((3, 3)), np.eye(3)])
@@ -286,13 +286,29 @@ class ScrewSystem:
         couples = ScrewSystem(_COUPLES, rtol=self.rtol, length_scale=self.length_scale)
         return self.intersection(couples)
 
-    def readable_basis(self) -> Array:
-        """A basis that prefers pure couples/translations and pure forces/rotations.
+    def readable_basis(self, near: Any = None) -> Array:
+        """A basis that reads like a designer's sketch: translations/couples and lines first.
 
-        The infinite-pitch subsystem comes first (unit moments); then each remaining generator,
-        shifted by a couple of the system to zero pitch when one allows it; then pairs of
-        generators are replaced by the two lines of their pencil (the real roots of the pitch
-        quadric, Hunt's cylindroid) when those exist. Lines are scaled to unit direction.
+        1. The infinite-pitch subsystem (translations, couples) comes first, along the frame's
+           ``x``, ``y``, ``z`` where it holds them, completed orthonormally (unit moments).
+        2. The rest is parametrised by its directions ``s`` (a subspace ``D``): each direction
+           carries one screw up to the couples of the system. Candidate directions are the frame's
+           axes in ``D``, the principal directions of the pitch form on ``D`` (Hunt, *Kinematic
+           Geometry of Mechanisms*, 1978, §12: principal screws) and, where that form is
+           indefinite, its isotropic directions: combinations ``√|λ₋| e₊ ± √λ₊ e₋`` of a positive
+           and a negative principal direction have pitch 0, so a 3-system spanned by three skew
+           lines yields three lines (each meeting every line of the reciprocal regulus).
+        3. For each candidate the couples of the system move the screw to zero pitch where they
+           can and bring its axis nearest to ``near`` (a least-squares shift of the moment about
+           ``near``, constrained to zero pitch). Lines through one point stay through it.
+        4. Independent candidates are taken greedily: lines before other screws, axis directions
+           before others. Lines have unit direction, couples unit moment.
+
+        Parameters
+        ----------
+        near : array_like, shape (3,), optional
+            Where axes are placed when the system lets them move (e.g. a mechanism's reference
+            point); default the origin of the frame.
 
         Returns
         -------
@@ -305,25 +321,42 @@ class ScrewSystem:
         >>> ScrewSystem.span(mixed).readable_basis() + 0.0
         array([[0., 0., 0., 1., 0., 0.],
                [1., 0., 0., 0., 0., 0.]])
+        >>> from screwkit.screw import prismatic_twist, revolute_twist
+        >>> schoenflies = ScrewSystem.span([prismatic_twist([1, 1, 0]), prismatic_twist([0, 1, 1]),
+        ...     prismatic_twist([1, 0, 1]), revolute_twist([0, 0, 1], [40.0, 0, 0])])
+        >>> schoenflies.readable_basis(near=[1.0, 2.0, 0.0]).round(12) + 0.0
+        array([[ 0.,  0.,  0.,  1.,  0.,  0.],
+               [ 0.,  0.,  0.,  0.,  1.,  0.],
+               [ 0.,  0.,  0.,  0.,  0.,  1.],
+               [ 0.,  0.,  1.,  2., -1.,  0.]])
         """
         if self.is_symbolic:
-            return _pick(self._stack(self.couple_subsystem().basis, self.basis), self.order, self)
-        couples = _orthonormal_couples(self.couple_subsystem().basis)
-        moments = couples[:, 3:]
-        others: list[Array] = []
-        length = float(self.length_scale or 1.0)
-        for row in self.basis:
-            s, s0 = row[:3], row[3:]
-            size = np.linalg.norm(np.concatenate([s, s0 / length]))
-            if np.linalg.norm(s) <= self.rtol * size:
-                continue  # a couple: already in the infinite-pitch subsystem
-            if moments.size and np.max(np.abs(moments @ s)) > self.rtol * np.linalg.norm(s):
-                best = moments[np.argmax(np.abs(moments @ s))]
-                row = row - np.concatenate([np.zeros(3), best]) * (s @ s0) / (s @ best)
-            others.append(row)
-        others = _pencil_lines(others, self)
-        candidates = self._stack(couples, *sorted(others, key=lambda r: not _is_line(r, self)))
-        return _pick(candidates, self.order, self)
+            return self._readable_symbolic(near)
+        centre = np.zeros(3) if near is None else B.as_array(near, "near", (3,), symbolic=False)
+        if centre.shape != (3,):
+            raise ScrewkitValueError(f"Expected `near` to have shape (3,), got {centre.shape}.")
+        couples = _axis_first(_orthonormal_couples(self.couple_subsystem().basis)[:, 3:], self.rtol)
+        finite = _finite_candidates(self.basis, couples, centre, self.rtol, float(self.length_scale or 1.0))
+        rows = np.concatenate([np.hstack([np.zeros_like(couples), couples]), *finite]).reshape(-1, 6)
+        return _pick(self._stack(rows, self.basis), self.order, self)
+
+    def _readable_symbolic(self, near: Any) -> Array:
+        """The symbolic readable basis (generic decisions, :mod:`screwkit._symbolic`): the frame's
+        translations where the system holds them; with all three, the other rows become lines
+        through ``near`` (the origin by default); else the couple subsystem, then the basis."""
+        axes = [row for row in _COUPLES.astype(int) if self.contains(row)]
+        stacked = self._stack(self.basis, _COUPLES.astype(int))
+        translations = self.order + 3 - int(B.screw_rank(stacked))
+        couples = (
+            np.array(axes).reshape(-1, 6) if len(axes) == translations else self.couple_subsystem().basis
+        )
+        rows = self.basis
+        if translations == 3:
+            centre = B.as_array(np.zeros(3) if near is None else near, "near", (3,), symbolic=True)
+            rows = np.concatenate(
+                [rows[:, :3], B.cross(np.broadcast_to(centre, rows[:, :3].shape), rows[:, :3])], axis=1
+            )
+        return _pick(self._stack(couples, rows), self.order, self)
 
     def pitch_range(self) -> tuple[float, float]:
         """Least and greatest pitch of the screws of ``self`` with a non-zero direction.
@@ -432,30 +465,62 @@ def _orthonormal_couples(rows: Array) -> Array:
     return np.hstack([np.zeros_like(moments), moments])
 
 
-def _is_line(row: Array, system: ScrewSystem) -> bool:
-    s, s0 = row[:3], row[3:] / float(system.length_scale or 1.0)
-    size = np.linalg.norm(np.concatenate([s, s0]))
-    return bool(np.linalg.norm(s) > system.rtol * size and abs(s @ s0) <= system.rtol * size**2)
+def _axis_first(moments: Array, rtol: float) -> Array:
+    """An orthonormal basis of the span of orthonormal rows ``(c, 3)``: the frame's axes it holds
+    first (x, y, z), completed by Gram–Schmidt."""
+    if moments.shape[0] == 0:
+        return moments
+    projector = moments.T @ moments
+    chosen = [e for e in np.eye(3) if np.linalg.norm(e - projector @ e) <= 1e3 * rtol]
+    for row in moments:
+        for picked in chosen:
+            row = row - (row @ picked) * picked
+        if np.linalg.norm(row) > 1e3 * rtol and len(chosen) < moments.shape[0]:
+            chosen.append(row / np.linalg.norm(row))
+    return np.array(chosen[: moments.shape[0]]).reshape(-1, 3)
 
 
-def _pencil_lines(rows: list[Array], system: ScrewSystem) -> list[Array]:
-    """Replace pairs of non-line screws by the two lines of their pencil, where real."""
-    rows = list(rows)
-    length = float(system.length_scale or 1.0)
-    for i in range(len(rows)):
-        for j in range(i + 1, len(rows)):
-            x, y = rows[i], rows[j]
-            if _is_line(x, system) or _is_line(y, system):
-                continue
-            xs, x0, ys, y0 = x[:3], x[3:] / length, y[:3], y[3:] / length
-            a, b, c = xs @ x0, xs @ y0 + ys @ x0, ys @ y0
-            disc = b * b - 4 * a * c
-            if disc <= 0 or a == 0:
-                continue
-            roots = [(-b + sign * np.sqrt(disc)) / (2 * a) for sign in (1.0, -1.0)]
-            # a x + t y with a = root, t = 1: both lines of the cylindroid
-            rows[i], rows[j] = roots[0] * x + y, roots[1] * x + y
-    return rows
+def _finite_candidates(basis: Array, couples: Array, near: Array, rtol: float, length: float) -> list[Array]:
+    """Candidate screws of finite pitch of a system (``readable_basis`` steps 2–3), best first."""
+    directions = basis[:, :3]
+    sizes = np.linalg.norm(np.hstack([directions, basis[:, 3:] / length]), axis=1)
+    unit = directions / np.where(sizes > 0, sizes, 1.0)[:, None]  # rows of unit scaled size
+    _, values, vt = np.linalg.svd(unit)
+    rank = int((values > 1e3 * rtol).sum())
+    if rank == 0:
+        return []
+    span = vt[:rank]  # orthonormal basis of the directions D
+    # the moment as a linear map of the direction on D (any screw of the system with direction s)
+    coefficients = np.linalg.lstsq(directions.T, span.T, rcond=None)[0]  # (order, rank)
+    moment_map = basis[:, 3:].T @ coefficients @ span  # (3, 3): s ↦ m(s) for s in D
+    projector = couples.T @ couples if couples.size else np.zeros((3, 3))
+    form = span @ (moment_map + moment_map.T) @ span.T / 2  # pitch form on D (orthonormal coords)
+    values_q, vectors_q = np.linalg.eigh(form)
+    tol = 1e3 * rtol * max(float(np.abs(values_q).max(initial=0.0)), length * rtol)
+    principal = [span.T @ v for v in vectors_q.T]
+    positive = [(lam, span.T @ v) for lam, v in zip(values_q, vectors_q.T, strict=True) if lam > tol]
+    negative = [(lam, span.T @ v) for lam, v in zip(values_q, vectors_q.T, strict=True) if lam < -tol]
+    isotropic = []
+    for k, (lp, p) in enumerate(positive):
+        for m, (ln, n) in enumerate(negative):
+            if k == 0 or m == 0:
+                isotropic += [np.sqrt(-ln) * p + sign * np.sqrt(lp) * n for sign in (1.0, -1.0)]
+    axes = [e for e in np.eye(3) if np.linalg.norm(e - span.T @ (span @ e)) <= 1e3 * rtol]
+    candidates = []
+    for order, s in enumerate([*axes, *isotropic, *principal]):
+        s = s / np.linalg.norm(s)
+        moment = moment_map @ s
+        about = moment - np.cross(near, s) - projector @ (moment - np.cross(near, s))
+        pitch = s @ (about + np.cross(near, s))
+        feasible = np.linalg.norm(projector @ s)
+        if abs(pitch) > rtol * length and feasible > 1e3 * rtol:
+            about = about - pitch / (s @ projector @ s) * (projector @ s)
+            pitch = 0.0
+        screw = np.concatenate([s, about + np.cross(near, s)])
+        is_line = abs(s @ screw[3:]) <= 1e3 * rtol * length
+        candidates.append((not is_line, order >= len(axes), order, screw))
+    candidates.sort(key=lambda c: c[:3])
+    return [np.array([c[3] for c in candidates])]
 
 
 def _pick(candidates: Array, order: int, system: ScrewSystem) -> Array:
@@ -468,3 +533,64 @@ def _pick(candidates: Array, order: int, system: ScrewSystem) -> Array:
     moments = np.linalg.norm(picked[:, 3:], axis=1)
     scale = np.where(sizes > system.rtol * moments / float(system.length_scale or 1.0), sizes, moments)
     return picked / scale[:, None]
+
+
+def _motion_label(translations: int, rotations: int) -> str:
+    """``"3T1R"``, ``"2R1T"``, ``"3T"``: the larger count first (translations on a tie)."""
+    parts = [(translations, "T"), (rotations, "R")]
+    parts.sort(key=lambda p: (-p[0], p[1] != "T"))
+    return "".join(f"{n}{kind}" for n, kind in parts if n) or "0"
+
+
+def motion_type(twists: Any, *, rtol: float = B.DEFAULT_RTOL, length_scale: float | None = None) -> Any:
+    """The motion type of a twist system: its numbers of translations and other freedoms.
+
+    ``t = dim(T ∩ translations) = order(T) + 3 − order(T + translations)`` and ``r = order(T) − t``
+    (the freedoms that are not translations: rotations or screws). Labelled ``"3T1R"`` (a
+    Schoenflies motion), ``"3T"``, ``"2R1T"``, ``"3T3R"``: the larger count first, translations
+    first on a tie; ``"0"`` for the 0-system.
+
+    Parameters
+    ----------
+    twists : ScrewSystem or array_like, shape (..., k, 6)
+        A system, or generators (numeric, batched over leading axes; or one symbolic ``(k, 6)``
+        array, decided generically).
+    rtol, length_scale
+        As in :func:`screwkit._backend.screw_rank` (a ScrewSystem uses its own).
+
+    Returns
+    -------
+    str, or numpy.ndarray of str over the batch
+
+    Examples
+    --------
+    >>> from screwkit.screw import prismatic_twist, revolute_twist
+    >>> schoenflies = [*(prismatic_twist(e) for e in np.eye(3)), revolute_twist([0, 0, 1], [1, 2, 0])]
+    >>> motion_type(schoenflies), motion_type(ScrewSystem.span(schoenflies[2:]))
+    ('3T1R', '1T1R')
+    >>> motion_type(np.stack([np.array(schoenflies[:3]), np.array(schoenflies[1:])]))
+    array(['3T', '2T1R'], dtype='<U4')
+    """
+    if isinstance(twists, ScrewSystem):
+        rows, rtol, length_scale = twists.basis, twists.rtol, twists.length_scale
+    elif isinstance(twists, Screw):
+        rows = twists.coords.reshape(1, 6)
+    else:
+        rows = _rows_batched(twists)
+    symbolic = B.is_symbolic(rows)
+    if not symbolic:
+        rows = np.asarray(rows, dtype=float)
+        _, length_scale = B.scale_moments(rows, length_scale) if rows.size else (None, 1.0)
+    couples = np.broadcast_to(_COUPLES, (*rows.shape[:-2], 3, 6))
+    stacked = np.concatenate(B.promote(rows, np.asarray(couples, dtype=float)), axis=-2)
+    order = np.asarray(B.screw_rank(rows, rtol=rtol, length_scale=length_scale))
+    translations = order + 3 - np.asarray(B.screw_rank(stacked, rtol=rtol, length_scale=length_scale))
+    labels = np.vectorize(_motion_label, otypes=[str])(translations, order - translations)
+    return str(labels) if labels.ndim == 0 else labels
+
+
+def _rows_batched(twists: Any) -> Array:
+    if isinstance(twists, list | tuple) and twists and all(isinstance(s, Screw) for s in twists):
+        return _rows(twists, "twists")
+    array = B.as_array(twists, "twists", (6,))
+    return array.reshape(1, 6) if array.ndim == 1 else array

@@ -55,6 +55,7 @@ import numpy as np
 from . import _backend as B
 from . import screw as S
 from .exceptions import ScrewkitTypeError, ScrewkitValueError
+from .generic import GenericAnalysis
 from .joints import JointTable
 from .screwsystem import ScrewSystem
 from .twistgraph import check_twist_graph
@@ -356,7 +357,7 @@ def classify_analysis(analysis: WrenchAnalysis) -> SingularityReport:
 
 def classify(
     graph: nx.MultiDiGraph, *, dof: int | None = None, joint_key: str = "joint", rtol: float = B.DEFAULT_RTOL
-) -> SingularityReport:
+) -> SingularityReport | GenericAnalysis:
     """Analyse a twist graph's wrench systems at its configuration and label the pose.
 
     Parameters
@@ -370,8 +371,10 @@ def classify(
 
     Returns
     -------
-    SingularityReport
-        Of one pose.
+    SingularityReport or GenericAnalysis
+        Of one pose; for a graph whose screws hold sympy symbols, the family's generic answers
+        (:func:`screwkit.generic.generic_analysis`: mobility, motion type, generic orders; no pose
+        verdict).
 
     Examples
     --------
@@ -383,7 +386,10 @@ def classify(
     >>> report.labels, report.constraint_order, report.lost_dof
     (('serial',), 6, 1)
     """
-    return SingularityReport(wrench_analysis(graph, dof=dof, joint_key=joint_key, rtol=rtol))
+    analysis = wrench_analysis(graph, dof=dof, joint_key=joint_key, rtol=rtol)
+    if not isinstance(analysis, WrenchAnalysis):
+        return analysis  # a symbolic graph: generic answers, no pose verdict
+    return SingularityReport(analysis)
 
 
 def classify_table(

@@ -137,6 +137,20 @@ def _options(mode: Any) -> dict[str, Any]:
     return {"working_mode": tuple(mode)}
 
 
+def _check_mechanism(mechanism: Any) -> None:
+    """Maps and paths run over a catalog mechanism's pose coordinates; a twist graph has none."""
+    if not all(hasattr(mechanism, name) for name in ("at", "pose_names", "angle_names", "default_pose")):
+        hint = (
+            " (a twist graph is one configuration: analyse it with screwkit.analyze or classify)"
+            if hasattr(mechanism, "edges")
+            else ""
+        )
+        raise ScrewkitTypeError(
+            f"Expected `mechanism` to be a catalog Mechanism (screwkit.load_mechanism), got "
+            f"{type(mechanism).__name__}{hint}."
+        )
+
+
 def _angle_factor(angles: str) -> float:
     if angles not in ("deg", "rad"):
         raise ScrewkitValueError(f"Expected `angles` to be 'deg' or 'rad', got {angles!r}.")
@@ -352,6 +366,7 @@ def evaluate(
     >>> evaluate(load_mechanism("h4"), [[0, 0, -750, 0], [0, 0, -5000, 0]], "verdict")
     (array([ 0, -1]), array([ True, False]))
     """
+    _check_mechanism(mechanism)
     name = _quantity(quantity)
     array = np.asarray(poses, dtype=float).reshape(-1, len(mechanism.pose_names))
     options = _options(mode)
@@ -475,6 +490,7 @@ class _Slice:
 
     @classmethod
     def create(cls, mechanism: Any, x: Any, y: Any, fixed: Any, mode: Any, angles: str) -> _Slice:
+        _check_mechanism(mechanism)
         _angle_factor(angles)
         x_name, x_values = _axis(mechanism, x, "x")
         y_name, y_values = _axis(mechanism, y, "y")
@@ -1336,6 +1352,7 @@ def check_path(
     >>> check.crossing.kind, round(check.crossing.parameter, 4)  # the arms and rods line up
     ('serial', 0.0964)
     """
+    _check_mechanism(mechanism)
     if isinstance(samples, bool) or not isinstance(samples, int | np.integer) or samples < 2:
         raise ScrewkitValueError(f"Expected `samples` to be an integer >= 2, got {samples!r}.")
     scale = _scale(mechanism, angles)

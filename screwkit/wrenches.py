@@ -42,7 +42,7 @@ import functools
 import itertools
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
-from typing import Any, NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 import networkx as nx
 import numpy as np
@@ -55,6 +55,9 @@ from .joints import Joint, JointTable
 from .screwsystem import ScrewSystem
 from .topology import Topology, network_layout, topology
 from .twistgraph import SeriesParallelNode, mechanism_frame
+
+if TYPE_CHECKING:
+    from .generic import GenericAnalysis
 
 __all__ = [
     "CompoundLeg",
@@ -1093,10 +1096,11 @@ def wrench_analysis(
     dof: int | None = None,
     joint_key: str = "joint",
     rtol: float = B.DEFAULT_RTOL,
-) -> WrenchAnalysis:
+) -> WrenchAnalysis | GenericAnalysis:
     """Constraint, actuation and global wrench systems of a twist graph at its configuration.
 
-    The graph is a batch of one pose through :func:`analyze_table`.
+    The graph is a batch of one pose through :func:`analyze_table`. A graph whose screws hold
+    sympy symbols (a family) gets its generic answers instead (:func:`screwkit.generic.generic_analysis`).
 
     Parameters
     ----------
@@ -1111,8 +1115,8 @@ def wrench_analysis(
 
     Returns
     -------
-    WrenchAnalysis
-        Of one pose (shape ``()``).
+    WrenchAnalysis or GenericAnalysis
+        Of one pose (shape ``()``); a GenericAnalysis for a symbolic graph.
 
     Raises
     ------
@@ -1130,6 +1134,10 @@ def wrench_analysis(
     >>> limb.passive_wrenches.order, S.is_zero_pitch(limb.actuation_wrench)
     (5, True)
     """
+    from .generic import generic_analysis, is_symbolic_graph
+
+    if isinstance(graph, nx.MultiDiGraph) and is_symbolic_graph(graph, joint_key=joint_key):
+        return generic_analysis(graph, dof=dof, joint_key=joint_key)  # a family: generic answers
     table = JointTable.from_graph(graph, joint_key=joint_key)
     one = JointTable(
         table.base,

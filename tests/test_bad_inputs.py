@@ -8,6 +8,7 @@ Each case asserts the error class and a pattern of its message. The corpus count
 """
 
 import copy
+import json
 import math
 import tomllib
 from pathlib import Path
@@ -185,14 +186,19 @@ def test_lists_of_lengths_are_converted_element_by_element():
     assert np.allclose(mechanism_from_mapping(mm).parameters.link_lengths, values, rtol=1e-15, atol=0)
 
 
-def test_a_huge_angle_in_degrees_is_the_angle_it_names():
-    # 10**20 = 280 (mod 360): 10**20 is 0 mod 8 and 10 mod 45 (10**n = 10 mod 45), so 280
-    h4 = load_mechanism("h4")
-    pose = h4.default_pose.copy()
+def test_a_huge_angle_in_degrees_is_refused_not_analysed_at_another_angle():
+    # 1e20 degrees times pi/180 is not the angle 1e20 degrees names; angles are not reduced modulo
+    # 360 either (a screw-pair platform is elsewhere after a turn), so the file is refused
     pose_file = changed(H4, setter(["pose", "phi_deg"], 1e20))
-    pose_280 = changed(H4, setter(["pose", "phi_deg"], 280.0))
-    assert mechanism_from_mapping(pose_file).default_pose[3] == mechanism_from_mapping(pose_280).default_pose[3]
-    assert pose[3] == 0.0
+    with pytest.raises(CatalogError, match=r"\[pose\]: field `phi_deg`: Expected an angle of at most 1e\+06 degrees"):
+        mechanism_from_mapping(pose_file, source="h4.toml")
+
+
+def test_whole_turns_are_kept():
+    # the Veloce's screw-pair platform: phi = 360 deg is another configuration than 0 (paper 004 Sec. 2)
+    veloce = tomllib.loads((ROOT / "mechanisms" / "veloce.toml").read_text())
+    turned = changed(veloce, setter(["pose", "phi_deg"], 360.0))
+    assert mechanism_from_mapping(turned).default_pose[3] == 2 * np.pi
 
 
 # --- snapshots ------------------------------------------------------------------------------------
@@ -572,11 +578,16 @@ def test_random_poses_are_reachable_and_the_first_draws_when_all_are():
     assert np.array_equal(smg.random_poses(np.random.default_rng(5), 20), expected)
 
 
-def test_huge_degrees_at_the_cli_are_reduced_exactly(capsys):
-    assert main(["analyze", "h4", "--pose", "10", "20", "-750", "1e20", "--json", "--no-superbracket"]) == 0
-    huge = capsys.readouterr().out
-    assert main(["analyze", "h4", "--pose", "10", "20", "-750", "280", "--json", "--no-superbracket"]) == 0
-    assert huge == capsys.readouterr().out
+def test_huge_degrees_at_the_cli_are_refused_and_whole_turns_kept(capsys):
+    assert main(["analyze", "h4", "--pose", "10", "20", "-750", "1e20", "--no-superbracket"]) == 2
+    assert "--pose: Expected an angle of at most 1e+06 degrees in magnitude" in capsys.readouterr().err
+    veloce = load_mechanism("veloce")
+    assert main(["analyze", "veloce", "--pose", "0", "0", "-750", "360", "--json", "--no-superbracket"]) == 0
+    turned = json.loads(capsys.readouterr().out)
+    api = sk.analyze(veloce, [0.0, 0.0, -750.0, 2 * np.pi], superbracket=False).to_dict()
+    assert turned["jacobians"] == api["jacobians"]
+    assert main(["analyze", "veloce", "--pose", "0", "0", "-750", "0", "--json", "--no-superbracket"]) == 0
+    assert json.loads(capsys.readouterr().out)["jacobians"] != turned["jacobians"]
 
 
 def test_tiny_and_huge_axes_keep_their_pitch_and_axis():

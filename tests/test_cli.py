@@ -146,3 +146,8 @@ def test_text_report_falls_back_where_stdout_cannot_encode(capsys, monkeypatch):
     stream.flush()
     text = stream.buffer.getvalue().decode("ascii")
     assert "\\u1e1f" in text  # the dotted f of the factored superbracket, escaped
+
+
+def test_a_mistyped_mechanism_name_gets_the_closest_one(capsys):
+    assert main(["analyze", "quatro"]) == 2
+    assert "unknown mechanism 'quatro' (did you mean 'quattro'?)" in capsys.readouterr().err

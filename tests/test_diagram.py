@@ -418,3 +418,19 @@ def test_generic_diagram_follows_rigid_motions_and_units(name):
     for label, point in plain.coordinates.items():  # points at infinity turn; finite ones move and scale
         expected = rotation @ point[:3] if point[3] == 0 else (rotation @ point[:3] + translation) * 1000.0
         assert np.allclose(np.abs(moved.coordinates[label][:3]), np.abs(expected), rtol=1e-7, atol=1e-6)
+
+
+def test_a_structural_factor_is_reported_as_never_vanishing():
+    # a planar mechanism in the xy-plane is constrained by the couples about x and y and a force
+    # along z at every configuration (its constraint lines never move), so the factor made of their
+    # points takes one value everywhere; the H4's factors change sign across its surfaces
+    from screwkit.report import analyze
+
+    planar = analyze(load_mechanism("planar_3rrp"))
+    kinds = dict(zip((str(c.factor) for c in planar.superbracket.conditions), planar.superbracket.constant,
+                     strict=True))
+    assert sorted(kinds.values()) == [False, True]
+    text = str(planar)
+    assert "never vanishes on this mechanism" in text and text.count("singularity when") == 1
+    assert not any(analyze(load_mechanism("h4")).superbracket.constant)
+    assert planar.to_dict()["superbracket"]["conditions"][0]["never_vanishes"] in (True, False)

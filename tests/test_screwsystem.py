@@ -8,7 +8,7 @@ from hypothesis import strategies as st
 
 from screwkit import screw as S
 from screwkit.exceptions import ScrewkitTypeError, ScrewkitValueError
-from screwkit.screwsystem import ScrewSystem
+from screwkit.screwsystem import ScrewSystem, motion_type
 
 from .strategies import rigid_motions, seeds, unit_factors
 
@@ -147,9 +147,7 @@ def test_order_and_reciprocal_orders_are_frame_and_unit_invariant(order, extra, 
         assert system.reciprocal().reciprocal().is_equivalent(system)
 
 
-@given(
-    st.integers(0, 3), st.integers(0, 3), st.integers(0, 2), rigid_motions(), unit_factors, seeds
-)
+@given(st.integers(0, 3), st.integers(0, 3), st.integers(0, 2), rigid_motions(), unit_factors, seeds)
 def test_dimension_formula_for_sum_and_intersection(common, only_a, only_b, motion, unit, seed):
     assume(common + only_a + only_b <= 6)  # more would not be independent in the 6-space
     rng = np.random.default_rng(seed)
@@ -167,9 +165,7 @@ def test_reciprocal_screws_are_reciprocal_to_every_basis_screw(motion, unit, see
     rows = moved(structured_system(np.random.default_rng(seed), 3, 1), motion, unit)
     system = ScrewSystem.span(rows)
     products = S.reciprocal_product(rows[:, None, :], system.reciprocal().basis[None, :, :])
-    scale = np.linalg.norm(rows, axis=1)[:, None] * np.linalg.norm(
-        system.reciprocal().basis, axis=1
-    )
+    scale = np.linalg.norm(rows, axis=1)[:, None] * np.linalg.norm(system.reciprocal().basis, axis=1)
     assert np.all(np.abs(products) <= 1e-9 * scale)
 
 
@@ -213,16 +209,12 @@ def test_error_wrong_operand():
 
 
 def test_error_pitch_range_of_couples():
-    with pytest.raises(
-        ScrewkitValueError, match="Expected a system holding a screw of finite pitch"
-    ):
+    with pytest.raises(ScrewkitValueError, match="Expected a system holding a screw of finite pitch"):
         ScrewSystem.span([S.couple([0, 0, 1])]).pitch_range()
 
 
 def test_error_bad_rtol():
-    with pytest.raises(
-        ScrewkitValueError, match=r"Expected `rtol` to be a number in \[0, 1\), got 2"
-    ):
+    with pytest.raises(ScrewkitValueError, match=r"Expected `rtol` to be a number in \[0, 1\), got 2"):
         ScrewSystem.span([S.couple([0, 0, 1])], rtol=2)
 
 
@@ -231,3 +223,126 @@ def test_error_bad_screws_shape():
         ScrewkitValueError, match=r"Expected `screws` to have shape \(\.\.\., 6\), got \(3,\)"
     ):
         ScrewSystem.span([1.0, 2.0, 3.0])
+
+
+# --- readable bases and motion types (issue 9 item 6) -----------------------------------------
+
+
+def _independent_pitch(row):
+    """Pitch numerator over direction norm: s·s0 / s·s (screw.py conventions), by hand."""
+    return float(row[:3] @ row[3:] / (row[:3] @ row[:3]))
+
+
+def test_readable_basis_of_three_skew_lines_reciprocal_is_three_transversal_lines():
+    # constraint lines: the x axis, a line along y through (0, 0, 1), a line along z through (1, 2, 0)
+    constraints = [S.line([1, 0, 0], [0, 0, 0]), S.line([0, 1, 0], [0, 0, 1]), S.line([0, 0, 1], [1, 2, 0])]
+    twists = ScrewSystem.span(constraints).reciprocal()
+    assert twists.order == 3
+    readable = twists.readable_basis()
+    assert readable.shape == (3, 6)
+    assert np.linalg.matrix_rank(readable) == 3 and twists.is_equivalent(ScrewSystem.span(readable))
+    for row in readable:
+        assert np.linalg.norm(row[:3]) == pytest.approx(1.0)
+        assert abs(_independent_pitch(row)) < 1e-9  # a rotation about a line
+        for line in constraints:  # meets (or is parallel to) each constraint line: mutual moment 0
+            assert abs(row[:3] @ line[3:] + row[3:] @ line[:3]) < 1e-9
+    # by hand: the line through (2, 0, 0) [on the x axis] and (1, 2, 1/2) [on the z line] passes
+    # through (0, 4, 1) [on the y line], so it meets all three: a rotation the system must allow
+    transversal = S.line([-1, 2, 0.5], [2, 0, 0])
+    assert twists.contains(S.Screw(transversal))
+    # the old basis paired generators once and reported a screw of pitch ≠ 0; every row is a line now
+    assert all(abs(_independent_pitch(row)) < 1e-9 for row in readable)
+
+
+def test_readable_basis_puts_concurrent_lines_through_their_point_along_the_axes():
+    centre = np.array([0.3, -1.2, 2.0])
+    mixed = [
+        S.revolute_twist([1, 1, 0], centre),
+        S.revolute_twist([0, 1, 1], centre),
+        S.revolute_twist([1, 2, 3], centre),
+    ]
+    readable = ScrewSystem.span(mixed).readable_basis()
+    for row, axis in zip(readable, np.eye(3), strict=True):
+        np.testing.assert_allclose(row, np.concatenate([axis, np.cross(centre, axis)]), atol=1e-12)
+
+
+def test_readable_basis_gives_translations_along_xyz_and_the_rotation_axis_near_a_point():
+    # a Schoenflies system whose rotation generator passes 4.9 m away (the issue's 4-PRRU report)
+    generators = [
+        S.prismatic_twist([1, 1, 0]) + S.revolute_twist([0, 0, 1], [4.9, 0, 0]),
+        S.prismatic_twist([0, 1, 1]),
+        S.prismatic_twist([1, 0, 1]),
+        S.prismatic_twist([1, 1, 0]),
+    ]
+    system = ScrewSystem.span(generators)
+    near = np.array([0.2, 0.1, -0.5])
+    readable = system.readable_basis(near=near)
+    np.testing.assert_allclose(readable[:3], np.hstack([np.zeros((3, 3)), np.eye(3)]), atol=1e-12)
+    np.testing.assert_allclose(
+        readable[3], np.concatenate([[0, 0, 1], np.cross(near, [0, 0, 1])]), atol=1e-12
+    )
+    assert system.is_equivalent(ScrewSystem.span(readable))
+
+
+def test_readable_basis_is_a_basis_of_the_same_system_on_random_systems(rng):
+    for order in range(1, 6):
+        for _ in range(5):
+            system = ScrewSystem.span(rng.normal(size=(order, 6)))
+            readable = system.readable_basis(near=rng.normal(size=3))
+            assert readable.shape == (order, 6)
+            assert system.is_equivalent(ScrewSystem.span(readable))
+
+
+@pytest.mark.parametrize(
+    ("generators", "expected"),
+    [
+        ([S.prismatic_twist(e) for e in np.eye(3)], "3T"),
+        ([*(S.prismatic_twist(e) for e in np.eye(3)), S.revolute_twist([0, 0, 1], [1, 0, 0])], "3T1R"),
+        # 3-RPS-like: rotations about x and y through the origin and a translation along z
+        (
+            [
+                S.revolute_twist([1, 0, 0], [0, 0, 0]),
+                S.revolute_twist([0, 1, 0], [0, 0, 0]),
+                S.prismatic_twist([0, 0, 1]),
+            ],
+            "2R1T",
+        ),
+        ([S.revolute_twist(e, [1, 2, 3]) for e in np.eye(3)], "3R"),
+        (np.eye(6), "3T3R"),
+        ([S.helical_twist([0, 0, 1], [0, 0, 0], 0.5)], "1R"),
+    ],
+)
+def test_motion_type_known_values(generators, expected):
+    assert motion_type(np.array(generators)) == expected
+    assert motion_type(ScrewSystem.span(generators)) == expected
+
+
+def test_motion_type_is_batched_and_symbolic():
+    planar = np.array([S.revolute_twist([0, 0, 1], [0, 0, 0]), S.revolute_twist([0, 0, 1], [1, 0, 0])])
+    spatial = np.array([S.revolute_twist([0, 0, 1], [0, 0, 0]), S.revolute_twist([1, 0, 0], [0, 0, 0])])
+    assert motion_type(np.stack([planar, spatial])).tolist() == ["1T1R", "2R"]
+    a = sympy.Symbol("a")
+    symbolic = np.array([[0, 0, 1, 0, 0, 0], [0, 0, 1, 0, -a, 0]], dtype=object)
+    assert motion_type(symbolic) == "1T1R"  # generic: a ≠ 0
+    assert motion_type(ScrewSystem.zero()) == "0"
+
+
+def test_motion_type_is_invariant_under_rigid_motions_and_units(rng):
+    systems = [
+        [*(S.prismatic_twist(e) for e in np.eye(3)), S.revolute_twist([0, 0, 1], [1, 0, 0])],
+        [
+            S.revolute_twist([1, 0, 0], [0, 0, 0]),
+            S.revolute_twist([0, 1, 0], [0, 0, 0]),
+            S.prismatic_twist([0, 0, 1]),
+        ],
+        [S.revolute_twist([0, 0, 1], [0, 0, 0]), S.revolute_twist([0, 0, 1], [1, 0, 0])],
+    ]
+    for generators in systems:
+        rows = np.array(generators)
+        expected = motion_type(rows)
+        for _ in range(5):
+            rotation, _ = np.linalg.qr(rng.normal(size=(3, 3)))
+            rotation *= np.sign(np.linalg.det(rotation))  # a proper rotation
+            moved = S.transform(rows, rotation, rng.normal(size=3) * 10)
+            scaled = moved * np.r_[np.ones(3), np.full(3, 1000.0)]  # metres to millimetres
+            assert motion_type(moved) == expected and motion_type(scaled) == expected

@@ -515,3 +515,16 @@ def test_angles_are_radians_by_default_like_the_rest_of_the_api():
     in_radians = W.grid_map(H4, "det_A", x=("z", -900, -600, 3), y=("phi", -np.pi / 6, np.pi / 6, 3))
     np.testing.assert_allclose(in_radians.values, in_degrees.values, rtol=1e-12)
     np.testing.assert_allclose(in_radians.y_values, np.radians(in_degrees.y_values), rtol=1e-15)
+
+
+@pytest.mark.parametrize("call", [
+    lambda g: W.grid_map(g, "verdict"),
+    lambda g: W.check_path(g, {}, {}),
+    lambda g: W.evaluate(g, [[0, 0, 0, 0]], "verdict"),
+    lambda g: W.loci(g, x=("z", -900, -600, 3), y=("phi", -0.5, 0.5, 3)),
+])
+def test_a_twist_graph_is_refused_with_a_pointer_to_analyze(call):
+    graph = H4.twist_graph()
+    with pytest.raises(sk.ScrewkitTypeError, match=r"Expected `mechanism` to be a catalog Mechanism .* got "
+                                                   r"MultiDiGraph \(a twist graph is one configuration"):
+        call(graph)

@@ -1,0 +1,210 @@
+"""Generic (symbolic) analysis of families of mechanisms (screwkit.generic, screwkit._symbolic).
+
+Expected values come from the mechanisms' known motion types (Delta-like 3-RUU: three
+translations, Clavel 1988 / Tsai 1996; H4: Schoenflies 3T1R, paper 002 §4, paper 004 §1) and from
+the numeric core at substituted values (parity), never from the generic code itself.
+"""
+
+import numpy as np
+import pytest
+import sympy
+
+from screwkit import _symbolic as Y
+from screwkit.exceptions import ScrewkitTypeError
+from screwkit.generic import GenericAnalysis, generic_analysis
+from screwkit.joints import revolute, spherical
+from screwkit.screwsystem import ScrewSystem
+from screwkit.singularity import classify
+from screwkit.twistgraph import twist_graph
+from screwkit.wrenches import WrenchAnalysis, wrench_analysis
+
+
+def point(name, values=None):
+    symbols = sympy.symbols(f"{name}x {name}y {name}z")
+    return symbols if values is None else tuple(values[s] for s in symbols)
+
+
+def tilted(i, values=None):
+    """The direction of limb i's second U axis: fixed for limbs 1, 2; ``(cos θ_3, sin θ_3, 1)``."""
+    if i != 3:
+        return (0, 0, 1)
+    theta = sympy.Symbol(f"theta{i}")
+    if values is not None:
+        return (np.cos(values[theta]), np.sin(values[theta]), 1.0)
+    return (sympy.cos(theta), sympy.sin(theta), 1)
+
+
+def delta_3ruu(values=None):
+    """Three R-U-U limbs: actuated R about u_i, then U (u_i, v_i) at b_i and U (v_i, u_i) at c_i.
+    The U joints' positions and the angle θ_3 of v_3 are symbols; the u_i and the actuated joints'
+    positions are fixed."""
+    axes = [(1, 0, 0), (0, 1, 0), (1, 0, 0)]  # unit: numeric axes are normalised
+    joints = []
+    for i, u in enumerate(axes, start=1):
+        a = (0, 2 * i, -i)
+        b, c = (point(f"{name}{i}", values) for name in "bc")
+        v = tilted(i, values)
+        joints += [
+            ("base", f"arm{i}", revolute(f"A{i}", u, a, actuated=True)),
+            (f"arm{i}", f"k{i}", revolute(f"B{i}u", u, b)),
+            (f"k{i}", f"rod{i}", revolute(f"B{i}v", v, b)),
+            (f"rod{i}", f"l{i}", revolute(f"C{i}v", v, c)),
+            (f"l{i}", "platform", revolute(f"C{i}u", u, c)),
+        ]
+    return twist_graph("base", "platform", joints, dof=3)
+
+
+def four_limb_smg(values=None):
+    """An H4-like family (paper 002 Fig. 2): four R-(4S) limbs on two sub-platforms joined to the end
+    effector by revolute joints about z. Symbols: every joint position (a_i, elbow m_i, rods of
+    length l_i along the fixed direction d_i, short sides along u_i), the sub-platform joints'
+    points; directions are fixed numbers."""
+    us = [(1, 0, 0), (0, 1, 0), (0, 1, 0), (1, 0, 0)]
+    ds = [(1, 2, -5), (-2, 1, -4), (3, -1, -5), (-1, -3, -6)]
+    joints = []
+    for i, (u, d, sub) in enumerate(zip(us, ds, ("b_I", "b_II", "b_II", "b_I"), strict=True), start=1):
+        a, m = point(f"a{i}", values), point(f"m{i}", values)
+        side, rod = sympy.symbols(f"s{i} l{i}")
+        if values is not None:
+            side, rod = values[side], values[rod]
+        n = [mj + side * uj for mj, uj in zip(m, u, strict=True)]
+        p = [mj + rod * dj for mj, dj in zip(m, d, strict=True)]
+        q = [nj + rod * dj for nj, dj in zip(n, d, strict=True)]
+        joints += [
+            ("base", f"arm{i}", revolute(f"A{i}", u, a, actuated=True)),
+            (f"arm{i}", f"rod{i}a", spherical(f"S{i}m", m)),
+            (f"rod{i}a", sub, spherical(f"S{i}p", p)),
+            (f"arm{i}", f"rod{i}b", spherical(f"S{i}n", n)),
+            (f"rod{i}b", sub, spherical(f"S{i}q", q)),
+        ]
+    joints += [
+        ("b_I", "ee", revolute("R_I", (0, 0, 1), point("r1", values))),
+        ("b_II", "ee", revolute("R_II", (0, 0, 1), point("r2", values))),
+    ]
+    return twist_graph("base", "ee", joints, dof=4)
+
+
+def numeric_values(rng):
+    """Random values for every symbol the builders use (some never reach a screw)."""
+    names = [f"{n}{i}{c}" for n in "abcm" for i in (1, 2, 3, 4) for c in "xyz"] + [
+        f"theta{i}" for i in (1, 2, 3)
+    ]
+    names += [f"r{i}{c}" for i in (1, 2) for c in "xyz"] + [f"{n}{i}" for n in "sl" for i in (1, 2, 3, 4)]
+    return {sympy.Symbol(name): float(rng.uniform(-2, 2)) for name in names}
+
+
+@pytest.fixture(scope="module")
+def delta():
+    return generic_analysis(delta_3ruu())
+
+
+@pytest.fixture(scope="module")
+def smg():
+    return generic_analysis(four_limb_smg())
+
+
+def test_delta_like_family_translates(delta):
+    assert (delta.mobility, delta.motion_type) == (3, "3T")
+    assert delta.constraint_order == 3 and delta.global_order == 6
+    # each limb constrains the couple along u_i × v_i (a hand derivation: both U joints share u_i, v_i)
+    for limb, u in zip(delta.limbs, [(1, 0, 0), (0, 1, 0), (1, 0, 0)], strict=True):
+        assert limb.constraint_wrenches.order == 1
+        row = limb.constraint_wrenches.basis[0]
+        assert all(sympy.simplify(x) == 0 for x in row[:3])  # a couple
+        v = tilted(int(limb.actuated_joint[1]))
+        expected = np.cross(np.array(u, dtype=object), np.array(v, dtype=object))
+        ratio = [
+            sympy.simplify(row[3 + k] * expected[j] - row[3 + j] * expected[k])
+            for j in range(3)
+            for k in range(3)
+        ]
+        assert all(r == 0 for r in ratio)
+
+
+def test_four_limb_smg_family_is_schoenflies(smg):
+    assert (smg.mobility, smg.motion_type) == (4, "3T1R")
+    assert smg.constraint_order == 2 and smg.global_order == 6 and smg.verdict == "generic: regular"
+    assert smg.exact
+    assert all(leg.constraint_wrenches.order == 1 for leg in smg.compound_legs)
+
+
+def test_generic_results_match_the_numeric_core_at_substituted_values(delta, rng):
+    values = numeric_values(rng)
+    numeric = wrench_analysis(delta_3ruu(values))  # the same builder fed numbers
+    assert isinstance(numeric, WrenchAnalysis)
+
+    def at(system):
+        rows = np.array([[float(sympy.sympify(x).subs(values)) for x in row] for row in system.basis])
+        return ScrewSystem.span(rows, length_scale=float(numeric.length_scale))
+
+    assert at(delta.platform_twists).is_equivalent(numeric.platform_twists)
+    assert at(delta.constraint_wrenches).is_equivalent(numeric.constraint_wrenches)
+    for generic_limb, limb in zip(delta.limbs, numeric.limbs, strict=True):
+        assert at(generic_limb.constraint_wrenches).is_equivalent(limb.constraint_wrenches)
+        assert at(generic_limb.passive_wrenches).is_equivalent(limb.passive_wrenches)
+
+
+def planar_2r(a):
+    """Two parallel hinges a apart: a planar 2R chain (one rotation, one translation along y)."""
+    return twist_graph(
+        "B",
+        "E",
+        [
+            ("B", "arm", revolute("A", [0, 0, 1], [0, 0, 0], actuated=True)),
+            ("arm", "E", revolute("R", [0, 0, 1], [a, 0, 0])),
+        ],
+        dof=2,
+    )
+
+
+def test_wrench_analysis_and_classify_dispatch_symbolic_graphs():
+    a = sympy.Symbol("a")
+    for result in (wrench_analysis(planar_2r(a)), classify(planar_2r(a))):
+        assert isinstance(result, GenericAnalysis)
+        assert (result.mobility, result.motion_type) == (2, "1T1R")
+    assert isinstance(wrench_analysis(planar_2r(1.0)), WrenchAnalysis)  # numbers: the numeric core
+    generic = classify(planar_2r(a))
+    assert "no pose verdict" in str(generic) and "1T1R" in str(generic)
+    data = generic.to_dict()
+    assert data["generic"] is True and data["mobility"] == 2 and data["symbols"] == ["a"]
+    # one actuator for two freedoms: the global system is generically of order 5 (4 constraints + 1)
+    assert data["global_order"] == 5 and generic.verdict.startswith("generic: actuation")
+
+
+def test_generic_rank_is_exact_at_a_random_point():
+    x, y = sympy.symbols("x y")
+    rows = np.array(
+        [[x, y, 0], [x**2, x * y, 0], [0, 0, sympy.sin(x) ** 2 + sympy.cos(x) ** 2 - 1]], dtype=object
+    )
+    assert Y.generic_rank(rows) == 1  # row 2 = x · row 1; the trigonometric zero is exact
+    assert Y.generic_point(rows).exact
+
+
+def test_error_loop_closure_graph_is_refused_symbolically():
+    a = sympy.Symbol("a")
+    # a Wheatstone bridge of hinges does not reduce to series and parallel parts
+    edges = [("B", "L1", "R1"), ("B", "L2", "R2"), ("L1", "L2", "R3"), ("L1", "E", "R4"), ("L2", "E", "R5")]
+    joints = [
+        (u, v, revolute(k, [0, 0, 1], [a * i, i, 0], actuated=i == 0)) for i, (u, v, k) in enumerate(edges)
+    ]
+    with pytest.raises(ScrewkitTypeError, match="reduces to series and parallel parts"):
+        generic_analysis(twist_graph("B", "E", joints, dof=1))
+
+
+def test_four_limb_family_matches_the_numeric_core_at_substituted_values(smg, rng):
+    values = numeric_values(rng)
+    numeric = wrench_analysis(four_limb_smg(values))  # the same builder fed numbers
+    assert isinstance(numeric, WrenchAnalysis)
+
+    def at(system):
+        rows = np.array([[float(sympy.sympify(x).subs(values)) for x in row] for row in system.basis])
+        return ScrewSystem.span(rows, length_scale=float(numeric.length_scale))
+
+    assert at(smg.platform_twists).is_equivalent(numeric.platform_twists)
+    assert at(smg.constraint_wrenches).is_equivalent(numeric.constraint_wrenches)
+    assert int(numeric.global_order) == smg.global_order
+    for generic_leg, leg in zip(smg.compound_legs, numeric.compound_legs, strict=True):
+        assert generic_leg.joints == leg.joints
+        assert at(generic_leg.constraint_wrenches).is_equivalent(leg.constraint_wrenches)
+    for generic_limb, limb in zip(smg.limbs, numeric.limbs, strict=True):
+        assert at(generic_limb.passive_wrenches).is_equivalent(limb.passive_wrenches)
