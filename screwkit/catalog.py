@@ -765,15 +765,7 @@ def mechanism_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>"
 
 
 # snapshots ---------------------------------------------------------------------------------------
-_JOINT_FIELDS: dict[str, tuple[str, ...]] = {
-    "R": ("axis", "point"),
-    "P": ("direction",),
-    "H": ("axis", "point", "pitch"),
-    "C": ("axis", "point"),
-    "U": ("first_axis", "second_axis", "center"),
-    "S": ("center",),
-    "Pa": ("hinge_axis", "rod_direction"),
-}
+_JOINT_FIELDS = J.JOINT_FIELDS
 _COMMON_FIELDS = {"name", "type", "parent", "child", "actuated"}
 
 

@@ -137,6 +137,12 @@ def get_parser() -> argparse.ArgumentParser:
     analyze_parser.add_argument(
         "--no-superbracket", action="store_true", help="skip the superbracket expansion (faster)"
     )
+    analyze_parser.add_argument(
+        "--progress",
+        action=argparse.BooleanOptionalAction,
+        default=None,
+        help="name each stage on stderr as it starts (default: when stderr is a terminal)",
+    )
     graph = commands.add_parser(
         "graph",
         help="export the twist graph (or its equivalent graph) as DOT, JSON or a snapshot TOML file",
@@ -362,7 +368,14 @@ def run_analyze(args: argparse.Namespace) -> int:
             "screwkit analyze: error: --latex prints the superbracket's conditions; drop --no-superbracket"
         )
     target, pose = _target_and_pose(args)
-    report = analyze(target, pose, rtol=args.rtol, superbracket=not args.no_superbracket)
+    shown = sys.stderr.isatty() if args.progress is None else args.progress
+    report = analyze(
+        target,
+        pose,
+        rtol=args.rtol,
+        superbracket=not args.no_superbracket,
+        progress=_stage_printer(args.command) if shown else None,
+    )
     if args.latex:
         _print(_latex(report))
     else:
@@ -406,6 +419,18 @@ def run_graph(args: argparse.Namespace) -> int:
     except OSError as err:
         raise _UsageError(f"screwkit graph: error: --out {args.out}: cannot write: {err.strerror}") from err
     return 0
+
+
+def _stage_printer(command: str) -> Any:
+    """A progress callback that names each stage on stderr with the time since the start."""
+    import time
+
+    start = time.perf_counter()
+
+    def show(stage: str) -> None:
+        print(f"screwkit {command}: {time.perf_counter() - start:5.1f} s  {stage} ...", file=sys.stderr)
+
+    return show
 
 
 def _toml_kind(path: str) -> Any:

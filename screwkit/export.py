@@ -50,23 +50,12 @@ import numpy as np
 
 from . import _backend as B
 from .exceptions import ScrewkitTypeError, ScrewkitValueError
-from .joints import Joint
+from .joints import JOINT_FIELDS, Joint
 from .twistgraph import check_twist_graph, to_data
 from .wrenches import LINE_RTOL
 
 __all__ = ["graph_dot", "graph_json", "save_snapshot", "snapshot_text"]
 
-#: The fields a snapshot joint of each type needs, in file order (mirrors ``catalog._JOINT_FIELDS``,
-#: which reads them; ``tests/test_export.py`` checks the two agree).
-SNAPSHOT_FIELDS: dict[str, tuple[str, ...]] = {
-    "R": ("axis", "point"),
-    "P": ("direction",),
-    "H": ("axis", "point", "pitch"),
-    "C": ("axis", "point"),
-    "U": ("first_axis", "second_axis", "center"),
-    "S": ("center",),
-    "Pa": ("hinge_axis", "rod_direction"),
-}
 
 
 def _toml_string(text: str) -> str:
@@ -143,7 +132,7 @@ def _screw_geometry(joint: Joint) -> tuple[str, dict[str, Any]]:
 
 
 def _joint_fields(joint: Joint) -> tuple[str, dict[str, Any]]:
-    fields = SNAPSHOT_FIELDS.get(joint.type)
+    fields = JOINT_FIELDS.get(joint.type)
     if fields is not None and all(key in joint.geometry for key in fields):
         return joint.type, {key: joint.geometry[key] for key in fields}
     if B.is_symbolic(joint.screws):

@@ -41,6 +41,7 @@ from . import screw as S
 from .exceptions import ScrewkitTypeError, ScrewkitValueError
 
 __all__ = [
+    "JOINT_FIELDS",
     "JOINT_TYPES",
     "PARALLEL_RTOL",
     "Joint",
@@ -76,6 +77,20 @@ Array = np.ndarray
 #: Relative tolerance below which two axes count as parallel when a joint is built (a U joint
 #: needs non-parallel axes, a parallelogram rods not parallel to its hinges): the sine of the angle.
 PARALLEL_RTOL = 1e-12
+
+
+#: The data each joint type is built from (its constructor's arguments), in file order: the fields
+#: of a ``[[joints]]`` table of a snapshot file (read by :mod:`screwkit.catalog`, written by
+#: :mod:`screwkit.export`); kept in ``Joint.geometry`` by the constructors.
+JOINT_FIELDS: dict[str, tuple[str, ...]] = {
+    "R": ("axis", "point"),
+    "P": ("direction",),
+    "H": ("axis", "point", "pitch"),
+    "C": ("axis", "point"),
+    "U": ("first_axis", "second_axis", "center"),
+    "S": ("center",),
+    "Pa": ("hinge_axis", "rod_direction"),
+}
 
 
 @dataclass(frozen=True, slots=True, eq=False)

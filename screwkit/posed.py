@@ -294,7 +294,7 @@ class Pose:
             lambda stream: generic_samples(mechanism, diagram.points, stream, SAMPLES, rtol)
         )
 
-    def report(self, *, superbracket: bool = True) -> Any:
+    def report(self, *, superbracket: bool = True, progress: Any = None) -> Any:
         """The whole analysis report at this pose (:class:`screwkit.report.AnalysisReport`).
 
         Examples
@@ -305,7 +305,7 @@ class Pose:
         """
         from .report import pose_report
 
-        return pose_report(self, superbracket=superbracket)
+        return pose_report(self, superbracket=superbracket, progress=progress)
 
 
 def _batch_analyses(

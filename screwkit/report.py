@@ -33,6 +33,7 @@ from __future__ import annotations
 import dataclasses
 import math
 from collections import Counter
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -406,7 +407,12 @@ def _vector(values: list[float]) -> str:
 
 
 def analyze(
-    target: Any, pose: Any = None, *, rtol: float | None = None, superbracket: bool = True
+    target: Any,
+    pose: Any = None,
+    *,
+    rtol: float | None = None,
+    superbracket: bool = True,
+    progress: Callable[[str], None] | None = None,
 ) -> AnalysisReport:
     """Analyse a mechanism at a pose: the one composer the CLI calls.
 
@@ -422,6 +428,9 @@ def analyze(
         Relative tolerance of every rank decision (default 1e-9).
     superbracket : bool, default True
         Also expand and factor the superbracket (skip for speed).
+    progress : callable, optional
+        Called with the name of each stage as it starts (:data:`STAGES`); the command line prints
+        them on a terminal, since the superbracket of a general mechanism may take seconds.
 
     Returns
     -------
@@ -440,8 +449,12 @@ def analyze(
     tolerance = B.DEFAULT_RTOL if rtol is None else checked_rtol(rtol)
     if not isinstance(superbracket, bool | np.bool_):
         raise ScrewkitTypeError(f"Expected `superbracket` to be True or False, got {superbracket!r}.")
+    if progress is not None and not callable(progress):
+        raise ScrewkitTypeError(f"Expected `progress` to be callable, got {type(progress).__name__}.")
+    step = progress or (lambda stage: None)
+    step(STAGES[0])
     if isinstance(target, nx.MultiDiGraph):
-        return _graph_report(target, "<graph>", pose, tolerance, superbracket, "a twist graph")
+        return _graph_report(target, "<graph>", pose, tolerance, superbracket, "a twist graph", step)
     if not isinstance(target, str | Path | Mechanism):
         raise ScrewkitTypeError(
             "Expected `target` to be a catalog name, a .toml path, a Mechanism or a twist graph "
@@ -449,13 +462,27 @@ def analyze(
         )
     text = str(target) if not isinstance(target, Mechanism) else ""
     if text.endswith(".toml") and file_kind(load_toml(text)) == "snapshot":
-        return _graph_report(load_snapshot(text), text, pose, tolerance, superbracket, "a snapshot")
+        return _graph_report(load_snapshot(text), text, pose, tolerance, superbracket, "a snapshot", step)
     mechanism = target if isinstance(target, Mechanism) else load_mechanism(target)
-    return mechanism.at(pose, rtol=tolerance)[0].report(superbracket=superbracket)
+    return pose_report(mechanism.at(pose, rtol=tolerance)[0], superbracket=superbracket, progress=step)
+
+
+#: The stages :func:`analyze` reports to its ``progress`` callback, in order.
+STAGES = (
+    "wrench systems",
+    "wrench diagram (chosen on generic configurations)",
+    "superbracket (expansion, factoring, conditions)",
+)
 
 
 def _graph_report(
-    graph: nx.MultiDiGraph, source: str, pose: Any, rtol: float, superbracket: bool, what: str
+    graph: nx.MultiDiGraph,
+    source: str,
+    pose: Any,
+    rtol: float,
+    superbracket: bool,
+    what: str,
+    progress: Callable[[str], None],
 ) -> AnalysisReport:
     if pose is not None:
         raise ScrewkitValueError(f"{source}: {what} is one configuration; expected no pose, got {pose!r}.")
@@ -472,6 +499,7 @@ def _graph_report(
         assert isinstance(analysis, WrenchAnalysis)  # the same numeric graph
     from .diagram import graph_diagram
 
+    progress(STAGES[1])
     diagram, sampler = graph_diagram(analysis)
     return _finish(
         graph.graph.get("name", source),
@@ -485,10 +513,13 @@ def _graph_report(
         sampler if superbracket else None,
         f"structural zeros confirmed on generic configurations of {what}, reached by moving the mechanism "
         "and closing its loops again (screwkit.motion); each stage equals the 6×6 determinant on fresh ones",
+        progress=progress,
     )
 
 
-def pose_report(pose: Any, *, superbracket: bool = True) -> AnalysisReport:
+def pose_report(
+    pose: Any, *, superbracket: bool = True, progress: Callable[[str], None] | None = None
+) -> AnalysisReport:
     """The report of one pose of a posed mechanism (:meth:`screwkit.posed.Pose.report`).
 
     Examples
@@ -498,6 +529,9 @@ def pose_report(pose: Any, *, superbracket: bool = True) -> AnalysisReport:
     'regular'
     """
     mechanism = pose.mechanism
+    step = progress or (lambda stage: None)
+    pose.analysis  # noqa: B018 (the wrench systems, computed first so progress names the stages in order)
+    step(STAGES[1])
     diagram, sampler = pose.diagram_and_sampler()
     jacobians: WrenchJacobians | None = None
     try:
@@ -523,6 +557,7 @@ def pose_report(pose: Any, *, superbracket: bool = True) -> AnalysisReport:
         "each stage equals the 6×6 determinant on fresh poses",
         jacobians,
         jacobians_note,
+        progress=step,
     )
     from .indices import transmission_summary
 
@@ -542,6 +577,8 @@ def _finish(
     note: str,
     jacobians: WrenchJacobians | None = None,
     jacobians_note: str = _SNAPSHOT_JACOBIANS,
+    *,
+    progress: Callable[[str], None],
 ) -> AnalysisReport:
     result = None
     if diagram.degenerate:
@@ -552,6 +589,7 @@ def _finish(
         try:
             from .diagram import superbracket_analysis
 
+            progress(STAGES[2])
             result = superbracket_analysis(diagram, sampler)
         except ScrewkitError as err:
             note = f"not factored: {err}"

@@ -151,3 +151,22 @@ def test_text_report_falls_back_where_stdout_cannot_encode(capsys, monkeypatch):
 def test_a_mistyped_mechanism_name_gets_the_closest_one(capsys):
     assert main(["analyze", "quatro"]) == 2
     assert "unknown mechanism 'quatro' (did you mean 'quattro'?)" in capsys.readouterr().err
+
+
+def test_progress_names_each_stage_in_order(capsys, monkeypatch):
+    from pathlib import Path
+
+    import screwkit as sk
+    from screwkit.report import STAGES
+
+    monkeypatch.chdir(Path(__file__).resolve().parents[1])
+    seen = []
+    analyze("h4", progress=seen.append)
+    assert seen == list(STAGES)
+    assert main(["analyze", "examples/planar_3rpr.toml", "--progress"]) == 0
+    err = capsys.readouterr().err.splitlines()
+    assert [line.split(" s  ", 1)[1] for line in err] == [f"{stage} ..." for stage in STAGES]
+    assert main(["analyze", "h4", "--no-superbracket", "--no-progress"]) == 0
+    assert capsys.readouterr().err == ""
+    with pytest.raises(sk.ScrewkitTypeError, match="Expected `progress` to be callable, got int"):
+        analyze("h4", progress=5)

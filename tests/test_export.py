@@ -9,19 +9,14 @@ import pytest
 import sympy as sp
 
 import screwkit as sk
-from screwkit import catalog
 from screwkit.cli import main
-from screwkit.export import SNAPSHOT_FIELDS, graph_dot, graph_json, save_snapshot, snapshot_text
+from screwkit.export import graph_dot, graph_json, save_snapshot, snapshot_text
 from screwkit.joints import Joint
 from screwkit.twistgraph import from_data
 
 
 def _screws_by_name(graph):
     return {joint.name: (u, v, joint.screws, joint.actuated) for u, v, joint in graph.edges(data="joint")}
-
-
-def test_the_writer_and_the_reader_know_the_same_fields():
-    assert SNAPSHOT_FIELDS == catalog._JOINT_FIELDS
 
 
 @pytest.mark.parametrize("name", sk.list_mechanisms())
