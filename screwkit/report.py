@@ -329,8 +329,6 @@ class AnalysisReport:
                 out.append(f"    {condition.statement}")
                 out.append(f"    vector form: {condition.expression} = 0   (here: {value:.6g})")
         out += ["", "verdict", *("  " + line for line in str(self.verdict).splitlines())]
-        measures = ", ".join(f"{k} {v:.3g}" for k, v in self.verdict.closeness.items())
-        out.append(f"  closeness (0 at a singularity): {measures}")
         if self.pose is not None:
             out += ["", *self._jacobian_lines()]
         if self.transmission is not None:

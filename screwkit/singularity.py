@@ -39,8 +39,9 @@ Examples
 >>> from screwkit.joints import prismatic
 >>> from screwkit.twistgraph import twist_graph
 >>> G = twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))])
->>> print(classify(G))
+>>> print(classify(G))  # doctest: +ELLIPSIS
 regular (dof 1): constraint order 5/5, global order 6/6
+  closeness (0 at a singularity): constraint 1, actuation ...
 """
 
 from __future__ import annotations
@@ -312,6 +313,14 @@ class SingularityReport:
         ]
         if self.gained_dof:
             lines.append(f"  the platform gains {self.gained_dof} DOF (constraints lost)")
+            extra = 6 - int(self.gained_dof) - int(self.global_order)
+            if extra > 0 and self.actuation_assessed:
+                # the label follows Zlatanov-Bonev-Gosselin (actuation needs a nominal W^c); say what
+                # the actuation wrenches lose on top of the constraint singularity
+                lines.append(
+                    f"  the actuation wrenches lose {extra} more order(s) here: {extra} freedom(s) "
+                    "uncontrolled with the actuators locked beyond those the constraints give up"
+                )
         if not self.actuation_assessed:
             lines.append("  no actuated joint: mobility analysis only, actuation not assessed")
         if self.lost_dof:
@@ -324,9 +333,8 @@ class SingularityReport:
             lines.extend(f"    {S.Screw(t)}" for t in self.uncontrolled_twists)
         for item in self.serial:
             lines.append(f"  serial singularity of the limb of {item.actuated_joint!r}")
-        if self.labels:
-            measures = ", ".join(f"{k} {v:.3g}" for k, v in self.closeness.items())
-            lines.append(f"  closeness: {measures}")
+        measures = ", ".join(f"{k} {v:.3g}" for k, v in self.closeness.items())
+        lines.append(f"  closeness (0 at a singularity): {measures}")
         return "\n".join(lines)
 
 

@@ -249,7 +249,7 @@ def test_report_to_dict_is_json_and_str_is_readable():
     assert set(data["closeness"]) == {"constraint", "actuation", "serial"}
     text = str(report)
     assert text.startswith("serial singularity (dof 3): constraint order 4/3, global order 6/6")
-    assert "serial singularity of the limb of 'Ra1'" in text and "closeness:" in text
+    assert "serial singularity of the limb of 'Ra1'" in text and "closeness (0 at a singularity):" in text
     singular = classify(planar_3rpr(PLANAR_BASE, rpr_concurrent_platform()))
     assert "uncontrolled with actuators locked: 1 twist(s)" in str(singular)
     assert len(singular.to_dict()["uncontrolled_twists"]) == 1
@@ -379,3 +379,16 @@ def test_one_pose_of_a_batch_report_has_the_single_pose_views():
         assert batch[i].serial == () == single.serial
         np.testing.assert_array_equal(batch[i].uncontrolled_twists, single.uncontrolled_twists)
         assert [limb.actuated_joint for limb in batch[i].analysis.limbs] == ["A1", "A2", "A3", "A4"]
+
+
+def test_a_delta_with_vertical_rods_says_what_the_actuation_wrenches_lose_too():
+    # by hand: vertical rods make the three actuation forces parallel to z, spanning {force z,
+    # couples x, y}; each leg's constraint couple is normal to its vertical parallelogram plane
+    # (horizontal), so the three span the couples x, y only: W^c has order 2 (nominal 3, one DOF
+    # gained) and W^c + W^a order 3, two below the 5 the lost constraint alone explains
+    from .mechanisms_extra import delta
+
+    # elbow above the platform point: radius 1 - 0.7 = 0.3, height z + 2 (rod 2); |B - A| = 1
+    report = classify(delta([0.0, 0.0, -2.0 - np.sqrt(1 - 0.7**2)]))
+    assert report.labels == ("constraint",) and (report.constraint_order, report.global_order) == (2, 3)
+    assert "the actuation wrenches lose 2 more order(s) here" in str(report)
