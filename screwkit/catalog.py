@@ -226,8 +226,9 @@ class Mechanism:
         >>> posed = load_mechanism("h4").at([[0, 0, -750, 0], [50, 20, -800, 0.3]])
         >>> posed.verdicts.tolist()
         ['regular', 'regular']
-        >>> print(posed[1].singularity)
+        >>> print(posed[1].singularity)  # doctest: +ELLIPSIS
         regular (dof 4): constraint order 2/2, global order 6/6
+          closeness (0 at a singularity): constraint 0.968, actuation ...
         """
         from .posed import PosedMechanism
 
