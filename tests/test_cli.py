@@ -108,7 +108,7 @@ def test_no_command_prints_help(capsys):
         (["analyze", "h4", "--pose", "1", "2", "3"], 2, "--pose expects 4 finite numbers (X Y Z PHI), got 1.0 2.0 3.0"),
         (["analyze", "h4", "--pose", "0", "0", "x", "0"], 2, "argument --pose: invalid float value: 'x'"),
         (["analyze", "h4", "--pose", "0", "0", "nan", "0"], 2, "--pose expects 4 finite numbers"),
-        (["analyze", "h4", "--pose", "0", "0", "-2000", "0"], 1, "screwkit analyze: error: Pose [0.0, 0.0, -2000.0, 0.0] is out of reach"),
+        (["analyze", "h4", "--pose", "0", "0", "-2000", "17"], 1, "screwkit analyze: error: Pose (x, y, z, phi) = (0, 0, -2000, 0.296706 rad = 17 deg) is out of reach"),
         (["analyze", "missing.toml"], 1, "missing.toml: cannot read the file"),
         (["frobnicate"], 2, "invalid choice: 'frobnicate'"),
         (["analyze", "h4", "--latex", "--no-superbracket"], 2, "--latex prints the superbracket's conditions"),

@@ -651,8 +651,8 @@ def test_invalid_working_mode_type():
 
 def test_unreachable_single_pose_names_limbs():
     # At x = 700 the limbs on the -x side cannot reach (|C_i - A_i| > b + l for limbs 2 and 3).
-    with pytest.raises(UnreachablePoseError, match=r"Pose \[700\.0, 0\.0, -900\.0, 0\.0\] is out "
-                                                   r"of reach of H4 .*: limb\(s\) 2, 3\."):
+    with pytest.raises(UnreachablePoseError, match=r"Pose \(x, y, z, phi\) = \(700, 0, -900, 0 rad = 0 deg\) "
+                                                   r"is out of reach of H4 .*: limb\(s\) 2, 3\."):
         inverse_kinematics(ROBOTS["H4"], [700.0, 0.0, -900.0, 0.0])
 
 

@@ -710,7 +710,7 @@ def inverse_kinematics(
     >>> inverse_kinematics(quattro, [0, 0, -2000, 0])
     Traceback (most recent call last):
     ...
-    screwkit.exceptions.UnreachablePoseError: Pose [0.0, 0.0, -2000.0, 0.0] is out of reach of ...
+    screwkit.exceptions.UnreachablePoseError: Pose (x, y, z, phi) = (0, 0, -2000, 0 rad = 0 deg) is out ...
     """
     _require(params, FourLimbParameters, "params")
     mode = _checked_working_mode(working_mode)
@@ -723,7 +723,9 @@ def inverse_kinematics(
         head = (
             f"{int(unreachable.any(axis=-1).sum())} of {int(np.prod(batch))} poses are"
             if batch
-            else f"Pose {chi.tolist()} is"
+            else "Pose (x, y, z, phi) = ({:g}, {:g}, {:g}, {:g} rad = {:g} deg) is".format(
+                *chi.tolist(), math.degrees(float(chi[-1]))
+            )
         )
         raise UnreachablePoseError(
             f"{head} out of reach of {params.name} (paper 004 limb numbering; Eq. 3 has no real "
