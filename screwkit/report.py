@@ -260,7 +260,7 @@ class AnalysisReport:
 
     def __str__(self) -> str:
         unit = self.length_unit
-        out = [f"{self.name}  ({self.source})"]
+        out = [self.name if self.source == self.name else f"{self.name}  ({self.source})"]
         if self.pose is not None:
             coords = ", ".join(
                 f"{n} = {math.degrees(v):.4g} deg"
@@ -395,8 +395,8 @@ def _line_text(item: dict[str, Any], unit: str) -> str:
             return item["kind"]
         return f"{item['kind']}, moment direction {_vector(item['direction'])}"
     return (
-        f"{item['kind']}, direction {_vector(item['direction'])} through {_vector(item['point'])} {unit}, "
-        f"pitch {item['pitch']:.3g}"
+        f"{item['kind']}, direction {_vector(item['direction'])} through {_vector(item['point'])}"
+        f"{' ' + unit if unit else ''}, pitch {item['pitch']:.3g}"
     )
 
 
