@@ -28,7 +28,7 @@ Commands
 Examples
 --------
 >>> main(["screw", "--revolute", "0", "0", "1", "--point", "1", "0", "0"])
-screw (0, 0, 1; 0, -1, 0)  pitch 0  kind zero pitch
+screw (0, 0, 1; 0, -1, 0)  pitch 0  kind zero pitch  axis through (1, 0, 0) along (0, 0, 1)
 0
 """
 
@@ -290,7 +290,7 @@ def run_screw(args: argparse.Namespace) -> int:
     Examples
     --------
     >>> run_screw(get_parser().parse_args(["screw", "--prismatic", "0", "0", "2"]))
-    screw (0, 0, 0; 0, 0, 2)  pitch inf  kind infinite pitch
+    screw (0, 0, 0; 0, 0, 2)  pitch inf  kind infinite pitch  direction (0, 0, 2)
     0
     """
     if args.revolute is not None:
@@ -308,9 +308,17 @@ def run_screw(args: argparse.Namespace) -> int:
     coords = [_number(v) for v in screw.coords]
     pitch = described["pitch"]
     pitch_text = pitch if isinstance(pitch, str) else _number(pitch)
+    axis = (
+        f"  axis through ({', '.join(_number(v + 0.0) for v in described['point'])}) along "
+        f"({', '.join(_number(v + 0.0) for v in described['direction'])})"
+        if described.get("point") is not None
+        else f"  direction ({', '.join(_number(v + 0.0) for v in described['direction'])})"
+        if described.get("direction") is not None
+        else ""
+    )
     print(
         f"screw ({', '.join(coords[:3])}; {', '.join(coords[3:])})  pitch {pitch_text}  "
-        f"kind {described['kind']}"
+        f"kind {described['kind']}{axis}"
     )
     return 0
 

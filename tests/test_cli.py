@@ -170,3 +170,11 @@ def test_progress_names_each_stage_in_order(capsys, monkeypatch):
     assert capsys.readouterr().err == ""
     with pytest.raises(sk.ScrewkitTypeError, match="Expected `progress` to be callable, got int"):
         analyze("h4", progress=5)
+
+
+def test_screw_text_gives_the_axis(capsys):
+    # by hand: the revolute about z through (1, 2, 0) is (0, 0, 1; p x w) = (0, 0, 1; 2, -1, 0)
+    assert main(["screw", "--revolute", "0", "0", "1", "--point", "1", "2", "0"]) == 0
+    assert capsys.readouterr().out.strip() == (
+        "screw (0, 0, 1; 2, -1, 0)  pitch 0  kind zero pitch  axis through (1, 2, 0) along (0, 0, 1)"
+    )
