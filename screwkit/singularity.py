@@ -326,7 +326,12 @@ class SingularityReport:
         if self.lost_dof:
             lines.append(
                 f"  the platform has {self.lost_dof} DOF fewer than nominal"
-                + (" (a serial singularity: a limb at its reach)" if self.actuation_assessed else "")
+                + (
+                    " (a serial singularity: a limb at its reach; or, if it holds at every configuration, "
+                    "a nominal `dof` above the mechanism's mobility)"
+                    if self.actuation_assessed
+                    else ""
+                )
             )
         if self.uncontrolled_dof and self.actuation_assessed:
             lines.append(f"  uncontrolled with actuators locked: {self.uncontrolled_dof} twist(s)")
