@@ -70,22 +70,29 @@ SWAP.flags.writeable = False
 
 #: ``SCREWKIT_NUMBA=0`` forces the numpy path (read once, here).
 _NUMBA_WANTED = os.environ.get("SCREWKIT_NUMBA", "1").strip().lower() not in {"0", "false", "no", "off"}
-_kernels: ModuleType | None = None
-_resolved = False
+_compiled: dict[str, ModuleType | None] = {}
+
+
+def compiled_kernels(name: str) -> ModuleType | None:
+    """The numba kernel module ``screwkit.<name>``, imported on first use; None for the numpy path.
+
+    One rule for every compiled path, decided once per process and module: numba if it is installed
+    and ``SCREWKIT_NUMBA`` is not ``0`` (a broken numba install falls back to numpy for good).
+    """
+    if name not in _compiled:
+        module = None
+        if _NUMBA_WANTED and importlib.util.find_spec("numba") is not None:
+            try:
+                module = importlib.import_module(f"{__package__}.{name}")
+            except ImportError:  # a broken numba install: the numpy path, for the whole process
+                module = None
+        _compiled[name] = module
+    return _compiled[name]
 
 
 def _numba_kernels() -> ModuleType | None:
-    """The numba kernels, imported on first use; None for the numpy path (decided once)."""
-    global _kernels, _resolved
-    if not _resolved:
-        _resolved = True
-        if _NUMBA_WANTED and importlib.util.find_spec("numba") is not None:
-            try:
-                from . import _frames_numba
-            except ImportError:  # a broken numba install: the numpy path, for the whole process
-                return None
-            _kernels = _frames_numba
-    return _kernels
+    """The rank kernels (:mod:`screwkit._frames_numba`) or None for the numpy path."""
+    return compiled_kernels("_frames_numba")
 
 
 def _import_kernels() -> ModuleType:
@@ -179,7 +186,7 @@ def _span_numba(generators: Array, rtol: float) -> tuple[Array, Array]:
     batch, k = work.shape[:-2], work.shape[-2]
     if k == 0 or 0 in batch:
         return empty(batch)
-    kernels = _kernels or _import_kernels()
+    kernels = _numba_kernels() or _import_kernels()
     rows, order = kernels.span(np.ascontiguousarray(work.reshape(-1, k, 6)), float(rtol))
     return rows.reshape(*batch, 6, 6), order.reshape(batch)
 
@@ -233,7 +240,7 @@ def _complement_numba(rows: Array, order: Array, *, swap: bool = False) -> tuple
     if 0 in batch:
         return np.zeros((*batch, 6, 6)), 6 - order
     flat_order = np.ascontiguousarray(np.broadcast_to(order, batch).reshape(-1), dtype=np.int64)
-    kernels = _kernels or _import_kernels()
+    kernels = _numba_kernels() or _import_kernels()
     out = kernels.complement(np.ascontiguousarray(rows.reshape(-1, 6, 6)), flat_order, swap)
     return out.reshape(*batch, 6, 6), 6 - order
 
@@ -283,7 +290,7 @@ def _residual_numba(vectors: Array, rows: Array) -> Array:
         return np.zeros((*batch, k, 6))
     flat_vectors = np.ascontiguousarray(np.broadcast_to(vectors, (*batch, k, 6)).reshape(-1, k, 6))
     flat_rows = np.ascontiguousarray(np.broadcast_to(rows, (*batch, m, 6)).reshape(-1, m, 6))
-    return (_kernels or _import_kernels()).residual(flat_vectors, flat_rows).reshape(*batch, k, 6)
+    return (_numba_kernels() or _import_kernels()).residual(flat_vectors, flat_rows).reshape(*batch, k, 6)
 
 
 def _residual_numpy(vectors: Array, rows: Array) -> Array:

@@ -73,7 +73,6 @@ Examples
 
 from __future__ import annotations
 
-import importlib.util
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -346,24 +345,10 @@ INDEX_NAMES = ("lti", "input", "output")
 
 _UNREACHABLE = ("raise", "nan")
 _KIND_CODES = {"articulated_z": 0, "articulated_y": 1, "screw_pair": 2}
-_kernels: ModuleType | bool | None = False  # False: not decided yet
-
-
 def _numba_kernels() -> ModuleType | None:
-    """The fused kernel module, or None for the numpy path; decided once per process, by the same
-    rule as the rank kernels (:func:`screwkit._frames.backend`: numba if installed, unless
-    ``SCREWKIT_NUMBA=0``)."""
-    global _kernels
-    if _kernels is False:
-        _kernels = None
-        if F.backend() == "numba" and importlib.util.find_spec("numba") is not None:
-            try:
-                from . import _indices_numba
-            except ImportError:  # a broken numba install: the numpy path for the whole process
-                _kernels = None
-            else:
-                _kernels = _indices_numba
-    return _kernels if isinstance(_kernels, ModuleType) else None
+    """The fused kernel module, or None for the numpy path (:func:`screwkit._frames.compiled_kernels`:
+    the same rule as the rank kernels, decided once per process)."""
+    return F.compiled_kernels("_indices_numba")
 
 
 def backend() -> str:
