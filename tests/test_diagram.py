@@ -433,4 +433,6 @@ def test_a_structural_factor_is_reported_as_never_vanishing():
     text = str(planar)
     assert "never vanishes on this mechanism" in text and text.count("singularity when") == 1
     assert not any(analyze(load_mechanism("h4")).superbracket.constant)
-    assert planar.to_dict()["superbracket"]["conditions"][0]["never_vanishes"] in (True, False)
+    listed = planar.to_dict()["superbracket"]["conditions"]
+    assert [c["never_vanishes"] for c in listed] == list(planar.superbracket.constant)
+    assert [c["factor"] for c in listed if c["never_vanishes"]] == ["[hijg]"]
