@@ -21,7 +21,10 @@ import math
 import numpy as np
 from numba import njit
 
+from .families._two_limb import REACH_ULPS
+
 Array = np.ndarray
+EPS = float(np.finfo(float).eps)
 
 
 @njit(cache=True, error_model="numpy", fastmath=True)
@@ -88,9 +91,16 @@ def transmission(  # pragma: no cover - compiled
             big_k = (d0 * d0 + d1 * d1 + d2 * d2 + lengths_term) * half_inverse_arm
             rho_squared = big_p * big_p + big_q * big_q
             slack = rho_squared - big_k * big_k  # ρ² sin² δ
-            if not (rho_squared > 0.0 and slack >= 0.0):
+            if not rho_squared > 0.0:
                 reach = False
                 break
+            if slack < 1e-12 * rho_squared:  # near the reach: at_reach's rule (families._two_limb)
+                gap = math.sqrt(rho_squared) - abs(big_k)  # ρ (1 - |cos δ|)
+                if abs(gap) <= REACH_ULPS * EPS * abs(big_k * arm + rod * rod) / arm:
+                    slack = 0.0  # at its reach (stretched or folded), not out of it
+                elif gap < 0.0:
+                    reach = False
+                    break
             root = mode[i] * math.sqrt(slack)  # m ρ sin δ
             inverse = 1.0 / rho_squared
             cos_t = (big_p * big_k + big_q * root) * inverse  # cos(ψ - m δ)

@@ -644,6 +644,38 @@ def test_a_stretched_leg_from_its_pose_is_exactly_stretched_and_reads_serial():
     assert smg.at(pose).verdicts.tolist() == ["actuation + serial singularity"]
 
 
+FOUR_LIMB_ROBOTS = ("h4", "quattro", "veloce", "ragnar", "v4")
+
+
+@pytest.mark.parametrize("name", FOUR_LIMB_ROBOTS)
+def test_a_four_limb_leg_stretched_exactly_to_its_reach_is_a_serial_singularity(name):
+    from screwkit.families.four_limb import inverse_kinematics, reachable
+
+    mechanism = load_mechanism(name)
+    params = mechanism.parameters
+    ray = np.array([0.5, -1.0, -0.3, 0.0])
+    low, high = 0.0, 5000.0  # bisection on reachability: the last reachable float along the ray
+    for _ in range(200):
+        middle = (low + high) / 2
+        low, high = (middle, high) if reachable(params, mechanism.default_pose + middle * ray) else (low, middle)
+    poses = mechanism.default_pose + (low - np.arange(8) * np.spacing(low))[:, None] * ray
+    # independent of the IK: Eq. (3), P cos θ + Q sin θ = K, has a double root where |K| = hypot(P, Q);
+    # here the stretched limb's |K|/hypot(P, Q) rounds to 1 + a few ulps (the strict test refused it)
+    config = inverse_kinematics(params, poses)  # no UnreachablePoseError
+    # independent of h_i: the stretched limb's rod is orthogonal to its elbow's velocity u × (B - A)
+    # (Eq. 8 written from the points), so the actuator cannot move the platform along it
+    a, u, b, c = (np.asarray(getattr(config, key)) for key in "aubc")
+    speed = np.cross(u, b - a)
+    along = np.einsum("...k,...k->...", speed, c - b) / (params.arm_length * params.rod_length)
+    assert np.all(np.min(np.abs(along), axis=-1) <= 1e-12)
+    report = mechanism.at(poses).singularities
+    assert report.verdict.tolist() == ["serial singularity"] * 8  # not "regular", not an IK failure
+    assert np.all(report.lost_dof == 1)
+    assert np.all(sk.transmission(mechanism, poses).input <= 1e-6)  # κ = min |cos μ_i| (Eq. 11): 0 there
+    with pytest.raises(UnreachablePoseError, match=rf"out of reach of {mechanism.name}"):
+        mechanism.configuration(mechanism.default_pose + low * (1 + 1e-9) * ray)  # 1e-9 past: out
+
+
 # --- never a hang -----------------------------------------------------------------------------------
 def test_large_factors_are_checked_at_integer_points_not_expanded(monkeypatch):
     # the proofs evaluate at exact integer points (Schwartz-Zippel): no symbolic expansion, which took

@@ -42,6 +42,7 @@ __all__ = [
     "frozen",
     "joint_row",
     "parameters_from_mapping",
+    "within_reach",
     "wrap_angle",
 ]
 
@@ -92,6 +93,19 @@ def at_reach(cosine: np.ndarray, condition: np.ndarray) -> np.ndarray:
     clipped = np.clip(cosine, -1.0, 1.0)
     near = 1.0 - np.abs(clipped) <= REACH_ULPS * np.finfo(float).eps * np.abs(condition)
     return np.where(near, np.sign(clipped), clipped)
+
+
+def within_reach(cosine: np.ndarray, condition: np.ndarray) -> np.ndarray:
+    """Where a limb angle's cosine is a cosine to rounding: ``|c| <= 1``, or beyond by at most the
+    :data:`REACH_ULPS` rounding units that :func:`at_reach` puts back at ``±1`` (a limb stretched
+    exactly to its reach, whose ``c`` rounded to ``1 + 2e-16``, is at its reach, not out of it).
+
+    Examples
+    --------
+    >>> within_reach(np.array([1.0 + 4e-16, -1.0 - 1e-15, 1.0 + 1e-12, 0.5]), np.ones(4))
+    array([ True,  True, False,  True])
+    """
+    return np.abs(cosine) - 1.0 <= REACH_ULPS * np.finfo(float).eps * np.abs(condition)
 
 
 def wrap_angle(angle: np.ndarray) -> np.ndarray:

@@ -123,7 +123,7 @@ from ..exceptions import (
 )
 from ..jacobians import schoenflies_basis
 from ..joints import JointTable
-from ._two_limb import at_reach
+from ._two_limb import at_reach, within_reach
 
 __all__ = [
     "DEFAULT_PARALLELOGRAM_WIDTH_MM",
@@ -733,7 +733,7 @@ def inverse_kinematics(
         )
     psi = np.arctan2(terms.q, terms.p)
     a = params.arm_length
-    delta = np.arccos(at_reach(terms.k / terms.rho, (terms.k * a + params.rod_length**2) / (a * terms.rho)))
+    delta = np.arccos(at_reach(terms.k / terms.rho, terms.condition))
     theta = _wrap(psi - np.array(mode, dtype=float) * delta)
     return _assemble(params, chi, theta, mode, terms.platform)
 
@@ -744,6 +744,7 @@ class _IKTerms(NamedTuple):
     q: np.ndarray  # Q_i = d_i·F_i k
     k: np.ndarray  # K_i = (|d_i|² + b² - l²) / (2b)
     rho: np.ndarray  # hypot(P_i, Q_i)
+    condition: np.ndarray  # relative size of the rounding error of K_i / ρ_i (at_reach)
     reachable: np.ndarray  # (..., 4) bool
 
 
@@ -758,7 +759,13 @@ def _ik_terms(params: FourLimbParameters, chi: np.ndarray) -> _IKTerms:
         2.0 * params.arm_length
     )
     rho = np.hypot(big_p, big_q)
-    return _IKTerms(platform, big_p, big_q, big_k, rho, (np.abs(big_k) <= rho) & (rho > 0.0))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        cosine = big_k / rho
+        condition = (big_k * params.arm_length + params.rod_length**2) / (params.arm_length * rho)
+    # a limb stretched or folded exactly to its reach may round to |K_i| a few ulps above ρ_i: at its
+    # reach (arccos of ±1, a serial singularity), not out of reach (README, "Tolerance policy")
+    reachable = (rho > 0.0) & within_reach(np.where(rho > 0.0, cosine, np.inf), condition)
+    return _IKTerms(platform, big_p, big_q, big_k, rho, condition, reachable)
 
 
 def reachable(params: FourLimbParameters, pose: Any) -> np.ndarray:
