@@ -99,6 +99,8 @@ if TYPE_CHECKING:
 
 __all__ = [
     "LENGTH_UNITS",
+    "MAX_ANGLE_DEGREES",
+    "MAX_ANGLE_RADIANS",
     "MAX_COORDINATE",
     "MAX_FAR_OVER_SPREAD",
     "MAX_FILE_BYTES",
@@ -180,6 +182,7 @@ class Mechanism:
         """
         chosen = self.default_pose if pose is None else pose
         self._check_options(options)
+        self.check_pose_range(pose, "pose")
         return self.family_protocol.inverse_kinematics(self.parameters, chosen, **options)
 
     def _check_options(self, options: Mapping[str, Any]) -> None:
@@ -233,18 +236,50 @@ class Mechanism:
         from .posed import PosedMechanism
 
         self._check_options(options)
-        if poses is not None and not isinstance(poses, str):
-            with np.errstate(all="ignore"):
-                try:
-                    size = np.nanmax(np.abs(np.asarray(poses, dtype=float)), initial=0.0)
-                except (TypeError, ValueError):  # not numeric: PosedMechanism names it
-                    size = 0.0
-            if np.isfinite(size) and size > MAX_COORDINATE:
-                raise ScrewkitValueError(
-                    f"Expected pose coordinates up to {MAX_COORDINATE:g} in size ({self.length_unit}, "
-                    f"radians), got {size:g}."
-                )
+        self.check_pose_range(poses)
         return PosedMechanism.create(self, poses, rtol=rtol, options=options)
+
+    def check_pose_range(self, poses: Any, argument: str = "poses") -> None:
+        """Refuse pose coordinates beyond :data:`MAX_COORDINATE` and angles beyond
+        :data:`MAX_ANGLE_RADIANS` (the radian form of the degrees rule, :data:`MAX_ANGLE_DEGREES`).
+
+        Shapes, types and NaN are left to the callee, which names them; this check only bounds sizes.
+
+        Raises
+        ------
+        ScrewkitValueError
+            Naming the argument, the angle coordinate, the bound and the value.
+
+        Examples
+        --------
+        >>> load_mechanism("h4").check_pose_range([0, 0, -750, 1e5])  # doctest: +ELLIPSIS
+        Traceback (most recent call last):
+        ...
+        screwkit.exceptions.ScrewkitValueError: Expected the angle `phi` of `poses` to be at most 17453.3 rad ...
+        """
+        if poses is None or isinstance(poses, str):
+            return
+        with np.errstate(all="ignore"):
+            try:
+                values = np.abs(np.asarray(poses, dtype=float))
+            except (TypeError, ValueError):  # not numeric: the callee names it
+                return
+        size = np.nanmax(values, initial=0.0)
+        if np.isfinite(size) and size > MAX_COORDINATE:
+            raise ScrewkitValueError(
+                f"Expected pose coordinates up to {MAX_COORDINATE:g} in size ({self.length_unit}, "
+                f"radians), got {size:g}."
+            )
+        if values.ndim == 0 or values.shape[-1] != len(self.pose_names):
+            return
+        for name in self.angle_names:
+            angle = np.nanmax(values[..., self.pose_names.index(name)], initial=0.0)
+            if np.isfinite(angle) and angle > MAX_ANGLE_RADIANS:
+                raise ScrewkitValueError(
+                    f"Expected the angle `{name}` of `{argument}` to be at most {MAX_ANGLE_RADIANS:g} rad "
+                    f"({MAX_ANGLE_DEGREES:g} degrees) in magnitude (beyond it a double no longer holds the "
+                    f"angle to the analysis's precision), got {angle:g} rad."
+                )
 
     def random_poses(self, rng: np.random.Generator, count: int) -> Array:
         """Poses drawn uniformly in the *reachable* part of the operational workspace (radians),
@@ -421,6 +456,8 @@ def _check_keys(table: Mapping[str, Any], known: Any, source: str, where: str) -
 #: other angle. Angles are not reduced modulo 360°: a screw-pair platform (the Veloce, the Ragnar's
 #: φ over ±360°) is in another configuration after a whole turn.
 MAX_ANGLE_DEGREES = 1e6
+#: The same bound for the radians of the Python API (:meth:`Mechanism.check_pose_range`).
+MAX_ANGLE_RADIANS = math.radians(MAX_ANGLE_DEGREES)
 
 
 def degrees_to_radians(value: float) -> float:

@@ -482,6 +482,7 @@ def transmission(
         raise ScrewkitValueError(f"Expected `unreachable` to be one of {_UNREACHABLE}, got {unreachable!r}.")
     mode = _checked_working_mode((-1, -1, -1, -1) if working_mode is None else working_mode)
     chosen = mechanism.default_pose if poses is None else poses
+    mechanism.check_pose_range(chosen)
     chi = B.as_array(chosen, "poses", (4,), symbolic=False).astype(float)
     batch = chi.shape[:-1]
     flat = np.ascontiguousarray(chi.reshape(-1, 4))
@@ -725,8 +726,13 @@ def index_extremes(
     for name, value, least in (("grid", grid, 2), ("refine", refine, 0)):
         if not isinstance(value, int | np.integer) or isinstance(value, bool) or value < least:
             raise ScrewkitValueError(f"Expected `{name}` to be an integer >= {least}, got {value!r}.")
-    if not isinstance(phi, int | float | np.integer | np.floating) or not math.isfinite(phi):
-        raise ScrewkitValueError(f"Expected `phi` to be a finite number (radians), got {phi!r}.")
+    from .catalog import MAX_ANGLE_RADIANS
+
+    if not isinstance(phi, int | float | np.integer | np.floating) or not abs(phi) <= MAX_ANGLE_RADIANS:
+        raise ScrewkitValueError(
+            f"Expected `phi` to be a finite number of at most {MAX_ANGLE_RADIANS:g} in magnitude (radians), "
+            f"got {phi!r}."
+        )
     if region is None:
         box = mechanism.workspace
         region = Region.box(box["x"], box["y"], box["z"])

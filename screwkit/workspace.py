@@ -192,6 +192,7 @@ def _pose(mechanism: Any, pose: Any, what: str, angles: str) -> Array:
         for i, name in enumerate(names):
             if name in pose:
                 out[i] = _finite(pose[name], f"{what}[{name!r}]")
+        _check_angles(mechanism, dict(zip(names, out, strict=True)), what, angles)
         return out
     try:
         array = np.asarray(pose, dtype=float)
@@ -205,7 +206,22 @@ def _pose(mechanism: Any, pose: Any, what: str, angles: str) -> Array:
         )
     if not np.isfinite(array).all():
         raise ScrewkitValueError(f"Expected `{what}` to be finite, got {array.tolist()}.")
+    _check_angles(mechanism, dict(zip(names, array, strict=True)), what, angles)
     return array
+
+
+def _check_angles(mechanism: Any, values: Mapping[str, Any], what: str, angles: str) -> None:
+    """Refuse angles beyond the bound of files and the CLI (``catalog.MAX_ANGLE_DEGREES``, or its
+    radian form), naming the argument and the coordinate."""
+    from .catalog import MAX_ANGLE_DEGREES, MAX_ANGLE_RADIANS
+
+    bound, unit = (MAX_ANGLE_DEGREES, "degrees") if angles == "deg" else (MAX_ANGLE_RADIANS, "rad")
+    for name in mechanism.angle_names:
+        if name in values and np.max(np.abs(values[name])) > bound:
+            raise ScrewkitValueError(
+                f"Expected the angle `{name}` of `{what}` to be at most {bound:g} {unit} in magnitude, "
+                f"got {float(np.max(np.abs(values[name]))):g}."
+            )
 
 
 def _as_dict(mechanism: Any, pose: Array) -> dict[str, float]:
@@ -459,7 +475,7 @@ class _Progress:
 # --------------------------------------------------------------------------------------------------
 
 
-def _axis(mechanism: Any, axis: Any, what: str) -> tuple[str, Array]:
+def _axis(mechanism: Any, axis: Any, what: str, angles: str) -> tuple[str, Array]:
     if not isinstance(axis, Sequence) or isinstance(axis, str) or len(axis) != 4:
         raise ScrewkitValueError(f"Expected `{what}` to be (name, low, high, count), got {axis!r}.")
     name, low, high, count = axis
@@ -472,6 +488,7 @@ def _axis(mechanism: Any, axis: Any, what: str) -> tuple[str, Array]:
         raise ScrewkitValueError(f"Expected `{what}` count to be an integer >= 2, got {count!r}.")
     if not low < high:
         raise ScrewkitValueError(f"Expected `{what}` low < high, got {low:g} and {high:g}.")
+    _check_angles(mechanism, {name: [low, high]}, what, angles)
     return str(name), np.linspace(low, high, int(count))
 
 
@@ -492,8 +509,8 @@ class _Slice:
     def create(cls, mechanism: Any, x: Any, y: Any, fixed: Any, mode: Any, angles: str) -> _Slice:
         _check_mechanism(mechanism)
         _angle_factor(angles)
-        x_name, x_values = _axis(mechanism, x, "x")
-        y_name, y_values = _axis(mechanism, y, "y")
+        x_name, x_values = _axis(mechanism, x, "x", angles)
+        y_name, y_values = _axis(mechanism, y, "y", angles)
         if x_name == y_name:
             raise ScrewkitValueError(
                 f"Expected `x` and `y` over different coordinates, got {x_name!r} twice."
@@ -1209,7 +1226,7 @@ def surfaces(
     ...          angles="deg")
     ()
     """
-    z_name, z_values = _axis(mechanism, z, "z")
+    z_name, z_values = _axis(mechanism, z, "z", angles)
     if fixed is not None and not isinstance(fixed, Mapping):
         raise ScrewkitTypeError(f"Expected `fixed` to be a dict, got {type(fixed).__name__}.")
     given = dict(fixed or {})
