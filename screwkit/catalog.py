@@ -940,12 +940,14 @@ def _check_precision(entries: list[Any], source: str) -> None:
 
 
 def check_dof(graph: nx.MultiDiGraph, *, joint_key: str = "joint") -> None:
-    """Refuse a twist graph whose ``dof`` contradicts its actuators.
+    """Refuse a twist graph whose ``dof`` is below its number of actuators (at load time).
 
-    screwkit analyses non-redundantly actuated mechanisms: with actuated joints, ``dof`` (the nominal
-    mobility of the platform) must equal their number, else every verdict would rest on a wrong
-    nominal order (a false constraint or actuation singularity). A graph with no actuated joint is
-    analysed for its mobility only, and any ``dof`` is its stated mobility.
+    screwkit analyses non-redundantly actuated mechanisms whose nominal ``dof`` is the platform's
+    mobility at generic configurations (:func:`screwkit.motion.resolve_dof`). A ``dof`` below the
+    number of actuated joints contradicts that whatever the mobility, and is refused here without
+    computing it; the rest (``dof`` equal to the mobility, actuators no more than it) is checked when
+    the graph is analysed (:func:`screwkit.motion.settled_dof`). A graph without ``dof`` or without
+    actuated joints passes.
 
     Raises
     ------
@@ -956,10 +958,11 @@ def check_dof(graph: nx.MultiDiGraph, *, joint_key: str = "joint") -> None:
     --------
     >>> from screwkit.twistgraph import twist_graph
     >>> from screwkit.joints import prismatic
-    >>> check_dof(twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))], dof=2))
+    >>> P = [prismatic(f"P{i}", [1, i, 0], actuated=True) for i in range(2)]
+    >>> check_dof(twist_graph("B", "E", [("B", "L", P[0]), ("L", "E", P[1])], dof=1))
     Traceback (most recent call last):
     ...
-    screwkit.exceptions.TwistGraphError: Expected `dof` to equal the number of actuated joints (1: P), got ...
+    screwkit.exceptions.TwistGraphError: Expected `dof` to be at least the number of actuated joints (2: P0, P1), got dof = 1; ...
     """
     dof = graph.graph.get("dof")
     actuated = sorted(
@@ -967,12 +970,11 @@ def check_dof(graph: nx.MultiDiGraph, *, joint_key: str = "joint") -> None:
         for *_, data in graph.edges(data=True)
         if getattr(data[joint_key], "actuated", False)
     )
-    if dof is not None and actuated and dof != len(actuated):
+    if is_dof(dof) and dof < len(actuated):
         raise TwistGraphError(
-            f"Expected `dof` to equal the number of actuated joints ({len(actuated)}: "
-            f"{', '.join(actuated)}), "
-            f"got dof = {dof}; screwkit analyses non-redundantly actuated mechanisms: fix `dof` or the "
-            "`actuated` flags."
+            f"Expected `dof` to be at least the number of actuated joints ({len(actuated)}: "
+            f"{', '.join(actuated)}), got dof = {dof}; screwkit analyses non-redundantly actuated "
+            "mechanisms: fix `dof` (the mechanism's mobility) or the `actuated` flags."
         )
 
 

@@ -49,6 +49,7 @@ from . import _symbolic as Y
 from . import screw as S
 from .exceptions import ScrewkitTypeError, TwistGraphError
 from .joints import JointSpec
+from .motion import resolve_dof
 from .screwsystem import ScrewSystem, motion_type
 from .topology import Topology, topology
 from .twistgraph import check_twist_graph
@@ -336,7 +337,8 @@ def generic_analysis(
     graph : networkx.MultiDiGraph
         A twist graph whose screws may hold sympy expressions (numbers are made exact).
     dof : int, optional
-        Nominal mobility; default: the graph's ``dof``, else the number of actuated joints.
+        Nominal mobility; default: the graph's ``dof``, else the generic mobility, which a stated
+        ``dof`` must equal (:func:`screwkit.motion.resolve_dof`).
     joint_key : str
 
     Returns
@@ -371,13 +373,15 @@ def generic_analysis(
             "analysis, got one that needs loop closure; substitute values for the symbols and use the "
             "numeric core."
         )
-    nominal = dof if dof is not None else graph.graph.get("dof", len(top.limbs))
-    if not B.is_dof(nominal):
-        raise TwistGraphError(f"Expected `dof` to be an integer in 0..6, got {nominal!r}.")
+    stated = dof if dof is not None else graph.graph.get("dof")
+    if stated is not None and not B.is_dof(stated):
+        raise TwistGraphError(f"Expected `dof` to be an integer in 0..6, got {stated!r}.")
     point = Y.generic_point(screws)
     core = _GenericEvaluation(top, screws, point)
     assert top.root is not None
     platform = core.twists(top.root)
+    # the nominal dof is the generic mobility, the actuators no more (screwkit.motion.resolve_dof)
+    nominal = resolve_dof(None if stated is None else int(stated), _system(platform).order, top.actuated)
     constraint = core.wrenches(top.root)
     legs = tuple(
         GenericLeg(

@@ -58,7 +58,14 @@ from .joints import JointTable
 from .twistgraph import graph_frame
 from .wrenches import WrenchAnalysis, analyze_table
 
-__all__ = ["generic_analyses", "generic_configurations"]
+__all__ = [
+    "generic_analyses",
+    "generic_configurations",
+    "generic_mobility",
+    "regular_for",
+    "resolve_dof",
+    "settled_dof",
+]
 
 Array = np.ndarray
 
@@ -379,3 +386,142 @@ def generic_analyses(
         object.__setattr__(one, "graph", moved)
         out.append(one)
     return out
+
+
+#: Generic configurations the mobility is read from (their most common platform order), and the seed
+#: of the random motion that reaches them (fixed: the same graph always gets the same answer).
+MOBILITY_SAMPLES = 3
+MOBILITY_SEED = 20261124
+
+
+def generic_mobility(graph: nx.MultiDiGraph, *, joint_key: str = "joint", rtol: float = B.DEFAULT_RTOL) -> int | None:
+    """The platform's freedoms at generic configurations of the graph's mechanism.
+
+    The most common order of the platform's twist system over :data:`MOBILITY_SAMPLES` configurations
+    reached from the graph's own by :func:`generic_configurations` (so a singular analysed pose does not
+    decide it: a stretched limb loses a freedom there, a constraint singularity gains one). 0 for a
+    mechanism whose loops admit no joint motion; None when Newton's method closed no loop.
+
+    Examples
+    --------
+    >>> from screwkit.joints import prismatic, revolute
+    >>> from screwkit.twistgraph import twist_graph
+    >>> generic_mobility(twist_graph("B", "E", [("B", "L", prismatic("P1", [1, 0, 0], actuated=True)),
+    ...                                         ("L", "E", prismatic("P2", [0, 1, 0]))]))
+    2
+    >>> fourbar = twist_graph("ground", "coupler", [
+    ...     ("ground", "crank", revolute("A", [0, 0, 1], [0, 0, 0], actuated=True)),
+    ...     ("crank", "coupler", revolute("B", [0, 0, 1], [1, 0, 0])),
+    ...     ("ground", "rocker", revolute("D", [0, 0, 1], [3, 0, 0])),
+    ...     ("rocker", "coupler", revolute("C", [0, 0, 1], [3, 2, 0]))])
+    >>> generic_mobility(fourbar)
+    1
+    """
+    try:
+        table = generic_configurations(graph, np.random.default_rng(MOBILITY_SEED), MOBILITY_SAMPLES,
+                                       joint_key=joint_key)
+    except ScrewkitValueError as err:
+        if "admit no joint motion" in str(err):
+            return 0
+        return None
+    orders = np.asarray(analyze_table(table, dof=0, rtol=rtol, views=False).platform_order).ravel()
+    return int(np.bincount(orders).argmax())
+
+
+def resolve_dof(stated: int | None, mobility: int, actuated: tuple[str, ...] | list[str]) -> int:
+    """The nominal ``dof`` of an analysis: the mechanism's mobility, with its actuators checked.
+
+    screwkit analyses mechanisms whose nominal ``dof`` is the platform's mobility at generic
+    configurations and whose actuators are no more than that (non-redundant actuation). Fewer
+    actuators than ``dof`` is an under-actuated mechanism (uncontrolled freedoms: an actuation
+    singularity everywhere, a non-square Jacobian); no actuator at all, a mobility analysis.
+
+    Parameters
+    ----------
+    stated : int or None
+        The ``dof`` given (argument or graph attribute); None derives it.
+    mobility : int
+        :func:`generic_mobility`.
+    actuated : sequence of str
+        The actuated joints.
+
+    Raises
+    ------
+    TwistGraphError
+        A stated ``dof`` other than the mobility, or more actuators than the mobility (naming both
+        numbers and the actuated joints).
+
+    Examples
+    --------
+    >>> resolve_dof(None, 3, ["A1", "A2", "A3"]), resolve_dof(2, 2, ["A1"]), resolve_dof(None, 4, [])
+    (3, 2, 4)
+    >>> resolve_dof(2, 3, ["A1", "A2", "A3"])  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    screwkit.exceptions.TwistGraphError: Expected `dof` to equal the mechanism's mobility, 3 (...), got dof = 2; ...
+    """
+    from .exceptions import TwistGraphError
+
+    names = f"{len(actuated)} actuated joint(s)" + (f": {', '.join(sorted(actuated))}" if actuated else "")
+    if stated is not None and stated != mobility:
+        raise TwistGraphError(
+            f"Expected `dof` to equal the mechanism's mobility, {mobility} (the platform's freedoms at "
+            f"generic configurations, screwkit.motion.generic_mobility), got dof = {stated}; {names}. "
+            "A `dof` other than the mobility would label every pose falsely (constraint singularities "
+            "for a dof below it, lost freedoms above it): omit `dof` to use the mobility."
+        )
+    if len(actuated) > mobility:
+        raise TwistGraphError(
+            f"Expected at most as many actuated joints as the mechanism's mobility, {mobility} (the "
+            f"platform's freedoms at generic configurations), got {names}: screwkit analyses "
+            "non-redundantly actuated mechanisms; fix the `actuated` flags."
+        )
+    return mobility
+
+
+def regular_for(analysis: WrenchAnalysis, dof: int) -> bool:
+    """True when every pose of the analysis is regular for a nominal ``dof`` equal to its number of
+    actuators: the platform has exactly ``dof`` freedoms there (constraint order ``6 - dof``), all
+    controlled (global order 6), no limb serially singular. Such a pose confirms ``dof`` on its own
+    (its first-order mobility is ``dof``); any other is checked against :func:`generic_mobility`."""
+    return bool(
+        len(analysis.topology.actuated) == dof > 0
+        and np.all(np.asarray(analysis.constraint_order) == 6 - dof)
+        and np.all(np.asarray(analysis.global_order) == 6)
+        and not np.any(np.asarray(analysis.serial))
+    )
+
+
+def settled_dof(
+    graph: nx.MultiDiGraph,
+    stated: int | None,
+    analysis: WrenchAnalysis,
+    *,
+    joint_key: str = "joint",
+    rtol: float = B.DEFAULT_RTOL,
+) -> int:
+    """The nominal ``dof`` the graph's analysis must use (:func:`resolve_dof`), given a first analysis
+    with ``stated`` (or, when None, the number of actuators).
+
+    A first analysis that is regular for its ``dof`` confirms it (:func:`regular_for`: no generic
+    configuration needed, the common case costs nothing). Otherwise the mobility is computed at
+    generic configurations (:func:`generic_mobility`; where no loop could be closed, the platform's
+    most common order over the analysed poses stands in for it).
+
+    Examples
+    --------
+    >>> from screwkit.joints import prismatic
+    >>> from screwkit.twistgraph import twist_graph
+    >>> from screwkit.wrenches import wrench_analysis
+    >>> G = twist_graph("B", "E", [("B", "L", prismatic("P1", [1, 0, 0], actuated=True)),
+    ...                            ("L", "E", prismatic("P2", [0, 1, 0]))])
+    >>> wrench_analysis(G).dof  # under-actuated: one actuator, the mobility 2 (wrench_analysis settles it)
+    2
+    """
+    actuated = analysis.topology.actuated
+    if (stated is None or stated == len(actuated)) and regular_for(analysis, analysis.dof):
+        return analysis.dof
+    mobility = generic_mobility(graph, joint_key=joint_key, rtol=rtol)
+    if mobility is None:
+        mobility = int(np.bincount(np.asarray(analysis.platform_order).ravel()).argmax())
+    return resolve_dof(stated, mobility, actuated)

@@ -38,7 +38,7 @@ from . import _backend as B
 from .exceptions import ScrewkitError, ScrewkitValueError
 from .jacobians import WrenchJacobians, jacobians_from_wrenches
 from .joints import JointTable
-from .singularity import SingularityReport, classify_chunks, classify_table
+from .singularity import SingularityReport, classify_chunks, label_table
 from .wrenches import WrenchAnalysis, analyze_table, checked_rtol
 
 __all__ = ["Pose", "PosedMechanism", "generic_samples"]
@@ -143,7 +143,7 @@ class PosedMechanism:
         the chunk and the results; the whole table is computed only if a per-pose view asks.
         """
         if "joints" in self.__dict__:
-            return classify_table(self.joints, rtol=self.rtol, chunk=CHUNK)
+            return label_table(self.joints, rtol=self.rtol, chunk=CHUNK)  # the family's dof
         flat = self.poses.reshape(-1, self.poses.shape[-1])
         try:
             protocol = self.mechanism.family_protocol

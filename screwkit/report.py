@@ -43,7 +43,7 @@ import numpy as np
 
 from . import _backend as B
 from . import screw as S
-from .catalog import Mechanism, check_dof, file_kind, load_mechanism, load_snapshot, load_toml
+from .catalog import Mechanism, file_kind, load_mechanism, load_snapshot, load_toml
 from .exceptions import ScrewkitError, ScrewkitTypeError, ScrewkitValueError
 from .jacobians import WrenchJacobians
 from .screwsystem import motion_type
@@ -484,17 +484,17 @@ def _graph_report(
 ) -> AnalysisReport:
     if pose is not None:
         raise ScrewkitValueError(f"{source}: {what} is one configuration; expected no pose, got {pose!r}.")
-    check_dof(graph)
-    analysis = wrench_analysis(graph, rtol=rtol)
+    try:  # dof: the mechanism's mobility at generic configurations (screwkit.motion.settled_dof)
+        analysis = wrench_analysis(graph, rtol=rtol)
+    except ScrewkitError as err:
+        if source.endswith(".toml"):  # name the file
+            raise type(err)(f"{source}: {err}") from err
+        raise
     if not isinstance(analysis, WrenchAnalysis):
         raise ScrewkitTypeError(
             f"{source}: expected numeric joint screws for a report at a pose, got symbols; "
             "use screwkit.generic.generic_analysis for a family's generic answers."
         )
-    if not analysis.topology.actuated and graph.graph.get("dof") is None:
-        # mobility analysis: the nominal mobility is the platform's freedom at this configuration
-        analysis = wrench_analysis(graph, dof=6 - int(analysis.constraint_order), rtol=rtol)
-        assert isinstance(analysis, WrenchAnalysis)  # the same numeric graph
     from .diagram import graph_diagram
 
     progress(STAGES[1])

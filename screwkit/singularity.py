@@ -72,6 +72,7 @@ __all__ = [
     "classify_chunks",
     "classify_poses",
     "classify_table",
+    "label_table",
 ]
 
 Array = np.ndarray
@@ -377,7 +378,8 @@ def classify(
     ----------
     graph : networkx.MultiDiGraph
     dof : int, optional
-        Nominal mobility (see :func:`~screwkit.wrenches.wrench_analysis`).
+        Nominal mobility: the mechanism's mobility at generic configurations, derived when omitted;
+        any other value is refused (:func:`~screwkit.wrenches.wrench_analysis`).
     joint_key : str
     rtol : float, default 1e-9
         Relative tolerance of every rank decision (:mod:`screwkit._frames`).
@@ -393,11 +395,15 @@ def classify(
     --------
     >>> from screwkit.joints import revolute
     >>> from screwkit.twistgraph import twist_graph
-    >>> G = twist_graph("B", "E", [("B", "E", revolute("R", [0, 0, 1], [0, 0, 0], actuated=True)),
-    ...                            ("B", "E", revolute("R2", [0, 0, 1], [1, 0, 0]))], dof=1)
-    >>> report = classify(G)  # two parallel hinges on different axes lock the platform: it lacks a freedom
-    >>> report.labels, report.constraint_order, report.lost_dof
-    (('serial',), 6, 1)
+    >>> hinge = revolute("R", [0, 0, 1], [0, 0, 0], actuated=True)
+    >>> report = classify(twist_graph("B", "E", [("B", "E", hinge)]))
+    >>> report.labels, report.dof, report.constraint_order
+    ((), 1, 5)
+    >>> locked = twist_graph("B", "E", [("B", "E", hinge), ("B", "E", revolute("R2", [0, 0, 1], [1, 0, 0]))])
+    >>> classify(locked, dof=1)  # two parallel hinges on different axes: a structure  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    screwkit.exceptions.TwistGraphError: Expected `dof` to equal the mechanism's mobility, 0 (...), got dof = 1; ...
     """
     analysis = wrench_analysis(graph, dof=dof, joint_key=joint_key, rtol=rtol)
     if not isinstance(analysis, WrenchAnalysis):
@@ -414,6 +420,10 @@ def classify_table(
     ----------
     table : JointTable
     dof : int, optional
+        Nominal mobility; default: the table's ``dof``, else derived. It must be the mechanism's
+        mobility at generic configurations (reached from the first configuration), with at most
+        that many actuators (:func:`screwkit.motion.settled_dof`; no extra cost when every pose is
+        regular with one actuator per freedom).
     rtol : float, default 1e-9
     chunk : int, default 1024
         Configurations analysed at once.
@@ -422,12 +432,43 @@ def classify_table(
     -------
     SingularityReport
 
+    Raises
+    ------
+    TwistGraphError
+        A ``dof`` other than the mobility, or more actuators than it (both numbers named).
+
     Examples
     --------
     >>> from screwkit.joints import JointTable
     >>> table = JointTable.from_rows("B", "E", [("B", "E", "P", "P", [[[0, 0, 0, 1.0, 0, 0]]] * 5, True)])
     >>> classify_table(table, chunk=2).verdict.tolist()
     ['regular', 'regular', 'regular', 'regular', 'regular']
+    """
+    from .motion import settled_dof
+
+    report = label_table(table, dof=dof, rtol=rtol, chunk=chunk)
+    stated = dof if dof is not None else table.dof
+    if table.screws.size == 0:
+        return report
+    first = table.graph((0,) * len(table.batch_shape))
+    nominal = settled_dof(first, None if stated is None else report.dof, report.analysis, rtol=rtol)
+    if nominal == report.dof:
+        return report
+    return label_table(table, dof=nominal, rtol=rtol, chunk=chunk)
+
+
+def label_table(
+    table: JointTable, *, dof: int | None = None, rtol: float = B.DEFAULT_RTOL, chunk: int = 1024
+) -> SingularityReport:
+    """:func:`classify_table` with ``dof`` taken as given (default: the table's, else the number of
+    actuators), unchecked: for tables whose ``dof`` is known, a catalog family's.
+
+    Examples
+    --------
+    >>> from screwkit.joints import JointTable
+    >>> table = JointTable.from_rows("B", "E", [("B", "E", "P", "P", [[[0, 0, 0, 1.0, 0, 0]]] * 3, True)])
+    >>> label_table(table, chunk=2).dof
+    1
     """
     if not isinstance(table, JointTable):
         raise ScrewkitTypeError(f"Expected `table` to be a JointTable, got {type(table).__name__}.")
@@ -590,7 +631,8 @@ def classify_poses(
     screws : mapping of joint name to array_like, shape (..., dof_j, 6)
         The joints' screws over the batch.
     dof : int, optional
-        Nominal mobility; default: the graph's ``dof``, else the number of actuated joints.
+        Nominal mobility; default: the graph's ``dof``, else derived; checked as in
+        :func:`classify_table`.
     rtol : float, default 1e-9
 
     Returns

@@ -1107,8 +1107,10 @@ def wrench_analysis(
     graph : networkx.MultiDiGraph
         A twist graph (physical or equivalent).
     dof : int, optional
-        Nominal mobility; default: the graph's ``dof`` attribute, else the number of actuated
-        joints.
+        Nominal mobility; default: the graph's ``dof`` attribute, else derived. Either way it must
+        be the mechanism's mobility at generic configurations, with at most that many actuators
+        (:func:`screwkit.motion.resolve_dof`; checked by :func:`screwkit.motion.settled_dof`, at
+        no cost when the pose is regular with one actuator per freedom).
     joint_key : str
     rtol : float, default 1e-9
         Relative tolerance of every rank decision.
@@ -1121,7 +1123,8 @@ def wrench_analysis(
     Raises
     ------
     TwistGraphError
-        If the graph has no actuated joint on a base-to-platform path, or an invalid ``dof``.
+        If an actuated joint lies on no base-to-platform path, an invalid ``dof``, a ``dof`` other
+        than the mobility, or more actuators than the mobility (both numbers named).
 
     Examples
     --------
@@ -1129,15 +1132,18 @@ def wrench_analysis(
     >>> from screwkit.twistgraph import twist_graph
     >>> G = twist_graph("B", "E", [
     ...     ("B", "arm", revolute("A", [0, 0, 1], [0, 0, 0], actuated=True)),
-    ...     ("arm", "E", revolute("R", [0, 0, 1], [1, 0, 0]))], dof=1)
-    >>> limb = wrench_analysis(G).limbs[0]
-    >>> limb.passive_wrenches.order, S.is_zero_pitch(limb.actuation_wrench)
-    (5, True)
+    ...     ("arm", "E", revolute("R", [0, 0, 1], [1, 0, 0]))])
+    >>> analysis = wrench_analysis(G)  # one actuator, mobility 2 (planar 2R): dof 2, under-actuated
+    >>> limb = analysis.limbs[0]
+    >>> analysis.dof, limb.passive_wrenches.order, S.is_zero_pitch(limb.actuation_wrench)
+    (2, 5, True)
     """
     from .generic import generic_analysis, is_symbolic_graph
 
     if isinstance(graph, nx.MultiDiGraph) and is_symbolic_graph(graph, joint_key=joint_key):
         return generic_analysis(graph, dof=dof, joint_key=joint_key)  # a family: generic answers
+    from .motion import settled_dof
+
     table = JointTable.from_graph(graph, joint_key=joint_key)
     one = JointTable(
         table.base,
@@ -1147,6 +1153,10 @@ def wrench_analysis(
         table.dof,
         None if table.anchor is None else table.anchor[None],
     )
-    analysis = analyze_table(one, dof=dof, rtol=rtol)[0]
+    stated = dof if dof is not None else table.dof
+    analysis = analyze_table(one, dof=stated, rtol=rtol)[0]
+    nominal = settled_dof(graph, None if stated is None else analysis.dof, analysis, joint_key=joint_key, rtol=rtol)
+    if nominal != analysis.dof:  # derived: the mechanism's mobility, not the number of actuators
+        analysis = analyze_table(one, dof=nominal, rtol=rtol)[0]
     object.__setattr__(analysis, "graph", graph)  # the caller's own graph object (cached view)
     return analysis

@@ -237,8 +237,8 @@ SNAPSHOT_CASES = [
         for dof, text in ((7, "7"), (-1, "-1"), ("3", "'3'"), (True, "True"), (3.0, "3\\.0"))
     ],
     *[
-        (setter(["mechanism", "dof"], dof), CatalogError, rf"Expected `dof` to equal the number of actuated joints \(3: P1, P2, P3\), got dof = {dof}")
-        for dof in (0, 1, 2, 4, 5, 6)
+        (setter(["mechanism", "dof"], dof), CatalogError, rf"Expected `dof` to be at least the number of actuated joints \(3: P1, P2, P3\), got dof = {dof}")
+        for dof in (0, 1, 2)
     ],
     *[
         (setter(["mechanism", "length_unit"], unit), CatalogError, r"field `length_unit`: expected one of \['km'")
@@ -501,7 +501,7 @@ API_CASES = [
     (lambda: sk.reciprocal_product("a", "b"), ScrewkitTypeError, r"Expected `a` to be numeric, got the string 'a'"),
     (lambda: sk.reciprocal_product([1] * 6, [1] * 5), ScrewkitValueError, r"Expected `b` to have shape \(\.\.\., 6\), got \(5,\)"),
     (lambda: sk.register(5), ScrewkitTypeError, r"Expected `family` to be a screwkit\.families\.Family, got int"),
-    (lambda: catalog.check_dof(sk.twist_graph("B", "E", [("B", "E", _R)], dof=3)), TwistGraphError, r"Expected `dof` to equal the number of actuated joints \(1: R\), got dof = 3"),
+    (lambda: catalog.check_dof(sk.twist_graph("B", "E", [("B", "E", _R), ("B", "E", sk.prismatic("P", [0, 0, 1], actuated=True))], dof=1)), TwistGraphError, r"Expected `dof` to be at least the number of actuated joints \(2: P, R\), got dof = 1"),
     # angles in radians: the bound of files and the CLI (1e6 degrees), naming the argument and the coordinate
     (lambda: _h4().at([0, 0, -750, 1e5]), ScrewkitValueError, r"Expected the angle `phi` of `poses` to be at most 17453\.3 rad \(1e\+06 degrees\) in magnitude .*got 100000 rad"),
     (lambda: _h4().at([[0, 0, -750, 0], [0, 0, -750, -2e4]]), ScrewkitValueError, r"angle `phi` of `poses` .*got 20000 rad"),
@@ -513,7 +513,17 @@ API_CASES = [
     (lambda: sk.workspace.grid_map(_h4(), "verdict", x=("phi", -1e5, 1e5, 3), y=("z", -900, -700, 2)), ScrewkitValueError, r"Expected the angle `phi` of `x` to be at most 17453\.3 rad in magnitude, got 100000"),
     (lambda: sk.workspace.grid_map(_h4(), "verdict", x=("x", -9, 9, 2), y=("z", -900, -700, 2), fixed={"phi": 2e6}, angles="deg"), ScrewkitValueError, r"Expected the angle `phi` of `fixed` to be at most 1e\+06 degrees in magnitude, got 2e\+06"),
     (lambda: sk.workspace.check_path(_h4(), {"phi": 0.0}, [0, 0, -750, 1e5]), ScrewkitValueError, r"Expected the angle `phi` of `end` to be at most 17453\.3 rad"),
-    (lambda: sk.analyze(sk.twist_graph("B", "E", [("B", "E", _R)], dof=2)), TwistGraphError, r"got dof = 2"),
+    # dof against the mechanism's mobility at generic configurations (screwkit.motion.resolve_dof)
+    (lambda: sk.analyze(sk.twist_graph("B", "E", [("B", "E", _R)], dof=2)), TwistGraphError, r"Expected `dof` to equal the mechanism's mobility, 1 \(.*\), got dof = 2; 1 actuated joint\(s\): R\."),
+    (lambda: sk.classify(_G, dof=3), TwistGraphError, r"Expected `dof` to equal the mechanism's mobility, 1 \(.*\), got dof = 3; 1 actuated joint\(s\): R\."),
+    (lambda: sk.classify(_G, dof=0), TwistGraphError, r"mobility, 1 .*got dof = 0"),
+    (lambda: sk.wrench_analysis(sk.twist_graph("B", "E", [("B", "E", _R)], dof=4)), TwistGraphError, r"mobility, 1 .*got dof = 4"),
+    (lambda: sk.classify_poses(_G, {"R": [[[0, 0, 1.0, 0, 0, 0]], [[0, 0, 1.0, 1, 0, 0]]]}, dof=2), TwistGraphError, r"mobility, 1 .*got dof = 2"),
+    (lambda: sk.classify_table(sk.JointTable.from_rows("B", "E", [("B", "E", "R", "R", [[[0, 0, 1.0, 0, 0, 0]]] * 2, True)], dof=5)), TwistGraphError, r"mobility, 1 .*got dof = 5"),
+    (lambda: sk.classify(sk.twist_graph("B", "E", [("B", "E", _R), ("B", "E", sk.revolute("R2", [0, 0, 1], [1, 0, 0]))])), TwistGraphError,
+     r"Expected at most as many actuated joints as the mechanism's mobility, 0 \(.*\), got 1 actuated joint\(s\): R: screwkit analyses non-redundantly actuated mechanisms"),
+    (lambda: sk.classify(sk.twist_graph("B", "E", [("B", "L", _R), ("L", "E", sk.revolute("A2", [0, 0, 1], [0, 0, 0], actuated=True))])), TwistGraphError,
+     r"at most as many actuated joints as the mechanism's mobility, 1 .*got 2 actuated joint\(s\): A2, R"),
     (lambda: sk.analyze(snapshot_from_mapping(changed(SNAPSHOT, joint_setter(0, "parent", "nowhere")))),
      TwistGraphError, r"Actuated joint 'P1' lies on no path from the base to the platform"),
 ]
@@ -574,6 +584,50 @@ def test_a_snapshot_without_actuators_gets_a_mobility_analysis():
     assert report.verdict.labels == () and report.verdict.actuation_assessed is False
     assert "actuation not assessed" in str(report.verdict)
     assert report.verdict.to_dict()["actuation_assessed"] is False
+
+
+@pytest.mark.parametrize("dof", [4, 5, 6])
+def test_a_snapshot_dof_above_its_mobility_is_refused_naming_both_numbers(tmp_path, capsys, dof):
+    # the planar 3-RPR moves in its plane: 3 freedoms (x, y and the turn about z), three actuators
+    data = changed(SNAPSHOT, setter(["mechanism", "dof"], dof))
+    with pytest.raises(TwistGraphError, match=rf"Expected `dof` to equal the mechanism's mobility, 3 \(.*\), got dof = {dof}; 3 actuated joint\(s\): P1, P2, P3\."):
+        sk.classify(snapshot_from_mapping(data))
+    path = tmp_path / "s.toml"
+    path.write_text(toml_text(data), encoding="utf-8")
+    assert main(["analyze", str(path), "--no-superbracket"]) == 1
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "Traceback" not in err
+    assert f"s.toml: Expected `dof` to equal the mechanism's mobility, 3 (" in err and f"got dof = {dof}; 3 actuated" in err
+
+
+def test_under_actuated_and_unactuated_mechanisms_get_their_mobility_as_dof():
+    # a slider on a slider (x actuated, y free): mobility 2, one actuator: y is never controlled
+    graph = sk.twist_graph("B", "E", [("B", "L", sk.prismatic("P1", [1, 0, 0], actuated=True)),
+                                      ("L", "E", sk.prismatic("P2", [0, 1, 0]))])
+    for report in (sk.classify(graph), sk.classify(graph, dof=2)):
+        assert (report.dof, report.constraint_order, report.global_order) == (2, 4, 5)
+        assert report.labels == ("actuation",) and report.uncontrolled_dof == 1
+    # the 3-RPR's snapshot with no actuator: a mobility analysis, dof derived (3), no dof stated
+    passive = changed(SNAPSHOT, lambda d: [j.pop("actuated", None) for j in d["joints"]] and d["mechanism"].pop("dof"))
+    report = sk.classify(snapshot_from_mapping(passive))
+    assert (report.dof, report.labels, report.actuation_assessed) == (3, (), False)
+    # a Grübler count independent of screwkit: planar 3-RPR, 8 links, 9 one-freedom joints: 3(8-1) - 2·9 = 3
+    assert 3 * (8 - 1) - 2 * 9 == report.dof
+
+
+def test_a_stated_dof_is_checked_at_generic_configurations_not_at_the_pose():
+    # a singular verdict sends the stated dof to the generic check: a 3-RPR whose three legs meet at
+    # one platform point (actuation-singular: the turn about that point is uncontrolled) has mobility 3
+    from tests.mechanisms import planar_3rpr
+
+    base = [[0.0, 0, 0], [2.0, 0, 0], [1.0, 2.0, 0]]
+    centre = np.array([1.0, 0.7, 0])
+    platform = [centre + [0.3, 0, 0], centre + [-0.15, 0.26, 0], centre + [-0.15, -0.26, 0]]
+    singular = planar_3rpr(base, [centre] * 3)  # all three legs through one point: actuation singular
+    regular = planar_3rpr(base, platform)
+    assert sk.classify(regular).labels == () and sk.classify(regular).dof == 3
+    report = sk.classify(singular, dof=3)
+    assert report.dof == 3 and report.labels == ("actuation",)
 
 
 def test_random_poses_are_reachable_and_the_first_draws_when_all_are():

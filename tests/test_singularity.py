@@ -210,22 +210,27 @@ def test_two_parallel_hinges_lock_the_platform():
         ("B", "E", revolute("R", [0, 0, 1], [0, 0, 0], actuated=True)),
         ("B", "E", revolute("R2", [0, 0, 1], [1, 0, 0])),
     ], dof=1)
-    report = classify(G)
-    # the platform lacks its nominal freedom: a serial (type-1) singularity, not "regular" (issue 11)
-    assert report.labels == ("serial",) and (report.constraint_order, report.lost_dof) == (6, 1)
-    assert report.serial == () and "1 DOF fewer than nominal (a serial singularity" in str(report)
+    # a structure (mobility 0 at every configuration), not a 1-DOF mechanism at a singular pose: the
+    # stated dof is refused with both numbers (issue 11; it used to read "serial, 1 DOF fewer")
+    with pytest.raises(TwistGraphError, match=r"Expected `dof` to equal the mechanism's mobility, 0 .*got dof = 1; 1 actuated joint\(s\): R\."):
+        classify(G)
+    del G.graph["dof"]
+    with pytest.raises(TwistGraphError, match=r"at most as many actuated joints as the mechanism's mobility, 0 .*got 1 actuated joint\(s\): R:"):
+        classify(G)
 
 
 def test_nominal_dof_from_argument_graph_attribute_and_actuator_count():
     G = planar_3rpr(PLANAR_BASE, PLANAR_PLATFORM)
-    assert classify(G).dof == 3  # three actuators
-    # nominal 2 DOF: 4 constraints expected, 3 found: the platform gains one
-    report = classify(G, dof=2)
-    assert report.dof == 2 and report.labels == ("constraint",) and report.gained_dof == 1
-    # nominal 4 DOF (graph attribute): 2 constraints expected, 3 found: one DOF lost, no label
+    assert classify(G).dof == 3  # three actuators, mobility 3 (planar: x, y, the turn about z)
+    assert classify(G, dof=3).labels == ()
+    # a nominal 2 or 4 DOF contradicts the mobility: refused with both numbers (issue 11), where it
+    # used to read "constraint singularity" (2) or "1 DOF fewer" (4) at every pose
+    for wrong in (2, 4):
+        with pytest.raises(TwistGraphError, match=rf"mobility, 3 \(.*\), got dof = {wrong}; 3 actuated joint\(s\): P1, P2, P3\."):
+            classify(G, dof=wrong)
     G.graph["dof"] = 4
-    report = classify(G)
-    assert report.dof == 4 and report.lost_dof == 1 and report.gained_dof == 0
+    with pytest.raises(TwistGraphError, match=r"got dof = 4"):
+        classify(G)
     assert classify(G, dof=3).dof == 3  # the argument wins over the attribute
 
 

@@ -141,8 +141,9 @@ def test_tsai_3upu_actuation_wrenches_are_the_leg_lines():
 def test_r_4s_leg_constraint_couple_and_actuation_line():
     # paper 002 §4.2: W_i = span((0, n_i)); §4.3: the actuation wrench of a leg is a force
     # parallel to s_mp lying in the plane of the parallelogram (spanned by mn and mp)
-    G = twist_graph("base", "platform", r_4s_leg(1, [1.0, 0, 0], HINGE_AXIS, M, N, P, Q), dof=1)
+    G = twist_graph("base", "platform", r_4s_leg(1, [1.0, 0, 0], HINGE_AXIS, M, N, P, Q))
     analysis = wrench_analysis(G)
+    assert analysis.dof == 5  # one leg alone: the platform is held by one couple
     (limb,) = analysis.limbs
     assert limb.constraint_wrenches.is_equivalent(ScrewSystem.span([S.couple(NORMAL)]))
     assert limb.passive_wrenches.order == 2
