@@ -23,7 +23,8 @@ parametric family in :mod:`screwkit.families`::
     z = -750.0
     phi_deg = 0.0
 
-    [workspace]                      # the operational workspace, [low, high] per coordinate
+    [workspace]                      # the operational workspace, [low, high] per coordinate,
+                                     # reachable_fraction = 0.79 if only part of the box is reachable
     x = [-350.0, 350.0]
     ...
 
@@ -141,6 +142,11 @@ class Mechanism:
         In the file's length unit and **radians** (the file stores degrees).
     workspace : dict
         ``{coordinate: (low, high)}``, angles in radians.
+    reachable_fraction : float
+        The share of the workspace box the inverse kinematics reaches (``[workspace]
+        reachable_fraction``, default 1: every pose). Below 1 the box is a bounding box:
+        :meth:`random_poses` draws in its reachable part only, the maps of :mod:`screwkit.workspace`
+        mask the rest as unreachable (checked by ``tests/test_catalog.py`` against the IK).
     expected : tuple of dict
         The ``[[expected]]`` facts.
     """
@@ -155,6 +161,7 @@ class Mechanism:
     default_pose: Array
     workspace: dict[str, tuple[float, float]]
     expected: tuple[dict[str, Any], ...] = field(default=())
+    reachable_fraction: float = 1.0
 
     @property
     def family_protocol(self) -> Family:
@@ -769,14 +776,20 @@ def mechanism_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>"
         except ScrewkitValueError as err:
             raise _error(source, "[pose]", f"field `{key}`: {err}") from err
     workspace_table = _table(data, "workspace", source)
-    _check_keys(workspace_table, keys, source, "[workspace]")
+    _check_keys(workspace_table, [*keys, "reachable_fraction"], source, "[workspace]")
     workspace = {}
     for coordinate, key in zip(family.pose_names, keys, strict=True):
         low, high = _vector(workspace_table, key, source, "[workspace]", length=2)
         if not low < high:
             raise _error(source, "[workspace]", f"field `{key}`: expected low < high, got [{low}, {high}].")
-        convert = math.radians if coordinate in family.angle_names else float
-        workspace[coordinate] = (convert(low), convert(high))
+        try:
+            convert = degrees_to_radians if coordinate in family.angle_names else float
+            workspace[coordinate] = (convert(low), convert(high))
+        except ScrewkitValueError as err:
+            raise _error(source, "[workspace]", f"field `{key}`: {err}") from err
+    fraction = _number(workspace_table.get("reachable_fraction", 1.0), source, "[workspace]", "reachable_fraction")
+    if not 0.0 < fraction <= 1.0:
+        raise _error(source, "[workspace]", f"field `reachable_fraction`: expected a number in (0, 1], got {fraction!r}.")
     expected = data.get("expected", [])
     if not isinstance(expected, list) or not all(isinstance(e, dict) for e in expected):
         raise _error(source, "[[expected]]", f"expected an array of tables, got {type(expected).__name__}.")
@@ -799,6 +812,7 @@ def mechanism_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>"
         default_pose=np.array(pose),
         workspace=workspace,
         expected=tuple(expected),
+        reachable_fraction=fraction,
     )
 
 

@@ -91,6 +91,30 @@ def test_default_pose_lies_in_the_workspace(name):
         assert low <= value <= high
 
 
+@pytest.mark.parametrize("name", sorted(list_mechanisms()))
+def test_stated_workspace_box_against_the_inverse_kinematics(name):
+    # [workspace] reachable_fraction (default 1) is the share of the box the IK reaches: a box said to
+    # be reachable is reachable at its corners and at random poses, a bounding box reaches its stated
+    # share of 40 000 uniform draws (binomial sigma <= 0.0025: 0.01 is four of them)
+    mechanism = load_mechanism(name)
+    low, high = np.array([mechanism.workspace[c] for c in mechanism.pose_names]).T
+    draws = np.random.default_rng(11).uniform(low, high, size=(40_000, len(low)))
+    if mechanism.reachable_fraction == 1.0:
+        corners = np.array(np.meshgrid(*zip(low, high, strict=True), indexing="ij")).reshape(len(low), -1).T
+        mechanism.configuration(np.concatenate([corners, draws[:5000]]))  # raises if any is out of reach
+        return
+    from screwkit.exceptions import UnreachablePoseError
+    from screwkit.families.four_limb import reachable
+
+    ok = reachable(mechanism.parameters, draws)
+    assert abs(ok.mean() - mechanism.reachable_fraction) <= 0.01, ok.mean()
+    mechanism.configuration(draws[ok][:5000])  # the IK agrees on the reachable ones ...
+    for pose in draws[~ok][:20]:  # ... and refuses the others
+        with pytest.raises(UnreachablePoseError, match="out of reach"):
+            mechanism.configuration(pose)
+    assert mechanism.random_poses(np.random.default_rng(2), 500).shape == (500, len(low))
+
+
 @pytest.mark.parametrize("width", [20.0, 100.0, 400.0])
 def test_h4_results_do_not_depend_on_the_chosen_parallelogram_width(width, rng):
     # the rod spacing d is our choice (neither paper gives it): orders and labels must not move
