@@ -262,7 +262,7 @@ class Mechanism:
         >>> load_mechanism("h4").check_pose_range([0, 0, -750, 1e5])  # doctest: +ELLIPSIS
         Traceback (most recent call last):
         ...
-        screwkit.exceptions.ScrewkitValueError: Expected the angle `phi` of `poses` to be at most 17453.3 rad ...
+        screwkit.exceptions.ScrewkitValueError: Expected the angle `phi` of `poses` to be at most 17453.3 ...
         """
         if poses is None or isinstance(poses, str):
             return
@@ -787,9 +787,13 @@ def mechanism_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>"
             workspace[coordinate] = (convert(low), convert(high))
         except ScrewkitValueError as err:
             raise _error(source, "[workspace]", f"field `{key}`: {err}") from err
-    fraction = _number(workspace_table.get("reachable_fraction", 1.0), source, "[workspace]", "reachable_fraction")
+    fraction = _number(
+        workspace_table.get("reachable_fraction", 1.0), source, "[workspace]", "reachable_fraction"
+    )
     if not 0.0 < fraction <= 1.0:
-        raise _error(source, "[workspace]", f"field `reachable_fraction`: expected a number in (0, 1], got {fraction!r}.")
+        raise _error(
+            source, "[workspace]", f"field `reachable_fraction`: expected a number in (0, 1], got {fraction}."
+        )
     expected = data.get("expected", [])
     if not isinstance(expected, list) or not all(isinstance(e, dict) for e in expected):
         raise _error(source, "[[expected]]", f"expected an array of tables, got {type(expected).__name__}.")
@@ -976,7 +980,7 @@ def check_dof(graph: nx.MultiDiGraph, *, joint_key: str = "joint") -> None:
     >>> check_dof(twist_graph("B", "E", [("B", "L", P[0]), ("L", "E", P[1])], dof=1))
     Traceback (most recent call last):
     ...
-    screwkit.exceptions.TwistGraphError: Expected `dof` to be at least the number of actuated joints (2: P0, P1), got dof = 1; ...
+    screwkit.exceptions.TwistGraphError: Expected `dof` to be at least the number of actuated joints (2: ...
     """
     dof = graph.graph.get("dof")
     actuated = sorted(

@@ -469,6 +469,10 @@ class JointTable:
     anchor : numpy.ndarray, shape (..., 3), or None
         A point that moves with the mechanism, fixing its reference point along the axes when they
         are all parallel (a planar mechanism; :func:`screwkit.twistgraph.graph_frame`).
+    mobility : int or None
+        The mechanism's mobility at generic configurations when it is known (a catalog family's,
+        checked by the catalog's facts; graph attribute ``mobility``): the ``dof`` check
+        (:func:`screwkit.motion.settled_dof`) takes it instead of computing it. None: computed.
 
     Examples
     --------
@@ -485,6 +489,7 @@ class JointTable:
     screws: Array
     dof: int | None = None
     anchor: Array | None = None
+    mobility: int | None = None
 
     def __post_init__(self) -> None:
         rows = sum(spec.dof for spec in self.specs)
@@ -526,6 +531,7 @@ class JointTable:
         *,
         dof: int | None = None,
         anchor: Any = None,
+        mobility: int | None = None,
     ) -> JointTable:
         """A table from ``(parent, child, name, type, screws (..., dof_j, 6), actuated)`` rows.
 
@@ -546,7 +552,7 @@ class JointTable:
             if arrays
             else np.zeros((0, 6))
         )
-        return cls(base, platform, specs, stacked, dof, anchor)
+        return cls(base, platform, specs, stacked, dof, anchor, mobility)
 
     @classmethod
     def from_graph(cls, graph: Any, *, joint_key: str = "joint") -> JointTable:
@@ -570,6 +576,7 @@ class JointTable:
             rows,
             dof=graph.graph.get("dof"),
             anchor=graph_anchor(graph, joint_key=joint_key),
+            mobility=graph.graph.get("mobility"),
         )
 
     @property
@@ -584,7 +591,8 @@ class JointTable:
 
     def __getitem__(self, index: Any) -> JointTable:
         anchor = None if self.anchor is None else self.anchor[index]
-        return JointTable(self.base, self.platform, self.specs, self.screws[index], self.dof, anchor)
+        screws = self.screws[index]
+        return JointTable(self.base, self.platform, self.specs, screws, self.dof, anchor, self.mobility)
 
     def joint_screws(self, name: str) -> Array:
         """The screws of one joint over the batch, ``(..., dof_j, 6)``.
@@ -636,6 +644,8 @@ class JointTable:
             joint = Joint(spec.name, spec.type, screws, spec.actuated, spec.type.startswith("v"))
             joints.append((spec.parent, spec.child, joint))
         graph = twist_graph(one.base, one.platform, joints, dof=one.dof)
+        if one.mobility is not None:
+            graph.graph["mobility"] = one.mobility
         if one.anchor is not None:
             graph.graph["anchor"] = one.anchor.tolist()
         return graph

@@ -394,7 +394,9 @@ MOBILITY_SAMPLES = 3
 MOBILITY_SEED = 20261124
 
 
-def generic_mobility(graph: nx.MultiDiGraph, *, joint_key: str = "joint", rtol: float = B.DEFAULT_RTOL) -> int | None:
+def generic_mobility(
+    graph: nx.MultiDiGraph, *, joint_key: str = "joint", rtol: float = B.DEFAULT_RTOL
+) -> int | None:
     """The platform's freedoms at generic configurations of the graph's mechanism.
 
     The most common order of the platform's twist system over :data:`MOBILITY_SAMPLES` configurations
@@ -458,7 +460,7 @@ def resolve_dof(stated: int | None, mobility: int, actuated: tuple[str, ...] | l
     >>> resolve_dof(2, 3, ["A1", "A2", "A3"])  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    screwkit.exceptions.TwistGraphError: Expected `dof` to equal the mechanism's mobility, 3 (...), got dof = 2; ...
+    screwkit.exceptions.TwistGraphError: Expected `dof` to equal the mechanism's mobility, 3 (...), ...
     """
     from .exceptions import TwistGraphError
 
@@ -504,9 +506,11 @@ def settled_dof(
     with ``stated`` (or, when None, the number of actuators).
 
     A first analysis that is regular for its ``dof`` confirms it (:func:`regular_for`: no generic
-    configuration needed, the common case costs nothing). Otherwise the mobility is computed at
-    generic configurations (:func:`generic_mobility`; where no loop could be closed, the platform's
-    most common order over the analysed poses stands in for it).
+    configuration needed, the common case costs nothing). Otherwise the mobility is the graph's
+    ``mobility`` attribute when it has one (a catalog family's graphs do:
+    :attr:`screwkit.joints.JointTable.mobility`), else computed at generic configurations
+    (:func:`generic_mobility`, ~0.1–0.3 s; where no loop could be closed, the platform's most common
+    order over the analysed poses stands in for it).
 
     Examples
     --------
@@ -521,7 +525,12 @@ def settled_dof(
     actuated = analysis.topology.actuated
     if (stated is None or stated == len(actuated)) and regular_for(analysis, analysis.dof):
         return analysis.dof
-    mobility = generic_mobility(graph, joint_key=joint_key, rtol=rtol)
+    known = graph.graph.get("mobility")  # a catalog family's (JointTable.mobility)
+    if known is not None and not B.is_dof(known):
+        from .exceptions import TwistGraphError
+
+        raise TwistGraphError(f"Expected graph attribute 'mobility' to be an integer in 0..6, got {known!r}.")
+    mobility = int(known) if known is not None else generic_mobility(graph, joint_key=joint_key, rtol=rtol)
     if mobility is None:
         mobility = int(np.bincount(np.asarray(analysis.platform_order).ravel()).argmax())
     return resolve_dof(stated, mobility, actuated)

@@ -335,6 +335,16 @@ class ScrewSystem:
         centre = np.zeros(3) if near is None else B.as_array(near, "near", (3,), symbolic=False)
         if centre.shape != (3,):
             raise ScrewkitValueError(f"Expected `near` to have shape (3,), got {centre.shape}.")
+        origin = _axes_centre(self.basis)
+        if np.linalg.norm(origin) > 10.0 * float(self.length_scale or 1.0):
+            # far from the frame's origin the moments dwarf the length scale and every rank decision
+            # below would judge rounding: decide about a point among the axes, then move back
+            local = ScrewSystem(_about(self.basis, origin), rtol=self.rtol, length_scale=self.length_scale)
+            return _about(local._readable_numeric(centre - origin), -origin)
+        return self._readable_numeric(centre)
+
+    def _readable_numeric(self, centre: Array) -> Array:
+        """:meth:`readable_basis` of a numeric system in its own frame (axes placed near ``centre``)."""
         couples = _axis_first(_orthonormal_couples(self.couple_subsystem().basis)[:, 3:], self.rtol)
         finite = _finite_candidates(self.basis, couples, centre, self.rtol, float(self.length_scale or 1.0))
         rows = np.concatenate([np.hstack([np.zeros_like(couples), couples]), *finite]).reshape(-1, 6)
@@ -456,6 +466,22 @@ def _rows(screws: Any, name: str) -> Array:
     if isinstance(screws, list | tuple) and not screws:
         return np.zeros((0, 6))
     return B.as_array(screws, name, (6,)).reshape(-1, 6)
+
+
+def _axes_centre(rows: Array) -> Array:
+    """The point nearest the axes of the rows (least squares of their moments about it,
+    ``Σ |m − p × s|²``: rows weighted by their direction, so couples, and a couple's round-off
+    direction, do not count; the origin for couples only)."""
+    s, m = rows[:, :3], rows[:, 3:]
+    normal = np.sum(s * s) * np.eye(3) - s.T @ s  # Σ (|s|² I − s sᵀ)
+    if not np.any(normal):
+        return np.zeros(3)
+    return np.linalg.lstsq(normal, np.cross(s, m).sum(axis=0), rcond=1e-9)[0]
+
+
+def _about(rows: Array, point: Array) -> Array:
+    """The rows with their moments taken about ``point`` (``m − point × s``; ``-point`` undoes it)."""
+    return np.hstack([rows[:, :3], rows[:, 3:] - np.cross(point, rows[:, :3])])
 
 
 def _orthonormal_couples(rows: Array) -> Array:

@@ -403,7 +403,7 @@ def classify(
     >>> classify(locked, dof=1)  # two parallel hinges on different axes: a structure  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    screwkit.exceptions.TwistGraphError: Expected `dof` to equal the mechanism's mobility, 0 (...), got dof = 1; ...
+    screwkit.exceptions.TwistGraphError: Expected `dof` to equal the mechanism's mobility, 0 (...), ...
     """
     analysis = wrench_analysis(graph, dof=dof, joint_key=joint_key, rtol=rtol)
     if not isinstance(analysis, WrenchAnalysis):
@@ -660,5 +660,7 @@ def classify_poses(
     template = JointTable.from_graph(graph)
     stacked = np.concatenate([arrays[spec.name] for spec in template.specs], axis=-2)
     anchor = None if template.anchor is None else np.broadcast_to(template.anchor, (*batch, 3))
-    table = JointTable(template.base, template.platform, template.specs, stacked, template.dof, anchor)
+    table = JointTable(
+        template.base, template.platform, template.specs, stacked, template.dof, anchor, template.mobility
+    )
     return classify_table(table, dof=dof, rtol=rtol)

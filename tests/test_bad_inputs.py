@@ -597,7 +597,7 @@ def test_a_snapshot_dof_above_its_mobility_is_refused_naming_both_numbers(tmp_pa
     assert main(["analyze", str(path), "--no-superbracket"]) == 1
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "Traceback" not in err
-    assert f"s.toml: Expected `dof` to equal the mechanism's mobility, 3 (" in err and f"got dof = {dof}; 3 actuated" in err
+    assert "s.toml: Expected `dof` to equal the mechanism's mobility, 3 (" in err and f"got dof = {dof}; 3 actuated" in err
 
 
 def test_under_actuated_and_unactuated_mechanisms_get_their_mobility_as_dof():
@@ -622,7 +622,7 @@ def test_a_stated_dof_is_checked_at_generic_configurations_not_at_the_pose():
 
     base = [[0.0, 0, 0], [2.0, 0, 0], [1.0, 2.0, 0]]
     centre = np.array([1.0, 0.7, 0])
-    platform = [centre + [0.3, 0, 0], centre + [-0.15, 0.26, 0], centre + [-0.15, -0.26, 0]]
+    platform = [np.add(centre, offset) for offset in ([0.3, 0, 0], [-0.15, 0.26, 0], [-0.15, -0.26, 0])]
     singular = planar_3rpr(base, [centre] * 3)  # all three legs through one point: actuation singular
     regular = planar_3rpr(base, platform)
     assert sk.classify(regular).labels == () and sk.classify(regular).dof == 3

@@ -732,7 +732,6 @@ def inverse_kinematics(
             f"root, |K_i| > hypot(P_i, Q_i)): {detail}."
         )
     psi = np.arctan2(terms.q, terms.p)
-    a = params.arm_length
     delta = np.arccos(at_reach(terms.k / terms.rho, terms.condition))
     theta = _wrap(psi - np.array(mode, dtype=float) * delta)
     return _assemble(params, chi, theta, mode, terms.platform)
@@ -1018,7 +1017,7 @@ def joints(config: FourLimbConfiguration) -> JointTable:
         point, pitch = config.platform_joint_points[..., k, :], config.platform_joint_pitches[k]
         screw = S.helical_twist(axis, point, pitch) if pitch else S.revolute_twist(axis, point)
         rows.append((link, "end_effector", name, "H" if pitch else "R", screw[..., None, :], False))
-    return JointTable.from_rows("base", "end_effector", rows, dof=4)
+    return JointTable.from_rows("base", "end_effector", rows, dof=4, mobility=4)
 
 
 def twist_basis(config: FourLimbConfiguration) -> np.ndarray:

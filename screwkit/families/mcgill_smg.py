@@ -719,7 +719,7 @@ def joints(config: McGillConfiguration) -> JointTable:
                                       actuated=(part, tag) == ("proximal", "a")))
         rows.append(joint_row(f"{leg}.wrist", "platform", f"{leg}.wrist", "R",
                               config.wrist_joint[..., index, :], k))
-    return JointTable.from_rows("base", "platform", rows, dof=4)
+    return JointTable.from_rows("base", "platform", rows, dof=4, mobility=4)
 
 
 def twist_basis(config: McGillConfiguration) -> np.ndarray:

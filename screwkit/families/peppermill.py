@@ -531,7 +531,7 @@ def joints(config: PeppermillConfiguration) -> JointTable:
             joint_row(f"{limb}.nut", "platform", f"{limb}.screw", "H", config.platform_point,
                       config.platform_axis, pitch=-float(leads[index])),
         ]
-    return JointTable.from_rows("base", "platform", rows, dof=4)
+    return JointTable.from_rows("base", "platform", rows, dof=4, mobility=4)
 
 
 def twist_basis(config: PeppermillConfiguration) -> np.ndarray:

@@ -747,7 +747,7 @@ def joints(config: Planar3RRPConfiguration) -> JointTable:
         for label, (parent, child) in zip(("R1", "R2", "P"), pairs, strict=True)
     ]
     anchor = np.concatenate([base, elbow], axis=-2).mean(axis=-2)
-    return JointTable.from_rows(LINK_NAMES[0], LINK_NAMES[-1], rows, dof=3, anchor=anchor)
+    return JointTable.from_rows(LINK_NAMES[0], LINK_NAMES[-1], rows, dof=3, anchor=anchor, mobility=3)
 
 
 def twist_basis(config: Planar3RRPConfiguration) -> np.ndarray:
