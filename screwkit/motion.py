@@ -62,7 +62,6 @@ __all__ = [
     "generic_analyses",
     "generic_configurations",
     "generic_mobility",
-    "regular_for",
     "resolve_dof",
     "settled_dof",
 ]
@@ -481,7 +480,7 @@ def resolve_dof(stated: int | None, mobility: int, actuated: tuple[str, ...] | l
     return mobility
 
 
-def regular_for(analysis: WrenchAnalysis, dof: int) -> bool:
+def _regular_for(analysis: WrenchAnalysis, dof: int) -> bool:
     """True when every pose of the analysis is regular for a nominal ``dof`` equal to its number of
     actuators: the platform has exactly ``dof`` freedoms there (constraint order ``6 - dof``), all
     controlled (global order 6), no limb serially singular. Such a pose confirms ``dof`` on its own
@@ -505,7 +504,7 @@ def settled_dof(
     """The nominal ``dof`` the graph's analysis must use (:func:`resolve_dof`), given a first analysis
     with ``stated`` (or, when None, the number of actuators).
 
-    A first analysis that is regular for its ``dof`` confirms it (:func:`regular_for`: no generic
+    A first analysis that is regular for its ``dof`` confirms it (:func:`_regular_for`: no generic
     configuration needed, the common case costs nothing). Otherwise the mobility is the graph's
     ``mobility`` attribute when it has one (a catalog family's graphs do:
     :attr:`screwkit.joints.JointTable.mobility`), else computed at generic configurations
@@ -523,7 +522,7 @@ def settled_dof(
     2
     """
     actuated = analysis.topology.actuated
-    if (stated is None or stated == len(actuated)) and regular_for(analysis, analysis.dof):
+    if (stated is None or stated == len(actuated)) and _regular_for(analysis, analysis.dof):
         return analysis.dof
     known = graph.graph.get("mobility")  # a catalog family's (JointTable.mobility)
     if known is not None and not B.is_dof(known):

@@ -308,7 +308,9 @@ class ScrewSystem:
         ----------
         near : array_like, shape (3,), optional
             Where axes are placed when the system lets them move (e.g. a mechanism's reference
-            point); default the origin of the frame.
+            point); default the origin of the frame, or, for axes more than 10 lengths from it, the
+            point nearest them (the basis is then decided there, not about the far origin, whose
+            moments would swamp the rank decisions).
 
         Returns
         -------
@@ -335,12 +337,13 @@ class ScrewSystem:
         centre = np.zeros(3) if near is None else B.as_array(near, "near", (3,), symbolic=False)
         if centre.shape != (3,):
             raise ScrewkitValueError(f"Expected `near` to have shape (3,), got {centre.shape}.")
-        origin = _axes_centre(self.basis)
-        if np.linalg.norm(origin) > 10.0 * float(self.length_scale or 1.0):
+        length = float(self.length_scale or 1.0)
+        origin = _axes_centre(self.basis, length, self.rtol)
+        if np.linalg.norm(origin) > 10.0 * length:
             # far from the frame's origin the moments dwarf the length scale and every rank decision
             # below would judge rounding: decide about a point among the axes, then move back
             local = ScrewSystem(_about(self.basis, origin), rtol=self.rtol, length_scale=self.length_scale)
-            return _about(local._readable_numeric(centre - origin), -origin)
+            return _about(local._readable_numeric(np.zeros(3) if near is None else centre - origin), -origin)
         return self._readable_numeric(centre)
 
     def _readable_numeric(self, centre: Array) -> Array:
@@ -468,15 +471,22 @@ def _rows(screws: Any, name: str) -> Array:
     return B.as_array(screws, name, (6,)).reshape(-1, 6)
 
 
-def _axes_centre(rows: Array) -> Array:
+def _axes_centre(rows: Array, length: float, rtol: float) -> Array:
     """The point nearest the axes of the rows (least squares of their moments about it,
-    ``Σ |m − p × s|²``: rows weighted by their direction, so couples, and a couple's round-off
-    direction, do not count; the origin for couples only)."""
-    s, m = rows[:, :3], rows[:, 3:]
+    ``Σ |m − p × s|²`` over rows of unit size in scaled coordinates, so that a row weighs by its
+    direction: couples, and a couple's round-off direction, do not count; the origin for couples
+    only). Directions of the normal equations below ``rtol`` are left out (parallel axes: the point
+    nearest the origin along them)."""
+    sizes = np.linalg.norm(np.hstack([rows[:, :3], rows[:, 3:] / length]), axis=1)
+    unit = rows / np.where(sizes > 0, sizes, 1.0)[:, None]
+    s, m = unit[:, :3], unit[:, 3:]
     normal = np.sum(s * s) * np.eye(3) - s.T @ s  # Σ (|s|² I − s sᵀ)
-    if not np.any(normal):
+    values, vectors = np.linalg.eigh(normal)
+    kept = values > rtol
+    if not kept.any():
         return np.zeros(3)
-    return np.linalg.lstsq(normal, np.cross(s, m).sum(axis=0), rcond=1e-9)[0]
+    rhs = vectors[:, kept].T @ np.cross(s, m).sum(axis=0)
+    return vectors[:, kept] @ (rhs / values[kept])
 
 
 def _about(rows: Array, point: Array) -> Array:

@@ -29,6 +29,17 @@ def rigid_motions(draw):
     return draw(rotations()), np.array([draw(finite_floats) for _ in range(3)])
 
 
+@st.composite
+def far_rigid_motions(draw):
+    """(rotation, translation) with the translation 1e3 to 1e4 length units from the origin: a robot of
+    about one unit in size some kilometres away (issue 11: labels and diagrams must not depend on where
+    the origin is)."""
+    direction = np.array([draw(st.floats(-1, 1)) for _ in range(3)])
+    size = np.linalg.norm(direction)
+    direction = np.array([1.0, 0, 0]) if size < 1e-3 else direction / size
+    return draw(rotations()), draw(st.floats(1e3, 1e4)) * direction
+
+
 #: Changes of length unit: metres to millimetres, to inches, to kilometres, ...
 unit_factors = st.sampled_from([1e-3, 0.0254, 0.3048, 1.0, 25.4, 1000.0])
 

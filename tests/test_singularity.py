@@ -32,7 +32,7 @@ from .mechanisms import (
     tsai_constraint_couples,
     unit,
 )
-from .strategies import rigid_motions, unit_factors
+from .strategies import far_rigid_motions, rigid_motions, unit_factors
 
 #: closeness at a constructed singular pose: round-off of unit-scaled singular values
 AT_SINGULARITY = 1e-9
@@ -321,6 +321,29 @@ def test_labels_follow_rigid_motions_and_units(name, motion, factor):
     if not name.startswith(("rpr", "rrr")):
         for key, value in before.closeness.items():
             assert after.closeness[key] == pytest.approx(value, abs=1e-8)
+
+
+@pytest.mark.parametrize("name", sorted(CASES))
+@settings(max_examples=5, deadline=None)
+@given(motion=far_rigid_motions(), factor=unit_factors)
+def test_labels_and_readable_systems_survive_a_move_far_from_the_origin(name, motion, factor):
+    G, labels = _case(name)
+    rotation, translation = motion
+    before, after = classify(G), classify(moved(G, rotation, translation, factor))
+    assert _summary(after) == _summary(before) and after.labels == labels
+    # the readable bases (report, diagram) are decided about the mechanism, not the far origin: the
+    # moved mechanism's constraint lines are the near ones carried along (same span, same pitches)
+    near = before.analysis.constraint_wrenches.readable_basis()
+    far = after.analysis.constraint_wrenches.readable_basis()
+    assert len(far) == len(near)
+    carried = S.transform(near, rotation, translation)
+    carried[:, 3:] *= factor
+    centre, length = after.analysis.reference_point, np.asarray(after.analysis.length_scale)
+    stacked = F.to_scaled(np.concatenate([far, carried]), centre, length)
+    stacked /= np.linalg.norm(stacked, axis=1, keepdims=True)
+    assert np.linalg.matrix_rank(stacked, tol=1e-7) == len(near)
+    pitches = [np.isinf(S.pitch(r)) or abs(S.pitch(r)) < 1e-9 * length for r in far]
+    assert pitches == [np.isinf(S.pitch(r)) or abs(S.pitch(r)) < 1e-9 for r in near]
 
 
 @pytest.mark.parametrize("name", sorted(CASES))
