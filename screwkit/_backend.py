@@ -330,6 +330,10 @@ def as_array(
     else:
         try:
             array = np.array(value, dtype=float)
+        except OverflowError as err:  # a Python integer beyond every float
+            raise ScrewkitValueError(
+                f"Expected `{name}` to hold finite numbers, got an integer too large for a float ({err})."
+            ) from err
         except (ValueError, TypeError) as err:
             raise ScrewkitTypeError(
                 f"Expected `{name}` to be an array of numbers, got {type(value).__name__}: {err}."

@@ -55,7 +55,7 @@ import numpy as np
 from . import _backend as B
 from . import projective as P
 from . import screw as S
-from .exceptions import DegenerateGeometryError, ScrewkitError, ScrewkitValueError
+from .exceptions import DegenerateGeometryError, ScrewkitError, ScrewkitTypeError, ScrewkitValueError
 from .gca import Simplification, simplify_superbracket
 from .twistgraph import SeriesParallelNode
 from .wrenches import WrenchAnalysis, wrench_analysis
@@ -376,6 +376,12 @@ def _lines_at(names: tuple[str, ...], analysis: WrenchAnalysis) -> tuple[list[Li
     return lines, problems
 
 
+def _require(value: Any, kind: type, name: str) -> None:
+    """Refuse an argument of the wrong type, naming it (a diagram needs the analysis objects)."""
+    if not isinstance(value, kind):
+        raise ScrewkitTypeError(f"Expected `{name}` to be a {kind.__name__}, got {type(value).__name__}.")
+
+
 def wrench_diagram(analysis: WrenchAnalysis) -> WrenchDiagram:
     """Build the wrench diagram of a mechanism at its pose (module docstring).
 
@@ -396,6 +402,7 @@ def wrench_diagram(analysis: WrenchAnalysis) -> WrenchDiagram:
     >>> [p.description for p in diagram.points][:2]
     ['where the actuation A1 meets the axis of R_I', 'the point at infinity of the actuation A1']
     """
+    _require(analysis, WrenchAnalysis, "analysis")
     lines, problems = _select_lines(analysis)
     scale = float(analysis.length_scale)
     normals = _branch_normals(analysis)
@@ -624,6 +631,8 @@ def diagram_at(reference: WrenchDiagram, analysis: WrenchAnalysis) -> WrenchDiag
     >>> diagram_at(generic, wrench_analysis(h4.twist_graph())).line_text()
     '[ab, cd, ef, gh, ij, kj]'
     """
+    _require(reference, WrenchDiagram, "reference")
+    _require(analysis, WrenchAnalysis, "analysis")
     lines, problems = _lines_at(reference.line_names, analysis)
     coordinates: dict[str, Array] = {}
     if not problems:
@@ -1050,6 +1059,9 @@ def superbracket_analysis(
     >>> str(result.simplification.factored), result.labels
     ('-[gikj][a b d ḟ][c g ḣ j]', ('constraint', 'actuation'))
     """
+    _require(diagram, WrenchDiagram, "diagram")
+    if not callable(sampler):
+        raise ScrewkitTypeError(f"Expected `sampler` to be callable, got {type(sampler).__name__}.")
     if diagram.degenerate:
         raise ScrewkitValueError(
             "The wrench diagram is degenerate at this pose, so no factorization is claimed: "

@@ -218,6 +218,8 @@ def save_snapshot(
     >>> again.number_of_edges() == graph.number_of_edges()
     True
     """
+    if not isinstance(path, str | Path):
+        raise ScrewkitTypeError(f"Expected `path` to be a str or pathlib.Path, got {type(path).__name__}.")
     target = Path(path)
     text = snapshot_text(graph, name=name, joint_key=joint_key)
     try:

@@ -282,6 +282,10 @@ def helical(name: str, axis: Any, point: Any, pitch: Any, *, actuated: bool = Fa
     >>> helical("H1", [0, 0, 1], [0, 0, 0], lead_to_pitch(2 * math.pi)).screws
     array([[0., 0., 1., 0., 0., 1.]])
     """
+    if not isinstance(pitch, str | bytes) and np.ndim(pitch) != 0:
+        raise ScrewkitValueError(
+            f"Expected `pitch` to be one number (the joint's pitch), got shape {np.shape(pitch)}."
+        )
     twist = S.helical_twist(S.normalize(S.line(axis, [0, 0, 0]))[:3], point, pitch)
     geometry = _geometry(axis=axis, point=point, pitch=pitch) if _numeric_or_none(axis, point, pitch) else {}
     return Joint(name, "H", twist.reshape(1, 6), actuated=actuated, geometry=geometry)

@@ -156,8 +156,16 @@ def helical_twist(axis: Any, point: Any, pitch: Any) -> Array:
     base = line(axis, point)
     (h,) = B.promote(B.as_array(pitch, "pitch", (), symbolic=B.is_symbolic(base)))
     base, h = B.promote(base, h)
+    try:
+        batch = np.broadcast_shapes(base.shape[:-1], np.shape(h))
+    except ValueError as err:
+        raise ScrewkitValueError(
+            f"Expected `pitch` of a shape broadcastable to the axes' batch {base.shape[:-1]}, "
+            f"got {np.shape(h)}."
+        ) from err
+    base = np.broadcast_to(base, (*batch, 6))
     s = base[..., :3]
-    return np.concatenate([s, base[..., 3:] + np.asarray(h)[..., None] * s], axis=-1)
+    return np.concatenate([s, base[..., 3:] + np.broadcast_to(np.asarray(h), batch)[..., None] * s], axis=-1)
 
 
 def prismatic_twist(direction: Any) -> Array:
