@@ -168,6 +168,8 @@ def snapshot_text(graph: nx.MultiDiGraph, *, name: str | None = None, joint_key:
     (9, True)
     """
     check_twist_graph(graph, joint_key=joint_key)
+    if name is not None and not isinstance(name, str):
+        raise ScrewkitTypeError(f"Expected `name` to be a str, got {type(name).__name__}.")
     title = name if name is not None else str(graph.graph.get("name", "twist graph"))
     lines = [
         "# screwkit snapshot (written by screwkit.export.save_snapshot)",

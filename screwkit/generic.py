@@ -71,7 +71,7 @@ def is_symbolic_graph(graph: nx.MultiDiGraph, *, joint_key: str = "joint") -> bo
     >>> is_symbolic_graph(G)
     True
     """
-    return any(B.is_symbolic(joint.screws) for _, _, joint in graph.edges(data=joint_key))
+    return any(B.is_symbolic(getattr(joint, "screws", None)) for _, _, joint in graph.edges(data=joint_key))
 
 
 @dataclass(frozen=True, eq=False)

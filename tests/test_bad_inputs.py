@@ -409,6 +409,13 @@ _R = sk.revolute("R", [0, 0, 1], [0, 0, 0], actuated=True)
 _G = sk.twist_graph("B", "E", [("B", "E", _R)])
 
 
+def _with(graph, **attributes):
+    """A copy of a twist graph with graph attributes changed."""
+    copy = graph.copy()
+    copy.graph.update(attributes)
+    return copy
+
+
 def _h4():
     return load_mechanism("h4")
 
@@ -516,6 +523,9 @@ API_CASES = [
     (lambda: sk.superbracket_analysis([], None), ScrewkitTypeError, r"Expected `diagram` to be a WrenchDiagram, got list"),
     (lambda: sk.superbracket_analysis(_h4().wrench_diagram()[0], 5), ScrewkitTypeError, r"Expected `sampler` to be callable, got int"),
     (lambda: sk.save_snapshot(_G, 5), ScrewkitTypeError, r"Expected `path` to be a str or pathlib\.Path, got int"),
+    (lambda: sk.classify(_G, joint_key="nope"), TwistGraphError, r"Edge 'B' → 'E' \(key 'R'\): expected attribute 'nope' holding a Joint"),
+    (lambda: sk.snapshot_text(_G, name=5), ScrewkitTypeError, r"Expected `name` to be a str, got int"),
+    (lambda: sk.classify(_with(_G, mobility="x", dof=2)), TwistGraphError, r"Expected graph attribute 'mobility' to be an integer in 0\.\.6, got 'x'"),
     (lambda: sk.save_snapshot(_G, None), ScrewkitTypeError, r"Expected `path` to be a str or pathlib\.Path, got NoneType"),
     # angles in radians: the bound of files and the CLI (1e6 degrees), naming the argument and the coordinate
     (lambda: _h4().at([0, 0, -750, 1e5]), ScrewkitValueError, r"Expected the angle `phi` of `poses` to be at most 17453\.3 rad \(1e\+06 degrees\) in magnitude .*got 100000 rad"),
