@@ -27,9 +27,9 @@ Examples
 from __future__ import annotations
 
 import functools
-from collections.abc import Callable
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, overload
 
 import networkx as nx
 import numpy as np
@@ -310,9 +310,9 @@ class Pose:
 
 def _batch_analyses(
     mechanism: Any, rng: np.random.Generator, count: int, rtol: float
-) -> list[WrenchAnalysis]:
+) -> Sequence[WrenchAnalysis]:
     """Per-pose analyses at ``count`` random workspace poses, computed as one batch (the poses out
-    of reach are dropped)."""
+    of reach are dropped); each pose's view and graph are built when first read."""
     poses = mechanism.random_poses(rng, count)
     try:
         table = mechanism.joints(poses)
@@ -327,23 +327,49 @@ def _batch_analyses(
         if not kept:
             return []
         table = mechanism.joints(np.array(kept))
-    batch = analyze_table(table, rtol=rtol)
-    out = []
-    for i in range(len(batch)):
-        one = batch[i]
-        graph = table.graph(i)
-        graph.graph["name"] = mechanism.name
-        object.__setattr__(one, "graph", graph)
-        out.append(one)
-    return out
+    return _PoseAnalyses(analyze_table(table, rtol=rtol), table, mechanism.name)
+
+
+class _PoseAnalyses(Sequence[WrenchAnalysis]):
+    """The per-pose views of a batched analysis, each (with its twist graph) built on first read:
+    a diagram is chosen on the first few and sampled until enough points are found."""
+
+    def __init__(self, batch: Any, table: JointTable, name: str):
+        self._batch, self._table, self._name = batch, table, name
+        self._built: dict[int, WrenchAnalysis] = {}
+
+    def __len__(self) -> int:
+        return len(self._batch)
+
+    @overload
+    def __getitem__(self, index: int) -> WrenchAnalysis: ...
+
+    @overload
+    def __getitem__(self, index: slice) -> list[WrenchAnalysis]: ...
+
+    def __getitem__(self, index: int | slice) -> WrenchAnalysis | list[WrenchAnalysis]:
+        if isinstance(index, slice):
+            return [self[i] for i in range(*index.indices(len(self)))]
+        if not -len(self) <= index < len(self):
+            raise IndexError(index)
+        index %= len(self)
+        if index not in self._built:
+            one = self._batch[index]
+            graph = self._table.graph(index)
+            graph.graph["name"] = self._name
+            object.__setattr__(one, "graph", graph)
+            self._built[index] = one
+        return self._built[index]
 
 
 def generic_samples(
     mechanism: Any, points: Any, rng: np.random.Generator, count: int, rtol: float = B.DEFAULT_RTOL
-) -> list[dict[str, Array]]:
+) -> Iterator[dict[str, Array]]:
     """A diagram's points (``{label: (4,)}``) at random workspace poses, analysed as one batch.
 
-    Poses where a point does not exist are skipped; at most ``2 * count`` poses are drawn.
+    The poses are drawn and analysed as one batch on the first ``next``; each sample's points are
+    evaluated when it is asked for (a superbracket takes 12 of them). Poses where a point does not
+    exist are skipped; at most ``2 * count`` poses are drawn, at most ``count`` samples yielded.
 
     Raises
     ------
@@ -355,24 +381,25 @@ def generic_samples(
     >>> from screwkit.catalog import load_mechanism
     >>> h4 = load_mechanism("h4")
     >>> diagram, _ = h4.wrench_diagram()
-    >>> len(generic_samples(h4, diagram.points, np.random.default_rng(0), 3))
+    >>> len(list(generic_samples(h4, diagram.points, np.random.default_rng(0), 3)))
     3
     """
     from .diagram import diagram_points
 
-    samples = []
+    found = 0
     for analysis in _batch_analyses(mechanism, rng, 2 * count, rtol):
         try:
-            samples.append(diagram_points(points, analysis))
+            sample = diagram_points(points, analysis)
         except ScrewkitError:
             continue
-        if len(samples) == count:
-            break
-    if not samples:
+        yield sample
+        found += 1
+        if found == count:
+            return
+    if not found:
         raise ScrewkitValueError(
             f"Expected a workspace pose giving every diagram point, got none of {2 * count}."
         )
-    return samples
 
 
 def _no_sampler(rng: np.random.Generator) -> dict[str, Array]:
