@@ -508,7 +508,7 @@ def settled_dof(
     configuration needed, the common case costs nothing). Otherwise the mobility is the graph's
     ``mobility`` attribute when it has one (a catalog family's graphs do:
     :attr:`screwkit.joints.JointTable.mobility`), else computed at generic configurations
-    (:func:`generic_mobility`, ~0.1–0.3 s; where no loop could be closed, the platform's most common
+    (:func:`generic_mobility`, 0.03–0.2 s; where no loop could be closed, the platform's most common
     order over the analysed poses stands in for it).
 
     Examples
