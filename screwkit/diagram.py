@@ -1345,7 +1345,7 @@ def superbracket_analysis(
             + "; ".join(diagram.degenerate)
         )
     generator = np.random.default_rng(rng)
-    drawn = [dict(sampler(generator)) for _ in range(2 * n_samples)]
+    drawn = [_centred(sampler(generator)) for _ in range(2 * n_samples)]
 
     def replay() -> Callable[[np.random.Generator], Mapping[str, Array]]:
         iterator = iter(drawn)
@@ -1375,7 +1375,7 @@ def superbracket_analysis(
         roles=diagram.roles,
     )
     labels = tuple(c.label for c in found)
-    values = tuple(float(c.evaluate(diagram.coordinates)) for c in found)
+    values = tuple(float(c.evaluate(_centred(diagram.coordinates))) for c in found)
     on_samples = [np.array([float(c.evaluate(sample)) for sample in drawn]) for c in found]
     typical = [float(np.median(np.abs(v))) for v in on_samples]
     vanishing = tuple(abs(v) <= VANISHING_RTOL * size for v, size in zip(values, typical, strict=True))
@@ -1388,6 +1388,19 @@ def superbracket_analysis(
     return SuperbracketAnalysis(
         diagram, simplification, found, labels, values, collinear, vanishing, constant
     )
+
+
+def _centred(points: Mapping[str, Array]) -> dict[str, Array]:
+    """The points with the origin moved to the centroid of the finite ones (``(x, w) → (x − w c, w)``,
+    points at infinity unchanged). Brackets are 4×4 determinants of homogeneous coordinates, and a
+    translation is a unimodular map of them, so every bracket, condition and collinearity keeps its
+    value (gca.md §5.1: the values depend on differences of finite points only), while a mechanism
+    far from the origin no longer loses digits to the cancellation of large coordinates."""
+    finite = [np.asarray(p[:3], dtype=float) / p[3] for p in points.values() if p[3] != 0]
+    if not finite:
+        return dict(points)
+    centre = np.mean(finite, axis=0)
+    return {k: np.concatenate([p[:3] - p[3] * centre, p[3:]]) for k, p in points.items()}
 
 
 def _collinear_triples(diagram: WrenchDiagram, samples: list[dict[str, Array]]) -> tuple[str, ...]:

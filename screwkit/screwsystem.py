@@ -560,7 +560,15 @@ def _finite_candidates(basis: Array, couples: Array, near: Array, rtol: float, l
 
 
 def _pick(candidates: Array, order: int, system: ScrewSystem) -> Array:
-    picked = _independent_rows(candidates, system.rtol, system.length_scale)
+    """The first ``order`` independent candidates. The candidates lie in the system to within the
+    snapping of :func:`_axis_first` and :func:`_finite_candidates` (``1e3 rtol``: a frame axis, a
+    line), so that is the tolerance of their independence; the system's own ``rtol`` decides where
+    that would not give ``order`` rows (a system with a singular value between the two)."""
+    picked = np.zeros((0, 6))
+    if not system.is_symbolic:
+        picked = _independent_rows(candidates, min(1e3 * system.rtol, 1e-3), system.length_scale)
+    if picked.shape[0] != order:
+        picked = _independent_rows(candidates, system.rtol, system.length_scale)
     if picked.shape[0] != order:  # pragma: no cover - guarded by construction
         raise ScrewkitValueError(f"Internal error: readable basis of order {picked.shape[0]} != {order}.")
     if system.is_symbolic:

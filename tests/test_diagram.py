@@ -421,6 +421,27 @@ def test_generic_diagram_follows_rigid_motions_and_units(name):
         assert np.allclose(np.abs(moved.coordinates[label][:3]), np.abs(expected), rtol=1e-7, atol=1e-6)
 
 
+def test_mcgill_smg_10_km_from_the_origin_keeps_its_diagram_and_superbracket():
+    # issue 11: a robot far from the origin keeps its labels and diagram. The McGill SMG's graph
+    # (mm) moved ~12 km away: the readable constraint bases used to be decided about the far origin
+    # (an internal error from 1 km on); now about the mechanism's own axes
+    graph = load_mechanism("mcgill_smg").twist_graph()
+    rotation = np.eye(3)  # a translation only: the readable bases put the frame's axes first
+    far = M.moved(graph, rotation, np.array([1e7, -1e7, 3e6]))
+    near_report, far_report = analyze(graph), analyze(far)
+    assert far_report.verdict.labels == near_report.verdict.labels == ()
+    assert not far_report.diagram.degenerate
+    assert far_report.diagram.line_names == near_report.diagram.line_names
+    assert [p.key for p in far_report.diagram.points] == [p.key for p in near_report.diagram.points]
+    factors = [str(c.factor) for c in near_report.superbracket.conditions]
+    assert factors and [str(c.factor) for c in far_report.superbracket.conditions] == factors
+    for label, point in near_report.diagram.coordinates.items():  # finite points moved, others turned
+        moved = far_report.diagram.coordinates[label]
+        expected = rotation @ point[:3] if point[3] == 0 else rotation @ point[:3] + [1e7, -1e7, 3e6]
+        scale = 1.0 if point[3] == 0 else 1e3
+        assert np.allclose(np.abs(moved[:3]), np.abs(expected), rtol=1e-9, atol=1e-6 * scale)
+
+
 def test_a_structural_factor_is_reported_as_never_vanishing():
     # a planar mechanism in the xy-plane is constrained by the couples about x and y and a force
     # along z at every configuration (its constraint lines never move), so the factor made of their
