@@ -949,9 +949,9 @@ def _branch_pair(batch: _Batch, first: str, second: str) -> Array:
     """``n(first) × n(second)`` over the batch (``_branch_normals``' recipe, NaN where the two
     branches are not consecutive single constraint couples of one parallel node there).
 
-    A branch's constraint couple is reciprocal to its twist system of order 5: the null vector
-    ``v`` of its rows gives the wrench ``(v_m; v_s)`` (the reciprocal product swaps the halves);
-    its moment's direction is frame- and unit-free.
+    A branch's constraint couple is the reciprocal of its twist system (the core's frame kernel,
+    :func:`screwkit._frames.reciprocal`) where that has order 1 and infinite pitch; its moment's
+    direction is frame- and unit-free.
     """
     top = batch.topology
     if top.network or top.root is None:
@@ -976,11 +976,11 @@ def _branch_pair(batch: _Batch, first: str, second: str) -> Array:
             continue
         moments, couple = [], []
         for child in children:
-            rows, order = batch.frames[f"node{child}"]
-            null = np.linalg.svd(rows[..., :5, :])[2][..., -1, :]
-            wrench = np.concatenate([null[..., 3:], null[..., :3]], axis=-1)
-            moments.append(_units(wrench[..., 3:]))
-            couple.append((order == 5) & (np.linalg.norm(wrench[..., :3], axis=-1) <= B.DEFAULT_RTOL))
+            rows, order = F.reciprocal(*batch.frames[f"node{child}"])  # the core's kernel, scaled frame
+            wrench = rows[:, 0]
+            moments.append(_units(wrench[:, 3:]))
+            size = np.linalg.norm(wrench, axis=-1)
+            couple.append((order == 1) & (np.linalg.norm(wrench[:, :3], axis=-1) <= B.DEFAULT_RTOL * size))
         a, b = names.index(first), names.index(second)
         between = np.zeros(batch.count, dtype=bool)
         for k in range(a + 1, b):
