@@ -29,7 +29,9 @@ Quantities (:data:`QUANTITIES`)
 ``"condition:K"``
     The vector form of the K-th factor of the superbracket (:mod:`screwkit.conditions`), factored
     once at the default pose and evaluated on the wrench diagram's points over the whole batch
-    (:func:`screwkit.diagram.batch_diagram_points`, from the batched core).
+    (:func:`screwkit.diagram.batch_diagram_points`, from the batched core); a
+    :class:`~screwkit.exceptions.DegenerateGeometryError` names the pose where a point of the
+    diagram does not exist (e.g. a limb at a serial singularity has no actuation line).
 
 Float maps hold NaN where a pose is out of reach, always together with ``reachable`` False.
 
