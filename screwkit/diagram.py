@@ -46,7 +46,7 @@ from __future__ import annotations
 
 import itertools
 import string
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any
 
@@ -1042,7 +1042,9 @@ def _recipe(key: tuple[str, ...], batch: _Batch, cache: dict[tuple[str, ...], Ar
 REFERENCE_TRIES = 3
 
 
-def generic_reference(analyses: list[WrenchAnalysis]) -> tuple[WrenchDiagram | None, tuple[str, ...]]:
+def generic_reference(
+    analyses: Sequence[WrenchAnalysis],
+) -> tuple[WrenchDiagram | None, tuple[str, ...]]:
     """The diagram of a mechanism at a generic configuration, or why the mechanism has none.
 
     The lines (a line basis of the wrench system, with the legs they come from) and the points
@@ -1090,7 +1092,8 @@ class ReplaySampler:
     Parameters
     ----------
     produce : callable
-        ``rng -> list of {label: point}``: a batch of a diagram's points at generic configurations.
+        ``rng -> iterable of {label: point}``: a batch of a diagram's points at generic
+        configurations; read one sample at a time, so a lazy producer evaluates only those asked for.
 
     Examples
     --------
@@ -1099,14 +1102,18 @@ class ReplaySampler:
     [{'a': 0}, {'a': 1}, {'a': 0}]
     """
 
-    def __init__(self, produce: Callable[[np.random.Generator], list[dict[str, Array]]]):
+    def __init__(self, produce: Callable[[np.random.Generator], Iterable[dict[str, Array]]]):
         self.produce, self.stream = produce, np.random.default_rng(0)
-        self.drawn: list[dict[str, Array]] = []
+        self.drawn: Iterator[dict[str, Array]] = iter(())
 
     def __call__(self, rng: np.random.Generator) -> dict[str, Array]:
-        if not self.drawn:
-            self.drawn = self.produce(self.stream)
-        return self.drawn.pop(0)
+        sample = next(self.drawn, None)
+        if sample is None:
+            self.drawn = iter(self.produce(self.stream))
+            sample = next(self.drawn, None)
+        if sample is None:
+            raise ScrewkitValueError("Expected the diagram's sampler to produce a sample, got none.")
+        return sample
 
 
 def graph_diagram(
@@ -1148,18 +1155,19 @@ def graph_diagram(
         return replace(wrench_diagram(analysis), coordinates={}, degenerate=reasons), None
     diagram = diagram_at(reference, analysis)
 
-    def produce(stream: np.random.Generator) -> list[dict[str, Array]]:
-        found = []
+    def produce(stream: np.random.Generator) -> Iterator[dict[str, Array]]:
+        found = 0
         for one in generic_analyses(graph, stream, samples, rtol=analysis.rtol):
             try:
-                found.append(diagram_points(diagram.points, one))
+                sample = diagram_points(diagram.points, one)
             except ScrewkitError:
                 continue
+            found += 1
+            yield sample
         if not found:
             raise ScrewkitValueError(
                 f"Expected a generic configuration giving every diagram point, got none of {samples}."
             )
-        return found
 
     return diagram, ReplaySampler(produce)
 

@@ -28,9 +28,9 @@ from __future__ import annotations
 
 import functools
 import weakref
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, overload
 
 import networkx as nx
 import numpy as np
@@ -340,21 +340,45 @@ def _reachable_table(mechanism: Any, rng: np.random.Generator, count: int) -> Jo
 
 def _batch_analyses(
     mechanism: Any, rng: np.random.Generator, count: int, rtol: float
-) -> list[WrenchAnalysis]:
+) -> Sequence[WrenchAnalysis]:
     """Per-pose analyses at ``count`` random workspace poses, computed as one batch (the poses out
-    of reach are dropped)."""
+    of reach are dropped); each pose's view and graph are built when first read."""
     table = _reachable_table(mechanism, rng, count)
     if table is None:
         return []
-    batch = analyze_table(table, rtol=rtol)
-    out = []
-    for i in range(len(batch)):
-        one = batch[i]
-        graph = table.graph(i)
-        graph.graph["name"] = mechanism.name
-        object.__setattr__(one, "graph", graph)
-        out.append(one)
-    return out
+    return _PoseAnalyses(analyze_table(table, rtol=rtol), table, mechanism.name)
+
+
+class _PoseAnalyses(Sequence[WrenchAnalysis]):
+    """The per-pose views of a batched analysis, each (with its twist graph) built on first read:
+    a diagram is chosen on the first few and sampled until enough points are found."""
+
+    def __init__(self, batch: Any, table: JointTable, name: str):
+        self._batch, self._table, self._name = batch, table, name
+        self._built: dict[int, WrenchAnalysis] = {}
+
+    def __len__(self) -> int:
+        return len(self._batch)
+
+    @overload
+    def __getitem__(self, index: int) -> WrenchAnalysis: ...
+
+    @overload
+    def __getitem__(self, index: slice) -> list[WrenchAnalysis]: ...
+
+    def __getitem__(self, index: int | slice) -> WrenchAnalysis | list[WrenchAnalysis]:
+        if isinstance(index, slice):
+            return [self[i] for i in range(*index.indices(len(self)))]
+        if not -len(self) <= index < len(self):
+            raise IndexError(index)
+        index %= len(self)
+        if index not in self._built:
+            one = self._batch[index]
+            graph = self._table.graph(index)
+            graph.graph["name"] = self._name
+            object.__setattr__(one, "graph", graph)
+            self._built[index] = one
+        return self._built[index]
 
 
 def generic_samples(
