@@ -344,7 +344,8 @@ def transmission_indices(config: FourLimbGeometry) -> TransmissionIndices:
 INDEX_NAMES = ("lti", "input", "output")
 
 _UNREACHABLE = ("raise", "nan")
-_KIND_CODES = {"articulated_z": 0, "articulated_y": 1, "screw_pair": 2}
+
+
 def _numba_kernels() -> ModuleType | None:
     """The fused kernel module, or None for the numpy path (:func:`screwkit._frames.compiled_kernels`:
     the same rule as the rank kernels, decided once per process)."""
@@ -376,28 +377,42 @@ def _four_limb_parameters(mechanism: Any) -> Any:
 
 
 def _kernel_arguments(params: Any, mode: tuple[int, ...]) -> tuple[Any, ...]:
-    """The packed geometry of :func:`screwkit._indices_numba.transmission`."""
+    """The packed geometry of :func:`screwkit._indices_numba.transmission`, in units of ``l``.
+
+    Per limb (sub-platform I's limbs first, then II's: ``ζ`` pairs them in that order) ``c_i - a_i``
+    minus the position, as a constant plus multiples of ``cos φ``, ``sin φ`` and ``φ`` (Table 1 as
+    corrected in :mod:`screwkit.families.four_limb`); then ``F_i j``, ``F_i k`` and ``m_i``.
+    """
     from .families import four_limb as FL
 
     base = FL._base(params)
-    packed_base = np.zeros((4, 4, 3))
-    packed_base[:, 0], packed_base[:, 1], packed_base[:, 2] = base.a, base.j_rot, base.k_rot
-    platform = np.zeros((4, 4, 3))
-    if params.platform_kind == "screw_pair":
-        angles = FL._ETA
-        platform[:, 0] = params.platform_radius * np.stack(
-            [np.cos(angles), np.sin(angles), np.zeros(4)], axis=-1
-        )
-        platform[:, 1, 0] = FL._ODD_LIMB
-        rise = params.lead / (2.0 * np.pi)
-    else:
-        platform[:, 0, 1] = FL._SGN_SIN_ETA * params.platform_offset
-        platform[:, 1, 0] = FL._SGN_COS_ETA
-        rise = 0.0
-    lengths = np.array([params.arm_length, params.rod_length, params.platform_radius, rise])
-    pairs = np.array(params.subplatform_limbs, dtype=np.int64)
-    kind = _KIND_CODES[params.platform_kind]
-    return packed_base, platform, np.array(mode, dtype=float), kind, lengths, pairs
+    rod = float(params.rod_length)
+    constant, along_cos, along_sin, along_phi = (np.zeros((4, 3)) for _ in range(4))
+    cosine_s, sine_s, fixed_s = np.zeros(3), np.zeros(3), np.zeros(3)
+    if params.platform_kind == "screw_pair":  # c_i = r R_z(γ_i) i + mod(i, 2) h φ/(2π) k + p
+        radial = np.stack([np.cos(FL._ETA), np.sin(FL._ETA), np.zeros(4)], axis=-1)
+        constant[:] = params.platform_radius * radial
+        along_phi[:, 2] = FL._ODD_LIMB * params.lead / (2.0 * np.pi)
+        fixed_s[2] = 1.0  # s = k
+    else:  # c_i = sgn(cos η_i) r e(φ) + sgn(sin η_i) c j + p
+        constant[:, 1] = FL._SGN_SIN_ETA * params.platform_offset
+        radius = (FL._SGN_COS_ETA * params.platform_radius)[:, None]
+        if params.platform_kind == "articulated_z":  # e = R_z(φ) i, s = R_z(φ) j
+            along_cos[:], along_sin[:] = radius * [1.0, 0.0, 0.0], radius * [0.0, 1.0, 0.0]
+            cosine_s[1], sine_s[0] = 1.0, -1.0
+        else:  # e = R_y(φ) i, s = -R_y(φ) k (four_limb item 3)
+            along_cos[:], along_sin[:] = radius * [1.0, 0.0, 0.0], radius * [0.0, 0.0, -1.0]
+            cosine_s[2], sine_s[0] = -1.0, -1.0
+    order = [limb for pair in params.subplatform_limbs for limb in pair]
+    rows = np.concatenate(
+        [(constant - base.a) / rod, along_cos / rod, along_sin / rod, along_phi / rod, base.j_rot, base.k_rot,
+         np.array(mode, dtype=float)[:, None]],
+        axis=1,
+    )[order]
+    limbs = tuple(tuple(float(v) for v in row) for row in rows)
+    platform = tuple(float(v) for v in np.concatenate([cosine_s, sine_s, fixed_s]))
+    arm = float(params.arm_length) / rod
+    return limbs, platform, arm, arm * arm - 1.0, 1.0 / rod
 
 
 def _transmission_numpy(params: Any, poses: np.ndarray, mode: tuple[int, ...]) -> tuple[np.ndarray, ...]:
@@ -482,22 +497,21 @@ def transmission(
         raise ScrewkitValueError(f"Expected `unreachable` to be one of {_UNREACHABLE}, got {unreachable!r}.")
     mode = _checked_working_mode((-1, -1, -1, -1) if working_mode is None else working_mode)
     chosen = mechanism.default_pose if poses is None else poses
-    chi = B.as_array(chosen, "poses", (4,), symbolic=False).astype(float)
+    chi = B.as_array(chosen, "poses", (4,), symbolic=False)  # a new float64 array, checked finite
     batch = chi.shape[:-1]
     flat = np.ascontiguousarray(chi.reshape(-1, 4))
-    if not np.all(np.isfinite(flat)):
-        raise ScrewkitValueError("Expected `poses` to be finite, got NaN or infinity.")
     kernels = _numba_kernels()
     if kernels is None:
         kappa, zeta, ok = _transmission_numpy(params, flat, mode)
     else:
         kappa, zeta, ok = kernels.transmission(flat, *_kernel_arguments(params, mode))
+    eta = np.minimum(kappa, zeta)
     if not ok.all():
         if unreachable == "raise":
             inverse_kinematics(params, chi, working_mode=mode)  # raises the family's message
             raise UnreachablePoseError("A pose is out of reach.")  # pragma: no cover - unreachable
-        kappa, zeta = np.where(ok, kappa, np.nan), np.where(ok, zeta, np.nan)
-    eta = np.minimum(kappa, zeta)
+        missing = ~ok
+        kappa[missing] = zeta[missing] = eta[missing] = np.nan
     return TransmissionIndices(kappa.reshape(batch), zeta.reshape(batch), eta.reshape(batch))
 
 
