@@ -92,9 +92,11 @@ __all__ = [
     "FourLimbJacobians",
     "IndexExtremes",
     "Region",
+    "SingularSurface",
     "Table4Row",
     "TransmissionIndices",
     "WrenchTransmission",
+    "actuation_singularity_surface",
     "det_A_closed_form",
     "force_pressure_angle",
     "four_limb_jacobians",
@@ -599,6 +601,29 @@ class Region:
         return cls(f"cone-cylinder (apex z {apex_z:g}, radius {radius:g} from z {rim_z:g} to {top_z:g})",
                    (-radius, -radius, apex_z), (radius, radius, top_z), inside)
 
+    def boundary(self, count: int = 16) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Points of the region's boundary on a latitude-longitude grid about the centre of its box,
+        each where the ray from the centre leaves the region (bisection on :attr:`contains`; the
+        region must be star-shaped about that centre, as the box, the super-ellipsoid and the
+        cone-cylinder are): ``x, y, z`` of shape ``(count + 1, 2 count + 1)``, for a wireframe.
+
+        Examples
+        --------
+        >>> x, y, z = Region.super_ellipsoid((0, 0, 0), (1, 2, 3), 2.0).boundary(8)
+        >>> x.shape, bool(np.allclose(x**2 + (y / 2) ** 2 + (z / 3) ** 2, 1.0))
+        ((9, 17), True)
+        """
+        centre = 0.5 * (np.array(self.lower) + np.array(self.upper))
+        polar, azimuth = np.meshgrid(
+            np.linspace(0.0, np.pi, count + 1), np.linspace(-np.pi, np.pi, 2 * count + 1), indexing="ij"
+        )
+        sine = np.sin(polar)
+        directions = np.stack([sine * np.cos(azimuth), sine * np.sin(azimuth), np.cos(polar)], axis=-1)
+        reach = float(np.linalg.norm(np.array(self.upper) - np.array(self.lower)))  # beyond the box
+        points = _pulled_inside(self, centre, centre + reach * directions.reshape(-1, 3))
+        x, y, z = points.reshape(*polar.shape, 3).transpose(2, 0, 1)
+        return x, y, z
+
 
 class IndexExtremes(NamedTuple):
     """The extremes of an index over a region at one rotation angle (:func:`index_extremes`).
@@ -679,6 +704,28 @@ def _refined(
     return sign * best_value, best
 
 
+def _region_grid(
+    mechanism: Any, region: Region | None, phi: Any, working_mode: Any, *, grid: Any, refine: Any = 0
+) -> tuple[Region, tuple[int, int, int, int], list[np.ndarray]]:
+    """The checked region (default: the mechanism's workspace box), working mode and grid axes of a
+    search at one rotation ``phi`` (:func:`index_extremes`, :func:`actuation_singularity_surface`)."""
+    from .families.four_limb import _checked_working_mode
+
+    for name, value, least in (("grid", grid, 2), ("refine", refine, 0)):
+        if not isinstance(value, int | np.integer) or isinstance(value, bool) or value < least:
+            raise ScrewkitValueError(f"Expected `{name}` to be an integer >= {least}, got {value!r}.")
+    if not isinstance(phi, int | float | np.integer | np.floating) or not math.isfinite(phi):
+        raise ScrewkitValueError(f"Expected `phi` to be a finite number (radians), got {phi!r}.")
+    if region is None:
+        box = mechanism.workspace
+        region = Region.box(box["x"], box["y"], box["z"])
+    elif not isinstance(region, Region):
+        raise ScrewkitTypeError(f"Expected `region` to be a Region, got {type(region).__name__}.")
+    mode = _checked_working_mode((-1, -1, -1, -1) if working_mode is None else working_mode)
+    axes = [np.linspace(lo, hi, int(grid)) for lo, hi in zip(region.lower, region.upper, strict=True)]
+    return region, mode, axes
+
+
 def index_extremes(
     mechanism: Any,
     index: str = "lti",
@@ -731,23 +778,10 @@ def index_extremes(
     >>> round(result.maximum, 3), result.points
     (1.0, 8921)
     """
-    from .families.four_limb import _checked_working_mode
-
     params = _four_limb_parameters(mechanism)
     if index not in INDEX_NAMES:
         raise ScrewkitValueError(f"Expected `index` to be one of {INDEX_NAMES}, got {index!r}.")
-    for name, value, least in (("grid", grid, 2), ("refine", refine, 0)):
-        if not isinstance(value, int | np.integer) or isinstance(value, bool) or value < least:
-            raise ScrewkitValueError(f"Expected `{name}` to be an integer >= {least}, got {value!r}.")
-    if not isinstance(phi, int | float | np.integer | np.floating) or not math.isfinite(phi):
-        raise ScrewkitValueError(f"Expected `phi` to be a finite number (radians), got {phi!r}.")
-    if region is None:
-        box = mechanism.workspace
-        region = Region.box(box["x"], box["y"], box["z"])
-    elif not isinstance(region, Region):
-        raise ScrewkitTypeError(f"Expected `region` to be a Region, got {type(region).__name__}.")
-    mode = _checked_working_mode((-1, -1, -1, -1) if working_mode is None else working_mode)
-    axes = [np.linspace(lo, hi, int(grid)) for lo, hi in zip(region.lower, region.upper, strict=True)]
+    region, mode, axes = _region_grid(mechanism, region, phi, working_mode, grid=grid, refine=refine)
     points = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, 3)
     # the box's points outside the region, pulled onto its boundary: a boundary sampling as fine as
     # the grid (extremes often sit on the boundary, between the grid's points)
@@ -900,6 +934,115 @@ def table_4(*, grid: int = 41, refine: int = 12, robots: Any = None) -> list[Tab
             )
         rows.append(Table4Row(robot, name, phi_deg, regions[region].name, low, high, ours, notes))
     return rows
+
+
+# --------------------------------------------------------------------------------------------------
+# Actuation singularity surfaces (paper 004, Sec. 5.3, Figs. 14-16)
+# --------------------------------------------------------------------------------------------------
+
+
+class SingularSurface(NamedTuple):
+    """The actuation singularity locus of a four-limb robot in a region at one rotation ``φ``.
+
+    Attributes
+    ----------
+    triangles : numpy.ndarray, shape (m, 3, 3)
+        Vertices ``(x, y, z)`` on ``|A| = 0`` (Eq. 12, Table 2), in the robot's length unit.
+    phi : float
+        The rotation, radians.
+    region : Region
+        The region searched (the triangles whose centroids lie inside it are kept).
+    robot : str
+    """
+
+    triangles: np.ndarray
+    phi: float
+    region: Region
+    robot: str
+
+    @property
+    def area(self) -> float:
+        """The surface's area (sum of its triangles'), in the robot's length unit squared."""
+        edges = self.triangles[:, 1:] - self.triangles[:, :1]
+        return float(0.5 * np.sum(np.linalg.norm(np.cross(edges[:, 0], edges[:, 1]), axis=-1)))
+
+
+def actuation_singularity_surface(
+    mechanism: Any,
+    phi: float,
+    region: Region | None = None,
+    *,
+    grid: int = 32,
+    working_mode: Any = None,
+) -> SingularSurface:
+    """Paper 004's actuation singularity locus at a rotation ``φ`` as a surface (Sec. 5.3, Figs. 14-16).
+
+    The paper draws the poses where ``ζ = |cos σ| ≤ ε`` (Eq. 15, ``ε = 0.001``) at a fixed ``φ``
+    inside the operational workspace. Here: the zero set of ``|A|`` (Eq. 12 / Table 2,
+    :func:`det_A_closed_form`), where ``ζ = 0`` (``|A| = 2r |w_I × w_II| cos σ`` for the articulated
+    platforms, ``-h/(2π) |w_I × w_II| cos σ`` for the screw pair) or ``w_I × w_II = 0``. ``|A|``
+    is sampled on a ``grid``³ grid over the region's box (the family's inverse kinematics; poses out
+    of reach left out), its zero set triangulated by marching tetrahedra and every vertex moved onto
+    it by bisection along its grid edge (:mod:`screwkit._isosurface`); the triangles whose centroid
+    lies in the region are kept, so the surface's edge follows the region's boundary to within a
+    grid cell. A thin sheet between two grid points of equal sign is missed: refine ``grid``.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+        A four-limb catalog mechanism.
+    phi : float
+        The rotation of the platform, radians.
+    region : Region, optional
+        Default: the box of the mechanism's ``[workspace]``.
+    grid : int
+        Grid points per axis (at least 2).
+    working_mode : sequence of 4 int, optional
+        Signs of ``h_i`` (Eq. 8); default the paper's ``(-1, -1, -1, -1)``.
+
+    Returns
+    -------
+    SingularSurface
+
+    Raises
+    ------
+    ScrewkitValueError
+        Not a four-limb mechanism, a non-finite ``phi``, ``grid`` below 2.
+    ScrewkitTypeError
+        ``region`` is not a Region.
+
+    Examples
+    --------
+    The Quattro has no actuation singularity in its (assumed) workspace at ``φ = 0`` (Table 4's
+    ``η_min = 0.380``); at ``φ = 90°`` it has (Sec. 5.1, Fig. 14b):
+
+    >>> from screwkit.catalog import load_mechanism
+    >>> quattro = load_mechanism("quattro")
+    >>> len(actuation_singularity_surface(quattro, 0.0, TABLE_4_CONE, grid=12).triangles)
+    0
+    >>> actuation_singularity_surface(quattro, np.pi / 2, TABLE_4_CONE, grid=12).area > 0
+    True
+    """
+    from ._isosurface import zero_surface
+    from .families.four_limb import inverse_kinematics, reachable
+
+    params = _four_limb_parameters(mechanism)
+    region, mode, axes = _region_grid(mechanism, region, phi, working_mode, grid=grid)
+    angle = float(phi)
+
+    def det_a(points: np.ndarray) -> np.ndarray:
+        poses = np.column_stack([points, np.full(len(points), angle)])
+        ok = reachable(params, poses)
+        values = np.full(len(points), np.nan)
+        if ok.any():
+            config: Any = inverse_kinematics(params, poses[ok], working_mode=mode)
+            values[ok] = det_A_closed_form(config)
+        return values
+
+    points = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, 3)
+    triangles = zero_surface(axes, det_a(points).reshape((int(grid),) * 3), det_a)
+    inside = region.contains(triangles.mean(axis=1)) if len(triangles) else np.zeros(0, dtype=bool)
+    return SingularSurface(triangles[inside], angle, region, mechanism.name)
 
 
 # --------------------------------------------------------------------------------------------------
