@@ -33,7 +33,9 @@ The platform angle's cosine and sine come from fdlibm's kernels (Sun Microsystem
 33-bit parts (fdlibm's ``e_rem_pio2.c`` constants; each product ``n·(π/2)_k`` is exact for
 ``|n| < 2²⁰``): written out here so that they vectorise, where ``math.cos`` is a scalar library call
 (about 19 ns of the previous 65 ns per pose). Beyond ``|φ| = REDUCTION_LIMIT`` (the three parts lose
-exactness) the few such poses are recomputed with ``math.cos``/``math.sin``. Compiled with
+exactness) the few such poses are recomputed with ``math.cos``/``math.sin``. One thread, no ``parallel``: it
+releases the GIL (``nogil``), so the Dask path's threads (:mod:`screwkit.workspace`) run chunks side
+by side, and nothing in it is shared between calls. Compiled with
 ``error_model="numpy"`` (no Python division checks: every division is guarded by a select) and
 only the ``contract`` fast-math flag (fused multiply-adds); no reassociation, which would undo the
 Cody–Waite reduction and fdlibm's compensated cosine.
@@ -134,7 +136,7 @@ def _pose(  # pragma: no cover - compiled
     return kappa, zeta, reach
 
 
-@njit(cache=True, error_model="numpy", fastmath=_FLAGS)
+@njit(cache=True, error_model="numpy", fastmath=_FLAGS, nogil=True)
 def transmission(  # pragma: no cover - compiled
     poses: Array, limbs: tuple, platform: tuple, arm: float, offset: float, scale: float
 ) -> tuple[Array, Array, Array]:

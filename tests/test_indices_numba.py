@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 import platform
+from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 import pytest
@@ -73,3 +74,18 @@ def test_the_pose_loop_is_vectorised():
     fresh(np.zeros((8, 4)), *I._kernel_arguments(load_mechanism("h4").parameters, (-1, -1, -1, -1)))
     assembly = "\n".join(fresh.inspect_asm().values())
     assert "sqrtpd" in assembly  # packed square roots (sqrtpd, vsqrtpd on xmm/ymm/zmm): SIMD over poses
+
+
+def test_threads_share_the_kernel():
+    # the kernel releases the GIL (the Dask path runs chunks in threads): calls side by side give
+    # what calls one after the other give
+    h4 = load_mechanism("h4")
+    low, high = zip(*(h4.workspace[c] for c in h4.pose_names), strict=True)
+    chunks = [np.random.default_rng(seed).uniform(low, high, size=(20_000, 4)) for seed in range(4)]
+    packed = I._kernel_arguments(h4.parameters, (-1, -1, -1, -1))
+    serial = [kernels.transmission(chunk, *packed) for chunk in chunks]
+    with ThreadPoolExecutor(4) as pool:
+        threaded = list(pool.map(lambda chunk: kernels.transmission(chunk, *packed), chunks))
+    for one, other in zip(serial, threaded, strict=True):
+        for a, b in zip(one, other, strict=True):
+            np.testing.assert_array_equal(a, b)
