@@ -103,7 +103,7 @@ def main():
     parser.add_argument("--robots", nargs="+", default=["ragnar"], help="catalog names, or: all")
     args = parser.parse_args()
     names = ["quattro", "h4", "v4", "veloce", "ragnar"] if args.robots == ["all"] else args.robots
-    kernels = I._numba_kernels()
+    kernels = I._numba_kernels(max(args.sizes))
     if kernels is None:
         raise SystemExit("numba is not available (install the `fast` extra); nothing to compare")
     print(f"LTI maps (paper 004 Eqs. 3, 11-16), one thread, CPU time of the process, best of "
