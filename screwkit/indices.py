@@ -10,6 +10,9 @@ What is here, along the data flow:
   tested fallback, ``SCREWKIT_NUMBA=0`` forces it): the entry point for maps;
 * :func:`index_extremes` over a :class:`Region` (grid and local refinement) and :func:`table_4`,
   paper 004's Table 4 regenerated with the paper's values beside ours (``screwkit table4``);
+* :func:`actuation_singularity_surface`: the actuation singularity locus ``|A| = 0`` at one rotation
+  as a triangulated surface (paper 004's Figs. 14-16; drawn by
+  :func:`screwkit.plot.plot_singularity_surfaces`);
 * :func:`transmission_ratio` and :func:`wrench_transmission`: input and output transmission per
   actuated joint from the actuation wrenches and the platform twists (Wang, Wu & Liu 2010; range
   [0, 1]), for any family or twist graph; ``posed.wrench_transmission`` and the report use it.
