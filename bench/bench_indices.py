@@ -23,7 +23,8 @@ evaluations differ by round-off times the condition number):
   where out of reach), what a user's map costs.
 
 The issue's target: the fused kernel ≥ 35× the straightforward numpy implementation (both columns
-of ratios are printed).
+of ratios are printed). Last, the script says whether the kernel's machine code has packed (SIMD)
+square roots, the sign that its pose loop was vectorised (x86 mnemonics).
 """
 
 import os
@@ -84,6 +85,17 @@ def grid(mechanism, count):
     return np.stack(np.meshgrid(*axes, indexing="ij"), -1).reshape(-1, 4)
 
 
+def packed_square_roots(kernels, packed):
+    """Whether the kernel's machine code has packed square roots (``sqrtpd``/``vsqrtpd``: the pose
+    loop runs as SIMD code); compiles the kernel's source afresh (numba shows no assembly for cached
+    code), with the same options."""
+    from numba import njit
+
+    fresh = njit(error_model="numpy", fastmath=kernels._FLAGS)(kernels.transmission.py_func)
+    fresh(np.zeros((8, 4)), *packed)
+    return "sqrtpd" in "\n".join(fresh.inspect_asm().values())
+
+
 def timings(mechanism, poses, kernels, packed, repeats):
     """CPU times of the four columns (module docstring), best of ``repeats``."""
     params, mode = mechanism.parameters, (-1, -1, -1, -1)
@@ -132,6 +144,8 @@ def main():
             )
             print(f"{name:>8} {len(poses):>8} {ok.mean():>5.2f} |{rates} | {times[0] / times[2]:>17.1f}x "
                   f"{times[0] / times[3]:>15.1f}x {difference:>8.0e}")
+    simd = packed_square_roots(kernels, I._kernel_arguments(load_mechanism(names[0]).parameters, (-1,) * 4))
+    print(f"packed (SIMD) square roots in the kernel's machine code: {'yes' if simd else 'NO'}")
     print(f"load average {os.getloadavg()[0]:.1f} at the end")
 
 

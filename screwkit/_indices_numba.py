@@ -3,7 +3,7 @@
 One loop over a flat batch of poses does, pose by pose, paper 004's inverse kinematics (Eq. 3) and the
 indices ``κ``, ``ζ`` (Eq. 15), without building a configuration, without a branch and without a call
 to the maths library, so that the compiler turns it into SIMD code over several poses at once
-(``tests/test_indices_numba.py`` checks the machine code for packed instructions). The numpy path (the
+(``bench/bench_indices.py`` checks the machine code for packed instructions). The numpy path (the
 family's configuration, then :func:`screwkit.indices.transmission_indices`) is the reference; the
 tests check that the two agree to round-off.
 

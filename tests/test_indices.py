@@ -213,11 +213,11 @@ def test_region_boundary_points():
 
 @pytest.fixture(scope="module")
 def surfaces(robots):
-    """Figs. 14-16's pairs of angles (degrees), both signs, over the assumed workspace, grid 16."""
+    """Figs. 14-16's pairs of angles (degrees), both signs, over the assumed workspace, grid 12."""
     angles = {"quattro": (75, 90), "h4": (60, 90), "v4": (45, 90)}
     return {
         (name, sign * angle): I.actuation_singularity_surface(
-            robots[name], math.radians(sign * angle), I.TABLE_4_CONE, grid=16
+            robots[name], math.radians(sign * angle), I.TABLE_4_CONE, grid=12
         )
         for name, pair in angles.items()
         for angle in pair
@@ -253,7 +253,7 @@ def test_actuation_surfaces_grow_with_the_rotation_as_paper_004_says(surfaces, r
         for sign in (1, -1):
             assert surfaces[(name, sign * high)].area > surfaces[(name, sign * low)].area > 0
     assert surfaces[("quattro", 75)].area < 0.01 * surfaces[("quattro", 90)].area
-    flat = I.actuation_singularity_surface(robots["quattro"], 0.0, I.TABLE_4_CONE, grid=16)
+    flat = I.actuation_singularity_surface(robots["quattro"], 0.0, I.TABLE_4_CONE, grid=12)
     assert flat.triangles.shape == (0, 3, 3) and flat.area == 0.0
 
 

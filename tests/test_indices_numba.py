@@ -1,7 +1,7 @@
 """The compiled kernel of paper 004's indices (screwkit._indices_numba): its cosine and sine against
 the maths library, its fallback for angles beyond the reduction's range against the numpy path, and
-that the compiler turned its pose loop into packed (SIMD) instructions -- the reason the kernel is
-written branch-free, without library calls (``bench/bench_indices.py`` measures the speed).
+calls from several threads at once. ``bench/bench_indices.py`` measures its speed and checks that the
+compiler turned its pose loop into packed (SIMD) instructions (a fresh compile, ~10 s: not here).
 
 The parity of the whole kernel with the numpy path over the five robots is checked in
 ``tests/test_indices.py`` (``test_numba_and_numpy_paths_agree``).
@@ -10,7 +10,6 @@ The parity of the whole kernel with the numpy path over the five robots is check
 from __future__ import annotations
 
 import math
-import platform
 from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
@@ -65,15 +64,6 @@ def test_angles_beyond_the_reduction_range_use_the_library():
     np.testing.assert_allclose(fast[1], plain[1], rtol=0, atol=1e-12)
     # the far poses are the near ones turned whole turns (to the rounding of φ itself: ~1e-4 rad at 6e12)
     np.testing.assert_allclose(fast[0][3:5], fast[0][:2], rtol=0, atol=1e-9)
-
-
-@pytest.mark.skipif(platform.machine() not in {"x86_64", "AMD64"}, reason="x86 mnemonics")
-def test_the_pose_loop_is_vectorised():
-    # compile the kernel's Python source afresh (numba gives no assembly for cached code), same options
-    fresh = numba.njit(error_model="numpy", fastmath=kernels._FLAGS)(kernels.transmission.py_func)
-    fresh(np.zeros((8, 4)), *I._kernel_arguments(load_mechanism("h4").parameters, (-1, -1, -1, -1)))
-    assembly = "\n".join(fresh.inspect_asm().values())
-    assert "sqrtpd" in assembly  # packed square roots (sqrtpd, vsqrtpd on xmm/ymm/zmm): SIMD over poses
 
 
 def test_threads_share_the_kernel():
