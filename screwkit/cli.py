@@ -470,7 +470,8 @@ def run_graph(args: argparse.Namespace) -> int:
     try:
         Path(args.out).write_text(text, encoding="utf-8")
     except (OSError, ValueError) as err:  # ValueError: a NUL character in the path
-        raise _UsageError(f"screwkit graph: error: --out {_shown(args.out)}: cannot write: {_reason(err)}") from err
+        shown = f"--out {_shown(args.out)}: cannot write: {_reason(err)}"
+        raise _UsageError(f"screwkit graph: error: {shown}") from err
     return 0
 
 
@@ -534,8 +535,10 @@ def run_map(args: argparse.Namespace) -> int:
     if not args.out.lower().endswith((".png", ".npz", ".json")):
         raise _UsageError(f"screwkit map: error: --out expects FILE.npz, .json or .png, got {args.out!r}")
     _check_writable("screwkit map", "--out", args.out)
-    if args.grid < 2:
-        raise _UsageError(f"screwkit map: error: --grid expects an integer >= 2, got {args.grid}")
+    if not 2 <= args.grid <= MAX_MAP_POSES // 2:
+        raise _UsageError(
+            f"screwkit map: error: --grid expects an integer in 2..{MAX_MAP_POSES // 2}, got {args.grid}"
+        )
     if args.chunk is not None and args.chunk < 1:
         raise _UsageError(f"screwkit map: error: --chunk expects a positive integer, got {args.chunk}")
     mechanism = _catalog_mechanism("map", args.mechanism)
@@ -594,7 +597,8 @@ def run_map(args: argparse.Namespace) -> int:
     try:
         result.save(args.out)
     except (OSError, ValueError) as err:
-        raise _UsageError(f"screwkit map: error: --out {_shown(args.out)}: cannot write: {_reason(err)}") from err
+        shown = f"--out {_shown(args.out)}: cannot write: {_reason(err)}"
+        raise _UsageError(f"screwkit map: error: {shown}") from err
 
     def where(pose: dict[str, float]) -> str:
         return ", ".join(f"{k} = {v:g}" for k, v in pose.items()) or "-"
