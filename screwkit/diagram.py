@@ -258,9 +258,15 @@ def _meet_point(line: Array, screw: Array, length_scale: float) -> Array | None:
     if np.linalg.norm(np.cross(_unit(line[:3]), _unit(axis[:3]))) < INCIDENCE_RTOL:
         return None
     normal = np.cross(line[:3], axis[:3])
+    # in lengths divided by the length scale: meet_line_plane's test of a line lying in the plane
+    # compares a point with products of two moments, which is not invariant under a change of unit
+    # (a 1 m mechanism given in nm failed there)
+    line, axis = (B.scale_moments(np.asarray(v, dtype=float), length_scale)[0] for v in (line, axis))
     plane = P.plane(np.cross(normal, axis[:3]), S.axis(axis)[0])  # contains the axis, ⟂ the common plane
     point = P.meet_line_plane(line, plane, allow_infinite=True)
-    return None if abs(point[3]) < 1e-12 else point / point[3]
+    if abs(point[3]) < 1e-12:
+        return None
+    return np.append(point[:3] / point[3] * length_scale, 1.0)
 
 
 Line = tuple[str, str, Array, tuple[str, ...]]  # (name, role, wrench, joints of its leg or limb)
