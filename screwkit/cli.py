@@ -90,7 +90,7 @@ _NEGATIVE_NUMBER = re.compile(
 #: Caps of the workspace commands (never a hang or an allocation beyond memory): poses in a map,
 #: samples along a path, grid points per axis and refinement rounds of ``table4``.
 MAX_MAP_POSES = 2 * 10**6  # the README's 10^6-pose map fits; 2e6 poses take ~15 min at 2,000 poses/s
-MAX_PATH_SAMPLES = 10**5
+MAX_PATH_SAMPLES = 10**4
 MAX_TABLE4_GRID = 201
 MAX_TABLE4_REFINE = 200
 

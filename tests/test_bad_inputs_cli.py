@@ -369,8 +369,8 @@ CLI_CASES = [
     ([*H4_MAP, *Z_PHI, "--out", out_file("folder.json")], 2, r"--out .*folder\.json: expected a file, got a folder$"),
     # path: sample counts (10^9 was a MemoryError traceback, 10^6 ran for minutes)
     (["path", "h4", "--from", "0", "0", "-800", "0", "--to", "0", "0", "-700", "0", "--samples", "1000000000"], 2, rf"screwkit path: error: --samples expects an integer in 2\.\.{MAX_PATH_SAMPLES}, got 1000000000$"),
-    (["path", "h4", "--from", "0", "0", "-800", "0", "--to", "0", "0", "-700", "0", "--samples", "1000000"], 2, r"--samples expects an integer in 2\.\.100000, got 1000000$"),
-    (["path", "h4", "--from", "0", "0", "-800", "0", "--to", "0", "0", "-700", "0", "--samples", "1"], 2, r"--samples expects an integer in 2\.\.100000, got 1$"),
+    (["path", "h4", "--from", "0", "0", "-800", "0", "--to", "0", "0", "-700", "0", "--samples", "1000000"], 2, r"--samples expects an integer in 2\.\.10000, got 1000000$"),
+    (["path", "h4", "--from", "0", "0", "-800", "0", "--to", "0", "0", "-700", "0", "--samples", "1"], 2, r"--samples expects an integer in 2\.\.10000, got 1$"),
     (["path", "h4", "--from", "1e300", "0", "-800", "0", "--to", "0", "0", "-800", "0"], 2, r"screwkit path: error: --from: x: expected a length of at most 1e\+100 mm in magnitude, got 1e\+300$"),
     (["path", "h4", "--from", "0", "0", "-800", "0", "--to", "0", "0", "-800", "1e20"], 2, r"--to: phi: Expected an angle of at most 1e\+06 degrees"),
     (["path", "h4", "--from", "0", "0", "-800", "-inf", "--to", "0", "0", "-800", "0"], 2, r"--from expects 4 finite numbers \(X Y Z PHI\), got 0\.0 0\.0 -800\.0 -inf$"),
@@ -394,6 +394,17 @@ def test_cli_cases(tmp_path, capsys, argv, status, pattern):
     assert out == ""
     assert_one_line_error(got, err, status, pattern)
     assert not any(p.exists() for p in tmp_path.iterdir() if p.name.startswith("m."))
+
+
+@pytest.mark.parametrize("rtol", ["1e-3", "0.1"])
+def test_a_coarse_rtol_is_answered_not_an_internal_error(capsys, rtol):
+    # --rtol 1e-3 was "Internal error: readable basis of order 2 != 1" (the readable basis's candidates
+    # are judged at 1e3 rtol); the H4's default pose stays a regular 3T1R platform at these tolerances
+    status, out, err = run(capsys, ["analyze", "h4", "--rtol", rtol, "--json", "--no-superbracket"])
+    assert status == 0 and err == ""
+    report = json.loads(out)
+    assert report["verdict"]["verdict"] == "regular"
+    assert report["wrenches"]["platform_twist_order"] == 4 and report["wrenches"]["platform_twists"]["motion_type"] == "3T1R"
 
 
 def test_a_negative_exponent_and_digit_groups_are_numbers(capsys):
@@ -476,6 +487,6 @@ def test_a_full_disk_on_standard_output_is_one_line(monkeypatch, capsys, argv):
 
 def test_the_corpus_counts_its_cases():
     cases = (
-        len(SNAPSHOT_FILE_CASES) + 2 + 1 + len(TRIAL_CASES) + len(CATALOG_FILE_CASES) + 1 + 2 + 1 + 3 + len(CLI_CASES) + 2 + 2 + 4 + 3
+        len(SNAPSHOT_FILE_CASES) + 2 + 1 + len(TRIAL_CASES) + len(CATALOG_FILE_CASES) + 1 + 2 + 1 + 3 + len(CLI_CASES) + 2 + 2 + 2 + 4 + 3 + 2
     )
     assert cases >= 100, cases
