@@ -23,11 +23,13 @@ is ``SWAP`` applied to its orthogonal complement: no rank decision is needed for
 
 **Two implementations, one rule.** :func:`span`, :func:`complement`, :func:`reciprocal` and
 :func:`residual` have a numpy path (vectorized over the batch) and, when numba is installed (the
-``fast`` extra), compiled per-pose loops (:mod:`screwkit._frames_numba`) that follow the same rule
-and agree with the numpy path up to round-off. The choice is made once per process and never
-depends on the batch size, so single-pose and batched answers stay bit-identical. numba is
-imported on the first kernel call, not with :mod:`screwkit`; its compiled code is cached on disk.
-The environment variable ``SCREWKIT_NUMBA``, read once when this module is imported, forces the
+``fast`` extra), compiled per-pose loops (:mod:`screwkit._frames_numba`). The numpy path does the
+compiled loops' floating-point operations in their order (sums left to right, no BLAS call, no
+library QR), so the two agree bit for bit, and a pose's answer never depends on the batch it is
+in: single-pose and batched answers are bit-identical whichever path runs. numba is imported on
+the first call over :data:`COMPILED_MIN_BATCH` frames or more (:func:`compiled_kernels`), so a
+single-pose analysis never pays for its import; its compiled code is cached on disk. The
+environment variable ``SCREWKIT_NUMBA``, read once when this module is imported, forces the
 choice: ``0`` (or ``false``, ``no``, ``off``) the numpy path, anything else the default (numba if
 it imports).
 
@@ -44,6 +46,7 @@ array([5])
 from __future__ import annotations
 
 import importlib.util
+import math
 import os
 from types import ModuleType
 
@@ -72,14 +75,31 @@ SWAP.flags.writeable = False
 _NUMBA_WANTED = os.environ.get("SCREWKIT_NUMBA", "1").strip().lower() not in {"0", "false", "no", "off"}
 _compiled: dict[str, ModuleType | None] = {}
 
+#: Fewest batch elements (frames, or poses) in one kernel call for which a compiled module is loaded:
+#: numba's import and cached code cost ≈ 0.5 s once per process, what the numpy kernels take for
+#: a few hundred small calls (a single-pose analysis and its sampled superbracket: at most 48 poses
+#: × the limbs per call). A chunk of the batched core (256 poses) reaches it; once loaded, a module
+#: serves every call.
+COMPILED_MIN_BATCH = 256
 
-def compiled_kernels(name: str) -> ModuleType | None:
-    """The numba kernel module ``screwkit.<name>``, imported on first use; None for the numpy path.
 
-    One rule for every compiled path, decided once per process and module: numba if it is installed
-    and ``SCREWKIT_NUMBA`` is not ``0`` (a broken numba install falls back to numpy for good).
+def compiled_kernels(name: str, size: int) -> ModuleType | None:
+    """The numba kernel module ``screwkit.<name>`` for a call over ``size`` batch elements; None
+    for the numpy path.
+
+    One rule for every compiled path: numba if it is installed, ``SCREWKIT_NUMBA`` is not ``0``,
+    and the module is already loaded or the call has at least :data:`COMPILED_MIN_BATCH` elements (it
+    is then imported, once; a broken numba install falls back to numpy for good). The rank kernels'
+    two paths agree bit for bit, so the choice never changes an answer.
+
+    Examples
+    --------
+    >>> compiled_kernels("_frames_numba", 1) is None or "_frames_numba" in _compiled
+    True
     """
     if name not in _compiled:
+        if size < COMPILED_MIN_BATCH:
+            return None
         module = None
         if _NUMBA_WANTED and importlib.util.find_spec("numba") is not None:
             try:
@@ -90,9 +110,9 @@ def compiled_kernels(name: str) -> ModuleType | None:
     return _compiled[name]
 
 
-def _numba_kernels() -> ModuleType | None:
-    """The rank kernels (:mod:`screwkit._frames_numba`) or None for the numpy path."""
-    return compiled_kernels("_frames_numba")
+def _numba_kernels(size: int) -> ModuleType | None:
+    """The rank kernels (:mod:`screwkit._frames_numba`) for ``size`` frames, or None for numpy."""
+    return compiled_kernels("_frames_numba", size)
 
 
 def _import_kernels() -> ModuleType:
@@ -102,15 +122,21 @@ def _import_kernels() -> ModuleType:
     return _frames_numba
 
 
+def _size(shape: tuple[int, ...]) -> int:
+    """The number of frames in a batch shape."""
+    return math.prod(shape)
+
+
 def backend() -> str:
-    """``"numba"`` or ``"numpy"``: the implementation the kernels use in this process.
+    """``"numba"`` or ``"numpy"``: the implementation of batches of :data:`COMPILED_MIN_BATCH`
+    frames or more in this process (smaller ones run numpy until numba is loaded).
 
     Examples
     --------
     >>> backend() in {"numba", "numpy"}
     True
     """
-    return "numpy" if _numba_kernels() is None else "numba"
+    return "numpy" if _numba_kernels(COMPILED_MIN_BATCH) is None else "numba"
 
 
 def to_scaled(screws: Array, centre: Array, length: Array) -> Array:
@@ -162,12 +188,6 @@ def empty(batch: tuple[int, ...]) -> tuple[Array, Array]:
     return np.zeros((*batch, 6, 6)), np.zeros(batch, dtype=int)
 
 
-def _project_out(vectors: Array, rows: Array) -> Array:
-    """``vectors (..., k, 6)`` minus their projections on the orthonormal (or zero) ``rows``."""
-    coefficients = np.einsum("...ks,...rs->...kr", vectors, rows)
-    return vectors - np.einsum("...kr,...rs->...ks", coefficients, rows)
-
-
 def span(generators: Array, rtol: float) -> tuple[Array, Array]:
     """The frame of the system spanned by ``generators`` ``(..., k, 6)`` (the module's rank rule).
 
@@ -177,7 +197,8 @@ def span(generators: Array, rtol: float) -> tuple[Array, Array]:
     >>> int(order), rows[0]
     (1, array([1., 0., 0., 0., 0., 0.]))
     """
-    return (_span_numpy if _numba_kernels() is None else _span_numba)(generators, rtol)
+    kernels = _numba_kernels(_size(np.shape(generators)[:-2]))
+    return (_span_numpy if kernels is None else _span_numba)(generators, rtol)
 
 
 def _span_numba(generators: Array, rtol: float) -> tuple[Array, Array]:
@@ -186,35 +207,53 @@ def _span_numba(generators: Array, rtol: float) -> tuple[Array, Array]:
     batch, k = work.shape[:-2], work.shape[-2]
     if k == 0 or 0 in batch:
         return empty(batch)
-    kernels = _numba_kernels() or _import_kernels()
+    kernels = _import_kernels()
     rows, order = kernels.span(np.ascontiguousarray(work.reshape(-1, k, 6)), float(rtol))
     return rows.reshape(*batch, 6, 6), order.reshape(batch)
 
 
+def _dot_in_order(a: Array, b: Array) -> Array:
+    """``Σ_s a[..., s] b[..., s]`` over the last axis, summed left to right from ``0.0``: the
+    compiled kernels' loop, operation for operation (numpy's own reductions may add in another
+    order, and so differ in the last bits)."""
+    products = a * b
+    total = products[..., 0] + 0.0
+    for s in range(1, products.shape[-1]):
+        total += products[..., s]
+    return total
+
+
 def _span_numpy(generators: Array, rtol: float) -> tuple[Array, Array]:
-    """:func:`span` vectorized over the batch with numpy."""
+    """:func:`span` vectorized over the batch with numpy: :func:`screwkit._frames_numba.span`'s
+    operations in its order, so the two paths agree bit for bit."""
     work = np.array(generators, dtype=float)
-    batch = work.shape[:-2]
-    rows, order = empty(batch)
-    if work.shape[-2] == 0:
-        return rows, order
-    norms = np.sqrt(np.einsum("...ks,...ks->...k", work, work))
-    threshold = rtol * norms.max(axis=-1)
-    active = np.ones(batch, dtype=bool)
-    for step in range(min(work.shape[-2], 6)):
-        pick = np.argmax(norms, axis=-1)
-        pivot = np.take_along_axis(work, pick[..., None, None], axis=-2)[..., 0, :]
-        pivot = pivot - np.einsum(
-            "...r,...rs->...s", np.einsum("...rs,...s->...r", rows, pivot), rows
-        )  # CGS2
-        size = np.sqrt(np.einsum("...s,...s->...", pivot, pivot))
-        active &= (size > threshold) & (size > 0)
-        unit = np.where(active[..., None], pivot / np.where(size > 0, size, 1.0)[..., None], 0.0)
-        rows[..., step, :] = unit
-        order += active
-        work = work - np.einsum("...ks,...s->...k", work, unit)[..., None] * unit[..., None, :]
-        norms = np.sqrt(np.einsum("...ks,...ks->...k", work, work))
-    return rows, order
+    batch, k = work.shape[:-2], work.shape[-2]
+    if k == 0 or 0 in batch:
+        return empty(batch)
+    w = work.reshape(-1, k, 6)
+    n = w.shape[0]
+    rows, order = np.zeros((n, 6, 6)), np.zeros(n, dtype=int)
+    norms = np.sqrt(_dot_in_order(w, w))
+    threshold = rtol * norms.max(axis=-1)  # NaN if a norm is NaN, as the kernel's loop
+    active = np.ones(n, dtype=bool)
+    poses = np.arange(n)
+    with np.errstate(all="ignore"):  # poses already stopped compute values that are not kept
+        for step in range(min(k, 6)):
+            pivot = w[poses, np.argmax(norms, axis=-1)]  # the first largest, or the first NaN
+            coefficients = _dot_in_order(rows[:, :step], pivot[:, None, :])  # CGS2, from the pivot as drawn
+            for i in range(step):
+                pivot = pivot - coefficients[:, i, None] * rows[:, i]
+            size = np.sqrt(_dot_in_order(pivot, pivot))
+            active &= (size > threshold) & (size > 0)
+            if not active.any():
+                break
+            unit = np.where(active[:, None], pivot / size[:, None], 0.0)
+            rows[:, step] = unit
+            order += active
+            moved = w - _dot_in_order(w, unit[:, None, :])[..., None] * unit[:, None, :]
+            w = np.where(active[:, None, None], moved, w)
+            norms = np.where(active[:, None], np.sqrt(_dot_in_order(w, w)), norms)
+    return rows.reshape(*batch, 6, 6), order.reshape(batch)
 
 
 def complement(rows: Array, order: Array) -> tuple[Array, Array]:
@@ -229,7 +268,8 @@ def complement(rows: Array, order: Array) -> tuple[Array, Array]:
     >>> int(order), float(np.abs(rows[:5, 0]).max()), float(np.abs(rows[5]).max())
     (5, 0.0, 0.0)
     """
-    return (_complement_numpy if _numba_kernels() is None else _complement_numba)(rows, order)
+    kernels = _numba_kernels(_size(np.shape(rows)[:-2]))
+    return (_complement_numpy if kernels is None else _complement_numba)(rows, order)
 
 
 def _complement_numba(rows: Array, order: Array, *, swap: bool = False) -> tuple[Array, Array]:
@@ -240,18 +280,52 @@ def _complement_numba(rows: Array, order: Array, *, swap: bool = False) -> tuple
     if 0 in batch:
         return np.zeros((*batch, 6, 6)), 6 - order
     flat_order = np.ascontiguousarray(np.broadcast_to(order, batch).reshape(-1), dtype=np.int64)
-    kernels = _numba_kernels() or _import_kernels()
+    kernels = _import_kernels()
     out = kernels.complement(np.ascontiguousarray(rows.reshape(-1, 6, 6)), flat_order, swap)
     return out.reshape(*batch, 6, 6), 6 - order
 
 
-def _complement_numpy(rows: Array, order: Array) -> tuple[Array, Array]:
-    """:func:`complement` by numpy's batched complete QR."""
-    q = np.linalg.qr(np.swapaxes(rows, -1, -2), mode="complete")[0]  # (..., 6, 6), columns
-    wanted = 6 - order
-    index = order[..., None] + np.arange(6)  # row k of the complement is column order + k of q
-    picked = np.take_along_axis(np.swapaxes(q, -1, -2), np.minimum(index, 5)[..., None], axis=-2)
-    return np.where((index < 6)[..., None], picked, 0.0), wanted
+def _complement_numpy(rows: Array, order: Array, *, swap: bool = False) -> tuple[Array, Array]:
+    """:func:`complement` (or, with ``swap``, :func:`reciprocal`) vectorized over the batch:
+    :func:`screwkit._frames_numba.complement`'s Householder QR operation for operation, so the two
+    paths agree bit for bit."""
+    rows = np.asarray(rows, dtype=float)
+    order = np.asarray(order)
+    batch = rows.shape[:-2]
+    if 0 in batch:
+        return np.zeros((*batch, 6, 6)), 6 - order
+    a = np.swapaxes(rows.reshape(-1, 6, 6), -1, -2).copy()  # a's columns are the frame's rows
+    n = a.shape[0]
+    v = np.zeros((n, 6, 6))  # v[:, j, j:] the j-th reflector (v[:, j, j] = 1)
+    v[:, np.arange(6), np.arange(6)] = 1.0
+    tau = np.zeros((n, 6))
+    with np.errstate(all="ignore"):  # poses whose column is already reduced are not updated
+        for j in range(6):
+            alpha = a[:, j, j]
+            below = a[:, j + 1 :, j]
+            total = _dot_in_order(below, below) if j < 5 else np.zeros(n)
+            reflect = total != 0.0
+            beta = -np.copysign(np.sqrt(alpha * alpha + total), alpha)
+            tau[:, j] = np.where(reflect, (beta - alpha) / beta, 0.0)
+            v[:, j, j + 1 :] = np.where(reflect[:, None], below * (1.0 / (alpha - beta))[:, None], 0.0)
+            if j == 5 or not reflect.any():
+                continue
+            block = a[:, j:, j + 1 :]
+            dot = _dot_in_order(np.swapaxes(block, -1, -2), v[:, j, None, j:]) * tau[:, j, None]
+            moved = block - dot[:, None, :] * v[:, j, j:, None]
+            a[:, j:, j + 1 :] = np.where(reflect[:, None, None], moved, block)
+        y = np.broadcast_to(np.eye(6), (n, 6, 6)).copy()  # y[:, c] becomes column c of H_0 H_1 … H_5
+        for j in range(5, -1, -1):
+            reflect = tau[:, j] != 0.0
+            if not reflect.any():
+                continue
+            dot = _dot_in_order(y[:, :, j:], v[:, j, None, j:]) * tau[:, j, None]
+            moved = y[:, :, j:] - dot[:, :, None] * v[:, j, None, j:]
+            y[:, :, j:] = np.where(reflect[:, None, None], moved, y[:, :, j:])
+    flat_order = np.broadcast_to(order, batch).reshape(-1)
+    index = flat_order[:, None] + np.arange(6)  # row k of the complement is column order + k
+    out = np.where((index < 6)[..., None], y[np.arange(n)[:, None], np.minimum(index, 5)], 0.0)
+    return (swapped(out) if swap else out).reshape(*batch, 6, 6), 6 - order
 
 
 def reciprocal(rows: Array, order: Array) -> tuple[Array, Array]:
@@ -264,10 +338,8 @@ def reciprocal(rows: Array, order: Array) -> tuple[Array, Array]:
     >>> int(order), bool(np.abs(rows[:5] @ SWAP @ line[0]).max() < 1e-15)
     (5, True)
     """
-    if _numba_kernels() is None:
-        out, wanted = _complement_numpy(rows, order)
-        return swapped(out), wanted
-    return _complement_numba(rows, order, swap=True)
+    kernels = _numba_kernels(_size(np.shape(rows)[:-2]))
+    return (_complement_numpy if kernels is None else _complement_numba)(rows, order, swap=True)
 
 
 def residual(vectors: Array, rows: Array) -> Array:
@@ -278,7 +350,8 @@ def residual(vectors: Array, rows: Array) -> Array:
     >>> residual(np.array([[1.0, 1.0, 0, 0, 0, 0]]), np.eye(6)[:1])
     array([[0., 1., 0., 0., 0., 0.]])
     """
-    return (_residual_numpy if _numba_kernels() is None else _residual_numba)(vectors, rows)
+    kernels = _numba_kernels(_size(np.broadcast_shapes(np.shape(vectors)[:-2], np.shape(rows)[:-2])))
+    return (_residual_numpy if kernels is None else _residual_numba)(vectors, rows)
 
 
 def _residual_numba(vectors: Array, rows: Array) -> Array:
@@ -290,12 +363,22 @@ def _residual_numba(vectors: Array, rows: Array) -> Array:
         return np.zeros((*batch, k, 6))
     flat_vectors = np.ascontiguousarray(np.broadcast_to(vectors, (*batch, k, 6)).reshape(-1, k, 6))
     flat_rows = np.ascontiguousarray(np.broadcast_to(rows, (*batch, m, 6)).reshape(-1, m, 6))
-    return (_numba_kernels() or _import_kernels()).residual(flat_vectors, flat_rows).reshape(*batch, k, 6)
+    return _import_kernels().residual(flat_vectors, flat_rows).reshape(*batch, k, 6)
 
 
 def _residual_numpy(vectors: Array, rows: Array) -> Array:
-    """:func:`residual` vectorized over the batch with numpy."""
-    return _project_out(_project_out(vectors, rows), rows)
+    """:func:`residual` vectorized over the batch: :func:`screwkit._frames_numba.residual`'s
+    operations in its order, so the two paths agree bit for bit."""
+    vectors, rows = np.asarray(vectors, dtype=float), np.asarray(rows, dtype=float)
+    batch = np.broadcast_shapes(vectors.shape[:-2], rows.shape[:-2])
+    k, m = vectors.shape[-2], rows.shape[-2]
+    out = np.array(np.broadcast_to(vectors, (*batch, k, 6)))
+    rows = np.broadcast_to(rows, (*batch, m, 6))
+    for _ in range(2):
+        coefficients = _dot_in_order(out[..., :, None, :], rows[..., None, :, :])  # (..., k, m)
+        for i in range(m):
+            out = out - coefficients[..., i, None] * rows[..., None, i, :]
+    return out
 
 
 def singular_ratio(rows: Array, index: int) -> Array:

@@ -1,8 +1,9 @@
-"""numba kernels of :mod:`screwkit._frames` (private; imported on the first kernel call).
+"""numba kernels of :mod:`screwkit._frames` (private; imported on the first large kernel call).
 
 Each kernel loops over a flat batch ``(n, ...)`` and does, pose by pose, what the numpy path of
 :mod:`screwkit._frames` does over the whole batch: the same rule (pivot choice, threshold, CGS2
-re-orthogonalisation, complete Householder QR), so the two paths agree up to round-off. A pose's
+re-orthogonalisation, complete Householder QR) and the same floating-point operations in the same
+order (no ``fastmath``: nothing is reordered or fused), so the two paths agree bit for bit. A pose's
 answer depends only on that pose's input (no reduction across the batch, no BLAS call), so single
 and batched answers are bit-identical. ``cache=True`` stores the compiled code beside this file
 (or in ``NUMBA_CACHE_DIR``).

@@ -2,8 +2,9 @@
 
 Both paths run here whatever this process chose: the numpy kernels are called directly
 (``_frames._span_numpy`` …) and so are the numba ones (skipped, with the reason, when numba is not
-installed). They must give the same orders and the same subspaces (to 1e-12) on random generators,
-rank-deficient and near-deficient ones, zero rows, and batch shapes ``()``, ``(1,)``, ``(3, 4)``.
+installed). They must give the same orders and the same subspaces on random generators,
+rank-deficient and near-deficient ones, zero rows, and batch shapes ``()``, ``(1,)``, ``(3, 4)``:
+bit for bit, since the choice between them depends on the batch size.
 """
 
 import importlib.util
@@ -173,12 +174,43 @@ def test_screwkit_numba_0_selects_numpy():
 
 @needs_numba
 def test_numba_is_the_default_and_imported_lazily():
+    # a small call runs numpy without importing numba; a call of COMPILED_MIN_BATCH frames loads it
     code = (
         "import sys, numpy as np, screwkit\nfrom screwkit import _frames as F\nprint('numba' in sys.modules)\n"
-        "F.span(np.eye(6)[:2], 1e-9)\nprint(F.backend(), 'numba' in sys.modules)"
+        "F.span(np.eye(6)[:2], 1e-9)\nprint('numba' in sys.modules)\n"
+        "F.span(np.zeros((F.COMPILED_MIN_BATCH - 1, 2, 6)), 1e-9)\nprint('numba' in sys.modules)\n"
+        "F.span(np.zeros((F.COMPILED_MIN_BATCH, 2, 6)), 1e-9)\nprint('numba' in sys.modules, F.backend())"
     )
     env = {"SCREWKIT_NUMBA": "1"}
-    assert _probe(code, env) == ["False", "numba", "True"]
+    assert _probe(code, env) == ["False", "False", "False", "True", "numba"]
+
+
+@needs_numba
+@pytest.mark.parametrize("batch", BATCHES + [(40,)])
+@pytest.mark.parametrize(("k", "rank", "near", "zero_rows"), CASES + [(7, 5, 1e-10, 0), (12, 6, 0.0, 0)])
+def test_numpy_and_numba_paths_are_bit_identical(rng, batch, k, rank, near, zero_rows):
+    # the rule may pick either path by batch size, so they must agree to the last bit (and sign of zero)
+    def same(a, b):
+        return np.array_equal(a, b) and np.array_equal(np.signbit(a), np.signbit(b))
+
+    work = generators(rng, batch, k, rank, near=near, zero_rows=zero_rows)
+    rows, order = F._span_numpy(work, RTOL)
+    numba_rows, numba_order = F._span_numba(work, RTOL)
+    assert same(rows, numba_rows) and np.array_equal(order, numba_order)
+    for swap in (False, True):
+        assert same(F._complement_numpy(rows, order, swap=swap)[0], F._complement_numba(rows, order, swap=swap)[0])
+    vectors = rng.standard_normal((*batch, 3, 6))
+    assert same(F._residual_numpy(vectors, rows), F._residual_numba(vectors, rows))
+
+
+@needs_numba
+def test_paths_agree_on_non_finite_generators():
+    work = np.ones((3, 2, 6))
+    work[0, 0, 0], work[1, 1, 2] = np.nan, np.inf
+    rows, order = F._span_numpy(work, RTOL)
+    numba_rows, numba_order = F._span_numba(work, RTOL)
+    np.testing.assert_array_equal(order, numba_order)
+    np.testing.assert_array_equal(rows, numba_rows)
 
 
 @needs_numba
