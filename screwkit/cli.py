@@ -35,6 +35,7 @@ screw (0, 0, 1; 0, -1, 0)  pitch 0  kind zero pitch  axis through (1, 0, 0) alon
 from __future__ import annotations
 
 import argparse
+import importlib.util
 import json
 import math
 import os
@@ -535,6 +536,11 @@ def run_map(args: argparse.Namespace) -> int:
     if not args.out.lower().endswith((".png", ".npz", ".json")):
         raise _UsageError(f"screwkit map: error: --out expects FILE.npz, .json or .png, got {args.out!r}")
     _check_writable("screwkit map", "--out", args.out)
+    if args.out.lower().endswith(".png") and importlib.util.find_spec("matplotlib") is None:
+        raise _UsageError(  # before the computation, not after it
+            "screwkit map: error: --out FILE.png needs matplotlib, which is not installed: install the "
+            'optional extra `plot` (pip install "screwkit[plot]"), or write .npz or .json'
+        )
     if not 2 <= args.grid <= MAX_MAP_POSES // 2:
         raise _UsageError(
             f"screwkit map: error: --grid expects an integer in 2..{MAX_MAP_POSES // 2}, got {args.grid}"

@@ -407,6 +407,20 @@ def test_a_coarse_rtol_is_answered_not_an_internal_error(capsys, rtol):
     assert report["wrenches"]["platform_twist_order"] == 4 and report["wrenches"]["platform_twists"]["motion_type"] == "3T1R"
 
 
+def test_a_png_map_without_matplotlib_is_refused_before_the_computation(tmp_path, monkeypatch, capsys):
+    # the MissingDependencyError came after the whole map was computed
+    import importlib.util
+
+    import screwkit.workspace
+
+    real = importlib.util.find_spec
+    monkeypatch.setattr(importlib.util, "find_spec", lambda name, *a: None if name == "matplotlib" else real(name, *a))
+    monkeypatch.setattr(screwkit.workspace, "grid_map", lambda *a, **k: pytest.fail("the map was computed"))
+    status, out, err = run(capsys, [*H4_MAP, *Z_PHI, "--out", tmp_path / "m.png"])
+    assert out == ""
+    assert_one_line_error(status, err, 2, r"screwkit map: error: --out FILE\.png needs matplotlib, which is not installed: install the optional extra `plot`")
+
+
 def test_a_negative_exponent_and_digit_groups_are_numbers(capsys):
     status, out, err = run(capsys, ["graph", "h4", "--pose", "0", "0", "-7_50", "-1.5E+1", "--format", "json"])
     assert status == 0 and err == ""
@@ -487,6 +501,6 @@ def test_a_full_disk_on_standard_output_is_one_line(monkeypatch, capsys, argv):
 
 def test_the_corpus_counts_its_cases():
     cases = (
-        len(SNAPSHOT_FILE_CASES) + 2 + 1 + len(TRIAL_CASES) + len(CATALOG_FILE_CASES) + 1 + 2 + 1 + 3 + len(CLI_CASES) + 2 + 2 + 2 + 4 + 3 + 2
+        len(SNAPSHOT_FILE_CASES) + 2 + 1 + len(TRIAL_CASES) + len(CATALOG_FILE_CASES) + 1 + 2 + 1 + 3 + len(CLI_CASES) + 2 + 2 + 2 + 1 + 4 + 3 + 2
     )
     assert cases >= 100, cases
