@@ -513,8 +513,9 @@ def transmission(
         kappa, zeta, ok = _transmission_numpy(params, flat, mode)
     else:
         kappa, zeta, ok = kernels.transmission(flat, *_kernel_arguments(params, mode))
-        if not ok.all():  # the reference decides the poses the kernel found out of reach: at the
-            # reach band's edge (a leg stretched exactly) the two roundings may differ by an ulp
+        if unreachable == "raise" and not ok.all():  # before refusing, the reference decides: at the
+            # reach band's edge (a leg stretched exactly) the two roundings may differ by an ulp (with
+            # "nan" such a pose stays masked, never given a wrong value, and maps keep their speed)
             again = np.flatnonzero(~ok)
             kappa[again], zeta[again], ok[again] = _transmission_numpy(params, flat[again], mode)
     eta = np.minimum(kappa, zeta)
