@@ -125,6 +125,9 @@ MAX_STEPS = 80
 #: Poses of one surface tried for its factor (where the diagram's points exist).
 _FACTOR_TRIES = 5
 _GOLDEN = (math.sqrt(5.0) - 1.0) / 2.0
+#: The most poses one map, sweep or surface slice may hold: its grid of poses is built whole (32 bytes
+#: a pose, 3.2 GB at the bound), though the analysis runs in chunks (the command line caps at 2e6).
+MAX_MAP_POSES = 10**8
 
 
 # --------------------------------------------------------------------------------------------------
@@ -521,8 +524,10 @@ def _axis(mechanism: Any, axis: Any, what: str, angles: str) -> tuple[str, Array
             f"Expected `{what}`'s name among the pose coordinates {list(mechanism.pose_names)}, got {name!r}."
         )
     low, high = _finite(low, f"{what} low"), _finite(high, f"{what} high")
-    if isinstance(count, bool) or not isinstance(count, int | np.integer) or count < 2:
-        raise ScrewkitValueError(f"Expected `{what}` count to be an integer >= 2, got {count!r}.")
+    if isinstance(count, bool) or not isinstance(count, int | np.integer) or not 2 <= count <= MAX_MAP_POSES:
+        raise ScrewkitValueError(
+            f"Expected `{what}` count to be an integer in 2..{MAX_MAP_POSES:g}, got {count!r}."
+        )
     if not low < high:
         raise ScrewkitValueError(f"Expected `{what}` low < high, got {low:g} and {high:g}.")
     _check_angles(mechanism, {name: [low, high]}, what, angles)
@@ -548,6 +553,11 @@ class _Slice:
         _angle_factor(angles)
         x_name, x_values = _axis(mechanism, x, "x", angles)
         y_name, y_values = _axis(mechanism, y, "y", angles)
+        if len(x_values) * len(y_values) > MAX_MAP_POSES:
+            raise ScrewkitValueError(
+                f"Expected at most {MAX_MAP_POSES:g} poses in a map (x count times y count), got "
+                f"{len(x_values)} x {len(y_values)}; split the map."
+            )
         if x_name == y_name:
             raise ScrewkitValueError(
                 f"Expected `x` and `y` over different coordinates, got {x_name!r} twice."

@@ -526,6 +526,8 @@ API_CASES = [
     (lambda: sk.classify(_G, joint_key="nope"), TwistGraphError, r"Edge 'B' → 'E' \(key 'R'\): expected attribute 'nope' holding a Joint"),
     (lambda: sk.snapshot_text(_G, name=5), ScrewkitTypeError, r"Expected `name` to be a str, got int"),
     (lambda: sk.classify(_with(_G, mobility="x", dof=2)), TwistGraphError, r"Expected graph attribute 'mobility' to be an integer in 0\.\.6, got 'x'"),
+    (lambda: sk.workspace.grid_map(_h4(), "verdict", x=("x", -1, 1, 10**9), y=("z", -800, -700, 2)), ScrewkitValueError, r"Expected `x` count to be an integer in 2\.\.1e\+08, got 1000000000"),
+    (lambda: sk.workspace.grid_map(_h4(), "verdict", x=("x", -1, 1, 10**5), y=("z", -800, -700, 10**4)), ScrewkitValueError, r"Expected at most 1e\+08 poses in a map \(x count times y count\), got 100000 x 10000; split the map"),
     (lambda: sk.save_snapshot(_G, None), ScrewkitTypeError, r"Expected `path` to be a str or pathlib\.Path, got NoneType"),
     # angles in radians: the bound of files and the CLI (1e6 degrees), naming the argument and the coordinate
     (lambda: _h4().at([0, 0, -750, 1e5]), ScrewkitValueError, r"Expected the angle `phi` of `poses` to be at most 17453\.3 rad \(1e\+06 degrees\) in magnitude .*got 100000 rad"),

@@ -447,7 +447,7 @@ def test_cli_bad_arguments(argv, message, capsys, tmp_path, monkeypatch):
         ({"x": ("q", 0, 1, 3)}, "Expected `x`'s name among the pose coordinates"),
         ({"x": ("z", 0, 1)}, "Expected `x` to be (name, low, high, count)"),
         ({"x": ("z", 1, 0, 3)}, "Expected `x` low < high, got 1 and 0"),
-        ({"x": ("z", 0, 1, 1)}, "Expected `x` count to be an integer >= 2, got 1"),
+        ({"x": ("z", 0, 1, 1)}, "Expected `x` count to be an integer in 2..1e+08, got 1"),
         ({"x": ("phi", 0, 1, 3)}, "Expected `x` and `y` over different coordinates"),
         ({"fixed": {"phi": 0}}, "Expected `fixed` not to set the map's axes, got ['phi']"),
         ({"fixed": {"w": 0}}, "Expected the keys of `fixed` among"),
