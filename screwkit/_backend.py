@@ -604,9 +604,30 @@ def scale_moments(rows: Array, length_scale: float | None) -> tuple[Array, float
     return scaled, length
 
 
-def _check_rtol(rtol: float) -> None:
-    if not (isinstance(rtol, int | float) and 0 <= float(rtol) < 1):
-        raise ScrewkitValueError(f"Expected `rtol` to be a number in [0, 1), got {rtol!r}.")
+#: The coarsest relative tolerance accepted for a rank or zero decision. Beyond it the decisions
+#: of a system and of its reciprocal stop agreeing: at ``rtol = 0.3`` the H4's default pose reads
+#: a 3T3R platform and a global wrench system of order 3 (a 4-DOF robot), and coarser values give
+#: negative freedom counts; up to 0.1 every catalog robot keeps a consistent 3T1R (2T1R) platform.
+MAX_RTOL = 0.1
+
+
+def checked_rtol(value: Any, name: str = "rtol") -> float:
+    """A relative tolerance: a real number in ``[0, MAX_RTOL]`` (:data:`MAX_RTOL` = 0.1).
+
+    Examples
+    --------
+    >>> checked_rtol(1e-6)
+    1e-06
+    >>> checked_rtol(0.5)
+    Traceback (most recent call last):
+    ...
+    screwkit.exceptions.ScrewkitValueError: Expected `rtol` to be a number in [0, 0.1], got 0.5.
+    """
+    if isinstance(value, bool) or not isinstance(value, int | float | np.integer | np.floating):
+        raise ScrewkitTypeError(f"Expected `{name}` to be a number in [0, {MAX_RTOL:g}], got {value!r}.")
+    if not 0 <= float(value) <= MAX_RTOL:
+        raise ScrewkitValueError(f"Expected `{name}` to be a number in [0, {MAX_RTOL:g}], got {value!r}.")
+    return float(value)
 
 
 def screw_singular_values(rows: Array, *, length_scale: float | None = None) -> Array:
@@ -649,7 +670,7 @@ def screw_rank(rows: Array, *, rtol: float = DEFAULT_RTOL, length_scale: float |
     >>> screw_rank(np.zeros((0, 6)))
     0
     """
-    _check_rtol(rtol)
+    checked_rtol(rtol)
     if rows.dtype == object:
         from . import _symbolic
 
@@ -691,7 +712,7 @@ def screw_nullspace(
     >>> screw_nullspace(np.array([[0.0, 0, 0, 0, 0, 1]])).shape
     (5, 6)
     """
-    _check_rtol(rtol)
+    checked_rtol(rtol)
     if rows.dtype == object:
         if rows.shape[0] == 0:
             return np.array(sympy_module().eye(6).tolist(), dtype=object)
@@ -720,7 +741,7 @@ def matrix_nullspace(matrix: Array, *, rtol: float = DEFAULT_RTOL) -> Array:
     >>> matrix_nullspace(np.array([[1.0, 1.0]]))
     array([[-0.70710678,  0.70710678]])
     """
-    _check_rtol(rtol)
+    checked_rtol(rtol)
     if matrix.dtype == object:
         from . import _symbolic
 

@@ -48,6 +48,7 @@ from typing import Any, NoReturn
 import numpy as np
 
 from . import __version__
+from . import _backend as B
 from .catalog import (
     MAX_COORDINATE,
     degrees_to_radians,
@@ -137,7 +138,7 @@ def get_parser() -> argparse.ArgumentParser:
         type=float,
         default=None,
         metavar="R",
-        help="relative tolerance of every rank decision, in [0, 1) (default 1e-9)",
+        help="relative tolerance of every rank decision, in [0, 0.1] (default 1e-9)",
     )
     output = analyze_parser.add_mutually_exclusive_group()
     output.add_argument("--json", action="store_true", help="print the whole report as JSON")
@@ -415,8 +416,10 @@ def run_analyze(args: argparse.Namespace) -> int:
     ...
     0
     """
-    if args.rtol is not None and not 0 <= args.rtol < 1:
-        raise _UsageError(f"screwkit analyze: error: --rtol expects a number in [0, 1), got {args.rtol:g}")
+    if args.rtol is not None and not 0 <= args.rtol <= B.MAX_RTOL:
+        raise _UsageError(
+            f"screwkit analyze: error: --rtol expects a number in [0, {B.MAX_RTOL:g}], got {args.rtol:g}"
+        )
     if args.latex and args.no_superbracket:
         raise _UsageError(
             "screwkit analyze: error: --latex prints the superbracket's conditions; drop --no-superbracket"

@@ -50,7 +50,8 @@ import numpy as np
 from . import _backend as B
 from . import _frames as F
 from . import screw as S
-from .exceptions import DegenerateGeometryError, ScrewkitTypeError, ScrewkitValueError, TwistGraphError
+from ._backend import checked_rtol
+from .exceptions import DegenerateGeometryError, ScrewkitTypeError, TwistGraphError
 from .joints import Joint, JointTable
 from .screwsystem import ScrewSystem
 from .topology import Topology, network_layout, topology
@@ -671,25 +672,6 @@ def _unit_size(rows: Array, length: Array) -> Array:
     is_couple = forces <= B.DEFAULT_RTOL * moments / length[..., None]
     size = np.where(is_couple, moments, forces)
     return np.where(size > 0, size, 1.0)[..., None]
-
-
-def checked_rtol(value: Any, name: str = "rtol") -> float:
-    """A relative tolerance: a real number in ``[0, 1)``.
-
-    Examples
-    --------
-    >>> checked_rtol(5)
-    Traceback (most recent call last):
-    ...
-    screwkit.exceptions.ScrewkitValueError: Expected `rtol` to be a number in [0, 1), got 5.
-    """
-    if (
-        isinstance(value, bool)
-        or not isinstance(value, int | float | np.floating)
-        or not 0 <= float(value) < 1
-    ):
-        raise ScrewkitValueError(f"Expected `{name}` to be a number in [0, 1), got {value!r}.")
-    return float(value)
 
 
 def _canonical(table: JointTable) -> JointTable:

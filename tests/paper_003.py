@@ -66,14 +66,13 @@ from typing import Any, Literal
 
 import numpy as np
 
-from screwkit._backend import DEFAULT_RTOL, as_array
+from screwkit._backend import DEFAULT_RTOL, as_array, checked_rtol
 from screwkit.exceptions import DegenerateGeometryError, ScrewkitValueError
 from screwkit.families.planar_3rrp import (
     EXAMPLE_PARAMETERS,  # noqa: F401 (the doctests use it)
     JOINT_PAIRS,
     Planar3RRPConfiguration,
     _check_config,
-    _check_rtol,
     _dot,
     _first_index,
     _perp,
@@ -252,7 +251,7 @@ def complete_velocity(
     True
     """
     config = _check_config(config)
-    rtol = _check_rtol(rtol)
+    rtol = checked_rtol(rtol)
     j_matrix, k_matrix = jacobians(config)
     diagonal = np.diagonal(j_matrix, axis1=-2, axis2=-1)
     if joint_rates is None and twist is None:
@@ -569,7 +568,7 @@ def classify(
     regular: rank J = 3, rank K = 3, inverse closeness 0.553, direct closeness ...
     """
     config = _check_config(config)
-    rtol = _check_rtol(rtol)
+    rtol = checked_rtol(rtol)
     j_matrix, k_matrix = jacobians(config)
     cosines = np.abs(np.diagonal(j_matrix, axis1=-2, axis2=-1)) / config.parameters.link_lengths
     singular_limbs = cosines <= rtol

@@ -332,8 +332,9 @@ CLI_CASES = [
     (["analyze", "h4", "--pose", "0", "0", "-750", "-inf"], 2, r"screwkit analyze: error: --pose expects 4 finite numbers \(X Y Z PHI\), got 0\.0 0\.0 -750\.0 -inf$"),
     (["analyze", "h4", "--pose", "0", "0", "-750", "-nan"], 2, r"--pose expects 4 finite numbers \(X Y Z PHI\), got .* nan$"),
     (["analyze", "h4", "--pose", "-Infinity", "0", "-750", "0"], 2, r"--pose expects 4 finite numbers \(X Y Z PHI\), got -inf"),
-    (["analyze", "h4", "--rtol", "-inf"], 2, r"--rtol expects a number in \[0, 1\), got -inf$"),
-    (["analyze", "h4", "--rtol", "-1e-3"], 2, r"--rtol expects a number in \[0, 1\), got -0\.001$"),
+    (["analyze", "h4", "--rtol", "-inf"], 2, r"--rtol expects a number in \[0, 0\.1\], got -inf$"),
+    (["analyze", "h4", "--rtol", "-1e-3"], 2, r"--rtol expects a number in \[0, 0\.1\], got -0\.001$"),
+    (["analyze", "h4", "--rtol", "0.3"], 2, r"--rtol expects a number in \[0, 0\.1\], got 0\.3$"),
     (["analyze", "h4", "--pose", "0", "0", "-750", "-1__0"], 2, r"argument --pose: invalid float value: '-1__0'"),
     (["analyze", "h4", "--pose", "1e101", "0", "-750", "0"], 2, r"--pose: x: expected a length of at most 1e\+100 mm in magnitude, got 1e\+101$"),
     (["analyze", "planar_3rrp", "--pose", "0", "0", "-2e6"], 2, r"--pose: phi: Expected an angle of at most 1e\+06 degrees in magnitude"),
@@ -504,3 +505,14 @@ def test_the_corpus_counts_its_cases():
         len(SNAPSHOT_FILE_CASES) + 2 + 1 + len(TRIAL_CASES) + len(CATALOG_FILE_CASES) + 1 + 2 + 1 + 3 + len(CLI_CASES) + 2 + 2 + 2 + 1 + 4 + 3 + 2
     )
     assert cases >= 100, cases
+
+
+@pytest.mark.parametrize("name", ["h4", "quattro", "v4", "veloce", "ragnar", "mcgill_smg", "peppermill", "planar_3rrp"])
+def test_the_coarsest_rtol_keeps_every_catalog_platform_consistent(capsys, name):
+    # MAX_RTOL = 0.1 is where the rank decisions of a system and of its reciprocal still agree: at the
+    # default pose every robot keeps its nominal platform (at 0.3 the H4 read a 3T3R platform)
+    status, out, err = run(capsys, ["analyze", name, "--rtol", "0.1", "--json", "--no-superbracket"])
+    assert status == 0 and err == ""
+    report = json.loads(out)
+    expected = "2T1R" if name == "planar_3rrp" else "3T1R"
+    assert report["wrenches"]["platform_twists"]["motion_type"] == expected

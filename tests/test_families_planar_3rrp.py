@@ -266,9 +266,9 @@ def test_inverse_kinematics_bad_working_mode():
 
 def test_rtol_errors():
     config = Planar3RRPConfiguration.from_pose(P, [0.0, 0.0, 0.0])
-    with pytest.raises(ScrewkitValueError, match=r"`rtol` to be a number in \[0, 1\), got 2"):
+    with pytest.raises(ScrewkitValueError, match=r"`rtol` to be a number in \[0, 0\.1\], got 2"):
         classify(config, rtol=2)
-    with pytest.raises(ScrewkitTypeError, match=r"`rtol` to be a number in \[0, 1\), got 'x'"):
+    with pytest.raises(ScrewkitTypeError, match=r"`rtol` to be a number in \[0, 0\.1\], got 'x'"):
         classify(config, rtol="x")
 
 

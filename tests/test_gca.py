@@ -1020,7 +1020,7 @@ def good(rng):
         (
             lambda: structural_zeros(BracketPolynomial([Bracket("abcd")]), good, rtol=2),
             ScrewkitValueError,
-            r"`rtol` to be a number in \[0, 1\), got 2",
+            r"`rtol` to be a number in \[0, 0\.1\], got 2",
         ),
         (
             lambda: check_proportional(Bracket("abcd"), Bracket("aabc"), good),

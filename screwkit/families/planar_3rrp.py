@@ -79,7 +79,7 @@ from typing import Any
 import numpy as np
 
 from .. import screw as S
-from .._backend import DEFAULT_RTOL, as_array
+from .._backend import DEFAULT_RTOL, as_array, checked_rtol
 from ..exceptions import (
     CatalogError,
     DegenerateGeometryError,
@@ -156,14 +156,6 @@ def _readonly(array: np.ndarray) -> np.ndarray:
     array = np.array(array)
     array.flags.writeable = False
     return array
-
-
-def _check_rtol(rtol: Any, name: str = "rtol") -> float:
-    if isinstance(rtol, bool) or not isinstance(rtol, int | float | np.floating):
-        raise ScrewkitTypeError(f"Expected `{name}` to be a number in [0, 1), got {rtol!r}.")
-    if not 0.0 <= float(rtol) < 1.0:
-        raise ScrewkitValueError(f"Expected `{name}` to be a number in [0, 1), got {rtol!r}.")
-    return float(rtol)
 
 
 def _first_index(mask: np.ndarray) -> tuple[int, ...]:
@@ -433,7 +425,7 @@ def inverse_kinematics(
     """
     pose = as_array(pose, "pose", (3,))
     mode = _working_mode(working_mode)
-    rtol = _check_rtol(rtol)
+    rtol = checked_rtol(rtol)
     margin = reach_margin(parameters, pose)
     outside = margin < -rtol
     if np.any(outside):
@@ -527,7 +519,7 @@ def forward_kinematics(
     True
     """
     theta = as_array(joint_angles, "joint_angles", (3,))
-    rtol = _check_rtol(rtol)
+    rtol = checked_rtol(rtol)
     elbows = parameters.base_points + parameters.link_lengths[:, None] * _unit(theta)
     normals0 = _perp(_unit(parameters.guide_angles))
     offsets = _dot(normals0, parameters.platform_points)
@@ -617,7 +609,7 @@ class Planar3RRPConfiguration:
             raise ScrewkitTypeError(
                 f"Expected `parameters` to be Planar3RRPParameters, got {type(params).__name__}."
             )
-        rtol = _check_rtol(self.closure_rtol, "closure_rtol")
+        rtol = checked_rtol(self.closure_rtol, "closure_rtol")
         pose = as_array(self.pose, "pose", (3,))
         theta = as_array(self.joint_angles, "joint_angles", (3,))
         shape = np.broadcast_shapes(pose.shape[:-1], theta.shape[:-1])

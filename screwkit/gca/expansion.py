@@ -16,11 +16,12 @@ import numpy as np
 
 from .. import _backend as B
 from .. import projective as P
+from .._backend import checked_rtol
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
 from .brackets import BracketPolynomial, _labels, _point_arrays, _scalar
 from .dotted import DottedSum
 from .notation import _sort_sign
-from .zeros import Sampler, _check_rtol, _draw, _drop_zero_monomials, _vanishing_quads
+from .zeros import Sampler, _draw, _drop_zero_monomials, _vanishing_quads
 
 __all__ = [
     "OrderingSearch",
@@ -355,4 +356,4 @@ def best_ordering(
     pairs = _lines(lines)
     labels = [label for line in pairs for label in line]
     samples = _draw(sampler, n_samples, np.random.default_rng(rng), labels)
-    return _best_ordering(pairs, samples, _check_rtol(rtol))
+    return _best_ordering(pairs, samples, checked_rtol(rtol))

@@ -18,12 +18,13 @@ import numpy as np
 
 from .. import _backend as B
 from .. import projective as P
+from .._backend import checked_rtol
 from ..exceptions import DegenerateGeometryError, ScrewkitTypeError, ScrewkitValueError
 from .brackets import Bracket, BracketMonomial, BracketPolynomial, _labels
 from .dotted import DottedMonomial, DottedSum
 from .expansion import OrderingSearch, _best_ordering, _lines, superbracket_expansion
 from .notation import _MARKS, _format_bracket, _format_sum
-from .zeros import Sampler, _check_positive_int, _check_rtol, _draw, _drop_zero_monomials, _drop_zero_subsums
+from .zeros import Sampler, _check_positive_int, _draw, _drop_zero_monomials, _drop_zero_subsums
 
 __all__ = [
     "FactoredForm",
@@ -872,7 +873,7 @@ def simplify_superbracket(
     '0'
     """
     pairs = _lines(lines)
-    rtol, check = _check_rtol(rtol), _check_rtol(check_rtol, "check_rtol")
+    rtol, check = checked_rtol(rtol), checked_rtol(check_rtol, "check_rtol")
     terms = _check_positive_int(max_terms, "max_terms")
     generator = np.random.default_rng(rng)
     labels = [label for line in pairs for label in line]

@@ -12,6 +12,7 @@ import numpy as np
 
 from .. import _backend as B
 from .. import projective as P
+from .._backend import checked_rtol
 from ..exceptions import DegenerateGeometryError, ScrewkitTypeError, ScrewkitValueError
 from .brackets import BracketPolynomial
 
@@ -33,12 +34,6 @@ def _check_positive_int(value: Any, name: str) -> int:
     if isinstance(value, bool) or not isinstance(value, int | np.integer) or value < 1:
         raise ScrewkitValueError(f"Expected `{name}` to be a positive integer, got {value!r}.")
     return int(value)
-
-
-def _check_rtol(rtol: Any, name: str = "rtol") -> float:
-    if isinstance(rtol, bool) or not isinstance(rtol, int | float) or not 0 <= rtol < 1:
-        raise ScrewkitValueError(f"Expected `{name}` to be a number in [0, 1), got {rtol!r}.")
-    return float(rtol)
 
 
 def _draw(
@@ -158,7 +153,7 @@ def structural_zeros(
     '[abde]'
     """
     samples = _draw(sampler, n_samples, np.random.default_rng(rng), poly.labels)
-    return _drop_zero_monomials(poly, samples, _check_rtol(rtol))
+    return _drop_zero_monomials(poly, samples, checked_rtol(rtol))
 
 
 def _drop_zero_subsums(
@@ -220,5 +215,5 @@ def drop_zero_subsums(
     """
     samples = _draw(sampler, n_samples, np.random.default_rng(rng), poly.labels)
     return _drop_zero_subsums(
-        poly, samples, _check_rtol(rtol), _check_positive_int(max_terms, "max_terms")
+        poly, samples, checked_rtol(rtol), _check_positive_int(max_terms, "max_terms")
     )
