@@ -301,6 +301,9 @@ def _residual_numpy(vectors: Array, rows: Array) -> Array:
 def singular_ratio(rows: Array, index: int) -> Array:
     """``σ_index / σ_1`` of rows ``(..., k, 6)`` (1 for ``index ≤ 0``, 0 when ``k < index``).
 
+    numpy's SVD, or on the numba path one-sided Jacobi rotations of the non-zero rows
+    (:func:`screwkit._frames_numba.singular_ratio`); the two agree up to round-off.
+
     Examples
     --------
     >>> float(singular_ratio(np.array([[1.0, 0, 0, 0, 0, 0], [0, 0.5, 0, 0, 0, 0]]), 2))
@@ -311,6 +314,10 @@ def singular_ratio(rows: Array, index: int) -> Array:
         return np.ones(batch)
     if rows.shape[-2] < index:
         return np.zeros(batch)
+    kernels = _numba_kernels()
+    if kernels is not None and 0 not in batch:
+        flat = np.ascontiguousarray(rows.reshape(-1, *rows.shape[-2:]), dtype=float)
+        return kernels.singular_ratio(flat, int(index)).reshape(batch)
     values = np.linalg.svd(rows, compute_uv=False)
     top = values[..., 0]
     return np.where(top > 0, values[..., index - 1] / np.where(top > 0, top, 1.0), 0.0)

@@ -166,3 +166,196 @@ def residual(vectors: Array, rows: Array) -> Array:  # pragma: no cover - compil
                     for s in range(6):
                         out[p, j, s] -= coefficients[i] * rows[p, i, s]
     return out
+
+
+@njit(cache=True)
+def _symmetric_eigen3(a: Array, values: Array, vectors: Array) -> None:  # pragma: no cover - compiled
+    """Eigenvalues ``values (3,)`` and eigenvectors (columns of ``vectors (3, 3)``) of the
+    symmetric ``a (3, 3)`` (overwritten) by cyclic Jacobi rotations (Golub & Van Loan §8.5.2,
+    Algorithm 8.5.3; the rotation of Rutishauser's stable form, Numerical Recipes §11.1)."""
+    for i in range(3):
+        for j in range(3):
+            vectors[i, j] = 1.0 if i == j else 0.0
+    for _ in range(50):
+        off = abs(a[0, 1]) + abs(a[0, 2]) + abs(a[1, 2])
+        if off == 0.0:
+            break
+        for p in range(2):
+            for q in range(p + 1, 3):
+                apq = a[p, q]
+                if apq == 0.0:
+                    continue
+                theta = (a[q, q] - a[p, p]) / (2.0 * apq)
+                t = math.copysign(1.0, theta) / (abs(theta) + math.sqrt(theta * theta + 1.0))
+                c = 1.0 / math.sqrt(t * t + 1.0)
+                s = t * c
+                for k in range(3):  # a ← a J (columns p, q)
+                    akp, akq = a[k, p], a[k, q]
+                    a[k, p], a[k, q] = c * akp - s * akq, s * akp + c * akq
+                for k in range(3):  # a ← Jᵀ a (rows p, q)
+                    apk, aqk = a[p, k], a[q, k]
+                    a[p, k], a[q, k] = c * apk - s * aqk, s * apk + c * aqk
+                a[p, q] = 0.0
+                a[q, p] = 0.0
+                for k in range(3):
+                    vkp, vkq = vectors[k, p], vectors[k, q]
+                    vectors[k, p], vectors[k, q] = c * vkp - s * vkq, s * vkp + c * vkq
+    for i in range(3):
+        values[i] = a[i, i]
+
+
+@njit(cache=True)
+def reference_frame(
+    screws: Array, anchor: Array, has_anchor: bool, undetermined: float
+) -> tuple[Array, Array]:  # pragma: no cover - compiled
+    """:func:`screwkit.twistgraph.mechanism_frame` pose by pose: screws ``(n, k, 6)``, anchors
+    ``(n, 3)`` (read only if ``has_anchor``) → points ``(n, 3)``, lengths ``(n,)``. The same
+    formulas; the 3×3 eigenproblem by :func:`_symmetric_eigen3`."""
+    n, k = screws.shape[0], screws.shape[1]
+    points = np.zeros((n, 3))
+    lengths = np.ones(n)
+    units = np.zeros((k, 3))
+    feet = np.zeros((k, 3))
+    normal = np.empty((3, 3))
+    rhs = np.empty(3)
+    values = np.empty(3)
+    vectors = np.empty((3, 3))
+    coordinates = np.empty(3)
+    for p in range(n):
+        count = 0
+        for i in range(3):
+            rhs[i] = 0.0
+            for j in range(3):
+                normal[i, j] = 0.0
+        size = 0.0
+        for r in range(k):
+            d0, d1, d2 = screws[p, r, 0], screws[p, r, 1], screws[p, r, 2]
+            m0, m1, m2 = screws[p, r, 3], screws[p, r, 4], screws[p, r, 5]
+            squared = d0 * d0 + d1 * d1 + d2 * d2
+            if not squared > 0:
+                for i in range(3):
+                    units[r, i] = 0.0
+                    feet[r, i] = 0.0
+                continue
+            count += 1
+            norm = math.sqrt(squared)
+            units[r, 0], units[r, 1], units[r, 2] = d0 / norm, d1 / norm, d2 / norm
+            feet[r, 0] = (d1 * m2 - d2 * m1) / squared  # d × m / |d|²: the foot of the axis
+            feet[r, 1] = (d2 * m0 - d0 * m2) / squared
+            feet[r, 2] = (d0 * m1 - d1 * m0) / squared
+            size = max(size, math.sqrt(feet[r, 0] ** 2 + feet[r, 1] ** 2 + feet[r, 2] ** 2))
+            along = units[r, 0] * feet[r, 0] + units[r, 1] * feet[r, 1] + units[r, 2] * feet[r, 2]
+            for i in range(3):
+                rhs[i] += feet[r, i] - units[r, i] * along  # P_k x_k
+                for j in range(3):
+                    normal[i, j] -= units[r, i] * units[r, j]
+        for i in range(3):
+            normal[i, i] += count  # Σ (I − u uᵀ)
+        _symmetric_eigen3(normal, values, vectors)
+        top = max(values[0], max(values[1], values[2]))
+        for i in range(3):
+            projected = vectors[0, i] * rhs[0] + vectors[1, i] * rhs[1] + vectors[2, i] * rhs[2]
+            if values[i] > undetermined * top:
+                coordinates[i] = projected / values[i]
+            elif has_anchor:
+                coordinates[i] = vectors[0, i] * anchor[p, 0] + vectors[1, i] * anchor[p, 1] + vectors[2, i] * anchor[p, 2]
+            else:
+                coordinates[i] = 0.0
+        for i in range(3):
+            points[p, i] = vectors[i, 0] * coordinates[0] + vectors[i, 1] * coordinates[1] + vectors[i, 2] * coordinates[2]
+        total = 0.0
+        for r in range(k):
+            if units[r, 0] == 0.0 and units[r, 1] == 0.0 and units[r, 2] == 0.0:
+                continue
+            a0, a1, a2 = points[p, 0] - feet[r, 0], points[p, 1] - feet[r, 1], points[p, 2] - feet[r, 2]
+            along = units[r, 0] * a0 + units[r, 1] * a1 + units[r, 2] * a2
+            o0, o1, o2 = a0 - units[r, 0] * along, a1 - units[r, 1] * along, a2 - units[r, 2] * along
+            total += o0 * o0 + o1 * o1 + o2 * o2
+        length = math.sqrt(total / max(count, 1))
+        size = max(size, math.sqrt(points[p, 0] ** 2 + points[p, 1] ** 2 + points[p, 2] ** 2))
+        if length <= 1e-12 * size or length == 0:
+            length = size if size > 0 else 1.0
+        lengths[p] = length
+    return points, lengths
+
+
+@njit(cache=True)
+def singular_ratio(rows: Array, index: int) -> Array:  # pragma: no cover - compiled
+    """``σ_index / σ_1`` of each ``rows (n, k, 6)`` (``1 ≤ index ≤ 6``): the non-zero rows
+    orthogonalised pairwise by one-sided Jacobi rotations (Hestenes; Demmel & Veselić, SIAM J.
+    Matrix Anal. Appl. 13, 1992: high relative accuracy) until every pair is orthogonal to
+    round-off; the singular values are then the rows' norms. More than six non-zero rows are
+    first reduced to the six of their triangular factor by Householder reflections from the left
+    (the singular values are unchanged)."""
+    n, k = rows.shape[0], rows.shape[1]
+    out = np.zeros(n)
+    a = np.empty((max(k, 6), 6))
+    sizes = np.empty(max(k, 6))
+    eps = 2.220446049250313e-16
+    for p in range(n):
+        m = 0
+        for r in range(k):  # the non-zero rows (a zero row adds a zero singular value only)
+            nonzero = False
+            for s in range(6):
+                if rows[p, r, s] != 0.0:
+                    nonzero = True
+            if nonzero:
+                for s in range(6):
+                    a[m, s] = rows[p, r, s]
+                m += 1
+        if m > 6:  # QR from the left: a ← Qᵀ a, keeping the 6 × 6 triangle
+            for j in range(6):
+                total = 0.0
+                for i in range(j, m):
+                    total += a[i, j] * a[i, j]
+                norm = math.sqrt(total)
+                if norm == 0.0:
+                    continue
+                alpha = -math.copysign(norm, a[j, j])
+                a[j, j] -= alpha  # v = x − α e_j, stored in place of x
+                vv = 0.0
+                for i in range(j, m):
+                    vv += a[i, j] * a[i, j]
+                for c in range(j + 1, 6):
+                    dot = 0.0
+                    for i in range(j, m):
+                        dot += a[i, j] * a[i, c]
+                    dot = 2.0 * dot / vv
+                    for i in range(j, m):
+                        a[i, c] -= dot * a[i, j]
+                a[j, j] = alpha
+                for i in range(j + 1, m):
+                    a[i, j] = 0.0
+            m = 6
+        if m < index:
+            continue
+        for _ in range(60):
+            rotated = False
+            for i in range(m - 1):
+                for j in range(i + 1, m):
+                    alpha = beta = gamma = 0.0
+                    for s in range(6):
+                        alpha += a[i, s] * a[i, s]
+                        beta += a[j, s] * a[j, s]
+                        gamma += a[i, s] * a[j, s]
+                    if gamma == 0.0 or abs(gamma) <= eps * math.sqrt(alpha * beta):
+                        continue
+                    rotated = True
+                    zeta = (beta - alpha) / (2.0 * gamma)
+                    t = math.copysign(1.0, zeta) / (abs(zeta) + math.sqrt(1.0 + zeta * zeta))
+                    c = 1.0 / math.sqrt(1.0 + t * t)
+                    sn = c * t
+                    for s in range(6):
+                        ai, aj = a[i, s], a[j, s]
+                        a[i, s], a[j, s] = c * ai - sn * aj, sn * ai + c * aj
+            if not rotated:
+                break
+        for i in range(m):
+            total = 0.0
+            for s in range(6):
+                total += a[i, s] * a[i, s]
+            sizes[i] = math.sqrt(total)
+        ordered = np.sort(sizes[:m])[::-1]
+        if ordered[0] > 0:
+            out[p] = ordered[index - 1] / ordered[0]
+    return out
