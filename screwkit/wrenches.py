@@ -438,13 +438,10 @@ class WrenchAnalysis:
         if "node0" in self.frames:  # kept by analyze_table(views=True)
             frames = [self.frames[f"node{i}"] for i in range(len(self.topology.nodes))]
         else:
-            scaled = _normalized(
-                F.to_scaled(self.table.screws[None], self.reference_point[None], _lengths(self))
-            )
-            core = _Evaluation(self.topology, scaled, self.rtol)
-            frames = [
-                (rows[0], order[0]) for rows, order in map(core.twists, range(len(self.topology.nodes)))
-            ]
+            scaled = F.unit_scaled(self.table.screws[None], self.reference_point[None], _lengths(self))
+            requests = tuple(("twists", i) for i in range(len(self.topology.nodes)))
+            core = _Evaluation(self.topology, scaled, self.rtol, requests)
+            frames = [(rows[0], order[0]) for rows, order in map(core.frame, requests)]
         nodes: list[SeriesParallelNode] = []
         for (rows, order), node in zip(frames, self.topology.nodes, strict=True):
             user = F.from_scaled(rows[: int(order)], self.reference_point, np.asarray(self.length_scale))
@@ -484,21 +481,52 @@ def _normalized(rows: Array) -> Array:
 # --------------------------------------------------------------------------------------------------
 
 
-class _Evaluation:
-    """Lazy, cached evaluation of a topology's frames over one batch of scaled, unit joint screws."""
+#: What a frame program computes: ``("twists", node)``, ``("wrenches", node)`` of a tree node, or
+#: ``("sum", nodes)``, the sum of the twist systems of tree nodes (a limb with its actuator locked).
+Request = tuple[str, Any]
 
-    def __init__(self, top: Topology, scaled: Array, rtol: float, keep: frozenset[int] | None = None):
-        self.top, self.scaled, self.rtol = top, scaled, rtol
-        self.keep = keep  # nodes whose frames outlive their parent's evaluation (None: all)
-        self.batch = scaled.shape[:-2]
-        self.columns = top.columns
-        self._twists: dict[int, Frame] = {}
-        self._wrenches: dict[int, Frame] = {}
+
+@dataclass(frozen=True, eq=False)
+class _Program:
+    """A topology's frames as a flat list of operations, built once per topology and requests
+    (:func:`_program`) and run over a batch by :func:`_run` (one compiled call on the numba path,
+    op by op with the batched kernels of :mod:`screwkit._frames` on the numpy path).
+
+    Each op writes a new slot (its index): ``(code, slot, first, count)`` with ``code`` a span of
+    ``sources[first : first + count]`` (rows ``(kind, a, b)``: joint screw rows ``a .. a + b`` or
+    the first ``b`` rows of slot ``a``) or the reciprocal of slot ``first``
+    (:func:`screwkit._frames_numba.run_program`)."""
+
+    ops: Array
+    sources: Array
+    slots: dict[Request, int]
+    last_use: tuple[int, ...]
+
+
+#: The op codes and source kinds of a :class:`_Program` (those of the compiled interpreter).
+SPAN, RECIPROCAL, JOINT_ROWS, SLOT_ROWS = 0, 1, 0, 1
+
+
+class _ProgramBuilder:
+    """Records the series-parallel recursion (paper 002 Eqs. 1–3: a chain's twist system is the
+    sum of its members'; parallel branches' constraint systems add up, and each system is the
+    reciprocal of the other) as ops, each frame computed once."""
+
+    def __init__(self, top: Topology):
+        self.top = top
+        self.ops: list[tuple[int, int, int, int]] = []
+        self.sources: list[tuple[int, int, int]] = []
+        self.slots: dict[Request, int] = {}
         self._bounds: dict[int, int] = {}
 
-    def joint_rows(self, index: int) -> Array:
-        start = self.columns[index]
-        return self.scaled[..., start : start + self.top.specs[index].dof, :]
+    def _op(self, code: int, first: int, count: int) -> int:
+        self.ops.append((code, len(self.ops), first, count))
+        return len(self.ops) - 1
+
+    def _span(self, parts: list[tuple[int, int, int]]) -> int:
+        first = len(self.sources)
+        self.sources.extend(parts)
+        return self._op(SPAN, first, len(parts))
 
     def bound(self, index: int) -> int:
         """A static upper bound on a node's twist order (zero rows beyond it are dropped)."""
@@ -514,53 +542,129 @@ class _Evaluation:
             self._bounds[index] = min(value, 6)
         return self._bounds[index]
 
-    def generators(self, index: int) -> Array:
+    def generators(self, index: int) -> list[tuple[int, int, int]]:
         """What a node adds to a sum of twist systems: a joint's screws, else its frame's rows."""
         node = self.top.nodes[index]
         if node.kind == "joint":
             assert node.joint is not None
-            return self.joint_rows(node.joint)
-        return self.twists(index)[0][..., : self.bound(index), :]
+            return [(JOINT_ROWS, self.top.columns[node.joint], self.top.specs[node.joint].dof)]
+        return [(SLOT_ROWS, self.twists(index), self.bound(index))]
+
+    def twists(self, index: int) -> int:
+        key = ("twists", index)
+        if key not in self.slots:
+            node = self.top.nodes[index]
+            if node.kind == "parallel":
+                self.slots[key] = self._op(RECIPROCAL, self.wrenches(index), 0)
+            elif node.kind == "joint":
+                self.slots[key] = self._span(self.generators(index))
+            else:
+                self.slots[key] = self._span([g for c in node.children for g in self.generators(c)])
+        return self.slots[key]
+
+    def wrenches(self, index: int) -> int:
+        key = ("wrenches", index)
+        if key not in self.slots:
+            node = self.top.nodes[index]
+            if node.kind == "parallel":
+                self.slots[key] = self._span([(SLOT_ROWS, self.wrenches(c), 6) for c in node.children])
+            else:
+                self.slots[key] = self._op(RECIPROCAL, self.twists(index), 0)
+        return self.slots[key]
+
+    def request(self, request: Request) -> int:
+        kind, what = request
+        if kind == "sum":
+            if request not in self.slots:
+                self.slots[request] = self._span([g for n in what for g in self.generators(n)])
+            return self.slots[request]
+        return self.twists(what) if kind == "twists" else self.wrenches(what)
+
+
+@functools.lru_cache(maxsize=256)
+def _program(top: Topology, requests: tuple[Request, ...]) -> _Program:
+    """The ops computing ``requests`` (cached per topology object and requests)."""
+    builder = _ProgramBuilder(top)
+    for request in requests:
+        builder.request(request)
+    last_use = list(range(len(builder.ops)))
+    for index, (code, _, first, count) in enumerate(builder.ops):
+        read = [first] if code == RECIPROCAL else [a for kind, a, _ in builder.sources[first : first + count] if kind == SLOT_ROWS]
+        for slot in read:
+            last_use[slot] = index
+    return _Program(
+        np.array(builder.ops, dtype=np.int64).reshape(-1, 4),
+        np.array(builder.sources, dtype=np.int64).reshape(-1, 3),
+        {request: builder.slots[request] for request in requests},
+        tuple(last_use),
+    )
+
+
+def _run(program: _Program, scaled: Array, rtol: float, requests: tuple[Request, ...]) -> list[Frame]:
+    """The requested frames of a program over the batch of ``scaled`` ``(..., rows, 6)``."""
+    batch = scaled.shape[:-2]
+    wanted = [program.slots[r] for r in requests]
+    kernels = F.compiled_kernels("_frames_numba")
+    if kernels is not None:
+        if 0 in batch:
+            return [F.empty(batch) for _ in requests]
+        flat = np.ascontiguousarray(scaled.reshape(-1, *scaled.shape[-2:]), dtype=float)
+        rows, orders = kernels.run_program(
+            flat, float(rtol), program.ops, program.sources, len(program.ops), np.array(wanted, dtype=np.int64)
+        )
+        return [
+            (rows[:, i].reshape(*batch, 6, 6), orders[:, i].reshape(batch)) for i in range(len(requests))
+        ]
+    frames: dict[int, Frame] = {}
+    keep = set(wanted)
+    for index, (code, slot, first, count) in enumerate(program.ops.tolist()):
+        if code == RECIPROCAL:
+            frames[slot] = F.reciprocal(*frames[first])
+        else:
+            parts = [
+                scaled[..., a : a + b, :] if kind == JOINT_ROWS else frames[a][0][..., :b, :]
+                for kind, a, b in program.sources[first : first + count].tolist()
+            ]
+            frames[slot] = F.span(np.concatenate(parts, axis=-2), rtol) if parts else F.empty(batch)
+        for done in [s for s in frames if program.last_use[s] <= index and s not in keep]:
+            del frames[done]  # bounded memory over large batches
+    return [frames[s] for s in wanted]
+
+
+class _Evaluation:
+    """Cached frames of a topology over one batch of scaled, unit joint screws: the ``requests``
+    given at creation run as one program (:func:`_program`); any other frame asked for later
+    runs a program of its own."""
+
+    def __init__(self, top: Topology, scaled: Array, rtol: float, requests: tuple[Request, ...] = ()):
+        self.top, self.scaled, self.rtol = top, scaled, rtol
+        self.batch = scaled.shape[:-2]
+        self.columns = top.columns
+        self._frames: dict[Request, Frame] = {}
+        if requests:
+            self._compute(requests)
+
+    def _compute(self, requests: tuple[Request, ...]) -> None:
+        frames = _run(_program(self.top, requests), self.scaled, self.rtol, requests)
+        self._frames.update(zip(requests, frames, strict=True))
+
+    def frame(self, request: Request) -> Frame:
+        if request not in self._frames:
+            self._compute((request,))
+        return self._frames[request]
+
+    def joint_rows(self, index: int) -> Array:
+        start = self.columns[index]
+        return self.scaled[..., start : start + self.top.specs[index].dof, :]
 
     def twists(self, index: int) -> Frame:
-        if index not in self._twists:
-            node = self.top.nodes[index]
-            if node.kind == "parallel":
-                self._twists[index] = F.reciprocal(*self.wrenches(index))
-            else:
-                parts = (
-                    [self.generators(index)]
-                    if node.kind == "joint"
-                    else [self.generators(c) for c in node.children]
-                )
-                self._twists[index] = F.span(np.concatenate(parts, axis=-2), self.rtol)
-                self._release(node.children)
-        return self._twists[index]
-
-    def _release(self, children: tuple[int, ...]) -> None:
-        """Free children's frames once their parent has them (bounded memory over large batches)."""
-        if self.keep is None:
-            return
-        for child in children:
-            if child not in self.keep:
-                self._twists.pop(child, None)
-                self._wrenches.pop(child, None)
+        return self.frame(("twists", index))
 
     def wrenches(self, index: int) -> Frame:
-        if index not in self._wrenches:
-            node = self.top.nodes[index]
-            if node.kind == "parallel":
-                rows = [self.wrenches(c)[0] for c in node.children]
-                self._wrenches[index] = F.span(np.concatenate(rows, axis=-2), self.rtol)
-                self._release(node.children)
-            else:
-                self._wrenches[index] = F.reciprocal(*self.twists(index))
-        return self._wrenches[index]
+        return self.frame(("wrenches", index))
 
     def sum_of(self, nodes: tuple[int, ...]) -> Frame:
-        if not nodes:
-            return F.empty(self.batch)
-        return F.span(np.concatenate([self.generators(n) for n in nodes], axis=-2), self.rtol)
+        return self.frame(("sum", tuple(nodes)))
 
     def network(self, joints: tuple[int, ...], locked: int | None = None) -> Frame:
         """The platform's twist system of a sub-network by loop closure: ``rank[M; P] − rank M``
@@ -758,9 +862,19 @@ def analyze_table(
     batch = table.batch_shape
     screws = table.screws
     centre, length = mechanism_frame(screws, table.anchor)
-    scaled = _normalized(F.to_scaled(screws, centre, length))
-    keep = None if views else frozenset([*top.legs, *(s for limb in top.limbs for s in limb.siblings)])
-    core = _Evaluation(top, scaled, rtol, keep)
+    scaled = F.unit_scaled(screws, centre, length)
+    requests: tuple[Request, ...] = ()
+    if not top.network:  # every frame the analysis needs, in one program
+        assert top.root is not None
+        requests = (
+            ("twists", top.root),
+            *(("twists", i) for i in top.legs),
+            *(("wrenches", i) for i in top.legs),
+            *(("sum", tuple(plan.siblings)) for plan in top.limbs),
+            *((("twists", i) for i in range(len(top.nodes))) if views else ()),
+        )
+        requests = tuple(dict.fromkeys(requests))
+    core = _Evaluation(top, scaled, rtol, requests)
     frames: dict[str, Frame] = {}
     if top.network:
         platform = core.network(tuple(range(len(top.specs))))
