@@ -56,6 +56,7 @@ __all__ = [
     "from_scaled",
     "reciprocal",
     "residual",
+    "rod",
     "singular_ratio",
     "span",
     "swapped",
@@ -290,6 +291,58 @@ def reciprocal(rows: Array, order: Array) -> tuple[Array, Array]:
         out, wanted = _complement_numpy(rows, order)
         return swapped(out), wanted
     return _complement_numba(rows, order, swap=True)
+
+
+def rod(rows: Array, rtol: float) -> tuple[Array, Array]:
+    """The reciprocal of the span of two spherical joints in series, rows ``(..., 6, 6)`` (three
+    concurrent axes each, scaled): in closed form, the unit line through the two centres
+    (order 1), where it applies; elsewhere (a joint's axes without a common point, centres not
+    more than ``√rtol`` apart, or the line not reciprocal to every axis within ``rtol``)
+    :func:`reciprocal` of :func:`span`. The numpy path of
+    :func:`screwkit._frames_numba.rod_into` (which the compiled programs run).
+
+    Each centre is the least-squares point of its axes, ``N⁻¹ Σ f`` with ``N = Σ (I − û ûᵀ)`` and
+    ``f = u × m / |u|²`` the feet (by the adjugate of ``N``).
+
+    Examples
+    --------
+    >>> sphere = lambda c: [[*e, *np.cross(c, e)] for e in np.eye(3)]
+    >>> rows, order = rod(np.array(sphere([0, 0, 0.0]) + sphere([0, 0, 1.0])), 1e-9)
+    >>> int(order), rows[0] + 0.0
+    (1, array([0., 0., 1., 0., 0., 0.]))
+    """
+    rows = np.asarray(rows, dtype=float)
+    u, m = rows[..., :3], rows[..., 3:]
+    squared = np.einsum("...i,...i->...", u, u)
+    good = np.all(squared > 0, axis=-1)
+    squared = np.where(squared > 0, squared, 1.0)
+    feet = np.cross(u, m) / squared[..., None]
+    eye = np.eye(3)
+    projectors = eye - u[..., :, None] * u[..., None, :] / squared[..., None, None]
+    centres = []
+    for joint in (slice(0, 3), slice(3, 6)):
+        normal = projectors[..., joint, :, :].sum(axis=-3)
+        b = feet[..., joint, :].sum(axis=-2)
+        n0, n1, n2 = normal[..., 0, :], normal[..., 1, :], normal[..., 2, :]
+        adjugate = np.stack([np.cross(n1, n2), np.cross(n2, n0), np.cross(n0, n1)], axis=-1)
+        det = np.einsum("...i,...i->...", n0, adjugate[..., :, 0])
+        good &= det > 0
+        centres.append(np.einsum("...ij,...j->...i", adjugate, b) / np.where(det > 0, det, 1.0)[..., None])
+    d = centres[1] - centres[0]
+    good &= np.linalg.norm(d, axis=-1) > np.sqrt(rtol)
+    line = np.concatenate([d, np.cross(centres[0], d)], axis=-1)
+    size = np.linalg.norm(line, axis=-1, keepdims=True)
+    line = line / np.where(size > 0, size, 1.0)
+    products = np.einsum("...s,...ks->...k", line, swapped(rows))
+    good &= np.all(np.abs(products) <= rtol, axis=-1)
+    out, order = empty(rows.shape[:-2])
+    out[..., 0, :] = np.where(good[..., None], line, 0.0)
+    order = np.where(good, 1, order)
+    bad = ~good
+    if bad.any():
+        frame = reciprocal(*span(rows[bad], rtol))
+        out[bad], order[bad] = frame
+    return out, order
 
 
 def residual(vectors: Array, rows: Array) -> Array:

@@ -19,7 +19,9 @@ Array = np.ndarray
 
 
 @njit(cache=True)
-def span_into(w: Array, k: int, rtol: float, r: Array, norms: Array, pivot: Array, coefficients: Array) -> int:  # pragma: no cover - compiled
+def span_into(  # pragma: no cover - compiled
+    w: Array, k: int, rtol: float, r: Array, norms: Array, pivot: Array, coefficients: Array
+) -> int:
     """One pose of :func:`span`: the first ``k`` rows of ``w`` (overwritten) → the frame's rows in
     ``r (6, 6)`` (zero beyond the order, which is returned); ``norms (≥ k,)``, ``pivot (6,)`` and
     ``coefficients (6,)`` are scratch. Rows of ``w`` that are exactly zero stay zero and are never
@@ -99,7 +101,9 @@ def span(work: Array, rtol: float) -> tuple[Array, Array]:  # pragma: no cover -
 
 
 @njit(cache=True)
-def complement_into(rows: Array, o: int, swap: bool, out: Array, a: Array, v: Array, tau: Array, y: Array) -> None:  # pragma: no cover - compiled
+def complement_into(  # pragma: no cover - compiled
+    rows: Array, o: int, swap: bool, out: Array, a: Array, v: Array, tau: Array, y: Array
+) -> None:
     """One pose of :func:`complement`: the frame ``rows (6, 6)`` of order ``o`` → the complement's
     rows in ``out (6, 6)`` (zero beyond ``6 − o``); ``a``, ``v (6, 6)``, ``tau``, ``y (6,)`` are
     scratch. Columns of ``a`` beyond ``o`` are zero (the frame's zero rows) and no reflector
@@ -171,9 +175,73 @@ def complement(rows: Array, order: Array, swap: bool) -> Array:  # pragma: no co
 
 
 #: Operation codes of a frame program (:func:`run_program`; built by :mod:`screwkit.wrenches`).
-SPAN, RECIPROCAL = 0, 1
+SPAN, RECIPROCAL, ROD = 0, 1, 2
 #: Source kinds of a span: joint screw rows ``(start, count)`` or a slot's rows ``(slot, bound)``.
 JOINT_ROWS, SLOT_ROWS = 0, 1
+
+
+@njit(cache=True)
+def _centre(rows: Array) -> tuple[float, float, float, float]:  # pragma: no cover - compiled
+    """The least-squares point ``(x, y, z)`` of the three axes ``rows (3, 6)`` and the determinant
+    of its normal matrix ``N = Σ (I − û ûᵀ)`` (≤ 0: no point): ``N⁻¹ Σ f`` with ``f = u × m / |u|²``
+    each axis's foot (``(I − û ûᵀ) f = f``), by the adjugate."""
+    n00 = n01 = n02 = n11 = n12 = n22 = 0.0
+    b0 = b1 = b2 = 0.0
+    for r in range(3):
+        u0, u1, u2 = rows[r, 0], rows[r, 1], rows[r, 2]
+        m0, m1, m2 = rows[r, 3], rows[r, 4], rows[r, 5]
+        squared = u0 * u0 + u1 * u1 + u2 * u2
+        if not squared > 0:
+            return 0.0, 0.0, 0.0, 0.0
+        b0 += (u1 * m2 - u2 * m1) / squared
+        b1 += (u2 * m0 - u0 * m2) / squared
+        b2 += (u0 * m1 - u1 * m0) / squared
+        n00 += 1.0 - u0 * u0 / squared
+        n11 += 1.0 - u1 * u1 / squared
+        n22 += 1.0 - u2 * u2 / squared
+        n01 -= u0 * u1 / squared
+        n02 -= u0 * u2 / squared
+        n12 -= u1 * u2 / squared
+    a00, a01, a02 = n11 * n22 - n12 * n12, n02 * n12 - n01 * n22, n01 * n12 - n02 * n11
+    a11, a12, a22 = n00 * n22 - n02 * n02, n01 * n02 - n00 * n12, n00 * n11 - n01 * n01
+    det = n00 * a00 + n01 * a01 + n02 * a02
+    if not det > 0:
+        return 0.0, 0.0, 0.0, 0.0
+    return (
+        det,
+        (a00 * b0 + a01 * b1 + a02 * b2) / det,
+        (a01 * b0 + a11 * b1 + a12 * b2) / det,
+        (a02 * b0 + a12 * b1 + a22 * b2) / det,
+    )
+
+
+@njit(cache=True)
+def rod_into(rows: Array, rtol: float, out: Array) -> bool:  # pragma: no cover - compiled
+    """The constraint wrench of two spherical joints in series, ``rows (6, 6)`` (three concurrent
+    unit axes each, scaled): the unit line through their centres into ``out[0]`` (the rest of
+    ``out`` zero). False where the closed form does not apply (the caller then spans and takes the
+    reciprocal): a joint's axes without a common point, centres not more than ``√rtol`` apart, or
+    the line not reciprocal to every axis within ``rtol``."""
+    det1, x1, y1, z1 = _centre(rows[0:3])
+    det2, x2, y2, z2 = _centre(rows[3:6])
+    if not (det1 > 0 and det2 > 0):
+        return False
+    d0, d1, d2 = x2 - x1, y2 - y1, z2 - z1
+    if not math.sqrt(d0 * d0 + d1 * d1 + d2 * d2) > math.sqrt(rtol):
+        return False
+    m0, m1, m2 = y1 * d2 - z1 * d1, z1 * d0 - x1 * d2, x1 * d1 - y1 * d0  # c1 × d
+    size = math.sqrt(d0 * d0 + d1 * d1 + d2 * d2 + m0 * m0 + m1 * m1 + m2 * m2)
+    d0, d1, d2, m0, m1, m2 = d0 / size, d1 / size, d2 / size, m0 / size, m1 / size, m2 / size
+    for r in range(6):
+        product = d0 * rows[r, 3] + d1 * rows[r, 4] + d2 * rows[r, 5]
+        product += m0 * rows[r, 0] + m1 * rows[r, 1] + m2 * rows[r, 2]
+        if not abs(product) <= rtol:
+            return False
+    for i in range(6):
+        for s in range(6):
+            out[i, s] = 0.0
+    out[0, 0], out[0, 1], out[0, 2], out[0, 3], out[0, 4], out[0, 5] = d0, d1, d2, m0, m1, m2
+    return True
 
 
 @njit(cache=True)
@@ -182,10 +250,12 @@ def run_program(
 ) -> tuple[Array, Array]:  # pragma: no cover - compiled
     """A frame program, pose by pose: ``scaled (n, rows, 6)`` joint screws; ``ops (m, 4)`` rows
     ``(code, slot, first, count)``: :data:`SPAN` of ``sources[first : first + count]`` (rows
-    ``(kind, a, b)``), or :data:`RECIPROCAL` of slot ``first``, into ``slot``. Returns the rows
-    ``(n, len(outputs), 6, 6)`` and orders of the ``outputs`` slots. Each op is exactly the batched
-    kernel :func:`span` or :func:`complement` (``swap``) would compute on that pose, so running a
-    program equals running its ops one by one (the numpy path's way)."""
+    ``(kind, a, b)``), :data:`RECIPROCAL` of slot ``first``, or :data:`ROD`, the reciprocal of the
+    span of two spherical joints' rows (:func:`rod_into`, else span and reciprocal), into
+    ``slot``. Returns the rows ``(n, len(outputs), 6, 6)`` and orders of the ``outputs`` slots. A
+    span or reciprocal is exactly what the batched kernel :func:`span` or :func:`complement`
+    (``swap``) computes on that pose, so running a program equals running its ops one by one (the
+    numpy path's way, :func:`screwkit.wrenches._run`) up to the two paths' round-off."""
     n = scaled.shape[0]
     slots = np.zeros((n_slots, 6, 6))
     orders = np.zeros(n_slots, dtype=np.int64)
@@ -222,6 +292,14 @@ def run_program(
                         for s in range(6):
                             work[k, s] = slots[x, i, s]
                         k += 1
+            if code == ROD:
+                if rod_into(work, rtol, slots[slot]):
+                    orders[slot] = 1
+                    continue
+                order = span_into(work, k, rtol, a, norms, pivot, coefficients)  # the rule, spelt out
+                complement_into(a.copy(), order, True, slots[slot], a, v, tau, y)
+                orders[slot] = 6 - order
+                continue
             orders[slot] = span_into(work, k, rtol, slots[slot], norms, pivot, coefficients)
         for i in range(outputs.shape[0]):
             out_rows[p, i] = slots[outputs[i]]
@@ -339,11 +417,14 @@ def reference_frame(
             if values[i] > undetermined * top:
                 coordinates[i] = projected / values[i]
             elif has_anchor:
-                coordinates[i] = vectors[0, i] * anchor[p, 0] + vectors[1, i] * anchor[p, 1] + vectors[2, i] * anchor[p, 2]
+                coordinates[i] = (
+                    vectors[0, i] * anchor[p, 0] + vectors[1, i] * anchor[p, 1] + vectors[2, i] * anchor[p, 2]
+                )
             else:
                 coordinates[i] = 0.0
         for i in range(3):
-            points[p, i] = vectors[i, 0] * coordinates[0] + vectors[i, 1] * coordinates[1] + vectors[i, 2] * coordinates[2]
+            points[p, i] = vectors[i, 0] * coordinates[0] + vectors[i, 1] * coordinates[1]
+            points[p, i] += vectors[i, 2] * coordinates[2]
         total = 0.0
         for r in range(k):
             if units[r, 0] == 0.0 and units[r, 1] == 0.0 and units[r, 2] == 0.0:
@@ -428,11 +509,11 @@ def singular_ratio(rows: Array, index: int) -> Array:  # pragma: no cover - comp
                     rotated = True
                     zeta = (beta - alpha) / (2.0 * gamma)
                     t = math.copysign(1.0, zeta) / (abs(zeta) + math.sqrt(1.0 + zeta * zeta))
-                    c = 1.0 / math.sqrt(1.0 + t * t)
-                    sn = c * t
+                    cosine = 1.0 / math.sqrt(1.0 + t * t)
+                    sine = cosine * t
                     for s in range(6):
                         ai, aj = a[i, s], a[j, s]
-                        a[i, s], a[j, s] = c * ai - sn * aj, sn * ai + c * aj
+                        a[i, s], a[j, s] = cosine * ai - sine * aj, sine * ai + cosine * aj
                     sizes[i], sizes[j] = alpha - t * gamma, beta + t * gamma
             if not rotated:
                 break

@@ -53,7 +53,7 @@ from . import screw as S
 from .exceptions import DegenerateGeometryError, ScrewkitTypeError, ScrewkitValueError, TwistGraphError
 from .joints import Joint, JointTable
 from .screwsystem import ScrewSystem
-from .topology import Topology, network_layout, topology
+from .topology import Node, Topology, network_layout, topology
 from .twistgraph import SeriesParallelNode, mechanism_frame
 
 if TYPE_CHECKING:
@@ -495,7 +495,9 @@ class _Program:
     Each op writes a new slot (its index): ``(code, slot, first, count)`` with ``code`` a span of
     ``sources[first : first + count]`` (rows ``(kind, a, b)``: joint screw rows ``a .. a + b`` or
     the first ``b`` rows of slot ``a``) or the reciprocal of slot ``first``
-    (:func:`screwkit._frames_numba.run_program`)."""
+    (:func:`screwkit._frames_numba.run_program`), or the reciprocal of the span of two spherical
+    joints' rows in closed form (:func:`screwkit._frames.rod`: the line through their centres,
+    paper 002 §4.1's rod force; the issue's "closed-form reciprocal systems")."""
 
     ops: Array
     sources: Array
@@ -504,7 +506,7 @@ class _Program:
 
 
 #: The op codes and source kinds of a :class:`_Program` (those of the compiled interpreter).
-SPAN, RECIPROCAL, JOINT_ROWS, SLOT_ROWS = 0, 1, 0, 1
+SPAN, RECIPROCAL, ROD, JOINT_ROWS, SLOT_ROWS = 0, 1, 2, 0, 1
 
 
 class _ProgramBuilder:
@@ -568,9 +570,25 @@ class _ProgramBuilder:
             node = self.top.nodes[index]
             if node.kind == "parallel":
                 self.slots[key] = self._span([(SLOT_ROWS, self.wrenches(c), 6) for c in node.children])
+            elif self._is_rod(node):  # closed form: the line through the two centres
+                parts = [g for c in node.children for g in self.generators(c)]
+                first = len(self.sources)
+                self.sources.extend(parts)
+                self.slots[key] = self._op(ROD, first, len(parts))
             else:
                 self.slots[key] = self._op(RECIPROCAL, self.twists(index), 0)
         return self.slots[key]
+
+    def _is_rod(self, node: Node) -> bool:
+        """A chain of exactly two spherical joints (a rod with a ball at each end)."""
+        kinds = [self.top.nodes[c] for c in node.children]
+        return node.kind == "series" and len(kinds) == 2 and all(
+            child.kind == "joint"
+            and child.joint is not None
+            and self.top.specs[child.joint].type == "S"
+            and self.top.specs[child.joint].dof == 3
+            for child in kinds
+        )
 
     def request(self, request: Request) -> int:
         kind, what = request
@@ -589,7 +607,8 @@ def _program(top: Topology, requests: tuple[Request, ...]) -> _Program:
         builder.request(request)
     last_use = list(range(len(builder.ops)))
     for index, (code, _, first, count) in enumerate(builder.ops):
-        read = [first] if code == RECIPROCAL else [a for kind, a, _ in builder.sources[first : first + count] if kind == SLOT_ROWS]
+        sources = builder.sources[first : first + count]
+        read = [first] if code == RECIPROCAL else [a for kind, a, _ in sources if kind == SLOT_ROWS]
         for slot in read:
             last_use[slot] = index
     return _Program(
@@ -610,7 +629,7 @@ def _run(program: _Program, scaled: Array, rtol: float, requests: tuple[Request,
             return [F.empty(batch) for _ in requests]
         flat = np.ascontiguousarray(scaled.reshape(-1, *scaled.shape[-2:]), dtype=float)
         rows, orders = kernels.run_program(
-            flat, float(rtol), program.ops, program.sources, len(program.ops), np.array(wanted, dtype=np.int64)
+            flat, float(rtol), program.ops, program.sources, len(program.ops), np.array(wanted, np.int64)
         )
         return [
             (rows[:, i].reshape(*batch, 6, 6), orders[:, i].reshape(batch)) for i in range(len(requests))
@@ -625,7 +644,10 @@ def _run(program: _Program, scaled: Array, rtol: float, requests: tuple[Request,
                 scaled[..., a : a + b, :] if kind == JOINT_ROWS else frames[a][0][..., :b, :]
                 for kind, a, b in program.sources[first : first + count].tolist()
             ]
-            frames[slot] = F.span(np.concatenate(parts, axis=-2), rtol) if parts else F.empty(batch)
+            if code == ROD:
+                frames[slot] = F.rod(np.concatenate(parts, axis=-2), rtol)
+            else:
+                frames[slot] = F.span(np.concatenate(parts, axis=-2), rtol) if parts else F.empty(batch)
         for done in [s for s in frames if program.last_use[s] <= index and s not in keep]:
             del frames[done]  # bounded memory over large batches
     return [frames[s] for s in wanted]

@@ -203,3 +203,127 @@ def test_both_paths_classify_the_h4_alike():
             np.testing.assert_allclose(a, b, atol=1e-9, err_msg=key)
         else:
             np.testing.assert_array_equal(a, b, err_msg=key)
+
+
+# the closed-form rod, the program interpreter and the other compiled loops ---------------------
+def sphere_rows(centre, axes):
+    """Three unit rotation axes ``axes (3, 3)`` through ``centre``: rows ``(3, 6)``."""
+    axes = axes / np.linalg.norm(axes, axis=-1, keepdims=True)
+    return np.concatenate([axes, np.cross(centre, axes)], axis=-1)
+
+
+def rod_rows(rng, first, second):
+    rows = np.concatenate(
+        [sphere_rows(first, rng.standard_normal((3, 3))), sphere_rows(second, rng.standard_normal((3, 3)))]
+    )
+    return rows / np.linalg.norm(rows, axis=-1, keepdims=True)  # unit rows, as the core's
+
+
+def rod_numba(rows, rtol):
+    from screwkit import _frames_numba
+
+    out = np.full((6, 6), np.nan)
+    if _frames_numba.rod_into(np.ascontiguousarray(rows), rtol, out):
+        return out, 1
+    return None
+
+
+@pytest.mark.parametrize("seed", range(5))
+def test_rod_is_the_line_through_the_two_centres(seed):
+    # expected: the line (d; c1 × d) through the centres, normalised (written here, not the code's)
+    rng = np.random.default_rng(seed)
+    first, second = rng.uniform(-2, 2, 3), rng.uniform(-2, 2, 3)
+    rows = rod_rows(rng, first, second)
+    d = second - first
+    line = np.concatenate([d, np.cross(first, d)])
+    line /= np.linalg.norm(line)
+    generic = F._complement_numpy(*F._span_numpy(rows, RTOL))
+    implementations = [F.rod] + ([rod_numba] if HAS_NUMBA else [])
+    for implementation in implementations:
+        got, order = implementation(rows, RTOL)
+        assert int(order) == 1 and np.all(got[1:] == 0)
+        np.testing.assert_allclose(got[0] * np.sign(got[0] @ line), line, atol=1e-12)
+        # the same system as the generic rule's: SWAP of the complement of the twists' span
+        np.testing.assert_allclose(projector(got, order), projector(F.swapped(generic[0]), generic[1]), atol=ATOL)
+
+
+@pytest.mark.parametrize("case", ["same centre", "axes without a common point", "parallel axes"])
+def test_rod_falls_back_to_the_rule_where_the_closed_form_does_not_apply(case):
+    rng = np.random.default_rng(7)
+    centre = np.array([0.3, -0.2, 0.5])
+    rows = rod_rows(rng, centre, centre if case == "same centre" else centre + np.array([0.0, 0.0, 1.0]))
+    if case == "axes without a common point":
+        rows[1, 3:] += 0.1 * np.cross(rows[1, :3], [1.0, 0, 0])  # the second axis moved off the centre
+    if case == "parallel axes":
+        rows[:3] = rows[0]
+    expected = F._complement_numpy(*F._span_numpy(rows, RTOL))
+    got, order = F.rod(rows, RTOL)
+    assert int(expected[1]) != 1  # no single line: the closed form would be wrong here
+    np.testing.assert_array_equal(order, expected[1])
+    np.testing.assert_allclose(projector(got, order), projector(F.swapped(expected[0]), expected[1]), atol=ATOL)
+    if HAS_NUMBA:
+        assert rod_numba(rows, RTOL) is None  # the compiled program then spans, as above
+
+
+@needs_numba
+@pytest.mark.parametrize("k, index, near", [(12, 2, 0.0), (6, 6, 1e-10), (16, 6, 0.0), (3, 2, 1e-12), (9, 6, 0.0)])
+def test_singular_ratio_numba_matches_numpy_svd(rng, monkeypatch, k, index, near):
+    from screwkit import _frames_numba
+
+    rows = generators(rng, (40,), k, min(k, 6), near=near)
+    rows[:, ::4] = 0.0  # zero rows, as in stacked frames
+    rows[:10, 1] = rows[:10, 2] * (1 + 1e-9)  # nearly dependent rows: a tiny σ
+    expected = np.linalg.svd(rows, compute_uv=False)
+    expected = expected[:, index - 1] / expected[:, 0]
+    got = _frames_numba.singular_ratio(np.ascontiguousarray(rows), index)
+    np.testing.assert_allclose(got, expected, rtol=1e-6, atol=1e-15)
+    monkeypatch.setitem(F._compiled, "_frames_numba", _frames_numba)
+    np.testing.assert_array_equal(F.singular_ratio(rows, index), got)
+
+
+@needs_numba
+def test_reference_frame_and_unit_screws_numba_match_numpy(monkeypatch):
+    import screwkit as sk
+    from screwkit import _frames_numba
+    from screwkit.twistgraph import mechanism_frame
+
+    h4 = sk.load_mechanism("h4")
+    screws = h4.joints(h4.random_poses(np.random.default_rng(2), 1))
+    planar = np.array([[0, 0, 1, 0, 0, 0], [0, 0, 1, 1, 0, 0.0], [0, 0, 0, 1, 0, 0]])  # parallel axes
+    cases = [(screws.screws, None), (planar[None], np.array([[0, 0, 5.0]])), (np.zeros((1, 2, 6)), None)]
+    for rows, anchor in cases:
+        monkeypatch.setitem(F._compiled, "_frames_numba", _frames_numba)
+        point, length = mechanism_frame(rows, anchor)
+        unit = F.unit_scaled(rows, point, length)
+        monkeypatch.setitem(F._compiled, "_frames_numba", None)
+        expected_point, expected_length = mechanism_frame(rows, anchor)
+        np.testing.assert_allclose(point, expected_point, atol=1e-9 * max(1.0, np.abs(expected_point).max()))
+        np.testing.assert_allclose(length, expected_length, rtol=1e-12)
+        np.testing.assert_allclose(unit, F.unit_scaled(rows, point, length), atol=1e-15)
+
+
+@needs_numba
+def test_compiled_program_matches_the_ops_run_one_by_one(monkeypatch):
+    # the numba interpreter against the numpy path's op-by-op run of the same H4 program: same
+    # orders, same subspaces
+    import screwkit as sk
+    from screwkit import _frames_numba
+    from screwkit import wrenches as W
+    from screwkit.topology import topology
+    from screwkit.twistgraph import mechanism_frame
+
+    h4 = sk.load_mechanism("h4")
+    table = W._canonical(h4.joints(h4.random_poses(np.random.default_rng(5), 30)[:20]))
+    top = topology(table.base, table.platform, table.specs)
+    centre, length = mechanism_frame(table.screws, table.anchor)
+    scaled = F.unit_scaled(table.screws, centre, length)
+    requests = tuple(("twists", i) for i in range(len(top.nodes))) + tuple(("wrenches", i) for i in top.legs)
+    program = W._program(top, requests)
+    assert W.ROD in program.ops[:, 0]  # the parallelograms' rods in closed form
+    monkeypatch.setitem(F._compiled, "_frames_numba", _frames_numba)
+    compiled = W._run(program, scaled, RTOL, requests)
+    monkeypatch.setitem(F._compiled, "_frames_numba", None)
+    stepwise = W._run(program, scaled, RTOL, requests)
+    for (rows, order), (expected_rows, expected_order) in zip(compiled, stepwise, strict=True):
+        np.testing.assert_array_equal(order, expected_order)
+        np.testing.assert_allclose(projector(rows, order), projector(expected_rows, expected_order), atol=1e-10)
