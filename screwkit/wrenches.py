@@ -481,8 +481,9 @@ def _normalized(rows: Array) -> Array:
 # --------------------------------------------------------------------------------------------------
 
 
-#: What a frame program computes: ``("twists", node)``, ``("wrenches", node)`` of a tree node, or
-#: ``("sum", nodes)``, the sum of the twist systems of tree nodes (a limb with its actuator locked).
+#: What a frame program computes: ``("twists", node)``, ``("wrenches", node)`` of a tree node,
+#: ``("sum", nodes)``, the sum of the twist systems of tree nodes (a limb with its actuator locked),
+#: or ``("passive", nodes)``, the reciprocal of that sum (the limb's passive wrenches).
 Request = tuple[str, Any]
 
 
@@ -592,6 +593,10 @@ class _ProgramBuilder:
 
     def request(self, request: Request) -> int:
         kind, what = request
+        if kind == "passive":  # the reciprocal of a sum: a limb's passive wrenches
+            if request not in self.slots:
+                self.slots[request] = self._op(RECIPROCAL, self.request(("sum", what)), 0)
+            return self.slots[request]
         if kind == "sum":
             if request not in self.slots:
                 self.slots[request] = self._span([g for n in what for g in self.generators(n)])
@@ -619,21 +624,20 @@ def _program(top: Topology, requests: tuple[Request, ...]) -> _Program:
     )
 
 
-def _run(program: _Program, scaled: Array, rtol: float, requests: tuple[Request, ...]) -> list[Frame]:
-    """The requested frames of a program over the batch of ``scaled`` ``(..., rows, 6)``."""
+def _run(program: _Program, scaled: Array, rtol: float, requests: tuple[Request, ...]) -> Frame:
+    """The requested frames of a program over the batch of ``scaled`` ``(..., rows, 6)``, on an
+    axis of their own: rows ``(..., len(requests), 6, 6)``, orders ``(..., len(requests))``."""
     batch = scaled.shape[:-2]
     wanted = [program.slots[r] for r in requests]
     kernels = F.compiled_kernels("_frames_numba")
     if kernels is not None:
         if 0 in batch:
-            return [F.empty(batch) for _ in requests]
+            return F.empty((*batch, len(requests)))
         flat = np.ascontiguousarray(scaled.reshape(-1, *scaled.shape[-2:]), dtype=float)
         rows, orders = kernels.run_program(
             flat, float(rtol), program.ops, program.sources, len(program.ops), np.array(wanted, np.int64)
         )
-        return [
-            (rows[:, i].reshape(*batch, 6, 6), orders[:, i].reshape(batch)) for i in range(len(requests))
-        ]
+        return rows.reshape(*batch, len(wanted), 6, 6), orders.reshape(*batch, len(wanted))
     frames: dict[int, Frame] = {}
     keep = set(wanted)
     for index, (code, slot, first, count) in enumerate(program.ops.tolist()):
@@ -650,7 +654,7 @@ def _run(program: _Program, scaled: Array, rtol: float, requests: tuple[Request,
                 frames[slot] = F.span(np.concatenate(parts, axis=-2), rtol) if parts else F.empty(batch)
         for done in [s for s in frames if program.last_use[s] <= index and s not in keep]:
             del frames[done]  # bounded memory over large batches
-    return [frames[s] for s in wanted]
+    return _stacked([frames[s] for s in wanted])
 
 
 class _Evaluation:
@@ -662,18 +666,34 @@ class _Evaluation:
         self.top, self.scaled, self.rtol = top, scaled, rtol
         self.batch = scaled.shape[:-2]
         self.columns = top.columns
-        self._frames: dict[Request, Frame] = {}
+        self._blocks: list[tuple[dict[Request, int], Frame]] = []
         if requests:
             self._compute(requests)
 
     def _compute(self, requests: tuple[Request, ...]) -> None:
-        frames = _run(_program(self.top, requests), self.scaled, self.rtol, requests)
-        self._frames.update(zip(requests, frames, strict=True))
+        block = _run(_program(self.top, requests), self.scaled, self.rtol, requests)
+        self._blocks.append(({r: i for i, r in enumerate(requests)}, block))
+
+    def _find(self, request: Request) -> tuple[int, Frame]:
+        for positions, block in self._blocks:
+            if request in positions:
+                return positions[request], block
+        self._compute((request,))
+        return 0, self._blocks[-1][1]
 
     def frame(self, request: Request) -> Frame:
-        if request not in self._frames:
-            self._compute((request,))
-        return self._frames[request]
+        index, (rows, orders) = self._find(request)
+        return rows[..., index, :, :], orders[..., index]
+
+    def stacked(self, requests: list[Request]) -> Frame:
+        """Frames on an axis of their own, ``(..., len(requests), 6, 6)``: a view when they were
+        computed together, in this order."""
+        found = [self._find(r) for r in requests]
+        first, block = found[0]
+        if all(b is block and i == first + k for k, (i, b) in enumerate(found)):
+            kept = slice(first, first + len(requests))
+            return block[0][..., kept, :, :], block[1][..., kept]
+        return _stacked([(rows[..., i, :, :], orders[..., i]) for i, (rows, orders) in found])
 
     def joint_rows(self, index: int) -> Array:
         start = self.columns[index]
@@ -684,9 +704,6 @@ class _Evaluation:
 
     def wrenches(self, index: int) -> Frame:
         return self.frame(("wrenches", index))
-
-    def sum_of(self, nodes: tuple[int, ...]) -> Frame:
-        return self.frame(("sum", tuple(nodes)))
 
     def network(self, joints: tuple[int, ...], locked: int | None = None) -> Frame:
         """The platform's twist system of a sub-network by loop closure: ``rank[M; P] − rank M``
@@ -893,6 +910,7 @@ def analyze_table(
             *(("twists", i) for i in top.legs),
             *(("wrenches", i) for i in top.legs),
             *(("sum", tuple(plan.siblings)) for plan in top.limbs),
+            *(("passive", tuple(plan.siblings)) for plan in top.limbs),
             *((("twists", i) for i in range(len(top.nodes))) if views else ()),
         )
         requests = tuple(dict.fromkeys(requests))
@@ -908,45 +926,43 @@ def analyze_table(
         leg_twists = [core.twists(i) for i in top.legs]
         leg_wrenches = [core.wrenches(i) for i in top.legs]
     constraint = F.reciprocal(*platform)
-    lockeds, frees, perpendiculars, serials, twists = [], [], [], [], []
-    for plan in top.limbs:  # each limb's own structure; the rest below runs on all limbs at once
-        actuated = plan.sign * core.joint_rows(plan.index)[..., 0, :]
-        if top.network:
-            locked = core.network(plan.network_edges, locked=plan.index)
-            free = core.network(plan.network_edges)
-            perpendicular = F.residual(actuated[..., None, :], locked[0])[..., 0, :]
-            is_serial = free[1] == locked[1]
-        else:
-            locked = core.sum_of(plan.siblings)
-            perpendicular = F.residual(actuated[..., None, :], locked[0])[..., 0, :]
-            size = np.linalg.norm(perpendicular, axis=-1)
-            is_serial = size <= rtol
-            rows, order = locked[0].copy(), locked[1].copy()
-            unit = perpendicular / np.where(size > 0, size, 1.0)[..., None]
-            slot = np.minimum(order, 5)[..., None, None]
-            np.put_along_axis(
-                rows,
-                slot,
-                np.where(is_serial[..., None, None], np.take_along_axis(rows, slot, -2), unit[..., None, :]),
-                -2,
-            )
-            free = (rows, order + ~is_serial)
-        lockeds.append(locked)
-        frees.append(free)
-        perpendiculars.append(perpendicular)
-        serials.append(is_serial)
-        twists.append(actuated)
     n = len(top.limbs)
-    if n:  # the limbs on an axis of their own (..., n, ...)
+    if n and top.network:  # each limb's sub-network by loop closure
+        lockeds, frees, perpendiculars, serials, twists = [], [], [], [], []
+        for plan in top.limbs:
+            twist = plan.sign * core.joint_rows(plan.index)[..., 0, :]
+            lockeds.append(core.network(plan.network_edges, locked=plan.index))
+            frees.append(core.network(plan.network_edges))
+            perpendiculars.append(F.residual(twist[..., None, :], lockeds[-1][0])[..., 0, :])
+            serials.append(frees[-1][1] == lockeds[-1][1])
+            twists.append(twist)
         serial = np.stack(serials, axis=-1)
         actuated = np.stack(twists, axis=-2)
-        locked = _stacked(lockeds)
-        free = _stacked(frees)
-        limb_constraint = F.reciprocal(*free)
+        perpendicular = np.stack(perpendiculars, axis=-2)
+        locked, free = _stacked(lockeds), _stacked(frees)
         passive = F.reciprocal(*locked)
+    elif n:  # the limbs on an axis of their own (..., n, ...), their locked systems from the program
+        locked = core.stacked([("sum", tuple(plan.siblings)) for plan in top.limbs])
+        passive = core.stacked([("passive", tuple(plan.siblings)) for plan in top.limbs])
+        actuated = np.stack([p.sign * core.joint_rows(p.index)[..., 0, :] for p in top.limbs], axis=-2)
+        perpendicular = F.residual(actuated[..., None, :], locked[0])[..., 0, :]
+        size = np.linalg.norm(perpendicular, axis=-1)
+        serial = size <= rtol
+        rows, order = locked[0].copy(), locked[1].copy()
+        unit = perpendicular / np.where(size > 0, size, 1.0)[..., None]
+        slot = np.minimum(order, 5)[..., None, None]
+        np.put_along_axis(
+            rows,
+            slot,
+            np.where(serial[..., None, None], np.take_along_axis(rows, slot, -2), unit[..., None, :]),
+            -2,
+        )
+        free = (rows, order + ~serial)
+    if n:
+        limb_constraint = F.reciprocal(*free)
         # SWAP t⊥ lies in the passive system; projecting it there keeps a clean passive wrench even
         # when t⊥ is round-off (a serial singularity), so w ∘ t is then round-off too
-        swapped = F.swapped(np.stack(perpendiculars, axis=-2))
+        swapped = F.swapped(perpendicular)
         direction = _normalized(
             np.einsum("...k,...ks->...s", np.einsum("...ks,...s->...k", passive[0], swapped), passive[0])
         )
