@@ -21,10 +21,19 @@ Reciprocity in scaled coordinates is the Euclidean product with the halves swapp
 (``a ∘ b = a · (SWAP b)``, ``SWAP`` orthogonal and symmetric), so the system reciprocal to a frame
 is ``SWAP`` applied to its orthogonal complement: no rank decision is needed for it.
 
-**Two implementations, one rule.** :func:`span`, :func:`complement`, :func:`reciprocal` and
-:func:`residual` have a numpy path (vectorized over the batch) and, when numba is installed (the
-``fast`` extra), compiled per-pose loops (:mod:`screwkit._frames_numba`) that follow the same rule
-and agree with the numpy path up to round-off. The choice is made once per process and never
+**Closed forms.** Where a system is known in closed form the core uses it instead of a span and a
+complement: two spherical joints in series transmit the force along the line through their
+centres (:func:`rod`; paper 002 §4.1 models each H4 rod so), with the rule as the fallback where
+that line is not clearly defined.
+
+**Two implementations, one rule.** :func:`span`, :func:`complement`, :func:`reciprocal`,
+:func:`residual`, :func:`rod`, :func:`unit_scaled` and :func:`singular_ratio` have a numpy path
+(vectorized over the batch) and, when numba is installed (the ``fast`` extra), compiled per-pose
+loops (:mod:`screwkit._frames_numba`) that follow the same rule and agree with the numpy path up
+to round-off. The analysis core strings spans, reciprocals and rods into one flat *program* per
+mechanism (:func:`screwkit.wrenches._program`): on the numba path one compiled call runs it pose
+by pose (:func:`screwkit._frames_numba.run_program`, the same per-pose loops), on the numpy path
+its ops run one by one over the batch. The choice is made once per process and never
 depends on the batch size, so single-pose and batched answers stay bit-identical. numba is
 imported on the first kernel call, not with :mod:`screwkit`; its compiled code is cached on disk.
 The environment variable ``SCREWKIT_NUMBA``, read once when this module is imported, forces the

@@ -1049,13 +1049,12 @@ def _apart_from_legs(top: Topology, rows: Array, leg_wrenches: list[Frame]) -> A
     compound leg's constraint system (renormalised): the actuation closeness's rows. A limb's own
     wrench may lie close to that system where the leg as a whole transmits well (the H4 near
     ``n1·z = 0``, :func:`_compound_legs`), which would fake a near-singularity."""
-    out = rows
-    for k, plan in enumerate(top.limbs):
-        if plan.partners and not top.network:
-            if out is rows:
-                out = rows.copy()
-            frame = leg_wrenches[_leg_of(top, k)][0]
-            out[..., k, :] = _normalized(F.residual(rows[..., k, None, :], frame)[..., 0, :])
+    coupled = [k for k, plan in enumerate(top.limbs) if plan.partners and not top.network]
+    if not coupled:
+        return rows
+    frames = np.stack([leg_wrenches[_leg_of(top, k)][0] for k in coupled], axis=-3)  # (..., m, 6, 6)
+    out = rows.copy()
+    out[..., coupled, :] = _normalized(F.residual(rows[..., coupled, None, :], frames)[..., 0, :])
     return out
 
 

@@ -122,7 +122,7 @@ from ..exceptions import (
     UnreachablePoseError,
 )
 from ..jacobians import schoenflies_basis
-from ..joints import JointTable
+from ..joints import JointSpec, JointTable
 from ._two_limb import at_reach
 
 __all__ = [
@@ -991,26 +991,30 @@ def joints(config: FourLimbConfiguration) -> JointTable:
         for limb in limbs:
             limb_platform[limb] = link
     # rows in the order of the joints' names (the analysis core's canonical order, so that it
-    # need not permute them): A1..A4, R_I, R_II, then S<i>m, S<i>n, S<i>p, S<i>q per limb
-    rows: list[tuple[str, str, str, str, np.ndarray, bool]] = []
-    actuated = S.revolute_twist(config.u, config.a)  # (..., 4, 6)
-    for limb in range(4):
-        i = limb + 1
-        rows.append(("base", f"arm{i}", f"A{i}", "R", actuated[..., limb, None, :], True))
+    # need not permute them): A1..A4, R_I, R_II, then S<i>m, S<i>n, S<i>p, S<i>q per limb, written
+    # into one array
+    batch = config.batch_shape
+    screws = np.empty((*batch, 4 + 2 + 4 * 4 * 3, 6))
+    screws[..., :4, :] = S.revolute_twist(config.u, config.a)
     axis = config.platform_joint_axis
+    specs = [JointSpec(f"A{i}", "R", "base", f"arm{i}", 1, True) for i in range(1, 5)]
     for k, (link, name) in enumerate(SUBPLATFORMS):
         point, pitch = config.platform_joint_points[..., k, :], config.platform_joint_pitches[k]
-        screw = S.helical_twist(axis, point, pitch) if pitch else S.revolute_twist(axis, point)
-        rows.append((link, "end_effector", name, "H" if pitch else "R", screw[..., None, :], False))
-    elbows = _sphere_twists(config.elbow_corners)  # (..., 4, 2, 3, 6)
-    platforms = _sphere_twists(config.platform_corners)
+        twist = S.helical_twist(axis, point, pitch) if pitch else S.revolute_twist(axis, point)
+        screws[..., 4 + k, :] = twist
+        specs.append(JointSpec(name, "H" if pitch else "R", link, "end_effector", 1, False))
+    corners = np.concatenate([config.elbow_corners, config.platform_corners], axis=-2)  # m, n, p, q
+    screws[..., 6:, :] = _sphere_twists(corners).reshape(*batch, 48, 6)
     for limb in range(4):
-        i, arm, platform = limb + 1, f"arm{limb + 1}", limb_platform[limb]
-        rows.append((arm, f"rod{i}a", f"S{i}m", "S", elbows[..., limb, 0, :, :], False))
-        rows.append((arm, f"rod{i}b", f"S{i}n", "S", elbows[..., limb, 1, :, :], False))
-        rows.append((f"rod{i}a", platform, f"S{i}p", "S", platforms[..., limb, 0, :, :], False))
-        rows.append((f"rod{i}b", platform, f"S{i}q", "S", platforms[..., limb, 1, :, :], False))
-    return JointTable.from_rows("base", "end_effector", rows, dof=4)
+        i, platform = limb + 1, limb_platform[limb]
+        specs += [
+            JointSpec(f"S{i}m", "S", f"arm{i}", f"rod{i}a", 3, False),
+            JointSpec(f"S{i}n", "S", f"arm{i}", f"rod{i}b", 3, False),
+            JointSpec(f"S{i}p", "S", f"rod{i}a", platform, 3, False),
+            JointSpec(f"S{i}q", "S", f"rod{i}b", platform, 3, False),
+        ]
+    screws.flags.writeable = False  # fresh: the table takes it without a copy
+    return JointTable("base", "end_effector", tuple(specs), screws, dof=4)
 
 
 def _sphere_twists(centres: np.ndarray) -> np.ndarray:
