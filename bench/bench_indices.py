@@ -84,7 +84,7 @@ def main():
     args = parser.parse_args()
     mechanism = load_mechanism(args.robot)
     params, mode = mechanism.parameters, (-1, -1, -1, -1)
-    kernels = I._numba_kernels()
+    kernels = I._numba_kernels(max(args.sizes))
     if kernels is None:
         raise SystemExit("numba is not available (install the `fast` extra); nothing to compare")
     packed = I._kernel_arguments(params, mode)

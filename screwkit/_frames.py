@@ -27,16 +27,20 @@ centres (:func:`rod`; paper 002 §4.1 models each H4 rod so), with the rule as t
 that line is not clearly defined.
 
 **Two implementations, one rule.** :func:`span`, :func:`complement`, :func:`reciprocal`,
-:func:`residual`, :func:`rod`, :func:`unit_scaled` and :func:`singular_ratio` have a numpy path
-(vectorized over the batch) and, when numba is installed (the ``fast`` extra), compiled per-pose
-loops (:mod:`screwkit._frames_numba`) that follow the same rule and agree with the numpy path up
-to round-off. The analysis core strings spans, reciprocals and rods into one flat *program* per
-mechanism (:func:`screwkit.wrenches._program`): on the numba path one compiled call runs it pose
-by pose (:func:`screwkit._frames_numba.run_program`, the same per-pose loops), on the numpy path
-its ops run one by one over the batch. The choice is made once per process and never
-depends on the batch size, so single-pose and batched answers stay bit-identical. numba is
-imported on the first kernel call, not with :mod:`screwkit`; its compiled code is cached on disk.
-The environment variable ``SCREWKIT_NUMBA``, read once when this module is imported, forces the
+:func:`residual`, :func:`rod` and :func:`unit_scaled` have a numpy path (vectorized over the
+batch) and, when numba is installed (the ``fast`` extra), compiled per-pose loops
+(:mod:`screwkit._frames_numba`). The numpy path does the compiled loops' floating-point operations
+in their order (sums left to right, no BLAS call, no library QR), so the two agree bit for bit,
+and a pose's answer never depends on the batch it is in: single-pose and batched answers are
+bit-identical whichever path runs. The analysis core strings spans, reciprocals and rods into one
+flat *program* per mechanism (:func:`screwkit.wrenches._program`): on the numba path one compiled
+call runs it pose by pose (:func:`screwkit._frames_numba.run_program`, the same per-pose loops),
+on the numpy path its ops run one by one over the batch. numba is imported on
+the first call over :data:`COMPILED_MIN_BATCH` frames or more (:func:`compiled_kernels`), so a
+single-pose analysis never pays for its import; its compiled code is cached on disk. The
+environment variable ``SCREWKIT_NUMBA``, read once when this module is imported, forces the
+choice: ``0`` (or ``false``, ``no``, ``off``) the numpy path, anything else the default (numba if
+it imports).
 choice: ``0`` (or ``false``, ``no``, ``off``) the numpy path, anything else the default (numba if
 it imports).
 
@@ -53,6 +57,7 @@ array([5])
 from __future__ import annotations
 
 import importlib.util
+import math
 import os
 from types import ModuleType
 
@@ -83,14 +88,31 @@ SWAP.flags.writeable = False
 _NUMBA_WANTED = os.environ.get("SCREWKIT_NUMBA", "1").strip().lower() not in {"0", "false", "no", "off"}
 _compiled: dict[str, ModuleType | None] = {}
 
+#: Fewest batch elements (frames, or poses) in one kernel call for which a compiled module is loaded:
+#: numba's import and cached code cost ≈ 0.5 s once per process, what the numpy kernels take for
+#: a few hundred small calls (a single-pose analysis and its sampled superbracket: at most 48 poses
+#: × the limbs per call). A chunk of the batched core (256 poses) reaches it; once loaded, a module
+#: serves every call.
+COMPILED_MIN_BATCH = 256
 
-def compiled_kernels(name: str) -> ModuleType | None:
-    """The numba kernel module ``screwkit.<name>``, imported on first use; None for the numpy path.
 
-    One rule for every compiled path, decided once per process and module: numba if it is installed
-    and ``SCREWKIT_NUMBA`` is not ``0`` (a broken numba install falls back to numpy for good).
+def compiled_kernels(name: str, size: int) -> ModuleType | None:
+    """The numba kernel module ``screwkit.<name>`` for a call over ``size`` batch elements; None
+    for the numpy path.
+
+    One rule for every compiled path: numba if it is installed, ``SCREWKIT_NUMBA`` is not ``0``,
+    and the module is already loaded or the call has at least :data:`COMPILED_MIN_BATCH` elements (it
+    is then imported, once; a broken numba install falls back to numpy for good). The rank kernels'
+    two paths agree bit for bit, so the choice never changes an answer.
+
+    Examples
+    --------
+    >>> compiled_kernels("_frames_numba", 1) is None or "_frames_numba" in _compiled
+    True
     """
     if name not in _compiled:
+        if size < COMPILED_MIN_BATCH:
+            return None
         module = None
         if _NUMBA_WANTED and importlib.util.find_spec("numba") is not None:
             try:
@@ -101,9 +123,9 @@ def compiled_kernels(name: str) -> ModuleType | None:
     return _compiled[name]
 
 
-def _numba_kernels() -> ModuleType | None:
-    """The rank kernels (:mod:`screwkit._frames_numba`) or None for the numpy path."""
-    return compiled_kernels("_frames_numba")
+def _numba_kernels(size: int) -> ModuleType | None:
+    """The rank kernels (:mod:`screwkit._frames_numba`) for ``size`` frames, or None for numpy."""
+    return compiled_kernels("_frames_numba", size)
 
 
 def _import_kernels() -> ModuleType:
@@ -113,15 +135,21 @@ def _import_kernels() -> ModuleType:
     return _frames_numba
 
 
+def _size(shape: tuple[int, ...]) -> int:
+    """The number of frames in a batch shape."""
+    return math.prod(shape)
+
+
 def backend() -> str:
-    """``"numba"`` or ``"numpy"``: the implementation the kernels use in this process.
+    """``"numba"`` or ``"numpy"``: the implementation of batches of :data:`COMPILED_MIN_BATCH`
+    frames or more in this process (smaller ones run numpy until numba is loaded).
 
     Examples
     --------
     >>> backend() in {"numba", "numpy"}
     True
     """
-    return "numpy" if _numba_kernels() is None else "numba"
+    return "numpy" if _numba_kernels(COMPILED_MIN_BATCH) is None else "numba"
 
 
 def to_scaled(screws: Array, centre: Array, length: Array) -> Array:
@@ -139,23 +167,35 @@ def to_scaled(screws: Array, centre: Array, length: Array) -> Array:
 
 def unit_scaled(screws: Array, centre: Array, length: Array) -> Array:
     """:func:`to_scaled` with every row divided by its norm (zero rows stay zero): the generators
-    of the analysis core. One compiled loop on the numba path.
+    of the analysis core, component by component in the compiled loop's order
+    (:func:`screwkit._frames_numba.unit_scaled`), so the two paths agree bit for bit.
 
     Examples
     --------
     >>> unit_scaled(np.array([[0, 0, 2.0, 0, 0, 0]]), np.zeros(3), np.array(1.0))
     array([[0., 0., 1., 0., 0., 0.]])
     """
-    kernels = _numba_kernels()
+    screws = np.asarray(screws, dtype=float)
     batch = screws.shape[:-2]
-    if kernels is None or 0 in batch or screws.shape[-2] == 0:
-        rows = to_scaled(screws, centre, length)
-        size = np.linalg.norm(rows, axis=-1, keepdims=True)
-        return rows / np.where(size > 0, size, 1.0)
-    flat = np.ascontiguousarray(screws.reshape(-1, *screws.shape[-2:]), dtype=float)
-    centres = np.ascontiguousarray(np.broadcast_to(centre, (*batch, 3)).reshape(-1, 3), dtype=float)
-    lengths = np.ascontiguousarray(np.broadcast_to(length, batch).reshape(-1), dtype=float)
-    return kernels.unit_scaled(flat, centres, lengths).reshape(screws.shape)
+    centres = np.broadcast_to(np.asarray(centre, dtype=float), (*batch, 3))
+    lengths = np.broadcast_to(np.asarray(length, dtype=float), batch)
+    kernels = _numba_kernels(_size(batch))
+    if kernels is not None and 0 not in batch and screws.shape[-2]:
+        out = _import_kernels().unit_scaled(
+            np.ascontiguousarray(screws.reshape(-1, *screws.shape[-2:])),
+            np.ascontiguousarray(centres.reshape(-1, 3)),
+            np.ascontiguousarray(lengths.reshape(-1)),
+        )
+        return out.reshape(screws.shape)
+    d0, d1, d2 = screws[..., 0], screws[..., 1], screws[..., 2]
+    c0, c1, c2 = (centres[..., None, i] for i in range(3))
+    scale = lengths[..., None]
+    m0 = (screws[..., 3] - (c1 * d2 - c2 * d1)) / scale
+    m1 = (screws[..., 4] - (c2 * d0 - c0 * d2)) / scale
+    m2 = (screws[..., 5] - (c0 * d1 - c1 * d0)) / scale
+    size = np.sqrt(d0 * d0 + d1 * d1 + d2 * d2 + m0 * m0 + m1 * m1 + m2 * m2)
+    size = np.where(size == 0.0, 1.0, size)
+    return np.stack([d0 / size, d1 / size, d2 / size, m0 / size, m1 / size, m2 / size], axis=-1)
 
 
 def from_scaled(rows: Array, centre: Array, length: Array) -> Array:
@@ -194,12 +234,6 @@ def empty(batch: tuple[int, ...]) -> tuple[Array, Array]:
     return np.zeros((*batch, 6, 6)), np.zeros(batch, dtype=int)
 
 
-def _project_out(vectors: Array, rows: Array) -> Array:
-    """``vectors (..., k, 6)`` minus their projections on the orthonormal (or zero) ``rows``."""
-    coefficients = np.einsum("...ks,...rs->...kr", vectors, rows)
-    return vectors - np.einsum("...kr,...rs->...ks", coefficients, rows)
-
-
 def span(generators: Array, rtol: float) -> tuple[Array, Array]:
     """The frame of the system spanned by ``generators`` ``(..., k, 6)`` (the module's rank rule).
 
@@ -209,7 +243,8 @@ def span(generators: Array, rtol: float) -> tuple[Array, Array]:
     >>> int(order), rows[0]
     (1, array([1., 0., 0., 0., 0., 0.]))
     """
-    return (_span_numpy if _numba_kernels() is None else _span_numba)(generators, rtol)
+    kernels = _numba_kernels(_size(np.shape(generators)[:-2]))
+    return (_span_numpy if kernels is None else _span_numba)(generators, rtol)
 
 
 def _span_numba(generators: Array, rtol: float) -> tuple[Array, Array]:
@@ -218,35 +253,53 @@ def _span_numba(generators: Array, rtol: float) -> tuple[Array, Array]:
     batch, k = work.shape[:-2], work.shape[-2]
     if k == 0 or 0 in batch:
         return empty(batch)
-    kernels = _numba_kernels() or _import_kernels()
+    kernels = _import_kernels()
     rows, order = kernels.span(np.ascontiguousarray(work.reshape(-1, k, 6)), float(rtol))
     return rows.reshape(*batch, 6, 6), order.reshape(batch)
 
 
+def _dot_in_order(a: Array, b: Array) -> Array:
+    """``Σ_s a[..., s] b[..., s]`` over the last axis, summed left to right from ``0.0``: the
+    compiled kernels' loop, operation for operation (numpy's own reductions may add in another
+    order, and so differ in the last bits)."""
+    products = a * b
+    total = products[..., 0] + 0.0
+    for s in range(1, products.shape[-1]):
+        total += products[..., s]
+    return total
+
+
 def _span_numpy(generators: Array, rtol: float) -> tuple[Array, Array]:
-    """:func:`span` vectorized over the batch with numpy."""
+    """:func:`span` vectorized over the batch with numpy: :func:`screwkit._frames_numba.span`'s
+    operations in its order, so the two paths agree bit for bit."""
     work = np.array(generators, dtype=float)
-    batch = work.shape[:-2]
-    rows, order = empty(batch)
-    if work.shape[-2] == 0:
-        return rows, order
-    norms = np.sqrt(np.einsum("...ks,...ks->...k", work, work))
-    threshold = rtol * norms.max(axis=-1)
-    active = np.ones(batch, dtype=bool)
-    for step in range(min(work.shape[-2], 6)):
-        pick = np.argmax(norms, axis=-1)
-        pivot = np.take_along_axis(work, pick[..., None, None], axis=-2)[..., 0, :]
-        pivot = pivot - np.einsum(
-            "...r,...rs->...s", np.einsum("...rs,...s->...r", rows, pivot), rows
-        )  # CGS2
-        size = np.sqrt(np.einsum("...s,...s->...", pivot, pivot))
-        active &= (size > threshold) & (size > 0)
-        unit = np.where(active[..., None], pivot / np.where(size > 0, size, 1.0)[..., None], 0.0)
-        rows[..., step, :] = unit
-        order += active
-        work = work - np.einsum("...ks,...s->...k", work, unit)[..., None] * unit[..., None, :]
-        norms = np.sqrt(np.einsum("...ks,...ks->...k", work, work))
-    return rows, order
+    batch, k = work.shape[:-2], work.shape[-2]
+    if k == 0 or 0 in batch:
+        return empty(batch)
+    w = work.reshape(-1, k, 6)
+    n = w.shape[0]
+    rows, order = np.zeros((n, 6, 6)), np.zeros(n, dtype=int)
+    norms = np.sqrt(_dot_in_order(w, w))
+    threshold = rtol * norms.max(axis=-1)  # NaN if a norm is NaN, as the kernel's loop
+    active = np.ones(n, dtype=bool)
+    poses = np.arange(n)
+    with np.errstate(all="ignore"):  # poses already stopped compute values that are not kept
+        for step in range(min(k, 6)):
+            pivot = w[poses, np.argmax(norms, axis=-1)]  # the first largest, or the first NaN
+            coefficients = _dot_in_order(rows[:, :step], pivot[:, None, :])  # CGS2, from the pivot as drawn
+            for i in range(step):
+                pivot = pivot - coefficients[:, i, None] * rows[:, i]
+            size = np.sqrt(_dot_in_order(pivot, pivot))
+            active &= (size > threshold) & (size > 0)
+            if not active.any():
+                break
+            unit = np.where(active[:, None], pivot / size[:, None], 0.0)
+            rows[:, step] = unit
+            order += active
+            moved = w - _dot_in_order(w, unit[:, None, :])[..., None] * unit[:, None, :]
+            w = np.where(active[:, None, None], moved, w)
+            norms = np.where(active[:, None], np.sqrt(_dot_in_order(w, w)), norms)
+    return rows.reshape(*batch, 6, 6), order.reshape(batch)
 
 
 def complement(rows: Array, order: Array) -> tuple[Array, Array]:
@@ -261,7 +314,8 @@ def complement(rows: Array, order: Array) -> tuple[Array, Array]:
     >>> int(order), float(np.abs(rows[:5, 0]).max()), float(np.abs(rows[5]).max())
     (5, 0.0, 0.0)
     """
-    return (_complement_numpy if _numba_kernels() is None else _complement_numba)(rows, order)
+    kernels = _numba_kernels(_size(np.shape(rows)[:-2]))
+    return (_complement_numpy if kernels is None else _complement_numba)(rows, order)
 
 
 def _complement_numba(rows: Array, order: Array, *, swap: bool = False) -> tuple[Array, Array]:
@@ -272,18 +326,52 @@ def _complement_numba(rows: Array, order: Array, *, swap: bool = False) -> tuple
     if 0 in batch:
         return np.zeros((*batch, 6, 6)), 6 - order
     flat_order = np.ascontiguousarray(np.broadcast_to(order, batch).reshape(-1), dtype=np.int64)
-    kernels = _numba_kernels() or _import_kernels()
+    kernels = _import_kernels()
     out = kernels.complement(np.ascontiguousarray(rows.reshape(-1, 6, 6)), flat_order, swap)
     return out.reshape(*batch, 6, 6), 6 - order
 
 
-def _complement_numpy(rows: Array, order: Array) -> tuple[Array, Array]:
-    """:func:`complement` by numpy's batched complete QR."""
-    q = np.linalg.qr(np.swapaxes(rows, -1, -2), mode="complete")[0]  # (..., 6, 6), columns
-    wanted = 6 - order
-    index = order[..., None] + np.arange(6)  # row k of the complement is column order + k of q
-    picked = np.take_along_axis(np.swapaxes(q, -1, -2), np.minimum(index, 5)[..., None], axis=-2)
-    return np.where((index < 6)[..., None], picked, 0.0), wanted
+def _complement_numpy(rows: Array, order: Array, *, swap: bool = False) -> tuple[Array, Array]:
+    """:func:`complement` (or, with ``swap``, :func:`reciprocal`) vectorized over the batch:
+    :func:`screwkit._frames_numba.complement`'s Householder QR operation for operation, so the two
+    paths agree bit for bit."""
+    rows = np.asarray(rows, dtype=float)
+    order = np.asarray(order)
+    batch = rows.shape[:-2]
+    if 0 in batch:
+        return np.zeros((*batch, 6, 6)), 6 - order
+    a = np.swapaxes(rows.reshape(-1, 6, 6), -1, -2).copy()  # a's columns are the frame's rows
+    n = a.shape[0]
+    v = np.zeros((n, 6, 6))  # v[:, j, j:] the j-th reflector (v[:, j, j] = 1)
+    v[:, np.arange(6), np.arange(6)] = 1.0
+    tau = np.zeros((n, 6))
+    with np.errstate(all="ignore"):  # poses whose column is already reduced are not updated
+        for j in range(6):
+            alpha = a[:, j, j]
+            below = a[:, j + 1 :, j]
+            total = _dot_in_order(below, below) if j < 5 else np.zeros(n)
+            reflect = total != 0.0
+            beta = -np.copysign(np.sqrt(alpha * alpha + total), alpha)
+            tau[:, j] = np.where(reflect, (beta - alpha) / beta, 0.0)
+            v[:, j, j + 1 :] = np.where(reflect[:, None], below * (1.0 / (alpha - beta))[:, None], 0.0)
+            if j == 5 or not reflect.any():
+                continue
+            block = a[:, j:, j + 1 :]
+            dot = _dot_in_order(np.swapaxes(block, -1, -2), v[:, j, None, j:]) * tau[:, j, None]
+            moved = block - dot[:, None, :] * v[:, j, j:, None]
+            a[:, j:, j + 1 :] = np.where(reflect[:, None, None], moved, block)
+        y = np.broadcast_to(np.eye(6), (n, 6, 6)).copy()  # y[:, c] becomes column c of H_0 H_1 … H_5
+        for j in range(5, -1, -1):
+            reflect = tau[:, j] != 0.0
+            if not reflect.any():
+                continue
+            dot = _dot_in_order(y[:, :, j:], v[:, j, None, j:]) * tau[:, j, None]
+            moved = y[:, :, j:] - dot[:, :, None] * v[:, j, None, j:]
+            y[:, :, j:] = np.where(reflect[:, None, None], moved, y[:, :, j:])
+    flat_order = np.broadcast_to(order, batch).reshape(-1)
+    index = flat_order[:, None] + np.arange(6)  # row k of the complement is column order + k
+    out = np.where((index < 6)[..., None], y[np.arange(n)[:, None], np.minimum(index, 5)], 0.0)
+    return (swapped(out) if swap else out).reshape(*batch, 6, 6), 6 - order
 
 
 def reciprocal(rows: Array, order: Array) -> tuple[Array, Array]:
@@ -296,10 +384,42 @@ def reciprocal(rows: Array, order: Array) -> tuple[Array, Array]:
     >>> int(order), bool(np.abs(rows[:5] @ SWAP @ line[0]).max() < 1e-15)
     (5, True)
     """
-    if _numba_kernels() is None:
-        out, wanted = _complement_numpy(rows, order)
-        return swapped(out), wanted
-    return _complement_numba(rows, order, swap=True)
+    kernels = _numba_kernels(_size(np.shape(rows)[:-2]))
+    return (_complement_numpy if kernels is None else _complement_numba)(rows, order, swap=True)
+
+
+def _centres(rows: Array) -> tuple[Array, Array, Array, Array]:
+    """:func:`screwkit._frames_numba._centre` over a batch of three axes ``rows (n, 3, 6)``, in its
+    operation order: ``(det, x, y, z)``, ``det ≤ 0`` where there is no point."""
+    zero = np.zeros(rows.shape[0])
+    n00, n01, n02, n11, n12, n22 = (zero.copy() for _ in range(6))
+    b0, b1, b2 = zero.copy(), zero.copy(), zero.copy()
+    good = np.ones(rows.shape[0], dtype=bool)
+    for r in range(3):
+        u0, u1, u2, m0, m1, m2 = (rows[:, r, s] for s in range(6))
+        squared = u0 * u0 + u1 * u1 + u2 * u2
+        good &= squared > 0
+        squared = np.where(squared > 0, squared, 1.0)
+        b0 += (u1 * m2 - u2 * m1) / squared
+        b1 += (u2 * m0 - u0 * m2) / squared
+        b2 += (u0 * m1 - u1 * m0) / squared
+        n00 += 1.0 - u0 * u0 / squared
+        n11 += 1.0 - u1 * u1 / squared
+        n22 += 1.0 - u2 * u2 / squared
+        n01 -= u0 * u1 / squared
+        n02 -= u0 * u2 / squared
+        n12 -= u1 * u2 / squared
+    a00, a01, a02 = n11 * n22 - n12 * n12, n02 * n12 - n01 * n22, n01 * n12 - n02 * n11
+    a11, a12, a22 = n00 * n22 - n02 * n02, n01 * n02 - n00 * n12, n00 * n11 - n01 * n01
+    det = n00 * a00 + n01 * a01 + n02 * a02
+    det = np.where(good & (det > 0), det, 0.0)
+    safe = np.where(det > 0, det, 1.0)
+    return (
+        det,
+        (a00 * b0 + a01 * b1 + a02 * b2) / safe,
+        (a01 * b0 + a11 * b1 + a12 * b2) / safe,
+        (a02 * b0 + a12 * b1 + a22 * b2) / safe,
+    )
 
 
 def rod(rows: Array, rtol: float) -> tuple[Array, Array]:
@@ -308,7 +428,8 @@ def rod(rows: Array, rtol: float) -> tuple[Array, Array]:
     (order 1), where it applies; elsewhere (a joint's axes without a common point, centres not
     more than ``√rtol`` apart, or the line not reciprocal to every axis within ``rtol``)
     :func:`reciprocal` of :func:`span`. The numpy path of
-    :func:`screwkit._frames_numba.rod_into` (which the compiled programs run).
+    :func:`screwkit._frames_numba.rod_into` (which the compiled programs run), operation for
+    operation, so the two agree bit for bit.
 
     Each centre is the least-squares point of its axes, ``N⁻¹ Σ f`` with ``N = Σ (I − û ûᵀ)`` and
     ``f = u × m / |u|²`` the feet (by the adjugate of ``N``).
@@ -321,37 +442,29 @@ def rod(rows: Array, rtol: float) -> tuple[Array, Array]:
     (1, array([0., 0., 1., 0., 0., 0.]))
     """
     rows = np.asarray(rows, dtype=float)
-    u, m = rows[..., :3], rows[..., 3:]
-    squared = np.einsum("...i,...i->...", u, u)
-    good = np.all(squared > 0, axis=-1)
-    squared = np.where(squared > 0, squared, 1.0)
-    feet = np.cross(u, m) / squared[..., None]
-    eye = np.eye(3)
-    projectors = eye - u[..., :, None] * u[..., None, :] / squared[..., None, None]
-    centres = []
-    for joint in (slice(0, 3), slice(3, 6)):
-        normal = projectors[..., joint, :, :].sum(axis=-3)
-        b = feet[..., joint, :].sum(axis=-2)
-        n0, n1, n2 = normal[..., 0, :], normal[..., 1, :], normal[..., 2, :]
-        adjugate = np.stack([np.cross(n1, n2), np.cross(n2, n0), np.cross(n0, n1)], axis=-1)
-        det = np.einsum("...i,...i->...", n0, adjugate[..., :, 0])
-        good &= det > 0
-        centres.append(np.einsum("...ij,...j->...i", adjugate, b) / np.where(det > 0, det, 1.0)[..., None])
-    d = centres[1] - centres[0]
-    good &= np.linalg.norm(d, axis=-1) > np.sqrt(rtol)
-    line = np.concatenate([d, np.cross(centres[0], d)], axis=-1)
-    size = np.linalg.norm(line, axis=-1, keepdims=True)
-    line = line / np.where(size > 0, size, 1.0)
-    products = np.einsum("...s,...ks->...k", line, swapped(rows))
-    good &= np.all(np.abs(products) <= rtol, axis=-1)
-    out, order = empty(rows.shape[:-2])
-    out[..., 0, :] = np.where(good[..., None], line, 0.0)
-    order = np.where(good, 1, order)
-    bad = ~good
-    if bad.any():
-        frame = reciprocal(*span(rows[bad], rtol))
-        out[bad], order[bad] = frame
-    return out, order
+    batch = rows.shape[:-2]
+    flat = rows.reshape(-1, 6, 6)
+    with np.errstate(all="ignore"):  # poses where the closed form fails compute values not kept
+        det1, x1, y1, z1 = _centres(flat[:, 0:3])
+        det2, x2, y2, z2 = _centres(flat[:, 3:6])
+        good = (det1 > 0) & (det2 > 0)
+        d0, d1, d2 = x2 - x1, y2 - y1, z2 - z1
+        good &= np.sqrt(d0 * d0 + d1 * d1 + d2 * d2) > math.sqrt(rtol)
+        m0, m1, m2 = y1 * d2 - z1 * d1, z1 * d0 - x1 * d2, x1 * d1 - y1 * d0  # c1 × d
+        size = np.sqrt(d0 * d0 + d1 * d1 + d2 * d2 + m0 * m0 + m1 * m1 + m2 * m2)
+        size = np.where(good, size, 1.0)
+        line = [d0 / size, d1 / size, d2 / size, m0 / size, m1 / size, m2 / size]
+        for r in range(6):
+            product = line[0] * flat[:, r, 3] + line[1] * flat[:, r, 4] + line[2] * flat[:, r, 5]
+            product += line[3] * flat[:, r, 0] + line[4] * flat[:, r, 1] + line[5] * flat[:, r, 2]
+            good &= np.abs(product) <= rtol
+    out, order = empty((flat.shape[0],))
+    out[:, 0] = np.where(good[:, None], np.stack(line, axis=-1), 0.0)
+    order[good] = 1
+    if not good.all():
+        bad = ~good
+        out[bad], order[bad] = reciprocal(*span(flat[bad], rtol))
+    return out.reshape(*batch, 6, 6), order.reshape(batch)
 
 
 def residual(vectors: Array, rows: Array) -> Array:
@@ -362,7 +475,8 @@ def residual(vectors: Array, rows: Array) -> Array:
     >>> residual(np.array([[1.0, 1.0, 0, 0, 0, 0]]), np.eye(6)[:1])
     array([[0., 1., 0., 0., 0., 0.]])
     """
-    return (_residual_numpy if _numba_kernels() is None else _residual_numba)(vectors, rows)
+    kernels = _numba_kernels(_size(np.broadcast_shapes(np.shape(vectors)[:-2], np.shape(rows)[:-2])))
+    return (_residual_numpy if kernels is None else _residual_numba)(vectors, rows)
 
 
 def _residual_numba(vectors: Array, rows: Array) -> Array:
@@ -374,19 +488,26 @@ def _residual_numba(vectors: Array, rows: Array) -> Array:
         return np.zeros((*batch, k, 6))
     flat_vectors = np.ascontiguousarray(np.broadcast_to(vectors, (*batch, k, 6)).reshape(-1, k, 6))
     flat_rows = np.ascontiguousarray(np.broadcast_to(rows, (*batch, m, 6)).reshape(-1, m, 6))
-    return (_numba_kernels() or _import_kernels()).residual(flat_vectors, flat_rows).reshape(*batch, k, 6)
+    return _import_kernels().residual(flat_vectors, flat_rows).reshape(*batch, k, 6)
 
 
 def _residual_numpy(vectors: Array, rows: Array) -> Array:
-    """:func:`residual` vectorized over the batch with numpy."""
-    return _project_out(_project_out(vectors, rows), rows)
+    """:func:`residual` vectorized over the batch: :func:`screwkit._frames_numba.residual`'s
+    operations in its order, so the two paths agree bit for bit."""
+    vectors, rows = np.asarray(vectors, dtype=float), np.asarray(rows, dtype=float)
+    batch = np.broadcast_shapes(vectors.shape[:-2], rows.shape[:-2])
+    k, m = vectors.shape[-2], rows.shape[-2]
+    out = np.array(np.broadcast_to(vectors, (*batch, k, 6)))
+    rows = np.broadcast_to(rows, (*batch, m, 6))
+    for _ in range(2):
+        coefficients = _dot_in_order(out[..., :, None, :], rows[..., None, :, :])  # (..., k, m)
+        for i in range(m):
+            out = out - coefficients[..., i, None] * rows[..., None, i, :]
+    return out
 
 
 def singular_ratio(rows: Array, index: int) -> Array:
     """``σ_index / σ_1`` of rows ``(..., k, 6)`` (1 for ``index ≤ 0``, 0 when ``k < index``).
-
-    numpy's SVD, or on the numba path one-sided Jacobi rotations of the non-zero rows
-    (:func:`screwkit._frames_numba.singular_ratio`); the two agree up to round-off.
 
     Examples
     --------
@@ -398,10 +519,6 @@ def singular_ratio(rows: Array, index: int) -> Array:
         return np.ones(batch)
     if rows.shape[-2] < index:
         return np.zeros(batch)
-    kernels = _numba_kernels()
-    if kernels is not None and 0 not in batch:
-        flat = np.ascontiguousarray(rows.reshape(-1, *rows.shape[-2:]), dtype=float)
-        return kernels.singular_ratio(flat, int(index)).reshape(batch)
     values = np.linalg.svd(rows, compute_uv=False)
     top = values[..., 0]
     return np.where(top > 0, values[..., index - 1] / np.where(top > 0, top, 1.0), 0.0)

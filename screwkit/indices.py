@@ -345,21 +345,22 @@ INDEX_NAMES = ("lti", "input", "output")
 
 _UNREACHABLE = ("raise", "nan")
 _KIND_CODES = {"articulated_z": 0, "articulated_y": 1, "screw_pair": 2}
-def _numba_kernels() -> ModuleType | None:
-    """The fused kernel module, or None for the numpy path (:func:`screwkit._frames.compiled_kernels`:
-    the same rule as the rank kernels, decided once per process)."""
-    return F.compiled_kernels("_indices_numba")
+def _numba_kernels(poses: int) -> ModuleType | None:
+    """The fused kernel module for a call over ``poses`` poses, or None for the numpy path
+    (:func:`screwkit._frames.compiled_kernels`: the same rule as the rank kernels)."""
+    return F.compiled_kernels("_indices_numba", poses)
 
 
 def backend() -> str:
-    """``"numba"`` or ``"numpy"``: how :func:`transmission` computes in this process.
+    """``"numba"`` or ``"numpy"``: how :func:`transmission` computes batches of
+    :data:`screwkit._frames.COMPILED_MIN_BATCH` poses or more in this process.
 
     Examples
     --------
     >>> backend() in {"numba", "numpy"}
     True
     """
-    return "numpy" if _numba_kernels() is None else "numba"
+    return "numpy" if _numba_kernels(F.COMPILED_MIN_BATCH) is None else "numba"
 
 
 def _four_limb_parameters(mechanism: Any) -> Any:
@@ -424,9 +425,10 @@ def transmission(
 
     The batched entry point for maps (workspace grids, trajectories): inverse kinematics (Eq. 3) and
     the indices in one pass. With numba (the ``fast`` extra) one fused compiled loop
-    (:mod:`screwkit._indices_numba`), else the numpy path (:func:`screwkit.families.four_limb.
-    inverse_kinematics` then :func:`transmission_indices`); ``SCREWKIT_NUMBA=0`` forces numpy. The
-    two agree to round-off (``tests/test_indices.py``).
+    (:mod:`screwkit._indices_numba`) for batches of :data:`screwkit._frames.COMPILED_MIN_BATCH`
+    poses or more (or once it is loaded), else the numpy path (:func:`screwkit.families.four_limb.
+    inverse_kinematics` then :func:`transmission_indices`; a single pose never loads numba);
+    ``SCREWKIT_NUMBA=0`` forces numpy. The two agree to round-off (``tests/test_indices.py``).
 
     Parameters
     ----------
@@ -487,7 +489,7 @@ def transmission(
     flat = np.ascontiguousarray(chi.reshape(-1, 4))
     if not np.all(np.isfinite(flat)):
         raise ScrewkitValueError("Expected `poses` to be finite, got NaN or infinity.")
-    kernels = _numba_kernels()
+    kernels = _numba_kernels(len(flat))
     if kernels is None:
         kappa, zeta, ok = _transmission_numpy(params, flat, mode)
     else:
@@ -613,7 +615,7 @@ class IndexExtremes(NamedTuple):
 
 
 def _index_values(params: Any, index: str, poses: np.ndarray, mode: tuple[int, ...]) -> np.ndarray:
-    kernels = _numba_kernels()
+    kernels = _numba_kernels(len(poses))
     if kernels is None:
         kappa, zeta, ok = _transmission_numpy(params, poses, mode)
     else:

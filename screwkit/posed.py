@@ -27,9 +27,9 @@ Examples
 from __future__ import annotations
 
 import functools
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, overload
 
 import networkx as nx
 import numpy as np
@@ -308,14 +308,12 @@ class Pose:
         return pose_report(self, superbracket=superbracket, progress=progress)
 
 
-def _batch_analyses(
-    mechanism: Any, rng: np.random.Generator, count: int, rtol: float
-) -> list[WrenchAnalysis]:
-    """Per-pose analyses at ``count`` random workspace poses, computed as one batch (the poses out
-    of reach are dropped)."""
+def _reachable_table(mechanism: Any, rng: np.random.Generator, count: int) -> JointTable | None:
+    """The joint table at ``count`` random workspace poses, those out of reach dropped (None if
+    none is reachable)."""
     poses = mechanism.random_poses(rng, count)
     try:
-        table = mechanism.joints(poses)
+        return mechanism.joints(poses)
     except ScrewkitError:  # some pose out of reach: keep those the IK accepts one by one
         kept = []
         for pose in poses:
@@ -324,24 +322,57 @@ def _batch_analyses(
             except ScrewkitError:
                 continue
             kept.append(pose)
-        if not kept:
-            return []
-        table = mechanism.joints(np.array(kept))
-    batch = analyze_table(table, rtol=rtol)
-    out = []
-    for i in range(len(batch)):
-        one = batch[i]
-        graph = table.graph(i)
-        graph.graph["name"] = mechanism.name
-        object.__setattr__(one, "graph", graph)
-        out.append(one)
-    return out
+        return mechanism.joints(np.array(kept)) if kept else None
+
+
+def _batch_analyses(
+    mechanism: Any, rng: np.random.Generator, count: int, rtol: float
+) -> Sequence[WrenchAnalysis]:
+    """Per-pose analyses at ``count`` random workspace poses, computed as one batch (the poses out
+    of reach are dropped); each pose's view and graph are built when first read."""
+    table = _reachable_table(mechanism, rng, count)
+    if table is None:
+        return []
+    return _PoseAnalyses(analyze_table(table, rtol=rtol), table, mechanism.name)
+
+
+class _PoseAnalyses(Sequence[WrenchAnalysis]):
+    """The per-pose views of a batched analysis, each (with its twist graph) built on first read:
+    a diagram is chosen on the first few and sampled until enough points are found."""
+
+    def __init__(self, batch: Any, table: JointTable, name: str):
+        self._batch, self._table, self._name = batch, table, name
+        self._built: dict[int, WrenchAnalysis] = {}
+
+    def __len__(self) -> int:
+        return len(self._batch)
+
+    @overload
+    def __getitem__(self, index: int) -> WrenchAnalysis: ...
+
+    @overload
+    def __getitem__(self, index: slice) -> list[WrenchAnalysis]: ...
+
+    def __getitem__(self, index: int | slice) -> WrenchAnalysis | list[WrenchAnalysis]:
+        if isinstance(index, slice):
+            return [self[i] for i in range(*index.indices(len(self)))]
+        if not -len(self) <= index < len(self):
+            raise IndexError(index)
+        index %= len(self)
+        if index not in self._built:
+            one = self._batch[index]
+            graph = self._table.graph(index)
+            graph.graph["name"] = self._name
+            object.__setattr__(one, "graph", graph)
+            self._built[index] = one
+        return self._built[index]
 
 
 def generic_samples(
     mechanism: Any, points: Any, rng: np.random.Generator, count: int, rtol: float = B.DEFAULT_RTOL
 ) -> list[dict[str, Array]]:
-    """A diagram's points (``{label: (4,)}``) at random workspace poses, analysed as one batch.
+    """A diagram's points (``{label: (4,)}``) at random workspace poses, analysed and evaluated as
+    one batch (:func:`screwkit.diagram.batch_diagram_points`).
 
     Poses where a point does not exist are skipped; at most ``2 * count`` poses are drawn.
 
@@ -358,16 +389,12 @@ def generic_samples(
     >>> len(generic_samples(h4, diagram.points, np.random.default_rng(0), 3))
     3
     """
-    from .diagram import diagram_points
+    from .diagram import batch_diagram_points
 
-    samples = []
-    for analysis in _batch_analyses(mechanism, rng, 2 * count, rtol):
-        try:
-            samples.append(diagram_points(points, analysis))
-        except ScrewkitError:
-            continue
-        if len(samples) == count:
-            break
+    table = _reachable_table(mechanism, rng, 2 * count)
+    found = {} if table is None else batch_diagram_points(points, analyze_table(table, rtol=rtol))
+    exists = np.all([np.isfinite(v).all(axis=-1) for v in found.values()], axis=0) if found else []
+    samples = [{label: v[i] for label, v in found.items()} for i in np.flatnonzero(exists)[:count]]
     if not samples:
         raise ScrewkitValueError(
             f"Expected a workspace pose giving every diagram point, got none of {2 * count}."

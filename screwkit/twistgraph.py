@@ -39,7 +39,6 @@ import networkx as nx
 import numpy as np
 
 from . import _backend as B
-from . import _frames as F
 from .exceptions import TwistGraphError
 from .joints import Joint, virtual
 from .screwsystem import ScrewSystem
@@ -259,9 +258,7 @@ def mechanism_frame(screws: Array, anchor: Array | None = None) -> tuple[Array, 
     round-off, and below ``1e-12`` of the coordinates' own size it is replaced by that size (the
     farthest foot of an axis from the origin, or 1 when it is 0), a length that still follows the
     unit; moments about the common point are then zero whatever the length. With no finite axis,
-    the point is the origin and the length 1. On the numba path the same formulas run pose by pose
-    (:func:`screwkit._frames_numba.reference_frame`, Jacobi rotations for the 3×3 eigenproblem),
-    agreeing with numpy's up to round-off.
+    the point is the origin and the length 1.
 
     Examples
     --------
@@ -274,15 +271,6 @@ def mechanism_frame(screws: Array, anchor: Array | None = None) -> tuple[Array, 
     >>> mechanism_frame(planar, np.array([0, 0, 5.0]))[0].round(6) + 0.0
     array([0. , 0.5, 5. ])
     """
-    kernels = F.compiled_kernels("_frames_numba")
-    batch = screws.shape[:-2]
-    if kernels is not None and screws.shape[-2] and 0 not in batch:
-        flat = np.ascontiguousarray(screws.reshape(-1, *screws.shape[-2:]), dtype=float)
-        anchors = np.zeros((len(flat), 3)) if anchor is None else np.ascontiguousarray(
-            np.broadcast_to(np.asarray(anchor, dtype=float), (*batch, 3)).reshape(-1, 3)
-        )
-        point, length = kernels.reference_frame(flat, anchors, anchor is not None, UNDETERMINED_RTOL)
-        return point.reshape(*batch, 3), length.reshape(batch)
     directions, moments = screws[..., :3], screws[..., 3:]
     sizes = np.sum(directions**2, axis=-1)
     finite = sizes > 0

@@ -40,6 +40,7 @@ from __future__ import annotations
 
 import functools
 import itertools
+import math
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any, NamedTuple
@@ -629,7 +630,7 @@ def _run(program: _Program, scaled: Array, rtol: float, requests: tuple[Request,
     axis of their own: rows ``(..., len(requests), 6, 6)``, orders ``(..., len(requests))``."""
     batch = scaled.shape[:-2]
     wanted = [program.slots[r] for r in requests]
-    kernels = F.compiled_kernels("_frames_numba")
+    kernels = F.compiled_kernels("_frames_numba", math.prod(batch))
     if kernels is not None:
         if 0 in batch:
             return F.empty((*batch, len(requests)))

@@ -306,11 +306,63 @@ def _split(poly: Polynomial) -> list[Polynomial]:
 SYMPY_FACTOR_MAX_BRACKETS = 12
 
 
+def _derivative(poly: Polynomial, variable: tuple[str, ...]) -> Polynomial:
+    """``∂poly/∂variable`` of a polynomial of degree at most 1 in ``variable``."""
+    out: Polynomial = {}
+    for m, c in poly.items():
+        if variable in m:
+            k = m.index(variable)
+            out[m[:k] + m[k + 1 :]] = c
+    return out
+
+
+def _product(a: Polynomial, b: Polynomial) -> Polynomial:
+    out: dict[Monomial, Fraction] = {}
+    for ma, ca in a.items():
+        for mb, cb in b.items():
+            key = tuple(sorted(ma + mb))
+            out[key] = out.get(key, Fraction(0)) + ca * cb
+    return {m: c for m, c in out.items() if c}
+
+
+def _multilinear_irreducible(poly: Polynomial) -> bool:
+    """True if ``poly`` is multilinear (degree ≤ 1 in each variable) and irreducible over the
+    rationals; False says nothing (sympy decides then).
+
+    Derivation: if a multilinear ``p = f g`` then ``deg_x p = deg_x f + deg_x g ≤ 1``, so the
+    factors have disjoint variables. For ``x`` in ``f`` and ``y`` in ``g``,
+    ``p ∂²p/∂x∂y = f g f_x g_y = ∂p/∂x ∂p/∂y``. Conversely, inside one irreducible factor ``h`` (``p = h r``,
+    ``r`` free of ``x, y``), write ``h = a x y + b x + c y + d``: ``p p_xy − p_x p_y = r² (a d − b c)``,
+    and ``a d = b c`` would give ``a h = (a x + c)(a y + b)`` (or, for ``a = 0``, ``b c = 0``: ``h``
+    free of ``x`` or ``y``), each factor missing ``x`` or ``y``, so not divisible by the prime ``h``:
+    a contradiction. Hence ``x, y`` share an irreducible factor iff ``p p_xy ≠ p_x p_y`` (the pairwise
+    test of Shpilka & Volkovich, read-once polynomial identity testing, STOC 2008), and ``p`` is
+    irreducible iff the graph of those pairs on its variables is connected. Exact arithmetic over
+    the rationals throughout.
+    """
+    if any(len(set(m)) != len(m) for m in poly):
+        return False
+    variables = sorted({v for m in poly for v in m})
+    reached, frontier = {variables[0]}, [variables[0]]
+    while frontier:
+        x = frontier.pop()
+        p_x = _derivative(poly, x)
+        for y in variables:
+            if y in reached:
+                continue
+            if _product(poly, _derivative(p_x, y)) != _product(p_x, _derivative(poly, y)):
+                reached.add(y)
+                frontier.append(y)
+    return len(reached) == len(variables)
+
+
 def _sympy_factors(poly: Polynomial) -> list[Polynomial]:
     """Irreducible factors over the rationals (sympy ``factor_list``), repeated by multiplicity;
-    brackets are independent variables there, so a factorisation found is exact."""
+    brackets are independent variables there, so a factorisation found is exact. A multilinear
+    polynomial proved irreducible exactly (:func:`_multilinear_irreducible`) is returned as it is
+    without calling sympy."""
     variables = sorted({v for m in poly for v in m})
-    if len(poly) < 3 or len(variables) > SYMPY_FACTOR_MAX_BRACKETS:
+    if len(poly) < 3 or len(variables) > SYMPY_FACTOR_MAX_BRACKETS or _multilinear_irreducible(poly):
         return [poly]
     sympy = B.sympy_module()
     symbols = sympy.symbols(f"x0:{len(variables)}")
