@@ -271,16 +271,25 @@ def mechanism_frame(screws: Array, anchor: Array | None = None) -> tuple[Array, 
     >>> mechanism_frame(planar, np.array([0, 0, 5.0]))[0].round(6) + 0.0
     array([0. , 0.5, 5. ])
     """
-    directions, moments = screws[..., :3], screws[..., 3:]
-    sizes = np.sum(directions**2, axis=-1)
+    # component by component over (..., n) arrays: no (..., n, 3, 3) temporaries, no strided sums
+    d = [screws[..., i] for i in range(3)]
+    m = [screws[..., 3 + i] for i in range(3)]
+    sizes = d[0] * d[0] + d[1] * d[1] + d[2] * d[2]
     finite = sizes > 0
-    safe = np.where(finite, sizes, 1.0)[..., None]
-    units = directions / np.sqrt(safe) * finite[..., None]  # zero for infinite pitch
-    feet = np.cross(directions, moments) / safe
+    safe = np.where(finite, sizes, 1.0)
+    root = np.sqrt(safe)
+    units = [x / root * finite for x in d]  # zero for infinite pitch
+    feet = [(d[1] * m[2] - d[2] * m[1]) / safe, (d[2] * m[0] - d[0] * m[2]) / safe,
+            (d[0] * m[1] - d[1] * m[0]) / safe]  # d × m / |d|²: each axis's point nearest the origin
     # the projectors P_k = I − u_k u_kᵀ (finite axes only), never formed: their sum and P_k x
     count = finite.sum(axis=-1)
-    normal = count[..., None, None] * np.eye(3) - np.sum(units[..., :, None] * units[..., None, :], axis=-3)
-    rhs = np.sum((feet - units * np.sum(units * feet, axis=-1, keepdims=True)) * finite[..., None], axis=-2)
+    normal = np.empty((*screws.shape[:-2], 3, 3))
+    for i in range(3):
+        for j in range(i, 3):
+            total = np.sum(units[i] * units[j], axis=-1)
+            normal[..., i, j] = normal[..., j, i] = (count if i == j else 0) - total
+    along = units[0] * feet[0] + units[1] * feet[1] + units[2] * feet[2]
+    rhs = np.stack([np.sum((feet[i] - units[i] * along) * finite, axis=-1) for i in range(3)], axis=-1)
     values, vectors = np.linalg.eigh(normal)
     determined = values > UNDETERMINED_RTOL * values[..., -1:]
     inverse = np.where(determined, 1.0 / np.where(determined, values, 1.0), 0.0)
@@ -289,10 +298,13 @@ def mechanism_frame(screws: Array, anchor: Array | None = None) -> tuple[Array, 
         along = np.einsum("...ji,...j->...i", vectors, np.asarray(anchor, dtype=float))
         coordinates = np.where(determined, coordinates, along)
     point = np.einsum("...ij,...j->...i", vectors, coordinates)
-    away = point[..., None, :] - feet
-    offsets = (away - units * np.sum(units * away, axis=-1, keepdims=True)) * finite[..., None]
-    length = np.sqrt(np.sum(offsets**2, axis=(-2, -1)) / np.maximum(count, 1))
-    size = np.maximum(np.linalg.norm(feet, axis=-1).max(axis=-1, initial=0.0), np.linalg.norm(point, axis=-1))
+    away = [point[..., None, i] - feet[i] for i in range(3)]
+    along = units[0] * away[0] + units[1] * away[1] + units[2] * away[2]
+    offsets = [(away[i] - units[i] * along) * finite for i in range(3)]
+    squares = offsets[0] * offsets[0] + offsets[1] * offsets[1] + offsets[2] * offsets[2]
+    length = np.sqrt(np.sum(squares, axis=-1) / np.maximum(count, 1))
+    farthest = np.sqrt(feet[0] * feet[0] + feet[1] * feet[1] + feet[2] * feet[2]).max(axis=-1, initial=0.0)
+    size = np.maximum(farthest, np.linalg.norm(point, axis=-1))
     round_off = length <= 1e-12 * size
     fallback = np.where(size > 0, size, 1.0)
     return point, np.where(round_off | (length == 0), fallback, length)
