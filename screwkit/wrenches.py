@@ -908,7 +908,7 @@ def analyze_table(
         assert top.root is not None
         requests = (
             ("twists", top.root),
-            *(("twists", i) for i in top.legs),
+            *((("twists", i) for i in top.legs) if views else ()),
             *(("wrenches", i) for i in top.legs),
             *(("sum", tuple(plan.siblings)) for plan in top.limbs),
             *(("passive", tuple(plan.siblings)) for plan in top.limbs),
@@ -924,7 +924,7 @@ def analyze_table(
     else:
         assert top.root is not None
         platform = core.twists(top.root)
-        leg_twists = [core.twists(i) for i in top.legs]
+        leg_twists = [core.twists(i) for i in top.legs] if views else []
         leg_wrenches = [core.wrenches(i) for i in top.legs]
     constraint = F.reciprocal(*platform)
     n = len(top.limbs)
