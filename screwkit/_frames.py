@@ -75,6 +75,7 @@ __all__ = [
     "span",
     "swapped",
     "to_scaled",
+    "triangular",
     "unit_scaled",
 ]
 
@@ -504,6 +505,46 @@ def _residual_numpy(vectors: Array, rows: Array) -> Array:
         for i in range(m):
             out = out - coefficients[..., i, None] * rows[..., None, i, :]
     return out
+
+
+def triangular(rows: Array) -> Array:
+    """Rows ``(..., k, 6)`` → six rows ``(..., 6, 6)`` with the same singular values: for ``k > 6``
+    the triangular factor ``R`` of the Householder QR from the left (``rows = Q R``, Golub & Van
+    Loan §5.2.1), else the rows padded with zero rows. A cheaper input for :func:`singular_ratio`.
+    The numpy path does :func:`screwkit._frames_numba.triangular`'s operations in its order (bit
+    for bit).
+
+    Examples
+    --------
+    >>> rows = np.vstack([np.eye(6), 3 * np.eye(6)[:1]])
+    >>> values = [np.linalg.svd(r, compute_uv=False) for r in (triangular(rows), rows)]
+    >>> triangular(rows).shape, bool(np.allclose(*values))
+    ((6, 6), True)
+    """
+    rows = np.asarray(rows, dtype=float)
+    batch, k = rows.shape[:-2], rows.shape[-2]
+    if k <= 6:
+        return np.concatenate([rows, np.zeros((*batch, 6 - k, 6))], axis=-2)
+    if 0 in batch:
+        return np.zeros((*batch, 6, 6))
+    if _numba_kernels(_size(batch)) is not None:
+        flat = np.ascontiguousarray(rows.reshape(-1, k, 6))
+        return _import_kernels().triangular(flat).reshape(*batch, 6, 6)
+    a = rows.reshape(-1, k, 6).copy()
+    with np.errstate(all="ignore"):  # poses whose column is already zero compute values not kept
+        for j in range(6):
+            total = _dot_in_order(a[:, j:, j], a[:, j:, j])
+            act = total != 0.0
+            alpha = -np.copysign(np.sqrt(total), a[:, j, j])
+            a[:, j, j] = np.where(act, a[:, j, j] - alpha, a[:, j, j])
+            v = a[:, j:, j]
+            vv = np.where(act, _dot_in_order(v, v), 1.0)
+            for c in range(j + 1, 6):
+                dot = 2.0 * _dot_in_order(v, a[:, j:, c]) / vv
+                a[:, j:, c] = np.where(act[:, None], a[:, j:, c] - dot[:, None] * v, a[:, j:, c])
+            a[:, j, j] = np.where(act, alpha, a[:, j, j])
+            a[:, j + 1 :, j] = np.where(act[:, None], 0.0, a[:, j + 1 :, j])
+    return a[:, :6].reshape(*batch, 6, 6)
 
 
 def singular_ratio(rows: Array, index: int) -> Array:

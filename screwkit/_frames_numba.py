@@ -346,3 +346,42 @@ def unit_scaled(screws: Array, centres: Array, lengths: Array) -> Array:  # prag
             out[p, r, 0], out[p, r, 1], out[p, r, 2] = d0 / size, d1 / size, d2 / size
             out[p, r, 3], out[p, r, 4], out[p, r, 5] = m0 / size, m1 / size, m2 / size
     return out
+
+
+@njit(cache=True)
+def triangular(rows: Array) -> Array:  # pragma: no cover - compiled
+    """``rows (n, k, 6)``, ``k ≥ 6`` → the triangular factor ``R (n, 6, 6)`` of each pose's
+    Householder QR from the left (``rows = Q R``; Golub & Van Loan §5.2.1): the same singular
+    values in six rows."""
+    n, k = rows.shape[0], rows.shape[1]
+    out = np.zeros((n, 6, 6))
+    a = np.empty((k, 6))
+    for p in range(n):
+        for i in range(k):
+            for s in range(6):
+                a[i, s] = rows[p, i, s]
+        for j in range(6):
+            total = 0.0
+            for i in range(j, k):
+                total += a[i, j] * a[i, j]
+            if total == 0.0:
+                continue
+            alpha = -math.copysign(math.sqrt(total), a[j, j])
+            a[j, j] -= alpha  # v = x − α e_j in place of x
+            vv = 0.0
+            for i in range(j, k):
+                vv += a[i, j] * a[i, j]
+            for c in range(j + 1, 6):
+                dot = 0.0
+                for i in range(j, k):
+                    dot += a[i, j] * a[i, c]
+                dot = 2.0 * dot / vv
+                for i in range(j, k):
+                    a[i, c] -= dot * a[i, j]
+            a[j, j] = alpha
+            for i in range(j + 1, k):
+                a[i, j] = 0.0
+        for i in range(6):
+            for s in range(6):
+                out[p, i, s] = a[i, s]
+    return out

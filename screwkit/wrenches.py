@@ -985,12 +985,13 @@ def analyze_table(
         wrench_rows = branch = np.zeros((*batch, 0, 6))
         locked_legs = None
     global_frame = F.span(np.concatenate([constraint[0], wrench_rows], axis=-2), rtol)
-    legs_stacked = np.concatenate([w[0] for w in leg_wrenches], axis=-2)
+    # the legs' stacked constraint wrenches as six rows with their singular values (F.triangular:
+    # two 6×6 SVDs instead of (6 legs + n) × 6 ones)
+    legs_stacked = F.triangular(np.concatenate([w[0] for w in leg_wrenches], axis=-2))
+    apart = _apart_from_legs(top, wrench_rows, leg_wrenches)
     closeness = {
         "constraint": F.singular_ratio(legs_stacked, 6 - nominal),
-        "actuation": F.singular_ratio(
-            np.concatenate([legs_stacked, _apart_from_legs(top, wrench_rows, leg_wrenches)], axis=-2), 6
-        ),
+        "actuation": F.singular_ratio(F.triangular(np.concatenate([legs_stacked, apart], axis=-2)), 6),
         "serial": np.min(transmissions, axis=-1) if n else np.ones(batch),
     }
     if locked_legs is not None:  # where a compound leg was analysed as a whole

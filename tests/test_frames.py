@@ -351,3 +351,22 @@ def test_compiled_program_matches_the_ops_run_one_by_one(monkeypatch):
     assert compiled[0].shape == stepwise[0].shape == (20, len(requests), 6, 6)
     np.testing.assert_array_equal(compiled[1], stepwise[1])
     np.testing.assert_array_equal(compiled[0], stepwise[0])
+
+
+@needs_numba
+@pytest.mark.parametrize("k", [7, 12, 16])
+def test_triangular_keeps_the_singular_values_and_both_paths_are_bit_identical(rng, monkeypatch, k):
+    from screwkit import _frames_numba
+
+    rows = rng.standard_normal((40, k, 6))
+    rows[:, ::3] = 0.0  # zero rows, as in stacked frames
+    rows[:5] = 0.0  # an all-zero matrix
+    rows[5:10, :, 2] = 0.0  # a zero column
+    compiled = _frames_numba.triangular(np.ascontiguousarray(rows))
+    monkeypatch.setitem(F._compiled, "_frames_numba", None)
+    np.testing.assert_array_equal(F.triangular(rows), compiled)
+    assert np.all(np.tril(compiled, -1) == 0)  # upper triangular
+    np.testing.assert_allclose(
+        np.linalg.svd(compiled, compute_uv=False), np.linalg.svd(rows, compute_uv=False), atol=1e-13
+    )
+    np.testing.assert_array_equal(F.triangular(rows[:, :4]), np.concatenate([rows[:, :4], np.zeros((40, 2, 6))], 1))
