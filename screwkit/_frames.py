@@ -21,15 +21,26 @@ Reciprocity in scaled coordinates is the Euclidean product with the halves swapp
 (``a ∘ b = a · (SWAP b)``, ``SWAP`` orthogonal and symmetric), so the system reciprocal to a frame
 is ``SWAP`` applied to its orthogonal complement: no rank decision is needed for it.
 
-**Two implementations, one rule.** :func:`span`, :func:`complement`, :func:`reciprocal` and
-:func:`residual` have a numpy path (vectorized over the batch) and, when numba is installed (the
-``fast`` extra), compiled per-pose loops (:mod:`screwkit._frames_numba`). The numpy path does the
-compiled loops' floating-point operations in their order (sums left to right, no BLAS call, no
-library QR), so the two agree bit for bit, and a pose's answer never depends on the batch it is
-in: single-pose and batched answers are bit-identical whichever path runs. numba is imported on
+**Closed forms.** Where a system is known in closed form the core uses it instead of a span and a
+complement: two spherical joints in series transmit the force along the line through their
+centres (:func:`rod`; paper 002 §4.1 models each H4 rod so), with the rule as the fallback where
+that line is not clearly defined.
+
+**Two implementations, one rule.** :func:`span`, :func:`complement`, :func:`reciprocal`,
+:func:`residual`, :func:`rod` and :func:`unit_scaled` have a numpy path (vectorized over the
+batch) and, when numba is installed (the ``fast`` extra), compiled per-pose loops
+(:mod:`screwkit._frames_numba`). The numpy path does the compiled loops' floating-point operations
+in their order (sums left to right, no BLAS call, no library QR), so the two agree bit for bit,
+and a pose's answer never depends on the batch it is in: single-pose and batched answers are
+bit-identical whichever path runs. The analysis core strings spans, reciprocals and rods into one
+flat *program* per mechanism (:func:`screwkit.wrenches._program`): on the numba path one compiled
+call runs it pose by pose (:func:`screwkit._frames_numba.run_program`, the same per-pose loops),
+on the numpy path its ops run one by one over the batch. numba is imported on
 the first call over :data:`COMPILED_MIN_BATCH` frames or more (:func:`compiled_kernels`), so a
 single-pose analysis never pays for its import; its compiled code is cached on disk. The
 environment variable ``SCREWKIT_NUMBA``, read once when this module is imported, forces the
+choice: ``0`` (or ``false``, ``no``, ``off``) the numpy path, anything else the default (numba if
+it imports).
 choice: ``0`` (or ``false``, ``no``, ``off``) the numpy path, anything else the default (numba if
 it imports).
 
@@ -59,10 +70,13 @@ __all__ = [
     "from_scaled",
     "reciprocal",
     "residual",
+    "rod",
     "singular_ratio",
     "span",
     "swapped",
     "to_scaled",
+    "triangular",
+    "unit_scaled",
 ]
 
 Array = np.ndarray
@@ -150,6 +164,39 @@ def to_scaled(screws: Array, centre: Array, length: Array) -> Array:
     directions = screws[..., :3]
     moments = screws[..., 3:] - np.cross(centre[..., None, :], directions)
     return np.concatenate([directions, moments / length[..., None, None]], axis=-1)
+
+
+def unit_scaled(screws: Array, centre: Array, length: Array) -> Array:
+    """:func:`to_scaled` with every row divided by its norm (zero rows stay zero): the generators
+    of the analysis core, component by component in the compiled loop's order
+    (:func:`screwkit._frames_numba.unit_scaled`), so the two paths agree bit for bit.
+
+    Examples
+    --------
+    >>> unit_scaled(np.array([[0, 0, 2.0, 0, 0, 0]]), np.zeros(3), np.array(1.0))
+    array([[0., 0., 1., 0., 0., 0.]])
+    """
+    screws = np.asarray(screws, dtype=float)
+    batch = screws.shape[:-2]
+    centres = np.broadcast_to(np.asarray(centre, dtype=float), (*batch, 3))
+    lengths = np.broadcast_to(np.asarray(length, dtype=float), batch)
+    kernels = _numba_kernels(_size(batch))
+    if kernels is not None and 0 not in batch and screws.shape[-2]:
+        out = _import_kernels().unit_scaled(
+            np.ascontiguousarray(screws.reshape(-1, *screws.shape[-2:])),
+            np.ascontiguousarray(centres.reshape(-1, 3)),
+            np.ascontiguousarray(lengths.reshape(-1)),
+        )
+        return out.reshape(screws.shape)
+    d0, d1, d2 = screws[..., 0], screws[..., 1], screws[..., 2]
+    c0, c1, c2 = (centres[..., None, i] for i in range(3))
+    scale = lengths[..., None]
+    m0 = (screws[..., 3] - (c1 * d2 - c2 * d1)) / scale
+    m1 = (screws[..., 4] - (c2 * d0 - c0 * d2)) / scale
+    m2 = (screws[..., 5] - (c0 * d1 - c1 * d0)) / scale
+    size = np.sqrt(d0 * d0 + d1 * d1 + d2 * d2 + m0 * m0 + m1 * m1 + m2 * m2)
+    size = np.where(size == 0.0, 1.0, size)
+    return np.stack([d0 / size, d1 / size, d2 / size, m0 / size, m1 / size, m2 / size], axis=-1)
 
 
 def from_scaled(rows: Array, centre: Array, length: Array) -> Array:
@@ -342,6 +389,85 @@ def reciprocal(rows: Array, order: Array) -> tuple[Array, Array]:
     return (_complement_numpy if kernels is None else _complement_numba)(rows, order, swap=True)
 
 
+def _centres(rows: Array) -> tuple[Array, Array, Array, Array]:
+    """:func:`screwkit._frames_numba._centre` over a batch of three axes ``rows (n, 3, 6)``, in its
+    operation order: ``(det, x, y, z)``, ``det ≤ 0`` where there is no point."""
+    zero = np.zeros(rows.shape[0])
+    n00, n01, n02, n11, n12, n22 = (zero.copy() for _ in range(6))
+    b0, b1, b2 = zero.copy(), zero.copy(), zero.copy()
+    good = np.ones(rows.shape[0], dtype=bool)
+    for r in range(3):
+        u0, u1, u2, m0, m1, m2 = (rows[:, r, s] for s in range(6))
+        squared = u0 * u0 + u1 * u1 + u2 * u2
+        good &= squared > 0
+        squared = np.where(squared > 0, squared, 1.0)
+        b0 += (u1 * m2 - u2 * m1) / squared
+        b1 += (u2 * m0 - u0 * m2) / squared
+        b2 += (u0 * m1 - u1 * m0) / squared
+        n00 += 1.0 - u0 * u0 / squared
+        n11 += 1.0 - u1 * u1 / squared
+        n22 += 1.0 - u2 * u2 / squared
+        n01 -= u0 * u1 / squared
+        n02 -= u0 * u2 / squared
+        n12 -= u1 * u2 / squared
+    a00, a01, a02 = n11 * n22 - n12 * n12, n02 * n12 - n01 * n22, n01 * n12 - n02 * n11
+    a11, a12, a22 = n00 * n22 - n02 * n02, n01 * n02 - n00 * n12, n00 * n11 - n01 * n01
+    det = n00 * a00 + n01 * a01 + n02 * a02
+    det = np.where(good & (det > 0), det, 0.0)
+    safe = np.where(det > 0, det, 1.0)
+    return (
+        det,
+        (a00 * b0 + a01 * b1 + a02 * b2) / safe,
+        (a01 * b0 + a11 * b1 + a12 * b2) / safe,
+        (a02 * b0 + a12 * b1 + a22 * b2) / safe,
+    )
+
+
+def rod(rows: Array, rtol: float) -> tuple[Array, Array]:
+    """The reciprocal of the span of two spherical joints in series, rows ``(..., 6, 6)`` (three
+    concurrent axes each, scaled): in closed form, the unit line through the two centres
+    (order 1), where it applies; elsewhere (a joint's axes without a common point, centres not
+    more than ``√rtol`` apart, or the line not reciprocal to every axis within ``rtol``)
+    :func:`reciprocal` of :func:`span`. The numpy path of
+    :func:`screwkit._frames_numba.rod_into` (which the compiled programs run), operation for
+    operation, so the two agree bit for bit.
+
+    Each centre is the least-squares point of its axes, ``N⁻¹ Σ f`` with ``N = Σ (I − û ûᵀ)`` and
+    ``f = u × m / |u|²`` the feet (by the adjugate of ``N``).
+
+    Examples
+    --------
+    >>> sphere = lambda c: [[*e, *np.cross(c, e)] for e in np.eye(3)]
+    >>> rows, order = rod(np.array(sphere([0, 0, 0.0]) + sphere([0, 0, 1.0])), 1e-9)
+    >>> int(order), rows[0] + 0.0
+    (1, array([0., 0., 1., 0., 0., 0.]))
+    """
+    rows = np.asarray(rows, dtype=float)
+    batch = rows.shape[:-2]
+    flat = rows.reshape(-1, 6, 6)
+    with np.errstate(all="ignore"):  # poses where the closed form fails compute values not kept
+        det1, x1, y1, z1 = _centres(flat[:, 0:3])
+        det2, x2, y2, z2 = _centres(flat[:, 3:6])
+        good = (det1 > 0) & (det2 > 0)
+        d0, d1, d2 = x2 - x1, y2 - y1, z2 - z1
+        good &= np.sqrt(d0 * d0 + d1 * d1 + d2 * d2) > math.sqrt(rtol)
+        m0, m1, m2 = y1 * d2 - z1 * d1, z1 * d0 - x1 * d2, x1 * d1 - y1 * d0  # c1 × d
+        size = np.sqrt(d0 * d0 + d1 * d1 + d2 * d2 + m0 * m0 + m1 * m1 + m2 * m2)
+        size = np.where(good, size, 1.0)
+        line = [d0 / size, d1 / size, d2 / size, m0 / size, m1 / size, m2 / size]
+        for r in range(6):
+            product = line[0] * flat[:, r, 3] + line[1] * flat[:, r, 4] + line[2] * flat[:, r, 5]
+            product += line[3] * flat[:, r, 0] + line[4] * flat[:, r, 1] + line[5] * flat[:, r, 2]
+            good &= np.abs(product) <= rtol
+    out, order = empty((flat.shape[0],))
+    out[:, 0] = np.where(good[:, None], np.stack(line, axis=-1), 0.0)
+    order[good] = 1
+    if not good.all():
+        bad = ~good
+        out[bad], order[bad] = reciprocal(*span(flat[bad], rtol))
+    return out.reshape(*batch, 6, 6), order.reshape(batch)
+
+
 def residual(vectors: Array, rows: Array) -> Array:
     """``vectors (..., k, 6)`` minus their projections on a frame's rows (re-orthogonalised once).
 
@@ -379,6 +505,46 @@ def _residual_numpy(vectors: Array, rows: Array) -> Array:
         for i in range(m):
             out = out - coefficients[..., i, None] * rows[..., None, i, :]
     return out
+
+
+def triangular(rows: Array) -> Array:
+    """Rows ``(..., k, 6)`` → six rows ``(..., 6, 6)`` with the same singular values: for ``k > 6``
+    the triangular factor ``R`` of the Householder QR from the left (``rows = Q R``, Golub & Van
+    Loan §5.2.1), else the rows padded with zero rows. A cheaper input for :func:`singular_ratio`.
+    The numpy path does :func:`screwkit._frames_numba.triangular`'s operations in its order (bit
+    for bit).
+
+    Examples
+    --------
+    >>> rows = np.vstack([np.eye(6), 3 * np.eye(6)[:1]])
+    >>> values = [np.linalg.svd(r, compute_uv=False) for r in (triangular(rows), rows)]
+    >>> triangular(rows).shape, bool(np.allclose(*values))
+    ((6, 6), True)
+    """
+    rows = np.asarray(rows, dtype=float)
+    batch, k = rows.shape[:-2], rows.shape[-2]
+    if k <= 6:
+        return np.concatenate([rows, np.zeros((*batch, 6 - k, 6))], axis=-2)
+    if 0 in batch:
+        return np.zeros((*batch, 6, 6))
+    if _numba_kernels(_size(batch)) is not None:
+        flat = np.ascontiguousarray(rows.reshape(-1, k, 6))
+        return _import_kernels().triangular(flat).reshape(*batch, 6, 6)
+    a = rows.reshape(-1, k, 6).copy()
+    with np.errstate(all="ignore"):  # poses whose column is already zero compute values not kept
+        for j in range(6):
+            total = _dot_in_order(a[:, j:, j], a[:, j:, j])
+            act = total != 0.0
+            alpha = -np.copysign(np.sqrt(total), a[:, j, j])
+            a[:, j, j] = np.where(act, a[:, j, j] - alpha, a[:, j, j])
+            v = a[:, j:, j]
+            vv = np.where(act, _dot_in_order(v, v), 1.0)
+            for c in range(j + 1, 6):
+                dot = 2.0 * _dot_in_order(v, a[:, j:, c]) / vv
+                a[:, j:, c] = np.where(act[:, None], a[:, j:, c] - dot[:, None] * v, a[:, j:, c])
+            a[:, j, j] = np.where(act, alpha, a[:, j, j])
+            a[:, j + 1 :, j] = np.where(act[:, None], 0.0, a[:, j + 1 :, j])
+    return a[:, :6].reshape(*batch, 6, 6)
 
 
 def singular_ratio(rows: Array, index: int) -> Array:

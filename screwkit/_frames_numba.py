@@ -20,6 +20,74 @@ Array = np.ndarray
 
 
 @njit(cache=True)
+def span_into(  # pragma: no cover - compiled
+    w: Array, k: int, rtol: float, r: Array, norms: Array, pivot: Array, coefficients: Array
+) -> int:
+    """One pose of :func:`span`: the first ``k`` rows of ``w`` (overwritten) → the frame's rows in
+    ``r (6, 6)`` (zero beyond the order, which is returned); ``norms (≥ k,)``, ``pivot (6,)`` and
+    ``coefficients (6,)`` are scratch. Rows of ``w`` that are exactly zero stay zero and are never
+    picked, so they are skipped (as if absent: the first largest pivot is the same)."""
+    for i in range(6):
+        for s in range(6):
+            r[i, s] = 0.0
+    if k == 0:
+        return 0
+    for j in range(k):
+        total = 0.0
+        for s in range(6):
+            total += w[j, s] * w[j, s]
+        norms[j] = math.sqrt(total)
+    top = norms[0]
+    for j in range(1, k):
+        if math.isnan(top):
+            break
+        if math.isnan(norms[j]) or norms[j] > top:
+            top = norms[j]
+    threshold = rtol * top
+    count = 0
+    for step in range(min(k, 6)):
+        pick = 0  # np.argmax: the first largest, or the first NaN
+        for j in range(k):
+            if math.isnan(norms[j]):
+                pick = j
+                break
+            if norms[j] > norms[pick]:
+                pick = j
+        for s in range(6):
+            pivot[s] = w[pick, s]
+        for i in range(count):  # CGS2: the pivot re-orthogonalised once against the rows
+            total = 0.0
+            for s in range(6):
+                total += r[i, s] * pivot[s]
+            coefficients[i] = total
+        for i in range(count):
+            for s in range(6):
+                pivot[s] -= coefficients[i] * r[i, s]
+        total = 0.0
+        for s in range(6):
+            total += pivot[s] * pivot[s]
+        size = math.sqrt(total)
+        if not (size > threshold and size > 0):
+            break  # the numpy path then adds zero rows only
+        for s in range(6):
+            r[step, s] = pivot[s] / size
+        count += 1
+        for j in range(k):
+            if norms[j] == 0.0:
+                continue  # a zero row stays zero
+            total = 0.0
+            for s in range(6):
+                total += w[j, s] * r[step, s]
+            for s in range(6):
+                w[j, s] -= total * r[step, s]
+            total = 0.0
+            for s in range(6):
+                total += w[j, s] * w[j, s]
+            norms[j] = math.sqrt(total)
+    return count
+
+
+@njit(cache=True)
 def span(work: Array, rtol: float) -> tuple[Array, Array]:  # pragma: no cover - compiled
     """``work (n, k, 6)`` (overwritten) → rows ``(n, 6, 6)``, order ``(n,)``; ``k ≥ 1``."""
     n, k = work.shape[0], work.shape[1]
@@ -28,62 +96,67 @@ def span(work: Array, rtol: float) -> tuple[Array, Array]:  # pragma: no cover -
     norms = np.empty(k)
     pivot = np.empty(6)
     coefficients = np.empty(6)
-    steps = min(k, 6)
     for p in range(n):
-        w = work[p]
-        r = rows[p]
-        for j in range(k):
-            total = 0.0
-            for s in range(6):
-                total += w[j, s] * w[j, s]
-            norms[j] = math.sqrt(total)
-        top = norms[0]
-        for j in range(1, k):
-            if math.isnan(top):
-                break
-            if math.isnan(norms[j]) or norms[j] > top:
-                top = norms[j]
-        threshold = rtol * top
-        count = 0
-        for step in range(steps):
-            pick = 0  # np.argmax: the first largest, or the first NaN
-            for j in range(k):
-                if math.isnan(norms[j]):
-                    pick = j
-                    break
-                if norms[j] > norms[pick]:
-                    pick = j
-            for s in range(6):
-                pivot[s] = w[pick, s]
-            for i in range(count):  # CGS2: the pivot re-orthogonalised once against the rows
-                total = 0.0
-                for s in range(6):
-                    total += r[i, s] * pivot[s]
-                coefficients[i] = total
-            for i in range(count):
-                for s in range(6):
-                    pivot[s] -= coefficients[i] * r[i, s]
-            total = 0.0
-            for s in range(6):
-                total += pivot[s] * pivot[s]
-            size = math.sqrt(total)
-            if not (size > threshold and size > 0):
-                break  # the numpy path then adds zero rows only
-            for s in range(6):
-                r[step, s] = pivot[s] / size
-            count += 1
-            for j in range(k):
-                total = 0.0
-                for s in range(6):
-                    total += w[j, s] * r[step, s]
-                for s in range(6):
-                    w[j, s] -= total * r[step, s]
-                total = 0.0
-                for s in range(6):
-                    total += w[j, s] * w[j, s]
-                norms[j] = math.sqrt(total)
-        order[p] = count
+        order[p] = span_into(work[p], k, rtol, rows[p], norms, pivot, coefficients)
     return rows, order
+
+
+@njit(cache=True)
+def complement_into(  # pragma: no cover - compiled
+    rows: Array, o: int, swap: bool, out: Array, a: Array, v: Array, tau: Array, y: Array
+) -> None:
+    """One pose of :func:`complement`: the frame ``rows (6, 6)`` of order ``o`` → the complement's
+    rows in ``out (6, 6)`` (zero beyond ``6 − o``); ``a``, ``v (6, 6)``, ``tau``, ``y (6,)`` are
+    scratch. Columns of ``a`` beyond ``o`` are zero (the frame's zero rows) and no reflector
+    changes them, so the reflections skip them."""
+    for i in range(6):
+        for j in range(6):
+            a[i, j] = rows[j, i]  # a's columns are the frame's rows
+            out[i, j] = 0.0
+    for j in range(6):
+        alpha = a[j, j]
+        total = 0.0
+        for i in range(j + 1, 6):
+            total += a[i, j] * a[i, j]
+        tau[j] = 0.0
+        v[j, j] = 1.0
+        for i in range(j + 1, 6):
+            v[j, i] = 0.0
+        if total == 0.0:
+            continue
+        beta = -math.copysign(math.sqrt(alpha * alpha + total), alpha)
+        tau[j] = (beta - alpha) / beta
+        scale = 1.0 / (alpha - beta)
+        for i in range(j + 1, 6):
+            v[j, i] = a[i, j] * scale
+        a[j, j] = beta
+        for i in range(j + 1, 6):
+            a[i, j] = 0.0
+        for c in range(j + 1, o):
+            dot = 0.0
+            for i in range(j, 6):
+                dot += v[j, i] * a[i, c]
+            dot *= tau[j]
+            for i in range(j, 6):
+                a[i, c] -= dot * v[j, i]
+    for c in range(o, 6):  # column c of Q = H_0 H_1 … H_5 e_c
+        for i in range(6):
+            y[i] = 0.0
+        y[c] = 1.0
+        for j in range(5, -1, -1):
+            if tau[j] == 0.0:
+                continue
+            dot = 0.0
+            for i in range(j, 6):
+                dot += v[j, i] * y[i]
+            dot *= tau[j]
+            for i in range(j, 6):
+                y[i] -= dot * v[j, i]
+        for i in range(6):
+            if swap:
+                out[c - o, (i + 3) % 6] = y[i]
+            else:
+                out[c - o, i] = y[i]
 
 
 @njit(cache=True)
@@ -98,55 +171,141 @@ def complement(rows: Array, order: Array, swap: bool) -> Array:  # pragma: no co
     tau = np.zeros(6)
     y = np.empty(6)
     for p in range(n):
-        for i in range(6):
-            for j in range(6):
-                a[i, j] = rows[p, j, i]  # a's columns are the frame's rows
-        for j in range(6):
-            alpha = a[j, j]
-            total = 0.0
-            for i in range(j + 1, 6):
-                total += a[i, j] * a[i, j]
-            tau[j] = 0.0
-            v[j, j] = 1.0
-            for i in range(j + 1, 6):
-                v[j, i] = 0.0
-            if total == 0.0:
-                continue
-            beta = -math.copysign(math.sqrt(alpha * alpha + total), alpha)
-            tau[j] = (beta - alpha) / beta
-            scale = 1.0 / (alpha - beta)
-            for i in range(j + 1, 6):
-                v[j, i] = a[i, j] * scale
-            a[j, j] = beta
-            for i in range(j + 1, 6):
-                a[i, j] = 0.0
-            for c in range(j + 1, 6):
-                dot = 0.0
-                for i in range(j, 6):
-                    dot += v[j, i] * a[i, c]
-                dot *= tau[j]
-                for i in range(j, 6):
-                    a[i, c] -= dot * v[j, i]
-        o = order[p]
-        for c in range(o, 6):  # column c of Q = H_0 H_1 … H_5 e_c
-            for i in range(6):
-                y[i] = 0.0
-            y[c] = 1.0
-            for j in range(5, -1, -1):
-                if tau[j] == 0.0:
-                    continue
-                dot = 0.0
-                for i in range(j, 6):
-                    dot += v[j, i] * y[i]
-                dot *= tau[j]
-                for i in range(j, 6):
-                    y[i] -= dot * v[j, i]
-            for i in range(6):
-                if swap:
-                    out[p, c - o, (i + 3) % 6] = y[i]
-                else:
-                    out[p, c - o, i] = y[i]
+        complement_into(rows[p], order[p], swap, out[p], a, v, tau, y)
     return out
+
+
+#: Operation codes of a frame program (:func:`run_program`; built by :mod:`screwkit.wrenches`).
+SPAN, RECIPROCAL, ROD = 0, 1, 2
+#: Source kinds of a span: joint screw rows ``(start, count)`` or a slot's rows ``(slot, bound)``.
+JOINT_ROWS, SLOT_ROWS = 0, 1
+
+
+@njit(cache=True)
+def _centre(rows: Array) -> tuple[float, float, float, float]:  # pragma: no cover - compiled
+    """The least-squares point ``(x, y, z)`` of the three axes ``rows (3, 6)`` and the determinant
+    of its normal matrix ``N = Σ (I − û ûᵀ)`` (≤ 0: no point): ``N⁻¹ Σ f`` with ``f = u × m / |u|²``
+    each axis's foot (``(I − û ûᵀ) f = f``), by the adjugate."""
+    n00 = n01 = n02 = n11 = n12 = n22 = 0.0
+    b0 = b1 = b2 = 0.0
+    for r in range(3):
+        u0, u1, u2 = rows[r, 0], rows[r, 1], rows[r, 2]
+        m0, m1, m2 = rows[r, 3], rows[r, 4], rows[r, 5]
+        squared = u0 * u0 + u1 * u1 + u2 * u2
+        if not squared > 0:
+            return 0.0, 0.0, 0.0, 0.0
+        b0 += (u1 * m2 - u2 * m1) / squared
+        b1 += (u2 * m0 - u0 * m2) / squared
+        b2 += (u0 * m1 - u1 * m0) / squared
+        n00 += 1.0 - u0 * u0 / squared
+        n11 += 1.0 - u1 * u1 / squared
+        n22 += 1.0 - u2 * u2 / squared
+        n01 -= u0 * u1 / squared
+        n02 -= u0 * u2 / squared
+        n12 -= u1 * u2 / squared
+    a00, a01, a02 = n11 * n22 - n12 * n12, n02 * n12 - n01 * n22, n01 * n12 - n02 * n11
+    a11, a12, a22 = n00 * n22 - n02 * n02, n01 * n02 - n00 * n12, n00 * n11 - n01 * n01
+    det = n00 * a00 + n01 * a01 + n02 * a02
+    if not det > 0:
+        return 0.0, 0.0, 0.0, 0.0
+    return (
+        det,
+        (a00 * b0 + a01 * b1 + a02 * b2) / det,
+        (a01 * b0 + a11 * b1 + a12 * b2) / det,
+        (a02 * b0 + a12 * b1 + a22 * b2) / det,
+    )
+
+
+@njit(cache=True)
+def rod_into(rows: Array, rtol: float, out: Array) -> bool:  # pragma: no cover - compiled
+    """The constraint wrench of two spherical joints in series, ``rows (6, 6)`` (three concurrent
+    unit axes each, scaled): the unit line through their centres into ``out[0]`` (the rest of
+    ``out`` zero). False where the closed form does not apply (the caller then spans and takes the
+    reciprocal): a joint's axes without a common point, centres not more than ``√rtol`` apart, or
+    the line not reciprocal to every axis within ``rtol``."""
+    det1, x1, y1, z1 = _centre(rows[0:3])
+    det2, x2, y2, z2 = _centre(rows[3:6])
+    if not (det1 > 0 and det2 > 0):
+        return False
+    d0, d1, d2 = x2 - x1, y2 - y1, z2 - z1
+    if not math.sqrt(d0 * d0 + d1 * d1 + d2 * d2) > math.sqrt(rtol):
+        return False
+    m0, m1, m2 = y1 * d2 - z1 * d1, z1 * d0 - x1 * d2, x1 * d1 - y1 * d0  # c1 × d
+    size = math.sqrt(d0 * d0 + d1 * d1 + d2 * d2 + m0 * m0 + m1 * m1 + m2 * m2)
+    d0, d1, d2, m0, m1, m2 = d0 / size, d1 / size, d2 / size, m0 / size, m1 / size, m2 / size
+    for r in range(6):
+        product = d0 * rows[r, 3] + d1 * rows[r, 4] + d2 * rows[r, 5]
+        product += m0 * rows[r, 0] + m1 * rows[r, 1] + m2 * rows[r, 2]
+        if not abs(product) <= rtol:
+            return False
+    for i in range(6):
+        for s in range(6):
+            out[i, s] = 0.0
+    out[0, 0], out[0, 1], out[0, 2], out[0, 3], out[0, 4], out[0, 5] = d0, d1, d2, m0, m1, m2
+    return True
+
+
+@njit(cache=True)
+def run_program(
+    scaled: Array, rtol: float, ops: Array, sources: Array, n_slots: int, outputs: Array
+) -> tuple[Array, Array]:  # pragma: no cover - compiled
+    """A frame program, pose by pose: ``scaled (n, rows, 6)`` joint screws; ``ops (m, 4)`` rows
+    ``(code, slot, first, count)``: :data:`SPAN` of ``sources[first : first + count]`` (rows
+    ``(kind, a, b)``), :data:`RECIPROCAL` of slot ``first``, or :data:`ROD`, the reciprocal of the
+    span of two spherical joints' rows (:func:`rod_into`, else span and reciprocal), into
+    ``slot``. Returns the rows ``(n, len(outputs), 6, 6)`` and orders of the ``outputs`` slots. A
+    span or reciprocal is exactly what the batched kernel :func:`span` or :func:`complement`
+    (``swap``) computes on that pose, so running a program equals running its ops one by one (the
+    numpy path's way, :func:`screwkit.wrenches._run`) up to the two paths' round-off."""
+    n = scaled.shape[0]
+    slots = np.zeros((n_slots, 6, 6))
+    orders = np.zeros(n_slots, dtype=np.int64)
+    out_rows = np.zeros((n, outputs.shape[0], 6, 6))
+    out_orders = np.zeros((n, outputs.shape[0]), dtype=np.int64)
+    most = 6
+    for i in range(sources.shape[0]):
+        most = max(most, sources[i, 2])
+    work = np.empty((most * sources.shape[0] + 6, 6))
+    norms = np.empty(work.shape[0])
+    pivot = np.empty(6)
+    coefficients = np.empty(6)
+    a = np.empty((6, 6))
+    v = np.zeros((6, 6))
+    tau = np.zeros(6)
+    y = np.empty(6)
+    for p in range(n):
+        for op in range(ops.shape[0]):
+            code, slot, first, count = ops[op, 0], ops[op, 1], ops[op, 2], ops[op, 3]
+            if code == RECIPROCAL:
+                complement_into(slots[first], orders[first], True, slots[slot], a, v, tau, y)
+                orders[slot] = 6 - orders[first]
+                continue
+            k = 0
+            for q in range(first, first + count):
+                kind, x, size = sources[q, 0], sources[q, 1], sources[q, 2]
+                if kind == JOINT_ROWS:
+                    for i in range(size):
+                        for s in range(6):
+                            work[k, s] = scaled[p, x + i, s]
+                        k += 1
+                else:  # a slot's rows up to its bound; those beyond its order are zero, left out
+                    for i in range(min(size, orders[x])):
+                        for s in range(6):
+                            work[k, s] = slots[x, i, s]
+                        k += 1
+            if code == ROD:
+                if rod_into(work, rtol, slots[slot]):
+                    orders[slot] = 1
+                    continue
+                order = span_into(work, k, rtol, a, norms, pivot, coefficients)  # the rule, spelt out
+                complement_into(a.copy(), order, True, slots[slot], a, v, tau, y)
+                orders[slot] = 6 - order
+                continue
+            orders[slot] = span_into(work, k, rtol, slots[slot], norms, pivot, coefficients)
+        for i in range(outputs.shape[0]):
+            out_rows[p, i] = slots[outputs[i]]
+            out_orders[p, i] = orders[outputs[i]]
+    return out_rows, out_orders
 
 
 @njit(cache=True)
@@ -166,4 +325,63 @@ def residual(vectors: Array, rows: Array) -> Array:  # pragma: no cover - compil
                 for i in range(m):
                     for s in range(6):
                         out[p, j, s] -= coefficients[i] * rows[p, i, s]
+    return out
+
+
+@njit(cache=True)
+def unit_scaled(screws: Array, centres: Array, lengths: Array) -> Array:  # pragma: no cover - compiled
+    """:func:`screwkit._frames.unit_scaled` pose by pose: ``(s; (s0 − c × s) / L)`` over its norm."""
+    n, k = screws.shape[0], screws.shape[1]
+    out = np.empty((n, k, 6))
+    for p in range(n):
+        c0, c1, c2, length = centres[p, 0], centres[p, 1], centres[p, 2], lengths[p]
+        for r in range(k):
+            d0, d1, d2 = screws[p, r, 0], screws[p, r, 1], screws[p, r, 2]
+            m0 = (screws[p, r, 3] - (c1 * d2 - c2 * d1)) / length
+            m1 = (screws[p, r, 4] - (c2 * d0 - c0 * d2)) / length
+            m2 = (screws[p, r, 5] - (c0 * d1 - c1 * d0)) / length
+            size = math.sqrt(d0 * d0 + d1 * d1 + d2 * d2 + m0 * m0 + m1 * m1 + m2 * m2)
+            if size == 0.0:
+                size = 1.0
+            out[p, r, 0], out[p, r, 1], out[p, r, 2] = d0 / size, d1 / size, d2 / size
+            out[p, r, 3], out[p, r, 4], out[p, r, 5] = m0 / size, m1 / size, m2 / size
+    return out
+
+
+@njit(cache=True)
+def triangular(rows: Array) -> Array:  # pragma: no cover - compiled
+    """``rows (n, k, 6)``, ``k ≥ 6`` → the triangular factor ``R (n, 6, 6)`` of each pose's
+    Householder QR from the left (``rows = Q R``; Golub & Van Loan §5.2.1): the same singular
+    values in six rows."""
+    n, k = rows.shape[0], rows.shape[1]
+    out = np.zeros((n, 6, 6))
+    a = np.empty((k, 6))
+    for p in range(n):
+        for i in range(k):
+            for s in range(6):
+                a[i, s] = rows[p, i, s]
+        for j in range(6):
+            total = 0.0
+            for i in range(j, k):
+                total += a[i, j] * a[i, j]
+            if total == 0.0:
+                continue
+            alpha = -math.copysign(math.sqrt(total), a[j, j])
+            a[j, j] -= alpha  # v = x − α e_j in place of x
+            vv = 0.0
+            for i in range(j, k):
+                vv += a[i, j] * a[i, j]
+            for c in range(j + 1, 6):
+                dot = 0.0
+                for i in range(j, k):
+                    dot += a[i, j] * a[i, c]
+                dot = 2.0 * dot / vv
+                for i in range(j, k):
+                    a[i, c] -= dot * a[i, j]
+            a[j, j] = alpha
+            for i in range(j + 1, k):
+                a[i, j] = 0.0
+        for i in range(6):
+            for s in range(6):
+                out[p, i, s] = a[i, s]
     return out

@@ -498,17 +498,21 @@ class JointTable:
     def __post_init__(self) -> None:
         rows = sum(spec.dof for spec in self.specs)
         _refuse_symbolic(self.screws)
-        screws = np.array(self.screws, dtype=float)
+        given = self.screws
+        owned = isinstance(given, np.ndarray) and given.dtype == float and given.base is None
+        # a read-only float array owning its data (another table's, or from_rows') is kept as is
+        screws = given if owned and not given.flags.writeable else np.array(given, dtype=float)
         if screws.ndim < 2 or screws.shape[-2:] != (rows, 6):
             raise ScrewkitValueError(
                 f"Expected `screws` of shape (..., {rows}, 6) for the table's joints, got {screws.shape}."
             )
-        if not np.all(np.isfinite(screws)):
+        largest = np.abs(screws).max() if screws.size else 0.0  # NaN or inf propagate
+        if not np.isfinite(largest):
             raise ScrewkitValueError("Expected finite joint screws, got NaN or infinity.")
-        if screws.size and np.abs(screws).max() > MAX_SCREW_MAGNITUDE:
+        if largest > MAX_SCREW_MAGNITUDE:
             raise ScrewkitValueError(
                 f"Expected joint screw coordinates up to {MAX_SCREW_MAGNITUDE:g} in size (norms and "
-                f"products must not overflow), got {np.abs(screws).max():g}."
+                f"products must not overflow), got {largest:g}."
             )
         zero = np.all(screws == 0, axis=-1)
         if zero.any():
@@ -556,6 +560,7 @@ class JointTable:
             if arrays
             else np.zeros((0, 6))
         )
+        stacked.flags.writeable = False  # fresh: the table takes it without a copy
         return cls(base, platform, specs, stacked, dof, anchor, mobility)
 
     @classmethod

@@ -487,6 +487,7 @@ def label_table(
             flat[start : start + chunk],
             table.dof,
             None if anchor is None else anchor[start : start + chunk],
+            table.mobility,
         )
         for start in range(0, max(len(flat), 1), chunk)
     )
@@ -538,6 +539,7 @@ def classify_chunks(
         for key, value in arrays.items():
             out[key][filled : filled + len(value)] = value
         filled += len(part)
+        del piece, part, arrays  # not alive while the next chunk is computed (the first is kept)
     if first is None or filled != total:
         raise ScrewkitValueError(f"Expected chunks of {total} configurations in all, got {filled}.")
     whole = {key: value.reshape(*shape, *value.shape[1:]) for key, value in out.items()}

@@ -271,31 +271,74 @@ def mechanism_frame(screws: Array, anchor: Array | None = None) -> tuple[Array, 
     >>> mechanism_frame(planar, np.array([0, 0, 5.0]))[0].round(6) + 0.0
     array([0. , 0.5, 5. ])
     """
-    directions, moments = screws[..., :3], screws[..., 3:]
-    sizes = np.sum(directions**2, axis=-1)
+    # component by component over (..., n) arrays: no (..., n, 3, 3) temporaries, no strided sums
+    d = [screws[..., i] for i in range(3)]
+    m = [screws[..., 3 + i] for i in range(3)]
+    sizes = d[0] * d[0] + d[1] * d[1] + d[2] * d[2]
     finite = sizes > 0
-    safe = np.where(finite, sizes, 1.0)[..., None]
-    units = directions / np.sqrt(safe) * finite[..., None]  # zero for infinite pitch
-    feet = np.cross(directions, moments) / safe
+    safe = np.where(finite, sizes, 1.0)
+    root = np.sqrt(safe)
+    units = [x / root * finite for x in d]  # zero for infinite pitch
+    feet = [(d[1] * m[2] - d[2] * m[1]) / safe, (d[2] * m[0] - d[0] * m[2]) / safe,
+            (d[0] * m[1] - d[1] * m[0]) / safe]  # d × m / |d|²: each axis's point nearest the origin
     # the projectors P_k = I − u_k u_kᵀ (finite axes only), never formed: their sum and P_k x
     count = finite.sum(axis=-1)
-    normal = count[..., None, None] * np.eye(3) - np.sum(units[..., :, None] * units[..., None, :], axis=-3)
-    rhs = np.sum((feet - units * np.sum(units * feet, axis=-1, keepdims=True)) * finite[..., None], axis=-2)
-    values, vectors = np.linalg.eigh(normal)
-    determined = values > UNDETERMINED_RTOL * values[..., -1:]
-    inverse = np.where(determined, 1.0 / np.where(determined, values, 1.0), 0.0)
-    coordinates = np.einsum("...ji,...j->...i", vectors, rhs) * inverse  # in the eigenbasis
-    if anchor is not None:
-        along = np.einsum("...ji,...j->...i", vectors, np.asarray(anchor, dtype=float))
-        coordinates = np.where(determined, coordinates, along)
-    point = np.einsum("...ij,...j->...i", vectors, coordinates)
-    away = point[..., None, :] - feet
-    offsets = (away - units * np.sum(units * away, axis=-1, keepdims=True)) * finite[..., None]
-    length = np.sqrt(np.sum(offsets**2, axis=(-2, -1)) / np.maximum(count, 1))
-    size = np.maximum(np.linalg.norm(feet, axis=-1).max(axis=-1, initial=0.0), np.linalg.norm(point, axis=-1))
+    normal = np.empty((*screws.shape[:-2], 3, 3))
+    for i in range(3):
+        for j in range(i, 3):
+            total = np.sum(units[i] * units[j], axis=-1)
+            normal[..., i, j] = normal[..., j, i] = (count if i == j else 0) - total
+    along = units[0] * feet[0] + units[1] * feet[1] + units[2] * feet[2]
+    rhs = np.stack([np.sum((feet[i] - units[i] * along) * finite, axis=-1) for i in range(3)], axis=-1)
+    point = _least_squares_point(normal, rhs, anchor)
+    away = [point[..., None, i] - feet[i] for i in range(3)]
+    along = units[0] * away[0] + units[1] * away[1] + units[2] * away[2]
+    offsets = [(away[i] - units[i] * along) * finite for i in range(3)]
+    squares = offsets[0] * offsets[0] + offsets[1] * offsets[1] + offsets[2] * offsets[2]
+    length = np.sqrt(np.sum(squares, axis=-1) / np.maximum(count, 1))
+    farthest = np.sqrt(feet[0] * feet[0] + feet[1] * feet[1] + feet[2] * feet[2]).max(axis=-1, initial=0.0)
+    size = np.maximum(farthest, np.linalg.norm(point, axis=-1))
     round_off = length <= 1e-12 * size
     fallback = np.where(size > 0, size, 1.0)
     return point, np.where(round_off | (length == 0), fallback, length)
+
+
+def _least_squares_point(normal: Array, rhs: Array, anchor: Array | None) -> Array:
+    """``N⁻¹ rhs`` for the symmetric positive semi-definite ``normal (..., 3, 3)``, with the
+    directions of its eigenvalues below :data:`UNDETERMINED_RTOL` of the largest taken from
+    ``anchor`` (or 0). Where ``4 det N / (tr N)³ > 1e-6`` every eigenvalue is above ``1e-6`` of
+    the largest (``λ_min ≥ 4 det / tr²`` as the other two multiply to at most ``(tr/2)²``, and
+    ``λ_max ≤ tr``), so the adjugate solves it directly; the other poses go through the
+    eigendecomposition. A pose's answer depends on its own data only."""
+    batch = normal.shape[:-2]
+    flat, b = normal.reshape(-1, 3, 3), rhs.reshape(-1, 3)
+    n00, n01, n02 = flat[:, 0, 0], flat[:, 0, 1], flat[:, 0, 2]
+    n11, n12, n22 = flat[:, 1, 1], flat[:, 1, 2], flat[:, 2, 2]
+    a00, a01, a02 = n11 * n22 - n12 * n12, n02 * n12 - n01 * n22, n01 * n12 - n02 * n11
+    a11, a12, a22 = n00 * n22 - n02 * n02, n01 * n02 - n00 * n12, n00 * n11 - n01 * n01
+    det = n00 * a00 + n01 * a01 + n02 * a02
+    trace = n00 + n11 + n22
+    direct = (trace > 0) & (4.0 * det > 1e-6 * trace**3)
+    safe = np.where(direct, det, 1.0)
+    point = np.stack(
+        [
+            (a00 * b[:, 0] + a01 * b[:, 1] + a02 * b[:, 2]) / safe,
+            (a01 * b[:, 0] + a11 * b[:, 1] + a12 * b[:, 2]) / safe,
+            (a02 * b[:, 0] + a12 * b[:, 1] + a22 * b[:, 2]) / safe,
+        ],
+        axis=-1,
+    )
+    rest = ~direct
+    if rest.any():
+        values, vectors = np.linalg.eigh(flat[rest])
+        determined = values > UNDETERMINED_RTOL * values[..., -1:]
+        inverse = np.where(determined, 1.0 / np.where(determined, values, 1.0), 0.0)
+        coordinates = np.einsum("...ji,...j->...i", vectors, b[rest]) * inverse  # in the eigenbasis
+        if anchor is not None:
+            anchors = np.broadcast_to(np.asarray(anchor, dtype=float), (*batch, 3)).reshape(-1, 3)[rest]
+            coordinates = np.where(determined, coordinates, np.einsum("...ji,...j->...i", vectors, anchors))
+        point[rest] = np.einsum("...ij,...j->...i", vectors, coordinates)
+    return point.reshape(*batch, 3)
 
 
 #: Directions in which the joint axes fix the reference point too weakly to be used (eigenvalues of

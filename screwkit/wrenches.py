@@ -40,6 +40,7 @@ from __future__ import annotations
 
 import functools
 import itertools
+import math
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any, NamedTuple
@@ -54,7 +55,7 @@ from ._backend import checked_rtol
 from .exceptions import DegenerateGeometryError, ScrewkitTypeError, TwistGraphError
 from .joints import Joint, JointTable
 from .screwsystem import ScrewSystem
-from .topology import Topology, network_layout, topology
+from .topology import Node, Topology, network_layout, topology
 from .twistgraph import SeriesParallelNode, mechanism_frame
 
 if TYPE_CHECKING:
@@ -439,13 +440,10 @@ class WrenchAnalysis:
         if "node0" in self.frames:  # kept by analyze_table(views=True)
             frames = [self.frames[f"node{i}"] for i in range(len(self.topology.nodes))]
         else:
-            scaled = _normalized(
-                F.to_scaled(self.table.screws[None], self.reference_point[None], _lengths(self))
-            )
-            core = _Evaluation(self.topology, scaled, self.rtol)
-            frames = [
-                (rows[0], order[0]) for rows, order in map(core.twists, range(len(self.topology.nodes)))
-            ]
+            scaled = F.unit_scaled(self.table.screws[None], self.reference_point[None], _lengths(self))
+            requests = tuple(("twists", i) for i in range(len(self.topology.nodes)))
+            core = _Evaluation(self.topology, scaled, self.rtol, requests)
+            frames = [(rows[0], order[0]) for rows, order in map(core.frame, requests)]
         nodes: list[SeriesParallelNode] = []
         for (rows, order), node in zip(frames, self.topology.nodes, strict=True):
             user = F.from_scaled(rows[: int(order)], self.reference_point, np.asarray(self.length_scale))
@@ -485,21 +483,55 @@ def _normalized(rows: Array) -> Array:
 # --------------------------------------------------------------------------------------------------
 
 
-class _Evaluation:
-    """Lazy, cached evaluation of a topology's frames over one batch of scaled, unit joint screws."""
+#: What a frame program computes: ``("twists", node)``, ``("wrenches", node)`` of a tree node,
+#: ``("sum", nodes)``, the sum of the twist systems of tree nodes (a limb with its actuator locked),
+#: or ``("passive", nodes)``, the reciprocal of that sum (the limb's passive wrenches).
+Request = tuple[str, Any]
 
-    def __init__(self, top: Topology, scaled: Array, rtol: float, keep: frozenset[int] | None = None):
-        self.top, self.scaled, self.rtol = top, scaled, rtol
-        self.keep = keep  # nodes whose frames outlive their parent's evaluation (None: all)
-        self.batch = scaled.shape[:-2]
-        self.columns = top.columns
-        self._twists: dict[int, Frame] = {}
-        self._wrenches: dict[int, Frame] = {}
+
+@dataclass(frozen=True, eq=False)
+class _Program:
+    """A topology's frames as a flat list of operations, built once per topology and requests
+    (:func:`_program`) and run over a batch by :func:`_run` (one compiled call on the numba path,
+    op by op with the batched kernels of :mod:`screwkit._frames` on the numpy path).
+
+    Each op writes a new slot (its index): ``(code, slot, first, count)`` with ``code`` a span of
+    ``sources[first : first + count]`` (rows ``(kind, a, b)``: joint screw rows ``a .. a + b`` or
+    the first ``b`` rows of slot ``a``) or the reciprocal of slot ``first``
+    (:func:`screwkit._frames_numba.run_program`), or the reciprocal of the span of two spherical
+    joints' rows in closed form (:func:`screwkit._frames.rod`: the line through their centres,
+    paper 002 §4.1's rod force; the issue's "closed-form reciprocal systems")."""
+
+    ops: Array
+    sources: Array
+    slots: dict[Request, int]
+    last_use: tuple[int, ...]
+
+
+#: The op codes and source kinds of a :class:`_Program` (those of the compiled interpreter).
+SPAN, RECIPROCAL, ROD, JOINT_ROWS, SLOT_ROWS = 0, 1, 2, 0, 1
+
+
+class _ProgramBuilder:
+    """Records the series-parallel recursion (paper 002 Eqs. 1–3: a chain's twist system is the
+    sum of its members'; parallel branches' constraint systems add up, and each system is the
+    reciprocal of the other) as ops, each frame computed once."""
+
+    def __init__(self, top: Topology):
+        self.top = top
+        self.ops: list[tuple[int, int, int, int]] = []
+        self.sources: list[tuple[int, int, int]] = []
+        self.slots: dict[Request, int] = {}
         self._bounds: dict[int, int] = {}
 
-    def joint_rows(self, index: int) -> Array:
-        start = self.columns[index]
-        return self.scaled[..., start : start + self.top.specs[index].dof, :]
+    def _op(self, code: int, first: int, count: int) -> int:
+        self.ops.append((code, len(self.ops), first, count))
+        return len(self.ops) - 1
+
+    def _span(self, parts: list[tuple[int, int, int]]) -> int:
+        first = len(self.sources)
+        self.sources.extend(parts)
+        return self._op(SPAN, first, len(parts))
 
     def bound(self, index: int) -> int:
         """A static upper bound on a node's twist order (zero rows beyond it are dropped)."""
@@ -515,53 +547,165 @@ class _Evaluation:
             self._bounds[index] = min(value, 6)
         return self._bounds[index]
 
-    def generators(self, index: int) -> Array:
+    def generators(self, index: int) -> list[tuple[int, int, int]]:
         """What a node adds to a sum of twist systems: a joint's screws, else its frame's rows."""
         node = self.top.nodes[index]
         if node.kind == "joint":
             assert node.joint is not None
-            return self.joint_rows(node.joint)
-        return self.twists(index)[0][..., : self.bound(index), :]
+            return [(JOINT_ROWS, self.top.columns[node.joint], self.top.specs[node.joint].dof)]
+        return [(SLOT_ROWS, self.twists(index), self.bound(index))]
+
+    def twists(self, index: int) -> int:
+        key = ("twists", index)
+        if key not in self.slots:
+            node = self.top.nodes[index]
+            if node.kind == "parallel":
+                self.slots[key] = self._op(RECIPROCAL, self.wrenches(index), 0)
+            elif node.kind == "joint":
+                self.slots[key] = self._span(self.generators(index))
+            else:
+                self.slots[key] = self._span([g for c in node.children for g in self.generators(c)])
+        return self.slots[key]
+
+    def wrenches(self, index: int) -> int:
+        key = ("wrenches", index)
+        if key not in self.slots:
+            node = self.top.nodes[index]
+            if node.kind == "parallel":
+                self.slots[key] = self._span([(SLOT_ROWS, self.wrenches(c), 6) for c in node.children])
+            elif self._is_rod(node):  # closed form: the line through the two centres
+                parts = [g for c in node.children for g in self.generators(c)]
+                first = len(self.sources)
+                self.sources.extend(parts)
+                self.slots[key] = self._op(ROD, first, len(parts))
+            else:
+                self.slots[key] = self._op(RECIPROCAL, self.twists(index), 0)
+        return self.slots[key]
+
+    def _is_rod(self, node: Node) -> bool:
+        """A chain of exactly two spherical joints (a rod with a ball at each end)."""
+        kinds = [self.top.nodes[c] for c in node.children]
+        return node.kind == "series" and len(kinds) == 2 and all(
+            child.kind == "joint"
+            and child.joint is not None
+            and self.top.specs[child.joint].type == "S"
+            and self.top.specs[child.joint].dof == 3
+            for child in kinds
+        )
+
+    def request(self, request: Request) -> int:
+        kind, what = request
+        if kind == "passive":  # the reciprocal of a sum: a limb's passive wrenches
+            if request not in self.slots:
+                self.slots[request] = self._op(RECIPROCAL, self.request(("sum", what)), 0)
+            return self.slots[request]
+        if kind == "sum":
+            if request not in self.slots:
+                self.slots[request] = self._span([g for n in what for g in self.generators(n)])
+            return self.slots[request]
+        return self.twists(what) if kind == "twists" else self.wrenches(what)
+
+
+@functools.lru_cache(maxsize=256)
+def _program(top: Topology, requests: tuple[Request, ...]) -> _Program:
+    """The ops computing ``requests`` (cached per topology object and requests)."""
+    builder = _ProgramBuilder(top)
+    for request in requests:
+        builder.request(request)
+    last_use = list(range(len(builder.ops)))
+    for index, (code, _, first, count) in enumerate(builder.ops):
+        sources = builder.sources[first : first + count]
+        read = [first] if code == RECIPROCAL else [a for kind, a, _ in sources if kind == SLOT_ROWS]
+        for slot in read:
+            last_use[slot] = index
+    return _Program(
+        np.array(builder.ops, dtype=np.int64).reshape(-1, 4),
+        np.array(builder.sources, dtype=np.int64).reshape(-1, 3),
+        {request: builder.slots[request] for request in requests},
+        tuple(last_use),
+    )
+
+
+def _run(program: _Program, scaled: Array, rtol: float, requests: tuple[Request, ...]) -> Frame:
+    """The requested frames of a program over the batch of ``scaled`` ``(..., rows, 6)``, on an
+    axis of their own: rows ``(..., len(requests), 6, 6)``, orders ``(..., len(requests))``."""
+    batch = scaled.shape[:-2]
+    wanted = [program.slots[r] for r in requests]
+    kernels = F.compiled_kernels("_frames_numba", math.prod(batch))
+    if kernels is not None:
+        if 0 in batch:
+            return F.empty((*batch, len(requests)))
+        flat = np.ascontiguousarray(scaled.reshape(-1, *scaled.shape[-2:]), dtype=float)
+        rows, orders = kernels.run_program(
+            flat, float(rtol), program.ops, program.sources, len(program.ops), np.array(wanted, np.int64)
+        )
+        return rows.reshape(*batch, len(wanted), 6, 6), orders.reshape(*batch, len(wanted))
+    frames: dict[int, Frame] = {}
+    keep = set(wanted)
+    for index, (code, slot, first, count) in enumerate(program.ops.tolist()):
+        if code == RECIPROCAL:
+            frames[slot] = F.reciprocal(*frames[first])
+        else:
+            parts = [
+                scaled[..., a : a + b, :] if kind == JOINT_ROWS else frames[a][0][..., :b, :]
+                for kind, a, b in program.sources[first : first + count].tolist()
+            ]
+            if code == ROD:
+                frames[slot] = F.rod(np.concatenate(parts, axis=-2), rtol)
+            else:
+                frames[slot] = F.span(np.concatenate(parts, axis=-2), rtol) if parts else F.empty(batch)
+        for done in [s for s in frames if program.last_use[s] <= index and s not in keep]:
+            del frames[done]  # bounded memory over large batches
+    return _stacked([frames[s] for s in wanted])
+
+
+class _Evaluation:
+    """Cached frames of a topology over one batch of scaled, unit joint screws: the ``requests``
+    given at creation run as one program (:func:`_program`); any other frame asked for later
+    runs a program of its own."""
+
+    def __init__(self, top: Topology, scaled: Array, rtol: float, requests: tuple[Request, ...] = ()):
+        self.top, self.scaled, self.rtol = top, scaled, rtol
+        self.batch = scaled.shape[:-2]
+        self.columns = top.columns
+        self._blocks: list[tuple[dict[Request, int], Frame]] = []
+        if requests:
+            self._compute(requests)
+
+    def _compute(self, requests: tuple[Request, ...]) -> None:
+        block = _run(_program(self.top, requests), self.scaled, self.rtol, requests)
+        self._blocks.append(({r: i for i, r in enumerate(requests)}, block))
+
+    def _find(self, request: Request) -> tuple[int, Frame]:
+        for positions, block in self._blocks:
+            if request in positions:
+                return positions[request], block
+        self._compute((request,))
+        return 0, self._blocks[-1][1]
+
+    def frame(self, request: Request) -> Frame:
+        index, (rows, orders) = self._find(request)
+        return rows[..., index, :, :], orders[..., index]
+
+    def stacked(self, requests: list[Request]) -> Frame:
+        """Frames on an axis of their own, ``(..., len(requests), 6, 6)``: a view when they were
+        computed together, in this order."""
+        found = [self._find(r) for r in requests]
+        first, block = found[0]
+        if all(b is block and i == first + k for k, (i, b) in enumerate(found)):
+            kept = slice(first, first + len(requests))
+            return block[0][..., kept, :, :], block[1][..., kept]
+        return _stacked([(rows[..., i, :, :], orders[..., i]) for i, (rows, orders) in found])
+
+    def joint_rows(self, index: int) -> Array:
+        start = self.columns[index]
+        return self.scaled[..., start : start + self.top.specs[index].dof, :]
 
     def twists(self, index: int) -> Frame:
-        if index not in self._twists:
-            node = self.top.nodes[index]
-            if node.kind == "parallel":
-                self._twists[index] = F.reciprocal(*self.wrenches(index))
-            else:
-                parts = (
-                    [self.generators(index)]
-                    if node.kind == "joint"
-                    else [self.generators(c) for c in node.children]
-                )
-                self._twists[index] = F.span(np.concatenate(parts, axis=-2), self.rtol)
-                self._release(node.children)
-        return self._twists[index]
-
-    def _release(self, children: tuple[int, ...]) -> None:
-        """Free children's frames once their parent has them (bounded memory over large batches)."""
-        if self.keep is None:
-            return
-        for child in children:
-            if child not in self.keep:
-                self._twists.pop(child, None)
-                self._wrenches.pop(child, None)
+        return self.frame(("twists", index))
 
     def wrenches(self, index: int) -> Frame:
-        if index not in self._wrenches:
-            node = self.top.nodes[index]
-            if node.kind == "parallel":
-                rows = [self.wrenches(c)[0] for c in node.children]
-                self._wrenches[index] = F.span(np.concatenate(rows, axis=-2), self.rtol)
-                self._release(node.children)
-            else:
-                self._wrenches[index] = F.reciprocal(*self.twists(index))
-        return self._wrenches[index]
-
-    def sum_of(self, nodes: tuple[int, ...]) -> Frame:
-        if not nodes:
-            return F.empty(self.batch)
-        return F.span(np.concatenate([self.generators(n) for n in nodes], axis=-2), self.rtol)
+        return self.frame(("wrenches", index))
 
     def network(self, joints: tuple[int, ...], locked: int | None = None) -> Frame:
         """The platform's twist system of a sub-network by loop closure: ``rank[M; P] − rank M``
@@ -684,7 +828,9 @@ def _canonical(table: JointTable) -> JointTable:
     starts = list(itertools.accumulate((spec.dof for spec in table.specs), initial=0))
     rows = [r for k in order for r in range(starts[k], starts[k + 1])]
     specs = tuple(table.specs[k] for k in order)
-    return JointTable(table.base, table.platform, specs, table.screws[..., rows, :], table.dof, table.anchor)
+    return JointTable(
+        table.base, table.platform, specs, table.screws[..., rows, :], table.dof, table.anchor, table.mobility
+    )
 
 
 def _checked_dof(dof: Any, table: JointTable, top: Topology) -> int:
@@ -740,9 +886,20 @@ def analyze_table(
     batch = table.batch_shape
     screws = table.screws
     centre, length = mechanism_frame(screws, table.anchor)
-    scaled = _normalized(F.to_scaled(screws, centre, length))
-    keep = None if views else frozenset([*top.legs, *(s for limb in top.limbs for s in limb.siblings)])
-    core = _Evaluation(top, scaled, rtol, keep)
+    scaled = F.unit_scaled(screws, centre, length)
+    requests: tuple[Request, ...] = ()
+    if not top.network:  # every frame the analysis needs, in one program
+        assert top.root is not None
+        requests = (
+            ("twists", top.root),
+            *((("twists", i) for i in top.legs) if views else ()),
+            *(("wrenches", i) for i in top.legs),
+            *(("sum", tuple(plan.siblings)) for plan in top.limbs),
+            *(("passive", tuple(plan.siblings)) for plan in top.limbs),
+            *((("twists", i) for i in range(len(top.nodes))) if views else ()),
+        )
+        requests = tuple(dict.fromkeys(requests))
+    core = _Evaluation(top, scaled, rtol, requests)
     frames: dict[str, Frame] = {}
     if top.network:
         platform = core.network(tuple(range(len(top.specs))))
@@ -751,48 +908,46 @@ def analyze_table(
     else:
         assert top.root is not None
         platform = core.twists(top.root)
-        leg_twists = [core.twists(i) for i in top.legs]
+        leg_twists = [core.twists(i) for i in top.legs] if views else []
         leg_wrenches = [core.wrenches(i) for i in top.legs]
     constraint = F.reciprocal(*platform)
-    lockeds, frees, perpendiculars, serials, twists = [], [], [], [], []
-    for plan in top.limbs:  # each limb's own structure; the rest below runs on all limbs at once
-        actuated = plan.sign * core.joint_rows(plan.index)[..., 0, :]
-        if top.network:
-            locked = core.network(plan.network_edges, locked=plan.index)
-            free = core.network(plan.network_edges)
-            perpendicular = F.residual(actuated[..., None, :], locked[0])[..., 0, :]
-            is_serial = free[1] == locked[1]
-        else:
-            locked = core.sum_of(plan.siblings)
-            perpendicular = F.residual(actuated[..., None, :], locked[0])[..., 0, :]
-            size = np.linalg.norm(perpendicular, axis=-1)
-            is_serial = size <= rtol
-            rows, order = locked[0].copy(), locked[1].copy()
-            unit = perpendicular / np.where(size > 0, size, 1.0)[..., None]
-            slot = np.minimum(order, 5)[..., None, None]
-            np.put_along_axis(
-                rows,
-                slot,
-                np.where(is_serial[..., None, None], np.take_along_axis(rows, slot, -2), unit[..., None, :]),
-                -2,
-            )
-            free = (rows, order + ~is_serial)
-        lockeds.append(locked)
-        frees.append(free)
-        perpendiculars.append(perpendicular)
-        serials.append(is_serial)
-        twists.append(actuated)
     n = len(top.limbs)
-    if n:  # the limbs on an axis of their own (..., n, ...)
+    if n and top.network:  # each limb's sub-network by loop closure
+        lockeds, frees, perpendiculars, serials, twists = [], [], [], [], []
+        for plan in top.limbs:
+            twist = plan.sign * core.joint_rows(plan.index)[..., 0, :]
+            lockeds.append(core.network(plan.network_edges, locked=plan.index))
+            frees.append(core.network(plan.network_edges))
+            perpendiculars.append(F.residual(twist[..., None, :], lockeds[-1][0])[..., 0, :])
+            serials.append(frees[-1][1] == lockeds[-1][1])
+            twists.append(twist)
         serial = np.stack(serials, axis=-1)
         actuated = np.stack(twists, axis=-2)
-        locked = _stacked(lockeds)
-        free = _stacked(frees)
-        limb_constraint = F.reciprocal(*free)
+        perpendicular = np.stack(perpendiculars, axis=-2)
+        locked, free = _stacked(lockeds), _stacked(frees)
         passive = F.reciprocal(*locked)
+    elif n:  # the limbs on an axis of their own (..., n, ...), their locked systems from the program
+        locked = core.stacked([("sum", tuple(plan.siblings)) for plan in top.limbs])
+        passive = core.stacked([("passive", tuple(plan.siblings)) for plan in top.limbs])
+        actuated = np.stack([p.sign * core.joint_rows(p.index)[..., 0, :] for p in top.limbs], axis=-2)
+        perpendicular = F.residual(actuated[..., None, :], locked[0])[..., 0, :]
+        size = np.linalg.norm(perpendicular, axis=-1)
+        serial = size <= rtol
+        rows, order = locked[0].copy(), locked[1].copy()
+        unit = perpendicular / np.where(size > 0, size, 1.0)[..., None]
+        slot = np.minimum(order, 5)[..., None, None]
+        np.put_along_axis(
+            rows,
+            slot,
+            np.where(serial[..., None, None], np.take_along_axis(rows, slot, -2), unit[..., None, :]),
+            -2,
+        )
+        free = (rows, order + ~serial)
+    if n:
+        limb_constraint = F.reciprocal(*free)
         # SWAP t⊥ lies in the passive system; projecting it there keeps a clean passive wrench even
         # when t⊥ is round-off (a serial singularity), so w ∘ t is then round-off too
-        swapped = F.swapped(np.stack(perpendiculars, axis=-2))
+        swapped = F.swapped(perpendicular)
         direction = _normalized(
             np.einsum("...k,...ks->...s", np.einsum("...ks,...s->...k", passive[0], swapped), passive[0])
         )
@@ -814,12 +969,13 @@ def analyze_table(
         wrench_rows = branch = np.zeros((*batch, 0, 6))
         locked_legs = None
     global_frame = F.span(np.concatenate([constraint[0], wrench_rows], axis=-2), rtol)
-    legs_stacked = np.concatenate([w[0] for w in leg_wrenches], axis=-2)
+    # the legs' stacked constraint wrenches as six rows with their singular values (F.triangular:
+    # two 6×6 SVDs instead of (6 legs + n) × 6 ones)
+    legs_stacked = F.triangular(np.concatenate([w[0] for w in leg_wrenches], axis=-2))
+    apart = _apart_from_legs(top, wrench_rows, leg_wrenches)
     closeness = {
         "constraint": F.singular_ratio(legs_stacked, 6 - nominal),
-        "actuation": F.singular_ratio(
-            np.concatenate([legs_stacked, _apart_from_legs(top, wrench_rows, leg_wrenches)], axis=-2), 6
-        ),
+        "actuation": F.singular_ratio(F.triangular(np.concatenate([legs_stacked, apart], axis=-2)), 6),
         "serial": np.min(transmissions, axis=-1) if n else np.ones(batch),
     }
     if locked_legs is not None:  # where a compound leg was analysed as a whole
@@ -879,13 +1035,12 @@ def _apart_from_legs(top: Topology, rows: Array, leg_wrenches: list[Frame]) -> A
     compound leg's constraint system (renormalised): the actuation closeness's rows. A limb's own
     wrench may lie close to that system where the leg as a whole transmits well (the H4 near
     ``n1·z = 0``, :func:`_compound_legs`), which would fake a near-singularity."""
-    out = rows
-    for k, plan in enumerate(top.limbs):
-        if plan.partners and not top.network:
-            if out is rows:
-                out = rows.copy()
-            frame = leg_wrenches[_leg_of(top, k)][0]
-            out[..., k, :] = _normalized(F.residual(rows[..., k, None, :], frame)[..., 0, :])
+    coupled = [k for k, plan in enumerate(top.limbs) if plan.partners and not top.network]
+    if not coupled:
+        return rows
+    frames = np.stack([leg_wrenches[_leg_of(top, k)][0] for k in coupled], axis=-3)  # (..., m, 6, 6)
+    out = rows.copy()
+    out[..., coupled, :] = _normalized(F.residual(rows[..., coupled, None, :], frames)[..., 0, :])
     return out
 
 
@@ -1134,6 +1289,7 @@ def wrench_analysis(
         table.screws[None],
         table.dof,
         None if table.anchor is None else table.anchor[None],
+        table.mobility,
     )
     stated = dof if dof is not None else table.dof
     analysis = analyze_table(one, dof=stated, rtol=rtol)[0]

@@ -235,3 +235,138 @@ def test_both_paths_classify_the_h4_alike():
             np.testing.assert_allclose(a, b, atol=1e-9, err_msg=key)
         else:
             np.testing.assert_array_equal(a, b, err_msg=key)
+
+
+# the closed-form rod, the program interpreter and the other compiled loops ---------------------
+def sphere_rows(centre, axes):
+    """Three unit rotation axes ``axes (3, 3)`` through ``centre``: rows ``(3, 6)``."""
+    axes = axes / np.linalg.norm(axes, axis=-1, keepdims=True)
+    return np.concatenate([axes, np.cross(centre, axes)], axis=-1)
+
+
+def rod_rows(rng, first, second):
+    rows = np.concatenate(
+        [sphere_rows(first, rng.standard_normal((3, 3))), sphere_rows(second, rng.standard_normal((3, 3)))]
+    )
+    return rows / np.linalg.norm(rows, axis=-1, keepdims=True)  # unit rows, as the core's
+
+
+def rod_numba(rows, rtol):
+    from screwkit import _frames_numba
+
+    out = np.full((6, 6), np.nan)
+    if _frames_numba.rod_into(np.ascontiguousarray(rows), rtol, out):
+        return out, 1
+    return None
+
+
+@pytest.mark.parametrize("seed", range(5))
+def test_rod_is_the_line_through_the_two_centres(seed):
+    # expected: the line (d; c1 × d) through the centres, normalised (written here, not the code's)
+    rng = np.random.default_rng(seed)
+    first, second = rng.uniform(-2, 2, 3), rng.uniform(-2, 2, 3)
+    rows = rod_rows(rng, first, second)
+    d = second - first
+    line = np.concatenate([d, np.cross(first, d)])
+    line /= np.linalg.norm(line)
+    generic = F._complement_numpy(*F._span_numpy(rows, RTOL))
+    implementations = [F.rod] + ([rod_numba] if HAS_NUMBA else [])
+    for implementation in implementations:
+        got, order = implementation(rows, RTOL)
+        assert int(order) == 1 and np.all(got[1:] == 0)
+        np.testing.assert_allclose(got[0] * np.sign(got[0] @ line), line, atol=1e-12)
+        # the same system as the generic rule's: SWAP of the complement of the twists' span
+        np.testing.assert_allclose(projector(got, order), projector(F.swapped(generic[0]), generic[1]), atol=ATOL)
+
+
+@pytest.mark.parametrize("case", ["same centre", "axes without a common point", "parallel axes"])
+def test_rod_falls_back_to_the_rule_where_the_closed_form_does_not_apply(case):
+    rng = np.random.default_rng(7)
+    centre = np.array([0.3, -0.2, 0.5])
+    rows = rod_rows(rng, centre, centre if case == "same centre" else centre + np.array([0.0, 0.0, 1.0]))
+    if case == "axes without a common point":
+        rows[1, 3:] += 0.1 * np.cross(rows[1, :3], [1.0, 0, 0])  # the second axis moved off the centre
+    if case == "parallel axes":
+        rows[:3] = rows[0]
+    expected = F._complement_numpy(*F._span_numpy(rows, RTOL))
+    got, order = F.rod(rows, RTOL)
+    assert int(expected[1]) != 1  # no single line: the closed form would be wrong here
+    np.testing.assert_array_equal(order, expected[1])
+    np.testing.assert_allclose(projector(got, order), projector(F.swapped(expected[0]), expected[1]), atol=ATOL)
+    if HAS_NUMBA:
+        assert rod_numba(rows, RTOL) is None  # the compiled program then spans, as above
+
+
+@needs_numba
+@pytest.mark.parametrize("seed", range(3))
+def test_rod_and_unit_screws_numba_and_numpy_are_bit_identical(seed):
+    from screwkit import _frames_numba
+
+    rng = np.random.default_rng(seed)
+    batch = [rod_rows(rng, rng.uniform(-2, 2, 3), rng.uniform(-2, 2, 3)) for _ in range(30)]
+    batch[3] = rod_rows(rng, np.ones(3), np.ones(3))  # a fallback pose in the batch
+    rows = np.array(batch)
+    expected = F.rod(rows, RTOL)
+    for i, pose in enumerate(rows):
+        out = np.zeros((6, 6))
+        if _frames_numba.rod_into(np.ascontiguousarray(pose), RTOL, out):
+            assert expected[1][i] == 1 and np.array_equal(out, expected[0][i])
+        else:
+            assert i == 3 and expected[1][i] == 3
+    screws = rng.standard_normal((7, 9, 6)) * rng.uniform(0.1, 100.0, (7, 1, 1))
+    screws[2, 4] = 0.0  # a zero row stays zero
+    centre, length = rng.standard_normal((7, 3)), rng.uniform(0.5, 5.0, 7)
+    compiled = _frames_numba.unit_scaled(screws, centre, length)
+    np.testing.assert_array_equal(compiled, F.unit_scaled(screws, centre, length))  # 7 < 256: numpy
+    assert np.all(compiled[2, 4] == 0.0)
+    np.testing.assert_allclose(np.linalg.norm(np.delete(compiled.reshape(-1, 6), 22, 0), axis=-1), 1.0)
+
+
+@needs_numba
+def test_compiled_program_matches_the_ops_run_one_by_one(monkeypatch):
+    # the numba interpreter against the numpy path's op-by-op run of the same H4 program: bit for
+    # bit (frames, orders)
+    import screwkit as sk
+    from screwkit import _frames_numba
+    from screwkit import wrenches as W
+    from screwkit.topology import topology
+    from screwkit.twistgraph import mechanism_frame
+
+    h4 = sk.load_mechanism("h4")
+    table = W._canonical(h4.joints(h4.random_poses(np.random.default_rng(5), 30)[:20]))
+    top = topology(table.base, table.platform, table.specs)
+    centre, length = mechanism_frame(table.screws, table.anchor)
+    scaled = F.unit_scaled(table.screws, centre, length)
+    requests = (
+        *(("twists", i) for i in range(len(top.nodes))),
+        *(("wrenches", i) for i in top.legs),
+        *(("passive", tuple(plan.siblings)) for plan in top.limbs),
+    )
+    program = W._program(top, requests)
+    assert W.ROD in program.ops[:, 0]  # the parallelograms' rods in closed form
+    monkeypatch.setitem(F._compiled, "_frames_numba", _frames_numba)
+    compiled = W._run(program, scaled, RTOL, requests)
+    monkeypatch.setitem(F._compiled, "_frames_numba", None)
+    stepwise = W._run(program, scaled, RTOL, requests)
+    assert compiled[0].shape == stepwise[0].shape == (20, len(requests), 6, 6)
+    np.testing.assert_array_equal(compiled[1], stepwise[1])
+    np.testing.assert_array_equal(compiled[0], stepwise[0])
+
+
+@needs_numba
+@pytest.mark.parametrize("k", [7, 12, 16])
+def test_triangular_keeps_the_singular_values_and_both_paths_are_bit_identical(rng, monkeypatch, k):
+    from screwkit import _frames_numba
+
+    rows = rng.standard_normal((40, k, 6))
+    rows[:, ::3] = 0.0  # zero rows, as in stacked frames
+    rows[:5] = 0.0  # an all-zero matrix
+    rows[5:10, :, 2] = 0.0  # a zero column
+    compiled = _frames_numba.triangular(np.ascontiguousarray(rows))
+    monkeypatch.setitem(F._compiled, "_frames_numba", None)
+    np.testing.assert_array_equal(F.triangular(rows), compiled)
+    assert np.all(np.tril(compiled, -1) == 0)  # upper triangular
+    np.testing.assert_allclose(
+        np.linalg.svd(compiled, compute_uv=False), np.linalg.svd(rows, compute_uv=False), atol=1e-13
+    )
+    np.testing.assert_array_equal(F.triangular(rows[:, :4]), np.concatenate([rows[:, :4], np.zeros((40, 2, 6))], 1))

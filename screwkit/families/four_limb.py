@@ -122,7 +122,7 @@ from ..exceptions import (
     UnreachablePoseError,
 )
 from ..jacobians import schoenflies_basis
-from ..joints import JointTable
+from ..joints import JointSpec, JointTable
 from ._two_limb import at_reach, within_reach
 
 __all__ = [
@@ -971,8 +971,8 @@ def joints(config: FourLimbConfiguration) -> JointTable:
     -------
     JointTable
         Links ``base``, ``arm<i>``, ``rod<i>a``, ``rod<i>b``, ``b_I``, ``b_II``, ``end_effector``;
-        joints ``A<i>`` (actuated R), ``S<i>m``, ``S<i>p``, ``S<i>n``, ``S<i>q`` (S), ``R_I``,
-        ``R_II``; ``dof = 4``; screws ``(..., rows, 6)``.
+        joints, in the order of their names, ``A<i>`` (actuated R), ``R_I``, ``R_II``, ``S<i>m``,
+        ``S<i>n``, ``S<i>p``, ``S<i>q`` (S); ``dof = 4``; screws ``(..., rows, 6)``.
 
     Raises
     ------
@@ -985,39 +985,56 @@ def joints(config: FourLimbConfiguration) -> JointTable:
     ...     rod_length=800, alpha=0, beta=np.pi / 2, platform_radius=80, platform_offset=70,
     ...     base_radius=275)
     >>> table = joints(inverse_kinematics(h4, np.zeros((5, 4)) + [0, 0, -700, 0]))
-    >>> len(table.specs), table.specs[1].name, table.joint_screws("S1m").shape
+    >>> len(table.specs), table.specs[6].name, table.joint_screws("S1m").shape
     (22, 'S1m', (5, 3, 6))
     >>> G = table.graph(1)
     >>> G.number_of_nodes(), G.number_of_edges(), G.graph["dof"], sorted(G.successors("b_I"))
     (16, 22, 4, ['end_effector'])
     """
     _require(config, FourLimbConfiguration, "config")
-    eye = np.eye(3)
-
-    def spheres(centres: np.ndarray) -> np.ndarray:
-        return S.revolute_twist(eye, centres[..., None, :])
-
     limb_platform = {}
     for (link, _), limbs in zip(SUBPLATFORMS, config.subplatform_limbs, strict=True):
         for limb in limbs:
             limb_platform[limb] = link
-    rows: list[tuple[str, str, str, str, np.ndarray, bool]] = []
-    for limb in range(4):
-        i = limb + 1
-        arm = f"arm{i}"
-        actuated = S.revolute_twist(config.u[..., limb, :], config.a[..., limb, :])[..., None, :]
-        rows.append(("base", arm, f"A{i}", "R", actuated, True))
-        for rod, corner, (first, second) in ((f"rod{i}a", 0, "mp"), (f"rod{i}b", 1, "nq")):
-            elbow, platform = (config.elbow_corners[..., limb, corner, :],
-                               config.platform_corners[..., limb, corner, :])
-            rows.append((arm, rod, f"S{i}{first}", "S", spheres(elbow), False))
-            rows.append((rod, limb_platform[limb], f"S{i}{second}", "S", spheres(platform), False))
+    # rows in the order of the joints' names (the analysis core's canonical order, so that it
+    # need not permute them): A1..A4, R_I, R_II, then S<i>m, S<i>n, S<i>p, S<i>q per limb, written
+    # into one array
+    batch = config.batch_shape
+    screws = np.empty((*batch, 4 + 2 + 4 * 4 * 3, 6))
+    screws[..., :4, :] = S.revolute_twist(config.u, config.a)
     axis = config.platform_joint_axis
+    specs = [JointSpec(f"A{i}", "R", "base", f"arm{i}", 1, True) for i in range(1, 5)]
     for k, (link, name) in enumerate(SUBPLATFORMS):
         point, pitch = config.platform_joint_points[..., k, :], config.platform_joint_pitches[k]
-        screw = S.helical_twist(axis, point, pitch) if pitch else S.revolute_twist(axis, point)
-        rows.append((link, "end_effector", name, "H" if pitch else "R", screw[..., None, :], False))
-    return JointTable.from_rows("base", "end_effector", rows, dof=4, mobility=4)
+        twist = S.helical_twist(axis, point, pitch) if pitch else S.revolute_twist(axis, point)
+        screws[..., 4 + k, :] = twist
+        specs.append(JointSpec(name, "H" if pitch else "R", link, "end_effector", 1, False))
+    corners = np.concatenate([config.elbow_corners, config.platform_corners], axis=-2)  # m, n, p, q
+    screws[..., 6:, :] = _sphere_twists(corners).reshape(*batch, 48, 6)
+    for limb in range(4):
+        i, platform = limb + 1, limb_platform[limb]
+        specs += [
+            JointSpec(f"S{i}m", "S", f"arm{i}", f"rod{i}a", 3, False),
+            JointSpec(f"S{i}n", "S", f"arm{i}", f"rod{i}b", 3, False),
+            JointSpec(f"S{i}p", "S", f"rod{i}a", platform, 3, False),
+            JointSpec(f"S{i}q", "S", f"rod{i}b", platform, 3, False),
+        ]
+    screws.flags.writeable = False  # fresh: the table takes it without a copy
+    return JointTable("base", "end_effector", tuple(specs), screws, dof=4, mobility=4)
+
+
+def _sphere_twists(centres: np.ndarray) -> np.ndarray:
+    """The unit rotations about ``x, y, z`` through each of ``centres (..., 3)``: ``(..., 3, 6)``,
+    the lines ``(e_k; c × e_k)`` of :func:`screwkit.screw.revolute_twist` written out (no
+    validation needed: the directions are the unit axes)."""
+    out = np.zeros((*centres.shape[:-1], 3, 6))
+    x, y, z = centres[..., 0], centres[..., 1], centres[..., 2]
+    for k in range(3):
+        out[..., k, k] = 1.0
+    out[..., 0, 4], out[..., 0, 5] = z, -y  # c × e_x = (0, z, −y)
+    out[..., 1, 3], out[..., 1, 5] = -z, x  # c × e_y = (−z, 0, x)
+    out[..., 2, 3], out[..., 2, 4] = y, -x  # c × e_z = (y, −x, 0)
+    return out
 
 
 def twist_basis(config: FourLimbConfiguration) -> np.ndarray:
