@@ -1352,9 +1352,15 @@ def superbracket_analysis(
         )
     generator = np.random.default_rng(rng)
     drawn = [_centred(sampler(generator)) for _ in range(2 * n_samples)]
+    # the zero tests of the expansion compare brackets of homogeneous points (x, 1) with products of
+    # their norms, which is not free of the length unit: they get the samples in units of the
+    # diagram's own size (one factor for all, diag(1/L, 1/L, 1/L, 1), which multiplies every bracket,
+    # hence every monomial of the homogeneous superbracket, by the same L⁻³ and keeps every zero)
+    length = _spread(drawn)
+    in_lengths = [{k: np.concatenate([p[:3] / length, p[3:]]) for k, p in sample.items()} for sample in drawn]
 
     def replay() -> Callable[[np.random.Generator], Mapping[str, Array]]:
-        iterator = iter(drawn)
+        iterator = iter(in_lengths)
         return lambda _: next(iterator)
 
     collinear = _collinear_triples(diagram, drawn)
@@ -1407,6 +1413,13 @@ def _centred(points: Mapping[str, Array]) -> dict[str, Array]:
         return dict(points)
     centre = np.mean(finite, axis=0)
     return {k: np.concatenate([p[:3] - p[3] * centre, p[3:]]) for k, p in points.items()}
+
+
+def _spread(samples: list[dict[str, Array]]) -> float:
+    """The RMS distance of the samples' finite points from their (centred) origin, 1 if none."""
+    finite = [p[:3] / p[3] for sample in samples for p in sample.values() if p[3] != 0]
+    size = float(np.sqrt(np.mean(np.sum(np.square(finite), axis=-1)))) if finite else 0.0
+    return size if np.isfinite(size) and size > 0 else 1.0
 
 
 def _collinear_triples(diagram: WrenchDiagram, samples: list[dict[str, Array]]) -> tuple[str, ...]:

@@ -173,10 +173,13 @@ class _Kinematics:
 
     def _scaled(self, row: Array) -> Array:
         s, s0 = row[:3], row[3:]
-        if np.linalg.norm(s) < 1e-12 * np.linalg.norm(row):
+        moment = (s0 - np.cross(self.point, s)) / self.length
+        # a couple when its direction is negligible against the moment about the reference point in
+        # characteristic lengths: the test is then free of the length unit and of where the origin
+        # is (against the raw row, a hinge 1e15 lengths from the origin read as a slider)
+        if np.linalg.norm(s) < 1e-12 * np.linalg.norm(moment):
             return np.concatenate([np.zeros(3), s0 / np.linalg.norm(s0)])
-        s0 = (s0 - np.cross(self.point, s)) / self.length
-        return np.concatenate([s, s0]) / np.linalg.norm(s)
+        return np.concatenate([s, moment]) / np.linalg.norm(s)
 
     def _unscaled(self, rows: Array) -> Array:
         s, s0 = rows[..., :3], rows[..., 3:]

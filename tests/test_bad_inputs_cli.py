@@ -185,10 +185,13 @@ def test_trial_cases_stay_answered(tmp_path, capsys, change, pattern):
     assert_one_line_error(status, err, 1, re.escape(str(path)) + r": .*" + pattern)
 
 
-@pytest.mark.parametrize("factor", [1e12, 1e-12])
+@pytest.mark.parametrize("factor", [1e12, 1e-12, 1e20])
 def test_a_snapshot_in_picometres_has_the_diagram_of_the_one_in_metres(tmp_path, capsys, factor):
     # the 3-RPR with every point times 1e12 (metres written as picometres): the wrench diagram's
-    # meet points failed ("a line lying in the plane", a test not invariant under a change of unit)
+    # meet points failed ("a line lying in the plane", a test not invariant under a change of unit);
+    # then its superbracket read "= 0" at 1e12 (the expansion's zero tests compared brackets of
+    # (x, 1) with norms in the file's unit) and from 1e15 the generic configurations had no diagram
+    # (motion took hinges far from the origin for sliders)
     def scaled(d):
         for entry in d["joints"]:
             if "point" in entry:
@@ -198,11 +201,19 @@ def test_a_snapshot_in_picometres_has_the_diagram_of_the_one_in_metres(tmp_path,
     for name, change in (("m", lambda d: None), ("pm", scaled)):
         path = tmp_path / f"{name}.toml"
         path.write_text(toml_text(changed(SNAPSHOT, change)), encoding="utf-8")
-        status, out, err = run(capsys, ["analyze", path, "--json", "--no-superbracket"])
+        status, out, err = run(capsys, ["analyze", path, "--json"])
         assert status == 0 and err == "" and not NOT_FINITE.search(out.replace('"inf"', ""))
         reports.append(json.loads(out))
     metres, picometres = reports
     assert picometres["verdict"]["verdict"] == metres["verdict"]["verdict"] == "regular"
+
+    def factored(report):
+        found = report["superbracket"]
+        steps = {k: found["simplification"][k] for k in ("expansion", "survivors", "reduced", "factored")}
+        return steps, [(c["factor"], c["label"], c["never_vanishes"]) for c in found["conditions"]]
+
+    assert factored(picometres) == factored(metres)
+    assert [c["factor"] for c in metres["superbracket"]["conditions"]] == ["[hijg]", "[a b ċ g][ḋ e f g]"]
     assert picometres["diagram"]["lines"] == metres["diagram"]["lines"]
     for small, large in zip(metres["diagram"]["points"], picometres["diagram"]["points"], strict=True):
         assert small["label"] == large["label"] and small["at_infinity"] == large["at_infinity"]
