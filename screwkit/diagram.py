@@ -46,7 +46,7 @@ from __future__ import annotations
 
 import itertools
 import string
-from collections.abc import Callable, Iterable, Iterator, Mapping
+from collections.abc import Callable, Collection, Iterable, Iterator, Mapping
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any
 
@@ -274,14 +274,21 @@ def _is_line(wrench: Array, length_scale: float) -> bool:
     )
 
 
-def _candidate_lines(analysis: WrenchAnalysis) -> dict[str, tuple[str, Array | None, tuple[str, ...]]]:
+def _candidate_lines(
+    analysis: WrenchAnalysis, wanted: Collection[str] | None = None
+) -> dict[str, tuple[str, Array | None, tuple[str, ...]]]:
     """Every line a diagram may use, by name, at this pose: ``{name: (role, wrench, joints)}``.
 
     The actuation wrenches, grouped by compound leg (legs in the order of their names, the limbs of
     a network after them), then each compound leg's constraint lines (its readable basis), then a
     readable basis of the mechanism's constraint system (for graphs without compound legs). A limb
-    at a serial singularity has the wrench None.
+    at a serial singularity has the wrench None. With ``wanted`` (names), the constraint lines are
+    computed only for the legs (or the mechanism) some wanted name may belong to.
     """
+
+    def needed(prefix: str) -> bool:
+        return wanted is None or any(name.startswith(prefix) for name in wanted)
+
     found: dict[str, tuple[str, Array | None, tuple[str, ...]]] = {}
     legs = _legs(analysis)
     limbs = {limb.actuated_joint: limb for limb in analysis.limbs}
@@ -291,12 +298,15 @@ def _candidate_lines(analysis: WrenchAnalysis) -> dict[str, tuple[str, Array | N
         joints = next((joints for _, joints, _ in legs if name in joints), limbs[name].joints)
         found[f"actuation {name}"] = ("actuation", limbs[name].actuation_wrench, joints)
     for leg_name, joints, wrenches in legs:
+        if not needed(f"constraint of the {leg_name}"):
+            continue
         basis = wrenches.readable_basis()
         for k, wrench in enumerate(basis):
             suffix = f" ({k + 1})" if len(basis) > 1 else ""
             found[f"constraint of the {leg_name}{suffix}"] = ("constraint", wrench, joints)
-    for k, wrench in enumerate(analysis.constraint_wrenches.readable_basis()):
-        found[f"constraint wrench {k + 1} of the mechanism"] = ("constraint", wrench, every_joint)
+    if needed("constraint wrench "):
+        for k, wrench in enumerate(analysis.constraint_wrenches.readable_basis()):
+            found[f"constraint wrench {k + 1} of the mechanism"] = ("constraint", wrench, every_joint)
     return found
 
 
@@ -703,10 +713,12 @@ def diagram_points(
     >>> moved["j"]
     array([0., 0., 1., 0.])
     """
+    names = {part for point in points for part in point.key}  # every line a recipe may name
     if lines is None:
-        lines = [(n, r, w, j) for n, (r, w, j) in _candidate_lines(analysis).items() if w is not None]
+        candidates = _candidate_lines(analysis, names)
+        lines = [(n, r, w, j) for n, (r, w, j) in candidates.items() if w is not None]
     by_name = {name: wrench for name, _, wrench, _ in lines}
-    normals = _branch_normals(analysis)
+    normals = _branch_normals(analysis) if "normals" in names else {}
     coordinates = {}
     for point in points:
         key, kind = point.key, point.key[0]
