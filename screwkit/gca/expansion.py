@@ -222,23 +222,22 @@ def _ordering_counts(positions: Sequence[str], zero: Mapping[tuple[str, ...], bo
     code = np.where(distinct & alive[ids], (1 - 2 * (inversions % 2)) * (ids + 1), 0)
 
     first, second, third = code.astype(np.int32)[_ordering_brackets()]  # each (46080, 24)
-    signs = np.array([int(m.coefficient) for m in _EXPANSION])
+    signs = np.array([int(m.coefficient) for m in _EXPANSION], dtype=np.int32)
     coefficients = signs * np.sign(first) * np.sign(second) * np.sign(third)
-    # A monomial is identified by the sorted triple of its label sets: (low, middle, high).
-    first, second, third = np.abs(first), np.abs(second), np.abs(third)
+    # Only monomials without a zero bracket can survive. One is identified within its ordering by
+    # the sorted triple of its label sets (low, middle, high); like terms share it.
+    row, column = np.nonzero(coefficients)
+    first, second, third = np.abs(first[row, column]), np.abs(second[row, column]), np.abs(third[row, column])
     low = np.minimum(np.minimum(first, second), third)
     high = np.maximum(np.maximum(first, second), third)
     n = len(quads) + 1
-    keys = (low * n + (first + second + third - low - high)) * n + high
-    order = np.argsort(keys, axis=1)
-    keys = np.take_along_axis(keys, order, axis=1)
-    coefficients = np.take_along_axis(coefficients, order, axis=1)
+    keys = ((row.astype(np.int64) * n + low) * n + (first + second + third - low - high)) * n + high
+    order = np.argsort(keys, kind="stable")
+    keys, values = keys[order], coefficients[row, column][order]
     starts = np.ones(keys.shape, dtype=bool)
-    starts[:, 1:] = keys[:, 1:] != keys[:, :-1]
-    group = np.cumsum(starts.ravel()) - 1
-    totals = np.bincount(group, weights=coefficients.ravel())
-    rows = np.repeat(np.arange(len(keys)), keys.shape[1])[starts.ravel()]
-    return np.bincount(rows, weights=totals != 0, minlength=len(keys)).astype(int)
+    starts[1:] = keys[1:] != keys[:-1]
+    totals = np.add.reduceat(values, np.flatnonzero(starts)) if len(keys) else values
+    return np.bincount(row[order][starts], weights=totals != 0, minlength=len(coefficients)).astype(int)
 
 
 @dataclass(frozen=True, slots=True)
