@@ -52,6 +52,8 @@ from types import ModuleType
 
 import numpy as np
 
+from . import _backend as B
+
 __all__ = [
     "SWAP",
     "complement",
@@ -148,7 +150,7 @@ def to_scaled(screws: Array, centre: Array, length: Array) -> Array:
     array([[0., 0., 1., 0., 0., 0.]])
     """
     directions = screws[..., :3]
-    moments = screws[..., 3:] - np.cross(centre[..., None, :], directions)
+    moments = screws[..., 3:] - B.cross(centre[..., None, :], directions)
     return np.concatenate([directions, moments / length[..., None, None]], axis=-1)
 
 
@@ -161,7 +163,7 @@ def from_scaled(rows: Array, centre: Array, length: Array) -> Array:
     array([[0., 0., 1., 2., 0., 0.]])
     """
     directions = rows[..., :3]
-    moments = rows[..., 3:] * length[..., None, None] + np.cross(centre[..., None, :], directions)
+    moments = rows[..., 3:] * length[..., None, None] + B.cross(centre[..., None, :], directions)
     return np.concatenate([directions, moments], axis=-1)
 
 

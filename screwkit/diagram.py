@@ -217,7 +217,7 @@ def _branch_normals(analysis: WrenchAnalysis) -> dict[tuple[str, str], tuple[Arr
                 ):
                     couples.append((name(child), wrenches.basis[0, 3:]))
             for (first, m1), (second, m2) in itertools.pairwise(couples):
-                cross = np.cross(_unit(m1), _unit(m2))
+                cross = B.cross(_unit(m1), _unit(m2))
                 found[(first, second)] = (
                     cross,
                     f"n({first}) × n({second}), the direction common to the planes "
@@ -255,10 +255,10 @@ def _meet_point(line: Array, screw: Array, length_scale: float) -> Array | None:
     axis = S.line(screw[:3], S.axis(screw)[0])
     if not P.lines_intersect(line, axis, rtol=INCIDENCE_RTOL, length_scale=length_scale):
         return None
-    if np.linalg.norm(np.cross(_unit(line[:3]), _unit(axis[:3]))) < INCIDENCE_RTOL:
+    if np.linalg.norm(B.cross(_unit(line[:3]), _unit(axis[:3]))) < INCIDENCE_RTOL:
         return None
-    normal = np.cross(line[:3], axis[:3])
-    plane = P.plane(np.cross(normal, axis[:3]), S.axis(axis)[0])  # contains the axis, ⟂ the common plane
+    normal = B.cross(line[:3], axis[:3])
+    plane = P.plane(B.cross(normal, axis[:3]), S.axis(axis)[0])  # contains the axis, ⟂ the common plane
     point = P.meet_line_plane(line, plane, allow_infinite=True)
     return None if abs(point[3]) < 1e-12 else point / point[3]
 
@@ -470,7 +470,7 @@ def _distinct_directions(axes: list[tuple[str, Array]]) -> list[tuple[str, Array
     kept: list[tuple[str, Array]] = []
     for key, screw in axes:
         if all(
-            np.linalg.norm(np.cross(_unit(screw[:3]), _unit(other[:3]))) >= INCIDENCE_RTOL
+            np.linalg.norm(B.cross(_unit(screw[:3]), _unit(other[:3]))) >= INCIDENCE_RTOL
             for _, other in kept
         ):
             kept.append((key, screw))
@@ -489,8 +489,8 @@ def _centres(analysis: WrenchAnalysis, joints: tuple[str, ...]) -> list[tuple[st
 def _joint_centre(screws: Array) -> Array:
     """The common point of a spherical or universal joint's axes (its first two)."""
     first, second = (S.line(row[:3], S.axis(row)[0]) for row in screws[:2])
-    normal = np.cross(first[:3], second[:3])
-    plane = P.plane(np.cross(normal, second[:3]), S.axis(second)[0])
+    normal = B.cross(first[:3], second[:3])
+    plane = P.plane(B.cross(normal, second[:3]), S.axis(second)[0])
     point = P.meet_line_plane(first, plane)
     return point[:3] / point[3]
 
@@ -531,7 +531,7 @@ def _couple_line_recipe(
     for k, ((other, _, w, _), inf) in enumerate(zip(lines, infinite, strict=True)):
         if inf and k != position:
             pair = (name, other) if position < k else (other, name)
-            options.append((("couples", *pair), np.cross(wrench[3:], w[3:])))
+            options.append((("couples", *pair), B.cross(wrench[3:], w[3:])))
     used = {key for pair in earlier for key in pair}
 
     def through(direction: Array) -> tuple[int, int]:
@@ -543,7 +543,7 @@ def _couple_line_recipe(
             if inf
         )
         finite = sum(
-            np.linalg.norm(np.cross(d, _unit(w[:3]))) < INCIDENCE_RTOL
+            np.linalg.norm(B.cross(d, _unit(w[:3]))) < INCIDENCE_RTOL
             for (_, _, w, _), inf in zip(lines, infinite, strict=True)
             if not inf
         )
@@ -561,7 +561,7 @@ def _couple_line_recipe(
     chosen: list[tuple[tuple[str, ...], Array | None]] = [(key, None) for key in own]
     directions = [normals[(key[1], key[2])][0] for key in own]
     for _, (key, d) in ranked:
-        if all(np.linalg.norm(np.cross(_unit(d), _unit(e))) >= INCIDENCE_RTOL for e in directions):
+        if all(np.linalg.norm(B.cross(_unit(d), _unit(e))) >= INCIDENCE_RTOL for e in directions):
             chosen.append((key, d))
             directions.append(d)
     keys = [key for key, _ in chosen][:2]
@@ -608,7 +608,7 @@ def _finite_line_recipe(
     ]
     direction: tuple[str, ...] = ("direction", name)
     for key, screw in _single_freedom_axes(analysis, tuple(k for _, _, k in analysis.graph.edges(keys=True))):
-        if np.linalg.norm(np.cross(_unit(screw[:3]), _unit(wrench[:3]))) < INCIDENCE_RTOL:
+        if np.linalg.norm(B.cross(_unit(screw[:3]), _unit(wrench[:3]))) < INCIDENCE_RTOL:
             direction = ("axis", key)  # the line is parallel to a joint axis: share that point
             break
     finite = on_line + meets + [("foot", name)]
@@ -749,7 +749,7 @@ def diagram_points(
             value = np.append(_joint_centre(joint.screws), 1.0)
         elif kind == "couples" and key[1] in by_name and key[2] in by_name:
             first, second = by_name[key[1]][3:], by_name[key[2]][3:]
-            cross = np.cross(_unit(first), _unit(second))
+            cross = B.cross(_unit(first), _unit(second))
             # two couple lines that coincide here meet everywhere along it: any point of it will do
             meet = cross if np.linalg.norm(cross) >= INCIDENCE_RTOL else _free(first)[0]
             value = np.append(_canonical_direction(meet), 0.0)
@@ -757,7 +757,7 @@ def diagram_points(
             value = np.append(_free(by_name[key[1]][3:])[int(key[2]) - 1], 0.0)
         elif kind == "perp" and key[1] in by_name:
             other = diagram_points((DiagramPoint("_", key[2:], True, ""),), analysis, lines=lines)["_"]
-            cross = np.cross(by_name[key[1]][3:], other[:3])
+            cross = B.cross(by_name[key[1]][3:], other[:3])
             value = (
                 None
                 if np.linalg.norm(cross) < INCIDENCE_RTOL * np.linalg.norm(by_name[key[1]][3:])
@@ -777,8 +777,8 @@ def _free(moment: Array) -> tuple[Array, Array]:
     """Two unit directions normal to ``moment`` and to each other (the coordinate axis least
     aligned with it first): points of the couple line ``(0; moment)`` with no structural meaning."""
     m = _unit(moment)
-    first = _unit(np.cross(m, np.eye(3)[int(np.argmin(np.abs(m)))]))
-    return first, np.cross(m, first)
+    first = _unit(B.cross(m, np.eye(3)[int(np.argmin(np.abs(m)))]))
+    return first, B.cross(m, first)
 
 
 #: Generic configurations whose diagrams are tried before a mechanism is said to have none.
@@ -1131,4 +1131,4 @@ def _collinear_triples(diagram: WrenchDiagram, samples: list[dict[str, Array]]) 
 
 def _parallel(u: Array, v: Array) -> bool:
     size = np.linalg.norm(u) * np.linalg.norm(v)
-    return bool(size > 0 and np.linalg.norm(np.cross(u, v)) <= INCIDENCE_RTOL * size)
+    return bool(size > 0 and np.linalg.norm(B.cross(u, v)) <= INCIDENCE_RTOL * size)
