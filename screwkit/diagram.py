@@ -46,7 +46,7 @@ from __future__ import annotations
 
 import itertools
 import string
-from collections.abc import Callable, Collection, Iterable, Iterator, Mapping
+from collections.abc import Callable, Collection, Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any
 
@@ -785,7 +785,7 @@ def _free(moment: Array) -> tuple[Array, Array]:
 REFERENCE_TRIES = 3
 
 
-def generic_reference(analyses: list[WrenchAnalysis]) -> tuple[WrenchDiagram | None, tuple[str, ...]]:
+def generic_reference(analyses: Sequence[WrenchAnalysis]) -> tuple[WrenchDiagram | None, tuple[str, ...]]:
     """The diagram of a mechanism at a generic configuration, or why the mechanism has none.
 
     The lines (a line basis of the wrench system, with the legs they come from) and the points

@@ -186,8 +186,8 @@ def test_numba_is_the_default_and_imported_lazily():
 
 
 @needs_numba
-@pytest.mark.parametrize("batch", BATCHES + [(40,)])
-@pytest.mark.parametrize(("k", "rank", "near", "zero_rows"), CASES + [(7, 5, 1e-10, 0), (12, 6, 0.0, 0)])
+@pytest.mark.parametrize("batch", [*BATCHES, (40,)])
+@pytest.mark.parametrize(("k", "rank", "near", "zero_rows"), [*CASES, (7, 5, 1e-10, 0), (12, 6, 0.0, 0)])
 def test_numpy_and_numba_paths_are_bit_identical(rng, batch, k, rank, near, zero_rows):
     # the rule may pick either path by batch size, so they must agree to the last bit (and sign of zero)
     def same(a, b):
