@@ -46,19 +46,23 @@ from __future__ import annotations
 
 import itertools
 import string
-from collections.abc import Callable, Collection, Iterable, Iterator, Mapping, Sequence
+from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from . import _backend as B
+from . import _frames as F
 from . import projective as P
 from . import screw as S
 from .exceptions import DegenerateGeometryError, ScrewkitError, ScrewkitValueError
 from .gca import Simplification, simplify_superbracket
+from .joints import JointTable
+from .screwsystem import ScrewSystem
+from .topology import Topology
 from .twistgraph import SeriesParallelNode
-from .wrenches import WrenchAnalysis, wrench_analysis
+from .wrenches import WrenchAnalysis, analyze_table, wrench_analysis
 
 if TYPE_CHECKING:  # conditions are sympy expressions: that module (and sympy) loads on first use
     from .conditions import Condition
@@ -68,6 +72,7 @@ __all__ = [
     "ReplaySampler",
     "SuperbracketAnalysis",
     "WrenchDiagram",
+    "batch_diagram_points",
     "diagram_at",
     "diagram_points",
     "generic_reference",
@@ -181,13 +186,6 @@ def _unit(v: Array) -> Array:
     return v / np.linalg.norm(v)
 
 
-def _canonical_direction(v: Array) -> Array:
-    """A unit direction with a fixed sign (first clearly non-zero component positive)."""
-    u = _unit(v)
-    k = int(np.argmax(np.abs(u) > 1e-9))
-    return -u if u[k] < 0 else u
-
-
 def _legs(analysis: WrenchAnalysis) -> list[tuple[str, tuple[str, ...], Any]]:
     """(name, joints, constraint system) of each compound leg, in the order of their names."""
     legs = [(leg.name, leg.joints, leg.constraint_wrenches) for leg in analysis.compound_legs]
@@ -217,7 +215,7 @@ def _branch_normals(analysis: WrenchAnalysis) -> dict[tuple[str, str], tuple[Arr
                 ):
                     couples.append((name(child), wrenches.basis[0, 3:]))
             for (first, m1), (second, m2) in itertools.pairwise(couples):
-                cross = B.cross(_unit(m1), _unit(m2))
+                cross = np.cross(_unit(m1), _unit(m2))
                 found[(first, second)] = (
                     cross,
                     f"n({first}) × n({second}), the direction common to the planes "
@@ -250,19 +248,6 @@ def _single_freedom_axes(analysis: WrenchAnalysis, joints: tuple[str, ...]) -> l
     return [(key, screw) for _, key, screw in sorted(axes, key=lambda item: (item[0], item[1]))]
 
 
-def _meet_point(line: Array, screw: Array, length_scale: float) -> Array | None:
-    """Where a finite line meets a joint axis, or None when they are skew or parallel."""
-    axis = S.line(screw[:3], S.axis(screw)[0])
-    if not P.lines_intersect(line, axis, rtol=INCIDENCE_RTOL, length_scale=length_scale):
-        return None
-    if np.linalg.norm(B.cross(_unit(line[:3]), _unit(axis[:3]))) < INCIDENCE_RTOL:
-        return None
-    normal = B.cross(line[:3], axis[:3])
-    plane = P.plane(B.cross(normal, axis[:3]), S.axis(axis)[0])  # contains the axis, ⟂ the common plane
-    point = P.meet_line_plane(line, plane, allow_infinite=True)
-    return None if abs(point[3]) < 1e-12 else point / point[3]
-
-
 Line = tuple[str, str, Array, tuple[str, ...]]  # (name, role, wrench, joints of its leg or limb)
 
 
@@ -274,21 +259,14 @@ def _is_line(wrench: Array, length_scale: float) -> bool:
     )
 
 
-def _candidate_lines(
-    analysis: WrenchAnalysis, wanted: Collection[str] | None = None
-) -> dict[str, tuple[str, Array | None, tuple[str, ...]]]:
+def _candidate_lines(analysis: WrenchAnalysis) -> dict[str, tuple[str, Array | None, tuple[str, ...]]]:
     """Every line a diagram may use, by name, at this pose: ``{name: (role, wrench, joints)}``.
 
     The actuation wrenches, grouped by compound leg (legs in the order of their names, the limbs of
     a network after them), then each compound leg's constraint lines (its readable basis), then a
     readable basis of the mechanism's constraint system (for graphs without compound legs). A limb
-    at a serial singularity has the wrench None. With ``wanted`` (names), the constraint lines are
-    computed only for the legs (or the mechanism) some wanted name may belong to.
+    at a serial singularity has the wrench None.
     """
-
-    def needed(prefix: str) -> bool:
-        return wanted is None or any(name.startswith(prefix) for name in wanted)
-
     found: dict[str, tuple[str, Array | None, tuple[str, ...]]] = {}
     legs = _legs(analysis)
     limbs = {limb.actuated_joint: limb for limb in analysis.limbs}
@@ -298,15 +276,12 @@ def _candidate_lines(
         joints = next((joints for _, joints, _ in legs if name in joints), limbs[name].joints)
         found[f"actuation {name}"] = ("actuation", limbs[name].actuation_wrench, joints)
     for leg_name, joints, wrenches in legs:
-        if not needed(f"constraint of the {leg_name}"):
-            continue
         basis = wrenches.readable_basis()
         for k, wrench in enumerate(basis):
             suffix = f" ({k + 1})" if len(basis) > 1 else ""
             found[f"constraint of the {leg_name}{suffix}"] = ("constraint", wrench, joints)
-    if needed("constraint wrench "):
-        for k, wrench in enumerate(analysis.constraint_wrenches.readable_basis()):
-            found[f"constraint wrench {k + 1} of the mechanism"] = ("constraint", wrench, every_joint)
+    for k, wrench in enumerate(analysis.constraint_wrenches.readable_basis()):
+        found[f"constraint wrench {k + 1} of the mechanism"] = ("constraint", wrench, every_joint)
     return found
 
 
@@ -470,7 +445,7 @@ def _distinct_directions(axes: list[tuple[str, Array]]) -> list[tuple[str, Array
     kept: list[tuple[str, Array]] = []
     for key, screw in axes:
         if all(
-            np.linalg.norm(B.cross(_unit(screw[:3]), _unit(other[:3]))) >= INCIDENCE_RTOL
+            np.linalg.norm(np.cross(_unit(screw[:3]), _unit(other[:3]))) >= INCIDENCE_RTOL
             for _, other in kept
         ):
             kept.append((key, screw))
@@ -484,15 +459,6 @@ def _centres(analysis: WrenchAnalysis, joints: tuple[str, ...]) -> list[tuple[st
         if key in joints and joint.type in ("S", "U"):
             found.append((key, _joint_centre(joint.screws)))
     return sorted(found, key=lambda item: item[0])
-
-
-def _joint_centre(screws: Array) -> Array:
-    """The common point of a spherical or universal joint's axes (its first two)."""
-    first, second = (S.line(row[:3], S.axis(row)[0]) for row in screws[:2])
-    normal = B.cross(first[:3], second[:3])
-    plane = P.plane(B.cross(normal, second[:3]), S.axis(second)[0])
-    point = P.meet_line_plane(first, plane)
-    return point[:3] / point[3]
 
 
 def _couple_line_recipe(
@@ -531,7 +497,7 @@ def _couple_line_recipe(
     for k, ((other, _, w, _), inf) in enumerate(zip(lines, infinite, strict=True)):
         if inf and k != position:
             pair = (name, other) if position < k else (other, name)
-            options.append((("couples", *pair), B.cross(wrench[3:], w[3:])))
+            options.append((("couples", *pair), np.cross(wrench[3:], w[3:])))
     used = {key for pair in earlier for key in pair}
 
     def through(direction: Array) -> tuple[int, int]:
@@ -543,7 +509,7 @@ def _couple_line_recipe(
             if inf
         )
         finite = sum(
-            np.linalg.norm(B.cross(d, _unit(w[:3]))) < INCIDENCE_RTOL
+            np.linalg.norm(np.cross(d, _unit(w[:3]))) < INCIDENCE_RTOL
             for (_, _, w, _), inf in zip(lines, infinite, strict=True)
             if not inf
         )
@@ -561,7 +527,7 @@ def _couple_line_recipe(
     chosen: list[tuple[tuple[str, ...], Array | None]] = [(key, None) for key in own]
     directions = [normals[(key[1], key[2])][0] for key in own]
     for _, (key, d) in ranked:
-        if all(np.linalg.norm(B.cross(_unit(d), _unit(e))) >= INCIDENCE_RTOL for e in directions):
+        if all(np.linalg.norm(np.cross(_unit(d), _unit(e))) >= INCIDENCE_RTOL for e in directions):
             chosen.append((key, d))
             directions.append(d)
     keys = [key for key, _ in chosen][:2]
@@ -604,11 +570,11 @@ def _finite_line_recipe(
     meets = [
         ("meet", name, key)
         for key, screw in _single_freedom_axes(analysis, joints)
-        if _meet_point(wrench, screw, analysis.length_scale) is not None
+        if np.isfinite(_meet_points(wrench, screw, np.asarray(analysis.length_scale, dtype=float))).all()
     ]
     direction: tuple[str, ...] = ("direction", name)
     for key, screw in _single_freedom_axes(analysis, tuple(k for _, _, k in analysis.graph.edges(keys=True))):
-        if np.linalg.norm(B.cross(_unit(screw[:3]), _unit(wrench[:3]))) < INCIDENCE_RTOL:
+        if np.linalg.norm(np.cross(_unit(screw[:3]), _unit(wrench[:3]))) < INCIDENCE_RTOL:
             direction = ("axis", key)  # the line is parallel to a joint axis: share that point
             break
     finite = on_line + meets + [("foot", name)]
@@ -654,13 +620,6 @@ def diagram_at(reference: WrenchDiagram, analysis: WrenchAnalysis) -> WrenchDiag
     )
 
 
-def _key_direction(key: tuple[str, ...], analysis: WrenchAnalysis) -> Array:
-    joints = {k for _, _, k in analysis.graph.edges(keys=True)}
-    name, index = (key[1], "") if key[1] in joints else _axis_of(key[1])  # joint names may hold "/"
-    screw = analysis.graph.edges[_edge(analysis, name)]["joint"].screws[int(index) - 1 if index else 0]
-    return screw[:3]
-
-
 def _axis_of(text: str) -> tuple[str, str]:
     """``"U/1/2"`` -> ``("U/1", "2")`` (axis 2 of the U joint named ``"U/1"``); ``"R1"`` -> ``("R1", "")``."""
     name, _, index = text.rpartition("/")
@@ -698,6 +657,8 @@ def diagram_points(
 ) -> dict[str, Array]:
     """Evaluate the points' recipes on an analysis of the same mechanism (at any pose).
 
+    One pose: a batch of one through :func:`batch_diagram_points` (the same arithmetic).
+
     Raises
     ------
     DegenerateGeometryError
@@ -713,79 +674,377 @@ def diagram_points(
     >>> moved["j"]
     array([0., 0., 1., 0.])
     """
-    names = {part for point in points for part in point.key}  # every line a recipe may name
-    if lines is None:
-        candidates = _candidate_lines(analysis, names)
-        lines = [(n, r, w, j) for n, (r, w, j) in candidates.items() if w is not None]
-    by_name = {name: wrench for name, _, wrench, _ in lines}
-    normals = _branch_normals(analysis) if "normals" in names else {}
-    coordinates = {}
+    found = batch_diagram_points(points, analysis, lines=lines)
     for point in points:
-        key, kind = point.key, point.key[0]
-        value: Array | None
-        if kind == "meet" and key[1] in by_name:
-            value = _meet_point(
-                by_name[key[1]],
-                analysis.graph.edges[_edge(analysis, key[2])]["joint"].screws[0],
-                analysis.length_scale,
-            )
-        elif kind == "direction" and key[1] in by_name:
-            value = np.append(_canonical_direction(by_name[key[1]][:3]), 0.0)
-        elif kind == "axis":
-            value = np.append(_canonical_direction(_key_direction(key, analysis)), 0.0)
-        elif kind == "normals" and (key[1], key[2]) in normals:
-            direction = normals[(key[1], key[2])][0]
-            value = (
-                None
-                if np.linalg.norm(direction) < INCIDENCE_RTOL
-                else np.append(_canonical_direction(direction), 0.0)
-            )
-        elif kind == "foot" and key[1] in by_name:  # nearest the reference point: frame-covariant
-            nearest, direction = S.axis(by_name[key[1]])
-            offset = np.asarray(analysis.reference_point, dtype=float) - nearest
-            value = np.append(nearest + direction * (offset @ direction) / (direction @ direction), 1.0)
-        elif kind == "centre":
-            joint = analysis.graph.edges[_edge(analysis, key[1])]["joint"]
-            value = np.append(_joint_centre(joint.screws), 1.0)
-        elif kind == "couples" and key[1] in by_name and key[2] in by_name:
-            first, second = by_name[key[1]][3:], by_name[key[2]][3:]
-            cross = B.cross(_unit(first), _unit(second))
-            # two couple lines that coincide here meet everywhere along it: any point of it will do
-            meet = cross if np.linalg.norm(cross) >= INCIDENCE_RTOL else _free(first)[0]
-            value = np.append(_canonical_direction(meet), 0.0)
-        elif kind == "free" and key[1] in by_name:
-            value = np.append(_free(by_name[key[1]][3:])[int(key[2]) - 1], 0.0)
-        elif kind == "perp" and key[1] in by_name:
-            other = diagram_points((DiagramPoint("_", key[2:], True, ""),), analysis, lines=lines)["_"]
-            cross = B.cross(by_name[key[1]][3:], other[:3])
-            value = (
-                None
-                if np.linalg.norm(cross) < INCIDENCE_RTOL * np.linalg.norm(by_name[key[1]][3:])
-                else np.append(_canonical_direction(cross), 0.0)
-            )
-        else:
-            value = None
-        if value is None:
+        if not np.isfinite(found[point.label]).all():
             raise DegenerateGeometryError(
                 f"point {point.label} ({point.description}) does not exist at this pose"
             )
-        coordinates[point.label] = value
-    return coordinates
+    return {label: value[0] for label, value in found.items()}
+
+
+def batch_diagram_points(
+    points: tuple[DiagramPoint, ...],
+    analysis: WrenchAnalysis,
+    *,
+    lines: list[tuple[str, str, Array, tuple[str, ...]]] | None = None,
+) -> dict[str, Array]:
+    """The points' recipes at every pose of a batched analysis, as arrays over the batch.
+
+    Each recipe is evaluated over the leading axis at once from the batched core's arrays: the
+    actuation wrenches, the joint screws, the series-parallel nodes' twist frames (the branches'
+    constraint couples), the reference point. A constraint line of a leg is an element of its
+    readable basis (:meth:`screwkit.screwsystem.ScrewSystem.readable_basis`), taken pose by pose,
+    and only for the points that use one.
+
+    Parameters
+    ----------
+    points : tuple of DiagramPoint
+        A diagram's points (their recipes).
+    analysis : WrenchAnalysis
+        Of shape ``(n,)`` (or one pose, taken as a batch of one), e.g.
+        :func:`screwkit.wrenches.analyze_table` of a family's joint table.
+    lines : list of (name, role, wrench, joints), optional
+        At one pose: the only lines the recipes may use (default: every line of the mechanism).
+
+    Returns
+    -------
+    dict of str to numpy.ndarray, shape (n, 4)
+        ``{label: points}``, finite points of weight 1, directions unit; a row of NaN where the
+        recipe has no point at that pose.
+
+    Examples
+    --------
+    >>> from screwkit.catalog import load_mechanism
+    >>> from screwkit.wrenches import analyze_table
+    >>> h4 = load_mechanism("h4")
+    >>> diagram, _ = h4.wrench_diagram()
+    >>> table = h4.joints([[0, 0, -750, 0], [50, 0, -700, 0.3]])
+    >>> found = batch_diagram_points(diagram.points, analyze_table(table))
+    >>> found["j"]
+    array([[0., 0., 1., 0.],
+           [0., 0., 1., 0.]])
+    """
+    batch = _Batch.create(analysis, lines)
+    cache: dict[tuple[str, ...], Array] = {}
+    return {point.label: _recipe(point.key, batch, cache) for point in points}
+
+
+class _Batch:
+    """What the recipes read over a batch of ``n`` poses (one pose: a batch of one)."""
+
+    def __init__(
+        self,
+        analysis: WrenchAnalysis,
+        frames: Mapping[str, tuple[Array, Array]],
+        given: dict[str, Array] | None,
+    ) -> None:
+        one = analysis.single
+        self.topology = analysis.topology
+        self.rtol = float(analysis.rtol)
+        self.table = analysis.table[None] if one else analysis.table
+        self.frames = frames
+        self.reference_point = np.asarray(analysis.reference_point, dtype=float).reshape(-1, 3)
+        self.length_scale = np.asarray(analysis.length_scale, dtype=float).reshape(-1)
+        self.count = len(self.length_scale)
+        self.given = given
+        self.bases: dict[str, list[Array]] = {}
+        rows = np.asarray(analysis.actuation_rows, dtype=float).reshape(self.count, -1, 6)
+        serial = np.asarray(analysis.serial, dtype=bool).reshape(self.count, -1)
+        self.actuation = {
+            f"actuation {plan.actuated_joint}": np.where(serial[:, k, None], np.nan, rows[:, k])
+            for k, plan in enumerate(self.topology.limbs)
+        }
+
+    @classmethod
+    def create(cls, analysis: WrenchAnalysis, lines: list[Line] | None) -> _Batch:
+        frames: Mapping[str, tuple[Array, Array]] = analysis.frames
+        if "constraint" not in frames:  # analysed without its views: the same kernels again, with them
+            table = analysis.table[None] if analysis.single else analysis.table
+            frames = _frames_with_views(table, analysis)
+        elif analysis.single:
+            frames = {k: (rows[None], np.asarray(order)[None]) for k, (rows, order) in frames.items()}
+        given = None if lines is None else {name: np.asarray(w, dtype=float)[None] for name, _, w, _ in lines}
+        return cls(analysis, frames, given)
+
+    def nan(self, width: int) -> Array:
+        return np.full((self.count, width), np.nan)
+
+    def wrench(self, name: str) -> Array:
+        """A line of the mechanism by name, ``(n, 6)``; NaN where it is not one line."""
+        if self.given is not None:
+            return self.given.get(name, self.nan(6))
+        if name in self.actuation:
+            return self.actuation[name]
+        return self._constraint_line(name)
+
+    def _constraint_line(self, name: str) -> Array:
+        """A constraint line (:func:`_candidate_lines`' names): the element of its leg's (or the
+        mechanism's) readable basis at each pose, as the per-pose views give it."""
+        sources = [
+            (f"constraint of the {_leg_name(self.topology, k)}", f"leg{k}:W")
+            for k in range(len(self.topology.legs))
+            if not self.topology.network
+        ] + [("constraint wrench", "constraint")]
+        for prefix, key in sources:
+            if not name.startswith(prefix):
+                continue
+            out = self.nan(6)
+            for i, basis in enumerate(self._readable_bases(key)):
+                names = _basis_names(prefix, len(basis))
+                if name in names:
+                    out[i] = basis[names.index(name)]
+            return out
+        return self.nan(6)
+
+    def _readable_bases(self, key: str) -> list[Array]:
+        """The readable basis of a system (a frame) at each pose, as the per-pose views give it."""
+        if key not in self.bases:
+            rows, orders = self.frames[key]
+            self.bases[key] = [
+                ScrewSystem.from_independent(
+                    F.from_scaled(rows[i, : int(orders[i])], self.reference_point[i], self.length_scale[i]),
+                    rtol=self.rtol,
+                    length_scale=float(self.length_scale[i]),
+                ).readable_basis()
+                for i in range(self.count)
+            ]
+        return self.bases[key]
+
+    def joint_screws(self, name: str) -> Array:
+        """``(n, dof_j, 6)``."""
+        return np.asarray(self.table.joint_screws(name), dtype=float)
+
+
+def _frames_with_views(table: JointTable, analysis: WrenchAnalysis) -> dict[str, tuple[Array, Array]]:
+    """The per-pose frames of an analysis that kept none (the same core, with its views)."""
+    return analyze_table(table, dof=analysis.dof, rtol=analysis.rtol).frames
+
+
+def _leg_name(topology: Topology, k: int) -> str:
+    """The name of the k-th compound leg (:attr:`screwkit.wrenches.CompoundLeg.name`)."""
+    node = topology.nodes[topology.legs[k]]
+    actuated = sorted(j for j in node.joints if j in set(topology.actuated))
+    return "leg through " + ", ".join(actuated or sorted(node.joints)[:2])
+
+
+def _basis_names(prefix: str, count: int) -> list[str]:
+    """The names of the lines of a readable basis of ``count`` screws (:func:`_candidate_lines`):
+    ``"constraint of the leg through A1, A4"``, ``"… (2)"``; ``"constraint wrench 1 of the mechanism"``."""
+    if prefix == "constraint wrench":
+        return [f"constraint wrench {k + 1} of the mechanism" for k in range(count)]
+    return [prefix + (f" ({k + 1})" if count > 1 else "") for k in range(count)]
+
+
+def _finite(points: Array) -> Array:
+    return np.concatenate([points, np.ones((*points.shape[:-1], 1))], axis=-1)
+
+
+def _infinite(directions: Array) -> Array:
+    return np.concatenate([directions, np.zeros((*directions.shape[:-1], 1))], axis=-1)
+
+
+def _units(v: Array) -> Array:
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return v / np.linalg.norm(v, axis=-1, keepdims=True)
+
+
+def _canonical_directions(v: Array) -> Array:
+    """Unit directions ``(..., 3)`` with a fixed sign (first clearly non-zero component positive)."""
+    u = _units(v)
+    k = np.argmax(np.abs(u) > 1e-9, axis=-1)[..., None]
+    return np.where(np.take_along_axis(u, k, axis=-1) < 0, -u, u)
 
 
 def _free(moment: Array) -> tuple[Array, Array]:
-    """Two unit directions normal to ``moment`` and to each other (the coordinate axis least
-    aligned with it first): points of the couple line ``(0; moment)`` with no structural meaning."""
-    m = _unit(moment)
-    first = _unit(B.cross(m, np.eye(3)[int(np.argmin(np.abs(m)))]))
-    return first, B.cross(m, first)
+    """Two unit directions ``(..., 3)`` normal to ``moment`` and to each other (the coordinate axis
+    least aligned with it first): points of the couple line ``(0; moment)`` with no structural
+    meaning."""
+    m = _units(moment)
+    axis = np.eye(3)[np.argmin(np.nan_to_num(np.abs(m), nan=0.0), axis=-1)]
+    first = _units(np.cross(m, axis))
+    return first, np.cross(m, first)
+
+
+def _finite_axes(screws: Array) -> tuple[Array, Array]:
+    """:func:`screwkit.screw.axis` over a batch ``(..., 6)``, NaN where the pitch is infinite
+    (``s = 0``) or the screw is missing (NaN)."""
+    bad = ~np.isfinite(screws).all(axis=-1) | np.all(screws[..., :3] == 0, axis=-1)
+    safe = np.where(bad[..., None], np.array([0.0, 0.0, 1.0, 0.0, 0.0, 0.0]), screws)
+    point, direction = S.axis(safe)
+    return np.where(bad[..., None], np.nan, point), np.where(bad[..., None], np.nan, direction)
+
+
+def _meet_points(line: Array, screw: Array, length_scale: Array) -> Array:
+    """Where finite lines ``(..., 6)`` meet joint axes ``(..., 6)``: ``(..., 4)`` of weight 1, NaN
+    where they are skew, parallel or meet at infinity.
+
+    The line meets the plane that contains the axis and is normal to the plane of both
+    (:func:`screwkit.projective.meet_line_plane`); they meet when ``L ∘ A = 0`` after scaling
+    moments by ``length_scale`` (:func:`screwkit.projective.lines_intersect`).
+    """
+    nearest, _ = _finite_axes(screw)
+    axis = np.concatenate([screw[..., :3], np.cross(nearest, screw[..., :3])], axis=-1)  # S.line(s, r)
+    length = np.asarray(length_scale, dtype=float)[..., None]
+
+    def scaled(rows: Array) -> Array:
+        out = np.concatenate([rows[..., :3], rows[..., 3:] / length], axis=-1)
+        return _units(out)
+
+    a, b = scaled(line), scaled(axis)
+    product = np.einsum("...i,...i", a[..., :3], b[..., 3:]) + np.einsum("...i,...i", a[..., 3:], b[..., :3])
+    cross = np.cross(_units(line[..., :3]), _units(axis[..., :3]))
+    parallel = np.linalg.norm(cross, axis=-1) < INCIDENCE_RTOL
+    normal = np.cross(np.cross(line[..., :3], axis[..., :3]), axis[..., :3])
+    origin, _ = _finite_axes(axis)
+    plane = np.concatenate([normal, -np.einsum("...i,...i", normal, origin)[..., None]], axis=-1)
+    s, m, delta = line[..., :3], line[..., 3:], plane[..., 3:]
+    point = np.concatenate(
+        [np.cross(normal, m) - delta * s, np.einsum("...i,...i", normal, s)[..., None]], axis=-1
+    )
+    in_plane = np.linalg.norm(point, axis=-1) <= B.DEFAULT_RTOL * np.linalg.norm(
+        line, axis=-1
+    ) * np.linalg.norm(plane, axis=-1)
+    with np.errstate(invalid="ignore"):
+        skew = ~(np.abs(product) <= INCIDENCE_RTOL)
+        missing = skew | parallel | in_plane | ~(np.abs(point[..., 3]) >= 1e-12)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.where(missing[..., None], np.nan, point / point[..., 3:])
+
+
+def _joint_centres(screws: Array) -> Array:
+    """The common point ``(..., 3)`` of joints' first two axes ``(..., k, 6)`` (a spherical or
+    universal joint's centre), NaN where they are parallel (no single point)."""
+    first, second = screws[..., 0, :], screws[..., 1, :]
+    (p1, _), (p2, _) = _finite_axes(first), _finite_axes(second)
+    line = np.concatenate([first[..., :3], np.cross(p1, first[..., :3])], axis=-1)
+    normal = np.cross(np.cross(line[..., :3], second[..., :3]), second[..., :3])
+    plane = np.concatenate([normal, -np.einsum("...i,...i", normal, p2)[..., None]], axis=-1)
+    s, m, delta = line[..., :3], line[..., 3:], plane[..., 3:]
+    point = np.concatenate(
+        [np.cross(normal, m) - delta * s, np.einsum("...i,...i", normal, s)[..., None]], axis=-1
+    )
+    size = np.linalg.norm(point, axis=-1)
+    with np.errstate(invalid="ignore"):
+        missing = (
+            np.all(normal == 0, axis=-1)
+            | (size <= B.DEFAULT_RTOL * np.linalg.norm(line, axis=-1) * np.linalg.norm(plane, axis=-1))
+            | (np.abs(point[..., 3]) <= B.DEFAULT_RTOL * size)
+        )
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.where(missing[..., None], np.nan, point[..., :3] / point[..., 3:])
+
+
+def _joint_centre(screws: Array) -> Array:
+    """:func:`_joint_centres` of one joint ``(k, 6)``, raising where its axes give no point."""
+    centre = _joint_centres(np.asarray(screws, dtype=float)[None])[0]
+    if not np.isfinite(centre).all():
+        raise DegenerateGeometryError(
+            "Expected the joint's first two axes to meet at one point, got parallel axes."
+        )
+    return centre
+
+
+def _branch_pair(batch: _Batch, first: str, second: str) -> Array:
+    """``n(first) × n(second)`` over the batch (``_branch_normals``' recipe, NaN where the two
+    branches are not consecutive single constraint couples of one parallel node there).
+
+    A branch's constraint couple is reciprocal to its twist system of order 5: the null vector
+    ``v`` of its rows gives the wrench ``(v_m; v_s)`` (the reciprocal product swaps the halves);
+    its moment's direction is frame- and unit-free.
+    """
+    top = batch.topology
+    if top.network or top.root is None:
+        return batch.nan(3)
+    actuated = set(top.actuated)
+
+    def name(index: int) -> str:
+        joints = top.nodes[index].joints
+        return (sorted(j for j in joints if j in actuated) or sorted(joints))[0]
+
+    def nested(index: int, outer: bool) -> list[int]:  # parallel nodes below the first one
+        node = top.nodes[index]
+        found = [index] if node.kind == "parallel" and not outer else []
+        return found + [
+            k for child in node.children for k in nested(child, outer and node.kind != "parallel")
+        ]
+
+    for index in nested(top.root, True):
+        children = top.nodes[index].children
+        names = [name(c) for c in children]
+        if first not in names or second not in names:
+            continue
+        moments, couple = [], []
+        for child in children:
+            rows, order = batch.frames[f"node{child}"]
+            null = np.linalg.svd(rows[..., :5, :])[2][..., -1, :]
+            wrench = np.concatenate([null[..., 3:], null[..., :3]], axis=-1)
+            moments.append(_units(wrench[..., 3:]))
+            couple.append((order == 5) & (np.linalg.norm(wrench[..., :3], axis=-1) <= B.DEFAULT_RTOL))
+        a, b = names.index(first), names.index(second)
+        between = np.zeros(batch.count, dtype=bool)
+        for k in range(a + 1, b):
+            between |= couple[k]
+        ok = couple[a] & couple[b] & ~between
+        return np.where(ok[:, None], np.cross(moments[a], moments[b]), np.nan)
+    return batch.nan(3)
+
+
+def _recipe(key: tuple[str, ...], batch: _Batch, cache: dict[tuple[str, ...], Array]) -> Array:
+    """One recipe (:attr:`DiagramPoint.key`) over the batch, ``(n, 4)``, NaN where it has no point."""
+    if key in cache:
+        return cache[key]
+    kind = key[0]
+    value: Array
+    if kind == "meet":
+        value = _meet_points(batch.wrench(key[1]), batch.joint_screws(key[2])[:, 0], batch.length_scale)
+    elif kind == "direction":
+        value = _infinite(_canonical_directions(batch.wrench(key[1])[:, :3]))
+    elif kind == "axis":
+        name, index = (key[1], "") if key[1] in {s.name for s in batch.table.specs} else _axis_of(key[1])
+        screw = batch.joint_screws(name)[:, int(index) - 1 if index else 0]
+        value = _infinite(_canonical_directions(screw[:, :3]))
+    elif kind == "normals":
+        direction = _branch_pair(batch, key[1], key[2])
+        with np.errstate(invalid="ignore"):
+            small = ~(np.linalg.norm(direction, axis=-1) >= INCIDENCE_RTOL)
+        value = np.where(small[:, None], np.nan, _infinite(_canonical_directions(direction)))
+    elif kind == "foot":  # nearest the reference point: frame-covariant
+        nearest, direction = _finite_axes(batch.wrench(key[1]))
+        offset = batch.reference_point - nearest
+        along = np.einsum("...i,...i", offset, direction) / np.einsum("...i,...i", direction, direction)
+        value = _finite(nearest + direction * along[:, None])
+    elif kind == "centre":
+        value = _finite(_joint_centres(batch.joint_screws(key[1])))
+    elif kind == "couples":
+        first, second = batch.wrench(key[1])[:, 3:], batch.wrench(key[2])[:, 3:]
+        cross = np.cross(_units(first), _units(second))
+        # two couple lines that coincide here meet everywhere along it: any point of it will do
+        with np.errstate(invalid="ignore"):
+            apart = np.linalg.norm(cross, axis=-1) >= INCIDENCE_RTOL
+        value = _infinite(_canonical_directions(np.where(apart[:, None], cross, _free(first)[0])))
+    elif kind == "free":
+        value = _infinite(_free(batch.wrench(key[1])[:, 3:])[int(key[2]) - 1])
+    elif kind == "perp":
+        moment = batch.wrench(key[1])[:, 3:]
+        cross = np.cross(moment, _recipe(key[2:], batch, cache)[:, :3])
+        with np.errstate(invalid="ignore"):
+            small = ~(np.linalg.norm(cross, axis=-1) >= INCIDENCE_RTOL * np.linalg.norm(moment, axis=-1))
+        value = np.where(small[:, None], np.nan, _infinite(_canonical_directions(cross)))
+    else:
+        value = batch.nan(4)
+    value = np.where(np.isfinite(value).all(axis=-1, keepdims=True), value, np.nan)
+    cache[key] = value
+    return value
 
 
 #: Generic configurations whose diagrams are tried before a mechanism is said to have none.
 REFERENCE_TRIES = 3
 
 
-def generic_reference(analyses: Sequence[WrenchAnalysis]) -> tuple[WrenchDiagram | None, tuple[str, ...]]:
+def generic_reference(
+    analyses: Sequence[WrenchAnalysis],
+) -> tuple[WrenchDiagram | None, tuple[str, ...]]:
     """The diagram of a mechanism at a generic configuration, or why the mechanism has none.
 
     The lines (a line basis of the wrench system, with the legs they come from) and the points
@@ -1131,4 +1390,4 @@ def _collinear_triples(diagram: WrenchDiagram, samples: list[dict[str, Array]]) 
 
 def _parallel(u: Array, v: Array) -> bool:
     size = np.linalg.norm(u) * np.linalg.norm(v)
-    return bool(size > 0 and np.linalg.norm(B.cross(u, v)) <= INCIDENCE_RTOL * size)
+    return bool(size > 0 and np.linalg.norm(np.cross(u, v)) <= INCIDENCE_RTOL * size)

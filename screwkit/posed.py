@@ -27,7 +27,7 @@ Examples
 from __future__ import annotations
 
 import functools
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any, overload
 
@@ -308,14 +308,12 @@ class Pose:
         return pose_report(self, superbracket=superbracket, progress=progress)
 
 
-def _batch_analyses(
-    mechanism: Any, rng: np.random.Generator, count: int, rtol: float
-) -> Sequence[WrenchAnalysis]:
-    """Per-pose analyses at ``count`` random workspace poses, computed as one batch (the poses out
-    of reach are dropped); each pose's view and graph are built when first read."""
+def _reachable_table(mechanism: Any, rng: np.random.Generator, count: int) -> JointTable | None:
+    """The joint table at ``count`` random workspace poses, those out of reach dropped (None if
+    none is reachable)."""
     poses = mechanism.random_poses(rng, count)
     try:
-        table = mechanism.joints(poses)
+        return mechanism.joints(poses)
     except ScrewkitError:  # some pose out of reach: keep those the IK accepts one by one
         kept = []
         for pose in poses:
@@ -324,9 +322,17 @@ def _batch_analyses(
             except ScrewkitError:
                 continue
             kept.append(pose)
-        if not kept:
-            return []
-        table = mechanism.joints(np.array(kept))
+        return mechanism.joints(np.array(kept)) if kept else None
+
+
+def _batch_analyses(
+    mechanism: Any, rng: np.random.Generator, count: int, rtol: float
+) -> Sequence[WrenchAnalysis]:
+    """Per-pose analyses at ``count`` random workspace poses, computed as one batch (the poses out
+    of reach are dropped); each pose's view and graph are built when first read."""
+    table = _reachable_table(mechanism, rng, count)
+    if table is None:
+        return []
     return _PoseAnalyses(analyze_table(table, rtol=rtol), table, mechanism.name)
 
 
@@ -364,12 +370,11 @@ class _PoseAnalyses(Sequence[WrenchAnalysis]):
 
 def generic_samples(
     mechanism: Any, points: Any, rng: np.random.Generator, count: int, rtol: float = B.DEFAULT_RTOL
-) -> Iterator[dict[str, Array]]:
-    """A diagram's points (``{label: (4,)}``) at random workspace poses, analysed as one batch.
+) -> list[dict[str, Array]]:
+    """A diagram's points (``{label: (4,)}``) at random workspace poses, analysed and evaluated as
+    one batch (:func:`screwkit.diagram.batch_diagram_points`).
 
-    The poses are drawn and analysed as one batch on the first ``next``; each sample's points are
-    evaluated when it is asked for (a superbracket takes 12 of them). Poses where a point does not
-    exist are skipped; at most ``2 * count`` poses are drawn, at most ``count`` samples yielded.
+    Poses where a point does not exist are skipped; at most ``2 * count`` poses are drawn.
 
     Raises
     ------
@@ -381,25 +386,20 @@ def generic_samples(
     >>> from screwkit.catalog import load_mechanism
     >>> h4 = load_mechanism("h4")
     >>> diagram, _ = h4.wrench_diagram()
-    >>> len(list(generic_samples(h4, diagram.points, np.random.default_rng(0), 3)))
+    >>> len(generic_samples(h4, diagram.points, np.random.default_rng(0), 3))
     3
     """
-    from .diagram import diagram_points
+    from .diagram import batch_diagram_points
 
-    found = 0
-    for analysis in _batch_analyses(mechanism, rng, 2 * count, rtol):
-        try:
-            sample = diagram_points(points, analysis)
-        except ScrewkitError:
-            continue
-        yield sample
-        found += 1
-        if found == count:
-            return
-    if not found:
+    table = _reachable_table(mechanism, rng, 2 * count)
+    found = {} if table is None else batch_diagram_points(points, analyze_table(table, rtol=rtol))
+    exists = np.all([np.isfinite(v).all(axis=-1) for v in found.values()], axis=0) if found else []
+    samples = [{label: v[i] for label, v in found.items()} for i in np.flatnonzero(exists)[:count]]
+    if not samples:
         raise ScrewkitValueError(
             f"Expected a workspace pose giving every diagram point, got none of {2 * count}."
         )
+    return samples
 
 
 def _no_sampler(rng: np.random.Generator) -> dict[str, Array]:

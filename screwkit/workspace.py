@@ -28,7 +28,8 @@ Quantities (:data:`QUANTITIES`)
     and force index ``ζ`` (Eq. 15) (:func:`screwkit.indices.transmission`; four-limb families).
 ``"condition:K"``
     The vector form of the K-th factor of the superbracket (:mod:`screwkit.conditions`), factored
-    once at the default pose and evaluated on each pose's wrench diagram (one pose at a time: slow).
+    once at the default pose and evaluated on the wrench diagram's points over the whole batch
+    (:func:`screwkit.diagram.batch_diagram_points`, from the batched core).
 
 Float maps hold NaN where a pose is out of reach, always together with ``reachable`` False.
 
@@ -69,7 +70,13 @@ from typing import Any
 
 import numpy as np
 
-from .exceptions import ScrewkitError, ScrewkitTypeError, ScrewkitValueError, UnreachablePoseError
+from .exceptions import (
+    DegenerateGeometryError,
+    ScrewkitError,
+    ScrewkitTypeError,
+    ScrewkitValueError,
+    UnreachablePoseError,
+)
 
 __all__ = [
     "ACCEPT",
@@ -287,22 +294,43 @@ def _transmission_index(posed: Any, quantity: str) -> Array:
 
 
 def _condition_values(mechanism: Any, index: int, posed: Any) -> Array:
-    """The ``index``-th superbracket condition at every pose of ``posed`` (one pose at a time)."""
-    from .diagram import diagram_points
+    """The ``index``-th superbracket condition at every pose of ``posed``, as one batch: the
+    diagram's points over the batch (:func:`screwkit.diagram.batch_diagram_points`, from the
+    batched core) and the condition's vector form on them (:meth:`screwkit.conditions.Condition.evaluate`).
 
+    Raises
+    ------
+    DegenerateGeometryError
+        Where a point of the diagram does not exist at a pose (naming the point and the pose).
+    """
     diagram, conditions, _, _ = _conditions(mechanism, posed.options)
     if not 0 <= index < len(conditions):
         raise ScrewkitValueError(
             f"Expected `quantity` 'condition:K' with K in 0..{len(conditions) - 1} (the superbracket's "
             f"factors at the default pose), got K = {index}."
         )
-    return np.array(
-        [
-            conditions[index].evaluate(diagram_points(diagram.points, posed[i].analysis))
-            for i in range(len(posed))
-        ],
-        dtype=float,
-    )
+    points, exists = _diagram_points(diagram, posed)
+    if not exists.all():
+        i = int(np.argmin(exists))
+        point = next(p for p in diagram.points if not np.isfinite(points[p.label][i]).all())
+        raise DegenerateGeometryError(
+            f"Expected every point of the wrench diagram to exist for {posed.mechanism.name!r}'s "
+            f"conditions, got point {point.label} ({point.description}) missing at the pose "
+            f"{np.asarray(posed.poses[i]).tolist()} (API units)."
+        )
+    return np.asarray(conditions[index].evaluate(points), dtype=float).reshape(len(posed))
+
+
+def _diagram_points(diagram: Any, posed: Any) -> tuple[dict[str, Array], Array]:
+    """The diagram's points ``{label: (n, 4)}`` at every pose of a posed batch ``(n,)`` and where
+    all of them exist ``(n,)`` (the batched core, with the per-pose frames the recipes read)."""
+    from .diagram import batch_diagram_points
+    from .wrenches import analyze_table
+
+    analysis = analyze_table(posed.joints, rtol=posed.rtol)
+    points = batch_diagram_points(diagram.points, analysis)
+    exists = np.all([np.isfinite(v).all(axis=-1) for v in points.values()], axis=0)
+    return points, np.asarray(exists, dtype=bool).reshape(len(posed))
 
 
 #: Per mechanism (held weakly: a cache entry dies with its mechanism) and options: the factored
@@ -851,6 +879,8 @@ def _measure(mechanism: Any, poses: Array, options: dict[str, Any], rtol: Any) -
     det_a: Array | None = np.full(len(flat), np.nan)
     if ok.any():
         posed = mechanism.at(flat[ok], rtol=rtol, **options)
+        if ok.sum() <= CHUNK:  # det A needs the joint table too: build it once (a bounded batch)
+            _ = posed.joints
         codes[ok] = posed.codes
         for k in KINDS:
             closeness[k][ok] = posed.closeness[k]
@@ -1024,11 +1054,10 @@ def _refine(
 
 def _factor(mechanism: Any, poses: Array, kind: str, options: dict[str, Any], rtol: Any) -> str | None:
     """The superbracket condition vanishing at API-unit poses ``(k, n)`` of one surface: at the
-    first pose where the diagram's points exist, the condition of that kind with the smallest value
-    relative to its value at the default pose. None for a serial singularity (a limb's, not the
-    superbracket's) or when the conditions cannot be had for this mechanism."""
-    from .diagram import diagram_points
-
+    first of them (up to :data:`_FACTOR_TRIES`, evaluated as one batch) where the diagram's points
+    exist, the condition of that kind with the smallest value relative to its value at the default
+    pose. None for a serial singularity (a limb's, not the superbracket's) or when the conditions
+    cannot be had for this mechanism."""
     if kind not in ("constraint", "actuation"):
         return None
     try:
@@ -1036,18 +1065,17 @@ def _factor(mechanism: Any, poses: Array, kind: str, options: dict[str, Any], rt
     except ScrewkitError:
         return None
     candidates = [i for i, label in enumerate(labels) if label == kind and reference[i] != 0]
-    for pose in poses[:_FACTOR_TRIES]:
-        try:
-            points = diagram_points(
-                diagram.points, mechanism.at(pose[None], rtol=rtol, **options)[0].analysis
-            )
-        except ScrewkitError:  # a point of the diagram does not exist at this pose: try the next
-            continue
-        if not candidates:
-            return None
-        ratios = [abs(float(conditions[i].evaluate(points)) / reference[i]) for i in candidates]
-        return str(conditions[candidates[int(np.argmin(ratios))]].factor)
-    return None
+    tries = np.asarray(poses[:_FACTOR_TRIES], dtype=float)
+    tries = tries[_reachable(mechanism, tries, options)]
+    if not candidates or not len(tries):
+        return None
+    points, exists = _diagram_points(diagram, mechanism.at(tries, rtol=rtol, **options))
+    if not exists.any():
+        return None
+    first = int(np.argmax(exists))
+    at = {label: value[first] for label, value in points.items()}
+    ratios = [abs(float(conditions[i].evaluate(at)) / reference[i]) for i in candidates]
+    return str(conditions[candidates[int(np.argmin(ratios))]].factor)
 
 
 # --------------------------------------------------------------------------------------------------

@@ -15,6 +15,7 @@ from screwkit import screw as S
 from screwkit.catalog import load_mechanism
 from screwkit.cli import main
 from screwkit.diagram import (
+    batch_diagram_points,
     diagram_at,
     diagram_points,
     graph_diagram,
@@ -22,13 +23,13 @@ from screwkit.diagram import (
     superbracket_analysis,
     wrench_diagram,
 )
-from screwkit.exceptions import ScrewkitValueError
+from screwkit.exceptions import DegenerateGeometryError, ScrewkitValueError
 from screwkit.export import save_snapshot
 from screwkit.families.four_limb import inverse_kinematics, joints
 from screwkit.gca import BracketPolynomial, DottedMonomial, check_proportional
 from screwkit.report import analyze
 from screwkit.singularity import classify
-from screwkit.wrenches import wrench_analysis
+from screwkit.wrenches import analyze_table, wrench_analysis
 
 from . import mechanisms as M
 from . import mechanisms_extra as X
@@ -436,3 +437,24 @@ def test_a_structural_factor_is_reported_as_never_vanishing():
     listed = planar.to_dict()["superbracket"]["conditions"]
     assert [c["never_vanishes"] for c in listed] == list(planar.superbracket.constant)
     assert [c["factor"] for c in listed if c["never_vanishes"]] == ["[hijg]"]
+
+
+def test_batch_diagram_points_is_nan_only_where_a_recipe_has_no_point():
+    # paper 002 case (b): the limb of A1 at a serial singularity has no actuation line, so the
+    # points on it do not exist there; the other pose of the batch is the single-pose evaluation
+    h4 = load_mechanism("h4")
+    diagram, _ = h4.wrench_diagram()
+    poses = np.array([[30.0, -20.0, -750.0, 0.3], case_b_pose()])
+    posed = h4.at(poses)
+    with_views = batch_diagram_points(diagram.points, analyze_table(posed.joints))
+    without = batch_diagram_points(diagram.points, posed.singularities.analysis)  # kept no views
+    single = diagram_points(diagram.points, posed[0].analysis)
+    missing = {label for label, value in with_views.items() if np.isnan(value[1]).any()}
+    assert {"a", "b"} <= missing and "j" not in missing
+    for label, value in with_views.items():
+        assert value.shape == (2, 4)
+        np.testing.assert_array_equal(value[0], single[label])
+        np.testing.assert_array_equal(value, without[label])
+        assert np.isnan(value[1]).all() or np.isfinite(value[1]).all()
+    with pytest.raises(DegenerateGeometryError, match=r"point a .* does not exist at this pose"):
+        diagram_points(diagram.points, posed[1].analysis)
