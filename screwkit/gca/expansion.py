@@ -19,7 +19,6 @@ from .. import projective as P
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
 from .brackets import BracketPolynomial, _labels, _point_arrays, _scalar
 from .dotted import DottedSum
-from .notation import _sort_sign
 from .zeros import Sampler, _check_rtol, _draw, _drop_zero_monomials, _vanishing_quads
 
 __all__ = [
@@ -173,6 +172,14 @@ def superbracket(points: Mapping[str, Any], lines: Sequence[Sequence[str] | str]
 
 
 @functools.cache
+def _line_orders() -> tuple[np.ndarray, np.ndarray]:
+    """The 6! line permutations (720, 6), in ``itertools`` order, and the 2^6 flips (64, 6)."""
+    perms = np.array(list(itertools.permutations(range(6))))
+    flips = np.array(list(itertools.product((0, 1), repeat=6)))
+    return perms, flips
+
+
+@functools.cache
 def _orderings() -> tuple[np.ndarray, np.ndarray]:
     """All 6!·2^6 orderings as slot -> caller position maps (46080, 12), and their signs.
 
@@ -180,12 +187,12 @@ def _orderings() -> tuple[np.ndarray, np.ndarray]:
     ``f[k]``; the identity comes first. Its superbracket is ``sgn(π)·(-1)^Σf`` times the caller's
     (swapping two rows or negating one row of the 6×6 matrix flips the sign).
     """
-    perms = np.array(list(itertools.permutations(range(6))))
-    flips = np.array(list(itertools.product((0, 1), repeat=6)))
+    perms, flips = _line_orders()
     first = 2 * perms[:, None, :] + flips[None, :, :]
     second = 2 * perms[:, None, :] + 1 - flips[None, :, :]
     slot_positions = np.stack([first, second], axis=-1).reshape(-1, 12)
-    perm_signs = np.array([_sort_sign(tuple(p)) for p in perms])
+    inversions = sum((perms[:, i] > perms[:, j]).astype(int) for i, j in itertools.combinations(range(6), 2))
+    perm_signs = 1 - 2 * (inversions % 2)
     signs = (perm_signs[:, None] * (-1) ** flips.sum(axis=1)[None, :]).reshape(-1)
     return slot_positions, signs
 
@@ -193,14 +200,21 @@ def _orderings() -> tuple[np.ndarray, np.ndarray]:
 @functools.cache
 def _ordering_brackets() -> np.ndarray:
     """For every ordering, the caller positions of each bracket of the 24 template monomials
-    (gca.md §2.1), coded as one index into the 12^4 ordered 4-tuples: shape (3, 46080, 24)."""
+    (gca.md §2.1), coded as one index into the 12^4 ordered 4-tuples: shape (3, 46080, 24).
+
+    Slot ``2k + bit`` of ordering ``(π, f)`` holds caller position ``2 π[k] + (bit xor f[k])``, so a
+    bracket's code ``Σ_s 12^(3-s) position_s`` is a part from ``π`` plus a part from ``f``: two
+    small tables added over the 720 × 64 orderings.
+    """
     brackets = [m.brackets for m in _EXPANSION]
-    slots = np.array([[[_SLOTS.index(x) for x in b.labels] for b in t] for t in brackets])
-    slot_positions = _orderings()[0].astype(np.int16)
-    flat = np.zeros((3, len(slot_positions), len(slots)), dtype=np.int16)  # 12^4 < 2^15
-    for s in range(4):
-        flat = flat * 12 + slot_positions[:, slots[..., s]].transpose(2, 0, 1)
-    return flat
+    slots = np.array([[[_SLOTS.index(x) for x in b.labels] for b in t] for t in brackets])  # (24, 3, 4)
+    perms, flips = _line_orders()
+    weights = 12 ** np.arange(3, -1, -1)
+    line, bit = slots // 2, slots % 2
+    from_perm = (2 * perms[:, line] * weights).sum(axis=-1).transpose(2, 0, 1)  # (3, 720, 24)
+    from_flip = ((bit ^ flips[:, line]) * weights).sum(axis=-1).transpose(2, 0, 1)  # (3, 64, 24)
+    flat = from_perm[:, :, None, :].astype(np.int16) + from_flip[:, None, :, :].astype(np.int16)  # < 12^4
+    return np.ascontiguousarray(flat).reshape(3, -1, len(slots))
 
 
 def _ordering_counts(positions: Sequence[str], zero: Mapping[tuple[str, ...], bool]) -> np.ndarray:
