@@ -11,8 +11,9 @@ Per robot: the minimum and median wall time, the median CPU time (user + system 
 and the ratios of the minima and of the medians to those of the reference
 ``python -c "import numpy, networkx, sympy"`` in the same run. The issue's target is a ratio
 ≤ 1.5 per robot. The command is the installed console script ``screwkit`` next to this
-interpreter if there is one, else ``python -m screwkit``. The load average is printed before and
-after.
+interpreter if there is one, else ``python -m screwkit``; with ``--source DIR``, the checkout at
+``DIR`` run by this interpreter (an editable install's import hook set aside), to compare two
+versions in one run. The load average is printed before and after.
 """
 
 import argparse
@@ -37,7 +38,18 @@ def environment():
     return env
 
 
-def command():
+#: Runs ``screwkit.cli.main`` from the checkout given as the first argument, ahead of any install
+#: (the catalog folder ``mechanisms/`` of the checkout serves as ``screwkit.mechanisms``).
+LAUNCHER = (
+    "import sys; sys.meta_path[:] = [f for f in sys.meta_path if 'editable' not in repr(f)]; "
+    "root = sys.argv.pop(1); sys.path.insert(0, root); import screwkit; screwkit.__path__.append(root); "
+    "from screwkit.cli import main; sys.exit(main(sys.argv[1:]))"
+)
+
+
+def command(source=None):
+    if source is not None:
+        return [sys.executable, "-c", LAUNCHER, str(Path(source).resolve())]
     script = Path(sys.executable).with_name("screwkit")
     if script.exists():
         return [str(script)]
@@ -64,8 +76,10 @@ def main(argv=None):
     parser.add_argument("--repeats", type=int, default=5)
     parser.add_argument("--robot", action="append", default=None, metavar="NAME",
                         help="a catalog name; repeat for several (default: every catalog robot)")
+    parser.add_argument("--source", default=None, metavar="DIR",
+                        help="run the screwkit checkout at DIR instead of the installed command")
     args = parser.parse_args(argv)
-    cli = command()
+    cli = command(args.source)
     listing = subprocess.run([*cli, "list"], check=True, env=environment(), capture_output=True, text=True)
     names = args.robot or [line.split()[0] for line in listing.stdout.splitlines() if line.strip()]
     jobs = {"reference": [sys.executable, "-c", REFERENCE]} | {n: [*cli, "analyze", n] for n in names}
