@@ -1,11 +1,15 @@
 """Speed of LTI maps (paper 004's κ, ζ, η over a grid of poses): the fused kernel against numpy.
 
-Run: ``python bench/bench_indices.py [--sizes 100000 1000000] [--repeats 5] [--robot ragnar]`` from
-the repository root (prints a table; not a test). Single-threaded (BLAS/OpenMP threads set to 1;
-the numba kernel is a plain loop, no ``parallel``).
+Run: ``python bench/bench_indices.py [--sizes 100000 1000000] [--repeats 5] [--robots ragnar | all]``
+from the repository root (prints a table; not a test). One thread (BLAS/OpenMP threads set to 1; the
+numba kernel is a plain loop, SIMD over poses, no ``parallel``); times are the process's CPU time
+(``time.process_time``, the shared machine's load inflates wall time), best of the repeats, with
+the load average printed before and after.
 
-Three implementations over the same poses (a grid over the robot's workspace box, all four
-coordinates varying), each checked against the first:
+Four timings over the same poses (a grid over the robot's workspace box, all four coordinates
+varying), the results checked against the first (``max diff``: the largest difference in κ or ζ;
+~1e-13, up to ~1e-11 at poses where ζ is ill-conditioned, ``w_I × w_II`` nearly zero, where any two
+evaluations differ by round-off times the condition number):
 
 * ``numpy (straightforward)``: written out here as one would from paper 004 -- the closed-form
   inverse kinematics of Eq. (3) (``θ_i = atan2(Q_i, P_i) - m_i acos(K_i/ρ_i)``), ``v_i``,
@@ -13,10 +17,14 @@ coordinates varying), each checked against the first:
   ``ζ = |(w_I × w_II)·s| / ‖w_I × w_II‖`` (Eqs. 13, 15), vectorised over the batch;
 * ``numpy (screwkit)``: :func:`screwkit.indices.transmission` with ``SCREWKIT_NUMBA=0``'s path
   (the family's inverse kinematics, a full configuration, then the indices);
-* ``numba (screwkit)``: :func:`screwkit.indices.transmission` with the fused compiled kernel
-  (:mod:`screwkit._indices_numba`; compiled once before timing).
+* ``fused kernel``: :mod:`screwkit._indices_numba` alone (compiled once before timing), the part
+  :func:`screwkit.indices.transmission` runs per pose;
+* ``sk.transmission``: the whole public call (argument checks, the kernel, ``η = min(κ, ζ)``, NaN
+  where out of reach), what a user's map costs.
 
-The issue's target: the fused kernel ≥ 35× the straightforward numpy implementation.
+The issue's target: the fused kernel ≥ 35× the straightforward numpy implementation (both columns
+of ratios are printed). Last, the script says whether the kernel's machine code has packed (SIMD)
+square roots, the sign that its pose loop was vectorised (x86 mnemonics).
 """
 
 import os
@@ -26,6 +34,7 @@ for _name in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS", "NUM
     os.environ[_name] = "1"
 
 import argparse  # noqa: E402
+import time  # noqa: E402
 
 import numpy as np  # noqa: E402
 from _timing import best_of  # noqa: E402  (bench/ is the script folder)
@@ -76,39 +85,68 @@ def grid(mechanism, count):
     return np.stack(np.meshgrid(*axes, indexing="ij"), -1).reshape(-1, 4)
 
 
+def packed_square_roots(kernels, packed):
+    """Whether the kernel's machine code has packed square roots (``sqrtpd``/``vsqrtpd``: the pose
+    loop runs as SIMD code); compiles the kernel's source afresh (numba shows no assembly for cached
+    code), with the same options."""
+    from numba import njit
+
+    fresh = njit(error_model="numpy", fastmath=kernels._FLAGS)(kernels.transmission.py_func)
+    fresh(np.zeros((8, 4)), *packed)
+    return "sqrtpd" in "\n".join(fresh.inspect_asm().values())
+
+
+def timings(mechanism, poses, kernels, packed, repeats):
+    """CPU times of the four columns (module docstring), best of ``repeats``."""
+    params, mode = mechanism.parameters, (-1, -1, -1, -1)
+    calls = [
+        lambda: straightforward(params, poses),
+        lambda: I._transmission_numpy(params, poses, mode),
+        lambda: kernels.transmission(poses, *packed),
+        lambda: I.transmission(mechanism, poses, unreachable="nan"),
+    ]
+    return [best_of(repeats, call, time.process_time) for call in calls]
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--sizes", type=int, nargs="+", default=[100_000, 1_000_000])
     parser.add_argument("--repeats", type=int, default=5)
-    parser.add_argument("--robot", default="ragnar")
+    parser.add_argument("--robots", nargs="+", default=["ragnar"], help="catalog names, or: all")
     args = parser.parse_args()
-    mechanism = load_mechanism(args.robot)
-    params, mode = mechanism.parameters, (-1, -1, -1, -1)
+    names = ["quattro", "h4", "v4", "veloce", "ragnar"] if args.robots == ["all"] else args.robots
     kernels = I._numba_kernels(max(args.sizes))
     if kernels is None:
         raise SystemExit("numba is not available (install the `fast` extra); nothing to compare")
-    packed = I._kernel_arguments(params, mode)
-    kernels.transmission(grid(mechanism, 16), *packed)  # compile (or load the cache) before timing
-    print(f"LTI maps of {mechanism.name} (paper 004 Eqs. 3, 11-16), single-threaded, best of {args.repeats}")
-    print(f"{'poses':>9} {'reachable':>9} | {'numpy (straightforward)':>24} {'numpy (screwkit)':>17} "
-          f"{'numba (screwkit)':>17} | {'speed-up vs straightforward':>27}")
-    for size in args.sizes:
-        poses = grid(mechanism, size)
-        kappa, zeta, ok = kernels.transmission(poses, *packed)
-        ref_kappa, ref_zeta = straightforward(params, poses)
-        assert np.array_equal(ok, np.isfinite(ref_kappa)), "reachability differs"
-        assert np.allclose(kappa[ok], ref_kappa[ok], atol=1e-12)
-        assert np.allclose(zeta[ok], ref_zeta[ok], atol=1e-12)
-        plain = I._transmission_numpy(params, poses, mode)
-        assert np.allclose(plain[0], kappa, atol=1e-12) and np.array_equal(plain[2], ok)
-        times = [
-            best_of(args.repeats, lambda poses=poses: straightforward(params, poses)),
-            best_of(args.repeats, lambda poses=poses: I._transmission_numpy(params, poses, mode)),
-            best_of(args.repeats, lambda poses=poses: kernels.transmission(poses, *packed)),
-        ]
-        widths = (20, 13, 13)
-        rates = "".join(f" {len(poses) / t / 1e6:>{w}.2f} M/s" for t, w in zip(times, widths, strict=True))
-        print(f"{len(poses):>9} {ok.mean():>9.2f} |{rates} | {times[0] / times[2]:>26.1f}x")
+    print(f"LTI maps (paper 004 Eqs. 3, 11-16), one thread, CPU time of the process, best of "
+          f"{args.repeats}; load average {os.getloadavg()[0]:.1f} at the start")
+    print(f"{'robot':>8} {'poses':>8} {'reach':>5} | {'numpy (straight)':>16} {'numpy (screwkit)':>16} "
+          f"{'fused kernel':>13} {'sk.transmission':>15} | {'kernel vs straight':>18} "
+          f"{'call vs straight':>16} {'max diff':>8}")
+    for name in names:
+        mechanism = load_mechanism(name)
+        params, mode = mechanism.parameters, (-1, -1, -1, -1)
+        packed = I._kernel_arguments(params, mode)
+        kernels.transmission(grid(mechanism, 16), *packed)  # compile (or load the cache) before timing
+        for size in args.sizes:
+            poses = grid(mechanism, size)
+            kappa, zeta, ok = kernels.transmission(poses, *packed)
+            ref_kappa, ref_zeta = straightforward(params, poses)
+            assert np.array_equal(ok, np.isfinite(ref_kappa)), "reachability differs"
+            difference = max(np.max(np.abs(kappa - ref_kappa)[ok]), np.max(np.abs(zeta - ref_zeta)[ok]))
+            assert difference < 1e-10, difference  # printed: ~1e-13, ~1e-11 where ζ is ill-conditioned
+            plain = I._transmission_numpy(params, poses, mode)
+            assert np.allclose(plain[0], kappa, rtol=0, atol=1e-12) and np.array_equal(plain[2], ok)
+            times = timings(mechanism, poses, kernels, packed, args.repeats)
+            widths = (16, 16, 13, 15)
+            rates = "".join(
+                f" {len(poses) / t / 1e6:>{w - 4}.2f} M/s" for t, w in zip(times, widths, strict=True)
+            )
+            print(f"{name:>8} {len(poses):>8} {ok.mean():>5.2f} |{rates} | {times[0] / times[2]:>17.1f}x "
+                  f"{times[0] / times[3]:>15.1f}x {difference:>8.0e}")
+    simd = packed_square_roots(kernels, I._kernel_arguments(load_mechanism(names[0]).parameters, (-1,) * 4))
+    print(f"packed (SIMD) square roots in the kernel's machine code: {'yes' if simd else 'NO'}")
+    print(f"load average {os.getloadavg()[0]:.1f} at the end")
 
 
 if __name__ == "__main__":

@@ -10,6 +10,9 @@ What is here, along the data flow:
   tested fallback, ``SCREWKIT_NUMBA=0`` forces it): the entry point for maps;
 * :func:`index_extremes` over a :class:`Region` (grid and local refinement) and :func:`table_4`,
   paper 004's Table 4 regenerated with the paper's values beside ours (``screwkit table4``);
+* :func:`actuation_singularity_surface`: the actuation singularity locus ``|A| = 0`` at one rotation
+  as a triangulated surface (paper 004's Figs. 14-16; drawn by
+  :func:`screwkit.plot.plot_singularity_surfaces`);
 * :func:`transmission_ratio` and :func:`wrench_transmission`: input and output transmission per
   actuated joint from the actuation wrenches and the platform twists (Wang, Wu & Liu 2010; range
   [0, 1]), for any family or twist graph; ``posed.wrench_transmission`` and the report use it.
@@ -92,9 +95,11 @@ __all__ = [
     "FourLimbJacobians",
     "IndexExtremes",
     "Region",
+    "SingularSurface",
     "Table4Row",
     "TransmissionIndices",
     "WrenchTransmission",
+    "actuation_singularity_surface",
     "det_A_closed_form",
     "force_pressure_angle",
     "four_limb_jacobians",
@@ -344,7 +349,8 @@ def transmission_indices(config: FourLimbGeometry) -> TransmissionIndices:
 INDEX_NAMES = ("lti", "input", "output")
 
 _UNREACHABLE = ("raise", "nan")
-_KIND_CODES = {"articulated_z": 0, "articulated_y": 1, "screw_pair": 2}
+
+
 def _numba_kernels(poses: int) -> ModuleType | None:
     """The fused kernel module for a call over ``poses`` poses, or None for the numpy path
     (:func:`screwkit._frames.compiled_kernels`: the same rule as the rank kernels)."""
@@ -377,28 +383,42 @@ def _four_limb_parameters(mechanism: Any) -> Any:
 
 
 def _kernel_arguments(params: Any, mode: tuple[int, ...]) -> tuple[Any, ...]:
-    """The packed geometry of :func:`screwkit._indices_numba.transmission`."""
+    """The packed geometry of :func:`screwkit._indices_numba.transmission`, in units of ``l``.
+
+    Per limb (sub-platform I's limbs first, then II's: ``ζ`` pairs them in that order) ``c_i - a_i``
+    minus the position, as a constant plus multiples of ``cos φ``, ``sin φ`` and ``φ`` (Table 1 as
+    corrected in :mod:`screwkit.families.four_limb`); then ``F_i j``, ``F_i k`` and ``m_i``.
+    """
     from .families import four_limb as FL
 
     base = FL._base(params)
-    packed_base = np.zeros((4, 4, 3))
-    packed_base[:, 0], packed_base[:, 1], packed_base[:, 2] = base.a, base.j_rot, base.k_rot
-    platform = np.zeros((4, 4, 3))
-    if params.platform_kind == "screw_pair":
-        angles = FL._ETA
-        platform[:, 0] = params.platform_radius * np.stack(
-            [np.cos(angles), np.sin(angles), np.zeros(4)], axis=-1
-        )
-        platform[:, 1, 0] = FL._ODD_LIMB
-        rise = params.lead / (2.0 * np.pi)
-    else:
-        platform[:, 0, 1] = FL._SGN_SIN_ETA * params.platform_offset
-        platform[:, 1, 0] = FL._SGN_COS_ETA
-        rise = 0.0
-    lengths = np.array([params.arm_length, params.rod_length, params.platform_radius, rise])
-    pairs = np.array(params.subplatform_limbs, dtype=np.int64)
-    kind = _KIND_CODES[params.platform_kind]
-    return packed_base, platform, np.array(mode, dtype=float), kind, lengths, pairs
+    rod = float(params.rod_length)
+    constant, along_cos, along_sin, along_phi = (np.zeros((4, 3)) for _ in range(4))
+    cosine_s, sine_s, fixed_s = np.zeros(3), np.zeros(3), np.zeros(3)
+    if params.platform_kind == "screw_pair":  # c_i = r R_z(γ_i) i + mod(i, 2) h φ/(2π) k + p
+        radial = np.stack([np.cos(FL._ETA), np.sin(FL._ETA), np.zeros(4)], axis=-1)
+        constant[:] = params.platform_radius * radial
+        along_phi[:, 2] = FL._ODD_LIMB * params.lead / (2.0 * np.pi)
+        fixed_s[2] = 1.0  # s = k
+    else:  # c_i = sgn(cos η_i) r e(φ) + sgn(sin η_i) c j + p
+        constant[:, 1] = FL._SGN_SIN_ETA * params.platform_offset
+        radius = (FL._SGN_COS_ETA * params.platform_radius)[:, None]
+        if params.platform_kind == "articulated_z":  # e = R_z(φ) i, s = R_z(φ) j
+            along_cos[:], along_sin[:] = radius * [1.0, 0.0, 0.0], radius * [0.0, 1.0, 0.0]
+            cosine_s[1], sine_s[0] = 1.0, -1.0
+        else:  # e = R_y(φ) i, s = -R_y(φ) k (four_limb item 3)
+            along_cos[:], along_sin[:] = radius * [1.0, 0.0, 0.0], radius * [0.0, 0.0, -1.0]
+            cosine_s[2], sine_s[0] = -1.0, -1.0
+    order = [limb for pair in params.subplatform_limbs for limb in pair]
+    rows = np.concatenate(
+        [(constant - base.a) / rod, along_cos / rod, along_sin / rod, along_phi / rod, base.j_rot, base.k_rot,
+         np.array(mode, dtype=float)[:, None]],
+        axis=1,
+    )[order]
+    limbs = tuple(tuple(float(v) for v in row) for row in rows)
+    platform = tuple(float(v) for v in np.concatenate([cosine_s, sine_s, fixed_s]))
+    arm = float(params.arm_length) / rod
+    return limbs, platform, arm, arm * arm - 1.0, 1.0 / rod
 
 
 def _transmission_numpy(params: Any, poses: np.ndarray, mode: tuple[int, ...]) -> tuple[np.ndarray, ...]:
@@ -484,22 +504,21 @@ def transmission(
         raise ScrewkitValueError(f"Expected `unreachable` to be one of {_UNREACHABLE}, got {unreachable!r}.")
     mode = _checked_working_mode((-1, -1, -1, -1) if working_mode is None else working_mode)
     chosen = mechanism.default_pose if poses is None else poses
-    chi = B.as_array(chosen, "poses", (4,), symbolic=False).astype(float)
+    chi = B.as_array(chosen, "poses", (4,), symbolic=False)  # a new float64 array, checked finite
     batch = chi.shape[:-1]
     flat = np.ascontiguousarray(chi.reshape(-1, 4))
-    if not np.all(np.isfinite(flat)):
-        raise ScrewkitValueError("Expected `poses` to be finite, got NaN or infinity.")
     kernels = _numba_kernels(len(flat))
     if kernels is None:
         kappa, zeta, ok = _transmission_numpy(params, flat, mode)
     else:
         kappa, zeta, ok = kernels.transmission(flat, *_kernel_arguments(params, mode))
+    eta = np.minimum(kappa, zeta)
     if not ok.all():
         if unreachable == "raise":
             inverse_kinematics(params, chi, working_mode=mode)  # raises the family's message
             raise UnreachablePoseError("A pose is out of reach.")  # pragma: no cover - unreachable
-        kappa, zeta = np.where(ok, kappa, np.nan), np.where(ok, zeta, np.nan)
-    eta = np.minimum(kappa, zeta)
+        missing = ~ok
+        kappa[missing] = zeta[missing] = eta[missing] = np.nan
     return TransmissionIndices(kappa.reshape(batch), zeta.reshape(batch), eta.reshape(batch))
 
 
@@ -587,6 +606,29 @@ class Region:
         return cls(f"cone-cylinder (apex z {apex_z:g}, radius {radius:g} from z {rim_z:g} to {top_z:g})",
                    (-radius, -radius, apex_z), (radius, radius, top_z), inside)
 
+    def boundary(self, count: int = 16) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Points of the region's boundary on a latitude-longitude grid about the centre of its box,
+        each where the ray from the centre leaves the region (bisection on :attr:`contains`; the
+        region must be star-shaped about that centre, as the box, the super-ellipsoid and the
+        cone-cylinder are): ``x, y, z`` of shape ``(count + 1, 2 count + 1)``, for a wireframe.
+
+        Examples
+        --------
+        >>> x, y, z = Region.super_ellipsoid((0, 0, 0), (1, 2, 3), 2.0).boundary(8)
+        >>> x.shape, bool(np.allclose(x**2 + (y / 2) ** 2 + (z / 3) ** 2, 1.0))
+        ((9, 17), True)
+        """
+        centre = 0.5 * (np.array(self.lower) + np.array(self.upper))
+        polar, azimuth = np.meshgrid(
+            np.linspace(0.0, np.pi, count + 1), np.linspace(-np.pi, np.pi, 2 * count + 1), indexing="ij"
+        )
+        sine = np.sin(polar)
+        directions = np.stack([sine * np.cos(azimuth), sine * np.sin(azimuth), np.cos(polar)], axis=-1)
+        reach = float(np.linalg.norm(np.array(self.upper) - np.array(self.lower)))  # beyond the box
+        points = _pulled_inside(self, centre, centre + reach * directions.reshape(-1, 3))
+        x, y, z = points.reshape(*polar.shape, 3).transpose(2, 0, 1)
+        return x, y, z
+
 
 class IndexExtremes(NamedTuple):
     """The extremes of an index over a region at one rotation angle (:func:`index_extremes`).
@@ -667,6 +709,28 @@ def _refined(
     return sign * best_value, best
 
 
+def _region_grid(
+    mechanism: Any, region: Region | None, phi: Any, working_mode: Any, *, grid: Any, refine: Any = 0
+) -> tuple[Region, tuple[int, int, int, int], list[np.ndarray]]:
+    """The checked region (default: the mechanism's workspace box), working mode and grid axes of a
+    search at one rotation ``phi`` (:func:`index_extremes`, :func:`actuation_singularity_surface`)."""
+    from .families.four_limb import _checked_working_mode
+
+    for name, value, least in (("grid", grid, 2), ("refine", refine, 0)):
+        if not isinstance(value, int | np.integer) or isinstance(value, bool) or value < least:
+            raise ScrewkitValueError(f"Expected `{name}` to be an integer >= {least}, got {value!r}.")
+    if not isinstance(phi, int | float | np.integer | np.floating) or not math.isfinite(phi):
+        raise ScrewkitValueError(f"Expected `phi` to be a finite number (radians), got {phi!r}.")
+    if region is None:
+        box = mechanism.workspace
+        region = Region.box(box["x"], box["y"], box["z"])
+    elif not isinstance(region, Region):
+        raise ScrewkitTypeError(f"Expected `region` to be a Region, got {type(region).__name__}.")
+    mode = _checked_working_mode((-1, -1, -1, -1) if working_mode is None else working_mode)
+    axes = [np.linspace(lo, hi, int(grid)) for lo, hi in zip(region.lower, region.upper, strict=True)]
+    return region, mode, axes
+
+
 def index_extremes(
     mechanism: Any,
     index: str = "lti",
@@ -719,23 +783,10 @@ def index_extremes(
     >>> round(result.maximum, 3), result.points
     (1.0, 8921)
     """
-    from .families.four_limb import _checked_working_mode
-
     params = _four_limb_parameters(mechanism)
     if index not in INDEX_NAMES:
         raise ScrewkitValueError(f"Expected `index` to be one of {INDEX_NAMES}, got {index!r}.")
-    for name, value, least in (("grid", grid, 2), ("refine", refine, 0)):
-        if not isinstance(value, int | np.integer) or isinstance(value, bool) or value < least:
-            raise ScrewkitValueError(f"Expected `{name}` to be an integer >= {least}, got {value!r}.")
-    if not isinstance(phi, int | float | np.integer | np.floating) or not math.isfinite(phi):
-        raise ScrewkitValueError(f"Expected `phi` to be a finite number (radians), got {phi!r}.")
-    if region is None:
-        box = mechanism.workspace
-        region = Region.box(box["x"], box["y"], box["z"])
-    elif not isinstance(region, Region):
-        raise ScrewkitTypeError(f"Expected `region` to be a Region, got {type(region).__name__}.")
-    mode = _checked_working_mode((-1, -1, -1, -1) if working_mode is None else working_mode)
-    axes = [np.linspace(lo, hi, int(grid)) for lo, hi in zip(region.lower, region.upper, strict=True)]
+    region, mode, axes = _region_grid(mechanism, region, phi, working_mode, grid=grid, refine=refine)
     points = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, 3)
     # the box's points outside the region, pulled onto its boundary: a boundary sampling as fine as
     # the grid (extremes often sit on the boundary, between the grid's points)
@@ -888,6 +939,115 @@ def table_4(*, grid: int = 41, refine: int = 12, robots: Any = None) -> list[Tab
             )
         rows.append(Table4Row(robot, name, phi_deg, regions[region].name, low, high, ours, notes))
     return rows
+
+
+# --------------------------------------------------------------------------------------------------
+# Actuation singularity surfaces (paper 004, Sec. 5.3, Figs. 14-16)
+# --------------------------------------------------------------------------------------------------
+
+
+class SingularSurface(NamedTuple):
+    """The actuation singularity locus of a four-limb robot in a region at one rotation ``φ``.
+
+    Attributes
+    ----------
+    triangles : numpy.ndarray, shape (m, 3, 3)
+        Vertices ``(x, y, z)`` on ``|A| = 0`` (Eq. 12, Table 2), in the robot's length unit.
+    phi : float
+        The rotation, radians.
+    region : Region
+        The region searched (the triangles whose centroids lie inside it are kept).
+    robot : str
+    """
+
+    triangles: np.ndarray
+    phi: float
+    region: Region
+    robot: str
+
+    @property
+    def area(self) -> float:
+        """The surface's area (sum of its triangles'), in the robot's length unit squared."""
+        edges = self.triangles[:, 1:] - self.triangles[:, :1]
+        return float(0.5 * np.sum(np.linalg.norm(np.cross(edges[:, 0], edges[:, 1]), axis=-1)))
+
+
+def actuation_singularity_surface(
+    mechanism: Any,
+    phi: float,
+    region: Region | None = None,
+    *,
+    grid: int = 32,
+    working_mode: Any = None,
+) -> SingularSurface:
+    """Paper 004's actuation singularity locus at a rotation ``φ`` as a surface (Sec. 5.3, Figs. 14-16).
+
+    The paper draws the poses where ``ζ = |cos σ| ≤ ε`` (Eq. 15, ``ε = 0.001``) at a fixed ``φ``
+    inside the operational workspace. Here: the zero set of ``|A|`` (Eq. 12 / Table 2,
+    :func:`det_A_closed_form`), where ``ζ = 0`` (``|A| = 2r |w_I × w_II| cos σ`` for the articulated
+    platforms, ``-h/(2π) |w_I × w_II| cos σ`` for the screw pair) or ``w_I × w_II = 0``. ``|A|``
+    is sampled on a ``grid``³ grid over the region's box (the family's inverse kinematics; poses out
+    of reach left out), its zero set triangulated by marching tetrahedra and every vertex moved onto
+    it by bisection along its grid edge (:mod:`screwkit._isosurface`); the triangles whose centroid
+    lies in the region are kept, so the surface's edge follows the region's boundary to within a
+    grid cell. A thin sheet between two grid points of equal sign is missed: refine ``grid``.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+        A four-limb catalog mechanism.
+    phi : float
+        The rotation of the platform, radians.
+    region : Region, optional
+        Default: the box of the mechanism's ``[workspace]``.
+    grid : int
+        Grid points per axis (at least 2).
+    working_mode : sequence of 4 int, optional
+        Signs of ``h_i`` (Eq. 8); default the paper's ``(-1, -1, -1, -1)``.
+
+    Returns
+    -------
+    SingularSurface
+
+    Raises
+    ------
+    ScrewkitValueError
+        Not a four-limb mechanism, a non-finite ``phi``, ``grid`` below 2.
+    ScrewkitTypeError
+        ``region`` is not a Region.
+
+    Examples
+    --------
+    The Quattro has no actuation singularity in its (assumed) workspace at ``φ = 0`` (Table 4's
+    ``η_min = 0.380``); at ``φ = 90°`` it has (Sec. 5.1, Fig. 14b):
+
+    >>> from screwkit.catalog import load_mechanism
+    >>> quattro = load_mechanism("quattro")
+    >>> len(actuation_singularity_surface(quattro, 0.0, TABLE_4_CONE, grid=12).triangles)
+    0
+    >>> actuation_singularity_surface(quattro, np.pi / 2, TABLE_4_CONE, grid=12).area > 0
+    True
+    """
+    from ._isosurface import zero_surface
+    from .families.four_limb import inverse_kinematics, reachable
+
+    params = _four_limb_parameters(mechanism)
+    region, mode, axes = _region_grid(mechanism, region, phi, working_mode, grid=grid)
+    angle = float(phi)
+
+    def det_a(points: np.ndarray) -> np.ndarray:
+        poses = np.column_stack([points, np.full(len(points), angle)])
+        ok = reachable(params, poses)
+        values = np.full(len(points), np.nan)
+        if ok.any():
+            config: Any = inverse_kinematics(params, poses[ok], working_mode=mode)
+            values[ok] = det_A_closed_form(config)
+        return values
+
+    points = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, 3)
+    triangles = zero_surface(axes, det_a(points).reshape((int(grid),) * 3), det_a)
+    inside = region.contains(triangles.mean(axis=1)) if len(triangles) else np.zeros(0, dtype=bool)
+    return SingularSurface(triangles[inside], angle, region, mechanism.name)
 
 
 # --------------------------------------------------------------------------------------------------

@@ -15,6 +15,11 @@ attributes works:
   ``reachable (ny, nx)`` and ``fixed`` (the other pose coordinates); a locus has ``kind``
   (``"constraint"``, ``"actuation"``, ``"serial"``), ``factor``, ``x_name``, ``y_name`` and
   ``points (m, 2)``;
+* :func:`plot_singularity_surfaces`: singularity loci as surfaces in the 3-D workspace, inside the
+  workspace drawn as a blue wireframe (paper 004, Figs. 14-16: the actuation singularity loci of the
+  Quattro, H4 and V4 at two rotations ``±φ`` each). A surface has ``triangles (m, 3, 3)``, ``phi``,
+  ``robot`` and ``region`` (with ``lower``, ``upper``, ``name`` and ``boundary(count)``), as
+  :func:`screwkit.indices.actuation_singularity_surface` returns;
 * :func:`plot_verdicts`: the same grid coloured by verdict (``values`` are the codes of
   :attr:`screwkit.singularity.SingularityReport.codes`, bit 1 constraint, 2 actuation, 4 serial, or
   the verdict strings);
@@ -50,8 +55,10 @@ from .exceptions import DegenerateGeometryError, MissingDependencyError, Screwki
 
 try:
     import matplotlib.pyplot as plt
-    from matplotlib.colors import BoundaryNorm, ListedColormap
+    from matplotlib.colors import BoundaryNorm, ListedColormap, to_rgba
+    from matplotlib.lines import Line2D
     from matplotlib.patches import FancyArrowPatch, Patch
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 except ImportError as err:  # pragma: no cover - exercised in a subprocess without matplotlib
     raise MissingDependencyError(
         "screwkit.plot needs matplotlib, which is not installed: install the optional extra `plot` "
@@ -63,9 +70,11 @@ from .twistgraph import check_twist_graph
 
 __all__ = [
     "KIND_COLOURS",
+    "SURFACE_COLOURS",
     "UNREACHABLE_COLOUR",
     "VERDICT_COLOURS",
     "plot_map",
+    "plot_singularity_surfaces",
     "plot_twist_graph",
     "plot_verdicts",
     "plot_wrench_diagram",
@@ -88,6 +97,8 @@ VERDICT_COLOURS = (
 )
 #: Colour of the axes' background: where a map has no value (unreachable poses).
 UNREACHABLE_COLOUR = "0.75"
+#: Colours of the surfaces of :func:`plot_singularity_surfaces`, in turn.
+SURFACE_COLOURS = ("tab:orange", "tab:purple", "tab:green", "tab:red", "tab:brown", "tab:pink")
 
 
 def _verdict_name(code: int) -> str:
@@ -357,6 +368,114 @@ def plot_verdicts(
     ax.set_xlabel(x_label)
     ax.set_ylabel(y_label)
     ax.set_title(_title(workspace_map, "verdicts", degrees))
+    return ax
+
+
+# singularity surfaces in 3-D ---------------------------------------------------------------------
+def _shaded(colour: str, triangles: Array) -> Array:
+    """One RGBA per triangle: ``colour`` darkened by how far the triangle turns from a light above
+    and in front (either side lit alike: the surfaces have no outside)."""
+    normals = np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0])
+    lengths = np.linalg.norm(normals, axis=-1)
+    light = np.array([-0.4, -0.5, 0.77]) / np.linalg.norm([-0.4, -0.5, 0.77])
+    facing = np.minimum(np.abs(normals @ light) / np.where(lengths > 0, lengths, 1.0), 1.0)
+    rgba = np.tile(np.array(to_rgba(colour)), (len(triangles), 1))
+    rgba[:, :3] *= (0.45 + 0.55 * facing)[:, None]
+    return rgba
+
+
+def plot_singularity_surfaces(
+    surfaces: Iterable[Any], *, ax: Any = None, wireframe: int = 16, alpha: float = 0.85
+) -> Any:
+    """Draw singularity surfaces in the workspace, as paper 004's Figs. 14-16.
+
+    Each surface is a set of triangles in its own colour (:data:`SURFACE_COLOURS` in turn), shaded
+    by a light from above; the first surface's region is drawn as a blue wireframe (points of its
+    boundary, :meth:`screwkit.indices.Region.boundary`), the axes span the region's box with equal
+    scales. A surface with no triangle (none in the region) is named in the legend as such.
+
+    Parameters
+    ----------
+    surfaces : iterable of SingularSurface
+        From :func:`screwkit.indices.actuation_singularity_surface`, e.g. at ``+φ`` and ``-φ``.
+    ax : 3-D matplotlib axes, optional
+        Default: a new figure with ``projection="3d"``.
+    wireframe : int
+        Latitudes of the region's wireframe (twice as many meridians); 0 draws none.
+    alpha : float
+        Opacity of the surfaces.
+
+    Returns
+    -------
+    mpl_toolkits.mplot3d.axes3d.Axes3D
+        One ``Poly3DCollection`` per surface with triangles (its label ``"φ = +75°"``), the
+        wireframe, a legend.
+
+    Raises
+    ------
+    ScrewkitTypeError
+        If a surface lacks ``triangles``, ``phi``, ``robot`` or ``region``, or ``ax`` is not 3-D.
+    ScrewkitValueError
+        If there is no surface, or triangles are not of shape ``(m, 3, 3)``.
+
+    Examples
+    --------
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> import numpy as np
+    >>> from screwkit.catalog import load_mechanism
+    >>> from screwkit.indices import TABLE_4_CONE, actuation_singularity_surface
+    >>> quattro = load_mechanism("quattro")
+    >>> pair = [actuation_singularity_surface(quattro, angle, TABLE_4_CONE, grid=10)
+    ...         for angle in (np.pi / 2, -np.pi / 2)]
+    >>> ax = plot_singularity_surfaces(pair)
+    >>> [text.get_text() for text in ax.get_legend().get_texts()]
+    ['φ = +90°', 'φ = -90°', 'workspace']
+    """
+    ax = _new_axes(ax, three_d=True)
+    items = list(surfaces)
+    if not items:
+        raise ScrewkitValueError("Expected at least one surface to draw, got none.")
+    handles: list[Any] = []
+    regions = []
+    for index, surface in enumerate(items):
+        try:
+            triangles = np.asarray(surface.triangles, dtype=float)
+            phi, robot = float(surface.phi), str(surface.robot)
+            regions.append(surface.region)
+        except AttributeError as err:
+            raise ScrewkitTypeError(
+                "Expected each surface to have triangles, phi, robot and region (a "
+                f"screwkit.indices.SingularSurface), got {type(surface).__name__}: {err}."
+            ) from err
+        if triangles.ndim != 3 or triangles.shape[1:] != (3, 3):
+            raise ScrewkitValueError(
+                f"Expected surfaces[{index}].triangles of shape (m, 3, 3), got {triangles.shape}."
+            )
+        colour = SURFACE_COLOURS[index % len(SURFACE_COLOURS)]
+        label = f"φ = {np.degrees(phi):+.4g}°"
+        if len(triangles):
+            shades = _shaded(colour, triangles)  # edges in the face colour: no seams between triangles
+            ax.add_collection3d(
+                Poly3DCollection(triangles, facecolors=shades, edgecolors=shades, linewidths=0.3, alpha=alpha,
+                                 label=label)
+            )
+        else:
+            label += ": none in the region"
+        handles.append(Patch(facecolor=colour, alpha=alpha, label=label))
+    first = regions[0]
+    lower, upper = np.array(first.lower, dtype=float), np.array(first.upper, dtype=float)
+    if wireframe:
+        x, y, z = first.boundary(wireframe)
+        ax.plot_wireframe(x, y, z, color="tab:blue", linewidth=0.4, alpha=0.45)
+        handles.append(Line2D([], [], color="tab:blue", linewidth=0.8, label="workspace"))
+    for limits, low, high in zip((ax.set_xlim, ax.set_ylim, ax.set_zlim), lower, upper, strict=True):
+        limits(low, high)
+    ax.set_box_aspect(tuple(np.maximum(upper - lower, 1e-9 * np.max(upper - lower))))
+    for name, labeller in zip("xyz", (ax.set_xlabel, ax.set_ylabel, ax.set_zlabel), strict=True):
+        labeller(name)
+    ax.set_title(f"{robot}: actuation singularity loci", fontsize=10)
+    ax.legend(handles=handles, loc="upper left", fontsize=8)
     return ax
 
 

@@ -194,6 +194,94 @@ def test_index_extremes_are_attained_and_bound_the_grid(robots):
     assert result.argmin[3] == result.argmax[3] == 0.3
 
 
+def test_region_boundary_points():
+    box = I.Region.box((0, 1), (0, 2), (0, 3))
+    x, y, z = box.boundary(6)
+    points = np.stack([x, y, z], axis=-1).reshape(-1, 3)
+    on_a_face = np.isclose(points, box.lower, atol=1e-6) | np.isclose(points, box.upper, atol=1e-6)
+    assert x.shape == (7, 13) and on_a_face.any(axis=1).all() and box.contains(points).all()
+    cone = I.TABLE_4_CONE
+    points = np.stack(cone.boundary(8), axis=-1).reshape(-1, 3)
+    centre = np.array([0.0, 0.0, -725.0])  # the centre of its box
+    assert cone.contains(points).all() and not cone.contains(centre + (points - centre) * 1.001).any()
+
+
+# -------------------------------------------------------------------------------------------------
+# Actuation singularity surfaces (Sec. 5.3, Figs. 14-16)
+# -------------------------------------------------------------------------------------------------
+
+
+@pytest.fixture(scope="module")
+def surfaces(robots):
+    """Figs. 14-16's pairs of angles (degrees), both signs, over the assumed workspace, grid 12."""
+    angles = {"quattro": (75, 90), "h4": (60, 90), "v4": (45, 90)}
+    return {
+        (name, sign * angle): I.actuation_singularity_surface(
+            robots[name], math.radians(sign * angle), I.TABLE_4_CONE, grid=12
+        )
+        for name, pair in angles.items()
+        for angle in pair
+        for sign in (1, -1)
+    }
+
+
+def test_actuation_surface_is_where_det_a_and_zeta_vanish(robots, surfaces):
+    for (name, degrees), surface in surfaces.items():
+        if not len(surface.triangles):
+            continue
+        vertices = surface.triangles.reshape(-1, 3)
+        poses = np.column_stack([vertices, np.full(len(vertices), math.radians(degrees))])
+        config = robots[name].configuration(poses)
+        det_a = np.linalg.det(I.four_limb_jacobians(config).A)  # the 4x4 determinant, not Eq. (12)
+        assert np.max(np.abs(det_a)) < 1e-9, (name, degrees)  # |A| ~ 10 mm in the workspace
+        # where w_I x w_II is not ~0 (Fig. 5a, b: |A| = 0 with sigma undefined), zeta = 0 (Fig. 5c, d)
+        w = config.w
+        (i1, i2), (j1, j2) = PAIRS[config.params.platform_kind]
+        normal = np.cross(np.cross(w[:, i1], w[:, i2]), np.cross(w[:, j1], w[:, j2]))
+        defined = np.linalg.norm(normal, axis=-1) > 1e-6
+        zeta = I.transmission(robots[name], poses).output  # the kernel: an independent path
+        assert defined.mean() > 0.99 and np.max(zeta[defined]) < 1e-6, (name, degrees)
+        assert I.TABLE_4_CONE.contains(surface.triangles.mean(axis=1)).all()
+        assert surface.phi == math.radians(degrees) and surface.robot == robots[name].name
+
+
+def test_actuation_surfaces_grow_with_the_rotation_as_paper_004_says(surfaces, robots):
+    # Sec. 5.3: "the singularity surfaces of the robots become larger with the increasing rotation
+    # angle"; the Quattro "still admits a large singularity-free workspace" at +-75 deg; and at phi = 0
+    # none (Table 4: eta_min = 0.380 > 0 over the workspace)
+    for name, (low, high) in {"quattro": (75, 90), "h4": (60, 90), "v4": (45, 90)}.items():
+        for sign in (1, -1):
+            assert surfaces[(name, sign * high)].area > surfaces[(name, sign * low)].area > 0
+    assert surfaces[("quattro", 75)].area < 0.01 * surfaces[("quattro", 90)].area
+    flat = I.actuation_singularity_surface(robots["quattro"], 0.0, I.TABLE_4_CONE, grid=12)
+    assert flat.triangles.shape == (0, 3, 3) and flat.area == 0.0
+
+
+def test_quattro_surfaces_at_plus_and_minus_phi_are_mirror_images(robots, surfaces):
+    # the mirror y -> -y swaps limbs 1 <-> 4 and 2 <-> 3 of Table 1 and turns phi into -phi, so the
+    # -phi locus mirrored lies on the +phi locus
+    mirrored = surfaces[("quattro", -90)].triangles.reshape(-1, 3) * [1.0, -1.0, 1.0]
+    poses = np.column_stack([mirrored, np.full(len(mirrored), math.pi / 2)])
+    det_a = np.linalg.det(I.four_limb_jacobians(robots["quattro"].configuration(poses)).A)
+    assert len(mirrored) > 1000 and np.max(np.abs(det_a)) < 1e-9
+
+
+def test_actuation_surface_errors(robots):
+    h4 = robots["h4"]
+    with pytest.raises(ScrewkitValueError, match="Expected `grid` to be an integer >= 2, got 1"):
+        I.actuation_singularity_surface(h4, 0.0, grid=1)
+    with pytest.raises(ScrewkitValueError, match="Expected `phi` to be a finite number"):
+        I.actuation_singularity_surface(h4, float("inf"))
+    with pytest.raises(ScrewkitTypeError, match="Expected `region` to be a Region, got tuple"):
+        I.actuation_singularity_surface(h4, 0.0, (0, 1))
+    with pytest.raises(ScrewkitValueError, match="four-limb family"):
+        I.actuation_singularity_surface(load_mechanism("planar_3rrp"), 0.0)
+    with pytest.raises(ScrewkitValueError, match="working_mode"):
+        I.actuation_singularity_surface(h4, 0.0, working_mode=(1, 1))
+    default = I.actuation_singularity_surface(h4, 0.0, grid=4)  # the catalog workspace box
+    assert default.region.lower == tuple(h4.workspace[c][0] for c in "xyz")
+
+
 @pytest.fixture(scope="module")
 def table():
     return {(row.robot, row.phi_deg): row for row in I.table_4()}

@@ -19,7 +19,7 @@ import numpy as np
 import pytest
 from matplotlib.contour import ContourSet
 from matplotlib.patches import FancyArrowPatch
-from mpl_toolkits.mplot3d.art3d import Line3DCollection
+from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
 
 from screwkit import equivalent_twist_graph, load_mechanism, prismatic, revolute, twist_graph
 from screwkit.diagram import wrench_diagram
@@ -29,10 +29,13 @@ from screwkit.exceptions import (
     ScrewkitValueError,
     TwistGraphError,
 )
+from screwkit.indices import TABLE_4_CONE, Region, actuation_singularity_surface
 from screwkit.plot import (
+    SURFACE_COLOURS,
     UNREACHABLE_COLOUR,
     VERDICT_COLOURS,
     plot_map,
+    plot_singularity_surfaces,
     plot_twist_graph,
     plot_verdicts,
     plot_wrench_diagram,
@@ -251,6 +254,59 @@ def test_wrench_diagram_errors(h4_diagram):
 
 
 # the twist graph ----------------------------------------------------------------------------------
+# singularity surfaces (paper 004, Figs. 14-16) ------------------------------------------------------
+def _square(z, phi=0.5, robot="toy"):
+    """Two triangles of the square |x|, |y| <= 100 at height z, in the box region +-200 x +-200 x +-200."""
+    corners = np.array([[-100, -100, z], [100, -100, z], [100, 100, z], [-100, 100, z]], dtype=float)
+    region = Region.box((-200, 200), (-200, 200), (-200, 200))
+    return SimpleNamespace(triangles=corners[[[0, 1, 2], [0, 2, 3]]], phi=phi, robot=robot, region=region)
+
+
+def test_singularity_surfaces_artists(tmp_path):
+    empty = SimpleNamespace(**{**vars(_square(0.0)), "triangles": np.zeros((0, 3, 3)), "phi": 0.0})
+    ax = plot_singularity_surfaces([_square(50.0, 1.3), _square(-50.0, -1.3), empty], wireframe=6)
+    ax.figure.savefig(tmp_path / "surfaces.png")
+    assert (tmp_path / "surfaces.png").stat().st_size > 1000
+    polygons = [c for c in ax.collections if isinstance(c, Poly3DCollection)]
+    assert [len(p.get_paths()) for p in polygons] == [2, 2]  # one per triangle; none for the empty one
+    assert [p.get_label() for p in polygons] == ["φ = +74.48°", "φ = -74.48°"]
+    # the first in SURFACE_COLOURS' first colour, shaded (never brighter than the colour)
+    base = np.array(matplotlib.colors.to_rgb(SURFACE_COLOURS[0]))
+    faces = polygons[0].get_facecolor()[:, :3]
+    assert np.all(faces <= base + 1e-12) and np.all(faces >= 0.45 * base - 1e-12)
+    wire = [c for c in ax.collections if isinstance(c, Line3DCollection)]
+    assert len(wire) == 1 and matplotlib.colors.same_color(wire[0].get_color()[0][:3], "tab:blue")
+    legend = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert legend == ["φ = +74.48°", "φ = -74.48°", "φ = +0°: none in the region", "workspace"]
+    assert ax.get_xlim() == (-200, 200) and ax.get_zlim() == (-200, 200)
+    assert ax.get_title() == "toy: actuation singularity loci"
+
+
+def test_singularity_surfaces_of_paper_004_robot(tmp_path):
+    quattro = load_mechanism("quattro")
+    pair = [actuation_singularity_surface(quattro, a, TABLE_4_CONE, grid=10) for a in (np.pi / 2, -np.pi / 2)]
+    ax = plot_singularity_surfaces(pair, wireframe=0)
+    ax.figure.savefig(tmp_path / "fig14b.png")
+    polygons = [c for c in ax.collections if isinstance(c, Poly3DCollection)]
+    assert [len(p.get_paths()) for p in polygons] == [len(s.triangles) for s in pair]
+    assert not [c for c in ax.collections if isinstance(c, Line3DCollection)]  # no wireframe asked
+    low, high = ax.get_zlim()
+    assert (low, high) == (TABLE_4_CONE.lower[2], TABLE_4_CONE.upper[2])
+    assert ax.get_title() == "Quattro: actuation singularity loci"
+
+
+def test_singularity_surfaces_errors():
+    with pytest.raises(ScrewkitValueError, match="Expected at least one surface to draw, got none"):
+        plot_singularity_surfaces([])
+    with pytest.raises(ScrewkitTypeError, match="Expected each surface to have triangles, phi, robot and region"):
+        plot_singularity_surfaces([SimpleNamespace(triangles=np.zeros((0, 3, 3)))])
+    bad = SimpleNamespace(**{**vars(_square(0.0)), "triangles": np.zeros((2, 3))})
+    with pytest.raises(ScrewkitValueError, match=r"surfaces\[0\]\.triangles of shape \(m, 3, 3\), got \(2, 3\)"):
+        plot_singularity_surfaces([bad])
+    with pytest.raises(ScrewkitTypeError, match="Expected `ax` to be 3-D axes"):
+        plot_singularity_surfaces([_square(0.0)], ax=plt.subplots()[1])
+
+
 def test_twist_graph_artists_h4(tmp_path):
     graph = load_mechanism("h4").twist_graph()
     ax = plot_twist_graph(graph)
