@@ -191,7 +191,7 @@ def _orderings() -> tuple[np.ndarray, np.ndarray]:
     first = 2 * perms[:, None, :] + flips[None, :, :]
     second = 2 * perms[:, None, :] + 1 - flips[None, :, :]
     slot_positions = np.stack([first, second], axis=-1).reshape(-1, 12)
-    inversions = sum((perms[:, i] > perms[:, j]).astype(int) for i, j in itertools.combinations(range(6), 2))
+    inversions = np.sum([perms[:, i] > perms[:, j] for i, j in itertools.combinations(range(6), 2)], axis=0)
     perm_signs = 1 - 2 * (inversions % 2)
     signs = (perm_signs[:, None] * (-1) ** flips.sum(axis=1)[None, :]).reshape(-1)
     return slot_positions, signs
