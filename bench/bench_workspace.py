@@ -3,15 +3,23 @@
 Run: ``python bench/bench_workspace.py [--side 1000] [--chunk 4096] [--repeats 3]`` from the
 repository root (prints a table; not a test). Single-threaded BLAS.
 
-Figures:
+Figures (rates in poses per second of this process's CPU time, best of ``--repeats``, since the
+machine is shared; the load average is printed beside them):
 
-* ``core``: ``h4.at(poses).codes`` over 10,000 poses of the catalog box, chunked by the core
-  itself (:func:`screwkit.singularity.classify_table`), poses/s;
-* ``verdict map``: :func:`screwkit.workspace.grid_map` of ``"verdict"`` over a 100 × 100 grid of
-  the same box (z × phi at x = y = 0, plus reachability), poses/s and the ratio to ``core``;
-* ``large map``: a ``side × side`` verdict map (default 1000 × 1000 = 10⁶ poses) in chunks of
-  ``--chunk`` poses: wall time, poses/s, and the process's peak resident memory (``ru_maxrss``)
-  before and after it, which the chunks bound (the map's own arrays are 9 bytes per pose);
+* ``core``: ``h4.at(poses).singularities`` over 10,000 poses of the catalog box, chunked by the
+  core itself (:func:`screwkit.singularity.classify_chunks`), poses/s;
+* ``verdict map``, ``closeness map``: :func:`screwkit.workspace.grid_map` of ``"verdict"`` and
+  ``"closeness"`` over a 100 × 100 grid of the same box (z × phi at x = y = 0, plus
+  reachability), poses/s and the ratio to ``core``;
+* ``condition:0 / :1 map``: the same grid for the superbracket's two factors (paper 002 Eqs. 6, 7):
+  the diagram's points over each chunk from the batched core and the factors' vector forms on them
+  (the superbracket factored once before timing), poses/s and the ratio to ``core``;
+* ``one pose at a time``: the same condition through the per-pose route the maps used before
+  (``condition.evaluate(diagram_points(diagram.points, posed[i].analysis))``), on 200 poses;
+* ``large maps``: a ``condition-side²`` map of ``"condition:1"`` (default 300 × 300 = 90,000 poses)
+  and a ``side × side`` verdict map (default 1000 × 1000 = 10⁶ poses) in chunks of ``--chunk``
+  poses: wall time, poses/s of CPU time, and the process's peak resident memory (``ru_maxrss``)
+  before and after each, which the chunks bound (the map's own arrays are 9 bytes per pose);
 * ``path``: :func:`screwkit.workspace.check_path` of a 200-sample path across paper 002's actuation
   surface (the first crossing refined to ~1e-16 in the path parameter), seconds;
 * ``loci``: :func:`screwkit.workspace.loci` of a 30 × 30 slice through all three surfaces, seconds.
@@ -31,6 +39,11 @@ from _timing import best_of  # noqa: E402  (bench/ is the script folder)
 
 import screwkit as sk  # noqa: E402
 from screwkit import workspace as W  # noqa: E402
+from screwkit.diagram import diagram_points  # noqa: E402
+
+
+def poses_of(posed):
+    return [posed[i] for i in range(len(posed))]
 
 
 def peak_mib():
@@ -40,46 +53,61 @@ def peak_mib():
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--side", type=int, default=1000, help="the large map is side x side poses")
+    parser.add_argument("--condition-side", type=int, default=300, help="the large condition map's side")
     parser.add_argument("--chunk", type=int, default=W.CHUNK)
     parser.add_argument("--repeats", type=int, default=3)
     args = parser.parse_args()
     h4 = sk.load_mechanism("h4")
     _ = h4.at([[0, 0, -750, 0]]).codes  # warm up (numba compile, imports)
 
+    print(f"load average {os.getloadavg()[0]:.1f} (CPU time of this process; best of {args.repeats})")
+    cpu = time.process_time
+    W._conditions(h4, {})  # the superbracket factored once, outside the timing
+    for quantity, side in (("condition:1", args.condition_side), ("verdict", args.side)):
+        before = peak_mib()  # large maps first (then the condition map): a peak hides later ones
+        start, start_cpu = time.perf_counter(), cpu()
+        big = W.grid_map(
+            h4,
+            quantity,
+            x=("z", -1000, -550, side),
+            y=("phi", -45, 45, side),
+            fixed={"x": 0, "y": 0},
+            chunk=args.chunk,
+            progress=False,
+        )
+        seconds, cpu_seconds = time.perf_counter() - start, cpu() - start_cpu
+        count = side**2
+        print(
+            f"{quantity} map, {count:,} poses: {seconds:7.1f} s wall, {count / cpu_seconds:8.0f} poses/s "
+            f"(CPU)  peak RSS {before:.0f} -> {peak_mib():.0f} MiB (chunk {args.chunk}); "
+            f"range [{big.minimum:.4g}, {big.maximum:.4g}]"
+        )
+
     z, phi = np.meshgrid(np.linspace(-1000, -550, 100), np.radians(np.linspace(-45, 45, 100)))
     poses = np.stack([np.zeros_like(z), np.zeros_like(z), z, phi], axis=-1).reshape(-1, 4)
-    core = best_of(args.repeats, lambda: h4.at(poses).codes)
-    grid = {"x": ("z", -1000, -550, 100), "y": ("phi", -45, 45, 100), "fixed": {"x": 0, "y": 0}}
-    mapped = best_of(args.repeats, lambda: W.grid_map(h4, "verdict", **grid))
+    core = best_of(args.repeats, lambda: h4.at(poses).singularities, clock=cpu)
     print(f"core, 10,000 poses:          {len(poses) / core:10.0f} poses/s")
-    ratio = core / mapped
-    print(f"verdict map, 100 x 100:      {len(poses) / mapped:10.0f} poses/s  ({ratio:.2f} x the core)")
+    grid = {"x": ("z", -1000, -550, 100), "y": ("phi", -45, 45, 100), "fixed": {"x": 0, "y": 0}}
+    diagram, conditions, _, _ = W._conditions(h4, {})
+    for quantity in ("verdict", "closeness", "condition:0", "condition:1"):
+        mapped = best_of(args.repeats, lambda q=quantity: W.grid_map(h4, q, **grid), clock=cpu)
+        label = f"{quantity} map, 100 x 100:"
+        print(f"{label:29s}{len(poses) / mapped:10.0f} poses/s  ({core / mapped:.2f} x the core's rate)")
+    few = h4.at(poses[:: len(poses) // 200])
 
-    before = peak_mib()
-    start = time.perf_counter()
-    big = W.grid_map(
-        h4,
-        "verdict",
-        x=("z", -1000, -550, args.side),
-        y=("phi", -45, 45, args.side),
-        fixed={"x": 0, "y": 0},
-        chunk=args.chunk,
-        progress=False,
-    )
-    seconds = time.perf_counter() - start
-    count = args.side**2
-    print(
-        f"verdict map, {count:,} poses:  {seconds:8.1f} s  {count / seconds:10.0f} poses/s  peak RSS "
-        f"{before:.0f} -> {peak_mib():.0f} MiB (chunk {args.chunk}); codes {np.unique(big.values).tolist()}"
-    )
+    def one_at_a_time():
+        factor = conditions[1]
+        return [factor.evaluate(diagram_points(diagram.points, pose.analysis)) for pose in poses_of(few)]
+
+    single = best_of(1, one_at_a_time, clock=cpu)
+    print(f"condition:1, one pose at a time: {len(few) / single:6.0f} poses/s  (200 poses)")
 
     start_pose = {"x": 300, "y": 300, "z": -800, "phi": -80}
     end_pose = {"x": 300, "y": 300, "z": -800, "phi": 0}
-    path = best_of(1, lambda: W.check_path(h4, start_pose, end_pose))  # first call factors once
-    path = best_of(args.repeats, lambda: W.check_path(h4, start_pose, end_pose))
+    path = best_of(args.repeats, lambda: W.check_path(h4, start_pose, end_pose), clock=cpu)
     print(f"path, 200 samples, refined:  {path:8.2f} s  ({W.check_path(h4, start_pose, end_pose)})")
     slice_ = {"x": ("z", -1100, -450, 30), "y": ("phi", -90, 90, 30), "fixed": {"x": 300, "y": 300}}
-    loci_time = best_of(1, lambda: W.loci(h4, **slice_))
+    loci_time = best_of(1, lambda: W.loci(h4, **slice_), clock=cpu)
     found = W.loci(h4, **slice_)
     counts = ", ".join(f"{lo.kind} {len(lo.points)}" for lo in found)
     print(f"loci, 30 x 30 slice:         {loci_time:8.2f} s  ({counts})")

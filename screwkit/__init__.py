@@ -97,6 +97,7 @@ _LAZY = {
     "transmission": "indices",
     "index_extremes": "indices",
     "wrench_transmission": "indices",
+    "actuation_singularity_surface": "indices",
 }
 
 
@@ -153,6 +154,7 @@ __all__ = [
     "WrenchDiagram",
     "WrenchJacobians",
     "__version__",
+    "actuation_singularity_surface",
     "analyze",
     "analyze_table",
     "are_collinear",

@@ -875,36 +875,47 @@ def _finite_axes(screws: Array) -> tuple[Array, Array]:
     return np.where(bad[..., None], np.nan, point), np.where(bad[..., None], np.nan, direction)
 
 
-def _meet_points(line: Array, screw: Array, length_scale: Array) -> Array:
-    """Where finite lines ``(..., 6)`` meet joint axes ``(..., 6)``: ``(..., 4)`` of weight 1, NaN
-    where they are skew, parallel or meet at infinity.
+def _axis_lines(screws: Array) -> tuple[Array, Array]:
+    """The axes ``(s; r × s)`` of screws ``(..., 6)`` and their points ``r`` nearest the origin."""
+    nearest, _ = _finite_axes(screws)
+    return np.concatenate([screws[..., :3], np.cross(nearest, screws[..., :3])], axis=-1), nearest
 
-    The line meets the plane that contains the axis and is normal to the plane of both
-    (:func:`screwkit.projective.meet_line_plane`); they meet when ``L ∘ A = 0`` after scaling
-    moments by ``length_scale`` (:func:`screwkit.projective.lines_intersect`).
-    """
-    nearest, _ = _finite_axes(screw)
-    axis = np.concatenate([screw[..., :3], np.cross(nearest, screw[..., :3])], axis=-1)  # S.line(s, r)
-    length = np.asarray(length_scale, dtype=float)[..., None]
 
-    def scaled(rows: Array) -> Array:
-        out = np.concatenate([rows[..., :3], rows[..., 3:] / length], axis=-1)
-        return _units(out)
-
-    a, b = scaled(line), scaled(axis)
-    product = np.einsum("...i,...i", a[..., :3], b[..., 3:]) + np.einsum("...i,...i", a[..., 3:], b[..., :3])
-    cross = np.cross(_units(line[..., :3]), _units(axis[..., :3]))
-    parallel = np.linalg.norm(cross, axis=-1) < INCIDENCE_RTOL
+def _meet_plane_through_axis(line: Array, axis: Array, origin: Array) -> tuple[Array, Array]:
+    """Where lines ``(..., 6)`` meet the planes that contain the axes ``(..., 6)`` (through their
+    points ``origin``) and are normal to the planes of line and axis: ``(n × m − δ s, n·s)``
+    (:func:`screwkit.projective.meet_line_plane`), and where the line lies in that plane instead."""
     normal = np.cross(np.cross(line[..., :3], axis[..., :3]), axis[..., :3])
-    origin, _ = _finite_axes(axis)
     plane = np.concatenate([normal, -np.einsum("...i,...i", normal, origin)[..., None]], axis=-1)
     s, m, delta = line[..., :3], line[..., 3:], plane[..., 3:]
     point = np.concatenate(
         [np.cross(normal, m) - delta * s, np.einsum("...i,...i", normal, s)[..., None]], axis=-1
     )
-    in_plane = np.linalg.norm(point, axis=-1) <= B.DEFAULT_RTOL * np.linalg.norm(
-        line, axis=-1
-    ) * np.linalg.norm(plane, axis=-1)
+    size = np.linalg.norm(line, axis=-1) * np.linalg.norm(plane, axis=-1)
+    with np.errstate(invalid="ignore"):
+        in_plane = np.all(normal == 0, axis=-1) | (np.linalg.norm(point, axis=-1) <= B.DEFAULT_RTOL * size)
+    return point, in_plane
+
+
+def _meet_points(line: Array, screw: Array, length_scale: Array) -> Array:
+    """Where finite lines ``(..., 6)`` meet joint axes ``(..., 6)``: ``(..., 4)`` of weight 1, NaN
+    where they are skew, parallel or meet at infinity.
+
+    The line meets the plane that contains the axis and is normal to the plane of both; they meet
+    when ``L ∘ A = 0`` after scaling moments by ``length_scale``
+    (:func:`screwkit.projective.lines_intersect`).
+    """
+    axis, origin = _axis_lines(screw)
+    length = np.asarray(length_scale, dtype=float)[..., None]
+
+    def scaled(rows: Array) -> Array:
+        return _units(np.concatenate([rows[..., :3], rows[..., 3:] / length], axis=-1))
+
+    a, b = scaled(line), scaled(axis)
+    product = np.einsum("...i,...i", a[..., :3], b[..., 3:]) + np.einsum("...i,...i", a[..., 3:], b[..., :3])
+    cross = np.cross(_units(line[..., :3]), _units(axis[..., :3]))
+    parallel = np.linalg.norm(cross, axis=-1) < INCIDENCE_RTOL
+    point, in_plane = _meet_plane_through_axis(line, axis, origin)
     with np.errstate(invalid="ignore"):
         skew = ~(np.abs(product) <= INCIDENCE_RTOL)
         missing = skew | parallel | in_plane | ~(np.abs(point[..., 3]) >= 1e-12)
@@ -915,22 +926,11 @@ def _meet_points(line: Array, screw: Array, length_scale: Array) -> Array:
 def _joint_centres(screws: Array) -> Array:
     """The common point ``(..., 3)`` of joints' first two axes ``(..., k, 6)`` (a spherical or
     universal joint's centre), NaN where they are parallel (no single point)."""
-    first, second = screws[..., 0, :], screws[..., 1, :]
-    (p1, _), (p2, _) = _finite_axes(first), _finite_axes(second)
-    line = np.concatenate([first[..., :3], np.cross(p1, first[..., :3])], axis=-1)
-    normal = np.cross(np.cross(line[..., :3], second[..., :3]), second[..., :3])
-    plane = np.concatenate([normal, -np.einsum("...i,...i", normal, p2)[..., None]], axis=-1)
-    s, m, delta = line[..., :3], line[..., 3:], plane[..., 3:]
-    point = np.concatenate(
-        [np.cross(normal, m) - delta * s, np.einsum("...i,...i", normal, s)[..., None]], axis=-1
-    )
-    size = np.linalg.norm(point, axis=-1)
+    first, _ = _axis_lines(screws[..., 0, :])
+    second, origin = _axis_lines(screws[..., 1, :])
+    point, in_plane = _meet_plane_through_axis(first, second, origin)
     with np.errstate(invalid="ignore"):
-        missing = (
-            np.all(normal == 0, axis=-1)
-            | (size <= B.DEFAULT_RTOL * np.linalg.norm(line, axis=-1) * np.linalg.norm(plane, axis=-1))
-            | (np.abs(point[..., 3]) <= B.DEFAULT_RTOL * size)
-        )
+        missing = in_plane | (np.abs(point[..., 3]) <= B.DEFAULT_RTOL * np.linalg.norm(point, axis=-1))
     with np.errstate(invalid="ignore", divide="ignore"):
         return np.where(missing[..., None], np.nan, point[..., :3] / point[..., 3:])
 
@@ -949,9 +949,9 @@ def _branch_pair(batch: _Batch, first: str, second: str) -> Array:
     """``n(first) × n(second)`` over the batch (``_branch_normals``' recipe, NaN where the two
     branches are not consecutive single constraint couples of one parallel node there).
 
-    A branch's constraint couple is reciprocal to its twist system of order 5: the null vector
-    ``v`` of its rows gives the wrench ``(v_m; v_s)`` (the reciprocal product swaps the halves);
-    its moment's direction is frame- and unit-free.
+    A branch's constraint couple is the reciprocal of its twist system (the core's frame kernel,
+    :func:`screwkit._frames.reciprocal`) where that has order 1 and infinite pitch; its moment's
+    direction is frame- and unit-free.
     """
     top = batch.topology
     if top.network or top.root is None:
@@ -976,11 +976,11 @@ def _branch_pair(batch: _Batch, first: str, second: str) -> Array:
             continue
         moments, couple = [], []
         for child in children:
-            rows, order = batch.frames[f"node{child}"]
-            null = np.linalg.svd(rows[..., :5, :])[2][..., -1, :]
-            wrench = np.concatenate([null[..., 3:], null[..., :3]], axis=-1)
-            moments.append(_units(wrench[..., 3:]))
-            couple.append((order == 5) & (np.linalg.norm(wrench[..., :3], axis=-1) <= B.DEFAULT_RTOL))
+            rows, order = F.reciprocal(*batch.frames[f"node{child}"])  # the core's kernel, scaled frame
+            wrench = rows[:, 0]
+            moments.append(_units(wrench[:, 3:]))
+            size = np.linalg.norm(wrench, axis=-1)
+            couple.append((order == 1) & (np.linalg.norm(wrench[:, :3], axis=-1) <= B.DEFAULT_RTOL * size))
         a, b = names.index(first), names.index(second)
         between = np.zeros(batch.count, dtype=bool)
         for k in range(a + 1, b):

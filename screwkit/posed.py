@@ -27,6 +27,7 @@ Examples
 from __future__ import annotations
 
 import functools
+import weakref
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any, overload
@@ -151,13 +152,14 @@ class PosedMechanism:
                 protocol.joints(self.mechanism.configuration(flat[start : start + CHUNK], **self.options))
                 for start in range(0, max(len(flat), 1), CHUNK)
             )
-            return classify_chunks(pieces, self._joint_table, self.shape, rtol=self.rtol)
+            # the report's table, asked only by a per-pose view, is this object's (held weakly: a
+            # reference cycle would keep every chunk of a map alive until the cyclic GC runs)
+            owner = weakref.ref(self)
+            source = functools.partial(_joint_table, owner, self.mechanism, self.poses, self.options)
+            return classify_chunks(pieces, source, self.shape, rtol=self.rtol)
         except ScrewkitError:
             _ = self.configuration  # raises the whole batch's message (the failing pose's index)
             raise
-
-    def _joint_table(self) -> JointTable:
-        return self.joints
 
     @property
     def verdicts(self) -> Array:
@@ -306,6 +308,17 @@ class Pose:
         from .report import pose_report
 
         return pose_report(self, superbracket=superbracket, progress=progress)
+
+
+def _joint_table(
+    posed: weakref.ref[PosedMechanism], mechanism: Any, poses: Array, options: dict[str, Any]
+) -> JointTable:
+    """The joint table of a posed batch: its own (cached) while it lives, else computed again at
+    its poses (inverse kinematics, then the family's joints)."""
+    alive = posed()
+    if alive is not None:
+        return alive.joints
+    return mechanism.family_protocol.joints(mechanism.configuration(poses, **options))
 
 
 def _reachable_table(mechanism: Any, rng: np.random.Generator, count: int) -> JointTable | None:

@@ -29,7 +29,9 @@ Quantities (:data:`QUANTITIES`)
 ``"condition:K"``
     The vector form of the K-th factor of the superbracket (:mod:`screwkit.conditions`), factored
     once at the default pose and evaluated on the wrench diagram's points over the whole batch
-    (:func:`screwkit.diagram.batch_diagram_points`, from the batched core).
+    (:func:`screwkit.diagram.batch_diagram_points`, from the batched core); a
+    :class:`~screwkit.exceptions.DegenerateGeometryError` names the pose where a point of the
+    diagram does not exist (e.g. a limb at a serial singularity has no actuation line).
 
 Float maps hold NaN where a pose is out of reach, always together with ``reachable`` False.
 
@@ -323,12 +325,18 @@ def _condition_values(mechanism: Any, index: int, posed: Any) -> Array:
 
 def _diagram_points(diagram: Any, posed: Any) -> tuple[dict[str, Array], Array]:
     """The diagram's points ``{label: (n, 4)}`` at every pose of a posed batch ``(n,)`` and where
-    all of them exist ``(n,)`` (the batched core, with the per-pose frames the recipes read)."""
+    all of them exist ``(n,)``: the batched core with the per-pose frames the recipes read, in
+    the core's own chunks (:data:`screwkit.posed.CHUNK` poses), so that only the points are kept."""
     from .diagram import batch_diagram_points
+    from .posed import CHUNK as CORE_CHUNK
     from .wrenches import analyze_table
 
-    analysis = analyze_table(posed.joints, rtol=posed.rtol)
-    points = batch_diagram_points(diagram.points, analysis)
+    table, rtol = posed.joints, posed.rtol
+    parts = [
+        batch_diagram_points(diagram.points, analyze_table(table[start : start + CORE_CHUNK], rtol=rtol))
+        for start in range(0, len(posed), CORE_CHUNK)
+    ]
+    points = {p.label: np.concatenate([part[p.label] for part in parts]) for p in diagram.points}
     exists = np.all([np.isfinite(v).all(axis=-1) for v in points.values()], axis=0)
     return points, np.asarray(exists, dtype=bool).reshape(len(posed))
 

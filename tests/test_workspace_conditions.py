@@ -7,11 +7,14 @@ equations (tests/singular_surfaces.py). The single-pose evaluation (a batch of o
 code) must give each batched value.
 """
 
+import json
+
 import numpy as np
 import pytest
 
 import screwkit as sk
 from screwkit import workspace as W
+from screwkit.cli import main
 from screwkit.conditions import _polynomial
 from screwkit.diagram import batch_diagram_points, diagram_points
 from screwkit.exceptions import DegenerateGeometryError
@@ -103,3 +106,22 @@ def test_condition_map_names_the_missing_point_and_the_pose():
     with pytest.raises(DegenerateGeometryError, match=r"point a \(where the actuation A1 meets") as err:
         W.evaluate(H4_MECHANISM, poses, "condition:0")
     assert str(case_b_pose()[0]) in str(err.value) and "missing at the pose" in str(err.value)
+
+
+def test_cli_condition_map_is_paper_002_equation_6(tmp_path, capsys):
+    # across the constraint surface (x = y = 300 mm, phi up to 90°): Eq. (6) changes sign there
+    out = tmp_path / "condition.json"
+    argv = ["map", "h4", "--quantity", "condition", "--z", "-560", "-470", "--phi", "60", "90",
+            "--x", "300", "--y", "300", "--grid", "6", "--out", str(out), "--no-progress"]
+    assert main(argv) == 0
+    printed = json.loads(out.read_text())
+    assert printed["quantity"] == "condition:0"
+    z, phi = np.meshgrid(printed["x"]["values"], printed["y"]["values"])
+    poses = np.stack([np.full_like(z, 300.0), np.full_like(z, 300.0), z, np.radians(phi)], axis=-1)
+    values = np.array(printed["values"], dtype=float)
+    reached = np.isfinite(values)
+    eq6, _, s12, s34 = paper_002_conditions(H4_MECHANISM.configuration(poses[reached]))
+    assert (eq6 > 0).any() and (eq6 < 0).any()
+    norms = np.linalg.norm(s12, axis=-1) * np.linalg.norm(s34, axis=-1)
+    np.testing.assert_allclose(np.abs(values[reached]) * norms, np.abs(eq6), rtol=1e-9, atol=1e-12)
+    assert "written to" in capsys.readouterr().out
