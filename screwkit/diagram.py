@@ -215,7 +215,7 @@ def _branch_normals(analysis: WrenchAnalysis) -> dict[tuple[str, str], tuple[Arr
                 ):
                     couples.append((name(child), wrenches.basis[0, 3:]))
             for (first, m1), (second, m2) in itertools.pairwise(couples):
-                cross = np.cross(_unit(m1), _unit(m2))
+                cross = B.cross(_unit(m1), _unit(m2))
                 found[(first, second)] = (
                     cross,
                     f"n({first}) × n({second}), the direction common to the planes "
@@ -445,7 +445,7 @@ def _distinct_directions(axes: list[tuple[str, Array]]) -> list[tuple[str, Array
     kept: list[tuple[str, Array]] = []
     for key, screw in axes:
         if all(
-            np.linalg.norm(np.cross(_unit(screw[:3]), _unit(other[:3]))) >= INCIDENCE_RTOL
+            np.linalg.norm(B.cross(_unit(screw[:3]), _unit(other[:3]))) >= INCIDENCE_RTOL
             for _, other in kept
         ):
             kept.append((key, screw))
@@ -497,7 +497,7 @@ def _couple_line_recipe(
     for k, ((other, _, w, _), inf) in enumerate(zip(lines, infinite, strict=True)):
         if inf and k != position:
             pair = (name, other) if position < k else (other, name)
-            options.append((("couples", *pair), np.cross(wrench[3:], w[3:])))
+            options.append((("couples", *pair), B.cross(wrench[3:], w[3:])))
     used = {key for pair in earlier for key in pair}
 
     def through(direction: Array) -> tuple[int, int]:
@@ -509,7 +509,7 @@ def _couple_line_recipe(
             if inf
         )
         finite = sum(
-            np.linalg.norm(np.cross(d, _unit(w[:3]))) < INCIDENCE_RTOL
+            np.linalg.norm(B.cross(d, _unit(w[:3]))) < INCIDENCE_RTOL
             for (_, _, w, _), inf in zip(lines, infinite, strict=True)
             if not inf
         )
@@ -527,7 +527,7 @@ def _couple_line_recipe(
     chosen: list[tuple[tuple[str, ...], Array | None]] = [(key, None) for key in own]
     directions = [normals[(key[1], key[2])][0] for key in own]
     for _, (key, d) in ranked:
-        if all(np.linalg.norm(np.cross(_unit(d), _unit(e))) >= INCIDENCE_RTOL for e in directions):
+        if all(np.linalg.norm(B.cross(_unit(d), _unit(e))) >= INCIDENCE_RTOL for e in directions):
             chosen.append((key, d))
             directions.append(d)
     keys = [key for key, _ in chosen][:2]
@@ -574,7 +574,7 @@ def _finite_line_recipe(
     ]
     direction: tuple[str, ...] = ("direction", name)
     for key, screw in _single_freedom_axes(analysis, tuple(k for _, _, k in analysis.graph.edges(keys=True))):
-        if np.linalg.norm(np.cross(_unit(screw[:3]), _unit(wrench[:3]))) < INCIDENCE_RTOL:
+        if np.linalg.norm(B.cross(_unit(screw[:3]), _unit(wrench[:3]))) < INCIDENCE_RTOL:
             direction = ("axis", key)  # the line is parallel to a joint axis: share that point
             break
     finite = on_line + meets + [("foot", name)]
@@ -862,8 +862,8 @@ def _free(moment: Array) -> tuple[Array, Array]:
     meaning."""
     m = _units(moment)
     axis = np.eye(3)[np.argmin(np.nan_to_num(np.abs(m), nan=0.0), axis=-1)]
-    first = _units(np.cross(m, axis))
-    return first, np.cross(m, first)
+    first = _units(B.cross(m, axis))
+    return first, B.cross(m, first)
 
 
 def _finite_axes(screws: Array) -> tuple[Array, Array]:
@@ -878,18 +878,18 @@ def _finite_axes(screws: Array) -> tuple[Array, Array]:
 def _axis_lines(screws: Array) -> tuple[Array, Array]:
     """The axes ``(s; r × s)`` of screws ``(..., 6)`` and their points ``r`` nearest the origin."""
     nearest, _ = _finite_axes(screws)
-    return np.concatenate([screws[..., :3], np.cross(nearest, screws[..., :3])], axis=-1), nearest
+    return np.concatenate([screws[..., :3], B.cross(nearest, screws[..., :3])], axis=-1), nearest
 
 
 def _meet_plane_through_axis(line: Array, axis: Array, origin: Array) -> tuple[Array, Array]:
     """Where lines ``(..., 6)`` meet the planes that contain the axes ``(..., 6)`` (through their
     points ``origin``) and are normal to the planes of line and axis: ``(n × m − δ s, n·s)``
     (:func:`screwkit.projective.meet_line_plane`), and where the line lies in that plane instead."""
-    normal = np.cross(np.cross(line[..., :3], axis[..., :3]), axis[..., :3])
+    normal = B.cross(B.cross(line[..., :3], axis[..., :3]), axis[..., :3])
     plane = np.concatenate([normal, -np.einsum("...i,...i", normal, origin)[..., None]], axis=-1)
     s, m, delta = line[..., :3], line[..., 3:], plane[..., 3:]
     point = np.concatenate(
-        [np.cross(normal, m) - delta * s, np.einsum("...i,...i", normal, s)[..., None]], axis=-1
+        [B.cross(normal, m) - delta * s, np.einsum("...i,...i", normal, s)[..., None]], axis=-1
     )
     size = np.linalg.norm(line, axis=-1) * np.linalg.norm(plane, axis=-1)
     with np.errstate(invalid="ignore"):
@@ -913,7 +913,7 @@ def _meet_points(line: Array, screw: Array, length_scale: Array) -> Array:
 
     a, b = scaled(line), scaled(axis)
     product = np.einsum("...i,...i", a[..., :3], b[..., 3:]) + np.einsum("...i,...i", a[..., 3:], b[..., :3])
-    cross = np.cross(_units(line[..., :3]), _units(axis[..., :3]))
+    cross = B.cross(_units(line[..., :3]), _units(axis[..., :3]))
     parallel = np.linalg.norm(cross, axis=-1) < INCIDENCE_RTOL
     point, in_plane = _meet_plane_through_axis(line, axis, origin)
     with np.errstate(invalid="ignore"):
@@ -986,7 +986,7 @@ def _branch_pair(batch: _Batch, first: str, second: str) -> Array:
         for k in range(a + 1, b):
             between |= couple[k]
         ok = couple[a] & couple[b] & ~between
-        return np.where(ok[:, None], np.cross(moments[a], moments[b]), np.nan)
+        return np.where(ok[:, None], B.cross(moments[a], moments[b]), np.nan)
     return batch.nan(3)
 
 
@@ -1018,7 +1018,7 @@ def _recipe(key: tuple[str, ...], batch: _Batch, cache: dict[tuple[str, ...], Ar
         value = _finite(_joint_centres(batch.joint_screws(key[1])))
     elif kind == "couples":
         first, second = batch.wrench(key[1])[:, 3:], batch.wrench(key[2])[:, 3:]
-        cross = np.cross(_units(first), _units(second))
+        cross = B.cross(_units(first), _units(second))
         # two couple lines that coincide here meet everywhere along it: any point of it will do
         with np.errstate(invalid="ignore"):
             apart = np.linalg.norm(cross, axis=-1) >= INCIDENCE_RTOL
@@ -1027,7 +1027,7 @@ def _recipe(key: tuple[str, ...], batch: _Batch, cache: dict[tuple[str, ...], Ar
         value = _infinite(_free(batch.wrench(key[1])[:, 3:])[int(key[2]) - 1])
     elif kind == "perp":
         moment = batch.wrench(key[1])[:, 3:]
-        cross = np.cross(moment, _recipe(key[2:], batch, cache)[:, :3])
+        cross = B.cross(moment, _recipe(key[2:], batch, cache)[:, :3])
         with np.errstate(invalid="ignore"):
             small = ~(np.linalg.norm(cross, axis=-1) >= INCIDENCE_RTOL * np.linalg.norm(moment, axis=-1))
         value = np.where(small[:, None], np.nan, _infinite(_canonical_directions(cross)))
@@ -1390,4 +1390,4 @@ def _collinear_triples(diagram: WrenchDiagram, samples: list[dict[str, Array]]) 
 
 def _parallel(u: Array, v: Array) -> bool:
     size = np.linalg.norm(u) * np.linalg.norm(v)
-    return bool(size > 0 and np.linalg.norm(np.cross(u, v)) <= INCIDENCE_RTOL * size)
+    return bool(size > 0 and np.linalg.norm(B.cross(u, v)) <= INCIDENCE_RTOL * size)
