@@ -386,18 +386,19 @@ def wrench_diagram(analysis: WrenchAnalysis) -> WrenchDiagram:
     normals = _branch_normals(analysis)
     infinite = [S.is_infinite_pitch(w, rtol=1e-7, length_scale=scale) for _, _, w, _ in lines]
     recipes: list[tuple[tuple[str, ...], tuple[str, ...]]] = []
+    known: dict[str, Array] = {}  # joint centres, each computed once
     for (name, _, wrench, joints), couple in zip(lines, infinite, strict=True):
         if couple:
             recipes.append(
                 _couple_line_recipe(name, wrench, joints, lines, infinite, normals, analysis, recipes)
             )
         else:
-            recipes.append(_finite_line_recipe(name, wrench, joints, analysis, recipes))
+            recipes.append(_finite_line_recipe(name, wrench, joints, analysis, recipes, known))
     names = [name for name, _, _, _ in lines]
     roles = [role for _, role, _, _ in lines]
     labels: dict[tuple[str, ...], str] = {}
     aliases: dict[tuple[str, ...], tuple[str, ...]] = {}
-    centres = dict(_centres(analysis, tuple(k for _, _, k in analysis.graph.edges(keys=True))))
+    centres = dict(_centres(analysis, tuple(k for _, _, k in analysis.graph.edges(keys=True)), known))
     letters = iter(string.ascii_lowercase)
     for pair in recipes:
         for key in pair:
@@ -452,12 +453,18 @@ def _distinct_directions(axes: list[tuple[str, Array]]) -> list[tuple[str, Array
     return kept
 
 
-def _centres(analysis: WrenchAnalysis, joints: tuple[str, ...]) -> list[tuple[str, Array]]:
-    """(name, centre) of the spherical and universal joints among ``joints``."""
+def _centres(
+    analysis: WrenchAnalysis, joints: tuple[str, ...], known: dict[str, Array] | None = None
+) -> list[tuple[str, Array]]:
+    """(name, centre) of the spherical and universal joints among ``joints`` (``known``: centres
+    already computed for this analysis, by name; filled in)."""
+    known = {} if known is None else known
     found = []
     for _, _, key, joint in analysis.graph.edges(keys=True, data="joint"):
         if key in joints and joint.type in ("S", "U"):
-            found.append((key, _joint_centre(joint.screws)))
+            if key not in known:
+                known[key] = _joint_centre(joint.screws)
+            found.append((key, known[key]))
     return sorted(found, key=lambda item: item[0])
 
 
@@ -556,12 +563,13 @@ def _finite_line_recipe(
     joints: tuple[str, ...],
     analysis: WrenchAnalysis,
     earlier: list[tuple[tuple[str, ...], tuple[str, ...]]],
+    known: dict[str, Array] | None = None,
 ) -> tuple[tuple[str, ...], tuple[str, ...]]:
     """Two points of a finite line: joint centres on it (shared ones first), a meet, its direction."""
     used = {key for pair in earlier for key in pair}
     on_line = [
         ("centre", key)
-        for key, centre in _centres(analysis, joints)
+        for key, centre in _centres(analysis, joints, known)
         if P.point_on_line(
             np.append(centre, 1.0), wrench, rtol=INCIDENCE_RTOL, length_scale=analysis.length_scale
         )
