@@ -1373,7 +1373,7 @@ def superbracket_analysis(
     labels = tuple(c.label for c in found)
     values = tuple(float(c.evaluate(diagram.coordinates)) for c in found)
     on_samples = [np.array([float(c.evaluate(sample)) for sample in drawn]) for c in found]
-    typical = [float(np.median(np.abs(v))) for v in on_samples]
+    typical = [B.median(np.abs(v)) for v in on_samples]
     vanishing = tuple(abs(v) <= VANISHING_RTOL * size for v, size in zip(values, typical, strict=True))
     # the magnitude: a point at infinity is a direction up to sign, so a structural factor may flip sign
     constant = tuple(
