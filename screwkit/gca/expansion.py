@@ -198,23 +198,26 @@ def _orderings() -> tuple[np.ndarray, np.ndarray]:
 
 
 @functools.cache
-def _ordering_brackets() -> np.ndarray:
-    """For every ordering, the caller positions of each bracket of the 24 template monomials
-    (gca.md §2.1), coded as one index into the 12^4 ordered 4-tuples: shape (3, 46080, 24).
+def _ordering_brackets() -> tuple[np.ndarray, np.ndarray]:
+    """The caller positions of each bracket of the 24 template monomials (gca.md §2.1) under every
+    ordering, coded as one index into the 12^4 ordered 4-tuples, as two parts: ``(3, 720, 24)`` from
+    the permutations and ``(3, 64, 24)`` from the flips; ordering ``64 π + f`` has their sum.
 
     Slot ``2k + bit`` of ordering ``(π, f)`` holds caller position ``2 π[k] + (bit xor f[k])``, so a
-    bracket's code ``Σ_s 12^(3-s) position_s`` is a part from ``π`` plus a part from ``f``: two
-    small tables added over the 720 × 64 orderings.
+    bracket's code ``Σ_s 12^(3-s) position_s`` is a part from ``π`` plus a part from ``f``.
     """
     brackets = [m.brackets for m in _EXPANSION]
     slots = np.array([[[_SLOTS.index(x) for x in b.labels] for b in t] for t in brackets])  # (24, 3, 4)
     perms, flips = _line_orders()
     weights = 12 ** np.arange(3, -1, -1)
     line, bit = slots // 2, slots % 2
-    from_perm = (2 * perms[:, line] * weights).sum(axis=-1).transpose(2, 0, 1)  # (3, 720, 24)
-    from_flip = ((bit ^ flips[:, line]) * weights).sum(axis=-1).transpose(2, 0, 1)  # (3, 64, 24)
-    flat = from_perm[:, :, None, :].astype(np.int16) + from_flip[:, None, :, :].astype(np.int16)  # < 12^4
-    return np.ascontiguousarray(flat).reshape(3, -1, len(slots))
+    from_perm = (2 * perms[:, line] * weights).sum(axis=-1).transpose(2, 0, 1)
+    from_flip = ((bit ^ flips[:, line]) * weights).sum(axis=-1).transpose(2, 0, 1)
+    return np.ascontiguousarray(from_perm), np.ascontiguousarray(from_flip)
+
+
+#: Permutations scored at once by :func:`_ordering_counts` (× 64 flips each): bounds its temporaries.
+_PERMUTATIONS_PER_CHUNK = 90
 
 
 def _ordering_counts(positions: Sequence[str], zero: Mapping[tuple[str, ...], bool]) -> np.ndarray:
@@ -235,7 +238,21 @@ def _ordering_counts(positions: Sequence[str], zero: Mapping[tuple[str, ...], bo
     ids = quad_id[tuple(np.sort(tuples, axis=1).T)]
     code = np.where(distinct & alive[ids], (1 - 2 * (inversions % 2)) * (ids + 1), 0)
 
-    first, second, third = code.astype(np.int32)[_ordering_brackets()]  # each (46080, 24)
+    from_perm, from_flip = _ordering_brackets()
+    code = code.astype(np.int32)
+    n = len(quads) + 1
+    chunk = _PERMUTATIONS_PER_CHUNK
+    counts = [
+        _chunk_counts(code[from_perm[:, start : start + chunk, None, :] + from_flip[:, None]], n)
+        for start in range(0, from_perm.shape[1], chunk)
+    ]
+    return np.concatenate(counts)
+
+
+def _chunk_counts(codes: np.ndarray, n: int) -> np.ndarray:
+    """Surviving monomials per ordering from the codes ``(3, permutations, 64, 24)`` of the brackets
+    of each template monomial (``n`` - 1 label sets)."""
+    first, second, third = codes.reshape(3, -1, codes.shape[-1])
     signs = np.array([int(m.coefficient) for m in _EXPANSION], dtype=np.int32)
     coefficients = signs * np.sign(first) * np.sign(second) * np.sign(third)
     # Only monomials without a zero bracket can survive. One is identified within its ordering by
@@ -244,7 +261,6 @@ def _ordering_counts(positions: Sequence[str], zero: Mapping[tuple[str, ...], bo
     first, second, third = np.abs(first[row, column]), np.abs(second[row, column]), np.abs(third[row, column])
     low = np.minimum(np.minimum(first, second), third)
     high = np.maximum(np.maximum(first, second), third)
-    n = len(quads) + 1
     keys = ((row.astype(np.int64) * n + low) * n + (first + second + third - low - high)) * n + high
     order = np.argsort(keys, kind="stable")
     keys, values = keys[order], coefficients[row, column][order]
