@@ -67,9 +67,13 @@ Examples
 
 from __future__ import annotations
 
+import codecs
 import difflib
 import inspect
 import math
+import os
+import stat
+import unicodedata
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from fractions import Fraction
@@ -103,6 +107,7 @@ __all__ = [
     "MAX_FAR_OVER_SPREAD",
     "MAX_FILE_BYTES",
     "MAX_JOINTS",
+    "MAX_LOOPS",
     "MAX_REJECTION_ROUNDS",
     "Mechanism",
     "check_dof",
@@ -400,7 +405,10 @@ MAX_FAR_OVER_SPREAD = 1e7
 MAX_REJECTION_ROUNDS = 50
 #: Resource caps: a larger file, or a snapshot with more joints, is refused before it is parsed.
 MAX_FILE_BYTES = 1 << 20
-MAX_JOINTS = 2000
+MAX_JOINTS = 500
+#: Independent loops (joints - links + 1) a snapshot may close: the report's generic configurations
+#: solve all loop closures at once, ~2 s at 16 loops of 6 freedoms each, ~20 s at 23 (superlinear).
+MAX_LOOPS = 16
 #: Nesting depth of lists in a parameter value (a ``(4, 3)`` table of points is depth 2).
 _MAX_LIST_DEPTH = 3
 
@@ -480,14 +488,22 @@ def load_toml(path: str | Path) -> dict[str, Any]:
         raise ScrewkitTypeError(f"Expected `path` to be a str or pathlib.Path, got {type(path).__name__}.")
     name = str(path)
     try:
-        with open(path, "rb") as stream:
-            raw = stream.read(MAX_FILE_BYTES + 1)
+        mode = os.stat(path).st_mode
+        regular = stat.S_ISREG(mode)
+        if regular:  # not a pipe (it would block), nor /dev/zero (it never ends)
+            with open(path, "rb") as stream:
+                raw = stream.read(MAX_FILE_BYTES + 1)
     except OSError as err:
         raise CatalogError(f"{name}: cannot read the file: {err.strerror or err}.") from err
     except ValueError as err:  # e.g. a NUL character in the path
         raise CatalogError(f"{name}: cannot read the file: {err}.") from err
+    if not regular:
+        got = "a folder" if stat.S_ISDIR(mode) else "a pipe" if stat.S_ISFIFO(mode) else "a device"
+        raise CatalogError(f"{name}: cannot read the file: expected a regular file, got {got}.")
     if len(raw) > MAX_FILE_BYTES:
         raise CatalogError(f"{name}: expected a file of at most {MAX_FILE_BYTES} bytes, got a larger one.")
+    if raw.startswith(codecs.BOM_UTF8):  # some editors start UTF-8 files with a byte-order mark
+        raw = raw[len(codecs.BOM_UTF8) :]
     try:
         text = raw.decode("utf-8")
     except UnicodeDecodeError as err:
@@ -518,6 +534,27 @@ def _string(data: Mapping[str, Any], key: str, source: str, where: str) -> str:
     return value
 
 
+def _name(data: Mapping[str, Any], key: str, source: str, where: str) -> str:
+    """A name (of the mechanism, a link or a joint): a non-empty string without control characters
+    (a tab is allowed): a newline or an escape sequence would garble the text report or the terminal."""
+    value = _string(data, key, source, where)
+    bad = next((c for c in value if unicodedata.category(c) == "Cc" and c != "\t"), None)
+    if bad is not None:
+        raise _error(
+            source, where, f"field `{key}`: expected a name without control characters, got {value!r} "
+            f"(character U+{ord(bad):04X})."
+        )
+    return value
+
+
+def _strings(data: Mapping[str, Any], key: str, source: str, where: str) -> list[str]:
+    """An optional list of strings (``sources``)."""
+    value = data.get(key, [])
+    if not isinstance(value, list) or not all(isinstance(item, str) for item in value):
+        raise _error(source, where, f"field `{key}`: expected a list of strings, got {value!r}.")
+    return value
+
+
 def _number(value: Any, source: str, where: str, key: str) -> float:
     if isinstance(value, bool) or not isinstance(value, int | float):
         raise _error(source, where, f"field `{key}`: expected a finite number, got {value!r}.")
@@ -529,6 +566,24 @@ def _number(value: Any, source: str, where: str, key: str) -> float:
     if not math.isfinite(value):
         raise _error(source, where, f"field `{key}`: expected a finite number, got {value!r}.")
     return float(value)
+
+
+def _coordinate(value: Any, angle: bool, source: str, where: str, key: str) -> float:
+    """A pose coordinate of ``[pose]`` or ``[workspace]``: an angle in degrees up to
+    :data:`MAX_ANGLE_DEGREES`, a length up to :data:`MAX_COORDINATE` (squares of larger ones
+    overflow in the inverse kinematics)."""
+    number = _number(value, source, where, key)
+    if angle:
+        try:
+            degrees_to_radians(number)
+        except ScrewkitValueError as err:
+            raise _error(source, where, f"field `{key}`: {err}") from err
+    elif not abs(number) <= MAX_COORDINATE:
+        raise _error(
+            source, where, f"field `{key}`: expected a length of at most {MAX_COORDINATE:g} in magnitude, "
+            f"got {number:g}."
+        )
+    return number
 
 
 def _vector(data: Mapping[str, Any], key: str, source: str, where: str, length: int = 3) -> list[float]:
@@ -565,8 +620,19 @@ def _parameter_value(
     if unit == "deg":
         return _scaled(value, degrees_to_radians, source, where)
     if unit == "rad":
-        return _scaled(value, float, source, where)
+        return _scaled(value, _radians, source, where)
     return value
+
+
+def _radians(value: float) -> float:
+    """An angle given in radians, refused beyond the radian equivalent of :data:`MAX_ANGLE_DEGREES`
+    (as ``1e20`` degrees is)."""
+    if not abs(value) <= math.radians(MAX_ANGLE_DEGREES):
+        raise ScrewkitValueError(
+            f"Expected an angle of at most {math.radians(MAX_ANGLE_DEGREES):.6g} radians "
+            f"({MAX_ANGLE_DEGREES:g} degrees) in magnitude, got {value:g}."
+        )
+    return float(value)
 
 
 def _scaled(value: Any, convert: Callable[[float], float], source: str, where: str, depth: int = 0) -> Any:
@@ -685,7 +751,7 @@ def mechanism_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>"
     kind = header.get("kind", "family")
     if kind != "family":
         raise _error(source, "[mechanism]", f"field `kind`: expected 'family' here, got {kind!r}.")
-    name = _string(header, "name", source, "[mechanism]")
+    name = _name(header, "name", source, "[mechanism]")
     family_name = _string(header, "family", source, "[mechanism]")
     known = families()
     if family_name not in known:
@@ -696,9 +762,7 @@ def mechanism_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>"
     length_unit = _length_unit(header, source)
     if "description" in header:
         _string(header, "description", source, "[mechanism]")
-    sources = header.get("sources", [])
-    if not isinstance(sources, list) or not all(isinstance(s, str) for s in sources):
-        raise _error(source, "[mechanism]", f"field `sources`: expected a list of strings, got {sources!r}.")
+    sources = _strings(header, "sources", source, "[mechanism]")
     raw_parameters = _table(data, "parameters", source)
     values: dict[str, Any] = {"name": name, "length_unit": length_unit}
     documented: dict[str, dict[str, Any]] = {}
@@ -709,6 +773,8 @@ def mechanism_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>"
         _check_keys(entry, ("value", "unit", "source", "note"), source, where)
         for required in ("unit", "source"):
             _string(entry, required, source, where)
+        if "note" in entry:
+            _string(entry, "note", source, where)
         values[key] = _parameter_value(
             entry["value"], entry["unit"], family.parameter_kinds.get(key), length_unit, source, where
         )
@@ -718,7 +784,9 @@ def mechanism_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>"
     except CatalogError:
         raise
     except ScrewkitError as err:
-        raise CatalogError(f"{source}: [parameters]: {err}") from err
+        text = str(err)  # a family's message may already name the file and table
+        prefix = f"{source}: [parameters]"
+        raise CatalogError(text if text.startswith(prefix) else f"{prefix}: {text}") from err
     keys = [f"{c}_deg" if c in family.angle_names else c for c in family.pose_names]
     pose_table = _table(data, "pose", source)
     _check_keys(pose_table, keys, source, "[pose]")
@@ -726,19 +794,18 @@ def mechanism_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>"
     for coordinate, key in zip(family.pose_names, keys, strict=True):
         if key not in pose_table:
             raise _error(source, "[pose]", f"field `{key}`: missing.")
-        number = _number(pose_table[key], source, "[pose]", key)
-        try:
-            pose.append(degrees_to_radians(number) if coordinate in family.angle_names else number)
-        except ScrewkitValueError as err:
-            raise _error(source, "[pose]", f"field `{key}`: {err}") from err
+        number = _coordinate(pose_table[key], coordinate in family.angle_names, source, "[pose]", key)
+        pose.append(math.radians(number) if coordinate in family.angle_names else number)
     workspace_table = _table(data, "workspace", source)
     _check_keys(workspace_table, keys, source, "[workspace]")
     workspace = {}
     for coordinate, key in zip(family.pose_names, keys, strict=True):
+        angle = coordinate in family.angle_names
         low, high = _vector(workspace_table, key, source, "[workspace]", length=2)
+        low, high = (_coordinate(v, angle, source, "[workspace]", key) for v in (low, high))
         if not low < high:
             raise _error(source, "[workspace]", f"field `{key}`: expected low < high, got [{low}, {high}].")
-        convert = math.radians if coordinate in family.angle_names else float
+        convert = math.radians if angle else float
         workspace[coordinate] = (convert(low), convert(high))
     expected = data.get("expected", [])
     if not isinstance(expected, list) or not all(isinstance(e, dict) for e in expected):
@@ -751,6 +818,17 @@ def mechanism_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>"
         _string(fact, "source", source, where)
         if "value" not in fact:
             raise _error(source, where, "field `value`: missing.")
+        for key in ("note", "region"):
+            if key in fact:
+                _string(fact, key, source, where)
+        if "tolerance" in fact and not _number(fact["tolerance"], source, where, "tolerance") >= 0:
+            raise _error(
+                source, where, f"field `tolerance`: expected a number >= 0, got {fact['tolerance']!r}."
+            )
+        if "not_reproduced" in fact and not isinstance(fact["not_reproduced"], dict):
+            raise _error(
+                source, where, f"field `not_reproduced`: expected a table, got {fact['not_reproduced']!r}."
+            )
     return Mechanism(
         name=name,
         family=family_name,
@@ -774,13 +852,13 @@ def _snapshot_joint(entry: Any, index: int, source: str) -> tuple[str, str, J.Jo
     where = f"[[joints]] #{index + 1}"
     if not isinstance(entry, dict):
         raise _error(source, where, f"expected a table, got {type(entry).__name__}.")
-    name = _string(entry, "name", source, where)
+    name = _name(entry, "name", source, where)
     where = f"joint {name!r}"
     kind = _string(entry, "type", source, where)
     if kind not in _JOINT_FIELDS:
         raise _error(source, where, f"field `type`: expected one of {sorted(_JOINT_FIELDS)}, got {kind!r}.")
-    parent = _string(entry, "parent", source, where)
-    child = _string(entry, "child", source, where)
+    parent = _name(entry, "parent", source, where)
+    child = _name(entry, "child", source, where)
     actuated = entry.get("actuated", False)
     if not isinstance(actuated, bool):
         raise _error(source, where, f"field `actuated`: expected true or false, got {actuated!r}.")
@@ -847,9 +925,12 @@ def snapshot_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>")
     kind = header.get("kind")
     if kind != "snapshot":
         raise _error(source, "[mechanism]", f"field `kind`: expected 'snapshot', got {kind!r}.")
-    name = _string(header, "name", source, "[mechanism]")
-    base = _string(header, "base", source, "[mechanism]")
-    platform = _string(header, "platform", source, "[mechanism]")
+    name = _name(header, "name", source, "[mechanism]")
+    base = _name(header, "base", source, "[mechanism]")
+    platform = _name(header, "platform", source, "[mechanism]")
+    if "description" in header:
+        _string(header, "description", source, "[mechanism]")
+    _strings(header, "sources", source, "[mechanism]")
     dof = header.get("dof")
     if dof is not None and not is_dof(dof):
         raise _error(source, "[mechanism]", f"field `dof`: expected an integer in 0..6, got {dof!r}.")
@@ -861,6 +942,15 @@ def snapshot_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>")
         raise _error(source, "[[joints]]", f"expected at most {MAX_JOINTS} joints, got {len(entries)}.")
     _check_precision(entries, source)
     triples = [_snapshot_joint(entry, i, source) for i, entry in enumerate(entries)]
+    links = {base, platform} | {t[0] for t in triples} | {t[1] for t in triples}
+    loops = len(triples) - len(links) + 1
+    if loops > MAX_LOOPS:
+        raise _error(
+            source,
+            "[[joints]]",
+            f"expected at most {MAX_LOOPS} independent loops (joints - links + 1), got {loops} "
+            f"({len(triples)} joints between {len(links)} links); split the model or reduce it.",
+        )
     try:
         graph = _checked_graph(base, platform, triples, dof)
         check_dof(graph)

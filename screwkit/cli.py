@@ -35,6 +35,7 @@ screw (0, 0, 1; 0, -1, 0)  pitch 0  kind zero pitch  axis through (1, 0, 0) alon
 from __future__ import annotations
 
 import argparse
+import importlib.util
 import json
 import math
 import os
@@ -48,6 +49,7 @@ import numpy as np
 
 from . import __version__
 from .catalog import (
+    MAX_COORDINATE,
     degrees_to_radians,
     file_kind,
     list_mechanisms,
@@ -79,9 +81,19 @@ class _UsageError(Exception):
     """A malformed command line (exit status 2)."""
 
 
-#: What the command line takes for a negative number (argparse's own pattern misses exponents, so
-#: ``--pose 0 0 -7.5e2 0`` read ``-7.5e2`` as an option).
-_NEGATIVE_NUMBER = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$")
+#: What the command line takes for a negative number: any decimal form ``float`` reads after a minus
+#: sign (argparse's own pattern misses exponents, so ``--pose 0 0 -7.5e2 0`` read ``-7.5e2`` as an
+#: option), digit groups (``-1_000``), and ``-inf``/``-nan`` (refused then as not finite, not as an
+#: unknown option). No option of screwkit's reads as a number.
+_NEGATIVE_NUMBER = re.compile(
+    r"^-((\d[\d_]*\.?[\d_]*|\.\d[\d_]*)([eE][+-]?\d[\d_]*)?|inf|infinity|nan)$", re.IGNORECASE
+)
+#: Caps of the workspace commands (never a hang or an allocation beyond memory): poses in a map,
+#: samples along a path, grid points per axis and refinement rounds of ``table4``.
+MAX_MAP_POSES = 2 * 10**6  # the README's 10^6-pose map fits; 2e6 poses take ~15 min at 2,000 poses/s
+MAX_PATH_SAMPLES = 10**4
+MAX_TABLE4_GRID = 201
+MAX_TABLE4_REFINE = 200
 
 
 class _Parser(argparse.ArgumentParser):
@@ -293,6 +305,19 @@ def run_screw(args: argparse.Namespace) -> int:
     screw (0, 0, 0; 0, 0, 2)  pitch inf  kind infinite pitch  direction (0, 0, 2)
     0
     """
+    if args.point is not None and any(abs(v) > MAX_COORDINATE for v in args.point):
+        raise _UsageError(
+            f"screwkit screw: error: --point expects coordinates up to {MAX_COORDINATE:g} in magnitude, "
+            f"got {' '.join(map(str, args.point))}"
+        )
+    if args.plucker is not None:
+        direction, moment = (max(abs(v) for v in part) for part in (args.plucker[:3], args.plucker[3:]))
+        if direction > 0 and moment > MAX_COORDINATE * direction:  # an axis or pitch beyond 1e100
+            raise _UsageError(
+                "screwkit screw: error: --plucker expects a moment at most "
+                f"{MAX_COORDINATE:g} times the direction (the axis's distance and pitch in range), "
+                f"got {' '.join(map(str, args.plucker))}"
+            )
     if args.revolute is not None:
         if args.point is None:
             raise _UsageError("screwkit screw: error: --revolute needs --point X Y Z")
@@ -303,7 +328,7 @@ def run_screw(args: argparse.Namespace) -> int:
         screw = Screw(args.plucker)
     described = screw.to_dict()
     if args.json:
-        print(json.dumps(described))
+        _print(json.dumps(described))
         return 0
     coords = [_number(v) for v in screw.coords]
     pitch = described["pitch"]
@@ -316,7 +341,7 @@ def run_screw(args: argparse.Namespace) -> int:
         if described.get("direction") is not None
         else ""
     )
-    print(
+    _print(
         f"screw ({', '.join(coords[:3])}; {', '.join(coords[3:])})  pitch {pitch_text}  "
         f"kind {described['kind']}{axis}"
     )
@@ -327,20 +352,41 @@ def _pose(args: argparse.Namespace, mechanism: Any) -> Any:
     """The --pose in the API's units (the family's angles from degrees to radians)."""
     if args.pose is None:
         return None
-    names = mechanism.pose_names
-    if len(args.pose) != len(names) or not all(math.isfinite(v) for v in args.pose):
-        expected = " ".join(n.upper() for n in names)
-        got = " ".join(map(str, args.pose))
-        raise _UsageError(
-            f"screwkit {args.command}: error: --pose expects {len(names)} finite numbers ({expected}), "
-            f"got {got}"
-        )
+    values = _pose_values(f"screwkit {args.command}", "--pose", mechanism, args.pose)
     angles = set(mechanism.angle_names)
-    pairs = zip(names, args.pose, strict=True)
-    try:
-        return np.array([degrees_to_radians(v) if n in angles else v for n, v in pairs])
-    except ScrewkitValueError as err:
-        raise _UsageError(f"screwkit {args.command}: error: --pose: {err}") from err
+    pairs = zip(mechanism.pose_names, values, strict=True)
+    return np.array([math.radians(v) if n in angles else v for n, v in pairs])
+
+
+def _pose_values(command: str, option: str, mechanism: Any, values: Sequence[float]) -> list[float]:
+    """A pose given on the command line (lengths in the file's unit, angles in degrees), checked:
+    one finite number per pose coordinate, lengths up to :data:`~screwkit.catalog.MAX_COORDINATE`,
+    angles up to :data:`~screwkit.catalog.MAX_ANGLE_DEGREES`."""
+    names = mechanism.pose_names
+    if len(values) != len(names) or not all(math.isfinite(v) for v in values):
+        expected = " ".join(n.upper() for n in names)
+        raise _UsageError(
+            f"{command}: error: {option} expects {len(names)} finite numbers ({expected}), "
+            f"got {' '.join(map(str, values))}"
+        )
+    for name, value in zip(names, values, strict=True):
+        _check_coordinate(command, option, mechanism, name, value)
+    return list(values)
+
+
+def _check_coordinate(command: str, option: str, mechanism: Any, name: str, value: float) -> None:
+    """One pose coordinate from the command line: an angle in degrees up to MAX_ANGLE_DEGREES, a
+    length up to MAX_COORDINATE (beyond, squares of coordinates overflow in the inverse kinematics)."""
+    if name in mechanism.angle_names:
+        try:
+            degrees_to_radians(value)
+        except ScrewkitValueError as err:
+            raise _UsageError(f"{command}: error: {option}: {name}: {err}") from err
+    elif not abs(value) <= MAX_COORDINATE:
+        raise _UsageError(
+            f"{command}: error: {option}: {name}: expected a length of at most {MAX_COORDINATE:g} "
+            f"{mechanism.length_unit} in magnitude, got {value:g}"
+        )
 
 
 def _target_and_pose(args: argparse.Namespace) -> tuple[Any, Any]:
@@ -424,8 +470,9 @@ def run_graph(args: argparse.Namespace) -> int:
         return 0
     try:
         Path(args.out).write_text(text, encoding="utf-8")
-    except OSError as err:
-        raise _UsageError(f"screwkit graph: error: --out {args.out}: cannot write: {err.strerror}") from err
+    except (OSError, ValueError) as err:  # ValueError: a NUL character in the path
+        shown = f"--out {_shown(args.out)}: cannot write: {_reason(err)}"
+        raise _UsageError(f"screwkit graph: error: {shown}") from err
     return 0
 
 
@@ -488,8 +535,18 @@ def run_map(args: argparse.Namespace) -> int:
         raise _UsageError(f"screwkit map: error: --quantity: {err}") from err
     if not args.out.lower().endswith((".png", ".npz", ".json")):
         raise _UsageError(f"screwkit map: error: --out expects FILE.npz, .json or .png, got {args.out!r}")
-    if args.grid < 2:
-        raise _UsageError(f"screwkit map: error: --grid expects an integer >= 2, got {args.grid}")
+    _check_writable("screwkit map", "--out", args.out)
+    if args.out.lower().endswith(".png") and importlib.util.find_spec("matplotlib") is None:
+        raise _UsageError(  # before the computation, not after it
+            "screwkit map: error: --out FILE.png needs matplotlib, which is not installed: install the "
+            'optional extra `plot` (pip install "screwkit[plot]"), or write .npz or .json'
+        )
+    if not 2 <= args.grid <= MAX_MAP_POSES // 2:
+        raise _UsageError(
+            f"screwkit map: error: --grid expects an integer in 2..{MAX_MAP_POSES // 2}, got {args.grid}"
+        )
+    if args.chunk is not None and args.chunk < 1:
+        raise _UsageError(f"screwkit map: error: --chunk expects a positive integer, got {args.chunk}")
     mechanism = _catalog_mechanism("map", args.mechanism)
     axes, fixed = [], {}
     for name in _pose_coordinates():
@@ -506,18 +563,32 @@ def run_map(args: argparse.Namespace) -> int:
                 f"screwkit map: error: --{name} expects LO HI [N] or one value, got "
                 f"{' '.join(map(str, values))}"
             )
+        for value in values[:2]:
+            _check_coordinate("screwkit map", f"--{name}", mechanism, name, value)
         if len(values) == 1:
             fixed[name] = values[0]
         else:
             count = args.grid if len(values) == 2 else values[2]
-            if count != int(count) or count < 2:
-                raise _UsageError(f"screwkit map: error: --{name}: N must be an integer >= 2, got {count:g}")
+            if not 2 <= count <= MAX_MAP_POSES // 2 or count != int(count):
+                raise _UsageError(
+                    f"screwkit map: error: --{name}: N must be an integer in 2..{MAX_MAP_POSES // 2}, "
+                    f"got {count:g}"
+                )
+            if not values[0] < values[1]:
+                raise _UsageError(
+                    f"screwkit map: error: --{name}: expected LO < HI, got {values[0]:g} and {values[1]:g}"
+                )
             axes.append((name, values[0], values[1], int(count)))
     if len(axes) != 2:
         raise _UsageError(
             "screwkit map: error: expected exactly two ranges (LO HI [N]) among "
             f"--{' --'.join(mechanism.pose_names)}, "
             f"got {len(axes)}"
+        )
+    if axes[0][3] * axes[1][3] > MAX_MAP_POSES:
+        raise _UsageError(
+            f"screwkit map: error: expected at most {MAX_MAP_POSES:,} poses in a map, got "
+            f"{axes[0][3]:,} x {axes[1][3]:,} (--{axes[0][0]}, --{axes[1][0]}; --grid)"
         )
     result = grid_map(
         mechanism,
@@ -529,16 +600,43 @@ def run_map(args: argparse.Namespace) -> int:
         progress=False if args.no_progress else None,
         angles="deg",
     )
-    result.save(args.out)
+    try:
+        result.save(args.out)
+    except (OSError, ValueError) as err:
+        shown = f"--out {_shown(args.out)}: cannot write: {_reason(err)}"
+        raise _UsageError(f"screwkit map: error: {shown}") from err
 
     def where(pose: dict[str, float]) -> str:
         return ", ".join(f"{k} = {v:g}" for k, v in pose.items()) or "-"
 
-    print(f"{quantity} over {result.region}")
-    print(f"  minimum {result.minimum:g} at {where(result.argmin)}")
-    print(f"  maximum {result.maximum:g} at {where(result.argmax)}")
-    print(f"  reachable {result.reachable.mean():.1%}; written to {args.out}")
+    lines = [f"{quantity} over {result.region}"]
+    if result.reachable.any():
+        lines.append(f"  minimum {result.minimum:g} at {where(result.argmin)}")
+        lines.append(f"  maximum {result.maximum:g} at {where(result.argmax)}")
+    else:
+        lines.append("  no pose of the map is reachable: no minimum or maximum")
+    lines.append(f"  reachable {result.reachable.mean():.1%}; written to {args.out}")
+    _print("\n".join(lines))
     return 0
+
+
+def _reason(err: BaseException) -> str:
+    """The reason of an OSError (its strerror), or the message of another error."""
+    return str(getattr(err, "strerror", None) or err)
+
+
+def _check_writable(command: str, option: str, path: str) -> None:
+    """Refuse an output path whose folder does not exist (before a long computation, not after)."""
+    folder = os.path.dirname(os.path.abspath(path)) if "\0" not in path else ""
+    if not os.path.isdir(folder):
+        raise _UsageError(f"{command}: error: {option} {_shown(path)}: expected a file in an existing folder")
+    if os.path.isdir(path):
+        raise _UsageError(f"{command}: error: {option} {_shown(path)}: expected a file, got a folder")
+
+
+def _shown(path: str) -> str:
+    """A path as a message shows it: as given, or quoted with escapes if it holds control characters."""
+    return path if path.isprintable() else repr(path)
 
 
 def run_path(args: argparse.Namespace) -> int:
@@ -553,16 +651,13 @@ def run_path(args: argparse.Namespace) -> int:
     """
     from .workspace import check_path
 
-    if args.samples < 2:
-        raise _UsageError(f"screwkit path: error: --samples expects an integer >= 2, got {args.samples}")
+    if not 2 <= args.samples <= MAX_PATH_SAMPLES:
+        raise _UsageError(
+            f"screwkit path: error: --samples expects an integer in 2..{MAX_PATH_SAMPLES}, got {args.samples}"
+        )
     mechanism = _catalog_mechanism("path", args.mechanism)
-    names = mechanism.pose_names
     for option, values in (("--from", args.start), ("--to", args.end)):
-        if len(values) != len(names) or not all(math.isfinite(v) for v in values):
-            raise _UsageError(
-                f"screwkit path: error: {option} expects {len(names)} finite numbers "
-                f"({' '.join(n.upper() for n in names)}), got {' '.join(map(str, values))}"
-            )
+        _pose_values("screwkit path", option, mechanism, values)
     result = check_path(mechanism, args.start, args.end, samples=args.samples, angles="deg")
     _print(json.dumps(result.to_dict(), indent=2, ensure_ascii=False) if args.json else str(result))
     return 0
@@ -590,10 +685,10 @@ def run_list(args: argparse.Namespace) -> int:
             }
         )
     if args.json:
-        print(json.dumps(entries, indent=2))
+        _print(json.dumps(entries, indent=2))
     else:
         for entry in entries:
-            print(
+            _print(
                 f"{entry['name']:<12} {entry['title']:<12} family {entry['family']}, lengths in "
                 f"{entry['length_unit']}"
             )
@@ -617,33 +712,36 @@ def run_table4(args: argparse.Namespace) -> int:
     for name in args.robot or []:
         if name not in known:
             raise _UsageError(f"screwkit table4: error: unknown robot {name!r}; expected one of {known}.")
-    for option, value, least in (("--grid", args.grid, 2), ("--refine", args.refine, 0)):
-        if value < least:
-            raise _UsageError(f"screwkit table4: error: expected {option} >= {least}, got {value}.")
-    rows = table_4(grid=args.grid, refine=args.refine, robots=args.robot)
+    for option, value, least, most in (
+        ("--grid", args.grid, 2, MAX_TABLE4_GRID), ("--refine", args.refine, 0, MAX_TABLE4_REFINE)
+    ):
+        if not least <= value <= most:
+            raise _UsageError(f"screwkit table4: error: expected {option} in {least}..{most}, got {value}.")
+    robots = None if args.robot is None else list(dict.fromkeys(args.robot))
+    rows = table_4(grid=args.grid, refine=args.refine, robots=robots)
     if args.json:
-        print(json.dumps([row.to_dict() for row in rows], indent=2))
+        _print(json.dumps([row.to_dict() for row in rows], indent=2))
         return 0
-    print(
+    _print(
         f"paper 004, Table 4: min/max LTI (Eq. 16) over the workspace; ours: {args.grid}^3 grid + "
         f"{args.refine} rounds of refinement (screwkit.indices.index_extremes)"
     )
-    print(f"{'robot':<10} {'phi':>5}      {'region':<8} {'min: paper':>10} {'ours':>7} {'diff':>7}"
+    _print(f"{'robot':<10} {'phi':>5}      {'region':<8} {'min: paper':>10} {'ours':>7} {'diff':>7}"
           f"   {'max: paper':>10} {'ours':>7} {'diff':>7}")
     notes = []
     for row in rows:
         region = "eq_19" if row.region.startswith("super") else "cone"
-        print(
+        _print(
             f"{row.robot:<10} {row.phi_deg:>5.0f} deg  {region:<8} {row.paper_min:>10.3f} "
             f"{row.ours.minimum:>7.3f} {row.ours.minimum - row.paper_min:>+7.3f}   {row.paper_max:>10.3f} "
             f"{row.ours.maximum:>7.3f} {row.ours.maximum - row.paper_max:>+7.3f}"
         )
         notes += [f"  {row.robot} {row.phi_deg:g} deg {key}: {text}" for key, text in row.notes.items()]
-    print("regions: cone = the assumed workspace (paper 004's Fig. 6 is missing), eq_19 = Eq. (19)")
+    _print("regions: cone = the assumed workspace (paper 004's Fig. 6 is missing), eq_19 = Eq. (19)")
     if notes:
-        print("where ours differs from the paper's by more than 0.002:")
+        _print("where ours differs from the paper's by more than 0.002:")
         for note in notes:
-            print(note)
+            _print(note)
     return 0
 
 
@@ -672,7 +770,9 @@ def main(argv: Sequence[str] | None = None) -> int:
             "screw": run_screw,
             "table4": run_table4,
         }
-        return runners[args.command](args)
+        status = runners[args.command](args)
+        sys.stdout.flush()  # a full disk or a closed pipe shows here, not as a traceback at exit
+        return status
     except _UsageError as err:
         print(str(err), file=sys.stderr)
         return 2
@@ -681,5 +781,12 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 0
     except ScrewkitError as err:
         message = " ".join(str(err).split())
+        source = getattr(args, "mechanism", None)
+        if source and source.endswith(".toml") and source not in message:
+            message = f"{source}: {message}"  # an analysis error of a file names the file
         print(f"screwkit {args.command}: error: {message}", file=sys.stderr)
+        return 1
+    except OSError as err:  # writing the output (standard output on a full disk, ...)
+        sys.stdout = open(os.devnull, "w")  # the final flush stays silent
+        print(f"screwkit {args.command}: error: cannot write the output: {_reason(err)}", file=sys.stderr)
         return 1

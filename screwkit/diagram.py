@@ -923,12 +923,18 @@ def _meet_points(line: Array, screw: Array, length_scale: Array) -> Array:
     product = np.einsum("...i,...i", a[..., :3], b[..., 3:]) + np.einsum("...i,...i", a[..., 3:], b[..., :3])
     cross = B.cross(_units(line[..., :3]), _units(axis[..., :3]))
     parallel = np.linalg.norm(cross, axis=-1) < INCIDENCE_RTOL
-    point, in_plane = _meet_plane_through_axis(line, axis, origin)
+    # the meet in lengths divided by length_scale: the test of a line lying in the plane compares
+    # the point with a product of two moments, not invariant under a change of unit otherwise (a
+    # 1 m mechanism written in picometres lost every meet point)
+    line, axis = (np.concatenate([rows[..., :3], rows[..., 3:] / length], axis=-1) for rows in (line, axis))
+    point, in_plane = _meet_plane_through_axis(line, axis, origin / length)
     with np.errstate(invalid="ignore"):
         skew = ~(np.abs(product) <= INCIDENCE_RTOL)
         missing = skew | parallel | in_plane | ~(np.abs(point[..., 3]) >= 1e-12)
     with np.errstate(invalid="ignore", divide="ignore"):
-        return np.where(missing[..., None], np.nan, point / point[..., 3:])
+        meet = point / point[..., 3:]
+    meet = np.concatenate([meet[..., :3] * length, meet[..., 3:]], axis=-1)
+    return np.where(missing[..., None], np.nan, meet)
 
 
 def _joint_centres(screws: Array) -> Array:

@@ -228,7 +228,8 @@ def _quantity(quantity: Any) -> str:
     name = aliases.get(quantity, quantity)
     if name in QUANTITIES:
         return name
-    if name.startswith("condition:") and name[len("condition:") :].isdigit():
+    index = name[len("condition:") :]
+    if name.startswith("condition:") and index.isascii() and index.isdigit():  # not '²' or '١'
         return name
     raise ScrewkitValueError(
         f"Expected `quantity` to be one of {[*QUANTITIES, 'condition:K']}, got {quantity!r}."
@@ -1348,7 +1349,11 @@ class PathCheck:
         c = self.crossing
         pose = ", ".join(f"{k} = {v:.6g}" for k, v in c.pose.items())
         factor = f", factor {c.factor}" if c.factor else ""
-        return f"{c.kind} crossing at t = {c.parameter:.9g} ({pose}){factor}, closeness {c.closeness:.3g}"
+        # an unreachable pose has no closeness (NaN): say so rather than print "nan"
+        closeness = f", closeness {c.closeness:.3g}" if math.isfinite(c.closeness) else ""
+        where = "the path starts out of reach" if c.kind == "unreachable" and c.parameter == 0 else ""
+        text = f"{c.kind} crossing at t = {c.parameter:.9g} ({pose}){factor}{closeness}"
+        return f"{text}: {where}" if where else text
 
 
 def check_path(

@@ -377,7 +377,7 @@ CLI_CASES = [
     (["analyze", "h4", "--pose", "0", "0", "-750", "inf"], 2, r"--pose expects 4 finite numbers"),
     (["analyze", "h4", "--pose", "0", "0", "x", "0"], 2, r"argument --pose: invalid float value: 'x'"),
     (["analyze", "h4", "--pose", "0", "0", "-2000", "0"], 1, r"out of reach of H4 .*limb\(s\) 1, 2, 3, 4"),
-    (["analyze", "h4", "--pose", "0", "0", "-1e200", "0"], 1, r"Expected pose coordinates up to 1e\+100"),
+    (["analyze", "h4", "--pose", "0", "0", "-1e200", "0"], 2, r"--pose: z: expected a length of at most 1e\+100 mm in magnitude"),
     (["analyze", "h4", "--rtol", "5"], 2, r"--rtol expects a number in \[0, 1\), got 5"),
     (["analyze", "h4", "--rtol", "-1"], 2, r"--rtol expects a number in \[0, 1\), got -1"),
     (["analyze", "h4", "--rtol", "nan"], 2, r"--rtol expects a number in \[0, 1\), got nan"),
@@ -580,7 +580,7 @@ def test_random_poses_are_reachable_and_the_first_draws_when_all_are():
 
 def test_huge_degrees_at_the_cli_are_refused_and_whole_turns_kept(capsys):
     assert main(["analyze", "h4", "--pose", "10", "20", "-750", "1e20", "--no-superbracket"]) == 2
-    assert "--pose: Expected an angle of at most 1e+06 degrees in magnitude" in capsys.readouterr().err
+    assert "--pose: phi: Expected an angle of at most 1e+06 degrees in magnitude" in capsys.readouterr().err
     veloce = load_mechanism("veloce")
     assert main(["analyze", "veloce", "--pose", "0", "0", "-750", "360", "--json", "--no-superbracket"]) == 0
     turned = json.loads(capsys.readouterr().out)

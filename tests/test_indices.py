@@ -568,8 +568,8 @@ def test_cli_table4(capsys):
     ("argv", "message"),
     [
         (["table4", "--robot", "delta"], "unknown robot 'delta'"),
-        (["table4", "--grid", "1"], "expected --grid >= 2, got 1"),
-        (["table4", "--refine", "-2"], "expected --refine >= 0, got -2"),
+        (["table4", "--grid", "1"], "expected --grid in 2..201, got 1"),
+        (["table4", "--refine", "-2"], "expected --refine in 0..200, got -2"),
     ],
 )
 def test_cli_table4_usage_errors(capsys, argv, message):
