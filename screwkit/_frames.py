@@ -63,6 +63,8 @@ from types import ModuleType
 
 import numpy as np
 
+from . import _backend as B
+
 __all__ = [
     "SWAP",
     "complement",
@@ -162,7 +164,7 @@ def to_scaled(screws: Array, centre: Array, length: Array) -> Array:
     array([[0., 0., 1., 0., 0., 0.]])
     """
     directions = screws[..., :3]
-    moments = screws[..., 3:] - np.cross(centre[..., None, :], directions)
+    moments = screws[..., 3:] - B.cross(centre[..., None, :], directions)
     return np.concatenate([directions, moments / length[..., None, None]], axis=-1)
 
 
@@ -208,7 +210,7 @@ def from_scaled(rows: Array, centre: Array, length: Array) -> Array:
     array([[0., 0., 1., 2., 0., 0.]])
     """
     directions = rows[..., :3]
-    moments = rows[..., 3:] * length[..., None, None] + np.cross(centre[..., None, :], directions)
+    moments = rows[..., 3:] * length[..., None, None] + B.cross(centre[..., None, :], directions)
     return np.concatenate([directions, moments], axis=-1)
 
 
@@ -264,10 +266,11 @@ def _dot_in_order(a: Array, b: Array) -> Array:
     compiled kernels' loop, operation for operation (numpy's own reductions may add in another
     order, and so differ in the last bits)."""
     products = a * b
-    total = products[..., 0] + 0.0
-    for s in range(1, products.shape[-1]):
-        total += products[..., s]
-    return total
+    columns = products.reshape(-1, products.shape[-1])  # 2-D views index faster than ``[..., s]``
+    total = columns[:, 0] + 0.0
+    for s in range(1, columns.shape[1]):
+        total += columns[:, s]
+    return total.reshape(products.shape[:-1])
 
 
 def _span_numpy(generators: Array, rtol: float) -> tuple[Array, Array]:
@@ -352,15 +355,17 @@ def _complement_numpy(rows: Array, order: Array, *, swap: bool = False) -> tuple
             below = a[:, j + 1 :, j]
             total = _dot_in_order(below, below) if j < 5 else np.zeros(n)
             reflect = total != 0.0
+            every = bool(reflect.all())  # the usual case: no pose to leave as it is
             beta = -np.copysign(np.sqrt(alpha * alpha + total), alpha)
-            tau[:, j] = np.where(reflect, (beta - alpha) / beta, 0.0)
-            v[:, j, j + 1 :] = np.where(reflect[:, None], below * (1.0 / (alpha - beta))[:, None], 0.0)
+            tau[:, j] = (beta - alpha) / beta if every else np.where(reflect, (beta - alpha) / beta, 0.0)
+            reflector = below * (1.0 / (alpha - beta))[:, None]
+            v[:, j, j + 1 :] = reflector if every else np.where(reflect[:, None], reflector, 0.0)
             if j == 5 or not reflect.any():
                 continue
             block = a[:, j:, j + 1 :]
             dot = _dot_in_order(np.swapaxes(block, -1, -2), v[:, j, None, j:]) * tau[:, j, None]
             moved = block - dot[:, None, :] * v[:, j, j:, None]
-            a[:, j:, j + 1 :] = np.where(reflect[:, None, None], moved, block)
+            a[:, j:, j + 1 :] = moved if every else np.where(reflect[:, None, None], moved, block)
         y = np.broadcast_to(np.eye(6), (n, 6, 6)).copy()  # y[:, c] becomes column c of H_0 H_1 … H_5
         for j in range(5, -1, -1):
             reflect = tau[:, j] != 0.0
@@ -368,7 +373,7 @@ def _complement_numpy(rows: Array, order: Array, *, swap: bool = False) -> tuple
                 continue
             dot = _dot_in_order(y[:, :, j:], v[:, j, None, j:]) * tau[:, j, None]
             moved = y[:, :, j:] - dot[:, :, None] * v[:, j, None, j:]
-            y[:, :, j:] = np.where(reflect[:, None, None], moved, y[:, :, j:])
+            y[:, :, j:] = moved if reflect.all() else np.where(reflect[:, None, None], moved, y[:, :, j:])
     flat_order = np.broadcast_to(order, batch).reshape(-1)
     index = flat_order[:, None] + np.arange(6)  # row k of the complement is column order + k
     out = np.where((index < 6)[..., None], y[np.arange(n)[:, None], np.minimum(index, 5)], 0.0)

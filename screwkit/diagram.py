@@ -215,7 +215,7 @@ def _branch_normals(analysis: WrenchAnalysis) -> dict[tuple[str, str], tuple[Arr
                 ):
                     couples.append((name(child), wrenches.basis[0, 3:]))
             for (first, m1), (second, m2) in itertools.pairwise(couples):
-                cross = np.cross(_unit(m1), _unit(m2))
+                cross = B.cross(_unit(m1), _unit(m2))
                 found[(first, second)] = (
                     cross,
                     f"n({first}) × n({second}), the direction common to the planes "
@@ -393,18 +393,19 @@ def wrench_diagram(analysis: WrenchAnalysis) -> WrenchDiagram:
     normals = _branch_normals(analysis)
     infinite = [S.is_infinite_pitch(w, rtol=1e-7, length_scale=scale) for _, _, w, _ in lines]
     recipes: list[tuple[tuple[str, ...], tuple[str, ...]]] = []
+    known: dict[str, Array] = {}  # joint centres, each computed once
     for (name, _, wrench, joints), couple in zip(lines, infinite, strict=True):
         if couple:
             recipes.append(
                 _couple_line_recipe(name, wrench, joints, lines, infinite, normals, analysis, recipes)
             )
         else:
-            recipes.append(_finite_line_recipe(name, wrench, joints, analysis, recipes))
+            recipes.append(_finite_line_recipe(name, wrench, joints, analysis, recipes, known))
     names = [name for name, _, _, _ in lines]
     roles = [role for _, role, _, _ in lines]
     labels: dict[tuple[str, ...], str] = {}
     aliases: dict[tuple[str, ...], tuple[str, ...]] = {}
-    centres = dict(_centres(analysis, tuple(k for _, _, k in analysis.graph.edges(keys=True))))
+    centres = dict(_centres(analysis, tuple(k for _, _, k in analysis.graph.edges(keys=True)), known))
     letters = iter(string.ascii_lowercase)
     for pair in recipes:
         for key in pair:
@@ -452,19 +453,25 @@ def _distinct_directions(axes: list[tuple[str, Array]]) -> list[tuple[str, Array
     kept: list[tuple[str, Array]] = []
     for key, screw in axes:
         if all(
-            np.linalg.norm(np.cross(_unit(screw[:3]), _unit(other[:3]))) >= INCIDENCE_RTOL
+            np.linalg.norm(B.cross(_unit(screw[:3]), _unit(other[:3]))) >= INCIDENCE_RTOL
             for _, other in kept
         ):
             kept.append((key, screw))
     return kept
 
 
-def _centres(analysis: WrenchAnalysis, joints: tuple[str, ...]) -> list[tuple[str, Array]]:
-    """(name, centre) of the spherical and universal joints among ``joints``."""
+def _centres(
+    analysis: WrenchAnalysis, joints: tuple[str, ...], known: dict[str, Array] | None = None
+) -> list[tuple[str, Array]]:
+    """(name, centre) of the spherical and universal joints among ``joints`` (``known``: centres
+    already computed for this analysis, by name; filled in)."""
+    known = {} if known is None else known
     found = []
     for _, _, key, joint in analysis.graph.edges(keys=True, data="joint"):
         if key in joints and joint.type in ("S", "U"):
-            found.append((key, _joint_centre(joint.screws)))
+            if key not in known:
+                known[key] = _joint_centre(joint.screws)
+            found.append((key, known[key]))
     return sorted(found, key=lambda item: item[0])
 
 
@@ -504,7 +511,7 @@ def _couple_line_recipe(
     for k, ((other, _, w, _), inf) in enumerate(zip(lines, infinite, strict=True)):
         if inf and k != position:
             pair = (name, other) if position < k else (other, name)
-            options.append((("couples", *pair), np.cross(wrench[3:], w[3:])))
+            options.append((("couples", *pair), B.cross(wrench[3:], w[3:])))
     used = {key for pair in earlier for key in pair}
 
     def through(direction: Array) -> tuple[int, int]:
@@ -516,7 +523,7 @@ def _couple_line_recipe(
             if inf
         )
         finite = sum(
-            np.linalg.norm(np.cross(d, _unit(w[:3]))) < INCIDENCE_RTOL
+            np.linalg.norm(B.cross(d, _unit(w[:3]))) < INCIDENCE_RTOL
             for (_, _, w, _), inf in zip(lines, infinite, strict=True)
             if not inf
         )
@@ -534,7 +541,7 @@ def _couple_line_recipe(
     chosen: list[tuple[tuple[str, ...], Array | None]] = [(key, None) for key in own]
     directions = [normals[(key[1], key[2])][0] for key in own]
     for _, (key, d) in ranked:
-        if all(np.linalg.norm(np.cross(_unit(d), _unit(e))) >= INCIDENCE_RTOL for e in directions):
+        if all(np.linalg.norm(B.cross(_unit(d), _unit(e))) >= INCIDENCE_RTOL for e in directions):
             chosen.append((key, d))
             directions.append(d)
     keys = [key for key, _ in chosen][:2]
@@ -563,12 +570,13 @@ def _finite_line_recipe(
     joints: tuple[str, ...],
     analysis: WrenchAnalysis,
     earlier: list[tuple[tuple[str, ...], tuple[str, ...]]],
+    known: dict[str, Array] | None = None,
 ) -> tuple[tuple[str, ...], tuple[str, ...]]:
     """Two points of a finite line: joint centres on it (shared ones first), a meet, its direction."""
     used = {key for pair in earlier for key in pair}
     on_line = [
         ("centre", key)
-        for key, centre in _centres(analysis, joints)
+        for key, centre in _centres(analysis, joints, known)
         if P.point_on_line(
             np.append(centre, 1.0), wrench, rtol=INCIDENCE_RTOL, length_scale=analysis.length_scale
         )
@@ -581,7 +589,7 @@ def _finite_line_recipe(
     ]
     direction: tuple[str, ...] = ("direction", name)
     for key, screw in _single_freedom_axes(analysis, tuple(k for _, _, k in analysis.graph.edges(keys=True))):
-        if np.linalg.norm(np.cross(_unit(screw[:3]), _unit(wrench[:3]))) < INCIDENCE_RTOL:
+        if np.linalg.norm(B.cross(_unit(screw[:3]), _unit(wrench[:3]))) < INCIDENCE_RTOL:
             direction = ("axis", key)  # the line is parallel to a joint axis: share that point
             break
     finite = on_line + meets + [("foot", name)]
@@ -871,8 +879,8 @@ def _free(moment: Array) -> tuple[Array, Array]:
     meaning."""
     m = _units(moment)
     axis = np.eye(3)[np.argmin(np.nan_to_num(np.abs(m), nan=0.0), axis=-1)]
-    first = _units(np.cross(m, axis))
-    return first, np.cross(m, first)
+    first = _units(B.cross(m, axis))
+    return first, B.cross(m, first)
 
 
 def _finite_axes(screws: Array) -> tuple[Array, Array]:
@@ -887,18 +895,18 @@ def _finite_axes(screws: Array) -> tuple[Array, Array]:
 def _axis_lines(screws: Array) -> tuple[Array, Array]:
     """The axes ``(s; r × s)`` of screws ``(..., 6)`` and their points ``r`` nearest the origin."""
     nearest, _ = _finite_axes(screws)
-    return np.concatenate([screws[..., :3], np.cross(nearest, screws[..., :3])], axis=-1), nearest
+    return np.concatenate([screws[..., :3], B.cross(nearest, screws[..., :3])], axis=-1), nearest
 
 
 def _meet_plane_through_axis(line: Array, axis: Array, origin: Array) -> tuple[Array, Array]:
     """Where lines ``(..., 6)`` meet the planes that contain the axes ``(..., 6)`` (through their
     points ``origin``) and are normal to the planes of line and axis: ``(n × m − δ s, n·s)``
     (:func:`screwkit.projective.meet_line_plane`), and where the line lies in that plane instead."""
-    normal = np.cross(np.cross(line[..., :3], axis[..., :3]), axis[..., :3])
+    normal = B.cross(B.cross(line[..., :3], axis[..., :3]), axis[..., :3])
     plane = np.concatenate([normal, -np.einsum("...i,...i", normal, origin)[..., None]], axis=-1)
     s, m, delta = line[..., :3], line[..., 3:], plane[..., 3:]
     point = np.concatenate(
-        [np.cross(normal, m) - delta * s, np.einsum("...i,...i", normal, s)[..., None]], axis=-1
+        [B.cross(normal, m) - delta * s, np.einsum("...i,...i", normal, s)[..., None]], axis=-1
     )
     size = np.linalg.norm(line, axis=-1) * np.linalg.norm(plane, axis=-1)
     with np.errstate(invalid="ignore"):
@@ -922,7 +930,7 @@ def _meet_points(line: Array, screw: Array, length_scale: Array) -> Array:
 
     a, b = scaled(line), scaled(axis)
     product = np.einsum("...i,...i", a[..., :3], b[..., 3:]) + np.einsum("...i,...i", a[..., 3:], b[..., :3])
-    cross = np.cross(_units(line[..., :3]), _units(axis[..., :3]))
+    cross = B.cross(_units(line[..., :3]), _units(axis[..., :3]))
     parallel = np.linalg.norm(cross, axis=-1) < INCIDENCE_RTOL
     # the meet in lengths divided by length_scale: the test of a line lying in the plane compares
     # the point with a product of two moments, not invariant under a change of unit otherwise (a
@@ -1001,7 +1009,7 @@ def _branch_pair(batch: _Batch, first: str, second: str) -> Array:
         for k in range(a + 1, b):
             between |= couple[k]
         ok = couple[a] & couple[b] & ~between
-        return np.where(ok[:, None], np.cross(moments[a], moments[b]), np.nan)
+        return np.where(ok[:, None], B.cross(moments[a], moments[b]), np.nan)
     return batch.nan(3)
 
 
@@ -1033,7 +1041,7 @@ def _recipe(key: tuple[str, ...], batch: _Batch, cache: dict[tuple[str, ...], Ar
         value = _finite(_joint_centres(batch.joint_screws(key[1])))
     elif kind == "couples":
         first, second = batch.wrench(key[1])[:, 3:], batch.wrench(key[2])[:, 3:]
-        cross = np.cross(_units(first), _units(second))
+        cross = B.cross(_units(first), _units(second))
         # two couple lines that coincide here meet everywhere along it: any point of it will do
         with np.errstate(invalid="ignore"):
             apart = np.linalg.norm(cross, axis=-1) >= INCIDENCE_RTOL
@@ -1042,7 +1050,7 @@ def _recipe(key: tuple[str, ...], batch: _Batch, cache: dict[tuple[str, ...], Ar
         value = _infinite(_free(batch.wrench(key[1])[:, 3:])[int(key[2]) - 1])
     elif kind == "perp":
         moment = batch.wrench(key[1])[:, 3:]
-        cross = np.cross(moment, _recipe(key[2:], batch, cache)[:, :3])
+        cross = B.cross(moment, _recipe(key[2:], batch, cache)[:, :3])
         with np.errstate(invalid="ignore"):
             small = ~(np.linalg.norm(cross, axis=-1) >= INCIDENCE_RTOL * np.linalg.norm(moment, axis=-1))
         value = np.where(small[:, None], np.nan, _infinite(_canonical_directions(cross)))
@@ -1389,7 +1397,7 @@ def superbracket_analysis(
     labels = tuple(c.label for c in found)
     values = tuple(float(c.evaluate(_centred(diagram.coordinates))) for c in found)
     on_samples = [np.array([float(c.evaluate(sample)) for sample in drawn]) for c in found]
-    typical = [float(np.median(np.abs(v))) for v in on_samples]
+    typical = [B.median(np.abs(v)) for v in on_samples]
     vanishing = tuple(abs(v) <= VANISHING_RTOL * size for v, size in zip(values, typical, strict=True))
     # the magnitude: a point at infinity is a direction up to sign, so a structural factor may flip sign
     constant = tuple(
@@ -1434,4 +1442,4 @@ def _collinear_triples(diagram: WrenchDiagram, samples: list[dict[str, Array]]) 
 
 def _parallel(u: Array, v: Array) -> bool:
     size = np.linalg.norm(u) * np.linalg.norm(v)
-    return bool(size > 0 and np.linalg.norm(np.cross(u, v)) <= INCIDENCE_RTOL * size)
+    return bool(size > 0 and np.linalg.norm(B.cross(u, v)) <= INCIDENCE_RTOL * size)

@@ -546,13 +546,13 @@ def _finite_candidates(basis: Array, couples: Array, near: Array, rtol: float, l
     for order, s in enumerate([*axes, *isotropic, *principal]):
         s = s / np.linalg.norm(s)
         moment = moment_map @ s
-        about = moment - np.cross(near, s) - projector @ (moment - np.cross(near, s))
-        pitch = s @ (about + np.cross(near, s))
+        about = moment - B.cross(near, s) - projector @ (moment - B.cross(near, s))
+        pitch = s @ (about + B.cross(near, s))
         feasible = np.linalg.norm(projector @ s)
         if abs(pitch) > rtol * length and feasible > 1e3 * rtol:
             about = about - pitch / (s @ projector @ s) * (projector @ s)
             pitch = 0.0
-        screw = np.concatenate([s, about + np.cross(near, s)])
+        screw = np.concatenate([s, about + B.cross(near, s)])
         is_line = abs(s @ screw[3:]) <= 1e3 * rtol * length
         candidates.append((not is_line, order >= len(axes), order, screw))
     candidates.sort(key=lambda c: c[:3])

@@ -4,8 +4,15 @@ import numpy as np
 import pytest
 from hypothesis import HealthCheck, settings
 
+# derandomized: every run (CI's included) draws the same examples, so a failure is repeatable and a
+# green run means the same thing each time; new examples come from changing the tests, not from luck
 settings.register_profile(
-    "screwkit", max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow]
+    "screwkit",
+    max_examples=40,
+    deadline=None,
+    derandomize=True,
+    database=None,
+    suppress_health_check=[HealthCheck.too_slow],
 )
 settings.load_profile("screwkit")
 

@@ -1,5 +1,7 @@
 """Tests of screwkit._backend: promotion, rank decisions, unit invariance, errors."""
 
+import warnings
+
 import numpy as np
 import pytest
 import sympy
@@ -127,3 +129,18 @@ def test_zeros_and_ones_like_keep_the_branch():
 def test_is_symbolic_without_sympy_objects_is_false():
     assert not B.is_symbolic(np.array([1, 2], dtype=object), [1.0, (2, 3)], 4)
     assert B.is_symbolic([1.0, (2, x)])
+
+
+def test_median_is_numpy_median():
+    # the reports' typical magnitudes and proportionality constants: numpy.median's value exactly
+    rng = np.random.default_rng(11)
+    for n in (0, 1, 2, 3, 6, 7, 12, 25):
+        for _ in range(20):
+            values = rng.standard_normal(n) * 10.0 ** rng.uniform(-6, 6, n)
+            if n and rng.random() < 0.2:
+                values[rng.integers(n)] = np.nan
+            with np.errstate(all="ignore"), warnings.catch_warnings():
+                warnings.simplefilter("ignore")  # numpy.median warns on an empty array
+                expected = float(np.median(values))
+            got = B.median(values)
+            assert got == expected or (np.isnan(expected) and np.isnan(got))

@@ -665,7 +665,7 @@ def test_joint_row_errors():
 def test_classification_to_dict_and_errors():
     result = classify_jacobians(np.eye(4), np.diag([1.0, 0.0, 1.0, 1.0]), rtol=1e-9)
     assert result.to_dict()["label"] == "inverse" and "inverse" in str(result)
-    with pytest.raises(ScrewkitValueError, match=r"Expected `rtol` to be a number in \[0, 1\)"):
+    with pytest.raises(ScrewkitValueError, match=r"Expected `rtol` to be a number in \[0, 0\.1\]"):
         paper.classify(smg.inverse_kinematics(PARAMS, HOME), rtol=1.5)
     with pytest.raises(ScrewkitValueError, match=r"signs \(\+1 or -1\), got 5"):
         checked_mode(5, "mode", 2)

@@ -495,7 +495,7 @@ def test_error_analysis_type():
 @pytest.mark.parametrize("name", ["rtol", "basis_rtol"])
 def test_error_tolerance(name):
     cfg, analysis = h4_regular()
-    with pytest.raises(ScrewkitValueError, match=rf"Expected `{name}` to be a number in \[0, 1\), got 2"):
+    with pytest.raises(ScrewkitValueError, match=rf"Expected `{name}` to be a number in \[0, 0\.1\], got 2"):
         jacobians_from_wrenches(analysis, basis_of(cfg), **{name: 2})
 
 

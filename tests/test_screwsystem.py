@@ -214,7 +214,7 @@ def test_error_pitch_range_of_couples():
 
 
 def test_error_bad_rtol():
-    with pytest.raises(ScrewkitValueError, match=r"Expected `rtol` to be a number in \[0, 1\), got 2"):
+    with pytest.raises(ScrewkitValueError, match=r"Expected `rtol` to be a number in \[0, 0\.1\], got 2"):
         ScrewSystem.span([S.couple([0, 0, 1])], rtol=2)
 
 

@@ -20,7 +20,6 @@ from .._backend import checked_rtol
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
 from .brackets import BracketPolynomial, _labels, _point_arrays, _scalar
 from .dotted import DottedSum
-from .notation import _sort_sign
 from .zeros import Sampler, _draw, _drop_zero_monomials, _vanishing_quads
 
 __all__ = [
@@ -174,6 +173,14 @@ def superbracket(points: Mapping[str, Any], lines: Sequence[Sequence[str] | str]
 
 
 @functools.cache
+def _line_orders() -> tuple[np.ndarray, np.ndarray]:
+    """The 6! line permutations (720, 6), in ``itertools`` order, and the 2^6 flips (64, 6)."""
+    perms = np.array(list(itertools.permutations(range(6))))
+    flips = np.array(list(itertools.product((0, 1), repeat=6)))
+    return perms, flips
+
+
+@functools.cache
 def _orderings() -> tuple[np.ndarray, np.ndarray]:
     """All 6!·2^6 orderings as slot -> caller position maps (46080, 12), and their signs.
 
@@ -181,27 +188,37 @@ def _orderings() -> tuple[np.ndarray, np.ndarray]:
     ``f[k]``; the identity comes first. Its superbracket is ``sgn(π)·(-1)^Σf`` times the caller's
     (swapping two rows or negating one row of the 6×6 matrix flips the sign).
     """
-    perms = np.array(list(itertools.permutations(range(6))))
-    flips = np.array(list(itertools.product((0, 1), repeat=6)))
+    perms, flips = _line_orders()
     first = 2 * perms[:, None, :] + flips[None, :, :]
     second = 2 * perms[:, None, :] + 1 - flips[None, :, :]
     slot_positions = np.stack([first, second], axis=-1).reshape(-1, 12)
-    perm_signs = np.array([_sort_sign(tuple(p)) for p in perms])
+    inversions = np.sum([perms[:, i] > perms[:, j] for i, j in itertools.combinations(range(6), 2)], axis=0)
+    perm_signs = 1 - 2 * (inversions % 2)
     signs = (perm_signs[:, None] * (-1) ** flips.sum(axis=1)[None, :]).reshape(-1)
     return slot_positions, signs
 
 
 @functools.cache
-def _ordering_brackets() -> np.ndarray:
-    """For every ordering, the caller positions of each bracket of the 24 template monomials
-    (gca.md §2.1), coded as one index into the 12^4 ordered 4-tuples: shape (3, 46080, 24)."""
+def _ordering_brackets() -> tuple[np.ndarray, np.ndarray]:
+    """The caller positions of each bracket of the 24 template monomials (gca.md §2.1) under every
+    ordering, coded as one index into the 12^4 ordered 4-tuples, as two parts: ``(3, 720, 24)`` from
+    the permutations and ``(3, 64, 24)`` from the flips; ordering ``64 π + f`` has their sum.
+
+    Slot ``2k + bit`` of ordering ``(π, f)`` holds caller position ``2 π[k] + (bit xor f[k])``, so a
+    bracket's code ``Σ_s 12^(3-s) position_s`` is a part from ``π`` plus a part from ``f``.
+    """
     brackets = [m.brackets for m in _EXPANSION]
-    slots = np.array([[[_SLOTS.index(x) for x in b.labels] for b in t] for t in brackets])
-    slot_positions = _orderings()[0].astype(np.int16)
-    flat = np.zeros((3, len(slot_positions), len(slots)), dtype=np.int16)  # 12^4 < 2^15
-    for s in range(4):
-        flat = flat * 12 + slot_positions[:, slots[..., s]].transpose(2, 0, 1)
-    return flat
+    slots = np.array([[[_SLOTS.index(x) for x in b.labels] for b in t] for t in brackets])  # (24, 3, 4)
+    perms, flips = _line_orders()
+    weights = 12 ** np.arange(3, -1, -1)
+    line, bit = slots // 2, slots % 2
+    from_perm = (2 * perms[:, line] * weights).sum(axis=-1).transpose(2, 0, 1)
+    from_flip = ((bit ^ flips[:, line]) * weights).sum(axis=-1).transpose(2, 0, 1)
+    return np.ascontiguousarray(from_perm), np.ascontiguousarray(from_flip)
+
+
+#: Permutations scored at once by :func:`_ordering_counts` (× 64 flips each): bounds its temporaries.
+_PERMUTATIONS_PER_CHUNK = 90
 
 
 def _ordering_counts(positions: Sequence[str], zero: Mapping[tuple[str, ...], bool]) -> np.ndarray:
@@ -222,24 +239,36 @@ def _ordering_counts(positions: Sequence[str], zero: Mapping[tuple[str, ...], bo
     ids = quad_id[tuple(np.sort(tuples, axis=1).T)]
     code = np.where(distinct & alive[ids], (1 - 2 * (inversions % 2)) * (ids + 1), 0)
 
-    first, second, third = code.astype(np.int32)[_ordering_brackets()]  # each (46080, 24)
-    signs = np.array([int(m.coefficient) for m in _EXPANSION])
+    from_perm, from_flip = _ordering_brackets()
+    code = code.astype(np.int32)
+    n = len(quads) + 1
+    chunk = _PERMUTATIONS_PER_CHUNK
+    counts = [
+        _chunk_counts(code[from_perm[:, start : start + chunk, None, :] + from_flip[:, None]], n)
+        for start in range(0, from_perm.shape[1], chunk)
+    ]
+    return np.concatenate(counts)
+
+
+def _chunk_counts(codes: np.ndarray, n: int) -> np.ndarray:
+    """Surviving monomials per ordering from the codes ``(3, permutations, 64, 24)`` of the brackets
+    of each template monomial (``n`` - 1 label sets)."""
+    first, second, third = codes.reshape(3, -1, codes.shape[-1])
+    signs = np.array([int(m.coefficient) for m in _EXPANSION], dtype=np.int32)
     coefficients = signs * np.sign(first) * np.sign(second) * np.sign(third)
-    # A monomial is identified by the sorted triple of its label sets: (low, middle, high).
-    first, second, third = np.abs(first), np.abs(second), np.abs(third)
+    # Only monomials without a zero bracket can survive. One is identified within its ordering by
+    # the sorted triple of its label sets (low, middle, high); like terms share it.
+    row, column = np.nonzero(coefficients)
+    first, second, third = np.abs(first[row, column]), np.abs(second[row, column]), np.abs(third[row, column])
     low = np.minimum(np.minimum(first, second), third)
     high = np.maximum(np.maximum(first, second), third)
-    n = len(quads) + 1
-    keys = (low * n + (first + second + third - low - high)) * n + high
-    order = np.argsort(keys, axis=1)
-    keys = np.take_along_axis(keys, order, axis=1)
-    coefficients = np.take_along_axis(coefficients, order, axis=1)
+    keys = ((row.astype(np.int64) * n + low) * n + (first + second + third - low - high)) * n + high
+    order = np.argsort(keys, kind="stable")
+    keys, values = keys[order], coefficients[row, column][order]
     starts = np.ones(keys.shape, dtype=bool)
-    starts[:, 1:] = keys[:, 1:] != keys[:, :-1]
-    group = np.cumsum(starts.ravel()) - 1
-    totals = np.bincount(group, weights=coefficients.ravel())
-    rows = np.repeat(np.arange(len(keys)), keys.shape[1])[starts.ravel()]
-    return np.bincount(rows, weights=totals != 0, minlength=len(keys)).astype(int)
+    starts[1:] = keys[1:] != keys[:-1]
+    totals = np.add.reduceat(values, np.flatnonzero(starts)) if len(keys) else values
+    return np.bincount(row[order][starts], weights=totals != 0, minlength=len(coefficients)).astype(int)
 
 
 @dataclass(frozen=True, slots=True)

@@ -684,7 +684,7 @@ def _proportionality(a: np.ndarray, b: np.ndarray, name: str) -> Proportionality
         raise DegenerateGeometryError(
             f"Expected `{name}` to be non-zero on some sample, got zero on all {b.size} samples."
         )
-    constant = float(np.median(a[nonzero] / b[nonzero]))
+    constant = B.median(a[nonzero] / b[nonzero])
     scale = np.maximum(np.abs(a), np.abs(constant * b))
     deviation = np.abs(a - constant * b) / np.where(scale > 0, scale, 1.0)
     return Proportionality(constant, float(deviation.max()), int(b.size))
