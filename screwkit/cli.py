@@ -93,8 +93,6 @@ _NEGATIVE_NUMBER = re.compile(
 #: samples along a path, grid points per axis and refinement rounds of ``table4``.
 MAX_MAP_POSES = 2 * 10**6  # the README's 10^6-pose map fits; 2e6 poses take ~15 min at 2,000 poses/s
 MAX_PATH_SAMPLES = 10**4
-MAX_TABLE4_GRID = 201
-MAX_TABLE4_REFINE = 200
 
 
 class _Parser(argparse.ArgumentParser):
@@ -709,14 +707,14 @@ def run_table4(args: argparse.Namespace) -> int:
     Veloce       0 deg  cone     0.287 ...
     0
     """
-    from .indices import TABLE_4, table_4
+    from .indices import MAX_GRID, MAX_REFINE, TABLE_4, table_4
 
     known = sorted({row[1] for row in TABLE_4})
     for name in args.robot or []:
         if name not in known:
             raise _UsageError(f"screwkit table4: error: unknown robot {name!r}; expected one of {known}.")
     for option, value, least, most in (
-        ("--grid", args.grid, 2, MAX_TABLE4_GRID), ("--refine", args.refine, 0, MAX_TABLE4_REFINE)
+        ("--grid", args.grid, 2, MAX_GRID), ("--refine", args.refine, 0, MAX_REFINE)
     ):
         if not least <= value <= most:
             raise _UsageError(f"screwkit table4: error: expected {option} in {least}..{most}, got {value}.")

@@ -715,6 +715,14 @@ def _refined(
     return sign * best_value, best
 
 
+#: The largest grid (points per axis, ``grid³`` poses) and number of refinement rounds a search over
+#: a region takes (:func:`index_extremes`, :func:`table_4`, :func:`actuation_singularity_surface`):
+#: 201³ ≈ 8·10⁶ poses and 200 rounds already take minutes; larger values are refused, not run out of
+#: memory or time.
+MAX_GRID = 201
+MAX_REFINE = 200
+
+
 def _region_grid(
     mechanism: Any, region: Region | None, phi: Any, working_mode: Any, *, grid: Any, refine: Any = 0
 ) -> tuple[Region, tuple[int, int, int, int], list[np.ndarray]]:
@@ -722,9 +730,9 @@ def _region_grid(
     search at one rotation ``phi`` (:func:`index_extremes`, :func:`actuation_singularity_surface`)."""
     from .families.four_limb import _checked_working_mode
 
-    for name, value, least in (("grid", grid, 2), ("refine", refine, 0)):
-        if not isinstance(value, int | np.integer) or isinstance(value, bool) or value < least:
-            raise ScrewkitValueError(f"Expected `{name}` to be an integer >= {least}, got {value!r}.")
+    for name, value, least, most in (("grid", grid, 2, MAX_GRID), ("refine", refine, 0, MAX_REFINE)):
+        if not isinstance(value, int | np.integer) or isinstance(value, bool) or not least <= value <= most:
+            raise ScrewkitValueError(f"Expected `{name}` to be an integer in {least}..{most}, got {value!r}.")
     from .catalog import MAX_ANGLE_RADIANS
 
     numeric = isinstance(phi, int | float | np.integer | np.floating)

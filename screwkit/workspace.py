@@ -128,6 +128,8 @@ _GOLDEN = (math.sqrt(5.0) - 1.0) / 2.0
 #: The most poses one map, sweep or surface slice may hold: its grid of poses is built whole (32 bytes
 #: a pose, 3.2 GB at the bound), though the analysis runs in chunks (the command line caps at 2e6).
 MAX_MAP_POSES = 10**8
+#: The most samples a path check takes: they go through the core as one batch (≈ 1 GB at 10⁶).
+MAX_PATH_SAMPLES = 10**6
 
 
 # --------------------------------------------------------------------------------------------------
@@ -1421,8 +1423,14 @@ def check_path(
     ('serial', 0.0964)
     """
     _check_mechanism(mechanism)
-    if isinstance(samples, bool) or not isinstance(samples, int | np.integer) or samples < 2:
-        raise ScrewkitValueError(f"Expected `samples` to be an integer >= 2, got {samples!r}.")
+    if (
+        isinstance(samples, bool)
+        or not isinstance(samples, int | np.integer)
+        or not 2 <= samples <= MAX_PATH_SAMPLES
+    ):
+        raise ScrewkitValueError(
+            f"Expected `samples` to be an integer in 2..{MAX_PATH_SAMPLES:g}, got {samples!r}."
+        )
     scale = _scale(mechanism, angles)
     first, last = _pose(mechanism, start, "start", angles), _pose(mechanism, end, "end", angles)
     options = _options(mode)

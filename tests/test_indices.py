@@ -172,10 +172,15 @@ def test_index_extremes_errors(robots):
     h4 = robots["h4"]
     with pytest.raises(ScrewkitValueError, match="Expected `index` to be one of"):
         I.index_extremes(h4, "eta")
-    with pytest.raises(ScrewkitValueError, match="Expected `grid` to be an integer >= 2"):
+    with pytest.raises(ScrewkitValueError, match=r"Expected `grid` to be an integer in 2\.\.201, got 1"):
         I.index_extremes(h4, grid=1)
-    with pytest.raises(ScrewkitValueError, match="Expected `refine` to be an integer >= 0"):
+    # a grid of 10^9 poses or 10^9 refinement rounds: refused at once, not a MemoryError or hours of work
+    with pytest.raises(ScrewkitValueError, match=r"Expected `grid` to be an integer in 2\.\.201, got 1000"):
+        I.index_extremes(h4, grid=1000)
+    with pytest.raises(ScrewkitValueError, match=r"Expected `refine` to be an integer in 0\.\.200, got -1"):
         I.index_extremes(h4, refine=-1)
+    with pytest.raises(ScrewkitValueError, match=r"Expected `refine` to be an integer in 0\.\.200, got 1000000000"):
+        I.table_4(refine=10**9, robots=["h4"])
     with pytest.raises(ScrewkitValueError, match="Expected `phi` to be a finite number"):
         I.index_extremes(h4, phi=float("nan"))
     with pytest.raises(ScrewkitTypeError, match="Expected `region` to be a Region"):
@@ -268,7 +273,7 @@ def test_quattro_surfaces_at_plus_and_minus_phi_are_mirror_images(robots, surfac
 
 def test_actuation_surface_errors(robots):
     h4 = robots["h4"]
-    with pytest.raises(ScrewkitValueError, match="Expected `grid` to be an integer >= 2, got 1"):
+    with pytest.raises(ScrewkitValueError, match=r"Expected `grid` to be an integer in 2\.\.201, got 1"):
         I.actuation_singularity_surface(h4, 0.0, grid=1)
     with pytest.raises(ScrewkitValueError, match="Expected `phi` to be a finite number"):
         I.actuation_singularity_surface(h4, float("inf"))

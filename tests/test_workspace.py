@@ -470,8 +470,11 @@ def test_grid_map_errors(kwargs, message):
 def test_other_errors():
     with pytest.raises(sk.ScrewkitValueError, match="four-limb mechanism for quantity 'lti'"):
         W.grid_map(sk.load_mechanism("planar_3rrp"), "lti", x=("x", -1, 1, 2), y=("y", -1, 1, 2), angles="deg")
-    with pytest.raises(sk.ScrewkitValueError, match=r"Expected `samples` to be an integer >= 2, got 1"):
+    with pytest.raises(sk.ScrewkitValueError, match=r"Expected `samples` to be an integer in 2\.\.1e\+06, got 1\.$"):
         W.check_path(H4, {}, {"z": -700}, samples=1, angles="deg")
+    # 10^9 samples would be one 10^9-pose batch (a MemoryError): refused before any work
+    with pytest.raises(sk.ScrewkitValueError, match=r"Expected `samples` to be an integer in 2\.\.1e\+06, got 1000000000\.$"):
+        W.check_path(H4, {}, {"z": -700}, samples=10**9, angles="deg")
     with pytest.raises(sk.ScrewkitValueError, match=r"Expected `start` to have shape \(4,\)"):
         W.check_path(H4, [0, 0, -700], {"z": -700}, angles="deg")
     with pytest.raises(sk.ScrewkitTypeError, match="Expected `end\\['z'\\]` to be a number"):
