@@ -55,6 +55,12 @@ EPS = float(np.finfo(float).eps)
 
 _FLAGS = {"contract"}
 
+# The constants below and the polynomial kernels of cos_sin are taken from fdlibm, whose notice
+# is preserved as its licence asks:
+#   Copyright (C) 1993 by Sun Microsystems, Inc. All rights reserved.
+#   Developed at SunSoft, a Sun Microsystems, Inc. business.
+#   Permission to use, copy, modify, and distribute this software is freely granted, provided that
+#   this notice is preserved.
 # fdlibm e_rem_pio2.c: 2/π, and π/2 in three parts of 33 significant bits
 _INVERSE_HALF_PI = 6.36619772367581382433e-01
 _HALF_PI_1 = 1.57079632673412561417e00
