@@ -721,6 +721,9 @@ def _refined(
 #: memory or time.
 MAX_GRID = 201
 MAX_REFINE = 200
+#: The largest grid of :func:`actuation_singularity_surface`: its marching tetrahedra hold the whole
+#: grid's cells at once (≈ 0.6 GB at 64, measured 2 GB at 100 and 16 GB at 201 on the Quattro).
+MAX_SURFACE_GRID = 64
 
 
 def _region_grid(
@@ -1052,6 +1055,10 @@ def actuation_singularity_surface(
     from .families.four_limb import inverse_kinematics, reachable
 
     params = _four_limb_parameters(mechanism)
+    if isinstance(grid, int | np.integer) and not isinstance(grid, bool) and grid > MAX_SURFACE_GRID:
+        raise ScrewkitValueError(
+            f"Expected `grid` to be an integer in 2..{MAX_SURFACE_GRID} for a surface, got {grid!r}."
+        )
     region, mode, axes = _region_grid(mechanism, region, phi, working_mode, grid=grid)
     angle = float(phi)
 

@@ -275,6 +275,9 @@ def test_actuation_surface_errors(robots):
     h4 = robots["h4"]
     with pytest.raises(ScrewkitValueError, match=r"Expected `grid` to be an integer in 2\.\.201, got 1"):
         I.actuation_singularity_surface(h4, 0.0, grid=1)
+    # the surface's marching tetrahedra hold the whole grid: 201 took 16 GB (a new user's trial)
+    with pytest.raises(ScrewkitValueError, match=r"Expected `grid` to be an integer in 2\.\.64 for a surface, got 201"):
+        I.actuation_singularity_surface(h4, 0.0, grid=201)
     with pytest.raises(ScrewkitValueError, match="Expected `phi` to be a finite number"):
         I.actuation_singularity_surface(h4, float("inf"))
     with pytest.raises(ScrewkitTypeError, match="Expected `region` to be a Region, got tuple"):
