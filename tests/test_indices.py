@@ -20,6 +20,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+import screwkit as sk
 from screwkit import indices as I
 from screwkit import screw as S
 from screwkit.catalog import load_mechanism
@@ -345,7 +346,23 @@ def test_table_4_not_reproduced_is_explained(table, robot, phi, key):
     paper = TABLE_4[(robot, phi)][0 if key == "min" else 1]
     ours = row.ours.minimum if key == "min" else row.ours.maximum
     assert abs(ours - paper) > 0.002
-    assert row.notes[key] in (I._CONE_NOTE, I._RAGNAR_MIN_NOTE, I._RAGNAR_MAX_NOTE)
+    if (robot, phi, key) == ("H4", 0.0, "min"):
+        assert "beyond the robot's reach" in row.notes[key]
+    else:
+        assert row.notes[key] in (I._CONE_NOTE, I._RAGNAR_MIN_NOTE, I._RAGNAR_MAX_NOTE)
+
+
+def test_h4_minimum_at_phi_0_is_not_converged_because_the_region_passes_the_reach(table, robots):
+    # a new user's trial: 0.016 on the 41^3 grid, 0.001 on 61^3, 0.0007 on 101^3. The assumed cone
+    # reaches just past the H4's reach, where a stretched limb's kappa -> 0 (paper 004 Eq. 11), so the
+    # infimum is 0; our table says so instead of offering 0.016 as a converged minimum
+    row = table[("H4", 0.0)]
+    assert row.ours.reachable_fraction < 1
+    finer = I.index_extremes(robots["h4"], "lti", I.TABLE_4_CONE, phi=0.0, grid=61, refine=12)
+    assert finer.minimum < row.ours.minimum / 5
+    # the finer minimum sits where a limb is nearly stretched: kappa (not zeta) is the small index
+    kappa = sk.transmission(robots["h4"], finer.argmin[None]).kappa.min()
+    assert kappa == pytest.approx(finer.minimum, rel=1e-9)
 
 
 def test_ragnar_eq_19_is_partly_out_of_reach_for_any_inclination(robots):
