@@ -611,6 +611,14 @@ def run_map(args: argparse.Namespace) -> int:
         return ", ".join(f"{k} = {v:g}" for k, v in pose.items()) or "-"
 
     lines = [f"{quantity} over {result.region}"]
+    if result.quantity == "verdict" and result.reachable.any():  # codes mean kinds: say which were found
+        from .workspace import verdict_name
+
+        codes, counts = np.unique(result.values[result.reachable], return_counts=True)
+        found = ", ".join(
+            f"{verdict_name(int(c))} {n / counts.sum():.1%}" for c, n in zip(codes, counts, strict=True)
+        )
+        lines.append(f"  verdicts of the reachable poses (codes in the JSON's `codes`): {found}")
     if result.reachable.any():
         lines.append(f"  minimum {result.minimum:g} at {where(result.argmin)}")
         lines.append(f"  maximum {result.maximum:g} at {where(result.argmax)}")

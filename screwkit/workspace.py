@@ -118,6 +118,19 @@ ACCEPT = 1e-6
 CHUNK = 4096
 #: The kinds of singularity, by bit of the core's codes.
 KINDS = ("constraint", "actuation", "serial")
+
+
+def verdict_name(code: int) -> str:
+    """The words of a ``"verdict"`` map's code (module docstring).
+
+    Examples
+    --------
+    >>> [verdict_name(c) for c in (-1, 0, 2, 5)]
+    ['out of reach', 'regular', 'actuation', 'constraint+serial']
+    """
+    if code < 0:
+        return "out of reach"
+    return "+".join(kind for bit, kind in enumerate(KINDS) if code >> bit & 1) or "regular"
 #: Refinement stops when a bracket (in the line's parameter, 0..1) is this narrow ...
 XTOL = 4e-16
 #: ... or after this many steps (each one batch through the core).
@@ -674,6 +687,8 @@ class WorkspaceMap:
             "x": {"name": self.x_name, "values": self.x_values.tolist()},
             "y": {"name": self.y_name, "values": self.y_values.tolist()},
             "values": [[_plain(v) for v in row] for row in values],
+            **({"codes": {str(c): verdict_name(c) for c in range(-1, 2 ** len(KINDS))}}
+               if self.quantity == "verdict" else {}),
         }
 
     def to_json(self, **kwargs: Any) -> str:

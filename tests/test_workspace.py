@@ -531,3 +531,21 @@ def test_a_twist_graph_is_refused_with_a_pointer_to_analyze(call):
     with pytest.raises(sk.ScrewkitTypeError, match=r"Expected `mechanism` to be a catalog Mechanism .* got "
                                                    r"MultiDiGraph \(a twist graph is one configuration"):
         call(graph)
+
+
+def test_cli_verdict_map_names_its_codes(tmp_path, capsys):
+    # a new user read "minimum 0 ... maximum 0" and integer codes with no key: the text now says which
+    # verdicts were found and the JSON carries the codes' words (bits: constraint 1, actuation 2, serial 4)
+    out = tmp_path / "verdicts.json"
+    argv = ["map", "h4", "--quantity", "verdict", "--x", "300", "--y", "300", "--z", "-1100", "-450",
+            "--phi", "-90", "90", "--grid", "9", "--out", str(out)]
+    assert main(argv) == 0
+    printed = capsys.readouterr().out
+    saved = json.loads(out.read_text())
+    assert saved["codes"]["0"] == "regular" and saved["codes"]["6"] == "actuation+serial"
+    assert saved["codes"]["-1"] == "out of reach"
+    codes = {v for row in saved["values"] for v in row if v is not None}
+    line = next(ln for ln in printed.splitlines() if "verdicts of the reachable poses" in ln)
+    for code in codes:
+        assert W.verdict_name(code) in line
+    assert sum(float(p.split()[-1].rstrip("%")) for p in line.split(": ", 1)[1].split(", ")) == pytest.approx(100, abs=0.2)
