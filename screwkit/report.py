@@ -269,6 +269,8 @@ class AnalysisReport:
                 for n, v in zip(self.pose_names, self.pose, strict=True)
             )
             out.append(f"pose: {coords}")
+        if self.analysis.rtol != B.DEFAULT_RTOL:  # the default is the README's; another is said
+            out.append(f"rank tolerance: rtol = {self.analysis.rtol:g} (default {B.DEFAULT_RTOL:g})")
         summary = self.graph_summary()
         joints = ", ".join(f"{count} {kind}" for kind, count in summary["joints"].items())
         out += [
@@ -401,7 +403,14 @@ def _line_text(item: dict[str, Any], unit: str) -> str:
 
 
 def _vector(values: list[float]) -> str:
-    return "(" + ", ".join(f"{v:.4g}" for v in values) + ")"
+    """``(x, y, z)`` to 4 significant digits, a negative zero shown as 0 (``v + 0.0`` is +0.0 for -0.0).
+
+    Examples
+    --------
+    >>> _vector([-0.0, 1.0, -2.5])
+    '(0, 1, -2.5)'
+    """
+    return "(" + ", ".join(f"{v + 0.0:.4g}" for v in values) + ")"
 
 
 def analyze(

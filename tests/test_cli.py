@@ -2,6 +2,7 @@
 
 import json
 import math
+import re
 
 import numpy as np
 import pytest
@@ -178,3 +179,12 @@ def test_screw_text_gives_the_axis(capsys):
     assert capsys.readouterr().out.strip() == (
         "screw (0, 0, 1; 2, -1, 0)  pitch 0  kind zero pitch  axis through (1, 2, 0) along (0, 0, 1)"
     )
+
+
+def test_the_text_report_prints_no_negative_zero(capsys):
+    # a new user saw "direction (-0, 0, 1) through (-0, 89.75, -0)" at --rtol 0.05: a -0.0 coordinate
+    # is printed as 0
+    assert main(["analyze", "h4", "--rtol", "0.05", "--no-superbracket"]) == 0
+    text = capsys.readouterr().out
+    assert "through (" in text and "rank tolerance: rtol = 0.05 (default 1e-09)" in text
+    assert not re.search(r"(?<![\w.])-0(?![.\de])", text), text
