@@ -370,6 +370,11 @@ def backend() -> str:
 
 
 def _four_limb_parameters(mechanism: Any) -> Any:
+    if isinstance(mechanism, str):  # a catalog name, as sk.analyze takes: say how to get the mechanism
+        raise ScrewkitTypeError(
+            f"Expected `mechanism` to be a catalog Mechanism, got the string {mechanism!r}; load it "
+            f"first: sk.load_mechanism({mechanism!r})."
+        )
     params = getattr(mechanism, "parameters", None)
     if not isinstance(params, _four_limb_parameter_class()):
         raise ScrewkitValueError(

@@ -274,6 +274,11 @@ def test_quattro_surfaces_at_plus_and_minus_phi_are_mirror_images(robots, surfac
 
 def test_actuation_surface_errors(robots):
     h4 = robots["h4"]
+    # a catalog name, as sk.analyze takes it (a new user's trial): the message says how to load it
+    with pytest.raises(sk.ScrewkitTypeError, match=r"got the string 'h4'; load it first: sk\.load_mechanism\('h4'\)"):
+        I.actuation_singularity_surface("h4", 0.0)
+    with pytest.raises(sk.ScrewkitTypeError, match=r"got the string 'h4'"):
+        sk.transmission("h4", [0.0, 0.0, -800.0, 0.0])
     with pytest.raises(ScrewkitValueError, match=r"Expected `grid` to be an integer in 2\.\.201, got 1"):
         I.actuation_singularity_surface(h4, 0.0, grid=1)
     # the surface's marching tetrahedra hold the whole grid: 201 took 16 GB (a new user's trial)
