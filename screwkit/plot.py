@@ -396,7 +396,7 @@ def plot_singularity_surfaces(
 
     Parameters
     ----------
-    surfaces : iterable of SingularSurface
+    surfaces : SingularSurface or iterable of SingularSurface
         From :func:`screwkit.indices.actuation_singularity_surface`, e.g. at ``+φ`` and ``-φ``.
     ax : 3-D matplotlib axes, optional
         Default: a new figure with ``projection="3d"``.
@@ -433,7 +433,9 @@ def plot_singularity_surfaces(
     ['φ = +90°', 'φ = -90°', 'workspace']
     """
     ax = _new_axes(ax, three_d=True)
-    items = list(surfaces)
+    # one surface is drawn as a list of one (a SingularSurface is a tuple: iterating it would give
+    # its fields)
+    items = [surfaces] if hasattr(surfaces, "triangles") else list(surfaces)
     if not items:
         raise ScrewkitValueError("Expected at least one surface to draw, got none.")
     handles: list[Any] = []

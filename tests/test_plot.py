@@ -293,6 +293,10 @@ def test_singularity_surfaces_of_paper_004_robot(tmp_path):
     low, high = ax.get_zlim()
     assert (low, high) == (TABLE_4_CONE.lower[2], TABLE_4_CONE.upper[2])
     assert ax.get_title() == "Quattro: actuation singularity loci"
+    # one surface on its own is one surface (a SingularSurface is a tuple; a new user's trial got
+    # "got ndarray" from iterating its fields)
+    single = plot_singularity_surfaces(pair[0], wireframe=0)
+    assert [len(p.get_paths()) for p in single.collections if isinstance(p, Poly3DCollection)] == [len(pair[0].triangles)]
 
 
 def test_singularity_surfaces_errors():
