@@ -296,6 +296,7 @@ def test_singularity_surfaces_of_paper_004_robot(tmp_path):
     # one surface on its own is one surface (a SingularSurface is a tuple; a new user's trial got
     # "got ndarray" from iterating its fields)
     single = plot_singularity_surfaces(pair[0], wireframe=0)
+    single.figure.savefig(tmp_path / "fig14b_plus.png")  # 3-D collections get their paths when drawn
     assert [len(p.get_paths()) for p in single.collections if isinstance(p, Poly3DCollection)] == [len(pair[0].triangles)]
 
 
