@@ -611,6 +611,8 @@ def run_map(args: argparse.Namespace) -> int:
         return ", ".join(f"{k} = {v:g}" for k, v in pose.items()) or "-"
 
     lines = [f"{quantity} over {result.region}"]
+    if result.meaning:
+        lines.append(f"  {result.meaning}")
     if result.quantity == "verdict" and result.reachable.any():  # codes mean kinds: say which were found
         from .workspace import verdict_name
 

@@ -435,7 +435,7 @@ def plot_singularity_surfaces(
     ax = _new_axes(ax, three_d=True)
     # one surface is drawn as a list of one (a SingularSurface is a tuple: iterating it would give
     # its fields)
-    items = [surfaces] if hasattr(surfaces, "triangles") else list(surfaces)
+    items: list[Any] = [surfaces] if hasattr(surfaces, "triangles") else list(surfaces)
     if not items:
         raise ScrewkitValueError("Expected at least one surface to draw, got none.")
     handles: list[Any] = []

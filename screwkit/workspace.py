@@ -647,6 +647,9 @@ class WorkspaceMap:
     units : dict
         Per pose coordinate.
     mechanism : str
+    meaning : str
+        What a ``"condition:K"`` map shows: the factor of the superbracket, its label and its
+        vector form (empty for the other quantities).
     """
 
     quantity: str
@@ -664,6 +667,7 @@ class WorkspaceMap:
     argmax: dict[str, float]
     units: dict[str, str] = field(default_factory=dict)
     mechanism: str = ""
+    meaning: str = ""
 
     def __post_init__(self) -> None:
         for name in ("x_values", "y_values", "values", "reachable"):
@@ -687,6 +691,7 @@ class WorkspaceMap:
             "x": {"name": self.x_name, "values": self.x_values.tolist()},
             "y": {"name": self.y_name, "values": self.y_values.tolist()},
             "values": [[_plain(v) for v in row] for row in values],
+            **({"meaning": self.meaning} if self.meaning else {}),
             **({"codes": {str(c): verdict_name(c) for c in range(-1, 2 ** len(KINDS))}}
                if self.quantity == "verdict" else {}),
         }
@@ -864,7 +869,17 @@ def _assembled(mechanism: Any, name: str, grid: _Slice, values: Array, ok: Array
         argmax,
         _units(mechanism, grid.angles),
         mechanism.name,
+        _meaning(mechanism, name, grid.options),
     )
+
+
+def _meaning(mechanism: Any, name: str, options: Mapping[str, Any]) -> str:
+    """What a ``condition:K`` map shows (its factor, label and vector form); empty otherwise."""
+    if not name.startswith("condition:"):
+        return ""
+    _, conditions, labels, _ = _conditions(mechanism, options)
+    index = int(name.split(":")[1])
+    return f"{labels[index]} factor {conditions[index].factor} (vector form {conditions[index].expression})"
 
 
 def sweep(

@@ -549,3 +549,17 @@ def test_cli_verdict_map_names_its_codes(tmp_path, capsys):
     for code in codes:
         assert W.verdict_name(code) in line
     assert sum(float(p.split()[-1].rstrip("%")) for p in line.split(": ", 1)[1].split(", ")) == pytest.approx(100, abs=0.2)
+
+
+def test_condition_map_says_which_factor_it_shows(tmp_path, capsys):
+    # a new user could not tell which factor `condition:1` was: the map, its JSON and the CLI say it
+    # (the H4's factors of paper 002: [gikj], the constraint one, and the actuation product)
+    shown = W.grid_map(H4, "condition:0", x=("z", -1000, -600, 3), y=("phi", -30, 30, 3), angles="deg")
+    assert shown.meaning.startswith("constraint factor [gikj] (vector form ")
+    assert json.loads(shown.to_json())["meaning"] == shown.meaning
+    out = tmp_path / "c.json"
+    argv = ["map", "h4", "--quantity", "condition:1", "--z", "-1000", "-600", "--phi", "-30", "30",
+            "--grid", "3", "--out", str(out)]
+    assert main(argv) == 0
+    assert "  actuation factor [a b d ḟ][c g ḣ j] (vector form " in capsys.readouterr().out
+    assert W.grid_map(H4, "lti", x=("z", -1000, -600, 2), y=("phi", 0, 1, 2), angles="deg").meaning == ""
