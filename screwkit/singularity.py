@@ -549,7 +549,7 @@ def classify_chunks(
             table_source=table_source,
             **{key: whole[key] for key in _BATCH_FIELDS},
             frames={key: (whole[f"frame:{key}"], whole[f"order:{key}"]) for key in first.frames},
-            closeness={key: whole[f"closeness:{key}"] for key in first.closeness},
+            closeness_factors={key: whole[f"closeness:{key}"] for key in first.closeness_factors},
         )
     )
 
@@ -574,7 +574,7 @@ def _batch_arrays(analysis: WrenchAnalysis) -> dict[str, Array]:
     arrays = {key: np.asarray(getattr(analysis, key)) for key in _BATCH_FIELDS}
     for key, (rows, order) in analysis.frames.items():
         arrays[f"frame:{key}"], arrays[f"order:{key}"] = rows, np.asarray(order)
-    arrays.update({f"closeness:{key}": np.asarray(value) for key, value in analysis.closeness.items()})
+    arrays.update({f"closeness:{key}": value for key, value in analysis.closeness_factors.items()})
     return arrays
 
 

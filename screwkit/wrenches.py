@@ -253,6 +253,10 @@ class WrenchAnalysis:
         The part of each actuation wrench carried by its actuated joint's own branch, scaled as
         :attr:`actuation_rows`: ``B_jj = branch_j ∘ $_j`` (:mod:`screwkit.jacobians`). Equal to
         the actuation wrench except in a compound leg analysed as a whole (:func:`analyze_table`).
+    closeness_factors : dict of str to numpy.ndarray, shape (..., 21)
+        ``"constraint"``, ``"actuation"``: triangular factors (:func:`screwkit._frames.triangular`,
+        :func:`~screwkit._frames.packed`) with the singular values of the matrices the closeness
+        measures are defined on (:attr:`closeness`).
     """
 
     table_source: JointTable | Callable[[], JointTable] = field(repr=False)
@@ -270,7 +274,23 @@ class WrenchAnalysis:
     actuated_twists: Array = field(repr=False)
     branch_rows: Array = field(repr=False)
     frames: dict[str, Frame] = field(repr=False)
-    closeness: dict[str, Array] = field(repr=False)
+    closeness_factors: dict[str, Array] = field(repr=False)
+
+    @functools.cached_property
+    def closeness(self) -> dict[str, Any]:
+        """The closeness measures (:mod:`screwkit.singularity`), computed on first use: the
+        labels need only orders and serial flags, so a batch pays for the two 6×6 SVDs per pose
+        only when its closeness is asked. ``constraint`` is ``σ_(6 − dof) / σ_1`` and ``actuation``
+        ``σ_6 / σ_1`` of :attr:`closeness_factors` (six rows with the singular values of the stacked
+        legs' constraint wrenches, and of those stacked with the actuation wrenches apart from
+        their legs; :func:`analyze_table`), ``serial`` the smallest transmission."""
+        factors = self.closeness_factors
+        values = {
+            "constraint": F.singular_ratio(F.unpacked(factors["constraint"]), 6 - self.dof),
+            "actuation": F.singular_ratio(F.unpacked(factors["actuation"]), 6),
+            "serial": np.min(self.transmissions, axis=-1) if self.transmissions.shape[-1] else np.ones(self.shape),
+        }
+        return {k: _scalar(v) for k, v in values.items()}
 
     # --- batch behaviour -------------------------------------------------------------------------
     @functools.cached_property
@@ -315,7 +335,7 @@ class WrenchAnalysis:
             actuated_twists=pick(self.actuated_twists),
             branch_rows=pick(self.branch_rows),
             frames={k: (rows[index], _scalar(order[index])) for k, (rows, order) in self.frames.items()},
-            closeness={k: _scalar(v[index]) for k, v in self.closeness.items()},
+            closeness_factors={k: v[index] for k, v in self.closeness_factors.items()},
         )
 
     def __repr__(self) -> str:
@@ -943,6 +963,7 @@ def analyze_table(
             -2,
         )
         free = (rows, order + ~serial)
+        del rows  # held by `free` alone, freed with it
     if n:
         limb_constraint = F.reciprocal(*free)
         # SWAP t⊥ lies in the passive system; projecting it there keeps a clean passive wrench even
@@ -964,6 +985,7 @@ def analyze_table(
             if views:
                 frames[f"limb{k}:T"] = _limb(free, k)
                 frames[f"limb{k}:W"] = _limb(limb_constraint, k)
+        del free, limb_constraint  # (..., n, 6, 6) each: not alive while the closeness inputs are built
     else:
         serial, transmissions = np.zeros((*batch, 0), dtype=bool), np.zeros((*batch, 0))
         wrench_rows = branch = np.zeros((*batch, 0, 6))
@@ -973,10 +995,9 @@ def analyze_table(
     # two 6×6 SVDs instead of (6 legs + n) × 6 ones)
     legs_stacked = F.triangular(np.concatenate([w[0] for w in leg_wrenches], axis=-2))
     apart = _apart_from_legs(top, wrench_rows, leg_wrenches)
-    closeness = {
-        "constraint": F.singular_ratio(legs_stacked, 6 - nominal),
-        "actuation": F.singular_ratio(F.triangular(np.concatenate([legs_stacked, apart], axis=-2)), 6),
-        "serial": np.min(transmissions, axis=-1) if n else np.ones(batch),
+    closeness_factors = {  # their singular values on demand (WrenchAnalysis.closeness)
+        "constraint": F.packed(legs_stacked),
+        "actuation": F.packed(F.triangular(np.concatenate([legs_stacked, apart], axis=-2))),
     }
     if locked_legs is not None:  # where a compound leg was analysed as a whole
         locked_legs.add_to(global_frame, constraint, wrench_rows, rtol)
@@ -1012,7 +1033,7 @@ def analyze_table(
         if n
         else np.zeros((*batch, 0, 6)),
         frames=frames,
-        closeness={k: _scalar(v) for k, v in closeness.items()},
+        closeness_factors=closeness_factors,
     )
 
 
