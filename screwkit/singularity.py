@@ -533,13 +533,19 @@ def classify_chunks(
     for piece in tables:
         part = analyze_table(piece, dof=dof, rtol=rtol, views=False)
         arrays = _batch_arrays(part)
-        if first is None:
-            first = part
+        if first is None:  # the template of the result: the first chunk's fields less its arrays and table
+            first = replace(
+                part,
+                table_source=table_source,
+                frames=dict.fromkeys(part.frames),
+                closeness_factors=dict.fromkeys(part.closeness_factors),
+                **dict.fromkeys(_BATCH_FIELDS),
+            )
             out = {key: np.empty((total, *value.shape[1:]), value.dtype) for key, value in arrays.items()}
         for key, value in arrays.items():
             out[key][filled : filled + len(value)] = value
         filled += len(part)
-        del piece, part, arrays  # not alive while the next chunk is computed (the first is kept)
+        del piece, part, arrays  # not alive while the next chunk is computed
     if first is None or filled != total:
         raise ScrewkitValueError(f"Expected chunks of {total} configurations in all, got {filled}.")
     whole = {key: value.reshape(*shape, *value.shape[1:]) for key, value in out.items()}
