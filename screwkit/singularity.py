@@ -534,13 +534,12 @@ def classify_chunks(
         part = analyze_table(piece, dof=dof, rtol=rtol, views=False)
         arrays = _batch_arrays(part)
         if first is None:  # the template of the result: the first chunk's fields less its arrays and table
-            first = replace(
-                part,
-                table_source=table_source,
-                frames=dict.fromkeys(part.frames),
-                closeness_factors=dict.fromkeys(part.closeness_factors),
+            blank: dict[str, Any] = {
                 **dict.fromkeys(_BATCH_FIELDS),
-            )
+                "frames": dict.fromkeys(part.frames),
+                "closeness_factors": dict.fromkeys(part.closeness_factors),
+            }
+            first = replace(part, table_source=table_source, **blank)
             out = {key: np.empty((total, *value.shape[1:]), value.dtype) for key, value in arrays.items()}
         for key, value in arrays.items():
             out[key][filled : filled + len(value)] = value

@@ -284,11 +284,11 @@ class WrenchAnalysis:
         ``σ_6 / σ_1`` of :attr:`closeness_factors` (six rows with the singular values of the stacked
         legs' constraint wrenches, and of those stacked with the actuation wrenches apart from
         their legs; :func:`analyze_table`), ``serial`` the smallest transmission."""
-        factors = self.closeness_factors
+        factors, transmissions = self.closeness_factors, self.transmissions
         values = {
             "constraint": F.singular_ratio(F.unpacked(factors["constraint"]), 6 - self.dof),
             "actuation": F.singular_ratio(F.unpacked(factors["actuation"]), 6),
-            "serial": np.min(self.transmissions, axis=-1) if self.transmissions.shape[-1] else np.ones(self.shape),
+            "serial": np.min(transmissions, axis=-1) if transmissions.shape[-1] else np.ones(self.shape),
         }
         return {k: _scalar(v) for k, v in values.items()}
 
@@ -976,10 +976,17 @@ def analyze_table(
         product = np.abs(np.einsum("...s,...s->...", wrench, F.swapped(actuated)))
         transmissions = _scaled_transmission(wrench, actuated, product, rtol)
         branch, locked_legs = wrench, None
-        compound = _compound_legs(top, scaled, rtol, leg_wrenches, actuated, (wrench, serial, transmissions))
+        residuals = _leg_residuals(top, wrench, leg_wrenches)
+        compound = _compound_legs(
+            top, scaled, rtol, leg_wrenches, actuated, (wrench, serial, transmissions), residuals
+        )
         if compound is not None:
             serial, wrench, branch, transmissions, locked_legs = compound
         wrench_rows = np.where(serial[..., None], 0.0, wrench)
+        if compound is not None:  # the replaced limbs' wrenches measured again
+            residuals = _leg_residuals(top, wrench_rows, leg_wrenches)
+        elif residuals is not None:  # a serial limb's row is zero, and so is its residual (exactly)
+            residuals = np.where(serial[..., _coupled(top), None], 0.0, residuals)
         for k in range(n):
             frames[f"limb{k}:passive"] = _limb(passive, k)  # the Jacobians' rows at serial singularities
             if views:
@@ -989,12 +996,12 @@ def analyze_table(
     else:
         serial, transmissions = np.zeros((*batch, 0), dtype=bool), np.zeros((*batch, 0))
         wrench_rows = branch = np.zeros((*batch, 0, 6))
-        locked_legs = None
+        locked_legs, residuals = None, None
     global_frame = F.span(np.concatenate([constraint[0], wrench_rows], axis=-2), rtol)
     # the legs' stacked constraint wrenches as six rows with their singular values (F.triangular:
     # two 6×6 SVDs instead of (6 legs + n) × 6 ones)
     legs_stacked = F.triangular(np.concatenate([w[0] for w in leg_wrenches], axis=-2))
-    apart = _apart_from_legs(top, wrench_rows, leg_wrenches)
+    apart = _apart_from_legs(top, wrench_rows, residuals)
     closeness_factors = {  # their singular values on demand (WrenchAnalysis.closeness)
         "constraint": F.packed(legs_stacked),
         "actuation": F.packed(F.triangular(np.concatenate([legs_stacked, apart], axis=-2))),
@@ -1014,7 +1021,11 @@ def analyze_table(
             frames[f"leg{k}:W"] = wrench_frame
     user_rows = F.from_scaled(wrench_rows, centre, length)
     size = _unit_size(user_rows, length)
-    user_branches = np.where(serial[..., None], 0.0, F.from_scaled(branch, centre, length) / size)
+    actuation_rows = np.where(serial[..., None], 0.0, user_rows / size)
+    if locked_legs is None:  # every branch row is its actuation wrench: the same operations, the same bits
+        user_branches = actuation_rows.copy()
+    else:
+        user_branches = np.where(serial[..., None], 0.0, F.from_scaled(branch, centre, length) / size)
     return WrenchAnalysis(
         table_source=table,
         topology=top,
@@ -1027,7 +1038,7 @@ def analyze_table(
         global_order=_scalar(global_frame[1]),
         serial=serial,
         transmissions=transmissions,
-        actuation_rows=np.where(serial[..., None], 0.0, user_rows / size),
+        actuation_rows=actuation_rows,
         branch_rows=user_branches,
         actuated_twists=np.stack([p.sign * screws[..., top.columns[p.index], :] for p in top.limbs], axis=-2)
         if n
@@ -1051,17 +1062,32 @@ class _LockedLegs(NamedTuple):
         global_frame[0][where], global_frame[1][where] = frame
 
 
-def _apart_from_legs(top: Topology, rows: Array, leg_wrenches: list[Frame]) -> Array:
-    """Unit scaled wrench rows ``(..., n, 6)`` with each limb that has partners less its part in its
-    compound leg's constraint system (renormalised): the actuation closeness's rows. A limb's own
-    wrench may lie close to that system where the leg as a whole transmits well (the H4 near
-    ``n1·z = 0``, :func:`_compound_legs`), which would fake a near-singularity."""
-    coupled = [k for k, plan in enumerate(top.limbs) if plan.partners and not top.network]
+def _coupled(top: Topology) -> list[int]:
+    """The limbs with partners in a compound leg (none in a network)."""
+    return [] if top.network else [k for k, plan in enumerate(top.limbs) if plan.partners]
+
+
+def _leg_residuals(top: Topology, rows: Array, leg_wrenches: list[Frame]) -> Array | None:
+    """Wrench rows ``(..., n, 6)`` of the limbs with partners (:func:`_coupled`) less their part in
+    their compound leg's constraint system, ``(..., m, 6)`` (not renormalised; None without such
+    limbs): what :func:`_compound_legs` and :func:`_apart_from_legs` measure."""
+    coupled = _coupled(top)
     if not coupled:
-        return rows
+        return None
     frames = np.stack([leg_wrenches[_leg_of(top, k)][0] for k in coupled], axis=-3)  # (..., m, 6, 6)
+    return F.residual(rows[..., coupled, None, :], frames)[..., 0, :]
+
+
+def _apart_from_legs(top: Topology, rows: Array, residuals: Array | None) -> Array:
+    """Unit scaled wrench rows ``(..., n, 6)`` with each limb that has partners less its part in its
+    compound leg's constraint system (``residuals``, :func:`_leg_residuals` of ``rows``;
+    renormalised): the actuation closeness's rows. A limb's own wrench may lie close to that system
+    where the leg as a whole transmits well (the H4 near ``n1·z = 0``, :func:`_compound_legs`),
+    which would fake a near-singularity."""
+    if residuals is None:
+        return rows
     out = rows.copy()
-    out[..., coupled, :] = _normalized(F.residual(rows[..., coupled, None, :], frames)[..., 0, :])
+    out[..., _coupled(top), :] = _normalized(residuals)
     return out
 
 
@@ -1077,11 +1103,12 @@ def _compound_legs(
     leg_wrenches: list[Frame],
     actuated: Array,
     limbs: tuple[Array, Array, Array],
+    residuals: Array | None,
 ) -> tuple[Array, Array, Array, Array, _LockedLegs] | None:
     """Compound legs whose actuators share a link, analysed as a whole where a limb's own
     actuation wrench fails: ``serial, wrench, branch, transmissions`` over the batch and the
     quotients (None where no limb's wrench fails). ``limbs``: the limbs' own ``wrench, serial,
-    transmissions`` (scaled).
+    transmissions`` (scaled); ``residuals``: :func:`_leg_residuals` of their wrenches.
 
     **Why.** A limb with *partners* (:attr:`screwkit.topology.LimbPlan.partners`; the H4's
     ``A1`` and ``A4`` both carry the nacelle ``b_I``, which joins the end effector by ``R_I``) gets
@@ -1133,15 +1160,12 @@ def _compound_legs(
     partners is serial by its chain or its wrench lies within :data:`COMPOUND_RTOL` of ``W_free``,
     and only its failing limbs are replaced.
     """
-    coupled = [k for k, plan in enumerate(top.limbs) if plan.partners]
-    if not coupled or top.network:
+    coupled = _coupled(top)
+    if residuals is None:
         return None
     wrench, serial, transmissions = limbs
     failing = np.zeros(serial.shape, dtype=bool)
-    for k in coupled:
-        rows = leg_wrenches[_leg_of(top, k)][0]
-        rest = np.linalg.norm(F.residual(wrench[..., k, None, :], rows)[..., 0, :], axis=-1)
-        failing[..., k] = serial[..., k] | (rest <= COMPOUND_RTOL)
+    failing[..., coupled] = serial[..., coupled] | (np.linalg.norm(residuals, axis=-1) <= COMPOUND_RTOL)
     where = np.asarray(failing.any(axis=-1))
     if not where.any():
         return None
