@@ -390,3 +390,23 @@ def test_error_normalized_reciprocal_product_of_a_zero_screw():
 
     with pytest.raises(DegenerateGeometryError, match="Expected `second` to hold non-zero screws, got the zero screw"):
         normalized_reciprocal_product([0, 0, 1, 0, 0, 0], [0, 0, 0, 0, 0, 0], length_scale=1.0)
+
+
+def test_closeness_is_computed_only_when_asked_and_a_batch_agrees_with_its_poses(monkeypatch):
+    from screwkit import _frames as F
+    from screwkit.catalog import load_mechanism
+
+    calls = []
+    ratio = F.singular_ratio
+    monkeypatch.setattr(F, "singular_ratio", lambda rows, index: calls.append(index) or ratio(rows, index))
+    h4 = load_mechanism("h4")
+    report = h4.at([[0, 0, -750, 0], [30, -20, -750, 0.3], [300, 300, -473.8, np.radians(30)]]).singularities
+    assert report.verdict.tolist() == ["regular"] * 3 and report.global_order.tolist() == [6, 6, 6]
+    assert calls == []  # the labels need no SVD
+    closeness = report.closeness
+    assert sorted(calls) == [2, 6]  # σ_(6 − dof) and σ_6 over σ_1, once each for the whole batch
+    assert report.closeness is closeness  # kept
+    for index in range(3):  # a pose of the batch: its own factors, the same bits
+        one = report[index].closeness
+        assert {k: float(v[index]) for k, v in closeness.items()} == one
+        assert 0.0 < one["constraint"] <= 1.0 and 0.0 < one["actuation"] <= 1.0 and one["serial"] > 0.0
