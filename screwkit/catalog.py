@@ -199,6 +199,8 @@ class Mechanism:
 
     def _check_options(self, options: Mapping[str, Any]) -> None:
         """Refuse inverse-kinematics options the family's solver does not take (naming those it does)."""
+        if not options:  # nothing to refuse (and no signature to read, chunk after chunk)
+            return
         solve = self.family_protocol.inverse_kinematics
         accepted = [
             p.name
