@@ -1019,8 +1019,9 @@ def joints(config: FourLimbConfiguration) -> JointTable:
             screws[..., 4 + k, :3] = axis
             screws[..., 4 + k, 3:] = cross(point, axis)
         specs.append(JointSpec(name, "H" if pitch else "R", link, "end_effector", 1, False))
-    corners = np.concatenate([config.elbow_corners, config.platform_corners], axis=-2)  # m, n, p, q
-    screws[..., 6:, :] = _sphere_twists(corners).reshape(*batch, 48, 6)
+    spheres = screws[..., 6:, :].reshape(*batch, 4, 4, 3, 6)  # a view: limb, corner m n p q, axis
+    _sphere_twists(config.elbow_corners, spheres[..., :2, :, :])
+    _sphere_twists(config.platform_corners, spheres[..., 2:, :, :])
     for limb in range(4):
         i, platform = limb + 1, limb_platform[limb]
         specs += [
@@ -1033,18 +1034,17 @@ def joints(config: FourLimbConfiguration) -> JointTable:
     return JointTable("base", "end_effector", tuple(specs), screws, dof=4, mobility=4)
 
 
-def _sphere_twists(centres: np.ndarray) -> np.ndarray:
-    """The unit rotations about ``x, y, z`` through each of ``centres (..., 3)``: ``(..., 3, 6)``,
-    the lines ``(e_k; c × e_k)`` of :func:`screwkit.screw.revolute_twist` written out (no
-    validation needed: the directions are the unit axes)."""
-    out = np.zeros((*centres.shape[:-1], 3, 6))
+def _sphere_twists(centres: np.ndarray, out: np.ndarray) -> None:
+    """The unit rotations about ``x, y, z`` through each of ``centres (..., 3)``, written into
+    ``out (..., 3, 6)``: the lines ``(e_k; c × e_k)`` of :func:`screwkit.screw.revolute_twist`
+    written out (no validation needed: the directions are the unit axes)."""
+    out[...] = 0.0
     x, y, z = centres[..., 0], centres[..., 1], centres[..., 2]
     for k in range(3):
         out[..., k, k] = 1.0
     out[..., 0, 4], out[..., 0, 5] = z, -y  # c × e_x = (0, z, −y)
     out[..., 1, 3], out[..., 1, 5] = -z, x  # c × e_y = (−z, 0, x)
     out[..., 2, 3], out[..., 2, 4] = y, -x  # c × e_z = (y, −x, 0)
-    return out
 
 
 def twist_basis(config: FourLimbConfiguration) -> np.ndarray:
