@@ -759,9 +759,11 @@ class _Evaluation:
         return F.span(twists, self.rtol)
 
 
-def _nearest_lines(wrench: Array, constraints: Array, order: Array) -> Array:
+def _nearest_lines(wrench: Array, constraints_at: Callable[[Array], Array], order: Array) -> Array:
     """``wrench + c`` of zero pitch with ``c`` the smallest constraint wrench found that makes it a
-    line, where the wrench is not already one (batched; rows orthonormal, scaled).
+    line, where the wrench is not already one (batched; rows orthonormal, scaled). The constraint
+    system has ``order`` rows; ``constraints_at(where)`` gives its rows ``(m, 6, 6)`` at a boolean
+    mask of the batch (asked only where a wrench is searched).
 
     The pitch numerator of ``w + C α`` is the quadratic ``αᵀQα + bᵀα + p0`` (``Q`` the symmetric
     part of ``C_s C_mᵀ``). Along a direction ``u`` it is a quadratic in one variable; the
@@ -776,7 +778,7 @@ def _nearest_lines(wrench: Array, constraints: Array, order: Array) -> Array:
     searched = not_line & (np.asarray(order) > 0)
     best = wrench.copy()
     if searched.any():
-        best[searched] = _line_search(wrench[searched], constraints[searched], np.asarray(order)[searched])
+        best[searched] = _line_search(wrench[searched], constraints_at(searched), np.asarray(order)[searched])
     return best
 
 
@@ -965,14 +967,22 @@ def analyze_table(
         free = (rows, order + ~serial)
         del rows  # held by `free` alone, freed with it
     if n:
-        limb_constraint = F.reciprocal(*free)
+        # the limbs' constraint systems (reciprocal to `free`): kept for the views, else computed only
+        # where an actuation wrench is searched for a line (_nearest_lines; at a few poses, if any)
+        limb_constraint = F.reciprocal(*free) if views else None
+
+        def limb_constraints_at(where: Array) -> Array:
+            if limb_constraint is not None:
+                return limb_constraint[0][where]
+            return F.reciprocal(free[0][where], free[1][where])[0]
+
         # SWAP t⊥ lies in the passive system; projecting it there keeps a clean passive wrench even
         # when t⊥ is round-off (a serial singularity), so w ∘ t is then round-off too
         swapped = F.swapped(perpendicular)
         direction = _normalized(
             np.einsum("...k,...ks->...s", np.einsum("...ks,...s->...k", passive[0], swapped), passive[0])
         )
-        wrench = _normalized(_nearest_lines(direction, *limb_constraint))
+        wrench = _normalized(_nearest_lines(direction, limb_constraints_at, 6 - free[1]))
         product = np.abs(np.einsum("...s,...s->...", wrench, F.swapped(actuated)))
         transmissions = _scaled_transmission(wrench, actuated, product, rtol)
         branch, locked_legs = wrench, None
@@ -991,6 +1001,7 @@ def analyze_table(
             frames[f"limb{k}:passive"] = _limb(passive, k)  # the Jacobians' rows at serial singularities
             if views:
                 frames[f"limb{k}:T"] = _limb(free, k)
+                assert limb_constraint is not None
                 frames[f"limb{k}:W"] = _limb(limb_constraint, k)
         del free, limb_constraint  # (..., n, 6, 6) each: not alive while the closeness inputs are built
     else:
@@ -1204,7 +1215,8 @@ def _compound_legs(
             size = np.linalg.norm(alone, axis=-1)
             is_serial = size <= rtol
             direction = _normalized(np.einsum("...i,...is->...s", alone, leg_locked))
-            line = _nearest_lines(direction, *free)  # a line only if the constraint added stays small
+            # a line only if the constraint added stays small
+            line = _nearest_lines(direction, free[0].__getitem__, free[1])
             near = np.linalg.norm(line - direction, axis=-1) <= COMPOUND_LINE_REACH
             chosen = _normalized(np.where(near[:, None], line, direction))
             part = _branch_part(top, locked, paths[k], chosen[:, None, :], rtol)[:, 0, :]

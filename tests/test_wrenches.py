@@ -410,3 +410,24 @@ def test_closeness_is_computed_only_when_asked_and_a_batch_agrees_with_its_poses
         one = report[index].closeness
         assert {k: float(v[index]) for k, v in closeness.items()} == one
         assert 0.0 < one["constraint"] <= 1.0 and 0.0 < one["actuation"] <= 1.0 and one["serial"] > 0.0
+
+
+@pytest.mark.parametrize("name", ["mcgill_smg", "h4"])
+def test_a_batch_without_views_gives_the_same_bits(monkeypatch, name):
+    # without views the limbs' constraint systems are computed only where an actuation wrench is
+    # searched for a line (the McGill SMG has such poses), and the closeness when asked
+    from screwkit import wrenches as W
+    from screwkit.catalog import load_mechanism
+
+    searched = []
+    search = W._line_search
+    monkeypatch.setattr(W, "_line_search", lambda *args: searched.append(len(args[0])) or search(*args))
+    mechanism = load_mechanism(name)
+    table = mechanism.at(mechanism.random_poses(np.random.default_rng(1), 300)).joints
+    full, lean = W.analyze_table(table), W.analyze_table(table, views=False)
+    assert (sum(searched) > 0) == (name == "mcgill_smg")
+    assert "limb0:W" in full.frames and "limb0:W" not in lean.frames
+    for key in ("global_order", "serial", "transmissions", "actuation_rows", "branch_rows"):
+        np.testing.assert_array_equal(getattr(full, key), getattr(lean, key))
+    for key, value in full.closeness.items():
+        np.testing.assert_array_equal(value, lean.closeness[key])
