@@ -22,7 +22,8 @@ One pose and many go through the same kernels (:func:`screwkit.wrenches.analyze_
 
 Closeness measures (all in [0, 1], unit-free, computed about the mechanism's own reference point
 and length (:func:`~screwkit.twistgraph.mechanism_frame`), so they follow rigid motions and
-changes of unit; 0 at the singularity):
+changes of unit; 0 at the singularity; computed when first asked,
+:attr:`~screwkit.wrenches.WrenchAnalysis.closeness`: the labels do not need them):
 
 * ``constraint``: σ_c0 / σ_1 of orthonormal bases of the compound legs' constraint systems,
   stacked, with ``c0 = 6 − dof`` (about the reference point, moments over the length);
