@@ -41,8 +41,6 @@ single-pose analysis never pays for its import; its compiled code is cached on d
 environment variable ``SCREWKIT_NUMBA``, read once when this module is imported, forces the
 choice: ``0`` (or ``false``, ``no``, ``off``) the numpy path, anything else the default (numba if
 it imports).
-choice: ``0`` (or ``false``, ``no``, ``off``) the numpy path, anything else the default (numba if
-it imports).
 
 Examples
 --------
