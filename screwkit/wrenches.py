@@ -286,8 +286,8 @@ class WrenchAnalysis:
         their legs; :func:`analyze_table`), ``serial`` the smallest transmission."""
         factors, transmissions = self.closeness_factors, self.transmissions
         values = {
-            "constraint": F.singular_ratio(F.unpacked(factors["constraint"]), 6 - self.dof),
-            "actuation": F.singular_ratio(F.unpacked(factors["actuation"]), 6),
+            "constraint": _singular_ratios(factors["constraint"], 6 - self.dof),
+            "actuation": _singular_ratios(factors["actuation"], 6),
             "serial": np.min(transmissions, axis=-1) if transmissions.shape[-1] else np.ones(self.shape),
         }
         return {k: _scalar(v) for k, v in values.items()}
@@ -477,6 +477,23 @@ class WrenchAnalysis:
                 SeriesParallelNode(node.kind, node.ends, system, children, node.links, edge, node.joints)
             )
         return nodes[self.topology.root] if self.topology.root is not None else None
+
+
+#: Poses whose closeness SVDs run at once (:func:`_singular_ratios`): bounded memory over any batch.
+CLOSENESS_CHUNK = 4096
+
+
+def _singular_ratios(packed: Array, index: int) -> Array:
+    """:func:`screwkit._frames.singular_ratio` of :func:`~screwkit._frames.packed` triangles
+    ``(..., 21)``, :data:`CLOSENESS_CHUNK` poses at a time (each pose's SVD on its own: the same
+    values whatever the chunk)."""
+    flat = packed.reshape(-1, packed.shape[-1])
+    out = np.empty(len(flat))
+    for start in range(0, len(flat), CLOSENESS_CHUNK):
+        out[start : start + CLOSENESS_CHUNK] = F.singular_ratio(
+            F.unpacked(flat[start : start + CLOSENESS_CHUNK]), index
+        )
+    return out.reshape(packed.shape[:-1])
 
 
 def _indexed_table(analysis: WrenchAnalysis, index: Any) -> JointTable:

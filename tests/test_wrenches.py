@@ -431,3 +431,17 @@ def test_a_batch_without_views_gives_the_same_bits(monkeypatch, name):
         np.testing.assert_array_equal(getattr(full, key), getattr(lean, key))
     for key, value in full.closeness.items():
         np.testing.assert_array_equal(value, lean.closeness[key])
+
+
+def test_closeness_in_chunks_gives_the_same_bits(monkeypatch):
+    from screwkit import wrenches as W
+    from screwkit.catalog import load_mechanism
+
+    h4 = load_mechanism("h4")
+    poses = h4.random_poses(np.random.default_rng(2), 5)
+    whole = h4.at(poses).closeness
+    monkeypatch.setattr(W, "CLOSENESS_CHUNK", 2)  # three chunks: 2, 2, 1 poses
+    chunked = h4.at(poses).closeness
+    for key, value in whole.items():
+        assert value.shape == (5,)
+        np.testing.assert_array_equal(chunked[key], value)
