@@ -267,6 +267,26 @@ class Pose:
         """``A χ̇ = B θ̇`` at this pose."""
         return jacobians_from_wrenches(self.analysis, self.twist_basis, rtol=self.posed.rtol)
 
+    @functools.cached_property
+    def _draws(self) -> tuple[Sequence[WrenchAnalysis], WrenchAnalysis | None, np.random.Generator]:
+        """The random workspace poses a wrench diagram is chosen at (:data:`GENERIC_DRAWS`, seed
+        2026) and the first batch of its sampler's (``2 *`` :data:`SAMPLES`, seed 0) through the
+        core as one batch (one pass instead of two; a pose's result does not depend on the other
+        poses of a batch of several): the per-pose analyses at the generic draws, the batch at the
+        samples (None if none is reachable) and the samples' generator, where the next batch is
+        drawn from.
+        """
+        mechanism, rtol = self.mechanism, self.posed.rtol
+        stream = np.random.default_rng(0)
+        generic = _reachable_table(mechanism, np.random.default_rng(2026), GENERIC_DRAWS)
+        sampled = _reachable_table(mechanism, stream, 2 * SAMPLES)
+        tables = [t for t in (generic, sampled) if t is not None]
+        batch = analyze_table(_concatenated(tables), rtol=rtol) if tables else None
+        if generic is None:
+            return [], batch, stream
+        analyses = _PoseAnalyses(batch[: len(generic)], generic, mechanism.name)
+        return analyses, (None if sampled is None else batch[len(generic) :]), stream
+
     def diagram_and_sampler(self) -> tuple[Any, Callable[[np.random.Generator], dict[str, Array]]]:
         """The wrench diagram at this pose and a sampler of its recipes at generic poses.
 
@@ -283,18 +303,23 @@ class Pose:
 
         from .diagram import ReplaySampler, diagram_at, generic_reference, wrench_diagram
 
-        analyses = _batch_analyses(
-            self.mechanism, np.random.default_rng(2026), GENERIC_DRAWS, self.posed.rtol
-        )
+        analyses, first, stream = self._draws
         reference, reasons = generic_reference(analyses)
         if reference is None:  # a property of the mechanism, found at generic poses: say so
             diagram = wrench_diagram(self.analysis)
             return replace(diagram, coordinates={}, degenerate=reasons), _no_sampler
         diagram = diagram_at(reference, self.analysis)
         mechanism, rtol = self.mechanism, self.posed.rtol
-        return diagram, ReplaySampler(
-            lambda stream: generic_samples(mechanism, diagram.points, stream, SAMPLES, rtol)
-        )
+        batches = iter([first])
+
+        def produce(_: np.random.Generator) -> list[dict[str, Array]]:
+            # the first batch analysed with the generic draws, the next ones drawn on from its stream
+            batch = next(batches, False)
+            if batch is False:
+                return generic_samples(mechanism, diagram.points, stream, SAMPLES, rtol)
+            return _samples(diagram.points, batch, SAMPLES)
+
+        return diagram, ReplaySampler(produce)
 
     def report(self, *, superbracket: bool = True, progress: Any = None) -> Any:
         """The whole analysis report at this pose (:class:`screwkit.report.AnalysisReport`).
@@ -338,15 +363,12 @@ def _reachable_table(mechanism: Any, rng: np.random.Generator, count: int) -> Jo
         return mechanism.joints(np.array(kept)) if kept else None
 
 
-def _batch_analyses(
-    mechanism: Any, rng: np.random.Generator, count: int, rtol: float
-) -> Sequence[WrenchAnalysis]:
-    """Per-pose analyses at ``count`` random workspace poses, computed as one batch (the poses out
-    of reach are dropped); each pose's view and graph are built when first read."""
-    table = _reachable_table(mechanism, rng, count)
-    if table is None:
-        return []
-    return _PoseAnalyses(analyze_table(table, rtol=rtol), table, mechanism.name)
+def _concatenated(tables: Sequence[JointTable]) -> JointTable:
+    """Joint tables of one mechanism ``(n_i, ...)`` as one batch ``(Σ n_i, ...)``."""
+    first = tables[0]
+    anchor = None if first.anchor is None else np.concatenate([t.anchor for t in tables])
+    screws = np.concatenate([t.screws for t in tables])
+    return JointTable(first.base, first.platform, first.specs, screws, first.dof, anchor, first.mobility)
 
 
 class _PoseAnalyses(Sequence[WrenchAnalysis]):
@@ -402,10 +424,15 @@ def generic_samples(
     >>> len(generic_samples(h4, diagram.points, np.random.default_rng(0), 3))
     3
     """
+    table = _reachable_table(mechanism, rng, 2 * count)
+    return _samples(points, None if table is None else analyze_table(table, rtol=rtol), count)
+
+
+def _samples(points: Any, analysis: WrenchAnalysis | None, count: int) -> list[dict[str, Array]]:
+    """:func:`generic_samples` from the analysis of the drawn poses (None: none reachable)."""
     from .diagram import batch_diagram_points
 
-    table = _reachable_table(mechanism, rng, 2 * count)
-    found = {} if table is None else batch_diagram_points(points, analyze_table(table, rtol=rtol))
+    found = {} if analysis is None else batch_diagram_points(points, analysis)
     exists = np.all([np.isfinite(v).all(axis=-1) for v in found.values()], axis=0) if found else []
     samples = [{label: v[i] for label, v in found.items()} for i in np.flatnonzero(exists)[:count]]
     if not samples:
