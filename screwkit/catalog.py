@@ -362,9 +362,8 @@ class Mechanism:
             if len(poses) == 1:
                 return np.zeros(1, dtype=bool)
         half = len(poses) // 2
-        return np.concatenate(
-            [self._reachable_by_halving(poses[:half], options), self._reachable_by_halving(poses[half:], options)]
-        )
+        halves = (poses[:half], poses[half:])
+        return np.concatenate([self._reachable_by_halving(part, options) for part in halves])
 
     def wrench_diagram(
         self, pose: Any = None

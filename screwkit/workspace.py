@@ -77,7 +77,6 @@ from .exceptions import (
     ScrewkitError,
     ScrewkitTypeError,
     ScrewkitValueError,
-    UnreachablePoseError,
 )
 
 __all__ = [
