@@ -281,7 +281,9 @@ class Pose:
         generic = _reachable_table(mechanism, np.random.default_rng(2026), GENERIC_DRAWS)
         sampled = _reachable_table(mechanism, stream, 2 * SAMPLES)
         tables = [t for t in (generic, sampled) if t is not None]
-        batch = analyze_table(_concatenated(tables), rtol=rtol) if tables else None
+        if not tables:
+            return [], None, stream
+        batch = analyze_table(_concatenated(tables), rtol=rtol)
         if generic is None:
             return [], batch, stream
         analyses = _PoseAnalyses(batch[: len(generic)], generic, mechanism.name)
@@ -310,14 +312,13 @@ class Pose:
             return replace(diagram, coordinates={}, degenerate=reasons), _no_sampler
         diagram = diagram_at(reference, self.analysis)
         mechanism, rtol = self.mechanism, self.posed.rtol
-        batches = iter([first])
+        pending = [first]
 
         def produce(_: np.random.Generator) -> list[dict[str, Array]]:
             # the first batch analysed with the generic draws, the next ones drawn on from its stream
-            batch = next(batches, False)
-            if batch is False:
-                return generic_samples(mechanism, diagram.points, stream, SAMPLES, rtol)
-            return _samples(diagram.points, batch, SAMPLES)
+            if pending:
+                return _samples(diagram.points, pending.pop(), SAMPLES)
+            return generic_samples(mechanism, diagram.points, stream, SAMPLES, rtol)
 
         return diagram, ReplaySampler(produce)
 
