@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import functools
 import weakref
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
 from typing import Any, overload
 
@@ -54,6 +54,10 @@ GENERIC_DRAWS = 12
 #: Generic samples of a diagram's points drawn (in one batch) for the superbracket: its structural
 #: zeros and its checks take 12 (screwkit.diagram.superbracket_analysis).
 SAMPLES = 24
+#: Poses whose diagram points are evaluated at once when samples are read (the superbracket reads
+#: 12: most of a batch of SAMPLES is never evaluated; their constraint lines take a readable basis
+#: pose by pose).
+SAMPLE_CHUNK = 12
 
 
 def _checked_poses(mechanism: Any, poses: Any) -> Array:
@@ -314,7 +318,7 @@ class Pose:
         mechanism, rtol = self.mechanism, self.posed.rtol
         pending = [first]
 
-        def produce(_: np.random.Generator) -> list[dict[str, Array]]:
+        def produce(_: np.random.Generator) -> Iterable[dict[str, Array]]:
             # the first batch analysed with the generic draws, the next ones drawn on from its stream
             if pending:
                 return _samples(diagram.points, pending.pop(), SAMPLES)
@@ -426,21 +430,28 @@ def generic_samples(
     3
     """
     table = _reachable_table(mechanism, rng, 2 * count)
-    return _samples(points, None if table is None else analyze_table(table, rtol=rtol), count)
+    return list(_samples(points, None if table is None else analyze_table(table, rtol=rtol), count))
 
 
-def _samples(points: Any, analysis: WrenchAnalysis | None, count: int) -> list[dict[str, Array]]:
-    """:func:`generic_samples` from the analysis of the drawn poses (None: none reachable)."""
+def _samples(points: Any, analysis: WrenchAnalysis | None, count: int) -> Iterator[dict[str, Array]]:
+    """:func:`generic_samples` from the analysis of the drawn poses (None: none reachable), lazily:
+    the points are evaluated :data:`SAMPLE_CHUNK` poses at a time, as far as the samples read."""
     from .diagram import batch_diagram_points
 
-    found = {} if analysis is None else batch_diagram_points(points, analysis)
-    exists = np.all([np.isfinite(v).all(axis=-1) for v in found.values()], axis=0) if found else []
-    samples = [{label: v[i] for label, v in found.items()} for i in np.flatnonzero(exists)[:count]]
-    if not samples:
+    given, total = 0, 0 if analysis is None else len(analysis)
+    for start in range(0, total, SAMPLE_CHUNK):
+        assert analysis is not None
+        found = batch_diagram_points(points, analysis[start : start + SAMPLE_CHUNK])
+        exists = np.all([np.isfinite(v).all(axis=-1) for v in found.values()], axis=0) if found else []
+        for i in np.flatnonzero(exists)[: count - given]:
+            given += 1
+            yield {label: v[i] for label, v in found.items()}
+        if given == count:
+            return
+    if not given:
         raise ScrewkitValueError(
             f"Expected a workspace pose giving every diagram point, got none of {2 * count}."
         )
-    return samples
 
 
 def _no_sampler(rng: np.random.Generator) -> dict[str, Array]:
