@@ -69,7 +69,6 @@ Examples
 from __future__ import annotations
 
 import codecs
-import difflib
 import inspect
 import math
 import os
@@ -480,6 +479,8 @@ def _check_keys(table: Mapping[str, Any], known: Any, source: str, where: str) -
     """Refuse keys outside ``known``, naming the closest known key."""
     for key in table:
         if key not in known:
+            import difflib
+
             close = difflib.get_close_matches(str(key), sorted(known), n=1)
             hint = f" (did you mean `{close[0]}`?)" if close else ""
             raise _error(
