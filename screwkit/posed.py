@@ -251,7 +251,9 @@ class Pose:
     def analysis(self) -> WrenchAnalysis:
         """The wrench systems (a batch of one through the core, with the per-pose views)."""
         one = self.table[None] if self.table.batch_shape == () else self.table
-        result = analyze_table(one, rtol=self.posed.rtol)[0]
+        return self._with_graph(analyze_table(one, rtol=self.posed.rtol)[0])
+
+    def _with_graph(self, result: WrenchAnalysis) -> WrenchAnalysis:
         object.__setattr__(result, "graph", self.graph)
         return result
 
@@ -275,23 +277,28 @@ class Pose:
     def _draws(self) -> tuple[Sequence[WrenchAnalysis], WrenchAnalysis | None, np.random.Generator]:
         """The random workspace poses a wrench diagram is chosen at (:data:`GENERIC_DRAWS`, seed
         2026) and the first batch of its sampler's (``2 *`` :data:`SAMPLES`, seed 0) through the
-        core as one batch (one pass instead of two; a pose's result does not depend on the other
-        poses of a batch of several): the per-pose analyses at the generic draws, the batch at the
-        samples (None if none is reachable) and the samples' generator, where the next batch is
-        drawn from.
+        core as one batch, with this pose unless its analysis is already computed (one pass instead
+        of three; a pose's result does not depend on the batch it is in, ``tests/test_batch.py``):
+        the per-pose analyses at the generic draws, the batch at the samples (None if none is
+        reachable) and the samples' generator, where the next batch is drawn from. (61 poses of
+        four limbs stay below :data:`screwkit._frames.COMPILED_MIN_BATCH`: no numba import.)
         """
         mechanism, rtol = self.mechanism, self.posed.rtol
         stream = np.random.default_rng(0)
         generic = _reachable_table(mechanism, np.random.default_rng(2026), GENERIC_DRAWS)
         sampled = _reachable_table(mechanism, stream, 2 * SAMPLES)
-        tables = [t for t in (generic, sampled) if t is not None]
-        if not tables:
-            return [], None, stream
+        one = self.table[None] if self.table.batch_shape == () else self.table
+        own = [] if "analysis" in self.__dict__ else [one]
+        tables = [*own, *(t for t in (generic, sampled) if t is not None)]
         batch = analyze_table(_concatenated(tables), rtol=rtol)
-        if generic is None:
-            return [], batch, stream
-        analyses = _PoseAnalyses(batch[: len(generic)], generic, mechanism.name)
-        return analyses, (None if sampled is None else batch[len(generic) :]), stream
+        if own:
+            self.__dict__["analysis"] = self._with_graph(batch[0])
+        start = len(own)
+        analyses: Sequence[WrenchAnalysis] = []
+        if generic is not None:
+            analyses = _PoseAnalyses(batch[start : start + len(generic)], generic, mechanism.name)
+            start += len(generic)
+        return analyses, (None if sampled is None else batch[start:]), stream
 
     def diagram_and_sampler(self) -> tuple[Any, Callable[[np.random.Generator], dict[str, Array]]]:
         """The wrench diagram at this pose and a sampler of its recipes at generic poses.
