@@ -290,6 +290,8 @@ class Pose:
         one = self.table[None] if self.table.batch_shape == () else self.table
         own = [] if "analysis" in self.__dict__ else [one]
         tables = [*own, *(t for t in (generic, sampled) if t is not None)]
+        if not tables:  # this pose analysed already, no random pose reachable
+            return [], None, stream
         batch = analyze_table(_concatenated(tables), rtol=rtol)
         if own:
             self.__dict__["analysis"] = self._with_graph(batch[0])
