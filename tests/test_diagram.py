@@ -497,3 +497,14 @@ def test_catalog_sampler_replays_the_generic_samples_batch_after_batch():
         for label in want:
             np.testing.assert_array_equal(got[label], want[label])
     assert not np.array_equal(drawn[0]["a"], drawn[SAMPLES]["a"])
+
+
+def test_a_pose_report_is_the_same_whether_its_analysis_was_read_first():
+    # the report analyses the pose together with the generic draws unless the pose's own analysis
+    # is already there: both routes give the same report, to the last digit of the JSON
+    import json
+
+    h4 = load_mechanism("h4")
+    fresh, read = h4.at([[20.0, -10.0, -720.0, 0.2]])[0], h4.at([[20.0, -10.0, -720.0, 0.2]])[0]
+    assert read.singularity.verdict == "regular"  # reads the pose's analysis first
+    assert json.dumps(fresh.report().to_dict(), default=str) == json.dumps(read.report().to_dict(), default=str)
