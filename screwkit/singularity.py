@@ -49,7 +49,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field, replace
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import networkx as nx
 import numpy as np
@@ -57,11 +57,13 @@ import numpy as np
 from . import _backend as B
 from . import screw as S
 from .exceptions import ScrewkitTypeError, ScrewkitValueError
-from .generic import GenericAnalysis
 from .joints import JointTable
 from .screwsystem import ScrewSystem
 from .twistgraph import check_twist_graph
 from .wrenches import WrenchAnalysis, analyze_table, wrench_analysis
+
+if TYPE_CHECKING:
+    from .generic import GenericAnalysis
 
 __all__ = [
     "LABELS",

@@ -860,16 +860,16 @@ def _unit_size(rows: Array, length: Array) -> Array:
 def _canonical(table: JointTable) -> JointTable:
     """The table with its joints sorted by name: every route to the same mechanism (a family's
     table, a graph's, a graph rebuilt from a table) then runs the same arithmetic in the same order,
-    bit for bit."""
+    bit for bit; its screws C-contiguous, so that a pose's sums run in one order whatever the batch
+    it is in (a strided reduction adds in another)."""
     order = sorted(range(len(table.specs)), key=lambda k: table.specs[k].name)
-    if order == list(range(len(order))):
+    if order == list(range(len(order))) and table.screws.flags.c_contiguous:
         return table
     starts = list(itertools.accumulate((spec.dof for spec in table.specs), initial=0))
     rows = [r for k in order for r in range(starts[k], starts[k + 1])]
     specs = tuple(table.specs[k] for k in order)
-    return JointTable(
-        table.base, table.platform, specs, table.screws[..., rows, :], table.dof, table.anchor, table.mobility
-    )
+    screws = np.ascontiguousarray(table.screws[..., rows, :])
+    return JointTable(table.base, table.platform, specs, screws, table.dof, table.anchor, table.mobility)
 
 
 def _checked_dof(dof: Any, table: JointTable, top: Topology) -> int:
