@@ -173,10 +173,14 @@ def _sum(terms: Sequence[sympy.Expr]) -> sympy.Expr:
     plain = all(isinstance(t, sympy.Mul | VectorDot | sympy.Symbol) and t.is_commutative for t in kept)
     if len(kept) < 2 or not plain or len({t.as_coeff_Mul()[1] for t in kept}) < len(kept):
         return sympy.Add(*terms)
-    from sympy.core.add import _addsort
+    try:  # sympy's private helpers (1.12–1.14); a sympy without them takes the public path
+        from sympy.core.add import _addsort
 
+        build = sympy.Add._exec_constructor_postprocessors
+    except (ImportError, AttributeError):
+        return sympy.Add(*terms)
     _addsort(kept)
-    return sympy.Add._exec_constructor_postprocessors(sympy.Add._from_args(kept, True))
+    return build(sympy.Add._from_args(kept, True))
 
 
 def _form_value(expr: sympy.Basic, vectors: Mapping[str, Any], number: Callable[[Any], Any]) -> Any:
