@@ -261,16 +261,29 @@ def _span_numba(generators: Array, rtol: float) -> tuple[Array, Array]:
     return rows.reshape(*batch, 6, 6), order.reshape(batch)
 
 
-def _dot_in_order(a: Array, b: Array) -> Array:
-    """``Σ_s a[..., s] b[..., s]`` over the last axis, summed left to right from ``0.0``: the
-    compiled kernels' loop, operation for operation (numpy's own reductions may add in another
-    order, and so differ in the last bits)."""
-    products = a * b
-    columns = products.reshape(-1, products.shape[-1])  # 2-D views index faster than ``[..., s]``
+def sum_in_order(values: Array) -> Array:
+    """``Σ_s values[..., s]`` over the last axis, summed left to right from ``0.0``: the compiled
+    kernels' loop, operation for operation (numpy's own reductions may add in another order, and
+    so differ in the last bits).
+
+    Examples
+    --------
+    >>> sum_in_order(np.array([[1e16, 1.0, -1e16], [1.0, 2.0, 3.0]]))
+    array([0., 6.])
+    """
+    if values.shape[-1] == 0:
+        return np.zeros(values.shape[:-1])
+    columns = values.reshape(-1, values.shape[-1])  # 2-D views index faster than ``[..., s]``
     total = columns[:, 0] + 0.0
     for s in range(1, columns.shape[1]):
         total += columns[:, s]
-    return total.reshape(products.shape[:-1])
+    return total.reshape(values.shape[:-1])
+
+
+def _dot_in_order(a: Array, b: Array) -> Array:
+    """``Σ_s a[..., s] b[..., s]`` over the last axis, summed left to right from ``0.0``
+    (:func:`sum_in_order`)."""
+    return sum_in_order(a * b)
 
 
 def _span_numpy(generators: Array, rtol: float) -> tuple[Array, Array]:

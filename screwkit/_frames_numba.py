@@ -385,3 +385,85 @@ def triangular(rows: Array) -> Array:  # pragma: no cover - compiled
             for s in range(6):
                 out[p, i, s] = a[i, s]
     return out
+
+
+@njit(cache=True)
+def frame_sums(screws: Array) -> tuple[Array, Array, Array, Array]:  # pragma: no cover - compiled
+    """The sums of :func:`screwkit.twistgraph.mechanism_frame` over ``screws (n, k, 6)``: the
+    number of finite axes ``(n,)``, the normal matrix ``Σ (I − u uᵀ)`` ``(n, 3, 3)``, the right
+    side ``Σ (I − u uᵀ) f`` ``(n, 3)`` (``f = d × m / |d|²`` each axis's foot) and the farthest
+    foot's distance from the origin ``(n,)``; sums from ``0.0`` over the axes in order, as the
+    numpy path (:func:`screwkit.twistgraph._frame_sums_numpy`)."""
+    n, k = screws.shape[0], screws.shape[1]
+    count = np.zeros(n, dtype=np.int64)
+    normal = np.empty((n, 3, 3))
+    rhs = np.empty((n, 3))
+    farthest = np.empty(n)
+    for p in range(n):
+        finite_count = 0
+        t00 = t01 = t02 = t11 = t12 = t22 = 0.0
+        r0 = r1 = r2 = 0.0
+        far = 0.0
+        for j in range(k):
+            d0, d1, d2 = screws[p, j, 0], screws[p, j, 1], screws[p, j, 2]
+            m0, m1, m2 = screws[p, j, 3], screws[p, j, 4], screws[p, j, 5]
+            size = d0 * d0 + d1 * d1 + d2 * d2
+            finite = size > 0
+            safe = size if finite else 1.0
+            root = math.sqrt(safe)
+            f = 1.0 if finite else 0.0
+            u0, u1, u2 = d0 / root * f, d1 / root * f, d2 / root * f
+            f0, f1, f2 = (d1 * m2 - d2 * m1) / safe, (d2 * m0 - d0 * m2) / safe, (d0 * m1 - d1 * m0) / safe
+            finite_count += finite
+            t00 += u0 * u0
+            t01 += u0 * u1
+            t02 += u0 * u2
+            t11 += u1 * u1
+            t12 += u1 * u2
+            t22 += u2 * u2
+            along = u0 * f0 + u1 * f1 + u2 * f2
+            r0 += (f0 - u0 * along) * f
+            r1 += (f1 - u1 * along) * f
+            r2 += (f2 - u2 * along) * f
+            foot = math.sqrt(f0 * f0 + f1 * f1 + f2 * f2)
+            if not math.isnan(far) and (math.isnan(foot) or foot > far):
+                far = foot  # np.max: NaN propagates
+        count[p] = finite_count
+        normal[p, 0, 0] = finite_count - t00
+        normal[p, 1, 1] = finite_count - t11
+        normal[p, 2, 2] = finite_count - t22
+        normal[p, 0, 1] = normal[p, 1, 0] = 0.0 - t01
+        normal[p, 0, 2] = normal[p, 2, 0] = 0.0 - t02
+        normal[p, 1, 2] = normal[p, 2, 1] = 0.0 - t12
+        rhs[p, 0], rhs[p, 1], rhs[p, 2] = r0, r1, r2
+        farthest[p] = far
+    return count, normal, rhs, farthest
+
+
+@njit(cache=True)
+def frame_spread(screws: Array, point: Array) -> Array:  # pragma: no cover - compiled
+    """``Σ |(I − u uᵀ)(c − f)|²`` over the finite axes of ``screws (n, k, 6)`` about ``point
+    (n, 3)``, ``(n,)``: the squared distances of the axes from the point, summed from ``0.0`` in
+    order (:func:`screwkit.twistgraph.mechanism_frame`)."""
+    n, k = screws.shape[0], screws.shape[1]
+    out = np.empty(n)
+    for p in range(n):
+        c0, c1, c2 = point[p, 0], point[p, 1], point[p, 2]
+        total = 0.0
+        for j in range(k):
+            d0, d1, d2 = screws[p, j, 0], screws[p, j, 1], screws[p, j, 2]
+            m0, m1, m2 = screws[p, j, 3], screws[p, j, 4], screws[p, j, 5]
+            size = d0 * d0 + d1 * d1 + d2 * d2
+            finite = size > 0
+            safe = size if finite else 1.0
+            root = math.sqrt(safe)
+            f = 1.0 if finite else 0.0
+            u0, u1, u2 = d0 / root * f, d1 / root * f, d2 / root * f
+            a0 = c0 - (d1 * m2 - d2 * m1) / safe
+            a1 = c1 - (d2 * m0 - d0 * m2) / safe
+            a2 = c2 - (d0 * m1 - d1 * m0) / safe
+            along = u0 * a0 + u1 * a1 + u2 * a2
+            a0, a1, a2 = (a0 - u0 * along) * f, (a1 - u1 * along) * f, (a2 - u2 * along) * f
+            total += a0 * a0 + a1 * a1 + a2 * a2
+        out[p] = total
+    return out

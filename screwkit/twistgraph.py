@@ -39,6 +39,7 @@ import networkx as nx
 import numpy as np
 
 from . import _backend as B
+from ._frames import compiled_kernels, sum_in_order
 from .exceptions import TwistGraphError
 from .joints import Joint, virtual
 from .screwsystem import ScrewSystem
@@ -271,40 +272,61 @@ def mechanism_frame(screws: Array, anchor: Array | None = None) -> tuple[Array, 
     >>> mechanism_frame(planar, np.array([0, 0, 5.0]))[0].round(6) + 0.0
     array([0. , 0.5, 5. ])
     """
-    # component by component over (..., n) arrays: no (..., n, 3, 3) temporaries, no strided sums
+    batch = screws.shape[:-2]
+    flat = np.ascontiguousarray(np.reshape(screws, (-1, *screws.shape[-2:])), dtype=float)
+    kernels = compiled_kernels("_frames_numba", len(flat))  # the same sums, in the same order
+    sums = _frame_sums_numpy if kernels is None else kernels.frame_sums
+    spread = _frame_spread_numpy if kernels is None else kernels.frame_spread
+    count, normal, rhs, farthest = sums(flat)
+    point = _least_squares_point(normal, rhs, None if anchor is None else np.reshape(anchor, (-1, 3)))
+    length = np.sqrt(spread(flat, point) / np.maximum(count, 1))
+    size = np.maximum(farthest, np.linalg.norm(point, axis=-1))
+    round_off = length <= 1e-12 * size
+    fallback = np.where(size > 0, size, 1.0)
+    length = np.where(round_off | (length == 0), fallback, length)
+    return point.reshape(*batch, 3), length.reshape(batch)
+
+
+def _axes_numpy(screws: Array) -> tuple[Array, list[Array], list[Array]]:
+    """Of screws ``(n, k, 6)``: which axes are finite ``(n, k)``, their unit directions (zero for
+    infinite pitch) and their feet ``d × m / |d|²`` (each axis's point nearest the origin), component
+    by component (``(n, k)`` arrays: no ``(n, k, 3, 3)`` temporaries)."""
     d = [screws[..., i] for i in range(3)]
     m = [screws[..., 3 + i] for i in range(3)]
     sizes = d[0] * d[0] + d[1] * d[1] + d[2] * d[2]
     finite = sizes > 0
     safe = np.where(finite, sizes, 1.0)
     root = np.sqrt(safe)
-    units = [x / root * finite for x in d]  # zero for infinite pitch
+    units = [x / root * finite for x in d]
     feet = [(d[1] * m[2] - d[2] * m[1]) / safe, (d[2] * m[0] - d[0] * m[2]) / safe,
-            (d[0] * m[1] - d[1] * m[0]) / safe]  # d × m / |d|²: each axis's point nearest the origin
-    del sizes, safe, root  # (..., n) temporaries freed as soon as done with: a chunk's peak memory
-    # the projectors P_k = I − u_k u_kᵀ (finite axes only), never formed: their sum and P_k x
-    count = finite.sum(axis=-1)
-    normal = np.empty((*screws.shape[:-2], 3, 3))
-    for i in range(3):
-        for j in range(i, 3):
-            total = np.sum(units[i] * units[j], axis=-1)
-            normal[..., i, j] = normal[..., j, i] = (count if i == j else 0) - total
+            (d[0] * m[1] - d[1] * m[0]) / safe]
+    return finite, units, feet
+
+
+def _frame_sums_numpy(screws: Array) -> tuple[Array, Array, Array, Array]:
+    """:func:`screwkit._frames_numba.frame_sums` with numpy, operation for operation: the projectors
+    ``P_k = I − u_k u_kᵀ`` of the finite axes never formed, their sum and ``Σ P_k f_k`` summed over
+    the axes left to right (:func:`screwkit._frames.sum_in_order`)."""
+    finite, units, feet = _axes_numpy(screws)
     along = units[0] * feet[0] + units[1] * feet[1] + units[2] * feet[2]
-    rhs = np.stack([np.sum((feet[i] - units[i] * along) * finite, axis=-1) for i in range(3)], axis=-1)
-    point = _least_squares_point(normal, rhs, anchor)
-    away = [point[..., None, i] - feet[i] for i in range(3)]
-    along = units[0] * away[0] + units[1] * away[1] + units[2] * away[2]
-    for i in range(3):  # the offsets (away − u along)·finite in place: the same operations, less memory
-        away[i] -= units[i] * along
-        away[i] *= finite
-    squares = away[0] * away[0] + away[1] * away[1] + away[2] * away[2]
-    del away, along
-    length = np.sqrt(np.sum(squares, axis=-1) / np.maximum(count, 1))
+    pairs = ((0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2))
+    terms = [units[i] * units[j] for i, j in pairs] + [(feet[i] - units[i] * along) * finite for i in range(3)]
+    totals = sum_in_order(np.stack(terms))
+    count = finite.sum(axis=-1)
+    normal = np.empty((len(screws), 3, 3))
+    for (i, j), total in zip(pairs, totals, strict=False):
+        normal[:, i, j] = normal[:, j, i] = (count if i == j else 0.0) - total
     farthest = np.sqrt(feet[0] * feet[0] + feet[1] * feet[1] + feet[2] * feet[2]).max(axis=-1, initial=0.0)
-    size = np.maximum(farthest, np.linalg.norm(point, axis=-1))
-    round_off = length <= 1e-12 * size
-    fallback = np.where(size > 0, size, 1.0)
-    return point, np.where(round_off | (length == 0), fallback, length)
+    return count, normal, np.stack(list(totals[6:]), axis=-1), farthest
+
+
+def _frame_spread_numpy(screws: Array, point: Array) -> Array:
+    """:func:`screwkit._frames_numba.frame_spread` with numpy, operation for operation."""
+    finite, units, feet = _axes_numpy(screws)
+    away = [point[:, None, i] - feet[i] for i in range(3)]
+    along = units[0] * away[0] + units[1] * away[1] + units[2] * away[2]
+    away = [(away[i] - units[i] * along) * finite for i in range(3)]
+    return sum_in_order(away[0] * away[0] + away[1] * away[1] + away[2] * away[2])
 
 
 def _least_squares_point(normal: Array, rhs: Array, anchor: Array | None) -> Array:
