@@ -525,6 +525,83 @@ def _residual_numpy(vectors: Array, rows: Array) -> Array:
     return out
 
 
+def limb_systems(
+    locked: Array, locked_order: Array, passive: Array, actuated: Array, rtol: float
+) -> tuple[Array, Array, Array, Array, Array]:
+    """The limbs' own systems from their locked ones (batched over ``(..., l)`` limbs): with ``t``
+    a limb's actuated twist ``(..., l, 6)`` and ``locked`` ``(..., l, 6, 6)`` (order
+    ``locked_order``) the twists of the limb with its actuator locked,
+
+    * ``t⊥``, ``t`` less its projection on the locked rows (re-orthogonalised once, as
+      :func:`residual`);
+    * serial: ``|t⊥| ≤ rtol`` (the actuated joint adds no freedom: a serial singularity);
+    * the limb's free twists: the locked frame with ``t⊥ / |t⊥|`` as one more row (unchanged where
+      serial);
+    * the direction of the actuation wrench: ``SWAP t⊥`` projected on the ``passive`` rows
+      ``(..., l, 6, 6)`` (orthonormal, zero beyond their order), unit (zero if the projection is):
+      a wrench reciprocal to every passive joint and not to ``t`` (paper 002 §3, the transmission
+      wrench of a limb), clean where ``t⊥`` is round-off.
+
+    Sums run left to right from ``0.0`` (:func:`sum_in_order`), as the compiled kernel
+    (:func:`screwkit._frames_numba.limb_systems`): the two paths agree bit for bit.
+
+    Returns
+    -------
+    perpendicular (..., l, 6), serial (..., l), free rows (..., l, 6, 6), free order (..., l),
+    direction (..., l, 6)
+
+    Examples
+    --------
+    >>> locked, passive = np.zeros((1, 6, 6)), np.eye(6)[None]
+    >>> locked[0, 0, 0] = 1.0  # one locked row, e_1: a frame of order 1
+    >>> out = limb_systems(locked, np.array([1]), passive, np.array([[1.0, 1, 0, 0, 0, 0]]), 1e-9)
+    >>> out[0][0], bool(out[1][0]), out[2][0, 1], int(out[3][0])
+    (array([0., 1., 0., 0., 0., 0.]), False, array([0., 1., 0., 0., 0., 0.]), 2)
+    """
+    batch = actuated.shape[:-1]
+    kernels = _numba_kernels(_size(batch[:-1]))
+    if kernels is not None and 0 not in batch:
+        flat = [np.ascontiguousarray(np.reshape(a, (-1, *a.shape[len(batch) - 1 :])), dtype=float)
+                for a in (locked, passive, actuated)]
+        order = np.ascontiguousarray(np.reshape(locked_order, (-1, batch[-1])), dtype=np.int64)
+        out = kernels.limb_systems(flat[0], order, flat[1], flat[2], float(rtol))
+        return tuple(a.reshape(*batch, *a.shape[2:]) for a in out)
+    return _limb_systems_numpy(locked, locked_order, passive, actuated, rtol)
+
+
+def _limb_systems_numpy(
+    locked: Array, locked_order: Array, passive: Array, actuated: Array, rtol: float
+) -> tuple[Array, Array, Array, Array, Array]:
+    """:func:`limb_systems` vectorized with numpy, the kernel's operations in its order."""
+    perpendicular = _residual_numpy(actuated[..., None, :], locked)[..., 0, :]
+    size = np.sqrt(_dot_in_order(perpendicular, perpendicular))
+    serial = size <= rtol
+    rows, order = np.array(locked, dtype=float), np.asarray(locked_order)
+    unit = perpendicular / np.where(size > 0, size, 1.0)[..., None]
+    slot = np.minimum(order, 5)[..., None, None]
+    kept = np.take_along_axis(rows, slot, -2)
+    np.put_along_axis(rows, slot, np.where(serial[..., None, None], kept, unit[..., None, :]), -2)
+    return perpendicular, serial, rows, order + ~serial, actuation_directions(passive, perpendicular)
+
+
+def actuation_directions(passive: Array, perpendicular: Array) -> Array:
+    """``SWAP t⊥`` projected on the ``passive`` rows ``(..., 6, 6)`` (orthonormal, zero beyond
+    their order), unit (zero where the projection is): the direction of a limb's actuation wrench
+    (:func:`limb_systems`; ``t⊥`` ``(..., 6)``). ``SWAP t⊥`` lies in the passive system; projecting
+    it there keeps a clean passive wrench even when ``t⊥`` is round-off (a serial singularity), so
+    ``w ∘ t`` is then round-off too. Sums left to right from ``0.0`` (the compiled kernel's order).
+
+    Examples
+    --------
+    >>> actuation_directions(np.eye(6)[:1], np.array([0, 0, 0, 2.0, 0, 0]))
+    array([1., 0., 0., 0., 0., 0.])
+    """
+    coefficients = _dot_in_order(passive, swapped(perpendicular)[..., None, :])  # (..., 6)
+    direction = sum_in_order(np.swapaxes(coefficients[..., :, None] * passive, -1, -2))
+    size = np.sqrt(_dot_in_order(direction, direction))
+    return direction / np.where(size > 0, size, 1.0)[..., None]
+
+
 def triangular(rows: Array) -> Array:
     """Rows ``(..., k, 6)`` → the upper triangular factor ``R (..., 6, 6)`` of their Householder QR
     from the left (``rows = Q R``, Golub & Van Loan §5.2.1; fewer than six rows padded with zero

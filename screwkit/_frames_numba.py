@@ -467,3 +467,63 @@ def frame_spread(screws: Array, point: Array) -> Array:  # pragma: no cover - co
             total += a0 * a0 + a1 * a1 + a2 * a2
         out[p] = total
     return out
+
+
+@njit(cache=True)
+def limb_systems(
+    locked: Array, locked_order: Array, passive: Array, actuated: Array, rtol: float
+) -> tuple[Array, Array, Array, Array, Array]:  # pragma: no cover - compiled
+    """:func:`screwkit._frames.limb_systems` pose by pose and limb by limb: ``locked``, ``passive``
+    ``(n, l, 6, 6)``, ``locked_order (n, l)``, ``actuated (n, l, 6)``."""
+    n, limbs = actuated.shape[0], actuated.shape[1]
+    perpendicular = np.empty((n, limbs, 6))
+    serial = np.empty((n, limbs), dtype=np.bool_)
+    free = locked.copy()
+    free_order = np.empty((n, limbs), dtype=np.int64)
+    direction = np.empty((n, limbs, 6))
+    t = np.empty(6)
+    coefficients = np.empty(6)
+    for p in range(n):
+        for k in range(limbs):
+            for s in range(6):
+                t[s] = actuated[p, k, s]
+            for _ in range(2):  # the residual against the locked rows, re-orthogonalised once
+                for i in range(6):
+                    total = 0.0
+                    for s in range(6):
+                        total += t[s] * locked[p, k, i, s]
+                    coefficients[i] = total
+                for i in range(6):
+                    for s in range(6):
+                        t[s] -= coefficients[i] * locked[p, k, i, s]
+            total = 0.0
+            for s in range(6):
+                total += t[s] * t[s]
+            size = math.sqrt(total)
+            is_serial = size <= rtol
+            serial[p, k] = is_serial
+            order = locked_order[p, k]
+            free_order[p, k] = order + (0 if is_serial else 1)
+            slot = min(order, 5)
+            divisor = size if size > 0 else 1.0
+            for s in range(6):
+                perpendicular[p, k, s] = t[s]
+                if not is_serial:
+                    free[p, k, slot, s] = t[s] / divisor
+            for i in range(6):  # SWAP t⊥ projected on the passive rows
+                total = 0.0
+                for s in range(6):
+                    total += passive[p, k, i, s] * t[(s + 3) % 6]
+                coefficients[i] = total
+            squares = 0.0
+            for s in range(6):
+                total = 0.0
+                for i in range(6):
+                    total += coefficients[i] * passive[p, k, i, s]
+                direction[p, k, s] = total
+                squares += total * total
+            size = math.sqrt(squares)
+            divisor = size if size > 0 else 1.0
+            for s in range(6):
+                direction[p, k, s] /= divisor
+    return perpendicular, serial, free, free_order, direction

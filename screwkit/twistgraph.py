@@ -310,8 +310,8 @@ def _frame_sums_numpy(screws: Array) -> tuple[Array, Array, Array, Array]:
     finite, units, feet = _axes_numpy(screws)
     along = units[0] * feet[0] + units[1] * feet[1] + units[2] * feet[2]
     pairs = ((0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2))
-    terms = [units[i] * units[j] for i, j in pairs] + [(feet[i] - units[i] * along) * finite for i in range(3)]
-    totals = sum_in_order(np.stack(terms))
+    terms = [units[i] * units[j] for i, j in pairs]
+    totals = sum_in_order(np.stack(terms + [(feet[i] - units[i] * along) * finite for i in range(3)]))
     count = finite.sum(axis=-1)
     normal = np.empty((len(screws), 3, 3))
     for (i, j), total in zip(pairs, totals, strict=False):

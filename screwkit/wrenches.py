@@ -965,23 +965,15 @@ def analyze_table(
         perpendicular = np.stack(perpendiculars, axis=-2)
         locked, free = _stacked(lockeds), _stacked(frees)
         passive = F.reciprocal(*locked)
+        direction = F.actuation_directions(passive[0], perpendicular)
     elif n:  # the limbs on an axis of their own (..., n, ...), their locked systems from the program
         locked = core.stacked([("sum", tuple(plan.siblings)) for plan in top.limbs])
         passive = core.stacked([("passive", tuple(plan.siblings)) for plan in top.limbs])
         actuated = np.stack([p.sign * core.joint_rows(p.index)[..., 0, :] for p in top.limbs], axis=-2)
-        perpendicular = F.residual(actuated[..., None, :], locked[0])[..., 0, :]
-        size = np.linalg.norm(perpendicular, axis=-1)
-        serial = size <= rtol
-        rows, order = locked[0].copy(), locked[1].copy()
-        unit = perpendicular / np.where(size > 0, size, 1.0)[..., None]
-        slot = np.minimum(order, 5)[..., None, None]
-        np.put_along_axis(
-            rows,
-            slot,
-            np.where(serial[..., None, None], np.take_along_axis(rows, slot, -2), unit[..., None, :]),
-            -2,
+        perpendicular, serial, rows, order, direction = F.limb_systems(
+            locked[0], locked[1], passive[0], actuated, rtol
         )
-        free = (rows, order + ~serial)
+        free = (rows, order)
         del rows  # held by `free` alone, freed with it
     if n:
         # the limbs' constraint systems (reciprocal to `free`): kept for the views, else computed only
@@ -993,12 +985,6 @@ def analyze_table(
                 return limb_constraint[0][where]
             return F.reciprocal(free[0][where], free[1][where])[0]
 
-        # SWAP t⊥ lies in the passive system; projecting it there keeps a clean passive wrench even
-        # when t⊥ is round-off (a serial singularity), so w ∘ t is then round-off too
-        swapped = F.swapped(perpendicular)
-        direction = _normalized(
-            np.einsum("...k,...ks->...s", np.einsum("...ks,...s->...k", passive[0], swapped), passive[0])
-        )
         wrench = _normalized(_nearest_lines(direction, limb_constraints_at, 6 - free[1]))
         product = np.abs(np.einsum("...s,...s->...", wrench, F.swapped(actuated)))
         transmissions = _scaled_transmission(wrench, actuated, product, rtol)
