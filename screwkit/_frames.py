@@ -602,6 +602,71 @@ def actuation_directions(passive: Array, perpendicular: Array) -> Array:
     return direction / np.where(size > 0, size, 1.0)[..., None]
 
 
+def unit_rows(rows: Array) -> Array:
+    """``rows (..., 6)`` over their norms (zero rows kept), the norm summed left to right from
+    ``0.0`` (:func:`sum_in_order`; the compiled kernels' order).
+
+    Examples
+    --------
+    >>> unit_rows(np.array([[3.0, 4, 0, 0, 0, 0], [0, 0, 0, 0, 0, 0]]))[:, :2]
+    array([[0.6, 0.8],
+           [0. , 0. ]])
+    """
+    size = np.sqrt(_dot_in_order(rows, rows))
+    return rows / np.where(size > 0, size, 1.0)[..., None]
+
+
+def scaled_magnitudes(rows: Array, rtol: float) -> Array:
+    """``N(s)`` of scaled rows ``(..., 6)`` (the length is then 1): ``|s|`` where the direction is
+    more than ``rtol`` of the moment, else ``|s0|`` (a couple or translation); the norms summed in
+    order (:func:`sum_in_order`). :func:`screwkit.wrenches.normalized_reciprocal_product`'s ``N``.
+
+    Examples
+    --------
+    >>> scaled_magnitudes(np.array([[0, 0, 0, 3.0, 4, 0], [1.0, 0, 0, 5, 0, 0]]), 1e-9)
+    array([5., 1.])
+    """
+    directions = np.sqrt(_dot_in_order(rows[..., :3], rows[..., :3]))
+    moments = np.sqrt(_dot_in_order(rows[..., 3:], rows[..., 3:]))
+    return np.where(directions > rtol * moments, directions, moments)
+
+
+def transmissions(raw: Array, twists: Array, rtol: float) -> tuple[Array, Array]:
+    """Unit wrenches and their transmission indices: ``raw (..., l, 6)`` wrench rows made unit
+    (:func:`unit_rows`) and ``|w ∘ t| / (N(w) N(t))`` with the ``twists (..., l, 6)``
+    (:func:`scaled_magnitudes`; zero where a magnitude is; paper 002 §3's transmission index in
+    scaled coordinates, :func:`screwkit.wrenches.normalized_reciprocal_product` with ``L = 1``).
+    Compiled per pose for large batches (:func:`screwkit._frames_numba.transmissions`), the same
+    operations in the same order.
+
+    Examples
+    --------
+    >>> force, translation = np.array([[2.0, 0, 0, 0, 0, 0]]), np.array([[0, 0, 0, 1.0, 0, 0]])
+    >>> wrench, index = transmissions(force, translation, 1e-9)
+    >>> wrench[0, 0], index[0]
+    (np.float64(1.0), np.float64(1.0))
+    """
+    batch = raw.shape[:-1]
+    kernels = _numba_kernels(_size(batch[:-1]))
+    if kernels is not None and 0 not in batch:
+        flat = [np.ascontiguousarray(np.reshape(a, (-1, batch[-1], 6)), dtype=float) for a in (raw, twists)]
+        wrench, index = kernels.transmissions(flat[0], flat[1], float(rtol))
+        return wrench.reshape(*batch, 6), index.reshape(batch)
+    return transmissions_numpy(unit_rows(raw), twists, rtol)
+
+
+def transmissions_numpy(wrench: Array, twists: Array, rtol: float) -> tuple[Array, Array]:
+    """:func:`transmissions` of unit ``wrench`` rows with numpy (the kernel's operations)."""
+    return wrench, transmission_index(wrench, twists, np.abs(_dot_in_order(wrench, swapped(twists))), rtol)
+
+
+def transmission_index(wrench: Array, twists: Array, product: Array, rtol: float) -> Array:
+    """``product / (N(w) N(t))`` (:func:`scaled_magnitudes`), zero where a magnitude is: the
+    transmission index given the reciprocal product ``|w ∘ t|`` (or a load standing for it)."""
+    denominator = scaled_magnitudes(wrench, rtol) * scaled_magnitudes(twists, rtol)
+    return np.where(denominator > 0, product / np.where(denominator > 0, denominator, 1.0), 0.0)
+
+
 def triangular(rows: Array) -> Array:
     """Rows ``(..., k, 6)`` → the upper triangular factor ``R (..., 6, 6)`` of their Householder QR
     from the left (``rows = Q R``, Golub & Van Loan §5.2.1; fewer than six rows padded with zero

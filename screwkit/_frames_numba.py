@@ -527,3 +527,42 @@ def limb_systems(
             for s in range(6):
                 direction[p, k, s] /= divisor
     return perpendicular, serial, free, free_order, direction
+
+
+@njit(cache=True)
+def _scaled_magnitude(row: Array, rtol: float) -> float:  # pragma: no cover - compiled
+    """:func:`screwkit._frames.scaled_magnitudes` of one row ``(6,)``."""
+    directions = 0.0
+    moments = 0.0
+    for s in range(3):
+        directions += row[s] * row[s]
+    for s in range(3, 6):
+        moments += row[s] * row[s]
+    directions, moments = math.sqrt(directions), math.sqrt(moments)
+    return directions if directions > rtol * moments else moments
+
+
+@njit(cache=True)
+def transmissions(  # pragma: no cover - compiled
+    raw: Array, twists: Array, rtol: float
+) -> tuple[Array, Array]:
+    """:func:`screwkit._frames.transmissions` pose by pose: ``raw``, ``twists`` ``(n, l, 6)``."""
+    n, limbs = raw.shape[0], raw.shape[1]
+    wrench = np.empty((n, limbs, 6))
+    out = np.empty((n, limbs))
+    for p in range(n):
+        for k in range(limbs):
+            total = 0.0
+            for s in range(6):
+                total += raw[p, k, s] * raw[p, k, s]
+            size = math.sqrt(total)
+            divisor = size if size > 0 else 1.0
+            for s in range(6):
+                wrench[p, k, s] = raw[p, k, s] / divisor
+            product = 0.0
+            for s in range(6):
+                product += wrench[p, k, s] * twists[p, k, (s + 3) % 6]
+            product = abs(product)
+            denominator = _scaled_magnitude(wrench[p, k], rtol) * _scaled_magnitude(twists[p, k], rtol)
+            out[p, k] = product / denominator if denominator > 0 else 0.0
+    return wrench, out

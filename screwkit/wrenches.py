@@ -510,11 +510,6 @@ def _lengths(analysis: WrenchAnalysis) -> Array:
     return np.asarray(analysis.length_scale, dtype=float)[None]
 
 
-def _normalized(rows: Array) -> Array:
-    size = np.linalg.norm(rows, axis=-1, keepdims=True)
-    return rows / np.where(size > 0, size, 1.0)
-
-
 # --------------------------------------------------------------------------------------------------
 # The kernels
 # --------------------------------------------------------------------------------------------------
@@ -985,9 +980,8 @@ def analyze_table(
                 return limb_constraint[0][where]
             return F.reciprocal(free[0][where], free[1][where])[0]
 
-        wrench = _normalized(_nearest_lines(direction, limb_constraints_at, 6 - free[1]))
-        product = np.abs(np.einsum("...s,...s->...", wrench, F.swapped(actuated)))
-        transmissions = _scaled_transmission(wrench, actuated, product, rtol)
+        lines = _nearest_lines(direction, limb_constraints_at, 6 - free[1])
+        wrench, transmissions = F.transmissions(lines, actuated, rtol)
         branch, locked_legs = wrench, None
         residuals = _leg_residuals(top, wrench, leg_wrenches)
         compound = _compound_legs(
@@ -1101,7 +1095,7 @@ def _apart_from_legs(top: Topology, rows: Array, residuals: Array | None) -> Arr
     if residuals is None:
         return rows
     out = rows.copy()
-    out[..., _coupled(top), :] = _normalized(residuals)
+    out[..., _coupled(top), :] = F.unit_rows(residuals)
     return out
 
 
@@ -1217,11 +1211,11 @@ def _compound_legs(
             alone = F.residual(loads[:, None, :, position], F.span(others, rtol)[0])[:, 0, :]
             size = np.linalg.norm(alone, axis=-1)
             is_serial = size <= rtol
-            direction = _normalized(np.einsum("...i,...is->...s", alone, leg_locked))
+            direction = F.unit_rows(np.einsum("...i,...is->...s", alone, leg_locked))
             # a line only if the constraint added stays small
             line = _nearest_lines(direction, free[0].__getitem__, free[1])
             near = np.linalg.norm(line - direction, axis=-1) <= COMPOUND_LINE_REACH
-            chosen = _normalized(np.where(near[:, None], line, direction))
+            chosen = F.unit_rows(np.where(near[:, None], line, direction))
             part = _branch_part(top, locked, paths[k], chosen[:, None, :], rtol)[:, 0, :]
             product = np.abs(np.einsum("...s,...s->...", part, F.swapped(twists[:, k])))
             new = replace_k & ~is_serial  # a serial actuator keeps its limb's (unused) wrench
@@ -1230,8 +1224,8 @@ def _compound_legs(
             fixed_branch[:, k] = np.where(new[:, None], part, fixed_branch[:, k])
             transmission = np.where(  # serial: of the unit c_k·L, whose load is |c_k| (continuous)
                 is_serial,
-                _scaled_transmission(direction, twists[:, k], size, rtol),
-                _scaled_transmission(chosen, twists[:, k], product, rtol),
+                F.transmission_index(direction, twists[:, k], size, rtol),
+                F.transmission_index(chosen, twists[:, k], product, rtol),
             )
             fixed_transmissions[:, k] = np.where(replace_k, transmission, fixed_transmissions[:, k])
     serial, wrench, transmissions = serial.copy(), wrench.copy(), transmissions.copy()
@@ -1278,13 +1272,6 @@ def _stacked(frames: list[Frame]) -> Frame:
 def _limb(frame: Frame, k: int) -> Frame:
     """Limb ``k``'s frame from :func:`_stacked` frames."""
     return frame[0][..., k, :, :], frame[1][..., k]
-
-
-def _scaled_transmission(wrench: Array, twist: Array, product: Array, rtol: float) -> Array:
-    """:func:`normalized_reciprocal_product` in scaled coordinates (the length is then 1), given the
-    reciprocal product ``|w ∘ t|``."""
-    denominator = _magnitude(wrench, 1.0, rtol) * _magnitude(twist, 1.0, rtol)
-    return np.where(denominator > 0, product / np.where(denominator > 0, denominator, 1.0), 0.0)
 
 
 def wrench_analysis(
