@@ -371,3 +371,117 @@ def test_triangular_keeps_the_singular_values_and_both_paths_are_bit_identical(r
         np.linalg.svd(compiled, compute_uv=False), np.linalg.svd(padded, compute_uv=False), atol=1e-13
     )
     np.testing.assert_array_equal(F.unpacked(F.packed(compiled)), compiled)  # the 21 entries say it all
+
+
+# ---- the fused passes: mechanism frame sums, limb systems, transmissions ---------------------------
+def limb_inputs(rng, n, limbs=4):
+    """Locked frames of orders 2..5 (a few limbs with an actuated twist inside: serial), their
+    passive complements and actuated twists, ``(n, limbs, ...)``."""
+    locked = np.zeros((n, limbs, 6, 6))
+    order = rng.integers(2, 6, (n, limbs))
+    for p in range(n):
+        for k in range(limbs):
+            q, _ = np.linalg.qr(rng.standard_normal((6, 6)))
+            locked[p, k, : order[p, k]] = q.T[: order[p, k]]
+    passive = F._complement_numpy(locked, order, swap=True)[0]
+    actuated = rng.standard_normal((n, limbs, 6))
+    actuated[::5, 1] = locked[::5, 1, 0] * 3.0  # in the locked system: a serial singularity
+    return locked, order, passive, actuated
+
+
+def test_limb_systems_known_values(rng):
+    """Against an independent computation: t⊥ = (I − B Bᵀ) t for the orthonormal locked rows B,
+    serial iff t⊥ = 0, the free frame spans the locked rows and t, and the direction is the unit
+    projection of SWAP t⊥ on the passive rows (reciprocal to every passive-free twist)."""
+    locked, order, passive, actuated = limb_inputs(rng, 30)
+    perpendicular, serial, free, free_order, direction = F._limb_systems_numpy(locked, order, passive, actuated, RTOL)
+    expected = actuated - np.einsum("...is,...i->...s", locked, np.einsum("...is,...s->...i", locked, actuated))
+    np.testing.assert_allclose(perpendicular, expected, atol=1e-12)
+    assert serial[::5, 1].all() and serial.sum() == serial[::5, 1].size
+    np.testing.assert_array_equal(free_order, order + ~serial)
+    for p, k in [(0, 0), (5, 1), (7, 2)]:
+        spanned = np.vstack([locked[p, k, : order[p, k]], actuated[p, k]])
+        assert np.linalg.matrix_rank(free[p, k, : free_order[p, k]]) == free_order[p, k]
+        assert np.linalg.matrix_rank(np.vstack([spanned, free[p, k, : free_order[p, k]]]), 1e-9) == free_order[p, k]
+        swap = np.concatenate([perpendicular[p, k, 3:], perpendicular[p, k, :3]])
+        target = passive[p, k].T @ (passive[p, k] @ swap)
+        if np.linalg.norm(target) > 1e-9:
+            np.testing.assert_allclose(direction[p, k], target / np.linalg.norm(target), atol=1e-12)
+            locked_twists = locked[p, k, : order[p, k]]  # reciprocal: w ∘ t = w · SWAP t = 0
+            np.testing.assert_allclose(locked_twists @ np.concatenate([direction[p, k, 3:], direction[p, k, :3]]),
+                                       0.0, atol=1e-12)
+
+
+@needs_numba
+def test_limb_systems_numba_matches_numpy_bit_for_bit(rng):
+    kernels = F._import_kernels()
+    locked, order, passive, actuated = limb_inputs(rng, 60)
+    compiled = kernels.limb_systems(locked, order, passive, actuated, RTOL)
+    for got, expected in zip(compiled, F._limb_systems_numpy(locked, order, passive, actuated, RTOL), strict=True):
+        np.testing.assert_array_equal(got, expected)
+    single = F._limb_systems_numpy(locked[7:8], order[7:8], passive[7:8], actuated[7:8], RTOL)
+    for got, expected in zip(single, compiled, strict=True):  # a pose's answer is its own
+        np.testing.assert_array_equal(got, expected[7:8])
+
+
+def test_transmissions_known_values():
+    """A force along x through (0, 2, 0) and a rotation about z through the origin: the index is
+    the moment arm d sin θ = 2 (scaled: L = 1), whatever the force's size; a force and a translation along it: cos 0 = 1; a couple and a
+    rotation: 1; a force and a parallel rotation through it: 0 (paper 002 §3, hand values)."""
+    force = np.array([3.0, 0, 0, 0, 0, -6.0])  # along x through (0, 2, 0): moment p × f = (0, 0, -2)·3
+    rows = np.array([force, [1.0, 0, 0, 0, 0, 0], [0, 0, 0, 0, 0, 5.0], [1.0, 0, 0, 0, 0, 0]])
+    twists = np.array([[0, 0, 1.0, 0, 0, 0], [0, 0, 0, 1.0, 0, 0], [0, 0, 1.0, 0, 0, 0], [1.0, 0, 0, 0, 0, 0]])
+    wrench, index = F.transmissions(rows[None], twists[None], RTOL)
+    np.testing.assert_allclose(np.linalg.norm(wrench[0], axis=-1), 1.0)
+    np.testing.assert_allclose(index[0], [2.0, 1.0, 1.0, 0.0], atol=1e-15)
+
+
+@needs_numba
+def test_transmissions_numba_matches_numpy_bit_for_bit(rng):
+    raw, twists = rng.standard_normal((50, 4, 6)), rng.standard_normal((50, 4, 6))
+    raw[::6, 2] = 0.0  # a zero wrench row: kept zero, index 0
+    raw[::4, 1, :3] = 0.0  # couples
+    twists[::3, 3, :3] = 0.0  # translations
+    compiled = F._import_kernels().transmissions(raw, twists, RTOL)
+    numpy = F.transmissions_numpy(F.unit_rows(raw), twists, RTOL)
+    for got, expected in zip(compiled, numpy, strict=True):
+        np.testing.assert_array_equal(got, expected)
+    assert (compiled[1][::6, 2] == 0).all() and (compiled[0][::6, 2] == 0).all()
+
+
+@needs_numba
+def test_mechanism_frame_sums_numba_match_numpy_bit_for_bit(rng):
+    from screwkit import twistgraph as T
+
+    screws = rng.standard_normal((40, 13, 6))
+    screws[:, 3, :3] = 0.0  # infinite pitch: ignored
+    screws[::4, 5] = screws[::4, 5] * 1e-3
+    kernels = F._import_kernels()
+    for got, expected in zip(kernels.frame_sums(screws), T._frame_sums_numpy(screws), strict=True):
+        np.testing.assert_array_equal(got, expected)
+    point = rng.standard_normal((40, 3))
+    np.testing.assert_array_equal(kernels.frame_spread(screws, point), T._frame_spread_numpy(screws, point))
+
+
+def test_mechanism_frame_sums_known_values():
+    """Two axes, z through (1, 0, 0) and x through (0, 0, 3), and a translation: N = Σ (I − u uᵀ)
+    over the two lines, the right side Σ (I − u uᵀ) f with the feet (1, 0, 0) and (0, 0, 3), the
+    farthest foot 3 and the spread about the point (1, 0, 3) (on both axes) zero."""
+    from screwkit import twistgraph as T
+
+    z_line = np.array([0, 0, 1.0, *np.cross([1.0, 0, 0], [0, 0, 1.0])])
+    x_line = np.array([1.0, 0, 0, *np.cross([0, 0, 3.0], [1.0, 0, 0])])
+    screws = np.array([[z_line, [0, 0, 0, 0, 1.0, 0], x_line]])
+    count, normal, rhs, farthest = T._frame_sums_numpy(screws)
+    assert count.tolist() == [2]
+    np.testing.assert_allclose(normal[0], np.diag([1.0, 2.0, 1.0]))
+    np.testing.assert_allclose(rhs[0], [1.0, 0, 3.0])
+    np.testing.assert_allclose(farthest, [3.0])
+    np.testing.assert_allclose(T._frame_spread_numpy(screws, np.array([[1.0, 0, 3.0]])), [0.0], atol=1e-15)
+    np.testing.assert_allclose(T._frame_spread_numpy(screws, np.array([[1.0, 2.0, 3.0]])), [8.0])
+
+
+def test_sum_in_order_adds_left_to_right():
+    values = np.array([[1e16, 1.0, -1e16, 1.0], [1.0, 1e16, 1.0, -1e16]])
+    np.testing.assert_array_equal(F.sum_in_order(values), [1.0, 0.0])  # ((1e16 + 1) − 1e16) + 1 = 1
+    assert F.sum_in_order(np.zeros((3, 0))).tolist() == [0.0, 0.0, 0.0]
