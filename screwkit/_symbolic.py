@@ -258,8 +258,8 @@ class GenericRows:
                     for p in row
                 ]
             )
+        generators = _generator_values(ring, point)
         with point.precision():
-            generators = _generator_values(ring, point)
             values = [[_evaluate(p, generators) for p in row] for row in polys]
         return cls(polys, values, width, ring)
 
@@ -482,9 +482,11 @@ def _generator_values(ring: Any, point: GenericPoint) -> list[Any]:
         return values
     import mpmath
 
-    return [
-        mpmath.mpf(v.numerator) / v.denominator if isinstance(v, Fraction) else mpmath.mpf(v) for v in values
-    ]
+    with mpmath.workdps(_DIGITS):
+        return [
+            mpmath.mpf(v.numerator) / v.denominator if isinstance(v, Fraction) else mpmath.mpf(v)
+            for v in values
+        ]
 
 
 def nullspace(matrix: Any, point: GenericPoint | None = None) -> Array:

@@ -10,11 +10,13 @@ symbolic graph.
 
 It walks the same structure as the numeric core (:func:`screwkit.topology.topology`; paper 002
 Eqs. 1–2): along a chain the twist systems add up and the wrench systems intersect; across
-parallel branches the roles swap. Every order and every choice of generators is decided exactly at
-one random rational point of the symbols (Schwartz–Zippel, :mod:`screwkit._symbolic`); the bases
-are then built symbolically from the chosen generators, and intersections are solved on the few
-unknowns of the smaller system (``W_b ∩ T_others^⊥`` for a chain, ``T_b ∩ W_others^⊥`` across
-branches) by Cramer's rule, so the expressions stay small.
+parallel branches the roles swap. The screws are held as sparse integer polynomials paired with
+their exact values at one random integer point of the symbols (:class:`screwkit._symbolic.GenericRows`);
+every order and every choice of generators is decided on those values (Schwartz–Zippel,
+:mod:`screwkit._symbolic`), and the bases are built symbolically from the chosen generators:
+intersections are solved on the few unknowns of the smaller system (``W_b ∩ T_others^⊥`` for a
+chain, ``T_b ∩ W_others^⊥`` across branches) by Cramer's rule, so the expressions stay small. Only
+the returned bases become sympy expressions.
 
 There is **no pose verdict**: a generic analysis says what the family does at almost every
 configuration. Where it is singular is a condition on the symbols (the superbracket,

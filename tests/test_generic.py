@@ -5,12 +5,14 @@ translations, Clavel 1988 / Tsai 1996; H4: Schoenflies 3T1R, paper 002 §4, pape
 the numeric core at substituted values (parity), never from the generic code itself.
 """
 
+import random
+
 import numpy as np
 import pytest
 import sympy
 
 from screwkit import _symbolic as Y
-from screwkit.exceptions import ScrewkitTypeError
+from screwkit.exceptions import ScrewkitTypeError, ScrewkitValueError
 from screwkit.generic import GenericAnalysis, generic_analysis
 from screwkit.joints import revolute, spherical
 from screwkit.screwsystem import ScrewSystem
@@ -84,12 +86,42 @@ def four_limb_smg(values=None):
     return twist_graph("base", "ee", joints, dof=4)
 
 
+def fully_symbolic_h4(values=None):
+    """Four R-(4S) limbs with symbolic base points a_i, axes u_i, elbows m_i, rods d_i, short sides
+    λ_i u_i and a symbolic common axis k of R_I, R_II through symbolic points r_1, r_2: every
+    position and direction a symbol (61 symbols). ``values`` substitutes numbers."""
+
+    def vec(name):
+        return point(name, values)
+
+    joints = []
+    for i, sub in zip((1, 2, 3, 4), ("b_I", "b_II", "b_II", "b_I"), strict=True):
+        a, u, m, d = vec(f"a{i}"), vec(f"u{i}"), vec(f"m{i}"), vec(f"d{i}")
+        side = sympy.Symbol(f"l{i}") if values is None else values[sympy.Symbol(f"l{i}")]
+        n = [mj + side * uj for mj, uj in zip(m, u, strict=True)]
+        p = [mj + dj for mj, dj in zip(m, d, strict=True)]
+        q = [nj + dj for nj, dj in zip(n, d, strict=True)]
+        joints += [
+            ("base", f"arm{i}", revolute(f"A{i}", u, a, actuated=True)),
+            (f"arm{i}", f"rod{i}a", spherical(f"S{i}m", m)),
+            (f"rod{i}a", sub, spherical(f"S{i}p", p)),
+            (f"arm{i}", f"rod{i}b", spherical(f"S{i}n", n)),
+            (f"rod{i}b", sub, spherical(f"S{i}q", q)),
+        ]
+    joints += [
+        ("b_I", "ee", revolute("R_I", vec("k"), vec("r1"))),
+        ("b_II", "ee", revolute("R_II", vec("k"), vec("r2"))),
+    ]
+    return twist_graph("base", "ee", joints, dof=4)
+
+
 def numeric_values(rng):
     """Random values for every symbol the builders use (some never reach a screw)."""
     names = [f"{n}{i}{c}" for n in "abcm" for i in (1, 2, 3, 4) for c in "xyz"] + [
         f"theta{i}" for i in (1, 2, 3)
     ]
     names += [f"r{i}{c}" for i in (1, 2) for c in "xyz"] + [f"{n}{i}" for n in "sl" for i in (1, 2, 3, 4)]
+    names += [f"{n}{i}{c}" for n in "ud" for i in (1, 2, 3, 4) for c in "xyz"] + ["kx", "ky", "kz"]
     return {sympy.Symbol(name): float(rng.uniform(-2, 2)) for name in names}
 
 
@@ -101,6 +133,11 @@ def delta():
 @pytest.fixture(scope="module")
 def smg():
     return generic_analysis(four_limb_smg())
+
+
+@pytest.fixture(scope="module")
+def h4():
+    return generic_analysis(fully_symbolic_h4())
 
 
 def test_delta_like_family_translates(delta):
@@ -208,3 +245,113 @@ def test_four_limb_family_matches_the_numeric_core_at_substituted_values(smg, rn
         assert at(generic_leg.constraint_wrenches).is_equivalent(leg.constraint_wrenches)
     for generic_limb, limb in zip(smg.limbs, numeric.limbs, strict=True):
         assert at(generic_limb.passive_wrenches).is_equivalent(limb.passive_wrenches)
+
+
+def test_fully_symbolic_h4_family_is_schoenflies(h4):
+    # the H4 is a Schoenflies (3T1R) robot (paper 002 §4, paper 004 §1) for every geometry of its
+    # kind: with every position and direction a symbol the generic answer is the same
+    assert len(h4.symbols) == 61
+    assert (h4.mobility, h4.motion_type) == (4, "3T1R")
+    assert h4.constraint_order == 2 and h4.global_order == 6 and h4.verdict == "generic: regular"
+    assert h4.exact
+    assert [leg.constraint_wrenches.order for leg in h4.compound_legs] == [1, 1]
+    # a limb's path: A_i (1) + the parallelogram's two S-S rods (4 freedoms: 6 − 2 forces along the
+    # rods) + R_I or R_II (1): 6 generically independent twists, no constraint left
+    assert [limb.twist_system.order for limb in h4.limbs] == [6, 6, 6, 6]
+    assert [limb.constraint_wrenches.order for limb in h4.limbs] == [0, 0, 0, 0]
+
+
+def test_fully_symbolic_h4_matches_the_numeric_core_at_substituted_values(h4, rng):
+    values = numeric_values(rng)
+    numeric = wrench_analysis(fully_symbolic_h4(values))  # the same builder fed numbers
+    assert isinstance(numeric, WrenchAnalysis)
+
+    def at(system):
+        rows = np.array([[float(sympy.sympify(x).xreplace(values)) for x in row] for row in system.basis])
+        return ScrewSystem.span(rows.reshape(-1, 6), length_scale=float(numeric.length_scale))
+
+    assert at(h4.platform_twists).is_equivalent(numeric.platform_twists)
+    assert at(h4.constraint_wrenches).is_equivalent(numeric.constraint_wrenches)
+    assert int(numeric.global_order) == h4.global_order
+    for generic_leg, leg in zip(h4.compound_legs, numeric.compound_legs, strict=True):
+        assert at(generic_leg.twist_system).is_equivalent(leg.twist_system)
+        assert at(generic_leg.constraint_wrenches).is_equivalent(leg.constraint_wrenches)
+    for generic_limb, limb in zip(h4.limbs, numeric.limbs, strict=True):
+        assert at(generic_limb.constraint_wrenches).is_equivalent(limb.constraint_wrenches)
+        assert at(generic_limb.passive_wrenches).is_equivalent(limb.passive_wrenches)
+
+
+def systems_and_reciprocals(result):
+    """(twists, wrenches) pairs that must be reciprocal: platform, compound legs, limbs."""
+    yield result.platform_twists, result.constraint_wrenches
+    for leg in result.compound_legs:
+        yield leg.twist_system, leg.constraint_wrenches
+    for limb in result.limbs:
+        yield limb.twist_system, limb.constraint_wrenches
+
+
+def reciprocal_products(twists, wrenches):
+    return [sum(w[j] * t[(j + 3) % 6] for j in range(6)) for t in twists.basis for w in wrenches.basis]
+
+
+@pytest.mark.parametrize("family", ["delta", "smg"])
+def test_returned_bases_are_reciprocal_symbolically(family, request):
+    result = request.getfixturevalue(family)
+    for twists, wrenches in systems_and_reciprocals(result):
+        assert all(sympy.expand(p) == 0 for p in reciprocal_products(twists, wrenches))
+
+
+def test_h4_bases_are_reciprocal_and_of_their_order_at_random_exact_points(h4):
+    # an independent check of what the kernels return: at random rational points (drawn here,
+    # not the kernels' point) the products vanish exactly and each basis has full rank
+    generator = random.Random(7)
+    for _ in range(2):
+        values = {
+            s: sympy.Rational(generator.randrange(-999, 1000), generator.randrange(1, 1000))
+            for s in h4.symbols
+        }
+        for twists, wrenches in systems_and_reciprocals(h4):
+            assert all(p.xreplace(values) == 0 for p in reciprocal_products(twists, wrenches))
+            for system in (twists, wrenches):
+                assert sympy.Matrix(system.basis.tolist()).xreplace(values).rank() == system.order
+
+
+def test_generic_rows_values_are_the_polynomials_at_the_point():
+    x, y, z = sympy.symbols("x y z")
+    twists = np.array([[0, 0, 1, y, -x, 0], [1, 0, 0, 0, z, -y], [0, 1, x, z, 0, x * y]], dtype=object)
+    point = Y.generic_point(twists)
+    rows = Y.GenericRows.from_exprs(twists, point)
+    wrenches = Y.reciprocal_within(rows.identity(), rows, point)
+    assert len(wrenches) == 3
+    for exprs, values in zip(wrenches.exprs(), wrenches.values, strict=True):
+        assert [sympy.sympify(e).xreplace(point.values) for e in exprs] == values
+    products = [sum(w[j] * t[(j + 3) % 6] for j in range(6)) for w in wrenches.exprs() for t in twists]
+    assert all(sympy.expand(p) == 0 for p in products)
+
+
+def test_nullspace_vectors_annihilate_the_matrix_and_count_its_corank():
+    x, y = sympy.symbols("x y")
+    first, second = [1, x, y, 0, x * y, 2], [0, y, 1, x, 0, x**2]
+    matrix = np.array([first, second, [x * a + b for a, b in zip(first, second, strict=True)]], dtype=object)
+    vectors = Y.nullspace(matrix)
+    assert vectors.shape == (4, 6)  # 6 − rank 2 (the third row is x·first + second)
+    assert all(
+        sympy.expand(v) == 0 for v in (sympy.Matrix(matrix.tolist()) * sympy.Matrix(vectors.tolist()).T)
+    )
+    values = {x: sympy.Rational(3, 7), y: sympy.Rational(-5, 2)}
+    assert sympy.Matrix(vectors.tolist()).xreplace(values).rank() == 4
+
+
+def test_an_entry_that_is_not_rational_at_the_point_is_decided_in_60_digits():
+    w = sympy.Symbol("w_irrational")
+    root = sympy.sqrt(w)
+    dependent = np.array([[root, 1, 0], [w, root, 0]], dtype=object)  # row 2 = √w · row 1
+    assert Y.generic_rank(dependent) == 1
+    assert not Y.generic_point(dependent).exact
+    assert Y.generic_rank(np.array([[root, 1, 0], [1, root, 0]], dtype=object)) == 2
+
+
+def test_error_complex_screw_coordinates_are_refused():
+    x = sympy.Symbol("x")
+    with pytest.raises(ScrewkitValueError, match="real for real symbols, got I "):
+        Y.generic_rank(np.array([[sympy.I * x, 1]], dtype=object))
