@@ -16,7 +16,7 @@ decided by evaluating the screws at one random point of the symbols' space, exac
   ``c² + s² = 1`` is the generic rank in ``x``. The elimination then runs on integers and
   :class:`fractions.Fraction` with no rounding. An entry that does not become rational (a square
   root of a symbol, say) is evaluated with 60 significant digits instead and a pivot is then a
-  value above ``1e-40`` relative to its row (:data:`FLOAT_RTOL`); :attr:`GenericPoint.exact` says
+  value above ``1e-40`` relative to its row (:data:`FLOAT_RTOL`); :attr:`GenericRows.exact` says
   which happened.
 
 The expressions are held as sparse polynomials (:class:`sympy.polys.rings.PolyElement`, integer
@@ -96,8 +96,6 @@ class GenericPoint:
     circle : dict
         ``{sin(x): ..., cos(x): ..., tan(x): ...}``, a rational point of the unit circle for each
         symbol.
-    exact : bool
-        False once an entry had to be evaluated in 60-digit floating point.
     """
 
     def __init__(self, symbols: frozenset[Any]):
@@ -115,12 +113,11 @@ class GenericPoint:
             self.circle[sp.sin(symbol)] = 2 * t / (1 + t**2)
             self.circle[sp.cos(symbol)] = (1 - t**2) / (1 + t**2)
             self.circle[sp.tan(symbol)] = 2 * t / (1 - t**2)
-        self.exact = True
         self._cache: dict[Any, Any] = {}
 
     def value(self, expr: Any) -> Any:
-        """An expression at the point: an int or a Fraction, or an mpmath float (``exact`` becomes
-        False).
+        """An expression at the point: an int or a Fraction, or a 60-digit mpmath float when it is
+        not rational there.
 
         Examples
         --------
@@ -146,7 +143,6 @@ class GenericPoint:
         elif work.is_Rational:
             result = Fraction(int(work.p), int(work.q))
         else:
-            self.exact = False
             result = sp.N(work, _DIGITS)
             if not result.is_real:
                 raise ScrewkitValueError(
@@ -159,14 +155,6 @@ class GenericPoint:
                 result = mpmath.mpf(str(result))
         self._cache[expr] = result
         return result
-
-    def precision(self) -> contextlib.AbstractContextManager[Any]:
-        """The arithmetic context of values at this point: 60 digits once one is a float."""
-        if self.exact:
-            return contextlib.nullcontext()
-        import mpmath
-
-        return mpmath.workdps(_DIGITS)
 
 
 @functools.lru_cache(maxsize=32)
@@ -182,7 +170,7 @@ def generic_point(*arrays: Any) -> GenericPoint:
     >>> import sympy
     >>> x = sympy.Symbol("x")
     >>> point = generic_point(np.array([x], dtype=object))
-    >>> point.value(x) == point.value(x) and point.exact
+    >>> point.value(x) == point.value(x) and isinstance(point.value(x), int)
     True
     """
     symbols: set[Any] = set()
@@ -216,12 +204,14 @@ class GenericRows:
         The number of columns (kept for zero rows).
     ring : sympy.polys.rings.PolyRing
         The polynomials' ring (integer coefficients).
+    exact : bool
+        True when every generator is rational at the point (else the values are 60-digit floats).
     """
 
-    __slots__ = ("_exprs", "polys", "ring", "values", "width")
+    __slots__ = ("_exprs", "exact", "polys", "ring", "values", "width")
 
-    def __init__(self, polys: list[list[Any]], values: list[list[Any]], width: int, ring: Any):
-        self.polys, self.values, self.width, self.ring = polys, values, width, ring
+    def __init__(self, polys: list[list[Any]], values: list[list[Any]], width: int, ring: Any, exact: bool):
+        self.polys, self.values, self.width, self.ring, self.exact = polys, values, width, ring, exact
         self._exprs: Array | None = None
 
     @classmethod
@@ -259,9 +249,10 @@ class GenericRows:
                 ]
             )
         generators = _generator_values(ring, point)
-        with point.precision():
+        exact = all(isinstance(g, int | Fraction) for g in generators)
+        with _precision(exact):
             values = [[_evaluate(p, generators) for p in row] for row in polys]
-        return cls(polys, values, width, ring)
+        return cls(polys, values, width, ring, exact)
 
     def __len__(self) -> int:
         return len(self.polys)
@@ -295,11 +286,15 @@ class GenericRows:
 
     def independent(self) -> list[int]:
         """Indices of the rows that raise the generic rank, in order (decided at the point; call
-        inside ``point.precision()``)."""
+        inside :meth:`precision`)."""
         return _echelon(self.values)[0] if self.polys else []
 
+    def precision(self) -> contextlib.AbstractContextManager[Any]:
+        """The arithmetic context of the values: 60 digits unless they are exact."""
+        return _precision(self.exact)
+
     def _like(self, polys: list[list[Any]], values: list[list[Any]]) -> GenericRows:
-        return GenericRows(polys, values, self.width, self.ring)
+        return GenericRows(polys, values, self.width, self.ring, self.exact)
 
     def exprs(self) -> Array:
         """The rows as a ``(k, n)`` object array of sympy expressions (converted once)."""
@@ -310,6 +305,14 @@ class GenericRows:
                     out[i, j] = p.as_expr()
             self._exprs = out
         return self._exprs
+
+
+def _precision(exact: bool) -> contextlib.AbstractContextManager[Any]:
+    if exact:
+        return contextlib.nullcontext()
+    import mpmath
+
+    return mpmath.workdps(_DIGITS)
 
 
 def _is_zero(value: Any, scale: Any) -> bool:
@@ -358,7 +361,7 @@ def independent_rows(rows: Any, point: GenericPoint | None = None) -> list[int]:
         return []
     point = point or generic_point(array)
     generic = GenericRows.from_exprs(array, point)
-    with point.precision():
+    with generic.precision():
         return generic.independent()
 
 
@@ -391,7 +394,13 @@ def primitive(vector: list[Any]) -> list[Any]:
     nonzero = [p for p in vector if p]
     if not nonzero:
         return list(vector)
-    common = functools.reduce(lambda a, b: a.gcd(b), nonzero)
+    ordered = sorted(nonzero, key=len)  # the smallest first: the gcd shrinks fastest
+    common = ordered[0]
+    for entry in ordered[1:]:
+        if common.is_ground:  # only an integer content is left to find
+            common = common.ring.ground_new(math.gcd(*(int(p.content()) for p in nonzero)))
+            break
+        common = common.gcd(entry)
     if nonzero[0].LC * common.LC < 0:
         common = -common
     return [p.exquo(common) if p else p for p in vector]
@@ -461,7 +470,9 @@ def _primitive_rows(
             row_values = [_quotient(v, factor) for v in row_values]
         out_polys.append(reduced)
         out_values.append(row_values)
-    return GenericRows(out_polys, out_values, width, ring)
+    return GenericRows(
+        out_polys, out_values, width, ring, all(isinstance(g, int | Fraction) for g in generators)
+    )
 
 
 def _quotient(numerator: Any, denominator: Any) -> Any:
@@ -478,7 +489,7 @@ def _quotient(numerator: Any, denominator: Any) -> Any:
 
 def _generator_values(ring: Any, point: GenericPoint) -> list[Any]:
     values = [point.value(g) for g in ring.symbols]
-    if point.exact:
+    if all(isinstance(v, int | Fraction) for v in values):
         return values
     import mpmath
 
@@ -511,7 +522,7 @@ def nullspace(matrix: Any, point: GenericPoint | None = None) -> Array:
         return np.array(sp.eye(n).tolist(), dtype=object).reshape(n, n)
     point = point or generic_point(array)
     rows = GenericRows.from_exprs(array, point)
-    with point.precision():
+    with rows.precision():
         if len(rows.independent()) > MAX_CRAMER:  # a large system (a loop-closure matrix)
             vectors = [list(v) for v in sp.Matrix(array).nullspace(simplify=True)]
             return np.array(vectors, dtype=object).reshape(len(vectors), n)
@@ -527,7 +538,7 @@ def reciprocal_within(basis: GenericRows, others: GenericRows, point: GenericPoi
     system and ``others`` its siblings' twists it is the intersection of wrench systems of a
     serial chain (paper 002 Eq. 1), solved on ``order(basis)`` unknowns only. The reciprocal
     products are formed as polynomials only for the pivot rows chosen at the point. Call inside
-    ``point.precision()``.
+    ``basis.precision()``.
 
     Examples
     --------

@@ -382,7 +382,7 @@ def generic_analysis(
         raise TwistGraphError(f"Expected `dof` to be an integer in 0..6, got {stated!r}.")
     point = Y.generic_point(screws)
     rows = Y.GenericRows.from_exprs(screws, point)
-    with point.precision():
+    with rows.precision():
         return _analysis(top, stated, screws, _GenericEvaluation(top, rows, point))
 
 
@@ -431,7 +431,7 @@ def _analysis(top: Topology, stated: Any, screws: Array, core: _GenericEvaluatio
         compound_legs=legs,
         limbs=tuple(limbs),
         global_order=global_order,
-        exact=core.point.exact,
+        exact=core.screws.exact,
     )
 
 

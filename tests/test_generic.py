@@ -214,7 +214,7 @@ def test_generic_rank_is_exact_at_a_random_point():
         [[x, y, 0], [x**2, x * y, 0], [0, 0, sympy.sin(x) ** 2 + sympy.cos(x) ** 2 - 1]], dtype=object
     )
     assert Y.generic_rank(rows) == 1  # row 2 = x · row 1; the trigonometric zero is exact
-    assert Y.generic_point(rows).exact
+    assert Y.GenericRows.from_exprs(rows, Y.generic_point(rows)).exact
 
 
 def test_error_loop_closure_graph_is_refused_symbolically():
@@ -347,8 +347,10 @@ def test_an_entry_that_is_not_rational_at_the_point_is_decided_in_60_digits():
     root = sympy.sqrt(w)
     dependent = np.array([[root, 1, 0], [w, root, 0]], dtype=object)  # row 2 = √w · row 1
     assert Y.generic_rank(dependent) == 1
-    assert not Y.generic_point(dependent).exact
+    assert not Y.GenericRows.from_exprs(dependent, Y.generic_point(dependent)).exact
     assert Y.generic_rank(np.array([[root, 1, 0], [1, root, 0]], dtype=object)) == 2
+    polynomial = np.array([[w, 1, 0]], dtype=object)  # the same symbol, no root: exact again
+    assert Y.GenericRows.from_exprs(polynomial, Y.generic_point(polynomial)).exact
 
 
 def test_error_complex_screw_coordinates_are_refused():
