@@ -56,22 +56,17 @@ def delta_3ruu(values=None):
     return twist_graph("base", "platform", joints, dof=3)
 
 
-def four_limb_smg(values=None):
-    """An H4-like family (paper 002 Fig. 2): four R-(4S) limbs on two sub-platforms joined to the end
-    effector by revolute joints about z. Symbols: every joint position (a_i, elbow m_i, rods of
-    length l_i along the fixed direction d_i, short sides along u_i), the sub-platform joints'
-    points; directions are fixed numbers."""
-    us = [(1, 0, 0), (0, 1, 0), (0, 1, 0), (1, 0, 0)]
-    ds = [(1, 2, -5), (-2, 1, -4), (3, -1, -5), (-1, -3, -6)]
+def r_4s_limbs(geometry, axis, values):
+    """Four R-(4S) limbs on two sub-platforms joined to the end effector by revolute joints about
+    ``axis`` through r_1, r_2 (paper 002 Fig. 2). ``geometry(i)`` gives limb i's actuated axis u,
+    base point a, elbow m, short-side vector and rod vector: S joints at m, m + side, and both
+    moved by the rod."""
     joints = []
-    for i, (u, d, sub) in enumerate(zip(us, ds, ("b_I", "b_II", "b_II", "b_I"), strict=True), start=1):
-        a, m = point(f"a{i}", values), point(f"m{i}", values)
-        side, rod = sympy.symbols(f"s{i} l{i}")
-        if values is not None:
-            side, rod = values[side], values[rod]
-        n = [mj + side * uj for mj, uj in zip(m, u, strict=True)]
-        p = [mj + rod * dj for mj, dj in zip(m, d, strict=True)]
-        q = [nj + rod * dj for nj, dj in zip(n, d, strict=True)]
+    for i, sub in zip((1, 2, 3, 4), ("b_I", "b_II", "b_II", "b_I"), strict=True):
+        u, a, m, side, rod = geometry(i)
+        n = [mj + sj for mj, sj in zip(m, side, strict=True)]
+        p = [mj + dj for mj, dj in zip(m, rod, strict=True)]
+        q = [nj + dj for nj, dj in zip(n, rod, strict=True)]
         joints += [
             ("base", f"arm{i}", revolute(f"A{i}", u, a, actuated=True)),
             (f"arm{i}", f"rod{i}a", spherical(f"S{i}m", m)),
@@ -80,39 +75,48 @@ def four_limb_smg(values=None):
             (f"rod{i}b", sub, spherical(f"S{i}q", q)),
         ]
     joints += [
-        ("b_I", "ee", revolute("R_I", (0, 0, 1), point("r1", values))),
-        ("b_II", "ee", revolute("R_II", (0, 0, 1), point("r2", values))),
+        ("b_I", "ee", revolute("R_I", axis, point("r1", values))),
+        ("b_II", "ee", revolute("R_II", axis, point("r2", values))),
     ]
     return twist_graph("base", "ee", joints, dof=4)
+
+
+def scalar(name, values):
+    symbol = sympy.Symbol(name)
+    return symbol if values is None else values[symbol]
+
+
+def four_limb_smg(values=None):
+    """An H4-like family: every joint position a symbol (a_i, elbow m_i, rods of length l_i along
+    the fixed direction d_i, short sides of length s_i along the fixed u_i), the sub-platform
+    joints' points; directions are fixed numbers, the common axis is z."""
+    us = [(1, 0, 0), (0, 1, 0), (0, 1, 0), (1, 0, 0)]
+    ds = [(1, 2, -5), (-2, 1, -4), (3, -1, -5), (-1, -3, -6)]
+
+    def geometry(i):
+        u, d = us[i - 1], ds[i - 1]
+        side, rod = scalar(f"s{i}", values), scalar(f"l{i}", values)
+        return u, point(f"a{i}", values), point(f"m{i}", values), [side * x for x in u], [rod * x for x in d]
+
+    return r_4s_limbs(geometry, (0, 0, 1), values)
 
 
 def fully_symbolic_h4(values=None):
-    """Four R-(4S) limbs with symbolic base points a_i, axes u_i, elbows m_i, rods d_i, short sides
-    λ_i u_i and a symbolic common axis k of R_I, R_II through symbolic points r_1, r_2: every
-    position and direction a symbol (61 symbols). ``values`` substitutes numbers."""
+    """The same family with every position and direction a symbol (61 symbols): axes u_i, rods
+    d_i, short sides λ_i u_i, a common axis k of R_I, R_II."""
 
-    def vec(name):
-        return point(name, values)
+    def geometry(i):
+        u = point(f"u{i}", values)
+        side = scalar(f"l{i}", values)
+        return (
+            u,
+            point(f"a{i}", values),
+            point(f"m{i}", values),
+            [side * x for x in u],
+            point(f"d{i}", values),
+        )
 
-    joints = []
-    for i, sub in zip((1, 2, 3, 4), ("b_I", "b_II", "b_II", "b_I"), strict=True):
-        a, u, m, d = vec(f"a{i}"), vec(f"u{i}"), vec(f"m{i}"), vec(f"d{i}")
-        side = sympy.Symbol(f"l{i}") if values is None else values[sympy.Symbol(f"l{i}")]
-        n = [mj + side * uj for mj, uj in zip(m, u, strict=True)]
-        p = [mj + dj for mj, dj in zip(m, d, strict=True)]
-        q = [nj + dj for nj, dj in zip(n, d, strict=True)]
-        joints += [
-            ("base", f"arm{i}", revolute(f"A{i}", u, a, actuated=True)),
-            (f"arm{i}", f"rod{i}a", spherical(f"S{i}m", m)),
-            (f"rod{i}a", sub, spherical(f"S{i}p", p)),
-            (f"arm{i}", f"rod{i}b", spherical(f"S{i}n", n)),
-            (f"rod{i}b", sub, spherical(f"S{i}q", q)),
-        ]
-    joints += [
-        ("b_I", "ee", revolute("R_I", vec("k"), vec("r1"))),
-        ("b_II", "ee", revolute("R_II", vec("k"), vec("r2"))),
-    ]
-    return twist_graph("base", "ee", joints, dof=4)
+    return r_4s_limbs(geometry, point("k", values), values)
 
 
 def numeric_values(rng):
@@ -165,22 +169,6 @@ def test_four_limb_smg_family_is_schoenflies(smg):
     assert all(leg.constraint_wrenches.order == 1 for leg in smg.compound_legs)
 
 
-def test_generic_results_match_the_numeric_core_at_substituted_values(delta, rng):
-    values = numeric_values(rng)
-    numeric = wrench_analysis(delta_3ruu(values))  # the same builder fed numbers
-    assert isinstance(numeric, WrenchAnalysis)
-
-    def at(system):
-        rows = np.array([[float(sympy.sympify(x).subs(values)) for x in row] for row in system.basis])
-        return ScrewSystem.span(rows, length_scale=float(numeric.length_scale))
-
-    assert at(delta.platform_twists).is_equivalent(numeric.platform_twists)
-    assert at(delta.constraint_wrenches).is_equivalent(numeric.constraint_wrenches)
-    for generic_limb, limb in zip(delta.limbs, numeric.limbs, strict=True):
-        assert at(generic_limb.constraint_wrenches).is_equivalent(limb.constraint_wrenches)
-        assert at(generic_limb.passive_wrenches).is_equivalent(limb.passive_wrenches)
-
-
 def planar_2r(a):
     """Two parallel hinges a apart: a planar 2R chain (one rotation, one translation along y)."""
     return twist_graph(
@@ -228,25 +216,6 @@ def test_error_loop_closure_graph_is_refused_symbolically():
         generic_analysis(twist_graph("B", "E", joints, dof=1))
 
 
-def test_four_limb_family_matches_the_numeric_core_at_substituted_values(smg, rng):
-    values = numeric_values(rng)
-    numeric = wrench_analysis(four_limb_smg(values))  # the same builder fed numbers
-    assert isinstance(numeric, WrenchAnalysis)
-
-    def at(system):
-        rows = np.array([[float(sympy.sympify(x).subs(values)) for x in row] for row in system.basis])
-        return ScrewSystem.span(rows, length_scale=float(numeric.length_scale))
-
-    assert at(smg.platform_twists).is_equivalent(numeric.platform_twists)
-    assert at(smg.constraint_wrenches).is_equivalent(numeric.constraint_wrenches)
-    assert int(numeric.global_order) == smg.global_order
-    for generic_leg, leg in zip(smg.compound_legs, numeric.compound_legs, strict=True):
-        assert generic_leg.joints == leg.joints
-        assert at(generic_leg.constraint_wrenches).is_equivalent(leg.constraint_wrenches)
-    for generic_limb, limb in zip(smg.limbs, numeric.limbs, strict=True):
-        assert at(generic_limb.passive_wrenches).is_equivalent(limb.passive_wrenches)
-
-
 def test_fully_symbolic_h4_family_is_schoenflies(h4):
     # the H4 is a Schoenflies (3T1R) robot (paper 002 §4, paper 004 §1) for every geometry of its
     # kind: with every position and direction a symbol the generic answer is the same
@@ -261,22 +230,28 @@ def test_fully_symbolic_h4_family_is_schoenflies(h4):
     assert [limb.constraint_wrenches.order for limb in h4.limbs] == [0, 0, 0, 0]
 
 
-def test_fully_symbolic_h4_matches_the_numeric_core_at_substituted_values(h4, rng):
+@pytest.mark.parametrize(
+    ("family", "build"), [("delta", delta_3ruu), ("smg", four_limb_smg), ("h4", fully_symbolic_h4)]
+)
+def test_generic_results_match_the_numeric_core_at_substituted_values(family, build, rng, request):
+    generic = request.getfixturevalue(family)
     values = numeric_values(rng)
-    numeric = wrench_analysis(fully_symbolic_h4(values))  # the same builder fed numbers
+    numeric = wrench_analysis(build(values))  # the same builder fed numbers
     assert isinstance(numeric, WrenchAnalysis)
 
     def at(system):
         rows = np.array([[float(sympy.sympify(x).xreplace(values)) for x in row] for row in system.basis])
         return ScrewSystem.span(rows.reshape(-1, 6), length_scale=float(numeric.length_scale))
 
-    assert at(h4.platform_twists).is_equivalent(numeric.platform_twists)
-    assert at(h4.constraint_wrenches).is_equivalent(numeric.constraint_wrenches)
-    assert int(numeric.global_order) == h4.global_order
-    for generic_leg, leg in zip(h4.compound_legs, numeric.compound_legs, strict=True):
+    assert at(generic.platform_twists).is_equivalent(numeric.platform_twists)
+    assert at(generic.constraint_wrenches).is_equivalent(numeric.constraint_wrenches)
+    assert int(numeric.global_order) == generic.global_order
+    for generic_leg, leg in zip(generic.compound_legs, numeric.compound_legs, strict=True):
+        assert generic_leg.joints == leg.joints
         assert at(generic_leg.twist_system).is_equivalent(leg.twist_system)
         assert at(generic_leg.constraint_wrenches).is_equivalent(leg.constraint_wrenches)
-    for generic_limb, limb in zip(h4.limbs, numeric.limbs, strict=True):
+    for generic_limb, limb in zip(generic.limbs, numeric.limbs, strict=True):
+        assert at(generic_limb.twist_system).is_equivalent(limb.twist_system)
         assert at(generic_limb.constraint_wrenches).is_equivalent(limb.constraint_wrenches)
         assert at(generic_limb.passive_wrenches).is_equivalent(limb.passive_wrenches)
 
