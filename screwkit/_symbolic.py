@@ -523,10 +523,18 @@ def nullspace(matrix: Any, point: GenericPoint | None = None) -> Array:
     point = point or generic_point(array)
     rows = GenericRows.from_exprs(array, point)
     with rows.precision():
-        if len(rows.independent()) > MAX_CRAMER:  # a large system (a loop-closure matrix)
-            vectors = [list(v) for v in sp.Matrix(array).nullspace(simplify=True)]
-            return np.array(vectors, dtype=object).reshape(len(vectors), n)
-        polys, values = _kernel(rows.polys, rows.values, n, rows.ring.zero)
+        large = len(rows.independent()) > MAX_CRAMER
+    if large:  # a loop-closure matrix: sympy's elimination, each vector's denominators cleared
+        vectors = []
+        for vector in sp.Matrix(array).nullspace(simplify=True):
+            denominator = sp.lcm([sp.fraction(sp.together(v))[1] for v in vector])
+            vectors.append([sp.cancel(v * denominator) for v in vector])
+        rows = GenericRows.from_exprs(np.array(vectors, dtype=object).reshape(len(vectors), n), point)
+        polys, values = rows.polys, rows.values
+    else:
+        with rows.precision():
+            polys, values = _kernel(rows.polys, rows.values, n, rows.ring.zero)
+    with rows.precision():
         kernel = _primitive_rows(polys, values, n, rows.ring, point)
     return kernel.exprs().reshape(len(kernel), n)
 

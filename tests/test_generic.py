@@ -317,6 +317,22 @@ def test_nullspace_vectors_annihilate_the_matrix_and_count_its_corank():
     assert sympy.Matrix(vectors.tolist()).xreplace(values).rank() == 4
 
 
+def test_nullspace_of_rank_above_six_goes_to_sympy_and_is_made_polynomial():
+    x, y = sympy.symbols("x y")
+    # rank 7 (a loop-closure size): the upper triangle below is invertible, the last column free
+    matrix = np.array(
+        [
+            [1 if j == i else (x if j == i + 1 else 0) for j in range(7)] + [y if i == 6 else 0]
+            for i in range(7)
+        ],
+        dtype=object,
+    )
+    (vector,) = Y.nullspace(matrix)
+    assert all(sympy.expand(v) == 0 for v in sympy.Matrix(matrix.tolist()) * sympy.Matrix(vector))
+    # by hand: x_7 = −1 gives x_6 = y, x_i = −x·x_{i+1}; sign: the first entry's leading coefficient > 0
+    assert list(vector) == [x**6 * y, -(x**5) * y, x**4 * y, -(x**3) * y, x**2 * y, -x * y, y, -1]
+
+
 def test_an_entry_that_is_not_rational_at_the_point_is_decided_in_60_digits():
     w = sympy.Symbol("w_irrational")
     root = sympy.sqrt(w)
