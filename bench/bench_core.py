@@ -14,7 +14,9 @@ Figures (the issue's targets in brackets):
   vectorised as ``tests/test_h4.paper_wrench_matrix`` does for one pose; building ``W`` is not
   timed), in poses/s;
 * ``verdicts``: :func:`verdicts` over the same poses, chunked (``CHUNK`` poses per call), rate and
-  the ratio to the SVD's rate [≥ 0.2];
+  the ratio to the SVD's rate [≥ 0.2]. The labels and orders only: the closeness measures are
+  computed when asked (:attr:`screwkit.wrenches.WrenchAnalysis.closeness`), so ``+ closeness``
+  gives the rate and ratio of :func:`verdicts` with the report's ``closeness`` asked too;
 * memory: ``tracemalloc`` peak of one chunk's :func:`verdicts` / ``CHUNK``, KiB per pose [≤ 3];
 * import: CPU time (user + sys of the child, ``resource.getrusage(RUSAGE_CHILDREN)`` deltas) of
   ``python -c "import screwkit"`` against ``python -c "import numpy, networkx"`` in fresh
@@ -49,6 +51,12 @@ def verdicts(h4, poses):
     """The batched verdicts of the H4 at ``poses`` (n, 4): IK, joint table and the analysis core
     (chunked inside), through the one composer."""
     return h4.at(poses).singularities
+
+
+def verdicts_and_closeness(h4, poses):
+    """:func:`verdicts` with the closeness measures (two 6×6 SVDs a pose) asked as well."""
+    report = verdicts(h4, poses)
+    return report, report.closeness
 
 
 def wrench_matrices(h4, poses):
@@ -118,7 +126,10 @@ def main(argv=None):
     verdicts(h4, poses[:100])  # warm caches (template graph, imports) outside the timings
 
     print(f"H4, poses in the catalog workspace, single-threaded; chunks of {CHUNK:,} poses")
-    print(f"{'N':>9} | {'svd (poses/s)':>14} | {'verdicts (poses/s)':>18} | {'ratio':>6} | seconds")
+    print(
+        f"{'N':>9} | {'svd (poses/s)':>14} | {'verdicts (poses/s)':>18} | {'ratio':>6} | seconds | "
+        f"{'+ closeness (poses/s)':>21} | {'ratio':>6}"
+    )
     for count in args.sizes:
         chosen = poses[:count]
         matrices = np.concatenate(
@@ -134,8 +145,14 @@ def main(argv=None):
             lambda c=chosen: chunked(lambda p: verdicts(h4, p), c),
             clock=time.process_time,
         )
+        both = best_of(
+            2 if count <= 10**4 else 1,
+            lambda c=chosen: chunked(lambda p: verdicts_and_closeness(h4, p), c),
+            clock=time.process_time,
+        )
         print(
-            f"{count:>9,} | {count / svd:>14,.0f} | {count / ours:>18,.0f} | {svd / ours:>6.4f} | {ours:.2f}"
+            f"{count:>9,} | {count / svd:>14,.0f} | {count / ours:>18,.0f} | {svd / ours:>6.4f} | "
+            f"{ours:7.2f} | {count / both:>21,.0f} | {svd / both:>6.4f}"
         )
 
     chunk = poses[:CHUNK]

@@ -23,7 +23,6 @@ from .exceptions import (
     TwistGraphError,
     UnreachablePoseError,
 )
-from .generic import GenericAnalysis, generic_analysis
 from .joints import (
     Joint,
     JointTable,
@@ -49,8 +48,8 @@ from .twistgraph import (
 )
 from .wrenches import WrenchAnalysis, analyze_table, wrench_analysis
 
-#: Names loaded on first use (the catalog and its families, the projective helpers, the
-#: Jacobians, the composer and its report are not a cost of ``import screwkit``; PEP 562).
+#: Names loaded on first use (the catalog and its families, the generic analysis, the projective
+#: helpers, the Jacobians, the composer and its report are not a cost of ``import screwkit``; PEP 562).
 _LAZY = {
     "Mechanism": "catalog",
     "list_mechanisms": "catalog",
@@ -58,6 +57,8 @@ _LAZY = {
     "load_snapshot": "catalog",
     "Family": "families",
     "register": "families",
+    "GenericAnalysis": "generic",
+    "generic_analysis": "generic",
     **dict.fromkeys(
         (
             "are_collinear",

@@ -41,8 +41,6 @@ single-pose analysis never pays for its import; its compiled code is cached on d
 environment variable ``SCREWKIT_NUMBA``, read once when this module is imported, forces the
 choice: ``0`` (or ``false``, ``no``, ``off``) the numpy path, anything else the default (numba if
 it imports).
-choice: ``0`` (or ``false``, ``no``, ``off``) the numpy path, anything else the default (numba if
-it imports).
 
 Examples
 --------
@@ -70,6 +68,7 @@ __all__ = [
     "complement",
     "empty",
     "from_scaled",
+    "packed",
     "reciprocal",
     "residual",
     "rod",
@@ -79,6 +78,7 @@ __all__ = [
     "to_scaled",
     "triangular",
     "unit_scaled",
+    "unpacked",
 ]
 
 Array = np.ndarray
@@ -513,11 +513,11 @@ def _residual_numpy(vectors: Array, rows: Array) -> Array:
 
 
 def triangular(rows: Array) -> Array:
-    """Rows ``(..., k, 6)`` → six rows ``(..., 6, 6)`` with the same singular values: for ``k > 6``
-    the triangular factor ``R`` of the Householder QR from the left (``rows = Q R``, Golub & Van
-    Loan §5.2.1), else the rows padded with zero rows. A cheaper input for :func:`singular_ratio`.
-    The numpy path does :func:`screwkit._frames_numba.triangular`'s operations in its order (bit
-    for bit).
+    """Rows ``(..., k, 6)`` → the upper triangular factor ``R (..., 6, 6)`` of their Householder QR
+    from the left (``rows = Q R``, Golub & Van Loan §5.2.1; fewer than six rows padded with zero
+    rows first): six rows with the same singular values, a cheaper input for
+    :func:`singular_ratio`, stored in :func:`packed` form. The numpy path does
+    :func:`screwkit._frames_numba.triangular`'s operations in its order (bit for bit).
 
     Examples
     --------
@@ -528,8 +528,8 @@ def triangular(rows: Array) -> Array:
     """
     rows = np.asarray(rows, dtype=float)
     batch, k = rows.shape[:-2], rows.shape[-2]
-    if k <= 6:
-        return np.concatenate([rows, np.zeros((*batch, 6 - k, 6))], axis=-2)
+    if k < 6:
+        rows, k = np.concatenate([rows, np.zeros((*batch, 6 - k, 6))], axis=-2), 6
     if 0 in batch:
         return np.zeros((*batch, 6, 6))
     if _numba_kernels(_size(batch)) is not None:
@@ -550,6 +550,31 @@ def triangular(rows: Array) -> Array:
             a[:, j, j] = np.where(act, alpha, a[:, j, j])
             a[:, j + 1 :, j] = np.where(act[:, None], 0.0, a[:, j + 1 :, j])
     return a[:, :6].reshape(*batch, 6, 6)
+
+
+#: The entries on and above the diagonal of a 6×6 matrix, row by row (:func:`packed`).
+UPPER = np.triu_indices(6)
+
+
+def packed(triangle: Array) -> Array:
+    """An upper triangular ``(..., 6, 6)`` (:func:`triangular`) as its 21 entries ``(..., 21)`` on
+    and above the diagonal (row by row): the closeness inputs a batch keeps in 168 bytes a pose.
+
+    Examples
+    --------
+    >>> triangle = np.triu(np.arange(36.0).reshape(6, 6))
+    >>> packed(triangle).shape, bool((unpacked(packed(triangle)) == triangle).all())
+    ((21,), True)
+    """
+    return triangle[..., UPPER[0], UPPER[1]]
+
+
+def unpacked(values: Array) -> Array:
+    """:func:`packed`'s inverse: ``(..., 21)`` → the upper triangular ``(..., 6, 6)`` (exact zeros
+    below the diagonal)."""
+    out = np.zeros((*values.shape[:-1], 6, 6))
+    out[..., UPPER[0], UPPER[1]] = values
+    return out
 
 
 def singular_ratio(rows: Array, index: int) -> Array:

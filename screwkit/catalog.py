@@ -69,11 +69,11 @@ Examples
 from __future__ import annotations
 
 import codecs
-import difflib
 import inspect
 import math
 import os
 import stat
+import sys
 import unicodedata
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
@@ -199,6 +199,8 @@ class Mechanism:
 
     def _check_options(self, options: Mapping[str, Any]) -> None:
         """Refuse inverse-kinematics options the family's solver does not take (naming those it does)."""
+        if not options:  # nothing to refuse (and no signature to read, chunk after chunk)
+            return
         solve = self.family_protocol.inverse_kinematics
         accepted = [
             p.name
@@ -322,7 +324,7 @@ class Mechanism:
             if len(kept) >= count:
                 return kept[:count]
             draws = rng.uniform(low, high, size=(count - len(kept), len(low)))
-            kept = np.concatenate([kept, draws[self._reachable(draws)]])
+            kept = np.concatenate([kept, draws[self.reachable(draws)]])
         if len(kept) >= count:
             return kept[:count]
         raise ScrewkitValueError(
@@ -331,18 +333,38 @@ class Mechanism:
             f"are reachable, {count} wanted: the workspace box is mostly out of reach."
         )
 
-    def _reachable(self, poses: Array) -> Array:
-        """True where the inverse kinematics has a solution (the batch bisected around failures)."""
+    def reachable(self, poses: Array, **options: Any) -> Array:
+        """Which poses ``(m, n)`` (API units) the inverse kinematics accepts, ``(m,)`` bool.
+
+        The family module's own vectorised ``reachable(parameters, poses)`` when it has one and no
+        option changes the inverse kinematics' domain (the four-limb family: every working mode
+        reaches the same poses), else one batch call of :meth:`configuration`, halved where a
+        batch is refused (:class:`~screwkit.exceptions.UnreachablePoseError`).
+
+        Examples
+        --------
+        >>> load_mechanism("v4").reachable(np.array([[0, 0, -750, 0], [0, 0, -3000, 0]]))
+        array([ True, False])
+        """
         if len(poses) == 0:
             return np.zeros(0, dtype=bool)
+        solve = self.family_protocol.inverse_kinematics
+        test = getattr(sys.modules.get(getattr(solve, "__module__", "")), "reachable", None)
+        if callable(test) and set(options) <= {"working_mode"}:
+            return np.asarray(test(self.parameters, poses), dtype=bool).reshape(len(poses))
+        return self._reachable_by_halving(poses, options)
+
+    def _reachable_by_halving(self, poses: Array, options: dict[str, Any]) -> Array:
+        """:meth:`reachable` by the inverse kinematics alone."""
         try:
-            self.configuration(poses)
+            self.configuration(poses, **options)
             return np.ones(len(poses), dtype=bool)
         except UnreachablePoseError:
             if len(poses) == 1:
                 return np.zeros(1, dtype=bool)
         half = len(poses) // 2
-        return np.concatenate([self._reachable(poses[:half]), self._reachable(poses[half:])])
+        halves = (poses[:half], poses[half:])
+        return np.concatenate([self._reachable_by_halving(part, options) for part in halves])
 
     def wrench_diagram(
         self, pose: Any = None
@@ -459,6 +481,8 @@ def _check_keys(table: Mapping[str, Any], known: Any, source: str, where: str) -
     """Refuse keys outside ``known``, naming the closest known key."""
     for key in table:
         if key not in known:
+            import difflib
+
             close = difflib.get_close_matches(str(key), sorted(known), n=1)
             hint = f" (did you mean `{close[0]}`?)" if close else ""
             raise _error(

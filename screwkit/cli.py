@@ -228,10 +228,18 @@ def _pose_coordinates() -> list[str]:
     return names
 
 
+class _MapQuantities:
+    """The quantities a map can show (:data:`screwkit.workspace.QUANTITIES`), listed in ``map --help``:
+    read when the help is shown, so that parsing a command does not import :mod:`screwkit.workspace`."""
+
+    def __str__(self) -> str:
+        from .workspace import QUANTITIES
+
+        return ", ".join(QUANTITIES)
+
+
 def _add_workspace_commands(commands: Any) -> None:
     """The ``map`` and ``path`` subcommands (:mod:`screwkit.workspace`)."""
-    from .workspace import QUANTITIES
-
     mapping = commands.add_parser(
         "map",
         help="map a quantity (verdict, closeness, det A/B, LTI, a condition) over a 2-D slice of poses",
@@ -240,12 +248,13 @@ def _add_workspace_commands(commands: Any) -> None:
         "pose). Lengths in the catalog file's unit, angles in DEGREES.",
     )
     mapping.add_argument("mechanism", help="a catalog name (e.g. h4) or a .toml file")
-    mapping.add_argument(
+    quantity = mapping.add_argument(
         "--quantity",
         required=True,
         metavar="Q",
-        help=f"one of {', '.join(QUANTITIES)}, detA, detB, condition (= condition:0) or condition:K",
+        help="one of %(quantities)s, detA, detB, condition (= condition:0) or condition:K",
     )
+    vars(quantity)["quantities"] = _MapQuantities()  # argparse fills %(name)s from the action's attributes
     for name in _pose_coordinates():
         mapping.add_argument(
             f"--{name}",

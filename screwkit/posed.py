@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import functools
 import weakref
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
 from typing import Any, overload
 
@@ -54,6 +54,10 @@ GENERIC_DRAWS = 12
 #: Generic samples of a diagram's points drawn (in one batch) for the superbracket: its structural
 #: zeros and its checks take 12 (screwkit.diagram.superbracket_analysis).
 SAMPLES = 24
+#: Poses whose diagram points are evaluated at once when samples are read (the superbracket reads
+#: 12: most of a batch of SAMPLES is never evaluated; their constraint lines take a readable basis
+#: pose by pose).
+SAMPLE_CHUNK = 12
 
 
 def _checked_poses(mechanism: Any, poses: Any) -> Array:
@@ -247,7 +251,9 @@ class Pose:
     def analysis(self) -> WrenchAnalysis:
         """The wrench systems (a batch of one through the core, with the per-pose views)."""
         one = self.table[None] if self.table.batch_shape == () else self.table
-        result = analyze_table(one, rtol=self.posed.rtol)[0]
+        return self._with_graph(analyze_table(one, rtol=self.posed.rtol)[0])
+
+    def _with_graph(self, result: WrenchAnalysis) -> WrenchAnalysis:
         object.__setattr__(result, "graph", self.graph)
         return result
 
@@ -267,6 +273,35 @@ class Pose:
         """``A χ̇ = B θ̇`` at this pose."""
         return jacobians_from_wrenches(self.analysis, self.twist_basis, rtol=self.posed.rtol)
 
+    @functools.cached_property
+    def _draws(self) -> tuple[Sequence[WrenchAnalysis], WrenchAnalysis | None, np.random.Generator]:
+        """The random workspace poses a wrench diagram is chosen at (:data:`GENERIC_DRAWS`, seed
+        2026) and the first batch of its sampler's (``2 *`` :data:`SAMPLES`, seed 0) through the
+        core as one batch, with this pose unless its analysis is already computed (one pass instead
+        of three; a pose's result does not depend on the batch it is in, ``tests/test_batch.py``):
+        the per-pose analyses at the generic draws, the batch at the samples (None if none is
+        reachable) and the samples' generator, where the next batch is drawn from. (61 poses of
+        four limbs stay below :data:`screwkit._frames.COMPILED_MIN_BATCH`: no numba import.)
+        """
+        mechanism, rtol = self.mechanism, self.posed.rtol
+        stream = np.random.default_rng(0)
+        generic = _reachable_table(mechanism, np.random.default_rng(2026), GENERIC_DRAWS)
+        sampled = _reachable_table(mechanism, stream, 2 * SAMPLES)
+        one = self.table[None] if self.table.batch_shape == () else self.table
+        own = [] if "analysis" in self.__dict__ else [one]
+        tables = [*own, *(t for t in (generic, sampled) if t is not None)]
+        if not tables:  # this pose analysed already, no random pose reachable
+            return [], None, stream
+        batch = analyze_table(_concatenated(tables), rtol=rtol)
+        if own:
+            self.__dict__["analysis"] = self._with_graph(batch[0])
+        start = len(own)
+        analyses: Sequence[WrenchAnalysis] = []
+        if generic is not None:
+            analyses = _PoseAnalyses(batch[start : start + len(generic)], generic, mechanism.name)
+            start += len(generic)
+        return analyses, (None if sampled is None else batch[start:]), stream
+
     def diagram_and_sampler(self) -> tuple[Any, Callable[[np.random.Generator], dict[str, Array]]]:
         """The wrench diagram at this pose and a sampler of its recipes at generic poses.
 
@@ -283,18 +318,22 @@ class Pose:
 
         from .diagram import ReplaySampler, diagram_at, generic_reference, wrench_diagram
 
-        analyses = _batch_analyses(
-            self.mechanism, np.random.default_rng(2026), GENERIC_DRAWS, self.posed.rtol
-        )
+        analyses, first, stream = self._draws
         reference, reasons = generic_reference(analyses)
         if reference is None:  # a property of the mechanism, found at generic poses: say so
             diagram = wrench_diagram(self.analysis)
             return replace(diagram, coordinates={}, degenerate=reasons), _no_sampler
         diagram = diagram_at(reference, self.analysis)
         mechanism, rtol = self.mechanism, self.posed.rtol
-        return diagram, ReplaySampler(
-            lambda stream: generic_samples(mechanism, diagram.points, stream, SAMPLES, rtol)
-        )
+        pending = [first]
+
+        def produce(_: np.random.Generator) -> Iterable[dict[str, Array]]:
+            # the first batch analysed with the generic draws, the next ones drawn on from its stream
+            if pending:
+                return _samples(diagram.points, pending.pop(), SAMPLES)
+            return generic_samples(mechanism, diagram.points, stream, SAMPLES, rtol)
+
+        return diagram, ReplaySampler(produce)
 
     def report(self, *, superbracket: bool = True, progress: Any = None) -> Any:
         """The whole analysis report at this pose (:class:`screwkit.report.AnalysisReport`).
@@ -338,15 +377,12 @@ def _reachable_table(mechanism: Any, rng: np.random.Generator, count: int) -> Jo
         return mechanism.joints(np.array(kept)) if kept else None
 
 
-def _batch_analyses(
-    mechanism: Any, rng: np.random.Generator, count: int, rtol: float
-) -> Sequence[WrenchAnalysis]:
-    """Per-pose analyses at ``count`` random workspace poses, computed as one batch (the poses out
-    of reach are dropped); each pose's view and graph are built when first read."""
-    table = _reachable_table(mechanism, rng, count)
-    if table is None:
-        return []
-    return _PoseAnalyses(analyze_table(table, rtol=rtol), table, mechanism.name)
+def _concatenated(tables: Sequence[JointTable]) -> JointTable:
+    """Joint tables of one mechanism ``(n_i, ...)`` as one batch ``(Σ n_i, ...)``."""
+    first = tables[0]
+    anchor = None if first.anchor is None else np.concatenate([t.anchor for t in tables])
+    screws = np.concatenate([t.screws for t in tables])
+    return JointTable(first.base, first.platform, first.specs, screws, first.dof, anchor, first.mobility)
 
 
 class _PoseAnalyses(Sequence[WrenchAnalysis]):
@@ -402,17 +438,29 @@ def generic_samples(
     >>> len(generic_samples(h4, diagram.points, np.random.default_rng(0), 3))
     3
     """
+    table = _reachable_table(mechanism, rng, 2 * count)
+    return list(_samples(points, None if table is None else analyze_table(table, rtol=rtol), count))
+
+
+def _samples(points: Any, analysis: WrenchAnalysis | None, count: int) -> Iterator[dict[str, Array]]:
+    """:func:`generic_samples` from the analysis of the drawn poses (None: none reachable), lazily:
+    the points are evaluated :data:`SAMPLE_CHUNK` poses at a time, as far as the samples read."""
     from .diagram import batch_diagram_points
 
-    table = _reachable_table(mechanism, rng, 2 * count)
-    found = {} if table is None else batch_diagram_points(points, analyze_table(table, rtol=rtol))
-    exists = np.all([np.isfinite(v).all(axis=-1) for v in found.values()], axis=0) if found else []
-    samples = [{label: v[i] for label, v in found.items()} for i in np.flatnonzero(exists)[:count]]
-    if not samples:
+    given, total = 0, 0 if analysis is None else len(analysis)
+    for start in range(0, total, SAMPLE_CHUNK):
+        assert analysis is not None
+        found = batch_diagram_points(points, analysis[start : start + SAMPLE_CHUNK])
+        exists = np.all([np.isfinite(v).all(axis=-1) for v in found.values()], axis=0) if found else []
+        for i in np.flatnonzero(exists)[: count - given]:
+            given += 1
+            yield {label: v[i] for label, v in found.items()}
+        if given == count:
+            return
+    if not given:
         raise ScrewkitValueError(
             f"Expected a workspace pose giving every diagram point, got none of {2 * count}."
         )
-    return samples
 
 
 def _no_sampler(rng: np.random.Generator) -> dict[str, Array]:

@@ -537,7 +537,8 @@ def pose_report(
     """
     mechanism = pose.mechanism
     step = progress or (lambda stage: None)
-    pose.analysis  # noqa: B018 (the wrench systems, computed first so progress names the stages in order)
+    pose._draws  # noqa: B018 (the wrench systems, with the generic draws and samples as one batch, first
+    # so that progress names the stages in order)
     step(STAGES[1])
     diagram, sampler = pose.diagram_and_sampler()
     jacobians: WrenchJacobians | None = None

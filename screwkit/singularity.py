@@ -22,7 +22,8 @@ One pose and many go through the same kernels (:func:`screwkit.wrenches.analyze_
 
 Closeness measures (all in [0, 1], unit-free, computed about the mechanism's own reference point
 and length (:func:`~screwkit.twistgraph.mechanism_frame`), so they follow rigid motions and
-changes of unit; 0 at the singularity):
+changes of unit; 0 at the singularity; computed when first asked,
+:attr:`~screwkit.wrenches.WrenchAnalysis.closeness`: the labels do not need them):
 
 * ``constraint``: σ_c0 / σ_1 of orthonormal bases of the compound legs' constraint systems,
   stacked, with ``c0 = 6 − dof`` (about the reference point, moments over the length);
@@ -48,7 +49,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field, replace
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import networkx as nx
 import numpy as np
@@ -56,11 +57,13 @@ import numpy as np
 from . import _backend as B
 from . import screw as S
 from .exceptions import ScrewkitTypeError, ScrewkitValueError
-from .generic import GenericAnalysis
 from .joints import JointTable
 from .screwsystem import ScrewSystem
 from .twistgraph import check_twist_graph
 from .wrenches import WrenchAnalysis, analyze_table, wrench_analysis
+
+if TYPE_CHECKING:
+    from .generic import GenericAnalysis
 
 __all__ = [
     "LABELS",
@@ -533,13 +536,18 @@ def classify_chunks(
     for piece in tables:
         part = analyze_table(piece, dof=dof, rtol=rtol, views=False)
         arrays = _batch_arrays(part)
-        if first is None:
-            first = part
+        if first is None:  # the template of the result: the first chunk's fields less its arrays and table
+            blank: dict[str, Any] = {
+                **dict.fromkeys(_BATCH_FIELDS),
+                "frames": dict.fromkeys(part.frames),
+                "closeness_factors": dict.fromkeys(part.closeness_factors),
+            }
+            first = replace(part, table_source=table_source, **blank)
             out = {key: np.empty((total, *value.shape[1:]), value.dtype) for key, value in arrays.items()}
         for key, value in arrays.items():
             out[key][filled : filled + len(value)] = value
         filled += len(part)
-        del piece, part, arrays  # not alive while the next chunk is computed (the first is kept)
+        del piece, part, arrays  # not alive while the next chunk is computed
     if first is None or filled != total:
         raise ScrewkitValueError(f"Expected chunks of {total} configurations in all, got {filled}.")
     whole = {key: value.reshape(*shape, *value.shape[1:]) for key, value in out.items()}
@@ -549,7 +557,7 @@ def classify_chunks(
             table_source=table_source,
             **{key: whole[key] for key in _BATCH_FIELDS},
             frames={key: (whole[f"frame:{key}"], whole[f"order:{key}"]) for key in first.frames},
-            closeness={key: whole[f"closeness:{key}"] for key in first.closeness},
+            closeness_factors={key: whole[f"closeness:{key}"] for key in first.closeness_factors},
         )
     )
 
@@ -574,7 +582,7 @@ def _batch_arrays(analysis: WrenchAnalysis) -> dict[str, Array]:
     arrays = {key: np.asarray(getattr(analysis, key)) for key in _BATCH_FIELDS}
     for key, (rows, order) in analysis.frames.items():
         arrays[f"frame:{key}"], arrays[f"order:{key}"] = rows, np.asarray(order)
-    arrays.update({f"closeness:{key}": np.asarray(value) for key, value in analysis.closeness.items()})
+    arrays.update({f"closeness:{key}": value for key, value in analysis.closeness_factors.items()})
     return arrays
 
 

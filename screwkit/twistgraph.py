@@ -281,6 +281,7 @@ def mechanism_frame(screws: Array, anchor: Array | None = None) -> tuple[Array, 
     units = [x / root * finite for x in d]  # zero for infinite pitch
     feet = [(d[1] * m[2] - d[2] * m[1]) / safe, (d[2] * m[0] - d[0] * m[2]) / safe,
             (d[0] * m[1] - d[1] * m[0]) / safe]  # d × m / |d|²: each axis's point nearest the origin
+    del sizes, safe, root  # (..., n) temporaries freed as soon as done with: a chunk's peak memory
     # the projectors P_k = I − u_k u_kᵀ (finite axes only), never formed: their sum and P_k x
     count = finite.sum(axis=-1)
     normal = np.empty((*screws.shape[:-2], 3, 3))
@@ -293,8 +294,11 @@ def mechanism_frame(screws: Array, anchor: Array | None = None) -> tuple[Array, 
     point = _least_squares_point(normal, rhs, anchor)
     away = [point[..., None, i] - feet[i] for i in range(3)]
     along = units[0] * away[0] + units[1] * away[1] + units[2] * away[2]
-    offsets = [(away[i] - units[i] * along) * finite for i in range(3)]
-    squares = offsets[0] * offsets[0] + offsets[1] * offsets[1] + offsets[2] * offsets[2]
+    for i in range(3):  # the offsets (away − u along)·finite in place: the same operations, less memory
+        away[i] -= units[i] * along
+        away[i] *= finite
+    squares = away[0] * away[0] + away[1] * away[1] + away[2] * away[2]
+    del away, along
     length = np.sqrt(np.sum(squares, axis=-1) / np.maximum(count, 1))
     farthest = np.sqrt(feet[0] * feet[0] + feet[1] * feet[1] + feet[2] * feet[2]).max(axis=-1, initial=0.0)
     size = np.maximum(farthest, np.linalg.norm(point, axis=-1))

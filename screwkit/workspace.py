@@ -77,7 +77,6 @@ from .exceptions import (
     ScrewkitError,
     ScrewkitTypeError,
     ScrewkitValueError,
-    UnreachablePoseError,
 )
 
 __all__ = [
@@ -275,42 +274,6 @@ def _quantity(quantity: Any) -> str:
 # --------------------------------------------------------------------------------------------------
 
 
-def _reachable(mechanism: Any, poses: Array, options: dict[str, Any]) -> Array:
-    """Which poses ``(m, n)`` (API units) the inverse kinematics accepts.
-
-    The family module's own vectorised ``reachable(parameters, poses)`` when it has one and no
-    option changes the inverse kinematics' domain (the four-limb family: every working mode
-    reaches the same poses), else one batch call, halved where a batch is refused
-    (:class:`~screwkit.exceptions.UnreachablePoseError`).
-    """
-    if len(poses) == 0:
-        return np.zeros(0, dtype=bool)
-    family_module = sys.modules.get(getattr(mechanism.family_protocol.inverse_kinematics, "__module__", ""))
-    test = getattr(family_module, "reachable", None)
-    if callable(test) and set(options) <= {"working_mode"}:
-        return np.asarray(test(mechanism.parameters, poses), dtype=bool).reshape(len(poses))
-    return _reachable_by_halving(mechanism, poses, options)
-
-
-def _reachable_by_halving(mechanism: Any, poses: Array, options: dict[str, Any]) -> Array:
-    """:func:`_reachable` by the inverse kinematics alone."""
-    if len(poses) == 0:
-        return np.zeros(0, dtype=bool)
-    try:
-        mechanism.configuration(poses, **options)
-    except UnreachablePoseError:
-        if len(poses) == 1:
-            return np.zeros(1, dtype=bool)
-        half = len(poses) // 2
-        return np.concatenate(
-            [
-                _reachable_by_halving(mechanism, poses[:half], options),
-                _reachable_by_halving(mechanism, poses[half:], options),
-            ]
-        )
-    return np.ones(len(poses), dtype=bool)
-
-
 #: The transmission indices a map can show, by their field of
 #: :class:`screwkit.indices.TransmissionIndices` (paper 004 Eqs. 15-16).
 _INDICES = {"lti": "eta", "kappa": "kappa", "zeta": "zeta"}
@@ -441,7 +404,7 @@ def evaluate(
     name = _quantity(quantity)
     array = np.asarray(poses, dtype=float).reshape(-1, len(mechanism.pose_names))
     options = _options(mode)
-    ok = _reachable(mechanism, array, options)
+    ok = mechanism.reachable(array, **options)
     integer = name == "verdict"
     out = np.full(len(array), -1 if integer else np.nan, dtype=np.int64 if integer else float)
     if ok.any():
@@ -941,7 +904,7 @@ def _measure(mechanism: Any, poses: Array, options: dict[str, Any], rtol: Any) -
     """Codes, closeness and det A at API-unit poses ``(..., n)`` (NaN / -1 where out of reach)."""
     shape = poses.shape[:-1]
     flat = poses.reshape(-1, poses.shape[-1])
-    ok = _reachable(mechanism, flat, options)
+    ok = mechanism.reachable(flat, **options)
     codes = np.full(len(flat), -1, dtype=np.int64)
     closeness = {k: np.full(len(flat), np.nan) for k in KINDS}
     det_a: Array | None = np.full(len(flat), np.nan)
@@ -1134,7 +1097,7 @@ def _factor(mechanism: Any, poses: Array, kind: str, options: dict[str, Any], rt
         return None
     candidates = [i for i, label in enumerate(labels) if label == kind and reference[i] != 0]
     tries = np.asarray(poses[:_FACTOR_TRIES], dtype=float)
-    tries = tries[_reachable(mechanism, tries, options)]
+    tries = tries[mechanism.reachable(tries, **options)]
     if not candidates or not len(tries):
         return None
     points, exists = _diagram_points(diagram, mechanism.at(tries, rtol=rtol, **options))

@@ -253,6 +253,10 @@ class WrenchAnalysis:
         The part of each actuation wrench carried by its actuated joint's own branch, scaled as
         :attr:`actuation_rows`: ``B_jj = branch_j ∘ $_j`` (:mod:`screwkit.jacobians`). Equal to
         the actuation wrench except in a compound leg analysed as a whole (:func:`analyze_table`).
+    closeness_factors : dict of str to numpy.ndarray, shape (..., 21)
+        ``"constraint"``, ``"actuation"``: triangular factors (:func:`screwkit._frames.triangular`,
+        :func:`~screwkit._frames.packed`) with the singular values of the matrices the closeness
+        measures are defined on (:attr:`closeness`).
     """
 
     table_source: JointTable | Callable[[], JointTable] = field(repr=False)
@@ -270,7 +274,23 @@ class WrenchAnalysis:
     actuated_twists: Array = field(repr=False)
     branch_rows: Array = field(repr=False)
     frames: dict[str, Frame] = field(repr=False)
-    closeness: dict[str, Array] = field(repr=False)
+    closeness_factors: dict[str, Array] = field(repr=False)
+
+    @functools.cached_property
+    def closeness(self) -> dict[str, Any]:
+        """The closeness measures (:mod:`screwkit.singularity`), computed on first use: the
+        labels need only orders and serial flags, so a batch pays for the two 6×6 SVDs per pose
+        only when its closeness is asked. ``constraint`` is ``σ_(6 − dof) / σ_1`` and ``actuation``
+        ``σ_6 / σ_1`` of :attr:`closeness_factors` (six rows with the singular values of the stacked
+        legs' constraint wrenches, and of those stacked with the actuation wrenches apart from
+        their legs; :func:`analyze_table`), ``serial`` the smallest transmission."""
+        factors, transmissions = self.closeness_factors, self.transmissions
+        values = {
+            "constraint": _singular_ratios(factors["constraint"], 6 - self.dof),
+            "actuation": _singular_ratios(factors["actuation"], 6),
+            "serial": np.min(transmissions, axis=-1) if transmissions.shape[-1] else np.ones(self.shape),
+        }
+        return {k: _scalar(v) for k, v in values.items()}
 
     # --- batch behaviour -------------------------------------------------------------------------
     @functools.cached_property
@@ -315,7 +335,7 @@ class WrenchAnalysis:
             actuated_twists=pick(self.actuated_twists),
             branch_rows=pick(self.branch_rows),
             frames={k: (rows[index], _scalar(order[index])) for k, (rows, order) in self.frames.items()},
-            closeness={k: _scalar(v[index]) for k, v in self.closeness.items()},
+            closeness_factors={k: v[index] for k, v in self.closeness_factors.items()},
         )
 
     def __repr__(self) -> str:
@@ -457,6 +477,23 @@ class WrenchAnalysis:
                 SeriesParallelNode(node.kind, node.ends, system, children, node.links, edge, node.joints)
             )
         return nodes[self.topology.root] if self.topology.root is not None else None
+
+
+#: Poses whose closeness SVDs run at once (:func:`_singular_ratios`): bounded memory over any batch.
+CLOSENESS_CHUNK = 4096
+
+
+def _singular_ratios(packed: Array, index: int) -> Array:
+    """:func:`screwkit._frames.singular_ratio` of :func:`~screwkit._frames.packed` triangles
+    ``(..., 21)``, :data:`CLOSENESS_CHUNK` poses at a time (each pose's SVD on its own: the same
+    values whatever the chunk)."""
+    flat = packed.reshape(-1, packed.shape[-1])
+    out = np.empty(len(flat))
+    for start in range(0, len(flat), CLOSENESS_CHUNK):
+        out[start : start + CLOSENESS_CHUNK] = F.singular_ratio(
+            F.unpacked(flat[start : start + CLOSENESS_CHUNK]), index
+        )
+    return out.reshape(packed.shape[:-1])
 
 
 def _indexed_table(analysis: WrenchAnalysis, index: Any) -> JointTable:
@@ -739,9 +776,11 @@ class _Evaluation:
         return F.span(twists, self.rtol)
 
 
-def _nearest_lines(wrench: Array, constraints: Array, order: Array) -> Array:
+def _nearest_lines(wrench: Array, constraints_at: Callable[[Array], Array], order: Array) -> Array:
     """``wrench + c`` of zero pitch with ``c`` the smallest constraint wrench found that makes it a
-    line, where the wrench is not already one (batched; rows orthonormal, scaled).
+    line, where the wrench is not already one (batched; rows orthonormal, scaled). The constraint
+    system has ``order`` rows; ``constraints_at(where)`` gives its rows ``(m, 6, 6)`` at a boolean
+    mask of the batch (asked only where a wrench is searched).
 
     The pitch numerator of ``w + C α`` is the quadratic ``αᵀQα + bᵀα + p0`` (``Q`` the symmetric
     part of ``C_s C_mᵀ``). Along a direction ``u`` it is a quadratic in one variable; the
@@ -756,7 +795,7 @@ def _nearest_lines(wrench: Array, constraints: Array, order: Array) -> Array:
     searched = not_line & (np.asarray(order) > 0)
     best = wrench.copy()
     if searched.any():
-        best[searched] = _line_search(wrench[searched], constraints[searched], np.asarray(order)[searched])
+        best[searched] = _line_search(wrench[searched], constraints_at(searched), np.asarray(order)[searched])
     return best
 
 
@@ -821,16 +860,16 @@ def _unit_size(rows: Array, length: Array) -> Array:
 def _canonical(table: JointTable) -> JointTable:
     """The table with its joints sorted by name: every route to the same mechanism (a family's
     table, a graph's, a graph rebuilt from a table) then runs the same arithmetic in the same order,
-    bit for bit."""
+    bit for bit; its screws C-contiguous, so that a pose's sums run in one order whatever the batch
+    it is in (a strided reduction adds in another)."""
     order = sorted(range(len(table.specs)), key=lambda k: table.specs[k].name)
-    if order == list(range(len(order))):
+    if order == list(range(len(order))) and table.screws.flags.c_contiguous:
         return table
     starts = list(itertools.accumulate((spec.dof for spec in table.specs), initial=0))
     rows = [r for k in order for r in range(starts[k], starts[k + 1])]
     specs = tuple(table.specs[k] for k in order)
-    return JointTable(
-        table.base, table.platform, specs, table.screws[..., rows, :], table.dof, table.anchor, table.mobility
-    )
+    screws = np.ascontiguousarray(table.screws[..., rows, :])
+    return JointTable(table.base, table.platform, specs, screws, table.dof, table.anchor, table.mobility)
 
 
 def _checked_dof(dof: Any, table: JointTable, top: Topology) -> int:
@@ -943,40 +982,57 @@ def analyze_table(
             -2,
         )
         free = (rows, order + ~serial)
+        del rows  # held by `free` alone, freed with it
     if n:
-        limb_constraint = F.reciprocal(*free)
+        # the limbs' constraint systems (reciprocal to `free`): kept for the views, else computed only
+        # where an actuation wrench is searched for a line (_nearest_lines; at a few poses, if any)
+        limb_constraint = F.reciprocal(*free) if views else None
+
+        def limb_constraints_at(where: Array) -> Array:
+            if limb_constraint is not None:
+                return limb_constraint[0][where]
+            return F.reciprocal(free[0][where], free[1][where])[0]
+
         # SWAP t⊥ lies in the passive system; projecting it there keeps a clean passive wrench even
         # when t⊥ is round-off (a serial singularity), so w ∘ t is then round-off too
         swapped = F.swapped(perpendicular)
         direction = _normalized(
             np.einsum("...k,...ks->...s", np.einsum("...ks,...s->...k", passive[0], swapped), passive[0])
         )
-        wrench = _normalized(_nearest_lines(direction, *limb_constraint))
+        wrench = _normalized(_nearest_lines(direction, limb_constraints_at, 6 - free[1]))
         product = np.abs(np.einsum("...s,...s->...", wrench, F.swapped(actuated)))
         transmissions = _scaled_transmission(wrench, actuated, product, rtol)
         branch, locked_legs = wrench, None
-        compound = _compound_legs(top, scaled, rtol, leg_wrenches, actuated, (wrench, serial, transmissions))
+        residuals = _leg_residuals(top, wrench, leg_wrenches)
+        compound = _compound_legs(
+            top, scaled, rtol, leg_wrenches, actuated, (wrench, serial, transmissions), residuals
+        )
         if compound is not None:
             serial, wrench, branch, transmissions, locked_legs = compound
         wrench_rows = np.where(serial[..., None], 0.0, wrench)
+        if compound is not None:  # the replaced limbs' wrenches measured again
+            residuals = _leg_residuals(top, wrench_rows, leg_wrenches)
+        elif residuals is not None:  # a serial limb's row is zero, and so is its residual (exactly)
+            residuals = np.where(serial[..., _coupled(top), None], 0.0, residuals)
         for k in range(n):
             frames[f"limb{k}:passive"] = _limb(passive, k)  # the Jacobians' rows at serial singularities
             if views:
                 frames[f"limb{k}:T"] = _limb(free, k)
+                assert limb_constraint is not None
                 frames[f"limb{k}:W"] = _limb(limb_constraint, k)
+        del free, limb_constraint  # (..., n, 6, 6) each: not alive while the closeness inputs are built
     else:
         serial, transmissions = np.zeros((*batch, 0), dtype=bool), np.zeros((*batch, 0))
         wrench_rows = branch = np.zeros((*batch, 0, 6))
-        locked_legs = None
+        locked_legs, residuals = None, None
     global_frame = F.span(np.concatenate([constraint[0], wrench_rows], axis=-2), rtol)
     # the legs' stacked constraint wrenches as six rows with their singular values (F.triangular:
     # two 6×6 SVDs instead of (6 legs + n) × 6 ones)
     legs_stacked = F.triangular(np.concatenate([w[0] for w in leg_wrenches], axis=-2))
-    apart = _apart_from_legs(top, wrench_rows, leg_wrenches)
-    closeness = {
-        "constraint": F.singular_ratio(legs_stacked, 6 - nominal),
-        "actuation": F.singular_ratio(F.triangular(np.concatenate([legs_stacked, apart], axis=-2)), 6),
-        "serial": np.min(transmissions, axis=-1) if n else np.ones(batch),
+    apart = _apart_from_legs(top, wrench_rows, residuals)
+    closeness_factors = {  # their singular values on demand (WrenchAnalysis.closeness)
+        "constraint": F.packed(legs_stacked),
+        "actuation": F.packed(F.triangular(np.concatenate([legs_stacked, apart], axis=-2))),
     }
     if locked_legs is not None:  # where a compound leg was analysed as a whole
         locked_legs.add_to(global_frame, constraint, wrench_rows, rtol)
@@ -993,7 +1049,11 @@ def analyze_table(
             frames[f"leg{k}:W"] = wrench_frame
     user_rows = F.from_scaled(wrench_rows, centre, length)
     size = _unit_size(user_rows, length)
-    user_branches = np.where(serial[..., None], 0.0, F.from_scaled(branch, centre, length) / size)
+    actuation_rows = np.where(serial[..., None], 0.0, user_rows / size)
+    if locked_legs is None:  # every branch row is its actuation wrench: the same operations, the same bits
+        user_branches = actuation_rows.copy()
+    else:
+        user_branches = np.where(serial[..., None], 0.0, F.from_scaled(branch, centre, length) / size)
     return WrenchAnalysis(
         table_source=table,
         topology=top,
@@ -1006,13 +1066,13 @@ def analyze_table(
         global_order=_scalar(global_frame[1]),
         serial=serial,
         transmissions=transmissions,
-        actuation_rows=np.where(serial[..., None], 0.0, user_rows / size),
+        actuation_rows=actuation_rows,
         branch_rows=user_branches,
         actuated_twists=np.stack([p.sign * screws[..., top.columns[p.index], :] for p in top.limbs], axis=-2)
         if n
         else np.zeros((*batch, 0, 6)),
         frames=frames,
-        closeness={k: _scalar(v) for k, v in closeness.items()},
+        closeness_factors=closeness_factors,
     )
 
 
@@ -1030,17 +1090,32 @@ class _LockedLegs(NamedTuple):
         global_frame[0][where], global_frame[1][where] = frame
 
 
-def _apart_from_legs(top: Topology, rows: Array, leg_wrenches: list[Frame]) -> Array:
-    """Unit scaled wrench rows ``(..., n, 6)`` with each limb that has partners less its part in its
-    compound leg's constraint system (renormalised): the actuation closeness's rows. A limb's own
-    wrench may lie close to that system where the leg as a whole transmits well (the H4 near
-    ``n1·z = 0``, :func:`_compound_legs`), which would fake a near-singularity."""
-    coupled = [k for k, plan in enumerate(top.limbs) if plan.partners and not top.network]
+def _coupled(top: Topology) -> list[int]:
+    """The limbs with partners in a compound leg (none in a network)."""
+    return [] if top.network else [k for k, plan in enumerate(top.limbs) if plan.partners]
+
+
+def _leg_residuals(top: Topology, rows: Array, leg_wrenches: list[Frame]) -> Array | None:
+    """Wrench rows ``(..., n, 6)`` of the limbs with partners (:func:`_coupled`) less their part in
+    their compound leg's constraint system, ``(..., m, 6)`` (not renormalised; None without such
+    limbs): what :func:`_compound_legs` and :func:`_apart_from_legs` measure."""
+    coupled = _coupled(top)
     if not coupled:
-        return rows
+        return None
     frames = np.stack([leg_wrenches[_leg_of(top, k)][0] for k in coupled], axis=-3)  # (..., m, 6, 6)
+    return F.residual(rows[..., coupled, None, :], frames)[..., 0, :]
+
+
+def _apart_from_legs(top: Topology, rows: Array, residuals: Array | None) -> Array:
+    """Unit scaled wrench rows ``(..., n, 6)`` with each limb that has partners less its part in its
+    compound leg's constraint system (``residuals``, :func:`_leg_residuals` of ``rows``;
+    renormalised): the actuation closeness's rows. A limb's own wrench may lie close to that system
+    where the leg as a whole transmits well (the H4 near ``n1·z = 0``, :func:`_compound_legs`),
+    which would fake a near-singularity."""
+    if residuals is None:
+        return rows
     out = rows.copy()
-    out[..., coupled, :] = _normalized(F.residual(rows[..., coupled, None, :], frames)[..., 0, :])
+    out[..., _coupled(top), :] = _normalized(residuals)
     return out
 
 
@@ -1056,11 +1131,12 @@ def _compound_legs(
     leg_wrenches: list[Frame],
     actuated: Array,
     limbs: tuple[Array, Array, Array],
+    residuals: Array | None,
 ) -> tuple[Array, Array, Array, Array, _LockedLegs] | None:
     """Compound legs whose actuators share a link, analysed as a whole where a limb's own
     actuation wrench fails: ``serial, wrench, branch, transmissions`` over the batch and the
     quotients (None where no limb's wrench fails). ``limbs``: the limbs' own ``wrench, serial,
-    transmissions`` (scaled).
+    transmissions`` (scaled); ``residuals``: :func:`_leg_residuals` of their wrenches.
 
     **Why.** A limb with *partners* (:attr:`screwkit.topology.LimbPlan.partners`; the H4's
     ``A1`` and ``A4`` both carry the nacelle ``b_I``, which joins the end effector by ``R_I``) gets
@@ -1112,15 +1188,12 @@ def _compound_legs(
     partners is serial by its chain or its wrench lies within :data:`COMPOUND_RTOL` of ``W_free``,
     and only its failing limbs are replaced.
     """
-    coupled = [k for k, plan in enumerate(top.limbs) if plan.partners]
-    if not coupled or top.network:
+    coupled = _coupled(top)
+    if residuals is None:
         return None
     wrench, serial, transmissions = limbs
     failing = np.zeros(serial.shape, dtype=bool)
-    for k in coupled:
-        rows = leg_wrenches[_leg_of(top, k)][0]
-        rest = np.linalg.norm(F.residual(wrench[..., k, None, :], rows)[..., 0, :], axis=-1)
-        failing[..., k] = serial[..., k] | (rest <= COMPOUND_RTOL)
+    failing[..., coupled] = serial[..., coupled] | (np.linalg.norm(residuals, axis=-1) <= COMPOUND_RTOL)
     where = np.asarray(failing.any(axis=-1))
     if not where.any():
         return None
@@ -1159,7 +1232,8 @@ def _compound_legs(
             size = np.linalg.norm(alone, axis=-1)
             is_serial = size <= rtol
             direction = _normalized(np.einsum("...i,...is->...s", alone, leg_locked))
-            line = _nearest_lines(direction, *free)  # a line only if the constraint added stays small
+            # a line only if the constraint added stays small
+            line = _nearest_lines(direction, free[0].__getitem__, free[1])
             near = np.linalg.norm(line - direction, axis=-1) <= COMPOUND_LINE_REACH
             chosen = _normalized(np.where(near[:, None], line, direction))
             part = _branch_part(top, locked, paths[k], chosen[:, None, :], rtol)[:, 0, :]

@@ -145,3 +145,20 @@ def test_error_chunks_of_the_wrong_size():
     table = sk.load_mechanism("h4").joints(np.array([[0.0, 0.0, -750.0, 0.0]] * 3))
     with pytest.raises(ScrewkitValueError, match=r"Expected chunks of 4 configurations in all, got 3\."):
         classify_chunks([table], table, (4,))
+
+
+@pytest.mark.parametrize("name", sk.list_mechanisms())
+def test_a_pose_gets_the_same_bits_alone_and_in_a_batch(name):
+    # the report analyses its pose with the diagram's generic draws as one batch: every number of
+    # the pose must be the one a batch of one gives (the core sums each pose's rows in one order,
+    # whatever the batch's shape: joint tables reordered by name are made contiguous)
+    mechanism = sk.load_mechanism(name)
+    poses = mechanism.random_poses(np.random.default_rng(3), 5)
+    alone, batch = analyze_table(mechanism.joints(poses[2:3])), analyze_table(mechanism.joints(poses))
+    for field in ("reference_point", "length_scale", "actuation_rows", "branch_rows", "transmissions"):
+        np.testing.assert_array_equal(np.asarray(getattr(alone, field))[0], np.asarray(getattr(batch, field))[2])
+    for key, (rows, order) in alone.frames.items():
+        np.testing.assert_array_equal(rows[0], batch.frames[key][0][2], err_msg=key)
+        assert order[0] == batch.frames[key][1][2]
+    for key, values in alone.closeness.items():
+        assert values[0] == batch.closeness[key][2], key

@@ -115,6 +115,28 @@ def test_stated_workspace_box_against_the_inverse_kinematics(name):
     assert mechanism.random_poses(np.random.default_rng(2), 500).shape == (500, len(low))
 
 
+@pytest.mark.parametrize("name", ["v4", "planar_3rrp"])
+def test_reachable_agrees_with_the_inverse_kinematics_pose_by_pose(name):
+    # the family's vectorised test (four-limb) and the halving route (planar 3-RRP) against one IK
+    # call per pose, on draws from a box twice the workspace's size (so both outcomes occur)
+    from screwkit.exceptions import UnreachablePoseError
+
+    mechanism = load_mechanism(name)
+    low, high = np.array([mechanism.workspace[c] for c in mechanism.pose_names]).T
+    middle, half = (low + high) / 2, (high - low)
+    draws = np.random.default_rng(5).uniform(middle - half, middle + half, size=(60, len(low)))
+    expected = []
+    for pose in draws:
+        try:
+            mechanism.configuration(pose)
+            expected.append(True)
+        except UnreachablePoseError:
+            expected.append(False)
+    assert 0 < sum(expected) < len(expected)
+    assert mechanism.reachable(draws).tolist() == expected
+    assert mechanism.reachable(draws[:0]).shape == (0,)
+
+
 @pytest.mark.parametrize("width", [20.0, 100.0, 400.0])
 def test_h4_results_do_not_depend_on_the_chosen_parallelogram_width(width, rng):
     # the rod spacing d is our choice (neither paper gives it): orders and labels must not move

@@ -6,6 +6,7 @@ numpy determinants; the paper's Eqs. (6) and (7) (paper 002, §5.3) are written 
 
 import itertools
 import json
+import random
 import re
 
 import numpy as np
@@ -431,3 +432,30 @@ def test_proof_rejects_a_wrong_vector_form():
     wrong = sympy.Symbol("b")  # not a scalar form of [abcd]: fails at the exact configurations
     with pytest.raises(ScrewkitValueError, match="to be proportional to"):
         _prove_proportional(BracketPolynomial.parse("[abcd]"), VectorDot(wrong, wrong), _Types("abcd", ""))
+
+
+def test_sum_of_vector_forms_is_sympys_canonical_add():
+    # conditions._sum skips Add.flatten when there is nothing to collect: against sympy.Add itself
+    # (same args in the same order, so the same text and the same left-to-right evaluation), on
+    # random sums of the vector forms' products, with like terms, zeros and cancelling pairs
+    from screwkit.conditions import VectorCross, VectorDiff, _sum
+
+    rng = random.Random(7)
+    names = sympy.symbols("a b c d e f")
+    factors = [
+        VectorDot(VectorCross(names[0], names[1]), names[2]),
+        VectorDot(VectorDiff(names[3], names[0]), VectorCross(names[4], names[5])),
+        VectorDot(names[1], names[4]),
+        VectorDot(VectorCross(names[2], names[5]), VectorDiff(names[1], names[3])),
+    ]
+    fast = 0
+    for _ in range(300):
+        terms = []
+        for _ in range(rng.randint(0, 5)):
+            chosen = rng.sample(factors, rng.randint(1, 3))
+            coefficient = sympy.Rational(rng.choice([-3, -1, 0, 1, 2]), rng.choice([1, 2]))
+            terms.append(sympy.Mul(coefficient, *chosen))
+        expected, got = sympy.Add(*terms), _sum(terms)
+        assert got == expected and got.args == expected.args and str(got) == str(expected), terms
+        fast += isinstance(got, sympy.Add) and len({t.as_coeff_Mul()[1] for t in terms if t != 0}) == len(got.args)
+    assert fast > 50  # the path without Add.flatten is taken, not only the fallback

@@ -479,3 +479,32 @@ def test_batch_diagram_points_is_nan_only_where_a_recipe_has_no_point():
         assert np.isnan(value[1]).all() or np.isfinite(value[1]).all()
     with pytest.raises(DegenerateGeometryError, match=r"point a .* does not exist at this pose"):
         diagram_points(diagram.points, posed[1].analysis)
+
+
+def test_catalog_sampler_replays_the_generic_samples_batch_after_batch():
+    # the sampler's first batch is analysed together with the generic draws, the next ones on their
+    # own: both must be generic_samples' batches from one generator seeded 0, in order
+    from screwkit.posed import SAMPLES, generic_samples
+
+    h4 = load_mechanism("h4")
+    diagram, sampler = h4.wrench_diagram()
+    stream = np.random.default_rng(0)
+    first, second = (generic_samples(h4, diagram.points, stream, SAMPLES) for _ in range(2))
+    expected = [*first, *second[:2]]
+    drawn = [sampler(None) for _ in range(SAMPLES + 2)]
+    for got, want in zip(drawn, expected, strict=True):
+        assert got.keys() == want.keys()
+        for label in want:
+            np.testing.assert_array_equal(got[label], want[label])
+    assert not np.array_equal(drawn[0]["a"], drawn[SAMPLES]["a"])
+
+
+def test_a_pose_report_is_the_same_whether_its_analysis_was_read_first():
+    # the report analyses the pose together with the generic draws unless the pose's own analysis
+    # is already there: both routes give the same report, to the last digit of the JSON
+    import json
+
+    h4 = load_mechanism("h4")
+    fresh, read = h4.at([[20.0, -10.0, -720.0, 0.2]])[0], h4.at([[20.0, -10.0, -720.0, 0.2]])[0]
+    assert read.singularity.verdict == "regular"  # reads the pose's analysis first
+    assert json.dumps(fresh.report().to_dict(), default=str) == json.dumps(read.report().to_dict(), default=str)

@@ -354,7 +354,7 @@ def test_compiled_program_matches_the_ops_run_one_by_one(monkeypatch):
 
 
 @needs_numba
-@pytest.mark.parametrize("k", [7, 12, 16])
+@pytest.mark.parametrize("k", [4, 6, 7, 12, 16])
 def test_triangular_keeps_the_singular_values_and_both_paths_are_bit_identical(rng, monkeypatch, k):
     from screwkit import _frames_numba
 
@@ -362,11 +362,12 @@ def test_triangular_keeps_the_singular_values_and_both_paths_are_bit_identical(r
     rows[:, ::3] = 0.0  # zero rows, as in stacked frames
     rows[:5] = 0.0  # an all-zero matrix
     rows[5:10, :, 2] = 0.0  # a zero column
-    compiled = _frames_numba.triangular(np.ascontiguousarray(rows))
+    padded = np.concatenate([rows, np.zeros((40, max(6 - k, 0), 6))], axis=1)  # fewer than 6: zero rows added
+    compiled = _frames_numba.triangular(np.ascontiguousarray(padded))
     monkeypatch.setitem(F._compiled, "_frames_numba", None)
     np.testing.assert_array_equal(F.triangular(rows), compiled)
     assert np.all(np.tril(compiled, -1) == 0)  # upper triangular
     np.testing.assert_allclose(
-        np.linalg.svd(compiled, compute_uv=False), np.linalg.svd(rows, compute_uv=False), atol=1e-13
+        np.linalg.svd(compiled, compute_uv=False), np.linalg.svd(padded, compute_uv=False), atol=1e-13
     )
-    np.testing.assert_array_equal(F.triangular(rows[:, :4]), np.concatenate([rows[:, :4], np.zeros((40, 2, 6))], 1))
+    np.testing.assert_array_equal(F.unpacked(F.packed(compiled)), compiled)  # the 21 entries say it all

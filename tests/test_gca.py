@@ -1172,3 +1172,32 @@ def test_collect_factors_leaves_an_irreducible_sum_whole():
     poly = superbracket_expansion(["ab", "cd", "ef", "gh", "ij", "kl"])  # the general 6-6 platform
     f = collect_factors(poly)
     assert f.parts == () and len(f.factors) == 1 and f.expand() == poly
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_ordering_counts_with_one_shared_label_against_the_expansion(seed):
+    # one label given twice (a diagram's shared point): the counts pair like terms by the exchange
+    # of the two shared slots; against the expansion in each sampled ordering, its like terms
+    # combined by BracketPolynomial and its monomials with a zero bracket dropped
+    from screwkit.gca.expansion import _EXPANSION, _ordering_counts, _orderings
+
+    rng = np.random.default_rng(seed)
+    labels = list("abcdefghijkl")
+    rng.shuffle(labels)
+    positions = labels[:11]
+    positions.insert(int(rng.integers(0, 12)), positions[int(rng.integers(0, 11))])
+    quads = list(itertools.combinations(sorted(set(positions)), 4))
+    zero = {quad: bool(rng.random() < [0.0, 0.05, 0.2, 0.4][seed]) for quad in quads}
+    counts = _ordering_counts(positions, zero)
+    slot_positions, _ = _orderings()
+    merged = 0
+    for index in [0, *rng.choice(46080, size=150, replace=False)]:
+        mapping = dict(zip("abcdefghijkl", (positions[k] for k in slot_positions[index]), strict=True))
+        monomials = [m.relabel(mapping) for m in _EXPANSION]  # the 24 template monomials, one by one
+        kept = [
+            m for m in monomials
+            if all(len(set(b.labels)) == 4 and not zero[b.sorted_labels] for b in m.brackets)
+        ]
+        assert counts[index] == len(BracketPolynomial(kept)), index  # like terms combined
+        merged += len(kept) > counts[index]
+    assert merged > 0  # like terms did combine in some sampled ordering

@@ -390,3 +390,58 @@ def test_error_normalized_reciprocal_product_of_a_zero_screw():
 
     with pytest.raises(DegenerateGeometryError, match="Expected `second` to hold non-zero screws, got the zero screw"):
         normalized_reciprocal_product([0, 0, 1, 0, 0, 0], [0, 0, 0, 0, 0, 0], length_scale=1.0)
+
+
+def test_closeness_is_computed_only_when_asked_and_a_batch_agrees_with_its_poses(monkeypatch):
+    from screwkit import _frames as F
+    from screwkit.catalog import load_mechanism
+
+    calls = []
+    ratio = F.singular_ratio
+    monkeypatch.setattr(F, "singular_ratio", lambda rows, index: calls.append(index) or ratio(rows, index))
+    h4 = load_mechanism("h4")
+    report = h4.at([[0, 0, -750, 0], [30, -20, -750, 0.3], [300, 300, -473.8, np.radians(30)]]).singularities
+    assert report.verdict.tolist() == ["regular"] * 3 and report.global_order.tolist() == [6, 6, 6]
+    assert calls == []  # the labels need no SVD
+    closeness = report.closeness
+    assert sorted(calls) == [2, 6]  # σ_(6 − dof) and σ_6 over σ_1, once each for the whole batch
+    assert report.closeness is closeness  # kept
+    for index in range(3):  # a pose of the batch: its own factors, the same bits
+        one = report[index].closeness
+        assert {k: float(v[index]) for k, v in closeness.items()} == one
+        assert 0.0 < one["constraint"] <= 1.0 and 0.0 < one["actuation"] <= 1.0 and one["serial"] > 0.0
+
+
+@pytest.mark.parametrize("name", ["mcgill_smg", "h4"])
+def test_a_batch_without_views_gives_the_same_bits(monkeypatch, name):
+    # without views the limbs' constraint systems are computed only where an actuation wrench is
+    # searched for a line (the McGill SMG has such poses), and the closeness when asked
+    from screwkit import wrenches as W
+    from screwkit.catalog import load_mechanism
+
+    searched = []
+    search = W._line_search
+    monkeypatch.setattr(W, "_line_search", lambda *args: searched.append(len(args[0])) or search(*args))
+    mechanism = load_mechanism(name)
+    table = mechanism.at(mechanism.random_poses(np.random.default_rng(1), 300)).joints
+    full, lean = W.analyze_table(table), W.analyze_table(table, views=False)
+    assert (sum(searched) > 0) == (name == "mcgill_smg")
+    assert "limb0:W" in full.frames and "limb0:W" not in lean.frames
+    for key in ("global_order", "serial", "transmissions", "actuation_rows", "branch_rows"):
+        np.testing.assert_array_equal(getattr(full, key), getattr(lean, key))
+    for key, value in full.closeness.items():
+        np.testing.assert_array_equal(value, lean.closeness[key])
+
+
+def test_closeness_in_chunks_gives_the_same_bits(monkeypatch):
+    from screwkit import wrenches as W
+    from screwkit.catalog import load_mechanism
+
+    h4 = load_mechanism("h4")
+    poses = h4.random_poses(np.random.default_rng(2), 5)
+    whole = h4.at(poses).closeness
+    monkeypatch.setattr(W, "CLOSENESS_CHUNK", 2)  # three chunks: 2, 2, 1 poses
+    chunked = h4.at(poses).closeness
+    for key, value in whole.items():
+        assert value.shape == (5,)
+        np.testing.assert_array_equal(chunked[key], value)

@@ -114,7 +114,7 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from .. import screw as S
-from .._backend import as_array
+from .._backend import as_array, cross
 from ..exceptions import (
     CatalogError,
     ScrewkitTypeError,
@@ -615,9 +615,11 @@ def _assemble(
     theta: np.ndarray,
     working_mode: tuple[int, int, int, int],
     platform: _Platform,
+    base: _Base,
 ) -> FourLimbConfiguration:
-    """Build the configuration from a pose and the actuated angles that close it."""
-    a, u, j_rot, k_rot = _base(params)
+    """Build the configuration from a pose and the actuated angles that close it (``base``:
+    :func:`_base` of ``params``, computed once by the caller)."""
+    a, u, j_rot, k_rot = base
     batch = pose.shape[:-1]
     cos, sin = np.cos(theta)[..., None], np.sin(theta)[..., None]
     v = cos * j_rot + sin * k_rot  # F_i R_x(θ_i) j (Eq. 2)
@@ -734,11 +736,12 @@ def inverse_kinematics(
     psi = np.arctan2(terms.q, terms.p)
     delta = np.arccos(at_reach(terms.k / terms.rho, terms.condition))
     theta = _wrap(psi - np.array(mode, dtype=float) * delta)
-    return _assemble(params, chi, theta, mode, terms.platform)
+    return _assemble(params, chi, theta, mode, terms.platform, terms.base)
 
 
 class _IKTerms(NamedTuple):
     platform: _Platform
+    base: _Base
     p: np.ndarray  # P_i = d_i·F_i j
     q: np.ndarray  # Q_i = d_i·F_i k
     k: np.ndarray  # K_i = (|d_i|² + b² - l²) / (2b)
@@ -764,7 +767,7 @@ def _ik_terms(params: FourLimbParameters, chi: np.ndarray) -> _IKTerms:
     # a limb stretched or folded exactly to its reach may round to |K_i| a few ulps above ρ_i: at its
     # reach (arccos of ±1, a serial singularity), not out of reach (README, "Tolerance policy")
     reachable = (rho > 0.0) & within_reach(np.where(rho > 0.0, cosine, np.inf), condition)
-    return _IKTerms(platform, big_p, big_q, big_k, rho, condition, reachable)
+    return _IKTerms(platform, base, big_p, big_q, big_k, rho, condition, reachable)
 
 
 def reachable(params: FourLimbParameters, pose: Any) -> np.ndarray:
@@ -860,7 +863,8 @@ def forward_kinematics(
         )
     th = as_array(theta, "theta", (4,), symbolic=False)
     batch = th.shape[:-1]
-    a, _, j_rot, k_rot = _base(params)
+    base = _base(params)
+    a, _, j_rot, k_rot = base
     elbows = a + params.arm_length * (
         np.cos(th)[..., None] * j_rot + np.sin(th)[..., None] * k_rot
     )
@@ -910,7 +914,7 @@ def forward_kinematics(
     failed = np.max(np.abs(f), axis=-1) / scale > rtol
     if params.platform_kind != "screw_pair":
         chi[..., 3] = _wrap(chi[..., 3])
-    config = _assemble(params, chi, _wrap(th), mode, _platform(params, chi))
+    config = _assemble(params, chi, _wrap(th), mode, _platform(params, chi), base)
     wrong_mode = ~failed & np.any(np.sign(config.h) != np.array(mode), axis=-1)
     if failed.any() or wrong_mode.any():
         problems = [
@@ -1001,16 +1005,23 @@ def joints(config: FourLimbConfiguration) -> JointTable:
     # into one array
     batch = config.batch_shape
     screws = np.empty((*batch, 4 + 2 + 4 * 4 * 3, 6))
-    screws[..., :4, :] = S.revolute_twist(config.u, config.a)
+    # the revolute twists (u; a × u) written in place: S.revolute_twist's operations without its
+    # checks (the axes are the base frames' unit vectors and the platform's unit joint axis)
+    screws[..., :4, :3] = config.u
+    screws[..., :4, 3:] = cross(config.a, config.u)
     axis = config.platform_joint_axis
     specs = [JointSpec(f"A{i}", "R", "base", f"arm{i}", 1, True) for i in range(1, 5)]
     for k, (link, name) in enumerate(SUBPLATFORMS):
         point, pitch = config.platform_joint_points[..., k, :], config.platform_joint_pitches[k]
-        twist = S.helical_twist(axis, point, pitch) if pitch else S.revolute_twist(axis, point)
-        screws[..., 4 + k, :] = twist
+        if pitch:
+            screws[..., 4 + k, :] = S.helical_twist(axis, point, pitch)
+        else:
+            screws[..., 4 + k, :3] = axis
+            screws[..., 4 + k, 3:] = cross(point, axis)
         specs.append(JointSpec(name, "H" if pitch else "R", link, "end_effector", 1, False))
-    corners = np.concatenate([config.elbow_corners, config.platform_corners], axis=-2)  # m, n, p, q
-    screws[..., 6:, :] = _sphere_twists(corners).reshape(*batch, 48, 6)
+    spheres = screws[..., 6:, :].reshape(*batch, 4, 4, 3, 6)  # a view: limb, corner m n p q, axis
+    _sphere_twists(config.elbow_corners, spheres[..., :2, :, :])
+    _sphere_twists(config.platform_corners, spheres[..., 2:, :, :])
     for limb in range(4):
         i, platform = limb + 1, limb_platform[limb]
         specs += [
@@ -1023,18 +1034,17 @@ def joints(config: FourLimbConfiguration) -> JointTable:
     return JointTable("base", "end_effector", tuple(specs), screws, dof=4, mobility=4)
 
 
-def _sphere_twists(centres: np.ndarray) -> np.ndarray:
-    """The unit rotations about ``x, y, z`` through each of ``centres (..., 3)``: ``(..., 3, 6)``,
-    the lines ``(e_k; c × e_k)`` of :func:`screwkit.screw.revolute_twist` written out (no
-    validation needed: the directions are the unit axes)."""
-    out = np.zeros((*centres.shape[:-1], 3, 6))
+def _sphere_twists(centres: np.ndarray, out: np.ndarray) -> None:
+    """The unit rotations about ``x, y, z`` through each of ``centres (..., 3)``, written into
+    ``out (..., 3, 6)``: the lines ``(e_k; c × e_k)`` of :func:`screwkit.screw.revolute_twist`
+    written out (no validation needed: the directions are the unit axes)."""
+    out[...] = 0.0
     x, y, z = centres[..., 0], centres[..., 1], centres[..., 2]
     for k in range(3):
         out[..., k, k] = 1.0
     out[..., 0, 4], out[..., 0, 5] = z, -y  # c × e_x = (0, z, −y)
     out[..., 1, 3], out[..., 1, 5] = -z, x  # c × e_y = (−z, 0, x)
     out[..., 2, 3], out[..., 2, 4] = y, -x  # c × e_z = (y, −x, 0)
-    return out
 
 
 def twist_basis(config: FourLimbConfiguration) -> np.ndarray:

@@ -72,6 +72,7 @@ array([0., 0.])
 
 from __future__ import annotations
 
+import functools
 import itertools
 from collections.abc import Mapping
 from dataclasses import dataclass
@@ -460,8 +461,10 @@ def inverse_kinematics(
     return _configuration(params, tuple(int(s) for s in signs), pose, angles)
 
 
+@functools.cache
 def _tan_half_basis() -> np.ndarray:
-    """``T[k + 4, j]``: coefficient of ``t^j`` in ``(1 + i t)^(4 + k) (1 - i t)^(4 - k)``."""
+    """``T[k + 4, j]``: coefficient of ``t^j`` in ``(1 + i t)^(4 + k) (1 - i t)^(4 - k)`` (built on
+    first use: importing ``numpy.polynomial`` is not a cost of loading the catalog's families)."""
     basis = np.zeros((9, 9), dtype=complex)
     for k in range(-4, 5):
         product = np.polynomial.polynomial.polymul(
@@ -472,7 +475,6 @@ def _tan_half_basis() -> np.ndarray:
     return basis
 
 
-_TAN_HALF = _tan_half_basis()
 _SAMPLES = 16  # > 2 * 4: exact Fourier coefficients of a degree-4 trigonometric polynomial
 #: Candidates closer than this (sum of angle differences, rad) are one assembly.
 _SAME_ASSEMBLY = 1e-6
@@ -509,7 +511,7 @@ def _eliminant_roots(
     coefficients = np.fft.fft(samples, axis=-1)[..., np.arange(-4, 5) % _SAMPLES] / _SAMPLES
     psi0 = grid[np.argmax(np.abs(samples), axis=-1)] - np.pi
     shifted = coefficients * np.exp(1j * np.arange(-4, 5) * psi0[..., None])
-    poly = np.real(shifted @ _TAN_HALF)  # ascending powers of t, leading term F(ψ0 + π) != 0
+    poly = np.real(shifted @ _tan_half_basis())  # ascending powers of t, leading term F(ψ0 + π) != 0
     companion = np.zeros((*poly.shape[:-1], 8, 8))
     companion[..., 0, :] = -poly[..., 7::-1] / poly[..., 8:9]
     companion[..., np.arange(1, 8), np.arange(7)] = 1.0

@@ -217,6 +217,8 @@ def _ordering_brackets() -> tuple[np.ndarray, np.ndarray]:
     return np.ascontiguousarray(from_perm), np.ascontiguousarray(from_flip)
 
 
+#: The signs of the 24 template monomials.
+_TEMPLATE_SIGNS = np.array([int(m.coefficient) for m in _EXPANSION], dtype=np.int32)
 #: Permutations scored at once by :func:`_ordering_counts` (× 64 flips each): bounds its temporaries.
 _PERMUTATIONS_PER_CHUNK = 90
 
@@ -243,19 +245,75 @@ def _ordering_counts(positions: Sequence[str], zero: Mapping[tuple[str, ...], bo
     code = code.astype(np.int32)
     n = len(quads) + 1
     chunk = _PERMUTATIONS_PER_CHUNK
-    counts = [
-        _chunk_counts(code[from_perm[:, start : start + chunk, None, :] + from_flip[:, None]], n)
-        for start in range(0, from_perm.shape[1], chunk)
-    ]
+    shared = _shared_slots(positions) if len(unique) == 11 else None  # one label given twice
+    counts = []
+    for start in range(0, from_perm.shape[1], chunk):
+        codes = code[from_perm[:, start : start + chunk, None, :] + from_flip[:, None]]
+        if shared is None:
+            counts.append(_chunk_counts(codes, n))
+        else:
+            counts.append(_chunk_counts_one_shared(codes, shared[64 * start : 64 * (start + chunk)]))
     return np.concatenate(counts)
+
+
+def _shared_slots(positions: Sequence[str]) -> np.ndarray:
+    """For every ordering, the index (:func:`_swaps`) of the pair of slots that hold the two caller
+    positions of the one label given twice, (46080,)."""
+    repeated = next(label for label in positions if positions.count(label) == 2)
+    p, q = (k for k, label in enumerate(positions) if label == repeated)
+    slot_positions, _ = _orderings()
+    first, second = np.argmax(slot_positions == p, axis=1), np.argmax(slot_positions == q, axis=1)
+    low, high = np.minimum(first, second), np.maximum(first, second)
+    return (low * (23 - low)) // 2 + high - low - 1  # the rank of (low, high) among the 66 pairs
+
+
+@functools.cache
+def _swaps() -> tuple[np.ndarray, np.ndarray]:
+    """For each of the 66 pairs of slots ``s < t`` (in ``itertools.combinations`` order), the pairs
+    of template monomials ``(m, m')`` with ``m'`` = ``m`` with ``s`` and ``t`` exchanged, ``m < m'``:
+    ``(66, k)`` indices of ``m`` and of ``m'``, padded with ``-1``."""
+    blocks = [frozenset(frozenset(_SLOTS.index(x) for x in b.labels) for b in m.brackets) for m in _EXPANSION]
+    index = {block: k for k, block in enumerate(blocks)}
+    found = []
+    for s, t in itertools.combinations(range(12), 2):
+        swap = {s: t, t: s}
+        pairs = []
+        for k, block in enumerate(blocks):
+            other = index.get(frozenset(frozenset(swap.get(x, x) for x in b) for b in block))
+            if other is not None and other > k:
+                pairs.append((k, other))
+        found.append(pairs)
+    width = max(len(pairs) for pairs in found)
+    table = np.full((len(found), width, 2), -1)
+    for row, pairs in enumerate(found):
+        for column, pair in enumerate(pairs):
+            table[row, column] = pair
+    return table[..., 0], table[..., 1]
+
+
+def _chunk_counts_one_shared(codes: np.ndarray, shared: np.ndarray) -> np.ndarray:
+    """:func:`_chunk_counts` when one label is given twice, at the slots ``shared`` of each ordering.
+
+    The brackets of a surviving monomial hold distinct labels, and every label but the shared one
+    fixes its slot, so two surviving monomials are like terms exactly when one is the other with
+    the two shared slots exchanged (a pair, :func:`_swaps`): each such pair leaves one monomial,
+    or none when their coefficients cancel.
+    """
+    first, second, third = codes.reshape(3, -1, codes.shape[-1])
+    coefficients = _TEMPLATE_SIGNS * np.sign(first) * np.sign(second) * np.sign(third)
+    mine, theirs = (np.take(table, shared, axis=0) for table in _swaps())
+    valid = mine >= 0
+    a = np.take_along_axis(coefficients, np.where(valid, mine, 0), axis=1)
+    b = np.take_along_axis(coefficients, np.where(valid, theirs, 0), axis=1)
+    merged = valid & (a != 0) & (b != 0)
+    return np.count_nonzero(coefficients, axis=1) - (merged * (1 + (a == -b))).sum(axis=1)
 
 
 def _chunk_counts(codes: np.ndarray, n: int) -> np.ndarray:
     """Surviving monomials per ordering from the codes ``(3, permutations, 64, 24)`` of the brackets
     of each template monomial (``n`` - 1 label sets)."""
     first, second, third = codes.reshape(3, -1, codes.shape[-1])
-    signs = np.array([int(m.coefficient) for m in _EXPANSION], dtype=np.int32)
-    coefficients = signs * np.sign(first) * np.sign(second) * np.sign(third)
+    coefficients = _TEMPLATE_SIGNS * np.sign(first) * np.sign(second) * np.sign(third)
     # Only monomials without a zero bracket can survive. One is identified within its ordering by
     # the sorted triple of its label sets (low, middle, high); like terms share it.
     row, column = np.nonzero(coefficients)
