@@ -5,13 +5,17 @@ translations, Clavel 1988 / Tsai 1996; H4: Schoenflies 3T1R, paper 002 §4, pape
 the numeric core at substituted values (parity), never from the generic code itself.
 """
 
+import dataclasses
 import random
 
 import numpy as np
 import pytest
 import sympy
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from screwkit import _symbolic as Y
+from screwkit import screw as S
 from screwkit.exceptions import ScrewkitTypeError, ScrewkitValueError
 from screwkit.generic import GenericAnalysis, generic_analysis
 from screwkit.joints import revolute, spherical
@@ -348,3 +352,45 @@ def test_error_complex_screw_coordinates_are_refused():
     x = sympy.Symbol("x")
     with pytest.raises(ScrewkitValueError, match="real for real symbols, got I "):
         Y.generic_rank(np.array([[sympy.I * x, 1]], dtype=object))
+
+
+def moved(graph, rotation, translation, unit):
+    """The same twist graph moved by a rigid motion (:func:`screwkit.screw.transform`), its lengths
+    then given in another unit (moments × unit)."""
+    joints = []
+    for u, v, joint in graph.edges(data="joint"):
+        screws = S.transform(joint.screws, rotation, translation)
+        screws[:, 3:] = screws[:, 3:] * unit
+        joints.append((u, v, dataclasses.replace(joint, screws=screws)))
+    return twist_graph(graph.graph["base"], graph.graph["platform"], joints, dof=graph.graph.get("dof"))
+
+
+@settings(max_examples=5, deadline=None)
+@given(
+    quaternion=st.tuples(*[st.integers(-3, 3)] * 4).filter(any),
+    translation=st.tuples(*[st.integers(-5, 5)] * 3),
+    unit=st.sampled_from([sympy.Rational(1, 1000), sympy.Integer(1), sympy.Integer(1000)]),
+)
+def test_generic_answers_do_not_depend_on_the_frame_or_the_length_unit(delta, quaternion, translation, unit):
+    a, b, c, d = (sympy.Integer(q) for q in quaternion)
+    norm = a**2 + b**2 + c**2 + d**2  # an exact rotation from a quaternion (Euler–Rodrigues)
+    rotation = [
+        [(a**2 + b**2 - c**2 - d**2) / norm, 2 * (b * c - a * d) / norm, 2 * (b * d + a * c) / norm],
+        [2 * (b * c + a * d) / norm, (a**2 - b**2 + c**2 - d**2) / norm, 2 * (c * d - a * b) / norm],
+        [2 * (b * d - a * c) / norm, 2 * (c * d + a * b) / norm, (a**2 - b**2 - c**2 + d**2) / norm],
+    ]
+    result = generic_analysis(moved(delta_3ruu(), rotation, translation, unit))
+    assert (result.mobility, result.motion_type, result.constraint_order, result.global_order) == (
+        delta.mobility,
+        delta.motion_type,
+        delta.constraint_order,
+        delta.global_order,
+    )
+    # the moved family's constraint system (couples) is the original one moved (rank of both
+    # together, at a random exact point drawn here)
+    expected = S.transform(delta.constraint_wrenches.basis, rotation, translation)
+    expected[:, 3:] = expected[:, 3:] * unit
+    generator = random.Random(3)
+    values = {s: sympy.Rational(generator.randrange(1, 10**6), 997) for s in delta.symbols}
+    both = sympy.Matrix([*expected.tolist(), *result.constraint_wrenches.basis.tolist()]).xreplace(values)
+    assert both.rank() == delta.constraint_order
