@@ -440,8 +440,9 @@ def _system(rows: Y.GenericRows) -> ScrewSystem:
 
 
 def _actuation_wrench(passive: Y.GenericRows, actuated: Y.GenericRows) -> Y.GenericRows | None:
-    """The first passive row not reciprocal to the actuated twist, lines first (decided at the
-    generic point: the products' values)."""
+    """The first passive row not reciprocal to the actuated twist, lines first (decided on the
+    values at the generic point: the reciprocal product ``w·t0 + w0·t`` of
+    :func:`screwkit.screw.reciprocal_product`, and a line's ``w·w0 = 0``)."""
     twist = actuated.values[0]
     productive = [
         i for i, row in enumerate(passive.values) if sum(row[j] * twist[(j + 3) % 6] for j in range(6)) != 0
