@@ -76,7 +76,7 @@ def test_error_symbolic_nan():
 
 @pytest.mark.parametrize("value", [sympy.I * sympy.Symbol("t"), sympy.I, sympy.sqrt(-2)])
 def test_error_complex_symbolic_entry(value):
-    with pytest.raises(ScrewkitValueError, match="Expected `point` to hold real expressions, got .*I"):
+    with pytest.raises(ScrewkitValueError, match=r"Expected `point` to hold real expressions, got .*I"):
         B.as_array([value, 0, 0], "point", (3,))
 
 
