@@ -200,6 +200,22 @@ def test_wrench_analysis_and_classify_dispatch_symbolic_graphs():
     assert data["global_order"] == 5 and generic.verdict.startswith("generic: actuation")
 
 
+@pytest.mark.parametrize(
+    ("rtol", "error", "message"),
+    [
+        (5, ScrewkitValueError, r"Expected `rtol` to be a number in \[0, 0\.1\], got 5\."),
+        (-1, ScrewkitValueError, r"Expected `rtol` to be a number in \[0, 0\.1\], got -1\."),
+        (float("nan"), ScrewkitValueError, r"Expected `rtol` to be a number in \[0, 0\.1\], got nan\."),
+        ("x", ScrewkitTypeError, r"Expected `rtol` to be a number"),
+    ],
+)
+def test_error_rtol_is_checked_for_symbolic_graphs_too(rtol, error, message):
+    graph = planar_2r(sympy.Symbol("a"))
+    for analyse in (wrench_analysis, classify):
+        with pytest.raises(error, match=message):
+            analyse(graph, rtol=rtol)
+
+
 def test_generic_rank_is_exact_at_a_random_point():
     x, y = sympy.symbols("x y")
     rows = np.array(
