@@ -145,7 +145,7 @@ class PosedMechanism:
     @functools.cached_property
     def joints(self) -> JointTable:
         """The joint table over the batch."""
-        return self.mechanism.family_protocol.joints(self.configuration)
+        return self.mechanism.family_protocol.joint_table(self.configuration)
 
     @functools.cached_property
     def twist_basis(self) -> Array:
@@ -166,7 +166,7 @@ class PosedMechanism:
         try:
             protocol = self.mechanism.family_protocol
             pieces = (
-                protocol.joints(self.mechanism.configuration(flat[start : start + CHUNK], **self.options))
+                protocol.joint_table(self.mechanism.configuration(flat[start : start + CHUNK], **self.options))
                 for start in range(0, max(len(flat), 1), CHUNK)
             )
             # the report's table, asked only by a per-pose view, is this object's (held weakly: a
@@ -401,7 +401,7 @@ def _joint_table(
     alive = posed()
     if alive is not None:
         return alive.joints
-    return mechanism.family_protocol.joints(mechanism.configuration(poses, **options))
+    return mechanism.family_protocol.joint_table(mechanism.configuration(poses, **options))
 
 
 def _reachable_table(mechanism: Any, rng: np.random.Generator, count: int) -> JointTable | None:
