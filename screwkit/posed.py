@@ -164,9 +164,9 @@ class PosedMechanism:
             return label_table(self.joints, rtol=self.rtol, chunk=CHUNK)  # the family's dof
         flat = self.poses.reshape(-1, self.poses.shape[-1])
         try:
-            protocol = self.mechanism.family_protocol
+            protocol, configuration = self.mechanism.family_protocol, self.mechanism.configuration
             pieces = (
-                protocol.joint_table(self.mechanism.configuration(flat[start : start + CHUNK], **self.options))
+                protocol.joint_table(configuration(flat[start : start + CHUNK], **self.options))
                 for start in range(0, max(len(flat), 1), CHUNK)
             )
             # the report's table, asked only by a per-pose view, is this object's (held weakly: a

@@ -83,7 +83,7 @@ class Family:
         >>> broken.joint_table(None)
         Traceback (most recent call last):
         ...
-        screwkit.exceptions.ScrewkitTypeError: Expected the family 'four_limb''s joints(configuration) to return a JointTable, got str.
+        screwkit.exceptions.ScrewkitTypeError: Expected the family 'four_limb''s joints(configuration) to return ...
         """
         table = self.joints(configuration)
         if not isinstance(table, JointTable):
