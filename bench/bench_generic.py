@@ -1,73 +1,69 @@
 """Time the generic (symbolic) analysis of families of mechanisms and print the figures.
 
-Run: ``python bench/bench_generic.py [--full]`` from the repository root. Not a test. ``--full``
-adds the H4-like family with every position *and* direction symbolic (61 symbols, minutes).
+Run: ``python bench/bench_generic.py [--repeat N]`` from the repository root. Not a test. CPU time
+of this process (``time.process_time``), the best and the median of N runs (default 3), each run
+on a freshly built graph with the caches cleared; the machine's load is printed beside. The
+baseline measured in the same run is the numeric core (``wrench_analysis``) on the H4-like family
+at substituted values, so that ratios can be compared across loads.
 """
 
+import os
+import statistics
 import sys
 import time
 from pathlib import Path
 
-import sympy
+import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
+from screwkit import _symbolic
 from screwkit.generic import generic_analysis
-from screwkit.joints import revolute, spherical
-from screwkit.twistgraph import platform_twist_system, twist_graph
-from tests.test_generic import delta_3ruu, four_limb_smg
+from screwkit.twistgraph import platform_twist_system
+from screwkit.wrenches import wrench_analysis
+from tests.test_generic import delta_3ruu, four_limb_smg, fully_symbolic_h4, numeric_values
 
 
-def fully_symbolic_h4():
-    """Four R-(4S) limbs with symbolic base points, axes u_i, elbows, rods d_i, short sides λ_i u_i
-    and a symbolic common axis k of R_I, R_II through symbolic points."""
-
-    def vec(name):
-        return sympy.symbols(f"{name}x {name}y {name}z")
-
-    joints = []
-    for i, sub in zip((1, 2, 3, 4), ("b_I", "b_II", "b_II", "b_I"), strict=True):
-        a, u, m, d = vec(f"a{i}"), vec(f"u{i}"), vec(f"m{i}"), vec(f"d{i}")
-        side = sympy.Symbol(f"l{i}")
-        n = [mj + side * uj for mj, uj in zip(m, u, strict=True)]
-        p = [mj + dj for mj, dj in zip(m, d, strict=True)]
-        q = [nj + dj for nj, dj in zip(n, d, strict=True)]
-        joints += [
-            ("base", f"arm{i}", revolute(f"A{i}", u, a, actuated=True)),
-            (f"arm{i}", f"rod{i}a", spherical(f"S{i}m", m)),
-            (f"rod{i}a", sub, spherical(f"S{i}p", p)),
-            (f"arm{i}", f"rod{i}b", spherical(f"S{i}n", n)),
-            (f"rod{i}b", sub, spherical(f"S{i}q", q)),
-        ]
-    joints += [
-        ("b_I", "ee", revolute("R_I", vec("k"), vec("r1"))),
-        ("b_II", "ee", revolute("R_II", vec("k"), vec("r2"))),
-    ]
-    return twist_graph("base", "ee", joints, dof=4)
+def cpu_times(function, repeat):
+    """CPU seconds of ``repeat`` calls (the generic point's cache cleared before each) and the last result."""
+    times, result = [], None
+    for _ in range(repeat):
+        _symbolic._point.cache_clear()
+        start = time.process_time()
+        result = function()
+        times.append(time.process_time() - start)
+    return times, result
 
 
-def timed(label, function):
-    start = time.perf_counter()
-    result = function()
-    print(f"{label}: {time.perf_counter() - start:.2f} s  {result}")
+def _with_motion_type(result):
+    result.motion_type  # noqa: B018 (the motion type is part of what is timed: decided on the returned basis)
+    return result
+
+
+def report(label, times, result, baseline=None):
+    ratio = f"  ({min(times) / baseline:.0f}× the numeric baseline)" if baseline else ""
+    print(f"{label}: best {min(times):.2f} s, median {statistics.median(times):.2f} s CPU{ratio}  {result}")
 
 
 def main() -> None:
+    repeat = int(sys.argv[sys.argv.index("--repeat") + 1]) if "--repeat" in sys.argv else 3
+    print(f"load average {os.getloadavg()[0]:.2f} (1 min), {os.cpu_count()} cores; best/median of {repeat}")
+    numeric_h4 = fully_symbolic_h4(numeric_values(np.random.default_rng(1)))
+    times, _ = cpu_times(lambda: wrench_analysis(numeric_h4), max(repeat, 5))
+    baseline = min(times)
+    print(f"baseline: numeric wrench_analysis, H4-like at substituted values: {baseline * 1e3:.1f} ms CPU")
     families = [
-        ("Delta-like 3-RUU (13 symbols)", delta_3ruu),
+        ("Delta-like 3-RUU", delta_3ruu),
         ("four-limb SMG, symbolic positions", four_limb_smg),
+        ("H4-like, positions and directions symbolic", fully_symbolic_h4),
     ]
-    if "--full" in sys.argv:
-        families.append(("H4-like, positions and directions symbolic (61 symbols)", fully_symbolic_h4))
     for label, build in families:
-        graph = build()
-        timed(f"generic_analysis, {label}", lambda graph=graph: repr(generic_analysis(graph)))
-    delta = delta_3ruu()
+        times, result = cpu_times(lambda build=build: _with_motion_type(generic_analysis(build())), repeat)
+        report(f"generic_analysis, {label} ({len(result.symbols)} symbols)", times, repr(result), baseline)
     # (method="loop_closure" over symbols solves a 12 x 15 symbolic system: minutes; not timed)
-    timed(
-        "platform_twist_system(method='reduction'), Delta-like",
-        lambda: platform_twist_system(delta, method="reduction").order,
-    )
+    times, result = cpu_times(lambda: platform_twist_system(delta_3ruu(), method="reduction").order, repeat)
+    report("platform_twist_system(method='reduction'), Delta-like", times, f"order {result}")
+    print(f"load average {os.getloadavg()[0]:.2f} (1 min) at the end")
 
 
 if __name__ == "__main__":

@@ -360,6 +360,8 @@ def _checked_sympy(value: Any, name: str) -> sympy.Expr:
     sp = sympy_module()
     if expr.has(sp.nan, sp.oo, -sp.oo, sp.zoo):
         raise ScrewkitValueError(f"Expected `{name}` to hold finite expressions, got {expr}.")
+    if expr.has(sp.I) or expr.is_extended_real is False:  # screws are real (Plücker coordinates)
+        raise ScrewkitValueError(f"Expected `{name}` to hold real expressions, got {expr}.")
     return expr
 
 

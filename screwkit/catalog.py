@@ -223,7 +223,7 @@ class Mechanism:
         >>> table.batch_shape, len(table.specs)
         ((3,), 22)
         """
-        return self.family_protocol.joints(self.configuration(pose, **options))
+        return self.family_protocol.joint_table(self.configuration(pose, **options))
 
     def at(self, poses: Any = None, *, rtol: float | None = None, **options: Any) -> Any:
         """The mechanism at a batch of poses: a frozen :class:`~screwkit.posed.PosedMechanism` whose
@@ -851,6 +851,12 @@ def mechanism_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>"
         parameters = family.parameters(values, source=f"{source}: [parameters]")
     except CatalogError:
         raise
+    except KeyError as err:  # a family that reads a field without checking it is there
+        if not err.args or err.args[0] in values:
+            raise
+        raise CatalogError(
+            f"{source}: [parameters]: missing field `{err.args[0]}` (read by the family {family.name!r})."
+        ) from err
     except ScrewkitError as err:
         text = str(err)  # a family's message may already name the file and table
         prefix = f"{source}: [parameters]"

@@ -18,6 +18,7 @@ __all__ = [
     "DegenerateGeometryError",
     "MissingDependencyError",
     "ScrewkitError",
+    "ScrewkitIndexError",
     "ScrewkitTypeError",
     "ScrewkitValueError",
     "TwistGraphError",
@@ -35,6 +36,10 @@ class ScrewkitValueError(ScrewkitError, ValueError):
 
 class ScrewkitTypeError(ScrewkitError, TypeError):
     """An argument has the wrong type."""
+
+
+class ScrewkitIndexError(ScrewkitError, IndexError):
+    """An index is out of range (e.g. a pose of a batch), so that ``for`` loops stop at the end."""
 
 
 class DegenerateGeometryError(ScrewkitValueError):

@@ -10,11 +10,13 @@ symbolic graph.
 
 It walks the same structure as the numeric core (:func:`screwkit.topology.topology`; paper 002
 Eqs. 1–2): along a chain the twist systems add up and the wrench systems intersect; across
-parallel branches the roles swap. Every order and every choice of generators is decided exactly at
-one random rational point of the symbols (Schwartz–Zippel, :mod:`screwkit._symbolic`); the bases
-are then built symbolically from the chosen generators, and intersections are solved on the few
-unknowns of the smaller system (``W_b ∩ T_others^⊥`` for a chain, ``T_b ∩ W_others^⊥`` across
-branches) by Cramer's rule, so the expressions stay small.
+parallel branches the roles swap. The screws are held as sparse integer polynomials paired with
+their exact values at one random integer point of the symbols (:class:`screwkit._symbolic.GenericRows`);
+every order and every choice of generators is decided on those values (Schwartz–Zippel,
+:mod:`screwkit._symbolic`), and the bases are built symbolically from the chosen generators:
+intersections are solved on the few unknowns of the smaller system (``W_b ∩ T_others^⊥`` for a
+chain, ``T_b ∩ W_others^⊥`` across branches) by Cramer's rule, so the expressions stay small. Only
+the returned bases become sympy expressions.
 
 There is **no pose verdict**: a generic analysis says what the family does at almost every
 configuration. Where it is singular is a condition on the symbols (the superbracket,
@@ -270,60 +272,62 @@ def _specs_and_screws(graph: nx.MultiDiGraph, joint_key: str) -> tuple[tuple[Joi
 
 
 class _GenericEvaluation:
-    """Twist and wrench systems of a topology's nodes (object arrays of independent rows)."""
+    """Twist and wrench systems of a topology's nodes (independent rows, :class:`GenericRows`)."""
 
-    def __init__(self, top: Topology, screws: Array, point: Y.GenericPoint):
+    def __init__(self, top: Topology, screws: Y.GenericRows, point: Y.GenericPoint):
         self.top, self.screws, self.point = top, screws, point
-        self._twists: dict[int, Array] = {}
-        self._wrenches: dict[int, Array] = {}
-        self._identity = np.array(B.to_sympy(1) * np.eye(6, dtype=int), dtype=object)
+        self._twists: dict[int, Y.GenericRows] = {}
+        self._wrenches: dict[int, Y.GenericRows] = {}
+        self._identity = screws.identity()
+        self._none = screws.take([])
 
-    def joint_rows(self, index: int) -> Array:
+    def joint_rows(self, index: int) -> Y.GenericRows:
         start = self.top.columns[index]
-        return self.screws[start : start + self.top.specs[index].dof]
+        return self.screws.take(range(start, start + self.top.specs[index].dof))
 
-    def span(self, rows: Array) -> Array:
-        rows = rows.reshape(-1, 6)
-        return rows[Y.independent_rows(rows, self.point)] if rows.shape[0] else rows
+    def stacked(self, parts: list[Y.GenericRows]) -> Y.GenericRows:
+        return self._none.stack(*parts)
 
-    def within(self, basis: Array, others: list[Array]) -> Array:
-        stacked = np.concatenate([o.reshape(-1, 6) for o in others], axis=0) if others else np.zeros((0, 6))
-        return Y.reciprocal_within(basis, stacked, self.point)
+    def span(self, rows: Y.GenericRows) -> Y.GenericRows:
+        return rows.take(rows.independent())
 
-    def twists(self, index: int) -> Array:
+    def within(self, basis: Y.GenericRows, others: list[Y.GenericRows]) -> Y.GenericRows:
+        return Y.reciprocal_within(basis, self.stacked(others), self.point)
+
+    def twists(self, index: int) -> Y.GenericRows:
         if index not in self._twists:
             node = self.top.nodes[index]
             if node.kind == "joint":
                 assert node.joint is not None
                 result = self.span(self.joint_rows(node.joint))
             elif node.kind == "series":
-                result = self.span(np.concatenate([self.twists(c) for c in node.children], axis=0))
+                result = self.span(self.stacked([self.twists(c) for c in node.children]))
             else:  # across branches: T_b ∩ (Σ W_others)^⊥ with b the smallest twist system
-                smallest = min(node.children, key=lambda c: self.twists(c).shape[0])
+                smallest = min(node.children, key=lambda c: len(self.twists(c)))
                 others = [self.wrenches(c) for c in node.children if c != smallest]
                 result = self.within(self.twists(smallest), others)
             self._twists[index] = result
         return self._twists[index]
 
-    def wrenches(self, index: int) -> Array:
+    def wrenches(self, index: int) -> Y.GenericRows:
         if index not in self._wrenches:
             node = self.top.nodes[index]
             if node.kind == "parallel":
-                result = self.span(np.concatenate([self.wrenches(c) for c in node.children], axis=0))
+                result = self.span(self.stacked([self.wrenches(c) for c in node.children]))
             elif node.kind == "joint":
                 result = self.within(self._identity, [self.twists(index)])
             else:  # along a chain: W_b ∩ (Σ T_others)^⊥ with b the child of the largest twist system
-                largest = max(node.children, key=lambda c: self.twists(c).shape[0])
+                largest = max(node.children, key=lambda c: len(self.twists(c)))
                 others = [self.twists(c) for c in node.children if c != largest]
                 result = self.within(self.wrenches(largest), others)
             self._wrenches[index] = result
         return self._wrenches[index]
 
-    def reciprocal_of_sum(self, nodes: tuple[int, ...], extra: list[Array]) -> Array:
+    def reciprocal_of_sum(self, nodes: tuple[int, ...], extra: list[Y.GenericRows]) -> Y.GenericRows:
         """``(Σ T_nodes + span(extra))^⊥`` as ``W_b ∩ (the rest)^⊥``."""
         if not nodes:
             return self.within(self._identity, extra)
-        largest = max(nodes, key=lambda c: self.twists(c).shape[0])
+        largest = max(nodes, key=lambda c: len(self.twists(c)))
         return self.within(self.wrenches(largest), [*(self.twists(c) for c in nodes if c != largest), *extra])
 
 
@@ -377,11 +381,17 @@ def generic_analysis(
     if stated is not None and not B.is_dof(stated):
         raise TwistGraphError(f"Expected `dof` to be an integer in 0..6, got {stated!r}.")
     point = Y.generic_point(screws)
-    core = _GenericEvaluation(top, screws, point)
+    rows = Y.GenericRows.from_exprs(screws, point)
+    with rows.precision():
+        return _analysis(top, stated, screws, _GenericEvaluation(top, rows, point))
+
+
+def _analysis(top: Topology, stated: Any, screws: Array, core: _GenericEvaluation) -> GenericAnalysis:
+    """The generic answers from the node systems (in the point's arithmetic context)."""
     assert top.root is not None
     platform = core.twists(top.root)
     # the nominal dof is the generic mobility, the actuators no more (screwkit.motion.resolve_dof)
-    nominal = resolve_dof(None if stated is None else int(stated), _system(platform).order, top.actuated)
+    nominal = resolve_dof(None if stated is None else int(stated), len(platform), top.actuated)
     constraint = core.wrenches(top.root)
     legs = tuple(
         GenericLeg(
@@ -392,58 +402,54 @@ def generic_analysis(
         )
         for i in top.legs
     )
-    limbs = []
+    limbs, wrenches = [], []
     for plan in top.limbs:
-        actuated = plan.sign * core.joint_rows(plan.index)[0]
-        locked = core.span(
-            np.concatenate([core.twists(n) for n in plan.siblings], axis=0)
-            if plan.siblings
-            else np.zeros((0, 6))
-        )
-        free = core.span(np.concatenate([locked.reshape(-1, 6), actuated[None]], axis=0))
+        actuated = core.joint_rows(plan.index).take([0]).scaled(int(plan.sign))
+        locked = core.span(core.stacked([core.twists(n) for n in plan.siblings]))
         passive = core.reciprocal_of_sum(plan.siblings, [])
-        limb_constraint = core.reciprocal_of_sum(plan.siblings, [actuated[None]])
+        wrench = _actuation_wrench(passive, actuated)
+        if wrench is not None:
+            wrenches.append(wrench)
         limbs.append(
             GenericLimb(
                 plan.actuated_joint,
                 plan.joints,
-                _system(free),
-                _system(limb_constraint),
+                _system(core.span(locked.stack(actuated))),
+                _system(core.reciprocal_of_sum(plan.siblings, [actuated])),
                 _system(passive),
-                actuated,
-                _actuation_wrench(passive, actuated, point),
+                plan.sign * screws[top.columns[plan.index]],
+                None if wrench is None else wrench.exprs()[0],
             )
         )
-    wrench_rows = [limb.actuation_wrench for limb in limbs if limb.actuation_wrench is not None]
-    stacked = np.concatenate([constraint.reshape(-1, 6), np.array(wrench_rows, dtype=object).reshape(-1, 6)])
-    global_order = Y.generic_rank(stacked, point) if stacked.shape[0] else 0
-    symbols = tuple(sorted(point.symbols, key=str))
+    global_order = len(core.span(constraint.stack(*wrenches)))
     return GenericAnalysis(
         topology=top,
         dof=int(nominal),
-        symbols=symbols,
+        symbols=tuple(sorted(core.point.symbols, key=str)),
         platform_twists=_system(platform),
         constraint_wrenches=_system(constraint),
         compound_legs=legs,
         limbs=tuple(limbs),
-        global_order=int(global_order),
-        exact=point.exact,
+        global_order=global_order,
+        exact=core.screws.exact,
     )
 
 
-def _system(rows: Array) -> ScrewSystem:
-    return ScrewSystem.from_independent(np.asarray(rows, dtype=object).reshape(-1, 6))
+def _system(rows: Y.GenericRows) -> ScrewSystem:
+    return ScrewSystem.from_independent(rows.exprs())
 
 
-def _actuation_wrench(passive: Array, actuated: Array, point: Y.GenericPoint) -> Array | None:
-    """The first passive row not reciprocal to the actuated twist, lines first (generic decisions)."""
-    rows = [np.asarray(row, dtype=object) for row in passive.reshape(-1, 6)]
-
-    def value(expr: Any) -> Any:
-        return point.value(B.to_sympy(expr).expand())
-
-    productive = [row for row in rows if value(S.reciprocal_product(row, actuated)) != 0]
-    lines = [row for row in productive if value(B.dot(row[:3], row[3:])) == 0]
-    for row in itertools.chain(lines, productive):
-        return row
+def _actuation_wrench(passive: Y.GenericRows, actuated: Y.GenericRows) -> Y.GenericRows | None:
+    """The first passive row not reciprocal to the actuated twist, lines first (decided on the
+    values at the generic point: the reciprocal product ``w·t0 + w0·t`` of
+    :func:`screwkit.screw.reciprocal_product`, and a line's ``w·w0 = 0``)."""
+    twist = actuated.values[0]
+    productive = [
+        i for i, row in enumerate(passive.values) if sum(row[j] * twist[(j + 3) % 6] for j in range(6)) != 0
+    ]
+    lines = [
+        i for i in productive if sum(passive.values[i][j] * passive.values[i][j + 3] for j in range(3)) == 0
+    ]
+    for i in itertools.chain(lines, productive):
+        return passive.take([i])
     return None

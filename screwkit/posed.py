@@ -36,7 +36,7 @@ import networkx as nx
 import numpy as np
 
 from . import _backend as B
-from .exceptions import ScrewkitError, ScrewkitValueError
+from .exceptions import ScrewkitError, ScrewkitIndexError, ScrewkitValueError
 from .jacobians import WrenchJacobians, jacobians_from_wrenches
 from .joints import JointTable
 from .singularity import SingularityReport, classify_chunks, label_table
@@ -116,6 +116,19 @@ class PosedMechanism:
     def __len__(self) -> int:
         return self.shape[0]
 
+    def __iter__(self) -> Iterator[Pose]:
+        """Every pose of the batch in turn, in C order over :attr:`shape` (for a batch of shape
+        ``(n,)``: ``posed[0]``, ..., ``posed[n - 1]``).
+
+        Examples
+        --------
+        >>> from screwkit.catalog import load_mechanism
+        >>> posed = load_mechanism("h4").at([[30, -20, -750, 0.3], [0, 0, -800, 0.1]])
+        >>> [pose.singularity.verdict for pose in posed]
+        ['regular', 'regular']
+        """
+        return (self[index] for index in np.ndindex(*self.shape))
+
     def __repr__(self) -> str:
         return f"PosedMechanism({self.mechanism.name!r}, shape={self.shape}, rtol={self.rtol:g})"
 
@@ -132,7 +145,7 @@ class PosedMechanism:
     @functools.cached_property
     def joints(self) -> JointTable:
         """The joint table over the batch."""
-        return self.mechanism.family_protocol.joints(self.configuration)
+        return self.mechanism.family_protocol.joint_table(self.configuration)
 
     @functools.cached_property
     def twist_basis(self) -> Array:
@@ -151,9 +164,9 @@ class PosedMechanism:
             return label_table(self.joints, rtol=self.rtol, chunk=CHUNK)  # the family's dof
         flat = self.poses.reshape(-1, self.poses.shape[-1])
         try:
-            protocol = self.mechanism.family_protocol
+            protocol, configuration = self.mechanism.family_protocol, self.mechanism.configuration
             pieces = (
-                protocol.joints(self.mechanism.configuration(flat[start : start + CHUNK], **self.options))
+                protocol.joint_table(configuration(flat[start : start + CHUNK], **self.options))
                 for start in range(0, max(len(flat), 1), CHUNK)
             )
             # the report's table, asked only by a per-pose view, is this object's (held weakly: a
@@ -204,7 +217,12 @@ class PosedMechanism:
     def __getitem__(self, index: Any) -> Pose:
         try:
             flat = np.arange(int(np.prod(self.shape))).reshape(self.shape)[index]
-        except (IndexError, TypeError, ValueError) as err:
+        except IndexError as err:  # out of range: an IndexError too, so a for loop stops there
+            raise ScrewkitIndexError(
+                f"Expected `index` to pick one pose of the batch of shape {self.shape}, got {index!r} "
+                "(out of range)."
+            ) from err
+        except (TypeError, ValueError) as err:
             raise ScrewkitValueError(
                 f"Expected `index` to pick one pose of the batch of shape {self.shape}, got {index!r}."
             ) from err
@@ -335,6 +353,32 @@ class Pose:
 
         return diagram, ReplaySampler(produce)
 
+    @functools.cached_property
+    def diagram(self) -> Any:
+        """The wrench diagram at this pose (:class:`screwkit.diagram.WrenchDiagram`; the first item
+        of :meth:`diagram_and_sampler`)."""
+        return self.diagram_and_sampler()[0]
+
+    @functools.cached_property
+    def superbracket(self) -> Any:
+        """The superbracket of this pose's wrench diagram, expanded, simplified, factored and
+        interpreted (:func:`screwkit.diagram.superbracket_analysis`; what :meth:`report` shows).
+
+        Raises
+        ------
+        ScrewkitValueError
+            If the mechanism has no wrench diagram of six lines (the reasons found at generic poses).
+        """
+        from .diagram import superbracket_analysis
+
+        diagram, sampler = self.diagram_and_sampler()
+        if diagram.degenerate:
+            raise ScrewkitValueError(
+                f"Expected a wrench diagram of six lines for the superbracket of {self.mechanism.name}, "
+                f"got none: {'; '.join(diagram.degenerate)}."
+            )
+        return superbracket_analysis(diagram, sampler)
+
     def report(self, *, superbracket: bool = True, progress: Any = None) -> Any:
         """The whole analysis report at this pose (:class:`screwkit.report.AnalysisReport`).
 
@@ -357,7 +401,7 @@ def _joint_table(
     alive = posed()
     if alive is not None:
         return alive.joints
-    return mechanism.family_protocol.joints(mechanism.configuration(poses, **options))
+    return mechanism.family_protocol.joint_table(mechanism.configuration(poses, **options))
 
 
 def _reachable_table(mechanism: Any, rng: np.random.Generator, count: int) -> JointTable | None:

@@ -471,7 +471,21 @@ def analyze(
     if text.endswith(".toml") and file_kind(load_toml(text)) == "snapshot":
         return _graph_report(load_snapshot(text), text, pose, tolerance, superbracket, "a snapshot", step)
     mechanism = target if isinstance(target, Mechanism) else load_mechanism(target)
-    return pose_report(mechanism.at(pose, rtol=tolerance)[0], superbracket=superbracket, progress=step)
+    return pose_report(_one_pose(mechanism, pose, tolerance), superbracket=superbracket, progress=step)
+
+
+def _one_pose(mechanism: Mechanism, pose: Any, rtol: float) -> Any:
+    """The mechanism at one pose (a batch is for :meth:`Mechanism.at`: its reports pose by pose)."""
+    if pose is None:
+        return mechanism.at(rtol=rtol)[0]
+    array = B.as_array(pose, "pose", (len(mechanism.pose_names),), symbolic=False)
+    if array.ndim != 1:
+        raise ScrewkitValueError(
+            f"Expected `pose` to be one pose of shape ({len(mechanism.pose_names)},) "
+            f"({', '.join(mechanism.pose_names)}), got shape {array.shape}; for many poses use "
+            "mechanism.at(poses) and each pose's report()."
+        )
+    return mechanism.at(array, rtol=rtol)[0]
 
 
 #: The stages :func:`analyze` reports to its ``progress`` callback, in order.

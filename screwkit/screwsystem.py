@@ -260,6 +260,17 @@ class ScrewSystem:
         rank = B.screw_rank(stacked, rtol=self.rtol, length_scale=self.length_scale)
         return bool(rank == self.order)
 
+    def __contains__(self, item: Any) -> bool:
+        """``screw in system`` is :meth:`contains`.
+
+        Examples
+        --------
+        >>> from screwkit.screw import couple
+        >>> Screw.couple([1, 1, 0]) in ScrewSystem.span([couple([1, 0, 0]), couple([0, 1, 0])])
+        True
+        """
+        return self.contains(item)
+
     def is_equivalent(self, other: ScrewSystem) -> bool:
         """True if both systems are the same set of screws.
 

@@ -1297,7 +1297,8 @@ def wrench_analysis(
         no cost when the pose is regular with one actuator per freedom).
     joint_key : str
     rtol : float, default 1e-9
-        Relative tolerance of every rank decision.
+        Relative tolerance of every rank decision (checked, and unused, for a symbolic graph: its
+        generic decisions are exact).
 
     Returns
     -------
@@ -1324,6 +1325,7 @@ def wrench_analysis(
     """
     from .generic import generic_analysis, is_symbolic_graph
 
+    rtol = checked_rtol(rtol)
     if isinstance(graph, nx.MultiDiGraph) and is_symbolic_graph(graph, joint_key=joint_key):
         return generic_analysis(graph, dof=dof, joint_key=joint_key)  # a family: generic answers
     from .motion import settled_dof

@@ -74,6 +74,17 @@ def test_error_symbolic_nan():
         B.as_array([sympy.nan, sympy.Symbol("x")], "v", (2,))
 
 
+@pytest.mark.parametrize("value", [sympy.I * sympy.Symbol("t"), sympy.I, sympy.sqrt(-2)])
+def test_error_complex_symbolic_entry(value):
+    with pytest.raises(ScrewkitValueError, match=r"Expected `point` to hold real expressions, got .*I"):
+        B.as_array([value, 0, 0], "point", (3,))
+
+
+def test_real_symbolic_entries_are_accepted():
+    t = sympy.Symbol("t")
+    assert list(B.as_array([sympy.sqrt(t), t, sympy.Rational(1, 2)], "point", (3,))) == [sympy.sqrt(t), t, sympy.Rational(1, 2)]
+
+
 def test_is_dof_accepts_numpy_integers_and_rejects_booleans():
     assert B.is_dof(np.int64(4)) and B.is_dof(0) and not B.is_dof(True) and not B.is_dof(np.bool_(True))
     assert not B.is_dof(4.0) and not B.is_dof(-1)

@@ -1,5 +1,6 @@
 """Batched labels: parity with the single-pose analysis, at regular and singular poses; errors."""
 
+import dataclasses
 import gc
 import weakref
 
@@ -162,3 +163,41 @@ def test_a_pose_gets_the_same_bits_alone_and_in_a_batch(name):
         assert order[0] == batch.frames[key][1][2]
     for key, values in alone.closeness.items():
         assert values[0] == batch.closeness[key][2], key
+
+
+def test_a_posed_batch_iterates_over_its_poses_in_c_order(rng):
+    h4 = sk.load_mechanism("h4")
+    poses = np.vstack([random_poses(rng, 5), singular_pose(0)])
+    posed = h4.at(poses)
+    assert [pose.singularity.verdict for pose in posed] == list(posed.verdicts)
+    assert [pose.flat_index for pose in posed] == list(range(6))
+    grid = h4.at(poses.reshape(2, 3, 4))  # every pose of a grid, row by row (np.ndindex)
+    assert [tuple(pose.pose) for pose in grid] == [tuple(p) for p in poses]
+    with pytest.raises(IndexError, match=r"shape \(6,\), got 6 \(out of range\)"):
+        posed[6]
+
+
+def test_a_pose_gives_its_diagram_and_superbracket_as_the_report_does():
+    pose = sk.load_mechanism("h4").at([0.0, 0.0, -800.0, 0.1])[0]
+    report = pose.report()
+    assert str(pose.diagram) == str(report.diagram)
+    factored = pose.superbracket.simplification.factored.to_dict()["text"]
+    assert factored == report.superbracket.simplification.factored.to_dict()["text"]
+
+
+def test_error_a_pose_without_a_superbracket_says_why(monkeypatch):
+    # no catalog robot lacks a diagram: give the pose one with the reasons a generic pose would find
+    pose = sk.load_mechanism("planar_3rrp").at()[0]
+    diagram, sampler = pose.diagram_and_sampler()
+    degenerate = dataclasses.replace(diagram, degenerate=("limb I: a constraint couple, not a line",))
+    monkeypatch.setattr(type(pose), "diagram_and_sampler", lambda self: (degenerate, sampler))
+    with pytest.raises(ScrewkitValueError, match=r"Expected a wrench diagram of six lines for the superbracket "
+                       r"of Planar 3-RRP, got none: limb I: a constraint couple, not a line\."):
+        _ = pose.superbracket
+
+
+@pytest.mark.parametrize("pose", [np.zeros((0, 4)), [[30, -20, -750, 0.3], [0, 0, -800, 0.1]]])
+def test_error_analyze_takes_one_pose(pose):
+    with pytest.raises(ScrewkitValueError, match=r"Expected `pose` to be one pose of shape \(4,\) \(x, y, z, phi\), "
+                       r"got shape \(\d, 4\); for many poses use mechanism.at\(poses\)"):
+        sk.analyze("h4", pose, superbracket=False)

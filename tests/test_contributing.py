@@ -10,6 +10,8 @@ position. The test measures concurrency independently, by the determinant of the
 ``l_k = (A_k, 1) × (B_k, 1)`` in homogeneous planar coordinates.
 """
 
+import copy
+import dataclasses
 import inspect
 import re
 import subprocess
@@ -23,7 +25,7 @@ import pytest
 from screwkit import Family, JointTable, register
 from screwkit import screw as S
 from screwkit.catalog import mechanism_from_mapping
-from screwkit.exceptions import ScrewkitTypeError, ScrewkitValueError
+from screwkit.exceptions import CatalogError, ScrewkitTypeError, ScrewkitValueError
 from screwkit.families import families
 
 # ---- the example of CONTRIBUTING.md, as written there (registration in the fixture below) ----------
@@ -183,3 +185,20 @@ def test_contributing_shows_this_code():
 def test_contributing_code_runs_as_written():
     done = subprocess.run([sys.executable, "-c", contributing_code()], capture_output=True, text=True, check=True)
     assert "verdict\n  actuation singularity (dof 3)" in done.stdout
+
+
+def test_error_a_field_the_family_reads_but_the_file_lacks(mechanism):
+    # the example's parameters() reads mapping["platform"] without checking it: the catalog says which
+    # field is missing instead of letting a KeyError through
+    mapping = copy.deepcopy(MAPPING)
+    del mapping["parameters"]["platform"]
+    with pytest.raises(CatalogError, match=r"<mapping>: \[parameters\]: missing field `platform` "
+                       r"\(read by the family 'planar_3rpr'\)\."):
+        mechanism_from_mapping(mapping)
+
+
+def test_error_a_family_whose_joints_are_not_a_joint_table(mechanism, monkeypatch):
+    monkeypatch.setitem(families(), FAMILY.name, dataclasses.replace(FAMILY, joints=lambda configuration: "rows"))
+    with pytest.raises(ScrewkitTypeError, match=r"Expected the family 'planar_3rpr''s joints\(configuration\) "
+                       r"to return a JointTable, got str\."):
+        _ = mechanism.at().verdicts

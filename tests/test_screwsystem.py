@@ -346,3 +346,12 @@ def test_motion_type_is_invariant_under_rigid_motions_and_units(rng):
             moved = S.transform(rows, rotation, rng.normal(size=3) * 10)
             scaled = moved * np.r_[np.ones(3), np.full(3, 1000.0)]  # metres to millimetres
             assert motion_type(moved) == expected and motion_type(scaled) == expected
+
+
+def test_in_is_contains_for_screws_arrays_and_systems():
+    plane = ScrewSystem.span([S.couple([1, 0, 0]), S.couple([0, 1, 0])])
+    assert S.Screw.couple([1, 1, 0]) in plane and [0, 0, 0, 2, -1, 0] in plane
+    assert S.Screw.couple([0, 0, 1]) not in plane and S.Screw.force([1, 0, 0], [0, 0, 0]) not in plane
+    assert ScrewSystem.span([S.couple([1, -1, 0])]) in plane
+    with pytest.raises(ScrewkitValueError, match="Expected `item`"):
+        _ = [1, 2, 3] in plane

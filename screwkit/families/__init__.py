@@ -72,6 +72,27 @@ class Family:
     angle_names: tuple[str, ...]
     parameter_kinds: Mapping[str, str] = field(default_factory=dict)
 
+    def joint_table(self, configuration: Any) -> JointTable:
+        """``joints(configuration)``, checked to be a :class:`~screwkit.joints.JointTable` (what the
+        analysis core reads; a family's mistake is named here, not inside the core).
+
+        Examples
+        --------
+        >>> import dataclasses
+        >>> broken = dataclasses.replace(families()["four_limb"], joints=lambda configuration: "table")
+        >>> broken.joint_table(None)
+        Traceback (most recent call last):
+        ...
+        screwkit.exceptions.ScrewkitTypeError: Expected the family 'four_limb''s joints(configuration) ...
+        """
+        table = self.joints(configuration)
+        if not isinstance(table, JointTable):
+            raise ScrewkitTypeError(
+                f"Expected the family {self.name!r}'s joints(configuration) to return a JointTable, "
+                f"got {type(table).__name__}."
+            )
+        return table
+
 
 @functools.cache
 def families() -> dict[str, Family]:
