@@ -561,7 +561,8 @@ def limb_systems(
     batch = actuated.shape[:-1]
     kernels = _numba_kernels(_size(batch[:-1]))
     if kernels is not None and 0 not in batch:
-        flat = [np.ascontiguousarray(np.reshape(a, (-1, *a.shape[len(batch) - 1 :])), dtype=float)
+        # strided views as they are (the program's block): no copies, the same arithmetic
+        flat = [np.reshape(np.asarray(a, dtype=float), (-1, *a.shape[len(batch) - 1 :]))
                 for a in (locked, passive, actuated)]
         order = np.ascontiguousarray(np.reshape(locked_order, (-1, batch[-1])), dtype=np.int64)
         out = kernels.limb_systems(flat[0], order, flat[1], flat[2], float(rtol))

@@ -1082,8 +1082,13 @@ def _leg_residuals(top: Topology, rows: Array, leg_wrenches: list[Frame]) -> Arr
     coupled = _coupled(top)
     if not coupled:
         return None
-    frames = np.stack([leg_wrenches[_leg_of(top, k)][0] for k in coupled], axis=-3)  # (..., m, 6, 6)
-    return F.residual(rows[..., coupled, None, :], frames)[..., 0, :]
+    legs = [_leg_of(top, k) for k in coupled]
+    out = np.empty((*rows.shape[:-2], len(coupled), 6))
+    for leg in dict.fromkeys(legs):  # each leg's limbs against its frame (no stacked copies of it)
+        positions = [i for i, other in enumerate(legs) if other == leg]
+        limbs = [coupled[i] for i in positions]
+        out[..., positions, :] = F.residual(rows[..., limbs, :], leg_wrenches[leg][0])
+    return out
 
 
 def _apart_from_legs(top: Topology, rows: Array, residuals: Array | None) -> Array:
