@@ -539,8 +539,8 @@ def limb_systems(
       serial);
     * the direction of the actuation wrench: ``SWAP t⊥`` projected on the ``passive`` rows
       ``(..., l, 6, 6)`` (orthonormal, zero beyond their order), unit (zero if the projection is):
-      a wrench reciprocal to every passive joint and not to ``t`` (paper 002 §3, the transmission
-      wrench of a limb), clean where ``t⊥`` is round-off.
+      a wrench reciprocal to every passive joint and not to ``t`` (paper 002 §3 and §4.3: the
+      limb's actuation wrench, the actuator locked), clean where ``t⊥`` is round-off.
 
     Sums run left to right from ``0.0`` (:func:`sum_in_order`), as the compiled kernel
     (:func:`screwkit._frames_numba.limb_systems`): the two paths agree bit for bit.
@@ -635,10 +635,10 @@ def scaled_magnitudes(rows: Array, rtol: float) -> Array:
 def transmissions(raw: Array, twists: Array, rtol: float) -> tuple[Array, Array]:
     """Unit wrenches and their transmission indices: ``raw (..., l, 6)`` wrench rows made unit
     (:func:`unit_rows`) and ``|w ∘ t| / (N(w) N(t))`` with the ``twists (..., l, 6)``
-    (:func:`scaled_magnitudes`; zero where a magnitude is; paper 002 §3's transmission index in
-    scaled coordinates, :func:`screwkit.wrenches.normalized_reciprocal_product` with ``L = 1``).
-    Compiled per pose for large batches (:func:`screwkit._frames_numba.transmissions`), the same
-    operations in the same order.
+    (:func:`scaled_magnitudes`; zero where a magnitude is): the transmission index, paper 004 §1's
+    virtual coefficient, in scaled coordinates (``L = 1`` in
+    :func:`screwkit.wrenches.normalized_reciprocal_product`). Compiled per pose for large batches
+    (:func:`screwkit._frames_numba.transmissions`), the same operations in the same order.
 
     Examples
     --------
