@@ -424,7 +424,7 @@ def _two_planes(term: DottedMonomial, types: _Types) -> tuple[sympy.Expr, str] |
             offset = s if point in types.infinite else VectorDiff(s, sympy.Symbol(origin))
             return VectorDot(normal, offset)
 
-        expr = value(n_p, p0, x) * value(n_q, q0, y) - value(n_p, p0, y) * value(n_q, q0, x)
+        expr = _sum([value(n_p, p0, x) * value(n_q, q0, y), -value(n_p, p0, y) * value(n_q, q0, x)])
     statement = (
         f"line {_word([x, y])} meets the line where planes {_word(planes[0])} and "
         f"{_word(planes[1])} intersect"
