@@ -387,6 +387,22 @@ def triangular(rows: Array) -> Array:  # pragma: no cover - compiled
     return out
 
 
+@njit(cache=True, inline="always")
+def _unit_axis(screws: Array, p: int, j: int) -> tuple[float, ...]:  # pragma: no cover - compiled
+    """Of screw ``screws[p, j]``: ``(f, u, foot)`` with ``f`` 1.0 for a finite axis (0.0 for a couple),
+    ``u`` its unit direction (zero for a couple) and ``foot = d × m / |d|²`` the foot of the axis
+    from the origin, the operations of the numpy path (:func:`screwkit.twistgraph._frame_sums_numpy`)."""
+    d0, d1, d2 = screws[p, j, 0], screws[p, j, 1], screws[p, j, 2]
+    m0, m1, m2 = screws[p, j, 3], screws[p, j, 4], screws[p, j, 5]
+    size = d0 * d0 + d1 * d1 + d2 * d2
+    finite = size > 0
+    safe = size if finite else 1.0
+    root = math.sqrt(safe)
+    f = 1.0 if finite else 0.0
+    foot0, foot1, foot2 = (d1 * m2 - d2 * m1) / safe, (d2 * m0 - d0 * m2) / safe, (d0 * m1 - d1 * m0) / safe
+    return f, d0 / root * f, d1 / root * f, d2 / root * f, foot0, foot1, foot2
+
+
 @njit(cache=True)
 def frame_sums(screws: Array) -> tuple[Array, Array, Array, Array]:  # pragma: no cover - compiled
     """The sums of :func:`screwkit.twistgraph.mechanism_frame` over ``screws (n, k, 6)``: the
@@ -405,16 +421,8 @@ def frame_sums(screws: Array) -> tuple[Array, Array, Array, Array]:  # pragma: n
         r0 = r1 = r2 = 0.0
         far = 0.0
         for j in range(k):
-            d0, d1, d2 = screws[p, j, 0], screws[p, j, 1], screws[p, j, 2]
-            m0, m1, m2 = screws[p, j, 3], screws[p, j, 4], screws[p, j, 5]
-            size = d0 * d0 + d1 * d1 + d2 * d2
-            finite = size > 0
-            safe = size if finite else 1.0
-            root = math.sqrt(safe)
-            f = 1.0 if finite else 0.0
-            u0, u1, u2 = d0 / root * f, d1 / root * f, d2 / root * f
-            f0, f1, f2 = (d1 * m2 - d2 * m1) / safe, (d2 * m0 - d0 * m2) / safe, (d0 * m1 - d1 * m0) / safe
-            finite_count += finite
+            f, u0, u1, u2, f0, f1, f2 = _unit_axis(screws, p, j)
+            finite_count += f > 0
             t00 += u0 * u0
             t01 += u0 * u1
             t02 += u0 * u2
@@ -451,17 +459,8 @@ def frame_spread(screws: Array, point: Array) -> Array:  # pragma: no cover - co
         c0, c1, c2 = point[p, 0], point[p, 1], point[p, 2]
         total = 0.0
         for j in range(k):
-            d0, d1, d2 = screws[p, j, 0], screws[p, j, 1], screws[p, j, 2]
-            m0, m1, m2 = screws[p, j, 3], screws[p, j, 4], screws[p, j, 5]
-            size = d0 * d0 + d1 * d1 + d2 * d2
-            finite = size > 0
-            safe = size if finite else 1.0
-            root = math.sqrt(safe)
-            f = 1.0 if finite else 0.0
-            u0, u1, u2 = d0 / root * f, d1 / root * f, d2 / root * f
-            a0 = c0 - (d1 * m2 - d2 * m1) / safe
-            a1 = c1 - (d2 * m0 - d0 * m2) / safe
-            a2 = c2 - (d0 * m1 - d1 * m0) / safe
+            f, u0, u1, u2, f0, f1, f2 = _unit_axis(screws, p, j)
+            a0, a1, a2 = c0 - f0, c1 - f1, c2 - f2
             along = u0 * a0 + u1 * a1 + u2 * a2
             a0, a1, a2 = (a0 - u0 * along) * f, (a1 - u1 * along) * f, (a2 - u2 * along) * f
             total += a0 * a0 + a1 * a1 + a2 * a2
