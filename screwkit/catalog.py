@@ -73,7 +73,6 @@ import inspect
 import math
 import os
 import stat
-import sys
 import unicodedata
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
@@ -336,10 +335,11 @@ class Mechanism:
     def reachable(self, poses: Array, **options: Any) -> Array:
         """Which poses ``(m, n)`` (API units) the inverse kinematics accepts, ``(m,)`` bool.
 
-        The family module's own vectorised ``reachable(parameters, poses)`` when it has one and no
-        option changes the inverse kinematics' domain (the four-limb family: every working mode
-        reaches the same poses), else one batch call of :meth:`configuration`, halved where a
-        batch is refused (:class:`~screwkit.exceptions.UnreachablePoseError`).
+        The family's vectorised ``reachable(parameters, poses)`` (:class:`~screwkit.families.Family`)
+        when it has one and no option changes the inverse kinematics' domain (the four-limb
+        family: every working mode reaches the same poses), else one batch call of
+        :meth:`configuration`, halved where a batch is refused
+        (:class:`~screwkit.exceptions.UnreachablePoseError`).
 
         Examples
         --------
@@ -348,9 +348,8 @@ class Mechanism:
         """
         if len(poses) == 0:
             return np.zeros(0, dtype=bool)
-        solve = self.family_protocol.inverse_kinematics
-        test = getattr(sys.modules.get(getattr(solve, "__module__", "")), "reachable", None)
-        if callable(test) and set(options) <= {"working_mode"}:
+        test = self.family_protocol.reachable
+        if test is not None and set(options) <= {"working_mode"}:
             return np.asarray(test(self.parameters, poses), dtype=bool).reshape(len(poses))
         return self._reachable_by_halving(poses, options)
 

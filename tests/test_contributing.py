@@ -160,6 +160,8 @@ REGISTER_ERRORS = [
      r"Expected `family.pose_names` to be a tuple of str, got \['x'\]"),
     (Family("odd", *[print] * 4, ("x",), ("phi",)), ScrewkitValueError,
      r"Expected `family.angle_names` to be some of the pose coordinates \('x',\), got \('phi',\)"),
+    (Family("odd", *[print] * 4, ("x",), (), reachable=True), ScrewkitTypeError,
+     r"Expected `family.reachable` to be callable or None, got bool"),
 ]
 
 

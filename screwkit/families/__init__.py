@@ -14,6 +14,10 @@ A family is four functions and the names of its pose coordinates:
     The platform's nominal twists ``(..., dof, 6)``, one per pose coordinate (the columns of
     ``A`` in :func:`screwkit.jacobians.jacobians_from_wrenches`).
 
+Optionally ``reachable(parameters, poses)``: which poses ``(..., n)`` the inverse kinematics
+accepts in every working mode, ``(...,)`` bool, vectorised (without it,
+:meth:`screwkit.catalog.Mechanism.reachable` bisects the batch around the refused poses).
+
 Adding a robot: write those four functions, wrap them in a :class:`Family` and :func:`register` it
 (``CONTRIBUTING.md`` has a worked example); a catalog mapping or file can then name it.
 
@@ -56,6 +60,8 @@ class Family:
         parameter may be (:mod:`screwkit.catalog` converts lengths to the file's length unit and
         angles to radians, and refuses a unit of the wrong kind); parameters not named here take
         any known unit.
+    reachable : callable or None
+        ``reachable(parameters, poses) -> (...,) bool``, the optional vectorised reach test.
 
     Examples
     --------
@@ -71,6 +77,7 @@ class Family:
     pose_names: tuple[str, ...]
     angle_names: tuple[str, ...]
     parameter_kinds: Mapping[str, str] = field(default_factory=dict)
+    reachable: Callable[[Any, np.ndarray], np.ndarray] | None = None
 
     def joint_table(self, configuration: Any) -> JointTable:
         """``joints(configuration)``, checked to be a :class:`~screwkit.joints.JointTable` (what the
@@ -123,6 +130,7 @@ def families() -> dict[str, Family]:
             smg,
             ("phi",),
             four_limb_kinds,
+            four_limb.reachable,
         ),
         "mcgill_smg": Family(
             "mcgill_smg",
@@ -202,6 +210,9 @@ def register(family: Family) -> Family:
         names = getattr(family, attribute)
         if not isinstance(names, tuple) or not all(isinstance(n, str) for n in names):
             raise ScrewkitTypeError(f"Expected `family.{attribute}` to be a tuple of str, got {names!r}.")
+    if family.reachable is not None and not callable(family.reachable):
+        got = type(family.reachable).__name__
+        raise ScrewkitTypeError(f"Expected `family.reachable` to be callable or None, got {got}.")
     kinds = family.parameter_kinds
     if not isinstance(kinds, Mapping) or not set(kinds.values()) <= {"length", "angle", "number"}:
         raise ScrewkitTypeError(
