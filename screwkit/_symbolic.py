@@ -60,6 +60,7 @@ __all__ = [
     "generic_point",
     "generic_rank",
     "independent_rows",
+    "is_zero",
     "nullspace",
     "primitive",
     "reciprocal_within",
@@ -315,8 +316,16 @@ def _precision(exact: bool) -> contextlib.AbstractContextManager[Any]:
     return mpmath.workdps(_DIGITS)
 
 
-def _is_zero(value: Any, scale: Any) -> bool:
-    if isinstance(value, Fraction):
+def is_zero(value: Any, scale: Any) -> bool:
+    """Whether a value at the generic point is zero: exactly for an int or Fraction, else within
+    :data:`FLOAT_RTOL` of ``scale`` (60-digit values carry round-off).
+
+    Examples
+    --------
+    >>> is_zero(Fraction(0), 1), is_zero(1e-50, 1.0), is_zero(1e-30, 1.0)
+    (True, True, False)
+    """
+    if isinstance(value, int | Fraction):
         return value == 0
     return bool(abs(value) <= FLOAT_RTOL * scale)
 
@@ -335,7 +344,7 @@ def _echelon(numbers: list[list[Any]]) -> tuple[list[int], list[int]]:
             factor = work[column]
             if factor != 0:
                 work = [a - factor * b for a, b in zip(work, pivot_row, strict=True)]
-        candidates = [(abs(v), k) for k, v in enumerate(work) if not _is_zero(v, scale)]
+        candidates = [(abs(v), k) for k, v in enumerate(work) if not is_zero(v, scale)]
         if not candidates:
             continue
         column = max(candidates)[1]
@@ -458,21 +467,26 @@ def _primitive_rows(
     polys: list[list[Any]], values: list[list[Any]], width: int, ring: Any, point: GenericPoint
 ) -> GenericRows:
     """Rows made :func:`primitive`, their values divided by the common factor's value (read off the
-    entry with the fewest terms)."""
+    entry with the fewest terms). At a point that is not rational the values of derived rows carry
+    round-off (a polynomial that is identically zero may have a tiny value), so there the reduced
+    polynomials are evaluated again instead, in 60 digits."""
     generators = _generator_values(ring, point)
+    exact = all(isinstance(g, int | Fraction) for g in generators)
     out_polys, out_values = [], []
     for row, row_values in zip(polys, values, strict=True):
         reduced = primitive(row)
-        candidates = [j for j, v in enumerate(row_values) if v != 0]
-        if candidates:
-            j = min(candidates, key=lambda j: len(reduced[j]))
-            factor = _quotient(row_values[j], _evaluate(reduced[j], generators))  # the common factor's value
-            row_values = [_quotient(v, factor) for v in row_values]
+        if not exact:
+            with _precision(exact):
+                row_values = [_evaluate(p, generators) if p else 0 for p in reduced]
+        else:
+            candidates = [j for j, v in enumerate(row_values) if reduced[j] and v != 0]
+            if candidates:
+                j = min(candidates, key=lambda j: len(reduced[j]))
+                factor = _quotient(row_values[j], _evaluate(reduced[j], generators))  # common factor's value
+                row_values = [_quotient(v, factor) for v in row_values]
         out_polys.append(reduced)
         out_values.append(row_values)
-    return GenericRows(
-        out_polys, out_values, width, ring, all(isinstance(g, int | Fraction) for g in generators)
-    )
+    return GenericRows(out_polys, out_values, width, ring, exact)
 
 
 def _quotient(numerator: Any, denominator: Any) -> Any:

@@ -441,15 +441,20 @@ def _system(rows: Y.GenericRows) -> ScrewSystem:
 
 def _actuation_wrench(passive: Y.GenericRows, actuated: Y.GenericRows) -> Y.GenericRows | None:
     """The first passive row not reciprocal to the actuated twist, lines first (decided on the
-    values at the generic point: the reciprocal product ``w·t0 + w0·t`` of
+    values at the generic point by :func:`screwkit._symbolic.is_zero`, relative to the products of
+    the rows' sizes: the reciprocal product ``w·t0 + w0·t`` of
     :func:`screwkit.screw.reciprocal_product`, and a line's ``w·w0 = 0``)."""
     twist = actuated.values[0]
-    productive = [
-        i for i, row in enumerate(passive.values) if sum(row[j] * twist[(j + 3) % 6] for j in range(6)) != 0
-    ]
-    lines = [
-        i for i in productive if sum(passive.values[i][j] * passive.values[i][j + 3] for j in range(3)) == 0
-    ]
+
+    def size(row: list[Any]) -> Any:
+        return max(abs(v) for v in row)
+
+    def product(a: list[Any], b: list[Any]) -> Any:  # a·b0 + a0·b
+        return sum(a[j] * b[j + 3] + a[j + 3] * b[j] for j in range(3))
+
+    rows = passive.values
+    productive = [i for i, r in enumerate(rows) if not Y.is_zero(product(r, twist), size(r) * size(twist))]
+    lines = [i for i in productive if Y.is_zero(product(rows[i], rows[i]), size(rows[i]) ** 2)]
     for i in itertools.chain(lines, productive):
         return passive.take([i])
     return None

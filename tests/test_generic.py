@@ -8,6 +8,7 @@ the numeric core at substituted values (parity), never from the generic code its
 import dataclasses
 import random
 
+import mpmath
 import numpy as np
 import pytest
 import sympy
@@ -362,6 +363,43 @@ def test_an_entry_that_is_not_rational_at_the_point_is_decided_in_60_digits():
     assert Y.generic_rank(np.array([[root, 1, 0], [1, root, 0]], dtype=object)) == 2
     polynomial = np.array([[w, 1, 0]], dtype=object)  # the same symbol, no root: exact again
     assert Y.GenericRows.from_exprs(polynomial, Y.generic_point(polynomial)).exact
+
+
+def test_null_spaces_and_reciprocal_systems_in_60_digits():
+    # a Cramer minor that is identically zero has a round-off value in 60 digits: it must not be
+    # taken for the common factor (it was: ZeroDivisionError). Hand: [1, -√a, 0, 0] and e4 span
+    # the null space of [[√a, 1, x, 0], [√a (y + z), y + z, 1, 0]] (rows independent: x (y + z) ≠ 1)
+    a, x, y, z = sympy.symbols("a x y z")
+    root = sympy.sqrt(a)
+    matrix = np.array([[root, 1, x, 0], [sympy.expand(root * (y + z)), y + z, 1, 0]], dtype=object)
+    kernel = Y.nullspace(matrix)
+    assert kernel.shape == (2, 4)
+    assert all(sympy.expand(v) == 0 for v in (sympy.Matrix(matrix) * sympy.Matrix(kernel).T))
+    assert sympy.Matrix(kernel).rank() == 2
+    wrenches = np.array([[0, 0, 0, root, 1, x], [0, 0, 0, sympy.expand(root * (y + z)), y + z, 1]], dtype=object)
+    twists = ScrewSystem.span(wrenches).reciprocal()
+    assert twists.order == 4
+    assert all(sympy.expand(S.reciprocal_product(t, w)) == 0 for t in twists.basis for w in wrenches)
+
+
+def test_a_line_is_chosen_first_when_its_60_digit_test_carries_round_off():
+    # rows derived in 60 digits carry round-off: a line's w·w0 is then ~1e-60 of its size, not 0;
+    # the actuation wrench must still be the line (the pitched row comes first in the system)
+    from screwkit.generic import _actuation_wrench
+
+    a, y, z, q = sympy.symbols("a_root y z q")
+    root = sympy.sqrt(a)
+    passive = np.array([[1, 0, 0, 1, 0, 0], [root, 1, 0, y + z, -sympy.expand(root * (y + z)), 0]], dtype=object)
+    twist = np.array([[0, 0, 1, q, 1, 0]], dtype=object)  # reciprocal to neither row
+    point = Y.generic_point(np.vstack([passive, twist]))
+    rows, actuated = Y.GenericRows.from_exprs(passive, point), Y.GenericRows.from_exprs(twist, point)
+    assert not rows.exact
+    with rows.precision():
+        line = rows.values[1]
+        rows.values[1] = line[:3] + [v * (1 + mpmath.mpf("1e-55")) for v in line[3:]]  # round-off
+        assert sum(rows.values[1][j] * rows.values[1][j + 3] for j in range(3)) != 0
+        chosen = _actuation_wrench(rows, actuated)
+    assert chosen is not None and chosen.exprs().tolist() == [passive[1].tolist()]
 
 
 def test_error_complex_screw_coordinates_are_refused():
