@@ -147,7 +147,7 @@ class GenericPoint:
             result = sp.N(work, _DIGITS)
             if not result.is_real:
                 raise ScrewkitValueError(
-                    f"Expected screw coordinates that are real for real symbols, got {expr} "
+                    f"Expected `rows` to hold screw coordinates that are real for real symbols, got {expr} "
                     "(not real at a generic point)."
                 )
             import mpmath
