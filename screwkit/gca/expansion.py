@@ -199,32 +199,37 @@ def _orderings() -> tuple[np.ndarray, np.ndarray]:
 
 
 @functools.cache
-def _ordering_brackets() -> tuple[np.ndarray, np.ndarray]:
-    """The caller positions of each bracket of the 24 template monomials (gca.md §2.1) under every
-    ordering, coded as one index into the 12^4 ordered 4-tuples, as two parts: ``(3, 720, 24)`` from
-    the permutations and ``(3, 64, 24)`` from the flips; ordering ``64 π + f`` has their sum.
+def _permutation_brackets() -> np.ndarray:
+    """The caller positions of each bracket of the 24 template monomials (gca.md §2.1) under each of
+    the 720 line permutations without flips, coded as one index into the 12^4 ordered 4-tuples,
+    ``(3, 720, 24)``.
 
-    Slot ``2k + bit`` of ordering ``(π, f)`` holds caller position ``2 π[k] + (bit xor f[k])``, so a
-    bracket's code ``Σ_s 12^(3-s) position_s`` is a part from ``π`` plus a part from ``f``.
+    Ordering ``(π, 0)`` puts caller position ``2 π[k] + bit`` in slot ``2k + bit``, so a bracket's
+    code is ``Σ_s 12^(3-s) position_s``.
     """
     brackets = [m.brackets for m in _EXPANSION]
     slots = np.array([[[_SLOTS.index(x) for x in b.labels] for b in t] for t in brackets])  # (24, 3, 4)
-    perms, flips = _line_orders()
+    perms, _ = _line_orders()
     weights = 12 ** np.arange(3, -1, -1)
-    line, bit = slots // 2, slots % 2
-    from_perm = (2 * perms[:, line] * weights).sum(axis=-1).transpose(2, 0, 1)
-    from_flip = ((bit ^ flips[:, line]) * weights).sum(axis=-1).transpose(2, 0, 1)
-    return np.ascontiguousarray(from_perm), np.ascontiguousarray(from_flip)
+    positions = 2 * perms[:, slots // 2] + slots % 2  # (720, 24, 3, 4)
+    return np.ascontiguousarray((positions * weights).sum(axis=-1).transpose(2, 0, 1))
 
 
 #: The signs of the 24 template monomials.
 _TEMPLATE_SIGNS = np.array([int(m.coefficient) for m in _EXPANSION], dtype=np.int32)
-#: Permutations scored at once by :func:`_ordering_counts` (× 64 flips each): bounds its temporaries.
-_PERMUTATIONS_PER_CHUNK = 90
 
 
 def _ordering_counts(positions: Sequence[str], zero: Mapping[tuple[str, ...], bool]) -> np.ndarray:
-    """Number of surviving monomials (after combining like terms) for every ordering, (46080,)."""
+    """Number of surviving monomials (after combining like terms) for every ordering, (46080,).
+
+    The count does not depend on the flips: exchanging the two points of any line maps the 24
+    template monomials of gca.md §2.1 onto themselves with every coefficient negated (the expansion
+    stays in standard form; the superbracket changes sign as a join does), a property of the template
+    that ``tests/test_gca.py`` checks exactly, monomial by monomial. So the polynomial of ordering
+    ``(π, f)`` is ``±`` that of ``(π, 0)``, the same monomials surviving and combining: the 720
+    permutations are scored and each count is repeated over its 64 flips (ordering ``64 π + f``,
+    :func:`_orderings`).
+    """
     unique = sorted(set(positions))
     quads = list(itertools.combinations(range(len(unique)), 4))
     quad_id = np.zeros((len(unique),) * 4, dtype=np.int32)
@@ -240,78 +245,13 @@ def _ordering_counts(positions: Sequence[str], zero: Mapping[tuple[str, ...], bo
     distinct = np.all([tuples[:, i] != tuples[:, j] for i, j in pairs], axis=0)
     ids = quad_id[tuple(np.sort(tuples, axis=1).T)]
     code = np.where(distinct & alive[ids], (1 - 2 * (inversions % 2)) * (ids + 1), 0)
-
-    from_perm, from_flip = _ordering_brackets()
-    code = code.astype(np.int32)
-    n = len(quads) + 1
-    chunk = _PERMUTATIONS_PER_CHUNK
-    shared = _shared_slots(positions) if len(unique) == 11 else None  # one label given twice
-    counts = []
-    for start in range(0, from_perm.shape[1], chunk):
-        codes = code[from_perm[:, start : start + chunk, None, :] + from_flip[:, None]]
-        if shared is None:
-            counts.append(_chunk_counts(codes, n))
-        else:
-            counts.append(_chunk_counts_one_shared(codes, shared[64 * start : 64 * (start + chunk)]))
-    return np.concatenate(counts)
+    counts = _survivor_counts(code[_permutation_brackets()], len(quads) + 1)
+    return np.repeat(counts, len(_line_orders()[1]))
 
 
-def _shared_slots(positions: Sequence[str]) -> np.ndarray:
-    """For every ordering, the index (:func:`_swaps`) of the pair of slots that hold the two caller
-    positions of the one label given twice, (46080,)."""
-    repeated = next(label for label in positions if positions.count(label) == 2)
-    p, q = (k for k, label in enumerate(positions) if label == repeated)
-    slot_positions, _ = _orderings()
-    first, second = np.argmax(slot_positions == p, axis=1), np.argmax(slot_positions == q, axis=1)
-    low, high = np.minimum(first, second), np.maximum(first, second)
-    return (low * (23 - low)) // 2 + high - low - 1  # the rank of (low, high) among the 66 pairs
-
-
-@functools.cache
-def _swaps() -> tuple[np.ndarray, np.ndarray]:
-    """For each of the 66 pairs of slots ``s < t`` (in ``itertools.combinations`` order), the pairs
-    of template monomials ``(m, m')`` with ``m'`` = ``m`` with ``s`` and ``t`` exchanged, ``m < m'``:
-    ``(66, k)`` indices of ``m`` and of ``m'``, padded with ``-1``."""
-    blocks = [frozenset(frozenset(_SLOTS.index(x) for x in b.labels) for b in m.brackets) for m in _EXPANSION]
-    index = {block: k for k, block in enumerate(blocks)}
-    found = []
-    for s, t in itertools.combinations(range(12), 2):
-        swap = {s: t, t: s}
-        pairs = []
-        for k, block in enumerate(blocks):
-            other = index.get(frozenset(frozenset(swap.get(x, x) for x in b) for b in block))
-            if other is not None and other > k:
-                pairs.append((k, other))
-        found.append(pairs)
-    width = max(len(pairs) for pairs in found)
-    table = np.full((len(found), width, 2), -1)
-    for row, pairs in enumerate(found):
-        for column, pair in enumerate(pairs):
-            table[row, column] = pair
-    return table[..., 0], table[..., 1]
-
-
-def _chunk_counts_one_shared(codes: np.ndarray, shared: np.ndarray) -> np.ndarray:
-    """:func:`_chunk_counts` when one label is given twice, at the slots ``shared`` of each ordering.
-
-    The brackets of a surviving monomial hold distinct labels, and every label but the shared one
-    fixes its slot, so two surviving monomials are like terms exactly when one is the other with
-    the two shared slots exchanged (a pair, :func:`_swaps`): each such pair leaves one monomial,
-    or none when their coefficients cancel.
-    """
-    first, second, third = codes.reshape(3, -1, codes.shape[-1])
-    coefficients = _TEMPLATE_SIGNS * np.sign(first) * np.sign(second) * np.sign(third)
-    mine, theirs = (np.take(table, shared, axis=0) for table in _swaps())
-    valid = mine >= 0
-    a = np.take_along_axis(coefficients, np.where(valid, mine, 0), axis=1)
-    b = np.take_along_axis(coefficients, np.where(valid, theirs, 0), axis=1)
-    merged = valid & (a != 0) & (b != 0)
-    return np.count_nonzero(coefficients, axis=1) - (merged * (1 + (a == -b))).sum(axis=1)
-
-
-def _chunk_counts(codes: np.ndarray, n: int) -> np.ndarray:
-    """Surviving monomials per ordering from the codes ``(3, permutations, 64, 24)`` of the brackets
-    of each template monomial (``n`` - 1 label sets)."""
+def _survivor_counts(codes: np.ndarray, n: int) -> np.ndarray:
+    """Surviving monomials per ordering from the codes ``(3, orderings, 24)`` of the three brackets of
+    each template monomial (:func:`_ordering_counts`; ``n`` - 1 label sets)."""
     first, second, third = codes.reshape(3, -1, codes.shape[-1])
     coefficients = _TEMPLATE_SIGNS * np.sign(first) * np.sign(second) * np.sign(third)
     # Only monomials without a zero bracket can survive. One is identified within its ordering by
