@@ -180,22 +180,20 @@ def _line_orders() -> tuple[np.ndarray, np.ndarray]:
     return perms, flips
 
 
-@functools.cache
-def _orderings() -> tuple[np.ndarray, np.ndarray]:
-    """All 6!·2^6 orderings as slot -> caller position maps (46080, 12), and their signs.
+def _ordering(index: int) -> tuple[np.ndarray, int]:
+    """Ordering ``index`` (of the 6!·2^6 = 46 080) as its slot -> caller position map (12,) and its
+    sign.
 
-    Ordering ``(π, f)`` puts the caller's line ``π[k]`` in place ``k``, its points swapped if
-    ``f[k]``; the identity comes first. Its superbracket is ``sgn(π)·(-1)^Σf`` times the caller's
-    (swapping two rows or negating one row of the 6×6 matrix flips the sign).
+    Ordering ``64 π + f`` (``π`` a permutation in ``itertools`` order, ``f`` a flip) puts the
+    caller's line ``π[k]`` in place ``k``, its points swapped if ``f[k]``; the identity comes first.
+    Its superbracket is ``sgn(π)·(-1)^Σf`` times the caller's (swapping two rows or negating one row
+    of the 6×6 matrix flips the sign).
     """
     perms, flips = _line_orders()
-    first = 2 * perms[:, None, :] + flips[None, :, :]
-    second = 2 * perms[:, None, :] + 1 - flips[None, :, :]
-    slot_positions = np.stack([first, second], axis=-1).reshape(-1, 12)
-    inversions = np.sum([perms[:, i] > perms[:, j] for i, j in itertools.combinations(range(6), 2)], axis=0)
-    perm_signs = 1 - 2 * (inversions % 2)
-    signs = (perm_signs[:, None] * (-1) ** flips.sum(axis=1)[None, :]).reshape(-1)
-    return slot_positions, signs
+    perm, flip = perms[index // len(flips)], flips[index % len(flips)]
+    slot_positions = np.stack([2 * perm + flip, 2 * perm + 1 - flip], axis=-1).reshape(12)
+    inversions = sum(int(perm[i] > perm[j]) for i, j in itertools.combinations(range(6), 2))
+    return slot_positions, (-1) ** (inversions + int(flip.sum()))
 
 
 @functools.cache
@@ -205,14 +203,17 @@ def _permutation_brackets() -> np.ndarray:
     ``(3, 720, 24)``.
 
     Ordering ``(π, 0)`` puts caller position ``2 π[k] + bit`` in slot ``2k + bit``, so a bracket's
-    code is ``Σ_s 12^(3-s) position_s``.
+    code ``Σ_s 12^(3-s) position_s`` is linear in ``π``: ``π @ weights + offsets``.
     """
-    brackets = [m.brackets for m in _EXPANSION]
-    slots = np.array([[[_SLOTS.index(x) for x in b.labels] for b in t] for t in brackets])  # (24, 3, 4)
+    slots = np.array([[[_SLOTS.index(x) for x in b.labels] for b in m.brackets] for m in _EXPANSION])
+    line, bit = slots.transpose(1, 0, 2) // 2, slots.transpose(1, 0, 2) % 2  # (3, 24, 4)
+    place = 12 ** np.arange(3, -1, -1)
+    weights = np.zeros((6, 3, 24), dtype=np.int64)
+    for k in range(6):
+        weights[k] = (2 * place * (line == k)).sum(axis=-1)
     perms, _ = _line_orders()
-    weights = 12 ** np.arange(3, -1, -1)
-    positions = 2 * perms[:, slots // 2] + slots % 2  # (720, 24, 3, 4)
-    return np.ascontiguousarray((positions * weights).sum(axis=-1).transpose(2, 0, 1))
+    codes = np.einsum("pk,kbm->bpm", perms, weights) + (bit * place).sum(axis=-1)[:, None, :]
+    return np.ascontiguousarray(codes, dtype=np.intp)
 
 
 #: The signs of the 24 template monomials.
@@ -220,15 +221,14 @@ _TEMPLATE_SIGNS = np.array([int(m.coefficient) for m in _EXPANSION], dtype=np.in
 
 
 def _ordering_counts(positions: Sequence[str], zero: Mapping[tuple[str, ...], bool]) -> np.ndarray:
-    """Number of surviving monomials (after combining like terms) for every ordering, (46080,).
+    """Number of surviving monomials (after combining like terms) per line permutation, (720,).
 
     The count does not depend on the flips: exchanging the two points of any line maps the 24
     template monomials of gca.md §2.1 onto themselves with every coefficient negated (the expansion
     stays in standard form; the superbracket changes sign as a join does), a property of the template
     that ``tests/test_gca.py`` checks exactly, monomial by monomial. So the polynomial of ordering
     ``(π, f)`` is ``±`` that of ``(π, 0)``, the same monomials surviving and combining: the 720
-    permutations are scored and each count is repeated over its 64 flips (ordering ``64 π + f``,
-    :func:`_orderings`).
+    permutations are scored: ordering ``64 π + f`` (:func:`_ordering`) has the count of ``π``.
     """
     unique = sorted(set(positions))
     quads = list(itertools.combinations(range(len(unique)), 4))
@@ -245,8 +245,7 @@ def _ordering_counts(positions: Sequence[str], zero: Mapping[tuple[str, ...], bo
     distinct = np.all([tuples[:, i] != tuples[:, j] for i, j in pairs], axis=0)
     ids = quad_id[tuple(np.sort(tuples, axis=1).T)]
     code = np.where(distinct & alive[ids], (1 - 2 * (inversions % 2)) * (ids + 1), 0)
-    counts = _survivor_counts(code[_permutation_brackets()], len(quads) + 1)
-    return np.repeat(counts, len(_line_orders()[1]))
+    return _survivor_counts(code[_permutation_brackets()], len(quads) + 1)
 
 
 def _survivor_counts(codes: np.ndarray, n: int) -> np.ndarray:
@@ -324,21 +323,19 @@ def _best_ordering(
     positions = [label for line in pairs for label in line]
     quads = list(itertools.combinations(sorted(set(positions)), 4))
     zero = _vanishing_quads(samples, quads, rtol)
-    counts = _ordering_counts(positions, zero)
-    best = int(np.argmin(counts))  # ties: the first, so the caller's order wins if it is optimal
-    slot_positions, signs = _orderings()
-    chosen = tuple(
-        (positions[slot_positions[best, 2 * k]], positions[slot_positions[best, 2 * k + 1]])
-        for k in range(6)
-    )
+    counts = _ordering_counts(positions, zero)  # per permutation, the same for its 64 flips
+    flips = len(_line_orders()[1])
+    # ties: the first, so the caller's order wins if it is optimal
+    slot_positions, sign = _ordering(flips * int(np.argmin(counts)))
+    chosen = tuple((positions[slot_positions[2 * k]], positions[slot_positions[2 * k + 1]]) for k in range(6))
     polynomial = _drop_zero_monomials(superbracket_expansion(chosen), samples, rtol)
     values, tallies = np.unique(counts, return_counts=True)
     return OrderingSearch(
         lines=chosen,
-        sign=int(signs[best]),
+        sign=sign,
         polynomial=polynomial,
         caller_count=int(counts[0]),
-        histogram=tuple((int(v), int(t)) for v, t in zip(values, tallies, strict=True)),
+        histogram=tuple((int(v), flips * int(t)) for v, t in zip(values, tallies, strict=True)),
     )
 
 
