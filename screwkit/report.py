@@ -622,7 +622,7 @@ def _finish(
         pose,
         pose_names,
         graph,
-        equivalent_twist_graph(graph),
+        equivalent_twist_graph(graph, tree=analysis.tree),  # the core's decomposition, not a second one
         analysis,
         classify_analysis(analysis),
         diagram,
