@@ -20,6 +20,7 @@ Examples
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -348,14 +349,20 @@ class ScrewSystem:
         centre = np.zeros(3) if near is None else B.as_array(near, "near", (3,), symbolic=False)
         if centre.shape != (3,):
             raise ScrewkitValueError(f"Expected `near` to have shape (3,), got {centre.shape}.")
+        rows = np.ascontiguousarray(self.basis, dtype=float).tobytes()
+        given = None if near is None else np.asarray(centre, dtype=float).tobytes()
+        return _readable(rows, self.rtol, self.length_scale, given).copy()
+
+    def _readable_about(self, near: Array | None) -> Array:
+        """:meth:`readable_basis` of a numeric system (what :func:`_readable` remembers)."""
         length = float(self.length_scale or 1.0)
         origin = _axes_centre(self.basis, length, self.rtol)
         if np.linalg.norm(origin) > 10.0 * length:
             # far from the frame's origin the moments dwarf the length scale and every rank decision
             # below would judge rounding: decide about a point among the axes, then move back
             local = ScrewSystem(_about(self.basis, origin), rtol=self.rtol, length_scale=self.length_scale)
-            return _about(local._readable_numeric(np.zeros(3) if near is None else centre - origin), -origin)
-        return self._readable_numeric(centre)
+            return _about(local._readable_numeric(np.zeros(3) if near is None else near - origin), -origin)
+        return self._readable_numeric(np.zeros(3) if near is None else near)
 
     def _readable_numeric(self, centre: Array) -> Array:
         """:meth:`readable_basis` of a numeric system in its own frame (axes placed near ``centre``)."""
@@ -480,6 +487,20 @@ def _rows(screws: Any, name: str) -> Array:
     if isinstance(screws, list | tuple) and not screws:
         return np.zeros((0, 6))
     return B.as_array(screws, name, (6,)).reshape(-1, 6)
+
+
+@functools.lru_cache(maxsize=64)
+def _readable(rows: bytes, rtol: float, length_scale: float | None, near: bytes | None) -> Array:
+    """The readable basis (read-only) of the numeric system with these basis rows (the bytes of a
+    float ``(k, 6)`` array), ``rtol`` and ``length_scale``, axes placed near the point ``near`` (the
+    bytes of a float ``(3,)`` array; None: not given). A pure function of its arguments, remembered:
+    the diagram and the report take the readable bases of the same per-pose systems (a leg's
+    constraint wrenches, rebuilt from the same frames) one after the other."""
+    basis = np.frombuffer(rows, dtype=float).reshape(-1, 6)
+    system = ScrewSystem.from_independent(basis, rtol=rtol, length_scale=length_scale)
+    found = system._readable_about(None if near is None else np.frombuffer(near, dtype=float))
+    found.flags.writeable = False
+    return found
 
 
 def _axes_centre(rows: Array, length: float, rtol: float) -> Array:
