@@ -222,10 +222,7 @@ def _pose_coordinates() -> list[str]:
     """Every family's pose coordinates (the map command takes one option per coordinate)."""
     from .families import families
 
-    names: list[str] = []
-    for family in families().values():
-        names.extend(n for n in family.pose_names if n not in names)
-    return names
+    return families().pose_names()
 
 
 class _MapQuantities:
