@@ -36,7 +36,6 @@ from __future__ import annotations
 
 import argparse
 import importlib.util
-import json
 import math
 import os
 import re
@@ -60,7 +59,6 @@ from .catalog import (
     unknown_mechanism,
 )
 from .exceptions import ScrewkitError, ScrewkitValueError
-from .export import graph_dot, graph_json, snapshot_text
 from .report import analyze
 from .screw import Screw
 from .twistgraph import equivalent_twist_graph
@@ -333,7 +331,7 @@ def run_screw(args: argparse.Namespace) -> int:
         screw = Screw(args.plucker)
     described = screw.to_dict()
     if args.json:
-        _print(json.dumps(described))
+        _print(_dumps(described))
         return 0
     coords = [_number(v) for v in screw.coords]
     pitch = described["pitch"]
@@ -440,7 +438,7 @@ def run_analyze(args: argparse.Namespace) -> int:
     if args.latex:
         _print(_latex(report))
     else:
-        _print(json.dumps(report.to_dict(), indent=2, ensure_ascii=False) if args.json else str(report))
+        _print(_dumps(report.to_dict(), indent=2, ensure_ascii=False) if args.json else str(report))
     return 0
 
 
@@ -466,6 +464,8 @@ def run_graph(args: argparse.Namespace) -> int:
     ...
     0
     """
+    from .export import graph_dot, graph_json, snapshot_text
+
     target, pose = _target_and_pose(args)
     twist_graph = load_snapshot(target) if isinstance(target, str) else target.twist_graph(pose)
     if args.equivalent:
@@ -497,6 +497,13 @@ def _stage_printer(command: str) -> Any:
 
 def _toml_kind(path: str) -> Any:
     return file_kind(load_toml(path))
+
+
+def _dumps(value: Any, **options: Any) -> str:
+    """JSON text (the json module loads for the commands that print JSON)."""
+    import json
+
+    return json.dumps(value, **options)
 
 
 def _print(text: str) -> None:
@@ -677,7 +684,7 @@ def run_path(args: argparse.Namespace) -> int:
     for option, values in (("--from", args.start), ("--to", args.end)):
         _pose_values("screwkit path", option, mechanism, values)
     result = check_path(mechanism, args.start, args.end, samples=args.samples, angles="deg")
-    _print(json.dumps(result.to_dict(), indent=2, ensure_ascii=False) if args.json else str(result))
+    _print(_dumps(result.to_dict(), indent=2, ensure_ascii=False) if args.json else str(result))
     return 0
 
 
@@ -703,7 +710,7 @@ def run_list(args: argparse.Namespace) -> int:
             }
         )
     if args.json:
-        _print(json.dumps(entries, indent=2))
+        _print(_dumps(entries, indent=2))
     else:
         for entry in entries:
             _print(
@@ -738,7 +745,7 @@ def run_table4(args: argparse.Namespace) -> int:
     robots = None if args.robot is None else list(dict.fromkeys(args.robot))
     rows = table_4(grid=args.grid, refine=args.refine, robots=robots)
     if args.json:
-        _print(json.dumps([row.to_dict() for row in rows], indent=2))
+        _print(_dumps([row.to_dict() for row in rows], indent=2))
         return 0
     _print(
         f"paper 004, Table 4: min/max LTI (Eq. 16) over the workspace; ours: {args.grid}^3 grid + "

@@ -174,6 +174,7 @@ class AnalysisReport:
         """The platform's twist order and every wrench as a line."""
         scale = self.analysis.length_scale
         platform = self.analysis.platform_twists
+        legs = sorted(self.analysis.compound_legs, key=lambda leg: leg.name)  # each view built once
         return {
             "platform_twist_order": platform.order,
             "platform_twists": {
@@ -183,16 +184,13 @@ class AnalysisReport:
                     for t in platform.readable_basis(near=self.analysis.reference_point)
                 ],
             },
-            "leg_motion_types": {
-                leg.name: motion_type(leg.twist_system)
-                for leg in sorted(self.analysis.compound_legs, key=lambda leg: leg.name)
-            },
+            "leg_motion_types": {leg.name: motion_type(leg.twist_system) for leg in legs},
             "constraint": [
                 {"leg": leg.name, **describe_wrench(w, length_scale=scale)}
-                for leg in sorted(self.analysis.compound_legs, key=lambda leg: leg.name)
+                for leg in legs
                 for w in leg.constraint_wrenches.readable_basis()
             ]
-            if self.analysis.compound_legs
+            if legs
             else [
                 {"leg": "mechanism", **describe_wrench(w, length_scale=scale)}
                 for w in self.analysis.constraint_wrenches.readable_basis()
