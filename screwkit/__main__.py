@@ -1,7 +1,5 @@
 """``python -m screwkit``: the command-line interface (:mod:`screwkit.cli`)."""
 
-import sys
+from .cli import console
 
-from .cli import main
-
-sys.exit(main())
+console()

@@ -188,3 +188,23 @@ def test_the_text_report_prints_no_negative_zero(capsys):
     text = capsys.readouterr().out
     assert "through (" in text and "rank tolerance: rtol = 0.05 (default 1e-09)" in text
     assert not re.search(r"(?<![\w.])-0(?![.\de])", text), text
+
+
+@pytest.mark.parametrize(
+    ("arguments", "status"),
+    [(["analyze", "planar_3rrp", "--no-superbracket"], 0), (["list", "--json"], 0),
+     (["analyze", "no_such_robot"], 2), (["analyze", "h4", "--pose", "0", "0", "-5000", "0"], 1)],
+)
+def test_the_command_ends_without_teardown_and_loses_no_output(arguments, status, capsys):
+    # `python -m screwkit` (and the console script) leave through os._exit after flushing: the same
+    # output, error message and exit status as main() in this process
+    import os
+    import subprocess
+    import sys
+
+    expected = main(arguments)
+    out, err = capsys.readouterr()
+    done = subprocess.run([sys.executable, "-m", "screwkit", *arguments], capture_output=True, text=True,
+                          timeout=120, encoding="utf-8", env={**os.environ, "PYTHONIOENCODING": "utf-8"})
+    assert (done.returncode, done.stdout, done.stderr) == (status, out, err)
+    assert expected == status and (out if status == 0 else err)  # something was written
