@@ -3,8 +3,12 @@
 Every other module writes one kernel with ``+ - * @``, :func:`numpy.cross`, :func:`numpy.concatenate`
 and indexing, which numpy supports both for ``float64`` arrays and for ``object`` arrays of sympy
 expressions. What those operators cannot do (input validation and promotion, norms, determinants,
-ranks, null spaces, zero tests, simplification) lives here, each with a numeric and a symbolic
-branch (design.md §4).
+ranks, null spaces, zero tests and degeneracy decisions, quotients with an infinite branch, the
+floating-point range scalings, simplification) lives here, each with a numeric and a symbolic
+branch (design.md §4): a numeric decision uses a relative tolerance, a symbolic one decides
+identically (generically; :func:`is_exactly_zero`). Elsewhere :func:`is_symbolic` only refuses
+symbolic input on a numeric-only path (a snapshot, the batched core), sends a symbolic twist graph
+to the generic analysis, or passes the branch to a constructor here (``zeros(..., symbolic=...)``).
 
 Rank decisions
 --------------
@@ -60,6 +64,7 @@ __all__ = [
     "matrix_nullspace",
     "norm",
     "ones_like",
+    "plain",
     "promote",
     "proper_rotations",
     "ratio",
@@ -483,6 +488,18 @@ def proper_rotations(rotation: Array) -> bool:
             return all(proper_rotations(r) for r in rotation.reshape(-1, 3, 3))
         return bool(np.all(zero_vectors(deviation))) and is_exactly_zero(det(rotation) - 1)
     return bool(np.allclose(product, np.eye(3), atol=1e-9) and np.all(np.linalg.det(rotation) > 0))
+
+
+def plain(value: Any) -> float | str:
+    """A JSON-ready scalar: a float for a number, the text of a sympy expression.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> plain(np.float64(2.5)), plain(sympy.Symbol("x") / 2)
+    (2.5, 'x/2')
+    """
+    return str(value) if is_symbolic(value) else float(value)
 
 
 def float_lists(**values: Any) -> dict[str, Any]:
@@ -1030,7 +1047,9 @@ def screw_nullspace(
     return basis
 
 
-def screw_image_of_nullspace(mapping: Array, constraints: Array, *, rtol: float, length_scale: float) -> Array:
+def screw_image_of_nullspace(
+    mapping: Array, constraints: Array, *, rtol: float, length_scale: float
+) -> Array:
     """The screws ``mapping @ x`` for ``x`` in the null space of ``constraints``: e.g. the platform
     twists a loop-closure matrix allows, with ``mapping`` the joint screws along a path to it.
 

@@ -187,7 +187,7 @@ class Joint:
             "type": self.type,
             "actuated": self.actuated,
             "virtual": self.virtual,
-            "screws": [[_plain(v) for v in row] for row in self.screws],
+            "screws": [[B.plain(v) for v in row] for row in self.screws],
             "geometry": self.geometry,
         }
 
@@ -226,10 +226,6 @@ class Joint:
         flags = " actuated" if self.actuated else ""
         flags += " virtual" if self.virtual else ""
         return f"{self.type} joint {self.name!r}{flags}"
-
-
-def _plain(value: Any) -> Any:
-    return float(value) if not hasattr(value, "free_symbols") else str(value)
 
 
 def _unit_axis(axis: Any) -> Any:

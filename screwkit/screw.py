@@ -640,7 +640,7 @@ class Screw:
         >>> Screw.couple([0, 0, 1]).to_dict()["kind"]
         'infinite pitch'
         """
-        coords = [_jsonable(v) for v in self.coords]
+        coords = [B.plain(v) for v in self.coords]
         h = self.pitch
         if self.is_symbolic:
             return {"coords": coords, "pitch": str(h), "kind": "symbolic"}
@@ -667,10 +667,6 @@ class Screw:
 
     def __repr__(self) -> str:
         return f"Screw(coords={self.coords!r})"
-
-
-def _jsonable(value: Any) -> Any:
-    return str(value) if B.is_symbolic(value) else float(value)
 
 
 def _as_screw(value: Any, name: str) -> Screw:
