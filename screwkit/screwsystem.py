@@ -293,8 +293,9 @@ class ScrewSystem:
         >>> ScrewSystem.span([force([1, 0, 0], [0, 0, 0]), couple([0, 1, 0])]).couple_subsystem().order
         1
         """
-        couples = ScrewSystem(_COUPLES, rtol=self.rtol, length_scale=self.length_scale)
-        return self.intersection(couples)
+        if self.is_symbolic:
+            return self.intersection(ScrewSystem(_COUPLES, rtol=self.rtol, length_scale=self.length_scale))
+        return (self.reciprocal() + _couples_reciprocal(self.rtol, self.length_scale)).reciprocal()
 
     def readable_basis(self, near: Any = None) -> Array:
         """A basis that reads like a designer's sketch: translations/couples and lines first.
@@ -485,6 +486,14 @@ def _rows(screws: Any, name: str) -> Array:
     if isinstance(screws, list | tuple) and not screws:
         return np.zeros((0, 6))
     return B.as_array(screws, name, (6,)).reshape(-1, 6)
+
+
+@functools.lru_cache(maxsize=16)
+def _couples_reciprocal(rtol: float, length_scale: float | None) -> ScrewSystem:
+    """The reciprocal of the couples (:meth:`ScrewSystem.intersection` with them, for
+    :meth:`~ScrewSystem.couple_subsystem`): the same system for every system of this ``rtol`` and
+    length scale, made once."""
+    return ScrewSystem(_COUPLES, rtol=rtol, length_scale=length_scale).reciprocal()
 
 
 @functools.lru_cache(maxsize=64)
