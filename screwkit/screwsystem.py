@@ -118,7 +118,10 @@ class ScrewSystem:
         rows = _rows(screws, "screws")
         length_scale = B.characteristic_length(rows, length_scale)
         basis = _independent_rows(rows, rtol, length_scale) if rows.shape[0] else rows
-        return cls(basis, rtol=rtol, length_scale=length_scale)
+        if B.is_symbolic(basis):
+            return cls(basis, rtol=rtol, length_scale=length_scale)
+        # independent by construction: _independent_rows took the rank of these very rows
+        return cls.from_independent(basis, rtol=rtol, length_scale=length_scale)
 
     @classmethod
     def from_independent(
@@ -209,6 +212,9 @@ class ScrewSystem:
         4
         """
         rows = B.screw_nullspace(self.basis, rtol=self.rtol, length_scale=self.length_scale)
+        if self.length_scale is not None and not self.is_symbolic:
+            # orthonormal in the coordinates scaled by this length: independent by construction
+            return ScrewSystem.from_independent(rows, rtol=self.rtol, length_scale=self.length_scale)
         return ScrewSystem(rows, rtol=self.rtol, length_scale=self.length_scale)
 
     def sum(self, other: ScrewSystem) -> ScrewSystem:

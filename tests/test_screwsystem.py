@@ -293,6 +293,22 @@ def test_readable_basis_is_a_basis_of_the_same_system_on_random_systems(rng):
             assert system.is_equivalent(ScrewSystem.span(readable))
 
 
+def test_span_and_reciprocal_bases_pass_the_constructors_independence_check(rng):
+    # span and reciprocal build their systems unchecked (independent by construction: the ranks
+    # were taken of those very rows, the reciprocal's rows are orthonormal in scaled coordinates);
+    # the checked constructor accepts every one, with the same length scale
+    for order in range(7):
+        for repeat in range(6):
+            rows = rng.normal(size=(order, 6)) * [1, 1, 1, 300, 300, 300]
+            if order > 1 and repeat % 2:  # dependent generators: a combination of the first two
+                rows = np.vstack([rows, rows[0] - 2.5 * rows[1]])
+            system = ScrewSystem.span(rows)
+            for made in (system, system.reciprocal(), system.reciprocal().reciprocal()):
+                checked = ScrewSystem(made.basis, rtol=made.rtol, length_scale=made.length_scale)
+                assert checked.length_scale == made.length_scale and checked.order == made.order
+            assert system.order == min(order, 6) and system.reciprocal().order == 6 - system.order
+
+
 def test_readable_basis_is_remembered_by_value_and_handed_out_as_a_fresh_array(rng):
     # the diagram and the report ask for the readable basis of the same system rebuilt from the
     # same rows: one computation, each caller its own writable copy; a different point, rtol or
