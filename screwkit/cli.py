@@ -781,6 +781,13 @@ def console() -> NoReturn:
     reports them), every file screwkit writes is closed when its command returns, and screwkit
     registers no exit handler. A usage message, ``--help``, ``--version`` and an uncaught error leave
     through the usual exit.
+
+    Examples
+    --------
+    >>> import subprocess, sys
+    >>> done = subprocess.run([sys.executable, "-m", "screwkit", "list"], capture_output=True, text=True)
+    >>> done.returncode, done.stdout.split()[:2]
+    (0, ['h4', 'H4'])
     """
     status = main()
     try:
