@@ -1,5 +1,7 @@
 """``python -m screwkit``: the command-line interface (:mod:`screwkit.cli`)."""
 
+import sys
+
 from .cli import console
 
-console()
+sys.exit(console())

@@ -195,9 +195,9 @@ def test_the_text_report_prints_no_negative_zero(capsys):
     [(["analyze", "planar_3rrp", "--no-superbracket"], 0), (["list", "--json"], 0),
      (["analyze", "no_such_robot"], 2), (["analyze", "h4", "--pose", "0", "0", "-5000", "0"], 1)],
 )
-def test_the_command_ends_without_teardown_and_loses_no_output(arguments, status, capsys):
-    # `python -m screwkit` (and the console script) leave through os._exit after flushing: the same
-    # output, error message and exit status as main() in this process
+def test_the_command_gives_mains_output_and_exit_status(arguments, status, capsys):
+    # `python -m screwkit` (and the console script) run console(): main(), then its objects frozen
+    # for the exit; the same output, error message and exit status as main() in this process
     import os
     import subprocess
     import sys
