@@ -8,7 +8,7 @@ unmeasured run of each command comes first. The repeats are interleaved (referen
 robot, ``--repeats`` times), so a change of load on a shared machine hits both sides alike.
 
 The installed command runs :func:`screwkit.cli.console`, which freezes the objects left for the exit
-(the collector's passes over numpy's, sympy's and networkx's objects at shutdown, ≈ 0.15 s, are
+(the collector's passes over numpy's, sympy's and networkx's objects at shutdown, ≈ 0.1–0.15 s, are
 skipped); ``--source`` runs ``main`` and exits as Python does, so the two show what that saves. A
 console script generated before the entry point became ``screwkit.cli:console`` still calls
 ``main``: the header then says to reinstall.

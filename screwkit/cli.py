@@ -777,7 +777,7 @@ def console() -> int:
     for the exit.
 
     At exit the interpreter's cyclic garbage collector traverses every object left, numpy's, sympy's
-    and networkx's included, several times while the modules are torn down: ≈ 0.15 s, longer than a
+    and networkx's included, several times while the modules are torn down: ≈ 0.1–0.15 s, longer than a
     whole analysis of a small robot. :func:`gc.freeze` moves them out of its reach first (a process
     about to end has no cycle worth collecting); modules are still torn down, streams flushed and
     exit handlers run as usual. Returns the exit status (the console script passes it to
