@@ -6,7 +6,7 @@ One ``run_*`` function per command; each prints text by default and JSON with ``
 
 Commands
 --------
-``screwkit analyze NAME|FILE.toml [--pose X Y Z PHI] [--rtol R] [--json]``
+``screwkit analyze NAME|FILE.toml [--pose X Y Z PHI] [--rtol R] [--length-scale L] [--json]``
     The whole analysis (:func:`screwkit.report.analyze`): twist graph, wrench systems, wrench
     diagram, superbracket, conditions, verdict. Lengths in the catalog file's unit, angle in degrees.
 ``screwkit graph NAME|FILE.toml [--pose ...] [--equivalent] [--format dot|json|toml] [--out FILE]``
@@ -137,6 +137,14 @@ def get_parser() -> argparse.ArgumentParser:
         default=None,
         metavar="R",
         help="relative tolerance of every rank decision, in [0, 0.1] (default 1e-9)",
+    )
+    analyze_parser.add_argument(
+        "--length-scale",
+        type=float,
+        default=None,
+        metavar="L",
+        help="characteristic length of every rank decision (moments are divided by it), in the "
+        "file's length unit; default: derived from the screws at the pose",
     )
     output = analyze_parser.add_mutually_exclusive_group()
     output.add_argument("--json", action="store_true", help="print the whole report as JSON")
@@ -424,6 +432,15 @@ def run_analyze(args: argparse.Namespace) -> int:
         raise _UsageError(
             f"screwkit analyze: error: --rtol expects a number in [0, {B.MAX_RTOL:g}], got {args.rtol:g}"
         )
+    from .wrenches import MIN_LENGTH_SCALE
+
+    length = args.length_scale
+    bounds = (MIN_LENGTH_SCALE, 1 / MIN_LENGTH_SCALE)
+    if length is not None and not (math.isfinite(length) and bounds[0] <= length <= bounds[1]):
+        raise _UsageError(
+            "screwkit analyze: error: --length-scale expects a positive length in the file's length unit, "
+            f"in [{bounds[0]:g}, {bounds[1]:g}], got {length:g}"
+        )
     if args.latex and args.no_superbracket:
         raise _UsageError(
             "screwkit analyze: error: --latex prints the superbracket's conditions; drop --no-superbracket"
@@ -434,6 +451,7 @@ def run_analyze(args: argparse.Namespace) -> int:
         target,
         pose,
         rtol=args.rtol,
+        length_scale=args.length_scale,
         superbracket=not args.no_superbracket,
         progress=_stage_printer(args.command) if shown else None,
     )

@@ -847,7 +847,8 @@ class _Batch:
 
 def _frames_with_views(table: JointTable, analysis: WrenchAnalysis) -> dict[str, tuple[Array, Array]]:
     """The per-pose frames of an analysis that kept none (the same core, with its views)."""
-    return analyze_table(table, dof=analysis.dof, rtol=analysis.rtol).frames
+    length = analysis.length_scale  # given back: the same lengths, the same bits
+    return analyze_table(table, dof=analysis.dof, rtol=analysis.rtol, length_scale=length).frames
 
 
 def _leg_name(topology: Topology, k: int) -> str:
@@ -1152,7 +1153,7 @@ class ReplaySampler:
 
 
 def graph_diagram(
-    analysis: WrenchAnalysis, *, rng: int = 2026, samples: int = 24
+    analysis: WrenchAnalysis, *, rng: int = 2026, samples: int = 24, length_scale: float | None = None
 ) -> tuple[WrenchDiagram, Callable[[np.random.Generator], dict[str, Array]] | None]:
     """The wrench diagram of a twist graph's mechanism at its configuration, and a generic sampler.
 
@@ -1161,7 +1162,8 @@ def graph_diagram(
     a graph built in Python is treated like a catalog robot: the diagram is chosen at a generic
     configuration (:func:`generic_reference`) and placed at this one (:func:`diagram_at`); the
     sampler hands out its points at further generic configurations, ``samples`` at a time
-    (analysed as one batch), on which structural zeros are decided.
+    (analysed as one batch), on which structural zeros are decided. A given ``length_scale`` is
+    the generic configurations' too (:func:`~screwkit.wrenches.analyze_table`; default: derived).
 
     Returns
     -------
@@ -1182,7 +1184,9 @@ def graph_diagram(
 
     graph = analysis.graph
     try:
-        analyses = generic_analyses(graph, np.random.default_rng(rng), REFERENCE_TRIES, rtol=analysis.rtol)
+        analyses = generic_analyses(
+            graph, np.random.default_rng(rng), REFERENCE_TRIES, rtol=analysis.rtol, length_scale=length_scale
+        )
         reference, reasons = generic_reference(analyses)
     except ScrewkitError as err:
         reference, reasons = None, (f"no generic configuration of the mechanism: {err}",)
@@ -1192,7 +1196,7 @@ def graph_diagram(
 
     def produce(stream: np.random.Generator) -> Iterator[dict[str, Array]]:
         found = 0
-        for one in generic_analyses(graph, stream, samples, rtol=analysis.rtol):
+        for one in generic_analyses(graph, stream, samples, rtol=analysis.rtol, length_scale=length_scale):
             try:
                 sample = diagram_points(diagram.points, one)
             except ScrewkitError:
