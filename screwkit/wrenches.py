@@ -360,7 +360,7 @@ class WrenchAnalysis:
     def _add_views(self) -> None:
         """The per-pose frames a batch analysed without views did not keep (classify_table): this
         pose again, as a batch of one through the same kernels (the same arithmetic, same answers)."""
-        one = analyze_table(self.table[None], dof=self.dof, rtol=self.rtol)
+        one = analyze_table(self.table[None], dof=self.dof, rtol=self.rtol, length_scale=self.length_scale)
         self.frames.update({key: (rows[0], order[0]) for key, (rows, order) in one.frames.items()})
 
     @functools.cached_property

@@ -516,3 +516,19 @@ def test_error_bad_length_scale(value, message):
 
     with pytest.raises(ScrewkitValueError, match=message):
         analyze_table(_two_parallel_hinges(1.0), dof=0, length_scale=value)
+
+
+def test_a_given_length_scale_is_kept_by_the_views_of_a_batch_analysed_without_them():
+    # The views=False batch (classify_table, a posed mechanism's verdicts) recomputes a pose's frames
+    # when a view asks: with the given length, or the constraint system reads the derived length's
+    # decision (order 6, see the hand derivation above) against the batch's own order 5.
+    from screwkit.singularity import classify_table
+    from screwkit.wrenches import analyze_table
+
+    table = _two_parallel_hinges(1e-3)
+    full = analyze_table(table, dof=0, length_scale=1e7)[0]
+    lean = analyze_table(table, dof=0, length_scale=1e7, views=False)[0]
+    assert lean.constraint_order == 5 and lean.constraint_wrenches.order == 5
+    np.testing.assert_array_equal(lean.constraint_wrenches.basis, full.constraint_wrenches.basis)
+    report = classify_table(table, dof=0, length_scale=1e7)
+    assert report[0].analysis.global_wrenches.order == int(report.analysis.global_order[0]) == 5
