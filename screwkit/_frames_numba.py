@@ -16,6 +16,8 @@ import math
 import numpy as np
 from numba import njit
 
+from ._frames import CLOSED_FORM_MARGIN  # the closed forms' margin (a compile-time constant here)
+
 Array = np.ndarray
 
 
@@ -176,7 +178,7 @@ def complement(rows: Array, order: Array, swap: bool) -> Array:  # pragma: no co
 
 
 #: Operation codes of a frame program (:func:`run_program`; built by :mod:`screwkit.wrenches`).
-SPAN, RECIPROCAL, ROD = 0, 1, 2
+SPAN, RECIPROCAL, ROD, EXTEND, CONTRACT, PARALLELOGRAM, COMPANION = 0, 1, 2, 3, 4, 5, 6
 #: Source kinds of a span: joint screw rows ``(start, count)`` or a slot's rows ``(slot, bound)``.
 JOINT_ROWS, SLOT_ROWS = 0, 1
 
@@ -245,15 +247,197 @@ def rod_into(rows: Array, rtol: float, out: Array) -> bool:  # pragma: no cover 
     return True
 
 
+@njit(cache=True, inline="always")
+def _top(t: Array, order: int) -> float:  # pragma: no cover - compiled
+    """The span rule's ``top`` (largest generator norm) for one joint screw ``t (6,)`` and a frame
+    of ``order`` orthonormal rows (norm 1): ``|t|``, at least 1 if the frame has rows (NaN stays)."""
+    total = 0.0
+    for s in range(6):
+        total += t[s] * t[s]
+    size = math.sqrt(total)
+    return size if (order == 0 or not size < 1.0) else 1.0
+
+
+@njit(cache=True)
+def extend_into(  # pragma: no cover - compiled
+    rows: Array, order: int, t: Array, rtol: float, out: Array, v: Array, coefficients: Array
+) -> int:
+    """The span of a frame ``rows (6, 6)`` of ``order`` and one joint screw ``t (6,)``, in closed
+    form: the frame's rows kept, ``t``'s residual against them (CGS2) appended, normalised, where it
+    exceeds the margin (:data:`screwkit._frames.CLOSED_FORM_MARGIN`); the frame itself where the residual is
+    negligible. Into ``out (6, 6)``; returns the order, or −1 where the generic rule must decide
+    (``v``, ``coefficients (6,)`` are scratch). Paper 002 Eq. 1 (a serial chain's twist system is
+    the sum of its members')."""
+    for s in range(6):
+        v[s] = t[s]
+    for _ in range(2):
+        for i in range(order):
+            total = 0.0
+            for s in range(6):
+                total += v[s] * rows[i, s]
+            coefficients[i] = total
+        for i in range(order):
+            for s in range(6):
+                v[s] -= coefficients[i] * rows[i, s]
+    total = 0.0
+    for s in range(6):
+        total += v[s] * v[s]
+    size = math.sqrt(total)
+    top = _top(t, order)
+    if size > CLOSED_FORM_MARGIN * rtol * top and order < 6:
+        for i in range(6):
+            for s in range(6):
+                out[i, s] = rows[i, s] if i < order else 0.0
+        for s in range(6):
+            out[order, s] = v[s] / size
+        return order + 1
+    if size < rtol * top / CLOSED_FORM_MARGIN:
+        for i in range(6):
+            for s in range(6):
+                out[i, s] = rows[i, s]
+        return order
+    return -1
+
+
+@njit(cache=True)
+def contract_into(  # pragma: no cover - compiled
+    rows: Array, order: int, t: Array, rtol: float, out: Array, c: Array, u: Array
+) -> int:
+    """The wrenches of a frame's wrench system ``rows (6, 6)`` of ``order`` that are also reciprocal
+    to one joint screw ``t (6,)`` (the reciprocal of the twist system widened by ``t``), in closed
+    form: with ``c_i = rows_i ∘ t`` (``a ∘ b = a · SWAP b``), the Householder reflector ``H`` taking
+    ``c`` to ``∓|c| e_0`` applied to the rows, ``(H rows)_1 … (H rows)_{order−1}`` (orthonormal, and
+    ``(H rows)_j ∘ t = (H c)_j = 0``); the rows themselves where ``|c|`` is negligible (``t``
+    already in the twist system). ``|c|`` is ``t``'s distance from the twist system, the measure of
+    :func:`extend_into`, held to the same margin. Into ``out (6, 6)``; returns the order, or −1
+    where the generic rule must decide (``c``, ``u (6,)`` are scratch). Paper 002 Eq. 1 with
+    Eq. 3 (``W = T^⊥``): the wrenches reciprocal to a chain are those reciprocal to every member."""
+    for i in range(order):
+        total = 0.0
+        for s in range(6):
+            total += rows[i, s] * t[(s + 3) % 6]
+        c[i] = total
+    total = 0.0
+    for i in range(order):
+        total += c[i] * c[i]
+    size = math.sqrt(total)
+    top = _top(t, 6 - order)
+    if size > CLOSED_FORM_MARGIN * rtol * top and order > 0:
+        c[0] -= -math.copysign(size, c[0])  # v = c − β e_0, β = −sign(c_0) |c|
+        total = 0.0
+        for i in range(order):
+            total += c[i] * c[i]
+        scale = 2.0 / total
+        for s in range(6):
+            total = 0.0
+            for i in range(order):
+                total += c[i] * rows[i, s]
+            u[s] = total  # vᵀ rows
+        for i in range(6):
+            for s in range(6):
+                out[i, s] = rows[i + 1, s] - c[i + 1] * scale * u[s] if i + 1 < order else 0.0
+        return order - 1
+    if size < rtol * top / CLOSED_FORM_MARGIN:
+        for i in range(6):
+            for s in range(6):
+                out[i, s] = rows[i, s]
+        return order
+    return -1
+
+
+@njit(cache=True, inline="always")
+def _line(rows: Array, order: int) -> tuple[float, ...]:  # pragma: no cover - compiled
+    """Of a frame's first row, a line ``(d; μ)`` scaled to a unit direction: ``(ok, d, μ)`` with
+    ``ok`` False unless the frame has order 1 and a nonzero direction."""
+    d0, d1, d2 = rows[0, 0], rows[0, 1], rows[0, 2]
+    size = math.sqrt(d0 * d0 + d1 * d1 + d2 * d2)
+    ok = order == 1 and size > 0
+    size = size if ok else 1.0
+    return ok, d0 / size, d1 / size, d2 / size, rows[0, 3] / size, rows[0, 4] / size, rows[0, 5] / size
+
+
+@njit(cache=True)
+def parallelogram_into(  # pragma: no cover - compiled
+    first: Array, first_order: int, second: Array, second_order: int, rtol: float, wrenches: Array, twists: Array
+) -> bool:
+    """The wrench and twist systems of two rods in parallel whose lines are parallel and distinct
+    (a 4S parallelogram, paper 002 §4.1), in closed form, from the rods' wrench frames ``first``,
+    ``second (6, 6)`` (order 1 each, :func:`rod_into`): with ``d`` the lines' unit direction, ``μ``
+    the first line's moment per unit direction, ``Δ`` the second's less the first's (``Δ = e × d``,
+    ``e`` from a point of the first line to one of the second), ``a = d × Δ / |d × Δ|`` (in the
+    plane of the lines, across them), ``b = d × a`` (normal to that plane) and ``h = a · μ``:
+    wrenches ``(d; h a)/√(1 + h²)`` and the couple ``(0; b)`` (the paper's ``τ̂01`` and ``τ̂∞1``,
+    orthonormalised), twists ``(0; a)``, ``(0; b)`` (the paper's ``ε̂∞1``, ``ε̂∞2``), ``(d; 0)`` and
+    ``(a; −h d)/√(1 + h²)`` (rotations about ``d`` and about ``a``: the paper's ``ε̂01``, ``ε̂02``
+    less their translations), every pair orthonormal and each wrench reciprocal to each twist.
+    Into ``wrenches`` (order 2) and ``twists`` (order 4). False where it does not apply (the caller
+    then spans and takes the reciprocal): a rod not of order 1, the lines' distance not clearly
+    above the rank threshold (the second line's residual against the first at most
+    ``rtol · CLOSED_FORM_MARGIN``), or a rod's line not within ``rtol / CLOSED_FORM_MARGIN`` of the
+    closed-form wrench system (lines not parallel: not a parallelogram)."""
+    ok1, d0, d1, d2, u0, u1, u2 = _line(first, first_order)
+    ok2, g0, g1, g2, v0, v1, v2 = _line(second, second_order)
+    if not (ok1 and ok2):
+        return False
+    total = 0.0  # the second line's residual against the first (both unit rows): the rule's measure
+    for s in range(6):
+        total += first[0, s] * second[0, s]
+    apart = 0.0
+    for s in range(6):
+        gap = second[0, s] - total * first[0, s]
+        apart += gap * gap
+    if not math.sqrt(apart) > CLOSED_FORM_MARGIN * rtol:
+        return False
+    sign = 1.0 if d0 * g0 + d1 * g1 + d2 * g2 >= 0 else -1.0
+    e0, e1, e2 = sign * v0 - u0, sign * v1 - u1, sign * v2 - u2  # Δ
+    a0, a1, a2 = d1 * e2 - d2 * e1, d2 * e0 - d0 * e2, d0 * e1 - d1 * e0  # d × Δ
+    size = math.sqrt(a0 * a0 + a1 * a1 + a2 * a2)
+    if not size > 0:
+        return False
+    a0, a1, a2 = a0 / size, a1 / size, a2 / size
+    b0, b1, b2 = d1 * a2 - d2 * a1, d2 * a0 - d0 * a2, d0 * a1 - d1 * a0  # d × a
+    h = a0 * u0 + a1 * u1 + a2 * u2
+    root = math.sqrt(1.0 + h * h)
+    for i in range(6):
+        for s in range(6):
+            wrenches[i, s] = 0.0
+            twists[i, s] = 0.0
+    wrenches[0, 0], wrenches[0, 1], wrenches[0, 2] = d0 / root, d1 / root, d2 / root
+    wrenches[0, 3], wrenches[0, 4], wrenches[0, 5] = h * a0 / root, h * a1 / root, h * a2 / root
+    wrenches[1, 3], wrenches[1, 4], wrenches[1, 5] = b0, b1, b2
+    twists[0, 3], twists[0, 4], twists[0, 5] = a0, a1, a2
+    twists[1, 3], twists[1, 4], twists[1, 5] = b0, b1, b2
+    twists[2, 0], twists[2, 1], twists[2, 2] = d0, d1, d2
+    twists[3, 0], twists[3, 1], twists[3, 2] = a0 / root, a1 / root, a2 / root
+    twists[3, 3], twists[3, 4], twists[3, 5] = -h * d0 / root, -h * d1 / root, -h * d2 / root
+    for line in (first, second):  # each rod's line in the closed-form wrench system (CGS, once)
+        p0 = 0.0
+        p1 = 0.0
+        for s in range(6):
+            p0 += line[0, s] * wrenches[0, s]
+            p1 += line[0, s] * wrenches[1, s]
+        apart = 0.0
+        for s in range(6):
+            gap = line[0, s] - p0 * wrenches[0, s] - p1 * wrenches[1, s]
+            apart += gap * gap
+        if not math.sqrt(apart) <= rtol / CLOSED_FORM_MARGIN:
+            return False
+    return True
+
+
 @njit(cache=True)
 def run_program(
     scaled: Array, rtol: float, ops: Array, sources: Array, n_slots: int, outputs: Array
 ) -> tuple[Array, Array]:  # pragma: no cover - compiled
     """A frame program, pose by pose: ``scaled (n, rows, 6)`` joint screws; ``ops (m, 4)`` rows
     ``(code, slot, first, count)``: :data:`SPAN` of ``sources[first : first + count]`` (rows
-    ``(kind, a, b)``), :data:`RECIPROCAL` of slot ``first``, or :data:`ROD`, the reciprocal of the
-    span of two spherical joints' rows (:func:`rod_into`, else span and reciprocal), into
-    ``slot``. Returns the rows ``(n, len(outputs), 6, 6)`` and orders of the ``outputs`` slots. A
+    ``(kind, a, b)``), :data:`RECIPROCAL` of slot ``first``, :data:`ROD`, the reciprocal of the
+    span of two spherical joints' rows (:func:`rod_into`, else span and reciprocal),
+    :data:`EXTEND`, the span of one joint screw and a twist frame (:func:`extend_into`, else the
+    span), or :data:`CONTRACT`, the reciprocal of the span of one joint screw and the twists of a
+    wrench frame (:func:`contract_into`, else the twists by a reciprocal, their span with the
+    screw and its reciprocal), into ``slot``. The two sources of :data:`EXTEND` and
+    :data:`CONTRACT` are a joint's one screw and a slot's frame, in either order. Returns the rows ``(n, len(outputs), 6, 6)`` and orders of the ``outputs`` slots. A
     span or reciprocal is exactly what the batched kernel :func:`span` or :func:`complement`
     (``swap``) computes on that pose, so running a program equals running its ops one by one (the
     numpy path's way, :func:`screwkit.wrenches._run`) up to the two paths' round-off."""
@@ -273,6 +457,7 @@ def run_program(
     v = np.zeros((6, 6))
     tau = np.zeros(6)
     y = np.empty(6)
+    twists = np.empty((6, 6))
     for p in range(n):
         for op in range(ops.shape[0]):
             code, slot, first, count = ops[op, 0], ops[op, 1], ops[op, 2], ops[op, 3]
@@ -280,6 +465,24 @@ def run_program(
                 complement_into(slots[first], orders[first], True, slots[slot], a, v, tau, y)
                 orders[slot] = 6 - orders[first]
                 continue
+            if code == COMPANION:  # written by the op before it
+                continue
+            if code == PARALLELOGRAM:
+                x, z = sources[first, 1], sources[first + 1, 1]
+                if parallelogram_into(slots[x], orders[x], slots[z], orders[z], rtol, slots[slot], slots[slot + 1]):
+                    orders[slot], orders[slot + 1] = 2, 4
+                    continue
+            if code == EXTEND or code == CONTRACT:  # one joint screw and one frame, in closed form
+                joint = first if sources[first, 0] == JOINT_ROWS else first + 1
+                x = sources[2 * first + 1 - joint, 1]
+                t = scaled[p, sources[joint, 1]]
+                if code == EXTEND:
+                    order = extend_into(slots[x], orders[x], t, rtol, slots[slot], pivot, coefficients)
+                else:
+                    order = contract_into(slots[x], orders[x], t, rtol, slots[slot], pivot, coefficients)
+                if order >= 0:
+                    orders[slot] = order
+                    continue
             k = 0
             for q in range(first, first + count):
                 kind, x, size = sources[q, 0], sources[q, 1], sources[q, 2]
@@ -288,13 +491,19 @@ def run_program(
                         for s in range(6):
                             work[k, s] = scaled[p, x + i, s]
                         k += 1
+                elif code == CONTRACT:  # the twists of the wrench frame in slot x, then as a span's
+                    complement_into(slots[x], orders[x], True, twists, a, v, tau, y)
+                    for i in range(6 - orders[x]):
+                        for s in range(6):
+                            work[k, s] = twists[i, s]
+                        k += 1
                 else:  # a slot's rows up to its bound; those beyond its order are zero, left out
                     for i in range(min(size, orders[x])):
                         for s in range(6):
                             work[k, s] = slots[x, i, s]
                         k += 1
-            if code == ROD:
-                if rod_into(work, rtol, slots[slot]):
+            if code == ROD or code == CONTRACT:
+                if code == ROD and rod_into(work, rtol, slots[slot]):
                     orders[slot] = 1
                     continue
                 order = span_into(work, k, rtol, a, norms, pivot, coefficients)  # the rule, spelt out
@@ -302,6 +511,9 @@ def run_program(
                 orders[slot] = 6 - order
                 continue
             orders[slot] = span_into(work, k, rtol, slots[slot], norms, pivot, coefficients)
+            if code == PARALLELOGRAM:  # the twists, as a reciprocal op would
+                complement_into(slots[slot], orders[slot], True, slots[slot + 1], a, v, tau, y)
+                orders[slot + 1] = 6 - orders[slot]
         for i in range(outputs.shape[0]):
             out_rows[p, i] = slots[outputs[i]]
             out_orders[p, i] = orders[outputs[i]]

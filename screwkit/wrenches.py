@@ -541,7 +541,8 @@ class _Program:
 
 
 #: The op codes and source kinds of a :class:`_Program` (those of the compiled interpreter).
-SPAN, RECIPROCAL, ROD, JOINT_ROWS, SLOT_ROWS = 0, 1, 2, 0, 1
+SPAN, RECIPROCAL, ROD, EXTEND, CONTRACT, PARALLELOGRAM, COMPANION = 0, 1, 2, 3, 4, 5, 6
+JOINT_ROWS, SLOT_ROWS = 0, 1
 
 
 class _ProgramBuilder:
@@ -587,29 +588,70 @@ class _ProgramBuilder:
             return [(JOINT_ROWS, self.top.columns[node.joint], self.top.specs[node.joint].dof)]
         return [(SLOT_ROWS, self.twists(index), self.bound(index))]
 
+    def _chain_sum(self, members: tuple[int, ...]) -> int:
+        """The twists of members in series: their span, or :data:`EXTEND` (the closed form) for one
+        1-dof joint and one other node."""
+        if self._joint_and_node(members):
+            return self._sourced(EXTEND, [g for c in members for g in self.generators(c)])
+        return self._span([g for c in members for g in self.generators(c)])
+
+    def _contract(self, members: tuple[int, ...]) -> int:
+        """The wrenches of one 1-dof joint and one other node in series (reciprocal to their twists'
+        sum): :data:`CONTRACT`, the node's wrenches less those not reciprocal to the joint's screw."""
+        return self._sourced(
+            CONTRACT,
+            [
+                self.generators(c)[0] if self.top.nodes[c].kind == "joint" else (SLOT_ROWS, self.wrenches(c), 6)
+                for c in members
+            ],
+        )
+
+    def _joint_and_node(self, members: tuple[int, ...]) -> bool:
+        """Exactly two members: a joint of one screw and a node that is not a joint."""
+        nodes = [self.top.nodes[c] for c in members]
+        joints = [n for n in nodes if n.kind == "joint"]
+        return (
+            len(nodes) == 2
+            and len(joints) == 1
+            and joints[0].joint is not None
+            and self.top.specs[joints[0].joint].dof == 1
+        )
+
+    def _sourced(self, code: int, parts: list[tuple[int, int, int]]) -> int:
+        first = len(self.sources)
+        self.sources.extend(parts)
+        return self._op(code, first, len(parts))
+
     def twists(self, index: int) -> int:
         key = ("twists", index)
         if key not in self.slots:
             node = self.top.nodes[index]
             if node.kind == "parallel":
-                self.slots[key] = self._op(RECIPROCAL, self.wrenches(index), 0)
+                wrenches = self.wrenches(index)  # a parallelogram's twists come with its wrenches
+                if key not in self.slots:
+                    self.slots[key] = self._op(RECIPROCAL, wrenches, 0)
             elif node.kind == "joint":
                 self.slots[key] = self._span(self.generators(index))
             else:
-                self.slots[key] = self._span([g for c in node.children for g in self.generators(c)])
+                self.slots[key] = self._chain_sum(node.children)
         return self.slots[key]
 
     def wrenches(self, index: int) -> int:
         key = ("wrenches", index)
         if key not in self.slots:
             node = self.top.nodes[index]
-            if node.kind == "parallel":
+            if node.kind == "parallel" and len(node.children) == 2 and all(
+                self._is_rod(self.top.nodes[c]) for c in node.children
+            ):  # two rods: a parallelogram's wrenches and twists in closed form where it is one
+                rods = [(SLOT_ROWS, self.wrenches(c), 6) for c in node.children]
+                self.slots[key] = self._sourced(PARALLELOGRAM, rods)
+                self.slots[("twists", index)] = self._op(COMPANION, self.slots[key], 0)
+            elif node.kind == "parallel":
                 self.slots[key] = self._span([(SLOT_ROWS, self.wrenches(c), 6) for c in node.children])
             elif self._is_rod(node):  # closed form: the line through the two centres
-                parts = [g for c in node.children for g in self.generators(c)]
-                first = len(self.sources)
-                self.sources.extend(parts)
-                self.slots[key] = self._op(ROD, first, len(parts))
+                self.slots[key] = self._sourced(ROD, [g for c in node.children for g in self.generators(c)])
+            elif node.kind == "series" and self._joint_and_node(node.children):
+                self.slots[key] = self._contract(node.children)
             else:
                 self.slots[key] = self._op(RECIPROCAL, self.twists(index), 0)
         return self.slots[key]
@@ -629,11 +671,14 @@ class _ProgramBuilder:
         kind, what = request
         if kind == "passive":  # the reciprocal of a sum: a limb's passive wrenches
             if request not in self.slots:
-                self.slots[request] = self._op(RECIPROCAL, self.request(("sum", what)), 0)
+                if self._joint_and_node(what):
+                    self.slots[request] = self._contract(what)
+                else:
+                    self.slots[request] = self._op(RECIPROCAL, self.request(("sum", what)), 0)
             return self.slots[request]
         if kind == "sum":
             if request not in self.slots:
-                self.slots[request] = self._span([g for n in what for g in self.generators(n)])
+                self.slots[request] = self._chain_sum(what)
             return self.slots[request]
         return self.twists(what) if kind == "twists" else self.wrenches(what)
 
@@ -675,13 +720,17 @@ def _run(program: _Program, scaled: Array, rtol: float, requests: tuple[Request,
     frames: dict[int, Frame] = {}
     keep = set(wanted)
     for index, (code, slot, first, count) in enumerate(program.ops.tolist()):
+        sources = program.sources[first : first + count].tolist()
         if code == RECIPROCAL:
             frames[slot] = F.reciprocal(*frames[first])
+        elif code == PARALLELOGRAM:
+            frames[slot], frames[slot + 1] = _parallelogram([frames[a] for _, a, _ in sources], rtol)
+        elif code == COMPANION:
+            pass  # written by the op before it
+        elif code in (EXTEND, CONTRACT):
+            frames[slot] = _closed_form(code, sources, frames, scaled, rtol)
         else:
-            parts = [
-                scaled[..., a : a + b, :] if kind == JOINT_ROWS else frames[a][0][..., :b, :]
-                for kind, a, b in program.sources[first : first + count].tolist()
-            ]
+            parts = [scaled[..., a : a + b, :] if kind == JOINT_ROWS else frames[a][0][..., :b, :] for kind, a, b in sources]
             if code == ROD:
                 frames[slot] = F.rod(np.concatenate(parts, axis=-2), rtol)
             else:
@@ -689,6 +738,39 @@ def _run(program: _Program, scaled: Array, rtol: float, requests: tuple[Request,
         for done in [s for s in frames if program.last_use[s] <= index and s not in keep]:
             del frames[done]  # bounded memory over large batches
     return _stacked([frames[s] for s in wanted])
+
+
+def _parallelogram(rods: list[Frame], rtol: float) -> tuple[Frame, Frame]:
+    """:data:`PARALLELOGRAM` over the batch (numpy path): the closed form
+    (:func:`screwkit._frames.parallelogram`), the span of the two rods' frames and its reciprocal
+    where it does not apply; :func:`screwkit._frames_numba.run_program`'s steps."""
+    wrenches, wrench_order, twists, twist_order, decided = F.parallelogram(*rods, rtol)
+    if not decided.all():
+        undecided = ~decided
+        spanned = F.span(np.concatenate([rows[undecided] for rows, _ in rods], axis=-2), rtol)
+        wrenches[undecided], wrench_order[undecided] = spanned
+        twists[undecided], twist_order[undecided] = F.reciprocal(*spanned)
+    return (wrenches, wrench_order), (twists, twist_order)
+
+
+def _closed_form(
+    code: int, sources: list[list[int]], frames: dict[int, Frame], scaled: Array, rtol: float
+) -> Frame:
+    """:data:`EXTEND` or :data:`CONTRACT` over the batch (numpy path): the closed form
+    (:func:`screwkit._frames.extend`, :func:`~screwkit._frames.contract`), the rule's span (and
+    reciprocals) where it does not decide; :func:`screwkit._frames_numba.run_program`'s steps."""
+    (joint,) = [a for kind, a, _ in sources if kind == JOINT_ROWS]
+    (slot,) = [a for kind, a, _ in sources if kind == SLOT_ROWS]
+    rows, order = frames[slot]
+    closed = F.extend if code == EXTEND else F.contract
+    out, out_order, decided = closed(rows, order, scaled[..., joint, :], rtol)
+    if not decided.all():
+        undecided = ~decided
+        frame = F.reciprocal(rows[undecided], order[undecided]) if code == CONTRACT else (rows[undecided], None)
+        parts = [scaled[undecided][:, a : a + b] if kind == JOINT_ROWS else frame[0][:, :b] for kind, a, b in sources]
+        spanned = F.span(np.concatenate(parts, axis=-2), rtol)
+        out[undecided], out_order[undecided] = F.reciprocal(*spanned) if code == CONTRACT else spanned
+    return out, out_order
 
 
 class _Evaluation:
