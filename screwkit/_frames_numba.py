@@ -434,10 +434,15 @@ def run_program(
     ``(kind, a, b)``), :data:`RECIPROCAL` of slot ``first``, :data:`ROD`, the reciprocal of the
     span of two spherical joints' rows (:func:`rod_into`, else span and reciprocal),
     :data:`EXTEND`, the span of one joint screw and a twist frame (:func:`extend_into`, else the
-    span), or :data:`CONTRACT`, the reciprocal of the span of one joint screw and the twists of a
-    wrench frame (:func:`contract_into`, else the twists by a reciprocal, their span with the
-    screw and its reciprocal), into ``slot``. The two sources of :data:`EXTEND` and
-    :data:`CONTRACT` are a joint's one screw and a slot's frame, in either order. Returns the rows ``(n, len(outputs), 6, 6)`` and orders of the ``outputs`` slots. A
+    span), :data:`CONTRACT`, the reciprocal of the span of one joint screw and the twists of a
+    wrench frame (:func:`contract_into`, else the span of the screw and those twists, and its
+    reciprocal), or :data:`PARALLELOGRAM`, two rods' wrenches and twists
+    (:func:`parallelogram_into`, else the span of the rods' frames and its reciprocal) into
+    ``slot`` and ``slot + 1`` (whose op is a :data:`COMPANION`, doing nothing), into ``slot``. The
+    first two sources of :data:`EXTEND` and :data:`CONTRACT` are a joint's one screw and a slot's
+    frame, in the chain's order; a third source of :data:`CONTRACT` is the slot of the twist
+    frame that its fallback spans (the same rows as an :data:`EXTEND` of the same chain, so the
+    two decide alike), else those twists are the wrench frame's reciprocal. Returns the rows ``(n, len(outputs), 6, 6)`` and orders of the ``outputs`` slots. A
     span or reciprocal is exactly what the batched kernel :func:`span` or :func:`complement`
     (``swap``) computes on that pose, so running a program equals running its ops one by one (the
     numpy path's way, :func:`screwkit.wrenches._run`) up to the two paths' round-off."""
@@ -484,14 +489,16 @@ def run_program(
                     orders[slot] = order
                     continue
             k = 0
-            for q in range(first, first + count):
+            for q in range(first, first + (2 if code == CONTRACT else count)):
                 kind, x, size = sources[q, 0], sources[q, 1], sources[q, 2]
+                if code == CONTRACT and kind == SLOT_ROWS and count == 3:  # the node's twist frame
+                    kind, x, size = sources[first + 2, 0], sources[first + 2, 1], sources[first + 2, 2]
                 if kind == JOINT_ROWS:
                     for i in range(size):
                         for s in range(6):
                             work[k, s] = scaled[p, x + i, s]
                         k += 1
-                elif code == CONTRACT:  # the twists of the wrench frame in slot x, then as a span's
+                elif code == CONTRACT and count == 2:  # the twists of the wrench frame in slot x
                     complement_into(slots[x], orders[x], True, twists, a, v, tau, y)
                     for i in range(6 - orders[x]):
                         for s in range(6):

@@ -597,14 +597,21 @@ class _ProgramBuilder:
 
     def _contract(self, members: tuple[int, ...]) -> int:
         """The wrenches of one 1-dof joint and one other node in series (reciprocal to their twists'
-        sum): :data:`CONTRACT`, the node's wrenches less those not reciprocal to the joint's screw."""
-        return self._sourced(
-            CONTRACT,
-            [
-                self.generators(c)[0] if self.top.nodes[c].kind == "joint" else (SLOT_ROWS, self.wrenches(c), 6)
-                for c in members
-            ],
-        )
+        sum): :data:`CONTRACT`, the node's wrenches less those not reciprocal to the joint's screw.
+        Where the node's twists are not the reciprocal of its wrenches (a series node, a
+        parallelogram), their slot is a third source: the fallback then spans the rows an
+        :data:`EXTEND` of the same members spans, so the twists and wrenches of a chain are decided
+        alike even within the threshold band."""
+        parts = [
+            self.generators(c)[0] if self.top.nodes[c].kind == "joint" else (SLOT_ROWS, self.wrenches(c), 6)
+            for c in members
+        ]
+        (node,) = [c for c in members if self.top.nodes[c].kind != "joint"]
+        if ("twists", node) in self.slots or self.top.nodes[node].kind != "parallel":  # else a reciprocal
+            twists = self.twists(node)
+            if self.ops[twists][0] != RECIPROCAL:
+                parts.append((SLOT_ROWS, twists, self.bound(node)))
+        return self._sourced(CONTRACT, parts)
 
     def _joint_and_node(self, members: tuple[int, ...]) -> bool:
         """Exactly two members: a joint of one screw and a node that is not a joint."""
@@ -759,15 +766,20 @@ def _closed_form(
     """:data:`EXTEND` or :data:`CONTRACT` over the batch (numpy path): the closed form
     (:func:`screwkit._frames.extend`, :func:`~screwkit._frames.contract`), the rule's span (and
     reciprocals) where it does not decide; :func:`screwkit._frames_numba.run_program`'s steps."""
-    (joint,) = [a for kind, a, _ in sources if kind == JOINT_ROWS]
-    (slot,) = [a for kind, a, _ in sources if kind == SLOT_ROWS]
+    (joint,) = [a for kind, a, _ in sources[:2] if kind == JOINT_ROWS]
+    (slot,) = [a for kind, a, _ in sources[:2] if kind == SLOT_ROWS]
     rows, order = frames[slot]
     closed = F.extend if code == EXTEND else F.contract
     out, out_order, decided = closed(rows, order, scaled[..., joint, :], rtol)
     if not decided.all():
         undecided = ~decided
-        frame = F.reciprocal(rows[undecided], order[undecided]) if code == CONTRACT else (rows[undecided], None)
-        parts = [scaled[undecided][:, a : a + b] if kind == JOINT_ROWS else frame[0][:, :b] for kind, a, b in sources]
+        if code == CONTRACT and len(sources) == 3:  # the node's twist frame
+            twists, bound = frames[sources[2][1]][0][undecided], sources[2][2]
+        elif code == CONTRACT:  # the wrench frame's reciprocal
+            twists, bound = F.reciprocal(rows[undecided], order[undecided])[0], 6
+        else:
+            twists, bound = rows[undecided], 6
+        parts = [scaled[undecided][:, a : a + b] if kind == JOINT_ROWS else twists[:, : min(b, bound)] for kind, a, b in sources[:2]]
         spanned = F.span(np.concatenate(parts, axis=-2), rtol)
         out[undecided], out_order[undecided] = F.reciprocal(*spanned) if code == CONTRACT else spanned
     return out, out_order
