@@ -1020,6 +1020,7 @@ def analyze_table(
         assert top.root is not None
         requests = (
             ("twists", top.root),
+            ("wrenches", top.root),  # the constraint system (paper 002 Eq. 3), spanned by the legs'
             *((("twists", i) for i in top.legs) if views else ()),
             *(("wrenches", i) for i in top.legs),
             *(("sum", tuple(plan.siblings)) for plan in top.limbs),
@@ -1038,7 +1039,7 @@ def analyze_table(
         platform = core.twists(top.root)
         leg_twists = [core.twists(i) for i in top.legs] if views else []
         leg_wrenches = [core.wrenches(i) for i in top.legs]
-    constraint = F.reciprocal(*platform)
+    constraint = F.reciprocal(*platform) if top.network else core.wrenches(top.root)
     n = len(top.limbs)
     if n and top.network:  # each limb's sub-network by loop closure
         lockeds, frees, perpendiculars, serials, twists = [], [], [], [], []
