@@ -205,13 +205,13 @@ def unit_scaled(screws: Array, centre: Array, length: Array) -> Array:
         return out.reshape(screws.shape)
     d0, d1, d2 = screws[..., 0], screws[..., 1], screws[..., 2]
     c0, c1, c2 = (centres[..., None, i] for i in range(3))
-    scale = lengths[..., None]
-    m0 = (screws[..., 3] - (c1 * d2 - c2 * d1)) / scale
-    m1 = (screws[..., 4] - (c2 * d0 - c0 * d2)) / scale
-    m2 = (screws[..., 5] - (c0 * d1 - c1 * d0)) / scale
+    inverse_length = 1.0 / lengths[..., None]
+    m0 = (screws[..., 3] - (c1 * d2 - c2 * d1)) * inverse_length
+    m1 = (screws[..., 4] - (c2 * d0 - c0 * d2)) * inverse_length
+    m2 = (screws[..., 5] - (c0 * d1 - c1 * d0)) * inverse_length
     size = np.sqrt(d0 * d0 + d1 * d1 + d2 * d2 + m0 * m0 + m1 * m1 + m2 * m2)
-    size = np.where(size == 0.0, 1.0, size)
-    return np.stack([d0 / size, d1 / size, d2 / size, m0 / size, m1 / size, m2 / size], axis=-1)
+    inverse = 1.0 / np.where(size == 0.0, 1.0, size)
+    return np.stack([d0 * inverse, d1 * inverse, d2 * inverse, m0 * inverse, m1 * inverse, m2 * inverse], axis=-1)
 
 
 def from_scaled(rows: Array, centre: Array, length: Array) -> Array:

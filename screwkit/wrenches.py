@@ -56,7 +56,7 @@ from .exceptions import DegenerateGeometryError, ScrewkitTypeError, TwistGraphEr
 from .joints import Joint, JointTable
 from .screwsystem import ScrewSystem
 from .topology import Node, Topology, network_layout, topology
-from .twistgraph import SeriesParallelNode, mechanism_frame
+from .twistgraph import SeriesParallelNode, scaled_frame
 
 if TYPE_CHECKING:
     from .generic import GenericAnalysis
@@ -252,7 +252,8 @@ class WrenchAnalysis:
     branch_rows : numpy.ndarray, shape (..., n_actuated, 6)
         The part of each actuation wrench carried by its actuated joint's own branch, scaled as
         :attr:`actuation_rows`: ``B_jj = branch_j ∘ $_j`` (:mod:`screwkit.jacobians`). Equal to
-        the actuation wrench except in a compound leg analysed as a whole (:func:`analyze_table`).
+        the actuation wrench except in a compound leg analysed as a whole (:func:`analyze_table`);
+        where no leg is, the very array :attr:`actuation_rows`.
     closeness_factors : dict of str to numpy.ndarray, shape (..., 21)
         ``"constraint"``, ``"actuation"``: triangular factors (:func:`screwkit._frames.triangular`,
         :func:`~screwkit._frames.packed`) with the singular values of the matrices the closeness
@@ -1013,8 +1014,8 @@ def analyze_table(
     nominal = _checked_dof(dof, table, top)
     batch = table.batch_shape
     screws = table.screws
-    centre, length = mechanism_frame(screws, table.anchor)
-    scaled = F.unit_scaled(screws, centre, length)
+    centre, length, scaled = scaled_frame(screws, table.anchor)
+    assert scaled is not None
     requests: tuple[Request, ...] = ()
     if not top.network:  # every frame the analysis needs, in one program
         assert top.root is not None
@@ -1125,8 +1126,8 @@ def analyze_table(
     user_rows = F.from_scaled(wrench_rows, centre, length)
     size = _unit_size(user_rows, length)
     actuation_rows = np.where(serial[..., None], 0.0, user_rows / size)
-    if locked_legs is None:  # every branch row is its actuation wrench: the same operations, the same bits
-        user_branches = actuation_rows.copy()
+    if locked_legs is None:  # every branch row is its actuation wrench: the same array (read only)
+        user_branches = actuation_rows
     else:
         user_branches = np.where(serial[..., None], 0.0, F.from_scaled(branch, centre, length) / size)
     return WrenchAnalysis(

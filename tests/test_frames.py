@@ -451,17 +451,27 @@ def test_transmissions_numba_matches_numpy_bit_for_bit(rng):
 
 
 @needs_numba
-def test_mechanism_frame_sums_numba_match_numpy_bit_for_bit(rng):
+def test_mechanism_frame_numba_matches_numpy_bit_for_bit(rng, monkeypatch):
     from screwkit import twistgraph as T
 
     screws = rng.standard_normal((40, 13, 6))
     screws[:, 3, :3] = 0.0  # infinite pitch: ignored
     screws[::4, 5] = screws[::4, 5] * 1e-3
+    screws[7, :, :3] = [0, 0, 1.0]  # all axes parallel: not solved directly, left to the numpy path
+    screws[9] = np.array([[*e, 0, 0, 0] for e in np.eye(3)] * 4 + [[0, 0, 1.0, 0, 0, 0]])  # concurrent axes
     kernels = F._import_kernels()
-    for got, expected in zip(kernels.frame_sums(screws), T._frame_sums_numpy(screws), strict=True):
+    point, length, direct, scaled = kernels.mechanism_frame(screws, True)
+    expected_point, expected_length = T._frame_numpy(screws, None)
+    assert not direct[7] and direct[9] and direct.sum() == 39
+    np.testing.assert_array_equal(point[direct], expected_point[direct])
+    np.testing.assert_array_equal(length[direct], expected_length[direct])
+    expected_scaled = F.unit_scaled(screws, expected_point, expected_length)  # 40 < 256: numpy
+    np.testing.assert_array_equal(scaled[direct], expected_scaled[direct])
+    np.testing.assert_array_equal(kernels.unit_scaled(screws, expected_point, expected_length), expected_scaled)
+    assert length[9] == 1.0  # every axis through the origin: the length rule's fallback (no foot, no point)
+    monkeypatch.setitem(F._compiled, "_frames_numba", kernels)  # the numba pass, pose 7 as numpy
+    for got, expected in zip(T.scaled_frame(screws), (expected_point, expected_length, expected_scaled), strict=True):
         np.testing.assert_array_equal(got, expected)
-    point = rng.standard_normal((40, 3))
-    np.testing.assert_array_equal(kernels.frame_spread(screws, point), T._frame_spread_numpy(screws, point))
 
 
 def test_mechanism_frame_sums_known_values():
