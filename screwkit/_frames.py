@@ -431,26 +431,26 @@ def _centres(rows: Array) -> tuple[Array, Array, Array, Array]:
         u0, u1, u2, m0, m1, m2 = (rows[:, r, s] for s in range(6))
         squared = u0 * u0 + u1 * u1 + u2 * u2
         good &= squared > 0
-        squared = np.where(squared > 0, squared, 1.0)
-        b0 += (u1 * m2 - u2 * m1) / squared
-        b1 += (u2 * m0 - u0 * m2) / squared
-        b2 += (u0 * m1 - u1 * m0) / squared
-        n00 += 1.0 - u0 * u0 / squared
-        n11 += 1.0 - u1 * u1 / squared
-        n22 += 1.0 - u2 * u2 / squared
-        n01 -= u0 * u1 / squared
-        n02 -= u0 * u2 / squared
-        n12 -= u1 * u2 / squared
+        inverse = 1.0 / np.where(squared > 0, squared, 1.0)
+        b0 += (u1 * m2 - u2 * m1) * inverse
+        b1 += (u2 * m0 - u0 * m2) * inverse
+        b2 += (u0 * m1 - u1 * m0) * inverse
+        n00 += 1.0 - u0 * u0 * inverse
+        n11 += 1.0 - u1 * u1 * inverse
+        n22 += 1.0 - u2 * u2 * inverse
+        n01 -= u0 * u1 * inverse
+        n02 -= u0 * u2 * inverse
+        n12 -= u1 * u2 * inverse
     a00, a01, a02 = n11 * n22 - n12 * n12, n02 * n12 - n01 * n22, n01 * n12 - n02 * n11
     a11, a12, a22 = n00 * n22 - n02 * n02, n01 * n02 - n00 * n12, n00 * n11 - n01 * n01
     det = n00 * a00 + n01 * a01 + n02 * a02
     det = np.where(good & (det > 0), det, 0.0)
-    safe = np.where(det > 0, det, 1.0)
+    inverse = 1.0 / np.where(det > 0, det, 1.0)
     return (
         det,
-        (a00 * b0 + a01 * b1 + a02 * b2) / safe,
-        (a01 * b0 + a11 * b1 + a12 * b2) / safe,
-        (a02 * b0 + a12 * b1 + a22 * b2) / safe,
+        (a00 * b0 + a01 * b1 + a02 * b2) * inverse,
+        (a01 * b0 + a11 * b1 + a12 * b2) * inverse,
+        (a02 * b0 + a12 * b1 + a22 * b2) * inverse,
     )
 
 
@@ -484,8 +484,8 @@ def rod(rows: Array, rtol: float) -> tuple[Array, Array]:
         good &= np.sqrt(d0 * d0 + d1 * d1 + d2 * d2) > math.sqrt(rtol)
         m0, m1, m2 = y1 * d2 - z1 * d1, z1 * d0 - x1 * d2, x1 * d1 - y1 * d0  # c1 × d
         size = np.sqrt(d0 * d0 + d1 * d1 + d2 * d2 + m0 * m0 + m1 * m1 + m2 * m2)
-        size = np.where(good, size, 1.0)
-        line = [d0 / size, d1 / size, d2 / size, m0 / size, m1 / size, m2 / size]
+        inverse = 1.0 / np.where(good, size, 1.0)
+        line = [d0 * inverse, d1 * inverse, d2 * inverse, m0 * inverse, m1 * inverse, m2 * inverse]
         for r in range(6):
             product = line[0] * flat[:, r, 3] + line[1] * flat[:, r, 4] + line[2] * flat[:, r, 5]
             product += line[3] * flat[:, r, 0] + line[4] * flat[:, r, 1] + line[5] * flat[:, r, 2]

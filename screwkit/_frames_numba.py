@@ -183,11 +183,12 @@ SPAN, RECIPROCAL, ROD, EXTEND, CONTRACT, PARALLELOGRAM, COMPANION = 0, 1, 2, 3, 
 JOINT_ROWS, SLOT_ROWS = 0, 1
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _centre(rows: Array) -> tuple[float, float, float, float]:  # pragma: no cover - compiled
     """The least-squares point ``(x, y, z)`` of the three axes ``rows (3, 6)`` and the determinant
     of its normal matrix ``N = Σ (I − û ûᵀ)`` (≤ 0: no point): ``N⁻¹ Σ f`` with ``f = u × m / |u|²``
-    each axis's foot (``(I − û ûᵀ) f = f``), by the adjugate."""
+    each axis's foot (``(I − û ûᵀ) f = f``), by the adjugate (the inverses of ``|u|²`` and of the
+    determinant multiplied in)."""
     n00 = n01 = n02 = n11 = n12 = n22 = 0.0
     b0 = b1 = b2 = 0.0
     for r in range(3):
@@ -196,25 +197,27 @@ def _centre(rows: Array) -> tuple[float, float, float, float]:  # pragma: no cov
         squared = u0 * u0 + u1 * u1 + u2 * u2
         if not squared > 0:
             return 0.0, 0.0, 0.0, 0.0
-        b0 += (u1 * m2 - u2 * m1) / squared
-        b1 += (u2 * m0 - u0 * m2) / squared
-        b2 += (u0 * m1 - u1 * m0) / squared
-        n00 += 1.0 - u0 * u0 / squared
-        n11 += 1.0 - u1 * u1 / squared
-        n22 += 1.0 - u2 * u2 / squared
-        n01 -= u0 * u1 / squared
-        n02 -= u0 * u2 / squared
-        n12 -= u1 * u2 / squared
+        inverse = 1.0 / squared
+        b0 += (u1 * m2 - u2 * m1) * inverse
+        b1 += (u2 * m0 - u0 * m2) * inverse
+        b2 += (u0 * m1 - u1 * m0) * inverse
+        n00 += 1.0 - u0 * u0 * inverse
+        n11 += 1.0 - u1 * u1 * inverse
+        n22 += 1.0 - u2 * u2 * inverse
+        n01 -= u0 * u1 * inverse
+        n02 -= u0 * u2 * inverse
+        n12 -= u1 * u2 * inverse
     a00, a01, a02 = n11 * n22 - n12 * n12, n02 * n12 - n01 * n22, n01 * n12 - n02 * n11
     a11, a12, a22 = n00 * n22 - n02 * n02, n01 * n02 - n00 * n12, n00 * n11 - n01 * n01
     det = n00 * a00 + n01 * a01 + n02 * a02
     if not det > 0:
         return 0.0, 0.0, 0.0, 0.0
+    inverse = 1.0 / det
     return (
         det,
-        (a00 * b0 + a01 * b1 + a02 * b2) / det,
-        (a01 * b0 + a11 * b1 + a12 * b2) / det,
-        (a02 * b0 + a12 * b1 + a22 * b2) / det,
+        (a00 * b0 + a01 * b1 + a02 * b2) * inverse,
+        (a01 * b0 + a11 * b1 + a12 * b2) * inverse,
+        (a02 * b0 + a12 * b1 + a22 * b2) * inverse,
     )
 
 
@@ -233,8 +236,8 @@ def rod_into(rows: Array, rtol: float, out: Array) -> bool:  # pragma: no cover 
     if not math.sqrt(d0 * d0 + d1 * d1 + d2 * d2) > math.sqrt(rtol):
         return False
     m0, m1, m2 = y1 * d2 - z1 * d1, z1 * d0 - x1 * d2, x1 * d1 - y1 * d0  # c1 × d
-    size = math.sqrt(d0 * d0 + d1 * d1 + d2 * d2 + m0 * m0 + m1 * m1 + m2 * m2)
-    d0, d1, d2, m0, m1, m2 = d0 / size, d1 / size, d2 / size, m0 / size, m1 / size, m2 / size
+    inverse = 1.0 / math.sqrt(d0 * d0 + d1 * d1 + d2 * d2 + m0 * m0 + m1 * m1 + m2 * m2)
+    d0, d1, d2, m0, m1, m2 = d0 * inverse, d1 * inverse, d2 * inverse, m0 * inverse, m1 * inverse, m2 * inverse
     for r in range(6):
         product = d0 * rows[r, 3] + d1 * rows[r, 4] + d2 * rows[r, 5]
         product += m0 * rows[r, 0] + m1 * rows[r, 1] + m2 * rows[r, 2]
@@ -258,7 +261,7 @@ def _top(t: Array, order: int) -> float:  # pragma: no cover - compiled
     return size if (order == 0 or not size < 1.0) else 1.0
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def extend_into(  # pragma: no cover - compiled
     rows: Array, order: int, t: Array, rtol: float, out: Array, v: Array, coefficients: Array
 ) -> int:
@@ -299,7 +302,7 @@ def extend_into(  # pragma: no cover - compiled
     return -1
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def contract_into(  # pragma: no cover - compiled
     rows: Array, order: int, t: Array, rtol: float, out: Array, c: Array, u: Array
 ) -> int:
@@ -356,7 +359,7 @@ def _line(rows: Array, order: int) -> tuple[float, ...]:  # pragma: no cover - c
     return ok, d0 / size, d1 / size, d2 / size, rows[0, 3] / size, rows[0, 4] / size, rows[0, 5] / size
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def parallelogram_into(  # pragma: no cover - compiled
     first: Array, first_order: int, second: Array, second_order: int, rtol: float, wrenches: Array, twists: Array
 ) -> bool:
