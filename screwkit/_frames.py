@@ -67,6 +67,7 @@ __all__ = [
     "SWAP",
     "actuation_directions",
     "backend",
+    "closing",
     "compiled_kernels",
     "complement",
     "contract",
@@ -91,6 +92,7 @@ __all__ = [
     "triangular",
     "unit_rows",
     "unit_scaled",
+    "unit_size",
     "unpacked",
 ]
 
@@ -884,6 +886,75 @@ def triangular(rows: Array) -> Array:
             a[:, j, j] = np.where(act, alpha, a[:, j, j])
             a[:, j + 1 :, j] = np.where(act[:, None], 0.0, a[:, j + 1 :, j])
     return a[:, :6].reshape(*batch, 6, 6)
+
+
+#: A user-frame wrench row is drawn as a unit couple where its force is at most this fraction of its
+#: moment over the length (:func:`unit_size`).
+COUPLE_RTOL = B.DEFAULT_RTOL
+
+
+def unit_size(rows: Array, length: Array) -> Array:
+    """``(..., k, 1)``: what divides user-frame wrench rows ``(..., k, 6)`` into a unit force (or a
+    unit couple where the force is negligible, :data:`COUPLE_RTOL`); norms summed left to right.
+
+    Examples
+    --------
+    >>> unit_size(np.array([[0, 0, 2.0, 1, 0, 0], [0, 0, 0, 0, 3.0, 0]]), np.array(1.0))[:, 0]
+    array([2., 3.])
+    """
+    forces = np.sqrt(rows[..., 0] * rows[..., 0] + rows[..., 1] * rows[..., 1] + rows[..., 2] * rows[..., 2])
+    moments = np.sqrt(rows[..., 3] * rows[..., 3] + rows[..., 4] * rows[..., 4] + rows[..., 5] * rows[..., 5])
+    is_couple = forces <= COUPLE_RTOL * moments / length[..., None]
+    size = np.where(is_couple, moments, forces)
+    return np.where(size > 0, size, 1.0)[..., None]
+
+
+def closing(
+    constraint: Array,
+    wrenches: Array,
+    legs: Array,
+    apart: Array,
+    serial: Array,
+    centre: Array,
+    length: Array,
+    rtol: float,
+) -> tuple[Array, Array, Array, Array, Array]:
+    """The analysis core's last per-pose steps (:func:`screwkit.wrenches.analyze_table`):
+
+    * the global frame, :func:`span` of the ``constraint (..., 6, 6)`` rows and the limbs' scaled
+      wrench rows ``wrenches (..., l, 6)`` (paper 002 Eq. 4);
+    * the closeness factors, :func:`packed` :func:`triangular` of the legs' wrench frames
+      ``legs (..., L, 6, 6)`` stacked, and of that triangle with the ``apart (..., l, 6)`` rows;
+    * the actuation rows: the wrench rows in the user's frame (:func:`from_scaled` about
+      ``centre (..., 3)`` and ``length (...)``) over :func:`unit_size`, zero where ``serial``.
+
+    Returns ``(global rows, global order, constraint factor, actuation factor, actuation rows)``.
+    On the numba path one compiled pass (:func:`screwkit._frames_numba.closing`), these
+    operations in this order (bit for bit).
+
+    Examples
+    --------
+    >>> constraint, legs = np.zeros((6, 6)), np.zeros((1, 6, 6))
+    >>> constraint[0, 3] = legs[0, 0, 3] = 1.0                    # a couple about x
+    >>> line = np.array([[0, 0, 1.0, 0, 0, 0]])                    # a force along z, through the centre
+    >>> rows, order, _, _, actuation = closing(constraint, line, legs, line, np.array([False]),
+    ...                                        np.array([0, 0, 1.0]), np.array(2.0), 1e-9)
+    >>> int(order), actuation                                     # moved to the user's frame: z through it
+    (2, array([[0., 0., 1., 0., 0., 0.]]))
+    """
+    batch = wrenches.shape[:-2]
+    if _numba_kernels(_size(batch)) is not None and 0 not in batch:
+        flat = [np.reshape(np.asarray(a), (-1, *np.shape(a)[len(batch) :])) for a in (constraint, wrenches, legs, apart, serial)]
+        centres = np.ascontiguousarray(np.broadcast_to(centre, (*batch, 3)).reshape(-1, 3), dtype=float)
+        lengths = np.ascontiguousarray(np.broadcast_to(length, batch).reshape(-1), dtype=float)
+        out = _import_kernels().closing(*flat[:4], np.ascontiguousarray(flat[4]), centres, lengths, float(rtol))
+        return tuple(a.reshape((*batch, *a.shape[1:])) for a in out)  # type: ignore[return-value]
+    rows, order = span(np.concatenate([constraint, wrenches], axis=-2), rtol)
+    triangle = triangular(np.reshape(legs, (*batch, -1, 6)))
+    actuation_factor = packed(triangular(np.concatenate([triangle, apart], axis=-2)))
+    user = from_scaled(wrenches, np.asarray(centre, dtype=float), np.asarray(length, dtype=float))
+    actuation = np.where(serial[..., None], 0.0, user / unit_size(user, np.asarray(length, dtype=float)))
+    return rows, order, packed(triangle), actuation_factor, actuation
 
 
 #: The entries on and above the diagonal of a 6×6 matrix, row by row (:func:`packed`).

@@ -937,16 +937,6 @@ def _line_search(wrench: Array, constraints: Array, order: Array) -> Array:
     )
 
 
-def _unit_size(rows: Array, length: Array) -> Array:
-    """``(..., k, 1)``: what divides user-frame rows into a unit force (or a unit couple if the
-    force vanishes)."""
-    forces = np.linalg.norm(rows[..., :3], axis=-1)
-    moments = np.linalg.norm(rows[..., 3:], axis=-1)
-    is_couple = forces <= B.DEFAULT_RTOL * moments / length[..., None]
-    size = np.where(is_couple, moments, forces)
-    return np.where(size > 0, size, 1.0)[..., None]
-
-
 def _canonical(table: JointTable) -> JointTable:
     """The table with its joints sorted by name: every route to the same mechanism (a family's
     table, a graph's, a graph rebuilt from a table) then runs the same arithmetic in the same order,
@@ -1031,6 +1021,7 @@ def analyze_table(
         requests = tuple(dict.fromkeys(requests))
     core = _Evaluation(top, scaled, rtol, requests)
     frames: dict[str, Frame] = {}
+    leg_block: Array | None = None
     if top.network:
         platform = core.network(tuple(range(len(top.specs))))
         leg_wrenches = [F.reciprocal(*platform)]
@@ -1040,6 +1031,7 @@ def analyze_table(
         platform = core.twists(top.root)
         leg_twists = [core.twists(i) for i in top.legs] if views else []
         leg_wrenches = [core.wrenches(i) for i in top.legs]
+        leg_block = core.stacked([("wrenches", i) for i in top.legs])[0]  # a view of the program's block
     constraint = F.reciprocal(*platform) if top.network else core.wrenches(top.root)
     n = len(top.limbs)
     if n and top.network:  # each limb's sub-network by loop closure
@@ -1101,15 +1093,16 @@ def analyze_table(
         serial, transmissions = np.zeros((*batch, 0), dtype=bool), np.zeros((*batch, 0))
         wrench_rows = branch = np.zeros((*batch, 0, 6))
         locked_legs, residuals = None, None
-    global_frame = F.span(np.concatenate([constraint[0], wrench_rows], axis=-2), rtol)
-    # the legs' stacked constraint wrenches as six rows with their singular values (F.triangular:
-    # two 6×6 SVDs instead of (6 legs + n) × 6 ones)
-    legs_stacked = F.triangular(np.concatenate([w[0] for w in leg_wrenches], axis=-2))
+    # the global frame; the legs' stacked constraint wrenches as six rows with their singular
+    # values (F.triangular: two 6×6 SVDs instead of (6 legs + n) × 6 ones), their singular values on
+    # demand (WrenchAnalysis.closeness); the actuation rows in the user's frame
+    legs = leg_block if leg_block is not None else np.stack([w[0] for w in leg_wrenches], axis=-3)
     apart = _apart_from_legs(top, wrench_rows, residuals)
-    closeness_factors = {  # their singular values on demand (WrenchAnalysis.closeness)
-        "constraint": F.packed(legs_stacked),
-        "actuation": F.packed(F.triangular(np.concatenate([legs_stacked, apart], axis=-2))),
-    }
+    global_rows, global_order, constraint_factor, actuation_factor, actuation_rows = F.closing(
+        constraint[0], wrench_rows, legs, apart, serial, centre, length, rtol
+    )
+    global_frame = (global_rows, global_order)
+    closeness_factors = {"constraint": constraint_factor, "actuation": actuation_factor}
     if locked_legs is not None:  # where a compound leg was analysed as a whole
         locked_legs.add_to(global_frame, constraint, wrench_rows, rtol)
     frames["platform"] = platform  # the Jacobians' nominal twists are checked against it
@@ -1123,12 +1116,10 @@ def analyze_table(
         for k, (twist_frame, wrench_frame) in enumerate(zip(leg_twists, leg_wrenches, strict=True)):
             frames[f"leg{k}:T"] = twist_frame
             frames[f"leg{k}:W"] = wrench_frame
-    user_rows = F.from_scaled(wrench_rows, centre, length)
-    size = _unit_size(user_rows, length)
-    actuation_rows = np.where(serial[..., None], 0.0, user_rows / size)
     if locked_legs is None:  # every branch row is its actuation wrench: the same array (read only)
         user_branches = actuation_rows
     else:
+        size = F.unit_size(F.from_scaled(wrench_rows, centre, length), length)
         user_branches = np.where(serial[..., None], 0.0, F.from_scaled(branch, centre, length) / size)
     return WrenchAnalysis(
         table_source=table,

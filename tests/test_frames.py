@@ -735,3 +735,47 @@ def test_compiled_program_falls_back_alike(monkeypatch):
     lines = F._span_numpy(np.concatenate([rods[0][0], rods[1][0]], axis=-2), RTOL)
     np.testing.assert_array_equal(stepwise[1][:, 2], lines[1])
     np.testing.assert_allclose(projector(stepwise[0][:, 2], stepwise[1][:, 2]), projector(*lines), atol=1e-9)
+
+
+@needs_numba
+def test_closing_numba_matches_numpy_bit_for_bit(rng, monkeypatch):
+    # the core's last steps (global span, closeness triangles, user-frame actuation rows) in one
+    # compiled pass against the numpy path's separate kernels; and against independent values: the
+    # rank of the stacked rows, the triangles' singular values, the rows moved back by hand
+    from screwkit import _frames_numba
+
+    n, limbs = 40, 4
+    constraint = np.zeros((n, 6, 6))
+    constraint[:, :2] = F._span_numpy(rng.standard_normal((n, 2, 6)), RTOL)[0][:, :2]
+    wrenches = F.unit_rows(rng.standard_normal((n, limbs, 6)))
+    wrenches[::5, 2] = wrenches[::5, 0]  # a repeated row: the global order drops
+    wrenches[3, 1, :3] = 0.0  # a couple
+    legs = np.zeros((n, 2, 6, 6))
+    legs[:, :, 0] = F.unit_rows(rng.standard_normal((n, 2, 6)))
+    apart = F.unit_rows(rng.standard_normal((n, limbs, 6)))
+    serial = rng.random((n, limbs)) < 0.2
+    centre, length = rng.standard_normal((n, 3)), rng.uniform(0.5, 3.0, n)
+    arguments = (constraint, wrenches, legs, apart, serial, centre, length, RTOL)
+    monkeypatch.setitem(F._compiled, "_frames_numba", None)
+    expected = F.closing(*arguments)
+    monkeypatch.setitem(F._compiled, "_frames_numba", _frames_numba)
+    compiled = F.closing(*arguments)
+    for got, want in zip(compiled, expected, strict=True):
+        np.testing.assert_array_equal(got, want)
+    stacked = np.concatenate([constraint[:, :2], wrenches], axis=1)
+    assert [rank(m) for m in stacked] == expected[1].tolist()
+    assert (expected[1][::5] == 5).all() and (expected[1][1::5] == 6).all()
+    values = np.linalg.svd(np.concatenate([F.unpacked(expected[2]), apart], axis=1), compute_uv=False)
+    np.testing.assert_allclose(
+        np.linalg.svd(F.unpacked(expected[3]), compute_uv=False),
+        np.linalg.svd(np.concatenate([legs.reshape(n, 12, 6), apart], axis=1), compute_uv=False),
+        atol=1e-12,
+    )
+    np.testing.assert_allclose(values, np.linalg.svd(F.unpacked(expected[3]), compute_uv=False), atol=1e-12)
+    moved = np.concatenate([wrenches[..., :3], wrenches[..., 3:] * length[:, None, None]
+                            + np.cross(centre[:, None, :], wrenches[..., :3])], axis=-1)
+    forces = np.linalg.norm(moved[..., :3], axis=-1)
+    size = np.where(forces > 1e-9 * np.linalg.norm(moved[..., 3:], axis=-1) / length[:, None], forces,
+                    np.linalg.norm(moved[..., 3:], axis=-1))
+    np.testing.assert_allclose(expected[4], np.where(serial[..., None], 0.0, moved / size[..., None]), atol=1e-12)
+    assert np.all(expected[4][serial] == 0.0)
