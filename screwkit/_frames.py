@@ -79,6 +79,7 @@ __all__ = [
     "parallelogram",
     "reciprocal",
     "residual",
+    "residuals_against",
     "rod",
     "scaled_magnitudes",
     "singular_ratio",
@@ -686,8 +687,32 @@ def _residual_numba(vectors: Array, rows: Array) -> Array:
     if 0 in batch or k == 0:
         return np.zeros((*batch, k, 6))
     flat_vectors = np.ascontiguousarray(np.broadcast_to(vectors, (*batch, k, 6)).reshape(-1, k, 6))
-    flat_rows = np.ascontiguousarray(np.broadcast_to(rows, (*batch, m, 6)).reshape(-1, m, 6))
-    return _import_kernels().residual(flat_vectors, flat_rows).reshape(*batch, k, 6)
+    flat_rows = np.ascontiguousarray(np.broadcast_to(rows, (*batch, m, 6)).reshape(-1, 1, m, 6))
+    return _import_kernels().residual(flat_vectors, flat_rows, np.zeros(k, dtype=np.int64)).reshape(*batch, k, 6)
+
+
+def residuals_against(vectors: Array, frames: Array, which: Array) -> Array:
+    """``vectors (..., k, 6)`` each minus its projections on one of ``frames (..., f, 6, 6)``
+    (vector ``j`` on frame ``which[j]``; rows orthonormal, zero beyond their order), twice: what
+    :func:`residual` does vector by vector, in one call over strided frames (a program's block).
+
+    Examples
+    --------
+    >>> frames = np.zeros((2, 6, 6)); frames[0, 0, 0] = frames[1, 0, 1] = 1.0   # e_1 and e_2, order 1
+    >>> residuals_against(np.array([[1.0, 1, 0, 0, 0, 0]] * 2), frames, np.array([0, 1]))
+    array([[0., 1., 0., 0., 0., 0.],
+           [1., 0., 0., 0., 0., 0.]])
+    """
+    batch, which = vectors.shape[:-2], np.asarray(which, dtype=np.int64)
+    if _numba_kernels(_size(batch)) is not None and 0 not in batch:
+        flat = np.reshape(vectors, (-1, *vectors.shape[-2:]))
+        out = _import_kernels().residual(flat, np.reshape(frames, (-1, *frames.shape[-3:])), which)
+        return out.reshape(vectors.shape)
+    out = np.empty(vectors.shape)
+    for frame in dict.fromkeys(which.tolist()):
+        chosen = np.flatnonzero(which == frame)
+        out[..., chosen, :] = _residual_numpy(vectors[..., chosen, :], frames[..., frame, :, :])
+    return out
 
 
 def _residual_numpy(vectors: Array, rows: Array) -> Array:

@@ -531,22 +531,26 @@ def run_program(
 
 
 @njit(cache=True)
-def residual(vectors: Array, rows: Array) -> Array:  # pragma: no cover - compiled
-    """``vectors (n, k, 6)`` minus their projections on ``rows (n, r, 6)``, twice."""
-    n, k, m = vectors.shape[0], vectors.shape[1], rows.shape[1]
-    out = vectors.copy()
+def residual(vectors: Array, frames: Array, which: Array) -> Array:  # pragma: no cover - compiled
+    """``vectors (n, k, 6)`` minus their projections on the rows of ``frames (n, f, r, 6)``,
+    twice: vector ``j`` on frame ``which[j]``."""
+    n, k, m = vectors.shape[0], vectors.shape[1], frames.shape[2]
+    out = np.empty((n, k, 6))
     coefficients = np.empty(m)
     for p in range(n):
         for j in range(k):
+            rows = frames[p, which[j]]
+            for s in range(6):
+                out[p, j, s] = vectors[p, j, s]
             for _ in range(2):
                 for i in range(m):
                     total = 0.0
                     for s in range(6):
-                        total += out[p, j, s] * rows[p, i, s]
+                        total += out[p, j, s] * rows[i, s]
                     coefficients[i] = total
                 for i in range(m):
                     for s in range(6):
-                        out[p, j, s] -= coefficients[i] * rows[p, i, s]
+                        out[p, j, s] -= coefficients[i] * rows[i, s]
     return out
 
 

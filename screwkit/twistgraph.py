@@ -287,10 +287,10 @@ def scaled_frame(screws: Array, anchor: Array | None = None, *, scale: bool = Tr
     Examples
     --------
     >>> rows = np.array([[0, 0, 1, 0, -100.0, 0], [0, 1, 0, 0, 0, 0]])
-    >>> point, length, scaled = scaled_frame(rows)
+    >>> point, length, scaled = scaled_frame(rows)                    # about (50, 0, 0), per 50
     >>> point.round(6) + 0.0, float(length), scaled.round(6) + 0.0
     (array([50.,  0.,  0.]), 50.0, array([[ 0.      ,  0.      ,  0.707107,  0.      , -0.707107,  0.      ],
-           [ 0.      ,  1.      ,  0.      ,  0.      ,  0.      ,  0.      ]]))
+           [ 0.      ,  0.707107,  0.      ,  0.      ,  0.      , -0.707107]]))
     """
     batch = screws.shape[:-2]
     flat = np.ascontiguousarray(np.reshape(screws, (-1, *screws.shape[-2:])), dtype=float)

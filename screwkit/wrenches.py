@@ -1033,6 +1033,7 @@ def analyze_table(
         leg_wrenches = [core.wrenches(i) for i in top.legs]
         leg_block = core.stacked([("wrenches", i) for i in top.legs])[0]  # a view of the program's block
     constraint = F.reciprocal(*platform) if top.network else core.wrenches(top.root)
+    legs = leg_block if leg_block is not None else np.stack([w[0] for w in leg_wrenches], axis=-3)
     n = len(top.limbs)
     if n and top.network:  # each limb's sub-network by loop closure
         lockeds, frees, perpendiculars, serials, twists = [], [], [], [], []
@@ -1071,7 +1072,7 @@ def analyze_table(
         lines = _nearest_lines(direction, limb_constraints_at, 6 - free[1])
         wrench, transmissions = F.transmissions(lines, actuated, rtol)
         branch, locked_legs = wrench, None
-        residuals = _leg_residuals(top, wrench, leg_wrenches)
+        residuals = _leg_residuals(top, wrench, legs)
         compound = _compound_legs(
             top, scaled, rtol, leg_wrenches, actuated, (wrench, serial, transmissions), residuals
         )
@@ -1079,7 +1080,7 @@ def analyze_table(
             serial, wrench, branch, transmissions, locked_legs = compound
         wrench_rows = np.where(serial[..., None], 0.0, wrench)
         if compound is not None:  # the replaced limbs' wrenches measured again
-            residuals = _leg_residuals(top, wrench_rows, leg_wrenches)
+            residuals = _leg_residuals(top, wrench_rows, legs)
         elif residuals is not None:  # a serial limb's row is zero, and so is its residual (exactly)
             residuals = np.where(serial[..., _coupled(top), None], 0.0, residuals)
         for k in range(n):
@@ -1096,7 +1097,6 @@ def analyze_table(
     # the global frame; the legs' stacked constraint wrenches as six rows with their singular
     # values (F.triangular: two 6×6 SVDs instead of (6 legs + n) × 6 ones), their singular values on
     # demand (WrenchAnalysis.closeness); the actuation rows in the user's frame
-    legs = leg_block if leg_block is not None else np.stack([w[0] for w in leg_wrenches], axis=-3)
     apart = _apart_from_legs(top, wrench_rows, residuals)
     global_rows, global_order, constraint_factor, actuation_factor, actuation_rows = F.closing(
         constraint[0], wrench_rows, legs, apart, serial, centre, length, rtol
@@ -1162,20 +1162,15 @@ def _coupled(top: Topology) -> list[int]:
     return [] if top.network else [k for k, plan in enumerate(top.limbs) if plan.partners]
 
 
-def _leg_residuals(top: Topology, rows: Array, leg_wrenches: list[Frame]) -> Array | None:
+def _leg_residuals(top: Topology, rows: Array, legs: Array) -> Array | None:
     """Wrench rows ``(..., n, 6)`` of the limbs with partners (:func:`_coupled`) less their part in
-    their compound leg's constraint system, ``(..., m, 6)`` (not renormalised; None without such
-    limbs): what :func:`_compound_legs` and :func:`_apart_from_legs` measure."""
+    their compound leg's constraint system (``legs (..., L, 6, 6)``, the legs' wrench frames),
+    ``(..., m, 6)`` (not renormalised; None without such limbs): what :func:`_compound_legs` and
+    :func:`_apart_from_legs` measure."""
     coupled = _coupled(top)
     if not coupled:
         return None
-    legs = [_leg_of(top, k) for k in coupled]
-    out = np.empty((*rows.shape[:-2], len(coupled), 6))
-    for leg in dict.fromkeys(legs):  # each leg's limbs against its frame (no stacked copies of it)
-        positions = [i for i, other in enumerate(legs) if other == leg]
-        limbs = [coupled[i] for i in positions]
-        out[..., positions, :] = F.residual(rows[..., limbs, :], leg_wrenches[leg][0])
-    return out
+    return F.residuals_against(rows[..., coupled, :], legs, np.array([_leg_of(top, k) for k in coupled]))
 
 
 def _apart_from_legs(top: Topology, rows: Array, residuals: Array | None) -> Array:

@@ -779,3 +779,23 @@ def test_closing_numba_matches_numpy_bit_for_bit(rng, monkeypatch):
                     np.linalg.norm(moved[..., 3:], axis=-1))
     np.testing.assert_allclose(expected[4], np.where(serial[..., None], 0.0, moved / size[..., None]), atol=1e-12)
     assert np.all(expected[4][serial] == 0.0)
+
+
+@needs_numba
+def test_residuals_against_frames_match_residual_bit_for_bit(rng, monkeypatch):
+    # each vector against its own frame of a strided stack, as residual() one frame at a time
+    from screwkit import _frames_numba
+
+    block = np.zeros((30, 5, 6, 6))
+    for f in range(5):
+        block[:, f, : f + 1] = F._span_numpy(rng.standard_normal((30, f + 1, 6)), RTOL)[0][:, : f + 1]
+    frames = block[:, 1:4]  # strided, as the program's block
+    vectors = rng.standard_normal((30, 4, 6))
+    which = np.array([2, 0, 2, 1])
+    monkeypatch.setitem(F._compiled, "_frames_numba", None)
+    expected = F.residuals_against(vectors, frames, which)
+    monkeypatch.setitem(F._compiled, "_frames_numba", _frames_numba)
+    np.testing.assert_array_equal(F.residuals_against(vectors, frames, which), expected)
+    for j, f in enumerate(which):
+        np.testing.assert_array_equal(expected[:, j], F._residual_numpy(vectors[:, j : j + 1], frames[:, f])[:, 0])
+        np.testing.assert_allclose(np.einsum("pis,ps->pi", frames[:, f], expected[:, j]), 0.0, atol=1e-12)
