@@ -879,9 +879,11 @@ def _nearest_lines(wrench: Array, constraints_at: Callable[[Array], Array], orde
     lines and have constraint wrenches to add are searched (each on its own: a pose's answer does
     not depend on the others).
     """
-    size = np.linalg.norm(wrench[..., :3], axis=-1)
-    pitch = np.einsum("...i,...i->...", wrench[..., :3], wrench[..., 3:])
-    not_line = np.abs(pitch) > LINE_RTOL * np.maximum(size, 1e-300) * np.linalg.norm(wrench, axis=-1)
+    w = [wrench[..., s] for s in range(6)]  # component by component: no reductions over six
+    forces = w[0] * w[0] + w[1] * w[1] + w[2] * w[2]
+    pitch = w[0] * w[3] + w[1] * w[4] + w[2] * w[5]
+    norm = np.sqrt(forces + (w[3] * w[3] + w[4] * w[4] + w[5] * w[5]))
+    not_line = np.abs(pitch) > LINE_RTOL * np.maximum(np.sqrt(forces), 1e-300) * norm
     searched = not_line & (np.asarray(order) > 0)
     best = wrench.copy()
     if searched.any():
