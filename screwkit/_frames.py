@@ -214,7 +214,7 @@ def unit_scaled(screws: Array, centre: Array, length: Array) -> Array:
     m2 = (screws[..., 5] - (c0 * d1 - c1 * d0)) * inverse_length
     size = np.sqrt(d0 * d0 + d1 * d1 + d2 * d2 + m0 * m0 + m1 * m1 + m2 * m2)
     inverse = 1.0 / np.where(size == 0.0, 1.0, size)
-    return np.stack([d0 * inverse, d1 * inverse, d2 * inverse, m0 * inverse, m1 * inverse, m2 * inverse], axis=-1)
+    return np.stack([x * inverse for x in (d0, d1, d2, m0, m1, m2)], axis=-1)
 
 
 def from_scaled(rows: Array, centre: Array, length: Array) -> Array:
@@ -589,7 +589,8 @@ def contract(rows: Array, order: Array, t: Array, rtol: float) -> tuple[Array, A
         u = sum_in_order(np.swapaxes(c[:, :, None] * flat, -1, -2))  # vᵀ rows, over the rows in order
         moved = flat[:, 1:] - (c[:, 1:] * scale[:, None])[..., None] * u[:, None, :]
         moved = np.where(used[:, 1:, None], moved, 0.0)
-        out = np.where(independent[:, None, None], np.concatenate([moved, np.zeros_like(flat[:, :1])], 1), flat)
+        moved = np.concatenate([moved, np.zeros_like(flat[:, :1])], 1)
+        out = np.where(independent[:, None, None], moved, flat)
     new_order = np.where(independent, order - 1, order)
     return out.reshape(*batch, 6, 6), new_order.reshape(batch), (independent | dependent).reshape(batch)
 
@@ -647,12 +648,14 @@ def parallelogram(
         b0, b1, b2 = d1 * a2 - d2 * a1, d2 * a0 - d0 * a2, d0 * a1 - d1 * a0
         h = a0 * u0 + a1 * u1 + a2 * u2
         root = np.sqrt(1.0 + h * h)
-        wrenches[:, 0] = np.stack([d0 / root, d1 / root, d2 / root, h * a0 / root, h * a1 / root, h * a2 / root], -1)
+        force = [d0 / root, d1 / root, d2 / root, h * a0 / root, h * a1 / root, h * a2 / root]
+        wrenches[:, 0] = np.stack(force, -1)
         wrenches[:, 1, 3:] = np.stack([b0, b1, b2], -1)
         twists[:, 0, 3:] = np.stack([a0, a1, a2], -1)
         twists[:, 1, 3:] = np.stack([b0, b1, b2], -1)
         twists[:, 2, :3] = np.stack([d0, d1, d2], -1)
-        twists[:, 3] = np.stack([a0 / root, a1 / root, a2 / root, -h * d0 / root, -h * d1 / root, -h * d2 / root], -1)
+        rotation = [a0 / root, a1 / root, a2 / root, -h * d0 / root, -h * d1 / root, -h * d2 / root]
+        twists[:, 3] = np.stack(rotation, -1)
         for line in (rows1[:, 0], rows2[:, 0]):  # each rod's line in the closed-form wrench system
             p0, p1 = _dot_in_order(line, wrenches[:, 0]), _dot_in_order(line, wrenches[:, 1])
             gap = line - p0[:, None] * wrenches[:, 0] - p1[:, None] * wrenches[:, 1]
@@ -688,7 +691,8 @@ def _residual_numba(vectors: Array, rows: Array) -> Array:
         return np.zeros((*batch, k, 6))
     flat_vectors = np.ascontiguousarray(np.broadcast_to(vectors, (*batch, k, 6)).reshape(-1, k, 6))
     flat_rows = np.ascontiguousarray(np.broadcast_to(rows, (*batch, m, 6)).reshape(-1, 1, m, 6))
-    return _import_kernels().residual(flat_vectors, flat_rows, np.zeros(k, dtype=np.int64)).reshape(*batch, k, 6)
+    out = _import_kernels().residual(flat_vectors, flat_rows, np.zeros(k, dtype=np.int64))
+    return out.reshape(*batch, k, 6)
 
 
 def residuals_against(vectors: Array, frames: Array, which: Array) -> Array:
@@ -969,11 +973,13 @@ def closing(
     """
     batch = wrenches.shape[:-2]
     if _numba_kernels(_size(batch)) is not None and 0 not in batch:
-        flat = [np.reshape(np.asarray(a), (-1, *np.shape(a)[len(batch) :])) for a in (constraint, wrenches, legs, apart, serial)]
+        arrays = (constraint, wrenches, legs, apart, serial)
+        flat = [np.reshape(np.asarray(a), (-1, *np.shape(a)[len(batch) :])) for a in arrays]
         centres = np.ascontiguousarray(np.broadcast_to(centre, (*batch, 3)).reshape(-1, 3), dtype=float)
         lengths = np.ascontiguousarray(np.broadcast_to(length, batch).reshape(-1), dtype=float)
-        out = _import_kernels().closing(*flat[:4], np.ascontiguousarray(flat[4]), centres, lengths, float(rtol))
-        return tuple(a.reshape((*batch, *a.shape[1:])) for a in out)  # type: ignore[return-value]
+        kernels = _import_kernels()
+        out = kernels.closing(*flat[:4], np.ascontiguousarray(flat[4]), centres, lengths, float(rtol))
+        return tuple(a.reshape((*batch, *a.shape[1:])) for a in out)
     rows, order = span(np.concatenate([constraint, wrenches], axis=-2), rtol)
     triangle = triangular(np.reshape(legs, (*batch, -1, 6)))
     actuation_factor = packed(triangular(np.concatenate([triangle, apart], axis=-2)))

@@ -237,7 +237,8 @@ def rod_into(rows: Array, rtol: float, out: Array) -> bool:  # pragma: no cover 
         return False
     m0, m1, m2 = y1 * d2 - z1 * d1, z1 * d0 - x1 * d2, x1 * d1 - y1 * d0  # c1 × d
     inverse = 1.0 / math.sqrt(d0 * d0 + d1 * d1 + d2 * d2 + m0 * m0 + m1 * m1 + m2 * m2)
-    d0, d1, d2, m0, m1, m2 = d0 * inverse, d1 * inverse, d2 * inverse, m0 * inverse, m1 * inverse, m2 * inverse
+    d0, d1, d2 = d0 * inverse, d1 * inverse, d2 * inverse
+    m0, m1, m2 = m0 * inverse, m1 * inverse, m2 * inverse
     for r in range(6):
         product = d0 * rows[r, 3] + d1 * rows[r, 4] + d2 * rows[r, 5]
         product += m0 * rows[r, 0] + m1 * rows[r, 1] + m2 * rows[r, 2]
@@ -361,7 +362,13 @@ def _line(rows: Array, order: int) -> tuple[float, ...]:  # pragma: no cover - c
 
 @njit(cache=True, inline="always")
 def parallelogram_into(  # pragma: no cover - compiled
-    first: Array, first_order: int, second: Array, second_order: int, rtol: float, wrenches: Array, twists: Array
+    first: Array,
+    first_order: int,
+    second: Array,
+    second_order: int,
+    rtol: float,
+    wrenches: Array,
+    twists: Array,
 ) -> bool:
     """The wrench and twist systems of two rods in parallel whose lines are parallel and distinct
     (a 4S parallelogram, paper 002 §4.1), in closed form, from the rods' wrench frames ``first``,
@@ -441,11 +448,12 @@ def run_program(
     wrench frame (:func:`contract_into`, else the span of the screw and those twists, and its
     reciprocal), or :data:`PARALLELOGRAM`, two rods' wrenches and twists
     (:func:`parallelogram_into`, else the span of the rods' frames and its reciprocal) into
-    ``slot`` and ``slot + 1`` (whose op is a :data:`COMPANION`, doing nothing), into ``slot``. The
-    first two sources of :data:`EXTEND` and :data:`CONTRACT` are a joint's one screw and a slot's
-    frame, in the chain's order; a third source of :data:`CONTRACT` is the slot of the twist
-    frame that its fallback spans (the same rows as an :data:`EXTEND` of the same chain, so the
-    two decide alike), else those twists are the wrench frame's reciprocal. Returns the rows ``(n, len(outputs), 6, 6)`` and orders of the ``outputs`` slots. A
+    ``slot`` and ``slot + 1`` (whose op is a :data:`COMPANION`, doing nothing); each other op into
+    ``slot``. The first two sources of :data:`EXTEND` and :data:`CONTRACT` are a joint's one screw
+    and a slot's frame, in the chain's order; a third source of :data:`CONTRACT` is the slot of the
+    twist frame that its fallback spans (the same rows as an :data:`EXTEND` of the same chain, so
+    the two decide alike), else those twists are the wrench frame's reciprocal. Returns the rows
+    ``(n, len(outputs), 6, 6)`` and orders of the ``outputs`` slots. A
     span or reciprocal is exactly what the batched kernel :func:`span` or :func:`complement`
     (``swap``) computes on that pose, so running a program equals running its ops one by one (the
     numpy path's way, :func:`screwkit.wrenches._run`) up to the two paths' round-off."""
@@ -477,7 +485,9 @@ def run_program(
                 continue
             if code == PARALLELOGRAM:
                 x, z = sources[first, 1], sources[first + 1, 1]
-                if parallelogram_into(slots[x], orders[x], slots[z], orders[z], rtol, slots[slot], slots[slot + 1]):
+                wrench_slot, twist_slot = slots[slot], slots[slot + 1]
+                rods = slots[x], orders[x], slots[z], orders[z]
+                if parallelogram_into(*rods, rtol, wrench_slot, twist_slot):
                     orders[slot], orders[slot + 1] = 2, 4
                     continue
             if code == EXTEND or code == CONTRACT:  # one joint screw and one frame, in closed form
@@ -723,7 +733,9 @@ def _unit_axis(screws: Array, p: int, j: int) -> tuple[float, ...]:  # pragma: n
     inverse = 1.0 / (size if finite else 1.0)
     f = 1.0 if finite else 0.0
     scale = math.sqrt(inverse) * f
-    foot0, foot1, foot2 = (d1 * m2 - d2 * m1) * inverse, (d2 * m0 - d0 * m2) * inverse, (d0 * m1 - d1 * m0) * inverse
+    foot0 = (d1 * m2 - d2 * m1) * inverse
+    foot1 = (d2 * m0 - d0 * m2) * inverse
+    foot2 = (d0 * m1 - d1 * m0) * inverse
     return f, d0 * scale, d1 * scale, d2 * scale, foot0, foot1, foot2
 
 
@@ -784,7 +796,8 @@ def mechanism_frame(screws: Array, scale: bool) -> tuple[Array, Array, Array, Ar
         c2 = (a02 * r0 + a12 * r1 + a22 * r2) / det
         total = 0.0
         for j in range(k):
-            f, u0, u1, u2, f0, f1, f2 = axes[j, 0], axes[j, 1], axes[j, 2], axes[j, 3], axes[j, 4], axes[j, 5], axes[j, 6]
+            f, u0, u1, u2 = axes[j, 0], axes[j, 1], axes[j, 2], axes[j, 3]
+            f0, f1, f2 = axes[j, 4], axes[j, 5], axes[j, 6]
             a0, a1, a2 = c0 - f0, c1 - f1, c2 - f2
             along = u0 * a0 + u1 * a1 + u2 * a2
             a0, a1, a2 = (a0 - u0 * along) * f, (a1 - u1 * along) * f, (a2 - u2 * along) * f

@@ -57,8 +57,8 @@ __all__ = [
     "joint_screws_along",
     "loop_closure_matrix",
     "mechanism_frame",
-    "scaled_frame",
     "platform_twist_system",
+    "scaled_frame",
     "series_parallel_tree",
     "simple_paths",
     "to_data",
@@ -277,7 +277,9 @@ def mechanism_frame(screws: Array, anchor: Array | None = None) -> tuple[Array, 
     return point, length
 
 
-def scaled_frame(screws: Array, anchor: Array | None = None, *, scale: bool = True) -> tuple[Array, Array, Array | None]:
+def scaled_frame(
+    screws: Array, anchor: Array | None = None, *, scale: bool = True
+) -> tuple[Array, Array, Array | None]:
     """:func:`mechanism_frame` and the screws in its scaled coordinates, unit rows
     (:func:`screwkit._frames.unit_scaled`; None unless ``scale``): ``(point, length, scaled)``. On
     the numba path one compiled pass (:func:`screwkit._frames_numba.mechanism_frame`) where the
@@ -294,7 +296,9 @@ def scaled_frame(screws: Array, anchor: Array | None = None, *, scale: bool = Tr
     """
     batch = screws.shape[:-2]
     flat = np.ascontiguousarray(np.reshape(screws, (-1, *screws.shape[-2:])), dtype=float)
-    anchors = None if anchor is None else np.broadcast_to(np.asarray(anchor, dtype=float), (*batch, 3)).reshape(-1, 3)
+    anchors = None
+    if anchor is not None:
+        anchors = np.broadcast_to(np.asarray(anchor, dtype=float), (*batch, 3)).reshape(-1, 3)
     kernels = compiled_kernels("_frames_numba", len(flat))  # the same sums, in the same order
     if kernels is None:
         point, length = _frame_numpy(flat, anchors)
@@ -319,7 +323,8 @@ def _frame_numpy(flat: Array, anchor: Array | None) -> tuple[Array, Array]:
     count, normal, rhs, farthest = _frame_sums_numpy(flat)
     point = _least_squares_point(normal, rhs, anchor)
     length = np.sqrt(_frame_spread_numpy(flat, point) / np.maximum(count, 1))
-    size = np.maximum(farthest, np.sqrt(point[:, 0] * point[:, 0] + point[:, 1] * point[:, 1] + point[:, 2] * point[:, 2]))
+    reach = np.sqrt(point[:, 0] * point[:, 0] + point[:, 1] * point[:, 1] + point[:, 2] * point[:, 2])
+    size = np.maximum(farthest, reach)
     round_off = length <= 1e-12 * size
     fallback = np.where(size > 0, size, 1.0)
     length = np.where(round_off | (length == 0), fallback, length)
@@ -343,9 +348,9 @@ def _axes_numpy(screws: Array) -> tuple[Array, list[Array], list[Array]]:
 
 
 def _frame_sums_numpy(screws: Array) -> tuple[Array, Array, Array, Array]:
-    """The sums of :func:`screwkit._frames_numba.mechanism_frame` with numpy, operation for operation: the projectors
-    ``P_k = I − u_k u_kᵀ`` of the finite axes never formed, their sum and ``Σ P_k f_k`` summed over
-    the axes left to right (:func:`screwkit._frames.sum_in_order`)."""
+    """The sums of :func:`screwkit._frames_numba.mechanism_frame` with numpy, operation for
+    operation: the projectors ``P_k = I − u_k u_kᵀ`` of the finite axes never formed, their sum and
+    ``Σ P_k f_k`` summed over the axes left to right (:func:`screwkit._frames.sum_in_order`)."""
     finite, units, feet = _axes_numpy(screws)
     along = units[0] * feet[0] + units[1] * feet[1] + units[2] * feet[2]
     pairs = ((0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2))

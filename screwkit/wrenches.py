@@ -738,7 +738,10 @@ def _run(program: _Program, scaled: Array, rtol: float, requests: tuple[Request,
         elif code in (EXTEND, CONTRACT):
             frames[slot] = _closed_form(code, sources, frames, scaled, rtol)
         else:
-            parts = [scaled[..., a : a + b, :] if kind == JOINT_ROWS else frames[a][0][..., :b, :] for kind, a, b in sources]
+            parts = [
+                scaled[..., a : a + b, :] if kind == JOINT_ROWS else frames[a][0][..., :b, :]
+                for kind, a, b in sources
+            ]
             if code == ROD:
                 frames[slot] = F.rod(np.concatenate(parts, axis=-2), rtol)
             else:
@@ -752,7 +755,8 @@ def _parallelogram(rods: list[Frame], rtol: float) -> tuple[Frame, Frame]:
     """:data:`PARALLELOGRAM` over the batch (numpy path): the closed form
     (:func:`screwkit._frames.parallelogram`), the span of the two rods' frames and its reciprocal
     where it does not apply; :func:`screwkit._frames_numba.run_program`'s steps."""
-    wrenches, wrench_order, twists, twist_order, decided = F.parallelogram(*rods, rtol)
+    first, second = rods
+    wrenches, wrench_order, twists, twist_order, decided = F.parallelogram(first, second, rtol)
     if not decided.all():
         undecided = ~decided
         spanned = F.span(np.concatenate([rows[undecided] for rows, _ in rods], axis=-2), rtol)
@@ -780,7 +784,10 @@ def _closed_form(
             twists, bound = F.reciprocal(rows[undecided], order[undecided])[0], 6
         else:
             twists, bound = rows[undecided], 6
-        parts = [scaled[undecided][:, a : a + b] if kind == JOINT_ROWS else twists[:, : min(b, bound)] for kind, a, b in sources[:2]]
+        parts = [
+            scaled[undecided][:, a : a + b] if kind == JOINT_ROWS else twists[:, : min(b, bound)]
+            for kind, a, b in sources[:2]
+        ]
         spanned = F.span(np.concatenate(parts, axis=-2), rtol)
         out[undecided], out_order[undecided] = F.reciprocal(*spanned) if code == CONTRACT else spanned
     return out, out_order
@@ -1034,7 +1041,7 @@ def analyze_table(
         leg_twists = [core.twists(i) for i in top.legs] if views else []
         leg_wrenches = [core.wrenches(i) for i in top.legs]
         leg_block = core.stacked([("wrenches", i) for i in top.legs])[0]  # a view of the program's block
-    constraint = F.reciprocal(*platform) if top.network else core.wrenches(top.root)
+    constraint = F.reciprocal(*platform) if top.network or top.root is None else core.wrenches(top.root)
     legs = leg_block if leg_block is not None else np.stack([w[0] for w in leg_wrenches], axis=-3)
     n = len(top.limbs)
     if n and top.network:  # each limb's sub-network by loop closure

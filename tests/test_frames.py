@@ -546,7 +546,7 @@ def test_closed_forms_leave_the_threshold_band_to_the_rule(rng, offset, decided,
     t = rng.standard_normal(3) @ twists[:3]
     t = t / np.linalg.norm(t) + offset * outside
     for closed, frame, order, change in ((F.extend, twists, t_order, 1), (F.contract, wrenches, w_order, -1)):
-        rows, got, ok = closed(frame, order, t, RTOL)
+        _, got, ok = closed(frame, order, t, RTOL)
         assert bool(ok) is decided
         if decided:
             assert int(got) == int(order) + (change if grows else 0)
