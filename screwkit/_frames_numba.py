@@ -485,9 +485,8 @@ def run_program(
                 continue
             if code == PARALLELOGRAM:
                 x, z = sources[first, 1], sources[first + 1, 1]
-                wrench_slot, twist_slot = slots[slot], slots[slot + 1]
-                rods = slots[x], orders[x], slots[z], orders[z]
-                if parallelogram_into(*rods, rtol, wrench_slot, twist_slot):
+                rod_a, rod_b, into_w, into_t = slots[x], slots[z], slots[slot], slots[slot + 1]
+                if parallelogram_into(rod_a, orders[x], rod_b, orders[z], rtol, into_w, into_t):
                     orders[slot], orders[slot + 1] = 2, 4
                     continue
             if code == EXTEND or code == CONTRACT:  # one joint screw and one frame, in closed form
