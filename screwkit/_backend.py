@@ -3,8 +3,12 @@
 Every other module writes one kernel with ``+ - * @``, :func:`numpy.cross`, :func:`numpy.concatenate`
 and indexing, which numpy supports both for ``float64`` arrays and for ``object`` arrays of sympy
 expressions. What those operators cannot do (input validation and promotion, norms, determinants,
-ranks, null spaces, zero tests, simplification) lives here, each with a numeric and a symbolic
-branch (design.md §4).
+ranks, null spaces, zero tests and degeneracy decisions, quotients with an infinite branch, the
+floating-point range scalings, simplification) lives here, each with a numeric and a symbolic
+branch (design.md §4): a numeric decision uses a relative tolerance, a symbolic one decides
+identically (generically; :func:`is_exactly_zero`). Elsewhere :func:`is_symbolic` only refuses
+symbolic input on a numeric-only path (a snapshot, the batched core), sends a symbolic twist graph
+to the generic analysis, or passes the branch to a constructor here (``zeros(..., symbolic=...)``).
 
 Rank decisions
 --------------
@@ -36,17 +40,20 @@ from typing import TYPE_CHECKING, Any, Literal, overload
 
 import numpy as np
 
-from .exceptions import ScrewkitTypeError, ScrewkitValueError
+from .exceptions import DegenerateGeometryError, ScrewkitTypeError, ScrewkitValueError
 
 __all__ = [
     "DEFAULT_RTOL",
     "as_array",
     "as_arrays",
+    "characteristic_length",
     "checked_length_scale",
     "cross",
     "det",
+    "direction_scaled",
     "dot",
     "exact_fraction",
+    "float_lists",
     "from_fraction",
     "infinity",
     "is_dof",
@@ -57,14 +64,24 @@ __all__ = [
     "matrix_nullspace",
     "norm",
     "ones_like",
+    "plain",
     "promote",
+    "proper_rotations",
+    "ratio",
     "scale_moments",
+    "screw_image_of_nullspace",
     "screw_nullspace",
     "screw_rank",
     "screw_singular_values",
     "simplify",
+    "sqrt",
     "sympy_module",
     "to_sympy",
+    "unit_directions",
+    "unit_screws",
+    "vanishes",
+    "where_zero",
+    "zero_vectors",
     "zeros",
     "zeros_like",
 ]
@@ -230,8 +247,273 @@ def is_exactly_zero(value: Any) -> bool:
     (True, False, True)
     """
     if is_symbolic(value):
-        return bool(sympy_module().simplify(value) == 0)
+        return _identically_zero(value)
     return bool(value == 0)
+
+
+def _identically_zero(expr: Any) -> bool:
+    """A sympy scalar is identically zero.
+
+    A non-zero *exact* value at the symbols' random integer point (:mod:`screwkit._symbolic`)
+    proves it is not, without simplifying: the common case costs one substitution. Otherwise
+    ``expand`` decides polynomials and ``simplify`` the rest (trigonometric identities).
+    """
+    sp = sympy_module()
+    if expr == 0:
+        return True
+    if expr.free_symbols:
+        from . import _symbolic  # sympy is already imported: expr is a sympy object
+
+        try:
+            value = _symbolic.generic_point(np.array([expr], dtype=object)).value(expr)
+        except ScrewkitValueError:  # not real at the point: decided below
+            value = None
+        if isinstance(value, int | Fraction) and value != 0:
+            return False
+    return bool(sp.expand(expr) == 0 or sp.simplify(expr) == 0)
+
+
+def zero_vectors(values: Array) -> Array:
+    """Where vectors over the last axis are zero: exactly for numbers, identically for sympy.
+
+    Parameters
+    ----------
+    values : numpy.ndarray, shape (..., n)
+
+    Returns
+    -------
+    numpy.ndarray of bool, shape (...) (a numpy bool for one vector)
+
+    Examples
+    --------
+    >>> zero_vectors(np.array([[0.0, 0.0], [0.0, 1e-300]]))
+    array([ True, False])
+    >>> import sympy
+    >>> x = sympy.Symbol("x")
+    >>> zero_vectors(np.array([[x - x, (x + 1) ** 2 - x**2 - 2 * x - 1], [x, 0]], dtype=object))
+    array([ True, False])
+    """
+    if is_symbolic(values):
+        rows = values.reshape(-1, values.shape[-1])
+        zero = [all(is_exactly_zero(v) for v in row) for row in rows]
+        return np.array(zero, dtype=bool).reshape(values.shape[:-1])[()]
+    return np.all(np.asarray(values) == 0, axis=-1)
+
+
+def vanishes(values: Array, *factors: Array, rtol: float) -> Array:
+    """Where vectors vanish relative to the vectors they were computed from.
+
+    Numeric: ``|values| <= rtol · ∏ |factor|`` (Euclidean norms over the last axis), so that the
+    decision does not change when a factor is scaled (a unit change, a longer direction).
+    Symbolic: every component is identically zero (:func:`zero_vectors`); a symbolic value is
+    generic, so no tolerance applies.
+
+    Parameters
+    ----------
+    values : numpy.ndarray, shape (..., n)
+        E.g. a cross product, a join or a meet.
+    *factors : numpy.ndarray, shape (..., m)
+        The inputs ``values`` is linear in (the product of their norms bounds ``|values|``).
+    rtol : float
+
+    Returns
+    -------
+    numpy.ndarray of bool, shape (...) (a numpy bool for one vector)
+
+    Examples
+    --------
+    >>> a, b = np.array([1.0, 0, 0]), np.array([1.0, 1e-12, 0])
+    >>> vanishes(np.cross(a, b), a, b, rtol=1e-9), vanishes(np.cross(a, 1e3 * b), a, 1e3 * b, rtol=1e-9)
+    (np.True_, np.True_)
+    >>> import sympy
+    >>> t = sympy.Symbol("t")
+    >>> vanishes(cross(np.array([t, 0, 0], dtype=object), np.array([1, t, 0], dtype=object)), rtol=1e-9)
+    np.False_
+    """
+    if is_symbolic(values):
+        return zero_vectors(values)
+    reference = np.prod([np.linalg.norm(f, axis=-1) for f in factors], axis=0) if factors else 1.0
+    return np.linalg.norm(values, axis=-1) <= rtol * reference
+
+
+def unit_directions(vectors: Array) -> Array:
+    """Numeric vectors ``(..., 3)`` scaled to unit length; symbolic vectors unchanged.
+
+    A symbolic direction stays polynomial (no ``sqrt``): its length is a generic non-zero factor,
+    and every use of a direction in a screw system is projective in it.
+
+    Examples
+    --------
+    >>> unit_directions(np.array([3.0, 0, 4]))
+    array([0.6, 0. , 0.8])
+    >>> import sympy
+    >>> unit_directions(np.array([sympy.Symbol("a"), 0, 1], dtype=object))
+    array([a, 0, 1], dtype=object)
+    """
+    if is_symbolic(vectors):
+        return vectors
+    return vectors / np.linalg.norm(vectors, axis=-1, keepdims=True)
+
+
+def ratio(numerator: Any, denominator: Any) -> Any:
+    """``numerator / denominator`` elementwise, infinity where the denominator is exactly zero.
+
+    Numeric: float64 (a float for scalars); symbolic: simplified quotients or ``sympy.oo``, decided
+    by :func:`is_exactly_zero`.
+
+    Examples
+    --------
+    >>> ratio(np.array([1.0, 2.0]), np.array([4.0, 0.0]))
+    array([0.25,  inf])
+    >>> import sympy
+    >>> x = sympy.Symbol("x")
+    >>> ratio(x**2, x), ratio(x, x - x)
+    (x, oo)
+    """
+    if is_symbolic(numerator, denominator):
+        sp = sympy_module()
+
+        def one(n: Any, d: Any) -> Any:
+            return sp.oo if is_exactly_zero(d) else sp.simplify(n / d)
+
+        if np.ndim(denominator) == 0 and np.ndim(numerator) == 0:
+            return one(numerator, denominator)
+        return np.vectorize(one, otypes=[object])(numerator, denominator)
+    safe = np.where(denominator != 0, denominator, 1.0)
+    result = np.where(denominator != 0, numerator / safe, math.inf)
+    return float(result) if np.ndim(result) == 0 else result
+
+
+def where_zero(test: Any, if_zero: Any, otherwise: Any) -> Any:
+    """``if_zero`` where ``test`` is exactly zero, else ``otherwise``, elementwise.
+
+    Numeric: :func:`numpy.where` (a float for scalars); symbolic: decided by :func:`is_exactly_zero`.
+
+    Examples
+    --------
+    >>> where_zero(np.array([0.0, 2.0]), np.array([5.0, 5.0]), np.array([2.0, 2.0]))
+    array([5., 2.])
+    >>> import sympy
+    >>> x = sympy.Symbol("x")
+    >>> where_zero(x - x, 1, x)
+    1
+    """
+    if is_symbolic(test, if_zero, otherwise):
+        if np.ndim(test) == 0:
+            return if_zero if is_exactly_zero(test) else otherwise
+        return np.vectorize(lambda t, a, b: a if is_exactly_zero(t) else b, otypes=[object])(
+            test, if_zero, otherwise
+        )
+    result = np.where(test == 0, if_zero, otherwise)
+    return float(result) if np.ndim(result) == 0 else result
+
+
+def sqrt(value: Any) -> Any:
+    """Square root: :func:`numpy.sqrt`, or ``sympy.sqrt`` elementwise when symbolic.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> sqrt(np.array([4.0])), sqrt(sympy.Symbol("x", positive=True) ** 2)
+    (array([2.]), x)
+    """
+    if is_symbolic(value):
+        sp = sympy_module()
+        if isinstance(value, np.ndarray):
+            return np.vectorize(sp.sqrt, otypes=[object])(value)
+        return sp.sqrt(value)
+    return np.sqrt(value)
+
+
+def direction_scaled(s: Array, s0: Array) -> tuple[Array, Array]:
+    """Numeric ``(s, s0)`` times a power of two (exact) per screw so that ``|s|`` lies in [0.5, 2):
+    ``s·s`` then neither underflows (a 1e-170 axis) nor overflows. Symbolic values are returned as
+    they are (exact arithmetic has no range). Quotients homogeneous in ``(s, s0)`` (pitch, axis
+    point) are unchanged.
+
+    Examples
+    --------
+    >>> direction_scaled(np.array([0.0, 0, 8.0]), np.array([1.0, 0, 0]))
+    (array([0. , 0. , 0.5]), array([0.0625, 0.    , 0.    ]))
+    """
+    if is_symbolic(s, s0):
+        return s, s0
+    largest = np.max(np.abs(s), axis=-1, keepdims=True)
+    shift = np.frexp(np.where(largest > 0, largest, 1.0))[1]
+    return np.ldexp(s, -shift), np.ldexp(s0, -shift)
+
+
+def unit_screws(screws: Array, length_scale: float) -> Array:
+    """Numeric screws ``(..., 6)`` with the moment divided by ``length_scale`` and scaled to unit
+    length, for tolerance decisions; symbolic screws unchanged (their decisions are exact).
+
+    Raises
+    ------
+    DegenerateGeometryError
+        For a numeric zero screw.
+
+    Examples
+    --------
+    >>> unit_screws(np.array([0.0, 0, 2, 0, 0, 4]), 2.0)
+    array([0.        , 0.        , 0.70710678, 0.        , 0.        , 0.70710678])
+    """
+    if is_symbolic(screws):
+        return screws
+    checked_length_scale(length_scale)
+    scaled = np.array(screws, dtype=float)
+    scaled[..., 3:] /= length_scale
+    largest = np.max(np.abs(scaled), axis=-1, keepdims=True)
+    if np.any(largest == 0):
+        raise DegenerateGeometryError("Expected non-zero screws, got the zero screw.")
+    scaled = np.ldexp(scaled, -np.frexp(largest)[1])  # exact: the norm neither underflows nor overflows
+    return scaled / np.linalg.norm(scaled, axis=-1, keepdims=True)
+
+
+def proper_rotations(rotation: Array) -> bool:
+    """Whether every matrix ``(..., 3, 3)`` is a proper rotation: ``RᵀR = I`` (to 1e-9) and
+    ``det R > 0``; symbolic matrices identically (``RᵀR − I`` and ``det R − 1`` identically zero).
+
+    Examples
+    --------
+    >>> import sympy
+    >>> t = sympy.Symbol("t")
+    >>> turn = np.array([[sympy.cos(t), -sympy.sin(t), 0], [sympy.sin(t), sympy.cos(t), 0], [0, 0, 1]])
+    >>> proper_rotations(np.eye(3)), proper_rotations(np.diag([1.0, 1, -1])), proper_rotations(turn)
+    (True, False, True)
+    """
+    product = np.swapaxes(rotation, -1, -2) @ rotation
+    if is_symbolic(rotation):
+        deviation = (product - np.eye(3, dtype=int)).reshape(*rotation.shape[:-2], 9)
+        if rotation.ndim != 2:
+            return all(proper_rotations(r) for r in rotation.reshape(-1, 3, 3))
+        return bool(np.all(zero_vectors(deviation))) and is_exactly_zero(det(rotation) - 1)
+    return bool(np.allclose(product, np.eye(3), atol=1e-9) and np.all(np.linalg.det(rotation) > 0))
+
+
+def plain(value: Any) -> float | str:
+    """A JSON-ready scalar: a float for a number, the text of a sympy expression.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> plain(np.float64(2.5)), plain(sympy.Symbol("x") / 2)
+    (2.5, 'x/2')
+    """
+    return str(value) if is_symbolic(value) else float(value)
+
+
+def float_lists(**values: Any) -> dict[str, Any]:
+    """Numeric values as JSON-ready float lists by name; ``{}`` when any value is symbolic.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> float_lists(axis=np.array([0, 0, 1]), pitch=2), float_lists(axis=[sympy.Symbol("a"), 0, 1])
+    ({'axis': [0.0, 0.0, 1.0], 'pitch': 2.0}, {})
+    """
+    if is_symbolic(*values.values()):
+        return {}
+    return {name: np.asarray(value, dtype=float).tolist() for name, value in values.items()}
 
 
 def zeros(shape: tuple[int, ...], *, symbolic: bool) -> Array:
@@ -624,6 +906,23 @@ def scale_moments(rows: Array, length_scale: float | None) -> tuple[Array, float
     return scaled, length
 
 
+def characteristic_length(rows: Array, length_scale: float | None) -> float | None:
+    """The length a numeric rank decision on ``rows`` uses (:func:`scale_moments`); symbolic rows
+    keep ``length_scale`` as given (their decisions are exact and need none).
+
+    Examples
+    --------
+    >>> import sympy
+    >>> characteristic_length(np.array([[1.0, 0, 0, 0, 0, 500.0]]), None)
+    500.0
+    >>> characteristic_length(np.array([[sympy.Symbol("a"), 0, 0, 0, 0, 1]], dtype=object), None) is None
+    True
+    """
+    if is_symbolic(rows):
+        return length_scale
+    return scale_moments(rows, length_scale)[1]
+
+
 #: The coarsest relative tolerance accepted for a rank or zero decision. Beyond it the decisions
 #: of a system and of its reciprocal stop agreeing: at ``rtol = 0.3`` the H4's default pose reads
 #: a 3T3R platform and a global wrench system of order 3 (a 4-DOF robot), and coarser values give
@@ -746,6 +1045,62 @@ def screw_nullspace(
     # In scaled coordinates x' = (x_s; x_m / L); reciprocity a∘x = L (a'∘x') is preserved.
     basis[:, 3:] *= length
     return basis
+
+
+def screw_image_of_nullspace(
+    mapping: Array, constraints: Array, *, rtol: float, length_scale: float
+) -> Array:
+    """The screws ``mapping @ x`` for ``x`` in the null space of ``constraints``: e.g. the platform
+    twists a loop-closure matrix allows, with ``mapping`` the joint screws along a path to it.
+
+    Parameters
+    ----------
+    mapping : numpy.ndarray, shape (6, n)
+        Screw columns.
+    constraints : numpy.ndarray, shape (6 m, n)
+        Stacked screw rows (m blocks of 6; m may be 0).
+    rtol : float
+    length_scale : float
+        Moments are divided by it before any numeric decision (module docstring).
+
+    Returns
+    -------
+    numpy.ndarray, shape (k, 6)
+        Numeric: an orthogonal basis of the image in scaled coordinates, moments scaled back. Columns
+        are scaled to unit size first, and the image's rank is decided relative to the size of the
+        mapping's columns, not to the image itself: internal motions (a rod spinning between two S
+        joints) map to round-off, not to a screw. Symbolic: the images of an exact (generic) null
+        space basis, not reduced to a basis.
+
+    Examples
+    --------
+    >>> spin = np.array([[0.0], [0], [1], [0], [0], [0]])  # a free rotation about z, no loop
+    >>> screw_image_of_nullspace(spin, np.zeros((0, 1)), rtol=1e-9, length_scale=1.0)
+    array([[0., 0., 1., 0., 0., 0.]])
+    """
+    checked_rtol(rtol)
+    n = mapping.shape[1]
+    if mapping.dtype == object or constraints.dtype == object:
+        rates = (
+            matrix_nullspace(constraints, rtol=rtol)
+            if constraints.shape[0]
+            else np.eye(n, dtype=int) + zeros((n, n), symbolic=True)
+        )
+        return (mapping @ rates.T).T
+    scaled = constraints.copy()
+    scaled.reshape(-1, 6, n)[:, 3:, :] /= length_scale
+    scaled_mapping = mapping.copy()
+    scaled_mapping[3:] /= length_scale
+    column_norm = np.linalg.norm(np.vstack([scaled, scaled_mapping]), axis=0)
+    scaled = scaled.reshape(-1, n) if scaled.size else np.zeros((0, n))
+    column_norm[column_norm == 0] = 1.0
+    scaled_mapping = scaled_mapping / column_norm
+    rates = matrix_nullspace(scaled / column_norm, rtol=rtol)  # orthonormal, in scaled coordinates
+    u, values, _ = np.linalg.svd(scaled_mapping @ rates.T, full_matrices=False)
+    keep = values > rtol * np.linalg.norm(scaled_mapping, 2)
+    image = (u[:, keep] * values[keep]).T
+    image[:, 3:] *= length_scale
+    return image
 
 
 def matrix_nullspace(matrix: Array, *, rtol: float = DEFAULT_RTOL) -> Array:

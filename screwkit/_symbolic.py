@@ -259,15 +259,32 @@ class GenericRows:
         return len(self.polys)
 
     def take(self, indices: Sequence[int]) -> GenericRows:
-        """The rows at some indices."""
+        """The rows at some indices.
+
+        Examples
+        --------
+        >>> import sympy
+        >>> x = sympy.Symbol("x")
+        >>> rows = np.array([[x, 1], [1, x]], dtype=object)
+        >>> GenericRows.from_exprs(rows, generic_point(rows)).take([1]).exprs().tolist()
+        [[1, x]]
+        """
         return self._like([self.polys[i] for i in indices], [self.values[i] for i in indices])
 
     def scaled(self, factor: int) -> GenericRows:
-        """Every row times an integer."""
-        return self._like(
-            [[factor * p for p in row] for row in self.polys],
-            [[factor * v for v in row] for row in self.values],
-        )
+        """Every row times an integer (60-digit values multiplied at 60 digits).
+
+        Examples
+        --------
+        >>> import sympy
+        >>> x = sympy.Symbol("x")
+        >>> rows = np.array([[x, 1]], dtype=object)
+        >>> GenericRows.from_exprs(rows, generic_point(rows)).scaled(3).exprs().tolist()
+        [[3*x, 3]]
+        """
+        with self.precision():
+            values = [[factor * v for v in row] for row in self.values]
+        return self._like([[factor * p for p in row] for row in self.polys], values)
 
     def stack(self, *others: GenericRows) -> GenericRows:
         """These rows followed by the others' (one ring)."""
@@ -286,9 +303,21 @@ class GenericRows:
         )
 
     def independent(self) -> list[int]:
-        """Indices of the rows that raise the generic rank, in order (decided at the point; call
-        inside :meth:`precision`)."""
-        return _echelon(self.values)[0] if self.polys else []
+        """Indices of the rows that raise the generic rank, in order (decided at the point, in the
+        values' arithmetic).
+
+        Examples
+        --------
+        >>> import sympy
+        >>> x = sympy.Symbol("x")
+        >>> rows = np.array([[x, 1], [2 * x, 2], [1, x]], dtype=object)
+        >>> GenericRows.from_exprs(rows, generic_point(rows)).independent()
+        [0, 2]
+        """
+        if not self.polys:
+            return []
+        with self.precision():
+            return _echelon(self.values)[0]
 
     def precision(self) -> contextlib.AbstractContextManager[Any]:
         """The arithmetic context of the values: 60 digits unless they are exact."""

@@ -145,7 +145,7 @@ class Joint:
             raise ScrewkitValueError(
                 f"Joint {self.name!r} of type {self.type}: expected {expected} screw(s), got {rows.shape[0]}."
             )
-        if not B.is_symbolic(rows) and np.any(np.linalg.norm(rows, axis=1) == 0):
+        if np.any(B.zero_vectors(rows)):
             raise ScrewkitValueError(f"Joint {self.name!r}: expected non-zero screws, got a zero row.")
         if not isinstance(self.actuated, bool | np.bool_) or not isinstance(self.virtual, bool | np.bool_):
             flag, value = (
@@ -187,7 +187,7 @@ class Joint:
             "type": self.type,
             "actuated": self.actuated,
             "virtual": self.virtual,
-            "screws": [[_plain(v) for v in row] for row in self.screws],
+            "screws": [[B.plain(v) for v in row] for row in self.screws],
             "geometry": self.geometry,
         }
 
@@ -228,24 +228,10 @@ class Joint:
         return f"{self.type} joint {self.name!r}{flags}"
 
 
-def _plain(value: Any) -> Any:
-    return float(value) if not hasattr(value, "free_symbols") else str(value)
-
-
-def _geometry(**values: Any) -> dict[str, Any]:
-    return {k: np.asarray(v, dtype=float).tolist() for k, v in values.items()}
-
-
-def _numeric_or_none(*values: Any) -> bool:
-    return not B.is_symbolic(*values)
-
-
 def _unit_axis(axis: Any) -> Any:
-    """A numeric axis scaled to unit length (zero axes are refused by the screw kernels); a symbolic
-    axis is kept as given, so that symbolic screws stay polynomial."""
-    if B.is_symbolic(axis):
-        return axis
-    return S.normalize(S.line(axis, [0, 0, 0]))[:3]
+    """A numeric axis scaled to unit length; a symbolic axis is kept as given, so that symbolic screws
+    stay polynomial (:func:`screwkit._backend.unit_directions`). A zero axis is refused."""
+    return B.unit_directions(S.line(axis, [0, 0, 0])[:3])
 
 
 def revolute(name: str, axis: Any, point: Any, *, actuated: bool = False) -> Joint:
@@ -257,7 +243,7 @@ def revolute(name: str, axis: Any, point: Any, *, actuated: bool = False) -> Joi
     array([[ 0.,  0.,  1.,  0., -1.,  0.]])
     """
     twist = S.revolute_twist(_unit_axis(axis), point)
-    geometry = _geometry(axis=axis, point=point) if _numeric_or_none(axis, point) else {}
+    geometry = B.float_lists(axis=axis, point=point)
     return Joint(name, "R", twist.reshape(1, 6), actuated=actuated, geometry=geometry)
 
 
@@ -270,7 +256,7 @@ def prismatic(name: str, direction: Any, *, actuated: bool = False) -> Joint:
     array([[0. , 0. , 0. , 0.6, 0. , 0.8]])
     """
     twist = S.normalize(S.prismatic_twist(direction))
-    geometry = _geometry(direction=direction) if _numeric_or_none(direction) else {}
+    geometry = B.float_lists(direction=direction)
     return Joint(name, "P", twist.reshape(1, 6), actuated=actuated, geometry=geometry)
 
 
@@ -287,7 +273,7 @@ def helical(name: str, axis: Any, point: Any, pitch: Any, *, actuated: bool = Fa
             f"Expected `pitch` to be one number (the joint's pitch), got shape {np.shape(pitch)}."
         )
     twist = S.helical_twist(S.normalize(S.line(axis, [0, 0, 0]))[:3], point, pitch)
-    geometry = _geometry(axis=axis, point=point, pitch=pitch) if _numeric_or_none(axis, point, pitch) else {}
+    geometry = B.float_lists(axis=axis, point=point, pitch=pitch)
     return Joint(name, "H", twist.reshape(1, 6), actuated=actuated, geometry=geometry)
 
 
@@ -312,7 +298,7 @@ def cylindrical(name: str, axis: Any, point: Any) -> Joint:
     """
     unit = S.normalize(S.line(axis, [0, 0, 0]))[:3]
     rows = np.stack([S.revolute_twist(unit, point), S.prismatic_twist(unit)])
-    geometry = _geometry(axis=axis, point=point) if _numeric_or_none(axis, point) else {}
+    geometry = B.float_lists(axis=axis, point=point)
     return Joint(name, "C", rows, geometry=geometry)
 
 
@@ -332,18 +318,12 @@ def universal(name: str, first_axis: Any, second_axis: Any, center: Any) -> Join
     rows = np.stack(
         [S.revolute_twist(_unit_axis(first_axis), center), S.revolute_twist(_unit_axis(second_axis), center)]
     )
-    directions = rows[:, :3]
-    if not B.is_symbolic(rows) and np.linalg.norm(np.cross(directions[0], directions[1])) <= (
-        PARALLEL_RTOL * np.prod(np.linalg.norm(directions, axis=1))
-    ):
+    first, second = rows[0, :3], rows[1, :3]
+    if B.vanishes(B.cross(first, second), first, second, rtol=PARALLEL_RTOL):
         raise ScrewkitValueError(
             f"Universal joint {name!r}: expected two non-parallel axes, got parallel axes."
         )
-    geometry = (
-        _geometry(first_axis=first_axis, second_axis=second_axis, center=center)
-        if _numeric_or_none(first_axis, second_axis, center)
-        else {}
-    )
+    geometry = B.float_lists(first_axis=first_axis, second_axis=second_axis, center=center)
     return Joint(name, "U", rows, geometry=geometry)
 
 
@@ -357,9 +337,9 @@ def spherical(name: str, center: Any) -> Joint:
            [0., 1., 0.],
            [0., 0., 1.]])
     """
-    axes = np.eye(3, dtype=object) if B.is_symbolic(center) else np.eye(3)
-    rows = np.stack([S.revolute_twist(a, center) for a in axes])
-    geometry = _geometry(center=center) if _numeric_or_none(center) else {}
+    axes, centre = B.promote(np.eye(3), B.as_array(center, "center", (3,)))
+    rows = np.stack([S.revolute_twist(a, centre) for a in axes])
+    geometry = B.float_lists(center=center)
     return Joint(name, "S", rows, geometry=geometry)
 
 
@@ -384,16 +364,12 @@ def parallelogram(name: str, hinge_axis: Any, rod_direction: Any, *, actuated: b
     w = B.as_array(rod_direction, "rod_direction", (3,))
     a, w = B.promote(a, w)
     velocity = B.cross(a, w)
-    if not B.is_symbolic(velocity) and np.linalg.norm(velocity) <= PARALLEL_RTOL * np.linalg.norm(
-        a
-    ) * np.linalg.norm(w):
+    if B.vanishes(velocity, a, w, rtol=PARALLEL_RTOL):
         raise ScrewkitValueError(
             f"Parallelogram {name!r}: expected rods not parallel to the hinge axes, got parallel ones."
         )
-    twist = S.prismatic_twist(velocity)
-    if not B.is_symbolic(twist):
-        twist = S.normalize(twist)
-    geometry = _geometry(hinge_axis=a, rod_direction=w) if _numeric_or_none(a, w) else {}
+    twist = S.prismatic_twist(B.unit_directions(velocity))
+    geometry = B.float_lists(hinge_axis=a, rod_direction=w)
     return Joint(name, "Pa", twist.reshape(1, 6), actuated=actuated, geometry=geometry)
 
 
@@ -406,10 +382,7 @@ def virtual(name: str, screw: Any) -> Joint:
     'vP'
     """
     row = B.as_array(screw, "screw", (6,)).reshape(1, 6)
-    if B.is_symbolic(row):
-        kind = "vR" if S.pitch(row[0]) == 0 else ("vP" if B.is_infinite(S.pitch(row[0])) else "vH")
-    else:
-        kind = "vP" if S.is_infinite_pitch(row[0]) else ("vR" if S.is_zero_pitch(row[0]) else "vH")
+    kind = "vP" if S.is_infinite_pitch(row[0]) else ("vR" if S.is_zero_pitch(row[0]) else "vH")
     return Joint(name, kind, row, virtual=True)
 
 

@@ -54,15 +54,6 @@ __all__ = [
 Array = np.ndarray
 
 
-def _is_zero_vector(values: Array, *, rtol: float, reference: Array) -> Array:
-    """Numeric: ``|values| <= rtol * reference``; symbolic: every component simplifies to 0."""
-    if B.is_symbolic(values):
-        return np.array(
-            [all(B.is_zero(v, atol=0) for v in row) for row in values.reshape(-1, values.shape[-1])]
-        ).reshape(values.shape[:-1])
-    return np.linalg.norm(values, axis=-1) <= rtol * reference
-
-
 def finite_point(position: Any) -> Array:
     """The homogeneous point ``(r, 1)`` of a position ``r`` (shape ``(..., 3)``).
 
@@ -89,7 +80,7 @@ def infinite_point(direction: Any) -> Array:
     array([0., 0., 1., 0.])
     """
     d = B.as_array(direction, "direction", (3,))
-    if np.any(_is_zero_vector(d, rtol=0.0, reference=np.zeros(d.shape[:-1]))):
+    if np.any(B.zero_vectors(d)):
         raise DegenerateGeometryError(
             "Expected `direction` to be non-zero, got a zero vector: (0, 0, 0, 0) is not a point."
         )
@@ -150,10 +141,7 @@ def join(p: Any, q: Any, *, rtol: float = B.DEFAULT_RTOL) -> Array:
     pp, qq = B.as_arrays((4,), (p, "p"), (q, "q"))
     pp, qq = np.broadcast_arrays(pp, qq)
     result = join_unchecked(pp, qq)
-    reference = np.zeros(result.shape[:-1])
-    if not B.is_symbolic(result):
-        reference = np.linalg.norm(pp, axis=-1) * np.linalg.norm(qq, axis=-1)
-    if np.any(_is_zero_vector(result, rtol=rtol, reference=reference)):
+    if np.any(B.vanishes(result, pp, qq, rtol=rtol)):
         raise DegenerateGeometryError(
             "Expected `p` and `q` to be distinct points, got coincident points (no line through them)."
         )
@@ -180,22 +168,22 @@ def line_points(line: Any, *, rtol: float = B.DEFAULT_RTOL) -> tuple[Array, Arra
     values = B.as_array(line, "line", (6,))
     if values.ndim != 1:
         raise ScrewkitValueError(f"Expected `line` to have shape (6,), got {values.shape}.")
+    if B.is_symbolic(values):
+        raise ScrewkitValueError("line_points is numeric; build symbolic lines from their points.")
     s, m = values[:3], values[3:]
-    if not B.is_symbolic(values):
-        if abs(s @ m) > rtol * (np.linalg.norm(s) * np.linalg.norm(m)):
-            raise ScrewkitValueError(
-                f"Expected `line` to be a line (s·m = 0), got s·m = {s @ m:.6g}: a screw of "
-                "non-zero pitch is not a line."
-            )
-        if np.linalg.norm(s) > 0:
-            nearest = np.cross(s, m) / (s @ s)
-            return np.append(nearest, 1.0), np.append(s, 0.0)
-        if np.linalg.norm(m) == 0:
-            raise DegenerateGeometryError("Expected a non-zero line, got the zero vector.")
-        u = np.linalg.svd(m.reshape(1, 3))[2][1]  # a unit vector orthogonal to m
-        # u × (m × u) = m (u·u) − u (u·m) = m, so the join of (u, 0) and (m × u, 0) is (0; m).
-        return np.append(u, 0.0), np.append(np.cross(m, u), 0.0)
-    raise ScrewkitValueError("line_points is numeric; build symbolic lines from their points.")
+    if not B.vanishes(B.dot(s, m, keepdims=True), s, m, rtol=rtol):
+        raise ScrewkitValueError(
+            f"Expected `line` to be a line (s·m = 0), got s·m = {s @ m:.6g}: a screw of "
+            "non-zero pitch is not a line."
+        )
+    if np.linalg.norm(s) > 0:
+        nearest = np.cross(s, m) / (s @ s)
+        return np.append(nearest, 1.0), np.append(s, 0.0)
+    if np.linalg.norm(m) == 0:
+        raise DegenerateGeometryError("Expected a non-zero line, got the zero vector.")
+    u = np.linalg.svd(m.reshape(1, 3))[2][1]  # a unit vector orthogonal to m
+    # u × (m × u) = m (u·u) − u (u·m) = m, so the join of (u, 0) and (m × u, 0) is (0; m).
+    return np.append(u, 0.0), np.append(np.cross(m, u), 0.0)
 
 
 def join_point_line(point: Any, line: Any) -> Array:
@@ -227,7 +215,7 @@ def plane(normal: Any, point: Any) -> Array:
     n = B.as_array(normal, "normal", (3,))
     r = B.as_array(point, "point", (3,))
     n, r = B.promote(n, r)
-    if np.any(_is_zero_vector(n, rtol=0.0, reference=np.zeros(n.shape[:-1]))):
+    if np.any(B.zero_vectors(n)):
         raise DegenerateGeometryError("Expected `normal` to be non-zero, got a zero vector.")
     return np.concatenate([n, -B.dot(n, r, keepdims=True)], axis=-1)
 
@@ -258,10 +246,7 @@ def plane_through(p: Any, q: Any, r: Any, *, rtol: float = B.DEFAULT_RTOL) -> Ar
         for j, cols in enumerate(columns)
     ]
     result = np.stack(coefficients, axis=-1)
-    reference = np.zeros(result.shape[:-1])
-    if not B.is_symbolic(result):
-        reference = np.prod([np.linalg.norm(v, axis=-1) for v in (pp, qq, rr)], axis=0)
-    if np.any(_is_zero_vector(result, rtol=rtol, reference=reference)):
+    if np.any(B.vanishes(result, pp, qq, rr, rtol=rtol)):
         raise DegenerateGeometryError(
             "Expected `p`, `q`, `r` to span a plane, got collinear (or coincident) points."
         )
@@ -373,16 +358,11 @@ def meet_line_plane(
     lv, pl = B.promote(lv, pl)
     s, m, n, delta = lv[..., :3], lv[..., 3:], pl[..., :3], pl[..., 3:]
     point = np.concatenate([B.cross(n, m) - delta * s, B.dot(n, s, keepdims=True)], axis=-1)
-    if B.is_symbolic(point):
-        return point
-    unit_l = np.linalg.norm(lv, axis=-1)
-    unit_p = np.linalg.norm(pl, axis=-1)
-    if np.any(np.linalg.norm(point, axis=-1) <= rtol * unit_l * unit_p):
+    if np.any(B.vanishes(point, lv, pl, rtol=rtol)):
         raise DegenerateGeometryError(
             "Expected `line` to cross `plane` at one point, got a line lying in the plane."
         )
-    parallel = np.abs(point[..., 3]) <= rtol * np.linalg.norm(point, axis=-1)
-    if not allow_infinite and np.any(parallel):
+    if not allow_infinite and np.any(B.vanishes(point[..., 3:], point, rtol=rtol)):
         raise DegenerateGeometryError(
             "Expected `line` to cross `plane` at a finite point, got a line parallel to the plane "
             "(they meet at infinity; pass allow_infinite=True for that point)."
@@ -415,15 +395,11 @@ def meet_planes(
     a, b = B.promote(a, b)
     n1, d1, n2, d2 = a[..., :3], a[..., 3:], b[..., :3], b[..., 3:]
     result = np.concatenate([B.cross(n1, n2), d1 * n2 - d2 * n1], axis=-1)
-    if B.is_symbolic(result):
-        return result
-    scale = np.linalg.norm(a, axis=-1) * np.linalg.norm(b, axis=-1)
-    if np.any(np.linalg.norm(result, axis=-1) <= rtol * scale):
+    if np.any(B.vanishes(result, a, b, rtol=rtol)):
         raise DegenerateGeometryError(
             "Expected `first` and `second` to be distinct planes, got the same plane twice."
         )
-    parallel = np.linalg.norm(result[..., :3], axis=-1) <= rtol * np.linalg.norm(result, axis=-1)
-    if not allow_infinite and np.any(parallel):
+    if not allow_infinite and np.any(B.vanishes(result[..., :3], result, rtol=rtol)):
         raise DegenerateGeometryError(
             "Expected `first` and `second` to meet in a finite line, got parallel planes (they "
             "meet at infinity; pass allow_infinite=True for that line)."

@@ -68,11 +68,7 @@ Array = np.ndarray
 
 
 def _nonzero_direction(direction: Array, name: str) -> None:
-    rows = direction.reshape(-1, 3)
-    if B.is_symbolic(direction):  # each entry decided exactly
-        zero = [all(B.is_exactly_zero(v) for v in d) for d in rows]
-    else:  # numbers: one vectorised comparison over the batch
-        zero = np.all(rows == 0, axis=-1).tolist()
+    zero = np.atleast_1d(B.zero_vectors(direction.reshape(-1, 3))).tolist()
     if any(zero):
         raise DegenerateGeometryError(
             f"Expected `{name}` to be a non-zero direction, got a zero vector "
@@ -285,21 +281,10 @@ def pitch(screws: Any) -> Any:
     inf
     """
     arr = _screws(screws)
-    s, s0 = arr[..., :3], arr[..., 3:]
-    if B.is_symbolic(arr):
-        ss, ss0 = B.dot(s, s), B.dot(s, s0)
-        if arr.ndim != 1:
-            return np.vectorize(pitch, signature="(6)->()", otypes=[object])(arr)
-        if all(B.is_exactly_zero(v) for v in arr):
-            raise DegenerateGeometryError("Expected a non-zero screw, got the zero screw.")
-        return B.infinity(symbolic=True) if B.is_exactly_zero(ss) else B.simplify(ss0 / ss)
-    if np.any(np.all(arr == 0, axis=-1)):
+    if np.any(B.zero_vectors(arr)):
         raise DegenerateGeometryError("Expected non-zero screws, got the zero screw.")
-    s, s0 = _direction_scaled(s, s0)  # the pitch s·s0 / s·s is unchanged by a common factor
-    ss, ss0 = np.sum(s * s, axis=-1), np.sum(s * s0, axis=-1)
-    safe = np.where(ss > 0, ss, 1.0)
-    result = np.where(ss > 0, ss0 / safe, math.inf)
-    return float(result) if np.ndim(result) == 0 else result
+    s, s0 = B.direction_scaled(arr[..., :3], arr[..., 3:])  # s·s0 / s·s is unchanged by a common factor
+    return B.ratio(B.dot(s, s0), B.dot(s, s))
 
 
 def magnitude(screws: Any) -> Any:
@@ -313,13 +298,8 @@ def magnitude(screws: Any) -> Any:
     5.0
     """
     arr = _screws(screws)
-    ns, ns0 = B.norm(arr[..., :3]), B.norm(arr[..., 3:])
-    if B.is_symbolic(arr):
-        if arr.ndim != 1:
-            return np.vectorize(magnitude, signature="(6)->()", otypes=[object])(arr)
-        return ns0 if B.is_exactly_zero(ns) else ns
-    result = np.where(ns > 0, ns, ns0)
-    return float(result) if np.ndim(result) == 0 else result
+    ns = B.norm(arr[..., :3])
+    return B.where_zero(ns, B.norm(arr[..., 3:]), ns)
 
 
 def normalize(screws: Any) -> Array:
@@ -336,16 +316,10 @@ def normalize(screws: Any) -> Array:
     array([0., 0., 1., 1., 0., 0.])
     """
     arr = _screws(screws)
-    size = magnitude(arr)
-    if B.is_symbolic(arr):
-        if arr.ndim != 1:
-            return np.stack([normalize(row) for row in arr.reshape(-1, 6)]).reshape(arr.shape)
-        if B.is_exactly_zero(size):
-            raise DegenerateGeometryError("Expected a non-zero screw, got the zero screw.")
-        return B.simplify(arr / size)
-    if np.any(np.asarray(size) == 0):
+    size = np.asarray(magnitude(arr))[..., None]
+    if np.any(B.zero_vectors(size)):  # also a screw whose norm underflows (|s| = 1e-200)
         raise DegenerateGeometryError("Expected non-zero screws, got the zero screw.")
-    return arr / np.asarray(size)[..., None]
+    return B.simplify(arr / size)
 
 
 def axis(screws: Any) -> tuple[Array, Array]:
@@ -371,56 +345,21 @@ def axis(screws: Any) -> tuple[Array, Array]:
     (array([1., 2., 0.]), array([0., 0., 1.]))
     """
     arr = _screws(screws)
-    s, s0 = arr[..., :3], arr[..., 3:]
-    if B.is_symbolic(arr):
-        ss = B.dot(s, s)
-        if any(B.is_exactly_zero(v) for v in np.atleast_1d(ss).flat):
-            raise DegenerateGeometryError(
-                "Expected a screw of finite pitch, got s = 0 (a line at infinity has no finite point)."
-            )
-        point = B.simplify(B.cross(s, s0) / np.asarray(ss)[..., None])
-        return point, B.simplify(s / B.norm(s)[..., None] if s.ndim > 1 else s / B.norm(s))
-    if np.any(np.all(s == 0, axis=-1)):
+    if np.any(B.zero_vectors(arr[..., :3])):
         raise DegenerateGeometryError(
             "Expected screws of finite pitch, got s = 0 (a line at infinity has no finite point)."
         )
-    s, s0 = _direction_scaled(s, s0)  # the point s × s0 / s·s is unchanged by a common factor
-    ss = np.sum(s * s, axis=-1)
-    return B.cross(s, s0) / ss[..., None], s / np.sqrt(ss)[..., None]
-
-
-def _direction_scaled(s: Array, s0: Array) -> tuple[Array, Array]:
-    """``(s, s0)`` times a power of two (exact) per screw, so that ``|s|`` lies in [0.5, 2): ``s·s``
-    neither underflows (a 1e-170 axis) nor overflows."""
-    largest = np.max(np.abs(s), axis=-1, keepdims=True)
-    shift = np.frexp(np.where(largest > 0, largest, 1.0))[1]
-    return np.ldexp(s, -shift), np.ldexp(s0, -shift)
-
-
-def _unit_scaled(arr: Array, length_scale: float) -> Array:
-    B.checked_length_scale(length_scale)
-    scaled = np.array(arr, dtype=float)
-    scaled[..., 3:] /= length_scale
-    largest = np.max(np.abs(scaled), axis=-1, keepdims=True)
-    if np.any(largest == 0):
-        raise DegenerateGeometryError("Expected non-zero screws, got the zero screw.")
-    scaled = np.ldexp(scaled, -np.frexp(largest)[1])  # exact: the norm neither underflows nor overflows
-    return scaled / np.linalg.norm(scaled, axis=-1, keepdims=True)
-
-
-def _numeric_only(arr: Array, what: str) -> None:
-    if B.is_symbolic(arr):
-        raise ScrewkitTypeError(
-            f"{what} is a tolerance decision for numeric screws; for symbolic screws use "
-            "`pitch` and decide the resulting expression."
-        )
+    s, s0 = B.direction_scaled(arr[..., :3], arr[..., 3:])  # s × s0 / s·s is unchanged by a common factor
+    ss = np.asarray(B.dot(s, s))[..., None]
+    return B.simplify(B.cross(s, s0) / ss), B.simplify(s / B.sqrt(ss))
 
 
 def is_zero_pitch(screws: Any, *, rtol: float = B.DEFAULT_RTOL, length_scale: float = 1.0) -> Any:
     """True where a screw is a line (zero pitch, finite): a pure rotation or a pure force.
 
     After dividing the moment by ``length_scale`` and normalising, the screw is a line when
-    ``|s| > rtol`` and ``|s·s0| <= rtol |s|``.
+    ``|s| > rtol`` and ``|s·s0| <= rtol |s|``. Symbolic screws are decided generically: ``s`` not
+    identically zero and ``s·s0`` identically zero (no tolerance; :func:`screwkit._backend.vanishes`).
 
     Parameters
     ----------
@@ -440,18 +379,17 @@ def is_zero_pitch(screws: Any, *, rtol: float = B.DEFAULT_RTOL, length_scale: fl
     >>> is_zero_pitch(helical_twist([1, 0, 0], [0, 3, 0], 0.1))
     False
     """
-    arr = _screws(screws)
-    _numeric_only(arr, "is_zero_pitch")
-    unit = _unit_scaled(arr, length_scale)
-    size_s = np.linalg.norm(unit[..., :3], axis=-1)
-    result = (size_s > rtol) & (np.abs(B.dot(unit[..., :3], unit[..., 3:])) <= rtol * size_s)
+    unit = B.unit_screws(_screws(screws), length_scale)
+    s, s0 = unit[..., :3], unit[..., 3:]
+    result = ~B.vanishes(s, rtol=rtol) & B.vanishes(B.dot(s, s0, keepdims=True), s, rtol=rtol)
     return bool(result) if np.ndim(result) == 0 else result
 
 
 def is_infinite_pitch(
     screws: Any, *, rtol: float = B.DEFAULT_RTOL, length_scale: float = 1.0
 ) -> Any:
-    """True where a screw is a pure translation / pure couple: ``|s| <= rtol`` after scaling.
+    """True where a screw is a pure translation / pure couple: ``|s| <= rtol`` after scaling
+    (symbolic: ``s`` identically zero).
 
     Parameters as in :func:`is_zero_pitch`.
 
@@ -462,10 +400,7 @@ def is_infinite_pitch(
     >>> is_infinite_pitch(line([0, 0, 1], [0, 0, 0]))
     False
     """
-    arr = _screws(screws)
-    _numeric_only(arr, "is_infinite_pitch")
-    unit = _unit_scaled(arr, length_scale)
-    result = np.linalg.norm(unit[..., :3], axis=-1) <= rtol
+    result = B.vanishes(B.unit_screws(_screws(screws), length_scale)[..., :3], rtol=rtol)
     return bool(result) if np.ndim(result) == 0 else result
 
 
@@ -498,13 +433,11 @@ def transform(screws: Any, rotation: Any, translation: Any) -> Array:
     rot = B.as_array(rotation, "rotation", (3, 3))
     t = B.as_array(translation, "translation", (3,))
     arr, rot, t = B.promote(arr, rot, t)
-    if not B.is_symbolic(rot):
-        product = np.swapaxes(rot, -1, -2) @ rot
-        if not (np.allclose(product, np.eye(3), atol=1e-9) and np.all(np.linalg.det(rot) > 0)):
-            raise ScrewkitValueError(
-                "Expected `rotation` to be a proper rotation matrix (R^T R = I, det R = +1), "
-                f"got det = {np.linalg.det(rot)}."
-            )
+    if not B.proper_rotations(rot):
+        raise ScrewkitValueError(
+            "Expected `rotation` to be a proper rotation matrix (R^T R = I, det R = +1), "
+            f"got det = {B.det(rot)}."
+        )
     s = np.einsum("...ij,...j->...i", rot, arr[..., :3])
     s0 = np.einsum("...ij,...j->...i", rot, arr[..., 3:])
     return np.concatenate([s, s0 + B.cross(np.broadcast_to(t, s.shape), s)], axis=-1)
@@ -707,7 +640,7 @@ class Screw:
         >>> Screw.couple([0, 0, 1]).to_dict()["kind"]
         'infinite pitch'
         """
-        coords = [_jsonable(v) for v in self.coords]
+        coords = [B.plain(v) for v in self.coords]
         h = self.pitch
         if self.is_symbolic:
             return {"coords": coords, "pitch": str(h), "kind": "symbolic"}
@@ -734,10 +667,6 @@ class Screw:
 
     def __repr__(self) -> str:
         return f"Screw(coords={self.coords!r})"
-
-
-def _jsonable(value: Any) -> Any:
-    return str(value) if B.is_symbolic(value) else float(value)
 
 
 def _as_screw(value: Any, name: str) -> Screw:

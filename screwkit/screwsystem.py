@@ -83,15 +83,14 @@ class ScrewSystem:
 
     def __post_init__(self) -> None:
         rows = B.as_array(self.basis, "basis", (6,)).reshape(-1, 6)
-        if not B.is_symbolic(rows):
-            _, length = B.scale_moments(rows, self.length_scale)
-            object.__setattr__(self, "length_scale", length)
-            if B.screw_rank(rows, rtol=self.rtol, length_scale=length) != rows.shape[0]:
-                raise ScrewkitValueError(
-                    f"Expected `basis` to hold independent screws, got {rows.shape[0]} rows of "
-                    f"rank {B.screw_rank(rows, rtol=self.rtol, length_scale=length)}; "
-                    "use ScrewSystem.span to pick a basis."
-                )
+        length = B.characteristic_length(rows, self.length_scale)
+        object.__setattr__(self, "length_scale", length)
+        rank = B.screw_rank(rows, rtol=self.rtol, length_scale=length)
+        if rank != rows.shape[0]:
+            raise ScrewkitValueError(
+                f"Expected `basis` to hold independent screws, got {rows.shape[0]} rows of "
+                f"rank {rank}; use ScrewSystem.span to pick a basis."
+            )
         rows = rows.copy()
         rows.flags.writeable = False
         object.__setattr__(self, "basis", rows)
@@ -116,8 +115,7 @@ class ScrewSystem:
         1
         """
         rows = _rows(screws, "screws")
-        if not B.is_symbolic(rows):
-            _, length_scale = B.scale_moments(rows, length_scale)
+        length_scale = B.characteristic_length(rows, length_scale)
         basis = _independent_rows(rows, rtol, length_scale) if rows.shape[0] else rows
         return cls(basis, rtol=rtol, length_scale=length_scale)
 
@@ -635,10 +633,7 @@ def motion_type(twists: Any, *, rtol: float = B.DEFAULT_RTOL, length_scale: floa
         rows = twists.coords.reshape(1, 6)
     else:
         rows = _rows_batched(twists)
-    symbolic = B.is_symbolic(rows)
-    if not symbolic:
-        rows = np.asarray(rows, dtype=float)
-        _, length_scale = B.scale_moments(rows, length_scale) if rows.size else (None, 1.0)
+    length_scale = B.characteristic_length(rows, length_scale) if rows.size else 1.0
     couples = np.broadcast_to(_COUPLES, (*rows.shape[:-2], 3, 6))
     stacked = np.concatenate(B.promote(rows, np.asarray(couples, dtype=float)), axis=-2)
     order = np.asarray(B.screw_rank(rows, rtol=rtol, length_scale=length_scale))

@@ -568,33 +568,8 @@ def _loop_closure_twists(
     matrix, path_matrix = matrix[:, free], path_matrix[:, free]
     if not free:
         return ScrewSystem.zero(rtol=rtol, length_scale=length_scale)
-    if symbolic:
-        rates = (
-            B.matrix_nullspace(matrix, rtol=rtol)
-            if matrix.shape[0]
-            else np.eye(len(free), dtype=int) + B.zeros((len(free), len(free)), symbolic=True)
-        )
-        return ScrewSystem.span((path_matrix @ rates.T).T, rtol=rtol)
-    scaled = matrix.copy()
-    scaled.reshape(-1, 6, len(free))[:, 3:, :] /= length_scale  # moments to the length scale
-    column_norm = np.linalg.norm(np.vstack([scaled, _scaled_rows(path_matrix, length_scale)]), axis=0)
-    scaled = scaled.reshape(-1, len(free)) if scaled.size else np.zeros((0, len(free)))
-    column_norm[column_norm == 0] = 1.0
-    scaled_path = _scaled_rows(path_matrix, length_scale) / column_norm
-    rates = B.matrix_nullspace(scaled / column_norm, rtol=rtol)  # orthonormal, in scaled coordinates
-    # Rank of the platform twists relative to the size of the path's columns, not to themselves:
-    # internal motions (e.g. a rod spinning between two S joints) map to round-off, not to a twist.
-    u, values, _ = np.linalg.svd(scaled_path @ rates.T, full_matrices=False)
-    keep = values > rtol * np.linalg.norm(scaled_path, 2)
-    twists = (u[:, keep] * values[keep]).T
-    twists[:, 3:] *= length_scale
+    twists = B.screw_image_of_nullspace(path_matrix, matrix, rtol=rtol, length_scale=length_scale)
     return ScrewSystem.span(twists, rtol=rtol, length_scale=length_scale)
-
-
-def _scaled_rows(path_matrix: Array, length_scale: float) -> Array:
-    scaled = path_matrix.copy()
-    scaled[3:] /= length_scale
-    return scaled
 
 
 # series-parallel reduction -----------------------------------------------------------------------

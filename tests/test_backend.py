@@ -126,6 +126,50 @@ def test_is_exactly_zero_is_generic_and_exact():
     assert not B.is_exactly_zero(1e-300)  # no tolerance
 
 
+def test_is_exactly_zero_proves_non_zero_at_a_point_without_simplifying(monkeypatch):
+    # a non-zero exact value at the random point proves the expression is not identically zero, so
+    # sympy's simplify is not needed; identities still go to expand / simplify
+    calls = []
+    real_simplify = sympy.simplify
+    monkeypatch.setattr(sympy, "simplify", lambda e, *a, **k: calls.append(e) or real_simplify(e, *a, **k))
+    y = sympy.Symbol("y")
+    assert not B.is_exactly_zero(sympy.sin(x) * y**3 - sympy.cos(y) * x + 7)
+    assert not calls
+    assert B.is_exactly_zero(sympy.sin(x) ** 2 + sympy.cos(x) ** 2 - 1) and calls
+    assert not B.is_exactly_zero(sympy.sqrt(x**2 + 1) - x)  # not rational at the point: simplify decides
+
+
+def test_vanishes_is_scale_invariant_numerically_and_exact_symbolically():
+    a, b = np.array([1.0, 2.0, 3.0]), np.array([2.0, 4.0, 6.0 + 1e-8])
+    for scale in (1e-6, 1.0, 1e6):  # |a × b| / (|a| |b|) ≈ 4e-10 whatever the unit
+        assert B.vanishes(np.cross(a * scale, b), a * scale, b, rtol=1e-9)
+        assert not B.vanishes(np.cross(a * scale, b), a * scale, b, rtol=1e-10)
+    batch = np.stack([a, b])
+    np.testing.assert_array_equal(B.vanishes(batch - batch[::-1], batch, rtol=1e-9), [False, False])
+    t = sympy.Symbol("t")
+    parallel = B.cross(np.array([t, 2 * t, 0], dtype=object), np.array([1, 2, 0], dtype=object))
+    assert B.vanishes(parallel, rtol=0.5) and B.zero_vectors(parallel)
+    assert not B.vanishes(np.array([t - 1, 0, 0], dtype=object), rtol=0.5)  # generic: t ≠ 1
+
+
+def test_ratio_where_zero_and_unit_directions_keep_the_branch():
+    np.testing.assert_array_equal(B.ratio(np.array([1.0, -2.0]), np.array([2.0, 0.0])), [0.5, np.inf])
+    assert B.ratio(x * (x + 1), x + 1) == x and B.ratio(x, x - x) is sympy.oo
+    assert B.where_zero(0.0, 1.0, 2.0) == 1.0 and B.where_zero(x, 1, 2) == 2
+    np.testing.assert_array_equal(B.unit_directions(np.array([[0.0, 3, 4]])), [[0, 0.6, 0.8]])
+    symbolic = np.array([x, 0, 1], dtype=object)
+    assert B.unit_directions(symbolic) is symbolic  # stays polynomial
+
+
+def test_proper_rotations_decides_numeric_and_symbolic_matrices():
+    t = sympy.Symbol("t")
+    c, s = sympy.cos(t), sympy.sin(t)
+    assert B.proper_rotations(np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]], dtype=object))
+    assert not B.proper_rotations(np.array([[c, s, 0], [s, -c, 0], [0, 0, 1]], dtype=object))  # det −1
+    assert not B.proper_rotations(np.array([[1, t, 0], [0, 1, 0], [0, 0, 1]], dtype=object))  # a shear
+    assert B.proper_rotations(np.eye(3)[None].repeat(2, 0)) and not B.proper_rotations(2 * np.eye(3))
+
+
 def test_zeros_and_ones_like_keep_the_branch():
     numeric = np.array([[2.0, 3.0]])
     symbolic = np.array([[x, sympy.Integer(3)]], dtype=object)

@@ -488,7 +488,7 @@ API_CASES = [
     (lambda: sk.prismatic("P", [0, 0, 0]), DegenerateGeometryError, r"Expected `direction` to be a non-zero direction, got a zero vector"),
     (lambda: sk.helical("H", [0, 0, 1], [0, 0, 0], "x"), ScrewkitTypeError, r"Expected `pitch` to be numeric, got the string 'x'"),
     (lambda: sk.universal("U", [0, 0, 1], [0, 0, 1], [0, 0, 0]), ScrewkitValueError, r"Universal joint 'U': expected two non-parallel axes, got parallel axes"),
-    (lambda: sk.spherical("S", [0, 0]), ScrewkitValueError, r"Expected `point` to have shape \(\.\.\., 3\), got \(2,\)"),
+    (lambda: sk.spherical("S", [0, 0]), ScrewkitValueError, r"Expected `center` to have shape \(\.\.\., 3\), got \(2,\)"),
     (lambda: sk.cylindrical("C", [0, 0, 0], [0, 0, 0]), DegenerateGeometryError, r"non-zero direction"),
     (lambda: sk.parallelogram("Pa", [0, 0, 1], [0, 0, 1]), ScrewkitValueError, r"Parallelogram 'Pa': expected rods not parallel to the hinge axes"),
     (lambda: sk.virtual("V", 5), ScrewkitValueError, r"Expected `screw` to have shape \(\.\.\., 6\), got \(\)"),

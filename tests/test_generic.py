@@ -365,6 +365,21 @@ def test_an_entry_that_is_not_rational_at_the_point_is_decided_in_60_digits():
     assert Y.GenericRows.from_exprs(polynomial, Y.generic_point(polynomial)).exact
 
 
+def test_generic_rows_work_in_60_digits_without_the_callers_context():
+    # row 2 = √w · row 1: at 15 digits the elimination leaves ~1e-15 relative round-off, far above
+    # FLOAT_RTOL (1e-40), and the rows looked independent; the methods enter 60 digits themselves
+    w = sympy.Symbol("w_irrational")
+    root = sympy.sqrt(w)
+    dependent = np.array([[root, 1, 0], [w, root, 0]], dtype=object)
+    rows = Y.GenericRows.from_exprs(dependent, Y.generic_point(dependent))
+    assert not rows.exact and mpmath.mp.dps == 15
+    assert rows.independent() == [0]
+    assert rows.scaled(3).independent() == [0]
+    with mpmath.workdps(60):
+        tripled = 3 * rows.values[1][1]
+    assert rows.scaled(3).values[1][1] == tripled != 3 * rows.values[1][1]  # the product kept 60 digits
+
+
 def test_null_spaces_and_reciprocal_systems_in_60_digits():
     # a Cramer minor that is identically zero has a round-off value in 60 digits: it must not be
     # taken for the common factor (it was: ZeroDivisionError). Hand: [1, -√a, 0, 0] and e4 span

@@ -277,6 +277,18 @@ def test_parallelogram_coupler_twist_from_its_four_hinges(rng):
     np.testing.assert_allclose(ground[1] - coupler[1], twist, atol=1e-9)
 
 
+def test_symbolic_degenerate_joints_are_refused_like_numeric_ones():
+    # identically parallel axes / rods along the hinges / a zero row: refused whatever the symbols
+    t = sympy.Symbol("t")
+    with pytest.raises(ScrewkitValueError, match="expected two non-parallel axes"):
+        universal("U", [t, 0, 1], [2 * t, 0, 2], [0, t, 0])
+    with pytest.raises(ScrewkitValueError, match="expected rods not parallel to the hinge axes"):
+        parallelogram("Pa", [0, t, 1], [0, 3 * t, 3])
+    with pytest.raises(ScrewkitValueError, match="expected non-zero screws, got a zero row"):
+        Joint("X", "vR", np.array([[t - t, 0, 0, 0, 0, 0]], dtype=object))
+    assert universal("U", [t, 0, 1], [0, 1, 0], [0, 0, 0]).dof == 2  # generically not parallel
+
+
 def test_symbolic_joints_agree_with_numeric_ones_after_substitution():
     x, y, h = sympy.symbols("x y h", real=True)
     values = {x: 0.7, y: -1.3, h: 0.25}

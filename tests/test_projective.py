@@ -167,7 +167,11 @@ def test_symbolic_join_bracket_meet_match_numeric(rng):
     r[3], s[3] = 1.0, 0.0
     line = P.join(p, q)
     value = P.bracket(p, q, r, s)
-    meet = P.meet_line_plane(line, np.array([0, 0, 1, -3], dtype=object))
+    # the line is horizontal (q is the direction (1, t, 0)), so it meets z = 3 at infinity for every
+    # x, y, t: the symbolic path refuses that as the numeric one does, unless allowed
+    with pytest.raises(DegenerateGeometryError, match="got a line parallel to the plane"):
+        P.meet_line_plane(line, np.array([0, 0, 1, -3], dtype=object))
+    meet = P.meet_line_plane(line, np.array([0, 0, 1, -3], dtype=object), allow_infinite=True)
     for _ in range(4):
         subs = {v: sympy.Rational(int(rng.integers(-9, 9)), 5) for v in (x, y, t)}
         pn = np.array([float(subs[x]), float(subs[y]), 1, 1])
@@ -176,6 +180,22 @@ def test_symbolic_join_bracket_meet_match_numeric(rng):
         assert float(value.subs(subs)) == pytest.approx(P.bracket(pn, qn, r, s))
         expected = P.meet_line_plane(P.join(pn, qn), [0, 0, 1, -3], allow_infinite=True)
         np.testing.assert_allclose([float(e.subs(subs)) for e in meet], expected)
+
+
+def test_symbolic_degeneracies_are_decided_identically_not_refused():
+    # A join of two generic symbolic points is a line (it raised "Cannot decide whether -a is zero"
+    # before); coincident symbolic points, identically equal planes and a line in its plane are refused
+    # as in the numeric path. By hand: join((a,0,0,1), (0,b,0,1)) = (−a, b, 0; 0, 0, a·b).
+    a, b = sympy.symbols("a b")
+    line = P.join([a, 0, 0, 1], [0, b, 0, 1])
+    assert [sympy.expand(v) for v in line] == [-a, b, 0, 0, 0, a * b]
+    with pytest.raises(DegenerateGeometryError, match="distinct points"):
+        P.join([a, b, 0, 1], [2 * a, 2 * b, 0, 2])
+    with pytest.raises(DegenerateGeometryError, match="the same plane twice"):
+        P.meet_planes([a, 0, 1, b], [2 * a, 0, 2, 2 * b])
+    with pytest.raises(DegenerateGeometryError, match="a line lying in the plane"):
+        P.meet_line_plane(line, [0, 0, 1, 0])  # the line lies in z = 0
+    assert P.plane_through([a, 0, 0, 1], [0, b, 0, 1], [0, 0, 1, 1]).shape == (4,)
 
 
 # errors ------------------------------------------------------------------------------------------

@@ -230,11 +230,20 @@ def test_error_bad_length_scale():
         S.is_zero_pitch(S.couple([0, 0, 1]), length_scale=-1.0)
 
 
-def test_error_symbolic_predicate():
-    with pytest.raises(
-        ScrewkitTypeError, match="is_zero_pitch is a tolerance decision for numeric screws"
-    ):
-        S.is_zero_pitch(S.couple([sympy.Symbol("m"), 0, 1]))
+def test_symbolic_pitch_predicates_decide_generically():
+    # By hand: a couple (0; m, 0, 1) has s = 0 (infinite pitch); a line (s; r × s) has s·(r × s) = 0
+    # identically; a helical twist of symbolic pitch h has s·s0 = h |s|², generically non-zero.
+    m, h, x, y = sympy.symbols("m h x y")
+    couple = S.couple([m, 0, 1])
+    line = S.line([x, 1, 0], [0, y, 1])
+    helix = S.helical_twist([0, 0, 1], [x, y, 0], h)
+    assert S.is_infinite_pitch(couple) and not S.is_zero_pitch(couple)
+    assert S.is_zero_pitch(line) and not S.is_infinite_pitch(line)
+    assert not S.is_zero_pitch(helix) and not S.is_infinite_pitch(helix)
+    # a trigonometric identity: s·s0 = sin²t + cos²t − 1 vanishes identically
+    t = sympy.Symbol("t")
+    trig = S.Screw([1, 0, 0, sympy.sin(t) ** 2 + sympy.cos(t) ** 2 - 1, 1, 0])
+    assert trig.is_zero_pitch() and not trig.is_infinite_pitch()
 
 
 def test_error_screw_needs_one_screw():
