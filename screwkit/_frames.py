@@ -735,8 +735,14 @@ def _residual_numpy(vectors: Array, rows: Array) -> Array:
 
 
 def limb_systems(
-    locked: Array, locked_order: Array, passive: Array, actuated: Array, rtol: float
-) -> tuple[Array, Array, Array, Array, Array]:
+    locked: Array,
+    locked_order: Array,
+    passive: Array,
+    actuated: Array,
+    rtol: float,
+    *,
+    free_rows: bool = True,
+) -> tuple[Array, Array, Array | None, Array, Array]:
     """The limbs' own systems from their locked ones (batched over ``(..., l)`` limbs): with ``t``
     a limb's actuated twist ``(..., l, 6)`` and ``locked`` ``(..., l, 6, 6)`` (order
     ``locked_order``) the twists of the limb with its actuator locked,
@@ -756,8 +762,8 @@ def limb_systems(
 
     Returns
     -------
-    perpendicular (..., l, 6), serial (..., l), free rows (..., l, 6, 6), free order (..., l),
-    direction (..., l, 6)
+    perpendicular (..., l, 6), serial (..., l), free rows (..., l, 6, 6) (None unless
+    ``free_rows``), free order (..., l), direction (..., l, 6)
 
     Examples
     --------
@@ -774,9 +780,13 @@ def limb_systems(
         flat = [np.reshape(np.asarray(a, dtype=float), (-1, *a.shape[len(batch) - 1 :]))
                 for a in (locked, passive, actuated)]
         order = np.ascontiguousarray(np.reshape(locked_order, (-1, batch[-1])), dtype=np.int64)
-        out = kernels.limb_systems(flat[0], order, flat[1], flat[2], float(rtol))
-        return tuple(a.reshape(*batch, *a.shape[2:]) for a in out)
-    return _limb_systems_numpy(locked, locked_order, passive, actuated, rtol)
+        out = kernels.limb_systems(flat[0], order, flat[1], flat[2], float(rtol), free_rows)
+        perpendicular, serial, rows, free_order, direction = (
+            a.reshape(*batch, *a.shape[2:]) if a.shape[0] else None for a in out
+        )
+        return perpendicular, serial, rows, free_order, direction  # type: ignore[return-value]
+    out = _limb_systems_numpy(locked, locked_order, passive, actuated, rtol)
+    return out if free_rows else (out[0], out[1], None, out[3], out[4])
 
 
 def _limb_systems_numpy(
@@ -974,7 +984,7 @@ def closing(
     batch = wrenches.shape[:-2]
     if _numba_kernels(_size(batch)) is not None and 0 not in batch:
         arrays = (constraint, wrenches, legs, apart, serial)
-        flat = [np.reshape(np.asarray(a), (-1, *np.shape(a)[len(batch) :])) for a in arrays]
+        flat = [np.reshape(np.asarray(a), (_size(batch), *np.shape(a)[len(batch) :])) for a in arrays]
         centres = np.ascontiguousarray(np.broadcast_to(centre, (*batch, 3)).reshape(-1, 3), dtype=float)
         lengths = np.ascontiguousarray(np.broadcast_to(length, batch).reshape(-1), dtype=float)
         kernels = _import_kernels()

@@ -814,14 +814,15 @@ def mechanism_frame(screws: Array, scale: bool) -> tuple[Array, Array, Array, Ar
 
 @njit(cache=True)
 def limb_systems(
-    locked: Array, locked_order: Array, passive: Array, actuated: Array, rtol: float
+    locked: Array, locked_order: Array, passive: Array, actuated: Array, rtol: float, free_rows: bool
 ) -> tuple[Array, Array, Array, Array, Array]:  # pragma: no cover - compiled
     """:func:`screwkit._frames.limb_systems` pose by pose and limb by limb: ``locked``, ``passive``
-    ``(n, l, 6, 6)``, ``locked_order (n, l)``, ``actuated (n, l, 6)``."""
+    ``(n, l, 6, 6)``, ``locked_order (n, l)``, ``actuated (n, l, 6)``; the free rows ``(0, l, 6, 6)``
+    unless ``free_rows``."""
     n, limbs = actuated.shape[0], actuated.shape[1]
     perpendicular = np.empty((n, limbs, 6))
     serial = np.empty((n, limbs), dtype=np.bool_)
-    free = locked.copy()
+    free = locked.copy() if free_rows else np.zeros((0, limbs, 6, 6))
     free_order = np.empty((n, limbs), dtype=np.int64)
     direction = np.empty((n, limbs, 6))
     t = np.empty(6)
@@ -851,7 +852,7 @@ def limb_systems(
             divisor = size if size > 0 else 1.0
             for s in range(6):
                 perpendicular[p, k, s] = t[s]
-                if not is_serial:
+                if free_rows and not is_serial:
                     free[p, k, slot, s] = t[s] / divisor
             for i in range(6):  # SWAP t⊥ projected on the passive rows
                 total = 0.0

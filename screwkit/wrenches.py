@@ -1044,6 +1044,7 @@ def analyze_table(
     constraint = F.reciprocal(*platform) if top.network or top.root is None else core.wrenches(top.root)
     legs = leg_block if leg_block is not None else np.stack([w[0] for w in leg_wrenches], axis=-3)
     n = len(top.limbs)
+    free: tuple[Array | None, Array]
     if n and top.network:  # each limb's sub-network by loop closure
         lockeds, frees, perpendiculars, serials, twists = [], [], [], [], []
         for plan in top.limbs:
@@ -1063,20 +1064,28 @@ def analyze_table(
         locked = core.stacked([("sum", tuple(plan.siblings)) for plan in top.limbs])
         passive = core.stacked([("passive", tuple(plan.siblings)) for plan in top.limbs])
         actuated = np.stack([p.sign * core.joint_rows(p.index)[..., 0, :] for p in top.limbs], axis=-2)
-        perpendicular, serial, rows, order, direction = F.limb_systems(
-            locked[0], locked[1], passive[0], actuated, rtol
-        )
-        free = (rows, order)
-        del rows  # held by `free` alone, freed with it
+        perpendicular, serial, free_rows, order, direction = F.limb_systems(
+            locked[0], locked[1], passive[0], actuated, rtol, free_rows=views
+        )  # the free rows only for the views, else where a line is searched (limb_constraints_at)
+        free = (free_rows, order)
+        del free_rows  # held by `free` alone, freed with it
     if n:
         # the limbs' constraint systems (reciprocal to `free`): kept for the views, else computed only
         # where an actuation wrench is searched for a line (_nearest_lines; at a few poses, if any)
-        limb_constraint = F.reciprocal(*free) if views else None
+        limb_constraint: Frame | None = None
+        if views:
+            assert free[0] is not None
+            limb_constraint = F.reciprocal(free[0], free[1])
 
         def limb_constraints_at(where: Array) -> Array:
             if limb_constraint is not None:
                 return limb_constraint[0][where]
-            return F.reciprocal(free[0][where], free[1][where])[0]
+            if free[0] is not None:
+                return F.reciprocal(free[0][where], free[1][where])[0]
+            at = (locked[0][where], locked[1][where], passive[0][where], actuated[where])
+            rows = F.limb_systems(*at, rtol)[2]
+            assert rows is not None
+            return F.reciprocal(rows, free[1][where])[0]
 
         lines = _nearest_lines(direction, limb_constraints_at, 6 - free[1])
         wrench, transmissions = F.transmissions(lines, actuated, rtol)
@@ -1095,8 +1104,8 @@ def analyze_table(
         for k in range(n):
             frames[f"limb{k}:passive"] = _limb(passive, k)  # the Jacobians' rows at serial singularities
             if views:
-                frames[f"limb{k}:T"] = _limb(free, k)
-                assert limb_constraint is not None
+                assert free[0] is not None and limb_constraint is not None
+                frames[f"limb{k}:T"] = _limb((free[0], free[1]), k)
                 frames[f"limb{k}:W"] = _limb(limb_constraint, k)
         del free, limb_constraint  # (..., n, 6, 6) each: not alive while the closeness inputs are built
     else:
