@@ -1063,7 +1063,7 @@ def analyze_table(
     elif n:  # the limbs on an axis of their own (..., n, ...), their locked systems from the program
         locked = core.stacked([("sum", tuple(plan.siblings)) for plan in top.limbs])
         passive = core.stacked([("passive", tuple(plan.siblings)) for plan in top.limbs])
-        actuated = np.stack([p.sign * core.joint_rows(p.index)[..., 0, :] for p in top.limbs], axis=-2)
+        actuated = _actuated(top, scaled)
         perpendicular, serial, free_rows, order, direction = F.limb_systems(
             locked[0], locked[1], passive[0], actuated, rtol, free_rows=views
         )  # the free rows only for the views, else where a line is searched (limb_constraints_at)
@@ -1153,12 +1153,17 @@ def analyze_table(
         transmissions=transmissions,
         actuation_rows=actuation_rows,
         branch_rows=user_branches,
-        actuated_twists=np.stack([p.sign * screws[..., top.columns[p.index], :] for p in top.limbs], axis=-2)
-        if n
-        else np.zeros((*batch, 0, 6)),
+        actuated_twists=_actuated(top, screws),
         frames=frames,
         closeness_factors=closeness_factors,
     )
+
+
+def _actuated(top: Topology, screws: Array) -> Array:
+    """Each limb's actuated joint's screw with the limb's sign ``(..., n, 6)`` (one gather)."""
+    columns = [top.columns[plan.index] for plan in top.limbs]
+    signs = np.array([float(plan.sign) for plan in top.limbs])
+    return screws[..., columns, :] * signs[:, None]
 
 
 class _LockedLegs(NamedTuple):
