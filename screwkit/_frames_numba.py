@@ -263,6 +263,21 @@ def _top(t: Array, order: int) -> float:  # pragma: no cover - compiled
 
 
 @njit(cache=True, inline="always")
+def _unchanged(  # pragma: no cover - compiled
+    rows: Array, order: int, size: float, top: float, rtol: float, out: Array
+) -> int:
+    """The frame ``rows`` itself into ``out`` where a screw's measure ``size`` (its distance from
+    the twist system) is clearly below the rank threshold, returning its order; else −1 (the
+    generic rule decides)."""
+    if size < rtol * top / CLOSED_FORM_MARGIN:
+        for i in range(6):
+            for s in range(6):
+                out[i, s] = rows[i, s]
+        return order
+    return -1
+
+
+@njit(cache=True, inline="always")
 def extend_into(  # pragma: no cover - compiled
     rows: Array, order: int, t: Array, rtol: float, out: Array, v: Array, coefficients: Array
 ) -> int:
@@ -295,12 +310,7 @@ def extend_into(  # pragma: no cover - compiled
         for s in range(6):
             out[order, s] = v[s] / size
         return order + 1
-    if size < rtol * top / CLOSED_FORM_MARGIN:
-        for i in range(6):
-            for s in range(6):
-                out[i, s] = rows[i, s]
-        return order
-    return -1
+    return _unchanged(rows, order, size, top, rtol, out)
 
 
 @njit(cache=True, inline="always")
@@ -341,12 +351,7 @@ def contract_into(  # pragma: no cover - compiled
             for s in range(6):
                 out[i, s] = rows[i + 1, s] - c[i + 1] * scale * u[s] if i + 1 < order else 0.0
         return order - 1
-    if size < rtol * top / CLOSED_FORM_MARGIN:
-        for i in range(6):
-            for s in range(6):
-                out[i, s] = rows[i, s]
-        return order
-    return -1
+    return _unchanged(rows, order, size, top, rtol, out)
 
 
 @njit(cache=True, inline="always")
