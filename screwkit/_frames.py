@@ -23,11 +23,16 @@ is ``SWAP`` applied to its orthogonal complement: no rank decision is needed for
 
 **Closed forms.** Where a system is known in closed form the core uses it instead of a span and a
 complement: two spherical joints in series transmit the force along the line through their
-centres (:func:`rod`; paper 002 §4.1 models each H4 rod so), with the rule as the fallback where
-that line is not clearly defined.
+centres (:func:`rod`; paper 002 §4.1 models each H4 rod so); two such rods in parallel along
+parallel, distinct lines (a 4S parallelogram) have the wrench and twist systems of paper 002 §4.1
+(:func:`parallelogram`); a 1-dof joint in series with a node adds one CGS2 step to the node's
+twists (:func:`extend`) and takes one Householder reflector off its wrenches (:func:`contract`).
+Each is checked where it is used and falls back on the rule where its preconditions fail or its
+rank decision lies within a factor :data:`CLOSED_FORM_MARGIN` of the rule's threshold, so the
+orders are the rule's.
 
 **Two implementations, one rule.** :func:`span`, :func:`complement`, :func:`reciprocal`,
-:func:`residual`, :func:`rod` and :func:`unit_scaled` have a numpy path (vectorized over the
+:func:`residual`, :func:`rod`, the closed forms and :func:`unit_scaled` have a numpy path (vectorized over the
 batch) and, when numba is installed (the ``fast`` extra), compiled per-pose loops
 (:mod:`screwkit._frames_numba`). The numpy path does the compiled loops' floating-point operations
 in their order (sums left to right, no BLAS call, no library QR), so the two agree bit for bit,
