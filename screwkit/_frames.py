@@ -80,6 +80,8 @@ __all__ = [
     "extend",
     "from_scaled",
     "limb_systems",
+    "limb_wrenches",
+    "not_lines",
     "packed",
     "parallelogram",
     "reciprocal",
@@ -807,6 +809,68 @@ def _limb_systems_numpy(
     kept = np.take_along_axis(rows, slot, -2)
     np.put_along_axis(rows, slot, np.where(serial[..., None, None], kept, unit[..., None, :]), -2)
     return perpendicular, serial, rows, order + ~serial, actuation_directions(passive, perpendicular)
+
+
+def not_lines(rows: Array, line_rtol: float) -> Array:
+    """Which wrench rows ``(..., 6)`` are not lines: ``|s·m| > line_rtol · |s| · |w|`` (their pitch
+    not negligible), component by component (the compiled kernels' operations).
+
+    Examples
+    --------
+    >>> not_lines(np.array([[0, 0, 1.0, 1.0, 0, 0], [0, 0, 1.0, 0, 0, 1.0]]), 1e-6)
+    array([False,  True])
+    """
+    w = [rows[..., s] for s in range(6)]
+    forces = w[0] * w[0] + w[1] * w[1] + w[2] * w[2]
+    pitch = w[0] * w[3] + w[1] * w[4] + w[2] * w[5]
+    norm = np.sqrt(forces + (w[3] * w[3] + w[4] * w[4] + w[5] * w[5]))
+    return np.abs(pitch) > line_rtol * np.maximum(np.sqrt(forces), 1e-300) * norm
+
+
+def limb_wrenches(
+    locked: Array,
+    locked_order: Array,
+    passive: Array,
+    actuated: Array,
+    legs: Array,
+    coupled: Array,
+    leg_of: Array,
+    rtol: float,
+    line_rtol: float,
+) -> tuple[Array, Array, Array, Array, Array, Array, Array]:
+    """The limbs' actuation wrenches from their locked and passive frames (the analysis core's
+    step after the program): :func:`limb_systems` (without the free rows), whether each actuation
+    direction is a line (:func:`not_lines`), the unit wrenches along the directions with their
+    transmission indices (:func:`transmissions`) and the ``coupled`` limbs' wrenches less their
+    part in their leg's frame (``legs (..., L, 6, 6)``, limb ``coupled[j]`` in leg ``leg_of[j]``;
+    :func:`residuals_against`). Returns ``(serial, free order, direction, wrench, transmissions,
+    residuals, not_line)``. On the numba path one compiled pass
+    (:func:`screwkit._frames_numba.limb_wrenches`): the same operations, bit for bit.
+
+    Examples
+    --------
+    >>> locked, passive = np.zeros((1, 1, 6, 6)), np.zeros((1, 1, 6, 6))
+    >>> locked[0, 0, 0, 1] = passive[0, 0, 0, 0] = 1.0  # locked: e_2; passive: the force along x
+    >>> out = limb_wrenches(locked, np.array([[1]]), passive, np.array([[[0, 0, 0, 1.0, 0, 0]]]),
+    ...                     np.zeros((1, 0, 6, 6)), np.array([], int), np.array([], int), 1e-9, 1e-6)
+    >>> bool(out[0][0, 0]), out[3][0, 0], float(out[4][0, 0])  # not serial, a unit force along x
+    (False, array([1., 0., 0., 0., 0., 0.]), 1.0)
+    """
+    batch = actuated.shape[:-1]
+    coupled, leg_of = np.asarray(coupled, dtype=np.int64), np.asarray(leg_of, dtype=np.int64)
+    kernels = _numba_kernels(_size(batch[:-1]))
+    if kernels is not None and 0 not in batch:
+        arrays, size = (locked, passive, actuated, legs), _size(batch[:-1])
+        flat = [np.reshape(np.asarray(a, dtype=float), (size, *a.shape[len(batch) - 1 :])) for a in arrays]
+        order = np.ascontiguousarray(np.reshape(locked_order, (-1, batch[-1])), dtype=np.int64)
+        out = kernels.limb_wrenches(flat[0], order, flat[1], flat[2], flat[3], coupled, leg_of, float(rtol),
+                                    float(line_rtol))
+        return tuple(a.reshape((*batch[:-1], *a.shape[1:])) for a in out)
+    systems = limb_systems(locked, locked_order, passive, actuated, rtol, free_rows=False)
+    serial, free_order, direction = systems[1], systems[3], systems[4]
+    wrench, index = transmissions(direction, actuated, rtol)
+    residuals = residuals_against(wrench[..., coupled, :], legs, leg_of)
+    return serial, free_order, direction, wrench, index, residuals, not_lines(direction, line_rtol)
 
 
 def actuation_directions(passive: Array, perpendicular: Array) -> Array:

@@ -886,12 +886,7 @@ def _nearest_lines(wrench: Array, constraints_at: Callable[[Array], Array], orde
     lines and have constraint wrenches to add are searched (each on its own: a pose's answer does
     not depend on the others).
     """
-    w = [wrench[..., s] for s in range(6)]  # component by component: no reductions over six
-    forces = w[0] * w[0] + w[1] * w[1] + w[2] * w[2]
-    pitch = w[0] * w[3] + w[1] * w[4] + w[2] * w[5]
-    norm = np.sqrt(forces + (w[3] * w[3] + w[4] * w[4] + w[5] * w[5]))
-    not_line = np.abs(pitch) > LINE_RTOL * np.maximum(np.sqrt(forces), 1e-300) * norm
-    searched = not_line & (np.asarray(order) > 0)
+    searched = F.not_lines(wrench, LINE_RTOL) & (np.asarray(order) > 0)
     best = wrench.copy()
     if searched.any():
         best[searched] = _line_search(wrench[searched], constraints_at(searched), np.asarray(order)[searched])
@@ -1064,9 +1059,12 @@ def analyze_table(
         locked = core.stacked([("sum", tuple(plan.siblings)) for plan in top.limbs])
         passive = core.stacked([("passive", tuple(plan.siblings)) for plan in top.limbs])
         actuated = _actuated(top, scaled)
-        perpendicular, serial, free_rows, order, direction = F.limb_systems(
-            locked[0], locked[1], passive[0], actuated, rtol, free_rows=views
-        )  # the free rows only for the views, else where a line is searched (limb_constraints_at)
+        coupled = _coupled(top)
+        serial, order, direction, wrench, transmissions, leg_residuals, not_line = F.limb_wrenches(
+            locked[0], locked[1], passive[0], actuated, legs, np.array(coupled, dtype=np.int64),
+            np.array([_leg_of(top, k) for k in coupled], dtype=np.int64), rtol, LINE_RTOL,
+        )  # in one pass; the free rows only for the views, else where a line is searched
+        free_rows = F.limb_systems(locked[0], locked[1], passive[0], actuated, rtol)[2] if views else None
         free = (free_rows, order)
         del free_rows  # held by `free` alone, freed with it
     if n:
@@ -1087,10 +1085,23 @@ def analyze_table(
             assert rows is not None
             return F.reciprocal(rows, free[1][where])[0]
 
-        lines = _nearest_lines(direction, limb_constraints_at, 6 - free[1])
-        wrench, transmissions = F.transmissions(lines, actuated, rtol)
+        if top.network:
+            lines = _nearest_lines(direction, limb_constraints_at, 6 - free[1])
+            wrench, transmissions = F.transmissions(lines, actuated, rtol)
+            residuals = _leg_residuals(top, wrench, legs)
+        else:  # where a direction is no line: the line found (_nearest_lines), its wrench again
+            residuals = leg_residuals if coupled else None
+            searched = not_line & (6 - free[1] > 0)
+            if searched.any():
+                lines = direction.copy()
+                lines[searched] = _line_search(
+                    direction[searched], limb_constraints_at(searched), (6 - free[1])[searched]
+                )
+                again = searched.any(axis=-1)
+                wrench[again], transmissions[again] = F.transmissions(lines[again], actuated[again], rtol)
+                if residuals is not None:
+                    residuals[again] = _leg_residuals(top, wrench[again], legs[again])
         branch, locked_legs = wrench, None
-        residuals = _leg_residuals(top, wrench, legs)
         compound = _compound_legs(
             top, scaled, rtol, leg_wrenches, actuated, (wrench, serial, transmissions), residuals
         )

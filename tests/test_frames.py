@@ -799,3 +799,29 @@ def test_residuals_against_frames_match_residual_bit_for_bit(rng, monkeypatch):
     for j, f in enumerate(which):
         np.testing.assert_array_equal(expected[:, j], F._residual_numpy(vectors[:, j : j + 1], frames[:, f])[:, 0])
         np.testing.assert_allclose(np.einsum("pis,ps->pi", frames[:, f], expected[:, j]), 0.0, atol=1e-12)
+
+
+@needs_numba
+def test_limb_wrenches_one_pass_matches_the_steps_bit_for_bit(rng, monkeypatch):
+    # the fused pass against its steps run one by one (limb systems, line test, transmissions,
+    # leg residuals), numba and numpy alike
+    from screwkit import _frames_numba
+
+    locked, order, passive, actuated = limb_inputs(rng, 50)
+    passive[3, 2, :, 3:] += 0.5 * passive[3, 2, :, :3]  # a pitched direction: no line
+    legs = np.zeros((50, 2, 6, 6))
+    legs[:, :, 0] = F.unit_rows(rng.standard_normal((50, 2, 6)))
+    coupled, leg_of = np.array([0, 3, 1]), np.array([1, 1, 0])
+    arguments = (locked, order, passive, actuated, legs, coupled, leg_of, RTOL, 1e-6)
+    monkeypatch.setitem(F._compiled, "_frames_numba", None)
+    expected = F.limb_wrenches(*arguments)
+    _, serial, _, free_order, direction = F._limb_systems_numpy(locked, order, passive, actuated, RTOL)
+    wrench, index = F.transmissions_numpy(F.unit_rows(direction), actuated, RTOL)
+    steps = (serial, free_order, direction, wrench, index,
+             F.residuals_against(wrench[:, coupled], legs, leg_of), F.not_lines(direction, 1e-6))
+    monkeypatch.setitem(F._compiled, "_frames_numba", _frames_numba)
+    compiled = F.limb_wrenches(*arguments)
+    for got, via_numpy, step in zip(compiled, expected, steps, strict=True):
+        np.testing.assert_array_equal(got, via_numpy)
+        np.testing.assert_array_equal(via_numpy, step)
+    assert expected[0].any() and expected[6].any() and not expected[6].all()  # serial limbs, a non-line
