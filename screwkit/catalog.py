@@ -224,7 +224,14 @@ class Mechanism:
         """
         return self.family_protocol.joint_table(self.configuration(pose, **options))
 
-    def at(self, poses: Any = None, *, rtol: float | None = None, **options: Any) -> Any:
+    def at(
+        self,
+        poses: Any = None,
+        *,
+        rtol: float | None = None,
+        length_scale: float | None = None,
+        **options: Any,
+    ) -> Any:
         """The mechanism at a batch of poses: a frozen :class:`~screwkit.posed.PosedMechanism` whose
         stages (IK, joints, wrench systems, verdicts, Jacobians) are computed once, on demand.
 
@@ -234,6 +241,9 @@ class Mechanism:
             In the file's length unit and radians; default: the default pose.
         rtol : float, optional
             Relative tolerance of every rank decision (default 1e-9).
+        length_scale : float, optional
+            The characteristic length of the rank decisions, in the file's length unit; default:
+            derived from each pose's screws (:func:`~screwkit.wrenches.analyze_table`).
         **options
             Passed to the inverse kinematics (a working mode).
 
@@ -250,7 +260,7 @@ class Mechanism:
 
         self._check_options(options)
         self.check_pose_range(poses)
-        return PosedMechanism.create(self, poses, rtol=rtol, options=options)
+        return PosedMechanism.create(self, poses, rtol=rtol, length_scale=length_scale, options=options)
 
     def check_pose_range(self, poses: Any, argument: str = "poses") -> None:
         """Refuse pose coordinates beyond :data:`MAX_COORDINATE` and angles beyond

@@ -6,7 +6,7 @@ One ``run_*`` function per command; each prints text by default and JSON with ``
 
 Commands
 --------
-``screwkit analyze NAME|FILE.toml [--pose X Y Z PHI] [--rtol R] [--json]``
+``screwkit analyze NAME|FILE.toml [--pose X Y Z PHI] [--rtol R] [--length-scale L] [--json]``
     The whole analysis (:func:`screwkit.report.analyze`): twist graph, wrench systems, wrench
     diagram, superbracket, conditions, verdict. Lengths in the catalog file's unit, angle in degrees.
 ``screwkit graph NAME|FILE.toml [--pose ...] [--equivalent] [--format dot|json|toml] [--out FILE]``
@@ -35,8 +35,8 @@ screw (0, 0, 1; 0, -1, 0)  pitch 0  kind zero pitch  axis through (1, 0, 0) alon
 from __future__ import annotations
 
 import argparse
+import gc
 import importlib.util
-import json
 import math
 import os
 import re
@@ -60,12 +60,12 @@ from .catalog import (
     unknown_mechanism,
 )
 from .exceptions import ScrewkitError, ScrewkitValueError
-from .export import graph_dot, graph_json, snapshot_text
 from .report import analyze
 from .screw import Screw
 from .twistgraph import equivalent_twist_graph
 
 __all__ = [
+    "console",
     "get_parser",
     "main",
     "run_analyze",
@@ -137,6 +137,14 @@ def get_parser() -> argparse.ArgumentParser:
         default=None,
         metavar="R",
         help="relative tolerance of every rank decision, in [0, 0.1] (default 1e-9)",
+    )
+    analyze_parser.add_argument(
+        "--length-scale",
+        type=float,
+        default=None,
+        metavar="L",
+        help="characteristic length of every rank decision (moments are divided by it), in the "
+        "file's length unit; default: derived from the screws at the pose",
     )
     output = analyze_parser.add_mutually_exclusive_group()
     output.add_argument("--json", action="store_true", help="print the whole report as JSON")
@@ -222,10 +230,7 @@ def _pose_coordinates() -> list[str]:
     """Every family's pose coordinates (the map command takes one option per coordinate)."""
     from .families import families
 
-    names: list[str] = []
-    for family in families().values():
-        names.extend(n for n in family.pose_names if n not in names)
-    return names
+    return families().pose_names()
 
 
 class _MapQuantities:
@@ -336,7 +341,7 @@ def run_screw(args: argparse.Namespace) -> int:
         screw = Screw(args.plucker)
     described = screw.to_dict()
     if args.json:
-        _print(json.dumps(described))
+        _print(_dumps(described))
         return 0
     coords = [_number(v) for v in screw.coords]
     pitch = described["pitch"]
@@ -427,6 +432,15 @@ def run_analyze(args: argparse.Namespace) -> int:
         raise _UsageError(
             f"screwkit analyze: error: --rtol expects a number in [0, {B.MAX_RTOL:g}], got {args.rtol:g}"
         )
+    from .wrenches import MIN_LENGTH_SCALE
+
+    length = args.length_scale
+    bounds = (MIN_LENGTH_SCALE, 1 / MIN_LENGTH_SCALE)
+    if length is not None and not (math.isfinite(length) and bounds[0] <= length <= bounds[1]):
+        raise _UsageError(
+            "screwkit analyze: error: --length-scale expects a positive length in the file's length unit, "
+            f"in [{bounds[0]:g}, {bounds[1]:g}], got {length:g}"
+        )
     if args.latex and args.no_superbracket:
         raise _UsageError(
             "screwkit analyze: error: --latex prints the superbracket's conditions; drop --no-superbracket"
@@ -437,13 +451,14 @@ def run_analyze(args: argparse.Namespace) -> int:
         target,
         pose,
         rtol=args.rtol,
+        length_scale=args.length_scale,
         superbracket=not args.no_superbracket,
         progress=_stage_printer(args.command) if shown else None,
     )
     if args.latex:
         _print(_latex(report))
     else:
-        _print(json.dumps(report.to_dict(), indent=2, ensure_ascii=False) if args.json else str(report))
+        _print(_dumps(report.to_dict(), indent=2, ensure_ascii=False) if args.json else str(report))
     return 0
 
 
@@ -469,6 +484,8 @@ def run_graph(args: argparse.Namespace) -> int:
     ...
     0
     """
+    from .export import graph_dot, graph_json, snapshot_text
+
     target, pose = _target_and_pose(args)
     twist_graph = load_snapshot(target) if isinstance(target, str) else target.twist_graph(pose)
     if args.equivalent:
@@ -500,6 +517,13 @@ def _stage_printer(command: str) -> Any:
 
 def _toml_kind(path: str) -> Any:
     return file_kind(load_toml(path))
+
+
+def _dumps(value: Any, **options: Any) -> str:
+    """JSON text (the json module loads for the commands that print JSON)."""
+    import json
+
+    return json.dumps(value, **options)
 
 
 def _print(text: str) -> None:
@@ -680,7 +704,7 @@ def run_path(args: argparse.Namespace) -> int:
     for option, values in (("--from", args.start), ("--to", args.end)):
         _pose_values("screwkit path", option, mechanism, values)
     result = check_path(mechanism, args.start, args.end, samples=args.samples, angles="deg")
-    _print(json.dumps(result.to_dict(), indent=2, ensure_ascii=False) if args.json else str(result))
+    _print(_dumps(result.to_dict(), indent=2, ensure_ascii=False) if args.json else str(result))
     return 0
 
 
@@ -706,7 +730,7 @@ def run_list(args: argparse.Namespace) -> int:
             }
         )
     if args.json:
-        _print(json.dumps(entries, indent=2))
+        _print(_dumps(entries, indent=2))
     else:
         for entry in entries:
             _print(
@@ -741,7 +765,7 @@ def run_table4(args: argparse.Namespace) -> int:
     robots = None if args.robot is None else list(dict.fromkeys(args.robot))
     rows = table_4(grid=args.grid, refine=args.refine, robots=robots)
     if args.json:
-        _print(json.dumps([row.to_dict() for row in rows], indent=2))
+        _print(_dumps([row.to_dict() for row in rows], indent=2))
         return 0
     _print(
         f"paper 004, Table 4: min/max LTI (Eq. 16) over the workspace; ours: {args.grid}^3 grid + "
@@ -764,6 +788,29 @@ def run_table4(args: argparse.Namespace) -> int:
         for note in notes:
             _print(note)
     return 0
+
+
+def console() -> int:
+    """The ``screwkit`` command (and ``python -m screwkit``): :func:`main`, its objects then frozen
+    for the exit.
+
+    At exit the interpreter's cyclic garbage collector traverses every object left, numpy's, sympy's
+    and networkx's included, several times while the modules are torn down: ≈ 0.1–0.15 s, longer than a
+    whole analysis of a small robot. :func:`gc.freeze` moves them out of its reach first (a process
+    about to end has no cycle worth collecting); modules are still torn down, streams flushed and
+    exit handlers run as usual. Returns the exit status (the console script passes it to
+    :func:`sys.exit`).
+
+    Examples
+    --------
+    >>> import subprocess, sys
+    >>> done = subprocess.run([sys.executable, "-m", "screwkit", "list"], capture_output=True, text=True)
+    >>> done.returncode, done.stdout.split()[:2]
+    (0, ['h4', 'H4'])
+    """
+    status = main()
+    gc.freeze()
+    return status
 
 
 def main(argv: Sequence[str] | None = None) -> int:

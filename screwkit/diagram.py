@@ -259,19 +259,21 @@ def _is_line(wrench: Array, length_scale: float) -> bool:
     )
 
 
-def _candidate_lines(analysis: WrenchAnalysis) -> dict[str, tuple[str, Array | None, tuple[str, ...]]]:
+def _candidate_lines(
+    analysis: WrenchAnalysis, *, mechanism: bool = True
+) -> dict[str, tuple[str, Array | None, tuple[str, ...]]]:
     """Every line a diagram may use, by name, at this pose: ``{name: (role, wrench, joints)}``.
 
     The actuation wrenches, grouped by compound leg (legs in the order of their names, the limbs of
-    a network after them), then each compound leg's constraint lines (its readable basis), then a
-    readable basis of the mechanism's constraint system (for graphs without compound legs). A limb
-    at a serial singularity has the wrench None.
+    a network after them), then each compound leg's constraint lines (its readable basis), then
+    (unless ``mechanism`` is False: :func:`_mechanism_lines`, asked for when needed) a readable
+    basis of the mechanism's constraint system (for graphs without compound legs). A limb at a
+    serial singularity has the wrench None.
     """
     found: dict[str, tuple[str, Array | None, tuple[str, ...]]] = {}
     legs = _legs(analysis)
     limbs = {limb.actuated_joint: limb for limb in analysis.limbs}
     grouped = [name for _, joints, _ in legs for name in sorted(j for j in limbs if j in joints)]
-    every_joint = tuple(k for _, _, k in analysis.graph.edges(keys=True))
     for name in grouped + [j for j in limbs if j not in grouped]:
         joints = next((joints for _, joints, _ in legs if name in joints), limbs[name].joints)
         found[f"actuation {name}"] = ("actuation", limbs[name].actuation_wrench, joints)
@@ -280,9 +282,17 @@ def _candidate_lines(analysis: WrenchAnalysis) -> dict[str, tuple[str, Array | N
         for k, wrench in enumerate(basis):
             suffix = f" ({k + 1})" if len(basis) > 1 else ""
             found[f"constraint of the {leg_name}{suffix}"] = ("constraint", wrench, joints)
-    for k, wrench in enumerate(analysis.constraint_wrenches.readable_basis()):
-        found[f"constraint wrench {k + 1} of the mechanism"] = ("constraint", wrench, every_joint)
-    return found
+    return found | _mechanism_lines(analysis) if mechanism else found
+
+
+def _mechanism_lines(analysis: WrenchAnalysis) -> dict[str, tuple[str, Array | None, tuple[str, ...]]]:
+    """The last candidates of :func:`_candidate_lines`: a readable basis of the mechanism's
+    constraint system (a diagram takes them when its legs' lines do not span it)."""
+    every_joint = tuple(k for _, _, k in analysis.graph.edges(keys=True))
+    return {
+        f"constraint wrench {k + 1} of the mechanism": ("constraint", wrench, every_joint)
+        for k, wrench in enumerate(analysis.constraint_wrenches.readable_basis())
+    }
 
 
 def _rank(rows: list[Array], analysis: WrenchAnalysis) -> int:
@@ -304,7 +314,7 @@ def _select_lines(analysis: WrenchAnalysis) -> tuple[list[Line], list[str]]:
     problems: list[str] = []
     scale = float(analysis.length_scale)
     lines: list[Line] = []
-    candidates = _candidate_lines(analysis)
+    candidates = _candidate_lines(analysis, mechanism=False)
     for name, (role, wrench, joints) in candidates.items():
         if role != "actuation":
             continue
@@ -318,6 +328,8 @@ def _select_lines(analysis: WrenchAnalysis) -> tuple[list[Line], list[str]]:
     target = int(analysis.constraint_order)
     chosen: list[Line] = []
     for prefix in ("constraint of the ", "constraint wrench "):
+        if prefix == "constraint wrench ":
+            candidates = _mechanism_lines(analysis)  # the legs' lines do not span W^c
         chosen = []
         for name, (role, wrench, joints) in candidates.items():
             if not name.startswith(prefix) or wrench is None or not _is_line(wrench, scale):
@@ -346,7 +358,7 @@ def _select_lines(analysis: WrenchAnalysis) -> tuple[list[Line], list[str]]:
 
 def _lines_at(names: tuple[str, ...], analysis: WrenchAnalysis) -> tuple[list[Line], list[str]]:
     """The lines of a diagram (by name) at another configuration, and what is missing there."""
-    candidates = _candidate_lines(analysis)
+    candidates = _candidate_lines(analysis, mechanism=any(n.startswith("constraint wrench ") for n in names))
     lines, problems = [], []
     for name in names:
         if name not in candidates:
@@ -835,7 +847,8 @@ class _Batch:
 
 def _frames_with_views(table: JointTable, analysis: WrenchAnalysis) -> dict[str, tuple[Array, Array]]:
     """The per-pose frames of an analysis that kept none (the same core, with its views)."""
-    return analyze_table(table, dof=analysis.dof, rtol=analysis.rtol).frames
+    length = analysis.length_scale  # given back: the same lengths, the same bits
+    return analyze_table(table, dof=analysis.dof, rtol=analysis.rtol, length_scale=length).frames
 
 
 def _leg_name(topology: Topology, k: int) -> str:
@@ -1140,7 +1153,7 @@ class ReplaySampler:
 
 
 def graph_diagram(
-    analysis: WrenchAnalysis, *, rng: int = 2026, samples: int = 24
+    analysis: WrenchAnalysis, *, rng: int = 2026, samples: int = 24, length_scale: float | None = None
 ) -> tuple[WrenchDiagram, Callable[[np.random.Generator], dict[str, Array]] | None]:
     """The wrench diagram of a twist graph's mechanism at its configuration, and a generic sampler.
 
@@ -1149,7 +1162,8 @@ def graph_diagram(
     a graph built in Python is treated like a catalog robot: the diagram is chosen at a generic
     configuration (:func:`generic_reference`) and placed at this one (:func:`diagram_at`); the
     sampler hands out its points at further generic configurations, ``samples`` at a time
-    (analysed as one batch), on which structural zeros are decided.
+    (analysed as one batch), on which structural zeros are decided. A given ``length_scale`` is
+    the generic configurations' too (:func:`~screwkit.wrenches.analyze_table`; default: derived).
 
     Returns
     -------
@@ -1170,7 +1184,9 @@ def graph_diagram(
 
     graph = analysis.graph
     try:
-        analyses = generic_analyses(graph, np.random.default_rng(rng), REFERENCE_TRIES, rtol=analysis.rtol)
+        analyses = generic_analyses(
+            graph, np.random.default_rng(rng), REFERENCE_TRIES, rtol=analysis.rtol, length_scale=length_scale
+        )
         reference, reasons = generic_reference(analyses)
     except ScrewkitError as err:
         reference, reasons = None, (f"no generic configuration of the mechanism: {err}",)
@@ -1180,7 +1196,7 @@ def graph_diagram(
 
     def produce(stream: np.random.Generator) -> Iterator[dict[str, Array]]:
         found = 0
-        for one in generic_analyses(graph, stream, samples, rtol=analysis.rtol):
+        for one in generic_analyses(graph, stream, samples, rtol=analysis.rtol, length_scale=length_scale):
             try:
                 sample = diagram_points(diagram.points, one)
             except ScrewkitError:

@@ -77,6 +77,7 @@ Examples
 from __future__ import annotations
 
 import math
+import sys
 from collections.abc import Callable
 from dataclasses import dataclass
 from types import ModuleType
@@ -376,7 +377,7 @@ def _four_limb_parameters(mechanism: Any) -> Any:
             f"first: sk.load_mechanism({mechanism!r})."
         )
     params = getattr(mechanism, "parameters", None)
-    if not isinstance(params, _four_limb_parameter_class()):
+    if not _is_four_limb(params):
         raise ScrewkitValueError(
             "Paper 004's transmission indices (kappa, zeta, LTI) are defined for the four-limb family "
             f"(Quattro, H4, V4, Veloce, Ragnar), got "
@@ -1434,7 +1435,7 @@ def transmission_summary(mechanism: Any, pose: Any, jacobians: Any) -> dict[str,
         notes.append("wrench-based index: needs square Jacobians at the pose")
     else:
         points = None
-        if isinstance(getattr(mechanism, "parameters", None), _four_limb_parameter_class()):
+        if _is_four_limb(getattr(mechanism, "parameters", None)):
             points = application_points(mechanism.configuration(pose))
         summary["wrench"] = wrench_transmission(jacobians, input_points=points).to_dict()
         notes.append(
@@ -1442,14 +1443,15 @@ def transmission_summary(mechanism: Any, pose: Any, jacobians: Any) -> dict[str,
             "output OTI_j against the platform twist of actuator j alone, LTI = min "
             "(screwkit.indices.wrench_transmission)"
         )
-    if isinstance(getattr(mechanism, "parameters", None), _four_limb_parameter_class()):
+    if _is_four_limb(getattr(mechanism, "parameters", None)):
         summary["paper_004"] = transmission(mechanism, pose).to_dict()
         notes.append("paper 004: kappa, zeta (Eq. 15), LTI eta (Eq. 16)")
     summary["note"] = "; ".join(notes)
     return summary
 
 
-def _four_limb_parameter_class() -> type:
-    from .families.four_limb import FourLimbParameters
-
-    return FourLimbParameters
+def _is_four_limb(parameters: Any) -> bool:
+    """True for the parameters of a four-limb mechanism (:class:`FourLimbParameters`); the family's
+    module is not imported to tell (no such parameters exist before it is)."""
+    module = sys.modules.get("screwkit.families.four_limb")
+    return module is not None and isinstance(parameters, module.FourLimbParameters)

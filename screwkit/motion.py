@@ -363,13 +363,18 @@ def generic_configurations(
 
 
 def generic_analyses(
-    graph: nx.MultiDiGraph, rng: np.random.Generator, count: int, *, rtol: float = B.DEFAULT_RTOL
+    graph: nx.MultiDiGraph,
+    rng: np.random.Generator,
+    count: int,
+    *,
+    rtol: float = B.DEFAULT_RTOL,
+    length_scale: float | None = None,
 ) -> list[WrenchAnalysis]:
     """Wrench analyses of the graph's mechanism at ``count`` generic configurations, as one batch.
 
     :func:`generic_configurations` analysed by :func:`~screwkit.wrenches.analyze_table` in one
-    call; each analysis of one configuration carries its twist graph (the graph's ``dof`` and
-    ``name`` kept).
+    call (``rtol``, ``length_scale`` as there); each analysis of one configuration carries its twist
+    graph (the graph's ``dof`` and ``name`` kept).
 
     Examples
     --------
@@ -379,7 +384,7 @@ def generic_analyses(
     [6, 6]
     """
     table = generic_configurations(graph, rng, count)
-    batch = analyze_table(table, dof=graph.graph.get("dof"), rtol=rtol)
+    batch = analyze_table(table, dof=graph.graph.get("dof"), rtol=rtol, length_scale=length_scale)
     out = []
     for i in range(len(batch)):
         one = batch[i]

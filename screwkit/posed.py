@@ -80,6 +80,9 @@ class PosedMechanism:
     poses : numpy.ndarray, shape (..., n)
         Length unit of the file, radians; read-only.
     rtol : float
+    length_scale : float or None
+        The characteristic length of the rank decisions in the file's length unit; None: derived
+        per pose (:func:`~screwkit.wrenches.analyze_table`).
     options : dict
         Passed to the inverse kinematics (a working mode).
     """
@@ -87,11 +90,18 @@ class PosedMechanism:
     mechanism: Any = field(repr=False)
     poses: Array
     rtol: float
+    length_scale: float | None = None
     options: dict[str, Any] = field(default_factory=dict, repr=False)
 
     @classmethod
     def create(
-        cls, mechanism: Any, poses: Any, *, rtol: float | None = None, options: Any = None
+        cls,
+        mechanism: Any,
+        poses: Any,
+        *,
+        rtol: float | None = None,
+        length_scale: float | None = None,
+        options: Any = None,
     ) -> PosedMechanism:
         """Validate and build (what :meth:`screwkit.catalog.Mechanism.at` calls).
 
@@ -106,7 +116,8 @@ class PosedMechanism:
         array = _checked_poses(mechanism, poses)
         array.flags.writeable = False
         tolerance = B.DEFAULT_RTOL if rtol is None else checked_rtol(rtol)
-        return cls(mechanism, array, tolerance, dict(options or {}))
+        length = B.checked_length_scale(length_scale, allow_none=True)
+        return cls(mechanism, array, tolerance, length, dict(options or {}))
 
     @property
     def shape(self) -> tuple[int, ...]:
@@ -130,7 +141,8 @@ class PosedMechanism:
         return (self[index] for index in np.ndindex(*self.shape))
 
     def __repr__(self) -> str:
-        return f"PosedMechanism({self.mechanism.name!r}, shape={self.shape}, rtol={self.rtol:g})"
+        length = "" if self.length_scale is None else f", length_scale={self.length_scale:g}"
+        return f"PosedMechanism({self.mechanism.name!r}, shape={self.shape}, rtol={self.rtol:g}{length})"
 
     @functools.cached_property
     def configuration(self) -> Any:
@@ -161,7 +173,9 @@ class PosedMechanism:
         the chunk and the results; the whole table is computed only if a per-pose view asks.
         """
         if "joints" in self.__dict__:
-            return label_table(self.joints, rtol=self.rtol, chunk=CHUNK)  # the family's dof
+            return label_table(  # the family's dof
+                self.joints, rtol=self.rtol, length_scale=self.length_scale, chunk=CHUNK
+            )
         flat = self.poses.reshape(-1, self.poses.shape[-1])
         try:
             protocol, configuration = self.mechanism.family_protocol, self.mechanism.configuration
@@ -173,7 +187,7 @@ class PosedMechanism:
             # reference cycle would keep every chunk of a map alive until the cyclic GC runs)
             owner = weakref.ref(self)
             source = functools.partial(_joint_table, owner, self.mechanism, self.poses, self.options)
-            return classify_chunks(pieces, source, self.shape, rtol=self.rtol)
+            return classify_chunks(pieces, source, self.shape, rtol=self.rtol, length_scale=self.length_scale)
         except ScrewkitError:
             _ = self.configuration  # raises the whole batch's message (the failing pose's index)
             raise
@@ -269,7 +283,8 @@ class Pose:
     def analysis(self) -> WrenchAnalysis:
         """The wrench systems (a batch of one through the core, with the per-pose views)."""
         one = self.table[None] if self.table.batch_shape == () else self.table
-        return self._with_graph(analyze_table(one, rtol=self.posed.rtol)[0])
+        posed = self.posed
+        return self._with_graph(analyze_table(one, rtol=posed.rtol, length_scale=posed.length_scale)[0])
 
     def _with_graph(self, result: WrenchAnalysis) -> WrenchAnalysis:
         object.__setattr__(result, "graph", self.graph)
@@ -310,7 +325,7 @@ class Pose:
         tables = [*own, *(t for t in (generic, sampled) if t is not None)]
         if not tables:  # this pose analysed already, no random pose reachable
             return [], None, stream
-        batch = analyze_table(_concatenated(tables), rtol=rtol)
+        batch = analyze_table(_concatenated(tables), rtol=rtol, length_scale=self.posed.length_scale)
         if own:
             self.__dict__["analysis"] = self._with_graph(batch[0])
         start = len(own)
@@ -349,7 +364,7 @@ class Pose:
             # the first batch analysed with the generic draws, the next ones drawn on from its stream
             if pending:
                 return _samples(diagram.points, pending.pop(), SAMPLES)
-            return generic_samples(mechanism, diagram.points, stream, SAMPLES, rtol)
+            return generic_samples(mechanism, diagram.points, stream, SAMPLES, rtol, self.posed.length_scale)
 
         return diagram, ReplaySampler(produce)
 
@@ -462,7 +477,12 @@ class _PoseAnalyses(Sequence[WrenchAnalysis]):
 
 
 def generic_samples(
-    mechanism: Any, points: Any, rng: np.random.Generator, count: int, rtol: float = B.DEFAULT_RTOL
+    mechanism: Any,
+    points: Any,
+    rng: np.random.Generator,
+    count: int,
+    rtol: float = B.DEFAULT_RTOL,
+    length_scale: float | None = None,
 ) -> list[dict[str, Array]]:
     """A diagram's points (``{label: (4,)}``) at random workspace poses, analysed and evaluated as
     one batch (:func:`screwkit.diagram.batch_diagram_points`).
@@ -483,7 +503,8 @@ def generic_samples(
     3
     """
     table = _reachable_table(mechanism, rng, 2 * count)
-    return list(_samples(points, None if table is None else analyze_table(table, rtol=rtol), count))
+    analysis = None if table is None else analyze_table(table, rtol=rtol, length_scale=length_scale)
+    return list(_samples(points, analysis, count))
 
 
 def _samples(points: Any, analysis: WrenchAnalysis | None, count: int) -> Iterator[dict[str, Array]]:

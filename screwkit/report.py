@@ -136,6 +136,9 @@ class AnalysisReport:
         The transmission indices at the pose (:func:`screwkit.indices.transmission_summary`: the
         wrench-based ITI/OTI/LTI, and paper 004's κ, ζ, η for the four-limb family); None for a
         snapshot.
+    given_length_scale : float or None
+        The characteristic length the caller gave (None: derived from the screws; the one used is
+        ``analysis.length_scale``).
     """
 
     name: str
@@ -153,6 +156,7 @@ class AnalysisReport:
     jacobians: WrenchJacobians | None = None
     jacobians_note: str = _SNAPSHOT_JACOBIANS
     transmission: dict[str, Any] | None = None
+    given_length_scale: float | None = None
 
     def graph_summary(self) -> dict[str, Any]:
         """Links, joints by type, actuated joints, loops; and the equivalent graph's virtual joints."""
@@ -174,6 +178,7 @@ class AnalysisReport:
         """The platform's twist order and every wrench as a line."""
         scale = self.analysis.length_scale
         platform = self.analysis.platform_twists
+        legs = sorted(self.analysis.compound_legs, key=lambda leg: leg.name)  # each view built once
         return {
             "platform_twist_order": platform.order,
             "platform_twists": {
@@ -183,16 +188,13 @@ class AnalysisReport:
                     for t in platform.readable_basis(near=self.analysis.reference_point)
                 ],
             },
-            "leg_motion_types": {
-                leg.name: motion_type(leg.twist_system)
-                for leg in sorted(self.analysis.compound_legs, key=lambda leg: leg.name)
-            },
+            "leg_motion_types": {leg.name: motion_type(leg.twist_system) for leg in legs},
             "constraint": [
                 {"leg": leg.name, **describe_wrench(w, length_scale=scale)}
-                for leg in sorted(self.analysis.compound_legs, key=lambda leg: leg.name)
+                for leg in legs
                 for w in leg.constraint_wrenches.readable_basis()
             ]
-            if self.analysis.compound_legs
+            if legs
             else [
                 {"leg": "mechanism", **describe_wrench(w, length_scale=scale)}
                 for w in self.analysis.constraint_wrenches.readable_basis()
@@ -271,6 +273,10 @@ class AnalysisReport:
             out.append(f"pose: {coords}")
         if self.analysis.rtol != B.DEFAULT_RTOL:  # the default is the README's; another is said
             out.append(f"rank tolerance: rtol = {self.analysis.rtol:g} (default {B.DEFAULT_RTOL:g})")
+        if self.given_length_scale is not None:  # likewise (the default is derived from the screws)
+            out.append(
+                f"length scale: {self.given_length_scale:g} {unit} (given; default: derived from the screws)"
+            )
         summary = self.graph_summary()
         joints = ", ".join(f"{count} {kind}" for kind, count in summary["joints"].items())
         out += [
@@ -418,6 +424,7 @@ def analyze(
     pose: Any = None,
     *,
     rtol: float | None = None,
+    length_scale: float | None = None,
     superbracket: bool = True,
     progress: Callable[[str], None] | None = None,
 ) -> AnalysisReport:
@@ -433,6 +440,10 @@ def analyze(
         accepted for snapshots and graphs (their configuration is given).
     rtol : float, optional
         Relative tolerance of every rank decision (default 1e-9).
+    length_scale : float, optional
+        The characteristic length of every rank decision, in the mechanism's length unit
+        (moments are divided by it); default: derived from the screws at each configuration
+        (:func:`~screwkit.wrenches.analyze_table`), so that answers follow a change of unit.
     superbracket : bool, default True
         Also expand and factor the superbracket (skip for speed).
     progress : callable, optional
@@ -454,6 +465,7 @@ def analyze(
     ()
     """
     tolerance = B.DEFAULT_RTOL if rtol is None else checked_rtol(rtol)
+    length = B.checked_length_scale(length_scale, allow_none=True)
     if not isinstance(superbracket, bool | np.bool_):
         raise ScrewkitTypeError(f"Expected `superbracket` to be True or False, got {superbracket!r}.")
     if progress is not None and not callable(progress):
@@ -461,7 +473,7 @@ def analyze(
     step = progress or (lambda stage: None)
     step(STAGES[0])
     if isinstance(target, nx.MultiDiGraph):
-        return _graph_report(target, "<graph>", pose, tolerance, superbracket, "a twist graph", step)
+        return _graph_report(target, "<graph>", pose, tolerance, length, superbracket, "a twist graph", step)
     if not isinstance(target, str | Path | Mechanism):
         raise ScrewkitTypeError(
             "Expected `target` to be a catalog name, a .toml path, a Mechanism or a twist graph "
@@ -469,15 +481,17 @@ def analyze(
         )
     text = str(target) if not isinstance(target, Mechanism) else ""
     if text.endswith(".toml") and file_kind(load_toml(text)) == "snapshot":
-        return _graph_report(load_snapshot(text), text, pose, tolerance, superbracket, "a snapshot", step)
+        snapshot = load_snapshot(text)
+        return _graph_report(snapshot, text, pose, tolerance, length, superbracket, "a snapshot", step)
     mechanism = target if isinstance(target, Mechanism) else load_mechanism(target)
-    return pose_report(_one_pose(mechanism, pose, tolerance), superbracket=superbracket, progress=step)
+    posed = _one_pose(mechanism, pose, tolerance, length)
+    return pose_report(posed, superbracket=superbracket, progress=step)
 
 
-def _one_pose(mechanism: Mechanism, pose: Any, rtol: float) -> Any:
+def _one_pose(mechanism: Mechanism, pose: Any, rtol: float, length_scale: float | None) -> Any:
     """The mechanism at one pose (a batch is for :meth:`Mechanism.at`: its reports pose by pose)."""
     if pose is None:
-        return mechanism.at(rtol=rtol)[0]
+        return mechanism.at(rtol=rtol, length_scale=length_scale)[0]
     array = B.as_array(pose, "pose", (len(mechanism.pose_names),), symbolic=False)
     if array.ndim != 1:
         raise ScrewkitValueError(
@@ -485,7 +499,7 @@ def _one_pose(mechanism: Mechanism, pose: Any, rtol: float) -> Any:
             f"({', '.join(mechanism.pose_names)}), got shape {array.shape}; for many poses use "
             "mechanism.at(poses) and each pose's report()."
         )
-    return mechanism.at(array, rtol=rtol)[0]
+    return mechanism.at(array, rtol=rtol, length_scale=length_scale)[0]
 
 
 #: The stages :func:`analyze` reports to its ``progress`` callback, in order.
@@ -501,6 +515,7 @@ def _graph_report(
     source: str,
     pose: Any,
     rtol: float,
+    length_scale: float | None,
     superbracket: bool,
     what: str,
     progress: Callable[[str], None],
@@ -508,7 +523,7 @@ def _graph_report(
     if pose is not None:
         raise ScrewkitValueError(f"{source}: {what} is one configuration; expected no pose, got {pose!r}.")
     try:  # dof: the mechanism's mobility at generic configurations (screwkit.motion.settled_dof)
-        analysis = wrench_analysis(graph, rtol=rtol)
+        analysis = wrench_analysis(graph, rtol=rtol, length_scale=length_scale)
     except ScrewkitError as err:
         if source.endswith(".toml"):  # name the file
             raise type(err)(f"{source}: {err}") from err
@@ -521,8 +536,8 @@ def _graph_report(
     from .diagram import graph_diagram
 
     progress(STAGES[1])
-    diagram, sampler = graph_diagram(analysis)
-    return _finish(
+    diagram, sampler = graph_diagram(analysis, length_scale=length_scale)
+    report = _finish(
         graph.graph.get("name", source),
         source,
         graph.graph.get("length_unit", ""),
@@ -536,6 +551,7 @@ def _graph_report(
         "and closing its loops again (screwkit.motion); each stage equals the 6×6 determinant on fresh ones",
         progress=progress,
     )
+    return dataclasses.replace(report, given_length_scale=length_scale)
 
 
 def pose_report(
@@ -583,7 +599,11 @@ def pose_report(
     )
     from .indices import transmission_summary
 
-    return dataclasses.replace(report, transmission=transmission_summary(mechanism, report.pose, jacobians))
+    return dataclasses.replace(
+        report,
+        transmission=transmission_summary(mechanism, report.pose, jacobians),
+        given_length_scale=pose.posed.length_scale,
+    )
 
 
 def _finish(
@@ -622,7 +642,7 @@ def _finish(
         pose,
         pose_names,
         graph,
-        equivalent_twist_graph(graph),
+        equivalent_twist_graph(graph, tree=analysis.tree),  # the core's decomposition, not a second one
         analysis,
         classify_analysis(analysis),
         diagram,

@@ -20,6 +20,7 @@ Examples
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -117,7 +118,10 @@ class ScrewSystem:
         rows = _rows(screws, "screws")
         length_scale = B.characteristic_length(rows, length_scale)
         basis = _independent_rows(rows, rtol, length_scale) if rows.shape[0] else rows
-        return cls(basis, rtol=rtol, length_scale=length_scale)
+        if B.is_symbolic(basis):
+            return cls(basis, rtol=rtol, length_scale=length_scale)
+        # independent by construction: _independent_rows took the rank of these very rows
+        return cls.from_independent(basis, rtol=rtol, length_scale=length_scale)
 
     @classmethod
     def from_independent(
@@ -208,6 +212,9 @@ class ScrewSystem:
         4
         """
         rows = B.screw_nullspace(self.basis, rtol=self.rtol, length_scale=self.length_scale)
+        if self.length_scale is not None and not self.is_symbolic:
+            # orthonormal in the coordinates scaled by this length: independent by construction
+            return ScrewSystem.from_independent(rows, rtol=self.rtol, length_scale=self.length_scale)
         return ScrewSystem(rows, rtol=self.rtol, length_scale=self.length_scale)
 
     def sum(self, other: ScrewSystem) -> ScrewSystem:
@@ -292,8 +299,9 @@ class ScrewSystem:
         >>> ScrewSystem.span([force([1, 0, 0], [0, 0, 0]), couple([0, 1, 0])]).couple_subsystem().order
         1
         """
-        couples = ScrewSystem(_COUPLES, rtol=self.rtol, length_scale=self.length_scale)
-        return self.intersection(couples)
+        if self.is_symbolic:
+            return self.intersection(ScrewSystem(_COUPLES, rtol=self.rtol, length_scale=self.length_scale))
+        return (self.reciprocal() + _couples_reciprocal(self.rtol, self.length_scale)).reciprocal()
 
     def readable_basis(self, near: Any = None) -> Array:
         """A basis that reads like a designer's sketch: translations/couples and lines first.
@@ -346,14 +354,20 @@ class ScrewSystem:
         centre = np.zeros(3) if near is None else B.as_array(near, "near", (3,), symbolic=False)
         if centre.shape != (3,):
             raise ScrewkitValueError(f"Expected `near` to have shape (3,), got {centre.shape}.")
+        rows = np.ascontiguousarray(self.basis, dtype=float).tobytes()
+        given = None if near is None else np.asarray(centre, dtype=float).tobytes()
+        return _readable(rows, self.rtol, self.length_scale, given).copy()
+
+    def _readable_about(self, near: Array | None) -> Array:
+        """:meth:`readable_basis` of a numeric system (what :func:`_readable` remembers)."""
         length = float(self.length_scale or 1.0)
         origin = _axes_centre(self.basis, length, self.rtol)
         if np.linalg.norm(origin) > 10.0 * length:
             # far from the frame's origin the moments dwarf the length scale and every rank decision
             # below would judge rounding: decide about a point among the axes, then move back
             local = ScrewSystem(_about(self.basis, origin), rtol=self.rtol, length_scale=self.length_scale)
-            return _about(local._readable_numeric(np.zeros(3) if near is None else centre - origin), -origin)
-        return self._readable_numeric(centre)
+            return _about(local._readable_numeric(np.zeros(3) if near is None else near - origin), -origin)
+        return self._readable_numeric(np.zeros(3) if near is None else near)
 
     def _readable_numeric(self, centre: Array) -> Array:
         """:meth:`readable_basis` of a numeric system in its own frame (axes placed near ``centre``)."""
@@ -478,6 +492,28 @@ def _rows(screws: Any, name: str) -> Array:
     if isinstance(screws, list | tuple) and not screws:
         return np.zeros((0, 6))
     return B.as_array(screws, name, (6,)).reshape(-1, 6)
+
+
+@functools.lru_cache(maxsize=16)
+def _couples_reciprocal(rtol: float, length_scale: float | None) -> ScrewSystem:
+    """The reciprocal of the couples (:meth:`ScrewSystem.intersection` with them, for
+    :meth:`~ScrewSystem.couple_subsystem`): the same system for every system of this ``rtol`` and
+    length scale, made once."""
+    return ScrewSystem(_COUPLES, rtol=rtol, length_scale=length_scale).reciprocal()
+
+
+@functools.lru_cache(maxsize=64)
+def _readable(rows: bytes, rtol: float, length_scale: float | None, near: bytes | None) -> Array:
+    """The readable basis (read-only) of the numeric system with these basis rows (the bytes of a
+    float ``(k, 6)`` array), ``rtol`` and ``length_scale``, axes placed near the point ``near`` (the
+    bytes of a float ``(3,)`` array; None: not given). A pure function of its arguments, remembered:
+    the diagram and the report take the readable bases of the same per-pose systems (a leg's
+    constraint wrenches, rebuilt from the same frames) one after the other."""
+    basis = np.frombuffer(rows, dtype=float).reshape(-1, 6)
+    system = ScrewSystem.from_independent(basis, rtol=rtol, length_scale=length_scale)
+    found = system._readable_about(None if near is None else np.frombuffer(near, dtype=float))
+    found.flags.writeable = False
+    return found
 
 
 def _axes_centre(rows: Array, length: float, rtol: float) -> Array:

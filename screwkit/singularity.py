@@ -299,6 +299,8 @@ class SingularityReport:
                 for s in self.serial
             ],
             "closeness": {k: float(v) for k, v in self.closeness.items()},
+            "rtol": self.analysis.rtol,
+            "length_scale": float(self.analysis.length_scale),
         }
 
     def __repr__(self) -> str:
@@ -373,7 +375,12 @@ def classify_analysis(analysis: WrenchAnalysis) -> SingularityReport:
 
 
 def classify(
-    graph: nx.MultiDiGraph, *, dof: int | None = None, joint_key: str = "joint", rtol: float = B.DEFAULT_RTOL
+    graph: nx.MultiDiGraph,
+    *,
+    dof: int | None = None,
+    joint_key: str = "joint",
+    rtol: float = B.DEFAULT_RTOL,
+    length_scale: float | None = None,
 ) -> SingularityReport | GenericAnalysis:
     """Analyse a twist graph's wrench systems at its configuration and label the pose.
 
@@ -386,6 +393,9 @@ def classify(
     joint_key : str
     rtol : float, default 1e-9
         Relative tolerance of every rank decision (:mod:`screwkit._frames`).
+    length_scale : float, optional
+        The characteristic length of the rank decisions, in the screws' unit; default: derived
+        from the screws (:func:`~screwkit.wrenches.analyze_table`).
 
     Returns
     -------
@@ -408,14 +418,19 @@ def classify(
     ...
     screwkit.exceptions.TwistGraphError: Expected `dof` to equal the mechanism's mobility, 0 (...), ...
     """
-    analysis = wrench_analysis(graph, dof=dof, joint_key=joint_key, rtol=rtol)
+    analysis = wrench_analysis(graph, dof=dof, joint_key=joint_key, rtol=rtol, length_scale=length_scale)
     if not isinstance(analysis, WrenchAnalysis):
         return analysis  # a symbolic graph: generic answers, no pose verdict
     return SingularityReport(analysis)
 
 
 def classify_table(
-    table: JointTable, *, dof: int | None = None, rtol: float = B.DEFAULT_RTOL, chunk: int = 1024
+    table: JointTable,
+    *,
+    dof: int | None = None,
+    rtol: float = B.DEFAULT_RTOL,
+    length_scale: float | None = None,
+    chunk: int = 1024,
 ) -> SingularityReport:
     """Label every configuration of a joint table, in chunks of the batch (bounded memory).
 
@@ -428,6 +443,8 @@ def classify_table(
         that many actuators (:func:`screwkit.motion.settled_dof`; no extra cost when every pose is
         regular with one actuator per freedom).
     rtol : float, default 1e-9
+    length_scale : float, optional
+        As in :func:`~screwkit.wrenches.analyze_table` (default: derived per configuration).
     chunk : int, default 1024
         Configurations analysed at once.
 
@@ -449,7 +466,7 @@ def classify_table(
     """
     from .motion import settled_dof
 
-    report = label_table(table, dof=dof, rtol=rtol, chunk=chunk)
+    report = label_table(table, dof=dof, rtol=rtol, length_scale=length_scale, chunk=chunk)
     stated = dof if dof is not None else table.dof
     if table.screws.size == 0:
         return report
@@ -457,11 +474,16 @@ def classify_table(
     nominal = settled_dof(first, None if stated is None else report.dof, report.analysis, rtol=rtol)
     if nominal == report.dof:
         return report
-    return label_table(table, dof=nominal, rtol=rtol, chunk=chunk)
+    return label_table(table, dof=nominal, rtol=rtol, length_scale=length_scale, chunk=chunk)
 
 
 def label_table(
-    table: JointTable, *, dof: int | None = None, rtol: float = B.DEFAULT_RTOL, chunk: int = 1024
+    table: JointTable,
+    *,
+    dof: int | None = None,
+    rtol: float = B.DEFAULT_RTOL,
+    length_scale: float | None = None,
+    chunk: int = 1024,
 ) -> SingularityReport:
     """:func:`classify_table` with ``dof`` taken as given (default: the table's, else the number of
     actuators), unchecked: for tables whose ``dof`` is known, a catalog family's.
@@ -494,7 +516,7 @@ def label_table(
         )
         for start in range(0, max(len(flat), 1), chunk)
     )
-    return classify_chunks(pieces, table, shape, dof=dof, rtol=rtol)
+    return classify_chunks(pieces, table, shape, dof=dof, rtol=rtol, length_scale=length_scale)
 
 
 def classify_chunks(
@@ -504,6 +526,7 @@ def classify_chunks(
     *,
     dof: int | None = None,
     rtol: float = B.DEFAULT_RTOL,
+    length_scale: float | None = None,
 ) -> SingularityReport:
     """Label a flattened batch given chunk by chunk (the tables in order, one batch axis each).
 
@@ -521,6 +544,8 @@ def classify_chunks(
         The batch shape of the result.
     dof : int, optional
     rtol : float, default 1e-9
+    length_scale : float, optional
+        As in :func:`~screwkit.wrenches.analyze_table`.
 
     Examples
     --------
@@ -534,7 +559,7 @@ def classify_chunks(
     out: dict[str, Any] = {}
     filled, first = 0, None
     for piece in tables:
-        part = analyze_table(piece, dof=dof, rtol=rtol, views=False)
+        part = analyze_table(piece, dof=dof, rtol=rtol, length_scale=length_scale, views=False)
         arrays = _batch_arrays(part)
         if first is None:  # the template of the result: the first chunk's fields less its arrays and table
             blank: dict[str, Any] = {
@@ -636,6 +661,7 @@ def classify_poses(
     *,
     dof: int | None = None,
     rtol: float = B.DEFAULT_RTOL,
+    length_scale: float | None = None,
 ) -> SingularityReport:
     """Label a batch of poses of one mechanism given as a template graph and batched screws.
 
@@ -649,6 +675,8 @@ def classify_poses(
         Nominal mobility; default: the graph's ``dof``, else derived; checked as in
         :func:`classify_table`.
     rtol : float, default 1e-9
+    length_scale : float, optional
+        As in :func:`~screwkit.wrenches.analyze_table`.
 
     Returns
     -------
@@ -678,4 +706,4 @@ def classify_poses(
     table = JointTable(
         template.base, template.platform, template.specs, stacked, template.dof, anchor, template.mobility
     )
-    return classify_table(table, dof=dof, rtol=rtol)
+    return classify_table(table, dof=dof, rtol=rtol, length_scale=length_scale)

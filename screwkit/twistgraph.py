@@ -764,6 +764,7 @@ def equivalent_twist_graph(
     joint_key: str = "joint",
     rtol: float = B.DEFAULT_RTOL,
     length_scale: float | None = None,
+    tree: SeriesParallelNode | None = None,
 ) -> nx.MultiDiGraph:
     """Replace each closed sub-loop by a virtual serial chain with the same twist system.
 
@@ -773,6 +774,16 @@ def equivalent_twist_graph(
     readable basis of its twist system (couples/translations → ``vP``, lines → ``vR``), chained
     through virtual links named ``"<a>~<b>/1"``, ...; paper 002 Fig. 2b and Fig. 3. Parallel
     chains that start at the base (the limbs) are kept, so the result has the same limbs.
+
+    Parameters
+    ----------
+    graph : networkx.MultiDiGraph
+    joint_key, rtol, length_scale
+        As in :func:`series_parallel_tree`.
+    tree : SeriesParallelNode, optional
+        The graph's series-parallel decomposition when it is at hand, e.g. the analysis core's
+        (:attr:`screwkit.wrenches.WrenchAnalysis.tree`, the same nodes and twist systems from the
+        core's frames); default: :func:`series_parallel_tree` of ``graph``.
 
     Returns
     -------
@@ -790,7 +801,8 @@ def equivalent_twist_graph(
     >>> sorted(j.type for _, _, j in equivalent_twist_graph(G).edges(data="joint"))
     ['R', 'vP', 'vP', 'vR', 'vR']
     """
-    tree = series_parallel_tree(graph, joint_key=joint_key, rtol=rtol, length_scale=length_scale)
+    if tree is None:
+        tree = series_parallel_tree(graph, joint_key=joint_key, rtol=rtol, length_scale=length_scale)
     result = nx.MultiDiGraph(**graph.graph)
     result.graph["equivalent"] = True
     base = graph.graph["base"]

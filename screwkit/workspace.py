@@ -329,9 +329,11 @@ def _diagram_points(diagram: Any, posed: Any) -> tuple[dict[str, Array], Array]:
     from .posed import CHUNK as CORE_CHUNK
     from .wrenches import analyze_table
 
-    table, rtol = posed.joints, posed.rtol
+    table, rtol, length = posed.joints, posed.rtol, posed.length_scale
     parts = [
-        batch_diagram_points(diagram.points, analyze_table(table[start : start + CORE_CHUNK], rtol=rtol))
+        batch_diagram_points(
+            diagram.points, analyze_table(table[start : start + CORE_CHUNK], rtol=rtol, length_scale=length)
+        )
         for start in range(0, len(posed), CORE_CHUNK)
     ]
     points = {p.label: np.concatenate([part[p.label] for part in parts]) for p in diagram.points}

@@ -52,7 +52,7 @@ from . import _backend as B
 from . import _frames as F
 from . import screw as S
 from ._backend import checked_rtol
-from .exceptions import DegenerateGeometryError, ScrewkitTypeError, TwistGraphError
+from .exceptions import DegenerateGeometryError, ScrewkitTypeError, ScrewkitValueError, TwistGraphError
 from .joints import Joint, JointTable
 from .screwsystem import ScrewSystem
 from .topology import Node, Topology, network_layout, topology
@@ -963,8 +963,52 @@ def _checked_dof(dof: Any, table: JointTable, top: Topology) -> int:
     return int(nominal)
 
 
+def _checked_lengths(value: Any, batch: tuple[int, ...]) -> Array | None:
+    """A given characteristic length as an array of the batch shape (None: derive it).
+
+    Examples
+    --------
+    >>> _checked_lengths(2, (3,))
+    array([2., 2., 2.])
+    >>> _checked_lengths([1.0, -1.0], (2,))  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    screwkit.exceptions.ScrewkitValueError: Expected `length_scale` to be positive and finite, ...
+    """
+    if value is None or np.ndim(value) == 0:
+        checked = B.checked_length_scale(value, allow_none=True)
+        if checked is None:
+            return None
+        lengths = np.full(batch, checked)
+    else:
+        try:
+            lengths = np.array(np.broadcast_to(np.asarray(value, dtype=float), batch))
+        except (TypeError, ValueError) as err:
+            got = repr(value) if isinstance(value, str) else f"shape {np.shape(value)}"
+            raise ScrewkitValueError(
+                f"Expected `length_scale` to be a positive number or an array of the batch shape {batch}, "
+                f"got {got}."
+            ) from err
+    # moments are divided by it: within 1e±100 of the unit (coordinates are at most 1e100, README)
+    if not np.all(np.isfinite(lengths) & (lengths >= MIN_LENGTH_SCALE) & (lengths * MIN_LENGTH_SCALE <= 1)):
+        raise ScrewkitValueError(
+            f"Expected `length_scale` to be positive and finite, within [{MIN_LENGTH_SCALE:g}, "
+            f"{1 / MIN_LENGTH_SCALE:g}] length units, got {lengths if lengths.ndim else float(lengths)}."
+        )
+    return lengths
+
+
+#: The smallest characteristic length accepted (and its inverse the largest), in length units.
+MIN_LENGTH_SCALE = 1e-100
+
+
 def analyze_table(
-    table: JointTable, *, dof: int | None = None, rtol: float = B.DEFAULT_RTOL, views: bool = True
+    table: JointTable,
+    *,
+    dof: int | None = None,
+    rtol: float = B.DEFAULT_RTOL,
+    length_scale: float | None = None,
+    views: bool = True,
 ) -> WrenchAnalysis:
     """The wrench systems of a mechanism over a batch of configurations (the one core).
 
@@ -976,6 +1020,12 @@ def analyze_table(
         Nominal mobility; default: the table's ``dof``, else the number of actuated joints.
     rtol : float, default 1e-9
         Relative tolerance of every rank decision (:mod:`screwkit._frames`).
+    length_scale : float or array_like of the batch shape, optional
+        The characteristic length moments are divided by before every rank decision, in the
+        screws' length unit; default: :func:`~screwkit.twistgraph.mechanism_frame`'s, derived
+        from the screws (so that it follows a change of unit). Given, it must scale with the
+        unit for the answers to stay unit-invariant. The reference point is the frame's either way.
+        An analysis's own ``length_scale`` given back reproduces it bit for bit.
     views : bool, default True
         Keep the frames that the per-pose views need (every limb's and leg's systems, the
         constraint, global and uncontrolled systems); False keeps only orders, verdict inputs,
@@ -1008,8 +1058,14 @@ def analyze_table(
     nominal = _checked_dof(dof, table, top)
     batch = table.batch_shape
     screws = table.screws
-    centre, length, scaled = scaled_frame(screws, table.anchor)
-    assert scaled is not None
+    given_length = _checked_lengths(length_scale, batch)
+    if given_length is None:  # the frame's own length, with the scaled screws in the same pass
+        centre, length, scaled = scaled_frame(screws, table.anchor)
+        assert scaled is not None
+    else:  # the reference point as derived, the given length
+        centre, _, _ = scaled_frame(screws, table.anchor, scale=False)
+        length = given_length
+        scaled = F.unit_scaled(screws, centre, length)
     requests: tuple[Request, ...] = ()
     if not top.network:  # every frame the analysis needs, in one program
         assert top.root is not None
@@ -1401,6 +1457,7 @@ def wrench_analysis(
     dof: int | None = None,
     joint_key: str = "joint",
     rtol: float = B.DEFAULT_RTOL,
+    length_scale: float | None = None,
 ) -> WrenchAnalysis | GenericAnalysis:
     """Constraint, actuation and global wrench systems of a twist graph at its configuration.
 
@@ -1420,6 +1477,9 @@ def wrench_analysis(
     rtol : float, default 1e-9
         Relative tolerance of every rank decision (checked, and unused, for a symbolic graph: its
         generic decisions are exact).
+    length_scale : float, optional
+        The characteristic length of the rank decisions (:func:`analyze_table`; checked, and
+        unused, for a symbolic graph).
 
     Returns
     -------
@@ -1447,6 +1507,7 @@ def wrench_analysis(
     from .generic import generic_analysis, is_symbolic_graph
 
     rtol = checked_rtol(rtol)
+    length_scale = B.checked_length_scale(length_scale, allow_none=True)
     if isinstance(graph, nx.MultiDiGraph) and is_symbolic_graph(graph, joint_key=joint_key):
         return generic_analysis(graph, dof=dof, joint_key=joint_key)  # a family: generic answers
     from .motion import settled_dof
@@ -1462,10 +1523,10 @@ def wrench_analysis(
         table.mobility,
     )
     stated = dof if dof is not None else table.dof
-    analysis = analyze_table(one, dof=stated, rtol=rtol)[0]
+    analysis = analyze_table(one, dof=stated, rtol=rtol, length_scale=length_scale)[0]
     given = None if stated is None else analysis.dof
     nominal = settled_dof(graph, given, analysis, joint_key=joint_key, rtol=rtol)
     if nominal != analysis.dof:  # derived: the mechanism's mobility, not the number of actuators
-        analysis = analyze_table(one, dof=nominal, rtol=rtol)[0]
+        analysis = analyze_table(one, dof=nominal, rtol=rtol, length_scale=length_scale)[0]
     object.__setattr__(analysis, "graph", graph)  # the caller's own graph object (cached view)
     return analysis

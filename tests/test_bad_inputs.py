@@ -428,6 +428,8 @@ API_CASES = [
     (lambda: sk.analyze(nx.Graph()), ScrewkitTypeError, r"Expected `target` .* got Graph"),
     (lambda: sk.analyze("h5"), CatalogError, r"unknown mechanism 'h5'"),
     (lambda: sk.analyze("h4", rtol=5), ScrewkitValueError, r"Expected `rtol` to be a number in \[0, 0\.1\], got 5"),
+    (lambda: sk.analyze("h4", length_scale=-2), ScrewkitValueError, r"Expected `length_scale` to be a positive finite number or None, got -2"),
+    (lambda: sk.load_mechanism("h4").at(length_scale="a"), ScrewkitValueError, r"Expected `length_scale` .* got 'a'"),
     (lambda: sk.analyze("h4", rtol=-1), ScrewkitValueError, r"Expected `rtol` to be a number in \[0, 0\.1\], got -1"),
     (lambda: sk.analyze("h4", rtol="a"), ScrewkitTypeError, r"Expected `rtol` .* got 'a'"),
     (lambda: sk.analyze("h4", rtol=0.3), ScrewkitValueError, r"Expected `rtol` to be a number in \[0, 0\.1\], got 0\.3"),

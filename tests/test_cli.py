@@ -188,3 +188,48 @@ def test_the_text_report_prints_no_negative_zero(capsys):
     text = capsys.readouterr().out
     assert "through (" in text and "rank tolerance: rtol = 0.05 (default 1e-09)" in text
     assert not re.search(r"(?<![\w.])-0(?![.\de])", text), text
+
+
+@pytest.mark.parametrize(
+    ("arguments", "status"),
+    [(["analyze", "planar_3rrp", "--no-superbracket"], 0), (["list", "--json"], 0),
+     (["analyze", "no_such_robot"], 2), (["analyze", "h4", "--pose", "0", "0", "-5000", "0"], 1)],
+)
+def test_the_command_gives_mains_output_and_exit_status(arguments, status, capsys):
+    # `python -m screwkit` (and the console script) run console(): main(), then its objects frozen
+    # for the exit; the same output, error message and exit status as main() in this process
+    import os
+    import subprocess
+    import sys
+
+    expected = main(arguments)
+    out, err = capsys.readouterr()
+    done = subprocess.run([sys.executable, "-m", "screwkit", *arguments], capture_output=True, text=True,
+                          timeout=120, encoding="utf-8", env={**os.environ, "PYTHONIOENCODING": "utf-8"})
+    assert (done.returncode, done.stdout, done.stderr) == (status, out, err)
+    assert expected == status and (out if status == 0 else err)  # something was written
+
+
+def test_a_given_length_scale_is_used_said_and_in_the_json(capsys):
+    assert main(["analyze", "h4", "--no-superbracket", "--json"]) == 0
+    default = json.loads(capsys.readouterr().out)
+    derived = analyze("h4", superbracket=False).analysis.length_scale
+    assert default["verdict"]["length_scale"] == derived and default["verdict"]["rtol"] == 1e-9
+    assert main(["analyze", "h4", "--no-superbracket"]) == 0
+    assert "length scale" not in capsys.readouterr().out
+    assert main(["analyze", "h4", "--no-superbracket", "--length-scale", "5000"]) == 0
+    assert "length scale: 5000 mm (given; default: derived from the screws)" in capsys.readouterr().out
+    assert main(["analyze", "h4", "--no-superbracket", "--length-scale", "5000", "--json"]) == 0
+    given = json.loads(capsys.readouterr().out)["verdict"]
+    assert given["length_scale"] == 5000.0 and given["closeness"] != default["verdict"]["closeness"]
+    assert given["verdict"] == default["verdict"]["verdict"] == "regular"
+
+
+def test_a_given_length_scale_reaches_graphs_and_batches():
+    h4 = load_mechanism("h4")
+    report = analyze(h4.twist_graph(), length_scale=5000.0, superbracket=False)
+    assert report.given_length_scale == 5000.0 and report.analysis.length_scale == 5000.0
+    posed = h4.at([[0, 0, -750, 0], [30, -20, -750, 0.3]], length_scale=5000.0)
+    assert posed.singularities.analysis.length_scale.tolist() == [5000.0, 5000.0]
+    assert posed[1].analysis.length_scale == 5000.0 and "length_scale=5000" in repr(posed)
+    assert posed[1].singularity.closeness == {k: float(v[1]) for k, v in posed.closeness.items()}

@@ -1174,30 +1174,57 @@ def test_collect_factors_leaves_an_irreducible_sum_whole():
     assert f.parts == () and len(f.factors) == 1 and f.expand() == poly
 
 
-@pytest.mark.parametrize("seed", range(4))
-def test_ordering_counts_with_one_shared_label_against_the_expansion(seed):
-    # one label given twice (a diagram's shared point): the counts pair like terms by the exchange
-    # of the two shared slots; against the expansion in each sampled ordering, its like terms
-    # combined by BracketPolynomial and its monomials with a zero bracket dropped
-    from screwkit.gca.expansion import _EXPANSION, _ordering_counts, _orderings
+def test_the_template_is_the_same_up_to_sign_under_every_flip():
+    # what the ordering search scores on (_ordering_counts): exchanging the two points of any
+    # subset of lines maps the 24 template monomials onto themselves, one common sign for all;
+    # relabelled monomial by monomial (BracketPolynomial sorts each bracket, sign included)
+    from screwkit.gca.expansion import _EXPANSION
+
+    template = {keys: value for value, keys in (m.canonical for m in _EXPANSION)}  # sorted brackets
+    assert len(template) == 24
+    for flips in itertools.product((0, 1), repeat=6):
+        mapping = {}
+        for k, flip in enumerate(flips):
+            first, second = "abcdefghijkl"[2 * k : 2 * k + 2]
+            mapping[first], mapping[second] = (second, first) if flip else (first, second)
+        image = dict(m.relabel(mapping).canonical[::-1] for m in _EXPANSION)
+        assert image.keys() == template.keys(), flips  # the same 24 monomials
+        ratios = {image[keys] / template[keys] for keys in template}
+        assert ratios == {(-1) ** sum(flips)}, flips  # the superbracket's sign change, for every monomial
+
+
+@pytest.mark.parametrize(
+    ("seed", "shape"),
+    [(0, "none shared"), (1, "one twice"), (2, "one twice"), (3, "one thrice"), (4, "two twice"),
+     (5, "one twice")],
+)
+def test_ordering_counts_against_the_expansion(seed, shape):
+    # against the expansion in each sampled ordering, its like terms combined by BracketPolynomial
+    # and its monomials with a zero bracket dropped: a shared label (a diagram's shared point, the
+    # H4's j, the planar robot's g thrice) makes like terms combine
+    from screwkit.gca.expansion import _EXPANSION, _ordering, _ordering_counts
 
     rng = np.random.default_rng(seed)
     labels = list("abcdefghijkl")
     rng.shuffle(labels)
-    positions = labels[:11]
-    positions.insert(int(rng.integers(0, 12)), positions[int(rng.integers(0, 11))])
+    repeated = {"none shared": [], "one twice": [0], "one thrice": [0, 0], "two twice": [0, 1]}[shape]
+    positions = labels[: 12 - len(repeated)]
+    for label in [positions[k] for k in repeated]:
+        positions.insert(int(rng.integers(0, len(positions) + 1)), label)
+    assert len(positions) == 12 and len(set(positions)) == 12 - len(repeated)
     quads = list(itertools.combinations(sorted(set(positions)), 4))
-    zero = {quad: bool(rng.random() < [0.0, 0.05, 0.2, 0.4][seed]) for quad in quads}
-    counts = _ordering_counts(positions, zero)
-    slot_positions, _ = _orderings()
+    zero = {quad: bool(rng.random() < [0.0, 0.05, 0.2, 0.1, 0.1, 0.4][seed]) for quad in quads}
+    counts = _ordering_counts(positions, zero)  # per line permutation: ordering 64 π + f has count π
+    assert counts.shape == (720,)
     merged = 0
-    for index in [0, *rng.choice(46080, size=150, replace=False)]:
-        mapping = dict(zip("abcdefghijkl", (positions[k] for k in slot_positions[index]), strict=True))
+    sampled = rng.choice(46080, size=150, replace=False)
+    for index in [0, 1, 63, 64, *sampled]:  # 1, 63: flips of the caller's order; 64: the next permutation
+        mapping = dict(zip("abcdefghijkl", (positions[k] for k in _ordering(index)[0]), strict=True))
         monomials = [m.relabel(mapping) for m in _EXPANSION]  # the 24 template monomials, one by one
         kept = [
             m for m in monomials
             if all(len(set(b.labels)) == 4 and not zero[b.sorted_labels] for b in m.brackets)
         ]
-        assert counts[index] == len(BracketPolynomial(kept)), index  # like terms combined
-        merged += len(kept) > counts[index]
-    assert merged > 0  # like terms did combine in some sampled ordering
+        assert counts[index // 64] == len(BracketPolynomial(kept)), index  # like terms combined
+        merged += len(kept) > counts[index // 64]
+    assert merged > 0 or not repeated  # like terms did combine in some sampled ordering

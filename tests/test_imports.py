@@ -56,3 +56,18 @@ def test_numeric_analysis_does_not_import_sympy():
 def test_symbolic_work_imports_sympy(code):
     # the probe can tell: symbolic work does load sympy, on first use
     assert _sympy_loaded_after(code)
+
+
+@pytest.mark.parametrize(("name", "family"), [("h4", "four_limb"), ("planar_3rrp", "planar_3rrp")])
+def test_a_command_imports_only_the_family_it_analyses(name, family):
+    # the registry makes a built-in family on first look-up; the map command's options read the
+    # families' pose coordinates without importing them
+    code = (
+        "import sys\nfrom screwkit.cli import main\n"
+        f"main(['analyze', {name!r}, '--no-superbracket'])\n"
+        "print(*sorted(m.rsplit('.', 1)[1] for m in sys.modules if m.startswith('screwkit.families.')))"
+    )
+    result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120, check=True)
+    loaded = set(result.stdout.splitlines()[-1].split())
+    assert family in loaded
+    assert not loaded & ({"four_limb", "mcgill_smg", "peppermill", "planar_3rrp"} - {family})

@@ -293,6 +293,46 @@ def test_readable_basis_is_a_basis_of_the_same_system_on_random_systems(rng):
             assert system.is_equivalent(ScrewSystem.span(readable))
 
 
+def test_span_and_reciprocal_bases_pass_the_constructors_independence_check(rng):
+    # span and reciprocal build their systems unchecked (independent by construction: the ranks
+    # were taken of those very rows, the reciprocal's rows are orthonormal in scaled coordinates);
+    # the checked constructor accepts every one, with the same length scale
+    for order in range(7):
+        for repeat in range(6):
+            rows = rng.normal(size=(order, 6)) * [1, 1, 1, 300, 300, 300]
+            if order > 1 and repeat % 2:  # dependent generators: a combination of the first two
+                rows = np.vstack([rows, rows[0] - 2.5 * rows[1]])
+            system = ScrewSystem.span(rows)
+            for made in (system, system.reciprocal(), system.reciprocal().reciprocal()):
+                checked = ScrewSystem(made.basis, rtol=made.rtol, length_scale=made.length_scale)
+                assert checked.length_scale == made.length_scale and checked.order == made.order
+            assert system.order == min(order, 6) and system.reciprocal().order == 6 - system.order
+
+
+def test_readable_basis_is_remembered_by_value_and_handed_out_as_a_fresh_array(rng):
+    # the diagram and the report ask for the readable basis of the same system rebuilt from the
+    # same rows: one computation, each caller its own writable copy; a different point, rtol or
+    # length scale is another question
+    from screwkit.screwsystem import _readable
+
+    rows = rng.normal(size=(3, 6)) * [1, 1, 1, 40, 40, 40]  # axes tens of lengths away too
+    system = ScrewSystem.span(rows, length_scale=2.0)
+    first = system.readable_basis()
+    hits = _readable.cache_info().hits
+    again = ScrewSystem.from_independent(system.basis.copy(), length_scale=2.0).readable_basis()
+    assert _readable.cache_info().hits == hits + 1
+    np.testing.assert_array_equal(again, first)
+    assert again.flags.writeable and not np.shares_memory(again, first)
+    again[:] = 0.0  # the caller's copy: the next answer is unchanged
+    np.testing.assert_array_equal(system.readable_basis(), first)
+    near = system.readable_basis(near=[0.0, 0.0, 0.0])  # given, even at the origin: not the default
+    fresh = ScrewSystem._readable_about(system, np.zeros(3))
+    np.testing.assert_array_equal(near, fresh)
+    assert system.is_equivalent(ScrewSystem.span(near))
+    other = ScrewSystem.span(rows, length_scale=3.0).readable_basis()
+    np.testing.assert_array_equal(other, ScrewSystem.span(rows, length_scale=3.0)._readable_about(None))
+
+
 @pytest.mark.parametrize(
     ("generators", "expected"),
     [

@@ -346,6 +346,38 @@ def test_equivalent_graph_keeps_a_rigid_sub_loop():
     assert platform_twist_system(E).order == 1
 
 
+
+@pytest.mark.parametrize("name", ["h4", "ragnar", "mcgill_smg", "peppermill", "planar_3rrp"])
+def test_equivalent_graph_from_the_cores_tree_has_the_same_chains(name):
+    # the report builds it on the analysis core's decomposition (WrenchAnalysis.tree) instead of a
+    # second series_parallel_tree: the same edges between the same links, joint types and spans;
+    # the virtual joints' screws may be another basis of each closed sub-loop's twist system
+    from screwkit.catalog import load_mechanism
+
+    mechanism = load_mechanism(name)
+    poses = np.concatenate([np.asarray(mechanism.default_pose)[None],
+                            mechanism.random_poses(np.random.default_rng(3), 2)])
+    for pose in mechanism.at(poses):
+        reduced = equivalent_twist_graph(pose.graph)
+        from_core = equivalent_twist_graph(pose.graph, tree=pose.analysis.tree)
+        assert from_core.graph == reduced.graph and set(from_core.nodes) == set(reduced.nodes)
+
+        def chains(graph):
+            found = {}
+            for u, v, key, joint in graph.edges(keys=True, data="joint"):
+                found.setdefault((u, v) if not joint.virtual else key.split("[")[1], []).append(joint)
+            return found
+
+        expected, got = chains(reduced), chains(from_core)
+        assert expected.keys() == got.keys()
+        for where, joints in expected.items():
+            assert sorted(j.type for j in got[where]) == sorted(j.type for j in joints), where
+            scale = float(pose.analysis.length_scale)
+            span = ScrewSystem.span(np.vstack([j.screws for j in joints]), length_scale=scale)
+            assert span.is_equivalent(ScrewSystem.span(np.vstack([j.screws for j in got[where]]),
+                                                       length_scale=scale)), where
+
+
 # saving and loading ----------------------------------------------------------------------------
 def test_graph_round_trip_through_json():
     G = gs_graph()

@@ -445,3 +445,74 @@ def test_closeness_in_chunks_gives_the_same_bits(monkeypatch):
     for key, value in whole.items():
         assert value.shape == (5,)
         np.testing.assert_array_equal(chunked[key], value)
+
+
+# a given length scale ------------------------------------------------------------------------------
+def _two_parallel_hinges(spacing):
+    """Two revolute joints about z, ``spacing`` apart, both between base and platform."""
+    from screwkit.joints import JointTable
+
+    rows = [("B", "E", "R1", "R", [[[0, 0, 1.0, 0, 0, 0]]], False)]
+    rows.append(("B", "E", "R2", "R", [[[0, 0, 1.0, 0, -spacing, 0]]], False))
+    return JointTable.from_rows("B", "E", rows)
+
+
+def test_a_given_length_scale_is_the_one_every_rank_decision_uses():
+    # By hand: the frame's point is midway between the axes and its length spacing/2, so the scaled
+    # moments are ±1 and the hinges lock the platform (order 0). Judged by a length 1e10 times the
+    # spacing, the axes are 5e-11 apart (< rtol = 1e-9): one hinge, a platform rotation (order 1).
+    from screwkit.wrenches import analyze_table
+
+    table = _two_parallel_hinges(1e-3)
+    derived = analyze_table(table, dof=0)
+    given = analyze_table(table, dof=0, length_scale=1e7)
+    assert derived.length_scale.tolist() == [5e-4] and derived.platform_order.tolist() == [0]
+    assert given.length_scale.tolist() == [1e7] and given.platform_order.tolist() == [1]
+    assert given.constraint_order.tolist() == [5]
+    assert analyze_table(table, dof=0, length_scale=[1e7]).platform_order.tolist() == [1]  # per pose
+
+
+def test_an_analysis_length_scale_given_back_reproduces_it_bit_for_bit():
+    from screwkit.catalog import load_mechanism
+    from screwkit.wrenches import analyze_table
+
+    table = load_mechanism("h4").at([[0, 0, -750, 0], [30, -20, -750, 0.3], [10, 5, -700, -0.2]]).joints
+    derived = analyze_table(table)
+    again = analyze_table(table, length_scale=derived.length_scale)
+    for field in ("platform_order", "constraint_order", "global_order", "actuation_rows", "transmissions"):
+        np.testing.assert_array_equal(getattr(again, field), getattr(derived, field))
+    for key, value in derived.closeness.items():
+        np.testing.assert_array_equal(again.closeness[key], value)
+    other = analyze_table(table, length_scale=10 * derived.length_scale)  # another length, other sizes
+    assert not np.array_equal(other.closeness["constraint"], derived.closeness["constraint"])
+
+
+@settings(max_examples=10)
+@given(motion=rigid_motions(), factor=unit_factors)
+def test_a_given_length_scale_in_the_new_unit_keeps_the_answers(motion, factor):
+    rotation, translation = motion
+    G = gs()[0]
+    length = 3.0 * wrench_analysis(G).length_scale
+    before = wrench_analysis(G, length_scale=length)
+    after = wrench_analysis(moved(G, rotation, translation, factor), length_scale=factor * length)
+    assert _orders(after) == _orders(before) and after.length_scale == factor * length
+    for key, value in before.closeness.items():
+        assert after.closeness[key] == pytest.approx(value, rel=1e-7, abs=1e-12)
+
+
+@pytest.mark.parametrize(
+    "value, message",
+    [
+        (-1.0, r"Expected `length_scale` to be a positive finite number or None, got -1.0"),
+        (0, r"Expected `length_scale` to be a positive finite number or None, got 0"),
+        (float("nan"), r"Expected `length_scale` to be a positive finite number or None, got nan"),
+        ("1", r"Expected `length_scale` to be a positive finite number or None, got '1'"),
+        (1e200, r"Expected `length_scale` to be positive and finite, within \[1e-100, 1e\+100\] length units"),
+        ([1.0, 2.0], r"Expected `length_scale` to be a positive number or an array of the batch shape \(1,\)"),
+    ],
+)
+def test_error_bad_length_scale(value, message):
+    from screwkit.wrenches import analyze_table
+
+    with pytest.raises(ScrewkitValueError, match=message):
+        analyze_table(_two_parallel_hinges(1.0), dof=0, length_scale=value)

@@ -32,7 +32,7 @@ Examples
 from __future__ import annotations
 
 import functools
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterator, Mapping, MutableMapping
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -101,68 +101,130 @@ class Family:
         return table
 
 
+_SMG = ("x", "y", "z", "phi")
+#: The built-in families: their pose coordinates and angles, known before their modules are imported
+#: (the command line's ``map`` options name every family's coordinates).
+_BUILT_IN = {
+    "four_limb": (_SMG, ("phi",)),
+    "mcgill_smg": (_SMG, ("phi",)),
+    "peppermill": (_SMG, ("phi",)),
+    "planar_3rrp": (("x", "y", "phi"), ("phi",)),
+}
+
+
+def _built_in(name: str) -> Family:
+    """A built-in family, its module imported now (``analyze h4`` imports the four-limb one only)."""
+    pose_names, angle_names = _BUILT_IN[name]
+    if name == "four_limb":
+        from . import four_limb
+
+        limb_lengths = ("base_radius", "base_points", "arm_length", "rod_length", "platform_radius",
+                        "platform_offset", "lead", "parallelogram_width")
+        return Family(
+            name,
+            four_limb.FourLimbParameters.from_mapping,
+            four_limb.inverse_kinematics,
+            four_limb.joints,
+            four_limb.twist_basis,
+            pose_names,
+            angle_names,
+            dict.fromkeys(limb_lengths, "length")
+            | {"alpha": "angle", "beta": "angle", "platform_kind": "number"},
+            four_limb.reachable,
+        )
+    if name == "mcgill_smg":
+        from . import mcgill_smg
+
+        smg_lengths = ("l0", "l1", "l2", "l3", "radius", "b4", "b5", "proximal_width", "distal_width")
+        return Family(
+            name,
+            mcgill_smg.McGillParameters.from_mapping,
+            mcgill_smg.inverse_kinematics,
+            mcgill_smg.joints,
+            mcgill_smg.twist_basis,
+            pose_names,
+            angle_names,
+            dict.fromkeys(smg_lengths, "length"),
+        )
+    if name == "peppermill":
+        from . import peppermill
+
+        return Family(
+            name,
+            peppermill.PeppermillParameters.from_mapping,
+            peppermill.inverse_kinematics,
+            peppermill.joints,
+            peppermill.twist_basis,
+            pose_names,
+            angle_names,
+            dict.fromkeys(("r1", "r2", "l1", "l2", "b0", "p1", "p2"), "length"),
+        )
+    from . import planar_3rrp
+
+    planar_lengths = ("base_points", "link_lengths", "platform_points")
+    return Family(
+        name,
+        planar_3rrp.Planar3RRPParameters.from_mapping,
+        planar_3rrp.Planar3RRPConfiguration.from_pose,
+        planar_3rrp.joints,
+        planar_3rrp.twist_basis,
+        pose_names,
+        angle_names,
+        dict.fromkeys(planar_lengths, "length") | {"guide_angles": "angle"},
+    )
+
+
+class _Registry(MutableMapping[str, Family]):
+    """The families by name, in registration order; a built-in one is made (its module imported)
+    when it is first looked up."""
+
+    def __init__(self) -> None:
+        self._families: dict[str, Family | None] = dict.fromkeys(_BUILT_IN)
+
+    def __getitem__(self, name: str) -> Family:
+        family = self._families[name]
+        if family is None:
+            family = self._families[name] = _built_in(name)
+        return family
+
+    def __setitem__(self, name: str, family: Family) -> None:
+        self._families[name] = family
+
+    def __delitem__(self, name: str) -> None:
+        del self._families[name]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._families)
+
+    def __len__(self) -> int:
+        return len(self._families)
+
+    def pose_names(self) -> list[str]:
+        """Every family's pose coordinates, each once, in order (without importing a family).
+
+        Examples
+        --------
+        >>> families().pose_names()
+        ['x', 'y', 'z', 'phi']
+        """
+        names: list[str] = []
+        for name, family in self._families.items():
+            found = _BUILT_IN[name][0] if family is None else family.pose_names
+            names.extend(n for n in found if n not in names)
+        return names
+
+
 @functools.cache
-def families() -> dict[str, Family]:
-    """The families a catalog entry can name, by name (imported on first use; :func:`register` adds more).
+def families() -> _Registry:
+    """The families a catalog entry can name, by name (each imported on first use; :func:`register`
+    adds more).
 
     Examples
     --------
     >>> families()["mcgill_smg"].pose_names
     ('x', 'y', 'z', 'phi')
     """
-    from . import four_limb, mcgill_smg, peppermill, planar_3rrp
-
-    smg = ("x", "y", "z", "phi")
-    four_limb_kinds = dict.fromkeys(
-        ("base_radius", "base_points", "arm_length", "rod_length", "platform_radius", "platform_offset",
-         "lead", "parallelogram_width"),
-        "length",
-    ) | {"alpha": "angle", "beta": "angle", "platform_kind": "number"}
-    mcgill_lengths = ("l0", "l1", "l2", "l3", "radius", "b4", "b5", "proximal_width", "distal_width")
-    planar_kinds = dict.fromkeys(("base_points", "link_lengths", "platform_points"), "length")
-    return {
-        "four_limb": Family(
-            "four_limb",
-            four_limb.FourLimbParameters.from_mapping,
-            four_limb.inverse_kinematics,
-            four_limb.joints,
-            four_limb.twist_basis,
-            smg,
-            ("phi",),
-            four_limb_kinds,
-            four_limb.reachable,
-        ),
-        "mcgill_smg": Family(
-            "mcgill_smg",
-            mcgill_smg.McGillParameters.from_mapping,
-            mcgill_smg.inverse_kinematics,
-            mcgill_smg.joints,
-            mcgill_smg.twist_basis,
-            smg,
-            ("phi",),
-            dict.fromkeys(mcgill_lengths, "length"),
-        ),
-        "peppermill": Family(
-            "peppermill",
-            peppermill.PeppermillParameters.from_mapping,
-            peppermill.inverse_kinematics,
-            peppermill.joints,
-            peppermill.twist_basis,
-            smg,
-            ("phi",),
-            dict.fromkeys(("r1", "r2", "l1", "l2", "b0", "p1", "p2"), "length"),
-        ),
-        "planar_3rrp": Family(
-            "planar_3rrp",
-            planar_3rrp.Planar3RRPParameters.from_mapping,
-            planar_3rrp.Planar3RRPConfiguration.from_pose,
-            planar_3rrp.joints,
-            planar_3rrp.twist_basis,
-            ("x", "y", "phi"),
-            ("phi",),
-            planar_kinds | {"guide_angles": "angle"},
-        ),
-    }
+    return _Registry()
 
 
 def register(family: Family) -> Family:

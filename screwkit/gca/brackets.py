@@ -61,6 +61,12 @@ def _labels(value: Any, name: str, count: int | None = None) -> tuple[str, ...]:
 
 
 @functools.lru_cache(maxsize=1 << 16)
+def _sorted(labels: tuple[str, ...]) -> tuple[str, ...]:
+    """A bracket's labels sorted (cached with :func:`_bracket_labels`: brackets recur while simplifying)."""
+    return tuple(sorted(labels))
+
+
+@functools.lru_cache(maxsize=1 << 16)
 def _bracket_labels(value: str | tuple[str, ...]) -> tuple[str, ...]:
     """Validated labels of a bracket (cached: brackets are built very often while simplifying)."""
     return _labels(value, "labels", 4)
@@ -251,7 +257,7 @@ class Bracket(_Algebra):
     @property
     def sorted_labels(self) -> tuple[str, ...]:
         """The labels in sorted order (the canonical bracket is ``sign * [sorted_labels]``)."""
-        return tuple(sorted(self.labels))
+        return _sorted(self.labels)
 
     @property
     def is_structurally_zero(self) -> bool:
@@ -329,7 +335,8 @@ class BracketMonomial(_Algebra):
         value = _coefficient(coefficient, "coefficient")
         object.__setattr__(self, "coefficient", value)
         object.__setattr__(self, "brackets", factors)
-        canonical = value * math.prod(b.sign for b in factors)
+        sign = math.prod(b.sign for b in factors)  # -1, 0 or 1: no rational product needed
+        canonical = value if sign == 1 else -value if sign == -1 else Fraction(0)
         keys = tuple(sorted(b.sorted_labels for b in factors)) if canonical else ()
         object.__setattr__(self, "_key", (canonical, keys))
 

@@ -180,51 +180,56 @@ def _line_orders() -> tuple[np.ndarray, np.ndarray]:
     return perms, flips
 
 
-@functools.cache
-def _orderings() -> tuple[np.ndarray, np.ndarray]:
-    """All 6!·2^6 orderings as slot -> caller position maps (46080, 12), and their signs.
+def _ordering(index: int) -> tuple[np.ndarray, int]:
+    """Ordering ``index`` (of the 6!·2^6 = 46 080) as its slot -> caller position map (12,) and its
+    sign.
 
-    Ordering ``(π, f)`` puts the caller's line ``π[k]`` in place ``k``, its points swapped if
-    ``f[k]``; the identity comes first. Its superbracket is ``sgn(π)·(-1)^Σf`` times the caller's
-    (swapping two rows or negating one row of the 6×6 matrix flips the sign).
+    Ordering ``64 π + f`` (``π`` a permutation in ``itertools`` order, ``f`` a flip) puts the
+    caller's line ``π[k]`` in place ``k``, its points swapped if ``f[k]``; the identity comes first.
+    Its superbracket is ``sgn(π)·(-1)^Σf`` times the caller's (swapping two rows or negating one row
+    of the 6×6 matrix flips the sign).
     """
     perms, flips = _line_orders()
-    first = 2 * perms[:, None, :] + flips[None, :, :]
-    second = 2 * perms[:, None, :] + 1 - flips[None, :, :]
-    slot_positions = np.stack([first, second], axis=-1).reshape(-1, 12)
-    inversions = np.sum([perms[:, i] > perms[:, j] for i, j in itertools.combinations(range(6), 2)], axis=0)
-    perm_signs = 1 - 2 * (inversions % 2)
-    signs = (perm_signs[:, None] * (-1) ** flips.sum(axis=1)[None, :]).reshape(-1)
-    return slot_positions, signs
+    perm, flip = perms[index // len(flips)], flips[index % len(flips)]
+    slot_positions = np.stack([2 * perm + flip, 2 * perm + 1 - flip], axis=-1).reshape(12)
+    inversions = sum(int(perm[i] > perm[j]) for i, j in itertools.combinations(range(6), 2))
+    return slot_positions, (-1) ** (inversions + int(flip.sum()))
 
 
 @functools.cache
-def _ordering_brackets() -> tuple[np.ndarray, np.ndarray]:
-    """The caller positions of each bracket of the 24 template monomials (gca.md §2.1) under every
-    ordering, coded as one index into the 12^4 ordered 4-tuples, as two parts: ``(3, 720, 24)`` from
-    the permutations and ``(3, 64, 24)`` from the flips; ordering ``64 π + f`` has their sum.
+def _permutation_brackets() -> np.ndarray:
+    """The caller positions of each bracket of the 24 template monomials (gca.md §2.1) under each of
+    the 720 line permutations without flips, coded as one index into the 12^4 ordered 4-tuples,
+    ``(3, 720, 24)``.
 
-    Slot ``2k + bit`` of ordering ``(π, f)`` holds caller position ``2 π[k] + (bit xor f[k])``, so a
-    bracket's code ``Σ_s 12^(3-s) position_s`` is a part from ``π`` plus a part from ``f``.
+    Ordering ``(π, 0)`` puts caller position ``2 π[k] + bit`` in slot ``2k + bit``, so a bracket's
+    code ``Σ_s 12^(3-s) position_s`` is linear in ``π``: ``π @ weights + offsets``.
     """
-    brackets = [m.brackets for m in _EXPANSION]
-    slots = np.array([[[_SLOTS.index(x) for x in b.labels] for b in t] for t in brackets])  # (24, 3, 4)
-    perms, flips = _line_orders()
-    weights = 12 ** np.arange(3, -1, -1)
-    line, bit = slots // 2, slots % 2
-    from_perm = (2 * perms[:, line] * weights).sum(axis=-1).transpose(2, 0, 1)
-    from_flip = ((bit ^ flips[:, line]) * weights).sum(axis=-1).transpose(2, 0, 1)
-    return np.ascontiguousarray(from_perm), np.ascontiguousarray(from_flip)
+    slots = np.array([[[_SLOTS.index(x) for x in b.labels] for b in m.brackets] for m in _EXPANSION])
+    line, bit = slots.transpose(1, 0, 2) // 2, slots.transpose(1, 0, 2) % 2  # (3, 24, 4)
+    place = 12 ** np.arange(3, -1, -1)
+    weights = np.zeros((6, 3, 24), dtype=np.int64)
+    for k in range(6):
+        weights[k] = (2 * place * (line == k)).sum(axis=-1)
+    perms, _ = _line_orders()
+    codes = np.einsum("pk,kbm->bpm", perms, weights) + (bit * place).sum(axis=-1)[:, None, :]
+    return np.ascontiguousarray(codes, dtype=np.intp)
 
 
 #: The signs of the 24 template monomials.
 _TEMPLATE_SIGNS = np.array([int(m.coefficient) for m in _EXPANSION], dtype=np.int32)
-#: Permutations scored at once by :func:`_ordering_counts` (× 64 flips each): bounds its temporaries.
-_PERMUTATIONS_PER_CHUNK = 90
 
 
 def _ordering_counts(positions: Sequence[str], zero: Mapping[tuple[str, ...], bool]) -> np.ndarray:
-    """Number of surviving monomials (after combining like terms) for every ordering, (46080,)."""
+    """Number of surviving monomials (after combining like terms) per line permutation, (720,).
+
+    The count does not depend on the flips: exchanging the two points of any line maps the 24
+    template monomials of gca.md §2.1 onto themselves with every coefficient negated (the expansion
+    stays in standard form; the superbracket changes sign as a join does), a property of the template
+    that ``tests/test_gca.py`` checks exactly, monomial by monomial. So the polynomial of ordering
+    ``(π, f)`` is ``±`` that of ``(π, 0)``, the same monomials surviving and combining: the 720
+    permutations are scored: ordering ``64 π + f`` (:func:`_ordering`) has the count of ``π``.
+    """
     unique = sorted(set(positions))
     quads = list(itertools.combinations(range(len(unique)), 4))
     quad_id = np.zeros((len(unique),) * 4, dtype=np.int32)
@@ -240,78 +245,12 @@ def _ordering_counts(positions: Sequence[str], zero: Mapping[tuple[str, ...], bo
     distinct = np.all([tuples[:, i] != tuples[:, j] for i, j in pairs], axis=0)
     ids = quad_id[tuple(np.sort(tuples, axis=1).T)]
     code = np.where(distinct & alive[ids], (1 - 2 * (inversions % 2)) * (ids + 1), 0)
-
-    from_perm, from_flip = _ordering_brackets()
-    code = code.astype(np.int32)
-    n = len(quads) + 1
-    chunk = _PERMUTATIONS_PER_CHUNK
-    shared = _shared_slots(positions) if len(unique) == 11 else None  # one label given twice
-    counts = []
-    for start in range(0, from_perm.shape[1], chunk):
-        codes = code[from_perm[:, start : start + chunk, None, :] + from_flip[:, None]]
-        if shared is None:
-            counts.append(_chunk_counts(codes, n))
-        else:
-            counts.append(_chunk_counts_one_shared(codes, shared[64 * start : 64 * (start + chunk)]))
-    return np.concatenate(counts)
+    return _survivor_counts(code[_permutation_brackets()], len(quads) + 1)
 
 
-def _shared_slots(positions: Sequence[str]) -> np.ndarray:
-    """For every ordering, the index (:func:`_swaps`) of the pair of slots that hold the two caller
-    positions of the one label given twice, (46080,)."""
-    repeated = next(label for label in positions if positions.count(label) == 2)
-    p, q = (k for k, label in enumerate(positions) if label == repeated)
-    slot_positions, _ = _orderings()
-    first, second = np.argmax(slot_positions == p, axis=1), np.argmax(slot_positions == q, axis=1)
-    low, high = np.minimum(first, second), np.maximum(first, second)
-    return (low * (23 - low)) // 2 + high - low - 1  # the rank of (low, high) among the 66 pairs
-
-
-@functools.cache
-def _swaps() -> tuple[np.ndarray, np.ndarray]:
-    """For each of the 66 pairs of slots ``s < t`` (in ``itertools.combinations`` order), the pairs
-    of template monomials ``(m, m')`` with ``m'`` = ``m`` with ``s`` and ``t`` exchanged, ``m < m'``:
-    ``(66, k)`` indices of ``m`` and of ``m'``, padded with ``-1``."""
-    blocks = [frozenset(frozenset(_SLOTS.index(x) for x in b.labels) for b in m.brackets) for m in _EXPANSION]
-    index = {block: k for k, block in enumerate(blocks)}
-    found = []
-    for s, t in itertools.combinations(range(12), 2):
-        swap = {s: t, t: s}
-        pairs = []
-        for k, block in enumerate(blocks):
-            other = index.get(frozenset(frozenset(swap.get(x, x) for x in b) for b in block))
-            if other is not None and other > k:
-                pairs.append((k, other))
-        found.append(pairs)
-    width = max(len(pairs) for pairs in found)
-    table = np.full((len(found), width, 2), -1)
-    for row, pairs in enumerate(found):
-        for column, pair in enumerate(pairs):
-            table[row, column] = pair
-    return table[..., 0], table[..., 1]
-
-
-def _chunk_counts_one_shared(codes: np.ndarray, shared: np.ndarray) -> np.ndarray:
-    """:func:`_chunk_counts` when one label is given twice, at the slots ``shared`` of each ordering.
-
-    The brackets of a surviving monomial hold distinct labels, and every label but the shared one
-    fixes its slot, so two surviving monomials are like terms exactly when one is the other with
-    the two shared slots exchanged (a pair, :func:`_swaps`): each such pair leaves one monomial,
-    or none when their coefficients cancel.
-    """
-    first, second, third = codes.reshape(3, -1, codes.shape[-1])
-    coefficients = _TEMPLATE_SIGNS * np.sign(first) * np.sign(second) * np.sign(third)
-    mine, theirs = (np.take(table, shared, axis=0) for table in _swaps())
-    valid = mine >= 0
-    a = np.take_along_axis(coefficients, np.where(valid, mine, 0), axis=1)
-    b = np.take_along_axis(coefficients, np.where(valid, theirs, 0), axis=1)
-    merged = valid & (a != 0) & (b != 0)
-    return np.count_nonzero(coefficients, axis=1) - (merged * (1 + (a == -b))).sum(axis=1)
-
-
-def _chunk_counts(codes: np.ndarray, n: int) -> np.ndarray:
-    """Surviving monomials per ordering from the codes ``(3, permutations, 64, 24)`` of the brackets
-    of each template monomial (``n`` - 1 label sets)."""
+def _survivor_counts(codes: np.ndarray, n: int) -> np.ndarray:
+    """Surviving monomials per ordering from the codes ``(3, orderings, 24)`` of the three brackets of
+    each template monomial (:func:`_ordering_counts`; ``n`` - 1 label sets)."""
     first, second, third = codes.reshape(3, -1, codes.shape[-1])
     coefficients = _TEMPLATE_SIGNS * np.sign(first) * np.sign(second) * np.sign(third)
     # Only monomials without a zero bracket can survive. One is identified within its ordering by
@@ -384,21 +323,19 @@ def _best_ordering(
     positions = [label for line in pairs for label in line]
     quads = list(itertools.combinations(sorted(set(positions)), 4))
     zero = _vanishing_quads(samples, quads, rtol)
-    counts = _ordering_counts(positions, zero)
-    best = int(np.argmin(counts))  # ties: the first, so the caller's order wins if it is optimal
-    slot_positions, signs = _orderings()
-    chosen = tuple(
-        (positions[slot_positions[best, 2 * k]], positions[slot_positions[best, 2 * k + 1]])
-        for k in range(6)
-    )
+    counts = _ordering_counts(positions, zero)  # per permutation, the same for its 64 flips
+    flips = len(_line_orders()[1])
+    # ties: the first, so the caller's order wins if it is optimal
+    slot_positions, sign = _ordering(flips * int(np.argmin(counts)))
+    chosen = tuple((positions[slot_positions[2 * k]], positions[slot_positions[2 * k + 1]]) for k in range(6))
     polynomial = _drop_zero_monomials(superbracket_expansion(chosen), samples, rtol)
     values, tallies = np.unique(counts, return_counts=True)
     return OrderingSearch(
         lines=chosen,
-        sign=int(signs[best]),
+        sign=sign,
         polynomial=polynomial,
         caller_count=int(counts[0]),
-        histogram=tuple((int(v), int(t)) for v, t in zip(values, tallies, strict=True)),
+        histogram=tuple((int(v), flips * int(t)) for v, t in zip(values, tallies, strict=True)),
     )
 
 

@@ -76,8 +76,7 @@ class _Interchange:
         self._reach: dict[tuple[str, ...], dict[tuple[str, ...], tuple[str, ...]]] = {}
 
     def _allowed(self, x: str, y: str, rest: Sequence[str]) -> bool:
-        if all(label in self.infinite for label in rest):
-            return True
+        """``[x rest] = [y rest]`` (class docstring), for ``rest`` not all infinite."""
         return bool(self.directions.get(frozenset((x, y)), set()) & set(rest))
 
     def reachable(self, labels: tuple[str, ...]) -> dict[tuple[str, ...], tuple[str, ...]]:
@@ -92,8 +91,9 @@ class _Interchange:
                 if x not in self.finite:
                     continue
                 rest = current[:slot] + current[slot + 1 :]
+                at_infinity = all(label in self.infinite for label in rest)  # any y will do
                 for y in self.finite:
-                    if y in current or not self._allowed(x, y, rest):
+                    if y in current or not (at_infinity or self._allowed(x, y, rest)):
                         continue
                     new = (*current[:slot], y, *current[slot + 1 :])
                     if tuple(sorted(new)) not in found:
@@ -157,11 +157,13 @@ def _unify_brackets(
     return BracketPolynomial(monomials), substitutions
 
 
-def _transpositions(item: DottedMonomial) -> Iterator[tuple[DottedMonomial, DottedMonomial]]:
-    """``(item with x, y dotted by a new kind, item with x and y exchanged)`` for undotted
-    letters x ≠ y in different brackets; the first expands to ``item − second`` exactly."""
-    kind = max((k for row in item.dots for k in row), default=0) + 1
-    if kind > len(_MARKS):
+def _transpositions(
+    item: DottedMonomial,
+) -> Iterator[tuple[tuple[tuple[int, int], tuple[int, int]], DottedMonomial]]:
+    """``(places, item with x and y exchanged)`` for undotted letters x ≠ y in different brackets,
+    at ``places`` (bracket, slot); :func:`_dotted` dots them, and its expansion is ``item − second``
+    exactly (the dotted one is built only for an exchange that pairs up)."""
+    if _next_kind(item) > len(_MARKS):
         return
     places = [(b, s) for b, row in enumerate(item.dots) for s, k in enumerate(row) if not k]
     for (b1, s1), (b2, s2) in itertools.combinations(places, 2):
@@ -169,13 +171,22 @@ def _transpositions(item: DottedMonomial) -> Iterator[tuple[DottedMonomial, Dott
         if b1 == b2 or x == y:
             continue
         labels = [list(b) for b in item.brackets]
-        dots = [list(d) for d in item.dots]
-        dots[b1][s1] = dots[b2][s2] = kind
         labels[b1][s1], labels[b2][s2] = y, x
-        yield (
-            DottedMonomial(item.brackets, dots, item.coefficient),
-            DottedMonomial(labels, item.dots, item.coefficient),
-        )
+        yield ((b1, s1), (b2, s2)), DottedMonomial(labels, item.dots, item.coefficient)
+
+
+def _next_kind(item: DottedMonomial) -> int:
+    """The dot kind a new pair of ``item`` takes (one more than its last)."""
+    return max((k for row in item.dots for k in row), default=0) + 1
+
+
+def _dotted(item: DottedMonomial, places: tuple[tuple[int, int], tuple[int, int]]) -> DottedMonomial:
+    """``item`` with the letters at ``places`` dotted by a new kind (:func:`_transpositions`)."""
+    dots = [list(d) for d in item.dots]
+    kind = _next_kind(item)
+    for b, s in places:
+        dots[b][s] = kind
+    return DottedMonomial(item.brackets, dots, item.coefficient)
 
 
 def _pair_dotted(
@@ -203,11 +214,12 @@ def _pair_dotted(
         forms = [canonical(item) for item in items]
         negated = {-1 * form: j for j, form in enumerate(forms)}  # B = −(A with x↔y) looked up
         for i, item in enumerate(items):
-            for dotted, swapped in _transpositions(item):
+            for places, swapped in _transpositions(item):
                 target = canonical(swapped)
                 j = negated.get(target) if target else None
                 if j is None or j == i:
                     continue
+                dotted = _dotted(item, places)
                 if canonical(dotted) != forms[i] + forms[j]:
                     continue
                 old = [Bracket(b) for b in items[j].brackets]
