@@ -18,6 +18,8 @@ Figures (the issue's targets in brackets):
   computed when asked (:attr:`screwkit.wrenches.WrenchAnalysis.closeness`), so ``+ closeness``
   gives the rate and ratio of :func:`verdicts` with the report's ``closeness`` asked too;
 * memory: ``tracemalloc`` peak of one chunk's :func:`verdicts` / ``CHUNK``, KiB per pose [≤ 3];
+* with ``--breakdown``: where a pose's time goes (:func:`breakdown`, 10⁴ poses in the core's own
+  chunks of ``screwkit.posed.CHUNK``, CPU time, best of 7);
 * import: CPU time (user + sys of the child, ``resource.getrusage(RUSAGE_CHILDREN)`` deltas) of
   ``python -c "import screwkit"`` against ``python -c "import numpy, networkx"`` in fresh
   subprocesses run in turn, each from its bytecode cache (:func:`child_cpu`), min and median over
@@ -42,6 +44,7 @@ import numpy as np  # noqa: E402
 from _timing import best_of  # noqa: E402  (bench/ is the script folder)
 
 import screwkit as sk  # noqa: E402
+from screwkit import _frames, posed, wrenches  # noqa: E402
 from screwkit.families.four_limb import PAPER_002_LEGS, reachable  # noqa: E402
 
 CHUNK = 10_000
@@ -95,6 +98,56 @@ def chunked(function, poses):
         function(poses[begin : begin + CHUNK])
 
 
+def breakdown(h4, poses, repeats=7):
+    """CPU µs per pose of each stage of :func:`verdicts` over ``poses``, in the core's chunks: the
+    inverse kinematics, the joint table, the analysis core (``wrenches.analyze_table``) and inside
+    it the reference frame with the unit scaled screws (``twistgraph.scaled_frame``), the compiled
+    program of series-parallel frames (``wrenches._run``) and the closing pass (global span,
+    closeness triangles, user-frame rows: ``_frames.closing``), the rest of the core (limb
+    systems, leg residuals, compound-leg checks, numpy glue) and of :func:`verdicts` (copying the
+    chunks' results into the batch's arrays, the report). The inner stages are timed by wrapping
+    those functions for the run (the wrappers' own cost is in the figures)."""
+    protocol, chunk = h4.family_protocol, posed.CHUNK
+    wrapped = {
+        "frame": (wrenches, "scaled_frame"),
+        "program": (wrenches, "_run"),
+        "closing": (_frames, "closing"),
+    }
+    spent = dict.fromkeys(["ik", "joints", "core", "whole", *wrapped], 0.0)
+
+    def timed(label, function):
+        def run(*args, **kwargs):
+            start = time.process_time()
+            try:
+                return function(*args, **kwargs)
+            finally:
+                spent[label] += time.process_time() - start
+        return run
+
+    originals = {label: getattr(module, name) for label, (module, name) in wrapped.items()}
+    best = dict.fromkeys(spent, float("inf"))
+    for _ in range(repeats):  # each figure the best of the repeats
+        for key in spent:
+            spent[key] = 0.0
+        timed("whole", verdicts)(h4, poses)
+        try:
+            for label, (module, name) in wrapped.items():
+                setattr(module, name, timed(label, originals[label]))
+            for begin in range(0, len(poses), chunk):
+                part = poses[begin : begin + chunk]
+                configuration = timed("ik", h4.configuration)(part)
+                table = timed("joints", protocol.joint_table)(configuration)
+                timed("core", wrenches.analyze_table)(table, views=False)
+        finally:
+            for label, (module, name) in wrapped.items():
+                setattr(module, name, originals[label])
+        best = {key: min(best[key], spent[key]) for key in spent}
+    per_pose = {key: value / len(poses) * 1e6 for key, value in best.items()}
+    per_pose["core, other"] = per_pose["core"] - per_pose["frame"] - per_pose["program"] - per_pose["closing"]
+    per_pose["verdicts, other"] = per_pose["whole"] - per_pose["ik"] - per_pose["joints"] - per_pose["core"]
+    return per_pose
+
+
 def child_cpu(codes, repeats):
     """User + sys CPU seconds of fresh ``python -c code`` processes, one list per code (the codes
     run in turn, repeat by repeat, so that load drifting over the run hits each alike).
@@ -120,6 +173,7 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--sizes", type=int, nargs="+", default=[10**3, 10**4, 10**5, 10**6])
     parser.add_argument("--repeats", type=int, default=21, help="import-time subprocesses per command")
+    parser.add_argument("--breakdown", action="store_true", help="where a pose's time goes (10^4 poses)")
     args = parser.parse_args(argv)
     h4 = sk.load_mechanism("h4")
     poses = workspace_poses(h4, max(args.sizes))
@@ -162,6 +216,13 @@ def main(argv=None):
     tracemalloc.stop()
     per_pose = peak / len(chunk) / 1024
     print(f"memory: tracemalloc peak of one chunk / {len(chunk):,} poses = {per_pose:.2f} KiB/pose")
+    if args.breakdown:
+        count = min(10**4, len(poses))
+        figures = breakdown(h4, poses[:count])
+        print(f"breakdown (CPU µs per pose, {count:,} poses in chunks of {posed.CHUNK}, best of 7):")
+        for label in ("whole", "ik", "joints", "core", "frame", "program", "closing", "core, other",
+                      "verdicts, other"):
+            print(f"  {label:16s} {figures[label]:6.2f}")
 
     ours, base, bare = child_cpu(["import screwkit", "import numpy, networkx", "pass"], args.repeats)
     print(f"import CPU (user+sys, {args.repeats} fresh processes; min / median):")

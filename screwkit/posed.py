@@ -47,7 +47,7 @@ __all__ = ["Pose", "PosedMechanism", "generic_samples"]
 Array = np.ndarray
 
 #: Poses taken through the inverse kinematics, joint table and analysis core at once.
-CHUNK = 256
+CHUNK = 512
 #: Random workspace poses drawn (in one batch) to find a generic configuration for a diagram (the
 #: first few reachable ones are tried: screwkit.diagram.REFERENCE_TRIES).
 GENERIC_DRAWS = 12

@@ -569,12 +569,17 @@ def classify_chunks(
             }
             first = replace(part, table_source=table_source, **blank)
             out = {key: np.empty((total, *value.shape[1:]), value.dtype) for key, value in arrays.items()}
+            del out["branch_rows"]  # stored only once a chunk's differ from its actuation rows
+        if "branch_rows" not in out and arrays["branch_rows"] is not arrays["actuation_rows"]:
+            out["branch_rows"] = out["actuation_rows"].copy()  # the chunks before: the same rows
         for key, value in arrays.items():
-            out[key][filled : filled + len(value)] = value
+            if key in out:
+                out[key][filled : filled + len(value)] = value
         filled += len(part)
         del piece, part, arrays  # not alive while the next chunk is computed
     if first is None or filled != total:
         raise ScrewkitValueError(f"Expected chunks of {total} configurations in all, got {filled}.")
+    out.setdefault("branch_rows", out["actuation_rows"])  # every chunk's the same: one array
     whole = {key: value.reshape(*shape, *value.shape[1:]) for key, value in out.items()}
     return SingularityReport(
         replace(

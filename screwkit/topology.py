@@ -146,7 +146,7 @@ class Topology:
         """The actuated joints, sorted (the limbs' order)."""
         return tuple(limb.actuated_joint for limb in self.limbs)
 
-    @property
+    @functools.cached_property  # read for every joint by the core, once per batch
     def columns(self) -> tuple[int, ...]:
         """The first screw row of each joint in the table's stacked screws."""
         return tuple(itertools.accumulate((s.dof for s in self.specs[:-1]), initial=0))

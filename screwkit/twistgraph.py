@@ -39,7 +39,7 @@ import networkx as nx
 import numpy as np
 
 from . import _backend as B
-from ._frames import compiled_kernels, sum_in_order
+from ._frames import compiled_kernels, sum_in_order, unit_scaled
 from .exceptions import TwistGraphError
 from .joints import Joint, virtual
 from .screwsystem import ScrewSystem
@@ -58,6 +58,7 @@ __all__ = [
     "loop_closure_matrix",
     "mechanism_frame",
     "platform_twist_system",
+    "scaled_frame",
     "series_parallel_tree",
     "simple_paths",
     "to_data",
@@ -272,19 +273,62 @@ def mechanism_frame(screws: Array, anchor: Array | None = None) -> tuple[Array, 
     >>> mechanism_frame(planar, np.array([0, 0, 5.0]))[0].round(6) + 0.0
     array([0. , 0.5, 5. ])
     """
+    point, length, _ = scaled_frame(screws, anchor, scale=False)
+    return point, length
+
+
+def scaled_frame(
+    screws: Array, anchor: Array | None = None, *, scale: bool = True
+) -> tuple[Array, Array, Array | None]:
+    """:func:`mechanism_frame` and the screws in its scaled coordinates, unit rows
+    (:func:`screwkit._frames.unit_scaled`; None unless ``scale``): ``(point, length, scaled)``. On
+    the numba path one compiled pass (:func:`screwkit._frames_numba.mechanism_frame`) where the
+    normal matrix is solved directly, the numpy path's operations in its order (the same bits);
+    the other poses as the numpy path.
+
+    Examples
+    --------
+    >>> rows = np.array([[0, 0, 1, 0, -100.0, 0], [0, 1, 0, 0, 0, 0]])
+    >>> point, length, scaled = scaled_frame(rows)                    # about (50, 0, 0), per 50
+    >>> point.round(6) + 0.0, float(length), scaled.round(6) + 0.0
+    (array([50.,  0.,  0.]), 50.0, array([[ 0.      ,  0.      ,  0.707107,  0.      , -0.707107,  0.      ],
+           [ 0.      ,  0.707107,  0.      ,  0.      ,  0.      , -0.707107]]))
+    """
     batch = screws.shape[:-2]
     flat = np.ascontiguousarray(np.reshape(screws, (-1, *screws.shape[-2:])), dtype=float)
+    anchors = None
+    if anchor is not None:
+        anchors = np.broadcast_to(np.asarray(anchor, dtype=float), (*batch, 3)).reshape(-1, 3)
     kernels = compiled_kernels("_frames_numba", len(flat))  # the same sums, in the same order
-    sums = _frame_sums_numpy if kernels is None else kernels.frame_sums
-    spread = _frame_spread_numpy if kernels is None else kernels.frame_spread
-    count, normal, rhs, farthest = sums(flat)
-    point = _least_squares_point(normal, rhs, None if anchor is None else np.reshape(anchor, (-1, 3)))
-    length = np.sqrt(spread(flat, point) / np.maximum(count, 1))
-    size = np.maximum(farthest, np.linalg.norm(point, axis=-1))
+    if kernels is None:
+        point, length = _frame_numpy(flat, anchors)
+        scaled = unit_scaled(flat, point, length) if scale else None
+    else:
+        point, length, direct, scaled = kernels.mechanism_frame(flat, scale)
+        rest = ~direct
+        if rest.any():  # the eigendecomposition's poses
+            point[rest], length[rest] = _frame_numpy(flat[rest], None if anchors is None else anchors[rest])
+            if scale:
+                scaled[rest] = kernels.unit_scaled(flat[rest], point[rest], length[rest])
+        scaled = scaled if scale else None
+    return (
+        point.reshape(*batch, 3),
+        length.reshape(batch),
+        None if scaled is None else scaled.reshape(screws.shape),
+    )
+
+
+def _frame_numpy(flat: Array, anchor: Array | None) -> tuple[Array, Array]:
+    """:func:`mechanism_frame` of screws ``(n, k, 6)`` with numpy (the compiled pass's twin)."""
+    count, normal, rhs, farthest = _frame_sums_numpy(flat)
+    point = _least_squares_point(normal, rhs, anchor)
+    length = np.sqrt(_frame_spread_numpy(flat, point) / np.maximum(count, 1))
+    reach = np.sqrt(point[:, 0] * point[:, 0] + point[:, 1] * point[:, 1] + point[:, 2] * point[:, 2])
+    size = np.maximum(farthest, reach)
     round_off = length <= 1e-12 * size
     fallback = np.where(size > 0, size, 1.0)
     length = np.where(round_off | (length == 0), fallback, length)
-    return point.reshape(*batch, 3), length.reshape(batch)
+    return point, length
 
 
 def _axes_numpy(screws: Array) -> tuple[Array, list[Array], list[Array]]:
@@ -295,18 +339,18 @@ def _axes_numpy(screws: Array) -> tuple[Array, list[Array], list[Array]]:
     m = [screws[..., 3 + i] for i in range(3)]
     sizes = d[0] * d[0] + d[1] * d[1] + d[2] * d[2]
     finite = sizes > 0
-    safe = np.where(finite, sizes, 1.0)
-    root = np.sqrt(safe)
-    units = [x / root * finite for x in d]
-    feet = [(d[1] * m[2] - d[2] * m[1]) / safe, (d[2] * m[0] - d[0] * m[2]) / safe,
-            (d[0] * m[1] - d[1] * m[0]) / safe]
+    inverse = 1.0 / np.where(finite, sizes, 1.0)
+    scale = np.sqrt(inverse) * finite
+    units = [x * scale for x in d]
+    feet = [(d[1] * m[2] - d[2] * m[1]) * inverse, (d[2] * m[0] - d[0] * m[2]) * inverse,
+            (d[0] * m[1] - d[1] * m[0]) * inverse]
     return finite, units, feet
 
 
 def _frame_sums_numpy(screws: Array) -> tuple[Array, Array, Array, Array]:
-    """:func:`screwkit._frames_numba.frame_sums` with numpy, operation for operation: the projectors
-    ``P_k = I − u_k u_kᵀ`` of the finite axes never formed, their sum and ``Σ P_k f_k`` summed over
-    the axes left to right (:func:`screwkit._frames.sum_in_order`)."""
+    """The sums of :func:`screwkit._frames_numba.mechanism_frame` with numpy, operation for
+    operation: the projectors ``P_k = I − u_k u_kᵀ`` of the finite axes never formed, their sum and
+    ``Σ P_k f_k`` summed over the axes left to right (:func:`screwkit._frames.sum_in_order`)."""
     finite, units, feet = _axes_numpy(screws)
     along = units[0] * feet[0] + units[1] * feet[1] + units[2] * feet[2]
     pairs = ((0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2))
@@ -321,7 +365,7 @@ def _frame_sums_numpy(screws: Array) -> tuple[Array, Array, Array, Array]:
 
 
 def _frame_spread_numpy(screws: Array, point: Array) -> Array:
-    """:func:`screwkit._frames_numba.frame_spread` with numpy, operation for operation."""
+    """The spread of :func:`screwkit._frames_numba.mechanism_frame` with numpy, operation for operation."""
     finite, units, feet = _axes_numpy(screws)
     away = [point[:, None, i] - feet[i] for i in range(3)]
     along = units[0] * away[0] + units[1] * away[1] + units[2] * away[2]
@@ -344,7 +388,7 @@ def _least_squares_point(normal: Array, rhs: Array, anchor: Array | None) -> Arr
     a11, a12, a22 = n00 * n22 - n02 * n02, n01 * n02 - n00 * n12, n00 * n11 - n01 * n01
     det = n00 * a00 + n01 * a01 + n02 * a02
     trace = n00 + n11 + n22
-    direct = (trace > 0) & (4.0 * det > 1e-6 * trace**3)
+    direct = (trace > 0) & (4.0 * det > 1e-6 * (trace * trace * trace))
     safe = np.where(direct, det, 1.0)
     point = np.stack(
         [

@@ -56,7 +56,7 @@ from .exceptions import DegenerateGeometryError, ScrewkitTypeError, ScrewkitValu
 from .joints import Joint, JointTable
 from .screwsystem import ScrewSystem
 from .topology import Node, Topology, network_layout, topology
-from .twistgraph import SeriesParallelNode, mechanism_frame
+from .twistgraph import SeriesParallelNode, scaled_frame
 
 if TYPE_CHECKING:
     from .generic import GenericAnalysis
@@ -252,7 +252,8 @@ class WrenchAnalysis:
     branch_rows : numpy.ndarray, shape (..., n_actuated, 6)
         The part of each actuation wrench carried by its actuated joint's own branch, scaled as
         :attr:`actuation_rows`: ``B_jj = branch_j ∘ $_j`` (:mod:`screwkit.jacobians`). Equal to
-        the actuation wrench except in a compound leg analysed as a whole (:func:`analyze_table`).
+        the actuation wrench except in a compound leg analysed as a whole (:func:`analyze_table`);
+        where no leg is, the very array :attr:`actuation_rows`.
     closeness_factors : dict of str to numpy.ndarray, shape (..., 21)
         ``"constraint"``, ``"actuation"``: triangular factors (:func:`screwkit._frames.triangular`,
         :func:`~screwkit._frames.packed`) with the singular values of the matrices the closeness
@@ -541,7 +542,8 @@ class _Program:
 
 
 #: The op codes and source kinds of a :class:`_Program` (those of the compiled interpreter).
-SPAN, RECIPROCAL, ROD, JOINT_ROWS, SLOT_ROWS = 0, 1, 2, 0, 1
+SPAN, RECIPROCAL, ROD, EXTEND, CONTRACT, PARALLELOGRAM, COMPANION = 0, 1, 2, 3, 4, 5, 6
+JOINT_ROWS, SLOT_ROWS = 0, 1
 
 
 class _ProgramBuilder:
@@ -587,29 +589,77 @@ class _ProgramBuilder:
             return [(JOINT_ROWS, self.top.columns[node.joint], self.top.specs[node.joint].dof)]
         return [(SLOT_ROWS, self.twists(index), self.bound(index))]
 
+    def _chain_sum(self, members: tuple[int, ...]) -> int:
+        """The twists of members in series: their span, or :data:`EXTEND` (the closed form) for one
+        1-dof joint and one other node."""
+        if self._joint_and_node(members):
+            return self._sourced(EXTEND, [g for c in members for g in self.generators(c)])
+        return self._span([g for c in members for g in self.generators(c)])
+
+    def _contract(self, members: tuple[int, ...]) -> int:
+        """The wrenches of one 1-dof joint and one other node in series (reciprocal to their twists'
+        sum): :data:`CONTRACT`, the node's wrenches less those not reciprocal to the joint's screw.
+        Where the node's twists are not the reciprocal of its wrenches (a series node, a
+        parallelogram), their slot is a third source: the fallback then spans the rows an
+        :data:`EXTEND` of the same members spans, so the twists and wrenches of a chain are decided
+        alike even within the threshold band."""
+        parts = [
+            self.generators(c)[0] if self.top.nodes[c].kind == "joint" else (SLOT_ROWS, self.wrenches(c), 6)
+            for c in members
+        ]
+        (node,) = [c for c in members if self.top.nodes[c].kind != "joint"]
+        if ("twists", node) in self.slots or self.top.nodes[node].kind != "parallel":  # else a reciprocal
+            twists = self.twists(node)
+            if self.ops[twists][0] != RECIPROCAL:
+                parts.append((SLOT_ROWS, twists, self.bound(node)))
+        return self._sourced(CONTRACT, parts)
+
+    def _joint_and_node(self, members: tuple[int, ...]) -> bool:
+        """Exactly two members: a joint of one screw and a node that is not a joint."""
+        nodes = [self.top.nodes[c] for c in members]
+        joints = [n for n in nodes if n.kind == "joint"]
+        return (
+            len(nodes) == 2
+            and len(joints) == 1
+            and joints[0].joint is not None
+            and self.top.specs[joints[0].joint].dof == 1
+        )
+
+    def _sourced(self, code: int, parts: list[tuple[int, int, int]]) -> int:
+        first = len(self.sources)
+        self.sources.extend(parts)
+        return self._op(code, first, len(parts))
+
     def twists(self, index: int) -> int:
         key = ("twists", index)
         if key not in self.slots:
             node = self.top.nodes[index]
             if node.kind == "parallel":
-                self.slots[key] = self._op(RECIPROCAL, self.wrenches(index), 0)
+                wrenches = self.wrenches(index)  # a parallelogram's twists come with its wrenches
+                if key not in self.slots:
+                    self.slots[key] = self._op(RECIPROCAL, wrenches, 0)
             elif node.kind == "joint":
                 self.slots[key] = self._span(self.generators(index))
             else:
-                self.slots[key] = self._span([g for c in node.children for g in self.generators(c)])
+                self.slots[key] = self._chain_sum(node.children)
         return self.slots[key]
 
     def wrenches(self, index: int) -> int:
         key = ("wrenches", index)
         if key not in self.slots:
             node = self.top.nodes[index]
-            if node.kind == "parallel":
+            if node.kind == "parallel" and len(node.children) == 2 and all(
+                self._is_rod(self.top.nodes[c]) for c in node.children
+            ):  # two rods: a parallelogram's wrenches and twists in closed form where it is one
+                rods = [(SLOT_ROWS, self.wrenches(c), 6) for c in node.children]
+                self.slots[key] = self._sourced(PARALLELOGRAM, rods)
+                self.slots[("twists", index)] = self._op(COMPANION, self.slots[key], 0)
+            elif node.kind == "parallel":
                 self.slots[key] = self._span([(SLOT_ROWS, self.wrenches(c), 6) for c in node.children])
             elif self._is_rod(node):  # closed form: the line through the two centres
-                parts = [g for c in node.children for g in self.generators(c)]
-                first = len(self.sources)
-                self.sources.extend(parts)
-                self.slots[key] = self._op(ROD, first, len(parts))
+                self.slots[key] = self._sourced(ROD, [g for c in node.children for g in self.generators(c)])
+            elif node.kind == "series" and self._joint_and_node(node.children):
+                self.slots[key] = self._contract(node.children)
             else:
                 self.slots[key] = self._op(RECIPROCAL, self.twists(index), 0)
         return self.slots[key]
@@ -629,11 +679,14 @@ class _ProgramBuilder:
         kind, what = request
         if kind == "passive":  # the reciprocal of a sum: a limb's passive wrenches
             if request not in self.slots:
-                self.slots[request] = self._op(RECIPROCAL, self.request(("sum", what)), 0)
+                if self._joint_and_node(what):
+                    self.slots[request] = self._contract(what)
+                else:
+                    self.slots[request] = self._op(RECIPROCAL, self.request(("sum", what)), 0)
             return self.slots[request]
         if kind == "sum":
             if request not in self.slots:
-                self.slots[request] = self._span([g for n in what for g in self.generators(n)])
+                self.slots[request] = self._chain_sum(what)
             return self.slots[request]
         return self.twists(what) if kind == "twists" else self.wrenches(what)
 
@@ -675,12 +728,19 @@ def _run(program: _Program, scaled: Array, rtol: float, requests: tuple[Request,
     frames: dict[int, Frame] = {}
     keep = set(wanted)
     for index, (code, slot, first, count) in enumerate(program.ops.tolist()):
+        sources = program.sources[first : first + count].tolist()
         if code == RECIPROCAL:
             frames[slot] = F.reciprocal(*frames[first])
+        elif code == PARALLELOGRAM:
+            frames[slot], frames[slot + 1] = _parallelogram([frames[a] for _, a, _ in sources], rtol)
+        elif code == COMPANION:
+            pass  # written by the op before it
+        elif code in (EXTEND, CONTRACT):
+            frames[slot] = _closed_form(code, sources, frames, scaled, rtol)
         else:
             parts = [
                 scaled[..., a : a + b, :] if kind == JOINT_ROWS else frames[a][0][..., :b, :]
-                for kind, a, b in program.sources[first : first + count].tolist()
+                for kind, a, b in sources
             ]
             if code == ROD:
                 frames[slot] = F.rod(np.concatenate(parts, axis=-2), rtol)
@@ -689,6 +749,48 @@ def _run(program: _Program, scaled: Array, rtol: float, requests: tuple[Request,
         for done in [s for s in frames if program.last_use[s] <= index and s not in keep]:
             del frames[done]  # bounded memory over large batches
     return _stacked([frames[s] for s in wanted])
+
+
+def _parallelogram(rods: list[Frame], rtol: float) -> tuple[Frame, Frame]:
+    """:data:`PARALLELOGRAM` over the batch (numpy path): the closed form
+    (:func:`screwkit._frames.parallelogram`), the span of the two rods' frames and its reciprocal
+    where it does not apply; :func:`screwkit._frames_numba.run_program`'s steps."""
+    first, second = rods
+    wrenches, wrench_order, twists, twist_order, decided = F.parallelogram(first, second, rtol)
+    if not decided.all():
+        undecided = ~decided
+        spanned = F.span(np.concatenate([rows[undecided] for rows, _ in rods], axis=-2), rtol)
+        wrenches[undecided], wrench_order[undecided] = spanned
+        twists[undecided], twist_order[undecided] = F.reciprocal(*spanned)
+    return (wrenches, wrench_order), (twists, twist_order)
+
+
+def _closed_form(
+    code: int, sources: list[list[int]], frames: dict[int, Frame], scaled: Array, rtol: float
+) -> Frame:
+    """:data:`EXTEND` or :data:`CONTRACT` over the batch (numpy path): the closed form
+    (:func:`screwkit._frames.extend`, :func:`~screwkit._frames.contract`), the rule's span (and
+    reciprocals) where it does not decide; :func:`screwkit._frames_numba.run_program`'s steps."""
+    (joint,) = [a for kind, a, _ in sources[:2] if kind == JOINT_ROWS]
+    (slot,) = [a for kind, a, _ in sources[:2] if kind == SLOT_ROWS]
+    rows, order = frames[slot]
+    closed = F.extend if code == EXTEND else F.contract
+    out, out_order, decided = closed(rows, order, scaled[..., joint, :], rtol)
+    if not decided.all():
+        undecided = ~decided
+        if code == CONTRACT and len(sources) == 3:  # the node's twist frame
+            twists, bound = frames[sources[2][1]][0][undecided], sources[2][2]
+        elif code == CONTRACT:  # the wrench frame's reciprocal
+            twists, bound = F.reciprocal(rows[undecided], order[undecided])[0], 6
+        else:
+            twists, bound = rows[undecided], 6
+        parts = [
+            scaled[undecided][:, a : a + b] if kind == JOINT_ROWS else twists[:, : min(b, bound)]
+            for kind, a, b in sources[:2]
+        ]
+        spanned = F.span(np.concatenate(parts, axis=-2), rtol)
+        out[undecided], out_order[undecided] = F.reciprocal(*spanned) if code == CONTRACT else spanned
+    return out, out_order
 
 
 class _Evaluation:
@@ -784,10 +886,7 @@ def _nearest_lines(wrench: Array, constraints_at: Callable[[Array], Array], orde
     lines and have constraint wrenches to add are searched (each on its own: a pose's answer does
     not depend on the others).
     """
-    size = np.linalg.norm(wrench[..., :3], axis=-1)
-    pitch = np.einsum("...i,...i->...", wrench[..., :3], wrench[..., 3:])
-    not_line = np.abs(pitch) > LINE_RTOL * np.maximum(size, 1e-300) * np.linalg.norm(wrench, axis=-1)
-    searched = not_line & (np.asarray(order) > 0)
+    searched = F.not_lines(wrench, LINE_RTOL) & (np.asarray(order) > 0)
     best = wrench.copy()
     if searched.any():
         best[searched] = _line_search(wrench[searched], constraints_at(searched), np.asarray(order)[searched])
@@ -840,16 +939,6 @@ def _line_search(wrench: Array, constraints: Array, order: Array) -> Array:
     return np.where(
         found[..., None], wrench + np.where(found, alpha, 0.0)[..., None] * chosen, wrench
     )
-
-
-def _unit_size(rows: Array, length: Array) -> Array:
-    """``(..., k, 1)``: what divides user-frame rows into a unit force (or a unit couple if the
-    force vanishes)."""
-    forces = np.linalg.norm(rows[..., :3], axis=-1)
-    moments = np.linalg.norm(rows[..., 3:], axis=-1)
-    is_couple = forces <= B.DEFAULT_RTOL * moments / length[..., None]
-    size = np.where(is_couple, moments, forces)
-    return np.where(size > 0, size, 1.0)[..., None]
 
 
 def _canonical(table: JointTable) -> JointTable:
@@ -970,15 +1059,19 @@ def analyze_table(
     batch = table.batch_shape
     screws = table.screws
     given_length = _checked_lengths(length_scale, batch)
-    centre, length = mechanism_frame(screws, table.anchor)
-    if given_length is not None:
+    if given_length is None:  # the frame's own length, with the scaled screws in the same pass
+        centre, length, scaled = scaled_frame(screws, table.anchor)
+        assert scaled is not None
+    else:  # the reference point as derived, the given length
+        centre, _, _ = scaled_frame(screws, table.anchor, scale=False)
         length = given_length
-    scaled = F.unit_scaled(screws, centre, length)
+        scaled = F.unit_scaled(screws, centre, length)
     requests: tuple[Request, ...] = ()
     if not top.network:  # every frame the analysis needs, in one program
         assert top.root is not None
         requests = (
             ("twists", top.root),
+            ("wrenches", top.root),  # the constraint system (paper 002 Eq. 3), spanned by the legs'
             *((("twists", i) for i in top.legs) if views else ()),
             *(("wrenches", i) for i in top.legs),
             *(("sum", tuple(plan.siblings)) for plan in top.limbs),
@@ -988,6 +1081,7 @@ def analyze_table(
         requests = tuple(dict.fromkeys(requests))
     core = _Evaluation(top, scaled, rtol, requests)
     frames: dict[str, Frame] = {}
+    leg_block: Array | None = None
     if top.network:
         platform = core.network(tuple(range(len(top.specs))))
         leg_wrenches = [F.reciprocal(*platform)]
@@ -997,8 +1091,11 @@ def analyze_table(
         platform = core.twists(top.root)
         leg_twists = [core.twists(i) for i in top.legs] if views else []
         leg_wrenches = [core.wrenches(i) for i in top.legs]
-    constraint = F.reciprocal(*platform)
+        leg_block = core.stacked([("wrenches", i) for i in top.legs])[0]  # a view of the program's block
+    constraint = F.reciprocal(*platform) if top.network or top.root is None else core.wrenches(top.root)
+    legs = leg_block if leg_block is not None else np.stack([w[0] for w in leg_wrenches], axis=-3)
     n = len(top.limbs)
+    free: tuple[Array | None, Array]
     if n and top.network:  # each limb's sub-network by loop closure
         lockeds, frees, perpendiculars, serials, twists = [], [], [], [], []
         for plan in top.limbs:
@@ -1017,26 +1114,50 @@ def analyze_table(
     elif n:  # the limbs on an axis of their own (..., n, ...), their locked systems from the program
         locked = core.stacked([("sum", tuple(plan.siblings)) for plan in top.limbs])
         passive = core.stacked([("passive", tuple(plan.siblings)) for plan in top.limbs])
-        actuated = np.stack([p.sign * core.joint_rows(p.index)[..., 0, :] for p in top.limbs], axis=-2)
-        perpendicular, serial, rows, order, direction = F.limb_systems(
-            locked[0], locked[1], passive[0], actuated, rtol
-        )
-        free = (rows, order)
-        del rows  # held by `free` alone, freed with it
+        actuated = _actuated(top, scaled)
+        coupled = _coupled(top)
+        serial, order, direction, wrench, transmissions, leg_residuals, not_line = F.limb_wrenches(
+            locked[0], locked[1], passive[0], actuated, legs, np.array(coupled, dtype=np.int64),
+            np.array([_leg_of(top, k) for k in coupled], dtype=np.int64), rtol, LINE_RTOL,
+        )  # in one pass; the free rows only for the views, else where a line is searched
+        free_rows = F.limb_systems(locked[0], locked[1], passive[0], actuated, rtol)[2] if views else None
+        free = (free_rows, order)
+        del free_rows  # held by `free` alone, freed with it
     if n:
         # the limbs' constraint systems (reciprocal to `free`): kept for the views, else computed only
         # where an actuation wrench is searched for a line (_nearest_lines; at a few poses, if any)
-        limb_constraint = F.reciprocal(*free) if views else None
+        limb_constraint: Frame | None = None
+        if views:
+            assert free[0] is not None
+            limb_constraint = F.reciprocal(free[0], free[1])
 
         def limb_constraints_at(where: Array) -> Array:
             if limb_constraint is not None:
                 return limb_constraint[0][where]
-            return F.reciprocal(free[0][where], free[1][where])[0]
+            if free[0] is not None:
+                return F.reciprocal(free[0][where], free[1][where])[0]
+            at = (locked[0][where], locked[1][where], passive[0][where], actuated[where])
+            rows = F.limb_systems(*at, rtol)[2]
+            assert rows is not None
+            return F.reciprocal(rows, free[1][where])[0]
 
-        lines = _nearest_lines(direction, limb_constraints_at, 6 - free[1])
-        wrench, transmissions = F.transmissions(lines, actuated, rtol)
+        if top.network:
+            lines = _nearest_lines(direction, limb_constraints_at, 6 - free[1])
+            wrench, transmissions = F.transmissions(lines, actuated, rtol)
+            residuals = _leg_residuals(top, wrench, legs)
+        else:  # where a direction is no line: the line found (_nearest_lines), its wrench again
+            residuals = leg_residuals if coupled else None
+            searched = not_line & (6 - free[1] > 0)
+            if searched.any():
+                lines = direction.copy()
+                lines[searched] = _line_search(
+                    direction[searched], limb_constraints_at(searched), (6 - free[1])[searched]
+                )
+                again = searched.any(axis=-1)
+                wrench[again], transmissions[again] = F.transmissions(lines[again], actuated[again], rtol)
+                if residuals is not None:
+                    residuals[again] = _leg_residuals(top, wrench[again], legs[again])
         branch, locked_legs = wrench, None
-        residuals = _leg_residuals(top, wrench, leg_wrenches)
         compound = _compound_legs(
             top, scaled, rtol, leg_wrenches, actuated, (wrench, serial, transmissions), residuals
         )
@@ -1044,29 +1165,29 @@ def analyze_table(
             serial, wrench, branch, transmissions, locked_legs = compound
         wrench_rows = np.where(serial[..., None], 0.0, wrench)
         if compound is not None:  # the replaced limbs' wrenches measured again
-            residuals = _leg_residuals(top, wrench_rows, leg_wrenches)
+            residuals = _leg_residuals(top, wrench_rows, legs)
         elif residuals is not None:  # a serial limb's row is zero, and so is its residual (exactly)
             residuals = np.where(serial[..., _coupled(top), None], 0.0, residuals)
         for k in range(n):
             frames[f"limb{k}:passive"] = _limb(passive, k)  # the Jacobians' rows at serial singularities
             if views:
-                frames[f"limb{k}:T"] = _limb(free, k)
-                assert limb_constraint is not None
+                assert free[0] is not None and limb_constraint is not None
+                frames[f"limb{k}:T"] = _limb((free[0], free[1]), k)
                 frames[f"limb{k}:W"] = _limb(limb_constraint, k)
         del free, limb_constraint  # (..., n, 6, 6) each: not alive while the closeness inputs are built
     else:
         serial, transmissions = np.zeros((*batch, 0), dtype=bool), np.zeros((*batch, 0))
         wrench_rows = branch = np.zeros((*batch, 0, 6))
         locked_legs, residuals = None, None
-    global_frame = F.span(np.concatenate([constraint[0], wrench_rows], axis=-2), rtol)
-    # the legs' stacked constraint wrenches as six rows with their singular values (F.triangular:
-    # two 6×6 SVDs instead of (6 legs + n) × 6 ones)
-    legs_stacked = F.triangular(np.concatenate([w[0] for w in leg_wrenches], axis=-2))
+    # the global frame; the legs' stacked constraint wrenches as six rows with their singular
+    # values (F.triangular: two 6×6 SVDs instead of (6 legs + n) × 6 ones), their singular values on
+    # demand (WrenchAnalysis.closeness); the actuation rows in the user's frame
     apart = _apart_from_legs(top, wrench_rows, residuals)
-    closeness_factors = {  # their singular values on demand (WrenchAnalysis.closeness)
-        "constraint": F.packed(legs_stacked),
-        "actuation": F.packed(F.triangular(np.concatenate([legs_stacked, apart], axis=-2))),
-    }
+    global_rows, global_order, constraint_factor, actuation_factor, actuation_rows = F.closing(
+        constraint[0], wrench_rows, legs, apart, serial, centre, length, rtol
+    )
+    global_frame = (global_rows, global_order)
+    closeness_factors = {"constraint": constraint_factor, "actuation": actuation_factor}
     if locked_legs is not None:  # where a compound leg was analysed as a whole
         locked_legs.add_to(global_frame, constraint, wrench_rows, rtol)
     frames["platform"] = platform  # the Jacobians' nominal twists are checked against it
@@ -1080,12 +1201,10 @@ def analyze_table(
         for k, (twist_frame, wrench_frame) in enumerate(zip(leg_twists, leg_wrenches, strict=True)):
             frames[f"leg{k}:T"] = twist_frame
             frames[f"leg{k}:W"] = wrench_frame
-    user_rows = F.from_scaled(wrench_rows, centre, length)
-    size = _unit_size(user_rows, length)
-    actuation_rows = np.where(serial[..., None], 0.0, user_rows / size)
-    if locked_legs is None:  # every branch row is its actuation wrench: the same operations, the same bits
-        user_branches = actuation_rows.copy()
+    if locked_legs is None:  # every branch row is its actuation wrench: the same array (read only)
+        user_branches = actuation_rows
     else:
+        size = F.unit_size(F.from_scaled(wrench_rows, centre, length), length)
         user_branches = np.where(serial[..., None], 0.0, F.from_scaled(branch, centre, length) / size)
     return WrenchAnalysis(
         table_source=table,
@@ -1101,12 +1220,17 @@ def analyze_table(
         transmissions=transmissions,
         actuation_rows=actuation_rows,
         branch_rows=user_branches,
-        actuated_twists=np.stack([p.sign * screws[..., top.columns[p.index], :] for p in top.limbs], axis=-2)
-        if n
-        else np.zeros((*batch, 0, 6)),
+        actuated_twists=_actuated(top, screws),
         frames=frames,
         closeness_factors=closeness_factors,
     )
+
+
+def _actuated(top: Topology, screws: Array) -> Array:
+    """Each limb's actuated joint's screw with the limb's sign ``(..., n, 6)`` (one gather)."""
+    columns = [top.columns[plan.index] for plan in top.limbs]
+    signs = np.array([float(plan.sign) for plan in top.limbs])
+    return screws[..., columns, :] * signs[:, None]
 
 
 class _LockedLegs(NamedTuple):
@@ -1128,20 +1252,15 @@ def _coupled(top: Topology) -> list[int]:
     return [] if top.network else [k for k, plan in enumerate(top.limbs) if plan.partners]
 
 
-def _leg_residuals(top: Topology, rows: Array, leg_wrenches: list[Frame]) -> Array | None:
+def _leg_residuals(top: Topology, rows: Array, legs: Array) -> Array | None:
     """Wrench rows ``(..., n, 6)`` of the limbs with partners (:func:`_coupled`) less their part in
-    their compound leg's constraint system, ``(..., m, 6)`` (not renormalised; None without such
-    limbs): what :func:`_compound_legs` and :func:`_apart_from_legs` measure."""
+    their compound leg's constraint system (``legs (..., L, 6, 6)``, the legs' wrench frames),
+    ``(..., m, 6)`` (not renormalised; None without such limbs): what :func:`_compound_legs` and
+    :func:`_apart_from_legs` measure."""
     coupled = _coupled(top)
     if not coupled:
         return None
-    legs = [_leg_of(top, k) for k in coupled]
-    out = np.empty((*rows.shape[:-2], len(coupled), 6))
-    for leg in dict.fromkeys(legs):  # each leg's limbs against its frame (no stacked copies of it)
-        positions = [i for i, other in enumerate(legs) if other == leg]
-        limbs = [coupled[i] for i in positions]
-        out[..., positions, :] = F.residual(rows[..., limbs, :], leg_wrenches[leg][0])
-    return out
+    return F.residuals_against(rows[..., coupled, :], legs, np.array([_leg_of(top, k) for k in coupled]))
 
 
 def _apart_from_legs(top: Topology, rows: Array, residuals: Array | None) -> Array:

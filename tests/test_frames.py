@@ -343,7 +343,8 @@ def test_compiled_program_matches_the_ops_run_one_by_one(monkeypatch):
         *(("passive", tuple(plan.siblings)) for plan in top.limbs),
     )
     program = W._program(top, requests)
-    assert W.ROD in program.ops[:, 0]  # the parallelograms' rods in closed form
+    for code in (W.ROD, W.PARALLELOGRAM, W.EXTEND, W.CONTRACT):  # rods, parallelograms, chains: closed forms
+        assert code in program.ops[:, 0]
     monkeypatch.setitem(F._compiled, "_frames_numba", _frames_numba)
     compiled = W._run(program, scaled, RTOL, requests)
     monkeypatch.setitem(F._compiled, "_frames_numba", None)
@@ -416,7 +417,7 @@ def test_limb_systems_known_values(rng):
 def test_limb_systems_numba_matches_numpy_bit_for_bit(rng):
     kernels = F._import_kernels()
     locked, order, passive, actuated = limb_inputs(rng, 60)
-    compiled = kernels.limb_systems(locked, order, passive, actuated, RTOL)
+    compiled = kernels.limb_systems(locked, order, passive, actuated, RTOL, True)
     for got, expected in zip(compiled, F._limb_systems_numpy(locked, order, passive, actuated, RTOL), strict=True):
         np.testing.assert_array_equal(got, expected)
     single = F._limb_systems_numpy(locked[7:8], order[7:8], passive[7:8], actuated[7:8], RTOL)
@@ -450,17 +451,27 @@ def test_transmissions_numba_matches_numpy_bit_for_bit(rng):
 
 
 @needs_numba
-def test_mechanism_frame_sums_numba_match_numpy_bit_for_bit(rng):
+def test_mechanism_frame_numba_matches_numpy_bit_for_bit(rng, monkeypatch):
     from screwkit import twistgraph as T
 
     screws = rng.standard_normal((40, 13, 6))
     screws[:, 3, :3] = 0.0  # infinite pitch: ignored
     screws[::4, 5] = screws[::4, 5] * 1e-3
+    screws[7, :, :3] = [0, 0, 1.0]  # all axes parallel: not solved directly, left to the numpy path
+    screws[9] = np.array([[*e, 0, 0, 0] for e in np.eye(3)] * 4 + [[0, 0, 1.0, 0, 0, 0]])  # concurrent axes
     kernels = F._import_kernels()
-    for got, expected in zip(kernels.frame_sums(screws), T._frame_sums_numpy(screws), strict=True):
+    point, length, direct, scaled = kernels.mechanism_frame(screws, True)
+    expected_point, expected_length = T._frame_numpy(screws, None)
+    assert not direct[7] and direct[9] and direct.sum() == 39
+    np.testing.assert_array_equal(point[direct], expected_point[direct])
+    np.testing.assert_array_equal(length[direct], expected_length[direct])
+    expected_scaled = F.unit_scaled(screws, expected_point, expected_length)  # 40 < 256: numpy
+    np.testing.assert_array_equal(scaled[direct], expected_scaled[direct])
+    np.testing.assert_array_equal(kernels.unit_scaled(screws, expected_point, expected_length), expected_scaled)
+    assert length[9] == 1.0  # every axis through the origin: the length rule's fallback (no foot, no point)
+    monkeypatch.setitem(F._compiled, "_frames_numba", kernels)  # the numba pass, pose 7 as numpy
+    for got, expected in zip(T.scaled_frame(screws), (expected_point, expected_length, expected_scaled), strict=True):
         np.testing.assert_array_equal(got, expected)
-    point = rng.standard_normal((40, 3))
-    np.testing.assert_array_equal(kernels.frame_spread(screws, point), T._frame_spread_numpy(screws, point))
 
 
 def test_mechanism_frame_sums_known_values():
@@ -485,3 +496,332 @@ def test_sum_in_order_adds_left_to_right():
     values = np.array([[1e16, 1.0, -1e16, 1.0], [1.0, 1e16, 1.0, -1e16]])
     np.testing.assert_array_equal(F.sum_in_order(values), [1.0, 0.0])  # ((1e16 + 1) − 1e16) + 1 = 1
     assert F.sum_in_order(np.zeros((3, 0))).tolist() == [0.0, 0.0, 0.0]
+
+
+# ---- closed forms of the program: a joint in series with a node, the 4S parallelogram -------------
+def twist_frame(rng, order):
+    """A random frame of ``order`` (the rule's span of random generators) and its wrench frame."""
+    rows, got = F._span_numpy(rng.standard_normal((max(order, 1), 6)) * (order > 0), RTOL)
+    assert int(got) == order
+    return rows, got, *F._complement_numpy(rows, got, swap=True)
+
+
+def rank(rows, tol=1e-9):
+    return np.linalg.matrix_rank(np.asarray(rows), tol) if len(rows) else 0
+
+
+@pytest.mark.parametrize("order", range(6))
+@pytest.mark.parametrize("dependent", [False, True])
+def test_extend_and_contract_are_the_span_and_its_reciprocal(rng, order, dependent):
+    # expected: the rule's span of the frame's rows and the screw, and its reciprocal (the generic
+    # ops the closed forms replace), checked by an SVD rank too
+    for _ in range(5):
+        twists, t_order, wrenches, w_order = twist_frame(rng, order)
+        if dependent and order:
+            t = rng.standard_normal(order) @ twists[:order]
+        else:
+            t = rng.standard_normal(6)
+        t /= np.linalg.norm(t)  # a unit joint screw, as in scaled coordinates
+        spanned = F._span_numpy(np.concatenate([twists[:order], t[None]]), RTOL)
+        expected_order = order if dependent and order else order + 1
+        assert int(spanned[1]) == expected_order == rank(np.vstack([twists[:order], t]))
+        rows, got, decided = F.extend(twists, t_order, t, RTOL)
+        assert bool(decided) and int(got) == expected_order
+        check_frame(rows, got)
+        np.testing.assert_allclose(projector(rows, got), projector(*spanned), atol=ATOL)
+        rows, got, decided = F.contract(wrenches, w_order, t, RTOL)
+        expected = F._complement_numpy(*spanned, swap=True)
+        assert bool(decided) and int(got) == 6 - expected_order == int(expected[1])
+        check_frame(rows, got)
+        np.testing.assert_allclose(projector(rows, got), projector(*expected), atol=ATOL)
+        np.testing.assert_allclose(rows[:got] @ F.swapped(t), 0.0, atol=ATOL)  # reciprocal to the screw
+
+
+@pytest.mark.parametrize(("offset", "decided", "grows"), [(1e-5, True, True), (1e-9, False, None), (1e-13, True, False)])
+def test_closed_forms_leave_the_threshold_band_to_the_rule(rng, offset, decided, grows):
+    # a screw at distance `offset` from a 3-system: the closed forms decide only clearly off the
+    # threshold rtol = 1e-9 (a factor CLOSED_FORM_MARGIN either way), else the caller spans
+    twists, t_order, wrenches, w_order = twist_frame(rng, 3)
+    outside = F._complement_numpy(twists, t_order)[0][0]  # a unit vector orthogonal to the system
+    t = rng.standard_normal(3) @ twists[:3]
+    t = t / np.linalg.norm(t) + offset * outside
+    for closed, frame, order, change in ((F.extend, twists, t_order, 1), (F.contract, wrenches, w_order, -1)):
+        _, got, ok = closed(frame, order, t, RTOL)
+        assert bool(ok) is decided
+        if decided:
+            assert int(got) == int(order) + (change if grows else 0)
+
+
+def closed_numba(name, frame, order, t):
+    from screwkit import _frames_numba
+
+    out = np.full((6, 6), np.nan)
+    got = getattr(_frames_numba, f"{name}_into")(frame, int(order), t, RTOL, out, np.empty(6), np.empty(6))
+    return out, got
+
+
+@needs_numba
+def test_extend_and_contract_numba_match_numpy_bit_for_bit(rng):
+    cases = []
+    for order in range(7):
+        twists, t_order, wrenches, w_order = twist_frame(rng, order)
+        for offset in (1.0, 1e-9, 1e-13, 0.0):  # clear, the band, negligible, exact
+            t = (rng.standard_normal(order) @ twists[:order]) if order else np.zeros(6)
+            t = t + offset * rng.standard_normal(6)
+            cases.append((twists, t_order, wrenches, w_order, t * rng.uniform(0.5, 2.0)))
+    for name, closed, frame, order in (("extend", F.extend, 0, 1), ("contract", F.contract, 2, 3)):
+        batch = [np.array([c[k] for c in cases]) for k in (frame, order, 4)]
+        rows, got, decided = closed(*batch, RTOL)
+        assert decided.any() and not decided.all()  # both kinds of pose in the batch
+        for i, case in enumerate(cases):
+            out, pose_order = closed_numba(name, case[frame], case[order], case[4])
+            assert (pose_order >= 0) == decided[i]
+            if decided[i]:
+                assert pose_order == got[i] and np.array_equal(out, rows[i])
+
+
+def parallelogram_points(rng, side=1.0, tilt=0.0):
+    """Centres m, n, p, q of a 4S parallelogram (mn ∥ pq, mp ∥ nq), the second rod turned by
+    ``tilt`` radians about the plane's normal (not a parallelogram unless 0)."""
+    m = rng.uniform(-1, 1, 3)
+    rod, across = rng.standard_normal(3), rng.standard_normal(3)
+    n = m + side * across / np.linalg.norm(across)
+    normal = np.cross(rod, across)
+    normal /= np.linalg.norm(normal)
+    turned = rod * np.cos(tilt) + np.cross(normal, rod) * np.sin(tilt)
+    return m, n, m + rod, n + turned
+
+
+def parallelogram_rods(rng, m, n, p, q):
+    """The two rods' wrench frames by the closed-form rod (order 1 each)."""
+    frames = [F.rod(rod_rows(rng, a, b), RTOL) for a, b in ((m, p), (n, q))]
+    assert all(int(order) == 1 for _, order in frames)
+    return frames
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_parallelogram_is_the_span_of_the_rods_and_its_reciprocal(seed):
+    # expected: the rule's span of the two rods' lines and its reciprocal (the generic ops), and
+    # paper 002 §4.1's bases, written here from the four centres, checked by rank
+    rng = np.random.default_rng(seed)
+    m, n, p, q = parallelogram_points(rng)
+    rods = parallelogram_rods(rng, m, n, p, q)
+    wrenches, w_order, twists, t_order, decided = F.parallelogram(*rods, RTOL)
+    assert bool(decided) and int(w_order) == 2 and int(t_order) == 4
+    check_frame(wrenches, w_order)
+    check_frame(twists, t_order)
+    spanned = F._span_numpy(np.concatenate([rods[0][0], rods[1][0]]), RTOL)
+    reciprocal = F._complement_numpy(*spanned, swap=True)
+    np.testing.assert_allclose(projector(wrenches, w_order), projector(*spanned), atol=ATOL)
+    np.testing.assert_allclose(projector(twists, t_order), projector(*reciprocal), atol=ATOL)
+    np.testing.assert_allclose(wrenches[:2] @ F.swapped(twists[:4]).T, 0.0, atol=ATOL)  # reciprocal
+    s_mp, s_mn = (p - m) / np.linalg.norm(p - m), (n - m) / np.linalg.norm(n - m)
+    normal = np.cross(s_mn, s_mp) / np.linalg.norm(np.cross(s_mn, s_mp))
+    paper_wrenches = [np.r_[s_mp, np.cross(p, s_mp)], np.r_[np.zeros(3), np.cross(s_mp, s_mn)]]
+    paper_twists = [
+        np.r_[s_mp, np.cross(p, s_mp)],
+        np.r_[s_mn, np.cross(n, s_mn)],
+        np.r_[np.zeros(3), normal],
+        np.r_[np.zeros(3), np.cross(s_mp, normal)],
+    ]
+    assert rank(paper_wrenches) == 2 and rank(paper_twists) == 4  # the paper's claims hold by rank
+    assert rank(np.vstack([paper_wrenches, wrenches[:2]])) == 2  # the same systems as the closed form's
+    assert rank(np.vstack([paper_twists, twists[:4]])) == 4
+    np.testing.assert_allclose(np.array(paper_wrenches) @ F.swapped(np.array(paper_twists)).T, 0.0, atol=1e-12)
+
+
+@pytest.mark.parametrize(
+    ("side", "tilt", "decided", "atol"),
+    [
+        (1e-4, 0.0, True, 1e-10),  # close rods, clearly apart: the closed form (conditioning ~ eps/side)
+        (1e-12, 0.0, False, ATOL),  # coincident to the rule: one line, the fallback
+        (1.0, 1e-14, True, 1e-12),  # parallel to round-off
+        (1.0, 1e-6, False, ATOL),  # not a parallelogram: the fallback
+    ],
+)
+def test_parallelogram_near_degenerate(side, tilt, decided, atol):
+    rng = np.random.default_rng(11)
+    rods = parallelogram_rods(rng, *parallelogram_points(rng, side, tilt))
+    got = F.parallelogram(*rods, RTOL)
+    assert bool(got[4]) is decided
+    spanned = F._span_numpy(np.concatenate([rods[0][0], rods[1][0]]), RTOL)
+    if decided:
+        assert int(spanned[1]) == 2
+        np.testing.assert_allclose(projector(got[0], got[1]), projector(*spanned), atol=atol)
+        np.testing.assert_allclose(projector(got[2], got[3]), projector(*F._complement_numpy(*spanned, swap=True)), atol=atol)
+
+
+@needs_numba
+def test_parallelogram_numba_matches_numpy_bit_for_bit(rng):
+    from screwkit import _frames_numba
+
+    cases = [parallelogram_points(rng) for _ in range(20)]
+    cases += [parallelogram_points(rng, 1e-12), parallelogram_points(rng, 1.0, 1e-6)]  # two fallbacks
+    rods = [parallelogram_rods(rng, *case) for case in cases]
+    first = (np.array([r[0][0] for r in rods]), np.array([r[0][1] for r in rods]))
+    second = (np.array([r[1][0] for r in rods]), np.array([r[1][1] for r in rods]))
+    wrenches, _, twists, _, decided = F.parallelogram(first, second, RTOL)
+    assert decided[:20].all() and not decided[20:].any()
+    for i in range(len(rods)):
+        out = np.full((2, 6, 6), np.nan)
+        ok = _frames_numba.parallelogram_into(first[0][i], 1, second[0][i], 1, RTOL, out[0], out[1])
+        assert ok == decided[i]
+        if ok:
+            assert np.array_equal(out[0], wrenches[i]) and np.array_equal(out[1], twists[i])
+
+
+@needs_numba
+def test_compiled_program_falls_back_alike(monkeypatch):
+    # a hand-made program (a 3-joint chain's twists, their wrenches; a fourth screw added by EXTEND
+    # and CONTRACT; two rods' PARALLELOGRAM) over poses where every closed form applies, where the
+    # screw lies in the threshold band, and where the rods are not a parallelogram: the compiled
+    # interpreter and the numpy path's op-by-op run agree bit for bit, and with the generic ops
+    from screwkit import _frames_numba
+    from screwkit import wrenches as W
+
+    rng = np.random.default_rng(3)
+    poses = []
+    for k in range(12):
+        chain = rng.standard_normal((3, 6))
+        chain /= np.linalg.norm(chain, axis=-1, keepdims=True)
+        fourth = rng.standard_normal(6) if k % 3 == 0 else chain[0] + chain[1] + 1e-9 * rng.standard_normal(6)
+        points = parallelogram_points(rng, 1.0, 1e-6 if k % 4 == 1 else 0.0)
+        rods = np.concatenate([rod_rows(rng, points[0], points[2]), rod_rows(rng, points[1], points[3])])
+        poses.append(np.concatenate([chain, fourth[None] / np.linalg.norm(fourth), rods]))
+    scaled = np.array(poses)
+    J, S = W.JOINT_ROWS, W.SLOT_ROWS
+    ops = [
+        (W.SPAN, 0, 0, 1),  # slot 0: the chain's twists
+        (W.RECIPROCAL, 1, 0, 0),  # slot 1: their wrenches
+        (W.EXTEND, 2, 1, 2),  # slot 2: with the fourth screw
+        (W.CONTRACT, 3, 3, 3),  # slot 3: the wrenches of that (falling back on slot 0's rows)
+        (W.ROD, 4, 6, 2),
+        (W.ROD, 5, 8, 2),
+        (W.PARALLELOGRAM, 6, 10, 2),
+        (W.COMPANION, 7, 6, 0),
+    ]
+    sources = [
+        (J, 0, 3),  # the span
+        (J, 3, 1), (S, 0, 3),  # EXTEND
+        (J, 3, 1), (S, 1, 6), (S, 0, 3),  # CONTRACT
+        (J, 4, 3), (J, 7, 3),  # a rod
+        (J, 10, 3), (J, 13, 3),  # another
+        (S, 4, 6), (S, 5, 6),  # the two rods in parallel
+    ]  # fmt: skip
+    requests = tuple(("slot", i) for i in (2, 3, 6, 7))
+    program = W._Program(
+        np.array(ops, dtype=np.int64), np.array(sources, dtype=np.int64), {r: r[1] for r in requests}, (3, 3, 2, 3, 6, 6, 6, 7)
+    )
+    monkeypatch.setitem(F._compiled, "_frames_numba", _frames_numba)
+    compiled = W._run(program, scaled, RTOL, requests)
+    monkeypatch.setitem(F._compiled, "_frames_numba", None)
+    stepwise = W._run(program, scaled, RTOL, requests)
+    np.testing.assert_array_equal(compiled[1], stepwise[1])
+    np.testing.assert_array_equal(compiled[0], stepwise[0])
+    chain = F._span_numpy(scaled[:, :3], RTOL)[0][:, :3]  # in the band: the rule on the fallback's rows
+    decided = F.extend(F._span_numpy(scaled[:, :3], RTOL)[0], 3, scaled[:, 3], RTOL)[2]
+    assert decided[::3].all() and not decided[1::3].any()  # both kinds of pose
+    np.testing.assert_array_equal(stepwise[1][:, 0], F._span_numpy(np.concatenate([scaled[:, 3:4], chain], 1), RTOL)[1])
+    chains = F._span_numpy(scaled[:, :4], RTOL)
+    clear = slice(0, None, 3)  # the fourth screw well off the chain's system: closed forms
+    np.testing.assert_array_equal(stepwise[1][clear, 0], chains[1][clear])
+    np.testing.assert_array_equal(stepwise[1][:, 1], 6 - stepwise[1][:, 0])
+    np.testing.assert_allclose(
+        projector(stepwise[0][clear, 0], stepwise[1][clear, 0]), projector(*chains)[clear], atol=ATOL
+    )
+    reciprocal = F._complement_numpy(chains[0][clear], chains[1][clear], swap=True)
+    np.testing.assert_allclose(projector(stepwise[0][clear, 1], stepwise[1][clear, 1]), projector(*reciprocal), atol=ATOL)
+    rods = [F.rod(scaled[:, 4 + 6 * r : 10 + 6 * r], RTOL) for r in range(2)]
+    lines = F._span_numpy(np.concatenate([rods[0][0], rods[1][0]], axis=-2), RTOL)
+    np.testing.assert_array_equal(stepwise[1][:, 2], lines[1])
+    np.testing.assert_allclose(projector(stepwise[0][:, 2], stepwise[1][:, 2]), projector(*lines), atol=1e-9)
+
+
+@needs_numba
+def test_closing_numba_matches_numpy_bit_for_bit(rng, monkeypatch):
+    # the core's last steps (global span, closeness triangles, user-frame actuation rows) in one
+    # compiled pass against the numpy path's separate kernels; and against independent values: the
+    # rank of the stacked rows, the triangles' singular values, the rows moved back by hand
+    from screwkit import _frames_numba
+
+    n, limbs = 40, 4
+    constraint = np.zeros((n, 6, 6))
+    constraint[:, :2] = F._span_numpy(rng.standard_normal((n, 2, 6)), RTOL)[0][:, :2]
+    wrenches = F.unit_rows(rng.standard_normal((n, limbs, 6)))
+    wrenches[::5, 2] = wrenches[::5, 0]  # a repeated row: the global order drops
+    wrenches[3, 1, :3] = 0.0  # a couple
+    legs = np.zeros((n, 2, 6, 6))
+    legs[:, :, 0] = F.unit_rows(rng.standard_normal((n, 2, 6)))
+    apart = F.unit_rows(rng.standard_normal((n, limbs, 6)))
+    serial = rng.random((n, limbs)) < 0.2
+    centre, length = rng.standard_normal((n, 3)), rng.uniform(0.5, 3.0, n)
+    arguments = (constraint, wrenches, legs, apart, serial, centre, length, RTOL)
+    monkeypatch.setitem(F._compiled, "_frames_numba", None)
+    expected = F.closing(*arguments)
+    monkeypatch.setitem(F._compiled, "_frames_numba", _frames_numba)
+    compiled = F.closing(*arguments)
+    for got, want in zip(compiled, expected, strict=True):
+        np.testing.assert_array_equal(got, want)
+    stacked = np.concatenate([constraint[:, :2], wrenches], axis=1)
+    assert [rank(m) for m in stacked] == expected[1].tolist()
+    assert (expected[1][::5] == 5).all() and (expected[1][1::5] == 6).all()
+    values = np.linalg.svd(np.concatenate([F.unpacked(expected[2]), apart], axis=1), compute_uv=False)
+    np.testing.assert_allclose(
+        np.linalg.svd(F.unpacked(expected[3]), compute_uv=False),
+        np.linalg.svd(np.concatenate([legs.reshape(n, 12, 6), apart], axis=1), compute_uv=False),
+        atol=1e-12,
+    )
+    np.testing.assert_allclose(values, np.linalg.svd(F.unpacked(expected[3]), compute_uv=False), atol=1e-12)
+    moved = np.concatenate([wrenches[..., :3], wrenches[..., 3:] * length[:, None, None]
+                            + np.cross(centre[:, None, :], wrenches[..., :3])], axis=-1)
+    forces = np.linalg.norm(moved[..., :3], axis=-1)
+    size = np.where(forces > 1e-9 * np.linalg.norm(moved[..., 3:], axis=-1) / length[:, None], forces,
+                    np.linalg.norm(moved[..., 3:], axis=-1))
+    np.testing.assert_allclose(expected[4], np.where(serial[..., None], 0.0, moved / size[..., None]), atol=1e-12)
+    assert np.all(expected[4][serial] == 0.0)
+
+
+@needs_numba
+def test_residuals_against_frames_match_residual_bit_for_bit(rng, monkeypatch):
+    # each vector against its own frame of a strided stack, as residual() one frame at a time
+    from screwkit import _frames_numba
+
+    block = np.zeros((30, 5, 6, 6))
+    for f in range(5):
+        block[:, f, : f + 1] = F._span_numpy(rng.standard_normal((30, f + 1, 6)), RTOL)[0][:, : f + 1]
+    frames = block[:, 1:4]  # strided, as the program's block
+    vectors = rng.standard_normal((30, 4, 6))
+    which = np.array([2, 0, 2, 1])
+    monkeypatch.setitem(F._compiled, "_frames_numba", None)
+    expected = F.residuals_against(vectors, frames, which)
+    monkeypatch.setitem(F._compiled, "_frames_numba", _frames_numba)
+    np.testing.assert_array_equal(F.residuals_against(vectors, frames, which), expected)
+    for j, f in enumerate(which):
+        np.testing.assert_array_equal(expected[:, j], F._residual_numpy(vectors[:, j : j + 1], frames[:, f])[:, 0])
+        np.testing.assert_allclose(np.einsum("pis,ps->pi", frames[:, f], expected[:, j]), 0.0, atol=1e-12)
+
+
+@needs_numba
+def test_limb_wrenches_one_pass_matches_the_steps_bit_for_bit(rng, monkeypatch):
+    # the fused pass against its steps run one by one (limb systems, line test, transmissions,
+    # leg residuals), numba and numpy alike
+    from screwkit import _frames_numba
+
+    locked, order, passive, actuated = limb_inputs(rng, 50)
+    passive[3, 2, :, 3:] += 0.5 * passive[3, 2, :, :3]  # a pitched direction: no line
+    legs = np.zeros((50, 2, 6, 6))
+    legs[:, :, 0] = F.unit_rows(rng.standard_normal((50, 2, 6)))
+    coupled, leg_of = np.array([0, 3, 1]), np.array([1, 1, 0])
+    arguments = (locked, order, passive, actuated, legs, coupled, leg_of, RTOL, 1e-6)
+    monkeypatch.setitem(F._compiled, "_frames_numba", None)
+    expected = F.limb_wrenches(*arguments)
+    _, serial, _, free_order, direction = F._limb_systems_numpy(locked, order, passive, actuated, RTOL)
+    wrench, index = F.transmissions_numpy(F.unit_rows(direction), actuated, RTOL)
+    steps = (serial, free_order, direction, wrench, index,
+             F.residuals_against(wrench[:, coupled], legs, leg_of), F.not_lines(direction, 1e-6))
+    monkeypatch.setitem(F._compiled, "_frames_numba", _frames_numba)
+    compiled = F.limb_wrenches(*arguments)
+    for got, via_numpy, step in zip(compiled, expected, steps, strict=True):
+        np.testing.assert_array_equal(got, via_numpy)
+        np.testing.assert_array_equal(via_numpy, step)
+    assert expected[0].any() and expected[6].any() and not expected[6].all()  # serial limbs, a non-line

@@ -106,6 +106,7 @@ True
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import asdict, dataclass, fields
@@ -538,7 +539,20 @@ class _Base(NamedTuple):
 
 
 def _base(params: FourLimbParameters) -> _Base:
-    """``a_i`` (Eq. 1 or explicit) and the limb frames ``F_i = R_z(α_i) R_y(ε_i)`` (item 6)."""
+    """``a_i`` (Eq. 1 or explicit) and the limb frames ``F_i = R_z(α_i) R_y(ε_i)`` (item 6); read
+    only, computed once per parameter set (every chunk of a batch asks)."""
+    try:
+        return _cached_base(params)
+    except TypeError:  # unhashable parameters: computed afresh
+        return _base_of(params)
+
+
+@functools.lru_cache(maxsize=64)
+def _cached_base(params: FourLimbParameters) -> _Base:
+    return _base_of(params)
+
+
+def _base_of(params: FourLimbParameters) -> _Base:
     if params.base_points is not None:
         a = np.array(params.base_points, dtype=float)
     else:
@@ -549,6 +563,8 @@ def _base(params: FourLimbParameters) -> _Base:
     u = np.stack([ca * ce, sa * ce, -se], axis=-1)
     j_rot = np.stack([-sa, ca, np.zeros(4)], axis=-1)
     k_rot = np.stack([ca * se, sa * se, ce], axis=-1)
+    for array in (a, u, j_rot, k_rot):
+        array.flags.writeable = False
     return _Base(a, u, j_rot, k_rot)
 
 
