@@ -339,12 +339,17 @@ def vanishes(values: Array, *factors: Array, rtol: float) -> Array:
 def unit_directions(vectors: Array) -> Array:
     """Numeric vectors ``(..., 3)`` scaled to unit length; symbolic vectors unchanged.
 
-    A symbolic direction stays polynomial (no ``sqrt``): its length is a generic non-zero factor,
-    and every use of a direction in a screw system is projective in it.
+    A numeric vector is first scaled by a power of two (exact; :func:`direction_scaled`), so that a
+    vector whose squared length underflows (a 1e-170 axis) or overflows still gets its unit vector
+    (for other vectors the same bits as dividing by the norm). A symbolic direction stays
+    polynomial (no ``sqrt``): its length is a generic non-zero factor, and every use of a direction
+    in a screw system is projective in it.
 
     Examples
     --------
     >>> unit_directions(np.array([3.0, 0, 4]))
+    array([0.6, 0. , 0.8])
+    >>> unit_directions(np.array([3e-170, 0, 4e-170]))
     array([0.6, 0. , 0.8])
     >>> import sympy
     >>> unit_directions(np.array([sympy.Symbol("a"), 0, 1], dtype=object))
@@ -352,7 +357,8 @@ def unit_directions(vectors: Array) -> Array:
     """
     if is_symbolic(vectors):
         return vectors
-    return vectors / np.linalg.norm(vectors, axis=-1, keepdims=True)
+    scaled = np.ldexp(vectors, -_binary_exponents(vectors))
+    return scaled / np.linalg.norm(scaled, axis=-1, keepdims=True)
 
 
 def ratio(numerator: Any, denominator: Any) -> Any:
@@ -438,9 +444,15 @@ def direction_scaled(s: Array, s0: Array) -> tuple[Array, Array]:
     """
     if is_symbolic(s, s0):
         return s, s0
-    largest = np.max(np.abs(s), axis=-1, keepdims=True)
-    shift = np.frexp(np.where(largest > 0, largest, 1.0))[1]
+    shift = _binary_exponents(s)
     return np.ldexp(s, -shift), np.ldexp(s0, -shift)
+
+
+def _binary_exponents(vectors: Array) -> Array:
+    """The binary exponent of each vector's largest component (last axis kept; 0 for a zero vector):
+    ``vector · 2^-exponent`` has its largest component in [0.5, 1)."""
+    largest = np.max(np.abs(vectors), axis=-1, keepdims=True)
+    return np.frexp(np.where(largest > 0, largest, 1.0))[1]
 
 
 def unit_screws(screws: Array, length_scale: float) -> Array:

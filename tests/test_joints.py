@@ -398,3 +398,21 @@ def test_error_actuated_flag_must_be_a_bool(flag):
 
     with pytest.raises(ScrewkitTypeError, match=rf"Joint 'R': expected `actuated` to be True or False, got {flag!r}"):
         revolute("R", [0, 0, 1], [0, 0, 0], actuated=flag)
+
+
+def test_an_axis_whose_squared_length_underflows_gets_its_unit_vector():
+    # (3, 0, 4)·2^-565 ≈ 1e-170: its squared length underflows to 0, and the axis was divided by a
+    # zero norm (a RuntimeWarning, then an error about infinite numbers the caller never gave). A
+    # power-of-two multiple of an axis is the same axis, bit for bit; by hand the unit axis
+    # (0.6, 0, 0.8) through (1, 0, 0) has the moment (1, 0, 0) × (0.6, 0, 0.8) = (0, -0.8, 0).
+    tiny = np.ldexp([3.0, 0.0, 4.0], -565)
+    np.testing.assert_array_equal(
+        revolute("R", tiny, [1.0, 0, 0]).screws, revolute("R", [3.0, 0, 4], [1.0, 0, 0]).screws
+    )
+    np.testing.assert_allclose(
+        revolute("R", tiny, [1.0, 0, 0]).screws, [[0.6, 0, 0.8, 0, -0.8, 0]], rtol=0, atol=1e-15
+    )
+    np.testing.assert_array_equal(
+        universal("U", tiny, [0, 2.0**-600, 0], [1.0, 0, 0]).screws,
+        universal("U", [3.0, 0, 4], [0, 1.0, 0], [1.0, 0, 0]).screws,
+    )
