@@ -462,16 +462,20 @@ def unit_screws(screws: Array, length_scale: float) -> Array:
     Raises
     ------
     DegenerateGeometryError
-        For a numeric zero screw.
+        For a zero screw (numeric, or identically zero).
+    ScrewkitValueError
+        For a length scale that is not a positive finite number (in either branch).
 
     Examples
     --------
     >>> unit_screws(np.array([0.0, 0, 2, 0, 0, 4]), 2.0)
     array([0.        , 0.        , 0.70710678, 0.        , 0.        , 0.70710678])
     """
-    if is_symbolic(screws):
-        return screws
     checked_length_scale(length_scale)
+    if is_symbolic(screws):
+        if np.any(zero_vectors(screws)):
+            raise DegenerateGeometryError("Expected non-zero screws, got the zero screw.")
+        return screws
     scaled = np.array(screws, dtype=float)
     scaled[..., 3:] /= length_scale
     largest = np.max(np.abs(scaled), axis=-1, keepdims=True)

@@ -246,6 +246,17 @@ def test_symbolic_pitch_predicates_decide_generically():
     assert trig.is_zero_pitch() and not trig.is_infinite_pitch()
 
 
+@pytest.mark.parametrize("predicate", [S.is_zero_pitch, S.is_infinite_pitch])
+def test_error_symbolic_pitch_predicates_check_their_input_as_the_numeric_ones_do(predicate):
+    # An identically zero symbolic screw is the zero screw (it read as a couple: s = 0), and a bad
+    # length scale is refused whatever the screws (it was ignored for symbolic ones).
+    x = sympy.Symbol("x")
+    with pytest.raises(DegenerateGeometryError, match="Expected non-zero screws, got the zero screw"):
+        predicate(np.array([x - x, 0, 0, 0, (x + 1) ** 2 - x**2 - 2 * x - 1, 0], dtype=object))
+    with pytest.raises(ScrewkitValueError, match="Expected `length_scale` to be a positive finite number"):
+        predicate(S.couple([x, 0, 1]), length_scale=-1.0)
+
+
 def test_error_screw_needs_one_screw():
     with pytest.raises(
         ScrewkitValueError, match=r"Expected `coords` to have shape \(6,\) for one Screw"
