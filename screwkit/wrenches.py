@@ -980,6 +980,7 @@ def _checked_lengths(value: Any, batch: tuple[int, ...]) -> Array | None:
         if checked is None:
             return None
         lengths = np.full(batch, checked)
+        shown: Any = checked  # the number given, not the batch of its copies
     else:
         try:
             lengths = np.array(np.broadcast_to(np.asarray(value, dtype=float), batch))
@@ -989,11 +990,12 @@ def _checked_lengths(value: Any, batch: tuple[int, ...]) -> Array | None:
                 f"Expected `length_scale` to be a positive number or an array of the batch shape {batch}, "
                 f"got {got}."
             ) from err
+        shown = lengths if lengths.ndim else float(lengths)
     # moments are divided by it: within 1e±100 of the unit (coordinates are at most 1e100, README)
     if not np.all(np.isfinite(lengths) & (lengths >= MIN_LENGTH_SCALE) & (lengths * MIN_LENGTH_SCALE <= 1)):
         raise ScrewkitValueError(
             f"Expected `length_scale` to be positive and finite, within [{MIN_LENGTH_SCALE:g}, "
-            f"{1 / MIN_LENGTH_SCALE:g}] length units, got {lengths if lengths.ndim else float(lengths)}."
+            f"{1 / MIN_LENGTH_SCALE:g}] length units, got {shown}."
         )
     return lengths
 

@@ -430,6 +430,9 @@ API_CASES = [
     (lambda: sk.analyze("h4", rtol=5), ScrewkitValueError, r"Expected `rtol` to be a number in \[0, 0\.1\], got 5"),
     (lambda: sk.analyze("h4", length_scale=-2), ScrewkitValueError, r"Expected `length_scale` to be a positive finite number or None, got -2"),
     (lambda: sk.load_mechanism("h4").at(length_scale="a"), ScrewkitValueError, r"Expected `length_scale` .* got 'a'"),
+    # out of range: refused by Mechanism.at itself, naming the number given (not a batch of its copies)
+    (lambda: sk.load_mechanism("h4").at(length_scale=1e200), ScrewkitValueError, r"within \[1e-100, 1e\+100\] length units, got 1e\+200\.$"),
+    (lambda: sk.analyze("h4", length_scale=1e-200), ScrewkitValueError, r"within \[1e-100, 1e\+100\] length units, got 1e-200\.$"),
     (lambda: sk.analyze("h4", rtol=-1), ScrewkitValueError, r"Expected `rtol` to be a number in \[0, 0\.1\], got -1"),
     (lambda: sk.analyze("h4", rtol="a"), ScrewkitTypeError, r"Expected `rtol` .* got 'a'"),
     (lambda: sk.analyze("h4", rtol=0.3), ScrewkitValueError, r"Expected `rtol` to be a number in \[0, 0\.1\], got 0\.3"),
