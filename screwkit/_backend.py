@@ -332,8 +332,22 @@ def vanishes(values: Array, *factors: Array, rtol: float) -> Array:
     """
     if is_symbolic(values):
         return zero_vectors(values)
-    reference = np.prod([np.linalg.norm(f, axis=-1) for f in factors], axis=0) if factors else 1.0
-    return np.linalg.norm(values, axis=-1) <= rtol * reference
+    reference = np.prod([_norms(f) for f in factors], axis=0) if factors else 1.0
+    return _norms(values) <= rtol * reference
+
+
+def _norms(vectors: Array) -> Array:
+    """Euclidean norms over the last axis whose squares neither overflow nor underflow (each vector
+    times a power of two first, :func:`_binary_exponents`): the bits of :func:`numpy.linalg.norm`
+    wherever its squares do neither (``|s·m| = 1e180`` of a line, a 1e-170 helix's ``s·m``).
+
+    Examples
+    --------
+    >>> _norms(np.array([[3e200, 4e200], [3e-200, 4e-200], [3.0, 4.0]]))
+    array([5.e+200, 5.e-200, 5.e+000])
+    """
+    shift = _binary_exponents(vectors)
+    return np.ldexp(np.linalg.norm(np.ldexp(vectors, -shift), axis=-1), shift[..., 0])
 
 
 def unit_directions(vectors: Array) -> Array:

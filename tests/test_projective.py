@@ -266,3 +266,18 @@ def test_bracket_kernel_matches_the_determinant_and_is_exact(rng):
     exact = [np.array(v, dtype=object) for v in ([t, 0, 0, 1], [0, 1, 0, 1], [0, 0, 1, 1], [0, 0, 0, 1])]
     assert sympy.expand(bracket_unchecked(*exact) - sympy.Matrix(np.stack(exact)).det()) == 0
     np.testing.assert_array_equal(join_unchecked(points[0], points[0]), np.zeros((5, 6)))
+
+
+def test_line_points_decides_lines_at_the_ends_of_the_coordinate_range():
+    # The line test |s·m| <= rtol |s| |m| took |s·m| as the norm of a 1-vector, whose square
+    # overflows for a line with |s| |m| ≈ 1e185 (coordinates within the README's 1e100: a
+    # RuntimeWarning, then "not a line") and underflows for a 1e-85-sized helix (read as a line).
+    # By hand: m = p × s is a line through p (s·m = 0), its point at infinity (s, 0); the helix
+    # (1, 0, 0; 1, 1, 0)·1e-85 has s·m = 1e-170 = |s| |m| / √2.
+    rng = np.random.default_rng(3)
+    for _ in range(20):
+        s, p = rng.normal(size=3) * 1e85, rng.normal(size=3) * 1e15
+        _, at_infinity = P.line_points(np.concatenate([s, np.cross(p, s)]))
+        np.testing.assert_array_equal(at_infinity, np.append(s, 0.0))
+    with pytest.raises(ScrewkitValueError, match=r"Expected `line` to be a line \(s·m = 0\), got s·m = 1e-170"):
+        P.line_points(np.array([1.0, 0, 0, 1, 1, 0]) * 1e-85)
