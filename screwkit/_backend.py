@@ -337,17 +337,24 @@ def vanishes(values: Array, *factors: Array, rtol: float) -> Array:
 
 
 def _norms(vectors: Array) -> Array:
-    """Euclidean norms over the last axis whose squares neither overflow nor underflow (each vector
-    times a power of two first, :func:`_binary_exponents`): the bits of :func:`numpy.linalg.norm`
-    wherever its squares do neither (``|s·m| = 1e180`` of a line, a 1e-170 helix's ``s·m``).
+    """Euclidean norms over the last axis: :func:`numpy.linalg.norm`'s, except where its squares
+    overflow or underflow (``|s·m| = 1e180`` of a line, a 1e-170 helix's ``s·m``): those vectors
+    are taken times a power of two first (:func:`_binary_exponents`; exact).
 
     Examples
     --------
     >>> _norms(np.array([[3e200, 4e200], [3e-200, 4e-200], [3.0, 4.0]]))
     array([5.e+200, 5.e-200, 5.e+000])
     """
+    with np.errstate(over="ignore"):  # an overflowed square is recomputed below
+        norms = np.linalg.norm(vectors, axis=-1)
+    # a norm in (1e-145, 1e145): no square overflowed, and those that underflowed are below its ulp
+    kept = (norms > 1e-145) & (norms < 1e145)
+    if np.all(kept):  # the common case, numpy's norms as they are
+        return norms
+    risky = ~kept
     shift = _binary_exponents(vectors)
-    return np.ldexp(np.linalg.norm(np.ldexp(vectors, -shift), axis=-1), shift[..., 0])
+    return np.where(risky, np.ldexp(np.linalg.norm(np.ldexp(vectors, -shift), axis=-1), shift[..., 0]), norms)
 
 
 def unit_directions(vectors: Array) -> Array:
