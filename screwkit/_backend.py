@@ -47,6 +47,7 @@ __all__ = [
     "as_array",
     "as_arrays",
     "characteristic_length",
+    "check_rotation",
     "checked_length_scale",
     "cross",
     "det",
@@ -66,7 +67,6 @@ __all__ = [
     "ones_like",
     "plain",
     "promote",
-    "proper_rotations",
     "ratio",
     "scale_moments",
     "screw_image_of_nullspace",
@@ -265,7 +265,7 @@ def _identically_zero(expr: Any) -> bool:
         from . import _symbolic  # sympy is already imported: expr is a sympy object
 
         try:
-            value = _symbolic.generic_point(np.array([expr], dtype=object)).value(expr)
+            value = _symbolic.generic_point(np.array([expr], dtype=object)).value(expr, remember=False)
         except ScrewkitValueError:  # not real at the point: decided below
             value = None
         if isinstance(value, int | Fraction) and value != 0:
@@ -506,25 +506,36 @@ def unit_screws(screws: Array, length_scale: float) -> Array:
     return scaled / np.linalg.norm(scaled, axis=-1, keepdims=True)
 
 
-def proper_rotations(rotation: Array) -> bool:
-    """Whether every matrix ``(..., 3, 3)`` is a proper rotation: ``RᵀR = I`` (to 1e-9) and
-    ``det R > 0``; symbolic matrices identically (``RᵀR − I`` and ``det R − 1`` identically zero).
+def check_rotation(rotation: Array, name: str = "rotation") -> None:
+    """Refuse numeric matrices ``(..., 3, 3)`` that are not proper rotations (``RᵀR = I`` to 1e-9,
+    ``det R > 0``). Symbolic matrices are taken as given: their entries may obey relations the
+    symbols do not state (``c² + s² = 1`` for ``c``, ``s`` standing for a cosine and a sine), and
+    proving trigonometric identities costs up to a second a matrix.
+
+    Raises
+    ------
+    ScrewkitValueError
+        Naming the argument and the determinant.
 
     Examples
     --------
     >>> import sympy
-    >>> t = sympy.Symbol("t")
-    >>> turn = np.array([[sympy.cos(t), -sympy.sin(t), 0], [sympy.sin(t), sympy.cos(t), 0], [0, 0, 1]])
-    >>> proper_rotations(np.eye(3)), proper_rotations(np.diag([1.0, 1, -1])), proper_rotations(turn)
-    (True, False, True)
+    >>> c, s = sympy.symbols("c s")
+    >>> check_rotation(np.eye(3)), check_rotation(np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]]))
+    (None, None)
+    >>> check_rotation(np.diag([1.0, 1, -1]))  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    screwkit.exceptions.ScrewkitValueError: Expected `rotation` to be a proper rotation ..., got det = -1.0.
     """
-    product = np.swapaxes(rotation, -1, -2) @ rotation
     if is_symbolic(rotation):
-        deviation = (product - np.eye(3, dtype=int)).reshape(*rotation.shape[:-2], 9)
-        if rotation.ndim != 2:
-            return all(proper_rotations(r) for r in rotation.reshape(-1, 3, 3))
-        return bool(np.all(zero_vectors(deviation))) and is_exactly_zero(det(rotation) - 1)
-    return bool(np.allclose(product, np.eye(3), atol=1e-9) and np.all(np.linalg.det(rotation) > 0))
+        return
+    product = np.swapaxes(rotation, -1, -2) @ rotation
+    if not (np.allclose(product, np.eye(3), atol=1e-9) and np.all(np.linalg.det(rotation) > 0)):
+        raise ScrewkitValueError(
+            f"Expected `{name}` to be a proper rotation matrix (R^T R = I, det R = +1), "
+            f"got det = {np.linalg.det(rotation)}."
+        )
 
 
 def plain(value: Any) -> float | str:

@@ -116,9 +116,11 @@ class GenericPoint:
             self.circle[sp.tan(symbol)] = 2 * t / (1 - t**2)
         self._cache: dict[Any, Any] = {}
 
-    def value(self, expr: Any) -> Any:
+    def value(self, expr: Any, *, remember: bool = True) -> Any:
         """An expression at the point: an int or a Fraction, or a 60-digit mpmath float when it is
-        not rational there.
+        not rational there. ``remember=False`` keeps it out of the point's cache (one-off
+        decisions, e.g. :func:`screwkit._backend.is_exactly_zero`, would otherwise grow it without
+        bound).
 
         Examples
         --------
@@ -154,7 +156,8 @@ class GenericPoint:
 
             with mpmath.workdps(_DIGITS):
                 result = mpmath.mpf(str(result))
-        self._cache[expr] = result
+        if remember:
+            self._cache[expr] = result
         return result
 
 

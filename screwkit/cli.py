@@ -796,10 +796,13 @@ def console() -> int:
 
     At exit the interpreter's cyclic garbage collector traverses every object left, numpy's, sympy's
     and networkx's included, several times while the modules are torn down: ≈ 0.1–0.15 s, longer than a
-    whole analysis of a small robot. :func:`gc.freeze` moves them out of its reach first (a process
-    about to end has no cycle worth collecting); modules are still torn down, streams flushed and
-    exit handlers run as usual. Returns the exit status (the console script passes it to
-    :func:`sys.exit`).
+    whole analysis of a small robot. :func:`gc.freeze` moves them out of its reach first; modules are
+    still torn down, streams flushed and exit handlers (``atexit``) run as usual. The price: objects
+    left in unreachable reference cycles are not finalised at exit (their ``__del__`` does not run;
+    an H4 analysis leaves ≈ 800 such objects, numpy's and sympy's, none holding a resource). Every
+    command writes and closes its output files before it returns (``with`` blocks), so nothing it
+    produces depends on a finaliser; a full collection instead would cost ≈ 35 ms. Returns the exit
+    status (the console script passes it to :func:`sys.exit`).
 
     Examples
     --------

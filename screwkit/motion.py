@@ -402,13 +402,18 @@ MOBILITY_SEED = 20261124
 
 
 def generic_mobility(
-    graph: nx.MultiDiGraph, *, joint_key: str = "joint", rtol: float = B.DEFAULT_RTOL
+    graph: nx.MultiDiGraph,
+    *,
+    joint_key: str = "joint",
+    rtol: float = B.DEFAULT_RTOL,
+    length_scale: float | None = None,
 ) -> int | None:
     """The platform's freedoms at generic configurations of the graph's mechanism.
 
     The most common order of the platform's twist system over :data:`MOBILITY_SAMPLES` configurations
     reached from the graph's own by :func:`generic_configurations` (so a singular analysed pose does not
-    decide it: a stretched limb loses a freedom there, a constraint singularity gains one). 0 for a
+    decide it: a stretched limb loses a freedom there, a constraint singularity gains one), each
+    decided with ``rtol`` and ``length_scale`` (:func:`~screwkit.wrenches.analyze_table`). 0 for a
     mechanism whose loops admit no joint motion; None when Newton's method closed no loop.
 
     Examples
@@ -433,7 +438,8 @@ def generic_mobility(
         if "admit no joint motion" in str(err):
             return 0
         return None
-    orders = np.asarray(analyze_table(table, dof=0, rtol=rtol, views=False).platform_order).ravel()
+    analysis = analyze_table(table, dof=0, rtol=rtol, length_scale=length_scale, views=False)
+    orders = np.asarray(analysis.platform_order).ravel()
     return int(np.bincount(orders).argmax())
 
 
@@ -508,6 +514,7 @@ def settled_dof(
     *,
     joint_key: str = "joint",
     rtol: float = B.DEFAULT_RTOL,
+    length_scale: float | None = None,
 ) -> int:
     """The nominal ``dof`` the graph's analysis must use (:func:`resolve_dof`), given a first analysis
     with ``stated`` (or, when None, the number of actuators).
@@ -516,8 +523,9 @@ def settled_dof(
     configuration needed, the common case costs nothing). Otherwise the mobility is the graph's
     ``mobility`` attribute when it has one (a catalog family's graphs do:
     :attr:`screwkit.joints.JointTable.mobility`), else computed at generic configurations
-    (:func:`generic_mobility`, 0.03–0.2 s; where no loop could be closed, the platform's most common
-    order over the analysed poses stands in for it).
+    (:func:`generic_mobility`, 0.03–0.2 s, with the analysis's ``rtol`` and the given
+    ``length_scale``; where no loop could be closed, the platform's most common order over the
+    analysed poses stands in for it).
 
     Examples
     --------
@@ -537,7 +545,11 @@ def settled_dof(
         from .exceptions import TwistGraphError
 
         raise TwistGraphError(f"Expected graph attribute 'mobility' to be an integer in 0..6, got {known!r}.")
-    mobility = int(known) if known is not None else generic_mobility(graph, joint_key=joint_key, rtol=rtol)
+    mobility = (
+        int(known)
+        if known is not None
+        else generic_mobility(graph, joint_key=joint_key, rtol=rtol, length_scale=length_scale)
+    )
     if mobility is None:
         mobility = int(np.bincount(np.asarray(analysis.platform_order).ravel()).argmax())
     return resolve_dof(stated, mobility, actuated)

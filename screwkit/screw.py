@@ -433,11 +433,7 @@ def transform(screws: Any, rotation: Any, translation: Any) -> Array:
     rot = B.as_array(rotation, "rotation", (3, 3))
     t = B.as_array(translation, "translation", (3,))
     arr, rot, t = B.promote(arr, rot, t)
-    if not B.proper_rotations(rot):
-        raise ScrewkitValueError(
-            "Expected `rotation` to be a proper rotation matrix (R^T R = I, det R = +1), "
-            f"got det = {B.det(rot)}."
-        )
+    B.check_rotation(rot)
     s = np.einsum("...ij,...j->...i", rot, arr[..., :3])
     s0 = np.einsum("...ij,...j->...i", rot, arr[..., 3:])
     return np.concatenate([s, s0 + B.cross(np.broadcast_to(t, s.shape), s)], axis=-1)

@@ -118,9 +118,7 @@ class ScrewSystem:
         rows = _rows(screws, "screws")
         length_scale = B.characteristic_length(rows, length_scale)
         basis = _independent_rows(rows, rtol, length_scale) if rows.shape[0] else rows
-        if B.is_symbolic(basis):
-            return cls(basis, rtol=rtol, length_scale=length_scale)
-        # independent by construction: _independent_rows took the rank of these very rows
+        # independent by construction: _independent_rows took the (generic) rank of these very rows
         return cls.from_independent(basis, rtol=rtol, length_scale=length_scale)
 
     @classmethod
@@ -299,8 +297,6 @@ class ScrewSystem:
         >>> ScrewSystem.span([force([1, 0, 0], [0, 0, 0]), couple([0, 1, 0])]).couple_subsystem().order
         1
         """
-        if self.is_symbolic:
-            return self.intersection(ScrewSystem(_COUPLES, rtol=self.rtol, length_scale=self.length_scale))
         return (self.reciprocal() + _couples_reciprocal(self.rtol, self.length_scale)).reciprocal()
 
     def readable_basis(self, near: Any = None) -> Array:

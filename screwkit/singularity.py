@@ -471,7 +471,9 @@ def classify_table(
     if table.screws.size == 0:
         return report
     first = table.graph((0,) * len(table.batch_shape))
-    nominal = settled_dof(first, None if stated is None else report.dof, report.analysis, rtol=rtol)
+    nominal = settled_dof(
+        first, None if stated is None else report.dof, report.analysis, rtol=rtol, length_scale=length_scale
+    )
     if nominal == report.dof:
         return report
     return label_table(table, dof=nominal, rtol=rtol, length_scale=length_scale, chunk=chunk)

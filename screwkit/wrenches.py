@@ -1527,7 +1527,7 @@ def wrench_analysis(
     stated = dof if dof is not None else table.dof
     analysis = analyze_table(one, dof=stated, rtol=rtol, length_scale=length_scale)[0]
     given = None if stated is None else analysis.dof
-    nominal = settled_dof(graph, given, analysis, joint_key=joint_key, rtol=rtol)
+    nominal = settled_dof(graph, given, analysis, joint_key=joint_key, rtol=rtol, length_scale=length_scale)
     if nominal != analysis.dof:  # derived: the mechanism's mobility, not the number of actuators
         analysis = analyze_table(one, dof=nominal, rtol=rtol, length_scale=length_scale)[0]
     object.__setattr__(analysis, "graph", graph)  # the caller's own graph object (cached view)

@@ -137,6 +137,14 @@ def test_is_exactly_zero_proves_non_zero_at_a_point_without_simplifying(monkeypa
     assert not calls
     assert B.is_exactly_zero(sympy.sin(x) ** 2 + sympy.cos(x) ** 2 - 1) and calls
     assert not B.is_exactly_zero(sympy.sqrt(x**2 + 1) - x)  # not rational at the point: simplify decides
+    # one-off decisions do not grow the random point's cache (a long session makes many)
+    from screwkit import _symbolic
+
+    z = sympy.Symbol("z_cache")
+    point = _symbolic.generic_point(np.array([z], dtype=object))
+    before = len(point._cache)
+    assert not any(B.is_exactly_zero(z**k + k) for k in range(1, 50))
+    assert len(point._cache) == before
 
 
 def test_vanishes_is_scale_invariant_numerically_and_exact_symbolically():
@@ -161,13 +169,14 @@ def test_ratio_where_zero_and_unit_directions_keep_the_branch():
     assert B.unit_directions(symbolic) is symbolic  # stays polynomial
 
 
-def test_proper_rotations_decides_numeric_and_symbolic_matrices():
-    t = sympy.Symbol("t")
-    c, s = sympy.cos(t), sympy.sin(t)
-    assert B.proper_rotations(np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]], dtype=object))
-    assert not B.proper_rotations(np.array([[c, s, 0], [s, -c, 0], [0, 0, 1]], dtype=object))  # det −1
-    assert not B.proper_rotations(np.array([[1, t, 0], [0, 1, 0], [0, 0, 1]], dtype=object))  # a shear
-    assert B.proper_rotations(np.eye(3)[None].repeat(2, 0)) and not B.proper_rotations(2 * np.eye(3))
+def test_check_rotation_refuses_numeric_non_rotations_and_takes_symbolic_ones_as_given():
+    # symbolic entries may obey relations the symbols do not state (c² + s² = 1): not refused
+    c, s = sympy.symbols("c s")
+    assert B.check_rotation(np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]], dtype=object)) is None
+    assert B.check_rotation(np.eye(3)[None].repeat(2, 0)) is None
+    for bad, det in ((2 * np.eye(3), "7.99"), (np.diag([1.0, 1.0, -1.0]), "-1.0")):
+        with pytest.raises(ScrewkitValueError, match=rf"Expected `R` to be a proper rotation matrix .* det = {det}"):
+            B.check_rotation(bad, "R")
 
 
 def test_zeros_and_ones_like_keep_the_branch():

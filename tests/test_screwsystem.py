@@ -395,3 +395,18 @@ def test_in_is_contains_for_screws_arrays_and_systems():
     assert ScrewSystem.span([S.couple([1, -1, 0])]) in plane
     with pytest.raises(ScrewkitValueError, match="Expected `item`"):
         _ = [1, 2, 3] in plane
+
+
+def test_symbolic_couple_subsystem_is_the_intersection_with_the_couples():
+    # by hand: a line (1, a, 0) through (0, b, 1), the couple (a, 1, b) and the line z through (a, 0, 0)
+    # hold one couple generically (two lines of different directions hold none); adding (1, 0, 0)
+    # couple gives two
+    a, b = sympy.symbols("a b")
+    rows = [S.line([1, a, 0], [0, b, 1]), S.couple([a, 1, b]), S.line([0, 0, 1], [a, 0, 0])]
+    couples = ScrewSystem(np.hstack([np.zeros((3, 3)), np.eye(3)]).astype(int))
+    for extra, order in (([], 1), ([S.couple([1, 0, 0])], 2)):
+        system = ScrewSystem.span(np.array(rows + extra))
+        found = system.couple_subsystem()
+        assert found.order == order and found.is_symbolic
+        assert all(all(v == 0 for v in row[:3]) for row in found.basis)
+        assert found.is_equivalent(system.intersection(couples))
