@@ -136,7 +136,7 @@ def get_parser() -> argparse.ArgumentParser:
         type=float,
         default=None,
         metavar="R",
-        help="relative tolerance of every rank decision, in [0, 0.1] (default 1e-9)",
+        help="relative tolerance of every rank decision, in [1e-12, 0.1] (default 1e-9)",
     )
     analyze_parser.add_argument(
         "--length-scale",
@@ -428,9 +428,10 @@ def run_analyze(args: argparse.Namespace) -> int:
     ...
     0
     """
-    if args.rtol is not None and not 0 <= args.rtol <= B.MAX_RTOL:
+    if args.rtol is not None and not B.MIN_FLOAT_RTOL <= args.rtol <= B.MAX_RTOL:
         raise _UsageError(
-            f"screwkit analyze: error: --rtol expects a number in [0, {B.MAX_RTOL:g}], got {args.rtol:g}"
+            f"screwkit analyze: error: --rtol expects a number in [{B.MIN_FLOAT_RTOL:g}, {B.MAX_RTOL:g}], "
+            f"got {args.rtol:g}"
         )
     from .wrenches import MIN_LENGTH_SCALE
 

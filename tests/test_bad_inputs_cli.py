@@ -343,9 +343,9 @@ CLI_CASES = [
     (["analyze", "h4", "--pose", "0", "0", "-750", "-inf"], 2, r"screwkit analyze: error: --pose expects 4 finite numbers \(X Y Z PHI\), got 0\.0 0\.0 -750\.0 -inf$"),
     (["analyze", "h4", "--pose", "0", "0", "-750", "-nan"], 2, r"--pose expects 4 finite numbers \(X Y Z PHI\), got .* nan$"),
     (["analyze", "h4", "--pose", "-Infinity", "0", "-750", "0"], 2, r"--pose expects 4 finite numbers \(X Y Z PHI\), got -inf"),
-    (["analyze", "h4", "--rtol", "-inf"], 2, r"--rtol expects a number in \[0, 0\.1\], got -inf$"),
-    (["analyze", "h4", "--rtol", "-1e-3"], 2, r"--rtol expects a number in \[0, 0\.1\], got -0\.001$"),
-    (["analyze", "h4", "--rtol", "0.3"], 2, r"--rtol expects a number in \[0, 0\.1\], got 0\.3$"),
+    (["analyze", "h4", "--rtol", "-inf"], 2, r"--rtol expects a number in \[1e-12, 0\.1\], got -inf$"),
+    (["analyze", "h4", "--rtol", "-1e-3"], 2, r"--rtol expects a number in \[1e-12, 0\.1\], got -0\.001$"),
+    (["analyze", "h4", "--rtol", "0.3"], 2, r"--rtol expects a number in \[1e-12, 0\.1\], got 0\.3$"),
     (["analyze", "h4", "--length-scale", "-1"], 2, r"--length-scale expects a positive length .* got -1$"),
     (["analyze", "h4", "--length-scale", "0"], 2, r"--length-scale expects a positive length .* got 0$"),
     (["analyze", "h4", "--length-scale", "nan"], 2, r"--length-scale expects a positive length .* got nan$"),
@@ -532,3 +532,18 @@ def test_the_coarsest_rtol_keeps_every_catalog_platform_consistent(capsys, name)
     report = json.loads(out)
     expected = "2T1R" if name == "planar_3rrp" else "3T1R"
     assert report["wrenches"]["platform_twists"]["motion_type"] == expected
+
+
+@pytest.mark.parametrize("name", ["h4", "quattro", "v4", "veloce", "ragnar", "mcgill_smg", "peppermill", "planar_3rrp"])
+def test_the_finest_rtol_keeps_every_catalog_platform_consistent(capsys, name):
+    # MIN_FLOAT_RTOL = 1e-12: at the default pose every robot keeps its nominal platform and the verdict
+    # it has at the default rtol (at 1e-16 the H4 read a 3R1T platform, the McGill SMG a 0-DOF one)
+    status, out, err = run(capsys, ["analyze", name, "--rtol", "1e-12", "--json", "--no-superbracket"])
+    assert status == 0 and err == ""
+    fine = json.loads(out)
+    status, out, err = run(capsys, ["analyze", name, "--json", "--no-superbracket"])
+    default = json.loads(out)
+    expected = "2T1R" if name == "planar_3rrp" else "3T1R"
+    assert fine["wrenches"]["platform_twists"]["motion_type"] == expected
+    kept = ("verdict", "labels", "constraint_order", "global_order", "gained_dof", "lost_dof", "serial")
+    assert [fine["verdict"][key] for key in kept] == [default["verdict"][key] for key in kept]
