@@ -67,6 +67,8 @@ def _checked_poses(mechanism: Any, poses: Any) -> Array:
     array = B.as_array(poses, "poses", (len(names),), symbolic=False).astype(float)
     if array.ndim == 1:
         array = array[None]
+    if array.size == 0:  # an empty batch: the analysis core reshapes over a batch of at least one pose
+        raise ScrewkitValueError(f"Expected `poses` to hold at least one pose, got shape {array.shape}.")
     return array
 
 
