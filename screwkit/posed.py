@@ -232,6 +232,11 @@ class PosedMechanism:
         return wrench_transmission(self.jacobians, input_points=application_points(self.configuration))
 
     def __getitem__(self, index: Any) -> Pose:
+        parts = index if isinstance(index, tuple) else (index,)
+        if not all(isinstance(i, int | np.integer) and not isinstance(i, bool) for i in parts):
+            raise ScrewkitValueError(  # numpy's IndexError for a string is not an index out of range
+                f"Expected `index` to pick one pose of the batch of shape {self.shape}, got {index!r}."
+            )
         try:
             flat = np.arange(int(np.prod(self.shape))).reshape(self.shape)[index]
         except IndexError as err:  # out of range: an IndexError too, so a for loop stops there

@@ -454,6 +454,8 @@ API_CASES = [
     (lambda: _h4().at([[object()] * 4]), ScrewkitTypeError, r"Expected `poses` to be an array of numbers"),
     (lambda: _h4().at(np.zeros((0, 4))).verdicts, ScrewkitValueError, r"Expected `poses` to hold at least one pose, got shape \(0, 4\)\.$"),
     (lambda: _h4().at(np.zeros((2, 0, 4))).codes, ScrewkitValueError, r"Expected `poses` to hold at least one pose, got shape \(2, 0, 4\)\.$"),
+    (lambda: _h4().at(None)["a"], ScrewkitValueError, r"Expected `index` to pick one pose of the batch of shape \(1,\), got 'a'\.$"),
+    (lambda: _h4().at(None)[1.0], ScrewkitValueError, r"Expected `index` to pick one pose of the batch of shape \(1,\), got 1\.0\.$"),
     (lambda: _h4().at(None, mode=5), ScrewkitTypeError, r"Expected inverse-kinematics options of the four_limb family among \['working_mode'\], got \['mode'\]"),
     (lambda: _h4().jacobians([[0, 0, -750, 0]]), ScrewkitValueError, r"Expected one pose of shape \(4,\), got \(1, 4\); use at\(\) for batches"),
     (lambda: _h4().twist_graph([0, 0]), ScrewkitValueError, r"Expected `poses` to have shape \(\.\.\., 4\), got \(2,\)"),
