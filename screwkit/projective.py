@@ -31,7 +31,7 @@ from typing import Any
 import numpy as np
 
 from . import _backend as B
-from .exceptions import DegenerateGeometryError, ScrewkitValueError
+from .exceptions import DegenerateGeometryError, ScrewkitTypeError, ScrewkitValueError
 
 __all__ = [
     "are_collinear",
@@ -95,10 +95,20 @@ def is_at_infinity(points: Any, *, rtol: float = B.DEFAULT_RTOL, length_scale: f
     >>> is_at_infinity([[1, 0, 0, 0], [1, 0, 0, 1]])
     array([ True, False])
     """
-    (p,) = B.as_arrays((4,), (points, "points"))
-    unit = _unit_points(p, length_scale)
+    unit = _unit_points(_numeric(points, "points", "is_at_infinity", (4,)), length_scale)
     result = np.abs(unit[..., 3]) <= rtol
     return bool(result) if np.ndim(result) == 0 else result
+
+
+def _numeric(value: Any, name: str, test: str, shape: tuple[int, ...]) -> Array:
+    """``value`` as an array if it holds numbers; a symbolic one is refused, naming the exact route."""
+    value = B.as_array(value, name, shape)
+    if B.is_symbolic(value):
+        raise ScrewkitTypeError(
+            f"Expected `{name}` to hold numbers ({test} decides with a tolerance; for symbolic "
+            "coordinates test the exact bracket, join_point_line or plane_through for zero), got symbols."
+        )
+    return value
 
 
 def _unit_points(p: Array, length_scale: float) -> Array:
@@ -417,7 +427,8 @@ def are_coplanar(
     >>> are_coplanar([0, 0, 0, 1], [1, 0, 0, 1], [0, 1, 0, 1], [5, 5, 0, 1])
     True
     """
-    pts = [_unit_points(x, length_scale) for x in B.as_arrays((4,), (p, "p"), (q, "q"), (r, "r"), (s, "s"))]
+    named = zip((p, q, r, s), "pqrs", strict=True)
+    pts = [_unit_points(_numeric(x, name, "are_coplanar", (4,)), length_scale) for x, name in named]
     result = np.abs(np.linalg.det(np.stack(np.broadcast_arrays(*pts), axis=-2))) <= rtol
     return bool(result) if np.ndim(result) == 0 else result
 
@@ -432,7 +443,8 @@ def are_collinear(
     >>> are_collinear([0, 0, 0, 1], [1, 1, 1, 1], [1, 1, 1, 0])
     True
     """
-    pts = [_unit_points(x, length_scale) for x in B.as_arrays((4,), (p, "p"), (q, "q"), (r, "r"))]
+    named = zip((p, q, r), "pqr", strict=True)
+    pts = [_unit_points(_numeric(x, name, "are_collinear", (4,)), length_scale) for x, name in named]
     values = np.linalg.svd(np.stack(np.broadcast_arrays(*pts), axis=-2), compute_uv=False)
     result = values[..., 2] <= rtol * values[..., 0]
     return bool(result) if np.ndim(result) == 0 else result
@@ -452,8 +464,8 @@ def lines_intersect(
     >>> lines_intersect([1, 0, 0, 0, 0, 0], [0, 1, 0, -1, 0, 0])
     False
     """
-    a = B.as_array(first, "first", (6,))
-    b = B.as_array(second, "second", (6,))
+    a = _numeric(first, "first", "lines_intersect", (6,))
+    b = _numeric(second, "second", "lines_intersect", (6,))
     scaled_a, _ = B.scale_moments(a, length_scale)
     scaled_b, _ = B.scale_moments(b, length_scale)
     for name, values in (("first", scaled_a), ("second", scaled_b)):
@@ -478,8 +490,8 @@ def point_on_line(
     >>> point_on_line([3, 0, 0, 1], [1, 0, 0, 0, 0, 0]), point_on_line([0, 1, 0, 1], [1, 0, 0, 0, 0, 0])
     (True, False)
     """
-    x = _unit_points(B.as_array(point, "point", (4,)), length_scale)
-    lv, _ = B.scale_moments(B.as_array(line, "line", (6,)), length_scale)
+    x = _unit_points(_numeric(point, "point", "point_on_line", (4,)), length_scale)
+    lv, _ = B.scale_moments(_numeric(line, "line", "point_on_line", (6,)), length_scale)
     size = np.linalg.norm(lv, axis=-1, keepdims=True)
     if np.any(size == 0):
         raise DegenerateGeometryError("Expected `line` to be a non-zero line, got zeros.")

@@ -7,7 +7,7 @@ from hypothesis import given
 
 from screwkit import projective as P
 from screwkit import screw as S
-from screwkit.exceptions import DegenerateGeometryError, ScrewkitValueError
+from screwkit.exceptions import DegenerateGeometryError, ScrewkitTypeError, ScrewkitValueError
 
 from .strategies import rigid_motions, seeds, unit_factors
 
@@ -281,3 +281,21 @@ def test_line_points_decides_lines_at_the_ends_of_the_coordinate_range():
         np.testing.assert_array_equal(at_infinity, np.append(s, 0.0))
     with pytest.raises(ScrewkitValueError, match=r"Expected `line` to be a line \(s·m = 0\), got s·m = 1e-170"):
         P.line_points(np.array([1.0, 0, 0, 1, 1, 0]) * 1e-85)
+
+
+@pytest.mark.parametrize(
+    ("test", "args", "name"),
+    [
+        (P.are_coplanar, ([0, 0, 0, 1], [1, 0, 0, 1], [0, 1, 0, 1], ["a", 0, 0, 1]), "s"),
+        (P.are_collinear, (["a", 0, 0, 1], [1, 0, 0, 1], [2, 0, 0, 1]), "p"),
+        (P.is_at_infinity, (["a", 0, 0, 1],), "points"),
+        (P.lines_intersect, ([1, 0, 0, 0, 0, 0], [0, 1, 0, "a", 0, 0]), "second"),
+        (P.point_on_line, (["a", 0, 0, 1], [1, 0, 0, 0, 0, 0]), "point"),
+        (P.point_on_line, ([0, 0, 0, 1], [1, 0, 0, 0, 0, "a"]), "line"),
+    ],
+)
+def test_tolerance_predicates_refuse_symbolic_coordinates_by_name(test, args, name):
+    # they decide with rtol on floats; before, a symbol gave sympy's "Cannot convert expression to float"
+    symbolic = [[sympy.Symbol(v) if v == "a" else v for v in arg] for arg in args]
+    with pytest.raises(ScrewkitTypeError, match=rf"Expected `{name}` to hold numbers \({test.__name__} decides with a tolerance; .*got symbols\.$"):
+        test(*symbolic)
