@@ -741,24 +741,32 @@ def checked_length_scale(value: Any, *, allow_none: Literal[True]) -> float | No
 
 
 def checked_length_scale(value: Any, *, allow_none: bool = False) -> float | None:
-    """Validate a characteristic length: a positive finite number (or None where a default exists).
+    """Validate a characteristic length: a number in [:data:`MIN_LENGTH_SCALE`, 1 /
+    :data:`MIN_LENGTH_SCALE`] (or None where a default exists).
 
     Examples
     --------
     >>> checked_length_scale(2)
     2.0
-    >>> checked_length_scale(0)
+    >>> checked_length_scale(0)  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    screwkit.exceptions.ScrewkitValueError: Expected `length_scale` to be a positive finite number, got 0.
+    screwkit.exceptions.ScrewkitValueError: Expected `length_scale` to be a positive ..., got 0.
     """
     if value is None and allow_none:
         return None
     ok = isinstance(value, int | float | np.integer | np.floating) and not isinstance(value, bool)
-    if not (ok and np.isfinite(value) and value > 0):
-        expected = "a positive finite number or None" if allow_none else "a positive finite number"
-        raise ScrewkitValueError(f"Expected `length_scale` to be {expected}, got {value!r}.")
+    if not (ok and np.isfinite(value) and MIN_LENGTH_SCALE <= value <= 1 / MIN_LENGTH_SCALE):
+        expected = f"a positive finite number in [{MIN_LENGTH_SCALE:g}, {1 / MIN_LENGTH_SCALE:g}]"
+        raise ScrewkitValueError(
+            f"Expected `length_scale` to be {expected}{' or None' if allow_none else ''}, got {value!r}."
+        )
     return float(value)
+
+
+#: The smallest characteristic length accepted, and its inverse the largest, in length units:
+#: moments are divided by it, and coordinates are at most 1e100 (README, input rules).
+MIN_LENGTH_SCALE = 1e-100
 
 
 def is_dof(value: Any) -> bool:

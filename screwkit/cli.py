@@ -433,10 +433,8 @@ def run_analyze(args: argparse.Namespace) -> int:
             f"screwkit analyze: error: --rtol expects a number in [{B.MIN_FLOAT_RTOL:g}, {B.MAX_RTOL:g}], "
             f"got {args.rtol:g}"
         )
-    from .wrenches import MIN_LENGTH_SCALE
-
     length = args.length_scale
-    bounds = (MIN_LENGTH_SCALE, 1 / MIN_LENGTH_SCALE)
+    bounds = (B.MIN_LENGTH_SCALE, 1 / B.MIN_LENGTH_SCALE)
     if length is not None and not (math.isfinite(length) and bounds[0] <= length <= bounds[1]):
         raise _UsageError(
             "screwkit analyze: error: --length-scale expects a positive length in the file's length unit, "

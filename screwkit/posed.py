@@ -40,7 +40,7 @@ from .exceptions import ScrewkitError, ScrewkitIndexError, ScrewkitValueError
 from .jacobians import WrenchJacobians, jacobians_from_wrenches
 from .joints import JointTable
 from .singularity import SingularityReport, classify_chunks, label_table
-from .wrenches import WrenchAnalysis, _checked_lengths, analyze_table, checked_rtol
+from .wrenches import WrenchAnalysis, analyze_table, checked_rtol
 
 __all__ = ["Pose", "PosedMechanism", "generic_samples"]
 
@@ -119,7 +119,6 @@ class PosedMechanism:
         array.flags.writeable = False
         tolerance = B.DEFAULT_RTOL if rtol is None else checked_rtol(rtol)
         length = B.checked_length_scale(length_scale, allow_none=True)
-        _checked_lengths(length, ())  # its range now, not at the first stage computed
         return cls(mechanism, array, tolerance, length, dict(options or {}))
 
     @property

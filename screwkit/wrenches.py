@@ -973,35 +973,26 @@ def _checked_lengths(value: Any, batch: tuple[int, ...]) -> Array | None:
     >>> _checked_lengths([1.0, -1.0], (2,))  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    screwkit.exceptions.ScrewkitValueError: Expected `length_scale` to be positive and finite, ...
+    screwkit.exceptions.ScrewkitValueError: Expected `length_scale` to be positive finite numbers in ...
     """
     if value is None or np.ndim(value) == 0:
         checked = B.checked_length_scale(value, allow_none=True)
-        if checked is None:
-            return None
-        lengths = np.full(batch, checked)
-        shown: Any = checked  # the number given, not the batch of its copies
-    else:
-        try:
-            lengths = np.array(np.broadcast_to(np.asarray(value, dtype=float), batch))
-        except (TypeError, ValueError) as err:
-            got = repr(value) if isinstance(value, str) else f"shape {np.shape(value)}"
-            raise ScrewkitValueError(
-                f"Expected `length_scale` to be a positive number or an array of the batch shape {batch}, "
-                f"got {got}."
-            ) from err
-        shown = lengths if lengths.ndim else float(lengths)
-    # moments are divided by it: within 1e±100 of the unit (coordinates are at most 1e100, README)
-    if not np.all(np.isfinite(lengths) & (lengths >= MIN_LENGTH_SCALE) & (lengths * MIN_LENGTH_SCALE <= 1)):
+        return None if checked is None else np.full(batch, checked)
+    try:
+        lengths = np.array(np.broadcast_to(np.asarray(value, dtype=float), batch))
+    except (TypeError, ValueError) as err:
+        got = repr(value) if isinstance(value, str) else f"shape {np.shape(value)}"
         raise ScrewkitValueError(
-            f"Expected `length_scale` to be positive and finite, within [{MIN_LENGTH_SCALE:g}, "
-            f"{1 / MIN_LENGTH_SCALE:g}] length units, got {shown}."
+            f"Expected `length_scale` to be a positive number or an array of the batch shape {batch}, "
+            f"got {got}."
+        ) from err
+    smallest = B.MIN_LENGTH_SCALE
+    if not np.all(np.isfinite(lengths) & (lengths >= smallest) & (lengths * smallest <= 1)):
+        raise ScrewkitValueError(
+            f"Expected `length_scale` to be positive finite numbers in [{smallest:g}, {1 / smallest:g}], "
+            f"got {lengths}."
         )
     return lengths
-
-
-#: The smallest characteristic length accepted (and its inverse the largest), in length units.
-MIN_LENGTH_SCALE = 1e-100
 
 
 def analyze_table(

@@ -503,11 +503,12 @@ def test_a_given_length_scale_in_the_new_unit_keeps_the_answers(motion, factor):
 @pytest.mark.parametrize(
     "value, message",
     [
-        (-1.0, r"Expected `length_scale` to be a positive finite number or None, got -1.0"),
-        (0, r"Expected `length_scale` to be a positive finite number or None, got 0"),
-        (float("nan"), r"Expected `length_scale` to be a positive finite number or None, got nan"),
-        ("1", r"Expected `length_scale` to be a positive finite number or None, got '1'"),
-        (1e200, r"Expected `length_scale` to be positive and finite, within \[1e-100, 1e\+100\] length units"),
+        (-1.0, r"Expected `length_scale` to be a positive finite number in \[1e-100, 1e\+100\] or None, got -1.0"),
+        (0, r"Expected `length_scale` to be a positive finite number in \[1e-100, 1e\+100\] or None, got 0"),
+        (float("nan"), r"Expected `length_scale` to be a positive finite number in \[1e-100, 1e\+100\] or None, got nan"),
+        ("1", r"Expected `length_scale` to be a positive finite number in \[1e-100, 1e\+100\] or None, got '1'"),
+        (1e200, r"Expected `length_scale` to be a positive finite number in \[1e-100, 1e\+100\] or None, got 1e\+200"),
+        ([-1.0], r"Expected `length_scale` to be positive finite numbers in \[1e-100, 1e\+100\], got \[-1\.\]"),
         ([1.0, 2.0], r"Expected `length_scale` to be a positive number or an array of the batch shape \(1,\)"),
     ],
 )
