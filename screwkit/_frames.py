@@ -526,7 +526,8 @@ def _top(t: Array, order: Array) -> Array:
 def extend(rows: Array, order: Array, t: Array, rtol: float) -> tuple[Array, Array, Array]:
     """The span of a twist frame ``(rows (..., 6, 6), order (...))`` and one joint screw
     ``t (..., 6)``, in closed form (paper 002 Eq. 1: a serial chain's twist system is the sum of its
-    members'): the frame's rows kept and ``t``'s residual against them (CGS2) appended, normalised,
+    members'): the frame's rows kept and ``t``'s residual against them (CGS2: classical Gram–Schmidt
+    applied twice, Giraud, Langou & Rozložník, Comput. Math. Appl. 50, 2005) appended, normalised,
     where it is clearly above the rank rule's threshold; the frame itself where it is clearly below
     (:data:`CLOSED_FORM_MARGIN`). Returns ``(rows, order, decided)``; where ``decided`` is False the
     caller spans (the rule decides). The numpy path of :func:`screwkit._frames_numba.extend_into`,
@@ -565,7 +566,8 @@ def contract(rows: Array, order: Array, t: Array, rtol: float) -> tuple[Array, A
     """The wrenches of a wrench frame ``(rows (..., 6, 6), order (...))`` also reciprocal to one
     joint screw ``t (..., 6)`` (the reciprocal of the twist system widened by ``t``), in closed form
     (paper 002 Eq. 1 with Eq. 3, ``W = T^⊥``): with ``c_i = rows_i ∘ t``, the Householder reflector
-    ``H`` taking ``c`` to ``∓|c| e_0`` applied to the rows, rows ``1 … order − 1`` of ``H rows``
+    ``H`` taking ``c`` to ``∓|c| e_0`` (Golub & Van Loan, *Matrix Computations*, 4th ed., §5.1.2)
+    applied to the rows, rows ``1 … order − 1`` of ``H rows``
     (orthonormal, each reciprocal to ``t``) where ``|c|`` (``t``'s distance from the twist system,
     :func:`extend`'s measure) is clearly above the rule's threshold; the frame itself where it is
     clearly below (:data:`CLOSED_FORM_MARGIN`). Returns ``(rows, order, decided)``; where ``decided``
@@ -812,8 +814,9 @@ def _limb_systems_numpy(
 
 
 def not_lines(rows: Array, line_rtol: float) -> Array:
-    """Which wrench rows ``(..., 6)`` are not lines: ``|s·m| > line_rtol · |s| · |w|`` (their pitch
-    not negligible), component by component (the compiled kernels' operations).
+    """Which wrench rows ``(..., 6)`` are not lines: ``|s·m| > line_rtol · |s| · |w|``, i.e. the pitch
+    ``h = s·m / s·s`` (the screw's pitch, module conventions; :func:`screwkit.screw.pitch`) has
+    ``|h| |s| > line_rtol |w|``, component by component (the compiled kernels' operations).
 
     Examples
     --------

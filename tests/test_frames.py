@@ -465,7 +465,8 @@ def test_mechanism_frame_numba_matches_numpy_bit_for_bit(rng, monkeypatch):
     assert not direct[7] and direct[9] and direct.sum() == 39
     np.testing.assert_array_equal(point[direct], expected_point[direct])
     np.testing.assert_array_equal(length[direct], expected_length[direct])
-    expected_scaled = F.unit_scaled(screws, expected_point, expected_length)  # 40 < 256: numpy
+    monkeypatch.setitem(F._compiled, "_frames_numba", None)  # the numpy path, whatever ran before
+    expected_scaled = F.unit_scaled(screws, expected_point, expected_length)
     np.testing.assert_array_equal(scaled[direct], expected_scaled[direct])
     np.testing.assert_array_equal(kernels.unit_scaled(screws, expected_point, expected_length), expected_scaled)
     assert length[9] == 1.0  # every axis through the origin: the length rule's fallback (no foot, no point)
@@ -825,3 +826,22 @@ def test_limb_wrenches_one_pass_matches_the_steps_bit_for_bit(rng, monkeypatch):
         np.testing.assert_array_equal(got, via_numpy)
         np.testing.assert_array_equal(via_numpy, step)
     assert expected[0].any() and expected[6].any() and not expected[6].all()  # serial limbs, a non-line
+
+
+def test_not_lines_is_the_pitch_criterion(rng):
+    # Independent of the kernel: a line (s; r × s) has s·m = 0 exactly in exact arithmetic; a helical
+    # screw (s; r × s + h s) has s·m = h |s|², so it is "not a line" iff |h| |s| > line_rtol |w|
+    # (|w| the whole row's norm). Couples (s = 0) have s·m = 0 and count as lines at infinity.
+    from screwkit import screw as S
+
+    directions = rng.standard_normal((200, 3))
+    points = rng.uniform(-10, 10, (200, 3))
+    lines = S.line(directions, points)
+    assert not F.not_lines(lines, 1e-6).any()
+    assert not F.not_lines(S.couple(directions), 1e-6).any()
+    for pitch, expected in ((1e-3, True), (-1e-3, True), (1e-12, False)):
+        helices = S.helical_twist(directions, points, pitch)
+        size = np.linalg.norm(helices[:, :3], axis=1)
+        by_hand = np.abs(pitch) * size > 1e-6 * np.linalg.norm(helices, axis=1)
+        assert (by_hand == expected).all()
+        np.testing.assert_array_equal(F.not_lines(helices, 1e-6), by_hand)
