@@ -7,10 +7,10 @@ bytecode caches (an editable checkout otherwise recompiles screwkit in every pro
 unmeasured run of each command comes first. The repeats are interleaved (reference, then every
 robot, ``--repeats`` times), so a change of load on a shared machine hits both sides alike.
 
-The installed command runs :func:`screwkit.cli.console`, which freezes the objects left for the exit
+The installed command runs :func:`screwkit.interface.cli.console`, which freezes the objects left for the exit
 (the collector's passes over numpy's, sympy's and networkx's objects at shutdown, ≈ 0.1–0.15 s, are
 skipped); ``--source`` runs ``main`` and exits as Python does, so the two show what that saves. A
-console script generated before the entry point became ``screwkit.cli:console`` still calls
+console script generated before the entry point became ``screwkit.interface.cli:console`` still calls
 ``main``: the header then says to reinstall.
 
 Per robot: the minimum and median wall time, the median CPU time (user + system of the child),
@@ -44,12 +44,12 @@ def environment():
     return env
 
 
-#: Runs ``screwkit.cli.main`` from the checkout given as the first argument, ahead of any install
+#: Runs ``screwkit.interface.cli.main`` from the checkout given as the first argument, ahead of any install
 #: (the catalog folder ``mechanisms/`` of the checkout serves as ``screwkit.mechanisms``).
 LAUNCHER = (
     "import sys; sys.meta_path[:] = [f for f in sys.meta_path if 'editable' not in repr(f)]; "
     "root = sys.argv.pop(1); sys.path.insert(0, root); import screwkit; screwkit.__path__.append(root); "
-    "from screwkit.cli import main; sys.exit(main(sys.argv[1:]))"
+    "from screwkit.interface.cli import main; sys.exit(main(sys.argv[1:]))"
 )
 
 
@@ -98,7 +98,8 @@ def main(argv=None):
     print(f"command: {' '.join(cli)} analyze NAME; {args.repeats} interleaved fresh processes each, "
           f"single-threaded BLAS; {load()}")
     if stale(cli):
-        print("note: this console script calls screwkit.cli:main (generated before the console entry "
+        print("note: this console script calls screwkit.interface.cli:main (generated before the "
+              "console entry "
               "point): reinstall (pip install -e .) to time the command as shipped")
     for arguments in jobs.values():  # bytecode caches written, files in the page cache
         timed(arguments)

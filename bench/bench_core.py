@@ -16,11 +16,11 @@ Figures (the issue's targets in brackets):
   timed), in poses/s;
 * ``verdicts``: :func:`verdicts` over the same poses, chunked (``CHUNK`` poses per call), rate and
   the ratio to the SVD's rate [≥ 0.2]. The labels and orders only: the closeness measures are
-  computed when asked (:attr:`screwkit.wrenches.WrenchAnalysis.closeness`), so ``+ closeness``
+  computed when asked (:attr:`screwkit.core.wrenches.WrenchAnalysis.closeness`), so ``+ closeness``
   gives the rate and ratio of :func:`verdicts` with the report's ``closeness`` asked too;
 * memory: ``tracemalloc`` peak of one chunk's :func:`verdicts` / ``CHUNK``, KiB per pose [≤ 3];
 * with ``--breakdown``: where a pose's time goes (:func:`breakdown`, 10⁴ poses in the core's own
-  chunks of ``screwkit.posed.CHUNK``, CPU time, best of 7);
+  chunks of ``screwkit.robots.posed.CHUNK``, CPU time, best of 7);
 * import: CPU time (user + sys of the child, ``resource.getrusage(RUSAGE_CHILDREN)`` deltas) of
   ``python -c "import screwkit"`` against ``python -c "import numpy, networkx"`` in fresh
   subprocesses run in turn, each from its bytecode cache (:func:`child_cpu`), min and median over
@@ -46,7 +46,7 @@ from _timing import best_of  # noqa: E402  (bench/ is the script folder)
 
 import screwkit as sk  # noqa: E402
 from screwkit import _frames, posed, wrenches  # noqa: E402
-from screwkit.families.four_limb import PAPER_002_LEGS, reachable  # noqa: E402
+from screwkit.robots.families.four_limb import PAPER_002_LEGS, reachable  # noqa: E402
 
 CHUNK = 10_000
 

@@ -1,6 +1,6 @@
 """Time the wrench-diagram search: every catalog robot (generic workspace poses drawn and analysed as
 one batch, the diagram chosen there and placed at the default pose) and twist graphs (generic
-configurations reached by moving the mechanism and closing its loops, screwkit.motion).
+configurations reached by moving the mechanism and closing its loops, screwkit.core.motion).
 
 Run as ``python bench/bench_diagram.py``.
 """
@@ -8,10 +8,10 @@ Run as ``python bench/bench_diagram.py``.
 import numpy as np
 from _timing import best_of
 
-from screwkit.catalog import load_mechanism
-from screwkit.diagram import graph_diagram
-from screwkit.motion import generic_configurations
-from screwkit.wrenches import wrench_analysis
+from screwkit.core.motion import generic_configurations
+from screwkit.core.wrenches import wrench_analysis
+from screwkit.gca.diagram import graph_diagram
+from screwkit.robots.catalog import load_mechanism
 
 NAMES = ("h4", "v4", "quattro", "veloce", "ragnar", "mcgill_smg", "peppermill", "planar_3rrp")
 

@@ -5,12 +5,12 @@ Run: ``python bench/bench_gca.py [--repeats 3]`` from the repository root. Not a
 Two groups:
 
 * the catalog robots: ``Mechanism.wrench_diagram()`` (diagram and sampler) and the 12
-  configurations its sampler draws ("sampling"), then :func:`screwkit.diagram.superbracket_analysis`
+  configurations its sampler draws ("sampling"), then :func:`screwkit.gca.diagram.superbracket_analysis`
   on those configurations ("GCA": ordering search, expansion, zeros, factoring, statements, exact
   proofs, labels);
 * diagrams built from their points (gca level): the H4 of paper 002, Tsai's 3-UPU, the 3-RPS, the
   octahedral 3-3 and a general 6-6 Gough–Stewart: :func:`screwkit.gca.simplify_superbracket` then
-  :func:`screwkit.conditions.conditions` with the lines' roles.
+  :func:`screwkit.gca.conditions.conditions` with the lines' roles.
 
 The first call of a process pays for imports (sympy is imported on the first condition); the
 figure reported is the best of the repeats after one warm-up call.
@@ -27,10 +27,10 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from _timing import best_of
 
-from screwkit.catalog import list_mechanisms, load_mechanism
-from screwkit.conditions import conditions
-from screwkit.diagram import superbracket_analysis
 from screwkit.gca import simplify_superbracket
+from screwkit.gca.conditions import conditions
+from screwkit.gca.diagram import superbracket_analysis
+from screwkit.robots.catalog import list_mechanisms, load_mechanism
 
 Z = np.array([0.0, 0.0, 1.0])
 

@@ -17,10 +17,10 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from screwkit import _symbolic
-from screwkit.generic import generic_analysis
-from screwkit.twistgraph import platform_twist_system
-from screwkit.wrenches import wrench_analysis
+from screwkit.algebra import _symbolic as _symbolic
+from screwkit.core.generic import generic_analysis
+from screwkit.core.wrenches import wrench_analysis
+from screwkit.graphs.twistgraph import platform_twist_system
 from tests.test_generic import delta_3ruu, four_limb_smg, fully_symbolic_h4, numeric_values
 
 

@@ -7,9 +7,9 @@ Run: python bench/bench_h4.py  (prints figures for the README; not a test).
 import numpy as np
 from _timing import best_of
 
-from screwkit.catalog import load_mechanism
-from screwkit.families.four_limb import joints, reachable
-from screwkit.singularity import classify, classify_table
+from screwkit.core.singularity import classify, classify_table
+from screwkit.robots.catalog import load_mechanism
+from screwkit.robots.families.four_limb import joints, reachable
 
 
 def main():

@@ -8,10 +8,10 @@ own line order, and the best of the 46,080 orderings with its search) are timed 
 
 import time
 
-from screwkit import diagram as diagram_module
-from screwkit.catalog import load_mechanism
-from screwkit.diagram import superbracket_analysis
-from screwkit.report import analyze
+from screwkit.gca import diagram as diagram_module
+from screwkit.gca.diagram import superbracket_analysis
+from screwkit.interface.report import analyze
+from screwkit.robots.catalog import load_mechanism
 
 #: Wall seconds of each simplify_superbracket call, by its `search` argument
 SIMPLIFICATIONS: dict[bool, list[float]] = {False: [], True: []}

@@ -1,4 +1,4 @@
-"""Speed and memory of workspace maps against the core they run through (screwkit.workspace).
+"""Speed and memory of workspace maps against the core they run through (screwkit.analysis.workspace).
 
 Run: ``python bench/bench_workspace.py [--side 1000] [--chunk 4096] [--repeats 3]`` from the
 repository root (prints a table; not a test). Single-threaded BLAS.
@@ -7,8 +7,8 @@ Figures (rates in poses per second of this process's CPU time, best of ``--repea
 machine is shared; the load average is printed beside them):
 
 * ``core``: ``h4.at(poses).singularities`` over 10,000 poses of the catalog box, chunked by the
-  core itself (:func:`screwkit.singularity.classify_chunks`), poses/s;
-* ``verdict map``, ``closeness map``: :func:`screwkit.workspace.grid_map` of ``"verdict"`` and
+  core itself (:func:`screwkit.core.singularity.classify_chunks`), poses/s;
+* ``verdict map``, ``closeness map``: :func:`screwkit.analysis.workspace.grid_map` of ``"verdict"`` and
   ``"closeness"`` over a 100 × 100 grid of the same box (z × phi at x = y = 0, plus
   reachability), poses/s and the ratio to ``core``;
 * ``condition:0 / :1 map``: the same grid for the superbracket's two factors (paper 002 Eqs. 6, 7):
@@ -20,9 +20,9 @@ machine is shared; the load average is printed beside them):
   and a ``side × side`` verdict map (default 1000 × 1000 = 10⁶ poses) in chunks of ``--chunk``
   poses: wall time, poses/s of CPU time, and the process's peak resident memory (``ru_maxrss``)
   before and after each, which the chunks bound (the map's own arrays are 9 bytes per pose);
-* ``path``: :func:`screwkit.workspace.check_path` of a 200-sample path across paper 002's actuation
+* ``path``: :func:`screwkit.analysis.workspace.check_path` of a 200-sample path across paper 002's actuation
   surface (the first crossing refined to ~1e-16 in the path parameter), seconds;
-* ``loci``: :func:`screwkit.workspace.loci` of a 30 × 30 slice through all three surfaces, seconds.
+* ``loci``: :func:`screwkit.analysis.workspace.loci` of a 30 × 30 slice through all three surfaces, seconds.
 """
 
 import os
@@ -39,7 +39,7 @@ from _timing import best_of  # noqa: E402  (bench/ is the script folder)
 
 import screwkit as sk  # noqa: E402
 from screwkit import workspace as W  # noqa: E402
-from screwkit.diagram import diagram_points  # noqa: E402
+from screwkit.gca.diagram import diagram_points  # noqa: E402
 
 
 def poses_of(posed):

@@ -1,1 +1,1 @@
-"""The catalog: one TOML file per robot (see :mod:`screwkit.catalog`), shipped as package data."""
+"""The catalog: one TOML file per robot (see :mod:`screwkit.robots.catalog`), shipped as package data."""

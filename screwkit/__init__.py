@@ -1,7 +1,7 @@
 """screwkit: singularities of parallel robots with screw theory and Grassmann–Cayley algebra.
 
 The public API, along the data flow of the design (screws → screw systems → projective geometry →
-twist graphs → wrench systems → labels and conditions). Conventions: :mod:`screwkit.screw`.
+twist graphs → wrench systems → labels and conditions). Conventions: :mod:`screwkit.algebra.screw`.
 
 Examples
 --------
@@ -14,6 +14,10 @@ Examples
 from pkgutil import extend_path
 from typing import Any
 
+from .algebra.screw import Screw, reciprocal_product
+from .algebra.screwsystem import ScrewSystem, motion_type
+from .core.singularity import SingularityReport, classify, classify_poses, classify_table
+from .core.wrenches import WrenchAnalysis, analyze_table, wrench_analysis
 from .exceptions import (
     CatalogError,
     DegenerateGeometryError,
@@ -24,7 +28,7 @@ from .exceptions import (
     TwistGraphError,
     UnreachablePoseError,
 )
-from .joints import (
+from .graphs.joints import (
     Joint,
     JointTable,
     cylindrical,
@@ -36,10 +40,7 @@ from .joints import (
     universal,
     virtual,
 )
-from .screw import Screw, reciprocal_product
-from .screwsystem import ScrewSystem, motion_type
-from .singularity import SingularityReport, classify, classify_poses, classify_table
-from .twistgraph import (
+from .graphs.twistgraph import (
     equivalent_twist_graph,
     fundamental_loops,
     loop_closure_matrix,
@@ -47,19 +48,18 @@ from .twistgraph import (
     series_parallel_tree,
     twist_graph,
 )
-from .wrenches import WrenchAnalysis, analyze_table, wrench_analysis
 
 #: Names loaded on first use (the catalog and its families, the generic analysis, the projective
 #: helpers, the Jacobians, the composer and its report are not a cost of ``import screwkit``; PEP 562).
 _LAZY = {
-    "Mechanism": "catalog",
-    "list_mechanisms": "catalog",
-    "load_mechanism": "catalog",
-    "load_snapshot": "catalog",
-    "Family": "families",
-    "register": "families",
-    "GenericAnalysis": "generic",
-    "generic_analysis": "generic",
+    "Mechanism": "robots.catalog",
+    "list_mechanisms": "robots.catalog",
+    "load_mechanism": "robots.catalog",
+    "load_snapshot": "robots.catalog",
+    "Family": "robots.families",
+    "register": "robots.families",
+    "GenericAnalysis": "core.generic",
+    "generic_analysis": "core.generic",
     **dict.fromkeys(
         (
             "are_collinear",
@@ -77,41 +77,41 @@ _LAZY = {
             "plane_through",
             "point_on_line",
         ),
-        "projective",
+        "algebra.projective",
     ),
-    "WrenchJacobians": "jacobians",
-    "jacobians_from_wrenches": "jacobians",
-    "schoenflies_basis": "jacobians",
-    "Pose": "posed",
-    "PosedMechanism": "posed",
-    "AnalysisReport": "report",
-    "analyze": "report",
-    "graph_dot": "export",
-    "graph_json": "export",
-    "save_snapshot": "export",
-    "snapshot_text": "export",
-    "WrenchDiagram": "diagram",
-    "wrench_diagram": "diagram",
-    "diagram_at": "diagram",
-    "SuperbracketAnalysis": "diagram",
-    "superbracket_analysis": "diagram",
-    "TransmissionIndices": "indices",
-    "transmission": "indices",
-    "index_extremes": "indices",
-    "wrench_transmission": "indices",
-    "actuation_singularity_surface": "indices",
+    "WrenchJacobians": "core.jacobians",
+    "jacobians_from_wrenches": "core.jacobians",
+    "schoenflies_basis": "core.jacobians",
+    "Pose": "robots.posed",
+    "PosedMechanism": "robots.posed",
+    "AnalysisReport": "interface.report",
+    "analyze": "interface.report",
+    "graph_dot": "interface.export",
+    "graph_json": "interface.export",
+    "save_snapshot": "interface.export",
+    "snapshot_text": "interface.export",
+    "WrenchDiagram": "gca.diagram",
+    "wrench_diagram": "gca.diagram",
+    "diagram_at": "gca.diagram",
+    "SuperbracketAnalysis": "gca.diagram",
+    "superbracket_analysis": "gca.diagram",
+    "TransmissionIndices": "analysis.indices",
+    "transmission": "analysis.indices",
+    "index_extremes": "analysis.indices",
+    "wrench_transmission": "analysis.indices",
+    "actuation_singularity_surface": "analysis.indices",
 }
 
 
 #: Submodules loaded on first use (``sk.workspace.grid_map``).
-_LAZY_MODULES = ("workspace",)
+_LAZY_MODULES = {"workspace": "analysis.workspace"}
 
 
 def __getattr__(name: str) -> Any:
     if name in _LAZY_MODULES:
         import importlib
 
-        return importlib.import_module(f".{name}", __name__)
+        return importlib.import_module(f".{_LAZY_MODULES[name]}", __name__)
     if name in _LAZY:
         import importlib
 

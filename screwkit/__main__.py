@@ -1,7 +1,7 @@
-"""``python -m screwkit``: the command-line interface (:mod:`screwkit.cli`)."""
+"""``python -m screwkit``: the command-line interface (:mod:`screwkit.interface.cli`)."""
 
 import sys
 
-from .cli import console
+from .interface.cli import console
 
 sys.exit(console())

@@ -28,20 +28,20 @@ from typing import Any
 import numpy as np
 import pytest
 
-from screwkit import screw as S
-from screwkit.families.four_limb import (
-    inverse_kinematics,
-    joints,
-    reachable,
-)
-from screwkit.indices import (
+from screwkit.algebra import screw as S
+from screwkit.analysis.indices import (
     force_pressure_angle,
     four_limb_jacobians,
     motion_pressure_angles,
     transmission_indices,
 )
-from screwkit.singularity import classify_table
-from screwkit.wrenches import wrench_analysis
+from screwkit.core.singularity import classify_table
+from screwkit.core.wrenches import wrench_analysis
+from screwkit.robots.families.four_limb import (
+    inverse_kinematics,
+    joints,
+    reachable,
+)
 
 from .paper_004 import spiral_trajectory
 
@@ -84,7 +84,7 @@ def random_configuration(mechanism, count: int, seed: int = SEED):
 
 
 def batch_labels(config) -> list[tuple[str, ...]]:
-    """Labels of :func:`screwkit.singularity.classify_table` over a batched configuration (vectorized)."""
+    """Labels of :func:`screwkit.core.singularity.classify_table` over a batched configuration (vectorized)."""
     return classify_table(joints(config)).labels.ravel().tolist()
 
 

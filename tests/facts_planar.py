@@ -11,16 +11,16 @@ from functools import lru_cache
 
 import numpy as np
 
-from screwkit import screw as S
-from screwkit.catalog import load_mechanism
-from screwkit.diagram import diagram_points, superbracket_analysis
-from screwkit.families.planar_3rrp import (
+from screwkit.algebra import screw as S
+from screwkit.core.singularity import classify_table
+from screwkit.core.wrenches import wrench_analysis
+from screwkit.gca.diagram import diagram_points, superbracket_analysis
+from screwkit.robots.catalog import load_mechanism
+from screwkit.robots.families.planar_3rrp import (
     WORKING_MODES,
     Planar3RRPConfiguration,
     joints,
 )
-from screwkit.singularity import classify_table
-from screwkit.wrenches import wrench_analysis
 
 from .paper_003 import classify, jacobians
 

@@ -23,13 +23,13 @@ from typing import Any
 
 import numpy as np
 
-from screwkit.catalog import load_mechanism
-from screwkit.diagram import diagram_points, superbracket_analysis
-from screwkit.families import mcgill_smg as smg
-from screwkit.families import peppermill as pm
-from screwkit.jacobians import gosselin_angeles_label
-from screwkit.singularity import classify as classify_graph
-from screwkit.wrenches import wrench_analysis
+from screwkit.core.jacobians import gosselin_angeles_label
+from screwkit.core.singularity import classify as classify_graph
+from screwkit.core.wrenches import wrench_analysis
+from screwkit.gca.diagram import diagram_points, superbracket_analysis
+from screwkit.robots.catalog import load_mechanism
+from screwkit.robots.families import mcgill_smg as smg
+from screwkit.robots.families import peppermill as pm
 
 from . import paper_000, paper_001
 from .two_limb_papers import bisect_segment
@@ -144,7 +144,7 @@ def singular_configs(mechanism: Any) -> dict[str, Any]:
 
 
 def family_module(mechanism: Any) -> Any:
-    """The robot model: :mod:`screwkit.families.mcgill_smg` or :mod:`screwkit.families.peppermill`."""
+    """The robot model: :mod:`screwkit.robots.families.mcgill_smg` or :mod:`screwkit.robots.families.peppermill`."""
     return {"mcgill_smg": smg, "peppermill": pm}[mechanism.family]
 
 
@@ -273,7 +273,7 @@ def check_fig_7(mechanism: Any, fact: dict[str, Any]) -> tuple[Any, Any]:
 
 
 # --------------------------------------------------------------------------------------------------
-# Superbracket (screwkit.report.analyze)
+# Superbracket (screwkit.interface.report.analyze)
 # --------------------------------------------------------------------------------------------------
 
 

@@ -10,9 +10,9 @@ import itertools
 import networkx as nx
 import numpy as np
 
-from screwkit import screw as S
-from screwkit.joints import Joint, cylindrical, helical, prismatic, revolute, spherical, universal
-from screwkit.twistgraph import twist_graph
+from screwkit.algebra import screw as S
+from screwkit.graphs.joints import Joint, cylindrical, helical, prismatic, revolute, spherical, universal
+from screwkit.graphs.twistgraph import twist_graph
 
 Z = np.array([0.0, 0.0, 1.0])
 

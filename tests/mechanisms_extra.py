@@ -8,8 +8,8 @@ and solves its own closed-form inverse kinematics where the mechanism needs it.
 
 import numpy as np
 
-from screwkit.joints import prismatic, revolute, spherical
-from screwkit.twistgraph import twist_graph
+from screwkit.graphs.joints import prismatic, revolute, spherical
+from screwkit.graphs.twistgraph import twist_graph
 
 from . import mechanisms as M
 

@@ -3,11 +3,11 @@
 Source: paper 000 (Harada & Angeles, "Kinematics and singularity analysis of a CRRHHRRC parallel
 Schönflies motion generator", CSME Trans. 38(2), 2014), file
 ``/work/shared/papers/000_15d9b0a17feae437.txt``. The robot model (parameters, inverse and forward
-kinematics, joints, twist basis) is :mod:`screwkit.families.peppermill`; this module holds what only
+kinematics, joints, twist basis) is :mod:`screwkit.robots.families.peppermill`; this module holds what only
 serves to check the paper (``tests/test_families_peppermill.py``, ``tests/test_two_limb_catalog.py``,
 ``tests/test_paper_jacobians.py``, ``tests/facts_two_limb.py``): Eqs. (44)-(48), the factors of
 ``det A`` and ``det B``, the Gosselin-Angeles type from them
-(:func:`screwkit.jacobians.classify_jacobians`) and a root search for second-kind singularities.
+(:func:`screwkit.core.jacobians.classify_jacobians`) and a root search for second-kind singularities.
 
 Where paper 000 is garbled or wrong about its Jacobians (each item is demonstrated in the tests)
 -----------------------------------------------------------------------------------------------
@@ -24,7 +24,7 @@ Where paper 000 is garbled or wrong about its Jacobians (each item is demonstrat
 
 Examples
 --------
->>> from screwkit.families.peppermill import PeppermillParameters, inverse_kinematics
+>>> from screwkit.robots.families.peppermill import PeppermillParameters, inverse_kinematics
 >>> mill = PeppermillParameters(r1=250.0, r2=250.0, l1=400.0, l2=400.0, b0=50.0, p1=40.0, p2=-40.0)
 >>> classify(inverse_kinematics(mill, [30.0, -20.0, -450.0, 0.5])).label.tolist()
 'regular'
@@ -37,15 +37,15 @@ from typing import Any
 
 import numpy as np
 
-from screwkit._backend import DEFAULT_RTOL, checked_length_scale
-from screwkit.families._two_limb import checked_mode, frozen
-from screwkit.families.peppermill import (
+from screwkit.algebra.backend import DEFAULT_RTOL, checked_length_scale
+from screwkit.core.jacobians import JacobianClassification, classify_jacobians
+from screwkit.robots.families.peppermill import (
     DEFAULT_MODE,
     PeppermillConfiguration,
     PeppermillParameters,
     inverse_kinematics,
 )
-from screwkit.jacobians import JacobianClassification, classify_jacobians
+from screwkit.robots.families.two_limb import checked_mode, frozen
 
 from .two_limb_papers import Jacobians, bisect_segment
 

@@ -3,11 +3,11 @@
 Source: paper 001 (Angeles, Caro, Khan, Morozov, "Kinetostatic design of an innovative
 Schönflies-motion generator", Proc. IMechE C 220(7), 2006), file
 ``/work/shared/papers/001_92cd67fab518f4bc.txt``. The robot model (parameters, inverse and forward
-kinematics, joints, twist basis) is :mod:`screwkit.families.mcgill_smg`; this module holds what
+kinematics, joints, twist basis) is :mod:`screwkit.robots.families.mcgill_smg`; this module holds what
 only serves to check the paper (``tests/test_families_mcgill_smg.py``,
 ``tests/test_two_limb_catalog.py``, ``tests/test_paper_jacobians.py``, ``tests/facts_two_limb.py``):
 Eqs. (16)-(19), the singularity factors of Eqs. (20)-(24), the Gosselin-Angeles type from them
-(:func:`screwkit.jacobians.classify_jacobians`) and a root search for parallel singularities.
+(:func:`screwkit.core.jacobians.classify_jacobians`) and a root search for parallel singularities.
 
 Where paper 001 is garbled or wrong (each item is demonstrated in the tests)
 ---------------------------------------------------------------------------
@@ -36,7 +36,7 @@ Where paper 001 is garbled or wrong (each item is demonstrated in the tests)
 Examples
 --------
 >>> import numpy as np
->>> from screwkit.families.mcgill_smg import McGillParameters, inverse_kinematics
+>>> from screwkit.robots.families.mcgill_smg import McGillParameters, inverse_kinematics
 >>> smg = McGillParameters(l0=600.0, l1=100.0, l2=600.0, l3=200.0 * np.sqrt(2), radius=200.0,
 ...     b4=-50.0, b5=-50.0, proximal_width=80.0, distal_width=60.0)
 >>> classify(inverse_kinematics(smg, [0.0, 0.0, -600.0, 0.0])).label.tolist()
@@ -50,15 +50,15 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from screwkit._backend import DEFAULT_RTOL, checked_length_scale
-from screwkit.families._two_limb import checked_mode, frozen
-from screwkit.families.mcgill_smg import (
+from screwkit.algebra.backend import DEFAULT_RTOL, checked_length_scale
+from screwkit.core.jacobians import JacobianClassification, classify_jacobians
+from screwkit.robots.families.mcgill_smg import (
     DEFAULT_MODE,
     McGillConfiguration,
     McGillParameters,
     inverse_kinematics,
 )
-from screwkit.jacobians import JacobianClassification, classify_jacobians
+from screwkit.robots.families.two_limb import checked_mode, frozen
 
 from .two_limb_papers import Jacobians, bisect_segment
 
@@ -220,7 +220,7 @@ def classify(
     """Gosselin-Angeles type of each configuration: serial (``B``), parallel (``A``), combined.
 
     The closeness of each matrix is ``σ_min/σ_max`` of the dimensionless ``A`` or ``B`` of
-    :func:`jacobians` (:func:`screwkit.jacobians.classify_jacobians`): it does not depend on the
+    :func:`jacobians` (:func:`screwkit.core.jacobians.classify_jacobians`): it does not depend on the
     unit of length or on a rigid motion of the base frame. ``B``'s closeness does not depend on ``L``
     either (all its entries scale as ``1/L²``); ``A``'s does (its first column carries ``R/L``).
 

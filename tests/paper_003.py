@@ -4,7 +4,7 @@ singularity classification, beside the tests that check them.
 Source: paper 003 (S. Zarkandi, "A study of the instantaneous centers of rotation in singularities of
 3-DOF fully parallel planar manipulators"), file ``/work/shared/papers/003_37bb0c9b229f0566.txt``;
 equation numbers are that paper's. The robot model (parameters, kinematics, joint table) is
-:mod:`screwkit.families.planar_3rrp`; screwkit analyses its joint table with the wrench systems,
+:mod:`screwkit.robots.families.planar_3rrp`; screwkit analyses its joint table with the wrench systems,
 and the tests compare the two (``tests/test_planar_catalog.py``, ``tests/facts_planar.py``,
 ``tests/test_paper_jacobians.py``). These functions are computed without screw systems, from the
 paper's formulas, so that the comparison is independent.
@@ -32,7 +32,7 @@ coordinates
   ``D``, then ``C_18 = D`` with the actuators locked) or parallel (impossible here, Sec. 4.2).
 
 Where paper 003 is garbled or wrong (each is checked in ``tests/test_families_planar_3rrp.py``; item 6,
-about the model, is in :mod:`screwkit.families.planar_3rrp`)
+about the model, is in :mod:`screwkit.robots.families.planar_3rrp`)
 -------------------------------------------------------------------------------------------------------
 1. Eqs. (7a), (11a): the OCR prints ``C_li``; it is ``C_1i`` (the actuated joint on link 1, Eq. 12).
 2. Eq. (3): ``t ≡ X`` lost its dot, ``t = Ẋ`` with ``X = (φ, C)``; finite differences of the IK
@@ -66,9 +66,9 @@ from typing import Any, Literal
 
 import numpy as np
 
-from screwkit._backend import DEFAULT_RTOL, as_array, checked_rtol
+from screwkit.algebra.backend import DEFAULT_RTOL, as_array, checked_rtol
 from screwkit.exceptions import DegenerateGeometryError, ScrewkitValueError
-from screwkit.families.planar_3rrp import (
+from screwkit.robots.families.planar_3rrp import (
     EXAMPLE_PARAMETERS,  # noqa: F401 (the doctests use it)
     JOINT_PAIRS,
     Planar3RRPConfiguration,

@@ -1,4 +1,4 @@
-"""Tests of screwkit._backend: promotion, rank decisions, unit invariance, errors."""
+"""Tests of screwkit.algebra.backend: promotion, rank decisions, unit invariance, errors."""
 
 import warnings
 
@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 import sympy
 
-from screwkit import _backend as B
+from screwkit.algebra import backend as B
 from screwkit.exceptions import ScrewkitTypeError, ScrewkitValueError
 
 
@@ -138,8 +138,7 @@ def test_is_exactly_zero_proves_non_zero_at_a_point_without_simplifying(monkeypa
     assert B.is_exactly_zero(sympy.sin(x) ** 2 + sympy.cos(x) ** 2 - 1) and calls
     assert not B.is_exactly_zero(sympy.sqrt(x**2 + 1) - x)  # not rational at the point: simplify decides
     # one-off decisions do not grow the random point's cache (a long session makes many)
-    from screwkit import _symbolic
-
+    from screwkit.algebra import _symbolic as _symbolic
     z = sympy.Symbol("z_cache")
     point = _symbolic.generic_point(np.array([z], dtype=object))
     before = len(point._cache)

@@ -18,17 +18,7 @@ import numpy as np
 import pytest
 
 import screwkit as sk
-from screwkit import catalog
-from screwkit.catalog import (
-    MAX_FILE_BYTES,
-    MAX_JOINTS,
-    load_mechanism,
-    load_snapshot,
-    load_toml,
-    mechanism_from_mapping,
-    snapshot_from_mapping,
-)
-from screwkit.cli import main
+from screwkit.core.jacobians import classify_jacobians
 from screwkit.exceptions import (
     CatalogError,
     DegenerateGeometryError,
@@ -39,7 +29,17 @@ from screwkit.exceptions import (
     TwistGraphError,
     UnreachablePoseError,
 )
-from screwkit.jacobians import classify_jacobians
+from screwkit.interface.cli import main
+from screwkit.robots import catalog
+from screwkit.robots.catalog import (
+    MAX_FILE_BYTES,
+    MAX_JOINTS,
+    load_mechanism,
+    load_snapshot,
+    load_toml,
+    mechanism_from_mapping,
+    snapshot_from_mapping,
+)
 from tests.toml_text import toml_text
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -521,7 +521,7 @@ API_CASES = [
     (lambda: sk.meet_planes([1, 2, 3, 4], [1, 2, 3, 4]), DegenerateGeometryError, r"Expected `first` and `second` to be distinct planes"),
     (lambda: sk.reciprocal_product("a", "b"), ScrewkitTypeError, r"Expected `a` to be numeric, got the string 'a'"),
     (lambda: sk.reciprocal_product([1] * 6, [1] * 5), ScrewkitValueError, r"Expected `b` to have shape \(\.\.\., 6\), got \(5,\)"),
-    (lambda: sk.register(5), ScrewkitTypeError, r"Expected `family` to be a screwkit\.families\.Family, got int"),
+    (lambda: sk.register(5), ScrewkitTypeError, r"Expected `family` to be a screwkit\.robots\.families\.Family, got int"),
     (lambda: catalog.check_dof(sk.twist_graph("B", "E", [("B", "E", _R), ("B", "E", sk.prismatic("P", [0, 0, 1], actuated=True))], dof=1)), TwistGraphError, r"Expected `dof` to be at least the number of actuated joints \(2: P, R\), got dof = 1"),
     # the API-side adversarial pass (issue 11): integers beyond every float, wrong types to the diagram layer
     (lambda: sk.revolute("R", [0, 0, 10**400], [0, 0, 0]), ScrewkitValueError, r"Expected `direction` to hold finite numbers, got an integer too large for a float"),
@@ -529,7 +529,7 @@ API_CASES = [
     (lambda: sk.join([10**400, 0, 0, 1], [0, 0, 0, 1]), ScrewkitValueError, r"Expected `p` to hold finite numbers, got an integer too large"),
     (lambda: sk.motion_type([[10**400] * 6]), ScrewkitValueError, r"got an integer too large for a float"),
     (lambda: sk.helical("H", [0, 0, 1], [0, 0, 0], [1, 2, 3]), ScrewkitValueError, r"Expected `pitch` to be one number \(the joint's pitch\), got shape \(3,\)"),
-    (lambda: sk.screw.helical_twist([[0, 0, 1], [1, 0, 0]], [0, 0, 0], [1.0, 2.0, 3.0]), ScrewkitValueError, r"Expected `pitch` of a shape broadcastable to the axes' batch \(2,\), got \(3,\)"),
+    (lambda: sk.algebra.screw.helical_twist([[0, 0, 1], [1, 0, 0]], [0, 0, 0], [1.0, 2.0, 3.0]), ScrewkitValueError, r"Expected `pitch` of a shape broadcastable to the axes' batch \(2,\), got \(3,\)"),
     (lambda: sk.wrench_diagram(5), ScrewkitTypeError, r"Expected `analysis` to be a WrenchAnalysis, got int"),
     (lambda: sk.wrench_diagram(_G), ScrewkitTypeError, r"Expected `analysis` to be a WrenchAnalysis, got MultiDiGraph"),
     (lambda: sk.diagram_at(None, sk.wrench_analysis(_G)), ScrewkitTypeError, r"Expected `reference` to be a WrenchDiagram, got NoneType"),
@@ -554,7 +554,7 @@ API_CASES = [
     (lambda: sk.workspace.grid_map(_h4(), "verdict", x=("phi", -1e5, 1e5, 3), y=("z", -900, -700, 2)), ScrewkitValueError, r"Expected the angle `phi` of `x` to be at most 17453\.3 rad in magnitude, got 100000"),
     (lambda: sk.workspace.grid_map(_h4(), "verdict", x=("x", -9, 9, 2), y=("z", -900, -700, 2), fixed={"phi": 2e6}, angles="deg"), ScrewkitValueError, r"Expected the angle `phi` of `fixed` to be at most 1e\+06 degrees in magnitude, got 2e\+06"),
     (lambda: sk.workspace.check_path(_h4(), {"phi": 0.0}, [0, 0, -750, 1e5]), ScrewkitValueError, r"Expected the angle `phi` of `end` to be at most 17453\.3 rad"),
-    # dof against the mechanism's mobility at generic configurations (screwkit.motion.resolve_dof)
+    # dof against the mechanism's mobility at generic configurations (screwkit.core.motion.resolve_dof)
     (lambda: sk.analyze(sk.twist_graph("B", "E", [("B", "E", _R)], dof=2)), TwistGraphError, r"Expected `dof` to equal the mechanism's mobility, 1 \(.*\), got dof = 2; 1 actuated joint\(s\): R\."),
     (lambda: sk.classify(_G, dof=3), TwistGraphError, r"Expected `dof` to equal the mechanism's mobility, 1 \(.*\), got dof = 3; 1 actuated joint\(s\): R\."),
     (lambda: sk.classify(_G, dof=0), TwistGraphError, r"mobility, 1 .*got dof = 0"),
@@ -698,8 +698,8 @@ def test_huge_degrees_at_the_cli_are_refused_and_whole_turns_kept(capsys):
 
 def test_tiny_and_huge_axes_keep_their_pitch_and_axis():
     assert sk.Screw([1e-170, 0, 0, 1e-170, 0, 1e-170]).to_dict()["point"] == [0.0, -1.0, 0.0]
-    assert float(sk.screw.pitch(np.array([1e-170, 0, 0, 2e-170, 0, 0]))) == 2.0
-    assert float(sk.screw.pitch(np.array([1e200, 0, 0, 3e200, 0, 0]))) == 3.0
+    assert float(sk.algebra.screw.pitch(np.array([1e-170, 0, 0, 2e-170, 0, 0]))) == 2.0
+    assert float(sk.algebra.screw.pitch(np.array([1e200, 0, 0, 3e200, 0, 0]))) == 3.0
     tiny = changed(SNAPSHOT, joint_setter(0, "axis", [0.0, 0.0, 1e-170]))
     assert sk.classify(snapshot_from_mapping(tiny)).labels == sk.classify(snapshot_from_mapping(SNAPSHOT)).labels
 
@@ -755,7 +755,7 @@ FOUR_LIMB_ROBOTS = ("h4", "quattro", "veloce", "ragnar", "v4")
 
 @pytest.mark.parametrize("name", FOUR_LIMB_ROBOTS)
 def test_a_four_limb_leg_stretched_exactly_to_its_reach_is_a_serial_singularity(name):
-    from screwkit.families.four_limb import inverse_kinematics, reachable
+    from screwkit.robots.families.four_limb import inverse_kinematics, reachable
 
     mechanism = load_mechanism(name)
     params = mechanism.parameters
@@ -789,8 +789,8 @@ def test_large_factors_are_checked_at_integer_points_not_expanded(monkeypatch):
     # minutes on a general Gough-Stewart factor
     import sympy
 
-    from screwkit import conditions as C
     from screwkit.gca import DottedMonomial
+    from screwkit.gca import conditions as C
 
     def refuse(*args, **kwargs):
         raise AssertionError("sympy.expand called")

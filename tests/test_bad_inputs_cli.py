@@ -2,7 +2,7 @@
 ``screwkit`` as a new user: malformed snapshot and catalog files, every subcommand and option with bad
 numbers, pathological grids and unwritable outputs, and outputs that cannot be encoded or written.
 
-Every case runs ``screwkit.cli.main`` in-process and asserts the exit status (2 usage, 1 analysis),
+Every case runs ``screwkit.interface.cli.main`` in-process and asserts the exit status (2 usage, 1 analysis),
 one line on stderr naming the file, table, joint or argument with what was expected and what was
 got, no traceback, and no NaN or infinity in what is printed. The cases of the first lists failed
 before the fix they guard (a traceback, a hang, a silent answer or a NaN); ``TRIAL_CASES`` keeps
@@ -23,9 +23,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from screwkit.catalog import MAX_JOINTS, MAX_LOOPS, load_toml, snapshot_from_mapping
-from screwkit.cli import MAX_MAP_POSES, MAX_PATH_SAMPLES, main
 from screwkit.exceptions import CatalogError
+from screwkit.interface.cli import MAX_MAP_POSES, MAX_PATH_SAMPLES, main
+from screwkit.robots.catalog import MAX_JOINTS, MAX_LOOPS, load_toml, snapshot_from_mapping
 from tests.toml_text import toml_text
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -133,7 +133,7 @@ def test_snapshot_files_at_the_cli(tmp_path, capsys, change, pattern):
 
 def test_size_caps_leave_room_for_the_catalog_robots():
     from screwkit import load_mechanism
-    from screwkit.catalog import list_mechanisms
+    from screwkit.robots.catalog import list_mechanisms
 
     for name in list_mechanisms():
         graph = load_mechanism(name).twist_graph()
@@ -428,11 +428,11 @@ def test_a_png_map_without_matplotlib_is_refused_before_the_computation(tmp_path
     # the MissingDependencyError came after the whole map was computed
     import importlib.util
 
-    import screwkit.workspace
+    import screwkit.analysis.workspace
 
     real = importlib.util.find_spec
     monkeypatch.setattr(importlib.util, "find_spec", lambda name, *a: None if name == "matplotlib" else real(name, *a))
-    monkeypatch.setattr(screwkit.workspace, "grid_map", lambda *a, **k: pytest.fail("the map was computed"))
+    monkeypatch.setattr(screwkit.analysis.workspace, "grid_map", lambda *a, **k: pytest.fail("the map was computed"))
     status, out, err = run(capsys, [*H4_MAP, *Z_PHI, "--out", tmp_path / "m.png"])
     assert out == ""
     assert_one_line_error(status, err, 2, r"screwkit map: error: --out FILE\.png needs matplotlib, which is not installed: install the optional extra `plot`")

@@ -6,17 +6,17 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from screwkit import screw as S
-from screwkit.catalog import (
+from screwkit.algebra import screw as S
+from screwkit.core.singularity import classify
+from screwkit.core.wrenches import wrench_analysis
+from screwkit.exceptions import CatalogError
+from screwkit.robots.catalog import (
     list_mechanisms,
     load_mechanism,
     load_snapshot,
     mechanism_from_mapping,
     snapshot_from_mapping,
 )
-from screwkit.exceptions import CatalogError
-from screwkit.singularity import classify
-from screwkit.wrenches import wrench_analysis
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
@@ -104,7 +104,7 @@ def test_stated_workspace_box_against_the_inverse_kinematics(name):
         mechanism.configuration(np.concatenate([corners, draws[:5000]]))  # raises if any is out of reach
         return
     from screwkit.exceptions import UnreachablePoseError
-    from screwkit.families.four_limb import reachable
+    from screwkit.robots.families.four_limb import reachable
 
     ok = reachable(mechanism.parameters, draws)
     assert abs(ok.mean() - mechanism.reachable_fraction) <= 0.01, ok.mean()

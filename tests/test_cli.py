@@ -8,9 +8,9 @@ import numpy as np
 import pytest
 
 from screwkit import Screw
-from screwkit.catalog import list_mechanisms, load_mechanism
-from screwkit.cli import main
-from screwkit.report import analyze
+from screwkit.interface.cli import main
+from screwkit.interface.report import analyze
+from screwkit.robots.catalog import list_mechanisms, load_mechanism
 
 from .test_h4 import singular_pose
 
@@ -158,7 +158,7 @@ def test_progress_names_each_stage_in_order(capsys, monkeypatch):
     from pathlib import Path
 
     import screwkit as sk
-    from screwkit.report import STAGES
+    from screwkit.interface.report import STAGES
 
     monkeypatch.chdir(Path(__file__).resolve().parents[1])
     seen = []

@@ -1,4 +1,4 @@
-"""Compound legs analysed as a whole (screwkit.wrenches._compound_legs): the H4 where the plane of
+"""Compound legs analysed as a whole (screwkit.core.wrenches._compound_legs): the H4 where the plane of
 a parallelogram of sub-platform ``b_I`` contains the vertical.
 
 Expected values come from outside the core: paper 004's Eq. (12) ``|A| = 2r (w_14 × w_23)·s`` and
@@ -15,10 +15,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import screwkit as sk
-from screwkit import screw as S
-from screwkit.families.four_limb import reachable
-from screwkit.singularity import classify
-from screwkit.wrenches import analyze_table
+from screwkit.algebra import screw as S
+from screwkit.core.singularity import classify
+from screwkit.core.wrenches import analyze_table
+from screwkit.robots.families.four_limb import reachable
 
 from .mechanisms import bisect_root
 from .strategies import rigid_motions, unit_factors

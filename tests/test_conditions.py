@@ -1,4 +1,4 @@
-"""Tests of screwkit.conditions: statements and vector forms of bracket factors (gca.md §5).
+"""Tests of screwkit.gca.conditions: statements and vector forms of bracket factors (gca.md §5).
 
 Each vector form is compared, on random configurations, with its bracket factor computed here with
 numpy determinants; the paper's Eqs. (6) and (7) (paper 002, §5.3) are written out independently.
@@ -15,7 +15,6 @@ import sympy
 from hypothesis import given
 from hypothesis import strategies as st
 
-from screwkit.conditions import Condition, VectorDot, condition, conditions, label
 from screwkit.exceptions import ScrewkitTypeError, ScrewkitValueError
 from screwkit.gca import (
     Bracket,
@@ -25,6 +24,7 @@ from screwkit.gca import (
     collect_factors,
     simplify_superbracket,
 )
+from screwkit.gca.conditions import Condition, VectorDot, condition, conditions, label
 
 from .strategies import seeds
 from .test_gca import H4, H4_DECLARED, h4_sampler, stacked
@@ -427,7 +427,7 @@ def test_label_errors():
 
 
 def test_proof_rejects_a_wrong_vector_form():
-    from screwkit.conditions import _prove_proportional, _Types
+    from screwkit.gca.conditions import _prove_proportional, _Types
 
     wrong = sympy.Symbol("b")  # not a scalar form of [abcd]: fails at the exact configurations
     with pytest.raises(ScrewkitValueError, match="to be proportional to"):
@@ -438,7 +438,7 @@ def test_sum_of_vector_forms_is_sympys_canonical_add():
     # conditions._sum skips Add.flatten when there is nothing to collect: against sympy.Add itself
     # (same args in the same order, so the same text and the same left-to-right evaluation), on
     # random sums of the vector forms' products, with like terms, zeros and cancelling pairs
-    from screwkit.conditions import VectorCross, VectorDiff, _sum
+    from screwkit.gca.conditions import VectorCross, VectorDiff, _sum
 
     rng = random.Random(7)
     names = sympy.symbols("a b c d e f")

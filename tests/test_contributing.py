@@ -23,10 +23,10 @@ import numpy as np
 import pytest
 
 from screwkit import Family, JointTable, register
-from screwkit import screw as S
-from screwkit.catalog import mechanism_from_mapping
+from screwkit.algebra import screw as S
 from screwkit.exceptions import CatalogError, ScrewkitTypeError, ScrewkitValueError
-from screwkit.families import families
+from screwkit.robots.catalog import mechanism_from_mapping
+from screwkit.robots.families import families
 
 # ---- the example of CONTRIBUTING.md, as written there (registration in the fixture below) ----------
 Z = np.array([0.0, 0.0, 1.0])
@@ -149,7 +149,7 @@ def test_jacobians_over_the_nominal_twists(mechanism):
 
 
 REGISTER_ERRORS = [
-    ({"name": "x"}, ScrewkitTypeError, r"Expected `family` to be a screwkit.families.Family, got dict"),
+    ({"name": "x"}, ScrewkitTypeError, r"Expected `family` to be a screwkit.robots.families.Family, got dict"),
     (Family("four_limb", *[print] * 4, ("x",), ()), ScrewkitValueError,
      r"Expected a new family name, got 'four_limb', which is already registered \(four_limb, "),
     (Family("two words", *[print] * 4, ("x",), ()), ScrewkitTypeError,

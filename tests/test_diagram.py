@@ -11,10 +11,12 @@ import dataclasses
 import numpy as np
 import pytest
 
-from screwkit import screw as S
-from screwkit.catalog import load_mechanism
-from screwkit.cli import main
-from screwkit.diagram import (
+from screwkit.algebra import screw as S
+from screwkit.core.singularity import classify
+from screwkit.core.wrenches import analyze_table, wrench_analysis
+from screwkit.exceptions import DegenerateGeometryError, ScrewkitValueError
+from screwkit.gca import BracketPolynomial, DottedMonomial, check_proportional
+from screwkit.gca.diagram import (
     batch_diagram_points,
     diagram_at,
     diagram_points,
@@ -23,13 +25,11 @@ from screwkit.diagram import (
     superbracket_analysis,
     wrench_diagram,
 )
-from screwkit.exceptions import DegenerateGeometryError, ScrewkitValueError
-from screwkit.export import save_snapshot
-from screwkit.families.four_limb import inverse_kinematics, joints
-from screwkit.gca import BracketPolynomial, DottedMonomial, check_proportional
-from screwkit.report import analyze
-from screwkit.singularity import classify
-from screwkit.wrenches import analyze_table, wrench_analysis
+from screwkit.interface.cli import main
+from screwkit.interface.export import save_snapshot
+from screwkit.interface.report import analyze
+from screwkit.robots.catalog import load_mechanism
+from screwkit.robots.families.four_limb import inverse_kinematics, joints
 
 from . import mechanisms as M
 from . import mechanisms_extra as X
@@ -222,7 +222,7 @@ def test_gough_stewart_3_2_1_uses_the_shared_joint_centres():
         )
 
 
-# diagrams of any mechanism, chosen at generic configurations (screwkit.motion) -------------------
+# diagrams of any mechanism, chosen at generic configurations (screwkit.core.motion) -------------------
 def plucker_rows(points, lines):
     """The diagram's lines as Plücker rows (p_w q − q_w p ; p × q), written here independently."""
     rows = []
@@ -446,7 +446,7 @@ def test_a_structural_factor_is_reported_as_never_vanishing():
     # a planar mechanism in the xy-plane is constrained by the couples about x and y and a force
     # along z at every configuration (its constraint lines never move), so the factor made of their
     # points takes one value everywhere; the H4's factors change sign across its surfaces
-    from screwkit.report import analyze
+    from screwkit.interface.report import analyze
 
     planar = analyze(load_mechanism("planar_3rrp"))
     kinds = dict(zip((str(c.factor) for c in planar.superbracket.conditions), planar.superbracket.constant,
@@ -484,7 +484,7 @@ def test_batch_diagram_points_is_nan_only_where_a_recipe_has_no_point():
 def test_catalog_sampler_replays_the_generic_samples_batch_after_batch():
     # the sampler's first batch is analysed together with the generic draws, the next ones on their
     # own: both must be generic_samples' batches from one generator seeded 0, in order
-    from screwkit.posed import SAMPLES, generic_samples
+    from screwkit.robots.posed import SAMPLES, generic_samples
 
     h4 = load_mechanism("h4")
     diagram, sampler = h4.wrench_diagram()

@@ -1,4 +1,4 @@
-"""Writing twist graphs: snapshot TOML round trips, DOT and JSON, and their errors (screwkit.export)."""
+"""Writing twist graphs: snapshot TOML round trips, DOT and JSON, and their errors (screwkit.interface.export)."""
 
 import json
 import math
@@ -9,10 +9,10 @@ import pytest
 import sympy as sp
 
 import screwkit as sk
-from screwkit.cli import main
-from screwkit.export import graph_dot, graph_json, save_snapshot, snapshot_text
-from screwkit.joints import Joint
-from screwkit.twistgraph import from_data
+from screwkit.graphs.joints import Joint
+from screwkit.graphs.twistgraph import from_data
+from screwkit.interface.cli import main
+from screwkit.interface.export import graph_dot, graph_json, save_snapshot, snapshot_text
 
 
 def _screws_by_name(graph):

@@ -1,4 +1,4 @@
-"""Tests of screwkit.families.mcgill_smg: the McGill SMG of paper 001 (Angeles et al. 2006).
+"""Tests of screwkit.robots.families.mcgill_smg: the McGill SMG of paper 001 (Angeles et al. 2006).
 
 Known values come from Eqs. (1)-(2) as printed and from hand derivations written out below; the
 singularity cases of Sec. 4.2 (Figs. 7 and 8) are rebuilt one by one and judged by ranks.
@@ -12,7 +12,8 @@ import pytest
 from hypothesis import assume, given
 from hypothesis import strategies as st
 
-from screwkit import screw as S
+from screwkit.algebra import screw as S
+from screwkit.core.jacobians import classify_jacobians
 from screwkit.exceptions import (
     CatalogError,
     DegenerateGeometryError,
@@ -20,9 +21,8 @@ from screwkit.exceptions import (
     ScrewkitValueError,
     UnreachablePoseError,
 )
-from screwkit.families import mcgill_smg as smg
-from screwkit.families._two_limb import checked_mode, joint_row
-from screwkit.jacobians import classify_jacobians
+from screwkit.robots.families import mcgill_smg as smg
+from screwkit.robots.families.two_limb import checked_mode, joint_row
 
 from . import paper_001 as paper
 from .two_limb_papers import bisect_segment, pick_and_place_cycle

@@ -1,4 +1,4 @@
-"""Tests of screwkit.families.peppermill: the CRRHHRRC SMG of paper 000 (Harada & Angeles 2014).
+"""Tests of screwkit.robots.families.peppermill: the CRRHHRRC SMG of paper 000 (Harada & Angeles 2014).
 
 Known values come from the paper's equations as printed (Eqs. 14, 25, 31-35, 47-48) and from hand
 derivations written out below; the three kinds of singularity are rebuilt and judged by ranks.
@@ -12,14 +12,14 @@ import pytest
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
-from screwkit import screw as S
+from screwkit.algebra import screw as S
 from screwkit.exceptions import (
     CatalogError,
     DegenerateGeometryError,
     ScrewkitValueError,
     UnreachablePoseError,
 )
-from screwkit.families import peppermill as pm
+from screwkit.robots.families import peppermill as pm
 
 from . import paper_000 as paper
 from .two_limb_papers import bisect_segment, pick_and_place_cycle

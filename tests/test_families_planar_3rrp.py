@@ -9,7 +9,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from screwkit._backend import screw_rank
+from screwkit.algebra.backend import screw_rank
 from screwkit.exceptions import (
     CatalogError,
     DegenerateGeometryError,
@@ -17,7 +17,7 @@ from screwkit.exceptions import (
     ScrewkitValueError,
     UnreachablePoseError,
 )
-from screwkit.families.planar_3rrp import (
+from screwkit.robots.families.planar_3rrp import (
     EXAMPLE_PARAMETERS,
     JOINT_PAIRS,
     LINK_NAMES,

@@ -2,7 +2,7 @@
 
 Known values are the paper's (Tables 1, 3, 4, Sec. 5); the singularity types of Sec. 4.2 (type 1:
 ``|B| = 0``, type 2: ``|A| = 0``) are compared with the labels of the twist graph
-(:func:`screwkit.singularity.classify`, one pose; :func:`screwkit.singularity.classify_table`, many) at poses
+(:func:`screwkit.core.singularity.classify`, one pose; :func:`screwkit.core.singularity.classify_table`, many) at poses
 found by root search. An independent numpy computation of the platform's twist system (intersections
 and sums of joint-screw spans, no screwkit screw systems) confirms the constraint singularities the
 entries document (Quattro: a surface through the workspace centre; the Ragnar read with horizontal
@@ -18,19 +18,19 @@ import math
 import numpy as np
 import pytest
 
-from screwkit.catalog import list_mechanisms, load_mechanism
-from screwkit.cli import main
-from screwkit.diagram import diagram_points
-from screwkit.families.four_limb import (
-    reachable,
-)
-from screwkit.indices import (
+from screwkit.analysis.indices import (
     four_limb_jacobians,
     transmission_indices,
 )
-from screwkit.report import analyze
-from screwkit.singularity import classify, classify_table
-from screwkit.wrenches import wrench_analysis
+from screwkit.core.singularity import classify, classify_table
+from screwkit.core.wrenches import wrench_analysis
+from screwkit.gca.diagram import diagram_points
+from screwkit.interface.cli import main
+from screwkit.interface.report import analyze
+from screwkit.robots.catalog import list_mechanisms, load_mechanism
+from screwkit.robots.families.four_limb import (
+    reachable,
+)
 
 from .paper_004 import spiral_trajectory
 

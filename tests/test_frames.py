@@ -1,4 +1,4 @@
-"""The two implementations of :mod:`screwkit._frames` (numpy and numba) follow one rule.
+"""The two implementations of :mod:`screwkit.core._frames` (numpy and numba) follow one rule.
 
 Both paths run here whatever this process chose: the numpy kernels are called directly
 (``_frames._span_numpy`` …) and so are the numba ones (skipped, with the reason, when numba is not
@@ -14,7 +14,7 @@ import sys
 import numpy as np
 import pytest
 
-from screwkit import _frames as F
+from screwkit.core import _frames as F
 
 HAS_NUMBA = importlib.util.find_spec("numba") is not None
 needs_numba = pytest.mark.skipif(not HAS_NUMBA, reason="numba is not installed (the `fast` extra)")
@@ -166,7 +166,7 @@ def _probe(code, env):
 
 def test_screwkit_numba_0_selects_numpy():
     code = (
-        "import sys, numpy as np\nfrom screwkit import _frames as F\n"
+        "import sys, numpy as np\nfrom screwkit.core import _frames as F\n"
         "F.span(np.eye(6)[:2], 1e-9)\nprint(F.backend(), 'numba' in sys.modules)"
     )
     assert _probe(code, {"SCREWKIT_NUMBA": "0"}) == ["numpy", "False"]
@@ -176,7 +176,7 @@ def test_screwkit_numba_0_selects_numpy():
 def test_numba_is_the_default_and_imported_lazily():
     # a small call runs numpy without importing numba; a call of COMPILED_MIN_BATCH frames loads it
     code = (
-        "import sys, numpy as np, screwkit\nfrom screwkit import _frames as F\nprint('numba' in sys.modules)\n"
+        "import sys, numpy as np, screwkit\nfrom screwkit.core import _frames as F\nprint('numba' in sys.modules)\n"
         "F.span(np.eye(6)[:2], 1e-9)\nprint('numba' in sys.modules)\n"
         "F.span(np.zeros((F.COMPILED_MIN_BATCH - 1, 2, 6)), 1e-9)\nprint('numba' in sys.modules)\n"
         "F.span(np.zeros((F.COMPILED_MIN_BATCH, 2, 6)), 1e-9)\nprint('numba' in sys.modules, F.backend())"
@@ -218,7 +218,7 @@ def test_both_paths_classify_the_h4_alike():
     # the whole core in each path (a fresh interpreter per path): identical verdicts and orders on
     # generic poses, closeness within round-off
     code = (
-        "import numpy as np, screwkit as sk\nfrom screwkit.families.four_limb import reachable\n"
+        "import numpy as np, screwkit as sk\nfrom screwkit.robots.families.four_limb import reachable\n"
         "h4 = sk.load_mechanism('h4'); p = h4.random_poses(np.random.default_rng(3), 600)\n"
         "p = p[reachable(h4.parameters, p)][:400]\nr = sk.classify_table(h4.joints(p))\n"
         "out = {k: np.asarray(getattr(r, k)).tolist() for k in"
@@ -252,8 +252,7 @@ def rod_rows(rng, first, second):
 
 
 def rod_numba(rows, rtol):
-    from screwkit import _frames_numba
-
+    from screwkit.core import _frames_numba as _frames_numba
     out = np.full((6, 6), np.nan)
     if _frames_numba.rod_into(np.ascontiguousarray(rows), rtol, out):
         return out, 1
@@ -300,8 +299,7 @@ def test_rod_falls_back_to_the_rule_where_the_closed_form_does_not_apply(case):
 @needs_numba
 @pytest.mark.parametrize("seed", range(3))
 def test_rod_and_unit_screws_numba_and_numpy_are_bit_identical(seed):
-    from screwkit import _frames_numba
-
+    from screwkit.core import _frames_numba as _frames_numba
     rng = np.random.default_rng(seed)
     batch = [rod_rows(rng, rng.uniform(-2, 2, 3), rng.uniform(-2, 2, 3)) for _ in range(30)]
     batch[3] = rod_rows(rng, np.ones(3), np.ones(3))  # a fallback pose in the batch
@@ -327,10 +325,10 @@ def test_compiled_program_matches_the_ops_run_one_by_one(monkeypatch):
     # the numba interpreter against the numpy path's op-by-op run of the same H4 program: bit for
     # bit (frames, orders)
     import screwkit as sk
-    from screwkit import _frames_numba
-    from screwkit import wrenches as W
-    from screwkit.topology import topology
-    from screwkit.twistgraph import mechanism_frame
+    from screwkit.core import _frames_numba as _frames_numba
+    from screwkit.core import wrenches as W
+    from screwkit.graphs.topology import topology
+    from screwkit.graphs.twistgraph import mechanism_frame
 
     h4 = sk.load_mechanism("h4")
     table = W._canonical(h4.joints(h4.random_poses(np.random.default_rng(5), 30)[:20]))
@@ -345,9 +343,9 @@ def test_compiled_program_matches_the_ops_run_one_by_one(monkeypatch):
     program = W._program(top, requests)
     for code in (W.ROD, W.PARALLELOGRAM, W.EXTEND, W.CONTRACT):  # rods, parallelograms, chains: closed forms
         assert code in program.ops[:, 0]
-    monkeypatch.setitem(F._compiled, "_frames_numba", _frames_numba)
+    monkeypatch.setitem(F._compiled, "screwkit.core._frames_numba", _frames_numba)
     compiled = W._run(program, scaled, RTOL, requests)
-    monkeypatch.setitem(F._compiled, "_frames_numba", None)
+    monkeypatch.setitem(F._compiled, "screwkit.core._frames_numba", None)
     stepwise = W._run(program, scaled, RTOL, requests)
     assert compiled[0].shape == stepwise[0].shape == (20, len(requests), 6, 6)
     np.testing.assert_array_equal(compiled[1], stepwise[1])
@@ -357,15 +355,14 @@ def test_compiled_program_matches_the_ops_run_one_by_one(monkeypatch):
 @needs_numba
 @pytest.mark.parametrize("k", [4, 6, 7, 12, 16])
 def test_triangular_keeps_the_singular_values_and_both_paths_are_bit_identical(rng, monkeypatch, k):
-    from screwkit import _frames_numba
-
+    from screwkit.core import _frames_numba as _frames_numba
     rows = rng.standard_normal((40, k, 6))
     rows[:, ::3] = 0.0  # zero rows, as in stacked frames
     rows[:5] = 0.0  # an all-zero matrix
     rows[5:10, :, 2] = 0.0  # a zero column
     padded = np.concatenate([rows, np.zeros((40, max(6 - k, 0), 6))], axis=1)  # fewer than 6: zero rows added
     compiled = _frames_numba.triangular(np.ascontiguousarray(padded))
-    monkeypatch.setitem(F._compiled, "_frames_numba", None)
+    monkeypatch.setitem(F._compiled, "screwkit.core._frames_numba", None)
     np.testing.assert_array_equal(F.triangular(rows), compiled)
     assert np.all(np.tril(compiled, -1) == 0)  # upper triangular
     np.testing.assert_allclose(
@@ -452,8 +449,7 @@ def test_transmissions_numba_matches_numpy_bit_for_bit(rng):
 
 @needs_numba
 def test_mechanism_frame_numba_matches_numpy_bit_for_bit(rng, monkeypatch):
-    from screwkit import twistgraph as T
-
+    from screwkit.graphs import twistgraph as T
     screws = rng.standard_normal((40, 13, 6))
     screws[:, 3, :3] = 0.0  # infinite pitch: ignored
     screws[::4, 5] = screws[::4, 5] * 1e-3
@@ -465,12 +461,12 @@ def test_mechanism_frame_numba_matches_numpy_bit_for_bit(rng, monkeypatch):
     assert not direct[7] and direct[9] and direct.sum() == 39
     np.testing.assert_array_equal(point[direct], expected_point[direct])
     np.testing.assert_array_equal(length[direct], expected_length[direct])
-    monkeypatch.setitem(F._compiled, "_frames_numba", None)  # the numpy path, whatever ran before
+    monkeypatch.setitem(F._compiled, "screwkit.core._frames_numba", None)  # the numpy path, whatever ran before
     expected_scaled = F.unit_scaled(screws, expected_point, expected_length)
     np.testing.assert_array_equal(scaled[direct], expected_scaled[direct])
     np.testing.assert_array_equal(kernels.unit_scaled(screws, expected_point, expected_length), expected_scaled)
     assert length[9] == 1.0  # every axis through the origin: the length rule's fallback (no foot, no point)
-    monkeypatch.setitem(F._compiled, "_frames_numba", kernels)  # the numba pass, pose 7 as numpy
+    monkeypatch.setitem(F._compiled, "screwkit.core._frames_numba", kernels)  # the numba pass, pose 7 as numpy
     for got, expected in zip(T.scaled_frame(screws), (expected_point, expected_length, expected_scaled), strict=True):
         np.testing.assert_array_equal(got, expected)
 
@@ -479,8 +475,7 @@ def test_mechanism_frame_sums_known_values():
     """Two axes, z through (1, 0, 0) and x through (0, 0, 3), and a translation: N = Σ (I − u uᵀ)
     over the two lines, the right side Σ (I − u uᵀ) f with the feet (1, 0, 0) and (0, 0, 3), the
     farthest foot 3 and the spread about the point (1, 0, 3) (on both axes) zero."""
-    from screwkit import twistgraph as T
-
+    from screwkit.graphs import twistgraph as T
     z_line = np.array([0, 0, 1.0, *np.cross([1.0, 0, 0], [0, 0, 1.0])])
     x_line = np.array([1.0, 0, 0, *np.cross([0, 0, 3.0], [1.0, 0, 0])])
     screws = np.array([[z_line, [0, 0, 0, 0, 1.0, 0], x_line]])
@@ -554,8 +549,7 @@ def test_closed_forms_leave_the_threshold_band_to_the_rule(rng, offset, decided,
 
 
 def closed_numba(name, frame, order, t):
-    from screwkit import _frames_numba
-
+    from screwkit.core import _frames_numba as _frames_numba
     out = np.full((6, 6), np.nan)
     got = getattr(_frames_numba, f"{name}_into")(frame, int(order), t, RTOL, out, np.empty(6), np.empty(6))
     return out, got
@@ -654,8 +648,7 @@ def test_parallelogram_near_degenerate(side, tilt, decided, atol):
 
 @needs_numba
 def test_parallelogram_numba_matches_numpy_bit_for_bit(rng):
-    from screwkit import _frames_numba
-
+    from screwkit.core import _frames_numba as _frames_numba
     cases = [parallelogram_points(rng) for _ in range(20)]
     cases += [parallelogram_points(rng, 1e-12), parallelogram_points(rng, 1.0, 1e-6)]  # two fallbacks
     rods = [parallelogram_rods(rng, *case) for case in cases]
@@ -677,9 +670,8 @@ def test_compiled_program_falls_back_alike(monkeypatch):
     # and CONTRACT; two rods' PARALLELOGRAM) over poses where every closed form applies, where the
     # screw lies in the threshold band, and where the rods are not a parallelogram: the compiled
     # interpreter and the numpy path's op-by-op run agree bit for bit, and with the generic ops
-    from screwkit import _frames_numba
-    from screwkit import wrenches as W
-
+    from screwkit.core import _frames_numba as _frames_numba
+    from screwkit.core import wrenches as W
     rng = np.random.default_rng(3)
     poses = []
     for k in range(12):
@@ -713,9 +705,9 @@ def test_compiled_program_falls_back_alike(monkeypatch):
     program = W._Program(
         np.array(ops, dtype=np.int64), np.array(sources, dtype=np.int64), {r: r[1] for r in requests}, (3, 3, 2, 3, 6, 6, 6, 7)
     )
-    monkeypatch.setitem(F._compiled, "_frames_numba", _frames_numba)
+    monkeypatch.setitem(F._compiled, "screwkit.core._frames_numba", _frames_numba)
     compiled = W._run(program, scaled, RTOL, requests)
-    monkeypatch.setitem(F._compiled, "_frames_numba", None)
+    monkeypatch.setitem(F._compiled, "screwkit.core._frames_numba", None)
     stepwise = W._run(program, scaled, RTOL, requests)
     np.testing.assert_array_equal(compiled[1], stepwise[1])
     np.testing.assert_array_equal(compiled[0], stepwise[0])
@@ -743,8 +735,7 @@ def test_closing_numba_matches_numpy_bit_for_bit(rng, monkeypatch):
     # the core's last steps (global span, closeness triangles, user-frame actuation rows) in one
     # compiled pass against the numpy path's separate kernels; and against independent values: the
     # rank of the stacked rows, the triangles' singular values, the rows moved back by hand
-    from screwkit import _frames_numba
-
+    from screwkit.core import _frames_numba as _frames_numba
     n, limbs = 40, 4
     constraint = np.zeros((n, 6, 6))
     constraint[:, :2] = F._span_numpy(rng.standard_normal((n, 2, 6)), RTOL)[0][:, :2]
@@ -757,9 +748,9 @@ def test_closing_numba_matches_numpy_bit_for_bit(rng, monkeypatch):
     serial = rng.random((n, limbs)) < 0.2
     centre, length = rng.standard_normal((n, 3)), rng.uniform(0.5, 3.0, n)
     arguments = (constraint, wrenches, legs, apart, serial, centre, length, RTOL)
-    monkeypatch.setitem(F._compiled, "_frames_numba", None)
+    monkeypatch.setitem(F._compiled, "screwkit.core._frames_numba", None)
     expected = F.closing(*arguments)
-    monkeypatch.setitem(F._compiled, "_frames_numba", _frames_numba)
+    monkeypatch.setitem(F._compiled, "screwkit.core._frames_numba", _frames_numba)
     compiled = F.closing(*arguments)
     for got, want in zip(compiled, expected, strict=True):
         np.testing.assert_array_equal(got, want)
@@ -785,17 +776,16 @@ def test_closing_numba_matches_numpy_bit_for_bit(rng, monkeypatch):
 @needs_numba
 def test_residuals_against_frames_match_residual_bit_for_bit(rng, monkeypatch):
     # each vector against its own frame of a strided stack, as residual() one frame at a time
-    from screwkit import _frames_numba
-
+    from screwkit.core import _frames_numba as _frames_numba
     block = np.zeros((30, 5, 6, 6))
     for f in range(5):
         block[:, f, : f + 1] = F._span_numpy(rng.standard_normal((30, f + 1, 6)), RTOL)[0][:, : f + 1]
     frames = block[:, 1:4]  # strided, as the program's block
     vectors = rng.standard_normal((30, 4, 6))
     which = np.array([2, 0, 2, 1])
-    monkeypatch.setitem(F._compiled, "_frames_numba", None)
+    monkeypatch.setitem(F._compiled, "screwkit.core._frames_numba", None)
     expected = F.residuals_against(vectors, frames, which)
-    monkeypatch.setitem(F._compiled, "_frames_numba", _frames_numba)
+    monkeypatch.setitem(F._compiled, "screwkit.core._frames_numba", _frames_numba)
     np.testing.assert_array_equal(F.residuals_against(vectors, frames, which), expected)
     for j, f in enumerate(which):
         np.testing.assert_array_equal(expected[:, j], F._residual_numpy(vectors[:, j : j + 1], frames[:, f])[:, 0])
@@ -806,21 +796,20 @@ def test_residuals_against_frames_match_residual_bit_for_bit(rng, monkeypatch):
 def test_limb_wrenches_one_pass_matches_the_steps_bit_for_bit(rng, monkeypatch):
     # the fused pass against its steps run one by one (limb systems, line test, transmissions,
     # leg residuals), numba and numpy alike
-    from screwkit import _frames_numba
-
+    from screwkit.core import _frames_numba as _frames_numba
     locked, order, passive, actuated = limb_inputs(rng, 50)
     passive[3, 2, :, 3:] += 0.5 * passive[3, 2, :, :3]  # a pitched direction: no line
     legs = np.zeros((50, 2, 6, 6))
     legs[:, :, 0] = F.unit_rows(rng.standard_normal((50, 2, 6)))
     coupled, leg_of = np.array([0, 3, 1]), np.array([1, 1, 0])
     arguments = (locked, order, passive, actuated, legs, coupled, leg_of, RTOL, 1e-6)
-    monkeypatch.setitem(F._compiled, "_frames_numba", None)
+    monkeypatch.setitem(F._compiled, "screwkit.core._frames_numba", None)
     expected = F.limb_wrenches(*arguments)
     _, serial, _, free_order, direction = F._limb_systems_numpy(locked, order, passive, actuated, RTOL)
     wrench, index = F.transmissions_numpy(F.unit_rows(direction), actuated, RTOL)
     steps = (serial, free_order, direction, wrench, index,
              F.residuals_against(wrench[:, coupled], legs, leg_of), F.not_lines(direction, 1e-6))
-    monkeypatch.setitem(F._compiled, "_frames_numba", _frames_numba)
+    monkeypatch.setitem(F._compiled, "screwkit.core._frames_numba", _frames_numba)
     compiled = F.limb_wrenches(*arguments)
     for got, via_numpy, step in zip(compiled, expected, steps, strict=True):
         np.testing.assert_array_equal(got, via_numpy)
@@ -832,8 +821,7 @@ def test_not_lines_is_the_pitch_criterion(rng):
     # Independent of the kernel: a line (s; r × s) has s·m = 0 exactly in exact arithmetic; a helical
     # screw (s; r × s + h s) has s·m = h |s|², so it is "not a line" iff |h| |s| > line_rtol |w|
     # (|w| the whole row's norm). Couples (s = 0) have s·m = 0 and count as lines at infinity.
-    from screwkit import screw as S
-
+    from screwkit.algebra import screw as S
     directions = rng.standard_normal((200, 3))
     points = rng.uniform(-10, 10, (200, 3))
     lines = S.line(directions, points)

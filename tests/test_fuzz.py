@@ -16,8 +16,8 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from screwkit import analyze, classify
-from screwkit.catalog import load_toml, mechanism_from_mapping, snapshot_from_mapping
 from screwkit.exceptions import ScrewkitError
+from screwkit.robots.catalog import load_toml, mechanism_from_mapping, snapshot_from_mapping
 from tests.toml_text import toml_text
 
 ROOT = Path(__file__).resolve().parents[1]

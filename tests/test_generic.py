@@ -1,4 +1,4 @@
-"""Generic (symbolic) analysis of families of mechanisms (screwkit.generic, screwkit._symbolic).
+"""Generic (symbolic) analysis of families of mechanisms (screwkit.core.generic, screwkit.algebra._symbolic).
 
 Expected values come from the mechanisms' known motion types (Delta-like 3-RUU: three
 translations, Clavel 1988 / Tsai 1996; H4: Schoenflies 3T1R, paper 002 §4, paper 004 §1) and from
@@ -15,15 +15,15 @@ import sympy
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from screwkit import _symbolic as Y
-from screwkit import screw as S
+from screwkit.algebra import _symbolic as Y
+from screwkit.algebra import screw as S
+from screwkit.algebra.screwsystem import ScrewSystem
+from screwkit.core.generic import GenericAnalysis, generic_analysis
+from screwkit.core.singularity import classify
+from screwkit.core.wrenches import WrenchAnalysis, wrench_analysis
 from screwkit.exceptions import ScrewkitTypeError, ScrewkitValueError
-from screwkit.generic import GenericAnalysis, generic_analysis
-from screwkit.joints import revolute, spherical
-from screwkit.screwsystem import ScrewSystem
-from screwkit.singularity import classify
-from screwkit.twistgraph import twist_graph
-from screwkit.wrenches import WrenchAnalysis, wrench_analysis
+from screwkit.graphs.joints import revolute, spherical
+from screwkit.graphs.twistgraph import twist_graph
 
 
 def point(name, values=None):
@@ -400,7 +400,7 @@ def test_null_spaces_and_reciprocal_systems_in_60_digits():
 def test_a_line_is_chosen_first_when_its_60_digit_test_carries_round_off():
     # rows derived in 60 digits carry round-off: a line's w·w0 is then ~1e-60 of its size, not 0;
     # the actuation wrench must still be the line (the pitched row comes first in the system)
-    from screwkit.generic import _actuation_wrench
+    from screwkit.core.generic import _actuation_wrench
 
     a, y, z, q = sympy.symbols("a_root y z q")
     root = sympy.sqrt(a)
@@ -424,7 +424,7 @@ def test_error_complex_screw_coordinates_are_refused():
 
 
 def moved(graph, rotation, translation, unit):
-    """The same twist graph moved by a rigid motion (:func:`screwkit.screw.transform`), its lengths
+    """The same twist graph moved by a rigid motion (:func:`screwkit.algebra.screw.transform`), its lengths
     then given in another unit (moments × unit)."""
     joints = []
     for u, v, joint in graph.edges(data="joint"):

@@ -1,6 +1,6 @@
 """Import cost: sympy loads only when symbolic work starts (design.md §4).
 
-``import screwkit`` (and every module but :mod:`screwkit.conditions`, whose vector forms subclass
+``import screwkit`` (and every module but :mod:`screwkit.gca.conditions`, whose vector forms subclass
 ``sympy.Function``) must not import sympy, nor must a numeric analysis; the symbolic branch loads it
 on first use. Each check runs in a fresh interpreter, since this test session has imported sympy.
 """
@@ -13,7 +13,7 @@ import pytest
 
 import screwkit
 
-SYMBOLIC_MODULES = {"screwkit.conditions"}  # sympy expressions all the way down
+SYMBOLIC_MODULES = {"screwkit.gca.conditions"}  # sympy expressions all the way down
 MODULES = sorted(
     info.name for info in pkgutil.walk_packages(screwkit.__path__, "screwkit.")
     if info.name not in SYMBOLIC_MODULES and info.name != "screwkit.__main__"
@@ -41,15 +41,15 @@ def test_no_module_imports_sympy():
 
 
 def test_numeric_analysis_does_not_import_sympy():
-    code = "from screwkit.report import analyze\nanalyze('h4', superbracket=False)"
+    code = "from screwkit.interface.report import analyze\nanalyze('h4', superbracket=False)"
     assert not _sympy_loaded_after(code)
 
 
 @pytest.mark.parametrize(
     "code",
     [
-        "import screwkit.conditions",
-        "from screwkit._backend import to_sympy\nto_sympy(0.5)",
+        "import screwkit.gca.conditions",
+        "from screwkit.algebra.backend import to_sympy\nto_sympy(0.5)",
         "from screwkit.gca import Bracket\nBracket('abcd').to_sympy({c: [0, 0, 0, 1] for c in 'abcd'})",
     ],
 )
@@ -63,9 +63,9 @@ def test_a_command_imports_only_the_family_it_analyses(name, family):
     # the registry makes a built-in family on first look-up; the map command's options read the
     # families' pose coordinates without importing them
     code = (
-        "import sys\nfrom screwkit.cli import main\n"
+        "import sys\nfrom screwkit.interface.cli import main\n"
         f"main(['analyze', {name!r}, '--no-superbracket'])\n"
-        "print(*sorted(m.rsplit('.', 1)[1] for m in sys.modules if m.startswith('screwkit.families.')))"
+        "print(*sorted(m.rsplit('.', 1)[1] for m in sys.modules if m.startswith('screwkit.robots.families.')))"
     )
     result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120, check=True)
     loaded = set(result.stdout.splitlines()[-1].split())

@@ -1,4 +1,4 @@
-"""Transmission indices (screwkit.indices): paper 004's kappa, zeta, LTI over batches, Table 4
+"""Transmission indices (screwkit.analysis.indices): paper 004's kappa, zeta, LTI over batches, Table 4
 regenerated, the wrench/twist-based index, the Ragnar with inclined axes.
 
 Expected values come from the paper (Table 4, in ``tests/paper_004.py``), from hand derivations
@@ -21,17 +21,17 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import screwkit as sk
-from screwkit import indices as I
-from screwkit import screw as S
-from screwkit.catalog import load_mechanism
-from screwkit.cli import main
+from screwkit.algebra import screw as S
+from screwkit.analysis import indices as I
+from screwkit.core.jacobians import jacobians_from_wrenches
+from screwkit.core.singularity import classify_table
+from screwkit.core.wrenches import wrench_analysis
 from screwkit.exceptions import ScrewkitTypeError, ScrewkitValueError, UnreachablePoseError
-from screwkit.families.four_limb import inverse_kinematics, reachable
-from screwkit.jacobians import jacobians_from_wrenches
-from screwkit.joints import prismatic, revolute
-from screwkit.singularity import classify_table
-from screwkit.twistgraph import twist_graph
-from screwkit.wrenches import wrench_analysis
+from screwkit.graphs.joints import prismatic, revolute
+from screwkit.graphs.twistgraph import twist_graph
+from screwkit.interface.cli import main
+from screwkit.robots.catalog import load_mechanism
+from screwkit.robots.families.four_limb import inverse_kinematics, reachable
 
 from .paper_004 import TABLE_4, spiral_trajectory
 from .strategies import rigid_motions, unit_factors
@@ -83,7 +83,7 @@ def test_transmission_is_paper_004_closed_form(robots, name):
 @pytest.mark.parametrize("name", FOUR_LIMB)
 @pytest.mark.parametrize("mode", [(-1, -1, -1, -1), (1, -1, 1, 1)])
 def test_numba_and_numpy_paths_agree(robots, name, mode):
-    kernels = pytest.importorskip("screwkit._indices_numba")
+    kernels = pytest.importorskip("screwkit.papers._lti_numba")
     mechanism = robots[name]
     rng = np.random.default_rng(3)
     low, high = zip(*(mechanism.workspace[c] for c in mechanism.pose_names), strict=True)
@@ -567,7 +567,7 @@ def test_wrench_transmission_for_other_families_and_in_the_report():
     posed = load_mechanism("peppermill").at()
     result = posed.wrench_transmission
     assert result.input.shape == (1, 4) and 0 < float(result.lti[0]) <= 1
-    from screwkit.report import analyze
+    from screwkit.interface.report import analyze
 
     data = json.loads(json.dumps(analyze("h4", superbracket=False).to_dict()))["transmission"]
     assert min(data["wrench"]["input"]) == pytest.approx(data["paper_004"]["input"], abs=1e-9)

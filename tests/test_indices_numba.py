@@ -1,4 +1,4 @@
-"""The compiled kernel of paper 004's indices (screwkit._indices_numba): its cosine and sine against
+"""The compiled kernel of paper 004's indices (screwkit.papers._lti_numba): its cosine and sine against
 the maths library, its fallback for angles beyond the reduction's range against the numpy path, and
 calls from several threads at once. ``bench/bench_indices.py`` measures its speed and checks that the
 compiler turned its pose loop into packed (SIMD) instructions (a fresh compile, ~10 s: not here).
@@ -15,10 +15,10 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 import pytest
 
-from screwkit import indices as I
-from screwkit.catalog import load_mechanism
+from screwkit.analysis import indices as I
+from screwkit.robots.catalog import load_mechanism
 
-kernels = pytest.importorskip("screwkit._indices_numba")
+kernels = pytest.importorskip("screwkit.papers._lti_numba")
 numba = pytest.importorskip("numba")
 
 

@@ -15,33 +15,33 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 
-from screwkit import screw as S
+from screwkit.algebra import screw as S
+from screwkit.analysis.indices import (
+    four_limb_jacobians,
+    transmission_indices,
+)
+from screwkit.core.jacobians import (
+    GOSSELIN_ANGELES_TYPES,
+    jacobians_from_wrenches,
+    jacobians_over_poses,
+    schoenflies_basis,
+)
+from screwkit.core.singularity import classify_analysis, classify_poses
+from screwkit.core.wrenches import wrench_analysis
 from screwkit.exceptions import (
     DegenerateGeometryError,
     ScrewkitTypeError,
     ScrewkitValueError,
     TwistGraphError,
 )
-from screwkit.families.four_limb import (
+from screwkit.graphs.joints import prismatic, revolute, spherical
+from screwkit.graphs.twistgraph import twist_graph
+from screwkit.robots.families.four_limb import (
     FourLimbParameters,
     inverse_kinematics,
     joints,
     reachable,
 )
-from screwkit.indices import (
-    four_limb_jacobians,
-    transmission_indices,
-)
-from screwkit.jacobians import (
-    GOSSELIN_ANGELES_TYPES,
-    jacobians_from_wrenches,
-    jacobians_over_poses,
-    schoenflies_basis,
-)
-from screwkit.joints import prismatic, revolute, spherical
-from screwkit.singularity import classify_analysis, classify_poses
-from screwkit.twistgraph import twist_graph
-from screwkit.wrenches import wrench_analysis
 
 from .strategies import rigid_motions, seeds, unit_factors
 from .test_h4 import H4, case_b_pose, paper_002_conditions, paper_wrench_matrix, random_poses, singular_pose
@@ -180,7 +180,7 @@ def test_regular_where_the_paper_transmission_index_is_positive(rng):
         assert set(result.types[clear]) == {"regular"}
 
 
-# Gosselin-Angeles types at roots, against screwkit.singularity ---------------------------------------
+# Gosselin-Angeles types at roots, against screwkit.core.singularity ---------------------------------------
 def spiral(vartheta):
     """Paper 004 Eqs. (17)-(18), evaluated here."""
     rho = vartheta / (4 * np.pi)
@@ -219,7 +219,7 @@ def test_quattro_type_2_on_the_spiral_is_direct():
     assert abs(eq_12(cfg)) < 1e-9
     assert result.type == "direct" and result.closeness["direct"] < 1e-12
     assert classify_analysis(analysis).labels == ("actuation",)
-    # A's null vector is the uncontrolled twist that screwkit.singularity reports
+    # A's null vector is the uncontrolled twist that screwkit.core.singularity reports
     null = np.linalg.svd(result.A)[2][-1]
     twist = null @ result.twist_basis
     uncontrolled = classify_analysis(analysis).uncontrolled_twists

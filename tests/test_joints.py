@@ -1,4 +1,4 @@
-"""Tests of screwkit.joints: hand-derived unit twists, invariants, independent spans, one test per error."""
+"""Tests of screwkit.graphs.joints: hand-derived unit twists, invariants, independent spans, one test per error."""
 
 import dataclasses
 import json
@@ -9,9 +9,10 @@ import pytest
 import sympy
 from hypothesis import given, settings
 
-from screwkit import screw as S
+from screwkit.algebra import screw as S
+from screwkit.algebra.screwsystem import ScrewSystem
 from screwkit.exceptions import DegenerateGeometryError, ScrewkitTypeError, ScrewkitValueError
-from screwkit.joints import (
+from screwkit.graphs.joints import (
     JOINT_TYPES,
     Joint,
     cylindrical,
@@ -24,7 +25,6 @@ from screwkit.joints import (
     universal,
     virtual,
 )
-from screwkit.screwsystem import ScrewSystem
 
 from .mechanisms import unit
 from .strategies import rigid_motions, seeds, unit_factors
@@ -379,12 +379,12 @@ def test_error_zero_axis(make):
 def test_error_symbolic_screws_in_the_analysis_core():
     import sympy
 
-    from screwkit.joints import JointTable, revolute
-    from screwkit.singularity import classify
-    from screwkit.twistgraph import twist_graph
+    from screwkit.core.singularity import classify
+    from screwkit.graphs.joints import JointTable, revolute
+    from screwkit.graphs.twistgraph import twist_graph
 
     graph = twist_graph("B", "E", [("B", "E", revolute("R", [0, 0, 1], [sympy.Symbol("a"), 0, 0], actuated=True))])
-    # classify gives a symbolic graph's generic answers (screwkit.generic); the numeric table refuses it
+    # classify gives a symbolic graph's generic answers (screwkit.core.generic); the numeric table refuses it
     assert classify(graph).motion_type == "1R"
     with pytest.raises(ScrewkitTypeError, match=r"Expected numeric joint screws for the analysis core, got symbolic"):
         JointTable.from_graph(graph)
@@ -394,7 +394,7 @@ def test_error_symbolic_screws_in_the_analysis_core():
 
 @pytest.mark.parametrize("flag", ["no", 1, None])
 def test_error_actuated_flag_must_be_a_bool(flag):
-    from screwkit.joints import revolute
+    from screwkit.graphs.joints import revolute
 
     with pytest.raises(ScrewkitTypeError, match=rf"Joint 'R': expected `actuated` to be True or False, got {flag!r}"):
         revolute("R", [0, 0, 1], [0, 0, 0], actuated=flag)

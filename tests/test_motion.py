@@ -1,4 +1,4 @@
-"""Generic configurations of any twist graph (screwkit.motion): the loops close again, the mechanism
+"""Generic configurations of any twist graph (screwkit.core.motion): the loops close again, the mechanism
 moved, and the answer follows rigid motions and changes of unit.
 
 The loop-closure checks are independent of the module: a moved Delta must keep its rods' lengths
@@ -9,10 +9,10 @@ moved four-bar its link lengths.
 import numpy as np
 import pytest
 
+from screwkit.core.motion import generic_analyses, generic_configurations
 from screwkit.exceptions import ScrewkitValueError
-from screwkit.joints import revolute
-from screwkit.motion import generic_analyses, generic_configurations
-from screwkit.twistgraph import twist_graph
+from screwkit.graphs.joints import revolute
+from screwkit.graphs.twistgraph import twist_graph
 
 from . import mechanisms as M
 from . import mechanisms_extra as X

@@ -70,7 +70,7 @@ def test_source_tree_shadowing_the_install_still_finds_the_catalog(installed):
     # ``python -m pytest`` from the repository root imports screwkit from the source tree, whose
     # screwkit/ folder has no mechanisms/; the installed package data must still be found.
     python, _, source = installed
-    code = "import screwkit, screwkit.catalog as c; print(screwkit.__file__); print(*c.list_mechanisms())"
+    code = "import screwkit, screwkit.robots.catalog as c; print(screwkit.__file__); print(*c.list_mechanisms())"
     where, names = _run([python, "-c", code], source).splitlines()
     assert Path(where) == source / "screwkit" / "__init__.py"
     assert names.split() == CATALOG

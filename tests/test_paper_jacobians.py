@@ -2,7 +2,7 @@
 
 Ours: ``A_w χ̇ = B_w θ̇`` with ``χ̇`` the rates of the pose coordinates (the family's twist basis),
 ``θ̇`` the actuated joints' rates in sorted joint-name order, rows the actuation wrenches as unit
-forces signed so that ``B_w ≥ 0`` (``screwkit.jacobians``). Each paper uses its own variables; the
+forces signed so that ``B_w ≥ 0`` (``screwkit.core.jacobians``). Each paper uses its own variables; the
 relations below are derived by hand and hold identically at every regular pose:
 
 * **McGill SMG, paper 001, Eqs. (16)-(19)**: ``A t = B θ̇`` with ``t = (φ̇, ṗ/L) = T χ̇`` and 6×4
@@ -39,14 +39,14 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from screwkit.catalog import load_mechanism
+from screwkit.core.jacobians import jacobians_from_wrenches
+from screwkit.core.wrenches import wrench_analysis
 from screwkit.exceptions import UnreachablePoseError
-from screwkit.families import families
-from screwkit.families import mcgill_smg as smg
-from screwkit.families import peppermill as pm
-from screwkit.families import planar_3rrp as planar
-from screwkit.jacobians import jacobians_from_wrenches
-from screwkit.wrenches import wrench_analysis
+from screwkit.robots.catalog import load_mechanism
+from screwkit.robots.families import families
+from screwkit.robots.families import mcgill_smg as smg
+from screwkit.robots.families import peppermill as pm
+from screwkit.robots.families import planar_3rrp as planar
 
 from . import paper_000, paper_001, paper_003
 from . import test_planar_catalog as planar_catalog

@@ -1,7 +1,7 @@
 """The planar 3-RRP catalog entry (paper 003) and its physical twist graph.
 
-The twist-graph labels (:func:`screwkit.singularity.classify` with ``dof = 3``; vectorized
-:func:`screwkit.singularity.classify_table`) are compared with the family's instant-centre classification
+The twist-graph labels (:func:`screwkit.core.singularity.classify` with ``dof = 3``; vectorized
+:func:`screwkit.core.singularity.classify_table`) are compared with the family's instant-centre classification
 (``tests/paper_003.classify``, paper 003 Sec. 4) at singular configurations found
 by root search: inverse <-> serial, direct <-> actuation, combined <-> both; and the wrenches with
 paper 003's geometry (the lines t_k through the elbows, the concurrency point D = C_18).
@@ -14,11 +14,15 @@ import json
 import numpy as np
 import pytest
 
-from screwkit import screw as S
-from screwkit.catalog import load_mechanism
-from screwkit.cli import main
+from screwkit.algebra import screw as S
+from screwkit.core.singularity import classify as classify_graph
+from screwkit.core.singularity import classify_table
 from screwkit.exceptions import CatalogError, ScrewkitTypeError, ScrewkitValueError
-from screwkit.families.planar_3rrp import (
+from screwkit.graphs.twistgraph import fundamental_loops
+from screwkit.interface.cli import main
+from screwkit.interface.report import analyze
+from screwkit.robots.catalog import load_mechanism
+from screwkit.robots.families.planar_3rrp import (
     EXAMPLE_PARAMETERS,
     JOINT_PAIRS,
     LINK_NAMES,
@@ -29,10 +33,6 @@ from screwkit.families.planar_3rrp import (
     inverse_kinematics,
     joints,
 )
-from screwkit.report import analyze
-from screwkit.singularity import classify as classify_graph
-from screwkit.singularity import classify_table
-from screwkit.twistgraph import fundamental_loops
 
 from .paper_003 import classify, jacobians
 

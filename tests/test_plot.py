@@ -1,6 +1,6 @@
-"""screwkit.plot: drawings rendered to files with Agg, checked through the artists they contain.
+"""screwkit.interface.plot: drawings rendered to files with Agg, checked through the artists they contain.
 
-The maps and loci are small objects built here with the attributes of screwkit.workspace's
+The maps and loci are small objects built here with the attributes of screwkit.analysis.workspace's
 WorkspaceMap and Locus (plot reads attributes only); the diagrams and twist graphs are screwkit's own.
 Expected values come from the inputs (how many lines, which labels, which levels), never from a
 drawing of the code under test.
@@ -22,15 +22,16 @@ from matplotlib.patches import FancyArrowPatch
 from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
 
 from screwkit import equivalent_twist_graph, load_mechanism, prismatic, revolute, twist_graph
-from screwkit.diagram import wrench_diagram
+from screwkit.analysis.indices import TABLE_4_CONE, Region, actuation_singularity_surface
+from screwkit.core.wrenches import wrench_analysis
 from screwkit.exceptions import (
     DegenerateGeometryError,
     ScrewkitTypeError,
     ScrewkitValueError,
     TwistGraphError,
 )
-from screwkit.indices import TABLE_4_CONE, Region, actuation_singularity_surface
-from screwkit.plot import (
+from screwkit.gca.diagram import wrench_diagram
+from screwkit.interface.plot import (
     SURFACE_COLOURS,
     UNREACHABLE_COLOUR,
     VERDICT_COLOURS,
@@ -40,7 +41,6 @@ from screwkit.plot import (
     plot_verdicts,
     plot_wrench_diagram,
 )
-from screwkit.wrenches import wrench_analysis
 
 
 @pytest.fixture(autouse=True)
@@ -367,7 +367,7 @@ def test_import_without_matplotlib_names_the_extra():
     code = (
         "import sys\nsys.modules['matplotlib'] = None\n"
         "from screwkit.exceptions import MissingDependencyError\n"
-        "try:\n    import screwkit.plot\nexcept MissingDependencyError as err:\n    print(err)\n"
+        "try:\n    import screwkit.interface.plot\nexcept MissingDependencyError as err:\n    print(err)\n"
         "import screwkit\nprint(screwkit.classify.__name__)"
     )
     result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120, check=True)

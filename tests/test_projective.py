@@ -1,12 +1,12 @@
-"""Tests of screwkit.projective: known values, incidence invariants, parity, errors."""
+"""Tests of screwkit.algebra.projective: known values, incidence invariants, parity, errors."""
 
 import numpy as np
 import pytest
 import sympy
 from hypothesis import given
 
-from screwkit import projective as P
-from screwkit import screw as S
+from screwkit.algebra import projective as P
+from screwkit.algebra import screw as S
 from screwkit.exceptions import DegenerateGeometryError, ScrewkitTypeError, ScrewkitValueError
 
 from .strategies import rigid_motions, seeds, unit_factors
@@ -257,7 +257,7 @@ def test_error_zero_normal():
 
 
 def test_bracket_kernel_matches_the_determinant_and_is_exact(rng):
-    from screwkit.projective import bracket_unchecked, join_unchecked
+    from screwkit.algebra.projective import bracket_unchecked, join_unchecked
 
     points = rng.normal(size=(4, 5, 4))  # a batch of 5 quadruples
     expected = np.linalg.det(np.stack(list(points), axis=-2))

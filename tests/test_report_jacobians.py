@@ -4,7 +4,7 @@ Known values: each family's basis written out by hand (three translations and th
 end effector's own axis through its point; the planar translations and rotation about z), and
 ``A = B ∂θ/∂χ`` against central differences of the closed-form inverse kinematics (so the columns
 are the rates of the pose coordinates, in order, and the rows the actuators' rates). Labels: the
-report's type against :func:`screwkit.singularity.classify`'s labels at every catalog entry's
+report's type against :func:`screwkit.core.singularity.classify`'s labels at every catalog entry's
 default pose, and at a serial (reach boundary, ``h_i = 0``) and a parallel (paper 002 Eq. 7) pose of
 the H4. CLI JSON equals the library's report. One test per error message.
 """
@@ -18,12 +18,12 @@ import json
 import numpy as np
 import pytest
 
-from screwkit.catalog import Mechanism, list_mechanisms, load_mechanism
-from screwkit.cli import main
 from screwkit.exceptions import UnreachablePoseError
-from screwkit.families.four_limb import inverse_kinematics, reachable
-from screwkit.posed import PosedMechanism
-from screwkit.report import analyze
+from screwkit.interface.cli import main
+from screwkit.interface.report import analyze
+from screwkit.robots.catalog import Mechanism, list_mechanisms, load_mechanism
+from screwkit.robots.families.four_limb import inverse_kinematics, reachable
+from screwkit.robots.posed import PosedMechanism
 
 from .test_h4 import singular_pose
 
@@ -214,7 +214,7 @@ def test_snapshot_report_has_no_jacobians():
 
 def test_report_says_why_when_the_basis_is_refused(monkeypatch):
     # a basis outside the platform's twists (here: a rotation about x for the planar platform)
-    # (the composer takes the basis from the posed mechanism: screwkit.posed.PosedMechanism.twist_basis)
+    # (the composer takes the basis from the posed mechanism: screwkit.robots.posed.PosedMechanism.twist_basis)
     monkeypatch.setattr(PosedMechanism, "twist_basis", property(lambda self: np.eye(6)[[0, 3, 4]]))
     report = analyze("planar_3rrp", superbracket=False)
     summary = report.to_dict()["jacobians"]

@@ -1,4 +1,4 @@
-"""Tests of screwkit.screw: known values, invariants, numeric/symbolic parity, errors."""
+"""Tests of screwkit.algebra.screw: known values, invariants, numeric/symbolic parity, errors."""
 
 import math
 
@@ -7,9 +7,9 @@ import pytest
 import sympy
 from hypothesis import given
 
-from screwkit import screw as S
+from screwkit.algebra import screw as S
+from screwkit.algebra.screw import Screw
 from screwkit.exceptions import DegenerateGeometryError, ScrewkitTypeError, ScrewkitValueError
-from screwkit.screw import Screw
 
 from .strategies import rigid_motions, seeds, unit_factors
 

@@ -1,4 +1,4 @@
-"""Tests of screwkit.screwsystem: paper 002 §4.1 values, invariants, parity, errors."""
+"""Tests of screwkit.algebra.screwsystem: paper 002 §4.1 values, invariants, parity, errors."""
 
 import numpy as np
 import pytest
@@ -6,9 +6,9 @@ import sympy
 from hypothesis import assume, given
 from hypothesis import strategies as st
 
-from screwkit import screw as S
+from screwkit.algebra import screw as S
+from screwkit.algebra.screwsystem import ScrewSystem, motion_type
 from screwkit.exceptions import ScrewkitTypeError, ScrewkitValueError
-from screwkit.screwsystem import ScrewSystem, motion_type
 
 from .strategies import rigid_motions, seeds, unit_factors
 
@@ -313,7 +313,7 @@ def test_readable_basis_is_remembered_by_value_and_handed_out_as_a_fresh_array(r
     # the diagram and the report ask for the readable basis of the same system rebuilt from the
     # same rows: one computation, each caller its own writable copy; a different point, rtol or
     # length scale is another question
-    from screwkit.screwsystem import _readable
+    from screwkit.algebra.screwsystem import _readable
 
     rows = rng.normal(size=(3, 6)) * [1, 1, 1, 40, 40, 40]  # axes tens of lengths away too
     system = ScrewSystem.span(rows, length_scale=2.0)

@@ -1,4 +1,4 @@
-"""Tests of screwkit.singularity: textbook singular poses, invariance of the labels, 6x6 determinant checks."""
+"""Tests of screwkit.core.singularity: textbook singular poses, invariance of the labels, 6x6 determinant checks."""
 
 import json
 
@@ -6,13 +6,13 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 
-from screwkit import _frames as F
-from screwkit import screw as S
+from screwkit.algebra import screw as S
+from screwkit.core import _frames as F
+from screwkit.core.singularity import SingularityReport, classify, classify_analysis, classify_table
+from screwkit.core.wrenches import normalized_reciprocal_product, wrench_analysis
 from screwkit.exceptions import TwistGraphError
-from screwkit.joints import prismatic, revolute
-from screwkit.singularity import SingularityReport, classify, classify_analysis, classify_table
-from screwkit.twistgraph import equivalent_twist_graph, twist_graph
-from screwkit.wrenches import normalized_reciprocal_product, wrench_analysis
+from screwkit.graphs.joints import prismatic, revolute
+from screwkit.graphs.twistgraph import equivalent_twist_graph, twist_graph
 
 from .mechanisms import (
     PLANAR_BASE,
@@ -384,7 +384,7 @@ def test_serial_label_of_a_planar_mechanism_turned_by_a_tiny_angle():
     # Regression (was a strict xfail): turned by 3e-8 to 1e-7 rad, the actuation wrenches of the
     # stretched 3-RRR became lines ~1e8 lengths away (ScrewSystem.readable_basis shifted a near-couple
     # to zero pitch) and the verdict came out "regular" or "actuation". The one core picks the
-    # actuation wrench in scaled coordinates (screwkit.wrenches), with no readable basis.
+    # actuation wrench in scaled coordinates (screwkit.core.wrenches), with no readable basis.
     G = planar_3rrr(PLANAR_BASE, stretched_elbows(), PLANAR_PLATFORM)
     for turn in (np.eye(3), rotation_about([0, 1, 0], np.pi)):
         for axis in ([1, 0, 0], [1, 0.3, 0], [0.2, 1, 0.5]):
@@ -402,7 +402,7 @@ def test_error_bad_dof_is_passed_on():
 def test_one_pose_of_a_batch_report_has_the_single_pose_views():
     # classify_table keeps no per-limb frames (bounded memory); indexing one pose recomputes them
     # through the same kernels, so its serial limbs and uncontrolled twists are those of classify
-    from screwkit.catalog import load_mechanism
+    from screwkit.robots.catalog import load_mechanism
 
     h4 = load_mechanism("h4")
     poses = np.array([[0.0, 0.0, -750.0, 0.0], [30.0, -20.0, -800.0, 0.3]])

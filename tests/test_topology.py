@@ -4,12 +4,12 @@ import networkx as nx
 import numpy as np
 import pytest
 
-from screwkit.catalog import load_mechanism
+from screwkit.core.singularity import classify
 from screwkit.exceptions import TwistGraphError
-from screwkit.joints import JointSpec, JointTable, revolute
-from screwkit.singularity import classify
-from screwkit.topology import network_layout, topology
-from screwkit.twistgraph import platform_twist_system, twist_graph
+from screwkit.graphs.joints import JointSpec, JointTable, revolute
+from screwkit.graphs.topology import network_layout, topology
+from screwkit.graphs.twistgraph import platform_twist_system, twist_graph
+from screwkit.robots.catalog import load_mechanism
 
 from .mechanisms import wheatstone_bridge
 

@@ -1,4 +1,4 @@
-"""Tests of screwkit.twistgraph: known twist systems, invariants, reduction vs loop closure, errors."""
+"""Tests of screwkit.graphs.twistgraph: known twist systems, invariants, reduction vs loop closure, errors."""
 
 import json
 
@@ -8,11 +8,11 @@ import pytest
 import sympy
 from hypothesis import given, settings
 
-from screwkit import screw as S
+from screwkit.algebra import screw as S
+from screwkit.algebra.screwsystem import ScrewSystem
 from screwkit.exceptions import TwistGraphError
-from screwkit.joints import prismatic, revolute, spherical
-from screwkit.screwsystem import ScrewSystem
-from screwkit.twistgraph import (
+from screwkit.graphs.joints import prismatic, revolute, spherical
+from screwkit.graphs.twistgraph import (
     add_joint,
     check_twist_graph,
     equivalent_twist_graph,
@@ -352,7 +352,7 @@ def test_equivalent_graph_from_the_cores_tree_has_the_same_chains(name):
     # the report builds it on the analysis core's decomposition (WrenchAnalysis.tree) instead of a
     # second series_parallel_tree: the same edges between the same links, joint types and spans;
     # the virtual joints' screws may be another basis of each closed sub-loop's twist system
-    from screwkit.catalog import load_mechanism
+    from screwkit.robots.catalog import load_mechanism
 
     mechanism = load_mechanism(name)
     poses = np.concatenate([np.asarray(mechanism.default_pose)[None],

@@ -18,20 +18,20 @@ import math
 import numpy as np
 import pytest
 
-from screwkit import screw as S
-from screwkit.catalog import load_mechanism
-from screwkit.cli import main
-from screwkit.diagram import wrench_diagram
+from screwkit.algebra import screw as S
+from screwkit.algebra.screwsystem import ScrewSystem
+from screwkit.core.jacobians import gosselin_angeles_label
+from screwkit.core.singularity import classify
+from screwkit.core.wrenches import wrench_analysis
 from screwkit.exceptions import CatalogError, ScrewkitValueError
-from screwkit.families import mcgill_smg as smg
-from screwkit.families import peppermill as pm
-from screwkit.jacobians import gosselin_angeles_label
-from screwkit.joints import JointTable
-from screwkit.report import analyze
-from screwkit.screwsystem import ScrewSystem
-from screwkit.singularity import classify
-from screwkit.twistgraph import equivalent_twist_graph, fundamental_loops, platform_twist_system
-from screwkit.wrenches import wrench_analysis
+from screwkit.gca.diagram import wrench_diagram
+from screwkit.graphs.joints import JointTable
+from screwkit.graphs.twistgraph import equivalent_twist_graph, fundamental_loops, platform_twist_system
+from screwkit.interface.cli import main
+from screwkit.interface.report import analyze
+from screwkit.robots.catalog import load_mechanism
+from screwkit.robots.families import mcgill_smg as smg
+from screwkit.robots.families import peppermill as pm
 
 from .facts_two_limb import family_module, labels, paper_module, singular_configs
 from .two_limb_papers import bisect_segment
@@ -430,7 +430,7 @@ def test_labels_and_closeness_do_not_depend_on_the_unit_of_length(name):
         assert one.labels == two.labels
         assert (one.constraint_order, one.global_order) == (two.constraint_order, two.global_order)
         # (the actuation closeness needs each actuation wrench's representative modulo the
-        # constraint couples to be canonical: screwkit.wrenches picks the one orthogonal to them)
+        # constraint couples to be canonical: screwkit.core.wrenches picks the one orthogonal to them)
         for key in ("constraint", "serial", "actuation"):
             assert two.closeness[key] == pytest.approx(one.closeness[key], rel=1e-6, abs=1e-12)
 

@@ -1,4 +1,4 @@
-"""Workspace maps, loci and path checks (screwkit.workspace) against the core and paper 002.
+"""Workspace maps, loci and path checks (screwkit.analysis.workspace) against the core and paper 002.
 
 Expected values come from the core called directly (maps pointwise), from paper 002's Eq. (6) and
 Eq. (7) computed in tests/test_h4.py from the parallelograms' plane normals (independent of the
@@ -11,11 +11,11 @@ import numpy as np
 import pytest
 
 import screwkit as sk
-from screwkit import workspace as W
-from screwkit.catalog import load_toml, mechanism_from_mapping
-from screwkit.cli import main
-from screwkit.families.four_limb import reachable
-from screwkit.indices import det_A_closed_form, transmission_indices
+from screwkit.analysis import workspace as W
+from screwkit.analysis.indices import det_A_closed_form, transmission_indices
+from screwkit.interface.cli import main
+from screwkit.robots.catalog import load_toml, mechanism_from_mapping
+from screwkit.robots.families.four_limb import reachable
 
 from .mechanisms import bisect_root
 from .singular_surfaces import SCALE, conditions, surface_roots
@@ -239,7 +239,7 @@ def test_the_loci_find_where_limb_1s_parallelogram_plane_is_vertical():
 
 def test_core_calls_the_vertical_parallelogram_pose_regular():
     # limb 1's own actuation force cannot meet R_I's axis there; its compound leg is analysed as a
-    # whole (screwkit.wrenches._compound_legs, tests/test_compound_legs.py)
+    # whole (screwkit.core.wrenches._compound_legs, tests/test_compound_legs.py)
     cfg = H4.configuration(VERTICAL_PLANE_POSE)
     assert abs(det_A_closed_form(cfg)) > 40 and abs(conditions(VERTICAL_PLANE_POSE)[1]) > 40
     assert (np.abs(cfg.h) > 200).all()
@@ -487,7 +487,7 @@ def test_other_errors():
 
 def test_png_through_screwkit_plot(tmp_path):
     pytest.importorskip("matplotlib")
-    pytest.importorskip("screwkit.plot")
+    pytest.importorskip("screwkit.interface.plot")
     for quantity in ("verdict", "lti"):
         m = W.grid_map(H4, quantity, x=("z", -900, -600, 4), y=("phi", -30, 30, 3), angles="deg")
         written = m.save(tmp_path / f"{quantity}.png")
@@ -497,8 +497,9 @@ def test_png_through_screwkit_plot(tmp_path):
 def test_png_without_the_plot_extra_says_what_to_install(monkeypatch, tmp_path):
     import sys
 
-    monkeypatch.setitem(sys.modules, "screwkit.plot", None)  # import screwkit.plot fails
-    monkeypatch.delattr(sk, "plot", raising=False)  # also once an earlier test has imported it
+
+    monkeypatch.setitem(sys.modules, "screwkit.interface.plot", None)  # import screwkit.interface.plot fails
+    monkeypatch.delattr(sk.interface, "plot", raising=False)  # also once an earlier test has imported it
     m = W.grid_map(H4, "verdict", x=("z", -900, -600, 2), y=("phi", -10, 10, 2), angles="deg")
     with pytest.raises(sk.ScrewkitValueError, match=r"pip install 'screwkit\[plot\]'"):
         m.save(tmp_path / "m.png")

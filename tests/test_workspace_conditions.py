@@ -13,12 +13,12 @@ import numpy as np
 import pytest
 
 import screwkit as sk
-from screwkit import workspace as W
-from screwkit.cli import main
-from screwkit.conditions import _polynomial
-from screwkit.diagram import batch_diagram_points, diagram_points
+from screwkit.analysis import workspace as W
+from screwkit.core.wrenches import analyze_table
 from screwkit.exceptions import DegenerateGeometryError
-from screwkit.wrenches import analyze_table
+from screwkit.gca.conditions import _polynomial
+from screwkit.gca.diagram import batch_diagram_points, diagram_points
+from screwkit.interface.cli import main
 
 from .singular_surfaces import near_surface_poses, surface_roots
 from .test_h4 import case_b_pose, paper_002_conditions, paper_wrench_matrix

@@ -1,15 +1,15 @@
-"""Tests of screwkit.wrenches: paper 002 §4.2–4.3 values, reciprocity invariants, Eq. (2)–(4), errors."""
+"""Tests of screwkit.core.wrenches: paper 002 §4.2–4.3 values, reciprocity invariants, Eq. (2)–(4), errors."""
 
 import numpy as np
 import pytest
 from hypothesis import given, settings
 
-from screwkit import screw as S
+from screwkit.algebra import screw as S
+from screwkit.algebra.screwsystem import ScrewSystem
+from screwkit.core.wrenches import normalized_reciprocal_product, translated_graph, wrench_analysis
 from screwkit.exceptions import ScrewkitValueError, TwistGraphError
-from screwkit.joints import prismatic, revolute, spherical
-from screwkit.screwsystem import ScrewSystem
-from screwkit.twistgraph import equivalent_twist_graph, graph_frame, twist_graph
-from screwkit.wrenches import normalized_reciprocal_product, translated_graph, wrench_analysis
+from screwkit.graphs.joints import prismatic, revolute, spherical
+from screwkit.graphs.twistgraph import equivalent_twist_graph, graph_frame, twist_graph
 
 from .mechanisms import (
     PLANAR_BASE,
@@ -385,16 +385,16 @@ def test_graph_frame_is_the_analysis_frame():
 
 
 def test_error_normalized_reciprocal_product_of_a_zero_screw():
+    from screwkit.core.wrenches import normalized_reciprocal_product
     from screwkit.exceptions import DegenerateGeometryError
-    from screwkit.wrenches import normalized_reciprocal_product
 
     with pytest.raises(DegenerateGeometryError, match="Expected `second` to hold non-zero screws, got the zero screw"):
         normalized_reciprocal_product([0, 0, 1, 0, 0, 0], [0, 0, 0, 0, 0, 0], length_scale=1.0)
 
 
 def test_closeness_is_computed_only_when_asked_and_a_batch_agrees_with_its_poses(monkeypatch):
-    from screwkit import _frames as F
-    from screwkit.catalog import load_mechanism
+    from screwkit.core import _frames as F
+    from screwkit.robots.catalog import load_mechanism
 
     calls = []
     ratio = F.singular_ratio
@@ -416,8 +416,8 @@ def test_closeness_is_computed_only_when_asked_and_a_batch_agrees_with_its_poses
 def test_a_batch_without_views_gives_the_same_bits(monkeypatch, name):
     # without views the limbs' constraint systems are computed only where an actuation wrench is
     # searched for a line (the McGill SMG has such poses), and the closeness when asked
-    from screwkit import wrenches as W
-    from screwkit.catalog import load_mechanism
+    from screwkit.core import wrenches as W
+    from screwkit.robots.catalog import load_mechanism
 
     searched = []
     search = W._line_search
@@ -434,8 +434,8 @@ def test_a_batch_without_views_gives_the_same_bits(monkeypatch, name):
 
 
 def test_closeness_in_chunks_gives_the_same_bits(monkeypatch):
-    from screwkit import wrenches as W
-    from screwkit.catalog import load_mechanism
+    from screwkit.core import wrenches as W
+    from screwkit.robots.catalog import load_mechanism
 
     h4 = load_mechanism("h4")
     poses = h4.random_poses(np.random.default_rng(2), 5)
@@ -450,7 +450,7 @@ def test_closeness_in_chunks_gives_the_same_bits(monkeypatch):
 # a given length scale ------------------------------------------------------------------------------
 def _two_parallel_hinges(spacing):
     """Two revolute joints about z, ``spacing`` apart, both between base and platform."""
-    from screwkit.joints import JointTable
+    from screwkit.graphs.joints import JointTable
 
     rows = [("B", "E", "R1", "R", [[[0, 0, 1.0, 0, 0, 0]]], False)]
     rows.append(("B", "E", "R2", "R", [[[0, 0, 1.0, 0, -spacing, 0]]], False))
@@ -461,7 +461,7 @@ def test_a_given_length_scale_is_the_one_every_rank_decision_uses():
     # By hand: the frame's point is midway between the axes and its length spacing/2, so the scaled
     # moments are ±1 and the hinges lock the platform (order 0). Judged by a length 1e10 times the
     # spacing, the axes are 5e-11 apart (< rtol = 1e-9): one hinge, a platform rotation (order 1).
-    from screwkit.wrenches import analyze_table
+    from screwkit.core.wrenches import analyze_table
 
     table = _two_parallel_hinges(1e-3)
     derived = analyze_table(table, dof=0)
@@ -473,8 +473,8 @@ def test_a_given_length_scale_is_the_one_every_rank_decision_uses():
 
 
 def test_an_analysis_length_scale_given_back_reproduces_it_bit_for_bit():
-    from screwkit.catalog import load_mechanism
-    from screwkit.wrenches import analyze_table
+    from screwkit.core.wrenches import analyze_table
+    from screwkit.robots.catalog import load_mechanism
 
     table = load_mechanism("h4").at([[0, 0, -750, 0], [30, -20, -750, 0.3], [10, 5, -700, -0.2]]).joints
     derived = analyze_table(table)
@@ -513,7 +513,7 @@ def test_a_given_length_scale_in_the_new_unit_keeps_the_answers(motion, factor):
     ],
 )
 def test_error_bad_length_scale(value, message):
-    from screwkit.wrenches import analyze_table
+    from screwkit.core.wrenches import analyze_table
 
     with pytest.raises(ScrewkitValueError, match=message):
         analyze_table(_two_parallel_hinges(1.0), dof=0, length_scale=value)
@@ -523,8 +523,8 @@ def test_a_given_length_scale_is_kept_by_the_views_of_a_batch_analysed_without_t
     # The views=False batch (classify_table, a posed mechanism's verdicts) recomputes a pose's frames
     # when a view asks: with the given length, or the constraint system reads the derived length's
     # decision (order 6, see the hand derivation above) against the batch's own order 5.
-    from screwkit.singularity import classify_table
-    from screwkit.wrenches import analyze_table
+    from screwkit.core.singularity import classify_table
+    from screwkit.core.wrenches import analyze_table
 
     table = _two_parallel_hinges(1e-3)
     full = analyze_table(table, dof=0, length_scale=1e7)[0]

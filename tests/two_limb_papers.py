@@ -1,7 +1,7 @@
 """Helpers shared by the checks of papers 001 and 000 (``tests/paper_001.py``, ``tests/paper_000.py``).
 
-Not the robot model (that is :mod:`screwkit.families.mcgill_smg` and
-:mod:`screwkit.families.peppermill`): a container for a paper's own ``A`` and ``B``, the root
+Not the robot model (that is :mod:`screwkit.robots.families.mcgill_smg` and
+:mod:`screwkit.robots.families.peppermill`): a container for a paper's own ``A`` and ``B``, the root
 search that locates singular poses along a path, and the SCARA test cycle both papers describe.
 """
 
@@ -13,9 +13,9 @@ from typing import Any
 
 import numpy as np
 
-from screwkit._backend import as_array
+from screwkit.algebra.backend import as_array
 from screwkit.exceptions import ScrewkitValueError
-from screwkit.families._two_limb import describe_indices, frozen
+from screwkit.robots.families.two_limb import describe_indices, frozen
 
 __all__ = ["Jacobians", "bisect_segment", "pick_and_place_cycle"]
 

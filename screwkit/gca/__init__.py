@@ -16,7 +16,7 @@ expansion → simplify, each import only earlier ones:
 * exact bracket algebra: :mod:`~screwkit.gca.notation` (labels, signs, printed and parsed text),
   :mod:`~screwkit.gca.brackets` (:class:`Bracket`, :class:`BracketMonomial`, :class:`BracketPolynomial`:
   integer or rational coefficients, canonical forms, evaluation on numeric batches or exact sympy
-  points through :mod:`screwkit.projective`'s bracket and join), and :mod:`~screwkit.gca.dotted`, the
+  points through :mod:`screwkit.algebra.projective`'s bracket and join), and :mod:`~screwkit.gca.dotted`, the
   dotted notation of McMillan & White (1991), :class:`DottedMonomial` and :class:`DottedSum`
   (``gca.md`` §3);
 * the superbracket, :mod:`~screwkit.gca.expansion`: :func:`superbracket` (the 6×6 determinant, always

@@ -1,6 +1,6 @@
 """Bracket algebra: :class:`Bracket`, :class:`BracketMonomial`, :class:`BracketPolynomial` (exact
 rational coefficients, canonical forms) and their evaluation on points, batched floats or exact sympy
-(the bracket itself is :func:`screwkit.projective.bracket_unchecked`).
+(the bracket itself is :func:`screwkit.algebra.projective.bracket_unchecked`).
 
 Examples
 --------
@@ -19,10 +19,18 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .. import _backend as B
-from .. import projective as P
+from ..algebra import backend as B
+from ..algebra import projective as P
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
-from .notation import _check_label, _coefficient, _format_bracket, _format_sum, _is_scalar, _parse, _sort_sign
+from .notation import (
+    _check_label,
+    _coefficient,
+    _format_bracket,
+    _format_sum,
+    _is_scalar,
+    _parse,
+    _sort_sign,
+)
 
 if TYPE_CHECKING:
     import sympy
@@ -35,7 +43,7 @@ __all__ = [
 
 
 # --------------------------------------------------------------------------------------------------
-# Points for evaluation (brackets and joins are screwkit.projective's kernels)
+# Points for evaluation (brackets and joins are screwkit.algebra.projective's kernels)
 # --------------------------------------------------------------------------------------------------
 
 

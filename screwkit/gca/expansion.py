@@ -14,9 +14,9 @@ from typing import Any
 
 import numpy as np
 
-from .. import _backend as B
-from .. import projective as P
-from .._backend import checked_rtol
+from ..algebra import backend as B
+from ..algebra import projective as P
+from ..algebra.backend import checked_rtol
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
 from .brackets import BracketPolynomial, _labels, _point_arrays, _scalar
 from .dotted import DottedSum

@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from .. import _backend as B
+from ..algebra import backend as B
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
 
 __all__: list[str] = []

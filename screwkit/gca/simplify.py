@@ -16,9 +16,9 @@ from typing import Any, Protocol
 
 import numpy as np
 
-from .. import _backend as B
-from .. import projective as P
-from .._backend import checked_rtol
+from ..algebra import backend as B
+from ..algebra import projective as P
+from ..algebra.backend import checked_rtol
 from ..exceptions import DegenerateGeometryError, ScrewkitTypeError, ScrewkitValueError
 from .brackets import Bracket, BracketMonomial, BracketPolynomial, _labels
 from .dotted import DottedMonomial, DottedSum

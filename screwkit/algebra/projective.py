@@ -1,0 +1,499 @@
+"""Projective geometry of P3: homogeneous points, planes and Plücker lines.
+
+Conventions (``gca.md`` §1; screws: :mod:`screwkit.algebra.screw`)
+---------------------------------------------------------
+* A point is ``(x, y, z, w)``, weight last: finite ``(r, 1)``, at infinity ``(d, 0)``. Any non-zero
+  multiple is the same point.
+* A plane is ``(n, δ)``: the points with ``n·x + δ w = 0``. The plane at infinity is ``(0, 0, 0, 1)``.
+* The line through two points (their *join*) has Plücker coordinates, direction first,
+  ``L(p, q) = (p_w q⃗ − q_w p⃗ ; p⃗ × q⃗)``. A finite point and an infinite point give ``(s; r × s)``,
+  the zero-pitch screw of paper 002 §4.1; two infinite points give the line at infinity
+  ``(0; u × v)``, a pure couple. So a line *is* a zero- or infinite-pitch screw.
+* The bracket ``[pqrs]`` is the determinant of the 4×4 matrix whose rows are the four points; it
+  vanishes iff they are coplanar, and ``[pqrs] = −L(p, q) ∘ L(r, s)`` (gca.md §1).
+* Tolerance decisions scale the finite part of points and moments by ``length_scale`` and normalise
+  every row before comparing with ``rtol`` (as for screws), so they do not depend on the unit.
+
+Examples
+--------
+>>> import numpy as np
+>>> a, b = finite_point([0, 0, 0]), finite_point([1, 0, 0])
+>>> join(a, b)
+array([1., 0., 0., 0., 0., 0.])
+>>> float(bracket(a, b, finite_point([0, 1, 0]), finite_point([0, 0, 1])))
+-1.0
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from ..exceptions import DegenerateGeometryError, ScrewkitTypeError, ScrewkitValueError
+from . import backend as B
+
+__all__ = [
+    "are_collinear",
+    "are_coplanar",
+    "bracket",
+    "finite_point",
+    "infinite_point",
+    "is_at_infinity",
+    "join",
+    "join_point_line",
+    "line_points",
+    "lines_intersect",
+    "meet_line_plane",
+    "meet_planes",
+    "plane",
+    "plane_through",
+    "point_on_line",
+]
+
+Array = np.ndarray
+
+
+def finite_point(position: Any) -> Array:
+    """The homogeneous point ``(r, 1)`` of a position ``r`` (shape ``(..., 3)``).
+
+    Examples
+    --------
+    >>> finite_point([1, 2, 3])
+    array([1., 2., 3., 1.])
+    """
+    r = B.as_array(position, "position", (3,))
+    return np.concatenate([r, B.ones_like(r[..., :1])], axis=-1)
+
+
+def infinite_point(direction: Any) -> Array:
+    """The point at infinity ``(d, 0)`` of a direction ``d`` (shape ``(..., 3)``, non-zero).
+
+    Raises
+    ------
+    DegenerateGeometryError
+        If a direction is zero: ``(0, 0, 0, 0)`` is not a projective point.
+
+    Examples
+    --------
+    >>> infinite_point([0, 0, 1])
+    array([0., 0., 1., 0.])
+    """
+    d = B.as_array(direction, "direction", (3,))
+    if np.any(B.zero_vectors(d)):
+        raise DegenerateGeometryError(
+            "Expected `direction` to be non-zero, got a zero vector: (0, 0, 0, 0) is not a point."
+        )
+    return np.concatenate([d, B.zeros_like(d[..., :1])], axis=-1)
+
+
+def is_at_infinity(points: Any, *, rtol: float = B.DEFAULT_RTOL, length_scale: float = 1.0) -> Any:
+    """True where a point lies in the plane at infinity (``|w|`` negligible after scaling).
+
+    Examples
+    --------
+    >>> is_at_infinity([[1, 0, 0, 0], [1, 0, 0, 1]])
+    array([ True, False])
+    """
+    unit = _unit_points(_numeric(points, "points", "is_at_infinity", (4,)), length_scale)
+    result = np.abs(unit[..., 3]) <= rtol
+    return bool(result) if np.ndim(result) == 0 else result
+
+
+def _numeric(value: Any, name: str, test: str, shape: tuple[int, ...]) -> Array:
+    """``value`` as an array if it holds numbers; a symbolic one is refused, naming the exact route."""
+    value = B.as_array(value, name, shape)
+    if B.is_symbolic(value):
+        raise ScrewkitTypeError(
+            f"Expected `{name}` to hold numbers ({test} decides with a tolerance; for symbolic "
+            "coordinates test the exact bracket, join_point_line or plane_through for zero), got symbols."
+        )
+    return value
+
+
+def _unit_points(p: Array, length_scale: float) -> Array:
+    B.checked_length_scale(length_scale)
+    scaled = np.array(p, dtype=float)
+    scaled[..., :3] /= length_scale
+    size = np.linalg.norm(scaled, axis=-1, keepdims=True)
+    if np.any(size == 0):
+        raise DegenerateGeometryError("Expected non-zero points, got (0, 0, 0, 0).")
+    return scaled / size
+
+
+def join(p: Any, q: Any, *, rtol: float = B.DEFAULT_RTOL) -> Array:
+    """The line through two points, ``L(p, q) = (p_w q⃗ − q_w p⃗ ; p⃗ × q⃗)`` (gca.md §1).
+
+    Parameters
+    ----------
+    p, q : array_like, shape (..., 4)
+    rtol : float, default 1e-9
+        The points coincide when ``|L(p, q)| <= rtol |p| |q|``.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 6)
+
+    Raises
+    ------
+    DegenerateGeometryError
+        If the two points coincide (projectively), so no line is defined.
+
+    Examples
+    --------
+    >>> join([1, 2, 3, 1], [0, 0, 1, 0])
+    array([ 0.,  0.,  1.,  2., -1.,  0.])
+    >>> join([1, 2, 3, 1], [2, 4, 6, 2])
+    Traceback (most recent call last):
+    ...
+    screwkit.exceptions.DegenerateGeometryError: Expected `p` and `q` to be distinct points, ...
+    """
+    pp, qq = B.as_arrays((4,), (p, "p"), (q, "q"))
+    pp, qq = np.broadcast_arrays(pp, qq)
+    result = join_unchecked(pp, qq)
+    if np.any(B.vanishes(result, pp, qq, rtol=rtol)):
+        raise DegenerateGeometryError(
+            "Expected `p` and `q` to be distinct points, got coincident points (no line through them)."
+        )
+    return result
+
+
+def line_points(line: Any, *, rtol: float = B.DEFAULT_RTOL) -> tuple[Array, Array]:
+    """Two points whose join is exactly ``line`` (a zero- or infinite-pitch screw).
+
+    A finite line ``(s; m)`` gives its point nearest the origin and its point at infinity
+    ``(s, 0)``; a line at infinity ``(0; m)`` gives two infinite points ``u, v`` with ``u × v = m``.
+
+    Raises
+    ------
+    ScrewkitValueError
+        If ``line`` is not a line (its pitch is neither zero nor infinite: ``s·m ≠ 0``).
+
+    Examples
+    --------
+    >>> p, q = line_points([0, 0, 1, 2, -1, 0])
+    >>> p + 0.0, q
+    (array([1., 2., 0., 1.]), array([0., 0., 1., 0.]))
+    """
+    values = B.as_array(line, "line", (6,))
+    if values.ndim != 1:
+        raise ScrewkitValueError(f"Expected `line` to have shape (6,), got {values.shape}.")
+    if B.is_symbolic(values):
+        raise ScrewkitValueError("line_points is numeric; build symbolic lines from their points.")
+    s, m = values[:3], values[3:]
+    if not B.vanishes(B.dot(s, m, keepdims=True), s, m, rtol=rtol):
+        raise ScrewkitValueError(
+            f"Expected `line` to be a line (s·m = 0), got s·m = {s @ m:.6g}: a screw of "
+            "non-zero pitch is not a line."
+        )
+    if np.linalg.norm(s) > 0:
+        nearest = np.cross(s, m) / (s @ s)
+        return np.append(nearest, 1.0), np.append(s, 0.0)
+    if np.linalg.norm(m) == 0:
+        raise DegenerateGeometryError("Expected a non-zero line, got the zero vector.")
+    u = np.linalg.svd(m.reshape(1, 3))[2][1]  # a unit vector orthogonal to m
+    # u × (m × u) = m (u·u) − u (u·m) = m, so the join of (u, 0) and (m × u, 0) is (0; m).
+    return np.append(u, 0.0), np.append(np.cross(m, u), 0.0)
+
+
+def join_point_line(point: Any, line: Any) -> Array:
+    """The plane through a point and a line: ``(x⃗ × s − w m, x⃗·m)`` for ``x = (x⃗, w)``.
+
+    It is the zero vector exactly when the point lies on the line.
+
+    Examples
+    --------
+    >>> join_point_line([0, 0, 0, 1], [1, 0, 0, 0, 0, 1])
+    array([ 0.,  0., -1.,  0.])
+    """
+    x = B.as_array(point, "point", (4,))
+    lv = B.as_array(line, "line", (6,))
+    x, lv = B.promote(x, lv)
+    s, m = lv[..., :3], lv[..., 3:]
+    normal = B.cross(x[..., :3], s) - x[..., 3:] * m
+    return np.concatenate([normal, B.dot(x[..., :3], m, keepdims=True)], axis=-1)
+
+
+def plane(normal: Any, point: Any) -> Array:
+    """The plane with normal ``n`` through the finite point ``r``: ``(n, −n·r)``.
+
+    Examples
+    --------
+    >>> plane([0, 0, 1], [5, 5, 2])
+    array([ 0.,  0.,  1., -2.])
+    """
+    n = B.as_array(normal, "normal", (3,))
+    r = B.as_array(point, "point", (3,))
+    n, r = B.promote(n, r)
+    if np.any(B.zero_vectors(n)):
+        raise DegenerateGeometryError("Expected `normal` to be non-zero, got a zero vector.")
+    return np.concatenate([n, -B.dot(n, r, keepdims=True)], axis=-1)
+
+
+def _det3(a: Array, b: Array, c: Array) -> Array:
+    return B.dot(a, B.cross(b, c))
+
+
+def plane_through(p: Any, q: Any, r: Any, *, rtol: float = B.DEFAULT_RTOL) -> Array:
+    """The plane ``π`` through three points with ``π·x = [p q r x]`` for every point ``x``.
+
+    Raises
+    ------
+    DegenerateGeometryError
+        If the three points are collinear (or two coincide), so they span no plane.
+
+    Examples
+    --------
+    >>> plane_through([0, 0, 0, 1], [1, 0, 0, 1], [0, 1, 0, 1]) + 0.0
+    array([ 0.,  0., -1.,  0.])
+    """
+    pp, qq, rr = B.as_arrays((4,), (p, "p"), (q, "q"), (r, "r"))
+    pp, qq, rr = np.broadcast_arrays(pp, qq, rr)
+    columns = [[1, 2, 3], [0, 2, 3], [0, 1, 3], [0, 1, 2]]
+    # Laplace expansion of det[p; q; r; x] along its last row: π_j = (−1)^(3+j) minor_j.
+    coefficients = [
+        (-1) ** (3 + j) * _det3(pp[..., cols], qq[..., cols], rr[..., cols])
+        for j, cols in enumerate(columns)
+    ]
+    result = np.stack(coefficients, axis=-1)
+    if np.any(B.vanishes(result, pp, qq, rr, rtol=rtol)):
+        raise DegenerateGeometryError(
+            "Expected `p`, `q`, `r` to span a plane, got collinear (or coincident) points."
+        )
+    return result
+
+
+def bracket(p: Any, q: Any, r: Any, s: Any) -> Any:
+    """The bracket ``[pqrs]``: the determinant of the 4×4 matrix with rows p, q, r, s.
+
+    Batched over leading axes; exact for sympy input (gca.md §1).
+
+    Examples
+    --------
+    >>> float(bracket([1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]))
+    1.0
+    """
+    pts = B.as_arrays((4,), (p, "p"), (q, "q"), (r, "r"), (s, "s"))
+    return bracket_unchecked(*np.broadcast_arrays(*pts))
+
+
+# Laplace expansion of a 4×4 determinant along its first two rows: (columns of rows 0-1, the
+# complementary columns of rows 2-3, sign (-1)^(i+j+1) with 0-based column indices i, j).
+_LAPLACE = (
+    ((0, 1), (2, 3), 1),
+    ((0, 2), (1, 3), -1),
+    ((0, 3), (1, 2), 1),
+    ((1, 2), (0, 3), 1),
+    ((1, 3), (0, 2), -1),
+    ((2, 3), (0, 1), 1),
+)
+
+
+def bracket_unchecked(p: Array, q: Array, r: Array, s: Array) -> Any:
+    """:func:`bracket` on validated, promoted arrays ``(..., 4)`` (broadcast).
+
+    The Laplace expansion along the first two rows (``+ - *`` only), so batches of float64 points and
+    sympy-object points go through the same code.
+
+    Examples
+    --------
+    >>> e = np.eye(4)
+    >>> float(bracket_unchecked(e[1], e[0], e[2], e[3]))
+    -1.0
+    """
+    total: Any = 0
+    for (i, j), (k, m), sign in _LAPLACE:
+        upper = p[..., i] * q[..., j] - p[..., j] * q[..., i]
+        lower = r[..., k] * s[..., m] - r[..., m] * s[..., k]
+        total = total + sign * upper * lower
+    return total
+
+
+def join_unchecked(p: Array, q: Array) -> Array:
+    """:func:`join` on validated, promoted arrays ``(..., 4)``, without the coincidence check.
+
+    Coincident points give the zero line.
+
+    Examples
+    --------
+    >>> join_unchecked(np.array([1.0, 2, 3, 1]), np.array([2.0, 4, 6, 2]))
+    array([0., 0., 0., 0., 0., 0.])
+    """
+    direction = p[..., 3:] * q[..., :3] - q[..., 3:] * p[..., :3]
+    return np.concatenate([direction, B.cross(p[..., :3], q[..., :3])], axis=-1)
+
+
+def plane_through_unchecked(p: Array, q: Array, r: Array) -> Array:
+    """:func:`plane_through` without the degeneracy check (the zero plane for collinear input).
+
+    Examples
+    --------
+    >>> plane_through_unchecked(np.array([0, 0, 0, 1.]), np.array([1, 0, 0, 1.]), np.array([2, 0, 0, 1.]))
+    array([0., 0., 0., 0.])
+    """
+    columns = [[1, 2, 3], [0, 2, 3], [0, 1, 3], [0, 1, 2]]
+    return np.stack(
+        [(-1) ** (3 + j) * _det3(p[..., c], q[..., c], r[..., c]) for j, c in enumerate(columns)],
+        axis=-1,
+    )
+
+
+def meet_line_plane(
+    line: Any, plane_coords: Any, *, allow_infinite: bool = False, rtol: float = B.DEFAULT_RTOL
+) -> Array:
+    """The point where a line ``(s; m)`` meets a plane ``(n, δ)``: ``(n × m − δ s, n·s)``.
+
+    Parameters
+    ----------
+    line : array_like, shape (..., 6)
+    plane_coords : array_like, shape (..., 4)
+    allow_infinite : bool, default False
+        A line parallel to the plane meets it at infinity; by default that raises, since most
+        constructions need a finite point (gca.md §7). Set True to get the point at infinity.
+    rtol : float, default 1e-9
+
+    Raises
+    ------
+    DegenerateGeometryError
+        If the line lies in the plane (no single meet point), or is parallel to it and
+        ``allow_infinite`` is False.
+
+    Examples
+    --------
+    >>> meet_line_plane([0, 0, 1, 0, 0, 0], [0, 0, 1, -2])
+    array([0., 0., 2., 1.])
+    """
+    lv = B.as_array(line, "line", (6,))
+    pl = B.as_array(plane_coords, "plane", (4,))
+    lv, pl = B.promote(lv, pl)
+    s, m, n, delta = lv[..., :3], lv[..., 3:], pl[..., :3], pl[..., 3:]
+    point = np.concatenate([B.cross(n, m) - delta * s, B.dot(n, s, keepdims=True)], axis=-1)
+    if np.any(B.vanishes(point, lv, pl, rtol=rtol)):
+        raise DegenerateGeometryError(
+            "Expected `line` to cross `plane` at one point, got a line lying in the plane."
+        )
+    if not allow_infinite and np.any(B.vanishes(point[..., 3:], point, rtol=rtol)):
+        raise DegenerateGeometryError(
+            "Expected `line` to cross `plane` at a finite point, got a line parallel to the plane "
+            "(they meet at infinity; pass allow_infinite=True for that point)."
+        )
+    return point
+
+
+def meet_planes(
+    first: Any, second: Any, *, allow_infinite: bool = False, rtol: float = B.DEFAULT_RTOL
+) -> Array:
+    """The line common to two planes ``(n1, δ1)``, ``(n2, δ2)``: ``(n1 × n2 ; δ1 n2 − δ2 n1)``.
+
+    Raises
+    ------
+    DegenerateGeometryError
+        If the planes coincide, or are parallel and ``allow_infinite`` is False (parallel planes
+        meet only in a line at infinity).
+
+    Examples
+    --------
+    >>> meet_planes([1, 0, 0, 0], [0, 1, 0, 0])
+    array([0., 0., 1., 0., 0., 0.])
+    >>> meet_planes([0, 0, 1, 0], [0, 0, 1, -1])
+    Traceback (most recent call last):
+    ...
+    screwkit.exceptions.DegenerateGeometryError: Expected `first` and `second` to meet in a finite line, ...
+    """
+    a = B.as_array(first, "first", (4,))
+    b = B.as_array(second, "second", (4,))
+    a, b = B.promote(a, b)
+    n1, d1, n2, d2 = a[..., :3], a[..., 3:], b[..., :3], b[..., 3:]
+    result = np.concatenate([B.cross(n1, n2), d1 * n2 - d2 * n1], axis=-1)
+    if np.any(B.vanishes(result, a, b, rtol=rtol)):
+        raise DegenerateGeometryError(
+            "Expected `first` and `second` to be distinct planes, got the same plane twice."
+        )
+    if not allow_infinite and np.any(B.vanishes(result[..., :3], result, rtol=rtol)):
+        raise DegenerateGeometryError(
+            "Expected `first` and `second` to meet in a finite line, got parallel planes (they "
+            "meet at infinity; pass allow_infinite=True for that line)."
+        )
+    return result
+
+
+def are_coplanar(
+    p: Any, q: Any, r: Any, s: Any, *, rtol: float = B.DEFAULT_RTOL, length_scale: float = 1.0
+) -> Any:
+    """True where four points lie in one plane: ``|[pqrs]| <= rtol`` on unit-scaled points.
+
+    Examples
+    --------
+    >>> are_coplanar([0, 0, 0, 1], [1, 0, 0, 1], [0, 1, 0, 1], [5, 5, 0, 1])
+    True
+    """
+    named = zip((p, q, r, s), "pqrs", strict=True)
+    pts = [_unit_points(_numeric(x, name, "are_coplanar", (4,)), length_scale) for x, name in named]
+    result = np.abs(np.linalg.det(np.stack(np.broadcast_arrays(*pts), axis=-2))) <= rtol
+    return bool(result) if np.ndim(result) == 0 else result
+
+
+def are_collinear(
+    p: Any, q: Any, r: Any, *, rtol: float = B.DEFAULT_RTOL, length_scale: float = 1.0
+) -> Any:
+    """True where three points lie on one line (the 3×4 matrix of unit-scaled points has rank < 3).
+
+    Examples
+    --------
+    >>> are_collinear([0, 0, 0, 1], [1, 1, 1, 1], [1, 1, 1, 0])
+    True
+    """
+    named = zip((p, q, r), "pqr", strict=True)
+    pts = [_unit_points(_numeric(x, name, "are_collinear", (4,)), length_scale) for x, name in named]
+    values = np.linalg.svd(np.stack(np.broadcast_arrays(*pts), axis=-2), compute_uv=False)
+    result = values[..., 2] <= rtol * values[..., 0]
+    return bool(result) if np.ndim(result) == 0 else result
+
+
+def lines_intersect(
+    first: Any, second: Any, *, rtol: float = B.DEFAULT_RTOL, length_scale: float = 1.0
+) -> Any:
+    """True where two lines meet (parallel lines meet at infinity and count): ``L1 ∘ L2 = 0``.
+
+    Equivalent to the coplanarity of the two lines (paper 002, §3).
+
+    Examples
+    --------
+    >>> lines_intersect([1, 0, 0, 0, 0, 0], [0, 1, 0, 0, 0, 0])
+    True
+    >>> lines_intersect([1, 0, 0, 0, 0, 0], [0, 1, 0, -1, 0, 0])
+    False
+    """
+    a = _numeric(first, "first", "lines_intersect", (6,))
+    b = _numeric(second, "second", "lines_intersect", (6,))
+    scaled_a, _ = B.scale_moments(a, length_scale)
+    scaled_b, _ = B.scale_moments(b, length_scale)
+    for name, values in (("first", scaled_a), ("second", scaled_b)):
+        if np.any(np.linalg.norm(values, axis=-1) == 0):
+            raise DegenerateGeometryError(f"Expected `{name}` to be a non-zero line, got zeros.")
+    scaled_a /= np.linalg.norm(scaled_a, axis=-1, keepdims=True)
+    scaled_b /= np.linalg.norm(scaled_b, axis=-1, keepdims=True)
+    product = B.dot(scaled_a[..., :3], scaled_b[..., 3:]) + B.dot(
+        scaled_a[..., 3:], scaled_b[..., :3]
+    )
+    result = np.abs(product) <= rtol
+    return bool(result) if np.ndim(result) == 0 else result
+
+
+def point_on_line(
+    point: Any, line: Any, *, rtol: float = B.DEFAULT_RTOL, length_scale: float = 1.0
+) -> Any:
+    """True where a point lies on a line: their joining plane (:func:`join_point_line`) vanishes.
+
+    Examples
+    --------
+    >>> point_on_line([3, 0, 0, 1], [1, 0, 0, 0, 0, 0]), point_on_line([0, 1, 0, 1], [1, 0, 0, 0, 0, 0])
+    (True, False)
+    """
+    x = _unit_points(_numeric(point, "point", "point_on_line", (4,)), length_scale)
+    lv, _ = B.scale_moments(_numeric(line, "line", "point_on_line", (6,)), length_scale)
+    size = np.linalg.norm(lv, axis=-1, keepdims=True)
+    if np.any(size == 0):
+        raise DegenerateGeometryError("Expected `line` to be a non-zero line, got zeros.")
+    result = np.linalg.norm(join_point_line(x, lv / size), axis=-1) <= rtol
+    return bool(result) if np.ndim(result) == 0 else result

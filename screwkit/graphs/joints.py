@@ -1,0 +1,637 @@
+"""Joints: each gives the unit twists of its child link relative to its parent, at one configuration.
+
+A joint of a twist graph (design.md §5) is a frozen :class:`Joint`: its type, the screws of its
+twist system at the current configuration (rows ``(dof, 6)``, conventions in
+:mod:`screwkit.algebra.screw`), whether it is actuated, whether it is *virtual* (a member of an equivalent
+chain derived by :func:`screwkit.graphs.twistgraph.equivalent_twist_graph`, paper 002 Fig. 2b–3), and the
+geometric data it was built from (kept for reports and for saving graphs).
+
+=========  ======  =================================================================================
+type       dof     twists (paper 002 §3; Hunt 1978)
+=========  ======  =================================================================================
+``R``      1       zero-pitch screw on the axis
+``P``      1       infinite-pitch screw ``(0; d)``
+``H``      1       screw of pitch h on the axis (h = lead / 2π)
+``C``      2       the R and the P of one axis
+``U``      2       two zero-pitch screws through the centre
+``S``      3       three zero-pitch screws through the centre
+``Pa``     1       planar parallelogram Π: the coupler translates along ``hinge × rod`` (paper 004 §2)
+``virtual``k       any screws (an equivalent chain's member); type ``"vR"``/``"vP"``/``"vH"`` by pitch
+=========  ======  =================================================================================
+
+Examples
+--------
+>>> hinge = revolute("A1", axis=[1, 0, 0], point=[0, 0, 0], actuated=True)
+>>> hinge.dof, hinge.actuated
+(1, True)
+>>> spherical("S_m", center=[1, 2, 3]).screws.shape
+(3, 6)
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from ..algebra import backend as B
+from ..algebra import screw as S
+from ..exceptions import ScrewkitTypeError, ScrewkitValueError
+
+__all__ = [
+    "JOINT_FIELDS",
+    "JOINT_TYPES",
+    "PARALLEL_RTOL",
+    "Joint",
+    "JointSpec",
+    "JointTable",
+    "cylindrical",
+    "helical",
+    "lead_to_pitch",
+    "parallelogram",
+    "prismatic",
+    "revolute",
+    "spherical",
+    "universal",
+    "virtual",
+]
+
+#: Joint types and their degrees of freedom (None: any, for virtual joints).
+JOINT_TYPES: dict[str, int | None] = {
+    "R": 1,
+    "P": 1,
+    "H": 1,
+    "C": 2,
+    "U": 2,
+    "S": 3,
+    "Pa": 1,
+    "vR": 1,
+    "vP": 1,
+    "vH": 1,
+}
+
+Array = np.ndarray
+
+#: Relative tolerance below which two axes count as parallel when a joint is built (a U joint
+#: needs non-parallel axes, a parallelogram rods not parallel to its hinges): the sine of the angle.
+PARALLEL_RTOL = 1e-12
+
+
+#: The data each joint type is built from (its constructor's arguments), in file order: the fields
+#: of a ``[[joints]]`` table of a snapshot file (read by :mod:`screwkit.robots.catalog`, written by
+#: :mod:`screwkit.interface.export`); kept in ``Joint.geometry`` by the constructors.
+JOINT_FIELDS: dict[str, tuple[str, ...]] = {
+    "R": ("axis", "point"),
+    "P": ("direction",),
+    "H": ("axis", "point", "pitch"),
+    "C": ("axis", "point"),
+    "U": ("first_axis", "second_axis", "center"),
+    "S": ("center",),
+    "Pa": ("hinge_axis", "rod_direction"),
+}
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class Joint:
+    """A joint at one configuration: the unit twists it allows (child relative to parent).
+
+    Build joints with the module's constructors (:func:`revolute`, ...), which check their input.
+
+    Parameters
+    ----------
+    name : str
+        Unique within a twist graph (it is the edge key).
+    type : str
+        One of :data:`JOINT_TYPES`.
+    screws : array_like, shape (dof, 6)
+        Twists of the joint at the current configuration, in the graph's frame.
+    actuated : bool
+        True for an actuated (input) joint; only one-degree-of-freedom joints can be actuated.
+    virtual : bool
+        True for the members of an equivalent chain derived from a closed sub-loop.
+    geometry : dict
+        The data the joint was built from (axis, point, pitch, ...), plain floats.
+
+    Examples
+    --------
+    >>> joint = prismatic("P1", direction=[0, 0, 2])
+    >>> joint.screws
+    array([[0., 0., 0., 0., 0., 1.]])
+    >>> joint.screws[0, 0] = 1
+    Traceback (most recent call last):
+    ...
+    ValueError: assignment destination is read-only
+    """
+
+    name: str
+    type: str
+    screws: Array
+    actuated: bool = False
+    virtual: bool = False
+    geometry: dict[str, Any] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.name, str) or not self.name:
+            raise ScrewkitTypeError(f"Expected the joint `name` to be a non-empty string, got {self.name!r}.")
+        if self.type not in JOINT_TYPES:
+            raise ScrewkitValueError(
+                f"Joint {self.name!r}: expected `type` to be one of {sorted(JOINT_TYPES)}, got {self.type!r}."
+            )
+        rows = B.as_array(self.screws, f"screws of joint {self.name!r}", (6,)).reshape(-1, 6)
+        expected = JOINT_TYPES[self.type]
+        if expected is not None and rows.shape[0] != expected:
+            raise ScrewkitValueError(
+                f"Joint {self.name!r} of type {self.type}: expected {expected} screw(s), got {rows.shape[0]}."
+            )
+        if np.any(B.zero_vectors(rows)):
+            raise ScrewkitValueError(f"Joint {self.name!r}: expected non-zero screws, got a zero row.")
+        if not isinstance(self.actuated, bool | np.bool_) or not isinstance(self.virtual, bool | np.bool_):
+            flag, value = (
+                ("actuated", self.actuated)
+                if not isinstance(self.actuated, bool | np.bool_)
+                else (
+                    "virtual",
+                    self.virtual,
+                )
+            )
+            raise ScrewkitTypeError(
+                f"Joint {self.name!r}: expected `{flag}` to be True or False, got {value!r}."
+            )
+        if self.actuated and rows.shape[0] != 1:
+            raise ScrewkitValueError(
+                f"Joint {self.name!r}: only one-degree-of-freedom joints can be actuated, "
+                f"got a {self.type} joint with {rows.shape[0]}."
+            )
+        rows = rows.copy()
+        rows.flags.writeable = False
+        object.__setattr__(self, "screws", rows)
+        object.__setattr__(self, "geometry", dict(self.geometry))
+
+    @property
+    def dof(self) -> int:
+        """Degrees of freedom: the number of screws."""
+        return int(self.screws.shape[0])
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready description (used to save graphs with ``nx.node_link_data``).
+
+        Examples
+        --------
+        >>> revolute("R1", [0, 0, 1], [1, 0, 0]).to_dict()["type"]
+        'R'
+        """
+        return {
+            "name": self.name,
+            "type": self.type,
+            "actuated": self.actuated,
+            "virtual": self.virtual,
+            "screws": [[B.plain(v) for v in row] for row in self.screws],
+            "geometry": self.geometry,
+        }
+
+    @classmethod
+    def from_dict(cls, data: dict[str, Any]) -> Joint:
+        """Rebuild a joint from :meth:`to_dict` output (plain data only; nothing is evaluated).
+
+        Examples
+        --------
+        >>> joint = revolute("R1", [0, 0, 1], [1, 0, 0])
+        >>> Joint.from_dict(joint.to_dict()).screws
+        array([[ 0.,  0.,  1.,  0., -1.,  0.]])
+        """
+        missing = {"name", "type", "screws"} - set(data)
+        if missing:
+            raise ScrewkitValueError(
+                f"Expected joint data with fields {sorted(missing)}, got {sorted(data)}."
+            )
+        try:
+            screws = np.array(data["screws"], dtype=float)
+        except (TypeError, ValueError) as err:
+            raise ScrewkitValueError(
+                f"Joint {data['name']!r}: expected numeric screws, got {data['screws']!r} "
+                "(symbolic joints are not loaded: nothing is evaluated)."
+            ) from err
+        return cls(
+            name=data["name"],
+            type=data["type"],
+            screws=screws,
+            actuated=bool(data.get("actuated", False)),
+            virtual=bool(data.get("virtual", False)),
+            geometry=dict(data.get("geometry", {})),
+        )
+
+    def __str__(self) -> str:
+        flags = " actuated" if self.actuated else ""
+        flags += " virtual" if self.virtual else ""
+        return f"{self.type} joint {self.name!r}{flags}"
+
+
+def _unit_axis(axis: Any) -> Any:
+    """A numeric axis scaled to unit length; a symbolic axis is kept as given, so that symbolic screws
+    stay polynomial (:func:`screwkit.algebra.backend.unit_directions`). A zero axis is refused."""
+    return B.unit_directions(S.line(axis, [0, 0, 0])[:3])
+
+
+def revolute(name: str, axis: Any, point: Any, *, actuated: bool = False) -> Joint:
+    """A revolute joint R: the zero-pitch twist on its axis.
+
+    Examples
+    --------
+    >>> revolute("R1", [0, 0, 2], [1, 0, 0]).screws  # unit twist: the axis is normalised
+    array([[ 0.,  0.,  1.,  0., -1.,  0.]])
+    """
+    twist = S.revolute_twist(_unit_axis(axis), point)
+    geometry = B.float_lists(axis=axis, point=point)
+    return Joint(name, "R", twist.reshape(1, 6), actuated=actuated, geometry=geometry)
+
+
+def prismatic(name: str, direction: Any, *, actuated: bool = False) -> Joint:
+    """A prismatic joint P: the infinite-pitch twist ``(0; d/|d|)``.
+
+    Examples
+    --------
+    >>> prismatic("P1", [3, 0, 4]).screws
+    array([[0. , 0. , 0. , 0.6, 0. , 0.8]])
+    """
+    twist = S.normalize(S.prismatic_twist(direction))
+    geometry = B.float_lists(direction=direction)
+    return Joint(name, "P", twist.reshape(1, 6), actuated=actuated, geometry=geometry)
+
+
+def helical(name: str, axis: Any, point: Any, pitch: Any, *, actuated: bool = False) -> Joint:
+    """A helical (screw) joint H of pitch ``h`` (length per radian: lead / 2π).
+
+    Examples
+    --------
+    >>> helical("H1", [0, 0, 1], [0, 0, 0], lead_to_pitch(2 * math.pi)).screws
+    array([[0., 0., 1., 0., 0., 1.]])
+    """
+    if not isinstance(pitch, str | bytes) and np.ndim(pitch) != 0:
+        raise ScrewkitValueError(
+            f"Expected `pitch` to be one number (the joint's pitch), got shape {np.shape(pitch)}."
+        )
+    twist = S.helical_twist(S.normalize(S.line(axis, [0, 0, 0]))[:3], point, pitch)
+    geometry = B.float_lists(axis=axis, point=point, pitch=pitch)
+    return Joint(name, "H", twist.reshape(1, 6), actuated=actuated, geometry=geometry)
+
+
+def lead_to_pitch(lead: float) -> float:
+    """Pitch (per radian) of a screw pair from its lead (per turn): ``h = lead / 2π``.
+
+    Examples
+    --------
+    >>> round(lead_to_pitch(20.0), 6)
+    3.183099
+    """
+    return float(lead) / (2 * math.pi)
+
+
+def cylindrical(name: str, axis: Any, point: Any) -> Joint:
+    """A cylindrical joint C: rotation about and translation along one axis.
+
+    Examples
+    --------
+    >>> cylindrical("C1", [0, 0, 1], [0, 0, 0]).dof
+    2
+    """
+    unit = S.normalize(S.line(axis, [0, 0, 0]))[:3]
+    rows = np.stack([S.revolute_twist(unit, point), S.prismatic_twist(unit)])
+    geometry = B.float_lists(axis=axis, point=point)
+    return Joint(name, "C", rows, geometry=geometry)
+
+
+def universal(name: str, first_axis: Any, second_axis: Any, center: Any) -> Joint:
+    """A universal joint U: two revolute axes through one centre (the first on the parent side).
+
+    Raises
+    ------
+    ScrewkitValueError
+        If the two axes are parallel (a U joint needs two independent rotations).
+
+    Examples
+    --------
+    >>> universal("U1", [1, 0, 0], [0, 1, 0], [0, 0, 1]).dof
+    2
+    """
+    rows = np.stack(
+        [S.revolute_twist(_unit_axis(first_axis), center), S.revolute_twist(_unit_axis(second_axis), center)]
+    )
+    first, second = rows[0, :3], rows[1, :3]
+    if B.vanishes(B.cross(first, second), first, second, rtol=PARALLEL_RTOL):
+        raise ScrewkitValueError(
+            f"Universal joint {name!r}: expected two non-parallel axes, got parallel axes."
+        )
+    geometry = B.float_lists(first_axis=first_axis, second_axis=second_axis, center=center)
+    return Joint(name, "U", rows, geometry=geometry)
+
+
+def spherical(name: str, center: Any) -> Joint:
+    """A spherical joint S: three rotations about axes through its centre.
+
+    Examples
+    --------
+    >>> spherical("S1", [0, 0, 0]).screws[:, :3]
+    array([[1., 0., 0.],
+           [0., 1., 0.],
+           [0., 0., 1.]])
+    """
+    axes, centre = B.promote(np.eye(3), B.as_array(center, "center", (3,)))
+    rows = np.stack([S.revolute_twist(a, centre) for a in axes])
+    geometry = B.float_lists(center=center)
+    return Joint(name, "S", rows, geometry=geometry)
+
+
+def parallelogram(name: str, hinge_axis: Any, rod_direction: Any, *, actuated: bool = False) -> Joint:
+    """A planar parallelogram Π with revolute hinges: the coupler translates along ``hinge × rod``.
+
+    The four hinge axes are parallel to ``hinge_axis`` and the rods to ``rod_direction``; the
+    coupler keeps its orientation and moves on a circle (a curvilinear translation, paper 004 §2),
+    so its instantaneous twist is the pure translation ``(0; a × w)``.
+
+    Raises
+    ------
+    ScrewkitValueError
+        If the rods are parallel to the hinges (no parallelogram).
+
+    Examples
+    --------
+    >>> parallelogram("Pi1", [1, 0, 0], [0, 0, -1]).screws + 0.0
+    array([[0., 0., 0., 0., 1., 0.]])
+    """
+    a = B.as_array(hinge_axis, "hinge_axis", (3,))
+    w = B.as_array(rod_direction, "rod_direction", (3,))
+    a, w = B.promote(a, w)
+    velocity = B.cross(a, w)
+    if B.vanishes(velocity, a, w, rtol=PARALLEL_RTOL):
+        raise ScrewkitValueError(
+            f"Parallelogram {name!r}: expected rods not parallel to the hinge axes, got parallel ones."
+        )
+    twist = S.prismatic_twist(B.unit_directions(velocity))
+    geometry = B.float_lists(hinge_axis=a, rod_direction=w)
+    return Joint(name, "Pa", twist.reshape(1, 6), actuated=actuated, geometry=geometry)
+
+
+def virtual(name: str, screw: Any) -> Joint:
+    """A virtual one-degree-of-freedom joint carrying one screw, typed by its pitch (vR, vP, vH).
+
+    Examples
+    --------
+    >>> virtual("v1", [0, 0, 0, 0, 0, 1]).type
+    'vP'
+    """
+    row = B.as_array(screw, "screw", (6,)).reshape(1, 6)
+    kind = "vP" if S.is_infinite_pitch(row[0]) else ("vR" if S.is_zero_pitch(row[0]) else "vH")
+    return Joint(name, kind, row, virtual=True)
+
+
+def _refuse_symbolic(*screws: Any) -> None:
+    if B.is_symbolic(*screws):
+        raise ScrewkitTypeError(
+            "Expected numeric joint screws for the analysis core, got symbolic entries; substitute "
+            "values for the symbols (sympy's subs) first, or use screwkit.generic_analysis (a family's "
+            "generic answers; also what wrench_analysis and classify return for a symbolic graph)."
+        )
+
+
+@dataclass(frozen=True)
+class JointSpec:
+    """One joint of a mechanism's structure: everything but its screws (hashable).
+
+    Attributes
+    ----------
+    name : str
+    type : str
+        One of :data:`JOINT_TYPES`.
+    parent, child : hashable
+        The links it joins (its twists are the child's relative to the parent).
+    dof : int
+    actuated : bool
+
+    Examples
+    --------
+    >>> JointSpec("A1", "R", "base", "arm1", 1, True).dof
+    1
+    """
+
+    name: str
+    type: str
+    parent: Any
+    child: Any
+    dof: int
+    actuated: bool = False
+
+
+#: Largest screw coordinate a :class:`JointTable` takes (a point 1e100 length units away): beyond it
+#: the rank kernels' norms and the superbracket's products would overflow.
+MAX_SCREW_MAGNITUDE = 1e100
+
+
+@dataclass(frozen=True, eq=False)
+class JointTable:
+    """A mechanism's joints over a batch of configurations: the structure once, the screws batched.
+
+    The input of the analysis core (design.md §1a): a family's ``joints(config)`` returns one, and
+    :meth:`from_graph` makes one (a batch of one) from any twist graph.
+
+    Attributes
+    ----------
+    base, platform : hashable
+    specs : tuple of JointSpec
+    screws : numpy.ndarray, shape (..., rows, 6)
+        Every joint's screws stacked in the order of ``specs`` (read-only floats).
+    dof : int or None
+        The platform's nominal mobility (None: the number of actuated joints).
+    anchor : numpy.ndarray, shape (..., 3), or None
+        A point that moves with the mechanism, fixing its reference point along the axes when they
+        are all parallel (a planar mechanism; :func:`screwkit.graphs.twistgraph.graph_frame`).
+    mobility : int or None
+        The mechanism's mobility at generic configurations when it is known (a catalog family's,
+        checked by the catalog's facts; graph attribute ``mobility``): the ``dof`` check
+        (:func:`screwkit.core.motion.settled_dof`) takes it instead of computing it. None: computed.
+
+    Examples
+    --------
+    >>> table = JointTable.from_rows("B", "E", [("B", "E", "P", "P", [[[0, 0, 0, 1.0, 0, 0]]] * 2, True)])
+    >>> table.batch_shape, table.joint_screws("P").shape
+    ((2,), (2, 1, 6))
+    >>> table[1].graph().edges["B", "E", "P"]["joint"].actuated
+    True
+    """
+
+    base: Any
+    platform: Any
+    specs: tuple[JointSpec, ...]
+    screws: Array
+    dof: int | None = None
+    anchor: Array | None = None
+    mobility: int | None = None
+
+    def __post_init__(self) -> None:
+        rows = sum(spec.dof for spec in self.specs)
+        _refuse_symbolic(self.screws)
+        given = self.screws
+        owned = isinstance(given, np.ndarray) and given.dtype == float and given.base is None
+        # a read-only float array owning its data (another table's, or from_rows') is kept as is
+        screws = given if owned and not given.flags.writeable else np.array(given, dtype=float)
+        if screws.ndim < 2 or screws.shape[-2:] != (rows, 6):
+            raise ScrewkitValueError(
+                f"Expected `screws` of shape (..., {rows}, 6) for the table's joints, got {screws.shape}."
+            )
+        largest = np.maximum(screws.max(), -screws.min()) if screws.size else 0.0  # NaN or inf propagate
+        if not np.isfinite(largest):
+            raise ScrewkitValueError("Expected finite joint screws, got NaN or infinity.")
+        if largest > MAX_SCREW_MAGNITUDE:
+            raise ScrewkitValueError(
+                f"Expected joint screw coordinates up to {MAX_SCREW_MAGNITUDE:g} in size (norms and "
+                f"products must not overflow), got {largest:g}."
+            )
+        columns = screws.reshape(-1, 6)  # column by column: faster than a reduction over six
+        zero = columns[:, 0] == 0
+        for k in range(1, 6):
+            zero &= columns[:, k] == 0
+        zero = zero.reshape(screws.shape[:-1])
+        if zero.any():
+            where = np.argwhere(zero)[0]
+            row, starts = int(where[-1]), np.cumsum([spec.dof for spec in self.specs])
+            name = self.specs[int(np.searchsorted(starts, row, side="right"))].name
+            raise ScrewkitValueError(
+                f"Joint {name!r}: expected non-zero screws, got a zero row"
+                + (f" at batch index {tuple(int(i) for i in where[:-1])}." if len(where) > 1 else ".")
+            )
+        screws.flags.writeable = False
+        object.__setattr__(self, "screws", screws)
+        if self.anchor is not None:
+            anchor = np.broadcast_to(np.asarray(self.anchor, dtype=float), (*screws.shape[:-2], 3)).copy()
+            anchor.flags.writeable = False
+            object.__setattr__(self, "anchor", anchor)
+
+    @classmethod
+    def from_rows(
+        cls,
+        base: Any,
+        platform: Any,
+        rows: list[tuple[Any, Any, str, str, Any, bool]],
+        *,
+        dof: int | None = None,
+        anchor: Any = None,
+        mobility: int | None = None,
+    ) -> JointTable:
+        """A table from ``(parent, child, name, type, screws (..., dof_j, 6), actuated)`` rows.
+
+        Examples
+        --------
+        >>> JointTable.from_rows("B", "E", [("B", "E", "R", "R", [[0, 0, 1.0, 0, 0, 0]], False)]).specs[0]
+        JointSpec(name='R', type='R', parent='B', child='E', dof=1, actuated=False)
+        """
+        _refuse_symbolic(*(screws for *_, screws, _ in rows))
+        arrays = [np.asarray(screws, dtype=float) for *_, screws, _ in rows]
+        batch = np.broadcast_shapes(*(a.shape[:-2] for a in arrays)) if arrays else ()
+        specs = tuple(
+            JointSpec(name, kind, parent, child, array.shape[-2], bool(actuated))
+            for (parent, child, name, kind, _, actuated), array in zip(rows, arrays, strict=True)
+        )
+        stacked = (
+            np.concatenate([np.broadcast_to(a, (*batch, *a.shape[-2:])) for a in arrays], axis=-2)
+            if arrays
+            else np.zeros((0, 6))
+        )
+        stacked.flags.writeable = False  # fresh: the table takes it without a copy
+        return cls(base, platform, specs, stacked, dof, anchor, mobility)
+
+    @classmethod
+    def from_graph(cls, graph: Any, *, joint_key: str = "joint") -> JointTable:
+        """The table of a twist graph at its configuration (a batch of one pose: shape ``()``).
+
+        Examples
+        --------
+        >>> from screwkit.graphs.twistgraph import twist_graph
+        >>> G = twist_graph("B", "E", [("B", "E", revolute("R", [0, 0, 1], [0, 0, 0]))])
+        >>> JointTable.from_graph(G).batch_shape
+        ()
+        """
+        from .twistgraph import check_twist_graph, graph_anchor
+
+        check_twist_graph(graph, joint_key=joint_key)
+        joints = list(graph.edges(keys=True, data=joint_key))  # any order: the core sorts by name
+        rows = [(u, v, key, joint.type, joint.screws, joint.actuated) for u, v, key, joint in joints]
+        return cls.from_rows(
+            graph.graph["base"],
+            graph.graph["platform"],
+            rows,
+            dof=graph.graph.get("dof"),
+            anchor=graph_anchor(graph, joint_key=joint_key),
+            mobility=graph.graph.get("mobility"),
+        )
+
+    @property
+    def batch_shape(self) -> tuple[int, ...]:
+        """The leading batch shape of :attr:`screws`."""
+        return self.screws.shape[:-2]
+
+    def __len__(self) -> int:
+        if not self.batch_shape:
+            raise TypeError("a JointTable of one configuration has no length")
+        return self.batch_shape[0]
+
+    def __getitem__(self, index: Any) -> JointTable:
+        anchor = None if self.anchor is None else self.anchor[index]
+        screws = self.screws[index]
+        return JointTable(self.base, self.platform, self.specs, screws, self.dof, anchor, self.mobility)
+
+    def joint_screws(self, name: str) -> Array:
+        """The screws of one joint over the batch, ``(..., dof_j, 6)``.
+
+        Examples
+        --------
+        >>> table = JointTable.from_rows("B", "E", [("B", "E", "R", "R", [[0, 0, 1.0, 0, 0, 0]], 0)])
+        >>> table.joint_screws("R")
+        array([[0., 0., 1., 0., 0., 0.]])
+        """
+        start = 0
+        for spec in self.specs:
+            if spec.name == name:
+                return self.screws[..., start : start + spec.dof, :]
+            start += spec.dof
+        raise ScrewkitValueError(f"Expected the name of a joint of the table, got {name!r}.")
+
+    def graph(self, index: Any = ()) -> Any:
+        """The twist graph (:class:`networkx.MultiDiGraph`) of one configuration of the batch.
+
+        Raises
+        ------
+        ScrewkitValueError
+            If ``index`` does not pick exactly one configuration of the batch.
+
+        Examples
+        --------
+        >>> table = JointTable.from_rows("B", "E", [("B", "E", "R", "R", [[0, 0, 1.0, 0, 0, 0]], 0)])
+        >>> sorted(table.graph().edges(keys=True))
+        [('B', 'E', 'R')]
+        """
+        from .twistgraph import twist_graph
+
+        wrong = ScrewkitValueError(
+            f"Expected `index` to pick one configuration of the batch of shape {self.batch_shape}, "
+            f"got {index!r}."
+        )
+        try:
+            picked = self.screws[index]
+        except (IndexError, TypeError) as err:  # out of range, or not an index
+            raise wrong from err
+        if picked.shape != self.screws.shape[-2:]:  # several configurations, or too many indices
+            raise wrong
+        one = self[index]
+        joints, start = [], 0
+        for spec in one.specs:
+            screws = one.screws[start : start + spec.dof]
+            start += spec.dof
+            joint = Joint(spec.name, spec.type, screws, spec.actuated, spec.type.startswith("v"))
+            joints.append((spec.parent, spec.child, joint))
+        graph = twist_graph(one.base, one.platform, joints, dof=one.dof)
+        if one.mobility is not None:
+            graph.graph["mobility"] = one.mobility
+        if one.anchor is not None:
+            graph.graph["anchor"] = one.anchor.tolist()
+        return graph

@@ -1,0 +1,542 @@
+"""A mechanism at a batch of poses: every stage computed once, on demand (design.md §1a).
+
+:meth:`screwkit.robots.catalog.Mechanism.at` returns a frozen :class:`PosedMechanism`. Its stages are
+cached properties over the whole batch, each built on the one before:
+
+``configuration`` (the family's inverse kinematics) → ``joints`` (a
+:class:`~screwkit.graphs.joints.JointTable`) → ``singularities`` (labels, orders, closeness: the inverse
+kinematics, joint table and analysis core chunk by chunk, :func:`~screwkit.core.singularity.classify_chunks`,
+so that a large batch never holds its whole table) → ``jacobians`` (``A χ̇ = B θ̇`` over the family's
+nominal twists) → ``transmission`` (paper 004's κ, ζ, LTI; four-limb family) and
+``wrench_transmission`` (input/output transmission from the actuation wrenches, any family).
+
+Indexing gives one :class:`Pose`: its graph, wrench analysis (a batch of one through the same
+kernels), verdict, Jacobians, wrench diagram, superbracket and :meth:`Pose.report`. The
+superbracket's generic samples are drawn as one batch (:func:`generic_samples`).
+
+Examples
+--------
+>>> from screwkit.robots.catalog import load_mechanism
+>>> posed = load_mechanism("h4").at([[0, 0, -750, 0], [30, -20, -750, 0.3]])
+>>> posed.shape, posed.singularities.constraint_order.tolist()
+((2,), [2, 2])
+>>> posed[0].singularity.verdict
+'regular'
+"""
+
+from __future__ import annotations
+
+import functools
+import weakref
+from collections.abc import Callable, Iterable, Iterator, Sequence
+from dataclasses import dataclass, field
+from typing import Any, overload
+
+import networkx as nx
+import numpy as np
+
+from ..algebra import backend as B
+from ..core.jacobians import WrenchJacobians, jacobians_from_wrenches
+from ..core.singularity import SingularityReport, classify_chunks, label_table
+from ..core.wrenches import WrenchAnalysis, analyze_table, checked_rtol
+from ..exceptions import ScrewkitError, ScrewkitIndexError, ScrewkitValueError
+from ..graphs.joints import JointTable
+
+__all__ = ["Pose", "PosedMechanism", "generic_samples"]
+
+Array = np.ndarray
+
+#: Poses taken through the inverse kinematics, joint table and analysis core at once.
+CHUNK = 512
+#: Random workspace poses drawn (in one batch) to find a generic configuration for a diagram (the
+#: first few reachable ones are tried: screwkit.gca.diagram.REFERENCE_TRIES).
+GENERIC_DRAWS = 12
+#: Generic samples of a diagram's points drawn (in one batch) for the superbracket: its structural
+#: zeros and its checks take 12 (screwkit.gca.diagram.superbracket_analysis).
+SAMPLES = 24
+#: Poses whose diagram points are evaluated at once when samples are read (the superbracket reads
+#: 12: most of a batch of SAMPLES is never evaluated; their constraint lines take a readable basis
+#: pose by pose).
+SAMPLE_CHUNK = 12
+
+
+def _checked_poses(mechanism: Any, poses: Any) -> Array:
+    names = mechanism.pose_names
+    if poses is None:
+        return np.asarray(mechanism.default_pose, dtype=float)[None]
+    array = B.as_array(poses, "poses", (len(names),), symbolic=False).astype(float)
+    if array.ndim == 1:
+        array = array[None]
+    if array.size == 0:  # an empty batch: the analysis core reshapes over a batch of at least one pose
+        raise ScrewkitValueError(f"Expected `poses` to hold at least one pose, got shape {array.shape}.")
+    return array
+
+
+@dataclass(frozen=True, eq=False)
+class PosedMechanism:
+    """A catalog mechanism at a batch of poses (see the module docstring).
+
+    Attributes
+    ----------
+    mechanism : Mechanism
+    poses : numpy.ndarray, shape (..., n)
+        Length unit of the file, radians; read-only.
+    rtol : float
+    length_scale : float or None
+        The characteristic length of the rank decisions in the file's length unit; None: derived
+        per pose (:func:`~screwkit.core.wrenches.analyze_table`).
+    options : dict
+        Passed to the inverse kinematics (a working mode).
+    """
+
+    mechanism: Any = field(repr=False)
+    poses: Array
+    rtol: float
+    length_scale: float | None = None
+    options: dict[str, Any] = field(default_factory=dict, repr=False)
+
+    @classmethod
+    def create(
+        cls,
+        mechanism: Any,
+        poses: Any,
+        *,
+        rtol: float | None = None,
+        length_scale: float | None = None,
+        options: Any = None,
+    ) -> PosedMechanism:
+        """Validate and build (what :meth:`screwkit.robots.catalog.Mechanism.at` calls).
+
+        Examples
+        --------
+        >>> from screwkit.robots.catalog import load_mechanism
+        >>> PosedMechanism.create(load_mechanism("h4"), [0, 0, -750])
+        Traceback (most recent call last):
+        ...
+        screwkit.exceptions.ScrewkitValueError: Expected `poses` to have shape (..., 4), got (3,).
+        """
+        array = _checked_poses(mechanism, poses)
+        array.flags.writeable = False
+        tolerance = B.DEFAULT_RTOL if rtol is None else checked_rtol(rtol)
+        length = B.checked_length_scale(length_scale, allow_none=True)
+        return cls(mechanism, array, tolerance, length, dict(options or {}))
+
+    @property
+    def shape(self) -> tuple[int, ...]:
+        """The batch shape."""
+        return self.poses.shape[:-1]
+
+    def __len__(self) -> int:
+        return self.shape[0]
+
+    def __iter__(self) -> Iterator[Pose]:
+        """Every pose of the batch in turn, in C order over :attr:`shape` (for a batch of shape
+        ``(n,)``: ``posed[0]``, ..., ``posed[n - 1]``).
+
+        Examples
+        --------
+        >>> from screwkit.robots.catalog import load_mechanism
+        >>> posed = load_mechanism("h4").at([[30, -20, -750, 0.3], [0, 0, -800, 0.1]])
+        >>> [pose.singularity.verdict for pose in posed]
+        ['regular', 'regular']
+        """
+        return (self[index] for index in np.ndindex(*self.shape))
+
+    def __repr__(self) -> str:
+        length = "" if self.length_scale is None else f", length_scale={self.length_scale:g}"
+        return f"PosedMechanism({self.mechanism.name!r}, shape={self.shape}, rtol={self.rtol:g}{length})"
+
+    @functools.cached_property
+    def configuration(self) -> Any:
+        """The family's configuration over the batch (inverse kinematics)."""
+        try:
+            return self.mechanism.configuration(self.poses, **self.options)
+        except ScrewkitError:
+            if self.poses.shape[:-1] == (1,):  # one pose: the family's own single-pose message
+                self.mechanism.configuration(self.poses[0], **self.options)
+            raise
+
+    @functools.cached_property
+    def joints(self) -> JointTable:
+        """The joint table over the batch."""
+        return self.mechanism.family_protocol.joint_table(self.configuration)
+
+    @functools.cached_property
+    def twist_basis(self) -> Array:
+        """The platform's nominal twists ``(..., dof, 6)``, one per pose coordinate."""
+        return np.asarray(self.mechanism.family_protocol.twist_basis(self.configuration), dtype=float)
+
+    @functools.cached_property
+    def singularities(self) -> SingularityReport:
+        """Labels, orders and closeness over the batch (the analysis core, in chunks).
+
+        Unless the joint table is already there, each chunk of :data:`CHUNK` poses goes through
+        the inverse kinematics, its joint table and the core in turn, so memory stays bounded by
+        the chunk and the results; the whole table is computed only if a per-pose view asks.
+        """
+        if "joints" in self.__dict__:
+            return label_table(  # the family's dof
+                self.joints, rtol=self.rtol, length_scale=self.length_scale, chunk=CHUNK
+            )
+        flat = self.poses.reshape(-1, self.poses.shape[-1])
+        try:
+            protocol, configuration = self.mechanism.family_protocol, self.mechanism.configuration
+            pieces = (
+                protocol.joint_table(configuration(flat[start : start + CHUNK], **self.options))
+                for start in range(0, max(len(flat), 1), CHUNK)
+            )
+            # the report's table, asked only by a per-pose view, is this object's (held weakly: a
+            # reference cycle would keep every chunk of a map alive until the cyclic GC runs)
+            owner = weakref.ref(self)
+            source = functools.partial(_joint_table, owner, self.mechanism, self.poses, self.options)
+            return classify_chunks(pieces, source, self.shape, rtol=self.rtol, length_scale=self.length_scale)
+        except ScrewkitError:
+            _ = self.configuration  # raises the whole batch's message (the failing pose's index)
+            raise
+
+    @property
+    def verdicts(self) -> Array:
+        """``"regular"``, ``"constraint singularity"``, ... per pose (an object array)."""
+        return np.asarray(self.singularities.verdict)
+
+    @property
+    def codes(self) -> Array:
+        """Per pose: bit 1 constraint, 2 actuation, 4 serial (:attr:`SingularityReport.codes`)."""
+        return self.singularities.codes
+
+    @property
+    def closeness(self) -> dict[str, Array]:
+        """The closeness measures per pose (:mod:`screwkit.core.singularity`)."""
+        return self.singularities.closeness
+
+    @functools.cached_property
+    def jacobians(self) -> WrenchJacobians:
+        """``A χ̇ = B θ̇`` per pose over the family's nominal twists."""
+        return jacobians_from_wrenches(self.singularities.analysis, self.twist_basis, rtol=self.rtol)
+
+    @functools.cached_property
+    def transmission(self) -> Any:
+        """Paper 004's ``κ`` (input), ``ζ`` (output) and LTI ``η`` per pose
+        (:func:`screwkit.analysis.indices.transmission`; four-limb family only, ScrewkitValueError
+        otherwise)."""
+        from ..analysis.indices import transmission
+
+        return transmission(self)
+
+    @functools.cached_property
+    def wrench_transmission(self) -> Any:
+        """Input/output transmission per actuated joint and their LTI, from the actuation wrenches and
+        the nominal twists, for any family (:func:`screwkit.analysis.indices.wrench_transmission`)."""
+        from ..analysis.indices import application_points, wrench_transmission
+
+        return wrench_transmission(self.jacobians, input_points=application_points(self.configuration))
+
+    def __getitem__(self, index: Any) -> Pose:
+        parts = index if isinstance(index, tuple) else (index,)
+        if not all(isinstance(i, int | np.integer) and not isinstance(i, bool) for i in parts):
+            raise ScrewkitValueError(  # numpy's IndexError for a string is not an index out of range
+                f"Expected `index` to pick one pose of the batch of shape {self.shape}, got {index!r}."
+            )
+        try:
+            flat = np.arange(int(np.prod(self.shape))).reshape(self.shape)[index]
+        except IndexError as err:  # out of range: an IndexError too, so a for loop stops there
+            raise ScrewkitIndexError(
+                f"Expected `index` to pick one pose of the batch of shape {self.shape}, got {index!r} "
+                "(out of range)."
+            ) from err
+        except (TypeError, ValueError) as err:
+            raise ScrewkitValueError(
+                f"Expected `index` to pick one pose of the batch of shape {self.shape}, got {index!r}."
+            ) from err
+        if np.ndim(flat) != 0:
+            raise ScrewkitValueError(
+                f"Expected `index` to pick one pose of the batch of shape {self.shape}, got {index!r}."
+            )
+        return Pose(self, np.asarray(self.poses[index]), self.joints[index], int(flat))
+
+
+@dataclass(frozen=True, eq=False)
+class Pose:
+    """One pose of a :class:`PosedMechanism`: the per-pose graph, analysis, diagram, report.
+
+    Attributes
+    ----------
+    posed : PosedMechanism
+    pose : numpy.ndarray, shape (n,)
+    table : JointTable
+        This pose's joints (batch shape ``()``).
+    flat_index : int
+        Its index in the flattened batch.
+    """
+
+    posed: PosedMechanism = field(repr=False)
+    pose: Array
+    table: JointTable = field(repr=False)
+    flat_index: int = 0
+
+    @property
+    def mechanism(self) -> Any:
+        """The catalog mechanism."""
+        return self.posed.mechanism
+
+    @functools.cached_property
+    def graph(self) -> nx.MultiDiGraph:
+        """The twist graph of the physical mechanism at this pose."""
+        graph = self.table.graph()
+        graph.graph["name"] = self.mechanism.name
+        graph.graph["length_unit"] = self.mechanism.length_unit
+        return graph
+
+    @functools.cached_property
+    def analysis(self) -> WrenchAnalysis:
+        """The wrench systems (a batch of one through the core, with the per-pose views)."""
+        one = self.table[None] if self.table.batch_shape == () else self.table
+        posed = self.posed
+        return self._with_graph(analyze_table(one, rtol=posed.rtol, length_scale=posed.length_scale)[0])
+
+    def _with_graph(self, result: WrenchAnalysis) -> WrenchAnalysis:
+        object.__setattr__(result, "graph", self.graph)
+        return result
+
+    @functools.cached_property
+    def singularity(self) -> SingularityReport:
+        """The verdict at this pose."""
+        return SingularityReport(self.analysis)
+
+    @functools.cached_property
+    def twist_basis(self) -> Array:
+        """The platform's nominal twists at this pose, ``(dof, 6)``."""
+        basis = self.posed.twist_basis
+        return basis.reshape(-1, *basis.shape[-2:])[self.flat_index]
+
+    @functools.cached_property
+    def jacobians(self) -> WrenchJacobians:
+        """``A χ̇ = B θ̇`` at this pose."""
+        return jacobians_from_wrenches(self.analysis, self.twist_basis, rtol=self.posed.rtol)
+
+    @functools.cached_property
+    def _draws(self) -> tuple[Sequence[WrenchAnalysis], WrenchAnalysis | None, np.random.Generator]:
+        """The random workspace poses a wrench diagram is chosen at (:data:`GENERIC_DRAWS`, seed
+        2026) and the first batch of its sampler's (``2 *`` :data:`SAMPLES`, seed 0) through the
+        core as one batch, with this pose unless its analysis is already computed (one pass instead
+        of three; a pose's result does not depend on the batch it is in, ``tests/test_batch.py``):
+        the per-pose analyses at the generic draws, the batch at the samples (None if none is
+        reachable) and the samples' generator, where the next batch is drawn from. (61 poses of
+        four limbs stay below :data:`screwkit.core._frames.COMPILED_MIN_BATCH`: no numba import.)
+        """
+        mechanism, rtol = self.mechanism, self.posed.rtol
+        stream = np.random.default_rng(0)
+        generic = _reachable_table(mechanism, np.random.default_rng(2026), GENERIC_DRAWS)
+        sampled = _reachable_table(mechanism, stream, 2 * SAMPLES)
+        one = self.table[None] if self.table.batch_shape == () else self.table
+        own = [] if "analysis" in self.__dict__ else [one]
+        tables = [*own, *(t for t in (generic, sampled) if t is not None)]
+        if not tables:  # this pose analysed already, no random pose reachable
+            return [], None, stream
+        batch = analyze_table(_concatenated(tables), rtol=rtol, length_scale=self.posed.length_scale)
+        if own:
+            self.__dict__["analysis"] = self._with_graph(batch[0])
+        start = len(own)
+        analyses: Sequence[WrenchAnalysis] = []
+        if generic is not None:
+            analyses = _PoseAnalyses(batch[start : start + len(generic)], generic, mechanism.name)
+            start += len(generic)
+        return analyses, (None if sampled is None else batch[start:]), stream
+
+    def diagram_and_sampler(self) -> tuple[Any, Callable[[np.random.Generator], dict[str, Array]]]:
+        """The wrench diagram at this pose and a sampler of its recipes at generic poses.
+
+        Which lines make the diagram and which points they share is decided at a generic (random,
+        seeded) workspace pose of :data:`GENERIC_DRAWS` drawn as one batch
+        (:func:`screwkit.gca.diagram.generic_reference`); the diagram is then placed at this pose
+        (:func:`screwkit.gca.diagram.diagram_at`), where lines that coincide still appear. When the
+        mechanism has no diagram (e.g. a wrench system not spanned by lines), the reasons found at
+        the generic poses are given as ``degenerate``. The sampler
+        replays recipes evaluated at random workspace poses, drawn and analysed as one batch
+        (:func:`generic_samples`).
+        """
+        from dataclasses import replace
+
+        from ..gca.diagram import ReplaySampler, diagram_at, generic_reference, wrench_diagram
+
+        analyses, first, stream = self._draws
+        reference, reasons = generic_reference(analyses)
+        if reference is None:  # a property of the mechanism, found at generic poses: say so
+            diagram = wrench_diagram(self.analysis)
+            return replace(diagram, coordinates={}, degenerate=reasons), _no_sampler
+        diagram = diagram_at(reference, self.analysis)
+        mechanism, rtol = self.mechanism, self.posed.rtol
+        pending = [first]
+
+        def produce(_: np.random.Generator) -> Iterable[dict[str, Array]]:
+            # the first batch analysed with the generic draws, the next ones drawn on from its stream
+            if pending:
+                return _samples(diagram.points, pending.pop(), SAMPLES)
+            return generic_samples(mechanism, diagram.points, stream, SAMPLES, rtol, self.posed.length_scale)
+
+        return diagram, ReplaySampler(produce)
+
+    @functools.cached_property
+    def diagram(self) -> Any:
+        """The wrench diagram at this pose (:class:`screwkit.gca.diagram.WrenchDiagram`; the first item
+        of :meth:`diagram_and_sampler`)."""
+        return self.diagram_and_sampler()[0]
+
+    @functools.cached_property
+    def superbracket(self) -> Any:
+        """The superbracket of this pose's wrench diagram, expanded, simplified, factored and
+        interpreted (:func:`screwkit.gca.diagram.superbracket_analysis`; what :meth:`report` shows).
+
+        Raises
+        ------
+        ScrewkitValueError
+            If the mechanism has no wrench diagram of six lines (the reasons found at generic poses).
+        """
+        from ..gca.diagram import superbracket_analysis
+
+        diagram, sampler = self.diagram_and_sampler()
+        if diagram.degenerate:
+            raise ScrewkitValueError(
+                f"Expected a wrench diagram of six lines for the superbracket of {self.mechanism.name}, "
+                f"got none: {'; '.join(diagram.degenerate)}."
+            )
+        return superbracket_analysis(diagram, sampler)
+
+    def report(self, *, superbracket: bool = True, progress: Any = None) -> Any:
+        """The whole analysis report at this pose (:class:`screwkit.interface.report.AnalysisReport`).
+
+        Examples
+        --------
+        >>> from screwkit.robots.catalog import load_mechanism
+        >>> load_mechanism("h4").at()[0].report(superbracket=False).verdict.verdict
+        'regular'
+        """
+        from ..interface.report import pose_report
+
+        return pose_report(self, superbracket=superbracket, progress=progress)
+
+
+def _joint_table(
+    posed: weakref.ref[PosedMechanism], mechanism: Any, poses: Array, options: dict[str, Any]
+) -> JointTable:
+    """The joint table of a posed batch: its own (cached) while it lives, else computed again at
+    its poses (inverse kinematics, then the family's joints)."""
+    alive = posed()
+    if alive is not None:
+        return alive.joints
+    return mechanism.family_protocol.joint_table(mechanism.configuration(poses, **options))
+
+
+def _reachable_table(mechanism: Any, rng: np.random.Generator, count: int) -> JointTable | None:
+    """The joint table at ``count`` random workspace poses, those out of reach dropped (None if
+    none is reachable)."""
+    poses = mechanism.random_poses(rng, count)
+    try:
+        return mechanism.joints(poses)
+    except ScrewkitError:  # some pose out of reach: keep those the IK accepts one by one
+        kept = []
+        for pose in poses:
+            try:
+                mechanism.configuration(pose)
+            except ScrewkitError:
+                continue
+            kept.append(pose)
+        return mechanism.joints(np.array(kept)) if kept else None
+
+
+def _concatenated(tables: Sequence[JointTable]) -> JointTable:
+    """Joint tables of one mechanism ``(n_i, ...)`` as one batch ``(Σ n_i, ...)``."""
+    first = tables[0]
+    anchor = None if first.anchor is None else np.concatenate([t.anchor for t in tables])
+    screws = np.concatenate([t.screws for t in tables])
+    return JointTable(first.base, first.platform, first.specs, screws, first.dof, anchor, first.mobility)
+
+
+class _PoseAnalyses(Sequence[WrenchAnalysis]):
+    """The per-pose views of a batched analysis, each (with its twist graph) built on first read:
+    a diagram is chosen on the first few and sampled until enough points are found."""
+
+    def __init__(self, batch: Any, table: JointTable, name: str):
+        self._batch, self._table, self._name = batch, table, name
+        self._built: dict[int, WrenchAnalysis] = {}
+
+    def __len__(self) -> int:
+        return len(self._batch)
+
+    @overload
+    def __getitem__(self, index: int) -> WrenchAnalysis: ...
+
+    @overload
+    def __getitem__(self, index: slice) -> list[WrenchAnalysis]: ...
+
+    def __getitem__(self, index: int | slice) -> WrenchAnalysis | list[WrenchAnalysis]:
+        if isinstance(index, slice):
+            return [self[i] for i in range(*index.indices(len(self)))]
+        if not -len(self) <= index < len(self):
+            raise IndexError(index)
+        index %= len(self)
+        if index not in self._built:
+            one = self._batch[index]
+            graph = self._table.graph(index)
+            graph.graph["name"] = self._name
+            object.__setattr__(one, "graph", graph)
+            self._built[index] = one
+        return self._built[index]
+
+
+def generic_samples(
+    mechanism: Any,
+    points: Any,
+    rng: np.random.Generator,
+    count: int,
+    rtol: float = B.DEFAULT_RTOL,
+    length_scale: float | None = None,
+) -> list[dict[str, Array]]:
+    """A diagram's points (``{label: (4,)}``) at random workspace poses, analysed and evaluated as
+    one batch (:func:`screwkit.gca.diagram.batch_diagram_points`).
+
+    Poses where a point does not exist are skipped; at most ``2 * count`` poses are drawn.
+
+    Raises
+    ------
+    ScrewkitValueError
+        If no drawn pose gives every point.
+
+    Examples
+    --------
+    >>> from screwkit.robots.catalog import load_mechanism
+    >>> h4 = load_mechanism("h4")
+    >>> diagram, _ = h4.wrench_diagram()
+    >>> len(generic_samples(h4, diagram.points, np.random.default_rng(0), 3))
+    3
+    """
+    table = _reachable_table(mechanism, rng, 2 * count)
+    analysis = None if table is None else analyze_table(table, rtol=rtol, length_scale=length_scale)
+    return list(_samples(points, analysis, count))
+
+
+def _samples(points: Any, analysis: WrenchAnalysis | None, count: int) -> Iterator[dict[str, Array]]:
+    """:func:`generic_samples` from the analysis of the drawn poses (None: none reachable), lazily:
+    the points are evaluated :data:`SAMPLE_CHUNK` poses at a time, as far as the samples read."""
+    from ..gca.diagram import batch_diagram_points
+
+    given, total = 0, 0 if analysis is None else len(analysis)
+    for start in range(0, total, SAMPLE_CHUNK):
+        assert analysis is not None
+        found = batch_diagram_points(points, analysis[start : start + SAMPLE_CHUNK])
+        exists = np.all([np.isfinite(v).all(axis=-1) for v in found.values()], axis=0) if found else []
+        for i in np.flatnonzero(exists)[: count - given]:
+            given += 1
+            yield {label: v[i] for label, v in found.items()}
+        if given == count:
+            return
+    if not given:
+        raise ScrewkitValueError(
+            f"Expected a workspace pose giving every diagram point, got none of {2 * count}."
+        )
+
+
+def _no_sampler(rng: np.random.Generator) -> dict[str, Array]:
+    """The sampler of a diagram that has no generic reference: always refuses (never called when
+    the diagram is reported degenerate)."""
+    raise ScrewkitValueError("no generic pose gives this mechanism a wrench diagram to sample.")

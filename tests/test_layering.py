@@ -1,0 +1,126 @@
+"""The package's architecture as a test: imports run only downward along the data flow.
+
+Every import in every module of ``screwkit`` is parsed (function-level ones included) and checked
+against the layers of ``docs/architecture.md``: a module may import a module of its own layer
+(without closing a cycle) or of a layer below it, never one above; and no private name (one
+starting with ``_``, module or attribute) is imported from another subpackage.
+"""
+
+from __future__ import annotations
+
+import ast
+import pathlib
+
+import networkx as nx
+import pytest
+
+PACKAGE = pathlib.Path(__file__).resolve().parents[1] / "screwkit"
+
+#: The layers from the bottom up (docs/architecture.md). A module's layer is its subpackage; the
+#: top-level modules are named.
+LAYERS = (
+    "exceptions",
+    "algebra",
+    "graphs",
+    "core",
+    "gca",
+    "robots",
+    "analysis",
+    "papers",
+    "interface",
+    "__init__",
+    "__main__",
+)
+
+
+def _modules() -> dict[str, pathlib.Path]:
+    found = {}
+    for path in sorted(PACKAGE.rglob("*.py")):
+        parts = path.relative_to(PACKAGE.parent).with_suffix("").parts
+        name = ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+        found[name] = path
+    return found
+
+
+MODULES = _modules()
+
+
+def layer(module: str) -> str:
+    """The layer of a module of the package (``screwkit.core.wrenches`` -> ``core``)."""
+    parts = module.split(".")
+    return "__init__" if len(parts) == 1 else parts[1]
+
+
+def imports(module: str) -> list[tuple[str, str, int]]:
+    """``(imported module, imported name or '', line)`` for every screwkit import of a module."""
+    path = MODULES[module]
+    package = module if path.name == "__init__.py" else module.rpartition(".")[0]
+    found = []
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        if isinstance(node, ast.Import):
+            found += [(a.name, "", node.lineno) for a in node.names if a.name.split(".")[0] == "screwkit"]
+        elif isinstance(node, ast.ImportFrom):
+            if node.level:
+                base = package.split(".")[: len(package.split(".")) - node.level + 1]
+                target = ".".join(base + ([node.module] if node.module else []))
+            else:
+                target = node.module or ""
+            if target.split(".")[0] != "screwkit":
+                continue
+            for alias in node.names:
+                full = f"{target}.{alias.name}"
+                if full in MODULES:  # a module imported by name
+                    found.append((full, "", node.lineno))
+                else:
+                    found.append((target, alias.name, node.lineno))
+    return found
+
+
+def test_every_layer_is_known():
+    assert {layer(m) for m in MODULES} <= set(LAYERS)
+
+
+def test_imports_run_downward():
+    upward = []
+    for module in MODULES:
+        for target, _, line in imports(module):
+            if target in MODULES and LAYERS.index(layer(target)) > LAYERS.index(layer(module)):
+                upward.append(f"{module}:{line} imports {target}")
+    assert upward == []
+
+
+def test_no_import_cycle():
+    graph = nx.DiGraph()
+    graph.add_nodes_from(MODULES)
+    for module in MODULES:
+        for target, _, _ in imports(module):
+            # a package's __init__ is imported by every import of its modules: count only the
+            # modules, the package itself where it is imported by name
+            if target in MODULES and target != module and not module.startswith(target + "."):
+                graph.add_edge(module, target)
+    assert [sorted(c) for c in nx.simple_cycles(graph)] == []
+
+
+def test_no_private_name_crosses_a_subpackage():
+    def subpackage(module: str) -> str:
+        return module.rpartition(".")[0] if MODULES[module].name != "__init__.py" else module
+
+    crossing = []
+    for module in MODULES:
+        for target, name, line in imports(module):
+            if target not in MODULES or subpackage(target) == subpackage(module):
+                continue
+            private = name.startswith("_") or target.rpartition(".")[2].startswith("_")
+            if private and target.rpartition(".")[2] != "__init__":
+                crossing.append(f"{module}:{line} imports {target}{':' + name if name else ''}")
+    assert crossing == []
+
+
+@pytest.mark.parametrize("module", sorted(MODULES))
+def test_module_size(module):
+    """Modules of one responsibility: at most 600 lines, unless the docstring says it is one
+    algorithm that does not split (``One algorithm:`` in its first paragraph)."""
+    text = MODULES[module].read_text(encoding="utf-8")
+    lines = text.count("\n")
+    doc = ast.get_docstring(ast.parse(text)) or ""
+    assert lines <= 600 or "One algorithm:" in doc, f"{module}: {lines} lines"
