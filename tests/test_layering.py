@@ -110,8 +110,11 @@ def test_no_private_name_crosses_a_subpackage():
         for target, name, line in imports(module):
             if target not in MODULES or subpackage(target) == subpackage(module):
                 continue
-            private = name.startswith("_") or target.rpartition(".")[2].startswith("_")
-            if private and target.rpartition(".")[2] != "__init__":
+            leaf = target.rpartition(".")[2]
+            private = (name.startswith("_") and not name.startswith("__")) or (
+                leaf.startswith("_") and not leaf.startswith("__")
+            )
+            if private:
                 crossing.append(f"{module}:{line} imports {target}{':' + name if name else ''}")
     assert crossing == []
 
