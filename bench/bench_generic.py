@@ -20,7 +20,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from screwkit.algebra import _symbolic as _symbolic
 from screwkit.core.generic import generic_analysis
 from screwkit.core.wrenches import wrench_analysis
-from screwkit.graphs.twistgraph import platform_twist_system
+from screwkit.graphs.reduction import platform_twist_system
 from tests.test_generic import delta_3ruu, four_limb_smg, fully_symbolic_h4, numeric_values
 
 

@@ -30,7 +30,6 @@ from .exceptions import (
 )
 from .graphs.joints import (
     Joint,
-    JointTable,
     cylindrical,
     helical,
     parallelogram,
@@ -40,14 +39,10 @@ from .graphs.joints import (
     universal,
     virtual,
 )
-from .graphs.twistgraph import (
-    equivalent_twist_graph,
-    fundamental_loops,
-    loop_closure_matrix,
-    platform_twist_system,
-    series_parallel_tree,
-    twist_graph,
-)
+from .graphs.jointtable import JointTable
+from .graphs.loops import fundamental_loops, loop_closure_matrix
+from .graphs.reduction import equivalent_twist_graph, platform_twist_system, series_parallel_tree
+from .graphs.twistgraph import twist_graph
 
 #: Names loaded on first use (the catalog and its families, the generic analysis, the projective
 #: helpers, the Jacobians, the composer and its report are not a cost of ``import screwkit``; PEP 562).

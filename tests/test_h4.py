@@ -23,7 +23,8 @@ from screwkit.algebra import screw as S
 from screwkit.algebra.screwsystem import ScrewSystem
 from screwkit.core.singularity import classify
 from screwkit.core.wrenches import translated_graph, wrench_analysis
-from screwkit.graphs.twistgraph import equivalent_twist_graph, platform_twist_system, twist_graph
+from screwkit.graphs.reduction import equivalent_twist_graph, platform_twist_system
+from screwkit.graphs.twistgraph import twist_graph
 from screwkit.robots.families.four_limb import (
     PAPER_002_LEGS,
     FourLimbParameters,

@@ -380,7 +380,8 @@ def test_error_symbolic_screws_in_the_analysis_core():
     import sympy
 
     from screwkit.core.singularity import classify
-    from screwkit.graphs.joints import JointTable, revolute
+    from screwkit.graphs.joints import revolute
+    from screwkit.graphs.jointtable import JointTable
     from screwkit.graphs.twistgraph import twist_graph
 
     graph = twist_graph("B", "E", [("B", "E", revolute("R", [0, 0, 1], [sympy.Symbol("a"), 0, 0], actuated=True))])

@@ -12,7 +12,8 @@ from screwkit.core.singularity import SingularityReport, classify, classify_anal
 from screwkit.core.wrenches import normalized_reciprocal_product, wrench_analysis
 from screwkit.exceptions import TwistGraphError
 from screwkit.graphs.joints import prismatic, revolute
-from screwkit.graphs.twistgraph import equivalent_twist_graph, twist_graph
+from screwkit.graphs.reduction import equivalent_twist_graph
+from screwkit.graphs.twistgraph import twist_graph
 
 from .mechanisms import (
     PLANAR_BASE,

@@ -25,8 +25,9 @@ from screwkit.core.singularity import classify
 from screwkit.core.wrenches import wrench_analysis
 from screwkit.exceptions import CatalogError, ScrewkitValueError
 from screwkit.gca.diagram import wrench_diagram
-from screwkit.graphs.joints import JointTable
-from screwkit.graphs.twistgraph import equivalent_twist_graph, fundamental_loops, platform_twist_system
+from screwkit.graphs.jointtable import JointTable
+from screwkit.graphs.loops import fundamental_loops
+from screwkit.graphs.reduction import equivalent_twist_graph, platform_twist_system
 from screwkit.interface.cli import main
 from screwkit.interface.report import analyze
 from screwkit.robots.catalog import load_mechanism

@@ -9,7 +9,8 @@ from screwkit.algebra.screwsystem import ScrewSystem
 from screwkit.core.wrenches import normalized_reciprocal_product, translated_graph, wrench_analysis
 from screwkit.exceptions import ScrewkitValueError, TwistGraphError
 from screwkit.graphs.joints import prismatic, revolute, spherical
-from screwkit.graphs.twistgraph import equivalent_twist_graph, graph_frame, twist_graph
+from screwkit.graphs.reduction import equivalent_twist_graph
+from screwkit.graphs.twistgraph import graph_frame, twist_graph
 
 from .mechanisms import (
     PLANAR_BASE,
@@ -450,7 +451,7 @@ def test_closeness_in_chunks_gives_the_same_bits(monkeypatch):
 # a given length scale ------------------------------------------------------------------------------
 def _two_parallel_hinges(spacing):
     """Two revolute joints about z, ``spacing`` apart, both between base and platform."""
-    from screwkit.graphs.joints import JointTable
+    from screwkit.graphs.jointtable import JointTable
 
     rows = [("B", "E", "R1", "R", [[[0, 0, 1.0, 0, 0, 0]]], False)]
     rows.append(("B", "E", "R2", "R", [[[0, 0, 1.0, 0, -spacing, 0]]], False))

@@ -52,7 +52,7 @@ from ..algebra import backend as B
 from ..algebra import screw as S
 from ..algebra.screwsystem import ScrewSystem, motion_type
 from ..exceptions import ScrewkitTypeError, TwistGraphError
-from ..graphs.joints import JointSpec
+from ..graphs.jointtable import JointSpec
 from ..graphs.topology import Topology, topology
 from ..graphs.twistgraph import check_twist_graph
 from .motion import resolve_dof

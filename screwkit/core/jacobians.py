@@ -736,7 +736,7 @@ def jacobians_over_poses(
     graph : networkx.MultiDiGraph
         A twist graph of the mechanism (any pose).
     screws : mapping of joint name to array_like, shape (..., dof_j, 6)
-        E.g. :meth:`JointTable.joint_screws <screwkit.graphs.joints.JointTable.joint_screws>` of every
+        E.g. :meth:`JointTable.joint_screws <screwkit.graphs.jointtable.JointTable.joint_screws>` of every
         joint of
         :meth:`screwkit.robots.catalog.Mechanism.joints`.
     twist_basis : array_like, shape (..., dof, 6)

@@ -64,9 +64,9 @@ from ..exceptions import (
     ScrewkitTypeError,
     ScrewkitValueError,
 )
-from ..graphs.joints import JointTable
+from ..graphs.jointtable import JointTable
+from ..graphs.reduction import SeriesParallelNode
 from ..graphs.topology import Topology
-from ..graphs.twistgraph import SeriesParallelNode
 from . import Simplification, simplify_superbracket
 
 if TYPE_CHECKING:  # conditions are sympy expressions: that module (and sympy) loads on first use

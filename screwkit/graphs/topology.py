@@ -19,7 +19,7 @@ of a batch reuses it (design.md §1a).
 
 Examples
 --------
->>> from screwkit.graphs.joints import JointSpec
+>>> from screwkit.graphs.jointtable import JointSpec
 >>> specs = [JointSpec("A", "R", "B", "arm", 1, True), JointSpec("P", "P", "arm", "E", 1, False)]
 >>> top = topology("B", "E", tuple(specs))
 >>> top.nodes[top.root].kind, top.limbs[0].joints
@@ -37,7 +37,7 @@ from typing import Any, Literal
 import networkx as nx
 
 from ..exceptions import TwistGraphError
-from .joints import JointSpec
+from .jointtable import JointSpec
 
 __all__ = ["LimbPlan", "Node", "Topology", "network_layout", "topology"]
 
@@ -173,7 +173,7 @@ def topology(base: Hashable, platform: Hashable, specs: tuple[JointSpec, ...]) -
 
     Examples
     --------
-    >>> from screwkit.graphs.joints import JointSpec
+    >>> from screwkit.graphs.jointtable import JointSpec
     >>> specs = (JointSpec("R1", "R", "B", "E", 1, True), JointSpec("R2", "R", "B", "E", 1, False))
     >>> top = topology("B", "E", specs)
     >>> [n.kind for n in top.nodes], top.limbs[0].siblings
@@ -360,7 +360,7 @@ def network_layout(
 
     Examples
     --------
-    >>> from screwkit.graphs.joints import JointSpec
+    >>> from screwkit.graphs.jointtable import JointSpec
     >>> specs = (JointSpec("R1", "R", "B", "E", 1), JointSpec("R2", "R", "B", "E", 1))
     >>> network_layout("B", "E", specs, (0, 1))
     ((((1, 1), (0, -1)),), ((0, 1),))

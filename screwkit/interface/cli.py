@@ -51,7 +51,7 @@ from .. import __version__
 from ..algebra import backend as B
 from ..algebra.screw import Screw
 from ..exceptions import ScrewkitError, ScrewkitValueError
-from ..graphs.twistgraph import equivalent_twist_graph
+from ..graphs.reduction import equivalent_twist_graph
 from ..robots.catalog import (
     MAX_COORDINATE,
     degrees_to_radians,

@@ -48,7 +48,8 @@ from ..core.jacobians import WrenchJacobians
 from ..core.singularity import SingularityReport, classify_analysis
 from ..core.wrenches import WrenchAnalysis, checked_rtol, wrench_analysis
 from ..exceptions import ScrewkitError, ScrewkitTypeError, ScrewkitValueError
-from ..graphs.twistgraph import equivalent_twist_graph, fundamental_loops
+from ..graphs.loops import fundamental_loops
+from ..graphs.reduction import equivalent_twist_graph
 from ..robots.catalog import Mechanism, file_kind, load_mechanism, load_snapshot, load_toml
 
 if TYPE_CHECKING:  # the diagram and GCA stack loads when a report is made, not on `import screwkit`

@@ -4,7 +4,7 @@
 cached properties over the whole batch, each built on the one before:
 
 ``configuration`` (the family's inverse kinematics) → ``joints`` (a
-:class:`~screwkit.graphs.joints.JointTable`) → ``singularities`` (labels, orders, closeness: the inverse
+:class:`~screwkit.graphs.jointtable.JointTable`) → ``singularities`` (labels, orders, closeness: the inverse
 kinematics, joint table and analysis core chunk by chunk, :func:`~screwkit.core.singularity.classify_chunks`,
 so that a large batch never holds its whole table) → ``jacobians`` (``A χ̇ = B θ̇`` over the family's
 nominal twists) → ``transmission`` (paper 004's κ, ζ, LTI; four-limb family) and
@@ -40,7 +40,7 @@ from ..core.jacobians import WrenchJacobians, jacobians_from_wrenches
 from ..core.singularity import SingularityReport, classify_chunks, label_table
 from ..core.wrenches import WrenchAnalysis, analyze_table, checked_rtol
 from ..exceptions import ScrewkitError, ScrewkitIndexError, ScrewkitValueError
-from ..graphs.joints import JointTable
+from ..graphs.jointtable import JointTable
 
 __all__ = ["Pose", "PosedMechanism", "generic_samples"]
 
@@ -322,7 +322,7 @@ class Pose:
         of three; a pose's result does not depend on the batch it is in, ``tests/test_batch.py``):
         the per-pose analyses at the generic draws, the batch at the samples (None if none is
         reachable) and the samples' generator, where the next batch is drawn from. (61 poses of
-        four limbs stay below :data:`screwkit.core._frames.COMPILED_MIN_BATCH`: no numba import.)
+        four limbs stay below :data:`screwkit.algebra.compiled.COMPILED_MIN_BATCH`: no numba import.)
         """
         mechanism, rtol = self.mechanism, self.posed.rtol
         stream = np.random.default_rng(0)

@@ -87,7 +87,7 @@ from ...exceptions import (
     ScrewkitValueError,
     UnreachablePoseError,
 )
-from ...graphs.joints import JointTable
+from ...graphs.jointtable import JointTable
 from .two_limb import REACH_ULPS
 
 __all__ = [
