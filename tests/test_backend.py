@@ -138,9 +138,9 @@ def test_is_exactly_zero_proves_non_zero_at_a_point_without_simplifying(monkeypa
     assert B.is_exactly_zero(sympy.sin(x) ** 2 + sympy.cos(x) ** 2 - 1) and calls
     assert not B.is_exactly_zero(sympy.sqrt(x**2 + 1) - x)  # not rational at the point: simplify decides
     # one-off decisions do not grow the random point's cache (a long session makes many)
-    from screwkit.algebra import _symbolic as _symbolic
+    from screwkit.algebra import symbolic
     z = sympy.Symbol("z_cache")
-    point = _symbolic.generic_point(np.array([z], dtype=object))
+    point = symbolic.generic_point(np.array([z], dtype=object))
     before = len(point._cache)
     assert not any(B.is_exactly_zero(z**k + k) for k in range(1, 50))
     assert len(point._cache) == before

@@ -1,4 +1,4 @@
-"""Generic (symbolic) analysis of families of mechanisms (screwkit.core.generic, screwkit.algebra._symbolic).
+"""Generic (symbolic) analysis of families of mechanisms (screwkit.core.generic, screwkit.algebra.symbolic).
 
 Expected values come from the mechanisms' known motion types (Delta-like 3-RUU: three
 translations, Clavel 1988 / Tsai 1996; H4: Schoenflies 3T1R, paper 002 §4, paper 004 §1) and from
@@ -15,8 +15,8 @@ import sympy
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from screwkit.algebra import _symbolic as Y
 from screwkit.algebra import screw as S
+from screwkit.algebra import symbolic as Y
 from screwkit.algebra.screwsystem import ScrewSystem
 from screwkit.core.generic import GenericAnalysis, generic_analysis
 from screwkit.core.singularity import classify

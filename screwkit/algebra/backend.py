@@ -254,7 +254,7 @@ def is_exactly_zero(value: Any) -> bool:
 def _identically_zero(expr: Any) -> bool:
     """A sympy scalar is identically zero.
 
-    A non-zero *exact* value at the symbols' random integer point (:mod:`screwkit.algebra._symbolic`)
+    A non-zero *exact* value at the symbols' random integer point (:mod:`screwkit.algebra.symbolic`)
     proves it is not, without simplifying: the common case costs one substitution. Otherwise
     ``expand`` decides polynomials and ``simplify`` the rest (trigonometric identities).
     """
@@ -262,10 +262,10 @@ def _identically_zero(expr: Any) -> bool:
     if expr == 0:
         return True
     if expr.free_symbols:
-        from . import _symbolic as _symbolic
+        from . import symbolic
 
         try:
-            value = _symbolic.generic_point(np.array([expr], dtype=object)).value(expr, remember=False)
+            value = symbolic.generic_point(np.array([expr], dtype=object)).value(expr, remember=False)
         except ScrewkitValueError:  # not real at the point: decided below
             value = None
         if isinstance(value, int | Fraction) and value != 0:
@@ -1045,7 +1045,7 @@ def screw_rank(rows: Array, *, rtol: float = DEFAULT_RTOL, length_scale: float |
     -------
     int or numpy.ndarray of int
         Batched over leading axes when numeric. The symbolic rank is the *generic* rank, decided
-        exactly at a random rational point (Schwartz–Zippel, :mod:`screwkit.algebra._symbolic`): it says
+        exactly at a random rational point (Schwartz–Zippel, :mod:`screwkit.algebra.symbolic`): it says
         nothing about special values of the symbols.
 
     Examples
@@ -1055,9 +1055,9 @@ def screw_rank(rows: Array, *, rtol: float = DEFAULT_RTOL, length_scale: float |
     """
     checked_rtol(rtol)
     if rows.dtype == object:
-        from . import _symbolic as _symbolic
+        from . import symbolic
 
-        return _symbolic.generic_rank(rows.reshape(-1, rows.shape[-1])) if rows.size else 0
+        return symbolic.generic_rank(rows.reshape(-1, rows.shape[-1])) if rows.size else 0
     if rows.shape[-2] == 0:
         return 0 if rows.ndim == 2 else np.zeros(rows.shape[:-2], dtype=int)
     values = screw_singular_values(rows, length_scale=length_scale)
@@ -1172,7 +1172,7 @@ def matrix_nullspace(matrix: Array, *, rtol: float = DEFAULT_RTOL) -> Array:
 
     Numeric: the right singular vectors whose singular values are at most ``rtol`` times the
     largest (an orthonormal basis). Symbolic: the generic null space by Cramer's rule on a pivot
-    block chosen at an exact random point (:mod:`screwkit.algebra._symbolic`), each vector primitive. The
+    block chosen at an exact random point (:mod:`screwkit.algebra.symbolic`), each vector primitive. The
     caller
     scales rows beforehand if they carry different units (row scaling keeps the null space).
 
@@ -1183,9 +1183,9 @@ def matrix_nullspace(matrix: Array, *, rtol: float = DEFAULT_RTOL) -> Array:
     """
     checked_rtol(rtol)
     if matrix.dtype == object:
-        from . import _symbolic as _symbolic
+        from . import symbolic
 
-        return _symbolic.nullspace(matrix)
+        return symbolic.nullspace(matrix)
     if matrix.shape[0] == 0:
         return np.eye(matrix.shape[1])
     _, values, vt = np.linalg.svd(matrix)

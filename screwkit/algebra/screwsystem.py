@@ -373,7 +373,7 @@ class ScrewSystem:
         return _pick(self._stack(rows, self.basis), self.order, self)
 
     def _readable_symbolic(self, near: Any) -> Array:
-        """The symbolic readable basis (generic decisions, :mod:`screwkit.algebra._symbolic`): the frame's
+        """The symbolic readable basis (generic decisions, :mod:`screwkit.algebra.symbolic`): the frame's
         translations where the system holds them; with all three, the other rows become lines
         through ``near`` (the origin by default); else the couple subsystem, then the basis."""
         axes = [row for row in _COUPLES.astype(int) if self.contains(row)]

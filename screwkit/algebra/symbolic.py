@@ -1,4 +1,4 @@
-"""Generic (symbolic) screw-system kernels, private: :mod:`screwkit.algebra.backend` delegates here.
+"""Generic (symbolic) screw-system kernels: :mod:`screwkit.algebra.backend` delegates here.
 
 A screw whose coordinates hold sympy symbols stands for a whole family of screws. Its systems'
 *generic* orders (the orders for all values of the symbols but a proper algebraic subset) are
@@ -26,7 +26,8 @@ reads the values only: no polynomial is expanded, simplified or evaluated to dec
 built **from the chosen generators**, null spaces by Cramer's rule on the non-zero minor picked at
 the point: each vector's entries are maximal minors of the pivot rows (expansion along rows, every
 minor computed once), polynomial when the screws are, then divided by their common factor
-(:func:`primitive`). Only the returned bases are turned back into sympy expressions.
+(:func:`~screwkit.algebra.cramer.primitive`; Cramer's rule and primitive parts in
+:mod:`screwkit.algebra.cramer`). Only the returned bases are turned back into sympy expressions.
 
 Examples
 --------
@@ -43,13 +44,14 @@ import contextlib
 import functools
 import math
 import random
-from collections.abc import Iterator, Sequence
+from collections.abc import Sequence
 from fractions import Fraction
 from typing import Any
 
 import numpy as np
 
 from ..exceptions import ScrewkitValueError
+from .cramer import primitive, quotient, signed_minors
 
 __all__ = [
     "FLOAT_RTOL",
@@ -62,7 +64,6 @@ __all__ = [
     "independent_rows",
     "is_zero",
     "nullspace",
-    "primitive",
     "reciprocal_within",
 ]
 
@@ -70,10 +71,10 @@ Array = np.ndarray
 
 #: Random values are drawn from ``{1, ..., 2⁶² − 1}`` (Schwartz–Zippel's ``S``).
 SAMPLE_RANGE = 2**62
-#: Relative pivot threshold when an entry could not be evaluated exactly (60-digit arithmetic).
-FLOAT_RTOL = 1e-40
 #: Largest pivot block solved by Cramer's rule (screw systems need at most 6).
 MAX_CRAMER = 6
+#: Relative pivot threshold when an entry could not be evaluated exactly (60-digit arithmetic).
+FLOAT_RTOL = 1e-40
 _DIGITS = 60
 _SEED = 20261123
 _SWAP = [3, 4, 5, 0, 1, 2]
@@ -210,6 +211,15 @@ class GenericRows:
         The polynomials' ring (integer coefficients).
     exact : bool
         True when every generator is rational at the point (else the values are 60-digit floats).
+
+    Examples
+    --------
+    >>> import sympy
+    >>> x = sympy.Symbol("x")
+    >>> rows = np.array([[x, 1], [2 * x, 2]], dtype=object)
+    >>> generic = GenericRows.from_exprs(rows, generic_point(rows))
+    >>> len(generic), generic.exact, generic.independent()
+    (2, True, [0])
     """
 
     __slots__ = ("_exprs", "exact", "polys", "ring", "values", "width")
@@ -352,6 +362,17 @@ def is_zero(value: Any, scale: Any) -> bool:
     """Whether a value at the generic point is zero: exactly for an int or Fraction, else within
     :data:`FLOAT_RTOL` of ``scale`` (60-digit values carry round-off).
 
+    Parameters
+    ----------
+    value : int, Fraction or mpmath.mpf
+        The value.
+    scale : int, Fraction or mpmath.mpf
+        The size it is compared with (its row's largest entry).
+
+    Returns
+    -------
+    bool
+
     Examples
     --------
     >>> is_zero(Fraction(0), 1), is_zero(1e-50, 1.0), is_zero(1e-30, 1.0)
@@ -419,60 +440,6 @@ def generic_rank(rows: Any, point: GenericPoint | None = None) -> int:
     return len(independent_rows(rows, point))
 
 
-def primitive(vector: list[Any]) -> list[Any]:
-    """A vector of polynomials (one ring, integer coefficients) divided by the greatest common
-    divisor of its entries, the first non-zero entry's leading coefficient made positive; the
-    projective class is unchanged.
-
-    Examples
-    --------
-    >>> from sympy.polys.rings import ring
-    >>> from sympy.polys.domains import ZZ
-    >>> R, x, y = ring("x y", ZZ)
-    >>> primitive([-2 * x * y - 2 * x, 4 * x, R.zero])
-    [y + 1, -2, 0]
-    """
-    nonzero = [p for p in vector if p]
-    if not nonzero:
-        return list(vector)
-    ordered = sorted(nonzero, key=len)  # the smallest first: the gcd shrinks fastest
-    common = ordered[0]
-    for entry in ordered[1:]:
-        if common.is_ground:  # only an integer content is left to find
-            common = common.ring.ground_new(math.gcd(*(int(p.content()) for p in nonzero)))
-            break
-        common = common.gcd(entry)
-    if nonzero[0].LC * common.LC < 0:
-        common = -common
-    return [p.exquo(common) if p else p for p in vector]
-
-
-def _minors(matrix: list[list[Any]], columns: Sequence[int], one: Any) -> Iterator[Any]:
-    """Signed maximal minors of a ``k × (k+1)`` submatrix: entry ``c`` is ``(−1)^c`` times the
-    determinant without column ``columns[c]`` (a vector of its null space, Cramer's rule).
-
-    Laplace expansion along the rows with each smaller minor computed once (division free,
-    so exact on polynomials and on numbers alike).
-    """
-    k = len(matrix)
-
-    @functools.cache
-    def minor(depth: int, chosen: tuple[int, ...]) -> Any:
-        if depth < 0:
-            return one
-        total = one - one
-        for position, column in enumerate(chosen):
-            entry = matrix[depth][column]
-            if entry:
-                term = entry * minor(depth - 1, chosen[:position] + chosen[position + 1 :])
-                total = total + term if (depth + position) % 2 == 0 else total - term
-        return total
-
-    for c in range(len(columns)):
-        value = minor(k - 1, tuple(columns[:c]) + tuple(columns[c + 1 :]))
-        yield value if c % 2 == 0 else -value
-
-
 def _kernel(
     polys: list[list[Any]], values: list[list[Any]], width: int, zero: Any
 ) -> tuple[list[list[Any]], list[list[Any]]]:
@@ -486,9 +453,8 @@ def _kernel(
     for f in free:
         chosen = sorted([*columns, f])
         vector, vector_value = [zero] * width, [0] * width
-        for c, p, v in zip(
-            chosen, _minors(block_polys, chosen, zero + 1), _minors(block_values, chosen, 1), strict=True
-        ):
+        polys_minors = signed_minors(block_polys, chosen, zero + 1)
+        for c, p, v in zip(chosen, polys_minors, signed_minors(block_values, chosen, 1), strict=True):
             vector[c], vector_value[c] = p, v
         vectors.append(vector)
         vector_values.append(vector_value)
@@ -514,23 +480,11 @@ def _primitive_rows(
             candidates = [j for j, v in enumerate(row_values) if reduced[j] and v != 0]
             if candidates:
                 j = min(candidates, key=lambda j: len(reduced[j]))
-                factor = _quotient(row_values[j], _evaluate(reduced[j], generators))  # common factor's value
-                row_values = [_quotient(v, factor) for v in row_values]
+                factor = quotient(row_values[j], _evaluate(reduced[j], generators))  # common factor's value
+                row_values = [quotient(v, factor) for v in row_values]
         out_polys.append(reduced)
         out_values.append(row_values)
     return GenericRows(out_polys, out_values, width, ring, exact)
-
-
-def _quotient(numerator: Any, denominator: Any) -> Any:
-    """``numerator / denominator``, exact (an int when it is one) unless a float is involved."""
-    if isinstance(numerator, int | Fraction) and isinstance(denominator, int | Fraction):
-        quotient = (
-            Fraction(numerator, denominator)
-            if isinstance(numerator, int) and isinstance(denominator, int)
-            else Fraction(numerator) / denominator
-        )
-        return int(quotient) if quotient.denominator == 1 else quotient
-    return numerator / denominator
 
 
 def _generator_values(ring: Any, point: GenericPoint) -> list[Any]:
