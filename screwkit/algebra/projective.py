@@ -32,6 +32,9 @@ import numpy as np
 
 from ..exceptions import DegenerateGeometryError, ScrewkitTypeError, ScrewkitValueError
 from . import backend as B
+from .checks import checked_length_scale
+from .ranks import scale_moments
+from .zero_tests import vanishes, zero_vectors
 
 __all__ = [
     "are_collinear",
@@ -80,7 +83,7 @@ def infinite_point(direction: Any) -> Array:
     array([0., 0., 1., 0.])
     """
     d = B.as_array(direction, "direction", (3,))
-    if np.any(B.zero_vectors(d)):
+    if np.any(zero_vectors(d)):
         raise DegenerateGeometryError(
             "Expected `direction` to be non-zero, got a zero vector: (0, 0, 0, 0) is not a point."
         )
@@ -112,7 +115,7 @@ def _numeric(value: Any, name: str, test: str, shape: tuple[int, ...]) -> Array:
 
 
 def _unit_points(p: Array, length_scale: float) -> Array:
-    B.checked_length_scale(length_scale)
+    checked_length_scale(length_scale)
     scaled = np.array(p, dtype=float)
     scaled[..., :3] /= length_scale
     size = np.linalg.norm(scaled, axis=-1, keepdims=True)
@@ -151,7 +154,7 @@ def join(p: Any, q: Any, *, rtol: float = B.DEFAULT_RTOL) -> Array:
     pp, qq = B.as_arrays((4,), (p, "p"), (q, "q"))
     pp, qq = np.broadcast_arrays(pp, qq)
     result = join_unchecked(pp, qq)
-    if np.any(B.vanishes(result, pp, qq, rtol=rtol)):
+    if np.any(vanishes(result, pp, qq, rtol=rtol)):
         raise DegenerateGeometryError(
             "Expected `p` and `q` to be distinct points, got coincident points (no line through them)."
         )
@@ -181,7 +184,7 @@ def line_points(line: Any, *, rtol: float = B.DEFAULT_RTOL) -> tuple[Array, Arra
     if B.is_symbolic(values):
         raise ScrewkitValueError("line_points is numeric; build symbolic lines from their points.")
     s, m = values[:3], values[3:]
-    if not B.vanishes(B.dot(s, m, keepdims=True), s, m, rtol=rtol):
+    if not vanishes(B.dot(s, m, keepdims=True), s, m, rtol=rtol):
         raise ScrewkitValueError(
             f"Expected `line` to be a line (s·m = 0), got s·m = {s @ m:.6g}: a screw of "
             "non-zero pitch is not a line."
@@ -225,7 +228,7 @@ def plane(normal: Any, point: Any) -> Array:
     n = B.as_array(normal, "normal", (3,))
     r = B.as_array(point, "point", (3,))
     n, r = B.promote(n, r)
-    if np.any(B.zero_vectors(n)):
+    if np.any(zero_vectors(n)):
         raise DegenerateGeometryError("Expected `normal` to be non-zero, got a zero vector.")
     return np.concatenate([n, -B.dot(n, r, keepdims=True)], axis=-1)
 
@@ -256,7 +259,7 @@ def plane_through(p: Any, q: Any, r: Any, *, rtol: float = B.DEFAULT_RTOL) -> Ar
         for j, cols in enumerate(columns)
     ]
     result = np.stack(coefficients, axis=-1)
-    if np.any(B.vanishes(result, pp, qq, rr, rtol=rtol)):
+    if np.any(vanishes(result, pp, qq, rr, rtol=rtol)):
         raise DegenerateGeometryError(
             "Expected `p`, `q`, `r` to span a plane, got collinear (or coincident) points."
         )
@@ -368,11 +371,11 @@ def meet_line_plane(
     lv, pl = B.promote(lv, pl)
     s, m, n, delta = lv[..., :3], lv[..., 3:], pl[..., :3], pl[..., 3:]
     point = np.concatenate([B.cross(n, m) - delta * s, B.dot(n, s, keepdims=True)], axis=-1)
-    if np.any(B.vanishes(point, lv, pl, rtol=rtol)):
+    if np.any(vanishes(point, lv, pl, rtol=rtol)):
         raise DegenerateGeometryError(
             "Expected `line` to cross `plane` at one point, got a line lying in the plane."
         )
-    if not allow_infinite and np.any(B.vanishes(point[..., 3:], point, rtol=rtol)):
+    if not allow_infinite and np.any(vanishes(point[..., 3:], point, rtol=rtol)):
         raise DegenerateGeometryError(
             "Expected `line` to cross `plane` at a finite point, got a line parallel to the plane "
             "(they meet at infinity; pass allow_infinite=True for that point)."
@@ -405,11 +408,11 @@ def meet_planes(
     a, b = B.promote(a, b)
     n1, d1, n2, d2 = a[..., :3], a[..., 3:], b[..., :3], b[..., 3:]
     result = np.concatenate([B.cross(n1, n2), d1 * n2 - d2 * n1], axis=-1)
-    if np.any(B.vanishes(result, a, b, rtol=rtol)):
+    if np.any(vanishes(result, a, b, rtol=rtol)):
         raise DegenerateGeometryError(
             "Expected `first` and `second` to be distinct planes, got the same plane twice."
         )
-    if not allow_infinite and np.any(B.vanishes(result[..., :3], result, rtol=rtol)):
+    if not allow_infinite and np.any(vanishes(result[..., :3], result, rtol=rtol)):
         raise DegenerateGeometryError(
             "Expected `first` and `second` to meet in a finite line, got parallel planes (they "
             "meet at infinity; pass allow_infinite=True for that line)."
@@ -466,8 +469,8 @@ def lines_intersect(
     """
     a = _numeric(first, "first", "lines_intersect", (6,))
     b = _numeric(second, "second", "lines_intersect", (6,))
-    scaled_a, _ = B.scale_moments(a, length_scale)
-    scaled_b, _ = B.scale_moments(b, length_scale)
+    scaled_a, _ = scale_moments(a, length_scale)
+    scaled_b, _ = scale_moments(b, length_scale)
     for name, values in (("first", scaled_a), ("second", scaled_b)):
         if np.any(np.linalg.norm(values, axis=-1) == 0):
             raise DegenerateGeometryError(f"Expected `{name}` to be a non-zero line, got zeros.")
@@ -491,7 +494,7 @@ def point_on_line(
     (True, False)
     """
     x = _unit_points(_numeric(point, "point", "point_on_line", (4,)), length_scale)
-    lv, _ = B.scale_moments(_numeric(line, "line", "point_on_line", (6,)), length_scale)
+    lv, _ = scale_moments(_numeric(line, "line", "point_on_line", (6,)), length_scale)
     size = np.linalg.norm(lv, axis=-1, keepdims=True)
     if np.any(size == 0):
         raise DegenerateGeometryError("Expected `line` to be a non-zero line, got zeros.")

@@ -42,6 +42,9 @@ import numpy as np
 
 from ..exceptions import DegenerateGeometryError, ScrewkitTypeError, ScrewkitValueError
 from . import backend as B
+from .checks import check_rotation
+from .ranks import direction_scaled, screw_rank, unit_screws
+from .zero_tests import norm, ratio, vanishes, where_zero, zero_vectors
 
 __all__ = [
     "Screw",
@@ -68,7 +71,7 @@ Array = np.ndarray
 
 
 def _nonzero_direction(direction: Array, name: str) -> None:
-    zero = np.atleast_1d(B.zero_vectors(direction.reshape(-1, 3))).tolist()
+    zero = np.atleast_1d(zero_vectors(direction.reshape(-1, 3))).tolist()
     if any(zero):
         raise DegenerateGeometryError(
             f"Expected `{name}` to be a non-zero direction, got a zero vector "
@@ -281,10 +284,10 @@ def pitch(screws: Any) -> Any:
     inf
     """
     arr = _screws(screws)
-    if np.any(B.zero_vectors(arr)):
+    if np.any(zero_vectors(arr)):
         raise DegenerateGeometryError("Expected non-zero screws, got the zero screw.")
-    s, s0 = B.direction_scaled(arr[..., :3], arr[..., 3:])  # s·s0 / s·s is unchanged by a common factor
-    return B.ratio(B.dot(s, s0), B.dot(s, s))
+    s, s0 = direction_scaled(arr[..., :3], arr[..., 3:])  # s·s0 / s·s is unchanged by a common factor
+    return ratio(B.dot(s, s0), B.dot(s, s))
 
 
 def magnitude(screws: Any) -> Any:
@@ -298,8 +301,8 @@ def magnitude(screws: Any) -> Any:
     5.0
     """
     arr = _screws(screws)
-    ns = B.norm(arr[..., :3])
-    return B.where_zero(ns, B.norm(arr[..., 3:]), ns)
+    ns = norm(arr[..., :3])
+    return where_zero(ns, norm(arr[..., 3:]), ns)
 
 
 def normalize(screws: Any) -> Array:
@@ -317,7 +320,7 @@ def normalize(screws: Any) -> Array:
     """
     arr = _screws(screws)
     size = np.asarray(magnitude(arr))[..., None]
-    if np.any(B.zero_vectors(size)):  # also a screw whose norm underflows (|s| = 1e-200)
+    if np.any(zero_vectors(size)):  # also a screw whose norm underflows (|s| = 1e-200)
         raise DegenerateGeometryError("Expected non-zero screws, got the zero screw.")
     return B.simplify(arr / size)
 
@@ -345,11 +348,11 @@ def axis(screws: Any) -> tuple[Array, Array]:
     (array([1., 2., 0.]), array([0., 0., 1.]))
     """
     arr = _screws(screws)
-    if np.any(B.zero_vectors(arr[..., :3])):
+    if np.any(zero_vectors(arr[..., :3])):
         raise DegenerateGeometryError(
             "Expected screws of finite pitch, got s = 0 (a line at infinity has no finite point)."
         )
-    s, s0 = B.direction_scaled(arr[..., :3], arr[..., 3:])  # s × s0 / s·s is unchanged by a common factor
+    s, s0 = direction_scaled(arr[..., :3], arr[..., 3:])  # s × s0 / s·s is unchanged by a common factor
     ss = np.asarray(B.dot(s, s))[..., None]
     return B.simplify(B.cross(s, s0) / ss), B.simplify(s / B.sqrt(ss))
 
@@ -359,7 +362,8 @@ def is_zero_pitch(screws: Any, *, rtol: float = B.DEFAULT_RTOL, length_scale: fl
 
     After dividing the moment by ``length_scale`` and normalising, the screw is a line when
     ``|s| > rtol`` and ``|s·s0| <= rtol |s|``. Symbolic screws are decided generically: ``s`` not
-    identically zero and ``s·s0`` identically zero (no tolerance; :func:`screwkit.algebra.backend.vanishes`).
+    identically zero and ``s·s0`` identically zero (no tolerance;
+    :func:`screwkit.algebra.zero_tests.vanishes`).
 
     Parameters
     ----------
@@ -379,9 +383,9 @@ def is_zero_pitch(screws: Any, *, rtol: float = B.DEFAULT_RTOL, length_scale: fl
     >>> is_zero_pitch(helical_twist([1, 0, 0], [0, 3, 0], 0.1))
     False
     """
-    unit = B.unit_screws(_screws(screws), length_scale)
+    unit = unit_screws(_screws(screws), length_scale)
     s, s0 = unit[..., :3], unit[..., 3:]
-    result = ~B.vanishes(s, rtol=rtol) & B.vanishes(B.dot(s, s0, keepdims=True), s, rtol=rtol)
+    result = ~vanishes(s, rtol=rtol) & vanishes(B.dot(s, s0, keepdims=True), s, rtol=rtol)
     return bool(result) if np.ndim(result) == 0 else result
 
 
@@ -400,7 +404,7 @@ def is_infinite_pitch(
     >>> is_infinite_pitch(line([0, 0, 1], [0, 0, 0]))
     False
     """
-    result = B.vanishes(B.unit_screws(_screws(screws), length_scale)[..., :3], rtol=rtol)
+    result = vanishes(unit_screws(_screws(screws), length_scale)[..., :3], rtol=rtol)
     return bool(result) if np.ndim(result) == 0 else result
 
 
@@ -433,7 +437,7 @@ def transform(screws: Any, rotation: Any, translation: Any) -> Array:
     rot = B.as_array(rotation, "rotation", (3, 3))
     t = B.as_array(translation, "translation", (3,))
     arr, rot, t = B.promote(arr, rot, t)
-    B.check_rotation(rot)
+    check_rotation(rot)
     s = np.einsum("...ij,...j->...i", rot, arr[..., :3])
     s0 = np.einsum("...ij,...j->...i", rot, arr[..., 3:])
     return np.concatenate([s, s0 + B.cross(np.broadcast_to(t, s.shape), s)], axis=-1)
@@ -626,7 +630,7 @@ class Screw:
         True
         """
         rows = np.stack([self.coords, _as_screw(other, "other").coords])
-        return int(B.screw_rank(rows, rtol=rtol, length_scale=length_scale)) == 1
+        return int(screw_rank(rows, rtol=rtol, length_scale=length_scale)) == 1
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready description: coordinates, pitch, kind, and the axis where finite.

@@ -28,6 +28,7 @@ import numpy as np
 
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
 from . import backend as B
+from .ranks import characteristic_length, scale_moments, screw_nullspace, screw_rank
 from .screw import Screw
 
 __all__ = ["ScrewSystem", "motion_type"]
@@ -40,12 +41,12 @@ def _independent_rows(rows: Array, rtol: float, length_scale: float | None) -> A
     """The rows that raise the rank, in order (a basis made of the given generators)."""
     chosen: list[Array] = []
     rank = 0
-    total = B.screw_rank(rows, rtol=rtol, length_scale=length_scale) if rows.shape[0] else 0
+    total = screw_rank(rows, rtol=rtol, length_scale=length_scale) if rows.shape[0] else 0
     if total == rows.shape[0]:
         return rows.copy()
     for row in rows:
         trial = np.array([*chosen, row], dtype=rows.dtype)
-        new_rank = B.screw_rank(trial, rtol=rtol, length_scale=length_scale)
+        new_rank = screw_rank(trial, rtol=rtol, length_scale=length_scale)
         if new_rank > rank:
             chosen.append(row)
             rank = new_rank
@@ -84,9 +85,9 @@ class ScrewSystem:
 
     def __post_init__(self) -> None:
         rows = B.as_array(self.basis, "basis", (6,)).reshape(-1, 6)
-        length = B.characteristic_length(rows, self.length_scale)
+        length = characteristic_length(rows, self.length_scale)
         object.__setattr__(self, "length_scale", length)
-        rank = B.screw_rank(rows, rtol=self.rtol, length_scale=length)
+        rank = screw_rank(rows, rtol=self.rtol, length_scale=length)
         if rank != rows.shape[0]:
             raise ScrewkitValueError(
                 f"Expected `basis` to hold independent screws, got {rows.shape[0]} rows of "
@@ -116,7 +117,7 @@ class ScrewSystem:
         1
         """
         rows = _rows(screws, "screws")
-        length_scale = B.characteristic_length(rows, length_scale)
+        length_scale = characteristic_length(rows, length_scale)
         basis = _independent_rows(rows, rtol, length_scale) if rows.shape[0] else rows
         # independent by construction: _independent_rows took the (generic) rank of these very rows
         return cls.from_independent(basis, rtol=rtol, length_scale=length_scale)
@@ -209,7 +210,7 @@ class ScrewSystem:
         >>> lines.reciprocal().order
         4
         """
-        rows = B.screw_nullspace(self.basis, rtol=self.rtol, length_scale=self.length_scale)
+        rows = screw_nullspace(self.basis, rtol=self.rtol, length_scale=self.length_scale)
         if self.length_scale is not None and not self.is_symbolic:
             # orthonormal in the coordinates scaled by this length: independent by construction
             return ScrewSystem.from_independent(rows, rtol=self.rtol, length_scale=self.length_scale)
@@ -260,7 +261,7 @@ class ScrewSystem:
         else:
             rows = _rows(item, "item")
         stacked = self._stack(self.basis, rows)
-        rank = B.screw_rank(stacked, rtol=self.rtol, length_scale=self.length_scale)
+        rank = screw_rank(stacked, rtol=self.rtol, length_scale=self.length_scale)
         return bool(rank == self.order)
 
     def __contains__(self, item: Any) -> bool:
@@ -378,7 +379,7 @@ class ScrewSystem:
         through ``near`` (the origin by default); else the couple subsystem, then the basis."""
         axes = [row for row in _COUPLES.astype(int) if self.contains(row)]
         stacked = self._stack(self.basis, _COUPLES.astype(int))
-        translations = self.order + 3 - int(B.screw_rank(stacked))
+        translations = self.order + 3 - int(screw_rank(stacked))
         couples = (
             np.array(axes).reshape(-1, 6) if len(axes) == translations else self.couple_subsystem().basis
         )
@@ -418,7 +419,7 @@ class ScrewSystem:
         if self.is_symbolic:
             raise ScrewkitTypeError("pitch_range is numeric; substitute values into the system first.")
         length = float(self.length_scale or 1.0)
-        scaled, _ = B.scale_moments(self.basis, length)
+        scaled, _ = scale_moments(self.basis, length)
         if scaled.shape[0]:
             scaled = np.linalg.qr(scaled.T)[0].T  # orthonormal basis of the same span
         dirs, mom = scaled[:, :3], scaled[:, 3:]
@@ -644,7 +645,7 @@ def motion_type(twists: Any, *, rtol: float = B.DEFAULT_RTOL, length_scale: floa
         A system, or generators (numeric, batched over leading axes; or one symbolic ``(k, 6)``
         array, decided generically).
     rtol, length_scale
-        As in :func:`screwkit.algebra.backend.screw_rank` (a ScrewSystem uses its own).
+        As in :func:`screwkit.algebra.ranks.screw_rank` (a ScrewSystem uses its own).
 
     Returns
     -------
@@ -665,11 +666,11 @@ def motion_type(twists: Any, *, rtol: float = B.DEFAULT_RTOL, length_scale: floa
         rows = twists.coords.reshape(1, 6)
     else:
         rows = _rows_batched(twists)
-    length_scale = B.characteristic_length(rows, length_scale) if rows.size else 1.0
+    length_scale = characteristic_length(rows, length_scale) if rows.size else 1.0
     couples = np.broadcast_to(_COUPLES, (*rows.shape[:-2], 3, 6))
     stacked = np.concatenate(B.promote(rows, np.asarray(couples, dtype=float)), axis=-2)
-    order = np.asarray(B.screw_rank(rows, rtol=rtol, length_scale=length_scale))
-    translations = order + 3 - np.asarray(B.screw_rank(stacked, rtol=rtol, length_scale=length_scale))
+    order = np.asarray(screw_rank(rows, rtol=rtol, length_scale=length_scale))
+    translations = order + 3 - np.asarray(screw_rank(stacked, rtol=rtol, length_scale=length_scale))
     labels = np.vectorize(_motion_label, otypes=[str])(translations, order - translations)
     return str(labels) if labels.ndim == 0 else labels
 

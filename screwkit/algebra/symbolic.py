@@ -120,7 +120,7 @@ class GenericPoint:
     def value(self, expr: Any, *, remember: bool = True) -> Any:
         """An expression at the point: an int or a Fraction, or a 60-digit mpmath float when it is
         not rational there. ``remember=False`` keeps it out of the point's cache (one-off
-        decisions, e.g. :func:`screwkit.algebra.backend.is_exactly_zero`, would otherwise grow it without
+        decisions, e.g. :func:`screwkit.algebra.zero_tests.is_exactly_zero`, would otherwise grow it without
         bound).
 
         Examples

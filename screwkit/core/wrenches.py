@@ -50,7 +50,7 @@ import numpy as np
 
 from ..algebra import backend as B
 from ..algebra import screw as S
-from ..algebra.backend import checked_rtol
+from ..algebra.checks import MIN_LENGTH_SCALE, checked_length_scale, checked_rtol
 from ..algebra.compiled import compiled_kernels
 from ..algebra.reference_frame import scaled_frame, unit_scaled
 from ..algebra.screwsystem import ScrewSystem
@@ -984,7 +984,7 @@ def _checked_lengths(value: Any, batch: tuple[int, ...]) -> Array | None:
     screwkit.exceptions.ScrewkitValueError: Expected `length_scale` to be positive finite numbers in ...
     """
     if value is None or np.ndim(value) == 0:
-        checked = B.checked_length_scale(value, allow_none=True)
+        checked = checked_length_scale(value, allow_none=True)
         return None if checked is None else np.full(batch, checked)
     try:
         lengths = np.array(np.broadcast_to(np.asarray(value, dtype=float), batch))
@@ -994,7 +994,7 @@ def _checked_lengths(value: Any, batch: tuple[int, ...]) -> Array | None:
             f"Expected `length_scale` to be a positive number or an array of the batch shape {batch}, "
             f"got {got}."
         ) from err
-    smallest = B.MIN_LENGTH_SCALE
+    smallest = MIN_LENGTH_SCALE
     if not np.all(np.isfinite(lengths) & (lengths >= smallest) & (lengths * smallest <= 1)):
         raise ScrewkitValueError(
             f"Expected `length_scale` to be positive finite numbers in [{smallest:g}, {1 / smallest:g}], "
@@ -1509,7 +1509,7 @@ def wrench_analysis(
     from .generic import generic_analysis, is_symbolic_graph
 
     rtol = checked_rtol(rtol)
-    length_scale = B.checked_length_scale(length_scale, allow_none=True)
+    length_scale = checked_length_scale(length_scale, allow_none=True)
     if isinstance(graph, nx.MultiDiGraph) and is_symbolic_graph(graph, joint_key=joint_key):
         return generic_analysis(graph, dof=dof, joint_key=joint_key)  # a family: generic answers
     from .motion import settled_dof

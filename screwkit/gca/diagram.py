@@ -55,6 +55,7 @@ import numpy as np
 from ..algebra import backend as B
 from ..algebra import projective as P
 from ..algebra import screw as S
+from ..algebra.ranks import screw_rank
 from ..algebra.screwsystem import ScrewSystem
 from ..core import _frames as F
 from ..core.wrenches import WrenchAnalysis, analyze_table, wrench_analysis
@@ -303,7 +304,7 @@ def _mechanism_lines(analysis: WrenchAnalysis) -> dict[str, tuple[str, Array | N
 def _rank(rows: list[Array], analysis: WrenchAnalysis) -> int:
     if not rows:
         return 0
-    return int(B.screw_rank(np.array(rows), rtol=1e-7, length_scale=float(analysis.length_scale)))
+    return int(screw_rank(np.array(rows), rtol=1e-7, length_scale=float(analysis.length_scale)))
 
 
 def _select_lines(analysis: WrenchAnalysis) -> tuple[list[Line], list[str]]:

@@ -38,6 +38,7 @@ import numpy as np
 
 from ..algebra import backend as B
 from ..algebra import screw as S
+from ..algebra.zero_tests import unit_directions, vanishes, zero_vectors
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
 
 __all__ = [
@@ -143,7 +144,7 @@ class Joint:
             raise ScrewkitValueError(
                 f"Joint {self.name!r} of type {self.type}: expected {expected} screw(s), got {rows.shape[0]}."
             )
-        if np.any(B.zero_vectors(rows)):
+        if np.any(zero_vectors(rows)):
             raise ScrewkitValueError(f"Joint {self.name!r}: expected non-zero screws, got a zero row.")
         if not isinstance(self.actuated, bool | np.bool_) or not isinstance(self.virtual, bool | np.bool_):
             flag, value = (
@@ -228,8 +229,8 @@ class Joint:
 
 def _unit_axis(axis: Any) -> Any:
     """A numeric axis scaled to unit length; a symbolic axis is kept as given, so that symbolic screws
-    stay polynomial (:func:`screwkit.algebra.backend.unit_directions`). A zero axis is refused."""
-    return B.unit_directions(S.line(axis, [0, 0, 0])[:3])
+    stay polynomial (:func:`screwkit.algebra.zero_tests.unit_directions`). A zero axis is refused."""
+    return unit_directions(S.line(axis, [0, 0, 0])[:3])
 
 
 def revolute(name: str, axis: Any, point: Any, *, actuated: bool = False) -> Joint:
@@ -317,7 +318,7 @@ def universal(name: str, first_axis: Any, second_axis: Any, center: Any) -> Join
         [S.revolute_twist(_unit_axis(first_axis), center), S.revolute_twist(_unit_axis(second_axis), center)]
     )
     first, second = rows[0, :3], rows[1, :3]
-    if B.vanishes(B.cross(first, second), first, second, rtol=PARALLEL_RTOL):
+    if vanishes(B.cross(first, second), first, second, rtol=PARALLEL_RTOL):
         raise ScrewkitValueError(
             f"Universal joint {name!r}: expected two non-parallel axes, got parallel axes."
         )
@@ -362,11 +363,11 @@ def parallelogram(name: str, hinge_axis: Any, rod_direction: Any, *, actuated: b
     w = B.as_array(rod_direction, "rod_direction", (3,))
     a, w = B.promote(a, w)
     velocity = B.cross(a, w)
-    if B.vanishes(velocity, a, w, rtol=PARALLEL_RTOL):
+    if vanishes(velocity, a, w, rtol=PARALLEL_RTOL):
         raise ScrewkitValueError(
             f"Parallelogram {name!r}: expected rods not parallel to the hinge axes, got parallel ones."
         )
-    twist = S.prismatic_twist(B.unit_directions(velocity))
+    twist = S.prismatic_twist(unit_directions(velocity))
     geometry = B.float_lists(hinge_axis=a, rod_direction=w)
     return Joint(name, "Pa", twist.reshape(1, 6), actuated=actuated, geometry=geometry)
 

@@ -27,6 +27,7 @@ import networkx as nx
 import numpy as np
 
 from ..algebra import backend as B
+from ..algebra.ranks import screw_image_of_nullspace
 from ..algebra.screwsystem import ScrewSystem
 from .twistgraph import check_twist_graph
 
@@ -190,7 +191,7 @@ def _loop_closure_twists(
     matrix, path_matrix = matrix[:, free], path_matrix[:, free]
     if not free:
         return ScrewSystem.zero(rtol=rtol, length_scale=length_scale)
-    twists = B.screw_image_of_nullspace(path_matrix, matrix, rtol=rtol, length_scale=length_scale)
+    twists = screw_image_of_nullspace(path_matrix, matrix, rtol=rtol, length_scale=length_scale)
     return ScrewSystem.span(twists, rtol=rtol, length_scale=length_scale)
 
 

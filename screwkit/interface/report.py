@@ -43,6 +43,7 @@ import numpy as np
 
 from ..algebra import backend as B
 from ..algebra import screw as S
+from ..algebra.checks import checked_length_scale
 from ..algebra.screwsystem import motion_type
 from ..core.jacobians import WrenchJacobians
 from ..core.singularity import SingularityReport, classify_analysis
@@ -466,7 +467,7 @@ def analyze(
     ()
     """
     tolerance = B.DEFAULT_RTOL if rtol is None else checked_rtol(rtol)
-    length = B.checked_length_scale(length_scale, allow_none=True)
+    length = checked_length_scale(length_scale, allow_none=True)
     if not isinstance(superbracket, bool | np.bool_):
         raise ScrewkitTypeError(f"Expected `superbracket` to be True or False, got {superbracket!r}.")
     if progress is not None and not callable(progress):

@@ -36,6 +36,7 @@ import networkx as nx
 import numpy as np
 
 from ..algebra import backend as B
+from ..algebra.checks import checked_length_scale
 from ..core.jacobians import WrenchJacobians, jacobians_from_wrenches
 from ..core.singularity import SingularityReport, classify_chunks, label_table
 from ..core.wrenches import WrenchAnalysis, analyze_table, checked_rtol
@@ -118,7 +119,7 @@ class PosedMechanism:
         array = _checked_poses(mechanism, poses)
         array.flags.writeable = False
         tolerance = B.DEFAULT_RTOL if rtol is None else checked_rtol(rtol)
-        length = B.checked_length_scale(length_scale, allow_none=True)
+        length = checked_length_scale(length_scale, allow_none=True)
         return cls(mechanism, array, tolerance, length, dict(options or {}))
 
     @property

@@ -79,7 +79,8 @@ from typing import Any
 import numpy as np
 
 from ...algebra import screw as S
-from ...algebra.backend import DEFAULT_RTOL, as_array, checked_rtol
+from ...algebra.backend import DEFAULT_RTOL, as_array
+from ...algebra.checks import checked_rtol
 from ...exceptions import (
     CatalogError,
     DegenerateGeometryError,
