@@ -14,8 +14,9 @@ Examples
 from pkgutil import extend_path
 from typing import Any
 
-from .algebra.screw import Screw, reciprocal_product
+from .algebra.screw import reciprocal_product
 from .algebra.screwsystem import ScrewSystem, motion_type
+from .algebra.screwvalue import Screw
 from .core.singularity import SingularityReport, classify, classify_poses, classify_table
 from .core.wrenches import WrenchAnalysis, analyze_table, wrench_analysis
 from .exceptions import (

@@ -6,6 +6,7 @@ from hypothesis import given, settings
 
 from screwkit.algebra import screw as S
 from screwkit.algebra.screwsystem import ScrewSystem
+from screwkit.algebra.screwvalue import Screw
 from screwkit.core.wrenches import normalized_reciprocal_product, translated_graph, wrench_analysis
 from screwkit.exceptions import ScrewkitValueError, TwistGraphError
 from screwkit.graphs.joints import prismatic, revolute, spherical
@@ -122,7 +123,7 @@ def test_tsai_3upu_constraint_wrenches_are_three_couples():
         assert limb.constraint_wrenches.is_equivalent(ScrewSystem.span([couple]))
     for leg in analysis.compound_legs:
         assert leg.twist_system.order == 5
-        legs = [c for c in couples if leg.constraint_wrenches.contains(S.Screw(c))]
+        legs = [c for c in couples if leg.constraint_wrenches.contains(Screw(c))]
         assert len(legs) == 1
     assert analysis.global_wrenches.order == 6
 
@@ -164,7 +165,7 @@ def test_planar_3rpr_wrenches():
     for limb, a, c in zip(analysis.limbs, PLANAR_BASE, PLANAR_PLATFORM, strict=True):
         assert limb.constraint_wrenches.is_equivalent(plane_constraints)
         assert limb.passive_wrenches.is_equivalent(plane_constraints + ScrewSystem.span([S.line(c - a, a)]))
-        assert limb.passive_wrenches.contains(S.Screw(limb.actuation_wrench))
+        assert limb.passive_wrenches.contains(Screw(limb.actuation_wrench))
         assert S.reciprocal_product(limb.actuation_wrench, limb.actuated_twist) != pytest.approx(0.0, abs=1e-6)
 
 

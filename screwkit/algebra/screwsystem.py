@@ -6,7 +6,7 @@ and the wrench system the intersection of theirs (paper 002, Eq. 1); across para
 roles swap (Eq. 2). Twist and wrench systems of a chain are reciprocal: ``T = W^⊥``, ``W = T^⊥``,
 and ``order(W) = 6 - order(T)``.
 
-Every rank decision takes ``rtol`` and ``length_scale`` (``screwkit.algebra.backend``); a system keeps
+Every rank decision takes ``rtol`` and ``length_scale`` (:mod:`screwkit.algebra.ranks`); a system keeps
 the values it was built with and passes them on to the systems it produces, so a whole analysis uses
 one characteristic length. Symbolic systems use sympy's exact (generic) rank.
 
@@ -29,7 +29,8 @@ import numpy as np
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
 from . import backend as B
 from .ranks import characteristic_length, scale_moments, screw_nullspace, screw_rank
-from .screw import Screw
+from .readable import _about, _axes_centre, _axis_first, _finite_candidates, _orthonormal_couples
+from .screwvalue import Screw
 
 __all__ = ["ScrewSystem", "motion_type"]
 
@@ -176,7 +177,7 @@ class ScrewSystem:
         return B.is_symbolic(self.basis)
 
     def screws(self) -> list[Screw]:
-        """The basis as :class:`~screwkit.algebra.screw.Screw` values.
+        """The basis as :class:`~screwkit.algebra.screwvalue.Screw` values.
 
         Examples
         --------
@@ -511,94 +512,6 @@ def _readable(rows: bytes, rtol: float, length_scale: float | None, near: bytes 
     found = system._readable_about(None if near is None else np.frombuffer(near, dtype=float))
     found.flags.writeable = False
     return found
-
-
-def _axes_centre(rows: Array, length: float, rtol: float) -> Array:
-    """The point nearest the axes of the rows (least squares of their moments about it,
-    ``Σ |m − p × s|²`` over rows of unit size in scaled coordinates, so that a row weighs by its
-    direction: couples, and a couple's round-off direction, do not count; the origin for couples
-    only). Directions of the normal equations below ``rtol`` are left out (parallel axes: the point
-    nearest the origin along them)."""
-    sizes = np.linalg.norm(np.hstack([rows[:, :3], rows[:, 3:] / length]), axis=1)
-    unit = rows / np.where(sizes > 0, sizes, 1.0)[:, None]
-    s, m = unit[:, :3], unit[:, 3:]
-    normal = np.sum(s * s) * np.eye(3) - s.T @ s  # Σ (|s|² I − s sᵀ)
-    values, vectors = np.linalg.eigh(normal)
-    kept = values > rtol
-    if not kept.any():
-        return np.zeros(3)
-    rhs = vectors[:, kept].T @ np.cross(s, m).sum(axis=0)
-    return vectors[:, kept] @ (rhs / values[kept])
-
-
-def _about(rows: Array, point: Array) -> Array:
-    """The rows with their moments taken about ``point`` (``m − point × s``; ``-point`` undoes it)."""
-    return np.hstack([rows[:, :3], rows[:, 3:] - np.cross(point, rows[:, :3])])
-
-
-def _orthonormal_couples(rows: Array) -> Array:
-    if rows.shape[0] == 0:
-        return np.zeros((0, 6))
-    moments = np.linalg.svd(rows[:, 3:])[2][: rows.shape[0]]
-    return np.hstack([np.zeros_like(moments), moments])
-
-
-def _axis_first(moments: Array, rtol: float) -> Array:
-    """An orthonormal basis of the span of orthonormal rows ``(c, 3)``: the frame's axes it holds
-    first (x, y, z), completed by Gram–Schmidt."""
-    if moments.shape[0] == 0:
-        return moments
-    projector = moments.T @ moments
-    chosen = [e for e in np.eye(3) if np.linalg.norm(e - projector @ e) <= 1e3 * rtol]
-    for row in moments:
-        for picked in chosen:
-            row = row - (row @ picked) * picked
-        if np.linalg.norm(row) > 1e3 * rtol and len(chosen) < moments.shape[0]:
-            chosen.append(row / np.linalg.norm(row))
-    return np.array(chosen[: moments.shape[0]]).reshape(-1, 3)
-
-
-def _finite_candidates(basis: Array, couples: Array, near: Array, rtol: float, length: float) -> list[Array]:
-    """Candidate screws of finite pitch of a system (``readable_basis`` steps 2–3), best first."""
-    directions = basis[:, :3]
-    sizes = np.linalg.norm(np.hstack([directions, basis[:, 3:] / length]), axis=1)
-    unit = directions / np.where(sizes > 0, sizes, 1.0)[:, None]  # rows of unit scaled size
-    _, values, vt = np.linalg.svd(unit)
-    rank = int((values > 1e3 * rtol).sum())
-    if rank == 0:
-        return []
-    span = vt[:rank]  # orthonormal basis of the directions D
-    # the moment as a linear map of the direction on D (any screw of the system with direction s)
-    coefficients = np.linalg.lstsq(directions.T, span.T, rcond=None)[0]  # (order, rank)
-    moment_map = basis[:, 3:].T @ coefficients @ span  # (3, 3): s ↦ m(s) for s in D
-    projector = couples.T @ couples if couples.size else np.zeros((3, 3))
-    form = span @ (moment_map + moment_map.T) @ span.T / 2  # pitch form on D (orthonormal coords)
-    values_q, vectors_q = np.linalg.eigh(form)
-    tol = 1e3 * rtol * max(float(np.abs(values_q).max(initial=0.0)), length * rtol)
-    principal = [span.T @ v for v in vectors_q.T]
-    positive = [(lam, span.T @ v) for lam, v in zip(values_q, vectors_q.T, strict=True) if lam > tol]
-    negative = [(lam, span.T @ v) for lam, v in zip(values_q, vectors_q.T, strict=True) if lam < -tol]
-    isotropic = []
-    for k, (lp, p) in enumerate(positive):
-        for m, (ln, n) in enumerate(negative):
-            if k == 0 or m == 0:
-                isotropic += [np.sqrt(-ln) * p + sign * np.sqrt(lp) * n for sign in (1.0, -1.0)]
-    axes = [e for e in np.eye(3) if np.linalg.norm(e - span.T @ (span @ e)) <= 1e3 * rtol]
-    candidates = []
-    for order, s in enumerate([*axes, *isotropic, *principal]):
-        s = s / np.linalg.norm(s)
-        moment = moment_map @ s
-        about = moment - B.cross(near, s) - projector @ (moment - B.cross(near, s))
-        pitch = s @ (about + B.cross(near, s))
-        feasible = np.linalg.norm(projector @ s)
-        if abs(pitch) > rtol * length and feasible > 1e3 * rtol:
-            about = about - pitch / (s @ projector @ s) * (projector @ s)
-            pitch = 0.0
-        screw = np.concatenate([s, about + B.cross(near, s)])
-        is_line = abs(s @ screw[3:]) <= 1e3 * rtol * length
-        candidates.append((not is_line, order >= len(axes), order, screw))
-    candidates.sort(key=lambda c: c[:3])
-    return [np.array([c[3] for c in candidates])]
 
 
 def _pick(candidates: Array, order: int, system: ScrewSystem) -> Array:

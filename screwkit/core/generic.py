@@ -48,7 +48,7 @@ import networkx as nx
 import numpy as np
 
 from ..algebra import backend as B
-from ..algebra import screw as S
+from ..algebra import screwvalue as S
 from ..algebra import symbolic as Y
 from ..algebra.screwsystem import ScrewSystem, motion_type
 from ..exceptions import ScrewkitTypeError, TwistGraphError

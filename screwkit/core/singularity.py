@@ -55,7 +55,7 @@ import networkx as nx
 import numpy as np
 
 from ..algebra import backend as B
-from ..algebra import screw as S
+from ..algebra import screwvalue as S
 from ..algebra.screwsystem import ScrewSystem
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
 from ..graphs.jointtable import JointTable

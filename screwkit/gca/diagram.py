@@ -57,6 +57,7 @@ from ..algebra import projective as P
 from ..algebra import screw as S
 from ..algebra.ranks import screw_rank
 from ..algebra.screwsystem import ScrewSystem
+from ..algebra.screwvalue import Screw
 from ..core import _frames as F
 from ..core.wrenches import WrenchAnalysis, analyze_table, wrench_analysis
 from ..exceptions import (
@@ -646,8 +647,8 @@ def diagram_at(reference: WrenchDiagram, analysis: WrenchAnalysis) -> WrenchDiag
         scale = float(analysis.length_scale)
         for (first, second), (name, _, wrench, _) in zip(reference.lines, lines, strict=True):
             join = P.join_unchecked(coordinates[first], coordinates[second])
-            if np.linalg.norm(join) <= INCIDENCE_RTOL or not S.Screw(join).is_equivalent(
-                S.Screw(wrench), rtol=1e-6, length_scale=scale
+            if np.linalg.norm(join) <= INCIDENCE_RTOL or not Screw(join).is_equivalent(
+                Screw(wrench), rtol=1e-6, length_scale=scale
             ):
                 problems.append(f"the points {first}, {second} do not give the {name} here")
     return WrenchDiagram(

@@ -49,7 +49,7 @@ import numpy as np
 
 from .. import __version__
 from ..algebra.checks import MAX_RTOL, MIN_FLOAT_RTOL, MIN_LENGTH_SCALE
-from ..algebra.screw import Screw
+from ..algebra.screwvalue import Screw
 from ..exceptions import ScrewkitError, ScrewkitValueError
 from ..graphs.reduction import equivalent_twist_graph
 from ..robots.catalog import (
