@@ -14,8 +14,9 @@ Examples
 from pkgutil import extend_path
 from typing import Any
 
+from .algebra.motion_type import motion_type
 from .algebra.screw import reciprocal_product
-from .algebra.screwsystem import ScrewSystem, motion_type
+from .algebra.screwsystem import ScrewSystem
 from .algebra.screwvalue import Screw
 from .core.singularity import SingularityReport, classify, classify_poses, classify_table
 from .core.wrenches import WrenchAnalysis, analyze_table, wrench_analysis
@@ -58,22 +59,21 @@ _LAZY = {
     "generic_analysis": "core.generic",
     **dict.fromkeys(
         (
-            "are_collinear",
-            "are_coplanar",
             "bracket",
             "finite_point",
             "infinite_point",
-            "is_at_infinity",
             "join",
             "line_points",
-            "lines_intersect",
             "meet_line_plane",
             "meet_planes",
             "plane",
             "plane_through",
-            "point_on_line",
         ),
         "algebra.projective",
+    ),
+    **dict.fromkeys(
+        ("are_collinear", "are_coplanar", "is_at_infinity", "lines_intersect", "point_on_line"),
+        "algebra.incidence",
     ),
     "WrenchJacobians": "core.jacobians",
     "jacobians_from_wrenches": "core.jacobians",

@@ -7,7 +7,8 @@ from hypothesis import assume, given
 from hypothesis import strategies as st
 
 from screwkit.algebra import screw as S
-from screwkit.algebra.screwsystem import ScrewSystem, motion_type
+from screwkit.algebra.motion_type import motion_type
+from screwkit.algebra.screwsystem import ScrewSystem
 from screwkit.algebra.screwvalue import Screw
 from screwkit.exceptions import ScrewkitTypeError, ScrewkitValueError
 

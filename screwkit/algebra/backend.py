@@ -77,6 +77,11 @@ if TYPE_CHECKING:
 def sympy_module() -> Any:
     """The :mod:`sympy` module, imported on first use: ``import screwkit`` does not import sympy.
 
+    Returns
+    -------
+    module
+        :mod:`sympy`.
+
     Examples
     --------
     >>> sympy_module().Integer(2) / 4
@@ -130,6 +135,15 @@ def to_sympy(value: Any) -> sympy.Expr:
     Floats become the rational of their shortest decimal representation, so ``0.1`` becomes
     ``1/10``; a float never leaks into a symbolic result.
 
+    Parameters
+    ----------
+    value : object
+        A number (int, float, Fraction, numpy scalar) or a sympy expression.
+
+    Returns
+    -------
+    sympy.Expr
+
     Examples
     --------
     >>> to_sympy(0.1)
@@ -156,6 +170,15 @@ def exact_fraction(value: Any) -> Fraction | None:
 
     Booleans are not numbers here (None). Deciding needs no sympy import.
 
+    Parameters
+    ----------
+    value : object
+        A scalar.
+
+    Returns
+    -------
+    fractions.Fraction or None
+
     Examples
     --------
     >>> import sympy
@@ -176,6 +199,17 @@ def exact_fraction(value: Any) -> Fraction | None:
 def from_fraction(value: Fraction, *, symbolic: bool) -> Any:
     """An exact rational in the chosen branch: a sympy ``Rational``, or a float.
 
+    Parameters
+    ----------
+    value : fractions.Fraction
+        The rational.
+    symbolic : bool
+        The branch: sympy (True) or float (False).
+
+    Returns
+    -------
+    sympy.Rational or float
+
     Examples
     --------
     >>> from fractions import Fraction
@@ -190,6 +224,15 @@ def from_fraction(value: Fraction, *, symbolic: bool) -> Any:
 def infinity(*, symbolic: bool) -> Any:
     """Infinity in the chosen branch: ``sympy.oo`` or ``math.inf`` (an infinite pitch).
 
+    Parameters
+    ----------
+    symbolic : bool
+        The branch: sympy (True) or float (False).
+
+    Returns
+    -------
+    sympy.oo or float
+
     Examples
     --------
     >>> infinity(symbolic=True), infinity(symbolic=False)
@@ -200,6 +243,15 @@ def infinity(*, symbolic: bool) -> Any:
 
 def is_infinite(value: Any) -> bool:
     """True for ``math.inf``, ``-math.inf``, ``sympy.oo`` or ``-sympy.oo`` (a scalar).
+
+    Parameters
+    ----------
+    value : object
+        A scalar (float or sympy).
+
+    Returns
+    -------
+    bool
 
     Examples
     --------
@@ -214,6 +266,16 @@ def is_infinite(value: Any) -> bool:
 
 def sqrt(value: Any) -> Any:
     """Square root: :func:`numpy.sqrt`, or ``sympy.sqrt`` elementwise when symbolic.
+
+    Parameters
+    ----------
+    value : object
+        A float, a sympy expression or an array of them.
+
+    Returns
+    -------
+    object
+        The square root, of the same kind.
 
     Examples
     --------
@@ -232,6 +294,15 @@ def sqrt(value: Any) -> Any:
 def plain(value: Any) -> float | str:
     """A JSON-ready scalar: a float for a number, the text of a sympy expression.
 
+    Parameters
+    ----------
+    value : object
+        A number or a sympy expression.
+
+    Returns
+    -------
+    float or str
+
     Examples
     --------
     >>> import sympy
@@ -243,6 +314,16 @@ def plain(value: Any) -> float | str:
 
 def float_lists(**values: Any) -> dict[str, Any]:
     """Numeric values as JSON-ready float lists by name; ``{}`` when any value is symbolic.
+
+    Parameters
+    ----------
+    **values : array_like
+        The named values.
+
+    Returns
+    -------
+    dict of str to list
+        Nested float lists by name, or ``{}`` if any value is symbolic.
 
     Examples
     --------
@@ -257,6 +338,17 @@ def float_lists(**values: Any) -> dict[str, Any]:
 
 def zeros(shape: tuple[int, ...], *, symbolic: bool) -> Array:
     """Zeros of a shape in a branch: float64, or exact sympy zeros in an object array.
+
+    Parameters
+    ----------
+    shape : tuple of int
+        The shape.
+    symbolic : bool
+        The branch: sympy-object (True) or float64 (False).
+
+    Returns
+    -------
+    numpy.ndarray
 
     Examples
     --------
@@ -273,6 +365,16 @@ def zeros(shape: tuple[int, ...], *, symbolic: bool) -> Array:
 def zeros_like(a: Array) -> Array:
     """Zeros of ``a``'s shape in its branch: float64 zeros, or exact sympy zeros in an object array.
 
+    Parameters
+    ----------
+    a : numpy.ndarray
+        Float or sympy-object array.
+
+    Returns
+    -------
+    numpy.ndarray
+        Zeros of ``a``'s shape (float64 or sympy-object).
+
     Examples
     --------
     >>> import sympy
@@ -284,6 +386,16 @@ def zeros_like(a: Array) -> Array:
 
 def ones_like(a: Array) -> Array:
     """Ones of ``a``'s shape in its branch: float64 ones, or exact sympy ones in an object array.
+
+    Parameters
+    ----------
+    a : numpy.ndarray
+        Float or sympy-object array.
+
+    Returns
+    -------
+    numpy.ndarray
+        Ones of ``a``'s shape (float64 or sympy-object).
 
     Examples
     --------
@@ -389,6 +501,16 @@ def _checked_sympy(value: Any, name: str) -> sympy.Expr:
 def promote(*arrays: Array) -> tuple[Array, ...]:
     """Bring validated arrays to one branch: all float64, or all sympy-object if any is symbolic.
 
+    Parameters
+    ----------
+    *arrays : numpy.ndarray
+        Arrays already validated (:func:`as_array`).
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        The arrays in one branch, in order.
+
     Examples
     --------
     >>> import sympy
@@ -413,6 +535,18 @@ def promote(*arrays: Array) -> tuple[Array, ...]:
 def as_arrays(shape: tuple[int | None, ...], *named: tuple[Any, str]) -> tuple[Array, ...]:
     """Validate several ``(value, name)`` arguments of one trailing shape and promote them together.
 
+    Parameters
+    ----------
+    shape : tuple of int or None
+        The trailing shape every value must have (None: any length on that axis).
+    *named : tuple of (value, str)
+        Each argument and its name (for the error messages).
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        The arrays, in order, all float64 or all sympy-object (:func:`promote`).
+
     Examples
     --------
     >>> import sympy
@@ -425,6 +559,15 @@ def as_arrays(shape: tuple[int | None, ...], *named: tuple[Any, str]) -> tuple[A
 
 def is_dof(value: Any) -> bool:
     """True for an integer (Python or numpy, not a boolean) from 0 to 6: a mobility.
+
+    Parameters
+    ----------
+    value : object
+        The candidate mobility.
+
+    Returns
+    -------
+    bool
 
     Examples
     --------
@@ -442,6 +585,15 @@ def cross(a: Array, b: Array) -> Array:
     ``numpy.cross`` refuses object arrays in numpy 2, so the three components are written out: the
     same products and differences as ``numpy.cross`` (so the same bits for floats), without its
     axis bookkeeping, which dominates for single vectors.
+
+    Parameters
+    ----------
+    a, b : numpy.ndarray, shape (..., 3)
+        Float or sympy-object vectors (broadcast together).
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 3)
 
     Examples
     --------
@@ -474,6 +626,18 @@ def median(values: Array) -> float:
 def dot(a: Array, b: Array, *, keepdims: bool = False) -> Any:
     """Dot product over the last axis, batched; ``keepdims`` keeps a trailing axis of length 1.
 
+    Parameters
+    ----------
+    a, b : numpy.ndarray, shape (..., n)
+        Float or sympy-object vectors (broadcast together).
+    keepdims : bool, default False
+        Keep the summed axis with length 1.
+
+    Returns
+    -------
+    numpy.ndarray or scalar
+        The products, shape ``(...)`` (or ``(..., 1)`` with ``keepdims``).
+
     Examples
     --------
     >>> dot(np.array([1.0, 2, 3]), np.array([4.0, 5, 6]))
@@ -486,6 +650,15 @@ def dot(a: Array, b: Array, *, keepdims: bool = False) -> Any:
 
 def det(matrix: Array) -> Any:
     """Determinant of a square matrix over the last two axes (batched when numeric).
+
+    Parameters
+    ----------
+    matrix : numpy.ndarray, shape (..., n, n)
+        Float (batched) or sympy-object (one matrix) entries.
+
+    Returns
+    -------
+    float, numpy.ndarray of shape (...), or sympy.Expr
 
     Examples
     --------
@@ -506,6 +679,16 @@ def det(matrix: Array) -> Any:
 
 def simplify(value: Any) -> Any:
     """Simplify a sympy expression, or each element of an object array; floats pass through.
+
+    Parameters
+    ----------
+    value : object
+        A float, a sympy expression or an array of them.
+
+    Returns
+    -------
+    object
+        The simplified value, of the same kind.
 
     Examples
     --------

@@ -38,6 +38,13 @@ def check_rotation(rotation: Array, name: str = "rotation") -> None:
     symbols do not state (``c² + s² = 1`` for ``c``, ``s`` standing for a cosine and a sine), and
     proving trigonometric identities costs up to a second a matrix.
 
+    Parameters
+    ----------
+    rotation : numpy.ndarray, shape (..., 3, 3)
+        The matrices (symbolic ones are taken as given).
+    name : str, default "rotation"
+        The argument's name in the error message.
+
     Raises
     ------
     ScrewkitValueError
@@ -75,6 +82,17 @@ def checked_length_scale(value: Any, *, allow_none: Literal[True]) -> float | No
 def checked_length_scale(value: Any, *, allow_none: bool = False) -> float | None:
     """Validate a characteristic length: a number in [:data:`MIN_LENGTH_SCALE`, 1 /
     :data:`MIN_LENGTH_SCALE`] (or None where a default exists).
+
+    Parameters
+    ----------
+    value : object
+        The candidate length.
+    allow_none : bool, default False
+        Whether None (derive the length from the data) is accepted.
+
+    Returns
+    -------
+    float or None
 
     Examples
     --------
@@ -119,6 +137,17 @@ MIN_FLOAT_RTOL = 1e-12
 
 def checked_rtol(value: Any, name: str = "rtol") -> float:
     """A relative tolerance: a real number in ``[0, MAX_RTOL]`` (:data:`MAX_RTOL` = 0.1).
+
+    Parameters
+    ----------
+    value : object
+        The candidate tolerance.
+    name : str, default "rtol"
+        The argument's name in the error message.
+
+    Returns
+    -------
+    float
 
     Examples
     --------

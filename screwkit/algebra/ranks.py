@@ -51,6 +51,16 @@ def direction_scaled(s: Array, s0: Array) -> tuple[Array, Array]:
     they are (exact arithmetic has no range). Quotients homogeneous in ``(s, s0)`` (pitch, axis
     point) are unchanged.
 
+    Parameters
+    ----------
+    s, s0 : numpy.ndarray, shape (..., 3)
+        The direction and moment halves.
+
+    Returns
+    -------
+    s, s0 : numpy.ndarray, shape (..., 3)
+        Both halves times the same power of two per screw.
+
     Examples
     --------
     >>> direction_scaled(np.array([0.0, 0, 8.0]), np.array([1.0, 0, 0]))
@@ -65,6 +75,17 @@ def direction_scaled(s: Array, s0: Array) -> tuple[Array, Array]:
 def unit_screws(screws: Array, length_scale: float) -> Array:
     """Numeric screws ``(..., 6)`` with the moment divided by ``length_scale`` and scaled to unit
     length, for tolerance decisions; symbolic screws unchanged (their decisions are exact).
+
+    Parameters
+    ----------
+    screws : numpy.ndarray, shape (..., 6)
+        Numeric screws.
+    length_scale : float
+        The characteristic length.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 6)
 
     Raises
     ------
@@ -131,6 +152,18 @@ def characteristic_length(rows: Array, length_scale: float | None) -> float | No
     """The length a numeric rank decision on ``rows`` uses (:func:`scale_moments`); symbolic rows
     keep ``length_scale`` as given (their decisions are exact and need none).
 
+    Parameters
+    ----------
+    rows : numpy.ndarray, shape (..., k, 6)
+        The screws.
+    length_scale : float or None
+        The caller's length (None: derived from the rows).
+
+    Returns
+    -------
+    float or None
+        The length; None for symbolic rows.
+
     Examples
     --------
     >>> import sympy
@@ -144,11 +177,40 @@ def characteristic_length(rows: Array, length_scale: float | None) -> float | No
     return scale_moments(rows, length_scale)[1]
 
 
+def _independent_rows(rows: Array, rtol: float, length_scale: float | None) -> Array:
+    """The rows that raise the rank, in order (a basis made of the given generators)."""
+    chosen: list[Array] = []
+    rank = 0
+    total = screw_rank(rows, rtol=rtol, length_scale=length_scale) if rows.shape[0] else 0
+    if total == rows.shape[0]:
+        return rows.copy()
+    for row in rows:
+        trial = np.array([*chosen, row], dtype=rows.dtype)
+        new_rank = screw_rank(trial, rtol=rtol, length_scale=length_scale)
+        if new_rank > rank:
+            chosen.append(row)
+            rank = new_rank
+            if rank == total:
+                break
+    return np.array(chosen, dtype=rows.dtype).reshape(len(chosen), 6)
+
+
 def screw_singular_values(rows: Array, *, length_scale: float | None = None) -> Array:
     """Singular values of screws ``(..., k, 6)`` after moment scaling and row normalisation.
 
     The largest is between 1 and sqrt(k); their ratios are frame-sensitive but unit-invariant.
     Zero rows are kept as zero rows. Batched over leading axes.
+
+    Parameters
+    ----------
+    rows : numpy.ndarray, shape (..., k, 6)
+        Numeric screws.
+    length_scale : float, optional
+        The characteristic length (default: derived from the rows).
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., min(k, 6))
 
     Examples
     --------
@@ -306,6 +368,17 @@ def matrix_nullspace(matrix: Array, *, rtol: float = DEFAULT_RTOL) -> Array:
     block chosen at an exact random point (:mod:`screwkit.algebra.symbolic`), each vector primitive. The
     caller
     scales rows beforehand if they carry different units (row scaling keeps the null space).
+
+    Parameters
+    ----------
+    matrix : array_like, shape (m, n)
+        Float or sympy entries.
+    rtol : float, default 1e-9
+        Singular values below ``rtol`` times the largest count as zero (numeric).
+
+    Returns
+    -------
+    numpy.ndarray, shape (n - rank, n)
 
     Examples
     --------

@@ -5,18 +5,27 @@ its docstring), on plain ``(k, 6)`` float arrays: the point nearest a system's a
 point, orthonormal couples with the frame's axes first, and the candidate screws of finite pitch
 (the principal directions of the pitch form, Hunt, *Kinematic Geometry of Mechanisms*, 1978, §12,
 and its isotropic directions), best first. Private to :mod:`screwkit.algebra.screwsystem`, which
-picks the independent candidates.
+and :func:`_pick`, which takes the independent candidates; and the couples along the frame's
+axes (``_COUPLES``, also read by :mod:`screwkit.algebra.motion_type`).
 """
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING, Any
+
 import numpy as np
 
 from . import backend as B
+from .ranks import _independent_rows, screw_rank
+
+if TYPE_CHECKING:
+    from .screwsystem import ScrewSystem
 
 __all__: list[str] = []
 
 Array = np.ndarray
+#: The couples (pure translations) along the frame's axes, as rows.
+_COUPLES = np.hstack([np.zeros((3, 3)), np.eye(3)])
 
 
 def _axes_centre(rows: Array, length: float, rtol: float) -> Array:
@@ -105,3 +114,54 @@ def _finite_candidates(basis: Array, couples: Array, near: Array, rtol: float, l
         candidates.append((not is_line, order >= len(axes), order, screw))
     candidates.sort(key=lambda c: c[:3])
     return [np.array([c[3] for c in candidates])]
+
+
+def _pick(candidates: Array, order: int, system: ScrewSystem) -> Array:
+    """The first ``order`` independent candidates. The candidates lie in the system to within the
+    snapping of :func:`_axis_first` and :func:`_finite_candidates` (``1e3 rtol``: a frame axis, a
+    line), so that is the tolerance of their independence; the system's own ``rtol`` decides where
+    that would not give ``order`` rows (a system with a singular value between the two)."""
+    picked = np.zeros((0, 6))
+    if not system.is_symbolic:
+        picked = _independent_rows(candidates, min(1e3 * system.rtol, 1e-3), system.length_scale)
+    if picked.shape[0] != order:
+        picked = _independent_rows(candidates, system.rtol, system.length_scale)
+    if picked.shape[0] != order:
+        # a large rtol (1e-3 from the command line) blurs the candidates' decisions, made at 1e3 rtol,
+        # until they disagree with the system's order: its own basis is then the readable one (it
+        # was an "Internal error" for `screwkit analyze h4 --rtol 1e-3`)
+        picked = np.asarray(system.basis)
+    if system.is_symbolic:
+        return picked
+    sizes = np.linalg.norm(picked[:, :3], axis=1)
+    moments = np.linalg.norm(picked[:, 3:], axis=1)
+    scale = np.where(sizes > system.rtol * moments / float(system.length_scale or 1.0), sizes, moments)
+    return picked / scale[:, None]
+
+
+def _numeric_readable(system: ScrewSystem, centre: Array) -> Array:
+    """:meth:`~screwkit.algebra.screwsystem.ScrewSystem.readable_basis` of a numeric system in its
+    own frame (axes placed near ``centre``)."""
+    couples = _axis_first(_orthonormal_couples(system.couple_subsystem().basis)[:, 3:], system.rtol)
+    finite = _finite_candidates(system.basis, couples, centre, system.rtol, float(system.length_scale or 1.0))
+    rows = np.concatenate([np.hstack([np.zeros_like(couples), couples]), *finite]).reshape(-1, 6)
+    return _pick(system._stack(rows, system.basis), system.order, system)
+
+
+def _symbolic_readable(system: ScrewSystem, near: Any) -> Array:
+    """The symbolic readable basis (generic decisions, :mod:`screwkit.algebra.symbolic`): the frame's
+    translations where the system holds them; with all three, the other rows become lines
+    through ``near`` (the origin by default); else the couple subsystem, then the basis."""
+    axes = [row for row in _COUPLES.astype(int) if system.contains(row)]
+    stacked = system._stack(system.basis, _COUPLES.astype(int))
+    translations = system.order + 3 - int(screw_rank(stacked))
+    couples = (
+        np.array(axes).reshape(-1, 6) if len(axes) == translations else system.couple_subsystem().basis
+    )
+    rows = system.basis
+    if translations == 3:
+        centre = B.as_array(np.zeros(3) if near is None else near, "near", (3,), symbolic=True)
+        rows = np.concatenate(
+            [rows[:, :3], B.cross(np.broadcast_to(centre, rows[:, :3].shape), rows[:, :3])], axis=1
+        )
+    return _pick(system._stack(couples, rows), system.order, system)

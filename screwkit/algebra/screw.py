@@ -168,6 +168,15 @@ def helical_twist(axis: Any, point: Any, pitch: Any) -> Array:
 def prismatic_twist(direction: Any) -> Array:
     """Unit-rate twist of a prismatic joint: the infinite-pitch screw ``(0; d)``.
 
+    Parameters
+    ----------
+    direction : array_like, shape (..., 3)
+        The sliding direction (non-zero; normalised).
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 6)
+
     Examples
     --------
     >>> prismatic_twist([0, 1, 0])
@@ -183,6 +192,17 @@ def force(direction: Any, point: Any) -> Array:
 
     Same coordinates as :func:`line` (paper 002 §4.1: τ0 = (s, r × s)).
 
+    Parameters
+    ----------
+    direction : array_like, shape (..., 3)
+        The force's direction (non-zero).
+    point : array_like, shape (..., 3)
+        A point of its line.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 6)
+
     Examples
     --------
     >>> force([1, 0, 0], [0, 1, 0])
@@ -194,6 +214,15 @@ def force(direction: Any, point: Any) -> Array:
 def couple(moment_vector: Any) -> Array:
     """A pure couple ``(0; m)``: an infinite-pitch wrench (a line at infinity).
 
+    Parameters
+    ----------
+    moment_vector : array_like, shape (..., 3)
+        The couple's moment (the translation's direction for a twist).
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 6)
+
     Examples
     --------
     >>> couple([0, 0, 2])
@@ -204,6 +233,17 @@ def couple(moment_vector: Any) -> Array:
 
 def from_plucker(direction: Any, moment_vector: Any) -> Array:
     """Assemble ``(s; s0)`` from its two halves (no condition imposed; any screw).
+
+    Parameters
+    ----------
+    direction : array_like, shape (..., 3)
+        The half ``s``.
+    moment_vector : array_like, shape (..., 3)
+        The half ``s0``.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 6)
 
     Examples
     --------
@@ -222,6 +262,15 @@ def _screws(screws: Any, name: str = "screws") -> Array:
 def direction(screws: Any) -> Array:
     """The direction half ``s`` of screws ``(..., 6)``.
 
+    Parameters
+    ----------
+    screws : array_like, shape (..., 6)
+        Floats or sympy expressions.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 3)
+
     Examples
     --------
     >>> direction([1, 2, 3, 4, 5, 6])
@@ -232,6 +281,15 @@ def direction(screws: Any) -> Array:
 
 def moment(screws: Any) -> Array:
     """The moment half ``s0`` of screws ``(..., 6)``.
+
+    Parameters
+    ----------
+    screws : array_like, shape (..., 6)
+        Floats or sympy expressions.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 3)
 
     Examples
     --------
@@ -269,6 +327,15 @@ def pitch(screws: Any) -> Any:
     Exact: a direction counts as zero only when all its components are exactly zero. Use
     :func:`is_infinite_pitch` for a tolerance-based decision.
 
+    Parameters
+    ----------
+    screws : array_like, shape (..., 6)
+        Floats or sympy expressions.
+
+    Returns
+    -------
+    float, numpy.ndarray of shape (...), or sympy.Expr
+
     Raises
     ------
     DegenerateGeometryError
@@ -291,6 +358,15 @@ def pitch(screws: Any) -> Any:
 def magnitude(screws: Any) -> Any:
     """Magnitude: ``|s|``, or ``|s0|`` for infinite-pitch screws (exact zero test on ``s``).
 
+    Parameters
+    ----------
+    screws : array_like, shape (..., 6)
+        Floats or sympy expressions.
+
+    Returns
+    -------
+    float, numpy.ndarray of shape (...), or sympy.Expr
+
     Examples
     --------
     >>> float(magnitude([0, 0, 2, 1, 0, 0]))
@@ -305,6 +381,15 @@ def magnitude(screws: Any) -> Any:
 
 def normalize(screws: Any) -> Array:
     """Scale screws to unit magnitude (see :func:`magnitude`).
+
+    Parameters
+    ----------
+    screws : array_like, shape (..., 6)
+        Floats or sympy expressions.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 6)
 
     Raises
     ------
@@ -327,6 +412,11 @@ def axis(screws: Any) -> tuple[Array, Array]:
     """The axis of screws with finite pitch: its point nearest the origin and its unit direction.
 
     For ``(s; s0)`` with ``s ≠ 0`` the nearest point is ``s × s0 / s·s`` (independent of pitch).
+
+    Parameters
+    ----------
+    screws : array_like, shape (..., 6)
+        Floats or sympy expressions.
 
     Returns
     -------
@@ -394,6 +484,19 @@ def is_infinite_pitch(
     (symbolic: ``s`` identically zero).
 
     Parameters as in :func:`is_zero_pitch`.
+
+    Parameters
+    ----------
+    screws : array_like, shape (..., 6)
+        Floats or sympy expressions.
+    rtol : float, default 1e-9
+        Relative tolerance of the decision (symbolic screws are decided identically).
+    length_scale : float, default 1.0
+        The characteristic length dividing the moment half.
+
+    Returns
+    -------
+    bool or numpy.ndarray of bool, shape (...)
 
     Examples
     --------

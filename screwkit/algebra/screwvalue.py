@@ -102,6 +102,17 @@ class Screw:
     def revolute(cls, axis: Any, point: Any) -> Screw:
         """Zero-pitch twist of a revolute joint (:func:`revolute_twist`).
 
+        Parameters
+        ----------
+        axis : array_like, shape (3,)
+            The axis direction (non-zero; normalised).
+        point : array_like, shape (3,)
+            A point of the axis.
+
+        Returns
+        -------
+        Screw
+
         Examples
         --------
         >>> Screw.revolute([1, 0, 0], [0, 1, 0]).coords
@@ -112,6 +123,15 @@ class Screw:
     @classmethod
     def prismatic(cls, direction: Any) -> Screw:
         """Infinite-pitch twist of a prismatic joint (:func:`prismatic_twist`).
+
+        Parameters
+        ----------
+        direction : array_like, shape (3,)
+            The sliding direction (non-zero; normalised).
+
+        Returns
+        -------
+        Screw
 
         Examples
         --------
@@ -124,6 +144,19 @@ class Screw:
     def helical(cls, axis: Any, point: Any, pitch: Any) -> Screw:
         """Twist of a helical joint (:func:`helical_twist`).
 
+        Parameters
+        ----------
+        axis : array_like, shape (3,)
+            The axis direction (non-zero; normalised).
+        point : array_like, shape (3,)
+            A point of the axis.
+        pitch : float or sympy.Expr
+            Length per radian.
+
+        Returns
+        -------
+        Screw
+
         Examples
         --------
         >>> Screw.helical([0, 0, 1], [0, 0, 0], 2).pitch
@@ -134,6 +167,17 @@ class Screw:
     @classmethod
     def force(cls, direction: Any, point: Any) -> Screw:
         """Pure force on a line (:func:`force`).
+
+        Parameters
+        ----------
+        direction : array_like, shape (3,)
+            The force's direction (non-zero).
+        point : array_like, shape (3,)
+            A point of its line.
+
+        Returns
+        -------
+        Screw
 
         Examples
         --------
@@ -146,6 +190,15 @@ class Screw:
     def couple(cls, moment_vector: Any) -> Screw:
         """Pure couple (:func:`couple`).
 
+        Parameters
+        ----------
+        moment_vector : array_like, shape (3,)
+            The couple's moment.
+
+        Returns
+        -------
+        Screw
+
         Examples
         --------
         >>> Screw.couple([1, 0, 0]).coords
@@ -156,6 +209,15 @@ class Screw:
     @classmethod
     def from_plucker(cls, direction: Any, moment_vector: Any) -> Screw:
         """From the two halves (:func:`from_plucker`).
+
+        Parameters
+        ----------
+        direction, moment_vector : array_like, shape (3,)
+            The halves ``s`` and ``s0``.
+
+        Returns
+        -------
+        Screw
 
         Examples
         --------
@@ -197,15 +259,48 @@ class Screw:
 
     # predicates and operations ------------------------------------------------------------
     def is_zero_pitch(self, *, rtol: float = B.DEFAULT_RTOL, length_scale: float = 1.0) -> bool:
-        """Zero pitch within tolerance (:func:`is_zero_pitch`)."""
+        """Zero pitch within tolerance (:func:`is_zero_pitch`).
+
+        Parameters
+        ----------
+        rtol : float, default 1e-9
+            Relative tolerance of the decision.
+        length_scale : float, default 1.0
+            The characteristic length dividing the moment half.
+
+        Returns
+        -------
+        bool
+        """
         return bool(is_zero_pitch(self.coords, rtol=rtol, length_scale=length_scale))
 
     def is_infinite_pitch(self, *, rtol: float = B.DEFAULT_RTOL, length_scale: float = 1.0) -> bool:
-        """Infinite pitch within tolerance (:func:`is_infinite_pitch`)."""
+        """Infinite pitch within tolerance (:func:`is_infinite_pitch`).
+
+        Parameters
+        ----------
+        rtol : float, default 1e-9
+            Relative tolerance of the decision.
+        length_scale : float, default 1.0
+            The characteristic length dividing the moment half.
+
+        Returns
+        -------
+        bool
+        """
         return bool(is_infinite_pitch(self.coords, rtol=rtol, length_scale=length_scale))
 
     def reciprocal_product(self, other: Screw) -> Any:
         """Reciprocal product with another screw (:func:`reciprocal_product`).
+
+        Parameters
+        ----------
+        other : Screw
+            The other screw.
+
+        Returns
+        -------
+        float or sympy.Expr
 
         Examples
         --------
@@ -215,17 +310,47 @@ class Screw:
         return reciprocal_product(self.coords, _as_screw(other, "other").coords)
 
     def normalized(self) -> Screw:
-        """The screw scaled to unit magnitude (:func:`normalize`)."""
+        """The screw scaled to unit magnitude (:func:`normalize`).
+
+        Returns
+        -------
+        Screw
+        """
         return Screw(normalize(self.coords))
 
     def transformed(self, rotation: Any, translation: Any) -> Screw:
-        """The screw after a rigid motion (:func:`transform`)."""
+        """The screw after a rigid motion (:func:`transform`).
+
+        Parameters
+        ----------
+        rotation : array_like, shape (3, 3)
+            A proper rotation.
+        translation : array_like, shape (3,)
+            The translation.
+
+        Returns
+        -------
+        Screw
+        """
         return Screw(transform(self.coords, rotation, translation))
 
     def is_equivalent(
         self, other: Screw, *, rtol: float = B.DEFAULT_RTOL, length_scale: float | None = None
     ) -> bool:
         """True if both screws span the same 1-system (projective equality, any non-zero factor).
+
+        Parameters
+        ----------
+        other : Screw
+            The other screw.
+        rtol : float, default 1e-9
+            Relative tolerance of the rank decision.
+        length_scale : float, optional
+            The characteristic length (default: derived from the two screws).
+
+        Returns
+        -------
+        bool
 
         Examples
         --------
@@ -237,6 +362,12 @@ class Screw:
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready description: coordinates, pitch, kind, and the axis where finite.
+
+        Returns
+        -------
+        dict
+            ``coords``, ``pitch`` and ``kind``; for a numeric screw also ``direction`` (of the axis,
+        or of the moment for infinite pitch) and, for a finite axis, ``point``.
 
         Examples
         --------

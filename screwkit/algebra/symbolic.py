@@ -123,6 +123,17 @@ class GenericPoint:
         decisions, e.g. :func:`screwkit.algebra.zero_tests.is_exactly_zero`, would otherwise grow it without
         bound).
 
+        Parameters
+        ----------
+        expr : sympy.Expr or int
+            The expression.
+        remember : bool, default True
+            Whether to keep the value in the point's cache.
+
+        Returns
+        -------
+        int, fractions.Fraction or mpmath.mpf
+
         Examples
         --------
         >>> import sympy
@@ -169,6 +180,15 @@ def _point(symbols: frozenset[Any]) -> GenericPoint:
 
 def generic_point(*arrays: Any) -> GenericPoint:
     """The (cached) random point for the free symbols of some object arrays.
+
+    Parameters
+    ----------
+    *arrays : array_like
+        Object arrays of sympy expressions (or numbers).
+
+    Returns
+    -------
+    GenericPoint
 
     Examples
     --------
@@ -233,6 +253,17 @@ class GenericRows:
         """A ``(k, n)`` object array of expressions as polynomials with integer coefficients (each
         row scaled by the common denominator of its coefficients: the span is unchanged).
 
+        Parameters
+        ----------
+        array : array_like, shape (k, n)
+            Sympy expressions (or numbers).
+        point : GenericPoint
+            The point of evaluation.
+
+        Returns
+        -------
+        GenericRows
+
         Examples
         --------
         >>> import sympy
@@ -274,6 +305,15 @@ class GenericRows:
     def take(self, indices: Sequence[int]) -> GenericRows:
         """The rows at some indices.
 
+        Parameters
+        ----------
+        indices : sequence of int
+            The rows kept, in order.
+
+        Returns
+        -------
+        GenericRows
+
         Examples
         --------
         >>> import sympy
@@ -286,6 +326,15 @@ class GenericRows:
 
     def scaled(self, factor: int) -> GenericRows:
         """Every row times an integer (60-digit values multiplied at 60 digits).
+
+        Parameters
+        ----------
+        factor : int
+            The multiplier.
+
+        Returns
+        -------
+        GenericRows
 
         Examples
         --------
@@ -300,7 +349,17 @@ class GenericRows:
         return self._like([[factor * p for p in row] for row in self.polys], values)
 
     def stack(self, *others: GenericRows) -> GenericRows:
-        """These rows followed by the others' (one ring)."""
+        """These rows followed by the others' (one ring).
+
+        Parameters
+        ----------
+        *others : GenericRows
+            Rows of the same ring and width.
+
+        Returns
+        -------
+        GenericRows
+        """
         polys, values = list(self.polys), list(self.values)
         for other in others:
             polys += other.polys
@@ -308,7 +367,13 @@ class GenericRows:
         return self._like(polys, values)
 
     def identity(self) -> GenericRows:
-        """The unit rows of this width, in this ring."""
+        """The unit rows of this width, in this ring.
+
+        Returns
+        -------
+        GenericRows
+            ``width`` unit rows.
+        """
         ring, n = self.ring, self.width
         return self._like(
             [[ring.one if i == j else ring.zero for j in range(n)] for i in range(n)],
@@ -318,6 +383,10 @@ class GenericRows:
     def independent(self) -> list[int]:
         """Indices of the rows that raise the generic rank, in order (decided at the point, in the
         values' arithmetic).
+
+        Returns
+        -------
+        list of int
 
         Examples
         --------
@@ -333,14 +402,26 @@ class GenericRows:
             return _echelon(self.values)[0]
 
     def precision(self) -> contextlib.AbstractContextManager[Any]:
-        """The arithmetic context of the values: 60 digits unless they are exact."""
+        """The arithmetic context of the values: 60 digits unless they are exact.
+
+        Returns
+        -------
+        contextlib.AbstractContextManager
+            A null context, or :func:`mpmath.workdps` at 60 digits.
+        """
         return _precision(self.exact)
 
     def _like(self, polys: list[list[Any]], values: list[list[Any]]) -> GenericRows:
         return GenericRows(polys, values, self.width, self.ring, self.exact)
 
     def exprs(self) -> Array:
-        """The rows as a ``(k, n)`` object array of sympy expressions (converted once)."""
+        """The rows as a ``(k, n)`` object array of sympy expressions (converted once).
+
+        Returns
+        -------
+        numpy.ndarray, shape (k, n)
+            Object array of sympy expressions.
+        """
         if self._exprs is None:
             out = np.empty((len(self.polys), self.width), dtype=object)
             for i, row in enumerate(self.polys):
@@ -411,6 +492,17 @@ def _echelon(numbers: list[list[Any]]) -> tuple[list[int], list[int]]:
 def independent_rows(rows: Any, point: GenericPoint | None = None) -> list[int]:
     """Indices of the rows (``(k, n)`` object array) that raise the generic rank, in order.
 
+    Parameters
+    ----------
+    rows : array_like, shape (k, n)
+        Sympy expressions (or numbers).
+    point : GenericPoint, optional
+        The point of evaluation (default: :func:`generic_point` of the rows).
+
+    Returns
+    -------
+    list of int
+
     Examples
     --------
     >>> import sympy
@@ -429,6 +521,17 @@ def independent_rows(rows: Any, point: GenericPoint | None = None) -> list[int]:
 
 def generic_rank(rows: Any, point: GenericPoint | None = None) -> int:
     """The generic rank of a ``(k, n)`` object array (see the module docstring).
+
+    Parameters
+    ----------
+    rows : array_like, shape (k, n)
+        Sympy expressions (or numbers).
+    point : GenericPoint, optional
+        The point of evaluation (default: :func:`generic_point` of the rows).
+
+    Returns
+    -------
+    int
 
     Examples
     --------
@@ -508,6 +611,18 @@ def nullspace(matrix: Any, point: GenericPoint | None = None) -> Array:
     is then made :func:`primitive`. A pivot block larger than :data:`MAX_CRAMER` (a loop-closure
     matrix) goes to sympy's elimination.
 
+    Parameters
+    ----------
+    matrix : array_like, shape (m, n)
+        Sympy expressions (or numbers).
+    point : GenericPoint, optional
+        The point of evaluation (default: :func:`generic_point` of the rows).
+
+    Returns
+    -------
+    numpy.ndarray, shape (n - rank, n)
+        Object array; each row primitive.
+
     Examples
     --------
     >>> import sympy
@@ -547,6 +662,20 @@ def reciprocal_within(basis: GenericRows, others: GenericRows, point: GenericPoi
     serial chain (paper 002 Eq. 1), solved on ``order(basis)`` unknowns only. The reciprocal
     products are formed as polynomials only for the pivot rows chosen at the point. Call inside
     ``basis.precision()``.
+
+    Parameters
+    ----------
+    basis : GenericRows
+        Rows ``(b, 6)`` spanning the system searched.
+    others : GenericRows
+        Rows ``(k, 6)`` every result must be reciprocal to.
+    point : GenericPoint
+        The point of evaluation.
+
+    Returns
+    -------
+    GenericRows
+        A basis of the reciprocal screws of ``span(basis)``, as rows ``(r, 6)``.
 
     Examples
     --------

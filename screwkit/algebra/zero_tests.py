@@ -56,6 +56,15 @@ def is_exactly_zero(value: Any) -> bool:
     Unlike :func:`is_zero`, a symbolic value that depends on symbols is *generically* decided
     (``x`` is not zero) rather than refused; no tolerance is involved.
 
+    Parameters
+    ----------
+    value : object
+        A number or a sympy expression.
+
+    Returns
+    -------
+    bool
+
     Examples
     --------
     >>> import sympy
@@ -184,6 +193,15 @@ def unit_directions(vectors: Array) -> Array:
     polynomial (no ``sqrt``): its length is a generic non-zero factor, and every use of a direction
     in a screw system is projective in it.
 
+    Parameters
+    ----------
+    vectors : numpy.ndarray, shape (..., 3)
+        The vectors.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 3)
+
     Examples
     --------
     >>> unit_directions(np.array([3.0, 0, 4]))
@@ -202,6 +220,15 @@ def unit_directions(vectors: Array) -> Array:
 
 def norm(a: Array) -> Array:
     """Euclidean norm over the last axis (``sympy.sqrt`` of the sum of squares when symbolic).
+
+    Parameters
+    ----------
+    a : numpy.ndarray, shape (..., n)
+        Float or sympy-object vectors.
+
+    Returns
+    -------
+    numpy.ndarray, shape (...)
 
     Examples
     --------
@@ -266,6 +293,16 @@ def ratio(numerator: Any, denominator: Any) -> Any:
     Numeric: float64 (a float for scalars); symbolic: simplified quotients or ``sympy.oo``, decided
     by :func:`is_exactly_zero`.
 
+    Parameters
+    ----------
+    numerator, denominator : object
+        Floats, sympy expressions or arrays of them (broadcast together).
+
+    Returns
+    -------
+    object
+        The quotients (a float for float scalars).
+
     Examples
     --------
     >>> ratio(np.array([1.0, 2.0]), np.array([4.0, 0.0]))
@@ -293,6 +330,18 @@ def where_zero(test: Any, if_zero: Any, otherwise: Any) -> Any:
     """``if_zero`` where ``test`` is exactly zero, else ``otherwise``, elementwise.
 
     Numeric: :func:`numpy.where` (a float for scalars); symbolic: decided by :func:`is_exactly_zero`.
+
+    Parameters
+    ----------
+    test : object
+        The values tested.
+    if_zero, otherwise : object
+        The values taken where ``test`` is, or is not, exactly zero.
+
+    Returns
+    -------
+    object
+        The chosen values (a float for float scalars).
 
     Examples
     --------

@@ -50,7 +50,8 @@ import numpy as np
 from ..algebra import backend as B
 from ..algebra import screwvalue as S
 from ..algebra import symbolic as Y
-from ..algebra.screwsystem import ScrewSystem, motion_type
+from ..algebra.motion_type import motion_type
+from ..algebra.screwsystem import ScrewSystem
 from ..exceptions import ScrewkitTypeError, TwistGraphError
 from ..graphs.jointtable import JointSpec
 from ..graphs.topology import Topology, topology
@@ -163,7 +164,7 @@ class GenericAnalysis:
 
     @property
     def motion_type(self) -> str:
-        """The platform's motion type, e.g. ``"3T1R"`` (:func:`screwkit.algebra.screwsystem.motion_type`)."""
+        """The platform's motion type, e.g. ``"3T1R"`` (:func:`screwkit.algebra.motion_type.motion_type`)."""
         return str(motion_type(self.platform_twists))
 
     @property

@@ -55,6 +55,7 @@ import numpy as np
 from ..algebra import backend as B
 from ..algebra import projective as P
 from ..algebra import screw as S
+from ..algebra.incidence import point_on_line
 from ..algebra.ranks import screw_rank
 from ..algebra.screwsystem import ScrewSystem
 from ..algebra.screwvalue import Screw
@@ -596,7 +597,7 @@ def _finite_line_recipe(
     on_line = [
         ("centre", key)
         for key, centre in _centres(analysis, joints, known)
-        if P.point_on_line(
+        if point_on_line(
             np.append(centre, 1.0), wrench, rtol=INCIDENCE_RTOL, length_scale=analysis.length_scale
         )
     ]
@@ -940,7 +941,7 @@ def _meet_points(line: Array, screw: Array, length_scale: Array) -> Array:
 
     The line meets the plane that contains the axis and is normal to the plane of both; they meet
     when ``L ∘ A = 0`` after scaling moments by ``length_scale``
-    (:func:`screwkit.algebra.projective.lines_intersect`).
+    (:func:`screwkit.algebra.incidence.lines_intersect`).
     """
     axis, origin = _axis_lines(screw)
     length = np.asarray(length_scale, dtype=float)[..., None]

@@ -176,6 +176,12 @@ class Joint:
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready description (used to save graphs with ``nx.node_link_data``).
 
+        Returns
+        -------
+        dict
+            ``name``, ``type``, ``actuated``, ``virtual``, ``screws`` (rows of floats, or of texts when
+        symbolic) and ``geometry``.
+
         Examples
         --------
         >>> revolute("R1", [0, 0, 1], [1, 0, 0]).to_dict()["type"]
@@ -193,6 +199,15 @@ class Joint:
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> Joint:
         """Rebuild a joint from :meth:`to_dict` output (plain data only; nothing is evaluated).
+
+        Parameters
+        ----------
+        data : dict
+            The output of :meth:`to_dict` (e.g. read back from JSON).
+
+        Returns
+        -------
+        Joint
 
         Examples
         --------
@@ -236,6 +251,21 @@ def _unit_axis(axis: Any) -> Any:
 def revolute(name: str, axis: Any, point: Any, *, actuated: bool = False) -> Joint:
     """A revolute joint R: the zero-pitch twist on its axis.
 
+    Parameters
+    ----------
+    name : str
+        The joint's name (unique in a graph).
+    axis : array_like, shape (3,)
+        The axis direction (non-zero).
+    point : array_like, shape (3,)
+        A point of the axis.
+    actuated : bool, default False
+        Whether the joint is actuated.
+
+    Returns
+    -------
+    Joint
+
     Examples
     --------
     >>> revolute("R1", [0, 0, 2], [1, 0, 0]).screws  # unit twist: the axis is normalised
@@ -249,6 +279,19 @@ def revolute(name: str, axis: Any, point: Any, *, actuated: bool = False) -> Joi
 def prismatic(name: str, direction: Any, *, actuated: bool = False) -> Joint:
     """A prismatic joint P: the infinite-pitch twist ``(0; d/|d|)``.
 
+    Parameters
+    ----------
+    name : str
+        The joint's name (unique in a graph).
+    direction : array_like, shape (3,)
+        The sliding direction (non-zero).
+    actuated : bool, default False
+        Whether the joint is actuated.
+
+    Returns
+    -------
+    Joint
+
     Examples
     --------
     >>> prismatic("P1", [3, 0, 4]).screws
@@ -261,6 +304,23 @@ def prismatic(name: str, direction: Any, *, actuated: bool = False) -> Joint:
 
 def helical(name: str, axis: Any, point: Any, pitch: Any, *, actuated: bool = False) -> Joint:
     """A helical (screw) joint H of pitch ``h`` (length per radian: lead / 2π).
+
+    Parameters
+    ----------
+    name : str
+        The joint's name (unique in a graph).
+    axis : array_like, shape (3,)
+        The axis direction (non-zero).
+    point : array_like, shape (3,)
+        A point of the axis.
+    pitch : float or sympy.Expr
+        Length per radian (:func:`lead_to_pitch`).
+    actuated : bool, default False
+        Whether the joint is actuated.
+
+    Returns
+    -------
+    Joint
 
     Examples
     --------
@@ -279,6 +339,16 @@ def helical(name: str, axis: Any, point: Any, pitch: Any, *, actuated: bool = Fa
 def lead_to_pitch(lead: float) -> float:
     """Pitch (per radian) of a screw pair from its lead (per turn): ``h = lead / 2π``.
 
+    Parameters
+    ----------
+    lead : float
+        Length per turn.
+
+    Returns
+    -------
+    float
+        Length per radian.
+
     Examples
     --------
     >>> round(lead_to_pitch(20.0), 6)
@@ -289,6 +359,19 @@ def lead_to_pitch(lead: float) -> float:
 
 def cylindrical(name: str, axis: Any, point: Any) -> Joint:
     """A cylindrical joint C: rotation about and translation along one axis.
+
+    Parameters
+    ----------
+    name : str
+        The joint's name (unique in a graph).
+    axis : array_like, shape (3,)
+        The axis direction (non-zero).
+    point : array_like, shape (3,)
+        A point of the axis.
+
+    Returns
+    -------
+    Joint
 
     Examples
     --------
@@ -303,6 +386,19 @@ def cylindrical(name: str, axis: Any, point: Any) -> Joint:
 
 def universal(name: str, first_axis: Any, second_axis: Any, center: Any) -> Joint:
     """A universal joint U: two revolute axes through one centre (the first on the parent side).
+
+    Parameters
+    ----------
+    name : str
+        The joint's name (unique in a graph).
+    first_axis, second_axis : array_like, shape (3,)
+        The directions of the two revolute axes (not parallel; the first on the parent side).
+    center : array_like, shape (3,)
+        The point where the axes meet.
+
+    Returns
+    -------
+    Joint
 
     Raises
     ------
@@ -329,6 +425,17 @@ def universal(name: str, first_axis: Any, second_axis: Any, center: Any) -> Join
 def spherical(name: str, center: Any) -> Joint:
     """A spherical joint S: three rotations about axes through its centre.
 
+    Parameters
+    ----------
+    name : str
+        The joint's name (unique in a graph).
+    center : array_like, shape (3,)
+        The centre.
+
+    Returns
+    -------
+    Joint
+
     Examples
     --------
     >>> spherical("S1", [0, 0, 0]).screws[:, :3]
@@ -348,6 +455,21 @@ def parallelogram(name: str, hinge_axis: Any, rod_direction: Any, *, actuated: b
     The four hinge axes are parallel to ``hinge_axis`` and the rods to ``rod_direction``; the
     coupler keeps its orientation and moves on a circle (a curvilinear translation, paper 004 §2),
     so its instantaneous twist is the pure translation ``(0; a × w)``.
+
+    Parameters
+    ----------
+    name : str
+        The joint's name (unique in a graph).
+    hinge_axis : array_like, shape (3,)
+        The direction of the hinges' axes.
+    rod_direction : array_like, shape (3,)
+        The direction of the rods (not parallel to the hinges).
+    actuated : bool, default False
+        Whether the joint is actuated.
+
+    Returns
+    -------
+    Joint
 
     Raises
     ------
@@ -374,6 +496,17 @@ def parallelogram(name: str, hinge_axis: Any, rod_direction: Any, *, actuated: b
 
 def virtual(name: str, screw: Any) -> Joint:
     """A virtual one-degree-of-freedom joint carrying one screw, typed by its pitch (vR, vP, vH).
+
+    Parameters
+    ----------
+    name : str
+        The joint's name (unique in a graph).
+    screw : array_like, shape (6,)
+        The screw it carries (floats or sympy expressions).
+
+    Returns
+    -------
+    Joint
 
     Examples
     --------

@@ -164,6 +164,24 @@ class JointTable:
     ) -> JointTable:
         """A table from ``(parent, child, name, type, screws (..., dof_j, 6), actuated)`` rows.
 
+        Parameters
+        ----------
+        base, platform : hashable
+            The fixed link and the end effector.
+        rows : list of tuple
+            ``(parent, child, name, type, screws, actuated)`` per joint, ``screws`` of shape
+            ``(..., dof_j, 6)`` (batch shapes broadcast together).
+        dof : int, optional
+            The platform's nominal mobility (default: the number of actuated joints).
+        anchor : array_like, shape (..., 3), optional
+            A point that moves with the mechanism (see the class).
+        mobility : int, optional
+            The mechanism's mobility at generic configurations, when known.
+
+        Returns
+        -------
+        JointTable
+
         Examples
         --------
         >>> JointTable.from_rows("B", "E", [("B", "E", "R", "R", [[0, 0, 1.0, 0, 0, 0]], False)]).specs[0]
@@ -187,6 +205,17 @@ class JointTable:
     @classmethod
     def from_graph(cls, graph: Any, *, joint_key: str = "joint") -> JointTable:
         """The table of a twist graph at its configuration (a batch of one pose: shape ``()``).
+
+        Parameters
+        ----------
+        graph : networkx.MultiDiGraph
+            A twist graph (checked).
+        joint_key : str, default "joint"
+            The edge attribute holding the joints.
+
+        Returns
+        -------
+        JointTable
 
         Examples
         --------
@@ -225,6 +254,15 @@ class JointTable:
     def joint_screws(self, name: str) -> Array:
         """The screws of one joint over the batch, ``(..., dof_j, 6)``.
 
+        Parameters
+        ----------
+        name : str
+            The joint's name.
+
+        Returns
+        -------
+        numpy.ndarray, shape (..., dof_j, 6)
+
         Examples
         --------
         >>> table = JointTable.from_rows("B", "E", [("B", "E", "R", "R", [[0, 0, 1.0, 0, 0, 0]], 0)])
@@ -240,6 +278,15 @@ class JointTable:
 
     def graph(self, index: Any = ()) -> Any:
         """The twist graph (:class:`networkx.MultiDiGraph`) of one configuration of the batch.
+
+        Parameters
+        ----------
+        index : int or tuple, default ()
+            The configuration of the batch (a full index into :attr:`batch_shape`).
+
+        Returns
+        -------
+        networkx.MultiDiGraph
 
         Raises
         ------

@@ -86,6 +86,17 @@ def fundamental_loops(graph: nx.MultiDiGraph, *, joint_key: str = "joint") -> li
     built from a BFS spanning tree; each is a list of ``(u, v, key, "forward" | "reverse")`` that
     starts with its non-tree edge. There are ``E − V + 1`` of them for a connected graph.
 
+    Parameters
+    ----------
+    graph : networkx.MultiDiGraph
+        A twist graph.
+    joint_key : str, default "joint"
+        The edge attribute holding the joints.
+
+    Returns
+    -------
+    list of list of LoopEdge
+
     Examples
     --------
     >>> from screwkit.graphs.joints import revolute
@@ -119,6 +130,20 @@ def joint_screws_along(
 ) -> Array:
     """The signed screws of the joints along traversed edges, rows ``(n, 6)``.
 
+    Parameters
+    ----------
+    graph : networkx.MultiDiGraph
+        A twist graph.
+    edges : iterable of LoopEdge
+        The traversed edges (a loop or a path).
+    joint_key : str, default "joint"
+        The edge attribute holding the joints.
+
+    Returns
+    -------
+    numpy.ndarray, shape (n, 6)
+        The screws, negated on edges traversed in reverse.
+
     Examples
     --------
     >>> from screwkit.graphs.joints import prismatic
@@ -138,6 +163,13 @@ def loop_closure_matrix(
     graph: nx.MultiDiGraph, *, joint_key: str = "joint"
 ) -> tuple[Array, list[tuple[Any, Any, str, int]]]:
     """The loop-closure matrix: for each fundamental loop, the six equations ``Σ ±$_j q_j = 0``.
+
+    Parameters
+    ----------
+    graph : networkx.MultiDiGraph
+        A twist graph.
+    joint_key : str, default "joint"
+        The edge attribute holding the joints.
 
     Returns
     -------
@@ -200,6 +232,18 @@ def simple_paths(graph: nx.MultiDiGraph, source: Any = None, target: Any = None)
 
     These are the *limbs* of a parallel mechanism in the sense of paper 002 §4.3: each path from
     the base to the platform, through intermediate bodies such as a nacelle.
+
+    Parameters
+    ----------
+    graph : networkx.MultiDiGraph
+        A twist graph.
+    source, target : hashable, optional
+        The end links (default: the graph's base and platform).
+
+    Returns
+    -------
+    list of list of LoopEdge
+        Sorted by the joints' names.
 
     Examples
     --------

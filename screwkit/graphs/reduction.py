@@ -70,7 +70,12 @@ class SeriesParallelNode:
     joints: tuple[str, ...] = field(default=())
 
     def reversed(self) -> SeriesParallelNode:
-        """The same node seen from its other end (its children too)."""
+        """The same node seen from its other end (its children too).
+
+        Returns
+        -------
+        SeriesParallelNode
+        """
         children = tuple(child.reversed() for child in self.children)
         return SeriesParallelNode(
             self.kind,
@@ -95,6 +100,22 @@ def series_parallel_tree(
     Links other than base and platform attached by a single joint are dropped (they cannot
     change the platform's motion); a link with exactly two joints joins them in series; parallel
     joints between the same two links are intersected.
+
+    Parameters
+    ----------
+    graph : networkx.MultiDiGraph
+        A twist graph.
+    joint_key : str, default "joint"
+        The edge attribute holding the joints.
+    rtol : float, default 1e-9
+        Relative tolerance of the twist systems' rank decisions.
+    length_scale : float, optional
+        Their characteristic length (default: :func:`~screwkit.graphs.twistgraph.graph_frame`'s).
+
+    Returns
+    -------
+    SeriesParallelNode
+        The root, oriented from the base to the platform.
 
     Raises
     ------
@@ -201,6 +222,10 @@ def platform_twist_system(
         Defaults to the length of :func:`graph_frame`.
     locked : iterable of str
         Names of joints held fixed (loop-closure method only), e.g. an actuated joint.
+
+    Returns
+    -------
+    ScrewSystem
 
     Examples
     --------

@@ -358,6 +358,22 @@ def network_layout(
     """Fundamental loops and a base-to-platform path of the subgraph of some joints, as
     ``(joint index, ±1)`` steps (+1 along the joint's edge), from a spanning tree.
 
+    Parameters
+    ----------
+    base, platform : hashable
+        The fixed link and the end effector.
+    specs : tuple of JointSpec
+        The mechanism's joints, in table order.
+    joints : tuple of int
+        Indices into ``specs`` of the subgraph's joints.
+
+    Returns
+    -------
+    loops : tuple of tuple of (int, int)
+        One fundamental loop per joint outside the spanning tree, starting with that joint.
+    path : tuple of (int, int)
+        The tree path from the base to the platform (empty if they are not connected).
+
     Examples
     --------
     >>> from screwkit.graphs.jointtable import JointSpec

@@ -92,6 +92,15 @@ def twist_graph(
 def add_joint(graph: nx.MultiDiGraph, parent: Any, child: Any, joint: Joint) -> None:
     """Add a joint as the edge ``parent → child`` keyed by its name.
 
+    Parameters
+    ----------
+    graph : networkx.MultiDiGraph
+        The graph, changed in place.
+    parent, child : hashable
+        The links the joint connects (its twists are the child's relative to the parent).
+    joint : Joint
+        The joint.
+
     Raises
     ------
     TwistGraphError
@@ -121,6 +130,13 @@ def check_twist_graph(graph: Any, *, joint_key: str = "joint") -> None:
     graph; every edge carrying a :class:`Joint` under ``joint_key`` whose name is the edge key;
     unique joint names; no joint from a link to itself; all links connected to the base; a valid
     ``dof`` if given.
+
+    Parameters
+    ----------
+    graph : object
+        The candidate twist graph.
+    joint_key : str, default "joint"
+        The edge attribute holding the joints.
 
     Examples
     --------
@@ -181,6 +197,13 @@ def graph_frame(graph: nx.MultiDiGraph, *, joint_key: str = "joint") -> tuple[Ar
     axes; along them it is taken from :func:`graph_anchor`, or is the solution nearest the origin
     without one.
 
+    Parameters
+    ----------
+    graph : networkx.MultiDiGraph
+        A twist graph.
+    joint_key : str, default "joint"
+        The edge attribute holding the joints.
+
     Returns
     -------
     reference_point : numpy.ndarray, shape (3,)
@@ -209,6 +232,17 @@ def graph_anchor(graph: nx.MultiDiGraph, *, joint_key: str = "joint") -> Array |
     """A point that moves with the mechanism: the graph's ``anchor`` attribute if set, else the
     mean of the joints' own points (their ``geometry``), else None.
 
+    Parameters
+    ----------
+    graph : networkx.MultiDiGraph
+        A twist graph.
+    joint_key : str, default "joint"
+        The edge attribute holding the joints.
+
+    Returns
+    -------
+    numpy.ndarray, shape (3,), or None
+
     Examples
     --------
     >>> from screwkit.graphs.joints import revolute
@@ -229,6 +263,18 @@ def graph_anchor(graph: nx.MultiDiGraph, *, joint_key: str = "joint") -> Array |
 def to_data(graph: nx.MultiDiGraph, *, joint_key: str = "joint") -> dict[str, Any]:
     """Plain, JSON-ready data of a twist graph (``nx.node_link_data`` with joints encoded).
 
+    Parameters
+    ----------
+    graph : networkx.MultiDiGraph
+        A twist graph.
+    joint_key : str, default "joint"
+        The edge attribute holding the joints.
+
+    Returns
+    -------
+    dict
+        Node-link data (edges under ``"edges"``), JSON-ready.
+
     Examples
     --------
     >>> from screwkit.graphs.joints import revolute
@@ -245,6 +291,17 @@ def to_data(graph: nx.MultiDiGraph, *, joint_key: str = "joint") -> dict[str, An
 
 def from_data(data: dict[str, Any], *, joint_key: str = "joint") -> nx.MultiDiGraph:
     """Rebuild a twist graph saved with :func:`to_data` (plain data only; nothing is evaluated).
+
+    Parameters
+    ----------
+    data : dict
+        The output of :func:`to_data` (e.g. read back from JSON).
+    joint_key : str, default "joint"
+        The edge attribute holding the joints.
+
+    Returns
+    -------
+    networkx.MultiDiGraph
 
     Examples
     --------

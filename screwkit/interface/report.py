@@ -44,7 +44,7 @@ import numpy as np
 from ..algebra import backend as B
 from ..algebra import screw as S
 from ..algebra.checks import checked_length_scale
-from ..algebra.screwsystem import motion_type
+from ..algebra.motion_type import motion_type
 from ..core.jacobians import WrenchJacobians
 from ..core.singularity import SingularityReport, classify_analysis
 from ..core.wrenches import WrenchAnalysis, checked_rtol, wrench_analysis
