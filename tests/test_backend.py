@@ -7,6 +7,7 @@ import pytest
 import sympy
 
 from screwkit.algebra import backend as B
+from screwkit.algebra.branch_values import ones_like, zeros_like
 from screwkit.algebra.checks import check_rotation
 from screwkit.algebra.ranks import scale_moments, screw_nullspace, screw_rank
 from screwkit.algebra.zero_tests import (
@@ -192,12 +193,12 @@ def test_check_rotation_refuses_numeric_non_rotations_and_takes_symbolic_ones_as
 def test_zeros_and_ones_like_keep_the_branch():
     numeric = np.array([[2.0, 3.0]])
     symbolic = np.array([[x, sympy.Integer(3)]], dtype=object)
-    np.testing.assert_array_equal(B.zeros_like(numeric), [[0.0, 0.0]])
-    np.testing.assert_array_equal(B.ones_like(numeric), [[1.0, 1.0]])
-    for made, value in ((B.zeros_like(symbolic), 0), (B.ones_like(symbolic), 1)):
+    np.testing.assert_array_equal(zeros_like(numeric), [[0.0, 0.0]])
+    np.testing.assert_array_equal(ones_like(numeric), [[1.0, 1.0]])
+    for made, value in ((zeros_like(symbolic), 0), (ones_like(symbolic), 1)):
         assert made.dtype == object and made.shape == (1, 2)
         assert all(isinstance(v, sympy.Integer) and v == value for v in made.flat)
-    assert B.zeros_like(numeric).dtype == B.ones_like(numeric).dtype == np.float64
+    assert zeros_like(numeric).dtype == ones_like(numeric).dtype == np.float64
 
 
 def test_is_symbolic_without_sympy_objects_is_false():

@@ -7,8 +7,8 @@ four modules of one responsibility each:
 
 * this one: input validation and promotion (:func:`as_array`, :func:`promote`: if any input is
   symbolic, all become exact sympy numbers), exact numbers and infinities, elementwise products,
-  determinants, square roots and simplification, constructors (``zeros(..., symbolic=...)``) and
-  JSON-ready values;
+  determinants, square roots and simplification;
+* :mod:`screwkit.algebra.branch_values`: zeros and ones of a branch, JSON-ready values of either;
 * :mod:`screwkit.algebra.zero_tests`: zero tests and quotients with an infinite branch (a numeric
   decision uses a relative tolerance, a symbolic one decides identically, generically);
 * :mod:`screwkit.algebra.ranks`: ranks and null spaces of screws with their length scale;
@@ -48,21 +48,16 @@ __all__ = [
     "det",
     "dot",
     "exact_fraction",
-    "float_lists",
     "from_fraction",
     "infinity",
     "is_dof",
     "is_infinite",
     "is_symbolic",
-    "ones_like",
-    "plain",
     "promote",
     "simplify",
     "sqrt",
     "sympy_module",
     "to_sympy",
-    "zeros",
-    "zeros_like",
 ]
 
 #: Default relative tolerance of every rank and zero decision (documented in each public function).
@@ -289,120 +284,6 @@ def sqrt(value: Any) -> Any:
             return np.vectorize(sp.sqrt, otypes=[object])(value)
         return sp.sqrt(value)
     return np.sqrt(value)
-
-
-def plain(value: Any) -> float | str:
-    """A JSON-ready scalar: a float for a number, the text of a sympy expression.
-
-    Parameters
-    ----------
-    value : object
-        A number or a sympy expression.
-
-    Returns
-    -------
-    float or str
-
-    Examples
-    --------
-    >>> import sympy
-    >>> plain(np.float64(2.5)), plain(sympy.Symbol("x") / 2)
-    (2.5, 'x/2')
-    """
-    return str(value) if is_symbolic(value) else float(value)
-
-
-def float_lists(**values: Any) -> dict[str, Any]:
-    """Numeric values as JSON-ready float lists by name; ``{}`` when any value is symbolic.
-
-    Parameters
-    ----------
-    **values : array_like
-        The named values.
-
-    Returns
-    -------
-    dict of str to list
-        Nested float lists by name, or ``{}`` if any value is symbolic.
-
-    Examples
-    --------
-    >>> import sympy
-    >>> float_lists(axis=np.array([0, 0, 1]), pitch=2), float_lists(axis=[sympy.Symbol("a"), 0, 1])
-    ({'axis': [0.0, 0.0, 1.0], 'pitch': 2.0}, {})
-    """
-    if is_symbolic(*values.values()):
-        return {}
-    return {name: np.asarray(value, dtype=float).tolist() for name, value in values.items()}
-
-
-def zeros(shape: tuple[int, ...], *, symbolic: bool) -> Array:
-    """Zeros of a shape in a branch: float64, or exact sympy zeros in an object array.
-
-    Parameters
-    ----------
-    shape : tuple of int
-        The shape.
-    symbolic : bool
-        The branch: sympy-object (True) or float64 (False).
-
-    Returns
-    -------
-    numpy.ndarray
-
-    Examples
-    --------
-    >>> zeros((2,), symbolic=True)
-    array([0, 0], dtype=object)
-    """
-    if not symbolic:
-        return np.zeros(shape)
-    out = np.empty(shape, dtype=object)
-    out.fill(to_sympy(0))
-    return out
-
-
-def zeros_like(a: Array) -> Array:
-    """Zeros of ``a``'s shape in its branch: float64 zeros, or exact sympy zeros in an object array.
-
-    Parameters
-    ----------
-    a : numpy.ndarray
-        Float or sympy-object array.
-
-    Returns
-    -------
-    numpy.ndarray
-        Zeros of ``a``'s shape (float64 or sympy-object).
-
-    Examples
-    --------
-    >>> import sympy
-    >>> zeros_like(np.array([sympy.Symbol("x")], dtype=object))
-    array([0], dtype=object)
-    """
-    return a * 0 if is_symbolic(a) else np.zeros_like(a, dtype=float)
-
-
-def ones_like(a: Array) -> Array:
-    """Ones of ``a``'s shape in its branch: float64 ones, or exact sympy ones in an object array.
-
-    Parameters
-    ----------
-    a : numpy.ndarray
-        Float or sympy-object array.
-
-    Returns
-    -------
-    numpy.ndarray
-        Ones of ``a``'s shape (float64 or sympy-object).
-
-    Examples
-    --------
-    >>> ones_like(np.zeros(2))
-    array([1., 1.])
-    """
-    return a * 0 + to_sympy(1) if is_symbolic(a) else np.ones_like(a, dtype=float)
 
 
 def _describe_shape(shape: tuple[int | None, ...]) -> str:
@@ -702,4 +583,3 @@ def simplify(value: Any) -> Any:
     if is_symbolic(value):
         return sympy_module().simplify(value)
     return value
-

@@ -33,6 +33,7 @@ import numpy as np
 
 from ..exceptions import DegenerateGeometryError, ScrewkitValueError
 from . import backend as B
+from .branch_values import ones_like, zeros_like
 from .zero_tests import vanishes, zero_vectors
 
 __all__ = [
@@ -69,7 +70,7 @@ def finite_point(position: Any) -> Array:
     array([1., 2., 3., 1.])
     """
     r = B.as_array(position, "position", (3,))
-    return np.concatenate([r, B.ones_like(r[..., :1])], axis=-1)
+    return np.concatenate([r, ones_like(r[..., :1])], axis=-1)
 
 
 def infinite_point(direction: Any) -> Array:
@@ -99,7 +100,7 @@ def infinite_point(direction: Any) -> Array:
         raise DegenerateGeometryError(
             "Expected `direction` to be non-zero, got a zero vector: (0, 0, 0, 0) is not a point."
         )
-    return np.concatenate([d, B.zeros_like(d[..., :1])], axis=-1)
+    return np.concatenate([d, zeros_like(d[..., :1])], axis=-1)
 
 
 def join(p: Any, q: Any, *, rtol: float = B.DEFAULT_RTOL) -> Array:

@@ -26,7 +26,8 @@ from typing import Any
 import numpy as np
 
 from ..exceptions import DegenerateGeometryError
-from .backend import DEFAULT_RTOL, is_symbolic, sympy_module, zeros
+from .backend import DEFAULT_RTOL, is_symbolic, sympy_module
+from .branch_values import zeros
 from .checks import checked_length_scale, checked_rtol
 from .zero_tests import _binary_exponents, zero_vectors
 
@@ -248,9 +249,9 @@ def screw_rank(rows: Array, *, rtol: float = DEFAULT_RTOL, length_scale: float |
     """
     checked_rtol(rtol)
     if rows.dtype == object:
-        from . import symbolic
+        from . import symbolic_bases
 
-        return symbolic.generic_rank(rows.reshape(-1, rows.shape[-1])) if rows.size else 0
+        return symbolic_bases.generic_rank(rows.reshape(-1, rows.shape[-1])) if rows.size else 0
     if rows.shape[-2] == 0:
         return 0 if rows.ndim == 2 else np.zeros(rows.shape[:-2], dtype=int)
     values = screw_singular_values(rows, length_scale=length_scale)
@@ -387,9 +388,9 @@ def matrix_nullspace(matrix: Array, *, rtol: float = DEFAULT_RTOL) -> Array:
     """
     checked_rtol(rtol)
     if matrix.dtype == object:
-        from . import symbolic
+        from . import symbolic_bases
 
-        return symbolic.nullspace(matrix)
+        return symbolic_bases.nullspace(matrix)
     if matrix.shape[0] == 0:
         return np.eye(matrix.shape[1])
     _, values, vt = np.linalg.svd(matrix)

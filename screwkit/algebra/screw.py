@@ -41,6 +41,7 @@ import numpy as np
 
 from ..exceptions import DegenerateGeometryError, ScrewkitValueError
 from . import backend as B
+from .branch_values import zeros_like
 from .checks import check_rotation
 from .ranks import direction_scaled, unit_screws
 from .zero_tests import norm, ratio, vanishes, where_zero, zero_vectors
@@ -184,7 +185,7 @@ def prismatic_twist(direction: Any) -> Array:
     """
     (d,) = B.as_arrays((3,), (direction, "direction"))
     _nonzero_direction(d, "direction")
-    return np.concatenate([B.zeros_like(d), d], axis=-1)
+    return np.concatenate([zeros_like(d), d], axis=-1)
 
 
 def force(direction: Any, point: Any) -> Array:

@@ -23,6 +23,7 @@ import numpy as np
 
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
 from . import backend as B
+from .branch_values import plain
 from .ranks import screw_rank
 from .screw import (
     axis,
@@ -374,7 +375,7 @@ class Screw:
         >>> Screw.couple([0, 0, 1]).to_dict()["kind"]
         'infinite pitch'
         """
-        coords = [B.plain(v) for v in self.coords]
+        coords = [plain(v) for v in self.coords]
         h = self.pitch
         if self.is_symbolic:
             return {"coords": coords, "pitch": str(h), "kind": "symbolic"}

@@ -52,6 +52,7 @@ from ..algebra import screwvalue as S
 from ..algebra import symbolic as Y
 from ..algebra.motion_type import motion_type
 from ..algebra.screwsystem import ScrewSystem
+from ..algebra.symbolic_bases import reciprocal_within
 from ..exceptions import ScrewkitTypeError, TwistGraphError
 from ..graphs.jointtable import JointSpec
 from ..graphs.topology import Topology, topology
@@ -294,7 +295,7 @@ class _GenericEvaluation:
         return rows.take(rows.independent())
 
     def within(self, basis: Y.GenericRows, others: list[Y.GenericRows]) -> Y.GenericRows:
-        return Y.reciprocal_within(basis, self.stacked(others), self.point)
+        return reciprocal_within(basis, self.stacked(others), self.point)
 
     def twists(self, index: int) -> Y.GenericRows:
         if index not in self._twists:

@@ -38,6 +38,7 @@ import numpy as np
 
 from ..algebra import backend as B
 from ..algebra import screw as S
+from ..algebra.branch_values import float_lists, plain
 from ..algebra.zero_tests import unit_directions, vanishes, zero_vectors
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
 
@@ -192,7 +193,7 @@ class Joint:
             "type": self.type,
             "actuated": self.actuated,
             "virtual": self.virtual,
-            "screws": [[B.plain(v) for v in row] for row in self.screws],
+            "screws": [[plain(v) for v in row] for row in self.screws],
             "geometry": self.geometry,
         }
 
@@ -272,7 +273,7 @@ def revolute(name: str, axis: Any, point: Any, *, actuated: bool = False) -> Joi
     array([[ 0.,  0.,  1.,  0., -1.,  0.]])
     """
     twist = S.revolute_twist(_unit_axis(axis), point)
-    geometry = B.float_lists(axis=axis, point=point)
+    geometry = float_lists(axis=axis, point=point)
     return Joint(name, "R", twist.reshape(1, 6), actuated=actuated, geometry=geometry)
 
 
@@ -298,7 +299,7 @@ def prismatic(name: str, direction: Any, *, actuated: bool = False) -> Joint:
     array([[0. , 0. , 0. , 0.6, 0. , 0.8]])
     """
     twist = S.normalize(S.prismatic_twist(direction))
-    geometry = B.float_lists(direction=direction)
+    geometry = float_lists(direction=direction)
     return Joint(name, "P", twist.reshape(1, 6), actuated=actuated, geometry=geometry)
 
 
@@ -332,7 +333,7 @@ def helical(name: str, axis: Any, point: Any, pitch: Any, *, actuated: bool = Fa
             f"Expected `pitch` to be one number (the joint's pitch), got shape {np.shape(pitch)}."
         )
     twist = S.helical_twist(S.normalize(S.line(axis, [0, 0, 0]))[:3], point, pitch)
-    geometry = B.float_lists(axis=axis, point=point, pitch=pitch)
+    geometry = float_lists(axis=axis, point=point, pitch=pitch)
     return Joint(name, "H", twist.reshape(1, 6), actuated=actuated, geometry=geometry)
 
 
@@ -380,7 +381,7 @@ def cylindrical(name: str, axis: Any, point: Any) -> Joint:
     """
     unit = S.normalize(S.line(axis, [0, 0, 0]))[:3]
     rows = np.stack([S.revolute_twist(unit, point), S.prismatic_twist(unit)])
-    geometry = B.float_lists(axis=axis, point=point)
+    geometry = float_lists(axis=axis, point=point)
     return Joint(name, "C", rows, geometry=geometry)
 
 
@@ -418,7 +419,7 @@ def universal(name: str, first_axis: Any, second_axis: Any, center: Any) -> Join
         raise ScrewkitValueError(
             f"Universal joint {name!r}: expected two non-parallel axes, got parallel axes."
         )
-    geometry = B.float_lists(first_axis=first_axis, second_axis=second_axis, center=center)
+    geometry = float_lists(first_axis=first_axis, second_axis=second_axis, center=center)
     return Joint(name, "U", rows, geometry=geometry)
 
 
@@ -445,7 +446,7 @@ def spherical(name: str, center: Any) -> Joint:
     """
     axes, centre = B.promote(np.eye(3), B.as_array(center, "center", (3,)))
     rows = np.stack([S.revolute_twist(a, centre) for a in axes])
-    geometry = B.float_lists(center=center)
+    geometry = float_lists(center=center)
     return Joint(name, "S", rows, geometry=geometry)
 
 
@@ -490,7 +491,7 @@ def parallelogram(name: str, hinge_axis: Any, rod_direction: Any, *, actuated: b
             f"Parallelogram {name!r}: expected rods not parallel to the hinge axes, got parallel ones."
         )
     twist = S.prismatic_twist(unit_directions(velocity))
-    geometry = B.float_lists(hinge_axis=a, rod_direction=w)
+    geometry = float_lists(hinge_axis=a, rod_direction=w)
     return Joint(name, "Pa", twist.reshape(1, 6), actuated=actuated, geometry=geometry)
 
 

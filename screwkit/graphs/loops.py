@@ -27,6 +27,7 @@ import networkx as nx
 import numpy as np
 
 from ..algebra import backend as B
+from ..algebra.branch_values import zeros
 from ..algebra.ranks import screw_image_of_nullspace
 from ..algebra.screwsystem import ScrewSystem
 from .twistgraph import check_twist_graph
@@ -191,7 +192,7 @@ def loop_closure_matrix(
     columns = _columns(graph, joint_key)
     index = {c: i for i, c in enumerate(columns)}
     symbolic = B.is_symbolic(*(graph.edges[u, v, k][joint_key].screws for u, v, k, _ in columns))
-    matrix = B.zeros((6 * len(loops), len(columns)), symbolic=symbolic)
+    matrix = zeros((6 * len(loops), len(columns)), symbolic=symbolic)
     for row, loop in enumerate(loops):
         for u, v, key, direction in loop:
             screws = _promoted(graph.edges[u, v, key][joint_key].screws, symbolic)
@@ -203,7 +204,7 @@ def loop_closure_matrix(
 
 def _promoted(screws: Array, symbolic: bool) -> Array:
     """Numeric screws as exact sympy numbers when the matrix is symbolic (no floats leak in)."""
-    return B.promote(screws, B.zeros((0,), symbolic=True))[0] if symbolic else screws
+    return B.promote(screws, zeros((0,), symbolic=True))[0] if symbolic else screws
 
 
 def _loop_closure_twists(
@@ -215,7 +216,7 @@ def _loop_closure_twists(
     path = _tree_path(parent_edge, graph.graph["base"], graph.graph["platform"])
     index = {c: i for i, c in enumerate(columns)}
     symbolic = B.is_symbolic(*(joint.screws for _, _, joint in graph.edges(data=joint_key)))
-    path_matrix = B.zeros((6, len(columns)), symbolic=symbolic)
+    path_matrix = zeros((6, len(columns)), symbolic=symbolic)
     for u, v, key, direction in path:
         screws = _promoted(graph.edges[u, v, key][joint_key].screws, symbolic)
         for i, screw in enumerate(screws):
