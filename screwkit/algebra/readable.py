@@ -1,25 +1,24 @@
 """The geometry of a readable basis: axes near a point, the frame's axes first, principal screws.
 
-The numeric steps of :meth:`screwkit.algebra.screwsystem.ScrewSystem.readable_basis` (steps 1–3 of
-its docstring), on plain ``(k, 6)`` float arrays: the point nearest a system's axes, moments about a
+The steps of :meth:`screwkit.algebra.screwsystem.ScrewSystem.readable_basis` (steps 1–4 of its
+docstring): on plain ``(k, 6)`` float arrays, the point nearest a system's axes, moments about a
 point, orthonormal couples with the frame's axes first, and the candidate screws of finite pitch
 (the principal directions of the pitch form, Hunt, *Kinematic Geometry of Mechanisms*, 1978, §12,
-and its isotropic directions), best first. Private to :mod:`screwkit.algebra.screwsystem`, which
-and :func:`_pick`, which takes the independent candidates; and the couples along the frame's
-axes (``_COUPLES``, also read by :mod:`screwkit.algebra.motion_type`).
+and its isotropic directions), best first; then the numeric and symbolic readable bases of a
+system, which take the independent candidates (:func:`_pick`; ``system`` is a
+:class:`~screwkit.algebra.screwsystem.ScrewSystem`, read through its attributes only). Private to
+:mod:`screwkit.algebra.screwsystem`, with the couples along the frame's axes (``_COUPLES``, also read
+by :mod:`screwkit.algebra.motion_type`).
 """
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 
 from . import backend as B
 from .ranks import _independent_rows, screw_rank
-
-if TYPE_CHECKING:
-    from .screwsystem import ScrewSystem
 
 __all__: list[str] = []
 
@@ -116,7 +115,7 @@ def _finite_candidates(basis: Array, couples: Array, near: Array, rtol: float, l
     return [np.array([c[3] for c in candidates])]
 
 
-def _pick(candidates: Array, order: int, system: ScrewSystem) -> Array:
+def _pick(candidates: Array, order: int, system: Any) -> Array:
     """The first ``order`` independent candidates. The candidates lie in the system to within the
     snapping of :func:`_axis_first` and :func:`_finite_candidates` (``1e3 rtol``: a frame axis, a
     line), so that is the tolerance of their independence; the system's own ``rtol`` decides where
@@ -139,7 +138,7 @@ def _pick(candidates: Array, order: int, system: ScrewSystem) -> Array:
     return picked / scale[:, None]
 
 
-def _numeric_readable(system: ScrewSystem, centre: Array) -> Array:
+def _numeric_readable(system: Any, centre: Array) -> Array:
     """:meth:`~screwkit.algebra.screwsystem.ScrewSystem.readable_basis` of a numeric system in its
     own frame (axes placed near ``centre``)."""
     couples = _axis_first(_orthonormal_couples(system.couple_subsystem().basis)[:, 3:], system.rtol)
@@ -148,7 +147,7 @@ def _numeric_readable(system: ScrewSystem, centre: Array) -> Array:
     return _pick(system._stack(rows, system.basis), system.order, system)
 
 
-def _symbolic_readable(system: ScrewSystem, near: Any) -> Array:
+def _symbolic_readable(system: Any, near: Any) -> Array:
     """The symbolic readable basis (generic decisions, :mod:`screwkit.algebra.symbolic`): the frame's
     translations where the system holds them; with all three, the other rows become lines
     through ``near`` (the origin by default); else the couple subsystem, then the basis."""
