@@ -16,8 +16,8 @@ Examples
 >>> import numpy as np
 >>> sum_in_order(np.array([[1e16, 1.0, -1e16], [1.0, 2.0, 3.0]]))
 array([0., 6.])
->>> compiled_kernels("screwkit.algebra._reference_frame_numba", 1) is None  # a small call: numpy
-True
+>>> COMPILED_MIN_BATCH  # fewest batch elements for which a compiled module is loaded
+256
 """
 
 from __future__ import annotations
