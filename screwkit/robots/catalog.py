@@ -94,7 +94,7 @@ from ..exceptions import (
     UnreachablePoseError,
 )
 from ..graphs import joints as J
-from ..graphs.joints import JointTable
+from ..graphs.jointtable import JointTable
 from ..graphs.twistgraph import add_joint, check_twist_graph
 from .families import Family, families
 

@@ -7,7 +7,7 @@ A family is four functions and the names of its pose coordinates:
 ``inverse_kinematics(parameters, poses, **mode)``
     A configuration over poses ``(..., n)`` (batched; ``mode`` picks a working mode).
 ``joints(configuration)``
-    A :class:`~screwkit.graphs.joints.JointTable`: the mechanism's structure once, every joint's screws
+    A :class:`~screwkit.graphs.jointtable.JointTable`: the mechanism's structure once, every joint's screws
     over the batch. Everything else (labels, wrench systems, Jacobians, diagrams, reports) comes
     from the analysis core.
 ``twist_basis(configuration)``
@@ -39,7 +39,7 @@ from typing import Any
 import numpy as np
 
 from ...exceptions import ScrewkitTypeError, ScrewkitValueError
-from ...graphs.joints import JointTable
+from ...graphs.jointtable import JointTable
 
 __all__ = ["Family", "families", "register"]
 
@@ -80,8 +80,8 @@ class Family:
     reachable: Callable[[Any, np.ndarray], np.ndarray] | None = None
 
     def joint_table(self, configuration: Any) -> JointTable:
-        """``joints(configuration)``, checked to be a :class:`~screwkit.graphs.joints.JointTable` (what the
-        analysis core reads; a family's mistake is named here, not inside the core).
+        """``joints(configuration)``, checked to be a :class:`~screwkit.graphs.jointtable.JointTable`
+        (what the analysis core reads; a family's mistake is named here, not inside the core).
 
         Examples
         --------

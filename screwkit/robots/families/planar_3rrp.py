@@ -79,7 +79,8 @@ from typing import Any
 import numpy as np
 
 from ...algebra import screw as S
-from ...algebra.backend import DEFAULT_RTOL, as_array, checked_rtol
+from ...algebra.backend import DEFAULT_RTOL, as_array
+from ...algebra.checks import checked_rtol
 from ...exceptions import (
     CatalogError,
     DegenerateGeometryError,
@@ -87,7 +88,7 @@ from ...exceptions import (
     ScrewkitValueError,
     UnreachablePoseError,
 )
-from ...graphs.joints import JointTable
+from ...graphs.jointtable import JointTable
 from .two_limb import REACH_ULPS
 
 __all__ = [

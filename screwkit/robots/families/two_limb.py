@@ -8,13 +8,13 @@ model; paper-specific analyses live in the stage modules or beside the tests tha
 * parameter validation (``from_mapping`` of a TOML table, range checks in ``__post_init__``) and
   working-mode checks;
 * :func:`joint_row`, one physical one-freedom joint (R, H or P) over a batch of poses as a row of
-  :meth:`screwkit.graphs.joints.JointTable.from_rows`;
+  :meth:`screwkit.graphs.jointtable.JointTable.from_rows`;
 * :class:`ForwardSolutions`, every assembly mode of a forward-kinematics problem.
 
 Examples
 --------
 >>> import numpy as np
->>> from screwkit.graphs.joints import JointTable
+>>> from screwkit.graphs.jointtable import JointTable
 >>> row = joint_row("base", "nut", "spin", "H", [0, 0, 0], [0, 0, 1], pitch=0.5)
 >>> JointTable.from_rows("base", "nut", [row]).screws
 array([[0. , 0. , 1. , 0. , 0. , 0.5]])
@@ -344,7 +344,7 @@ def joint_row(
     -------
     tuple
         ``(parent, child, name, kind, screws (..., 1, 6), actuated)`` for
-        :meth:`screwkit.graphs.joints.JointTable.from_rows`.
+        :meth:`screwkit.graphs.jointtable.JointTable.from_rows`.
 
     Raises
     ------
