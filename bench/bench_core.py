@@ -16,7 +16,7 @@ Figures (the issue's targets in brackets):
   timed), in poses/s;
 * ``verdicts``: :func:`verdicts` over the same poses, chunked (``CHUNK`` poses per call), rate and
   the ratio to the SVD's rate [≥ 0.2]. The labels and orders only: the closeness measures are
-  computed when asked (:attr:`screwkit.core.wrenches.WrenchAnalysis.closeness`), so ``+ closeness``
+  computed when asked (:attr:`screwkit.core.wrench_systems.WrenchAnalysis.closeness`), so ``+ closeness``
   gives the rate and ratio of :func:`verdicts` with the report's ``closeness`` asked too;
 * memory: ``tracemalloc`` peak of one chunk's :func:`verdicts` / ``CHUNK``, KiB per pose [≤ 3];
 * with ``--breakdown``: where a pose's time goes (:func:`breakdown`, 10⁴ poses in the core's own

@@ -17,7 +17,8 @@ from typing import Any
 from .algebra.screw import Screw, reciprocal_product
 from .algebra.screwsystem import ScrewSystem, motion_type
 from .core.singularity import SingularityReport, classify, classify_poses, classify_table
-from .core.wrenches import WrenchAnalysis, analyze_table, wrench_analysis
+from .core.wrench_systems import WrenchAnalysis, analyze_table
+from .core.wrenches import wrench_analysis
 from .exceptions import (
     CatalogError,
     DegenerateGeometryError,

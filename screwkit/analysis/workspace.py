@@ -326,7 +326,7 @@ def _diagram_points(diagram: Any, posed: Any) -> tuple[dict[str, Array], Array]:
     """The diagram's points ``{label: (n, 4)}`` at every pose of a posed batch ``(n,)`` and where
     all of them exist ``(n,)``: the batched core with the per-pose frames the recipes read, in
     the core's own chunks (:data:`screwkit.robots.posed.CHUNK` poses), so that only the points are kept."""
-    from ..core.wrenches import analyze_table
+    from ..core.wrench_systems import analyze_table
     from ..gca.diagram import batch_diagram_points
     from ..robots.posed import CHUNK as CORE_CHUNK
 

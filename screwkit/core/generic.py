@@ -86,7 +86,7 @@ class GenericLimb:
     actuated_joint : str
     joints : tuple of str
     twist_system, constraint_wrenches, passive_wrenches : ScrewSystem
-        As in :class:`screwkit.core.wrenches.Limb`, symbolic.
+        As in :class:`screwkit.core.wrench_systems.Limb`, symbolic.
     actuated_twist : numpy.ndarray, shape (6,)
     actuation_wrench : numpy.ndarray, shape (6,), or None
         A passive wrench not reciprocal to the actuated twist (a line where the passive system's
@@ -119,7 +119,7 @@ class GenericLeg:
 
     @property
     def name(self) -> str:
-        """``"leg through A1, A4"``, as :class:`screwkit.core.wrenches.CompoundLeg`."""
+        """``"leg through A1, A4"``, as :class:`screwkit.core.wrench_systems.CompoundLeg`."""
         return "leg through " + ", ".join(self.actuated or sorted(self.joints)[:2])
 
 

@@ -16,9 +16,9 @@ ASME J. Mech. Des. 124(2), 2002). Stacking the limbs,
 
 and ``A χ̇ = B θ̇``, the form of paper 004 Eq. (6). In a compound leg whose actuators share a link
 (the H4's ``A1``, ``A4`` on the nacelle ``b_I``), where a limb's own wrench fails the core picks
-``w_j`` from the leg as a whole, loading ``A_j`` alone (:func:`screwkit.core.wrenches.analyze_table`):
+``w_j`` from the leg as a whole, loading ``A_j`` alone (:func:`screwkit.core.wrench_systems.analyze_table`):
 ``w_j`` then splits between the leg's parallel branches and ``B_jj`` is the part on ``A_j``'s branch
-times ``$_j`` (:attr:`~screwkit.core.wrenches.WrenchAnalysis.branch_rows`); ``B`` stays diagonal and its
+times ``$_j`` (:attr:`~screwkit.core.wrench_systems.WrenchAnalysis.branch_rows`); ``B`` stays diagonal and its
 zeros are the leg's serial singularities. This needs the actuated joint *in series* in
 its limb (on no closed loop of the limb), which is checked. Each ``w_j`` is defined up to a factor
 (and up to the limb's constraint wrenches, which are reciprocal to every ``t_k``), so ``A`` and
@@ -113,7 +113,7 @@ import numpy as np
 
 from ..algebra import backend as B
 from ..algebra import screw as S
-from ..algebra.backend import as_array
+from ..algebra.backend import as_array, checked_rtol
 from ..exceptions import (
     DegenerateGeometryError,
     ScrewkitTypeError,
@@ -121,7 +121,7 @@ from ..exceptions import (
     TwistGraphError,
 )
 from . import _frames as F
-from .wrenches import WrenchAnalysis, checked_rtol
+from .wrench_systems import WrenchAnalysis
 
 __all__ = [
     "GOSSELIN_ANGELES_TYPES",
@@ -238,7 +238,7 @@ def _jacobian_arrays(
     """A, B, closeness measures and serial flags from chosen wrenches (user frame), batched.
 
     ``wrenches, branches, twists``: (..., n, 6) (``branches``: the part of each wrench reaching
-    its actuated joint, :attr:`~screwkit.core.wrenches.WrenchAnalysis.branch_rows`); ``basis``:
+    its actuated joint, :attr:`~screwkit.core.wrench_systems.WrenchAnalysis.branch_rows`); ``basis``:
     (..., dof, 6); ``length``: (...,); ``substituted``: (..., n) bool, rows built on a passive
     wrench (``B_jj`` set to 0).
     """
@@ -608,7 +608,7 @@ def jacobians_from_wrenches(
     ----------
     analysis : WrenchAnalysis
         From :func:`~screwkit.core.wrenches.wrench_analysis` (one pose) or
-        :func:`~screwkit.core.wrenches.analyze_table` (a batch).
+        :func:`~screwkit.core.wrench_systems.analyze_table` (a batch).
     twist_basis : array_like, shape (..., dof, 6)
         Unit-rate twists of the platform, user frame, one per degree of freedom of the analysis
         (e.g. :func:`schoenflies_basis`); they define the columns of ``A`` and the meaning of
@@ -726,7 +726,7 @@ def jacobians_over_poses(
 
     As :func:`~screwkit.core.singularity.classify_poses`, the graph is a template (topology, names,
     actuated flags) and ``screws`` holds every joint's screws over the batch; the wrenches come from
-    the one analysis core (:func:`~screwkit.core.wrenches.analyze_table`), so they are those of the
+    the one analysis core (:func:`~screwkit.core.wrench_systems.analyze_table`), so they are those of the
     single-pose path. Where a limb has no actuation wrench (transmission ``≤ rtol``) its row is the
     passive wrench acting most on the basis, with ``B_jj = 0``. Row scaling, signs, closeness
     measures and types as in the module docstring.

@@ -56,7 +56,7 @@ from ..algebra import backend as B
 from ..exceptions import ScrewkitValueError
 from ..graphs.joints import JointTable
 from ..graphs.twistgraph import graph_frame
-from .wrenches import WrenchAnalysis, analyze_table
+from .wrench_systems import WrenchAnalysis, analyze_table
 
 __all__ = [
     "generic_analyses",
@@ -372,7 +372,7 @@ def generic_analyses(
 ) -> list[WrenchAnalysis]:
     """Wrench analyses of the graph's mechanism at ``count`` generic configurations, as one batch.
 
-    :func:`generic_configurations` analysed by :func:`~screwkit.core.wrenches.analyze_table` in one
+    :func:`generic_configurations` analysed by :func:`~screwkit.core.wrench_systems.analyze_table` in one
     call (``rtol``, ``length_scale`` as there); each analysis of one configuration carries its twist
     graph (the graph's ``dof`` and ``name`` kept).
 
@@ -413,7 +413,7 @@ def generic_mobility(
     The most common order of the platform's twist system over :data:`MOBILITY_SAMPLES` configurations
     reached from the graph's own by :func:`generic_configurations` (so a singular analysed pose does not
     decide it: a stretched limb loses a freedom there, a constraint singularity gains one), each
-    decided with ``rtol`` and ``length_scale`` (:func:`~screwkit.core.wrenches.analyze_table`). 0 for a
+    decided with ``rtol`` and ``length_scale`` (:func:`~screwkit.core.wrench_systems.analyze_table`). 0 for a
     mechanism whose loops admit no joint motion; None when Newton's method closed no loop.
 
     Examples

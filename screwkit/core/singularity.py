@@ -1,6 +1,6 @@
 """Labels over poses: regular, constraint, actuation or serial (limb) singularity (numeric).
 
-From a :class:`~screwkit.core.wrenches.WrenchAnalysis` (paper 002 §4–5; Zlatanov, Bonev & Gosselin
+From a :class:`~screwkit.core.wrench_systems.WrenchAnalysis` (paper 002 §4–5; Zlatanov, Bonev & Gosselin
 2002 for the constraint/actuation distinction):
 
 * **constraint singularity**: the mechanism's constraint wrench system ``W^c`` falls below its
@@ -12,25 +12,25 @@ From a :class:`~screwkit.core.wrenches.WrenchAnalysis` (paper 002 §4–5; Zlata
   its limb, so its actuation wrench is reciprocal to it: the actuator cannot move the platform
   (Gosselin & Angeles' inverse type). In a compound leg whose actuators share a link, decided on
   the leg as a whole where the limb's own wrench fails: the actuator moves with the platform fixed
-  (:func:`screwkit.core.wrenches.analyze_table`).
+  (:func:`screwkit.core.wrench_systems.analyze_table`).
 
 The *uncontrolled twists* are the platform twists reciprocal to every constraint and actuation
 wrench: the motions left with all actuators locked (empty at a regular pose).
 
-One pose and many go through the same kernels (:func:`screwkit.core.wrenches.analyze_table`):
+One pose and many go through the same kernels (:func:`screwkit.core.wrench_systems.analyze_table`):
 :func:`classify` is a batch of one, :func:`classify_poses` and :func:`classify_table` a batch.
 
 Closeness measures (all in [0, 1], unit-free, computed about the mechanism's own reference point
 and length (:func:`~screwkit.graphs.twistgraph.mechanism_frame`), so they follow rigid motions and
 changes of unit; 0 at the singularity; computed when first asked,
-:attr:`~screwkit.core.wrenches.WrenchAnalysis.closeness`: the labels do not need them):
+:attr:`~screwkit.core.wrench_systems.WrenchAnalysis.closeness`: the labels do not need them):
 
 * ``constraint``: σ_c0 / σ_1 of orthonormal bases of the compound legs' constraint systems,
   stacked, with ``c0 = 6 − dof`` (about the reference point, moments over the length);
 * ``actuation``: σ_6 / σ_1 of those bases stacked with the unit actuation wrenches (the wrench of
   a limb whose actuator shares a link with others, less its part in its compound leg's constraint
   system: otherwise the H4 near a vertical parallelogram plane would look near-singular,
-  :func:`screwkit.core.wrenches.analyze_table`);
+  :func:`screwkit.core.wrench_systems.analyze_table`);
 * ``serial``: the smallest normalised reciprocal product of an actuation wrench with its actuated
   twist (:func:`~screwkit.core.wrenches.normalized_reciprocal_product`; for lines, mutual moment over the
   length, which can exceed 1 for limbs far from the reference point).
@@ -60,7 +60,8 @@ from ..algebra.screwsystem import ScrewSystem
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
 from ..graphs.joints import JointTable
 from ..graphs.twistgraph import check_twist_graph
-from .wrenches import WrenchAnalysis, analyze_table, wrench_analysis
+from .wrench_systems import WrenchAnalysis, analyze_table
+from .wrenches import wrench_analysis
 
 if TYPE_CHECKING:
     from .generic import GenericAnalysis
@@ -395,7 +396,7 @@ def classify(
         Relative tolerance of every rank decision (:mod:`screwkit.core._frames`).
     length_scale : float, optional
         The characteristic length of the rank decisions, in the screws' unit; default: derived
-        from the screws (:func:`~screwkit.core.wrenches.analyze_table`).
+        from the screws (:func:`~screwkit.core.wrench_systems.analyze_table`).
 
     Returns
     -------
@@ -444,7 +445,7 @@ def classify_table(
         regular with one actuator per freedom).
     rtol : float, default 1e-9
     length_scale : float, optional
-        As in :func:`~screwkit.core.wrenches.analyze_table` (default: derived per configuration).
+        As in :func:`~screwkit.core.wrench_systems.analyze_table` (default: derived per configuration).
     chunk : int, default 1024
         Configurations analysed at once.
 
@@ -532,7 +533,7 @@ def classify_chunks(
 ) -> SingularityReport:
     """Label a flattened batch given chunk by chunk (the tables in order, one batch axis each).
 
-    Each chunk goes through :func:`~screwkit.core.wrenches.analyze_table` without its per-pose views,
+    Each chunk goes through :func:`~screwkit.core.wrench_systems.analyze_table` without its per-pose views,
     and its results are copied into arrays allocated for the whole batch once the first chunk
     gives their shapes, so no chunk outlives its turn and the results are never concatenated.
 
@@ -547,7 +548,7 @@ def classify_chunks(
     dof : int, optional
     rtol : float, default 1e-9
     length_scale : float, optional
-        As in :func:`~screwkit.core.wrenches.analyze_table`.
+        As in :func:`~screwkit.core.wrench_systems.analyze_table`.
 
     Examples
     --------
@@ -594,7 +595,7 @@ def classify_chunks(
     )
 
 
-#: The per-pose array fields of a :class:`~screwkit.core.wrenches.WrenchAnalysis`.
+#: The per-pose array fields of a :class:`~screwkit.core.wrench_systems.WrenchAnalysis`.
 _BATCH_FIELDS = (
     "reference_point",
     "length_scale",
@@ -678,7 +679,7 @@ def classify_poses(
         :func:`classify_table`.
     rtol : float, default 1e-9
     length_scale : float, optional
-        As in :func:`~screwkit.core.wrenches.analyze_table`.
+        As in :func:`~screwkit.core.wrench_systems.analyze_table`.
 
     Returns
     -------

@@ -43,10 +43,12 @@ import numpy as np
 
 from ..algebra import backend as B
 from ..algebra import screw as S
+from ..algebra.backend import checked_rtol
 from ..algebra.screwsystem import motion_type
 from ..core.jacobians import WrenchJacobians
 from ..core.singularity import SingularityReport, classify_analysis
-from ..core.wrenches import WrenchAnalysis, checked_rtol, wrench_analysis
+from ..core.wrench_systems import WrenchAnalysis
+from ..core.wrenches import wrench_analysis
 from ..exceptions import ScrewkitError, ScrewkitTypeError, ScrewkitValueError
 from ..graphs.twistgraph import equivalent_twist_graph, fundamental_loops
 from ..robots.catalog import Mechanism, file_kind, load_mechanism, load_snapshot, load_toml
@@ -443,7 +445,7 @@ def analyze(
     length_scale : float, optional
         The characteristic length of every rank decision, in the mechanism's length unit
         (moments are divided by it); default: derived from the screws at each configuration
-        (:func:`~screwkit.core.wrenches.analyze_table`), so that answers follow a change of unit.
+        (:func:`~screwkit.core.wrench_systems.analyze_table`), so that answers follow a change of unit.
     superbracket : bool, default True
         Also expand and factor the superbracket (skip for speed).
     progress : callable, optional

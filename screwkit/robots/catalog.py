@@ -243,7 +243,7 @@ class Mechanism:
             Relative tolerance of every rank decision (default 1e-9).
         length_scale : float, optional
             The characteristic length of the rank decisions, in the file's length unit; default:
-            derived from each pose's screws (:func:`~screwkit.core.wrenches.analyze_table`).
+            derived from each pose's screws (:func:`~screwkit.core.wrench_systems.analyze_table`).
         **options
             Passed to the inverse kinematics (a working mode).
 

@@ -36,9 +36,10 @@ import networkx as nx
 import numpy as np
 
 from ..algebra import backend as B
+from ..algebra.backend import checked_rtol
 from ..core.jacobians import WrenchJacobians, jacobians_from_wrenches
 from ..core.singularity import SingularityReport, classify_chunks, label_table
-from ..core.wrenches import WrenchAnalysis, analyze_table, checked_rtol
+from ..core.wrench_systems import WrenchAnalysis, analyze_table
 from ..exceptions import ScrewkitError, ScrewkitIndexError, ScrewkitValueError
 from ..graphs.joints import JointTable
 
@@ -84,7 +85,7 @@ class PosedMechanism:
     rtol : float
     length_scale : float or None
         The characteristic length of the rank decisions in the file's length unit; None: derived
-        per pose (:func:`~screwkit.core.wrenches.analyze_table`).
+        per pose (:func:`~screwkit.core.wrench_systems.analyze_table`).
     options : dict
         Passed to the inverse kinematics (a working mode).
     """
