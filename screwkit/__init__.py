@@ -16,7 +16,8 @@ from typing import Any
 
 from .algebra.screw import Screw, reciprocal_product
 from .algebra.screwsystem import ScrewSystem, motion_type
-from .core.singularity import SingularityReport, classify, classify_poses, classify_table
+from .core.singularity import classify, classify_poses, classify_table
+from .core.verdicts import SingularityReport
 from .core.wrench_systems import WrenchAnalysis, analyze_table
 from .core.wrenches import wrench_analysis
 from .exceptions import (
@@ -80,7 +81,7 @@ _LAZY = {
         ),
         "algebra.projective",
     ),
-    "WrenchJacobians": "core.jacobians",
+    "Jacobians": "core.jacobian_matrices",
     "jacobians_from_wrenches": "core.jacobians",
     "schoenflies_basis": "core.jacobians",
     "Pose": "robots.posed",
@@ -138,6 +139,7 @@ __all__ = [
     "DegenerateGeometryError",
     "Family",
     "GenericAnalysis",
+    "Jacobians",
     "Joint",
     "JointTable",
     "Mechanism",
@@ -156,7 +158,6 @@ __all__ = [
     "UnreachablePoseError",
     "WrenchAnalysis",
     "WrenchDiagram",
-    "WrenchJacobians",
     "__version__",
     "actuation_singularity_surface",
     "analyze",

@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 
 import screwkit as sk
-from screwkit.core.jacobians import classify_jacobians
+from screwkit.core.jacobian_matrices import classify_jacobians
 from screwkit.exceptions import (
     CatalogError,
     DegenerateGeometryError,

@@ -17,12 +17,12 @@ Quantities (:data:`QUANTITIES`)
 -------------------------------
 ``"verdict"``
     The core's code per pose: bit 1 constraint, 2 actuation, 4 serial (0 regular,
-    :attr:`screwkit.core.singularity.SingularityReport.codes`); ``-1`` where the pose is out of reach.
+    :attr:`screwkit.core.verdicts.SingularityReport.codes`); ``-1`` where the pose is out of reach.
 ``"closeness"``, ``"closeness:constraint"``, ``"closeness:actuation"``, ``"closeness:serial"``
     The core's closeness measures (:mod:`screwkit.core.singularity`), ``"closeness"`` their minimum.
 ``"det_A"``, ``"det_B"``
     Determinants of the forward and inverse Jacobians ``A χ̇ = B θ̇``
-    (:class:`screwkit.core.jacobians.WrenchJacobians`; paper 004 Eq. 6).
+    (:class:`screwkit.core.jacobian_matrices.Jacobians`; paper 004 Eq. 6).
 ``"lti"``, ``"kappa"``, ``"zeta"``
     The local transmission index ``η = min(κ, ζ)`` of paper 004 Eq. (16), its motion index ``κ``
     and force index ``ζ`` (Eq. 15) (:func:`screwkit.analysis.indices.transmission`; four-limb families).

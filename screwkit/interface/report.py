@@ -45,8 +45,8 @@ from ..algebra import backend as B
 from ..algebra import screw as S
 from ..algebra.backend import checked_rtol
 from ..algebra.screwsystem import motion_type
-from ..core.jacobians import WrenchJacobians
-from ..core.singularity import SingularityReport, classify_analysis
+from ..core.jacobian_matrices import Jacobians
+from ..core.verdicts import SingularityReport, classify_analysis
 from ..core.wrench_systems import WrenchAnalysis
 from ..core.wrenches import wrench_analysis
 from ..exceptions import ScrewkitError, ScrewkitTypeError, ScrewkitValueError
@@ -129,7 +129,7 @@ class AnalysisReport:
         exist at the pose (e.g. a limb at a serial singularity); ``superbracket_note`` says which.
     superbracket_note : str
         How structural zeros were confirmed, or why there is no factorization.
-    jacobians : WrenchJacobians or None
+    jacobians : Jacobians or None
         ``A χ̇ = B θ̇`` over the family's nominal twists at the pose, with the Gosselin–Angeles
         type (module docstring); None for a snapshot, or when the basis is refused at the pose.
     jacobians_note : str
@@ -155,7 +155,7 @@ class AnalysisReport:
     diagram: WrenchDiagram
     superbracket: SuperbracketAnalysis | None
     superbracket_note: str
-    jacobians: WrenchJacobians | None = None
+    jacobians: Jacobians | None = None
     jacobians_note: str = _SNAPSHOT_JACOBIANS
     transmission: dict[str, Any] | None = None
     given_length_scale: float | None = None
@@ -385,7 +385,7 @@ def _transmission_lines(summary: dict[str, Any]) -> list[str]:
     return out
 
 
-def _determinant_units(jac: WrenchJacobians, unit: str) -> tuple[str, str]:
+def _determinant_units(jac: Jacobians, unit: str) -> tuple[str, str]:
     """Units of det A and det B: the length to the number of rotations among the basis twists (A) and
     the actuated twists (B), when every row is a unit force (no units are claimed otherwise)."""
     if not unit or np.any(np.linalg.norm(jac.wrenches[:, :3], axis=-1) == 0):
@@ -574,7 +574,7 @@ def pose_report(
     # so that progress names the stages in order)
     step(STAGES[1])
     diagram, sampler = pose.diagram_and_sampler()
-    jacobians: WrenchJacobians | None = None
+    jacobians: Jacobians | None = None
     try:
         jacobians = pose.jacobians
         jacobians_note = (
@@ -620,7 +620,7 @@ def _finish(
     diagram: WrenchDiagram,
     sampler: Any,
     note: str,
-    jacobians: WrenchJacobians | None = None,
+    jacobians: Jacobians | None = None,
     jacobians_note: str = _SNAPSHOT_JACOBIANS,
     *,
     progress: Callable[[str], None],

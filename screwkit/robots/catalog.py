@@ -99,7 +99,7 @@ from ..graphs.twistgraph import add_joint, check_twist_graph
 from .families import Family, families
 
 if TYPE_CHECKING:
-    from ..core.jacobians import WrenchJacobians
+    from ..core.jacobian_matrices import Jacobians
 
 __all__ = [
     "LENGTH_UNITS",
@@ -415,7 +415,7 @@ class Mechanism:
         """
         return self._one(pose, options).twist_basis
 
-    def jacobians(self, pose: Any = None, **options: Any) -> WrenchJacobians:
+    def jacobians(self, pose: Any = None, **options: Any) -> Jacobians:
         """Forward and inverse Jacobians ``A χ̇ = B θ̇`` from the wrench systems at a pose.
 
         :func:`screwkit.core.jacobians.jacobians_from_wrenches` of the wrench analysis over

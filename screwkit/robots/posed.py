@@ -37,8 +37,10 @@ import numpy as np
 
 from ..algebra import backend as B
 from ..algebra.backend import checked_rtol
-from ..core.jacobians import WrenchJacobians, jacobians_from_wrenches
-from ..core.singularity import SingularityReport, classify_chunks, label_table
+from ..core.jacobian_matrices import Jacobians
+from ..core.jacobians import jacobians_from_wrenches
+from ..core.singularity import classify_chunks, label_table
+from ..core.verdicts import SingularityReport
 from ..core.wrench_systems import WrenchAnalysis, analyze_table
 from ..exceptions import ScrewkitError, ScrewkitIndexError, ScrewkitValueError
 from ..graphs.joints import JointTable
@@ -211,7 +213,7 @@ class PosedMechanism:
         return self.singularities.closeness
 
     @functools.cached_property
-    def jacobians(self) -> WrenchJacobians:
+    def jacobians(self) -> Jacobians:
         """``A χ̇ = B θ̇`` per pose over the family's nominal twists."""
         return jacobians_from_wrenches(self.singularities.analysis, self.twist_basis, rtol=self.rtol)
 
@@ -311,7 +313,7 @@ class Pose:
         return basis.reshape(-1, *basis.shape[-2:])[self.flat_index]
 
     @functools.cached_property
-    def jacobians(self) -> WrenchJacobians:
+    def jacobians(self) -> Jacobians:
         """``A χ̇ = B θ̇`` at this pose."""
         return jacobians_from_wrenches(self.analysis, self.twist_basis, rtol=self.posed.rtol)
 
