@@ -65,6 +65,17 @@ Array = np.ndarray
 def is_symbolic_graph(graph: nx.MultiDiGraph, *, joint_key: str = "joint") -> bool:
     """True when some joint of a twist graph holds a sympy expression in its screws.
 
+    Parameters
+    ----------
+    graph : networkx.MultiDiGraph
+        A twist graph.
+    joint_key : str, default "joint"
+        The edge attribute holding each joint.
+
+    Returns
+    -------
+    bool
+
     Examples
     --------
     >>> import sympy
@@ -188,6 +199,12 @@ class GenericAnalysis:
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready summary (expressions as strings).
+
+        Returns
+        -------
+        dict
+            ``generic`` (True), ``symbols``, ``mobility``, ``motion_type``, ``verdict``, the generic
+            systems and orders, the compound legs and limbs; expressions as strings.
 
         Examples
         --------

@@ -376,6 +376,23 @@ def generic_analyses(
     call (``rtol``, ``length_scale`` as there); each analysis of one configuration carries its twist
     graph (the graph's ``dof`` and ``name`` kept).
 
+    Parameters
+    ----------
+    graph : networkx.MultiDiGraph
+        A twist graph of the mechanism (numbers), at any pose.
+    rng : numpy.random.Generator
+        Draws the configurations (:func:`generic_configurations`).
+    count : int
+        How many configurations.
+    rtol : float, default 1e-9
+    length_scale : float, optional
+        As in :func:`~screwkit.core.wrench_systems.analyze_table`.
+
+    Returns
+    -------
+    list of WrenchAnalysis
+        One analysis of one configuration each (shape ``()``), in the order drawn.
+
     Examples
     --------
     >>> from screwkit.robots.catalog import load_mechanism
@@ -415,6 +432,20 @@ def generic_mobility(
     decide it: a stretched limb loses a freedom there, a constraint singularity gains one), each
     decided with ``rtol`` and ``length_scale`` (:func:`~screwkit.core.wrench_systems.analyze_table`). 0 for a
     mechanism whose loops admit no joint motion; None when Newton's method closed no loop.
+
+    Parameters
+    ----------
+    graph : networkx.MultiDiGraph
+        A twist graph of the mechanism (numbers).
+    joint_key : str, default "joint"
+    rtol : float, default 1e-9
+    length_scale : float, optional
+        As in :func:`~screwkit.core.wrench_systems.analyze_table`.
+
+    Returns
+    -------
+    int or None
+        The mobility (0 to 6), None when no loop could be closed.
 
     Examples
     --------
@@ -459,6 +490,11 @@ def resolve_dof(stated: int | None, mobility: int, actuated: tuple[str, ...] | l
         :func:`generic_mobility`.
     actuated : sequence of str
         The actuated joints.
+
+    Returns
+    -------
+    int
+        The mobility (``stated`` when it equals it).
 
     Raises
     ------
@@ -526,6 +562,29 @@ def settled_dof(
     (:func:`generic_mobility`, 0.03–0.2 s, with the analysis's ``rtol`` and the given
     ``length_scale``; where no loop could be closed, the platform's most common order over the
     analysed poses stands in for it).
+
+    Parameters
+    ----------
+    graph : networkx.MultiDiGraph
+        The analysed twist graph (for a batch, its first configuration's).
+    stated : int or None
+        The ``dof`` given (argument or the graph's or table's attribute); None derives it.
+    analysis : WrenchAnalysis
+        The first analysis, made with ``stated`` (or the number of actuators).
+    joint_key : str, default "joint"
+    rtol : float, default 1e-9
+    length_scale : float, optional
+        As in :func:`~screwkit.core.wrench_systems.analyze_table`.
+
+    Returns
+    -------
+    int
+        The nominal ``dof``; when it differs from ``analysis.dof`` the caller analyses again with it.
+
+    Raises
+    ------
+    TwistGraphError
+        A ``dof`` other than the mobility, or more actuators than it (:func:`resolve_dof`).
 
     Examples
     --------

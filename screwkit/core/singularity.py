@@ -163,6 +163,30 @@ def label_table(
     """:func:`classify_table` with ``dof`` taken as given (default: the table's, else the number of
     actuators), unchecked: for tables whose ``dof`` is known, a catalog family's.
 
+    Parameters
+    ----------
+    table : JointTable
+        With a batch axis.
+    dof : int, optional
+        The nominal mobility, taken as given (default: the table's, else the number of actuators).
+    rtol : float, default 1e-9
+    length_scale : float, optional
+        As in :func:`~screwkit.core.wrench_systems.analyze_table`.
+    chunk : int, default 1024
+        Configurations analysed at once.
+
+    Returns
+    -------
+    SingularityReport
+        Over the table's batch.
+
+    Raises
+    ------
+    ScrewkitTypeError
+        If ``table`` is not a JointTable.
+    ScrewkitValueError
+        If ``chunk`` is not a positive integer, or the table has no batch axis.
+
     Examples
     --------
     >>> from screwkit.graphs.joints import JointTable
@@ -221,6 +245,16 @@ def classify_chunks(
     rtol : float, default 1e-9
     length_scale : float, optional
         As in :func:`~screwkit.core.wrench_systems.analyze_table`.
+
+    Returns
+    -------
+    SingularityReport
+        Over ``shape``; its analysis keeps the arrays of the whole batch and ``table_source``.
+
+    Raises
+    ------
+    ScrewkitValueError
+        If the chunks hold other than ``prod(shape)`` configurations in all.
 
     Examples
     --------
@@ -295,6 +329,27 @@ def checked_screws(
     graph: nx.MultiDiGraph, screws: Mapping[str, Any]
 ) -> tuple[dict[str, Array], tuple[int, ...]]:
     """Validate batched joint screws against a template graph: ``{name: (..., dof, 6)}``, batch shape.
+
+    Parameters
+    ----------
+    graph : networkx.MultiDiGraph
+        The template twist graph (its joints' names and numbers of screws).
+    screws : mapping of joint name to array_like, shape (..., dof_j, 6)
+        Every joint's screws over one batch shape.
+
+    Returns
+    -------
+    arrays : dict of str to numpy.ndarray
+        The screws as float arrays, by joint name (sorted).
+    batch : tuple of int
+        Their common batch shape.
+
+    Raises
+    ------
+    ScrewkitTypeError
+        If ``screws`` is not a mapping.
+    ScrewkitValueError
+        If the joints differ from the graph's, or a shape disagrees (the odd one named).
 
     Examples
     --------

@@ -251,6 +251,12 @@ class SingularityReport:
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready report of one pose.
 
+        Returns
+        -------
+        dict
+            ``verdict``, ``labels``, ``dof``, the orders and freedoms gained, lost and uncontrolled,
+            the serial limbs and the closeness measures (JSON-ready).
+
         Examples
         --------
         >>> from screwkit.graphs.joints import prismatic
@@ -343,6 +349,21 @@ def _same_kind(value: Array) -> Any:
 
 def classify_analysis(analysis: WrenchAnalysis) -> SingularityReport:
     """Label a wrench analysis (see the module docstring).
+
+    Parameters
+    ----------
+    analysis : WrenchAnalysis
+        Of one pose or a batch.
+
+    Returns
+    -------
+    SingularityReport
+        Of the analysis's shape.
+
+    Raises
+    ------
+    ScrewkitTypeError
+        If ``analysis`` is not a WrenchAnalysis.
 
     Examples
     --------

@@ -347,6 +347,11 @@ class WrenchAnalysis:
 
         Falls back to a basis of :attr:`constraint_wrenches` when the graph is not
         series-parallel.
+
+        Returns
+        -------
+        numpy.ndarray, shape (k, 6)
+            Each compound leg's constraint wrenches (readable basis), legs in order.
         """
         legs = self.compound_legs
         if not legs:

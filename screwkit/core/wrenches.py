@@ -44,6 +44,25 @@ Array = np.ndarray
 def translated_graph(graph: nx.MultiDiGraph, offset: Any, *, joint_key: str = "joint") -> nx.MultiDiGraph:
     """A copy of a twist graph with every joint moved by a translation (screws via the adjoint).
 
+    Parameters
+    ----------
+    graph : networkx.MultiDiGraph
+        A twist graph.
+    offset : array_like, shape (3,)
+        The translation.
+    joint_key : str, default "joint"
+        The edge attribute holding each joint.
+
+    Returns
+    -------
+    networkx.MultiDiGraph
+        A new graph: every joint's screws, its geometry's points and the graph's anchor moved.
+
+    Raises
+    ------
+    ScrewkitValueError
+        If ``offset`` is not three numbers.
+
     Examples
     --------
     >>> from screwkit.graphs.joints import revolute
@@ -84,6 +103,26 @@ def normalized_reciprocal_product(
     ``L`` the characteristic length. For two lines it is ``d·sin θ / L`` (their mutual moment over
     ``L``); for a line and a couple, or a force and a translation, the cosine of their angle.
     Zero exactly when the screws are reciprocal.
+
+    Parameters
+    ----------
+    first, second : array_like, shape (..., 6)
+        Screws (broadcast against each other).
+    length_scale : float
+        The characteristic length ``L``.
+    rtol : float, default 1e-9
+        A screw is a couple (or translation) where its direction is at most ``rtol`` of its moment
+        over ``L``.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        Of the broadcast batch shape.
+
+    Raises
+    ------
+    DegenerateGeometryError
+        If a screw is zero.
 
     Examples
     --------
