@@ -85,6 +85,20 @@ def rod(rows: Array, rtol: float) -> tuple[Array, Array]:
     Each centre is the least-squares point of its axes, ``N⁻¹ Σ f`` with ``N = Σ (I − û ûᵀ)`` and
     ``f = u × m / |u|²`` the feet (by the adjugate of ``N``).
 
+    Parameters
+    ----------
+    rows : array_like, shape (..., 6, 6)
+        Three unit axes of each spherical joint, scaled.
+    rtol : float
+        The rule's relative threshold.
+
+    Returns
+    -------
+    rows : numpy.ndarray, shape (..., 6, 6)
+        The wrench frame's rows.
+    order : numpy.ndarray of int, shape (...)
+        1 where the closed form applies.
+
     Examples
     --------
     >>> sphere = lambda c: [[*e, *np.cross(c, e)] for e in np.eye(3)]
@@ -135,6 +149,24 @@ def extend(rows: Array, order: Array, t: Array, rtol: float) -> tuple[Array, Arr
     decided)``; where ``decided`` is False the caller spans (the rule decides). The numpy path of
     :func:`screwkit.core._closed_forms_numba.extend_into`, operation for operation.
 
+    Parameters
+    ----------
+    rows : array_like, shape (..., 6, 6)
+        A twist frame's rows.
+    order : array_like of int, shape (...)
+        Its order.
+    t : array_like, shape (..., 6)
+        The joint's scaled screw.
+    rtol : float
+        The rule's relative threshold.
+
+    Returns
+    -------
+    rows : numpy.ndarray, shape (..., 6, 6)
+    order : numpy.ndarray of int, shape (...)
+    decided : numpy.ndarray of bool, shape (...)
+        False where the caller must span.
+
     Examples
     --------
     >>> frame = np.eye(6)[:2]; frame = np.concatenate([frame, np.zeros((4, 6))])
@@ -176,6 +208,24 @@ def contract(rows: Array, order: Array, t: Array, rtol: float) -> tuple[Array, A
     order, decided)``; where ``decided`` is False the caller takes the reciprocal, spans and takes
     the reciprocal again (the rule decides). The numpy path of
     :func:`screwkit.core._closed_forms_numba.contract_into`, operation for operation.
+
+    Parameters
+    ----------
+    rows : array_like, shape (..., 6, 6)
+        A wrench frame's rows.
+    order : array_like of int, shape (...)
+        Its order.
+    t : array_like, shape (..., 6)
+        The joint's scaled screw.
+    rtol : float
+        The rule's relative threshold.
+
+    Returns
+    -------
+    rows : numpy.ndarray, shape (..., 6, 6)
+    order : numpy.ndarray of int, shape (...)
+    decided : numpy.ndarray of bool, shape (...)
+        False where the caller must take the rule's way.
 
     Examples
     --------
@@ -229,6 +279,24 @@ def parallelogram(
     Paper 002 §4.1 spans the wrenches by ``τ̂01 = (s_mp; r_p × s_mp)`` and ``τ̂∞1 = (0; s_mp × s_mn)``
     and the twists by ``ε̂01 = (s_mp; r_p × s_mp)``, ``ε̂02 = (s_mn; r_n × s_mn)``, ``ε̂∞1 = (0; n)``,
     ``ε̂∞2 = (0; s_mp × n)``: the same two systems (``tests/test_frames.py`` checks them by rank).
+
+    Parameters
+    ----------
+    first, second : tuple of numpy.ndarray
+        The two rods' wrench frames ``(rows (..., 6, 6), order (...))``.
+    rtol : float
+        The rule's relative threshold.
+
+    Returns
+    -------
+    wrenches : numpy.ndarray, shape (..., 6, 6)
+    wrench_order : numpy.ndarray of int, shape (...)
+        2.
+    twists : numpy.ndarray, shape (..., 6, 6)
+    twist_order : numpy.ndarray of int, shape (...)
+        4.
+    decided : numpy.ndarray of bool, shape (...)
+        False where the caller must span.
 
     Examples
     --------

@@ -41,6 +41,15 @@ def triangular(rows: Array) -> Array:
     :func:`singular_ratio`, stored in :func:`packed` form. The numpy path does
     :func:`screwkit.core._closing_numba.triangular`'s operations in its order (bit for bit).
 
+    Parameters
+    ----------
+    rows : array_like, shape (..., k, 6)
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 6, 6)
+        Upper triangular.
+
     Examples
     --------
     >>> rows = np.vstack([np.eye(6), 3 * np.eye(6)[:1]])
@@ -81,6 +90,18 @@ def unit_size(rows: Array, length: Array) -> Array:
     unit couple where the force is negligible,
     :data:`~screwkit.core._kernel_constants.COUPLE_RTOL`); norms summed left to right.
 
+    Parameters
+    ----------
+    rows : numpy.ndarray, shape (..., k, 6)
+        User-frame wrench rows.
+    length : numpy.ndarray, shape (...)
+        The characteristic length.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., k, 1)
+        The force's norm, the moment's for a couple; 1 for a zero row.
+
     Examples
     --------
     >>> unit_size(np.array([[0, 0, 2.0, 1, 0, 0], [0, 0, 0, 0, 3.0, 0]]), np.array(1.0))[:, 0]
@@ -115,6 +136,31 @@ def closing(
     Returns ``(global rows, global order, constraint factor, actuation factor, actuation rows)``.
     On the numba path one compiled pass (:func:`screwkit.core._closing_numba.closing`), these
     operations in this order (bit for bit).
+
+    Parameters
+    ----------
+    constraint : numpy.ndarray, shape (..., 6, 6)
+        The constraint frame's rows (scaled).
+    wrenches : numpy.ndarray, shape (..., l, 6)
+        The limbs' scaled wrench rows (zero where serial).
+    legs : numpy.ndarray, shape (..., L, 6, 6)
+        The compound legs' wrench frames.
+    apart : numpy.ndarray, shape (..., l, 6)
+        The wrench rows apart from their legs (the actuation closeness's rows).
+    serial : numpy.ndarray of bool, shape (..., l)
+    centre : numpy.ndarray, shape (..., 3)
+    length : numpy.ndarray, shape (...)
+    rtol : float
+        The rule's relative threshold.
+
+    Returns
+    -------
+    global_rows : numpy.ndarray, shape (..., 6, 6)
+    global_order : numpy.ndarray of int, shape (...)
+    constraint_factor, actuation_factor : numpy.ndarray, shape (..., 21)
+        Packed triangles.
+    actuation : numpy.ndarray, shape (..., l, 6)
+        The actuation rows, user frame.
 
     Examples
     --------
@@ -151,6 +197,14 @@ def packed(triangle: Array) -> Array:
     """An upper triangular ``(..., 6, 6)`` (:func:`triangular`) as its 21 entries ``(..., 21)`` on
     and above the diagonal (row by row): the closeness inputs a batch keeps in 168 bytes a pose.
 
+    Parameters
+    ----------
+    triangle : numpy.ndarray, shape (..., 6, 6)
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 21)
+
     Examples
     --------
     >>> triangle = np.triu(np.arange(36.0).reshape(6, 6))
@@ -162,7 +216,16 @@ def packed(triangle: Array) -> Array:
 
 def unpacked(values: Array) -> Array:
     """:func:`packed`'s inverse: ``(..., 21)`` → the upper triangular ``(..., 6, 6)`` (exact zeros
-    below the diagonal)."""
+    below the diagonal).
+
+    Parameters
+    ----------
+    values : numpy.ndarray, shape (..., 21)
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 6, 6)
+    """
     out = np.zeros((*values.shape[:-1], 6, 6))
     out[..., UPPER[0], UPPER[1]] = values
     return out
@@ -170,6 +233,16 @@ def unpacked(values: Array) -> Array:
 
 def singular_ratio(rows: Array, index: int) -> Array:
     """``σ_index / σ_1`` of rows ``(..., k, 6)`` (1 for ``index ≤ 0``, 0 when ``k < index``).
+
+    Parameters
+    ----------
+    rows : numpy.ndarray, shape (..., k, 6)
+    index : int
+        Which singular value over the largest (1-based).
+
+    Returns
+    -------
+    numpy.ndarray, shape (...)
 
     Examples
     --------

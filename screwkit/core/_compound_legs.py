@@ -66,14 +66,34 @@ class LockedLegs(NamedTuple):
     rows: Array
 
     def add_to(self, global_frame: Frame, constraint: Frame, rows: Array, rtol: float) -> None:
-        """The global system ``W^c + Σ_L W_L,locked`` at those poses (in place; one rank rule)."""
+        """The global system ``W^c + Σ_L W_L,locked`` at those poses (in place; one rank rule).
+
+        Parameters
+        ----------
+        global_frame : tuple of numpy.ndarray
+            The global frame over the batch, changed in place.
+        constraint : tuple of numpy.ndarray
+            The constraint frame.
+        rows : numpy.ndarray, shape (..., n, 6)
+            The limbs' wrench rows.
+        rtol : float
+        """
         where = self.where
         frame = F.span(np.concatenate([constraint[0][where], rows[where], self.rows], axis=-2), rtol)
         global_frame[0][where], global_frame[1][where] = frame
 
 
 def coupled_limbs(top: Topology) -> list[int]:
-    """The limbs with partners in a compound leg (none in a network)."""
+    """The limbs with partners in a compound leg (none in a network).
+
+    Parameters
+    ----------
+    top : Topology
+
+    Returns
+    -------
+    list of int
+    """
     return [] if top.network else [k for k, plan in enumerate(top.limbs) if plan.partners]
 
 
@@ -81,7 +101,18 @@ def leg_residuals(top: Topology, rows: Array, legs: Array) -> Array | None:
     """Wrench rows ``(..., n, 6)`` of the limbs with partners (:func:`coupled_limbs`) less their part in
     their compound leg's constraint system (``legs (..., L, 6, 6)``, the legs' wrench frames),
     ``(..., m, 6)`` (not renormalised; None without such limbs): what :func:`compound_legs` and
-    :func:`apart_from_legs` measure."""
+    :func:`apart_from_legs` measure.
+
+    Parameters
+    ----------
+    top : Topology
+    rows : numpy.ndarray, shape (..., n, 6)
+    legs : numpy.ndarray, shape (..., L, 6, 6)
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., m, 6), or None
+    """
     coupled = coupled_limbs(top)
     if not coupled:
         return None
@@ -93,7 +124,18 @@ def apart_from_legs(top: Topology, rows: Array, residuals: Array | None) -> Arra
     compound leg's constraint system (``residuals``, :func:`leg_residuals` of ``rows``;
     renormalised): the actuation closeness's rows. A limb's own wrench may lie close to that system
     where the leg as a whole transmits well (the H4 near ``n1·z = 0``, :func:`compound_legs`),
-    which would fake a near-singularity."""
+    which would fake a near-singularity.
+
+    Parameters
+    ----------
+    top : Topology
+    rows : numpy.ndarray, shape (..., n, 6)
+    residuals : numpy.ndarray, shape (..., m, 6), or None
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., n, 6)
+    """
     if residuals is None:
         return rows
     out = rows.copy()
@@ -102,7 +144,18 @@ def apart_from_legs(top: Topology, rows: Array, residuals: Array | None) -> Arra
 
 
 def leg_of(top: Topology, k: int) -> int:
-    """The index in :attr:`Topology.legs` of limb ``k``'s compound leg."""
+    """The index in :attr:`Topology.legs` of limb ``k``'s compound leg.
+
+    Parameters
+    ----------
+    top : Topology
+    k : int
+        A limb.
+
+    Returns
+    -------
+    int
+    """
     return next(i for i, leg in enumerate(top.legs) if leg in top.limbs[k].path)
 
 
@@ -169,6 +222,27 @@ def compound_legs(
     partner, so it is kept: the leg is analysed as a whole only at the poses where a limb with
     partners is serial by its chain or its wrench lies within :data:`COMPOUND_RTOL` of ``W_free``,
     and only its failing limbs are replaced.
+
+    Parameters
+    ----------
+    top : Topology
+    scaled : numpy.ndarray, shape (..., rows, 6)
+        The unit scaled joint screws.
+    rtol : float
+    leg_wrenches : list of tuple of numpy.ndarray
+        Each compound leg's wrench frame.
+    actuated : numpy.ndarray, shape (..., n, 6)
+        The actuated twists, scaled.
+    limbs : tuple of numpy.ndarray
+        The limbs' own ``wrench, serial, transmissions``.
+    residuals : numpy.ndarray, shape (..., m, 6), or None
+        :func:`leg_residuals` of their wrenches.
+
+    Returns
+    -------
+    tuple or None
+        ``(serial, wrench, branch, transmissions, LockedLegs)`` over the batch, None where no
+        limb's wrench fails.
     """
     coupled = coupled_limbs(top)
     if residuals is None:
@@ -242,7 +316,21 @@ def compound_legs(
 
 
 def leg_path(top: Topology, k: int, leg: int) -> tuple[int, ...]:
-    """Limb ``k``'s path from its compound leg's node down to its actuated joint."""
+    """Limb ``k``'s path from its compound leg's node down to its actuated joint.
+
+    Parameters
+    ----------
+    top : Topology
+    k : int
+        A limb.
+    leg : int
+        Its compound leg.
+
+    Returns
+    -------
+    tuple of int
+        Tree nodes.
+    """
     path = top.limbs[k].path
     return path[path.index(top.legs[leg]) :]
 
@@ -252,7 +340,22 @@ def branch_part(
 ) -> Array:
     """The part of wrenches ``(m, k, 6)`` of a leg's locked system that reaches the end of
     ``path``: split at each parallel node into its branches' locked wrench systems (minimum-norm
-    least squares), the path's branch kept."""
+    least squares), the path's branch kept.
+
+    Parameters
+    ----------
+    top : Topology
+    locked : Evaluation
+        The frames with every actuator locked.
+    path : tuple of int
+        :func:`leg_path`.
+    wrenches : numpy.ndarray, shape (m, k, 6)
+    rtol : float
+
+    Returns
+    -------
+    numpy.ndarray, shape (m, k, 6)
+    """
     for node_index, child in itertools.pairwise(path):
         node = top.nodes[node_index]
         if node.kind != "parallel":

@@ -179,6 +179,11 @@ def backend() -> str:
     """``"numba"`` or ``"numpy"``: the implementation of batches of :data:`COMPILED_MIN_BATCH`
     frames or more in this process (smaller ones run numpy until numba is loaded).
 
+    Returns
+    -------
+    str
+        ``"numba"`` or ``"numpy"``.
+
     Examples
     --------
     >>> backend() in {"numba", "numpy"}
@@ -189,6 +194,20 @@ def backend() -> str:
 
 def to_scaled(screws: Array, centre: Array, length: Array) -> Array:
     """Screws ``(..., k, 6)`` about ``centre`` ``(..., 3)`` with moments over ``length`` ``(...)``.
+
+    Parameters
+    ----------
+    screws : numpy.ndarray, shape (..., k, 6)
+        User-frame screws.
+    centre : numpy.ndarray, shape (..., 3)
+        The reference point.
+    length : numpy.ndarray, shape (...)
+        The characteristic length.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., k, 6)
+        The screws in scaled coordinates.
 
     Examples
     --------
@@ -236,6 +255,20 @@ def unit_scaled(screws: Array, centre: Array, length: Array) -> Array:
 def from_scaled(rows: Array, centre: Array, length: Array) -> Array:
     """The inverse of :func:`to_scaled`: rows ``(..., k, 6)`` back to the user's frame and unit.
 
+    Parameters
+    ----------
+    rows : numpy.ndarray, shape (..., k, 6)
+        Scaled rows.
+    centre : numpy.ndarray, shape (..., 3)
+        The reference point.
+    length : numpy.ndarray, shape (...)
+        The characteristic length.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., k, 6)
+        The rows in the user's frame and unit.
+
     Examples
     --------
     >>> from_scaled(np.array([[0, 0, 1.0, 0, 0, 0]]), np.array([0, 2.0, 0]), np.array(2.0))
@@ -250,6 +283,15 @@ def swapped(rows: Array) -> Array:
     """``rows (..., 6)`` with their halves exchanged: ``SWAP`` applied exactly (no BLAS call, whose
     kernels, and so whose last bits, depend on the batch size).
 
+    Parameters
+    ----------
+    rows : numpy.ndarray, shape (..., 6)
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 6)
+        ``(rows[..., 3:], rows[..., :3])``.
+
     Examples
     --------
     >>> swapped(np.arange(6.0))
@@ -261,6 +303,18 @@ def swapped(rows: Array) -> Array:
 def empty(batch: tuple[int, ...]) -> tuple[Array, Array]:
     """The frame of the 0-system over a batch.
 
+    Parameters
+    ----------
+    batch : tuple of int
+        The batch shape.
+
+    Returns
+    -------
+    rows : numpy.ndarray, shape (*batch, 6, 6)
+        Zeros.
+    order : numpy.ndarray of int, shape batch
+        Zeros.
+
     Examples
     --------
     >>> empty((2,))[1]
@@ -271,6 +325,19 @@ def empty(batch: tuple[int, ...]) -> tuple[Array, Array]:
 
 def span(generators: Array, rtol: float) -> tuple[Array, Array]:
     """The frame of the system spanned by ``generators`` ``(..., k, 6)`` (the module's rank rule).
+
+    Parameters
+    ----------
+    generators : array_like, shape (..., k, 6)
+        Scaled generators.
+    rtol : float
+        The rule's relative threshold.
+
+    Returns
+    -------
+    rows : numpy.ndarray, shape (..., 6, 6)
+        An orthonormal basis in the first ``order`` rows, zero rows after.
+    order : numpy.ndarray of int, shape (...)
 
     Examples
     --------
@@ -357,6 +424,20 @@ def complement(rows: Array, order: Array) -> tuple[Array, Array]:
     The complete Householder QR of the frame's rows as columns: its first ``order`` columns span
     the frame, the others its complement (no rank decision is made).
 
+    Parameters
+    ----------
+    rows : numpy.ndarray, shape (..., 6, 6)
+        A frame's rows.
+    order : numpy.ndarray of int, shape (...)
+        Its order.
+
+    Returns
+    -------
+    rows : numpy.ndarray, shape (..., 6, 6)
+        The complement's frame rows.
+    order : numpy.ndarray of int, shape (...)
+        ``6 − order``.
+
     Examples
     --------
     >>> rows, order = complement(np.diag([1.0, 0, 0, 0, 0, 0]), np.array(1))
@@ -428,6 +509,20 @@ def _complement_numpy(rows: Array, order: Array, *, swap: bool = False) -> tuple
 def reciprocal(rows: Array, order: Array) -> tuple[Array, Array]:
     """The frame of the reciprocal system: ``SWAP`` applied to the complement.
 
+    Parameters
+    ----------
+    rows : numpy.ndarray, shape (..., 6, 6)
+        A frame's rows (scaled).
+    order : numpy.ndarray of int, shape (...)
+        Its order.
+
+    Returns
+    -------
+    rows : numpy.ndarray, shape (..., 6, 6)
+        The reciprocal system's frame rows.
+    order : numpy.ndarray of int, shape (...)
+        ``6 − order``.
+
     Examples
     --------
     >>> line = np.zeros((6, 6)); line[0, 2] = 1.0           # the z axis through the reference point
@@ -442,6 +537,16 @@ def reciprocal(rows: Array, order: Array) -> tuple[Array, Array]:
 
 def residual(vectors: Array, rows: Array) -> Array:
     """``vectors (..., k, 6)`` minus their projections on a frame's rows (re-orthogonalised once).
+
+    Parameters
+    ----------
+    vectors : numpy.ndarray, shape (..., k, 6)
+    rows : numpy.ndarray, shape (..., m, 6)
+        Orthonormal rows (zero rows allowed), broadcast against ``vectors``' batch.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., k, 6)
 
     Examples
     --------
@@ -469,6 +574,18 @@ def residuals_against(vectors: Array, frames: Array, which: Array) -> Array:
     """``vectors (..., k, 6)`` each minus its projections on one of ``frames (..., f, 6, 6)``
     (vector ``j`` on frame ``which[j]``; rows orthonormal, zero beyond their order), twice: what
     :func:`residual` does vector by vector, in one call over strided frames (a program's block).
+
+    Parameters
+    ----------
+    vectors : numpy.ndarray, shape (..., k, 6)
+    frames : numpy.ndarray, shape (..., f, 6, 6)
+        Orthonormal rows, zero beyond each frame's order.
+    which : array_like of int, shape (k,)
+        The frame of each vector.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., k, 6)
 
     Examples
     --------

@@ -69,6 +69,20 @@ def limb_systems(
     Sums run left to right from ``0.0`` (:func:`sum_in_order`), as the compiled kernel
     (:func:`screwkit.core._limbs_numba.limb_systems`): the two paths agree bit for bit.
 
+    Parameters
+    ----------
+    locked : array_like, shape (..., l, 6, 6)
+        Each limb's twists with its actuator locked (a frame).
+    locked_order : array_like of int, shape (..., l)
+    passive : array_like, shape (..., l, 6, 6)
+        Each limb's passive wrenches (a frame).
+    actuated : array_like, shape (..., l, 6)
+        Each limb's actuated twist, scaled.
+    rtol : float
+        The rule's relative threshold.
+    free_rows : bool, default True
+        Whether to return the free twists' rows.
+
     Returns
     -------
     perpendicular (..., l, 6), serial (..., l), free rows (..., l, 6, 6) (None unless
@@ -118,6 +132,16 @@ def not_lines(rows: Array, line_rtol: float) -> Array:
     ``h = s·m / s·s`` (the screw's pitch, module conventions; :func:`screwkit.algebra.screw.pitch`) has
     ``|h| |s| > line_rtol |w|``, component by component (the compiled kernels' operations).
 
+    Parameters
+    ----------
+    rows : numpy.ndarray, shape (..., 6)
+    line_rtol : float
+        The relative pitch tolerance (:data:`screwkit.core.line_search.LINE_RTOL`).
+
+    Returns
+    -------
+    numpy.ndarray of bool, shape (...)
+
     Examples
     --------
     >>> not_lines(np.array([[0, 0, 1.0, 1.0, 0, 0], [0, 0, 1.0, 0, 0, 1.0]]), 1e-6)
@@ -149,6 +173,27 @@ def limb_wrenches(
     :func:`residuals_against`). Returns ``(serial, free order, direction, wrench, transmissions,
     residuals, not_line)``. On the numba path one compiled pass
     (:func:`screwkit.core._limbs_numba.limb_wrenches`): the same operations, bit for bit.
+
+    Parameters
+    ----------
+    locked, locked_order, passive, actuated
+        As in :func:`limb_systems`.
+    legs : array_like, shape (..., L, 6, 6)
+        The compound legs' wrench frames.
+    coupled : array_like of int, shape (m,)
+        The limbs with partners.
+    leg_of : array_like of int, shape (m,)
+        Each one's leg.
+    rtol : float
+        The rule's relative threshold.
+    line_rtol : float
+        As in :func:`not_lines`.
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        ``(serial (..., l), free order (..., l), direction (..., l, 6), wrench (..., l, 6),
+        transmissions (..., l), residuals (..., m, 6), not_line (..., l))``.
 
     Examples
     --------
@@ -183,6 +228,16 @@ def actuation_directions(passive: Array, perpendicular: Array) -> Array:
     it there keeps a clean passive wrench even when ``t⊥`` is round-off (a serial singularity), so
     ``w ∘ t`` is then round-off too. Sums left to right from ``0.0`` (the compiled kernel's order).
 
+    Parameters
+    ----------
+    passive : numpy.ndarray, shape (..., 6, 6)
+    perpendicular : numpy.ndarray, shape (..., 6)
+        ``t⊥``.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 6)
+
     Examples
     --------
     >>> actuation_directions(np.eye(6)[:1], np.array([0, 0, 0, 2.0, 0, 0]))
@@ -198,6 +253,14 @@ def unit_rows(rows: Array) -> Array:
     """``rows (..., 6)`` over their norms (zero rows kept), the norm summed left to right from
     ``0.0`` (:func:`sum_in_order`; the compiled kernels' order).
 
+    Parameters
+    ----------
+    rows : numpy.ndarray, shape (..., 6)
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 6)
+
     Examples
     --------
     >>> unit_rows(np.array([[3.0, 4, 0, 0, 0, 0], [0, 0, 0, 0, 0, 0]]))[:, :2]
@@ -212,6 +275,15 @@ def scaled_magnitudes(rows: Array, rtol: float) -> Array:
     """``N(s)`` of scaled rows ``(..., 6)`` (the length is then 1): ``|s|`` where the direction is
     more than ``rtol`` of the moment, else ``|s0|`` (a couple or translation); the norms summed in
     order (:func:`sum_in_order`). :func:`screwkit.core.wrenches.normalized_reciprocal_product`'s ``N``.
+
+    Parameters
+    ----------
+    rows : numpy.ndarray, shape (..., 6)
+    rtol : float
+
+    Returns
+    -------
+    numpy.ndarray, shape (...)
 
     Examples
     --------
@@ -231,6 +303,20 @@ def transmissions(raw: Array, twists: Array, rtol: float) -> tuple[Array, Array]
     :func:`screwkit.core.wrenches.normalized_reciprocal_product`). Compiled per pose for large batches
     (:func:`screwkit.core._limbs_numba.transmissions`), the same operations in the same order.
 
+    Parameters
+    ----------
+    raw : numpy.ndarray, shape (..., l, 6)
+        Wrench rows, scaled.
+    twists : numpy.ndarray, shape (..., l, 6)
+        The actuated twists, scaled.
+    rtol : float
+
+    Returns
+    -------
+    wrench : numpy.ndarray, shape (..., l, 6)
+        Unit rows.
+    index : numpy.ndarray, shape (..., l)
+
     Examples
     --------
     >>> force, translation = np.array([[2.0, 0, 0, 0, 0, 0]]), np.array([[0, 0, 0, 1.0, 0, 0]])
@@ -248,12 +334,37 @@ def transmissions(raw: Array, twists: Array, rtol: float) -> tuple[Array, Array]
 
 
 def transmissions_numpy(wrench: Array, twists: Array, rtol: float) -> tuple[Array, Array]:
-    """:func:`transmissions` of unit ``wrench`` rows with numpy (the kernel's operations)."""
+    """:func:`transmissions` of unit ``wrench`` rows with numpy (the kernel's operations).
+
+    Parameters
+    ----------
+    wrench : numpy.ndarray, shape (..., l, 6)
+        Unit wrench rows.
+    twists : numpy.ndarray, shape (..., l, 6)
+    rtol : float
+
+    Returns
+    -------
+    wrench : numpy.ndarray, shape (..., l, 6)
+        The given rows.
+    index : numpy.ndarray, shape (..., l)
+    """
     return wrench, transmission_index(wrench, twists, np.abs(_dot_in_order(wrench, swapped(twists))), rtol)
 
 
 def transmission_index(wrench: Array, twists: Array, product: Array, rtol: float) -> Array:
     """``product / (N(w) N(t))`` (:func:`scaled_magnitudes`), zero where a magnitude is: the
-    transmission index given the reciprocal product ``|w ∘ t|`` (or a load standing for it)."""
+    transmission index given the reciprocal product ``|w ∘ t|`` (or a load standing for it).
+
+    Parameters
+    ----------
+    wrench, twists : numpy.ndarray, shape (..., 6)
+    product : numpy.ndarray, shape (...)
+    rtol : float
+
+    Returns
+    -------
+    numpy.ndarray, shape (...)
+    """
     denominator = scaled_magnitudes(wrench, rtol) * scaled_magnitudes(twists, rtol)
     return np.where(denominator > 0, product / np.where(denominator > 0, denominator, 1.0), 0.0)

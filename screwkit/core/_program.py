@@ -109,7 +109,17 @@ class ProgramBuilder:
         return self._op(SPAN, first, len(parts))
 
     def bound(self, index: int) -> int:
-        """A static upper bound on a node's twist order (zero rows beyond it are dropped)."""
+        """A static upper bound on a node's twist order (zero rows beyond it are dropped).
+
+        Parameters
+        ----------
+        index : int
+            A tree node.
+
+        Returns
+        -------
+        int
+        """
         if index not in self._bounds:
             node = self.top.nodes[index]
             if node.kind == "joint":
@@ -123,7 +133,18 @@ class ProgramBuilder:
         return self._bounds[index]
 
     def generators(self, index: int) -> list[tuple[int, int, int]]:
-        """What a node adds to a sum of twist systems: a joint's screws, else its frame's rows."""
+        """What a node adds to a sum of twist systems: a joint's screws, else its frame's rows.
+
+        Parameters
+        ----------
+        index : int
+            A tree node.
+
+        Returns
+        -------
+        list of tuple of int
+            Sources ``(kind, a, b)``.
+        """
         node = self.top.nodes[index]
         if node.kind == "joint":
             assert node.joint is not None
@@ -172,6 +193,17 @@ class ProgramBuilder:
         return self._op(code, first, len(parts))
 
     def twists(self, index: int) -> int:
+        """The slot of a tree node's twist frame (recorded on first use).
+
+        Parameters
+        ----------
+        index : int
+            A tree node.
+
+        Returns
+        -------
+        int
+        """
         key = ("twists", index)
         if key not in self.slots:
             node = self.top.nodes[index]
@@ -186,6 +218,17 @@ class ProgramBuilder:
         return self.slots[key]
 
     def wrenches(self, index: int) -> int:
+        """The slot of a tree node's wrench frame (recorded on first use).
+
+        Parameters
+        ----------
+        index : int
+            A tree node.
+
+        Returns
+        -------
+        int
+        """
         key = ("wrenches", index)
         if key not in self.slots:
             node = self.top.nodes[index]
@@ -217,6 +260,16 @@ class ProgramBuilder:
         )
 
     def request(self, request: Request) -> int:
+        """The slot computing a request (:data:`Request`), recorded on first use.
+
+        Parameters
+        ----------
+        request : Request
+
+        Returns
+        -------
+        int
+        """
         kind, what = request
         if kind == "passive":  # the reciprocal of a sum: a limb's passive wrenches
             if request not in self.slots:
@@ -234,7 +287,17 @@ class ProgramBuilder:
 
 @functools.lru_cache(maxsize=256)
 def frame_program(top: Topology, requests: tuple[Request, ...]) -> Program:
-    """The ops computing ``requests`` (cached per topology object and requests)."""
+    """The ops computing ``requests`` (cached per topology object and requests).
+
+    Parameters
+    ----------
+    top : Topology
+    requests : tuple of Request
+
+    Returns
+    -------
+    Program
+    """
     builder = ProgramBuilder(top)
     for request in requests:
         builder.request(request)
@@ -254,7 +317,23 @@ def frame_program(top: Topology, requests: tuple[Request, ...]) -> Program:
 
 def run_program(program: Program, scaled: Array, rtol: float, requests: tuple[Request, ...]) -> Frame:
     """The requested frames of a program over the batch of ``scaled`` ``(..., rows, 6)``, on an
-    axis of their own: rows ``(..., len(requests), 6, 6)``, orders ``(..., len(requests))``."""
+    axis of their own: rows ``(..., len(requests), 6, 6)``, orders ``(..., len(requests))``.
+
+    Parameters
+    ----------
+    program : Program
+    scaled : numpy.ndarray, shape (..., rows, 6)
+        The unit scaled joint screws.
+    rtol : float
+        The rule's relative threshold.
+    requests : tuple of Request
+        Those of the program, in the order wanted.
+
+    Returns
+    -------
+    rows : numpy.ndarray, shape (..., len(requests), 6, 6)
+    orders : numpy.ndarray of int, shape (..., len(requests))
+    """
     batch = scaled.shape[:-2]
     wanted = [program.slots[r] for r in requests]
     kernels = F.compiled_twin("_program_numba", math.prod(batch))
@@ -360,12 +439,33 @@ class Evaluation:
         return 0, self._blocks[-1][1]
 
     def frame(self, request: Request) -> Frame:
+        """One requested frame over the batch (computed with the first requests, else on its own).
+
+        Parameters
+        ----------
+        request : Request
+
+        Returns
+        -------
+        tuple of numpy.ndarray
+            ``(rows (..., 6, 6), order (...))``.
+        """
         index, (rows, orders) = self._find(request)
         return rows[..., index, :, :], orders[..., index]
 
     def stacked(self, requests: list[Request]) -> Frame:
         """Frames on an axis of their own, ``(..., len(requests), 6, 6)``: a view when they were
-        computed together, in this order."""
+        computed together, in this order.
+
+        Parameters
+        ----------
+        requests : list of Request
+
+        Returns
+        -------
+        tuple of numpy.ndarray
+            ``(rows (..., len(requests), 6, 6), orders (..., len(requests)))``.
+        """
         found = [self._find(r) for r in requests]
         first, block = found[0]
         if all(b is block and i == first + k for k, (i, b) in enumerate(found)):
@@ -374,18 +474,66 @@ class Evaluation:
         return stacked([(rows[..., i, :, :], orders[..., i]) for i, (rows, orders) in found])
 
     def joint_rows(self, index: int) -> Array:
+        """A joint's scaled screw rows over the batch.
+
+        Parameters
+        ----------
+        index : int
+            The joint (its index in the topology's specs).
+
+        Returns
+        -------
+        numpy.ndarray, shape (..., dof, 6)
+        """
         start = self.columns[index]
         return self.scaled[..., start : start + self.top.specs[index].dof, :]
 
     def twists(self, index: int) -> Frame:
+        """A tree node's twist frame over the batch.
+
+        Parameters
+        ----------
+        index : int
+            A tree node.
+
+        Returns
+        -------
+        tuple of numpy.ndarray
+            ``(rows (..., 6, 6), order (...))``.
+        """
         return self.frame(("twists", index))
 
     def wrenches(self, index: int) -> Frame:
+        """A tree node's wrench frame over the batch.
+
+        Parameters
+        ----------
+        index : int
+            A tree node.
+
+        Returns
+        -------
+        tuple of numpy.ndarray
+            ``(rows (..., 6, 6), order (...))``.
+        """
         return self.frame(("wrenches", index))
 
     def network(self, joints: tuple[int, ...], locked: int | None = None) -> Frame:
         """The platform's twist system of a sub-network by loop closure: ``rank[M; P] − rank M``
-        decides the null space of the loop-closure matrix ``M``; ``P`` maps it to the platform."""
+        decides the null space of the loop-closure matrix ``M``; ``P`` maps it to the platform.
+
+        Parameters
+        ----------
+        joints : tuple of int
+            The sub-network's joints.
+        locked : int, optional
+            A joint left out (an actuator locked).
+
+        Returns
+        -------
+        tuple of numpy.ndarray
+            The platform's twist frame ``(rows (..., 6, 6), order (...))``.
+        """
         kept = tuple(j for j in joints if j != locked)
         loops, path = network_layout(self.top.base, self.top.platform, self.top.specs, kept)
         columns = [(j, r) for j in kept for r in range(self.top.specs[j].dof)]
@@ -416,10 +564,31 @@ class Evaluation:
 
 
 def stacked(frames: list[Frame]) -> Frame:
-    """Frames of the limbs on an axis of their own: rows ``(..., n, 6, 6)``, orders ``(..., n)``."""
+    """Frames of the limbs on an axis of their own: rows ``(..., n, 6, 6)``, orders ``(..., n)``.
+
+    Parameters
+    ----------
+    frames : list of tuple of numpy.ndarray
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+    """
     return np.stack([rows for rows, _ in frames], axis=-3), np.stack([order for _, order in frames], axis=-1)
 
 
 def limb_frame(frame: Frame, k: int) -> Frame:
-    """Limb ``k``'s frame from :func:`stacked` frames."""
+    """Limb ``k``'s frame from :func:`stacked` frames.
+
+    Parameters
+    ----------
+    frame : tuple of numpy.ndarray
+        Stacked frames.
+    k : int
+        A limb.
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+    """
     return frame[0][..., k, :, :], frame[1][..., k]

@@ -43,7 +43,17 @@ def canonical(table: JointTable) -> JointTable:
     """The table with its joints sorted by name: every route to the same mechanism (a family's
     table, a graph's, a graph rebuilt from a table) then runs the same arithmetic in the same order,
     bit for bit; its screws C-contiguous, so that a pose's sums run in one order whatever the batch
-    it is in (a strided reduction adds in another)."""
+    it is in (a strided reduction adds in another).
+
+    Parameters
+    ----------
+    table : JointTable
+
+    Returns
+    -------
+    JointTable
+        The table itself when already so.
+    """
     order = sorted(range(len(table.specs)), key=lambda k: table.specs[k].name)
     if order == list(range(len(order))) and table.screws.flags.c_contiguous:
         return table
@@ -55,6 +65,23 @@ def canonical(table: JointTable) -> JointTable:
 
 
 def checked_dof(dof: Any, table: JointTable, top: Topology) -> int:
+    """The nominal mobility: ``dof``, else the table's, else the number of actuated joints.
+
+    Parameters
+    ----------
+    dof : int or None
+    table : JointTable
+    top : Topology
+
+    Returns
+    -------
+    int
+
+    Raises
+    ------
+    TwistGraphError
+        If it is not an integer in 0..6.
+    """
     nominal = dof if dof is not None else (table.dof if table.dof is not None else len(top.limbs))
     if not B.is_dof(nominal):
         raise TwistGraphError(f"Expected `dof` to be an integer in 0..6, got {nominal!r}.")
@@ -63,6 +90,20 @@ def checked_dof(dof: Any, table: JointTable, top: Topology) -> int:
 
 def checked_lengths(value: Any, batch: tuple[int, ...]) -> Array | None:
     """A given characteristic length as an array of the batch shape (None: derive it).
+
+    Parameters
+    ----------
+    value : float, array_like or None
+    batch : tuple of int
+
+    Returns
+    -------
+    numpy.ndarray or None
+
+    Raises
+    ------
+    ScrewkitValueError
+        If a length is not positive and finite in the allowed range, or the shape does not broadcast.
 
     Examples
     --------
@@ -94,13 +135,33 @@ def checked_lengths(value: Any, batch: tuple[int, ...]) -> Array | None:
 
 
 def actuated_screws(top: Topology, screws: Array) -> Array:
-    """Each limb's actuated joint's screw with the limb's sign ``(..., n, 6)`` (one gather)."""
+    """Each limb's actuated joint's screw with the limb's sign ``(..., n, 6)`` (one gather).
+
+    Parameters
+    ----------
+    top : Topology
+    screws : numpy.ndarray, shape (..., rows, 6)
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., n, 6)
+    """
     columns = [top.columns[plan.index] for plan in top.limbs]
     signs = np.array([float(plan.sign) for plan in top.limbs])
     return screws[..., columns, :] * signs[:, None]
 
 
 def scalar(value: Any) -> Any:
+    """A 0-d array as a Python scalar, anything else unchanged.
+
+    Parameters
+    ----------
+    value : object
+
+    Returns
+    -------
+    object
+    """
     array = np.asarray(value)
     return array.item() if array.ndim == 0 else value
 
