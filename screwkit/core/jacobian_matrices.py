@@ -31,8 +31,7 @@ from typing import Any
 
 import numpy as np
 
-from ..algebra import backend as B
-from ..algebra.backend import as_array, checked_rtol
+from ..algebra.backend import DEFAULT_RTOL, as_array, checked_rtol
 from ..exceptions import DegenerateGeometryError, ScrewkitTypeError, ScrewkitValueError
 from .wrench_systems import WrenchAnalysis
 
@@ -98,7 +97,7 @@ class Jacobians:
     closeness : dict of str to float or numpy.ndarray
         ``"direct"`` and ``"inverse"``, 0 at the singularity: from wrenches the measures of
         :mod:`screwkit.core.jacobians` (``"inverse"`` a transmission, which can exceed 1); for given
-        matrices ``σ_min / σ_max`` of ``A`` and of ``B`` (computed when not given).
+        matrices ``σ_min / σ_max`` of ``A`` and of ``B`` (computed when not given, or empty).
     rtol : float
         A matrix counts as singular where its closeness is at most ``rtol``.
     wrenches : numpy.ndarray, shape (..., n, 6), or None
@@ -126,8 +125,8 @@ class Jacobians:
 
     A: Array
     B: Array
-    closeness: dict[str, Any] | None = None
-    rtol: float = B.DEFAULT_RTOL
+    closeness: dict[str, Any] = field(default_factory=dict)
+    rtol: float = DEFAULT_RTOL
     wrenches: Array | None = None
     twist_basis: Array | None = None
     actuated_joints: tuple[str, ...] = ()
@@ -138,7 +137,7 @@ class Jacobians:
         for name in ("A", "B", "wrenches", "twist_basis", "serial"):
             if getattr(self, name) is not None:
                 object.__setattr__(self, name, _read_only(getattr(self, name)))
-        if self.closeness is None:
+        if not self.closeness:
             closeness = {"direct": _plain(_closeness(self.A)), "inverse": _plain(_closeness(self.B))}
             object.__setattr__(self, "closeness", closeness)
 
@@ -161,7 +160,6 @@ class Jacobians:
         def pick(value: Any) -> Any:
             return None if value is None else value[index]
 
-        assert self.closeness is not None
         return Jacobians(
             self.A[index],
             self.B[index],
@@ -177,13 +175,11 @@ class Jacobians:
     @property
     def direct(self) -> Array:
         """True where ``A`` is rank-deficient (direct-kinematic, parallel, second kind)."""
-        assert self.closeness is not None
         return np.asarray(self.closeness["direct"]) <= self.rtol
 
     @property
     def inverse(self) -> Array:
         """True where ``B`` is rank-deficient (inverse-kinematic, serial, first kind)."""
-        assert self.closeness is not None
         return np.asarray(self.closeness["inverse"]) <= self.rtol
 
     @property
@@ -268,7 +264,6 @@ class Jacobians:
         array([[2.]])
         """
         _require_square(self.A)
-        assert self.closeness is not None
         singular = self.direct
         if np.any(singular):
             if self.single:
@@ -300,7 +295,6 @@ class Jacobians:
         >>> Jacobians(np.eye(1), np.eye(1)).to_dict()["type"]
         'regular'
         """
-        assert self.closeness is not None
         result: dict[str, Any] = {
             "type": self.type if self.single else self.types.tolist(),
             "A": self.A.tolist(),
@@ -320,7 +314,6 @@ class Jacobians:
         return result
 
     def __str__(self) -> str:
-        assert self.closeness is not None
         n, dof = self.A.shape[-2:]
         if not self.single:
             names, counts = np.unique(self.types, return_counts=True)
@@ -337,7 +330,7 @@ class Jacobians:
         return "\n".join(lines)
 
 
-def classify_jacobians(A: Any, B: Any, *, rtol: float = B.DEFAULT_RTOL) -> Jacobians:
+def classify_jacobians(A: Any, B: Any, *, rtol: float = DEFAULT_RTOL) -> Jacobians:
     """Gosselin–Angeles type from given (dimensionless) Jacobians ``A``, ``B`` of ``A t = B θ̇``.
 
     For matrices that come from elsewhere than :func:`~screwkit.core.jacobians.jacobians_from_wrenches`

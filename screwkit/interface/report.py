@@ -238,7 +238,7 @@ class AnalysisReport:
             "closeness": None if jac is None else dict(jac.closeness),
             "actuated_joints": None if jac is None else list(jac.actuated_joints),
             "serial_limbs": None if jac is None else list(jac.serial_limbs),
-            "twist_basis": None if jac is None else jac.twist_basis.tolist(),
+            "twist_basis": None if jac is None or jac.twist_basis is None else jac.twist_basis.tolist(),
             "A": None if jac is None else jac.A.tolist(),
             "B": None if jac is None else jac.B.tolist(),
             "rtol": None if jac is None else jac.rtol,
@@ -388,6 +388,7 @@ def _transmission_lines(summary: dict[str, Any]) -> list[str]:
 def _determinant_units(jac: Jacobians, unit: str) -> tuple[str, str]:
     """Units of det A and det B: the length to the number of rotations among the basis twists (A) and
     the actuated twists (B), when every row is a unit force (no units are claimed otherwise)."""
+    assert jac.wrenches is not None and jac.twist_basis is not None and jac.analysis is not None
     if not unit or np.any(np.linalg.norm(jac.wrenches[:, :3], axis=-1) == 0):
         return "", ""
     twists = np.array([limb.actuated_twist for limb in jac.analysis.limbs]).reshape(-1, 6)
