@@ -19,6 +19,7 @@ from screwkit.core import _closing as CK
 from screwkit.core import _frames as F
 from screwkit.core import _kernel_constants as K
 from screwkit.core import _limbs as LK
+from screwkit.core import _residuals as R
 from screwkit.core._program import Program, frame_program, run_program
 from screwkit.core._wrench_pass import canonical
 
@@ -148,7 +149,7 @@ def test_residual_numba_matches_numpy(rng, batch, order):
     frame_rows, _ = F._span_numpy(generators(rng, batch, order, order), RTOL)
     vectors = rng.standard_normal((*batch, 3, 6))
     np.testing.assert_allclose(
-        F._residual_numba(vectors, frame_rows), F._residual_numpy(vectors, frame_rows), atol=ATOL
+        R._residual_numba(vectors, frame_rows), R._residual_numpy(vectors, frame_rows), atol=ATOL
     )
 
 
@@ -206,7 +207,7 @@ def test_numpy_and_numba_paths_are_bit_identical(rng, batch, k, rank, near, zero
     for swap in (False, True):
         assert same(F._complement_numpy(rows, order, swap=swap)[0], F._complement_numba(rows, order, swap=swap)[0])
     vectors = rng.standard_normal((*batch, 3, 6))
-    assert same(F._residual_numpy(vectors, rows), F._residual_numba(vectors, rows))
+    assert same(R._residual_numpy(vectors, rows), R._residual_numba(vectors, rows))
 
 
 @needs_numba
@@ -791,11 +792,11 @@ def test_residuals_against_frames_match_residual_bit_for_bit(rng, monkeypatch):
     vectors = rng.standard_normal((30, 4, 6))
     which = np.array([2, 0, 2, 1])
     monkeypatch.setitem(F._compiled, "screwkit.core._frames_numba", None)
-    expected = F.residuals_against(vectors, frames, which)
+    expected = R.residuals_against(vectors, frames, which)
     monkeypatch.setitem(F._compiled, "screwkit.core._frames_numba", _frames_numba)
-    np.testing.assert_array_equal(F.residuals_against(vectors, frames, which), expected)
+    np.testing.assert_array_equal(R.residuals_against(vectors, frames, which), expected)
     for j, f in enumerate(which):
-        np.testing.assert_array_equal(expected[:, j], F._residual_numpy(vectors[:, j : j + 1], frames[:, f])[:, 0])
+        np.testing.assert_array_equal(expected[:, j], R._residual_numpy(vectors[:, j : j + 1], frames[:, f])[:, 0])
         np.testing.assert_allclose(np.einsum("pis,ps->pi", frames[:, f], expected[:, j]), 0.0, atol=1e-12)
 
 
@@ -815,7 +816,7 @@ def test_limb_wrenches_one_pass_matches_the_steps_bit_for_bit(rng, monkeypatch):
     _, serial, _, free_order, direction = LK._limb_systems_numpy(locked, order, passive, actuated, RTOL)
     wrench, index = LK.transmissions_numpy(LK.unit_rows(direction), actuated, RTOL)
     steps = (serial, free_order, direction, wrench, index,
-             F.residuals_against(wrench[:, coupled], legs, leg_of), LK.not_lines(direction, 1e-6))
+             R.residuals_against(wrench[:, coupled], legs, leg_of), LK.not_lines(direction, 1e-6))
     monkeypatch.setitem(F._compiled, "screwkit.core._frames_numba", _frames_numba)
     compiled = LK.limb_wrenches(*arguments)
     for got, via_numpy, step in zip(compiled, expected, steps, strict=True):

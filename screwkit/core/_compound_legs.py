@@ -27,6 +27,7 @@ import numpy as np
 from ..graphs.topology import Topology
 from . import _frames as F
 from . import _limbs as LK
+from . import _residuals as R
 from ._program import Evaluation, Frame
 from .line_search import nearest_lines
 
@@ -116,7 +117,7 @@ def leg_residuals(top: Topology, rows: Array, legs: Array) -> Array | None:
     coupled = coupled_limbs(top)
     if not coupled:
         return None
-    return F.residuals_against(rows[..., coupled, :], legs, np.array([leg_of(top, k) for k in coupled]))
+    return R.residuals_against(rows[..., coupled, :], legs, np.array([leg_of(top, k) for k in coupled]))
 
 
 def apart_from_legs(top: Topology, rows: Array, residuals: Array | None) -> Array:
@@ -284,7 +285,7 @@ def compound_legs(
             if not replace_k.any():
                 continue
             others = np.swapaxes(np.delete(loads, position, axis=-1), -1, -2)  # (m, n_L - 1, 6)
-            alone = F.residual(loads[:, None, :, position], F.span(others, rtol)[0])[:, 0, :]
+            alone = R.residual(loads[:, None, :, position], F.span(others, rtol)[0])[:, 0, :]
             size = np.linalg.norm(alone, axis=-1)
             is_serial = size <= rtol
             direction = LK.unit_rows(np.einsum("...i,...is->...s", alone, leg_locked))

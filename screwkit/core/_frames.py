@@ -22,13 +22,14 @@ Reciprocity in scaled coordinates is the Euclidean product with the halves swapp
 is ``SWAP`` applied to its orthogonal complement: no rank decision is needed for it.
 
 **Closed forms** of some systems (a rod, a 4S parallelogram, one joint screw more or less) replace a
-span and a complement where they apply (:mod:`screwkit.core._closed_forms`); the limbs' own systems
+span and a complement where they apply (:mod:`screwkit.core._closed_forms`); residuals against a
+frame are :mod:`screwkit.core._residuals`; the limbs' own systems
 and actuation wrenches (:mod:`screwkit.core._limbs`) and the core's closing steps
 (:mod:`screwkit.core._closing`) build on the rule.
 
 **Two implementations, one rule.** :func:`span`, :func:`complement`, :func:`reciprocal`,
-:func:`residual`, :func:`unit_scaled` and the kernels of those modules have a numpy path
-(vectorized over the batch) and, when numba is installed (the ``fast`` extra), compiled per-pose
+:func:`unit_scaled` and the kernels of those modules (and :mod:`screwkit.core._residuals`) have a
+numpy path (vectorized over the batch) and, when numba is installed (the ``fast`` extra), compiled per-pose
 loops (:mod:`screwkit.core._frames_numba` and its siblings ``_closed_forms_numba``,
 ``_limbs_numba``, ``_closing_numba``, ``_program_numba``). The numpy path does the compiled loops'
 floating-point operations in their order (sums left to right, no BLAS call, no library QR), so the
@@ -73,8 +74,6 @@ __all__ = [
     "empty",
     "from_scaled",
     "reciprocal",
-    "residual",
-    "residuals_against",
     "span",
     "sum_in_order",
     "swapped",
@@ -532,91 +531,3 @@ def reciprocal(rows: Array, order: Array) -> tuple[Array, Array]:
     """
     kernels = _numba_kernels(_size(np.shape(rows)[:-2]))
     return (_complement_numpy if kernels is None else _complement_numba)(rows, order, swap=True)
-
-
-
-def residual(vectors: Array, rows: Array) -> Array:
-    """``vectors (..., k, 6)`` minus their projections on a frame's rows (re-orthogonalised once).
-
-    Parameters
-    ----------
-    vectors : numpy.ndarray, shape (..., k, 6)
-    rows : numpy.ndarray, shape (..., m, 6)
-        Orthonormal rows (zero rows allowed), broadcast against ``vectors``' batch.
-
-    Returns
-    -------
-    numpy.ndarray, shape (..., k, 6)
-
-    Examples
-    --------
-    >>> residual(np.array([[1.0, 1.0, 0, 0, 0, 0]]), np.eye(6)[:1])
-    array([[0., 1., 0., 0., 0., 0.]])
-    """
-    kernels = _numba_kernels(_size(np.broadcast_shapes(np.shape(vectors)[:-2], np.shape(rows)[:-2])))
-    return (_residual_numpy if kernels is None else _residual_numba)(vectors, rows)
-
-
-def _residual_numba(vectors: Array, rows: Array) -> Array:
-    """:func:`residual` by the compiled per-pose loop."""
-    vectors, rows = np.asarray(vectors, dtype=float), np.asarray(rows, dtype=float)
-    batch = np.broadcast_shapes(vectors.shape[:-2], rows.shape[:-2])
-    k, m = vectors.shape[-2], rows.shape[-2]
-    if 0 in batch or k == 0:
-        return np.zeros((*batch, k, 6))
-    flat_vectors = np.ascontiguousarray(np.broadcast_to(vectors, (*batch, k, 6)).reshape(-1, k, 6))
-    flat_rows = np.ascontiguousarray(np.broadcast_to(rows, (*batch, m, 6)).reshape(-1, 1, m, 6))
-    out = _import_kernels().residual(flat_vectors, flat_rows, np.zeros(k, dtype=np.int64))
-    return out.reshape(*batch, k, 6)
-
-
-def residuals_against(vectors: Array, frames: Array, which: Array) -> Array:
-    """``vectors (..., k, 6)`` each minus its projections on one of ``frames (..., f, 6, 6)``
-    (vector ``j`` on frame ``which[j]``; rows orthonormal, zero beyond their order), twice: what
-    :func:`residual` does vector by vector, in one call over strided frames (a program's block).
-
-    Parameters
-    ----------
-    vectors : numpy.ndarray, shape (..., k, 6)
-    frames : numpy.ndarray, shape (..., f, 6, 6)
-        Orthonormal rows, zero beyond each frame's order.
-    which : array_like of int, shape (k,)
-        The frame of each vector.
-
-    Returns
-    -------
-    numpy.ndarray, shape (..., k, 6)
-
-    Examples
-    --------
-    >>> frames = np.zeros((2, 6, 6)); frames[0, 0, 0] = frames[1, 0, 1] = 1.0   # e_1 and e_2, order 1
-    >>> residuals_against(np.array([[1.0, 1, 0, 0, 0, 0]] * 2), frames, np.array([0, 1]))
-    array([[0., 1., 0., 0., 0., 0.],
-           [1., 0., 0., 0., 0., 0.]])
-    """
-    batch, which = vectors.shape[:-2], np.asarray(which, dtype=np.int64)
-    if _numba_kernels(_size(batch)) is not None and 0 not in batch:
-        flat = np.reshape(vectors, (-1, *vectors.shape[-2:]))
-        out = _import_kernels().residual(flat, np.reshape(frames, (-1, *frames.shape[-3:])), which)
-        return out.reshape(vectors.shape)
-    out = np.empty(vectors.shape)
-    for frame in dict.fromkeys(which.tolist()):
-        chosen = np.flatnonzero(which == frame)
-        out[..., chosen, :] = _residual_numpy(vectors[..., chosen, :], frames[..., frame, :, :])
-    return out
-
-
-def _residual_numpy(vectors: Array, rows: Array) -> Array:
-    """:func:`residual` vectorized over the batch: :func:`screwkit.core._frames_numba.residual`'s
-    operations in its order, so the two paths agree bit for bit."""
-    vectors, rows = np.asarray(vectors, dtype=float), np.asarray(rows, dtype=float)
-    batch = np.broadcast_shapes(vectors.shape[:-2], rows.shape[:-2])
-    k, m = vectors.shape[-2], rows.shape[-2]
-    out = np.array(np.broadcast_to(vectors, (*batch, k, 6)))
-    rows = np.broadcast_to(rows, (*batch, m, 6))
-    for _ in range(2):
-        coefficients = _dot_in_order(out[..., :, None, :], rows[..., None, :, :])  # (..., k, m)
-        for i in range(m):
-            out = out - coefficients[..., i, None] * rows[..., None, i, :]
-    return out
-

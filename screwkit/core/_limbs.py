@@ -20,13 +20,12 @@ import numpy as np
 
 from ._frames import (
     _dot_in_order,
-    _residual_numpy,
     _size,
     compiled_twin,
-    residuals_against,
     sum_in_order,
     swapped,
 )
+from ._residuals import _residual_numpy, residuals_against
 
 __all__ = [
     "actuation_directions",

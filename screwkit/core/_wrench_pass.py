@@ -30,6 +30,7 @@ from ..graphs.twistgraph import scaled_frame
 from . import _closing as CK
 from . import _frames as F
 from . import _limbs as LK
+from . import _residuals as R
 from ._compound_legs import apart_from_legs, compound_legs, coupled_limbs, leg_of, leg_residuals
 from ._program import Evaluation, Frame, Request, limb_frame, stacked
 from .line_search import LINE_RTOL, line_search, nearest_lines
@@ -243,7 +244,7 @@ def wrench_pass(
             twist = plan.sign * core.joint_rows(plan.index)[..., 0, :]
             lockeds.append(core.network(plan.network_edges, locked=plan.index))
             frees.append(core.network(plan.network_edges))
-            perpendiculars.append(F.residual(twist[..., None, :], lockeds[-1][0])[..., 0, :])
+            perpendiculars.append(R.residual(twist[..., None, :], lockeds[-1][0])[..., 0, :])
             serials.append(frees[-1][1] == lockeds[-1][1])
             twists.append(twist)
         serial = np.stack(serials, axis=-1)

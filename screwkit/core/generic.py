@@ -55,7 +55,7 @@ from ..exceptions import ScrewkitTypeError, TwistGraphError
 from ..graphs.joints import JointSpec
 from ..graphs.topology import Topology, topology
 from ..graphs.twistgraph import check_twist_graph
-from .motion import resolve_dof
+from .mobility import resolve_dof
 
 __all__ = ["GenericAnalysis", "GenericLeg", "GenericLimb", "generic_analysis", "is_symbolic_graph"]
 
@@ -360,7 +360,7 @@ def generic_analysis(
         A twist graph whose screws may hold sympy expressions (numbers are made exact).
     dof : int, optional
         Nominal mobility; default: the graph's ``dof``, else the generic mobility, which a stated
-        ``dof`` must equal (:func:`screwkit.core.motion.resolve_dof`).
+        ``dof`` must equal (:func:`screwkit.core.mobility.resolve_dof`).
     joint_key : str
 
     Returns
@@ -408,7 +408,7 @@ def _analysis(top: Topology, stated: Any, screws: Array, core: _GenericEvaluatio
     """The generic answers from the node systems (in the point's arithmetic context)."""
     assert top.root is not None
     platform = core.twists(top.root)
-    # the nominal dof is the generic mobility, the actuators no more (screwkit.core.motion.resolve_dof)
+    # the nominal dof is the generic mobility, the actuators no more (screwkit.core.mobility.resolve_dof)
     nominal = resolve_dof(None if stated is None else int(stated), len(platform), top.actuated)
     constraint = core.wrenches(top.root)
     legs = tuple(

@@ -2,7 +2,7 @@
 
 :func:`classify` labels one twist graph at its pose (or gives a family's generic answers, as
 :func:`~screwkit.core.wrenches.wrench_analysis`); :func:`classify_table` and :func:`classify_poses`
-label a batch, with the mechanism's mobility settled (:func:`screwkit.core.motion.settled_dof`);
+label a batch, with the mechanism's mobility settled (:func:`screwkit.core.mobility.settled_dof`);
 :func:`label_table` and :func:`classify_chunks` take the nominal mobility as given. Every pose goes
 through the same kernels (:func:`screwkit.core.wrench_systems.analyze_table`: a single pose is a
 batch of one), and the verdicts, their labels and closeness measures are
@@ -32,7 +32,7 @@ from ..exceptions import ScrewkitTypeError, ScrewkitValueError
 from ..graphs.joints import JointTable
 from ..graphs.twistgraph import check_twist_graph
 from .generic import GenericAnalysis
-from .motion import settled_dof
+from .mobility import settled_dof
 from .verdicts import SingularityReport
 from .wrench_systems import WrenchAnalysis, analyze_table
 from .wrenches import wrench_analysis
@@ -115,7 +115,7 @@ def classify_table(
     dof : int, optional
         Nominal mobility; default: the table's ``dof``, else derived. It must be the mechanism's
         mobility at generic configurations (reached from the first configuration), with at most
-        that many actuators (:func:`screwkit.core.motion.settled_dof`; no extra cost when every pose is
+        that many actuators (:func:`screwkit.core.mobility.settled_dof`; no extra cost when every pose is
         regular with one actuator per freedom).
     rtol : float, default 1e-9
     length_scale : float, optional

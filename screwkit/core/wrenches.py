@@ -2,7 +2,7 @@
 
 :func:`wrench_analysis` takes a twist graph (:mod:`screwkit.graphs.twistgraph`): a graph of numbers
 is one pose of the batched core (:func:`screwkit.core.wrench_systems.analyze_table`) with its
-mobility settled (:func:`screwkit.core.motion.settled_dof`); a graph whose screws hold sympy
+mobility settled (:func:`screwkit.core.mobility.settled_dof`); a graph whose screws hold sympy
 symbols (a family) gets its generic answers (:func:`screwkit.core.generic.generic_analysis`). Its
 two return types are documented there, in its Returns section: one entry point serves every twist
 graph, as the CLI and the catalog hand it graphs of either kind. Two companions check what the
@@ -33,7 +33,7 @@ from ..algebra.backend import checked_rtol
 from ..exceptions import DegenerateGeometryError
 from ..graphs.joints import Joint, JointTable
 from .generic import GenericAnalysis, generic_analysis, is_symbolic_graph
-from .motion import settled_dof
+from .mobility import settled_dof
 from .wrench_systems import WrenchAnalysis, analyze_table
 
 __all__ = ["normalized_reciprocal_product", "translated_graph", "wrench_analysis"]
@@ -162,7 +162,7 @@ def wrench_analysis(
     dof : int, optional
         Nominal mobility; default: the graph's ``dof`` attribute, else derived. Either way it must
         be the mechanism's mobility at generic configurations, with at most that many actuators
-        (:func:`screwkit.core.motion.resolve_dof`; checked by :func:`screwkit.core.motion.settled_dof`, at
+        (:func:`screwkit.core.mobility.resolve_dof`; checked by :func:`screwkit.core.mobility.settled_dof`, at
         no cost when the pose is regular with one actuator per freedom).
     joint_key : str
     rtol : float, default 1e-9

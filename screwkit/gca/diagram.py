@@ -1186,7 +1186,7 @@ def graph_diagram(
     >>> diagram.line_text(), len(sampler(np.random.default_rng(0)))
     ('[ab, cd, ef, gh, ij, kj]', 11)
     """
-    from ..core.motion import generic_analyses
+    from ..core.mobility import generic_analyses
 
     graph = analysis.graph
     try:

@@ -525,7 +525,7 @@ def _graph_report(
 ) -> AnalysisReport:
     if pose is not None:
         raise ScrewkitValueError(f"{source}: {what} is one configuration; expected no pose, got {pose!r}.")
-    try:  # dof: the mechanism's mobility at generic configurations (screwkit.core.motion.settled_dof)
+    try:  # dof: the mechanism's mobility at generic configurations (screwkit.core.mobility.settled_dof)
         analysis = wrench_analysis(graph, rtol=rtol, length_scale=length_scale)
     except ScrewkitError as err:
         if source.endswith(".toml"):  # name the file

@@ -1087,10 +1087,10 @@ def check_dof(graph: nx.MultiDiGraph, *, joint_key: str = "joint") -> None:
     """Refuse a twist graph whose ``dof`` is below its number of actuators (at load time).
 
     screwkit analyses non-redundantly actuated mechanisms whose nominal ``dof`` is the platform's
-    mobility at generic configurations (:func:`screwkit.core.motion.resolve_dof`). A ``dof`` below the
+    mobility at generic configurations (:func:`screwkit.core.mobility.resolve_dof`). A ``dof`` below the
     number of actuated joints contradicts that whatever the mobility, and is refused here without
     computing it; the rest (``dof`` equal to the mobility, actuators no more than it) is checked when
-    the graph is analysed (:func:`screwkit.core.motion.settled_dof`). A graph without ``dof`` or without
+    the graph is analysed (:func:`screwkit.core.mobility.settled_dof`). A graph without ``dof`` or without
     actuated joints passes.
 
     Raises
