@@ -13,13 +13,11 @@ Examples
 --------
 >>> from screwkit.graphs.joints import revolute
 >>> from screwkit.graphs.twistgraph import twist_graph
->>> fourbar = twist_graph("ground", "coupler", [
-...     ("ground", "crank", revolute("A", [0, 0, 1], [0, 0, 0], actuated=True)),
-...     ("crank", "coupler", revolute("B", [0, 0, 1], [1, 0, 0])),
-...     ("ground", "rocker", revolute("D", [0, 0, 1], [3, 0, 0])),
-...     ("rocker", "coupler", revolute("C", [0, 0, 1], [3, 2, 0]))])
->>> generic_mobility(fourbar)
-1
+>>> planar_2r = twist_graph("B", "E", [
+...     ("B", "arm", revolute("A", [0, 0, 1], [0, 0, 0], actuated=True)),
+...     ("arm", "E", revolute("R", [0, 0, 1], [1, 0, 0]))])
+>>> generic_mobility(planar_2r)  # one actuator, two freedoms
+2
 """
 
 from __future__ import annotations
