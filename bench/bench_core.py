@@ -16,7 +16,7 @@ Figures (the issue's targets in brackets):
   timed), in poses/s;
 * ``verdicts``: :func:`verdicts` over the same poses, chunked (``CHUNK`` poses per call), rate and
   the ratio to the SVD's rate [≥ 0.2]. The labels and orders only: the closeness measures are
-  computed when asked (:attr:`screwkit.core.wrenches.WrenchAnalysis.closeness`), so ``+ closeness``
+  computed when asked (:attr:`screwkit.core.wrench_systems.WrenchAnalysis.closeness`), so ``+ closeness``
   gives the rate and ratio of :func:`verdicts` with the report's ``closeness`` asked too;
 * memory: ``tracemalloc`` peak of one chunk's :func:`verdicts` / ``CHUNK``, KiB per pose [≤ 3];
 * with ``--breakdown``: where a pose's time goes (:func:`breakdown`, 10⁴ poses in the core's own
@@ -45,7 +45,8 @@ import numpy as np  # noqa: E402
 from _timing import best_of  # noqa: E402  (bench/ is the script folder)
 
 import screwkit as sk  # noqa: E402
-from screwkit import _frames, posed, wrenches  # noqa: E402
+from screwkit.core import _closing, _program, _wrench_pass, wrench_systems  # noqa: E402
+from screwkit.robots import posed  # noqa: E402
 from screwkit.robots.families.four_limb import PAPER_002_LEGS, reachable  # noqa: E402
 
 CHUNK = 10_000
@@ -101,18 +102,18 @@ def chunked(function, poses):
 
 def breakdown(h4, poses, repeats=7):
     """CPU µs per pose of each stage of :func:`verdicts` over ``poses``, in the core's chunks: the
-    inverse kinematics, the joint table, the analysis core (``wrenches.analyze_table``) and inside
+    inverse kinematics, the joint table, the analysis core (``wrench_systems.analyze_table``) and inside
     it the reference frame with the unit scaled screws (``reference_frame.scaled_frame``), the compiled
-    program of series-parallel frames (``wrenches._run``) and the closing pass (global span,
-    closeness triangles, user-frame rows: ``_frames.closing``), the rest of the core (limb
+    program of series-parallel frames (``_program.run_program``) and the closing pass (global span,
+    closeness triangles, user-frame rows: ``_closing.closing``), the rest of the core (limb
     systems, leg residuals, compound-leg checks, numpy glue) and of :func:`verdicts` (copying the
     chunks' results into the batch's arrays, the report). The inner stages are timed by wrapping
     those functions for the run (the wrappers' own cost is in the figures)."""
     protocol, chunk = h4.family_protocol, posed.CHUNK
     wrapped = {
-        "frame": (wrenches, "scaled_frame"),
-        "program": (wrenches, "_run"),
-        "closing": (_frames, "closing"),
+        "frame": (_wrench_pass, "scaled_frame"),
+        "program": (_program, "run_program"),
+        "closing": (_closing, "closing"),
     }
     spent = dict.fromkeys(["ik", "joints", "core", "whole", *wrapped], 0.0)
 
@@ -138,7 +139,7 @@ def breakdown(h4, poses, repeats=7):
                 part = poses[begin : begin + chunk]
                 configuration = timed("ik", h4.configuration)(part)
                 table = timed("joints", protocol.joint_table)(configuration)
-                timed("core", wrenches.analyze_table)(table, views=False)
+                timed("core", wrench_systems.analyze_table)(table, views=False)
         finally:
             for label, (module, name) in wrapped.items():
                 setattr(module, name, originals[label])

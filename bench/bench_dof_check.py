@@ -16,7 +16,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from _timing import best_of
 
 from screwkit import classify, load_mechanism
-from screwkit.core.motion import generic_mobility
+from screwkit.core.mobility import generic_mobility
 from tests.mechanisms import (
     PLANAR_BASE,
     PLANAR_PLATFORM,

@@ -18,8 +18,10 @@ from .algebra.motion_type import motion_type
 from .algebra.screw import reciprocal_product
 from .algebra.screwsystem import ScrewSystem
 from .algebra.screwvalue import Screw
-from .core.singularity import SingularityReport, classify, classify_poses, classify_table
-from .core.wrenches import WrenchAnalysis, analyze_table, wrench_analysis
+from .core.singularity import classify, classify_poses, classify_table
+from .core.verdicts import SingularityReport
+from .core.wrench_systems import WrenchAnalysis, analyze_table
+from .core.wrenches import wrench_analysis
 from .exceptions import (
     CatalogError,
     DegenerateGeometryError,
@@ -75,7 +77,7 @@ _LAZY = {
         ("are_collinear", "are_coplanar", "is_at_infinity", "lines_intersect", "point_on_line"),
         "algebra.incidence",
     ),
-    "WrenchJacobians": "core.jacobians",
+    "Jacobians": "core.jacobian_matrices",
     "jacobians_from_wrenches": "core.jacobians",
     "schoenflies_basis": "core.jacobians",
     "Pose": "robots.posed",
@@ -133,6 +135,7 @@ __all__ = [
     "DegenerateGeometryError",
     "Family",
     "GenericAnalysis",
+    "Jacobians",
     "Joint",
     "JointTable",
     "Mechanism",
@@ -151,7 +154,6 @@ __all__ = [
     "UnreachablePoseError",
     "WrenchAnalysis",
     "WrenchDiagram",
-    "WrenchJacobians",
     "__version__",
     "actuation_singularity_surface",
     "analyze",

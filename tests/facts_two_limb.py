@@ -23,7 +23,7 @@ from typing import Any
 
 import numpy as np
 
-from screwkit.core.jacobians import gosselin_angeles_label
+from screwkit.core.jacobian_matrices import gosselin_angeles_label
 from screwkit.core.singularity import classify as classify_graph
 from screwkit.core.wrenches import wrench_analysis
 from screwkit.gca.diagram import diagram_points, superbracket_analysis
@@ -156,7 +156,7 @@ def paper_module(mechanism: Any) -> Any:
 def labels(mechanism: Any, config: Any, *, rtol: float = 1e-9) -> tuple[Any, str]:
     """(twist-graph report, the paper's Jacobian label) at a configuration."""
     report = classify_graph(family_module(mechanism).joints(config).graph(), rtol=rtol)
-    return report, str(paper_module(mechanism).classify(config, rtol=rtol).label)
+    return report, str(paper_module(mechanism).classify(config, rtol=rtol).types)
 
 
 # --------------------------------------------------------------------------------------------------
@@ -244,7 +244,7 @@ def check_paper_eq_22(mechanism: Any, fact: dict[str, Any]) -> tuple[Any, Any]:
     f, rho3 = config.tilt_axis, config.wrist - config.elbow
     phi = np.cross(f, rho3)
     sine = np.linalg.norm(np.cross(phi[0], phi[1])) / np.prod(np.linalg.norm(phi, axis=-1))
-    singular = paper_001.classify(config).label == "direct"
+    singular = paper_001.classify(config).types == "direct"
     return {"necessary": bool(singular and sine < 1e-6), "direct_singular_here": bool(singular)}, fact["value"]
 
 

@@ -7,7 +7,7 @@ kinematics, joints, twist basis) is :mod:`screwkit.robots.families.peppermill`; 
 serves to check the paper (``tests/test_families_peppermill.py``, ``tests/test_two_limb_catalog.py``,
 ``tests/test_paper_jacobians.py``, ``tests/facts_two_limb.py``): Eqs. (44)-(48), the factors of
 ``det A`` and ``det B``, the Gosselin-Angeles type from them
-(:func:`screwkit.core.jacobians.classify_jacobians`) and a root search for second-kind singularities.
+(:func:`screwkit.core.jacobian_matrices.classify_jacobians`) and a root search for second-kind singularities.
 
 Where paper 000 is garbled or wrong about its Jacobians (each item is demonstrated in the tests)
 -----------------------------------------------------------------------------------------------
@@ -26,7 +26,7 @@ Examples
 --------
 >>> from screwkit.robots.families.peppermill import PeppermillParameters, inverse_kinematics
 >>> mill = PeppermillParameters(r1=250.0, r2=250.0, l1=400.0, l2=400.0, b0=50.0, p1=40.0, p2=-40.0)
->>> classify(inverse_kinematics(mill, [30.0, -20.0, -450.0, 0.5])).label.tolist()
+>>> classify(inverse_kinematics(mill, [30.0, -20.0, -450.0, 0.5])).types.tolist()
 'regular'
 """
 
@@ -39,7 +39,7 @@ import numpy as np
 
 from screwkit.algebra.backend import DEFAULT_RTOL
 from screwkit.algebra.checks import checked_length_scale
-from screwkit.core.jacobians import JacobianClassification, classify_jacobians
+from screwkit.core.jacobian_matrices import Jacobians, classify_jacobians
 from screwkit.robots.families.peppermill import (
     DEFAULT_MODE,
     PeppermillConfiguration,
@@ -48,7 +48,7 @@ from screwkit.robots.families.peppermill import (
 )
 from screwkit.robots.families.two_limb import checked_mode, frozen
 
-from .two_limb_papers import Jacobians, bisect_segment
+from .two_limb_papers import bisect_segment
 
 __all__ = [
     "PeppermillSingularityFactors",
@@ -171,7 +171,7 @@ def classify(
     *,
     rtol: float = DEFAULT_RTOL,
     length_scale: float | None = None,
-) -> JacobianClassification:
+) -> Jacobians:
     """Gosselin-Angeles type: first kind (``B``), second kind (``A``), third kind (both).
 
     ``B`` of Eq. (47) is dimensionless; ``A``'s last column (the ``δφ`` column) has the unit of
@@ -189,7 +189,7 @@ def classify(
 
     Returns
     -------
-    JacobianClassification
+    Jacobians
         ``"inverse"`` (first kind), ``"direct"`` (second kind), ``"combined"`` (third kind) or
         ``"regular"``.
 
@@ -197,7 +197,7 @@ def classify(
     --------
     >>> p = PeppermillParameters(250, 250, 400, 400, 50, 40, -40)
     >>> # q_1 = (0, y, b0 + z + p1 φ/2π) = (0, 390, -520) has length r1 + l1 = 650: limb 1 extended
-    >>> classify(inverse_kinematics(p, [0.0, 390.0, -570.0, 0.0])).label.tolist()
+    >>> classify(inverse_kinematics(p, [0.0, 390.0, -570.0, 0.0])).types.tolist()
     'inverse'
     """
     jac = jacobians(config)
@@ -230,7 +230,7 @@ def locate_direct_singularity(
     >>> p = PeppermillParameters(250, 250, 400, 400, 50, 40, -40)
     >>> # y only moves limb 1 (q_1 = (0, y, ...)); its distal link turns horizontal on the way
     >>> pose = locate_direct_singularity(p, [0.0, 150.0, -150.0, 0.0], [0.0, 300.0, -150.0, 0.0])
-    >>> classify(inverse_kinematics(p, pose)).label.tolist()
+    >>> classify(inverse_kinematics(p, pose)).types.tolist()
     'direct'
     """
     checked = checked_mode(mode, "mode", 2)

@@ -7,7 +7,7 @@ kinematics, joints, twist basis) is :mod:`screwkit.robots.families.mcgill_smg`; 
 only serves to check the paper (``tests/test_families_mcgill_smg.py``,
 ``tests/test_two_limb_catalog.py``, ``tests/test_paper_jacobians.py``, ``tests/facts_two_limb.py``):
 Eqs. (16)-(19), the singularity factors of Eqs. (20)-(24), the Gosselin-Angeles type from them
-(:func:`screwkit.core.jacobians.classify_jacobians`) and a root search for parallel singularities.
+(:func:`screwkit.core.jacobian_matrices.classify_jacobians`) and a root search for parallel singularities.
 
 Where paper 001 is garbled or wrong (each item is demonstrated in the tests)
 ---------------------------------------------------------------------------
@@ -39,7 +39,7 @@ Examples
 >>> from screwkit.robots.families.mcgill_smg import McGillParameters, inverse_kinematics
 >>> smg = McGillParameters(l0=600.0, l1=100.0, l2=600.0, l3=200.0 * np.sqrt(2), radius=200.0,
 ...     b4=-50.0, b5=-50.0, proximal_width=80.0, distal_width=60.0)
->>> classify(inverse_kinematics(smg, [0.0, 0.0, -600.0, 0.0])).label.tolist()
+>>> classify(inverse_kinematics(smg, [0.0, 0.0, -600.0, 0.0])).types.tolist()
 'regular'
 """
 
@@ -52,7 +52,7 @@ import numpy as np
 
 from screwkit.algebra.backend import DEFAULT_RTOL
 from screwkit.algebra.checks import checked_length_scale
-from screwkit.core.jacobians import JacobianClassification, classify_jacobians
+from screwkit.core.jacobian_matrices import Jacobians, classify_jacobians
 from screwkit.robots.families.mcgill_smg import (
     DEFAULT_MODE,
     McGillConfiguration,
@@ -61,7 +61,7 @@ from screwkit.robots.families.mcgill_smg import (
 )
 from screwkit.robots.families.two_limb import checked_mode, frozen
 
-from .two_limb_papers import Jacobians, bisect_segment
+from .two_limb_papers import bisect_segment
 
 __all__ = [
     "McGillSingularityFactors",
@@ -217,11 +217,11 @@ def classify(
     *,
     rtol: float = DEFAULT_RTOL,
     length_scale: float | None = None,
-) -> JacobianClassification:
+) -> Jacobians:
     """Gosselin-Angeles type of each configuration: serial (``B``), parallel (``A``), combined.
 
     The closeness of each matrix is ``σ_min/σ_max`` of the dimensionless ``A`` or ``B`` of
-    :func:`jacobians` (:func:`screwkit.core.jacobians.classify_jacobians`): it does not depend on the
+    :func:`jacobians` (:func:`screwkit.core.jacobian_matrices.classify_jacobians`): it does not depend on the
     unit of length or on a rigid motion of the base frame. ``B``'s closeness does not depend on ``L``
     either (all its entries scale as ``1/L²``); ``A``'s does (its first column carries ``R/L``).
 
@@ -235,7 +235,7 @@ def classify(
 
     Returns
     -------
-    JacobianClassification
+    Jacobians
         Labels ``"inverse"`` (serial, ``B`` rank-deficient), ``"direct"`` (parallel, ``A``),
         ``"combined"`` or ``"regular"``.
 
@@ -244,7 +244,7 @@ def classify(
     >>> p = McGillParameters(600, 100, 600, 282.843, 200, -50, -50, 80, 60)
     >>> # mode (1, 1, -1, 1): the legs are translates of each other, Eq. (24) holds
     >>> c = classify(inverse_kinematics(p, [0.0, 0.0, -600.0, 0.0], mode=(1, 1, -1, 1)))
-    >>> c.label.tolist()
+    >>> c.types.tolist()
     'direct'
     """
     jac = jacobians(config, length_scale=length_scale)
@@ -281,7 +281,7 @@ def locate_direct_singularity(
     --------
     >>> p = McGillParameters(600, 100, 600, 282.843, 200, -50, -50, 80, 60)
     >>> pose = locate_direct_singularity(p, [0, 0, -600, 0.2], [0, 0, -600, 1.2])
-    >>> classify(inverse_kinematics(p, pose)).label.tolist()
+    >>> classify(inverse_kinematics(p, pose)).types.tolist()
     'direct'
     """
     checked = checked_mode(mode, "mode", 4)

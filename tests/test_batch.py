@@ -9,7 +9,7 @@ import pytest
 
 import screwkit as sk
 from screwkit.core.singularity import classify, classify_chunks, classify_poses, classify_table
-from screwkit.core.wrenches import analyze_table
+from screwkit.core.wrench_systems import analyze_table
 from screwkit.exceptions import ScrewkitValueError, UnreachablePoseError
 from screwkit.robots.families.four_limb import inverse_kinematics, joints
 from screwkit.robots.posed import CHUNK

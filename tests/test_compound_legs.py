@@ -1,4 +1,4 @@
-"""Compound legs analysed as a whole (screwkit.core.wrenches._compound_legs): the H4 where the plane of
+"""Compound legs analysed as a whole (screwkit.core._compound_legs.compound_legs): the H4 where the plane of
 a parallelogram of sub-platform ``b_I`` contains the vertical.
 
 Expected values come from outside the core: paper 004's Eq. (12) ``|A| = 2r (w_14 × w_23)·s`` and
@@ -17,7 +17,7 @@ from hypothesis import strategies as st
 import screwkit as sk
 from screwkit.algebra import screw as S
 from screwkit.core.singularity import classify
-from screwkit.core.wrenches import analyze_table
+from screwkit.core.wrench_systems import analyze_table
 from screwkit.robots.families.four_limb import reachable
 
 from .mechanisms import bisect_root

@@ -13,7 +13,8 @@ import pytest
 
 from screwkit.algebra import screw as S
 from screwkit.core.singularity import classify
-from screwkit.core.wrenches import analyze_table, wrench_analysis
+from screwkit.core.wrench_systems import analyze_table
+from screwkit.core.wrenches import wrench_analysis
 from screwkit.exceptions import DegenerateGeometryError, ScrewkitValueError
 from screwkit.gca import BracketPolynomial, DottedMonomial, check_proportional
 from screwkit.gca.diagram import (

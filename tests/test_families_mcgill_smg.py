@@ -13,7 +13,7 @@ from hypothesis import assume, given
 from hypothesis import strategies as st
 
 from screwkit.algebra import screw as S
-from screwkit.core.jacobians import classify_jacobians
+from screwkit.core.jacobian_matrices import classify_jacobians
 from screwkit.exceptions import (
     CatalogError,
     DegenerateGeometryError,
@@ -345,8 +345,8 @@ def test_length_scale(rng):
     config = smg.inverse_kinematics(PARAMS, random_poses(rng, 5))
     default, other = paper.classify(config), paper.classify(config, length_scale=650.0)
     # B's entries all scale as 1/L², A's first column as 1/L² and the rest as 1/L.
-    np.testing.assert_allclose(other.inverse_closeness, default.inverse_closeness, rtol=1e-12)
-    assert np.abs(other.direct_closeness - default.direct_closeness).max() > 1e-3
+    np.testing.assert_allclose(other.closeness["inverse"], default.closeness["inverse"], rtol=1e-12)
+    assert np.abs(other.closeness["direct"] - default.closeness["direct"]).max() > 1e-3
     jac = paper.jacobians(config, length_scale=400.0)
     np.testing.assert_allclose(jac.B, paper.jacobians(config).B / 4.0, atol=1e-15)
     with pytest.raises(ScrewkitValueError, match=r"Expected `length_scale` to be a positive"):
@@ -372,7 +372,7 @@ def test_fig_7a_aligned_points_are_not_singular():
     assert aligned < 1e-10
     jac = paper.jacobians(config)
     assert rank(jac.B) == 4 and closeness(jac.B) > REGULAR  # the paper's Fig. 7(a) is regular
-    assert paper.classify(config).label.tolist() == "regular"
+    assert paper.classify(config).types.tolist() == "regular"
 
 
 def test_fig_7b_vertical_distal_link_is_not_singular():
@@ -407,7 +407,7 @@ def test_wrist_on_the_pan_axis_is_singular_at_any_inclination():
     assert abs(factors.reach[0]) < 1e-12
     jac = paper.jacobians(config)
     assert rank(jac.B) == 3 and closeness(jac.B) < SINGULAR
-    assert paper.classify(config).label.tolist() == "inverse"
+    assert paper.classify(config).types.tolist() == "inverse"
 
 
 @pytest.mark.parametrize(
@@ -478,7 +478,7 @@ def test_fig_8b_two_horizontal_distal_links(x):
         assert abs(leg_vectors(config, leg)["rho3"][2]) < 1e-9
     sine, a_closeness = parallel_check(config)
     assert a_closeness < SINGULAR and sine < 1e-9
-    assert paper.classify(config).label.tolist() == "direct"
+    assert paper.classify(config).types.tolist() == "direct"
 
 
 @pytest.mark.parametrize(
@@ -515,14 +515,14 @@ def test_eq_22_is_sufficient_but_not_necessary():
 def test_parallel_factor_vanishes_exactly_where_a_loses_rank(rng):
     config = smg.inverse_kinematics(PARAMS, random_poses(rng, 40), (1, -1, -1, 1))
     factor = paper.singularity_factors(config).parallel
-    a_closeness = paper.classify(config).direct_closeness
+    a_closeness = paper.classify(config).closeness["direct"]
     assert np.all((np.abs(factor) > 1e-4) == (a_closeness > 1e-4))
     # The two measures vanish to the same (first) order along a path through a singularity.
     start, end = np.array([30.0, -20.0, -600.0, 0.2]), np.array([30.0, -20.0, -600.0, 1.2])
     pose = paper.locate_direct_singularity(PARAMS, start, end)
     near = pose + np.outer([1e-4, 2e-4], end - start)
     near_config = smg.inverse_kinematics(PARAMS, near)
-    ratio = paper.singularity_factors(near_config).parallel / paper.classify(near_config).direct_closeness
+    ratio = paper.singularity_factors(near_config).parallel / paper.classify(near_config).closeness["direct"]
     assert ratio[1] / ratio[0] == pytest.approx(1.0, rel=1e-3)
 
 
@@ -534,8 +534,8 @@ def test_combined_singularity():
     angles = bisect_segment(parallel, [0.0, -1.0, 0.0, -1.5], [0.0, -1.0, 0.0, -1.0])
     config = config_from_leg_one(list(angles), (-1, -1))
     label = paper.classify(config)
-    assert label.label.tolist() == "combined"
-    assert label.inverse_closeness < SINGULAR and label.direct_closeness < SINGULAR
+    assert label.types.tolist() == "combined"
+    assert label.closeness["inverse"] < SINGULAR and label.closeness["direct"] < SINGULAR
 
 
 # --------------------------------------------------------------------------------------------------
@@ -553,8 +553,8 @@ def test_change_of_length_unit(scale, index):
     np.testing.assert_allclose(wrap(scaled.joint_angles - config.joint_angles), 0.0, atol=1e-9)
     np.testing.assert_allclose(paper.jacobians(scaled).A, paper.jacobians(config).A, atol=1e-9)
     one, two = paper.classify(config), paper.classify(scaled)
-    np.testing.assert_allclose(two.direct_closeness, one.direct_closeness, rtol=1e-8)
-    np.testing.assert_allclose(two.inverse_closeness, one.inverse_closeness, rtol=1e-8)
+    np.testing.assert_allclose(two.closeness["direct"], one.closeness["direct"], rtol=1e-8)
+    np.testing.assert_allclose(two.closeness["inverse"], one.closeness["inverse"], rtol=1e-8)
 
 
 def rotation_from(quaternion: list[float]) -> np.ndarray:
@@ -664,7 +664,7 @@ def test_joint_row_errors():
 
 def test_classification_to_dict_and_errors():
     result = classify_jacobians(np.eye(4), np.diag([1.0, 0.0, 1.0, 1.0]), rtol=1e-9)
-    assert result.to_dict()["label"] == "inverse" and "inverse" in str(result)
+    assert result.to_dict()["type"] == "inverse" and "inverse" in str(result)
     with pytest.raises(ScrewkitValueError, match=r"Expected `rtol` to be a number in \[0, 0\.1\]"):
         paper.classify(smg.inverse_kinematics(PARAMS, HOME), rtol=1.5)
     with pytest.raises(ScrewkitValueError, match=r"signs \(\+1 or -1\), got 5"):
@@ -700,9 +700,9 @@ def test_test_cycle_with_our_dimensions():
     # or crosses, a parallel singularity.
     path = pick_and_place_cycle([0.0, -150.0, -500.0, 0.0], np.pi / 2, samples_per_segment=40)
     result = paper.classify(smg.inverse_kinematics(PARAMS, path, (1, 1, -1, 1)))
-    assert result.direct_closeness.min() > 0.1 and result.inverse_closeness.min() > 0.1
+    assert result.closeness["direct"].min() > 0.1 and result.closeness["inverse"].min() > 0.1
     symmetric = paper.classify(smg.inverse_kinematics(PARAMS, path, smg.DEFAULT_MODE))
-    assert symmetric.direct_closeness.min() < 0.05
+    assert symmetric.closeness["direct"].min() < 0.05
 
 
 # --------------------------------------------------------------------------------------------------

@@ -225,7 +225,7 @@ def test_equal_leads_are_an_architecture_singularity(rng):
     params = pm.PeppermillParameters(250, 250, 400, 400, 50, 40, 40)
     config = pm.inverse_kinematics(params, random_poses(rng, 10))
     assert all(rank(a) == 3 for a in paper.jacobians(config).A)
-    assert np.all(paper.classify(config).label == "direct")
+    assert np.all(paper.classify(config).types == "direct")
     with pytest.raises(DegenerateGeometryError, match=r"Expected distinct leads p1 and p2"):
         pm.forward_kinematics(params, config.actuated)
     zero = pm.PeppermillParameters(250, 250, 400, 400, 50, 0, 0)
@@ -313,7 +313,7 @@ def test_first_kind_aligned_links(pose, limb, folded):
     assert np.linalg.norm(np.cross(config.u[limb], config.v[limb])) < 1e-12
     jac = paper.jacobians(config)
     assert rank(jac.B) == 3 and rank(jac.A) == 4
-    assert paper.classify(config).label.tolist() == "inverse"
+    assert paper.classify(config).types.tolist() == "inverse"
 
 
 @pytest.mark.parametrize(
@@ -328,7 +328,7 @@ def test_second_kind_horizontal_distal_link(start, end, limb):
     jac = paper.jacobians(config)
     assert rank(jac.A) == 3 and rank(jac.B) == 4 and closeness(jac.B) > REGULAR
     result = paper.classify(config)
-    assert result.label.tolist() == "direct" and result.direct_closeness < SINGULAR
+    assert result.types.tolist() == "direct" and result.closeness["direct"] < SINGULAR
 
 
 def test_third_kind_within_one_limb():
@@ -337,7 +337,7 @@ def test_third_kind_within_one_limb():
     np.testing.assert_allclose(config.v[0], [0, 1, 0], atol=1e-12)
     jac = paper.jacobians(config)
     assert rank(jac.A) == 3 and rank(jac.B) == 3
-    assert paper.classify(config).label.tolist() == "combined"
+    assert paper.classify(config).types.tolist() == "combined"
 
 
 def test_third_kind_across_the_limbs():
@@ -353,13 +353,13 @@ def test_third_kind_across_the_limbs():
     assert abs(config.passive[0]) < 1e-7 and abs(config.v[1, 2]) < 1e-12  # ‖q_1‖ = 650 rounded
     jac = paper.jacobians(config)
     assert rank(jac.A) == 3 and rank(jac.B) == 3
-    assert paper.classify(config, rtol=1e-7).label.tolist() == "combined"
+    assert paper.classify(config, rtol=1e-7).types.tolist() == "combined"
 
 
 def test_generic_poses_are_regular(rng):
     result = paper.classify(pm.inverse_kinematics(PARAMS, random_poses(rng, 50)))
-    assert np.all(result.label == "regular")
-    assert result.inverse_closeness.min() > REGULAR and result.direct_closeness.min() > REGULAR
+    assert np.all(result.types == "regular")
+    assert result.closeness["inverse"].min() > REGULAR and result.closeness["direct"].min() > REGULAR
     assert result.to_dict()["rtol"] == 1e-9
 
 
@@ -369,7 +369,7 @@ def test_length_scale():
     scaled = paper.jacobians(config).A[:, 3] / (40.0 / (2 * np.pi))
     np.testing.assert_allclose(scaled, [0, 0, config.v[0, 2], -config.v[1, 2]], atol=1e-15)
     explicit = paper.classify(config, length_scale=40.0 / (2 * np.pi))
-    assert explicit.direct_closeness == pytest.approx(paper.classify(config).direct_closeness)
+    assert explicit.closeness["direct"] == pytest.approx(paper.classify(config).closeness["direct"])
     with pytest.raises(ScrewkitValueError, match=r"Expected `length_scale` to be a positive"):
         paper.classify(config, length_scale=0.0)
 
@@ -388,8 +388,8 @@ def test_change_of_length_unit(scale, index):
     np.testing.assert_allclose(scaled.actuated[:, 2:], config.actuated[:, 2:], atol=1e-9)
     np.testing.assert_allclose(scaled.passive, config.passive, atol=1e-9)
     one, two = paper.classify(config), paper.classify(scaled)
-    np.testing.assert_allclose(two.direct_closeness, one.direct_closeness, rtol=1e-9)
-    np.testing.assert_allclose(two.inverse_closeness, one.inverse_closeness, rtol=1e-9)
+    np.testing.assert_allclose(two.closeness["direct"], one.closeness["direct"], rtol=1e-9)
+    np.testing.assert_allclose(two.closeness["inverse"], one.closeness["inverse"], rtol=1e-9)
 
 
 @given(
@@ -413,8 +413,8 @@ def test_rotation_of_the_base_frame(quaternion, index):
     other = pm.PeppermillConfiguration(config.params, config.mode, config.pose, config.actuated,
                                        config.passive, **turned)
     one, two = paper.classify(config), paper.classify(other)
-    np.testing.assert_allclose(two.direct_closeness, one.direct_closeness, rtol=1e-9)
-    np.testing.assert_allclose(two.inverse_closeness, one.inverse_closeness, rtol=1e-9)
+    np.testing.assert_allclose(two.closeness["direct"], one.closeness["direct"], rtol=1e-9)
+    np.testing.assert_allclose(two.closeness["inverse"], one.closeness["inverse"], rtol=1e-9)
     np.testing.assert_allclose(np.linalg.det(paper.jacobians(other).A),
                                np.linalg.det(paper.jacobians(config).A), rtol=1e-9)
 
@@ -471,7 +471,7 @@ def test_test_cycle_with_our_dimensions():
     path = pick_and_place_cycle([-150.0, 0.0, -450.0, 0.0], samples_per_segment=40)
     for mode in pm.WORKING_MODES:
         result = paper.classify(pm.inverse_kinematics(PARAMS, path, mode))
-        assert result.direct_closeness.min() > 0.3 and result.inverse_closeness.min() > 0.9
+        assert result.closeness["direct"].min() > 0.3 and result.closeness["inverse"].min() > 0.9
 
 
 # --------------------------------------------------------------------------------------------------

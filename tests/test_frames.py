@@ -15,8 +15,15 @@ import numpy as np
 import pytest
 
 from screwkit.algebra import compiled as C
-from screwkit.algebra import reference_frame as R
+from screwkit.algebra import reference_frame as RF
+from screwkit.core import _closed_forms as CF
+from screwkit.core import _closing as CK
 from screwkit.core import _frames as F
+from screwkit.core import _kernel_constants as K
+from screwkit.core import _limbs as LK
+from screwkit.core import _residuals as R
+from screwkit.core._program import Program, frame_program, run_program
+from screwkit.core._wrench_pass import canonical
 
 HAS_NUMBA = importlib.util.find_spec("numba") is not None
 needs_numba = pytest.mark.skipif(not HAS_NUMBA, reason="numba is not installed (the `fast` extra)")
@@ -144,7 +151,7 @@ def test_residual_numba_matches_numpy(rng, batch, order):
     frame_rows, _ = F._span_numpy(generators(rng, batch, order, order), RTOL)
     vectors = rng.standard_normal((*batch, 3, 6))
     np.testing.assert_allclose(
-        F._residual_numba(vectors, frame_rows), F._residual_numpy(vectors, frame_rows), atol=ATOL
+        R._residual_numba(vectors, frame_rows), R._residual_numpy(vectors, frame_rows), atol=ATOL
     )
 
 
@@ -202,7 +209,7 @@ def test_numpy_and_numba_paths_are_bit_identical(rng, batch, k, rank, near, zero
     for swap in (False, True):
         assert same(F._complement_numpy(rows, order, swap=swap)[0], F._complement_numba(rows, order, swap=swap)[0])
     vectors = rng.standard_normal((*batch, 3, 6))
-    assert same(F._residual_numpy(vectors, rows), F._residual_numba(vectors, rows))
+    assert same(R._residual_numpy(vectors, rows), R._residual_numba(vectors, rows))
 
 
 @needs_numba
@@ -254,9 +261,9 @@ def rod_rows(rng, first, second):
 
 
 def rod_numba(rows, rtol):
-    from screwkit.core import _frames_numba as _frames_numba
+    from screwkit.core import _closed_forms_numba
     out = np.full((6, 6), np.nan)
-    if _frames_numba.rod_into(np.ascontiguousarray(rows), rtol, out):
+    if _closed_forms_numba.rod_into(np.ascontiguousarray(rows), rtol, out):
         return out, 1
     return None
 
@@ -271,7 +278,7 @@ def test_rod_is_the_line_through_the_two_centres(seed):
     line = np.concatenate([d, np.cross(first, d)])
     line /= np.linalg.norm(line)
     generic = F._complement_numpy(*F._span_numpy(rows, RTOL))
-    implementations = [F.rod] + ([rod_numba] if HAS_NUMBA else [])
+    implementations = [CF.rod] + ([rod_numba] if HAS_NUMBA else [])
     for implementation in implementations:
         got, order = implementation(rows, RTOL)
         assert int(order) == 1 and np.all(got[1:] == 0)
@@ -290,7 +297,7 @@ def test_rod_falls_back_to_the_rule_where_the_closed_form_does_not_apply(case):
     if case == "parallel axes":
         rows[:3] = rows[0]
     expected = F._complement_numpy(*F._span_numpy(rows, RTOL))
-    got, order = F.rod(rows, RTOL)
+    got, order = CF.rod(rows, RTOL)
     assert int(expected[1]) != 1  # no single line: the closed form would be wrong here
     np.testing.assert_array_equal(order, expected[1])
     np.testing.assert_allclose(projector(got, order), projector(F.swapped(expected[0]), expected[1]), atol=ATOL)
@@ -301,15 +308,16 @@ def test_rod_falls_back_to_the_rule_where_the_closed_form_does_not_apply(case):
 @needs_numba
 @pytest.mark.parametrize("seed", range(3))
 def test_rod_and_unit_screws_numba_and_numpy_are_bit_identical(seed):
+    from screwkit.core import _closed_forms_numba
     from screwkit.core import _frames_numba as _frames_numba
     rng = np.random.default_rng(seed)
     batch = [rod_rows(rng, rng.uniform(-2, 2, 3), rng.uniform(-2, 2, 3)) for _ in range(30)]
     batch[3] = rod_rows(rng, np.ones(3), np.ones(3))  # a fallback pose in the batch
     rows = np.array(batch)
-    expected = F.rod(rows, RTOL)
+    expected = CF.rod(rows, RTOL)
     for i, pose in enumerate(rows):
         out = np.zeros((6, 6))
-        if _frames_numba.rod_into(np.ascontiguousarray(pose), RTOL, out):
+        if _closed_forms_numba.rod_into(np.ascontiguousarray(pose), RTOL, out):
             assert expected[1][i] == 1 and np.array_equal(out, expected[0][i])
         else:
             assert i == 3 and expected[1][i] == 3
@@ -319,7 +327,7 @@ def test_rod_and_unit_screws_numba_and_numpy_are_bit_identical(seed):
     from screwkit.algebra import _reference_frame_numba
 
     compiled = _reference_frame_numba.unit_scaled(screws, centre, length)
-    np.testing.assert_array_equal(compiled, R.unit_scaled(screws, centre, length))  # 7 < 256: numpy
+    np.testing.assert_array_equal(compiled, RF.unit_scaled(screws, centre, length))  # 7 < 256: numpy
     assert np.all(compiled[2, 4] == 0.0)
     np.testing.assert_allclose(np.linalg.norm(np.delete(compiled.reshape(-1, 6), 22, 0), axis=-1), 1.0)
 
@@ -331,26 +339,25 @@ def test_compiled_program_matches_the_ops_run_one_by_one(monkeypatch):
     import screwkit as sk
     from screwkit.algebra.reference_frame import mechanism_frame
     from screwkit.core import _frames_numba as _frames_numba
-    from screwkit.core import wrenches as W
     from screwkit.graphs.topology import topology
 
     h4 = sk.load_mechanism("h4")
-    table = W._canonical(h4.joints(h4.random_poses(np.random.default_rng(5), 30)[:20]))
+    table = canonical(h4.joints(h4.random_poses(np.random.default_rng(5), 30)[:20]))
     top = topology(table.base, table.platform, table.specs)
     centre, length = mechanism_frame(table.screws, table.anchor)
-    scaled = R.unit_scaled(table.screws, centre, length)
+    scaled = RF.unit_scaled(table.screws, centre, length)
     requests = (
         *(("twists", i) for i in range(len(top.nodes))),
         *(("wrenches", i) for i in top.legs),
         *(("passive", tuple(plan.siblings)) for plan in top.limbs),
     )
-    program = W._program(top, requests)
-    for code in (W.ROD, W.PARALLELOGRAM, W.EXTEND, W.CONTRACT):  # rods, parallelograms, chains: closed forms
+    program = frame_program(top, requests)
+    for code in (K.ROD, K.PARALLELOGRAM, K.EXTEND, K.CONTRACT):  # rods, parallelograms, chains: closed forms
         assert code in program.ops[:, 0]
     monkeypatch.setitem(C._compiled, "screwkit.core._frames_numba", _frames_numba)
-    compiled = W._run(program, scaled, RTOL, requests)
+    compiled = run_program(program, scaled, RTOL, requests)
     monkeypatch.setitem(C._compiled, "screwkit.core._frames_numba", None)
-    stepwise = W._run(program, scaled, RTOL, requests)
+    stepwise = run_program(program, scaled, RTOL, requests)
     assert compiled[0].shape == stepwise[0].shape == (20, len(requests), 6, 6)
     np.testing.assert_array_equal(compiled[1], stepwise[1])
     np.testing.assert_array_equal(compiled[0], stepwise[0])
@@ -359,20 +366,21 @@ def test_compiled_program_matches_the_ops_run_one_by_one(monkeypatch):
 @needs_numba
 @pytest.mark.parametrize("k", [4, 6, 7, 12, 16])
 def test_triangular_keeps_the_singular_values_and_both_paths_are_bit_identical(rng, monkeypatch, k):
+    from screwkit.core import _closing_numba
     from screwkit.core import _frames_numba as _frames_numba
     rows = rng.standard_normal((40, k, 6))
     rows[:, ::3] = 0.0  # zero rows, as in stacked frames
     rows[:5] = 0.0  # an all-zero matrix
     rows[5:10, :, 2] = 0.0  # a zero column
     padded = np.concatenate([rows, np.zeros((40, max(6 - k, 0), 6))], axis=1)  # fewer than 6: zero rows added
-    compiled = _frames_numba.triangular(np.ascontiguousarray(padded))
+    compiled = _closing_numba.triangular(np.ascontiguousarray(padded))
     monkeypatch.setitem(C._compiled, "screwkit.core._frames_numba", None)
-    np.testing.assert_array_equal(F.triangular(rows), compiled)
+    np.testing.assert_array_equal(CK.triangular(rows), compiled)
     assert np.all(np.tril(compiled, -1) == 0)  # upper triangular
     np.testing.assert_allclose(
         np.linalg.svd(compiled, compute_uv=False), np.linalg.svd(padded, compute_uv=False), atol=1e-13
     )
-    np.testing.assert_array_equal(F.unpacked(F.packed(compiled)), compiled)  # the 21 entries say it all
+    np.testing.assert_array_equal(CK.unpacked(CK.packed(compiled)), compiled)  # the 21 entries say it all
 
 
 # ---- the fused passes: mechanism frame sums, limb systems, transmissions ---------------------------
@@ -396,7 +404,7 @@ def test_limb_systems_known_values(rng):
     serial iff t⊥ = 0, the free frame spans the locked rows and t, and the direction is the unit
     projection of SWAP t⊥ on the passive rows (reciprocal to every passive-free twist)."""
     locked, order, passive, actuated = limb_inputs(rng, 30)
-    perpendicular, serial, free, free_order, direction = F._limb_systems_numpy(locked, order, passive, actuated, RTOL)
+    perpendicular, serial, free, free_order, direction = LK._limb_systems_numpy(locked, order, passive, actuated, RTOL)
     expected = actuated - np.einsum("...is,...i->...s", locked, np.einsum("...is,...s->...i", locked, actuated))
     np.testing.assert_allclose(perpendicular, expected, atol=1e-12)
     assert serial[::5, 1].all() and serial.sum() == serial[::5, 1].size
@@ -416,12 +424,12 @@ def test_limb_systems_known_values(rng):
 
 @needs_numba
 def test_limb_systems_numba_matches_numpy_bit_for_bit(rng):
-    kernels = F._import_kernels()
+    from screwkit.core import _limbs_numba
     locked, order, passive, actuated = limb_inputs(rng, 60)
-    compiled = kernels.limb_systems(locked, order, passive, actuated, RTOL, True)
-    for got, expected in zip(compiled, F._limb_systems_numpy(locked, order, passive, actuated, RTOL), strict=True):
+    compiled = _limbs_numba.limb_systems(locked, order, passive, actuated, RTOL, True)
+    for got, expected in zip(compiled, LK._limb_systems_numpy(locked, order, passive, actuated, RTOL), strict=True):
         np.testing.assert_array_equal(got, expected)
-    single = F._limb_systems_numpy(locked[7:8], order[7:8], passive[7:8], actuated[7:8], RTOL)
+    single = LK._limb_systems_numpy(locked[7:8], order[7:8], passive[7:8], actuated[7:8], RTOL)
     for got, expected in zip(single, compiled, strict=True):  # a pose's answer is its own
         np.testing.assert_array_equal(got, expected[7:8])
 
@@ -433,19 +441,20 @@ def test_transmissions_known_values():
     force = np.array([3.0, 0, 0, 0, 0, -6.0])  # along x through (0, 2, 0): moment p × f = (0, 0, -2)·3
     rows = np.array([force, [1.0, 0, 0, 0, 0, 0], [0, 0, 0, 0, 0, 5.0], [1.0, 0, 0, 0, 0, 0]])
     twists = np.array([[0, 0, 1.0, 0, 0, 0], [0, 0, 0, 1.0, 0, 0], [0, 0, 1.0, 0, 0, 0], [1.0, 0, 0, 0, 0, 0]])
-    wrench, index = F.transmissions(rows[None], twists[None], RTOL)
+    wrench, index = LK.transmissions(rows[None], twists[None], RTOL)
     np.testing.assert_allclose(np.linalg.norm(wrench[0], axis=-1), 1.0)
     np.testing.assert_allclose(index[0], [2.0, 1.0, 1.0, 0.0], atol=1e-15)
 
 
 @needs_numba
 def test_transmissions_numba_matches_numpy_bit_for_bit(rng):
+    from screwkit.core import _limbs_numba
     raw, twists = rng.standard_normal((50, 4, 6)), rng.standard_normal((50, 4, 6))
     raw[::6, 2] = 0.0  # a zero wrench row: kept zero, index 0
     raw[::4, 1, :3] = 0.0  # couples
     twists[::3, 3, :3] = 0.0  # translations
-    compiled = F._import_kernels().transmissions(raw, twists, RTOL)
-    numpy = F.transmissions_numpy(F.unit_rows(raw), twists, RTOL)
+    compiled = _limbs_numba.transmissions(raw, twists, RTOL)
+    numpy = LK.transmissions_numpy(LK.unit_rows(raw), twists, RTOL)
     for got, expected in zip(compiled, numpy, strict=True):
         np.testing.assert_array_equal(got, expected)
     assert (compiled[1][::6, 2] == 0).all() and (compiled[0][::6, 2] == 0).all()
@@ -460,17 +469,17 @@ def test_mechanism_frame_numba_matches_numpy_bit_for_bit(rng, monkeypatch):
     screws[7, :, :3] = [0, 0, 1.0]  # all axes parallel: not solved directly, left to the numpy path
     screws[9] = np.array([[*e, 0, 0, 0] for e in np.eye(3)] * 4 + [[0, 0, 1.0, 0, 0, 0]])  # concurrent axes
     point, length, direct, scaled = kernels.mechanism_frame(screws, True)
-    expected_point, expected_length = R._frame_numpy(screws, None)
+    expected_point, expected_length = RF._frame_numpy(screws, None)
     assert not direct[7] and direct[9] and direct.sum() == 39
     np.testing.assert_array_equal(point[direct], expected_point[direct])
     np.testing.assert_array_equal(length[direct], expected_length[direct])
-    monkeypatch.setitem(C._compiled, R.KERNELS, None)  # the numpy path, whatever ran before
-    expected_scaled = R.unit_scaled(screws, expected_point, expected_length)
+    monkeypatch.setitem(C._compiled, RF.KERNELS, None)  # the numpy path, whatever ran before
+    expected_scaled = RF.unit_scaled(screws, expected_point, expected_length)
     np.testing.assert_array_equal(scaled[direct], expected_scaled[direct])
     np.testing.assert_array_equal(kernels.unit_scaled(screws, expected_point, expected_length), expected_scaled)
     assert length[9] == 1.0  # every axis through the origin: the length rule's fallback (no foot, no point)
-    monkeypatch.setitem(C._compiled, R.KERNELS, kernels)  # the numba pass, pose 7 as numpy
-    for got, expected in zip(R.scaled_frame(screws), (expected_point, expected_length, expected_scaled), strict=True):
+    monkeypatch.setitem(C._compiled, RF.KERNELS, kernels)  # the numba pass, pose 7 as numpy
+    for got, expected in zip(RF.scaled_frame(screws), (expected_point, expected_length, expected_scaled), strict=True):
         np.testing.assert_array_equal(got, expected)
 
 
@@ -481,13 +490,13 @@ def test_mechanism_frame_sums_known_values():
     z_line = np.array([0, 0, 1.0, *np.cross([1.0, 0, 0], [0, 0, 1.0])])
     x_line = np.array([1.0, 0, 0, *np.cross([0, 0, 3.0], [1.0, 0, 0])])
     screws = np.array([[z_line, [0, 0, 0, 0, 1.0, 0], x_line]])
-    count, normal, rhs, farthest = R._frame_sums_numpy(screws)
+    count, normal, rhs, farthest = RF._frame_sums_numpy(screws)
     assert count.tolist() == [2]
     np.testing.assert_allclose(normal[0], np.diag([1.0, 2.0, 1.0]))
     np.testing.assert_allclose(rhs[0], [1.0, 0, 3.0])
     np.testing.assert_allclose(farthest, [3.0])
-    np.testing.assert_allclose(R._frame_spread_numpy(screws, np.array([[1.0, 0, 3.0]])), [0.0], atol=1e-15)
-    np.testing.assert_allclose(R._frame_spread_numpy(screws, np.array([[1.0, 2.0, 3.0]])), [8.0])
+    np.testing.assert_allclose(RF._frame_spread_numpy(screws, np.array([[1.0, 0, 3.0]])), [0.0], atol=1e-15)
+    np.testing.assert_allclose(RF._frame_spread_numpy(screws, np.array([[1.0, 2.0, 3.0]])), [8.0])
 
 
 def test_sum_in_order_adds_left_to_right():
@@ -523,11 +532,11 @@ def test_extend_and_contract_are_the_span_and_its_reciprocal(rng, order, depende
         spanned = F._span_numpy(np.concatenate([twists[:order], t[None]]), RTOL)
         expected_order = order if dependent and order else order + 1
         assert int(spanned[1]) == expected_order == rank(np.vstack([twists[:order], t]))
-        rows, got, decided = F.extend(twists, t_order, t, RTOL)
+        rows, got, decided = CF.extend(twists, t_order, t, RTOL)
         assert bool(decided) and int(got) == expected_order
         check_frame(rows, got)
         np.testing.assert_allclose(projector(rows, got), projector(*spanned), atol=ATOL)
-        rows, got, decided = F.contract(wrenches, w_order, t, RTOL)
+        rows, got, decided = CF.contract(wrenches, w_order, t, RTOL)
         expected = F._complement_numpy(*spanned, swap=True)
         assert bool(decided) and int(got) == 6 - expected_order == int(expected[1])
         check_frame(rows, got)
@@ -543,7 +552,7 @@ def test_closed_forms_leave_the_threshold_band_to_the_rule(rng, offset, decided,
     outside = F._complement_numpy(twists, t_order)[0][0]  # a unit vector orthogonal to the system
     t = rng.standard_normal(3) @ twists[:3]
     t = t / np.linalg.norm(t) + offset * outside
-    for closed, frame, order, change in ((F.extend, twists, t_order, 1), (F.contract, wrenches, w_order, -1)):
+    for closed, frame, order, change in ((CF.extend, twists, t_order, 1), (CF.contract, wrenches, w_order, -1)):
         _, got, ok = closed(frame, order, t, RTOL)
         assert bool(ok) is decided
         if decided:
@@ -551,9 +560,9 @@ def test_closed_forms_leave_the_threshold_band_to_the_rule(rng, offset, decided,
 
 
 def closed_numba(name, frame, order, t):
-    from screwkit.core import _frames_numba as _frames_numba
+    from screwkit.core import _closed_forms_numba
     out = np.full((6, 6), np.nan)
-    got = getattr(_frames_numba, f"{name}_into")(frame, int(order), t, RTOL, out, np.empty(6), np.empty(6))
+    got = getattr(_closed_forms_numba, f"{name}_into")(frame, int(order), t, RTOL, out, np.empty(6), np.empty(6))
     return out, got
 
 
@@ -566,7 +575,7 @@ def test_extend_and_contract_numba_match_numpy_bit_for_bit(rng):
             t = (rng.standard_normal(order) @ twists[:order]) if order else np.zeros(6)
             t = t + offset * rng.standard_normal(6)
             cases.append((twists, t_order, wrenches, w_order, t * rng.uniform(0.5, 2.0)))
-    for name, closed, frame, order in (("extend", F.extend, 0, 1), ("contract", F.contract, 2, 3)):
+    for name, closed, frame, order in (("extend", CF.extend, 0, 1), ("contract", CF.contract, 2, 3)):
         batch = [np.array([c[k] for c in cases]) for k in (frame, order, 4)]
         rows, got, decided = closed(*batch, RTOL)
         assert decided.any() and not decided.all()  # both kinds of pose in the batch
@@ -591,7 +600,7 @@ def parallelogram_points(rng, side=1.0, tilt=0.0):
 
 def parallelogram_rods(rng, m, n, p, q):
     """The two rods' wrench frames by the closed-form rod (order 1 each)."""
-    frames = [F.rod(rod_rows(rng, a, b), RTOL) for a, b in ((m, p), (n, q))]
+    frames = [CF.rod(rod_rows(rng, a, b), RTOL) for a, b in ((m, p), (n, q))]
     assert all(int(order) == 1 for _, order in frames)
     return frames
 
@@ -603,7 +612,7 @@ def test_parallelogram_is_the_span_of_the_rods_and_its_reciprocal(seed):
     rng = np.random.default_rng(seed)
     m, n, p, q = parallelogram_points(rng)
     rods = parallelogram_rods(rng, m, n, p, q)
-    wrenches, w_order, twists, t_order, decided = F.parallelogram(*rods, RTOL)
+    wrenches, w_order, twists, t_order, decided = CF.parallelogram(*rods, RTOL)
     assert bool(decided) and int(w_order) == 2 and int(t_order) == 4
     check_frame(wrenches, w_order)
     check_frame(twists, t_order)
@@ -639,7 +648,7 @@ def test_parallelogram_is_the_span_of_the_rods_and_its_reciprocal(seed):
 def test_parallelogram_near_degenerate(side, tilt, decided, atol):
     rng = np.random.default_rng(11)
     rods = parallelogram_rods(rng, *parallelogram_points(rng, side, tilt))
-    got = F.parallelogram(*rods, RTOL)
+    got = CF.parallelogram(*rods, RTOL)
     assert bool(got[4]) is decided
     spanned = F._span_numpy(np.concatenate([rods[0][0], rods[1][0]]), RTOL)
     if decided:
@@ -650,17 +659,17 @@ def test_parallelogram_near_degenerate(side, tilt, decided, atol):
 
 @needs_numba
 def test_parallelogram_numba_matches_numpy_bit_for_bit(rng):
-    from screwkit.core import _frames_numba as _frames_numba
+    from screwkit.core import _closed_forms_numba
     cases = [parallelogram_points(rng) for _ in range(20)]
     cases += [parallelogram_points(rng, 1e-12), parallelogram_points(rng, 1.0, 1e-6)]  # two fallbacks
     rods = [parallelogram_rods(rng, *case) for case in cases]
     first = (np.array([r[0][0] for r in rods]), np.array([r[0][1] for r in rods]))
     second = (np.array([r[1][0] for r in rods]), np.array([r[1][1] for r in rods]))
-    wrenches, _, twists, _, decided = F.parallelogram(first, second, RTOL)
+    wrenches, _, twists, _, decided = CF.parallelogram(first, second, RTOL)
     assert decided[:20].all() and not decided[20:].any()
     for i in range(len(rods)):
         out = np.full((2, 6, 6), np.nan)
-        ok = _frames_numba.parallelogram_into(first[0][i], 1, second[0][i], 1, RTOL, out[0], out[1])
+        ok = _closed_forms_numba.parallelogram_into(first[0][i], 1, second[0][i], 1, RTOL, out[0], out[1])
         assert ok == decided[i]
         if ok:
             assert np.array_equal(out[0], wrenches[i]) and np.array_equal(out[1], twists[i])
@@ -673,7 +682,6 @@ def test_compiled_program_falls_back_alike(monkeypatch):
     # screw lies in the threshold band, and where the rods are not a parallelogram: the compiled
     # interpreter and the numpy path's op-by-op run agree bit for bit, and with the generic ops
     from screwkit.core import _frames_numba as _frames_numba
-    from screwkit.core import wrenches as W
     rng = np.random.default_rng(3)
     poses = []
     for k in range(12):
@@ -684,16 +692,16 @@ def test_compiled_program_falls_back_alike(monkeypatch):
         rods = np.concatenate([rod_rows(rng, points[0], points[2]), rod_rows(rng, points[1], points[3])])
         poses.append(np.concatenate([chain, fourth[None] / np.linalg.norm(fourth), rods]))
     scaled = np.array(poses)
-    J, S = W.JOINT_ROWS, W.SLOT_ROWS
+    J, S = K.JOINT_ROWS, K.SLOT_ROWS
     ops = [
-        (W.SPAN, 0, 0, 1),  # slot 0: the chain's twists
-        (W.RECIPROCAL, 1, 0, 0),  # slot 1: their wrenches
-        (W.EXTEND, 2, 1, 2),  # slot 2: with the fourth screw
-        (W.CONTRACT, 3, 3, 3),  # slot 3: the wrenches of that (falling back on slot 0's rows)
-        (W.ROD, 4, 6, 2),
-        (W.ROD, 5, 8, 2),
-        (W.PARALLELOGRAM, 6, 10, 2),
-        (W.COMPANION, 7, 6, 0),
+        (K.SPAN, 0, 0, 1),  # slot 0: the chain's twists
+        (K.RECIPROCAL, 1, 0, 0),  # slot 1: their wrenches
+        (K.EXTEND, 2, 1, 2),  # slot 2: with the fourth screw
+        (K.CONTRACT, 3, 3, 3),  # slot 3: the wrenches of that (falling back on slot 0's rows)
+        (K.ROD, 4, 6, 2),
+        (K.ROD, 5, 8, 2),
+        (K.PARALLELOGRAM, 6, 10, 2),
+        (K.COMPANION, 7, 6, 0),
     ]
     sources = [
         (J, 0, 3),  # the span
@@ -704,17 +712,17 @@ def test_compiled_program_falls_back_alike(monkeypatch):
         (S, 4, 6), (S, 5, 6),  # the two rods in parallel
     ]  # fmt: skip
     requests = tuple(("slot", i) for i in (2, 3, 6, 7))
-    program = W._Program(
+    program = Program(
         np.array(ops, dtype=np.int64), np.array(sources, dtype=np.int64), {r: r[1] for r in requests}, (3, 3, 2, 3, 6, 6, 6, 7)
     )
     monkeypatch.setitem(C._compiled, "screwkit.core._frames_numba", _frames_numba)
-    compiled = W._run(program, scaled, RTOL, requests)
+    compiled = run_program(program, scaled, RTOL, requests)
     monkeypatch.setitem(C._compiled, "screwkit.core._frames_numba", None)
-    stepwise = W._run(program, scaled, RTOL, requests)
+    stepwise = run_program(program, scaled, RTOL, requests)
     np.testing.assert_array_equal(compiled[1], stepwise[1])
     np.testing.assert_array_equal(compiled[0], stepwise[0])
     chain = F._span_numpy(scaled[:, :3], RTOL)[0][:, :3]  # in the band: the rule on the fallback's rows
-    decided = F.extend(F._span_numpy(scaled[:, :3], RTOL)[0], 3, scaled[:, 3], RTOL)[2]
+    decided = CF.extend(F._span_numpy(scaled[:, :3], RTOL)[0], 3, scaled[:, 3], RTOL)[2]
     assert decided[::3].all() and not decided[1::3].any()  # both kinds of pose
     np.testing.assert_array_equal(stepwise[1][:, 0], F._span_numpy(np.concatenate([scaled[:, 3:4], chain], 1), RTOL)[1])
     chains = F._span_numpy(scaled[:, :4], RTOL)
@@ -726,7 +734,7 @@ def test_compiled_program_falls_back_alike(monkeypatch):
     )
     reciprocal = F._complement_numpy(chains[0][clear], chains[1][clear], swap=True)
     np.testing.assert_allclose(projector(stepwise[0][clear, 1], stepwise[1][clear, 1]), projector(*reciprocal), atol=ATOL)
-    rods = [F.rod(scaled[:, 4 + 6 * r : 10 + 6 * r], RTOL) for r in range(2)]
+    rods = [CF.rod(scaled[:, 4 + 6 * r : 10 + 6 * r], RTOL) for r in range(2)]
     lines = F._span_numpy(np.concatenate([rods[0][0], rods[1][0]], axis=-2), RTOL)
     np.testing.assert_array_equal(stepwise[1][:, 2], lines[1])
     np.testing.assert_allclose(projector(stepwise[0][:, 2], stepwise[1][:, 2]), projector(*lines), atol=1e-9)
@@ -741,31 +749,31 @@ def test_closing_numba_matches_numpy_bit_for_bit(rng, monkeypatch):
     n, limbs = 40, 4
     constraint = np.zeros((n, 6, 6))
     constraint[:, :2] = F._span_numpy(rng.standard_normal((n, 2, 6)), RTOL)[0][:, :2]
-    wrenches = F.unit_rows(rng.standard_normal((n, limbs, 6)))
+    wrenches = LK.unit_rows(rng.standard_normal((n, limbs, 6)))
     wrenches[::5, 2] = wrenches[::5, 0]  # a repeated row: the global order drops
     wrenches[3, 1, :3] = 0.0  # a couple
     legs = np.zeros((n, 2, 6, 6))
-    legs[:, :, 0] = F.unit_rows(rng.standard_normal((n, 2, 6)))
-    apart = F.unit_rows(rng.standard_normal((n, limbs, 6)))
+    legs[:, :, 0] = LK.unit_rows(rng.standard_normal((n, 2, 6)))
+    apart = LK.unit_rows(rng.standard_normal((n, limbs, 6)))
     serial = rng.random((n, limbs)) < 0.2
     centre, length = rng.standard_normal((n, 3)), rng.uniform(0.5, 3.0, n)
     arguments = (constraint, wrenches, legs, apart, serial, centre, length, RTOL)
     monkeypatch.setitem(C._compiled, "screwkit.core._frames_numba", None)
-    expected = F.closing(*arguments)
+    expected = CK.closing(*arguments)
     monkeypatch.setitem(C._compiled, "screwkit.core._frames_numba", _frames_numba)
-    compiled = F.closing(*arguments)
+    compiled = CK.closing(*arguments)
     for got, want in zip(compiled, expected, strict=True):
         np.testing.assert_array_equal(got, want)
     stacked = np.concatenate([constraint[:, :2], wrenches], axis=1)
     assert [rank(m) for m in stacked] == expected[1].tolist()
     assert (expected[1][::5] == 5).all() and (expected[1][1::5] == 6).all()
-    values = np.linalg.svd(np.concatenate([F.unpacked(expected[2]), apart], axis=1), compute_uv=False)
+    values = np.linalg.svd(np.concatenate([CK.unpacked(expected[2]), apart], axis=1), compute_uv=False)
     np.testing.assert_allclose(
-        np.linalg.svd(F.unpacked(expected[3]), compute_uv=False),
+        np.linalg.svd(CK.unpacked(expected[3]), compute_uv=False),
         np.linalg.svd(np.concatenate([legs.reshape(n, 12, 6), apart], axis=1), compute_uv=False),
         atol=1e-12,
     )
-    np.testing.assert_allclose(values, np.linalg.svd(F.unpacked(expected[3]), compute_uv=False), atol=1e-12)
+    np.testing.assert_allclose(values, np.linalg.svd(CK.unpacked(expected[3]), compute_uv=False), atol=1e-12)
     moved = np.concatenate([wrenches[..., :3], wrenches[..., 3:] * length[:, None, None]
                             + np.cross(centre[:, None, :], wrenches[..., :3])], axis=-1)
     forces = np.linalg.norm(moved[..., :3], axis=-1)
@@ -786,11 +794,11 @@ def test_residuals_against_frames_match_residual_bit_for_bit(rng, monkeypatch):
     vectors = rng.standard_normal((30, 4, 6))
     which = np.array([2, 0, 2, 1])
     monkeypatch.setitem(C._compiled, "screwkit.core._frames_numba", None)
-    expected = F.residuals_against(vectors, frames, which)
+    expected = R.residuals_against(vectors, frames, which)
     monkeypatch.setitem(C._compiled, "screwkit.core._frames_numba", _frames_numba)
-    np.testing.assert_array_equal(F.residuals_against(vectors, frames, which), expected)
+    np.testing.assert_array_equal(R.residuals_against(vectors, frames, which), expected)
     for j, f in enumerate(which):
-        np.testing.assert_array_equal(expected[:, j], F._residual_numpy(vectors[:, j : j + 1], frames[:, f])[:, 0])
+        np.testing.assert_array_equal(expected[:, j], R._residual_numpy(vectors[:, j : j + 1], frames[:, f])[:, 0])
         np.testing.assert_allclose(np.einsum("pis,ps->pi", frames[:, f], expected[:, j]), 0.0, atol=1e-12)
 
 
@@ -802,17 +810,17 @@ def test_limb_wrenches_one_pass_matches_the_steps_bit_for_bit(rng, monkeypatch):
     locked, order, passive, actuated = limb_inputs(rng, 50)
     passive[3, 2, :, 3:] += 0.5 * passive[3, 2, :, :3]  # a pitched direction: no line
     legs = np.zeros((50, 2, 6, 6))
-    legs[:, :, 0] = F.unit_rows(rng.standard_normal((50, 2, 6)))
+    legs[:, :, 0] = LK.unit_rows(rng.standard_normal((50, 2, 6)))
     coupled, leg_of = np.array([0, 3, 1]), np.array([1, 1, 0])
     arguments = (locked, order, passive, actuated, legs, coupled, leg_of, RTOL, 1e-6)
     monkeypatch.setitem(C._compiled, "screwkit.core._frames_numba", None)
-    expected = F.limb_wrenches(*arguments)
-    _, serial, _, free_order, direction = F._limb_systems_numpy(locked, order, passive, actuated, RTOL)
-    wrench, index = F.transmissions_numpy(F.unit_rows(direction), actuated, RTOL)
+    expected = LK.limb_wrenches(*arguments)
+    _, serial, _, free_order, direction = LK._limb_systems_numpy(locked, order, passive, actuated, RTOL)
+    wrench, index = LK.transmissions_numpy(LK.unit_rows(direction), actuated, RTOL)
     steps = (serial, free_order, direction, wrench, index,
-             F.residuals_against(wrench[:, coupled], legs, leg_of), F.not_lines(direction, 1e-6))
+             R.residuals_against(wrench[:, coupled], legs, leg_of), LK.not_lines(direction, 1e-6))
     monkeypatch.setitem(C._compiled, "screwkit.core._frames_numba", _frames_numba)
-    compiled = F.limb_wrenches(*arguments)
+    compiled = LK.limb_wrenches(*arguments)
     for got, via_numpy, step in zip(compiled, expected, steps, strict=True):
         np.testing.assert_array_equal(got, via_numpy)
         np.testing.assert_array_equal(via_numpy, step)
@@ -827,11 +835,11 @@ def test_not_lines_is_the_pitch_criterion(rng):
     directions = rng.standard_normal((200, 3))
     points = rng.uniform(-10, 10, (200, 3))
     lines = S.line(directions, points)
-    assert not F.not_lines(lines, 1e-6).any()
-    assert not F.not_lines(S.couple(directions), 1e-6).any()
+    assert not LK.not_lines(lines, 1e-6).any()
+    assert not LK.not_lines(S.couple(directions), 1e-6).any()
     for pitch, expected in ((1e-3, True), (-1e-3, True), (1e-12, False)):
         helices = S.helical_twist(directions, points, pitch)
         size = np.linalg.norm(helices[:, :3], axis=1)
         by_hand = np.abs(pitch) * size > 1e-6 * np.linalg.norm(helices, axis=1)
         assert (by_hand == expected).all()
-        np.testing.assert_array_equal(F.not_lines(helices, 1e-6), by_hand)
+        np.testing.assert_array_equal(LK.not_lines(helices, 1e-6), by_hand)

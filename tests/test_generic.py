@@ -21,7 +21,8 @@ from screwkit.algebra import symbolic_bases as YB
 from screwkit.algebra.screwsystem import ScrewSystem
 from screwkit.core.generic import GenericAnalysis, generic_analysis
 from screwkit.core.singularity import classify
-from screwkit.core.wrenches import WrenchAnalysis, wrench_analysis
+from screwkit.core.wrench_systems import WrenchAnalysis
+from screwkit.core.wrenches import wrench_analysis
 from screwkit.exceptions import ScrewkitTypeError, ScrewkitValueError
 from screwkit.graphs.joints import revolute, spherical
 from screwkit.graphs.twistgraph import twist_graph

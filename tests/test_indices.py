@@ -557,7 +557,7 @@ def test_wrench_transmission_zero_at_the_singularities():
 
 def test_wrench_transmission_errors():
     jac, pin, _ = slider_crank(1.0)
-    with pytest.raises(ScrewkitTypeError, match="Expected `jacobians` to be a WrenchJacobians"):
+    with pytest.raises(ScrewkitTypeError, match="Expected `jacobians` to be a Jacobians"):
         I.wrench_transmission("A")
     with pytest.raises(ScrewkitValueError, match=r"Expected `input_points` to have shape \(\.\.\., 1, 3\)"):
         I.wrench_transmission(jac, input_points=[pin, pin])

@@ -21,13 +21,14 @@ from screwkit.analysis.indices import (
     four_limb_jacobians,
     transmission_indices,
 )
+from screwkit.core.jacobian_matrices import GOSSELIN_ANGELES_TYPES
 from screwkit.core.jacobians import (
-    GOSSELIN_ANGELES_TYPES,
     jacobians_from_wrenches,
     jacobians_over_poses,
     schoenflies_basis,
 )
-from screwkit.core.singularity import classify_analysis, classify_poses
+from screwkit.core.singularity import classify_poses
+from screwkit.core.verdicts import classify_analysis
 from screwkit.core.wrenches import wrench_analysis
 from screwkit.exceptions import (
     DegenerateGeometryError,

@@ -9,7 +9,8 @@ moved four-bar its link lengths.
 import numpy as np
 import pytest
 
-from screwkit.core.motion import generic_analyses, generic_configurations
+from screwkit.core.mobility import generic_analyses
+from screwkit.core.motion import generic_configurations
 from screwkit.exceptions import ScrewkitValueError
 from screwkit.graphs.joints import revolute
 from screwkit.graphs.twistgraph import twist_graph

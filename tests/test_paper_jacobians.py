@@ -126,7 +126,7 @@ def mcgill_poses(mode, rng, count):
 def test_mcgill_paper_jacobians_are_m_times_ours(mode, rng):
     for config in mcgill_poses(mode, rng, 2):
         paper, wrench = paper_001.jacobians(config), ours(smg, config)
-        assert wrench.type == str(paper_001.classify(config).label) == "regular"
+        assert wrench.type == str(paper_001.classify(config).types) == "regular"
         m = mcgill_m(config)
         assert close(paper.A @ T, m @ wrench.A, np.abs(paper.A).max())
         assert close(paper.B, m @ wrench.B, np.abs(paper.B).max())
@@ -153,7 +153,7 @@ def test_mcgill_types_agree_at_the_located_singularities(kind):
     config = singular_configs(MCGILL)[kind]
     paper, wrench = paper_001.jacobians(config), ours(smg, config, rtol=1e-7)
     expected, stuck = MCGILL_CASES[kind]
-    assert wrench.type == str(paper_001.classify(config, rtol=1e-7).label) == expected
+    assert wrench.type == str(paper_001.classify(config, rtol=1e-7).types) == expected
     m = mcgill_m(config)
     if stuck is None:  # the relation holds, and gives the same motion with the actuators locked
         assert close(paper.A @ T, m @ wrench.A, np.abs(paper.A).max())
@@ -203,7 +203,7 @@ def peppermill_configs(rng):
 def test_peppermill_paper_jacobians_equal_ours_up_to_signs_order_and_r(rng):
     for config in peppermill_configs(rng):
         wrench = ours(pm, config)
-        assert wrench.type == str(paper_000.classify(config).label) == "regular"
+        assert wrench.type == str(paper_000.classify(config).types) == "regular"
         paper, _, r = peppermill_relation(config, wrench)
         # the same kinematic map: δx = A⁻¹B δθ with δθ = R Πᵀ θ̇
         np.testing.assert_allclose(wrench.kinematic_jacobian(), np.linalg.solve(paper.A, paper.B) @ r @ PI.T,
@@ -218,7 +218,7 @@ def test_peppermill_types_agree_at_the_located_singularities(kind):
     config = singular_configs(PEPPERMILL)[kind]
     wrench = ours(pm, config, rtol=1e-7)
     expected, stuck = PEPPERMILL_CASES[kind]
-    assert wrench.type == str(paper_000.classify(config, rtol=1e-7).label) == expected
+    assert wrench.type == str(paper_000.classify(config, rtol=1e-7).types) == expected
     paper = paper_000.jacobians(config)
     if stuck is None:
         peppermill_relation(config, wrench)

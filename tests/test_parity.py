@@ -33,7 +33,7 @@ The full parity test makes 10,060 single-pose calls. Before the one core (issue 
 disagreed in every field near the surfaces: at the constraint surface (d = 1e-6, 1e-7) the
 single-pose path said "constraint" where the 50-digit truth says regular; at the actuation
 surface (d = 1e-8) and at the reach edge serial flags, orders and closeness differed. Now a single
-pose is a batch of one through the same kernels (:func:`screwkit.core.wrenches.analyze_table`).
+pose is a batch of one through the same kernels (:func:`screwkit.core.wrench_systems.analyze_table`).
 """
 
 import os

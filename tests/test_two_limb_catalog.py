@@ -21,7 +21,7 @@ import pytest
 from screwkit.algebra import screw as S
 from screwkit.algebra.screwsystem import ScrewSystem
 from screwkit.algebra.screwvalue import Screw
-from screwkit.core.jacobians import gosselin_angeles_label
+from screwkit.core.jacobian_matrices import gosselin_angeles_label
 from screwkit.core.singularity import classify
 from screwkit.core.wrenches import wrench_analysis
 from screwkit.exceptions import CatalogError, ScrewkitValueError
@@ -197,8 +197,8 @@ def test_workspace_is_reachable_and_free_of_singularities(name, rng):
     for mode in modes:
         config = family.inverse_kinematics(mechanism.parameters, poses, mode)  # raises if out of reach
         result = paper_module(mechanism).classify(config)
-        assert np.all(result.label == "regular")
-        assert result.direct_closeness.min() > 0.05 and result.inverse_closeness.min() > 0.2
+        assert np.all(result.types == "regular")
+        assert result.closeness["direct"].min() > 0.05 and result.closeness["inverse"].min() > 0.2
         if name == "mcgill_smg":
             factors = paper_module(mechanism).singularity_factors(config)
             assert len(np.unique(np.sign(factors.parallel))) == 1
@@ -418,7 +418,7 @@ def test_structural_results_hold_for_other_dimensions(name, changes, rng):
         assert analysis.platform_twists.is_equivalent(ScrewSystem.span(SCHOENFLIES))
         assert S.is_infinite_pitch(analysis.constraint_wrenches.basis, length_scale=scale).sum() == 2
         assert S.is_zero_pitch(analysis.actuation_wrenches, length_scale=scale).sum() == 4
-        assert gosselin_angeles_label(report) == str(paper.classify(config).label)
+        assert gosselin_angeles_label(report) == str(paper.classify(config).types)
 
 
 @pytest.mark.parametrize("name", ["mcgill_smg", "peppermill"])

@@ -239,7 +239,7 @@ def test_the_loci_find_where_limb_1s_parallelogram_plane_is_vertical():
 
 def test_core_calls_the_vertical_parallelogram_pose_regular():
     # limb 1's own actuation force cannot meet R_I's axis there; its compound leg is analysed as a
-    # whole (screwkit.core.wrenches._compound_legs, tests/test_compound_legs.py)
+    # whole (screwkit.core._compound_legs.compound_legs, tests/test_compound_legs.py)
     cfg = H4.configuration(VERTICAL_PLANE_POSE)
     assert abs(det_A_closed_form(cfg)) > 40 and abs(conditions(VERTICAL_PLANE_POSE)[1]) > 40
     assert (np.abs(cfg.h) > 200).all()

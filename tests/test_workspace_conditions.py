@@ -14,7 +14,7 @@ import pytest
 
 import screwkit as sk
 from screwkit.analysis import workspace as W
-from screwkit.core.wrenches import analyze_table
+from screwkit.core.wrench_systems import analyze_table
 from screwkit.exceptions import DegenerateGeometryError
 from screwkit.gca.conditions import _polynomial
 from screwkit.gca.diagram import batch_diagram_points, diagram_points

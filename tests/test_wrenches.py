@@ -395,12 +395,12 @@ def test_error_normalized_reciprocal_product_of_a_zero_screw():
 
 
 def test_closeness_is_computed_only_when_asked_and_a_batch_agrees_with_its_poses(monkeypatch):
-    from screwkit.core import _frames as F
+    from screwkit.core import _closing as CK
     from screwkit.robots.catalog import load_mechanism
 
     calls = []
-    ratio = F.singular_ratio
-    monkeypatch.setattr(F, "singular_ratio", lambda rows, index: calls.append(index) or ratio(rows, index))
+    ratio = CK.singular_ratio
+    monkeypatch.setattr(CK, "singular_ratio", lambda rows, index: calls.append(index) or ratio(rows, index))
     h4 = load_mechanism("h4")
     report = h4.at([[0, 0, -750, 0], [30, -20, -750, 0.3], [300, 300, -473.8, np.radians(30)]]).singularities
     assert report.verdict.tolist() == ["regular"] * 3 and report.global_order.tolist() == [6, 6, 6]
@@ -418,12 +418,13 @@ def test_closeness_is_computed_only_when_asked_and_a_batch_agrees_with_its_poses
 def test_a_batch_without_views_gives_the_same_bits(monkeypatch, name):
     # without views the limbs' constraint systems are computed only where an actuation wrench is
     # searched for a line (the McGill SMG has such poses), and the closeness when asked
-    from screwkit.core import wrenches as W
+    from screwkit.core import _wrench_pass as P
+    from screwkit.core import wrench_systems as W
     from screwkit.robots.catalog import load_mechanism
 
     searched = []
-    search = W._line_search
-    monkeypatch.setattr(W, "_line_search", lambda *args: searched.append(len(args[0])) or search(*args))
+    search = P.line_search
+    monkeypatch.setattr(P, "line_search", lambda *args: searched.append(len(args[0])) or search(*args))
     mechanism = load_mechanism(name)
     table = mechanism.at(mechanism.random_poses(np.random.default_rng(1), 300)).joints
     full, lean = W.analyze_table(table), W.analyze_table(table, views=False)
@@ -436,7 +437,7 @@ def test_a_batch_without_views_gives_the_same_bits(monkeypatch, name):
 
 
 def test_closeness_in_chunks_gives_the_same_bits(monkeypatch):
-    from screwkit.core import wrenches as W
+    from screwkit.core import wrench_systems as W
     from screwkit.robots.catalog import load_mechanism
 
     h4 = load_mechanism("h4")
@@ -463,7 +464,7 @@ def test_a_given_length_scale_is_the_one_every_rank_decision_uses():
     # By hand: the frame's point is midway between the axes and its length spacing/2, so the scaled
     # moments are ±1 and the hinges lock the platform (order 0). Judged by a length 1e10 times the
     # spacing, the axes are 5e-11 apart (< rtol = 1e-9): one hinge, a platform rotation (order 1).
-    from screwkit.core.wrenches import analyze_table
+    from screwkit.core.wrench_systems import analyze_table
 
     table = _two_parallel_hinges(1e-3)
     derived = analyze_table(table, dof=0)
@@ -475,7 +476,7 @@ def test_a_given_length_scale_is_the_one_every_rank_decision_uses():
 
 
 def test_an_analysis_length_scale_given_back_reproduces_it_bit_for_bit():
-    from screwkit.core.wrenches import analyze_table
+    from screwkit.core.wrench_systems import analyze_table
     from screwkit.robots.catalog import load_mechanism
 
     table = load_mechanism("h4").at([[0, 0, -750, 0], [30, -20, -750, 0.3], [10, 5, -700, -0.2]]).joints
@@ -515,7 +516,7 @@ def test_a_given_length_scale_in_the_new_unit_keeps_the_answers(motion, factor):
     ],
 )
 def test_error_bad_length_scale(value, message):
-    from screwkit.core.wrenches import analyze_table
+    from screwkit.core.wrench_systems import analyze_table
 
     with pytest.raises(ScrewkitValueError, match=message):
         analyze_table(_two_parallel_hinges(1.0), dof=0, length_scale=value)
@@ -526,7 +527,7 @@ def test_a_given_length_scale_is_kept_by_the_views_of_a_batch_analysed_without_t
     # when a view asks: with the given length, or the constraint system reads the derived length's
     # decision (order 6, see the hand derivation above) against the batch's own order 5.
     from screwkit.core.singularity import classify_table
-    from screwkit.core.wrenches import analyze_table
+    from screwkit.core.wrench_systems import analyze_table
 
     table = _two_parallel_hinges(1e-3)
     full = analyze_table(table, dof=0, length_scale=1e7)[0]

@@ -1,46 +1,22 @@
 """Helpers shared by the checks of papers 001 and 000 (``tests/paper_001.py``, ``tests/paper_000.py``).
 
 Not the robot model (that is :mod:`screwkit.robots.families.mcgill_smg` and
-:mod:`screwkit.robots.families.peppermill`): a container for a paper's own ``A`` and ``B``, the root
-search that locates singular poses along a path, and the SCARA test cycle both papers describe.
+:mod:`screwkit.robots.families.peppermill`; a paper's own ``A`` and ``B`` are a
+:class:`screwkit.core.jacobian_matrices.Jacobians`): the root search that locates singular poses along a path, and the SCARA test cycle both papers describe.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
 from screwkit.algebra.backend import as_array
 from screwkit.exceptions import ScrewkitValueError
-from screwkit.robots.families.two_limb import describe_indices, frozen
+from screwkit.robots.families.two_limb import describe_indices
 
-__all__ = ["Jacobians", "bisect_segment", "pick_and_place_cycle"]
-
-
-@dataclass(frozen=True, slots=True, eq=False)
-class Jacobians:
-    """The forward Jacobian ``A`` and the inverse Jacobian ``B`` of ``A t = B θ̇``.
-
-    Attributes
-    ----------
-    A, B : ndarray
-        Read-only, batched over leading axes; shapes as each family documents.
-
-    Examples
-    --------
-    >>> Jacobians(np.eye(2), np.eye(2)).A.flags.writeable
-    False
-    """
-
-    A: np.ndarray
-    B: np.ndarray
-
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "A", frozen(self.A))
-        object.__setattr__(self, "B", frozen(self.B))
+__all__ = ["bisect_segment", "pick_and_place_cycle"]
 
 
 def bisect_segment(

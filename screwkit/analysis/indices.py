@@ -1298,7 +1298,7 @@ def wrench_transmission(
 
     Parameters
     ----------
-    jacobians : WrenchJacobians
+    jacobians : Jacobians
         From :func:`screwkit.core.jacobians.jacobians_from_wrenches` or ``posed.jacobians``; ``A`` must
         be square (one actuator per degree of freedom of the basis).
     input_points, output_points : array_like, shape (..., n, 3), optional
@@ -1312,7 +1312,7 @@ def wrench_transmission(
     Raises
     ------
     ScrewkitTypeError
-        Not a WrenchJacobians.
+        Not a Jacobians from a wrench analysis.
     ScrewkitValueError
         ``A`` is not square, or points of the wrong shape.
 
@@ -1339,11 +1339,12 @@ def wrench_transmission(
     >>> result.input.round(6).tolist(), result.output.round(6).tolist(), round(float(result.lti), 6)
     ([0.997131], [0.901388], 0.901388)
     """
-    from ..core.jacobians import WrenchJacobians
+    from ..core.jacobian_matrices import Jacobians
 
-    if not isinstance(jacobians, WrenchJacobians):
+    if not isinstance(jacobians, Jacobians) or jacobians.analysis is None:
         raise ScrewkitTypeError(
-            f"Expected `jacobians` to be a WrenchJacobians, got {type(jacobians).__name__}."
+            "Expected `jacobians` to be a Jacobians from a wrench analysis (jacobians_from_wrenches), got "
+            f"{type(jacobians).__name__}."
         )
     forward = np.asarray(jacobians.A)
     n, dof = forward.shape[-2:]
@@ -1354,7 +1355,7 @@ def wrench_transmission(
         )
     wrenches = np.asarray(jacobians.wrenches)
     # what the driven link receives: the wrench, or in a compound leg analysed as a whole its part
-    # on the actuator's own branch (screwkit.core.wrenches.WrenchAnalysis.branch_rows)
+    # on the actuator's own branch (screwkit.core.wrench_systems.WrenchAnalysis.branch_rows)
     branches = np.asarray(jacobians.analysis.branch_rows, dtype=float)
     twists = np.asarray(jacobians.analysis.actuated_twists, dtype=float)
     basis = np.asarray(jacobians.twist_basis)

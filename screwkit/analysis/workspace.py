@@ -17,12 +17,12 @@ Quantities (:data:`QUANTITIES`)
 -------------------------------
 ``"verdict"``
     The core's code per pose: bit 1 constraint, 2 actuation, 4 serial (0 regular,
-    :attr:`screwkit.core.singularity.SingularityReport.codes`); ``-1`` where the pose is out of reach.
+    :attr:`screwkit.core.verdicts.SingularityReport.codes`); ``-1`` where the pose is out of reach.
 ``"closeness"``, ``"closeness:constraint"``, ``"closeness:actuation"``, ``"closeness:serial"``
     The core's closeness measures (:mod:`screwkit.core.singularity`), ``"closeness"`` their minimum.
 ``"det_A"``, ``"det_B"``
     Determinants of the forward and inverse Jacobians ``A χ̇ = B θ̇``
-    (:class:`screwkit.core.jacobians.WrenchJacobians`; paper 004 Eq. 6).
+    (:class:`screwkit.core.jacobian_matrices.Jacobians`; paper 004 Eq. 6).
 ``"lti"``, ``"kappa"``, ``"zeta"``
     The local transmission index ``η = min(κ, ζ)`` of paper 004 Eq. (16), its motion index ``κ``
     and force index ``ζ`` (Eq. 15) (:func:`screwkit.analysis.indices.transmission`; four-limb families).
@@ -326,7 +326,7 @@ def _diagram_points(diagram: Any, posed: Any) -> tuple[dict[str, Array], Array]:
     """The diagram's points ``{label: (n, 4)}`` at every pose of a posed batch ``(n,)`` and where
     all of them exist ``(n,)``: the batched core with the per-pose frames the recipes read, in
     the core's own chunks (:data:`screwkit.robots.posed.CHUNK` poses), so that only the points are kept."""
-    from ..core.wrenches import analyze_table
+    from ..core.wrench_systems import analyze_table
     from ..gca.diagram import batch_diagram_points
     from ..robots.posed import CHUNK as CORE_CHUNK
 

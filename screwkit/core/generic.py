@@ -57,7 +57,7 @@ from ..exceptions import ScrewkitTypeError, TwistGraphError
 from ..graphs.jointtable import JointSpec
 from ..graphs.topology import Topology, topology
 from ..graphs.twistgraph import check_twist_graph
-from .motion import resolve_dof
+from .mobility import resolve_dof
 
 __all__ = ["GenericAnalysis", "GenericLeg", "GenericLimb", "generic_analysis", "is_symbolic_graph"]
 
@@ -66,6 +66,17 @@ Array = np.ndarray
 
 def is_symbolic_graph(graph: nx.MultiDiGraph, *, joint_key: str = "joint") -> bool:
     """True when some joint of a twist graph holds a sympy expression in its screws.
+
+    Parameters
+    ----------
+    graph : networkx.MultiDiGraph
+        A twist graph.
+    joint_key : str, default "joint"
+        The edge attribute holding each joint.
+
+    Returns
+    -------
+    bool
 
     Examples
     --------
@@ -88,7 +99,7 @@ class GenericLimb:
     actuated_joint : str
     joints : tuple of str
     twist_system, constraint_wrenches, passive_wrenches : ScrewSystem
-        As in :class:`screwkit.core.wrenches.Limb`, symbolic.
+        As in :class:`screwkit.core.wrench_systems.Limb`, symbolic.
     actuated_twist : numpy.ndarray, shape (6,)
     actuation_wrench : numpy.ndarray, shape (6,), or None
         A passive wrench not reciprocal to the actuated twist (a line where the passive system's
@@ -121,7 +132,7 @@ class GenericLeg:
 
     @property
     def name(self) -> str:
-        """``"leg through A1, A4"``, as :class:`screwkit.core.wrenches.CompoundLeg`."""
+        """``"leg through A1, A4"``, as :class:`screwkit.core.wrench_systems.CompoundLeg`."""
         return "leg through " + ", ".join(self.actuated or sorted(self.joints)[:2])
 
 
@@ -190,6 +201,12 @@ class GenericAnalysis:
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready summary (expressions as strings).
+
+        Returns
+        -------
+        dict
+            ``generic`` (True), ``symbols``, ``mobility``, ``motion_type``, ``verdict``, the generic
+            systems and orders, the compound legs and limbs; expressions as strings.
 
         Examples
         --------
@@ -345,7 +362,7 @@ def generic_analysis(
         A twist graph whose screws may hold sympy expressions (numbers are made exact).
     dof : int, optional
         Nominal mobility; default: the graph's ``dof``, else the generic mobility, which a stated
-        ``dof`` must equal (:func:`screwkit.core.motion.resolve_dof`).
+        ``dof`` must equal (:func:`screwkit.core.mobility.resolve_dof`).
     joint_key : str
 
     Returns
@@ -393,7 +410,7 @@ def _analysis(top: Topology, stated: Any, screws: Array, core: _GenericEvaluatio
     """The generic answers from the node systems (in the point's arithmetic context)."""
     assert top.root is not None
     platform = core.twists(top.root)
-    # the nominal dof is the generic mobility, the actuators no more (screwkit.core.motion.resolve_dof)
+    # the nominal dof is the generic mobility, the actuators no more (screwkit.core.mobility.resolve_dof)
     nominal = resolve_dof(None if stated is None else int(stated), len(platform), top.actuated)
     constraint = core.wrenches(top.root)
     legs = tuple(

@@ -16,9 +16,9 @@ ASME J. Mech. Des. 124(2), 2002). Stacking the limbs,
 
 and ``A χ̇ = B θ̇``, the form of paper 004 Eq. (6). In a compound leg whose actuators share a link
 (the H4's ``A1``, ``A4`` on the nacelle ``b_I``), where a limb's own wrench fails the core picks
-``w_j`` from the leg as a whole, loading ``A_j`` alone (:func:`screwkit.core.wrenches.analyze_table`):
+``w_j`` from the leg as a whole, loading ``A_j`` alone (:func:`screwkit.core.wrench_systems.analyze_table`):
 ``w_j`` then splits between the leg's parallel branches and ``B_jj`` is the part on ``A_j``'s branch
-times ``$_j`` (:attr:`~screwkit.core.wrenches.WrenchAnalysis.branch_rows`); ``B`` stays diagonal and its
+times ``$_j`` (:attr:`~screwkit.core.wrench_systems.WrenchAnalysis.branch_rows`); ``B`` stays diagonal and its
 zeros are the leg's serial singularities. This needs the actuated joint *in series* in
 its limb (on no closed loop of the limb), which is checked. Each ``w_j`` is defined up to a factor
 (and up to the limb's constraint wrenches, which are reciprocal to every ``t_k``), so ``A`` and
@@ -42,7 +42,7 @@ Gosselin–Angeles types and their tolerances
 -------------------------------------------
 Gosselin & Angeles, "Singularity analysis of closed-loop kinematic chains", IEEE Trans. Robot.
 Autom. 6(3), 1990; paper 004 §4.2 (type 1: ``|B| = 0``, type 2: ``|A| = 0``). The decisions use
-unit-free matrices, in the spirit of :mod:`screwkit.core.singularity`'s closeness measures:
+unit-free matrices, in the spirit of :mod:`screwkit.core.verdicts`'s closeness measures:
 
 * ``Â_jk = (w_j ∘ t_k) / (N(w_j) N(t_k) L)`` with ``L`` the mechanism's characteristic length and
   ``N`` the size of :func:`~screwkit.core.wrenches.normalized_reciprocal_product` (``|s|``, or ``|s0|/L``
@@ -52,7 +52,7 @@ unit-free matrices, in the spirit of :mod:`screwkit.core.singularity`'s closenes
   inhomogeneous Jacobian does; the *zero* decision does not).
 * closeness ``"direct"`` = σ_dof(Â) / σ_1(Â) (0 if there are fewer actuation rows than ``dof``);
 * closeness ``"inverse"`` = min_j ``|B_jj| / (N(w_j) N($_j) L)``, the smallest limb transmission
-  (equal to :mod:`screwkit.core.singularity`'s ``"serial"`` closeness), 0 for a limb in ``serial_limbs``.
+  (equal to :mod:`screwkit.core.verdicts`'s ``"serial"`` closeness), 0 for a limb in ``serial_limbs``.
 
 A pose is ``"direct"`` (type 2, parallel: ``A`` loses rank, the platform keeps an uncontrolled
 twist of the basis with the actuators locked) when the direct closeness is ``≤ rtol``,
@@ -86,7 +86,7 @@ Eq. (7) identically, because ``(r_g − r_c) × z = 2r s`` for the points ``r_c`
 * ``det A`` (and the ``"direct"`` type) sees the actuation singularities (roots of Eq. 7) and misses
   the constraint singularities (roots of Eq. 6), where the platform gains a twist outside the
   Schoenflies basis: there ``A`` stays regular;
-* the 6 × 6 determinant (:mod:`screwkit.core.singularity`'s global order) sees both kinds and cannot
+* the 6 × 6 determinant (:mod:`screwkit.core.verdicts`'s global order) sees both kinds and cannot
   tell them apart; the constraint order alone sees Eq. (6).
 
 ``tests/test_jacobians.py`` keeps the evidence (identities at random poses, labels at the roots).
@@ -105,7 +105,6 @@ Examples
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass, field
 from typing import Any
 
 import networkx as nx
@@ -113,32 +112,17 @@ import numpy as np
 
 from ..algebra import backend as B
 from ..algebra import screw as S
-from ..algebra.backend import as_array
+from ..algebra.checks import checked_rtol
 from ..algebra.ranks import screw_singular_values
-from ..exceptions import (
-    DegenerateGeometryError,
-    ScrewkitTypeError,
-    ScrewkitValueError,
-    TwistGraphError,
-)
+from ..exceptions import DegenerateGeometryError, ScrewkitTypeError, ScrewkitValueError, TwistGraphError
 from . import _frames as F
-from .wrenches import WrenchAnalysis, checked_rtol
+from .jacobian_matrices import Jacobians, _plain, _safe_divide
+from .singularity import classify_poses
+from .wrench_systems import WrenchAnalysis
 
-__all__ = [
-    "GOSSELIN_ANGELES_TYPES",
-    "JacobianClassification",
-    "WrenchJacobians",
-    "classify_jacobians",
-    "gosselin_angeles_label",
-    "jacobians_from_wrenches",
-    "jacobians_over_poses",
-    "schoenflies_basis",
-]
+__all__ = ["jacobians_from_wrenches", "jacobians_over_poses", "schoenflies_basis"]
 
 Array = np.ndarray
-
-#: The four Gosselin–Angeles types, indexed by ``2 * direct + inverse``.
-GOSSELIN_ANGELES_TYPES = ("regular", "inverse", "direct", "combined")
 
 #: Default tolerance of the twist-basis membership check (module docstring of each function).
 DEFAULT_BASIS_RTOL = 1e-6
@@ -206,15 +190,6 @@ def _size(rows: Array, length: Array, rtol: float) -> Array:
     return np.where(directions > rtol * moments, directions, moments)
 
 
-def _safe_divide(numerator: Array, denominator: Array) -> Array:
-    return np.divide(
-        numerator,
-        denominator,
-        out=np.zeros(np.broadcast_shapes(numerator.shape, denominator.shape)),
-        where=denominator > 0,
-    )
-
-
 def _most_acting(passive: Array, basis: Array, length: Array, rtol: float) -> Array:
     """The unit combination of orthonormal scaled rows ``(..., k, 6)`` acting most on the basis."""
     if passive.shape[-2] == 0:
@@ -239,7 +214,7 @@ def _jacobian_arrays(
     """A, B, closeness measures and serial flags from chosen wrenches (user frame), batched.
 
     ``wrenches, branches, twists``: (..., n, 6) (``branches``: the part of each wrench reaching
-    its actuated joint, :attr:`~screwkit.core.wrenches.WrenchAnalysis.branch_rows`); ``basis``:
+    its actuated joint, :attr:`~screwkit.core.wrench_systems.WrenchAnalysis.branch_rows`); ``basis``:
     (..., dof, 6); ``length``: (...,); ``substituted``: (..., n) bool, rows built on a passive
     wrench (``B_jj`` set to 0).
     """
@@ -286,10 +261,6 @@ def _jacobian_arrays(
     )
 
 
-def _type_index(direct: Any, inverse: Any, rtol: float) -> Array:
-    return 2 * (np.asarray(direct) <= rtol).astype(int) + (np.asarray(inverse) <= rtol).astype(int)
-
-
 def _check_in_series(name: str, edges: list[tuple[Any, Any, str]]) -> None:
     """The actuated joint must be a bridge of its limb (B_jj = w_j ∘ $_j needs it)."""
     graph = nx.MultiGraph()
@@ -301,257 +272,6 @@ def _check_in_series(name: str, edges: list[tuple[Any, Any, str]]) -> None:
             "limb), got a loop through it; B_jj = w_j ∘ $_j needs it (screwkit.core.jacobians docstring)."
         )
 
-
-# --------------------------------------------------------------------------------------------------
-# The result (one class, leading batch shape)
-# --------------------------------------------------------------------------------------------------
-
-
-@dataclass(frozen=True, eq=False)
-class WrenchJacobians:
-    """Forward and inverse Jacobians ``A χ̇ = B θ̇`` over a batch of poses (shape ``()`` for one).
-
-    Index it (``jac[3]``) for one pose.
-
-    Attributes
-    ----------
-    A : numpy.ndarray, shape (..., n, dof)
-        ``A_jk = w_j ∘ t_k`` (forward Jacobian, paper 004 Eq. 6).
-    B : numpy.ndarray, shape (..., n, n)
-        ``diag(w_j ∘ $_j)``, ``≥ 0`` (inverse Jacobian); 0 for a limb at a serial singularity.
-    wrenches : numpy.ndarray, shape (..., n, 6)
-        The rows ``w_j``: unit force (or unit couple), user frame.
-    twist_basis : numpy.ndarray, shape (..., dof, 6)
-    actuated_joints : tuple of str
-        Row order (the analysis's limb order: sorted names).
-    serial : numpy.ndarray of bool, shape (..., n)
-        True where that limb is at a serial singularity (``B_jj = 0`` or transmission ``≤ rtol``).
-    closeness : dict of str to float or numpy.ndarray
-        ``"direct"`` (in [0, 1]) and ``"inverse"`` (≥ 0; a mutual moment over the length, which can
-        exceed 1), module docstring; 0 at the singularity.
-    rtol : float
-    analysis : WrenchAnalysis
-
-    Examples
-    --------
-    >>> from screwkit.graphs.joints import prismatic
-    >>> from screwkit.graphs.twistgraph import twist_graph
-    >>> from screwkit.core.wrenches import wrench_analysis
-    >>> G = twist_graph("B", "E", [("B", "E", prismatic("P", [0, 1, 0], actuated=True))])
-    >>> result = jacobians_from_wrenches(wrench_analysis(G), [[0, 0, 0, 0, 1, 0]])
-    >>> result.wrenches, result.serial_limbs
-    (array([[0., 1., 0., 0., 0., 0.]]), ())
-    """
-
-    A: Array
-    B: Array
-    wrenches: Array
-    twist_basis: Array
-    actuated_joints: tuple[str, ...]
-    serial: Array
-    closeness: dict[str, Any]
-    rtol: float
-    analysis: WrenchAnalysis = field(repr=False)
-
-    def __post_init__(self) -> None:
-        for name in ("A", "B", "wrenches", "twist_basis", "serial"):
-            array = np.array(getattr(self, name))
-            array.flags.writeable = False
-            object.__setattr__(self, name, array)
-
-    @property
-    def shape(self) -> tuple[int, ...]:
-        """The batch shape (``()`` for one pose)."""
-        return self.A.shape[:-2]
-
-    @property
-    def single(self) -> bool:
-        """True for one pose."""
-        return self.shape == ()
-
-    def __len__(self) -> int:
-        if self.single:
-            raise TypeError("the Jacobians of one pose have no length")
-        return self.shape[0]
-
-    def __getitem__(self, index: Any) -> WrenchJacobians:
-        return WrenchJacobians(
-            self.A[index],
-            self.B[index],
-            self.wrenches[index],
-            self.twist_basis[index],
-            self.actuated_joints,
-            self.serial[index],
-            {k: _plain(np.asarray(v)[index]) for k, v in self.closeness.items()},
-            self.rtol,
-            self.analysis[index],
-        )
-
-    @property
-    def types(self) -> Array:
-        """Gosselin–Angeles type per pose, an array of str of the batch shape.
-
-        Examples
-        --------
-        >>> import numpy as np
-        >>> from screwkit.graphs.joints import prismatic
-        >>> from screwkit.graphs.twistgraph import twist_graph
-        >>> G = twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))])
-        >>> screws = {"P": np.array([[[0, 0, 0, 1.0, 0, 0]], [[0, 0, 0, 0, 1.0, 0]]])}
-        >>> jacobians_over_poses(G, screws, [[[0, 0, 0, 1, 0, 0]], [[0, 0, 0, 0, 2, 0]]]).types
-        array(['regular', 'regular'], dtype='<U8')
-        """
-        index = _type_index(self.closeness["direct"], self.closeness["inverse"], self.rtol)
-        return np.asarray(GOSSELIN_ANGELES_TYPES)[index]
-
-    @property
-    def type(self) -> Any:
-        """The Gosselin–Angeles type (a str for one pose; :attr:`types` over a batch)."""
-        types = self.types
-        return str(types) if self.single else types
-
-    @property
-    def serial_limbs(self) -> tuple[str, ...]:
-        """Actuated joints whose limb is at a serial singularity (one pose)."""
-        if not self.single:
-            raise ScrewkitTypeError(
-                f"Expected one pose for `serial_limbs`, got a batch of shape {self.shape}."
-            )
-        return tuple(name for name, flag in zip(self.actuated_joints, self.serial, strict=True) if flag)
-
-    @property
-    def det_A(self) -> Any:
-        """``det A`` per pose (unit: length to the number of rotations in the basis).
-
-        Raises
-        ------
-        ScrewkitValueError
-            If ``A`` is not square.
-
-        Examples
-        --------
-        >>> from screwkit.graphs.joints import prismatic
-        >>> from screwkit.graphs.twistgraph import twist_graph
-        >>> from screwkit.core.wrenches import wrench_analysis
-        >>> G = twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))])
-        >>> jacobians_from_wrenches(wrench_analysis(G), [[0, 0, 0, 2, 0, 0]]).det_A
-        2.0
-        """
-        _require_square(self.A)
-        return _plain(np.linalg.det(self.A))
-
-    @property
-    def det_B(self) -> Any:
-        """``det B = Π_j B_jj`` per pose (paper 004 Eq. 10 up to the row scaling).
-
-        Examples
-        --------
-        >>> from screwkit.graphs.joints import prismatic
-        >>> from screwkit.graphs.twistgraph import twist_graph
-        >>> from screwkit.core.wrenches import wrench_analysis
-        >>> G = twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))])
-        >>> jacobians_from_wrenches(wrench_analysis(G), [[0, 0, 0, 1, 0, 0]]).det_B
-        1.0
-        """
-        return _plain(np.prod(np.diagonal(self.B, axis1=-2, axis2=-1), axis=-1))
-
-    def kinematic_jacobian(self) -> Array:
-        """``J = A⁻¹B`` with ``χ̇ = J θ̇`` (paper 004 Eq. 9), per pose; independent of the row scaling.
-
-        Returns
-        -------
-        numpy.ndarray, shape (..., dof, n)
-
-        Raises
-        ------
-        ScrewkitValueError
-            If ``A`` is not square.
-        DegenerateGeometryError
-            If ``A`` is singular at some pose (type ``"direct"`` or ``"combined"``; names the first
-            batch indices).
-
-        Examples
-        --------
-        >>> from screwkit.graphs.joints import prismatic
-        >>> from screwkit.graphs.twistgraph import twist_graph
-        >>> from screwkit.core.wrenches import wrench_analysis
-        >>> G = twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))])
-        >>> jacobians_from_wrenches(wrench_analysis(G), [[0, 0, 0, 0.5, 0, 0]]).kinematic_jacobian()
-        array([[2.]])
-        """
-        _require_square(self.A)
-        singular = np.asarray(self.closeness["direct"]) <= self.rtol
-        if np.any(singular):
-            if self.single:
-                raise DegenerateGeometryError(
-                    "The kinematic Jacobian A⁻¹B does not exist at this pose: A is singular "
-                    f"(Gosselin-Angeles type {self.type!r}, direct closeness "
-                    f"{self.closeness['direct']:.3g} <= rtol {self.rtol:g})."
-                )
-            indices = [tuple(int(i) for i in index) for index in np.argwhere(singular)[:5]]
-            raise DegenerateGeometryError(
-                f"The kinematic Jacobian A⁻¹B does not exist at {int(singular.sum())} poses of the batch "
-                f"(first batch indices {indices}): A is singular there (direct closeness <= rtol "
-                f"{self.rtol:g})."
-            )
-        return np.linalg.solve(self.A, self.B)
-
-    def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dictionary (arrays as nested lists).
-
-        Examples
-        --------
-        >>> from screwkit.graphs.joints import prismatic
-        >>> from screwkit.graphs.twistgraph import twist_graph
-        >>> from screwkit.core.wrenches import wrench_analysis
-        >>> G = twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))])
-        >>> jacobians_from_wrenches(wrench_analysis(G), [[0, 0, 0, 1, 0, 0]]).to_dict()["type"]
-        'regular'
-        """
-        result = {
-            "type": self.type if self.single else self.types.tolist(),
-            "A": self.A.tolist(),
-            "B": self.B.tolist(),
-            "wrenches": self.wrenches.tolist(),
-            "twist_basis": self.twist_basis.tolist(),
-            "actuated_joints": list(self.actuated_joints),
-            "closeness": {k: np.asarray(v).tolist() for k, v in self.closeness.items()},
-            "rtol": self.rtol,
-        }
-        if self.single:
-            result["serial_limbs"] = list(self.serial_limbs)
-        else:
-            result["serial"] = self.serial.tolist()
-        return result
-
-    def __str__(self) -> str:
-        n, dof = self.A.shape[-2:]
-        if not self.single:
-            names, counts = np.unique(self.types, return_counts=True)
-            tally = ", ".join(
-                f"{count} {name}" for name, count in zip(names.tolist(), counts.tolist(), strict=True)
-            )
-            return f"Jacobians over a batch of shape {self.shape}: {n} actuated joint(s), dof {dof}; {tally}"
-        head = "regular" if self.type == "regular" else f"{self.type} singularity"
-        lines = [
-            f"{head} (Gosselin-Angeles): A {n}x{dof}, B {n}x{n}; closeness direct "
-            f"{self.closeness['direct']:.3g}, inverse {self.closeness['inverse']:.3g}"
-        ]
-        lines.extend(f"  serial singularity of the limb of {name!r} (B_jj = 0)" for name in self.serial_limbs)
-        return "\n".join(lines)
-
-
-def _plain(value: Any) -> Any:
-    array = np.asarray(value)
-    return float(array) if array.ndim == 0 else array
-
-
-def _require_square(A: Array) -> None:
-    if A.shape[-1] != A.shape[-2]:
-        raise ScrewkitValueError(
-            f"Expected a square A for A⁻¹B and det A, got A of shape {A.shape[-2:]} "
-            f"({A.shape[-2]} actuated joints, {A.shape[-1]} twists in the basis)."
-        )
 
 
 def _where(mask: Array, batch: tuple[int, ...]) -> str:
@@ -599,7 +319,7 @@ def jacobians_from_wrenches(
     *,
     rtol: float | None = None,
     basis_rtol: float = DEFAULT_BASIS_RTOL,
-) -> WrenchJacobians:
+) -> Jacobians:
     """Forward and inverse Jacobians from a wrench analysis and a basis of the platform's twists.
 
     ``A_jk = w_j ∘ t_k`` and ``B = diag(w_j ∘ $_j)`` (module docstring: derivation, the treatment
@@ -609,7 +329,7 @@ def jacobians_from_wrenches(
     ----------
     analysis : WrenchAnalysis
         From :func:`~screwkit.core.wrenches.wrench_analysis` (one pose) or
-        :func:`~screwkit.core.wrenches.analyze_table` (a batch).
+        :func:`~screwkit.core.wrench_systems.analyze_table` (a batch).
     twist_basis : array_like, shape (..., dof, 6)
         Unit-rate twists of the platform, user frame, one per degree of freedom of the analysis
         (e.g. :func:`schoenflies_basis`); they define the columns of ``A`` and the meaning of
@@ -624,7 +344,7 @@ def jacobians_from_wrenches(
 
     Returns
     -------
-    WrenchJacobians
+    Jacobians
 
     Raises
     ------
@@ -701,7 +421,7 @@ def jacobians_from_wrenches(
     arrays = _jacobian_arrays(rows, branches, twists, basis, length, serial, tolerance)
     platform_rows, _ = analysis.frames["platform"]
     _check_inside(scaled_basis, platform_rows, np.any(arrays["serial"], axis=-1), basis_tolerance, batch)
-    return WrenchJacobians(
+    return Jacobians(
         A=arrays["A"],
         B=arrays["B"],
         wrenches=arrays["wrenches"],
@@ -722,12 +442,12 @@ def jacobians_over_poses(
     dof: int | None = None,
     rtol: float = B.DEFAULT_RTOL,
     basis_rtol: float = DEFAULT_BASIS_RTOL,
-) -> WrenchJacobians:
+) -> Jacobians:
     """:func:`jacobians_from_wrenches` over a batch of poses, vectorized (no loop over poses).
 
     As :func:`~screwkit.core.singularity.classify_poses`, the graph is a template (topology, names,
     actuated flags) and ``screws`` holds every joint's screws over the batch; the wrenches come from
-    the one analysis core (:func:`~screwkit.core.wrenches.analyze_table`), so they are those of the
+    the one analysis core (:func:`~screwkit.core.wrench_systems.analyze_table`), so they are those of the
     single-pose path. Where a limb has no actuation wrench (transmission ``≤ rtol``) its row is the
     passive wrench acting most on the basis, with ``B_jj = 0``. Row scaling, signs, closeness
     measures and types as in the module docstring.
@@ -751,7 +471,7 @@ def jacobians_over_poses(
 
     Returns
     -------
-    WrenchJacobians
+    Jacobians
         Over the batch.
 
     Raises
@@ -788,170 +508,6 @@ def jacobians_over_poses(
     >>> result.B[:, 0, 0] / result.A[:, 0, 0]  # dx/dθ = -sin θ (1 + cos θ / sqrt(4 - sin² θ))
     array([ 0., -1.,  0.])
     """
-    from .singularity import classify_poses
-
     tolerance = checked_rtol(rtol, "rtol")
     analysis = classify_poses(graph, screws, dof=dof, rtol=tolerance).analysis
     return jacobians_from_wrenches(analysis, twist_basis, basis_rtol=basis_rtol)
-
-
-# --------------------------------------------------------------------------------------------------
-# Gosselin–Angeles types of given matrices A, B (e.g. a paper's own Jacobians)
-# --------------------------------------------------------------------------------------------------
-
-
-def _closeness(matrix: Array) -> Array:
-    """``σ_min / σ_max`` over a batch of matrices ``(..., m, n)`` (0 for a zero matrix)."""
-    values = np.linalg.svd(matrix, compute_uv=False)
-    return _safe_divide(values[..., -1], values[..., 0])
-
-
-def _read_only(value: Any) -> Array:
-    array = np.array(value, dtype=float)
-    array.flags.writeable = False
-    return array
-
-
-@dataclass(frozen=True, slots=True, eq=False)
-class JacobianClassification:
-    """Gosselin–Angeles type of one or many configurations from their matrices ``A`` and ``B``.
-
-    Attributes
-    ----------
-    inverse_closeness, direct_closeness : (...) ndarray
-        ``σ_min/σ_max`` of ``B`` and of ``A`` (:func:`classify_jacobians`), in ``[0, 1]``.
-    rtol : float
-        A matrix counts as singular when its closeness is at most ``rtol``.
-
-    Examples
-    --------
-    >>> c = JacobianClassification(np.array([0.5, 0.0]), np.array([0.0, 0.0]), 1e-9)
-    >>> c.label.tolist()
-    ['direct', 'combined']
-    """
-
-    inverse_closeness: Array
-    direct_closeness: Array
-    rtol: float
-
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "inverse_closeness", _read_only(self.inverse_closeness))
-        object.__setattr__(self, "direct_closeness", _read_only(self.direct_closeness))
-
-    @property
-    def inverse(self) -> Array:
-        """True where ``B`` is rank-deficient (inverse-kinematic, serial, first kind)."""
-        return np.asarray(self.inverse_closeness <= self.rtol)
-
-    @property
-    def direct(self) -> Array:
-        """True where ``A`` is rank-deficient (direct-kinematic, parallel, second kind)."""
-        return np.asarray(self.direct_closeness <= self.rtol)
-
-    @property
-    def label(self) -> Array:
-        """One of :data:`GOSSELIN_ANGELES_TYPES` per configuration (``"combined"``: both; third kind)."""
-        index = _type_index(self.direct_closeness, self.inverse_closeness, self.rtol)
-        return np.asarray(np.asarray(GOSSELIN_ANGELES_TYPES)[index])
-
-    def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dictionary."""
-        return {
-            "label": self.label.tolist(),
-            "inverse_closeness": self.inverse_closeness.tolist(),
-            "direct_closeness": self.direct_closeness.tolist(),
-            "rtol": self.rtol,
-        }
-
-    def __str__(self) -> str:
-        return (
-            f"JacobianClassification(label={self.label.tolist()}, "
-            f"inverse_closeness={np.round(self.inverse_closeness, 6).tolist()}, "
-            f"direct_closeness={np.round(self.direct_closeness, 6).tolist()})"
-        )
-
-
-def classify_jacobians(A: Any, B: Any, *, rtol: float = B.DEFAULT_RTOL) -> JacobianClassification:
-    """Gosselin–Angeles type from given (dimensionless) Jacobians ``A``, ``B`` of ``A t = B θ̇``.
-
-    For matrices that come from elsewhere than :func:`jacobians_from_wrenches` (a paper's own
-    ``A`` and ``B``, e.g.), whatever their shapes. The closeness of each matrix to rank deficiency
-    is its *inverse condition number* ``σ_min / σ_max``: it lies in ``[0, 1]`` and is 0 exactly
-    when the matrix loses rank (Gosselin & Angeles 1990: ``B`` inverse/serial, ``A``
-    direct/parallel, both: combined); it does not change under a rigid motion of the base frame
-    (which multiplies ``A`` and ``B`` by orthogonal matrices), nor with the unit of length provided
-    the characteristic length that makes the matrices dimensionless is given in the same unit.
-
-    Parameters
-    ----------
-    A, B : (..., m, n) array_like
-    rtol : float, default 1e-9
-        Threshold on ``σ_min/σ_max``; must lie in ``[0, 1)``.
-
-    Returns
-    -------
-    JacobianClassification
-
-    Raises
-    ------
-    ScrewkitValueError
-        ``rtol`` is not a number in ``[0, 1)``.
-
-    References
-    ----------
-    Gosselin & Angeles, "Singularity analysis of closed-loop kinematic chains", IEEE Trans. Robot.
-    Autom. 6(3), 1990.
-
-    Examples
-    --------
-    >>> classify_jacobians(np.eye(3), np.eye(3)).label.tolist()
-    'regular'
-    >>> str(classify_jacobians(np.eye(4), np.diag([1.0, 1.0, 0.0, 1.0]), rtol=1e-9).label)
-    'inverse'
-    """
-    tolerance = checked_rtol(rtol, "rtol")
-    a, b = (as_array(value, name, (None, None), symbolic=False) for value, name in ((A, "A"), (B, "B")))
-    for matrix, name in ((a, "A"), (b, "B")):
-        if 0 in matrix.shape[-2:]:
-            raise ScrewkitValueError(
-                f"Expected `{name}` to be a non-empty matrix (..., m, n), got {matrix.shape}."
-            )
-    return JacobianClassification(_closeness(b), _closeness(a), tolerance)
-
-
-def gosselin_angeles_label(report: Any) -> str:
-    """Name a twist-graph verdict (:func:`screwkit.core.singularity.classify`) as a Gosselin–Angeles type.
-
-    A *serial* (limb) singularity, where an actuator cannot move the platform, is the inverse
-    (first-kind) singularity of ``B``; a *constraint* or *actuation* singularity, where the
-    platform moves with every actuator locked, is the direct (second-kind) singularity of ``A``;
-    both at once is the combined (third-kind) one.
-
-    Parameters
-    ----------
-    report : SingularityReport
-        Anything with a ``labels`` tuple drawn from ``"constraint"``, ``"actuation"``,
-        ``"serial"``.
-
-    Returns
-    -------
-    str
-        One of :data:`GOSSELIN_ANGELES_TYPES`.
-
-    Raises
-    ------
-    ScrewkitValueError
-        A label outside those three.
-
-    Examples
-    --------
-    >>> from types import SimpleNamespace
-    >>> gosselin_angeles_label(SimpleNamespace(labels=("actuation", "serial")))
-    'combined'
-    """
-    labels = tuple(report.labels)
-    unknown = sorted(set(labels) - {"constraint", "actuation", "serial"})
-    if unknown:
-        raise ScrewkitValueError(f"Expected labels among 'constraint', 'actuation', 'serial', got {unknown}.")
-    direct = "constraint" in labels or "actuation" in labels
-    return GOSSELIN_ANGELES_TYPES[int("serial" in labels) + 2 * int(direct)]

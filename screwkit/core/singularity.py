@@ -1,39 +1,12 @@
-"""Labels over poses: regular, constraint, actuation or serial (limb) singularity (numeric).
+"""Label twist graphs and joint tables: regular, or which singularity (numeric; the entry points).
 
-From a :class:`~screwkit.core.wrenches.WrenchAnalysis` (paper 002 §4–5; Zlatanov, Bonev & Gosselin
-2002 for the constraint/actuation distinction):
-
-* **constraint singularity**: the mechanism's constraint wrench system ``W^c`` falls below its
-  nominal order ``6 − dof``; the platform gains ``6 − dof − order(W^c)`` freedoms even with every
-  actuator locked (paper 002 §5.3, condition 1);
-* **actuation singularity**: ``W^c`` is nominal but the global system ``W^c + W^a`` is below 6;
-  with the actuators locked the platform keeps an uncontrolled twist (paper 002 §5.3, condition 2);
-* **serial (limb) singularity**: an actuated joint's twist lies in the span of the other twists of
-  its limb, so its actuation wrench is reciprocal to it: the actuator cannot move the platform
-  (Gosselin & Angeles' inverse type). In a compound leg whose actuators share a link, decided on
-  the leg as a whole where the limb's own wrench fails: the actuator moves with the platform fixed
-  (:func:`screwkit.core.wrenches.analyze_table`).
-
-The *uncontrolled twists* are the platform twists reciprocal to every constraint and actuation
-wrench: the motions left with all actuators locked (empty at a regular pose).
-
-One pose and many go through the same kernels (:func:`screwkit.core.wrenches.analyze_table`):
-:func:`classify` is a batch of one, :func:`classify_poses` and :func:`classify_table` a batch.
-
-Closeness measures (all in [0, 1], unit-free, computed about the mechanism's own reference point
-and length (:func:`~screwkit.algebra.reference_frame.mechanism_frame`), so they follow rigid motions and
-changes of unit; 0 at the singularity; computed when first asked,
-:attr:`~screwkit.core.wrenches.WrenchAnalysis.closeness`: the labels do not need them):
-
-* ``constraint``: σ_c0 / σ_1 of orthonormal bases of the compound legs' constraint systems,
-  stacked, with ``c0 = 6 − dof`` (about the reference point, moments over the length);
-* ``actuation``: σ_6 / σ_1 of those bases stacked with the unit actuation wrenches (the wrench of
-  a limb whose actuator shares a link with others, less its part in its compound leg's constraint
-  system: otherwise the H4 near a vertical parallelogram plane would look near-singular,
-  :func:`screwkit.core.wrenches.analyze_table`);
-* ``serial``: the smallest normalised reciprocal product of an actuation wrench with its actuated
-  twist (:func:`~screwkit.core.wrenches.normalized_reciprocal_product`; for lines, mutual moment over the
-  length, which can exceed 1 for limbs far from the reference point).
+:func:`classify` labels one twist graph at its pose (or gives a family's generic answers, as
+:func:`~screwkit.core.wrenches.wrench_analysis`); :func:`classify_table` and :func:`classify_poses`
+label a batch, with the mechanism's mobility settled (:func:`screwkit.core.mobility.settled_dof`);
+:func:`label_table` and :func:`classify_chunks` take the nominal mobility as given. Every pose goes
+through the same kernels (:func:`screwkit.core.wrench_systems.analyze_table`: a single pose is a
+batch of one), and the verdicts, their labels and closeness measures are
+:class:`~screwkit.core.verdicts.SingularityReport`'s (:mod:`screwkit.core.verdicts`).
 
 Examples
 --------
@@ -48,30 +21,25 @@ regular (dof 1): constraint order 5/5, global order 6/6
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable, Mapping
-from dataclasses import dataclass, field, replace
-from typing import TYPE_CHECKING, Any
+from dataclasses import replace
+from typing import Any
 
 import networkx as nx
 import numpy as np
 
 from ..algebra import backend as B
-from ..algebra import screwvalue as S
-from ..algebra.screwsystem import ScrewSystem
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
 from ..graphs.jointtable import JointTable
 from ..graphs.twistgraph import check_twist_graph
-from .wrenches import WrenchAnalysis, analyze_table, wrench_analysis
-
-if TYPE_CHECKING:
-    from .generic import GenericAnalysis
+from .generic import GenericAnalysis
+from .mobility import settled_dof
+from .verdicts import SingularityReport
+from .wrench_systems import WrenchAnalysis, analyze_table
+from .wrenches import wrench_analysis
 
 __all__ = [
-    "LABELS",
-    "SerialSingularity",
-    "SingularityReport",
     "checked_screws",
     "classify",
-    "classify_analysis",
     "classify_chunks",
     "classify_poses",
     "classify_table",
@@ -79,299 +47,6 @@ __all__ = [
 ]
 
 Array = np.ndarray
-
-#: The labels, and their bit in :attr:`SingularityReport.codes`: constraint 1, actuation 2, serial 4.
-LABELS = ("constraint", "actuation", "serial")
-
-
-@dataclass(frozen=True, eq=False)
-class SerialSingularity:
-    """A limb whose actuator cannot move the platform.
-
-    Attributes
-    ----------
-    actuated_joint : str
-    limb_wrenches : ScrewSystem
-        The wrenches the limb now transmits with its actuator free (its constraint system): the
-        platform directions this limb can no longer drive.
-    transmission : float
-    """
-
-    actuated_joint: str
-    limb_wrenches: ScrewSystem
-    transmission: float
-
-
-@dataclass(frozen=True, eq=False)
-class SingularityReport:
-    """The verdicts over a batch of poses (shape ``()`` for one pose), from a wrench analysis.
-
-    Index it (``report[3]``) for one pose. ``labels`` is empty at a regular pose.
-
-    Attributes
-    ----------
-    analysis : WrenchAnalysis
-    """
-
-    analysis: WrenchAnalysis = field(repr=False)
-
-    # --- arrays over the batch -------------------------------------------------------------------
-    @property
-    def shape(self) -> tuple[int, ...]:
-        """The batch shape."""
-        return self.analysis.shape
-
-    @property
-    def single(self) -> bool:
-        """True for one pose."""
-        return self.analysis.single
-
-    def __len__(self) -> int:
-        return len(self.analysis)
-
-    def __getitem__(self, index: Any) -> SingularityReport:
-        return SingularityReport(self.analysis[index])
-
-    @property
-    def dof(self) -> int:
-        """Nominal mobility."""
-        return self.analysis.dof
-
-    @property
-    def nominal_constraint_order(self) -> int:
-        """``6 − dof``."""
-        return 6 - self.analysis.dof
-
-    @property
-    def constraint_order(self) -> Any:
-        """Order of ``W^c`` (int, or an array over the batch)."""
-        return self.analysis.constraint_order
-
-    @property
-    def global_order(self) -> Any:
-        """Order of ``W^c + W^a``."""
-        return self.analysis.global_order
-
-    @property
-    def gained_dof(self) -> Any:
-        """Freedoms the platform gains from the loss of constraints (``nominal − order(W^c)``, ≥ 0)."""
-        return _same_kind(np.maximum(self.nominal_constraint_order - np.asarray(self.constraint_order), 0))
-
-    @property
-    def lost_dof(self) -> Any:
-        """Freedoms the platform lacks here (``order(W^c) − nominal``, ≥ 0): a mechanism locked or
-        overconstrained here; not a singularity label, but reported."""
-        return _same_kind(np.maximum(np.asarray(self.constraint_order) - self.nominal_constraint_order, 0))
-
-    @property
-    def uncontrolled_dof(self) -> Any:
-        """``6 − order(W^c + W^a)``: the freedoms left with all actuators locked."""
-        return _same_kind(6 - np.asarray(self.global_order))
-
-    @property
-    def serial_flags(self) -> Array:
-        """``(..., n_actuated)``: True where that limb is serially singular (joint order:
-        :attr:`actuated_joints`)."""
-        return self.analysis.serial
-
-    @property
-    def actuated_joints(self) -> tuple[str, ...]:
-        """The actuated joints, sorted (the limbs' order)."""
-        return self.analysis.topology.actuated
-
-    @property
-    def closeness(self) -> dict[str, Any]:
-        """``{"constraint", "actuation", "serial"}`` (module docstring): floats or arrays."""
-        return self.analysis.closeness
-
-    @property
-    def constraint(self) -> Any:
-        """True where the constraint system is below its nominal order."""
-        return _same_kind(np.asarray(self.constraint_order) < self.nominal_constraint_order)
-
-    @property
-    def actuation(self) -> Any:
-        """True where the constraint system is nominal but the global system is below 6."""
-        return _same_kind(~np.asarray(self.constraint) & (np.asarray(self.global_order) < 6))
-
-    @property
-    def actuation_assessed(self) -> bool:
-        """False for a mechanism with no actuated joint: it is analysed for its mobility only (its
-        legs' constraint systems, the platform's freedoms, constraint singularities); the actuation
-        and serial labels are not assessed."""
-        return bool(self.actuated_joints)
-
-    @property
-    def codes(self) -> Array:
-        """An integer per pose: bit 1 constraint, 2 actuation, 4 serial (0 regular).
-
-        A platform with fewer freedoms than nominal (``lost_dof > 0``, e.g. a stretched limb at the
-        boundary of its workspace) is a serial singularity, Gosselin & Angeles' type 1 (the output
-        loses a direction of motion), whether or not one limb's actuator is found idle."""
-        constraint = np.asarray(self.constraint_order) < self.nominal_constraint_order
-        if not self.actuation_assessed:
-            return constraint * 1
-        actuation = ~constraint & (np.asarray(self.global_order) < 6)
-        lost = np.asarray(self.constraint_order) > self.nominal_constraint_order
-        serial = np.asarray(self.analysis.serial).any(axis=-1) | lost
-        return constraint * 1 + actuation * 2 + serial * 4
-
-    @property
-    def labels(self) -> Any:
-        """A tuple of labels for one pose; over a batch, an object array of such tuples."""
-        codes = np.asarray(self.codes)
-        tuples = [tuple(name for bit, name in enumerate(LABELS) if code >> bit & 1) for code in codes.ravel()]
-        if self.single:
-            return tuples[0]
-        out = np.empty(len(tuples), dtype=object)
-        out[:] = tuples
-        return out.reshape(codes.shape)
-
-    @property
-    def is_singular(self) -> Any:
-        """True where any label applies."""
-        return _same_kind(np.asarray(self.codes) > 0)
-
-    @property
-    def verdict(self) -> Any:
-        """``"regular"`` or the labels joined, e.g. ``"constraint singularity"`` (an array of such
-        strings over a batch)."""
-        names = [_verdict(code) for code in range(8)]
-        if self.single:
-            return names[int(self.codes)]
-        return np.asarray(names, dtype=object)[np.asarray(self.codes)]
-
-    # --- one pose --------------------------------------------------------------------------------
-    def _require_single(self, what: str) -> None:
-        if not self.single:
-            raise ScrewkitTypeError(
-                f"Expected one pose for `{what}`, got a batch of shape {self.shape}; index the report first."
-            )
-
-    @property
-    def uncontrolled_twists(self) -> Array:
-        """A readable basis ``(uncontrolled_dof, 6)`` of the twists left with the actuators locked
-        (user frame; one pose)."""
-        self._require_single("uncontrolled_twists")
-        system = self.analysis.uncontrolled_twists
-        return system.readable_basis() if system.order else np.zeros((0, 6))
-
-    @property
-    def serial(self) -> tuple[SerialSingularity, ...]:
-        """The serially singular limbs (one pose)."""
-        self._require_single("serial")
-        return tuple(
-            SerialSingularity(limb.actuated_joint, limb.constraint_wrenches, limb.transmission)
-            for limb in self.analysis.limbs
-            if limb.actuation_wrench is None
-        )
-
-    def to_dict(self) -> dict[str, Any]:
-        """JSON-ready report of one pose.
-
-        Examples
-        --------
-        >>> from screwkit.graphs.joints import prismatic
-        >>> from screwkit.graphs.twistgraph import twist_graph
-        >>> G = twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))])
-        >>> classify(G).to_dict()["verdict"]
-        'regular'
-        """
-        self._require_single("to_dict")
-        return {
-            "verdict": self.verdict,
-            "labels": list(self.labels),
-            "dof": self.dof,
-            "actuation_assessed": self.actuation_assessed,
-            "constraint_order": int(self.constraint_order),
-            "nominal_constraint_order": self.nominal_constraint_order,
-            "global_order": int(self.global_order),
-            "gained_dof": int(self.gained_dof),
-            "lost_dof": int(self.lost_dof),
-            "uncontrolled_dof": int(self.uncontrolled_dof),
-            "uncontrolled_twists": [S.Screw(t).to_dict() for t in self.uncontrolled_twists],
-            "serial": [
-                {
-                    "actuated_joint": s.actuated_joint,
-                    "transmission": s.transmission,
-                    "limb_wrenches": s.limb_wrenches.to_dict(),
-                }
-                for s in self.serial
-            ],
-            "closeness": {k: float(v) for k, v in self.closeness.items()},
-            "rtol": self.analysis.rtol,
-            "length_scale": float(self.analysis.length_scale),
-        }
-
-    def __repr__(self) -> str:
-        if self.single:
-            return f"SingularityReport({self.verdict!r})"
-        return f"SingularityReport(shape={self.shape})"
-
-    def __str__(self) -> str:
-        if not self.single:
-            codes = np.asarray(self.codes).ravel()
-            counts = ", ".join(f"{_verdict(c)} {int((codes == c).sum())}" for c in np.unique(codes))
-            return f"{codes.size} poses (dof {self.dof}): {counts}"
-        lines = [
-            f"{self.verdict} (dof {self.dof}): constraint order {self.constraint_order}/"
-            f"{self.nominal_constraint_order}, global order {self.global_order}/6"
-        ]
-        if self.gained_dof:
-            lines.append(f"  the platform gains {self.gained_dof} DOF (constraints lost)")
-            extra = 6 - int(self.gained_dof) - int(self.global_order)
-            if extra > 0 and self.actuation_assessed:
-                # the label follows Zlatanov-Bonev-Gosselin (actuation needs a nominal W^c); say what
-                # the actuation wrenches lose on top of the constraint singularity
-                lines.append(
-                    f"  the actuation wrenches lose {extra} more order(s) here: {extra} freedom(s) "
-                    "uncontrolled with the actuators locked beyond those the constraints give up"
-                )
-        if not self.actuation_assessed:
-            lines.append("  no actuated joint: mobility analysis only, actuation not assessed")
-        if self.lost_dof:
-            lines.append(
-                f"  the platform has {self.lost_dof} DOF fewer than nominal"
-                + (
-                    " (a serial singularity: a limb at its reach; or, if it holds at every configuration, "
-                    "a nominal `dof` above the mechanism's mobility)"
-                    if self.actuation_assessed
-                    else ""
-                )
-            )
-        if self.uncontrolled_dof and self.actuation_assessed:
-            lines.append(f"  uncontrolled with actuators locked: {self.uncontrolled_dof} twist(s)")
-            lines.extend(f"    {S.Screw(t)}" for t in self.uncontrolled_twists)
-        for item in self.serial:
-            lines.append(f"  serial singularity of the limb of {item.actuated_joint!r}")
-        measures = ", ".join(f"{k} {v:.3g}" for k, v in self.closeness.items())
-        lines.append(f"  closeness (0 at a singularity): {measures}")
-        return "\n".join(lines)
-
-
-def _verdict(code: int) -> str:
-    names = [name for bit, name in enumerate(LABELS) if code >> bit & 1]
-    return " + ".join(names) + " singularity" if names else "regular"
-
-
-def _same_kind(value: Array) -> Any:
-    return value.item() if value.ndim == 0 else value
-
-
-def classify_analysis(analysis: WrenchAnalysis) -> SingularityReport:
-    """Label a wrench analysis (see the module docstring).
-
-    Examples
-    --------
-    >>> from screwkit.graphs.joints import prismatic
-    >>> from screwkit.graphs.twistgraph import twist_graph
-    >>> G = twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))])
-    >>> classify_analysis(wrench_analysis(G)).labels
-    ()
-    """
-    if not isinstance(analysis, WrenchAnalysis):
-        raise ScrewkitTypeError(f"Expected `analysis` to be a WrenchAnalysis, got {type(analysis).__name__}.")
-    return SingularityReport(analysis)
 
 
 def classify(
@@ -395,7 +70,7 @@ def classify(
         Relative tolerance of every rank decision (:mod:`screwkit.core._frames`).
     length_scale : float, optional
         The characteristic length of the rank decisions, in the screws' unit; default: derived
-        from the screws (:func:`~screwkit.core.wrenches.analyze_table`).
+        from the screws (:func:`~screwkit.core.wrench_systems.analyze_table`).
 
     Returns
     -------
@@ -440,11 +115,11 @@ def classify_table(
     dof : int, optional
         Nominal mobility; default: the table's ``dof``, else derived. It must be the mechanism's
         mobility at generic configurations (reached from the first configuration), with at most
-        that many actuators (:func:`screwkit.core.motion.settled_dof`; no extra cost when every pose is
+        that many actuators (:func:`screwkit.core.mobility.settled_dof`; no extra cost when every pose is
         regular with one actuator per freedom).
     rtol : float, default 1e-9
     length_scale : float, optional
-        As in :func:`~screwkit.core.wrenches.analyze_table` (default: derived per configuration).
+        As in :func:`~screwkit.core.wrench_systems.analyze_table` (default: derived per configuration).
     chunk : int, default 1024
         Configurations analysed at once.
 
@@ -464,8 +139,6 @@ def classify_table(
     >>> classify_table(table, chunk=2).verdict.tolist()
     ['regular', 'regular', 'regular', 'regular', 'regular']
     """
-    from .motion import settled_dof
-
     report = label_table(table, dof=dof, rtol=rtol, length_scale=length_scale, chunk=chunk)
     stated = dof if dof is not None else table.dof
     if table.screws.size == 0:
@@ -489,6 +162,30 @@ def label_table(
 ) -> SingularityReport:
     """:func:`classify_table` with ``dof`` taken as given (default: the table's, else the number of
     actuators), unchecked: for tables whose ``dof`` is known, a catalog family's.
+
+    Parameters
+    ----------
+    table : JointTable
+        With a batch axis.
+    dof : int, optional
+        The nominal mobility, taken as given (default: the table's, else the number of actuators).
+    rtol : float, default 1e-9
+    length_scale : float, optional
+        As in :func:`~screwkit.core.wrench_systems.analyze_table`.
+    chunk : int, default 1024
+        Configurations analysed at once.
+
+    Returns
+    -------
+    SingularityReport
+        Over the table's batch.
+
+    Raises
+    ------
+    ScrewkitTypeError
+        If ``table`` is not a JointTable.
+    ScrewkitValueError
+        If ``chunk`` is not a positive integer, or the table has no batch axis.
 
     Examples
     --------
@@ -532,7 +229,7 @@ def classify_chunks(
 ) -> SingularityReport:
     """Label a flattened batch given chunk by chunk (the tables in order, one batch axis each).
 
-    Each chunk goes through :func:`~screwkit.core.wrenches.analyze_table` without its per-pose views,
+    Each chunk goes through :func:`~screwkit.core.wrench_systems.analyze_table` without its per-pose views,
     and its results are copied into arrays allocated for the whole batch once the first chunk
     gives their shapes, so no chunk outlives its turn and the results are never concatenated.
 
@@ -547,7 +244,17 @@ def classify_chunks(
     dof : int, optional
     rtol : float, default 1e-9
     length_scale : float, optional
-        As in :func:`~screwkit.core.wrenches.analyze_table`.
+        As in :func:`~screwkit.core.wrench_systems.analyze_table`.
+
+    Returns
+    -------
+    SingularityReport
+        Over ``shape``; its analysis keeps the arrays of the whole batch and ``table_source``.
+
+    Raises
+    ------
+    ScrewkitValueError
+        If the chunks hold other than ``prod(shape)`` configurations in all.
 
     Examples
     --------
@@ -594,7 +301,7 @@ def classify_chunks(
     )
 
 
-#: The per-pose array fields of a :class:`~screwkit.core.wrenches.WrenchAnalysis`.
+#: The per-pose array fields of a :class:`~screwkit.core.wrench_systems.WrenchAnalysis`.
 _BATCH_FIELDS = (
     "reference_point",
     "length_scale",
@@ -622,6 +329,27 @@ def checked_screws(
     graph: nx.MultiDiGraph, screws: Mapping[str, Any]
 ) -> tuple[dict[str, Array], tuple[int, ...]]:
     """Validate batched joint screws against a template graph: ``{name: (..., dof, 6)}``, batch shape.
+
+    Parameters
+    ----------
+    graph : networkx.MultiDiGraph
+        The template twist graph (its joints' names and numbers of screws).
+    screws : mapping of joint name to array_like, shape (..., dof_j, 6)
+        Every joint's screws over one batch shape.
+
+    Returns
+    -------
+    arrays : dict of str to numpy.ndarray
+        The screws as float arrays, by joint name (sorted).
+    batch : tuple of int
+        Their common batch shape.
+
+    Raises
+    ------
+    ScrewkitTypeError
+        If ``screws`` is not a mapping.
+    ScrewkitValueError
+        If the joints differ from the graph's, or a shape disagrees (the odd one named).
 
     Examples
     --------
@@ -678,7 +406,7 @@ def classify_poses(
         :func:`classify_table`.
     rtol : float, default 1e-9
     length_scale : float, optional
-        As in :func:`~screwkit.core.wrenches.analyze_table`.
+        As in :func:`~screwkit.core.wrench_systems.analyze_table`.
 
     Returns
     -------

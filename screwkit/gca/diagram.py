@@ -4,7 +4,7 @@ Paper 002 §5.1 builds the H4's diagram by hand (Fig. 4c): each actuation force 
 given by the point where it meets a known axis and its point at infinity; each constraint couple is
 a line at infinity, given by two infinite points chosen to expose structure (the direction common to
 two parallelogram planes, the direction of the vertical axes shared by both couples). This module
-makes the same choices automatically, from a :class:`~screwkit.core.wrenches.WrenchAnalysis`:
+makes the same choices automatically, from a :class:`~screwkit.core.wrench_systems.WrenchAnalysis`:
 
 * **lines**: the actuation wrenches grouped by compound leg (the legs in the order of their
   names), then a *line basis* of the mechanism's constraint system ``W^c`` taken from the compound
@@ -60,7 +60,8 @@ from ..algebra.ranks import screw_rank
 from ..algebra.screwsystem import ScrewSystem
 from ..algebra.screwvalue import Screw
 from ..core import _frames as F
-from ..core.wrenches import WrenchAnalysis, analyze_table, wrench_analysis
+from ..core.wrench_systems import WrenchAnalysis, analyze_table
+from ..core.wrenches import wrench_analysis
 from ..exceptions import (
     DegenerateGeometryError,
     ScrewkitError,
@@ -740,7 +741,7 @@ def batch_diagram_points(
         A diagram's points (their recipes).
     analysis : WrenchAnalysis
         Of shape ``(n,)`` (or one pose, taken as a batch of one), e.g.
-        :func:`screwkit.core.wrenches.analyze_table` of a family's joint table.
+        :func:`screwkit.core.wrench_systems.analyze_table` of a family's joint table.
     lines : list of (name, role, wrench, joints), optional
         At one pose: the only lines the recipes may use (default: every line of the mechanism).
 
@@ -753,7 +754,7 @@ def batch_diagram_points(
     Examples
     --------
     >>> from screwkit.robots.catalog import load_mechanism
-    >>> from screwkit.core.wrenches import analyze_table
+    >>> from screwkit.core.wrench_systems import analyze_table
     >>> h4 = load_mechanism("h4")
     >>> diagram, _ = h4.wrench_diagram()
     >>> table = h4.joints([[0, 0, -750, 0], [50, 0, -700, 0.3]])
@@ -860,7 +861,7 @@ def _frames_with_views(table: JointTable, analysis: WrenchAnalysis) -> dict[str,
 
 
 def _leg_name(topology: Topology, k: int) -> str:
-    """The name of the k-th compound leg (:attr:`screwkit.core.wrenches.CompoundLeg.name`)."""
+    """The name of the k-th compound leg (:attr:`screwkit.core.wrench_systems.CompoundLeg.name`)."""
     node = topology.nodes[topology.legs[k]]
     actuated = sorted(j for j in node.joints if j in set(topology.actuated))
     return "leg through " + ", ".join(actuated or sorted(node.joints)[:2])
@@ -1171,7 +1172,7 @@ def graph_diagram(
     configuration (:func:`generic_reference`) and placed at this one (:func:`diagram_at`); the
     sampler hands out its points at further generic configurations, ``samples`` at a time
     (analysed as one batch), on which structural zeros are decided. A given ``length_scale`` is
-    the generic configurations' too (:func:`~screwkit.core.wrenches.analyze_table`; default: derived).
+    the generic configurations' too (:func:`~screwkit.core.wrench_systems.analyze_table`; default: derived).
 
     Returns
     -------
@@ -1188,7 +1189,7 @@ def graph_diagram(
     >>> diagram.line_text(), len(sampler(np.random.default_rng(0)))
     ('[ab, cd, ef, gh, ij, kj]', 11)
     """
-    from ..core.motion import generic_analyses
+    from ..core.mobility import generic_analyses
 
     graph = analysis.graph
     try:

@@ -93,7 +93,7 @@ class JointTable:
     mobility : int or None
         The mechanism's mobility at generic configurations when it is known (a catalog family's,
         checked by the catalog's facts; graph attribute ``mobility``): the ``dof`` check
-        (:func:`screwkit.core.motion.settled_dof`) takes it instead of computing it. None: computed.
+        (:func:`screwkit.core.mobility.settled_dof`) takes it instead of computing it. None: computed.
 
     Examples
     --------

@@ -97,7 +97,7 @@ class LimbPlan:
         Indices into :attr:`Topology.limbs` of the actuated joints in *another branch of a parallel
         node* on :attr:`path` (the H4's ``A4`` for ``A1``: both arms carry the nacelle ``b_I``).
         The limb's own wrench ignores their motions; a compound leg with partners is analysed as a
-        whole where that wrench fails (:func:`screwkit.core.wrenches.analyze_table`).
+        whole where that wrench fails (:func:`screwkit.core.wrench_systems.analyze_table`).
     """
 
     actuated_joint: str

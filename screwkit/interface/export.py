@@ -49,7 +49,7 @@ import networkx as nx
 import numpy as np
 
 from ..algebra import backend as B
-from ..core.wrenches import LINE_RTOL
+from ..core.line_search import LINE_RTOL
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
 from ..graphs.joints import JOINT_FIELDS, Joint
 from ..graphs.twistgraph import check_twist_graph, to_data

@@ -22,7 +22,7 @@ attributes works:
   ``robot`` and ``region`` (with ``lower``, ``upper``, ``name`` and ``boundary(count)``), as
   :func:`screwkit.analysis.indices.actuation_singularity_surface` returns;
 * :func:`plot_verdicts`: the same grid coloured by verdict (``values`` are the codes of
-  :attr:`screwkit.core.singularity.SingularityReport.codes`, bit 1 constraint, 2 actuation, 4 serial, or
+  :attr:`screwkit.core.verdicts.SingularityReport.codes`, bit 1 constraint, 2 actuation, 4 serial, or
   the verdict strings);
 * :func:`plot_wrench_diagram`: a :class:`~screwkit.gca.diagram.WrenchDiagram` in 3-D: finite points as
   labelled dots, points at infinity as labelled arrows (directions) from the centre of the finite
@@ -71,7 +71,7 @@ except ImportError as err:  # pragma: no cover - exercised in a subprocess witho
         '(pip install "screwkit[plot]").'
     ) from err
 
-from ..core.singularity import LABELS
+from ..core.verdicts import LABELS
 from ..graphs.twistgraph import check_twist_graph
 
 __all__ = [
@@ -325,7 +325,7 @@ def plot_verdicts(
     ----------
     workspace_map : WorkspaceMap
         As for :func:`plot_map`, with ``values`` the verdict codes (bit 1 constraint, 2 actuation,
-        4 serial; :attr:`screwkit.core.singularity.SingularityReport.codes`) or the verdict strings;
+        4 serial; :attr:`screwkit.core.verdicts.SingularityReport.codes`) or the verdict strings;
         unreachable cells may hold anything (e.g. ``-1``).
     ax : matplotlib.axes.Axes, optional
     loci : iterable of Locus

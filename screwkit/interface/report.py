@@ -43,11 +43,12 @@ import numpy as np
 
 from ..algebra import backend as B
 from ..algebra import screw as S
-from ..algebra.checks import checked_length_scale
+from ..algebra.checks import checked_length_scale, checked_rtol
 from ..algebra.motion_type import motion_type
-from ..core.jacobians import WrenchJacobians
-from ..core.singularity import SingularityReport, classify_analysis
-from ..core.wrenches import WrenchAnalysis, checked_rtol, wrench_analysis
+from ..core.jacobian_matrices import Jacobians
+from ..core.verdicts import SingularityReport, classify_analysis
+from ..core.wrench_systems import WrenchAnalysis
+from ..core.wrenches import wrench_analysis
 from ..exceptions import ScrewkitError, ScrewkitTypeError, ScrewkitValueError
 from ..graphs.loops import fundamental_loops
 from ..graphs.reduction import equivalent_twist_graph
@@ -129,7 +130,7 @@ class AnalysisReport:
         exist at the pose (e.g. a limb at a serial singularity); ``superbracket_note`` says which.
     superbracket_note : str
         How structural zeros were confirmed, or why there is no factorization.
-    jacobians : WrenchJacobians or None
+    jacobians : Jacobians or None
         ``A χ̇ = B θ̇`` over the family's nominal twists at the pose, with the Gosselin–Angeles
         type (module docstring); None for a snapshot, or when the basis is refused at the pose.
     jacobians_note : str
@@ -155,7 +156,7 @@ class AnalysisReport:
     diagram: WrenchDiagram
     superbracket: SuperbracketAnalysis | None
     superbracket_note: str
-    jacobians: WrenchJacobians | None = None
+    jacobians: Jacobians | None = None
     jacobians_note: str = _SNAPSHOT_JACOBIANS
     transmission: dict[str, Any] | None = None
     given_length_scale: float | None = None
@@ -238,7 +239,7 @@ class AnalysisReport:
             "closeness": None if jac is None else dict(jac.closeness),
             "actuated_joints": None if jac is None else list(jac.actuated_joints),
             "serial_limbs": None if jac is None else list(jac.serial_limbs),
-            "twist_basis": None if jac is None else jac.twist_basis.tolist(),
+            "twist_basis": None if jac is None or jac.twist_basis is None else jac.twist_basis.tolist(),
             "A": None if jac is None else jac.A.tolist(),
             "B": None if jac is None else jac.B.tolist(),
             "rtol": None if jac is None else jac.rtol,
@@ -385,9 +386,10 @@ def _transmission_lines(summary: dict[str, Any]) -> list[str]:
     return out
 
 
-def _determinant_units(jac: WrenchJacobians, unit: str) -> tuple[str, str]:
+def _determinant_units(jac: Jacobians, unit: str) -> tuple[str, str]:
     """Units of det A and det B: the length to the number of rotations among the basis twists (A) and
     the actuated twists (B), when every row is a unit force (no units are claimed otherwise)."""
+    assert jac.wrenches is not None and jac.twist_basis is not None and jac.analysis is not None
     if not unit or np.any(np.linalg.norm(jac.wrenches[:, :3], axis=-1) == 0):
         return "", ""
     twists = np.array([limb.actuated_twist for limb in jac.analysis.limbs]).reshape(-1, 6)
@@ -445,7 +447,7 @@ def analyze(
     length_scale : float, optional
         The characteristic length of every rank decision, in the mechanism's length unit
         (moments are divided by it); default: derived from the screws at each configuration
-        (:func:`~screwkit.core.wrenches.analyze_table`), so that answers follow a change of unit.
+        (:func:`~screwkit.core.wrench_systems.analyze_table`), so that answers follow a change of unit.
     superbracket : bool, default True
         Also expand and factor the superbracket (skip for speed).
     progress : callable, optional
@@ -524,7 +526,7 @@ def _graph_report(
 ) -> AnalysisReport:
     if pose is not None:
         raise ScrewkitValueError(f"{source}: {what} is one configuration; expected no pose, got {pose!r}.")
-    try:  # dof: the mechanism's mobility at generic configurations (screwkit.core.motion.settled_dof)
+    try:  # dof: the mechanism's mobility at generic configurations (screwkit.core.mobility.settled_dof)
         analysis = wrench_analysis(graph, rtol=rtol, length_scale=length_scale)
     except ScrewkitError as err:
         if source.endswith(".toml"):  # name the file
@@ -574,7 +576,7 @@ def pose_report(
     # so that progress names the stages in order)
     step(STAGES[1])
     diagram, sampler = pose.diagram_and_sampler()
-    jacobians: WrenchJacobians | None = None
+    jacobians: Jacobians | None = None
     try:
         jacobians = pose.jacobians
         jacobians_note = (
@@ -620,7 +622,7 @@ def _finish(
     diagram: WrenchDiagram,
     sampler: Any,
     note: str,
-    jacobians: WrenchJacobians | None = None,
+    jacobians: Jacobians | None = None,
     jacobians_note: str = _SNAPSHOT_JACOBIANS,
     *,
     progress: Callable[[str], None],

@@ -99,7 +99,7 @@ from ..graphs.twistgraph import add_joint, check_twist_graph
 from .families import Family, families
 
 if TYPE_CHECKING:
-    from ..core.jacobians import WrenchJacobians
+    from ..core.jacobian_matrices import Jacobians
 
 __all__ = [
     "LENGTH_UNITS",
@@ -243,7 +243,7 @@ class Mechanism:
             Relative tolerance of every rank decision (default 1e-9).
         length_scale : float, optional
             The characteristic length of the rank decisions, in the file's length unit; default:
-            derived from each pose's screws (:func:`~screwkit.core.wrenches.analyze_table`).
+            derived from each pose's screws (:func:`~screwkit.core.wrench_systems.analyze_table`).
         **options
             Passed to the inverse kinematics (a working mode).
 
@@ -415,7 +415,7 @@ class Mechanism:
         """
         return self._one(pose, options).twist_basis
 
-    def jacobians(self, pose: Any = None, **options: Any) -> WrenchJacobians:
+    def jacobians(self, pose: Any = None, **options: Any) -> Jacobians:
         """Forward and inverse Jacobians ``A χ̇ = B θ̇`` from the wrench systems at a pose.
 
         :func:`screwkit.core.jacobians.jacobians_from_wrenches` of the wrench analysis over
@@ -1087,10 +1087,10 @@ def check_dof(graph: nx.MultiDiGraph, *, joint_key: str = "joint") -> None:
     """Refuse a twist graph whose ``dof`` is below its number of actuators (at load time).
 
     screwkit analyses non-redundantly actuated mechanisms whose nominal ``dof`` is the platform's
-    mobility at generic configurations (:func:`screwkit.core.motion.resolve_dof`). A ``dof`` below the
+    mobility at generic configurations (:func:`screwkit.core.mobility.resolve_dof`). A ``dof`` below the
     number of actuated joints contradicts that whatever the mobility, and is refused here without
     computing it; the rest (``dof`` equal to the mobility, actuators no more than it) is checked when
-    the graph is analysed (:func:`screwkit.core.motion.settled_dof`). A graph without ``dof`` or without
+    the graph is analysed (:func:`screwkit.core.mobility.settled_dof`). A graph without ``dof`` or without
     actuated joints passes.
 
     Raises

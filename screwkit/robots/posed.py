@@ -36,10 +36,12 @@ import networkx as nx
 import numpy as np
 
 from ..algebra import backend as B
-from ..algebra.checks import checked_length_scale
-from ..core.jacobians import WrenchJacobians, jacobians_from_wrenches
-from ..core.singularity import SingularityReport, classify_chunks, label_table
-from ..core.wrenches import WrenchAnalysis, analyze_table, checked_rtol
+from ..algebra.checks import checked_length_scale, checked_rtol
+from ..core.jacobian_matrices import Jacobians
+from ..core.jacobians import jacobians_from_wrenches
+from ..core.singularity import classify_chunks, label_table
+from ..core.verdicts import SingularityReport
+from ..core.wrench_systems import WrenchAnalysis, analyze_table
 from ..exceptions import ScrewkitError, ScrewkitIndexError, ScrewkitValueError
 from ..graphs.jointtable import JointTable
 
@@ -85,7 +87,7 @@ class PosedMechanism:
     rtol : float
     length_scale : float or None
         The characteristic length of the rank decisions in the file's length unit; None: derived
-        per pose (:func:`~screwkit.core.wrenches.analyze_table`).
+        per pose (:func:`~screwkit.core.wrench_systems.analyze_table`).
     options : dict
         Passed to the inverse kinematics (a working mode).
     """
@@ -211,7 +213,7 @@ class PosedMechanism:
         return self.singularities.closeness
 
     @functools.cached_property
-    def jacobians(self) -> WrenchJacobians:
+    def jacobians(self) -> Jacobians:
         """``A χ̇ = B θ̇`` per pose over the family's nominal twists."""
         return jacobians_from_wrenches(self.singularities.analysis, self.twist_basis, rtol=self.rtol)
 
@@ -311,7 +313,7 @@ class Pose:
         return basis.reshape(-1, *basis.shape[-2:])[self.flat_index]
 
     @functools.cached_property
-    def jacobians(self) -> WrenchJacobians:
+    def jacobians(self) -> Jacobians:
         """``A χ̇ = B θ̇`` at this pose."""
         return jacobians_from_wrenches(self.analysis, self.twist_basis, rtol=self.posed.rtol)
 

@@ -1,0 +1,283 @@
+"""The mobility of a mechanism and the nominal ``dof`` of its analysis, read at generic configurations.
+
+A pose may be singular, so a mechanism's mobility is not read off the analysed pose: it is the most
+common order of the platform's twist system over a few generic configurations reached by moving
+the mechanism along its own twists (:func:`screwkit.core.motion.generic_configurations`,
+:func:`generic_mobility`). The nominal ``dof`` of every analysis is that mobility, with no more
+actuators than it (:func:`resolve_dof`); :func:`settled_dof` checks a first analysis against it at
+no cost where the pose is regular with one actuator per freedom. :func:`generic_analyses` gives the
+wrench analyses at generic configurations (the structural facts of wrench diagrams are decided
+there).
+
+Examples
+--------
+>>> from screwkit.graphs.joints import revolute
+>>> from screwkit.graphs.twistgraph import twist_graph
+>>> planar_2r = twist_graph("B", "E", [
+...     ("B", "arm", revolute("A", [0, 0, 1], [0, 0, 0], actuated=True)),
+...     ("arm", "E", revolute("R", [0, 0, 1], [1, 0, 0]))])
+>>> generic_mobility(planar_2r)  # one actuator, two freedoms
+2
+"""
+
+from __future__ import annotations
+
+import networkx as nx
+import numpy as np
+
+from ..algebra import backend as B
+from ..exceptions import ScrewkitValueError, TwistGraphError
+from .motion import generic_configurations
+from .wrench_systems import WrenchAnalysis, analyze_table
+
+__all__ = ["generic_analyses", "generic_mobility", "resolve_dof", "settled_dof"]
+
+Array = np.ndarray
+
+
+def generic_analyses(
+    graph: nx.MultiDiGraph,
+    rng: np.random.Generator,
+    count: int,
+    *,
+    rtol: float = B.DEFAULT_RTOL,
+    length_scale: float | None = None,
+) -> list[WrenchAnalysis]:
+    """Wrench analyses of the graph's mechanism at ``count`` generic configurations, as one batch.
+
+    :func:`generic_configurations` analysed by :func:`~screwkit.core.wrench_systems.analyze_table` in one
+    call (``rtol``, ``length_scale`` as there); each analysis of one configuration carries its twist
+    graph (the graph's ``dof`` and ``name`` kept).
+
+    Parameters
+    ----------
+    graph : networkx.MultiDiGraph
+        A twist graph of the mechanism (numbers), at any pose.
+    rng : numpy.random.Generator
+        Draws the configurations (:func:`generic_configurations`).
+    count : int
+        How many configurations.
+    rtol : float, default 1e-9
+    length_scale : float, optional
+        As in :func:`~screwkit.core.wrench_systems.analyze_table`.
+
+    Returns
+    -------
+    list of WrenchAnalysis
+        One analysis of one configuration each (shape ``()``), in the order drawn.
+
+    Examples
+    --------
+    >>> from screwkit.robots.catalog import load_mechanism
+    >>> graph = load_mechanism("h4").twist_graph()
+    >>> [a.global_order for a in generic_analyses(graph, np.random.default_rng(1), 2)]
+    [6, 6]
+    """
+    table = generic_configurations(graph, rng, count)
+    batch = analyze_table(table, dof=graph.graph.get("dof"), rtol=rtol, length_scale=length_scale)
+    out = []
+    for i in range(len(batch)):
+        one = batch[i]
+        moved = table.graph(i)
+        moved.graph.update({k: v for k, v in graph.graph.items() if k in ("name", "length_unit")})
+        object.__setattr__(one, "graph", moved)
+        out.append(one)
+    return out
+
+
+#: Generic configurations the mobility is read from (their most common platform order), and the seed
+#: of the random motion that reaches them (fixed: the same graph always gets the same answer).
+MOBILITY_SAMPLES = 3
+MOBILITY_SEED = 20261124
+
+
+def generic_mobility(
+    graph: nx.MultiDiGraph,
+    *,
+    joint_key: str = "joint",
+    rtol: float = B.DEFAULT_RTOL,
+    length_scale: float | None = None,
+) -> int | None:
+    """The platform's freedoms at generic configurations of the graph's mechanism.
+
+    The most common order of the platform's twist system over :data:`MOBILITY_SAMPLES` configurations
+    reached from the graph's own by :func:`generic_configurations` (so a singular analysed pose does not
+    decide it: a stretched limb loses a freedom there, a constraint singularity gains one), each
+    decided with ``rtol`` and ``length_scale`` (:func:`~screwkit.core.wrench_systems.analyze_table`). 0 for a
+    mechanism whose loops admit no joint motion; None when Newton's method closed no loop.
+
+    Parameters
+    ----------
+    graph : networkx.MultiDiGraph
+        A twist graph of the mechanism (numbers).
+    joint_key : str, default "joint"
+    rtol : float, default 1e-9
+    length_scale : float, optional
+        As in :func:`~screwkit.core.wrench_systems.analyze_table`.
+
+    Returns
+    -------
+    int or None
+        The mobility (0 to 6), None when no loop could be closed.
+
+    Examples
+    --------
+    >>> from screwkit.graphs.joints import prismatic, revolute
+    >>> from screwkit.graphs.twistgraph import twist_graph
+    >>> generic_mobility(twist_graph("B", "E", [("B", "L", prismatic("P1", [1, 0, 0], actuated=True)),
+    ...                                         ("L", "E", prismatic("P2", [0, 1, 0]))]))
+    2
+    >>> fourbar = twist_graph("ground", "coupler", [
+    ...     ("ground", "crank", revolute("A", [0, 0, 1], [0, 0, 0], actuated=True)),
+    ...     ("crank", "coupler", revolute("B", [0, 0, 1], [1, 0, 0])),
+    ...     ("ground", "rocker", revolute("D", [0, 0, 1], [3, 0, 0])),
+    ...     ("rocker", "coupler", revolute("C", [0, 0, 1], [3, 2, 0]))])
+    >>> generic_mobility(fourbar)
+    1
+    """
+    try:
+        table = generic_configurations(graph, np.random.default_rng(MOBILITY_SEED), MOBILITY_SAMPLES,
+                                       joint_key=joint_key)
+    except ScrewkitValueError as err:
+        if "admit no joint motion" in str(err):
+            return 0
+        return None
+    analysis = analyze_table(table, dof=0, rtol=rtol, length_scale=length_scale, views=False)
+    orders = np.asarray(analysis.platform_order).ravel()
+    return int(np.bincount(orders).argmax())
+
+
+def resolve_dof(stated: int | None, mobility: int, actuated: tuple[str, ...] | list[str]) -> int:
+    """The nominal ``dof`` of an analysis: the mechanism's mobility, with its actuators checked.
+
+    screwkit analyses mechanisms whose nominal ``dof`` is the platform's mobility at generic
+    configurations and whose actuators are no more than that (non-redundant actuation). Fewer
+    actuators than ``dof`` is an under-actuated mechanism (uncontrolled freedoms: an actuation
+    singularity everywhere, a non-square Jacobian); no actuator at all, a mobility analysis.
+
+    Parameters
+    ----------
+    stated : int or None
+        The ``dof`` given (argument or graph attribute); None derives it.
+    mobility : int
+        :func:`generic_mobility`.
+    actuated : sequence of str
+        The actuated joints.
+
+    Returns
+    -------
+    int
+        The mobility (``stated`` when it equals it).
+
+    Raises
+    ------
+    TwistGraphError
+        A stated ``dof`` other than the mobility, or more actuators than the mobility (naming both
+        numbers and the actuated joints).
+
+    Examples
+    --------
+    >>> resolve_dof(None, 3, ["A1", "A2", "A3"]), resolve_dof(2, 2, ["A1"]), resolve_dof(None, 4, [])
+    (3, 2, 4)
+    >>> resolve_dof(2, 3, ["A1", "A2", "A3"])  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    screwkit.exceptions.TwistGraphError: Expected `dof` to equal the mechanism's mobility, 3 (...), ...
+    """
+    names = f"{len(actuated)} actuated joint(s)" + (f": {', '.join(sorted(actuated))}" if actuated else "")
+    if stated is not None and stated != mobility:
+        raise TwistGraphError(
+            f"Expected `dof` to equal the mechanism's mobility, {mobility} (the platform's freedoms at "
+            f"generic configurations, screwkit.core.mobility.generic_mobility), got dof = {stated}; {names}. "
+            "A `dof` other than the mobility would label every pose falsely (constraint singularities "
+            "for a dof below it, lost freedoms above it): omit `dof` to use the mobility."
+        )
+    if len(actuated) > mobility:
+        raise TwistGraphError(
+            f"Expected at most as many actuated joints as the mechanism's mobility, {mobility} (the "
+            f"platform's freedoms at generic configurations), got {names}: screwkit analyses "
+            "non-redundantly actuated mechanisms; fix the `actuated` flags."
+        )
+    return mobility
+
+
+def _regular_for(analysis: WrenchAnalysis, dof: int) -> bool:
+    """True when every pose of the analysis is regular for a nominal ``dof`` equal to its number of
+    actuators: the platform has exactly ``dof`` freedoms there (constraint order ``6 - dof``), all
+    controlled (global order 6), no limb serially singular. Such a pose confirms ``dof`` on its own
+    (its first-order mobility is ``dof``); any other is checked against :func:`generic_mobility`."""
+    return bool(
+        len(analysis.topology.actuated) == dof > 0
+        and np.all(np.asarray(analysis.constraint_order) == 6 - dof)
+        and np.all(np.asarray(analysis.global_order) == 6)
+        and not np.any(np.asarray(analysis.serial))
+    )
+
+
+def settled_dof(
+    graph: nx.MultiDiGraph,
+    stated: int | None,
+    analysis: WrenchAnalysis,
+    *,
+    joint_key: str = "joint",
+    rtol: float = B.DEFAULT_RTOL,
+    length_scale: float | None = None,
+) -> int:
+    """The nominal ``dof`` the graph's analysis must use (:func:`resolve_dof`), given a first analysis
+    with ``stated`` (or, when None, the number of actuators).
+
+    A first analysis that is regular for its ``dof`` confirms it (:func:`_regular_for`: no generic
+    configuration needed, the common case costs nothing). Otherwise the mobility is the graph's
+    ``mobility`` attribute when it has one (a catalog family's graphs do:
+    :attr:`screwkit.graphs.jointtable.JointTable.mobility`), else computed at generic configurations
+    (:func:`generic_mobility`, 0.03–0.2 s, with the analysis's ``rtol`` and the given
+    ``length_scale``; where no loop could be closed, the platform's most common order over the
+    analysed poses stands in for it).
+
+    Parameters
+    ----------
+    graph : networkx.MultiDiGraph
+        The analysed twist graph (for a batch, its first configuration's).
+    stated : int or None
+        The ``dof`` given (argument or the graph's or table's attribute); None derives it.
+    analysis : WrenchAnalysis
+        The first analysis, made with ``stated`` (or the number of actuators).
+    joint_key : str, default "joint"
+    rtol : float, default 1e-9
+    length_scale : float, optional
+        As in :func:`~screwkit.core.wrench_systems.analyze_table`.
+
+    Returns
+    -------
+    int
+        The nominal ``dof``; when it differs from ``analysis.dof`` the caller analyses again with it.
+
+    Raises
+    ------
+    TwistGraphError
+        A ``dof`` other than the mobility, or more actuators than it (:func:`resolve_dof`).
+
+    Examples
+    --------
+    >>> from screwkit.graphs.joints import prismatic
+    >>> from screwkit.graphs.twistgraph import twist_graph
+    >>> from screwkit.core.wrenches import wrench_analysis
+    >>> G = twist_graph("B", "E", [("B", "L", prismatic("P1", [1, 0, 0], actuated=True)),
+    ...                            ("L", "E", prismatic("P2", [0, 1, 0]))])
+    >>> wrench_analysis(G).dof  # under-actuated: one actuator, the mobility 2 (wrench_analysis settles it)
+    2
+    """
+    actuated = analysis.topology.actuated
+    if (stated is None or stated == len(actuated)) and _regular_for(analysis, analysis.dof):
+        return analysis.dof
+    known = graph.graph.get("mobility")  # a catalog family's (JointTable.mobility)
+    if known is not None and not B.is_dof(known):
+        raise TwistGraphError(f"Expected graph attribute 'mobility' to be an integer in 0..6, got {known!r}.")
+    mobility = (
+        int(known)
+        if known is not None
+        else generic_mobility(graph, joint_key=joint_key, rtol=rtol, length_scale=length_scale)
+    )
+    if mobility is None:
+        mobility = int(np.bincount(np.asarray(analysis.platform_order).ravel()).argmax())
+    return resolve_dof(stated, mobility, actuated)
