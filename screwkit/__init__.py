@@ -48,6 +48,7 @@ from .graphs.twistgraph import (
     series_parallel_tree,
     twist_graph,
 )
+from .version import __version__
 
 #: Names loaded on first use (the catalog and its families, the generic analysis, the projective
 #: helpers, the Jacobians, the composer and its report are not a cost of ``import screwkit``; PEP 562).
@@ -123,8 +124,6 @@ def __getattr__(name: str) -> Any:
 
 def __dir__() -> list[str]:
     return sorted(set(globals()) | set(_LAZY) | set(_LAZY_MODULES))
-
-__version__ = "0.1.0"
 
 # The catalog (top-level ``mechanisms/``) is installed as ``screwkit.mechanisms`` by a setuptools
 # package-dir mapping; when this source tree shadows a non-editable install (``python -m pytest`` from the

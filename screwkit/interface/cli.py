@@ -47,7 +47,6 @@ from typing import Any, NoReturn
 
 import numpy as np
 
-from .. import __version__
 from ..algebra import backend as B
 from ..algebra.screw import Screw
 from ..exceptions import ScrewkitError, ScrewkitValueError
@@ -62,6 +61,7 @@ from ..robots.catalog import (
     load_toml,
     unknown_mechanism,
 )
+from ..version import __version__
 from .report import analyze
 
 __all__ = [
