@@ -85,7 +85,7 @@ _LAZY = {
     "schoenflies_basis": "core.jacobians",
     "Pose": "robots.posed",
     "PosedMechanism": "robots.posed",
-    "AnalysisReport": "interface.report",
+    "AnalysisReport": "interface.analysis_report",
     "analyze": "interface.report",
     "graph_dot": "interface.export",
     "graph_json": "interface.export",
