@@ -61,8 +61,12 @@ def console() -> int:
     left in unreachable reference cycles are not finalised at exit (their ``__del__`` does not run;
     an H4 analysis leaves ≈ 800 such objects, numpy's and sympy's, none holding a resource). Every
     command writes and closes its output files before it returns (``with`` blocks), so nothing it
-    produces depends on a finaliser; a full collection instead would cost ≈ 35 ms. Returns the exit
-    status (the console script passes it to :func:`sys.exit`).
+    produces depends on a finaliser; a full collection instead would cost ≈ 35 ms.
+
+    Returns
+    -------
+    int
+        The exit status of :func:`main` (the console script passes it to :func:`sys.exit`).
 
     Examples
     --------
@@ -79,6 +83,19 @@ def console() -> int:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; returns the exit status (0 ok, 1 analysis error, 2 usage error).
+
+    Parameters
+    ----------
+    argv : sequence of str, optional
+        The arguments after the program's name; default ``sys.argv[1:]``.
+
+    Returns
+    -------
+    int
+        0 on success (also when no command is given: the help is printed; and when the reader of
+        standard output closed the pipe), 1 for an analysis error or an output that cannot be
+        written, 2 for a malformed command line; each error is one line on standard error.
+        ``--version`` and ``--help`` exit (:class:`SystemExit`, status 0) as argparse does.
 
     Examples
     --------

@@ -43,6 +43,12 @@ class _Parser(argparse.ArgumentParser):
 def get_parser() -> argparse.ArgumentParser:
     """Build the argument parser (a factory, so tests and docs can inspect it).
 
+    Returns
+    -------
+    argparse.ArgumentParser
+        The ``screwkit`` parser: ``--version`` and one subcommand per job, its name in the
+        namespace's ``command`` (None when none is given); errors raise a usage error (one line).
+
     Examples
     --------
     >>> get_parser().prog
