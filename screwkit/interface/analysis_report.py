@@ -92,7 +92,7 @@ def describe_twist(twist: Array, *, length_scale: float) -> dict[str, Any]:
     twist : numpy.ndarray, shape (6,)
         Screw coordinates ``(ω; v_O)``, numeric and nonzero.
     length_scale : float
-        The characteristic length of the zero-pitch and infinite-pitch decisions.
+        As for :func:`describe_wrench`.
 
     Returns
     -------

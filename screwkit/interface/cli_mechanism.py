@@ -29,13 +29,16 @@ def run_analyze(args: argparse.Namespace) -> int:
     Parameters
     ----------
     args : argparse.Namespace
-        The parsed command line (:func:`~screwkit.interface.cli_parser.get_parser`).
+        From :func:`~screwkit.interface.cli_parser.get_parser`: ``mechanism``, ``pose``, ``rtol``,
+        ``length_scale``, ``json``, ``latex``, ``no_superbracket`` and ``progress`` of ``screwkit
+        analyze``.
 
     Returns
     -------
     int
-        The exit status, 0. Errors are raised: a malformed command line (exit status 2 in
-        :func:`~screwkit.interface.cli.main`) or a :class:`~screwkit.exceptions.ScrewkitError` (status 1).
+        0, the report printed (text, JSON or LaTeX); a malformed option raises a usage error
+        (status 2 in :func:`~screwkit.interface.cli.main`), an analysis error a
+        :class:`~screwkit.exceptions.ScrewkitError` (status 1).
 
     Examples
     --------
@@ -110,13 +113,13 @@ def run_graph(args: argparse.Namespace) -> int:
     Parameters
     ----------
     args : argparse.Namespace
-        The parsed command line (:func:`~screwkit.interface.cli_parser.get_parser`).
+        From :func:`~screwkit.interface.cli_parser.get_parser`: ``mechanism``, ``pose``, ``format``,
+        ``equivalent`` and ``out`` of ``screwkit graph``.
 
     Returns
     -------
     int
-        The exit status, 0. Errors are raised: a malformed command line (exit status 2 in
-        :func:`~screwkit.interface.cli.main`) or a :class:`~screwkit.exceptions.ScrewkitError` (status 1).
+        0, the graph printed or written to ``--out``; an unwritable ``--out`` raises a usage error.
 
     Examples
     --------
@@ -154,13 +157,12 @@ def run_list(args: argparse.Namespace) -> int:
     Parameters
     ----------
     args : argparse.Namespace
-        The parsed command line (:func:`~screwkit.interface.cli_parser.get_parser`).
+        From :func:`~screwkit.interface.cli_parser.get_parser`: ``json`` of ``screwkit list``.
 
     Returns
     -------
     int
-        The exit status, 0. Errors are raised: a malformed command line (exit status 2 in
-        :func:`~screwkit.interface.cli.main`) or a :class:`~screwkit.exceptions.ScrewkitError` (status 1).
+        0, one line (or JSON entry) per catalog mechanism printed.
 
     Examples
     --------
@@ -199,13 +201,13 @@ def run_screw(args: argparse.Namespace) -> int:
     Parameters
     ----------
     args : argparse.Namespace
-        The parsed command line (:func:`~screwkit.interface.cli_parser.get_parser`).
+        From :func:`~screwkit.interface.cli_parser.get_parser`: ``revolute``, ``point``, ``prismatic``,
+        ``plucker`` and ``json`` of ``screwkit screw``.
 
     Returns
     -------
     int
-        The exit status, 0. Errors are raised: a malformed command line (exit status 2 in
-        :func:`~screwkit.interface.cli.main`) or a :class:`~screwkit.exceptions.ScrewkitError` (status 1).
+        0, the screw described; coordinates out of range raise a usage error.
 
     Examples
     --------

@@ -42,13 +42,14 @@ def run_map(args: argparse.Namespace) -> int:
     Parameters
     ----------
     args : argparse.Namespace
-        The parsed command line (:func:`~screwkit.interface.cli_parser.get_parser`).
+        From :func:`~screwkit.interface.cli_parser.get_parser`: ``mechanism``, ``quantity``, one option
+        per pose coordinate, ``grid``, ``out``, ``chunk`` and ``no_progress`` of ``screwkit map``.
 
     Returns
     -------
     int
-        The exit status, 0. Errors are raised: a malformed command line (exit status 2 in
-        :func:`~screwkit.interface.cli.main`) or a :class:`~screwkit.exceptions.ScrewkitError` (status 1).
+        0, the map written to ``--out`` and summarised (region, extremes and where they
+        occur); options beyond the caps (:data:`MAX_MAP_POSES`) raise a usage error before computing.
 
     Examples
     --------
@@ -172,13 +173,14 @@ def run_path(args: argparse.Namespace) -> int:
     Parameters
     ----------
     args : argparse.Namespace
-        The parsed command line (:func:`~screwkit.interface.cli_parser.get_parser`).
+        From :func:`~screwkit.interface.cli_parser.get_parser`: ``mechanism``, ``start`` (``--from``),
+        ``end`` (``--to``), ``samples`` and ``json`` of ``screwkit path``.
 
     Returns
     -------
     int
-        The exit status, 0. Errors are raised: a malformed command line (exit status 2 in
-        :func:`~screwkit.interface.cli.main`) or a :class:`~screwkit.exceptions.ScrewkitError` (status 1).
+        0, the check printed (the crossings found, or "singularity-free"); more samples than
+        :data:`MAX_PATH_SAMPLES` raise a usage error.
 
     Examples
     --------
@@ -209,13 +211,14 @@ def run_table4(args: argparse.Namespace) -> int:
     Parameters
     ----------
     args : argparse.Namespace
-        The parsed command line (:func:`~screwkit.interface.cli_parser.get_parser`).
+        From :func:`~screwkit.interface.cli_parser.get_parser`: ``grid``, ``refine``, ``robot`` and
+        ``json`` of ``screwkit table4``.
 
     Returns
     -------
     int
-        The exit status, 0. Errors are raised: a malformed command line (exit status 2 in
-        :func:`~screwkit.interface.cli.main`) or a :class:`~screwkit.exceptions.ScrewkitError` (status 1).
+        0, the table printed with the paper's values beside ours; an unknown robot or a grid or
+        refinement out of range raises a usage error.
 
     Examples
     --------

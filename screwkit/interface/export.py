@@ -225,10 +225,8 @@ def save_snapshot(
         A numeric twist graph (checked with :func:`screwkit.graphs.twistgraph.check_twist_graph`).
     path : str or pathlib.Path
         The file to write (replaced if it exists).
-    name : str, optional
-        The ``[mechanism] name``; default the graph's ``name`` attribute or ``"twist graph"``.
-    joint_key : str, default "joint"
-        The edge attribute holding each :class:`~screwkit.graphs.joints.Joint`.
+    name, joint_key
+        As for :func:`snapshot_text`.
 
     Returns
     -------
