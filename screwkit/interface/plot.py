@@ -55,7 +55,6 @@ from ._matplotlib import (
     Patch,
     Poly3DCollection,
     new_axes,
-    plt,
     to_rgba,
 )
 
@@ -244,7 +243,7 @@ def plot_map(
     chosen = levels if isinstance(levels, int) else np.asarray(list(levels), dtype=float)
     if filled:
         fill = ax.contourf(x, y, shown, levels=chosen, cmap=cmap, extend="both")  # values off the levels too
-        plt.colorbar(fill, ax=ax, label=str(workspace_map.quantity))
+        ax.figure.colorbar(fill, ax=ax, label=str(workspace_map.quantity))  # ax's, not pyplot's current
         chosen = fill.levels
     lines = ax.contour(x, y, shown, levels=chosen, colors="black", linewidths=0.7)
     ax.clabel(lines, fmt="%.3g", fontsize=7)
