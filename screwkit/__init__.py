@@ -47,6 +47,7 @@ from .graphs.jointtable import JointTable
 from .graphs.loops import fundamental_loops, loop_closure_matrix
 from .graphs.reduction import equivalent_twist_graph, platform_twist_system, series_parallel_tree
 from .graphs.twistgraph import twist_graph
+from .version import __version__
 
 #: Names loaded on first use (the catalog and its families, the generic analysis, the projective
 #: helpers, the Jacobians, the composer and its report are not a cost of ``import screwkit``; PEP 562).
@@ -82,7 +83,7 @@ _LAZY = {
     "schoenflies_basis": "core.jacobians",
     "Pose": "robots.posed",
     "PosedMechanism": "robots.posed",
-    "AnalysisReport": "interface.report",
+    "AnalysisReport": "interface.analysis_report",
     "analyze": "interface.report",
     "graph_dot": "interface.export",
     "graph_json": "interface.export",
@@ -121,8 +122,6 @@ def __getattr__(name: str) -> Any:
 
 def __dir__() -> list[str]:
     return sorted(set(globals()) | set(_LAZY) | set(_LAZY_MODULES))
-
-__version__ = "0.1.0"
 
 # The catalog (top-level ``mechanisms/``) is installed as ``screwkit.mechanisms`` by a setuptools
 # package-dir mapping; when this source tree shadows a non-editable install (``python -m pytest`` from the

@@ -24,7 +24,8 @@ import numpy as np
 import pytest
 
 from screwkit.exceptions import CatalogError
-from screwkit.interface.cli import MAX_MAP_POSES, MAX_PATH_SAMPLES, main
+from screwkit.interface.cli import main
+from screwkit.interface.cli_workspace import MAX_MAP_POSES, MAX_PATH_SAMPLES
 from screwkit.robots.catalog import MAX_JOINTS, MAX_LOOPS, load_toml, snapshot_from_mapping
 from tests.toml_text import toml_text
 

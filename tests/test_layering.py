@@ -19,6 +19,7 @@ PACKAGE = pathlib.Path(__file__).resolve().parents[1] / "screwkit"
 #: The layers from the bottom up (docs/architecture.md). A module's layer is its subpackage; the
 #: top-level modules are named.
 LAYERS = (
+    "version",
     "exceptions",
     "algebra",
     "graphs",

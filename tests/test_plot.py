@@ -1,4 +1,4 @@
-"""screwkit.interface.plot: drawings rendered to files with Agg, checked through the artists they contain.
+"""screwkit.interface.plot and plot_diagrams: drawings rendered to files with Agg, checked through the artists they contain.
 
 The maps and loci are small objects built here with the attributes of screwkit.analysis.workspace's
 WorkspaceMap and Locus (plot reads attributes only); the diagrams and twist graphs are screwkit's own.
@@ -37,10 +37,9 @@ from screwkit.interface.plot import (
     VERDICT_COLOURS,
     plot_map,
     plot_singularity_surfaces,
-    plot_twist_graph,
     plot_verdicts,
-    plot_wrench_diagram,
 )
+from screwkit.interface.plot_diagrams import plot_twist_graph, plot_wrench_diagram
 
 
 @pytest.fixture(autouse=True)
@@ -362,17 +361,18 @@ def test_twist_graph_errors():
 
 
 # without matplotlib ---------------------------------------------------------------------------------
-def test_import_without_matplotlib_names_the_extra():
+@pytest.mark.parametrize("module", ["screwkit.interface.plot", "screwkit.interface.plot_diagrams"])
+def test_import_without_matplotlib_names_the_extra(module):
     # a fresh interpreter in which importing matplotlib fails
     code = (
         "import sys\nsys.modules['matplotlib'] = None\n"
         "from screwkit.exceptions import MissingDependencyError\n"
-        "try:\n    import screwkit.interface.plot\nexcept MissingDependencyError as err:\n    print(err)\n"
+        f"try:\n    import {module}\nexcept MissingDependencyError as err:\n    print(err)\n"
         "import screwkit\nprint(screwkit.classify.__name__)"
     )
     result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120, check=True)
     message, after = result.stdout.strip().splitlines()
-    assert "needs matplotlib" in message and "optional extra `plot`" in message and 'screwkit[plot]' in message
+    assert "need matplotlib" in message and "optional extra `plot`" in message and 'screwkit[plot]' in message
     assert after == "classify"  # the rest of screwkit works
 
 

@@ -152,6 +152,14 @@ def snapshot_text(graph: nx.MultiDiGraph, *, name: str | None = None, joint_key:
         A twist graph (checked with :func:`screwkit.graphs.twistgraph.check_twist_graph`).
     name : str, optional
         The ``[mechanism] name``; default the graph's ``name`` attribute or ``"twist graph"``.
+    joint_key : str, default "joint"
+        The edge attribute holding each :class:`~screwkit.graphs.joints.Joint`.
+
+    Returns
+    -------
+    str
+        The file's text: a ``[mechanism]`` table (``kind = "snapshot"``, name, base, platform,
+        length unit if the graph has one) and one ``[[joints]]`` table per joint.
 
     Raises
     ------
@@ -211,6 +219,27 @@ def save_snapshot(
 ) -> Path:
     """Write a numeric twist graph as a snapshot file; :func:`screwkit.load_snapshot` reads it back.
 
+    Parameters
+    ----------
+    graph : networkx.MultiDiGraph
+        A numeric twist graph (checked with :func:`screwkit.graphs.twistgraph.check_twist_graph`).
+    path : str or pathlib.Path
+        The file to write (replaced if it exists).
+    name, joint_key
+        As for :func:`snapshot_text`.
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``, written with :func:`snapshot_text`'s text in UTF-8.
+
+    Raises
+    ------
+    ScrewkitTypeError
+        If ``path`` is not a str or a path.
+    ScrewkitValueError
+        If the file cannot be written, or as :func:`snapshot_text`.
+
     Examples
     --------
     >>> import tempfile, screwkit as sk
@@ -239,6 +268,20 @@ def graph_dot(graph: nx.MultiDiGraph, *, joint_key: str = "joint") -> str:
     """Graphviz DOT text of a twist graph: links as nodes (base and platform boxed), joints as edges
     labelled ``name (type)``, actuated joints bold, virtual joints dashed.
 
+    Parameters
+    ----------
+    graph : networkx.MultiDiGraph
+        A twist graph, numeric or symbolic (checked with
+        :func:`screwkit.graphs.twistgraph.check_twist_graph`).
+    joint_key : str, default "joint"
+        The edge attribute holding each :class:`~screwkit.graphs.joints.Joint`.
+
+    Returns
+    -------
+    str
+        A ``digraph`` named after the graph's ``name`` attribute: links sorted by name, joints
+        sorted by name.
+
     Examples
     --------
     >>> import screwkit as sk
@@ -266,6 +309,23 @@ def graph_dot(graph: nx.MultiDiGraph, *, joint_key: str = "joint") -> str:
 def graph_json(graph: nx.MultiDiGraph, *, joint_key: str = "joint") -> str:
     """JSON text of a twist graph (:func:`screwkit.graphs.twistgraph.to_data`; read back with
     :func:`screwkit.graphs.twistgraph.from_data`).
+
+    Parameters
+    ----------
+    graph : networkx.MultiDiGraph
+        A numeric twist graph (checked with :func:`screwkit.graphs.twistgraph.check_twist_graph`).
+    joint_key : str, default "joint"
+        The edge attribute holding each :class:`~screwkit.graphs.joints.Joint`.
+
+    Returns
+    -------
+    str
+        The graph's data, indented by two spaces, non-ASCII characters kept.
+
+    Raises
+    ------
+    ScrewkitValueError
+        For symbolic screws.
 
     Examples
     --------

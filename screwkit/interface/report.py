@@ -4,7 +4,8 @@
 wrench systems → labels at the pose → wrench diagram → superbracket → conditions. The report says
 what the mechanism is, which wrenches act on its platform (each as a line: kind, direction, a point,
 pitch), the diagram's twelve points in words, the factored superbracket, each factor as a geometric
-statement and a vector form with its label, and the verdict with its closeness measures.
+statement and a vector form with its label, and the verdict with its closeness measures
+(:class:`~screwkit.interface.analysis_report.AnalysisReport`, its JSON and its text).
 
 For a catalog mechanism it also gives the Jacobians ``A χ̇ = B θ̇`` built on the same actuation
 wrenches (:func:`screwkit.core.jacobians.jacobians_from_wrenches`) over the family's nominal twists at the
@@ -31,10 +32,7 @@ Examples
 from __future__ import annotations
 
 import dataclasses
-import math
-from collections import Counter
 from collections.abc import Callable
-from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -42,385 +40,22 @@ import networkx as nx
 import numpy as np
 
 from ..algebra import backend as B
-from ..algebra import screw as S
 from ..algebra.checks import checked_length_scale, checked_rtol
-from ..algebra.motion_type import motion_type
 from ..core.jacobian_matrices import Jacobians
-from ..core.verdicts import SingularityReport, classify_analysis
+from ..core.verdicts import classify_analysis
 from ..core.wrench_systems import WrenchAnalysis
 from ..core.wrenches import wrench_analysis
 from ..exceptions import ScrewkitError, ScrewkitTypeError, ScrewkitValueError
-from ..graphs.loops import fundamental_loops
 from ..graphs.reduction import equivalent_twist_graph
 from ..robots.catalog import Mechanism, file_kind, load_mechanism, load_snapshot, load_toml
+from .analysis_report import AnalysisReport
 
 if TYPE_CHECKING:  # the diagram and GCA stack loads when a report is made, not on `import screwkit`
-    from ..gca.diagram import SuperbracketAnalysis, WrenchDiagram
+    from ..gca.diagram import WrenchDiagram
 
-__all__ = ["AnalysisReport", "analyze", "describe_twist", "describe_wrench", "pose_report"]
+__all__ = ["analyze", "pose_report"]
 
 Array = np.ndarray
-
-
-def describe_wrench(wrench: Array, *, length_scale: float) -> dict[str, Any]:
-    """A wrench as a line: kind, unit direction, a point (the one nearest the origin), pitch.
-
-    Examples
-    --------
-    >>> describe_wrench(S.line([0, 0, 2], [1, 0, 5]), length_scale=1.0)["point"]
-    [1.0, 0.0, 0.0]
-    """
-    if S.is_infinite_pitch(wrench, rtol=1e-7, length_scale=length_scale):
-        moment = wrench[3:] / np.linalg.norm(wrench[3:])
-        return {
-            "kind": "couple (line at infinity)",
-            "direction": moment.round(12).tolist(),
-            "point": None,
-            "pitch": "inf",
-        }
-    point, direction = S.axis(wrench)
-    pitch = float(S.pitch(wrench))
-    kind = "force (finite line)" if abs(pitch) <= 1e-7 * length_scale else "screw of finite pitch"
-    return {
-        "kind": kind,
-        "direction": direction.round(12).tolist(),
-        "point": (point + 0.0).round(9).tolist(),
-        "pitch": round(pitch, 12) + 0.0,
-    }
-
-
-def describe_twist(twist: Array, *, length_scale: float) -> dict[str, Any]:
-    """A twist as :func:`describe_wrench` does a wrench, named as a motion: translation, rotation
-    or screw motion.
-
-    Examples
-    --------
-    >>> describe_twist(S.prismatic_twist([0, 0, 1]), length_scale=1.0)["kind"]
-    'translation'
-    """
-    described = describe_wrench(twist, length_scale=length_scale)
-    kinds = {
-        "couple (line at infinity)": "translation",
-        "force (finite line)": "rotation",
-        "screw of finite pitch": "screw motion",
-    }
-    return {**described, "kind": kinds[described["kind"]]}
-
-
-_SNAPSHOT_JACOBIANS = "not computed: a snapshot has no family to give the platform's nominal twists"
-
-
-@dataclass(frozen=True, eq=False)
-class AnalysisReport:
-    """Everything :func:`analyze` found (see the module docstring).
-
-    Attributes
-    ----------
-    name, source, length_unit : str
-    pose : numpy.ndarray or None
-        In the length unit and radians (None for a snapshot).
-    pose_names : tuple of str
-    graph, equivalent : networkx.MultiDiGraph
-        The physical twist graph and its equivalent graph (closed sub-loops as virtual chains).
-    analysis : WrenchAnalysis
-    verdict : SingularityReport
-    diagram : WrenchDiagram
-    superbracket : SuperbracketAnalysis or None
-        None when not computed, when the mechanism has no diagram, or when its diagram does not
-        exist at the pose (e.g. a limb at a serial singularity); ``superbracket_note`` says which.
-    superbracket_note : str
-        How structural zeros were confirmed, or why there is no factorization.
-    jacobians : Jacobians or None
-        ``A χ̇ = B θ̇`` over the family's nominal twists at the pose, with the Gosselin–Angeles
-        type (module docstring); None for a snapshot, or when the basis is refused at the pose.
-    jacobians_note : str
-        What the Jacobians' columns are, or why there are none.
-    transmission : dict or None
-        The transmission indices at the pose (:func:`screwkit.analysis.indices.transmission_summary`: the
-        wrench-based ITI/OTI/LTI, and paper 004's κ, ζ, η for the four-limb family); None for a
-        snapshot.
-    given_length_scale : float or None
-        The characteristic length the caller gave (None: derived from the screws; the one used is
-        ``analysis.length_scale``).
-    """
-
-    name: str
-    source: str
-    length_unit: str
-    pose: Array | None
-    pose_names: tuple[str, ...]
-    graph: nx.MultiDiGraph
-    equivalent: nx.MultiDiGraph
-    analysis: WrenchAnalysis
-    verdict: SingularityReport
-    diagram: WrenchDiagram
-    superbracket: SuperbracketAnalysis | None
-    superbracket_note: str
-    jacobians: Jacobians | None = None
-    jacobians_note: str = _SNAPSHOT_JACOBIANS
-    transmission: dict[str, Any] | None = None
-    given_length_scale: float | None = None
-
-    def graph_summary(self) -> dict[str, Any]:
-        """Links, joints by type, actuated joints, loops; and the equivalent graph's virtual joints."""
-        joints = Counter(j.type for _, _, j in self.graph.edges(data="joint"))
-        virtual = Counter(j.type for _, _, j in self.equivalent.edges(data="joint") if j.virtual)
-        return {
-            "links": self.graph.number_of_nodes(),
-            "joints": dict(sorted(joints.items())),
-            "actuated": sorted(k for _, _, k, j in self.graph.edges(keys=True, data="joint") if j.actuated),
-            "loops": len(fundamental_loops(self.graph)),
-            "equivalent": {
-                "links": self.equivalent.number_of_nodes(),
-                "virtual_joints": dict(sorted(virtual.items())),
-                "loops": len(fundamental_loops(self.equivalent)),
-            },
-        }
-
-    def wrenches(self) -> dict[str, Any]:
-        """The platform's twist order and every wrench as a line."""
-        scale = self.analysis.length_scale
-        platform = self.analysis.platform_twists
-        legs = sorted(self.analysis.compound_legs, key=lambda leg: leg.name)  # each view built once
-        return {
-            "platform_twist_order": platform.order,
-            "platform_twists": {
-                "motion_type": motion_type(platform),
-                "basis": [
-                    describe_twist(t, length_scale=scale)
-                    for t in platform.readable_basis(near=self.analysis.reference_point)
-                ],
-            },
-            "leg_motion_types": {leg.name: motion_type(leg.twist_system) for leg in legs},
-            "constraint": [
-                {"leg": leg.name, **describe_wrench(w, length_scale=scale)}
-                for leg in legs
-                for w in leg.constraint_wrenches.readable_basis()
-            ]
-            if legs
-            else [
-                {"leg": "mechanism", **describe_wrench(w, length_scale=scale)}
-                for w in self.analysis.constraint_wrenches.readable_basis()
-            ],
-            "actuation": [
-                {
-                    "joint": limb.actuated_joint,
-                    **(
-                        describe_wrench(limb.actuation_wrench, length_scale=scale)
-                        if limb.actuation_wrench is not None
-                        else {"kind": "none (serial singularity)"}
-                    ),
-                }
-                for limb in self.analysis.limbs
-            ],
-            "global_order": self.analysis.global_wrenches.order,
-        }
-
-    def jacobian_summary(self) -> dict[str, Any] | None:
-        """The Gosselin–Angeles type, ``det A``, ``det B``, closeness, ``A``, ``B`` (None: snapshot).
-
-        Every key is present for a catalog mechanism; the values are None when the Jacobians were
-        not computed (``note`` says why).
-
-        Examples
-        --------
-        >>> summary = analyze("planar_3rrp", superbracket=False).jacobian_summary()
-        >>> summary["type"], summary["actuated_joints"]
-        ('regular', ['limb1_R1', 'limb2_R1', 'limb3_R1'])
-        """
-        if self.pose is None:
-            return None
-        jac = self.jacobians
-        square = jac is not None and jac.A.shape[0] == jac.A.shape[1]
-        return {
-            "type": None if jac is None else jac.type,
-            "det_A": jac.det_A if jac is not None and square else None,
-            "det_B": None if jac is None else jac.det_B,
-            "closeness": None if jac is None else dict(jac.closeness),
-            "actuated_joints": None if jac is None else list(jac.actuated_joints),
-            "serial_limbs": None if jac is None else list(jac.serial_limbs),
-            "twist_basis": None if jac is None or jac.twist_basis is None else jac.twist_basis.tolist(),
-            "A": None if jac is None else jac.A.tolist(),
-            "B": None if jac is None else jac.B.tolist(),
-            "rtol": None if jac is None else jac.rtol,
-            "note": self.jacobians_note,
-        }
-
-    def to_dict(self) -> dict[str, Any]:
-        """The whole report as JSON-ready data (documented in the README)."""
-        return {
-            "mechanism": {"name": self.name, "source": self.source, "length_unit": self.length_unit},
-            "pose": None
-            if self.pose is None
-            else dict(zip(self.pose_names, self.pose.tolist(), strict=True)),
-            "twist_graph": self.graph_summary(),
-            "wrenches": self.wrenches(),
-            "diagram": self.diagram.to_dict(),
-            "superbracket": None if self.superbracket is None else self.superbracket.to_dict(),
-            "superbracket_note": self.superbracket_note,
-            "verdict": self.verdict.to_dict(),
-            "jacobians": self.jacobian_summary(),
-            "transmission": self.transmission,
-        }
-
-    def __str__(self) -> str:
-        unit = self.length_unit
-        out = [self.name if self.source == self.name else f"{self.name}  ({self.source})"]
-        if self.pose is not None:
-            coords = ", ".join(
-                f"{n} = {math.degrees(v):.4g} deg"
-                if n in ("phi", "theta", "psi")
-                else f"{n} = {v:.6g} {unit}"
-                for n, v in zip(self.pose_names, self.pose, strict=True)
-            )
-            out.append(f"pose: {coords}")
-        if self.analysis.rtol != B.DEFAULT_RTOL:  # the default is the README's; another is said
-            out.append(f"rank tolerance: rtol = {self.analysis.rtol:g} (default {B.DEFAULT_RTOL:g})")
-        if self.given_length_scale is not None:  # likewise (the default is derived from the screws)
-            out.append(
-                f"length scale: {self.given_length_scale:g} {unit} (given; default: derived from the screws)"
-            )
-        summary = self.graph_summary()
-        joints = ", ".join(f"{count} {kind}" for kind, count in summary["joints"].items())
-        out += [
-            "",
-            "twist graph",
-            f"  {summary['links']} links, joints: {joints}; {summary['loops']} loops",
-            f"  actuated: {', '.join(summary['actuated'])}",
-        ]
-        eq = summary["equivalent"]
-        virtual = ", ".join(f"{count} {kind}" for kind, count in eq["virtual_joints"].items()) or "none"
-        out.append(f"  equivalent graph: {eq['links']} links, {eq['loops']} loops, virtual joints: {virtual}")
-        wrenches = self.wrenches()
-        twists = wrenches["platform_twists"]
-        out += [
-            "",
-            f"platform twist system: {twists['motion_type']} (order {wrenches['platform_twist_order']})",
-            *(
-                f"  translation along {_vector(item['direction'])}"
-                if item["kind"] == "translation"
-                else f"  {_line_text(item, unit)}"
-                for item in twists["basis"]
-            ),
-            *(f"  {leg}: {kind}" for leg, kind in wrenches["leg_motion_types"].items()),
-        ]
-        out += ["", f"wrench systems (platform twist system of order {wrenches['platform_twist_order']})"]
-        for item in wrenches["constraint"]:
-            out.append(f"  constraint ({item['leg']}): {_line_text(item, unit)}")
-        for item in wrenches["actuation"]:
-            out.append(f"  actuation {item['joint']}: {_line_text(item, unit)}")
-        out.append(f"  global wrench system: order {wrenches['global_order']}")
-        out += ["", str(self.diagram)]
-        out += ["", "superbracket"]
-        if self.superbracket is None:
-            out.append(f"  {self.superbracket_note}")
-        else:
-            simplification = self.superbracket.simplification
-            out.append(f"  {self.diagram.line_text()} = {simplification.factored}")
-            out.append(
-                f"  monomials: 24 in the expansion, {len(simplification.survivors)} not structurally zero"
-            )
-            out.append(f"  {self.superbracket_note}")
-            out += ["", "conditions"]
-            result = self.superbracket
-            for condition, label, value, vanishes, constant in zip(
-                result.conditions, result.labels, result.values, result.vanishing, result.constant,
-                strict=True,
-            ):
-                if constant:
-                    out.append(
-                        f"  {condition.factor} never vanishes on this mechanism: the same value on "
-                        "every generic configuration (a structural factor, not a singularity condition)"
-                    )
-                    out.append(f"    {condition.statement} (never, for this mechanism)")
-                    out.append(f"    vector form: {condition.expression}   (here: {value:.6g})")
-                    continue
-                flag = "  <- vanishes at this pose" if vanishes else ""
-                out.append(f"  {label} singularity when {condition.factor} = 0{flag}")
-                out.append(f"    {condition.statement}")
-                out.append(f"    vector form: {condition.expression} = 0   (here: {value:.6g})")
-        out += ["", "verdict", *("  " + line for line in str(self.verdict).splitlines())]
-        if self.pose is not None:
-            out += ["", *self._jacobian_lines()]
-        if self.transmission is not None:
-            out += ["", *_transmission_lines(self.transmission)]
-        return "\n".join(out)
-
-    def _jacobian_lines(self) -> list[str]:
-        jac = self.jacobians
-        out = [f"jacobians (Gosselin-Angeles): A χ̇ = B θ̇, χ = ({', '.join(self.pose_names)})"]
-        if jac is None:
-            return [*out, f"  {self.jacobians_note}"]
-        head = "regular" if jac.type == "regular" else f"{jac.type} singularity"
-        out.append(f"  type: {head}; rows (actuated joints): {', '.join(jac.actuated_joints)}")
-        units = _determinant_units(jac, self.length_unit)
-        det_a = f"det A = {jac.det_A:.6g}{units[0]}, " if jac.A.shape[0] == jac.A.shape[1] else ""
-        out.append(f"  {det_a}det B = {jac.det_B:.6g}{units[1]}")
-        out.append(
-            f"  closeness (0 at a singularity): direct {jac.closeness['direct']:.3g}, "
-            f"inverse {jac.closeness['inverse']:.3g}"
-        )
-        out.extend(f"  serial singularity of the limb of {name!r} (B_jj = 0)" for name in jac.serial_limbs)
-        if "constraint" in self.verdict.labels and jac.type in ("regular", "inverse"):
-            out.append(
-                "  A only tests the nominal twists: the constraint singularity (a gained twist outside "
-                "them) leaves it regular"
-            )
-        return out
-
-
-def _transmission_lines(summary: dict[str, Any]) -> list[str]:
-    out = ["transmission (in [0, 1]; 0 at a singularity)"]
-    wrench, paper = summary["wrench"], summary["paper_004"]
-    if wrench is not None:
-        names = wrench["actuated_joints"]
-        for key in ("input", "output"):
-            values = ", ".join(f"{n} {v:.3g}" for n, v in zip(names, wrench[key], strict=True))
-            out.append(f"  {key} (wrench-based): {values}")
-        out.append(f"  LTI (wrench-based): {wrench['lti']:.3g}")
-    if paper is not None:
-        out.append(
-            f"  paper 004: kappa {paper['input']:.3g}, zeta {paper['output']:.3g}, LTI eta {paper['lti']:.3g}"
-        )
-    out.append(f"  ({summary['note']})")
-    return out
-
-
-def _determinant_units(jac: Jacobians, unit: str) -> tuple[str, str]:
-    """Units of det A and det B: the length to the number of rotations among the basis twists (A) and
-    the actuated twists (B), when every row is a unit force (no units are claimed otherwise)."""
-    assert jac.wrenches is not None and jac.twist_basis is not None and jac.analysis is not None
-    if not unit or np.any(np.linalg.norm(jac.wrenches[:, :3], axis=-1) == 0):
-        return "", ""
-    twists = np.array([limb.actuated_twist for limb in jac.analysis.limbs]).reshape(-1, 6)
-
-    def power(rows: Array) -> str:
-        count = int(np.count_nonzero(np.linalg.norm(rows[:, :3], axis=-1)))
-        return "" if count == 0 else f" {unit}" if count == 1 else f" {unit}^{count}"
-
-    return power(jac.twist_basis), power(twists)
-
-
-def _line_text(item: dict[str, Any], unit: str) -> str:
-    if item.get("point") is None:
-        if "direction" not in item:
-            return item["kind"]
-        return f"{item['kind']}, moment direction {_vector(item['direction'])}"
-    return (
-        f"{item['kind']}, direction {_vector(item['direction'])} through {_vector(item['point'])}"
-        f"{' ' + unit if unit else ''}, pitch {item['pitch']:.3g}"
-    )
-
-
-def _vector(values: list[float]) -> str:
-    """``(x, y, z)`` to 4 significant digits, a negative zero shown as 0 (``v + 0.0`` is +0.0 for -0.0).
-
-    Examples
-    --------
-    >>> _vector([-0.0, 1.0, -2.5])
-    '(0, 1, -2.5)'
-    """
-    return "(" + ", ".join(f"{v + 0.0:.4g}" for v in values) + ")"
 
 
 def analyze(
@@ -623,7 +258,7 @@ def _finish(
     sampler: Any,
     note: str,
     jacobians: Jacobians | None = None,
-    jacobians_note: str = _SNAPSHOT_JACOBIANS,
+    jacobians_note: str = AnalysisReport.jacobians_note,
     *,
     progress: Callable[[str], None],
 ) -> AnalysisReport:
