@@ -11,11 +11,13 @@ Examples
 4
 """
 
+import functools
 from pkgutil import extend_path
 from typing import Any
 
 from .algebra.screw import Screw, reciprocal_product
 from .algebra.screwsystem import ScrewSystem, motion_type
+from .analysis.quantities import register_quantity
 from .core.singularity import SingularityReport, classify, classify_poses, classify_table
 from .core.wrenches import WrenchAnalysis, analyze_table, wrench_analysis
 from .exceptions import (
@@ -65,6 +67,7 @@ _LAZY = {
             "are_collinear",
             "are_coplanar",
             "bracket",
+    "check_path",
             "finite_point",
             "infinite_point",
             "is_at_infinity",
@@ -95,16 +98,31 @@ _LAZY = {
     "diagram_at": "gca.diagram",
     "SuperbracketAnalysis": "gca.diagram",
     "superbracket_analysis": "gca.diagram",
-    "TransmissionIndices": "analysis.indices",
-    "transmission": "analysis.indices",
-    "index_extremes": "analysis.indices",
-    "wrench_transmission": "analysis.indices",
-    "actuation_singularity_surface": "analysis.indices",
+    "Transmission": "robots.transmission",
+    "transmission": "papers.paper_004",
+    "index_extremes": "papers.paper_004_table4",
+    "wrench_transmission": "robots.transmission",
+    "actuation_singularity_surface": "papers.paper_004_surfaces",
+    "loci": "analysis.loci",
+    "surfaces": "analysis.loci",
+    "check_path": "analysis.paths",
 }
 
 
 #: Submodules loaded on first use (``sk.workspace.grid_map``).
 _LAZY_MODULES = {"workspace": "analysis.workspace"}
+
+
+def _paper_004_map_values(posed: Any, quantity: str) -> Any:
+    """Paper 004's indices over a posed batch, for the maps (imported on first use)."""
+    from .papers.paper_004 import map_values
+
+    return map_values(posed, quantity)
+
+
+# the maps (screwkit.analysis) read paper 004's indices by name: the papers stand above them
+for _name in ("lti", "kappa", "zeta"):
+    register_quantity(_name, functools.partial(_paper_004_map_values, quantity=_name))
 
 
 def __getattr__(name: str) -> Any:
@@ -150,7 +168,7 @@ __all__ = [
     "ScrewkitValueError",
     "SingularityReport",
     "SuperbracketAnalysis",
-    "TransmissionIndices",
+    "Transmission",
     "TwistGraphError",
     "UnreachablePoseError",
     "WrenchAnalysis",
@@ -163,6 +181,7 @@ __all__ = [
     "are_collinear",
     "are_coplanar",
     "bracket",
+    "check_path",
     "classify",
     "classify_poses",
     "classify_table",
@@ -185,6 +204,7 @@ __all__ = [
     "list_mechanisms",
     "load_mechanism",
     "load_snapshot",
+    "loci",
     "loop_closure_matrix",
     "meet_line_plane",
     "meet_planes",
@@ -204,6 +224,7 @@ __all__ = [
     "snapshot_text",
     "spherical",
     "superbracket_analysis",
+    "surfaces",
     "transmission",
     "twist_graph",
     "universal",

@@ -179,7 +179,7 @@ def test_a_posed_batch_iterates_over_its_poses_in_c_order(rng):
 
 def test_a_pose_gives_its_diagram_and_superbracket_as_the_report_does():
     pose = sk.load_mechanism("h4").at([0.0, 0.0, -800.0, 0.1])[0]
-    report = pose.report()
+    report = sk.analyze(pose)
     assert str(pose.diagram) == str(report.diagram)
     factored = pose.superbracket.simplification.factored.to_dict()["text"]
     assert factored == report.superbracket.simplification.factored.to_dict()["text"]

@@ -16,10 +16,6 @@ import pytest
 from hypothesis import given, settings
 
 from screwkit.algebra import screw as S
-from screwkit.analysis.indices import (
-    four_limb_jacobians,
-    transmission_indices,
-)
 from screwkit.core.jacobians import (
     GOSSELIN_ANGELES_TYPES,
     jacobians_from_wrenches,
@@ -36,6 +32,10 @@ from screwkit.exceptions import (
 )
 from screwkit.graphs.joints import prismatic, revolute, spherical
 from screwkit.graphs.twistgraph import twist_graph
+from screwkit.papers.paper_004 import (
+    four_limb_jacobians,
+    transmission_indices,
+)
 from screwkit.robots.families.four_limb import (
     FourLimbParameters,
     inverse_kinematics,

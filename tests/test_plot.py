@@ -22,7 +22,6 @@ from matplotlib.patches import FancyArrowPatch
 from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
 
 from screwkit import equivalent_twist_graph, load_mechanism, prismatic, revolute, twist_graph
-from screwkit.analysis.indices import TABLE_4_CONE, Region, actuation_singularity_surface
 from screwkit.core.wrenches import wrench_analysis
 from screwkit.exceptions import (
     DegenerateGeometryError,
@@ -41,6 +40,8 @@ from screwkit.interface.plot import (
     plot_verdicts,
     plot_wrench_diagram,
 )
+from screwkit.papers.paper_004_surfaces import actuation_singularity_surface
+from screwkit.papers.paper_004_table4 import TABLE_4_CONE, Region
 
 
 @pytest.fixture(autouse=True)

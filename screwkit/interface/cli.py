@@ -16,14 +16,14 @@ Commands
 ``screwkit screw (--revolute SX SY SZ --point X Y Z | --prismatic DX DY DZ | --plucker C*6)``
     Describe one screw.
 ``screwkit table4 [--grid N] [--refine K] [--robot NAME ...] [--json]``
-    Paper 004's Table 4 regenerated (:func:`screwkit.analysis.indices.table_4`): each min/max LTI beside
-    ours, the difference, and why they differ where they do.
+    Paper 004's Table 4 regenerated (:func:`screwkit.papers.paper_004_table4.table_4`): each min/max
+    LTI beside ours, the difference, and why they differ where they do.
 ``screwkit map NAME|FILE.toml --quantity Q --Z LO HI [N] --PHI LO HI [N] [--X V ...] [--grid N] --out F``
     A map of a quantity over a 2-D slice (:func:`screwkit.analysis.workspace.grid_map`): two pose
     coordinates given as ranges, the others fixed (default: the default pose); writes .png, .npz or
     .json and prints the region, minimum and maximum and where they occur.
 ``screwkit path NAME|FILE.toml --from Q... --to Q... [--samples N] [--json]``
-    Check a straight path for singularities (:func:`screwkit.analysis.workspace.check_path`).
+    Check a straight path for singularities (:func:`screwkit.analysis.paths.check_path`).
 
 Examples
 --------
@@ -210,7 +210,8 @@ def get_parser() -> argparse.ArgumentParser:
         help="paper 004's Table 4 (min/max LTI) regenerated, the paper's values beside ours",
         description="Regenerate paper 004's Table 4: the extremes of the local transmission index "
         "(Eq. 16) over each robot's workspace, by a grid and a local refinement "
-        "(screwkit.analysis.indices.index_extremes); the paper's value, ours, the difference and its cause.",
+        "(screwkit.papers.paper_004_table4.index_extremes); the paper's value, ours, the difference and its "
+        "cause.",
     )
     table4.add_argument("--grid", type=int, default=41, metavar="N", help="grid points per axis (default 41)")
     table4.add_argument(
@@ -234,12 +235,12 @@ def _pose_coordinates() -> list[str]:
 
 
 class _MapQuantities:
-    """The quantities a map can show (:data:`screwkit.analysis.workspace.QUANTITIES`), listed in
+    """The quantities a map can show (:data:`screwkit.analysis.quantities.QUANTITIES`), listed in
     ``map --help``: read when the help is shown, so that parsing a command does not import
-    :mod:`screwkit.analysis.workspace`."""
+    :mod:`screwkit.analysis.quantities`."""
 
     def __str__(self) -> str:
-        from ..analysis.workspace import QUANTITIES
+        from ..analysis.quantities import QUANTITIES
 
         return ", ".join(QUANTITIES)
 
@@ -562,10 +563,11 @@ def run_map(args: argparse.Namespace) -> int:
       minimum 0 at ...
     0
     """
-    from ..analysis.workspace import _quantity, grid_map
+    from ..analysis.quantities import quantity as checked_quantity
+    from ..analysis.workspace import grid_map
 
     try:
-        quantity = _quantity(args.quantity)
+        quantity = checked_quantity(args.quantity)
     except ScrewkitError as err:
         raise _UsageError(f"screwkit map: error: --quantity: {err}") from err
     if not args.out.lower().endswith((".png", ".npz", ".json")):
@@ -636,7 +638,12 @@ def run_map(args: argparse.Namespace) -> int:
         angles="deg",
     )
     try:
-        result.save(args.out)
+        if args.out.lower().endswith(".png"):
+            from .plot import save_map_png
+
+            save_map_png(result, args.out)
+        else:
+            result.save(args.out)
     except (OSError, ValueError) as err:
         shown = f"--out {_shown(args.out)}: cannot write: {_reason(err)}"
         raise _UsageError(f"screwkit map: error: {shown}") from err
@@ -648,7 +655,7 @@ def run_map(args: argparse.Namespace) -> int:
     if result.meaning:
         lines.append(f"  {result.meaning}")
     if result.quantity == "verdict" and result.reachable.any():  # codes mean kinds: say which were found
-        from ..analysis.workspace import verdict_name
+        from ..analysis.quantities import verdict_name
 
         codes, counts = np.unique(result.values[result.reachable], return_counts=True)
         found = ", ".join(
@@ -694,7 +701,7 @@ def run_path(args: argparse.Namespace) -> int:
     singularity-free (20 samples, refined)
     0
     """
-    from ..analysis.workspace import check_path
+    from ..analysis.paths import check_path
 
     if not 2 <= args.samples <= MAX_PATH_SAMPLES:
         raise _UsageError(
@@ -751,7 +758,7 @@ def run_table4(args: argparse.Namespace) -> int:
     Veloce       0 deg  cone     0.287 ...
     0
     """
-    from ..analysis.indices import MAX_GRID, MAX_REFINE, TABLE_4, table_4
+    from ..papers.paper_004_table4 import MAX_GRID, MAX_REFINE, TABLE_4, table_4
 
     known = sorted({row[1] for row in TABLE_4})
     for name in args.robot or []:
@@ -769,7 +776,7 @@ def run_table4(args: argparse.Namespace) -> int:
         return 0
     _print(
         f"paper 004, Table 4: min/max LTI (Eq. 16) over the workspace; ours: {args.grid}^3 grid + "
-        f"{args.refine} rounds of refinement (screwkit.analysis.indices.index_extremes)"
+        f"{args.refine} rounds of refinement (screwkit.papers.paper_004_table4.index_extremes)"
     )
     _print(f"{'robot':<10} {'phi':>5}      {'region':<8} {'min: paper':>10} {'ours':>7} {'diff':>7}"
           f"   {'max: paper':>10} {'ours':>7} {'diff':>7}")
