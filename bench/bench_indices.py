@@ -15,10 +15,10 @@ evaluations differ by round-off times the condition number):
   inverse kinematics of Eq. (3) (``θ_i = atan2(Q_i, P_i) - m_i acos(K_i/ρ_i)``), ``v_i``,
   ``w_i = (c_i - b_i)/l``, ``κ = min_i |w_i·(u_i × v_i)|`` (Eqs. 11, 15) and
   ``ζ = |(w_I × w_II)·s| / ‖w_I × w_II‖`` (Eqs. 13, 15), vectorised over the batch;
-* ``numpy (screwkit)``: :func:`screwkit.analysis.indices.transmission` with ``SCREWKIT_NUMBA=0``'s path
+* ``numpy (screwkit)``: :func:`screwkit.papers.paper_004.transmission` with ``SCREWKIT_NUMBA=0``'s path
   (the family's inverse kinematics, a full configuration, then the indices);
 * ``fused kernel``: :mod:`screwkit.papers._lti_numba` alone (compiled once before timing), the part
-  :func:`screwkit.analysis.indices.transmission` runs per pose;
+  :func:`screwkit.papers.paper_004.transmission` runs per pose;
 * ``sk.transmission``: the whole public call (argument checks, the kernel, ``η = min(κ, ζ)``, NaN
   where out of reach), what a user's map costs.
 
@@ -39,7 +39,7 @@ import time  # noqa: E402
 import numpy as np  # noqa: E402
 from _timing import best_of  # noqa: E402  (bench/ is the script folder)
 
-from screwkit import indices as I  # noqa: E402
+from screwkit.papers import paper_004 as I  # noqa: E402
 from screwkit.robots.catalog import load_mechanism  # noqa: E402
 from screwkit.robots.families import four_limb as FL  # noqa: E402
 

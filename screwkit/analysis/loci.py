@@ -56,7 +56,12 @@ class Locus:
     closeness: Array
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready."""
+        """JSON-ready.
+
+        Returns
+        -------
+        dict
+        """
         return {
             "kind": self.kind,
             "factor": self.factor,
@@ -154,7 +159,12 @@ class Surface:
     closeness: Array
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready."""
+        """JSON-ready.
+
+        Returns
+        -------
+        dict
+        """
         return {
             "kind": self.kind,
             "factor": self.factor,
@@ -177,6 +187,18 @@ def surfaces(
 ) -> tuple[Surface, ...]:
     """The singular surfaces of a 3-D region: the :func:`loci` of its ``(x, y)`` slices at every
     value of ``z``, stacked (each point refined onto the surface within its slice).
+
+    Parameters
+    ----------
+    mechanism, x, y, fixed, mode, angles, rtol
+        As in :func:`loci`.
+    z : tuple (name, low, high, count)
+        The third coordinate, one slice per value.
+
+    Returns
+    -------
+    tuple of Surface
+        One per kind found.
 
     Examples
     --------

@@ -58,7 +58,12 @@ class Crossing:
     closeness: float
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready."""
+        """JSON-ready.
+
+        Returns
+        -------
+        dict
+        """
         return {
             "parameter": self.parameter,
             "pose": self.pose,
@@ -89,7 +94,12 @@ class PathCheck:
     samples: int
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready."""
+        """JSON-ready.
+
+        Returns
+        -------
+        dict
+        """
         return {
             "singularity_free": self.singularity_free,
             "crossing": None if self.crossing is None else self.crossing.to_dict(),

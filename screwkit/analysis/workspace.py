@@ -63,6 +63,16 @@ def evaluate(
         int64 codes (``-1`` out of reach) for ``"verdict"``, else float (NaN out of reach).
     reachable : numpy.ndarray of bool, shape (m,)
 
+    Parameters
+    ----------
+    mechanism : Mechanism
+    poses : array_like, shape (m, n)
+    quantity : str
+        See :data:`screwkit.analysis.quantities.QUANTITIES`.
+    mode : mapping or sequence, optional
+        As in :func:`grid_map`.
+    rtol : float, optional
+
     Examples
     --------
     >>> from screwkit.robots.catalog import load_mechanism
@@ -210,7 +220,12 @@ class WorkspaceMap:
             getattr(self, name).flags.writeable = False
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready: the region, extrema and where they occur, axes, values (None out of reach)."""
+        """JSON-ready: the region, extrema and where they occur, axes, values (None out of reach).
+
+        Returns
+        -------
+        dict
+        """
         values = self.values.astype(object)
         values[~self.reachable] = None
         return {
@@ -233,7 +248,17 @@ class WorkspaceMap:
         }
 
     def to_json(self, **kwargs: Any) -> str:
-        """:meth:`to_dict` as a JSON string."""
+        """:meth:`to_dict` as a JSON string.
+
+        Parameters
+        ----------
+        **kwargs
+            Passed to :func:`json.dumps`.
+
+        Returns
+        -------
+        str
+        """
         return json.dumps(self.to_dict(), **kwargs)
 
     def save(self, path: str | Path) -> Path:
@@ -434,6 +459,11 @@ def sweep(
     when a Dask ``client`` is given.
 
     Parameters are those of :func:`grid_map`.
+
+    Returns
+    -------
+    tuple of WorkspaceMap
+        One per mechanism, in order.
 
     Examples
     --------

@@ -165,6 +165,15 @@ def four_limb_jacobians(config: FourLimbGeometry) -> FourLimbJacobians:
 
     Columns of ``A`` are ordered ``(x, y, z, φ)``; the last column has the unit of length.
 
+    Parameters
+    ----------
+    config : FourLimbGeometry
+        A four-limb configuration (batch ``...``).
+
+    Returns
+    -------
+    FourLimbJacobians
+
     Examples
     --------
     >>> from screwkit.robots.catalog import load_mechanism
@@ -199,6 +208,11 @@ def det_A_closed_form(config: FourLimbGeometry) -> np.ndarray:
     (...,) ndarray
         In units of length (like ``np.linalg.det`` of ``A``).
 
+    Parameters
+    ----------
+    config : FourLimbGeometry
+        A four-limb configuration (batch ``...``).
+
     Examples
     --------
     >>> from screwkit.robots.catalog import load_mechanism
@@ -226,6 +240,11 @@ def motion_pressure_angles(config: FourLimbGeometry) -> np.ndarray:
     -------
     (..., 4) ndarray, radians
 
+    Parameters
+    ----------
+    config : FourLimbGeometry
+        A four-limb configuration (batch ``...``).
+
     Examples
     --------
     >>> from screwkit.robots.catalog import load_mechanism
@@ -249,6 +268,11 @@ def force_pressure_angle(config: FourLimbGeometry) -> np.ndarray:
     -------
     (...,) ndarray, radians
 
+    Parameters
+    ----------
+    config : FourLimbGeometry
+        A four-limb configuration (batch ``...``).
+
     Examples
     --------
     >>> from screwkit.robots.catalog import load_mechanism
@@ -268,6 +292,16 @@ def transmission_indices(config: FourLimbGeometry) -> Transmission:
     """``κ = min_i |cos μ_i|``, ``ζ = |cos σ|`` (Eq. 15) and the LTI ``η = min(κ, ζ)`` (Eq. 16).
 
     Each lies in ``[0, 1]``; larger is better, 0 is a singularity.
+
+    Parameters
+    ----------
+    config : FourLimbGeometry
+        A four-limb configuration (batch ``...``).
+
+    Returns
+    -------
+    Transmission
+        ``input`` (κ), ``output`` (ζ), ``lti`` (η), each of the batch shape.
 
     Examples
     --------
@@ -303,6 +337,10 @@ def _numba_kernels(poses: int) -> ModuleType | None:
 def backend() -> str:
     """``"numba"`` or ``"numpy"``: how :func:`transmission` computes batches of
     :data:`screwkit.core._frames.COMPILED_MIN_BATCH` poses or more in this process.
+
+    Returns
+    -------
+    str
 
     Examples
     --------
@@ -522,6 +560,18 @@ def transmission_summary(mechanism: Any, pose: Any, jacobians: Any) -> dict[str,
     ``"wrench"``: :func:`wrench_transmission` (any mechanism with Jacobians; at the elbows for the
     four-limb family), ``"paper_004"``: :func:`transmission` (four-limb family only, else None),
     ``"note"``: what they are or why one is missing.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+    pose : array_like, shape (n,)
+    jacobians : WrenchJacobians or None
+        At the pose (None: not computed).
+
+    Returns
+    -------
+    dict
+        ``"wrench"``, ``"paper_004"`` (JSON-ready dicts or None) and ``"note"``.
 
     Examples
     --------

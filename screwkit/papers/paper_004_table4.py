@@ -77,6 +77,15 @@ class Region:
     def box(cls, x: tuple[float, float], y: tuple[float, float], z: tuple[float, float]) -> Region:
         """The box ``x × y × z``.
 
+        Parameters
+        ----------
+        x, y, z : tuple of 2 float
+            The bounds along each axis.
+
+        Returns
+        -------
+        Region
+
         Examples
         --------
         >>> Region.box((0, 1), (0, 1), (0, 1)).contains(np.array([[0.5, 0.5, 2.0]])).tolist()
@@ -94,6 +103,15 @@ class Region:
         cls, centre: tuple[float, float, float], semi_axes: tuple[float, float, float], exponent: float = 3.0
     ) -> Region:
         """``Σ |(x_k - c_k)/a_k|^e ≤ 1`` (paper 004, Eq. 19 with ``e = 3``).
+
+        Parameters
+        ----------
+        centre, semi_axes : tuple of 3 float
+        exponent : float
+
+        Returns
+        -------
+        Region
 
         Examples
         --------
@@ -116,6 +134,14 @@ class Region:
         cylinder of that radius up to ``top_z`` (the Table 4 workspace assumed for paper 004's
         missing Fig. 6: the cone of the spiral of Eq. 17, ``-975``, 650, ``-575``, ``-475`` mm).
 
+        Parameters
+        ----------
+        apex_z, radius, rim_z, top_z : float
+
+        Returns
+        -------
+        Region
+
         Examples
         --------
         >>> cone = Region.cone_cylinder(-975, 650, -575, -475)
@@ -137,6 +163,15 @@ class Region:
         each where the ray from the centre leaves the region (bisection on :attr:`contains`; the
         region must be star-shaped about that centre, as the box, the super-ellipsoid and the
         cone-cylinder are): ``x, y, z`` of shape ``(count + 1, 2 count + 1)``, for a wireframe.
+
+        Parameters
+        ----------
+        count : int
+            Latitudes (``2 count`` longitudes).
+
+        Returns
+        -------
+        x, y, z : numpy.ndarray, shape (count + 1, 2 count + 1)
 
         Examples
         --------
@@ -405,7 +440,12 @@ class Table4Row(NamedTuple):
     notes: dict[str, str]
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready."""
+        """JSON-ready.
+
+        Returns
+        -------
+        dict
+        """
         return {
             "robot": self.robot, "mechanism": self.mechanism, "phi_deg": self.phi_deg, "region": self.region,
             "paper": {"min": self.paper_min, "max": self.paper_max},

@@ -111,6 +111,20 @@ class PosedMechanism:
     ) -> PosedMechanism:
         """Validate and build (what :meth:`screwkit.robots.catalog.Mechanism.at` calls).
 
+        Parameters
+        ----------
+        mechanism : Mechanism
+        poses : array_like, shape (..., n), optional
+            None: the default pose.
+        rtol : float, optional
+        length_scale : float, optional
+        options : mapping, optional
+            Inverse-kinematics options.
+
+        Returns
+        -------
+        PosedMechanism
+
         Examples
         --------
         >>> from screwkit.robots.catalog import load_mechanism
@@ -391,6 +405,12 @@ class Pose:
         the generic poses are given as ``degenerate``. The sampler
         replays recipes evaluated at random workspace poses, drawn and analysed as one batch
         (:func:`generic_samples`).
+
+        Returns
+        -------
+        diagram : WrenchDiagram
+        sampler : callable
+            ``sampler(rng) -> {label: (4,)}``, the diagram's points at a generic pose.
         """
         from dataclasses import replace
 
@@ -520,6 +540,21 @@ def generic_samples(
     one batch (:func:`screwkit.gca.diagram.batch_diagram_points`).
 
     Poses where a point does not exist are skipped; at most ``2 * count`` poses are drawn.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+    points : sequence of DiagramPoint
+    rng : numpy.random.Generator
+    count : int
+        Samples wanted.
+    rtol : float
+    length_scale : float, optional
+
+    Returns
+    -------
+    list of dict
+        ``{label: (4,)}`` per sample.
 
     Raises
     ------
