@@ -574,7 +574,7 @@ def test_indices_in_unit_interval(name, pose):
     assume(reachable(params, pose))
     config = inverse_kinematics(params, pose)
     indices = transmission_indices(config)
-    for value in indices:
+    for value in (indices.kappa, indices.zeta, indices.eta):
         assert 0.0 <= value <= 1.0
     assert indices.eta == min(indices.kappa, indices.zeta)
     mu = motion_pressure_angles(config)

@@ -12,8 +12,7 @@ What is here, along the data flow:
 
 Elsewhere: :mod:`screwkit.papers.paper_004_table4` (index extremes over a region, Table 4),
 :mod:`screwkit.papers.paper_004_surfaces` (the actuation singularity surfaces of Figs. 14-16), and
-the generic index from the actuation wrenches, for any mechanism (:mod:`screwkit.robots.transmission`,
-``posed.wrench_transmission``).
+the generic index of any mechanism (:mod:`screwkit.robots.transmission`).
 
 Source: paper 004 (Wu, Bai, Caro, "A transmission quality index for a class of four-limb parallel
 Schönflies motion generators", JMR 10(5), 2018), file ``/work/shared/papers/004_60e52c5ada55e36d.txt``;
@@ -155,9 +154,6 @@ class FourLimbJacobians(NamedTuple):
 
     A: np.ndarray
     B: np.ndarray
-
-
-
 
 
 def four_limb_jacobians(config: FourLimbGeometry) -> FourLimbJacobians:
@@ -316,10 +312,6 @@ def transmission_indices(config: FourLimbGeometry) -> Transmission:
     zeta = np.cos(force_pressure_angle(config))
     return Transmission(kappa, zeta, np.minimum(kappa, zeta))
 
-
-# --------------------------------------------------------------------------------------------------
-# Paper 004's indices for a batch of poses of a catalog mechanism (fused kernel or numpy)
-# --------------------------------------------------------------------------------------------------
 
 #: The index names :func:`index_extremes` accepts: paper 004's ``lti`` (η, Eq. 16), ``input``
 #: (κ) and ``output`` (ζ) of Eq. (15).

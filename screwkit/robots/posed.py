@@ -13,9 +13,8 @@ wrench diagram's points over the batch. The composer hands its results on: maps,
 (:mod:`screwkit.analysis`), paper 004's indices (:func:`screwkit.papers.paper_004.transmission`) and
 the report (:func:`screwkit.interface.report.analyze` of one pose) read them; it calls none of them.
 
-Indexing gives one :class:`Pose`: its graph, wrench analysis (a batch of one through the same
-kernels), verdict, Jacobians, wrench diagram and superbracket. The
-superbracket's generic samples are drawn as one batch (:func:`generic_samples`).
+Indexing gives one :class:`Pose`: its graph, wrench analysis (a batch of one through the same kernels),
+verdict, Jacobians, wrench diagram and superbracket (generic samples drawn as one batch).
 
 Examples
 --------
