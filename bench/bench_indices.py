@@ -101,7 +101,7 @@ def timings(mechanism, poses, kernels, packed, repeats):
     params, mode = mechanism.parameters, (-1, -1, -1, -1)
     calls = [
         lambda: straightforward(params, poses),
-        lambda: I._transmission_numpy(params, poses, mode),
+        lambda: I._transmission_numpy(mechanism, poses, mode),
         lambda: kernels.transmission(poses, *packed),
         lambda: I.transmission(mechanism, poses, unreachable="nan"),
     ]
@@ -135,7 +135,7 @@ def main():
             assert np.array_equal(ok, np.isfinite(ref_kappa)), "reachability differs"
             difference = max(np.max(np.abs(kappa - ref_kappa)[ok]), np.max(np.abs(zeta - ref_zeta)[ok]))
             assert difference < 1e-10, difference  # printed: ~1e-13, ~1e-11 where ζ is ill-conditioned
-            plain = I._transmission_numpy(params, poses, mode)
+            plain = I._transmission_numpy(mechanism, poses, mode)
             assert np.allclose(plain[0], kappa, rtol=0, atol=1e-12) and np.array_equal(plain[2], ok)
             times = timings(mechanism, poses, kernels, packed, args.repeats)
             widths = (16, 16, 13, 15)

@@ -93,7 +93,7 @@ def test_numba_and_numpy_paths_agree(robots, name, mode):
     poses = rng.uniform(np.array(low) * 1.3, np.array(high) * 1.3, size=(400, 4))  # some out of reach
     params = mechanism.parameters
     fast = kernels.transmission(poses, *P4._kernel_arguments(params, mode))
-    plain = P4._transmission_numpy(params, poses, mode)
+    plain = P4._transmission_numpy(mechanism, poses, mode)
     assert 0 < fast[2].sum() < len(poses)
     np.testing.assert_array_equal(fast[2], plain[2])
     np.testing.assert_allclose(fast[0], plain[0], rtol=0, atol=1e-12)

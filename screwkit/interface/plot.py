@@ -789,7 +789,8 @@ def save_map_png(workspace_map: Any, path: str | Path) -> Path:
 
     target = Path(path)
     in_radians = tuple(n for n, unit in workspace_map.units.items() if unit == "rad")  # drawn in degrees
-    ax = Figure(figsize=(7, 5.5)).subplots()
+    figure = Figure(figsize=(7, 5.5))
+    ax = figure.subplots()
     if workspace_map.quantity == "verdict":  # the plot takes codes 0..7; out of reach is the mask's to say
         drawn = dataclasses.replace(
             workspace_map, values=np.where(workspace_map.reachable, workspace_map.values, 0)
@@ -797,5 +798,5 @@ def save_map_png(workspace_map: Any, path: str | Path) -> Path:
         plot_verdicts(drawn, ax=ax, degrees=in_radians)
     else:
         plot_map(workspace_map, ax=ax, degrees=in_radians)
-    ax.figure.savefig(target, dpi=120, bbox_inches="tight")
+    figure.savefig(target, dpi=120, bbox_inches="tight")
     return target

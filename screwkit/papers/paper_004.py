@@ -399,14 +399,12 @@ def _kernel_arguments(params: Any, mode: tuple[int, ...]) -> tuple[Any, ...]:
     return limbs, platform, arm, arm * arm - 1.0, 1.0 / rod
 
 
-def _transmission_numpy(params: Any, poses: np.ndarray, mode: tuple[int, ...]) -> tuple[np.ndarray, ...]:
+def _transmission_numpy(mechanism: Any, poses: np.ndarray, mode: tuple[int, ...]) -> tuple[np.ndarray, ...]:
     """κ, ζ, reachable over a flat batch ``(n, 4)``: the family's IK, then :func:`transmission_indices`."""
-    from ..robots.families.four_limb import inverse_kinematics, reachable
-
-    ok = reachable(params, poses)
+    ok = mechanism.reachable(poses)
     kappa, zeta = np.zeros(len(poses)), np.zeros(len(poses))
     if ok.any():
-        config: Any = inverse_kinematics(params, poses[ok], working_mode=mode)
+        config: Any = mechanism.at(poses[ok], working_mode=mode).configuration
         result = transmission_indices(config)
         kappa[ok], zeta[ok] = result.kappa, result.zeta
     return kappa, zeta, ok
@@ -463,7 +461,7 @@ def transmission(
     >>> float(transmission(quattro.at([0, 0, -800, 0.5])).lti[0]) < 1
     True
     """
-    from ..robots.families.four_limb import checked_working_mode, inverse_kinematics
+    from ..robots.families.four_limb import checked_working_mode
 
     if isinstance(mechanism_or_posed, PosedMechanism):
         if poses is not None:
@@ -487,18 +485,18 @@ def transmission(
     flat = np.ascontiguousarray(chi.reshape(-1, 4))
     kernels = _numba_kernels(len(flat))
     if kernels is None:
-        kappa, zeta, ok = _transmission_numpy(params, flat, mode)
+        kappa, zeta, ok = _transmission_numpy(mechanism, flat, mode)
     else:
         kappa, zeta, ok = kernels.transmission(flat, *_kernel_arguments(params, mode))
         if unreachable == "raise" and not ok.all():  # before refusing, the reference decides: at the
             # reach band's edge (a leg stretched exactly) the two roundings may differ by an ulp (with
             # "nan" such a pose stays masked, never given a wrong value, and maps keep their speed)
             again = np.flatnonzero(~ok)
-            kappa[again], zeta[again], ok[again] = _transmission_numpy(params, flat[again], mode)
+            kappa[again], zeta[again], ok[again] = _transmission_numpy(mechanism, flat[again], mode)
     eta = np.minimum(kappa, zeta)
     if not ok.all():
         if unreachable == "raise":
-            inverse_kinematics(params, chi, working_mode=mode)  # raises the family's message
+            mechanism.configuration(chi, working_mode=mode)  # raises the family's message
             raise UnreachablePoseError("A pose is out of reach.")  # pragma: no cover - unreachable
         missing = ~ok
         kappa[missing] = zeta[missing] = eta[missing] = np.nan

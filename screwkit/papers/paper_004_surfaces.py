@@ -121,9 +121,8 @@ def actuation_singularity_surface(
     >>> actuation_singularity_surface(quattro, np.pi / 2, TABLE_4_CONE, grid=12).area > 0
     True
     """
-    from ..robots.families.four_limb import inverse_kinematics, reachable
 
-    params = _four_limb_parameters(mechanism)
+    _four_limb_parameters(mechanism)  # a four-limb mechanism, or the message naming the family
     if isinstance(grid, int | np.integer) and not isinstance(grid, bool) and grid > MAX_SURFACE_GRID:
         raise ScrewkitValueError(
             f"Expected `grid` to be an integer in 2..{MAX_SURFACE_GRID} for a surface, got {grid!r}."
@@ -133,10 +132,10 @@ def actuation_singularity_surface(
 
     def det_a(points: np.ndarray) -> np.ndarray:
         poses = np.column_stack([points, np.full(len(points), angle)])
-        ok = reachable(params, poses)
+        ok = mechanism.reachable(poses)
         values = np.full(len(points), np.nan)
         if ok.any():
-            config: Any = inverse_kinematics(params, poses[ok], working_mode=mode)
+            config: Any = mechanism.at(poses[ok], working_mode=mode).configuration
             values[ok] = det_A_closed_form(config)
         return values
 

@@ -217,12 +217,13 @@ class IndexExtremes(NamedTuple):
     grid_maximum: float
 
 
-def _index_values(params: Any, index: str, poses: np.ndarray, mode: tuple[int, ...]) -> np.ndarray:
+def _index_values(mechanism: Any, index: str, poses: np.ndarray, mode: tuple[int, ...]) -> np.ndarray:
     kernels = _numba_kernels(len(poses))
     if kernels is None:
-        kappa, zeta, ok = _transmission_numpy(params, poses, mode)
+        kappa, zeta, ok = _transmission_numpy(mechanism, poses, mode)
     else:
-        kappa, zeta, ok = kernels.transmission(np.ascontiguousarray(poses), *_kernel_arguments(params, mode))
+        packed = _kernel_arguments(mechanism.parameters, mode)
+        kappa, zeta, ok = kernels.transmission(np.ascontiguousarray(poses), *packed)
     values = {"lti": np.minimum(kappa, zeta), "input": kappa, "output": zeta}[index]
     return np.where(ok, values, np.nan)
 
@@ -249,18 +250,18 @@ def _pulled_inside(region: Region, fallback: np.ndarray, targets: np.ndarray) ->
 
 
 def _refined(
-    params: Any, index: str, region: Region, start: np.ndarray, step: np.ndarray, sign: float,
+    mechanism: Any, index: str, region: Region, start: np.ndarray, step: np.ndarray, sign: float,
     mode: tuple[int, ...], rounds: int,
 ) -> tuple[float, np.ndarray]:
     """Compass search from a grid point: the 26 neighbours (pulled back inside the region where they
     leave it), halving the step each round."""
     offsets = np.stack(np.meshgrid(*[np.array([-1.0, 0.0, 1.0])] * 3, indexing="ij"), axis=-1).reshape(-1, 3)
     best = start.copy()
-    best_value = sign * float(_index_values(params, index, best[None], mode)[0])
+    best_value = sign * float(_index_values(mechanism, index, best[None], mode)[0])
     for _ in range(rounds):
         candidates = _pulled_inside(region, best[:3], best[:3] + offsets * step)
         poses = np.column_stack([candidates, np.full(len(candidates), best[3])])
-        values = sign * _index_values(params, index, poses, mode)
+        values = sign * _index_values(mechanism, index, poses, mode)
         if np.any(np.isfinite(values)):
             pick = int(np.nanargmin(values))
             if values[pick] < best_value:
@@ -358,7 +359,7 @@ def index_extremes(
     >>> round(result.maximum, 3), result.points
     (1.0, 8921)
     """
-    params = _four_limb_parameters(mechanism)
+    _four_limb_parameters(mechanism)  # a four-limb mechanism, or the message naming the family
     if index not in INDEX_NAMES:
         raise ScrewkitValueError(f"Expected `index` to be one of {INDEX_NAMES}, got {index!r}.")
     region, mode, axes = _region_grid(mechanism, region, phi, working_mode, grid=grid, refine=refine)
@@ -367,7 +368,7 @@ def index_extremes(
     # the grid (extremes often sit on the boundary, between the grid's points)
     points = np.unique(_pulled_inside(region, points[0], points).round(9), axis=0)
     poses = np.column_stack([points, np.full(len(points), float(phi))])
-    values = _index_values(params, index, poses, mode)
+    values = _index_values(mechanism, index, poses, mode)
     reached = np.isfinite(values)
     if not reached.any():
         raise ScrewkitValueError(
@@ -376,8 +377,8 @@ def index_extremes(
         )
     step = np.array([(hi - lo) / (grid - 1) for lo, hi in zip(region.lower, region.upper, strict=True)])
     low_at, high_at = int(np.nanargmin(values)), int(np.nanargmax(values))
-    low, low_pose = _refined(params, index, region, poses[low_at], step / 2, 1.0, mode, refine)
-    high, high_pose = _refined(params, index, region, poses[high_at], step / 2, -1.0, mode, refine)
+    low, low_pose = _refined(mechanism, index, region, poses[low_at], step / 2, 1.0, mode, refine)
+    high, high_pose = _refined(mechanism, index, region, poses[high_at], step / 2, -1.0, mode, refine)
     return IndexExtremes(low, high, low_pose, high_pose, len(points), float(reached.mean()),
                          float(values[low_at]), float(values[high_at]))
 

@@ -241,7 +241,7 @@ class PosedMechanism:
         points = None if hook is None else hook(self.configuration)
         return wrench_transmission(self.jacobians, input_points=points)
 
-    def diagram_points(self, points: Sequence[Any]) -> tuple[dict[str, Array], Array]:
+    def diagram_points(self, points: tuple[Any, ...]) -> tuple[dict[str, Array], Array]:
         """A wrench diagram's points at every pose of the batch, in the core's chunks.
 
         The joint table goes through the analysis core :data:`CHUNK` poses at a time with the
@@ -250,7 +250,7 @@ class PosedMechanism:
 
         Parameters
         ----------
-        points : sequence of DiagramPoint
+        points : tuple of DiagramPoint
             The points of a wrench diagram (``diagram.points``), each with a ``label``.
 
         Returns
