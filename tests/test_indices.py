@@ -250,7 +250,8 @@ def test_actuation_surface_is_where_det_a_and_zeta_vanish(robots, surfaces):
         zeta = P4.transmission(robots[name], poses).output  # the kernel: an independent path
         assert defined.mean() > 0.99 and np.max(zeta[defined]) < 1e-6, (name, degrees)
         assert T4.TABLE_4_CONE.contains(surface.triangles.mean(axis=1)).all()
-        assert surface.phi == math.radians(degrees) and surface.robot == robots[name].name
+        assert surface.fixed == {"phi": math.radians(degrees)} and surface.mechanism == robots[name].name
+        assert surface.kind == "actuation" and surface.points.shape[1:] == (3,)
 
 
 def test_actuation_surfaces_grow_with_the_rotation_as_paper_004_says(surfaces, robots):

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -26,7 +26,7 @@ from .poses import _axis, _Slice
 from .quantities import KINDS
 from .roots import _brackets, _factor, _measure, _refine
 
-__all__ = ["Locus", "Surface", "loci", "surfaces"]
+__all__ = ["Locus", "SingularSurface", "loci", "surfaces"]
 
 Array = np.ndarray
 
@@ -138,18 +138,30 @@ def loci(
 
 
 @dataclass(frozen=True, eq=False)
-class Surface:
-    """Points of one singular surface in a 3-D region, each refined onto the surface.
+class SingularSurface:
+    """One singular surface (one kind of singularity) in a 3-D region of the pose space: points
+    refined onto it (:func:`surfaces`) and, where it was triangulated, its triangles (paper 004's
+    ``|A| = 0``, :func:`screwkit.papers.paper_004_surfaces.actuation_singularity_surface`).
 
     Attributes
     ----------
     kind : str
+        ``"constraint"``, ``"actuation"`` or ``"serial"``.
     factor : str or None
+        The superbracket factor that vanishes there (None if unknown).
     names : tuple of 3 str
-        The coordinates of the points' columns.
+        The pose coordinates of the points' columns.
     points : numpy.ndarray, shape (m, 3)
-        User units.
+        Points on the surface, user units.
     closeness : numpy.ndarray, shape (m,)
+        The kind's closeness at each point (~0; NaN where not measured).
+    triangles : numpy.ndarray, shape (t, 3, 3)
+        A triangulation of the surface (none: shape ``(0, 3, 3)``).
+    fixed : dict of str to float
+        The other pose coordinates given by the caller (e.g. ``{"phi": φ}``).
+    region : object
+        The region searched (a :class:`~screwkit.papers.paper_004_table4.Region`), or None.
+    mechanism : str
     """
 
     kind: str
@@ -157,6 +169,16 @@ class Surface:
     names: tuple[str, str, str]
     points: Array
     closeness: Array
+    triangles: Array = field(default_factory=lambda: np.zeros((0, 3, 3)))
+    fixed: dict[str, float] = field(default_factory=dict)
+    region: Any = None
+    mechanism: str = ""
+
+    @property
+    def area(self) -> float:
+        """float: The area of the triangles, in the length unit squared (0 without triangles)."""
+        edges = self.triangles[:, 1:] - self.triangles[:, :1]
+        return float(0.5 * np.sum(np.linalg.norm(np.cross(edges[:, 0], edges[:, 1]), axis=-1)))
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready.
@@ -170,7 +192,11 @@ class Surface:
             "factor": self.factor,
             "names": list(self.names),
             "points": self.points.tolist(),
-            "closeness": self.closeness.tolist(),
+            "closeness": [None if math.isnan(c) else c for c in self.closeness.tolist()],
+            "triangles": self.triangles.tolist(),
+            "fixed": self.fixed,
+            "region": getattr(self.region, "name", self.region),
+            "mechanism": self.mechanism,
         }
 
 
@@ -184,7 +210,7 @@ def surfaces(
     mode: Any = None,
     angles: str = "rad",
     rtol: float | None = None,
-) -> tuple[Surface, ...]:
+) -> tuple[SingularSurface, ...]:
     """The singular surfaces of a 3-D region: the :func:`loci` of its ``(x, y)`` slices at every
     value of ``z``, stacked (each point refined onto the surface within its slice).
 
@@ -197,7 +223,7 @@ def surfaces(
 
     Returns
     -------
-    tuple of Surface
+    tuple of SingularSurface
         One per kind found.
 
     Examples
@@ -222,12 +248,14 @@ def surfaces(
             column = np.full((len(locus.points), 1), float(value))
             found[locus.kind].append((np.hstack([locus.points, column]), locus.closeness, locus.factor))
     return tuple(
-        Surface(
+        SingularSurface(
             kind,
             next((factor for _, _, factor in parts if factor is not None), None),
             names,
             np.vstack([p for p, _, _ in parts]),
             np.concatenate([c for _, c, _ in parts]),
+            fixed={str(k): float(v) for k, v in given.items()},
+            mechanism=mechanism.name,
         )
         for kind, parts in found.items()
         if parts

@@ -444,8 +444,7 @@ def plot_singularity_surfaces(
     ['φ = +90°', 'φ = -90°', 'workspace']
     """
     ax = _new_axes(ax, three_d=True)
-    # one surface is drawn as a list of one (a SingularSurface is a tuple: iterating it would give
-    # its fields)
+    # one surface is drawn as a list of one
     items: list[Any] = [surfaces] if hasattr(surfaces, "triangles") else list(surfaces)
     if not items:
         raise ScrewkitValueError("Expected at least one surface to draw, got none.")
@@ -454,12 +453,12 @@ def plot_singularity_surfaces(
     for index, surface in enumerate(items):
         try:
             triangles = np.asarray(surface.triangles, dtype=float)
-            phi, robot = float(surface.phi), str(surface.robot)
+            phi, robot = float(surface.fixed["phi"]), str(surface.mechanism)
             regions.append(surface.region)
-        except AttributeError as err:
+        except (AttributeError, KeyError, TypeError) as err:
             raise ScrewkitTypeError(
-                "Expected each surface to have triangles, phi, robot and region (a "
-                f"screwkit.papers.paper_004_surfaces.SingularSurface), got {type(surface).__name__}: {err}."
+                "Expected each surface to have triangles, fixed (with phi), mechanism and region (a "
+                f"screwkit.analysis.loci.SingularSurface), got {type(surface).__name__}: {err}."
             ) from err
         if triangles.ndim != 3 or triangles.shape[1:] != (3, 3):
             raise ScrewkitValueError(

@@ -18,16 +18,17 @@ Examples
 
 from __future__ import annotations
 
-from typing import Any, NamedTuple
+from typing import Any
 
 import numpy as np
 
 from ..analysis.isosurface import zero_surface
+from ..analysis.loci import SingularSurface
 from ..exceptions import ScrewkitValueError
 from .paper_004 import _four_limb_parameters, det_A_closed_form
 from .paper_004_table4 import Region, _region_grid
 
-__all__ = ["MAX_SURFACE_GRID", "SingularSurface", "actuation_singularity_surface"]
+__all__ = ["MAX_SURFACE_GRID", "actuation_singularity_surface"]
 
 #: The largest grid of :func:`actuation_singularity_surface`: its marching tetrahedra hold the whole
 #: grid's cells at once (≈ 0.6 GB at 64, measured 2 GB at 100 and 16 GB at 201 on the Quattro).
@@ -36,32 +37,6 @@ MAX_SURFACE_GRID = 64
 # --------------------------------------------------------------------------------------------------
 # Actuation singularity surfaces (paper 004, Sec. 5.3, Figs. 14-16)
 # --------------------------------------------------------------------------------------------------
-
-
-class SingularSurface(NamedTuple):
-    """The actuation singularity locus of a four-limb robot in a region at one rotation ``φ``.
-
-    Attributes
-    ----------
-    triangles : numpy.ndarray, shape (m, 3, 3)
-        Vertices ``(x, y, z)`` on ``|A| = 0`` (Eq. 12, Table 2), in the robot's length unit.
-    phi : float
-        The rotation, radians.
-    region : Region
-        The region searched (the triangles whose centroids lie inside it are kept).
-    robot : str
-    """
-
-    triangles: np.ndarray
-    phi: float
-    region: Region
-    robot: str
-
-    @property
-    def area(self) -> float:
-        """The surface's area (sum of its triangles'), in the robot's length unit squared."""
-        edges = self.triangles[:, 1:] - self.triangles[:, :1]
-        return float(0.5 * np.sum(np.linalg.norm(np.cross(edges[:, 0], edges[:, 1]), axis=-1)))
 
 
 def actuation_singularity_surface(
@@ -100,6 +75,9 @@ def actuation_singularity_surface(
     Returns
     -------
     SingularSurface
+        Kind ``"actuation"``, its ``triangles`` on ``|A| = 0`` (Eq. 12, Table 2) in the robot's length
+        unit, their vertices as ``points``, ``fixed = {"phi": phi}``, the region searched (the
+        triangles whose centroids lie inside it are kept).
 
     Raises
     ------
@@ -142,4 +120,9 @@ def actuation_singularity_surface(
     points = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, 3)
     triangles = zero_surface(axes, det_a(points).reshape((int(grid),) * 3), det_a)
     inside = region.contains(triangles.mean(axis=1)) if len(triangles) else np.zeros(0, dtype=bool)
-    return SingularSurface(triangles[inside], angle, region, mechanism.name)
+    kept = triangles[inside]
+    vertices = np.unique(kept.reshape(-1, 3), axis=0)
+    return SingularSurface(
+        "actuation", None, ("x", "y", "z"), vertices, np.full(len(vertices), np.nan), kept, {"phi": angle},
+        region, mechanism.name,
+    )
