@@ -57,12 +57,6 @@ def evaluate(
 
     The core (:meth:`~screwkit.robots.catalog.Mechanism.at`) runs once over the reachable poses.
 
-    Returns
-    -------
-    values : numpy.ndarray, shape (m,)
-        int64 codes (``-1`` out of reach) for ``"verdict"``, else float (NaN out of reach).
-    reachable : numpy.ndarray of bool, shape (m,)
-
     Parameters
     ----------
     mechanism : Mechanism
@@ -72,6 +66,12 @@ def evaluate(
     mode : mapping or sequence, optional
         As in :func:`grid_map`.
     rtol : float, optional
+
+    Returns
+    -------
+    values : numpy.ndarray, shape (m,)
+        int64 codes (``-1`` out of reach) for ``"verdict"``, else float (NaN out of reach).
+    reachable : numpy.ndarray of bool, shape (m,)
 
     Examples
     --------

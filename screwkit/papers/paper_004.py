@@ -199,15 +199,15 @@ def det_A_closed_form(config: FourLimbGeometry) -> np.ndarray:
     * screw pair: ``|A| = -h/(2π) (w_13 × w_24)ᵀ k`` (Table 2 prints ``hφ/(2π)(...)`` with no minus
       sign; Laplace expansion of ``A`` with ``r s_i = mod(i, 2) h/(2π) k`` gives this form).
 
-    Returns
-    -------
-    (...,) ndarray
-        In units of length (like ``np.linalg.det`` of ``A``).
-
     Parameters
     ----------
     config : FourLimbGeometry
         A four-limb configuration (batch ``...``).
+
+    Returns
+    -------
+    (...,) ndarray
+        In units of length (like ``np.linalg.det`` of ``A``).
 
     Examples
     --------
@@ -232,14 +232,14 @@ def motion_pressure_angles(config: FourLimbGeometry) -> np.ndarray:
     (serial) singularity. Eq. (11) as printed has no absolute value, which in the paper's working
     mode ``h_i < 0`` would put ``μ_i`` above 90°, against the paper's own range [0, 65°] (Sec. 5.1).
 
-    Returns
-    -------
-    (..., 4) ndarray, radians
-
     Parameters
     ----------
     config : FourLimbGeometry
         A four-limb configuration (batch ``...``).
+
+    Returns
+    -------
+    (..., 4) ndarray, radians
 
     Examples
     --------
@@ -260,14 +260,14 @@ def force_pressure_angle(config: FourLimbGeometry) -> np.ndarray:
     4.1). ``σ = π/2`` is a type-2 singularity (``|A| = 0``); it is also returned where
     ``w_I × w_II = 0`` exactly, where ``|A| = 0`` and Eq. (13) is undefined.
 
-    Returns
-    -------
-    (...,) ndarray, radians
-
     Parameters
     ----------
     config : FourLimbGeometry
         A four-limb configuration (batch ``...``).
+
+    Returns
+    -------
+    (...,) ndarray, radians
 
     Examples
     --------
