@@ -3,8 +3,8 @@
 Run: ``python bench/bench_indices.py [--sizes 100000 1000000] [--repeats 5] [--robots ragnar | all]``
 from the repository root (prints a table; not a test). One thread (BLAS/OpenMP threads set to 1; the
 numba kernel is a plain loop, SIMD over poses, no ``parallel``); times are the process's CPU time
-(``time.process_time``, the shared machine's load inflates wall time), best of the repeats, with
-the load average printed before and after.
+(``time.process_time``, the shared machine's load inflates wall time), best of the repeats timed
+interleaved (one call of each column per round), with the load average printed before and after.
 
 Four timings over the same poses (a grid over the robot's workspace box, all four coordinates
 varying), the results checked against the first (``max diff``: the largest difference in κ or ζ;
@@ -34,6 +34,7 @@ for _name in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS", "NUM
     os.environ[_name] = "1"
 
 import argparse  # noqa: E402
+import math  # noqa: E402
 import time  # noqa: E402
 
 import numpy as np  # noqa: E402
@@ -97,7 +98,8 @@ def packed_square_roots(kernels, packed):
 
 
 def timings(mechanism, poses, kernels, packed, repeats):
-    """CPU times of the four columns (module docstring), best of ``repeats``."""
+    """CPU times of the four columns (module docstring), best of ``repeats``, interleaved: each round
+    times every column once in turn, so that a change of the machine's load falls on all of them."""
     params, mode = mechanism.parameters, (-1, -1, -1, -1)
     calls = [
         lambda: straightforward(params, poses),
@@ -105,7 +107,10 @@ def timings(mechanism, poses, kernels, packed, repeats):
         lambda: kernels.transmission(poses, *packed),
         lambda: I.transmission(mechanism, poses, unreachable="nan"),
     ]
-    return [best_of(repeats, call, time.process_time) for call in calls]
+    best = [math.inf] * len(calls)
+    for _ in range(repeats):
+        best = [min(b, best_of(1, call, time.process_time)) for b, call in zip(best, calls, strict=True)]
+    return best
 
 
 def main():

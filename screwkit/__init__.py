@@ -115,7 +115,7 @@ _LAZY_MODULES = {"workspace": "analysis.workspace"}
 
 def _paper_004_map_values(posed: Any, quantity: str) -> Any:
     """Paper 004's indices over a posed batch, for the maps (imported on first use)."""
-    from .papers.paper_004 import map_values
+    from .papers.paper_004_summary import map_values
 
     return map_values(posed, quantity)
 

@@ -8,7 +8,7 @@ What is here, along the data flow:
   of a catalog mechanism (or ``mechanism.at(poses)``), inverse kinematics included, through one fused
   compiled kernel when numba is installed (:mod:`screwkit.papers._lti_numba`; the numpy path is the
   tested fallback, ``SCREWKIT_NUMBA=0`` forces it): the entry point for maps;
-* :func:`transmission_summary`: both transmission indices at one pose, for the report.
+* handed on to the maps and the report by :mod:`screwkit.papers.paper_004_summary`.
 
 Elsewhere: :mod:`screwkit.papers.paper_004_table4` (index extremes over a region, Table 4),
 :mod:`screwkit.papers.paper_004_surfaces` (the actuation singularity surfaces of Figs. 14-16), and
@@ -73,6 +73,7 @@ Examples
 
 from __future__ import annotations
 
+import math
 import sys
 from types import ModuleType
 from typing import Any, NamedTuple, Protocol, runtime_checkable
@@ -82,23 +83,21 @@ import numpy as np
 from ..algebra import backend as B
 from ..core import _frames as F
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError, UnreachablePoseError
+from ..robots.catalog import MAX_ANGLE_RADIANS, MAX_COORDINATE
 from ..robots.posed import PosedMechanism
-from ..robots.transmission import Transmission, wrench_transmission
+from ..robots.transmission import Transmission
 
 __all__ = [
     "INDEX_NAMES",
-    "MAP_QUANTITIES",
     "FourLimbGeometry",
     "FourLimbJacobians",
     "backend",
     "det_A_closed_form",
     "force_pressure_angle",
     "four_limb_jacobians",
-    "map_values",
     "motion_pressure_angles",
     "transmission",
     "transmission_indices",
-    "transmission_summary",
 ]
 
 
@@ -399,6 +398,24 @@ def _kernel_arguments(params: Any, mode: tuple[int, ...]) -> tuple[Any, ...]:
     return limbs, platform, arm, arm * arm - 1.0, 1.0 / rod
 
 
+def _plain_poses(mechanism: Any, poses: Any) -> np.ndarray | None:
+    """``poses`` itself when it is a float64 array ``(..., n)`` whose coordinates are all finite and
+    within the catalog's bounds, decided once over the batch from its extremes (a map's grid: no
+    copy, no second pass); else None, and the caller runs the checks that name what is wrong."""
+    names = mechanism.pose_names
+    if not (isinstance(poses, np.ndarray) and poses.dtype == np.float64 and poses.ndim >= 1
+            and poses.shape[-1] == len(names) and poses.size):
+        return None
+    low, high = float(poses.min()), float(poses.max())  # NaN or inf: not finite
+    if not (math.isfinite(low) and math.isfinite(high) and max(-low, high) <= MAX_COORDINATE):
+        return None
+    for name in mechanism.angle_names:
+        column = poses[..., names.index(name)]
+        if max(-float(column.min()), float(column.max())) > MAX_ANGLE_RADIANS:
+            return None
+    return poses
+
+
 def _transmission_numpy(mechanism: Any, poses: np.ndarray, mode: tuple[int, ...]) -> tuple[np.ndarray, ...]:
     """κ, ζ, reachable over a flat batch ``(n, 4)``: the family's IK, then :func:`transmission_indices`."""
     ok = mechanism.reachable(poses)
@@ -479,8 +496,10 @@ def transmission(
         raise ScrewkitValueError(f"Expected `unreachable` to be one of {_UNREACHABLE}, got {unreachable!r}.")
     mode = checked_working_mode((-1, -1, -1, -1) if working_mode is None else working_mode)
     chosen = mechanism.default_pose if poses is None else poses
-    mechanism.check_pose_range(chosen)
-    chi = B.as_array(chosen, "poses", (4,), symbolic=False)  # a new float64 array, checked finite
+    chi = _plain_poses(mechanism, chosen)
+    if chi is None:  # the checks one by one, each naming what is wrong
+        mechanism.check_pose_range(chosen)
+        chi = B.as_array(chosen, "poses", (4,), symbolic=False)  # a new float64 array, checked finite
     batch = chi.shape[:-1]
     flat = np.ascontiguousarray(chi.reshape(-1, 4))
     kernels = _numba_kernels(len(flat))
@@ -499,96 +518,9 @@ def transmission(
             mechanism.configuration(chi, working_mode=mode)  # raises the family's message
             raise UnreachablePoseError("A pose is out of reach.")  # pragma: no cover - unreachable
         missing = ~ok
-        kappa[missing] = zeta[missing] = eta[missing] = np.nan
+        for values in (kappa, zeta, eta):
+            np.copyto(values, np.nan, where=missing)
     return Transmission(kappa.reshape(batch), zeta.reshape(batch), eta.reshape(batch))
-
-
-#: The map quantities of :mod:`screwkit.analysis.quantities` paper 004 contributes, by the result's field.
-MAP_QUANTITIES = {"lti": "lti", "kappa": "input", "zeta": "output"}
-
-
-def map_values(posed: PosedMechanism, quantity: str) -> np.ndarray:
-    """Paper 004's ``η`` (Eq. 16), ``κ`` or ``ζ`` (Eq. 15) over a posed batch, for the maps (the
-    quantities ``"lti"``, ``"kappa"``, ``"zeta"`` that ``import screwkit`` registers with
-    :func:`screwkit.analysis.quantities.register_quantity`; :func:`transmission`, fused and compiled
-    with the ``fast`` extra).
-
-    Parameters
-    ----------
-    posed : PosedMechanism
-        A four-limb mechanism at reachable poses.
-    quantity : {"lti", "kappa", "zeta"}
-
-    Returns
-    -------
-    numpy.ndarray
-        Of the batch's shape.
-
-    Raises
-    ------
-    ScrewkitValueError
-        Not a four-limb mechanism.
-
-    Examples
-    --------
-    >>> from screwkit.robots.catalog import load_mechanism
-    >>> h4 = load_mechanism("h4")
-    >>> bool(map_values(h4.at([0, 0, -750, 0]), "kappa") == transmission(h4, [0, 0, -750, 0]).input)
-    True
-    """
-    if not _is_four_limb(getattr(posed.mechanism, "parameters", None)):
-        raise ScrewkitValueError(
-            f"Expected a four-limb mechanism for quantity {quantity!r} (paper 004), got family "
-            f"{posed.mechanism.family!r}."
-        )
-    return np.asarray(getattr(transmission(posed), MAP_QUANTITIES[quantity]), dtype=float)
-
-
-def transmission_summary(mechanism: Any, pose: Any, jacobians: Any) -> dict[str, Any]:
-    """The transmission indices at one pose, for :func:`screwkit.interface.report.pose_report`.
-
-    ``"wrench"``: :func:`wrench_transmission` (any mechanism with Jacobians; at the elbows for the
-    four-limb family), ``"paper_004"``: :func:`transmission` (four-limb family only, else None),
-    ``"note"``: what they are or why one is missing.
-
-    Parameters
-    ----------
-    mechanism : Mechanism
-    pose : array_like, shape (n,)
-    jacobians : WrenchJacobians or None
-        At the pose (None: not computed).
-
-    Returns
-    -------
-    dict
-        ``"wrench"``, ``"paper_004"`` (JSON-ready dicts or None) and ``"note"``.
-
-    Examples
-    --------
-    >>> from screwkit.robots.catalog import load_mechanism
-    >>> h4 = load_mechanism("h4")
-    >>> summary = transmission_summary(h4, h4.default_pose, h4.at()[0].jacobians)
-    >>> round(min(summary["wrench"]["input"]), 9) == round(summary["paper_004"]["input"], 9)  # κ, derived
-    True
-    """
-    summary: dict[str, Any] = {"wrench": None, "paper_004": None, "note": ""}
-    notes = []
-    if jacobians is None or jacobians.A.shape[-1] != jacobians.A.shape[-2]:
-        notes.append("wrench-based index: needs square Jacobians at the pose")
-    else:
-        hook = mechanism.family_protocol.application_points
-        points = None if hook is None else hook(mechanism.configuration(pose))
-        summary["wrench"] = wrench_transmission(jacobians, input_points=points).to_dict()
-        notes.append(
-            "wrench-based: input ITI_j = |w_j o $_j| / max (at the elbow for the four-limb family), "
-            "output OTI_j against the platform twist of actuator j alone, LTI = min "
-            "(screwkit.robots.transmission.wrench_transmission)"
-        )
-    if _is_four_limb(getattr(mechanism, "parameters", None)):
-        summary["paper_004"] = transmission(mechanism, pose).to_dict()
-        notes.append("paper 004: kappa, zeta (Eq. 15), LTI eta (Eq. 16)")
-    summary["note"] = "; ".join(notes)
-    return summary
 
 
 def _is_four_limb(parameters: Any) -> bool:
