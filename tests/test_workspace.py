@@ -566,3 +566,19 @@ def test_condition_map_says_which_factor_it_shows(tmp_path, capsys):
     assert main(argv) == 0
     assert "  actuation factor [a b d ḟ][c g ḣ j] (vector form " in capsys.readouterr().out
     assert W.grid_map(H4, "lti", x=("z", -1000, -600, 2), y=("phi", 0, 1, 2), angles="deg").meaning == ""
+
+
+def test_register_quantity_errors():
+    # the maps read a paper's quantities by name (import screwkit registers paper 004's)
+    with pytest.raises(sk.ScrewkitValueError, match=r"Expected `name` to be one of \('lti', 'kappa', 'zeta'\), got 'volume'"):
+        Q.register_quantity("volume", len)
+    with pytest.raises(sk.ScrewkitTypeError, match="Expected `function` to be callable, got str"):
+        Q.register_quantity("lti", "eta")
+
+
+def test_the_maps_read_paper_004_through_the_posed_mechanism():
+    # "lti" over a posed batch is paper 004's eta at those poses, computed from the posed mechanism
+    poses = np.array([[0.0, 0.0, -750.0, 0.0], [30.0, -20.0, -750.0, 0.3]])
+    values, ok = W.evaluate(H4, poses, "lti")
+    np.testing.assert_array_equal(values, transmission_indices(H4.configuration(poses)).lti)
+    assert ok.all()
