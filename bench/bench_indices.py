@@ -3,8 +3,8 @@
 Run: ``python bench/bench_indices.py [--sizes 100000 1000000] [--repeats 5] [--robots ragnar | all]``
 from the repository root (prints a table; not a test). One thread (BLAS/OpenMP threads set to 1; the
 numba kernel is a plain loop, SIMD over poses, no ``parallel``); times are the process's CPU time
-(``time.process_time``, the shared machine's load inflates wall time), best of the repeats, with
-the load average printed before and after.
+(``time.process_time``, the shared machine's load inflates wall time), best of the repeats timed
+interleaved (one call of each column per round), with the load average printed before and after.
 
 Four timings over the same poses (a grid over the robot's workspace box, all four coordinates
 varying), the results checked against the first (``max diff``: the largest difference in κ or ζ;
@@ -15,10 +15,10 @@ evaluations differ by round-off times the condition number):
   inverse kinematics of Eq. (3) (``θ_i = atan2(Q_i, P_i) - m_i acos(K_i/ρ_i)``), ``v_i``,
   ``w_i = (c_i - b_i)/l``, ``κ = min_i |w_i·(u_i × v_i)|`` (Eqs. 11, 15) and
   ``ζ = |(w_I × w_II)·s| / ‖w_I × w_II‖`` (Eqs. 13, 15), vectorised over the batch;
-* ``numpy (screwkit)``: :func:`screwkit.analysis.indices.transmission` with ``SCREWKIT_NUMBA=0``'s path
+* ``numpy (screwkit)``: :func:`screwkit.papers.paper_004.transmission` with ``SCREWKIT_NUMBA=0``'s path
   (the family's inverse kinematics, a full configuration, then the indices);
 * ``fused kernel``: :mod:`screwkit.papers._lti_numba` alone (compiled once before timing), the part
-  :func:`screwkit.analysis.indices.transmission` runs per pose;
+  :func:`screwkit.papers.paper_004.transmission` runs per pose;
 * ``sk.transmission``: the whole public call (argument checks, the kernel, ``η = min(κ, ζ)``, NaN
   where out of reach), what a user's map costs.
 
@@ -34,12 +34,13 @@ for _name in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS", "NUM
     os.environ[_name] = "1"
 
 import argparse  # noqa: E402
+import math  # noqa: E402
 import time  # noqa: E402
 
 import numpy as np  # noqa: E402
 from _timing import best_of  # noqa: E402  (bench/ is the script folder)
 
-from screwkit import indices as I  # noqa: E402
+from screwkit.papers import paper_004 as I  # noqa: E402
 from screwkit.robots.catalog import load_mechanism  # noqa: E402
 from screwkit.robots.families import four_limb as FL  # noqa: E402
 
@@ -97,15 +98,19 @@ def packed_square_roots(kernels, packed):
 
 
 def timings(mechanism, poses, kernels, packed, repeats):
-    """CPU times of the four columns (module docstring), best of ``repeats``."""
+    """CPU times of the four columns (module docstring), best of ``repeats``, interleaved: each round
+    times every column once in turn, so that a change of the machine's load falls on all of them."""
     params, mode = mechanism.parameters, (-1, -1, -1, -1)
     calls = [
         lambda: straightforward(params, poses),
-        lambda: I._transmission_numpy(params, poses, mode),
+        lambda: I._transmission_numpy(mechanism, poses, mode),
         lambda: kernels.transmission(poses, *packed),
         lambda: I.transmission(mechanism, poses, unreachable="nan"),
     ]
-    return [best_of(repeats, call, time.process_time) for call in calls]
+    best = [math.inf] * len(calls)
+    for _ in range(repeats):
+        best = [min(b, best_of(1, call, time.process_time)) for b, call in zip(best, calls, strict=True)]
+    return best
 
 
 def main():
@@ -135,7 +140,7 @@ def main():
             assert np.array_equal(ok, np.isfinite(ref_kappa)), "reachability differs"
             difference = max(np.max(np.abs(kappa - ref_kappa)[ok]), np.max(np.abs(zeta - ref_zeta)[ok]))
             assert difference < 1e-10, difference  # printed: ~1e-13, ~1e-11 where ζ is ill-conditioned
-            plain = I._transmission_numpy(params, poses, mode)
+            plain = I._transmission_numpy(mechanism, poses, mode)
             assert np.allclose(plain[0], kappa, rtol=0, atol=1e-12) and np.array_equal(plain[2], ok)
             times = timings(mechanism, poses, kernels, packed, args.repeats)
             widths = (16, 16, 13, 15)

@@ -20,9 +20,9 @@ machine is shared; the load average is printed beside them):
   and a ``side × side`` verdict map (default 1000 × 1000 = 10⁶ poses) in chunks of ``--chunk``
   poses: wall time, poses/s of CPU time, and the process's peak resident memory (``ru_maxrss``)
   before and after each, which the chunks bound (the map's own arrays are 9 bytes per pose);
-* ``path``: :func:`screwkit.analysis.workspace.check_path` of a 200-sample path across paper 002's actuation
+* ``path``: :func:`screwkit.analysis.paths.check_path` of a 200-sample path across paper 002's actuation
   surface (the first crossing refined to ~1e-16 in the path parameter), seconds;
-* ``loci``: :func:`screwkit.analysis.workspace.loci` of a 30 × 30 slice through all three surfaces, seconds.
+* ``loci``: :func:`screwkit.analysis.loci.loci` of a 30 × 30 slice through all three surfaces, seconds.
 """
 
 import os
@@ -39,6 +39,7 @@ from _timing import best_of  # noqa: E402  (bench/ is the script folder)
 
 import screwkit as sk  # noqa: E402
 from screwkit import workspace as W  # noqa: E402
+from screwkit.analysis.quantities import conditions_of  # noqa: E402
 from screwkit.gca.diagram import diagram_points  # noqa: E402
 
 
@@ -62,7 +63,7 @@ def main():
 
     print(f"load average {os.getloadavg()[0]:.1f} (CPU time of this process; best of {args.repeats})")
     cpu = time.process_time
-    W._conditions(h4, {})  # the superbracket factored once, outside the timing
+    conditions_of(h4, {})  # the superbracket factored once, outside the timing
     for quantity, side in (("condition:1", args.condition_side), ("verdict", args.side)):
         before = peak_mib()  # large maps first (then the condition map): a peak hides later ones
         start, start_cpu = time.perf_counter(), cpu()
@@ -88,7 +89,7 @@ def main():
     core = best_of(args.repeats, lambda: h4.at(poses).singularities, clock=cpu)
     print(f"core, 10,000 poses:          {len(poses) / core:10.0f} poses/s")
     grid = {"x": ("z", -1000, -550, 100), "y": ("phi", -45, 45, 100), "fixed": {"x": 0, "y": 0}}
-    diagram, conditions, _, _ = W._conditions(h4, {})
+    diagram, conditions, _, _ = conditions_of(h4, {})
     for quantity in ("verdict", "closeness", "condition:0", "condition:1"):
         mapped = best_of(args.repeats, lambda q=quantity: W.grid_map(h4, q, **grid), clock=cpu)
         label = f"{quantity} map, 100 x 100:"
@@ -104,11 +105,11 @@ def main():
 
     start_pose = {"x": 300, "y": 300, "z": -800, "phi": -80}
     end_pose = {"x": 300, "y": 300, "z": -800, "phi": 0}
-    path = best_of(args.repeats, lambda: W.check_path(h4, start_pose, end_pose), clock=cpu)
-    print(f"path, 200 samples, refined:  {path:8.2f} s  ({W.check_path(h4, start_pose, end_pose)})")
+    path = best_of(args.repeats, lambda: sk.check_path(h4, start_pose, end_pose), clock=cpu)
+    print(f"path, 200 samples, refined:  {path:8.2f} s  ({sk.check_path(h4, start_pose, end_pose)})")
     slice_ = {"x": ("z", -1100, -450, 30), "y": ("phi", -90, 90, 30), "fixed": {"x": 300, "y": 300}}
-    loci_time = best_of(1, lambda: W.loci(h4, **slice_), clock=cpu)
-    found = W.loci(h4, **slice_)
+    loci_time = best_of(1, lambda: sk.loci(h4, **slice_), clock=cpu)
+    found = sk.loci(h4, **slice_)
     counts = ", ".join(f"{lo.kind} {len(lo.points)}" for lo in found)
     print(f"loci, 30 x 30 slice:         {loci_time:8.2f} s  ({counts})")
 

@@ -11,6 +11,7 @@ Examples
 4
 """
 
+import functools
 from pkgutil import extend_path
 from typing import Any
 
@@ -18,6 +19,7 @@ from .algebra.motion_type import motion_type
 from .algebra.screw import reciprocal_product
 from .algebra.screwsystem import ScrewSystem
 from .algebra.screwvalue import Screw
+from .analysis.quantities import register_quantity
 from .core.singularity import classify, classify_poses, classify_table
 from .core.verdicts import SingularityReport
 from .core.wrench_systems import WrenchAnalysis, analyze_table
@@ -63,6 +65,7 @@ _LAZY = {
     **dict.fromkeys(
         (
             "bracket",
+    "check_path",
             "finite_point",
             "infinite_point",
             "join",
@@ -94,16 +97,31 @@ _LAZY = {
     "diagram_at": "gca.diagram",
     "SuperbracketAnalysis": "gca.diagram",
     "superbracket_analysis": "gca.diagram",
-    "TransmissionIndices": "analysis.indices",
-    "transmission": "analysis.indices",
-    "index_extremes": "analysis.indices",
-    "wrench_transmission": "analysis.indices",
-    "actuation_singularity_surface": "analysis.indices",
+    "Transmission": "robots.transmission",
+    "transmission": "papers.paper_004",
+    "index_extremes": "papers.paper_004_table4",
+    "wrench_transmission": "robots.transmission",
+    "actuation_singularity_surface": "papers.paper_004_surfaces",
+    "loci": "analysis.loci",
+    "surfaces": "analysis.loci",
+    "check_path": "analysis.paths",
 }
 
 
 #: Submodules loaded on first use (``sk.workspace.grid_map``).
 _LAZY_MODULES = {"workspace": "analysis.workspace"}
+
+
+def _paper_004_map_values(posed: Any, quantity: str) -> Any:
+    """Paper 004's indices over a posed batch, for the maps (imported on first use)."""
+    from .papers.paper_004_summary import map_values
+
+    return map_values(posed, quantity)
+
+
+# the maps (screwkit.analysis) read paper 004's indices by name: the papers stand above them
+for _name in ("lti", "kappa", "zeta"):
+    register_quantity(_name, functools.partial(_paper_004_map_values, quantity=_name))
 
 
 def __getattr__(name: str) -> Any:
@@ -148,7 +166,7 @@ __all__ = [
     "ScrewkitValueError",
     "SingularityReport",
     "SuperbracketAnalysis",
-    "TransmissionIndices",
+    "Transmission",
     "TwistGraphError",
     "UnreachablePoseError",
     "WrenchAnalysis",
@@ -160,6 +178,7 @@ __all__ = [
     "are_collinear",
     "are_coplanar",
     "bracket",
+    "check_path",
     "classify",
     "classify_poses",
     "classify_table",
@@ -182,6 +201,7 @@ __all__ = [
     "list_mechanisms",
     "load_mechanism",
     "load_snapshot",
+    "loci",
     "loop_closure_matrix",
     "meet_line_plane",
     "meet_planes",
@@ -201,6 +221,7 @@ __all__ = [
     "snapshot_text",
     "spherical",
     "superbracket_analysis",
+    "surfaces",
     "transmission",
     "twist_graph",
     "universal",

@@ -29,14 +29,14 @@ import numpy as np
 import pytest
 
 from screwkit.algebra import screw as S
-from screwkit.analysis.indices import (
+from screwkit.core.singularity import classify_table
+from screwkit.core.wrenches import wrench_analysis
+from screwkit.papers.paper_004 import (
     force_pressure_angle,
     four_limb_jacobians,
     motion_pressure_angles,
     transmission_indices,
 )
-from screwkit.core.singularity import classify_table
-from screwkit.core.wrenches import wrench_analysis
 from screwkit.robots.families.four_limb import (
     inverse_kinematics,
     joints,

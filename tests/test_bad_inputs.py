@@ -553,7 +553,7 @@ API_CASES = [
     (lambda: sk.index_extremes(_h4(), phi=1e9), ScrewkitValueError, r"Expected `phi` to be a finite number of at most 17453\.3 in magnitude \(radians\), got 1000000000\.0"),
     (lambda: sk.workspace.grid_map(_h4(), "verdict", x=("phi", -1e5, 1e5, 3), y=("z", -900, -700, 2)), ScrewkitValueError, r"Expected the angle `phi` of `x` to be at most 17453\.3 rad in magnitude, got 100000"),
     (lambda: sk.workspace.grid_map(_h4(), "verdict", x=("x", -9, 9, 2), y=("z", -900, -700, 2), fixed={"phi": 2e6}, angles="deg"), ScrewkitValueError, r"Expected the angle `phi` of `fixed` to be at most 1e\+06 degrees in magnitude, got 2e\+06"),
-    (lambda: sk.workspace.check_path(_h4(), {"phi": 0.0}, [0, 0, -750, 1e5]), ScrewkitValueError, r"Expected the angle `phi` of `end` to be at most 17453\.3 rad"),
+    (lambda: sk.check_path(_h4(), {"phi": 0.0}, [0, 0, -750, 1e5]), ScrewkitValueError, r"Expected the angle `phi` of `end` to be at most 17453\.3 rad"),
     # dof against the mechanism's mobility at generic configurations (screwkit.core.mobility.resolve_dof)
     (lambda: sk.analyze(sk.twist_graph("B", "E", [("B", "E", _R)], dof=2)), TwistGraphError, r"Expected `dof` to equal the mechanism's mobility, 1 \(.*\), got dof = 2; 1 actuated joint\(s\): R\."),
     (lambda: sk.classify(_G, dof=3), TwistGraphError, r"Expected `dof` to equal the mechanism's mobility, 1 \(.*\), got dof = 3; 1 actuated joint\(s\): R\."),

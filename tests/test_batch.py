@@ -179,7 +179,7 @@ def test_a_posed_batch_iterates_over_its_poses_in_c_order(rng):
 
 def test_a_pose_gives_its_diagram_and_superbracket_as_the_report_does():
     pose = sk.load_mechanism("h4").at([0.0, 0.0, -800.0, 0.1])[0]
-    report = pose.report()
+    report = sk.analyze(pose)
     assert str(pose.diagram) == str(report.diagram)
     factored = pose.superbracket.simplification.factored.to_dict()["text"]
     assert factored == report.superbracket.simplification.factored.to_dict()["text"]
@@ -201,3 +201,12 @@ def test_error_analyze_takes_one_pose(pose):
     with pytest.raises(ScrewkitValueError, match=r"Expected `pose` to be one pose of shape \(4,\) \(x, y, z, phi\), "
                        r"got shape \(\d, 4\); for many poses use mechanism.at\(poses\)"):
         sk.analyze("h4", pose, superbracket=False)
+
+
+def test_analyze_takes_one_pose_of_a_batch():
+    posed = sk.load_mechanism("h4").at([[0.0, 0.0, -750.0, 0.0], [30.0, -20.0, -750.0, 0.3]], rtol=1e-8)
+    report = sk.analyze(posed[1], superbracket=False)
+    assert report.pose.tolist() == [30.0, -20.0, -750.0, 0.3]
+    assert report.to_dict() == sk.analyze("h4", [30.0, -20.0, -750.0, 0.3], rtol=1e-8, superbracket=False).to_dict()
+    with pytest.raises(ScrewkitValueError, match=r"Expected no `pose`, `rtol` or `length_scale` with a Pose .*got pose, rtol\."):
+        sk.analyze(posed[0], [0.0, 0.0, -750.0, 0.0], rtol=1e-9)

@@ -18,15 +18,15 @@ import math
 import numpy as np
 import pytest
 
-from screwkit.analysis.indices import (
-    four_limb_jacobians,
-    transmission_indices,
-)
 from screwkit.core.singularity import classify, classify_table
 from screwkit.core.wrenches import wrench_analysis
 from screwkit.gca.diagram import diagram_points
 from screwkit.interface.cli import main
 from screwkit.interface.report import analyze
+from screwkit.papers.paper_004 import (
+    four_limb_jacobians,
+    transmission_indices,
+)
 from screwkit.robots.catalog import list_mechanisms, load_mechanism
 from screwkit.robots.families.four_limb import (
     reachable,

@@ -1,4 +1,4 @@
-"""Transmission indices (screwkit.analysis.indices): paper 004's kappa, zeta, LTI over batches, Table 4
+"""Transmission indices (screwkit.papers.paper_004*, screwkit.robots.transmission): paper 004's kappa, zeta, LTI over batches, Table 4
 regenerated, the wrench/twist-based index, the Ragnar with inclined axes.
 
 Expected values come from the paper (Table 4, in ``tests/paper_004.py``), from hand derivations
@@ -22,7 +22,6 @@ from hypothesis import strategies as st
 
 import screwkit as sk
 from screwkit.algebra import screw as S
-from screwkit.analysis import indices as I
 from screwkit.core.jacobians import jacobians_from_wrenches
 from screwkit.core.singularity import classify_table
 from screwkit.core.wrenches import wrench_analysis
@@ -30,6 +29,10 @@ from screwkit.exceptions import ScrewkitTypeError, ScrewkitValueError, Unreachab
 from screwkit.graphs.joints import prismatic, revolute
 from screwkit.graphs.twistgraph import twist_graph
 from screwkit.interface.cli import main
+from screwkit.papers import paper_004 as P4
+from screwkit.papers import paper_004_surfaces as S4
+from screwkit.papers import paper_004_table4 as T4
+from screwkit.robots import transmission as R4
 from screwkit.robots.catalog import load_mechanism
 from screwkit.robots.families.four_limb import inverse_kinematics, reachable
 
@@ -72,12 +75,12 @@ def hand_indices(config):
 def test_transmission_is_paper_004_closed_form(robots, name):
     mechanism = robots[name]
     poses = workspace_poses(mechanism, 200)
-    result = I.transmission(mechanism, poses.reshape(-1, 1, 4)[: 2 * (len(poses) // 2)].reshape(-1, 2, 4))
+    result = P4.transmission(mechanism, poses.reshape(-1, 1, 4)[: 2 * (len(poses) // 2)].reshape(-1, 2, 4))
     kappa, zeta = hand_indices(mechanism.configuration(poses[: 2 * (len(poses) // 2)]))
     np.testing.assert_allclose(result.input.ravel(), kappa, rtol=0, atol=1e-12)
     np.testing.assert_allclose(result.output.ravel(), zeta, rtol=0, atol=1e-12)
     np.testing.assert_array_equal(result.lti, np.minimum(result.input, result.output))
-    assert result.lti.shape == (len(poses) // 2, 2) and result.reachable.all() and len(result) == 3
+    assert result.lti.shape == (len(poses) // 2, 2) and result.reachable.all() and not result.per_joint
 
 
 @pytest.mark.parametrize("name", FOUR_LIMB)
@@ -89,24 +92,23 @@ def test_numba_and_numpy_paths_agree(robots, name, mode):
     low, high = zip(*(mechanism.workspace[c] for c in mechanism.pose_names), strict=True)
     poses = rng.uniform(np.array(low) * 1.3, np.array(high) * 1.3, size=(400, 4))  # some out of reach
     params = mechanism.parameters
-    fast = kernels.transmission(poses, *I._kernel_arguments(params, mode))
-    plain = I._transmission_numpy(params, poses, mode)
+    fast = kernels.transmission(poses, *P4._kernel_arguments(params, mode))
+    plain = P4._transmission_numpy(mechanism, poses, mode)
     assert 0 < fast[2].sum() < len(poses)
     np.testing.assert_array_equal(fast[2], plain[2])
     np.testing.assert_allclose(fast[0], plain[0], rtol=0, atol=1e-12)
     np.testing.assert_allclose(fast[1], plain[1], rtol=0, atol=1e-12)
 
 
-def test_transmission_of_a_posed_mechanism_and_its_cache(robots):
+def test_transmission_of_a_posed_mechanism(robots):
     quattro = robots["quattro"]
     poses = np.array([[0.0, 0.0, -800.0, 0.0], [100.0, -50.0, -700.0, 0.4]])
     posed = quattro.at(poses)
-    direct = I.transmission(quattro, poses)
-    np.testing.assert_array_equal(posed.transmission.lti, direct.lti)
-    assert posed.transmission is posed.transmission
-    assert I.transmission(quattro).lti.shape == ()  # the default pose
-    other = quattro.at(poses, working_mode=(1, -1, -1, -1)).transmission
-    np.testing.assert_array_equal(other.output, I.transmission(quattro, poses, working_mode=(1, -1, -1, -1)).output)
+    direct = P4.transmission(quattro, poses)
+    np.testing.assert_array_equal(P4.transmission(posed).lti, direct.lti)
+    assert P4.transmission(quattro).lti.shape == ()  # the default pose
+    other = P4.transmission(quattro.at(poses, working_mode=(1, -1, -1, -1)))  # the posed batch's mode
+    np.testing.assert_array_equal(other.output, P4.transmission(quattro, poses, working_mode=(1, -1, -1, -1)).output)
     assert not np.allclose(other.output, direct.output)
 
 
@@ -114,8 +116,8 @@ def test_transmission_unreachable_poses(robots):
     veloce = robots["veloce"]
     poses = [[0.0, 0.0, -800.0, 0.0], [0.0, 0.0, -3000.0, 0.0]]
     with pytest.raises(UnreachablePoseError, match=r"1 of 2 poses are out of reach of Veloce.*pose index \(1,\)"):
-        I.transmission(veloce, poses)
-    result = I.transmission(veloce, poses, unreachable="nan")
+        P4.transmission(veloce, poses)
+    result = P4.transmission(veloce, poses, unreachable="nan")
     assert result.reachable.tolist() == [True, False]
     assert np.isnan(result.lti[1]) and np.isfinite(result.lti[0])
     assert json.loads(json.dumps(result.to_dict()))["lti"] == [pytest.approx(float(result.lti[0])), None]
@@ -123,25 +125,25 @@ def test_transmission_unreachable_poses(robots):
 
 def test_transmission_errors(robots):
     with pytest.raises(ScrewkitValueError, match=r"four-limb family.*'planar_3rrp'.*wrench_transmission"):
-        I.transmission(load_mechanism("planar_3rrp"), [0.0, 0.0, 0.0])
+        P4.transmission(load_mechanism("planar_3rrp"), [0.0, 0.0, 0.0])
     with pytest.raises(ScrewkitValueError, match="Expected `unreachable` to be one of"):
-        I.transmission(robots["h4"], unreachable="skip")
+        P4.transmission(robots["h4"], unreachable="skip")
     with pytest.raises(ScrewkitValueError, match="Expected `poses` to be None"):
-        I.transmission(robots["h4"].at(), [0, 0, -700, 0])
+        P4.transmission(robots["h4"].at(), [0, 0, -700, 0])
     with pytest.raises(ScrewkitValueError, match=r"shape \(\.\.\., 4\)"):
-        I.transmission(robots["h4"], [0, 0, -700])
+        P4.transmission(robots["h4"], [0, 0, -700])
     with pytest.raises(ScrewkitValueError, match="finite"):
-        I.transmission(robots["h4"], [0, 0, np.nan, 0])
+        P4.transmission(robots["h4"], [0, 0, np.nan, 0])
     with pytest.raises(ScrewkitValueError, match="working_mode"):
-        I.transmission(robots["h4"], working_mode=(1, 1, 0, 1))
+        P4.transmission(robots["h4"], working_mode=(1, 1, 0, 1))
     with pytest.raises(ScrewkitValueError, match="four-limb family"):
-        load_mechanism("planar_3rrp").at().transmission  # noqa: B018
+        P4.transmission(load_mechanism("planar_3rrp").at())
 
 
 def test_paper_spiral_reports_hold_through_the_batch_api(robots):
     # Sec. 5.1: along the spiral of Eqs. (17)-(18) mu_i in [0, 65 deg] (kappa >= cos 65 deg) and
     # sigma = 0 (zeta = 1) where phi = 0 (ours: the midpoint of an odd sampling)
-    result = I.transmission(robots["quattro"], spiral_trajectory(2001))
+    result = P4.transmission(robots["quattro"], spiral_trajectory(2001))
     assert result.input.min() >= math.cos(math.radians(65.0))
     assert result.output[1000] == pytest.approx(1.0, abs=1e-12)
 
@@ -152,61 +154,61 @@ def test_paper_spiral_reports_hold_through_the_batch_api(robots):
 
 
 def test_regions_by_hand():
-    eq_19 = I.Region.super_ellipsoid((0.0, 0.0, -575.0), (505.0, 685.0, 365.0))
+    eq_19 = T4.Region.super_ellipsoid((0.0, 0.0, -575.0), (505.0, 685.0, 365.0))
     # |x/505|^3 + ... = 1 on the boundary: (505 * 0.5^(1/3), 685 * 0.5^(1/3), -575) is on it
     edge = np.array([505.0 * 0.5 ** (1 / 3), 685.0 * 0.5 ** (1 / 3), -575.0])
     assert eq_19.contains(np.array([edge * [0.999, 0.999, 1.0], edge * [1.001, 1.001, 1.0]])).tolist() == [
         True,
         False,
     ]
-    cone = I.TABLE_4_CONE  # apex (0, 0, -975), radius 650 at z = -575 and up to -475
+    cone = T4.TABLE_4_CONE  # apex (0, 0, -975), radius 650 at z = -575 and up to -475
     assert cone.contains(np.array([[325.0, 0.0, -775.0], [330.0, 0.0, -775.0], [0, 0, -470.0]])).tolist() == [
         True,
         False,
         False,
     ]
-    box = I.Region.box((0, 1), (0, 2), (0, 3))
+    box = T4.Region.box((0, 1), (0, 2), (0, 3))
     assert box.lower == (0.0, 0.0, 0.0) and box.upper == (1.0, 2.0, 3.0)
 
 
 def test_index_extremes_errors(robots):
     h4 = robots["h4"]
     with pytest.raises(ScrewkitValueError, match="Expected `index` to be one of"):
-        I.index_extremes(h4, "eta")
+        T4.index_extremes(h4, "eta")
     with pytest.raises(ScrewkitValueError, match=r"Expected `grid` to be an integer in 2\.\.201, got 1"):
-        I.index_extremes(h4, grid=1)
+        T4.index_extremes(h4, grid=1)
     # a grid of 10^9 poses or 10^9 refinement rounds: refused at once, not a MemoryError or hours of work
     with pytest.raises(ScrewkitValueError, match=r"Expected `grid` to be an integer in 2\.\.201, got 1000"):
-        I.index_extremes(h4, grid=1000)
+        T4.index_extremes(h4, grid=1000)
     with pytest.raises(ScrewkitValueError, match=r"Expected `refine` to be an integer in 0\.\.200, got -1"):
-        I.index_extremes(h4, refine=-1)
+        T4.index_extremes(h4, refine=-1)
     with pytest.raises(ScrewkitValueError, match=r"Expected `refine` to be an integer in 0\.\.200, got 1000000000"):
-        I.table_4(refine=10**9, robots=["h4"])
+        T4.table_4(refine=10**9, robots=["h4"])
     with pytest.raises(ScrewkitValueError, match="Expected `phi` to be a finite number"):
-        I.index_extremes(h4, phi=float("nan"))
+        T4.index_extremes(h4, phi=float("nan"))
     with pytest.raises(ScrewkitTypeError, match="Expected `region` to be a Region"):
-        I.index_extremes(h4, region=(0, 1))
+        T4.index_extremes(h4, region=(0, 1))
     with pytest.raises(ScrewkitValueError, match="No point of the 3\\^3 grid"):
-        I.index_extremes(h4, region=I.Region.box((-1, 1), (-1, 1), (5000, 5001)), grid=3)
+        T4.index_extremes(h4, region=T4.Region.box((-1, 1), (-1, 1), (5000, 5001)), grid=3)
 
 
 def test_index_extremes_are_attained_and_bound_the_grid(robots):
     quattro = robots["quattro"]
-    result = I.index_extremes(quattro, "input", I.TABLE_4_CONE, phi=0.3, grid=15, refine=6)
-    at = I.transmission(quattro, np.stack([result.argmin, result.argmax]))
+    result = T4.index_extremes(quattro, "input", T4.TABLE_4_CONE, phi=0.3, grid=15, refine=6)
+    at = P4.transmission(quattro, np.stack([result.argmin, result.argmax]))
     assert at.input.tolist() == pytest.approx([result.minimum, result.maximum], abs=1e-12)
     assert result.minimum <= result.grid_minimum and result.maximum >= result.grid_maximum
-    assert I.TABLE_4_CONE.contains(np.stack([result.argmin[:3], result.argmax[:3]])).all()
+    assert T4.TABLE_4_CONE.contains(np.stack([result.argmin[:3], result.argmax[:3]])).all()
     assert result.argmin[3] == result.argmax[3] == 0.3
 
 
 def test_region_boundary_points():
-    box = I.Region.box((0, 1), (0, 2), (0, 3))
+    box = T4.Region.box((0, 1), (0, 2), (0, 3))
     x, y, z = box.boundary(6)
     points = np.stack([x, y, z], axis=-1).reshape(-1, 3)
     on_a_face = np.isclose(points, box.lower, atol=1e-6) | np.isclose(points, box.upper, atol=1e-6)
     assert x.shape == (7, 13) and on_a_face.any(axis=1).all() and box.contains(points).all()
-    cone = I.TABLE_4_CONE
+    cone = T4.TABLE_4_CONE
     points = np.stack(cone.boundary(8), axis=-1).reshape(-1, 3)
     centre = np.array([0.0, 0.0, -725.0])  # the centre of its box
     assert cone.contains(points).all() and not cone.contains(centre + (points - centre) * 1.001).any()
@@ -222,8 +224,8 @@ def surfaces(robots):
     """Figs. 14-16's pairs of angles (degrees), both signs, over the assumed workspace, grid 12."""
     angles = {"quattro": (75, 90), "h4": (60, 90), "v4": (45, 90)}
     return {
-        (name, sign * angle): I.actuation_singularity_surface(
-            robots[name], math.radians(sign * angle), I.TABLE_4_CONE, grid=12
+        (name, sign * angle): S4.actuation_singularity_surface(
+            robots[name], math.radians(sign * angle), T4.TABLE_4_CONE, grid=12
         )
         for name, pair in angles.items()
         for angle in pair
@@ -238,17 +240,18 @@ def test_actuation_surface_is_where_det_a_and_zeta_vanish(robots, surfaces):
         vertices = surface.triangles.reshape(-1, 3)
         poses = np.column_stack([vertices, np.full(len(vertices), math.radians(degrees))])
         config = robots[name].configuration(poses)
-        det_a = np.linalg.det(I.four_limb_jacobians(config).A)  # the 4x4 determinant, not Eq. (12)
+        det_a = np.linalg.det(P4.four_limb_jacobians(config).A)  # the 4x4 determinant, not Eq. (12)
         assert np.max(np.abs(det_a)) < 1e-9, (name, degrees)  # |A| ~ 10 mm in the workspace
         # where w_I x w_II is not ~0 (Fig. 5a, b: |A| = 0 with sigma undefined), zeta = 0 (Fig. 5c, d)
         w = config.w
         (i1, i2), (j1, j2) = PAIRS[config.params.platform_kind]
         normal = np.cross(np.cross(w[:, i1], w[:, i2]), np.cross(w[:, j1], w[:, j2]))
         defined = np.linalg.norm(normal, axis=-1) > 1e-6
-        zeta = I.transmission(robots[name], poses).output  # the kernel: an independent path
+        zeta = P4.transmission(robots[name], poses).output  # the kernel: an independent path
         assert defined.mean() > 0.99 and np.max(zeta[defined]) < 1e-6, (name, degrees)
-        assert I.TABLE_4_CONE.contains(surface.triangles.mean(axis=1)).all()
-        assert surface.phi == math.radians(degrees) and surface.robot == robots[name].name
+        assert T4.TABLE_4_CONE.contains(surface.triangles.mean(axis=1)).all()
+        assert surface.fixed == {"phi": math.radians(degrees)} and surface.mechanism == robots[name].name
+        assert surface.kind == "actuation" and surface.points.shape[1:] == (3,)
 
 
 def test_actuation_surfaces_grow_with_the_rotation_as_paper_004_says(surfaces, robots):
@@ -259,7 +262,7 @@ def test_actuation_surfaces_grow_with_the_rotation_as_paper_004_says(surfaces, r
         for sign in (1, -1):
             assert surfaces[(name, sign * high)].area > surfaces[(name, sign * low)].area > 0
     assert surfaces[("quattro", 75)].area < 0.01 * surfaces[("quattro", 90)].area
-    flat = I.actuation_singularity_surface(robots["quattro"], 0.0, I.TABLE_4_CONE, grid=12)
+    flat = S4.actuation_singularity_surface(robots["quattro"], 0.0, T4.TABLE_4_CONE, grid=12)
     assert flat.triangles.shape == (0, 3, 3) and flat.area == 0.0
 
 
@@ -268,7 +271,7 @@ def test_quattro_surfaces_at_plus_and_minus_phi_are_mirror_images(robots, surfac
     # -phi locus mirrored lies on the +phi locus
     mirrored = surfaces[("quattro", -90)].triangles.reshape(-1, 3) * [1.0, -1.0, 1.0]
     poses = np.column_stack([mirrored, np.full(len(mirrored), math.pi / 2)])
-    det_a = np.linalg.det(I.four_limb_jacobians(robots["quattro"].configuration(poses)).A)
+    det_a = np.linalg.det(P4.four_limb_jacobians(robots["quattro"].configuration(poses)).A)
     assert len(mirrored) > 1000 and np.max(np.abs(det_a)) < 1e-9
 
 
@@ -276,33 +279,33 @@ def test_actuation_surface_errors(robots):
     h4 = robots["h4"]
     # a catalog name, as sk.analyze takes it (a new user's trial): the message says how to load it
     with pytest.raises(sk.ScrewkitTypeError, match=r"got the string 'h4'; load it first: sk\.load_mechanism\('h4'\)"):
-        I.actuation_singularity_surface("h4", 0.0)
+        S4.actuation_singularity_surface("h4", 0.0)
     with pytest.raises(sk.ScrewkitTypeError, match=r"got the string 'h4'"):
         sk.transmission("h4", [0.0, 0.0, -800.0, 0.0])
     with pytest.raises(ScrewkitValueError, match=r"Expected `grid` to be an integer in 2\.\.201, got 1"):
-        I.actuation_singularity_surface(h4, 0.0, grid=1)
+        S4.actuation_singularity_surface(h4, 0.0, grid=1)
     # the surface's marching tetrahedra hold the whole grid: 201 took 16 GB (a new user's trial)
     with pytest.raises(ScrewkitValueError, match=r"Expected `grid` to be an integer in 2\.\.64 for a surface, got 201"):
-        I.actuation_singularity_surface(h4, 0.0, grid=201)
+        S4.actuation_singularity_surface(h4, 0.0, grid=201)
     with pytest.raises(ScrewkitValueError, match="Expected `phi` to be a finite number"):
-        I.actuation_singularity_surface(h4, float("inf"))
+        S4.actuation_singularity_surface(h4, float("inf"))
     with pytest.raises(ScrewkitTypeError, match="Expected `region` to be a Region, got tuple"):
-        I.actuation_singularity_surface(h4, 0.0, (0, 1))
+        S4.actuation_singularity_surface(h4, 0.0, (0, 1))
     with pytest.raises(ScrewkitValueError, match="four-limb family"):
-        I.actuation_singularity_surface(load_mechanism("planar_3rrp"), 0.0)
+        S4.actuation_singularity_surface(load_mechanism("planar_3rrp"), 0.0)
     with pytest.raises(ScrewkitValueError, match="working_mode"):
-        I.actuation_singularity_surface(h4, 0.0, working_mode=(1, 1))
-    default = I.actuation_singularity_surface(h4, 0.0, grid=4)  # the catalog workspace box
+        S4.actuation_singularity_surface(h4, 0.0, working_mode=(1, 1))
+    default = S4.actuation_singularity_surface(h4, 0.0, grid=4)  # the catalog workspace box
     assert default.region.lower == tuple(h4.workspace[c][0] for c in "xyz")
 
 
 @pytest.fixture(scope="module")
 def table():
-    return {(row.robot, row.phi_deg): row for row in I.table_4()}
+    return {(row.robot, row.phi_deg): row for row in T4.table_4()}
 
 
 def test_table_4_holds_the_papers_values(table):
-    assert {(r[0], r[2]): (r[4], r[5]) for r in I.TABLE_4} == TABLE_4
+    assert {(r[0], r[2]): (r[4], r[5]) for r in T4.TABLE_4} == TABLE_4
 
 
 #: Table 4 cells we reproduce within 0.002 (the refined extremes over the assumed workspace).
@@ -354,7 +357,7 @@ def test_table_4_not_reproduced_is_explained(table, robot, phi, key):
     if (robot, phi, key) == ("H4", 0.0, "min"):
         assert "beyond the robot's reach" in row.notes[key]
     else:
-        assert row.notes[key] in (I._CONE_NOTE, I._RAGNAR_MIN_NOTE, I._RAGNAR_MAX_NOTE)
+        assert row.notes[key] in (T4._CONE_NOTE, T4._RAGNAR_MIN_NOTE, T4._RAGNAR_MAX_NOTE)
 
 
 def test_h4_minimum_at_phi_0_is_not_converged_because_the_region_passes_the_reach(table, robots):
@@ -363,7 +366,7 @@ def test_h4_minimum_at_phi_0_is_not_converged_because_the_region_passes_the_reac
     # infimum is 0; our table says so instead of offering 0.016 as a converged minimum
     row = table[("H4", 0.0)]
     assert row.ours.reachable_fraction < 1
-    finer = I.index_extremes(robots["h4"], "lti", I.TABLE_4_CONE, phi=0.0, grid=61, refine=12)
+    finer = T4.index_extremes(robots["h4"], "lti", T4.TABLE_4_CONE, phi=0.0, grid=61, refine=12)
     assert finer.minimum < row.ours.minimum / 5
     # the finer minimum sits where a limb is nearly stretched: kappa (not zeta) is the small index
     kappa = sk.transmission(robots["h4"], finer.argmin[None]).kappa.min()
@@ -375,7 +378,7 @@ def test_ragnar_eq_19_is_partly_out_of_reach_for_any_inclination(robots):
     # inside Eq. (19), C_1 = (100 cos 45, 100 sin 45, -250) and A_1 = (350, 100, 0) (text after Table 4)
     c1, a1 = np.array([100 / math.sqrt(2), 100 / math.sqrt(2), -250.0]), np.array([350.0, 100.0, 0.0])
     assert np.linalg.norm(c1 - a1) < 800.0 - 375.0
-    assert I.TABLE_4_EQ_19.contains(np.array([[0.0, 0.0, -250.0]]))[0]
+    assert T4.TABLE_4_EQ_19.contains(np.array([[0.0, 0.0, -250.0]]))[0]
     params = robots["ragnar"].parameters
     for eps in (-60.0, -20.0, 0.0, 20.0, 45.0, 80.0):
         tilted = dataclasses.replace(params, axis_inclination=math.radians(eps))
@@ -421,7 +424,7 @@ def test_ragnar_mirror_symmetry(x, y, z, phi):
     # the screw-pair platform is symmetric too, so the LTI is even in x and in y
     ragnar = load_mechanism("ragnar")
     poses = np.array([[x, y, z, 0.0], [-x, y, z, 0.0], [x, -y, z, 0.0]])
-    result = I.transmission(ragnar, poses, unreachable="nan")
+    result = P4.transmission(ragnar, poses, unreachable="nan")
     if result.reachable.all():
         np.testing.assert_allclose(result.lti[1:], result.lti[0], rtol=0, atol=1e-12)
 
@@ -439,23 +442,23 @@ def test_transmission_ratio_by_hand():
     axis = [math.cos(theta), math.sin(theta), 0.0]
     twist = S.helical_twist(axis, [0.0, 0.0, -d], h)  # the common normal is along z
     expected = abs(h * math.cos(theta) + d * math.sin(theta)) / math.hypot(h, d)
-    assert float(I.transmission_ratio(force, twist)) == pytest.approx(expected, abs=1e-12)
+    assert float(R4.transmission_ratio(force, twist)) == pytest.approx(expected, abs=1e-12)
     # at a point of application: |f.(v(q) + h_W w)| / (|f| |v(q) + h_W w|), the pressure angle
     q = np.array([0.0, 3.0, 0.0])
     velocity = np.cross(axis, q - [0.0, 0.0, -d]) + h * np.array(axis)
-    assert float(I.transmission_ratio(force, twist, point=q)) == pytest.approx(
+    assert float(R4.transmission_ratio(force, twist, point=q)) == pytest.approx(
         abs(velocity[0]) / np.linalg.norm(velocity), abs=1e-12
     )
     translation, couple = S.prismatic_twist([0.0, 1.0, 1.0]), S.couple([0.0, 0.0, 2.0])
-    assert float(I.transmission_ratio(force, translation)) == pytest.approx(0.0, abs=1e-15)
-    assert float(I.transmission_ratio(S.force([0, 0, 1], [5, 5, 5]), translation)) == pytest.approx(
+    assert float(R4.transmission_ratio(force, translation)) == pytest.approx(0.0, abs=1e-15)
+    assert float(R4.transmission_ratio(S.force([0, 0, 1], [5, 5, 5]), translation)) == pytest.approx(
         1 / math.sqrt(2), abs=1e-12
     )
-    assert float(I.transmission_ratio(couple, twist)) == pytest.approx(0.0, abs=1e-12)  # axis in x-y
-    assert float(I.transmission_ratio(couple, S.revolute_twist([0, 1, 1], [4, 0, 0]))) == pytest.approx(
+    assert float(R4.transmission_ratio(couple, twist)) == pytest.approx(0.0, abs=1e-12)  # axis in x-y
+    assert float(R4.transmission_ratio(couple, S.revolute_twist([0, 1, 1], [4, 0, 0]))) == pytest.approx(
         1 / math.sqrt(2), abs=1e-12
     )
-    assert float(I.transmission_ratio(couple, translation)) == 0.0
+    assert float(R4.transmission_ratio(couple, translation)) == 0.0
 
 
 @settings(max_examples=40, deadline=None)
@@ -466,15 +469,15 @@ def test_transmission_ratio_is_frame_and_unit_invariant(motion, factor, seed):
     wrench = S.helical_twist(rng.normal(size=3), rng.normal(size=3), rng.normal())  # any screw
     twist = S.helical_twist(rng.normal(size=3), rng.normal(size=3), rng.normal())
     point = S.axis(wrench)[0] + 0.3 * rng.normal(size=3)
-    before = [float(I.transmission_ratio(wrench, twist)), float(I.transmission_ratio(wrench, twist, point=point))]
+    before = [float(R4.transmission_ratio(wrench, twist)), float(R4.transmission_ratio(wrench, twist, point=point))]
 
     def moved(screw):
         scaled = np.concatenate([screw[:3], factor * screw[3:]])  # lengths times factor
         return S.transform(scaled, rotation, factor * translation)
 
     after = [
-        float(I.transmission_ratio(moved(wrench), moved(twist))),
-        float(I.transmission_ratio(moved(wrench), moved(twist), point=factor * (rotation @ point) + factor * translation)),
+        float(R4.transmission_ratio(moved(wrench), moved(twist))),
+        float(R4.transmission_ratio(moved(wrench), moved(twist), point=factor * (rotation @ point) + factor * translation)),
     ]
     assert after == pytest.approx(before, abs=1e-9)
     assert all(0.0 <= value <= 1.0 for value in before)
@@ -491,7 +494,7 @@ def test_wrench_input_index_at_the_elbows_is_kappa(robots, name):
     per_limb = np.abs(np.einsum("...ij,...ij->...i", config.w, np.cross(config.u, config.v)))
     assert posed.jacobians.actuated_joints == ("A1", "A2", "A3", "A4")
     np.testing.assert_allclose(result.input, per_limb, rtol=0, atol=1e-9)
-    np.testing.assert_allclose(result.input.min(axis=-1), posed.transmission.input, rtol=0, atol=1e-9)
+    np.testing.assert_allclose(result.input.min(axis=-1), P4.transmission(posed).input, rtol=0, atol=1e-9)
     assert np.all((result.output >= 0) & (result.output <= 1)) and result.lti.shape == (len(poses),)
 
 
@@ -501,7 +504,7 @@ def test_common_normal_input_index_identity(robots, name):
     mechanism = robots[name]
     posed = mechanism.at(workspace_poses(mechanism, 30, seed=9))
     jac, config = posed.jacobians, posed.configuration
-    common = I.transmission_ratio(jac.wrenches, np.asarray(jac.analysis.actuated_twists))
+    common = R4.transmission_ratio(jac.wrenches, np.asarray(jac.analysis.actuated_twists))
     kappa_i = np.einsum("...ij,...ij->...i", config.w, np.cross(config.u, config.v))
     along_arm = np.einsum("...ij,...ij->...i", config.w, config.v)
     np.testing.assert_allclose(common, np.hypot(kappa_i, along_arm), rtol=0, atol=1e-9)
@@ -527,40 +530,40 @@ def test_wrench_transmission_slider_crank_by_hand(theta):
     jac, pin, slider = slider_crank(theta)
     coupler = (slider - pin) / np.linalg.norm(slider - pin)
     pin_velocity = np.cross([0.0, 0.0, 1.0], pin)
-    result = I.wrench_transmission(jac)
+    result = R4.wrench_transmission(jac)
     assert result.input.tolist() == pytest.approx([abs(coupler @ pin_velocity)], abs=1e-9)
     assert result.output.tolist() == pytest.approx([abs(coupler[0])], abs=1e-9)
     assert float(result.lti) == pytest.approx(min(abs(coupler @ pin_velocity), abs(coupler[0])), abs=1e-9)
-    explicit = I.wrench_transmission(jac, input_points=[pin], output_points=[slider])
+    explicit = R4.wrench_transmission(jac, input_points=[pin], output_points=[slider])
     assert explicit.input.tolist() == pytest.approx(result.input.tolist(), abs=1e-12)
 
 
 def test_wrench_transmission_zero_at_the_singularities():
     jac, _, _ = slider_crank(0.0)  # dead centre: a serial singularity (B = 0)
-    assert I.wrench_transmission(jac).input.tolist() == [0.0]
+    assert R4.wrench_transmission(jac).input.tolist() == [0.0]
     # the Quattro's type-2 singularity on the spiral (|A| changes sign near phi = -88.3 deg): OTI -> 0
     quattro = load_mechanism("quattro")
     path = spiral_trajectory(2001)[:80]
-    det = np.linalg.det(I.four_limb_jacobians(quattro.configuration(path)).A)
+    det = np.linalg.det(P4.four_limb_jacobians(quattro.configuration(path)).A)
     k = int(np.flatnonzero(np.sign(det[:-1]) != np.sign(det[1:]))[0])
     lo, hi = path[k], path[k + 1]
     for _ in range(60):
         mid = 0.5 * (lo + hi)
-        if np.sign(np.linalg.det(I.four_limb_jacobians(quattro.configuration(mid)).A)) == np.sign(det[k]):
+        if np.sign(np.linalg.det(P4.four_limb_jacobians(quattro.configuration(mid)).A)) == np.sign(det[k]):
             lo = mid
         else:
             hi = mid
     near = quattro.at(np.stack([0.5 * (lo + hi), path[0]])).wrench_transmission
     assert near.output[0].min() < 1e-6 < near.output[1].min()
-    assert I.transmission(quattro, 0.5 * (lo + hi)).output < 1e-6
+    assert P4.transmission(quattro, 0.5 * (lo + hi)).output < 1e-6
 
 
 def test_wrench_transmission_errors():
     jac, pin, _ = slider_crank(1.0)
     with pytest.raises(ScrewkitTypeError, match="Expected `jacobians` to be a Jacobians"):
-        I.wrench_transmission("A")
+        R4.wrench_transmission("A")
     with pytest.raises(ScrewkitValueError, match=r"Expected `input_points` to have shape \(\.\.\., 1, 3\)"):
-        I.wrench_transmission(jac, input_points=[pin, pin])
+        R4.wrench_transmission(jac, input_points=[pin, pin])
 
 
 def test_wrench_transmission_for_other_families_and_in_the_report():

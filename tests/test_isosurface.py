@@ -1,4 +1,4 @@
-"""Marching tetrahedra (screwkit.analysis._isosurface): surfaces of known fields -- a plane (exact), a sphere
+"""Marching tetrahedra (screwkit.analysis.isosurface): surfaces of known fields -- a plane (exact), a sphere
 (vertices on it by linear interpolation to the grid's second order, and exactly after bisection;
 area and closedness), NaN corners dropped, nothing where the field keeps its sign."""
 
@@ -8,7 +8,7 @@ from collections import Counter
 
 import numpy as np
 
-from screwkit.analysis._isosurface import zero_surface
+from screwkit.analysis.isosurface import zero_surface
 
 AXES = [np.linspace(-1.3, 1.3, 27)] * 3
 POINTS = np.stack(np.meshgrid(*AXES, indexing="ij"), axis=-1)

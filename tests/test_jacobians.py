@@ -17,10 +17,6 @@ from hypothesis import given, settings
 
 from screwkit.algebra import screw as S
 from screwkit.algebra.screwvalue import Screw
-from screwkit.analysis.indices import (
-    four_limb_jacobians,
-    transmission_indices,
-)
 from screwkit.core.jacobian_matrices import GOSSELIN_ANGELES_TYPES
 from screwkit.core.jacobians import (
     jacobians_from_wrenches,
@@ -38,6 +34,10 @@ from screwkit.exceptions import (
 )
 from screwkit.graphs.joints import prismatic, revolute, spherical
 from screwkit.graphs.twistgraph import twist_graph
+from screwkit.papers.paper_004 import (
+    four_limb_jacobians,
+    transmission_indices,
+)
 from screwkit.robots.families.four_limb import (
     FourLimbParameters,
     inverse_kinematics,

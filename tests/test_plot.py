@@ -22,7 +22,6 @@ from matplotlib.patches import FancyArrowPatch
 from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
 
 from screwkit import equivalent_twist_graph, load_mechanism, prismatic, revolute, twist_graph
-from screwkit.analysis.indices import TABLE_4_CONE, Region, actuation_singularity_surface
 from screwkit.core.wrenches import wrench_analysis
 from screwkit.exceptions import (
     DegenerateGeometryError,
@@ -40,6 +39,8 @@ from screwkit.interface.plot import (
     plot_verdicts,
 )
 from screwkit.interface.plot_diagrams import plot_twist_graph, plot_wrench_diagram
+from screwkit.papers.paper_004_surfaces import actuation_singularity_surface
+from screwkit.papers.paper_004_table4 import TABLE_4_CONE, Region
 
 
 @pytest.fixture(autouse=True)
@@ -258,11 +259,12 @@ def _square(z, phi=0.5, robot="toy"):
     """Two triangles of the square |x|, |y| <= 100 at height z, in the box region +-200 x +-200 x +-200."""
     corners = np.array([[-100, -100, z], [100, -100, z], [100, 100, z], [-100, 100, z]], dtype=float)
     region = Region.box((-200, 200), (-200, 200), (-200, 200))
-    return SimpleNamespace(triangles=corners[[[0, 1, 2], [0, 2, 3]]], phi=phi, robot=robot, region=region)
+    return SimpleNamespace(triangles=corners[[[0, 1, 2], [0, 2, 3]]], fixed={"phi": phi}, mechanism=robot,
+                           region=region)
 
 
 def test_singularity_surfaces_artists(tmp_path):
-    empty = SimpleNamespace(**{**vars(_square(0.0)), "triangles": np.zeros((0, 3, 3)), "phi": 0.0})
+    empty = SimpleNamespace(**{**vars(_square(0.0)), "triangles": np.zeros((0, 3, 3)), "fixed": {"phi": 0.0}})
     ax = plot_singularity_surfaces([_square(50.0, 1.3), _square(-50.0, -1.3), empty], wireframe=6)
     ax.figure.savefig(tmp_path / "surfaces.png")
     assert (tmp_path / "surfaces.png").stat().st_size > 1000
@@ -292,7 +294,7 @@ def test_singularity_surfaces_of_paper_004_robot(tmp_path):
     low, high = ax.get_zlim()
     assert (low, high) == (TABLE_4_CONE.lower[2], TABLE_4_CONE.upper[2])
     assert ax.get_title() == "Quattro: actuation singularity loci"
-    # one surface on its own is one surface (a SingularSurface is a tuple; a new user's trial got
+    # one surface on its own is one surface (a SingularSurface was once a tuple; a new user's trial got
     # "got ndarray" from iterating its fields)
     single = plot_singularity_surfaces(pair[0], wireframe=0)
     single.figure.savefig(tmp_path / "fig14b_plus.png")  # 3-D collections get their paths when drawn
@@ -302,7 +304,7 @@ def test_singularity_surfaces_of_paper_004_robot(tmp_path):
 def test_singularity_surfaces_errors():
     with pytest.raises(ScrewkitValueError, match="Expected at least one surface to draw, got none"):
         plot_singularity_surfaces([])
-    with pytest.raises(ScrewkitTypeError, match="Expected each surface to have triangles, phi, robot and region"):
+    with pytest.raises(ScrewkitTypeError, match=r"Expected each surface to have triangles, fixed \(with phi\), mechanism and region"):
         plot_singularity_surfaces([SimpleNamespace(triangles=np.zeros((0, 3, 3)))])
     bad = SimpleNamespace(**{**vars(_square(0.0)), "triangles": np.zeros((2, 3))})
     with pytest.raises(ScrewkitValueError, match=r"surfaces\[0\]\.triangles of shape \(m, 3, 3\), got \(2, 3\)"):

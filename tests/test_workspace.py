@@ -11,9 +11,13 @@ import numpy as np
 import pytest
 
 import screwkit as sk
+from screwkit.analysis import loci as LO
+from screwkit.analysis import paths as PA
+from screwkit.analysis import quantities as Q
+from screwkit.analysis import roots as RT
 from screwkit.analysis import workspace as W
-from screwkit.analysis.indices import det_A_closed_form, transmission_indices
 from screwkit.interface.cli import main
+from screwkit.papers.paper_004 import det_A_closed_form, transmission_indices
 from screwkit.robots.catalog import load_toml, mechanism_from_mapping
 from screwkit.robots.families.four_limb import reachable
 
@@ -164,8 +168,8 @@ def test_maps_and_crossings_do_not_depend_on_the_length_unit():
         W.grid_map(h4_m, "verdict", **metre_slice, angles="deg").values, W.grid_map(H4, "verdict", **SLICE, angles="deg").values
     )
     start, end = {"x": 300, "y": 300, "z": -800, "phi": -80}, {"x": 300, "y": 300, "z": -800, "phi": 0}
-    in_mm = W.check_path(H4, start, end, samples=30, angles="deg")
-    in_m = W.check_path(
+    in_mm = PA.check_path(H4, start, end, samples=30, angles="deg")
+    in_m = PA.check_path(
         h4_m, {**start, "x": 0.3, "y": 0.3, "z": -0.8}, {**end, "x": 0.3, "y": 0.3, "z": -0.8}, samples=30, angles="deg")
     assert in_mm.crossing.kind == "actuation"
     assert in_mm.crossing.kind == in_m.crossing.kind
@@ -177,7 +181,7 @@ def test_maps_and_crossings_do_not_depend_on_the_length_unit():
 
 @pytest.fixture(scope="module")
 def slice_loci():
-    return {locus.kind: locus for locus in W.loci(H4, **SLICE, angles="deg")}
+    return {locus.kind: locus for locus in LO.loci(H4, **SLICE, angles="deg")}
 
 
 def test_loci_lie_on_paper_002_surfaces_and_the_verdict_changes_across(slice_loci):
@@ -198,7 +202,7 @@ def test_loci_lie_on_paper_002_surfaces_and_the_verdict_changes_across(slice_loc
         )
         values = conditions(poses)[equation]
         assert np.abs(values).max() < 1e-9 * scale[kind], kind  # on the surface (paper 002 Eq. 6 / 7)
-        assert locus.closeness.max() < W.ACCEPT
+        assert locus.closeness.max() < RT.ACCEPT
         bit = 1 << ("constraint", "actuation").index(kind)
         assert (H4.at(poses).codes & bit).all()
         # across: a step of 1e-4 of the workspace along z or phi flips the equation's sign, and the
@@ -249,7 +253,7 @@ def test_core_calls_the_vertical_parallelogram_pose_regular():
 def test_surfaces_stack_slices_onto_paper_002_surfaces():
     found = {
         surface.kind: surface
-        for surface in W.surfaces(
+        for surface in LO.surfaces(
             H4, x=("z", -1100, -450, 6), y=("phi", -90, 90, 4), z=("x", 250, 300, 2), fixed={"y": 300}, angles="deg")
     }
     assert {"constraint", "actuation"} <= set(found)
@@ -267,7 +271,7 @@ def test_surfaces_stack_slices_onto_paper_002_surfaces():
     with pytest.raises(
         sk.ScrewkitValueError, match=r"Expected `fixed` not to set the region's axes, got \['x'\]"
     ):
-        W.surfaces(H4, fixed={"x": 0}, angles="deg")
+        LO.surfaces(H4, fixed={"x": 0}, angles="deg")
 
 
 def test_serial_locus_is_the_reach_edge(slice_loci):
@@ -302,11 +306,11 @@ def test_path_across_a_surface_finds_the_bisected_root(rng, surface):
             return float(conditions(start + t * (end - start))[equation])
 
         expected = bisect_root(along, 0.0, 1.0)
-        check = W.check_path(H4, start, end, samples=40, angles="rad")
+        check = PA.check_path(H4, start, end, samples=40, angles="rad")
         assert not check.singularity_free
         assert check.crossing.kind == surface
         assert abs(check.crossing.parameter - expected) < 1e-9
-        assert check.crossing.closeness < W.ACCEPT
+        assert check.crossing.closeness < RT.ACCEPT
         pose = np.array([check.crossing.pose[n] for n in H4.pose_names])
         np.testing.assert_allclose(pose, start + check.crossing.parameter * (end - start), rtol=1e-12)
 
@@ -317,13 +321,13 @@ def test_path_inside_the_catalog_box_is_singularity_free():
     dense = api(np.linspace([*start.values()], [*end.values()], 2000))
     eq6, eq7 = conditions(dense)  # independently: no sign change of Eq. (6) or (7) on the path
     assert (eq6 < 0).all() and (eq7 > 0).all() and reachable(H4.parameters, dense).all()
-    check = W.check_path(H4, start, end, samples=50, angles="deg")
+    check = PA.check_path(H4, start, end, samples=50, angles="deg")
     assert check.singularity_free and check.crossing is None
     assert check.start == start and check.end == end
 
 
 def test_path_leaving_the_reach_reports_the_serial_edge():
-    check = W.check_path(H4, {"z": -750.0}, {"z": -5000.0}, samples=20, angles="deg")
+    check = PA.check_path(H4, {"z": -750.0}, {"z": -5000.0}, samples=20, angles="deg")
 
     def inside(t):
         return 1.0 if reachable(H4.parameters, [0, 0, -750.0 - 4250.0 * t, 0])[()] else -1.0
@@ -471,38 +475,36 @@ def test_other_errors():
     with pytest.raises(sk.ScrewkitValueError, match="four-limb mechanism for quantity 'lti'"):
         W.grid_map(sk.load_mechanism("planar_3rrp"), "lti", x=("x", -1, 1, 2), y=("y", -1, 1, 2), angles="deg")
     with pytest.raises(sk.ScrewkitValueError, match=r"Expected `samples` to be an integer in 2\.\.1e\+06, got 1\.$"):
-        W.check_path(H4, {}, {"z": -700}, samples=1, angles="deg")
+        PA.check_path(H4, {}, {"z": -700}, samples=1, angles="deg")
     # 10^9 samples would be one 10^9-pose batch (a MemoryError): refused before any work
     with pytest.raises(sk.ScrewkitValueError, match=r"Expected `samples` to be an integer in 2\.\.1e\+06, got 1000000000\.$"):
-        W.check_path(H4, {}, {"z": -700}, samples=10**9, angles="deg")
+        PA.check_path(H4, {}, {"z": -700}, samples=10**9, angles="deg")
     with pytest.raises(sk.ScrewkitValueError, match=r"Expected `start` to have shape \(4,\)"):
-        W.check_path(H4, [0, 0, -700], {"z": -700}, angles="deg")
+        PA.check_path(H4, [0, 0, -700], {"z": -700}, angles="deg")
     with pytest.raises(sk.ScrewkitTypeError, match="Expected `end\\['z'\\]` to be a number"):
-        W.check_path(H4, {}, {"z": "low"}, angles="deg")
+        PA.check_path(H4, {}, {"z": "low"}, angles="deg")
     with pytest.raises(sk.ScrewkitTypeError, match="Expected `mode` to be None"):
-        W.check_path(H4, {}, {"z": -700}, mode="up", angles="deg")
+        PA.check_path(H4, {}, {"z": -700}, mode="up", angles="deg")
     with pytest.raises(sk.ScrewkitValueError, match=r"Expected `path` to end in \.npz, \.json or \.png"):
         W.grid_map(H4, "verdict", x=("z", -900, -600, 2), y=("phi", -10, 10, 2), angles="deg").save("m.csv")
 
 
 def test_png_through_screwkit_plot(tmp_path):
     pytest.importorskip("matplotlib")
-    pytest.importorskip("screwkit.interface.plot")
+    plot = pytest.importorskip("screwkit.interface.plot")
     for quantity in ("verdict", "lti"):
         m = W.grid_map(H4, quantity, x=("z", -900, -600, 4), y=("phi", -30, 30, 3), angles="deg")
-        written = m.save(tmp_path / f"{quantity}.png")
-        assert written.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+        written = plot.save_map_png(m, tmp_path / f"{quantity}.png")
+        assert written == tmp_path / f"{quantity}.png" and written.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
-def test_png_without_the_plot_extra_says_what_to_install(monkeypatch, tmp_path):
-    import sys
-
-
-    monkeypatch.setitem(sys.modules, "screwkit.interface.plot", None)  # import screwkit.interface.plot fails
-    monkeypatch.delattr(sk.interface, "plot", raising=False)  # also once an earlier test has imported it
+def test_png_without_the_plot_extra_says_what_to_install(tmp_path):
+    # a map is data: it writes .npz and .json itself; a .png is drawn by screwkit.interface.plot
+    # (the plot extra), which its refusal names, with what to install
     m = W.grid_map(H4, "verdict", x=("z", -900, -600, 2), y=("phi", -10, 10, 2), angles="deg")
-    with pytest.raises(sk.ScrewkitValueError, match=r"pip install 'screwkit\[plot\]'"):
+    with pytest.raises(sk.ScrewkitValueError, match=r"plot\.save_map_png draws it \(pip install 'screwkit\[plot\]'\)"):
         m.save(tmp_path / "m.png")
+    assert not (tmp_path / "m.png").exists()
 
 
 def test_progress_line_on_request(capsys):
@@ -523,9 +525,9 @@ def test_angles_are_radians_by_default_like_the_rest_of_the_api():
 
 @pytest.mark.parametrize("call", [
     lambda g: W.grid_map(g, "verdict"),
-    lambda g: W.check_path(g, {}, {}),
+    lambda g: PA.check_path(g, {}, {}),
     lambda g: W.evaluate(g, [[0, 0, 0, 0]], "verdict"),
-    lambda g: W.loci(g, x=("z", -900, -600, 3), y=("phi", -0.5, 0.5, 3)),
+    lambda g: LO.loci(g, x=("z", -900, -600, 3), y=("phi", -0.5, 0.5, 3)),
 ])
 def test_a_twist_graph_is_refused_with_a_pointer_to_analyze(call):
     graph = H4.twist_graph()
@@ -548,7 +550,7 @@ def test_cli_verdict_map_names_its_codes(tmp_path, capsys):
     codes = {v for row in saved["values"] for v in row if v is not None}
     line = next(ln for ln in printed.splitlines() if "verdicts of the reachable poses" in ln)
     for code in codes:
-        assert W.verdict_name(code) in line
+        assert Q.verdict_name(code) in line
     assert sum(float(p.split()[-1].rstrip("%")) for p in line.split(": ", 1)[1].split(", ")) == pytest.approx(100, abs=0.2)
 
 
@@ -564,3 +566,21 @@ def test_condition_map_says_which_factor_it_shows(tmp_path, capsys):
     assert main(argv) == 0
     assert "  actuation factor [a b d ḟ][c g ḣ j] (vector form " in capsys.readouterr().out
     assert W.grid_map(H4, "lti", x=("z", -1000, -600, 2), y=("phi", 0, 1, 2), angles="deg").meaning == ""
+
+
+def test_register_quantity_errors():
+    # the maps read a paper's quantities by name (import screwkit registers paper 004's)
+    with pytest.raises(sk.ScrewkitValueError, match=r"Expected `name` to be one of \('lti', 'kappa', 'zeta'\), got 'volume'"):
+        Q.register_quantity("volume", len)
+    with pytest.raises(sk.ScrewkitTypeError, match="Expected `function` to be callable, got str"):
+        Q.register_quantity("lti", "eta")
+
+
+def test_the_maps_read_paper_004_through_the_posed_mechanism():
+    # "lti" over a posed batch is paper 004's eta at those poses, computed from the posed mechanism
+    poses = np.array([[0.0, 0.0, -750.0, 0.0], [30.0, -20.0, -750.0, 0.3]])
+    values, ok = W.evaluate(H4, poses, "lti")
+    # exact on the numpy path; once an earlier batch of >= 256 poses has loaded paper 004's compiled
+    # kernel (screwkit.papers._lti_numba), it agrees with the numpy path to 1e-12 (tests/test_indices_numba.py)
+    np.testing.assert_allclose(values, transmission_indices(H4.configuration(poses)).lti, rtol=0, atol=1e-12)
+    assert ok.all()

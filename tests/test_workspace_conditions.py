@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 
 import screwkit as sk
+from screwkit.analysis import quantities as Q
 from screwkit.analysis import workspace as W
 from screwkit.core.wrench_systems import analyze_table
 from screwkit.exceptions import DegenerateGeometryError
@@ -72,7 +73,7 @@ def test_condition_product_is_the_six_by_six_determinant_of_the_wrench_lines(h4_
 @pytest.mark.parametrize("name", ["h4", "mcgill_smg", "peppermill", "planar_3rrp", "ragnar"])
 def test_batched_conditions_equal_the_single_pose_evaluation(name, h4_poses):
     mechanism = sk.load_mechanism(name)
-    diagram, conditions, _, _ = W._conditions(mechanism, {})
+    diagram, conditions, _, _ = Q.conditions_of(mechanism, {})
     rng = np.random.default_rng(7)
     poses = h4_poses[::8] if name == "h4" else mechanism.random_poses(rng, 8)
     posed = mechanism.at(poses)
@@ -87,7 +88,7 @@ def test_batched_conditions_equal_the_single_pose_evaluation(name, h4_poses):
 def test_each_bracket_is_a_batched_four_by_four_determinant(h4_poses):
     # the factor as a bracket polynomial (every bracket a 4×4 determinant over the batch) equals
     # its proved constant times the vector form the maps evaluate
-    diagram, conditions, _, _ = W._conditions(H4_MECHANISM, {})
+    diagram, conditions, _, _ = Q.conditions_of(H4_MECHANISM, {})
     posed = H4_MECHANISM.at(h4_poses)
     points = batch_diagram_points(diagram.points, analyze_table(posed.joints))
     for condition in conditions:

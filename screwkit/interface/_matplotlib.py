@@ -15,6 +15,7 @@ from ..exceptions import MissingDependencyError, ScrewkitTypeError
 try:
     import matplotlib.pyplot as plt
     from matplotlib.colors import BoundaryNorm, ListedColormap, to_rgba
+    from matplotlib.figure import Figure
     from matplotlib.lines import Line2D
     from matplotlib.patches import FancyArrowPatch, Patch
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
@@ -27,6 +28,7 @@ except ImportError as err:  # pragma: no cover - exercised in a subprocess witho
 __all__ = [
     "BoundaryNorm",
     "FancyArrowPatch",
+    "Figure",
     "Line2D",
     "ListedColormap",
     "Patch",

@@ -144,9 +144,9 @@ class AnalysisReport:
     jacobians_note : str
         What the Jacobians' columns are, or why there are none.
     transmission : dict or None
-        The transmission indices at the pose (:func:`screwkit.analysis.indices.transmission_summary`: the
-        wrench-based ITI/OTI/LTI, and paper 004's κ, ζ, η for the four-limb family); None for a
-        snapshot.
+        The transmission indices at the pose
+        (:func:`screwkit.papers.paper_004_summary.transmission_summary`: the wrench-based
+        ITI/OTI/LTI, and paper 004's κ, ζ, η for the four-limb family); None for a snapshot.
     given_length_scale : float or None
         The characteristic length the caller gave (None: derived from the screws; the one used is
         ``analysis.length_scale``).

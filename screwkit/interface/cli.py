@@ -18,14 +18,14 @@ Commands
 ``screwkit screw (--revolute SX SY SZ --point X Y Z | --prismatic DX DY DZ | --plucker C*6)``
     Describe one screw.
 ``screwkit table4 [--grid N] [--refine K] [--robot NAME ...] [--json]``
-    Paper 004's Table 4 regenerated (:func:`screwkit.analysis.indices.table_4`): each min/max LTI beside
-    ours, the difference, and why they differ where they do.
+    Paper 004's Table 4 regenerated (:func:`screwkit.papers.paper_004_table4.table_4`): each min/max
+    LTI beside ours, the difference, and why they differ where they do.
 ``screwkit map NAME|FILE.toml --quantity Q --Z LO HI [N] --PHI LO HI [N] [--X V ...] [--grid N] --out F``
     A map of a quantity over a 2-D slice (:func:`screwkit.analysis.workspace.grid_map`): two pose
     coordinates given as ranges, the others fixed (default: the default pose); writes .png, .npz or
     .json and prints the region, minimum and maximum and where they occur.
 ``screwkit path NAME|FILE.toml --from Q... --to Q... [--samples N] [--json]``
-    Check a straight path for singularities (:func:`screwkit.analysis.workspace.check_path`).
+    Check a straight path for singularities (:func:`screwkit.analysis.paths.check_path`).
 
 Examples
 --------

@@ -149,7 +149,7 @@ def get_parser() -> argparse.ArgumentParser:
         help="paper 004's Table 4 (min/max LTI) regenerated, the paper's values beside ours",
         description="Regenerate paper 004's Table 4: the extremes of the local transmission index "
         "(Eq. 16) over each robot's workspace, by a grid and a local refinement "
-        "(screwkit.analysis.indices.index_extremes); the paper's value, ours, the difference and its cause.",
+        "(screwkit.papers.paper_004_table4.index_extremes); the paper's value, ours, the difference and its cause.",
     )
     table4.add_argument("--grid", type=int, default=41, metavar="N", help="grid points per axis (default 41)")
     table4.add_argument(
@@ -167,12 +167,12 @@ def get_parser() -> argparse.ArgumentParser:
 
 
 class _MapQuantities:
-    """The quantities a map can show (:data:`screwkit.analysis.workspace.QUANTITIES`), listed in
+    """The quantities a map can show (:data:`screwkit.analysis.quantities.QUANTITIES`), listed in
     ``map --help``: read when the help is shown, so that parsing a command does not import
     :mod:`screwkit.analysis.workspace`."""
 
     def __str__(self) -> str:
-        from ..analysis.workspace import QUANTITIES
+        from ..analysis.quantities import QUANTITIES
 
         return ", ".join(QUANTITIES)
 

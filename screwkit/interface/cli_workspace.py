@@ -2,7 +2,7 @@
 
 Each ``run_*`` takes the parsed arguments (:func:`screwkit.interface.cli_parser.get_parser`), checks
 them against the caps below before computing (never a hang or an allocation beyond memory), calls
-the public API (:mod:`screwkit.analysis.workspace`, :func:`screwkit.analysis.indices.table_4`),
+the public API (:mod:`screwkit.analysis.workspace`, :func:`screwkit.papers.paper_004_table4.table_4`),
 prints its answer and returns the exit status; :func:`screwkit.interface.cli.main` dispatches to them.
 """
 
@@ -63,10 +63,11 @@ def run_map(args: argparse.Namespace) -> int:
       minimum 0 at ...
     0
     """
-    from ..analysis.workspace import _quantity, grid_map
+    from ..analysis.quantities import quantity as checked_quantity
+    from ..analysis.workspace import grid_map
 
     try:
-        quantity = _quantity(args.quantity)
+        quantity = checked_quantity(args.quantity)
     except ScrewkitError as err:
         raise UsageError(f"screwkit map: error: --quantity: {err}") from err
     if not args.out.lower().endswith((".png", ".npz", ".json")):
@@ -149,7 +150,7 @@ def run_map(args: argparse.Namespace) -> int:
     if result.meaning:
         lines.append(f"  {result.meaning}")
     if result.quantity == "verdict" and result.reachable.any():  # codes mean kinds: say which were found
-        from ..analysis.workspace import verdict_name
+        from ..analysis.quantities import verdict_name
 
         codes, counts = np.unique(result.values[result.reachable], return_counts=True)
         found = ", ".join(
@@ -190,7 +191,7 @@ def run_path(args: argparse.Namespace) -> int:
     singularity-free (20 samples, refined)
     0
     """
-    from ..analysis.workspace import check_path
+    from ..analysis.paths import check_path
 
     if not 2 <= args.samples <= MAX_PATH_SAMPLES:
         raise UsageError(
@@ -229,7 +230,7 @@ def run_table4(args: argparse.Namespace) -> int:
     Veloce       0 deg  cone     0.287 ...
     0
     """
-    from ..analysis.indices import MAX_GRID, MAX_REFINE, TABLE_4, table_4
+    from ..papers.paper_004_table4 import MAX_GRID, MAX_REFINE, TABLE_4, table_4
 
     known = sorted({row[1] for row in TABLE_4})
     for name in args.robot or []:
@@ -247,7 +248,7 @@ def run_table4(args: argparse.Namespace) -> int:
         return 0
     print_text(
         f"paper 004, Table 4: min/max LTI (Eq. 16) over the workspace; ours: {args.grid}^3 grid + "
-        f"{args.refine} rounds of refinement (screwkit.analysis.indices.index_extremes)"
+        f"{args.refine} rounds of refinement (screwkit.papers.paper_004_table4.index_extremes)"
     )
     print_text(f"{'robot':<10} {'phi':>5}      {'region':<8} {'min: paper':>10} {'ours':>7} {'diff':>7}"
           f"   {'max: paper':>10} {'ours':>7} {'diff':>7}")

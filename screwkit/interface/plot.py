@@ -21,7 +21,7 @@ attributes works:
   workspace drawn as a blue wireframe (paper 004, Figs. 14-16: the actuation singularity loci of the
   Quattro, H4 and V4 at two rotations ``±φ`` each). A surface has ``triangles (m, 3, 3)``, ``phi``,
   ``robot`` and ``region`` (with ``lower``, ``upper``, ``name`` and ``boundary(count)``), as
-  :func:`screwkit.analysis.indices.actuation_singularity_surface` returns;
+  :func:`screwkit.papers.paper_004_surfaces.actuation_singularity_surface` returns;
 * :func:`plot_verdicts`: the same grid coloured by verdict (``values`` are the codes of
   :attr:`screwkit.core.verdicts.SingularityReport.codes`, bit 1 constraint, 2 actuation, 4 serial, or
   the verdict strings).
@@ -41,7 +41,9 @@ Examples
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Collection, Iterable
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -50,6 +52,7 @@ from ..core.verdicts import LABELS
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
 from ._matplotlib import (
     BoundaryNorm,
+    Figure,
     Line2D,
     ListedColormap,
     Patch,
@@ -66,6 +69,7 @@ __all__ = [
     "plot_map",
     "plot_singularity_surfaces",
     "plot_verdicts",
+    "save_map_png",
 ]
 
 Array = np.ndarray
@@ -367,13 +371,14 @@ def plot_singularity_surfaces(
 
     Each surface is a set of triangles in its own colour (:data:`SURFACE_COLOURS` in turn), shaded
     by a light from above; the first surface's region is drawn as a blue wireframe (points of its
-    boundary, :meth:`screwkit.analysis.indices.Region.boundary`), the axes span the region's box with equal
-    scales. A surface with no triangle (none in the region) is named in the legend as such.
+    boundary, :meth:`screwkit.papers.paper_004_table4.Region.boundary`), the axes span the region's
+    box with equal scales. A surface with no triangle (none in the region) is named in the legend as such.
 
     Parameters
     ----------
     surfaces : SingularSurface or iterable of SingularSurface
-        From :func:`screwkit.analysis.indices.actuation_singularity_surface`, e.g. at ``+φ`` and ``-φ``.
+        From :func:`screwkit.papers.paper_004_surfaces.actuation_singularity_surface`, e.g. at
+        ``+φ`` and ``-φ``.
     ax : 3-D matplotlib axes, optional
         Default: a new figure with ``projection="3d"``.
     wireframe : int
@@ -400,7 +405,8 @@ def plot_singularity_surfaces(
     >>> matplotlib.use("Agg")
     >>> import numpy as np
     >>> from screwkit.robots.catalog import load_mechanism
-    >>> from screwkit.analysis.indices import TABLE_4_CONE, actuation_singularity_surface
+    >>> from screwkit.papers.paper_004_surfaces import actuation_singularity_surface
+    >>> from screwkit.papers.paper_004_table4 import TABLE_4_CONE
     >>> quattro = load_mechanism("quattro")
     >>> pair = [actuation_singularity_surface(quattro, angle, TABLE_4_CONE, grid=10)
     ...         for angle in (np.pi / 2, -np.pi / 2)]
@@ -409,8 +415,7 @@ def plot_singularity_surfaces(
     ['φ = +90°', 'φ = -90°', 'workspace']
     """
     ax = new_axes(ax, three_d=True)
-    # one surface is drawn as a list of one (a SingularSurface is a tuple: iterating it would give
-    # its fields)
+    # one surface is drawn as a list of one
     items: list[Any] = [surfaces] if hasattr(surfaces, "triangles") else list(surfaces)
     if not items:
         raise ScrewkitValueError("Expected at least one surface to draw, got none.")
@@ -419,12 +424,12 @@ def plot_singularity_surfaces(
     for index, surface in enumerate(items):
         try:
             triangles = np.asarray(surface.triangles, dtype=float)
-            phi, robot = float(surface.phi), str(surface.robot)
+            phi, robot = float(surface.fixed["phi"]), str(surface.mechanism)
             regions.append(surface.region)
-        except AttributeError as err:
+        except (AttributeError, KeyError, TypeError) as err:
             raise ScrewkitTypeError(
-                "Expected each surface to have triangles, phi, robot and region (a "
-                f"screwkit.analysis.indices.SingularSurface), got {type(surface).__name__}: {err}."
+                "Expected each surface to have triangles, fixed (with phi), mechanism and region (a "
+                f"screwkit.analysis.loci.SingularSurface), got {type(surface).__name__}: {err}."
             ) from err
         if triangles.ndim != 3 or triangles.shape[1:] != (3, 3):
             raise ScrewkitValueError(
@@ -455,3 +460,46 @@ def plot_singularity_surfaces(
     ax.set_title(f"{robot}: actuation singularity loci", fontsize=10)
     ax.legend(handles=handles, loc="upper left", fontsize=8)
     return ax
+
+
+def save_map_png(workspace_map: Any, path: str | Path) -> Path:
+    """Draw a map (:func:`plot_verdicts` for a ``"verdict"`` map, else :func:`plot_map`'s
+    isocontours; angles stored in radians drawn in degrees) and write it as a PNG.
+
+    What ``screwkit map ... --out FILE.png`` writes: a map is data
+    (:class:`screwkit.analysis.workspace.WorkspaceMap`), drawn here. The figure is drawn off screen
+    (a :class:`matplotlib.figure.Figure` of its own: pyplot's backend and figures are left alone).
+
+    Parameters
+    ----------
+    workspace_map : WorkspaceMap
+    path : str or pathlib.Path
+        The PNG file to write.
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> from screwkit.analysis.workspace import grid_map
+    >>> from screwkit.robots.catalog import load_mechanism
+    >>> m = grid_map(load_mechanism("h4"), "verdict", x=("z", -900, -600, 3), y=("phi", -0.2, 0.2, 3))
+    >>> save_map_png(m, pathlib.Path(tempfile.mkdtemp()) / "m.png").stat().st_size > 0
+    True
+    """
+    target = Path(path)
+    in_radians = tuple(n for n, unit in workspace_map.units.items() if unit == "rad")  # drawn in degrees
+    figure = Figure(figsize=(7, 5.5))
+    ax = figure.subplots()
+    if workspace_map.quantity == "verdict":  # the plot takes codes 0..7; out of reach is the mask's to say
+        drawn = dataclasses.replace(
+            workspace_map, values=np.where(workspace_map.reachable, workspace_map.values, 0)
+        )
+        plot_verdicts(drawn, ax=ax, degrees=in_radians)
+    else:
+        plot_map(workspace_map, ax=ax, degrees=in_radians)
+    figure.savefig(target, dpi=120, bbox_inches="tight")
+    return target

@@ -48,6 +48,7 @@ from ..core.wrenches import wrench_analysis
 from ..exceptions import ScrewkitError, ScrewkitTypeError, ScrewkitValueError
 from ..graphs.reduction import equivalent_twist_graph
 from ..robots.catalog import Mechanism, file_kind, load_mechanism, load_snapshot, load_toml
+from ..robots.posed import Pose
 from .analysis_report import AnalysisReport
 
 if TYPE_CHECKING:  # the diagram and GCA stack loads when a report is made, not on `import screwkit`
@@ -71,12 +72,13 @@ def analyze(
 
     Parameters
     ----------
-    target : str, pathlib.Path, Mechanism or networkx.MultiDiGraph
-        A catalog name (``"h4"``), a catalog or snapshot ``.toml`` file, a :class:`Mechanism`, or a
-        twist graph built in Python (analysed at its configuration, like a snapshot).
+    target : str, pathlib.Path, Mechanism, Pose or networkx.MultiDiGraph
+        A catalog name (``"h4"``), a catalog or snapshot ``.toml`` file, a :class:`Mechanism`, one
+        pose of a posed batch (``mechanism.at(poses)[i]``: its pose, ``rtol`` and ``length_scale``),
+        or a twist graph built in Python (analysed at its configuration, like a snapshot).
     pose : array_like, optional
         In the mechanism's length unit and radians; default: the catalog's default pose. Not
-        accepted for snapshots and graphs (their configuration is given).
+        accepted for snapshots, graphs and a Pose (their configuration is given).
     rtol : float, optional
         Relative tolerance of every rank decision (default 1e-9).
     length_scale : float, optional
@@ -102,6 +104,10 @@ def analyze(
     --------
     >>> analyze("h4", [0.0, 0.0, -750.0, 0.0], superbracket=False).verdict.labels
     ()
+    >>> from screwkit.robots.catalog import load_mechanism
+    >>> posed = load_mechanism("h4").at([[0, 0, -750, 0], [30, -20, -750, 0.3]])
+    >>> analyze(posed[1], superbracket=False).pose.tolist()
+    [30.0, -20.0, -750.0, 0.3]
     """
     tolerance = B.DEFAULT_RTOL if rtol is None else checked_rtol(rtol)
     length = checked_length_scale(length_scale, allow_none=True)
@@ -110,6 +116,16 @@ def analyze(
     if progress is not None and not callable(progress):
         raise ScrewkitTypeError(f"Expected `progress` to be callable, got {type(progress).__name__}.")
     step = progress or (lambda stage: None)
+    if isinstance(target, Pose):
+        options = (("pose", pose), ("rtol", rtol), ("length_scale", length_scale))
+        given = [name for name, value in options if value is not None]
+        if given:
+            raise ScrewkitValueError(
+                "Expected no `pose`, `rtol` or `length_scale` with a Pose (it has them: mechanism.at(poses, "
+                f"rtol=..., length_scale=...)), got {', '.join(given)}."
+            )
+        step(STAGES[0])
+        return pose_report(target, superbracket=superbracket, progress=step)
     step(STAGES[0])
     if isinstance(target, nx.MultiDiGraph):
         return _graph_report(target, "<graph>", pose, tolerance, length, superbracket, "a twist graph", step)
@@ -136,7 +152,7 @@ def _one_pose(mechanism: Mechanism, pose: Any, rtol: float, length_scale: float 
         raise ScrewkitValueError(
             f"Expected `pose` to be one pose of shape ({len(mechanism.pose_names)},) "
             f"({', '.join(mechanism.pose_names)}), got shape {array.shape}; for many poses use "
-            "mechanism.at(poses) and each pose's report()."
+            "mechanism.at(poses) and sk.analyze(posed[i]) of each pose."
         )
     return mechanism.at(array, rtol=rtol, length_scale=length_scale)[0]
 
@@ -197,7 +213,20 @@ def _graph_report(
 def pose_report(
     pose: Any, *, superbracket: bool = True, progress: Callable[[str], None] | None = None
 ) -> AnalysisReport:
-    """The report of one pose of a posed mechanism (:meth:`screwkit.robots.posed.Pose.report`).
+    """The report of one pose of a posed mechanism (what :func:`analyze` of a Pose returns).
+
+    Parameters
+    ----------
+    pose : Pose
+        One pose of ``mechanism.at(poses)``.
+    superbracket : bool
+        Also expand and factor the superbracket.
+    progress : callable, optional
+        Called with the name of each stage as it starts (:data:`STAGES`).
+
+    Returns
+    -------
+    AnalysisReport
 
     Examples
     --------
@@ -237,7 +266,7 @@ def pose_report(
         jacobians_note,
         progress=step,
     )
-    from ..analysis.indices import transmission_summary
+    from ..papers.paper_004_summary import transmission_summary
 
     return dataclasses.replace(
         report,

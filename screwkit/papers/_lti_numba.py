@@ -1,10 +1,10 @@
-"""numba kernel of :func:`screwkit.analysis.indices.transmission` (private; imported on the first call).
+"""numba kernel of :func:`screwkit.papers.paper_004.transmission` (private; imported on the first call).
 
 One loop over a flat batch of poses does, pose by pose, paper 004's inverse kinematics (Eq. 3) and the
 indices ``κ``, ``ζ`` (Eq. 15), without building a configuration, without a branch and without a call
 to the maths library, so that the compiler turns it into SIMD code over several poses at once
 (``bench/bench_indices.py`` checks the machine code for packed instructions). The numpy path (the
-family's configuration, then :func:`screwkit.analysis.indices.transmission_indices`) is the reference; the
+family's configuration, then :func:`screwkit.papers.paper_004.transmission_indices`) is the reference; the
 tests check that the two agree to round-off.
 
 Per limb (limb ``i`` of paper 004; ``d_i = c_i - a_i``, ``F_i j``, ``F_i k`` as in

@@ -7,12 +7,14 @@ cached properties over the whole batch, each built on the one before:
 :class:`~screwkit.graphs.jointtable.JointTable`) → ``singularities`` (labels, orders, closeness: the inverse
 kinematics, joint table and analysis core chunk by chunk, :func:`~screwkit.core.singularity.classify_chunks`,
 so that a large batch never holds its whole table) → ``jacobians`` (``A χ̇ = B θ̇`` over the family's
-nominal twists) → ``transmission`` (paper 004's κ, ζ, LTI; four-limb family) and
-``wrench_transmission`` (input/output transmission from the actuation wrenches, any family).
+nominal twists) → ``wrench_transmission`` (input/output transmission from the actuation wrenches,
+any family: :mod:`screwkit.robots.transmission`). :meth:`PosedMechanism.diagram_points` evaluates a
+wrench diagram's points over the batch. The composer hands its results on: maps, loci and paths
+(:mod:`screwkit.analysis`), paper 004's indices (:func:`screwkit.papers.paper_004.transmission`) and
+the report (:func:`screwkit.interface.report.analyze` of one pose) read them; it calls none of them.
 
-Indexing gives one :class:`Pose`: its graph, wrench analysis (a batch of one through the same
-kernels), verdict, Jacobians, wrench diagram, superbracket and :meth:`Pose.report`. The
-superbracket's generic samples are drawn as one batch (:func:`generic_samples`).
+Indexing gives one :class:`Pose`: its graph, wrench analysis (a batch of one through the same kernels),
+verdict, Jacobians, wrench diagram and superbracket (generic samples drawn as one batch).
 
 Examples
 --------
@@ -44,6 +46,7 @@ from ..core.verdicts import SingularityReport
 from ..core.wrench_systems import WrenchAnalysis, analyze_table
 from ..exceptions import ScrewkitError, ScrewkitIndexError, ScrewkitValueError
 from ..graphs.jointtable import JointTable
+from .transmission import Transmission, wrench_transmission
 
 __all__ = ["Pose", "PosedMechanism", "generic_samples"]
 
@@ -109,6 +112,20 @@ class PosedMechanism:
         options: Any = None,
     ) -> PosedMechanism:
         """Validate and build (what :meth:`screwkit.robots.catalog.Mechanism.at` calls).
+
+        Parameters
+        ----------
+        mechanism : Mechanism
+        poses : array_like, shape (..., n), optional
+            None: the default pose.
+        rtol : float, optional
+        length_scale : float, optional
+        options : mapping, optional
+            Inverse-kinematics options.
+
+        Returns
+        -------
+        PosedMechanism
 
         Examples
         --------
@@ -218,21 +235,54 @@ class PosedMechanism:
         return jacobians_from_wrenches(self.singularities.analysis, self.twist_basis, rtol=self.rtol)
 
     @functools.cached_property
-    def transmission(self) -> Any:
-        """Paper 004's ``κ`` (input), ``ζ`` (output) and LTI ``η`` per pose
-        (:func:`screwkit.analysis.indices.transmission`; four-limb family only, ScrewkitValueError
-        otherwise)."""
-        from ..analysis.indices import transmission
-
-        return transmission(self)
-
-    @functools.cached_property
-    def wrench_transmission(self) -> Any:
+    def wrench_transmission(self) -> Transmission:
         """Input/output transmission per actuated joint and their LTI, from the actuation wrenches and
-        the nominal twists, for any family (:func:`screwkit.analysis.indices.wrench_transmission`)."""
-        from ..analysis.indices import application_points, wrench_transmission
+        the nominal twists, for any family (:func:`screwkit.robots.transmission.wrench_transmission`;
+        the input at the points the family's optional ``application_points`` hook gives, e.g. the
+        elbows of the four-limb family)."""
+        hook = self.mechanism.family_protocol.application_points
+        points = None if hook is None else hook(self.configuration)
+        return wrench_transmission(self.jacobians, input_points=points)
 
-        return wrench_transmission(self.jacobians, input_points=application_points(self.configuration))
+    def diagram_points(self, points: tuple[Any, ...]) -> tuple[dict[str, Array], Array]:
+        """A wrench diagram's points at every pose of the batch, in the core's chunks.
+
+        The joint table goes through the analysis core :data:`CHUNK` poses at a time with the
+        per-pose frames the points' recipes read (:func:`screwkit.gca.diagram.batch_diagram_points`),
+        so that only the points are kept.
+
+        Parameters
+        ----------
+        points : tuple of DiagramPoint
+            The points of a wrench diagram (``diagram.points``), each with a ``label``.
+
+        Returns
+        -------
+        values : dict of str to numpy.ndarray, shape (m, 4)
+            Per label, the point's homogeneous coordinates over the batch of ``m`` poses (shape
+            ``(m,)``; NaN where it does not exist).
+        exists : numpy.ndarray of bool, shape (m,)
+            Where every point exists.
+
+        Examples
+        --------
+        >>> from screwkit.robots.catalog import load_mechanism
+        >>> h4 = load_mechanism("h4")
+        >>> diagram = h4.at()[0].diagram
+        >>> values, exists = h4.at([[0, 0, -750, 0], [30, -20, -750, 0.3]]).diagram_points(diagram.points)
+        >>> len(values) == len(diagram.points), exists.tolist()
+        (True, [True, True])
+        """
+        from ..gca.diagram import batch_diagram_points
+
+        table, rtol, length = self.joints, self.rtol, self.length_scale
+        parts = [
+            batch_diagram_points(points, analyze_table(table[i : i + CHUNK], rtol=rtol, length_scale=length))
+            for i in range(0, len(self), CHUNK)
+        ]
+        values = {p.label: np.concatenate([part[p.label] for part in parts]) for p in points}
+        exists = np.all([np.isfinite(v).all(axis=-1) for v in values.values()], axis=0)
+        return values, np.asarray(exists, dtype=bool).reshape(len(self))
 
     def __getitem__(self, index: Any) -> Pose:
         parts = index if isinstance(index, tuple) else (index,)
@@ -357,6 +407,12 @@ class Pose:
         the generic poses are given as ``degenerate``. The sampler
         replays recipes evaluated at random workspace poses, drawn and analysed as one batch
         (:func:`generic_samples`).
+
+        Returns
+        -------
+        diagram : WrenchDiagram
+        sampler : callable
+            ``sampler(rng) -> {label: (4,)}``, the diagram's points at a generic pose.
         """
         from dataclasses import replace
 
@@ -404,19 +460,6 @@ class Pose:
                 f"got none: {'; '.join(diagram.degenerate)}."
             )
         return superbracket_analysis(diagram, sampler)
-
-    def report(self, *, superbracket: bool = True, progress: Any = None) -> Any:
-        """The whole analysis report at this pose (:class:`screwkit.interface.report.AnalysisReport`).
-
-        Examples
-        --------
-        >>> from screwkit.robots.catalog import load_mechanism
-        >>> load_mechanism("h4").at()[0].report(superbracket=False).verdict.verdict
-        'regular'
-        """
-        from ..interface.report import pose_report
-
-        return pose_report(self, superbracket=superbracket, progress=progress)
 
 
 def _joint_table(
@@ -499,6 +542,21 @@ def generic_samples(
     one batch (:func:`screwkit.gca.diagram.batch_diagram_points`).
 
     Poses where a point does not exist are skipped; at most ``2 * count`` poses are drawn.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+    points : sequence of DiagramPoint
+    rng : numpy.random.Generator
+    count : int
+        Samples wanted.
+    rtol : float
+    length_scale : float, optional
+
+    Returns
+    -------
+    list of dict
+        ``{label: (4,)}`` per sample.
 
     Raises
     ------

@@ -62,6 +62,11 @@ class Family:
         any known unit.
     reachable : callable or None
         ``reachable(parameters, poses) -> (...,) bool``, the optional vectorised reach test.
+    application_points : callable or None
+        ``application_points(configuration) -> (..., n, 3)``, the optional hook saying where the
+        actuation wrenches act on the actuated links, in the order of the actuated joints
+        (:func:`screwkit.robots.transmission.wrench_transmission`'s ``input_points``); None: found
+        from the joint axes.
 
     Examples
     --------
@@ -78,6 +83,7 @@ class Family:
     angle_names: tuple[str, ...]
     parameter_kinds: Mapping[str, str] = field(default_factory=dict)
     reachable: Callable[[Any, np.ndarray], np.ndarray] | None = None
+    application_points: Callable[[Any], np.ndarray] | None = None
 
     def joint_table(self, configuration: Any) -> JointTable:
         """``joints(configuration)``, checked to be a :class:`~screwkit.graphs.jointtable.JointTable`
@@ -131,6 +137,7 @@ def _built_in(name: str) -> Family:
             dict.fromkeys(limb_lengths, "length")
             | {"alpha": "angle", "beta": "angle", "platform_kind": "number"},
             four_limb.reachable,
+            four_limb.application_points,
         )
     if name == "mcgill_smg":
         from . import mcgill_smg

@@ -77,7 +77,7 @@ Where paper 004 is garbled or wrong (each is checked in ``tests/test_families_fo
    effector, joined to both by joints of axis ``k``, only about ``span(n_I, k) ∩ span(n_II, k) = k``.
    Paper 004 does not print ``ε``; ``mechanisms/ragnar.toml`` says where its value comes from.
 Items 4, 5 and 7 (Table 2, Eqs. 11 and 13, Sec. 5.1) concern the Jacobians and the transmission
-indices of Sec. 4, which live in :mod:`screwkit.analysis.indices` with the rest of that erratum list.
+indices of Sec. 4, which live in :mod:`screwkit.papers.paper_004` with the rest of that erratum list.
 
 The joint table
 ---------------
@@ -129,6 +129,8 @@ __all__ = [
     "ForwardKinematicsError",
     "FourLimbConfiguration",
     "FourLimbParameters",
+    "application_points",
+    "checked_working_mode",
     "forward_kinematics",
     "inverse_kinematics",
     "joints",
@@ -603,7 +605,23 @@ def _require(value: Any, cls: type, name: str) -> None:
         )
 
 
-def _checked_working_mode(working_mode: Any) -> tuple[int, int, int, int]:
+def checked_working_mode(working_mode: Any) -> tuple[int, int, int, int]:
+    """A working mode checked: four signs of ``h_i`` (paper 004, Eq. 8).
+
+    Parameters
+    ----------
+    working_mode : sequence of 4 int
+        Each +1 or -1.
+
+    Returns
+    -------
+    tuple of 4 int
+
+    Examples
+    --------
+    >>> checked_working_mode([-1, -1, 1, -1])
+    (-1, -1, 1, -1)
+    """
     if isinstance(working_mode, str | bytes) or not isinstance(working_mode, Sequence | np.ndarray):
         raise ScrewkitTypeError(
             f"Expected `working_mode` to be a sequence of 4 signs (+1 or -1) of h_i (paper 004, "
@@ -726,7 +744,7 @@ def inverse_kinematics(
     screwkit.exceptions.UnreachablePoseError: Pose (x, y, z, phi) = (0, 0, -2000, 0 rad = 0 deg) is out ...
     """
     _require(params, FourLimbParameters, "params")
-    mode = _checked_working_mode(working_mode)
+    mode = checked_working_mode(working_mode)
     chi = as_array(pose, "pose", (4,), symbolic=False)
     terms = _ik_terms(params, chi)
     unreachable = ~terms.reachable
@@ -865,7 +883,7 @@ def forward_kinematics(
     True
     """
     _require(params, FourLimbParameters, "params")
-    mode = _checked_working_mode(working_mode)
+    mode = checked_working_mode(working_mode)
     if not (isinstance(rtol, float | int) and rtol > 0):
         raise ScrewkitValueError(f"Expected `rtol` to be a positive number, got {rtol!r}.")
     if not (isinstance(max_iterations, int) and max_iterations >= 1):
@@ -1092,3 +1110,24 @@ def twist_basis(config: FourLimbConfiguration) -> np.ndarray:
     """
     _require(config, FourLimbConfiguration, "config")
     return schoenflies_basis(config.pose[..., :3], config.platform_joint_axis)
+
+
+def application_points(config: FourLimbConfiguration) -> np.ndarray:
+    """Where the actuation wrenches act on the actuated links: the elbows ``B_i`` (Eq. 2), in limb
+    order (the family's ``application_points`` hook, :class:`screwkit.robots.families.Family`).
+
+    Parameters
+    ----------
+    config : FourLimbConfiguration
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 4, 3)
+
+    Examples
+    --------
+    >>> from screwkit.robots.catalog import load_mechanism
+    >>> application_points(load_mechanism("h4").configuration()).shape
+    (4, 3)
+    """
+    return np.asarray(config.b)

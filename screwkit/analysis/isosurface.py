@@ -1,4 +1,4 @@
-"""The zero set of a scalar field sampled on a 3-D grid, as triangles (private).
+"""The zero set of a scalar field sampled on a 3-D grid, as triangles.
 
 Marching tetrahedra (Doi & Koide, "An efficient method of triangulating equi-valued surfaces by using
 tetrahedral cells", IEICE Trans. E74(1), 1991): each grid cell is cut into six tetrahedra around its
@@ -24,6 +24,8 @@ from __future__ import annotations
 from collections.abc import Callable
 
 import numpy as np
+
+__all__ = ["zero_surface"]
 
 Array = np.ndarray
 
@@ -77,6 +79,29 @@ def zero_surface(
 
     ``field(points (k, 3)) -> (k,)``, if given, is the function sampled; each vertex is then moved
     onto its zero by ``steps`` bisections of its edge (kept where the field is NaN between the ends).
+
+    Parameters
+    ----------
+    axes : sequence of 3 numpy.ndarray
+        The grid's increasing coordinates along each axis.
+    values : numpy.ndarray, shape (n0, n1, n2)
+        The field at the grid points (NaN: undefined there).
+    field : callable, optional
+        The field itself, to bisect each vertex onto the zero set.
+    steps : int
+        Bisections per vertex.
+
+    Returns
+    -------
+    numpy.ndarray, shape (m, 3, 3)
+        The triangles' vertices.
+
+    Examples
+    --------
+    >>> axes = [np.linspace(0.0, 1.0, 3)] * 3
+    >>> grid = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1)
+    >>> len(zero_surface(axes, grid[..., 0] - 2.0))  # no zero in the box
+    0
     """
     shape = values.shape
     points = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, 3)

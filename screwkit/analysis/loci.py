@@ -1,0 +1,262 @@
+"""Singular curves of a 2-D slice and singular surfaces of a 3-D region, refined onto the surfaces.
+
+Along every grid row and column of a slice, ``det A`` sign changes, closeness minima and reach
+edges are refined onto the singular surface (:mod:`screwkit.analysis.roots`); :func:`loci` gives
+the curves of a slice, :func:`surfaces` stacks them over a third coordinate.
+
+Examples
+--------
+>>> from screwkit.robots.catalog import load_mechanism
+>>> found = loci(load_mechanism("h4"), x=("z", -1000, -550, 6), y=("phi", -45, 45, 5), angles="deg")
+>>> [locus.kind for locus in found]  # the catalog's box holds no singular surface at x = y = 0
+[]
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from ..exceptions import ScrewkitTypeError, ScrewkitValueError
+from .poses import _axis, _Slice
+from .quantities import KINDS
+from .roots import _brackets, _factor, _measure, _refine
+
+__all__ = ["Locus", "SingularSurface", "loci", "surfaces"]
+
+Array = np.ndarray
+
+
+@dataclass(frozen=True, eq=False)
+class Locus:
+    """Points of one singular surface in a 2-D slice, each refined onto the surface.
+
+    Attributes
+    ----------
+    kind : str
+        ``"constraint"``, ``"actuation"`` or ``"serial"``.
+    factor : str or None
+        The superbracket factor that vanishes there (None if unknown).
+    x_name, y_name : str
+    points : numpy.ndarray, shape (m, 2)
+        ``(x, y)`` in user units, sorted by ``x`` then ``y``.
+    closeness : numpy.ndarray, shape (m,)
+        The kind's closeness at each point (~0).
+    """
+
+    kind: str
+    factor: str | None
+    x_name: str
+    y_name: str
+    points: Array
+    closeness: Array
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready.
+
+        Returns
+        -------
+        dict
+        """
+        return {
+            "kind": self.kind,
+            "factor": self.factor,
+            "x_name": self.x_name,
+            "y_name": self.y_name,
+            "points": self.points.tolist(),
+            "closeness": self.closeness.tolist(),
+        }
+
+
+def loci(
+    mechanism: Any,
+    *,
+    x: Any = ("z", -1000.0, -550.0, 50),
+    y: Any = ("phi", -math.pi / 4, math.pi / 4, 50),
+    fixed: Any = None,
+    mode: Any = None,
+    angles: str = "rad",
+    rtol: float | None = None,
+) -> tuple[Locus, ...]:
+    """The singular curves of a 2-D slice: along every grid row and column, det A sign changes,
+    closeness minima and reach edges, refined onto the surface (module docstring).
+
+    Parameters
+    ----------
+    mechanism, x, y, fixed, mode, angles, rtol
+        As in :func:`grid_map`.
+
+    Returns
+    -------
+    tuple of Locus
+        One per kind found, in the order constraint, actuation, serial.
+
+    Examples
+    --------
+    >>> from screwkit.robots.catalog import load_mechanism
+    >>> found = loci(load_mechanism("h4"), x=("z", -1000, -550, 6), y=("phi", -45, 45, 5), angles="deg")
+    >>> [locus.kind for locus in found]  # the catalog's box holds no singular surface at x = y = 0
+    []
+    """
+    grid = _Slice.create(mechanism, x, y, fixed, mode, angles)
+    user = grid.poses()
+    scale = grid.scale
+    rows = user * scale  # (ny, nx, n): lines along x
+    columns = np.swapaxes(rows, 0, 1)  # (nx, ny, n): lines along y
+    found: list[tuple[Array, str, float]] = []
+    for lines, t in ((rows, grid.x_values), (columns, grid.y_values)):
+        samples = _measure(mechanism, lines, grid.options, rtol)
+        u = (t - t[0]) / (t[-1] - t[0])
+        start, stop = lines[:, 0], lines[:, -1]
+
+        def along(which: Array, s: Array, start: Array = start, stop: Array = stop) -> Array:
+            return start[which] + s[:, None] * (stop[which] - start[which])
+
+        for root in _refine(mechanism, along, _brackets(u, samples), grid.options, rtol):
+            found.append((root.pose / scale, root.kind, root.closeness))
+    names = mechanism.pose_names
+    ix, iy = names.index(grid.x_name), names.index(grid.y_name)
+    out = []
+    for kind in KINDS:
+        mine = [(p, c) for p, k, c in found if k == kind]
+        if not mine:
+            continue
+        points = np.array([[p[ix], p[iy]] for p, _ in mine])
+        closeness = np.array([c for _, c in mine])
+        order = np.lexsort((points[:, 1], points[:, 0]))
+        points, closeness = points[order], closeness[order]
+        keep = np.ones(len(points), dtype=bool)
+        keep[1:] = np.any(np.abs(np.diff(points, axis=0)) > 1e-9 * (1 + np.abs(points[1:])), axis=1)
+        closest = np.array([p for p, _ in mine])[np.argsort([c for _, c in mine])]
+        factor = _factor(mechanism, closest * scale, kind, grid.options, rtol)
+        out.append(Locus(kind, factor, grid.x_name, grid.y_name, points[keep], closeness[keep]))
+    return tuple(out)
+
+
+@dataclass(frozen=True, eq=False)
+class SingularSurface:
+    """One singular surface (one kind of singularity) in a 3-D region of the pose space: points
+    refined onto it (:func:`surfaces`) and, where it was triangulated, its triangles (paper 004's
+    ``|A| = 0``, :func:`screwkit.papers.paper_004_surfaces.actuation_singularity_surface`).
+
+    Attributes
+    ----------
+    kind : str
+        ``"constraint"``, ``"actuation"`` or ``"serial"``.
+    factor : str or None
+        The superbracket factor that vanishes there (None if unknown).
+    names : tuple of 3 str
+        The pose coordinates of the points' columns.
+    points : numpy.ndarray, shape (m, 3)
+        Points on the surface, user units.
+    closeness : numpy.ndarray, shape (m,)
+        The kind's closeness at each point (~0; NaN where not measured).
+    triangles : numpy.ndarray, shape (t, 3, 3)
+        A triangulation of the surface (none: shape ``(0, 3, 3)``).
+    fixed : dict of str to float
+        The other pose coordinates given by the caller (e.g. ``{"phi": φ}``).
+    region : object
+        The region searched (a :class:`~screwkit.papers.paper_004_table4.Region`), or None.
+    mechanism : str
+    """
+
+    kind: str
+    factor: str | None
+    names: tuple[str, str, str]
+    points: Array
+    closeness: Array
+    triangles: Array = field(default_factory=lambda: np.zeros((0, 3, 3)))
+    fixed: dict[str, float] = field(default_factory=dict)
+    region: Any = None
+    mechanism: str = ""
+
+    @property
+    def area(self) -> float:
+        """float: The area of the triangles, in the length unit squared (0 without triangles)."""
+        edges = self.triangles[:, 1:] - self.triangles[:, :1]
+        return float(0.5 * np.sum(np.linalg.norm(np.cross(edges[:, 0], edges[:, 1]), axis=-1)))
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready.
+
+        Returns
+        -------
+        dict
+        """
+        return {
+            "kind": self.kind,
+            "factor": self.factor,
+            "names": list(self.names),
+            "points": self.points.tolist(),
+            "closeness": [None if math.isnan(c) else c for c in self.closeness.tolist()],
+            "triangles": self.triangles.tolist(),
+            "fixed": self.fixed,
+            "region": getattr(self.region, "name", self.region),
+            "mechanism": self.mechanism,
+        }
+
+
+def surfaces(
+    mechanism: Any,
+    *,
+    x: Any = ("z", -1000.0, -550.0, 20),
+    y: Any = ("phi", -math.pi / 4, math.pi / 4, 20),
+    z: Any = ("x", -350.0, 350.0, 5),
+    fixed: Any = None,
+    mode: Any = None,
+    angles: str = "rad",
+    rtol: float | None = None,
+) -> tuple[SingularSurface, ...]:
+    """The singular surfaces of a 3-D region: the :func:`loci` of its ``(x, y)`` slices at every
+    value of ``z``, stacked (each point refined onto the surface within its slice).
+
+    Parameters
+    ----------
+    mechanism, x, y, fixed, mode, angles, rtol
+        As in :func:`loci`.
+    z : tuple (name, low, high, count)
+        The third coordinate, one slice per value.
+
+    Returns
+    -------
+    tuple of SingularSurface
+        One per kind found.
+
+    Examples
+    --------
+    >>> from screwkit.robots.catalog import load_mechanism
+    >>> surfaces(load_mechanism("h4"), x=("z", -1000, -550, 4), y=("phi", -45, 45, 3), z=("x", -50, 50, 2),
+    ...          angles="deg")
+    ()
+    """
+    z_name, z_values = _axis(mechanism, z, "z", angles)
+    if fixed is not None and not isinstance(fixed, Mapping):
+        raise ScrewkitTypeError(f"Expected `fixed` to be a dict, got {type(fixed).__name__}.")
+    given = dict(fixed or {})
+    if z_name in given:
+        raise ScrewkitValueError(f"Expected `fixed` not to set the region's axes, got [{z_name!r}].")
+    found: dict[str, list[tuple[Array, Array, str | None]]] = {kind: [] for kind in KINDS}
+    names: tuple[str, str, str] = (str(x[0]), str(y[0]), z_name)
+    for value in z_values:
+        for locus in loci(
+            mechanism, x=x, y=y, fixed={**given, z_name: float(value)}, mode=mode, angles=angles, rtol=rtol
+        ):
+            column = np.full((len(locus.points), 1), float(value))
+            found[locus.kind].append((np.hstack([locus.points, column]), locus.closeness, locus.factor))
+    return tuple(
+        SingularSurface(
+            kind,
+            next((factor for _, _, factor in parts if factor is not None), None),
+            names,
+            np.vstack([p for p, _, _ in parts]),
+            np.concatenate([c for _, c, _ in parts]),
+            fixed={str(k): float(v) for k, v in given.items()},
+            mechanism=mechanism.name,
+        )
+        for kind, parts in found.items()
+        if parts
+    )

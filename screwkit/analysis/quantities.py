@@ -1,0 +1,287 @@
+"""The quantities a map, a locus or a path reads over a posed batch, from the posed mechanism.
+
+Quantities (:data:`QUANTITIES`)
+-------------------------------
+``"verdict"``
+    The core's code per pose: bit 1 constraint, 2 actuation, 4 serial (0 regular,
+    :attr:`screwkit.core.singularity.SingularityReport.codes`); ``-1`` where the pose is out of reach.
+``"closeness"``, ``"closeness:constraint"``, ``"closeness:actuation"``, ``"closeness:serial"``
+    The core's closeness measures (:mod:`screwkit.core.singularity`), ``"closeness"`` their minimum.
+``"det_A"``, ``"det_B"``
+    Determinants of the forward and inverse Jacobians ``A χ̇ = B θ̇``
+    (:class:`screwkit.core.jacobian_matrices.Jacobians`; paper 004 Eq. 6).
+``"lti"``, ``"kappa"``, ``"zeta"``
+    The local transmission index ``η = min(κ, ζ)`` of paper 004 Eq. (16), its motion index ``κ``
+    and force index ``ζ`` (Eq. 15) (:func:`screwkit.papers.paper_004.transmission`; four-limb
+    families). A paper's quantity is registered by name (:func:`register_quantity`; ``import
+    screwkit`` registers paper 004's), so that the maps call no paper.
+``"condition:K"``
+    The vector form of the K-th factor of the superbracket (:mod:`screwkit.gca.conditions`), factored
+    once at the default pose and evaluated on the wrench diagram's points over the whole batch
+    (:meth:`screwkit.robots.posed.PosedMechanism.diagram_points`); a
+    :class:`~screwkit.exceptions.DegenerateGeometryError` names the pose where a point of the
+    diagram does not exist (e.g. a limb at a serial singularity has no actuation line).
+
+Every value comes from the posed mechanism (:class:`~screwkit.robots.posed.PosedMechanism`, the one
+composer over poses): its codes, closeness, Jacobians, diagram points and superbracket.
+
+Examples
+--------
+>>> from screwkit.robots.catalog import load_mechanism
+>>> values(load_mechanism("h4").at([[0, 0, -750, 0], [0, 0, -800, 0]]), "verdict").tolist()
+[0, 0]
+"""
+
+from __future__ import annotations
+
+import weakref
+from collections.abc import Callable, Mapping
+from typing import Any
+
+import numpy as np
+
+from ..exceptions import DegenerateGeometryError, ScrewkitTypeError, ScrewkitValueError
+
+__all__ = ["KINDS", "QUANTITIES", "conditions_of", "quantity", "register_quantity", "values", "verdict_name"]
+
+Array = np.ndarray
+
+#: The quantities a map can show (``"condition:K"`` for any K too).
+QUANTITIES = (
+    "verdict",
+    "closeness",
+    "closeness:constraint",
+    "closeness:actuation",
+    "closeness:serial",
+    "det_A",
+    "det_B",
+    "lti",
+    "kappa",
+    "zeta",
+)
+#: The kinds of singularity, by bit of the core's codes.
+KINDS = ("constraint", "actuation", "serial")
+
+
+def verdict_name(code: int) -> str:
+    """The words of a ``"verdict"`` map's code (module docstring).
+
+    Parameters
+    ----------
+    code : int
+        A code of the ``"verdict"`` quantity (``-1``: out of reach).
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> [verdict_name(c) for c in (-1, 0, 2, 5)]
+    ['out of reach', 'regular', 'actuation', 'constraint+serial']
+    """
+    if code < 0:
+        return "out of reach"
+    return "+".join(kind for bit, kind in enumerate(KINDS) if code >> bit & 1) or "regular"
+
+
+def quantity(quantity: Any) -> str:
+    """A quantity's name checked, its aliases resolved (``"detA"``, ``"detB"``, ``"condition"``).
+
+    Parameters
+    ----------
+    quantity : str
+        One of :data:`QUANTITIES`, an alias, or ``"condition:K"``.
+
+    Returns
+    -------
+    str
+        The quantity's name.
+
+    Raises
+    ------
+    ScrewkitTypeError, ScrewkitValueError
+        Not a string, or an unknown quantity.
+
+    Examples
+    --------
+    >>> quantity("detA"), quantity("condition")
+    ('det_A', 'condition:0')
+    """
+    if not isinstance(quantity, str):
+        raise ScrewkitTypeError(f"Expected `quantity` to be a str, got {type(quantity).__name__}.")
+    aliases = {"detA": "det_A", "detB": "det_B", "condition": "condition:0"}
+    name = aliases.get(quantity, quantity)
+    if name in QUANTITIES:
+        return name
+    index = name[len("condition:") :]
+    if name.startswith("condition:") and index.isascii() and index.isdigit():  # not '²' or '١'
+        return name
+    raise ScrewkitValueError(
+        f"Expected `quantity` to be one of {[*QUANTITIES, 'condition:K']}, got {quantity!r}."
+    )
+
+#: Quantities computed outside the stages below this one (a paper's indices), by name: a function
+#: ``(posed) -> values`` per pose (:func:`register_quantity`).
+_REGISTERED: dict[str, Callable[[Any], Any]] = {}
+
+
+def register_quantity(name: str, function: Callable[[Any], Any]) -> None:
+    """Register how a quantity of :data:`QUANTITIES` is computed over a posed batch.
+
+    The stages above the maps (a paper's analysis, :mod:`screwkit.papers`) contribute their
+    quantities this way, so that the maps call them without importing them.
+
+    Parameters
+    ----------
+    name : str
+        One of :data:`QUANTITIES` not computed here (``"lti"``, ``"kappa"``, ``"zeta"``).
+    function : callable
+        ``function(posed) -> numpy.ndarray`` of the batch's shape.
+
+    Returns
+    -------
+    None
+
+    Examples
+    --------
+    >>> register_quantity("lti", _REGISTERED["lti"])  # what import screwkit did
+    >>> register_quantity("volume", len)
+    Traceback (most recent call last):
+    ...
+    screwkit.exceptions.ScrewkitValueError: Expected `name` to be one of ('lti', 'kappa', 'zeta'), ...
+    """
+    if name not in _CONTRIBUTED:
+        raise ScrewkitValueError(f"Expected `name` to be one of {_CONTRIBUTED}, got {name!r}.")
+    if not callable(function):
+        raise ScrewkitTypeError(f"Expected `function` to be callable, got {type(function).__name__}.")
+    _REGISTERED[name] = function
+
+
+#: The quantities of :data:`QUANTITIES` that :func:`register_quantity` provides.
+_CONTRIBUTED = ("lti", "kappa", "zeta")
+
+
+def _condition_values(mechanism: Any, index: int, posed: Any) -> Array:
+    """The ``index``-th superbracket condition at every pose of ``posed``, as one batch: the
+    diagram's points over the batch (:meth:`screwkit.robots.posed.PosedMechanism.diagram_points`)
+    and the condition's vector form on them
+    (:meth:`screwkit.gca.conditions.Condition.evaluate`).
+
+    Raises
+    ------
+    DegenerateGeometryError
+        Where a point of the diagram does not exist at a pose (naming the point and the pose).
+    """
+    diagram, conditions, _, _ = conditions_of(mechanism, posed.options)
+    if not 0 <= index < len(conditions):
+        raise ScrewkitValueError(
+            f"Expected `quantity` 'condition:K' with K in 0..{len(conditions) - 1} (the superbracket's "
+            f"factors at the default pose), got K = {index}."
+        )
+    points, exists = posed.diagram_points(diagram.points)
+    if not exists.all():
+        i = int(np.argmin(exists))
+        point = next(p for p in diagram.points if not np.isfinite(points[p.label][i]).all())
+        raise DegenerateGeometryError(
+            f"Expected every point of the wrench diagram to exist for {posed.mechanism.name!r}'s "
+            f"conditions, got point {point.label} ({point.description}) missing at the pose "
+            f"{np.asarray(posed.poses[i]).tolist()} (API units)."
+        )
+    return np.asarray(conditions[index].evaluate(points), dtype=float).reshape(len(posed))
+
+#: Per mechanism (held weakly: a cache entry dies with its mechanism) and options: the factored
+#: superbracket's diagram, conditions, labels and values at the default pose.
+_CONDITIONS: weakref.WeakKeyDictionary[Any, dict[tuple[Any, ...], Any]] = weakref.WeakKeyDictionary()
+
+
+def conditions_of(
+    mechanism: Any, options: Mapping[str, Any]
+) -> tuple[Any, tuple[Any, ...], tuple[str, ...], Array]:
+    """The wrench diagram, superbracket conditions, their labels and their values at the default
+    pose (factored once per mechanism and mode, from the posed mechanism's superbracket).
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+    options : mapping
+        Inverse-kinematics options (a working mode).
+
+    Returns
+    -------
+    diagram : WrenchDiagram
+    conditions : tuple of Condition
+    labels : tuple of str
+        ``"constraint"`` or ``"actuation"`` per condition.
+    values : numpy.ndarray
+        The conditions at the default pose.
+
+    Raises
+    ------
+    ScrewkitValueError
+        If the mechanism's wrench diagram is degenerate.
+
+    Examples
+    --------
+    >>> from screwkit.robots.catalog import load_mechanism
+    >>> diagram, conditions, labels, reference = conditions_of(load_mechanism("h4"), {})
+    >>> len(conditions) == len(labels) == len(reference)
+    True
+    """
+    key = tuple(sorted((k, repr(v)) for k, v in options.items()))
+    cache = _CONDITIONS.setdefault(mechanism, {})
+    if key not in cache:
+        pose = mechanism.at(None, **options)[0]
+        diagram = pose.diagram
+        if diagram.degenerate:
+            raise ScrewkitValueError(
+                f"Expected a wrench diagram to factor for the conditions, got a degenerate one: "
+                f"{'; '.join(diagram.degenerate)}."
+            )
+        result = pose.superbracket
+        cache[key] = (diagram, result.conditions, result.labels, np.array(result.values, dtype=float))
+    return cache[key]
+
+
+def values(posed: Any, quantity: str) -> Array:
+    """One quantity over a posed batch of reachable poses, from the posed mechanism.
+
+    Parameters
+    ----------
+    posed : PosedMechanism
+        The poses (all reachable).
+    quantity : str
+        A checked name (:func:`quantity`).
+
+    Returns
+    -------
+    numpy.ndarray, shape (m,)
+        int64 codes for ``"verdict"``, else float.
+
+    Raises
+    ------
+    ScrewkitValueError
+        A paper's quantity for a mechanism it does not apply to, or a condition index out of range.
+    DegenerateGeometryError
+        A condition where a point of the wrench diagram does not exist.
+
+    Examples
+    --------
+    >>> from screwkit.robots.catalog import load_mechanism
+    >>> lti = values(load_mechanism("h4").at([[0, 0, -750, 0], [30, -20, -750, 0.3]]), "lti")
+    >>> lti.shape, bool(((0 < lti) & (lti <= 1)).all())
+    ((2,), True)
+    """
+    if quantity == "verdict":
+        return np.asarray(posed.codes, dtype=np.int64)
+    if quantity == "closeness":
+        return np.min(np.stack([np.asarray(posed.closeness[k], dtype=float) for k in KINDS]), axis=0)
+    if quantity.startswith("closeness:"):
+        return np.asarray(posed.closeness[quantity.split(":")[1]], dtype=float)
+    if quantity in ("det_A", "det_B"):
+        return np.asarray(getattr(posed.jacobians, quantity), dtype=float)
+    if quantity in _CONTRIBUTED:
+        if quantity not in _REGISTERED:  # only when screwkit's own __init__ did not run to its end
+            raise ScrewkitValueError(f"Expected quantity {quantity!r} to be registered (register_quantity).")
+        return np.asarray(_REGISTERED[quantity](posed), dtype=float)
+    return _condition_values(posed.mechanism, int(quantity.split(":")[1]), posed)

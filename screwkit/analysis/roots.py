@@ -1,0 +1,261 @@
+"""Roots along lines of samples: one search for the loci and the paths.
+
+A singular surface is rarely hit by a grid or path sample: a grid's labels miss it. Along each
+line of samples (grid rows and columns, or a path) screwkit looks for
+
+* sign changes of ``det A`` (refined by bisection),
+* local minima of each closeness measure (refined by golden-section search), and
+* the edge of the reachable set (refined by bisection on the inverse kinematics),
+
+then keeps a refined pose when the core labels it singular or one of its closeness measures is
+below :data:`ACCEPT` (the kind is the core's label there, else the closest measure). The factor is
+the superbracket condition with the smallest value there relative to its value at the default pose.
+Each step is one batch through the posed mechanism (:meth:`screwkit.robots.catalog.Mechanism.at`).
+Private to :mod:`screwkit.analysis` (:mod:`~screwkit.analysis.loci`, :mod:`~screwkit.analysis.paths`).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from ..exceptions import ScrewkitError
+from .quantities import KINDS, conditions_of
+from .workspace import CHUNK
+
+__all__ = ["ACCEPT", "MAX_STEPS", "XTOL"]
+
+Array = np.ndarray
+
+#: A refined pose with a closeness measure below this is a singularity even if the core's rank
+#: decision (relative tolerance ``rtol``) did not label it.
+ACCEPT = 1e-6
+#: Refinement stops when a bracket (in the line's parameter, 0..1) is this narrow ...
+XTOL = 4e-16
+#: ... or after this many steps (each one batch through the core).
+MAX_STEPS = 80
+#: Poses of one surface tried for its factor (where the diagram's points exist).
+_FACTOR_TRIES = 5
+_GOLDEN = (math.sqrt(5.0) - 1.0) / 2.0
+
+@dataclass(frozen=True)
+class _Samples:
+    """What the core says along lines of samples ``(L, n_t)``."""
+
+    ok: Array
+    codes: Array
+    closeness: dict[str, Array]
+    det_A: Array | None
+
+
+def _measure(mechanism: Any, poses: Array, options: dict[str, Any], rtol: Any) -> _Samples:
+    """Codes, closeness and det A at API-unit poses ``(..., n)`` (NaN / -1 where out of reach)."""
+    shape = poses.shape[:-1]
+    flat = poses.reshape(-1, poses.shape[-1])
+    ok = mechanism.reachable(flat, **options)
+    codes = np.full(len(flat), -1, dtype=np.int64)
+    closeness = {k: np.full(len(flat), np.nan) for k in KINDS}
+    det_a: Array | None = np.full(len(flat), np.nan)
+    if ok.any():
+        posed = mechanism.at(flat[ok], rtol=rtol, **options)
+        if ok.sum() <= CHUNK:  # det A needs the joint table too: build it once (a bounded batch)
+            _ = posed.joints
+        codes[ok] = posed.codes
+        for k in KINDS:
+            closeness[k][ok] = posed.closeness[k]
+        try:
+            det_a[ok] = posed.jacobians.det_A  # type: ignore[index]
+        except ScrewkitError:  # no square forward Jacobian for this mechanism: no sign to follow
+            det_a = None
+    return _Samples(
+        ok.reshape(shape),
+        codes.reshape(shape),
+        {k: v.reshape(shape) for k, v in closeness.items()},
+        None if det_a is None else det_a.reshape(shape),
+    )
+
+
+@dataclass(frozen=True)
+class _Root:
+    """A refined pose on line ``line`` at parameter ``t`` (between the line's samples)."""
+
+    line: int
+    t: float
+    pose: Array
+    kind: str
+    closeness: float
+
+
+def _brackets(t: Array, samples: _Samples) -> list[tuple[int, float, float, str]]:
+    """``(line, t_low, t_high, method)`` intervals holding a candidate root, from each line's
+    samples: det A sign changes, closeness minima, reach edges and samples labelled singular."""
+    out = []
+    ok = samples.ok
+    both = ok[:, :-1] & ok[:, 1:]
+    if samples.det_A is not None:
+        with np.errstate(invalid="ignore"):
+            change = both & (np.sign(samples.det_A[:, :-1]) != np.sign(samples.det_A[:, 1:]))
+        for line, i in zip(*np.nonzero(change), strict=True):
+            out.append((int(line), float(t[i]), float(t[i + 1]), "det_A"))
+    for kind in KINDS:
+        c = np.where(ok, samples.closeness[kind], np.inf)
+        left = np.concatenate([np.full((len(c), 1), np.inf), c[:, :-1]], axis=1)
+        right = np.concatenate([c[:, 1:], np.full((len(c), 1), np.inf)], axis=1)
+        minimum = ok & (c <= left) & (c <= right) & ((c < left) | (c < right))
+        for line, i in zip(*np.nonzero(minimum), strict=True):
+            low, high = max(i - 1, 0), min(i + 1, len(t) - 1)
+            out.append((int(line), float(t[low]), float(t[high]), "min:" + kind))
+    edge = ok[:, :-1] != ok[:, 1:]
+    for line, i in zip(*np.nonzero(edge), strict=True):
+        out.append((int(line), float(t[i]), float(t[i + 1]), "edge"))
+    singular = ok & (samples.codes > 0)
+    for line, i in zip(*np.nonzero(singular), strict=True):
+        out.append((int(line), float(t[i]), float(t[i]), "sample"))
+    return out
+
+
+def _refine(
+    mechanism: Any,
+    along: Callable[[Array, Array], Array],
+    brackets: list[tuple[int, float, float, str]],
+    options: dict[str, Any],
+    rtol: Any,
+    *,
+    keep_edges: bool = False,
+) -> list[_Root]:
+    """Refine every bracket at once and keep the roots the core labels singular or whose closeness
+    is below :data:`ACCEPT` (and, with ``keep_edges``, the reach edges that are no singularity, as
+    kind ``"unreachable"``).
+
+    ``along(lines, t)`` gives API-unit poses ``(m, n)`` on lines ``lines`` at parameters ``t``.
+    Each step is one batch through the core, for all brackets: false position (Illinois) on det A
+    for its sign changes, bisection on reachability for reach edges, and for closeness minima a
+    golden-section search whose steps are replaced by the apex of the ``|s (t − t₀)|`` fit through
+    the bracket when that lands inside (a closeness measure vanishes like the distance to a simple
+    root, design of :mod:`screwkit.core.singularity`). Stops when every bracket is narrower than
+    :data:`XTOL` or after :data:`MAX_STEPS` steps.
+    """
+    if not brackets:
+        return []
+    lines = np.array([b[0] for b in brackets])
+    method = np.array([b[3] for b in brackets])
+    kind_index = np.array([KINDS.index(m[4:]) if m.startswith("min:") else 0 for m in method])
+    is_det, is_edge = method == "det_A", method == "edge"
+    is_min = np.char.startswith(method.astype(str), "min:")
+    everyone = np.arange(len(brackets))
+
+    def score(t: Array, which: Array = everyone) -> Array:
+        """Per bracket ``which``: det A, ±1 reachability, or its kind's closeness (inf out of reach)."""
+        s = _measure(mechanism, along(lines[which], t[which]), options, rtol)
+        det = np.zeros(len(which)) if s.det_A is None else np.nan_to_num(s.det_A)
+        closeness = np.stack([s.closeness[k] for k in KINDS], axis=-1)[
+            np.arange(len(which)), kind_index[which]
+        ]
+        values = np.where(is_edge[which], np.where(s.ok, 1.0, -1.0), np.where(s.ok, closeness, np.inf))
+        out = np.full(len(t), np.nan)
+        out[which] = np.where(is_det[which], det, values)
+        return out
+
+    a = np.array([b[1] for b in brackets])
+    b = np.array([b[2] for b in brackets])
+    fa, fb = score(a), score(b)
+    m = 0.5 * (a + b)
+    fm = score(m)
+    side = np.zeros(len(a))  # Illinois: which end was kept last
+    for step in range(MAX_STEPS):
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+            left, right = (fm - fa) / (m - a), (fb - fm) / (b - m)
+            steep = np.nan_to_num(np.maximum(-left, right), nan=np.inf)
+            illinois = (a * fb - b * fa) / (fb - fa)
+            # a minimum that cannot reach ACCEPT unless the slope doubles within the bracket: no root
+            smooth = is_min & (fm - 2.0 * steep * (b - a) > ACCEPT)  # inf - inf: not smooth
+        done = ((b - a) <= XTOL) | (is_min & (fm == 0.0)) | smooth
+        if done.all():
+            break
+        # the next point of each bracket
+        illinois = np.where(is_det & (illinois > a) & (illinois < b), illinois, 0.5 * (a + b))
+        with np.errstate(invalid="ignore", divide="ignore"):
+            apex = np.where(-left >= right, m + fm / steep, m - fm / steep)
+        golden = np.where(m - a > b - m, m - (1 - _GOLDEN) * (m - a), m + (1 - _GOLDEN) * (b - m))
+        use_apex = (
+            (step % 3 != 2) & np.isfinite(apex) & (apex > a) & (apex < b) & (np.abs(apex - m) > XTOL / 4)
+        )
+        trial = np.where(is_det, illinois, np.where(is_edge, 0.5 * (a + b), np.where(use_apex, apex, golden)))
+        f = score(trial, np.nonzero(~done)[0])
+        # sign brackets: keep the end whose sign differs from the trial's
+        same_as_a = np.sign(f) == np.sign(fa)
+        new_a = np.where(same_as_a, trial, a)
+        new_b = np.where(same_as_a, b, trial)
+        new_fa = np.where(same_as_a, f, np.where(is_det & (side == -1), 0.5 * fa, fa))
+        new_fb = np.where(same_as_a, np.where(is_det & (side == 1), 0.5 * fb, fb), f)
+        new_side = np.where(same_as_a, 1.0, -1.0)
+        # minimum brackets: a <= m <= b with f(m) <= f(a), f(b)
+        better = f < fm
+        above = trial > m
+        min_a = np.where(better, np.where(above, m, a), np.where(above, a, trial))
+        min_b = np.where(better, np.where(above, b, m), np.where(above, trial, b))
+        min_fa = np.where(better, np.where(above, fm, fa), np.where(above, fa, f))
+        min_fb = np.where(better, np.where(above, fb, fm), np.where(above, f, fb))
+        min_m, min_fm = np.where(better, trial, m), np.where(better, f, fm)
+        sign = is_det | is_edge
+        keep = done  # a converged bracket stays as it is
+        a = np.where(keep, a, np.where(sign, new_a, min_a))
+        b = np.where(keep, b, np.where(sign, new_b, min_b))
+        fa = np.where(keep, fa, np.where(sign, new_fa, min_fa))
+        fb = np.where(keep, fb, np.where(sign, new_fb, min_fb))
+        m = np.where(keep | sign, m, min_m)
+        fm = np.where(keep | sign, fm, min_fm)
+        side = np.where(keep, side, new_side)
+    # the refined parameter: an edge's reachable end, det A's end of smaller |det A|, the minimum
+    t = np.where(
+        is_edge,
+        np.where(fa > 0, a, b),
+        np.where(is_det, np.where(np.abs(fa) <= np.abs(fb), a, b), m),
+    )
+    t = np.where(method == "sample", a, t)
+    final = _measure(mechanism, along(lines, t), options, rtol)
+    poses = along(lines, t)
+    roots = []
+    for k in range(len(brackets)):
+        if not final.ok[k]:
+            continue
+        measures = {kind: float(final.closeness[kind][k]) for kind in KINDS}
+        code = int(final.codes[k])
+        labelled = [kind for bit, kind in enumerate(KINDS) if code >> bit & 1]
+        smallest = min(measures, key=measures.__getitem__)
+        if labelled or measures[smallest] < ACCEPT:
+            kind = labelled[0] if labelled else smallest
+            roots.append(_Root(int(lines[k]), float(t[k]), poses[k], kind, measures[kind]))
+        elif keep_edges and method[k] == "edge":
+            roots.append(_Root(int(lines[k]), float(t[k]), poses[k], "unreachable", math.nan))
+    return roots
+
+
+def _factor(mechanism: Any, poses: Array, kind: str, options: dict[str, Any], rtol: Any) -> str | None:
+    """The superbracket condition vanishing at API-unit poses ``(k, n)`` of one surface: at the
+    first of them (up to :data:`_FACTOR_TRIES`, evaluated as one batch) where the diagram's points
+    exist, the condition of that kind with the smallest value relative to its value at the default
+    pose. None for a serial singularity (a limb's, not the superbracket's) or when the conditions
+    cannot be had for this mechanism."""
+    if kind not in ("constraint", "actuation"):
+        return None
+    try:
+        diagram, conditions, labels, reference = conditions_of(mechanism, options)
+    except ScrewkitError:
+        return None
+    candidates = [i for i, label in enumerate(labels) if label == kind and reference[i] != 0]
+    tries = np.asarray(poses[:_FACTOR_TRIES], dtype=float)
+    tries = tries[mechanism.reachable(tries, **options)]
+    if not candidates or not len(tries):
+        return None
+    points, exists = mechanism.at(tries, rtol=rtol, **options).diagram_points(diagram.points)
+    if not exists.any():
+        return None
+    first = int(np.argmax(exists))
+    at = {label: value[first] for label, value in points.items()}
+    ratios = [abs(float(conditions[i].evaluate(at)) / reference[i]) for i in candidates]
+    return str(conditions[candidates[int(np.argmin(ratios))]].factor)
