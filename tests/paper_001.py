@@ -58,7 +58,7 @@ from screwkit.robots.families.mcgill_smg import (
     McGillParameters,
     inverse_kinematics,
 )
-from screwkit.robots.families.two_limb import checked_mode, frozen
+from screwkit.robots.two_limb import checked_mode, frozen
 
 from .two_limb_papers import Jacobians, bisect_segment
 

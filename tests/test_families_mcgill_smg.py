@@ -22,7 +22,7 @@ from screwkit.exceptions import (
     UnreachablePoseError,
 )
 from screwkit.robots.families import mcgill_smg as smg
-from screwkit.robots.families.two_limb import checked_mode, joint_row
+from screwkit.robots.two_limb import checked_mode, joint_row
 
 from . import paper_001 as paper
 from .two_limb_papers import bisect_segment, pick_and_place_cycle

@@ -15,7 +15,7 @@ import numpy as np
 
 from screwkit.algebra.backend import as_array
 from screwkit.exceptions import ScrewkitValueError
-from screwkit.robots.families.two_limb import describe_indices, frozen
+from screwkit.robots.two_limb import describe_indices, frozen
 
 __all__ = ["Jacobians", "bisect_segment", "pick_and_place_cycle"]
 

@@ -48,7 +48,7 @@ import math
 import numpy as np
 from numba import njit
 
-from ..robots.families.two_limb import REACH_ULPS
+from ..robots.two_limb import REACH_ULPS
 
 Array = np.ndarray
 EPS = float(np.finfo(float).eps)

@@ -168,7 +168,7 @@ class Mechanism:
     reachable_fraction: float = 1.0
 
     @property
-    def family_protocol(self) -> Family:
+    def family_protocol(self) -> Family[Any, Any]:
         """The family's four functions (:mod:`screwkit.robots.families`)."""
         return families()[self.family]
 

@@ -119,10 +119,12 @@ from ...algebra.backend import as_array, cross
 from ...core.jacobians import schoenflies_basis
 from ...exceptions import CatalogError, ScrewkitTypeError, ScrewkitValueError, UnreachablePoseError
 from ...graphs.joints import JointSpec, JointTable
-from .two_limb import at_reach, within_reach
+from ..two_limb import at_reach, within_reach
+from . import Family
 
 __all__ = [
     "DEFAULT_PARALLELOGRAM_WIDTH_MM",
+    "FAMILY",
     "PAPER_002_LEGS",
     "PLATFORM_KINDS",
     "SUBPLATFORMS",
@@ -1092,3 +1094,22 @@ def twist_basis(config: FourLimbConfiguration) -> np.ndarray:
     """
     _require(config, FourLimbConfiguration, "config")
     return schoenflies_basis(config.pose[..., :3], config.platform_joint_axis)
+
+
+#: The family (:mod:`screwkit.robots.families`).
+FAMILY: Family[FourLimbParameters, FourLimbConfiguration] = Family(
+    name="four_limb",
+    parameters=FourLimbParameters.from_mapping,
+    inverse_kinematics=inverse_kinematics,
+    joints=joints,
+    twist_basis=twist_basis,
+    pose_names=("x", "y", "z", "phi"),
+    angle_names=("phi",),
+    parameter_kinds=dict.fromkeys(
+        ("base_radius", "base_points", "arm_length", "rod_length", "platform_radius", "platform_offset",
+         "lead", "parallelogram_width"),
+        "length",
+    )
+    | {"alpha": "angle", "beta": "angle", "platform_kind": "number"},
+    reachable=reachable,
+)

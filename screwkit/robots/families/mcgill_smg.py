@@ -84,7 +84,7 @@ from ...algebra.backend import as_array
 from ...core.jacobians import schoenflies_basis
 from ...exceptions import DegenerateGeometryError, ScrewkitValueError, UnreachablePoseError
 from ...graphs.joints import JointTable
-from .two_limb import (
+from ..two_limb import (
     ForwardSolutions,
     at_reach,
     check_parameters,
@@ -95,9 +95,11 @@ from .two_limb import (
     parameters_from_mapping,
     wrap_angle,
 )
+from . import Family
 
 __all__ = [
     "DEFAULT_MODE",
+    "FAMILY",
     "LEGS",
     "WORKING_MODES",
     "McGillConfiguration",
@@ -748,3 +750,18 @@ def twist_basis(config: McGillConfiguration) -> np.ndarray:
     array([  0.,   0.,   1.,   0., -10.,   0.])
     """
     return schoenflies_basis(config.platform_point, config.pan_axis[..., 0, :])
+
+
+#: The family (:mod:`screwkit.robots.families`).
+FAMILY: Family[McGillParameters, McGillConfiguration] = Family(
+    name="mcgill_smg",
+    parameters=McGillParameters.from_mapping,
+    inverse_kinematics=inverse_kinematics,
+    joints=joints,
+    twist_basis=twist_basis,
+    pose_names=("x", "y", "z", "phi"),
+    angle_names=("phi",),
+    parameter_kinds=dict.fromkeys(
+        ("l0", "l1", "l2", "l3", "radius", "b4", "b5", "proximal_width", "distal_width"), "length"
+    ),
+)

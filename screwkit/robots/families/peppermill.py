@@ -76,7 +76,7 @@ from ...algebra.backend import as_array
 from ...core.jacobians import schoenflies_basis
 from ...exceptions import DegenerateGeometryError, ScrewkitValueError, UnreachablePoseError
 from ...graphs.joints import JointTable
-from .two_limb import (
+from ..two_limb import (
     ForwardSolutions,
     at_reach,
     check_parameters,
@@ -87,10 +87,12 @@ from .two_limb import (
     parameters_from_mapping,
     wrap_angle,
 )
+from . import Family
 
 __all__ = [
     "ASSEMBLY_MODES",
     "DEFAULT_MODE",
+    "FAMILY",
     "WORKING_MODES",
     "PeppermillConfiguration",
     "PeppermillParameters",
@@ -558,3 +560,16 @@ def twist_basis(config: PeppermillConfiguration) -> np.ndarray:
     array([  0.,   0.,   1., -20., -30.,   0.])
     """
     return schoenflies_basis(config.platform_point, config.platform_axis)
+
+
+#: The family (:mod:`screwkit.robots.families`).
+FAMILY: Family[PeppermillParameters, PeppermillConfiguration] = Family(
+    name="peppermill",
+    parameters=PeppermillParameters.from_mapping,
+    inverse_kinematics=inverse_kinematics,
+    joints=joints,
+    twist_basis=twist_basis,
+    pose_names=("x", "y", "z", "phi"),
+    angle_names=("phi",),
+    parameter_kinds=dict.fromkeys(("r1", "r2", "l1", "l2", "b0", "p1", "p2"), "length"),
+)

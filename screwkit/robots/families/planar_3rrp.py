@@ -88,10 +88,12 @@ from ...exceptions import (
     UnreachablePoseError,
 )
 from ...graphs.joints import JointTable
-from .two_limb import REACH_ULPS
+from ..two_limb import REACH_ULPS
+from . import Family
 
 __all__ = [
     "EXAMPLE_PARAMETERS",
+    "FAMILY",
     "JOINT_PAIRS",
     "LINK_NAMES",
     "WORKING_MODES",
@@ -779,3 +781,17 @@ def twist_basis(config: Planar3RRPConfiguration) -> np.ndarray:
     rows[..., 0, 3] = rows[..., 1, 4] = rows[..., 2, 2] = 1.0
     rows[..., 2, 3], rows[..., 2, 4] = y, -x  # C × k = (y, -x, 0)
     return rows
+
+
+#: The family (:mod:`screwkit.robots.families`).
+FAMILY: Family[Planar3RRPParameters, Planar3RRPConfiguration] = Family(
+    name="planar_3rrp",
+    parameters=Planar3RRPParameters.from_mapping,
+    inverse_kinematics=Planar3RRPConfiguration.from_pose,
+    joints=joints,
+    twist_basis=twist_basis,
+    pose_names=("x", "y", "phi"),
+    angle_names=("phi",),
+    parameter_kinds=dict.fromkeys(("base_points", "link_lengths", "platform_points"), "length")
+    | {"guide_angles": "angle"},
+)

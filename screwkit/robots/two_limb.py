@@ -1,8 +1,9 @@
-"""Machinery shared by the two-limb Schönflies-motion generators (McGill SMG and Peppermill).
+"""Machinery shared by the families, written for the two-limb Schönflies-motion generators (McGill SMG
+and Peppermill).
 
-Private module: :mod:`screwkit.robots.families.mcgill_smg` and :mod:`screwkit.robots.families.peppermill`
-build
-on it. It holds the robot-model plumbing only (design.md §1a: families hold the
+:mod:`screwkit.robots.families.mcgill_smg` and :mod:`screwkit.robots.families.peppermill` build on it
+(the reach tolerance serves every family). It lives beside the families package, not in it, since
+every module of that package is a family. It holds the robot-model plumbing only (families hold the
 model; paper-specific analyses live in the stage modules or beside the tests that check them):
 
 * parameter validation (``from_mapping`` of a TOML table, range checks in ``__post_init__``) and
@@ -29,8 +30,8 @@ from typing import Any, TypeVar
 
 import numpy as np
 
-from ...algebra import screw as S
-from ...exceptions import CatalogError, ScrewkitTypeError, ScrewkitValueError
+from ..algebra import screw as S
+from ..exceptions import CatalogError, ScrewkitTypeError, ScrewkitValueError
 
 __all__ = [
     "JOINT_KINDS",
