@@ -46,7 +46,8 @@ from _timing import best_of  # noqa: E402  (bench/ is the script folder)
 
 import screwkit as sk  # noqa: E402
 from screwkit import _frames, posed, wrenches  # noqa: E402
-from screwkit.robots.families.four_limb import PAPER_002_LEGS, reachable  # noqa: E402
+from screwkit.robots.families.four_limb.joints import PAPER_002_LEGS  # noqa: E402
+from screwkit.robots.families.four_limb.kinematics import reachable  # noqa: E402
 
 CHUNK = 10_000
 

@@ -37,11 +37,8 @@ from screwkit.analysis.indices import (
 )
 from screwkit.core.singularity import classify_table
 from screwkit.core.wrenches import wrench_analysis
-from screwkit.robots.families.four_limb import (
-    inverse_kinematics,
-    joints,
-    reachable,
-)
+from screwkit.robots.families.four_limb.joints import joints
+from screwkit.robots.families.four_limb.kinematics import inverse_kinematics, reachable
 
 from .paper_004 import spiral_trajectory
 

@@ -755,7 +755,7 @@ FOUR_LIMB_ROBOTS = ("h4", "quattro", "veloce", "ragnar", "v4")
 
 @pytest.mark.parametrize("name", FOUR_LIMB_ROBOTS)
 def test_a_four_limb_leg_stretched_exactly_to_its_reach_is_a_serial_singularity(name):
-    from screwkit.robots.families.four_limb import inverse_kinematics, reachable
+    from screwkit.robots.families.four_limb.kinematics import inverse_kinematics, reachable
 
     mechanism = load_mechanism(name)
     params = mechanism.parameters

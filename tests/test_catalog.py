@@ -104,7 +104,7 @@ def test_stated_workspace_box_against_the_inverse_kinematics(name):
         mechanism.configuration(np.concatenate([corners, draws[:5000]]))  # raises if any is out of reach
         return
     from screwkit.exceptions import UnreachablePoseError
-    from screwkit.robots.families.four_limb import reachable
+    from screwkit.robots.families.four_limb.kinematics import reachable
 
     ok = reachable(mechanism.parameters, draws)
     assert abs(ok.mean() - mechanism.reachable_fraction) <= 0.01, ok.mean()

@@ -28,9 +28,7 @@ from screwkit.gca.diagram import diagram_points
 from screwkit.interface.cli import main
 from screwkit.interface.report import analyze
 from screwkit.robots.catalog import list_mechanisms, load_mechanism
-from screwkit.robots.families.four_limb import (
-    reachable,
-)
+from screwkit.robots.families.four_limb.kinematics import reachable
 
 from .paper_004 import spiral_trajectory
 

@@ -31,7 +31,7 @@ from screwkit.graphs.joints import prismatic, revolute
 from screwkit.graphs.twistgraph import twist_graph
 from screwkit.interface.cli import main
 from screwkit.robots.catalog import load_mechanism
-from screwkit.robots.families.four_limb import inverse_kinematics, reachable
+from screwkit.robots.families.four_limb.kinematics import inverse_kinematics, reachable
 
 from .paper_004 import TABLE_4, spiral_trajectory
 from .strategies import rigid_motions, unit_factors

@@ -15,7 +15,7 @@ from screwkit.analysis import workspace as W
 from screwkit.analysis.indices import det_A_closed_form, transmission_indices
 from screwkit.interface.cli import main
 from screwkit.robots.catalog import load_toml, mechanism_from_mapping
-from screwkit.robots.families.four_limb import reachable
+from screwkit.robots.families.four_limb.kinematics import reachable
 
 from .mechanisms import bisect_root
 from .singular_surfaces import SCALE, conditions, surface_roots

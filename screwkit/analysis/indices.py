@@ -20,10 +20,10 @@ What is here, along the data flow:
 Source: paper 004 (Wu, Bai, Caro, "A transmission quality index for a class of four-limb parallel
 Schönflies motion generators", JMR 10(5), 2018), file ``/work/shared/papers/004_60e52c5ada55e36d.txt``;
 equation and table numbers are that paper's. Its functions here take a four-limb configuration
-(:class:`screwkit.robots.families.four_limb.FourLimbConfiguration`, from the family's inverse kinematics or
-:meth:`screwkit.robots.catalog.Mechanism.configuration`) of any batch shape ``...`` and returns arrays over
-that batch. The configuration's ``w_i`` (unit parallelogram directions), ``h_i`` (Eq. 8), ``s_i``
-(Eq. 4) and ``s`` (Tables 1-2) are the robot model; what follows is paper 004's analysis of it.
+(:class:`screwkit.robots.families.four_limb.configuration.FourLimbConfiguration`, from the family's
+inverse kinematics or :meth:`screwkit.robots.catalog.Mechanism.configuration`) of any batch shape
+``...`` and returns arrays over that batch. The configuration's ``w_i`` (unit parallelogram
+directions), ``h_i`` (Eq. 8), ``s_i`` (Eq. 4) and ``s`` (Tables 1-2) are the robot model; what follows is paper 004's analysis of it.
 
 The indices
 -----------
@@ -118,8 +118,8 @@ __all__ = [
 class FourLimbGeometry(Protocol):
     """What the functions of this module read from a four-limb configuration.
 
-    :class:`screwkit.robots.families.four_limb.FourLimbConfiguration` has these attributes (arrays over the
-    batch ``...``; limb ``i`` of paper 004 at index ``i - 1``).
+    :class:`screwkit.robots.families.four_limb.configuration.FourLimbConfiguration` has these attributes
+    (arrays over the batch ``...``; limb ``i`` of paper 004 at index ``i - 1``).
 
     Attributes
     ----------
@@ -395,20 +395,20 @@ def _kernel_arguments(params: Any, mode: tuple[int, ...]) -> tuple[Any, ...]:
     minus the position, as a constant plus multiples of ``cos φ``, ``sin φ`` and ``φ`` (Table 1 as
     corrected in :mod:`screwkit.robots.families.four_limb`); then ``F_i j``, ``F_i k`` and ``m_i``.
     """
-    from ..robots.families import four_limb as FL
+    from ..robots.families.four_limb import configuration as FL
 
-    base = FL._base(params)
+    base = FL.base_frames(params)
     rod = float(params.rod_length)
     constant, along_cos, along_sin, along_phi = (np.zeros((4, 3)) for _ in range(4))
     cosine_s, sine_s, fixed_s = np.zeros(3), np.zeros(3), np.zeros(3)
     if params.platform_kind == "screw_pair":  # c_i = r R_z(γ_i) i + mod(i, 2) h φ/(2π) k + p
-        radial = np.stack([np.cos(FL._ETA), np.sin(FL._ETA), np.zeros(4)], axis=-1)
+        radial = np.stack([np.cos(FL.ETA), np.sin(FL.ETA), np.zeros(4)], axis=-1)
         constant[:] = params.platform_radius * radial
-        along_phi[:, 2] = FL._ODD_LIMB * params.lead / (2.0 * np.pi)
+        along_phi[:, 2] = FL.ODD_LIMB * params.lead / (2.0 * np.pi)
         fixed_s[2] = 1.0  # s = k
     else:  # c_i = sgn(cos η_i) r e(φ) + sgn(sin η_i) c j + p
-        constant[:, 1] = FL._SGN_SIN_ETA * params.platform_offset
-        radius = (FL._SGN_COS_ETA * params.platform_radius)[:, None]
+        constant[:, 1] = FL.SGN_SIN_ETA * params.platform_offset
+        radius = (FL.SGN_COS_ETA * params.platform_radius)[:, None]
         if params.platform_kind == "articulated_z":  # e = R_z(φ) i, s = R_z(φ) j
             along_cos[:], along_sin[:] = radius * [1.0, 0.0, 0.0], radius * [0.0, 1.0, 0.0]
             cosine_s[1], sine_s[0] = 1.0, -1.0
@@ -429,7 +429,7 @@ def _kernel_arguments(params: Any, mode: tuple[int, ...]) -> tuple[Any, ...]:
 
 def _transmission_numpy(params: Any, poses: np.ndarray, mode: tuple[int, ...]) -> tuple[np.ndarray, ...]:
     """κ, ζ, reachable over a flat batch ``(n, 4)``: the family's IK, then :func:`transmission_indices`."""
-    from ..robots.families.four_limb import inverse_kinematics, reachable
+    from ..robots.families.four_limb.kinematics import inverse_kinematics, reachable
 
     ok = reachable(params, poses)
     kappa, zeta = np.zeros(len(poses)), np.zeros(len(poses))
@@ -452,8 +452,9 @@ def transmission(
     The batched entry point for maps (workspace grids, trajectories): inverse kinematics (Eq. 3) and
     the indices in one pass. With numba (the ``fast`` extra) one fused compiled loop
     (:mod:`screwkit.papers._lti_numba`) for batches of :data:`screwkit.core._frames.COMPILED_MIN_BATCH`
-    poses or more (or once it is loaded), else the numpy path (:func:`screwkit.robots.families.four_limb.
-    inverse_kinematics` then :func:`transmission_indices`; a single pose never loads numba);
+    poses or more (or once it is loaded), else the numpy path
+    (:func:`screwkit.robots.families.four_limb.kinematics.inverse_kinematics` then
+    :func:`transmission_indices`; a single pose never loads numba);
     ``SCREWKIT_NUMBA=0`` forces numpy. The two agree to round-off (``tests/test_indices.py``).
 
     Parameters
@@ -491,7 +492,7 @@ def transmission(
     >>> float(transmission(quattro.at([0, 0, -800, 0.5])).lti[0]) < 1
     True
     """
-    from ..robots.families.four_limb import _checked_working_mode, inverse_kinematics
+    from ..robots.families.four_limb.kinematics import checked_working_mode, inverse_kinematics
     from ..robots.posed import PosedMechanism
 
     if isinstance(mechanism_or_posed, PosedMechanism):
@@ -508,7 +509,7 @@ def transmission(
     params = _four_limb_parameters(mechanism)
     if unreachable not in _UNREACHABLE:
         raise ScrewkitValueError(f"Expected `unreachable` to be one of {_UNREACHABLE}, got {unreachable!r}.")
-    mode = _checked_working_mode((-1, -1, -1, -1) if working_mode is None else working_mode)
+    mode = checked_working_mode((-1, -1, -1, -1) if working_mode is None else working_mode)
     chosen = mechanism.default_pose if poses is None else poses
     mechanism.check_pose_range(chosen)
     chi = B.as_array(chosen, "poses", (4,), symbolic=False)  # a new float64 array, checked finite
@@ -737,7 +738,7 @@ def _region_grid(
 ) -> tuple[Region, tuple[int, int, int, int], list[np.ndarray]]:
     """The checked region (default: the mechanism's workspace box), working mode and grid axes of a
     search at one rotation ``phi`` (:func:`index_extremes`, :func:`actuation_singularity_surface`)."""
-    from ..robots.families.four_limb import _checked_working_mode
+    from ..robots.families.four_limb.kinematics import checked_working_mode
 
     for name, value, least, most in (("grid", grid, 2, MAX_GRID), ("refine", refine, 0, MAX_REFINE)):
         if not isinstance(value, int | np.integer) or isinstance(value, bool) or not least <= value <= most:
@@ -755,7 +756,7 @@ def _region_grid(
         region = Region.box(box["x"], box["y"], box["z"])
     elif not isinstance(region, Region):
         raise ScrewkitTypeError(f"Expected `region` to be a Region, got {type(region).__name__}.")
-    mode = _checked_working_mode((-1, -1, -1, -1) if working_mode is None else working_mode)
+    mode = checked_working_mode((-1, -1, -1, -1) if working_mode is None else working_mode)
     axes = [np.linspace(lo, hi, int(grid)) for lo, hi in zip(region.lower, region.upper, strict=True)]
     return region, mode, axes
 
@@ -1066,7 +1067,7 @@ def actuation_singularity_surface(
     >>> actuation_singularity_surface(quattro, np.pi / 2, TABLE_4_CONE, grid=12).area > 0
     True
     """
-    from ..robots.families.four_limb import inverse_kinematics, reachable
+    from ..robots.families.four_limb.kinematics import inverse_kinematics, reachable
     from ._isosurface import zero_surface
 
     params = _four_limb_parameters(mechanism)
@@ -1453,5 +1454,5 @@ def transmission_summary(mechanism: Any, pose: Any, jacobians: Any) -> dict[str,
 def _is_four_limb(parameters: Any) -> bool:
     """True for the parameters of a four-limb mechanism (:class:`FourLimbParameters`); the family's
     module is not imported to tell (no such parameters exist before it is)."""
-    module = sys.modules.get("screwkit.robots.families.four_limb")
+    module = sys.modules.get("screwkit.robots.families.four_limb.parameters")
     return module is not None and isinstance(parameters, module.FourLimbParameters)
