@@ -23,7 +23,8 @@ equation and table numbers are that paper's. Its functions here take a four-limb
 (:class:`screwkit.robots.families.four_limb.configuration.FourLimbConfiguration`, from the family's
 inverse kinematics or :meth:`screwkit.robots.catalog.Mechanism.configuration`) of any batch shape
 ``...`` and returns arrays over that batch. The configuration's ``w_i`` (unit parallelogram
-directions), ``h_i`` (Eq. 8), ``s_i`` (Eq. 4) and ``s`` (Tables 1-2) are the robot model; what follows is paper 004's analysis of it.
+directions), ``h_i`` (Eq. 8), ``s_i`` (Eq. 4) and ``s`` (Tables 1-2) are the robot model; what
+follows is paper 004's analysis of it.
 
 The indices
 -----------

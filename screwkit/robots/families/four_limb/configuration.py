@@ -99,6 +99,7 @@ class FourLimbConfiguration:
 
     Examples
     --------
+    >>> from screwkit.robots.families.four_limb.kinematics import inverse_kinematics
     >>> cfg = inverse_kinematics(FourLimbParameters(name="H4", platform_kind="articulated_z",
     ...     arm_length=375, rod_length=800, alpha=0, beta=np.pi / 2, platform_radius=80,
     ...     platform_offset=70, base_radius=275), [[0, 0, -700, 0], [100, 0, -800, 0.5]])

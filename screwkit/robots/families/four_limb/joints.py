@@ -62,6 +62,8 @@ def joints(config: FourLimbConfiguration) -> JointTable:
 
     Examples
     --------
+    >>> from screwkit.robots.families.four_limb.kinematics import inverse_kinematics
+    >>> from screwkit.robots.families.four_limb.parameters import FourLimbParameters
     >>> h4 = FourLimbParameters(name="H4", platform_kind="articulated_z", arm_length=375,
     ...     rod_length=800, alpha=0, beta=np.pi / 2, platform_radius=80, platform_offset=70,
     ...     base_radius=275)
@@ -150,6 +152,8 @@ def twist_basis(config: FourLimbConfiguration) -> np.ndarray:
 
     Examples
     --------
+    >>> from screwkit.robots.families.four_limb.kinematics import inverse_kinematics
+    >>> from screwkit.robots.families.four_limb.parameters import FourLimbParameters
     >>> v4 = FourLimbParameters(name="V4", platform_kind="articulated_y", arm_length=375,
     ...     rod_length=800, alpha=0, beta=np.pi / 2, platform_radius=80, platform_offset=70,
     ...     base_radius=275)
