@@ -610,7 +610,7 @@ def test_joint_graph_has_the_expected_loops():
     assert len({j.name for j in specs}) == 20 and graph.number_of_nodes() == 16
     # E - V + 1 = 5 independent loops: four parallelograms and the loop through both legs.
     assert graph.number_of_edges() - graph.number_of_nodes() + 1 == 5
-    assert [j.name for j in joints if j.actuated] == ["I.pan", "I.proximal.a", "II.pan",
+    assert [j.name for j in specs if j.actuated] == ["I.pan", "I.proximal.a", "II.pan",
                                                       "II.proximal.a"]
 
 

@@ -45,10 +45,12 @@ from screwkit.exceptions import UnreachablePoseError
 from screwkit.robots.catalog import load_mechanism
 from screwkit.robots.families import families
 from screwkit.robots.families import peppermill as pm
-from screwkit.robots.families import planar_3rrp as planar
 from screwkit.robots.families.mcgill_smg.configuration import McGillConfiguration
 from screwkit.robots.families.mcgill_smg.kinematics import inverse_kinematics
 from screwkit.robots.families.mcgill_smg.parameters import LEGS, WORKING_MODES
+from screwkit.robots.families.planar_3rrp.configuration import Planar3RRPConfiguration
+from screwkit.robots.families.planar_3rrp.kinematics import WORKING_MODES as PLANAR_MODES
+from screwkit.robots.families.planar_3rrp.kinematics import forward_kinematics
 
 from . import paper_000, paper_001, paper_003
 from . import test_planar_catalog as planar_catalog
@@ -253,11 +255,11 @@ def planar_relation(config, wrench):
 
 def test_planar_paper_jacobians_equal_ours_up_to_the_working_mode(rng):
     poses = PLANAR.random_poses(rng, 2)
-    cases = [(planar.Planar3RRPConfiguration.from_pose(PLANAR.parameters, pose, mode), mode)
-             for mode in planar.WORKING_MODES for pose in poses]
+    cases = [(Planar3RRPConfiguration.from_pose(PLANAR.parameters, pose, mode), mode)
+             for mode in PLANAR_MODES for pose in poses]
     theta = cases[0][0].joint_angles  # and both assembly modes of one set of actuator values
-    solutions = planar.forward_kinematics(PLANAR.parameters, theta)
-    cases += [(planar.Planar3RRPConfiguration(PLANAR.parameters, pose, theta), None)
+    solutions = forward_kinematics(PLANAR.parameters, theta)
+    cases += [(Planar3RRPConfiguration(PLANAR.parameters, pose, theta), None)
               for pose, valid in zip(solutions.poses, solutions.valid, strict=True) if valid]
     assert len(cases) == 18
     for config, mode in cases:
