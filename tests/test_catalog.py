@@ -10,13 +10,8 @@ from screwkit.algebra import screw as S
 from screwkit.core.singularity import classify
 from screwkit.core.wrenches import wrench_analysis
 from screwkit.exceptions import CatalogError
-from screwkit.robots.catalog import (
-    list_mechanisms,
-    load_mechanism,
-    load_snapshot,
-    mechanism_from_mapping,
-    snapshot_from_mapping,
-)
+from screwkit.robots.catalog import list_mechanisms, load_mechanism, mechanism_from_mapping
+from screwkit.robots.snapshot import load_snapshot, snapshot_from_mapping
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 

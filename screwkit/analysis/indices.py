@@ -21,7 +21,7 @@ Source: paper 004 (Wu, Bai, Caro, "A transmission quality index for a class of f
 Schönflies motion generators", JMR 10(5), 2018), file ``/work/shared/papers/004_60e52c5ada55e36d.txt``;
 equation and table numbers are that paper's. Its functions here take a four-limb configuration
 (:class:`screwkit.robots.families.four_limb.configuration.FourLimbConfiguration`, from the family's
-inverse kinematics or :meth:`screwkit.robots.catalog.Mechanism.configuration`) of any batch shape
+inverse kinematics or :meth:`screwkit.robots.mechanism.Mechanism.configuration`) of any batch shape
 ``...`` and returns arrays over that batch. The configuration's ``w_i`` (unit parallelogram
 directions), ``h_i`` (Eq. 8), ``s_i`` (Eq. 4) and ``s`` (Tables 1-2) are the robot model; what
 follows is paper 004's analysis of it.
@@ -744,7 +744,7 @@ def _region_grid(
     for name, value, least, most in (("grid", grid, 2, MAX_GRID), ("refine", refine, 0, MAX_REFINE)):
         if not isinstance(value, int | np.integer) or isinstance(value, bool) or not least <= value <= most:
             raise ScrewkitValueError(f"Expected `{name}` to be an integer in {least}..{most}, got {value!r}.")
-    from ..robots.catalog import MAX_ANGLE_RADIANS
+    from ..robots.toml_fields import MAX_ANGLE_RADIANS
 
     numeric = isinstance(phi, int | float | np.integer | np.floating)
     if not numeric or not abs(float(phi)) <= MAX_ANGLE_RADIANS:

@@ -1,6 +1,6 @@
 """Workspace maps, singularity loci and trajectory checks, batched through the one analysis core.
 
-Every pose goes through :meth:`screwkit.robots.catalog.Mechanism.at` (the batched core: inverse
+Every pose goes through :meth:`screwkit.robots.mechanism.Mechanism.at` (the batched core: inverse
 kinematics → joint table → wrench systems → verdicts, closeness, Jacobians), in chunks of the
 batch axis, so a map of 10⁶ poses runs in bounded memory. Chunks can run on a Dask distributed
 cluster (optional extra ``dask``): pass ``client=``; the results are identical to the in-process run.
@@ -10,7 +10,7 @@ Units
 Poses here are in the API's units (design.md §3): lengths in the catalog file's length unit, angles
 in **radians**, as everywhere in the Python API; pass ``angles="deg"`` to give ranges, fixed
 coordinates and paths in degrees (as in the TOML files and on the command line, which passes it). A
-pose is a dict ``{name: value}`` over :attr:`~screwkit.robots.catalog.Mechanism.pose_names` (missing
+pose is a dict ``{name: value}`` over :attr:`~screwkit.robots.mechanism.Mechanism.pose_names` (missing
 coordinates take the default pose) or an array in that order.
 
 Quantities (:data:`QUANTITIES`)
@@ -239,7 +239,7 @@ def _pose(mechanism: Any, pose: Any, what: str, angles: str) -> Array:
 def _check_angles(mechanism: Any, values: Mapping[str, Any], what: str, angles: str) -> None:
     """Refuse angles beyond the bound of files and the CLI (``catalog.MAX_ANGLE_DEGREES``, or its
     radian form), naming the argument and the coordinate."""
-    from ..robots.catalog import MAX_ANGLE_DEGREES, MAX_ANGLE_RADIANS
+    from ..robots.toml_fields import MAX_ANGLE_DEGREES, MAX_ANGLE_RADIANS
 
     bound, unit = (MAX_ANGLE_DEGREES, "degrees") if angles == "deg" else (MAX_ANGLE_RADIANS, "rad")
     for name in mechanism.angle_names:
@@ -389,7 +389,7 @@ def evaluate(
 ) -> tuple[Array, Array]:
     """One quantity at poses ``(m, n)`` in **API units** (radians), and which poses are reachable.
 
-    The core (:meth:`~screwkit.robots.catalog.Mechanism.at`) runs once over the reachable poses.
+    The core (:meth:`~screwkit.robots.mechanism.Mechanism.at`) runs once over the reachable poses.
 
     Returns
     -------

@@ -52,16 +52,9 @@ from ..algebra import backend as B
 from ..algebra.screw import Screw
 from ..exceptions import ScrewkitError, ScrewkitValueError
 from ..graphs.twistgraph import equivalent_twist_graph
-from ..robots.catalog import (
-    MAX_COORDINATE,
-    degrees_to_radians,
-    file_kind,
-    list_mechanisms,
-    load_mechanism,
-    load_snapshot,
-    load_toml,
-    unknown_mechanism,
-)
+from ..robots.catalog import list_mechanisms, load_mechanism, unknown_mechanism
+from ..robots.snapshot import load_snapshot
+from ..robots.toml_fields import MAX_COORDINATE, degrees_to_radians, file_kind, load_toml
 from .report import analyze
 
 __all__ = [
@@ -374,8 +367,8 @@ def _pose(args: argparse.Namespace, mechanism: Any) -> Any:
 
 def _pose_values(command: str, option: str, mechanism: Any, values: Sequence[float]) -> list[float]:
     """A pose given on the command line (lengths in the file's unit, angles in degrees), checked:
-    one finite number per pose coordinate, lengths up to :data:`~screwkit.robots.catalog.MAX_COORDINATE`,
-    angles up to :data:`~screwkit.robots.catalog.MAX_ANGLE_DEGREES`."""
+    one finite number per pose coordinate, lengths up to :data:`~screwkit.robots.toml_fields.MAX_COORDINATE`,
+    angles up to :data:`~screwkit.robots.toml_fields.MAX_ANGLE_DEGREES`."""
     names = mechanism.pose_names
     if len(values) != len(names) or not all(math.isfinite(v) for v in values):
         expected = " ".join(n.upper() for n in names)

@@ -223,7 +223,7 @@ def parameters_from_mapping(cls: type[_P], mapping: Any, source: str) -> _P:
         Field name to value, e.g. a table read with :mod:`tomllib`; optionally the metadata
         ``name`` and ``length_unit`` (non-empty strings), which
         :func:`screwkit.robots.catalog.load_mechanism` passes to every family (not stored here: the
-        catalog's :class:`~screwkit.robots.catalog.Mechanism` keeps them).
+        catalog's :class:`~screwkit.robots.mechanism.Mechanism` keeps them).
     source : str
         Where the mapping comes from (a file name), quoted in error messages.
 

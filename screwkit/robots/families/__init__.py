@@ -17,7 +17,7 @@ A family is four functions and the names of its pose coordinates, generic over i
 
 Optionally ``reachable(parameters, poses)``: which poses ``(..., n)`` the inverse kinematics
 accepts in every working mode, ``(...,)`` bool, vectorised (without it,
-:meth:`screwkit.robots.catalog.Mechanism.reachable` bisects the batch around the refused poses).
+:meth:`screwkit.robots.mechanism.Mechanism.reachable` bisects the batch around the refused poses).
 
 The registry is the package itself: every public module (or subpackage) of this package is one
 family, named after it, which declares its :class:`Family` as the module attribute ``FAMILY``

@@ -49,7 +49,7 @@ Paper 000's Jacobians ``A``, ``B`` (Eqs. 44-48), the factors of ``det A`` and ``
 the paper gets wrong about them (Eqs. 45 and 46, the swapped ``u_i``/``v_i`` of Sec. 4.2, the
 missing third-kind condition of Sec. 4.4) are a paper analysis, not the robot model: they live in
 ``tests/paper_000.py`` beside the tests that check them. The mechanism's own Jacobians and labels
-come from the analysis core (:meth:`screwkit.robots.catalog.Mechanism.at`).
+come from the analysis core (:meth:`screwkit.robots.mechanism.Mechanism.at`).
 
 Examples
 --------

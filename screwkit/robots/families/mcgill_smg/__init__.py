@@ -59,7 +59,7 @@ put it midway; we follow Eqs. (1)-(2). Paper 001's Jacobians ``A``, ``B`` (Eqs. 
 of their singularities and what the paper gets wrong about them (the printed block shapes of
 Eq. 17a, Figs. 7a-7b, Eq. 22) are a paper analysis, not the robot model: they live in
 ``tests/paper_001.py`` beside the tests that check them. The mechanism's own Jacobians and labels
-come from the analysis core (:meth:`screwkit.robots.catalog.Mechanism.at`).
+come from the analysis core (:meth:`screwkit.robots.mechanism.Mechanism.at`).
 
 Examples
 --------

@@ -141,7 +141,7 @@ class Planar3RRPParameters:
             ``platform_points`` (3 pairs), ``guide_angles`` (3 numbers, radians); optionally the
             metadata ``name`` and ``length_unit`` (non-empty strings, which
             :func:`screwkit.robots.catalog.load_mechanism` passes to every family; not stored here, the
-            catalog's :class:`~screwkit.robots.catalog.Mechanism` keeps them).
+            catalog's :class:`~screwkit.robots.mechanism.Mechanism` keeps them).
         source : str
             Where the mapping comes from (a file name), quoted in error messages.
 
