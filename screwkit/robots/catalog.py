@@ -41,8 +41,8 @@ Examples
 >>> h4 = load_mechanism("h4")
 >>> h4.name, h4.family, h4.length_unit
 ('H4', 'four_limb', 'mm')
->>> sorted(list_mechanisms())[:1]
-['h4']
+>>> "h4" in list_mechanisms()
+True
 """
 
 from __future__ import annotations
@@ -90,6 +90,11 @@ def _package_file(name: str) -> Path:
 def list_mechanisms() -> list[str]:
     """Names of the catalog entries shipped with the package.
 
+    Returns
+    -------
+    list of str
+        The names, sorted.
+
     Examples
     --------
     >>> "h4" in list_mechanisms()
@@ -101,6 +106,16 @@ def list_mechanisms() -> list[str]:
 
 def load_mechanism(name_or_path: str | Path) -> Mechanism:
     """Load a catalog entry by name (``"h4"``) or from a ``.toml`` path.
+
+    Parameters
+    ----------
+    name_or_path : str or pathlib.Path
+        A catalog name (case-insensitive) or the path of a catalog file.
+
+    Returns
+    -------
+    Mechanism
+        The catalog entry.
 
     Raises
     ------
@@ -133,6 +148,16 @@ def unknown_mechanism(name: str) -> str:
     """The message for a name that is neither a catalog entry nor a ``.toml`` path, with the closest
     entry when there is one.
 
+    Parameters
+    ----------
+    name : str
+        The name given.
+
+    Returns
+    -------
+    str
+        The error message (the catalog's names, and the closest one).
+
     Examples
     --------
     >>> unknown_mechanism("quatro")  # doctest: +ELLIPSIS
@@ -147,6 +172,19 @@ def unknown_mechanism(name: str) -> str:
 
 def mechanism_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>") -> Mechanism:
     """Build a :class:`Mechanism` from parsed catalog TOML (see the module docstring).
+
+    Parameters
+    ----------
+    data : mapping
+        A parsed catalog file (``[mechanism]``, ``[parameters]``, ``[pose]``, ``[workspace]``,
+        ``[[expected]]``).
+    source : str, optional
+        Where the data come from, named in every error.
+
+    Returns
+    -------
+    Mechanism
+        The catalog entry; its family is looked up in :func:`screwkit.robots.families.families`.
 
     Examples
     --------

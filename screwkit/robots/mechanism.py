@@ -105,6 +105,18 @@ class Mechanism:
         """The family's configuration (inverse kinematics) at a pose or a batch ``(..., n)``
         (default: the default pose).
 
+        Parameters
+        ----------
+        pose : array_like, shape (..., n), optional
+            In the file's length unit and radians; default: the default pose.
+        **options
+            Passed to the inverse kinematics (a working mode).
+
+        Returns
+        -------
+        object
+            The family's configuration over the batch (its type is the family's ``C``).
+
         Examples
         --------
         >>> from screwkit.robots.catalog import load_mechanism
@@ -135,6 +147,18 @@ class Mechanism:
 
     def joints(self, pose: Any = None, **options: Any) -> JointTable:
         """The joint table at a pose or a batch of poses (the input of the analysis core).
+
+        Parameters
+        ----------
+        pose : array_like, shape (..., n), optional
+            In the file's length unit and radians; default: the default pose.
+        **options
+            Passed to the inverse kinematics (a working mode).
+
+        Returns
+        -------
+        JointTable
+            Every joint's screws over the batch of poses.
 
         Examples
         --------
@@ -168,6 +192,11 @@ class Mechanism:
         **options
             Passed to the inverse kinematics (a working mode).
 
+        Returns
+        -------
+        PosedMechanism
+            The mechanism at ``poses``; its stages are computed on first use.
+
         Examples
         --------
         >>> from screwkit.robots.catalog import load_mechanism
@@ -189,6 +218,13 @@ class Mechanism:
         :data:`MAX_ANGLE_RADIANS` (the radian form of the degrees rule, :data:`MAX_ANGLE_DEGREES`).
 
         Shapes, types and NaN are left to the callee, which names them; this check only bounds sizes.
+
+        Parameters
+        ----------
+        poses : array_like or None
+            Poses ``(..., n)`` in the file's length unit and radians (None: the default pose).
+        argument : str, optional
+            The argument's name, for the error message.
 
         Raises
         ------
@@ -231,6 +267,18 @@ class Mechanism:
         """Poses drawn uniformly in the *reachable* part of the operational workspace (radians),
         ``(count, n)``: draws whose inverse kinematics has no solution are drawn again (rejection keeps
         the distribution uniform; the first ``count`` draws are returned when all are reachable).
+
+        Parameters
+        ----------
+        rng : numpy.random.Generator
+            The source of randomness.
+        count : int
+            How many poses.
+
+        Returns
+        -------
+        numpy.ndarray, shape (count, n)
+            Reachable poses of the workspace box, in the file's length unit and radians.
 
         Raises
         ------
@@ -275,6 +323,18 @@ class Mechanism:
         :meth:`configuration`, halved where a batch is refused
         (:class:`~screwkit.exceptions.UnreachablePoseError`).
 
+        Parameters
+        ----------
+        poses : numpy.ndarray, shape (m, n)
+            In the file's length unit and radians.
+        **options
+            Passed to the inverse kinematics (a working mode).
+
+        Returns
+        -------
+        numpy.ndarray of bool, shape (m,)
+            True where the inverse kinematics accepts the pose.
+
         Examples
         --------
         >>> from screwkit.robots.catalog import load_mechanism
@@ -306,6 +366,17 @@ class Mechanism:
         """The wrench diagram at a pose, and a sampler of its recipes at random workspace poses
         (:meth:`screwkit.robots.posed.Pose.diagram_and_sampler`).
 
+        Parameters
+        ----------
+        pose : array_like, shape (n,), optional
+            In the file's length unit and radians; default: the default pose.
+
+        Returns
+        -------
+        tuple
+            The :class:`~screwkit.gca.diagram.WrenchDiagram` at the pose, and ``sample(rng)``, which gives the
+            diagram's point recipes at a random workspace pose.
+
         Examples
         --------
         >>> from screwkit.robots.catalog import load_mechanism
@@ -317,6 +388,18 @@ class Mechanism:
 
     def twist_graph(self, pose: Any = None, **options: Any) -> nx.MultiDiGraph:
         """The twist graph of the physical mechanism at one pose (default: the default pose).
+
+        Parameters
+        ----------
+        pose : array_like, shape (n,), optional
+            In the file's length unit and radians; default: the default pose.
+        **options
+            Passed to the inverse kinematics (a working mode).
+
+        Returns
+        -------
+        networkx.MultiDiGraph
+            The twist graph of the physical mechanism at that pose.
 
         Examples
         --------
@@ -335,6 +418,18 @@ class Mechanism:
         3-RRP the translations ``x``, ``y`` and the rotation about ``z`` through the platform point.
         ``options`` go to :meth:`configuration` (e.g. a working mode).
 
+        Parameters
+        ----------
+        pose : array_like, shape (n,), optional
+            In the file's length unit and radians; default: the default pose.
+        **options
+            Passed to the inverse kinematics (a working mode).
+
+        Returns
+        -------
+        numpy.ndarray, shape (dof, 6)
+            One nominal twist per pose coordinate.
+
         Examples
         --------
         >>> from screwkit.robots.catalog import load_mechanism
@@ -349,6 +444,18 @@ class Mechanism:
         :func:`screwkit.core.jacobians.jacobians_from_wrenches` of the wrench analysis over
         :meth:`twist_basis` (so ``χ̇`` are the rates of the pose coordinates), with its
         Gosselin–Angeles type and closeness measures. ``options`` go to :meth:`configuration`.
+
+        Parameters
+        ----------
+        pose : array_like, shape (n,), optional
+            In the file's length unit and radians; default: the default pose.
+        **options
+            Passed to the inverse kinematics (a working mode).
+
+        Returns
+        -------
+        WrenchJacobians
+            ``A`` and ``B`` of ``A χ̇ = B θ̇`` at that pose, with their type.
 
         Raises
         ------

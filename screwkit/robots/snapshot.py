@@ -147,6 +147,18 @@ def _snapshot_joint(entry: Any, index: int, source: str) -> tuple[str, str, J.Jo
 def snapshot_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>") -> nx.MultiDiGraph:
     """Build a twist graph from parsed snapshot TOML (see the module docstring).
 
+    Parameters
+    ----------
+    data : mapping
+        A parsed snapshot file (``[mechanism]`` and ``[[joints]]``).
+    source : str, optional
+        Where the data come from, named in every error.
+
+    Returns
+    -------
+    networkx.MultiDiGraph
+        The twist graph of the snapshot.
+
     Examples
     --------
     >>> graph = snapshot_from_mapping({
@@ -246,6 +258,13 @@ def check_dof(graph: nx.MultiDiGraph, *, joint_key: str = "joint") -> None:
     the graph is analysed (:func:`screwkit.core.motion.settled_dof`). A graph without ``dof`` or without
     actuated joints passes.
 
+    Parameters
+    ----------
+    graph : networkx.MultiDiGraph
+        A twist graph.
+    joint_key : str, optional
+        The edge attribute that holds the joints.
+
     Raises
     ------
     TwistGraphError
@@ -291,6 +310,16 @@ def _checked_graph(
 
 def load_snapshot(path: str | Path) -> nx.MultiDiGraph:
     """Load a snapshot file as a twist graph.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        A snapshot file.
+
+    Returns
+    -------
+    networkx.MultiDiGraph
+        The twist graph of the snapshot.
 
     Raises
     ------

@@ -104,6 +104,16 @@ MAX_ANGLE_RADIANS = math.radians(MAX_ANGLE_DEGREES)
 def degrees_to_radians(value: float) -> float:
     """Degrees to radians, whole turns kept (``360`` is ``2π``, not ``0``).
 
+    Parameters
+    ----------
+    value : float
+        An angle in degrees.
+
+    Returns
+    -------
+    float
+        The angle in radians.
+
     Raises
     ------
     ScrewkitValueError
@@ -130,6 +140,16 @@ def file_kind(data: Mapping[str, Any]) -> Any:
     """``[mechanism] kind`` of parsed TOML: ``"family"`` or ``"snapshot"`` (a file without a kind but
     with ``[[joints]]`` is read as a snapshot, so that its errors speak of snapshots); None otherwise.
 
+    Parameters
+    ----------
+    data : mapping
+        A parsed TOML file.
+
+    Returns
+    -------
+    str or None
+        ``"family"``, ``"snapshot"``, another string the file names, or None.
+
     Examples
     --------
     >>> file_kind({"mechanism": {"kind": "snapshot"}}), file_kind({"mechanism": 5}), file_kind({"joints": []})
@@ -144,6 +164,16 @@ def file_kind(data: Mapping[str, Any]) -> Any:
 
 def load_toml(path: str | Path) -> dict[str, Any]:
     """Read a TOML file as plain data, with errors that name the file.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The file (at most :data:`MAX_FILE_BYTES`, UTF-8 text).
+
+    Returns
+    -------
+    dict
+        The parsed TOML as plain data.
 
     Examples
     --------

@@ -59,6 +59,18 @@ _METADATA = ("name", "length_unit")
 def frozen(value: Any, dtype: Any = float) -> np.ndarray:
     """Return a read-only copy of ``value`` as an array of ``dtype``.
 
+    Parameters
+    ----------
+    value : array_like
+        The values.
+    dtype : data-type, optional
+        The array's type (default float).
+
+    Returns
+    -------
+    numpy.ndarray
+        A read-only copy.
+
     Examples
     --------
     >>> frozen([1, 2]).flags.writeable
@@ -85,6 +97,18 @@ def at_reach(cosine: np.ndarray, condition: np.ndarray) -> np.ndarray:
     :data:`REACH_ULPS` rounding units of ±1 (``condition``: the sum of the absolute values of the terms
     of its numerator over its denominator, the relative size of its rounding error).
 
+    Parameters
+    ----------
+    cosine : numpy.ndarray
+        The computed cosines.
+    condition : numpy.ndarray
+        The relative size of their rounding error (broadcast against ``cosine``).
+
+    Returns
+    -------
+    numpy.ndarray
+        Cosines in ``[-1, 1]``, exactly ``±1`` at a limb's reach.
+
     Examples
     --------
     >>> at_reach(np.array([1.0 - 4e-16, 0.5, -1.0 + 1e-15, 1.0 + 1e-14]), np.ones(4))
@@ -102,6 +126,18 @@ def within_reach(cosine: np.ndarray, condition: np.ndarray) -> np.ndarray:
     :data:`REACH_ULPS` rounding units that :func:`at_reach` puts back at ``±1`` (a limb stretched
     exactly to its reach, whose ``c`` rounded to ``1 + 2e-16``, is at its reach, not out of it).
 
+    Parameters
+    ----------
+    cosine : numpy.ndarray
+        The computed cosines.
+    condition : numpy.ndarray
+        The relative size of their rounding error (broadcast against ``cosine``).
+
+    Returns
+    -------
+    numpy.ndarray of bool
+        True where the limb reaches (to rounding).
+
     Examples
     --------
     >>> within_reach(np.array([1.0 + 4e-16, -1.0 - 1e-15, 1.0 + 1e-12, 0.5]), np.ones(4))
@@ -113,6 +149,16 @@ def within_reach(cosine: np.ndarray, condition: np.ndarray) -> np.ndarray:
 def wrap_angle(angle: np.ndarray) -> np.ndarray:
     """Wrap angles into ``[-π, π)``.
 
+    Parameters
+    ----------
+    angle : numpy.ndarray
+        Angles in radians.
+
+    Returns
+    -------
+    numpy.ndarray
+        The same angles in ``[-π, π)``.
+
     Examples
     --------
     >>> wrap_angle(np.array([3 * np.pi / 2, -np.pi]))
@@ -123,6 +169,18 @@ def wrap_angle(angle: np.ndarray) -> np.ndarray:
 
 def describe_indices(mask: np.ndarray, limit: int = 5) -> str:
     """List (up to ``limit``) batch indices where ``mask`` is True, for error messages.
+
+    Parameters
+    ----------
+    mask : numpy.ndarray of bool
+        Over a batch.
+    limit : int, optional
+        How many indices to list (default 5).
+
+    Returns
+    -------
+    str
+        The first indices, and how many more there are.
 
     Examples
     --------
@@ -227,6 +285,11 @@ def parameters_from_mapping(cls: type[_P], mapping: Any, source: str) -> _P:
     source : str
         Where the mapping comes from (a file name), quoted in error messages.
 
+    Returns
+    -------
+    object
+        An instance of ``cls``.
+
     Raises
     ------
     CatalogError
@@ -283,6 +346,20 @@ def parameters_from_mapping(cls: type[_P], mapping: Any, source: str) -> _P:
 
 def checked_mode(mode: Any, name: str, length: int) -> tuple[int, ...]:
     """Validate a working or assembly mode: a tuple of ``length`` signs, each +1 or -1.
+
+    Parameters
+    ----------
+    mode : sequence of int
+        The signs.
+    name : str
+        The argument's name, for the error message.
+    length : int
+        How many signs.
+
+    Returns
+    -------
+    tuple of int
+        The signs as Python ints.
 
     Examples
     --------

@@ -29,8 +29,8 @@ run time are added with :func:`register`.
 
 Examples
 --------
->>> sorted(families())
-['four_limb', 'mcgill_smg', 'peppermill', 'planar_3rrp']
+>>> {"four_limb", "planar_3rrp"} <= set(families())
+True
 >>> families()["planar_3rrp"].pose_names
 ('x', 'y', 'phi')
 """
@@ -218,7 +218,8 @@ class Registry(MutableMapping[str, Family[Any, Any]]):
     looked up), then those added by :func:`register`.
 
     The package's search path is read at every listing, so that a module put on it (a folder
-    appended to ``screwkit.robots.families.__path__``) is a family from then on.
+    appended to ``screwkit.robots.families.__path__``) is a family from then on. Deleting a shipped
+    family forgets its loaded :class:`Family` (it is made again on its next look-up).
 
     Examples
     --------
@@ -261,7 +262,11 @@ class Registry(MutableMapping[str, Family[Any, Any]]):
         self._registered[name] = family
 
     def __delitem__(self, name: str) -> None:
-        del self._registered[name]
+        # a registered family is removed; a shipped one is forgotten (imported again on its next
+        # look-up, while its module is on the package's search path)
+        found = [known.pop(name) for known in (self._registered, self._loaded) if name in known]
+        if not found:
+            raise KeyError(name)
 
     def __iter__(self) -> Iterator[str]:
         shipped = _shipped()
@@ -284,7 +289,7 @@ class Registry(MutableMapping[str, Family[Any, Any]]):
 
         Examples
         --------
-        >>> families().pose_names()
+        >>> families().pose_names()[:4]
         ['x', 'y', 'z', 'phi']
         """
         names: list[str] = []

@@ -164,6 +164,18 @@ class PeppermillParameters:
     ) -> PeppermillParameters:
         """Build parameters from a mapping (e.g. a TOML table), naming ``source`` in every error.
 
+        Parameters
+        ----------
+        mapping : mapping
+            The ``[parameters]`` values (and the metadata ``name``, ``length_unit``).
+        source : str, optional
+            Where the mapping comes from, named in every error.
+
+        Returns
+        -------
+        PeppermillParameters
+            The validated parameters.
+
         Raises
         ------
         CatalogError
@@ -182,6 +194,16 @@ class PeppermillParameters:
 
     def scaled(self, factor: float) -> PeppermillParameters:
         """The same robot in another unit of length (every length and lead times ``factor`` > 0).
+
+        Parameters
+        ----------
+        factor : float
+            The ratio of the new unit of length to the old (> 0).
+
+        Returns
+        -------
+        PeppermillParameters
+            The scaled parameters.
 
         Examples
         --------
@@ -275,7 +297,13 @@ class PeppermillConfiguration:
         return tuple(self.pose.shape[:-1])
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dictionary of the pose, the mode and the joint values."""
+        """JSON-ready dictionary of the pose, the mode and the joint values.
+
+        Returns
+        -------
+        dict
+            Plain lists and numbers.
+        """
         return {
             "mode": list(self.mode),
             "pose": self.pose.tolist(),

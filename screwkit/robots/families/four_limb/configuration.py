@@ -141,7 +141,13 @@ class FourLimbConfiguration:
         return self.pose.shape[:-1]
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dictionary (arrays become nested lists)."""
+        """JSON-ready dictionary (arrays become nested lists).
+
+        Returns
+        -------
+        dict
+            Plain lists and numbers.
+        """
         out: dict[str, Any] = {
             "parameters": asdict(self.params),
             "working_mode": list(self.working_mode),

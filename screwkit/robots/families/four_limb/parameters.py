@@ -248,6 +248,18 @@ class FourLimbParameters:
 
         Keys are the field names of this class; ``alpha`` and ``beta`` are in radians.
 
+        Parameters
+        ----------
+        mapping : mapping
+            The ``[parameters]`` values (and the metadata ``name``, ``length_unit``).
+        source : str, optional
+            Where the mapping comes from, named in every error.
+
+        Returns
+        -------
+        FourLimbParameters
+            The validated parameters.
+
         Raises
         ------
         CatalogError

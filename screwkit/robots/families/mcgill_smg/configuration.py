@@ -163,7 +163,13 @@ class McGillConfiguration:
         return np.asarray(self.joint_angles[..., :2].reshape(*self.batch_shape, 4))
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dictionary of the pose, the mode and the joint angles."""
+        """JSON-ready dictionary of the pose, the mode and the joint angles.
+
+        Returns
+        -------
+        dict
+            Plain lists and numbers.
+        """
         return {
             "mode": list(self.mode),
             "pose": self.pose.tolist(),

@@ -95,6 +95,18 @@ class McGillParameters:
     ) -> McGillParameters:
         """Build parameters from a mapping (e.g. a TOML table), naming ``source`` in every error.
 
+        Parameters
+        ----------
+        mapping : mapping
+            The ``[parameters]`` values (and the metadata ``name``, ``length_unit``).
+        source : str, optional
+            Where the mapping comes from, named in every error.
+
+        Returns
+        -------
+        McGillParameters
+            The validated parameters.
+
         Raises
         ------
         CatalogError
@@ -113,6 +125,16 @@ class McGillParameters:
 
     def scaled(self, factor: float) -> McGillParameters:
         """The same robot in another unit of length (every length times ``factor`` > 0).
+
+        Parameters
+        ----------
+        factor : float
+            The ratio of the new unit of length to the old (> 0).
+
+        Returns
+        -------
+        McGillParameters
+            The scaled parameters.
 
         Examples
         --------

@@ -125,6 +125,22 @@ class Planar3RRPConfiguration:
     ) -> Planar3RRPConfiguration:
         """The configuration of ``pose`` in ``working_mode`` (see :func:`inverse_kinematics`).
 
+        Parameters
+        ----------
+        parameters : Planar3RRPParameters
+            The robot.
+        pose : array_like, shape (..., 3)
+            ``(x, y, φ)``, φ in radians.
+        working_mode : sequence of 3 signs, optional
+            The signs of ``J_kk`` (default ``(1, 1, 1)``).
+        rtol : float, optional
+            Relative tolerance of the reach test.
+
+        Returns
+        -------
+        Planar3RRPConfiguration
+            The configuration over the batch of poses.
+
         Examples
         --------
         >>> from screwkit.robots.families.planar_3rrp.parameters import EXAMPLE_PARAMETERS

@@ -179,6 +179,11 @@ class ForwardKinematicsSolutions:
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dictionary.
 
+        Returns
+        -------
+        dict
+            Plain lists and numbers.
+
         Examples
         --------
         >>> from screwkit.robots.families.planar_3rrp.parameters import EXAMPLE_PARAMETERS

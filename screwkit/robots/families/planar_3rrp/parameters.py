@@ -145,6 +145,11 @@ class Planar3RRPParameters:
         source : str
             Where the mapping comes from (a file name), quoted in error messages.
 
+        Returns
+        -------
+        Planar3RRPParameters
+            The validated parameters.
+
         Raises
         ------
         CatalogError
