@@ -592,12 +592,7 @@ def twist_basis(config: PeppermillConfiguration) -> np.ndarray:
 
 #: The family (:mod:`screwkit.robots.families`).
 FAMILY: Family[PeppermillParameters, PeppermillConfiguration] = Family(
-    name="peppermill",
-    parameters=PeppermillParameters.from_mapping,
-    inverse_kinematics=inverse_kinematics,
-    joints=joints,
-    twist_basis=twist_basis,
-    pose_names=("x", "y", "z", "phi"),
-    angle_names=("phi",),
+    "peppermill", PeppermillParameters.from_mapping, inverse_kinematics, joints, twist_basis,
+    pose_names=("x", "y", "z", "phi"), angle_names=("phi",),
     parameter_kinds=dict.fromkeys(("r1", "r2", "l1", "l2", "b0", "p1", "p2"), "length"),
 )
