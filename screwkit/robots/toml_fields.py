@@ -97,7 +97,8 @@ def _check_keys(table: Mapping[str, Any], known: Any, source: str, where: str) -
 #: other angle. Angles are not reduced modulo 360°: a screw-pair platform (the Veloce, the Ragnar's
 #: φ over ±360°) is in another configuration after a whole turn.
 MAX_ANGLE_DEGREES = 1e6
-#: The same bound for the radians of the Python API (:meth:`Mechanism.check_pose_range`).
+#: The same bound for the radians of the Python API
+#: (:meth:`~screwkit.robots.mechanism.Mechanism.check_pose_range`).
 MAX_ANGLE_RADIANS = math.radians(MAX_ANGLE_DEGREES)
 
 
