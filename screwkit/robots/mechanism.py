@@ -16,7 +16,7 @@ from __future__ import annotations
 import inspect
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Generic, TypeVar
 
 import networkx as nx
 import numpy as np
@@ -40,15 +40,21 @@ if TYPE_CHECKING:
 __all__ = ["MAX_REJECTION_ROUNDS", "Mechanism"]
 
 
+#: The family's parameter and configuration types (:class:`~screwkit.robots.families.Family`).
+P = TypeVar("P")
+C = TypeVar("C")
+
+
 Array = np.ndarray
 #: Rounds of redrawing in :meth:`Mechanism.random_poses` before a mostly unreachable workspace is refused.
 MAX_REJECTION_ROUNDS = 50
 
 
-
 @dataclass(frozen=True, eq=False)
-class Mechanism:
-    """A catalog robot: a family, its parameters, default pose, workspace and expected facts.
+class Mechanism(Generic[P, C]):
+    """A catalog robot: a family, its parameters, default pose, workspace and expected facts;
+    generic, as its :class:`~screwkit.robots.families.Family`, over the family's parameter type ``P``
+    and configuration type ``C``.
 
     Attributes
     ----------
@@ -57,7 +63,7 @@ class Mechanism:
         The file it was read from.
     sources : tuple of str
         The papers the entry comes from.
-    parameters : object
+    parameters : P
         The family's validated parameter dataclass.
     parameter_sources : dict
         ``{parameter: {"value", "unit", "source"}}`` as written in the file.
@@ -79,7 +85,7 @@ class Mechanism:
     length_unit: str
     source: str
     sources: tuple[str, ...]
-    parameters: Any
+    parameters: P
     parameter_sources: dict[str, dict[str, Any]]
     default_pose: Array
     workspace: dict[str, tuple[float, float]]
@@ -87,7 +93,7 @@ class Mechanism:
     reachable_fraction: float = 1.0
 
     @property
-    def family_protocol(self) -> Family[Any, Any]:
+    def family_protocol(self) -> Family[P, C]:
         """The family's four functions (:mod:`screwkit.robots.families`)."""
         return families()[self.family]
 
@@ -101,7 +107,7 @@ class Mechanism:
         """The pose coordinates that are angles (radians in the API, degrees in files and the CLI)."""
         return self.family_protocol.angle_names
 
-    def configuration(self, pose: Any = None, **options: Any) -> Any:
+    def configuration(self, pose: Any = None, **options: Any) -> C:
         """The family's configuration (inverse kinematics) at a pose or a batch ``(..., n)``
         (default: the default pose).
 
