@@ -103,7 +103,7 @@ def chunked(function, poses):
 def breakdown(h4, poses, repeats=7):
     """CPU µs per pose of each stage of :func:`verdicts` over ``poses``, in the core's chunks: the
     inverse kinematics, the joint table, the analysis core (``wrenches.analyze_table``) and inside
-    it the reference frame with the unit scaled screws (``twistgraph.scaled_frame``), the compiled
+    it the reference frame with the unit scaled screws (``reference_frame.scaled_frame``), the compiled
     program of series-parallel frames (``wrenches._run``) and the closing pass (global span,
     closeness triangles, user-frame rows: ``_frames.closing``), the rest of the core (limb
     systems, leg residuals, compound-leg checks, numpy glue) and of :func:`verdicts` (copying the

@@ -17,10 +17,10 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from screwkit.algebra import _symbolic as _symbolic
+from screwkit.algebra import symbolic
 from screwkit.core.generic import generic_analysis
 from screwkit.core.wrenches import wrench_analysis
-from screwkit.graphs.twistgraph import platform_twist_system
+from screwkit.graphs.reduction import platform_twist_system
 from tests.test_generic import delta_3ruu, four_limb_smg, fully_symbolic_h4, numeric_values
 
 
@@ -28,7 +28,7 @@ def cpu_times(function, repeat):
     """CPU seconds of ``repeat`` calls (the generic point's cache cleared before each) and the last result."""
     times, result = [], None
     for _ in range(repeat):
-        _symbolic._point.cache_clear()
+        symbolic._point.cache_clear()
         start = time.process_time()
         result = function()
         times.append(time.process_time() - start)

@@ -14,8 +14,10 @@ Examples
 from pkgutil import extend_path
 from typing import Any
 
-from .algebra.screw import Screw, reciprocal_product
-from .algebra.screwsystem import ScrewSystem, motion_type
+from .algebra.motion_type import motion_type
+from .algebra.screw import reciprocal_product
+from .algebra.screwsystem import ScrewSystem
+from .algebra.screwvalue import Screw
 from .core.singularity import SingularityReport, classify, classify_poses, classify_table
 from .core.wrenches import WrenchAnalysis, analyze_table, wrench_analysis
 from .exceptions import (
@@ -30,7 +32,6 @@ from .exceptions import (
 )
 from .graphs.joints import (
     Joint,
-    JointTable,
     cylindrical,
     helical,
     parallelogram,
@@ -40,14 +41,10 @@ from .graphs.joints import (
     universal,
     virtual,
 )
-from .graphs.twistgraph import (
-    equivalent_twist_graph,
-    fundamental_loops,
-    loop_closure_matrix,
-    platform_twist_system,
-    series_parallel_tree,
-    twist_graph,
-)
+from .graphs.jointtable import JointTable
+from .graphs.loops import fundamental_loops, loop_closure_matrix
+from .graphs.reduction import equivalent_twist_graph, platform_twist_system, series_parallel_tree
+from .graphs.twistgraph import twist_graph
 
 #: Names loaded on first use (the catalog and its families, the generic analysis, the projective
 #: helpers, the Jacobians, the composer and its report are not a cost of ``import screwkit``; PEP 562).
@@ -62,22 +59,21 @@ _LAZY = {
     "generic_analysis": "core.generic",
     **dict.fromkeys(
         (
-            "are_collinear",
-            "are_coplanar",
             "bracket",
             "finite_point",
             "infinite_point",
-            "is_at_infinity",
             "join",
             "line_points",
-            "lines_intersect",
             "meet_line_plane",
             "meet_planes",
             "plane",
             "plane_through",
-            "point_on_line",
         ),
         "algebra.projective",
+    ),
+    **dict.fromkeys(
+        ("are_collinear", "are_coplanar", "is_at_infinity", "lines_intersect", "point_on_line"),
+        "algebra.incidence",
     ),
     "WrenchJacobians": "core.jacobians",
     "jacobians_from_wrenches": "core.jacobians",

@@ -37,7 +37,8 @@ from typing import Any
 
 import numpy as np
 
-from screwkit.algebra.backend import DEFAULT_RTOL, checked_length_scale
+from screwkit.algebra.backend import DEFAULT_RTOL
+from screwkit.algebra.checks import checked_length_scale
 from screwkit.core.jacobians import JacobianClassification, classify_jacobians
 from screwkit.robots.families.peppermill import (
     DEFAULT_MODE,

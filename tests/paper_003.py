@@ -66,7 +66,8 @@ from typing import Any, Literal
 
 import numpy as np
 
-from screwkit.algebra.backend import DEFAULT_RTOL, as_array, checked_rtol
+from screwkit.algebra.backend import DEFAULT_RTOL, as_array
+from screwkit.algebra.checks import checked_rtol
 from screwkit.exceptions import DegenerateGeometryError, ScrewkitValueError
 from screwkit.robots.families.planar_3rrp.configuration import Planar3RRPConfiguration, _check_config
 from screwkit.robots.families.planar_3rrp.joints import JOINT_PAIRS

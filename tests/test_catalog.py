@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 from screwkit.algebra import screw as S
+from screwkit.algebra.screwvalue import Screw
 from screwkit.core.singularity import classify
 from screwkit.core.wrenches import wrench_analysis
 from screwkit.exceptions import CatalogError
@@ -143,7 +144,7 @@ def test_h4_results_do_not_depend_on_the_chosen_parallelogram_width(width, rng):
         assert (report.constraint_order, report.global_order) == (reference.constraint_order, reference.global_order)
         # the actuation wrenches are the same lines (they lie in the parallelogram planes)
         for a, b in zip(report.analysis.actuation_wrenches, reference.analysis.actuation_wrenches, strict=True):
-            assert S.Screw(a).is_equivalent(S.Screw(b))
+            assert Screw(a).is_equivalent(Screw(b))
 
 
 def test_snapshot_example_planar_3rpr():

@@ -5,6 +5,7 @@ import inspect
 import pkgutil
 
 import pytest
+from numpydoc.validate import validate
 
 import screwkit
 
@@ -40,3 +41,34 @@ def test_public_object_has_an_example(obj):
         inspect.isclass(obj) and (issubclass(obj, Exception) or "Attributes\n----------" in doc)
     )
     assert doc and documented, f"{obj.__module__}.{obj.__qualname__} lacks a docstring with Examples"
+
+
+def public_callables():
+    """Every public function of a public module and every public method of its public classes."""
+    for name in MODULES:
+        module = importlib.import_module(name)
+        for attribute in getattr(module, "__all__", []):
+            value = getattr(module, attribute)
+            if getattr(value, "__module__", None) != name:
+                continue
+            if inspect.isfunction(value):
+                yield pytest.param(f"{name}.{attribute}", id=f"{name}.{attribute}")
+            elif inspect.isclass(value) and not issubclass(value, Exception):
+                for method, member in vars(value).items():
+                    if method.startswith("_") or not (
+                        inspect.isfunction(member) or isinstance(member, classmethod | staticmethod)
+                    ):
+                        continue
+                    yield pytest.param(f"{name}.{attribute}.{method}", id=f"{name}.{attribute}.{method}")
+
+
+#: numpydoc's validation codes this project holds every public callable to: every parameter
+#: documented (PR01), no documented parameter that does not exist (PR02), a Returns section when
+#: the callable returns a value (RT01), a Yields section for a generator (YD01).
+REQUIRED = ("PR01", "PR02", "RT01", "YD01")
+
+
+@pytest.mark.parametrize("qualname", list(public_callables()))
+def test_public_callable_documents_parameters_and_returns(qualname):
+    errors = [f"{code}: {message}" for code, message in validate(qualname)["errors"] if code in REQUIRED]
+    assert errors == [], qualname

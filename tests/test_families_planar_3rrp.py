@@ -9,7 +9,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from screwkit.algebra.backend import screw_rank
+from screwkit.algebra.ranks import screw_rank
 from screwkit.exceptions import (
     CatalogError,
     DegenerateGeometryError,

@@ -14,6 +14,8 @@ import sys
 import numpy as np
 import pytest
 
+from screwkit.algebra import compiled as C
+from screwkit.algebra import reference_frame as R
 from screwkit.core import _frames as F
 
 HAS_NUMBA = importlib.util.find_spec("numba") is not None
@@ -314,8 +316,10 @@ def test_rod_and_unit_screws_numba_and_numpy_are_bit_identical(seed):
     screws = rng.standard_normal((7, 9, 6)) * rng.uniform(0.1, 100.0, (7, 1, 1))
     screws[2, 4] = 0.0  # a zero row stays zero
     centre, length = rng.standard_normal((7, 3)), rng.uniform(0.5, 5.0, 7)
-    compiled = _frames_numba.unit_scaled(screws, centre, length)
-    np.testing.assert_array_equal(compiled, F.unit_scaled(screws, centre, length))  # 7 < 256: numpy
+    from screwkit.algebra import _reference_frame_numba
+
+    compiled = _reference_frame_numba.unit_scaled(screws, centre, length)
+    np.testing.assert_array_equal(compiled, R.unit_scaled(screws, centre, length))  # 7 < 256: numpy
     assert np.all(compiled[2, 4] == 0.0)
     np.testing.assert_allclose(np.linalg.norm(np.delete(compiled.reshape(-1, 6), 22, 0), axis=-1), 1.0)
 
@@ -325,16 +329,16 @@ def test_compiled_program_matches_the_ops_run_one_by_one(monkeypatch):
     # the numba interpreter against the numpy path's op-by-op run of the same H4 program: bit for
     # bit (frames, orders)
     import screwkit as sk
+    from screwkit.algebra.reference_frame import mechanism_frame
     from screwkit.core import _frames_numba as _frames_numba
     from screwkit.core import wrenches as W
     from screwkit.graphs.topology import topology
-    from screwkit.graphs.twistgraph import mechanism_frame
 
     h4 = sk.load_mechanism("h4")
     table = W._canonical(h4.joints(h4.random_poses(np.random.default_rng(5), 30)[:20]))
     top = topology(table.base, table.platform, table.specs)
     centre, length = mechanism_frame(table.screws, table.anchor)
-    scaled = F.unit_scaled(table.screws, centre, length)
+    scaled = R.unit_scaled(table.screws, centre, length)
     requests = (
         *(("twists", i) for i in range(len(top.nodes))),
         *(("wrenches", i) for i in top.legs),
@@ -343,9 +347,9 @@ def test_compiled_program_matches_the_ops_run_one_by_one(monkeypatch):
     program = W._program(top, requests)
     for code in (W.ROD, W.PARALLELOGRAM, W.EXTEND, W.CONTRACT):  # rods, parallelograms, chains: closed forms
         assert code in program.ops[:, 0]
-    monkeypatch.setitem(F._compiled, "screwkit.core._frames_numba", _frames_numba)
+    monkeypatch.setitem(C._compiled, "screwkit.core._frames_numba", _frames_numba)
     compiled = W._run(program, scaled, RTOL, requests)
-    monkeypatch.setitem(F._compiled, "screwkit.core._frames_numba", None)
+    monkeypatch.setitem(C._compiled, "screwkit.core._frames_numba", None)
     stepwise = W._run(program, scaled, RTOL, requests)
     assert compiled[0].shape == stepwise[0].shape == (20, len(requests), 6, 6)
     np.testing.assert_array_equal(compiled[1], stepwise[1])
@@ -362,7 +366,7 @@ def test_triangular_keeps_the_singular_values_and_both_paths_are_bit_identical(r
     rows[5:10, :, 2] = 0.0  # a zero column
     padded = np.concatenate([rows, np.zeros((40, max(6 - k, 0), 6))], axis=1)  # fewer than 6: zero rows added
     compiled = _frames_numba.triangular(np.ascontiguousarray(padded))
-    monkeypatch.setitem(F._compiled, "screwkit.core._frames_numba", None)
+    monkeypatch.setitem(C._compiled, "screwkit.core._frames_numba", None)
     np.testing.assert_array_equal(F.triangular(rows), compiled)
     assert np.all(np.tril(compiled, -1) == 0)  # upper triangular
     np.testing.assert_allclose(
@@ -449,25 +453,24 @@ def test_transmissions_numba_matches_numpy_bit_for_bit(rng):
 
 @needs_numba
 def test_mechanism_frame_numba_matches_numpy_bit_for_bit(rng, monkeypatch):
-    from screwkit.graphs import twistgraph as T
+    from screwkit.algebra import _reference_frame_numba as kernels
     screws = rng.standard_normal((40, 13, 6))
     screws[:, 3, :3] = 0.0  # infinite pitch: ignored
     screws[::4, 5] = screws[::4, 5] * 1e-3
     screws[7, :, :3] = [0, 0, 1.0]  # all axes parallel: not solved directly, left to the numpy path
     screws[9] = np.array([[*e, 0, 0, 0] for e in np.eye(3)] * 4 + [[0, 0, 1.0, 0, 0, 0]])  # concurrent axes
-    kernels = F._import_kernels()
     point, length, direct, scaled = kernels.mechanism_frame(screws, True)
-    expected_point, expected_length = T._frame_numpy(screws, None)
+    expected_point, expected_length = R._frame_numpy(screws, None)
     assert not direct[7] and direct[9] and direct.sum() == 39
     np.testing.assert_array_equal(point[direct], expected_point[direct])
     np.testing.assert_array_equal(length[direct], expected_length[direct])
-    monkeypatch.setitem(F._compiled, "screwkit.core._frames_numba", None)  # the numpy path, whatever ran before
-    expected_scaled = F.unit_scaled(screws, expected_point, expected_length)
+    monkeypatch.setitem(C._compiled, R.KERNELS, None)  # the numpy path, whatever ran before
+    expected_scaled = R.unit_scaled(screws, expected_point, expected_length)
     np.testing.assert_array_equal(scaled[direct], expected_scaled[direct])
     np.testing.assert_array_equal(kernels.unit_scaled(screws, expected_point, expected_length), expected_scaled)
     assert length[9] == 1.0  # every axis through the origin: the length rule's fallback (no foot, no point)
-    monkeypatch.setitem(F._compiled, "screwkit.core._frames_numba", kernels)  # the numba pass, pose 7 as numpy
-    for got, expected in zip(T.scaled_frame(screws), (expected_point, expected_length, expected_scaled), strict=True):
+    monkeypatch.setitem(C._compiled, R.KERNELS, kernels)  # the numba pass, pose 7 as numpy
+    for got, expected in zip(R.scaled_frame(screws), (expected_point, expected_length, expected_scaled), strict=True):
         np.testing.assert_array_equal(got, expected)
 
 
@@ -475,23 +478,22 @@ def test_mechanism_frame_sums_known_values():
     """Two axes, z through (1, 0, 0) and x through (0, 0, 3), and a translation: N = Σ (I − u uᵀ)
     over the two lines, the right side Σ (I − u uᵀ) f with the feet (1, 0, 0) and (0, 0, 3), the
     farthest foot 3 and the spread about the point (1, 0, 3) (on both axes) zero."""
-    from screwkit.graphs import twistgraph as T
     z_line = np.array([0, 0, 1.0, *np.cross([1.0, 0, 0], [0, 0, 1.0])])
     x_line = np.array([1.0, 0, 0, *np.cross([0, 0, 3.0], [1.0, 0, 0])])
     screws = np.array([[z_line, [0, 0, 0, 0, 1.0, 0], x_line]])
-    count, normal, rhs, farthest = T._frame_sums_numpy(screws)
+    count, normal, rhs, farthest = R._frame_sums_numpy(screws)
     assert count.tolist() == [2]
     np.testing.assert_allclose(normal[0], np.diag([1.0, 2.0, 1.0]))
     np.testing.assert_allclose(rhs[0], [1.0, 0, 3.0])
     np.testing.assert_allclose(farthest, [3.0])
-    np.testing.assert_allclose(T._frame_spread_numpy(screws, np.array([[1.0, 0, 3.0]])), [0.0], atol=1e-15)
-    np.testing.assert_allclose(T._frame_spread_numpy(screws, np.array([[1.0, 2.0, 3.0]])), [8.0])
+    np.testing.assert_allclose(R._frame_spread_numpy(screws, np.array([[1.0, 0, 3.0]])), [0.0], atol=1e-15)
+    np.testing.assert_allclose(R._frame_spread_numpy(screws, np.array([[1.0, 2.0, 3.0]])), [8.0])
 
 
 def test_sum_in_order_adds_left_to_right():
     values = np.array([[1e16, 1.0, -1e16, 1.0], [1.0, 1e16, 1.0, -1e16]])
-    np.testing.assert_array_equal(F.sum_in_order(values), [1.0, 0.0])  # ((1e16 + 1) − 1e16) + 1 = 1
-    assert F.sum_in_order(np.zeros((3, 0))).tolist() == [0.0, 0.0, 0.0]
+    np.testing.assert_array_equal(C.sum_in_order(values), [1.0, 0.0])  # ((1e16 + 1) − 1e16) + 1 = 1
+    assert C.sum_in_order(np.zeros((3, 0))).tolist() == [0.0, 0.0, 0.0]
 
 
 # ---- closed forms of the program: a joint in series with a node, the 4S parallelogram -------------
@@ -705,9 +707,9 @@ def test_compiled_program_falls_back_alike(monkeypatch):
     program = W._Program(
         np.array(ops, dtype=np.int64), np.array(sources, dtype=np.int64), {r: r[1] for r in requests}, (3, 3, 2, 3, 6, 6, 6, 7)
     )
-    monkeypatch.setitem(F._compiled, "screwkit.core._frames_numba", _frames_numba)
+    monkeypatch.setitem(C._compiled, "screwkit.core._frames_numba", _frames_numba)
     compiled = W._run(program, scaled, RTOL, requests)
-    monkeypatch.setitem(F._compiled, "screwkit.core._frames_numba", None)
+    monkeypatch.setitem(C._compiled, "screwkit.core._frames_numba", None)
     stepwise = W._run(program, scaled, RTOL, requests)
     np.testing.assert_array_equal(compiled[1], stepwise[1])
     np.testing.assert_array_equal(compiled[0], stepwise[0])
@@ -748,9 +750,9 @@ def test_closing_numba_matches_numpy_bit_for_bit(rng, monkeypatch):
     serial = rng.random((n, limbs)) < 0.2
     centre, length = rng.standard_normal((n, 3)), rng.uniform(0.5, 3.0, n)
     arguments = (constraint, wrenches, legs, apart, serial, centre, length, RTOL)
-    monkeypatch.setitem(F._compiled, "screwkit.core._frames_numba", None)
+    monkeypatch.setitem(C._compiled, "screwkit.core._frames_numba", None)
     expected = F.closing(*arguments)
-    monkeypatch.setitem(F._compiled, "screwkit.core._frames_numba", _frames_numba)
+    monkeypatch.setitem(C._compiled, "screwkit.core._frames_numba", _frames_numba)
     compiled = F.closing(*arguments)
     for got, want in zip(compiled, expected, strict=True):
         np.testing.assert_array_equal(got, want)
@@ -783,9 +785,9 @@ def test_residuals_against_frames_match_residual_bit_for_bit(rng, monkeypatch):
     frames = block[:, 1:4]  # strided, as the program's block
     vectors = rng.standard_normal((30, 4, 6))
     which = np.array([2, 0, 2, 1])
-    monkeypatch.setitem(F._compiled, "screwkit.core._frames_numba", None)
+    monkeypatch.setitem(C._compiled, "screwkit.core._frames_numba", None)
     expected = F.residuals_against(vectors, frames, which)
-    monkeypatch.setitem(F._compiled, "screwkit.core._frames_numba", _frames_numba)
+    monkeypatch.setitem(C._compiled, "screwkit.core._frames_numba", _frames_numba)
     np.testing.assert_array_equal(F.residuals_against(vectors, frames, which), expected)
     for j, f in enumerate(which):
         np.testing.assert_array_equal(expected[:, j], F._residual_numpy(vectors[:, j : j + 1], frames[:, f])[:, 0])
@@ -803,13 +805,13 @@ def test_limb_wrenches_one_pass_matches_the_steps_bit_for_bit(rng, monkeypatch):
     legs[:, :, 0] = F.unit_rows(rng.standard_normal((50, 2, 6)))
     coupled, leg_of = np.array([0, 3, 1]), np.array([1, 1, 0])
     arguments = (locked, order, passive, actuated, legs, coupled, leg_of, RTOL, 1e-6)
-    monkeypatch.setitem(F._compiled, "screwkit.core._frames_numba", None)
+    monkeypatch.setitem(C._compiled, "screwkit.core._frames_numba", None)
     expected = F.limb_wrenches(*arguments)
     _, serial, _, free_order, direction = F._limb_systems_numpy(locked, order, passive, actuated, RTOL)
     wrench, index = F.transmissions_numpy(F.unit_rows(direction), actuated, RTOL)
     steps = (serial, free_order, direction, wrench, index,
              F.residuals_against(wrench[:, coupled], legs, leg_of), F.not_lines(direction, 1e-6))
-    monkeypatch.setitem(F._compiled, "screwkit.core._frames_numba", _frames_numba)
+    monkeypatch.setitem(C._compiled, "screwkit.core._frames_numba", _frames_numba)
     compiled = F.limb_wrenches(*arguments)
     for got, via_numpy, step in zip(compiled, expected, steps, strict=True):
         np.testing.assert_array_equal(got, via_numpy)

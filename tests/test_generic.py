@@ -1,4 +1,4 @@
-"""Generic (symbolic) analysis of families of mechanisms (screwkit.core.generic, screwkit.algebra._symbolic).
+"""Generic (symbolic) analysis of families of mechanisms (screwkit.core.generic, screwkit.algebra.symbolic).
 
 Expected values come from the mechanisms' known motion types (Delta-like 3-RUU: three
 translations, Clavel 1988 / Tsai 1996; H4: Schoenflies 3T1R, paper 002 §4, paper 004 §1) and from
@@ -15,8 +15,9 @@ import sympy
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from screwkit.algebra import _symbolic as Y
 from screwkit.algebra import screw as S
+from screwkit.algebra import symbolic as Y
+from screwkit.algebra import symbolic_bases as YB
 from screwkit.algebra.screwsystem import ScrewSystem
 from screwkit.core.generic import GenericAnalysis, generic_analysis
 from screwkit.core.singularity import classify
@@ -222,7 +223,7 @@ def test_generic_rank_is_exact_at_a_random_point():
     rows = np.array(
         [[x, y, 0], [x**2, x * y, 0], [0, 0, sympy.sin(x) ** 2 + sympy.cos(x) ** 2 - 1]], dtype=object
     )
-    assert Y.generic_rank(rows) == 1  # row 2 = x · row 1; the trigonometric zero is exact
+    assert YB.generic_rank(rows) == 1  # row 2 = x · row 1; the trigonometric zero is exact
     assert Y.GenericRows.from_exprs(rows, Y.generic_point(rows)).exact
 
 
@@ -317,7 +318,7 @@ def test_generic_rows_values_are_the_polynomials_at_the_point():
     twists = np.array([[0, 0, 1, y, -x, 0], [1, 0, 0, 0, z, -y], [0, 1, x, z, 0, x * y]], dtype=object)
     point = Y.generic_point(twists)
     rows = Y.GenericRows.from_exprs(twists, point)
-    wrenches = Y.reciprocal_within(rows.identity(), rows, point)
+    wrenches = YB.reciprocal_within(rows.identity(), rows, point)
     assert len(wrenches) == 3
     for exprs, values in zip(wrenches.exprs(), wrenches.values, strict=True):
         assert [sympy.sympify(e).xreplace(point.values) for e in exprs] == values
@@ -329,7 +330,7 @@ def test_nullspace_vectors_annihilate_the_matrix_and_count_its_corank():
     x, y = sympy.symbols("x y")
     first, second = [1, x, y, 0, x * y, 2], [0, y, 1, x, 0, x**2]
     matrix = np.array([first, second, [x * a + b for a, b in zip(first, second, strict=True)]], dtype=object)
-    vectors = Y.nullspace(matrix)
+    vectors = YB.nullspace(matrix)
     assert vectors.shape == (4, 6)  # 6 − rank 2 (the third row is x·first + second)
     assert all(
         sympy.expand(v) == 0 for v in (sympy.Matrix(matrix.tolist()) * sympy.Matrix(vectors.tolist()).T)
@@ -348,7 +349,7 @@ def test_nullspace_of_rank_above_six_goes_to_sympy_and_is_made_polynomial():
         ],
         dtype=object,
     )
-    (vector,) = Y.nullspace(matrix)
+    (vector,) = YB.nullspace(matrix)
     assert all(sympy.expand(v) == 0 for v in sympy.Matrix(matrix.tolist()) * sympy.Matrix(vector))
     # by hand: x_7 = −1 gives x_6 = y, x_i = −x·x_{i+1}; sign: the first entry's leading coefficient > 0
     assert list(vector) == [x**6 * y, -(x**5) * y, x**4 * y, -(x**3) * y, x**2 * y, -x * y, y, -1]
@@ -358,9 +359,9 @@ def test_an_entry_that_is_not_rational_at_the_point_is_decided_in_60_digits():
     w = sympy.Symbol("w_irrational")
     root = sympy.sqrt(w)
     dependent = np.array([[root, 1, 0], [w, root, 0]], dtype=object)  # row 2 = √w · row 1
-    assert Y.generic_rank(dependent) == 1
+    assert YB.generic_rank(dependent) == 1
     assert not Y.GenericRows.from_exprs(dependent, Y.generic_point(dependent)).exact
-    assert Y.generic_rank(np.array([[root, 1, 0], [1, root, 0]], dtype=object)) == 2
+    assert YB.generic_rank(np.array([[root, 1, 0], [1, root, 0]], dtype=object)) == 2
     polynomial = np.array([[w, 1, 0]], dtype=object)  # the same symbol, no root: exact again
     assert Y.GenericRows.from_exprs(polynomial, Y.generic_point(polynomial)).exact
 
@@ -387,7 +388,7 @@ def test_null_spaces_and_reciprocal_systems_in_60_digits():
     a, x, y, z = sympy.symbols("a x y z")
     root = sympy.sqrt(a)
     matrix = np.array([[root, 1, x, 0], [sympy.expand(root * (y + z)), y + z, 1, 0]], dtype=object)
-    kernel = Y.nullspace(matrix)
+    kernel = YB.nullspace(matrix)
     assert kernel.shape == (2, 4)
     assert all(sympy.expand(v) == 0 for v in (sympy.Matrix(matrix) * sympy.Matrix(kernel).T))
     assert sympy.Matrix(kernel).rank() == 2
@@ -420,7 +421,7 @@ def test_a_line_is_chosen_first_when_its_60_digit_test_carries_round_off():
 def test_error_complex_screw_coordinates_are_refused():
     x = sympy.Symbol("x")
     with pytest.raises(ScrewkitValueError, match="real for real symbols, got I "):
-        Y.generic_rank(np.array([[sympy.I * x, 1]], dtype=object))
+        YB.generic_rank(np.array([[sympy.I * x, 1]], dtype=object))
 
 
 def moved(graph, rotation, translation, unit):

@@ -18,12 +18,13 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from screwkit.algebra import projective as P
 from screwkit.algebra import screw as S
+from screwkit.algebra.incidence import lines_intersect
 from screwkit.algebra.screwsystem import ScrewSystem
 from screwkit.core.singularity import classify
 from screwkit.core.wrenches import translated_graph, wrench_analysis
-from screwkit.graphs.twistgraph import equivalent_twist_graph, platform_twist_system, twist_graph
+from screwkit.graphs.reduction import equivalent_twist_graph, platform_twist_system
+from screwkit.graphs.twistgraph import twist_graph
 from screwkit.robots.families.four_limb.joints import PAPER_002_LEGS, joints
 from screwkit.robots.families.four_limb.kinematics import inverse_kinematics, reachable
 from screwkit.robots.families.four_limb.parameters import FourLimbParameters
@@ -132,7 +133,7 @@ def test_structure_at_fifty_random_poses(rng):
             assert S.is_zero_pitch(wrench, length_scale=500.0)
             assert np.linalg.norm(np.cross(unit(wrench[:3]), cfg.w[index])) < 1e-9
             axis_point = cfg.platform_joint_points[0 if index in (0, 3) else 1]
-            assert P.lines_intersect(wrench, S.line(Z, axis_point), length_scale=500.0)
+            assert lines_intersect(wrench, S.line(Z, axis_point), length_scale=500.0)
         assert classify(graph).labels == () or abs(paper_002_conditions(cfg)[1]) < 1e-3
 
 

@@ -16,6 +16,7 @@ import pytest
 from hypothesis import given, settings
 
 from screwkit.algebra import screw as S
+from screwkit.algebra.screwvalue import Screw
 from screwkit.analysis.indices import (
     four_limb_jacobians,
     transmission_indices,
@@ -221,7 +222,7 @@ def test_quattro_type_2_on_the_spiral_is_direct():
     twist = null @ result.twist_basis
     uncontrolled = classify_analysis(analysis).uncontrolled_twists
     assert uncontrolled.shape == (1, 6)
-    assert S.Screw(twist).is_equivalent(S.Screw(uncontrolled[0]), rtol=1e-6, length_scale=500.0)
+    assert Screw(twist).is_equivalent(Screw(uncontrolled[0]), rtol=1e-6, length_scale=500.0)
     with pytest.raises(DegenerateGeometryError, match=r"A⁻¹B does not exist at this pose: A is singular"):
         result.kinematic_jacobian()
     # the spiral's first pose, φ = -90°, is beyond the root: regular, though close (paper: "at |φ| = π/2")

@@ -18,7 +18,7 @@ from screwkit.algebra import screw as S
 from screwkit.core.singularity import classify as classify_graph
 from screwkit.core.singularity import classify_table
 from screwkit.exceptions import CatalogError, ScrewkitTypeError, ScrewkitValueError
-from screwkit.graphs.twistgraph import fundamental_loops
+from screwkit.graphs.loops import fundamental_loops
 from screwkit.interface.cli import main
 from screwkit.interface.report import analyze
 from screwkit.robots.catalog import load_mechanism

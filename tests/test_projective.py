@@ -7,6 +7,13 @@ from hypothesis import given
 
 from screwkit.algebra import projective as P
 from screwkit.algebra import screw as S
+from screwkit.algebra.incidence import (
+    are_collinear,
+    are_coplanar,
+    is_at_infinity,
+    lines_intersect,
+    point_on_line,
+)
 from screwkit.exceptions import DegenerateGeometryError, ScrewkitTypeError, ScrewkitValueError
 
 from .strategies import rigid_motions, seeds, unit_factors
@@ -63,7 +70,7 @@ def test_meet_of_line_and_plane_and_of_two_planes():
 
 def test_parallel_line_meets_plane_at_infinity_when_allowed():
     point = P.meet_line_plane(S.line([1, 0, 0], [0, 0, 1]), [0, 0, 1, 0], allow_infinite=True)
-    assert P.is_at_infinity(point)
+    assert is_at_infinity(point)
     np.testing.assert_allclose(point[:3] / np.linalg.norm(point[:3]), [-1, 0, 0])
 
 
@@ -94,11 +101,11 @@ def test_coplanarity_and_collinearity_are_invariant(motion, unit, seed):
         (unit, homogeneous_motion(pts, motion, unit), homogeneous_motion(direction, motion, unit)),
     )
     for scale, moved, d in cases:
-        assert P.are_coplanar(*moved[[0, 1, 2, 3]], length_scale=scale)
-        assert not P.are_coplanar(*moved[[0, 1, 2, 4]], length_scale=scale)
-        assert P.are_collinear(moved[0], moved[1], moved[5], length_scale=scale)
-        assert not P.are_collinear(moved[0], moved[1], moved[2], length_scale=scale)
-        assert P.are_collinear(moved[0], moved[1], d, length_scale=scale)
+        assert are_coplanar(*moved[[0, 1, 2, 3]], length_scale=scale)
+        assert not are_coplanar(*moved[[0, 1, 2, 4]], length_scale=scale)
+        assert are_collinear(moved[0], moved[1], moved[5], length_scale=scale)
+        assert not are_collinear(moved[0], moved[1], moved[2], length_scale=scale)
+        assert are_collinear(moved[0], moved[1], d, length_scale=scale)
 
 
 @given(rigid_motions(), unit_factors, seeds)
@@ -109,9 +116,9 @@ def test_two_lines_are_reciprocal_iff_coplanar(motion, unit, seed):
     for scale, tf in ((1.0, lambda x: x), (unit, lambda x: homogeneous_motion(x, motion, unit))):
         skew = (P.join(tf(a), tf(b)), P.join(tf(c), tf(d)))
         meeting = (P.join(tf(a), tf(shared)), P.join(tf(c), tf(shared)))
-        assert not P.lines_intersect(*skew, length_scale=scale)
-        assert P.lines_intersect(*meeting, length_scale=scale)
-        assert not P.are_coplanar(tf(a), tf(b), tf(c), tf(d), length_scale=scale)
+        assert not lines_intersect(*skew, length_scale=scale)
+        assert lines_intersect(*meeting, length_scale=scale)
+        assert not are_coplanar(tf(a), tf(b), tf(c), tf(d), length_scale=scale)
 
 
 @given(rigid_motions(), seeds)
@@ -136,7 +143,7 @@ def test_a_meet_lies_on_both_operands(seed):
         P.plane(rng.normal(size=3), rng.normal(size=3)),
     )
     point = P.meet_line_plane(line, first)
-    assert P.point_on_line(point, line, rtol=1e-8)
+    assert point_on_line(point, line, rtol=1e-8)
     assert abs(point @ first) <= 1e-9 * np.linalg.norm(point) * np.linalg.norm(first)
     common = P.meet_planes(first, second)
     for p in P.line_points(common):
@@ -286,12 +293,12 @@ def test_line_points_decides_lines_at_the_ends_of_the_coordinate_range():
 @pytest.mark.parametrize(
     ("test", "args", "name"),
     [
-        (P.are_coplanar, ([0, 0, 0, 1], [1, 0, 0, 1], [0, 1, 0, 1], ["a", 0, 0, 1]), "s"),
-        (P.are_collinear, (["a", 0, 0, 1], [1, 0, 0, 1], [2, 0, 0, 1]), "p"),
-        (P.is_at_infinity, (["a", 0, 0, 1],), "points"),
-        (P.lines_intersect, ([1, 0, 0, 0, 0, 0], [0, 1, 0, "a", 0, 0]), "second"),
-        (P.point_on_line, (["a", 0, 0, 1], [1, 0, 0, 0, 0, 0]), "point"),
-        (P.point_on_line, ([0, 0, 0, 1], [1, 0, 0, 0, 0, "a"]), "line"),
+        (are_coplanar, ([0, 0, 0, 1], [1, 0, 0, 1], [0, 1, 0, 1], ["a", 0, 0, 1]), "s"),
+        (are_collinear, (["a", 0, 0, 1], [1, 0, 0, 1], [2, 0, 0, 1]), "p"),
+        (is_at_infinity, (["a", 0, 0, 1],), "points"),
+        (lines_intersect, ([1, 0, 0, 0, 0, 0], [0, 1, 0, "a", 0, 0]), "second"),
+        (point_on_line, (["a", 0, 0, 1], [1, 0, 0, 0, 0, 0]), "point"),
+        (point_on_line, ([0, 0, 0, 1], [1, 0, 0, 0, 0, "a"]), "line"),
     ],
 )
 def test_tolerance_predicates_refuse_symbolic_coordinates_by_name(test, args, name):

@@ -8,7 +8,7 @@ import sympy
 from hypothesis import given
 
 from screwkit.algebra import screw as S
-from screwkit.algebra.screw import Screw
+from screwkit.algebra.screwvalue import Screw
 from screwkit.exceptions import DegenerateGeometryError, ScrewkitTypeError, ScrewkitValueError
 
 from .strategies import rigid_motions, seeds, unit_factors
@@ -242,7 +242,7 @@ def test_symbolic_pitch_predicates_decide_generically():
     assert not S.is_zero_pitch(helix) and not S.is_infinite_pitch(helix)
     # a trigonometric identity: s·s0 = sin²t + cos²t − 1 vanishes identically
     t = sympy.Symbol("t")
-    trig = S.Screw([1, 0, 0, sympy.sin(t) ** 2 + sympy.cos(t) ** 2 - 1, 1, 0])
+    trig = Screw([1, 0, 0, sympy.sin(t) ** 2 + sympy.cos(t) ** 2 - 1, 1, 0])
     assert trig.is_zero_pitch() and not trig.is_infinite_pitch()
 
 
@@ -271,11 +271,11 @@ def test_error_reciprocal_with_non_screw():
 
 def test_screw_objects_are_arrays_for_every_kernel():
     # design.md §1a: np.asarray(screw) is its (6,) array, and functions taking screws accept Screws
-    force, couple = S.Screw.force([1, 0, 0], [0, 0, 2.0]), S.Screw.couple([0, 1, 0])
+    force, couple = Screw.force([1, 0, 0], [0, 0, 2.0]), Screw.couple([0, 1, 0])
     assert np.asarray(force).dtype == float and np.asarray(force).shape == (6,)
-    assert float(S.reciprocal_product(force, S.Screw.revolute([0, 1, 0], [0, 0, 0]))) == pytest.approx(2.0)  # (0, 2, 0)·(0, 1, 0)
+    assert float(S.reciprocal_product(force, Screw.revolute([0, 1, 0], [0, 0, 0]))) == pytest.approx(2.0)  # (0, 2, 0)·(0, 1, 0)
     assert float(S.reciprocal_product(force, couple)) == 0.0
     np.testing.assert_array_equal(S.reciprocal_product([force, couple], np.asarray(couple)), [0.0, 0.0])
     symbol = sympy.Symbol("h")
-    symbolic = S.Screw([1, 0, 0, symbol, 0, 0])
-    assert sympy.simplify(S.reciprocal_product(symbolic, S.Screw.force([1, 0, 0], [0, 0, 0])) - symbol) == 0
+    symbolic = Screw([1, 0, 0, symbol, 0, 0])
+    assert sympy.simplify(S.reciprocal_product(symbolic, Screw.force([1, 0, 0], [0, 0, 0])) - symbol) == 0

@@ -7,12 +7,14 @@ import pytest
 from hypothesis import given, settings
 
 from screwkit.algebra import screw as S
+from screwkit.algebra.screwvalue import Screw
 from screwkit.core import _frames as F
 from screwkit.core.singularity import SingularityReport, classify, classify_analysis, classify_table
 from screwkit.core.wrenches import normalized_reciprocal_product, wrench_analysis
 from screwkit.exceptions import TwistGraphError
 from screwkit.graphs.joints import prismatic, revolute
-from screwkit.graphs.twistgraph import equivalent_twist_graph, twist_graph
+from screwkit.graphs.reduction import equivalent_twist_graph
+from screwkit.graphs.twistgraph import twist_graph
 
 from .mechanisms import (
     PLANAR_BASE,
@@ -190,7 +192,7 @@ def test_fully_stretched_rrr_limb_is_a_serial_singularity():
     assert report.closeness["serial"] < AT_SINGULARITY
     # the stretched limb's wrenches: the plane's three constraints and the force along the limb
     assert item.limb_wrenches.order == 4
-    assert item.limb_wrenches.contains(S.Screw(S.line(PLANAR_PLATFORM[0] - PLANAR_BASE[0], PLANAR_BASE[0])))
+    assert item.limb_wrenches.contains(Screw(S.line(PLANAR_PLATFORM[0] - PLANAR_BASE[0], PLANAR_BASE[0])))
     # the stretched limb stiffens the platform along its line (a workspace boundary): lost, not gained
     assert (report.constraint_order, report.lost_dof, report.gained_dof, report.global_order) == (4, 1, 0, 6)
 

@@ -6,9 +6,11 @@ import pytest
 
 from screwkit.core.singularity import classify
 from screwkit.exceptions import TwistGraphError
-from screwkit.graphs.joints import JointSpec, JointTable, revolute
+from screwkit.graphs.joints import revolute
+from screwkit.graphs.jointtable import JointSpec, JointTable
+from screwkit.graphs.reduction import platform_twist_system
 from screwkit.graphs.topology import network_layout, topology
-from screwkit.graphs.twistgraph import platform_twist_system, twist_graph
+from screwkit.graphs.twistgraph import twist_graph
 from screwkit.robots.catalog import load_mechanism
 
 from .mechanisms import wheatstone_bridge

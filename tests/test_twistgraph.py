@@ -12,18 +12,13 @@ from screwkit.algebra import screw as S
 from screwkit.algebra.screwsystem import ScrewSystem
 from screwkit.exceptions import TwistGraphError
 from screwkit.graphs.joints import prismatic, revolute, spherical
+from screwkit.graphs.loops import fundamental_loops, joint_screws_along, loop_closure_matrix, simple_paths
+from screwkit.graphs.reduction import equivalent_twist_graph, platform_twist_system, series_parallel_tree
 from screwkit.graphs.twistgraph import (
     add_joint,
     check_twist_graph,
-    equivalent_twist_graph,
     from_data,
-    fundamental_loops,
     graph_frame,
-    joint_screws_along,
-    loop_closure_matrix,
-    platform_twist_system,
-    series_parallel_tree,
-    simple_paths,
     to_data,
     twist_graph,
 )

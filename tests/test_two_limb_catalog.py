@@ -20,13 +20,15 @@ import pytest
 
 from screwkit.algebra import screw as S
 from screwkit.algebra.screwsystem import ScrewSystem
+from screwkit.algebra.screwvalue import Screw
 from screwkit.core.jacobians import gosselin_angeles_label
 from screwkit.core.singularity import classify
 from screwkit.core.wrenches import wrench_analysis
 from screwkit.exceptions import CatalogError, ScrewkitValueError
 from screwkit.gca.diagram import wrench_diagram
-from screwkit.graphs.joints import JointTable
-from screwkit.graphs.twistgraph import equivalent_twist_graph, fundamental_loops, platform_twist_system
+from screwkit.graphs.jointtable import JointTable
+from screwkit.graphs.loops import fundamental_loops
+from screwkit.graphs.reduction import equivalent_twist_graph, platform_twist_system
 from screwkit.interface.cli import main
 from screwkit.interface.report import analyze
 from screwkit.robots.catalog import load_mechanism
@@ -261,8 +263,8 @@ def test_singular_poses_are_labelled_like_the_jacobians(name, kind, expected, se
     if "actuation" in expected:
         # with the actuators locked the plate keeps one twist: the null vector of A
         assert report.uncontrolled_dof == 1 and report.gained_dof == 0
-        twist = S.Screw(platform_twist_from_a(mechanism, config))
-        assert twist.is_equivalent(S.Screw(report.uncontrolled_twists[0]), rtol=1e-6,
+        twist = Screw(platform_twist_from_a(mechanism, config))
+        assert twist.is_equivalent(Screw(report.uncontrolled_twists[0]), rtol=1e-6,
                                    length_scale=mechanism.parameters.l2)
     else:
         assert report.uncontrolled_dof == 0
@@ -304,7 +306,7 @@ def test_peppermill_equal_leads_are_an_actuation_singularity_everywhere(rng):
         report = classify(graph)
         assert report.labels == ("actuation",) and report.uncontrolled_dof == 1
         nut = graph.edges["1.nut", "platform", "1.screw"]["joint"].screws[0]
-        assert S.Screw(report.uncontrolled_twists[0]).is_equivalent(S.Screw(nut), rtol=1e-6,
+        assert Screw(report.uncontrolled_twists[0]).is_equivalent(Screw(nut), rtol=1e-6,
                                                                      length_scale=params.l1)
 
 

@@ -11,8 +11,9 @@ Conventions (``gca.md`` §1; screws: :mod:`screwkit.algebra.screw`)
   ``(0; u × v)``, a pure couple. So a line *is* a zero- or infinite-pitch screw.
 * The bracket ``[pqrs]`` is the determinant of the 4×4 matrix whose rows are the four points; it
   vanishes iff they are coplanar, and ``[pqrs] = −L(p, q) ∘ L(r, s)`` (gca.md §1).
-* Tolerance decisions scale the finite part of points and moments by ``length_scale`` and normalise
-  every row before comparing with ``rtol`` (as for screws), so they do not depend on the unit.
+* Tolerance decisions (incidence tests: :mod:`screwkit.algebra.incidence`) scale the finite part of
+  points and moments by ``length_scale`` and normalise every row before comparing with ``rtol`` (as
+  for screws), so they do not depend on the unit.
 
 Examples
 --------
@@ -30,25 +31,22 @@ from typing import Any
 
 import numpy as np
 
-from ..exceptions import DegenerateGeometryError, ScrewkitTypeError, ScrewkitValueError
+from ..exceptions import DegenerateGeometryError, ScrewkitValueError
 from . import backend as B
+from .branch_values import ones_like, zeros_like
+from .zero_tests import vanishes, zero_vectors
 
 __all__ = [
-    "are_collinear",
-    "are_coplanar",
     "bracket",
     "finite_point",
     "infinite_point",
-    "is_at_infinity",
     "join",
     "join_point_line",
     "line_points",
-    "lines_intersect",
     "meet_line_plane",
     "meet_planes",
     "plane",
     "plane_through",
-    "point_on_line",
 ]
 
 Array = np.ndarray
@@ -57,17 +55,35 @@ Array = np.ndarray
 def finite_point(position: Any) -> Array:
     """The homogeneous point ``(r, 1)`` of a position ``r`` (shape ``(..., 3)``).
 
+    Parameters
+    ----------
+    position : array_like, shape (..., 3)
+        The positions.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 4)
+
     Examples
     --------
     >>> finite_point([1, 2, 3])
     array([1., 2., 3., 1.])
     """
     r = B.as_array(position, "position", (3,))
-    return np.concatenate([r, B.ones_like(r[..., :1])], axis=-1)
+    return np.concatenate([r, ones_like(r[..., :1])], axis=-1)
 
 
 def infinite_point(direction: Any) -> Array:
     """The point at infinity ``(d, 0)`` of a direction ``d`` (shape ``(..., 3)``, non-zero).
+
+    Parameters
+    ----------
+    direction : array_like, shape (..., 3)
+        The directions (non-zero).
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 4)
 
     Raises
     ------
@@ -80,45 +96,11 @@ def infinite_point(direction: Any) -> Array:
     array([0., 0., 1., 0.])
     """
     d = B.as_array(direction, "direction", (3,))
-    if np.any(B.zero_vectors(d)):
+    if np.any(zero_vectors(d)):
         raise DegenerateGeometryError(
             "Expected `direction` to be non-zero, got a zero vector: (0, 0, 0, 0) is not a point."
         )
-    return np.concatenate([d, B.zeros_like(d[..., :1])], axis=-1)
-
-
-def is_at_infinity(points: Any, *, rtol: float = B.DEFAULT_RTOL, length_scale: float = 1.0) -> Any:
-    """True where a point lies in the plane at infinity (``|w|`` negligible after scaling).
-
-    Examples
-    --------
-    >>> is_at_infinity([[1, 0, 0, 0], [1, 0, 0, 1]])
-    array([ True, False])
-    """
-    unit = _unit_points(_numeric(points, "points", "is_at_infinity", (4,)), length_scale)
-    result = np.abs(unit[..., 3]) <= rtol
-    return bool(result) if np.ndim(result) == 0 else result
-
-
-def _numeric(value: Any, name: str, test: str, shape: tuple[int, ...]) -> Array:
-    """``value`` as an array if it holds numbers; a symbolic one is refused, naming the exact route."""
-    value = B.as_array(value, name, shape)
-    if B.is_symbolic(value):
-        raise ScrewkitTypeError(
-            f"Expected `{name}` to hold numbers ({test} decides with a tolerance; for symbolic "
-            "coordinates test the exact bracket, join_point_line or plane_through for zero), got symbols."
-        )
-    return value
-
-
-def _unit_points(p: Array, length_scale: float) -> Array:
-    B.checked_length_scale(length_scale)
-    scaled = np.array(p, dtype=float)
-    scaled[..., :3] /= length_scale
-    size = np.linalg.norm(scaled, axis=-1, keepdims=True)
-    if np.any(size == 0):
-        raise DegenerateGeometryError("Expected non-zero points, got (0, 0, 0, 0).")
-    return scaled / size
+    return np.concatenate([d, zeros_like(d[..., :1])], axis=-1)
 
 
 def join(p: Any, q: Any, *, rtol: float = B.DEFAULT_RTOL) -> Array:
@@ -151,7 +133,7 @@ def join(p: Any, q: Any, *, rtol: float = B.DEFAULT_RTOL) -> Array:
     pp, qq = B.as_arrays((4,), (p, "p"), (q, "q"))
     pp, qq = np.broadcast_arrays(pp, qq)
     result = join_unchecked(pp, qq)
-    if np.any(B.vanishes(result, pp, qq, rtol=rtol)):
+    if np.any(vanishes(result, pp, qq, rtol=rtol)):
         raise DegenerateGeometryError(
             "Expected `p` and `q` to be distinct points, got coincident points (no line through them)."
         )
@@ -163,6 +145,18 @@ def line_points(line: Any, *, rtol: float = B.DEFAULT_RTOL) -> tuple[Array, Arra
 
     A finite line ``(s; m)`` gives its point nearest the origin and its point at infinity
     ``(s, 0)``; a line at infinity ``(0; m)`` gives two infinite points ``u, v`` with ``u × v = m``.
+
+    Parameters
+    ----------
+    line : array_like, shape (6,)
+        A line ``(s; m)`` (or a line at infinity ``(0; m)``).
+    rtol : float, default 1e-9
+        Relative tolerance of the pitch check.
+
+    Returns
+    -------
+    p, q : numpy.ndarray, shape (4,)
+        Two homogeneous points with ``join(p, q) = line``.
 
     Raises
     ------
@@ -181,7 +175,7 @@ def line_points(line: Any, *, rtol: float = B.DEFAULT_RTOL) -> tuple[Array, Arra
     if B.is_symbolic(values):
         raise ScrewkitValueError("line_points is numeric; build symbolic lines from their points.")
     s, m = values[:3], values[3:]
-    if not B.vanishes(B.dot(s, m, keepdims=True), s, m, rtol=rtol):
+    if not vanishes(B.dot(s, m, keepdims=True), s, m, rtol=rtol):
         raise ScrewkitValueError(
             f"Expected `line` to be a line (s·m = 0), got s·m = {s @ m:.6g}: a screw of "
             "non-zero pitch is not a line."
@@ -201,6 +195,18 @@ def join_point_line(point: Any, line: Any) -> Array:
 
     It is the zero vector exactly when the point lies on the line.
 
+    Parameters
+    ----------
+    point : array_like, shape (..., 4)
+        Homogeneous points.
+    line : array_like, shape (..., 6)
+        Lines ``(s; m)``.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 4)
+        The planes ``(n, δ)`` (zero where the point is on the line).
+
     Examples
     --------
     >>> join_point_line([0, 0, 0, 1], [1, 0, 0, 0, 0, 1])
@@ -217,6 +223,17 @@ def join_point_line(point: Any, line: Any) -> Array:
 def plane(normal: Any, point: Any) -> Array:
     """The plane with normal ``n`` through the finite point ``r``: ``(n, −n·r)``.
 
+    Parameters
+    ----------
+    normal : array_like, shape (..., 3)
+        The normals.
+    point : array_like, shape (..., 3)
+        A point of each plane.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 4)
+
     Examples
     --------
     >>> plane([0, 0, 1], [5, 5, 2])
@@ -225,7 +242,7 @@ def plane(normal: Any, point: Any) -> Array:
     n = B.as_array(normal, "normal", (3,))
     r = B.as_array(point, "point", (3,))
     n, r = B.promote(n, r)
-    if np.any(B.zero_vectors(n)):
+    if np.any(zero_vectors(n)):
         raise DegenerateGeometryError("Expected `normal` to be non-zero, got a zero vector.")
     return np.concatenate([n, -B.dot(n, r, keepdims=True)], axis=-1)
 
@@ -236,6 +253,17 @@ def _det3(a: Array, b: Array, c: Array) -> Array:
 
 def plane_through(p: Any, q: Any, r: Any, *, rtol: float = B.DEFAULT_RTOL) -> Array:
     """The plane ``π`` through three points with ``π·x = [p q r x]`` for every point ``x``.
+
+    Parameters
+    ----------
+    p, q, r : array_like, shape (..., 4)
+        Homogeneous points (not collinear).
+    rtol : float, default 1e-9
+        Relative tolerance of the collinearity check.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 4)
 
     Raises
     ------
@@ -256,7 +284,7 @@ def plane_through(p: Any, q: Any, r: Any, *, rtol: float = B.DEFAULT_RTOL) -> Ar
         for j, cols in enumerate(columns)
     ]
     result = np.stack(coefficients, axis=-1)
-    if np.any(B.vanishes(result, pp, qq, rr, rtol=rtol)):
+    if np.any(vanishes(result, pp, qq, rr, rtol=rtol)):
         raise DegenerateGeometryError(
             "Expected `p`, `q`, `r` to span a plane, got collinear (or coincident) points."
         )
@@ -267,6 +295,15 @@ def bracket(p: Any, q: Any, r: Any, s: Any) -> Any:
     """The bracket ``[pqrs]``: the determinant of the 4×4 matrix with rows p, q, r, s.
 
     Batched over leading axes; exact for sympy input (gca.md §1).
+
+    Parameters
+    ----------
+    p, q, r, s : array_like, shape (..., 4)
+        Homogeneous points (floats or sympy expressions).
+
+    Returns
+    -------
+    float, numpy.ndarray of shape (...), or sympy.Expr
 
     Examples
     --------
@@ -352,6 +389,11 @@ def meet_line_plane(
         constructions need a finite point (gca.md §7). Set True to get the point at infinity.
     rtol : float, default 1e-9
 
+    Returns
+    -------
+    numpy.ndarray, shape (..., 4)
+        The homogeneous meeting points.
+
     Raises
     ------
     DegenerateGeometryError
@@ -368,11 +410,11 @@ def meet_line_plane(
     lv, pl = B.promote(lv, pl)
     s, m, n, delta = lv[..., :3], lv[..., 3:], pl[..., :3], pl[..., 3:]
     point = np.concatenate([B.cross(n, m) - delta * s, B.dot(n, s, keepdims=True)], axis=-1)
-    if np.any(B.vanishes(point, lv, pl, rtol=rtol)):
+    if np.any(vanishes(point, lv, pl, rtol=rtol)):
         raise DegenerateGeometryError(
             "Expected `line` to cross `plane` at one point, got a line lying in the plane."
         )
-    if not allow_infinite and np.any(B.vanishes(point[..., 3:], point, rtol=rtol)):
+    if not allow_infinite and np.any(vanishes(point[..., 3:], point, rtol=rtol)):
         raise DegenerateGeometryError(
             "Expected `line` to cross `plane` at a finite point, got a line parallel to the plane "
             "(they meet at infinity; pass allow_infinite=True for that point)."
@@ -384,6 +426,19 @@ def meet_planes(
     first: Any, second: Any, *, allow_infinite: bool = False, rtol: float = B.DEFAULT_RTOL
 ) -> Array:
     """The line common to two planes ``(n1, δ1)``, ``(n2, δ2)``: ``(n1 × n2 ; δ1 n2 − δ2 n1)``.
+
+    Parameters
+    ----------
+    first, second : array_like, shape (..., 4)
+        Planes ``(n, δ)``.
+    allow_infinite : bool, default False
+        Whether a line at infinity (parallel planes) is returned instead of refused.
+    rtol : float, default 1e-9
+        Relative tolerance of the degeneracy decisions.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 6)
 
     Raises
     ------
@@ -405,95 +460,13 @@ def meet_planes(
     a, b = B.promote(a, b)
     n1, d1, n2, d2 = a[..., :3], a[..., 3:], b[..., :3], b[..., 3:]
     result = np.concatenate([B.cross(n1, n2), d1 * n2 - d2 * n1], axis=-1)
-    if np.any(B.vanishes(result, a, b, rtol=rtol)):
+    if np.any(vanishes(result, a, b, rtol=rtol)):
         raise DegenerateGeometryError(
             "Expected `first` and `second` to be distinct planes, got the same plane twice."
         )
-    if not allow_infinite and np.any(B.vanishes(result[..., :3], result, rtol=rtol)):
+    if not allow_infinite and np.any(vanishes(result[..., :3], result, rtol=rtol)):
         raise DegenerateGeometryError(
             "Expected `first` and `second` to meet in a finite line, got parallel planes (they "
             "meet at infinity; pass allow_infinite=True for that line)."
         )
     return result
-
-
-def are_coplanar(
-    p: Any, q: Any, r: Any, s: Any, *, rtol: float = B.DEFAULT_RTOL, length_scale: float = 1.0
-) -> Any:
-    """True where four points lie in one plane: ``|[pqrs]| <= rtol`` on unit-scaled points.
-
-    Examples
-    --------
-    >>> are_coplanar([0, 0, 0, 1], [1, 0, 0, 1], [0, 1, 0, 1], [5, 5, 0, 1])
-    True
-    """
-    named = zip((p, q, r, s), "pqrs", strict=True)
-    pts = [_unit_points(_numeric(x, name, "are_coplanar", (4,)), length_scale) for x, name in named]
-    result = np.abs(np.linalg.det(np.stack(np.broadcast_arrays(*pts), axis=-2))) <= rtol
-    return bool(result) if np.ndim(result) == 0 else result
-
-
-def are_collinear(
-    p: Any, q: Any, r: Any, *, rtol: float = B.DEFAULT_RTOL, length_scale: float = 1.0
-) -> Any:
-    """True where three points lie on one line (the 3×4 matrix of unit-scaled points has rank < 3).
-
-    Examples
-    --------
-    >>> are_collinear([0, 0, 0, 1], [1, 1, 1, 1], [1, 1, 1, 0])
-    True
-    """
-    named = zip((p, q, r), "pqr", strict=True)
-    pts = [_unit_points(_numeric(x, name, "are_collinear", (4,)), length_scale) for x, name in named]
-    values = np.linalg.svd(np.stack(np.broadcast_arrays(*pts), axis=-2), compute_uv=False)
-    result = values[..., 2] <= rtol * values[..., 0]
-    return bool(result) if np.ndim(result) == 0 else result
-
-
-def lines_intersect(
-    first: Any, second: Any, *, rtol: float = B.DEFAULT_RTOL, length_scale: float = 1.0
-) -> Any:
-    """True where two lines meet (parallel lines meet at infinity and count): ``L1 ∘ L2 = 0``.
-
-    Equivalent to the coplanarity of the two lines (paper 002, §3).
-
-    Examples
-    --------
-    >>> lines_intersect([1, 0, 0, 0, 0, 0], [0, 1, 0, 0, 0, 0])
-    True
-    >>> lines_intersect([1, 0, 0, 0, 0, 0], [0, 1, 0, -1, 0, 0])
-    False
-    """
-    a = _numeric(first, "first", "lines_intersect", (6,))
-    b = _numeric(second, "second", "lines_intersect", (6,))
-    scaled_a, _ = B.scale_moments(a, length_scale)
-    scaled_b, _ = B.scale_moments(b, length_scale)
-    for name, values in (("first", scaled_a), ("second", scaled_b)):
-        if np.any(np.linalg.norm(values, axis=-1) == 0):
-            raise DegenerateGeometryError(f"Expected `{name}` to be a non-zero line, got zeros.")
-    scaled_a /= np.linalg.norm(scaled_a, axis=-1, keepdims=True)
-    scaled_b /= np.linalg.norm(scaled_b, axis=-1, keepdims=True)
-    product = B.dot(scaled_a[..., :3], scaled_b[..., 3:]) + B.dot(
-        scaled_a[..., 3:], scaled_b[..., :3]
-    )
-    result = np.abs(product) <= rtol
-    return bool(result) if np.ndim(result) == 0 else result
-
-
-def point_on_line(
-    point: Any, line: Any, *, rtol: float = B.DEFAULT_RTOL, length_scale: float = 1.0
-) -> Any:
-    """True where a point lies on a line: their joining plane (:func:`join_point_line`) vanishes.
-
-    Examples
-    --------
-    >>> point_on_line([3, 0, 0, 1], [1, 0, 0, 0, 0, 0]), point_on_line([0, 1, 0, 1], [1, 0, 0, 0, 0, 0])
-    (True, False)
-    """
-    x = _unit_points(_numeric(point, "point", "point_on_line", (4,)), length_scale)
-    lv, _ = B.scale_moments(_numeric(line, "line", "point_on_line", (6,)), length_scale)
-    size = np.linalg.norm(lv, axis=-1, keepdims=True)
-    if np.any(size == 0):
-        raise DegenerateGeometryError("Expected `line` to be a non-zero line, got zeros.")
-    result = np.linalg.norm(join_point_line(x, lv / size), axis=-1) <= rtol
-    return bool(result) if np.ndim(result) == 0 else result

@@ -1,4 +1,6 @@
-"""Screws: kernels over ``(..., 6)`` arrays and the immutable :class:`Screw` value class.
+"""Screws: the conventions, and the kernels over ``(..., 6)`` arrays.
+
+The immutable value class :class:`~screwkit.algebra.screwvalue.Screw` wraps one screw for people.
 
 Conventions (the one place they are written; every module links here)
 ----------------------------------------------------------------------
@@ -16,35 +18,35 @@ Conventions (the one place they are written; every module links here)
   ``(R s; R s0 + t × R s)``.
 * **Units.** Lengths are in the user's unit; angles in radians. Every zero decision takes a
   relative tolerance ``rtol`` and a characteristic length ``length_scale`` that makes the moment
-  half dimensionless (``_backend`` module docstring), so answers do not depend on the unit.
+  half dimensionless (:mod:`screwkit.algebra.ranks`), so answers do not depend on the unit.
 * **Numeric or symbolic.** Every kernel accepts floats or sympy expressions (design.md §4); the
   branch is decided by the inputs, and mixed inputs are promoted to exact sympy numbers.
 
 Examples
 --------
 >>> import numpy as np
->>> from screwkit.algebra.screw import Screw, revolute_twist, reciprocal_product
+>>> from screwkit.algebra.screw import force, revolute_twist, reciprocal_product
 >>> rotation_about_z = revolute_twist([0, 0, 1], [1, 0, 0])
 >>> rotation_about_z
 array([ 0.,  0.,  1.,  0., -1.,  0.])
->>> force_along_y = Screw.force([0, 1, 0], [0, 0, 0])
->>> float(reciprocal_product(rotation_about_z, force_along_y.coords))
+>>> float(reciprocal_product(rotation_about_z, force([0, 1, 0], [0, 0, 0])))
 -1.0
 """
 
 from __future__ import annotations
 
-import math
-from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
-from ..exceptions import DegenerateGeometryError, ScrewkitTypeError, ScrewkitValueError
+from ..exceptions import DegenerateGeometryError, ScrewkitValueError
 from . import backend as B
+from .branch_values import zeros_like
+from .checks import check_rotation
+from .ranks import direction_scaled, unit_screws
+from .zero_tests import norm, ratio, vanishes, where_zero, zero_vectors
 
 __all__ = [
-    "Screw",
     "axis",
     "couple",
     "direction",
@@ -68,7 +70,7 @@ Array = np.ndarray
 
 
 def _nonzero_direction(direction: Array, name: str) -> None:
-    zero = np.atleast_1d(B.zero_vectors(direction.reshape(-1, 3))).tolist()
+    zero = np.atleast_1d(zero_vectors(direction.reshape(-1, 3))).tolist()
     if any(zero):
         raise DegenerateGeometryError(
             f"Expected `{name}` to be a non-zero direction, got a zero vector "
@@ -167,6 +169,15 @@ def helical_twist(axis: Any, point: Any, pitch: Any) -> Array:
 def prismatic_twist(direction: Any) -> Array:
     """Unit-rate twist of a prismatic joint: the infinite-pitch screw ``(0; d)``.
 
+    Parameters
+    ----------
+    direction : array_like, shape (..., 3)
+        The sliding direction (non-zero; normalised).
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 6)
+
     Examples
     --------
     >>> prismatic_twist([0, 1, 0])
@@ -174,13 +185,24 @@ def prismatic_twist(direction: Any) -> Array:
     """
     (d,) = B.as_arrays((3,), (direction, "direction"))
     _nonzero_direction(d, "direction")
-    return np.concatenate([B.zeros_like(d), d], axis=-1)
+    return np.concatenate([zeros_like(d), d], axis=-1)
 
 
 def force(direction: Any, point: Any) -> Array:
     """A pure force on the line through ``point`` along ``direction``: a zero-pitch wrench.
 
     Same coordinates as :func:`line` (paper 002 §4.1: τ0 = (s, r × s)).
+
+    Parameters
+    ----------
+    direction : array_like, shape (..., 3)
+        The force's direction (non-zero).
+    point : array_like, shape (..., 3)
+        A point of its line.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 6)
 
     Examples
     --------
@@ -193,6 +215,15 @@ def force(direction: Any, point: Any) -> Array:
 def couple(moment_vector: Any) -> Array:
     """A pure couple ``(0; m)``: an infinite-pitch wrench (a line at infinity).
 
+    Parameters
+    ----------
+    moment_vector : array_like, shape (..., 3)
+        The couple's moment (the translation's direction for a twist).
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 6)
+
     Examples
     --------
     >>> couple([0, 0, 2])
@@ -203,6 +234,17 @@ def couple(moment_vector: Any) -> Array:
 
 def from_plucker(direction: Any, moment_vector: Any) -> Array:
     """Assemble ``(s; s0)`` from its two halves (no condition imposed; any screw).
+
+    Parameters
+    ----------
+    direction : array_like, shape (..., 3)
+        The half ``s``.
+    moment_vector : array_like, shape (..., 3)
+        The half ``s0``.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 6)
 
     Examples
     --------
@@ -221,6 +263,15 @@ def _screws(screws: Any, name: str = "screws") -> Array:
 def direction(screws: Any) -> Array:
     """The direction half ``s`` of screws ``(..., 6)``.
 
+    Parameters
+    ----------
+    screws : array_like, shape (..., 6)
+        Floats or sympy expressions.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 3)
+
     Examples
     --------
     >>> direction([1, 2, 3, 4, 5, 6])
@@ -231,6 +282,15 @@ def direction(screws: Any) -> Array:
 
 def moment(screws: Any) -> Array:
     """The moment half ``s0`` of screws ``(..., 6)``.
+
+    Parameters
+    ----------
+    screws : array_like, shape (..., 6)
+        Floats or sympy expressions.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 3)
 
     Examples
     --------
@@ -268,6 +328,15 @@ def pitch(screws: Any) -> Any:
     Exact: a direction counts as zero only when all its components are exactly zero. Use
     :func:`is_infinite_pitch` for a tolerance-based decision.
 
+    Parameters
+    ----------
+    screws : array_like, shape (..., 6)
+        Floats or sympy expressions.
+
+    Returns
+    -------
+    float, numpy.ndarray of shape (...), or sympy.Expr
+
     Raises
     ------
     DegenerateGeometryError
@@ -281,14 +350,23 @@ def pitch(screws: Any) -> Any:
     inf
     """
     arr = _screws(screws)
-    if np.any(B.zero_vectors(arr)):
+    if np.any(zero_vectors(arr)):
         raise DegenerateGeometryError("Expected non-zero screws, got the zero screw.")
-    s, s0 = B.direction_scaled(arr[..., :3], arr[..., 3:])  # s·s0 / s·s is unchanged by a common factor
-    return B.ratio(B.dot(s, s0), B.dot(s, s))
+    s, s0 = direction_scaled(arr[..., :3], arr[..., 3:])  # s·s0 / s·s is unchanged by a common factor
+    return ratio(B.dot(s, s0), B.dot(s, s))
 
 
 def magnitude(screws: Any) -> Any:
     """Magnitude: ``|s|``, or ``|s0|`` for infinite-pitch screws (exact zero test on ``s``).
+
+    Parameters
+    ----------
+    screws : array_like, shape (..., 6)
+        Floats or sympy expressions.
+
+    Returns
+    -------
+    float, numpy.ndarray of shape (...), or sympy.Expr
 
     Examples
     --------
@@ -298,12 +376,21 @@ def magnitude(screws: Any) -> Any:
     5.0
     """
     arr = _screws(screws)
-    ns = B.norm(arr[..., :3])
-    return B.where_zero(ns, B.norm(arr[..., 3:]), ns)
+    ns = norm(arr[..., :3])
+    return where_zero(ns, norm(arr[..., 3:]), ns)
 
 
 def normalize(screws: Any) -> Array:
     """Scale screws to unit magnitude (see :func:`magnitude`).
+
+    Parameters
+    ----------
+    screws : array_like, shape (..., 6)
+        Floats or sympy expressions.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 6)
 
     Raises
     ------
@@ -317,7 +404,7 @@ def normalize(screws: Any) -> Array:
     """
     arr = _screws(screws)
     size = np.asarray(magnitude(arr))[..., None]
-    if np.any(B.zero_vectors(size)):  # also a screw whose norm underflows (|s| = 1e-200)
+    if np.any(zero_vectors(size)):  # also a screw whose norm underflows (|s| = 1e-200)
         raise DegenerateGeometryError("Expected non-zero screws, got the zero screw.")
     return B.simplify(arr / size)
 
@@ -326,6 +413,11 @@ def axis(screws: Any) -> tuple[Array, Array]:
     """The axis of screws with finite pitch: its point nearest the origin and its unit direction.
 
     For ``(s; s0)`` with ``s ≠ 0`` the nearest point is ``s × s0 / s·s`` (independent of pitch).
+
+    Parameters
+    ----------
+    screws : array_like, shape (..., 6)
+        Floats or sympy expressions.
 
     Returns
     -------
@@ -345,11 +437,11 @@ def axis(screws: Any) -> tuple[Array, Array]:
     (array([1., 2., 0.]), array([0., 0., 1.]))
     """
     arr = _screws(screws)
-    if np.any(B.zero_vectors(arr[..., :3])):
+    if np.any(zero_vectors(arr[..., :3])):
         raise DegenerateGeometryError(
             "Expected screws of finite pitch, got s = 0 (a line at infinity has no finite point)."
         )
-    s, s0 = B.direction_scaled(arr[..., :3], arr[..., 3:])  # s × s0 / s·s is unchanged by a common factor
+    s, s0 = direction_scaled(arr[..., :3], arr[..., 3:])  # s × s0 / s·s is unchanged by a common factor
     ss = np.asarray(B.dot(s, s))[..., None]
     return B.simplify(B.cross(s, s0) / ss), B.simplify(s / B.sqrt(ss))
 
@@ -359,7 +451,8 @@ def is_zero_pitch(screws: Any, *, rtol: float = B.DEFAULT_RTOL, length_scale: fl
 
     After dividing the moment by ``length_scale`` and normalising, the screw is a line when
     ``|s| > rtol`` and ``|s·s0| <= rtol |s|``. Symbolic screws are decided generically: ``s`` not
-    identically zero and ``s·s0`` identically zero (no tolerance; :func:`screwkit.algebra.backend.vanishes`).
+    identically zero and ``s·s0`` identically zero (no tolerance;
+    :func:`screwkit.algebra.zero_tests.vanishes`).
 
     Parameters
     ----------
@@ -379,9 +472,9 @@ def is_zero_pitch(screws: Any, *, rtol: float = B.DEFAULT_RTOL, length_scale: fl
     >>> is_zero_pitch(helical_twist([1, 0, 0], [0, 3, 0], 0.1))
     False
     """
-    unit = B.unit_screws(_screws(screws), length_scale)
+    unit = unit_screws(_screws(screws), length_scale)
     s, s0 = unit[..., :3], unit[..., 3:]
-    result = ~B.vanishes(s, rtol=rtol) & B.vanishes(B.dot(s, s0, keepdims=True), s, rtol=rtol)
+    result = ~vanishes(s, rtol=rtol) & vanishes(B.dot(s, s0, keepdims=True), s, rtol=rtol)
     return bool(result) if np.ndim(result) == 0 else result
 
 
@@ -393,6 +486,19 @@ def is_infinite_pitch(
 
     Parameters as in :func:`is_zero_pitch`.
 
+    Parameters
+    ----------
+    screws : array_like, shape (..., 6)
+        Floats or sympy expressions.
+    rtol : float, default 1e-9
+        Relative tolerance of the decision (symbolic screws are decided identically).
+    length_scale : float, default 1.0
+        The characteristic length dividing the moment half.
+
+    Returns
+    -------
+    bool or numpy.ndarray of bool, shape (...)
+
     Examples
     --------
     >>> is_infinite_pitch(couple([0, 0, 1]))
@@ -400,7 +506,7 @@ def is_infinite_pitch(
     >>> is_infinite_pitch(line([0, 0, 1], [0, 0, 0]))
     False
     """
-    result = B.vanishes(B.unit_screws(_screws(screws), length_scale)[..., :3], rtol=rtol)
+    result = vanishes(unit_screws(_screws(screws), length_scale)[..., :3], rtol=rtol)
     return bool(result) if np.ndim(result) == 0 else result
 
 
@@ -433,239 +539,7 @@ def transform(screws: Any, rotation: Any, translation: Any) -> Array:
     rot = B.as_array(rotation, "rotation", (3, 3))
     t = B.as_array(translation, "translation", (3,))
     arr, rot, t = B.promote(arr, rot, t)
-    B.check_rotation(rot)
+    check_rotation(rot)
     s = np.einsum("...ij,...j->...i", rot, arr[..., :3])
     s0 = np.einsum("...ij,...j->...i", rot, arr[..., 3:])
     return np.concatenate([s, s0 + B.cross(np.broadcast_to(t, s.shape), s)], axis=-1)
-
-
-@dataclass(frozen=True, slots=True, eq=False)
-class Screw:
-    """An immutable screw ``(s; s0)`` (conventions: module docstring).
-
-    Equality is projective and tolerance-based: use :meth:`is_equivalent`, never ``==``.
-
-    Parameters
-    ----------
-    coords : array_like, shape (6,)
-        Numbers or sympy expressions; stored as a read-only array.
-
-    Examples
-    --------
-    >>> twist = Screw.revolute([0, 0, 1], [1, 0, 0])
-    >>> twist.pitch, twist.is_zero_pitch()
-    (0.0, True)
-    >>> Screw.couple([0, 0, 1]).pitch
-    inf
-    >>> twist.coords[0] = 5.0
-    Traceback (most recent call last):
-    ...
-    ValueError: assignment destination is read-only
-    """
-
-    coords: Array = field()
-
-    def __post_init__(self) -> None:
-        arr = B.as_array(self.coords, "coords", (6,))
-        if arr.ndim != 1:
-            raise ScrewkitValueError(
-                f"Expected `coords` to have shape (6,) for one Screw, got {arr.shape}; "
-                "use the module's kernels for batches."
-            )
-        arr = arr.copy()
-        arr.flags.writeable = False
-        object.__setattr__(self, "coords", arr)
-
-    def __array__(self, dtype: Any = None, copy: Any = None) -> Array:
-        """The ``(6,)`` coordinates, so that numpy and every function taking screws accept a Screw.
-
-        Examples
-        --------
-        >>> np.asarray(Screw.couple([0, 0, 1]))
-        array([0., 0., 0., 0., 0., 1.])
-        >>> float(reciprocal_product(Screw.force([1, 0, 0], [0, 0, 0]), Screw.prismatic([1, 0, 0])))
-        1.0
-        """
-        if dtype is None and not copy:
-            return self.coords
-        return np.array(self.coords, dtype=dtype)
-
-    # constructors -------------------------------------------------------------------------
-    @classmethod
-    def revolute(cls, axis: Any, point: Any) -> Screw:
-        """Zero-pitch twist of a revolute joint (:func:`revolute_twist`).
-
-        Examples
-        --------
-        >>> Screw.revolute([1, 0, 0], [0, 1, 0]).coords
-        array([ 1.,  0.,  0.,  0.,  0., -1.])
-        """
-        return cls(revolute_twist(axis, point))
-
-    @classmethod
-    def prismatic(cls, direction: Any) -> Screw:
-        """Infinite-pitch twist of a prismatic joint (:func:`prismatic_twist`).
-
-        Examples
-        --------
-        >>> Screw.prismatic([1, 0, 0]).is_infinite_pitch()
-        True
-        """
-        return cls(prismatic_twist(direction))
-
-    @classmethod
-    def helical(cls, axis: Any, point: Any, pitch: Any) -> Screw:
-        """Twist of a helical joint (:func:`helical_twist`).
-
-        Examples
-        --------
-        >>> Screw.helical([0, 0, 1], [0, 0, 0], 2).pitch
-        2.0
-        """
-        return cls(helical_twist(axis, point, pitch))
-
-    @classmethod
-    def force(cls, direction: Any, point: Any) -> Screw:
-        """Pure force on a line (:func:`force`).
-
-        Examples
-        --------
-        >>> Screw.force([0, 1, 0], [1, 0, 0]).coords
-        array([0., 1., 0., 0., 0., 1.])
-        """
-        return cls(force(direction, point))
-
-    @classmethod
-    def couple(cls, moment_vector: Any) -> Screw:
-        """Pure couple (:func:`couple`).
-
-        Examples
-        --------
-        >>> Screw.couple([1, 0, 0]).coords
-        array([0., 0., 0., 1., 0., 0.])
-        """
-        return cls(couple(moment_vector))
-
-    @classmethod
-    def from_plucker(cls, direction: Any, moment_vector: Any) -> Screw:
-        """From the two halves (:func:`from_plucker`).
-
-        Examples
-        --------
-        >>> Screw.from_plucker([0, 0, 1], [0, 0, 3]).pitch
-        3.0
-        """
-        return cls(from_plucker(direction, moment_vector))
-
-    # properties ---------------------------------------------------------------------------
-    @property
-    def is_symbolic(self) -> bool:
-        """True when the coordinates are sympy expressions."""
-        return B.is_symbolic(self.coords)
-
-    @property
-    def direction(self) -> Array:
-        """The direction half ``s``."""
-        return self.coords[:3]
-
-    @property
-    def moment(self) -> Array:
-        """The moment half ``s0`` about the origin."""
-        return self.coords[3:]
-
-    @property
-    def pitch(self) -> Any:
-        """Pitch (:func:`pitch`): a float, ``inf``, or a sympy expression."""
-        return pitch(self.coords)
-
-    @property
-    def magnitude(self) -> Any:
-        """Magnitude (:func:`magnitude`)."""
-        return magnitude(self.coords)
-
-    @property
-    def axis(self) -> tuple[Array, Array]:
-        """Point nearest the origin and unit direction of the axis (:func:`axis`)."""
-        return axis(self.coords)
-
-    # predicates and operations ------------------------------------------------------------
-    def is_zero_pitch(self, *, rtol: float = B.DEFAULT_RTOL, length_scale: float = 1.0) -> bool:
-        """Zero pitch within tolerance (:func:`is_zero_pitch`)."""
-        return bool(is_zero_pitch(self.coords, rtol=rtol, length_scale=length_scale))
-
-    def is_infinite_pitch(self, *, rtol: float = B.DEFAULT_RTOL, length_scale: float = 1.0) -> bool:
-        """Infinite pitch within tolerance (:func:`is_infinite_pitch`)."""
-        return bool(is_infinite_pitch(self.coords, rtol=rtol, length_scale=length_scale))
-
-    def reciprocal_product(self, other: Screw) -> Any:
-        """Reciprocal product with another screw (:func:`reciprocal_product`).
-
-        Examples
-        --------
-        >>> float(Screw.revolute([0, 0, 1], [0, 0, 0]).reciprocal_product(Screw.couple([0, 0, 1])))
-        1.0
-        """
-        return reciprocal_product(self.coords, _as_screw(other, "other").coords)
-
-    def normalized(self) -> Screw:
-        """The screw scaled to unit magnitude (:func:`normalize`)."""
-        return Screw(normalize(self.coords))
-
-    def transformed(self, rotation: Any, translation: Any) -> Screw:
-        """The screw after a rigid motion (:func:`transform`)."""
-        return Screw(transform(self.coords, rotation, translation))
-
-    def is_equivalent(
-        self, other: Screw, *, rtol: float = B.DEFAULT_RTOL, length_scale: float | None = None
-    ) -> bool:
-        """True if both screws span the same 1-system (projective equality, any non-zero factor).
-
-        Examples
-        --------
-        >>> Screw.force([1, 0, 0], [0, 1, 0]).is_equivalent(Screw.force([-2, 0, 0], [5, 1, 0]))
-        True
-        """
-        rows = np.stack([self.coords, _as_screw(other, "other").coords])
-        return int(B.screw_rank(rows, rtol=rtol, length_scale=length_scale)) == 1
-
-    def to_dict(self) -> dict[str, Any]:
-        """JSON-ready description: coordinates, pitch, kind, and the axis where finite.
-
-        Examples
-        --------
-        >>> Screw.couple([0, 0, 1]).to_dict()["kind"]
-        'infinite pitch'
-        """
-        coords = [B.plain(v) for v in self.coords]
-        h = self.pitch
-        if self.is_symbolic:
-            return {"coords": coords, "pitch": str(h), "kind": "symbolic"}
-        if math.isinf(h):
-            return {
-                "coords": coords,
-                "pitch": "inf",
-                "kind": "infinite pitch",
-                "direction": [float(v) for v in self.moment],
-            }
-        point, unit = self.axis
-        kind = "zero pitch" if self.is_zero_pitch(length_scale=1.0) else "finite pitch"
-        return {
-            "coords": coords,
-            "pitch": float(h),
-            "kind": kind,
-            "point": point.tolist(),
-            "direction": unit.tolist(),
-        }
-
-    def __str__(self) -> str:
-        values = ", ".join(str(v) if self.is_symbolic else f"{v:.6g}" for v in self.coords)
-        return f"Screw({values})"
-
-    def __repr__(self) -> str:
-        return f"Screw(coords={self.coords!r})"
-
-
-def _as_screw(value: Any, name: str) -> Screw:
-    if isinstance(value, Screw):
-        return value
-    raise ScrewkitTypeError(f"Expected `{name}` to be a Screw, got {type(value).__name__}.")

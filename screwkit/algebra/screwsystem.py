@@ -6,7 +6,7 @@ and the wrench system the intersection of theirs (paper 002, Eq. 1); across para
 roles swap (Eq. 2). Twist and wrench systems of a chain are reciprocal: ``T = W^⊥``, ``W = T^⊥``,
 and ``order(W) = 6 - order(T)``.
 
-Every rank decision takes ``rtol`` and ``length_scale`` (``screwkit.algebra.backend``); a system keeps
+Every rank decision takes ``rtol`` and ``length_scale`` (:mod:`screwkit.algebra.ranks`); a system keeps
 the values it was built with and passes them on to the systems it produces, so a whole analysis uses
 one characteristic length. Symbolic systems use sympy's exact (generic) rank.
 
@@ -28,30 +28,13 @@ import numpy as np
 
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
 from . import backend as B
-from .screw import Screw
+from .ranks import _independent_rows, characteristic_length, scale_moments, screw_nullspace, screw_rank
+from .readable import _COUPLES, _about, _axes_centre, _numeric_readable, _symbolic_readable
+from .screwvalue import Screw
 
-__all__ = ["ScrewSystem", "motion_type"]
+__all__ = ["ScrewSystem"]
 
 Array = np.ndarray
-_COUPLES = np.hstack([np.zeros((3, 3)), np.eye(3)])
-
-
-def _independent_rows(rows: Array, rtol: float, length_scale: float | None) -> Array:
-    """The rows that raise the rank, in order (a basis made of the given generators)."""
-    chosen: list[Array] = []
-    rank = 0
-    total = B.screw_rank(rows, rtol=rtol, length_scale=length_scale) if rows.shape[0] else 0
-    if total == rows.shape[0]:
-        return rows.copy()
-    for row in rows:
-        trial = np.array([*chosen, row], dtype=rows.dtype)
-        new_rank = B.screw_rank(trial, rtol=rtol, length_scale=length_scale)
-        if new_rank > rank:
-            chosen.append(row)
-            rank = new_rank
-            if rank == total:
-                break
-    return np.array(chosen, dtype=rows.dtype).reshape(len(chosen), 6)
 
 
 @dataclass(frozen=True, slots=True, eq=False)
@@ -84,9 +67,9 @@ class ScrewSystem:
 
     def __post_init__(self) -> None:
         rows = B.as_array(self.basis, "basis", (6,)).reshape(-1, 6)
-        length = B.characteristic_length(rows, self.length_scale)
+        length = characteristic_length(rows, self.length_scale)
         object.__setattr__(self, "length_scale", length)
-        rank = B.screw_rank(rows, rtol=self.rtol, length_scale=length)
+        rank = screw_rank(rows, rtol=self.rtol, length_scale=length)
         if rank != rows.shape[0]:
             raise ScrewkitValueError(
                 f"Expected `basis` to hold independent screws, got {rows.shape[0]} rows of "
@@ -109,6 +92,19 @@ class ScrewSystem:
 
         The basis is the maximal independent subset of the generators, in their order.
 
+        Parameters
+        ----------
+        screws : sequence of Screw, or array_like of shape (k, 6)
+            The generators (floats or sympy expressions).
+        rtol : float, default 1e-9
+            Relative tolerance of every rank decision of the system.
+        length_scale : float, optional
+            The characteristic length of those decisions (default: derived from the screws).
+
+        Returns
+        -------
+        ScrewSystem
+
         Examples
         --------
         >>> from screwkit.algebra.screw import prismatic_twist
@@ -116,7 +112,7 @@ class ScrewSystem:
         1
         """
         rows = _rows(screws, "screws")
-        length_scale = B.characteristic_length(rows, length_scale)
+        length_scale = characteristic_length(rows, length_scale)
         basis = _independent_rows(rows, rtol, length_scale) if rows.shape[0] else rows
         # independent by construction: _independent_rows took the (generic) rank of these very rows
         return cls.from_independent(basis, rtol=rtol, length_scale=length_scale)
@@ -126,6 +122,19 @@ class ScrewSystem:
         cls, basis: Any, *, rtol: float = B.DEFAULT_RTOL, length_scale: float | None = None
     ) -> ScrewSystem:
         """A system from rows known to be independent (e.g. moved by a rigid motion), unchecked.
+
+        Parameters
+        ----------
+        basis : array_like, shape (k, 6)
+            Independent rows (not checked).
+        rtol : float, default 1e-9
+            Relative tolerance of every rank decision of the system.
+        length_scale : float, optional
+            The characteristic length of those decisions (default: derived from the screws).
+
+        Returns
+        -------
+        ScrewSystem
 
         Examples
         --------
@@ -145,6 +154,17 @@ class ScrewSystem:
     def full(cls, *, rtol: float = B.DEFAULT_RTOL, length_scale: float | None = None) -> ScrewSystem:
         """The 6-system of all screws.
 
+        Parameters
+        ----------
+        rtol : float, default 1e-9
+            Relative tolerance of every rank decision of the system.
+        length_scale : float, optional
+            The characteristic length of those decisions (default: derived from the screws).
+
+        Returns
+        -------
+        ScrewSystem
+
         Examples
         --------
         >>> ScrewSystem.full().order
@@ -155,6 +175,17 @@ class ScrewSystem:
     @classmethod
     def zero(cls, *, rtol: float = B.DEFAULT_RTOL, length_scale: float | None = None) -> ScrewSystem:
         """The 0-system.
+
+        Parameters
+        ----------
+        rtol : float, default 1e-9
+            Relative tolerance of every rank decision of the system.
+        length_scale : float, optional
+            The characteristic length of those decisions (default: derived from the screws).
+
+        Returns
+        -------
+        ScrewSystem
 
         Examples
         --------
@@ -175,7 +206,11 @@ class ScrewSystem:
         return B.is_symbolic(self.basis)
 
     def screws(self) -> list[Screw]:
-        """The basis as :class:`~screwkit.algebra.screw.Screw` values.
+        """The basis as :class:`~screwkit.algebra.screwvalue.Screw` values.
+
+        Returns
+        -------
+        list of Screw
 
         Examples
         --------
@@ -202,6 +237,11 @@ class ScrewSystem:
 
         ``order(S) + order(S^⊥) = 6`` and ``(S^⊥)^⊥ = S`` (paper 002, §3).
 
+        Returns
+        -------
+        ScrewSystem
+            Of order ``6 - self.order``.
+
         Examples
         --------
         >>> from screwkit.algebra.screw import line
@@ -209,7 +249,7 @@ class ScrewSystem:
         >>> lines.reciprocal().order
         4
         """
-        rows = B.screw_nullspace(self.basis, rtol=self.rtol, length_scale=self.length_scale)
+        rows = screw_nullspace(self.basis, rtol=self.rtol, length_scale=self.length_scale)
         if self.length_scale is not None and not self.is_symbolic:
             # orthonormal in the coordinates scaled by this length: independent by construction
             return ScrewSystem.from_independent(rows, rtol=self.rtol, length_scale=self.length_scale)
@@ -217,6 +257,15 @@ class ScrewSystem:
 
     def sum(self, other: ScrewSystem) -> ScrewSystem:
         """The smallest system holding both (span of the union); also ``self + other``.
+
+        Parameters
+        ----------
+        other : ScrewSystem
+            The other system.
+
+        Returns
+        -------
+        ScrewSystem
 
         Examples
         --------
@@ -230,6 +279,15 @@ class ScrewSystem:
 
     def intersection(self, other: ScrewSystem) -> ScrewSystem:
         """The screws common to both: ``(A^⊥ + B^⊥)^⊥``; also ``self & other``.
+
+        Parameters
+        ----------
+        other : ScrewSystem
+            The other system.
+
+        Returns
+        -------
+        ScrewSystem
 
         Examples
         --------
@@ -246,6 +304,15 @@ class ScrewSystem:
     def contains(self, item: Screw | ScrewSystem | Any) -> bool:
         """True if a screw (or every screw of a system, or rows ``(k, 6)``) lies in ``self``.
 
+        Parameters
+        ----------
+        item : Screw, ScrewSystem or array_like of shape (6,) or (k, 6)
+            The screws tested.
+
+        Returns
+        -------
+        bool
+
         Examples
         --------
         >>> from screwkit.algebra.screw import couple
@@ -260,7 +327,7 @@ class ScrewSystem:
         else:
             rows = _rows(item, "item")
         stacked = self._stack(self.basis, rows)
-        rank = B.screw_rank(stacked, rtol=self.rtol, length_scale=self.length_scale)
+        rank = screw_rank(stacked, rtol=self.rtol, length_scale=self.length_scale)
         return bool(rank == self.order)
 
     def __contains__(self, item: Any) -> bool:
@@ -277,6 +344,15 @@ class ScrewSystem:
     def is_equivalent(self, other: ScrewSystem) -> bool:
         """True if both systems are the same set of screws.
 
+        Parameters
+        ----------
+        other : ScrewSystem
+            The other system.
+
+        Returns
+        -------
+        bool
+
         Examples
         --------
         >>> from screwkit.algebra.screw import couple
@@ -290,6 +366,10 @@ class ScrewSystem:
     # readable presentation ----------------------------------------------------------------
     def couple_subsystem(self) -> ScrewSystem:
         """The screws of infinite pitch in ``self`` (a linear subsystem: ``self ∩ couples``).
+
+        Returns
+        -------
+        ScrewSystem
 
         Examples
         --------
@@ -346,7 +426,7 @@ class ScrewSystem:
                [ 0.,  0.,  1.,  2., -1.,  0.]])
         """
         if self.is_symbolic:
-            return self._readable_symbolic(near)
+            return _symbolic_readable(self, near)
         centre = np.zeros(3) if near is None else B.as_array(near, "near", (3,), symbolic=False)
         if centre.shape != (3,):
             raise ScrewkitValueError(f"Expected `near` to have shape (3,), got {centre.shape}.")
@@ -362,33 +442,8 @@ class ScrewSystem:
             # far from the frame's origin the moments dwarf the length scale and every rank decision
             # below would judge rounding: decide about a point among the axes, then move back
             local = ScrewSystem(_about(self.basis, origin), rtol=self.rtol, length_scale=self.length_scale)
-            return _about(local._readable_numeric(np.zeros(3) if near is None else near - origin), -origin)
-        return self._readable_numeric(np.zeros(3) if near is None else near)
-
-    def _readable_numeric(self, centre: Array) -> Array:
-        """:meth:`readable_basis` of a numeric system in its own frame (axes placed near ``centre``)."""
-        couples = _axis_first(_orthonormal_couples(self.couple_subsystem().basis)[:, 3:], self.rtol)
-        finite = _finite_candidates(self.basis, couples, centre, self.rtol, float(self.length_scale or 1.0))
-        rows = np.concatenate([np.hstack([np.zeros_like(couples), couples]), *finite]).reshape(-1, 6)
-        return _pick(self._stack(rows, self.basis), self.order, self)
-
-    def _readable_symbolic(self, near: Any) -> Array:
-        """The symbolic readable basis (generic decisions, :mod:`screwkit.algebra._symbolic`): the frame's
-        translations where the system holds them; with all three, the other rows become lines
-        through ``near`` (the origin by default); else the couple subsystem, then the basis."""
-        axes = [row for row in _COUPLES.astype(int) if self.contains(row)]
-        stacked = self._stack(self.basis, _COUPLES.astype(int))
-        translations = self.order + 3 - int(B.screw_rank(stacked))
-        couples = (
-            np.array(axes).reshape(-1, 6) if len(axes) == translations else self.couple_subsystem().basis
-        )
-        rows = self.basis
-        if translations == 3:
-            centre = B.as_array(np.zeros(3) if near is None else near, "near", (3,), symbolic=True)
-            rows = np.concatenate(
-                [rows[:, :3], B.cross(np.broadcast_to(centre, rows[:, :3].shape), rows[:, :3])], axis=1
-            )
-        return _pick(self._stack(couples, rows), self.order, self)
+            return _about(_numeric_readable(local, np.zeros(3) if near is None else near - origin), -origin)
+        return _numeric_readable(self, np.zeros(3) if near is None else near)
 
     def pitch_range(self) -> tuple[float, float]:
         """Least and greatest pitch of the screws of ``self`` with a non-zero direction.
@@ -418,7 +473,7 @@ class ScrewSystem:
         if self.is_symbolic:
             raise ScrewkitTypeError("pitch_range is numeric; substitute values into the system first.")
         length = float(self.length_scale or 1.0)
-        scaled, _ = B.scale_moments(self.basis, length)
+        scaled, _ = scale_moments(self.basis, length)
         if scaled.shape[0]:
             scaled = np.linalg.qr(scaled.T)[0].T  # orthonormal basis of the same span
         dirs, mom = scaled[:, :3], scaled[:, 3:]
@@ -444,6 +499,15 @@ class ScrewSystem:
     def contains_pitch(self, value: float) -> bool:
         """True if the system holds a screw of pitch ``value`` (``math.inf`` for couples).
 
+        Parameters
+        ----------
+        value : float
+            The pitch (``math.inf`` for couples).
+
+        Returns
+        -------
+        bool
+
         Examples
         --------
         >>> from screwkit.algebra.screw import couple, line
@@ -462,6 +526,11 @@ class ScrewSystem:
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready description: order and readable basis.
+
+        Returns
+        -------
+        dict
+            ``order`` and ``basis`` (the readable basis, each row as :meth:`Screw.to_dict`).
 
         Examples
         --------
@@ -510,172 +579,3 @@ def _readable(rows: bytes, rtol: float, length_scale: float | None, near: bytes 
     found = system._readable_about(None if near is None else np.frombuffer(near, dtype=float))
     found.flags.writeable = False
     return found
-
-
-def _axes_centre(rows: Array, length: float, rtol: float) -> Array:
-    """The point nearest the axes of the rows (least squares of their moments about it,
-    ``Σ |m − p × s|²`` over rows of unit size in scaled coordinates, so that a row weighs by its
-    direction: couples, and a couple's round-off direction, do not count; the origin for couples
-    only). Directions of the normal equations below ``rtol`` are left out (parallel axes: the point
-    nearest the origin along them)."""
-    sizes = np.linalg.norm(np.hstack([rows[:, :3], rows[:, 3:] / length]), axis=1)
-    unit = rows / np.where(sizes > 0, sizes, 1.0)[:, None]
-    s, m = unit[:, :3], unit[:, 3:]
-    normal = np.sum(s * s) * np.eye(3) - s.T @ s  # Σ (|s|² I − s sᵀ)
-    values, vectors = np.linalg.eigh(normal)
-    kept = values > rtol
-    if not kept.any():
-        return np.zeros(3)
-    rhs = vectors[:, kept].T @ np.cross(s, m).sum(axis=0)
-    return vectors[:, kept] @ (rhs / values[kept])
-
-
-def _about(rows: Array, point: Array) -> Array:
-    """The rows with their moments taken about ``point`` (``m − point × s``; ``-point`` undoes it)."""
-    return np.hstack([rows[:, :3], rows[:, 3:] - np.cross(point, rows[:, :3])])
-
-
-def _orthonormal_couples(rows: Array) -> Array:
-    if rows.shape[0] == 0:
-        return np.zeros((0, 6))
-    moments = np.linalg.svd(rows[:, 3:])[2][: rows.shape[0]]
-    return np.hstack([np.zeros_like(moments), moments])
-
-
-def _axis_first(moments: Array, rtol: float) -> Array:
-    """An orthonormal basis of the span of orthonormal rows ``(c, 3)``: the frame's axes it holds
-    first (x, y, z), completed by Gram–Schmidt."""
-    if moments.shape[0] == 0:
-        return moments
-    projector = moments.T @ moments
-    chosen = [e for e in np.eye(3) if np.linalg.norm(e - projector @ e) <= 1e3 * rtol]
-    for row in moments:
-        for picked in chosen:
-            row = row - (row @ picked) * picked
-        if np.linalg.norm(row) > 1e3 * rtol and len(chosen) < moments.shape[0]:
-            chosen.append(row / np.linalg.norm(row))
-    return np.array(chosen[: moments.shape[0]]).reshape(-1, 3)
-
-
-def _finite_candidates(basis: Array, couples: Array, near: Array, rtol: float, length: float) -> list[Array]:
-    """Candidate screws of finite pitch of a system (``readable_basis`` steps 2–3), best first."""
-    directions = basis[:, :3]
-    sizes = np.linalg.norm(np.hstack([directions, basis[:, 3:] / length]), axis=1)
-    unit = directions / np.where(sizes > 0, sizes, 1.0)[:, None]  # rows of unit scaled size
-    _, values, vt = np.linalg.svd(unit)
-    rank = int((values > 1e3 * rtol).sum())
-    if rank == 0:
-        return []
-    span = vt[:rank]  # orthonormal basis of the directions D
-    # the moment as a linear map of the direction on D (any screw of the system with direction s)
-    coefficients = np.linalg.lstsq(directions.T, span.T, rcond=None)[0]  # (order, rank)
-    moment_map = basis[:, 3:].T @ coefficients @ span  # (3, 3): s ↦ m(s) for s in D
-    projector = couples.T @ couples if couples.size else np.zeros((3, 3))
-    form = span @ (moment_map + moment_map.T) @ span.T / 2  # pitch form on D (orthonormal coords)
-    values_q, vectors_q = np.linalg.eigh(form)
-    tol = 1e3 * rtol * max(float(np.abs(values_q).max(initial=0.0)), length * rtol)
-    principal = [span.T @ v for v in vectors_q.T]
-    positive = [(lam, span.T @ v) for lam, v in zip(values_q, vectors_q.T, strict=True) if lam > tol]
-    negative = [(lam, span.T @ v) for lam, v in zip(values_q, vectors_q.T, strict=True) if lam < -tol]
-    isotropic = []
-    for k, (lp, p) in enumerate(positive):
-        for m, (ln, n) in enumerate(negative):
-            if k == 0 or m == 0:
-                isotropic += [np.sqrt(-ln) * p + sign * np.sqrt(lp) * n for sign in (1.0, -1.0)]
-    axes = [e for e in np.eye(3) if np.linalg.norm(e - span.T @ (span @ e)) <= 1e3 * rtol]
-    candidates = []
-    for order, s in enumerate([*axes, *isotropic, *principal]):
-        s = s / np.linalg.norm(s)
-        moment = moment_map @ s
-        about = moment - B.cross(near, s) - projector @ (moment - B.cross(near, s))
-        pitch = s @ (about + B.cross(near, s))
-        feasible = np.linalg.norm(projector @ s)
-        if abs(pitch) > rtol * length and feasible > 1e3 * rtol:
-            about = about - pitch / (s @ projector @ s) * (projector @ s)
-            pitch = 0.0
-        screw = np.concatenate([s, about + B.cross(near, s)])
-        is_line = abs(s @ screw[3:]) <= 1e3 * rtol * length
-        candidates.append((not is_line, order >= len(axes), order, screw))
-    candidates.sort(key=lambda c: c[:3])
-    return [np.array([c[3] for c in candidates])]
-
-
-def _pick(candidates: Array, order: int, system: ScrewSystem) -> Array:
-    """The first ``order`` independent candidates. The candidates lie in the system to within the
-    snapping of :func:`_axis_first` and :func:`_finite_candidates` (``1e3 rtol``: a frame axis, a
-    line), so that is the tolerance of their independence; the system's own ``rtol`` decides where
-    that would not give ``order`` rows (a system with a singular value between the two)."""
-    picked = np.zeros((0, 6))
-    if not system.is_symbolic:
-        picked = _independent_rows(candidates, min(1e3 * system.rtol, 1e-3), system.length_scale)
-    if picked.shape[0] != order:
-        picked = _independent_rows(candidates, system.rtol, system.length_scale)
-    if picked.shape[0] != order:
-        # a large rtol (1e-3 from the command line) blurs the candidates' decisions, made at 1e3 rtol,
-        # until they disagree with the system's order: its own basis is then the readable one (it
-        # was an "Internal error" for `screwkit analyze h4 --rtol 1e-3`)
-        picked = np.asarray(system.basis)
-    if system.is_symbolic:
-        return picked
-    sizes = np.linalg.norm(picked[:, :3], axis=1)
-    moments = np.linalg.norm(picked[:, 3:], axis=1)
-    scale = np.where(sizes > system.rtol * moments / float(system.length_scale or 1.0), sizes, moments)
-    return picked / scale[:, None]
-
-
-def _motion_label(translations: int, rotations: int) -> str:
-    """``"3T1R"``, ``"2R1T"``, ``"3T"``: the larger count first (translations on a tie)."""
-    parts = [(translations, "T"), (rotations, "R")]
-    parts.sort(key=lambda p: (-p[0], p[1] != "T"))
-    return "".join(f"{n}{kind}" for n, kind in parts if n) or "0"
-
-
-def motion_type(twists: Any, *, rtol: float = B.DEFAULT_RTOL, length_scale: float | None = None) -> Any:
-    """The motion type of a twist system: its numbers of translations and other freedoms.
-
-    ``t = dim(T ∩ translations) = order(T) + 3 − order(T + translations)`` and ``r = order(T) − t``
-    (the freedoms that are not translations: rotations or screws). Labelled ``"3T1R"`` (a
-    Schoenflies motion), ``"3T"``, ``"2R1T"``, ``"3T3R"``: the larger count first, translations
-    first on a tie; ``"0"`` for the 0-system.
-
-    Parameters
-    ----------
-    twists : ScrewSystem or array_like, shape (..., k, 6)
-        A system, or generators (numeric, batched over leading axes; or one symbolic ``(k, 6)``
-        array, decided generically).
-    rtol, length_scale
-        As in :func:`screwkit.algebra.backend.screw_rank` (a ScrewSystem uses its own).
-
-    Returns
-    -------
-    str, or numpy.ndarray of str over the batch
-
-    Examples
-    --------
-    >>> from screwkit.algebra.screw import prismatic_twist, revolute_twist
-    >>> schoenflies = [*(prismatic_twist(e) for e in np.eye(3)), revolute_twist([0, 0, 1], [1, 2, 0])]
-    >>> motion_type(schoenflies), motion_type(ScrewSystem.span(schoenflies[2:]))
-    ('3T1R', '1T1R')
-    >>> motion_type(np.stack([np.array(schoenflies[:3]), np.array(schoenflies[1:])]))
-    array(['3T', '2T1R'], dtype='<U4')
-    """
-    if isinstance(twists, ScrewSystem):
-        rows, rtol, length_scale = twists.basis, twists.rtol, twists.length_scale
-    elif isinstance(twists, Screw):
-        rows = twists.coords.reshape(1, 6)
-    else:
-        rows = _rows_batched(twists)
-    length_scale = B.characteristic_length(rows, length_scale) if rows.size else 1.0
-    couples = np.broadcast_to(_COUPLES, (*rows.shape[:-2], 3, 6))
-    stacked = np.concatenate(B.promote(rows, np.asarray(couples, dtype=float)), axis=-2)
-    order = np.asarray(B.screw_rank(rows, rtol=rtol, length_scale=length_scale))
-    translations = order + 3 - np.asarray(B.screw_rank(stacked, rtol=rtol, length_scale=length_scale))
-    labels = np.vectorize(_motion_label, otypes=[str])(translations, order - translations)
-    return str(labels) if labels.ndim == 0 else labels
-
-
-def _rows_batched(twists: Any) -> Array:
-    if isinstance(twists, list | tuple) and twists and all(isinstance(s, Screw) for s in twists):
-        return _rows(twists, "twists")
-    array = B.as_array(twists, "twists", (6,))
-    return array.reshape(1, 6) if array.ndim == 1 else array

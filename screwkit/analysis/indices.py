@@ -87,7 +87,7 @@ from typing import Any, NamedTuple, Protocol, runtime_checkable
 import numpy as np
 
 from ..algebra import backend as B
-from ..core import _frames as F
+from ..algebra.compiled import COMPILED_MIN_BATCH, compiled_kernels
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError, UnreachablePoseError
 
 __all__ = [
@@ -355,20 +355,20 @@ _UNREACHABLE = ("raise", "nan")
 
 def _numba_kernels(poses: int) -> ModuleType | None:
     """The fused kernel module for a call over ``poses`` poses, or None for the numpy path
-    (:func:`screwkit.core._frames.compiled_kernels`: the same rule as the rank kernels)."""
-    return F.compiled_kernels("screwkit.papers._lti_numba", poses)
+    (:func:`screwkit.algebra.compiled.compiled_kernels`: the same rule as the rank kernels)."""
+    return compiled_kernels("screwkit.papers._lti_numba", poses)
 
 
 def backend() -> str:
     """``"numba"`` or ``"numpy"``: how :func:`transmission` computes batches of
-    :data:`screwkit.core._frames.COMPILED_MIN_BATCH` poses or more in this process.
+    :data:`screwkit.algebra.compiled.COMPILED_MIN_BATCH` poses or more in this process.
 
     Examples
     --------
     >>> backend() in {"numba", "numpy"}
     True
     """
-    return "numpy" if _numba_kernels(F.COMPILED_MIN_BATCH) is None else "numba"
+    return "numpy" if _numba_kernels(COMPILED_MIN_BATCH) is None else "numba"
 
 
 def _four_limb_parameters(mechanism: Any) -> Any:
@@ -452,7 +452,7 @@ def transmission(
 
     The batched entry point for maps (workspace grids, trajectories): inverse kinematics (Eq. 3) and
     the indices in one pass. With numba (the ``fast`` extra) one fused compiled loop
-    (:mod:`screwkit.papers._lti_numba`) for batches of :data:`screwkit.core._frames.COMPILED_MIN_BATCH`
+    (:mod:`screwkit.papers._lti_numba`) for batches of :data:`screwkit.algebra.compiled.COMPILED_MIN_BATCH`
     poses or more (or once it is loaded), else the numpy path
     (:func:`screwkit.robots.families.four_limb.kinematics.inverse_kinematics` then
     :func:`transmission_indices`; a single pose never loads numba);

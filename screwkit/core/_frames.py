@@ -32,7 +32,7 @@ rank decision lies within a factor :data:`CLOSED_FORM_MARGIN` of the rule's thre
 orders are the rule's.
 
 **Two implementations, one rule.** :func:`span`, :func:`complement`, :func:`reciprocal`,
-:func:`residual`, :func:`rod`, the closed forms and :func:`unit_scaled` have a numpy path (vectorized over the
+:func:`residual`, :func:`rod` and the closed forms have a numpy path (vectorized over the
 batch) and, when numba is installed (the ``fast`` extra), compiled per-pose loops
 (:mod:`screwkit.core._frames_numba`). The numpy path does the compiled loops' floating-point operations
 in their order (sums left to right, no BLAS call, no library QR), so the two agree bit for bit,
@@ -41,11 +41,9 @@ bit-identical whichever path runs. The analysis core strings spans, reciprocals 
 flat *program* per mechanism (:func:`screwkit.core.wrenches._program`): on the numba path one compiled
 call runs it pose by pose (:func:`screwkit.core._frames_numba.run_program`, the same per-pose loops),
 on the numpy path its ops run one by one over the batch. numba is imported on
-the first call over :data:`COMPILED_MIN_BATCH` frames or more (:func:`compiled_kernels`), so a
-single-pose analysis never pays for its import; its compiled code is cached on disk. The
-environment variable ``SCREWKIT_NUMBA``, read once when this module is imported, forces the
-choice: ``0`` (or ``false``, ``no``, ``off``) the numpy path, anything else the default (numba if
-it imports).
+the first call over :data:`~screwkit.algebra.compiled.COMPILED_MIN_BATCH` frames or more
+(:func:`screwkit.algebra.compiled.compiled_kernels`, which also reads ``SCREWKIT_NUMBA``), so a
+single-pose analysis never pays for its import; its compiled code is cached on disk.
 
 Examples
 --------
@@ -59,21 +57,19 @@ array([5])
 
 from __future__ import annotations
 
-import importlib.util
 import math
-import os
 from types import ModuleType
 
 import numpy as np
 
 from ..algebra import backend as B
+from ..algebra.compiled import COMPILED_MIN_BATCH, compiled_kernels, sum_in_order
 
 __all__ = [
     "SWAP",
     "actuation_directions",
     "backend",
     "closing",
-    "compiled_kernels",
     "complement",
     "contract",
     "empty",
@@ -91,7 +87,6 @@ __all__ = [
     "scaled_magnitudes",
     "singular_ratio",
     "span",
-    "sum_in_order",
     "swapped",
     "to_scaled",
     "transmission_index",
@@ -99,7 +94,6 @@ __all__ = [
     "transmissions_numpy",
     "triangular",
     "unit_rows",
-    "unit_scaled",
     "unit_size",
     "unpacked",
 ]
@@ -109,46 +103,6 @@ Array = np.ndarray
 #: ``a ∘ b = a · (SWAP b)``: the reciprocal product as a Euclidean one.
 SWAP = np.block([[np.zeros((3, 3)), np.eye(3)], [np.eye(3), np.zeros((3, 3))]])
 SWAP.flags.writeable = False
-
-#: ``SCREWKIT_NUMBA=0`` forces the numpy path (read once, here).
-_NUMBA_WANTED = os.environ.get("SCREWKIT_NUMBA", "1").strip().lower() not in {"0", "false", "no", "off"}
-_compiled: dict[str, ModuleType | None] = {}
-
-#: Fewest batch elements (frames, or poses) in one kernel call for which a compiled module is loaded:
-#: numba's import and cached code cost ≈ 0.5 s once per process, what the numpy kernels take for
-#: a few hundred small calls (a single-pose analysis and its sampled superbracket: at most 48 poses
-#: × the limbs per call). A chunk of the batched core (256 poses) reaches it; once loaded, a module
-#: serves every call.
-COMPILED_MIN_BATCH = 256
-
-
-def compiled_kernels(name: str, size: int) -> ModuleType | None:
-    """The numba kernel module ``name`` (dotted) for a call over ``size`` batch elements; None
-    for the numpy path.
-
-    One rule for every compiled path: numba if it is installed, ``SCREWKIT_NUMBA`` is not ``0``,
-    and the module is already loaded or the call has at least :data:`COMPILED_MIN_BATCH` elements (it
-    is then imported, once; a broken numba install falls back to numpy for good). The rank kernels'
-    two paths agree bit for bit, so the choice never changes an answer.
-
-    Examples
-    --------
-    >>> name = "screwkit.core._frames_numba"
-    >>> compiled_kernels(name, 1) is None or name in _compiled
-    True
-    """
-    if name not in _compiled:
-        if size < COMPILED_MIN_BATCH:
-            return None
-        module = None
-        if _NUMBA_WANTED and importlib.util.find_spec("numba") is not None:
-            try:
-                module = importlib.import_module(name)
-            except ImportError:  # a broken numba install: the numpy path, for the whole process
-                module = None
-        _compiled[name] = module
-    return _compiled[name]
-
 
 def _numba_kernels(size: int) -> ModuleType | None:
     """The rank kernels (:mod:`screwkit.core._frames_numba`) for ``size`` frames, or None for numpy."""
@@ -190,39 +144,6 @@ def to_scaled(screws: Array, centre: Array, length: Array) -> Array:
     directions = screws[..., :3]
     moments = screws[..., 3:] - B.cross(centre[..., None, :], directions)
     return np.concatenate([directions, moments / length[..., None, None]], axis=-1)
-
-
-def unit_scaled(screws: Array, centre: Array, length: Array) -> Array:
-    """:func:`to_scaled` with every row divided by its norm (zero rows stay zero): the generators
-    of the analysis core, component by component in the compiled loop's order
-    (:func:`screwkit.core._frames_numba.unit_scaled`), so the two paths agree bit for bit.
-
-    Examples
-    --------
-    >>> unit_scaled(np.array([[0, 0, 2.0, 0, 0, 0]]), np.zeros(3), np.array(1.0))
-    array([[0., 0., 1., 0., 0., 0.]])
-    """
-    screws = np.asarray(screws, dtype=float)
-    batch = screws.shape[:-2]
-    centres = np.broadcast_to(np.asarray(centre, dtype=float), (*batch, 3))
-    lengths = np.broadcast_to(np.asarray(length, dtype=float), batch)
-    kernels = _numba_kernels(_size(batch))
-    if kernels is not None and 0 not in batch and screws.shape[-2]:
-        out = _import_kernels().unit_scaled(
-            np.ascontiguousarray(screws.reshape(-1, *screws.shape[-2:])),
-            np.ascontiguousarray(centres.reshape(-1, 3)),
-            np.ascontiguousarray(lengths.reshape(-1)),
-        )
-        return out.reshape(screws.shape)
-    d0, d1, d2 = screws[..., 0], screws[..., 1], screws[..., 2]
-    c0, c1, c2 = (centres[..., None, i] for i in range(3))
-    inverse_length = 1.0 / lengths[..., None]
-    m0 = (screws[..., 3] - (c1 * d2 - c2 * d1)) * inverse_length
-    m1 = (screws[..., 4] - (c2 * d0 - c0 * d2)) * inverse_length
-    m2 = (screws[..., 5] - (c0 * d1 - c1 * d0)) * inverse_length
-    size = np.sqrt(d0 * d0 + d1 * d1 + d2 * d2 + m0 * m0 + m1 * m1 + m2 * m2)
-    inverse = 1.0 / np.where(size == 0.0, 1.0, size)
-    return np.stack([x * inverse for x in (d0, d1, d2, m0, m1, m2)], axis=-1)
 
 
 def from_scaled(rows: Array, centre: Array, length: Array) -> Array:
@@ -283,25 +204,6 @@ def _span_numba(generators: Array, rtol: float) -> tuple[Array, Array]:
     kernels = _import_kernels()
     rows, order = kernels.span(np.ascontiguousarray(work.reshape(-1, k, 6)), float(rtol))
     return rows.reshape(*batch, 6, 6), order.reshape(batch)
-
-
-def sum_in_order(values: Array) -> Array:
-    """``Σ_s values[..., s]`` over the last axis, summed left to right from ``0.0``: the compiled
-    kernels' loop, operation for operation (numpy's own reductions may add in another order, and
-    so differ in the last bits).
-
-    Examples
-    --------
-    >>> sum_in_order(np.array([[1e16, 1.0, -1e16], [1.0, 2.0, 3.0]]))
-    array([0., 6.])
-    """
-    if values.shape[-1] == 0:
-        return np.zeros(values.shape[:-1])
-    columns = values.reshape(-1, values.shape[-1])  # 2-D views index faster than ``[..., s]``
-    total = columns[:, 0] + 0.0
-    for s in range(1, columns.shape[1]):
-        total += columns[:, s]
-    return total.reshape(values.shape[:-1])
 
 
 def _dot_in_order(a: Array, b: Array) -> Array:

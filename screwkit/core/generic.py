@@ -12,9 +12,9 @@ It walks the same structure as the numeric core (:func:`screwkit.graphs.topology
 Eqs. 1–2): along a chain the twist systems add up and the wrench systems intersect; across
 parallel branches the roles swap. The screws are held as sparse integer polynomials paired with
 their exact values at one random integer point of the symbols
-(:class:`screwkit.algebra._symbolic.GenericRows`);
+(:class:`screwkit.algebra.symbolic.GenericRows`);
 every order and every choice of generators is decided on those values (Schwartz–Zippel,
-:mod:`screwkit.algebra._symbolic`), and the bases are built symbolically from the chosen generators:
+:mod:`screwkit.algebra.symbolic`), and the bases are built symbolically from the chosen generators:
 intersections are solved on the few unknowns of the smaller system (``W_b ∩ T_others^⊥`` for a
 chain, ``T_b ∩ W_others^⊥`` across branches) by Cramer's rule, so the expressions stay small. Only
 the returned bases become sympy expressions.
@@ -47,12 +47,14 @@ from typing import Any
 import networkx as nx
 import numpy as np
 
-from ..algebra import _symbolic as Y
 from ..algebra import backend as B
-from ..algebra import screw as S
-from ..algebra.screwsystem import ScrewSystem, motion_type
+from ..algebra import screwvalue as S
+from ..algebra import symbolic as Y
+from ..algebra.motion_type import motion_type
+from ..algebra.screwsystem import ScrewSystem
+from ..algebra.symbolic_bases import reciprocal_within
 from ..exceptions import ScrewkitTypeError, TwistGraphError
-from ..graphs.joints import JointSpec
+from ..graphs.jointtable import JointSpec
 from ..graphs.topology import Topology, topology
 from ..graphs.twistgraph import check_twist_graph
 from .motion import resolve_dof
@@ -163,7 +165,7 @@ class GenericAnalysis:
 
     @property
     def motion_type(self) -> str:
-        """The platform's motion type, e.g. ``"3T1R"`` (:func:`screwkit.algebra.screwsystem.motion_type`)."""
+        """The platform's motion type, e.g. ``"3T1R"`` (:func:`screwkit.algebra.motion_type.motion_type`)."""
         return str(motion_type(self.platform_twists))
 
     @property
@@ -293,7 +295,7 @@ class _GenericEvaluation:
         return rows.take(rows.independent())
 
     def within(self, basis: Y.GenericRows, others: list[Y.GenericRows]) -> Y.GenericRows:
-        return Y.reciprocal_within(basis, self.stacked(others), self.point)
+        return reciprocal_within(basis, self.stacked(others), self.point)
 
     def twists(self, index: int) -> Y.GenericRows:
         if index not in self._twists:
@@ -442,7 +444,7 @@ def _system(rows: Y.GenericRows) -> ScrewSystem:
 
 def _actuation_wrench(passive: Y.GenericRows, actuated: Y.GenericRows) -> Y.GenericRows | None:
     """The first passive row not reciprocal to the actuated twist, lines first (decided on the
-    values at the generic point by :func:`screwkit.algebra._symbolic.is_zero`, relative to the products of
+    values at the generic point by :func:`screwkit.algebra.symbolic.is_zero`, relative to the products of
     the rows' sizes: the reciprocal product ``w·t0 + w0·t`` of
     :func:`screwkit.algebra.screw.reciprocal_product`, and a line's ``w·w0 = 0``)."""
     twist = actuated.values[0]

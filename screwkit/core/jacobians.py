@@ -114,6 +114,7 @@ import numpy as np
 from ..algebra import backend as B
 from ..algebra import screw as S
 from ..algebra.backend import as_array
+from ..algebra.ranks import screw_singular_values
 from ..exceptions import (
     DegenerateGeometryError,
     ScrewkitTypeError,
@@ -564,7 +565,7 @@ def _check_independent(scaled: Array, dof: int, rtol: float, batch: tuple[int, .
     """The rows of a scaled twist basis ``(..., dof, 6)`` are independent (rank ``dof``)."""
     if not dof:
         return
-    values = B.screw_singular_values(scaled, length_scale=1.0)
+    values = screw_singular_values(scaled, length_scale=1.0)
     rank = ((values > rtol * values[..., :1]) & (values[..., :1] > 0)).sum(axis=-1)
     if np.any(rank < dof):
         raise ScrewkitValueError(
@@ -736,7 +737,7 @@ def jacobians_over_poses(
     graph : networkx.MultiDiGraph
         A twist graph of the mechanism (any pose).
     screws : mapping of joint name to array_like, shape (..., dof_j, 6)
-        E.g. :meth:`JointTable.joint_screws <screwkit.graphs.joints.JointTable.joint_screws>` of every
+        E.g. :meth:`JointTable.joint_screws <screwkit.graphs.jointtable.JointTable.joint_screws>` of every
         joint of
         :meth:`screwkit.robots.mechanism.Mechanism.joints`.
     twist_basis : array_like, shape (..., dof, 6)

@@ -20,7 +20,7 @@ built in Python and catalog robots are treated alike:
    the joint's parent link (a U's second axis also by its first rotation).
 
 All configurations of a batch are moved together (arrays with a leading batch axis), and the
-result is a :class:`~screwkit.graphs.joints.JointTable` over the batch: the analysis core takes it as is.
+result is a :class:`~screwkit.graphs.jointtable.JointTable` over the batch: the analysis core takes it as is.
 
 The work is done about the mechanism's reference point and in units of its characteristic length
 (:func:`~screwkit.graphs.twistgraph.graph_frame`), so the configurations reached do not depend on where
@@ -54,7 +54,7 @@ import numpy as np
 
 from ..algebra import backend as B
 from ..exceptions import ScrewkitValueError
-from ..graphs.joints import JointTable
+from ..graphs.jointtable import JointTable
 from ..graphs.twistgraph import graph_frame
 from .wrenches import WrenchAnalysis, analyze_table
 
@@ -522,7 +522,7 @@ def settled_dof(
     A first analysis that is regular for its ``dof`` confirms it (:func:`_regular_for`: no generic
     configuration needed, the common case costs nothing). Otherwise the mobility is the graph's
     ``mobility`` attribute when it has one (a catalog family's graphs do:
-    :attr:`screwkit.graphs.joints.JointTable.mobility`), else computed at generic configurations
+    :attr:`screwkit.graphs.jointtable.JointTable.mobility`), else computed at generic configurations
     (:func:`generic_mobility`, 0.03–0.2 s, with the analysis's ``rtol`` and the given
     ``length_scale``; where no loop could be closed, the platform's most common order over the
     analysed poses stands in for it).

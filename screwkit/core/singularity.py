@@ -21,7 +21,7 @@ One pose and many go through the same kernels (:func:`screwkit.core.wrenches.ana
 :func:`classify` is a batch of one, :func:`classify_poses` and :func:`classify_table` a batch.
 
 Closeness measures (all in [0, 1], unit-free, computed about the mechanism's own reference point
-and length (:func:`~screwkit.graphs.twistgraph.mechanism_frame`), so they follow rigid motions and
+and length (:func:`~screwkit.algebra.reference_frame.mechanism_frame`), so they follow rigid motions and
 changes of unit; 0 at the singularity; computed when first asked,
 :attr:`~screwkit.core.wrenches.WrenchAnalysis.closeness`: the labels do not need them):
 
@@ -55,10 +55,10 @@ import networkx as nx
 import numpy as np
 
 from ..algebra import backend as B
-from ..algebra import screw as S
+from ..algebra import screwvalue as S
 from ..algebra.screwsystem import ScrewSystem
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
-from ..graphs.joints import JointTable
+from ..graphs.jointtable import JointTable
 from ..graphs.twistgraph import check_twist_graph
 from .wrenches import WrenchAnalysis, analyze_table, wrench_analysis
 
@@ -459,7 +459,7 @@ def classify_table(
 
     Examples
     --------
-    >>> from screwkit.graphs.joints import JointTable
+    >>> from screwkit.graphs.jointtable import JointTable
     >>> table = JointTable.from_rows("B", "E", [("B", "E", "P", "P", [[[0, 0, 0, 1.0, 0, 0]]] * 5, True)])
     >>> classify_table(table, chunk=2).verdict.tolist()
     ['regular', 'regular', 'regular', 'regular', 'regular']
@@ -492,7 +492,7 @@ def label_table(
 
     Examples
     --------
-    >>> from screwkit.graphs.joints import JointTable
+    >>> from screwkit.graphs.jointtable import JointTable
     >>> table = JointTable.from_rows("B", "E", [("B", "E", "P", "P", [[[0, 0, 0, 1.0, 0, 0]]] * 3, True)])
     >>> label_table(table, chunk=2).dof
     1
@@ -551,7 +551,7 @@ def classify_chunks(
 
     Examples
     --------
-    >>> from screwkit.graphs.joints import JointTable
+    >>> from screwkit.graphs.jointtable import JointTable
     >>> table = JointTable.from_rows("B", "E", [("B", "E", "P", "P", [[[0, 0, 0, 1.0, 0, 0]]] * 4, True)])
     >>> classify_chunks([table[:3], table[3:]], table, (2, 2)).global_order
     array([[6, 6],

@@ -22,7 +22,7 @@ one, :func:`wrench_analysis`), with the structure analysed once (:mod:`screwkit.
 * the **global wrench system** ``W^c + W^a`` (paper 002 Eq. 4): a 6-system at a regular pose.
 
 Every decision is one rank rule (:mod:`screwkit.core._frames`), made about the reference point and
-length of :func:`screwkit.graphs.twistgraph.mechanism_frame` so that it follows rigid motions and
+length of :func:`screwkit.algebra.reference_frame.mechanism_frame` so that it follows rigid motions and
 changes of unit; results are reported in the user's frame.
 
 Examples
@@ -50,7 +50,9 @@ import numpy as np
 
 from ..algebra import backend as B
 from ..algebra import screw as S
-from ..algebra.backend import checked_rtol
+from ..algebra.checks import MIN_LENGTH_SCALE, checked_length_scale, checked_rtol
+from ..algebra.compiled import compiled_kernels
+from ..algebra.reference_frame import scaled_frame, unit_scaled
 from ..algebra.screwsystem import ScrewSystem
 from ..exceptions import (
     DegenerateGeometryError,
@@ -58,9 +60,10 @@ from ..exceptions import (
     ScrewkitValueError,
     TwistGraphError,
 )
-from ..graphs.joints import Joint, JointTable
+from ..graphs.joints import Joint
+from ..graphs.jointtable import JointTable
+from ..graphs.reduction import SeriesParallelNode
 from ..graphs.topology import Node, Topology, network_layout, topology
-from ..graphs.twistgraph import SeriesParallelNode, scaled_frame
 from . import _frames as F
 
 if TYPE_CHECKING:
@@ -246,7 +249,7 @@ class WrenchAnalysis:
         The nominal mobility of the platform.
     reference_point : numpy.ndarray, shape (..., 3)
     length_scale : numpy.ndarray or float, shape (...)
-        From :func:`~screwkit.graphs.twistgraph.mechanism_frame`.
+        From :func:`~screwkit.algebra.reference_frame.mechanism_frame`.
     platform_order, constraint_order, global_order : numpy.ndarray of int, shape (...)
     serial : numpy.ndarray of bool, shape (..., n_actuated)
         True where the limb's actuator cannot move the platform.
@@ -466,7 +469,7 @@ class WrenchAnalysis:
         if "node0" in self.frames:  # kept by analyze_table(views=True)
             frames = [self.frames[f"node{i}"] for i in range(len(self.topology.nodes))]
         else:
-            scaled = F.unit_scaled(self.table.screws[None], self.reference_point[None], _lengths(self))
+            scaled = unit_scaled(self.table.screws[None], self.reference_point[None], _lengths(self))
             requests = tuple(("twists", i) for i in range(len(self.topology.nodes)))
             core = _Evaluation(self.topology, scaled, self.rtol, requests)
             frames = [(rows[0], order[0]) for rows, order in map(core.frame, requests)]
@@ -721,7 +724,7 @@ def _run(program: _Program, scaled: Array, rtol: float, requests: tuple[Request,
     axis of their own: rows ``(..., len(requests), 6, 6)``, orders ``(..., len(requests))``."""
     batch = scaled.shape[:-2]
     wanted = [program.slots[r] for r in requests]
-    kernels = F.compiled_kernels("screwkit.core._frames_numba", math.prod(batch))
+    kernels = compiled_kernels("screwkit.core._frames_numba", math.prod(batch))
     if kernels is not None:
         if 0 in batch:
             return F.empty((*batch, len(requests)))
@@ -981,7 +984,7 @@ def _checked_lengths(value: Any, batch: tuple[int, ...]) -> Array | None:
     screwkit.exceptions.ScrewkitValueError: Expected `length_scale` to be positive finite numbers in ...
     """
     if value is None or np.ndim(value) == 0:
-        checked = B.checked_length_scale(value, allow_none=True)
+        checked = checked_length_scale(value, allow_none=True)
         return None if checked is None else np.full(batch, checked)
     try:
         lengths = np.array(np.broadcast_to(np.asarray(value, dtype=float), batch))
@@ -991,7 +994,7 @@ def _checked_lengths(value: Any, batch: tuple[int, ...]) -> Array | None:
             f"Expected `length_scale` to be a positive number or an array of the batch shape {batch}, "
             f"got {got}."
         ) from err
-    smallest = B.MIN_LENGTH_SCALE
+    smallest = MIN_LENGTH_SCALE
     if not np.all(np.isfinite(lengths) & (lengths >= smallest) & (lengths * smallest <= 1)):
         raise ScrewkitValueError(
             f"Expected `length_scale` to be positive finite numbers in [{smallest:g}, {1 / smallest:g}], "
@@ -1020,7 +1023,7 @@ def analyze_table(
         Relative tolerance of every rank decision (:mod:`screwkit.core._frames`).
     length_scale : float or array_like of the batch shape, optional
         The characteristic length moments are divided by before every rank decision, in the
-        screws' length unit; default: :func:`~screwkit.graphs.twistgraph.mechanism_frame`'s, derived
+        screws' length unit; default: :func:`~screwkit.algebra.reference_frame.mechanism_frame`'s, derived
         from the screws (so that it follows a change of unit). Given, it must scale with the
         unit for the answers to stay unit-invariant. The reference point is the frame's either way.
         An analysis's own ``length_scale`` given back reproduces it bit for bit.
@@ -1042,7 +1045,7 @@ def analyze_table(
 
     Examples
     --------
-    >>> from screwkit.graphs.joints import JointTable
+    >>> from screwkit.graphs.jointtable import JointTable
     >>> line = [0, 0, 1.0, 0, 0, 0]
     >>> table = JointTable.from_rows("B", "E", [("B", "E", "R", "R", [[line]] * 3, True)])
     >>> analyze_table(table).constraint_order
@@ -1063,7 +1066,7 @@ def analyze_table(
     else:  # the reference point as derived, the given length
         centre, _, _ = scaled_frame(screws, table.anchor, scale=False)
         length = given_length
-        scaled = F.unit_scaled(screws, centre, length)
+        scaled = unit_scaled(screws, centre, length)
     requests: tuple[Request, ...] = ()
     if not top.network:  # every frame the analysis needs, in one program
         assert top.root is not None
@@ -1506,7 +1509,7 @@ def wrench_analysis(
     from .generic import generic_analysis, is_symbolic_graph
 
     rtol = checked_rtol(rtol)
-    length_scale = B.checked_length_scale(length_scale, allow_none=True)
+    length_scale = checked_length_scale(length_scale, allow_none=True)
     if isinstance(graph, nx.MultiDiGraph) and is_symbolic_graph(graph, joint_key=joint_key):
         return generic_analysis(graph, dof=dof, joint_key=joint_key)  # a family: generic answers
     from .motion import settled_dof

@@ -55,7 +55,10 @@ import numpy as np
 from ..algebra import backend as B
 from ..algebra import projective as P
 from ..algebra import screw as S
+from ..algebra.incidence import point_on_line
+from ..algebra.ranks import screw_rank
 from ..algebra.screwsystem import ScrewSystem
+from ..algebra.screwvalue import Screw
 from ..core import _frames as F
 from ..core.wrenches import WrenchAnalysis, analyze_table, wrench_analysis
 from ..exceptions import (
@@ -64,9 +67,9 @@ from ..exceptions import (
     ScrewkitTypeError,
     ScrewkitValueError,
 )
-from ..graphs.joints import JointTable
+from ..graphs.jointtable import JointTable
+from ..graphs.reduction import SeriesParallelNode
 from ..graphs.topology import Topology
-from ..graphs.twistgraph import SeriesParallelNode
 from . import Simplification, simplify_superbracket
 
 if TYPE_CHECKING:  # conditions are sympy expressions: that module (and sympy) loads on first use
@@ -303,7 +306,7 @@ def _mechanism_lines(analysis: WrenchAnalysis) -> dict[str, tuple[str, Array | N
 def _rank(rows: list[Array], analysis: WrenchAnalysis) -> int:
     if not rows:
         return 0
-    return int(B.screw_rank(np.array(rows), rtol=1e-7, length_scale=float(analysis.length_scale)))
+    return int(screw_rank(np.array(rows), rtol=1e-7, length_scale=float(analysis.length_scale)))
 
 
 def _select_lines(analysis: WrenchAnalysis) -> tuple[list[Line], list[str]]:
@@ -594,7 +597,7 @@ def _finite_line_recipe(
     on_line = [
         ("centre", key)
         for key, centre in _centres(analysis, joints, known)
-        if P.point_on_line(
+        if point_on_line(
             np.append(centre, 1.0), wrench, rtol=INCIDENCE_RTOL, length_scale=analysis.length_scale
         )
     ]
@@ -645,8 +648,8 @@ def diagram_at(reference: WrenchDiagram, analysis: WrenchAnalysis) -> WrenchDiag
         scale = float(analysis.length_scale)
         for (first, second), (name, _, wrench, _) in zip(reference.lines, lines, strict=True):
             join = P.join_unchecked(coordinates[first], coordinates[second])
-            if np.linalg.norm(join) <= INCIDENCE_RTOL or not S.Screw(join).is_equivalent(
-                S.Screw(wrench), rtol=1e-6, length_scale=scale
+            if np.linalg.norm(join) <= INCIDENCE_RTOL or not Screw(join).is_equivalent(
+                Screw(wrench), rtol=1e-6, length_scale=scale
             ):
                 problems.append(f"the points {first}, {second} do not give the {name} here")
     return WrenchDiagram(
@@ -938,7 +941,7 @@ def _meet_points(line: Array, screw: Array, length_scale: Array) -> Array:
 
     The line meets the plane that contains the axis and is normal to the plane of both; they meet
     when ``L ∘ A = 0`` after scaling moments by ``length_scale``
-    (:func:`screwkit.algebra.projective.lines_intersect`).
+    (:func:`screwkit.algebra.incidence.lines_intersect`).
     """
     axis, origin = _axis_lines(screw)
     length = np.asarray(length_scale, dtype=float)[..., None]

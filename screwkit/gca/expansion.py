@@ -16,7 +16,7 @@ import numpy as np
 
 from ..algebra import backend as B
 from ..algebra import projective as P
-from ..algebra.backend import checked_rtol
+from ..algebra.checks import checked_rtol
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
 from .brackets import BracketPolynomial, _labels, _point_arrays, _scalar
 from .dotted import DottedSum

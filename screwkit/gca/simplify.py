@@ -18,7 +18,7 @@ import numpy as np
 
 from ..algebra import backend as B
 from ..algebra import projective as P
-from ..algebra.backend import checked_rtol
+from ..algebra.checks import checked_rtol
 from ..exceptions import DegenerateGeometryError, ScrewkitTypeError, ScrewkitValueError
 from .brackets import Bracket, BracketMonomial, BracketPolynomial, _labels
 from .dotted import DottedMonomial, DottedSum

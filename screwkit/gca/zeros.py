@@ -12,7 +12,7 @@ import numpy as np
 
 from ..algebra import backend as B
 from ..algebra import projective as P
-from ..algebra.backend import checked_rtol
+from ..algebra.checks import checked_rtol
 from ..exceptions import DegenerateGeometryError, ScrewkitTypeError, ScrewkitValueError
 from .brackets import BracketPolynomial
 

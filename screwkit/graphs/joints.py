@@ -3,7 +3,7 @@
 A joint of a twist graph (design.md §5) is a frozen :class:`Joint`: its type, the screws of its
 twist system at the current configuration (rows ``(dof, 6)``, conventions in
 :mod:`screwkit.algebra.screw`), whether it is actuated, whether it is *virtual* (a member of an equivalent
-chain derived by :func:`screwkit.graphs.twistgraph.equivalent_twist_graph`, paper 002 Fig. 2b–3), and the
+chain derived by :func:`screwkit.graphs.reduction.equivalent_twist_graph`, paper 002 Fig. 2b–3), and the
 geometric data it was built from (kept for reports and for saving graphs).
 
 =========  ======  =================================================================================
@@ -38,6 +38,8 @@ import numpy as np
 
 from ..algebra import backend as B
 from ..algebra import screw as S
+from ..algebra.branch_values import float_lists, plain
+from ..algebra.zero_tests import unit_directions, vanishes, zero_vectors
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
 
 __all__ = [
@@ -45,8 +47,6 @@ __all__ = [
     "JOINT_TYPES",
     "PARALLEL_RTOL",
     "Joint",
-    "JointSpec",
-    "JointTable",
     "cylindrical",
     "helical",
     "lead_to_pitch",
@@ -145,7 +145,7 @@ class Joint:
             raise ScrewkitValueError(
                 f"Joint {self.name!r} of type {self.type}: expected {expected} screw(s), got {rows.shape[0]}."
             )
-        if np.any(B.zero_vectors(rows)):
+        if np.any(zero_vectors(rows)):
             raise ScrewkitValueError(f"Joint {self.name!r}: expected non-zero screws, got a zero row.")
         if not isinstance(self.actuated, bool | np.bool_) or not isinstance(self.virtual, bool | np.bool_):
             flag, value = (
@@ -177,6 +177,12 @@ class Joint:
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready description (used to save graphs with ``nx.node_link_data``).
 
+        Returns
+        -------
+        dict
+            ``name``, ``type``, ``actuated``, ``virtual``, ``screws`` (rows of floats, or of texts when
+        symbolic) and ``geometry``.
+
         Examples
         --------
         >>> revolute("R1", [0, 0, 1], [1, 0, 0]).to_dict()["type"]
@@ -187,13 +193,22 @@ class Joint:
             "type": self.type,
             "actuated": self.actuated,
             "virtual": self.virtual,
-            "screws": [[B.plain(v) for v in row] for row in self.screws],
+            "screws": [[plain(v) for v in row] for row in self.screws],
             "geometry": self.geometry,
         }
 
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> Joint:
         """Rebuild a joint from :meth:`to_dict` output (plain data only; nothing is evaluated).
+
+        Parameters
+        ----------
+        data : dict
+            The output of :meth:`to_dict` (e.g. read back from JSON).
+
+        Returns
+        -------
+        Joint
 
         Examples
         --------
@@ -230,12 +245,27 @@ class Joint:
 
 def _unit_axis(axis: Any) -> Any:
     """A numeric axis scaled to unit length; a symbolic axis is kept as given, so that symbolic screws
-    stay polynomial (:func:`screwkit.algebra.backend.unit_directions`). A zero axis is refused."""
-    return B.unit_directions(S.line(axis, [0, 0, 0])[:3])
+    stay polynomial (:func:`screwkit.algebra.zero_tests.unit_directions`). A zero axis is refused."""
+    return unit_directions(S.line(axis, [0, 0, 0])[:3])
 
 
 def revolute(name: str, axis: Any, point: Any, *, actuated: bool = False) -> Joint:
     """A revolute joint R: the zero-pitch twist on its axis.
+
+    Parameters
+    ----------
+    name : str
+        The joint's name (unique in a graph).
+    axis : array_like, shape (3,)
+        The axis direction (non-zero).
+    point : array_like, shape (3,)
+        A point of the axis.
+    actuated : bool, default False
+        Whether the joint is actuated.
+
+    Returns
+    -------
+    Joint
 
     Examples
     --------
@@ -243,12 +273,25 @@ def revolute(name: str, axis: Any, point: Any, *, actuated: bool = False) -> Joi
     array([[ 0.,  0.,  1.,  0., -1.,  0.]])
     """
     twist = S.revolute_twist(_unit_axis(axis), point)
-    geometry = B.float_lists(axis=axis, point=point)
+    geometry = float_lists(axis=axis, point=point)
     return Joint(name, "R", twist.reshape(1, 6), actuated=actuated, geometry=geometry)
 
 
 def prismatic(name: str, direction: Any, *, actuated: bool = False) -> Joint:
     """A prismatic joint P: the infinite-pitch twist ``(0; d/|d|)``.
+
+    Parameters
+    ----------
+    name : str
+        The joint's name (unique in a graph).
+    direction : array_like, shape (3,)
+        The sliding direction (non-zero).
+    actuated : bool, default False
+        Whether the joint is actuated.
+
+    Returns
+    -------
+    Joint
 
     Examples
     --------
@@ -256,12 +299,29 @@ def prismatic(name: str, direction: Any, *, actuated: bool = False) -> Joint:
     array([[0. , 0. , 0. , 0.6, 0. , 0.8]])
     """
     twist = S.normalize(S.prismatic_twist(direction))
-    geometry = B.float_lists(direction=direction)
+    geometry = float_lists(direction=direction)
     return Joint(name, "P", twist.reshape(1, 6), actuated=actuated, geometry=geometry)
 
 
 def helical(name: str, axis: Any, point: Any, pitch: Any, *, actuated: bool = False) -> Joint:
     """A helical (screw) joint H of pitch ``h`` (length per radian: lead / 2π).
+
+    Parameters
+    ----------
+    name : str
+        The joint's name (unique in a graph).
+    axis : array_like, shape (3,)
+        The axis direction (non-zero).
+    point : array_like, shape (3,)
+        A point of the axis.
+    pitch : float or sympy.Expr
+        Length per radian (:func:`lead_to_pitch`).
+    actuated : bool, default False
+        Whether the joint is actuated.
+
+    Returns
+    -------
+    Joint
 
     Examples
     --------
@@ -273,12 +333,22 @@ def helical(name: str, axis: Any, point: Any, pitch: Any, *, actuated: bool = Fa
             f"Expected `pitch` to be one number (the joint's pitch), got shape {np.shape(pitch)}."
         )
     twist = S.helical_twist(S.normalize(S.line(axis, [0, 0, 0]))[:3], point, pitch)
-    geometry = B.float_lists(axis=axis, point=point, pitch=pitch)
+    geometry = float_lists(axis=axis, point=point, pitch=pitch)
     return Joint(name, "H", twist.reshape(1, 6), actuated=actuated, geometry=geometry)
 
 
 def lead_to_pitch(lead: float) -> float:
     """Pitch (per radian) of a screw pair from its lead (per turn): ``h = lead / 2π``.
+
+    Parameters
+    ----------
+    lead : float
+        Length per turn.
+
+    Returns
+    -------
+    float
+        Length per radian.
 
     Examples
     --------
@@ -291,6 +361,19 @@ def lead_to_pitch(lead: float) -> float:
 def cylindrical(name: str, axis: Any, point: Any) -> Joint:
     """A cylindrical joint C: rotation about and translation along one axis.
 
+    Parameters
+    ----------
+    name : str
+        The joint's name (unique in a graph).
+    axis : array_like, shape (3,)
+        The axis direction (non-zero).
+    point : array_like, shape (3,)
+        A point of the axis.
+
+    Returns
+    -------
+    Joint
+
     Examples
     --------
     >>> cylindrical("C1", [0, 0, 1], [0, 0, 0]).dof
@@ -298,12 +381,25 @@ def cylindrical(name: str, axis: Any, point: Any) -> Joint:
     """
     unit = S.normalize(S.line(axis, [0, 0, 0]))[:3]
     rows = np.stack([S.revolute_twist(unit, point), S.prismatic_twist(unit)])
-    geometry = B.float_lists(axis=axis, point=point)
+    geometry = float_lists(axis=axis, point=point)
     return Joint(name, "C", rows, geometry=geometry)
 
 
 def universal(name: str, first_axis: Any, second_axis: Any, center: Any) -> Joint:
     """A universal joint U: two revolute axes through one centre (the first on the parent side).
+
+    Parameters
+    ----------
+    name : str
+        The joint's name (unique in a graph).
+    first_axis, second_axis : array_like, shape (3,)
+        The directions of the two revolute axes (not parallel; the first on the parent side).
+    center : array_like, shape (3,)
+        The point where the axes meet.
+
+    Returns
+    -------
+    Joint
 
     Raises
     ------
@@ -319,16 +415,27 @@ def universal(name: str, first_axis: Any, second_axis: Any, center: Any) -> Join
         [S.revolute_twist(_unit_axis(first_axis), center), S.revolute_twist(_unit_axis(second_axis), center)]
     )
     first, second = rows[0, :3], rows[1, :3]
-    if B.vanishes(B.cross(first, second), first, second, rtol=PARALLEL_RTOL):
+    if vanishes(B.cross(first, second), first, second, rtol=PARALLEL_RTOL):
         raise ScrewkitValueError(
             f"Universal joint {name!r}: expected two non-parallel axes, got parallel axes."
         )
-    geometry = B.float_lists(first_axis=first_axis, second_axis=second_axis, center=center)
+    geometry = float_lists(first_axis=first_axis, second_axis=second_axis, center=center)
     return Joint(name, "U", rows, geometry=geometry)
 
 
 def spherical(name: str, center: Any) -> Joint:
     """A spherical joint S: three rotations about axes through its centre.
+
+    Parameters
+    ----------
+    name : str
+        The joint's name (unique in a graph).
+    center : array_like, shape (3,)
+        The centre.
+
+    Returns
+    -------
+    Joint
 
     Examples
     --------
@@ -339,7 +446,7 @@ def spherical(name: str, center: Any) -> Joint:
     """
     axes, centre = B.promote(np.eye(3), B.as_array(center, "center", (3,)))
     rows = np.stack([S.revolute_twist(a, centre) for a in axes])
-    geometry = B.float_lists(center=center)
+    geometry = float_lists(center=center)
     return Joint(name, "S", rows, geometry=geometry)
 
 
@@ -349,6 +456,21 @@ def parallelogram(name: str, hinge_axis: Any, rod_direction: Any, *, actuated: b
     The four hinge axes are parallel to ``hinge_axis`` and the rods to ``rod_direction``; the
     coupler keeps its orientation and moves on a circle (a curvilinear translation, paper 004 §2),
     so its instantaneous twist is the pure translation ``(0; a × w)``.
+
+    Parameters
+    ----------
+    name : str
+        The joint's name (unique in a graph).
+    hinge_axis : array_like, shape (3,)
+        The direction of the hinges' axes.
+    rod_direction : array_like, shape (3,)
+        The direction of the rods (not parallel to the hinges).
+    actuated : bool, default False
+        Whether the joint is actuated.
+
+    Returns
+    -------
+    Joint
 
     Raises
     ------
@@ -364,17 +486,28 @@ def parallelogram(name: str, hinge_axis: Any, rod_direction: Any, *, actuated: b
     w = B.as_array(rod_direction, "rod_direction", (3,))
     a, w = B.promote(a, w)
     velocity = B.cross(a, w)
-    if B.vanishes(velocity, a, w, rtol=PARALLEL_RTOL):
+    if vanishes(velocity, a, w, rtol=PARALLEL_RTOL):
         raise ScrewkitValueError(
             f"Parallelogram {name!r}: expected rods not parallel to the hinge axes, got parallel ones."
         )
-    twist = S.prismatic_twist(B.unit_directions(velocity))
-    geometry = B.float_lists(hinge_axis=a, rod_direction=w)
+    twist = S.prismatic_twist(unit_directions(velocity))
+    geometry = float_lists(hinge_axis=a, rod_direction=w)
     return Joint(name, "Pa", twist.reshape(1, 6), actuated=actuated, geometry=geometry)
 
 
 def virtual(name: str, screw: Any) -> Joint:
     """A virtual one-degree-of-freedom joint carrying one screw, typed by its pitch (vR, vP, vH).
+
+    Parameters
+    ----------
+    name : str
+        The joint's name (unique in a graph).
+    screw : array_like, shape (6,)
+        The screw it carries (floats or sympy expressions).
+
+    Returns
+    -------
+    Joint
 
     Examples
     --------
@@ -384,254 +517,3 @@ def virtual(name: str, screw: Any) -> Joint:
     row = B.as_array(screw, "screw", (6,)).reshape(1, 6)
     kind = "vP" if S.is_infinite_pitch(row[0]) else ("vR" if S.is_zero_pitch(row[0]) else "vH")
     return Joint(name, kind, row, virtual=True)
-
-
-def _refuse_symbolic(*screws: Any) -> None:
-    if B.is_symbolic(*screws):
-        raise ScrewkitTypeError(
-            "Expected numeric joint screws for the analysis core, got symbolic entries; substitute "
-            "values for the symbols (sympy's subs) first, or use screwkit.generic_analysis (a family's "
-            "generic answers; also what wrench_analysis and classify return for a symbolic graph)."
-        )
-
-
-@dataclass(frozen=True)
-class JointSpec:
-    """One joint of a mechanism's structure: everything but its screws (hashable).
-
-    Attributes
-    ----------
-    name : str
-    type : str
-        One of :data:`JOINT_TYPES`.
-    parent, child : hashable
-        The links it joins (its twists are the child's relative to the parent).
-    dof : int
-    actuated : bool
-
-    Examples
-    --------
-    >>> JointSpec("A1", "R", "base", "arm1", 1, True).dof
-    1
-    """
-
-    name: str
-    type: str
-    parent: Any
-    child: Any
-    dof: int
-    actuated: bool = False
-
-
-#: Largest screw coordinate a :class:`JointTable` takes (a point 1e100 length units away): beyond it
-#: the rank kernels' norms and the superbracket's products would overflow.
-MAX_SCREW_MAGNITUDE = 1e100
-
-
-@dataclass(frozen=True, eq=False)
-class JointTable:
-    """A mechanism's joints over a batch of configurations: the structure once, the screws batched.
-
-    The input of the analysis core (design.md §1a): a family's ``joints(config)`` returns one, and
-    :meth:`from_graph` makes one (a batch of one) from any twist graph.
-
-    Attributes
-    ----------
-    base, platform : hashable
-    specs : tuple of JointSpec
-    screws : numpy.ndarray, shape (..., rows, 6)
-        Every joint's screws stacked in the order of ``specs`` (read-only floats).
-    dof : int or None
-        The platform's nominal mobility (None: the number of actuated joints).
-    anchor : numpy.ndarray, shape (..., 3), or None
-        A point that moves with the mechanism, fixing its reference point along the axes when they
-        are all parallel (a planar mechanism; :func:`screwkit.graphs.twistgraph.graph_frame`).
-    mobility : int or None
-        The mechanism's mobility at generic configurations when it is known (a catalog family's,
-        checked by the catalog's facts; graph attribute ``mobility``): the ``dof`` check
-        (:func:`screwkit.core.motion.settled_dof`) takes it instead of computing it. None: computed.
-
-    Examples
-    --------
-    >>> table = JointTable.from_rows("B", "E", [("B", "E", "P", "P", [[[0, 0, 0, 1.0, 0, 0]]] * 2, True)])
-    >>> table.batch_shape, table.joint_screws("P").shape
-    ((2,), (2, 1, 6))
-    >>> table[1].graph().edges["B", "E", "P"]["joint"].actuated
-    True
-    """
-
-    base: Any
-    platform: Any
-    specs: tuple[JointSpec, ...]
-    screws: Array
-    dof: int | None = None
-    anchor: Array | None = None
-    mobility: int | None = None
-
-    def __post_init__(self) -> None:
-        rows = sum(spec.dof for spec in self.specs)
-        _refuse_symbolic(self.screws)
-        given = self.screws
-        owned = isinstance(given, np.ndarray) and given.dtype == float and given.base is None
-        # a read-only float array owning its data (another table's, or from_rows') is kept as is
-        screws = given if owned and not given.flags.writeable else np.array(given, dtype=float)
-        if screws.ndim < 2 or screws.shape[-2:] != (rows, 6):
-            raise ScrewkitValueError(
-                f"Expected `screws` of shape (..., {rows}, 6) for the table's joints, got {screws.shape}."
-            )
-        largest = np.maximum(screws.max(), -screws.min()) if screws.size else 0.0  # NaN or inf propagate
-        if not np.isfinite(largest):
-            raise ScrewkitValueError("Expected finite joint screws, got NaN or infinity.")
-        if largest > MAX_SCREW_MAGNITUDE:
-            raise ScrewkitValueError(
-                f"Expected joint screw coordinates up to {MAX_SCREW_MAGNITUDE:g} in size (norms and "
-                f"products must not overflow), got {largest:g}."
-            )
-        columns = screws.reshape(-1, 6)  # column by column: faster than a reduction over six
-        zero = columns[:, 0] == 0
-        for k in range(1, 6):
-            zero &= columns[:, k] == 0
-        zero = zero.reshape(screws.shape[:-1])
-        if zero.any():
-            where = np.argwhere(zero)[0]
-            row, starts = int(where[-1]), np.cumsum([spec.dof for spec in self.specs])
-            name = self.specs[int(np.searchsorted(starts, row, side="right"))].name
-            raise ScrewkitValueError(
-                f"Joint {name!r}: expected non-zero screws, got a zero row"
-                + (f" at batch index {tuple(int(i) for i in where[:-1])}." if len(where) > 1 else ".")
-            )
-        screws.flags.writeable = False
-        object.__setattr__(self, "screws", screws)
-        if self.anchor is not None:
-            anchor = np.broadcast_to(np.asarray(self.anchor, dtype=float), (*screws.shape[:-2], 3)).copy()
-            anchor.flags.writeable = False
-            object.__setattr__(self, "anchor", anchor)
-
-    @classmethod
-    def from_rows(
-        cls,
-        base: Any,
-        platform: Any,
-        rows: list[tuple[Any, Any, str, str, Any, bool]],
-        *,
-        dof: int | None = None,
-        anchor: Any = None,
-        mobility: int | None = None,
-    ) -> JointTable:
-        """A table from ``(parent, child, name, type, screws (..., dof_j, 6), actuated)`` rows.
-
-        Examples
-        --------
-        >>> JointTable.from_rows("B", "E", [("B", "E", "R", "R", [[0, 0, 1.0, 0, 0, 0]], False)]).specs[0]
-        JointSpec(name='R', type='R', parent='B', child='E', dof=1, actuated=False)
-        """
-        _refuse_symbolic(*(screws for *_, screws, _ in rows))
-        arrays = [np.asarray(screws, dtype=float) for *_, screws, _ in rows]
-        batch = np.broadcast_shapes(*(a.shape[:-2] for a in arrays)) if arrays else ()
-        specs = tuple(
-            JointSpec(name, kind, parent, child, array.shape[-2], bool(actuated))
-            for (parent, child, name, kind, _, actuated), array in zip(rows, arrays, strict=True)
-        )
-        stacked = (
-            np.concatenate([np.broadcast_to(a, (*batch, *a.shape[-2:])) for a in arrays], axis=-2)
-            if arrays
-            else np.zeros((0, 6))
-        )
-        stacked.flags.writeable = False  # fresh: the table takes it without a copy
-        return cls(base, platform, specs, stacked, dof, anchor, mobility)
-
-    @classmethod
-    def from_graph(cls, graph: Any, *, joint_key: str = "joint") -> JointTable:
-        """The table of a twist graph at its configuration (a batch of one pose: shape ``()``).
-
-        Examples
-        --------
-        >>> from screwkit.graphs.twistgraph import twist_graph
-        >>> G = twist_graph("B", "E", [("B", "E", revolute("R", [0, 0, 1], [0, 0, 0]))])
-        >>> JointTable.from_graph(G).batch_shape
-        ()
-        """
-        from .twistgraph import check_twist_graph, graph_anchor
-
-        check_twist_graph(graph, joint_key=joint_key)
-        joints = list(graph.edges(keys=True, data=joint_key))  # any order: the core sorts by name
-        rows = [(u, v, key, joint.type, joint.screws, joint.actuated) for u, v, key, joint in joints]
-        return cls.from_rows(
-            graph.graph["base"],
-            graph.graph["platform"],
-            rows,
-            dof=graph.graph.get("dof"),
-            anchor=graph_anchor(graph, joint_key=joint_key),
-            mobility=graph.graph.get("mobility"),
-        )
-
-    @property
-    def batch_shape(self) -> tuple[int, ...]:
-        """The leading batch shape of :attr:`screws`."""
-        return self.screws.shape[:-2]
-
-    def __len__(self) -> int:
-        if not self.batch_shape:
-            raise TypeError("a JointTable of one configuration has no length")
-        return self.batch_shape[0]
-
-    def __getitem__(self, index: Any) -> JointTable:
-        anchor = None if self.anchor is None else self.anchor[index]
-        screws = self.screws[index]
-        return JointTable(self.base, self.platform, self.specs, screws, self.dof, anchor, self.mobility)
-
-    def joint_screws(self, name: str) -> Array:
-        """The screws of one joint over the batch, ``(..., dof_j, 6)``.
-
-        Examples
-        --------
-        >>> table = JointTable.from_rows("B", "E", [("B", "E", "R", "R", [[0, 0, 1.0, 0, 0, 0]], 0)])
-        >>> table.joint_screws("R")
-        array([[0., 0., 1., 0., 0., 0.]])
-        """
-        start = 0
-        for spec in self.specs:
-            if spec.name == name:
-                return self.screws[..., start : start + spec.dof, :]
-            start += spec.dof
-        raise ScrewkitValueError(f"Expected the name of a joint of the table, got {name!r}.")
-
-    def graph(self, index: Any = ()) -> Any:
-        """The twist graph (:class:`networkx.MultiDiGraph`) of one configuration of the batch.
-
-        Raises
-        ------
-        ScrewkitValueError
-            If ``index`` does not pick exactly one configuration of the batch.
-
-        Examples
-        --------
-        >>> table = JointTable.from_rows("B", "E", [("B", "E", "R", "R", [[0, 0, 1.0, 0, 0, 0]], 0)])
-        >>> sorted(table.graph().edges(keys=True))
-        [('B', 'E', 'R')]
-        """
-        from .twistgraph import twist_graph
-
-        wrong = ScrewkitValueError(
-            f"Expected `index` to pick one configuration of the batch of shape {self.batch_shape}, "
-            f"got {index!r}."
-        )
-        try:
-            picked = self.screws[index]
-        except (IndexError, TypeError) as err:  # out of range, or not an index
-            raise wrong from err
-        if picked.shape != self.screws.shape[-2:]:  # several configurations, or too many indices
-            raise wrong
-        one = self[index]
-        joints, start = [], 0
-        for spec in one.specs:
-            screws = one.screws[start : start + spec.dof]
-            start += spec.dof
-            joint = Joint(spec.name, spec.type, screws, spec.actuated, spec.type.startswith("v"))
-            joints.append((spec.parent, spec.child, joint))
-        graph = twist_graph(one.base, one.platform, joints, dof=one.dof)
-        if one.mobility is not None:
-            graph.graph["mobility"] = one.mobility
-        if one.anchor is not None:
-            graph.graph["anchor"] = one.anchor.tolist()
-        return graph

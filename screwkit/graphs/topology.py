@@ -19,7 +19,7 @@ of a batch reuses it (design.md §1a).
 
 Examples
 --------
->>> from screwkit.graphs.joints import JointSpec
+>>> from screwkit.graphs.jointtable import JointSpec
 >>> specs = [JointSpec("A", "R", "B", "arm", 1, True), JointSpec("P", "P", "arm", "E", 1, False)]
 >>> top = topology("B", "E", tuple(specs))
 >>> top.nodes[top.root].kind, top.limbs[0].joints
@@ -37,7 +37,7 @@ from typing import Any, Literal
 import networkx as nx
 
 from ..exceptions import TwistGraphError
-from .joints import JointSpec
+from .jointtable import JointSpec
 
 __all__ = ["LimbPlan", "Node", "Topology", "network_layout", "topology"]
 
@@ -173,7 +173,7 @@ def topology(base: Hashable, platform: Hashable, specs: tuple[JointSpec, ...]) -
 
     Examples
     --------
-    >>> from screwkit.graphs.joints import JointSpec
+    >>> from screwkit.graphs.jointtable import JointSpec
     >>> specs = (JointSpec("R1", "R", "B", "E", 1, True), JointSpec("R2", "R", "B", "E", 1, False))
     >>> top = topology("B", "E", specs)
     >>> [n.kind for n in top.nodes], top.limbs[0].siblings
@@ -358,9 +358,25 @@ def network_layout(
     """Fundamental loops and a base-to-platform path of the subgraph of some joints, as
     ``(joint index, ±1)`` steps (+1 along the joint's edge), from a spanning tree.
 
+    Parameters
+    ----------
+    base, platform : hashable
+        The fixed link and the end effector.
+    specs : tuple of JointSpec
+        The mechanism's joints, in table order.
+    joints : tuple of int
+        Indices into ``specs`` of the subgraph's joints.
+
+    Returns
+    -------
+    loops : tuple of tuple of (int, int)
+        One fundamental loop per joint outside the spanning tree, starting with that joint.
+    path : tuple of (int, int)
+        The tree path from the base to the platform (empty if they are not connected).
+
     Examples
     --------
-    >>> from screwkit.graphs.joints import JointSpec
+    >>> from screwkit.graphs.jointtable import JointSpec
     >>> specs = (JointSpec("R1", "R", "B", "E", 1), JointSpec("R2", "R", "B", "E", 1))
     >>> network_layout("B", "E", specs, (0, 1))
     ((((1, 1), (0, -1)),), ((0, 1),))

@@ -48,10 +48,10 @@ from typing import Any, NoReturn
 import numpy as np
 
 from .. import __version__
-from ..algebra import backend as B
-from ..algebra.screw import Screw
+from ..algebra.checks import MAX_RTOL, MIN_FLOAT_RTOL, MIN_LENGTH_SCALE
+from ..algebra.screwvalue import Screw
 from ..exceptions import ScrewkitError, ScrewkitValueError
-from ..graphs.twistgraph import equivalent_twist_graph
+from ..graphs.reduction import equivalent_twist_graph
 from ..robots.catalog import list_mechanisms, load_mechanism, unknown_mechanism
 from ..robots.snapshot import load_snapshot
 from ..robots.toml_fields import MAX_COORDINATE, degrees_to_radians, file_kind, load_toml
@@ -422,13 +422,13 @@ def run_analyze(args: argparse.Namespace) -> int:
     ...
     0
     """
-    if args.rtol is not None and not B.MIN_FLOAT_RTOL <= args.rtol <= B.MAX_RTOL:
+    if args.rtol is not None and not MIN_FLOAT_RTOL <= args.rtol <= MAX_RTOL:
         raise _UsageError(
-            f"screwkit analyze: error: --rtol expects a number in [{B.MIN_FLOAT_RTOL:g}, {B.MAX_RTOL:g}], "
+            f"screwkit analyze: error: --rtol expects a number in [{MIN_FLOAT_RTOL:g}, {MAX_RTOL:g}], "
             f"got {args.rtol:g}"
         )
     length = args.length_scale
-    bounds = (B.MIN_LENGTH_SCALE, 1 / B.MIN_LENGTH_SCALE)
+    bounds = (MIN_LENGTH_SCALE, 1 / MIN_LENGTH_SCALE)
     if length is not None and not (math.isfinite(length) and bounds[0] <= length <= bounds[1]):
         raise _UsageError(
             "screwkit analyze: error: --length-scale expects a positive length in the file's length unit, "

@@ -43,12 +43,14 @@ import numpy as np
 
 from ..algebra import backend as B
 from ..algebra import screw as S
-from ..algebra.screwsystem import motion_type
+from ..algebra.checks import checked_length_scale
+from ..algebra.motion_type import motion_type
 from ..core.jacobians import WrenchJacobians
 from ..core.singularity import SingularityReport, classify_analysis
 from ..core.wrenches import WrenchAnalysis, checked_rtol, wrench_analysis
 from ..exceptions import ScrewkitError, ScrewkitTypeError, ScrewkitValueError
-from ..graphs.twistgraph import equivalent_twist_graph, fundamental_loops
+from ..graphs.loops import fundamental_loops
+from ..graphs.reduction import equivalent_twist_graph
 from ..robots.catalog import load_mechanism
 from ..robots.mechanism import Mechanism
 from ..robots.snapshot import load_snapshot
@@ -468,7 +470,7 @@ def analyze(
     ()
     """
     tolerance = B.DEFAULT_RTOL if rtol is None else checked_rtol(rtol)
-    length = B.checked_length_scale(length_scale, allow_none=True)
+    length = checked_length_scale(length_scale, allow_none=True)
     if not isinstance(superbracket, bool | np.bool_):
         raise ScrewkitTypeError(f"Expected `superbracket` to be True or False, got {superbracket!r}.")
     if progress is not None and not callable(progress):

@@ -26,7 +26,7 @@ from ..exceptions import (
     ScrewkitValueError,
     UnreachablePoseError,
 )
-from ..graphs.joints import JointTable
+from ..graphs.jointtable import JointTable
 from .families import Family, families
 from .toml_fields import (
     MAX_ANGLE_DEGREES,

@@ -4,7 +4,7 @@
 cached properties over the whole batch, each built on the one before:
 
 ``configuration`` (the family's inverse kinematics) → ``joints`` (a
-:class:`~screwkit.graphs.joints.JointTable`) → ``singularities`` (labels, orders, closeness: the inverse
+:class:`~screwkit.graphs.jointtable.JointTable`) → ``singularities`` (labels, orders, closeness: the inverse
 kinematics, joint table and analysis core chunk by chunk, :func:`~screwkit.core.singularity.classify_chunks`,
 so that a large batch never holds its whole table) → ``jacobians`` (``A χ̇ = B θ̇`` over the family's
 nominal twists) → ``transmission`` (paper 004's κ, ζ, LTI; four-limb family) and
@@ -36,11 +36,12 @@ import networkx as nx
 import numpy as np
 
 from ..algebra import backend as B
+from ..algebra.checks import checked_length_scale
 from ..core.jacobians import WrenchJacobians, jacobians_from_wrenches
 from ..core.singularity import SingularityReport, classify_chunks, label_table
 from ..core.wrenches import WrenchAnalysis, analyze_table, checked_rtol
 from ..exceptions import ScrewkitError, ScrewkitIndexError, ScrewkitValueError
-from ..graphs.joints import JointTable
+from ..graphs.jointtable import JointTable
 
 __all__ = ["Pose", "PosedMechanism", "generic_samples"]
 
@@ -118,7 +119,7 @@ class PosedMechanism:
         array = _checked_poses(mechanism, poses)
         array.flags.writeable = False
         tolerance = B.DEFAULT_RTOL if rtol is None else checked_rtol(rtol)
-        length = B.checked_length_scale(length_scale, allow_none=True)
+        length = checked_length_scale(length_scale, allow_none=True)
         return cls(mechanism, array, tolerance, length, dict(options or {}))
 
     @property
@@ -322,7 +323,7 @@ class Pose:
         of three; a pose's result does not depend on the batch it is in, ``tests/test_batch.py``):
         the per-pose analyses at the generic draws, the batch at the samples (None if none is
         reachable) and the samples' generator, where the next batch is drawn from. (61 poses of
-        four limbs stay below :data:`screwkit.core._frames.COMPILED_MIN_BATCH`: no numba import.)
+        four limbs stay below :data:`screwkit.algebra.compiled.COMPILED_MIN_BATCH`: no numba import.)
         """
         mechanism, rtol = self.mechanism, self.posed.rtol
         stream = np.random.default_rng(0)

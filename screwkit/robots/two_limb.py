@@ -9,13 +9,13 @@ model; paper-specific analyses live in the stage modules or beside the tests tha
 * parameter validation (``from_mapping`` of a TOML table, range checks in ``__post_init__``) and
   working-mode checks;
 * :func:`joint_row`, one physical one-freedom joint (R, H or P) over a batch of poses as a row of
-  :meth:`screwkit.graphs.joints.JointTable.from_rows`;
+  :meth:`screwkit.graphs.jointtable.JointTable.from_rows`;
 * :class:`ForwardSolutions`, every assembly mode of a forward-kinematics problem.
 
 Examples
 --------
 >>> import numpy as np
->>> from screwkit.graphs.joints import JointTable
+>>> from screwkit.graphs.jointtable import JointTable
 >>> row = joint_row("base", "nut", "spin", "H", [0, 0, 0], [0, 0, 1], pitch=0.5)
 >>> JointTable.from_rows("base", "nut", [row]).screws
 array([[0. , 0. , 1. , 0. , 0. , 0.5]])
@@ -270,12 +270,12 @@ def check_parameters(
         object.__setattr__(instance, name, number)
 
 
-def parameters_from_mapping(cls: type[_P], mapping: Any, source: str) -> _P:
+def parameters_from_mapping(dataclass_type: type[_P], mapping: Any, source: str) -> _P:
     """Build a numeric parameters dataclass from a mapping, naming ``source`` in every error.
 
     Parameters
     ----------
-    cls : type
+    dataclass_type : type
         A dataclass whose fields are all real numbers.
     mapping : Mapping
         Field name to value, e.g. a table read with :mod:`tomllib`; optionally the metadata
@@ -288,7 +288,7 @@ def parameters_from_mapping(cls: type[_P], mapping: Any, source: str) -> _P:
     Returns
     -------
     object
-        An instance of ``cls``.
+        An instance of ``dataclass_type``.
 
     Raises
     ------
@@ -310,12 +310,12 @@ def parameters_from_mapping(cls: type[_P], mapping: Any, source: str) -> _P:
     >>> parameters_from_mapping(Link, {"length": 2.0, "name": "arm", "length_unit": "m"}, "r.toml")
     Link(length=2.0)
     """
-    owner = cls.__name__
+    owner = dataclass_type.__name__
     if not isinstance(mapping, Mapping):
         raise CatalogError(
             f"{source}: expected a mapping of {owner} fields, got {type(mapping).__name__}."
         )
-    names = [f.name for f in fields(cls)]  # type: ignore[arg-type]
+    names = [f.name for f in fields(dataclass_type)]  # type: ignore[arg-type]
     for key in _METADATA:
         if key in mapping and (not isinstance(mapping[key], str) or not mapping[key].strip()):
             raise CatalogError(
@@ -328,7 +328,7 @@ def parameters_from_mapping(cls: type[_P], mapping: Any, source: str) -> _P:
         raise CatalogError(
             f"{source}: unknown field(s) {unknown} for {owner}; expected fields {sorted(names)}."
         )
-    required = [f.name for f in fields(cls) if f.default is MISSING]  # type: ignore[arg-type]
+    required = [f.name for f in fields(dataclass_type) if f.default is MISSING]  # type: ignore[arg-type]
     missing = [name for name in required if name not in mapping]
     if missing:
         raise CatalogError(f"{source}: missing field(s) {missing} for {owner}.")
@@ -339,7 +339,7 @@ def parameters_from_mapping(cls: type[_P], mapping: Any, source: str) -> _P:
                 f"{type(value).__name__} {value!r}."
             )
     try:
-        return cls(**mapping)
+        return dataclass_type(**mapping)
     except ScrewkitValueError as err:
         raise ScrewkitValueError(f"{source}: {err}") from err
 
@@ -422,7 +422,7 @@ def joint_row(
     -------
     tuple
         ``(parent, child, name, kind, screws (..., 1, 6), actuated)`` for
-        :meth:`screwkit.graphs.joints.JointTable.from_rows`.
+        :meth:`screwkit.graphs.jointtable.JointTable.from_rows`.
 
     Raises
     ------

@@ -8,7 +8,7 @@ A family is four functions and the names of its pose coordinates, generic over i
 ``inverse_kinematics(parameters, poses, **mode) -> C``
     A configuration over poses ``(..., n)`` (batched; ``mode`` picks a working mode).
 ``joints(configuration) -> JointTable``
-    A :class:`~screwkit.graphs.joints.JointTable`: the mechanism's structure once, every joint's screws
+    A :class:`~screwkit.graphs.jointtable.JointTable`: the mechanism's structure once, every joint's screws
     over the batch. Everything else (labels, wrench systems, Jacobians, diagrams, reports) comes
     from the analysis core.
 ``twist_basis(configuration) -> ndarray``
@@ -52,7 +52,7 @@ from typing import Any, Generic, TypeVar
 import numpy as np
 
 from ...exceptions import ScrewkitTypeError, ScrewkitValueError
-from ...graphs.joints import JointTable
+from ...graphs.jointtable import JointTable
 
 __all__ = ["FAMILY_ATTRIBUTE", "Family", "Registry", "families", "register"]
 
@@ -108,8 +108,8 @@ class Family(Generic[P, C]):
     reachable: Callable[[P, np.ndarray], np.ndarray] | None = None
 
     def joint_table(self, configuration: C) -> JointTable:
-        """``joints(configuration)``, checked to be a :class:`~screwkit.graphs.joints.JointTable` (what the
-        analysis core reads; a family's mistake is named here, not inside the core).
+        """``joints(configuration)``, checked to be a :class:`~screwkit.graphs.jointtable.JointTable`
+        (what the analysis core reads; a family's mistake is named here, not inside the core).
 
         Parameters
         ----------

@@ -75,7 +75,7 @@ import numpy as np
 from ...algebra.backend import as_array
 from ...core.jacobians import schoenflies_basis
 from ...exceptions import DegenerateGeometryError, ScrewkitValueError, UnreachablePoseError
-from ...graphs.joints import JointTable
+from ...graphs.jointtable import JointTable
 from ..two_limb import (
     ForwardSolutions,
     at_reach,
@@ -535,7 +535,8 @@ def joints(config: PeppermillConfiguration) -> JointTable:
 
     Examples
     --------
-    >>> from screwkit.graphs.twistgraph import fundamental_loops, platform_twist_system
+    >>> from screwkit.graphs.loops import fundamental_loops
+    >>> from screwkit.graphs.reduction import platform_twist_system
     >>> p = PeppermillParameters(250, 250, 400, 400, 50, 40, -40)
     >>> table = joints(inverse_kinematics(p, [30.0, -20.0, -450.0, 0.5]))
     >>> [spec.type for spec in table.specs]

@@ -20,7 +20,7 @@ import numpy as np
 from ....algebra import screw as S
 from ....algebra.backend import cross
 from ....core.jacobians import schoenflies_basis
-from ....graphs.joints import JointSpec, JointTable
+from ....graphs.jointtable import JointSpec, JointTable
 from .configuration import FourLimbConfiguration, _require
 
 __all__ = ["PAPER_002_LEGS", "SUBPLATFORMS", "joints", "twist_basis"]
@@ -39,7 +39,7 @@ def joints(config: FourLimbConfiguration) -> JointTable:
     revolute joint ``A<i>`` (axis ``u_i`` through ``A_i``) and a parallelogram of two rods with
     **explicit spherical joints** at its four corners ``m, n`` (on the arm) and ``p, q`` (on the
     sub-platform). The closed 4S loops are *not* typed in as virtual chains: the equivalent twist
-    graph derives them (:func:`screwkit.graphs.twistgraph.equivalent_twist_graph`). The sub-platforms
+    graph derives them (:func:`screwkit.graphs.reduction.equivalent_twist_graph`). The sub-platforms
     ``b_I`` and ``b_II`` join the end effector by joints ``R_I`` and ``R_II`` (revolute, or helical
     for the screw-pair platforms) on the axes of :class:`FourLimbConfiguration`.
 

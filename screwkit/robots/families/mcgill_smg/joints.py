@@ -14,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 
 from ....core.jacobians import schoenflies_basis
-from ....graphs.joints import JointTable
+from ....graphs.jointtable import JointTable
 from ...two_limb import (
     joint_row,
 )
@@ -34,7 +34,7 @@ def joints(config: McGillConfiguration) -> JointTable:
 
     Each leg is the R-Π-Π-R chain of paper 001 (Sec. 3) with each Π joint modelled by its four
     revolute joints; nothing is reduced, so each leg keeps two closed loops, which
-    :func:`screwkit.graphs.twistgraph.equivalent_twist_graph` reduces to virtual translations. Per leg
+    :func:`screwkit.graphs.reduction.equivalent_twist_graph` reduces to virtual translations. Per leg
     ``J``: ``J.pan`` (``base`` → ``J.carrier``, axis ``k`` through ``O_J0``, actuated), the
     proximal parallelogram ``J.proximal.a`` (``J.carrier`` → ``J.proximal_a`` at ``O_J1``,
     actuated tilt), ``J.proximal.b`` (``J.carrier`` → ``J.proximal_b`` at ``O_J1 + w k``),
@@ -69,7 +69,7 @@ def joints(config: McGillConfiguration) -> JointTable:
     --------
     >>> from screwkit.robots.families.mcgill_smg.kinematics import inverse_kinematics
     >>> from screwkit.robots.families.mcgill_smg.parameters import McGillParameters
-    >>> from screwkit.graphs.twistgraph import platform_twist_system
+    >>> from screwkit.graphs.reduction import platform_twist_system
     >>> p = McGillParameters(1000, 450, 600, 282.843, 200, -50, -50, 80, 60)
     >>> table = joints(inverse_kinematics(p, [[0.0, 0.0, -800.0, 0.0], [10.0, 0.0, -800.0, 0.1]]))
     >>> table.batch_shape, [s.name for s in table.specs if s.actuated]

@@ -15,7 +15,7 @@ from __future__ import annotations
 import numpy as np
 
 from ....algebra import screw as S
-from ....graphs.joints import JointTable
+from ....graphs.jointtable import JointTable
 from .configuration import Planar3RRPConfiguration, _check_config
 
 __all__ = ["JOINT_PAIRS", "LINK_NAMES", "joints", "twist_basis"]

@@ -16,7 +16,8 @@ from typing import Any
 
 import numpy as np
 
-from ....algebra.backend import DEFAULT_RTOL, as_array, checked_rtol
+from ....algebra.backend import DEFAULT_RTOL, as_array
+from ....algebra.checks import checked_rtol
 from ....exceptions import (
     DegenerateGeometryError,
     ScrewkitValueError,

@@ -1,4 +1,4 @@
-"""Generic (symbolic) screw-system kernels, private: :mod:`screwkit.algebra.backend` delegates here.
+"""Generic (symbolic) screw-system kernels: :mod:`screwkit.algebra.backend` delegates here.
 
 A screw whose coordinates hold sympy symbols stands for a whole family of screws. Its systems'
 *generic* orders (the orders for all values of the symbols but a proper algebraic subset) are
@@ -23,17 +23,16 @@ The expressions are held as sparse polynomials (:class:`sympy.polys.rings.PolyEl
 coefficients) in the entries' generators (the symbols, and any other atom such as ``sin x``), each
 paired with its exact **value at the point** (:class:`GenericRows`). Every rank and pivot decision
 reads the values only: no polynomial is expanded, simplified or evaluated to decide. Bases are
-built **from the chosen generators**, null spaces by Cramer's rule on the non-zero minor picked at
-the point: each vector's entries are maximal minors of the pivot rows (expansion along rows, every
-minor computed once), polynomial when the screws are, then divided by their common factor
-(:func:`primitive`). Only the returned bases are turned back into sympy expressions.
+built from the chosen generators (:mod:`screwkit.algebra.symbolic_bases`: ranks, null spaces and
+reciprocal systems by Cramer's rule at the point). Only the returned bases are turned back into
+sympy expressions.
 
 Examples
 --------
 >>> import numpy as np, sympy
 >>> x = sympy.Symbol("x")
 >>> rows = np.array([[1, x, 0, 0, 0, 0], [x, x**2, 0, 0, 0, 0], [0, 0, 1, 0, 0, 0]], dtype=object)
->>> independent_rows(rows)
+>>> GenericRows.from_exprs(rows, generic_point(rows)).independent()
 [0, 2]
 """
 
@@ -43,7 +42,7 @@ import contextlib
 import functools
 import math
 import random
-from collections.abc import Iterator, Sequence
+from collections.abc import Sequence
 from fractions import Fraction
 from typing import Any
 
@@ -53,17 +52,11 @@ from ..exceptions import ScrewkitValueError
 
 __all__ = [
     "FLOAT_RTOL",
-    "MAX_CRAMER",
     "SAMPLE_RANGE",
     "GenericPoint",
     "GenericRows",
     "generic_point",
-    "generic_rank",
-    "independent_rows",
     "is_zero",
-    "nullspace",
-    "primitive",
-    "reciprocal_within",
 ]
 
 Array = np.ndarray
@@ -72,11 +65,8 @@ Array = np.ndarray
 SAMPLE_RANGE = 2**62
 #: Relative pivot threshold when an entry could not be evaluated exactly (60-digit arithmetic).
 FLOAT_RTOL = 1e-40
-#: Largest pivot block solved by Cramer's rule (screw systems need at most 6).
-MAX_CRAMER = 6
 _DIGITS = 60
 _SEED = 20261123
-_SWAP = [3, 4, 5, 0, 1, 2]
 
 
 def _sympy() -> Any:
@@ -119,8 +109,19 @@ class GenericPoint:
     def value(self, expr: Any, *, remember: bool = True) -> Any:
         """An expression at the point: an int or a Fraction, or a 60-digit mpmath float when it is
         not rational there. ``remember=False`` keeps it out of the point's cache (one-off
-        decisions, e.g. :func:`screwkit.algebra.backend.is_exactly_zero`, would otherwise grow it without
+        decisions, e.g. :func:`screwkit.algebra.zero_tests.is_exactly_zero`, would otherwise grow it without
         bound).
+
+        Parameters
+        ----------
+        expr : sympy.Expr or int
+            The expression.
+        remember : bool, default True
+            Whether to keep the value in the point's cache.
+
+        Returns
+        -------
+        int, fractions.Fraction or mpmath.mpf
 
         Examples
         --------
@@ -169,6 +170,15 @@ def _point(symbols: frozenset[Any]) -> GenericPoint:
 def generic_point(*arrays: Any) -> GenericPoint:
     """The (cached) random point for the free symbols of some object arrays.
 
+    Parameters
+    ----------
+    *arrays : array_like
+        Object arrays of sympy expressions (or numbers).
+
+    Returns
+    -------
+    GenericPoint
+
     Examples
     --------
     >>> import sympy
@@ -210,6 +220,15 @@ class GenericRows:
         The polynomials' ring (integer coefficients).
     exact : bool
         True when every generator is rational at the point (else the values are 60-digit floats).
+
+    Examples
+    --------
+    >>> import sympy
+    >>> x = sympy.Symbol("x")
+    >>> rows = np.array([[x, 1], [2 * x, 2]], dtype=object)
+    >>> generic = GenericRows.from_exprs(rows, generic_point(rows))
+    >>> len(generic), generic.exact, generic.independent()
+    (2, True, [0])
     """
 
     __slots__ = ("_exprs", "exact", "polys", "ring", "values", "width")
@@ -222,6 +241,17 @@ class GenericRows:
     def from_exprs(cls, array: Any, point: GenericPoint) -> GenericRows:
         """A ``(k, n)`` object array of expressions as polynomials with integer coefficients (each
         row scaled by the common denominator of its coefficients: the span is unchanged).
+
+        Parameters
+        ----------
+        array : array_like, shape (k, n)
+            Sympy expressions (or numbers).
+        point : GenericPoint
+            The point of evaluation.
+
+        Returns
+        -------
+        GenericRows
 
         Examples
         --------
@@ -264,6 +294,15 @@ class GenericRows:
     def take(self, indices: Sequence[int]) -> GenericRows:
         """The rows at some indices.
 
+        Parameters
+        ----------
+        indices : sequence of int
+            The rows kept, in order.
+
+        Returns
+        -------
+        GenericRows
+
         Examples
         --------
         >>> import sympy
@@ -276,6 +315,15 @@ class GenericRows:
 
     def scaled(self, factor: int) -> GenericRows:
         """Every row times an integer (60-digit values multiplied at 60 digits).
+
+        Parameters
+        ----------
+        factor : int
+            The multiplier.
+
+        Returns
+        -------
+        GenericRows
 
         Examples
         --------
@@ -290,7 +338,17 @@ class GenericRows:
         return self._like([[factor * p for p in row] for row in self.polys], values)
 
     def stack(self, *others: GenericRows) -> GenericRows:
-        """These rows followed by the others' (one ring)."""
+        """These rows followed by the others' (one ring).
+
+        Parameters
+        ----------
+        *others : GenericRows
+            Rows of the same ring and width.
+
+        Returns
+        -------
+        GenericRows
+        """
         polys, values = list(self.polys), list(self.values)
         for other in others:
             polys += other.polys
@@ -298,7 +356,13 @@ class GenericRows:
         return self._like(polys, values)
 
     def identity(self) -> GenericRows:
-        """The unit rows of this width, in this ring."""
+        """The unit rows of this width, in this ring.
+
+        Returns
+        -------
+        GenericRows
+            ``width`` unit rows.
+        """
         ring, n = self.ring, self.width
         return self._like(
             [[ring.one if i == j else ring.zero for j in range(n)] for i in range(n)],
@@ -308,6 +372,10 @@ class GenericRows:
     def independent(self) -> list[int]:
         """Indices of the rows that raise the generic rank, in order (decided at the point, in the
         values' arithmetic).
+
+        Returns
+        -------
+        list of int
 
         Examples
         --------
@@ -323,14 +391,26 @@ class GenericRows:
             return _echelon(self.values)[0]
 
     def precision(self) -> contextlib.AbstractContextManager[Any]:
-        """The arithmetic context of the values: 60 digits unless they are exact."""
+        """The arithmetic context of the values: 60 digits unless they are exact.
+
+        Returns
+        -------
+        contextlib.AbstractContextManager
+            A null context, or :func:`mpmath.workdps` at 60 digits.
+        """
         return _precision(self.exact)
 
     def _like(self, polys: list[list[Any]], values: list[list[Any]]) -> GenericRows:
         return GenericRows(polys, values, self.width, self.ring, self.exact)
 
     def exprs(self) -> Array:
-        """The rows as a ``(k, n)`` object array of sympy expressions (converted once)."""
+        """The rows as a ``(k, n)`` object array of sympy expressions (converted once).
+
+        Returns
+        -------
+        numpy.ndarray, shape (k, n)
+            Object array of sympy expressions.
+        """
         if self._exprs is None:
             out = np.empty((len(self.polys), self.width), dtype=object)
             for i, row in enumerate(self.polys):
@@ -351,6 +431,17 @@ def _precision(exact: bool) -> contextlib.AbstractContextManager[Any]:
 def is_zero(value: Any, scale: Any) -> bool:
     """Whether a value at the generic point is zero: exactly for an int or Fraction, else within
     :data:`FLOAT_RTOL` of ``scale`` (60-digit values carry round-off).
+
+    Parameters
+    ----------
+    value : int, Fraction or mpmath.mpf
+        The value.
+    scale : int, Fraction or mpmath.mpf
+        The size it is compared with (its row's largest entry).
+
+    Returns
+    -------
+    bool
 
     Examples
     --------
@@ -387,152 +478,6 @@ def _echelon(numbers: list[list[Any]]) -> tuple[list[int], list[int]]:
     return rows, columns
 
 
-def independent_rows(rows: Any, point: GenericPoint | None = None) -> list[int]:
-    """Indices of the rows (``(k, n)`` object array) that raise the generic rank, in order.
-
-    Examples
-    --------
-    >>> import sympy
-    >>> x = sympy.Symbol("x")
-    >>> independent_rows(np.array([[x, 1], [2 * x, 2], [0, 1]], dtype=object))
-    [0, 2]
-    """
-    array = np.asarray(rows, dtype=object)
-    if array.size == 0:
-        return []
-    point = point or generic_point(array)
-    generic = GenericRows.from_exprs(array, point)
-    with generic.precision():
-        return generic.independent()
-
-
-def generic_rank(rows: Any, point: GenericPoint | None = None) -> int:
-    """The generic rank of a ``(k, n)`` object array (see the module docstring).
-
-    Examples
-    --------
-    >>> import sympy
-    >>> x = sympy.Symbol("x")
-    >>> generic_rank(np.array([[1, x], [1, 1]], dtype=object))
-    2
-    """
-    return len(independent_rows(rows, point))
-
-
-def primitive(vector: list[Any]) -> list[Any]:
-    """A vector of polynomials (one ring, integer coefficients) divided by the greatest common
-    divisor of its entries, the first non-zero entry's leading coefficient made positive; the
-    projective class is unchanged.
-
-    Examples
-    --------
-    >>> from sympy.polys.rings import ring
-    >>> from sympy.polys.domains import ZZ
-    >>> R, x, y = ring("x y", ZZ)
-    >>> primitive([-2 * x * y - 2 * x, 4 * x, R.zero])
-    [y + 1, -2, 0]
-    """
-    nonzero = [p for p in vector if p]
-    if not nonzero:
-        return list(vector)
-    ordered = sorted(nonzero, key=len)  # the smallest first: the gcd shrinks fastest
-    common = ordered[0]
-    for entry in ordered[1:]:
-        if common.is_ground:  # only an integer content is left to find
-            common = common.ring.ground_new(math.gcd(*(int(p.content()) for p in nonzero)))
-            break
-        common = common.gcd(entry)
-    if nonzero[0].LC * common.LC < 0:
-        common = -common
-    return [p.exquo(common) if p else p for p in vector]
-
-
-def _minors(matrix: list[list[Any]], columns: Sequence[int], one: Any) -> Iterator[Any]:
-    """Signed maximal minors of a ``k × (k+1)`` submatrix: entry ``c`` is ``(−1)^c`` times the
-    determinant without column ``columns[c]`` (a vector of its null space, Cramer's rule).
-
-    Laplace expansion along the rows with each smaller minor computed once (division free,
-    so exact on polynomials and on numbers alike).
-    """
-    k = len(matrix)
-
-    @functools.cache
-    def minor(depth: int, chosen: tuple[int, ...]) -> Any:
-        if depth < 0:
-            return one
-        total = one - one
-        for position, column in enumerate(chosen):
-            entry = matrix[depth][column]
-            if entry:
-                term = entry * minor(depth - 1, chosen[:position] + chosen[position + 1 :])
-                total = total + term if (depth + position) % 2 == 0 else total - term
-        return total
-
-    for c in range(len(columns)):
-        value = minor(k - 1, tuple(columns[:c]) + tuple(columns[c + 1 :]))
-        yield value if c % 2 == 0 else -value
-
-
-def _kernel(
-    polys: list[list[Any]], values: list[list[Any]], width: int, zero: Any
-) -> tuple[list[list[Any]], list[list[Any]]]:
-    """A generic basis of ``{x : matrix @ x = 0}`` (polynomials and their values), unreduced."""
-    rows, _ = _echelon(values)
-    columns = _echelon([list(c) for c in zip(*[values[r] for r in rows], strict=True)])[0] if rows else []
-    free = [c for c in range(width) if c not in columns]
-    block_polys = [polys[r] for r in rows]
-    block_values = [values[r] for r in rows]
-    vectors, vector_values = [], []
-    for f in free:
-        chosen = sorted([*columns, f])
-        vector, vector_value = [zero] * width, [0] * width
-        for c, p, v in zip(
-            chosen, _minors(block_polys, chosen, zero + 1), _minors(block_values, chosen, 1), strict=True
-        ):
-            vector[c], vector_value[c] = p, v
-        vectors.append(vector)
-        vector_values.append(vector_value)
-    return vectors, vector_values
-
-
-def _primitive_rows(
-    polys: list[list[Any]], values: list[list[Any]], width: int, ring: Any, point: GenericPoint
-) -> GenericRows:
-    """Rows made :func:`primitive`, their values divided by the common factor's value (read off the
-    entry with the fewest terms). At a point that is not rational the values of derived rows carry
-    round-off (a polynomial that is identically zero may have a tiny value), so there the reduced
-    polynomials are evaluated again instead, in 60 digits."""
-    generators = _generator_values(ring, point)
-    exact = all(isinstance(g, int | Fraction) for g in generators)
-    out_polys, out_values = [], []
-    for row, row_values in zip(polys, values, strict=True):
-        reduced = primitive(row)
-        if not exact:
-            with _precision(exact):
-                row_values = [_evaluate(p, generators) if p else 0 for p in reduced]
-        else:
-            candidates = [j for j, v in enumerate(row_values) if reduced[j] and v != 0]
-            if candidates:
-                j = min(candidates, key=lambda j: len(reduced[j]))
-                factor = _quotient(row_values[j], _evaluate(reduced[j], generators))  # common factor's value
-                row_values = [_quotient(v, factor) for v in row_values]
-        out_polys.append(reduced)
-        out_values.append(row_values)
-    return GenericRows(out_polys, out_values, width, ring, exact)
-
-
-def _quotient(numerator: Any, denominator: Any) -> Any:
-    """``numerator / denominator``, exact (an int when it is one) unless a float is involved."""
-    if isinstance(numerator, int | Fraction) and isinstance(denominator, int | Fraction):
-        quotient = (
-            Fraction(numerator, denominator)
-            if isinstance(numerator, int) and isinstance(denominator, int)
-            else Fraction(numerator) / denominator
-        )
-        return int(quotient) if quotient.denominator == 1 else quotient
-    return numerator / denominator
-
-
 def _generator_values(ring: Any, point: GenericPoint) -> list[Any]:
     values = [point.value(g) for g in ring.symbols]
     if all(isinstance(v, int | Fraction) for v in values):
@@ -544,88 +489,3 @@ def _generator_values(ring: Any, point: GenericPoint) -> list[Any]:
             mpmath.mpf(v.numerator) / v.denominator if isinstance(v, Fraction) else mpmath.mpf(v)
             for v in values
         ]
-
-
-def nullspace(matrix: Any, point: GenericPoint | None = None) -> Array:
-    """A generic basis of ``{x : matrix @ x = 0}`` (``(m, n)`` object array), as rows.
-
-    Cramer's rule on a pivot block chosen at the random point: for a free column ``f`` the vector
-    holds the signed maximal minors of the pivot rows on the pivot columns and ``f``. Each vector
-    is then made :func:`primitive`. A pivot block larger than :data:`MAX_CRAMER` (a loop-closure
-    matrix) goes to sympy's elimination.
-
-    Examples
-    --------
-    >>> import sympy
-    >>> x = sympy.Symbol("x")
-    >>> nullspace(np.array([[1, x, 0]], dtype=object)).tolist()
-    [[x, -1, 0], [0, 0, 1]]
-    """
-    sp = _sympy()
-    array = np.asarray(matrix, dtype=object)
-    n = array.shape[-1]
-    if array.size == 0:
-        return np.array(sp.eye(n).tolist(), dtype=object).reshape(n, n)
-    point = point or generic_point(array)
-    rows = GenericRows.from_exprs(array, point)
-    with rows.precision():
-        large = len(rows.independent()) > MAX_CRAMER
-    if large:  # a loop-closure matrix: sympy's elimination, each vector's denominators cleared
-        vectors = []
-        for vector in sp.Matrix(array).nullspace(simplify=True):
-            denominator = sp.lcm([sp.fraction(sp.together(v))[1] for v in vector])
-            vectors.append([sp.cancel(v * denominator) for v in vector])
-        rows = GenericRows.from_exprs(np.array(vectors, dtype=object).reshape(len(vectors), n), point)
-        polys, values = rows.polys, rows.values
-    else:
-        with rows.precision():
-            polys, values = _kernel(rows.polys, rows.values, n, rows.ring.zero)
-    with rows.precision():
-        kernel = _primitive_rows(polys, values, n, rows.ring, point)
-    return kernel.exprs().reshape(len(kernel), n)
-
-
-def reciprocal_within(basis: GenericRows, others: GenericRows, point: GenericPoint) -> GenericRows:
-    """The screws of ``span(basis)`` reciprocal to every row of ``others`` (generic), as rows.
-
-    With ``basis`` the identity this is the reciprocal system; with ``basis`` a child's wrench
-    system and ``others`` its siblings' twists it is the intersection of wrench systems of a
-    serial chain (paper 002 Eq. 1), solved on ``order(basis)`` unknowns only. The reciprocal
-    products are formed as polynomials only for the pivot rows chosen at the point. Call inside
-    ``basis.precision()``.
-
-    Examples
-    --------
-    >>> import sympy
-    >>> z = sympy.Symbol("z")
-    >>> line = np.array([[0, 0, 1, z, 0, 0]], dtype=object)          # an axis parallel to z
-    >>> point = generic_point(line)
-    >>> others = GenericRows.from_exprs(line, point)
-    >>> len(reciprocal_within(others.identity(), others, point))
-    5
-    """
-    if len(others) == 0 or len(basis) == 0:
-        return basis
-    products = [[sum(o[_SWAP[j]] * b[j] for j in range(6)) for b in basis.values] for o in others.values]
-    pivots, _ = _echelon(products)
-    zero = basis.ring.zero
-    product_polys = [
-        [sum((others.polys[i][_SWAP[j]] * b[j] for j in range(6)), zero) for b in basis.polys] for i in pivots
-    ]
-    # the coefficients' common factor is removed first: it is found on the small minors, not on
-    # their combinations of the basis (where it is as large and harder to find)
-    coefficients = _primitive_rows(
-        *_kernel(product_polys, [products[i] for i in pivots], len(basis), zero),
-        len(basis),
-        basis.ring,
-        point,
-    )
-    polys = [
-        [sum((c * b[j] for c, b in zip(vector, basis.polys, strict=True) if c), zero) for j in range(6)]
-        for vector in coefficients.polys
-    ]
-    values = [
-        [sum(c * b[j] for c, b in zip(vector, basis.values, strict=True)) for j in range(6)]
-        for vector in coefficients.values
-    ]
-    return _primitive_rows(polys, values, 6, basis.ring, point)
