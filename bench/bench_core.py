@@ -47,7 +47,8 @@ from _timing import best_of  # noqa: E402  (bench/ is the script folder)
 import screwkit as sk  # noqa: E402
 from screwkit.core import _closing, _program, _wrench_pass, wrench_systems  # noqa: E402
 from screwkit.robots import posed  # noqa: E402
-from screwkit.robots.families.four_limb import PAPER_002_LEGS, reachable  # noqa: E402
+from screwkit.robots.families.four_limb.joints import PAPER_002_LEGS  # noqa: E402
+from screwkit.robots.families.four_limb.kinematics import reachable  # noqa: E402
 
 CHUNK = 10_000
 

@@ -9,7 +9,8 @@ from _timing import best_of
 
 from screwkit.core.singularity import classify, classify_table
 from screwkit.robots.catalog import load_mechanism
-from screwkit.robots.families.four_limb import joints, reachable
+from screwkit.robots.families.four_limb.joints import joints
+from screwkit.robots.families.four_limb.kinematics import reachable
 
 
 def main():

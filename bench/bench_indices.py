@@ -42,17 +42,17 @@ from _timing import best_of  # noqa: E402  (bench/ is the script folder)
 
 from screwkit.papers import paper_004 as I  # noqa: E402
 from screwkit.robots.catalog import load_mechanism  # noqa: E402
-from screwkit.robots.families import four_limb as FL  # noqa: E402
+from screwkit.robots.families.four_limb import configuration as FL  # noqa: E402
 
 
 def straightforward(params, poses, mode=(-1, -1, -1, -1)):
     """κ, ζ over ``poses (n, 4)`` as written out from paper 004 (module docstring); NaN out of reach."""
-    base = FL._base(params)
+    base = FL.base_frames(params)
     x, phi = poses[:, None, :3], poses[:, 3]
     r = params.platform_radius
     if params.platform_kind == "screw_pair":  # Table 1, Veloce row (corrected, four_limb item 2)
-        radial = np.stack([np.cos(FL._ETA), np.sin(FL._ETA), np.zeros(4)], axis=-1)
-        rise = (FL._ODD_LIMB * params.lead / (2 * np.pi))[:, None] * phi[:, None, None]
+        radial = np.stack([np.cos(FL.ETA), np.sin(FL.ETA), np.zeros(4)], axis=-1)
+        rise = (FL.ODD_LIMB * params.lead / (2 * np.pi))[:, None] * phi[:, None, None]
         c = r * radial + rise * [0, 0, 1] + x
         s = np.broadcast_to([0.0, 0.0, 1.0], (len(poses), 3))
     else:  # Quattro, H4: R_z(phi); V4: R_y(phi) (item 3)
@@ -61,8 +61,8 @@ def straightforward(params, poses, mode=(-1, -1, -1, -1)):
             bar, s = np.stack([cos, sin, zero], -1), np.stack([-sin, cos, zero], -1)
         else:
             bar, s = np.stack([cos, zero, -sin], -1), np.stack([-sin, zero, -cos], -1)
-        offsets = (FL._SGN_SIN_ETA * params.platform_offset)[:, None] * [0, 1, 0]
-        c = FL._SGN_COS_ETA[:, None] * r * bar[:, None, :] + offsets + x
+        offsets = (FL.SGN_SIN_ETA * params.platform_offset)[:, None] * [0, 1, 0]
+        c = FL.SGN_COS_ETA[:, None] * r * bar[:, None, :] + offsets + x
     d = c - base.a
     big_p, big_q = np.sum(d * base.j_rot, -1), np.sum(d * base.k_rot, -1)
     big_k = (np.sum(d * d, -1) + params.arm_length**2 - params.rod_length**2) / (2 * params.arm_length)

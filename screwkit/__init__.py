@@ -54,10 +54,10 @@ from .version import __version__
 #: Names loaded on first use (the catalog and its families, the generic analysis, the projective
 #: helpers, the Jacobians, the composer and its report are not a cost of ``import screwkit``; PEP 562).
 _LAZY = {
-    "Mechanism": "robots.catalog",
+    "Mechanism": "robots.mechanism",
     "list_mechanisms": "robots.catalog",
     "load_mechanism": "robots.catalog",
-    "load_snapshot": "robots.catalog",
+    "load_snapshot": "robots.snapshot",
     "Family": "robots.families",
     "register": "robots.families",
     "GenericAnalysis": "core.generic",

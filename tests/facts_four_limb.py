@@ -37,11 +37,8 @@ from screwkit.papers.paper_004 import (
     motion_pressure_angles,
     transmission_indices,
 )
-from screwkit.robots.families.four_limb import (
-    inverse_kinematics,
-    joints,
-    reachable,
-)
+from screwkit.robots.families.four_limb.joints import joints
+from screwkit.robots.families.four_limb.kinematics import inverse_kinematics, reachable
 
 from .paper_004 import spiral_trajectory
 

@@ -16,11 +16,9 @@ from screwkit.core.singularity import classify_table
 from screwkit.core.wrenches import wrench_analysis
 from screwkit.gca.diagram import diagram_points, superbracket_analysis
 from screwkit.robots.catalog import load_mechanism
-from screwkit.robots.families.planar_3rrp import (
-    WORKING_MODES,
-    Planar3RRPConfiguration,
-    joints,
-)
+from screwkit.robots.families.planar_3rrp.configuration import Planar3RRPConfiguration
+from screwkit.robots.families.planar_3rrp.joints import joints
+from screwkit.robots.families.planar_3rrp.kinematics import WORKING_MODES
 
 from .paper_003 import classify, jacobians
 

@@ -28,8 +28,10 @@ from screwkit.core.singularity import classify as classify_graph
 from screwkit.core.wrenches import wrench_analysis
 from screwkit.gca.diagram import diagram_points, superbracket_analysis
 from screwkit.robots.catalog import load_mechanism
-from screwkit.robots.families import mcgill_smg as smg
 from screwkit.robots.families import peppermill as pm
+from screwkit.robots.families.mcgill_smg.configuration import McGillConfiguration, leg_pose
+from screwkit.robots.families.mcgill_smg.kinematics import inverse_kinematics
+from screwkit.robots.families.mcgill_smg.parameters import McGillParameters
 
 from . import paper_000, paper_001
 from .two_limb_papers import bisect_segment
@@ -39,16 +41,16 @@ from .two_limb_papers import bisect_segment
 # --------------------------------------------------------------------------------------------------
 
 
-def mcgill_leg_one(params: smg.McGillParameters, angles: Any, mode_two: tuple[int, int] = (-1, -1)):
+def mcgill_leg_one(params: McGillParameters, angles: Any, mode_two: tuple[int, int] = (-1, -1)):
     """Both legs at the pose set by leg I's joint angles (Eq. 1); leg I's mode from its angles."""
     angles = np.asarray(angles, dtype=float)
     t2, t3 = angles[1], angles[2]
     kappa = params.l1 + params.l2 * np.cos(t2) + params.l3 * np.cos(t2 + t3)
     mode = (1 if kappa >= 0 else -1, 1 if np.sin(t3) >= 0 else -1, *mode_two)
-    return smg.inverse_kinematics(params, smg.leg_pose(params, "I", angles), mode)
+    return inverse_kinematics(params, leg_pose(params, "I", angles), mode)
 
 
-def _on_leg_one(params: smg.McGillParameters, factor: Callable[[Any], Any],
+def _on_leg_one(params: McGillParameters, factor: Callable[[Any], Any],
                 start: list[float], end: list[float], mode_two: tuple[int, int] = (-1, -1)):
     """Bisection on leg I's joint angles for a sign change of ``factor(config)``."""
 
@@ -60,7 +62,7 @@ def _on_leg_one(params: smg.McGillParameters, factor: Callable[[Any], Any],
     return mcgill_leg_one(params, bisect_segment(values, start, end), mode_two)
 
 
-def mcgill_singular_configs(params: smg.McGillParameters, default_pose: Any) -> dict[str, Any]:
+def mcgill_singular_configs(params: McGillParameters, default_pose: Any) -> dict[str, Any]:
     """Configurations at singularities of each kind (for the catalog's dimensions)."""
     deg = np.radians
     factors = paper_001.singularity_factors
@@ -73,7 +75,7 @@ def mcgill_singular_configs(params: smg.McGillParameters, default_pose: Any) -> 
         "serial_tilt": _on_leg_one(params, lambda c: factors(c).delta[0],
                                    [0.1, deg(-60), 0.2, np.pi], [0.1, deg(-60), -0.2, np.pi]),
         # the plate turned from the default pose until A loses rank
-        "direct": smg.inverse_kinematics(params, paper_001.locate_direct_singularity(
+        "direct": inverse_kinematics(params, paper_001.locate_direct_singularity(
             params, turned, turned + np.array([0.0, 0.0, 0.0, deg(80)]))),
         # leg I extended and the plate turned about O_I3 until A loses rank as well
         "combined": _on_leg_one(params, lambda c: factors(c).parallel,
@@ -144,8 +146,8 @@ def singular_configs(mechanism: Any) -> dict[str, Any]:
 
 
 def family_module(mechanism: Any) -> Any:
-    """The robot model: :mod:`screwkit.robots.families.mcgill_smg` or :mod:`screwkit.robots.families.peppermill`."""
-    return {"mcgill_smg": smg, "peppermill": pm}[mechanism.family]
+    """The robot model: the :class:`~screwkit.robots.families.Family` of the McGill SMG or the Peppermill."""
+    return mechanism.family_protocol
 
 
 def paper_module(mechanism: Any) -> Any:
@@ -303,7 +305,7 @@ def random_configs(mechanism: Any, count: int = 8, seed: int = 3) -> list[Any]:
 
 def direct_factor(config: Any) -> float:
     """The Jacobian's direct factor: McGill det[φ_I, φ_II, ½ k × (σ_I − σ_II)]; Peppermill det A."""
-    if isinstance(config, smg.McGillConfiguration):
+    if isinstance(config, McGillConfiguration):
         return float(paper_001.singularity_factors(config).parallel)
     return float(paper_000.singularity_factors(config).det_a)
 

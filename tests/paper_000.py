@@ -46,7 +46,7 @@ from screwkit.robots.families.peppermill import (
     PeppermillParameters,
     inverse_kinematics,
 )
-from screwkit.robots.families.two_limb import checked_mode, frozen
+from screwkit.robots.two_limb import checked_mode, frozen
 
 from .two_limb_papers import bisect_segment
 

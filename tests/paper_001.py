@@ -36,7 +36,8 @@ Where paper 001 is garbled or wrong (each item is demonstrated in the tests)
 Examples
 --------
 >>> import numpy as np
->>> from screwkit.robots.families.mcgill_smg import McGillParameters, inverse_kinematics
+>>> from screwkit.robots.families.mcgill_smg.kinematics import inverse_kinematics
+>>> from screwkit.robots.families.mcgill_smg.parameters import McGillParameters
 >>> smg = McGillParameters(l0=600.0, l1=100.0, l2=600.0, l3=200.0 * np.sqrt(2), radius=200.0,
 ...     b4=-50.0, b5=-50.0, proximal_width=80.0, distal_width=60.0)
 >>> classify(inverse_kinematics(smg, [0.0, 0.0, -600.0, 0.0])).types.tolist()
@@ -53,13 +54,10 @@ import numpy as np
 from screwkit.algebra.backend import DEFAULT_RTOL
 from screwkit.algebra.checks import checked_length_scale
 from screwkit.core.jacobian_matrices import Jacobians, classify_jacobians
-from screwkit.robots.families.mcgill_smg import (
-    DEFAULT_MODE,
-    McGillConfiguration,
-    McGillParameters,
-    inverse_kinematics,
-)
-from screwkit.robots.families.two_limb import checked_mode, frozen
+from screwkit.robots.families.mcgill_smg.configuration import McGillConfiguration
+from screwkit.robots.families.mcgill_smg.kinematics import inverse_kinematics
+from screwkit.robots.families.mcgill_smg.parameters import DEFAULT_MODE, McGillParameters
+from screwkit.robots.two_limb import checked_mode, frozen
 
 from .two_limb_papers import bisect_segment
 

@@ -69,11 +69,10 @@ import numpy as np
 from screwkit.algebra.backend import DEFAULT_RTOL, as_array
 from screwkit.algebra.checks import checked_rtol
 from screwkit.exceptions import DegenerateGeometryError, ScrewkitValueError
-from screwkit.robots.families.planar_3rrp import (
+from screwkit.robots.families.planar_3rrp.configuration import Planar3RRPConfiguration, _check_config
+from screwkit.robots.families.planar_3rrp.joints import JOINT_PAIRS
+from screwkit.robots.families.planar_3rrp.parameters import (
     EXAMPLE_PARAMETERS,  # noqa: F401 (the doctests use it)
-    JOINT_PAIRS,
-    Planar3RRPConfiguration,
-    _check_config,
     _dot,
     _first_index,
     _perp,

@@ -38,7 +38,7 @@ from dataclasses import dataclass
 import numpy as np
 
 import screwkit as sk
-from screwkit.robots.families.four_limb import reachable
+from screwkit.robots.families.four_limb.kinematics import reachable
 
 from .mechanisms import bisect_root
 from .test_h4 import paper_002_conditions

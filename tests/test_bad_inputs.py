@@ -30,16 +30,10 @@ from screwkit.exceptions import (
     UnreachablePoseError,
 )
 from screwkit.interface.cli import main
-from screwkit.robots import catalog
-from screwkit.robots.catalog import (
-    MAX_FILE_BYTES,
-    MAX_JOINTS,
-    load_mechanism,
-    load_snapshot,
-    load_toml,
-    mechanism_from_mapping,
-    snapshot_from_mapping,
-)
+from screwkit.robots import snapshot
+from screwkit.robots.catalog import load_mechanism, mechanism_from_mapping
+from screwkit.robots.snapshot import MAX_JOINTS, load_snapshot, snapshot_from_mapping
+from screwkit.robots.toml_fields import MAX_FILE_BYTES, load_toml
 from tests.toml_text import toml_text
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -522,7 +516,7 @@ API_CASES = [
     (lambda: sk.reciprocal_product("a", "b"), ScrewkitTypeError, r"Expected `a` to be numeric, got the string 'a'"),
     (lambda: sk.reciprocal_product([1] * 6, [1] * 5), ScrewkitValueError, r"Expected `b` to have shape \(\.\.\., 6\), got \(5,\)"),
     (lambda: sk.register(5), ScrewkitTypeError, r"Expected `family` to be a screwkit\.robots\.families\.Family, got int"),
-    (lambda: catalog.check_dof(sk.twist_graph("B", "E", [("B", "E", _R), ("B", "E", sk.prismatic("P", [0, 0, 1], actuated=True))], dof=1)), TwistGraphError, r"Expected `dof` to be at least the number of actuated joints \(2: P, R\), got dof = 1"),
+    (lambda: snapshot.check_dof(sk.twist_graph("B", "E", [("B", "E", _R), ("B", "E", sk.prismatic("P", [0, 0, 1], actuated=True))], dof=1)), TwistGraphError, r"Expected `dof` to be at least the number of actuated joints \(2: P, R\), got dof = 1"),
     # the API-side adversarial pass (issue 11): integers beyond every float, wrong types to the diagram layer
     (lambda: sk.revolute("R", [0, 0, 10**400], [0, 0, 0]), ScrewkitValueError, r"Expected `direction` to hold finite numbers, got an integer too large for a float"),
     (lambda: sk.Screw([10**400, 0, 0, 0, 0, 0]), ScrewkitValueError, r"Expected `coords` to hold finite numbers, got an integer too large for a float"),
@@ -755,7 +749,7 @@ FOUR_LIMB_ROBOTS = ("h4", "quattro", "veloce", "ragnar", "v4")
 
 @pytest.mark.parametrize("name", FOUR_LIMB_ROBOTS)
 def test_a_four_limb_leg_stretched_exactly_to_its_reach_is_a_serial_singularity(name):
-    from screwkit.robots.families.four_limb import inverse_kinematics, reachable
+    from screwkit.robots.families.four_limb.kinematics import inverse_kinematics, reachable
 
     mechanism = load_mechanism(name)
     params = mechanism.parameters

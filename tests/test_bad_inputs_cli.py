@@ -26,7 +26,8 @@ import pytest
 from screwkit.exceptions import CatalogError
 from screwkit.interface.cli import main
 from screwkit.interface.cli_workspace import MAX_MAP_POSES, MAX_PATH_SAMPLES
-from screwkit.robots.catalog import MAX_JOINTS, MAX_LOOPS, load_toml, snapshot_from_mapping
+from screwkit.robots.snapshot import MAX_JOINTS, MAX_LOOPS, snapshot_from_mapping
+from screwkit.robots.toml_fields import load_toml
 from tests.toml_text import toml_text
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -11,7 +11,8 @@ import screwkit as sk
 from screwkit.core.singularity import classify, classify_chunks, classify_poses, classify_table
 from screwkit.core.wrench_systems import analyze_table
 from screwkit.exceptions import ScrewkitValueError, UnreachablePoseError
-from screwkit.robots.families.four_limb import inverse_kinematics, joints
+from screwkit.robots.families.four_limb.joints import joints
+from screwkit.robots.families.four_limb.kinematics import inverse_kinematics
 from screwkit.robots.posed import CHUNK
 
 from .test_h4 import H4, random_poses, singular_pose

@@ -11,13 +11,8 @@ from screwkit.algebra.screwvalue import Screw
 from screwkit.core.singularity import classify
 from screwkit.core.wrenches import wrench_analysis
 from screwkit.exceptions import CatalogError
-from screwkit.robots.catalog import (
-    list_mechanisms,
-    load_mechanism,
-    load_snapshot,
-    mechanism_from_mapping,
-    snapshot_from_mapping,
-)
+from screwkit.robots.catalog import list_mechanisms, load_mechanism, mechanism_from_mapping
+from screwkit.robots.snapshot import load_snapshot, snapshot_from_mapping
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
@@ -105,7 +100,7 @@ def test_stated_workspace_box_against_the_inverse_kinematics(name):
         mechanism.configuration(np.concatenate([corners, draws[:5000]]))  # raises if any is out of reach
         return
     from screwkit.exceptions import UnreachablePoseError
-    from screwkit.robots.families.four_limb import reachable
+    from screwkit.robots.families.four_limb.kinematics import reachable
 
     ok = reachable(mechanism.parameters, draws)
     assert abs(ok.mean() - mechanism.reachable_fraction) <= 0.01, ok.mean()

@@ -18,7 +18,7 @@ import screwkit as sk
 from screwkit.algebra import screw as S
 from screwkit.core.singularity import classify
 from screwkit.core.wrench_systems import analyze_table
-from screwkit.robots.families.four_limb import reachable
+from screwkit.robots.families.four_limb.kinematics import reachable
 
 from .mechanisms import bisect_root
 from .strategies import rigid_motions, unit_factors

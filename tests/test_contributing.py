@@ -1,87 +1,42 @@
 """The worked example of CONTRIBUTING.md ("Adding a robot"), run in CI and checked by hand.
 
-A planar 3-RPR written as the four functions of the family protocol, registered, named by a catalog
-mapping and analysed with ``Mechanism.at(poses)``. The base pivots lie on the unit circle, the
-platform pivots on a circle of radius 0.3 at the same angles. Hand derivation: at ``φ = 0`` the
-platform is a scaled copy of the base, ``B_k = C + r u_k`` and ``A_k = R u_k``, so every leg line
-``A_k B_k`` passes through the centre of similarity ``D = R C / (R - r)``: the legs are concurrent
-and the platform can turn about ``D`` with the actuators locked (an actuation singularity) at every
-position. The test measures concurrency independently, by the determinant of the three leg lines
-``l_k = (A_k, 1) × (B_k, 1)`` in homogeneous planar coordinates.
+A newcomer ships a family by adding one module to ``screwkit/robots/families/`` (and a catalog file).
+These tests do exactly that and nothing else: CONTRIBUTING's module, a planar 3-RPR written as the four
+functions of the family protocol, is written to a temporary folder put on the families package's
+search path (``screwkit.robots.families.__path__``, the package's own list of folders), and a catalog
+mapping names it. The family must then be listed, load, and analyse.
+
+The base pivots lie on the unit circle, the platform pivots on a circle of radius 0.3 at the same
+angles. Hand derivation: at ``φ = 0`` the platform is a scaled copy of the base, ``B_k = C + r u_k``
+and ``A_k = R u_k``, so every leg line ``A_k B_k`` passes through the centre of similarity
+``D = R C / (R - r)``: the legs are concurrent and the platform can turn about ``D`` with the
+actuators locked (an actuation singularity) at every position. The test measures concurrency
+independently, by the determinant of the three leg lines ``l_k = (A_k, 1) × (B_k, 1)`` in homogeneous
+planar coordinates.
 """
 
 import copy
 import dataclasses
-import inspect
 import re
 import subprocess
 import sys
-from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-from screwkit import Family, JointTable, analyze, register
+import screwkit.robots.families as families_package
+from screwkit import Family, analyze, register
 from screwkit.algebra import screw as S
 from screwkit.exceptions import CatalogError, ScrewkitTypeError, ScrewkitValueError
 from screwkit.robots.catalog import mechanism_from_mapping
 from screwkit.robots.families import families
 
-# ---- the example of CONTRIBUTING.md, as written there (registration in the fixture below) ----------
-Z = np.array([0.0, 0.0, 1.0])
-
-
-@dataclass(frozen=True)
-class RPRParameters:
-    base: np.ndarray  # (3, 2): the fixed pivots A_k
-    platform: np.ndarray  # (3, 2): the moving pivots B_k in the platform frame
-
-
-@dataclass(frozen=True)
-class RPRConfiguration:
-    pose: np.ndarray  # (..., 3): x, y, phi
-    base: np.ndarray  # (..., 3, 3): A_k in space (plane z = 0)
-    platform: np.ndarray  # (..., 3, 3): B_k in space
-
-
-def parameters(mapping, *, source="<mapping>"):
-    return RPRParameters(np.array(mapping["base"], float), np.array(mapping["platform"], float))
-
-
-def inverse_kinematics(params, poses):  # closed form: the leg lengths are |B_k - A_k|
-    poses = np.asarray(poses, float)
-    x, y, phi = (poses[..., i, None] for i in range(3))
-    bx, by = params.platform.T
-    moving = np.stack([x + np.cos(phi) * bx - np.sin(phi) * by,
-                       y + np.sin(phi) * bx + np.cos(phi) * by, 0 * x + 0 * bx], axis=-1)
-    fixed = np.broadcast_to(np.pad(params.base, ((0, 0), (0, 1))), moving.shape)
-    return RPRConfiguration(poses, fixed, moving)
-
-
-def joints(config):  # per leg: R at A_k, actuated P along the leg, R at B_k; screws (..., 1, 6)
-    legs = config.platform - config.base
-    rows = []
-    for k in range(3):
-        low, high, a, b = f"leg{k + 1}_low", f"leg{k + 1}_high", config.base[..., k, :], config.platform[..., k, :]
-        rows += [("base", low, f"R{k + 1}", "R", S.revolute_twist(Z, a)[..., None, :], False),
-                 (low, high, f"P{k + 1}", "P", S.prismatic_twist(legs[..., k, :])[..., None, :], True),
-                 (high, "platform", f"Q{k + 1}", "R", S.revolute_twist(Z, b)[..., None, :], False)]
-    anchor = np.concatenate([config.base, config.platform], axis=-2).mean(axis=-2)  # a point of the plane
-    return JointTable.from_rows("base", "platform", rows, dof=3, anchor=anchor)
-
-
-def twist_basis(config):  # unit rates of x, y and phi (a rotation about z through (x, y))
-    centre = np.pad(config.pose[..., :2], [(0, 0)] * (config.pose.ndim - 1) + [(0, 1)])
-    along = np.broadcast_to(np.eye(6)[3:5], (*centre.shape[:-1], 2, 6))
-    return np.concatenate([along, S.revolute_twist(Z, centre)[..., None, :]], axis=-2)
-
-
-FAMILY = Family("planar_3rpr", parameters, inverse_kinematics, joints, twist_basis,
-                pose_names=("x", "y", "phi"), angle_names=("phi",))
+NAME = "planar_3rpr"
+MODULE = f"screwkit.robots.families.{NAME}"
 CORNERS = [[np.cos(t), np.sin(t)] for t in np.radians([90, 210, 330])]
 MAPPING = {
-    "mechanism": {"kind": "family", "name": "3-RPR", "family": "planar_3rpr", "length_unit": "m"},
+    "mechanism": {"kind": "family", "name": "3-RPR", "family": NAME, "length_unit": "m"},
     "parameters": {
         "base": {"value": CORNERS, "unit": "m", "source": "our choice: unit circle"},
         "platform": {"value": (0.3 * np.array(CORNERS)).tolist(), "unit": "m", "source": "our choice"},
@@ -89,14 +44,60 @@ MAPPING = {
     "pose": {"x": 0.0, "y": 0.0, "phi_deg": 20.0},
     "workspace": {"x": [-0.2, 0.2], "y": [-0.2, 0.2], "phi_deg": [-60.0, 60.0]},
 }
-# ----------------------------------------------------------------------------------------------------
+
+
+def contributing_code():
+    """The two Python blocks of CONTRIBUTING's "Adding a robot": the module, then its use."""
+    text = (Path(__file__).resolve().parents[1] / "CONTRIBUTING.md").read_text(encoding="utf-8")
+    section = text[text.index("## Adding a robot") :]
+    module, use = re.findall(r"```python\n(.*?)```", section, re.S)[:2]
+    return module, use
 
 
 @pytest.fixture(scope="module")
-def mechanism():
-    register(FAMILY)
-    yield mechanism_from_mapping(MAPPING)
-    families().pop(FAMILY.name)  # leave the registry as the other tests expect it
+def folder(tmp_path_factory):
+    """A folder holding CONTRIBUTING's module, put on the families package's search path."""
+    where = tmp_path_factory.mktemp("families")
+    (where / f"{NAME}.py").write_text(contributing_code()[0], encoding="utf-8")
+    families_package.__path__.append(str(where))
+    yield where
+    families_package.__path__.remove(str(where))
+    families().pop(NAME, None)
+    sys.modules.pop(MODULE, None)
+
+
+@pytest.fixture(scope="module")
+def mechanism(folder):
+    return mechanism_from_mapping(MAPPING)
+
+
+def test_the_new_module_is_listed(folder):
+    shipped = sorted(p.stem for p in Path(families_package.__file__).parent.iterdir()
+                     if not p.name.startswith("_") and (p.suffix == ".py" or (p / "__init__.py").exists()))
+    # the package's modules, then the folder's (families registered at run time come after them)
+    assert list(families())[: len(shipped) + 1] == [*shipped, NAME]
+    assert NAME in families() and "five_bar" not in families()
+
+
+def test_listing_reads_the_declaration_without_importing(folder):
+    # a fresh interpreter: the command line's options read every family's pose coordinates, and
+    # must not import the family's module to do so
+    code = (
+        "import sys\nimport screwkit.robots.families as f\n"
+        f"f.__path__.append({str(folder)!r})\n"
+        "print(f.families().pose_names(), NAME in list(f.families()), MODULE in sys.modules)"
+    ).replace("NAME", repr(NAME)).replace("MODULE", repr(MODULE))
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert done.stdout.split("] ")[1].split() == ["True", "False"]
+
+
+def test_the_family_loads_from_its_module(mechanism):
+    family = families()[NAME]
+    assert isinstance(family, Family) and family.name == NAME
+    assert sys.modules[MODULE].FAMILY is family
+    assert mechanism.family_protocol is family
+    assert mechanism.pose_names == ("x", "y", "phi") and mechanism.angle_names == ("phi",)
+    assert mechanism.default_pose[2] == pytest.approx(np.radians(20.0))
 
 
 def leg_lines_determinant(mechanism, poses):
@@ -172,21 +173,44 @@ def test_register_errors(family, error, match):
     assert "odd" not in families()
 
 
-def contributing_code():
-    text = (Path(__file__).resolve().parents[1] / "CONTRIBUTING.md").read_text(encoding="utf-8")
-    section = text[text.index("## Adding a robot") :]
-    return re.search(r"```python\n(.*?)```", section, re.S).group(1)
-
-
-def test_contributing_shows_this_code():
-    code = contributing_code()
-    for function in (parameters, inverse_kinematics, joints, twist_basis, RPRParameters, RPRConfiguration):
-        assert inspect.getsource(function) in code, function.__name__
-
-
-def test_contributing_code_runs_as_written():
-    done = subprocess.run([sys.executable, "-c", contributing_code()], capture_output=True, text=True, check=True)
+def test_contributing_code_runs_as_written(folder):
+    # the second block, as a newcomer runs it once the module is in place
+    code = f"import screwkit.robots.families as f\nf.__path__.append({str(folder)!r})\n" + contributing_code()[1]
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert "verdict\n  actuation singularity (dof 3)" in done.stdout
+
+
+def test_a_family_made_at_run_time_is_registered(mechanism):
+    copied = dataclasses.replace(families()[NAME], name="planar_3rpr_copy")
+    assert register(copied) is copied
+    try:
+        mapping = copy.deepcopy(MAPPING)
+        mapping["mechanism"]["family"] = "planar_3rpr_copy"
+        posed = mechanism_from_mapping(mapping).at([[0.05, 0.0, 0.0]])
+        assert posed.verdicts.tolist() == ["actuation singularity"]
+        assert list(families())[-1] == "planar_3rpr_copy"
+    finally:
+        families().pop("planar_3rpr_copy")
+
+
+@pytest.mark.parametrize(
+    ("text", "error", "match"),
+    [
+        ("X = 1\n", ScrewkitTypeError,
+         r"Expected the module screwkit.robots.families.broken to declare its family as `FAMILY = Family\(...\)`, "
+         r"got NoneType\."),
+        ("from screwkit import Family\nFAMILY = Family('other', *[print] * 4, ('x',), ())\n", ScrewkitValueError,
+         r"Expected the family of the module screwkit.robots.families.broken to be named 'broken', got 'other'\."),
+    ],
+)
+def test_a_module_that_does_not_declare_its_family(tmp_path, monkeypatch, text, error, match):
+    (tmp_path / "broken.py").write_text(text, encoding="utf-8")
+    monkeypatch.setattr(families_package, "__path__", [*families_package.__path__, str(tmp_path)])
+    monkeypatch.delitem(sys.modules, "screwkit.robots.families.broken", raising=False)
+    assert "broken" in families()
+    with pytest.raises(error, match=match):
+        families()["broken"]
+    sys.modules.pop("screwkit.robots.families.broken", None)
 
 
 def test_error_a_field_the_family_reads_but_the_file_lacks(mechanism):
@@ -200,7 +224,8 @@ def test_error_a_field_the_family_reads_but_the_file_lacks(mechanism):
 
 
 def test_error_a_family_whose_joints_are_not_a_joint_table(mechanism, monkeypatch):
-    monkeypatch.setitem(families(), FAMILY.name, dataclasses.replace(FAMILY, joints=lambda configuration: "rows"))
+    family = families()[NAME]
+    monkeypatch.setitem(families(), NAME, dataclasses.replace(family, joints=lambda configuration: "rows"))
     with pytest.raises(ScrewkitTypeError, match=r"Expected the family 'planar_3rpr''s joints\(configuration\) "
                        r"to return a JointTable, got str\."):
         _ = mechanism.at().verdicts

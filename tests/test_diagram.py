@@ -30,7 +30,8 @@ from screwkit.interface.cli import main
 from screwkit.interface.export import save_snapshot
 from screwkit.interface.report import analyze
 from screwkit.robots.catalog import load_mechanism
-from screwkit.robots.families.four_limb import inverse_kinematics, joints
+from screwkit.robots.families.four_limb.joints import joints
+from screwkit.robots.families.four_limb.kinematics import inverse_kinematics
 
 from . import mechanisms as M
 from . import mechanisms_extra as X

@@ -28,13 +28,13 @@ from screwkit.papers.paper_004 import (
     motion_pressure_angles,
     transmission_indices,
 )
-from screwkit.robots.families.four_limb import (
+from screwkit.robots.families.four_limb.kinematics import (
     ForwardKinematicsError,
-    FourLimbParameters,
     forward_kinematics,
     inverse_kinematics,
     reachable,
 )
+from screwkit.robots.families.four_limb.parameters import FourLimbParameters
 
 from .paper_004 import spiral_trajectory
 

@@ -21,14 +21,17 @@ from screwkit.exceptions import (
     ScrewkitValueError,
     UnreachablePoseError,
 )
-from screwkit.robots.families import mcgill_smg as smg
-from screwkit.robots.families.two_limb import checked_mode, joint_row
+from screwkit.robots.families.mcgill_smg.configuration import McGillConfiguration, leg_pose
+from screwkit.robots.families.mcgill_smg.joints import joints
+from screwkit.robots.families.mcgill_smg.kinematics import forward_kinematics, inverse_kinematics
+from screwkit.robots.families.mcgill_smg.parameters import DEFAULT_MODE, LEGS, WORKING_MODES, McGillParameters
+from screwkit.robots.two_limb import checked_mode, joint_row
 
 from . import paper_001 as paper
 from .two_limb_papers import bisect_segment, pick_and_place_cycle
 
 # R, l2 and l3 = √2 R: paper 001, Sec. 6. l0, l1, b4, b5 and the widths: our choice (not published).
-PARAMS = smg.McGillParameters(
+PARAMS = McGillParameters(
     l0=600.0, l1=100.0, l2=600.0, l3=200.0 * np.sqrt(2.0), radius=200.0, b4=-50.0, b5=-50.0,
     proximal_width=80.0, distal_width=60.0,
 )
@@ -70,7 +73,7 @@ def closeness(matrix: np.ndarray) -> float:
     return float(values[-1] / values[0])
 
 
-def leg_vectors(config: smg.McGillConfiguration, leg: int) -> dict[str, np.ndarray]:
+def leg_vectors(config: McGillConfiguration, leg: int) -> dict[str, np.ndarray]:
     """ρ_J1, ρ_J2, ρ_J3 (with L = R), f_J, φ_J of Eqs. (8a), (17b)."""
     r = PARAMS.radius
     rho1 = (config.wrist[..., leg, :] - config.pan_point[..., leg, :]) / r
@@ -87,10 +90,10 @@ def leg_mode(angles: np.ndarray, leg: int) -> tuple[int, int]:
     return (1 if kappa >= 0 else -1), (1 if np.sin(t3) >= 0 else -1)
 
 
-def config_from_leg_one(angles: list[float], mode_two: tuple[int, int]) -> smg.McGillConfiguration:
+def config_from_leg_one(angles: list[float], mode_two: tuple[int, int]) -> McGillConfiguration:
     """The pose set by leg I's four joint angles (Eq. 1), solved for both legs."""
-    pose = smg.leg_pose(PARAMS, "I", np.array(angles))
-    return smg.inverse_kinematics(PARAMS, pose, (*leg_mode(np.array(angles), 0), *mode_two))
+    pose = leg_pose(PARAMS, "I", np.array(angles))
+    return inverse_kinematics(PARAMS, pose, (*leg_mode(np.array(angles), 0), *mode_two))
 
 
 # --------------------------------------------------------------------------------------------------
@@ -99,7 +102,7 @@ def config_from_leg_one(angles: list[float], mode_two: tuple[int, int]) -> smg.M
 
 
 def test_from_mapping_builds_floats():
-    params = smg.McGillParameters.from_mapping(MAPPING, source="mcgill.toml")
+    params = McGillParameters.from_mapping(MAPPING, source="mcgill.toml")
     assert params.l3 == 282.843 and isinstance(params.l0, float)
 
 
@@ -119,12 +122,12 @@ def test_from_mapping_builds_floats():
 )
 def test_from_mapping_errors(mapping, error, match):
     with pytest.raises(error, match=match):
-        smg.McGillParameters.from_mapping(mapping, source="mcgill.toml")
+        McGillParameters.from_mapping(mapping, source="mcgill.toml")
 
 
 def test_constructor_refuses_non_numbers():
     with pytest.raises(ScrewkitTypeError, match=r"parameter `radius` of McGillParameters to be a real"):
-        smg.McGillParameters(600, 100, 600, 283, "200", 0, 0, 80, 60)
+        McGillParameters(600, 100, 600, 283, "200", 0, 0, 80, 60)
 
 
 def test_scaled_refuses_non_positive_factor():
@@ -157,15 +160,15 @@ def test_leg_pose_is_eqs_1_and_2_as_printed(rng):
         l2 * np.sin(t2) + l3 * np.sin(t23) + b,  # (2c)
         phi,  # (2d)
     ])
-    np.testing.assert_allclose(smg.leg_pose(PARAMS, "I", t), eq1, atol=1e-9)
-    np.testing.assert_allclose(smg.leg_pose(PARAMS, "II", t), eq2, atol=1e-9)
+    np.testing.assert_allclose(leg_pose(PARAMS, "I", t), eq1, atol=1e-9)
+    np.testing.assert_allclose(leg_pose(PARAMS, "II", t), eq2, atol=1e-9)
 
 
 def test_home_pose_hand_values():
     # P = (0, 0, -600), φ = 0: O_I3 = P - R j - (b4 + b5) k = (0, -200, -500), O_II3 = (0, 200, -500);
     # O_I0 = (0, -300, 0): the pan angles are 0 and the legs are mirror images, which in Eq. (2)'s
     # convention means θ_II2 = π - θ_I2 and θ_II3 = -θ_I3 (default mode (1, 1, -1, -1)).
-    config = smg.inverse_kinematics(PARAMS, HOME)
+    config = inverse_kinematics(PARAMS, HOME)
     np.testing.assert_allclose(config.wrist, [[0, -200, -500], [0, 200, -500]], atol=1e-9)
     angles = config.joint_angles
     np.testing.assert_allclose(angles[:, [0, 3]], 0.0, atol=1e-12)
@@ -177,12 +180,12 @@ def test_home_pose_hand_values():
     assert config.to_dict()["mode"] == [1, 1, -1, -1]
 
 
-@pytest.mark.parametrize("mode", smg.WORKING_MODES)
+@pytest.mark.parametrize("mode", WORKING_MODES)
 def test_inverse_kinematics_closes_both_legs(rng, mode):
     poses = random_poses(rng, 30)
-    config = smg.inverse_kinematics(PARAMS, poses, mode)
-    for leg, name in enumerate(smg.LEGS):
-        assert pose_error(smg.leg_pose(PARAMS, name, config.joint_angles[:, leg]), poses).max() < 1e-9
+    config = inverse_kinematics(PARAMS, poses, mode)
+    for leg, name in enumerate(LEGS):
+        assert pose_error(leg_pose(PARAMS, name, config.joint_angles[:, leg]), poses).max() < 1e-9
         signs = np.array([leg_mode(a, leg) for a in config.joint_angles[:, leg]])
         assert np.all(signs == mode[2 * leg : 2 * leg + 2])
     assert config.batch_shape == (30,) and config.wrist.shape == (30, 2, 3)
@@ -190,8 +193,8 @@ def test_inverse_kinematics_closes_both_legs(rng, mode):
 
 def test_inverse_kinematics_batches_over_leading_axes(rng):
     poses = random_poses(rng, 6).reshape(2, 3, 4)
-    batched = smg.inverse_kinematics(PARAMS, poses).joint_angles
-    single = smg.inverse_kinematics(PARAMS, poses[1, 2]).joint_angles
+    batched = inverse_kinematics(PARAMS, poses).joint_angles
+    single = inverse_kinematics(PARAMS, poses[1, 2]).joint_angles
     np.testing.assert_allclose(batched[1, 2], single, atol=0)
 
 
@@ -205,22 +208,22 @@ def test_inverse_kinematics_batches_over_leading_axes(rng):
 )
 def test_unreachable_poses_name_the_leg(pose, match):
     with pytest.raises(UnreachablePoseError, match=match):
-        smg.inverse_kinematics(PARAMS, pose)
+        inverse_kinematics(PARAMS, pose)
 
 
 @pytest.mark.parametrize("mode", [(1, 1, -1), (1, 1, 0, 1), "++--", 3])
 def test_nonexistent_modes(mode):
     with pytest.raises(ScrewkitValueError, match=r"Expected `mode` to be a sequence of 4 signs"):
-        smg.inverse_kinematics(PARAMS, HOME, mode)
+        inverse_kinematics(PARAMS, HOME, mode)
 
 
 def test_bad_arguments():
     with pytest.raises(ScrewkitValueError, match=r"Expected `pose` to have shape \(\.\.\., 4\)"):
-        smg.inverse_kinematics(PARAMS, [0.0, 0.0, -600.0])
+        inverse_kinematics(PARAMS, [0.0, 0.0, -600.0])
     with pytest.raises(ScrewkitValueError, match=r"Expected `leg` to be one of \('I', 'II'\)"):
-        smg.leg_pose(PARAMS, "III", [0, 0, 0, 0])
+        leg_pose(PARAMS, "III", [0, 0, 0, 0])
     with pytest.raises(ScrewkitValueError, match=r"Expected `pose` to hold finite numbers"):
-        smg.inverse_kinematics(PARAMS, [0.0, 0.0, np.nan, 0.0])
+        inverse_kinematics(PARAMS, [0.0, 0.0, np.nan, 0.0])
 
 
 # --------------------------------------------------------------------------------------------------
@@ -228,11 +231,11 @@ def test_bad_arguments():
 # --------------------------------------------------------------------------------------------------
 
 
-@pytest.mark.parametrize("mode", smg.WORKING_MODES)
+@pytest.mark.parametrize("mode", WORKING_MODES)
 def test_forward_kinematics_finds_the_pose_of_every_mode(rng, mode):
     poses = random_poses(rng, 25)
-    config = smg.inverse_kinematics(PARAMS, poses, mode)
-    solutions = smg.forward_kinematics(PARAMS, config.actuated)
+    config = inverse_kinematics(PARAMS, poses, mode)
+    solutions = forward_kinematics(PARAMS, config.actuated)
     error = np.where(solutions.valid, pose_error(solutions.poses, poses[:, None, :]), np.inf)
     best = np.argmin(error, axis=-1)
     assert error[np.arange(25), best].max() < 1e-8
@@ -244,12 +247,12 @@ def test_forward_kinematics_finds_the_pose_of_every_mode(rng, mode):
 
 
 def test_every_forward_solution_closes_the_loop(rng):
-    actuated = smg.inverse_kinematics(PARAMS, random_poses(rng, 20)).actuated
-    solutions = smg.forward_kinematics(PARAMS, actuated)
+    actuated = inverse_kinematics(PARAMS, random_poses(rng, 20)).actuated
+    solutions = forward_kinematics(PARAMS, actuated)
     rows, slots = np.nonzero(solutions.valid)
     for row, slot in zip(rows, slots, strict=True):
         mode = tuple(int(s) for s in solutions.working_modes[row, slot])
-        again = smg.inverse_kinematics(PARAMS, solutions.poses[row, slot], mode).actuated
+        again = inverse_kinematics(PARAMS, solutions.poses[row, slot], mode).actuated
         assert np.abs(wrap(again - actuated[row])).max() < 1e-9
     assert np.all(solutions.poses.mask[~solutions.valid]) and np.isfinite(solutions.poses.data).all()
 
@@ -263,7 +266,7 @@ def test_forward_kinematics_continuum_is_refused():
     tilt = -np.arccos((PARAMS.l0 * np.cos(theta) - 2 * PARAMS.l1) / (2 * PARAMS.l2))
     actuated = [theta, tilt, theta, np.pi - tilt]
     with pytest.raises(DegenerateGeometryError, match=r"admit a continuum of assemblies"):
-        smg.forward_kinematics(PARAMS, actuated)
+        forward_kinematics(PARAMS, actuated)
     # Along that self-motion (O_II3 = O_I3 - (O_I2 - O_II2), the bar normal to the planes) Eq. (24)
     # holds: A is rank-deficient at every assembly.
     gap = np.array([0.0, -PARAMS.l0, 0.0]) + PARAMS.l0 * np.cos(theta) * np.array(
@@ -274,8 +277,8 @@ def test_forward_kinematics_continuum_is_refused():
     for distal in (-1.2, -0.5):
         leg_one = np.array([theta, tilt, distal - tilt, phi - theta])
         leg_two = np.array([theta, np.pi - tilt, distal - np.pi + tilt])
-        pose = smg.leg_pose(PARAMS, "I", leg_one)
-        config = smg.inverse_kinematics(PARAMS, pose, (*leg_mode(leg_one, 0), *leg_mode(leg_two, 1)))
+        pose = leg_pose(PARAMS, "I", leg_one)
+        config = inverse_kinematics(PARAMS, pose, (*leg_mode(leg_one, 0), *leg_mode(leg_two, 1)))
         np.testing.assert_allclose(wrap(config.actuated - actuated), 0.0, atol=1e-9)
         assert rank(paper.jacobians(config).A) == 3
 
@@ -285,15 +288,15 @@ def test_forward_kinematics_continuum_is_refused():
 # --------------------------------------------------------------------------------------------------
 
 
-@pytest.mark.parametrize("mode", smg.WORKING_MODES)
+@pytest.mark.parametrize("mode", WORKING_MODES)
 def test_jacobians_against_finite_differences(rng, mode):
     poses = random_poses(rng, 20)
     rates = rng.normal(size=(20, 4))
     step = 1e-6
-    ahead = smg.inverse_kinematics(PARAMS, poses + step * rates, mode).actuated
-    behind = smg.inverse_kinematics(PARAMS, poses - step * rates, mode).actuated
+    ahead = inverse_kinematics(PARAMS, poses + step * rates, mode).actuated
+    behind = inverse_kinematics(PARAMS, poses - step * rates, mode).actuated
     theta_dot = wrap(ahead - behind) / (2 * step)
-    jac = paper.jacobians(smg.inverse_kinematics(PARAMS, poses, mode))
+    jac = paper.jacobians(inverse_kinematics(PARAMS, poses, mode))
     twist = np.column_stack([rates[:, 3], rates[:, :3] / PARAMS.radius])  # t = (φ̇, ṗ/L)
     lhs = np.einsum("nij,nj->ni", jac.A, twist)
     rhs = np.einsum("nij,nj->ni", jac.B, theta_dot)
@@ -303,7 +306,7 @@ def test_jacobians_against_finite_differences(rng, mode):
 def test_jacobian_blocks_have_the_shapes_eq_19_needs(rng):
     # Eq. (17a) prints A_J ∈ R^{3×2} and B_J ∈ R^{2×4}; A_J t must equal φ_J × σ̇_J (Eq. 15) for
     # t ∈ R^4, so A_J is 3×4, and B_J γ̇_J ∈ R^3 with γ̇_J ∈ R^2, so B_J is 3×2.
-    config = smg.inverse_kinematics(PARAMS, random_poses(rng, 5))
+    config = inverse_kinematics(PARAMS, random_poses(rng, 5))
     jac = paper.jacobians(config)
     assert jac.A.shape == (5, 6, 4) and jac.B.shape == (5, 6, 4)
     np.testing.assert_array_equal(jac.B[:, :3, 2:], 0.0)
@@ -326,7 +329,7 @@ def test_jacobian_blocks_have_the_shapes_eq_19_needs(rng):
 
 def test_v_and_delta_hand_identities(rng):
     # From Eq. (10): v_J = (ρ_J1 × k) × φ_J = -(κ_J/L) ρ_J3; from Eq. (11): Δ_J = -(l2 l3/L²) sin θ_J3.
-    config = smg.inverse_kinematics(PARAMS, random_poses(rng, 10), (1, -1, -1, 1))
+    config = inverse_kinematics(PARAMS, random_poses(rng, 10), (1, -1, -1, 1))
     jac = paper.jacobians(config)
     factors = paper.singularity_factors(config)
     r = PARAMS.radius
@@ -342,7 +345,7 @@ def test_v_and_delta_hand_identities(rng):
 
 
 def test_length_scale(rng):
-    config = smg.inverse_kinematics(PARAMS, random_poses(rng, 5))
+    config = inverse_kinematics(PARAMS, random_poses(rng, 5))
     default, other = paper.classify(config), paper.classify(config, length_scale=650.0)
     # B's entries all scale as 1/L², A's first column as 1/L² and the rest as 1/L.
     np.testing.assert_allclose(other.closeness["inverse"], default.closeness["inverse"], rtol=1e-12)
@@ -428,16 +431,16 @@ def test_extended_or_folded_leg_is_singular(distal, described):
 
 
 def distal_direction(
-    pose: np.ndarray, component: str, mode: tuple[int, ...] = smg.DEFAULT_MODE
+    pose: np.ndarray, component: str, mode: tuple[int, ...] = DEFAULT_MODE
 ) -> np.ndarray:
     """Horizontal (along e(θ_I1)) or vertical component of leg I's unit distal direction."""
-    config = smg.inverse_kinematics(PARAMS, pose, mode)
+    config = inverse_kinematics(PARAMS, pose, mode)
     rho3 = (config.wrist[..., 0, :] - config.elbow[..., 0, :]) / PARAMS.l3
     along = np.cross(K, config.tilt_axis[..., 0, :]) if component == "horizontal" else K
     return np.asarray(np.sum(rho3 * along, axis=-1))
 
 
-def parallel_check(config: smg.McGillConfiguration) -> tuple[float, float]:
+def parallel_check(config: McGillConfiguration) -> tuple[float, float]:
     """(sine of the angle between φ_I and φ_II, closeness of A)."""
     phi_one, phi_two = leg_vectors(config, 0)["phi"], leg_vectors(config, 1)["phi"]
     sine = np.linalg.norm(np.cross(phi_one, phi_two)) / np.linalg.norm(phi_one)
@@ -454,7 +457,7 @@ def test_fig_8a_two_vertical_distal_links(x):
         lambda p: distal_direction(p, "horizontal", mode), [x, 0.0, -870.0, np.pi],
         [x, 0.0, -760.0, np.pi],
     )
-    config = smg.inverse_kinematics(PARAMS, pose, mode)
+    config = inverse_kinematics(PARAMS, pose, mode)
     for leg in (0, 1):
         assert np.linalg.norm(np.cross(leg_vectors(config, leg)["rho3"], K)) < 1e-9
     sine, a_closeness = parallel_check(config)
@@ -473,7 +476,7 @@ def test_fig_8b_two_horizontal_distal_links(x):
     pose = bisect_segment(
         lambda p: distal_direction(p, "vertical"), [x, 0.0, -730.0, np.pi], [x, 0.0, -630.0, np.pi]
     )
-    config = smg.inverse_kinematics(PARAMS, pose)
+    config = inverse_kinematics(PARAMS, pose)
     for leg in (0, 1):
         assert abs(leg_vectors(config, leg)["rho3"][2]) < 1e-9
     sine, a_closeness = parallel_check(config)
@@ -490,12 +493,12 @@ def test_eq_24_holds_at_any_common_inclination(mode, z, ends):
     # here; the second case with opposite directions): singular, although the distal links are
     # neither vertical nor horizontal as the text after Eq. (24) says.
     def parallelism(p: np.ndarray) -> np.ndarray:
-        config = smg.inverse_kinematics(PARAMS, p, mode)
+        config = inverse_kinematics(PARAMS, p, mode)
         rho3 = config.wrist - config.elbow
         return np.cross(rho3[..., 0, :], rho3[..., 1, :])[..., 0]
 
     pose = bisect_segment(parallelism, [0.0, ends[0], z, np.pi], [0.0, ends[1], z, np.pi])
-    config = smg.inverse_kinematics(PARAMS, pose, mode)
+    config = inverse_kinematics(PARAMS, pose, mode)
     direction = leg_vectors(config, 0)["rho3"] / np.linalg.norm(leg_vectors(config, 0)["rho3"])
     assert 0.5 < abs(direction[2]) < 0.75
     sine, a_closeness = parallel_check(config)
@@ -505,7 +508,7 @@ def test_eq_24_holds_at_any_common_inclination(mode, z, ends):
 def test_eq_22_is_sufficient_but_not_necessary():
     pose = paper.locate_direct_singularity(PARAMS, [30.0, -20.0, -600.0, 0.2],
                                          [30.0, -20.0, -600.0, 1.2])
-    config = smg.inverse_kinematics(PARAMS, pose)
+    config = inverse_kinematics(PARAMS, pose)
     sine, a_closeness = parallel_check(config)
     assert a_closeness < SINGULAR and rank(paper.jacobians(config).A) == 3
     assert sine > 0.1  # φ_I ∦ φ_II
@@ -513,7 +516,7 @@ def test_eq_22_is_sufficient_but_not_necessary():
 
 
 def test_parallel_factor_vanishes_exactly_where_a_loses_rank(rng):
-    config = smg.inverse_kinematics(PARAMS, random_poses(rng, 40), (1, -1, -1, 1))
+    config = inverse_kinematics(PARAMS, random_poses(rng, 40), (1, -1, -1, 1))
     factor = paper.singularity_factors(config).parallel
     a_closeness = paper.classify(config).closeness["direct"]
     assert np.all((np.abs(factor) > 1e-4) == (a_closeness > 1e-4))
@@ -521,7 +524,7 @@ def test_parallel_factor_vanishes_exactly_where_a_loses_rank(rng):
     start, end = np.array([30.0, -20.0, -600.0, 0.2]), np.array([30.0, -20.0, -600.0, 1.2])
     pose = paper.locate_direct_singularity(PARAMS, start, end)
     near = pose + np.outer([1e-4, 2e-4], end - start)
-    near_config = smg.inverse_kinematics(PARAMS, near)
+    near_config = inverse_kinematics(PARAMS, near)
     ratio = paper.singularity_factors(near_config).parallel / paper.classify(near_config).closeness["direct"]
     assert ratio[1] / ratio[0] == pytest.approx(1.0, rel=1e-3)
 
@@ -546,10 +549,10 @@ def test_combined_singularity():
 @given(scale=st.floats(1e-3, 1e3), index=st.integers(0, 15))
 def test_change_of_length_unit(scale, index):
     poses = random_poses(np.random.default_rng(index), 4)
-    mode = smg.WORKING_MODES[index]
-    config = smg.inverse_kinematics(PARAMS, poses, mode)
+    mode = WORKING_MODES[index]
+    config = inverse_kinematics(PARAMS, poses, mode)
     scaled_poses = poses * np.array([scale, scale, scale, 1.0])
-    scaled = smg.inverse_kinematics(PARAMS.scaled(scale), scaled_poses, mode)
+    scaled = inverse_kinematics(PARAMS.scaled(scale), scaled_poses, mode)
     np.testing.assert_allclose(wrap(scaled.joint_angles - config.joint_angles), 0.0, atol=1e-9)
     np.testing.assert_allclose(paper.jacobians(scaled).A, paper.jacobians(config).A, atol=1e-9)
     one, two = paper.classify(config), paper.classify(scaled)
@@ -574,8 +577,8 @@ def rotation_from(quaternion: list[float]) -> np.ndarray:
     index=st.integers(0, 15),
 )
 def test_rigid_motion_of_the_base_frame(quaternion, shift, index):
-    config = smg.inverse_kinematics(PARAMS, random_poses(np.random.default_rng(index), 3),
-                                    smg.WORKING_MODES[index])
+    config = inverse_kinematics(PARAMS, random_poses(np.random.default_rng(index), 3),
+                                    WORKING_MODES[index])
     rotation = rotation_from(quaternion)
     moved = {
         name: getattr(config, name) @ rotation.T + (0.0 if name in ("pan_axis", "tilt_axis") else
@@ -583,7 +586,7 @@ def test_rigid_motion_of_the_base_frame(quaternion, shift, index):
         for name in ("pan_point", "shoulder", "elbow", "wrist", "wrist_joint", "pan_axis",
                      "tilt_axis", "platform_point")
     }
-    other = smg.McGillConfiguration(config.params, config.mode, config.pose, config.joint_angles,
+    other = McGillConfiguration(config.params, config.mode, config.pose, config.joint_angles,
                                     **moved)
     for a, b in zip((paper.jacobians(config).A, paper.jacobians(config).B),
                     (paper.jacobians(other).A, paper.jacobians(other).B), strict=True):
@@ -600,21 +603,21 @@ def test_rigid_motion_of_the_base_frame(quaternion, shift, index):
 
 
 def test_joint_graph_has_the_expected_loops():
-    joints = smg.joints(smg.inverse_kinematics(PARAMS, HOME)).specs
+    specs = joints(inverse_kinematics(PARAMS, HOME)).specs
     graph = nx.MultiGraph()
-    for joint in joints:
+    for joint in specs:
         graph.add_edge(joint.parent, joint.child, key=joint.name)
-    assert len({j.name for j in joints}) == 20 and graph.number_of_nodes() == 16
+    assert len({j.name for j in specs}) == 20 and graph.number_of_nodes() == 16
     # E - V + 1 = 5 independent loops: four parallelograms and the loop through both legs.
     assert graph.number_of_edges() - graph.number_of_nodes() + 1 == 5
-    assert [j.name for j in joints if j.actuated] == ["I.pan", "I.proximal.a", "II.pan",
+    assert [j.name for j in specs if j.actuated] == ["I.pan", "I.proximal.a", "II.pan",
                                                       "II.proximal.a"]
 
 
 def test_parallelogram_corners(rng):
     # each hinge's point nearest the origin: the corners differ by vectors normal to the hinges f_J
-    table = smg.joints(smg.inverse_kinematics(PARAMS, random_poses(rng, 3)))
-    for leg in smg.LEGS:
+    table = joints(inverse_kinematics(PARAMS, random_poses(rng, 3)))
+    for leg in LEGS:
         for part, length, width in (("proximal", PARAMS.l2, PARAMS.proximal_width),
                                     ("distal", PARAMS.l3, PARAMS.distal_width)):
             a, b, c, d = (S.axis(table.joint_screws(f"{leg}.{part}.{t}")[:, 0])[0] for t in "abcd")
@@ -628,15 +631,15 @@ def test_joint_screws_reproduce_the_platform_twist(rng):
     # each leg, through side a and through side b of both parallelograms.
     pose, rates, step = random_poses(rng, 1)[0], rng.normal(size=4), 1e-6
     mode = (1, -1, -1, 1)
-    config = smg.inverse_kinematics(PARAMS, pose, mode)
+    config = inverse_kinematics(PARAMS, pose, mode)
     angles_rate = wrap(
-        smg.inverse_kinematics(PARAMS, pose + step * rates, mode).joint_angles
-        - smg.inverse_kinematics(PARAMS, pose - step * rates, mode).joint_angles
+        inverse_kinematics(PARAMS, pose + step * rates, mode).joint_angles
+        - inverse_kinematics(PARAMS, pose - step * rates, mode).joint_angles
     ) / (2 * step)
     omega = rates[3] * K
     twist = np.concatenate([omega, rates[:3] - np.cross(omega, pose[:3])])
-    table = smg.joints(config)
-    for leg, name in enumerate(smg.LEGS):
+    table = joints(config)
+    for leg, name in enumerate(LEGS):
         t1, t2, t3, t4 = angles_rate[leg]
         for side in (("a", "c"), ("b", "d")):
             chain = [(f"{name}.pan", t1), (f"{name}.proximal.{side[0]}", t2),
@@ -666,7 +669,7 @@ def test_classification_to_dict_and_errors():
     result = classify_jacobians(np.eye(4), np.diag([1.0, 0.0, 1.0, 1.0]), rtol=1e-9)
     assert result.to_dict()["type"] == "inverse" and "inverse" in str(result)
     with pytest.raises(ScrewkitValueError, match=r"Expected `rtol` to be a number in \[0, 0\.1\]"):
-        paper.classify(smg.inverse_kinematics(PARAMS, HOME), rtol=1.5)
+        paper.classify(inverse_kinematics(PARAMS, HOME), rtol=1.5)
     with pytest.raises(ScrewkitValueError, match=r"signs \(\+1 or -1\), got 5"):
         checked_mode(5, "mode", 2)
 
@@ -699,9 +702,9 @@ def test_test_cycle_with_our_dimensions():
     # on those unpublished dimensions; in the mirror-symmetric modes the 180° turn comes close to,
     # or crosses, a parallel singularity.
     path = pick_and_place_cycle([0.0, -150.0, -500.0, 0.0], np.pi / 2, samples_per_segment=40)
-    result = paper.classify(smg.inverse_kinematics(PARAMS, path, (1, 1, -1, 1)))
+    result = paper.classify(inverse_kinematics(PARAMS, path, (1, 1, -1, 1)))
     assert result.closeness["direct"].min() > 0.1 and result.closeness["inverse"].min() > 0.1
-    symmetric = paper.classify(smg.inverse_kinematics(PARAMS, path, smg.DEFAULT_MODE))
+    symmetric = paper.classify(inverse_kinematics(PARAMS, path, DEFAULT_MODE))
     assert symmetric.closeness["direct"].min() < 0.05
 
 
@@ -710,25 +713,25 @@ def test_test_cycle_with_our_dimensions():
 # --------------------------------------------------------------------------------------------------
 
 
-def with_changes(**changes: float) -> smg.McGillParameters:
-    return smg.McGillParameters(**{**{name: getattr(PARAMS, name) for name in MAPPING}, **changes})
+def with_changes(**changes: float) -> McGillParameters:
+    return McGillParameters(**{**{name: getattr(PARAMS, name) for name in MAPPING}, **changes})
 
 
 def test_what_depends_on_our_choices(rng):
     poses = random_poses(rng, 10)
-    reference = smg.inverse_kinematics(PARAMS, poses)
+    reference = inverse_kinematics(PARAMS, poses)
     jac = paper.jacobians(reference)
     # Widths: only the corner axes of the parallelograms move.
-    wide = smg.inverse_kinematics(with_changes(proximal_width=10.0, distal_width=200.0), poses)
+    wide = inverse_kinematics(with_changes(proximal_width=10.0, distal_width=200.0), poses)
     np.testing.assert_array_equal(wide.joint_angles, reference.joint_angles)
     np.testing.assert_array_equal(paper.jacobians(wide).A, jac.A)
     # b4 + b5: a vertical translation of the workspace; the split only moves O_J4 on its axis.
-    shifted = smg.inverse_kinematics(with_changes(b4=-150.0, b5=20.0), poses - [0, 0, 30.0, 0])
+    shifted = inverse_kinematics(with_changes(b4=-150.0, b5=20.0), poses - [0, 0, 30.0, 0])
     np.testing.assert_allclose(shifted.joint_angles, reference.joint_angles, atol=1e-12)
     np.testing.assert_allclose(paper.jacobians(shifted).A, jac.A, atol=1e-12)
     # l0 and l1 change the joint angles, the Jacobians and so the singularity loci.
     for changes in ({"l0": 500.0}, {"l1": 50.0}):
-        other = smg.inverse_kinematics(with_changes(**changes), poses)
+        other = inverse_kinematics(with_changes(**changes), poses)
         assert np.abs(paper.jacobians(other).A - jac.A).max() > 1e-2
 
 
@@ -741,17 +744,17 @@ def test_what_depends_on_our_choices(rng):
 )
 def test_jacobian_identities_hold_for_any_dimensions(dims, angles, mode_two):
     l0, l1, l2, l3, radius = dims
-    params = smg.McGillParameters(l0, l1, l2, l3, radius, -50.0, -50.0, 80.0, 60.0)
-    pose = smg.leg_pose(params, "I", np.array(angles))
+    params = McGillParameters(l0, l1, l2, l3, radius, -50.0, -50.0, 80.0, 60.0)
+    pose = leg_pose(params, "I", np.array(angles))
     kappa = l1 + l2 * np.cos(angles[1]) + l3 * np.cos(angles[1] + angles[2])
     try:
-        config = smg.inverse_kinematics(params, pose, (1 if kappa >= 0 else -1, 1, *mode_two))
+        config = inverse_kinematics(params, pose, (1 if kappa >= 0 else -1, 1, *mode_two))
     except UnreachablePoseError:
         assume(False)  # leg II cannot reach this pose with these dimensions
     rates, step = np.array([0.3, -0.2, 0.5, 0.7]), 1e-7 * (l2 + l3)
     delta = rates * [step, step, step, step / (l2 + l3)]
-    ahead = smg.inverse_kinematics(params, pose + delta, config.mode).actuated
-    behind = smg.inverse_kinematics(params, pose - delta, config.mode).actuated
+    ahead = inverse_kinematics(params, pose + delta, config.mode).actuated
+    behind = inverse_kinematics(params, pose - delta, config.mode).actuated
     jac = paper.jacobians(config)
     twist = np.concatenate([[delta[3]], delta[:3] / radius])
     lhs, rhs = jac.A @ twist, jac.B @ (wrap(ahead - behind) / 2)

@@ -17,18 +17,15 @@ from screwkit.exceptions import (
     ScrewkitValueError,
     UnreachablePoseError,
 )
-from screwkit.robots.families.planar_3rrp import (
-    EXAMPLE_PARAMETERS,
-    JOINT_PAIRS,
-    LINK_NAMES,
+from screwkit.robots.families.planar_3rrp.configuration import Planar3RRPConfiguration
+from screwkit.robots.families.planar_3rrp.joints import JOINT_PAIRS, LINK_NAMES, joints
+from screwkit.robots.families.planar_3rrp.kinematics import (
     WORKING_MODES,
-    Planar3RRPConfiguration,
-    Planar3RRPParameters,
     forward_kinematics,
     inverse_kinematics,
-    joints,
     reach_margin,
 )
+from screwkit.robots.families.planar_3rrp.parameters import EXAMPLE_PARAMETERS, Planar3RRPParameters
 
 from .paper_003 import classify, complete_velocity, instant_center, instant_centers, jacobians, link_twists
 

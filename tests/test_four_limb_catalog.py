@@ -28,9 +28,7 @@ from screwkit.papers.paper_004 import (
     transmission_indices,
 )
 from screwkit.robots.catalog import list_mechanisms, load_mechanism
-from screwkit.robots.families.four_limb import (
-    reachable,
-)
+from screwkit.robots.families.four_limb.kinematics import reachable
 
 from .paper_004 import spiral_trajectory
 

@@ -227,7 +227,7 @@ def test_both_paths_classify_the_h4_alike():
     # the whole core in each path (a fresh interpreter per path): identical verdicts and orders on
     # generic poses, closeness within round-off
     code = (
-        "import numpy as np, screwkit as sk\nfrom screwkit.robots.families.four_limb import reachable\n"
+        "import numpy as np, screwkit as sk\nfrom screwkit.robots.families.four_limb.kinematics import reachable\n"
         "h4 = sk.load_mechanism('h4'); p = h4.random_poses(np.random.default_rng(3), 600)\n"
         "p = p[reachable(h4.parameters, p)][:400]\nr = sk.classify_table(h4.joints(p))\n"
         "out = {k: np.asarray(getattr(r, k)).tolist() for k in"

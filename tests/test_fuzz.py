@@ -17,7 +17,9 @@ from hypothesis import strategies as st
 
 from screwkit import analyze, classify
 from screwkit.exceptions import ScrewkitError
-from screwkit.robots.catalog import load_toml, mechanism_from_mapping, snapshot_from_mapping
+from screwkit.robots.catalog import mechanism_from_mapping
+from screwkit.robots.snapshot import snapshot_from_mapping
+from screwkit.robots.toml_fields import load_toml
 from tests.toml_text import toml_text
 
 ROOT = Path(__file__).resolve().parents[1]

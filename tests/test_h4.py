@@ -2,7 +2,7 @@
 
 Geometry from paper 004 (Table 1 "Quattro, H4", Table 3 "H4": α = 0, β = π/2, r = 80, c = 70 mm;
 R = 275, b = 375, l = 800 mm; working mode h_i < 0). Limbs use paper 004's numbering; paper 002's
-legs (l1, l2 | l3, l4) are paper 004's limbs (1, 4 | 2, 3) (screwkit.robots.families.four_limb.PAPER_002_LEGS).
+legs (l1, l2 | l3, l4) are paper 004's limbs (1, 4 | 2, 3) (screwkit.robots.families.four_limb.joints.PAPER_002_LEGS).
 
 Every expected value is computed here independently of the code under test: plane normals
 n_i = u_i × w_i of the parallelograms, Eq. (6) and Eq. (7) of paper 002 in vector form, and the
@@ -25,13 +25,9 @@ from screwkit.core.singularity import classify
 from screwkit.core.wrenches import translated_graph, wrench_analysis
 from screwkit.graphs.reduction import equivalent_twist_graph, platform_twist_system
 from screwkit.graphs.twistgraph import twist_graph
-from screwkit.robots.families.four_limb import (
-    PAPER_002_LEGS,
-    FourLimbParameters,
-    inverse_kinematics,
-    joints,
-    reachable,
-)
+from screwkit.robots.families.four_limb.joints import PAPER_002_LEGS, joints
+from screwkit.robots.families.four_limb.kinematics import inverse_kinematics, reachable
+from screwkit.robots.families.four_limb.parameters import FourLimbParameters
 
 from .strategies import rigid_motions, unit_factors
 

@@ -34,7 +34,7 @@ from screwkit.papers import paper_004_surfaces as S4
 from screwkit.papers import paper_004_table4 as T4
 from screwkit.robots import transmission as R4
 from screwkit.robots.catalog import load_mechanism
-from screwkit.robots.families.four_limb import inverse_kinematics, reachable
+from screwkit.robots.families.four_limb.kinematics import inverse_kinematics, reachable
 
 from .paper_004 import TABLE_4, spiral_trajectory
 from .strategies import rigid_motions, unit_factors

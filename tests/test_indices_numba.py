@@ -17,7 +17,7 @@ import pytest
 
 from screwkit.papers import paper_004 as P4
 from screwkit.robots.catalog import load_mechanism
-from screwkit.robots.families.four_limb import inverse_kinematics
+from screwkit.robots.families.four_limb.kinematics import inverse_kinematics
 
 kernels = pytest.importorskip("screwkit.papers._lti_numba")
 numba = pytest.importorskip("numba")

@@ -38,12 +38,9 @@ from screwkit.papers.paper_004 import (
     four_limb_jacobians,
     transmission_indices,
 )
-from screwkit.robots.families.four_limb import (
-    FourLimbParameters,
-    inverse_kinematics,
-    joints,
-    reachable,
-)
+from screwkit.robots.families.four_limb.joints import joints
+from screwkit.robots.families.four_limb.kinematics import inverse_kinematics, reachable
+from screwkit.robots.families.four_limb.parameters import FourLimbParameters
 
 from .strategies import rigid_motions, seeds, unit_factors
 from .test_h4 import H4, case_b_pose, paper_002_conditions, paper_wrench_matrix, random_poses, singular_pose

@@ -44,9 +44,13 @@ from screwkit.core.wrenches import wrench_analysis
 from screwkit.exceptions import UnreachablePoseError
 from screwkit.robots.catalog import load_mechanism
 from screwkit.robots.families import families
-from screwkit.robots.families import mcgill_smg as smg
 from screwkit.robots.families import peppermill as pm
-from screwkit.robots.families import planar_3rrp as planar
+from screwkit.robots.families.mcgill_smg.configuration import McGillConfiguration
+from screwkit.robots.families.mcgill_smg.kinematics import inverse_kinematics
+from screwkit.robots.families.mcgill_smg.parameters import LEGS, WORKING_MODES
+from screwkit.robots.families.planar_3rrp.configuration import Planar3RRPConfiguration
+from screwkit.robots.families.planar_3rrp.kinematics import WORKING_MODES as PLANAR_MODES
+from screwkit.robots.families.planar_3rrp.kinematics import forward_kinematics
 
 from . import paper_000, paper_001, paper_003
 from . import test_planar_catalog as planar_catalog
@@ -62,9 +66,9 @@ direct_singular = planar_catalog.direct_singular
 combined_singular = planar_catalog.combined_singular
 
 
-def ours(module, config, rtol=1e-9):
+def ours(name, config, rtol=1e-9):
     """The wrench-derived Jacobians of a configuration over its family's twist basis."""
-    family = families()[module.__name__.rsplit(".", 1)[-1]]  # the module's registered protocol
+    family = families()[name]
     graph = family.joints(config).graph()
     return jacobians_from_wrenches(wrench_analysis(graph, rtol=rtol), family.twist_basis(config))
 
@@ -96,7 +100,7 @@ PAN_BOXES = {
 }
 
 
-def mcgill_m(config: smg.McGillConfiguration) -> np.ndarray:
+def mcgill_m(config: McGillConfiguration) -> np.ndarray:
     """M = -(l3/L²) blockdiag_J [pan_J ρ̂_J3, elbow_J f_J], from the geometry and the working mode."""
     m = np.zeros((6, 4))
     l3 = MCGILL.parameters.l3
@@ -114,7 +118,7 @@ def mcgill_poses(mode, rng, count):
     configs = []
     for pose in rng.uniform(low, high, (40 * count, 4)):
         try:
-            configs.append(smg.inverse_kinematics(MCGILL.parameters, pose, mode))
+            configs.append(inverse_kinematics(MCGILL.parameters, pose, mode))
         except UnreachablePoseError:
             continue
         if len(configs) == count:
@@ -122,10 +126,10 @@ def mcgill_poses(mode, rng, count):
     raise AssertionError(f"mode {mode}: fewer than {count} reachable poses in the box")
 
 
-@pytest.mark.parametrize("mode", smg.WORKING_MODES)
+@pytest.mark.parametrize("mode", WORKING_MODES)
 def test_mcgill_paper_jacobians_are_m_times_ours(mode, rng):
     for config in mcgill_poses(mode, rng, 2):
-        paper, wrench = paper_001.jacobians(config), ours(smg, config)
+        paper, wrench = paper_001.jacobians(config), ours("mcgill_smg", config)
         assert wrench.type == str(paper_001.classify(config).types) == "regular"
         m = mcgill_m(config)
         assert close(paper.A @ T, m @ wrench.A, np.abs(paper.A).max())
@@ -151,7 +155,7 @@ MCGILL_CASES = {  # located pose -> (type, the stuck actuator)
 @pytest.mark.parametrize("kind", MCGILL_CASES)
 def test_mcgill_types_agree_at_the_located_singularities(kind):
     config = singular_configs(MCGILL)[kind]
-    paper, wrench = paper_001.jacobians(config), ours(smg, config, rtol=1e-7)
+    paper, wrench = paper_001.jacobians(config), ours("mcgill_smg", config, rtol=1e-7)
     expected, stuck = MCGILL_CASES[kind]
     assert wrench.type == str(paper_001.classify(config, rtol=1e-7).types) == expected
     m = mcgill_m(config)
@@ -160,7 +164,7 @@ def test_mcgill_types_agree_at_the_located_singularities(kind):
         np.testing.assert_allclose(null_vector(wrench.A), null_vector(paper.A @ T), atol=1e-6)
     else:  # the same actuator is stuck; leg II (regular) still obeys the relation
         assert wrench.serial_limbs == (stuck,)
-        assert smg.LEGS[int(np.argmax(np.abs(null_vector(paper.B))) // 2)] == "I"
+        assert LEGS[int(np.argmax(np.abs(null_vector(paper.B))) // 2)] == "I"
         assert wrench.actuated_joints[int(np.argmax(np.abs(null_vector(paper.B))))] == stuck
         assert close(paper.A[3:] @ T, m[3:] @ wrench.A, np.abs(paper.A).max())
         assert close(paper.B[3:], m[3:] @ wrench.B, np.abs(paper.B).max())
@@ -202,7 +206,7 @@ def peppermill_configs(rng):
 
 def test_peppermill_paper_jacobians_equal_ours_up_to_signs_order_and_r(rng):
     for config in peppermill_configs(rng):
-        wrench = ours(pm, config)
+        wrench = ours("peppermill", config)
         assert wrench.type == str(paper_000.classify(config).types) == "regular"
         paper, _, r = peppermill_relation(config, wrench)
         # the same kinematic map: δx = A⁻¹B δθ with δθ = R Πᵀ θ̇
@@ -216,7 +220,7 @@ PEPPERMILL_CASES = {"serial_turn": ("inverse", "1.turn"), "direct": ("direct", N
 @pytest.mark.parametrize("kind", PEPPERMILL_CASES)
 def test_peppermill_types_agree_at_the_located_singularities(kind):
     config = singular_configs(PEPPERMILL)[kind]
-    wrench = ours(pm, config, rtol=1e-7)
+    wrench = ours("peppermill", config, rtol=1e-7)
     expected, stuck = PEPPERMILL_CASES[kind]
     assert wrench.type == str(paper_000.classify(config, rtol=1e-7).types) == expected
     paper = paper_000.jacobians(config)
@@ -251,15 +255,15 @@ def planar_relation(config, wrench):
 
 def test_planar_paper_jacobians_equal_ours_up_to_the_working_mode(rng):
     poses = PLANAR.random_poses(rng, 2)
-    cases = [(planar.Planar3RRPConfiguration.from_pose(PLANAR.parameters, pose, mode), mode)
-             for mode in planar.WORKING_MODES for pose in poses]
+    cases = [(Planar3RRPConfiguration.from_pose(PLANAR.parameters, pose, mode), mode)
+             for mode in PLANAR_MODES for pose in poses]
     theta = cases[0][0].joint_angles  # and both assembly modes of one set of actuator values
-    solutions = planar.forward_kinematics(PLANAR.parameters, theta)
-    cases += [(planar.Planar3RRPConfiguration(PLANAR.parameters, pose, theta), None)
+    solutions = forward_kinematics(PLANAR.parameters, theta)
+    cases += [(Planar3RRPConfiguration(PLANAR.parameters, pose, theta), None)
               for pose, valid in zip(solutions.poses, solutions.valid, strict=True) if valid]
     assert len(cases) == 18
     for config, mode in cases:
-        wrench = ours(planar, config)
+        wrench = ours("planar_3rrp", config)
         assert wrench.type == str(paper_003.classify(config).kind) == "regular"
         j, k = planar_relation(config, wrench)
         # D is the working mode (σ_k = sgn J_kk), and the same kinematic map t = -K⁻¹J θ̇
@@ -271,7 +275,7 @@ def test_planar_paper_jacobians_equal_ours_up_to_the_working_mode(rng):
 @pytest.mark.parametrize(("case", "expected"), [("inverse", "inverse"), ("direct", "direct"), ("combined", "combined")])
 def test_planar_types_agree_at_the_located_singularities(case, expected, request):
     config = request.getfixturevalue(f"{case}_singular")
-    wrench = ours(planar, config)
+    wrench = ours("planar_3rrp", config)
     assert wrench.type == str(paper_003.classify(config).kind) == expected
     j, k = paper_003.jacobians(config)
     if expected == "direct":

@@ -44,7 +44,7 @@ import numpy as np
 import pytest
 
 import screwkit as sk
-from screwkit.robots.families.four_limb import PAPER_002_LEGS
+from screwkit.robots.families.four_limb.joints import PAPER_002_LEGS
 
 from .singular_surfaces import (
     DISTANCES,

@@ -22,17 +22,14 @@ from screwkit.graphs.loops import fundamental_loops
 from screwkit.interface.cli import main
 from screwkit.interface.report import analyze
 from screwkit.robots.catalog import load_mechanism
-from screwkit.robots.families.planar_3rrp import (
-    EXAMPLE_PARAMETERS,
-    JOINT_PAIRS,
-    LINK_NAMES,
+from screwkit.robots.families.planar_3rrp.configuration import Planar3RRPConfiguration
+from screwkit.robots.families.planar_3rrp.joints import JOINT_PAIRS, LINK_NAMES, joints
+from screwkit.robots.families.planar_3rrp.kinematics import (
     WORKING_MODES,
-    Planar3RRPConfiguration,
-    Planar3RRPParameters,
     forward_kinematics,
     inverse_kinematics,
-    joints,
 )
+from screwkit.robots.families.planar_3rrp.parameters import EXAMPLE_PARAMETERS, Planar3RRPParameters
 
 from .paper_003 import classify, jacobians
 

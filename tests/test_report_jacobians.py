@@ -21,8 +21,9 @@ import pytest
 from screwkit.exceptions import UnreachablePoseError
 from screwkit.interface.cli import main
 from screwkit.interface.report import analyze
-from screwkit.robots.catalog import Mechanism, list_mechanisms, load_mechanism
-from screwkit.robots.families.four_limb import inverse_kinematics, reachable
+from screwkit.robots.catalog import list_mechanisms, load_mechanism
+from screwkit.robots.families.four_limb.kinematics import inverse_kinematics, reachable
+from screwkit.robots.mechanism import Mechanism
 from screwkit.robots.posed import PosedMechanism
 
 from .test_h4 import singular_pose

@@ -32,8 +32,11 @@ from screwkit.graphs.reduction import equivalent_twist_graph, platform_twist_sys
 from screwkit.interface.cli import main
 from screwkit.interface.report import analyze
 from screwkit.robots.catalog import load_mechanism
-from screwkit.robots.families import mcgill_smg as smg
 from screwkit.robots.families import peppermill as pm
+from screwkit.robots.families.mcgill_smg.configuration import McGillConfiguration
+from screwkit.robots.families.mcgill_smg.joints import joints
+from screwkit.robots.families.mcgill_smg.kinematics import inverse_kinematics
+from screwkit.robots.families.mcgill_smg.parameters import DEFAULT_MODE, LEGS
 
 from .facts_two_limb import family_module, labels, paper_module, singular_configs
 from .two_limb_papers import bisect_segment
@@ -107,7 +110,7 @@ def test_peppermill_twist_graph_is_one_loop_with_coaxial_screws():
 @pytest.mark.parametrize("name", ["mcgill_smg", "peppermill"])
 def test_platform_twist_system_is_schoenflies_at_random_poses(name, rng):
     mechanism = ROBOTS[name]
-    modes = pm.WORKING_MODES if name == "peppermill" else (smg.DEFAULT_MODE,)
+    modes = pm.WORKING_MODES if name == "peppermill" else (DEFAULT_MODE,)
     for index, pose in enumerate(mechanism.random_poses(rng, 6)):
         graph = family_module(mechanism).joints(
             mechanism.configuration(pose, mode=modes[index % len(modes)])).graph()
@@ -145,8 +148,8 @@ def test_mcgill_actuation_wrenches_are_the_lines_of_eqs_9_to_11(rng):
     for pose in MCGILL.random_poses(rng, 3):
         config = MCGILL.configuration(pose)
         scale = MCGILL.parameters.l2
-        for limb in wrench_analysis(smg.joints(config).graph()).limbs:
-            leg = smg.LEGS.index(limb.actuated_joint.split(".")[0])
+        for limb in wrench_analysis(joints(config).graph()).limbs:
+            leg = LEGS.index(limb.actuated_joint.split(".")[0])
             wrench = limb.actuation_wrench
             assert abs(S.pitch(wrench)) < 1e-9 * scale
             if limb.actuated_joint.endswith("pan"):
@@ -193,7 +196,7 @@ def test_workspace_is_reachable_and_free_of_singularities(name, rng):
     mechanism = ROBOTS[name]
     family = family_module(mechanism)
     poses = np.vstack([mechanism.random_poses(rng, 2000), box_corners(mechanism)])
-    modes = pm.WORKING_MODES if name == "peppermill" else (smg.DEFAULT_MODE,)
+    modes = pm.WORKING_MODES if name == "peppermill" else (DEFAULT_MODE,)
     for mode in modes:
         config = family.inverse_kinematics(mechanism.parameters, poses, mode)  # raises if out of reach
         result = paper_module(mechanism).classify(config)
@@ -316,7 +319,7 @@ def distal_pose(x: float, component: str) -> np.ndarray:
     """Default working mode, φ = 0: both distal links horizontal ('v') or vertical ('h')."""
 
     def value(pose: np.ndarray) -> np.ndarray:
-        config = smg.inverse_kinematics(MCGILL.parameters, pose)
+        config = inverse_kinematics(MCGILL.parameters, pose)
         rho3 = config.wrist[..., 0, :] - config.elbow[..., 0, :]
         if component == "v":
             return rho3[..., 2]
@@ -326,17 +329,17 @@ def distal_pose(x: float, component: str) -> np.ndarray:
     return bisect_segment(value, [x, 0.0, z[0], 0.0], [x, 0.0, z[1], 0.0])
 
 
-def tilted_short_sides(config: smg.McGillConfiguration, degrees: float) -> JointTable:
+def tilted_short_sides(config: McGillConfiguration, degrees: float) -> JointTable:
     """The joints with every parallelogram's short sides turned by ``degrees`` from the vertical,
     within the leg plane (the hinges b, d move; the kinematics and A, B do not change)."""
     params, angle = config.params, np.radians(degrees)
-    table = smg.joints(config)
+    table = joints(config)
     rows = []
     for spec in table.specs:
         leg, part, *tag = spec.name.split(".")
         screws = table.joint_screws(spec.name)
         if tag and tag[0] in "bd":
-            index = smg.LEGS.index(leg)
+            index = LEGS.index(leg)
             width = params.proximal_width if part == "proximal" else params.distal_width
             side = np.cos(angle) * K + np.sin(angle) * np.cross(K, config.tilt_axis[index])
             shift = width * side - width * K  # the hinge's point moves by this: (s; r × s) gains shift × s
@@ -350,7 +353,7 @@ def test_fig_8a_flat_parallelograms_are_a_constraint_singularity_of_the_physical
     # Both distal links vertical with parallel leg planes (x = 0): A is singular (Eq. 24). With
     # vertical short sides both distal parallelograms are flat, each leg lets its plate turn about
     # f_J, and the twist graph finds the platform gaining that rotation: "constraint".
-    config = smg.inverse_kinematics(MCGILL.parameters, distal_pose(0.0, "h"))
+    config = inverse_kinematics(MCGILL.parameters, distal_pose(0.0, "h"))
     assert np.linalg.norm(np.cross(config.tilt_axis[0], config.tilt_axis[1])) < 1e-12
     report, jacobian = labels(MCGILL, config)
     assert report.labels == ("constraint",) and jacobian == "direct"
@@ -363,7 +366,7 @@ def test_fig_8a_flat_parallelograms_are_a_constraint_singularity_of_the_physical
 
 def test_fig_8_other_cases_are_actuation_singularities():
     for x, component in ((60.0, "h"), (0.0, "v"), (60.0, "v")):
-        config = smg.inverse_kinematics(MCGILL.parameters, distal_pose(x, component))
+        config = inverse_kinematics(MCGILL.parameters, distal_pose(x, component))
         report, jacobian = labels(MCGILL, config)
         assert report.labels == ("actuation",) and jacobian == "direct", (x, component)
 
@@ -387,8 +390,8 @@ def test_mcgill_results_do_not_depend_on_the_parallelogram_widths(widths):
     changed = dataclasses.replace(MCGILL.parameters, proximal_width=widths[0], distal_width=widths[1])
     configs = [MCGILL.configuration(), *(singular_configs(MCGILL)[k] for k in ("serial_pan", "direct"))]
     for config in configs:
-        other = smg.inverse_kinematics(changed, config.pose, config.mode)
-        (one, spans_one), (two, spans_two) = (wrench_summary(smg.joints(c).graph()) for c in (config, other))
+        other = inverse_kinematics(changed, config.pose, config.mode)
+        (one, spans_one), (two, spans_two) = (wrench_summary(joints(c).graph()) for c in (config, other))
         assert two.labels == one.labels
         assert (two.constraint_order, two.global_order) == (one.constraint_order, one.global_order)
         # each actuation wrench is the same line modulo the constraint couples
@@ -496,7 +499,7 @@ def test_cli_analyze_out_of_reach_names_the_leg(capsys):
 
 
 def test_twist_graph_index_must_pick_one_pose():
-    table = smg.joints(MCGILL.configuration(MCGILL.random_poses(np.random.default_rng(0), 2)))
+    table = joints(MCGILL.configuration(MCGILL.random_poses(np.random.default_rng(0), 2)))
     assert table.graph((1,)).number_of_edges() == 20
     with pytest.raises(ScrewkitValueError, match=r"Expected `index` to pick one configuration of the batch "
                                                  r"of shape \(2,\), got \(2,\)"):

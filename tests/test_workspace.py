@@ -18,8 +18,9 @@ from screwkit.analysis import roots as RT
 from screwkit.analysis import workspace as W
 from screwkit.interface.cli import main
 from screwkit.papers.paper_004 import det_A_closed_form, transmission_indices
-from screwkit.robots.catalog import load_toml, mechanism_from_mapping
-from screwkit.robots.families.four_limb import reachable
+from screwkit.robots.catalog import mechanism_from_mapping
+from screwkit.robots.families.four_limb.kinematics import reachable
+from screwkit.robots.toml_fields import load_toml
 
 from .mechanisms import bisect_root
 from .singular_surfaces import SCALE, conditions, surface_roots

@@ -14,7 +14,7 @@ import numpy as np
 
 from screwkit.algebra.backend import as_array
 from screwkit.exceptions import ScrewkitValueError
-from screwkit.robots.families.two_limb import describe_indices
+from screwkit.robots.two_limb import describe_indices
 
 __all__ = ["bisect_segment", "pick_and_place_cycle"]
 

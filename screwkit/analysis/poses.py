@@ -3,7 +3,7 @@
 Poses here are in the API's units (design.md §3): lengths in the catalog file's length unit, angles
 in **radians**, as everywhere in the Python API; ``angles="deg"`` gives ranges, fixed coordinates and
 paths in degrees (as in the TOML files and on the command line, which passes it). A pose is a dict
-``{name: value}`` over :attr:`~screwkit.robots.catalog.Mechanism.pose_names` (missing coordinates
+``{name: value}`` over :attr:`~screwkit.robots.mechanism.Mechanism.pose_names` (missing coordinates
 take the default pose) or an array in that order. Private to :mod:`screwkit.analysis`: the checks
 and the slice its maps (:mod:`screwkit.analysis.workspace`), loci (:mod:`screwkit.analysis.loci`)
 and paths (:mod:`screwkit.analysis.paths`) share.
@@ -117,9 +117,9 @@ def _pose(mechanism: Any, pose: Any, what: str, angles: str) -> Array:
 
 
 def _check_angles(mechanism: Any, values: Mapping[str, Any], what: str, angles: str) -> None:
-    """Refuse angles beyond the bound of files and the CLI (``catalog.MAX_ANGLE_DEGREES``, or its
+    """Refuse angles beyond the bound of files and the CLI (``toml_fields.MAX_ANGLE_DEGREES``, or its
     radian form), naming the argument and the coordinate."""
-    from ..robots.catalog import MAX_ANGLE_DEGREES, MAX_ANGLE_RADIANS
+    from ..robots.toml_fields import MAX_ANGLE_DEGREES, MAX_ANGLE_RADIANS
 
     bound, unit = (MAX_ANGLE_DEGREES, "degrees") if angles == "deg" else (MAX_ANGLE_RADIANS, "rad")
     for name in mechanism.angle_names:

@@ -10,7 +10,7 @@ line of samples (grid rows and columns, or a path) screwkit looks for
 then keeps a refined pose when the core labels it singular or one of its closeness measures is
 below :data:`ACCEPT` (the kind is the core's label there, else the closest measure). The factor is
 the superbracket condition with the smallest value there relative to its value at the default pose.
-Each step is one batch through the posed mechanism (:meth:`screwkit.robots.catalog.Mechanism.at`).
+Each step is one batch through the posed mechanism (:meth:`screwkit.robots.mechanism.Mechanism.at`).
 Private to :mod:`screwkit.analysis` (:mod:`~screwkit.analysis.loci`, :mod:`~screwkit.analysis.paths`).
 """
 

@@ -1,6 +1,6 @@
 """Workspace maps: a quantity over a 2-D slice of the pose space, through the posed mechanism in chunks.
 
-Every pose goes through :meth:`screwkit.robots.catalog.Mechanism.at` (the posed mechanism: inverse
+Every pose goes through :meth:`screwkit.robots.mechanism.Mechanism.at` (the posed mechanism: inverse
 kinematics → joint table → wrench systems → verdicts, closeness, Jacobians), in chunks of the
 batch axis, so a map of 10⁶ poses runs in bounded memory. Chunks can run on a Dask distributed
 cluster (optional extra ``dask``): pass ``client=``; the results are identical to the in-process run.
@@ -13,7 +13,7 @@ Units
 Poses here are in the API's units (design.md §3): lengths in the catalog file's length unit, angles
 in **radians**, as everywhere in the Python API; pass ``angles="deg"`` to give ranges, fixed
 coordinates and paths in degrees (as in the TOML files and on the command line, which passes it). A
-pose is a dict ``{name: value}`` over :attr:`~screwkit.robots.catalog.Mechanism.pose_names` (missing
+pose is a dict ``{name: value}`` over :attr:`~screwkit.robots.mechanism.Mechanism.pose_names` (missing
 coordinates take the default pose) or an array in that order.
 
 Float maps hold NaN where a pose is out of reach, always together with ``reachable`` False.
@@ -55,7 +55,7 @@ def evaluate(
 ) -> tuple[Array, Array]:
     """One quantity at poses ``(m, n)`` in **API units** (radians), and which poses are reachable.
 
-    The core (:meth:`~screwkit.robots.catalog.Mechanism.at`) runs once over the reachable poses.
+    The core (:meth:`~screwkit.robots.mechanism.Mechanism.at`) runs once over the reachable poses.
 
     Parameters
     ----------

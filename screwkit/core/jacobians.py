@@ -459,7 +459,7 @@ def jacobians_over_poses(
     screws : mapping of joint name to array_like, shape (..., dof_j, 6)
         E.g. :meth:`JointTable.joint_screws <screwkit.graphs.jointtable.JointTable.joint_screws>` of every
         joint of
-        :meth:`screwkit.robots.catalog.Mechanism.joints`.
+        :meth:`screwkit.robots.mechanism.Mechanism.joints`.
     twist_basis : array_like, shape (..., dof, 6)
         Broadcast against the batch shape (e.g. :func:`schoenflies_basis` of the poses).
     dof : int, optional

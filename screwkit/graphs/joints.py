@@ -80,7 +80,7 @@ PARALLEL_RTOL = 1e-12
 
 
 #: The data each joint type is built from (its constructor's arguments), in file order: the fields
-#: of a ``[[joints]]`` table of a snapshot file (read by :mod:`screwkit.robots.catalog`, written by
+#: of a ``[[joints]]`` table of a snapshot file (read by :mod:`screwkit.robots.snapshot`, written by
 #: :mod:`screwkit.interface.export`); kept in ``Joint.geometry`` by the constructors.
 JOINT_FIELDS: dict[str, tuple[str, ...]] = {
     "R": ("axis", "point"),

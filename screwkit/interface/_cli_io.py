@@ -19,15 +19,8 @@ from typing import Any
 import numpy as np
 
 from ..exceptions import ScrewkitValueError
-from ..robots.catalog import (
-    MAX_COORDINATE,
-    degrees_to_radians,
-    file_kind,
-    list_mechanisms,
-    load_mechanism,
-    load_toml,
-    unknown_mechanism,
-)
+from ..robots.catalog import list_mechanisms, load_mechanism, unknown_mechanism
+from ..robots.toml_fields import MAX_COORDINATE, degrees_to_radians, file_kind, load_toml
 
 __all__ = [
     "UsageError",
@@ -72,8 +65,8 @@ def given_pose(args: argparse.Namespace, mechanism: Any) -> Any:
 
 def pose_values(command: str, option: str, mechanism: Any, values: Sequence[float]) -> list[float]:
     """A pose given on the command line (lengths in the file's unit, angles in degrees), checked:
-    one finite number per pose coordinate, lengths up to :data:`~screwkit.robots.catalog.MAX_COORDINATE`,
-    angles up to :data:`~screwkit.robots.catalog.MAX_ANGLE_DEGREES`."""
+    one finite number per pose coordinate, lengths up to :data:`~screwkit.robots.toml_fields.MAX_COORDINATE`,
+    angles up to :data:`~screwkit.robots.toml_fields.MAX_ANGLE_DEGREES`."""
     names = mechanism.pose_names
     if len(values) != len(names) or not all(math.isfinite(v) for v in values):
         expected = " ".join(n.upper() for n in names)

@@ -16,7 +16,9 @@ from typing import Any
 from ..algebra.checks import MAX_RTOL, MIN_FLOAT_RTOL, MIN_LENGTH_SCALE
 from ..algebra.screwvalue import Screw
 from ..graphs.reduction import equivalent_twist_graph
-from ..robots.catalog import MAX_COORDINATE, list_mechanisms, load_mechanism, load_snapshot
+from ..robots.catalog import list_mechanisms, load_mechanism
+from ..robots.snapshot import load_snapshot
+from ..robots.toml_fields import MAX_COORDINATE
 from ._cli_io import UsageError, error_reason, json_text, print_text, shown_path, target_and_pose
 from .report import analyze
 

@@ -149,7 +149,8 @@ def get_parser() -> argparse.ArgumentParser:
         help="paper 004's Table 4 (min/max LTI) regenerated, the paper's values beside ours",
         description="Regenerate paper 004's Table 4: the extremes of the local transmission index "
         "(Eq. 16) over each robot's workspace, by a grid and a local refinement "
-        "(screwkit.papers.paper_004_table4.index_extremes); the paper's value, ours, the difference and its cause.",
+        "(screwkit.papers.paper_004_table4.index_extremes); the paper's value, ours, the difference and its "
+        "cause.",
     )
     table4.add_argument("--grid", type=int, default=41, metavar="N", help="grid points per axis (default 41)")
     table4.add_argument(

@@ -4,7 +4,7 @@
 a graph built in Python) as a snapshot file that :func:`screwkit.load_snapshot` reads back to the
 same joint screws (floats are written with ``repr``, which round-trips exactly). :func:`graph_dot`
 draws the graph's structure for Graphviz; :func:`graph_json` is :func:`screwkit.graphs.twistgraph.to_data`
-as text. The snapshot format is the one documented in :mod:`screwkit.robots.catalog`.
+as text. The snapshot format is the one documented in :mod:`screwkit.robots.snapshot`.
 
 Joints are written from the data they were built from (``Joint.geometry``). A joint without it (a
 joint of a family's joint table, a virtual joint of an equivalent graph, a ``Joint`` made from raw

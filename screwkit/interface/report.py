@@ -9,7 +9,7 @@ statement and a vector form with its label, and the verdict with its closeness m
 
 For a catalog mechanism it also gives the Jacobians ``A χ̇ = B θ̇`` built on the same actuation
 wrenches (:func:`screwkit.core.jacobians.jacobians_from_wrenches`) over the family's nominal twists at the
-pose (:meth:`screwkit.robots.catalog.Mechanism.twist_basis`, one per pose coordinate), with their
+pose (:meth:`screwkit.robots.mechanism.Mechanism.twist_basis`, one per pose coordinate), with their
 Gosselin–Angeles type (``"inverse"`` goes with the ``serial`` label, ``"direct"`` with
 ``actuation``; a ``constraint`` singularity, where the platform gains a twist outside the nominal
 ones, leaves ``A`` regular), ``det A``, ``det B`` and the two closeness measures. A snapshot has no
@@ -47,8 +47,11 @@ from ..core.wrench_systems import WrenchAnalysis
 from ..core.wrenches import wrench_analysis
 from ..exceptions import ScrewkitError, ScrewkitTypeError, ScrewkitValueError
 from ..graphs.reduction import equivalent_twist_graph
-from ..robots.catalog import Mechanism, file_kind, load_mechanism, load_snapshot, load_toml
+from ..robots.catalog import load_mechanism
+from ..robots.mechanism import Mechanism
 from ..robots.posed import Pose
+from ..robots.snapshot import load_snapshot
+from ..robots.toml_fields import file_kind, load_toml
 from .analysis_report import AnalysisReport
 
 if TYPE_CHECKING:  # the diagram and GCA stack loads when a report is made, not on `import screwkit`
@@ -246,7 +249,7 @@ def pose_report(
         jacobians_note = (
             "rows: the actuation wrenches (unit force, or unit couple, signed so that B_jj >= 0); columns: "
             "the platform's nominal twists at the pose, one per pose coordinate "
-            "(screwkit.robots.catalog.Mechanism.twist_basis)"
+            "(screwkit.robots.mechanism.Mechanism.twist_basis)"
         )
     except ScrewkitError as err:
         jacobians_note = f"not computed: {err}"

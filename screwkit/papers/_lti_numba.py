@@ -8,7 +8,8 @@ family's configuration, then :func:`screwkit.papers.paper_004.transmission_indic
 tests check that the two agree to round-off.
 
 Per limb (limb ``i`` of paper 004; ``d_i = c_i - a_i``, ``F_i j``, ``F_i k`` as in
-:func:`screwkit.robots.families.four_limb.inverse_kinematics`): Eq. (3), ``|d_i - b v_i|² = l²`` with
+:func:`screwkit.robots.families.four_limb.kinematics.inverse_kinematics`): Eq. (3),
+``|d_i - b v_i|² = l²`` with
 ``v_i = cos θ_i F_i j + sin θ_i F_i k`` (Eq. 2), is ``P_i cos θ_i + Q_i sin θ_i = K_i`` with
 ``P_i = d_i·F_i j``, ``Q_i = d_i·F_i k``, ``K_i = (‖d_i‖² + b² - l²) / (2b)``. With ``ρ_i² = P_i² + Q_i²``
 and ``R_i = √(ρ_i² - K_i²)`` (= ``ρ_i sin δ_i``; real iff the limb reaches) the root of working mode
@@ -48,7 +49,7 @@ import math
 import numpy as np
 from numba import njit
 
-from ..robots.families.two_limb import REACH_ULPS
+from ..robots.two_limb import REACH_ULPS
 
 Array = np.ndarray
 EPS = float(np.finfo(float).eps)

@@ -17,10 +17,11 @@ the generic index of any mechanism (:mod:`screwkit.robots.transmission`).
 Source: paper 004 (Wu, Bai, Caro, "A transmission quality index for a class of four-limb parallel
 Schönflies motion generators", JMR 10(5), 2018), file ``/work/shared/papers/004_60e52c5ada55e36d.txt``;
 equation and table numbers are that paper's. Its functions here take a four-limb configuration
-(:class:`screwkit.robots.families.four_limb.FourLimbConfiguration`, from the family's inverse kinematics or
-:meth:`screwkit.robots.catalog.Mechanism.configuration`) of any batch shape ``...`` and returns arrays over
-that batch. The configuration's ``w_i`` (unit parallelogram directions), ``h_i`` (Eq. 8), ``s_i``
-(Eq. 4) and ``s`` (Tables 1-2) are the robot model; what follows is paper 004's analysis of it.
+(:class:`screwkit.robots.families.four_limb.configuration.FourLimbConfiguration`, from the
+family's inverse kinematics or :meth:`screwkit.robots.mechanism.Mechanism.configuration`) of any
+batch shape ``...`` and returns arrays over that batch. The configuration's ``w_i`` (unit
+parallelogram directions), ``h_i`` (Eq. 8), ``s_i`` (Eq. 4) and ``s`` (Tables 1-2) are the robot
+model; what follows is paper 004's analysis of it.
 
 The indices
 -----------
@@ -83,8 +84,8 @@ import numpy as np
 from ..algebra import backend as B
 from ..core import _frames as F
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError, UnreachablePoseError
-from ..robots.catalog import MAX_ANGLE_RADIANS, MAX_COORDINATE
 from ..robots.posed import PosedMechanism
+from ..robots.toml_fields import MAX_ANGLE_RADIANS, MAX_COORDINATE
 from ..robots.transmission import Transmission
 
 __all__ = [
@@ -105,8 +106,8 @@ __all__ = [
 class FourLimbGeometry(Protocol):
     """What the functions of this module read from a four-limb configuration.
 
-    :class:`screwkit.robots.families.four_limb.FourLimbConfiguration` has these attributes (arrays over the
-    batch ``...``; limb ``i`` of paper 004 at index ``i - 1``).
+    :class:`screwkit.robots.families.four_limb.configuration.FourLimbConfiguration` has these
+    attributes (arrays over the batch ``...``; limb ``i`` of paper 004 at index ``i - 1``).
 
     Attributes
     ----------
@@ -366,20 +367,20 @@ def _kernel_arguments(params: Any, mode: tuple[int, ...]) -> tuple[Any, ...]:
     minus the position, as a constant plus multiples of ``cos φ``, ``sin φ`` and ``φ`` (Table 1 as
     corrected in :mod:`screwkit.robots.families.four_limb`); then ``F_i j``, ``F_i k`` and ``m_i``.
     """
-    from ..robots.families import four_limb as FL
+    from ..robots.families.four_limb import configuration as FL
 
-    base = FL._base(params)
+    base = FL.base_frames(params)
     rod = float(params.rod_length)
     constant, along_cos, along_sin, along_phi = (np.zeros((4, 3)) for _ in range(4))
     cosine_s, sine_s, fixed_s = np.zeros(3), np.zeros(3), np.zeros(3)
     if params.platform_kind == "screw_pair":  # c_i = r R_z(γ_i) i + mod(i, 2) h φ/(2π) k + p
-        radial = np.stack([np.cos(FL._ETA), np.sin(FL._ETA), np.zeros(4)], axis=-1)
+        radial = np.stack([np.cos(FL.ETA), np.sin(FL.ETA), np.zeros(4)], axis=-1)
         constant[:] = params.platform_radius * radial
-        along_phi[:, 2] = FL._ODD_LIMB * params.lead / (2.0 * np.pi)
+        along_phi[:, 2] = FL.ODD_LIMB * params.lead / (2.0 * np.pi)
         fixed_s[2] = 1.0  # s = k
     else:  # c_i = sgn(cos η_i) r e(φ) + sgn(sin η_i) c j + p
-        constant[:, 1] = FL._SGN_SIN_ETA * params.platform_offset
-        radius = (FL._SGN_COS_ETA * params.platform_radius)[:, None]
+        constant[:, 1] = FL.SGN_SIN_ETA * params.platform_offset
+        radius = (FL.SGN_COS_ETA * params.platform_radius)[:, None]
         if params.platform_kind == "articulated_z":  # e = R_z(φ) i, s = R_z(φ) j
             along_cos[:], along_sin[:] = radius * [1.0, 0.0, 0.0], radius * [0.0, 1.0, 0.0]
             cosine_s[1], sine_s[0] = 1.0, -1.0
@@ -478,7 +479,7 @@ def transmission(
     >>> float(transmission(quattro.at([0, 0, -800, 0.5])).lti[0]) < 1
     True
     """
-    from ..robots.families.four_limb import checked_working_mode
+    from ..robots.families.four_limb.kinematics import checked_working_mode
 
     if isinstance(mechanism_or_posed, PosedMechanism):
         if poses is not None:
@@ -526,5 +527,5 @@ def transmission(
 def _is_four_limb(parameters: Any) -> bool:
     """True for the parameters of a four-limb mechanism (:class:`FourLimbParameters`); the family's
     module is not imported to tell (no such parameters exist before it is)."""
-    module = sys.modules.get("screwkit.robots.families.four_limb")
+    module = sys.modules.get("screwkit.robots.families.four_limb.parameters")
     return module is not None and isinstance(parameters, module.FourLimbParameters)

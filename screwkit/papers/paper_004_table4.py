@@ -284,12 +284,12 @@ def _region_grid(
 ) -> tuple[Region, tuple[int, int, int, int], list[np.ndarray]]:
     """The checked region (default: the mechanism's workspace box), working mode and grid axes of a
     search at one rotation ``phi`` (:func:`index_extremes`, :mod:`~screwkit.papers.paper_004_surfaces`)."""
-    from ..robots.families.four_limb import checked_working_mode
+    from ..robots.families.four_limb.kinematics import checked_working_mode
 
     for name, value, least, most in (("grid", grid, 2, MAX_GRID), ("refine", refine, 0, MAX_REFINE)):
         if not isinstance(value, int | np.integer) or isinstance(value, bool) or not least <= value <= most:
             raise ScrewkitValueError(f"Expected `{name}` to be an integer in {least}..{most}, got {value!r}.")
-    from ..robots.catalog import MAX_ANGLE_RADIANS
+    from ..robots.toml_fields import MAX_ANGLE_RADIANS
 
     numeric = isinstance(phi, int | float | np.integer | np.floating)
     if not numeric or not abs(float(phi)) <= MAX_ANGLE_RADIANS:

@@ -1,6 +1,6 @@
 """A mechanism at a batch of poses: every stage computed once, on demand (design.md §1a).
 
-:meth:`screwkit.robots.catalog.Mechanism.at` returns a frozen :class:`PosedMechanism`. Its stages are
+:meth:`screwkit.robots.mechanism.Mechanism.at` returns a frozen :class:`PosedMechanism`. Its stages are
 cached properties over the whole batch, each built on the one before:
 
 ``configuration`` (the family's inverse kinematics) → ``joints`` (a
@@ -111,7 +111,7 @@ class PosedMechanism:
         length_scale: float | None = None,
         options: Any = None,
     ) -> PosedMechanism:
-        """Validate and build (what :meth:`screwkit.robots.catalog.Mechanism.at` calls).
+        """Validate and build (what :meth:`screwkit.robots.mechanism.Mechanism.at` calls).
 
         Parameters
         ----------

@@ -1,57 +1,85 @@
-"""Parametric mechanism families: the one protocol every family goes through (design.md §1a).
+"""Parametric mechanism families: the one protocol every family goes through, and the registry.
 
-A family is four functions and the names of its pose coordinates:
+A family is four functions and the names of its pose coordinates, generic over its parameter type
+``P`` and its configuration type ``C``:
 
-``parameters(mapping, *, source)``
+``parameters(mapping, *, source) -> P``
     The family's validated parameters from a catalog file's ``[parameters]`` mapping.
-``inverse_kinematics(parameters, poses, **mode)``
+``inverse_kinematics(parameters, poses, **mode) -> C``
     A configuration over poses ``(..., n)`` (batched; ``mode`` picks a working mode).
-``joints(configuration)``
+``joints(configuration) -> JointTable``
     A :class:`~screwkit.graphs.jointtable.JointTable`: the mechanism's structure once, every joint's screws
     over the batch. Everything else (labels, wrench systems, Jacobians, diagrams, reports) comes
     from the analysis core.
-``twist_basis(configuration)``
+``twist_basis(configuration) -> ndarray``
     The platform's nominal twists ``(..., dof, 6)``, one per pose coordinate (the columns of
     ``A`` in :func:`screwkit.core.jacobians.jacobians_from_wrenches`).
 
 Optionally ``reachable(parameters, poses)``: which poses ``(..., n)`` the inverse kinematics
 accepts in every working mode, ``(...,)`` bool, vectorised (without it,
-:meth:`screwkit.robots.catalog.Mechanism.reachable` bisects the batch around the refused poses).
+:meth:`screwkit.robots.mechanism.Mechanism.reachable` bisects the batch around the refused poses).
 
-Adding a robot: write those four functions, wrap them in a :class:`Family` and :func:`register` it
-(``CONTRIBUTING.md`` has a worked example); a catalog mapping or file can then name it.
+The registry is the package itself: every public module (or subpackage) of this package is one
+family, named after it, which declares its :class:`Family` as the module attribute ``FAMILY``
+(:data:`FAMILY_ATTRIBUTE`). Adding a robot is adding one module here (and its catalog file);
+``CONTRIBUTING.md`` has a worked example. A family's module is imported when the family is first
+looked up, so that analysing one robot imports one family; :meth:`Registry.pose_names` reads the
+literal ``pose_names`` of each ``FAMILY`` declaration without importing the module. Families made at
+run time are added with :func:`register`.
 
 Examples
 --------
->>> sorted(families())
-['four_limb', 'mcgill_smg', 'peppermill', 'planar_3rrp']
+>>> {"four_limb", "planar_3rrp"} <= set(families())
+True
 >>> families()["planar_3rrp"].pose_names
 ('x', 'y', 'phi')
 """
 
 from __future__ import annotations
 
+import ast
 import functools
+import importlib
+import importlib.util
+import io
+import pkgutil
+import re
+import tokenize
 from collections.abc import Callable, Iterator, Mapping, MutableMapping
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Generic, TypeVar
 
 import numpy as np
 
 from ...exceptions import ScrewkitTypeError, ScrewkitValueError
 from ...graphs.jointtable import JointTable
 
-__all__ = ["Family", "families", "register"]
+__all__ = ["FAMILY_ATTRIBUTE", "Family", "Registry", "families", "register"]
+
+#: The module attribute under which a family's module declares its :class:`Family`.
+FAMILY_ATTRIBUTE = "FAMILY"
+
+P = TypeVar("P")
+C = TypeVar("C")
 
 
 @dataclass(frozen=True)
-class Family:
-    """A mechanism family: the protocol of the module docstring.
+class Family(Generic[P, C]):
+    """A mechanism family over parameters ``P`` and configurations ``C``: the protocol of the
+    module docstring.
 
     Attributes
     ----------
     name : str
-    parameters, inverse_kinematics, joints, twist_basis : callable
+        The family's name (its module's name for a family shipped in this package).
+    parameters : callable
+        ``parameters(mapping, *, source) -> P``.
+    inverse_kinematics : callable
+        ``inverse_kinematics(parameters, poses, **mode) -> C``.
+    joints : callable
+        ``joints(configuration) -> JointTable``.
+    twist_basis : callable
+        ``twist_basis(configuration) -> ndarray (..., dof, 6)``.
     pose_names, angle_names : tuple of str
         The pose coordinates, and which of them are angles (degrees in files and on the command
         line, radians in the API).
@@ -75,19 +103,34 @@ class Family:
     """
 
     name: str
-    parameters: Callable[..., Any]
-    inverse_kinematics: Callable[..., Any]
-    joints: Callable[[Any], JointTable]
-    twist_basis: Callable[[Any], np.ndarray]
+    parameters: Callable[..., P]
+    inverse_kinematics: Callable[..., C]
+    joints: Callable[[C], JointTable]
+    twist_basis: Callable[[C], np.ndarray]
     pose_names: tuple[str, ...]
     angle_names: tuple[str, ...]
     parameter_kinds: Mapping[str, str] = field(default_factory=dict)
-    reachable: Callable[[Any, np.ndarray], np.ndarray] | None = None
-    application_points: Callable[[Any], np.ndarray] | None = None
+    reachable: Callable[[P, np.ndarray], np.ndarray] | None = None
+    application_points: Callable[[C], np.ndarray] | None = None
 
-    def joint_table(self, configuration: Any) -> JointTable:
+    def joint_table(self, configuration: C) -> JointTable:
         """``joints(configuration)``, checked to be a :class:`~screwkit.graphs.jointtable.JointTable`
         (what the analysis core reads; a family's mistake is named here, not inside the core).
+
+        Parameters
+        ----------
+        configuration : C
+            A configuration made by the family's inverse kinematics.
+
+        Returns
+        -------
+        JointTable
+            The family's joint table at that configuration.
+
+        Raises
+        ------
+        ScrewkitTypeError
+            If the family's ``joints`` returns something else.
 
         Examples
         --------
@@ -107,135 +150,185 @@ class Family:
         return table
 
 
-_SMG = ("x", "y", "z", "phi")
-#: The built-in families: their pose coordinates and angles, known before their modules are imported
-#: (the command line's ``map`` options name every family's coordinates).
-_BUILT_IN = {
-    "four_limb": (_SMG, ("phi",)),
-    "mcgill_smg": (_SMG, ("phi",)),
-    "peppermill": (_SMG, ("phi",)),
-    "planar_3rrp": (("x", "y", "phi"), ("phi",)),
-}
+_DECLARATION = re.compile(rf"^{FAMILY_ATTRIBUTE}\b[^=\n]*=", re.M)
 
 
-def _built_in(name: str) -> Family:
-    """A built-in family, its module imported now (``analyze h4`` imports the four-limb one only)."""
-    pose_names, angle_names = _BUILT_IN[name]
-    if name == "four_limb":
-        from . import four_limb
+def _shipped() -> list[str]:
+    """The names of this package's public modules and subpackages (the shipped families), in the
+    order of the package's search path (alphabetical within a folder)."""
+    return [info.name for info in pkgutil.iter_modules(__path__) if not info.name.startswith("_")]
 
-        limb_lengths = ("base_radius", "base_points", "arm_length", "rod_length", "platform_radius",
-                        "platform_offset", "lead", "parallelogram_width")
-        return Family(
-            name,
-            four_limb.FourLimbParameters.from_mapping,
-            four_limb.inverse_kinematics,
-            four_limb.joints,
-            four_limb.twist_basis,
-            pose_names,
-            angle_names,
-            dict.fromkeys(limb_lengths, "length")
-            | {"alpha": "angle", "beta": "angle", "platform_kind": "number"},
-            four_limb.reachable,
-            four_limb.application_points,
+
+def _declared_pose_names(name: str) -> tuple[str, ...] | None:
+    """The literal ``pose_names`` of a shipped family's ``FAMILY = Family(...)`` declaration, read
+    from its source without importing it (None when the declaration is not found or not literal)."""
+    spec = importlib.util.find_spec(f"{__name__}.{name}")
+    if spec is None or spec.origin is None or not spec.has_location:
+        return None
+    with open(spec.origin, encoding="utf-8") as file:
+        text = file.read()
+    found = _DECLARATION.search(text)
+    if found is None:
+        return None
+    statement = []  # the one logical line of the declaration
+    for token in tokenize.generate_tokens(io.StringIO(text[found.start() :]).readline):
+        statement.append(token)
+        if token.type == tokenize.NEWLINE:
+            break
+    value = ast.parse(tokenize.untokenize(statement)).body[0].value  # type: ignore[attr-defined]
+    for keyword in getattr(value, "keywords", []):
+        if keyword.arg == "pose_names":
+            try:
+                names = ast.literal_eval(keyword.value)
+            except ValueError:
+                return None
+            return names if isinstance(names, tuple) else None
+    return None
+
+
+def _checked(family: Any) -> Family[Any, Any]:
+    """A family, its fields checked (the errors of :func:`register`)."""
+    if not isinstance(family, Family):
+        raise ScrewkitTypeError(
+            f"Expected `family` to be a screwkit.robots.families.Family, got {type(family).__name__}."
         )
-    if name == "mcgill_smg":
-        from . import mcgill_smg
-
-        smg_lengths = ("l0", "l1", "l2", "l3", "radius", "b4", "b5", "proximal_width", "distal_width")
-        return Family(
-            name,
-            mcgill_smg.McGillParameters.from_mapping,
-            mcgill_smg.inverse_kinematics,
-            mcgill_smg.joints,
-            mcgill_smg.twist_basis,
-            pose_names,
-            angle_names,
-            dict.fromkeys(smg_lengths, "length"),
+    if not isinstance(family.name, str) or not family.name.isidentifier():
+        raise ScrewkitTypeError(f"Expected `family.name` to be an identifier, got {family.name!r}.")
+    for attribute in ("parameters", "inverse_kinematics", "joints", "twist_basis"):
+        if not callable(getattr(family, attribute)):
+            got = type(getattr(family, attribute)).__name__
+            raise ScrewkitTypeError(f"Expected `family.{attribute}` to be callable, got {got}.")
+    for attribute in ("pose_names", "angle_names"):
+        names = getattr(family, attribute)
+        if not isinstance(names, tuple) or not all(isinstance(n, str) for n in names):
+            raise ScrewkitTypeError(f"Expected `family.{attribute}` to be a tuple of str, got {names!r}.")
+    if family.reachable is not None and not callable(family.reachable):
+        got = type(family.reachable).__name__
+        raise ScrewkitTypeError(f"Expected `family.reachable` to be callable or None, got {got}.")
+    kinds = family.parameter_kinds
+    if not isinstance(kinds, Mapping) or not set(kinds.values()) <= {"length", "angle", "number"}:
+        raise ScrewkitTypeError(
+            "Expected `family.parameter_kinds` to map parameter names to 'length', 'angle' or 'number', "
+            f"got {kinds!r}."
         )
-    if name == "peppermill":
-        from . import peppermill
-
-        return Family(
-            name,
-            peppermill.PeppermillParameters.from_mapping,
-            peppermill.inverse_kinematics,
-            peppermill.joints,
-            peppermill.twist_basis,
-            pose_names,
-            angle_names,
-            dict.fromkeys(("r1", "r2", "l1", "l2", "b0", "p1", "p2"), "length"),
+    if not family.pose_names or not set(family.angle_names) <= set(family.pose_names):
+        raise ScrewkitValueError(
+            f"Expected `family.angle_names` to be some of the pose coordinates {family.pose_names}, "
+            f"got {family.angle_names}."
         )
-    from . import planar_3rrp
-
-    planar_lengths = ("base_points", "link_lengths", "platform_points")
-    return Family(
-        name,
-        planar_3rrp.Planar3RRPParameters.from_mapping,
-        planar_3rrp.Planar3RRPConfiguration.from_pose,
-        planar_3rrp.joints,
-        planar_3rrp.twist_basis,
-        pose_names,
-        angle_names,
-        dict.fromkeys(planar_lengths, "length") | {"guide_angles": "angle"},
-    )
+    return family
 
 
-class _Registry(MutableMapping[str, Family]):
-    """The families by name, in registration order; a built-in one is made (its module imported)
-    when it is first looked up."""
+class Registry(MutableMapping[str, Family[Any, Any]]):
+    """The families by name: those shipped as modules of this package (each imported when first
+    looked up), then those added by :func:`register`.
+
+    The package's search path is read at every listing, so that a module put on it (a folder
+    appended to ``screwkit.robots.families.__path__``) is a family from then on. Deleting a shipped
+    family forgets its loaded :class:`Family` (it is made again on its next look-up).
+
+    Examples
+    --------
+    >>> registry = families()
+    >>> "four_limb" in registry, "five_bar" in registry
+    (True, False)
+    """
 
     def __init__(self) -> None:
-        self._families: dict[str, Family | None] = dict.fromkeys(_BUILT_IN)
+        self._loaded: dict[str, Family[Any, Any]] = {}
+        self._registered: dict[str, Family[Any, Any]] = {}
 
-    def __getitem__(self, name: str) -> Family:
-        family = self._families[name]
-        if family is None:
-            family = self._families[name] = _built_in(name)
+    def _load(self, name: str) -> Family[Any, Any]:
+        """Import a shipped family's module and check its declaration."""
+        module = importlib.import_module(f"{__name__}.{name}")
+        family = getattr(module, FAMILY_ATTRIBUTE, None)
+        if not isinstance(family, Family):
+            raise ScrewkitTypeError(
+                f"Expected the module {module.__name__} to declare its family as "
+                f"`{FAMILY_ATTRIBUTE} = Family(...)`, got {type(family).__name__}."
+            )
+        if family.name != name:
+            raise ScrewkitValueError(
+                f"Expected the family of the module {module.__name__} to be named {name!r}, "
+                f"got {family.name!r}."
+            )
+        self._loaded[name] = _checked(family)
         return family
 
-    def __setitem__(self, name: str, family: Family) -> None:
-        self._families[name] = family
+    def __getitem__(self, name: str) -> Family[Any, Any]:
+        if name in self._registered:
+            return self._registered[name]
+        if name in self._loaded:
+            return self._loaded[name]
+        if isinstance(name, str) and name in _shipped():
+            return self._load(name)
+        raise KeyError(name)
+
+    def __setitem__(self, name: str, family: Family[Any, Any]) -> None:
+        self._registered[name] = family
 
     def __delitem__(self, name: str) -> None:
-        del self._families[name]
+        # a registered family is removed; a shipped one is forgotten (imported again on its next
+        # look-up, while its module is on the package's search path)
+        found = [known.pop(name) for known in (self._registered, self._loaded) if name in known]
+        if not found:
+            raise KeyError(name)
 
     def __iter__(self) -> Iterator[str]:
-        return iter(self._families)
+        shipped = _shipped()
+        return iter(shipped + [name for name in self._registered if name not in shipped])
 
     def __len__(self) -> int:
-        return len(self._families)
+        return len(list(iter(self)))
+
+    def __contains__(self, name: object) -> bool:
+        return name in self._registered or name in self._loaded or name in _shipped()
 
     def pose_names(self) -> list[str]:
-        """Every family's pose coordinates, each once, in order (without importing a family).
+        """Every family's pose coordinates, each once, in order (reading a shipped family's
+        declaration rather than importing its module, when the names are written literally).
+
+        Returns
+        -------
+        list of str
+            The coordinate names, in the order the families list them.
 
         Examples
         --------
-        >>> families().pose_names()
+        >>> families().pose_names()[:4]
         ['x', 'y', 'z', 'phi']
         """
         names: list[str] = []
-        for name, family in self._families.items():
-            found = _BUILT_IN[name][0] if family is None else family.pose_names
+        for name in self:
+            known = self._registered.get(name) or self._loaded.get(name)
+            found = known.pose_names if known is not None else _declared_pose_names(name)
+            if found is None:
+                found = self[name].pose_names
             names.extend(n for n in found if n not in names)
         return names
 
 
 @functools.cache
-def families() -> _Registry:
+def families() -> Registry:
     """The families a catalog entry can name, by name (each imported on first use; :func:`register`
     adds more).
+
+    Returns
+    -------
+    Registry
+        The one registry, a mutable mapping from names to families.
 
     Examples
     --------
     >>> families()["mcgill_smg"].pose_names
     ('x', 'y', 'z', 'phi')
     """
-    return _Registry()
+    return Registry()
 
 
-def register(family: Family) -> Family:
-    """Add a family to :func:`families`, so that catalog entries can name it (and return it).
+def register(family: Family[P, C]) -> Family[P, C]:
+    """Add a family made at run time to :func:`families`, so that catalog entries can name it (and
+    return it). A family shipped with screwkit is a module of this package instead.
 
     Parameters
     ----------
@@ -266,34 +359,7 @@ def register(family: Family) -> Family:
     screwkit.exceptions.ScrewkitTypeError: Expected `family` to be a screwkit.robots.families.Family, got
     dict.
     """
-    if not isinstance(family, Family):
-        raise ScrewkitTypeError(
-            f"Expected `family` to be a screwkit.robots.families.Family, got {type(family).__name__}."
-        )
-    if not isinstance(family.name, str) or not family.name.isidentifier():
-        raise ScrewkitTypeError(f"Expected `family.name` to be an identifier, got {family.name!r}.")
-    for attribute in ("parameters", "inverse_kinematics", "joints", "twist_basis"):
-        if not callable(getattr(family, attribute)):
-            got = type(getattr(family, attribute)).__name__
-            raise ScrewkitTypeError(f"Expected `family.{attribute}` to be callable, got {got}.")
-    for attribute in ("pose_names", "angle_names"):
-        names = getattr(family, attribute)
-        if not isinstance(names, tuple) or not all(isinstance(n, str) for n in names):
-            raise ScrewkitTypeError(f"Expected `family.{attribute}` to be a tuple of str, got {names!r}.")
-    if family.reachable is not None and not callable(family.reachable):
-        got = type(family.reachable).__name__
-        raise ScrewkitTypeError(f"Expected `family.reachable` to be callable or None, got {got}.")
-    kinds = family.parameter_kinds
-    if not isinstance(kinds, Mapping) or not set(kinds.values()) <= {"length", "angle", "number"}:
-        raise ScrewkitTypeError(
-            "Expected `family.parameter_kinds` to map parameter names to 'length', 'angle' or 'number', "
-            f"got {kinds!r}."
-        )
-    if not family.pose_names or not set(family.angle_names) <= set(family.pose_names):
-        raise ScrewkitValueError(
-            f"Expected `family.angle_names` to be some of the pose coordinates {family.pose_names}, "
-            f"got {family.angle_names}."
-        )
+    _checked(family)
     known = families()
     if family.name in known:
         raise ScrewkitValueError(

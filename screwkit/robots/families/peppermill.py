@@ -49,7 +49,7 @@ Paper 000's Jacobians ``A``, ``B`` (Eqs. 44-48), the factors of ``det A`` and ``
 the paper gets wrong about them (Eqs. 45 and 46, the swapped ``u_i``/``v_i`` of Sec. 4.2, the
 missing third-kind condition of Sec. 4.4) are a paper analysis, not the robot model: they live in
 ``tests/paper_000.py`` beside the tests that check them. The mechanism's own Jacobians and labels
-come from the analysis core (:meth:`screwkit.robots.catalog.Mechanism.at`).
+come from the analysis core (:meth:`screwkit.robots.mechanism.Mechanism.at`).
 
 Examples
 --------
@@ -76,7 +76,7 @@ from ...algebra.backend import as_array
 from ...core.jacobians import schoenflies_basis
 from ...exceptions import DegenerateGeometryError, ScrewkitValueError, UnreachablePoseError
 from ...graphs.jointtable import JointTable
-from .two_limb import (
+from ..two_limb import (
     ForwardSolutions,
     at_reach,
     check_parameters,
@@ -87,10 +87,12 @@ from .two_limb import (
     parameters_from_mapping,
     wrap_angle,
 )
+from . import Family
 
 __all__ = [
     "ASSEMBLY_MODES",
     "DEFAULT_MODE",
+    "FAMILY",
     "WORKING_MODES",
     "PeppermillConfiguration",
     "PeppermillParameters",
@@ -162,6 +164,18 @@ class PeppermillParameters:
     ) -> PeppermillParameters:
         """Build parameters from a mapping (e.g. a TOML table), naming ``source`` in every error.
 
+        Parameters
+        ----------
+        mapping : mapping
+            The ``[parameters]`` values (and the metadata ``name``, ``length_unit``).
+        source : str, optional
+            Where the mapping comes from, named in every error.
+
+        Returns
+        -------
+        PeppermillParameters
+            The validated parameters.
+
         Raises
         ------
         CatalogError
@@ -180,6 +194,16 @@ class PeppermillParameters:
 
     def scaled(self, factor: float) -> PeppermillParameters:
         """The same robot in another unit of length (every length and lead times ``factor`` > 0).
+
+        Parameters
+        ----------
+        factor : float
+            The ratio of the new unit of length to the old (> 0).
+
+        Returns
+        -------
+        PeppermillParameters
+            The scaled parameters.
 
         Examples
         --------
@@ -273,7 +297,13 @@ class PeppermillConfiguration:
         return tuple(self.pose.shape[:-1])
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dictionary of the pose, the mode and the joint values."""
+        """JSON-ready dictionary of the pose, the mode and the joint values.
+
+        Returns
+        -------
+        dict
+            Plain lists and numbers.
+        """
         return {
             "mode": list(self.mode),
             "pose": self.pose.tolist(),
@@ -559,3 +589,11 @@ def twist_basis(config: PeppermillConfiguration) -> np.ndarray:
     array([  0.,   0.,   1., -20., -30.,   0.])
     """
     return schoenflies_basis(config.platform_point, config.platform_axis)
+
+
+#: The family (:mod:`screwkit.robots.families`).
+FAMILY: Family[PeppermillParameters, PeppermillConfiguration] = Family(
+    "peppermill", PeppermillParameters.from_mapping, inverse_kinematics, joints, twist_basis,
+    pose_names=("x", "y", "z", "phi"), angle_names=("phi",),
+    parameter_kinds=dict.fromkeys(("r1", "r2", "l1", "l2", "b0", "p1", "p2"), "length"),
+)

@@ -1,8 +1,9 @@
-"""Machinery shared by the two-limb Schönflies-motion generators (McGill SMG and Peppermill).
+"""Machinery shared by the families, written for the two-limb Schönflies-motion generators (McGill SMG
+and Peppermill).
 
-Private module: :mod:`screwkit.robots.families.mcgill_smg` and :mod:`screwkit.robots.families.peppermill`
-build
-on it. It holds the robot-model plumbing only (design.md §1a: families hold the
+:mod:`screwkit.robots.families.mcgill_smg` and :mod:`screwkit.robots.families.peppermill` build on it
+(the reach tolerance serves every family). It lives beside the families package, not in it, since
+every module of that package is a family. It holds the robot-model plumbing only (families hold the
 model; paper-specific analyses live in the stage modules or beside the tests that check them):
 
 * parameter validation (``from_mapping`` of a TOML table, range checks in ``__post_init__``) and
@@ -29,8 +30,8 @@ from typing import Any, TypeVar
 
 import numpy as np
 
-from ...algebra import screw as S
-from ...exceptions import CatalogError, ScrewkitTypeError, ScrewkitValueError
+from ..algebra import screw as S
+from ..exceptions import CatalogError, ScrewkitTypeError, ScrewkitValueError
 
 __all__ = [
     "JOINT_KINDS",
@@ -58,6 +59,18 @@ _METADATA = ("name", "length_unit")
 def frozen(value: Any, dtype: Any = float) -> np.ndarray:
     """Return a read-only copy of ``value`` as an array of ``dtype``.
 
+    Parameters
+    ----------
+    value : array_like
+        The values.
+    dtype : data-type, optional
+        The array's type (default float).
+
+    Returns
+    -------
+    numpy.ndarray
+        A read-only copy.
+
     Examples
     --------
     >>> frozen([1, 2]).flags.writeable
@@ -84,6 +97,18 @@ def at_reach(cosine: np.ndarray, condition: np.ndarray) -> np.ndarray:
     :data:`REACH_ULPS` rounding units of ±1 (``condition``: the sum of the absolute values of the terms
     of its numerator over its denominator, the relative size of its rounding error).
 
+    Parameters
+    ----------
+    cosine : numpy.ndarray
+        The computed cosines.
+    condition : numpy.ndarray
+        The relative size of their rounding error (broadcast against ``cosine``).
+
+    Returns
+    -------
+    numpy.ndarray
+        Cosines in ``[-1, 1]``, exactly ``±1`` at a limb's reach.
+
     Examples
     --------
     >>> at_reach(np.array([1.0 - 4e-16, 0.5, -1.0 + 1e-15, 1.0 + 1e-14]), np.ones(4))
@@ -101,6 +126,18 @@ def within_reach(cosine: np.ndarray, condition: np.ndarray) -> np.ndarray:
     :data:`REACH_ULPS` rounding units that :func:`at_reach` puts back at ``±1`` (a limb stretched
     exactly to its reach, whose ``c`` rounded to ``1 + 2e-16``, is at its reach, not out of it).
 
+    Parameters
+    ----------
+    cosine : numpy.ndarray
+        The computed cosines.
+    condition : numpy.ndarray
+        The relative size of their rounding error (broadcast against ``cosine``).
+
+    Returns
+    -------
+    numpy.ndarray of bool
+        True where the limb reaches (to rounding).
+
     Examples
     --------
     >>> within_reach(np.array([1.0 + 4e-16, -1.0 - 1e-15, 1.0 + 1e-12, 0.5]), np.ones(4))
@@ -112,6 +149,16 @@ def within_reach(cosine: np.ndarray, condition: np.ndarray) -> np.ndarray:
 def wrap_angle(angle: np.ndarray) -> np.ndarray:
     """Wrap angles into ``[-π, π)``.
 
+    Parameters
+    ----------
+    angle : numpy.ndarray
+        Angles in radians.
+
+    Returns
+    -------
+    numpy.ndarray
+        The same angles in ``[-π, π)``.
+
     Examples
     --------
     >>> wrap_angle(np.array([3 * np.pi / 2, -np.pi]))
@@ -122,6 +169,18 @@ def wrap_angle(angle: np.ndarray) -> np.ndarray:
 
 def describe_indices(mask: np.ndarray, limit: int = 5) -> str:
     """List (up to ``limit``) batch indices where ``mask`` is True, for error messages.
+
+    Parameters
+    ----------
+    mask : numpy.ndarray of bool
+        Over a batch.
+    limit : int, optional
+        How many indices to list (default 5).
+
+    Returns
+    -------
+    str
+        The first indices, and how many more there are.
 
     Examples
     --------
@@ -211,20 +270,25 @@ def check_parameters(
         object.__setattr__(instance, name, number)
 
 
-def parameters_from_mapping(cls: type[_P], mapping: Any, source: str) -> _P:
+def parameters_from_mapping(dataclass_type: type[_P], mapping: Any, source: str) -> _P:
     """Build a numeric parameters dataclass from a mapping, naming ``source`` in every error.
 
     Parameters
     ----------
-    cls : type
+    dataclass_type : type
         A dataclass whose fields are all real numbers.
     mapping : Mapping
         Field name to value, e.g. a table read with :mod:`tomllib`; optionally the metadata
         ``name`` and ``length_unit`` (non-empty strings), which
         :func:`screwkit.robots.catalog.load_mechanism` passes to every family (not stored here: the
-        catalog's :class:`~screwkit.robots.catalog.Mechanism` keeps them).
+        catalog's :class:`~screwkit.robots.mechanism.Mechanism` keeps them).
     source : str
         Where the mapping comes from (a file name), quoted in error messages.
+
+    Returns
+    -------
+    object
+        An instance of ``dataclass_type``.
 
     Raises
     ------
@@ -246,12 +310,12 @@ def parameters_from_mapping(cls: type[_P], mapping: Any, source: str) -> _P:
     >>> parameters_from_mapping(Link, {"length": 2.0, "name": "arm", "length_unit": "m"}, "r.toml")
     Link(length=2.0)
     """
-    owner = cls.__name__
+    owner = dataclass_type.__name__
     if not isinstance(mapping, Mapping):
         raise CatalogError(
             f"{source}: expected a mapping of {owner} fields, got {type(mapping).__name__}."
         )
-    names = [f.name for f in fields(cls)]  # type: ignore[arg-type]
+    names = [f.name for f in fields(dataclass_type)]  # type: ignore[arg-type]
     for key in _METADATA:
         if key in mapping and (not isinstance(mapping[key], str) or not mapping[key].strip()):
             raise CatalogError(
@@ -264,7 +328,7 @@ def parameters_from_mapping(cls: type[_P], mapping: Any, source: str) -> _P:
         raise CatalogError(
             f"{source}: unknown field(s) {unknown} for {owner}; expected fields {sorted(names)}."
         )
-    required = [f.name for f in fields(cls) if f.default is MISSING]  # type: ignore[arg-type]
+    required = [f.name for f in fields(dataclass_type) if f.default is MISSING]  # type: ignore[arg-type]
     missing = [name for name in required if name not in mapping]
     if missing:
         raise CatalogError(f"{source}: missing field(s) {missing} for {owner}.")
@@ -275,13 +339,27 @@ def parameters_from_mapping(cls: type[_P], mapping: Any, source: str) -> _P:
                 f"{type(value).__name__} {value!r}."
             )
     try:
-        return cls(**mapping)
+        return dataclass_type(**mapping)
     except ScrewkitValueError as err:
         raise ScrewkitValueError(f"{source}: {err}") from err
 
 
 def checked_mode(mode: Any, name: str, length: int) -> tuple[int, ...]:
     """Validate a working or assembly mode: a tuple of ``length`` signs, each +1 or -1.
+
+    Parameters
+    ----------
+    mode : sequence of int
+        The signs.
+    name : str
+        The argument's name, for the error message.
+    length : int
+        How many signs.
+
+    Returns
+    -------
+    tuple of int
+        The signs as Python ints.
 
     Examples
     --------

@@ -1,0 +1,489 @@
+"""A catalog mechanism: a family (:mod:`screwkit.robots.families`) with its parameters, default pose,
+workspace and expected facts, and what it gives at a pose or a batch of poses (the configuration,
+the joint table, the twist graph, and :meth:`Mechanism.at`, the posed mechanism of
+:mod:`screwkit.robots.posed`). Catalog entries are read by :mod:`screwkit.robots.catalog`.
+
+Examples
+--------
+>>> from screwkit.robots.catalog import load_mechanism
+>>> h4 = load_mechanism("h4")
+>>> isinstance(h4, Mechanism), h4.pose_names
+(True, ('x', 'y', 'z', 'phi'))
+"""
+
+from __future__ import annotations
+
+import inspect
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any, Generic, TypeVar
+
+import networkx as nx
+import numpy as np
+
+from ..exceptions import (
+    ScrewkitTypeError,
+    ScrewkitValueError,
+    UnreachablePoseError,
+)
+from ..graphs.jointtable import JointTable
+from .families import Family, families
+from .toml_fields import (
+    MAX_ANGLE_DEGREES,
+    MAX_ANGLE_RADIANS,
+    MAX_COORDINATE,
+)
+
+if TYPE_CHECKING:
+    from ..core.jacobian_matrices import Jacobians
+
+__all__ = ["MAX_REJECTION_ROUNDS", "Mechanism"]
+
+
+#: The family's parameter and configuration types (:class:`~screwkit.robots.families.Family`).
+P = TypeVar("P")
+C = TypeVar("C")
+
+
+Array = np.ndarray
+#: Rounds of redrawing in :meth:`Mechanism.random_poses` before a mostly unreachable workspace is refused.
+MAX_REJECTION_ROUNDS = 50
+
+
+@dataclass(frozen=True, eq=False)
+class Mechanism(Generic[P, C]):
+    """A catalog robot: a family, its parameters, default pose, workspace and expected facts;
+    generic, as its :class:`~screwkit.robots.families.Family`, over the family's parameter type ``P``
+    and configuration type ``C``.
+
+    Attributes
+    ----------
+    name, family, length_unit : str
+    source : str
+        The file it was read from.
+    sources : tuple of str
+        The papers the entry comes from.
+    parameters : P
+        The family's validated parameter dataclass.
+    parameter_sources : dict
+        ``{parameter: {"value", "unit", "source"}}`` as written in the file.
+    default_pose : numpy.ndarray
+        In the file's length unit and **radians** (the file stores degrees).
+    workspace : dict
+        ``{coordinate: (low, high)}``, angles in radians.
+    reachable_fraction : float
+        The share of the workspace box the inverse kinematics reaches (``[workspace]
+        reachable_fraction``, default 1: every pose). Below 1 the box is a bounding box:
+        :meth:`random_poses` draws in its reachable part only, the maps of :mod:`screwkit.analysis.workspace`
+        mask the rest as unreachable (checked by ``tests/test_catalog.py`` against the IK).
+    expected : tuple of dict
+        The ``[[expected]]`` facts.
+    """
+
+    name: str
+    family: str
+    length_unit: str
+    source: str
+    sources: tuple[str, ...]
+    parameters: P
+    parameter_sources: dict[str, dict[str, Any]]
+    default_pose: Array
+    workspace: dict[str, tuple[float, float]]
+    expected: tuple[dict[str, Any], ...] = field(default=())
+    reachable_fraction: float = 1.0
+
+    @property
+    def family_protocol(self) -> Family[P, C]:
+        """The family's four functions (:mod:`screwkit.robots.families`)."""
+        return families()[self.family]
+
+    @property
+    def pose_names(self) -> tuple[str, ...]:
+        """Names of the pose coordinates, e.g. ``('x', 'y', 'z', 'phi')``."""
+        return self.family_protocol.pose_names
+
+    @property
+    def angle_names(self) -> tuple[str, ...]:
+        """The pose coordinates that are angles (radians in the API, degrees in files and the CLI)."""
+        return self.family_protocol.angle_names
+
+    def configuration(self, pose: Any = None, **options: Any) -> C:
+        """The family's configuration (inverse kinematics) at a pose or a batch ``(..., n)``
+        (default: the default pose).
+
+        Parameters
+        ----------
+        pose : array_like, shape (..., n), optional
+            In the file's length unit and radians; default: the default pose.
+        **options
+            Passed to the inverse kinematics (a working mode).
+
+        Returns
+        -------
+        object
+            The family's configuration over the batch (its type is the family's ``C``).
+
+        Examples
+        --------
+        >>> from screwkit.robots.catalog import load_mechanism
+        >>> load_mechanism("h4").configuration().theta.shape
+        (4,)
+        """
+        chosen = self.default_pose if pose is None else pose
+        self._check_options(options)
+        self.check_pose_range(pose, "pose")
+        return self.family_protocol.inverse_kinematics(self.parameters, chosen, **options)
+
+    def _check_options(self, options: Mapping[str, Any]) -> None:
+        """Refuse inverse-kinematics options the family's solver does not take (naming those it does)."""
+        if not options:  # nothing to refuse (and no signature to read, chunk after chunk)
+            return
+        solve = self.family_protocol.inverse_kinematics
+        accepted = [
+            p.name
+            for p in list(inspect.signature(solve).parameters.values())[2:]
+            if p.kind in (p.KEYWORD_ONLY, p.POSITIONAL_OR_KEYWORD)
+        ]
+        unknown = sorted(set(options) - set(accepted))
+        if unknown:
+            raise ScrewkitTypeError(
+                f"Expected inverse-kinematics options of the {self.family} family among {accepted}, "
+                f"got {unknown}."
+            )
+
+    def joints(self, pose: Any = None, **options: Any) -> JointTable:
+        """The joint table at a pose or a batch of poses (the input of the analysis core).
+
+        Parameters
+        ----------
+        pose : array_like, shape (..., n), optional
+            In the file's length unit and radians; default: the default pose.
+        **options
+            Passed to the inverse kinematics (a working mode).
+
+        Returns
+        -------
+        JointTable
+            Every joint's screws over the batch of poses.
+
+        Examples
+        --------
+        >>> from screwkit.robots.catalog import load_mechanism
+        >>> table = load_mechanism("h4").joints(np.zeros((3, 4)) + [0, 0, -750, 0])
+        >>> table.batch_shape, len(table.specs)
+        ((3,), 22)
+        """
+        return self.family_protocol.joint_table(self.configuration(pose, **options))
+
+    def at(
+        self,
+        poses: Any = None,
+        *,
+        rtol: float | None = None,
+        length_scale: float | None = None,
+        **options: Any,
+    ) -> Any:
+        """The mechanism at a batch of poses: a frozen :class:`~screwkit.robots.posed.PosedMechanism` whose
+        stages (IK, joints, wrench systems, verdicts, Jacobians) are computed once, on demand.
+
+        Parameters
+        ----------
+        poses : array_like, shape (..., n), optional
+            In the file's length unit and radians; default: the default pose.
+        rtol : float, optional
+            Relative tolerance of every rank decision (default 1e-9).
+        length_scale : float, optional
+            The characteristic length of the rank decisions, in the file's length unit; default:
+            derived from each pose's screws (:func:`~screwkit.core.wrench_systems.analyze_table`).
+        **options
+            Passed to the inverse kinematics (a working mode).
+
+        Returns
+        -------
+        PosedMechanism
+            The mechanism at ``poses``; its stages are computed on first use.
+
+        Examples
+        --------
+        >>> from screwkit.robots.catalog import load_mechanism
+        >>> posed = load_mechanism("h4").at([[0, 0, -750, 0], [50, 20, -800, 0.3]])
+        >>> posed.verdicts.tolist()
+        ['regular', 'regular']
+        >>> print(posed[1].singularity)  # doctest: +ELLIPSIS
+        regular (dof 4): constraint order 2/2, global order 6/6
+          closeness (0 at a singularity): constraint 0.968, actuation ...
+        """
+        from .posed import PosedMechanism
+
+        self._check_options(options)
+        self.check_pose_range(poses)
+        return PosedMechanism.create(self, poses, rtol=rtol, length_scale=length_scale, options=options)
+
+    def check_pose_range(self, poses: Any, argument: str = "poses") -> None:
+        """Refuse pose coordinates beyond :data:`MAX_COORDINATE` and angles beyond
+        :data:`MAX_ANGLE_RADIANS` (the radian form of the degrees rule, :data:`MAX_ANGLE_DEGREES`).
+
+        Shapes, types and NaN are left to the callee, which names them; this check only bounds sizes.
+
+        Parameters
+        ----------
+        poses : array_like or None
+            Poses ``(..., n)`` in the file's length unit and radians (None: the default pose).
+        argument : str, optional
+            The argument's name, for the error message.
+
+        Raises
+        ------
+        ScrewkitValueError
+            Naming the argument, the angle coordinate, the bound and the value.
+
+        Examples
+        --------
+        >>> from screwkit.robots.catalog import load_mechanism
+        >>> load_mechanism("h4").check_pose_range([0, 0, -750, 1e5])  # doctest: +ELLIPSIS
+        Traceback (most recent call last):
+        ...
+        screwkit.exceptions.ScrewkitValueError: Expected the angle `phi` of `poses` to be at most 17453.3 ...
+        """
+        if poses is None or isinstance(poses, str):
+            return
+        with np.errstate(all="ignore"):
+            try:
+                values = np.abs(np.asarray(poses, dtype=float))
+            except (TypeError, ValueError):  # not numeric: the callee names it
+                return
+        size = np.nanmax(values, initial=0.0)
+        if np.isfinite(size) and size > MAX_COORDINATE:
+            raise ScrewkitValueError(
+                f"Expected pose coordinates up to {MAX_COORDINATE:g} in size ({self.length_unit}, "
+                f"radians), got {size:g}."
+            )
+        if values.ndim == 0 or values.shape[-1] != len(self.pose_names):
+            return
+        for name in self.angle_names:
+            angle = np.nanmax(values[..., self.pose_names.index(name)], initial=0.0)
+            if np.isfinite(angle) and angle > MAX_ANGLE_RADIANS:
+                raise ScrewkitValueError(
+                    f"Expected the angle `{name}` of `{argument}` to be at most {MAX_ANGLE_RADIANS:g} rad "
+                    f"({MAX_ANGLE_DEGREES:g} degrees) in magnitude (beyond it a double no longer holds the "
+                    f"angle to the analysis's precision), got {angle:g} rad."
+                )
+
+    def random_poses(self, rng: np.random.Generator, count: int) -> Array:
+        """Poses drawn uniformly in the *reachable* part of the operational workspace (radians),
+        ``(count, n)``: draws whose inverse kinematics has no solution are drawn again (rejection keeps
+        the distribution uniform; the first ``count`` draws are returned when all are reachable).
+
+        Parameters
+        ----------
+        rng : numpy.random.Generator
+            The source of randomness.
+        count : int
+            How many poses.
+
+        Returns
+        -------
+        numpy.ndarray, shape (count, n)
+            Reachable poses of the workspace box, in the file's length unit and radians.
+
+        Raises
+        ------
+        ScrewkitValueError
+            If ``count`` is not a non-negative integer, or fewer than 1 draw in
+            :data:`MAX_REJECTION_ROUNDS` is reachable (the workspace box is mostly out of reach).
+
+        Examples
+        --------
+        >>> from screwkit.robots.catalog import load_mechanism
+        >>> poses = load_mechanism("h4").random_poses(np.random.default_rng(0), 3)
+        >>> poses.shape
+        (3, 4)
+        """
+        if not isinstance(rng, np.random.Generator):
+            raise ScrewkitTypeError(
+                f"Expected `rng` to be a numpy.random.Generator, got {type(rng).__name__}."
+            )
+        if isinstance(count, bool) or not isinstance(count, int | np.integer) or not 0 <= count <= 10**7:
+            raise ScrewkitValueError(f"Expected `count` to be an integer in 0..10**7, got {count!r}.")
+        low, high = zip(*(self.workspace[c] for c in self.pose_names), strict=True)
+        kept = np.empty((0, len(low)))
+        for _ in range(MAX_REJECTION_ROUNDS):
+            if len(kept) >= count:
+                return kept[:count]
+            draws = rng.uniform(low, high, size=(count - len(kept), len(low)))
+            kept = np.concatenate([kept, draws[self.reachable(draws)]])
+        if len(kept) >= count:
+            return kept[:count]
+        raise ScrewkitValueError(
+            f"{self.source}: [workspace]: only {len(kept)} of the poses drawn in {MAX_REJECTION_ROUNDS} "
+            "rounds "
+            f"are reachable, {count} wanted: the workspace box is mostly out of reach."
+        )
+
+    def reachable(self, poses: Array, **options: Any) -> Array:
+        """Which poses ``(m, n)`` (API units) the inverse kinematics accepts, ``(m,)`` bool.
+
+        The family's vectorised ``reachable(parameters, poses)`` (:class:`~screwkit.robots.families.Family`)
+        when it has one and no option changes the inverse kinematics' domain (the four-limb
+        family: every working mode reaches the same poses), else one batch call of
+        :meth:`configuration`, halved where a batch is refused
+        (:class:`~screwkit.exceptions.UnreachablePoseError`).
+
+        Parameters
+        ----------
+        poses : numpy.ndarray, shape (m, n)
+            In the file's length unit and radians.
+        **options
+            Passed to the inverse kinematics (a working mode).
+
+        Returns
+        -------
+        numpy.ndarray of bool, shape (m,)
+            True where the inverse kinematics accepts the pose.
+
+        Examples
+        --------
+        >>> from screwkit.robots.catalog import load_mechanism
+        >>> load_mechanism("v4").reachable(np.array([[0, 0, -750, 0], [0, 0, -3000, 0]]))
+        array([ True, False])
+        """
+        if len(poses) == 0:
+            return np.zeros(0, dtype=bool)
+        test = self.family_protocol.reachable
+        if test is not None and set(options) <= {"working_mode"}:
+            return np.asarray(test(self.parameters, poses), dtype=bool).reshape(len(poses))
+        return self._reachable_by_halving(poses, options)
+
+    def _reachable_by_halving(self, poses: Array, options: dict[str, Any]) -> Array:
+        """:meth:`reachable` by the inverse kinematics alone."""
+        try:
+            self.configuration(poses, **options)
+            return np.ones(len(poses), dtype=bool)
+        except UnreachablePoseError:
+            if len(poses) == 1:
+                return np.zeros(1, dtype=bool)
+        half = len(poses) // 2
+        halves = (poses[:half], poses[half:])
+        return np.concatenate([self._reachable_by_halving(part, options) for part in halves])
+
+    def wrench_diagram(
+        self, pose: Any = None
+    ) -> tuple[Any, Callable[[np.random.Generator], dict[str, Array]]]:
+        """The wrench diagram at a pose, and a sampler of its recipes at random workspace poses
+        (:meth:`screwkit.robots.posed.Pose.diagram_and_sampler`).
+
+        Parameters
+        ----------
+        pose : array_like, shape (n,), optional
+            In the file's length unit and radians; default: the default pose.
+
+        Returns
+        -------
+        tuple
+            The :class:`~screwkit.gca.diagram.WrenchDiagram` at the pose, and ``sample(rng)``, which gives the
+            diagram's point recipes at a random workspace pose.
+
+        Examples
+        --------
+        >>> from screwkit.robots.catalog import load_mechanism
+        >>> diagram, sampler = load_mechanism("h4").wrench_diagram()
+        >>> sorted(sampler(np.random.default_rng(1)))[:3]
+        ['a', 'b', 'c']
+        """
+        return self.at(None if pose is None else np.asarray(pose, dtype=float)[None])[0].diagram_and_sampler()
+
+    def twist_graph(self, pose: Any = None, **options: Any) -> nx.MultiDiGraph:
+        """The twist graph of the physical mechanism at one pose (default: the default pose).
+
+        Parameters
+        ----------
+        pose : array_like, shape (n,), optional
+            In the file's length unit and radians; default: the default pose.
+        **options
+            Passed to the inverse kinematics (a working mode).
+
+        Returns
+        -------
+        networkx.MultiDiGraph
+            The twist graph of the physical mechanism at that pose.
+
+        Examples
+        --------
+        >>> from screwkit.robots.catalog import load_mechanism
+        >>> load_mechanism("h4").twist_graph().graph["dof"]
+        4
+        """
+        return self._one(pose, options).graph
+
+    def twist_basis(self, pose: Any = None, **options: Any) -> Array:
+        """The platform's nominal twists at a pose (default: the default pose), rows ``(dof, 6)``.
+
+        One twist per pose coordinate, in the order of :attr:`pose_names` (unit rate of that
+        coordinate, user frame): for the Schönflies-motion generators the three translations and
+        the rotation about the end effector's own axis through its reference point, for the planar
+        3-RRP the translations ``x``, ``y`` and the rotation about ``z`` through the platform point.
+        ``options`` go to :meth:`configuration` (e.g. a working mode).
+
+        Parameters
+        ----------
+        pose : array_like, shape (n,), optional
+            In the file's length unit and radians; default: the default pose.
+        **options
+            Passed to the inverse kinematics (a working mode).
+
+        Returns
+        -------
+        numpy.ndarray, shape (dof, 6)
+            One nominal twist per pose coordinate.
+
+        Examples
+        --------
+        >>> from screwkit.robots.catalog import load_mechanism
+        >>> load_mechanism("v4").twist_basis()[3]  # the V4's end effector turns about j
+        array([  0.,   1.,   0., 750.,   0.,   0.])
+        """
+        return self._one(pose, options).twist_basis
+
+    def jacobians(self, pose: Any = None, **options: Any) -> Jacobians:
+        """Forward and inverse Jacobians ``A χ̇ = B θ̇`` from the wrench systems at a pose.
+
+        :func:`screwkit.core.jacobians.jacobians_from_wrenches` of the wrench analysis over
+        :meth:`twist_basis` (so ``χ̇`` are the rates of the pose coordinates), with its
+        Gosselin–Angeles type and closeness measures. ``options`` go to :meth:`configuration`.
+
+        Parameters
+        ----------
+        pose : array_like, shape (n,), optional
+            In the file's length unit and radians; default: the default pose.
+        **options
+            Passed to the inverse kinematics (a working mode).
+
+        Returns
+        -------
+        Jacobians
+            ``A`` and ``B`` of ``A χ̇ = B θ̇`` at that pose, with their type.
+
+        Raises
+        ------
+        ScrewkitError
+            If the pose is out of reach (naming the limb), or the basis is refused at this pose
+            (:func:`~screwkit.core.jacobians.jacobians_from_wrenches`).
+
+        Examples
+        --------
+        >>> from screwkit.robots.catalog import load_mechanism
+        >>> jac = load_mechanism("planar_3rrp").jacobians()
+        >>> jac.type, jac.A.shape, jac.actuated_joints
+        ('regular', (3, 3), ('limb1_R1', 'limb2_R1', 'limb3_R1'))
+        """
+        return self._one(pose, options).jacobians
+
+    def _one(self, pose: Any, options: dict[str, Any]) -> Any:
+        """One pose through the composer (:meth:`at`)."""
+        chosen = None if pose is None else np.asarray(pose, dtype=float)
+        if chosen is not None and chosen.ndim != 1:
+            raise ScrewkitValueError(
+                f"Expected one pose of shape ({len(self.pose_names)},), got {chosen.shape}; "
+                "use at() for batches."
+            )
+        return self.at(chosen, **options)[0]
