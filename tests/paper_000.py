@@ -1,8 +1,7 @@
 """Paper 000's own analysis of the Peppermill: its Jacobians ``A``, ``B`` and their singularities.
 
 Source: paper 000 (Harada & Angeles, "Kinematics and singularity analysis of a CRRHHRRC parallel
-Schönflies motion generator", CSME Trans. 38(2), 2014), file
-``/work/shared/papers/000_15d9b0a17feae437.txt``. The robot model (parameters, inverse and forward
+Schönflies motion generator", CSME Trans. 38(2), 2014) (docs/papers.md). The robot model (parameters, inverse and forward
 kinematics, joints, twist basis) is :mod:`screwkit.robots.families.peppermill`; this module holds what only
 serves to check the paper (``tests/test_families_peppermill.py``, ``tests/test_two_limb_catalog.py``,
 ``tests/test_paper_jacobians.py``, ``tests/facts_two_limb.py``): Eqs. (44)-(48), the factors of

@@ -1,8 +1,7 @@
 """Paper 001's own analysis of the McGill SMG: its Jacobians ``A``, ``B`` and their singularities.
 
 Source: paper 001 (Angeles, Caro, Khan, Morozov, "Kinetostatic design of an innovative
-Schönflies-motion generator", Proc. IMechE C 220(7), 2006), file
-``/work/shared/papers/001_92cd67fab518f4bc.txt``. The robot model (parameters, inverse and forward
+Schönflies-motion generator", Proc. IMechE C 220(7), 2006) (docs/papers.md). The robot model (parameters, inverse and forward
 kinematics, joints, twist basis) is :mod:`screwkit.robots.families.mcgill_smg`; this module holds what
 only serves to check the paper (``tests/test_families_mcgill_smg.py``,
 ``tests/test_two_limb_catalog.py``, ``tests/test_paper_jacobians.py``, ``tests/facts_two_limb.py``):

@@ -2,7 +2,7 @@
 singularity classification, beside the tests that check them.
 
 Source: paper 003 (S. Zarkandi, "A study of the instantaneous centers of rotation in singularities of
-3-DOF fully parallel planar manipulators"), file ``/work/shared/papers/003_37bb0c9b229f0566.txt``;
+3-DOF fully parallel planar manipulators") (docs/papers.md);
 equation numbers are that paper's. The robot model (parameters, kinematics, joint table) is
 :mod:`screwkit.robots.families.planar_3rrp`; screwkit analyses its joint table with the wrench systems,
 and the tests compare the two (``tests/test_planar_catalog.py``, ``tests/facts_planar.py``,

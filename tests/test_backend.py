@@ -102,7 +102,7 @@ def test_is_dof_accepts_numpy_integers_and_rejects_booleans():
     assert not B.is_dof(4.0) and not B.is_dof(-1)
 
 
-# --- the named numeric/symbolic branch points (design.md §4) ---------------------------------------
+# --- the named numeric/symbolic branch points (docs/architecture.md §4) ---------------------------------------
 
 x = sympy.Symbol("x")
 

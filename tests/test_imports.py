@@ -1,4 +1,4 @@
-"""Import cost: sympy loads only when symbolic work starts (design.md §4).
+"""Import cost: sympy loads only when symbolic work starts (docs/architecture.md §4).
 
 ``import screwkit`` (and every module but :mod:`screwkit.gca.conditions`, whose vector forms subclass
 ``sympy.Function``) must not import sympy, nor must a numeric analysis; the symbolic branch loads it

@@ -1,4 +1,4 @@
-"""The notebooks of ``notebooks/`` run top to bottom (design.md §7).
+"""The notebooks of ``notebooks/`` run top to bottom (docs/architecture.md §7).
 
 Each notebook is executed in a fresh Python kernel by nbclient, in the ``notebooks/`` folder, with
 the package as installed; an error or a failed ``assert`` in any cell fails the test, with the

@@ -25,7 +25,7 @@ def test_helical_twist_adds_pitch_times_direction():
 
 
 def test_pitch_of_helical_twist_is_independent_of_axis_length():
-    # design.md warns against a pitch that is right only for unit axes
+    # the architecture notes warn against a pitch that is right only for unit axes
     assert S.pitch(S.helical_twist([0, 0, 7], [3, 1, 0], 0.25)) == pytest.approx(0.25)
 
 
@@ -270,7 +270,7 @@ def test_error_reciprocal_with_non_screw():
 
 
 def test_screw_objects_are_arrays_for_every_kernel():
-    # design.md §1a: np.asarray(screw) is its (6,) array, and functions taking screws accept Screws
+    # docs/architecture.md §1a: np.asarray(screw) is its (6,) array, and functions taking screws accept Screws
     force, couple = Screw.force([1, 0, 0], [0, 0, 2.0]), Screw.couple([0, 1, 0])
     assert np.asarray(force).dtype == float and np.asarray(force).shape == (6,)
     assert float(S.reciprocal_product(force, Screw.revolute([0, 1, 0], [0, 0, 0]))) == pytest.approx(2.0)  # (0, 2, 0)·(0, 1, 0)

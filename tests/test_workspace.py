@@ -517,7 +517,7 @@ def test_progress_line_on_request(capsys):
 
 
 def test_angles_are_radians_by_default_like_the_rest_of_the_api():
-    # design.md §3: the Python API takes radians; angles="deg" is the CLI's and the TOML files' unit
+    # docs/architecture.md §3: the Python API takes radians; angles="deg" is the CLI's and the TOML files' unit
     in_degrees = W.grid_map(H4, "det_A", x=("z", -900, -600, 3), y=("phi", -30, 30, 3), angles="deg")
     in_radians = W.grid_map(H4, "det_A", x=("z", -900, -600, 3), y=("phi", -np.pi / 6, np.pi / 6, 3))
     np.testing.assert_allclose(in_radians.values, in_degrees.values, rtol=1e-12)

@@ -2,7 +2,7 @@
 
 Every other module writes one kernel with ``+ - * @``, :func:`numpy.cross`, :func:`numpy.concatenate`
 and indexing, which numpy supports both for ``float64`` arrays and for ``object`` arrays of sympy
-expressions. What those operators cannot do has a numeric and a symbolic branch (design.md §4), in
+expressions. What those operators cannot do has a numeric and a symbolic branch (docs/architecture.md §4), in
 four modules of one responsibility each:
 
 * this one: input validation and promotion (:func:`as_array`, :func:`promote`: if any input is

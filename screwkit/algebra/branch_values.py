@@ -1,6 +1,6 @@
 """Values of a branch and out of it: zeros and ones, and JSON-ready plain values.
 
-A kernel that builds an array must build it in its inputs' branch (design.md §4): float64, or
+A kernel that builds an array must build it in its inputs' branch (docs/architecture.md §4): float64, or
 exact sympy numbers in an object array, so that no float leaks into a symbolic result
 (:func:`zeros`, :func:`zeros_like`, :func:`ones_like`). Results leave either branch as plain
 JSON-ready values (:func:`plain`, :func:`float_lists`). Part of the numeric/symbolic backend

@@ -19,7 +19,7 @@ Conventions (the one place they are written; every module links here)
 * **Units.** Lengths are in the user's unit; angles in radians. Every zero decision takes a
   relative tolerance ``rtol`` and a characteristic length ``length_scale`` that makes the moment
   half dimensionless (:mod:`screwkit.algebra.ranks`), so answers do not depend on the unit.
-* **Numeric or symbolic.** Every kernel accepts floats or sympy expressions (design.md §4); the
+* **Numeric or symbolic.** Every kernel accepts floats or sympy expressions (docs/architecture.md §4); the
   branch is decided by the inputs, and mixed inputs are promoted to exact sympy numbers.
 
 Examples

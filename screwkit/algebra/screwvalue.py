@@ -3,7 +3,7 @@
 Computation runs on ``(..., 6)`` arrays (:mod:`screwkit.algebra.screw`, where the conventions are
 written); a :class:`Screw` is a frozen facade over a read-only ``(6,)`` array with the same
 constructors, properties and operations as methods, projective equality with a tolerance
-(:meth:`Screw.is_equivalent`; never ``==``) and a JSON-ready :meth:`Screw.to_dict` (design.md §4).
+(:meth:`Screw.is_equivalent`; never ``==``) and a JSON-ready :meth:`Screw.to_dict` (docs/architecture.md §4).
 
 Examples
 --------

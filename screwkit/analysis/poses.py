@@ -1,6 +1,6 @@
 """Poses and units of the maps, loci and paths: pose coordinates in user units, grids of a 2-D slice.
 
-Poses here are in the API's units (design.md §3): lengths in the catalog file's length unit, angles
+Poses here are in the API's units (docs/architecture.md §3): lengths in the catalog file's length unit, angles
 in **radians**, as everywhere in the Python API; ``angles="deg"`` gives ranges, fixed coordinates and
 paths in degrees (as in the TOML files and on the command line, which passes it). A pose is a dict
 ``{name: value}`` over :attr:`~screwkit.robots.mechanism.Mechanism.pose_names` (missing coordinates

@@ -10,7 +10,7 @@ is data: :func:`screwkit.interface.plot.save_map_png` draws it.
 
 Units
 -----
-Poses here are in the API's units (design.md §3): lengths in the catalog file's length unit, angles
+Poses here are in the API's units (docs/architecture.md §3): lengths in the catalog file's length unit, angles
 in **radians**, as everywhere in the Python API; pass ``angles="deg"`` to give ranges, fixed
 coordinates and paths in degrees (as in the TOML files and on the command line, which passes it). A
 pose is a dict ``{name: value}`` over :attr:`~screwkit.robots.mechanism.Mechanism.pose_names` (missing

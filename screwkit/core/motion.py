@@ -12,7 +12,7 @@ built in Python and catalog robots are treated alike:
    *A Mathematical Introduction to Robotic Manipulation*, 1994, §3.2, Eq. 3.22, spatial form);
 2. each joint off the tree closes one loop: the displacement around it must be the identity;
 3. a random step in the null space of the loop-closure matrix (the joint rates the loops allow,
-   design.md §5: the platform's own twist system and the legs' internal motions), then Newton's
+   docs/architecture.md §5: the platform's own twist system and the legs' internal motions), then Newton's
    method (Gauss–Newton with the pseudo-inverse, the minimum-norm correction) on the loop-closure
    equations brings every loop back together; a few such steps move the mechanism well away from
    where it started;

@@ -1,6 +1,6 @@
 """Joints: each gives the unit twists of its child link relative to its parent, at one configuration.
 
-A joint of a twist graph (design.md §5) is a frozen :class:`Joint`: its type, the screws of its
+A joint of a twist graph (docs/architecture.md §5) is a frozen :class:`Joint`: its type, the screws of its
 twist system at the current configuration (rows ``(dof, 6)``, conventions in
 :mod:`screwkit.algebra.screw`), whether it is actuated, whether it is *virtual* (a member of an equivalent
 chain derived by :func:`screwkit.graphs.reduction.equivalent_twist_graph`, paper 002 Fig. 2b–3), and the

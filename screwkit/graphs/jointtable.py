@@ -1,6 +1,6 @@
 """A mechanism's joints over a batch of configurations: the structure once, the screws batched.
 
-A :class:`JointTable` is the input of the analysis core (design.md §1a): its joints' names, types
+A :class:`JointTable` is the input of the analysis core (docs/architecture.md §1a): its joints' names, types
 and links (:class:`JointSpec`, hashable, so the structure is analysed once,
 :func:`screwkit.graphs.topology.topology`) and every joint's screws stacked over a leading batch
 shape. A family's ``joints(config)`` returns one; :meth:`JointTable.from_graph` makes one from any
@@ -76,7 +76,7 @@ MAX_SCREW_MAGNITUDE = 1e100
 class JointTable:
     """A mechanism's joints over a batch of configurations: the structure once, the screws batched.
 
-    The input of the analysis core (design.md §1a): a family's ``joints(config)`` returns one, and
+    The input of the analysis core (docs/architecture.md §1a): a family's ``joints(config)`` returns one, and
     :meth:`from_graph` makes one (a batch of one) from any twist graph.
 
     Attributes

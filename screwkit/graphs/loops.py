@@ -1,4 +1,4 @@
-"""Loops of a twist graph and the loop-closure matrix (paper 002 §4; design.md §5).
+"""Loops of a twist graph and the loop-closure matrix (paper 002 §4; docs/architecture.md §5).
 
 ``nx.cycle_basis`` rejects multigraphs (parallel joints are loops too), so the loops are built
 from a spanning tree from the base and reported as traversed edges ``(u, v, key, "forward" |

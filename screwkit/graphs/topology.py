@@ -2,7 +2,7 @@
 
 Everything here depends on the joints' names, types and connections only, never on their
 screws, so a mechanism's structure is analysed once (and cached, :func:`topology`) and every pose
-of a batch reuses it (design.md §1a).
+of a batch reuses it (docs/architecture.md §1a).
 
 * The **series-parallel tree** (paper 002 Eqs. 1–2; Duffin, *J. Math. Anal. Appl.* 10, 1965):
   links other than base and platform attached by a single joint are dropped (they cannot change

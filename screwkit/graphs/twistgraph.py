@@ -1,4 +1,4 @@
-"""Twist graphs: links are nodes, joints are edges carrying screws (paper 002 §4; design.md §5).
+"""Twist graphs: links are nodes, joints are edges carrying screws (paper 002 §4; docs/architecture.md §5).
 
 A twist graph is a plain :class:`networkx.MultiDiGraph`. Graph attributes ``base`` and
 ``platform`` name the fixed link and the end effector (and optionally ``dof``, the nominal mobility

@@ -1,4 +1,4 @@
-"""The ``screwkit`` command line: a thin layer over the public API (design.md §7).
+"""The ``screwkit`` command line: a thin layer over the public API (docs/architecture.md §7).
 
 ``main(argv=None) -> int`` returns the exit status: 0 success, 1 analysis error (e.g. a pose out of
 reach), 2 usage error (unknown mechanism, malformed arguments). Errors are one line on stderr.

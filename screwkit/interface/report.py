@@ -1,6 +1,6 @@
 """The whole analysis of a mechanism at a pose, as one report (text and JSON): the CLI's main job.
 
-:func:`analyze` composes the public pipeline (design.md §1): twist graph → equivalent graph →
+:func:`analyze` composes the public pipeline (docs/architecture.md §1): twist graph → equivalent graph →
 wrench systems → labels at the pose → wrench diagram → superbracket → conditions. The report says
 what the mechanism is, which wrenches act on its platform (each as a line: kind, direction, a point,
 pitch), the diagram's twelve points in words, the factored superbracket, each factor as a geometric

@@ -15,7 +15,7 @@ Elsewhere: :mod:`screwkit.papers.paper_004_table4` (index extremes over a region
 the generic index of any mechanism (:mod:`screwkit.robots.transmission`).
 
 Source: paper 004 (Wu, Bai, Caro, "A transmission quality index for a class of four-limb parallel
-Schönflies motion generators", JMR 10(5), 2018), file ``/work/shared/papers/004_60e52c5ada55e36d.txt``;
+Schönflies motion generators", JMR 10(5), 2018) (docs/papers.md);
 equation and table numbers are that paper's. Its functions here take a four-limb configuration
 (:class:`screwkit.robots.families.four_limb.configuration.FourLimbConfiguration`, from the
 family's inverse kinematics or :meth:`screwkit.robots.mechanism.Mechanism.configuration`) of any

@@ -5,7 +5,7 @@ a region at a fixed rotation ``φ``, triangulated by marching tetrahedra
 (:func:`screwkit.analysis.isosurface.zero_surface`); drawn by
 :func:`screwkit.interface.plot.plot_singularity_surfaces`.
 
-Source: paper 004 (Wu, Bai, Caro, JMR 10(5), 2018), file ``/work/shared/papers/004_60e52c5ada55e36d.txt``.
+Source: paper 004 (Wu, Bai, Caro, JMR 10(5), 2018) (docs/papers.md).
 
 Examples
 --------

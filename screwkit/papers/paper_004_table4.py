@@ -6,7 +6,7 @@ best points) and :func:`table_4` (each (robot, φ) cell pair of Table 4, the pap
 ours, with the cause of every difference; ``screwkit table4``). The indices are
 :func:`screwkit.papers.paper_004.transmission`'s, fused kernel or numpy.
 
-Source: paper 004 (Wu, Bai, Caro, JMR 10(5), 2018), file ``/work/shared/papers/004_60e52c5ada55e36d.txt``.
+Source: paper 004 (Wu, Bai, Caro, JMR 10(5), 2018) (docs/papers.md).
 
 Examples
 --------

@@ -1,4 +1,4 @@
-"""A mechanism at a batch of poses: every stage computed once, on demand (design.md §1a).
+"""A mechanism at a batch of poses: every stage computed once, on demand (docs/architecture.md §1a).
 
 :meth:`screwkit.robots.mechanism.Mechanism.at` returns a frozen :class:`PosedMechanism`. Its stages are
 cached properties over the whole batch, each built on the one before:

@@ -1,8 +1,7 @@
 """The Peppermill: a CRRHHRRC two-limb Schönflies-motion generator.
 
 Source: paper 000 (Harada & Angeles, "Kinematics and singularity analysis of a CRRHHRRC parallel
-Schönflies motion generator", CSME Trans. 38(2), 2014), file
-``/work/shared/papers/000_15d9b0a17feae437.txt``. Equation and figure numbers refer to it.
+Schönflies motion generator", CSME Trans. 38(2), 2014) (docs/papers.md). Equation and figure numbers refer to it.
 
 The model
 ---------
@@ -24,7 +23,7 @@ Loop closure (Eq. 14): ``d_i a_i + r_i u_i + l_i v_i = -o_i + c + (p_i/2π) φ k
 The nut of limb ``i`` only turns about ``a_i`` relative to the base, and its H axis must stay along
 ``k``, so the R joint at ``P_i`` turns by ``-(θ_i + λ_i)``. The plate turns by ``φ`` relative to the
 nut and, by Eq. (11), moves by ``-(p_i/2π) φ`` along ``k`` relative to it: in the screw convention
-``(s; r × s + h s)`` of design.md §3 the H joint ``nut → platform`` has pitch ``h_i = -p_i/(2π)``.
+``(s; r × s + h s)`` of docs/architecture.md §3 the H joint ``nut → platform`` has pitch ``h_i = -p_i/(2π)``.
 
 Dimensions are not given by paper 000; ``r_i``, ``l_i``, ``b0``, ``p_i`` are parameters (the paper
 chose ``p_2 = -p_1``, Sec. 4.3).
@@ -507,7 +506,7 @@ def forward_kinematics(params: PeppermillParameters, actuated: Any) -> ForwardSo
 
 
 def joints(config: PeppermillConfiguration) -> JointTable:
-    """The joints of the single loop C-R-R-H-H-R-R-C over the batch of ``config`` (design.md §5).
+    """The joints of the single loop C-R-R-H-H-R-R-C over the batch of ``config`` (docs/architecture.md §5).
 
     Per limb ``i``: ``i.slide`` (P, ``base`` → ``i.slider``, along ``a_i``, actuated ``d_i``) and
     ``i.turn`` (R, ``i.slider`` → ``i.proximal``, axis ``a_i`` through ``O_i``, actuated ``θ_i``),

@@ -1,7 +1,7 @@
 """Four-limb Schönflies-motion generators: Quattro, H4, V4, Veloce, Ragnar.
 
 Source: paper 004 (Wu, Bai, Caro, "A transmission quality index for a class of four-limb parallel
-Schönflies motion generators", JMR 10(5), 2018), file ``/work/shared/papers/004_60e52c5ada55e36d.txt``.
+Schönflies motion generators", JMR 10(5), 2018) (docs/papers.md).
 All equation and table numbers below refer to that paper; limbs are numbered 1..4 as in it (array
 index ``i - 1``). The family's modules: :mod:`~screwkit.robots.families.four_limb.parameters` (Table 3),
 :mod:`~screwkit.robots.families.four_limb.configuration`,

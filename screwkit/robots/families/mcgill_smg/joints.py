@@ -30,7 +30,7 @@ __all__ = ["joints", "twist_basis"]
 
 
 def joints(config: McGillConfiguration) -> JointTable:
-    """The 20 physical joints of the McGill SMG over the batch of ``config`` (design.md §1a, §5).
+    """The 20 physical joints of the McGill SMG over the batch of ``config`` (docs/architecture.md §1a, §5).
 
     Each leg is the R-Π-Π-R chain of paper 001 (Sec. 3) with each Π joint modelled by its four
     revolute joints; nothing is reduced, so each leg keeps two closed loops, which

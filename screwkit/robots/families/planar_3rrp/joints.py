@@ -54,7 +54,7 @@ def _in_space(planar: np.ndarray) -> np.ndarray:
 
 
 def joints(config: Planar3RRPConfiguration) -> JointTable:
-    """The joints of the physical mechanism over the batch (design.md §1a, §5).
+    """The joints of the physical mechanism over the batch (docs/architecture.md §1a, §5).
 
     Links are :data:`LINK_NAMES`; per limb ``k`` (:data:`JOINT_PAIRS`, base to platform) the joints
     are ``limb{k}_R1`` (actuated revolute, axis ``z`` through ``M_k``: the screw ``(z; M_k × z)``),
