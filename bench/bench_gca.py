@@ -29,7 +29,7 @@ from _timing import best_of
 
 from screwkit.gca import simplify_superbracket
 from screwkit.gca.conditions import conditions
-from screwkit.gca.diagram import superbracket_analysis
+from screwkit.gca.superbracket_analysis import superbracket_analysis
 from screwkit.robots.catalog import list_mechanisms, load_mechanism
 
 Z = np.array([0.0, 0.0, 1.0])

@@ -24,7 +24,7 @@ from screwkit.analysis.indices import (
 )
 from screwkit.core.singularity import classify, classify_table
 from screwkit.core.wrenches import wrench_analysis
-from screwkit.gca.diagram import diagram_points
+from screwkit.gca.diagram_points import diagram_points
 from screwkit.interface.cli import main
 from screwkit.interface.report import analyze
 from screwkit.robots.catalog import list_mechanisms, load_mechanism

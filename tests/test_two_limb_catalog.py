@@ -24,7 +24,7 @@ from screwkit.core.jacobians import gosselin_angeles_label
 from screwkit.core.singularity import classify
 from screwkit.core.wrenches import wrench_analysis
 from screwkit.exceptions import CatalogError, ScrewkitValueError
-from screwkit.gca.diagram import wrench_diagram
+from screwkit.gca.diagram_recipes import wrench_diagram
 from screwkit.graphs.joints import JointTable
 from screwkit.graphs.twistgraph import equivalent_twist_graph, fundamental_loops, platform_twist_system
 from screwkit.interface.cli import main

@@ -17,7 +17,7 @@ from screwkit.analysis import workspace as W
 from screwkit.core.wrench_systems import analyze_table
 from screwkit.exceptions import DegenerateGeometryError
 from screwkit.gca.conditions import _polynomial
-from screwkit.gca.diagram import batch_diagram_points, diagram_points
+from screwkit.gca.diagram_points import batch_diagram_points, diagram_points
 from screwkit.interface.cli import main
 
 from .singular_surfaces import near_surface_poses, surface_roots

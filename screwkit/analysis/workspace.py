@@ -327,7 +327,7 @@ def _diagram_points(diagram: Any, posed: Any) -> tuple[dict[str, Array], Array]:
     all of them exist ``(n,)``: the batched core with the per-pose frames the recipes read, in
     the core's own chunks (:data:`screwkit.robots.posed.CHUNK` poses), so that only the points are kept."""
     from ..core.wrench_systems import analyze_table
-    from ..gca.diagram import batch_diagram_points
+    from ..gca.diagram_points import batch_diagram_points
     from ..robots.posed import CHUNK as CORE_CHUNK
 
     table, rtol, length = posed.joints, posed.rtol, posed.length_scale
@@ -352,7 +352,7 @@ def _conditions(
 ) -> tuple[Any, tuple[Any, ...], tuple[str, ...], Array]:
     """The wrench diagram, superbracket conditions, their labels and their values at the default
     pose (factored once per mechanism and mode)."""
-    from ..gca.diagram import superbracket_analysis
+    from ..gca.superbracket_analysis import superbracket_analysis
 
     key = tuple(sorted((k, repr(v)) for k, v in options.items()))
     cache = _CONDITIONS.setdefault(mechanism, {})

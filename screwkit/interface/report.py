@@ -54,7 +54,8 @@ from ..graphs.twistgraph import equivalent_twist_graph, fundamental_loops
 from ..robots.catalog import Mechanism, file_kind, load_mechanism, load_snapshot, load_toml
 
 if TYPE_CHECKING:  # the diagram and GCA stack loads when a report is made, not on `import screwkit`
-    from ..gca.diagram import SuperbracketAnalysis, WrenchDiagram
+    from ..gca.diagram import WrenchDiagram
+    from ..gca.superbracket_analysis import SuperbracketAnalysis
 
 __all__ = ["AnalysisReport", "analyze", "describe_twist", "describe_wrench", "pose_report"]
 
@@ -535,7 +536,7 @@ def _graph_report(
             f"{source}: expected numeric joint screws for a report at a pose, got symbols; "
             "use screwkit.core.generic.generic_analysis for a family's generic answers."
         )
-    from ..gca.diagram import graph_diagram
+    from ..gca.diagram_placement import graph_diagram
 
     progress(STAGES[1])
     diagram, sampler = graph_diagram(analysis, length_scale=length_scale)
@@ -632,7 +633,7 @@ def _finish(
         note = "not computed"
     else:
         try:
-            from ..gca.diagram import superbracket_analysis
+            from ..gca.superbracket_analysis import superbracket_analysis
 
             progress(STAGES[2])
             result = superbracket_analysis(diagram, sampler)

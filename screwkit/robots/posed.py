@@ -358,7 +358,8 @@ class Pose:
         """
         from dataclasses import replace
 
-        from ..gca.diagram import ReplaySampler, diagram_at, generic_reference, wrench_diagram
+        from ..gca.diagram_placement import ReplaySampler, diagram_at, generic_reference
+        from ..gca.diagram_recipes import wrench_diagram
 
         analyses, first, stream = self._draws
         reference, reasons = generic_reference(analyses)
@@ -393,7 +394,7 @@ class Pose:
         ScrewkitValueError
             If the mechanism has no wrench diagram of six lines (the reasons found at generic poses).
         """
-        from ..gca.diagram import superbracket_analysis
+        from ..gca.superbracket_analysis import superbracket_analysis
 
         diagram, sampler = self.diagram_and_sampler()
         if diagram.degenerate:
@@ -519,7 +520,7 @@ def generic_samples(
 def _samples(points: Any, analysis: WrenchAnalysis | None, count: int) -> Iterator[dict[str, Array]]:
     """:func:`generic_samples` from the analysis of the drawn poses (None: none reachable), lazily:
     the points are evaluated :data:`SAMPLE_CHUNK` poses at a time, as far as the samples read."""
-    from ..gca.diagram import batch_diagram_points
+    from ..gca.diagram_points import batch_diagram_points
 
     given, total = 0, 0 if analysis is None else len(analysis)
     for start in range(0, total, SAMPLE_CHUNK):
