@@ -23,13 +23,13 @@ from ..algebra import backend as B
 from ..algebra import projective as P
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
 from .notation import (
-    _check_label,
-    _coefficient,
-    _format_bracket,
-    _format_sum,
-    _is_scalar,
-    _parse,
-    _sort_sign,
+    check_label,
+    exact_coefficient,
+    format_bracket,
+    format_sum,
+    is_exact_scalar,
+    parse_terms,
+    sort_sign,
 )
 
 if TYPE_CHECKING:
@@ -60,7 +60,7 @@ def _labels(value: Any, name: str, count: int | None = None) -> tuple[str, ...]:
             f"Expected `{name}` to be a string or a sequence of labels, "
             f"got {type(value).__name__} {value!r}."
         )
-    labels = tuple(_check_label(item, f"{name}[{i}]") for i, item in enumerate(items))
+    labels = tuple(check_label(item, f"{name}[{i}]") for i, item in enumerate(items))
     if count is not None and len(labels) != count:
         raise ScrewkitValueError(
             f"Expected `{name}` to hold {count} labels, got {len(labels)}: {labels}."
@@ -126,8 +126,8 @@ def _as_monomial(value: Any) -> BracketMonomial | None:
         return value
     if isinstance(value, Bracket):
         return BracketMonomial((value,))
-    if _is_scalar(value):
-        return BracketMonomial((), _coefficient(value, "coefficient"))
+    if is_exact_scalar(value):
+        return BracketMonomial((), exact_coefficient(value, "coefficient"))
     return None
 
 
@@ -141,7 +141,7 @@ def _as_polynomial(value: Any) -> BracketPolynomial | None:
 def _operand(value: Any) -> BracketPolynomial | None:
     """The other operand of + - * as a polynomial; floats are refused (coefficients are exact)."""
     if isinstance(value, float | np.floating):
-        _coefficient(value, "coefficient")  # raises ScrewkitTypeError naming the float
+        exact_coefficient(value, "coefficient")  # raises ScrewkitTypeError naming the float
     return _as_polynomial(value)
 
 
@@ -260,7 +260,7 @@ class Bracket(_Algebra):
     @property
     def sign(self) -> int:
         """Sign of the permutation sorting the labels (0 if a label repeats)."""
-        return _sort_sign(self.labels)
+        return sort_sign(self.labels)
 
     @property
     def sorted_labels(self) -> tuple[str, ...]:
@@ -273,7 +273,7 @@ class Bracket(_Algebra):
         return self.sign == 0
 
     def __str__(self) -> str:
-        return _format_bracket(self.labels, (0,) * 4, latex=False)
+        return format_bracket(self.labels, (0,) * 4, latex=False)
 
     def to_latex(self) -> str:
         """LaTeX of the bracket, e.g. ``[gikj]``.
@@ -283,7 +283,7 @@ class Bracket(_Algebra):
         >>> Bracket("r1 r2 r3 r4").to_latex()
         '[r1\\\\,r2\\\\,r3\\\\,r4]'
         """
-        return _format_bracket(self.labels, (0,) * 4, latex=True)
+        return format_bracket(self.labels, (0,) * 4, latex=True)
 
     def relabel(self, mapping: Mapping[str, str]) -> Bracket:
         """Rename labels simultaneously; labels missing from ``mapping`` stay.
@@ -312,7 +312,7 @@ class Bracket(_Algebra):
 
 
 def _relabel(label: str, mapping: Mapping[str, str]) -> str:
-    return _check_label(mapping[label], f"mapping[{label!r}]") if label in mapping else label
+    return check_label(mapping[label], f"mapping[{label!r}]") if label in mapping else label
 
 
 @dataclass(frozen=True, eq=False, slots=True, init=False)
@@ -340,7 +340,7 @@ class BracketMonomial(_Algebra):
         self, brackets: Iterable[Bracket | str | Sequence[str]] = (), coefficient: Any = 1
     ) -> None:
         factors = tuple(b if isinstance(b, Bracket) else Bracket(b) for b in brackets)
-        value = _coefficient(coefficient, "coefficient")
+        value = exact_coefficient(coefficient, "coefficient")
         object.__setattr__(self, "coefficient", value)
         object.__setattr__(self, "brackets", factors)
         sign = math.prod(b.sign for b in factors)  # -1, 0 or 1: no rational product needed
@@ -362,14 +362,14 @@ class BracketMonomial(_Algebra):
         return BracketMonomial(self.brackets + other.brackets, self.coefficient * other.coefficient)
 
     def __str__(self) -> str:
-        return _format_sum([(self.coefficient, self._body(latex=False))], latex=False)
+        return format_sum([(self.coefficient, self._body(latex=False))], latex=False)
 
     def _body(self, *, latex: bool) -> str:
-        return "".join(_format_bracket(b.labels, (0,) * 4, latex=latex) for b in self.brackets)
+        return "".join(format_bracket(b.labels, (0,) * 4, latex=latex) for b in self.brackets)
 
     def to_latex(self) -> str:
         """LaTeX, e.g. ``-2 [abdf][cghj]``."""
-        return _format_sum([(self.coefficient, self._body(latex=True))], latex=True)
+        return format_sum([(self.coefficient, self._body(latex=True))], latex=True)
 
     def relabel(self, mapping: Mapping[str, str]) -> BracketMonomial:
         """Rename labels simultaneously (see :meth:`Bracket.relabel`)."""
@@ -435,7 +435,7 @@ class BracketPolynomial(_Algebra):
         BracketPolynomial('1/2 [abcd] - 3 [abce][dfgh]')
         """
         monomials = []
-        for coefficient, brackets in _parse(text):
+        for coefficient, brackets in parse_terms(text):
             if any(any(kinds) for _, kinds in brackets):
                 raise ScrewkitValueError(
                     f"Expected `text` without dots (use DottedSum.parse for dotted brackets), "
@@ -457,7 +457,7 @@ class BracketPolynomial(_Algebra):
         return f"BracketPolynomial({str(self)!r})"
 
     def __str__(self) -> str:
-        return _format_sum([(m.coefficient, m._body(latex=False)) for m in self.terms], latex=False)
+        return format_sum([(m.coefficient, m._body(latex=False)) for m in self.terms], latex=False)
 
     def to_latex(self) -> str:
         """LaTeX of the sum.
@@ -467,7 +467,7 @@ class BracketPolynomial(_Algebra):
         >>> BracketPolynomial.parse("[abdf][cghj] - 1/2 [abdh][cgfj]").to_latex()
         '[abdf][cghj] - \\\\tfrac{1}{2} [abdh][cgfj]'
         """
-        return _format_sum([(m.coefficient, m._body(latex=True)) for m in self.terms], latex=True)
+        return format_sum([(m.coefficient, m._body(latex=True)) for m in self.terms], latex=True)
 
     @property
     def labels(self) -> tuple[str, ...]:

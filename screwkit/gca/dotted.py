@@ -14,7 +14,7 @@ from typing import Any
 
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
 from .brackets import Bracket, BracketMonomial, BracketPolynomial, _as_monomial, _labels, _relabel
-from .notation import _coefficient, _format_bracket, _format_sum, _parse, _sort_sign
+from .notation import exact_coefficient, format_bracket, format_sum, parse_terms, sort_sign
 
 __all__ = [
     "DottedMonomial",
@@ -43,7 +43,7 @@ def _shuffles(groups: Sequence[int]) -> list[tuple[int, tuple[int, ...]]]:
             for tail in distribute(rest, sizes[1:]):
                 yield chosen + tail
 
-    return [(_sort_sign(order), order) for order in distribute(tuple(range(sum(groups))), groups)]
+    return [(sort_sign(order), order) for order in distribute(tuple(range(sum(groups))), groups)]
 
 
 @dataclass(frozen=True, slots=True, init=False)
@@ -98,7 +98,7 @@ class DottedMonomial:
             )
         object.__setattr__(self, "brackets", labels)
         object.__setattr__(self, "dots", kinds)
-        object.__setattr__(self, "coefficient", _coefficient(coefficient, "coefficient"))
+        object.__setattr__(self, "coefficient", exact_coefficient(coefficient, "coefficient"))
 
     @classmethod
     def parse(cls, text: str) -> DottedMonomial:
@@ -111,7 +111,7 @@ class DottedMonomial:
         >>> DottedMonomial.parse("2[e f ġ ï][ḣ j̈ k l]").dots
         ((0, 0, 1, 2), (1, 2, 0, 0))
         """
-        terms = _parse(text)
+        terms = parse_terms(text)
         if len(terms) != 1:
             raise ScrewkitValueError(
                 f"Expected `text` to be one dotted monomial, got {len(terms)} terms in {text!r}."
@@ -181,16 +181,16 @@ class DottedMonomial:
 
     def _body(self, *, latex: bool) -> str:
         return "".join(
-            _format_bracket(b, d, latex=latex)
+            format_bracket(b, d, latex=latex)
             for b, d in zip(self.brackets, self.dots, strict=True)
         )
 
     def __str__(self) -> str:
-        return _format_sum([(self.coefficient, self._body(latex=False))], latex=False)
+        return format_sum([(self.coefficient, self._body(latex=False))], latex=False)
 
     def to_latex(self) -> str:
         """LaTeX, ``\\dot``, ``\\ddot``, ``\\dddot``, ``\\ddddot`` (amsmath) over dotted letters."""
-        return _format_sum([(self.coefficient, self._body(latex=True))], latex=True)
+        return format_sum([(self.coefficient, self._body(latex=True))], latex=True)
 
     def evaluate(self, points: Mapping[str, Any]) -> Any:
         """Value on points (through :meth:`expand`)."""
@@ -249,7 +249,7 @@ class DottedSum:
         """
         return cls(
             DottedMonomial([b for b, _ in brackets], [d for _, d in brackets], coefficient)
-            for coefficient, brackets in _parse(text)
+            for coefficient, brackets in parse_terms(text)
         )
 
     def expand(self) -> BracketPolynomial:
@@ -264,11 +264,11 @@ class DottedSum:
         return [(t.coefficient, t._body(latex=latex)) for t in self.terms]
 
     def __str__(self) -> str:
-        return _format_sum(self._pairs(latex=False), latex=False)
+        return format_sum(self._pairs(latex=False), latex=False)
 
     def to_latex(self) -> str:
         """LaTeX of the sum."""
-        return _format_sum(self._pairs(latex=True), latex=True)
+        return format_sum(self._pairs(latex=True), latex=True)
 
     def evaluate(self, points: Mapping[str, Any]) -> Any:
         """Value on points (through :meth:`expand`)."""

@@ -23,7 +23,7 @@ from ..exceptions import DegenerateGeometryError, ScrewkitTypeError, ScrewkitVal
 from .brackets import Bracket, BracketMonomial, BracketPolynomial, _labels
 from .dotted import DottedMonomial, DottedSum
 from .expansion import OrderingSearch, _best_ordering, _lines, superbracket_expansion
-from .notation import _MARKS, _format_bracket, _format_sum
+from .notation import DOT_MARKS, format_bracket, format_sum
 from .zeros import Sampler, _check_positive_int, _draw, _drop_zero_monomials, _drop_zero_subsums
 
 __all__ = [
@@ -163,7 +163,7 @@ def _transpositions(
     """``(places, item with x and y exchanged)`` for undotted letters x ≠ y in different brackets,
     at ``places`` (bracket, slot); :func:`_dotted` dots them, and its expansion is ``item − second``
     exactly (the dotted one is built only for an exchange that pairs up)."""
-    if _next_kind(item) > len(_MARKS):
+    if _next_kind(item) > len(DOT_MARKS):
         return
     places = [(b, s) for b, row in enumerate(item.dots) for s, k in enumerate(row) if not k]
     for (b1, s1), (b2, s2) in itertools.combinations(places, 2):
@@ -509,7 +509,7 @@ class FactoredForm:
     def _text(self, *, latex: bool) -> str:
         if self.coefficient == 0:
             return "0"
-        head = "".join(_format_bracket(b.labels, (0,) * 4, latex=latex) for b in self.common)
+        head = "".join(format_bracket(b.labels, (0,) * 4, latex=latex) for b in self.common)
         terms = self.rest.terms
         if self.parts:
             body = head + "".join(_power(part, k, latex=latex) for part, k in self.parts)
@@ -517,7 +517,7 @@ class FactoredForm:
             body = head + terms[0]._body(latex=latex)
         else:
             body = head + _power(self.rest, 1, latex=latex)
-        return _format_sum([(self.coefficient, body)], latex=latex)
+        return format_sum([(self.coefficient, body)], latex=latex)
 
     def __str__(self) -> str:
         return self._text(latex=False)
