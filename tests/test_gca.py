@@ -1140,7 +1140,7 @@ def _sympy_irreducible(poly):
 
 
 def test_multilinear_irreducibility_agrees_with_sympy():
-    from screwkit.gca.simplify import _multilinear_irreducible, _product
+    from screwkit.gca.factoring import _multilinear_irreducible, _product
 
     rng = np.random.default_rng(7)
     names = [(c,) for c in "abcdefgh"]
@@ -1160,7 +1160,7 @@ def test_multilinear_irreducibility_agrees_with_sympy():
 
 
 def test_multilinear_irreducibility_declines_squares():
-    from screwkit.gca.simplify import _multilinear_irreducible
+    from screwkit.gca.factoring import _multilinear_irreducible
 
     a, b = ("a",), ("b",)
     assert not _multilinear_irreducible({(a, a): Fraction(1), (b,): Fraction(1)})  # a² + b: sympy decides

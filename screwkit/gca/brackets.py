@@ -22,6 +22,7 @@ import numpy as np
 from ..algebra import backend as B
 from ..algebra import projective as P
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
+from .labelled_points import point_arrays, scalar_result
 from .notation import (
     check_label,
     exact_coefficient,
@@ -39,16 +40,42 @@ __all__ = [
     "Bracket",
     "BracketMonomial",
     "BracketPolynomial",
+    "as_labels",
+    "as_monomial",
+    "renamed_label",
 ]
 
 
 # --------------------------------------------------------------------------------------------------
-# Points for evaluation (brackets and joins are screwkit.algebra.projective's kernels)
+# Labels
 # --------------------------------------------------------------------------------------------------
 
 
-def _labels(value: Any, name: str, count: int | None = None) -> tuple[str, ...]:
-    """Labels from ``"abcd"`` (single letters), ``"r1 r2 r3 r4"`` or a sequence of strings."""
+def as_labels(value: Any, name: str, count: int | None = None) -> tuple[str, ...]:
+    """Labels from ``"abcd"`` (single letters), ``"r1 r2 r3 r4"`` or a sequence of strings.
+
+    Parameters
+    ----------
+    value : str, sequence of str or Bracket
+    name : str
+        The argument's name, for the messages.
+    count : int, optional
+        The number of labels required.
+
+    Returns
+    -------
+    tuple of str
+
+    Raises
+    ------
+    ScrewkitTypeError, ScrewkitValueError
+        For a value that is not labels, or not ``count`` of them.
+
+    Examples
+    --------
+    >>> as_labels("gikj", "labels"), as_labels("r1 r2", "line", 2)
+    (('g', 'i', 'k', 'j'), ('r1', 'r2'))
+    """
     if isinstance(value, Bracket):
         items: list[Any] = list(value.labels)
     elif isinstance(value, str):
@@ -77,43 +104,7 @@ def _sorted(labels: tuple[str, ...]) -> tuple[str, ...]:
 @functools.lru_cache(maxsize=1 << 16)
 def _bracket_labels(value: str | tuple[str, ...]) -> tuple[str, ...]:
     """Validated labels of a bracket (cached: brackets are built very often while simplifying)."""
-    return _labels(value, "labels", 4)
-
-
-def _point_arrays(
-    points: Any, labels: Iterable[str], *, symbolic: bool | None = None
-) -> dict[str, np.ndarray]:
-    """Validate ``points`` (a mapping label -> (..., 4)), promote them together and broadcast."""
-    if not isinstance(points, Mapping):
-        raise ScrewkitTypeError(
-            f"Expected `points` to be a mapping from labels to points of shape (..., 4), "
-            f"got {type(points).__name__}."
-        )
-    wanted = sorted(set(labels))
-    missing = [label for label in wanted if label not in points]
-    if missing:
-        raise ScrewkitValueError(
-            f"Expected `points` to give a point for every label {wanted}, missing {missing}."
-        )
-    arrays = [
-        B.as_array(points[label], f"points[{label!r}]", (4,), symbolic=symbolic) for label in wanted
-    ]
-    arrays = list(B.promote(*arrays))
-    try:
-        batch = np.broadcast_shapes(*(a.shape[:-1] for a in arrays))
-    except ValueError as err:
-        shapes = {label: a.shape for label, a in zip(wanted, arrays, strict=True)}
-        raise ScrewkitValueError(
-            f"Expected the batch shapes of `points` to broadcast, got {shapes}."
-        ) from err
-    return {label: np.broadcast_to(a, (*batch, 4)) for label, a in zip(wanted, arrays, strict=True)}
-
-
-def _scalar(value: Any) -> Any:
-    """A 0-d result as a scalar (numpy float or sympy expression), batches as arrays."""
-    if isinstance(value, np.ndarray) and value.ndim == 0:
-        return value[()]
-    return value
+    return as_labels(value, "labels", 4)
 
 
 # --------------------------------------------------------------------------------------------------
@@ -121,7 +112,24 @@ def _scalar(value: Any) -> Any:
 # --------------------------------------------------------------------------------------------------
 
 
-def _as_monomial(value: Any) -> BracketMonomial | None:
+def as_monomial(value: Any) -> BracketMonomial | None:
+    """A bracket, a monomial or an exact number as a :class:`BracketMonomial`.
+
+    Parameters
+    ----------
+    value : object
+
+    Returns
+    -------
+    BracketMonomial or None
+        None for any other value.
+
+    Examples
+    --------
+    >>> print(as_monomial(Bracket("abcd"))), as_monomial(0.5)
+    [abcd]
+    (None, None)
+    """
     if isinstance(value, BracketMonomial):
         return value
     if isinstance(value, Bracket):
@@ -134,7 +142,7 @@ def _as_monomial(value: Any) -> BracketMonomial | None:
 def _as_polynomial(value: Any) -> BracketPolynomial | None:
     if isinstance(value, BracketPolynomial):
         return value
-    monomial = _as_monomial(value)
+    monomial = as_monomial(value)
     return None if monomial is None else BracketPolynomial((monomial,))
 
 
@@ -195,7 +203,7 @@ class _Algebra:
         right = _operand(other)
         if right is None:
             return NotImplemented
-        left_monomial, right_monomial = _as_monomial(self), _as_monomial(other)
+        left_monomial, right_monomial = as_monomial(self), as_monomial(other)
         if left_monomial is not None and right_monomial is not None:
             return left_monomial._times(right_monomial)
         return BracketPolynomial(a._times(b) for a in self._polynomial().terms for b in right.terms)
@@ -214,7 +222,7 @@ class _Algebra:
         -t
         """
         polynomial = self._polynomial()
-        arrays = _point_arrays(points, polynomial.labels, symbolic=True)
+        arrays = point_arrays(points, polynomial.labels, symbolic=True)
         if any(a.ndim > 1 for a in arrays.values()):
             raise ScrewkitValueError(
                 "Expected `points` to be single points of shape (4,) for to_sympy, got batches "
@@ -254,7 +262,7 @@ class Bracket(_Algebra):
 
     def __init__(self, labels: str | Sequence[str]) -> None:
         hashable = isinstance(labels, str | tuple)
-        checked = _bracket_labels(labels) if hashable else _labels(labels, "labels", 4)
+        checked = _bracket_labels(labels) if hashable else as_labels(labels, "labels", 4)
         object.__setattr__(self, "labels", checked)
 
     @property
@@ -293,7 +301,7 @@ class Bracket(_Algebra):
         >>> str(Bracket("abcd").relabel({"a": "b", "b": "a"}))
         '[bacd]'
         """
-        return Bracket(tuple(_relabel(label, mapping) for label in self.labels))
+        return Bracket(tuple(renamed_label(label, mapping) for label in self.labels))
 
     def evaluate(self, points: Mapping[str, Any]) -> Any:
         """The determinant, batched over the points' leading axes (or exact if they are sympy).
@@ -307,11 +315,27 @@ class Bracket(_Algebra):
         -------
         float, numpy.ndarray or sympy.Expr
         """
-        arrays = _point_arrays(points, self.labels)
-        return _scalar(P.bracket_unchecked(*(arrays[label] for label in self.labels)))
+        arrays = point_arrays(points, self.labels)
+        return scalar_result(P.bracket_unchecked(*(arrays[label] for label in self.labels)))
 
 
-def _relabel(label: str, mapping: Mapping[str, str]) -> str:
+def renamed_label(label: str, mapping: Mapping[str, str]) -> str:
+    """A label renamed by ``mapping`` (checked), or the label itself when it is not renamed.
+
+    Parameters
+    ----------
+    label : str
+    mapping : mapping of str to str
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> renamed_label("a", {"a": "x"}), renamed_label("b", {"a": "x"})
+    ('x', 'b')
+    """
     return check_label(mapping[label], f"mapping[{label!r}]") if label in mapping else label
 
 
@@ -406,7 +430,7 @@ class BracketPolynomial(_Algebra):
     def __init__(self, terms: Iterable[BracketMonomial | Bracket] = ()) -> None:
         merged: dict[tuple[tuple[str, ...], ...], list[Any]] = {}
         for term in terms:
-            monomial = _as_monomial(term)
+            monomial = as_monomial(term)
             if monomial is None:
                 raise ScrewkitTypeError(
                     f"Expected `terms` to hold bracket monomials, got {type(term).__name__}."
@@ -518,8 +542,8 @@ class BracketPolynomial(_Algebra):
         >>> float(p.evaluate(pts))
         3.0
         """
-        arrays = _point_arrays(points, self.labels)
-        return _scalar(sum(self._term_values(arrays), start=_zero(arrays)))
+        arrays = point_arrays(points, self.labels)
+        return scalar_result(sum(self._term_values(arrays), start=_zero(arrays)))
 
 def _zero(arrays: Mapping[str, np.ndarray]) -> Any:
     """The additive zero matching the branch (sympy zero or a float 0)."""

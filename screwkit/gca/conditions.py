@@ -64,8 +64,8 @@ from ..exceptions import ScrewkitTypeError, ScrewkitValueError
 from .condition_patterns import Factor, bracket_polynomial, vector_form
 from .dotted import DottedMonomial
 from .exact_proofs import prove_proportional
+from .factored import FactoredForm
 from .notation import join_labels
-from .simplify import FactoredForm
 from .vector_forms import PointKinds, form_value
 
 __all__ = [

@@ -13,7 +13,7 @@ from fractions import Fraction
 from typing import Any
 
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
-from .brackets import Bracket, BracketMonomial, BracketPolynomial, _as_monomial, _labels, _relabel
+from .brackets import Bracket, BracketMonomial, BracketPolynomial, as_labels, as_monomial, renamed_label
 from .notation import exact_coefficient, format_bracket, format_sum, parse_terms, sort_sign
 
 __all__ = [
@@ -87,7 +87,7 @@ class DottedMonomial:
         dots: Sequence[Sequence[int]] | None = None,
         coefficient: Any = 1,
     ) -> None:
-        labels = tuple(_labels(b, f"brackets[{i}]", 4) for i, b in enumerate(brackets))
+        labels = tuple(as_labels(b, f"brackets[{i}]", 4) for i, b in enumerate(brackets))
         kinds = tuple((0,) * 4 for _ in labels) if dots is None else _dots(dots, len(labels))
         counts = Counter(kind for row in kinds for kind in row if kind)
         lonely = sorted(kind for kind, count in counts.items() if count < 2)
@@ -128,7 +128,7 @@ class DottedMonomial:
         >>> print(DottedMonomial.from_monomial(-Bracket("gikj")))
         -[gikj]
         """
-        m = _as_monomial(monomial)
+        m = as_monomial(monomial)
         if m is None:
             raise ScrewkitTypeError(
                 f"Expected `monomial` to be a BracketMonomial or a Bracket, "
@@ -176,7 +176,7 @@ class DottedMonomial:
         >>> print(DottedMonomial.parse("[a b ċ d][ė f g h]").relabel({"e": "x"}))
         [a b ċ d][ẋ f g h]
         """
-        renamed = [tuple(_relabel(label, mapping) for label in b) for b in self.brackets]
+        renamed = [tuple(renamed_label(label, mapping) for label in b) for b in self.brackets]
         return DottedMonomial(renamed, self.dots, self.coefficient)
 
     def _body(self, *, latex: bool) -> str:
