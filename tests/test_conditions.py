@@ -27,8 +27,8 @@ from screwkit.gca import (
 from screwkit.gca.conditions import Condition, condition, conditions, label
 from screwkit.gca.vector_forms import VectorDot
 
+from .gca_references import H4, H4_DECLARED, h4_sampler, stacked
 from .strategies import seeds
-from .test_gca import H4, H4_DECLARED, h4_sampler, stacked
 
 
 def det4(*rows):

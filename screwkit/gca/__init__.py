@@ -43,7 +43,7 @@ be written ``"gikj"`` (single letters) or ``"r1 r2 r3 r4"`` (separated by spaces
 
 Notes
 -----
-Checked against the sources (tests/test_gca.py):
+Checked against the sources (tests/test_gca_*.py):
 
 * The 24-term formula of ``gca.md`` §2.1 equals the 6×6 determinant exactly (a proof on all
   369 600 balanced basis configurations, see the test's docstring); the constants of §2.3 hold.
