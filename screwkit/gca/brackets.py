@@ -213,6 +213,15 @@ class _Algebra:
     def to_sympy(self, points: Mapping[str, Any]) -> sympy.Expr:
         """Exact value as one sympy expression (floats become rationals), unexpanded.
 
+        Parameters
+        ----------
+        points : mapping of str to array_like, shape (4,)
+            Single points (numbers or sympy expressions), by label.
+
+        Returns
+        -------
+        sympy.Expr
+
         Examples
         --------
         >>> import sympy
@@ -286,6 +295,10 @@ class Bracket(_Algebra):
     def to_latex(self) -> str:
         """LaTeX of the bracket, e.g. ``[gikj]``.
 
+        Returns
+        -------
+        str
+
         Examples
         --------
         >>> Bracket("r1 r2 r3 r4").to_latex()
@@ -295,6 +308,15 @@ class Bracket(_Algebra):
 
     def relabel(self, mapping: Mapping[str, str]) -> Bracket:
         """Rename labels simultaneously; labels missing from ``mapping`` stay.
+
+        Parameters
+        ----------
+        mapping : mapping of str to str
+            Old label -> new label (checked); labels missing from it stay.
+
+        Returns
+        -------
+        Bracket
 
         Examples
         --------
@@ -392,15 +414,40 @@ class BracketMonomial(_Algebra):
         return "".join(format_bracket(b.labels, (0,) * 4, latex=latex) for b in self.brackets)
 
     def to_latex(self) -> str:
-        """LaTeX, e.g. ``-2 [abdf][cghj]``."""
+        """LaTeX, e.g. ``-2 [abdf][cghj]``.
+
+        Returns
+        -------
+        str
+        """
         return format_sum([(self.coefficient, self._body(latex=True))], latex=True)
 
     def relabel(self, mapping: Mapping[str, str]) -> BracketMonomial:
-        """Rename labels simultaneously (see :meth:`Bracket.relabel`)."""
+        """Rename labels simultaneously (see :meth:`Bracket.relabel`).
+
+        Parameters
+        ----------
+        mapping : mapping of str to str
+            Old label -> new label (checked); labels missing from it stay.
+
+        Returns
+        -------
+        BracketMonomial
+        """
         return BracketMonomial((b.relabel(mapping) for b in self.brackets), self.coefficient)
 
     def evaluate(self, points: Mapping[str, Any]) -> Any:
-        """Value on points (see :meth:`Bracket.evaluate`)."""
+        """Value on points (see :meth:`Bracket.evaluate`).
+
+        Parameters
+        ----------
+        points : mapping of str to array_like, shape (..., 4)
+            The points by label; batches broadcast against each other.
+
+        Returns
+        -------
+        float, numpy.ndarray or sympy.Expr
+        """
         return BracketPolynomial((self,)).evaluate(points)
 
 
@@ -453,6 +500,19 @@ class BracketPolynomial(_Algebra):
     def parse(cls, text: str) -> BracketPolynomial:
         """Read ``"[abdf][cghj] - [abdh][cgfj]"`` (integer or ``p/q`` coefficients, no dots).
 
+        Parameters
+        ----------
+        text : str
+
+        Returns
+        -------
+        BracketPolynomial
+
+        Raises
+        ------
+        ScrewkitValueError
+            For text that is not a sum of bracket monomials, or that has dots.
+
         Examples
         --------
         >>> BracketPolynomial.parse("1/2 [abcd] - 3[abce][dfgh]")
@@ -486,6 +546,10 @@ class BracketPolynomial(_Algebra):
     def to_latex(self) -> str:
         """LaTeX of the sum.
 
+        Returns
+        -------
+        str
+
         Examples
         --------
         >>> BracketPolynomial.parse("[abdf][cghj] - 1/2 [abdh][cgfj]").to_latex()
@@ -500,6 +564,15 @@ class BracketPolynomial(_Algebra):
 
     def relabel(self, mapping: Mapping[str, str]) -> BracketPolynomial:
         """Rename labels simultaneously; monomials that become equal are combined.
+
+        Parameters
+        ----------
+        mapping : mapping of str to str
+            Old label -> new label (checked); labels missing from it stay.
+
+        Returns
+        -------
+        BracketPolynomial
 
         Examples
         --------

@@ -160,7 +160,13 @@ class Condition:
         return f"{self.factor} = 0{power} ⇔ {self.statement} ⇔ {self.expression} = 0"
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready summary."""
+        """JSON-ready summary.
+
+        Returns
+        -------
+        dict
+            Strings, numbers, lists and dicts only (``json.dumps`` takes it).
+        """
         return {
             "factor": str(self.factor),
             "statement": self.statement,
@@ -174,11 +180,21 @@ class Condition:
         }
 
     def to_latex(self) -> str:
-        """LaTeX of the vector form set to zero, vectors in bold."""
+        """LaTeX of the vector form set to zero, vectors in bold.
+
+        Returns
+        -------
+        str
+        """
         return sympy.latex(self.expression) + " = 0"
 
     def factor_latex(self) -> str:
-        """LaTeX of the bracket factor (with its dots and multiplicity) set to zero."""
+        """LaTeX of the bracket factor (with its dots and multiplicity) set to zero.
+
+        Returns
+        -------
+        str
+        """
         text = self.factor.to_latex()
         if self.multiplicity > 1:
             text = rf"\left({text}\right)^{{{self.multiplicity}}}"
@@ -304,6 +320,21 @@ def conditions(
     """One :class:`Condition` per distinct factor of a factored superbracket, with its multiplicity
     and, when the diagram's ``lines`` and ``roles`` are given, its label (:func:`label`).
 
+    Parameters
+    ----------
+    factored : FactoredForm
+    finite, infinite : str or sequence of str
+        The labels of finite points (weight 1) and of infinite points.
+    lines : sequence of pairs of labels, optional
+        The diagram's lines (statements name them; with ``roles``, the labels).
+    roles : sequence of str, optional
+        ``"constraint"`` or ``"actuation"`` per line.
+
+    Returns
+    -------
+    tuple of Condition
+        One per distinct factor, in the order of :attr:`FactoredForm.factors`.
+
     Examples
     --------
     >>> from screwkit.gca import BracketPolynomial, collect_factors
@@ -337,6 +368,10 @@ def latex(factored: FactoredForm, found: Sequence[Condition], lines: str = "") -
         Its conditions (:func:`conditions`).
     lines : str, default ""
         The superbracket's argument, e.g. ``"[ab, cd, ef, gh, ij, kj]"``, printed on the left.
+
+    Returns
+    -------
+    str
 
     Examples
     --------

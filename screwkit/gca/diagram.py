@@ -126,11 +126,22 @@ class WrenchDiagram:
         return tuple(p.label for p in self.points if p.at_infinity)
 
     def line_text(self) -> str:
-        """The superbracket's argument, e.g. ``'[ab, cd, ef, gh, ij, kj]'``."""
+        """The superbracket's argument, e.g. ``'[ab, cd, ef, gh, ij, kj]'``.
+
+        Returns
+        -------
+        str
+        """
         return "[" + ", ".join("".join(line) for line in self.lines) + "]"
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready description."""
+        """JSON-ready description.
+
+        Returns
+        -------
+        dict
+            Strings, numbers, lists and dicts only (``json.dumps`` takes it).
+        """
         return {
             "lines": ["".join(line) for line in self.lines],
             "line_names": list(self.line_names),

@@ -50,6 +50,19 @@ def diagram_at(reference: WrenchDiagram, analysis: WrenchAnalysis) -> WrenchDiag
     a generic pose and use this to place it at the pose of interest; where a recipe has no point
     there, or the lines are not the reference's, ``degenerate`` says why.
 
+    Parameters
+    ----------
+    reference : WrenchDiagram
+        A diagram chosen at a generic pose (:func:`generic_reference`).
+    analysis : WrenchAnalysis
+        One pose of the same mechanism.
+
+    Returns
+    -------
+    WrenchDiagram
+        The reference's points and lines, with this pose's coordinates, and ``degenerate``
+        reasons where the representation fails here.
+
     Examples
     --------
     >>> from screwkit.robots.catalog import load_mechanism
@@ -97,6 +110,18 @@ def generic_reference(
     When none of the first :data:`REFERENCE_TRIES` does, the reasons found at the first are
     properties of the mechanism (a global wrench system of order below 6 everywhere, a constraint
     system not spanned by lines, ...) and are returned with ``None``.
+
+    Parameters
+    ----------
+    analyses : sequence of WrenchAnalysis
+        Single-pose analyses of the mechanism at generic configurations.
+
+    Returns
+    -------
+    diagram : WrenchDiagram or None
+        The first diagram that holds, None when none of the first :data:`REFERENCE_TRIES` does.
+    reasons : tuple of str
+        Why the mechanism has no diagram (empty when it has one).
 
     Examples
     --------
@@ -151,6 +176,23 @@ class ReplaySampler:
         self.drawn: Iterator[dict[str, Array]] = iter(())
 
     def __call__(self, rng: np.random.Generator) -> dict[str, Array]:
+        """The next sample (a new batch is produced when the last one is used up).
+
+        Parameters
+        ----------
+        rng : numpy.random.Generator
+            Unused (the samples come from their own seeded stream).
+
+        Returns
+        -------
+        dict of str to numpy.ndarray, shape (4,)
+            The next sample, ``{label: point}``.
+
+        Raises
+        ------
+        ScrewkitValueError
+            If the producer gives no sample.
+        """
         sample = next(self.drawn, None)
         if sample is None:
             self.drawn = iter(self.produce(self.stream))
@@ -172,6 +214,17 @@ def graph_diagram(
     sampler hands out its points at further generic configurations, ``samples`` at a time
     (analysed as one batch), on which structural zeros are decided. A given ``length_scale`` is
     the generic configurations' too (:func:`~screwkit.core.wrench_systems.analyze_table`; default: derived).
+
+    Parameters
+    ----------
+    analysis : WrenchAnalysis
+        The mechanism at the configuration of interest (one pose).
+    rng : int, default 2026
+        Seed of the generic configurations.
+    samples : int, default 24
+        Generic configurations analysed at a time for the sampler.
+    length_scale : float, optional
+        The generic configurations' characteristic length (default: derived).
 
     Returns
     -------

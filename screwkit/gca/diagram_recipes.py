@@ -96,7 +96,7 @@ def _single_freedom_axes(analysis: WrenchAnalysis, joints: tuple[str, ...]) -> l
 
 
 def wrench_diagram(analysis: WrenchAnalysis) -> WrenchDiagram:
-    """Build the wrench diagram of a mechanism at its pose (module docstring).
+    """Build the wrench diagram of a mechanism at its pose (the rules: :mod:`screwkit.gca.diagram`).
 
     Parameters
     ----------

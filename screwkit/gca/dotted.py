@@ -106,6 +106,14 @@ class DottedMonomial:
 
         Precomposed characters (``ḟ``, ``ï``) and combining marks are both accepted.
 
+        Parameters
+        ----------
+        text : str
+
+        Returns
+        -------
+        DottedMonomial
+
         Examples
         --------
         >>> DottedMonomial.parse("2[e f ġ ï][ḣ j̈ k l]").dots
@@ -123,6 +131,14 @@ class DottedMonomial:
     def from_monomial(cls, monomial: BracketMonomial | Bracket) -> DottedMonomial:
         """The monomial with no dots.
 
+        Parameters
+        ----------
+        monomial : BracketMonomial or Bracket
+
+        Returns
+        -------
+        DottedMonomial
+
         Examples
         --------
         >>> print(DottedMonomial.from_monomial(-Bracket("gikj")))
@@ -138,6 +154,10 @@ class DottedMonomial:
 
     def expand(self) -> BracketPolynomial:
         """The bracket polynomial: signed sum over the shuffles of each dot kind.
+
+        Returns
+        -------
+        BracketPolynomial
 
         Examples
         --------
@@ -171,6 +191,15 @@ class DottedMonomial:
     def relabel(self, mapping: Mapping[str, str]) -> DottedMonomial:
         """Rename labels simultaneously, keeping the dots.
 
+        Parameters
+        ----------
+        mapping : mapping of str to str
+            Old label -> new label (checked); labels missing from it stay.
+
+        Returns
+        -------
+        DottedMonomial
+
         Examples
         --------
         >>> print(DottedMonomial.parse("[a b ċ d][ė f g h]").relabel({"e": "x"}))
@@ -189,11 +218,26 @@ class DottedMonomial:
         return format_sum([(self.coefficient, self._body(latex=False))], latex=False)
 
     def to_latex(self) -> str:
-        """LaTeX, ``\\dot``, ``\\ddot``, ``\\dddot``, ``\\ddddot`` (amsmath) over dotted letters."""
+        """LaTeX, ``\\dot``, ``\\ddot``, ``\\dddot``, ``\\ddddot`` (amsmath) over dotted letters.
+
+        Returns
+        -------
+        str
+        """
         return format_sum([(self.coefficient, self._body(latex=True))], latex=True)
 
     def evaluate(self, points: Mapping[str, Any]) -> Any:
-        """Value on points (through :meth:`expand`)."""
+        """Value on points (through :meth:`expand`).
+
+        Parameters
+        ----------
+        points : mapping of str to array_like, shape (..., 4)
+            The points by label; batches broadcast against each other.
+
+        Returns
+        -------
+        float, numpy.ndarray or sympy.Expr
+        """
         return self.expand().evaluate(points)
 
 
@@ -242,6 +286,14 @@ class DottedSum:
     def parse(cls, text: str) -> DottedSum:
         """Read a sum of dotted monomials.
 
+        Parameters
+        ----------
+        text : str
+
+        Returns
+        -------
+        DottedSum
+
         Examples
         --------
         >>> print(DottedSum.parse("[abcd][e f ġ ï][ḣ j̈ k l] - 2[a b ċ d][ė f g h]"))
@@ -253,11 +305,26 @@ class DottedSum:
         )
 
     def expand(self) -> BracketPolynomial:
-        """Sum of the expansions of the terms."""
+        """Sum of the expansions of the terms.
+
+        Returns
+        -------
+        BracketPolynomial
+        """
         return BracketPolynomial(m for term in self.terms for m in term.expand().terms)
 
     def relabel(self, mapping: Mapping[str, str]) -> DottedSum:
-        """Rename labels simultaneously in every term."""
+        """Rename labels simultaneously in every term.
+
+        Parameters
+        ----------
+        mapping : mapping of str to str
+            Old label -> new label (checked); labels missing from it stay.
+
+        Returns
+        -------
+        DottedSum
+        """
         return DottedSum(term.relabel(mapping) for term in self.terms)
 
     def _pairs(self, *, latex: bool) -> list[tuple[Fraction, str]]:
@@ -267,9 +334,24 @@ class DottedSum:
         return format_sum(self._pairs(latex=False), latex=False)
 
     def to_latex(self) -> str:
-        """LaTeX of the sum."""
+        """LaTeX of the sum.
+
+        Returns
+        -------
+        str
+        """
         return format_sum(self._pairs(latex=True), latex=True)
 
     def evaluate(self, points: Mapping[str, Any]) -> Any:
-        """Value on points (through :meth:`expand`)."""
+        """Value on points (through :meth:`expand`).
+
+        Parameters
+        ----------
+        points : mapping of str to array_like, shape (..., 4)
+            The points by label; batches broadcast against each other.
+
+        Returns
+        -------
+        float, numpy.ndarray or sympy.Expr
+        """
         return self.expand().evaluate(points)

@@ -141,6 +141,14 @@ def superbracket_grouped(lines: Sequence[Sequence[str] | str]) -> DottedSum:
     + [a b ḋ ë]([ċ f̈ g h][i j k l] − [ċ g h i][f̈ j k l] + [ċ g h j][f̈ i k l])``,
     with the slots replaced by the labels of ``lines``.
 
+    Parameters
+    ----------
+    lines : sequence of six pairs of labels
+
+    Returns
+    -------
+    DottedSum
+
     Examples
     --------
     >>> g = superbracket_grouped(["ab", "cd", "ef", "gh", "ij", "kl"])
@@ -320,7 +328,13 @@ class OrderingSearch:
         return len(self.polynomial)
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready summary."""
+        """JSON-ready summary.
+
+        Returns
+        -------
+        dict
+            Strings, numbers, lists and dicts only (``json.dumps`` takes it).
+        """
         return {
             "lines": [list(line) for line in self.lines],
             "sign": self.sign,

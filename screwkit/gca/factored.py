@@ -292,11 +292,22 @@ class FactoredForm:
         return merged
 
     def expand(self) -> BracketPolynomial:
-        """The bracket polynomial ``coefficient × common × rest``."""
+        """The bracket polynomial ``coefficient × common × rest``.
+
+        Returns
+        -------
+        BracketPolynomial
+        """
         return BracketMonomial(self.common, self.coefficient) * self.rest.expand()
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready summary (text, LaTeX, parts and substitutions)."""
+        """JSON-ready summary (text, LaTeX, parts and substitutions).
+
+        Returns
+        -------
+        dict
+            Strings, numbers, lists and dicts only (``json.dumps`` takes it).
+        """
         return {
             "text": str(self),
             "latex": self.to_latex(),
@@ -308,7 +319,17 @@ class FactoredForm:
         }
 
     def evaluate(self, points: Mapping[str, Any]) -> Any:
-        """Value on points (through :meth:`expand`)."""
+        """Value on points (through :meth:`expand`).
+
+        Parameters
+        ----------
+        points : mapping of str to array_like, shape (..., 4)
+            The points by label; batches broadcast against each other.
+
+        Returns
+        -------
+        float, numpy.ndarray or sympy.Expr
+        """
         return self.expand().evaluate(points)
 
     def _text(self, *, latex: bool) -> str:
@@ -328,7 +349,12 @@ class FactoredForm:
         return self._text(latex=False)
 
     def to_latex(self) -> str:
-        """LaTeX of the factored form."""
+        """LaTeX of the factored form.
+
+        Returns
+        -------
+        str
+        """
         return self._text(latex=True)
 
 

@@ -81,7 +81,13 @@ class Proportionality:
     n_samples: int
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready summary."""
+        """JSON-ready summary.
+
+        Returns
+        -------
+        dict
+            Strings, numbers, lists and dicts only (``json.dumps`` takes it).
+        """
         return {
             "constant": self.constant,
             "max_deviation": self.max_deviation,
@@ -191,7 +197,13 @@ class Simplification:
     checks: tuple[tuple[str, Proportionality], ...]
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready summary of every stage."""
+        """JSON-ready summary of every stage.
+
+        Returns
+        -------
+        dict
+            Strings, numbers, lists and dicts only (``json.dumps`` takes it).
+        """
         return {
             "lines": [list(line) for line in self.lines],
             "ordering": None if self.ordering is None else self.ordering.to_dict(),

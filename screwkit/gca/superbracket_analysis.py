@@ -77,7 +77,13 @@ class SuperbracketAnalysis:
     constant: tuple[bool, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready summary."""
+        """JSON-ready summary.
+
+        Returns
+        -------
+        dict
+            Strings, numbers, lists and dicts only (``json.dumps`` takes it).
+        """
         return {
             "superbracket": self.diagram.line_text(),
             "simplification": self.simplification.to_dict(),
@@ -124,6 +130,10 @@ def superbracket_analysis(
         one would already decide; six guard against a configuration near a singularity), and as
         many fresh ones for the checks; drawn once and shared by both orderings.
     rng : int, default 0
+
+    Returns
+    -------
+    SuperbracketAnalysis
 
     Raises
     ------
