@@ -29,7 +29,7 @@ Quantities (:data:`QUANTITIES`)
 ``"condition:K"``
     The vector form of the K-th factor of the superbracket (:mod:`screwkit.gca.conditions`), factored
     once at the default pose and evaluated on the wrench diagram's points over the whole batch
-    (:func:`screwkit.gca.diagram.batch_diagram_points`, from the batched core); a
+    (:func:`screwkit.gca.diagram_points.batch_diagram_points`, from the batched core); a
     :class:`~screwkit.exceptions.DegenerateGeometryError` names the pose where a point of the
     diagram does not exist (e.g. a limb at a serial singularity has no actuation line).
 
@@ -295,7 +295,7 @@ def _transmission_index(posed: Any, quantity: str) -> Array:
 
 def _condition_values(mechanism: Any, index: int, posed: Any) -> Array:
     """The ``index``-th superbracket condition at every pose of ``posed``, as one batch: the
-    diagram's points over the batch (:func:`screwkit.gca.diagram.batch_diagram_points`, from the
+    diagram's points over the batch (:func:`screwkit.gca.diagram_points.batch_diagram_points`, from the
     batched core) and the condition's vector form on them
     (:meth:`screwkit.gca.conditions.Condition.evaluate`).
 
