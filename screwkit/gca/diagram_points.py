@@ -22,9 +22,11 @@ import numpy as np
 
 from ..algebra import backend as B
 from ..algebra import screw as S
+from ..algebra.screwsystem import ScrewSystem
 from ..core import _frames as F
 from ..core.wrench_systems import WrenchAnalysis, analyze_table
 from ..exceptions import DegenerateGeometryError
+from ..graphs.joints import JointTable
 from .diagram import INCIDENCE_RTOL, DiagramPoint, axis_key
 from .diagram_lines import Line, basis_names, leg_name
 
@@ -135,24 +137,19 @@ def batch_diagram_points(
 
 
 class _Batch:
-    """What the recipes read over a batch of ``n`` poses (one pose: a batch of one).
-
-    ``viewed`` is the analysis with its per-pose views (the analysis itself when it kept them, else
-    the same core run again with them): its frames give the series-parallel nodes' twist systems,
-    its per-pose views the readable bases of constraint systems.
-    """
+    """What the recipes read over a batch of ``n`` poses (one pose: a batch of one)."""
 
     def __init__(
-        self, analysis: WrenchAnalysis, viewed: WrenchAnalysis, given: dict[str, Array] | None
+        self,
+        analysis: WrenchAnalysis,
+        frames: Mapping[str, tuple[Array, Array]],
+        given: dict[str, Array] | None,
     ) -> None:
         one = analysis.single
         self.topology = analysis.topology
+        self.rtol = float(analysis.rtol)
         self.table = analysis.table[None] if one else analysis.table
-        frames = viewed.frames
-        if viewed.single:
-            frames = {k: (rows[None], np.asarray(order)[None]) for k, (rows, order) in frames.items()}
-        self.frames: Mapping[str, tuple[Array, Array]] = frames
-        self.viewed = viewed
+        self.frames = frames
         self.reference_point = np.asarray(analysis.reference_point, dtype=float).reshape(-1, 3)
         self.length_scale = np.asarray(analysis.length_scale, dtype=float).reshape(-1)
         self.count = len(self.length_scale)
@@ -167,13 +164,14 @@ class _Batch:
 
     @classmethod
     def create(cls, analysis: WrenchAnalysis, lines: list[Line] | None) -> _Batch:
-        viewed = analysis
-        if "constraint" not in analysis.frames:  # analysed without its views: the same core again, with them
+        frames: Mapping[str, tuple[Array, Array]] = analysis.frames
+        if "constraint" not in frames:  # analysed without its views: the same kernels again, with them
             table = analysis.table[None] if analysis.single else analysis.table
-            length = analysis.length_scale  # given back: the same lengths, the same bits
-            viewed = analyze_table(table, dof=analysis.dof, rtol=analysis.rtol, length_scale=length)
+            frames = _frames_with_views(table, analysis)
+        elif analysis.single:
+            frames = {k: (rows[None], np.asarray(order)[None]) for k, (rows, order) in frames.items()}
         given = None if lines is None else {name: np.asarray(w, dtype=float)[None] for name, _, w, _ in lines}
-        return cls(analysis, viewed, given)
+        return cls(analysis, frames, given)
 
     def nan(self, width: int) -> Array:
         return np.full((self.count, width), np.nan)
@@ -187,40 +185,48 @@ class _Batch:
         return self._constraint_line(name)
 
     def _constraint_line(self, name: str) -> Array:
-        """A constraint line (:func:`screwkit.gca.diagram_lines.select_lines`' names): the element of
-        its leg's (or the mechanism's) readable basis at each pose, as the per-pose views give it."""
+        """A constraint line (:func:`screwkit.gca.diagram_lines.select_lines`' names): the element
+        of its leg's (or the mechanism's) readable basis at each pose, as the per-pose views give
+        it (the same frame conversion, pose by pose, without building the views)."""
         sources = [
-            (f"constraint of the {leg_name(self.topology, k)}", k)
+            (f"constraint of the {leg_name(self.topology, k)}", f"leg{k}:W")
             for k in range(len(self.topology.legs))
             if not self.topology.network
-        ] + [("constraint wrench", None)]
-        for prefix, leg in sources:
+        ] + [("constraint wrench", "constraint")]
+        for prefix, key in sources:
             if not name.startswith(prefix):
                 continue
             out = self.nan(6)
-            for i, basis in enumerate(self._readable_bases(leg)):
+            for i, basis in enumerate(self._readable_bases(key)):
                 names = basis_names(prefix, len(basis))
                 if name in names:
                     out[i] = basis[names.index(name)]
             return out
         return self.nan(6)
 
-    def _readable_bases(self, leg: int | None) -> list[Array]:
-        """The readable basis of a compound leg's constraint system (the mechanism's for None) at
-        each pose, from the per-pose views."""
-        key = "constraint" if leg is None else f"leg{leg}:W"
+    def _readable_bases(self, key: str) -> list[Array]:
+        """The readable basis of a system (a frame) at each pose, as the per-pose views give it."""
         if key not in self.bases:
-            poses = [self.viewed] if self.viewed.single else [self.viewed[i] for i in range(self.count)]
+            rows, orders = self.frames[key]
             self.bases[key] = [
-                (pose.constraint_wrenches if leg is None else pose.compound_legs[leg].constraint_wrenches)
-                .readable_basis()
-                for pose in poses
+                ScrewSystem.from_independent(
+                    F.from_scaled(rows[i, : int(orders[i])], self.reference_point[i], self.length_scale[i]),
+                    rtol=self.rtol,
+                    length_scale=float(self.length_scale[i]),
+                ).readable_basis()
+                for i in range(self.count)
             ]
         return self.bases[key]
 
     def joint_screws(self, name: str) -> Array:
         """``(n, dof_j, 6)``."""
         return np.asarray(self.table.joint_screws(name), dtype=float)
+
+
+def _frames_with_views(table: JointTable, analysis: WrenchAnalysis) -> dict[str, tuple[Array, Array]]:
+    """The per-pose frames of an analysis that kept none (the same core, with its views)."""
+    length = analysis.length_scale  # given back: the same lengths, the same bits
+    return analyze_table(table, dof=analysis.dof, rtol=analysis.rtol, length_scale=length).frames
 
 
 def _finite(points: Array) -> Array:
