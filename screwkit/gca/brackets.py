@@ -30,6 +30,7 @@ from .notation import (
     format_sum,
     is_exact_scalar,
     parse_terms,
+    renamed_label,
     sort_sign,
 )
 
@@ -42,13 +43,7 @@ __all__ = [
     "BracketPolynomial",
     "as_labels",
     "as_monomial",
-    "renamed_label",
 ]
-
-
-# --------------------------------------------------------------------------------------------------
-# Labels
-# --------------------------------------------------------------------------------------------------
 
 
 def as_labels(value: Any, name: str, count: int | None = None) -> tuple[str, ...]:
@@ -105,11 +100,6 @@ def _sorted(labels: tuple[str, ...]) -> tuple[str, ...]:
 def _bracket_labels(value: str | tuple[str, ...]) -> tuple[str, ...]:
     """Validated labels of a bracket (cached: brackets are built very often while simplifying)."""
     return as_labels(value, "labels", 4)
-
-
-# --------------------------------------------------------------------------------------------------
-# The bracket algebra
-# --------------------------------------------------------------------------------------------------
 
 
 def as_monomial(value: Any) -> BracketMonomial | None:
@@ -340,25 +330,6 @@ class Bracket(_Algebra):
         arrays = point_arrays(points, self.labels)
         return scalar_result(P.bracket_unchecked(*(arrays[label] for label in self.labels)))
 
-
-def renamed_label(label: str, mapping: Mapping[str, str]) -> str:
-    """A label renamed by ``mapping`` (checked), or the label itself when it is not renamed.
-
-    Parameters
-    ----------
-    label : str
-    mapping : mapping of str to str
-
-    Returns
-    -------
-    str
-
-    Examples
-    --------
-    >>> renamed_label("a", {"a": "x"}), renamed_label("b", {"a": "x"})
-    ('x', 'b')
-    """
-    return check_label(mapping[label], f"mapping[{label!r}]") if label in mapping else label
 
 
 @dataclass(frozen=True, eq=False, slots=True, init=False)

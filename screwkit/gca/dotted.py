@@ -13,8 +13,8 @@ from fractions import Fraction
 from typing import Any
 
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
-from .brackets import Bracket, BracketMonomial, BracketPolynomial, as_labels, as_monomial, renamed_label
-from .notation import exact_coefficient, format_bracket, format_sum, parse_terms, sort_sign
+from .brackets import Bracket, BracketMonomial, BracketPolynomial, as_labels, as_monomial
+from .notation import exact_coefficient, format_bracket, format_sum, parse_terms, renamed_label, sort_sign
 
 __all__ = [
     "DottedMonomial",

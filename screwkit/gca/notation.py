@@ -15,7 +15,7 @@ from __future__ import annotations
 import functools
 import re
 import unicodedata
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from fractions import Fraction
 from typing import Any
 
@@ -34,6 +34,7 @@ __all__ = [
     "is_exact_scalar",
     "join_labels",
     "parse_terms",
+    "renamed_label",
     "sort_sign",
 ]
 
@@ -249,6 +250,26 @@ def format_sum(terms: Sequence[tuple[Fraction, str]], *, latex: bool) -> str:
         else:
             pieces.append((" - " if coefficient < 0 else " + ") + text)
     return "".join(pieces)
+
+
+def renamed_label(label: str, mapping: Mapping[str, str]) -> str:
+    """A label renamed by ``mapping`` (checked), or the label itself when it is not renamed.
+
+    Parameters
+    ----------
+    label : str
+    mapping : mapping of str to str
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> renamed_label("a", {"a": "x"}), renamed_label("b", {"a": "x"})
+    ('x', 'b')
+    """
+    return check_label(mapping[label], f"mapping[{label!r}]") if label in mapping else label
 
 
 def join_labels(labels: Sequence[str]) -> str:
