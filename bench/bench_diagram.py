@@ -10,7 +10,7 @@ from _timing import best_of
 
 from screwkit.core.motion import generic_configurations
 from screwkit.core.wrenches import wrench_analysis
-from screwkit.gca.diagram import graph_diagram
+from screwkit.gca.diagram_placement import graph_diagram
 from screwkit.robots.catalog import load_mechanism
 
 NAMES = ("h4", "v4", "quattro", "veloce", "ragnar", "mcgill_smg", "peppermill", "planar_3rrp")

@@ -5,9 +5,9 @@ Run: ``python bench/bench_gca.py [--repeats 3]`` from the repository root. Not a
 Two groups:
 
 * the catalog robots: ``Mechanism.wrench_diagram()`` (diagram and sampler) and the 12
-  configurations its sampler draws ("sampling"), then :func:`screwkit.gca.diagram.superbracket_analysis`
-  on those configurations ("GCA": ordering search, expansion, zeros, factoring, statements, exact
-  proofs, labels);
+  configurations its sampler draws ("sampling"), then
+  :func:`screwkit.gca.superbracket_analysis.superbracket_analysis` on those configurations
+  ("GCA": ordering search, expansion, zeros, factoring, statements, exact proofs, labels);
 * diagrams built from their points (gca level): the H4 of paper 002, Tsai's 3-UPU, the 3-RPS, the
   octahedral 3-3 and a general 6-6 Gough–Stewart: :func:`screwkit.gca.simplify_superbracket` then
   :func:`screwkit.gca.conditions.conditions` with the lines' roles.
@@ -29,7 +29,7 @@ from _timing import best_of
 
 from screwkit.gca import simplify_superbracket
 from screwkit.gca.conditions import conditions
-from screwkit.gca.diagram import superbracket_analysis
+from screwkit.gca.superbracket_analysis import superbracket_analysis
 from screwkit.robots.catalog import list_mechanisms, load_mechanism
 
 Z = np.array([0.0, 0.0, 1.0])

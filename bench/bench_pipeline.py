@@ -8,8 +8,8 @@ own line order, and the best of the 46,080 orderings with its search) are timed 
 
 import time
 
-from screwkit.gca import diagram as diagram_module
-from screwkit.gca.diagram import superbracket_analysis
+from screwkit.gca import superbracket_analysis as analysis_module
+from screwkit.gca.superbracket_analysis import superbracket_analysis
 from screwkit.interface.report import analyze
 from screwkit.robots.catalog import load_mechanism
 
@@ -34,7 +34,7 @@ def timed(function):
 
 
 def main():
-    diagram_module.simplify_superbracket = _timed_simplification(diagram_module.simplify_superbracket)
+    analysis_module.simplify_superbracket = _timed_simplification(analysis_module.simplify_superbracket)
     h4 = load_mechanism("h4")
     for run in ("first", "second", "third"):
         diagram_time, (diagram, sampler) = timed(h4.wrench_diagram)

@@ -40,7 +40,7 @@ from _timing import best_of  # noqa: E402  (bench/ is the script folder)
 import screwkit as sk  # noqa: E402
 from screwkit import workspace as W  # noqa: E402
 from screwkit.analysis.quantities import conditions_of  # noqa: E402
-from screwkit.gca.diagram import diagram_points  # noqa: E402
+from screwkit.gca.diagram_points import diagram_points  # noqa: E402
 
 
 def poses_of(posed):

@@ -14,7 +14,8 @@ import numpy as np
 from screwkit.algebra import screw as S
 from screwkit.core.singularity import classify_table
 from screwkit.core.wrenches import wrench_analysis
-from screwkit.gca.diagram import diagram_points, superbracket_analysis
+from screwkit.gca.diagram_points import diagram_points
+from screwkit.gca.superbracket_analysis import superbracket_analysis
 from screwkit.robots.catalog import load_mechanism
 from screwkit.robots.families.planar_3rrp.configuration import Planar3RRPConfiguration
 from screwkit.robots.families.planar_3rrp.joints import joints

@@ -26,7 +26,8 @@ import numpy as np
 from screwkit.core.jacobian_matrices import gosselin_angeles_label
 from screwkit.core.singularity import classify as classify_graph
 from screwkit.core.wrenches import wrench_analysis
-from screwkit.gca.diagram import diagram_points, superbracket_analysis
+from screwkit.gca.diagram_points import diagram_points
+from screwkit.gca.superbracket_analysis import superbracket_analysis
 from screwkit.robots.catalog import load_mechanism
 from screwkit.robots.families import peppermill as pm
 from screwkit.robots.families.mcgill_smg.configuration import McGillConfiguration, leg_pose

@@ -24,10 +24,11 @@ from screwkit.gca import (
     collect_factors,
     simplify_superbracket,
 )
-from screwkit.gca.conditions import Condition, VectorDot, condition, conditions, label
+from screwkit.gca.conditions import Condition, condition, conditions, label
+from screwkit.gca.vector_forms import VectorDot
 
+from .gca_references import H4, H4_DECLARED, h4_sampler, stacked
 from .strategies import seeds
-from .test_gca import H4, H4_DECLARED, h4_sampler, stacked
 
 
 def det4(*rows):
@@ -427,18 +428,19 @@ def test_label_errors():
 
 
 def test_proof_rejects_a_wrong_vector_form():
-    from screwkit.gca.conditions import _prove_proportional, _Types
+    from screwkit.gca.exact_proofs import prove_proportional
+    from screwkit.gca.vector_forms import PointKinds
 
     wrong = sympy.Symbol("b")  # not a scalar form of [abcd]: fails at the exact configurations
     with pytest.raises(ScrewkitValueError, match="to be proportional to"):
-        _prove_proportional(BracketPolynomial.parse("[abcd]"), VectorDot(wrong, wrong), _Types("abcd", ""))
+        prove_proportional(BracketPolynomial.parse("[abcd]"), VectorDot(wrong, wrong), PointKinds("abcd", ""))
 
 
 def test_sum_of_vector_forms_is_sympys_canonical_add():
-    # conditions._sum skips Add.flatten when there is nothing to collect: against sympy.Add itself
+    # vector_forms.vector_sum skips Add.flatten when there is nothing to collect: against sympy.Add
     # (same args in the same order, so the same text and the same left-to-right evaluation), on
     # random sums of the vector forms' products, with like terms, zeros and cancelling pairs
-    from screwkit.gca.conditions import VectorCross, VectorDiff, _sum
+    from screwkit.gca.vector_forms import VectorCross, VectorDiff, vector_sum
 
     rng = random.Random(7)
     names = sympy.symbols("a b c d e f")
@@ -466,7 +468,7 @@ def test_sum_of_vector_forms_is_sympys_canonical_add():
         sympy.core.cache.clear_cache()  # Add(*args) is cached: a cache hit would not call flatten
         with pytest.MonkeyPatch.context() as patch:
             patch.setattr(sympy.Add, "flatten", classmethod(counted))
-            got = _sum(terms)
+            got = vector_sum(terms)
         expected = sympy.Add(*terms)
         assert got == expected and got.args == expected.args and str(got) == str(expected), terms
         fast += isinstance(got, sympy.Add) and not flattened

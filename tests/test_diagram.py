@@ -17,15 +17,10 @@ from screwkit.core.wrench_systems import analyze_table
 from screwkit.core.wrenches import wrench_analysis
 from screwkit.exceptions import DegenerateGeometryError, ScrewkitValueError
 from screwkit.gca import BracketPolynomial, DottedMonomial, check_proportional
-from screwkit.gca.diagram import (
-    batch_diagram_points,
-    diagram_at,
-    diagram_points,
-    graph_diagram,
-    graph_sampler,
-    superbracket_analysis,
-    wrench_diagram,
-)
+from screwkit.gca.diagram_placement import diagram_at, graph_diagram, graph_sampler
+from screwkit.gca.diagram_points import batch_diagram_points, diagram_points
+from screwkit.gca.diagram_recipes import wrench_diagram
+from screwkit.gca.superbracket_analysis import superbracket_analysis
 from screwkit.interface.cli import main
 from screwkit.interface.export import save_snapshot
 from screwkit.interface.report import analyze

@@ -20,7 +20,7 @@ import pytest
 
 from screwkit.core.singularity import classify, classify_table
 from screwkit.core.wrenches import wrench_analysis
-from screwkit.gca.diagram import diagram_points
+from screwkit.gca.diagram_points import diagram_points
 from screwkit.interface.cli import main
 from screwkit.interface.report import analyze
 from screwkit.papers.paper_004 import (

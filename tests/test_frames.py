@@ -1,4 +1,4 @@
-"""The two implementations of :mod:`screwkit.core._frames` (numpy and numba) follow one rule.
+"""The two implementations of :mod:`screwkit.core.frames` (numpy and numba) follow one rule.
 
 Both paths run here whatever this process chose: the numpy kernels are called directly
 (``_frames._span_numpy`` …) and so are the numba ones (skipped, with the reason, when numba is not
@@ -18,10 +18,10 @@ from screwkit.algebra import compiled as C
 from screwkit.algebra import reference_frame as RF
 from screwkit.core import _closed_forms as CF
 from screwkit.core import _closing as CK
-from screwkit.core import _frames as F
 from screwkit.core import _kernel_constants as K
 from screwkit.core import _limbs as LK
 from screwkit.core import _residuals as R
+from screwkit.core import frames as F
 from screwkit.core._program import Program, frame_program, run_program
 from screwkit.core._wrench_pass import canonical
 
@@ -175,7 +175,7 @@ def _probe(code, env):
 
 def test_screwkit_numba_0_selects_numpy():
     code = (
-        "import sys, numpy as np\nfrom screwkit.core import _frames as F\n"
+        "import sys, numpy as np\nfrom screwkit.core import frames as F\n"
         "F.span(np.eye(6)[:2], 1e-9)\nprint(F.backend(), 'numba' in sys.modules)"
     )
     assert _probe(code, {"SCREWKIT_NUMBA": "0"}) == ["numpy", "False"]
@@ -185,7 +185,7 @@ def test_screwkit_numba_0_selects_numpy():
 def test_numba_is_the_default_and_imported_lazily():
     # a small call runs numpy without importing numba; a call of COMPILED_MIN_BATCH frames loads it
     code = (
-        "import sys, numpy as np, screwkit\nfrom screwkit.core import _frames as F\nprint('numba' in sys.modules)\n"
+        "import sys, numpy as np, screwkit\nfrom screwkit.core import frames as F\nprint('numba' in sys.modules)\n"
         "F.span(np.eye(6)[:2], 1e-9)\nprint('numba' in sys.modules)\n"
         "F.span(np.zeros((F.COMPILED_MIN_BATCH - 1, 2, 6)), 1e-9)\nprint('numba' in sys.modules)\n"
         "F.span(np.zeros((F.COMPILED_MIN_BATCH, 2, 6)), 1e-9)\nprint('numba' in sys.modules, F.backend())"

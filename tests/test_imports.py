@@ -1,8 +1,8 @@
 """Import cost: sympy loads only when symbolic work starts (docs/architecture.md §4).
 
-``import screwkit`` (and every module but :mod:`screwkit.gca.conditions`, whose vector forms subclass
-``sympy.Function``) must not import sympy, nor must a numeric analysis; the symbolic branch loads it
-on first use. Each check runs in a fresh interpreter, since this test session has imported sympy.
+``import screwkit`` (and every module but :mod:`screwkit.gca.conditions` and the modules it is built
+on, whose vector forms subclass ``sympy.Function``) must not import sympy, nor must a numeric
+analysis; the symbolic branch loads it on first use. Each check runs in a fresh interpreter, since this test session has imported sympy.
 """
 
 import pkgutil
@@ -14,7 +14,12 @@ import pytest
 import screwkit
 import screwkit.robots.families as families
 
-SYMBOLIC_MODULES = {"screwkit.gca.conditions"}  # sympy expressions all the way down
+SYMBOLIC_MODULES = {  # sympy expressions all the way down
+    "screwkit.gca.conditions",
+    "screwkit.gca.condition_patterns",
+    "screwkit.gca.exact_proofs",
+    "screwkit.gca.vector_forms",
+}
 MODULES = sorted(
     info.name for info in pkgutil.walk_packages(screwkit.__path__, "screwkit.")
     if info.name not in SYMBOLIC_MODULES and info.name != "screwkit.__main__"

@@ -29,7 +29,7 @@ from screwkit.exceptions import (
     ScrewkitValueError,
     TwistGraphError,
 )
-from screwkit.gca.diagram import wrench_diagram
+from screwkit.gca.diagram_recipes import wrench_diagram
 from screwkit.interface.plot import (
     SURFACE_COLOURS,
     UNREACHABLE_COLOUR,

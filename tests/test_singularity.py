@@ -8,7 +8,7 @@ from hypothesis import given, settings
 
 from screwkit.algebra import screw as S
 from screwkit.algebra.screwvalue import Screw
-from screwkit.core import _frames as F
+from screwkit.core import frames as F
 from screwkit.core.singularity import classify, classify_table
 from screwkit.core.verdicts import SingularityReport, classify_analysis
 from screwkit.core.wrenches import normalized_reciprocal_product, wrench_analysis

@@ -25,7 +25,7 @@ from screwkit.core.jacobian_matrices import gosselin_angeles_label
 from screwkit.core.singularity import classify
 from screwkit.core.wrenches import wrench_analysis
 from screwkit.exceptions import CatalogError, ScrewkitValueError
-from screwkit.gca.diagram import wrench_diagram
+from screwkit.gca.diagram_recipes import wrench_diagram
 from screwkit.graphs.jointtable import JointTable
 from screwkit.graphs.loops import fundamental_loops
 from screwkit.graphs.reduction import equivalent_twist_graph, platform_twist_system

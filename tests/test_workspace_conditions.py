@@ -17,8 +17,8 @@ from screwkit.analysis import quantities as Q
 from screwkit.analysis import workspace as W
 from screwkit.core.wrench_systems import analyze_table
 from screwkit.exceptions import DegenerateGeometryError
-from screwkit.gca.conditions import _polynomial
-from screwkit.gca.diagram import batch_diagram_points, diagram_points
+from screwkit.gca.condition_patterns import bracket_polynomial
+from screwkit.gca.diagram_points import batch_diagram_points, diagram_points
 from screwkit.interface.cli import main
 
 from .singular_surfaces import near_surface_poses, surface_roots
@@ -92,7 +92,7 @@ def test_each_bracket_is_a_batched_four_by_four_determinant(h4_poses):
     posed = H4_MECHANISM.at(h4_poses)
     points = batch_diagram_points(diagram.points, analyze_table(posed.joints))
     for condition in conditions:
-        polynomial = _polynomial(condition.factor).evaluate(points)
+        polynomial = bracket_polynomial(condition.factor).evaluate(points)
         form = condition.evaluate(points)
         assert polynomial.shape == form.shape == (len(h4_poses),)
         expected = float(condition.constant) * form

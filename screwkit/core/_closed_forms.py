@@ -1,7 +1,7 @@
 """Closed forms of the rank rule's systems: a rod, a 4S parallelogram, one joint screw more or less (private).
 
 Where a system is known in closed form the analysis core uses it instead of a span and a
-complement (:mod:`screwkit.core._frames`): two spherical joints in series transmit the force along
+complement (:mod:`screwkit.core.frames`): two spherical joints in series transmit the force along
 the line through their centres (:func:`rod`; paper 002 §4.1 models each H4 rod so); two such rods
 in parallel along parallel, distinct lines (a 4S parallelogram) have the wrench and twist systems
 of paper 002 §4.1 (:func:`parallelogram`); a 1-dof joint in series with a node adds one CGS2 step
@@ -26,8 +26,8 @@ import math
 
 import numpy as np
 
-from ._frames import _dot_in_order, empty, reciprocal, span, sum_in_order, swapped
 from ._kernel_constants import CLOSED_FORM_MARGIN
+from .frames import _dot_in_order, empty, reciprocal, span, sum_in_order, swapped
 
 __all__ = [
     "contract",

@@ -2,7 +2,7 @@
 
 Per-pose loops that :func:`screwkit.core._program_numba.run_program` inlines.
 Each loop does, pose by pose, the floating-point operations of its numpy twin in the same order
-(no ``fastmath``), so the two paths agree bit for bit (:mod:`screwkit.core._frames`).
+(no ``fastmath``), so the two paths agree bit for bit (:mod:`screwkit.core.frames`).
 """
 
 from __future__ import annotations

@@ -18,8 +18,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._frames import _dot_in_order, _size, compiled_twin, from_scaled, span
 from ._kernel_constants import COUPLE_RTOL
+from .frames import _dot_in_order, _size, compiled_twin, from_scaled, span
 
 __all__ = [
     "UPPER",

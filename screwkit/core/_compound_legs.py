@@ -25,9 +25,9 @@ from typing import NamedTuple
 import numpy as np
 
 from ..graphs.topology import Topology
-from . import _frames as F
 from . import _limbs as LK
 from . import _residuals as R
+from . import frames as F
 from ._program import Evaluation, Frame
 from .line_search import nearest_lines
 

@@ -1,7 +1,7 @@
-"""numba kernels of :mod:`screwkit.core._frames`: the rank rule (private; imported on a first large call).
+"""numba kernels of :mod:`screwkit.core.frames`: the rank rule (private; imported on a first large call).
 
 Each kernel loops over a flat batch ``(n, ...)`` and does, pose by pose, what the numpy path of
-:mod:`screwkit.core._frames` does over the whole batch: the same rule (pivot choice, threshold, CGS2
+:mod:`screwkit.core.frames` does over the whole batch: the same rule (pivot choice, threshold, CGS2
 re-orthogonalisation, complete Householder QR) and the same floating-point operations in the same
 order (no ``fastmath``: nothing is reordered or fused), so the two paths agree bit for bit. A pose's
 answer depends only on that pose's input (no reduction across the batch, no BLAS call), so single

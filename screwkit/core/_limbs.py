@@ -4,7 +4,7 @@ After the frame program (:mod:`screwkit.core._program`) gives each limb's twists
 locked and its passive wrenches, these kernels find the limb's free twists, whether it is at a
 serial singularity, the direction of its actuation wrench, whether that is a line, and its
 transmission index (paper 002 §4.3, paper 004 §1), in scaled coordinates
-(:mod:`screwkit.core._frames`). Each numpy path does the operations of its compiled twin
+(:mod:`screwkit.core.frames`). Each numpy path does the operations of its compiled twin
 (:mod:`screwkit.core._limbs_numba`) in their order: the two agree bit for bit.
 
 Examples
@@ -18,14 +18,14 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._frames import (
+from ._residuals import _residual_numpy, residuals_against
+from .frames import (
     _dot_in_order,
     _size,
     compiled_twin,
     sum_in_order,
     swapped,
 )
-from ._residuals import _residual_numpy, residuals_against
 
 __all__ = [
     "actuation_directions",

@@ -1,7 +1,7 @@
 """numba kernels of :mod:`screwkit.core._limbs`: limbs' systems, actuation wrenches, transmissions (private).
 
 Each loop does, pose by pose, the floating-point operations of its numpy twin in the same order
-(no ``fastmath``), so the two paths agree bit for bit (:mod:`screwkit.core._frames`).
+(no ``fastmath``), so the two paths agree bit for bit (:mod:`screwkit.core.frames`).
 """
 
 from __future__ import annotations

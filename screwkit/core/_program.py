@@ -6,7 +6,7 @@ is recorded once per topology and set of requested frames (:func:`frame_program`
 spans, reciprocals and closed forms (:mod:`screwkit.core._closed_forms`). :func:`run_program` runs
 a program over a batch of scaled joint screws: one compiled call on the numba path
 (:func:`screwkit.core._program_numba.run_program`), op by op with the batched kernels of
-:mod:`screwkit.core._frames` on the numpy path (the same operations: bit for bit).
+:mod:`screwkit.core.frames` on the numpy path (the same operations: bit for bit).
 :class:`Evaluation` caches the frames of one batch, and runs the loop closure of a graph that does
 not reduce (:meth:`Evaluation.network`).
 
@@ -33,7 +33,7 @@ import numpy as np
 
 from ..graphs.topology import Node, Topology, network_layout
 from . import _closed_forms as CF
-from . import _frames as F
+from . import frames as F
 from ._kernel_constants import (
     COMPANION,
     CONTRACT,
@@ -72,7 +72,7 @@ Request = tuple[str, Any]
 class Program:
     """A topology's frames as a flat list of operations, built once per topology and requests
     (:func:`frame_program`) and run over a batch by :func:`run_program` (one compiled call on the numba path,
-    op by op with the batched kernels of :mod:`screwkit.core._frames` on the numpy path).
+    op by op with the batched kernels of :mod:`screwkit.core.frames` on the numpy path).
 
     Each op writes a new slot (its index): ``(code, slot, first, count)`` with ``code`` a span of
     ``sources[first : first + count]`` (rows ``(kind, a, b)``: joint screw rows ``a .. a + b`` or

@@ -3,7 +3,7 @@
 The compiled loop that runs a mechanism's whole program pose by pose, op by op, with
 the rank rule's and the closed forms' per-pose loops.
 Each loop does, pose by pose, the floating-point operations of its numpy twin in the same order
-(no ``fastmath``), so the two paths agree bit for bit (:mod:`screwkit.core._frames`).
+(no ``fastmath``), so the two paths agree bit for bit (:mod:`screwkit.core.frames`).
 """
 
 from __future__ import annotations

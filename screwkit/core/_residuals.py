@@ -1,7 +1,7 @@
 """Residuals of vectors against frames: each vector less its projections on a frame's rows (private).
 
 Classical Gram–Schmidt applied twice (CGS2, Giraud et al., *Numer. Math.* 101, 2005) against the
-orthonormal rows of a frame (:mod:`screwkit.core._frames`): the part of a twist outside a twist
+orthonormal rows of a frame (:mod:`screwkit.core.frames`): the part of a twist outside a twist
 system (a limb's ``t⊥``), of a wrench outside a leg's constraint system. The numpy path does the
 compiled loop's operations in its order (:func:`screwkit.core._frames_numba.residual`): the two
 agree bit for bit.
@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._frames import _dot_in_order, _import_kernels, _numba_kernels, _size
+from .frames import _dot_in_order, _import_kernels, _numba_kernels, _size
 
 __all__ = ["residual", "residuals_against"]
 

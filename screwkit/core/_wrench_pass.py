@@ -29,9 +29,9 @@ from ..exceptions import ScrewkitValueError, TwistGraphError
 from ..graphs.jointtable import JointTable
 from ..graphs.topology import Topology, topology
 from . import _closing as CK
-from . import _frames as F
 from . import _limbs as LK
 from . import _residuals as R
+from . import frames as F
 from ._compound_legs import apart_from_legs, compound_legs, coupled_limbs, leg_of, leg_residuals
 from ._program import Evaluation, Frame, Request, limb_frame, stacked
 from .line_search import LINE_RTOL, line_search, nearest_lines

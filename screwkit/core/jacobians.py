@@ -115,7 +115,7 @@ from ..algebra import screw as S
 from ..algebra.checks import checked_rtol
 from ..algebra.ranks import screw_singular_values
 from ..exceptions import DegenerateGeometryError, ScrewkitTypeError, ScrewkitValueError, TwistGraphError
-from . import _frames as F
+from . import frames as F
 from .jacobian_matrices import Jacobians, _plain, _safe_divide
 from .singularity import classify_poses
 from .wrench_systems import WrenchAnalysis

@@ -43,7 +43,7 @@ def nearest_lines(wrench: Array, constraints_at: Callable[[Array], Array], order
     Parameters
     ----------
     wrench : numpy.ndarray, shape (..., 6)
-        Unit wrenches in scaled coordinates (:mod:`screwkit.core._frames`).
+        Unit wrenches in scaled coordinates (:mod:`screwkit.core.frames`).
     constraints_at : callable
         ``constraints_at(where)`` gives the constraint system's rows ``(m, 6, 6)`` (orthonormal,
         zero beyond the order) at a boolean mask of the batch; asked only where a wrench is searched.

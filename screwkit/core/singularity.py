@@ -67,7 +67,7 @@ def classify(
         any other value is refused (:func:`~screwkit.core.wrenches.wrench_analysis`).
     joint_key : str
     rtol : float, default 1e-9
-        Relative tolerance of every rank decision (:mod:`screwkit.core._frames`).
+        Relative tolerance of every rank decision (:mod:`screwkit.core.frames`).
     length_scale : float, optional
         The characteristic length of the rank decisions, in the screws' unit; default: derived
         from the screws (:func:`~screwkit.core.wrench_systems.analyze_table`).

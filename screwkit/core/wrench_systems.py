@@ -11,7 +11,7 @@ one, :func:`screwkit.core.wrenches.wrench_analysis`), with the structure analyse
   §4.3): its twist system with the actuator locked (the *passive* wrenches are its reciprocal),
   with it free (the limb's constraint wrenches are its reciprocal), and its **actuation wrench**:
   the passive wrench most reciprocal-productive with the actuated twist. In the scaled metric
-  (:mod:`screwkit.core._frames`) that is ``SWAP·t⊥`` with ``t⊥`` the actuated twist's component
+  (:mod:`screwkit.core.frames`) that is ``SWAP·t⊥`` with ``t⊥`` the actuated twist's component
   orthogonal to the locked twist system, defined up to the limb's constraint wrenches and made a
   line where adding one of them can (the representative drawn in diagrams). The actuator
   cannot move the platform (a *serial singularity* of the limb) when ``t⊥`` vanishes. Where
@@ -22,7 +22,7 @@ one, :func:`screwkit.core.wrenches.wrench_analysis`), with the structure analyse
   ``W^c`` (paper 002 Eq. 3);
 * the **global wrench system** ``W^c + W^a`` (paper 002 Eq. 4): a 6-system at a regular pose.
 
-Every decision is one rank rule (:mod:`screwkit.core._frames`), made about the reference point and
+Every decision is one rank rule (:mod:`screwkit.core.frames`), made about the reference point and
 length of :func:`screwkit.algebra.reference_frame.mechanism_frame` so that it follows rigid motions and
 changes of unit; results are reported in the user's frame. The pass itself is
 :mod:`screwkit.core._wrench_pass`; this module holds its result, :class:`WrenchAnalysis`, with the
@@ -56,7 +56,7 @@ from ..graphs.jointtable import JointTable
 from ..graphs.reduction import SeriesParallelNode
 from ..graphs.topology import Topology
 from . import _closing as CK
-from . import _frames as F
+from . import frames as F
 from ._program import Evaluation, Frame
 from ._wrench_pass import scalar, wrench_pass
 
@@ -434,7 +434,7 @@ def analyze_table(
     dof : int, optional
         Nominal mobility; default: the table's ``dof``, else the number of actuated joints.
     rtol : float, default 1e-9
-        Relative tolerance of every rank decision (:mod:`screwkit.core._frames`).
+        Relative tolerance of every rank decision (:mod:`screwkit.core.frames`).
     length_scale : float or array_like of the batch shape, optional
         The characteristic length moments are divided by before every rank decision, in the
         screws' length unit; default: :func:`~screwkit.algebra.reference_frame.mechanism_frame`'s, derived

@@ -10,8 +10,10 @@ seed paper's zero-pitch wrench ``(s, r × s)`` (paper 002, §5.1). The superbrac
 paper 002, §5.2). In this convention it equals the 24-term bracket
 polynomial of ``gca.md`` §2.1 with constant exactly +1 (:func:`superbracket_expansion`).
 
-The package has three layers; its modules, in import order notation → brackets → dotted → zeros →
-expansion → simplify, each import only earlier ones:
+The package has four layers; its modules, in import order notation → brackets → dotted → zeros →
+expansion → factoring → factored → simplify → vector_forms → exact_proofs → condition_patterns →
+conditions and diagram → diagram_lines → diagram_points → diagram_recipes → diagram_placement →
+superbracket_analysis, each import only earlier ones:
 
 * exact bracket algebra: :mod:`~screwkit.gca.notation` (labels, signs, printed and parsed text),
   :mod:`~screwkit.gca.brackets` (:class:`Bracket`, :class:`BracketMonomial`, :class:`BracketPolynomial`:
@@ -25,16 +27,23 @@ expansion → simplify, each import only earlier ones:
 * the simplification procedure of ``gca.md`` §6, each step checked numerically on configurations
   drawn from a *sampler* (a callable ``rng -> {label: point (4,)}`` whose configurations satisfy
   the mechanism's incidences): :mod:`~screwkit.gca.zeros` (:func:`structural_zeros`,
-  :func:`drop_zero_subsums`, also used by the ordering search) and :mod:`~screwkit.gca.simplify`
-  (:func:`collect_factors`, :func:`check_proportional`, and the whole chain
-  :func:`simplify_superbracket`).
+  :func:`drop_zero_subsums`, also used by the ordering search), :mod:`~screwkit.gca.factoring`
+  (bracket polynomials factored over the rationals), :mod:`~screwkit.gca.factored`
+  (:func:`collect_factors`) and :mod:`~screwkit.gca.simplify` (:func:`check_proportional`, and the
+  whole chain :func:`simplify_superbracket`);
+* the interpretation of the factors (``gca.md`` §5): :mod:`~screwkit.gca.vector_forms`,
+  :mod:`~screwkit.gca.exact_proofs`, :mod:`~screwkit.gca.condition_patterns` and
+  :mod:`~screwkit.gca.conditions` (symbolic: they import sympy), and the wrench diagrams of
+  mechanisms, :mod:`~screwkit.gca.diagram` and the modules named there, up to
+  :mod:`~screwkit.gca.superbracket_analysis` (they import the wrench core). This ``__init__``
+  imports neither group.
 
 Labels are short strings: a letter followed by letters or digits (``"a"``, ``"r1"``). A bracket may
 be written ``"gikj"`` (single letters) or ``"r1 r2 r3 r4"`` (separated by spaces).
 
 Notes
 -----
-Checked against the sources (tests/test_gca.py):
+Checked against the sources (tests/test_gca_*.py):
 
 * The 24-term formula of ``gca.md`` §2.1 equals the 6×6 determinant exactly (a proof on all
   369 600 balanced basis configurations, see the test's docstring); the constants of §2.3 hold.
@@ -77,12 +86,11 @@ from .expansion import (
     superbracket_expansion,
     superbracket_grouped,
 )
+from .factored import FactoredForm, collect_factors
 from .simplify import (
-    FactoredForm,
     Proportionality,
     Simplification,
     check_proportional,
-    collect_factors,
     simplify_superbracket,
 )
 from .zeros import drop_zero_subsums, structural_zeros

@@ -22,14 +22,16 @@ import numpy as np
 from ..algebra import backend as B
 from ..algebra import projective as P
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
+from .labelled_points import point_arrays, scalar_result
 from .notation import (
-    _check_label,
-    _coefficient,
-    _format_bracket,
-    _format_sum,
-    _is_scalar,
-    _parse,
-    _sort_sign,
+    check_label,
+    exact_coefficient,
+    format_bracket,
+    format_sum,
+    is_exact_scalar,
+    parse_terms,
+    renamed_label,
+    sort_sign,
 )
 
 if TYPE_CHECKING:
@@ -39,16 +41,36 @@ __all__ = [
     "Bracket",
     "BracketMonomial",
     "BracketPolynomial",
+    "as_labels",
+    "as_monomial",
 ]
 
 
-# --------------------------------------------------------------------------------------------------
-# Points for evaluation (brackets and joins are screwkit.algebra.projective's kernels)
-# --------------------------------------------------------------------------------------------------
+def as_labels(value: Any, name: str, count: int | None = None) -> tuple[str, ...]:
+    """Labels from ``"abcd"`` (single letters), ``"r1 r2 r3 r4"`` or a sequence of strings.
 
+    Parameters
+    ----------
+    value : str, sequence of str or Bracket
+    name : str
+        The argument's name, for the messages.
+    count : int, optional
+        The number of labels required.
 
-def _labels(value: Any, name: str, count: int | None = None) -> tuple[str, ...]:
-    """Labels from ``"abcd"`` (single letters), ``"r1 r2 r3 r4"`` or a sequence of strings."""
+    Returns
+    -------
+    tuple of str
+
+    Raises
+    ------
+    ScrewkitTypeError, ScrewkitValueError
+        For a value that is not labels, or not ``count`` of them.
+
+    Examples
+    --------
+    >>> as_labels("gikj", "labels"), as_labels("r1 r2", "line", 2)
+    (('g', 'i', 'k', 'j'), ('r1', 'r2'))
+    """
     if isinstance(value, Bracket):
         items: list[Any] = list(value.labels)
     elif isinstance(value, str):
@@ -60,7 +82,7 @@ def _labels(value: Any, name: str, count: int | None = None) -> tuple[str, ...]:
             f"Expected `{name}` to be a string or a sequence of labels, "
             f"got {type(value).__name__} {value!r}."
         )
-    labels = tuple(_check_label(item, f"{name}[{i}]") for i, item in enumerate(items))
+    labels = tuple(check_label(item, f"{name}[{i}]") for i, item in enumerate(items))
     if count is not None and len(labels) != count:
         raise ScrewkitValueError(
             f"Expected `{name}` to hold {count} labels, got {len(labels)}: {labels}."
@@ -77,71 +99,47 @@ def _sorted(labels: tuple[str, ...]) -> tuple[str, ...]:
 @functools.lru_cache(maxsize=1 << 16)
 def _bracket_labels(value: str | tuple[str, ...]) -> tuple[str, ...]:
     """Validated labels of a bracket (cached: brackets are built very often while simplifying)."""
-    return _labels(value, "labels", 4)
+    return as_labels(value, "labels", 4)
 
 
-def _point_arrays(
-    points: Any, labels: Iterable[str], *, symbolic: bool | None = None
-) -> dict[str, np.ndarray]:
-    """Validate ``points`` (a mapping label -> (..., 4)), promote them together and broadcast."""
-    if not isinstance(points, Mapping):
-        raise ScrewkitTypeError(
-            f"Expected `points` to be a mapping from labels to points of shape (..., 4), "
-            f"got {type(points).__name__}."
-        )
-    wanted = sorted(set(labels))
-    missing = [label for label in wanted if label not in points]
-    if missing:
-        raise ScrewkitValueError(
-            f"Expected `points` to give a point for every label {wanted}, missing {missing}."
-        )
-    arrays = [
-        B.as_array(points[label], f"points[{label!r}]", (4,), symbolic=symbolic) for label in wanted
-    ]
-    arrays = list(B.promote(*arrays))
-    try:
-        batch = np.broadcast_shapes(*(a.shape[:-1] for a in arrays))
-    except ValueError as err:
-        shapes = {label: a.shape for label, a in zip(wanted, arrays, strict=True)}
-        raise ScrewkitValueError(
-            f"Expected the batch shapes of `points` to broadcast, got {shapes}."
-        ) from err
-    return {label: np.broadcast_to(a, (*batch, 4)) for label, a in zip(wanted, arrays, strict=True)}
+def as_monomial(value: Any) -> BracketMonomial | None:
+    """A bracket, a monomial or an exact number as a :class:`BracketMonomial`.
 
+    Parameters
+    ----------
+    value : object
 
-def _scalar(value: Any) -> Any:
-    """A 0-d result as a scalar (numpy float or sympy expression), batches as arrays."""
-    if isinstance(value, np.ndarray) and value.ndim == 0:
-        return value[()]
-    return value
+    Returns
+    -------
+    BracketMonomial or None
+        None for any other value.
 
-
-# --------------------------------------------------------------------------------------------------
-# The bracket algebra
-# --------------------------------------------------------------------------------------------------
-
-
-def _as_monomial(value: Any) -> BracketMonomial | None:
+    Examples
+    --------
+    >>> print(as_monomial(Bracket("abcd"))), as_monomial(0.5)
+    [abcd]
+    (None, None)
+    """
     if isinstance(value, BracketMonomial):
         return value
     if isinstance(value, Bracket):
         return BracketMonomial((value,))
-    if _is_scalar(value):
-        return BracketMonomial((), _coefficient(value, "coefficient"))
+    if is_exact_scalar(value):
+        return BracketMonomial((), exact_coefficient(value, "coefficient"))
     return None
 
 
 def _as_polynomial(value: Any) -> BracketPolynomial | None:
     if isinstance(value, BracketPolynomial):
         return value
-    monomial = _as_monomial(value)
+    monomial = as_monomial(value)
     return None if monomial is None else BracketPolynomial((monomial,))
 
 
 def _operand(value: Any) -> BracketPolynomial | None:
     """The other operand of + - * as a polynomial; floats are refused (coefficients are exact)."""
     if isinstance(value, float | np.floating):
-        _coefficient(value, "coefficient")  # raises ScrewkitTypeError naming the float
+        exact_coefficient(value, "coefficient")  # raises ScrewkitTypeError naming the float
     return _as_polynomial(value)
 
 
@@ -195,7 +193,7 @@ class _Algebra:
         right = _operand(other)
         if right is None:
             return NotImplemented
-        left_monomial, right_monomial = _as_monomial(self), _as_monomial(other)
+        left_monomial, right_monomial = as_monomial(self), as_monomial(other)
         if left_monomial is not None and right_monomial is not None:
             return left_monomial._times(right_monomial)
         return BracketPolynomial(a._times(b) for a in self._polynomial().terms for b in right.terms)
@@ -204,6 +202,15 @@ class _Algebra:
 
     def to_sympy(self, points: Mapping[str, Any]) -> sympy.Expr:
         """Exact value as one sympy expression (floats become rationals), unexpanded.
+
+        Parameters
+        ----------
+        points : mapping of str to array_like, shape (4,)
+            Single points (numbers or sympy expressions), by label.
+
+        Returns
+        -------
+        sympy.Expr
 
         Examples
         --------
@@ -214,7 +221,7 @@ class _Algebra:
         -t
         """
         polynomial = self._polynomial()
-        arrays = _point_arrays(points, polynomial.labels, symbolic=True)
+        arrays = point_arrays(points, polynomial.labels, symbolic=True)
         if any(a.ndim > 1 for a in arrays.values()):
             raise ScrewkitValueError(
                 "Expected `points` to be single points of shape (4,) for to_sympy, got batches "
@@ -254,13 +261,13 @@ class Bracket(_Algebra):
 
     def __init__(self, labels: str | Sequence[str]) -> None:
         hashable = isinstance(labels, str | tuple)
-        checked = _bracket_labels(labels) if hashable else _labels(labels, "labels", 4)
+        checked = _bracket_labels(labels) if hashable else as_labels(labels, "labels", 4)
         object.__setattr__(self, "labels", checked)
 
     @property
     def sign(self) -> int:
         """Sign of the permutation sorting the labels (0 if a label repeats)."""
-        return _sort_sign(self.labels)
+        return sort_sign(self.labels)
 
     @property
     def sorted_labels(self) -> tuple[str, ...]:
@@ -273,27 +280,40 @@ class Bracket(_Algebra):
         return self.sign == 0
 
     def __str__(self) -> str:
-        return _format_bracket(self.labels, (0,) * 4, latex=False)
+        return format_bracket(self.labels, (0,) * 4, latex=False)
 
     def to_latex(self) -> str:
         """LaTeX of the bracket, e.g. ``[gikj]``.
+
+        Returns
+        -------
+        str
 
         Examples
         --------
         >>> Bracket("r1 r2 r3 r4").to_latex()
         '[r1\\\\,r2\\\\,r3\\\\,r4]'
         """
-        return _format_bracket(self.labels, (0,) * 4, latex=True)
+        return format_bracket(self.labels, (0,) * 4, latex=True)
 
     def relabel(self, mapping: Mapping[str, str]) -> Bracket:
         """Rename labels simultaneously; labels missing from ``mapping`` stay.
+
+        Parameters
+        ----------
+        mapping : mapping of str to str
+            Old label -> new label (checked); labels missing from it stay.
+
+        Returns
+        -------
+        Bracket
 
         Examples
         --------
         >>> str(Bracket("abcd").relabel({"a": "b", "b": "a"}))
         '[bacd]'
         """
-        return Bracket(tuple(_relabel(label, mapping) for label in self.labels))
+        return Bracket(tuple(renamed_label(label, mapping) for label in self.labels))
 
     def evaluate(self, points: Mapping[str, Any]) -> Any:
         """The determinant, batched over the points' leading axes (or exact if they are sympy).
@@ -307,12 +327,9 @@ class Bracket(_Algebra):
         -------
         float, numpy.ndarray or sympy.Expr
         """
-        arrays = _point_arrays(points, self.labels)
-        return _scalar(P.bracket_unchecked(*(arrays[label] for label in self.labels)))
+        arrays = point_arrays(points, self.labels)
+        return scalar_result(P.bracket_unchecked(*(arrays[label] for label in self.labels)))
 
-
-def _relabel(label: str, mapping: Mapping[str, str]) -> str:
-    return _check_label(mapping[label], f"mapping[{label!r}]") if label in mapping else label
 
 
 @dataclass(frozen=True, eq=False, slots=True, init=False)
@@ -340,7 +357,7 @@ class BracketMonomial(_Algebra):
         self, brackets: Iterable[Bracket | str | Sequence[str]] = (), coefficient: Any = 1
     ) -> None:
         factors = tuple(b if isinstance(b, Bracket) else Bracket(b) for b in brackets)
-        value = _coefficient(coefficient, "coefficient")
+        value = exact_coefficient(coefficient, "coefficient")
         object.__setattr__(self, "coefficient", value)
         object.__setattr__(self, "brackets", factors)
         sign = math.prod(b.sign for b in factors)  # -1, 0 or 1: no rational product needed
@@ -362,21 +379,46 @@ class BracketMonomial(_Algebra):
         return BracketMonomial(self.brackets + other.brackets, self.coefficient * other.coefficient)
 
     def __str__(self) -> str:
-        return _format_sum([(self.coefficient, self._body(latex=False))], latex=False)
+        return format_sum([(self.coefficient, self._body(latex=False))], latex=False)
 
     def _body(self, *, latex: bool) -> str:
-        return "".join(_format_bracket(b.labels, (0,) * 4, latex=latex) for b in self.brackets)
+        return "".join(format_bracket(b.labels, (0,) * 4, latex=latex) for b in self.brackets)
 
     def to_latex(self) -> str:
-        """LaTeX, e.g. ``-2 [abdf][cghj]``."""
-        return _format_sum([(self.coefficient, self._body(latex=True))], latex=True)
+        """LaTeX, e.g. ``-2 [abdf][cghj]``.
+
+        Returns
+        -------
+        str
+        """
+        return format_sum([(self.coefficient, self._body(latex=True))], latex=True)
 
     def relabel(self, mapping: Mapping[str, str]) -> BracketMonomial:
-        """Rename labels simultaneously (see :meth:`Bracket.relabel`)."""
+        """Rename labels simultaneously (see :meth:`Bracket.relabel`).
+
+        Parameters
+        ----------
+        mapping : mapping of str to str
+            Old label -> new label (checked); labels missing from it stay.
+
+        Returns
+        -------
+        BracketMonomial
+        """
         return BracketMonomial((b.relabel(mapping) for b in self.brackets), self.coefficient)
 
     def evaluate(self, points: Mapping[str, Any]) -> Any:
-        """Value on points (see :meth:`Bracket.evaluate`)."""
+        """Value on points (see :meth:`Bracket.evaluate`).
+
+        Parameters
+        ----------
+        points : mapping of str to array_like, shape (..., 4)
+            The points by label; batches broadcast against each other.
+
+        Returns
+        -------
+        float, numpy.ndarray or sympy.Expr
+        """
         return BracketPolynomial((self,)).evaluate(points)
 
 
@@ -406,7 +448,7 @@ class BracketPolynomial(_Algebra):
     def __init__(self, terms: Iterable[BracketMonomial | Bracket] = ()) -> None:
         merged: dict[tuple[tuple[str, ...], ...], list[Any]] = {}
         for term in terms:
-            monomial = _as_monomial(term)
+            monomial = as_monomial(term)
             if monomial is None:
                 raise ScrewkitTypeError(
                     f"Expected `terms` to hold bracket monomials, got {type(term).__name__}."
@@ -429,13 +471,26 @@ class BracketPolynomial(_Algebra):
     def parse(cls, text: str) -> BracketPolynomial:
         """Read ``"[abdf][cghj] - [abdh][cgfj]"`` (integer or ``p/q`` coefficients, no dots).
 
+        Parameters
+        ----------
+        text : str
+
+        Returns
+        -------
+        BracketPolynomial
+
+        Raises
+        ------
+        ScrewkitValueError
+            For text that is not a sum of bracket monomials, or that has dots.
+
         Examples
         --------
         >>> BracketPolynomial.parse("1/2 [abcd] - 3[abce][dfgh]")
         BracketPolynomial('1/2 [abcd] - 3 [abce][dfgh]')
         """
         monomials = []
-        for coefficient, brackets in _parse(text):
+        for coefficient, brackets in parse_terms(text):
             if any(any(kinds) for _, kinds in brackets):
                 raise ScrewkitValueError(
                     f"Expected `text` without dots (use DottedSum.parse for dotted brackets), "
@@ -457,17 +512,21 @@ class BracketPolynomial(_Algebra):
         return f"BracketPolynomial({str(self)!r})"
 
     def __str__(self) -> str:
-        return _format_sum([(m.coefficient, m._body(latex=False)) for m in self.terms], latex=False)
+        return format_sum([(m.coefficient, m._body(latex=False)) for m in self.terms], latex=False)
 
     def to_latex(self) -> str:
         """LaTeX of the sum.
+
+        Returns
+        -------
+        str
 
         Examples
         --------
         >>> BracketPolynomial.parse("[abdf][cghj] - 1/2 [abdh][cgfj]").to_latex()
         '[abdf][cghj] - \\\\tfrac{1}{2} [abdh][cgfj]'
         """
-        return _format_sum([(m.coefficient, m._body(latex=True)) for m in self.terms], latex=True)
+        return format_sum([(m.coefficient, m._body(latex=True)) for m in self.terms], latex=True)
 
     @property
     def labels(self) -> tuple[str, ...]:
@@ -476,6 +535,15 @@ class BracketPolynomial(_Algebra):
 
     def relabel(self, mapping: Mapping[str, str]) -> BracketPolynomial:
         """Rename labels simultaneously; monomials that become equal are combined.
+
+        Parameters
+        ----------
+        mapping : mapping of str to str
+            Old label -> new label (checked); labels missing from it stay.
+
+        Returns
+        -------
+        BracketPolynomial
 
         Examples
         --------
@@ -518,8 +586,8 @@ class BracketPolynomial(_Algebra):
         >>> float(p.evaluate(pts))
         3.0
         """
-        arrays = _point_arrays(points, self.labels)
-        return _scalar(sum(self._term_values(arrays), start=_zero(arrays)))
+        arrays = point_arrays(points, self.labels)
+        return scalar_result(sum(self._term_values(arrays), start=_zero(arrays)))
 
 def _zero(arrays: Mapping[str, np.ndarray]) -> Any:
     """The additive zero matching the branch (sympy zero or a float 0)."""

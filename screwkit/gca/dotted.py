@@ -13,8 +13,8 @@ from fractions import Fraction
 from typing import Any
 
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
-from .brackets import Bracket, BracketMonomial, BracketPolynomial, _as_monomial, _labels, _relabel
-from .notation import _coefficient, _format_bracket, _format_sum, _parse, _sort_sign
+from .brackets import Bracket, BracketMonomial, BracketPolynomial, as_labels, as_monomial
+from .notation import exact_coefficient, format_bracket, format_sum, parse_terms, renamed_label, sort_sign
 
 __all__ = [
     "DottedMonomial",
@@ -43,7 +43,7 @@ def _shuffles(groups: Sequence[int]) -> list[tuple[int, tuple[int, ...]]]:
             for tail in distribute(rest, sizes[1:]):
                 yield chosen + tail
 
-    return [(_sort_sign(order), order) for order in distribute(tuple(range(sum(groups))), groups)]
+    return [(sort_sign(order), order) for order in distribute(tuple(range(sum(groups))), groups)]
 
 
 @dataclass(frozen=True, slots=True, init=False)
@@ -87,7 +87,7 @@ class DottedMonomial:
         dots: Sequence[Sequence[int]] | None = None,
         coefficient: Any = 1,
     ) -> None:
-        labels = tuple(_labels(b, f"brackets[{i}]", 4) for i, b in enumerate(brackets))
+        labels = tuple(as_labels(b, f"brackets[{i}]", 4) for i, b in enumerate(brackets))
         kinds = tuple((0,) * 4 for _ in labels) if dots is None else _dots(dots, len(labels))
         counts = Counter(kind for row in kinds for kind in row if kind)
         lonely = sorted(kind for kind, count in counts.items() if count < 2)
@@ -98,7 +98,7 @@ class DottedMonomial:
             )
         object.__setattr__(self, "brackets", labels)
         object.__setattr__(self, "dots", kinds)
-        object.__setattr__(self, "coefficient", _coefficient(coefficient, "coefficient"))
+        object.__setattr__(self, "coefficient", exact_coefficient(coefficient, "coefficient"))
 
     @classmethod
     def parse(cls, text: str) -> DottedMonomial:
@@ -106,12 +106,20 @@ class DottedMonomial:
 
         Precomposed characters (``ḟ``, ``ï``) and combining marks are both accepted.
 
+        Parameters
+        ----------
+        text : str
+
+        Returns
+        -------
+        DottedMonomial
+
         Examples
         --------
         >>> DottedMonomial.parse("2[e f ġ ï][ḣ j̈ k l]").dots
         ((0, 0, 1, 2), (1, 2, 0, 0))
         """
-        terms = _parse(text)
+        terms = parse_terms(text)
         if len(terms) != 1:
             raise ScrewkitValueError(
                 f"Expected `text` to be one dotted monomial, got {len(terms)} terms in {text!r}."
@@ -123,12 +131,20 @@ class DottedMonomial:
     def from_monomial(cls, monomial: BracketMonomial | Bracket) -> DottedMonomial:
         """The monomial with no dots.
 
+        Parameters
+        ----------
+        monomial : BracketMonomial or Bracket
+
+        Returns
+        -------
+        DottedMonomial
+
         Examples
         --------
         >>> print(DottedMonomial.from_monomial(-Bracket("gikj")))
         -[gikj]
         """
-        m = _as_monomial(monomial)
+        m = as_monomial(monomial)
         if m is None:
             raise ScrewkitTypeError(
                 f"Expected `monomial` to be a BracketMonomial or a Bracket, "
@@ -138,6 +154,10 @@ class DottedMonomial:
 
     def expand(self) -> BracketPolynomial:
         """The bracket polynomial: signed sum over the shuffles of each dot kind.
+
+        Returns
+        -------
+        BracketPolynomial
 
         Examples
         --------
@@ -171,29 +191,53 @@ class DottedMonomial:
     def relabel(self, mapping: Mapping[str, str]) -> DottedMonomial:
         """Rename labels simultaneously, keeping the dots.
 
+        Parameters
+        ----------
+        mapping : mapping of str to str
+            Old label -> new label (checked); labels missing from it stay.
+
+        Returns
+        -------
+        DottedMonomial
+
         Examples
         --------
         >>> print(DottedMonomial.parse("[a b ċ d][ė f g h]").relabel({"e": "x"}))
         [a b ċ d][ẋ f g h]
         """
-        renamed = [tuple(_relabel(label, mapping) for label in b) for b in self.brackets]
+        renamed = [tuple(renamed_label(label, mapping) for label in b) for b in self.brackets]
         return DottedMonomial(renamed, self.dots, self.coefficient)
 
     def _body(self, *, latex: bool) -> str:
         return "".join(
-            _format_bracket(b, d, latex=latex)
+            format_bracket(b, d, latex=latex)
             for b, d in zip(self.brackets, self.dots, strict=True)
         )
 
     def __str__(self) -> str:
-        return _format_sum([(self.coefficient, self._body(latex=False))], latex=False)
+        return format_sum([(self.coefficient, self._body(latex=False))], latex=False)
 
     def to_latex(self) -> str:
-        """LaTeX, ``\\dot``, ``\\ddot``, ``\\dddot``, ``\\ddddot`` (amsmath) over dotted letters."""
-        return _format_sum([(self.coefficient, self._body(latex=True))], latex=True)
+        """LaTeX, ``\\dot``, ``\\ddot``, ``\\dddot``, ``\\ddddot`` (amsmath) over dotted letters.
+
+        Returns
+        -------
+        str
+        """
+        return format_sum([(self.coefficient, self._body(latex=True))], latex=True)
 
     def evaluate(self, points: Mapping[str, Any]) -> Any:
-        """Value on points (through :meth:`expand`)."""
+        """Value on points (through :meth:`expand`).
+
+        Parameters
+        ----------
+        points : mapping of str to array_like, shape (..., 4)
+            The points by label; batches broadcast against each other.
+
+        Returns
+        -------
+        float, numpy.ndarray or sympy.Expr
+        """
         return self.expand().evaluate(points)
 
 
@@ -242,6 +286,14 @@ class DottedSum:
     def parse(cls, text: str) -> DottedSum:
         """Read a sum of dotted monomials.
 
+        Parameters
+        ----------
+        text : str
+
+        Returns
+        -------
+        DottedSum
+
         Examples
         --------
         >>> print(DottedSum.parse("[abcd][e f ġ ï][ḣ j̈ k l] - 2[a b ċ d][ė f g h]"))
@@ -249,27 +301,57 @@ class DottedSum:
         """
         return cls(
             DottedMonomial([b for b, _ in brackets], [d for _, d in brackets], coefficient)
-            for coefficient, brackets in _parse(text)
+            for coefficient, brackets in parse_terms(text)
         )
 
     def expand(self) -> BracketPolynomial:
-        """Sum of the expansions of the terms."""
+        """Sum of the expansions of the terms.
+
+        Returns
+        -------
+        BracketPolynomial
+        """
         return BracketPolynomial(m for term in self.terms for m in term.expand().terms)
 
     def relabel(self, mapping: Mapping[str, str]) -> DottedSum:
-        """Rename labels simultaneously in every term."""
+        """Rename labels simultaneously in every term.
+
+        Parameters
+        ----------
+        mapping : mapping of str to str
+            Old label -> new label (checked); labels missing from it stay.
+
+        Returns
+        -------
+        DottedSum
+        """
         return DottedSum(term.relabel(mapping) for term in self.terms)
 
     def _pairs(self, *, latex: bool) -> list[tuple[Fraction, str]]:
         return [(t.coefficient, t._body(latex=latex)) for t in self.terms]
 
     def __str__(self) -> str:
-        return _format_sum(self._pairs(latex=False), latex=False)
+        return format_sum(self._pairs(latex=False), latex=False)
 
     def to_latex(self) -> str:
-        """LaTeX of the sum."""
-        return _format_sum(self._pairs(latex=True), latex=True)
+        """LaTeX of the sum.
+
+        Returns
+        -------
+        str
+        """
+        return format_sum(self._pairs(latex=True), latex=True)
 
     def evaluate(self, points: Mapping[str, Any]) -> Any:
-        """Value on points (through :meth:`expand`)."""
+        """Value on points (through :meth:`expand`).
+
+        Parameters
+        ----------
+        points : mapping of str to array_like, shape (..., 4)
+            The points by label; batches broadcast against each other.
+
+        Returns
+        -------
+        float, numpy.ndarray or sympy.Expr
+        """
         return self.expand().evaluate(points)

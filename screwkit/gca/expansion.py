@@ -18,13 +18,16 @@ from ..algebra import backend as B
 from ..algebra import projective as P
 from ..algebra.checks import checked_rtol
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
-from .brackets import BracketPolynomial, _labels, _point_arrays, _scalar
+from .brackets import BracketPolynomial, as_labels
 from .dotted import DottedSum
-from .zeros import Sampler, _draw, _drop_zero_monomials, _vanishing_quads
+from .labelled_points import point_arrays, scalar_result
+from .zeros import Sampler, draw_samples, drop_structural_zeros, vanishing_brackets
 
 __all__ = [
     "OrderingSearch",
     "best_ordering",
+    "checked_lines",
+    "search_orderings",
     "superbracket",
     "superbracket_expansion",
     "superbracket_grouped",
@@ -38,7 +41,7 @@ __all__ = [
 _SLOTS = "abcdefghijkl"
 
 # gca.md §2.1: [ab,cd,ef,gh,ij,kl] in the reference convention (constant +1). Each monomial is a
-# standard Young tableau, so the form is unique; tests/test_gca.py proves it against the 6×6 det.
+# standard Young tableau, so the form is unique; tests/test_gca_expansion.py proves it against the 6×6 det.
 _EXPANSION = BracketPolynomial.parse(
     """
     +[abcd][efgi][hjkl] -[abcd][efgj][hikl] -[abcd][efhi][gjkl] +[abcd][efhj][gikl]
@@ -63,8 +66,27 @@ _GROUPED = DottedSum.parse(
 )
 
 
-def _lines(lines: Any) -> tuple[tuple[str, str], ...]:
-    """Validate six lines given as 2-tuples of labels (or two-letter strings)."""
+def checked_lines(lines: Any) -> tuple[tuple[str, str], ...]:
+    """Validate six lines given as 2-tuples of labels (or two-letter strings).
+
+    Parameters
+    ----------
+    lines : sequence of six pairs of labels
+
+    Returns
+    -------
+    tuple of six (str, str)
+
+    Raises
+    ------
+    ScrewkitTypeError, ScrewkitValueError
+        For anything but six lines of two labels.
+
+    Examples
+    --------
+    >>> checked_lines(["ab", "cd", "ef", "gh", "ij", ("k", "l")])[-1]
+    ('k', 'l')
+    """
     if isinstance(lines, str) or not isinstance(lines, Sequence):
         raise ScrewkitTypeError(
             f"Expected `lines` to be a sequence of six pairs of labels, got {type(lines).__name__}."
@@ -73,7 +95,7 @@ def _lines(lines: Any) -> tuple[tuple[str, str], ...]:
         raise ScrewkitValueError(f"Expected `lines` to hold 6 lines, got {len(lines)}.")
     out = []
     for i, line in enumerate(lines):
-        p, q = _labels(line, f"lines[{i}]", 2)
+        p, q = as_labels(line, f"lines[{i}]", 2)
         out.append((p, q))
     return tuple(out)
 
@@ -108,7 +130,7 @@ def superbracket_expansion(lines: Sequence[Sequence[str] | str]) -> BracketPolyn
     >>> len(superbracket_expansion(["ab", "cd", "ef", "gh", "ij", "kj"]))  # H4: j twice
     10
     """
-    slots = [label for line in _lines(lines) for label in line]
+    slots = [label for line in checked_lines(lines) for label in line]
     return _EXPANSION.relabel(dict(zip(_SLOTS, slots, strict=True)))
 
 
@@ -119,6 +141,14 @@ def superbracket_grouped(lines: Sequence[Sequence[str] | str]) -> DottedSum:
     + [a b ḋ ë]([ċ f̈ g h][i j k l] − [ċ g h i][f̈ j k l] + [ċ g h j][f̈ i k l])``,
     with the slots replaced by the labels of ``lines``.
 
+    Parameters
+    ----------
+    lines : sequence of six pairs of labels
+
+    Returns
+    -------
+    DottedSum
+
     Examples
     --------
     >>> g = superbracket_grouped(["ab", "cd", "ef", "gh", "ij", "kl"])
@@ -127,7 +157,7 @@ def superbracket_grouped(lines: Sequence[Sequence[str] | str]) -> DottedSum:
     >>> g.expand() == superbracket_expansion(["ab", "cd", "ef", "gh", "ij", "kl"])
     True
     """
-    slots = [label for line in _lines(lines) for label in line]
+    slots = [label for line in checked_lines(lines) for label in line]
     return _GROUPED.relabel(dict(zip(_SLOTS, slots, strict=True)))
 
 
@@ -156,15 +186,15 @@ def superbracket(points: Mapping[str, Any], lines: Sequence[Sequence[str] | str]
     >>> float(superbracket(pts, ["ox", "oy", "oz", "yz", "zx", "xy"]))
     1.0
     """
-    pairs = _lines(lines)
-    arrays = _point_arrays(points, [label for line in pairs for label in line])
+    pairs = checked_lines(lines)
+    arrays = point_arrays(points, [label for line in pairs for label in line])
     matrix = np.stack([P.join_unchecked(arrays[p], arrays[q]) for p, q in pairs], axis=-2)
     if B.is_symbolic(matrix) and matrix.ndim != 2:
         raise ScrewkitValueError(
             f"Expected sympy `points` to be single points of shape (4,), got batch shape "
             f"{matrix.shape[:-2]}."
         )
-    return _scalar(B.det(matrix))
+    return scalar_result(B.det(matrix))
 
 
 # --------------------------------------------------------------------------------------------------
@@ -226,7 +256,7 @@ def _ordering_counts(positions: Sequence[str], zero: Mapping[tuple[str, ...], bo
     The count does not depend on the flips: exchanging the two points of any line maps the 24
     template monomials of gca.md §2.1 onto themselves with every coefficient negated (the expansion
     stays in standard form; the superbracket changes sign as a join does), a property of the template
-    that ``tests/test_gca.py`` checks exactly, monomial by monomial. So the polynomial of ordering
+    that ``tests/test_gca_expansion.py`` checks exactly, monomial by monomial. So the polynomial of ordering
     ``(π, f)`` is ``±`` that of ``(π, 0)``, the same monomials surviving and combining: the 720
     permutations are scored: ordering ``64 π + f`` (:func:`_ordering`) has the count of ``π``.
     """
@@ -298,7 +328,13 @@ class OrderingSearch:
         return len(self.polynomial)
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready summary."""
+        """JSON-ready summary.
+
+        Returns
+        -------
+        dict
+            Strings, numbers, lists and dicts only (``json.dumps`` takes it).
+        """
         return {
             "lines": [list(line) for line in self.lines],
             "sign": self.sign,
@@ -317,18 +353,40 @@ class OrderingSearch:
         )
 
 
-def _best_ordering(
+def search_orderings(
     pairs: tuple[tuple[str, str], ...], samples: Mapping[str, np.ndarray], rtol: float
 ) -> OrderingSearch:
+    """:func:`best_ordering` on samples already drawn.
+
+    Parameters
+    ----------
+    pairs : tuple of six (str, str)
+        Checked lines (:func:`checked_lines`).
+    samples : mapping of str to numpy.ndarray, shape (n_samples, 4)
+        Stacked samples (:func:`screwkit.gca.zeros.draw_samples`).
+    rtol : float
+        Relative zero threshold of a bracket.
+
+    Returns
+    -------
+    OrderingSearch
+
+    Examples
+    --------
+    >>> rng = np.random.default_rng(0)
+    >>> samples = {x: rng.normal(size=(5, 4)) for x in "abcdefghijkl"}
+    >>> search_orderings(checked_lines(["ab", "cd", "ef", "gh", "ij", "kl"]), samples, 1e-9).count
+    24
+    """
     positions = [label for line in pairs for label in line]
     quads = list(itertools.combinations(sorted(set(positions)), 4))
-    zero = _vanishing_quads(samples, quads, rtol)
+    zero = vanishing_brackets(samples, quads, rtol)
     counts = _ordering_counts(positions, zero)  # per permutation, the same for its 64 flips
     flips = len(_line_orders()[1])
     # ties: the first, so the caller's order wins if it is optimal
     slot_positions, sign = _ordering(flips * int(np.argmin(counts)))
     chosen = tuple((positions[slot_positions[2 * k]], positions[slot_positions[2 * k + 1]]) for k in range(6))
-    polynomial = _drop_zero_monomials(superbracket_expansion(chosen), samples, rtol)
+    polynomial = drop_structural_zeros(superbracket_expansion(chosen), samples, rtol)
     values, tallies = np.unique(counts, return_counts=True)
     return OrderingSearch(
         lines=chosen,
@@ -377,7 +435,7 @@ def best_ordering(
     >>> result.count, result.histogram  # nothing vanishes: 24 in every ordering
     (24, ((24, 46080),))
     """
-    pairs = _lines(lines)
+    pairs = checked_lines(lines)
     labels = [label for line in pairs for label in line]
-    samples = _draw(sampler, n_samples, np.random.default_rng(rng), labels)
-    return _best_ordering(pairs, samples, checked_rtol(rtol))
+    samples = draw_samples(sampler, n_samples, np.random.default_rng(rng), labels)
+    return search_orderings(pairs, samples, checked_rtol(rtol))

@@ -17,8 +17,14 @@ from ..exceptions import DegenerateGeometryError, ScrewkitTypeError, ScrewkitVal
 from .brackets import BracketPolynomial
 
 __all__ = [
+    "Sampler",
+    "checked_positive_int",
+    "draw_samples",
+    "drop_structural_zeros",
+    "drop_vanishing_subsums",
     "drop_zero_subsums",
     "structural_zeros",
+    "vanishing_brackets",
 ]
 
 
@@ -30,26 +36,73 @@ Sampler = Callable[[np.random.Generator], Mapping[str, Any]]
 # --------------------------------------------------------------------------------------------------
 
 
-def _check_positive_int(value: Any, name: str) -> int:
+def checked_positive_int(value: Any, name: str) -> int:
+    """A positive integer argument, checked.
+
+    Parameters
+    ----------
+    value : object
+    name : str
+        The argument's name, for the message.
+
+    Returns
+    -------
+    int
+
+    Raises
+    ------
+    ScrewkitValueError
+        If ``value`` is not a positive integer (booleans are refused).
+
+    Examples
+    --------
+    >>> checked_positive_int(np.int64(3), "n_samples")
+    3
+    """
     if isinstance(value, bool) or not isinstance(value, int | np.integer) or value < 1:
         raise ScrewkitValueError(f"Expected `{name}` to be a positive integer, got {value!r}.")
     return int(value)
 
 
-def _draw(
+def draw_samples(
     sampler: Any, n_samples: int, rng: np.random.Generator, labels: Iterable[str] | None = None
 ) -> dict[str, np.ndarray]:
     """Draw ``n_samples`` configurations and stack them: label -> (n_samples, 4) float array.
 
     The Python loop only *draws* configurations (the sampler's contract is one configuration per
     call); every evaluation afterwards is vectorised over the stacked samples.
+
+    Parameters
+    ----------
+    sampler : callable
+        ``rng -> {label: point (4,)}``.
+    n_samples : int
+    rng : numpy.random.Generator
+    labels : iterable of str, optional
+        The labels kept (default: those of the first draw).
+
+    Returns
+    -------
+    dict of str to numpy.ndarray, shape (n_samples, 4)
+
+    Raises
+    ------
+    ScrewkitTypeError, ScrewkitValueError, DegenerateGeometryError
+        For a sampler that is not callable, a missing label, a point of the wrong shape, the zero
+        vector.
+
+    Examples
+    --------
+    >>> samples = draw_samples(lambda rng: {"a": rng.normal(size=4)}, 3, np.random.default_rng(0))
+    >>> samples["a"].shape
+    (3, 4)
     """
     if not callable(sampler):
         raise ScrewkitTypeError(
             f"Expected `sampler` to be a callable rng -> {{label: point (4,)}}, "
             f"got {type(sampler).__name__}."
         )
-    n = _check_positive_int(n_samples, "n_samples")
+    n = checked_positive_int(n_samples, "n_samples")
     draws = [sampler(rng) for _ in range(n)]
     if not all(isinstance(d, Mapping) for d in draws):
         raise ScrewkitTypeError(
@@ -95,19 +148,62 @@ def _relative_brackets(
     return (np.abs(values) / norms).T
 
 
-def _vanishing_quads(
+def vanishing_brackets(
     samples: Mapping[str, np.ndarray], quads: Sequence[tuple[str, ...]], rtol: float
 ) -> dict[tuple[str, ...], bool]:
-    """Whether each bracket (distinct labels) vanishes on every sample (relative to Hadamard)."""
+    """Whether each bracket (distinct labels) vanishes on every sample (relative to Hadamard).
+
+    Parameters
+    ----------
+    samples : mapping of str to numpy.ndarray, shape (n_samples, 4)
+        Stacked samples (:func:`draw_samples`).
+    quads : sequence of tuple of str
+        The brackets' labels (four distinct labels each).
+    rtol : float
+        ``|[pqrs]| <= rtol · |p||q||r||s|`` counts as zero.
+
+    Returns
+    -------
+    dict of tuple of str to bool
+
+    Examples
+    --------
+    >>> e = np.eye(4)[None]
+    >>> vanishing_brackets({"a": e[:, 0], "b": e[:, 1], "c": e[:, 2], "d": e[:, 0] + e[:, 1]},
+    ...                    [("a", "b", "c", "d")], 1e-9)
+    {('a', 'b', 'c', 'd'): True}
+    """
     zero = np.all(_relative_brackets(samples, quads) <= rtol, axis=0)
     return dict(zip(quads, (bool(z) for z in zero), strict=True))
 
 
-def _drop_zero_monomials(
+def drop_structural_zeros(
     poly: BracketPolynomial, samples: Mapping[str, np.ndarray], rtol: float
 ) -> BracketPolynomial:
+    """:func:`structural_zeros` on samples already drawn.
+
+    Parameters
+    ----------
+    poly : BracketPolynomial
+    samples : mapping of str to numpy.ndarray, shape (n_samples, 4)
+        Stacked samples (:func:`draw_samples`).
+    rtol : float
+        Relative zero threshold of a bracket (:func:`vanishing_brackets`).
+
+    Returns
+    -------
+    BracketPolynomial
+        The monomials none of whose brackets vanishes on every sample.
+
+    Examples
+    --------
+    >>> e = np.eye(4)[None]
+    >>> samples = {"a": e[:, 0], "b": e[:, 1], "c": e[:, 2], "d": e[:, 3], "e": e[:, 0] + e[:, 1]}
+    >>> str(drop_structural_zeros(BracketPolynomial.parse("[abcd] + [abce]"), samples, 1e-9))
+    '[abcd]'
+    """
     quads = sorted({key for m in poly.terms for key in m.canonical[1]})
-    zero = _vanishing_quads(samples, quads, rtol)
+    zero = vanishing_brackets(samples, quads, rtol)
     return BracketPolynomial(m for m in poly.terms if not any(zero[k] for k in m.canonical[1]))
 
 
@@ -152,13 +248,39 @@ def structural_zeros(
     >>> str(structural_zeros(BracketPolynomial.parse("[abcd] + [abde]"), collinear))
     '[abde]'
     """
-    samples = _draw(sampler, n_samples, np.random.default_rng(rng), poly.labels)
-    return _drop_zero_monomials(poly, samples, checked_rtol(rtol))
+    samples = draw_samples(sampler, n_samples, np.random.default_rng(rng), poly.labels)
+    return drop_structural_zeros(poly, samples, checked_rtol(rtol))
 
 
-def _drop_zero_subsums(
+def drop_vanishing_subsums(
     poly: BracketPolynomial, samples: Mapping[str, np.ndarray], rtol: float, max_terms: int
 ) -> BracketPolynomial:
+    """:func:`drop_zero_subsums` on samples already drawn.
+
+    Parameters
+    ----------
+    poly : BracketPolynomial
+    samples : mapping of str to numpy.ndarray, shape (n_samples, 4)
+        Stacked samples (:func:`draw_samples`).
+    rtol : float
+        A subset vanishes when its sum is at most ``rtol`` times the sum of the monomials'
+        absolute values on every sample.
+    max_terms : int
+        Polynomials with more monomials are returned unchanged.
+
+    Returns
+    -------
+    BracketPolynomial
+
+    Examples
+    --------
+    >>> rng = np.random.default_rng(0)
+    >>> samples = {x: rng.normal(size=(4, 4)) for x in "abcef"}
+    >>> samples["d"] = samples["b"] + samples["c"]  # so [abde] = [abce]
+    >>> poly = BracketPolynomial.parse("[abde] - [abce] + [abef]")
+    >>> str(drop_vanishing_subsums(poly, samples, 1e-9, 16))
+    '[abef]'
+    """
     k = len(poly)
     if k < 2 or k > max_terms:
         return poly
@@ -213,7 +335,7 @@ def drop_zero_subsums(
     >>> str(drop_zero_subsums(BracketPolynomial.parse("[abde] - [abce] + [abef]"), sampler))
     '[abef]'
     """
-    samples = _draw(sampler, n_samples, np.random.default_rng(rng), poly.labels)
-    return _drop_zero_subsums(
-        poly, samples, checked_rtol(rtol), _check_positive_int(max_terms, "max_terms")
+    samples = draw_samples(sampler, n_samples, np.random.default_rng(rng), poly.labels)
+    return drop_vanishing_subsums(
+        poly, samples, checked_rtol(rtol), checked_positive_int(max_terms, "max_terms")
     )

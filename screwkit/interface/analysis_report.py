@@ -35,7 +35,8 @@ from ..core.wrenches import WrenchAnalysis
 from ..graphs.loops import fundamental_loops
 
 if TYPE_CHECKING:  # the diagram and GCA stack loads when a report is made, not on `import screwkit`
-    from ..gca.diagram import SuperbracketAnalysis, WrenchDiagram
+    from ..gca.diagram import WrenchDiagram
+    from ..gca.superbracket_analysis import SuperbracketAnalysis
 
 __all__ = ["AnalysisReport", "describe_twist", "describe_wrench"]
 

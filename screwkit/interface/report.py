@@ -191,7 +191,7 @@ def _graph_report(
             f"{source}: expected numeric joint screws for a report at a pose, got symbols; "
             "use screwkit.core.generic.generic_analysis for a family's generic answers."
         )
-    from ..gca.diagram import graph_diagram
+    from ..gca.diagram_placement import graph_diagram
 
     progress(STAGES[1])
     diagram, sampler = graph_diagram(analysis, length_scale=length_scale)
@@ -301,7 +301,7 @@ def _finish(
         note = "not computed"
     else:
         try:
-            from ..gca.diagram import superbracket_analysis
+            from ..gca.superbracket_analysis import superbracket_analysis
 
             progress(STAGES[2])
             result = superbracket_analysis(diagram, sampler)

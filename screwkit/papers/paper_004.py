@@ -82,7 +82,7 @@ from typing import Any, NamedTuple, Protocol, runtime_checkable
 import numpy as np
 
 from ..algebra import backend as B
-from ..core import _frames as F
+from ..algebra.compiled import COMPILED_MIN_BATCH, compiled_kernels
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError, UnreachablePoseError
 from ..robots.posed import PosedMechanism
 from ..robots.toml_fields import MAX_ANGLE_RADIANS, MAX_COORDINATE
@@ -322,13 +322,13 @@ _UNREACHABLE = ("raise", "nan")
 
 def _numba_kernels(poses: int) -> ModuleType | None:
     """The fused kernel module for a call over ``poses`` poses, or None for the numpy path
-    (:func:`screwkit.core._frames.compiled_kernels`: the same rule as the rank kernels)."""
-    return F.compiled_kernels("screwkit.papers._lti_numba", poses)
+    (:func:`screwkit.core.frames.compiled_kernels`: the same rule as the rank kernels)."""
+    return compiled_kernels("screwkit.papers._lti_numba", poses)
 
 
 def backend() -> str:
     """``"numba"`` or ``"numpy"``: how :func:`transmission` computes batches of
-    :data:`screwkit.core._frames.COMPILED_MIN_BATCH` poses or more in this process.
+    :data:`screwkit.core.frames.COMPILED_MIN_BATCH` poses or more in this process.
 
     Returns
     -------
@@ -339,7 +339,7 @@ def backend() -> str:
     >>> backend() in {"numba", "numpy"}
     True
     """
-    return "numpy" if _numba_kernels(F.COMPILED_MIN_BATCH) is None else "numba"
+    return "numpy" if _numba_kernels(COMPILED_MIN_BATCH) is None else "numba"
 
 
 def _four_limb_parameters(mechanism: Any) -> Any:
@@ -439,7 +439,7 @@ def transmission(
 
     The batched entry point for maps (workspace grids, trajectories): inverse kinematics (Eq. 3) and
     the indices in one pass. With numba (the ``fast`` extra) one fused compiled loop
-    (:mod:`screwkit.papers._lti_numba`) for batches of :data:`screwkit.core._frames.COMPILED_MIN_BATCH`
+    (:mod:`screwkit.papers._lti_numba`) for batches of :data:`screwkit.core.frames.COMPILED_MIN_BATCH`
     poses or more (or once it is loaded), else the numpy path (:func:`screwkit.robots.families.four_limb.
     inverse_kinematics` then :func:`transmission_indices`; a single pose never loads numba);
     ``SCREWKIT_NUMBA=0`` forces numpy. The two agree to round-off (``tests/test_indices.py``).

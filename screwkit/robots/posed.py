@@ -55,10 +55,10 @@ Array = np.ndarray
 #: Poses taken through the inverse kinematics, joint table and analysis core at once.
 CHUNK = 512
 #: Random workspace poses drawn (in one batch) to find a generic configuration for a diagram (the
-#: first few reachable ones are tried: screwkit.gca.diagram.REFERENCE_TRIES).
+#: first few reachable ones are tried: screwkit.gca.diagram_placement.REFERENCE_TRIES).
 GENERIC_DRAWS = 12
 #: Generic samples of a diagram's points drawn (in one batch) for the superbracket: its structural
-#: zeros and its checks take 12 (screwkit.gca.diagram.superbracket_analysis).
+#: zeros and its checks take 12 (screwkit.gca.superbracket_analysis.superbracket_analysis).
 SAMPLES = 24
 #: Poses whose diagram points are evaluated at once when samples are read (the superbracket reads
 #: 12: most of a batch of SAMPLES is never evaluated; their constraint lines take a readable basis
@@ -273,7 +273,7 @@ class PosedMechanism:
         >>> len(values) == len(diagram.points), exists.tolist()
         (True, [True, True])
         """
-        from ..gca.diagram import batch_diagram_points
+        from ..gca.diagram_points import batch_diagram_points
 
         table, rtol, length = self.joints, self.rtol, self.length_scale
         parts = [
@@ -401,8 +401,8 @@ class Pose:
 
         Which lines make the diagram and which points they share is decided at a generic (random,
         seeded) workspace pose of :data:`GENERIC_DRAWS` drawn as one batch
-        (:func:`screwkit.gca.diagram.generic_reference`); the diagram is then placed at this pose
-        (:func:`screwkit.gca.diagram.diagram_at`), where lines that coincide still appear. When the
+        (:func:`screwkit.gca.diagram_placement.generic_reference`); the diagram is then placed at this pose
+        (:func:`screwkit.gca.diagram_placement.diagram_at`), where lines that coincide still appear. When the
         mechanism has no diagram (e.g. a wrench system not spanned by lines), the reasons found at
         the generic poses are given as ``degenerate``. The sampler
         replays recipes evaluated at random workspace poses, drawn and analysed as one batch
@@ -416,7 +416,8 @@ class Pose:
         """
         from dataclasses import replace
 
-        from ..gca.diagram import ReplaySampler, diagram_at, generic_reference, wrench_diagram
+        from ..gca.diagram_placement import ReplaySampler, diagram_at, generic_reference
+        from ..gca.diagram_recipes import wrench_diagram
 
         analyses, first, stream = self._draws
         reference, reasons = generic_reference(analyses)
@@ -444,14 +445,15 @@ class Pose:
     @functools.cached_property
     def superbracket(self) -> Any:
         """The superbracket of this pose's wrench diagram, expanded, simplified, factored and
-        interpreted (:func:`screwkit.gca.diagram.superbracket_analysis`; what :meth:`report` shows).
+        interpreted (:func:`screwkit.gca.superbracket_analysis.superbracket_analysis`; what
+        :meth:`report` shows).
 
         Raises
         ------
         ScrewkitValueError
             If the mechanism has no wrench diagram of six lines (the reasons found at generic poses).
         """
-        from ..gca.diagram import superbracket_analysis
+        from ..gca.superbracket_analysis import superbracket_analysis
 
         diagram, sampler = self.diagram_and_sampler()
         if diagram.degenerate:
@@ -539,7 +541,7 @@ def generic_samples(
     length_scale: float | None = None,
 ) -> list[dict[str, Array]]:
     """A diagram's points (``{label: (4,)}``) at random workspace poses, analysed and evaluated as
-    one batch (:func:`screwkit.gca.diagram.batch_diagram_points`).
+    one batch (:func:`screwkit.gca.diagram_points.batch_diagram_points`).
 
     Poses where a point does not exist are skipped; at most ``2 * count`` poses are drawn.
 
@@ -579,7 +581,7 @@ def generic_samples(
 def _samples(points: Any, analysis: WrenchAnalysis | None, count: int) -> Iterator[dict[str, Array]]:
     """:func:`generic_samples` from the analysis of the drawn poses (None: none reachable), lazily:
     the points are evaluated :data:`SAMPLE_CHUNK` poses at a time, as far as the samples read."""
-    from ..gca.diagram import batch_diagram_points
+    from ..gca.diagram_points import batch_diagram_points
 
     given, total = 0, 0 if analysis is None else len(analysis)
     for start in range(0, total, SAMPLE_CHUNK):

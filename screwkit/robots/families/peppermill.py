@@ -1,7 +1,8 @@
 """The Peppermill: a CRRHHRRC two-limb Schönflies-motion generator.
 
 Source: paper 000 (Harada & Angeles, "Kinematics and singularity analysis of a CRRHHRRC parallel
-Schönflies motion generator", CSME Trans. 38(2), 2014) (docs/papers.md). Equation and figure numbers refer to it.
+Schönflies motion generator", CSME Trans. 38(2), 2014) (docs/papers.md). Equation and figure numbers refer
+to it.
 
 The model
 ---------

@@ -1,7 +1,8 @@
 """The McGill Schönflies-motion generator: two RΠΠR limbs on a bar-shaped moving plate.
 
 Source: paper 001 (Angeles, Caro, Khan, Morozov, "Kinetostatic design of an innovative
-Schönflies-motion generator", Proc. IMechE C 220(7), 2006) (docs/papers.md). Equation, table and figure numbers refer to it.
+Schönflies-motion generator", Proc. IMechE C 220(7), 2006) (docs/papers.md). Equation, table and figure
+numbers refer to it.
 The family's modules: :mod:`~screwkit.robots.families.mcgill_smg.parameters`,
 :mod:`~screwkit.robots.families.mcgill_smg.configuration` (the legs' geometry),
 :mod:`~screwkit.robots.families.mcgill_smg.kinematics` (inverse and forward) and

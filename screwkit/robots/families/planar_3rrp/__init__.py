@@ -1,7 +1,8 @@
 """Planar 3-RRP parallel manipulator: the robot model (parameters, kinematics, joint table).
 
 Source: paper 003 (S. Zarkandi, "A study of the instantaneous centers of rotation in
-singularities of 3-DOF fully parallel planar manipulators") (docs/papers.md). Equation numbers below are that paper's. The
+singularities of 3-DOF fully parallel planar manipulators") (docs/papers.md). Equation numbers below are
+that paper's. The
 paper gives no dimensions; the model is general and
 :data:`~screwkit.robots.families.planar_3rrp.parameters.EXAMPLE_PARAMETERS` are *our* choice (see
 there). The family's modules: :mod:`~screwkit.robots.families.planar_3rrp.parameters`,

@@ -1,0 +1,478 @@
+"""A wrench diagram's points at poses: each recipe (:attr:`~screwkit.gca.diagram.DiagramPoint.key`)
+evaluated over a batch at once from the batched core's arrays (:func:`batch_diagram_points`; one
+pose, :func:`diagram_points`, is a batch of one), with the incidence arithmetic the recipes use
+(where a line meets a joint axis, a joint's centre, canonical directions).
+
+Examples
+--------
+>>> from screwkit.robots.catalog import load_mechanism
+>>> from screwkit.core.wrench_systems import analyze_table
+>>> h4 = load_mechanism("h4")
+>>> diagram, _ = h4.wrench_diagram()
+>>> found = batch_diagram_points(diagram.points, analyze_table(h4.joints([[0, 0, -750, 0]])))
+>>> found["j"]
+array([[0., 0., 1., 0.]])
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import numpy as np
+
+from ..algebra import backend as B
+from ..algebra import screw as S
+from ..algebra.screwsystem import ScrewSystem
+from ..core import frames as F
+from ..core.wrench_systems import WrenchAnalysis, analyze_table
+from ..exceptions import DegenerateGeometryError
+from ..graphs.jointtable import JointTable
+from .diagram import INCIDENCE_RTOL, DiagramPoint, axis_key
+from .diagram_lines import Line, basis_names, leg_name
+
+__all__ = [
+    "batch_diagram_points",
+    "diagram_points",
+    "joint_centre",
+    "meet_points",
+]
+
+Array = np.ndarray
+
+
+def diagram_points(
+    points: tuple[DiagramPoint, ...],
+    analysis: WrenchAnalysis,
+    *,
+    lines: list[Line] | None = None,
+) -> dict[str, Array]:
+    """Evaluate the points' recipes on an analysis of the same mechanism (at any pose).
+
+    One pose: a batch of one through :func:`batch_diagram_points` (the same arithmetic).
+
+    Parameters
+    ----------
+    points : tuple of DiagramPoint
+        A diagram's points (their recipes).
+    analysis : WrenchAnalysis
+        One pose of the mechanism.
+    lines : list of (name, role, wrench, joints), optional
+        The only lines the recipes may use (default: every line of the mechanism).
+
+    Returns
+    -------
+    dict of str to numpy.ndarray, shape (4,)
+        ``{label: point}``, finite points of weight 1, directions unit.
+
+    Raises
+    ------
+    DegenerateGeometryError
+        Naming the point whose recipe has no point at this pose.
+
+    Examples
+    --------
+    >>> from screwkit.robots.catalog import load_mechanism
+    >>> from screwkit.core.wrenches import wrench_analysis
+    >>> from screwkit.gca.diagram_recipes import wrench_diagram
+    >>> h4 = load_mechanism("h4")
+    >>> diagram = wrench_diagram(wrench_analysis(h4.twist_graph()))
+    >>> moved = diagram_points(diagram.points, wrench_analysis(h4.twist_graph([50.0, 0, -700.0, 0.3])))
+    >>> moved["j"]
+    array([0., 0., 1., 0.])
+    """
+    found = batch_diagram_points(points, analysis, lines=lines)
+    for point in points:
+        if not np.isfinite(found[point.label]).all():
+            raise DegenerateGeometryError(
+                f"point {point.label} ({point.description}) does not exist at this pose"
+            )
+    return {label: value[0] for label, value in found.items()}
+
+
+def batch_diagram_points(
+    points: tuple[DiagramPoint, ...],
+    analysis: WrenchAnalysis,
+    *,
+    lines: list[Line] | None = None,
+) -> dict[str, Array]:
+    """The points' recipes at every pose of a batched analysis, as arrays over the batch.
+
+    Each recipe is evaluated over the leading axis at once from the batched core's arrays: the
+    actuation wrenches, the joint screws, the series-parallel nodes' twist frames (the branches'
+    constraint couples), the reference point. A constraint line of a leg is an element of its
+    readable basis (:meth:`screwkit.algebra.screwsystem.ScrewSystem.readable_basis`), taken pose by pose,
+    and only for the points that use one.
+
+    Parameters
+    ----------
+    points : tuple of DiagramPoint
+        A diagram's points (their recipes).
+    analysis : WrenchAnalysis
+        Of shape ``(n,)`` (or one pose, taken as a batch of one), e.g.
+        :func:`screwkit.core.wrench_systems.analyze_table` of a family's joint table.
+    lines : list of (name, role, wrench, joints), optional
+        At one pose: the only lines the recipes may use (default: every line of the mechanism).
+
+    Returns
+    -------
+    dict of str to numpy.ndarray, shape (n, 4)
+        ``{label: points}``, finite points of weight 1, directions unit; a row of NaN where the
+        recipe has no point at that pose.
+
+    Examples
+    --------
+    >>> from screwkit.robots.catalog import load_mechanism
+    >>> from screwkit.core.wrench_systems import analyze_table
+    >>> h4 = load_mechanism("h4")
+    >>> diagram, _ = h4.wrench_diagram()
+    >>> table = h4.joints([[0, 0, -750, 0], [50, 0, -700, 0.3]])
+    >>> found = batch_diagram_points(diagram.points, analyze_table(table))
+    >>> found["j"]
+    array([[0., 0., 1., 0.],
+           [0., 0., 1., 0.]])
+    """
+    batch = _Batch.create(analysis, lines)
+    cache: dict[tuple[str, ...], Array] = {}
+    return {point.label: _recipe(point.key, batch, cache) for point in points}
+
+
+class _Batch:
+    """What the recipes read over a batch of ``n`` poses (one pose: a batch of one)."""
+
+    def __init__(
+        self,
+        analysis: WrenchAnalysis,
+        frames: Mapping[str, tuple[Array, Array]],
+        given: dict[str, Array] | None,
+    ) -> None:
+        one = analysis.single
+        self.topology = analysis.topology
+        self.rtol = float(analysis.rtol)
+        self.table = analysis.table[None] if one else analysis.table
+        self.frames = frames
+        self.reference_point = np.asarray(analysis.reference_point, dtype=float).reshape(-1, 3)
+        self.length_scale = np.asarray(analysis.length_scale, dtype=float).reshape(-1)
+        self.count = len(self.length_scale)
+        self.given = given
+        self.bases: dict[str, list[Array]] = {}
+        rows = np.asarray(analysis.actuation_rows, dtype=float).reshape(self.count, -1, 6)
+        serial = np.asarray(analysis.serial, dtype=bool).reshape(self.count, -1)
+        self.actuation = {
+            f"actuation {plan.actuated_joint}": np.where(serial[:, k, None], np.nan, rows[:, k])
+            for k, plan in enumerate(self.topology.limbs)
+        }
+
+    @classmethod
+    def create(cls, analysis: WrenchAnalysis, lines: list[Line] | None) -> _Batch:
+        frames: Mapping[str, tuple[Array, Array]] = analysis.frames
+        if "constraint" not in frames:  # analysed without its views: the same kernels again, with them
+            table = analysis.table[None] if analysis.single else analysis.table
+            frames = _frames_with_views(table, analysis)
+        elif analysis.single:
+            frames = {k: (rows[None], np.asarray(order)[None]) for k, (rows, order) in frames.items()}
+        given = None if lines is None else {name: np.asarray(w, dtype=float)[None] for name, _, w, _ in lines}
+        return cls(analysis, frames, given)
+
+    def nan(self, width: int) -> Array:
+        return np.full((self.count, width), np.nan)
+
+    def wrench(self, name: str) -> Array:
+        """A line of the mechanism by name, ``(n, 6)``; NaN where it is not one line."""
+        if self.given is not None:
+            return self.given.get(name, self.nan(6))
+        if name in self.actuation:
+            return self.actuation[name]
+        return self._constraint_line(name)
+
+    def _constraint_line(self, name: str) -> Array:
+        """A constraint line (:func:`screwkit.gca.diagram_lines.select_lines`' names): the element
+        of its leg's (or the mechanism's) readable basis at each pose, as the per-pose views give
+        it (the same frame conversion, pose by pose, without building the views)."""
+        sources = [
+            (f"constraint of the {leg_name(self.topology, k)}", f"leg{k}:W")
+            for k in range(len(self.topology.legs))
+            if not self.topology.network
+        ] + [("constraint wrench", "constraint")]
+        for prefix, key in sources:
+            if not name.startswith(prefix):
+                continue
+            out = self.nan(6)
+            for i, basis in enumerate(self._readable_bases(key)):
+                names = basis_names(prefix, len(basis))
+                if name in names:
+                    out[i] = basis[names.index(name)]
+            return out
+        return self.nan(6)
+
+    def _readable_bases(self, key: str) -> list[Array]:
+        """The readable basis of a system (a frame) at each pose, as the per-pose views give it."""
+        if key not in self.bases:
+            rows, orders = self.frames[key]
+            self.bases[key] = [
+                ScrewSystem.from_independent(
+                    F.from_scaled(rows[i, : int(orders[i])], self.reference_point[i], self.length_scale[i]),
+                    rtol=self.rtol,
+                    length_scale=float(self.length_scale[i]),
+                ).readable_basis()
+                for i in range(self.count)
+            ]
+        return self.bases[key]
+
+    def joint_screws(self, name: str) -> Array:
+        """``(n, dof_j, 6)``."""
+        return np.asarray(self.table.joint_screws(name), dtype=float)
+
+
+def _frames_with_views(table: JointTable, analysis: WrenchAnalysis) -> dict[str, tuple[Array, Array]]:
+    """The per-pose frames of an analysis that kept none (the same core, with its views)."""
+    length = analysis.length_scale  # given back: the same lengths, the same bits
+    return analyze_table(table, dof=analysis.dof, rtol=analysis.rtol, length_scale=length).frames
+
+
+def _finite(points: Array) -> Array:
+    return np.concatenate([points, np.ones((*points.shape[:-1], 1))], axis=-1)
+
+
+def _infinite(directions: Array) -> Array:
+    return np.concatenate([directions, np.zeros((*directions.shape[:-1], 1))], axis=-1)
+
+
+def _units(v: Array) -> Array:
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return v / np.linalg.norm(v, axis=-1, keepdims=True)
+
+
+def _canonical_directions(v: Array) -> Array:
+    """Unit directions ``(..., 3)`` with a fixed sign (first clearly non-zero component positive)."""
+    u = _units(v)
+    k = np.argmax(np.abs(u) > 1e-9, axis=-1)[..., None]
+    return np.where(np.take_along_axis(u, k, axis=-1) < 0, -u, u)
+
+
+def _free(moment: Array) -> tuple[Array, Array]:
+    """Two unit directions ``(..., 3)`` normal to ``moment`` and to each other (the coordinate axis
+    least aligned with it first): points of the couple line ``(0; moment)`` with no structural
+    meaning."""
+    m = _units(moment)
+    axis = np.eye(3)[np.argmin(np.nan_to_num(np.abs(m), nan=0.0), axis=-1)]
+    first = _units(B.cross(m, axis))
+    return first, B.cross(m, first)
+
+
+def _finite_axes(screws: Array) -> tuple[Array, Array]:
+    """:func:`screwkit.algebra.screw.axis` over a batch ``(..., 6)``, NaN where the pitch is infinite
+    (``s = 0``) or the screw is missing (NaN)."""
+    bad = ~np.isfinite(screws).all(axis=-1) | np.all(screws[..., :3] == 0, axis=-1)
+    safe = np.where(bad[..., None], np.array([0.0, 0.0, 1.0, 0.0, 0.0, 0.0]), screws)
+    point, direction = S.axis(safe)
+    return np.where(bad[..., None], np.nan, point), np.where(bad[..., None], np.nan, direction)
+
+
+def _axis_lines(screws: Array) -> tuple[Array, Array]:
+    """The axes ``(s; r × s)`` of screws ``(..., 6)`` and their points ``r`` nearest the origin."""
+    nearest, _ = _finite_axes(screws)
+    return np.concatenate([screws[..., :3], B.cross(nearest, screws[..., :3])], axis=-1), nearest
+
+
+def _meet_plane_through_axis(line: Array, axis: Array, origin: Array) -> tuple[Array, Array]:
+    """Where lines ``(..., 6)`` meet the planes that contain the axes ``(..., 6)`` (through their
+    points ``origin``) and are normal to the planes of line and axis: ``(n × m − δ s, n·s)``
+    (:func:`screwkit.algebra.projective.meet_line_plane`), and where the line lies in that plane instead."""
+    normal = B.cross(B.cross(line[..., :3], axis[..., :3]), axis[..., :3])
+    plane = np.concatenate([normal, -np.einsum("...i,...i", normal, origin)[..., None]], axis=-1)
+    s, m, delta = line[..., :3], line[..., 3:], plane[..., 3:]
+    point = np.concatenate(
+        [B.cross(normal, m) - delta * s, np.einsum("...i,...i", normal, s)[..., None]], axis=-1
+    )
+    size = np.linalg.norm(line, axis=-1) * np.linalg.norm(plane, axis=-1)
+    with np.errstate(invalid="ignore"):
+        in_plane = np.all(normal == 0, axis=-1) | (np.linalg.norm(point, axis=-1) <= B.DEFAULT_RTOL * size)
+    return point, in_plane
+
+
+def meet_points(line: Array, screw: Array, length_scale: Array) -> Array:
+    """Where finite lines meet joint axes, NaN where they are skew, parallel or meet at infinity.
+
+    The line meets the plane that contains the axis and is normal to the plane of both; they meet
+    when ``L ∘ A = 0`` after scaling moments by ``length_scale``
+    (:func:`screwkit.algebra.projective.lines_intersect`).
+
+    Parameters
+    ----------
+    line : numpy.ndarray, shape (..., 6)
+        Finite lines ``(s; r × s)``.
+    screw : numpy.ndarray, shape (..., 6)
+        Joint screws of finite pitch; their axes are used.
+    length_scale : numpy.ndarray, shape (...)
+        The mechanism's characteristic length (the incidence test is unit-free).
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 4)
+        The meeting points, weight 1; rows of NaN where there is none.
+
+    Examples
+    --------
+    >>> x_axis = np.array([1.0, 0, 0, 0, 0, 0])  # the x axis, and the z axis through (2, 0, 0)
+    >>> meet_points(x_axis, np.array([0, 0, 1.0, 0, -2.0, 0]), np.array(1.0)) + 0.0
+    array([2., 0., 0., 1.])
+    """
+    axis, origin = _axis_lines(screw)
+    length = np.asarray(length_scale, dtype=float)[..., None]
+
+    def scaled(rows: Array) -> Array:
+        return _units(np.concatenate([rows[..., :3], rows[..., 3:] / length], axis=-1))
+
+    a, b = scaled(line), scaled(axis)
+    product = np.einsum("...i,...i", a[..., :3], b[..., 3:]) + np.einsum("...i,...i", a[..., 3:], b[..., :3])
+    cross = B.cross(_units(line[..., :3]), _units(axis[..., :3]))
+    parallel = np.linalg.norm(cross, axis=-1) < INCIDENCE_RTOL
+    # the meet in lengths divided by length_scale: the test of a line lying in the plane compares
+    # the point with a product of two moments, not invariant under a change of unit otherwise (a
+    # 1 m mechanism written in picometres lost every meet point)
+    line, axis = (np.concatenate([rows[..., :3], rows[..., 3:] / length], axis=-1) for rows in (line, axis))
+    point, in_plane = _meet_plane_through_axis(line, axis, origin / length)
+    with np.errstate(invalid="ignore"):
+        skew = ~(np.abs(product) <= INCIDENCE_RTOL)
+        missing = skew | parallel | in_plane | ~(np.abs(point[..., 3]) >= 1e-12)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        meet = point / point[..., 3:]
+    meet = np.concatenate([meet[..., :3] * length, meet[..., 3:]], axis=-1)
+    return np.where(missing[..., None], np.nan, meet)
+
+
+def _joint_centres(screws: Array) -> Array:
+    """The common point ``(..., 3)`` of joints' first two axes ``(..., k, 6)`` (a spherical or
+    universal joint's centre), NaN where they are parallel (no single point)."""
+    first, _ = _axis_lines(screws[..., 0, :])
+    second, origin = _axis_lines(screws[..., 1, :])
+    point, in_plane = _meet_plane_through_axis(first, second, origin)
+    with np.errstate(invalid="ignore"):
+        missing = in_plane | (np.abs(point[..., 3]) <= B.DEFAULT_RTOL * np.linalg.norm(point, axis=-1))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.where(missing[..., None], np.nan, point[..., :3] / point[..., 3:])
+
+
+def joint_centre(screws: Array) -> Array:
+    """The centre of one spherical or universal joint: the common point of its first two axes.
+
+    Parameters
+    ----------
+    screws : array_like, shape (k, 6)
+        The joint's screws (``k >= 2``).
+
+    Returns
+    -------
+    numpy.ndarray, shape (3,)
+
+    Raises
+    ------
+    DegenerateGeometryError
+        Where its first two axes are parallel (no single point).
+
+    Examples
+    --------
+    >>> joint_centre([[1.0, 0, 0, 0, 3.0, 0], [0, 1.0, 0, -3.0, 0, 0]])  # axes x, y through (0, 0, 3)
+    array([0., 0., 3.])
+    """
+    centre = _joint_centres(np.asarray(screws, dtype=float)[None])[0]
+    if not np.isfinite(centre).all():
+        raise DegenerateGeometryError(
+            "Expected the joint's first two axes to meet at one point, got parallel axes."
+        )
+    return centre
+
+
+def _branch_pair(batch: _Batch, first: str, second: str) -> Array:
+    """``n(first) × n(second)`` over the batch (the ``normals`` recipe of
+    :mod:`screwkit.gca.diagram_recipes`), NaN where the two branches are not consecutive single
+    constraint couples of one parallel node there.
+
+    A branch's constraint couple is the reciprocal of its twist system (the core's frame kernel
+    ``reciprocal``) where that has order 1 and infinite pitch; its moment's
+    direction is frame- and unit-free.
+    """
+    top = batch.topology
+    if top.network or top.root is None:
+        return batch.nan(3)
+    actuated = set(top.actuated)
+
+    def name(index: int) -> str:
+        joints = top.nodes[index].joints
+        return (sorted(j for j in joints if j in actuated) or sorted(joints))[0]
+
+    def nested(index: int, outer: bool) -> list[int]:  # parallel nodes below the first one
+        node = top.nodes[index]
+        found = [index] if node.kind == "parallel" and not outer else []
+        return found + [
+            k for child in node.children for k in nested(child, outer and node.kind != "parallel")
+        ]
+
+    for index in nested(top.root, True):
+        children = top.nodes[index].children
+        names = [name(c) for c in children]
+        if first not in names or second not in names:
+            continue
+        moments, couple = [], []
+        for child in children:
+            rows, order = F.reciprocal(*batch.frames[f"node{child}"])  # the core's kernel, scaled frame
+            wrench = rows[:, 0]
+            moments.append(_units(wrench[:, 3:]))
+            size = np.linalg.norm(wrench, axis=-1)
+            couple.append((order == 1) & (np.linalg.norm(wrench[:, :3], axis=-1) <= B.DEFAULT_RTOL * size))
+        a, b = names.index(first), names.index(second)
+        between = np.zeros(batch.count, dtype=bool)
+        for k in range(a + 1, b):
+            between |= couple[k]
+        ok = couple[a] & couple[b] & ~between
+        return np.where(ok[:, None], B.cross(moments[a], moments[b]), np.nan)
+    return batch.nan(3)
+
+
+def _recipe(key: tuple[str, ...], batch: _Batch, cache: dict[tuple[str, ...], Array]) -> Array:
+    """One recipe (:attr:`DiagramPoint.key`) over the batch, ``(n, 4)``, NaN where it has no point."""
+    if key in cache:
+        return cache[key]
+    kind = key[0]
+    value: Array
+    if kind == "meet":
+        value = meet_points(batch.wrench(key[1]), batch.joint_screws(key[2])[:, 0], batch.length_scale)
+    elif kind == "direction":
+        value = _infinite(_canonical_directions(batch.wrench(key[1])[:, :3]))
+    elif kind == "axis":
+        name, index = (key[1], "") if key[1] in {s.name for s in batch.table.specs} else axis_key(key[1])
+        screw = batch.joint_screws(name)[:, int(index) - 1 if index else 0]
+        value = _infinite(_canonical_directions(screw[:, :3]))
+    elif kind == "normals":
+        direction = _branch_pair(batch, key[1], key[2])
+        with np.errstate(invalid="ignore"):
+            small = ~(np.linalg.norm(direction, axis=-1) >= INCIDENCE_RTOL)
+        value = np.where(small[:, None], np.nan, _infinite(_canonical_directions(direction)))
+    elif kind == "foot":  # nearest the reference point: frame-covariant
+        nearest, direction = _finite_axes(batch.wrench(key[1]))
+        offset = batch.reference_point - nearest
+        along = np.einsum("...i,...i", offset, direction) / np.einsum("...i,...i", direction, direction)
+        value = _finite(nearest + direction * along[:, None])
+    elif kind == "centre":
+        value = _finite(_joint_centres(batch.joint_screws(key[1])))
+    elif kind == "couples":
+        first, second = batch.wrench(key[1])[:, 3:], batch.wrench(key[2])[:, 3:]
+        cross = B.cross(_units(first), _units(second))
+        # two couple lines that coincide here meet everywhere along it: any point of it will do
+        with np.errstate(invalid="ignore"):
+            apart = np.linalg.norm(cross, axis=-1) >= INCIDENCE_RTOL
+        value = _infinite(_canonical_directions(np.where(apart[:, None], cross, _free(first)[0])))
+    elif kind == "free":
+        value = _infinite(_free(batch.wrench(key[1])[:, 3:])[int(key[2]) - 1])
+    elif kind == "perp":
+        moment = batch.wrench(key[1])[:, 3:]
+        cross = B.cross(moment, _recipe(key[2:], batch, cache)[:, :3])
+        with np.errstate(invalid="ignore"):
+            small = ~(np.linalg.norm(cross, axis=-1) >= INCIDENCE_RTOL * np.linalg.norm(moment, axis=-1))
+        value = np.where(small[:, None], np.nan, _infinite(_canonical_directions(cross)))
+    else:
+        value = batch.nan(4)
+    value = np.where(np.isfinite(value).all(axis=-1, keepdims=True), value, np.nan)
+    cache[key] = value
+    return value
+

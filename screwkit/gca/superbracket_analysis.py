@@ -1,0 +1,243 @@
+"""The superbracket of a wrench diagram, analysed: expanded, simplified, factored, each factor
+interpreted as a geometric condition and labelled by the roles of the lines it involves
+(:func:`superbracket_analysis`, paper 002 §5; ``gca.md`` §5–§6).
+
+Examples
+--------
+>>> from screwkit.robots.catalog import load_mechanism
+>>> diagram, sampler = load_mechanism("h4").wrench_diagram()
+>>> print(superbracket_analysis(diagram, sampler).simplification.factored)
+-[gikj][a b d ḟ][c g ḣ j]
+"""
+
+from __future__ import annotations
+
+import itertools
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from ..algebra import backend as B
+from ..exceptions import ScrewkitTypeError, ScrewkitValueError
+from .diagram import INCIDENCE_RTOL, WrenchDiagram, require_instance
+from .simplify import Simplification, simplify_superbracket
+
+if TYPE_CHECKING:  # conditions are sympy expressions: that module (and sympy) loads on first use
+    from .conditions import Condition
+
+__all__ = [
+    "VANISHING_RTOL",
+    "SuperbracketAnalysis",
+    "superbracket_analysis",
+]
+
+Array = np.ndarray
+#: A condition vanishes at the pose when its value there is at most this times its median size on
+#: the generic samples (:attr:`SuperbracketAnalysis.vanishing`).
+VANISHING_RTOL = 1e-7
+
+
+@dataclass(frozen=True, eq=False)
+class SuperbracketAnalysis:
+    """The simplified superbracket of a diagram and its factors as labelled conditions.
+
+    Attributes
+    ----------
+    diagram : WrenchDiagram
+    simplification : Simplification
+    conditions : tuple of Condition
+    labels : tuple of str
+        Per condition: ``"constraint"``, ``"actuation"`` or ``"constraint or actuation"``, from the
+        roles of the lines whose points its vector form uses (:func:`screwkit.gca.conditions.label`;
+        the evidence is in each condition's ``evidence``).
+    values : tuple of float
+        Each condition's vector form at the diagram's pose.
+    collinear : tuple of str
+        Triples of labels found collinear on every sample (declared to the factoring step).
+    vanishing : tuple of bool
+        Per condition: True when it vanishes at the pose, i.e. its value there is at most
+        :data:`VANISHING_RTOL` times its median size on the generic samples (a singular pose keeps
+        the factored form of a regular one; these factors are the ones that vanish).
+    constant : tuple of bool
+        Per condition: True when it takes one non-zero magnitude (within :data:`INCIDENCE_RTOL`) on
+        every generic sample and at the pose: a structural factor of this mechanism that never vanishes
+        (e.g. the planar mechanisms' constraint couples and force, the same lines at every pose),
+        reported as such rather than as a singularity condition.
+    """
+
+    diagram: WrenchDiagram
+    simplification: Simplification
+    conditions: tuple[Condition, ...]
+    labels: tuple[str, ...]
+    values: tuple[float, ...]
+    collinear: tuple[str, ...] = ()
+    vanishing: tuple[bool, ...] = ()
+    constant: tuple[bool, ...] = ()
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready summary.
+
+        Returns
+        -------
+        dict
+            Strings, numbers, lists and dicts only (``json.dumps`` takes it).
+        """
+        return {
+            "superbracket": self.diagram.line_text(),
+            "simplification": self.simplification.to_dict(),
+            "conditions": [
+                {
+                    **c.to_dict(),
+                    "label": label,
+                    "value_at_pose": value,
+                    "vanishes_at_pose": vanishes,
+                    "never_vanishes": constant,
+                }
+                for c, label, value, vanishes, constant in zip(
+                    self.conditions, self.labels, self.values, self.vanishing, self.constant, strict=True
+                )
+            ],
+        }
+
+
+def superbracket_analysis(
+    diagram: WrenchDiagram,
+    sampler: Callable[[np.random.Generator], Mapping[str, Array]],
+    *,
+    n_samples: int = 6,
+    rng: int = 0,
+) -> SuperbracketAnalysis:
+    """Expand, simplify and factor a diagram's superbracket; interpret and label each factor.
+
+    Two orderings are simplified (gca.md §6): the diagram's own (lines grouped by leg, shared
+    points last, as in paper 002 Fig. 4c) and the one with the fewest surviving monomials over all
+    46 080; the result is the one whose factored form has the fewest terms (then the fewest
+    monomials), i.e. the most factors to interpret. Both are checked stage by stage against the
+    6×6 determinant on fresh configurations.
+
+    Parameters
+    ----------
+    diagram : WrenchDiagram
+        A diagram whose representation holds at its pose.
+    sampler : callable
+        ``rng -> {label: point}``: the diagram's recipes at random poses of the same mechanism
+        (:meth:`screwkit.robots.catalog.Mechanism.wrench_diagram`), on which zeros are confirmed.
+    n_samples : int, default 6
+        Configurations that decide structural zeros (a bracket polynomial that is not identically
+        zero on the incidence variety vanishes at a random configuration with probability 0, so
+        one would already decide; six guard against a configuration near a singularity), and as
+        many fresh ones for the checks; drawn once and shared by both orderings.
+    rng : int, default 0
+
+    Returns
+    -------
+    SuperbracketAnalysis
+
+    Raises
+    ------
+    ScrewkitValueError
+        If the diagram is degenerate at its pose (its reasons are given).
+
+    Examples
+    --------
+    >>> from screwkit.robots.catalog import load_mechanism
+    >>> diagram, sampler = load_mechanism("h4").wrench_diagram()
+    >>> result = superbracket_analysis(diagram, sampler)
+    >>> str(result.simplification.factored), result.labels
+    ('-[gikj][a b d ḟ][c g ḣ j]', ('constraint', 'actuation'))
+    """
+    require_instance(diagram, WrenchDiagram, "diagram")
+    if not callable(sampler):
+        raise ScrewkitTypeError(f"Expected `sampler` to be callable, got {type(sampler).__name__}.")
+    if diagram.degenerate:
+        raise ScrewkitValueError(
+            "The wrench diagram is degenerate at this pose, so no factorization is claimed: "
+            + "; ".join(diagram.degenerate)
+        )
+    generator = np.random.default_rng(rng)
+    drawn = [_centred(sampler(generator)) for _ in range(2 * n_samples)]
+    # the zero tests of the expansion compare brackets of homogeneous points (x, 1) with products of
+    # their norms, which is not free of the length unit: they get the samples in units of the
+    # diagram's own size (one factor for all, diag(1/L, 1/L, 1/L, 1), which multiplies every bracket,
+    # hence every monomial of the homogeneous superbracket, by the same L⁻³ and keeps every zero)
+    length = _spread(drawn)
+    in_lengths = [{k: np.concatenate([p[:3] / length, p[3:]]) for k, p in sample.items()} for sample in drawn]
+
+    def replay() -> Callable[[np.random.Generator], Mapping[str, Array]]:
+        iterator = iter(in_lengths)
+        return lambda _: next(iterator)
+
+    collinear = _collinear_triples(diagram, drawn)
+    candidates = [
+        simplify_superbracket(
+            diagram.lines,
+            replay(),
+            finite=diagram.finite,
+            infinite=diagram.infinite,
+            collinear=collinear,
+            n_samples=n_samples,
+            search=search,
+        )
+        for search in (False, True)
+    ]
+    simplification = min(candidates, key=lambda c: (len(c.factored.rest.terms), len(c.survivors)))
+    from .conditions import conditions
+
+    found = conditions(
+        simplification.factored,
+        finite=diagram.finite,
+        infinite=diagram.infinite,
+        lines=diagram.lines,
+        roles=diagram.roles,
+    )
+    labels = tuple(c.label for c in found)
+    values = tuple(float(c.evaluate(_centred(diagram.coordinates))) for c in found)
+    on_samples = [np.array([float(c.evaluate(sample)) for sample in drawn]) for c in found]
+    typical = [B.median(np.abs(v)) for v in on_samples]
+    vanishing = tuple(abs(v) <= VANISHING_RTOL * size for v, size in zip(values, typical, strict=True))
+    # the magnitude: a point at infinity is a direction up to sign, so a structural factor may flip sign
+    constant = tuple(
+        size > 0
+        and bool(np.all(np.abs(np.abs(np.append(sampled, value)) - size) <= INCIDENCE_RTOL * size))
+        for sampled, value, size in zip(on_samples, values, typical, strict=True)
+    )
+    return SuperbracketAnalysis(
+        diagram, simplification, found, labels, values, collinear, vanishing, constant
+    )
+
+
+def _centred(points: Mapping[str, Array]) -> dict[str, Array]:
+    """The points with the origin moved to the centroid of the finite ones (``(x, w) → (x − w c, w)``,
+    points at infinity unchanged). Brackets are 4×4 determinants of homogeneous coordinates, and a
+    translation is a unimodular map of them, so every bracket, condition and collinearity keeps its
+    value (gca.md §5.1: the values depend on differences of finite points only), while a mechanism
+    far from the origin no longer loses digits to the cancellation of large coordinates."""
+    finite = [np.asarray(p[:3], dtype=float) / p[3] for p in points.values() if p[3] != 0]
+    if not finite:
+        return dict(points)
+    centre = np.mean(finite, axis=0)
+    return {k: np.concatenate([p[:3] - p[3] * centre, p[3:]]) for k, p in points.items()}
+
+
+def _spread(samples: list[dict[str, Array]]) -> float:
+    """The RMS distance of the samples' finite points from their (centred) origin, 1 if none."""
+    finite = [p[:3] / p[3] for sample in samples for p in sample.values() if p[3] != 0]
+    size = float(np.sqrt(np.mean(np.sum(np.square(finite), axis=-1)))) if finite else 0.0
+    return size if np.isfinite(size) and size > 0 else 1.0
+
+
+def _collinear_triples(diagram: WrenchDiagram, samples: list[dict[str, Array]]) -> tuple[str, ...]:
+    """Triples (two finite points, one at infinity) collinear on every sample (e.g. a, c, j in the H4)."""
+    found = []
+    for first, second in itertools.combinations(diagram.finite, 2):
+        for direction in diagram.infinite:
+            if all(_parallel(s[second][:3] - s[first][:3], s[direction][:3]) for s in samples):
+                found.append(first + second + direction)
+    return tuple(found)
+
+
+def _parallel(u: Array, v: Array) -> bool:
+    size = np.linalg.norm(u) * np.linalg.norm(v)
+    return bool(size > 0 and np.linalg.norm(B.cross(u, v)) <= INCIDENCE_RTOL * size)
