@@ -481,7 +481,7 @@ def test_batch_diagram_points_is_nan_only_where_a_recipe_has_no_point():
 def test_catalog_sampler_replays_the_generic_samples_batch_after_batch():
     # the sampler's first batch is analysed together with the generic draws, the next ones on their
     # own: both must be generic_samples' batches from one generator seeded 0, in order
-    from screwkit.robots.posed import SAMPLES, generic_samples
+    from screwkit.robots.generic_poses import SAMPLES, generic_samples
 
     h4 = load_mechanism("h4")
     diagram, sampler = h4.wrench_diagram()

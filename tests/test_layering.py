@@ -3,7 +3,8 @@
 Every import in every module of ``screwkit`` is parsed (function-level ones included) and checked
 against the layers of ``docs/architecture.md``: a module may import a module of its own layer
 (without closing a cycle) or of a layer below it, never one above; and no private name (one
-starting with ``_``, module or attribute) is imported from another subpackage.
+starting with ``_``, module or attribute, imported or read as ``module._name``) crosses a
+subpackage.
 """
 
 from __future__ import annotations
@@ -77,6 +78,27 @@ def imports(module: str) -> list[tuple[str, str, int]]:
     return found
 
 
+def module_attributes(module: str) -> list[tuple[str, str, int]]:
+    """``(module, attribute, line)`` for every ``alias.attribute`` read of a screwkit module
+    imported under a name (``from ..algebra import projective as P`` ... ``P.LAPLACE``)."""
+    aliases = {}
+    tree = ast.parse(MODULES[module].read_text(encoding="utf-8"))
+    path = MODULES[module]
+    package = module if path.name == "__init__.py" else module.rpartition(".")[0]
+    for node in ast.walk(tree):
+        if isinstance(node, ast.ImportFrom):
+            base = package.split(".")[: len(package.split(".")) - node.level + 1] if node.level else []
+            target = ".".join(base + ([node.module] if node.module else [])) if node.level else node.module
+            for alias in node.names:
+                if f"{target}.{alias.name}" in MODULES:
+                    aliases[alias.asname or alias.name] = f"{target}.{alias.name}"
+    return [
+        (aliases[node.value.id], node.attr, node.lineno)
+        for node in ast.walk(tree)
+        if isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name) and node.value.id in aliases
+    ]
+
+
 def test_every_layer_is_known():
     assert {layer(m) for m in MODULES} <= set(LAYERS)
 
@@ -108,7 +130,8 @@ def test_no_private_name_crosses_a_subpackage():
 
     crossing = []
     for module in MODULES:
-        for target, name, line in imports(module):
+        reads = [(target, name, line) for target, name, line in module_attributes(module)]
+        for target, name, line in imports(module) + reads:
             if target not in MODULES or subpackage(target) == subpackage(module):
                 continue
             leaf = target.rpartition(".")[2]

@@ -314,9 +314,9 @@ def bracket(p: Any, q: Any, r: Any, s: Any) -> Any:
     return bracket_unchecked(*np.broadcast_arrays(*pts))
 
 
-# Laplace expansion of a 4×4 determinant along its first two rows: (columns of rows 0-1, the
-# complementary columns of rows 2-3, sign (-1)^(i+j+1) with 0-based column indices i, j).
-_LAPLACE = (
+#: Laplace expansion of a 4×4 determinant along its first two rows: (columns of rows 0-1, the
+#: complementary columns of rows 2-3, sign (-1)^(i+j+1) with 0-based column indices i, j).
+LAPLACE = (
     ((0, 1), (2, 3), 1),
     ((0, 2), (1, 3), -1),
     ((0, 3), (1, 2), 1),
@@ -339,7 +339,7 @@ def bracket_unchecked(p: Array, q: Array, r: Array, s: Array) -> Any:
     -1.0
     """
     total: Any = 0
-    for (i, j), (k, m), sign in _LAPLACE:
+    for (i, j), (k, m), sign in LAPLACE:
         upper = p[..., i] * q[..., j] - p[..., j] * q[..., i]
         lower = r[..., k] * s[..., m] - r[..., m] * s[..., k]
         total = total + sign * upper * lower

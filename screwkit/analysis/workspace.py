@@ -458,7 +458,27 @@ def sweep(
     :func:`screwkit.robots.catalog.mechanism_from_mapping`), every chunk of every map submitted at once
     when a Dask ``client`` is given.
 
-    Parameters are those of :func:`grid_map`.
+    Parameters
+    ----------
+    mechanisms : sequence of Mechanism
+        The mechanisms to map, in order (non-empty).
+    quantity : str
+        See :data:`QUANTITIES`, as for :func:`grid_map`.
+    x, y : tuple (name, low, high, count)
+        The axes, as for :func:`grid_map`.
+    fixed : dict, optional
+        The other coordinates, as for :func:`grid_map`.
+    mode : mapping or sequence, optional
+        Inverse-kinematics options, as for :func:`grid_map`.
+    chunk : int, optional
+        Poses per chunk.
+    client : dask.distributed.Client, optional
+        Submit every chunk of every map to this cluster at once.
+    progress : bool, optional
+        Show a progress bar.
+    angles : {"deg", "rad"}
+    rtol : float, optional
+        The core's relative tolerance.
 
     Returns
     -------

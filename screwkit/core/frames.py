@@ -1,4 +1,4 @@
-"""Batched orthonormal frames of screw systems: the arithmetic under every pose: the rank rule and scaled coordinates.
+"""Batched orthonormal frames of screw systems: the one rank rule under every pose, in scaled coordinates.
 
 Every rank decision of the analysis core is made here, over a leading batch axis, on screws
 expressed about the mechanism's own reference point with moments divided by its characteristic

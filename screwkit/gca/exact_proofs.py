@@ -45,7 +45,7 @@ def _exact_det4(rows: Sequence[Sequence[int]]) -> int:
     """Determinant of a 4×4 integer matrix (Laplace along the first two rows), exact."""
     (a, b, c, d) = rows
     total = 0
-    for (i, j), (k, m), sign in P._LAPLACE:
+    for (i, j), (k, m), sign in P.LAPLACE:
         total += sign * (a[i] * b[j] - a[j] * b[i]) * (c[k] * d[m] - c[m] * d[k])
     return total
 

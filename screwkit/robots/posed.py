@@ -32,7 +32,7 @@ import functools
 import weakref
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
-from typing import Any, overload
+from typing import Any
 
 import networkx as nx
 import numpy as np
@@ -46,26 +46,24 @@ from ..core.verdicts import SingularityReport
 from ..core.wrench_systems import WrenchAnalysis, analyze_table
 from ..exceptions import ScrewkitError, ScrewkitIndexError, ScrewkitValueError
 from ..graphs.jointtable import JointTable
+from .generic_poses import (
+    GENERIC_DRAWS,
+    SAMPLES,
+    _concatenated,
+    _no_sampler,
+    _PoseAnalyses,
+    _reachable_table,
+    _samples,
+    generic_samples,
+)
 from .transmission import Transmission, wrench_transmission
 
-__all__ = ["Pose", "PosedMechanism", "generic_samples"]
+__all__ = ["Pose", "PosedMechanism"]
 
 Array = np.ndarray
 
 #: Poses taken through the inverse kinematics, joint table and analysis core at once.
 CHUNK = 512
-#: Random workspace poses drawn (in one batch) to find a generic configuration for a diagram (the
-#: first few reachable ones are tried: screwkit.gca.diagram_placement.REFERENCE_TRIES).
-GENERIC_DRAWS = 12
-#: Generic samples of a diagram's points drawn (in one batch) for the superbracket: its structural
-#: zeros and its checks take 12 (screwkit.gca.superbracket_analysis.superbracket_analysis).
-SAMPLES = 24
-#: Poses whose diagram points are evaluated at once when samples are read (the superbracket reads
-#: 12: most of a batch of SAMPLES is never evaluated; their constraint lines take a readable basis
-#: pose by pose).
-SAMPLE_CHUNK = 12
-
-
 def _checked_poses(mechanism: Any, poses: Any) -> Array:
     names = mechanism.pose_names
     if poses is None:
@@ -473,133 +471,3 @@ def _joint_table(
     if alive is not None:
         return alive.joints
     return mechanism.family_protocol.joint_table(mechanism.configuration(poses, **options))
-
-
-def _reachable_table(mechanism: Any, rng: np.random.Generator, count: int) -> JointTable | None:
-    """The joint table at ``count`` random workspace poses, those out of reach dropped (None if
-    none is reachable)."""
-    poses = mechanism.random_poses(rng, count)
-    try:
-        return mechanism.joints(poses)
-    except ScrewkitError:  # some pose out of reach: keep those the IK accepts one by one
-        kept = []
-        for pose in poses:
-            try:
-                mechanism.configuration(pose)
-            except ScrewkitError:
-                continue
-            kept.append(pose)
-        return mechanism.joints(np.array(kept)) if kept else None
-
-
-def _concatenated(tables: Sequence[JointTable]) -> JointTable:
-    """Joint tables of one mechanism ``(n_i, ...)`` as one batch ``(Σ n_i, ...)``."""
-    first = tables[0]
-    anchor = None if first.anchor is None else np.concatenate([t.anchor for t in tables])
-    screws = np.concatenate([t.screws for t in tables])
-    return JointTable(first.base, first.platform, first.specs, screws, first.dof, anchor, first.mobility)
-
-
-class _PoseAnalyses(Sequence[WrenchAnalysis]):
-    """The per-pose views of a batched analysis, each (with its twist graph) built on first read:
-    a diagram is chosen on the first few and sampled until enough points are found."""
-
-    def __init__(self, batch: Any, table: JointTable, name: str):
-        self._batch, self._table, self._name = batch, table, name
-        self._built: dict[int, WrenchAnalysis] = {}
-
-    def __len__(self) -> int:
-        return len(self._batch)
-
-    @overload
-    def __getitem__(self, index: int) -> WrenchAnalysis: ...
-
-    @overload
-    def __getitem__(self, index: slice) -> list[WrenchAnalysis]: ...
-
-    def __getitem__(self, index: int | slice) -> WrenchAnalysis | list[WrenchAnalysis]:
-        if isinstance(index, slice):
-            return [self[i] for i in range(*index.indices(len(self)))]
-        if not -len(self) <= index < len(self):
-            raise IndexError(index)
-        index %= len(self)
-        if index not in self._built:
-            one = self._batch[index]
-            graph = self._table.graph(index)
-            graph.graph["name"] = self._name
-            object.__setattr__(one, "graph", graph)
-            self._built[index] = one
-        return self._built[index]
-
-
-def generic_samples(
-    mechanism: Any,
-    points: Any,
-    rng: np.random.Generator,
-    count: int,
-    rtol: float = B.DEFAULT_RTOL,
-    length_scale: float | None = None,
-) -> list[dict[str, Array]]:
-    """A diagram's points (``{label: (4,)}``) at random workspace poses, analysed and evaluated as
-    one batch (:func:`screwkit.gca.diagram_points.batch_diagram_points`).
-
-    Poses where a point does not exist are skipped; at most ``2 * count`` poses are drawn.
-
-    Parameters
-    ----------
-    mechanism : Mechanism
-    points : sequence of DiagramPoint
-    rng : numpy.random.Generator
-    count : int
-        Samples wanted.
-    rtol : float
-    length_scale : float, optional
-
-    Returns
-    -------
-    list of dict
-        ``{label: (4,)}`` per sample.
-
-    Raises
-    ------
-    ScrewkitValueError
-        If no drawn pose gives every point.
-
-    Examples
-    --------
-    >>> from screwkit.robots.catalog import load_mechanism
-    >>> h4 = load_mechanism("h4")
-    >>> diagram, _ = h4.wrench_diagram()
-    >>> len(generic_samples(h4, diagram.points, np.random.default_rng(0), 3))
-    3
-    """
-    table = _reachable_table(mechanism, rng, 2 * count)
-    analysis = None if table is None else analyze_table(table, rtol=rtol, length_scale=length_scale)
-    return list(_samples(points, analysis, count))
-
-
-def _samples(points: Any, analysis: WrenchAnalysis | None, count: int) -> Iterator[dict[str, Array]]:
-    """:func:`generic_samples` from the analysis of the drawn poses (None: none reachable), lazily:
-    the points are evaluated :data:`SAMPLE_CHUNK` poses at a time, as far as the samples read."""
-    from ..gca.diagram_points import batch_diagram_points
-
-    given, total = 0, 0 if analysis is None else len(analysis)
-    for start in range(0, total, SAMPLE_CHUNK):
-        assert analysis is not None
-        found = batch_diagram_points(points, analysis[start : start + SAMPLE_CHUNK])
-        exists = np.all([np.isfinite(v).all(axis=-1) for v in found.values()], axis=0) if found else []
-        for i in np.flatnonzero(exists)[: count - given]:
-            given += 1
-            yield {label: v[i] for label, v in found.items()}
-        if given == count:
-            return
-    if not given:
-        raise ScrewkitValueError(
-            f"Expected a workspace pose giving every diagram point, got none of {2 * count}."
-        )
-
-
-def _no_sampler(rng: np.random.Generator) -> dict[str, Array]:
-    """The sampler of a diagram that has no generic reference: always refuses (never called when
-    the diagram is reported degenerate)."""
-    raise ScrewkitValueError("no generic pose gives this mechanism a wrench diagram to sample.")
