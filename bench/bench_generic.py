@@ -21,7 +21,7 @@ from screwkit.algebra import symbolic
 from screwkit.core.generic import generic_analysis
 from screwkit.core.wrenches import wrench_analysis
 from screwkit.graphs.reduction import platform_twist_system
-from tests.test_generic import delta_3ruu, four_limb_smg, fully_symbolic_h4, numeric_values
+from tests.core.test_generic import delta_3ruu, four_limb_smg, fully_symbolic_h4, numeric_values
 
 
 def cpu_times(function, repeat):

@@ -1,4 +1,4 @@
-"""Family facts of the four-limb catalog entries (paper 004), evaluated by tests/test_catalog.py.
+"""Family facts of the four-limb catalog entries (paper 004), evaluated by tests/robots/test_catalog.py.
 
 ``FACTS = {fact name: check(mechanism, fact) -> (got, expected)}``; ``test_catalog`` asserts
 ``got == expected``. Expected values are the TOML's (the paper's numbers); where a fact carries a
@@ -12,7 +12,7 @@ Regions for Table 4 (paper 004's Fig. 6, the workspace, is missing from the OCR 
 * ``"cone"``: the solid of revolution about ``z`` bounded below by the cone on which the spiral of
   Eq. (17) lies (apex ``(0, 0, -975)``, radius 650 mm at ``z = -575``) and above by a cylinder of
   radius 650 mm up to ``z = -475`` (the Quattro's 1300 mm x 500 mm envelope); a 61 x 61 x 41 grid
-  plus 721 points on the top rim. The same assumption as ``tests/test_families_four_limb.py``.
+  plus 721 points on the top rim. The same assumption as ``tests/robots/test_families_four_limb.py``.
 * ``"eq_19"``: the Ragnar's super-ellipsoid of Eq. (19) on a 41^3 grid.
 
 Unreachable grid points are skipped.

@@ -1,4 +1,4 @@
-"""Family facts of the planar 3-RRP catalog entry (paper 003), evaluated by tests/test_catalog.py.
+"""Family facts of the planar 3-RRP catalog entry (paper 003), evaluated by tests/robots/test_catalog.py.
 
 ``FACTS = {fact name: check(mechanism, fact) -> (got, expected)}``. The twist-graph results are
 compared with paper 003's own instant-centre and Jacobian results (``tests/paper_003.py``), which

@@ -1,11 +1,11 @@
 """Family-specific [[expected]] facts of the two-limb SMGs (mcgill_smg.toml, peppermill.toml).
 
-``FACTS = {fact: check(mechanism, fact) -> (got, expected)}`` (see ``tests/test_catalog.py``). Each
+``FACTS = {fact: check(mechanism, fact) -> (got, expected)}`` (see ``tests/robots/test_catalog.py``). Each
 check *computes* its answer (ranks, determinants, labels at poses found by root searches); nothing
 is read back from the code under test's own printout.
 
 The singular poses of each kind are found here by bisection on a singularity factor along a
-segment, and shared with ``tests/test_two_limb_catalog.py``:
+segment, and shared with ``tests/robots/test_two_limb_catalog.py``:
 
 * McGill SMG (paper 001): serial ``κ_I = 0`` (bisection on leg I's distal angle), serial
   ``sin θ_I3 = 0`` (leg I extended), parallel (``det[φ_I, φ_II, k × (σ_I − σ_II)] = 0`` along a turn

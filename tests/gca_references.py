@@ -1,5 +1,5 @@
 """Independent references shared by the tests of screwkit.gca (tests/test_gca_*.py,
-tests/test_conditions.py): numpy and exact determinants, the 24-term formula of gca.md §2.1 copied
+tests/gca/test_conditions.py): numpy and exact determinants, the 24-term formula of gca.md §2.1 copied
 verbatim and parsed by a regex here (not by gca's parser), random points, and the H4 wrench diagram
 of paper 002 (Amine et al., ARK 2010, §5.1, Fig. 4c) with its samplers.
 """

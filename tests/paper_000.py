@@ -3,8 +3,8 @@
 Source: paper 000 (Harada & Angeles, "Kinematics and singularity analysis of a CRRHHRRC parallel
 Schönflies motion generator", CSME Trans. 38(2), 2014) (docs/papers.md). The robot model (parameters, inverse and forward
 kinematics, joints, twist basis) is :mod:`screwkit.robots.families.peppermill`; this module holds what only
-serves to check the paper (``tests/test_families_peppermill.py``, ``tests/test_two_limb_catalog.py``,
-``tests/test_paper_jacobians.py``, ``tests/facts_two_limb.py``): Eqs. (44)-(48), the factors of
+serves to check the paper (``tests/robots/test_families_peppermill.py``, ``tests/robots/test_two_limb_catalog.py``,
+``tests/papers/test_paper_jacobians.py``, ``tests/facts_two_limb.py``): Eqs. (44)-(48), the factors of
 ``det A`` and ``det B``, the Gosselin-Angeles type from them
 (:func:`screwkit.core.jacobian_matrices.classify_jacobians`) and a root search for second-kind singularities.
 

@@ -3,8 +3,8 @@
 Source: paper 001 (Angeles, Caro, Khan, Morozov, "Kinetostatic design of an innovative
 Schönflies-motion generator", Proc. IMechE C 220(7), 2006) (docs/papers.md). The robot model (parameters, inverse and forward
 kinematics, joints, twist basis) is :mod:`screwkit.robots.families.mcgill_smg`; this module holds what
-only serves to check the paper (``tests/test_families_mcgill_smg.py``,
-``tests/test_two_limb_catalog.py``, ``tests/test_paper_jacobians.py``, ``tests/facts_two_limb.py``):
+only serves to check the paper (``tests/robots/test_families_mcgill_smg.py``,
+``tests/robots/test_two_limb_catalog.py``, ``tests/papers/test_paper_jacobians.py``, ``tests/facts_two_limb.py``):
 Eqs. (16)-(19), the singularity factors of Eqs. (20)-(24), the Gosselin-Angeles type from them
 (:func:`screwkit.core.jacobian_matrices.classify_jacobians`) and a root search for parallel singularities.
 

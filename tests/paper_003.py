@@ -5,8 +5,8 @@ Source: paper 003 (S. Zarkandi, "A study of the instantaneous centers of rotatio
 3-DOF fully parallel planar manipulators") (docs/papers.md);
 equation numbers are that paper's. The robot model (parameters, kinematics, joint table) is
 :mod:`screwkit.robots.families.planar_3rrp`; screwkit analyses its joint table with the wrench systems,
-and the tests compare the two (``tests/test_planar_catalog.py``, ``tests/facts_planar.py``,
-``tests/test_paper_jacobians.py``). These functions are computed without screw systems, from the
+and the tests compare the two (``tests/robots/test_planar_catalog.py``, ``tests/facts_planar.py``,
+``tests/papers/test_paper_jacobians.py``). These functions are computed without screw systems, from the
 paper's formulas, so that the comparison is independent.
 
 Velocities, Eqs. (4)-(11): ``J θ̇ + K t = 0`` with ``J = diag(b_kᵀ(C_ij - C_1i))`` (Eq. 11a) and rows
@@ -31,7 +31,7 @@ coordinates
   perpendicular to the guide; the paper's ``t_i``): direct-singular iff they are concurrent (at
   ``D``, then ``C_18 = D`` with the actuators locked) or parallel (impossible here, Sec. 4.2).
 
-Where paper 003 is garbled or wrong (each is checked in ``tests/test_families_planar_3rrp.py``; item 6,
+Where paper 003 is garbled or wrong (each is checked in ``tests/robots/test_families_planar_3rrp.py``; item 6,
 about the model, is in :mod:`screwkit.robots.families.planar_3rrp`)
 -------------------------------------------------------------------------------------------------------
 1. Eqs. (7a), (11a): the OCR prints ``C_li``; it is ``C_1i`` (the actuated joint on link 1, Eq. 12).

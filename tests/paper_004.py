@@ -1,6 +1,6 @@
 """Paper 004's test path (Wu, Bai, Caro 2018, Sec. 5.1): the spiral of Eqs. (17)-(18) along which the
 paper reports the Quattro's pressure angles. Used by the tests that check those reports
-(``tests/test_families_four_limb.py``, ``tests/facts_four_limb.py``)."""
+(``tests/robots/test_families_four_limb.py``, ``tests/facts_four_limb.py``)."""
 
 from __future__ import annotations
 

@@ -9,14 +9,14 @@ Three surfaces of the catalog H4 (``sk.load_mechanism("h4")``, poses ``(x, y, z)
   004 has a double root, ``h_i = b w_i·(u_i × v_i) = 0``, Eq. 8): the limb's actuated twist lies in
   the span of its other twists. Only its inner side exists (the outer side is out of reach).
 
-Both conditions come from :func:`tests.test_h4.paper_002_conditions` (computed there from the
+Both conditions come from :func:`tests.robots.test_h4.paper_002_conditions` (computed there from the
 parallelograms' plane normals, independently of the code under test).
 
 **Where the roots are.** The catalog workspace (``h4.workspace``: |x|, |y| ≤ 350 mm, −1000 ≤ z ≤
 −550 mm, |φ| ≤ 45°) holds none of the three surfaces: at ~2·10⁵ poses drawn in it, Eq. (6) < 0,
 Eq. (7) > 0 and every pose is reachable but ~1 %. So each search segment *starts* at a random
 catalog-workspace pose (``h4.random_poses``) and *ends* at a reachable pose beyond it
-(:func:`tests.test_h4.random_poses` with ``edge=True``: |x|, |y| ≤ 400 mm, z ≤ −500 mm,
+(:func:`tests.robots.test_h4.random_poses` with ``edge=True``: |x|, |y| ≤ 400 mm, z ≤ −500 mm,
 |φ| ≤ 90°) where the condition has the other sign (for ``"serial"``: an unreachable pose of a
 wider box). The sign change nearest the start on a 101-point grid of the segment (evaluated for
 all segments at once) is refined by bisection on the segment's parameter
@@ -41,8 +41,8 @@ import screwkit as sk
 from screwkit.robots.families.four_limb.kinematics import reachable
 
 from .mechanisms import bisect_root
-from .test_h4 import paper_002_conditions
-from .test_h4 import random_poses as edge_poses
+from .robots.test_h4 import paper_002_conditions
+from .robots.test_h4 import random_poses as edge_poses
 
 H4 = sk.load_mechanism("h4")
 LOW, HIGH = (np.array(v, dtype=float) for v in zip(*(H4.workspace[c] for c in H4.pose_names), strict=True))

@@ -278,7 +278,7 @@ def parallelogram(
 
     Paper 002 §4.1 spans the wrenches by ``τ̂01 = (s_mp; r_p × s_mp)`` and ``τ̂∞1 = (0; s_mp × s_mn)``
     and the twists by ``ε̂01 = (s_mp; r_p × s_mp)``, ``ε̂02 = (s_mn; r_n × s_mn)``, ``ε̂∞1 = (0; n)``,
-    ``ε̂∞2 = (0; s_mp × n)``: the same two systems (``tests/test_frames.py`` checks them by rank).
+    ``ε̂∞2 = (0; s_mp × n)``: the same two systems (``tests/core/test_frames.py`` checks them by rank).
 
     Parameters
     ----------

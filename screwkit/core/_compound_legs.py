@@ -183,7 +183,7 @@ def compound_legs(
     wrench (paper 002 Eq. 3): the chain alone then says "serial" (``A1``'s twist in the span of
     its chain's passive twists) and the global system loses a rank ("actuation"). Yet the pose
     is regular: paper 004 Eq. (12) gives ``|A| = −47.9`` and paper 002 Eq. (7) ``47.9`` at
-    ``(300, 300, −473.80 mm, 30°)`` (tests/test_workspace.py). With the end effector fixed and
+    ``(300, 300, −473.80 mm, 30°)`` (tests/analysis/test_workspace.py). With the end effector fixed and
     ``A4`` locked, ``b_I`` cannot turn about ``R_I`` (parallelogram 4's couple ``C_n4`` has
     ``n4·z ≠ 0``), so ``A1`` cannot move; with all four arms locked leg I transmits three
     independent wrenches (``C_n1``, ``F_w1 − (m1/n4z) C_n4``, ``F_w4 − (m4/n4z) C_n4``), leg II
@@ -212,7 +212,7 @@ def compound_legs(
     * the global system is ``W^c + Σ_L W_L,locked`` (each such leg's ``W_locked`` added; one rank
       rule).
 
-    Evidence (tests/test_compound_legs.py): at the H4 pose above the core now says regular; its
+    Evidence (tests/core/test_compound_legs.py): at the H4 pose above the core now says regular; its
     ``det A`` equals paper 004's Eq. (12), its ``B`` paper 004's ``diag(−h_i)`` (Eq. 8), ``B⁻¹A``
     the finite differences of the inverse kinematics, and the six locked-leg wrenches written out
     by hand have rank 6; where both of ``b_I``'s parallelograms are vertical the nacelle spins about

@@ -89,7 +89,7 @@ Eq. (7) identically, because ``(r_g − r_c) × z = 2r s`` for the points ``r_c`
 * the 6 × 6 determinant (:mod:`screwkit.core.verdicts`'s global order) sees both kinds and cannot
   tell them apart; the constraint order alone sees Eq. (6).
 
-``tests/test_jacobians.py`` keeps the evidence (identities at random poses, labels at the roots).
+``tests/core/test_jacobians.py`` keeps the evidence (identities at random poses, labels at the roots).
 
 Examples
 --------

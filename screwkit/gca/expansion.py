@@ -41,7 +41,7 @@ __all__ = [
 _SLOTS = "abcdefghijkl"
 
 # gca.md §2.1: [ab,cd,ef,gh,ij,kl] in the reference convention (constant +1). Each monomial is a
-# standard Young tableau, so the form is unique; tests/test_gca_expansion.py proves it against the 6×6 det.
+# standard Young tableau, so the form is unique; tests/gca/test_expansion.py proves it against the 6×6 det.
 _EXPANSION = BracketPolynomial.parse(
     """
     +[abcd][efgi][hjkl] -[abcd][efgj][hikl] -[abcd][efhi][gjkl] +[abcd][efhj][gikl]
@@ -256,7 +256,7 @@ def _ordering_counts(positions: Sequence[str], zero: Mapping[tuple[str, ...], bo
     The count does not depend on the flips: exchanging the two points of any line maps the 24
     template monomials of gca.md §2.1 onto themselves with every coefficient negated (the expansion
     stays in standard form; the superbracket changes sign as a join does), a property of the template
-    that ``tests/test_gca_expansion.py`` checks exactly, monomial by monomial. So the polynomial of ordering
+    that ``tests/gca/test_expansion.py`` checks exactly, monomial by monomial. So the polynomial of ordering
     ``(π, f)`` is ``±`` that of ``(π, 0)``, the same monomials surviving and combining: the 720
     permutations are scored: ordering ``64 π + f`` (:func:`_ordering`) has the count of ``π``.
     """

@@ -48,7 +48,7 @@ the wrench systems (:func:`screwkit.core.jacobians.jacobians_from_wrenches`), an
 two agree up to row scaling.
 
 Where paper 004 is wrong here (numbered as in :mod:`screwkit.robots.families.four_limb`, whose items 1-3
-and 6 concern the model; each is checked in ``tests/test_families_four_limb.py``)
+and 6 concern the model; each is checked in ``tests/robots/test_families_four_limb.py``)
 ----------------------------------------------------------------------------------------------------
 4. Table 2, Veloce, printed ``hφ/(2π) (w_13 × w_24)ᵀk``: it would make every pose with ``φ = 0``
    singular. Laplace expansion with the corrected ``s_i`` gives ``|A| = -h/(2π) (w_13 × w_24)ᵀk``.
@@ -442,7 +442,7 @@ def transmission(
     (:mod:`screwkit.papers._lti_numba`) for batches of :data:`screwkit.core.frames.COMPILED_MIN_BATCH`
     poses or more (or once it is loaded), else the numpy path (:func:`screwkit.robots.families.four_limb.
     inverse_kinematics` then :func:`transmission_indices`; a single pose never loads numba);
-    ``SCREWKIT_NUMBA=0`` forces numpy. The two agree to round-off (``tests/test_indices.py``).
+    ``SCREWKIT_NUMBA=0`` forces numpy. The two agree to round-off (``tests/papers/test_paper_004.py``).
 
     Parameters
     ----------

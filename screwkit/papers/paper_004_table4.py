@@ -473,7 +473,7 @@ TABLE_4: tuple[tuple[str, str, float, str, float, float, str, str], ...] = (
 )
 
 #: Agreement with a Table 4 value: the paper prints 3 decimals; a 41³ grid moves the extremes by
-#: up to about 1e-3 (tests/test_indices.py measures it).
+#: up to about 1e-3 (tests/papers/test_paper_004.py measures it).
 TABLE_4_TOLERANCE = 0.002
 
 

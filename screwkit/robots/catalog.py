@@ -28,7 +28,7 @@ parametric family in :mod:`screwkit.robots.families`::
     x = [-350.0, 350.0]
     ...
 
-    [[expected]]                     # published facts, checked by tests/test_catalog.py
+    [[expected]]                     # published facts, checked by tests/robots/test_catalog.py
     fact = "platform_twist_order"
     value = 4
     source = "paper 002, §4.2"

@@ -75,7 +75,7 @@ class Mechanism(Generic[P, C]):
         The share of the workspace box the inverse kinematics reaches (``[workspace]
         reachable_fraction``, default 1: every pose). Below 1 the box is a bounding box:
         :meth:`random_poses` draws in its reachable part only, the maps of :mod:`screwkit.analysis.workspace`
-        mask the rest as unreachable (checked by ``tests/test_catalog.py`` against the IK).
+        mask the rest as unreachable (checked by ``tests/robots/test_catalog.py`` against the IK).
     expected : tuple of dict
         The ``[[expected]]`` facts.
     """

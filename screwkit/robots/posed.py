@@ -370,7 +370,7 @@ class Pose:
         """The random workspace poses a wrench diagram is chosen at (:data:`GENERIC_DRAWS`, seed
         2026) and the first batch of its sampler's (``2 *`` :data:`SAMPLES`, seed 0) through the
         core as one batch, with this pose unless its analysis is already computed (one pass instead
-        of three; a pose's result does not depend on the batch it is in, ``tests/test_batch.py``):
+        of three; a pose's result does not depend on the batch it is in, ``tests/robots/test_batch.py``):
         the per-pose analyses at the generic draws, the batch at the samples (None if none is
         reachable) and the samples' generator, where the next batch is drawn from. (61 poses of
         four limbs stay below :data:`screwkit.algebra.compiled.COMPILED_MIN_BATCH`: no numba import.)

@@ -275,7 +275,7 @@ def wrench_transmission(
     serial singularity (``B_jj = 0``) gives ``ITI_j = 0``; an actuation singularity (``A`` loses
     rank) gives ``OTI_j = 0`` for the limbs involved.
 
-    Relation to paper 004 (derived; ``tests/test_indices.py`` checks both). For a four-limb robot
+    Relation to paper 004 (derived; ``tests/papers/test_paper_004.py`` checks both). For a four-limb robot
     ``w_i`` is a force along the parallelogram (unit ``w_i``, through ``B_i``) and ``$_i`` the
     rotation about ``u_i`` through ``A_i`` (pitches 0). With the point of application ``B_i``
     (``posed.wrench_transmission`` passes it), ``v(B_i) = b u_i × v_i`` and

@@ -51,7 +51,7 @@ Parallelograms: the two rods of limb ``i`` join the sphere centres ``m_i = b_i -
 sub-platform (short sides parallel to the actuated axis, as in paper 002, Sec. 4.2). The width ``d``
 is not given by paper 004; it does not enter the kinematics. Its default, 100 mm, is *our choice*.
 
-Where paper 004 is garbled or wrong (each is checked in ``tests/test_families_four_limb.py``)
+Where paper 004 is garbled or wrong (each is checked in ``tests/robots/test_families_four_limb.py``)
 ---------------------------------------------------------------------------------------------
 1. Table 1, ``s_i`` of Quattro/H4/V4, printed ``sgn(cos η_i) r s``: differentiating ``c_i`` gives
    ``∂c_i/∂φ = σ_i r ∂(R(φ) i)/∂φ``; Eq. (4) writes this as ``r s_i`` and calls ``s_i`` a unit

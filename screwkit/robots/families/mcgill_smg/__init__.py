@@ -25,7 +25,7 @@ Eqs. (1)-(2). Leg ``J`` has the sign ``s(J) = +1, -1`` for ``J = I, II`` (Eq. 13
 * ``O_J4 = O_J3 + b4 k`` on the vertical wrist axis (passive ``θ_J4``, ``φ = θ_J1 + θ_J4``,
   Eqs. 1d, 2d) and ``P = O_J4 + s(J) R e(φ) + b5 k``.
 
-This reproduces Eqs. (1a)-(2d) term by term (``tests/test_families_mcgill_smg.py`` checks it). The
+This reproduces Eqs. (1a)-(2d) term by term (``tests/robots/test_families_mcgill_smg.py`` checks it). The
 moving plate is the bar ``O_I4 O_II4`` of length ``2R`` with ``P`` at its middle.
 
 Our choices where the paper is silent (Table 1 and Sec. 6 give only ``R = 200 mm``,

@@ -53,7 +53,7 @@ def joints(config: McGillConfiguration) -> JointTable:
     both distal links vertical and parallel leg planes (Fig. 8a) the twist graph reports a
     constraint singularity (the plate gains a rotation about ``f_J``) where ``A`` is
     rank-deficient; with short sides tilted from the vertical it reports an actuation singularity
-    (``tests/test_two_limb_catalog.py``).
+    (``tests/robots/test_two_limb_catalog.py``).
 
     Parameters
     ----------

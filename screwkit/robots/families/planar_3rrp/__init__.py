@@ -60,7 +60,7 @@ classification (``tests/paper_003.py``):
 inverse (``J_kk = 0``) ↔ ``"serial"`` (that limb's twist system drops to order 2, so the platform
 is locked in one direction rather than uncontrolled: ``lost_dof = 1``, the global system stays a
 6-system); direct (``L_1, L_2, L_3`` concurrent) ↔ ``"actuation"``; combined ↔ both. The tests
-(``tests/test_planar_catalog.py``) check this at poses found by root search.
+(``tests/robots/test_planar_catalog.py``) check this at poses found by root search.
 
 Examples
 --------
