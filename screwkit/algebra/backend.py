@@ -20,7 +20,6 @@ constructor here.
 
 Examples
 --------
->>> import numpy as np
 >>> from screwkit.algebra import backend as B
 >>> B.as_array([1, 2, 3], "point", (3,))
 array([1., 2., 3.])

@@ -13,7 +13,6 @@ it imports).
 
 Examples
 --------
->>> import numpy as np
 >>> sum_in_order(np.array([[1e16, 1.0, -1e16], [1.0, 2.0, 3.0]]))
 array([0., 6.])
 >>> COMPILED_MIN_BATCH  # fewest batch elements for which a compiled module is loaded

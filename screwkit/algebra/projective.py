@@ -17,7 +17,6 @@ Conventions (``gca.md`` §1; screws: :mod:`screwkit.algebra.screw`)
 
 Examples
 --------
->>> import numpy as np
 >>> a, b = finite_point([0, 0, 0]), finite_point([1, 0, 0])
 >>> join(a, b)
 array([1., 0., 0., 0., 0., 0.])

@@ -12,7 +12,6 @@ numeric/symbolic backend (:mod:`screwkit.algebra.backend`).
 
 Examples
 --------
->>> import numpy as np
 >>> screw_rank(np.array([[0, 0, 1, 0, 0, 0], [0, 0, 2, 0, 0, 0]]))
 1
 >>> screw_nullspace(np.array([[0, 0, 1, 0, 0, 0]])).shape   # the wrenches reciprocal to a line

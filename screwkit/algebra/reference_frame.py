@@ -12,7 +12,6 @@ same order, so the two agree bit for bit (:mod:`screwkit.algebra.compiled`).
 
 Examples
 --------
->>> import numpy as np
 >>> rows = np.array([[0, 0, 1, 0, -100.0, 0], [0, 1, 0, 0, 0, 0]])  # z through (100, 0, 0); y through 0
 >>> point, length = mechanism_frame(rows)
 >>> point.round(6) + 0.0, float(length)

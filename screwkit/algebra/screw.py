@@ -24,7 +24,6 @@ Conventions (the one place they are written; every module links here)
 
 Examples
 --------
->>> import numpy as np
 >>> from screwkit.algebra.screw import force, revolute_twist, reciprocal_product
 >>> rotation_about_z = revolute_twist([0, 0, 1], [1, 0, 0])
 >>> rotation_about_z

@@ -9,7 +9,6 @@ tolerance (:func:`is_zero`); a symbolic one decides identically, generically
 
 Examples
 --------
->>> import numpy as np
 >>> zero_vectors(np.array([[0.0, 0, 0], [1.0, 0, 0]]))
 array([ True, False])
 >>> import sympy

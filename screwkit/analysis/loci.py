@@ -6,7 +6,6 @@ the curves of a slice, :func:`surfaces` stacks them over a third coordinate.
 
 Examples
 --------
->>> from screwkit.robots.catalog import load_mechanism
 >>> found = loci(load_mechanism("h4"), x=("z", -1000, -550, 6), y=("phi", -45, 45, 5), angles="deg")
 >>> [locus.kind for locus in found]  # the catalog's box holds no singular surface at x = y = 0
 []
@@ -97,7 +96,6 @@ def loci(
 
     Examples
     --------
-    >>> from screwkit.robots.catalog import load_mechanism
     >>> found = loci(load_mechanism("h4"), x=("z", -1000, -550, 6), y=("phi", -45, 45, 5), angles="deg")
     >>> [locus.kind for locus in found]  # the catalog's box holds no singular surface at x = y = 0
     []
@@ -228,7 +226,6 @@ def surfaces(
 
     Examples
     --------
-    >>> from screwkit.robots.catalog import load_mechanism
     >>> surfaces(load_mechanism("h4"), x=("z", -1000, -550, 4), y=("phi", -45, 45, 3), z=("x", -50, 50, 2),
     ...          angles="deg")
     ()

@@ -6,7 +6,6 @@ changes, closeness minima, the reach edge and singular samples are refined
 
 Examples
 --------
->>> from screwkit.robots.catalog import load_mechanism
 >>> check_path(load_mechanism("h4"), {"z": -800, "phi": 0}, {"z": -700, "phi": 30}, samples=20,
 ...            angles="deg").singularity_free
 True
@@ -153,7 +152,6 @@ def check_path(
 
     Examples
     --------
-    >>> from screwkit.robots.catalog import load_mechanism
     >>> check = check_path(load_mechanism("h4"), {"z": -750}, {"z": -5000}, samples=20)
     >>> check.crossing.kind, round(check.crossing.parameter, 4)  # the arms and rods line up
     ('serial', 0.0964)

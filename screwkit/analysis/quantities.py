@@ -27,7 +27,6 @@ composer over poses): its codes, closeness, Jacobians, diagram points and superb
 
 Examples
 --------
->>> from screwkit.robots.catalog import load_mechanism
 >>> values(load_mechanism("h4").at([[0, 0, -750, 0], [0, 0, -800, 0]]), "verdict").tolist()
 [0, 0]
 """
@@ -223,7 +222,6 @@ def conditions_of(
 
     Examples
     --------
-    >>> from screwkit.robots.catalog import load_mechanism
     >>> diagram, conditions, labels, reference = conditions_of(load_mechanism("h4"), {})
     >>> len(conditions) == len(labels) == len(reference)
     True
@@ -267,7 +265,6 @@ def values(posed: Any, quantity: str) -> Array:
 
     Examples
     --------
-    >>> from screwkit.robots.catalog import load_mechanism
     >>> lti = values(load_mechanism("h4").at([[0, 0, -750, 0], [30, -20, -750, 0.3]]), "lti")
     >>> lti.shape, bool(((0 < lti) & (lti <= 1)).all())
     ((2,), True)

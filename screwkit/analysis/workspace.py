@@ -20,7 +20,6 @@ Float maps hold NaN where a pose is out of reach, always together with ``reachab
 
 Examples
 --------
->>> from screwkit.robots.catalog import load_mechanism
 >>> h4 = load_mechanism("h4")
 >>> m = grid_map(h4, "verdict", x=("z", -1000, -550, 4), y=("phi", -45, 45, 3), angles="deg")
 >>> m.values.shape, int(m.maximum), bool(m.reachable.all())
@@ -75,7 +74,6 @@ def evaluate(
 
     Examples
     --------
-    >>> from screwkit.robots.catalog import load_mechanism
     >>> evaluate(load_mechanism("h4"), [[0, 0, -750, 0], [0, 0, -5000, 0]], "verdict")
     (array([ 0, -1]), array([ True, False]))
     """
@@ -283,7 +281,6 @@ class WorkspaceMap:
         Examples
         --------
         >>> import tempfile, pathlib
-        >>> from screwkit.robots.catalog import load_mechanism
         >>> m = grid_map(load_mechanism("h4"), "verdict", x=("z", -900, -600, 2), y=("phi", -0.1, 0.1, 2))
         >>> m.save(pathlib.Path(tempfile.mkdtemp()) / "m.json").suffix
         '.json'
@@ -368,7 +365,6 @@ def grid_map(
 
     Examples
     --------
-    >>> from screwkit.robots.catalog import load_mechanism
     >>> m = grid_map(load_mechanism("h4"), "lti", x=("x", -100, 100, 3), y=("y", -100, 100, 3),
     ...              fixed={"z": -750, "phi": 0}, angles="deg")
     >>> print(m.region)
@@ -487,7 +483,6 @@ def sweep(
 
     Examples
     --------
-    >>> from screwkit.robots.catalog import load_mechanism
     >>> maps = sweep([load_mechanism("h4"), load_mechanism("quattro")], "lti",
     ...              x=("z", -900, -600, 3), y=("phi", -20, 20, 2), angles="deg")
     >>> [m.mechanism for m in maps]

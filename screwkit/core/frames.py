@@ -46,7 +46,6 @@ serves every compiled module of the core (:func:`compiled_twin`). The environmen
 
 Examples
 --------
->>> import numpy as np
 >>> rows, order = span(np.array([[[1.0, 0, 0, 0, 0, 0], [2.0, 0, 0, 0, 0, 0]]]), 1e-9)
 >>> order
 array([1])

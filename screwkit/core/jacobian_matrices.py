@@ -18,7 +18,6 @@ the :data:`GOSSELIN_ANGELES_TYPES`.
 
 Examples
 --------
->>> import numpy as np
 >>> result = classify_jacobians(np.eye(2), np.diag([1.0, 0.0]))
 >>> result.type, result.closeness["inverse"], result.det_B
 ('inverse', 0.0, 0.0)

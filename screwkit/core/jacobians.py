@@ -362,7 +362,6 @@ def jacobians_from_wrenches(
     pushes a slider along ``x`` through a coupler of length 2; the platform is the slider, its
     twist basis the translation ``(0; i)``, so ``A χ̇ = B θ̇`` relates ``ẋ`` to ``θ̇``.
 
-    >>> import numpy as np
     >>> from screwkit.graphs.joints import prismatic, revolute
     >>> from screwkit.graphs.twistgraph import twist_graph
     >>> from screwkit.core.wrenches import wrench_analysis
@@ -486,7 +485,6 @@ def jacobians_over_poses(
     --------
     The slider-crank of :func:`jacobians_from_wrenches` at three crank angles at once:
 
-    >>> import numpy as np
     >>> from screwkit.graphs.joints import prismatic, revolute
     >>> from screwkit.graphs.twistgraph import twist_graph
     >>> from screwkit.algebra.screw import revolute_twist

@@ -7,7 +7,6 @@ smallest such addition found along a few directions (:func:`nearest_lines`, :fun
 
 Examples
 --------
->>> import numpy as np
 >>> couple = np.zeros((1, 1, 6)); couple[0, 0, 5] = 1.0                   # the couple about z
 >>> line_search(np.array([[0, 0, 1.0, 0, 0, 2.0]]), couple, np.array([1])) # pitch 2 along z: a line
 array([[0., 0., 1., 0., 0., 0.]])

@@ -68,7 +68,6 @@ def generic_analyses(
 
     Examples
     --------
-    >>> from screwkit.robots.catalog import load_mechanism
     >>> graph = load_mechanism("h4").twist_graph()
     >>> [a.global_order for a in generic_analyses(graph, np.random.default_rng(1), 2)]
     [6, 6]

@@ -305,7 +305,6 @@ def generic_configurations(
 
     Examples
     --------
-    >>> from screwkit.robots.catalog import load_mechanism
     >>> graph = load_mechanism("planar_3rrp").twist_graph()
     >>> table = generic_configurations(graph, np.random.default_rng(0), 3)
     >>> table.batch_shape, bool(np.allclose(table.screws[0], table.screws[1]))

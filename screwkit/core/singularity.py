@@ -420,7 +420,6 @@ def classify_poses(
 
     Examples
     --------
-    >>> import numpy as np
     >>> from screwkit.graphs.joints import revolute
     >>> from screwkit.graphs.twistgraph import twist_graph
     >>> G = twist_graph("B", "E", [("B", "E", revolute("R", [0, 0, 1], [0, 0, 0], actuated=True))])

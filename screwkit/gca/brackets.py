@@ -251,7 +251,6 @@ class Bracket(_Algebra):
     ('[gikj]', ('g', 'i', 'j', 'k'), -1)
     >>> Bracket("aabc").is_structurally_zero
     True
-    >>> import numpy as np
     >>> points = {"g": [0, 0, 0, 1], "i": [1, 0, 0, 0], "k": [0, 1, 0, 0], "j": [0, 0, 1, 0]}
     >>> float(b.evaluate(points))  # [p u v w] = -det(u, v, w), gca.md §5.1
     -1.0
@@ -580,7 +579,6 @@ class BracketPolynomial(_Algebra):
 
         Examples
         --------
-        >>> import numpy as np
         >>> p = BracketPolynomial.parse("[abcd] - 2[abdc]")  # = 3 [abcd]
         >>> pts = {"a": np.eye(4)[0], "b": np.eye(4)[1], "c": np.eye(4)[2], "d": np.eye(4)[3]}
         >>> float(p.evaluate(pts))

@@ -37,7 +37,6 @@ found at generic configurations say so, as properties of the mechanism.
 
 Examples
 --------
->>> from screwkit.robots.catalog import load_mechanism
 >>> from screwkit.core.wrenches import wrench_analysis
 >>> from screwkit.gca.diagram_recipes import wrench_diagram
 >>> diagram = wrench_diagram(wrench_analysis(load_mechanism("h4").twist_graph()))

@@ -7,7 +7,6 @@ constraint lines (paper 002 Eqs. 3–4), else from a readable basis of ``W^c`` i
 
 Examples
 --------
->>> from screwkit.robots.catalog import load_mechanism
 >>> from screwkit.core.wrenches import wrench_analysis
 >>> lines, problems = select_lines(wrench_analysis(load_mechanism("h4").twist_graph()))
 >>> [name for name, _, _, _ in lines][-2:], problems
@@ -119,7 +118,6 @@ def select_lines(analysis: WrenchAnalysis) -> tuple[list[Line], list[str]]:
 
     Examples
     --------
-    >>> from screwkit.robots.catalog import load_mechanism
     >>> from screwkit.core.wrenches import wrench_analysis
     >>> lines, problems = select_lines(wrench_analysis(load_mechanism("h4").twist_graph()))
     >>> [role for _, role, _, _ in lines], problems
@@ -190,7 +188,6 @@ def lines_at(names: tuple[str, ...], analysis: WrenchAnalysis) -> tuple[list[Lin
 
     Examples
     --------
-    >>> from screwkit.robots.catalog import load_mechanism
     >>> from screwkit.core.wrenches import wrench_analysis
     >>> h4 = load_mechanism("h4")
     >>> lines, problems = lines_at(("actuation A1",), wrench_analysis(h4.twist_graph([0, 0, -700.0, 0.2])))
@@ -229,7 +226,6 @@ def leg_name(topology: Topology, k: int) -> str:
 
     Examples
     --------
-    >>> from screwkit.robots.catalog import load_mechanism
     >>> from screwkit.core.wrenches import wrench_analysis
     >>> leg_name(wrench_analysis(load_mechanism("h4").twist_graph()).topology, 0)
     'leg through A2, A3'

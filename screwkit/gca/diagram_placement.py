@@ -5,7 +5,6 @@ further generic configurations (:class:`ReplaySampler`, :func:`graph_diagram`,
 
 Examples
 --------
->>> from screwkit.robots.catalog import load_mechanism
 >>> from screwkit.core.wrenches import wrench_analysis
 >>> diagram, sampler = graph_diagram(wrench_analysis(load_mechanism("h4").twist_graph()))
 >>> diagram.line_text()
@@ -65,7 +64,6 @@ def diagram_at(reference: WrenchDiagram, analysis: WrenchAnalysis) -> WrenchDiag
 
     Examples
     --------
-    >>> from screwkit.robots.catalog import load_mechanism
     >>> from screwkit.core.wrenches import wrench_analysis
     >>> h4 = load_mechanism("h4")
     >>> generic = wrench_diagram(wrench_analysis(h4.twist_graph([40.0, -60.0, -700.0, 0.3])))
@@ -235,7 +233,6 @@ def graph_diagram(
 
     Examples
     --------
-    >>> from screwkit.robots.catalog import load_mechanism
     >>> from screwkit.core.wrenches import wrench_analysis
     >>> diagram, sampler = graph_diagram(wrench_analysis(load_mechanism("h4").twist_graph()))
     >>> diagram.line_text(), len(sampler(np.random.default_rng(0)))
@@ -303,7 +300,6 @@ def graph_sampler(
 
     Examples
     --------
-    >>> from screwkit.robots.catalog import load_mechanism
     >>> from screwkit.core.wrenches import wrench_analysis
     >>> h4 = load_mechanism("h4")
     >>> diagram = wrench_diagram(wrench_analysis(h4.twist_graph()))

@@ -5,7 +5,6 @@ pose, :func:`diagram_points`, is a batch of one), with the incidence arithmetic 
 
 Examples
 --------
->>> from screwkit.robots.catalog import load_mechanism
 >>> from screwkit.core.wrench_systems import analyze_table
 >>> h4 = load_mechanism("h4")
 >>> diagram, _ = h4.wrench_diagram()
@@ -71,7 +70,6 @@ def diagram_points(
 
     Examples
     --------
-    >>> from screwkit.robots.catalog import load_mechanism
     >>> from screwkit.core.wrenches import wrench_analysis
     >>> from screwkit.gca.diagram_recipes import wrench_diagram
     >>> h4 = load_mechanism("h4")
@@ -121,7 +119,6 @@ def batch_diagram_points(
 
     Examples
     --------
-    >>> from screwkit.robots.catalog import load_mechanism
     >>> from screwkit.core.wrench_systems import analyze_table
     >>> h4 = load_mechanism("h4")
     >>> diagram, _ = h4.wrench_diagram()

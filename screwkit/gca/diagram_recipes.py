@@ -3,7 +3,6 @@
 
 Examples
 --------
->>> from screwkit.robots.catalog import load_mechanism
 >>> from screwkit.core.wrenches import wrench_analysis
 >>> wrench_diagram(wrench_analysis(load_mechanism("h4").twist_graph())).line_text()
 '[ab, cd, ef, gh, ij, kj]'
@@ -109,7 +108,6 @@ def wrench_diagram(analysis: WrenchAnalysis) -> WrenchDiagram:
 
     Examples
     --------
-    >>> from screwkit.robots.catalog import load_mechanism
     >>> from screwkit.core.wrenches import wrench_analysis
     >>> diagram = wrench_diagram(wrench_analysis(load_mechanism("h4").twist_graph()))
     >>> [p.description for p in diagram.points][:2]

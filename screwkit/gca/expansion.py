@@ -179,7 +179,6 @@ def superbracket(points: Mapping[str, Any], lines: Sequence[Sequence[str] | str]
 
     Examples
     --------
-    >>> import numpy as np
     >>> e = np.eye(4)
     >>> pts = {"o": e[3], "x": e[0], "y": e[1], "z": e[2]}
     >>> # forces along the axes through the origin and couples about them: det = +1 here
@@ -428,7 +427,6 @@ def best_ordering(
 
     Examples
     --------
-    >>> import numpy as np
     >>> def generic(rng):
     ...     return {x: rng.normal(size=4) for x in "abcdefghijkl"}
     >>> result = best_ordering(["ab", "cd", "ef", "gh", "ij", "kl"], generic)

@@ -5,7 +5,6 @@ factoring by :func:`~screwkit.gca.factored.collect_factors`).
 
 Examples
 --------
->>> import numpy as np
 >>> def concurrent(rng):  # six lines through the point o: always singular
 ...     pts = {x: np.r_[rng.normal(size=3), 1.0] for x in "abcdef"}
 ...     return {**pts, "o": np.r_[rng.normal(size=3), 1.0]}
@@ -148,7 +147,6 @@ def check_proportional(
 
     Examples
     --------
-    >>> import numpy as np
     >>> def sampler(rng):
     ...     return {x: rng.normal(size=4) for x in "abcd"}
     >>> from screwkit.gca import Bracket
@@ -294,7 +292,6 @@ def simplify_superbracket(
 
     Examples
     --------
-    >>> import numpy as np
     >>> def concurrent(rng):  # six lines through the point o: always singular
     ...     pts = {x: np.r_[rng.normal(size=3), 1.0] for x in "abcdef"}
     ...     return {**pts, "o": np.r_[rng.normal(size=3), 1.0]}

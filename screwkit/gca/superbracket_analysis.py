@@ -4,7 +4,6 @@ interpreted as a geometric condition and labelled by the roles of the lines it i
 
 Examples
 --------
->>> from screwkit.robots.catalog import load_mechanism
 >>> diagram, sampler = load_mechanism("h4").wrench_diagram()
 >>> print(superbracket_analysis(diagram, sampler).simplification.factored)
 -[gikj][a b d ḟ][c g ḣ j]
@@ -142,7 +141,6 @@ def superbracket_analysis(
 
     Examples
     --------
-    >>> from screwkit.robots.catalog import load_mechanism
     >>> diagram, sampler = load_mechanism("h4").wrench_diagram()
     >>> result = superbracket_analysis(diagram, sampler)
     >>> str(result.simplification.factored), result.labels

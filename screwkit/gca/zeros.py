@@ -240,7 +240,6 @@ def structural_zeros(
 
     Examples
     --------
-    >>> import numpy as np
     >>> def collinear(rng):  # a, b, c on one line
     ...     a, b = rng.normal(size=4), rng.normal(size=4)
     ...     return {"a": a, "b": b, "c": 2 * a - 3 * b, "d": rng.normal(size=4),
@@ -328,7 +327,6 @@ def drop_zero_subsums(
 
     Examples
     --------
-    >>> import numpy as np
     >>> def sampler(rng):  # d = b + c, so [abde] = [abbe] + [abce] = [abce]
     ...     pts = {x: rng.normal(size=4) for x in "abcef"}
     ...     return {**pts, "d": pts["b"] + pts["c"]}

@@ -403,8 +403,6 @@ def plot_singularity_surfaces(
     --------
     >>> import matplotlib
     >>> matplotlib.use("Agg")
-    >>> import numpy as np
-    >>> from screwkit.robots.catalog import load_mechanism
     >>> from screwkit.papers.paper_004_surfaces import actuation_singularity_surface
     >>> from screwkit.papers.paper_004_table4 import TABLE_4_CONE
     >>> quattro = load_mechanism("quattro")
@@ -485,7 +483,6 @@ def save_map_png(workspace_map: Any, path: str | Path) -> Path:
     --------
     >>> import tempfile, pathlib
     >>> from screwkit.analysis.workspace import grid_map
-    >>> from screwkit.robots.catalog import load_mechanism
     >>> m = grid_map(load_mechanism("h4"), "verdict", x=("z", -900, -600, 3), y=("phi", -0.2, 0.2, 3))
     >>> save_map_png(m, pathlib.Path(tempfile.mkdtemp()) / "m.png").stat().st_size > 0
     True

@@ -19,7 +19,6 @@ Examples
 --------
 >>> import matplotlib
 >>> matplotlib.use("Agg")
->>> from screwkit.robots.catalog import load_mechanism
 >>> from screwkit.interface.plot_diagrams import plot_twist_graph
 >>> ax = plot_twist_graph(load_mechanism("h4").twist_graph())
 >>> len(ax.patches)                      # one arrow per joint of the H4
@@ -90,7 +89,6 @@ def plot_wrench_diagram(diagram: Any, *, ax: Any = None, radius: float | None = 
     --------
     >>> import matplotlib
     >>> matplotlib.use("Agg")
-    >>> from screwkit.robots.catalog import load_mechanism
     >>> diagram, _ = load_mechanism("h4").wrench_diagram()
     >>> ax = plot_wrench_diagram(diagram)
     >>> [line.get_label() for line in ax.lines][-2:]

@@ -107,7 +107,6 @@ def analyze(
     --------
     >>> analyze("h4", [0.0, 0.0, -750.0, 0.0], superbracket=False).verdict.labels
     ()
-    >>> from screwkit.robots.catalog import load_mechanism
     >>> posed = load_mechanism("h4").at([[0, 0, -750, 0], [30, -20, -750, 0.3]])
     >>> analyze(posed[1], superbracket=False).pose.tolist()
     [30.0, -20.0, -750.0, 0.3]
@@ -233,7 +232,6 @@ def pose_report(
 
     Examples
     --------
-    >>> from screwkit.robots.catalog import load_mechanism
     >>> pose_report(load_mechanism("v4").at()[0], superbracket=False).verdict.verdict
     'regular'
     """

@@ -65,7 +65,6 @@ and 6 concern the model; each is checked in ``tests/robots/test_families_four_li
 
 Examples
 --------
->>> from screwkit.robots.catalog import load_mechanism
 >>> quattro = load_mechanism("quattro")
 >>> indices = transmission_indices(quattro.configuration([[0, 0, -800, 0], [0, 0, -800, 1.5]]))
 >>> indices.eta.shape, bool(np.all((0 <= indices.eta) & (indices.eta <= 1)))
@@ -172,7 +171,6 @@ def four_limb_jacobians(config: FourLimbGeometry) -> FourLimbJacobians:
 
     Examples
     --------
-    >>> from screwkit.robots.catalog import load_mechanism
     >>> cfg = load_mechanism("h4").configuration([0, 0, -700, 0])
     >>> A, B = four_limb_jacobians(cfg)
     >>> A.shape, bool(np.allclose(np.diag(B), cfg.h))
@@ -211,7 +209,6 @@ def det_A_closed_form(config: FourLimbGeometry) -> np.ndarray:
 
     Examples
     --------
-    >>> from screwkit.robots.catalog import load_mechanism
     >>> cfg = load_mechanism("h4").configuration([30, 10, -700, 0.2])
     >>> bool(np.isclose(det_A_closed_form(cfg), np.linalg.det(four_limb_jacobians(cfg).A)))
     True
@@ -243,7 +240,6 @@ def motion_pressure_angles(config: FourLimbGeometry) -> np.ndarray:
 
     Examples
     --------
-    >>> from screwkit.robots.catalog import load_mechanism
     >>> cfg = load_mechanism("h4").configuration([0, 0, -700, 0])
     >>> bool(np.all((0 <= motion_pressure_angles(cfg)) & (motion_pressure_angles(cfg) <= np.pi / 2)))
     True
@@ -271,7 +267,6 @@ def force_pressure_angle(config: FourLimbGeometry) -> np.ndarray:
 
     Examples
     --------
-    >>> from screwkit.robots.catalog import load_mechanism
     >>> cfg = load_mechanism("h4").configuration([0, 0, -700, 0])
     >>> float(np.degrees(force_pressure_angle(cfg))) < 90
     True
@@ -301,7 +296,6 @@ def transmission_indices(config: FourLimbGeometry) -> Transmission:
 
     Examples
     --------
-    >>> from screwkit.robots.catalog import load_mechanism
     >>> cfg = load_mechanism("h4").configuration([[0, 0, -700, 0], [0, 0, -700, 1.0]])
     >>> ti = transmission_indices(cfg)
     >>> ti.eta.shape, bool(np.all(ti.eta == np.minimum(ti.kappa, ti.zeta)))
@@ -471,7 +465,6 @@ def transmission(
 
     Examples
     --------
-    >>> from screwkit.robots.catalog import load_mechanism
     >>> quattro = load_mechanism("quattro")
     >>> result = transmission(quattro, [[0, 0, -800, 0], [0, 0, -2000, 0]], unreachable="nan")
     >>> result.lti.round(3).tolist(), result.reachable.tolist()

@@ -7,7 +7,6 @@ The maps (:mod:`screwkit.analysis`) stand below the papers: ``import screwkit`` 
 
 Examples
 --------
->>> from screwkit.robots.catalog import load_mechanism
 >>> h4 = load_mechanism("h4")
 >>> sorted(transmission_summary(h4, h4.default_pose, h4.at()[0].jacobians))
 ['note', 'paper_004', 'wrench']
@@ -55,7 +54,6 @@ def map_values(posed: PosedMechanism, quantity: str) -> np.ndarray:
 
     Examples
     --------
-    >>> from screwkit.robots.catalog import load_mechanism
     >>> h4 = load_mechanism("h4")
     >>> bool(map_values(h4.at([0, 0, -750, 0]), "kappa") == transmission(h4, [0, 0, -750, 0]).input)
     True
@@ -89,7 +87,6 @@ def transmission_summary(mechanism: Any, pose: Any, jacobians: Any) -> dict[str,
 
     Examples
     --------
-    >>> from screwkit.robots.catalog import load_mechanism
     >>> h4 = load_mechanism("h4")
     >>> summary = transmission_summary(h4, h4.default_pose, h4.at()[0].jacobians)
     >>> round(min(summary["wrench"]["input"]), 9) == round(summary["paper_004"]["input"], 9)  # κ, derived

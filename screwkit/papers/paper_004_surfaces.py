@@ -10,7 +10,6 @@ Source: paper 004 (Wu, Bai, Caro, JMR 10(5), 2018) (docs/papers.md).
 Examples
 --------
 >>> from screwkit.papers.paper_004_table4 import TABLE_4_CONE
->>> from screwkit.robots.catalog import load_mechanism
 >>> surface = actuation_singularity_surface(load_mechanism("quattro"), np.pi / 2, TABLE_4_CONE, grid=8)
 >>> surface.triangles.shape[1:]
 (3, 3)
@@ -92,7 +91,6 @@ def actuation_singularity_surface(
     ``η_min = 0.380``); at ``φ = 90°`` it has (Sec. 5.1, Fig. 14b):
 
     >>> from screwkit.papers.paper_004_table4 import TABLE_4_CONE
-    >>> from screwkit.robots.catalog import load_mechanism
     >>> quattro = load_mechanism("quattro")
     >>> len(actuation_singularity_surface(quattro, 0.0, TABLE_4_CONE, grid=12).triangles)
     0

@@ -10,7 +10,6 @@ Source: paper 004 (Wu, Bai, Caro, JMR 10(5), 2018) (docs/papers.md).
 
 Examples
 --------
->>> from screwkit.robots.catalog import load_mechanism
 >>> result = index_extremes(load_mechanism("h4"), grid=5, refine=0)
 >>> bool(0 <= result.minimum <= result.maximum <= 1)
 True
@@ -353,7 +352,6 @@ def index_extremes(
 
     Examples
     --------
-    >>> from screwkit.robots.catalog import load_mechanism
     >>> result = index_extremes(load_mechanism("quattro"), region=Region.cone_cylinder(-975, 650, -575, -475),
     ...                         grid=21, refine=0)
     >>> round(result.maximum, 3), result.points

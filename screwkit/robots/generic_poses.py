@@ -8,7 +8,6 @@ and the superbracket's structural zeros and checks are confirmed at fresh ones (
 
 Examples
 --------
->>> from screwkit.robots.catalog import load_mechanism
 >>> h4 = load_mechanism("h4")
 >>> diagram, _ = h4.wrench_diagram()
 >>> len(generic_samples(h4, diagram.points, np.random.default_rng(0), 2))
@@ -135,7 +134,6 @@ def generic_samples(
 
     Examples
     --------
-    >>> from screwkit.robots.catalog import load_mechanism
     >>> h4 = load_mechanism("h4")
     >>> diagram, _ = h4.wrench_diagram()
     >>> len(generic_samples(h4, diagram.points, np.random.default_rng(0), 3))

@@ -5,7 +5,6 @@ the joint table, the twist graph, and :meth:`Mechanism.at`, the posed mechanism 
 
 Examples
 --------
->>> from screwkit.robots.catalog import load_mechanism
 >>> h4 = load_mechanism("h4")
 >>> isinstance(h4, Mechanism), h4.pose_names
 (True, ('x', 'y', 'z', 'phi'))
@@ -125,7 +124,6 @@ class Mechanism(Generic[P, C]):
 
         Examples
         --------
-        >>> from screwkit.robots.catalog import load_mechanism
         >>> load_mechanism("h4").configuration().theta.shape
         (4,)
         """
@@ -168,7 +166,6 @@ class Mechanism(Generic[P, C]):
 
         Examples
         --------
-        >>> from screwkit.robots.catalog import load_mechanism
         >>> table = load_mechanism("h4").joints(np.zeros((3, 4)) + [0, 0, -750, 0])
         >>> table.batch_shape, len(table.specs)
         ((3,), 22)
@@ -205,7 +202,6 @@ class Mechanism(Generic[P, C]):
 
         Examples
         --------
-        >>> from screwkit.robots.catalog import load_mechanism
         >>> posed = load_mechanism("h4").at([[0, 0, -750, 0], [50, 20, -800, 0.3]])
         >>> posed.verdicts.tolist()
         ['regular', 'regular']
@@ -239,7 +235,6 @@ class Mechanism(Generic[P, C]):
 
         Examples
         --------
-        >>> from screwkit.robots.catalog import load_mechanism
         >>> load_mechanism("h4").check_pose_range([0, 0, -750, 1e5])  # doctest: +ELLIPSIS
         Traceback (most recent call last):
         ...
@@ -294,7 +289,6 @@ class Mechanism(Generic[P, C]):
 
         Examples
         --------
-        >>> from screwkit.robots.catalog import load_mechanism
         >>> poses = load_mechanism("h4").random_poses(np.random.default_rng(0), 3)
         >>> poses.shape
         (3, 4)
@@ -343,7 +337,6 @@ class Mechanism(Generic[P, C]):
 
         Examples
         --------
-        >>> from screwkit.robots.catalog import load_mechanism
         >>> load_mechanism("v4").reachable(np.array([[0, 0, -750, 0], [0, 0, -3000, 0]]))
         array([ True, False])
         """
@@ -385,7 +378,6 @@ class Mechanism(Generic[P, C]):
 
         Examples
         --------
-        >>> from screwkit.robots.catalog import load_mechanism
         >>> diagram, sampler = load_mechanism("h4").wrench_diagram()
         >>> sorted(sampler(np.random.default_rng(1)))[:3]
         ['a', 'b', 'c']
@@ -409,7 +401,6 @@ class Mechanism(Generic[P, C]):
 
         Examples
         --------
-        >>> from screwkit.robots.catalog import load_mechanism
         >>> load_mechanism("h4").twist_graph().graph["dof"]
         4
         """
@@ -438,7 +429,6 @@ class Mechanism(Generic[P, C]):
 
         Examples
         --------
-        >>> from screwkit.robots.catalog import load_mechanism
         >>> load_mechanism("v4").twist_basis()[3]  # the V4's end effector turns about j
         array([  0.,   1.,   0., 750.,   0.,   0.])
         """
@@ -471,7 +461,6 @@ class Mechanism(Generic[P, C]):
 
         Examples
         --------
-        >>> from screwkit.robots.catalog import load_mechanism
         >>> jac = load_mechanism("planar_3rrp").jacobians()
         >>> jac.type, jac.A.shape, jac.actuated_joints
         ('regular', (3, 3), ('limb1_R1', 'limb2_R1', 'limb3_R1'))

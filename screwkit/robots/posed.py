@@ -18,7 +18,6 @@ verdict, Jacobians, wrench diagram and superbracket (generic samples drawn as on
 
 Examples
 --------
->>> from screwkit.robots.catalog import load_mechanism
 >>> posed = load_mechanism("h4").at([[0, 0, -750, 0], [30, -20, -750, 0.3]])
 >>> posed.shape, posed.singularities.constraint_order.tolist()
 ((2,), [2, 2])
@@ -127,7 +126,6 @@ class PosedMechanism:
 
         Examples
         --------
-        >>> from screwkit.robots.catalog import load_mechanism
         >>> PosedMechanism.create(load_mechanism("h4"), [0, 0, -750])
         Traceback (most recent call last):
         ...
@@ -153,7 +151,6 @@ class PosedMechanism:
 
         Examples
         --------
-        >>> from screwkit.robots.catalog import load_mechanism
         >>> posed = load_mechanism("h4").at([[30, -20, -750, 0.3], [0, 0, -800, 0.1]])
         >>> [pose.singularity.verdict for pose in posed]
         ['regular', 'regular']
@@ -264,7 +261,6 @@ class PosedMechanism:
 
         Examples
         --------
-        >>> from screwkit.robots.catalog import load_mechanism
         >>> h4 = load_mechanism("h4")
         >>> diagram = h4.at()[0].diagram
         >>> values, exists = h4.at([[0, 0, -750, 0], [30, -20, -750, 0.3]]).diagram_points(diagram.points)

@@ -11,7 +11,6 @@ shape: per actuated joint here, per pose for paper 004's ``κ``, ``ζ`` and LTI 
 
 Examples
 --------
->>> from screwkit.robots.catalog import load_mechanism
 >>> result = load_mechanism("h4").at([[0, 0, -750, 0], [30, -20, -750, 0.3]]).wrench_transmission
 >>> result.input.shape, result.lti.shape, result.actuated_joints[:2]
 ((2, 4), (2,), ('A1', 'A2'))
@@ -318,7 +317,6 @@ def wrench_transmission(
     at ``θ = 60°``: the coupler pushes the crank pin nearly along the pin's velocity (input 0.997,
     at the pin) and the slider at ``asin(√3/4)`` to its path (output ``√13/4 = 0.901``).
 
-    >>> import numpy as np
     >>> from screwkit.core.jacobians import jacobians_from_wrenches
     >>> from screwkit.graphs.joints import prismatic, revolute
     >>> from screwkit.graphs.twistgraph import twist_graph

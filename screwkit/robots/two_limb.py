@@ -14,7 +14,6 @@ model; paper-specific analyses live in the stage modules or beside the tests tha
 
 Examples
 --------
->>> import numpy as np
 >>> from screwkit.graphs.jointtable import JointTable
 >>> row = joint_row("base", "nut", "spin", "H", [0, 0, 0], [0, 0, 1], pitch=0.5)
 >>> JointTable.from_rows("base", "nut", [row]).screws

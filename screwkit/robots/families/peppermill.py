@@ -53,7 +53,6 @@ come from the analysis core (:meth:`screwkit.robots.mechanism.Mechanism.at`).
 
 Examples
 --------
->>> import numpy as np
 >>> from screwkit.robots.families.peppermill import PeppermillParameters, inverse_kinematics, joints
 >>> from screwkit.core.singularity import classify_table
 >>> mill = PeppermillParameters(r1=250.0, r2=250.0, l1=400.0, l2=400.0, b0=50.0, p1=40.0, p2=-40.0)

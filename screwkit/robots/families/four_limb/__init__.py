@@ -96,7 +96,6 @@ I carries limbs 1 and 4; paper 002's ``(l1, l2, l3, l4)`` are limbs ``(1, 4, 2, 
 
 Examples
 --------
->>> import numpy as np
 >>> FAMILY.pose_names, FAMILY.angle_names
 (('x', 'y', 'z', 'phi'), ('phi',))
 >>> h4 = FAMILY.parameters({"name": "H4", "platform_kind": "articulated_z", "arm_length": 375.0,

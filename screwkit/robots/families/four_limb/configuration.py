@@ -8,7 +8,6 @@ platform points of Table 1 (corrected) that the inverse and forward kinematics
 
 Examples
 --------
->>> from screwkit.robots.catalog import load_mechanism
 >>> config = load_mechanism("h4").configuration()
 >>> type(config).__name__, config.batch_shape
 ('FourLimbConfiguration', ())
@@ -204,7 +203,6 @@ def base_frames(params: FourLimbParameters) -> BaseFrames:
 
     Examples
     --------
-    >>> from screwkit.robots.catalog import load_mechanism
     >>> frames = base_frames(load_mechanism("h4").parameters)
     >>> frames.u.shape, bool(np.allclose(np.linalg.norm(frames.u, axis=-1), 1.0))
     ((4, 3), True)

@@ -7,7 +7,6 @@ effector by ``R_I`` and ``R_II``.
 
 Examples
 --------
->>> from screwkit.robots.catalog import load_mechanism
 >>> config = load_mechanism("h4").configuration()
 >>> joints(config).dof, twist_basis(config).shape
 (4, (4, 6))
@@ -178,7 +177,6 @@ def application_points(config: FourLimbConfiguration) -> np.ndarray:
 
     Examples
     --------
-    >>> from screwkit.robots.catalog import load_mechanism
     >>> application_points(load_mechanism("h4").configuration()).shape
     (4, 3)
     """

@@ -6,7 +6,6 @@
 
 Examples
 --------
->>> import numpy as np
 >>> from screwkit.robots.families.four_limb.parameters import FourLimbParameters
 >>> h4 = FourLimbParameters(name="H4", platform_kind="articulated_z", arm_length=375.0,
 ...     rod_length=800.0, alpha=0.0, beta=np.pi / 2, platform_radius=80.0, platform_offset=70.0,

@@ -3,7 +3,6 @@ paper 001), and the forward chain of one leg (:func:`leg_pose`).
 
 Examples
 --------
->>> from screwkit.robots.catalog import load_mechanism
 >>> config = load_mechanism("mcgill_smg").configuration()
 >>> type(config).__name__, config.joint_angles.shape
 ('McGillConfiguration', (2, 4))

@@ -3,7 +3,6 @@
 
 Examples
 --------
->>> from screwkit.robots.catalog import load_mechanism
 >>> config = load_mechanism("mcgill_smg").configuration()
 >>> len(joints(config).specs), twist_basis(config).shape
 (20, (4, 6))

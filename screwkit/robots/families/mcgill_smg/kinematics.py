@@ -3,7 +3,6 @@
 
 Examples
 --------
->>> import numpy as np
 >>> from screwkit.robots.families.mcgill_smg.parameters import McGillParameters
 >>> smg = McGillParameters(l0=600.0, l1=100.0, l2=600.0, l3=200.0 * np.sqrt(2), radius=200.0,
 ...     b4=-50.0, b5=-50.0, proximal_width=80.0, distal_width=60.0)

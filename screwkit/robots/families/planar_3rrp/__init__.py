@@ -64,7 +64,6 @@ is locked in one direction rather than uncontrolled: ``lost_dof = 1``, the globa
 
 Examples
 --------
->>> import numpy as np
 >>> from screwkit.robots.families.planar_3rrp.parameters import EXAMPLE_PARAMETERS
 >>> from screwkit.core.singularity import classify_table
 >>> config = FAMILY.inverse_kinematics(EXAMPLE_PARAMETERS, [[0.0, 0.0, 0.0], [0.05, -0.03, 0.1]])
