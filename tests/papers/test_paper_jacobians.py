@@ -53,8 +53,8 @@ from screwkit.robots.families.planar_3rrp.kinematics import WORKING_MODES as PLA
 from screwkit.robots.families.planar_3rrp.kinematics import forward_kinematics
 
 from .. import paper_000, paper_001, paper_003
-from ..robots import test_planar_catalog as planar_catalog
 from ..facts_two_limb import singular_configs
+from ..robots import test_planar_catalog as planar_catalog
 
 MCGILL = load_mechanism("mcgill_smg")
 PEPPERMILL = load_mechanism("peppermill")
