@@ -344,9 +344,10 @@ def test_equivalent_graph_keeps_a_rigid_sub_loop():
 
 @pytest.mark.parametrize("name", ["h4", "ragnar", "mcgill_smg", "peppermill", "planar_3rrp"])
 def test_equivalent_graph_from_the_cores_tree_has_the_same_chains(name):
-    # the report builds it on the analysis core's decomposition (WrenchAnalysis.tree) instead of a
-    # second series_parallel_tree: the same edges between the same links, joint types and spans;
-    # the virtual joints' screws may be another basis of each closed sub-loop's twist system
+    # the report builds it on the analysis core's tree (WrenchAnalysis.tree, twist systems from the
+    # core's frames); series_parallel_tree is the same tree with systems summed and intersected from
+    # the graph's screws: the same edges between the same links, joint types and spans; the virtual
+    # joints' screws may be another basis of each closed sub-loop's twist system
     from screwkit.robots.catalog import load_mechanism
 
     mechanism = load_mechanism(name)
