@@ -178,7 +178,8 @@ def series_parallel_tree(
     """
     check_twist_graph(graph, joint_key=joint_key)
     scale = graph_frame(graph, joint_key=joint_key)[1] if length_scale is None else length_scale
-    specs = JointTable.from_graph(graph, joint_key=joint_key).specs
+    # sorted by name, as the analysis core sorts them: the same (cached) topology as the core's
+    specs = tuple(sorted(JointTable.from_graph(graph, joint_key=joint_key).specs, key=lambda spec: spec.name))
     top = topology(graph.graph["base"], graph.graph["platform"], specs)
     if top.network:
         raise TwistGraphError(
