@@ -3,10 +3,11 @@
 The platform's twist system is computed two ways that agree wherever both apply:
 
 * **reduction** (paper 002 Eqs. 1–2): the sum of twist systems along serial chains and their
-  intersection across parallel chains, on a series-parallel graph (:func:`series_parallel_tree`).
-  It also yields the *equivalent twist graph* in which each closed sub-loop not touching the base
-  (such as a 4S parallelogram, paper 002 Fig. 2) is replaced by a virtual serial chain spanning the
-  same twist system (paper 002 Fig. 3; :func:`equivalent_twist_graph`);
+  intersection across parallel chains, on a series-parallel graph (:func:`series_parallel_tree`:
+  the series-parallel tree of :func:`screwkit.graphs.topology.topology`, the analysis core's, with
+  each node's twist system). It also yields the *equivalent twist graph* in which each closed
+  sub-loop not touching the base (such as a 4S parallelogram, paper 002 Fig. 2) is replaced by a
+  virtual serial chain spanning the same twist system (paper 002 Fig. 3; :func:`equivalent_twist_graph`);
 * **loop closure**: the joint rates allowed by the loop-closure equations (the null space of the
   loop-closure matrix, :mod:`screwkit.graphs.loops`), mapped to the platform along a spanning
   tree. It works for any topology.
@@ -27,7 +28,7 @@ from __future__ import annotations
 
 import itertools
 from collections.abc import Iterable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any, Literal
 
 import networkx as nx
@@ -178,8 +179,10 @@ def series_parallel_tree(
     """
     check_twist_graph(graph, joint_key=joint_key)
     scale = graph_frame(graph, joint_key=joint_key)[1] if length_scale is None else length_scale
-    # sorted by name, as the analysis core sorts them: the same (cached) topology as the core's
-    specs = tuple(sorted(JointTable.from_graph(graph, joint_key=joint_key).specs, key=lambda spec: spec.name))
+    # sorted by name as the analysis core sorts them: the core's tree. Its structure only: no limbs,
+    # so that an actuated joint off every base-to-platform path is dropped like any dangling joint
+    table = JointTable.from_graph(graph, joint_key=joint_key)
+    specs = tuple(sorted((replace(spec, actuated=False) for spec in table.specs), key=lambda spec: spec.name))
     top = topology(graph.graph["base"], graph.graph["platform"], specs)
     if top.network:
         raise TwistGraphError(
