@@ -362,7 +362,8 @@ class WrenchAnalysis:
 
     @functools.cached_property
     def tree(self) -> SeriesParallelNode | None:
-        """The series-parallel decomposition with each node's twist system (None for a network).
+        """The topology's series-parallel tree with each node's twist system, oriented from the base
+        (:meth:`~screwkit.graphs.reduction.SeriesParallelNode.from_topology`; None for a network).
 
         Computed for this pose through the same kernels (a batch of one).
         """
@@ -376,19 +377,15 @@ class WrenchAnalysis:
             requests = tuple(("twists", i) for i in range(len(self.topology.nodes)))
             core = Evaluation(self.topology, scaled, self.rtol, requests)
             frames = [(rows[0], order[0]) for rows, order in map(core.frame, requests)]
-        nodes: list[SeriesParallelNode] = []
-        for (rows, order), node in zip(frames, self.topology.nodes, strict=True):
-            user = F.from_scaled(rows[: int(order)], self.reference_point, np.asarray(self.length_scale))
-            system = ScrewSystem.from_independent(user, rtol=self.rtol, length_scale=float(self.length_scale))
-            children = tuple(nodes[c] for c in node.children)
-            edge = None
-            if node.joint is not None:
-                spec = self.table.specs[node.joint]
-                edge = (spec.parent, spec.child, spec.name)
-            nodes.append(
-                SeriesParallelNode(node.kind, node.ends, system, children, node.links, edge, node.joints)
+        systems = [
+            ScrewSystem.from_independent(
+                F.from_scaled(rows[: int(order)], self.reference_point, np.asarray(self.length_scale)),
+                rtol=self.rtol,
+                length_scale=float(self.length_scale),
             )
-        return nodes[self.topology.root] if self.topology.root is not None else None
+            for rows, order in frames
+        ]
+        return SeriesParallelNode.from_topology(self.topology, systems)
 
 
 #: Poses whose closeness SVDs run at once (:func:`_singular_ratios`): bounded memory over any batch.
@@ -468,6 +465,4 @@ def analyze_table(
     if not isinstance(table, JointTable):
         raise ScrewkitTypeError(f"Expected `table` to be a JointTable, got {type(table).__name__}.")
     rtol = checked_rtol(rtol)
-    return WrenchAnalysis(
-        **wrench_pass(table, dof=dof, rtol=rtol, length_scale=length_scale, views=views)
-    )
+    return WrenchAnalysis(**wrench_pass(table, dof=dof, rtol=rtol, length_scale=length_scale, views=views))

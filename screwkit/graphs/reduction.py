@@ -3,10 +3,11 @@
 The platform's twist system is computed two ways that agree wherever both apply:
 
 * **reduction** (paper 002 Eqs. 1–2): the sum of twist systems along serial chains and their
-  intersection across parallel chains, on a series-parallel graph (:func:`series_parallel_tree`).
-  It also yields the *equivalent twist graph* in which each closed sub-loop not touching the base
-  (such as a 4S parallelogram, paper 002 Fig. 2) is replaced by a virtual serial chain spanning the
-  same twist system (paper 002 Fig. 3; :func:`equivalent_twist_graph`);
+  intersection across parallel chains, on a series-parallel graph (:func:`series_parallel_tree`:
+  the series-parallel tree of :func:`screwkit.graphs.topology.topology`, the analysis core's, with
+  each node's twist system). It also yields the *equivalent twist graph* in which each closed
+  sub-loop not touching the base (such as a 4S parallelogram, paper 002 Fig. 2) is replaced by a
+  virtual serial chain spanning the same twist system (paper 002 Fig. 3; :func:`equivalent_twist_graph`);
 * **loop closure**: the joint rates allowed by the loop-closure equations (the null space of the
   loop-closure matrix, :mod:`screwkit.graphs.loops`), mapped to the platform along a spanning
   tree. It works for any topology.
@@ -26,8 +27,8 @@ Examples
 from __future__ import annotations
 
 import itertools
-from collections.abc import Iterable
-from dataclasses import dataclass, field
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass, field, replace
 from typing import Any, Literal
 
 import networkx as nx
@@ -36,7 +37,9 @@ from ..algebra import backend as B
 from ..algebra.screwsystem import ScrewSystem
 from ..exceptions import TwistGraphError
 from .joints import virtual
+from .jointtable import JointTable
 from .loops import _loop_closure_twists
+from .topology import Topology, topology
 from .twistgraph import check_twist_graph, graph_frame
 
 __all__ = ["SeriesParallelNode", "equivalent_twist_graph", "platform_twist_system", "series_parallel_tree"]
@@ -44,21 +47,28 @@ __all__ = ["SeriesParallelNode", "equivalent_twist_graph", "platform_twist_syste
 
 @dataclass(frozen=True, eq=False)
 class SeriesParallelNode:
-    """A node of the series-parallel decomposition of a twist graph.
+    """A node of a mechanism's series-parallel tree at a configuration, seen from the base.
+
+    The tree is the analysis core's (:class:`~screwkit.graphs.topology.Node`, built once per
+    mechanism by :func:`~screwkit.graphs.topology.topology`); :meth:`from_topology` gives each of
+    its nodes a twist system and orients it from the base.
 
     Attributes
     ----------
     kind : {"joint", "series", "parallel"}
     ends : (link, link)
-        The two terminal links, in chain order.
+        The two terminal links, the base side first.
     system : ScrewSystem
         Twist system of ``ends[1]`` relative to ``ends[0]`` (sum in series, intersection in
         parallel: paper 002 Eqs. 1–2).
     children : tuple of SeriesParallelNode
+        Series: in chain order from ``ends[0]``; parallel: the branches, each with the same ends.
     links : tuple
         For a series node, the links along the chain from ``ends[0]`` to ``ends[1]``.
     edge : (u, v, key) or None
         For a joint node, the graph edge.
+    joints : tuple of str
+        The joints below the node.
     """
 
     kind: Literal["joint", "series", "parallel"]
@@ -69,23 +79,53 @@ class SeriesParallelNode:
     edge: tuple[Any, Any, str] | None = None
     joints: tuple[str, ...] = field(default=())
 
-    def reversed(self) -> SeriesParallelNode:
-        """The same node seen from its other end (its children too).
+    @classmethod
+    def from_topology(cls, top: Topology, systems: Sequence[ScrewSystem]) -> SeriesParallelNode:
+        """The root of a topology's tree, each node with its twist system, oriented from the base.
+
+        Parameters
+        ----------
+        top : Topology
+            A series-parallel topology (``top.root`` is not None).
+        systems : sequence of ScrewSystem
+            The twist system of each node of ``top.nodes``, in their order.
 
         Returns
         -------
         SeriesParallelNode
+            The root, from ``top.base`` to ``top.platform``.
+
+        Examples
+        --------
+        >>> from screwkit.algebra.screw import revolute_twist
+        >>> from screwkit.graphs.jointtable import JointSpec
+        >>> from screwkit.graphs.topology import topology
+        >>> top = topology("B", "E", (JointSpec("R", "R", "E", "B", 1),))  # an edge E -> B
+        >>> hinge = ScrewSystem.span([revolute_twist([0, 0, 1], [0, 0, 0])])
+        >>> root = SeriesParallelNode.from_topology(top, [hinge])
+        >>> root.ends, root.edge, root.system.order
+        (('B', 'E'), ('E', 'B', 'R'), 1)
         """
-        children = tuple(child.reversed() for child in self.children)
-        return SeriesParallelNode(
-            self.kind,
-            (self.ends[1], self.ends[0]),
-            self.system,
-            tuple(reversed(children)) if self.kind == "series" else children,
-            tuple(reversed(self.links)),
-            self.edge,
-            self.joints,
-        )
+
+        def build(index: int, start: Any) -> SeriesParallelNode:
+            node = top.nodes[index]
+            forward = node.ends[0] == start
+            children: list[SeriesParallelNode] = []
+            current = start
+            for child in node.children if forward or node.kind != "series" else node.children[::-1]:
+                children.append(build(child, current))
+                current = children[-1].ends[1] if node.kind == "series" else start
+            edge = None
+            if node.joint is not None:
+                spec = top.specs[node.joint]
+                edge = (spec.parent, spec.child, spec.name)
+            ends = (start, node.ends[1] if forward else node.ends[0])
+            links = node.links if forward else node.links[::-1]
+            return cls(node.kind, ends, systems[index], tuple(children), links, edge, node.joints)
+
+        if top.root is None:
+            raise TwistGraphError("Expected a series-parallel topology, got a network (no tree).")
+        return build(top.root, top.base)
 
 
 def series_parallel_tree(
@@ -95,11 +135,13 @@ def series_parallel_tree(
     rtol: float = B.DEFAULT_RTOL,
     length_scale: float | None = None,
 ) -> SeriesParallelNode:
-    """Reduce a twist graph to one base–platform node by series and parallel steps.
+    """The series-parallel tree of a twist graph, each node with its twist system.
 
-    Links other than base and platform attached by a single joint are dropped (they cannot
-    change the platform's motion); a link with exactly two joints joins them in series; parallel
-    joints between the same two links are intersected.
+    The tree is the analysis core's (:func:`~screwkit.graphs.topology.topology`: links other than
+    base and platform attached by a single joint are dropped, joints between the same two links
+    form a parallel node, a link with exactly two joints joins them in series); each joint node
+    spans its joint's screws, a series node the sum of its children's twist systems and a
+    parallel node their intersection (paper 002 Eqs. 1–2).
 
     Parameters
     ----------
@@ -115,12 +157,13 @@ def series_parallel_tree(
     Returns
     -------
     SeriesParallelNode
-        The root, oriented from the base to the platform.
+        The root, oriented from the base to the platform (:meth:`SeriesParallelNode.from_topology`).
 
     Raises
     ------
     TwistGraphError
-        If the graph is not series-parallel between base and platform (use the loop-closure method).
+        If the graph is not a twist graph, or not series-parallel between base and platform (use
+        the loop-closure method).
 
     Examples
     --------
@@ -131,72 +174,33 @@ def series_parallel_tree(
     >>> tree = series_parallel_tree(G)
     >>> tree.kind, tree.system.order, tree.links
     ('series', 2, ('B', 'L', 'E'))
+    >>> [(child.kind, child.edge) for child in tree.children]
+    [('joint', ('B', 'L', 'R')), ('joint', ('L', 'E', 'P'))]
     """
     check_twist_graph(graph, joint_key=joint_key)
-    base, platform = graph.graph["base"], graph.graph["platform"]
     scale = graph_frame(graph, joint_key=joint_key)[1] if length_scale is None else length_scale
-    work = nx.MultiGraph()
-    work.add_nodes_from(graph)
-    for u, v, key, data in graph.edges(keys=True, data=True):
-        joint = data[joint_key]
-        system = ScrewSystem.span(joint.screws, rtol=rtol, length_scale=scale)
-        node = SeriesParallelNode("joint", (u, v), system, edge=(u, v, key), joints=(key,))
-        work.add_edge(u, v, node=node)
-    changed = True
-    while changed:
-        changed = False
-        for link in list(work.nodes):
-            if link not in (base, platform) and work.degree(link) <= 1:
-                work.remove_node(link)
-                changed = True
-        for a, b in {tuple(sorted((u, v), key=str)) for u, v in work.edges()}:
-            if work.number_of_edges(a, b) > 1:
-                members = [_oriented(d["node"], a) for d in work.get_edge_data(a, b).values()]
-                # parallel composition is associative: one parallel node per pair of links, whose
-                # children are the branches (not an earlier parallel node and a later branch)
-                members = [c for m in members for c in (m.children if m.kind == "parallel" else (m,))]
-                system = members[0].system
-                for member in members[1:]:
-                    system = system & member.system
-                joints = tuple(itertools.chain.from_iterable(m.joints for m in members))
-                merged = SeriesParallelNode("parallel", (a, b), system, tuple(members), joints=joints)
-                work.remove_edges_from([(a, b)] * work.number_of_edges(a, b))
-                work.add_edge(a, b, node=merged)
-                changed = True
-        for link in list(work.nodes):
-            if link in (base, platform) or work.degree(link) != 2:
-                continue
-            (_, a, first), (_, b, second) = work.edges(link, data="node")
-            left, right = _oriented(first, a), _oriented(second, link)
-            chain = _flatten_series(left) + _flatten_series(right)
-            links = (*_series_links(left), *_series_links(right)[1:])
-            system = left.system + right.system
-            joints = left.joints + right.joints
-            work.remove_node(link)
-            work.add_edge(
-                a, b, node=SeriesParallelNode("series", (a, b), system, tuple(chain), links, joints=joints)
-            )
-            changed = True
-            break
-    if set(work.nodes) != {base, platform} or work.number_of_edges() != 1:
+    # sorted by name as the analysis core sorts them: the core's tree. Its structure only: no limbs,
+    # so that an actuated joint off every base-to-platform path is dropped like any dangling joint
+    table = JointTable.from_graph(graph, joint_key=joint_key)
+    specs = tuple(sorted((replace(spec, actuated=False) for spec in table.specs), key=lambda spec: spec.name))
+    top = topology(graph.graph["base"], graph.graph["platform"], specs)
+    if top.network:
         raise TwistGraphError(
             "Expected a series-parallel twist graph between base and platform, got a topology that does "
-            f"not reduce (links left: {sorted(map(str, work.nodes))}); use method='loop_closure'."
+            f"not reduce (links left: {sorted(map(str, top.irreducible))}); use method='loop_closure'."
         )
-    ((_, _, data),) = work.edges(data=True)
-    return _oriented(data["node"], base)
-
-
-def _oriented(node: SeriesParallelNode, start: Any) -> SeriesParallelNode:
-    return node if node.ends[0] == start else node.reversed()
-
-
-def _flatten_series(node: SeriesParallelNode) -> list[SeriesParallelNode]:
-    return list(node.children) if node.kind == "series" else [node]
-
-
-def _series_links(node: SeriesParallelNode) -> tuple[Any, ...]:
-    return node.links if node.kind == "series" else node.ends
+    systems: list[ScrewSystem] = []
+    for node in top.nodes:  # post-order: children first
+        if node.joint is not None:
+            spec = top.specs[node.joint]
+            screws = graph.edges[spec.parent, spec.child, spec.name][joint_key].screws
+            systems.append(ScrewSystem.span(screws, rtol=rtol, length_scale=scale))
+            continue
+        system = systems[node.children[0]]
+        for child in node.children[1:]:
+            system = system + systems[child] if node.kind == "series" else system & systems[child]
+        systems.append(system)
+    return SeriesParallelNode.from_topology(top, systems)
 
 
 def platform_twist_system(
@@ -276,8 +280,8 @@ def equivalent_twist_graph(
     joint_key, rtol, length_scale
         As in :func:`series_parallel_tree`.
     tree : SeriesParallelNode, optional
-        The graph's series-parallel decomposition when it is at hand, e.g. the analysis core's
-        (:attr:`screwkit.core.wrenches.WrenchAnalysis.tree`, the same nodes and twist systems from the
+        The graph's series-parallel tree when it is at hand, e.g. the analysis core's
+        (:attr:`screwkit.core.wrenches.WrenchAnalysis.tree`: the same tree, its twist systems from the
         core's frames); default: :func:`series_parallel_tree` of ``graph``.
 
     Returns

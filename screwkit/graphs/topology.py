@@ -130,6 +130,8 @@ class Topology:
     network : bool
         True when the graph does not reduce and is analysed by loop closure
         (:func:`network_layout`).
+    irreducible : tuple
+        For a network, the links left when the reduction stops; empty otherwise.
     """
 
     base: Any
@@ -140,6 +142,7 @@ class Topology:
     legs: tuple[int, ...]
     limbs: tuple[LimbPlan, ...]
     network: bool = False
+    irreducible: tuple[Any, ...] = ()
 
     @property
     def actuated(self) -> tuple[str, ...]:
@@ -224,7 +227,7 @@ def topology(base: Hashable, platform: Hashable, specs: tuple[JointSpec, ...]) -
     names = [s.name for s in specs]
     actuated = sorted((s.name, i) for i, s in enumerate(specs) if s.actuated)
     if set(work.nodes) != {base, platform} or work.number_of_edges() != 1:
-        return _network(base, platform, specs, actuated)
+        return _network(base, platform, specs, actuated, tuple(work.nodes))
     ((_, _, root),) = work.edges(data="node")
     kept = _reachable(nodes, root)
     order = [i for i in range(len(nodes)) if i in kept]  # post-order: children were added first
@@ -407,7 +410,11 @@ def network_layout(
 
 
 def _network(
-    base: Any, platform: Any, specs: tuple[JointSpec, ...], actuated: list[tuple[str, int]]
+    base: Any,
+    platform: Any,
+    specs: tuple[JointSpec, ...],
+    actuated: list[tuple[str, int]],
+    irreducible: tuple[Any, ...],
 ) -> Topology:
     """A graph that does not reduce: analysed by loop closure; limbs as unions of paths."""
     graph = nx.MultiGraph()
@@ -429,4 +436,4 @@ def _network(
         edges = tuple(sorted(set().union(*through)))
         joints = tuple(specs[e].name for e in edges)
         limbs.append(LimbPlan(name, index, through[0][index], (), joints, edges))
-    return Topology(base, platform, specs, (), None, (), tuple(limbs), True)
+    return Topology(base, platform, specs, (), None, (), tuple(limbs), True, irreducible)

@@ -297,6 +297,33 @@ def test_parallel_legs_are_one_parallel_node_with_one_child_per_leg():
         _check_orientation(tree)
 
 
+
+def _shape(node):
+    return (node.kind, node.ends, node.links, node.edge, node.joints, node.system.order,
+            tuple(_shape(child) for child in node.children))
+
+
+@pytest.mark.parametrize("name", ["h4", "mcgill_smg", "peppermill", "planar_3rrp"])
+def test_series_parallel_tree_is_the_analysis_cores_tree(name):
+    # one tree: series_parallel_tree is the core's (WrenchAnalysis.tree), node for node, whatever
+    # order the graph lists its joints in
+    from screwkit.core.wrenches import wrench_analysis
+    from screwkit.robots.catalog import load_mechanism
+
+    graph = load_mechanism(name).twist_graph()
+    shuffled = nx.MultiDiGraph(**graph.graph)
+    shuffled.add_edges_from(reversed(list(graph.edges(keys=True, data=True))))
+    expected = _shape(wrench_analysis(graph).tree)
+    assert _shape(series_parallel_tree(graph)) == expected
+    assert _shape(series_parallel_tree(shuffled)) == expected
+
+
+def test_series_parallel_tree_drops_a_dangling_actuated_joint():
+    G = twist_graph("B", "E", [("B", "E", revolute("R", [0, 0, 1], [0, 0, 0])),
+                               ("B", "X", revolute("A", [1, 0, 0], [0, 0, 0], actuated=True))])
+    tree = series_parallel_tree(G)
+    assert (tree.kind, tree.edge, tree.system.order) == ("joint", ("B", "E", "R"), 1)
+
 # the equivalent twist graph (paper 002 Fig. 2b, Fig. 3) -----------------------------------------
 def test_equivalent_graph_of_an_r_4s_leg_is_r_vr_vr_vp_vp():
     G = twist_graph("base", "platform", four_s_leg())
@@ -344,9 +371,10 @@ def test_equivalent_graph_keeps_a_rigid_sub_loop():
 
 @pytest.mark.parametrize("name", ["h4", "ragnar", "mcgill_smg", "peppermill", "planar_3rrp"])
 def test_equivalent_graph_from_the_cores_tree_has_the_same_chains(name):
-    # the report builds it on the analysis core's decomposition (WrenchAnalysis.tree) instead of a
-    # second series_parallel_tree: the same edges between the same links, joint types and spans;
-    # the virtual joints' screws may be another basis of each closed sub-loop's twist system
+    # the report builds it on the analysis core's tree (WrenchAnalysis.tree, twist systems from the
+    # core's frames); series_parallel_tree is the same tree with systems summed and intersected from
+    # the graph's screws: the same edges between the same links, joint types and spans; the virtual
+    # joints' screws may be another basis of each closed sub-loop's twist system
     from screwkit.robots.catalog import load_mechanism
 
     mechanism = load_mechanism(name)
