@@ -170,7 +170,7 @@ def get_parser() -> argparse.ArgumentParser:
 class _MapQuantities:
     """The quantities a map can show (:data:`screwkit.analysis.quantities.QUANTITIES`), listed in
     ``map --help``: read when the help is shown, so that parsing a command does not import
-    :mod:`screwkit.analysis.workspace`."""
+    :mod:`screwkit.analysis.quantities`."""
 
     def __str__(self) -> str:
         from ..analysis.quantities import QUANTITIES

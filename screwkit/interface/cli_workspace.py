@@ -138,7 +138,12 @@ def run_map(args: argparse.Namespace) -> int:
         angles="deg",
     )
     try:
-        result.save(args.out)
+        if args.out.lower().endswith(".png"):
+            from .plot import save_map_png
+
+            save_map_png(result, args.out)
+        else:
+            result.save(args.out)
     except (OSError, ValueError) as err:
         shown = f"--out {shown_path(args.out)}: cannot write: {error_reason(err)}"
         raise UsageError(f"screwkit map: error: {shown}") from err

@@ -90,7 +90,12 @@ def first_reachable(mechanism, poses):
     raise AssertionError(f"none of {len(poses)} poses is reachable by {mechanism.name}")
 
 
-@pytest.mark.parametrize("name", list_mechanisms())
+#: Catalog entries whose family's basis and actuated joints are written out by hand above (a family
+#: added later is checked by its own tests, not by this table).
+HAND_DERIVED = [name for name in list_mechanisms() if load_mechanism(name).family in ACTUATED]
+
+
+@pytest.mark.parametrize("name", HAND_DERIVED)
 def test_twist_basis_is_the_nominal_motion_of_the_pose_coordinates(name, reports):
     mechanism = load_mechanism(name)
     pose, config = first_reachable(mechanism, mechanism.random_poses(np.random.default_rng(11), 20))
