@@ -9,7 +9,12 @@ from hypothesis import given
 
 from screwkit.algebra import screw as S
 from screwkit.algebra.screwvalue import Screw
-from screwkit.exceptions import DegenerateGeometryError, ScrewkitTypeError, ScrewkitValueError
+from screwkit.exceptions import (
+    DegenerateGeometryError,
+    ScrewkitIndexError,
+    ScrewkitTypeError,
+    ScrewkitValueError,
+)
 
 from ..strategies import rigid_motions, seeds, unit_factors
 
@@ -257,11 +262,167 @@ def test_error_symbolic_pitch_predicates_check_their_input_as_the_numeric_ones_d
         predicate(S.couple([x, 0, 1]), length_scale=-1.0)
 
 
-def test_error_screw_needs_one_screw():
-    with pytest.raises(
-        ScrewkitValueError, match=r"Expected `coords` to have shape \(6,\) for one Screw"
-    ):
-        Screw(np.zeros((2, 6)))
+# batches of Screw (one class for one screw and for many): every method equals a loop over singles --------
+BATCH_SHAPES = [(), (3,), (2, 4)]
+
+
+def _batch_coords(shape, symbolic, seed=0):
+    """Screws of every kind (finite, zero, infinite pitch) filling a batch of `shape`."""
+    rng = np.random.default_rng(seed)
+    rows = rng.integers(-3, 4, size=(*shape, 6)).astype(float)
+    flat = rows.reshape(-1, 6)
+    flat[::3, :3] = 0.0  # couples (infinite pitch)
+    flat[1::3, 3:] = np.cross(flat[1::3, :3] * 0 + [1.0, 2.0, 0.0], flat[1::3, :3])  # lines (zero pitch)
+    flat[np.all(flat[:, :3] == 0, axis=1) & np.all(flat[:, 3:] == 0, axis=1), 3] = 1.0
+    flat[1::3][np.all(flat[1::3, :3] == 0, axis=1), 2] = 1.0
+    if symbolic:
+        x = sympy.Symbol("x", positive=True)
+        return (rows.astype(int).astype(object) * x).reshape(rows.shape)  # exact, scaled by a symbol
+    return rows
+
+
+def _singles(coords):
+    return [Screw(coords[i]) for i in np.ndindex(coords.shape[:-1])]
+
+
+def _as_batch(values, shape):
+    return np.array(values, dtype=object).reshape(shape)
+
+
+@pytest.mark.parametrize("symbolic", [False, True])
+@pytest.mark.parametrize("shape", BATCH_SHAPES)
+def test_batch_has_shape_length_and_indexes_to_its_single_screws(shape, symbolic):
+    coords = _batch_coords(shape, symbolic)
+    batch = Screw(coords)
+    assert batch.shape == shape and batch.single == (shape == ())
+    assert batch.is_symbolic == symbolic and not batch.coords.flags.writeable
+    assert bool(batch)  # truthy whatever its length, as before batches
+    if shape == ():
+        with pytest.raises(TypeError, match="a single Screw has no length"):
+            len(batch)
+        with pytest.raises(TypeError, match="a single Screw has no length"):
+            list(batch)
+        return
+    assert len(batch) == shape[0]
+    assert [element.shape for element in batch] == [shape[1:]] * shape[0]
+    for i in np.ndindex(shape):
+        element = batch[i]
+        assert element.shape == () and element.single
+        np.testing.assert_array_equal(element.coords, coords[i])
+    np.testing.assert_array_equal(batch[1:].coords, coords[1:])
+    np.testing.assert_array_equal(np.asarray(batch), coords)
+
+
+@pytest.mark.parametrize("symbolic", [False, True])
+@pytest.mark.parametrize("shape", BATCH_SHAPES)
+def test_batch_properties_and_predicates_equal_a_loop_over_single_screws(shape, symbolic):
+    coords = _batch_coords(shape, symbolic)
+    batch, singles = Screw(coords), _singles(coords)
+    for name in ["pitch", "magnitude"]:
+        expected = _as_batch([getattr(one, name) for one in singles], shape)
+        got = np.asarray(getattr(batch, name), dtype=object)
+        assert got.shape == shape
+        assert all(g == e or sympy.simplify(g - e) == 0 for g, e in zip(got.flat, expected.flat, strict=True))
+    for name in ["is_zero_pitch", "is_infinite_pitch"]:
+        got = getattr(batch, name)()
+        expected = [getattr(one, name)() for one in singles]
+        assert np.shape(got) == shape and np.ravel(got).tolist() == expected
+        if shape == ():
+            assert type(got) is bool
+    np.testing.assert_array_equal(batch.direction, coords[..., :3])
+    np.testing.assert_array_equal(batch.moment, coords[..., 3:])
+
+
+@pytest.mark.parametrize("shape", BATCH_SHAPES)
+def test_batch_axis_normalized_transformed_and_products_equal_a_loop(shape):
+    coords = _batch_coords(shape, False)
+    coords[..., :3] += [0.0, 0.0, 5.0]  # finite pitch everywhere, for the axis
+    batch, singles = Screw(coords), _singles(coords)
+    point, unit = batch.axis
+    assert point.shape == unit.shape == (*shape, 3)
+    np.testing.assert_allclose(point.reshape(-1, 3), [one.axis[0] for one in singles])
+    np.testing.assert_allclose(unit.reshape(-1, 3), [one.axis[1] for one in singles])
+    np.testing.assert_allclose(batch.normalized().coords.reshape(-1, 6), [one.normalized().coords for one in singles])
+    quarter_turn = np.array([[0.0, -1, 0], [1, 0, 0], [0, 0, 1]])
+    moved = batch.transformed(quarter_turn, [1.0, 2.0, 3.0])
+    assert moved.shape == shape
+    np.testing.assert_allclose(
+        moved.coords.reshape(-1, 6), [one.transformed(quarter_turn, [1.0, 2.0, 3.0]).coords for one in singles]
+    )
+    other = Screw.force([1, 2, 0], [0, 1, 4])
+    products = batch.reciprocal_product(other)
+    assert np.shape(products) == shape
+    np.testing.assert_allclose(np.ravel(products), [one.reciprocal_product(other) for one in singles])
+    scaled = Screw(-2.5 * coords)
+    equivalent = batch.is_equivalent(scaled)
+    assert np.shape(equivalent) == shape and np.all(equivalent)
+    mixed = batch.is_equivalent(Screw(coords[..., ::-1]))
+    assert np.ravel(mixed).tolist() == [a.is_equivalent(Screw(a.coords[::-1])) for a in singles]
+
+
+@pytest.mark.parametrize("shape", BATCH_SHAPES)
+def test_symbolic_batch_equivalence_and_product_equal_a_loop(shape):
+    coords = _batch_coords(shape, True)
+    batch, singles = Screw(coords), _singles(coords)
+    reversed_batch = Screw(coords[..., ::-1])
+    got = batch.is_equivalent(reversed_batch)
+    assert np.ravel(got).tolist() == [a.is_equivalent(Screw(a.coords[::-1])) for a in singles]
+    assert np.all(batch.is_equivalent(Screw(coords * 3)))
+    other = Screw([1, sympy.Symbol("y"), 0, 0, 0, 1])
+    products = np.asarray(batch.reciprocal_product(other), dtype=object)
+    assert products.shape == shape
+    assert all(sympy.simplify(p - one.reciprocal_product(other)) == 0 for p, one in zip(products.flat, singles, strict=True))
+
+
+@given(seeds)
+def test_batched_constructors_equal_a_loop_over_single_constructors(seed):
+    rng = np.random.default_rng(seed)
+    directions, points, pitches = rng.normal(size=(3, 3)), rng.normal(size=(3, 3)), rng.normal(size=3)
+    cases = [
+        (Screw.revolute(directions, points), [Screw.revolute(d, p) for d, p in zip(directions, points, strict=True)]),
+        (Screw.force(directions, points), [Screw.force(d, p) for d, p in zip(directions, points, strict=True)]),
+        (Screw.prismatic(directions), [Screw.prismatic(d) for d in directions]),
+        (Screw.couple(directions), [Screw.couple(d) for d in directions]),
+        (Screw.from_plucker(directions, points), [Screw.from_plucker(d, p) for d, p in zip(directions, points, strict=True)]),
+        (
+            Screw.helical(directions, points, pitches),
+            [Screw.helical(d, p, h) for d, p, h in zip(directions, points, pitches, strict=True)],
+        ),
+    ]
+    for batch, singles in cases:
+        assert batch.shape == (3,)
+        np.testing.assert_allclose(batch.coords, [one.coords for one in singles], rtol=0, atol=0)
+
+
+def test_batch_str_lists_its_screws_and_to_dict_describes_its_elements():
+    batch = Screw(_batch_coords((2, 4), False))
+    assert str(batch) == "[" + ", ".join("[" + ", ".join(str(s) for s in row) + "]" for row in batch) + "]"
+    assert str(batch[0, 1]) == str(Screw(batch.coords[0, 1]))
+    assert [one.to_dict() for one in batch[1]] == [Screw(c).to_dict() for c in batch.coords[1]]
+
+
+def test_screw_system_spans_a_batch_as_its_screws():
+    from screwkit.algebra.screwsystem import ScrewSystem
+
+    batch = Screw.couple(np.eye(3))
+    assert ScrewSystem.span(list(batch)).order == ScrewSystem.span(np.eye(6)[3:]).order == 3
+
+
+def test_error_single_screw_cannot_be_indexed():
+    with pytest.raises(ScrewkitTypeError, match=r"Expected `index` to index a batch of screws, got a single Screw \(shape \(\)\)"):
+        Screw.couple([0, 0, 1])[0]
+
+
+def test_error_batch_index_out_of_range():
+    with pytest.raises(ScrewkitIndexError, match=r"Expected `index` to index the batch of shape \(2, 4\), got \(2, 0\)"):
+        Screw(np.ones((2, 4, 6)))[2, 0]
+    with pytest.raises(ScrewkitIndexError, match=r"Expected `index` to index the batch of shape \(3,\), got \(0, 0\)"):
+        Screw(np.ones((3, 6)))[0, 0]  # the coordinates are not a batch axis
+
+
+def test_error_batch_to_dict():
+    with pytest.raises(ScrewkitValueError, match=r"Expected a single Screw to describe, got a batch of shape \(3,\); index it"):
+        Screw(np.ones((3, 6))).to_dict()
 
 
 def test_error_reciprocal_with_non_screw():
