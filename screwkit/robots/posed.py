@@ -163,6 +163,16 @@ class PosedMechanism:
         """Every pose of the batch in turn, in C order over :attr:`shape` (for a batch of shape
         ``(n,)``: ``posed[0]``, ..., ``posed[n - 1]``).
 
+        Returns
+        -------
+        iterator of PosedMechanism
+            Each of shape ``()``.
+
+        Raises
+        ------
+        TypeError
+            For one pose (shape ``()``).
+
         Examples
         --------
         >>> posed = load_mechanism("h4").at([[30, -20, -750, 0.3], [0, 0, -800, 0.1]])
