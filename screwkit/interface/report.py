@@ -49,7 +49,7 @@ from ..exceptions import ScrewkitError, ScrewkitTypeError, ScrewkitValueError
 from ..graphs.reduction import equivalent_twist_graph
 from ..robots.catalog import load_mechanism
 from ..robots.mechanism import Mechanism
-from ..robots.posed import Pose
+from ..robots.posed import PosedMechanism
 from ..robots.snapshot import load_snapshot
 from ..robots.toml_fields import file_kind, load_toml
 from .analysis_report import AnalysisReport
@@ -75,13 +75,14 @@ def analyze(
 
     Parameters
     ----------
-    target : str, pathlib.Path, Mechanism, Pose or networkx.MultiDiGraph
+    target : str, pathlib.Path, Mechanism, PosedMechanism or networkx.MultiDiGraph
         A catalog name (``"h4"``), a catalog or snapshot ``.toml`` file, a :class:`Mechanism`, one
-        pose of a posed batch (``mechanism.at(poses)[i]``: its pose, ``rtol`` and ``length_scale``),
+        pose of a posed batch (``mechanism.at(poses)[i]``, shape ``()``: its pose, ``rtol`` and
+        ``length_scale``),
         or a twist graph built in Python (analysed at its configuration, like a snapshot).
     pose : array_like, optional
         In the mechanism's length unit and radians; default: the catalog's default pose. Not
-        accepted for snapshots, graphs and a Pose (their configuration is given).
+        accepted for snapshots, graphs and a posed mechanism (their configuration is given).
     rtol : float, optional
         Relative tolerance of every rank decision (default 1e-9).
     length_scale : float, optional
@@ -101,7 +102,8 @@ def analyze(
     Raises
     ------
     ScrewkitError
-        For an unknown mechanism, a malformed file, an unreachable pose (naming the limb).
+        For an unknown mechanism, a malformed file, an unreachable pose (naming the limb), a posed
+        batch (index it first).
 
     Examples
     --------
@@ -118,13 +120,18 @@ def analyze(
     if progress is not None and not callable(progress):
         raise ScrewkitTypeError(f"Expected `progress` to be callable, got {type(progress).__name__}.")
     step = progress or (lambda stage: None)
-    if isinstance(target, Pose):
+    if isinstance(target, PosedMechanism):
+        if target.shape != ():
+            raise ScrewkitValueError(
+                "Expected one pose of a posed mechanism (index the batch: posed[i]), got a batch of shape "
+                f"{target.shape}."
+            )
         options = (("pose", pose), ("rtol", rtol), ("length_scale", length_scale))
         given = [name for name, value in options if value is not None]
         if given:
             raise ScrewkitValueError(
-                "Expected no `pose`, `rtol` or `length_scale` with a Pose (it has them: mechanism.at(poses, "
-                f"rtol=..., length_scale=...)), got {', '.join(given)}."
+                "Expected no `pose`, `rtol` or `length_scale` with a posed mechanism (it has them: "
+                f"mechanism.at(poses, rtol=..., length_scale=...)), got {', '.join(given)}."
             )
         step(STAGES[0])
         return pose_report(target, superbracket=superbracket, progress=step)
@@ -215,12 +222,12 @@ def _graph_report(
 def pose_report(
     pose: Any, *, superbracket: bool = True, progress: Callable[[str], None] | None = None
 ) -> AnalysisReport:
-    """The report of one pose of a posed mechanism (what :func:`analyze` of a Pose returns).
+    """The report of one pose of a posed mechanism (what :func:`analyze` of ``posed[i]`` returns).
 
     Parameters
     ----------
-    pose : Pose
-        One pose of ``mechanism.at(poses)``.
+    pose : PosedMechanism
+        One pose of ``mechanism.at(poses)`` (shape ``()``).
     superbracket : bool
         Also expand and factor the superbracket.
     progress : callable, optional
@@ -255,7 +262,7 @@ def pose_report(
         mechanism.name,
         mechanism.source,
         mechanism.length_unit,
-        np.asarray(pose.pose),
+        np.asarray(pose.poses),
         mechanism.pose_names,
         pose.graph,
         pose.analysis,
@@ -272,7 +279,7 @@ def pose_report(
     return dataclasses.replace(
         report,
         transmission=transmission_summary(mechanism, report.pose, jacobians),
-        given_length_scale=pose.posed.length_scale,
+        given_length_scale=pose.length_scale,
     )
 
 

@@ -363,7 +363,7 @@ class Mechanism(Generic[P, C]):
         self, pose: Any = None
     ) -> tuple[Any, Callable[[np.random.Generator], dict[str, Array]]]:
         """The wrench diagram at a pose, and a sampler of its recipes at random workspace poses
-        (:meth:`screwkit.robots.posed.Pose.diagram_and_sampler`).
+        (:meth:`screwkit.robots.posed.PosedMechanism.diagram_and_sampler`).
 
         Parameters
         ----------

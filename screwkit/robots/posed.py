@@ -13,16 +13,17 @@ wrench diagram's points over the batch. The composer hands its results on: maps,
 (:mod:`screwkit.analysis`), paper 004's indices (:func:`screwkit.papers.paper_004.transmission`) and
 the report (:func:`screwkit.interface.report.analyze` of one pose) read them; it calls none of them.
 
-Indexing gives one :class:`Pose`: its graph, wrench analysis (a batch of one through the same kernels),
-verdict, Jacobians, wrench diagram and superbracket (generic samples drawn as one batch).
+Indexing gives a :class:`PosedMechanism` of shape ``()`` (one pose, its row of the batch's joint table):
+only there are the per-pose views, its graph, wrench analysis (a batch of one through the same
+kernels), verdict, Jacobians, wrench diagram and superbracket (generic samples drawn as one batch).
 
 Examples
 --------
 >>> posed = load_mechanism("h4").at([[0, 0, -750, 0], [30, -20, -750, 0.3]])
 >>> posed.shape, posed.singularities.constraint_order.tolist()
 ((2,), [2, 2])
->>> posed[0].singularity.verdict
-'regular'
+>>> posed[0].shape, posed[0].singularity.verdict
+((), 'regular')
 """
 
 from __future__ import annotations
@@ -57,7 +58,7 @@ from .generic_poses import (
 )
 from .transmission import Transmission, wrench_transmission
 
-__all__ = ["Pose", "PosedMechanism"]
+__all__ = ["PosedMechanism"]
 
 Array = np.ndarray
 
@@ -83,7 +84,7 @@ class PosedMechanism:
     ----------
     mechanism : Mechanism
     poses : numpy.ndarray, shape (..., n)
-        Length unit of the file, radians; read-only.
+        Length unit of the file, radians; read-only. Shape ``(n,)`` for one pose (``posed[i]``).
     rtol : float
     length_scale : float or None
         The characteristic length of the rank decisions in the file's length unit; None: derived
@@ -97,6 +98,9 @@ class PosedMechanism:
     rtol: float
     length_scale: float | None = None
     options: dict[str, Any] = field(default_factory=dict, repr=False)
+    #: The batch this pose was indexed from and its flat index there (its nominal twists are read
+    #: from the batch's), or None.
+    _batch: tuple[PosedMechanism, int] | None = field(default=None, repr=False)
 
     @classmethod
     def create(
@@ -143,11 +147,31 @@ class PosedMechanism:
         return self.poses.shape[:-1]
 
     def __len__(self) -> int:
+        if self.shape == ():
+            raise TypeError("a posed mechanism of one pose has no length")
         return self.shape[0]
 
-    def __iter__(self) -> Iterator[Pose]:
+    def _one(self, view: str) -> None:
+        """Raise unless this is one pose (shape ``()``): the per-pose views need one."""
+        if self.shape != ():
+            raise ScrewkitValueError(
+                f"PosedMechanism.{view} needs one pose: index the batch (posed[i]) first, "
+                f"got shape {self.shape}."
+            )
+
+    def __iter__(self) -> Iterator[PosedMechanism]:
         """Every pose of the batch in turn, in C order over :attr:`shape` (for a batch of shape
         ``(n,)``: ``posed[0]``, ..., ``posed[n - 1]``).
+
+        Returns
+        -------
+        iterator of PosedMechanism
+            Each of shape ``()``.
+
+        Raises
+        ------
+        TypeError
+            For one pose (shape ``()``).
 
         Examples
         --------
@@ -155,6 +179,8 @@ class PosedMechanism:
         >>> [pose.singularity.verdict for pose in posed]
         ['regular', 'regular']
         """
+        if self.shape == ():
+            raise TypeError("a posed mechanism of one pose is not iterable")
         return (self[index] for index in np.ndindex(*self.shape))
 
     def __repr__(self) -> str:
@@ -178,7 +204,12 @@ class PosedMechanism:
 
     @functools.cached_property
     def twist_basis(self) -> Array:
-        """The platform's nominal twists ``(..., dof, 6)``, one per pose coordinate."""
+        """The platform's nominal twists ``(..., dof, 6)``, one per pose coordinate (one pose of a
+        batch: its row of the batch's)."""
+        if self._batch is not None:
+            batch, flat = self._batch
+            basis = batch.twist_basis
+            return basis.reshape(-1, *basis.shape[-2:])[flat]
         return np.asarray(self.mechanism.family_protocol.twist_basis(self.configuration), dtype=float)
 
     @functools.cached_property
@@ -187,8 +218,11 @@ class PosedMechanism:
 
         Unless the joint table is already there, each chunk of :data:`CHUNK` poses goes through
         the inverse kinematics, its joint table and the core in turn, so memory stays bounded by
-        the chunk and the results; the whole table is computed only if a per-pose view asks.
+        the chunk and the results; the whole table is computed only if a per-pose view asks. One
+        pose (shape ``()``): its :attr:`singularity`.
         """
+        if self.shape == ():
+            return self.singularity
         if "joints" in self.__dict__:
             return label_table(  # the family's dof
                 self.joints, rtol=self.rtol, length_scale=self.length_scale, chunk=CHUNK
@@ -226,8 +260,9 @@ class PosedMechanism:
 
     @functools.cached_property
     def jacobians(self) -> Jacobians:
-        """``A χ̇ = B θ̇`` per pose over the family's nominal twists."""
-        return jacobians_from_wrenches(self.singularities.analysis, self.twist_basis, rtol=self.rtol)
+        """``A χ̇ = B θ̇`` per pose over the family's nominal twists (one pose: from its :attr:`analysis`)."""
+        analysis = self.analysis if self.shape == () else self.singularities.analysis
+        return jacobians_from_wrenches(analysis, self.twist_basis, rtol=self.rtol)
 
     @functools.cached_property
     def wrench_transmission(self) -> Transmission:
@@ -255,9 +290,9 @@ class PosedMechanism:
         -------
         values : dict of str to numpy.ndarray, shape (m, 4)
             Per label, the point's homogeneous coordinates over the batch of ``m`` poses (shape
-            ``(m,)``; NaN where it does not exist).
+            ``(m,)``; NaN where it does not exist); shape ``(4,)`` for one pose.
         exists : numpy.ndarray of bool, shape (m,)
-            Where every point exists.
+            Where every point exists; shape ``()`` for one pose.
 
         Examples
         --------
@@ -269,16 +304,49 @@ class PosedMechanism:
         """
         from ..gca.diagram_points import batch_diagram_points
 
-        table, rtol, length = self.joints, self.rtol, self.length_scale
+        one = self.shape == ()
+        table, rtol, length = (self.joints[None] if one else self.joints), self.rtol, self.length_scale
         parts = [
             batch_diagram_points(points, analyze_table(table[i : i + CHUNK], rtol=rtol, length_scale=length))
-            for i in range(0, len(self), CHUNK)
+            for i in range(0, len(table), CHUNK)
         ]
         values = {p.label: np.concatenate([part[p.label] for part in parts]) for p in points}
         exists = np.all([np.isfinite(v).all(axis=-1) for v in values.values()], axis=0)
+        if one:
+            return {label: value[0] for label, value in values.items()}, np.asarray(exists, dtype=bool)[0]
         return values, np.asarray(exists, dtype=bool).reshape(len(self))
 
-    def __getitem__(self, index: Any) -> Pose:
+    def __getitem__(self, index: Any) -> PosedMechanism:
+        """One pose of the batch: a posed mechanism of shape ``()`` with its row of the joint table.
+
+        Parameters
+        ----------
+        index : int or tuple of int
+            One integer per batch axis.
+
+        Returns
+        -------
+        PosedMechanism
+            Of shape ``()``; its joint table and nominal twists are read from this batch's (computed
+            once for the whole batch), not from a new inverse kinematics.
+
+        Raises
+        ------
+        ScrewkitIndexError
+            If the index is out of range, or this is one pose already.
+        ScrewkitValueError
+            If the index does not pick one pose.
+
+        Examples
+        --------
+        >>> posed = load_mechanism("h4").at([[0, 0, -750, 0], [30, -20, -750, 0.3]])
+        >>> posed[1].shape, posed[1].poses.tolist()
+        ((), [30.0, -20.0, -750.0, 0.3])
+        """
+        if self.shape == ():
+            raise ScrewkitIndexError(
+                f"Expected a batch to index, got one pose (shape ()) at {self.poses.tolist()}."
+            )
         parts = index if isinstance(index, tuple) else (index,)
         if not all(isinstance(i, int | np.integer) and not isinstance(i, bool) for i in parts):
             raise ScrewkitValueError(  # numpy's IndexError for a string is not an index out of range
@@ -299,47 +367,28 @@ class PosedMechanism:
             raise ScrewkitValueError(
                 f"Expected `index` to pick one pose of the batch of shape {self.shape}, got {index!r}."
             )
-        return Pose(self, np.asarray(self.poses[index]), self.joints[index], int(flat))
+        one = PosedMechanism(
+            self.mechanism, self.poses[index], self.rtol, self.length_scale, self.options, (self, int(flat))
+        )
+        one.__dict__["joints"] = self.joints[index]  # the batch's row: no new inverse kinematics
+        return one
 
-
-@dataclass(frozen=True, eq=False)
-class Pose:
-    """One pose of a :class:`PosedMechanism`: the per-pose graph, analysis, diagram, report.
-
-    Attributes
-    ----------
-    posed : PosedMechanism
-    pose : numpy.ndarray, shape (n,)
-    table : JointTable
-        This pose's joints (batch shape ``()``).
-    flat_index : int
-        Its index in the flattened batch.
-    """
-
-    posed: PosedMechanism = field(repr=False)
-    pose: Array
-    table: JointTable = field(repr=False)
-    flat_index: int = 0
-
-    @property
-    def mechanism(self) -> Any:
-        """The catalog mechanism."""
-        return self.posed.mechanism
 
     @functools.cached_property
     def graph(self) -> nx.MultiDiGraph:
-        """The twist graph of the physical mechanism at this pose."""
-        graph = self.table.graph()
+        """The twist graph of the physical mechanism at this pose (one pose only)."""
+        self._one("graph")
+        graph = self.joints.graph()
         graph.graph["name"] = self.mechanism.name
         graph.graph["length_unit"] = self.mechanism.length_unit
         return graph
 
     @functools.cached_property
     def analysis(self) -> WrenchAnalysis:
-        """The wrench systems (a batch of one through the core, with the per-pose views)."""
-        one = self.table[None] if self.table.batch_shape == () else self.table
-        posed = self.posed
-        return self._with_graph(analyze_table(one, rtol=posed.rtol, length_scale=posed.length_scale)[0])
+        """The wrench systems (a batch of one through the core, with the per-pose views; one pose only)."""
+        self._one("analysis")
+        one = self.joints[None]
+        return self._with_graph(analyze_table(one, rtol=self.rtol, length_scale=self.length_scale)[0])
 
     def _with_graph(self, result: WrenchAnalysis) -> WrenchAnalysis:
         object.__setattr__(result, "graph", self.graph)
@@ -347,19 +396,9 @@ class Pose:
 
     @functools.cached_property
     def singularity(self) -> SingularityReport:
-        """The verdict at this pose."""
+        """The verdict at this pose (one pose only)."""
+        self._one("singularity")
         return SingularityReport(self.analysis)
-
-    @functools.cached_property
-    def twist_basis(self) -> Array:
-        """The platform's nominal twists at this pose, ``(dof, 6)``."""
-        basis = self.posed.twist_basis
-        return basis.reshape(-1, *basis.shape[-2:])[self.flat_index]
-
-    @functools.cached_property
-    def jacobians(self) -> Jacobians:
-        """``A χ̇ = B θ̇`` at this pose."""
-        return jacobians_from_wrenches(self.analysis, self.twist_basis, rtol=self.posed.rtol)
 
     @functools.cached_property
     def _draws(self) -> tuple[Sequence[WrenchAnalysis], WrenchAnalysis | None, np.random.Generator]:
@@ -371,16 +410,16 @@ class Pose:
         reachable) and the samples' generator, where the next batch is drawn from. (61 poses of
         four limbs stay below :data:`screwkit.algebra.compiled.COMPILED_MIN_BATCH`: no numba import.)
         """
-        mechanism, rtol = self.mechanism, self.posed.rtol
+        self._one("diagram_and_sampler()")
+        mechanism, rtol = self.mechanism, self.rtol
         stream = np.random.default_rng(0)
         generic = _reachable_table(mechanism, np.random.default_rng(2026), GENERIC_DRAWS)
         sampled = _reachable_table(mechanism, stream, 2 * SAMPLES)
-        one = self.table[None] if self.table.batch_shape == () else self.table
-        own = [] if "analysis" in self.__dict__ else [one]
+        own = [] if "analysis" in self.__dict__ else [self.joints[None]]
         tables = [*own, *(t for t in (generic, sampled) if t is not None)]
         if not tables:  # this pose analysed already, no random pose reachable
             return [], None, stream
-        batch = analyze_table(_concatenated(tables), rtol=rtol, length_scale=self.posed.length_scale)
+        batch = analyze_table(_concatenated(tables), rtol=rtol, length_scale=self.length_scale)
         if own:
             self.__dict__["analysis"] = self._with_graph(batch[0])
         start = len(own)
@@ -391,7 +430,7 @@ class Pose:
         return analyses, (None if sampled is None else batch[start:]), stream
 
     def diagram_and_sampler(self) -> tuple[Any, Callable[[np.random.Generator], dict[str, Array]]]:
-        """The wrench diagram at this pose and a sampler of its recipes at generic poses.
+        """The wrench diagram at this pose and a sampler of its recipes at generic poses (one pose only).
 
         Which lines make the diagram and which points they share is decided at a generic (random,
         seeded) workspace pose of :data:`GENERIC_DRAWS` drawn as one batch
@@ -407,6 +446,17 @@ class Pose:
         diagram : WrenchDiagram
         sampler : callable
             ``sampler(rng) -> {label: (4,)}``, the diagram's points at a generic pose.
+
+        Raises
+        ------
+        ScrewkitValueError
+            On a batch (index it first).
+
+        Examples
+        --------
+        >>> diagram, sampler = load_mechanism("h4").at()[0].diagram_and_sampler()
+        >>> len(diagram.points) > 0
+        True
         """
         from dataclasses import replace
 
@@ -419,36 +469,39 @@ class Pose:
             diagram = wrench_diagram(self.analysis)
             return replace(diagram, coordinates={}, degenerate=reasons), _no_sampler
         diagram = diagram_at(reference, self.analysis)
-        mechanism, rtol = self.mechanism, self.posed.rtol
+        mechanism, rtol = self.mechanism, self.rtol
         pending = [first]
 
         def produce(_: np.random.Generator) -> Iterable[dict[str, Array]]:
             # the first batch analysed with the generic draws, the next ones drawn on from its stream
             if pending:
                 return _samples(diagram.points, pending.pop(), SAMPLES)
-            return generic_samples(mechanism, diagram.points, stream, SAMPLES, rtol, self.posed.length_scale)
+            return generic_samples(mechanism, diagram.points, stream, SAMPLES, rtol, self.length_scale)
 
         return diagram, ReplaySampler(produce)
 
     @functools.cached_property
     def diagram(self) -> Any:
         """The wrench diagram at this pose (:class:`screwkit.gca.diagram.WrenchDiagram`; the first item
-        of :meth:`diagram_and_sampler`)."""
+        of :meth:`diagram_and_sampler`; one pose only)."""
+        self._one("diagram")
         return self.diagram_and_sampler()[0]
 
     @functools.cached_property
     def superbracket(self) -> Any:
         """The superbracket of this pose's wrench diagram, expanded, simplified, factored and
         interpreted (:func:`screwkit.gca.superbracket_analysis.superbracket_analysis`; what
-        :meth:`report` shows).
+        :func:`screwkit.interface.report.analyze` shows; one pose only).
 
         Raises
         ------
         ScrewkitValueError
-            If the mechanism has no wrench diagram of six lines (the reasons found at generic poses).
+            On a batch (index it first), or if the mechanism has no wrench diagram of six lines (the
+            reasons found at generic poses).
         """
         from ..gca.superbracket_analysis import superbracket_analysis
 
+        self._one("superbracket")
         diagram, sampler = self.diagram_and_sampler()
         if diagram.degenerate:
             raise ScrewkitValueError(

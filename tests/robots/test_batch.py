@@ -171,9 +171,10 @@ def test_a_posed_batch_iterates_over_its_poses_in_c_order(rng):
     poses = np.vstack([random_poses(rng, 5), singular_pose(0)])
     posed = h4.at(poses)
     assert [pose.singularity.verdict for pose in posed] == list(posed.verdicts)
-    assert [pose.flat_index for pose in posed] == list(range(6))
+    assert [pose.shape for pose in posed] == [()] * 6
+    np.testing.assert_array_equal([pose.twist_basis for pose in posed], posed.twist_basis)
     grid = h4.at(poses.reshape(2, 3, 4))  # every pose of a grid, row by row (np.ndindex)
-    assert [tuple(pose.pose) for pose in grid] == [tuple(p) for p in poses]
+    assert [tuple(pose.poses) for pose in grid] == [tuple(p) for p in poses]
     with pytest.raises(IndexError, match=r"shape \(6,\), got 6 \(out of range\)"):
         posed[6]
 
@@ -209,5 +210,8 @@ def test_analyze_takes_one_pose_of_a_batch():
     report = sk.analyze(posed[1], superbracket=False)
     assert report.pose.tolist() == [30.0, -20.0, -750.0, 0.3]
     assert report.to_dict() == sk.analyze("h4", [30.0, -20.0, -750.0, 0.3], rtol=1e-8, superbracket=False).to_dict()
-    with pytest.raises(ScrewkitValueError, match=r"Expected no `pose`, `rtol` or `length_scale` with a Pose .*got pose, rtol\."):
+    with pytest.raises(ScrewkitValueError, match=r"Expected no `pose`, `rtol` or `length_scale` with a posed mechanism .*got pose, rtol\."):
         sk.analyze(posed[0], [0.0, 0.0, -750.0, 0.0], rtol=1e-9)
+    with pytest.raises(ScrewkitValueError, match=r"Expected one pose of a posed mechanism \(index the batch: posed\[i\]\), "
+                       r"got a batch of shape \(2,\)\."):
+        sk.analyze(posed, superbracket=False)
