@@ -383,7 +383,7 @@ def _map_job(
     """A map's quantity, slice and chunk job (its API-unit poses, flattened)."""
     name = Q.quantity(quantity)
     grid = _Slice.create(mechanism, x, y, fixed, mode, angles)
-    if name in ("lti", "kappa", "zeta") or name.startswith("condition:"):  # refuse before the map
+    if name in Q.CONTRIBUTED or name.startswith("condition:"):  # refuse before the map
         Q.values(mechanism.at(None, **grid.options), name)
     user = grid.poses()
     flat = user.reshape(-1, user.shape[-1]) * grid.scale
