@@ -1,6 +1,7 @@
 """Every public function and class has a numpydoc docstring with an Examples section (run as a doctest)."""
 
 import ast
+import builtins
 import importlib
 import inspect
 import pathlib
@@ -174,3 +175,30 @@ def test_cited_modules_names_and_files_exist():
         and cited != "screwkit/robots/families/planar_3rpr.py"  # CONTRIBUTING's example, written by the reader
     ]
     assert not missing, "stale citations:\n" + "\n".join(missing)
+
+
+_OUTSIDE = ("numpy", "np.", "sympy", "networkx", "nx.", "matplotlib", "dask", "math", "numba", "scipy",
+            "tomllib", "json", "pathlib", "dataclasses", "typing", "collections", "importlib", "fractions")
+
+
+def test_short_roles_name_something_in_their_module():
+    """A role without a module (:func:`name`) is looked up in the module that writes it: after the
+    split, a sibling's name there must be written in full (:func:`~screwkit.x.y.name`)."""
+    unresolved = []
+    for source in sorted((_ROOT / "screwkit").rglob("*.py")):
+        text = source.read_text(encoding="utf-8")
+        defined = set(dir(builtins))
+        for node in ast.walk(ast.parse(text)):
+            if isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef | ast.ClassDef):
+                defined.add(node.name)
+            elif isinstance(node, ast.alias):
+                defined.add((node.asname or node.name).split(".")[0])
+            elif isinstance(node, ast.Name | ast.Attribute) and isinstance(node.ctx, ast.Store):
+                defined.add(node.id if isinstance(node, ast.Name) else node.attr)
+        for match in re.finditer(r":(?:func|class|meth|data|attr|mod):`~?([\w.]+)`", text):
+            target = match.group(1)
+            if target.startswith(("screwkit", *_OUTSIDE)) or target.split(".")[0] in defined:
+                continue
+            line = text[: match.start()].count("\n") + 1
+            unresolved.append(f"{source.relative_to(_ROOT)}:{line}: {match.group(0)}")
+    assert not unresolved, "roles naming nothing in their module:\n" + "\n".join(unresolved)

@@ -337,7 +337,8 @@ def grid_map(
     ----------
     mechanism : Mechanism
     quantity : str
-        See :data:`QUANTITIES` (``"detA"``/``"detB"`` and ``"condition"`` = ``"condition:0"`` too).
+        See :data:`~screwkit.analysis.quantities.QUANTITIES` (``"detA"``/``"detB"`` and ``"condition"`` =
+        ``"condition:0"`` too).
     x, y : tuple (name, low, high, count)
         The axes (user units: angles in radians unless ``angles="deg"``).
     fixed : dict, optional
@@ -459,7 +460,7 @@ def sweep(
     mechanisms : sequence of Mechanism
         The mechanisms to map, in order (non-empty).
     quantity : str
-        See :data:`QUANTITIES`, as for :func:`grid_map`.
+        See :data:`~screwkit.analysis.quantities.QUANTITIES`, as for :func:`grid_map`.
     x, y : tuple (name, low, high, count)
         The axes, as for :func:`grid_map`.
     fixed : dict, optional

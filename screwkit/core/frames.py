@@ -28,7 +28,8 @@ and actuation wrenches (:mod:`screwkit.core._limbs`) and the core's closing step
 (:mod:`screwkit.core._closing`) build on the rule.
 
 **Two implementations, one rule.** :func:`span`, :func:`complement`, :func:`reciprocal`,
-:func:`unit_scaled` and the kernels of those modules (and :mod:`screwkit.core._residuals`) have a
+:func:`~screwkit.algebra.reference_frame.unit_scaled` and the kernels of those modules (and
+:mod:`screwkit.core._residuals`) have a
 numpy path (vectorized over the batch) and, when numba is installed (the ``fast`` extra), compiled per-pose
 loops (:mod:`screwkit.core._frames_numba` and its siblings ``_closed_forms_numba``,
 ``_limbs_numba``, ``_closing_numba``, ``_program_numba``). The numpy path does the compiled loops'

@@ -307,8 +307,8 @@ def transmission_indices(config: FourLimbGeometry) -> Transmission:
     return Transmission(kappa, zeta, np.minimum(kappa, zeta))
 
 
-#: The index names :func:`index_extremes` accepts: paper 004's ``lti`` (η, Eq. 16), ``input``
-#: (κ) and ``output`` (ζ) of Eq. (15).
+#: The index names :func:`~screwkit.papers.paper_004_table4.index_extremes` accepts: paper 004's
+#: ``lti`` (η, Eq. 16), ``input`` (κ) and ``output`` (ζ) of Eq. (15).
 INDEX_NAMES = ("lti", "input", "output")
 
 _UNREACHABLE = ("raise", "nan")
@@ -518,7 +518,8 @@ def transmission(
 
 
 def _is_four_limb(parameters: Any) -> bool:
-    """True for the parameters of a four-limb mechanism (:class:`FourLimbParameters`); the family's
+    """True for the parameters of a four-limb mechanism
+    (:class:`~screwkit.robots.families.four_limb.parameters.FourLimbParameters`); the family's
     module is not imported to tell (no such parameters exist before it is)."""
     module = sys.modules.get("screwkit.robots.families.four_limb.parameters")
     return module is not None and isinstance(parameters, module.FourLimbParameters)

@@ -440,7 +440,7 @@ class Pose:
     def superbracket(self) -> Any:
         """The superbracket of this pose's wrench diagram, expanded, simplified, factored and
         interpreted (:func:`screwkit.gca.superbracket_analysis.superbracket_analysis`; what
-        :meth:`report` shows).
+        :func:`screwkit.interface.report.pose_report` shows).
 
         Raises
         ------
