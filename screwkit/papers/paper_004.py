@@ -322,7 +322,7 @@ def _numba_kernels(poses: int) -> ModuleType | None:
 
 def backend() -> str:
     """``"numba"`` or ``"numpy"``: how :func:`transmission` computes batches of
-    :data:`screwkit.core.frames.COMPILED_MIN_BATCH` poses or more in this process.
+    :data:`screwkit.algebra.compiled.COMPILED_MIN_BATCH` poses or more in this process.
 
     Returns
     -------
@@ -433,7 +433,7 @@ def transmission(
 
     The batched entry point for maps (workspace grids, trajectories): inverse kinematics (Eq. 3) and
     the indices in one pass. With numba (the ``fast`` extra) one fused compiled loop
-    (:mod:`screwkit.papers._lti_numba`) for batches of :data:`screwkit.core.frames.COMPILED_MIN_BATCH`
+    (:mod:`screwkit.papers._lti_numba`) for batches of :data:`screwkit.algebra.compiled.COMPILED_MIN_BATCH`
     poses or more (or once it is loaded), else the numpy path (:func:`screwkit.robots.families.four_limb.
     inverse_kinematics` then :func:`transmission_indices`; a single pose never loads numba);
     ``SCREWKIT_NUMBA=0`` forces numpy. The two agree to round-off (``tests/papers/test_paper_004.py``).
