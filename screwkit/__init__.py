@@ -19,6 +19,7 @@ from .algebra.motion_type import motion_type
 from .algebra.screw import reciprocal_product
 from .algebra.screwsystem import ScrewSystem
 from .algebra.screwvalue import Screw
+from .analysis.quantities import CONTRIBUTED as _CONTRIBUTED
 from .analysis.quantities import register_quantity
 from .core.singularity import classify, classify_poses, classify_table
 from .core.verdicts import SingularityReport
@@ -119,7 +120,7 @@ def _paper_004_map_values(posed: Any, quantity: str) -> Any:
 
 
 # the maps (screwkit.analysis) read paper 004's indices by name: the papers stand above them
-for _name in ("lti", "kappa", "zeta"):
+for _name in _CONTRIBUTED:
     register_quantity(_name, functools.partial(_paper_004_map_values, quantity=_name))
 
 

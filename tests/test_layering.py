@@ -75,6 +75,10 @@ def imports(module: str) -> list[tuple[str, str, int]]:
                     found.append((full, "", node.lineno))
                 else:
                     found.append((target, alias.name, node.lineno))
+        elif isinstance(node, ast.Constant) and isinstance(node.value, str) and "." in node.value \
+                and node.value in MODULES:
+            # a module named by a string (importlib.import_module, compiled_kernels): an import
+            found.append((node.value, "", node.lineno))
     return found
 
 
@@ -86,7 +90,9 @@ def module_attributes(module: str) -> list[tuple[str, str, int]]:
     path = MODULES[module]
     package = module if path.name == "__init__.py" else module.rpartition(".")[0]
     for node in ast.walk(tree):
-        if isinstance(node, ast.ImportFrom):
+        if isinstance(node, ast.Import):  # import screwkit.algebra.backend as B
+            aliases.update((a.asname, a.name) for a in node.names if a.asname and a.name in MODULES)
+        elif isinstance(node, ast.ImportFrom):
             base = package.split(".")[: len(package.split(".")) - node.level + 1] if node.level else []
             target = ".".join(base + ([node.module] if node.module else [])) if node.level else node.module
             for alias in node.names:
@@ -151,3 +157,17 @@ def test_module_size(module):
     lines = text.count("\n")
     doc = ast.get_docstring(ast.parse(text)) or ""
     assert lines <= 600 or "One algorithm:" in doc, f"{module}: {lines} lines"
+
+
+def test_the_checks_see_string_imports_and_module_aliases(tmp_path, monkeypatch):
+    """What the parser must not miss: a module named by a string (importlib.import_module) and a
+    private attribute read through ``import screwkit.x.y as Y``."""
+    probe = tmp_path / "probe.py"
+    probe.write_text(
+        "import importlib\nimport screwkit.core.frames as F\n\n\n"
+        "def f():\n    F._hidden\n    return importlib.import_module('screwkit.interface.cli')\n",
+        encoding="utf-8",
+    )
+    monkeypatch.setitem(MODULES, "screwkit.algebra.probe", probe)
+    assert ("screwkit.interface.cli", "", 7) in imports("screwkit.algebra.probe")
+    assert ("screwkit.core.frames", "_hidden", 6) in module_attributes("screwkit.algebra.probe")

@@ -359,21 +359,6 @@ def join_unchecked(p: Array, q: Array) -> Array:
     return np.concatenate([direction, B.cross(p[..., :3], q[..., :3])], axis=-1)
 
 
-def plane_through_unchecked(p: Array, q: Array, r: Array) -> Array:
-    """:func:`plane_through` without the degeneracy check (the zero plane for collinear input).
-
-    Examples
-    --------
-    >>> plane_through_unchecked(np.array([0, 0, 0, 1.]), np.array([1, 0, 0, 1.]), np.array([2, 0, 0, 1.]))
-    array([0., 0., 0., 0.])
-    """
-    columns = [[1, 2, 3], [0, 2, 3], [0, 1, 3], [0, 1, 2]]
-    return np.stack(
-        [(-1) ** (3 + j) * _det3(p[..., c], q[..., c], r[..., c]) for j, c in enumerate(columns)],
-        axis=-1,
-    )
-
-
 def meet_line_plane(
     line: Any, plane_coords: Any, *, allow_infinite: bool = False, rtol: float = B.DEFAULT_RTOL
 ) -> Array:

@@ -260,7 +260,9 @@ def screw_rank(rows: Array, *, rtol: float = DEFAULT_RTOL, length_scale: float |
     return int(result) if np.ndim(result) == 0 else result
 
 
-_SWAP = np.block([[np.zeros((3, 3)), np.eye(3)], [np.eye(3), np.zeros((3, 3))]])
+#: ``a ∘ b = a · (SWAP b)``: the reciprocal product as a Euclidean one (read-only).
+SWAP = np.block([[np.zeros((3, 3)), np.eye(3)], [np.eye(3), np.zeros((3, 3))]])
+SWAP.flags.writeable = False
 
 
 def screw_nullspace(
@@ -292,13 +294,13 @@ def screw_nullspace(
     if rows.dtype == object:
         if rows.shape[0] == 0:
             return np.array(sympy_module().eye(6).tolist(), dtype=object)
-        return matrix_nullspace(rows @ _SWAP.astype(int), rtol=rtol)
+        return matrix_nullspace(rows @ SWAP.astype(int), rtol=rtol)
     if rows.shape[0] == 0:
         return np.eye(6)
     scaled, length = scale_moments(rows, length_scale)
     lengths = np.linalg.norm(scaled, axis=-1, keepdims=True)
     scaled = scaled / np.where(lengths > 0, lengths, 1.0)
-    basis = matrix_nullspace(scaled @ _SWAP, rtol=rtol)
+    basis = matrix_nullspace(scaled @ SWAP, rtol=rtol)
     # In scaled coordinates x' = (x_s; x_m / L); reciprocity a∘x = L (a'∘x') is preserved.
     basis[:, 3:] *= length
     return basis

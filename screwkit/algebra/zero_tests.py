@@ -186,7 +186,8 @@ def _norms(vectors: Array) -> Array:
 def unit_directions(vectors: Array) -> Array:
     """Numeric vectors ``(..., 3)`` scaled to unit length; symbolic vectors unchanged.
 
-    A numeric vector is first scaled by a power of two (exact; :func:`direction_scaled`), so that a
+    A numeric vector is first scaled by a power of two (exact;
+    :func:`~screwkit.algebra.ranks.direction_scaled`), so that a
     vector whose squared length underflows (a 1e-170 axis) or overflows still gets its unit vector
     (for other vectors the same bits as dividing by the norm). A symbolic direction stays
     polynomial (no ``sqrt``): its length is a generic non-zero factor, and every use of a direction

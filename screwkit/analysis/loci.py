@@ -87,7 +87,7 @@ def loci(
     Parameters
     ----------
     mechanism, x, y, fixed, mode, angles, rtol
-        As in :func:`grid_map`.
+        As in :func:`~screwkit.analysis.workspace.grid_map`.
 
     Returns
     -------

@@ -144,7 +144,7 @@ def check_path(
         the default pose.
     samples : int, default 200
     mode, angles, rtol
-        As in :func:`grid_map`.
+        As in :func:`~screwkit.analysis.workspace.grid_map`.
 
     Returns
     -------

@@ -39,9 +39,13 @@ from typing import Any
 
 import numpy as np
 
+from ..core.verdicts import LABELS
 from ..exceptions import DegenerateGeometryError, ScrewkitTypeError, ScrewkitValueError
 
-__all__ = ["KINDS", "QUANTITIES", "conditions_of", "quantity", "register_quantity", "values", "verdict_name"]
+__all__ = [
+    "CONTRIBUTED", "KINDS", "QUANTITIES", "conditions_of", "quantity", "register_quantity", "values",
+    "verdict_name",
+]
 
 Array = np.ndarray
 
@@ -59,7 +63,7 @@ QUANTITIES = (
     "zeta",
 )
 #: The kinds of singularity, by bit of the core's codes.
-KINDS = ("constraint", "actuation", "serial")
+KINDS = LABELS  # the verdict codes' bits, as the core defines them
 
 
 def verdict_name(code: int) -> str:
@@ -120,6 +124,9 @@ def quantity(quantity: Any) -> str:
         f"Expected `quantity` to be one of {[*QUANTITIES, 'condition:K']}, got {quantity!r}."
     )
 
+#: The quantities of :data:`QUANTITIES` that :func:`register_quantity` provides (a paper's indices).
+CONTRIBUTED = ("lti", "kappa", "zeta")
+
 #: Quantities computed outside the stages below this one (a paper's indices), by name: a function
 #: ``(posed) -> values`` per pose (:func:`register_quantity`).
 _REGISTERED: dict[str, Callable[[Any], Any]] = {}
@@ -150,15 +157,13 @@ def register_quantity(name: str, function: Callable[[Any], Any]) -> None:
     ...
     screwkit.exceptions.ScrewkitValueError: Expected `name` to be one of ('lti', 'kappa', 'zeta'), ...
     """
-    if name not in _CONTRIBUTED:
-        raise ScrewkitValueError(f"Expected `name` to be one of {_CONTRIBUTED}, got {name!r}.")
+    if name not in CONTRIBUTED:
+        raise ScrewkitValueError(f"Expected `name` to be one of {CONTRIBUTED}, got {name!r}.")
     if not callable(function):
         raise ScrewkitTypeError(f"Expected `function` to be callable, got {type(function).__name__}.")
     _REGISTERED[name] = function
 
 
-#: The quantities of :data:`QUANTITIES` that :func:`register_quantity` provides.
-_CONTRIBUTED = ("lti", "kappa", "zeta")
 
 
 def _condition_values(mechanism: Any, index: int, posed: Any) -> Array:
@@ -277,7 +282,7 @@ def values(posed: Any, quantity: str) -> Array:
         return np.asarray(posed.closeness[quantity.split(":")[1]], dtype=float)
     if quantity in ("det_A", "det_B"):
         return np.asarray(getattr(posed.jacobians, quantity), dtype=float)
-    if quantity in _CONTRIBUTED:
+    if quantity in CONTRIBUTED:
         if quantity not in _REGISTERED:  # only when screwkit's own __init__ did not run to its end
             raise ScrewkitValueError(f"Expected quantity {quantity!r} to be registered (register_quantity).")
         return np.asarray(_REGISTERED[quantity](posed), dtype=float)

@@ -337,7 +337,8 @@ def grid_map(
     ----------
     mechanism : Mechanism
     quantity : str
-        See :data:`QUANTITIES` (``"detA"``/``"detB"`` and ``"condition"`` = ``"condition:0"`` too).
+        See :data:`~screwkit.analysis.quantities.QUANTITIES` (``"detA"``/``"detB"`` and ``"condition"`` =
+        ``"condition:0"`` too).
     x, y : tuple (name, low, high, count)
         The axes (user units: angles in radians unless ``angles="deg"``).
     fixed : dict, optional
@@ -383,7 +384,7 @@ def _map_job(
     """A map's quantity, slice and chunk job (its API-unit poses, flattened)."""
     name = Q.quantity(quantity)
     grid = _Slice.create(mechanism, x, y, fixed, mode, angles)
-    if name in ("lti", "kappa", "zeta") or name.startswith("condition:"):  # refuse before the map
+    if name in Q.CONTRIBUTED or name.startswith("condition:"):  # refuse before the map
         Q.values(mechanism.at(None, **grid.options), name)
     user = grid.poses()
     flat = user.reshape(-1, user.shape[-1]) * grid.scale
@@ -459,7 +460,7 @@ def sweep(
     mechanisms : sequence of Mechanism
         The mechanisms to map, in order (non-empty).
     quantity : str
-        See :data:`QUANTITIES`, as for :func:`grid_map`.
+        See :data:`~screwkit.analysis.quantities.QUANTITIES`, as for :func:`grid_map`.
     x, y : tuple (name, low, high, count)
         The axes, as for :func:`grid_map`.
     fixed : dict, optional

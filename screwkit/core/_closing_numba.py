@@ -81,7 +81,8 @@ def closing(  # pragma: no cover - compiled
     rtol: float,
 ) -> tuple[Array, Array, Array, Array, Array]:
     """The analysis core's last per-pose steps in one pass (:func:`screwkit.core._closing.closing`, whose
-    numpy path does these operations in this order): the global frame, :func:`span` of the
+    numpy path does these operations in this order): the global frame,
+    :func:`~screwkit.core._frames_numba.span` of the
     ``constraint (n, 6, 6)`` rows and the limbs' scaled wrench ``rows (n, l, 6)``; the closeness
     factors, :func:`triangular` of the legs' wrench frames ``legs (n, L, 6, 6)`` stacked and of
     that triangle with the ``apart (n, l, 6)`` rows, packed (21 entries row by row); the

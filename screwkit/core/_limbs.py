@@ -56,7 +56,7 @@ def limb_systems(
     ``locked_order``) the twists of the limb with its actuator locked,
 
     * ``t⊥``, ``t`` less its projection on the locked rows (re-orthogonalised once, as
-      :func:`residual`);
+      :func:`~screwkit.core._residuals.residual`);
     * serial: ``|t⊥| ≤ rtol`` (the actuated joint adds no freedom: a serial singularity);
     * the limb's free twists: the locked frame with ``t⊥ / |t⊥|`` as one more row (unchanged where
       serial);

@@ -183,7 +183,8 @@ def limb_wrenches(  # pragma: no cover - compiled
     """:func:`screwkit.core._limbs.limb_wrenches` in one pass: per pose, the limb systems
     (:func:`limb_systems`), whether each actuation direction is a line (:func:`_not_line`), the
     unit wrenches along the directions with their transmissions (:func:`transmissions`) and the
-    coupled limbs' wrenches less their part in their leg's frame (:func:`residual`)."""
+    coupled limbs' wrenches less their part in their leg's frame
+    (:func:`~screwkit.core._frames_numba.residual`)."""
     n, limbs, m = actuated.shape[0], actuated.shape[1], coupled.shape[0]
     out = _limb_outputs(locked, False)
     wrench, index = np.empty((n, limbs, 6)), np.empty((n, limbs))

@@ -36,7 +36,8 @@ def run_program(
     scaled: Array, rtol: float, ops: Array, sources: Array, n_slots: int, outputs: Array
 ) -> tuple[Array, Array]:  # pragma: no cover - compiled
     """A frame program, pose by pose: ``scaled (n, rows, 6)`` joint screws; ``ops (m, 4)`` rows
-    ``(code, slot, first, count)``: :data:`SPAN` of ``sources[first : first + count]`` (rows
+    ``(code, slot, first, count)``: :data:`~screwkit.core._kernel_constants.SPAN` of ``sources[first : first
+    + count]`` (rows
     ``(kind, a, b)``), :data:`RECIPROCAL` of slot ``first``, :data:`ROD`, the reciprocal of the
     span of two spherical joints' rows (:func:`rod_into`, else span and reciprocal),
     :data:`EXTEND`, the span of one joint screw and a twist frame (:func:`extend_into`, else the
@@ -50,7 +51,8 @@ def run_program(
     twist frame that its fallback spans (the same rows as an :data:`EXTEND` of the same chain, so
     the two decide alike), else those twists are the wrench frame's reciprocal. Returns the rows
     ``(n, len(outputs), 6, 6)`` and orders of the ``outputs`` slots. A
-    span or reciprocal is exactly what the batched kernel :func:`span` or :func:`complement`
+    span or reciprocal is exactly what the batched kernel :func:`~screwkit.core._frames_numba.span` or
+    :func:`~screwkit.core._frames_numba.complement`
     (``swap``) computes on that pose, so running a program equals running its ops one by one (the
     numpy path's way, :func:`screwkit.core._program.run_program`) up to the two paths' round-off."""
     n = scaled.shape[0]

@@ -28,7 +28,8 @@ and actuation wrenches (:mod:`screwkit.core._limbs`) and the core's closing step
 (:mod:`screwkit.core._closing`) build on the rule.
 
 **Two implementations, one rule.** :func:`span`, :func:`complement`, :func:`reciprocal`,
-:func:`unit_scaled` and the kernels of those modules (and :mod:`screwkit.core._residuals`) have a
+:func:`~screwkit.algebra.reference_frame.unit_scaled` and the kernels of those modules (and
+:mod:`screwkit.core._residuals`) have a
 numpy path (vectorized over the batch) and, when numba is installed (the ``fast`` extra), compiled per-pose
 loops (:mod:`screwkit.core._frames_numba` and its siblings ``_closed_forms_numba``,
 ``_limbs_numba``, ``_closing_numba``, ``_program_numba``). The numpy path does the compiled loops'
@@ -63,6 +64,7 @@ import numpy as np
 
 from ..algebra import backend as B
 from ..algebra.compiled import COMPILED_MIN_BATCH, compiled_kernels, sum_in_order
+from ..algebra.ranks import SWAP
 
 __all__ = [
     "SWAP",
@@ -79,9 +81,6 @@ __all__ = [
 
 Array = np.ndarray
 
-#: ``a ∘ b = a · (SWAP b)``: the reciprocal product as a Euclidean one.
-SWAP = np.block([[np.zeros((3, 3)), np.eye(3)], [np.eye(3), np.zeros((3, 3))]])
-SWAP.flags.writeable = False
 
 def _numba_kernels(size: int) -> ModuleType | None:
     """The rank kernels (:mod:`screwkit.core._frames_numba`) for ``size`` frames, or None for numpy."""

@@ -292,7 +292,8 @@ def _specs_and_screws(graph: nx.MultiDiGraph, joint_key: str) -> tuple[tuple[Joi
 
 
 class _GenericEvaluation:
-    """Twist and wrench systems of a topology's nodes (independent rows, :class:`GenericRows`)."""
+    """Twist and wrench systems of a topology's nodes (independent rows,
+    :class:`~screwkit.algebra.symbolic.GenericRows`)."""
 
     def __init__(self, top: Topology, screws: Y.GenericRows, point: Y.GenericPoint):
         self.top, self.screws, self.point = top, screws, point

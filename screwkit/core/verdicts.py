@@ -18,7 +18,9 @@ The *uncontrolled twists* are the platform twists reciprocal to every constraint
 wrench: the motions left with all actuators locked (empty at a regular pose).
 
 One pose and many go through the same kernels (:func:`screwkit.core.wrench_systems.analyze_table`):
-:func:`classify` is a batch of one, :func:`classify_poses` and :func:`classify_table` a batch.
+:func:`~screwkit.core.singularity.classify` is a batch of one,
+:func:`~screwkit.core.singularity.classify_poses` and :func:`~screwkit.core.singularity.classify_table` a
+batch.
 
 Closeness measures (all in [0, 1], unit-free, computed about the mechanism's own reference point
 and length (:func:`~screwkit.algebra.reference_frame.mechanism_frame`), so they follow rigid motions and

@@ -89,7 +89,8 @@ class Limb:
         outside ``passive_wrenches`` and have a pitch; :func:`screwkit.core._compound_legs.compound_legs`).
     actuated_twist : numpy.ndarray, shape (6,)
     transmission : float
-        :func:`normalized_reciprocal_product` of the actuation wrench and the actuated twist (0 at
+        :func:`~screwkit.core.wrenches.normalized_reciprocal_product` of the actuation wrench and the
+        actuated twist (0 at
         a serial singularity: the actuator cannot move the platform).
     """
 

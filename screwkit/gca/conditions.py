@@ -96,7 +96,7 @@ class Condition:
     constant : sympy.Rational
         ``factor = constant × expression`` for finite points of weight 1 (0 if the factor is
         identically zero, e.g. four points at infinity), proved by exact evaluation at random
-        integer configurations (:data:`PROOF_CHECKS`, Schwartz–Zippel).
+        integer configurations (:data:`~screwkit.gca.exact_proofs.PROOF_CHECKS`, Schwartz–Zippel).
     vectors : tuple of str
         The labels the expression uses, sorted.
     multiplicity : int, default 1

@@ -23,9 +23,11 @@ stages that make and use them are the modules named below):
 * **labels** ``a, b, c, …`` in line order, a shared point keeping its first label.
 
 Each line and each point is a *recipe* with a meaning (a line's name, ``DiagramPoint.key``). The
-recipes are chosen at a *generic* configuration of the mechanism (:func:`generic_reference`:
+recipes are chosen at a *generic* configuration of the mechanism
+(:func:`~screwkit.gca.diagram_placement.generic_reference`:
 random workspace poses of a catalog robot, or configurations reached by moving any twist graph
-along its own mobility, :mod:`screwkit.core.motion`) and evaluated at the pose (:func:`diagram_at`), so
+along its own mobility, :mod:`screwkit.core.motion`) and evaluated at the pose
+(:func:`~screwkit.gca.diagram_placement.diagram_at`), so
 what is decided (which lines, which shared points) never depends on a special pose: where two
 lines coincide at the pose (the H4's two constraint couples at a constraint singularity) both are
 still there, and the factor that vanishes is valued. The same recipes at further generic

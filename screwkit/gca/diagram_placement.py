@@ -291,7 +291,7 @@ def graph_sampler(
     Returns
     -------
     callable
-        ``rng -> {label: point}``, for :func:`superbracket_analysis`.
+        ``rng -> {label: point}``, for :func:`~screwkit.gca.superbracket_analysis.superbracket_analysis`.
 
     Raises
     ------

@@ -292,7 +292,7 @@ def meet_points(line: Array, screw: Array, length_scale: Array) -> Array:
 
     The line meets the plane that contains the axis and is normal to the plane of both; they meet
     when ``L ∘ A = 0`` after scaling moments by ``length_scale``
-    (:func:`screwkit.algebra.projective.lines_intersect`).
+    (:func:`screwkit.algebra.incidence.lines_intersect`).
 
     Parameters
     ----------

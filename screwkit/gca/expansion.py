@@ -407,7 +407,8 @@ def best_ordering(
     """Exhaustive search over the 6!·2^6 = 46 080 orderings for the fewest surviving monomials.
 
     The brackets of all 4-subsets of the labels are evaluated once on the samples to find the
-    structurally zero ones (as in :func:`structural_zeros`); then every ordering is scored at once
+    structurally zero ones (as in :func:`~screwkit.gca.zeros.structural_zeros`); then every ordering is
+    scored at once
     with numpy: the 24 template monomials are mapped through each ordering, monomials with a zero
     bracket are dropped and like terms are combined (``gca.md`` §6.4). Ties go to the earliest
     ordering, the caller's own first.
@@ -416,7 +417,7 @@ def best_ordering(
     ----------
     lines : sequence of six pairs of labels
     sampler : callable
-        ``rng -> {label: point (4,)}`` (see :func:`structural_zeros`).
+        ``rng -> {label: point (4,)}`` (see :func:`~screwkit.gca.zeros.structural_zeros`).
     n_samples : int, default 20
     rtol : float, default 1e-9
     rng : numpy.random.Generator or int, default 0

@@ -257,8 +257,10 @@ def simplify_superbracket(
 ) -> Simplification:
     """The simplification procedure of ``gca.md`` §6, every step checked numerically.
 
-    Ordering search (optional, :func:`best_ordering`), 24-term expansion, structural zeros
-    (:func:`structural_zeros`), vanishing subsums (:func:`drop_zero_subsums`), factoring
+    Ordering search (optional, :func:`~screwkit.gca.expansion.best_ordering`), 24-term expansion, structural
+    zeros
+    (:func:`~screwkit.gca.zeros.structural_zeros`), vanishing subsums
+    (:func:`~screwkit.gca.zeros.drop_zero_subsums`), factoring
     (:func:`collect_factors`). The samples used to decide zeros and the fresh samples used for
     the checks come from the same generator but are different draws.
 
@@ -277,7 +279,7 @@ def simplify_superbracket(
     check_rtol : float, default 1e-6
         Largest accepted deviation of a stage from the superbracket on fresh samples.
     max_terms : int, default 16
-        See :func:`drop_zero_subsums`.
+        See :func:`~screwkit.gca.zeros.drop_zero_subsums`.
     rng : numpy.random.Generator or int, default 0
 
     Returns

@@ -122,7 +122,7 @@ def superbracket_analysis(
         A diagram whose representation holds at its pose.
     sampler : callable
         ``rng -> {label: point}``: the diagram's recipes at random poses of the same mechanism
-        (:meth:`screwkit.robots.catalog.Mechanism.wrench_diagram`), on which zeros are confirmed.
+        (:meth:`screwkit.robots.mechanism.Mechanism.wrench_diagram`), on which zeros are confirmed.
     n_samples : int, default 6
         Configurations that decide structural zeros (a bracket polynomial that is not identically
         zero on the incidence variety vanishes at a random configuration with probability 0, so

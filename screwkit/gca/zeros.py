@@ -307,7 +307,8 @@ def drop_zero_subsums(
     non-zero monomials vanish (Grassmann–Plücker relations combined with the incidences). All
     ``2^k`` subsets are scored at once (vectorised); a subset vanishes when its sum is at most
     ``rtol`` times the sum of the monomials' absolute values on every sample. Verify the result
-    with :func:`check_proportional`; :func:`simplify_superbracket` does.
+    with :func:`~screwkit.gca.simplify.check_proportional`;
+    :func:`~screwkit.gca.simplify.simplify_superbracket` does.
 
     Parameters
     ----------

@@ -47,7 +47,7 @@ class JointSpec:
     ----------
     name : str
     type : str
-        One of :data:`JOINT_TYPES`.
+        One of :data:`~screwkit.graphs.joints.JOINT_TYPES`.
     parent, child : hashable
         The links it joins (its twists are the child's relative to the parent).
     dof : int

@@ -281,7 +281,7 @@ def equivalent_twist_graph(
         As in :func:`series_parallel_tree`.
     tree : SeriesParallelNode, optional
         The graph's series-parallel tree when it is at hand, e.g. the analysis core's
-        (:attr:`screwkit.core.wrenches.WrenchAnalysis.tree`: the same tree, its twist systems from the
+        (:attr:`screwkit.core.wrench_systems.WrenchAnalysis.tree`: the same tree, its twist systems from the
         core's frames); default: :func:`series_parallel_tree` of ``graph``.
 
     Returns

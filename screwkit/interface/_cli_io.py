@@ -97,7 +97,8 @@ def check_coordinate(command: str, option: str, mechanism: Any, name: str, value
 
 
 def target_and_pose(args: argparse.Namespace) -> tuple[Any, Any]:
-    """The mechanism (a :class:`Mechanism`, or a snapshot's path) and the pose of ``analyze``/``graph``."""
+    """The mechanism (a :class:`~screwkit.robots.mechanism.Mechanism`, or a snapshot's path) and the pose of
+    ``analyze``/``graph``."""
     if args.mechanism.endswith(".toml") and toml_kind(args.mechanism) == "snapshot":
         if args.pose is not None:
             raise UsageError(

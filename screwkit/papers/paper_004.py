@@ -307,8 +307,8 @@ def transmission_indices(config: FourLimbGeometry) -> Transmission:
     return Transmission(kappa, zeta, np.minimum(kappa, zeta))
 
 
-#: The index names :func:`index_extremes` accepts: paper 004's ``lti`` (η, Eq. 16), ``input``
-#: (κ) and ``output`` (ζ) of Eq. (15).
+#: The index names :func:`~screwkit.papers.paper_004_table4.index_extremes` accepts: paper 004's
+#: ``lti`` (η, Eq. 16), ``input`` (κ) and ``output`` (ζ) of Eq. (15).
 INDEX_NAMES = ("lti", "input", "output")
 
 _UNREACHABLE = ("raise", "nan")
@@ -322,7 +322,7 @@ def _numba_kernels(poses: int) -> ModuleType | None:
 
 def backend() -> str:
     """``"numba"`` or ``"numpy"``: how :func:`transmission` computes batches of
-    :data:`screwkit.core.frames.COMPILED_MIN_BATCH` poses or more in this process.
+    :data:`screwkit.algebra.compiled.COMPILED_MIN_BATCH` poses or more in this process.
 
     Returns
     -------
@@ -433,7 +433,7 @@ def transmission(
 
     The batched entry point for maps (workspace grids, trajectories): inverse kinematics (Eq. 3) and
     the indices in one pass. With numba (the ``fast`` extra) one fused compiled loop
-    (:mod:`screwkit.papers._lti_numba`) for batches of :data:`screwkit.core.frames.COMPILED_MIN_BATCH`
+    (:mod:`screwkit.papers._lti_numba`) for batches of :data:`screwkit.algebra.compiled.COMPILED_MIN_BATCH`
     poses or more (or once it is loaded), else the numpy path (:func:`screwkit.robots.families.four_limb.
     inverse_kinematics` then :func:`transmission_indices`; a single pose never loads numba);
     ``SCREWKIT_NUMBA=0`` forces numpy. The two agree to round-off (``tests/papers/test_paper_004.py``).
@@ -518,7 +518,8 @@ def transmission(
 
 
 def _is_four_limb(parameters: Any) -> bool:
-    """True for the parameters of a four-limb mechanism (:class:`FourLimbParameters`); the family's
+    """True for the parameters of a four-limb mechanism
+    (:class:`~screwkit.robots.families.four_limb.parameters.FourLimbParameters`); the family's
     module is not imported to tell (no such parameters exist before it is)."""
     module = sys.modules.get("screwkit.robots.families.four_limb.parameters")
     return module is not None and isinstance(parameters, module.FourLimbParameters)

@@ -278,7 +278,7 @@ class PosedMechanism:
         """A wrench diagram's points at every pose of the batch, in the core's chunks.
 
         The joint table goes through the analysis core :data:`CHUNK` poses at a time with the
-        per-pose frames the points' recipes read (:func:`screwkit.gca.diagram.batch_diagram_points`),
+        per-pose frames the points' recipes read (:func:`screwkit.gca.diagram_points.batch_diagram_points`),
         so that only the points are kept.
 
         Parameters

@@ -347,7 +347,7 @@ def wrench_transmission(
         )
     wrenches = np.asarray(jacobians.wrenches)
     # what the driven link receives: the wrench, or in a compound leg analysed as a whole its part
-    # on the actuator's own branch (screwkit.core.wrenches.WrenchAnalysis.branch_rows)
+    # on the actuator's own branch (screwkit.core.wrench_systems.WrenchAnalysis.branch_rows)
     branches = np.asarray(jacobians.analysis.branch_rows, dtype=float)
     twists = np.asarray(jacobians.analysis.actuated_twists, dtype=float)
     basis = np.asarray(jacobians.twist_basis)

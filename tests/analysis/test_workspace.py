@@ -6,6 +6,7 @@ code under test), and from plain bisection in the test (tests/mechanisms.bisect_
 """
 
 import json
+import pathlib
 
 import numpy as np
 import pytest
@@ -585,3 +586,15 @@ def test_the_maps_read_paper_004_through_the_posed_mechanism():
     # kernel (screwkit.papers._lti_numba), it agrees with the numpy path to 1e-12 (tests/papers/test_paper_004_numba.py)
     np.testing.assert_allclose(values, transmission_indices(H4.configuration(poses)).lti, rtol=0, atol=1e-12)
     assert ok.all()
+
+
+def test_quantity_constants_have_one_home():
+    """The maps' verdict bits are the core's labels, and paper 004's quantity names are written once
+    (register_quantity, the maps' early refusal and the package's registration read them)."""
+    from screwkit.analysis import quantities
+    from screwkit.core import verdicts
+
+    assert quantities.KINDS is verdicts.LABELS
+    sources = [pathlib.Path(m.__file__).read_text(encoding="utf-8")
+               for m in (sk, quantities, sk.workspace)]
+    assert sum(s.count('("lti", "kappa", "zeta")') for s in sources) == 1

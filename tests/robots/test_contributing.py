@@ -163,6 +163,8 @@ REGISTER_ERRORS = [
      r"Expected `family.angle_names` to be some of the pose coordinates \('x',\), got \('phi',\)"),
     (Family("odd", *[print] * 4, ("x",), (), reachable=True), ScrewkitTypeError,
      r"Expected `family.reachable` to be callable or None, got bool"),
+    (Family("odd", *[print] * 4, ("x",), (), application_points=[0.0, 0.0, 0.0]), ScrewkitTypeError,
+     r"Expected `family.application_points` to be callable or None, got list"),
 ]
 
 

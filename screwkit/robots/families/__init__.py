@@ -202,9 +202,12 @@ def _checked(family: Any) -> Family[Any, Any]:
         names = getattr(family, attribute)
         if not isinstance(names, tuple) or not all(isinstance(n, str) for n in names):
             raise ScrewkitTypeError(f"Expected `family.{attribute}` to be a tuple of str, got {names!r}.")
-    if family.reachable is not None and not callable(family.reachable):
-        got = type(family.reachable).__name__
-        raise ScrewkitTypeError(f"Expected `family.reachable` to be callable or None, got {got}.")
+    for attribute in ("reachable", "application_points"):  # the optional hooks
+        hook = getattr(family, attribute)
+        if hook is not None and not callable(hook):
+            raise ScrewkitTypeError(
+                f"Expected `family.{attribute}` to be callable or None, got {type(hook).__name__}."
+            )
     kinds = family.parameter_kinds
     if not isinstance(kinds, Mapping) or not set(kinds.values()) <= {"length", "angle", "number"}:
         raise ScrewkitTypeError(

@@ -92,7 +92,7 @@ effector's nominal (Schoenflies) twists, the columns of the forward Jacobian of
 :func:`screwkit.core.jacobians.jacobians_from_wrenches`. Paper 002 numbers the H4's legs differently: its
 ``b_I`` carries legs ``l1, l2`` and ``b_II`` carries ``l3, l4``, whereas here (Table 1) sub-platform
 I carries limbs 1 and 4; paper 002's ``(l1, l2, l3, l4)`` are limbs ``(1, 4, 2, 3)``
-(:data:`PAPER_002_LEGS`).
+(:data:`~screwkit.robots.families.four_limb.joints.PAPER_002_LEGS`).
 
 Examples
 --------

@@ -45,7 +45,8 @@ def joints(config: FourLimbConfiguration) -> JointTable:
     Parameters
     ----------
     config : FourLimbConfiguration
-        From :func:`inverse_kinematics` (any batch shape ``...``).
+        From :func:`~screwkit.robots.families.four_limb.kinematics.inverse_kinematics` (any batch shape
+        ``...``).
 
     Returns
     -------
@@ -138,7 +139,8 @@ def twist_basis(config: FourLimbConfiguration) -> np.ndarray:
     Parameters
     ----------
     config : FourLimbConfiguration
-        From :func:`inverse_kinematics` (any batch shape ``...``).
+        From :func:`~screwkit.robots.families.four_limb.kinematics.inverse_kinematics` (any batch shape
+        ``...``).
 
     Returns
     -------

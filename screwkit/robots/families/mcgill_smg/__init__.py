@@ -47,7 +47,8 @@ horizontal projection of ``O_J3 - O_J0`` is ``κ_J e(θ_J1)`` (``κ_J = s(J) l1 
 l3 cos θ_J23``), and ``elbow_J = sgn sin θ_J3``. Beware Eq. (2)'s convention: leg II's tilt is
 measured from ``+e(θ_II1)`` while its offset points along ``-e(θ_II1)``, so the posture that is the
 mirror image of leg I (both offsets toward the other leg) has ``pan = (+1, -1)`` and *opposite*
-elbow signs. :data:`DEFAULT_MODE` ``(1, 1, -1, -1)`` is that mirror-symmetric posture with both
+elbow signs. :data:`~screwkit.robots.families.mcgill_smg.parameters.DEFAULT_MODE` ``(1, 1, -1, -1)`` is that
+mirror-symmetric posture with both
 elbows away from the other leg. Mode ``(1, 1, -1, 1)`` makes the two legs translates of each other,
 which is a parallel singularity (Eq. 24) whenever ``P`` lies midway between the pan axes with
 ``φ = 0``.

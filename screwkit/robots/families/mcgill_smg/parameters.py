@@ -57,7 +57,7 @@ class McGillParameters:
         Not given by the paper; only ``b4 + b5`` enters the kinematics.
     proximal_width, distal_width : float
         Short (vertical) sides of the two parallelograms, > 0. Our choice; only the joint axes of
-        :func:`joints` depend on them.
+        :func:`~screwkit.robots.families.mcgill_smg.joints.joints` depend on them.
 
     Examples
     --------
