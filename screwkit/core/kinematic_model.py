@@ -1,0 +1,621 @@
+"""The product-of-exponentials model of a twist graph: where every link is, which screws its joints
+carry there, and how far its loops are from closing, over a batch of joint values.
+
+A twist graph holds one configuration of a mechanism (its joint screws there), the *reference*.
+Every joint gets variables, one per screw (a Π parallelogram one: its hinge angle), zero at the
+reference; a spanning tree from the base places each link by the product of exponentials of the
+joint screws along its tree path (Brockett's formula in its spatial form: Murray, Li & Sastry, *A
+Mathematical Introduction to Robotic Manipulation*, 1994, §3.2, Eq. 3.22; a link's displacement is
+``g = Π exp(ŝᵢ θᵢ)`` with the screws ``sᵢ`` at the reference). Each joint off the tree closes one
+loop: the displacement around it must be the identity (:meth:`KinematicModel.loop_residual`), and
+the Jacobian of that residual is made of the joints' *current* screws (the reference screws carried
+by the adjoint of the displacement before them; Murray, Li & Sastry Eq. 3.55), signed by the loop's
+direction of travel (:meth:`KinematicModel.loop_jacobian`).
+
+Two refinements make the model usable over a whole motion, not only near the reference:
+
+* a spherical joint's three rotations are carried as a rotation *offset* (about its centre) times
+  the product of exponentials of its three screws, and :meth:`KinematicModel.recentred` folds the
+  angles into the offset, so three Euler-like angles never reach their gimbal lock (the S joint's
+  screws span a Lie subalgebra, so offset × exponentials still covers every rotation about the
+  centre);
+* a Π joint (:func:`~screwkit.graphs.joints.parallelogram`) moves its coupler on a circle of the
+  rods' length (the joint's ``rod_length`` when the graph has it, else the mechanism's characteristic
+  length: the incidences the structure implies are kept either way, the finite motion is exact only
+  with the length).
+
+The work is done about the mechanism's reference point and in units of its characteristic length
+(:func:`~screwkit.graphs.twistgraph.graph_frame`): the configurations reached do not depend on where
+the user put the origin or which length unit they used. Everything is batched over a leading axis.
+
+Examples
+--------
+>>> from screwkit.graphs.joints import revolute
+>>> from screwkit.graphs.twistgraph import twist_graph
+>>> fourbar = twist_graph("ground", "coupler", [
+...     ("ground", "crank", revolute("A", [0, 0, 1], [0, 0, 0], actuated=True)),
+...     ("crank", "coupler", revolute("B", [0, 0, 1], [1, 0, 0])),
+...     ("ground", "rocker", revolute("D", [0, 0, 1], [3, 0, 0])),
+...     ("rocker", "coupler", revolute("C", [0, 0, 1], [3, 2, 0]))], dof=1)
+>>> model = KinematicModel(fourbar)
+>>> model.size, len(model.closing)
+(4, 1)
+>>> state = model.state(np.zeros((2, 4)))
+>>> model.loop_residual(state).shape, float(abs(model.loop_residual(state)).max())
+((2, 6), 0.0)
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+import networkx as nx
+import numpy as np
+
+from ..exceptions import ScrewkitValueError
+from ..graphs.jointtable import JointTable
+from ..graphs.twistgraph import graph_frame
+
+__all__ = ["JointColumn", "KinematicModel", "KinematicState", "hat", "rotation_log", "rotation_matrix"]
+
+Array = np.ndarray
+
+
+@dataclass(frozen=True)
+class JointColumn:
+    """One joint variable: the joint's screw ``row`` (scaled frame) on the edge ``parent → child``.
+
+    Attributes
+    ----------
+    joint : str
+    parent, child : hashable
+    row : numpy.ndarray, shape (6,)
+        The unit screw at the reference, about the model's reference point in characteristic lengths.
+    index : int
+        The screw's index within its joint.
+    hinge, rod : numpy.ndarray or None
+        For a Π joint: the hinges' unit axis and the rod vector (scaled), else None.
+    """
+
+    joint: str
+    parent: Any
+    child: Any
+    row: Array
+    index: int
+    hinge: Array | None = None
+    rod: Array | None = None
+
+
+@dataclass(frozen=True)
+class KinematicState:
+    """The model at a batch of joint values: link displacements and current screws (scaled frame).
+
+    Attributes
+    ----------
+    theta : numpy.ndarray, shape (B, n)
+        The joint values (radians; characteristic lengths for sliders).
+    offsets : dict
+        Spherical joint name → rotation offsets ``(B, 4, 4)`` (:meth:`KinematicModel.recentred`).
+    links : dict
+        Link → displacement ``(B, 4, 4)`` from the reference.
+    current : numpy.ndarray, shape (B, n, 6)
+        Every joint screw at these joint values.
+    motions : dict
+        Joint name → its relative displacement ``(B, 4, 4)``.
+    """
+
+    theta: Array
+    offsets: dict[str, Array]
+    links: dict[Any, Array]
+    current: Array
+    motions: dict[str, Array] = field(repr=False)
+
+
+def hat(w: Array) -> Array:
+    """Cross-product matrices of ``(..., 3)`` vectors.
+
+    Parameters
+    ----------
+    w : numpy.ndarray, shape (..., 3)
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 3, 3)
+        ``[w]×`` with ``[w]× v = w × v``.
+
+    Examples
+    --------
+    >>> hat(np.array([0.0, 0.0, 1.0])) @ np.array([1.0, 0.0, 0.0])
+    array([0., 1., 0.])
+    """
+    zero = np.zeros(w.shape[:-1])
+    return np.stack(
+        [
+            np.stack([zero, -w[..., 2], w[..., 1]], -1),
+            np.stack([w[..., 2], zero, -w[..., 0]], -1),
+            np.stack([-w[..., 1], w[..., 0], zero], -1),
+        ],
+        -2,
+    )
+
+
+def rotation_matrix(axis: Array, angle: Array) -> Array:
+    """Rodrigues' formula (Murray, Li & Sastry 1994, Eq. 2.14) for unit axes and angles.
+
+    Parameters
+    ----------
+    axis : numpy.ndarray, shape (..., 3)
+        Unit axes (broadcast against ``angle``).
+    angle : numpy.ndarray, shape (...)
+        Angles in radians.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 3, 3)
+
+    Examples
+    --------
+    >>> rotation_matrix(np.array([0.0, 0.0, 1.0]), np.array(np.pi / 2)).round(12) @ [1, 0, 0]
+    array([0., 1., 0.])
+    """
+    k = hat(np.asarray(axis, dtype=float))
+    angle = np.asarray(angle, dtype=float)[..., None, None]
+    return np.eye(3) + np.sin(angle) * k + (1 - np.cos(angle)) * (k @ k)
+
+
+def rotation_log(rotation: Array) -> Array:
+    """The rotation vectors ``φ`` with ``exp([φ]×) = R`` (angles in ``[0, π]``), batched.
+
+    The inverse of Rodrigues' formula (Murray, Li & Sastry 1994, Eqs. 2.17-2.18), with the series
+    near 0 and the symmetric part near π, so it is accurate over every rotation.
+
+    Parameters
+    ----------
+    rotation : numpy.ndarray, shape (..., 3, 3)
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 3)
+
+    Examples
+    --------
+    >>> rotation_log(rotation_matrix(np.array([0.0, 0.0, 1.0]), np.array(0.3))).round(12) + 0.0
+    array([0. , 0. , 0.3])
+    """
+    r = np.asarray(rotation, dtype=float)
+    skew = 0.5 * np.stack([r[..., 2, 1] - r[..., 1, 2], r[..., 0, 2] - r[..., 2, 0], r[..., 1, 0] - r[..., 0, 1]], -1)
+    cosine = np.clip(0.5 * (np.trace(r, axis1=-2, axis2=-1) - 1), -1.0, 1.0)
+    sine = np.linalg.norm(skew, axis=-1)
+    angle = np.arctan2(sine, cosine)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        factor = np.where(sine > 1e-8, angle / np.where(sine > 0, sine, 1.0), 1.0 + angle**2 / 6)
+    out = skew * factor[..., None]
+    near_pi = cosine < -0.99  # sin θ small, the skew part loses the axis: read it from R + I
+    if np.any(near_pi):
+        sym = (r[near_pi] + np.eye(3)) / 2  # = a aᵀ (1 − cos θ)/2 + cos θ ... → a aᵀ at θ = π
+        column = np.argmax(np.diagonal(sym, axis1=-2, axis2=-1), axis=-1)
+        axis = np.take_along_axis(sym, column[:, None, None], axis=-1)[..., 0]
+        axis /= np.linalg.norm(axis, axis=-1, keepdims=True)
+        sign = np.where(np.einsum("bi,bi->b", axis, skew[near_pi]) < 0, -1.0, 1.0)
+        out[near_pi] = axis * (sign * angle[near_pi])[:, None]
+    return out
+
+
+def _exp(row: Array, angle: Array) -> Array:
+    """Displacements ``(B, 4, 4)`` of the unit screw ``row = (ω; v)`` by ``angle (B,)`` (Murray, Li
+    & Sastry 1994, Eq. 2.36: ``p = (I − R)(ω × v) + ω ωᵀ v θ``; ``(I, v θ)`` for ``ω = 0``)."""
+    g = np.tile(np.eye(4), (len(angle), 1, 1))
+    w, v = row[:3], row[3:]
+    size = np.linalg.norm(w)
+    if size < 1e-12:
+        g[:, :3, 3] = angle[:, None] * v
+        return g
+    w, v = w / size, v / size  # a rotation screw: θ in radians about its unit axis
+    rot = rotation_matrix(w, angle)
+    g[:, :3, :3] = rot
+    g[:, :3, 3] = (np.eye(3) - rot) @ np.cross(w, v) + np.outer(angle, w * (w @ v))
+    return g
+
+
+def _adjoint(g: Array, rows: Array) -> Array:
+    """``Ad(g)`` applied to screws ``(B, 6)``: ``(R s; R s0 + p × R s)`` (Murray, Li & Sastry Eq. 2.58)."""
+    s = np.einsum("bij,bj->bi", g[:, :3, :3], rows[:, :3])
+    s0 = np.einsum("bij,bj->bi", g[:, :3, :3], rows[:, 3:]) + np.cross(g[:, :3, 3], s)
+    return np.concatenate([s, s0], axis=-1)
+
+
+def _unit(v: Array) -> Array:
+    return v / np.linalg.norm(v)
+
+
+class KinematicModel:
+    """The product-of-exponentials model of a twist graph about its scaled frame (module docstring).
+
+    Parameters
+    ----------
+    graph : networkx.MultiDiGraph
+        A numeric twist graph at its reference configuration.
+    joint_key : str, default "joint"
+        The edge attribute holding the joints.
+
+    Attributes
+    ----------
+    point : numpy.ndarray, shape (3,)
+        The reference point of the scaled frame (graph units).
+    length : float
+        The characteristic length (graph units).
+    columns : list of JointColumn
+        One per joint variable, joints in name order.
+    joints : dict
+        Joint name → ``(parent, child, column indices)``.
+    types : dict
+        Joint name → joint type.
+    closing : list of str
+        The joints off the spanning tree, one loop each.
+    incidence : numpy.ndarray, shape (loops, n)
+        Each loop's signed columns (+1 along its direction of travel).
+    paths : dict
+        Link → ``(n,)`` signed columns of its tree path from the base.
+
+    Examples
+    --------
+    >>> from screwkit.graphs.joints import revolute, prismatic
+    >>> from screwkit.graphs.twistgraph import twist_graph
+    >>> arm = twist_graph("B", "E", [("B", "L", revolute("R", [0, 0, 1], [0, 0, 0])),
+    ...                              ("L", "E", prismatic("P", [1, 0, 0]))])
+    >>> KinematicModel(arm).paths["E"].tolist()
+    [1.0, 1.0]
+    """
+
+    def __init__(self, graph: nx.MultiDiGraph, joint_key: str = "joint"):
+        self.point, self.length = graph_frame(graph, joint_key=joint_key)
+        self.base = graph.graph["base"]
+        self.platform = graph.graph["platform"]
+        self.columns: list[JointColumn] = []
+        self.joints: dict[str, tuple[Any, Any, list[int]]] = {}
+        self.types: dict[str, str] = {}
+        for u, v, key, joint in sorted(graph.edges(keys=True, data=joint_key), key=lambda e: str(e[2])):
+            indices = []
+            for k, row in enumerate(np.asarray(joint.screws, dtype=float)):
+                hinge = rod = None
+                if joint.type == "Pa" and {"hinge_axis", "rod_direction"} <= set(joint.geometry):
+                    hinge = _unit(np.asarray(joint.geometry["hinge_axis"], dtype=float))
+                    rod = np.asarray(joint.geometry["rod_direction"], dtype=float)
+                    length = float(joint.geometry.get("rod_length", self.length))
+                    rod = _unit(rod - hinge * (hinge @ rod)) * (length / self.length)
+                indices.append(len(self.columns))
+                self.columns.append(JointColumn(key, u, v, self._scaled(row), k, hinge, rod))
+            self.joints[key] = (u, v, indices)
+            self.types[key] = joint.type
+        tree = nx.bfs_tree(nx.Graph(graph.to_undirected()), self.base)
+        self.order = list(nx.topological_sort(tree))  # links, base first
+        chosen: dict[Any, tuple[str, bool]] = {}  # link → (tree joint reaching it, traversed forward)
+        for parent, child in tree.edges():
+            key = next(k for u, v, k in graph.edges(keys=True) if {u, v} == {parent, child})
+            chosen[child] = (key, self.joints[key][0] == parent)
+        self.tree = chosen
+        tree_joints = {key for key, _ in chosen.values()}
+        self.closing = [key for key in self.joints if key not in tree_joints]
+        self.paths = {link: self._path(link) for link in self.order}
+        rows = []
+        for key in self.closing:
+            u, v, indices = self.joints[key]
+            signs = self.paths.get(u, np.zeros(self.size)) - self.paths.get(v, np.zeros(self.size))
+            signs[indices] += 1.0
+            rows.append(signs)
+        self.incidence = np.array(rows).reshape(len(rows), self.size)
+
+    @property
+    def size(self) -> int:
+        """The number of joint variables ``n``."""
+        return len(self.columns)
+
+    def _path(self, link: Any) -> Array:
+        """The tree joints' columns from the base to ``link``, signed by the direction of travel."""
+        signs = np.zeros(self.size)
+        while link != self.base:
+            key, forward = self.tree[link]
+            u, v, indices = self.joints[key]
+            signs[indices] = 1.0 if forward else -1.0
+            link = u if forward else v
+        return signs
+
+    def _scaled(self, row: Array) -> Array:
+        s, s0 = row[:3], row[3:]
+        moment = (s0 - np.cross(self.point, s)) / self.length
+        # a couple when its direction is negligible against the moment about the reference point in
+        # characteristic lengths: the test is then free of the length unit and of where the origin
+        # is (against the raw row, a hinge 1e15 lengths from the origin read as a slider)
+        if np.linalg.norm(s) < 1e-12 * np.linalg.norm(moment):
+            return np.concatenate([np.zeros(3), s0 / np.linalg.norm(s0)])
+        return np.concatenate([s, moment]) / np.linalg.norm(s)
+
+    def unscaled(self, rows: Array) -> Array:
+        """Screws ``(..., 6)`` of the scaled frame back in the graph's frame and unit.
+
+        Parameters
+        ----------
+        rows : numpy.ndarray, shape (..., 6)
+
+        Returns
+        -------
+        numpy.ndarray, shape (..., 6)
+
+        Examples
+        --------
+        >>> from screwkit.graphs.joints import revolute
+        >>> from screwkit.graphs.twistgraph import twist_graph
+        >>> model = KinematicModel(twist_graph("B", "E", [("B", "E", revolute("R", [0, 0, 1], [5, 0, 0]))]))
+        >>> model.unscaled(model.columns[0].row) + 0.0
+        array([ 0.,  0.,  1.,  0., -5.,  0.])
+        """
+        s, s0 = rows[..., :3], rows[..., 3:]
+        finite = np.linalg.norm(s, axis=-1, keepdims=True) > 1e-12
+        return np.concatenate([s, np.where(finite, s0 * self.length + np.cross(self.point, s), s0)], axis=-1)
+
+    def to_scaled_points(self, points: Array) -> Array:
+        """Points ``(..., 3)`` of the graph's frame in the scaled frame.
+
+        Parameters
+        ----------
+        points : array_like, shape (..., 3)
+
+        Returns
+        -------
+        numpy.ndarray, shape (..., 3)
+
+        Examples
+        --------
+        >>> from screwkit.graphs.joints import revolute
+        >>> from screwkit.graphs.twistgraph import twist_graph
+        >>> model = KinematicModel(twist_graph("B", "E", [("B", "E", revolute("R", [0, 0, 1], [5, 0, 0]))]))
+        >>> bool(np.allclose(model.to_scaled_points(model.point), 0.0))
+        True
+        """
+        return (np.asarray(points, dtype=float) - self.point) / self.length
+
+    def displacement(self, state: KinematicState, link: Any) -> Array:
+        """A link's displacement from the reference in the graph's frame and unit: ``(B, 4, 4)``.
+
+        Parameters
+        ----------
+        state : KinematicState
+        link : hashable
+
+        Returns
+        -------
+        numpy.ndarray, shape (B, 4, 4)
+            ``x ↦ R x + p`` in the graph's frame.
+
+        Examples
+        --------
+        >>> from screwkit.graphs.joints import prismatic
+        >>> from screwkit.graphs.twistgraph import twist_graph
+        >>> model = KinematicModel(twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0]))]))
+        >>> bool(np.allclose(model.displacement(model.state(np.array([[0.5]])), "E")[0, 0, 3], 0.5 * model.length))
+        True
+        """
+        g = state.links[link].copy()
+        rotation = g[:, :3, :3]
+        g[:, :3, 3] = self.point - rotation @ self.point + self.length * g[:, :3, 3]
+        return g
+
+    def _joint_motion(self, key: str, theta: Array, offset: Array | None) -> tuple[Array, list[Array]]:
+        """The joint's displacement in the reference frame and, per screw, the displacement before it."""
+        g = np.tile(np.eye(4), (theta.shape[0], 1, 1)) if offset is None else offset
+        before = []
+        for index in self.joints[key][2]:
+            column = self.columns[index]
+            before.append(g)
+            if column.hinge is not None:  # the coupler's circular translation R(a, φ) w − w
+                assert column.rod is not None
+                step = np.tile(np.eye(4), (theta.shape[0], 1, 1))
+                step[:, :3, 3] = rotation_matrix(column.hinge, theta[:, index]) @ column.rod - column.rod
+            else:
+                step = _exp(column.row, theta[:, index])
+            g = g @ step
+        return g, before
+
+    def state(self, theta: Array, offsets: dict[str, Array] | None = None) -> KinematicState:
+        """Link displacements (from the tree) and the current screws at joint values ``theta``.
+
+        Parameters
+        ----------
+        theta : numpy.ndarray, shape (B, n)
+        offsets : dict, optional
+            Spherical joint name → rotation offsets ``(B, 4, 4)`` (default: none).
+
+        Returns
+        -------
+        KinematicState
+
+        Examples
+        --------
+        >>> from screwkit.graphs.joints import revolute
+        >>> from screwkit.graphs.twistgraph import twist_graph
+        >>> model = KinematicModel(twist_graph("B", "E", [("B", "E", revolute("R", [0, 0, 1], [1, 0, 0]))]))
+        >>> state = model.state(np.array([[np.pi]]))
+        >>> model.displacement(state, "E")[0, :3, 3].round(12) + 0.0  # the origin turns about x = 1
+        array([2., 0., 0.])
+        """
+        offsets = dict(offsets or {})
+        count = theta.shape[0]
+        links = {self.base: np.tile(np.eye(4), (count, 1, 1))}
+        motions, befores = {}, {}
+        for key in self.joints:
+            motions[key], befores[key] = self._joint_motion(key, theta, offsets.get(key))
+        for link in self.order[1:]:
+            key, forward = self.tree[link]
+            u, v, _ = self.joints[key]
+            g = motions[key]
+            links[link] = links[u] @ g if forward else links[v] @ np.linalg.inv(g)
+        current = np.empty((count, self.size, 6))
+        for key, (u, _, indices) in self.joints.items():
+            for index, before in zip(indices, befores[key], strict=True):
+                column = self.columns[index]
+                carry = links[u] @ before
+                if column.hinge is not None:  # the Π's twist turns with its rods
+                    assert column.rod is not None
+                    turned = rotation_matrix(column.hinge, theta[:, index]) @ column.rod
+                    direction = np.cross(column.hinge, turned)
+                    row = np.concatenate([np.zeros_like(direction), direction], axis=-1)
+                    current[:, index] = _adjoint(carry, row)
+                else:
+                    current[:, index] = _adjoint(carry, np.broadcast_to(column.row, (count, 6)))
+        return KinematicState(theta, offsets, links, current, motions)
+
+    def loop_residual(self, state: KinematicState) -> Array:
+        """How far each loop is from closing: ``(B, 6 L)``, rotation vector then translation (scaled).
+
+        Parameters
+        ----------
+        state : KinematicState
+
+        Returns
+        -------
+        numpy.ndarray, shape (B, 6 L)
+
+        Examples
+        --------
+        >>> from screwkit.graphs.joints import revolute
+        >>> from screwkit.graphs.twistgraph import twist_graph
+        >>> model = KinematicModel(twist_graph("B", "E", [("B", "E", revolute("R", [0, 0, 1], [0, 0, 0]))]))
+        >>> model.loop_residual(model.state(np.zeros((1, 1)))).shape  # no loop
+        (1, 0)
+        """
+        out = []
+        for key in self.closing:
+            u, v, _ = self.joints[key]
+            closed = state.links[u] @ state.motions[key] @ np.linalg.inv(state.links[v])
+            out.append(np.concatenate([rotation_log(closed[:, :3, :3]), closed[:, :3, 3]], axis=-1))
+        return np.concatenate(out, axis=1) if out else np.zeros((state.theta.shape[0], 0))
+
+    def loop_jacobian(self, state: KinematicState) -> Array:
+        """The Jacobian of :meth:`loop_residual` in the joint variables: ``(B, 6 L, n)``.
+
+        Parameters
+        ----------
+        state : KinematicState
+
+        Returns
+        -------
+        numpy.ndarray, shape (B, 6 L, n)
+            Each loop's current screws, signed by the loop's direction of travel.
+
+        Examples
+        --------
+        >>> from screwkit.graphs.joints import revolute
+        >>> from screwkit.graphs.twistgraph import twist_graph
+        >>> loop = twist_graph("B", "E", [("B", "E", revolute("R1", [0, 0, 1], [0, 0, 0])),
+        ...                               ("B", "E", revolute("R2", [0, 0, 1], [0, 0, 0]))])
+        >>> model = KinematicModel(loop)
+        >>> model.loop_jacobian(model.state(np.zeros((1, 2))))[0, 2].tolist()  # −R1 + R2 about z
+        [-1.0, 1.0]
+        """
+        count = state.theta.shape[0]
+        blocks = np.einsum("lc,bck->blkc", self.incidence, state.current)
+        return blocks.reshape(count, 6 * len(self.closing), self.size)
+
+    def link_jacobian(self, state: KinematicState, link: Any) -> Array:
+        """The twist of a link (spatial, scaled) per unit rate of each joint variable: ``(B, 6, n)``.
+
+        Parameters
+        ----------
+        state : KinematicState
+        link : hashable
+            A link of the graph.
+
+        Returns
+        -------
+        numpy.ndarray, shape (B, 6, n)
+
+        Examples
+        --------
+        >>> from screwkit.graphs.joints import revolute
+        >>> from screwkit.graphs.twistgraph import twist_graph
+        >>> model = KinematicModel(twist_graph("B", "E", [("B", "E", revolute("R", [0, 0, 1], [0, 0, 0]))]))
+        >>> model.link_jacobian(model.state(np.zeros((1, 1))), "E")[0, :, 0].tolist()
+        [0.0, 0.0, 1.0, 0.0, 0.0, 0.0]
+        """
+        return np.einsum("c,bck->bkc", self.paths[link], state.current)
+
+    def recentred(self, state: KinematicState) -> tuple[Array, dict[str, Array]]:
+        """Joint values and offsets with every spherical joint's angles folded into its offset.
+
+        Parameters
+        ----------
+        state : KinematicState
+
+        Returns
+        -------
+        theta : numpy.ndarray, shape (B, n)
+            The same values, spherical joints' set to 0.
+        offsets : dict
+            Spherical joint name → its whole rotation about its centre ``(B, 4, 4)``.
+
+        Examples
+        --------
+        >>> from screwkit.graphs.joints import spherical
+        >>> from screwkit.graphs.twistgraph import twist_graph
+        >>> model = KinematicModel(twist_graph("B", "E", [("B", "E", spherical("S", [0, 0, 0]))], dof=3))
+        >>> theta, offsets = model.recentred(model.state(np.array([[0.1, 0.2, 0.3]])))
+        >>> theta.tolist(), offsets["S"].shape
+        ([[0.0, 0.0, 0.0]], (1, 4, 4))
+        """
+        theta = state.theta.copy()
+        offsets = dict(state.offsets)
+        for key, kind in self.types.items():
+            if kind == "S":
+                offsets[key] = state.motions[key]
+                theta[:, self.joints[key][2]] = 0.0
+        return theta, offsets
+
+    def joint_table(self, state: KinematicState, reference: JointTable) -> JointTable:
+        """The joint table at a state: the reference table's joints with their current screws.
+
+        Parameters
+        ----------
+        state : KinematicState
+        reference : JointTable
+            The graph's table (:meth:`~screwkit.graphs.jointtable.JointTable.from_graph`): names, types,
+            actuation, dof and anchor (which moves with the platform).
+
+        Returns
+        -------
+        JointTable
+            Batch shape ``(B,)``.
+
+        Raises
+        ------
+        ScrewkitValueError
+            If ``reference`` is not this graph's table.
+
+        Examples
+        --------
+        >>> from screwkit.graphs.joints import revolute
+        >>> from screwkit.graphs.twistgraph import twist_graph
+        >>> graph = twist_graph("B", "E", [("B", "E", revolute("R", [0, 0, 1], [1, 0, 0]))])
+        >>> model = KinematicModel(graph)
+        >>> model.joint_table(model.state(np.zeros((3, 1))), JointTable.from_graph(graph)).batch_shape
+        (3,)
+        """
+        rows = self.unscaled(state.current)
+        specs = {spec.name: spec for spec in reference.specs}
+        if set(specs) != set(self.joints):
+            raise ScrewkitValueError(
+                f"Expected the joint table of the model's graph, got joints {sorted(specs)[:5]} ..."
+            )
+        table_rows = [
+            (u, v, key, specs[key].type, rows[:, indices], specs[key].actuated)
+            for key, (u, v, indices) in self.joints.items()
+        ]
+        anchor = None
+        if reference.anchor is not None:  # it moves with the platform
+            g = state.links[self.platform]
+            local = self.to_scaled_points(np.asarray(reference.anchor))
+            anchor = (np.einsum("bij,j->bi", g[:, :3, :3], local) + g[:, :3, 3]) * self.length + self.point
+        return JointTable.from_rows(
+            reference.base, reference.platform, table_rows, dof=reference.dof, anchor=anchor,
+            mobility=reference.mobility,
+        )
