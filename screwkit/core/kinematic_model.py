@@ -251,6 +251,8 @@ class KinematicModel:
         Joint name → ``(parent, child, column indices)``.
     types : dict
         Joint name → joint type.
+    joint_points : dict
+        Joint name → its own point (graph frame), for joints built with one.
     closing : list of str
         The joints off the spanning tree, one loop each.
     incidence : numpy.ndarray, shape (loops, n)
@@ -275,6 +277,7 @@ class KinematicModel:
         self.columns: list[JointColumn] = []
         self.joints: dict[str, tuple[Any, Any, list[int]]] = {}
         self.types: dict[str, str] = {}
+        self.joint_points: dict[str, Array] = {}  # a joint's own point (its geometry), when it has one
         for u, v, key, joint in sorted(graph.edges(keys=True, data=joint_key), key=lambda e: str(e[2])):
             indices = []
             for k, row in enumerate(np.asarray(joint.screws, dtype=float)):
@@ -288,6 +291,9 @@ class KinematicModel:
                 self.columns.append(JointColumn(key, u, v, self._scaled(row), k, hinge, rod))
             self.joints[key] = (u, v, indices)
             self.types[key] = joint.type
+            for name in ("point", "center"):
+                if name in joint.geometry:
+                    self.joint_points[key] = np.asarray(joint.geometry[name], dtype=float)
         tree = nx.bfs_tree(nx.Graph(graph.to_undirected()), self.base)
         self.order = list(nx.topological_sort(tree))  # links, base first
         chosen: dict[Any, tuple[str, bool]] = {}  # link → (tree joint reaching it, traversed forward)
@@ -571,7 +577,9 @@ class KinematicModel:
                 theta[:, self.joints[key][2]] = 0.0
         return theta, offsets
 
-    def joint_table(self, state: KinematicState, reference: JointTable) -> JointTable:
+    def joint_table(
+        self, state: KinematicState, reference: JointTable, shape: tuple[int, ...] | None = None
+    ) -> JointTable:
         """The joint table at a state: the reference table's joints with their current screws.
 
         Parameters
@@ -580,11 +588,12 @@ class KinematicModel:
         reference : JointTable
             The graph's table (:meth:`~screwkit.graphs.jointtable.JointTable.from_graph`): names, types,
             actuation, dof and anchor (which moves with the platform).
+        shape : tuple of int, optional
+            The table's batch shape (of size ``B``; default ``(B,)``).
 
         Returns
         -------
         JointTable
-            Batch shape ``(B,)``.
 
         Raises
         ------
@@ -600,14 +609,15 @@ class KinematicModel:
         >>> model.joint_table(model.state(np.zeros((3, 1))), JointTable.from_graph(graph)).batch_shape
         (3,)
         """
-        rows = self.unscaled(state.current)
+        shape = (state.theta.shape[0],) if shape is None else tuple(shape)
+        rows = self.unscaled(state.current).reshape(*shape, self.size, 6)
         specs = {spec.name: spec for spec in reference.specs}
         if set(specs) != set(self.joints):
             raise ScrewkitValueError(
                 f"Expected the joint table of the model's graph, got joints {sorted(specs)[:5]} ..."
             )
         table_rows = [
-            (u, v, key, specs[key].type, rows[:, indices], specs[key].actuated)
+            (u, v, key, specs[key].type, rows[..., indices, :], specs[key].actuated)
             for key, (u, v, indices) in self.joints.items()
         ]
         anchor = None
@@ -615,6 +625,7 @@ class KinematicModel:
             g = state.links[self.platform]
             local = self.to_scaled_points(np.asarray(reference.anchor))
             anchor = (np.einsum("bij,j->bi", g[:, :3, :3], local) + g[:, :3, 3]) * self.length + self.point
+            anchor = anchor.reshape(*shape, 3)
         return JointTable.from_rows(
             reference.base, reference.platform, table_rows, dof=reference.dof, anchor=anchor,
             mobility=reference.mobility,

@@ -26,7 +26,9 @@ from ..exceptions import (
     UnreachablePoseError,
 )
 from ..graphs.jointtable import JointTable
+from ..algebra import backend as B
 from .families import Family, families
+from .graph_kinematics import GraphKinematics, displacement_coordinates, kinematics_of
 from .toml_fields import (
     MAX_ANGLE_DEGREES,
     MAX_ANGLE_RADIANS,
@@ -90,11 +92,109 @@ class Mechanism(Generic[P, C]):
     workspace: dict[str, tuple[float, float]]
     expected: tuple[dict[str, Any], ...] = field(default=())
     reachable_fraction: float = 1.0
+    protocol: Family[P, C] | None = field(default=None, repr=False)
 
     @property
     def family_protocol(self) -> Family[P, C]:
-        """The family's four functions (:mod:`screwkit.robots.families`)."""
-        return families()[self.family]
+        """The family's four functions (:mod:`screwkit.robots.families`): its own ``protocol`` when
+        it has one (a graph mechanism, :func:`screwkit.robots.graph_mechanism.mechanism`), else the
+        registered family's."""
+        return self.protocol if self.protocol is not None else families()[self.family]
+
+    @property
+    def coordinates(self) -> tuple[str, ...]:
+        """The pose coordinates' names (:attr:`pose_names`)."""
+        return self.pose_names
+
+    @property
+    def reference_pose(self) -> Array:
+        """The reference (default) pose in the coordinates, graph or file unit and radians."""
+        return np.asarray(self.default_pose, dtype=float)
+
+    @property
+    def actuated(self) -> tuple[str, ...]:
+        """The actuated joints in the order :meth:`forward` takes their values (name order, as the
+        analysis core and the Jacobians' rows)."""
+        return kinematics_of(self).actuated
+
+    def forward(
+        self, values: Any, *, rtol: float | None = None, length_scale: float | None = None
+    ) -> Any:
+        """The mechanism at actuated-joint displacements (forward kinematics by loop closure, continued
+        from the reference configuration: the assembly mode connected to it).
+
+        Parameters
+        ----------
+        values : array_like, shape (..., k)
+            Displacements of :attr:`actuated` from the reference configuration (radians; lengths in
+            the graph's or file's unit).
+        rtol, length_scale : float, optional
+            As in :meth:`at`.
+
+        Returns
+        -------
+        PosedMechanism
+            Its ``poses`` are the platform coordinates reached (rotations in ``(−π, π]`` about the
+            reference's; NaN where the continuation could not reach the values:
+            ``reachable`` False and the reason in ``failures``).
+
+        Raises
+        ------
+        ScrewkitValueError
+            If ``values`` does not have one value per actuated joint or is not finite.
+
+        Examples
+        --------
+        >>> h4 = load_mechanism("h4")
+        >>> posed = h4.forward(np.zeros((1, 4)))
+        >>> posed.poses.round(9).tolist(), posed.verdicts.tolist()
+        ([[0.0, 0.0, -750.0, 0.0]], ['regular'])
+        """
+        from .posed import PosedMechanism
+
+        kinematics = kinematics_of(self)
+        count = len(kinematics.actuated)
+        array = B.as_array(values, "values", (count,), symbolic=False).astype(float)
+        if not np.all(np.isfinite(array)):
+            raise ScrewkitValueError(f"Expected finite `values` (one per actuated joint {kinematics.actuated}), got NaN or infinity.")
+        shape = array.shape[:-1]
+        poses, closed = kinematics.forward(array.reshape(-1, count))
+        reasons = {
+            tuple(int(j) for j in np.unravel_index(i, shape)) if shape else (): str(closed.reasons[i])
+            for i in np.flatnonzero(~closed.reached)
+        }
+        return PosedMechanism.create(
+            self, poses.reshape(*shape, -1), rtol=rtol, length_scale=length_scale, failures=reasons
+        )
+
+    def unreachable_reasons(self, poses: Array, **options: Any) -> Array:
+        """Why each pose ``(m, n)`` is out of reach (an empty string where it is reachable).
+
+        Parameters
+        ----------
+        poses : numpy.ndarray, shape (m, n)
+            In the file's length unit and radians.
+        **options
+            Passed to the inverse kinematics (a working mode).
+
+        Returns
+        -------
+        numpy.ndarray of str, shape (m,)
+
+        Examples
+        --------
+        >>> load_mechanism("v4").unreachable_reasons(np.array([[0, 0, -750, 0], [0, 0, -3000, 0]]))[1][:30]
+        'Pose (x, y, z, phi) = (0, 0, -'
+        """
+        if isinstance(self.parameters, GraphKinematics) and not options:
+            return np.asarray(self.parameters.solve(np.asarray(poses, dtype=float)).reasons, dtype=object)
+        out = np.full(len(poses), "", dtype=object)
+        for index in np.flatnonzero(~self.reachable(poses, **options)):
+            try:
+                self.configuration(poses[index], **options)
+            except UnreachablePoseError as error:
+                out[index] = str(error)
+        return out
 
     @property
     def pose_names(self) -> tuple[str, ...]:
@@ -185,8 +285,11 @@ class Mechanism(Generic[P, C]):
 
         Parameters
         ----------
-        poses : array_like, shape (..., n), optional
-            In the file's length unit and radians; default: the default pose.
+        poses : array_like, shape (..., n) or (..., 4, 4), optional
+            Coordinates in the file's length unit and radians, or rigid displacements of the platform
+            relative to the reference configuration in the base frame, rotating about the platform
+            point (a 2-D ``(4, 4)`` array is four poses of a four-coordinate robot: give one
+            displacement as ``(1, 4, 4)``); default: the default pose.
         rtol : float, optional
             Relative tolerance of every rank decision (default 1e-9).
         length_scale : float, optional
@@ -212,8 +315,27 @@ class Mechanism(Generic[P, C]):
         from .posed import PosedMechanism
 
         self._check_options(options)
+        poses = self._coordinates_of(poses)
         self.check_pose_range(poses)
         return PosedMechanism.create(self, poses, rtol=rtol, length_scale=length_scale, options=options)
+
+    def _coordinates_of(self, poses: Any) -> Any:
+        """Poses as coordinates: ``(..., 4, 4)`` rigid displacements of the platform relative to the
+        reference configuration (rotating about the platform point) converted; a 2-D ``(4, 4)``
+        array is four poses of a four-coordinate robot, one displacement otherwise."""
+        if poses is None or isinstance(poses, str):
+            return poses
+        try:
+            array = np.asarray(poses, dtype=float)
+        except (TypeError, ValueError):
+            return poses  # the callee names it
+        displacement = array.shape[-2:] == (4, 4) and (array.ndim > 2 or len(self.pose_names) != 4)
+        if not displacement:
+            return poses
+        if not np.all(np.isfinite(array)):
+            raise ScrewkitValueError("Expected finite `poses` (4×4 displacements), got NaN or infinity.")
+        flat = array.reshape(-1, 4, 4)
+        return displacement_coordinates(kinematics_of(self), flat).reshape(*array.shape[:-2], -1)
 
     def check_pose_range(self, poses: Any, argument: str = "poses") -> None:
         """Refuse pose coordinates beyond :data:`MAX_COORDINATE` and angles beyond

@@ -101,6 +101,8 @@ class PosedMechanism:
     #: The batch this pose was indexed from and its flat index there (its nominal twists are read
     #: from the batch's), or None.
     _batch: tuple[PosedMechanism, int] | None = field(default=None, repr=False)
+    #: Known unreachable poses (index → reason), e.g. from the forward kinematics, or None.
+    _failures: dict[tuple[int, ...], str] | None = field(default=None, repr=False)
 
     @classmethod
     def create(
@@ -111,6 +113,7 @@ class PosedMechanism:
         rtol: float | None = None,
         length_scale: float | None = None,
         options: Any = None,
+        failures: dict[tuple[int, ...], str] | None = None,
     ) -> PosedMechanism:
         """Validate and build (what :meth:`screwkit.robots.mechanism.Mechanism.at` calls).
 
@@ -123,6 +126,8 @@ class PosedMechanism:
         length_scale : float, optional
         options : mapping, optional
             Inverse-kinematics options.
+        failures : dict, optional
+            Poses known to be out of reach (batch index → reason; their coordinates may be NaN).
 
         Returns
         -------
@@ -135,11 +140,16 @@ class PosedMechanism:
         ...
         screwkit.exceptions.ScrewkitValueError: Expected `poses` to have shape (..., 4), got (3,).
         """
-        array = _checked_poses(mechanism, poses)
+        if failures:  # the unreached poses' NaN coordinates are part of the answer
+            missing = np.isnan(np.asarray(poses, dtype=float))
+            array = _checked_poses(mechanism, np.where(missing, 0.0, poses))
+            array[missing.reshape(array.shape)] = np.nan
+        else:
+            array = _checked_poses(mechanism, poses)
         array.flags.writeable = False
         tolerance = B.DEFAULT_RTOL if rtol is None else checked_rtol(rtol)
         length = checked_length_scale(length_scale, allow_none=True)
-        return cls(mechanism, array, tolerance, length, dict(options or {}))
+        return cls(mechanism, array, tolerance, length, dict(options or {}), _failures=failures)
 
     @property
     def shape(self) -> tuple[int, ...]:
@@ -186,6 +196,32 @@ class PosedMechanism:
     def __repr__(self) -> str:
         length = "" if self.length_scale is None else f", length_scale={self.length_scale:g}"
         return f"PosedMechanism({self.mechanism.name!r}, shape={self.shape}, rtol={self.rtol:g}{length})"
+
+    @functools.cached_property
+    def failures(self) -> dict[tuple[int, ...], str]:
+        """Why each unreachable pose is out of reach: batch index → reason (empty when all are
+        reachable)."""
+        if self._failures is not None:
+            return dict(self._failures)
+        flat = self.poses.reshape(-1, self.poses.shape[-1])
+        reasons = self.mechanism.unreachable_reasons(flat, **self.options)
+        shape = self.shape
+        return {
+            tuple(int(i) for i in np.unravel_index(k, shape)) if shape else (): str(reasons[k])
+            for k in np.flatnonzero(reasons != "")
+        }
+
+    @functools.cached_property
+    def reachable(self) -> Array:
+        """Per pose: whether the inverse kinematics reaches it (shape ``shape``; the reasons in
+        :attr:`failures`)."""
+        if self._failures is not None:
+            out = np.ones(self.shape, dtype=bool)
+            for index in self._failures:
+                out[index] = False
+            return out
+        flat = self.poses.reshape(-1, self.poses.shape[-1])
+        return np.asarray(self.mechanism.reachable(flat, **self.options)).reshape(self.shape)
 
     @functools.cached_property
     def configuration(self) -> Any:

@@ -1,0 +1,518 @@
+"""Loop-closure kinematics of a twist graph as a family: the parameters, configurations and the four
+functions a :class:`~screwkit.robots.families.Family` needs, for any mechanism.
+
+:class:`GraphKinematics` holds a graph's product-of-exponentials model
+(:class:`~screwkit.core.kinematic_model.KinematicModel`) and the coordinates of a link
+(:func:`~screwkit.core.loop_closure.task_coordinates`): the position of a point of it along the
+translation directions of its motion at the reference — ``x, y, z`` along the base frame's axes — and
+its rotation vector along the rotation directions (``phi`` for one rotation, ``rx, ry, rz`` for more),
+0 at the reference. Its inverse kinematics is :func:`~screwkit.core.loop_closure.close_loops`
+continued from the reference configuration, so each pose stays in the working and assembly mode of
+the reference; :meth:`GraphKinematics.forward` does the same from actuated-joint values.
+
+When the coordinates fix the link's whole pose over the motion (the mechanism has no parasitic
+motion: a Schoenflies, translational, planar or spherical motion generator), the inverse kinematics
+also holds the directions the coordinates leave out at their reference values, so the continuation
+cannot slip into another assembly mode at a constraint singularity (a Quattro's tilted plate); this
+is decided once by moving the mechanism a little in every coordinate (:data:`PURE_MOTION_STEP`) and
+checking the link's whole pose.
+
+:func:`kinematics_of` gives the same kinematics for a catalog robot, from its twist graph at its
+default pose (its forward kinematics, and the check of its closed-form inverse kinematics).
+
+Examples
+--------
+>>> h4 = kinematics_of(load_mechanism("h4"))
+>>> h4.coordinates.names, h4.complete
+(('x', 'y', 'z', 'phi'), True)
+>>> h4.solve(np.array([[30.0, -20.0, -750.0, 0.3]])).reached.tolist()
+[True]
+"""
+
+from __future__ import annotations
+
+import functools
+from dataclasses import dataclass, field
+from typing import Any
+
+import networkx as nx
+import numpy as np
+
+from ..algebra import backend as B
+from ..core.kinematic_model import KinematicModel, KinematicState, rotation_log
+from ..core.loop_closure import (
+    FINAL_TOLERANCE,
+    ClosedConfigurations,
+    JointTask,
+    PoseTask,
+    TaskCoordinates,
+    close_loops,
+    task_coordinates,
+)
+from ..exceptions import ScrewkitTypeError, ScrewkitValueError, UnreachablePoseError
+from ..graphs.jointtable import JointTable
+from ..graphs.twistgraph import check_twist_graph
+from .families import Family
+
+__all__ = [
+    "MAX_CACHED_POSES",
+    "PURE_MOTION_STEP",
+    "GraphConfiguration",
+    "GraphKinematics",
+    "displacement_coordinates",
+    "graph_family",
+    "graph_kinematics",
+    "kinematics_of",
+]
+
+Array = np.ndarray
+
+#: Solved poses remembered per mechanism (a map asks which poses are reachable, then analyses them).
+MAX_CACHED_POSES = 16384
+#: The small motion (characteristic lengths, radians) in each coordinate that decides whether the
+#: coordinates fix the platform's whole pose.
+PURE_MOTION_STEP = 0.2
+
+
+@dataclass(frozen=True, eq=False)
+class GraphKinematics:
+    """A twist graph's loop-closure kinematics with its coordinates: the family's parameters.
+
+    Attributes
+    ----------
+    graph : networkx.MultiDiGraph
+        The reference configuration.
+    model : KinematicModel
+    coordinates : TaskCoordinates
+    complete : bool
+        True when the coordinates fix the measured link's whole pose over the motion.
+    angle_offsets : numpy.ndarray, shape (n,)
+        Added to the rotation coordinates (a catalog robot's default angles; zeros for a graph).
+    reference : JointTable
+        The graph's joint table (names, types, actuation, dof).
+    """
+
+    graph: nx.MultiDiGraph = field(repr=False)
+    model: KinematicModel = field(repr=False)
+    coordinates: TaskCoordinates
+    complete: bool
+    angle_offsets: Array
+    reference: JointTable = field(repr=False)
+    _cache: dict[bytes, tuple[Array, dict[str, Array]]] = field(default_factory=dict, repr=False)
+
+    @functools.cached_property
+    def task(self) -> PoseTask:
+        """The coordinates as equations of the joint values."""
+        return PoseTask(self.model, self.coordinates, complete=self.complete)
+
+    @property
+    def actuated(self) -> tuple[str, ...]:
+        """The actuated joints, in name order (the order of :meth:`forward`'s values)."""
+        return tuple(sorted(spec.name for spec in self.reference.specs if spec.actuated))
+
+    def _targets(self, poses: Array) -> Array:
+        rotation = ~self.task.translation[: len(self.coordinates.names)]
+        return self.task.scaled_targets(poses - np.where(rotation, self.angle_offsets, 0.0))
+
+    def solve(self, poses: Array) -> ClosedConfigurations:
+        """The configurations at poses ``(m, n)`` (coordinates, graph unit and radians), those asked
+        before read from a cache of :data:`MAX_CACHED_POSES` poses.
+
+        Parameters
+        ----------
+        poses : numpy.ndarray, shape (m, n)
+
+        Returns
+        -------
+        ClosedConfigurations
+
+        Examples
+        --------
+        >>> h4 = kinematics_of(load_mechanism("h4"))
+        >>> h4.solve(np.array([[0, 0, -750, 0.1], [0, 0, -3000, 0]])).reached.tolist()
+        [True, False]
+        """
+        keys = [row.tobytes() for row in np.ascontiguousarray(poses, dtype=float)]
+        missing = [i for i, key in enumerate(keys) if key not in self._cache]
+        solved = close_loops(self.model, self.task, self._targets(poses[missing])) if missing else None
+        theta = np.zeros((len(poses), self.model.size))
+        offsets = {key: np.tile(np.eye(4), (len(poses), 1, 1)) for key, kind in self.model.types.items()
+                   if kind == "S"}
+        reached = np.ones(len(poses), dtype=bool)
+        residual = np.zeros(len(poses))
+        reasons = np.full(len(poses), "", dtype=object)
+        if solved is not None:
+            theta[missing] = solved.theta
+            for key in offsets:
+                offsets[key][missing] = solved.offsets.get(key, np.eye(4))
+            reached[missing], residual[missing], reasons[missing] = solved.reached, solved.residual, solved.reasons
+            if len(self._cache) + len(missing) > MAX_CACHED_POSES:
+                self._cache.clear()
+            for j, i in enumerate(missing):
+                if solved.reached[j]:
+                    self._cache[keys[i]] = (solved.theta[j], {k: v[j] for k, v in solved.offsets.items()})
+        fresh = set(missing)
+        for i, key in enumerate(keys):
+            if i not in fresh:
+                theta[i], known = self._cache[key]
+                for name, value in known.items():
+                    offsets[name][i] = value
+        return ClosedConfigurations(theta, offsets, reached, residual, reasons)
+
+    def remember(self, poses: Array, closed: ClosedConfigurations) -> None:
+        """Add solved configurations (e.g. of the forward kinematics) to the cache.
+
+        Parameters
+        ----------
+        poses : numpy.ndarray, shape (m, n)
+            Their coordinates.
+        closed : ClosedConfigurations
+            Their configurations (only the reached ones are kept).
+
+        Examples
+        --------
+        >>> h4 = kinematics_of(load_mechanism("h4"))
+        >>> closed = h4.solve(np.array([[0, 0, -750, 0.1]]))
+        >>> h4.remember(np.array([[0, 0, -750, 0.1]]), closed)
+        """
+        if len(self._cache) + len(poses) > MAX_CACHED_POSES:
+            self._cache.clear()
+        for j, row in enumerate(np.ascontiguousarray(poses, dtype=float)):
+            if closed.reached[j]:
+                self._cache[row.tobytes()] = (closed.theta[j], {k: v[j] for k, v in closed.offsets.items()})
+
+    def forward(self, values: Array) -> tuple[Array, ClosedConfigurations]:
+        """Platform coordinates and configurations at actuated-joint displacements ``(m, k)``.
+
+        Parameters
+        ----------
+        values : numpy.ndarray, shape (m, k)
+            Displacements from the reference of :attr:`actuated` (radians, graph lengths).
+
+        Returns
+        -------
+        poses : numpy.ndarray, shape (m, n)
+            The coordinates (rotations in ``(−π, π]`` about the offsets; NaN where not reached).
+        closed : ClosedConfigurations
+
+        Examples
+        --------
+        >>> h4 = kinematics_of(load_mechanism("h4"))
+        >>> poses, closed = h4.forward(np.zeros((1, 4)))
+        >>> poses.round(9).tolist()
+        [[0.0, 0.0, -750.0, 0.0]]
+        """
+        task = JointTask(self.model, self.actuated)
+        closed = close_loops(self.model, task, task.scaled_targets(values))
+        state = self.model.state(closed.theta, closed.offsets)
+        poses = self.task.unscaled(self.task.values(state))
+        rotation = ~self.task.translation[: len(self.coordinates.names)]
+        poses = poses + np.where(rotation, self.angle_offsets, 0.0)
+        poses[~closed.reached] = np.nan
+        self.remember(poses[closed.reached], _subset(closed, closed.reached))
+        return poses, closed
+
+    def twist_basis(self, state: KinematicState) -> Array:
+        """The measured link's twists per unit rate of each coordinate, ``(B, n, 6)`` (graph frame).
+
+        The joint rates closing the loops with that coordinate's rate 1 and the others' (and, for a
+        complete task, the left-out directions') 0, minimum-norm (internal motions at rest), carried
+        to the link along its tree path.
+
+        Parameters
+        ----------
+        state : KinematicState
+
+        Returns
+        -------
+        numpy.ndarray, shape (B, n, 6)
+
+        Examples
+        --------
+        >>> h4 = kinematics_of(load_mechanism("h4"))
+        >>> closed = h4.solve(np.array([[0, 0, -750, 0.0]]))
+        >>> h4.twist_basis(h4.model.state(closed.theta, closed.offsets))[0, 3, :3].round(9) + 0.0
+        array([0., 0., 1.])
+        """
+        model, task = self.model, self.task
+        loops, rows = model.loop_jacobian(state), task.jacobian(state)
+        jacobian = np.concatenate([loops, rows], axis=1)
+        count = len(self.coordinates.names)
+        rates = np.zeros((jacobian.shape[1], count))
+        unit = np.where(task.translation[:count], 1.0 / model.length, 1.0)
+        rates[loops.shape[1] + np.arange(count), np.arange(count)] = unit
+        gram = jacobian @ np.swapaxes(jacobian, -1, -2)
+        damping = 1e-13 * (np.trace(gram, axis1=-2, axis2=-1)[:, None, None] + 1.0)
+        multipliers = np.linalg.solve(gram + damping * np.eye(gram.shape[-1]), np.broadcast_to(rates, (len(gram), *rates.shape)))
+        joint_rates = np.swapaxes(jacobian, -1, -2) @ multipliers  # (B, columns, n)
+        twists = model.link_jacobian(state, self.coordinates.link) @ joint_rates  # (B, 6, n) scaled
+        return model.unscaled(np.swapaxes(twists, -1, -2))
+
+
+def _subset(closed: ClosedConfigurations, rows: Array) -> ClosedConfigurations:
+    return ClosedConfigurations(
+        closed.theta[rows], {k: v[rows] for k, v in closed.offsets.items()}, closed.reached[rows],
+        closed.residual[rows], closed.reasons[rows],
+    )
+
+
+@dataclass(frozen=True)
+class GraphConfiguration:
+    """Configurations of a graph mechanism over a batch: the family's configuration type.
+
+    Attributes
+    ----------
+    kinematics : GraphKinematics
+    state : KinematicState
+        Flat over the batch.
+    shape : tuple of int
+        The batch shape.
+    """
+
+    kinematics: GraphKinematics
+    state: KinematicState
+    shape: tuple[int, ...]
+
+
+def _inverse_kinematics(kinematics: GraphKinematics, poses: Any) -> GraphConfiguration:
+    array = np.asarray(poses, dtype=float)
+    shape = array.shape[:-1]
+    flat = array.reshape(-1, array.shape[-1])
+    closed = kinematics.solve(flat)
+    if not np.all(closed.reached):
+        first = int(np.flatnonzero(~closed.reached)[0])
+        index = np.unravel_index(first, shape) if shape else ()
+        raise UnreachablePoseError(
+            f"Pose {tuple(int(i) for i in index)} = {flat[first].tolist()} is out of reach: "
+            f"{closed.reasons[first]}."
+        )
+    return GraphConfiguration(kinematics, kinematics.model.state(closed.theta, closed.offsets), shape)
+
+
+def _joints(configuration: GraphConfiguration) -> JointTable:
+    kinematics = configuration.kinematics
+    return kinematics.model.joint_table(configuration.state, kinematics.reference, configuration.shape)
+
+
+def _twist_basis(configuration: GraphConfiguration) -> Array:
+    basis = configuration.kinematics.twist_basis(configuration.state)
+    return basis.reshape(*configuration.shape, *basis.shape[-2:])
+
+
+def _reachable(kinematics: GraphKinematics, poses: Array) -> Array:
+    array = np.asarray(poses, dtype=float)
+    return kinematics.solve(array.reshape(-1, array.shape[-1])).reached.reshape(array.shape[:-1])
+
+
+def _no_catalog_parameters(mapping: Any, *, source: str) -> Any:
+    raise ScrewkitValueError(
+        f"{source}: a graph mechanism has no catalog parameters; build it with screwkit.mechanism(graph)."
+    )
+
+
+def graph_family(coordinates: TaskCoordinates) -> Family[GraphKinematics, GraphConfiguration]:
+    """The family of a graph mechanism with these coordinates (its pose names).
+
+    Parameters
+    ----------
+    coordinates : TaskCoordinates
+
+    Returns
+    -------
+    Family
+        Named ``"loop_closure"``; its parameters are a :class:`GraphKinematics`.
+
+    Examples
+    --------
+    >>> graph_family(kinematics_of(load_mechanism("h4")).coordinates).angle_names
+    ('phi',)
+    """
+    return Family(
+        name="loop_closure",
+        parameters=_no_catalog_parameters,
+        inverse_kinematics=_inverse_kinematics,
+        joints=_joints,
+        twist_basis=_twist_basis,
+        pose_names=coordinates.names,
+        angle_names=coordinates.angle_names,
+        reachable=_reachable,
+    )
+
+
+def _checked_graph(graph: Any) -> nx.MultiDiGraph:
+    check_twist_graph(graph)
+    for _, _, key, joint in graph.edges(keys=True, data="joint"):
+        if B.is_symbolic(joint.screws):
+            raise ScrewkitTypeError(
+                f"Expected a numeric twist graph for loop-closure kinematics, got symbolic screws in joint {key!r}."
+            )
+        if joint.virtual:
+            raise ScrewkitValueError(
+                f"Expected the physical joints of a mechanism, got the virtual joint {key!r} (an equivalent "
+                "chain holds only at one configuration): give the graph before equivalent_twist_graph."
+            )
+    return graph
+
+
+def _is_complete(model: KinematicModel, coordinates: TaskCoordinates) -> bool:
+    """Whether the coordinates fix the link's whole pose: moving each coordinate by
+    :data:`PURE_MOTION_STEP` leaves the left-out directions at their reference values."""
+    if len(coordinates.names) == 6:
+        return True
+    free = PoseTask(model, coordinates)
+    held = PoseTask(model, coordinates, complete=True)
+    count = len(coordinates.names)
+    steps = np.concatenate([np.eye(count), -np.eye(count)]) * PURE_MOTION_STEP
+    start = free.values(model.state(np.zeros((1, model.size))))
+    closed = close_loops(model, free, start + steps)
+    if not np.all(closed.reached):
+        return False
+    values = held.values(model.state(closed.theta, closed.offsets))
+    reference = held.scaled_targets(free.unscaled(start))
+    return bool(np.max(np.abs(held.difference(values, reference)[:, count:]), initial=0.0) < 1e3 * FINAL_TOLERANCE)
+
+
+def graph_kinematics(
+    graph: nx.MultiDiGraph, *, link: Any = None, point: Any = None, rotations: bool = True,
+    angle_offsets: Any = None,
+) -> GraphKinematics:
+    """The loop-closure kinematics of a twist graph with the coordinates of a link.
+
+    Parameters
+    ----------
+    graph : networkx.MultiDiGraph
+        A numeric twist graph of physical joints at its reference configuration.
+    link : hashable, optional
+        The measured link (default: the platform).
+    point : array_like, shape (3,), optional
+        The measured point (default: the centroid of the link's joint points).
+    rotations : bool, default True
+        False: only the point's position.
+    angle_offsets : array_like, shape (n,), optional
+        Added to the rotation coordinates (default 0).
+
+    Returns
+    -------
+    GraphKinematics
+
+    Raises
+    ------
+    ScrewkitValueError
+        If the link does not move, or the graph has virtual joints.
+
+    Examples
+    --------
+    >>> graph_kinematics(load_mechanism("h4").twist_graph()).coordinates.names
+    ('x', 'y', 'z', 'phi')
+    """
+    model = KinematicModel(_checked_graph(graph))
+    coordinates = task_coordinates(model, link=link, point=point, rotations=rotations)
+    offsets = np.zeros(len(coordinates.names)) if angle_offsets is None else np.asarray(angle_offsets, float)
+    complete = rotations and _is_complete(model, coordinates)
+    return GraphKinematics(graph, model, coordinates, complete, offsets, JointTable.from_graph(graph))
+
+
+_KINEMATICS: dict[int, tuple[Any, GraphKinematics]] = {}
+
+
+def kinematics_of(robot: Any) -> GraphKinematics:
+    """A mechanism's loop-closure kinematics: a graph mechanism's own, or a catalog robot's from its
+    twist graph at the default pose (coordinates named and offset as its pose coordinates).
+
+    Parameters
+    ----------
+    robot : Mechanism
+
+    Returns
+    -------
+    GraphKinematics
+
+    Raises
+    ------
+    ScrewkitValueError
+        If the catalog robot's graph gives other coordinates than its pose coordinates.
+
+    Examples
+    --------
+    >>> kinematics_of(load_mechanism("planar_3rrp")).coordinates.names
+    ('x', 'y', 'phi')
+    """
+    if isinstance(robot.parameters, GraphKinematics):
+        return robot.parameters
+    known = _KINEMATICS.get(id(robot))
+    if known is not None and known[0] is robot:
+        return known[1]
+    names = robot.pose_names
+    pose = np.asarray(robot.default_pose, dtype=float)
+    point = np.array([pose[names.index(a)] if a in names else 0.0 for a in ("x", "y", "z")])
+    graph = robot.twist_graph()
+    model = KinematicModel(_checked_graph(graph))
+    if "z" not in names:  # a planar robot: its point in the plane of its motion
+        point[2] = model.point[2]
+    offsets = np.array([pose[i] if n in robot.angle_names else 0.0 for i, n in enumerate(names)])
+    kinematics = graph_kinematics(graph, point=point, angle_offsets=offsets)
+    if kinematics.coordinates.names != names:
+        raise ScrewkitValueError(
+            f"Expected the loop-closure coordinates of {robot.name} to be its pose coordinates {names}, "
+            f"got {kinematics.coordinates.names}."
+        )
+    _KINEMATICS.clear()  # one catalog robot at a time: its model is rebuilt when another is asked
+    _KINEMATICS[id(robot)] = (robot, kinematics)
+    return kinematics
+
+
+def displacement_coordinates(kinematics: GraphKinematics, displacements: Array) -> Array:
+    """Coordinates ``(m, n)`` of rigid displacements ``(m, 4, 4)`` of the measured link relative to the
+    reference configuration, rotating about its point.
+
+    Parameters
+    ----------
+    kinematics : GraphKinematics
+    displacements : numpy.ndarray, shape (m, 4, 4)
+
+    Returns
+    -------
+    numpy.ndarray, shape (m, n)
+
+    Raises
+    ------
+    ScrewkitValueError
+        If a matrix is not a rigid motion, or moves the link in a direction its motion does not have.
+
+    Examples
+    --------
+    >>> h4 = kinematics_of(load_mechanism("h4"))
+    >>> lift = np.eye(4); lift[2, 3] = -10
+    >>> displacement_coordinates(h4, lift[None]).round(9).tolist()
+    [[0.0, 0.0, -760.0, 0.0]]
+    """
+    rotation, translation = displacements[:, :3, :3], displacements[:, :3, 3]
+    orthonormal = np.abs(rotation @ np.swapaxes(rotation, -1, -2) - np.eye(3)).max(axis=(-1, -2)) < 1e-9
+    proper = np.linalg.det(rotation) > 0
+    bottom = np.all(np.abs(displacements[:, 3] - [0, 0, 0, 1]) < 1e-12, axis=-1)
+    if not np.all(orthonormal & proper & bottom):
+        bad = int(np.flatnonzero(~(orthonormal & proper & bottom))[0])
+        raise ScrewkitValueError(
+            f"Expected `poses` of shape (..., 4, 4) to be rigid motions (a rotation, a translation and the "
+            f"last row 0 0 0 1), got {displacements[bad].round(6).tolist()} at index {bad}."
+        )
+    coordinates = kinematics.coordinates
+    position = coordinates.point + translation
+    vector = rotation_log(rotation)
+    translation_mask = np.array([k == "translation" for k in coordinates.kinds])
+    values = np.where(translation_mask, position @ coordinates.directions.T, vector @ coordinates.directions.T)
+    values = values + np.where(translation_mask, 0.0, kinematics.angle_offsets)
+    if kinematics.complete:  # the directions left out must not move
+        task = kinematics.task
+        count = len(coordinates.names)
+        extra = task.directions[count:]
+        moved = np.where(task.translation[count:], (position - coordinates.point) @ extra.T, vector @ extra.T)
+        size = np.max(np.abs(moved), axis=1, initial=0.0)
+        limit = 1e-9 * np.maximum(1.0, np.where(task.translation[count:], kinematics.model.length, 1.0)).max(initial=1.0)
+        if np.any(size > limit):
+            bad = int(np.argmax(size))
+            raise ScrewkitValueError(
+                f"Expected `poses` (4×4 displacements) the mechanism's motion makes ({', '.join(coordinates.names)}), "
+                f"got one at index {bad} that also moves {size[bad]:.3g} along a direction the motion does not have."
+            )
+    return values

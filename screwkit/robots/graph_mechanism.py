@@ -1,0 +1,196 @@
+"""Any twist graph as a mechanism over its whole motion: :func:`mechanism`.
+
+:func:`mechanism` turns a twist graph (or a snapshot file) into a
+:class:`~screwkit.robots.mechanism.Mechanism` like the catalog's, whose reference configuration is the
+graph's: everything over poses (verdicts, closeness, Jacobians, transmission, maps, loci, paths) then
+works for it. Its inverse kinematics is :func:`screwkit.core.loop_closure.close_loops` continued from the
+reference configuration, so each pose stays in the working and assembly mode of the reference.
+
+Its coordinates, inverse and forward kinematics are those of
+:mod:`screwkit.robots.graph_kinematics`; ``task=(link, point)`` makes the coordinates those of a point
+of a link (the five-bar's end point), whose orientation stays free.
+
+Examples
+--------
+>>> from screwkit.graphs.joints import revolute
+>>> from screwkit.graphs.twistgraph import twist_graph
+>>> five_bar = twist_graph("ground", "distal1", [
+...     ("ground", "proximal1", revolute("A1", [0, 0, 1], [0, 0, 0], actuated=True)),
+...     ("proximal1", "distal1", revolute("B1", [0, 0, 1], [0, 1, 0])),
+...     ("ground", "proximal2", revolute("A2", [0, 0, 1], [1, 0, 0], actuated=True)),
+...     ("proximal2", "distal2", revolute("B2", [0, 0, 1], [1, 1, 0])),
+...     ("distal2", "distal1", revolute("C", [0, 0, 1], [0.5, 1.8, 0]))], dof=2)
+>>> m = mechanism(five_bar, task=("distal1", [0.5, 1.8, 0]))
+>>> m.coordinates, m.reference_pose.tolist()
+(('x', 'y'), [0.5, 1.8])
+>>> posed = m.at([[0.5, 1.8], [0.6, 1.7]])
+>>> posed.verdicts.tolist()
+['regular', 'regular']
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any
+
+import networkx as nx
+import numpy as np
+
+from ..algebra import backend as B
+from ..exceptions import ScrewkitTypeError, ScrewkitValueError
+from ..graphs.twistgraph import check_twist_graph
+from .graph_kinematics import GraphKinematics, graph_family, graph_kinematics
+from .mechanism import Mechanism
+
+__all__ = ["WORKSPACE_ANGLE", "WORKSPACE_LENGTHS", "mechanism"]
+
+Array = np.ndarray
+
+#: The default workspace box about the reference: ± this many characteristic lengths, ± this angle.
+WORKSPACE_LENGTHS = 0.5
+WORKSPACE_ANGLE = np.pi / 6
+
+
+def _checked_point(value: Any, argument: str) -> Array:
+    try:
+        point = B.as_array(value, argument, (3,), symbolic=False).astype(float)
+    except ScrewkitValueError:
+        raise
+    except Exception as error:  # noqa: BLE001 - named below
+        raise ScrewkitTypeError(f"Expected `{argument}` to be 3 numbers, got {value!r}.") from error
+    if point.shape != (3,) or not np.all(np.isfinite(point)):
+        raise ScrewkitValueError(f"Expected `{argument}` to be 3 finite numbers, got {np.asarray(value).tolist()}.")
+    return point
+
+
+def _default_workspace(kinematics: GraphKinematics, reference: Array) -> dict[str, tuple[float, float]]:
+    span = WORKSPACE_LENGTHS * kinematics.model.length
+    return {
+        name: (float(value - span), float(value + span)) if kind == "translation"
+        else (float(value - WORKSPACE_ANGLE), float(value + WORKSPACE_ANGLE))
+        for name, kind, value in zip(kinematics.coordinates.names, kinematics.coordinates.kinds, reference, strict=True)
+    }
+
+
+def _checked_workspace(workspace: Any, names: tuple[str, ...]) -> dict[str, tuple[float, float]]:
+    if not isinstance(workspace, Mapping) or set(workspace) != set(names):
+        got = sorted(workspace) if isinstance(workspace, Mapping) else type(workspace).__name__
+        raise ScrewkitValueError(f"Expected `workspace` to map each coordinate {list(names)} to (low, high), got {got}.")
+    box = {}
+    for name in names:
+        try:
+            low, high = (float(v) for v in workspace[name])
+        except (TypeError, ValueError) as error:
+            raise ScrewkitValueError(
+                f"Expected `workspace[{name!r}]` to be two numbers (low, high), got {workspace[name]!r}."
+            ) from error
+        if not (np.isfinite(low) and np.isfinite(high) and low < high):
+            raise ScrewkitValueError(f"Expected `workspace[{name!r}]` to be finite with low < high, got ({low}, {high}).")
+        box[name] = (low, high)
+    return box
+
+
+def mechanism(
+    graph_or_file: Any,
+    *,
+    task: Any = None,
+    platform_point: Any = None,
+    workspace: Any = None,
+) -> Mechanism[Any, Any]:
+    """Any mechanism as a :class:`~screwkit.robots.mechanism.Mechanism`: a twist graph or snapshot file
+    over its whole motion (module docstring), or a catalog robot by name.
+
+    Parameters
+    ----------
+    graph_or_file : networkx.MultiDiGraph, str, pathlib.Path or Mechanism
+        A twist graph at its reference configuration, a snapshot file (TOML), a catalog name, or a
+        mechanism (returned as is).
+    task : tuple (link, point), optional
+        A point fixed in a link, given in the graph's frame at the reference: the coordinates are
+        then that point's (the link's orientation stays free). Default: the platform's pose.
+    platform_point : array_like, shape (3,), optional
+        The platform point whose position the translation coordinates give (default: the centroid of
+        the platform's joint points); rotations are about it.
+    workspace : mapping, optional
+        ``{coordinate: (low, high)}`` for maps and random poses (default: ± half the characteristic
+        length and ± 30° about the reference).
+
+    Returns
+    -------
+    Mechanism
+        Its family is ``"loop_closure"``; ``default_pose`` is the reference configuration.
+
+    Raises
+    ------
+    ScrewkitValueError
+        If ``task`` names no link or is not ``(link, point)``, a point is not 3 finite numbers, the
+        platform moves with a number of freedoms other than the graph's ``dof`` at the reference, or
+        the workspace is malformed.
+    ScrewkitTypeError
+        If ``graph_or_file`` is none of the above.
+
+    Examples
+    --------
+    >>> m = mechanism(load_mechanism("h4").twist_graph())
+    >>> m.coordinates, m.family
+    (('x', 'y', 'z', 'phi'), 'loop_closure')
+    >>> mechanism(load_mechanism("h4").twist_graph(), task="platform")
+    Traceback (most recent call last):
+    ...
+    screwkit.exceptions.ScrewkitValueError: Expected `task` to be (link, point), got 'platform'.
+    """
+    from .catalog import list_mechanisms, load_mechanism
+    from .snapshot import load_snapshot
+
+    if isinstance(graph_or_file, Mechanism):
+        return graph_or_file
+    source = "<graph>"
+    if isinstance(graph_or_file, str | Path):
+        if isinstance(graph_or_file, str) and graph_or_file in list_mechanisms():
+            return load_mechanism(graph_or_file)
+        source = str(graph_or_file)
+        graph = load_snapshot(graph_or_file)
+    elif isinstance(graph_or_file, nx.MultiDiGraph):
+        graph = graph_or_file
+    else:
+        raise ScrewkitTypeError(
+            "Expected `graph_or_file` to be a twist graph, a snapshot file, a catalog name or a Mechanism, "
+            f"got {type(graph_or_file).__name__}."
+        )
+    check_twist_graph(graph)
+    if task is None:
+        link, point, rotations = None, platform_point, True
+    else:
+        if not isinstance(task, tuple | list) or len(task) != 2:
+            raise ScrewkitValueError(f"Expected `task` to be (link, point), got {task!r}.")
+        link, point, rotations = task[0], _checked_point(task[1], "task point"), False
+        if link not in graph:
+            raise ScrewkitValueError(f"Expected `task` to name a link of the graph, got {link!r}.")
+    if point is not None and task is None:
+        point = _checked_point(point, "platform_point")
+    kinematics = graph_kinematics(graph, link=link, point=point, rotations=rotations)
+    names = kinematics.coordinates.names
+    dof = graph.graph.get("dof")
+    if dof is not None and len(names) != dof:
+        raise ScrewkitValueError(
+            f"Expected the {'point' if task is not None else 'platform'} to move with the graph's dof = {dof} "
+            f"freedoms at the reference configuration, got {len(names)} ({', '.join(names)}): the reference "
+            "is singular, or dof is not the mechanism's."
+        )
+    reference = kinematics.coordinates.reference_values()
+    box = _default_workspace(kinematics, reference) if workspace is None else _checked_workspace(workspace, names)
+    return Mechanism(
+        name=str(graph.graph.get("name", "mechanism")),
+        family="loop_closure",
+        length_unit=str(graph.graph.get("length_unit", "")),
+        source=source,
+        sources=tuple(graph.graph.get("sources", ())),
+        parameters=kinematics,
+        parameter_sources={},
+        default_pose=reference,
+        workspace=box,
+        protocol=graph_family(kinematics.coordinates),
+    )
+
+
