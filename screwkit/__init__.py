@@ -105,6 +105,8 @@ _LAZY = {
     "loci": "analysis.loci",
     "surfaces": "analysis.loci",
     "check_path": "analysis.paths",
+    "grid_map": "analysis.workspace",
+    "mechanism": "robots.graph_mechanism",
 }
 
 
@@ -188,6 +190,7 @@ __all__ = [
     "fundamental_loops",
     "generic_analysis",
     "graph_dot",
+    "grid_map",
     "graph_json",
     "helical",
     "index_extremes",
@@ -202,6 +205,7 @@ __all__ = [
     "load_snapshot",
     "loci",
     "loop_closure_matrix",
+    "mechanism",
     "meet_line_plane",
     "meet_planes",
     "motion_type",

@@ -53,6 +53,7 @@ from ..exceptions import ScrewkitValueError
 from .kinematic_model import KinematicModel, KinematicState, hat, rotation_log
 
 __all__ = [
+    "COORDINATE_NAMES",
     "FINAL_TOLERANCE",
     "MAX_STEP",
     "ClosedConfigurations",
@@ -92,6 +93,8 @@ RETRY_REFINEMENT = 8
 MAX_STEPS = 2000
 
 _AXES = ("x", "y", "z")
+#: Every name :func:`task_coordinates` gives a coordinate.
+COORDINATE_NAMES = ("x", "y", "z", "phi", "rx", "ry", "rz", "t1", "t2", "t3", "r1", "r2", "r3")
 
 
 @dataclass(frozen=True)

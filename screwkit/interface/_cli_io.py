@@ -45,10 +45,13 @@ class UsageError(Exception):
 
 
 def pose_coordinates() -> list[str]:
-    """Every family's pose coordinates (the map command takes one option per coordinate)."""
+    """Every family's pose coordinates, then those a snapshot's motion may have
+    (:data:`screwkit.core.loop_closure.COORDINATE_NAMES`): the map command takes one option per coordinate."""
+    from ..core.loop_closure import COORDINATE_NAMES
     from ..robots.families import families
 
-    return families().pose_names()
+    names = families().pose_names()
+    return names + [name for name in COORDINATE_NAMES if name not in names]
 
 
 
@@ -113,13 +116,14 @@ def target_and_pose(args: argparse.Namespace) -> tuple[Any, Any]:
 
 
 
-def catalog_mechanism(command: str, name: str) -> Any:
-    """A catalog mechanism by name or file (a snapshot has no pose space to map)."""
+def mechanism_over_poses(command: str, name: str) -> Any:
+    """A mechanism with a pose space: a catalog robot by name or file, or a snapshot file over its
+    motion (loop-closure kinematics from its configuration, :func:`screwkit.robots.graph_mechanism.mechanism`)."""
     if name.endswith(".toml"):
         if toml_kind(name) == "snapshot":
-            raise UsageError(
-                f"screwkit {command}: error: {name} is a snapshot (one configuration); no poses to vary"
-            )
+            from ..robots.graph_mechanism import mechanism
+
+            return mechanism(name)
     elif name.lower() not in list_mechanisms():
         raise UsageError(f"screwkit {command}: error: {unknown_mechanism(name)}")
     return load_mechanism(name)

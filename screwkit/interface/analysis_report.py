@@ -275,7 +275,7 @@ class AnalysisReport:
         >>> summary["type"], summary["actuated_joints"]
         ('regular', ['limb1_R1', 'limb2_R1', 'limb3_R1'])
         """
-        if self.pose is None:
+        if self.pose is None and self.jacobians is None:  # a snapshot whose Jacobians are not defined
             return None
         jac = self.jacobians
         square = jac is not None and jac.A.shape[0] == jac.A.shape[1]
@@ -402,7 +402,7 @@ class AnalysisReport:
                 out.append(f"    {condition.statement}")
                 out.append(f"    vector form: {condition.expression} = 0   (here: {value:.6g})")
         out += ["", "verdict", *("  " + line for line in str(self.verdict).splitlines())]
-        if self.pose is not None:
+        if self.pose is not None or self.jacobians is not None:
             out += ["", *self._jacobian_lines()]
         if self.transmission is not None:
             out += ["", *_transmission_lines(self.transmission)]

@@ -17,7 +17,7 @@ import numpy as np
 from ..exceptions import ScrewkitError
 from ._cli_io import (
     UsageError,
-    catalog_mechanism,
+    mechanism_over_poses,
     check_coordinate,
     check_writable,
     error_reason,
@@ -84,7 +84,7 @@ def run_map(args: argparse.Namespace) -> int:
         )
     if args.chunk is not None and args.chunk < 1:
         raise UsageError(f"screwkit map: error: --chunk expects a positive integer, got {args.chunk}")
-    mechanism = catalog_mechanism("map", args.mechanism)
+    mechanism = mechanism_over_poses("map", args.mechanism)
     axes, fixed = [], {}
     for name in pose_coordinates():
         values = getattr(args, name)
@@ -202,7 +202,7 @@ def run_path(args: argparse.Namespace) -> int:
         raise UsageError(
             f"screwkit path: error: --samples expects an integer in 2..{MAX_PATH_SAMPLES}, got {args.samples}"
         )
-    mechanism = catalog_mechanism("path", args.mechanism)
+    mechanism = mechanism_over_poses("path", args.mechanism)
     for option, values in (("--from", args.start), ("--to", args.end)):
         pose_values("screwkit path", option, mechanism, values)
     result = check_path(mechanism, args.start, args.end, samples=args.samples, angles="deg")

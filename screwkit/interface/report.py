@@ -42,6 +42,7 @@ import numpy as np
 from ..algebra import backend as B
 from ..algebra.checks import checked_length_scale, checked_rtol
 from ..core.jacobian_matrices import Jacobians
+from ..core.jacobians import jacobians_from_wrenches
 from ..core.verdicts import classify_analysis
 from ..core.wrench_systems import WrenchAnalysis
 from ..core.wrenches import wrench_analysis
@@ -201,6 +202,7 @@ def _graph_report(
 
     progress(STAGES[1])
     diagram, sampler = graph_diagram(analysis, length_scale=length_scale)
+    jacobians, jacobians_note, transmission, coordinates = _graph_jacobians(graph, analysis, rtol, length_scale)
     report = _finish(
         graph.graph.get("name", source),
         source,
@@ -214,9 +216,37 @@ def _graph_report(
         f"structural zeros confirmed on generic configurations of {what}, reached by moving the mechanism "
         "and closing its loops again (screwkit.core.motion); each stage equals the 6×6 determinant on "
         "fresh ones",
+        jacobians,
+        jacobians_note,
         progress=progress,
     )
-    return dataclasses.replace(report, given_length_scale=length_scale)
+    return dataclasses.replace(
+        report, given_length_scale=length_scale, transmission=transmission, pose_names=coordinates
+    )
+
+
+def _graph_jacobians(
+    graph: nx.MultiDiGraph, analysis: WrenchAnalysis, rtol: float, length_scale: float | None
+) -> tuple[Jacobians | None, str, dict[str, Any], tuple[str, ...]]:
+    """A graph's Jacobians and transmission at its configuration, over the platform's twists per unit
+    rate of its coordinates (loop closure, :mod:`screwkit.robots.graph_kinematics`); None and why
+    when the graph is not a mechanism with coordinates there (e.g. a singular configuration)."""
+    from ..papers.paper_004_summary import transmission_summary
+    from ..robots.graph_mechanism import mechanism
+
+    try:
+        robot = mechanism(graph)
+        basis = robot.at(rtol=rtol, length_scale=length_scale)[0].twist_basis
+        jacobians = jacobians_from_wrenches(analysis, basis, rtol=rtol)
+    except ScrewkitError as err:
+        note = f"not computed: {err}"
+        return None, note, {"wrench": None, "paper_004": None, "note": note}, ()
+    note = (
+        "rows: the actuation wrenches (unit force, or unit couple, signed so that B_jj >= 0); columns: the "
+        f"platform's twists per unit rate of its coordinates ({', '.join(robot.coordinates)}) at this "
+        "configuration (loop closure, screwkit.robots.graph_kinematics)"
+    )
+    return jacobians, note, transmission_summary(robot, robot.reference_pose, jacobians), robot.coordinates
 
 
 def pose_report(
