@@ -72,24 +72,27 @@ MAX_STEP = 0.25
 NEWTON_ITERATIONS = 10
 #: The residual (characteristic lengths, radians) at which the Newton iterations of a step on the
 #: way stop, and of the last step.
-STEP_TOLERANCE = 1e-8
+STEP_TOLERANCE = 1e-6
 LAST_STEP_TOLERANCE = 1e-12
 #: The residual below which a configuration is accepted (characteristic lengths, radians).
 FINAL_TOLERANCE = 1e-9
 #: A step whose Newton iterations end above this residual has lost the mechanism.
-LOST_TOLERANCE = 1e-6
+LOST_TOLERANCE = 1e-3
 #: The largest Newton correction taken at once (radians, characteristic lengths).
 MAX_CORRECTION = 0.5
 #: The largest correction Newton's method may make after a step's first (tangent) iteration, in
 #: radians or characteristic lengths: beyond it the step may have jumped to another branch of the
 #: loop equations (another assembly or working mode), and the pose is taken again in steps
 #: :data:`RETRY_REFINEMENT` times shorter.
-JUMP_LIMIT = 0.05
+JUMP_LIMIT = 0.2
+#: A spherical joint's angles are folded into its offset once one exceeds this (radians), far from
+#: the gimbal lock of its three exponentials at π/2.
+RECENTRE_ANGLE = 0.3
 #: Poses solved together (bounds the memory of the batched Jacobians).
 CHUNK = 1024
 #: Refinements of the step tried for the poses the first continuation could not reach.
-RETRY_REFINEMENT = 8
-#: The most continuation steps taken for one batch.
+RETRY_REFINEMENT = 4
+#: The most continuation steps taken for one pose.
 MAX_STEPS = 2000
 
 _AXES = ("x", "y", "z")
@@ -670,39 +673,60 @@ def _equations(model: KinematicModel, task: Any, state: KinematicState, target: 
 
 def _continue(
     model: KinematicModel, task: Any, targets: Array, theta: Array, offsets: dict[str, Array],
-    start: Array, steps: int, jump_limit: float,
+    start: Array, step_length: float, jump_limit: float,
 ) -> tuple[Array, dict[str, Array], Array, Array]:
-    """One continuation of a chunk in ``steps`` equal steps; returns theta, offsets, the residual at
-    the targets (inf where non-finite) and the fraction of the way where each pose was lost (NaN if
-    not)."""
+    """One continuation of a chunk, each pose in equal steps of at most ``step_length`` (a pose whose
+    way is done rests); returns theta, offsets, the residual at the targets (inf where non-finite)
+    and the fraction of the way where each pose was lost (NaN if not)."""
     count = targets.shape[0]
     lost_at = np.full(count, np.nan)
     active = np.ones(count, dtype=bool)
     residual_size = np.zeros(count)
+    spherical = np.array(
+        [i for key, kind in model.types.items() if kind == "S" for i in model.joints[key][2]], dtype=int
+    )
+    way = np.max(np.abs(targets - start), axis=1, initial=0.0)
+    own = np.clip(np.ceil(way / step_length), 1, MAX_STEPS)
+    steps = int(np.max(own, initial=1))
     for step in range(1, steps + 1):
-        target = start + (targets - start) * (step / steps)
+        moving = step <= own
+        target = start + (targets - start) * np.minimum(1.0, step / own)[:, None]
+        tolerance = np.where(step >= own, LAST_STEP_TOLERANCE, STEP_TOLERANCE)
         corrected = np.zeros(count)  # the corrections after each pose's first iteration
         first = np.ones(count, dtype=bool)
-        for _ in range(NEWTON_ITERATIONS):
-            state = model.state(theta, offsets)
-            residual, jacobian = _equations(model, task, state, target)
-            residual_size = np.max(np.abs(residual), axis=1, initial=0.0)
-            tolerance = LAST_STEP_TOLERANCE if step == steps else STEP_TOLERANCE
-            working = active & (residual_size > tolerance)
-            if not np.any(working):
+        working = active & moving
+        for _ in range(NEWTON_ITERATIONS):  # only the poses not yet within the tolerance
+            rows = np.flatnonzero(working)
+            if rows.size == 0:
                 break
-            correction = _solve_step(jacobian[working], residual[working])
-            size = np.max(np.abs(correction), axis=1, initial=0.0)
-            correction *= np.minimum(1.0, MAX_CORRECTION / np.maximum(size, 1e-300))[:, None]
-            theta[working] += correction
-            corrected[working] += np.where(first[working], 0.0, np.minimum(size, MAX_CORRECTION))
-            first[working] = False
+            state = model.state(theta[rows], {k: v[rows] for k, v in offsets.items()})
+            residual, jacobian = _equations(model, task, state, target[rows])
+            size = np.max(np.abs(residual), axis=1, initial=0.0)
+            residual_size[rows] = size
+            need = size > tolerance[rows]
+            working[rows[~need]] = False
+            rows = rows[need]
+            if rows.size == 0:
+                break
+            correction = _solve_step(jacobian[need], residual[need])
+            length = np.max(np.abs(correction), axis=1, initial=0.0)
+            correction *= np.minimum(1.0, MAX_CORRECTION / np.maximum(length, 1e-300))[:, None]
+            theta[rows] += correction
+            corrected[rows] += np.where(first[rows], 0.0, np.minimum(length, MAX_CORRECTION))
+            first[rows] = False
         bad = ~np.isfinite(residual_size) | ~np.all(np.isfinite(theta), axis=1)
-        newly = active & (bad | (residual_size > LOST_TOLERANCE) | (corrected > jump_limit))
-        lost_at[newly] = step / steps
+        newly = active & moving & (bad | (residual_size > LOST_TOLERANCE) | (corrected > jump_limit))
+        lost_at[newly] = np.minimum(1.0, step / own[newly])
         active &= ~newly
         theta[~np.all(np.isfinite(theta), axis=1)] = 0.0  # frozen and flagged, never propagated
-        theta, offsets = model.recentred(model.state(theta, offsets))
+        if spherical.size:  # fold the spherical joints' angles into their offsets before they grow
+            turned = np.flatnonzero(np.max(np.abs(theta[:, spherical]), axis=1) > RECENTRE_ANGLE)
+            if turned.size:
+                sub = {k: v[turned] for k, v in offsets.items()}
+                new_theta, new_offsets = model.recentred(model.state(theta[turned], sub))
+                theta[turned] = new_theta
+                for key, value in new_offsets.items():
+                    offsets.setdefault(key, np.tile(np.eye(4), (count, 1, 1)))[turned] = value
     state = model.state(theta, offsets)
     residual, _ = _equations(model, task, state, targets)
     size = np.max(np.abs(residual), axis=1, initial=0.0)
@@ -787,15 +811,13 @@ def _close_chunk(
 
     everything = np.ones(count, dtype=bool)
     theta, offsets, start = begin(everything)
-    distance = float(np.max(np.abs(targets - start), initial=0.0))
-    steps = int(min(MAX_STEPS, max(1, math.ceil(distance / MAX_STEP))))
-    theta, offsets, residual, lost_at = _continue(model, task, targets, theta, offsets, start, steps, JUMP_LIMIT)
+    theta, offsets, residual, lost_at = _continue(model, task, targets, theta, offsets, start, MAX_STEP, JUMP_LIMIT)
     missed = ~(residual < FINAL_TOLERANCE)
     if np.any(missed):  # again, in shorter steps
         retry_theta, retry_offsets, retry_start = begin(missed)
-        retry_steps = int(min(MAX_STEPS, steps * RETRY_REFINEMENT))
         again = _continue(  # the steps are short: the corrections may be what they need
-            model, task, targets[missed], retry_theta, retry_offsets, retry_start, retry_steps, math.inf
+            model, task, targets[missed], retry_theta, retry_offsets, retry_start,
+            MAX_STEP / RETRY_REFINEMENT, math.inf,
         )
         theta[missed] = again[0]
         for key in offsets:
