@@ -53,11 +53,12 @@ from typing import Any
 import networkx as nx
 import numpy as np
 
+from ..algebra.rigid_motions import adjoint, exp_screw, rotation_log, rotation_matrix
 from ..exceptions import ScrewkitValueError
 from ..graphs.jointtable import JointTable
 from ..graphs.twistgraph import graph_frame
 
-__all__ = ["JointColumn", "KinematicModel", "KinematicState", "hat", "rotation_log", "rotation_matrix"]
+__all__ = ["JointColumn", "KinematicModel", "KinematicState"]
 
 Array = np.ndarray
 
@@ -110,119 +111,6 @@ class KinematicState:
     links: dict[Any, Array]
     current: Array
     motions: dict[str, Array] = field(repr=False)
-
-
-def hat(w: Array) -> Array:
-    """Cross-product matrices of ``(..., 3)`` vectors.
-
-    Parameters
-    ----------
-    w : numpy.ndarray, shape (..., 3)
-
-    Returns
-    -------
-    numpy.ndarray, shape (..., 3, 3)
-        ``[w]×`` with ``[w]× v = w × v``.
-
-    Examples
-    --------
-    >>> hat(np.array([0.0, 0.0, 1.0])) @ np.array([1.0, 0.0, 0.0])
-    array([0., 1., 0.])
-    """
-    zero = np.zeros(w.shape[:-1])
-    return np.stack(
-        [
-            np.stack([zero, -w[..., 2], w[..., 1]], -1),
-            np.stack([w[..., 2], zero, -w[..., 0]], -1),
-            np.stack([-w[..., 1], w[..., 0], zero], -1),
-        ],
-        -2,
-    )
-
-
-def rotation_matrix(axis: Array, angle: Array) -> Array:
-    """Rodrigues' formula (Murray, Li & Sastry 1994, Eq. 2.14) for unit axes and angles.
-
-    Parameters
-    ----------
-    axis : numpy.ndarray, shape (..., 3)
-        Unit axes (broadcast against ``angle``).
-    angle : numpy.ndarray, shape (...)
-        Angles in radians.
-
-    Returns
-    -------
-    numpy.ndarray, shape (..., 3, 3)
-
-    Examples
-    --------
-    >>> rotation_matrix(np.array([0.0, 0.0, 1.0]), np.array(np.pi / 2)).round(12) @ [1, 0, 0]
-    array([0., 1., 0.])
-    """
-    k = hat(np.asarray(axis, dtype=float))
-    angle = np.asarray(angle, dtype=float)[..., None, None]
-    return np.eye(3) + np.sin(angle) * k + (1 - np.cos(angle)) * (k @ k)
-
-
-def rotation_log(rotation: Array) -> Array:
-    """The rotation vectors ``φ`` with ``exp([φ]×) = R`` (angles in ``[0, π]``), batched.
-
-    The inverse of Rodrigues' formula (Murray, Li & Sastry 1994, Eqs. 2.17-2.18), with the series
-    near 0 and the symmetric part near π, so it is accurate over every rotation.
-
-    Parameters
-    ----------
-    rotation : numpy.ndarray, shape (..., 3, 3)
-
-    Returns
-    -------
-    numpy.ndarray, shape (..., 3)
-
-    Examples
-    --------
-    >>> rotation_log(rotation_matrix(np.array([0.0, 0.0, 1.0]), np.array(0.3))).round(12) + 0.0
-    array([0. , 0. , 0.3])
-    """
-    r = np.asarray(rotation, dtype=float)
-    skew = 0.5 * np.stack([r[..., 2, 1] - r[..., 1, 2], r[..., 0, 2] - r[..., 2, 0], r[..., 1, 0] - r[..., 0, 1]], -1)
-    cosine = np.clip(0.5 * (np.trace(r, axis1=-2, axis2=-1) - 1), -1.0, 1.0)
-    sine = np.linalg.norm(skew, axis=-1)
-    angle = np.arctan2(sine, cosine)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        factor = np.where(sine > 1e-8, angle / np.where(sine > 0, sine, 1.0), 1.0 + angle**2 / 6)
-    out = skew * factor[..., None]
-    near_pi = cosine < -0.99  # sin θ small, the skew part loses the axis: read it from R + I
-    if np.any(near_pi):
-        sym = (r[near_pi] + np.eye(3)) / 2  # = a aᵀ (1 − cos θ)/2 + cos θ ... → a aᵀ at θ = π
-        column = np.argmax(np.diagonal(sym, axis1=-2, axis2=-1), axis=-1)
-        axis = np.take_along_axis(sym, column[:, None, None], axis=-1)[..., 0]
-        axis /= np.linalg.norm(axis, axis=-1, keepdims=True)
-        sign = np.where(np.einsum("bi,bi->b", axis, skew[near_pi]) < 0, -1.0, 1.0)
-        out[near_pi] = axis * (sign * angle[near_pi])[:, None]
-    return out
-
-
-def _exp(row: Array, angle: Array) -> Array:
-    """Displacements ``(B, 4, 4)`` of the unit screw ``row = (ω; v)`` by ``angle (B,)`` (Murray, Li
-    & Sastry 1994, Eq. 2.36: ``p = (I − R)(ω × v) + ω ωᵀ v θ``; ``(I, v θ)`` for ``ω = 0``)."""
-    g = np.tile(np.eye(4), (len(angle), 1, 1))
-    w, v = row[:3], row[3:]
-    size = np.linalg.norm(w)
-    if size < 1e-12:
-        g[:, :3, 3] = angle[:, None] * v
-        return g
-    w, v = w / size, v / size  # a rotation screw: θ in radians about its unit axis
-    rot = rotation_matrix(w, angle)
-    g[:, :3, :3] = rot
-    g[:, :3, 3] = (np.eye(3) - rot) @ np.cross(w, v) + np.outer(angle, w * (w @ v))
-    return g
-
-
-def _adjoint(g: Array, rows: Array) -> Array:
-    """``Ad(g)`` applied to screws ``(B, 6)``: ``(R s; R s0 + p × R s)`` (Murray, Li & Sastry Eq. 2.58)."""
-    s = np.einsum("bij,bj->bi", g[:, :3, :3], rows[:, :3])
-    s0 = np.einsum("bij,bj->bi", g[:, :3, :3], rows[:, 3:]) + np.cross(g[:, :3, 3], s)
-    return np.concatenate([s, s0], axis=-1)
 
 
 def _unit(v: Array) -> Array:
@@ -399,7 +287,8 @@ class KinematicModel:
         >>> from screwkit.graphs.joints import prismatic
         >>> from screwkit.graphs.twistgraph import twist_graph
         >>> model = KinematicModel(twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0]))]))
-        >>> bool(np.allclose(model.displacement(model.state(np.array([[0.5]])), "E")[0, 0, 3], 0.5 * model.length))
+        >>> moved = model.displacement(model.state(np.array([[0.5]])), "E")
+        >>> bool(np.isclose(moved[0, 0, 3], 0.5 * model.length))
         True
         """
         g = state.links[link].copy()
@@ -419,7 +308,7 @@ class KinematicModel:
                 step = np.tile(np.eye(4), (theta.shape[0], 1, 1))
                 step[:, :3, 3] = rotation_matrix(column.hinge, theta[:, index]) @ column.rod - column.rod
             else:
-                step = _exp(column.row, theta[:, index])
+                step = exp_screw(column.row, theta[:, index])
             g = g @ step
         return g, before
 
@@ -466,9 +355,9 @@ class KinematicModel:
                     turned = rotation_matrix(column.hinge, theta[:, index]) @ column.rod
                     direction = np.cross(column.hinge, turned)
                     row = np.concatenate([np.zeros_like(direction), direction], axis=-1)
-                    current[:, index] = _adjoint(carry, row)
+                    current[:, index] = adjoint(carry, row)
                 else:
-                    current[:, index] = _adjoint(carry, np.broadcast_to(column.row, (count, 6)))
+                    current[:, index] = adjoint(carry, np.broadcast_to(column.row, (count, 6)))
         return KinematicState(theta, offsets, links, current, motions)
 
     def loop_residual(self, state: KinematicState) -> Array:
@@ -627,6 +516,10 @@ class KinematicModel:
             anchor = (np.einsum("bij,j->bi", g[:, :3, :3], local) + g[:, :3, 3]) * self.length + self.point
             anchor = anchor.reshape(*shape, 3)
         return JointTable.from_rows(
-            reference.base, reference.platform, table_rows, dof=reference.dof, anchor=anchor,
+            reference.base,
+            reference.platform,
+            table_rows,
+            dof=reference.dof,
+            anchor=anchor,
             mobility=reference.mobility,
         )

@@ -24,12 +24,12 @@ from ..robots.toml_fields import MAX_COORDINATE, degrees_to_radians, file_kind, 
 
 __all__ = [
     "UsageError",
-    "catalog_mechanism",
     "check_coordinate",
     "check_writable",
     "error_reason",
     "given_pose",
     "json_text",
+    "mechanism_over_poses",
     "pose_coordinates",
     "pose_values",
     "print_text",
@@ -46,8 +46,9 @@ class UsageError(Exception):
 
 def pose_coordinates() -> list[str]:
     """Every family's pose coordinates, then those a snapshot's motion may have
-    (:data:`screwkit.core.loop_closure.COORDINATE_NAMES`): the map command takes one option per coordinate."""
-    from ..core.loop_closure import COORDINATE_NAMES
+    (:data:`screwkit.core.task_coordinates.COORDINATE_NAMES`): the map command takes one option per
+    coordinate."""
+    from ..core.task_coordinates import COORDINATE_NAMES
     from ..robots.families import families
 
     names = families().pose_names()
@@ -118,7 +119,8 @@ def target_and_pose(args: argparse.Namespace) -> tuple[Any, Any]:
 
 def mechanism_over_poses(command: str, name: str) -> Any:
     """A mechanism with a pose space: a catalog robot by name or file, or a snapshot file over its
-    motion (loop-closure kinematics from its configuration, :func:`screwkit.robots.graph_mechanism.mechanism`)."""
+    motion (loop-closure kinematics from its configuration,
+    :func:`screwkit.robots.graph_mechanism.mechanism`)."""
     if name.endswith(".toml"):
         if toml_kind(name) == "snapshot":
             from ..robots.graph_mechanism import mechanism

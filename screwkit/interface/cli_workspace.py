@@ -17,11 +17,11 @@ import numpy as np
 from ..exceptions import ScrewkitError
 from ._cli_io import (
     UsageError,
-    mechanism_over_poses,
     check_coordinate,
     check_writable,
     error_reason,
     json_text,
+    mechanism_over_poses,
     pose_coordinates,
     pose_values,
     print_text,

@@ -202,7 +202,9 @@ def _graph_report(
 
     progress(STAGES[1])
     diagram, sampler = graph_diagram(analysis, length_scale=length_scale)
-    jacobians, jacobians_note, transmission, coordinates = _graph_jacobians(graph, analysis, rtol, length_scale)
+    jacobians, jacobians_note, transmission, coordinates = _graph_jacobians(
+        graph, analysis, rtol, length_scale
+    )
     report = _finish(
         graph.graph.get("name", source),
         source,

@@ -3,7 +3,7 @@ functions a :class:`~screwkit.robots.families.Family` needs, for any mechanism.
 
 :class:`GraphKinematics` holds a graph's product-of-exponentials model
 (:class:`~screwkit.core.kinematic_model.KinematicModel`) and the coordinates of a link
-(:func:`~screwkit.core.loop_closure.task_coordinates`): the position of a point of it along the
+(:func:`~screwkit.core.task_coordinates.task_coordinates`): the position of a point of it along the
 translation directions of its motion at the reference — ``x, y, z`` along the base frame's axes — and
 its rotation vector along the rotation directions (``phi`` for one rotation, ``rx, ry, rz`` for more),
 0 at the reference. Its inverse kinematics is :func:`~screwkit.core.loop_closure.close_loops`
@@ -39,16 +39,11 @@ import networkx as nx
 import numpy as np
 
 from ..algebra import backend as B
-from ..core.kinematic_model import KinematicModel, KinematicState, rotation_log
-from ..core.loop_closure import (
-    FINAL_TOLERANCE,
-    ClosedConfigurations,
-    JointTask,
-    PoseTask,
-    TaskCoordinates,
-    close_loops,
-    task_coordinates,
-)
+from ..algebra.rigid_motions import rotation_log
+from ..core.kinematic_model import KinematicModel, KinematicState
+from ..core.kinematic_tasks import JointTask, PoseTask
+from ..core.loop_closure import FINAL_TOLERANCE, ClosedConfigurations, close_loops
+from ..core.task_coordinates import TaskCoordinates, task_coordinates
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError, UnreachablePoseError
 from ..graphs.jointtable import JointTable
 from ..graphs.twistgraph import check_twist_graph
@@ -60,6 +55,7 @@ __all__ = [
     "GraphConfiguration",
     "GraphKinematics",
     "displacement_coordinates",
+    "forward_posed",
     "graph_family",
     "graph_kinematics",
     "kinematics_of",
@@ -136,8 +132,11 @@ class GraphKinematics:
         missing = [i for i, key in enumerate(keys) if key not in self._cache]
         solved = close_loops(self.model, self.task, self._targets(poses[missing])) if missing else None
         theta = np.zeros((len(poses), self.model.size))
-        offsets = {key: np.tile(np.eye(4), (len(poses), 1, 1)) for key, kind in self.model.types.items()
-                   if kind == "S"}
+        offsets = {
+            key: np.tile(np.eye(4), (len(poses), 1, 1))
+            for key, kind in self.model.types.items()
+            if kind == "S"
+        }
         reached = np.ones(len(poses), dtype=bool)
         residual = np.zeros(len(poses))
         reasons = np.full(len(poses), "", dtype=object)
@@ -145,7 +144,11 @@ class GraphKinematics:
             theta[missing] = solved.theta
             for key in offsets:
                 offsets[key][missing] = solved.offsets.get(key, np.eye(4))
-            reached[missing], residual[missing], reasons[missing] = solved.reached, solved.residual, solved.reasons
+            reached[missing], residual[missing], reasons[missing] = (
+                solved.reached,
+                solved.residual,
+                solved.reasons,
+            )
             if len(self._cache) + len(missing) > MAX_CACHED_POSES:
                 self._cache.clear()
             for j, i in enumerate(missing):
@@ -241,18 +244,23 @@ class GraphKinematics:
         rates = np.zeros((jacobian.shape[1], count))
         unit = np.where(task.translation[:count], 1.0 / model.length, 1.0)
         rates[loops.shape[1] + np.arange(count), np.arange(count)] = unit
-        gram = jacobian @ np.swapaxes(jacobian, -1, -2)
-        damping = 1e-13 * (np.trace(gram, axis1=-2, axis2=-1)[:, None, None] + 1.0)
-        multipliers = np.linalg.solve(gram + damping * np.eye(gram.shape[-1]), np.broadcast_to(rates, (len(gram), *rates.shape)))
-        joint_rates = np.swapaxes(jacobian, -1, -2) @ multipliers  # (B, columns, n)
-        twists = model.link_jacobian(state, self.coordinates.link) @ joint_rates  # (B, 6, n) scaled
-        return model.unscaled(np.swapaxes(twists, -1, -2))
+        # the minimum-norm joint rates by the pseudo-inverse (singular values below 1e-12 of the
+        # largest dropped: the dependent loop equations of an overconstrained mechanism)
+        left, sigma, right = np.linalg.svd(jacobian, full_matrices=False)
+        inverse = np.where(sigma > 1e-12 * sigma[:, :1], 1.0 / np.where(sigma > 0, sigma, 1.0), 0.0)
+        joint_rates = np.swapaxes(right, -1, -2) @ (inverse[..., None] * (np.swapaxes(left, -1, -2) @ rates))
+        twists = np.swapaxes(model.link_jacobian(state, self.coordinates.link) @ joint_rates, -1, -2)
+        omega = twists[..., :3]  # (B, n, 3); the velocity at the scaled origin back in graph lengths
+        return np.concatenate([omega, twists[..., 3:] * model.length + np.cross(model.point, omega)], axis=-1)
 
 
 def _subset(closed: ClosedConfigurations, rows: Array) -> ClosedConfigurations:
     return ClosedConfigurations(
-        closed.theta[rows], {k: v[rows] for k, v in closed.offsets.items()}, closed.reached[rows],
-        closed.residual[rows], closed.reasons[rows],
+        closed.theta[rows],
+        {k: v[rows] for k, v in closed.offsets.items()},
+        closed.reached[rows],
+        closed.residual[rows],
+        closed.reasons[rows],
     )
 
 
@@ -344,7 +352,8 @@ def _checked_graph(graph: Any) -> nx.MultiDiGraph:
     for _, _, key, joint in graph.edges(keys=True, data="joint"):
         if B.is_symbolic(joint.screws):
             raise ScrewkitTypeError(
-                f"Expected a numeric twist graph for loop-closure kinematics, got symbolic screws in joint {key!r}."
+                "Expected a numeric twist graph for loop-closure kinematics, got symbolic screws in "
+                f"joint {key!r}."
             )
         if joint.virtual:
             raise ScrewkitValueError(
@@ -369,11 +378,17 @@ def _is_complete(model: KinematicModel, coordinates: TaskCoordinates) -> bool:
         return False
     values = held.values(model.state(closed.theta, closed.offsets))
     reference = held.scaled_targets(free.unscaled(start))
-    return bool(np.max(np.abs(held.difference(values, reference)[:, count:]), initial=0.0) < 1e3 * FINAL_TOLERANCE)
+    return bool(
+        np.max(np.abs(held.difference(values, reference)[:, count:]), initial=0.0) < 1e3 * FINAL_TOLERANCE
+    )
 
 
 def graph_kinematics(
-    graph: nx.MultiDiGraph, *, link: Any = None, point: Any = None, rotations: bool = True,
+    graph: nx.MultiDiGraph,
+    *,
+    link: Any = None,
+    point: Any = None,
+    rotations: bool = True,
     angle_offsets: Any = None,
 ) -> GraphKinematics:
     """The loop-closure kinematics of a twist graph with the coordinates of a link.
@@ -500,7 +515,9 @@ def displacement_coordinates(kinematics: GraphKinematics, displacements: Array) 
     position = coordinates.point + translation
     vector = rotation_log(rotation)
     translation_mask = np.array([k == "translation" for k in coordinates.kinds])
-    values = np.where(translation_mask, position @ coordinates.directions.T, vector @ coordinates.directions.T)
+    values = np.where(
+        translation_mask, position @ coordinates.directions.T, vector @ coordinates.directions.T
+    )
     values = values + np.where(translation_mask, 0.0, kinematics.angle_offsets)
     if kinematics.complete:  # the directions left out must not move
         task = kinematics.task
@@ -508,11 +525,60 @@ def displacement_coordinates(kinematics: GraphKinematics, displacements: Array) 
         extra = task.directions[count:]
         moved = np.where(task.translation[count:], (position - coordinates.point) @ extra.T, vector @ extra.T)
         size = np.max(np.abs(moved), axis=1, initial=0.0)
-        limit = 1e-9 * np.maximum(1.0, np.where(task.translation[count:], kinematics.model.length, 1.0)).max(initial=1.0)
+        limit = 1e-9 * np.maximum(1.0, np.where(task.translation[count:], kinematics.model.length, 1.0)).max(
+            initial=1.0
+        )
         if np.any(size > limit):
             bad = int(np.argmax(size))
             raise ScrewkitValueError(
-                f"Expected `poses` (4×4 displacements) the mechanism's motion makes ({', '.join(coordinates.names)}), "
-                f"got one at index {bad} that also moves {size[bad]:.3g} along a direction the motion does not have."
+                "Expected `poses` (4×4 displacements) the mechanism's motion makes "
+                f"({', '.join(coordinates.names)}), got one at index {bad} that also moves "
+                f"{size[bad]:.3g} along a direction the motion does not have."
             )
     return values
+
+
+def forward_posed(robot: Any, values: Any, *, rtol: float | None, length_scale: float | None) -> Any:
+    """What :meth:`screwkit.robots.mechanism.Mechanism.forward` returns: the mechanism at the platform
+    poses its actuated-joint displacements give (unreached ones NaN, with their reasons).
+
+    Parameters
+    ----------
+    robot : Mechanism
+    values : array_like, shape (..., k)
+        Displacements of the actuated joints from the reference configuration.
+    rtol, length_scale : float or None
+        As in :meth:`~screwkit.robots.mechanism.Mechanism.at`.
+
+    Returns
+    -------
+    PosedMechanism
+
+    Raises
+    ------
+    ScrewkitValueError
+        If ``values`` does not have one finite value per actuated joint.
+
+    Examples
+    --------
+    >>> forward_posed(load_mechanism("h4"), np.zeros(4), rtol=None, length_scale=None).poses.round(9).tolist()
+    [0.0, 0.0, -750.0, 0.0]
+    """
+    from .posed import PosedMechanism
+
+    kinematics = kinematics_of(robot)
+    count = len(kinematics.actuated)
+    array = B.as_array(values, "values", (count,), symbolic=False).astype(float)
+    if not np.all(np.isfinite(array)):
+        raise ScrewkitValueError(
+            f"Expected finite `values` (one per actuated joint {kinematics.actuated}), got NaN or infinity."
+        )
+    shape = array.shape[:-1]
+    poses, closed = kinematics.forward(array.reshape(-1, count))
+    reasons = {
+        tuple(int(j) for j in np.unravel_index(i, shape)) if shape else (): str(closed.reasons[i])
+        for i in np.flatnonzero(~closed.reached)
+    }
+    return PosedMechanism.create(
+        robot, poses.reshape(*shape, -1), rtol=rtol, length_scale=length_scale, failures=reasons
+    )

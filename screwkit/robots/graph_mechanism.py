@@ -57,26 +57,33 @@ def _checked_point(value: Any, argument: str) -> Array:
         point = B.as_array(value, argument, (3,), symbolic=False).astype(float)
     except ScrewkitValueError:
         raise
-    except Exception as error:  # noqa: BLE001 - named below
+    except Exception as error:
         raise ScrewkitTypeError(f"Expected `{argument}` to be 3 numbers, got {value!r}.") from error
     if point.shape != (3,) or not np.all(np.isfinite(point)):
-        raise ScrewkitValueError(f"Expected `{argument}` to be 3 finite numbers, got {np.asarray(value).tolist()}.")
+        raise ScrewkitValueError(
+            f"Expected `{argument}` to be 3 finite numbers, got {np.asarray(value).tolist()}."
+        )
     return point
 
 
 def _default_workspace(kinematics: GraphKinematics, reference: Array) -> dict[str, tuple[float, float]]:
     span = WORKSPACE_LENGTHS * kinematics.model.length
     return {
-        name: (float(value - span), float(value + span)) if kind == "translation"
+        name: (float(value - span), float(value + span))
+        if kind == "translation"
         else (float(value - WORKSPACE_ANGLE), float(value + WORKSPACE_ANGLE))
-        for name, kind, value in zip(kinematics.coordinates.names, kinematics.coordinates.kinds, reference, strict=True)
+        for name, kind, value in zip(
+            kinematics.coordinates.names, kinematics.coordinates.kinds, reference, strict=True
+        )
     }
 
 
 def _checked_workspace(workspace: Any, names: tuple[str, ...]) -> dict[str, tuple[float, float]]:
     if not isinstance(workspace, Mapping) or set(workspace) != set(names):
         got = sorted(workspace) if isinstance(workspace, Mapping) else type(workspace).__name__
-        raise ScrewkitValueError(f"Expected `workspace` to map each coordinate {list(names)} to (low, high), got {got}.")
+        raise ScrewkitValueError(
+            f"Expected `workspace` to map each coordinate {list(names)} to (low, high), got {got}."
+        )
     box = {}
     for name in names:
         try:
@@ -86,7 +93,9 @@ def _checked_workspace(workspace: Any, names: tuple[str, ...]) -> dict[str, tupl
                 f"Expected `workspace[{name!r}]` to be two numbers (low, high), got {workspace[name]!r}."
             ) from error
         if not (np.isfinite(low) and np.isfinite(high) and low < high):
-            raise ScrewkitValueError(f"Expected `workspace[{name!r}]` to be finite with low < high, got ({low}, {high}).")
+            raise ScrewkitValueError(
+                f"Expected `workspace[{name!r}]` to be finite with low < high, got ({low}, {high})."
+            )
         box[name] = (low, high)
     return box
 
@@ -174,12 +183,17 @@ def mechanism(
     dof = graph.graph.get("dof")
     if dof is not None and len(names) != dof:
         raise ScrewkitValueError(
-            f"Expected the {'point' if task is not None else 'platform'} to move with the graph's dof = {dof} "
+            f"Expected the {'point' if task is not None else 'platform'} to move with the graph's "
+            f"dof = {dof} "
             f"freedoms at the reference configuration, got {len(names)} ({', '.join(names)}): the reference "
             "is singular, or dof is not the mechanism's."
         )
     reference = kinematics.coordinates.reference_values()
-    box = _default_workspace(kinematics, reference) if workspace is None else _checked_workspace(workspace, names)
+    box = (
+        _default_workspace(kinematics, reference)
+        if workspace is None
+        else _checked_workspace(workspace, names)
+    )
     return Mechanism(
         name=str(graph.graph.get("name", "mechanism")),
         family="loop_closure",
@@ -192,5 +206,3 @@ def mechanism(
         workspace=box,
         protocol=graph_family(kinematics.coordinates),
     )
-
-

@@ -26,9 +26,8 @@ from ..exceptions import (
     UnreachablePoseError,
 )
 from ..graphs.jointtable import JointTable
-from ..algebra import backend as B
 from .families import Family, families
-from .graph_kinematics import GraphKinematics, displacement_coordinates, kinematics_of
+from .graph_kinematics import GraphKinematics, displacement_coordinates, forward_posed, kinematics_of
 from .toml_fields import (
     MAX_ANGLE_DEGREES,
     MAX_ANGLE_RADIANS,
@@ -150,22 +149,7 @@ class Mechanism(Generic[P, C]):
         >>> posed.poses.round(9).tolist(), posed.verdicts.tolist()
         ([[0.0, 0.0, -750.0, 0.0]], ['regular'])
         """
-        from .posed import PosedMechanism
-
-        kinematics = kinematics_of(self)
-        count = len(kinematics.actuated)
-        array = B.as_array(values, "values", (count,), symbolic=False).astype(float)
-        if not np.all(np.isfinite(array)):
-            raise ScrewkitValueError(f"Expected finite `values` (one per actuated joint {kinematics.actuated}), got NaN or infinity.")
-        shape = array.shape[:-1]
-        poses, closed = kinematics.forward(array.reshape(-1, count))
-        reasons = {
-            tuple(int(j) for j in np.unravel_index(i, shape)) if shape else (): str(closed.reasons[i])
-            for i in np.flatnonzero(~closed.reached)
-        }
-        return PosedMechanism.create(
-            self, poses.reshape(*shape, -1), rtol=rtol, length_scale=length_scale, failures=reasons
-        )
+        return forward_posed(self, values, rtol=rtol, length_scale=length_scale)
 
     def unreachable_reasons(self, poses: Array, **options: Any) -> Array:
         """Why each pose ``(m, n)`` is out of reach (an empty string where it is reachable).

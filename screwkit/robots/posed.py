@@ -44,7 +44,7 @@ from ..core.jacobians import jacobians_from_wrenches
 from ..core.singularity import classify_chunks, label_table
 from ..core.verdicts import SingularityReport
 from ..core.wrench_systems import WrenchAnalysis, analyze_table
-from ..exceptions import ScrewkitError, ScrewkitIndexError, ScrewkitValueError
+from ..exceptions import ScrewkitError, ScrewkitIndexError, ScrewkitValueError, UnreachablePoseError
 from ..graphs.jointtable import JointTable
 from .generic_poses import (
     GENERIC_DRAWS,
@@ -226,6 +226,9 @@ class PosedMechanism:
     @functools.cached_property
     def configuration(self) -> Any:
         """The family's configuration over the batch (inverse kinematics)."""
+        if self._failures:  # known out of reach (e.g. by the forward kinematics): no configuration
+            index, reason = next(iter(self._failures.items()))
+            raise UnreachablePoseError(f"Pose {index} is out of reach: {reason}.")
         try:
             return self.mechanism.configuration(self.poses, **self.options)
         except ScrewkitError:
@@ -264,6 +267,8 @@ class PosedMechanism:
                 self.joints, rtol=self.rtol, length_scale=self.length_scale, chunk=CHUNK
             )
         flat = self.poses.reshape(-1, self.poses.shape[-1])
+        if self._failures:
+            _ = self.configuration  # names the first pose out of reach
         try:
             protocol, configuration = self.mechanism.family_protocol, self.mechanism.configuration
             pieces = (

@@ -212,10 +212,22 @@ def test_report_at_a_parallel_pose_of_the_h4_says_direct():
     assert abs(jac["det_A"]) <= 1e-8 * scale
 
 
-def test_snapshot_report_has_no_jacobians():
+def test_snapshot_report_has_the_jacobians_of_its_configuration():
     report = analyze("examples/planar_3rpr.toml", superbracket=False)
-    assert report.jacobians is None and report.to_dict()["jacobians"] is None
-    assert "\njacobians" not in str(report)
+    # hand derivation from the file: leg i runs from A_i (base) to C_i (platform); its actuation
+    # wrench is the unit force along the leg through C_i (B_ii = 1 against the unit slider twist), and
+    # A's row is that force on the twists x, y and phi about the centroid c of the C_i
+    base = np.array([[0.0, 0.0], [1.0, 0.0], [0.5, 1.0]])
+    ends = np.array([[0.4, 0.3], [0.7, 0.35], [0.55, 0.55]])
+    legs = (ends - base) / np.linalg.norm(ends - base, axis=1, keepdims=True)
+    centre = ends.mean(axis=0)
+    arm = ends - centre
+    expected = np.column_stack([legs, arm[:, 0] * legs[:, 1] - arm[:, 1] * legs[:, 0]])
+    assert report.pose_names == ("x", "y", "phi")
+    assert np.allclose(report.jacobians.A, expected, atol=1e-12)
+    assert np.allclose(report.jacobians.B, np.eye(3), atol=1e-12)
+    assert report.to_dict()["jacobians"]["type"] == "regular"
+    assert "\njacobians" in str(report) and report.transmission["wrench"] is not None
 
 
 def test_report_says_why_when_the_basis_is_refused(monkeypatch):
