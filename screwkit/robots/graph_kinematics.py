@@ -562,7 +562,7 @@ def forward_posed(robot: Any, values: Any, *, rtol: float | None, length_scale: 
     Examples
     --------
     >>> forward_posed(load_mechanism("h4"), np.zeros(4), rtol=None, length_scale=None).poses.round(9).tolist()
-    [0.0, 0.0, -750.0, 0.0]
+    [[0.0, 0.0, -750.0, 0.0]]
     """
     from .posed import PosedMechanism
 
@@ -573,10 +573,11 @@ def forward_posed(robot: Any, values: Any, *, rtol: float | None, length_scale: 
         raise ScrewkitValueError(
             f"Expected finite `values` (one per actuated joint {kinematics.actuated}), got NaN or infinity."
         )
+    array = array[None] if array.ndim == 1 else array  # one set of values: a batch of one, as at()
     shape = array.shape[:-1]
     poses, closed = kinematics.forward(array.reshape(-1, count))
     reasons = {
-        tuple(int(j) for j in np.unravel_index(i, shape)) if shape else (): str(closed.reasons[i])
+        tuple(int(j) for j in np.unravel_index(i, shape)): str(closed.reasons[i])
         for i in np.flatnonzero(~closed.reached)
     }
     return PosedMechanism.create(
