@@ -153,9 +153,16 @@ def _continue(
     way = np.max(np.abs(targets - start), axis=1, initial=0.0)
     own = np.clip(np.ceil(way / step_length), 1, MAX_STEPS)
     steps = int(np.max(own, initial=1))
+    previous = theta.copy()  # the joint values one step back: the secant predicts the next step's
+    extrapolated = np.ones(model.size, dtype=bool)
+    extrapolated[spherical] = False  # (a spherical joint's angles restart at its offset)
     for step in range(1, steps + 1):
         moving = step <= own
         target = start + (targets - start) * np.minimum(1.0, step / own)[:, None]
+        ahead = active & moving & (step > 1)
+        secant = np.where(extrapolated, theta - previous, 0.0)
+        previous = theta.copy()
+        theta[ahead] += secant[ahead]
         tolerance = np.where(step >= own, LAST_STEP_TOLERANCE, STEP_TOLERANCE)
         corrected = np.zeros(count)  # the corrections after each pose's first iteration
         first = np.ones(count, dtype=bool)

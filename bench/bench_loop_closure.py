@@ -1,0 +1,85 @@
+"""Speed of loop-closure kinematics against the catalog's closed forms (screwkit.core.loop_closure).
+
+Run: ``python bench/bench_loop_closure.py [--poses 2000] [--side 200] [--repeats 2]`` from the
+repository root (prints a table; not a test). Single-threaded BLAS. Rates in poses per second of this
+process's CPU time (the machine may be shared; the load average is printed), best of ``--repeats``,
+the two sides of each ratio measured in the same run:
+
+* ``H4 closed form``: ``load_mechanism("h4").at(poses).verdicts`` on ``--poses`` random reachable poses
+  (closed-form inverse kinematics, joint table, verdicts);
+* ``H4 loop closure``: the same poses and verdicts through ``screwkit.mechanism(h4 twist graph)``
+  (loop-closure inverse kinematics continued from the reference configuration; the verdicts are
+  checked equal to the closed form's), and the ratio of the rates (the issue's target: >= 0.3);
+* ``H4 catalog map``: ``grid_map(h4, "verdict")`` over ``--side``² poses (x, y at z = -750 mm);
+* ``6-UPS graph map``: ``grid_map`` of a Gough-Stewart platform built as a twist graph over the same
+  number of poses (x, y at the reference height), and the ratio to the H4 catalog map (target >= 0.3).
+"""
+
+import os
+
+for _name in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS", "NUMEXPR_NUM_THREADS"):
+    os.environ.setdefault(_name, "1")
+
+import argparse  # noqa: E402
+import sys  # noqa: E402
+import time  # noqa: E402
+from pathlib import Path  # noqa: E402
+
+import numpy as np  # noqa: E402
+
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent))  # tests.mechanisms, bench._timing
+
+import screwkit as sk  # noqa: E402
+from bench._timing import best_of  # noqa: E402
+from screwkit.robots.catalog import load_mechanism  # noqa: E402
+from tests.mechanisms import gough_stewart, gough_stewart_points  # noqa: E402
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--poses", type=int, default=2000)
+    parser.add_argument("--side", type=int, default=200)
+    parser.add_argument("--repeats", type=int, default=2)
+    args = parser.parse_args()
+    clock = time.process_time
+    print(f"load average {os.getloadavg()[0]:.2f}; {args.poses} poses, maps of {args.side}² poses")
+
+    h4 = load_mechanism("h4")
+    poses = h4.random_poses(np.random.default_rng(0), args.poses)
+    closed_form = h4.at(poses).verdicts
+    h4.at(poses[:8]).verdicts  # compile (numba) before timing
+    seconds_closed = best_of(args.repeats, lambda: h4.at(poses).verdicts, clock=clock)
+
+    def loop_closure():
+        graph = sk.mechanism(h4.twist_graph(), platform_point=[0.0, 0.0, -750.0])  # a fresh cache
+        return graph.at(poses).verdicts
+
+    assert (loop_closure() == closed_form).all(), "the loop closure's verdicts differ from the closed form's"
+    seconds_loop = best_of(args.repeats, loop_closure, clock=clock)
+    rate_closed, rate_loop = args.poses / seconds_closed, args.poses / seconds_loop
+    print(f"H4 closed form      {rate_closed:10.0f} poses/s")
+    print(f"H4 loop closure     {rate_loop:10.0f} poses/s   ratio {rate_loop / rate_closed:.3f} (target >= 0.3)")
+
+    side = args.side
+    seconds_h4_map = best_of(
+        args.repeats,
+        lambda: sk.grid_map(h4, "verdict", x=("x", -200, 200, side), y=("y", -200, 200, side),
+                            fixed={"z": -750.0, "phi": 0.0}, progress=False),
+        clock=clock,
+    )
+    gs = gough_stewart(*gough_stewart_points())
+
+    def gs_map():
+        robot = sk.mechanism(gs)  # a fresh cache
+        return sk.grid_map(robot, "verdict", x=("x", -0.2, 0.2, side), y=("y", -0.2, 0.2, side),
+                           fixed={"z": 1.0, "rx": 0.0, "ry": 0.0, "rz": 0.0}, progress=False)
+
+    seconds_gs_map = best_of(args.repeats, gs_map, clock=clock)
+    count = side * side
+    rate_h4, rate_gs = count / seconds_h4_map, count / seconds_gs_map
+    print(f"H4 catalog map      {rate_h4:10.0f} poses/s")
+    print(f"6-UPS graph map     {rate_gs:10.0f} poses/s   ratio {rate_gs / rate_h4:.3f} (target >= 0.3)")
+
+
+if __name__ == "__main__":
+    main()
