@@ -60,6 +60,7 @@ def run_map(args: argparse.Namespace) -> int:
     ...     "--phi", "-10", "10", "2", "--out", out]))  # doctest: +ELLIPSIS
     verdict over H4: z in [-900, -600] mm (2 values) x phi in [-10, 10] deg (2 values), x = 0 mm, y = 0 mm
       verdicts of the reachable poses (codes in the JSON's `codes`): regular 100.0%
+      loci in the slice: none found (no singular curve or reach boundary between the samples)
       minimum 0 at ...
     0
     """
@@ -154,14 +155,28 @@ def run_map(args: argparse.Namespace) -> int:
     lines = [f"{quantity} over {result.region}"]
     if result.meaning:
         lines.append(f"  {result.meaning}")
+    singular_loci = [locus for locus in result.loci if locus.kind != "reach"]
     if result.quantity == "verdict" and result.reachable.any():  # codes mean kinds: say which were found
         from ..analysis.quantities import verdict_name
 
         codes, counts = np.unique(result.values[result.reachable], return_counts=True)
-        found = ", ".join(
-            f"{verdict_name(int(c))} {n / counts.sum():.1%}" for c, n in zip(codes, counts, strict=True)
-        )
-        lines.append(f"  verdicts of the reachable poses (codes in the JSON's `codes`): {found}")
+        if singular_loci and codes.tolist() == [0]:  # the samples missed the curves: no "regular 100 %"
+            lines.append(
+                f"  sampled poses: all {counts.sum()} reachable samples read regular, "
+                "but the slice holds the singular loci below (between the samples)"
+            )
+        else:
+            found = ", ".join(
+                f"{verdict_name(int(c))} {n / counts.sum():.1%}" for c, n in zip(codes, counts, strict=True)
+            )
+            lines.append(f"  verdicts of the reachable poses (codes in the JSON's `codes`): {found}")
+    for kind in result.inside:
+        lines.append(f"  the whole slice lies inside the {kind} singular set")
+    if result.loci:
+        lines.append(f"  loci in the slice ({len(singular_loci)} singular; points in the JSON's `loci`):")
+        lines += [f"    {locus}" for locus in result.loci]
+    else:
+        lines.append("  loci in the slice: none found (no singular curve or reach boundary between the samples)")
     if result.reachable.any():
         lines.append(f"  minimum {result.minimum:g} at {where(result.argmin)}")
         lines.append(f"  maximum {result.maximum:g} at {where(result.argmax)}")
