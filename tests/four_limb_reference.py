@@ -23,52 +23,51 @@ SGN_SIN = np.sign(np.sin(ETA))
 Z = np.array([0.0, 0.0, 1.0])
 
 
+def _rod_for(a, ci, fj, b: float, rod: float):
+    """Limb rods w (unit) and h for the working mode h < 0: the roots of |c - b(theta)|^2 = l^2 by
+    a sign scan of 721 samples refined by 100 bisections."""
+
+    def elbow(theta: float) -> np.ndarray:
+        return a + b * (np.cos(theta) * fj + np.sin(theta) * Z)
+
+    def gap(theta: float) -> float:
+        return float(np.sum((ci - elbow(theta)) ** 2) - rod * rod)
+
+    grid = np.linspace(-np.pi, np.pi, 721)
+    values = np.array([gap(t) for t in grid])
+    for k in np.flatnonzero(np.sign(values[:-1]) != np.sign(values[1:])):
+        lo, hi = grid[k], grid[k + 1]
+        for _ in range(100):
+            mid = 0.5 * (lo + hi)
+            if np.sign(gap(mid)) == np.sign(gap(lo)):
+                lo = mid
+            else:
+                hi = mid
+        theta = 0.5 * (lo + hi)
+        w = (ci - elbow(theta)) / rod
+        # Eq. (8): h_i = b w_i . (u_i x v_i), u_i x v_i = -sin(theta) F_i j + cos(theta) k
+        h = b * float(w @ (-np.sin(theta) * fj + np.cos(theta) * Z))
+        if h < 0:
+            return w, h
+    raise ValueError("out of reach")
+
+
 def geometry(params: dict, pose) -> dict:
     """Rods w_i (unit), axes u_i, h_i, and the platform's points for one pose (x, y, z, phi)."""
     x, y, z, phi = (float(v) for v in pose)
     p = np.array([x, y, z])
-    R, b, l = params["R"], params["b"], params["l"]
-    r, c = params["r"], params["c"]
     alphas = np.array([params["alpha"], -params["alpha"], params["beta"], -params["beta"]])
     bar = np.array([np.cos(phi), np.sin(phi), 0.0])
     w, u, h = [], [], []
     for i in range(4):
-        a = R * np.array([np.cos(ETA[i]), np.sin(ETA[i]), 0.0])
-        ci = SGN_COS[i] * r * bar + SGN_SIN[i] * c * np.array([0.0, 1.0, 0.0]) + p
-        fi = np.array([np.cos(alphas[i]), np.sin(alphas[i]), 0.0])
+        a = params["R"] * np.array([np.cos(ETA[i]), np.sin(ETA[i]), 0.0])
+        ci = SGN_COS[i] * params["r"] * bar + SGN_SIN[i] * params["c"] * np.array([0.0, 1.0, 0.0]) + p
         fj = np.array([-np.sin(alphas[i]), np.cos(alphas[i]), 0.0])
-
-        def elbow(theta: float) -> np.ndarray:
-            return a + b * (np.cos(theta) * fj + np.sin(theta) * Z)
-
-        def gap(theta: float) -> float:
-            return float(np.sum((ci - elbow(theta)) ** 2) - l * l)
-
-        grid = np.linspace(-np.pi, np.pi, 721)
-        values = np.array([gap(t) for t in grid])
-        roots = []
-        for k in np.flatnonzero(np.sign(values[:-1]) != np.sign(values[1:])):
-            lo, hi = grid[k], grid[k + 1]
-            for _ in range(100):
-                mid = 0.5 * (lo + hi)
-                if np.sign(gap(mid)) == np.sign(gap(lo)):
-                    lo = mid
-                else:
-                    hi = mid
-            roots.append(0.5 * (lo + hi))
-        chosen = None
-        for theta in roots:
-            wi = (ci - elbow(theta)) / l
-            # Eq. (8): h_i = b w_i . (u_i x v_i), u_i x v_i = -sin(theta) F_i j + cos(theta) k
-            h_i = b * float(wi @ (-np.sin(theta) * fj + np.cos(theta) * Z))
-            if h_i < 0:
-                chosen = (wi, h_i)
-        if chosen is None:
-            raise ValueError("out of reach")
-        w.append(chosen[0])
-        u.append(fi)
-        h.append(chosen[1])
-    return {"w": np.array(w), "u": np.array(u), "h": np.array(h), "p": p, "bar": bar, "r": r}
+        wi, hi = _rod_for(a, ci, fj, params["b"], params["l"])
+        w.append(wi)
+        u.append(np.array([np.cos(alphas[i]), np.sin(alphas[i]), 0.0]))
+        h.append(hi)
+    return {"w": np.array(w), "u": np.array(u), "h": np.array(h), "p": p, "bar": bar, "r": params["r"]}
 
 
 def eq6_constraint(g: dict) -> float:
@@ -86,6 +85,13 @@ def eq7_actuation(g: dict) -> float:
     return float(np.cross(np.cross(w[0], w[3]), np.cross(r_g - r_c, Z)) @ np.cross(w[1], w[2]))
 
 
-QUATTRO = {"R": 275.0, "b": 375.0, "l": 800.0, "r": 80.0, "c": 70.0,
-           "alpha": -np.pi / 4, "beta": 3 * np.pi / 4}
+QUATTRO = {
+    "R": 275.0,
+    "b": 375.0,
+    "l": 800.0,
+    "r": 80.0,
+    "c": 70.0,
+    "alpha": -np.pi / 4,
+    "beta": 3 * np.pi / 4,
+}
 H4 = {"R": 275.0, "b": 375.0, "l": 800.0, "r": 80.0, "c": 70.0, "alpha": 0.0, "beta": np.pi / 2}

@@ -23,8 +23,8 @@ Examples
 --------
 >>> c = certify(load_mechanism("quattro"), {"x": (100, 200), "y": (100, 200), "z": -750, "phi": 0},
 ...             resolution=10)
->>> c.totals["free"], c.certified_free
-(1, True)
+>>> c.certified_free, c.totals["singular"], c.totals["undecided"]
+(True, 0, 0)
 """
 
 from __future__ import annotations
@@ -42,8 +42,18 @@ from .enclosures import FourLimbModel
 from .intervals import Enclosure, mean_value
 from .poses import _angle_factor, _check_mechanism, _options
 
-__all__ = ["DEFAULT_MAX_BOXES", "KINDS", "MAX_BOXES", "STATUSES", "Certificate", "CertifiedBox",
-           "Witness", "certify"]
+__all__ = [
+    "DEFAULT_MAX_BOXES",
+    "KINDS",
+    "MAX_BOXES",
+    "STATUSES",
+    "Certificate",
+    "CertifiedBox",
+    "PathInterval",
+    "Witness",
+    "certify",
+    "certify_path",
+]
 
 Array = np.ndarray
 
@@ -95,8 +105,13 @@ class Witness:
         -------
         dict
         """
-        return {"pose": self.pose, "label": self.label, "factor": self.factor,
-                "statement": self.statement, "bracket": list(self.bracket)}
+        return {
+            "pose": self.pose,
+            "label": self.label,
+            "factor": self.factor,
+            "statement": self.statement,
+            "bracket": list(self.bracket),
+        }
 
 
 @dataclass(frozen=True)
@@ -124,8 +139,11 @@ class CertifiedBox:
         -------
         dict
         """
-        return {"status": self.status, "bounds": {k: list(v) for k, v in self.bounds.items()},
-                "witness": None if self.witness is None else self.witness.to_dict()}
+        return {
+            "status": self.status,
+            "bounds": {k: list(v) for k, v in self.bounds.items()},
+            "witness": None if self.witness is None else self.witness.to_dict(),
+        }
 
 
 @dataclass(frozen=True)
@@ -222,7 +240,8 @@ class Certificate:
         head = f"{self.mechanism}: {region}" + (f", {fixed}" if fixed else "") + f" ({self.angles})"
         shares = ", ".join(f"{s} {self.totals[s]} boxes ({self.fractions[s]:.2%})" for s in STATUSES)
         verdict = (
-            f"certified free of {', '.join(self.kinds)} singularities" if self.certified_free
+            f"certified free of {', '.join(self.kinds)} singularities"
+            if self.certified_free
             else "not certified free"
         )
         labels = sorted({b.witness.label for b in self.boxes if b.witness is not None})
@@ -270,8 +289,11 @@ def _poses(problem: _Problem, lo: Array, hi: Array, gradient: bool) -> list[Encl
             c_lo, c_hi = float(problem.coef_lo[j, i]), float(problem.coef_hi[j, i])
             if c_lo == c_hi == 0.0:
                 continue
-            term = u * c_lo if c_lo == c_hi else u * Enclosure.constant(0.5 * (c_lo + c_hi), u,
-                                                                        relative=_half_width(c_lo, c_hi))
+            term = (
+                u * c_lo
+                if c_lo == c_hi
+                else u * Enclosure.constant(0.5 * (c_lo + c_hi), u, relative=_half_width(c_lo, c_hi))
+            )
             value = value + term
         out.append(value)
     return out
@@ -301,8 +323,10 @@ def _enclose(problem: _Problem, lo: Array, hi: Array) -> dict[str, Enclosure]:
 def _signs(problem: _Problem, points: Array) -> dict[str, Array]:
     """Certified signs (+1, -1, 0 unknown) of the functions at points ``(P, k)``."""
     values = problem.model.evaluate(_poses(problem, points, points, False))
-    return {name: np.where(values[name].lo > 0, 1, np.where(values[name].hi < 0, -1, 0))
-            for name in _functions(problem)}
+    return {
+        name: np.where(values[name].lo > 0, 1, np.where(values[name].hi < 0, -1, 0))
+        for name in _functions(problem)
+    }
 
 
 def _step(problem: _Problem, lo: Array, hi: Array) -> tuple[Array, Array, Array, Array]:
@@ -332,8 +356,9 @@ def _step(problem: _Problem, lo: Array, hi: Array) -> tuple[Array, Array, Array,
         points = lo[look, None, :] + fractions[None] * (hi - lo)[look, None, :]  # (L, P, k)
         signs = _signs(problem, points.reshape(-1, k))
         count = fractions.shape[0]
-        others_positive = {i: np.all([reach[j].lo[look] > 0 for j in range(4) if j != i], axis=0)
-                           for i in range(4)}
+        others_positive = {
+            i: np.all([reach[j].lo[look] > 0 for j in range(4) if j != i], axis=0) for i in range(4)
+        }
         for index, name in enumerate(names):
             if name.startswith("serial:"):
                 if "serial" not in problem.kinds:
@@ -392,8 +417,10 @@ def _pave(
         if client is None:
             status, which, bracket, zero = _step(problem, lo, hi)
         else:
-            futures = [client.submit(_step, problem, lo[i : i + TASK_BOXES], hi[i : i + TASK_BOXES], pure=False)
-                       for i in range(0, len(lo), TASK_BOXES)]
+            futures = [
+                client.submit(_step, problem, lo[i : i + TASK_BOXES], hi[i : i + TASK_BOXES], pure=False)
+                for i in range(0, len(lo), TASK_BOXES)
+            ]
             parts = [f.result() for f in futures]
             status, which, bracket, zero = (np.concatenate([p[n] for p in parts]) for n in range(4))
         for i in np.flatnonzero(status >= 0):
@@ -472,10 +499,18 @@ def certify(
     options = _options(mode)
     model = FourLimbModel.of(mechanism, options)
     chosen = _checked_kinds(kinds)
-    if isinstance(max_boxes, bool) or not isinstance(max_boxes, int | np.integer) or not 1 <= max_boxes <= MAX_BOXES:
-        raise ScrewkitValueError(f"Expected `max_boxes` to be an integer in 1..{MAX_BOXES:g}, got {max_boxes!r}.")
+    if (
+        isinstance(max_boxes, bool)
+        or not isinstance(max_boxes, int | np.integer)
+        or not 1 <= max_boxes <= MAX_BOXES
+    ):
+        raise ScrewkitValueError(
+            f"Expected `max_boxes` to be an integer in 1..{MAX_BOXES:g}, got {max_boxes!r}."
+        )
     if not isinstance(region, Mapping):
-        raise ScrewkitTypeError(f"Expected `region` to be a dict of coordinate to (lo, hi) or value, got {region!r}.")
+        raise ScrewkitTypeError(
+            f"Expected `region` to be a dict of coordinate to (lo, hi) or value, got {region!r}."
+        )
     names = tuple(mechanism.pose_names)
     unknown = [k for k in region if k not in names]
     if unknown:
@@ -493,7 +528,9 @@ def certify(
             continue
         if isinstance(given, Sequence) and not isinstance(given, str):
             if len(given) != 2:
-                raise ScrewkitValueError(f"Expected `region[{name!r}]` to be (lo, hi) or one value, got {given!r}.")
+                raise ScrewkitValueError(
+                    f"Expected `region[{name!r}]` to be (lo, hi) or one value, got {given!r}."
+                )
             lo, hi = _real(given[0], f"region[{name!r}][0]"), _real(given[1], f"region[{name!r}][1]")
             if not lo < hi:
                 raise ScrewkitValueError(
@@ -504,19 +541,30 @@ def certify(
             fixed[name] = _real(given, f"region[{name!r}]")
             base[names.index(name)] = fixed[name] * scale[names.index(name)]
     if not ranges:
-        raise ScrewkitValueError(f"Expected `region` to give at least one range (lo, hi), got {dict(region)!r}.")
+        raise ScrewkitValueError(
+            f"Expected `region` to give at least one range (lo, hi), got {dict(region)!r}."
+        )
     free = [names.index(n) for n in ranges]
     step = _resolutions(resolution, ranges)
     for i in free:
         base[i] = 0.0
     # the box in API units (radians), rounded outward so that it holds the box the caller gave
     exact = np.array([scale[i] == 1.0 for i in free])
-    lo = np.array([ranges[names[i]][0] * scale[i] for i in free])
-    hi = np.array([ranges[names[i]][1] * scale[i] for i in free])
-    lo, hi = np.where(exact, lo, np.nextafter(lo, -np.inf)), np.where(exact, hi, np.nextafter(hi, np.inf))
-    problem = _Problem(model, base, np.eye(len(names))[:, free], np.eye(len(names))[:, free], chosen,
-                       np.array([step[names[i]] * scale[i] for i in free]))
-    decided, evaluated, capped = _pave(problem, lo[None], hi[None], max_boxes=int(max_boxes), client=client)
+    low = np.array([ranges[names[i]][0] * scale[i] for i in free])
+    high = np.array([ranges[names[i]][1] * scale[i] for i in free])
+    low = np.where(exact, low, np.nextafter(low, -np.inf))
+    high = np.where(exact, high, np.nextafter(high, np.inf))
+    problem = _Problem(
+        model,
+        base,
+        np.eye(len(names))[:, free],
+        np.eye(len(names))[:, free],
+        chosen,
+        np.array([step[names[i]] * scale[i] for i in free]),
+    )
+    decided, evaluated, capped = _pave(
+        problem, low[None], high[None], max_boxes=int(max_boxes), client=client
+    )
     user_scale = scale[free]
     full = np.array(base)
 
@@ -525,8 +573,21 @@ def certify(
         pose[free] = u
         return {n: float(pose[j] / scale[j]) for j, n in enumerate(names)}
 
-    return _certificate(mechanism, problem, decided, evaluated, capped, ranges, fixed, step, angles,
-                        [names[i] for i in free], user_scale, user_pose, options)
+    return _certificate(
+        mechanism,
+        problem,
+        decided,
+        evaluated,
+        capped,
+        ranges,
+        fixed,
+        step,
+        angles,
+        [names[i] for i in free],
+        user_scale,
+        user_pose,
+        options,
+    )
 
 
 def _resolutions(resolution: Any, ranges: Mapping[str, tuple[float, float]]) -> dict[str, float]:
@@ -550,9 +611,19 @@ def _resolutions(resolution: Any, ranges: Mapping[str, tuple[float, float]]) -> 
 
 
 def _certificate(
-    mechanism: Any, problem: _Problem, decided: list[Any], evaluated: int, capped: bool,
-    ranges: dict[str, tuple[float, float]], fixed: dict[str, float], step: dict[str, float],
-    angles: str, free_names: list[str], user_scale: Array, user_pose: Any, options: dict[str, Any],
+    mechanism: Any,
+    problem: _Problem,
+    decided: list[Any],
+    evaluated: int,
+    capped: bool,
+    ranges: dict[str, tuple[float, float]],
+    fixed: dict[str, float],
+    step: dict[str, float],
+    angles: str,
+    free_names: list[str],
+    user_scale: Array,
+    user_pose: Any,
+    options: dict[str, Any],
 ) -> Certificate:
     """The certificate from the decided boxes (sorted by lower corner), witnesses labelled."""
     from .roots import _factor
@@ -573,11 +644,15 @@ def _certificate(
             pose = user_pose(zero)
             if label not in factors:
                 api = np.array([pose[n] for n in mechanism.pose_names]) * np.array(
-                    [_angle_factor(angles) if n in mechanism.angle_names else 1.0 for n in mechanism.pose_names]
+                    [
+                        _angle_factor(angles) if n in mechanism.angle_names else 1.0
+                        for n in mechanism.pose_names
+                    ]
                 )
                 factors[label] = _factor(mechanism, api[None], label, options, None)
-            witness = Witness(pose, label, factors[label], statements[name],
-                              (user_pose(bracket[0]), user_pose(bracket[1])))
+            witness = Witness(
+                pose, label, factors[label], statements[name], (user_pose(bracket[0]), user_pose(bracket[1]))
+            )
         bounds = {n: (float(lows[row, j]), float(highs[row, j])) for j, n in enumerate(free_names)}
         boxes.append(CertifiedBox(STATUSES[status], bounds, witness))
     volume = np.prod(highs - lows, axis=1) if len(lows) else np.zeros(0)
@@ -585,6 +660,119 @@ def _certificate(
     codes = np.array([STATUSES.index(b.status) for b in boxes], dtype=int)
     totals = {s: int(np.sum(codes == k)) for k, s in enumerate(STATUSES)}
     fractions = {s: float(volume[codes == k].sum() / total) for k, s in enumerate(STATUSES)}
-    return Certificate(mechanism.name, ranges, {k: v for k, v in fixed.items() if k not in ranges},
-                       problem.kinds, step, tuple(boxes), totals, fractions, capped, evaluated, angles,
-                       lows, highs)
+    return Certificate(
+        mechanism.name,
+        ranges,
+        {k: v for k, v in fixed.items() if k not in ranges},
+        problem.kinds,
+        step,
+        tuple(boxes),
+        totals,
+        fractions,
+        capped,
+        evaluated,
+        angles,
+        lows,
+        highs,
+    )
+
+
+@dataclass(frozen=True)
+class PathInterval:
+    """A run of boxes of one status along a path ``start + t (end - start)`` that are not free.
+
+    Attributes
+    ----------
+    status : str
+        ``"singular"``, ``"undecided"`` or ``"unreachable"``.
+    enclosure : tuple of float
+        ``(t_lo, t_hi)``: outside the runs the path is proved free.
+    label : str or None
+        The kind whose function changes sign in it (singular runs).
+    t : float or None
+        The refined zero of that function (singular runs).
+    """
+
+    status: str
+    enclosure: tuple[float, float]
+    label: str | None = None
+    t: float | None = None
+
+
+def certify_path(
+    mechanism: Any,
+    start: Any,
+    end: Any,
+    *,
+    kinds: Sequence[str] = KINDS,
+    mode: Any = None,
+    resolution: float = 2.0**-20,
+    max_boxes: int = DEFAULT_MAX_BOXES,
+) -> tuple[tuple[PathInterval, ...], bool]:
+    """Pave the straight path ``start + t (end - start)``, ``t ∈ [0, 1]`` (API units, radians).
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+    start, end : array_like, shape (n,)
+        API-unit poses.
+    kinds : sequence of str
+    mode : mapping or sequence, optional
+    resolution : float
+        In ``t``.
+    max_boxes : int
+
+    Returns
+    -------
+    intervals : tuple of PathInterval
+        The runs of adjacent boxes of one status and label that are not free, in order.
+    capped : bool
+
+    Examples
+    --------
+    >>> runs, _ = certify_path(load_mechanism("quattro"), [-300, -1, -750, 0], [300, 1, -750, 0])
+    >>> [(r.status, r.label, round(r.t, 9)) for r in runs]       # y = 0 crossed at t = 1/2
+    [('singular', 'constraint', 0.5)]
+    """
+    _check_mechanism(mechanism)
+    options = _options(mode)
+    model = FourLimbModel.of(mechanism, options)
+    chosen = _checked_kinds(kinds)
+    a, b = np.asarray(start, dtype=float), np.asarray(end, dtype=float)
+    step = _real(resolution, "resolution")
+    if not step > 0:
+        raise ScrewkitValueError(f"Expected `resolution` > 0, got {resolution!r}.")
+    difference = b - a
+    problem = _Problem(
+        model,
+        a,
+        np.nextafter(difference, -np.inf)[:, None],
+        np.nextafter(difference, np.inf)[:, None],
+        chosen,
+        np.array([step]),
+    )
+    decided, _, capped = _pave(problem, np.zeros((1, 1)), np.ones((1, 1)), max_boxes=max_boxes)
+    names = _functions(problem)
+    runs: list[PathInterval] = []
+    for lo, hi, status, which, _, zero in sorted(decided, key=lambda d: float(d[0][0])):
+        if status == 0:
+            continue
+        label = names[which].split(":")[0] if status == 1 else None
+        last = runs[-1] if runs else None
+        if (
+            last is not None
+            and last.status == STATUSES[status]
+            and last.label == label
+            and last.enclosure[1] == float(lo[0])
+        ):
+            runs[-1] = PathInterval(last.status, (last.enclosure[0], float(hi[0])), label, last.t)
+        else:
+            runs.append(
+                PathInterval(
+                    STATUSES[status],
+                    (float(lo[0]), float(hi[0])),
+                    label,
+                    float(zero[0]) if status == 1 else None,
+                )
+            )
+    return tuple(runs), capped

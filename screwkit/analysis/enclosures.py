@@ -185,7 +185,7 @@ class FourLimbModel:
         from ..robots.families.four_limb.configuration import base_frames
         from ..robots.families.four_limb.kinematics import checked_working_mode
 
-        params = getattr(mechanism, "parameters", None)
+        params: Any = getattr(mechanism, "parameters", None)
         kind = getattr(params, "platform_kind", None)
         if getattr(mechanism, "family", None) != "four_limb" or kind != "articulated_z":
             raise ScrewkitValueError(
@@ -261,7 +261,7 @@ class FourLimbModel:
         """
         x, y, z, phi = pose
         cos, sin = phi.cos_sin()
-        r, b, l = self.radius, self.arm, self.rod
+        r, b, rod = self.radius, self.arm, self.rod
         bar: Vector = [cos, sin, None]  # R_z(φ) i
         s: Vector = [-sin, cos, None]  # its derivative R_z(φ) j
         a_rows, u_rows, j_rows, k_rows = self.base
@@ -270,20 +270,25 @@ class FourLimbModel:
         for i in range(4):
             sc, ss = _SGN_COS_ETA[i], _SGN_SIN_ETA[i]
             c_i = [
-                _sum(None if bar[0] is None else bar[0] * (sc * r), x),
-                _sum(None if bar[1] is None else bar[1] * (sc * r), y + ss * self.offset),
-                _sum(None if bar[2] is None else bar[2] * (sc * r), z),
+                _sum(_scaled_by(bar[0], sc * r), x),
+                _sum(_scaled_by(bar[1], sc * r), y + ss * self.offset),
+                _sum(_scaled_by(bar[2], sc * r), z),
             ]
             d = [
-                _sum(c_i[k], None if a_rows[i][k].value == 0 and a_rows[i][k].spread == 0
-                     else -Enclosure.constant(a_rows[i][k].value, x, relative=_relative(a_rows[i][k])))
+                _sum(
+                    c_i[k],
+                    None
+                    if a_rows[i][k].value == 0 and a_rows[i][k].spread == 0
+                    else -Enclosure.constant(a_rows[i][k].value, x, relative=_relative(a_rows[i][k])),
+                )
                 for k in range(3)
             ]
             big_p = _dot_constant(d, j_rows[i])
             big_q = _dot_constant(d, k_rows[i])
-            squared = _sum(*(None if v is None else v.square() for v in d))
+            squared = _sum(*(None if e is None else e.square() for e in d))
             assert squared is not None and big_p is not None and big_q is not None
-            big_k = _divided(squared + (b * b - l * l), 2.0 * b)
+            big_k = _divided(squared + (b * b - rod * rod), 2.0 * b)
+            assert big_k is not None
             rho2 = big_p.square() + big_q.square()
             g = rho2 - big_k.square()
             out[f"serial:{i + 1}"] = g
@@ -296,7 +301,7 @@ class FourLimbModel:
             sin_t = (big_q * big_k - big_p * root * m) * inv
             v = [_sum(_times(cos_t, j_rows[i][k]), _times(sin_t, k_rows[i][k])) for k in range(3)]
             # w_i = (c_i - a_i - b v_i) / l = (d_i - b v_i) / l
-            rods.append([_divided(_sum(d[k], None if v[k] is None else v[k] * (-b)), l) for k in range(3)])
+            rods.append([_divided(_sum(d[k], _scaled_by(v[k], -b)), rod) for k in range(3)])
         if singular:
             (i1, i2), (j1, j2) = self.subplatforms
             det_a = _dot(_cross(_cross(rods[i1], rods[i2]), _cross(rods[j1], rods[j2])), s)
@@ -308,6 +313,10 @@ class FourLimbModel:
             assert constraint is not None
             out["constraint"] = constraint
         return out
+
+
+def _scaled_by(x: Enclosure | None, value: float) -> Enclosure | None:
+    return None if x is None else x * value
 
 
 def _relative(c: _Constant) -> float:

@@ -144,8 +144,8 @@ class Enclosure:
         True
         """
         spread = relative * abs(value)
-        lo = np.full(like.lo.shape, _down(np.float64(value - spread)))
-        hi = np.full(like.lo.shape, _up(np.float64(value + spread)))
+        lo = np.full(like.lo.shape, _down(np.asarray(value - spread)))
+        hi = np.full(like.lo.shape, _up(np.asarray(value + spread)))
         zero = None if like.glo is None else np.zeros_like(like.glo)
         return Enclosure(lo, hi, zero, zero)
 
@@ -184,7 +184,7 @@ class Enclosure:
             return Enclosure(lo, hi)
         # d(ab) = a db + b da
         alo, ahi = _product(self.lo[:, None], self.hi[:, None], other.glo, other.ghi)  # type: ignore[arg-type]
-        blo, bhi = _product(other.lo[:, None], other.hi[:, None], self.glo, self.ghi)
+        blo, bhi = _product(other.lo[:, None], other.hi[:, None], self.glo, self.ghi)  # type: ignore[arg-type]
         return Enclosure(lo, hi, _down(alo + blo), _up(ahi + bhi))
 
     __rmul__ = __mul__

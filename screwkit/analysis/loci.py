@@ -1,7 +1,8 @@
 """Singular curves of a 2-D slice and singular surfaces of a 3-D region, refined onto the surfaces.
 
 Along every grid row and column of a slice, ``det A`` and ``det B`` sign changes, closeness minima
-(a touching zero has no sign change) and reach edges are refined onto the singular surface (:mod:`screwkit.analysis.roots`); :func:`loci` gives
+(a touching zero has no sign change) and reach edges are refined onto the singular surface
+(:mod:`screwkit.analysis.roots`); :func:`loci` gives
 the curves of a slice, :func:`surfaces` stacks them over a third coordinate.
 
 Examples

@@ -14,6 +14,7 @@ True
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 from typing import Any
@@ -155,6 +156,7 @@ def check_path(
     mode: Any = None,
     angles: str = "rad",
     rtol: float | None = None,
+    certify: bool = False,
 ) -> PathCheck:
     """Check the straight path ``start → end`` (pose coordinates) for singularities.
 
@@ -171,16 +173,30 @@ def check_path(
     samples : int, default 200
     mode, angles, rtol
         As in :func:`~screwkit.analysis.workspace.grid_map`.
+    certify : bool, default False
+        Also pave the path with interval arithmetic (:func:`screwkit.analysis.certify.certify_path`,
+        the Quattro and the H4): ``certified_free`` says whether it is proved free, and every
+        crossing gets the ``enclosure`` of its parameter outside which the path is proved free
+        (a certified crossing no sample saw is added).
 
     Returns
     -------
     PathCheck
+
+    Raises
+    ------
+    ScrewkitValueError
+        For a bad ``samples``, a malformed pose, or ``certify=True`` on a mechanism it does not cover.
 
     Examples
     --------
     >>> check = check_path(load_mechanism("h4"), {"z": -750}, {"z": -5000}, samples=20)
     >>> check.crossing.kind, round(check.crossing.parameter, 4)  # the arms and rods line up
     ('serial', 0.0964)
+    >>> proved = check_path(load_mechanism("quattro"), {"x": -300, "y": -1}, {"x": 300, "y": 1}, certify=True)
+    >>> c = proved.crossing
+    >>> c.kind, bool(c.enclosure[0] <= c.parameter <= c.enclosure[1]), proved.certified_free
+    ('constraint', True, False)
     """
     _check_mechanism(mechanism)
     if (
@@ -210,7 +226,7 @@ def check_path(
     for kind, low, high in runs:
         pose = a + low * (b - a)
         factor = _factor(mechanism, pose[None], kind, options, rtol)
-        closeness = float(measured.closeness[kind][0, int(round(low / step))])
+        closeness = float(measured.closeness[kind][0, round(low / step)])
         crossings.append(Crossing(low, _as_dict(mechanism, pose / scale), kind, factor, closeness, high))
     kept: list[_Root] = []
     for root in sorted(roots, key=lambda r: r.t):
@@ -223,6 +239,11 @@ def check_path(
         crossings.append(
             Crossing(root.t, _as_dict(mechanism, root.pose / scale), root.kind, factor, root.closeness)
         )
+    certified_free = None
+    if not isinstance(certify, bool):
+        raise ScrewkitValueError(f"Expected `certify` to be True or False, got {certify!r}.")
+    if certify:
+        crossings, certified_free = _certified(mechanism, a, b, scale, crossings, options, rtol)
     crossings.sort(key=lambda c: c.parameter)
     crossing = crossings[0] if crossings else None
     return PathCheck(
@@ -232,7 +253,47 @@ def check_path(
         _as_dict(mechanism, last),
         int(samples),
         tuple(crossings),
+        certified_free,
     )
+
+
+def _certified(
+    mechanism: Any,
+    a: Array,
+    b: Array,
+    scale: Array,
+    crossings: list[Crossing],
+    options: dict[str, Any],
+    rtol: Any,
+) -> tuple[list[Crossing], bool]:
+    """The sampled crossings with the enclosures of the certified paving, and the certified
+    crossings no sample saw."""
+    from .certify import certify_path
+
+    runs, capped = certify_path(mechanism, a, b, mode=options or None)
+    out = []
+    for c in crossings:
+        holding = [r for r in runs if r.enclosure[0] <= c.parameter <= r.enclosure[1]]
+        until = c.until if c.until is not None else c.parameter
+        spans = [r for r in runs if r.enclosure[0] <= until and c.parameter <= r.enclosure[1]]
+        enclosure = None
+        if holding or spans:
+            chosen = holding or spans
+            enclosure = (min(r.enclosure[0] for r in chosen), max(r.enclosure[1] for r in chosen))
+        out.append(dataclasses.replace(c, enclosure=enclosure))
+    for run in runs:
+        seen = any(
+            c.enclosure is not None
+            and c.enclosure[0] <= run.enclosure[0] <= run.enclosure[1] <= c.enclosure[1]
+            for c in out
+        )
+        if run.status == "singular" and not seen and run.t is not None and run.label is not None:
+            pose = a + run.t * (b - a)
+            measured = _measure(mechanism, pose[None, None], options, rtol)
+            factor = _factor(mechanism, pose[None], run.label, options, rtol)
+            out.append(Crossing(run.t, _as_dict(mechanism, pose / scale), run.label, factor,
+                                float(measured.closeness[run.label][0, 0]), None, run.enclosure))
+    return out, not runs and not capped
 
 
 def _runs(t: Array, codes: Array, ok: Array) -> list[tuple[str, float, float]]:

@@ -24,8 +24,8 @@ from typing import Any
 import numpy as np
 
 from ..exceptions import ScrewkitError
-from .quantities import KINDS, conditions_of
 from .poses import CHUNK
+from .quantities import KINDS, conditions_of
 
 __all__ = ["ACCEPT", "MAX_STEPS", "XTOL"]
 

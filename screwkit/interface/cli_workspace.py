@@ -1,4 +1,4 @@
-"""The commands over the pose space: ``map``, ``path`` and ``table4``.
+"""The commands over the pose space: ``map``, ``path``, ``certify`` and ``table4``.
 
 Each ``run_*`` takes the parsed arguments (:func:`screwkit.interface.cli_parser.get_parser`), checks
 them against the caps below before computing (never a hang or an allocation beyond memory), calls
@@ -28,7 +28,7 @@ from ._cli_io import (
     shown_path,
 )
 
-__all__ = ["MAX_MAP_POSES", "MAX_PATH_SAMPLES", "run_map", "run_path", "run_table4"]
+__all__ = ["MAX_MAP_POSES", "MAX_PATH_SAMPLES", "run_certify", "run_map", "run_path", "run_table4"]
 
 #: Caps of the workspace commands (never a hang or an allocation beyond memory): poses in a map,
 #: samples along a path, grid points per axis and refinement rounds of ``table4``.
@@ -176,7 +176,9 @@ def run_map(args: argparse.Namespace) -> int:
         lines.append(f"  loci in the slice ({len(singular_loci)} singular; points in the JSON's `loci`):")
         lines += [f"    {locus}" for locus in result.loci]
     else:
-        lines.append("  loci in the slice: none found (no singular curve or reach boundary between the samples)")
+        lines.append(
+            "  loci in the slice: none found (no singular curve or reach boundary between the samples)"
+        )
     if result.reachable.any():
         lines.append(f"  minimum {result.minimum:g} at {where(result.argmin)}")
         lines.append(f"  maximum {result.maximum:g} at {where(result.argmax)}")
@@ -195,7 +197,7 @@ def run_path(args: argparse.Namespace) -> int:
     ----------
     args : argparse.Namespace
         From :func:`~screwkit.interface.cli_parser.get_parser`: ``mechanism``, ``start`` (``--from``),
-        ``end`` (``--to``), ``samples`` and ``json`` of ``screwkit path``.
+        ``end`` (``--to``), ``samples``, ``certify`` and ``json`` of ``screwkit path``.
 
     Returns
     -------
@@ -220,10 +222,105 @@ def run_path(args: argparse.Namespace) -> int:
     mechanism = catalog_mechanism("path", args.mechanism)
     for option, values in (("--from", args.start), ("--to", args.end)):
         pose_values("screwkit path", option, mechanism, values)
-    result = check_path(mechanism, args.start, args.end, samples=args.samples, angles="deg")
+    result = check_path(
+        mechanism, args.start, args.end, samples=args.samples, angles="deg", certify=bool(args.certify)
+    )
     print_text(json_text(result.to_dict(), indent=2, ensure_ascii=False) if args.json else str(result))
     return 0
 
+
+
+def run_certify(args: argparse.Namespace) -> int:
+    """Certify a box of pose space; see ``screwkit certify --help``.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        From :func:`~screwkit.interface.cli_parser.get_parser`: ``mechanism``, one option per pose
+        coordinate (``LO HI`` or one value, angles in degrees), ``resolution``, ``kinds``,
+        ``max_boxes`` and ``out`` of ``screwkit certify``.
+
+    Returns
+    -------
+    int
+        0, the certificate written to ``--out`` (``.json``, or ``.png``: the paving with the loci
+        over it, two ranges only) and summarised.
+
+    Examples
+    --------
+    >>> from screwkit.interface.cli_parser import get_parser
+    >>> import tempfile, os
+    >>> out = os.path.join(tempfile.mkdtemp(), "c.json")
+    >>> run_certify(get_parser().parse_args(["certify", "quattro", "--x", "100", "200", "--y", "100", "200",
+    ...     "--z", "-750", "--phi", "0", "--out", out]))  # doctest: +ELLIPSIS
+    Quattro: x in [100, 200], y in [100, 200], z = -750, phi = 0 (deg)
+      certified free of constraint, actuation, serial singularities: free ...
+    0
+    """
+    from ..analysis.certify import certify
+
+    out = args.out.lower()
+    if not out.endswith((".json", ".png")):
+        raise UsageError(f"screwkit certify: error: --out expects FILE.json or FILE.png, got {args.out!r}")
+    check_writable("screwkit certify", "--out", args.out)
+    if out.endswith(".png") and importlib.util.find_spec("matplotlib") is None:
+        raise UsageError(
+            "screwkit certify: error: --out FILE.png needs matplotlib, which is not installed: install the "
+            'optional extra `plot` (pip install "screwkit[plot]"), or write .json'
+        )
+    mechanism = catalog_mechanism("certify", args.mechanism)
+    region: dict[str, object] = {}
+    for name in pose_coordinates():
+        values = getattr(args, name)
+        if values is None:
+            continue
+        if name not in mechanism.pose_names:
+            raise UsageError(
+                f"screwkit certify: error: --{name}: {mechanism.name} has pose coordinates "
+                f"{list(mechanism.pose_names)}"
+            )
+        if len(values) not in (1, 2) or not all(math.isfinite(v) for v in values):
+            raise UsageError(
+                f"screwkit certify: error: --{name} expects LO HI or one value, got "
+                f"{' '.join(map(str, values))}"
+            )
+        for value in values:
+            check_coordinate("screwkit certify", f"--{name}", mechanism, name, value)
+        region[name] = values[0] if len(values) == 1 else (values[0], values[1])
+    ranges = [n for n, v in region.items() if isinstance(v, tuple)]
+    if out.endswith(".png") and len(ranges) != 2:
+        raise UsageError(
+            f"screwkit certify: error: --out FILE.png draws two ranges (LO HI), got {len(ranges)}: "
+            "write .json"
+        )
+    try:
+        result = certify(
+            mechanism,
+            region,
+            kinds=tuple(args.kinds),
+            resolution=args.resolution,
+            angles="deg",
+            max_boxes=args.max_boxes,
+        )
+    except ScrewkitError as err:
+        raise UsageError(f"screwkit certify: error: {err}") from err
+    try:
+        if out.endswith(".png"):
+            from ..analysis.loci import loci
+            from .plot_certify import save_certificate_png
+
+            (x_name, (x_lo, x_hi)), (y_name, (y_lo, y_hi)) = result.region.items()
+            found = loci(mechanism, x=(x_name, x_lo, x_hi, 101), y=(y_name, y_lo, y_hi, 101),
+                         fixed=result.fixed, angles="deg")
+            save_certificate_png(result, args.out, loci=found)
+        else:
+            with open(args.out, "w") as handle:
+                handle.write(result.to_json(indent=1))
+    except (OSError, ValueError) as err:
+        shown = f"--out {shown_path(args.out)}: cannot write: {error_reason(err)}"
+        raise UsageError(f"screwkit certify: error: {shown}") from err
+    print_text(f"{result}\n  written to {args.out}")
+    return 0
 
 
 def run_table4(args: argparse.Namespace) -> int:
