@@ -25,7 +25,7 @@ Z = np.array([0.0, 0.0, 1.0])
 
 def _rod_for(a, ci, fj, b: float, rod: float):
     """Limb rods w (unit) and h for the working mode h < 0: the roots of |c - b(theta)|^2 = l^2 by
-    a sign scan of 721 samples refined by 100 bisections."""
+    a sign scan of 721 samples refined by 60 bisections."""
 
     def elbow(theta: float) -> np.ndarray:
         return a + b * (np.cos(theta) * fj + np.sin(theta) * Z)
@@ -34,10 +34,11 @@ def _rod_for(a, ci, fj, b: float, rod: float):
         return float(np.sum((ci - elbow(theta)) ** 2) - rod * rod)
 
     grid = np.linspace(-np.pi, np.pi, 721)
-    values = np.array([gap(t) for t in grid])
+    elbows = a + b * (np.cos(grid)[:, None] * fj + np.sin(grid)[:, None] * Z)
+    values = np.sum((ci - elbows) ** 2, axis=1) - rod * rod
     for k in np.flatnonzero(np.sign(values[:-1]) != np.sign(values[1:])):
         lo, hi = grid[k], grid[k + 1]
-        for _ in range(100):
+        for _ in range(60):
             mid = 0.5 * (lo + hi)
             if np.sign(gap(mid)) == np.sign(gap(lo)):
                 lo = mid
