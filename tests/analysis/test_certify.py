@@ -4,6 +4,7 @@ independent model) in no free box, certified paths, caps and bad input."""
 
 from __future__ import annotations
 
+import itertools
 import math
 
 import numpy as np
@@ -64,7 +65,7 @@ def test_model_enclosures_hold_the_core_and_tighten_quadratically():
         seen = det_a.max() - det_a.min()
         excess.append(float(enclosure.hi[0] - enclosure.lo[0] - seen))
         direct.append(float(box["actuation"].hi[0] - box["actuation"].lo[0]) / seen)
-    assert all(a / b > 3.5 for a, b in zip(excess, excess[1:], strict=False))
+    assert all(a / b > 3.5 for a, b in itertools.pairwise(excess))
     assert min(direct) > 4.0
 
 
