@@ -43,13 +43,18 @@ def main() -> None:
     for phi in (0.0, 90.0):
         fixed = {"z": -750.0, "phi": phi}
         axes = {"x": ("x", -400, 400, 200), "y": ("y", -400, 400, 200)}
-        plain = best_of(args.repeats, lambda: grid_map(quattro, "verdict", fixed=fixed, angles="deg",
-                                                       loci=False, **axes), clock)
-        with_loci = best_of(args.repeats, lambda: grid_map(quattro, "verdict", fixed=fixed, angles="deg",
-                                                           **axes), clock)
         region = {"x": (-400, 400), "y": (-400, 400), **fixed}
-        result = certify(quattro, region, resolution=0.8, angles="deg")
-        proved = best_of(args.repeats, lambda: certify(quattro, region, resolution=0.8, angles="deg"), clock)
+
+        def sampled(loci: bool, fixed: dict = fixed, axes: dict = axes) -> object:
+            return grid_map(quattro, "verdict", fixed=fixed, angles="deg", loci=loci, **axes)
+
+        def proof(region: dict = region) -> object:
+            return certify(quattro, region, resolution=0.8, angles="deg")
+
+        plain = best_of(args.repeats, lambda: sampled(False), clock)
+        with_loci = best_of(args.repeats, lambda: sampled(True), clock)
+        result = proof()
+        proved = best_of(args.repeats, proof, clock)
         print(f"phi = {phi:g} deg: map 200x200 {plain:.2f} s (with loci {with_loci:.2f} s); certify 1/1000 "
               f"{proved:.2f} s = {proved / plain:.1f}x the map ({result.evaluated} boxes; "
               + ", ".join(f"{k} {v:.2%}" for k, v in result.fractions.items()) + ")")
@@ -57,8 +62,8 @@ def main() -> None:
         region = {"x": (-400, 400), "y": (-400, 400), "z": (-900, -600), "phi": phi}
         start = clock()
         result = certify(quattro, region, resolution={"x": 8, "y": 8, "z": 3}, angles="deg")
-        print(f"certify 3-D (x, y, z at phi = {phi:g} deg, 1/100): {clock() - start:.1f} s, {result.evaluated} "
-              "boxes; " + ", ".join(f"{k} {v:.2%}" for k, v in result.fractions.items()))
+        print(f"certify 3-D (x, y, z at phi = {phi:g} deg, 1/100): {clock() - start:.1f} s, "
+              f"{result.evaluated} boxes; " + ", ".join(f"{k} {v:.2%}" for k, v in result.fractions.items()))
     model = FourLimbModel.of(quattro)
     count = 100_000
     poses = np.asarray(quattro.random_poses(np.random.default_rng(0), count))
