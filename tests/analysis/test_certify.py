@@ -251,3 +251,17 @@ def test_bad_input_is_one_line_naming_the_argument(call, message):
     with pytest.raises(sk.ScrewkitError, match=message) as info:
         call()
     assert "\n" not in str(info.value)
+
+
+@pytest.mark.parametrize(("mechanism", "params"), [(H4_M, H4), (QUATTRO_M, QUATTRO)])
+def test_enclosed_functions_are_paper_002_equations_6_and_7(mechanism, params):
+    # at random reachable poses the enclosed constraint function is paper 002's Eq. (6) and det A
+    # (paper 004, Eq. 12) is minus Eq. (7), both evaluated on the independent model
+    model = FourLimbModel.of(mechanism)
+    poses = np.asarray(mechanism.random_poses(np.random.default_rng(5), 12))
+    values = model.evaluate(Enclosure.variables(poses, poses, gradient=False))
+    for k, pose in enumerate(poses):
+        g = geometry(params, pose)
+        for name, expected in (("constraint", eq6_constraint(g)), ("actuation", -eq7_actuation(g))):
+            e = values[name]
+            assert e.lo[k] - 1e-13 * abs(expected) <= expected <= e.hi[k] + 1e-13 * abs(expected)
