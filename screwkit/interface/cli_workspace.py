@@ -11,6 +11,7 @@ from __future__ import annotations
 import argparse
 import importlib.util
 import math
+from typing import Any
 
 import numpy as np
 
@@ -73,12 +74,7 @@ def run_map(args: argparse.Namespace) -> int:
         raise UsageError(f"screwkit map: error: --quantity: {err}") from err
     if not args.out.lower().endswith((".png", ".npz", ".json")):
         raise UsageError(f"screwkit map: error: --out expects FILE.npz, .json or .png, got {args.out!r}")
-    check_writable("screwkit map", "--out", args.out)
-    if args.out.lower().endswith(".png") and importlib.util.find_spec("matplotlib") is None:
-        raise UsageError(  # before the computation, not after it
-            "screwkit map: error: --out FILE.png needs matplotlib, which is not installed: install the "
-            'optional extra `plot` (pip install "screwkit[plot]"), or write .npz or .json'
-        )
+    _check_out("map", args.out, ".npz or .json")
     if not 2 <= args.grid <= MAX_MAP_POSES // 2:
         raise UsageError(
             f"screwkit map: error: --grid expects an integer in 2..{MAX_MAP_POSES // 2}, got {args.grid}"
@@ -138,16 +134,15 @@ def run_map(args: argparse.Namespace) -> int:
         progress=False if args.no_progress else None,
         angles="deg",
     )
-    try:
+    def write() -> None:
         if args.out.lower().endswith(".png"):
             from .plot import save_map_png
 
             save_map_png(result, args.out)
         else:
             result.save(args.out)
-    except (OSError, ValueError) as err:
-        shown = f"--out {shown_path(args.out)}: cannot write: {error_reason(err)}"
-        raise UsageError(f"screwkit map: error: {shown}") from err
+
+    _write("map", args.out, write)
 
     def where(pose: dict[str, float]) -> str:
         return ", ".join(f"{k} = {v:g}" for k, v in pose.items()) or "-"
@@ -188,6 +183,25 @@ def run_map(args: argparse.Namespace) -> int:
     print_text("\n".join(lines))
     return 0
 
+
+
+def _check_out(command: str, out: str, other: str) -> None:
+    """``--out`` writable, and a ``.png`` only with matplotlib (before the computation, not after it)."""
+    check_writable(f"screwkit {command}", "--out", out)
+    if out.lower().endswith(".png") and importlib.util.find_spec("matplotlib") is None:
+        raise UsageError(
+            f"screwkit {command}: error: --out FILE.png needs matplotlib, which is not installed: install "
+            f'the optional extra `plot` (pip install "screwkit[plot]"), or write {other}'
+        )
+
+
+def _write(command: str, out: str, write: Any) -> None:
+    """Run ``write()``, its I/O errors as a usage error naming ``--out``."""
+    try:
+        write()
+    except (OSError, ValueError) as err:
+        shown = f"--out {shown_path(out)}: cannot write: {error_reason(err)}"
+        raise UsageError(f"screwkit {command}: error: {shown}") from err
 
 
 def run_path(args: argparse.Namespace) -> int:
@@ -262,12 +276,7 @@ def run_certify(args: argparse.Namespace) -> int:
     out = args.out.lower()
     if not out.endswith((".json", ".png")):
         raise UsageError(f"screwkit certify: error: --out expects FILE.json or FILE.png, got {args.out!r}")
-    check_writable("screwkit certify", "--out", args.out)
-    if out.endswith(".png") and importlib.util.find_spec("matplotlib") is None:
-        raise UsageError(
-            "screwkit certify: error: --out FILE.png needs matplotlib, which is not installed: install the "
-            'optional extra `plot` (pip install "screwkit[plot]"), or write .json'
-        )
+    _check_out("certify", args.out, ".json")
     mechanism = catalog_mechanism("certify", args.mechanism)
     region: dict[str, object] = {}
     for name in pose_coordinates():
@@ -304,7 +313,7 @@ def run_certify(args: argparse.Namespace) -> int:
         )
     except ScrewkitError as err:
         raise UsageError(f"screwkit certify: error: {err}") from err
-    try:
+    def write() -> None:
         if out.endswith(".png"):
             from ..analysis.loci import loci
             from .plot_certify import save_certificate_png
@@ -316,9 +325,8 @@ def run_certify(args: argparse.Namespace) -> int:
         else:
             with open(args.out, "w") as handle:
                 handle.write(result.to_json(indent=1))
-    except (OSError, ValueError) as err:
-        shown = f"--out {shown_path(args.out)}: cannot write: {error_reason(err)}"
-        raise UsageError(f"screwkit certify: error: {shown}") from err
+
+    _write("certify", args.out, write)
     print_text(f"{result}\n  written to {args.out}")
     return 0
 
