@@ -105,6 +105,7 @@ _LAZY = {
     "loci": "analysis.loci",
     "surfaces": "analysis.loci",
     "check_path": "analysis.paths",
+    "certify": "analysis.certify",
 }
 
 
@@ -177,6 +178,7 @@ __all__ = [
     "are_collinear",
     "are_coplanar",
     "bracket",
+    "certify",
     "check_path",
     "classify",
     "classify_poses",
