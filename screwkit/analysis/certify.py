@@ -70,8 +70,8 @@ WITNESS_STEPS = 30
 #: Where a box is split (a fraction of its width, off the middle: a symmetric region's plane of
 #: symmetry, often singular, then falls inside boxes, where a sign change shows it, not on edges).
 SPLIT = 15 / 32
-#: Boxes per Dask task.
-TASK_BOXES = 2048
+#: Boxes evaluated at once (bounded memory), in process or per Dask task.
+TASK_BOXES = 8192
 
 
 @dataclass(frozen=True)
@@ -404,7 +404,7 @@ def _pave(
     boxes ``(lo, hi, status, function index, bracket, zero)`` (status 0..3), the boxes evaluated and
     whether the run stopped before a level that would take them beyond ``max_boxes`` (the rest
     then undecided). With a Dask ``client`` each level's boxes are evaluated on the cluster in
-    chunks of :data:`TASK_BOXES`."""
+    chunks of :data:`TASK_BOXES` (in process too: bounded memory)."""
     decided: list[tuple[Array, Array, int, int, Array, Array]] = []
     evaluated, capped = 0, False
     while len(lo):
@@ -414,15 +414,13 @@ def _pave(
                 decided.append((a, b, 2, -1, np.zeros((2, lo.shape[1])), np.zeros(lo.shape[1])))
             break
         evaluated += len(lo)
+        pieces = [(lo[i : i + TASK_BOXES], hi[i : i + TASK_BOXES]) for i in range(0, len(lo), TASK_BOXES)]
         if client is None:
-            status, which, bracket, zero = _step(problem, lo, hi)
+            parts = [_step(problem, a, b) for a, b in pieces]
         else:
-            futures = [
-                client.submit(_step, problem, lo[i : i + TASK_BOXES], hi[i : i + TASK_BOXES], pure=False)
-                for i in range(0, len(lo), TASK_BOXES)
-            ]
+            futures = [client.submit(_step, problem, a, b, pure=False) for a, b in pieces]
             parts = [f.result() for f in futures]
-            status, which, bracket, zero = (np.concatenate([p[n] for p in parts]) for n in range(4))
+        status, which, bracket, zero = (np.concatenate([p[n] for p in parts]) for n in range(4))
         for i in np.flatnonzero(status >= 0):
             decided.append((lo[i], hi[i], int(status[i]), int(which[i]), bracket[i], zero[i]))
         split = np.flatnonzero(status < 0)
