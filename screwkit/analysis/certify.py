@@ -1,6 +1,7 @@
-"""Certified singularity-free regions and paths: branch and bound over boxes of pose space.
+"""Certified singularity-free regions and paths. One algorithm: branch and bound over boxes of
+pose space.
 
-One algorithm: a box of pose space is enclosed (:mod:`screwkit.analysis.enclosures`, interval
+A box of pose space is enclosed (:mod:`screwkit.analysis.enclosures`, interval
 arithmetic with outward rounding and the mean-value form, :mod:`screwkit.analysis.intervals`) and
 
 * ``"free"`` when every limb provably reaches every pose of it (``g_i > 0``) and no function of the
