@@ -107,6 +107,7 @@ _LAZY = {
     "check_path": "analysis.paths",
     "grid_map": "analysis.workspace",
     "mechanism": "robots.graph_mechanism",
+    "certify": "analysis.certify",
 }
 
 
@@ -179,6 +180,7 @@ __all__ = [
     "are_collinear",
     "are_coplanar",
     "bracket",
+    "certify",
     "check_path",
     "classify",
     "classify_poses",

@@ -20,6 +20,7 @@ EXPECTED = [
     "02_paper_004_robots.ipynb",
     "03_custom_mechanism.ipynb",
     "04_planar_3rrp.ipynb",
+    "certify.ipynb",
 ]
 
 
@@ -40,6 +41,8 @@ def test_notebook_is_committed_without_outputs(name):
 @pytest.mark.parametrize("name", EXPECTED)
 def test_notebook_runs(name, monkeypatch):
     monkeypatch.setenv("MPLBACKEND", "Agg")  # no display; figures are still drawn
+    # the kernel imports this checkout's package (a worktree's, not another checkout's install)
+    monkeypatch.setenv("PYTHONPATH", str(NOTEBOOKS.parent))
     notebook = nbformat.read(NOTEBOOKS / name, as_version=4)
     client = NotebookClient(
         notebook,

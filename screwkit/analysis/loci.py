@@ -1,7 +1,8 @@
 """Singular curves of a 2-D slice and singular surfaces of a 3-D region, refined onto the surfaces.
 
-Along every grid row and column of a slice, ``det A`` sign changes, closeness minima and reach
-edges are refined onto the singular surface (:mod:`screwkit.analysis.roots`); :func:`loci` gives
+Along every grid row and column of a slice, ``det A`` and ``det B`` sign changes, closeness minima
+(a touching zero has no sign change) and reach edges are refined onto the singular surface
+(:mod:`screwkit.analysis.roots`); :func:`loci` gives
 the curves of a slice, :func:`surfaces` stacks them over a third coordinate.
 
 Examples
@@ -23,9 +24,9 @@ import numpy as np
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
 from .poses import _axis, _Slice
 from .quantities import KINDS
-from .roots import _brackets, _factor, _measure, _refine
+from .roots import _brackets, _factor, _measure, _refine, _Samples
 
-__all__ = ["Locus", "SingularSurface", "loci", "surfaces"]
+__all__ = ["LOCUS_KINDS", "Locus", "SingularSurface", "loci", "surfaces"]
 
 Array = np.ndarray
 
@@ -37,14 +38,15 @@ class Locus:
     Attributes
     ----------
     kind : str
-        ``"constraint"``, ``"actuation"`` or ``"serial"``.
+        ``"constraint"``, ``"actuation"``, ``"serial"`` or ``"reach"`` (the edge of the reachable
+        set where no singularity is labelled).
     factor : str or None
-        The superbracket factor that vanishes there (None if unknown).
+        The superbracket factor that vanishes there (None if unknown, and for ``"reach"``).
     x_name, y_name : str
     points : numpy.ndarray, shape (m, 2)
         ``(x, y)`` in user units, sorted by ``x`` then ``y``.
     closeness : numpy.ndarray, shape (m,)
-        The kind's closeness at each point (~0).
+        The kind's closeness at each point (~0; NaN for ``"reach"``).
     """
 
     kind: str
@@ -67,8 +69,19 @@ class Locus:
             "x_name": self.x_name,
             "y_name": self.y_name,
             "points": self.points.tolist(),
-            "closeness": self.closeness.tolist(),
+            "closeness": [None if math.isnan(c) else c for c in self.closeness.tolist()],
         }
+
+    def __str__(self) -> str:
+        if not len(self.points):
+            return f"{self.kind}: no point"
+        what = "reach boundary" if self.kind == "reach" else f"{self.kind} singularity"
+        factor = f" (factor {self.factor})" if self.factor else ""
+        low, high = self.points.min(axis=0), self.points.max(axis=0)
+        return (
+            f"{what}{factor}: {len(self.points)} points, {self.x_name} in [{low[0]:.6g}, {high[0]:.6g}], "
+            f"{self.y_name} in [{low[1]:.6g}, {high[1]:.6g}]"
+        )
 
 
 def loci(
@@ -81,8 +94,8 @@ def loci(
     angles: str = "rad",
     rtol: float | None = None,
 ) -> tuple[Locus, ...]:
-    """The singular curves of a 2-D slice: along every grid row and column, det A sign changes,
-    closeness minima and reach edges, refined onto the surface (module docstring).
+    """The singular curves of a 2-D slice: along every grid row and column, det A and det B sign
+    changes, closeness minima and reach edges, refined onto the surface (module docstring).
 
     Parameters
     ----------
@@ -92,7 +105,8 @@ def loci(
     Returns
     -------
     tuple of Locus
-        One per kind found, in the order constraint, actuation, serial.
+        One per kind found, in the order of :data:`LOCUS_KINDS` (constraint, actuation, serial,
+        reach).
 
     Examples
     --------
@@ -101,25 +115,56 @@ def loci(
     []
     """
     grid = _Slice.create(mechanism, x, y, fixed, mode, angles)
+    found, _ = _slice_loci(mechanism, grid, rtol)
+    return found
+
+
+#: The kinds of :class:`Locus`, in order: the three singularity kinds and the reach boundary.
+LOCUS_KINDS = (*KINDS, "reach")
+
+
+def _transposed(samples: _Samples) -> _Samples:
+    """The samples of a grid ``(ny, nx)`` read along its columns ``(nx, ny)``."""
+    return _Samples(
+        samples.ok.T,
+        samples.codes.T,
+        {k: v.T for k, v in samples.closeness.items()},
+        None if samples.det_A is None else samples.det_A.T,
+        None if samples.det_B is None else samples.det_B.T,
+    )
+
+
+def _slice_loci(mechanism: Any, grid: _Slice, rtol: Any) -> tuple[tuple[Locus, ...], tuple[str, ...]]:
+    """The loci of a slice (the grid measured once, searched along its rows and columns) and the
+    kinds whose singular set holds every reachable pose of the grid (the slice lies inside it)."""
     user = grid.poses()
     scale = grid.scale
     rows = user * scale  # (ny, nx, n): lines along x
     columns = np.swapaxes(rows, 0, 1)  # (nx, ny, n): lines along y
+    measured = _measure(mechanism, rows, grid.options, rtol)
+    reachable_codes = measured.codes[measured.ok]
+    inside = tuple(
+        kind for bit, kind in enumerate(KINDS)
+        if reachable_codes.size and bool(np.all(reachable_codes >> bit & 1))
+    )
     found: list[tuple[Array, str, float]] = []
-    for lines, t in ((rows, grid.x_values), (columns, grid.y_values)):
-        samples = _measure(mechanism, lines, grid.options, rtol)
+    for lines, t, samples in (
+        (rows, grid.x_values, measured), (columns, grid.y_values, _transposed(measured))
+    ):
         u = (t - t[0]) / (t[-1] - t[0])
         start, stop = lines[:, 0], lines[:, -1]
 
         def along(which: Array, s: Array, start: Array = start, stop: Array = stop) -> Array:
             return start[which] + s[:, None] * (stop[which] - start[which])
 
-        for root in _refine(mechanism, along, _brackets(u, samples), grid.options, rtol):
-            found.append((root.pose / scale, root.kind, root.closeness))
+        brackets = _brackets(u, samples)
+        for root in _refine(mechanism, along, brackets, grid.options, rtol, keep_edges=True):
+            kind = "reach" if root.kind == "unreachable" else root.kind
+            found.append((root.pose / scale, kind, root.closeness))
     names = mechanism.pose_names
     ix, iy = names.index(grid.x_name), names.index(grid.y_name)
     out = []
-    for kind in KINDS:
+    for kind in LOCUS_KINDS:
         mine = [(p, c) for p, k, c in found if k == kind]
         if not mine:
             continue
@@ -129,10 +174,12 @@ def loci(
         points, closeness = points[order], closeness[order]
         keep = np.ones(len(points), dtype=bool)
         keep[1:] = np.any(np.abs(np.diff(points, axis=0)) > 1e-9 * (1 + np.abs(points[1:])), axis=1)
-        closest = np.array([p for p, _ in mine])[np.argsort([c for _, c in mine])]
-        factor = _factor(mechanism, closest * scale, kind, grid.options, rtol)
+        factor = None
+        if kind != "reach":
+            closest = np.array([p for p, _ in mine])[np.argsort([c for _, c in mine])]
+            factor = _factor(mechanism, closest * scale, kind, grid.options, rtol)
         out.append(Locus(kind, factor, grid.x_name, grid.y_name, points[keep], closeness[keep]))
-    return tuple(out)
+    return tuple(out), inside
 
 
 @dataclass(frozen=True, eq=False)
@@ -242,6 +289,8 @@ def surfaces(
         for locus in loci(
             mechanism, x=x, y=y, fixed={**given, z_name: float(value)}, mode=mode, angles=angles, rtol=rtol
         ):
+            if locus.kind == "reach":  # the surfaces are the singular ones
+                continue
             column = np.full((len(locus.points), 1), float(value))
             found[locus.kind].append((np.hstack([locus.points, column]), locus.closeness, locus.factor))
     return tuple(

@@ -20,9 +20,12 @@ import numpy as np
 
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
 
-__all__ = ["MAX_MAP_POSES"]
+__all__ = ["CHUNK", "MAX_MAP_POSES"]
 
 Array = np.ndarray
+
+#: Poses analysed at once by default (bounded memory): the maps' chunks and the loci's batches.
+CHUNK = 4096
 
 #: The most poses one map, sweep or surface slice may hold: its grid of poses is built whole (32 bytes
 #: a pose, 3.2 GB at the bound), though the analysis runs in chunks (the command line caps at 2e6).

@@ -3,7 +3,7 @@
 A singular surface is rarely hit by a grid or path sample: a grid's labels miss it. Along each
 line of samples (grid rows and columns, or a path) screwkit looks for
 
-* sign changes of ``det A`` (refined by bisection),
+* sign changes of ``det A`` and ``det B`` (refined by false position),
 * local minima of each closeness measure (refined by golden-section search), and
 * the edge of the reachable set (refined by bisection on the inverse kinematics),
 
@@ -24,8 +24,8 @@ from typing import Any
 import numpy as np
 
 from ..exceptions import ScrewkitError
+from .poses import CHUNK
 from .quantities import KINDS, conditions_of
-from .workspace import CHUNK
 
 __all__ = ["ACCEPT", "MAX_STEPS", "XTOL"]
 
@@ -50,32 +50,40 @@ class _Samples:
     codes: Array
     closeness: dict[str, Array]
     det_A: Array | None
+    det_B: Array | None
 
 
 def _measure(mechanism: Any, poses: Array, options: dict[str, Any], rtol: Any) -> _Samples:
-    """Codes, closeness and det A at API-unit poses ``(..., n)`` (NaN / -1 where out of reach)."""
+    """Codes, closeness, det A and det B at API-unit poses ``(..., n)`` (NaN / -1 where out of
+    reach), through the core in batches of :data:`~screwkit.analysis.poses.CHUNK` poses."""
     shape = poses.shape[:-1]
     flat = poses.reshape(-1, poses.shape[-1])
     ok = mechanism.reachable(flat, **options)
     codes = np.full(len(flat), -1, dtype=np.int64)
     closeness = {k: np.full(len(flat), np.nan) for k in KINDS}
-    det_a: Array | None = np.full(len(flat), np.nan)
-    if ok.any():
-        posed = mechanism.at(flat[ok], rtol=rtol, **options)
-        if ok.sum() <= CHUNK:  # det A needs the joint table too: build it once (a bounded batch)
-            _ = posed.joints
-        codes[ok] = posed.codes
+    dets: dict[str, Array | None] = {"det_A": np.full(len(flat), np.nan), "det_B": np.full(len(flat), np.nan)}
+    where = np.flatnonzero(ok)
+    for start in range(0, len(where), CHUNK):
+        part = where[start : start + CHUNK]
+        posed = mechanism.at(flat[part], rtol=rtol, **options)
+        _ = posed.joints  # det A and det B need the joint table too: build it once per batch
+        codes[part] = posed.codes
         for k in KINDS:
-            closeness[k][ok] = posed.closeness[k]
-        try:
-            det_a[ok] = posed.jacobians.det_A  # type: ignore[index]
-        except ScrewkitError:  # no square forward Jacobian for this mechanism: no sign to follow
-            det_a = None
+            closeness[k][part] = posed.closeness[k]
+        for name, values in dets.items():
+            if values is None:
+                continue
+            try:
+                values[part] = getattr(posed.jacobians, name)
+            except ScrewkitError:  # no square Jacobian for this mechanism: no sign to follow
+                dets[name] = None
+    det_a, det_b = dets["det_A"], dets["det_B"]
     return _Samples(
         ok.reshape(shape),
         codes.reshape(shape),
         {k: v.reshape(shape) for k, v in closeness.items()},
         None if det_a is None else det_a.reshape(shape),
+        None if det_b is None else det_b.reshape(shape),
     )
 
 
@@ -92,15 +100,19 @@ class _Root:
 
 def _brackets(t: Array, samples: _Samples) -> list[tuple[int, float, float, str]]:
     """``(line, t_low, t_high, method)`` intervals holding a candidate root, from each line's
-    samples: det A sign changes, closeness minima, reach edges and samples labelled singular."""
+    samples: det A and det B sign changes, closeness minima, reach edges and samples labelled
+    singular."""
     out = []
     ok = samples.ok
     both = ok[:, :-1] & ok[:, 1:]
-    if samples.det_A is not None:
+    for name in ("det_A", "det_B"):
+        det = getattr(samples, name)
+        if det is None:
+            continue
         with np.errstate(invalid="ignore"):
-            change = both & (np.sign(samples.det_A[:, :-1]) != np.sign(samples.det_A[:, 1:]))
+            change = both & (np.sign(det[:, :-1]) != np.sign(det[:, 1:]))
         for line, i in zip(*np.nonzero(change), strict=True):
-            out.append((int(line), float(t[i]), float(t[i + 1]), "det_A"))
+            out.append((int(line), float(t[i]), float(t[i + 1]), name))
     for kind in KINDS:
         c = np.where(ok, samples.closeness[kind], np.inf)
         left = np.concatenate([np.full((len(c), 1), np.inf), c[:, :-1]], axis=1)
@@ -144,14 +156,17 @@ def _refine(
     lines = np.array([b[0] for b in brackets])
     method = np.array([b[3] for b in brackets])
     kind_index = np.array([KINDS.index(m[4:]) if m.startswith("min:") else 0 for m in method])
-    is_det, is_edge = method == "det_A", method == "edge"
+    is_det_b = method == "det_B"
+    is_det, is_edge = (method == "det_A") | is_det_b, method == "edge"
     is_min = np.char.startswith(method.astype(str), "min:")
     everyone = np.arange(len(brackets))
 
     def score(t: Array, which: Array = everyone) -> Array:
         """Per bracket ``which``: det A, ±1 reachability, or its kind's closeness (inf out of reach)."""
         s = _measure(mechanism, along(lines[which], t[which]), options, rtol)
-        det = np.zeros(len(which)) if s.det_A is None else np.nan_to_num(s.det_A)
+        det_a = np.zeros(len(which)) if s.det_A is None else np.nan_to_num(s.det_A)
+        det_b = np.zeros(len(which)) if s.det_B is None else np.nan_to_num(s.det_B)
+        det = np.where(is_det_b[which], det_b, det_a)
         closeness = np.stack([s.closeness[k] for k in KINDS], axis=-1)[
             np.arange(len(which)), kind_index[which]
         ]

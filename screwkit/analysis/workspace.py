@@ -40,14 +40,12 @@ import numpy as np
 
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
 from . import quantities as Q
-from .poses import _as_dict, _check_mechanism, _options, _Slice, _units
+from .poses import CHUNK, _as_dict, _check_mechanism, _options, _Slice, _units
 
 __all__ = ["CHUNK", "WorkspaceMap", "evaluate", "grid_map", "sweep"]
 
 Array = np.ndarray
 
-#: Poses analysed at once by default (bounded memory).
-CHUNK = 4096
 
 def evaluate(
     mechanism: Any, poses: Any, quantity: str, *, mode: Any = None, rtol: float | None = None
@@ -194,6 +192,14 @@ class WorkspaceMap:
     meaning : str
         What a ``"condition:K"`` map shows: the factor of the superbracket, its label and its
         vector form (empty for the other quantities).
+    loci : tuple of Locus
+        The singular curves and the reach boundary in the slice, found between the grid's nodes
+        (:mod:`screwkit.analysis.loci`: sign changes and closeness minima refined onto them), so
+        that a singular curve no sample hits is still shown; empty when the map was asked
+        without them.
+    inside : tuple of str
+        The kinds of singularity whose singular set holds every reachable pose of the grid (the
+        slice lies inside it).
     """
 
     quantity: str
@@ -212,6 +218,8 @@ class WorkspaceMap:
     units: dict[str, str] = field(default_factory=dict)
     mechanism: str = ""
     meaning: str = ""
+    loci: tuple[Any, ...] = ()
+    inside: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         for name in ("x_values", "y_values", "values", "reachable"):
@@ -241,6 +249,8 @@ class WorkspaceMap:
             "y": {"name": self.y_name, "values": self.y_values.tolist()},
             "values": [[_plain(v) for v in row] for row in values],
             **({"meaning": self.meaning} if self.meaning else {}),
+            "loci": [locus.to_dict() for locus in self.loci],
+            "inside": list(self.inside),
             **({"codes": {str(c): Q.verdict_name(c) for c in range(-1, 2 ** len(Q.KINDS))}}
                if self.quantity == "verdict" else {}),
         }
@@ -290,13 +300,14 @@ class WorkspaceMap:
         if suffix == ".json":
             target.write_text(self.to_json(indent=1))
         elif suffix == ".npz":
-            summary = {k: v for k, v in self.to_dict().items() if k not in ("values", "x", "y")}
+            summary = {k: v for k, v in self.to_dict().items() if k not in ("values", "x", "y", "loci")}
             np.savez_compressed(
                 target,
                 x_values=self.x_values,
                 y_values=self.y_values,
                 values=self.values,
                 reachable=self.reachable,
+                loci=np.array(json.dumps([locus.to_dict() for locus in self.loci])),
                 summary=np.array(json.dumps(summary)),
             )
         elif suffix == ".png":
@@ -330,8 +341,10 @@ def grid_map(
     progress: Any = None,
     angles: str = "rad",
     rtol: float | None = None,
+    loci: bool = True,
 ) -> WorkspaceMap:
-    """A quantity over a 2-D grid of the pose space, through the core in chunks.
+    """A quantity over a 2-D grid of the pose space, through the core in chunks, with the singular
+    loci of the slice found between the grid's nodes.
 
     Parameters
     ----------
@@ -354,6 +367,9 @@ def grid_map(
     angles : {"deg", "rad"}
     rtol : float, optional
         The core's relative tolerance.
+    loci : bool, default True
+        Find the singular curves and the reach boundary of the slice
+        (:attr:`WorkspaceMap.loci`, in process; about the cost of two more maps of the grid).
 
     Returns
     -------
@@ -373,9 +389,15 @@ def grid_map(
     >>> bool(0 < m.minimum <= m.maximum <= 1)
     True
     """
+    _check_flag(loci, "loci")
     name, grid, job = _map_job(mechanism, quantity, x, y, fixed, mode, angles, rtol)
     ((values, ok),) = _run_chunks(_chunk_values, [job], chunk, client, progress)
-    return _assembled(mechanism, name, grid, values, ok)
+    return _assembled(mechanism, name, grid, values, ok, rtol if loci else False)
+
+
+def _check_flag(value: Any, name: str) -> None:
+    if not isinstance(value, bool):
+        raise ScrewkitTypeError(f"Expected `{name}` to be True or False, got {value!r}.")
 
 
 def _map_job(
@@ -391,8 +413,14 @@ def _map_job(
     return name, grid, (mechanism, flat, (name, grid.options, rtol))
 
 
-def _assembled(mechanism: Any, name: str, grid: _Slice, values: Array, ok: Array) -> WorkspaceMap:
-    """The map from its flat values: extrema over the reachable poses and where they occur."""
+def _assembled(
+    mechanism: Any, name: str, grid: _Slice, values: Array, ok: Array, loci_rtol: Any
+) -> WorkspaceMap:
+    """The map from its flat values: extrema over the reachable poses and where they occur, and
+    the slice's loci (found with the core's tolerance ``loci_rtol``; none when it is False)."""
+    from .loci import _slice_loci
+
+    found, inside = ((), ()) if loci_rtol is False else _slice_loci(mechanism, grid, loci_rtol)
     user = grid.poses()
     shape = user.shape[:2]
     values, ok = values.reshape(shape), ok.reshape(shape)
@@ -425,6 +453,8 @@ def _assembled(mechanism: Any, name: str, grid: _Slice, values: Array, ok: Array
         _units(mechanism, grid.angles),
         mechanism.name,
         _meaning(mechanism, name, grid.options),
+        found,
+        inside,
     )
 
 
@@ -450,6 +480,7 @@ def sweep(
     progress: Any = None,
     angles: str = "rad",
     rtol: float | None = None,
+    loci: bool = True,
 ) -> tuple[WorkspaceMap, ...]:
     """A parameter sweep: the same map for each mechanism (e.g. a family's parameters varied with
     :func:`screwkit.robots.catalog.mechanism_from_mapping`), every chunk of every map submitted at once
@@ -476,6 +507,8 @@ def sweep(
     angles : {"deg", "rad"}
     rtol : float, optional
         The core's relative tolerance.
+    loci : bool, default True
+        Find each map's loci, as for :func:`grid_map`.
 
     Returns
     -------
@@ -493,9 +526,10 @@ def sweep(
         raise ScrewkitTypeError(
             f"Expected `mechanisms` to be a non-empty sequence of mechanisms, got {mechanisms!r}."
         )
+    _check_flag(loci, "loci")
     prepared = [_map_job(m, quantity, x, y, fixed, mode, angles, rtol) for m in mechanisms]
     results = _run_chunks(_chunk_values, [job for _, _, job in prepared], chunk, client, progress)
     return tuple(
-        _assembled(mechanism, name, grid, values, ok)
+        _assembled(mechanism, name, grid, values, ok, rtol if loci else False)
         for mechanism, (name, grid, _), (values, ok) in zip(mechanisms, prepared, results, strict=True)
     )

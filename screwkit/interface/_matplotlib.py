@@ -14,6 +14,7 @@ from ..exceptions import MissingDependencyError, ScrewkitTypeError
 
 try:
     import matplotlib.pyplot as plt
+    from matplotlib.collections import PolyCollection
     from matplotlib.colors import BoundaryNorm, ListedColormap, to_rgba
     from matplotlib.figure import Figure
     from matplotlib.lines import Line2D
@@ -33,6 +34,7 @@ __all__ = [
     "ListedColormap",
     "Patch",
     "Poly3DCollection",
+    "PolyCollection",
     "new_axes",
     "plt",
     "to_rgba",

@@ -24,8 +24,11 @@ Commands
     A map of a quantity over a 2-D slice (:func:`screwkit.analysis.workspace.grid_map`): two pose
     coordinates given as ranges, the others fixed (default: the default pose); writes .png, .npz or
     .json and prints the region, minimum and maximum and where they occur.
-``screwkit path NAME|FILE.toml --from Q... --to Q... [--samples N] [--json]``
+``screwkit path NAME|FILE.toml --from Q... --to Q... [--samples N] [--certify] [--json]``
     Check a straight path for singularities (:func:`screwkit.analysis.paths.check_path`).
+``screwkit certify NAME|FILE.toml --X LO HI --Y LO HI [--Z V|LO HI] [--PHI V|LO HI] --out F``
+    Prove a box of poses free of singularities or singular with a witness
+    (:func:`screwkit.analysis.certify.certify`).
 
 Examples
 --------
@@ -45,7 +48,7 @@ from ..exceptions import ScrewkitError
 from ._cli_io import UsageError, error_reason
 from .cli_mechanism import run_analyze, run_graph, run_list, run_screw
 from .cli_parser import get_parser
-from .cli_workspace import run_map, run_path, run_table4
+from .cli_workspace import run_certify, run_map, run_path, run_table4
 
 __all__ = ["console", "main"]
 
@@ -112,6 +115,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             return 0
         runners = {
             "analyze": run_analyze,
+            "certify": run_certify,
             "graph": run_graph,
             "list": run_list,
             "map": run_map,

@@ -228,6 +228,30 @@ def _add_workspace_commands(commands: Any) -> None:
         "--samples", type=int, default=200, metavar="N", help="samples along the path (default 200)"
     )
     path.add_argument("--json", action="store_true", help="print JSON instead of text")
+    path.add_argument(
+        "--certify",
+        action="store_true",
+        help="also prove the path free, or enclose each crossing (Quattro, H4)",
+    )
+    certify = commands.add_parser(
+        "certify",
+        help="prove a box of poses free of singularities, or find them with a witness (Quattro, H4)",
+        description="Pave a box of the pose space into boxes proved free, singular (with a witness) or "
+        "undecided, by interval arithmetic. Give ranges (LO HI) and fixed values (one value; default: the "
+        "default pose). Lengths in the catalog file's unit, angles in DEGREES.",
+    )
+    certify.add_argument("mechanism", help="a catalog name (e.g. quattro) or a .toml file")
+    for name in pose_coordinates():
+        certify.add_argument(
+            f"--{name}", nargs="+", type=float, metavar="V", help=f"{name}: LO HI, or one value"
+        )
+    certify.add_argument("--resolution", type=float, default=None, metavar="R",
+                         help="smallest box width, in the coordinates' units (default: 1/256 of each range)")
+    certify.add_argument("--kinds", nargs="+", default=["constraint", "actuation", "serial"],
+                         metavar="K", help="kinds to exclude (default: constraint actuation serial)")
+    certify.add_argument("--max-boxes", type=int, default=200_000, metavar="N",
+                         help="boxes evaluated before the run stops (the rest undecided)")
+    certify.add_argument("--out", required=True, metavar="FILE", help="FILE.json or FILE.png (the paving)")
 
 
 

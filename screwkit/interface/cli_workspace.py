@@ -1,4 +1,4 @@
-"""The commands over the pose space: ``map``, ``path`` and ``table4``.
+"""The commands over the pose space: ``map``, ``path``, ``certify`` and ``table4``.
 
 Each ``run_*`` takes the parsed arguments (:func:`screwkit.interface.cli_parser.get_parser`), checks
 them against the caps below before computing (never a hang or an allocation beyond memory), calls
@@ -11,6 +11,7 @@ from __future__ import annotations
 import argparse
 import importlib.util
 import math
+from typing import Any
 
 import numpy as np
 
@@ -28,7 +29,7 @@ from ._cli_io import (
     shown_path,
 )
 
-__all__ = ["MAX_MAP_POSES", "MAX_PATH_SAMPLES", "run_map", "run_path", "run_table4"]
+__all__ = ["MAX_MAP_POSES", "MAX_PATH_SAMPLES", "run_certify", "run_map", "run_path", "run_table4"]
 
 #: Caps of the workspace commands (never a hang or an allocation beyond memory): poses in a map,
 #: samples along a path, grid points per axis and refinement rounds of ``table4``.
@@ -60,6 +61,7 @@ def run_map(args: argparse.Namespace) -> int:
     ...     "--phi", "-10", "10", "2", "--out", out]))  # doctest: +ELLIPSIS
     verdict over H4: z in [-900, -600] mm (2 values) x phi in [-10, 10] deg (2 values), x = 0 mm, y = 0 mm
       verdicts of the reachable poses (codes in the JSON's `codes`): regular 100.0%
+      loci in the slice: none found (no singular curve or reach boundary between the samples)
       minimum 0 at ...
     0
     """
@@ -72,12 +74,7 @@ def run_map(args: argparse.Namespace) -> int:
         raise UsageError(f"screwkit map: error: --quantity: {err}") from err
     if not args.out.lower().endswith((".png", ".npz", ".json")):
         raise UsageError(f"screwkit map: error: --out expects FILE.npz, .json or .png, got {args.out!r}")
-    check_writable("screwkit map", "--out", args.out)
-    if args.out.lower().endswith(".png") and importlib.util.find_spec("matplotlib") is None:
-        raise UsageError(  # before the computation, not after it
-            "screwkit map: error: --out FILE.png needs matplotlib, which is not installed: install the "
-            'optional extra `plot` (pip install "screwkit[plot]"), or write .npz or .json'
-        )
+    _check_out("map", args.out, ".npz or .json")
     if not 2 <= args.grid <= MAX_MAP_POSES // 2:
         raise UsageError(
             f"screwkit map: error: --grid expects an integer in 2..{MAX_MAP_POSES // 2}, got {args.grid}"
@@ -137,16 +134,15 @@ def run_map(args: argparse.Namespace) -> int:
         progress=False if args.no_progress else None,
         angles="deg",
     )
-    try:
+    def write() -> None:
         if args.out.lower().endswith(".png"):
             from .plot import save_map_png
 
             save_map_png(result, args.out)
         else:
             result.save(args.out)
-    except (OSError, ValueError) as err:
-        shown = f"--out {shown_path(args.out)}: cannot write: {error_reason(err)}"
-        raise UsageError(f"screwkit map: error: {shown}") from err
+
+    _write("map", args.out, write)
 
     def where(pose: dict[str, float]) -> str:
         return ", ".join(f"{k} = {v:g}" for k, v in pose.items()) or "-"
@@ -154,14 +150,30 @@ def run_map(args: argparse.Namespace) -> int:
     lines = [f"{quantity} over {result.region}"]
     if result.meaning:
         lines.append(f"  {result.meaning}")
+    singular_loci = [locus for locus in result.loci if locus.kind != "reach"]
     if result.quantity == "verdict" and result.reachable.any():  # codes mean kinds: say which were found
         from ..analysis.quantities import verdict_name
 
         codes, counts = np.unique(result.values[result.reachable], return_counts=True)
-        found = ", ".join(
-            f"{verdict_name(int(c))} {n / counts.sum():.1%}" for c, n in zip(codes, counts, strict=True)
+        if singular_loci and codes.tolist() == [0]:  # the samples missed the curves: no "regular 100 %"
+            lines.append(
+                f"  sampled poses: all {counts.sum()} reachable samples read regular, "
+                "but the slice holds the singular loci below (between the samples)"
+            )
+        else:
+            found = ", ".join(
+                f"{verdict_name(int(c))} {n / counts.sum():.1%}" for c, n in zip(codes, counts, strict=True)
+            )
+            lines.append(f"  verdicts of the reachable poses (codes in the JSON's `codes`): {found}")
+    for kind in result.inside:
+        lines.append(f"  the whole slice lies inside the {kind} singular set")
+    if result.loci:
+        lines.append(f"  loci in the slice ({len(singular_loci)} singular; points in the JSON's `loci`):")
+        lines += [f"    {locus}" for locus in result.loci]
+    else:
+        lines.append(
+            "  loci in the slice: none found (no singular curve or reach boundary between the samples)"
         )
-        lines.append(f"  verdicts of the reachable poses (codes in the JSON's `codes`): {found}")
     if result.reachable.any():
         lines.append(f"  minimum {result.minimum:g} at {where(result.argmin)}")
         lines.append(f"  maximum {result.maximum:g} at {where(result.argmax)}")
@@ -173,6 +185,25 @@ def run_map(args: argparse.Namespace) -> int:
 
 
 
+def _check_out(command: str, out: str, other: str) -> None:
+    """``--out`` writable, and a ``.png`` only with matplotlib (before the computation, not after it)."""
+    check_writable(f"screwkit {command}", "--out", out)
+    if out.lower().endswith(".png") and importlib.util.find_spec("matplotlib") is None:
+        raise UsageError(
+            f"screwkit {command}: error: --out FILE.png needs matplotlib, which is not installed: install "
+            f'the optional extra `plot` (pip install "screwkit[plot]"), or write {other}'
+        )
+
+
+def _write(command: str, out: str, write: Any) -> None:
+    """Run ``write()``, its I/O errors as a usage error naming ``--out``."""
+    try:
+        write()
+    except (OSError, ValueError) as err:
+        shown = f"--out {shown_path(out)}: cannot write: {error_reason(err)}"
+        raise UsageError(f"screwkit {command}: error: {shown}") from err
+
+
 def run_path(args: argparse.Namespace) -> int:
     """Check a straight path; see ``screwkit path --help``.
 
@@ -180,7 +211,7 @@ def run_path(args: argparse.Namespace) -> int:
     ----------
     args : argparse.Namespace
         From :func:`~screwkit.interface.cli_parser.get_parser`: ``mechanism``, ``start`` (``--from``),
-        ``end`` (``--to``), ``samples`` and ``json`` of ``screwkit path``.
+        ``end`` (``--to``), ``samples``, ``certify`` and ``json`` of ``screwkit path``.
 
     Returns
     -------
@@ -205,10 +236,99 @@ def run_path(args: argparse.Namespace) -> int:
     mechanism = mechanism_over_poses("path", args.mechanism)
     for option, values in (("--from", args.start), ("--to", args.end)):
         pose_values("screwkit path", option, mechanism, values)
-    result = check_path(mechanism, args.start, args.end, samples=args.samples, angles="deg")
+    result = check_path(
+        mechanism, args.start, args.end, samples=args.samples, angles="deg", certify=bool(args.certify)
+    )
     print_text(json_text(result.to_dict(), indent=2, ensure_ascii=False) if args.json else str(result))
     return 0
 
+
+
+def run_certify(args: argparse.Namespace) -> int:
+    """Certify a box of pose space; see ``screwkit certify --help``.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        From :func:`~screwkit.interface.cli_parser.get_parser`: ``mechanism``, one option per pose
+        coordinate (``LO HI`` or one value, angles in degrees), ``resolution``, ``kinds``,
+        ``max_boxes`` and ``out`` of ``screwkit certify``.
+
+    Returns
+    -------
+    int
+        0, the certificate written to ``--out`` (``.json``, or ``.png``: the paving with the loci
+        over it, two ranges only) and summarised.
+
+    Examples
+    --------
+    >>> from screwkit.interface.cli_parser import get_parser
+    >>> import tempfile, os
+    >>> out = os.path.join(tempfile.mkdtemp(), "c.json")
+    >>> run_certify(get_parser().parse_args(["certify", "quattro", "--x", "100", "200", "--y", "100", "200",
+    ...     "--z", "-750", "--phi", "0", "--out", out]))  # doctest: +ELLIPSIS
+    Quattro: x in [100, 200], y in [100, 200], z = -750, phi = 0 (deg)
+      certified free of constraint, actuation, serial singularities: free ...
+    0
+    """
+    from ..analysis.certify import certify
+
+    out = args.out.lower()
+    if not out.endswith((".json", ".png")):
+        raise UsageError(f"screwkit certify: error: --out expects FILE.json or FILE.png, got {args.out!r}")
+    _check_out("certify", args.out, ".json")
+    mechanism = catalog_mechanism("certify", args.mechanism)
+    region: dict[str, object] = {}
+    for name in pose_coordinates():
+        values = getattr(args, name)
+        if values is None:
+            continue
+        if name not in mechanism.pose_names:
+            raise UsageError(
+                f"screwkit certify: error: --{name}: {mechanism.name} has pose coordinates "
+                f"{list(mechanism.pose_names)}"
+            )
+        if len(values) not in (1, 2) or not all(math.isfinite(v) for v in values):
+            raise UsageError(
+                f"screwkit certify: error: --{name} expects LO HI or one value, got "
+                f"{' '.join(map(str, values))}"
+            )
+        for value in values:
+            check_coordinate("screwkit certify", f"--{name}", mechanism, name, value)
+        region[name] = values[0] if len(values) == 1 else (values[0], values[1])
+    ranges = [n for n, v in region.items() if isinstance(v, tuple)]
+    if out.endswith(".png") and len(ranges) != 2:
+        raise UsageError(
+            f"screwkit certify: error: --out FILE.png draws two ranges (LO HI), got {len(ranges)}: "
+            "write .json"
+        )
+    try:
+        result = certify(
+            mechanism,
+            region,
+            kinds=tuple(args.kinds),
+            resolution=args.resolution,
+            angles="deg",
+            max_boxes=args.max_boxes,
+        )
+    except ScrewkitError as err:
+        raise UsageError(f"screwkit certify: error: {err}") from err
+    def write() -> None:
+        if out.endswith(".png"):
+            from ..analysis.loci import loci
+            from .plot_certify import save_certificate_png
+
+            (x_name, (x_lo, x_hi)), (y_name, (y_lo, y_hi)) = result.region.items()
+            found = loci(mechanism, x=(x_name, x_lo, x_hi, 101), y=(y_name, y_lo, y_hi, 101),
+                         fixed=result.fixed, angles="deg")
+            save_certificate_png(result, args.out, loci=found)
+        else:
+            with open(args.out, "w") as handle:
+                handle.write(result.to_json(indent=1))
+
+    _write("certify", args.out, write)
+    print_text(f"{result}\n  written to {args.out}")
+    return 0
 
 
 def run_table4(args: argparse.Namespace) -> int:

@@ -75,7 +75,7 @@ __all__ = [
 Array = np.ndarray
 
 #: Colour of each kind of singularity locus.
-KIND_COLOURS = {"constraint": "tab:red", "actuation": "tab:blue", "serial": "tab:green"}
+KIND_COLOURS = {"constraint": "tab:red", "actuation": "tab:blue", "serial": "tab:green", "reach": "black"}
 #: Colour of each verdict code (bit 1 constraint, 2 actuation, 4 serial; 0 regular).
 VERDICT_COLOURS = (
     "#f2f2f2",  # regular
@@ -462,7 +462,8 @@ def plot_singularity_surfaces(
 
 def save_map_png(workspace_map: Any, path: str | Path) -> Path:
     """Draw a map (:func:`plot_verdicts` for a ``"verdict"`` map, else :func:`plot_map`'s
-    isocontours; angles stored in radians drawn in degrees) and write it as a PNG.
+    isocontours; angles stored in radians drawn in degrees) with its loci over it, and write it
+    as a PNG.
 
     What ``screwkit map ... --out FILE.png`` writes: a map is data
     (:class:`screwkit.analysis.workspace.WorkspaceMap`), drawn here. The figure is drawn off screen
@@ -495,8 +496,8 @@ def save_map_png(workspace_map: Any, path: str | Path) -> Path:
         drawn = dataclasses.replace(
             workspace_map, values=np.where(workspace_map.reachable, workspace_map.values, 0)
         )
-        plot_verdicts(drawn, ax=ax, degrees=in_radians)
+        plot_verdicts(drawn, ax=ax, degrees=in_radians, loci=workspace_map.loci)
     else:
-        plot_map(workspace_map, ax=ax, degrees=in_radians)
+        plot_map(workspace_map, ax=ax, degrees=in_radians, loci=workspace_map.loci)
     figure.savefig(target, dpi=120, bbox_inches="tight")
     return target

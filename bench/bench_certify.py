@@ -1,0 +1,79 @@
+"""Speed of certification (screwkit.analysis.certify) against sampled maps of the same slice.
+
+Run: ``python bench/bench_certify.py [--repeats 1]`` from the repository root (prints a table; not a
+test). Single-threaded BLAS. Times are this process's CPU time (the machine is shared), best of
+``--repeats``.
+
+* ``map 200x200``: :func:`screwkit.analysis.workspace.grid_map` ``"verdict"`` over the Quattro's slice
+  x, y in [-400, 400] mm at z = -750 mm (phi = 0 and 90 deg), without and with its loci;
+* ``certify 1/1000``: :func:`screwkit.analysis.certify.certify` of the same slice to a resolution of
+  0.8 mm (1/1000 of its width), and its ratio to the map without loci (the issue's target: <= 10x);
+* ``certify 3-D``: the box x, y in [-400, 400], z in [-900, -600] at phi = 0 and 45 deg, to 1/100
+  of each width (seconds, boxes);
+* ``conditions``: the closed-form conditions (the four reach functions, det A, paper 002's Eq. 6)
+  at points, as double intervals, against one batched numpy SVD of 6 x 6 matrices of the same
+  count (poses/s, ratio).
+"""
+
+import os
+
+for _name in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS", "NUMEXPR_NUM_THREADS"):
+    os.environ.setdefault(_name, "1")
+
+import argparse  # noqa: E402
+import time  # noqa: E402
+
+import numpy as np  # noqa: E402
+from _timing import best_of  # noqa: E402
+
+import screwkit as sk  # noqa: E402
+from screwkit.analysis.certify import certify  # noqa: E402
+from screwkit.analysis.enclosures import FourLimbModel  # noqa: E402
+from screwkit.analysis.intervals import Enclosure  # noqa: E402
+from screwkit.analysis.workspace import grid_map  # noqa: E402
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--repeats", type=int, default=1)
+    args = parser.parse_args()
+    quattro = sk.load_mechanism("quattro")
+    clock = time.process_time
+    print(f"load average {os.getloadavg()[0]:.2f}")
+    for phi in (0.0, 90.0):
+        fixed = {"z": -750.0, "phi": phi}
+        axes = {"x": ("x", -400, 400, 200), "y": ("y", -400, 400, 200)}
+        region = {"x": (-400, 400), "y": (-400, 400), **fixed}
+
+        def sampled(loci: bool, fixed: dict = fixed, axes: dict = axes) -> object:
+            return grid_map(quattro, "verdict", fixed=fixed, angles="deg", loci=loci, **axes)
+
+        def proof(region: dict = region) -> object:
+            return certify(quattro, region, resolution=0.8, angles="deg")
+
+        plain = best_of(args.repeats, lambda: sampled(False), clock)
+        with_loci = best_of(args.repeats, lambda: sampled(True), clock)
+        result = proof()
+        proved = best_of(args.repeats, proof, clock)
+        print(f"phi = {phi:g} deg: map 200x200 {plain:.2f} s (with loci {with_loci:.2f} s); certify 1/1000 "
+              f"{proved:.2f} s = {proved / plain:.1f}x the map ({result.evaluated} boxes; "
+              + ", ".join(f"{k} {v:.2%}" for k, v in result.fractions.items()) + ")")
+    for phi in (0.0, 45.0):
+        region = {"x": (-400, 400), "y": (-400, 400), "z": (-900, -600), "phi": phi}
+        start = clock()
+        result = certify(quattro, region, resolution={"x": 8, "y": 8, "z": 3}, angles="deg")
+        print(f"certify 3-D (x, y, z at phi = {phi:g} deg, 1/100): {clock() - start:.1f} s, "
+              f"{result.evaluated} boxes; " + ", ".join(f"{k} {v:.2%}" for k, v in result.fractions.items()))
+    model = FourLimbModel.of(quattro)
+    count = 100_000
+    poses = np.asarray(quattro.random_poses(np.random.default_rng(0), count))
+    points = Enclosure.variables(poses, poses, gradient=False)
+    conditions = best_of(3, lambda: model.evaluate(points), clock)
+    matrices = np.random.default_rng(1).normal(size=(count, 6, 6))
+    svd = best_of(3, lambda: np.linalg.svd(matrices, compute_uv=False), clock)
+    print(f"conditions at points (intervals): {count / conditions:,.0f} poses/s; batched 6x6 SVD "
+          f"{count / svd:,.0f} poses/s; ratio {svd / conditions:.2f}")
+
+
+if __name__ == "__main__":
+    main()
