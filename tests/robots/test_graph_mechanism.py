@@ -272,3 +272,15 @@ def test_joint_table_of_the_reference_is_the_graphs():
     for spec in reference.specs:
         gap = np.abs(table.joint_screws(spec.name) - reference.joint_screws(spec.name)).max()
         assert gap < 1e-12
+
+
+def test_the_report_of_a_graph_mechanisms_pose():
+    robot = sk.mechanism("examples/planar_3rpr.toml")
+    posed = robot.at([[0.6, 0.45, 0.1]])[0]
+    report = sk.analyze(posed, superbracket=False)
+    # the graph at that configuration, analysed by itself, gives the same verdict and orders
+    alone = sk.classify(posed.graph)
+    assert report.verdict.verdict == alone.verdict
+    assert report.verdict.global_order == alone.global_order
+    assert report.pose_names == ("x", "y", "phi") and report.jacobians.type == "regular"
+    assert np.allclose(report.pose, [0.6, 0.45, 0.1])
