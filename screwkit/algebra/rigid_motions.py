@@ -128,16 +128,25 @@ def exp_screw(row: Array, angle: Array) -> Array:
     >>> exp_screw(np.array([0, 0, 1.0, 0, -1.0, 0]), np.array([np.pi]))[0, :3, 3].round(12) + 0.0
     array([2., 0., 0.])
     """
-    g = np.tile(np.eye(4), (len(angle), 1, 1))
+    angle = np.asarray(angle, dtype=float)
+    g = np.zeros((len(angle), 4, 4))
+    g[:, 3, 3] = 1.0
     w, v = row[:3], row[3:]
-    size = np.linalg.norm(w)
+    size = float(np.sqrt(w @ w))
     if size < 1e-12:
+        g[:, 0, 0] = g[:, 1, 1] = g[:, 2, 2] = 1.0
         g[:, :3, 3] = angle[:, None] * v
         return g
     w, v = w / size, v / size  # a rotation screw: θ in radians about its unit axis
-    rot = rotation_matrix(w, angle)
+    k = hat(w)
+    kk = k @ k
+    sine, versine = np.sin(angle)[:, None, None], (1.0 - np.cos(angle))[:, None, None]
+    rot = np.eye(3) + sine * k + versine * kk
     g[:, :3, :3] = rot
-    g[:, :3, 3] = (np.eye(3) - rot) @ np.cross(w, v) + np.outer(angle, w * (w @ v))
+    # (I − R)(ω × v) = −(sin θ K + (1 − cos θ) K²)(ω × v), plus the pitch's ω ωᵀ v θ
+    moment = np.array([w[1] * v[2] - w[2] * v[1], w[2] * v[0] - w[0] * v[2], w[0] * v[1] - w[1] * v[0]])
+    turned = sine[:, :, 0] * (k @ moment) + versine[:, :, 0] * (kk @ moment)
+    g[:, :3, 3] = np.outer(angle, w * (w @ v)) - turned
     return g
 
 
@@ -160,6 +169,10 @@ def adjoint(g: Array, rows: Array) -> Array:
     >>> adjoint(shift, np.array([[0, 0, 1.0, 0, 0, 0]]))  # the z axis moved to x = 1
     array([[ 0.,  0.,  1.,  0., -1.,  0.]])
     """
-    s = np.einsum("bij,bj->bi", g[:, :3, :3], rows[:, :3])
-    s0 = np.einsum("bij,bj->bi", g[:, :3, :3], rows[:, 3:]) + np.cross(g[:, :3, 3], s)
+    rotation, p = g[:, :3, :3], g[:, :3, 3]
+    s = np.einsum("bij,bj->bi", rotation, rows[:, :3])
+    s0 = np.einsum("bij,bj->bi", rotation, rows[:, 3:])
+    s0[:, 0] += p[:, 1] * s[:, 2] - p[:, 2] * s[:, 1]  # p × R s, written out (np.cross's overhead
+    s0[:, 1] += p[:, 2] * s[:, 0] - p[:, 0] * s[:, 2]  # dominates the small batches of a
+    s0[:, 2] += p[:, 0] * s[:, 1] - p[:, 1] * s[:, 0]  # continuation)
     return np.concatenate([s, s0], axis=-1)

@@ -277,7 +277,7 @@ def run_certify(args: argparse.Namespace) -> int:
     if not out.endswith((".json", ".png")):
         raise UsageError(f"screwkit certify: error: --out expects FILE.json or FILE.png, got {args.out!r}")
     _check_out("certify", args.out, ".json")
-    mechanism = catalog_mechanism("certify", args.mechanism)
+    mechanism = mechanism_over_poses("certify", args.mechanism)
     region: dict[str, object] = {}
     for name in pose_coordinates():
         values = getattr(args, name)
