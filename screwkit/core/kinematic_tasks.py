@@ -248,7 +248,6 @@ class JointTask:
     --------
     >>> from screwkit.graphs.joints import prismatic
     >>> from screwkit.graphs.twistgraph import twist_graph
-    >>> from screwkit.core.task_coordinates import task_coordinates
     >>> model = KinematicModel(twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0]))]))
     >>> JointTask(model, ["P"]).values(model.state(np.array([[0.3]]))).tolist()
     [[0.3]]
@@ -284,7 +283,6 @@ class JointTask:
         --------
         >>> from screwkit.graphs.joints import prismatic
         >>> from screwkit.graphs.twistgraph import twist_graph
-        >>> from screwkit.core.task_coordinates import task_coordinates
         >>> model = KinematicModel(twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0]))]))
         >>> bool(np.allclose(JointTask(model, ["P"]).scaled_targets(np.array([[model.length]])), 1.0))
         True
@@ -306,7 +304,6 @@ class JointTask:
         --------
         >>> from screwkit.graphs.joints import prismatic
         >>> from screwkit.graphs.twistgraph import twist_graph
-        >>> from screwkit.core.task_coordinates import task_coordinates
         >>> model = KinematicModel(twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0]))]))
         >>> JointTask(model, ["P"]).unscaled(np.zeros((1, 1))).tolist()
         [[0.0]]
@@ -328,7 +325,6 @@ class JointTask:
         --------
         >>> from screwkit.graphs.joints import prismatic
         >>> from screwkit.graphs.twistgraph import twist_graph
-        >>> from screwkit.core.task_coordinates import task_coordinates
         >>> model = KinematicModel(twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0]))]))
         >>> JointTask(model, ["P"]).values(model.state(np.zeros((2, 1)))).shape
         (2, 1)
@@ -350,7 +346,6 @@ class JointTask:
         --------
         >>> from screwkit.graphs.joints import prismatic
         >>> from screwkit.graphs.twistgraph import twist_graph
-        >>> from screwkit.core.task_coordinates import task_coordinates
         >>> model = KinematicModel(twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0]))]))
         >>> JointTask(model, ["P"]).difference(np.array([[3.0]]), np.array([[-3.0]])).tolist()
         [[6.0]]
@@ -372,7 +367,6 @@ class JointTask:
         --------
         >>> from screwkit.graphs.joints import prismatic
         >>> from screwkit.graphs.twistgraph import twist_graph
-        >>> from screwkit.core.task_coordinates import task_coordinates
         >>> model = KinematicModel(twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0]))]))
         >>> JointTask(model, ["P"]).jacobian(model.state(np.zeros((1, 1)))).tolist()
         [[[1.0]]]

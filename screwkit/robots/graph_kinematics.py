@@ -46,7 +46,7 @@ from ..core.loop_closure import FINAL_TOLERANCE, ClosedConfigurations, close_loo
 from ..core.task_coordinates import TaskCoordinates, task_coordinates
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError, UnreachablePoseError
 from ..graphs.jointtable import JointTable
-from ..graphs.twistgraph import check_twist_graph
+from ..graphs.twistgraph import check_twist_graph, graph_frame
 from .families import Family
 
 __all__ = [
@@ -461,9 +461,8 @@ def kinematics_of(robot: Any) -> GraphKinematics:
     pose = np.asarray(robot.default_pose, dtype=float)
     point = np.array([pose[names.index(a)] if a in names else 0.0 for a in ("x", "y", "z")])
     graph = robot.twist_graph()
-    model = KinematicModel(_checked_graph(graph))
     if "z" not in names:  # a planar robot: its point in the plane of its motion
-        point[2] = model.point[2]
+        point[2] = graph_frame(graph)[0][2]
     offsets = np.array([pose[i] if n in robot.angle_names else 0.0 for i, n in enumerate(names)])
     kinematics = graph_kinematics(graph, point=point, angle_offsets=offsets)
     if kinematics.coordinates.names != names:

@@ -215,44 +215,32 @@ def test_a_link_that_cannot_move_and_an_unknown_link_are_refused():
         task_coordinates(KinematicModel(arm_2r()), link="nowhere")
 
 
-def test_pose_task_jacobian_is_the_derivative_of_its_values():
-    model = gs_model()
-    task = PoseTask(model, task_coordinates(model), complete=True)
-    rng = np.random.default_rng(2)
-    theta = rng.uniform(-0.3, 0.3, (1, model.size))
-    analytic = task.jacobian(model.state(theta))[0]
-    step = 1e-6
-    numeric = np.empty_like(analytic)
-    for column in range(model.size):
+def _central_differences(function, theta, step=1e-6):
+    """``d function / d theta`` of one configuration ``theta (1, n)`` by central differences."""
+    columns = []
+    for column in range(theta.shape[1]):
         plus, minus = theta.copy(), theta.copy()
         plus[0, column] += step
         minus[0, column] -= step
-        numeric[:, column] = (task.values(model.state(plus)) - task.values(model.state(minus)))[0] / (
-            2 * step
-        )
-    assert np.abs(analytic - numeric).max() < 1e-7
+        columns.append((function(plus) - function(minus))[0] / (2 * step))
+    return np.stack(columns, axis=-1)
+
+
+def test_pose_task_jacobian_is_the_derivative_of_its_values():
+    model = gs_model()
+    task = PoseTask(model, task_coordinates(model), complete=True)
+    theta = np.random.default_rng(2).uniform(-0.3, 0.3, (1, model.size))
+    numeric = _central_differences(lambda t: task.values(model.state(t)), theta)
+    assert np.abs(task.jacobian(model.state(theta))[0] - numeric).max() < 1e-7
 
 
 def test_loop_jacobian_is_the_derivative_of_the_loop_residual():
     model = gs_model()
-    rng = np.random.default_rng(4)
-    theta = rng.uniform(-0.2, 0.2, (1, model.size))
-    # at a closed configuration (the residual's derivative equals the screws there)
+    # at a closed configuration (the residual's derivative is made of the current screws there)
     task = PoseTask(model, task_coordinates(model))
     closed = close_loops(model, task, task.values(model.state(np.zeros((1, model.size)))) + 0.05)
-    theta = closed.theta
-    state = model.state(theta, closed.offsets)
-    analytic = model.loop_jacobian(state)[0]
-    step = 1e-6
-    numeric = np.empty_like(analytic)
-    for column in range(model.size):
-        plus, minus = theta.copy(), theta.copy()
-        plus[0, column] += step
-        minus[0, column] -= step
-        numeric[:, column] = (
-            model.loop_residual(model.state(plus, closed.offsets))
-            - model.loop_residual(model.state(minus, closed.offsets))
-        )[0] / (2 * step)
+    numeric = _central_differences(lambda t: model.loop_residual(model.state(t, closed.offsets)), closed.theta)
+    analytic = model.loop_jacobian(model.state(closed.theta, closed.offsets))[0]
     assert np.abs(analytic - numeric).max() < 1e-7
 
 
