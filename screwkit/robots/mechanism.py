@@ -26,6 +26,7 @@ from ..exceptions import (
     UnreachablePoseError,
 )
 from ..graphs.jointtable import JointTable
+from .angles import poses_in_radians
 from .families import Family, families
 from .toml_fields import (
     MAX_ANGLE_DEGREES,
@@ -106,7 +107,7 @@ class Mechanism(Generic[P, C]):
         """The pose coordinates that are angles (radians in the API, degrees in files and the CLI)."""
         return self.family_protocol.angle_names
 
-    def configuration(self, pose: Any = None, **options: Any) -> C:
+    def configuration(self, pose: Any = None, *, angles: str = "rad", **options: Any) -> C:
         """The family's configuration (inverse kinematics) at a pose or a batch ``(..., n)``
         (default: the default pose).
 
@@ -114,6 +115,8 @@ class Mechanism(Generic[P, C]):
         ----------
         pose : array_like, shape (..., n), optional
             In the file's length unit and radians; default: the default pose.
+        angles : {"rad", "deg"}, default "rad"
+            The unit of the pose's angle coordinates (:mod:`screwkit.robots.angles`).
         **options
             Passed to the inverse kinematics (a working mode).
 
@@ -127,6 +130,7 @@ class Mechanism(Generic[P, C]):
         >>> load_mechanism("h4").configuration().theta.shape
         (4,)
         """
+        pose = poses_in_radians(pose, self.pose_names, self.angle_names, angles, argument="pose")
         chosen = self.default_pose if pose is None else pose
         self._check_options(options)
         self.check_pose_range(pose, "pose")
@@ -149,13 +153,15 @@ class Mechanism(Generic[P, C]):
                 f"got {unknown}."
             )
 
-    def joints(self, pose: Any = None, **options: Any) -> JointTable:
+    def joints(self, pose: Any = None, *, angles: str = "rad", **options: Any) -> JointTable:
         """The joint table at a pose or a batch of poses (the input of the analysis core).
 
         Parameters
         ----------
         pose : array_like, shape (..., n), optional
             In the file's length unit and radians; default: the default pose.
+        angles : {"rad", "deg"}, default "rad"
+            The unit of the pose's angle coordinates (:mod:`screwkit.robots.angles`).
         **options
             Passed to the inverse kinematics (a working mode).
 
@@ -170,12 +176,13 @@ class Mechanism(Generic[P, C]):
         >>> table.batch_shape, len(table.specs)
         ((3,), 22)
         """
-        return self.family_protocol.joint_table(self.configuration(pose, **options))
+        return self.family_protocol.joint_table(self.configuration(pose, angles=angles, **options))
 
     def at(
         self,
         poses: Any = None,
         *,
+        angles: str = "rad",
         rtol: float | None = None,
         length_scale: float | None = None,
         **options: Any,
@@ -187,6 +194,9 @@ class Mechanism(Generic[P, C]):
         ----------
         poses : array_like, shape (..., n), optional
             In the file's length unit and radians; default: the default pose.
+        angles : {"rad", "deg"}, default "rad"
+            The unit of the poses' angle coordinates (:mod:`screwkit.robots.angles`; beyond a turn in
+            radians, an :class:`~screwkit.robots.angles.AngleUnitWarning`).
         rtol : float, optional
             Relative tolerance of every rank decision (default 1e-9).
         length_scale : float, optional
@@ -205,12 +215,15 @@ class Mechanism(Generic[P, C]):
         >>> posed = load_mechanism("h4").at([[0, 0, -750, 0], [50, 20, -800, 0.3]])
         >>> posed.verdicts.tolist()
         ['regular', 'regular']
+        >>> load_mechanism("h4").at([0, 0, -750, 45], angles="deg").poses.round(4).tolist()
+        [[0.0, 0.0, -750.0, 0.7854]]
         >>> print(posed[1].singularity)  # doctest: +ELLIPSIS
         regular (dof 4): constraint order 2/2, global order 6/6
           closeness (0 at a singularity): constraint 0.968, actuation ...
         """
         from .posed import PosedMechanism
 
+        poses = poses_in_radians(poses, self.pose_names, self.angle_names, angles)
         self._check_options(options)
         self.check_pose_range(poses)
         return PosedMechanism.create(self, poses, rtol=rtol, length_scale=length_scale, options=options)
@@ -360,7 +373,7 @@ class Mechanism(Generic[P, C]):
         return np.concatenate([self._reachable_by_halving(part, options) for part in halves])
 
     def wrench_diagram(
-        self, pose: Any = None
+        self, pose: Any = None, *, angles: str = "rad"
     ) -> tuple[Any, Callable[[np.random.Generator], dict[str, Array]]]:
         """The wrench diagram at a pose, and a sampler of its recipes at random workspace poses
         (:meth:`screwkit.robots.posed.PosedMechanism.diagram_and_sampler`).
@@ -369,6 +382,8 @@ class Mechanism(Generic[P, C]):
         ----------
         pose : array_like, shape (n,), optional
             In the file's length unit and radians; default: the default pose.
+        angles : {"rad", "deg"}, default "rad"
+            The unit of the pose's angle coordinates (:mod:`screwkit.robots.angles`).
 
         Returns
         -------
@@ -382,15 +397,17 @@ class Mechanism(Generic[P, C]):
         >>> sorted(sampler(np.random.default_rng(1)))[:3]
         ['a', 'b', 'c']
         """
-        return self.at(None if pose is None else np.asarray(pose, dtype=float)[None])[0].diagram_and_sampler()
+        return self._one(pose, {}, angles).diagram_and_sampler()
 
-    def twist_graph(self, pose: Any = None, **options: Any) -> nx.MultiDiGraph:
+    def twist_graph(self, pose: Any = None, *, angles: str = "rad", **options: Any) -> nx.MultiDiGraph:
         """The twist graph of the physical mechanism at one pose (default: the default pose).
 
         Parameters
         ----------
         pose : array_like, shape (n,), optional
             In the file's length unit and radians; default: the default pose.
+        angles : {"rad", "deg"}, default "rad"
+            The unit of the pose's angle coordinates (:mod:`screwkit.robots.angles`).
         **options
             Passed to the inverse kinematics (a working mode).
 
@@ -404,9 +421,9 @@ class Mechanism(Generic[P, C]):
         >>> load_mechanism("h4").twist_graph().graph["dof"]
         4
         """
-        return self._one(pose, options).graph
+        return self._one(pose, options, angles).graph
 
-    def twist_basis(self, pose: Any = None, **options: Any) -> Array:
+    def twist_basis(self, pose: Any = None, *, angles: str = "rad", **options: Any) -> Array:
         """The platform's nominal twists at a pose (default: the default pose), rows ``(dof, 6)``.
 
         One twist per pose coordinate, in the order of :attr:`pose_names` (unit rate of that
@@ -419,6 +436,8 @@ class Mechanism(Generic[P, C]):
         ----------
         pose : array_like, shape (n,), optional
             In the file's length unit and radians; default: the default pose.
+        angles : {"rad", "deg"}, default "rad"
+            The unit of the pose's angle coordinates (:mod:`screwkit.robots.angles`).
         **options
             Passed to the inverse kinematics (a working mode).
 
@@ -432,9 +451,9 @@ class Mechanism(Generic[P, C]):
         >>> load_mechanism("v4").twist_basis()[3]  # the V4's end effector turns about j
         array([  0.,   1.,   0., 750.,   0.,   0.])
         """
-        return self._one(pose, options).twist_basis
+        return self._one(pose, options, angles).twist_basis
 
-    def jacobians(self, pose: Any = None, **options: Any) -> Jacobians:
+    def jacobians(self, pose: Any = None, *, angles: str = "rad", **options: Any) -> Jacobians:
         """Forward and inverse Jacobians ``A χ̇ = B θ̇`` from the wrench systems at a pose.
 
         :func:`screwkit.core.jacobians.jacobians_from_wrenches` of the wrench analysis over
@@ -445,6 +464,8 @@ class Mechanism(Generic[P, C]):
         ----------
         pose : array_like, shape (n,), optional
             In the file's length unit and radians; default: the default pose.
+        angles : {"rad", "deg"}, default "rad"
+            The unit of the pose's angle coordinates (:mod:`screwkit.robots.angles`).
         **options
             Passed to the inverse kinematics (a working mode).
 
@@ -465,9 +486,9 @@ class Mechanism(Generic[P, C]):
         >>> jac.type, jac.A.shape, jac.actuated_joints
         ('regular', (3, 3), ('limb1_R1', 'limb2_R1', 'limb3_R1'))
         """
-        return self._one(pose, options).jacobians
+        return self._one(pose, options, angles).jacobians
 
-    def _one(self, pose: Any, options: dict[str, Any]) -> Any:
+    def _one(self, pose: Any, options: dict[str, Any], angles: str) -> Any:
         """One pose through the composer (:meth:`at`)."""
         chosen = None if pose is None else np.asarray(pose, dtype=float)
         if chosen is not None and chosen.ndim != 1:
@@ -475,4 +496,4 @@ class Mechanism(Generic[P, C]):
                 f"Expected one pose of shape ({len(self.pose_names)},), got {chosen.shape}; "
                 "use at() for batches."
             )
-        return self.at(chosen, **options)[0]
+        return self.at(chosen, angles=angles, **options)[0]
