@@ -1,8 +1,8 @@
 """The motion type of a twist system: how many translations, how many other freedoms.
 
 ``t = dim(T ∩ translations) = order(T) + 3 − order(T + translations)`` and ``r = order(T) − t``,
-labelled translations first, ``"3T1R"`` (a Schoenflies motion), ``"3T"``, ``"1T2R"``: the one-word summary of a
-platform's twist system (:mod:`screwkit.algebra.screwsystem`), batched over poses.
+labelled translations first, ``"3T1R"`` (a Schoenflies motion), ``"3T"``, ``"1T2R"``: the one-word
+summary of a platform's twist system (:mod:`screwkit.algebra.screwsystem`), batched over poses.
 
 Examples
 --------

@@ -167,9 +167,9 @@ def poses_in_radians(
             largest = np.nanmax(sizes[:, column], initial=0.0)
             if math.isfinite(largest) and largest > 2 * math.pi:
                 warnings.warn(
-                    f"The angle `{name}` of `{argument}` is {largest:.4g} rad ({math.degrees(largest):.4g} deg), "
-                    "more than a turn: the Python API reads angles in radians; pass angles='deg' for "
-                    "degrees.",
+                    f"The angle `{name}` of `{argument}` is {largest:.4g} rad "
+                    f"({math.degrees(largest):.4g} deg), more than a turn: the Python API reads angles "
+                    "in radians; pass angles='deg' for degrees.",
                     AngleUnitWarning,
                     stacklevel=3,
                 )
