@@ -287,6 +287,7 @@ def pose_report(
         report,
         transmission=transmission_summary(mechanism, report.pose, jacobians),
         given_length_scale=pose.length_scale,
+        angle_names=mechanism.angle_names,
     )
 
 

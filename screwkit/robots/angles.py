@@ -29,7 +29,7 @@ import numpy as np
 
 from ..exceptions import ScrewkitValueError
 
-__all__ = ["ANGLE_UNITS", "AngleUnitWarning", "angle_factor", "pose_scale", "poses_in_radians"]
+__all__ = ["ANGLE_UNITS", "AngleUnitWarning", "angle_factor", "pose_scale", "pose_text", "poses_in_radians"]
 
 Array = np.ndarray
 
@@ -99,6 +99,47 @@ def pose_scale(pose_names: Sequence[str], angle_names: Sequence[str], angles: An
     """
     factor = angle_factor(angles)
     return np.array([factor if name in angle_names else 1.0 for name in pose_names])
+
+
+def pose_text(
+    pose: Any, pose_names: Sequence[str], angle_names: Sequence[str], length_unit: str, angles: str = "deg"
+) -> str:
+    """One pose (API units: radians) in words, every coordinate with its unit: angles shown in
+    ``angles`` (degrees by default, as files and the command line take them).
+
+    Parameters
+    ----------
+    pose : array_like, shape (n,)
+        In the length unit and radians.
+    pose_names, angle_names : sequence of str
+        The coordinates in order and those among them that are angles.
+    length_unit : str
+        The unit of the other coordinates ("" for none).
+    angles : {"rad", "deg"}, default "deg"
+        The unit to show the angles in.
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    ScrewkitValueError
+        If ``angles`` is neither ``"rad"`` nor ``"deg"``.
+
+    Examples
+    --------
+    >>> pose_text([0, 0, -750, math.pi / 4], ("x", "y", "z", "phi"), ("phi",), "mm")
+    'x = 0 mm, y = 0 mm, z = -750 mm, phi = 45 deg'
+    """
+    factor = angle_factor(angles)
+    parts = []
+    for name, value in zip(pose_names, np.asarray(pose, dtype=float).reshape(-1), strict=True):
+        if name in angle_names:
+            parts.append(f"{name} = {value / factor + 0.0:.4g} {angles}")
+        else:
+            parts.append(f"{name} = {value + 0.0:.6g}{' ' + length_unit if length_unit else ''}")
+    return ", ".join(parts)
 
 
 def poses_in_radians(

@@ -15,6 +15,7 @@ from __future__ import annotations
 import inspect
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import TYPE_CHECKING, Any, Generic, TypeVar
 
 import networkx as nx
@@ -26,7 +27,7 @@ from ..exceptions import (
     UnreachablePoseError,
 )
 from ..graphs.jointtable import JointTable
-from .angles import poses_in_radians
+from .angles import pose_text, poses_in_radians
 from .families import Family, families
 from .toml_fields import (
     MAX_ANGLE_DEGREES,
@@ -91,6 +92,26 @@ class Mechanism(Generic[P, C]):
     workspace: dict[str, tuple[float, float]]
     expected: tuple[dict[str, Any], ...] = field(default=())
     reachable_fraction: float = 1.0
+
+    def __repr__(self) -> str:
+        """One line: name, family, the pose coordinates and their units, the default pose, the file.
+
+        Returns
+        -------
+        str
+
+        Examples
+        --------
+        >>> print(repr(load_mechanism("h4")).replace(", default", ",\\n    default"))
+        Mechanism('H4', family four_limb, pose (x, y, z, phi) in mm and rad,
+            default x = 0 mm, y = 0 mm, z = -750 mm, phi = 0 deg; h4.toml)
+        """
+        default = pose_text(self.default_pose, self.pose_names, self.angle_names, self.length_unit)
+        units = self.length_unit + (" and rad" if self.angle_names else "")
+        return (
+            f"Mechanism({self.name!r}, family {self.family}, pose ({', '.join(self.pose_names)}) in {units}, "
+            f"default {default}; {Path(self.source).name})"
+        )
 
     @property
     def family_protocol(self) -> Family[P, C]:
