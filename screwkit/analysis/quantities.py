@@ -227,8 +227,8 @@ def display(name: str) -> QuantityDisplay:
     if name.startswith("condition:"):
         index = name.split(":")[1]
         return QuantityDisplay(
-            f"vector form of condition {index} of the superbracket", f"condition {index}",
-            "{length}^p (p: its degree in point coordinates)", True, "0 where the condition holds",
+            "its vector form", f"condition {index}", "{length}^p", True,
+            "0 where the condition holds; p: the form's degree in point coordinates",
         )
     return _DISPLAY[name]
 

@@ -14,10 +14,11 @@ from ..exceptions import MissingDependencyError, ScrewkitTypeError
 
 try:
     import matplotlib.pyplot as plt
-    from matplotlib.colors import BoundaryNorm, ListedColormap, to_rgba
+    from matplotlib.colors import BoundaryNorm, ListedColormap, TwoSlopeNorm, to_rgba
     from matplotlib.figure import Figure
     from matplotlib.lines import Line2D
     from matplotlib.patches import FancyArrowPatch, Patch
+    from matplotlib.ticker import MaxNLocator
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 except ImportError as err:  # pragma: no cover - exercised in a subprocess without matplotlib
     raise MissingDependencyError(
@@ -31,8 +32,10 @@ __all__ = [
     "Figure",
     "Line2D",
     "ListedColormap",
+    "MaxNLocator",
     "Patch",
     "Poly3DCollection",
+    "TwoSlopeNorm",
     "new_axes",
     "plt",
     "to_rgba",
