@@ -149,7 +149,7 @@ def run_map(args: argparse.Namespace) -> int:
         raise UsageError(f"screwkit map: error: {shown}") from err
 
     def where(pose: dict[str, float]) -> str:
-        return ", ".join(f"{k} = {v:g}" for k, v in pose.items()) or "-"
+        return ", ".join(f"{k} = {v:g} {result.units.get(k, '')}".rstrip() for k, v in pose.items()) or "-"
 
     lines = [f"{quantity} over {result.region}"]
     if result.meaning:
@@ -162,11 +162,11 @@ def run_map(args: argparse.Namespace) -> int:
             f"{verdict_name(int(c))} {n / counts.sum():.1%}" for c, n in zip(codes, counts, strict=True)
         )
         lines.append(f"  verdicts of the reachable poses (codes in the JSON's `codes`): {found}")
-    if result.reachable.any():
+    if not result.reachable.any():
+        lines.append("  no pose of the map is reachable: no minimum or maximum")
+    elif result.quantity != "verdict":  # a verdict map's codes are categories: their shares are above
         lines.append(f"  minimum {result.minimum:g} at {where(result.argmin)}")
         lines.append(f"  maximum {result.maximum:g} at {where(result.argmax)}")
-    else:
-        lines.append("  no pose of the map is reachable: no minimum or maximum")
     lines.append(f"  reachable {result.reachable.mean():.1%}; written to {args.out}")
     print_text("\n".join(lines))
     return 0

@@ -13,7 +13,7 @@ from screwkit.algebra.display import ScrewArray, clean, screw_text
 class _Checker(HTMLParser):
     """Counts tags and checks that every opened tag is closed in order (well-formed fragments)."""
 
-    VOID = {"br"}
+    VOID = frozenset({"br"})
 
     def __init__(self):
         super().__init__()
