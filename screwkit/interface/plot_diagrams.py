@@ -374,10 +374,10 @@ def plot_wrench_diagram_schematic(diagram: Any, *, ax: Any = None) -> Any:
     ax.set_xlim(-1.25, 1.25)
     ax.set_ylim(-1.25, 1.25)
     ax.set_axis_off()
-    ax.set_title(
-        f"wrench diagram {diagram.line_text()} (schematic; circle: the plane at infinity)", fontsize=10
-    )
-    ax.legend(loc="upper left", bbox_to_anchor=(1.0, 1.0), fontsize=7, frameon=False)
+    ax.set_title(f"wrench diagram {diagram.line_text()}", fontsize=10)
+    note = "schematic: the circle stands for the plane at infinity"
+    ax.text(0.0, -1.2, note, ha="center", fontsize=8, color="0.4")
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, 0.0), ncol=2, fontsize=7, frameon=False)
     return ax
 
 
