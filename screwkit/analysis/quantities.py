@@ -282,7 +282,7 @@ def register_quantity(
     if not callable(function):
         raise ScrewkitTypeError(f"Expected `function` to be callable, got {type(function).__name__}.")
     _REGISTERED[name] = function
-    given = {"label": label, "symbol": symbol, "unit": unit, "signed": signed}
+    given: dict[str, Any] = {"label": label, "symbol": symbol, "unit": unit, "signed": signed}
     _DISPLAY[name] = replace(_DISPLAY[name], **{k: v for k, v in given.items() if v is not None})
 
 

@@ -301,7 +301,7 @@ def plot_map(
     length_unit, angle_count = _units_of_map(workspace_map)
     label = str(workspace_map.quantity) if info is None else info.axis_label(length_unit, angle_count)
     name = str(workspace_map.quantity) if info is None else f"{info.symbol}, {info.label}"
-    chosen = levels if isinstance(levels, int) else np.asarray(list(levels), dtype=float)
+    chosen: Any = levels if isinstance(levels, int) else np.asarray(list(levels), dtype=float)
     norm = None
     if signed:  # centred at zero: equal colour steps either side of the zero level
         bound = float(np.max(np.abs(shown)))
