@@ -132,14 +132,12 @@ def pose_text(
     >>> pose_text([0, 0, -750, math.pi / 4], ("x", "y", "z", "phi"), ("phi",), "mm")
     'x = 0 mm, y = 0 mm, z = -750 mm, phi = 45 deg'
     """
-    factor = angle_factor(angles)
-    parts = []
-    for name, value in zip(pose_names, np.asarray(pose, dtype=float).reshape(-1), strict=True):
-        if name in angle_names:
-            parts.append(f"{name} = {value / factor + 0.0:.4g} {angles}")
-        else:
-            parts.append(f"{name} = {value + 0.0:.6g}{' ' + length_unit if length_unit else ''}")
-    return ", ".join(parts)
+    shown = np.asarray(pose, dtype=float).reshape(-1) / pose_scale(pose_names, angle_names, angles) + 0.0
+    length = f" {length_unit}" if length_unit else ""
+    return ", ".join(
+        f"{name} = {value:.4g} {angles}" if name in angle_names else f"{name} = {value:.6g}{length}"
+        for name, value in zip(pose_names, shown, strict=True)
+    )
 
 
 def poses_in_radians(

@@ -139,3 +139,26 @@ def test_singularity_surfaces_have_units_on_their_axes():
     surface = SimpleNamespace(triangles=triangles, fixed={"phi": 0.5}, mechanism="H4", region=region)
     ax = plot_singularity_surfaces([surface], wireframe=0)
     assert (ax.get_xlabel(), ax.get_ylabel(), ax.get_zlabel()) == ("x (mm)", "y (mm)", "z (mm)")
+
+
+def test_the_map_command_gives_a_verdict_map_its_shares_not_extrema(capsys, tmp_path):
+    from screwkit.interface.cli import main
+
+    out = tmp_path / "v.json"
+    argv = ["map", "h4", "--quantity", "verdict", "--z", "-900", "-600", "3", "--phi", "-10", "10", "3"]
+    assert main([*argv, "--out", str(out), "--no-progress"]) == 0
+    text = capsys.readouterr().out
+    assert "regular 100.0%" in text and "minimum" not in text and "maximum" not in text
+    assert main(["map", "h4", "--quantity", "lti", *argv[4:], "--out", str(out), "--no-progress"]) == 0
+    assert "mm, phi = " in capsys.readouterr().out  # extrema where they occur, with units
+
+
+def test_a_registered_quantity_brings_its_display():
+    from screwkit.analysis import quantities as Q
+
+    before = Q.display("kappa")
+    try:
+        Q.register_quantity("kappa", Q._REGISTERED["kappa"], symbol="$\\kappa_m$", unit="")
+        assert Q.display("kappa").symbol == "$\\kappa_m$" and Q.display("kappa").label == before.label
+    finally:
+        Q._DISPLAY["kappa"] = before
