@@ -585,12 +585,6 @@ class Screw:
     def __repr__(self) -> str:
         """One line: the screw as :meth:`__str__`; a batch with its shape, its first screws listed.
 
-        Returns
-        -------
-        str
-
-        Examples
-        --------
         >>> Screw.couple(np.eye(3) * [[1], [2], [3]])
         Screw(shape=(3,)): [Screw(0, 0, 0, 1, 0, 0), Screw(0, 0, 0, 0, 2, 0), … (3 in all)]
         """

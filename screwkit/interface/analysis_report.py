@@ -471,7 +471,10 @@ class AnalysisReport:
         """
         from .report_html import report_html
 
-        return report_html(self)
+        tail = [*self._jacobian_lines()] if self.pose is not None else []
+        if self.transmission is not None:
+            tail += ["", *_transmission_lines(self.transmission)]
+        return report_html(self, tail)
 
     def _jacobian_lines(self) -> list[str]:
         jac = self.jacobians

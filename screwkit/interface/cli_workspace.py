@@ -60,7 +60,7 @@ def run_map(args: argparse.Namespace) -> int:
     ...     "--phi", "-10", "10", "2", "--out", out]))  # doctest: +ELLIPSIS
     verdict over H4: z in [-900, -600] mm (2 values) x phi in [-10, 10] deg (2 values), x = 0 mm, y = 0 mm
       verdicts of the reachable poses (codes in the JSON's `codes`): regular 100.0%
-      minimum 0 at ...
+      reachable 100.0%; written to ...
     0
     """
     from ..analysis.quantities import quantity as checked_quantity

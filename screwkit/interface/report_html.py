@@ -13,6 +13,7 @@ Examples
 from __future__ import annotations
 
 import html
+from collections.abc import Sequence
 from typing import Any
 
 from ..algebra.display import html_section, html_table, number_text
@@ -35,7 +36,7 @@ def _pre(lines: list[str]) -> str:
     return "<pre>" + html.escape("\n".join(lines)) + "</pre>"
 
 
-def report_html(report: Any) -> str:
+def report_html(report: Any, tail: Sequence[str] = ()) -> str:
     """The report as HTML: a heading, the pose, the twist graph, the platform's twists and the
     wrenches (tables), the wrench diagram (lines and points), the superbracket and its conditions
     (table), the verdict, the Jacobians and the transmission.
@@ -43,6 +44,8 @@ def report_html(report: Any) -> str:
     Parameters
     ----------
     report : AnalysisReport
+    tail : sequence of str, optional
+        Lines of text shown last, preformatted (the report's Jacobians and transmission).
 
     Returns
     -------
@@ -105,12 +108,8 @@ def report_html(report: Any) -> str:
     )
     out.append(html_section("superbracket", _superbracket_html(report)))
     out.append(report.verdict._repr_html_())
-    if report.pose is not None:
-        out.append(_pre(report._jacobian_lines()))
-    if report.transmission is not None:
-        from .analysis_report import _transmission_lines
-
-        out.append(_pre(_transmission_lines(report.transmission)))
+    if tail:
+        out.append(_pre(list(tail)))
     return "".join(out)
 
 

@@ -28,6 +28,7 @@ from typing import Any
 import numpy as np
 
 from ..exceptions import ScrewkitValueError
+from .toml_fields import MAX_ANGLE_RADIANS
 
 __all__ = ["ANGLE_UNITS", "AngleUnitWarning", "angle_factor", "pose_scale", "pose_text", "poses_in_radians"]
 
@@ -178,7 +179,8 @@ def poses_in_radians(
     Warns
     -----
     AngleUnitWarning
-        When ``angles="rad"`` and an angle exceeds one turn (2π) in magnitude.
+        When ``angles="rad"`` and an angle exceeds one turn (2π) in magnitude (but not the bound
+        beyond which the callee refuses it).
 
     Examples
     --------
@@ -204,7 +206,7 @@ def poses_in_radians(
             sizes = np.abs(array[..., indices]).reshape(-1, len(indices))
         for column, name in enumerate(angle_names):
             largest = np.nanmax(sizes[:, column], initial=0.0)
-            if math.isfinite(largest) and largest > 2 * math.pi:
+            if 2 * math.pi < largest <= MAX_ANGLE_RADIANS:  # beyond: refused, by the callee's range check
                 warnings.warn(
                     f"The angle `{name}` of `{argument}` is {largest:.4g} rad "
                     f"({math.degrees(largest):.4g} deg), more than a turn: the Python API reads angles "
