@@ -416,7 +416,7 @@ def plot_verdicts(
     ax.set_ylabel(y_label)
     _same_scale(ax, workspace_map, degrees)
     # a map of one category says so (no scale of one colour)
-    what = f"every reachable pose {_verdict_name(present[0])}" if len(present) == 1 else "verdicts"
+    what = f"every reachable grid pose {_verdict_name(present[0])}" if len(present) == 1 else "verdicts"
     ax.set_title(_title(workspace_map, what, degrees), fontsize=10)
     return ax
 

@@ -201,6 +201,7 @@ def plot_wrench_diagram(
     for label, direction in infinite.items():
         ax.quiver(*centre, *(radius * direction), color="0.45", arrow_length_ratio=0.08, linewidth=0.8)
         ax.text(*(centre + 1.08 * radius * direction), f"{label}∞", fontsize=9, color="0.3")
+    ax.view_init(*_clearest_view([np.array(line.get_data_3d()).T for line in ax.lines]))
     ax.set_xlim(centre[0] - radius, centre[0] + radius)
     ax.set_ylim(centre[1] - radius, centre[1] + radius)
     ax.set_zlim(centre[2] - radius, centre[2] + radius)
@@ -212,6 +213,35 @@ def plot_wrench_diagram(
     ax.set_title(f"wrench diagram {diagram.line_text()}")
     ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=7, frameon=False)
     return ax
+
+
+#: The 3-D views tried for a wrench diagram, (elevation, azimuth) in degrees; matplotlib's default first.
+VIEWS_3D = tuple((elev, azim) for elev in (30, 20, 45) for azim in (-60, -30, -120, -150, 30, 60, 120, 150))
+
+
+def _clearest_view(paths: list[Array]) -> tuple[float, float]:
+    """The view of :data:`VIEWS_3D` in which the drawn lines are farthest from hiding one another: for
+    each pair of paths, the largest distance of one's projected points from the other's projected
+    polyline; the view maximising the least of these over the pairs (the first on a tie)."""
+    if len(paths) < 2:
+        return VIEWS_3D[0]
+
+    def hidden(a: Array, b: Array) -> float:
+        gaps = np.linalg.norm(a[:, None, :] - b[None, :, :], axis=-1).min(axis=1)
+        return float(gaps.max())
+
+    span = max(float(np.ptp(np.concatenate(paths), axis=0).max()), 1e-12)
+    sampled = [p[:: max(1, len(p) // 20)] for p in paths]
+    best, best_score = VIEWS_3D[0], -1.0
+    for elev, azim in VIEWS_3D:
+        e, a = np.radians(elev), np.radians(azim)
+        right = np.array([-np.sin(a), np.cos(a), 0.0])
+        up = np.array([-np.sin(e) * np.cos(a), -np.sin(e) * np.sin(a), np.cos(e)])
+        flat = [np.c_[p @ right, p @ up] / span for p in sampled]
+        score = min(min(hidden(p, q), hidden(q, p)) for k, p in enumerate(flat) for q in flat[k + 1 :])
+        if score > best_score + 1e-3:
+            best, best_score = (elev, azim), score
+    return best
 
 
 def _view(finite: dict[str, Array], tilt: tuple[float, float]) -> tuple[Array, Array, Array]:

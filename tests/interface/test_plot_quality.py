@@ -81,7 +81,7 @@ def test_an_unsigned_map_is_sequential_and_an_angle_axis_is_not_equal_scale():
 
 def test_a_verdict_map_of_one_category_says_so():
     ax = plot_verdicts(_map("verdict", lambda x, y: np.zeros(x.shape, int)))
-    assert ax.get_title().startswith("every reachable pose regular")
+    assert ax.get_title().startswith("every reachable grid pose regular")
     two = plot_verdicts(_map("verdict", lambda x, y: (x > 0).astype(int) * 2))
     assert two.get_title().startswith("verdicts")
 
