@@ -219,10 +219,23 @@ def plot_wrench_diagram(
 VIEWS_3D = tuple((elev, azim) for elev in (30, 20, 45) for azim in (-60, -30, -120, -150, 30, 60, 120, 150))
 
 
+def _resampled(path: Array, count: int) -> Array:
+    """``count`` points evenly spaced along a polyline ``(m, 3)`` (its vertices' order)."""
+    steps = np.linalg.norm(np.diff(path, axis=0), axis=1)
+    along = np.concatenate([[0.0], np.cumsum(steps)])
+    places = np.linspace(0.0, along[-1], count)
+    return np.column_stack([np.interp(places, along, path[:, k]) for k in range(3)])
+
+
+#: Below this clearance (a fraction of the drawing's size) a line counts as nearly hidden in a view.
+CLEAR_VIEW = 0.05
+
+
 def _clearest_view(paths: list[Array]) -> tuple[float, float]:
     """The view of :data:`VIEWS_3D` in which the drawn lines are farthest from hiding one another: for
     each pair of paths, the largest distance of one's projected points from the other's projected
-    polyline; the view maximising the least of these over the pairs (the first on a tie)."""
+    polyline; the default view if the least of these over the pairs is at least :data:`CLEAR_VIEW`,
+    else the view maximising it."""
     if len(paths) < 2:
         return VIEWS_3D[0]
 
@@ -231,14 +244,16 @@ def _clearest_view(paths: list[Array]) -> tuple[float, float]:
         return float(gaps.max())
 
     span = max(float(np.ptp(np.concatenate(paths), axis=0).max()), 1e-12)
-    sampled = [p[:: max(1, len(p) // 20)] for p in paths]
+    sampled = [_resampled(p, 40) for p in paths]
     best, best_score = VIEWS_3D[0], -1.0
-    for elev, azim in VIEWS_3D:
+    for elev, azim in VIEWS_3D:  # the default view unless a line is nearly hidden in it
         e, a = np.radians(elev), np.radians(azim)
         right = np.array([-np.sin(a), np.cos(a), 0.0])
         up = np.array([-np.sin(e) * np.cos(a), -np.sin(e) * np.sin(a), np.cos(e)])
         flat = [np.c_[p @ right, p @ up] / span for p in sampled]
         score = min(min(hidden(p, q), hidden(q, p)) for k, p in enumerate(flat) for q in flat[k + 1 :])
+        if (elev, azim) == VIEWS_3D[0] and score >= CLEAR_VIEW:
+            return VIEWS_3D[0]
         if score > best_score + 1e-3:
             best, best_score = (elev, azim), score
     return best

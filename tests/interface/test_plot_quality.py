@@ -162,3 +162,17 @@ def test_a_registered_quantity_brings_its_display():
         assert Q.display("kappa").symbol == "$\\kappa_m$" and Q.display("kappa").label == before.label
     finally:
         Q._DISPLAY["kappa"] = before
+
+
+def test_the_3d_view_is_one_where_no_line_hides_another():
+    from screwkit.interface.plot_diagrams import VIEWS_3D, _clearest_view
+
+    # matplotlib's default view looks along this direction: a line shifted along it hides behind the first
+    elev, azim = np.radians(VIEWS_3D[0])
+    along = np.array([np.cos(elev) * np.cos(azim), np.cos(elev) * np.sin(azim), np.sin(elev)])
+    first = np.linspace([0.0, 0.0, 0.0], [1.0, -1.0, 0.5], 30)
+    second = first + 2.0 * along
+    third = np.linspace([0.0, 1.0, 0.0], [0.0, 1.0, 1.0], 30)
+    chosen = _clearest_view([first, second, third])
+    assert chosen != VIEWS_3D[0]
+    assert _clearest_view([first, third]) == VIEWS_3D[0]  # nothing hidden: the default view stays
