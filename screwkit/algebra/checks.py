@@ -128,7 +128,7 @@ MAX_RTOL = 0.1
 
 #: The finest relative tolerance the command line accepts (its analyses are in floats). Below it a
 #: rank decision reads round-off as rank: at ``rtol = 0`` the H4's default pose reads a constraint +
-#: serial singularity of constraint order 0/2, at 1e-16 a 3R1T platform; at 1e-14 the McGill SMG's
+#: serial singularity of constraint order 0/2, at 1e-16 a 1T3R platform; at 1e-14 the McGill SMG's
 #: verdicts differ from those at the default 1e-9 on 58 of 2,000 random workspace poses, at 1e-13 no
 #: catalog robot's do. 1e-12 keeps a factor of 10 from that edge. (The API keeps ``[0, MAX_RTOL]``:
 #: ``rtol = 0`` is exact for sympy rows.)

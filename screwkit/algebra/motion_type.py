@@ -1,8 +1,8 @@
 """The motion type of a twist system: how many translations, how many other freedoms.
 
 ``t = dim(T ∩ translations) = order(T) + 3 − order(T + translations)`` and ``r = order(T) − t``,
-labelled ``"3T1R"`` (a Schoenflies motion), ``"3T"``, ``"2R1T"``: the one-word summary of a
-platform's twist system (:mod:`screwkit.algebra.screwsystem`), batched over poses.
+labelled translations first, ``"3T1R"`` (a Schoenflies motion), ``"3T"``, ``"1T2R"``: the one-word
+summary of a platform's twist system (:mod:`screwkit.algebra.screwsystem`), batched over poses.
 
 Examples
 --------
@@ -29,9 +29,8 @@ Array = np.ndarray
 
 
 def _motion_label(translations: int, rotations: int) -> str:
-    """``"3T1R"``, ``"2R1T"``, ``"3T"``: the larger count first (translations on a tie)."""
+    """``"3T1R"``, ``"1T2R"``, ``"3T"``, ``"2R"``: translations first, a zero count left out."""
     parts = [(translations, "T"), (rotations, "R")]
-    parts.sort(key=lambda p: (-p[0], p[1] != "T"))
     return "".join(f"{n}{kind}" for n, kind in parts if n) or "0"
 
 
@@ -40,8 +39,8 @@ def motion_type(twists: Any, *, rtol: float = B.DEFAULT_RTOL, length_scale: floa
 
     ``t = dim(T ∩ translations) = order(T) + 3 − order(T + translations)`` and ``r = order(T) − t``
     (the freedoms that are not translations: rotations or screws). Labelled ``"3T1R"`` (a
-    Schoenflies motion), ``"3T"``, ``"2R1T"``, ``"3T3R"``: the larger count first, translations
-    first on a tie; ``"0"`` for the 0-system.
+    Schoenflies motion), ``"3T"``, ``"1T2R"``, ``"3T3R"``: always translations first (the one
+    spelling used across screwkit); ``"0"`` for the 0-system.
 
     Parameters
     ----------

@@ -544,14 +544,26 @@ class ScrewSystem:
         return f"{self.order}-system [{rows}]"
 
     def __repr__(self) -> str:
-        return f"ScrewSystem(order={self.order}, basis={self.basis!r})"
+        """One line: the order and the readable basis, its screws as screws (rounding noise shown as 0).
+
+        Returns
+        -------
+        str
+
+        Examples
+        --------
+        >>> ScrewSystem.span([[1, 0, 0, 0, 0, 0], [0, 0, 0, 0, 0, 1]])
+        ScrewSystem(order=2: Screw(0, 0, 0, 0, 0, 1), Screw(1, 0, 0, 0, 0, 0))
+        """
+        rows = ", ".join(str(Screw(r)) for r in self.readable_basis())
+        return f"ScrewSystem(order={self.order}{': ' + rows if rows else ''})"
 
 
 def _rows(screws: Any, name: str) -> Array:
     if isinstance(screws, ScrewSystem):
         return screws.basis
     if isinstance(screws, Screw):
-        return screws.coords.reshape(1, 6)
+        return screws.coords.reshape(-1, 6)  # one screw or a batch of them
     if isinstance(screws, list | tuple) and screws and all(isinstance(s, Screw) for s in screws):
         return np.concatenate(B.promote(*[s.coords.reshape(1, 6) for s in screws]), axis=0)
     if isinstance(screws, list | tuple) and not screws:

@@ -27,6 +27,7 @@ import numpy as np
 from ..exceptions import ScrewkitIndexError, ScrewkitTypeError, ScrewkitValueError
 from . import backend as B
 from .branch_values import plain
+from .display import clean, elided, number_text
 from .ranks import screw_rank
 from .screw import (
     axis,
@@ -563,6 +564,8 @@ class Screw:
     def __str__(self) -> str:
         """``Screw(s1, ..., s0z)`` for one screw; a batch lists its screws in nested brackets.
 
+        Rounding noise is shown as 0 (display only, :func:`screwkit.algebra.display.clean`).
+
         Returns
         -------
         str
@@ -571,14 +574,24 @@ class Screw:
         --------
         >>> print(Screw.couple([[0, 0, 1], [0, 2, 0]]))
         [Screw(0, 0, 0, 0, 0, 1), Screw(0, 0, 0, 0, 2, 0)]
+        >>> print(Screw([0, 0, 1, 0.4, -0.5, 5e-18]))
+        Screw(0, 0, 1, 0.4, -0.5, 0)
         """
         if not self.single:
             return "[" + ", ".join(str(screw) for screw in self) + "]"
-        values = ", ".join(str(v) if self.is_symbolic else f"{v:.6g}" for v in self.coords)
-        return f"Screw({values})"
+        coords = self.coords if self.is_symbolic else clean(self.coords)
+        return f"Screw({', '.join(number_text(v) for v in coords)})"
 
     def __repr__(self) -> str:
-        return f"Screw(coords={self.coords!r})"
+        """One line: the screw as :meth:`__str__`; a batch with its shape, its first screws listed.
+
+        >>> Screw.couple(np.eye(3) * [[1], [2], [3]])
+        Screw(shape=(3,)): [Screw(0, 0, 0, 1, 0, 0), Screw(0, 0, 0, 0, 2, 0), … (3 in all)]
+        """
+        if self.single:
+            return str(self)
+        flat = self.coords.reshape(-1, 6)
+        return f"Screw(shape={self.shape}): [{elided((str(Screw(row)) for row in flat), limit=2)}]"
 
 
 def _as_screw(value: Any, name: str) -> Screw:

@@ -60,16 +60,12 @@ def _check_mechanism(mechanism: Any) -> None:
         )
 
 
-def _angle_factor(angles: str) -> float:
-    if angles not in ("deg", "rad"):
-        raise ScrewkitValueError(f"Expected `angles` to be 'deg' or 'rad', got {angles!r}.")
-    return math.pi / 180.0 if angles == "deg" else 1.0
-
-
 def _scale(mechanism: Any, angles: str) -> Array:
-    """Per pose coordinate: API value = user value × scale (radians for angles)."""
-    factor = _angle_factor(angles)
-    return np.array([factor if n in mechanism.angle_names else 1.0 for n in mechanism.pose_names])
+    """Per pose coordinate: API value = user value × scale (radians for angles;
+    :func:`screwkit.robots.angles.angle_factor`, the API's one angle convention)."""
+    from ..robots.angles import pose_scale
+
+    return pose_scale(mechanism.pose_names, mechanism.angle_names, angles)
 
 
 def _units(mechanism: Any, angles: str) -> dict[str, str]:
@@ -172,7 +168,7 @@ class _Slice:
     @classmethod
     def create(cls, mechanism: Any, x: Any, y: Any, fixed: Any, mode: Any, angles: str) -> _Slice:
         _check_mechanism(mechanism)
-        _angle_factor(angles)
+        _scale(mechanism, angles)  # checks `angles`
         x_name, x_values = _axis(mechanism, x, "x", angles)
         y_name, y_values = _axis(mechanism, y, "y", angles)
         if len(x_values) * len(y_values) > MAX_MAP_POSES:

@@ -33,8 +33,10 @@ Examples
 
 from __future__ import annotations
 
+import re
 import weakref
 from collections.abc import Callable, Mapping
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -43,8 +45,8 @@ from ..core.verdicts import LABELS
 from ..exceptions import DegenerateGeometryError, ScrewkitTypeError, ScrewkitValueError
 
 __all__ = [
-    "CONTRIBUTED", "KINDS", "QUANTITIES", "conditions_of", "quantity", "register_quantity", "values",
-    "verdict_name",
+    "CONTRIBUTED", "KINDS", "QUANTITIES", "QuantityDisplay", "conditions_of", "display", "quantity",
+    "register_quantity", "values", "verdict_name",
 ]
 
 Array = np.ndarray
@@ -124,6 +126,113 @@ def quantity(quantity: Any) -> str:
         f"Expected `quantity` to be one of {[*QUANTITIES, 'condition:K']}, got {quantity!r}."
     )
 
+@dataclass(frozen=True)
+class QuantityDisplay:
+    r"""How a quantity is named on a figure: a label, its symbol, its unit and whether it is signed.
+
+    Attributes
+    ----------
+    label : str
+        In words, e.g. ``"local transmission index"``.
+    symbol : str
+        matplotlib mathtext, e.g. ``"$\\eta$"``, or plain text (``"det A"``).
+    unit : str
+        ``""`` for a dimensionless quantity; ``"{length}"`` stands for the map's length unit and
+        ``"{length}^{k}"`` for its power ``k`` = the number of angle coordinates (the rotations among
+        the nominal twists, each a column of ``A`` whose entries are moments).
+    signed : bool
+        True for a quantity whose sign matters (drawn with a diverging colour map centred at 0).
+    meaning : str
+        Its range and what its zero means.
+    """
+
+    label: str
+    symbol: str
+    unit: str = ""
+    signed: bool = False
+    meaning: str = ""
+
+    def axis_label(self, length_unit: str = "", angle_count: int = 0) -> str:
+        r"""The colour-bar or axis label: ``"symbol, label (unit)"``.
+
+        Parameters
+        ----------
+        length_unit : str, optional
+            The map's length unit (for ``{length}`` in :attr:`unit`).
+        angle_count : int, optional
+            The number of angle coordinates (for ``{k}``).
+
+        Returns
+        -------
+        str
+
+        Examples
+        --------
+        >>> display("det_A").axis_label("mm", 1), display("det_A").axis_label("m", 2)[-9:]
+        ('det A, determinant of the forward Jacobian (mm)', '(m$^{2}$)')
+        >>> display("lti").axis_label()
+        '$\\eta$, local transmission index (dimensionless)'
+        """
+        unit = self.unit.replace("{length}^{k}", "{length}" if angle_count == 1 else "{length}^{k}")
+        unit = unit.format(length=length_unit or "length unit", k=angle_count) if unit else "dimensionless"
+        unit = re.sub(r"\^(\w+)", r"$^{\1}$", unit)
+        return f"{self.symbol}, {self.label} ({unit})"
+
+
+_CLOSE = "0 at a singularity; a relative distance that may exceed 1"
+#: How each quantity is shown (:class:`QuantityDisplay`); :func:`register_quantity` may add to it.
+_DISPLAY: dict[str, QuantityDisplay] = {
+    "verdict": QuantityDisplay("verdict", "verdict", meaning="bit 1 constraint, 2 actuation, 4 serial"),
+    "closeness": QuantityDisplay("closeness to a singularity (minimum of the three)", "$c$", meaning=_CLOSE),
+    "closeness:constraint": QuantityDisplay("closeness to a constraint singularity", "$c_c$", meaning=_CLOSE),
+    "closeness:actuation": QuantityDisplay("closeness to an actuation singularity", "$c_a$", meaning=_CLOSE),
+    "closeness:serial": QuantityDisplay("closeness to a serial singularity", "$c_s$", meaning=_CLOSE),
+    "det_A": QuantityDisplay(
+        "determinant of the forward Jacobian", "det A", "{length}^{k}", True,
+        "0 at a direct (actuation) singularity; rows unit actuation forces",
+    ),
+    "det_B": QuantityDisplay(
+        "determinant of the inverse Jacobian", "det B", "{length}^r, r revolute actuators", True,
+        "0 at an inverse (serial) singularity; rows unit actuation forces",
+    ),
+    "lti": QuantityDisplay("local transmission index", "$\\eta$", meaning="in [0, 1]; 0 at a singularity"),
+    "kappa": QuantityDisplay("motion transmission index", "$\\kappa$", meaning="in [0, 1]"),
+    "zeta": QuantityDisplay("force transmission index", "$\\zeta$", meaning="in [0, 1]"),
+}
+
+
+def display(name: str) -> QuantityDisplay:
+    """How a quantity is named on a figure (:class:`QuantityDisplay`); ``"condition:K"`` included.
+
+    Parameters
+    ----------
+    name : str
+        A quantity (:func:`quantity` resolves aliases).
+
+    Returns
+    -------
+    QuantityDisplay
+
+    Raises
+    ------
+    ScrewkitValueError
+        For an unknown quantity.
+
+    Examples
+    --------
+    >>> display("condition:1").signed, display("closeness:actuation").symbol
+    (True, '$c_a$')
+    """
+    name = quantity(name)
+    if name.startswith("condition:"):
+        index = name.split(":")[1]
+        return QuantityDisplay(
+            "its vector form", f"condition {index}", "{length}^p", True,
+            "0 where the condition holds; p: the form's degree in point coordinates",
+        )
+    return _DISPLAY[name]
+
+
 #: The quantities of :data:`QUANTITIES` that :func:`register_quantity` provides (a paper's indices).
 CONTRIBUTED = ("lti", "kappa", "zeta")
 
@@ -132,8 +241,17 @@ CONTRIBUTED = ("lti", "kappa", "zeta")
 _REGISTERED: dict[str, Callable[[Any], Any]] = {}
 
 
-def register_quantity(name: str, function: Callable[[Any], Any]) -> None:
-    """Register how a quantity of :data:`QUANTITIES` is computed over a posed batch.
+def register_quantity(
+    name: str,
+    function: Callable[[Any], Any],
+    *,
+    label: str | None = None,
+    symbol: str | None = None,
+    unit: str | None = None,
+    signed: bool | None = None,
+) -> None:
+    """Register how a quantity of :data:`QUANTITIES` is computed over a posed batch, and optionally
+    how it is named on figures (:class:`QuantityDisplay`; what is not given is kept).
 
     The stages above the maps (a paper's analysis, :mod:`screwkit.papers`) contribute their
     quantities this way, so that the maps call them without importing them.
@@ -144,6 +262,8 @@ def register_quantity(name: str, function: Callable[[Any], Any]) -> None:
         One of :data:`QUANTITIES` not computed here (``"lti"``, ``"kappa"``, ``"zeta"``).
     function : callable
         ``function(posed) -> numpy.ndarray`` of the batch's shape.
+    label, symbol, unit, signed : optional
+        Its display (:class:`QuantityDisplay`), replacing the registered one's fields.
 
     Returns
     -------
@@ -162,6 +282,8 @@ def register_quantity(name: str, function: Callable[[Any], Any]) -> None:
     if not callable(function):
         raise ScrewkitTypeError(f"Expected `function` to be callable, got {type(function).__name__}.")
     _REGISTERED[name] = function
+    given: dict[str, Any] = {"label": label, "symbol": symbol, "unit": unit, "signed": signed}
+    _DISPLAY[name] = replace(_DISPLAY[name], **{k: v for k, v in given.items() if v is not None})
 
 
 

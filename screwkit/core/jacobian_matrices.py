@@ -313,14 +313,38 @@ class Jacobians:
                 result["serial"] = self.serial.tolist()
         return result
 
+    def __repr__(self) -> str:
+        """One line: the type, the matrices' sizes and the closeness measures (over a batch: its shape
+        and the count of each type).
+
+        Returns
+        -------
+        str
+
+        Examples
+        --------
+        >>> Jacobians(np.eye(2), np.diag([1.0, 0.0]))
+        Jacobians('inverse', A 2x2, B 2x2, closeness direct 1, inverse 0)
+        """
+        n, dof = self.A.shape[-2:]
+        if not self.single:
+            return f"Jacobians(shape={self.shape}: {self._tally()})"
+        return (
+            f"Jacobians({self.type!r}, A {n}x{dof}, B {n}x{self.B.shape[-1]}, closeness direct "
+            f"{self.closeness['direct']:.3g}, inverse {self.closeness['inverse']:.3g})"
+        )
+
+    def _tally(self) -> str:
+        names, counts = np.unique(self.types, return_counts=True)
+        return ", ".join(f"{c} {name}" for name, c in zip(names.tolist(), counts.tolist(), strict=True))
+
     def __str__(self) -> str:
         n, dof = self.A.shape[-2:]
         if not self.single:
-            names, counts = np.unique(self.types, return_counts=True)
-            tally = ", ".join(
-                f"{count} {name}" for name, count in zip(names.tolist(), counts.tolist(), strict=True)
+            return (
+                f"Jacobians over a batch of shape {self.shape}: {n} actuated joint(s), dof {dof}; "
+                f"{self._tally()}"
             )
-            return f"Jacobians over a batch of shape {self.shape}: {n} actuated joint(s), dof {dof}; {tally}"
         head = "regular" if self.type == "regular" else f"{self.type} singularity"
         lines = [
             f"{head} (Gosselin-Angeles): A {n}x{dof}, B {n}x{self.B.shape[-1]}; closeness direct "

@@ -56,6 +56,7 @@ from typing import Any
 import numpy as np
 
 from ..algebra import screwvalue as S
+from ..algebra.display import ScrewArray, html_section, html_table, number_text
 from ..algebra.screwsystem import ScrewSystem
 from ..exceptions import ScrewkitTypeError
 from .wrench_systems import WrenchAnalysis
@@ -233,12 +234,12 @@ class SingularityReport:
             )
 
     @property
-    def uncontrolled_twists(self) -> Array:
+    def uncontrolled_twists(self) -> ScrewArray:
         """A readable basis ``(uncontrolled_dof, 6)`` of the twists left with the actuators locked
-        (user frame; one pose)."""
+        (user frame; one pose): an array that prints its rows as screws, rounding noise as 0."""
         self._require_single("uncontrolled_twists")
         system = self.analysis.uncontrolled_twists
-        return system.readable_basis() if system.order else np.zeros((0, 6))
+        return ScrewArray(system.readable_basis() if system.order else np.zeros((0, 6)))
 
     @property
     def serial(self) -> tuple[SerialSingularity, ...]:
@@ -295,15 +296,75 @@ class SingularityReport:
         }
 
     def __repr__(self) -> str:
-        if self.single:
-            return f"SingularityReport({self.verdict!r})"
-        return f"SingularityReport(shape={self.shape})"
+        """One line: the verdict, the nominal mobility and the two orders against their nominal values
+        (over a batch: its shape and the count of each verdict).
+
+        Returns
+        -------
+        str
+
+        Examples
+        --------
+        >>> from screwkit.robots.catalog import load_mechanism
+        >>> load_mechanism("h4").at().singularities
+        SingularityReport(shape=(1,): regular 1)
+        >>> _[0]
+        SingularityReport('regular', dof=4, constraint 2/2, global 6/6)
+        """
+        if not self.single:
+            return f"SingularityReport(shape={self.shape}: {self._tally()})"
+        return (
+            f"SingularityReport({self.verdict!r}, dof={self.dof}, constraint {self.constraint_order}/"
+            f"{self.nominal_constraint_order}, global {self.global_order}/6)"
+        )
+
+    def _tally(self) -> str:
+        codes = np.asarray(self.codes).ravel()
+        return ", ".join(f"{_verdict(c)} {int((codes == c).sum())}" for c in np.unique(codes))
+
+    def _repr_html_(self) -> str:
+        """Jupyter: the verdict, the orders, the uncontrolled twists and the closeness measures as
+        tables (over a batch: the count of each verdict).
+
+        Returns
+        -------
+        str
+            HTML.
+
+        Examples
+        --------
+        >>> from screwkit.robots.catalog import load_mechanism
+        >>> load_mechanism("h4").at()[0].singularity._repr_html_()[:30]
+        '<h4>singularity: regular</h4><'
+        """
+        if not self.single:
+            codes = np.asarray(self.codes).ravel()
+            rows = [(_verdict(c), int((codes == c).sum())) for c in np.unique(codes)]
+            table = html_table(["verdict", "poses"], rows)
+            return html_section(f"singularities over {codes.size} poses", table)
+        orders = [
+            ("nominal mobility (dof)", self.dof),
+            ("constraint order", f"{self.constraint_order} / {self.nominal_constraint_order}"),
+            ("global order", f"{self.global_order} / 6"),
+            (
+                "freedoms gained / lost / uncontrolled",
+                f"{self.gained_dof} / {self.lost_dof} / {self.uncontrolled_dof}",
+            ),
+        ]
+        out = [html_table(["", ""], orders)]
+        if len(self.uncontrolled_twists):
+            twists = [(i + 1, str(S.Screw(t))) for i, t in enumerate(self.uncontrolled_twists)]
+            table = html_table(["", "twist"], twists)
+            out.append(html_section("uncontrolled twists (actuators locked)", table, level=5))
+        out.extend(f"<p>serial singularity of the limb of {i.actuated_joint!r}</p>" for i in self.serial)
+        measures = [(k, number_text(v, 3)) for k, v in self.closeness.items()]
+        closeness = html_table(["measure", "value"], measures)
+        out.append(html_section("closeness (0 at a singularity)", closeness, level=5))
+        return html_section(f"singularity: {self.verdict}", "".join(out))
 
     def __str__(self) -> str:
         if not self.single:
-            codes = np.asarray(self.codes).ravel()
-            counts = ", ".join(f"{_verdict(c)} {int((codes == c).sum())}" for c in np.unique(codes))
-            return f"{codes.size} poses (dof {self.dof}): {counts}"
+            return f"{np.asarray(self.codes).size} poses (dof {self.dof}): {self._tally()}"
         lines = [
             f"{self.verdict} (dof {self.dof}): constraint order {self.constraint_order}/"
             f"{self.nominal_constraint_order}, global order {self.global_order}/6"

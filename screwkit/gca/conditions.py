@@ -188,6 +188,25 @@ class Condition:
         """
         return sympy.latex(self.expression) + " = 0"
 
+    def __repr__(self) -> str:
+        label = f"{self.label}: " if self.label else ""
+        return f"Condition({label}{self.factor} = 0: {self.statement})"
+
+    def _repr_latex_(self) -> str:
+        r"""Jupyter: the factor and its vector form, set to zero, typeset.
+
+        Returns
+        -------
+        str
+
+        Examples
+        --------
+        >>> condition(DottedMonomial.parse("[gikj]"), finite="g", infinite="ikj")._repr_latex_()
+        '$[gikj] = 0 \\iff - \\left(\\mathbf{i} \\times \\mathbf{k}\\right) \\cdot \\mathbf{j} = 0$'
+        """
+        head = rf"\text{{{self.label}}}:\quad " if self.label else ""
+        return f"${head}{self.factor_latex()} \\iff {self.to_latex()}$"
+
     def factor_latex(self) -> str:
         """LaTeX of the bracket factor (with its dots and multiplicity) set to zero.
 

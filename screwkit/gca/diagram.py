@@ -161,6 +161,11 @@ class WrenchDiagram:
             "degenerate": list(self.degenerate),
         }
 
+    def __repr__(self) -> str:
+        infinite = f", {len(self.infinite)} at infinity" if self.infinite else ""
+        degenerate = f"; degenerate here: {'; '.join(self.degenerate)}" if self.degenerate else ""
+        return f"WrenchDiagram({self.line_text()}: {len(self.points)} points{infinite}{degenerate})"
+
     def __str__(self) -> str:
         rows = [f"wrench diagram {self.line_text()}"]
         for line, name in zip(self.lines, self.line_names, strict=True):

@@ -357,6 +357,23 @@ class FactoredForm:
         """
         return self._text(latex=True)
 
+    def __repr__(self) -> str:
+        return f"FactoredForm({str(self)!r})"
+
+    def _repr_latex_(self) -> str:
+        """Jupyter: the factored form typeset (:meth:`to_latex` in math mode).
+
+        Returns
+        -------
+        str
+
+        Examples
+        --------
+        >>> collect_factors(BracketPolynomial.parse("[gikj][abdf]"))._repr_latex_()
+        '$[gikj][abdf]$'
+        """
+        return f"${self.to_latex()}$"
+
 
 def _power(part: DottedSum, multiplicity: int, *, latex: bool) -> str:
     """One factor of a product: ``(sum)``, ``(sum)²`` / ``\\left(sum\\right)^{2}``."""

@@ -75,6 +75,32 @@ class SuperbracketAnalysis:
     vanishing: tuple[bool, ...] = ()
     constant: tuple[bool, ...] = ()
 
+    def __repr__(self) -> str:
+        """One line: the superbracket, its factored form and each condition's label.
+
+        Returns
+        -------
+        str
+        """
+        pairs = zip(self.conditions, self.labels, strict=True)
+        found = ", ".join(f"{label} {c.factor}" for c, label in pairs)
+        return (
+            f"SuperbracketAnalysis({self.diagram.line_text()} = {self.simplification.factored}"
+            f"{'; ' + found if found else ''})"
+        )
+
+    def _repr_latex_(self) -> str:
+        """Jupyter: the factored superbracket and its labelled conditions as one ``align*`` block
+        (:func:`screwkit.gca.conditions.latex`, as ``screwkit analyze --latex``).
+
+        Returns
+        -------
+        str
+        """
+        from .conditions import latex
+
+        return latex(self.simplification.factored, self.conditions, self.diagram.line_text())
+
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready summary.
 

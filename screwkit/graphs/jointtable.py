@@ -236,6 +236,23 @@ class JointTable:
             mobility=graph.graph.get("mobility"),
         )
 
+    def __repr__(self) -> str:
+        """One line: base, platform, the joints by type and the batch shape.
+
+        Returns
+        -------
+        str
+        """
+        kinds: dict[str, int] = {}
+        for spec in self.specs:
+            kinds[spec.type] = kinds.get(spec.type, 0) + 1
+        joints = ", ".join(f"{count} {kind}" for kind, count in kinds.items())
+        actuated = sum(spec.actuated for spec in self.specs)
+        return (
+            f"JointTable({self.base!r} to {self.platform!r}: {len(self.specs)} joints ({joints}), "
+            f"{actuated} actuated, batch shape {self.batch_shape})"
+        )
+
     @property
     def batch_shape(self) -> tuple[int, ...]:
         """The leading batch shape of :attr:`screws`."""

@@ -15,10 +15,11 @@ from ..exceptions import MissingDependencyError, ScrewkitTypeError
 try:
     import matplotlib.pyplot as plt
     from matplotlib.collections import PolyCollection
-    from matplotlib.colors import BoundaryNorm, ListedColormap, to_rgba
+    from matplotlib.colors import BoundaryNorm, ListedColormap, TwoSlopeNorm, to_rgba
     from matplotlib.figure import Figure
     from matplotlib.lines import Line2D
     from matplotlib.patches import FancyArrowPatch, Patch
+    from matplotlib.ticker import MaxNLocator
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 except ImportError as err:  # pragma: no cover - exercised in a subprocess without matplotlib
     raise MissingDependencyError(
@@ -32,9 +33,11 @@ __all__ = [
     "Figure",
     "Line2D",
     "ListedColormap",
+    "MaxNLocator",
     "Patch",
     "Poly3DCollection",
     "PolyCollection",
+    "TwoSlopeNorm",
     "new_axes",
     "plt",
     "to_rgba",

@@ -18,7 +18,6 @@ Examples
 
 from __future__ import annotations
 
-import math
 from collections import Counter
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
@@ -33,6 +32,7 @@ from ..core.jacobian_matrices import Jacobians
 from ..core.singularity import SingularityReport
 from ..core.wrenches import WrenchAnalysis
 from ..graphs.loops import fundamental_loops
+from ..robots.angles import pose_text
 
 if TYPE_CHECKING:  # the diagram and GCA stack loads when a report is made, not on `import screwkit`
     from ..gca.diagram import WrenchDiagram
@@ -151,6 +151,8 @@ class AnalysisReport:
     given_length_scale : float or None
         The characteristic length the caller gave (None: derived from the screws; the one used is
         ``analysis.length_scale``).
+    angle_names : tuple of str
+        The pose coordinates that are angles (shown in degrees).
     """
 
     name: str
@@ -169,6 +171,7 @@ class AnalysisReport:
     jacobians_note: str = _SNAPSHOT_JACOBIANS
     transmission: dict[str, Any] | None = None
     given_length_scale: float | None = None
+    angle_names: tuple[str, ...] = ()
 
     def graph_summary(self) -> dict[str, Any]:
         """Links, joints by type, actuated joints, loops; and the equivalent graph's virtual joints.
@@ -329,13 +332,7 @@ class AnalysisReport:
         unit = self.length_unit
         out = [self.name if self.source == self.name else f"{self.name}  ({self.source})"]
         if self.pose is not None:
-            coords = ", ".join(
-                f"{n} = {math.degrees(v):.4g} deg"
-                if n in ("phi", "theta", "psi")
-                else f"{n} = {v:.6g} {unit}"
-                for n, v in zip(self.pose_names, self.pose, strict=True)
-            )
-            out.append(f"pose: {coords}")
+            out.append(f"pose: {self.pose_words()}")
         if self.analysis.rtol != B.DEFAULT_RTOL:  # the default is the README's; another is said
             out.append(f"rank tolerance: rtol = {self.analysis.rtol:g} (default {B.DEFAULT_RTOL:g})")
         if self.given_length_scale is not None:  # likewise (the default is derived from the screws)
@@ -407,6 +404,77 @@ class AnalysisReport:
         if self.transmission is not None:
             out += ["", *_transmission_lines(self.transmission)]
         return "\n".join(out)
+
+    def pose_words(self) -> str:
+        """The pose in words, each coordinate with its unit (angles in degrees), or "a snapshot's
+        configuration" when there is no pose (:func:`screwkit.robots.angles.pose_text`).
+
+        Returns
+        -------
+        str
+
+        Examples
+        --------
+        >>> from screwkit.interface.report import analyze
+        >>> analyze("v4", superbracket=False).pose_words()
+        'x = 0 mm, y = 0 mm, z = -750 mm, phi = 0 deg'
+        """
+        if self.pose is None:
+            return "a snapshot's configuration"
+        return pose_text(self.pose, self.pose_names, self.angle_names, self.length_unit)
+
+    def __repr__(self) -> str:
+        """A few lines: what was analysed where, the verdict and the factored superbracket
+        (``print(report)`` gives the whole report).
+
+        Returns
+        -------
+        str
+
+        Examples
+        --------
+        >>> from screwkit.interface.report import analyze
+        >>> analyze("h4", [0, 0, -750, 0.3])  # doctest: +ELLIPSIS
+        AnalysisReport('H4' at x = 0 mm, y = 0 mm, z = -750 mm, phi = 17.19 deg)
+          verdict: regular (dof 4): constraint order 2/2, global order 6/6
+          superbracket: [ab, cd, ef, gh, ij, kj] = -[gikj][a b d ḟ][c g ḣ j]; constraint [gikj]; actuation ...
+          print(report) for the whole report, report.to_dict() for its data
+        """
+        where = "" if self.pose is None else f" at {self.pose_words()}"
+        if self.superbracket is None:
+            superbracket = f"none ({self.superbracket_note})"
+        else:
+            result = self.superbracket
+            found = "; ".join(
+                f"{label} {c.factor}"
+                for c, label, constant in zip(result.conditions, result.labels, result.constant, strict=True)
+                if not constant
+            )
+            superbracket = f"{self.diagram.line_text()} = {self.superbracket.simplification.factored}"
+            superbracket += f"; {found}" if found else ""
+        return "\n".join(
+            [
+                f"AnalysisReport({self.name!r}{where})",
+                f"  verdict: {str(self.verdict).splitlines()[0]}",
+                f"  superbracket: {superbracket}",
+                "  print(report) for the whole report, report.to_dict() for its data",
+            ]
+        )
+
+    def _repr_html_(self) -> str:
+        """Jupyter: the report in sections, with tables of the wrenches, the diagram's points and
+        the conditions (:func:`screwkit.interface.report_html.report_html`).
+
+        Returns
+        -------
+        str
+        """
+        from .report_html import report_html
+
+        tail = [*self._jacobian_lines()] if self.pose is not None else []
+        if self.transmission is not None:
+            tail += ["", *_transmission_lines(self.transmission)]
+        return report_html(self, tail)
 
     def _jacobian_lines(self) -> list[str]:
         jac = self.jacobians

@@ -62,7 +62,7 @@ def run_map(args: argparse.Namespace) -> int:
     verdict over H4: z in [-900, -600] mm (2 values) x phi in [-10, 10] deg (2 values), x = 0 mm, y = 0 mm
       verdicts of the reachable poses (codes in the JSON's `codes`): regular 100.0%
       loci in the slice: none found (no singular curve or reach boundary between the samples)
-      minimum 0 at ...
+      reachable 100.0%; written to ...
     0
     """
     from ..analysis.quantities import quantity as checked_quantity
@@ -145,7 +145,7 @@ def run_map(args: argparse.Namespace) -> int:
     _write("map", args.out, write)
 
     def where(pose: dict[str, float]) -> str:
-        return ", ".join(f"{k} = {v:g}" for k, v in pose.items()) or "-"
+        return ", ".join(f"{k} = {v:g} {result.units.get(k, '')}".rstrip() for k, v in pose.items()) or "-"
 
     lines = [f"{quantity} over {result.region}"]
     if result.meaning:
@@ -174,11 +174,11 @@ def run_map(args: argparse.Namespace) -> int:
         lines.append(
             "  loci in the slice: none found (no singular curve or reach boundary between the samples)"
         )
-    if result.reachable.any():
+    if not result.reachable.any():
+        lines.append("  no pose of the map is reachable: no minimum or maximum")
+    elif result.quantity != "verdict":  # a verdict map's codes are categories: their shares are above
         lines.append(f"  minimum {result.minimum:g} at {where(result.argmin)}")
         lines.append(f"  maximum {result.maximum:g} at {where(result.argmax)}")
-    else:
-        lines.append("  no pose of the map is reachable: no minimum or maximum")
     lines.append(f"  reachable {result.reachable.mean():.1%}; written to {args.out}")
     print_text("\n".join(lines))
     return 0

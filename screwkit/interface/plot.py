@@ -48,21 +48,26 @@ from typing import Any
 
 import numpy as np
 
+from ..analysis.quantities import display
 from ..core.verdicts import LABELS
-from ..exceptions import ScrewkitTypeError, ScrewkitValueError
+from ..exceptions import ScrewkitError, ScrewkitTypeError, ScrewkitValueError
 from ._matplotlib import (
     BoundaryNorm,
     Figure,
     Line2D,
     ListedColormap,
+    MaxNLocator,
     Patch,
     Poly3DCollection,
+    TwoSlopeNorm,
     new_axes,
     to_rgba,
 )
 
 __all__ = [
+    "DIVERGING_CMAP",
     "KIND_COLOURS",
+    "SEQUENTIAL_CMAP",
     "SURFACE_COLOURS",
     "UNREACHABLE_COLOUR",
     "VERDICT_COLOURS",
@@ -89,6 +94,9 @@ VERDICT_COLOURS = (
 )
 #: Colour of the axes' background: where a map has no value (unreachable poses).
 UNREACHABLE_COLOUR = "0.75"
+#: The colour maps of :func:`plot_map`: sequential for a quantity of one sign, diverging (centred at 0)
+#: for a signed one (:attr:`screwkit.analysis.quantities.QuantityDisplay.signed`).
+SEQUENTIAL_CMAP, DIVERGING_CMAP = "viridis", "RdBu_r"
 #: Colours of the surfaces of :func:`plot_singularity_surfaces`, in turn.
 SURFACE_COLOURS = ("tab:orange", "tab:purple", "tab:green", "tab:red", "tab:brown", "tab:pink")
 
@@ -140,6 +148,42 @@ def _unit_of(workspace_map: Any, name: str, degrees: Collection[str]) -> str:
     return str(units.get(name, "")) if isinstance(units, dict) else ""
 
 
+def _units_of_map(workspace_map: Any) -> tuple[str, int]:
+    """The map's length unit (the unit of a coordinate that is not an angle) and its number of angle
+    coordinates (``units``: one entry per pose coordinate); ``("", 0)`` without units."""
+    units = getattr(workspace_map, "units", None) or {}
+    if not isinstance(units, dict):
+        return "", 0
+    lengths = [str(u) for u in units.values() if u not in ("rad", "deg")]
+    return (lengths[0] if lengths else ""), sum(u in ("rad", "deg") for u in units.values())
+
+
+def _same_scale(ax: Any, workspace_map: Any, degrees: Collection[str]) -> None:
+    """Equal scale on both axes when both are lengths in the same unit (a spatial slice)."""
+    x_unit = _unit_of(workspace_map, str(workspace_map.x_name), degrees)
+    y_unit = _unit_of(workspace_map, str(workspace_map.y_name), degrees)
+    if x_unit and x_unit == y_unit and x_unit not in ("rad", "deg"):
+        ax.set_aspect("equal", adjustable="box")
+
+
+def _legend_outside(ax: Any, handles: list[Any] | None = None) -> None:
+    """The legend below the axes, off the data."""
+    chosen = handles if handles is not None else ax.get_legend_handles_labels()[0]
+    if chosen:
+        ax.legend(
+            handles=chosen, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2, fontsize=7, frameon=False
+        )
+
+
+def _display_of(name: str) -> Any:
+    """The quantity's display (:func:`screwkit.analysis.quantities.display`), or None for a name
+    screwkit does not know (a map made elsewhere): then drawn under its own name, unsigned."""
+    try:
+        return display(name)
+    except ScrewkitError:
+        return None
+
+
 def _title(workspace_map: Any, what: str, degrees: Collection[str]) -> str:
     fixed = dict(getattr(workspace_map, "fixed", {}) or {})
     parts = []
@@ -181,14 +225,18 @@ def plot_map(
     loci: Iterable[Any] = (),
     degrees: Collection[str] = (),
     filled: bool = True,
-    cmap: str = "viridis",
+    cmap: str | None = None,
 ) -> Any:
     """Isocontours of a map's quantity over its grid, with singularity loci overlaid.
 
     The style of paper 004, Figs. 8–13 (LTI isocontours over the workspace at a fixed orientation),
     with the loci of its Figs. 14–16 drawn on top, one colour per kind (:data:`KIND_COLOURS`).
     Unreachable grid points (``~reachable``) and non-finite values are left blank, on a grey
-    background.
+    background. The colour bar names the quantity by its symbol, words and unit
+    (:func:`screwkit.analysis.quantities.display`: ``η`` for the LTI, ``det A`` with its length
+    power); a signed quantity (``det_A``, ``det_B``, ``condition:K``) gets a diverging colour map
+    centred at zero and its zero level drawn bold; a slice over two lengths of one unit is drawn at
+    equal scale; the legend of the loci sits below the axes.
 
     Parameters
     ----------
@@ -207,7 +255,8 @@ def plot_map(
         stores angles in degrees unless asked for radians: then pass their names here).
     filled : bool, default True
         Fill between the contour lines (the lines are drawn and labelled either way).
-    cmap : str, default "viridis"
+    cmap : str, optional
+        Default: :data:`DIVERGING_CMAP` for a signed quantity, else :data:`SEQUENTIAL_CMAP`.
 
     Returns
     -------
@@ -233,6 +282,9 @@ def plot_map(
     >>> ax = plot_map(m, levels=[0.4, 0.6, 0.8])
     >>> ax.get_title()
     'eta at z = -800'
+    >>> lti = plot_map(SimpleNamespace(**{**vars(m), "quantity": "lti"}))
+    >>> lti.get_title(), lti.figure.axes[-1].get_ylabel()
+    ('$\\\\eta$, local transmission index at z = -800', '$\\\\eta$, local transmission index (dimensionless)')
     """
     ax = new_axes(ax)
     x, y, reachable, x_label, y_label = _grid(workspace_map, degrees)
@@ -244,19 +296,34 @@ def plot_map(
             f"(quantity {workspace_map.quantity!r})."
         )
     ax.set_facecolor(UNREACHABLE_COLOUR)
-    chosen = levels if isinstance(levels, int) else np.asarray(list(levels), dtype=float)
+    info = _display_of(str(workspace_map.quantity))
+    signed = info is not None and info.signed
+    length_unit, angle_count = _units_of_map(workspace_map)
+    label = str(workspace_map.quantity) if info is None else info.axis_label(length_unit, angle_count)
+    name = str(workspace_map.quantity) if info is None else f"{info.symbol}, {info.label}"
+    chosen: Any = levels if isinstance(levels, int) else np.asarray(list(levels), dtype=float)
+    norm = None
+    if signed:  # centred at zero: equal colour steps either side of the zero level
+        bound = float(np.max(np.abs(shown)))
+        norm = TwoSlopeNorm(0.0, -bound, bound) if bound > 0 else None
+        if isinstance(chosen, int) and bound > 0:  # levels over the data, zero among them when crossed
+            chosen = MaxNLocator(chosen, symmetric=False).tick_values(float(shown.min()), float(shown.max()))
+    colours = cmap or (DIVERGING_CMAP if signed else SEQUENTIAL_CMAP)
     if filled:
-        fill = ax.contourf(x, y, shown, levels=chosen, cmap=cmap, extend="both")  # values off the levels too
-        ax.figure.colorbar(fill, ax=ax, label=str(workspace_map.quantity))  # ax's, not pyplot's current
+        fill = ax.contourf(x, y, shown, levels=chosen, cmap=colours, norm=norm, extend="both")
+        ax.figure.colorbar(fill, ax=ax, label=label)  # ax's, not pyplot's current
         chosen = fill.levels
-    lines = ax.contour(x, y, shown, levels=chosen, colors="black", linewidths=0.7)
+    lines = ax.contour(x, y, shown, levels=chosen, colors="black", linewidths=0.6)
     ax.clabel(lines, fmt="%.3g", fontsize=7)
+    if signed and shown.min() < 0 < shown.max():
+        ax.contour(x, y, shown, levels=[0.0], colors="black", linewidths=2.0)
+        ax.plot([], [], color="black", linewidth=2.0, label=f"{info.symbol} = 0")
     _draw_loci(ax, workspace_map, loci, degrees)
     ax.set_xlabel(x_label)
     ax.set_ylabel(y_label)
-    ax.set_title(_title(workspace_map, str(workspace_map.quantity), degrees))
-    if ax.get_legend_handles_labels()[0]:
-        ax.legend(loc="upper right", fontsize=7)
+    _same_scale(ax, workspace_map, degrees)
+    ax.set_title(_title(workspace_map, name, degrees), fontsize=10)
+    _legend_outside(ax)
     return ax
 
 
@@ -344,10 +411,13 @@ def plot_verdicts(
     present = sorted(set(codes[reachable].tolist()))
     handles = [Patch(facecolor=VERDICT_COLOURS[c], edgecolor="0.3", label=_verdict_name(c)) for c in present]
     _draw_loci(ax, workspace_map, loci, degrees)
-    ax.legend(handles=handles + ax.get_legend_handles_labels()[0], loc="upper right", fontsize=7)
+    _legend_outside(ax, handles + ax.get_legend_handles_labels()[0])
     ax.set_xlabel(x_label)
     ax.set_ylabel(y_label)
-    ax.set_title(_title(workspace_map, "verdicts", degrees))
+    _same_scale(ax, workspace_map, degrees)
+    # a map of one category says so (no scale of one colour)
+    what = f"every reachable grid pose {_verdict_name(present[0])}" if len(present) == 1 else "verdicts"
+    ax.set_title(_title(workspace_map, what, degrees), fontsize=10)
     return ax
 
 
@@ -365,7 +435,12 @@ def _shaded(colour: str, triangles: Array) -> Array:
 
 
 def plot_singularity_surfaces(
-    surfaces: Iterable[Any], *, ax: Any = None, wireframe: int = 16, alpha: float = 0.85
+    surfaces: Iterable[Any],
+    *,
+    ax: Any = None,
+    wireframe: int = 16,
+    alpha: float = 0.85,
+    length_unit: str = "mm",
 ) -> Any:
     """Draw singularity surfaces in the workspace, as paper 004's Figs. 14-16.
 
@@ -385,6 +460,8 @@ def plot_singularity_surfaces(
         Latitudes of the region's wireframe (twice as many meridians); 0 draws none.
     alpha : float
         Opacity of the surfaces.
+    length_unit : str, default "mm"
+        The unit of the triangles' coordinates, on the axes (the mechanism's: mm for paper 004's robots).
 
     Returns
     -------
@@ -454,7 +531,7 @@ def plot_singularity_surfaces(
         limits(low, high)
     ax.set_box_aspect(tuple(np.maximum(upper - lower, 1e-9 * np.max(upper - lower))))
     for name, labeller in zip("xyz", (ax.set_xlabel, ax.set_ylabel, ax.set_zlabel), strict=True):
-        labeller(name)
+        labeller(f"{name} ({length_unit})" if length_unit else name)
     ax.set_title(f"{robot}: actuation singularity loci", fontsize=10)
     ax.legend(handles=handles, loc="upper left", fontsize=8)
     return ax

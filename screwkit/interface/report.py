@@ -48,6 +48,7 @@ from ..core.wrench_systems import WrenchAnalysis
 from ..core.wrenches import wrench_analysis
 from ..exceptions import ScrewkitError, ScrewkitTypeError, ScrewkitValueError
 from ..graphs.reduction import equivalent_twist_graph
+from ..robots.angles import angle_factor
 from ..robots.catalog import load_mechanism
 from ..robots.mechanism import Mechanism
 from ..robots.posed import PosedMechanism
@@ -67,6 +68,7 @@ def analyze(
     target: Any,
     pose: Any = None,
     *,
+    angles: str = "rad",
     rtol: float | None = None,
     length_scale: float | None = None,
     superbracket: bool = True,
@@ -84,6 +86,8 @@ def analyze(
     pose : array_like, optional
         In the mechanism's length unit and radians; default: the catalog's default pose. Not
         accepted for snapshots, graphs and a posed mechanism (their configuration is given).
+    angles : {"rad", "deg"}, default "rad"
+        The unit of the pose's angle coordinates (:mod:`screwkit.robots.angles`).
     rtol : float, optional
         Relative tolerance of every rank decision (default 1e-9).
     length_scale : float, optional
@@ -110,12 +114,15 @@ def analyze(
     --------
     >>> analyze("h4", [0.0, 0.0, -750.0, 0.0], superbracket=False).verdict.labels
     ()
+    >>> analyze("h4", [0, 0, -750, 45], angles="deg", superbracket=False).pose.round(4).tolist()
+    [0.0, 0.0, -750.0, 0.7854]
     >>> posed = load_mechanism("h4").at([[0, 0, -750, 0], [30, -20, -750, 0.3]])
     >>> analyze(posed[1], superbracket=False).pose.tolist()
     [30.0, -20.0, -750.0, 0.3]
     """
     tolerance = B.DEFAULT_RTOL if rtol is None else checked_rtol(rtol)
     length = checked_length_scale(length_scale, allow_none=True)
+    angle_factor(angles)  # checks `angles` for every target
     if not isinstance(superbracket, bool | np.bool_):
         raise ScrewkitTypeError(f"Expected `superbracket` to be True or False, got {superbracket!r}.")
     if progress is not None and not callable(progress):
@@ -149,14 +156,14 @@ def analyze(
         snapshot = load_snapshot(text)
         return _graph_report(snapshot, text, pose, tolerance, length, superbracket, "a snapshot", step)
     mechanism = target if isinstance(target, Mechanism) else load_mechanism(target)
-    posed = _one_pose(mechanism, pose, tolerance, length)
+    posed = _one_pose(mechanism, pose, angles, tolerance, length)
     return pose_report(posed, superbracket=superbracket, progress=step)
 
 
-def _one_pose(mechanism: Mechanism, pose: Any, rtol: float, length_scale: float | None) -> Any:
+def _one_pose(mechanism: Mechanism, pose: Any, angles: str, rtol: float, length_scale: float | None) -> Any:
     """The mechanism at one pose (a batch is for :meth:`Mechanism.at`: its reports pose by pose)."""
     if pose is None:
-        return mechanism.at(rtol=rtol, length_scale=length_scale)[0]
+        return mechanism.at(angles=angles, rtol=rtol, length_scale=length_scale)[0]
     array = B.as_array(pose, "pose", (len(mechanism.pose_names),), symbolic=False)
     if array.ndim != 1:
         raise ScrewkitValueError(
@@ -164,7 +171,7 @@ def _one_pose(mechanism: Mechanism, pose: Any, rtol: float, length_scale: float 
             f"({', '.join(mechanism.pose_names)}), got shape {array.shape}; for many poses use "
             "mechanism.at(poses) and sk.analyze(posed[i]) of each pose."
         )
-    return mechanism.at(array, rtol=rtol, length_scale=length_scale)[0]
+    return mechanism.at(array, angles=angles, rtol=rtol, length_scale=length_scale)[0]
 
 
 #: The stages :func:`analyze` reports to its ``progress`` callback, in order.
@@ -312,6 +319,7 @@ def pose_report(
         report,
         transmission=transmission_summary(mechanism, report.pose, jacobians),
         given_length_scale=pose.length_scale,
+        angle_names=mechanism.angle_names,
     )
 
 

@@ -15,6 +15,7 @@ from __future__ import annotations
 import inspect
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import TYPE_CHECKING, Any, Generic, TypeVar
 
 import networkx as nx
@@ -23,11 +24,12 @@ import numpy as np
 from ..exceptions import (
     ScrewkitTypeError,
     ScrewkitValueError,
-    UnreachablePoseError,
 )
 from ..graphs.jointtable import JointTable
+from .angles import pose_text, poses_in_radians
 from .families import Family, families
-from .graph_kinematics import GraphKinematics, displacement_coordinates, forward_posed, kinematics_of
+from .graph_kinematics import displacement_coordinates, forward_posed, kinematics_of
+from .reach import random_reachable_poses, reachable_poses, unreachable_reasons
 from .toml_fields import (
     MAX_ANGLE_DEGREES,
     MAX_ANGLE_RADIANS,
@@ -37,7 +39,7 @@ from .toml_fields import (
 if TYPE_CHECKING:
     from ..core.jacobian_matrices import Jacobians
 
-__all__ = ["MAX_REJECTION_ROUNDS", "Mechanism"]
+__all__ = ["Mechanism"]
 
 
 #: The family's parameter and configuration types (:class:`~screwkit.robots.families.Family`).
@@ -46,8 +48,6 @@ C = TypeVar("C")
 
 
 Array = np.ndarray
-#: Rounds of redrawing in :meth:`Mechanism.random_poses` before a mostly unreachable workspace is refused.
-MAX_REJECTION_ROUNDS = 50
 
 
 @dataclass(frozen=True, eq=False)
@@ -92,6 +92,26 @@ class Mechanism(Generic[P, C]):
     expected: tuple[dict[str, Any], ...] = field(default=())
     reachable_fraction: float = 1.0
     protocol: Family[P, C] | None = field(default=None, repr=False)
+
+    def __repr__(self) -> str:
+        """One line: name, family, the pose coordinates and their units, the default pose, the file.
+
+        Returns
+        -------
+        str
+
+        Examples
+        --------
+        >>> print(repr(load_mechanism("h4")).replace(", default", ",\\n    default"))
+        Mechanism('H4', family four_limb, pose (x, y, z, phi) in mm and rad,
+            default x = 0 mm, y = 0 mm, z = -750 mm, phi = 0 deg; h4.toml)
+        """
+        default = pose_text(self.default_pose, self.pose_names, self.angle_names, self.length_unit)
+        units = self.length_unit + (" and rad" if self.angle_names else "")
+        return (
+            f"Mechanism({self.name!r}, family {self.family}, pose ({', '.join(self.pose_names)}) in {units}, "
+            f"default {default}; {Path(self.source).name})"
+        )
 
     @property
     def family_protocol(self) -> Family[P, C]:
@@ -170,15 +190,7 @@ class Mechanism(Generic[P, C]):
         >>> load_mechanism("v4").unreachable_reasons(np.array([[0, 0, -750, 0], [0, 0, -3000, 0]]))[1][:30]
         'Pose (x, y, z, phi) = (0, 0, -'
         """
-        if isinstance(self.parameters, GraphKinematics) and not options:
-            return np.asarray(self.parameters.solve(np.asarray(poses, dtype=float)).reasons, dtype=object)
-        out = np.full(len(poses), "", dtype=object)
-        for index in np.flatnonzero(~self.reachable(poses, **options)):
-            try:
-                self.configuration(poses[index], **options)
-            except UnreachablePoseError as error:
-                out[index] = str(error)
-        return out
+        return unreachable_reasons(self, poses, options)
 
     @property
     def pose_names(self) -> tuple[str, ...]:
@@ -190,7 +202,7 @@ class Mechanism(Generic[P, C]):
         """The pose coordinates that are angles (radians in the API, degrees in files and the CLI)."""
         return self.family_protocol.angle_names
 
-    def configuration(self, pose: Any = None, **options: Any) -> C:
+    def configuration(self, pose: Any = None, *, angles: str = "rad", **options: Any) -> C:
         """The family's configuration (inverse kinematics) at a pose or a batch ``(..., n)``
         (default: the default pose).
 
@@ -198,6 +210,8 @@ class Mechanism(Generic[P, C]):
         ----------
         pose : array_like, shape (..., n), optional
             In the file's length unit and radians; default: the default pose.
+        angles : {"rad", "deg"}, default "rad"
+            The unit of the pose's angle coordinates (:mod:`screwkit.robots.angles`).
         **options
             Passed to the inverse kinematics (a working mode).
 
@@ -211,6 +225,7 @@ class Mechanism(Generic[P, C]):
         >>> load_mechanism("h4").configuration().theta.shape
         (4,)
         """
+        pose = poses_in_radians(pose, self.pose_names, self.angle_names, angles, argument="pose")
         chosen = self.default_pose if pose is None else pose
         self._check_options(options)
         self.check_pose_range(pose, "pose")
@@ -233,13 +248,15 @@ class Mechanism(Generic[P, C]):
                 f"got {unknown}."
             )
 
-    def joints(self, pose: Any = None, **options: Any) -> JointTable:
+    def joints(self, pose: Any = None, *, angles: str = "rad", **options: Any) -> JointTable:
         """The joint table at a pose or a batch of poses (the input of the analysis core).
 
         Parameters
         ----------
         pose : array_like, shape (..., n), optional
             In the file's length unit and radians; default: the default pose.
+        angles : {"rad", "deg"}, default "rad"
+            The unit of the pose's angle coordinates (:mod:`screwkit.robots.angles`).
         **options
             Passed to the inverse kinematics (a working mode).
 
@@ -254,12 +271,13 @@ class Mechanism(Generic[P, C]):
         >>> table.batch_shape, len(table.specs)
         ((3,), 22)
         """
-        return self.family_protocol.joint_table(self.configuration(pose, **options))
+        return self.family_protocol.joint_table(self.configuration(pose, angles=angles, **options))
 
     def at(
         self,
         poses: Any = None,
         *,
+        angles: str = "rad",
         rtol: float | None = None,
         length_scale: float | None = None,
         **options: Any,
@@ -270,10 +288,13 @@ class Mechanism(Generic[P, C]):
         Parameters
         ----------
         poses : array_like, shape (..., n) or (..., 4, 4), optional
-            Coordinates in the file's length unit and radians, or rigid displacements of the platform
-            relative to the reference configuration in the base frame, rotating about the platform
-            point (a 2-D ``(4, 4)`` array is four poses of a four-coordinate robot: give one
+            Coordinates in the file's length unit and ``angles``, or rigid displacements of the
+            platform relative to the reference configuration in the base frame, rotating about the
+            platform point (a 2-D ``(4, 4)`` array is four poses of a four-coordinate robot: give one
             displacement as ``(1, 4, 4)``); default: the default pose.
+        angles : {"rad", "deg"}, default "rad"
+            The unit of the poses' angle coordinates (:mod:`screwkit.robots.angles`; beyond a turn in
+            radians, an :class:`~screwkit.robots.angles.AngleUnitWarning`).
         rtol : float, optional
             Relative tolerance of every rank decision (default 1e-9).
         length_scale : float, optional
@@ -292,6 +313,8 @@ class Mechanism(Generic[P, C]):
         >>> posed = load_mechanism("h4").at([[0, 0, -750, 0], [50, 20, -800, 0.3]])
         >>> posed.verdicts.tolist()
         ['regular', 'regular']
+        >>> load_mechanism("h4").at([0, 0, -750, 45], angles="deg").poses.round(4).tolist()
+        [[0.0, 0.0, -750.0, 0.7854]]
         >>> print(posed[1].singularity)  # doctest: +ELLIPSIS
         regular (dof 4): constraint order 2/2, global order 6/6
           closeness (0 at a singularity): constraint 0.968, actuation ...
@@ -299,8 +322,11 @@ class Mechanism(Generic[P, C]):
         from .posed import PosedMechanism
 
         self._check_options(options)
-        poses = self._coordinates_of(poses)
-        self.check_pose_range(poses)
+        coordinates = self._coordinates_of(poses)  # 4×4 displacements carry no angle unit
+        if coordinates is poses:
+            coordinates = poses_in_radians(poses, self.pose_names, self.angle_names, angles)
+        self.check_pose_range(coordinates)
+        poses = coordinates
         return PosedMechanism.create(self, poses, rtol=rtol, length_scale=length_scale, options=options)
 
     def _coordinates_of(self, poses: Any) -> Any:
@@ -391,7 +417,7 @@ class Mechanism(Generic[P, C]):
         ------
         ScrewkitValueError
             If ``count`` is not a non-negative integer, or fewer than 1 draw in
-            :data:`MAX_REJECTION_ROUNDS` is reachable (the workspace box is mostly out of reach).
+            :data:`~screwkit.robots.reach.MAX_REJECTION_ROUNDS` is reachable (the workspace box is mostly out of reach).
 
         Examples
         --------
@@ -399,26 +425,7 @@ class Mechanism(Generic[P, C]):
         >>> poses.shape
         (3, 4)
         """
-        if not isinstance(rng, np.random.Generator):
-            raise ScrewkitTypeError(
-                f"Expected `rng` to be a numpy.random.Generator, got {type(rng).__name__}."
-            )
-        if isinstance(count, bool) or not isinstance(count, int | np.integer) or not 0 <= count <= 10**7:
-            raise ScrewkitValueError(f"Expected `count` to be an integer in 0..10**7, got {count!r}.")
-        low, high = zip(*(self.workspace[c] for c in self.pose_names), strict=True)
-        kept = np.empty((0, len(low)))
-        for _ in range(MAX_REJECTION_ROUNDS):
-            if len(kept) >= count:
-                return kept[:count]
-            draws = rng.uniform(low, high, size=(count - len(kept), len(low)))
-            kept = np.concatenate([kept, draws[self.reachable(draws)]])
-        if len(kept) >= count:
-            return kept[:count]
-        raise ScrewkitValueError(
-            f"{self.source}: [workspace]: only {len(kept)} of the poses drawn in {MAX_REJECTION_ROUNDS} "
-            "rounds "
-            f"are reachable, {count} wanted: the workspace box is mostly out of reach."
-        )
+        return random_reachable_poses(self, rng, count)
 
     def reachable(self, poses: Array, **options: Any) -> Array:
         """Which poses ``(m, n)`` (API units) the inverse kinematics accepts, ``(m,)`` bool.
@@ -446,27 +453,10 @@ class Mechanism(Generic[P, C]):
         >>> load_mechanism("v4").reachable(np.array([[0, 0, -750, 0], [0, 0, -3000, 0]]))
         array([ True, False])
         """
-        if len(poses) == 0:
-            return np.zeros(0, dtype=bool)
-        test = self.family_protocol.reachable
-        if test is not None and set(options) <= {"working_mode"}:
-            return np.asarray(test(self.parameters, poses), dtype=bool).reshape(len(poses))
-        return self._reachable_by_halving(poses, options)
-
-    def _reachable_by_halving(self, poses: Array, options: dict[str, Any]) -> Array:
-        """:meth:`reachable` by the inverse kinematics alone."""
-        try:
-            self.configuration(poses, **options)
-            return np.ones(len(poses), dtype=bool)
-        except UnreachablePoseError:
-            if len(poses) == 1:
-                return np.zeros(1, dtype=bool)
-        half = len(poses) // 2
-        halves = (poses[:half], poses[half:])
-        return np.concatenate([self._reachable_by_halving(part, options) for part in halves])
+        return reachable_poses(self, poses, options)
 
     def wrench_diagram(
-        self, pose: Any = None
+        self, pose: Any = None, *, angles: str = "rad"
     ) -> tuple[Any, Callable[[np.random.Generator], dict[str, Array]]]:
         """The wrench diagram at a pose, and a sampler of its recipes at random workspace poses
         (:meth:`screwkit.robots.posed.PosedMechanism.diagram_and_sampler`).
@@ -475,6 +465,8 @@ class Mechanism(Generic[P, C]):
         ----------
         pose : array_like, shape (n,), optional
             In the file's length unit and radians; default: the default pose.
+        angles : {"rad", "deg"}, default "rad"
+            The unit of the pose's angle coordinates (:mod:`screwkit.robots.angles`).
 
         Returns
         -------
@@ -488,15 +480,17 @@ class Mechanism(Generic[P, C]):
         >>> sorted(sampler(np.random.default_rng(1)))[:3]
         ['a', 'b', 'c']
         """
-        return self.at(None if pose is None else np.asarray(pose, dtype=float)[None])[0].diagram_and_sampler()
+        return self._one(pose, {}, angles).diagram_and_sampler()
 
-    def twist_graph(self, pose: Any = None, **options: Any) -> nx.MultiDiGraph:
+    def twist_graph(self, pose: Any = None, *, angles: str = "rad", **options: Any) -> nx.MultiDiGraph:
         """The twist graph of the physical mechanism at one pose (default: the default pose).
 
         Parameters
         ----------
         pose : array_like, shape (n,), optional
             In the file's length unit and radians; default: the default pose.
+        angles : {"rad", "deg"}, default "rad"
+            The unit of the pose's angle coordinates (:mod:`screwkit.robots.angles`).
         **options
             Passed to the inverse kinematics (a working mode).
 
@@ -510,9 +504,9 @@ class Mechanism(Generic[P, C]):
         >>> load_mechanism("h4").twist_graph().graph["dof"]
         4
         """
-        return self._one(pose, options).graph
+        return self._one(pose, options, angles).graph
 
-    def twist_basis(self, pose: Any = None, **options: Any) -> Array:
+    def twist_basis(self, pose: Any = None, *, angles: str = "rad", **options: Any) -> Array:
         """The platform's nominal twists at a pose (default: the default pose), rows ``(dof, 6)``.
 
         One twist per pose coordinate, in the order of :attr:`pose_names` (unit rate of that
@@ -525,6 +519,8 @@ class Mechanism(Generic[P, C]):
         ----------
         pose : array_like, shape (n,), optional
             In the file's length unit and radians; default: the default pose.
+        angles : {"rad", "deg"}, default "rad"
+            The unit of the pose's angle coordinates (:mod:`screwkit.robots.angles`).
         **options
             Passed to the inverse kinematics (a working mode).
 
@@ -538,9 +534,9 @@ class Mechanism(Generic[P, C]):
         >>> load_mechanism("v4").twist_basis()[3]  # the V4's end effector turns about j
         array([  0.,   1.,   0., 750.,   0.,   0.])
         """
-        return self._one(pose, options).twist_basis
+        return self._one(pose, options, angles).twist_basis
 
-    def jacobians(self, pose: Any = None, **options: Any) -> Jacobians:
+    def jacobians(self, pose: Any = None, *, angles: str = "rad", **options: Any) -> Jacobians:
         """Forward and inverse Jacobians ``A χ̇ = B θ̇`` from the wrench systems at a pose.
 
         :func:`screwkit.core.jacobians.jacobians_from_wrenches` of the wrench analysis over
@@ -551,6 +547,8 @@ class Mechanism(Generic[P, C]):
         ----------
         pose : array_like, shape (n,), optional
             In the file's length unit and radians; default: the default pose.
+        angles : {"rad", "deg"}, default "rad"
+            The unit of the pose's angle coordinates (:mod:`screwkit.robots.angles`).
         **options
             Passed to the inverse kinematics (a working mode).
 
@@ -571,9 +569,9 @@ class Mechanism(Generic[P, C]):
         >>> jac.type, jac.A.shape, jac.actuated_joints
         ('regular', (3, 3), ('limb1_R1', 'limb2_R1', 'limb3_R1'))
         """
-        return self._one(pose, options).jacobians
+        return self._one(pose, options, angles).jacobians
 
-    def _one(self, pose: Any, options: dict[str, Any]) -> Any:
+    def _one(self, pose: Any, options: dict[str, Any], angles: str) -> Any:
         """One pose through the composer (:meth:`at`)."""
         chosen = None if pose is None else np.asarray(pose, dtype=float)
         if chosen is not None and chosen.ndim != 1:
@@ -581,4 +579,4 @@ class Mechanism(Generic[P, C]):
                 f"Expected one pose of shape ({len(self.pose_names)},), got {chosen.shape}; "
                 "use at() for batches."
             )
-        return self.at(chosen, **options)[0]
+        return self.at(chosen, angles=angles, **options)[0]

@@ -39,6 +39,7 @@ import numpy as np
 
 from ..algebra import backend as B
 from ..algebra.checks import checked_length_scale, checked_rtol
+from ..algebra.display import html_section, html_table, number_text
 from ..core.jacobian_matrices import Jacobians
 from ..core.jacobians import jacobians_from_wrenches
 from ..core.singularity import classify_chunks, label_table
@@ -46,6 +47,7 @@ from ..core.verdicts import SingularityReport
 from ..core.wrench_systems import WrenchAnalysis, analyze_table
 from ..exceptions import ScrewkitError, ScrewkitIndexError, ScrewkitValueError, UnreachablePoseError
 from ..graphs.jointtable import JointTable
+from .angles import pose_scale, pose_text
 from .generic_poses import (
     GENERIC_DRAWS,
     SAMPLES,
@@ -194,8 +196,51 @@ class PosedMechanism:
         return (self[index] for index in np.ndindex(*self.shape))
 
     def __repr__(self) -> str:
+        """One line: the mechanism, the pose with its units (a batch: its shape), ``rtol``.
+
+        Returns
+        -------
+        str
+
+        Examples
+        --------
+        >>> posed = load_mechanism("h4").at([[30, -20, -750, 0.3], [0, 0, -800, 0.1]])
+        >>> posed
+        PosedMechanism('H4', shape=(2,), rtol=1e-09)
+        >>> posed[0]
+        PosedMechanism('H4' at x = 30 mm, y = -20 mm, z = -750 mm, phi = 17.19 deg, rtol=1e-09)
+        """
         length = "" if self.length_scale is None else f", length_scale={self.length_scale:g}"
-        return f"PosedMechanism({self.mechanism.name!r}, shape={self.shape}, rtol={self.rtol:g}{length})"
+        m = self.mechanism
+        where = (
+            f" at {pose_text(self.poses, m.pose_names, m.angle_names, m.length_unit)}"
+            if self.shape == ()
+            else f", shape={self.shape}"
+        )
+        return f"PosedMechanism({m.name!r}{where}, rtol={self.rtol:g}{length})"
+
+    def _repr_html_(self) -> str:
+        """Jupyter: the poses with their units and each pose's verdict as a table (the first 20 of a
+        batch); one pose adds its singularity report.
+
+        Returns
+        -------
+        str
+        """
+        m = self.mechanism
+        flat = self.poses.reshape(-1, len(m.pose_names))
+        scale = pose_scale(m.pose_names, m.angle_names, "deg")
+        verdicts = np.asarray(self.verdicts).reshape(-1) if self.shape != () else [self.singularity.verdict]
+        header = [f"{n} ({'deg' if n in m.angle_names else m.length_unit})" for n in m.pose_names]
+        rows = [
+            [*(number_text(v, 6) for v in pose / scale), verdict]
+            for pose, verdict in zip(flat[:20], verdicts, strict=False)
+        ]
+        more = f"<p>… {len(flat)} poses in all</p>" if len(flat) > 20 else ""
+        body = html_table([*header, "verdict"], rows) + more
+        if self.shape == ():
+            body += self.singularity._repr_html_()
+        return html_section(f"{m.name} at {len(flat)} pose(s)", body)
 
     @functools.cached_property
     def failures(self) -> dict[tuple[int, ...], str]:

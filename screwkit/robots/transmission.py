@@ -59,6 +59,27 @@ class Transmission:
     lti: np.ndarray
     actuated_joints: tuple[str, ...] = ()
 
+    def __repr__(self) -> str:
+        """One line: the LTI (over a batch: its shape and range) and the joints.
+
+        Returns
+        -------
+        str
+
+        Examples
+        --------
+        >>> Transmission(np.array([0.5, 0.9]), np.array([1.0, 0.7]), np.array(0.5), ("A1", "A2"))
+        Transmission(lti 0.5; per joint A1, A2)
+        """
+        lti = np.asarray(self.lti, dtype=float)
+        if lti.ndim == 0:
+            value = f"lti {lti:.3g}"
+        else:
+            low, high = np.nanmin(lti, initial=np.inf), np.nanmax(lti, initial=-np.inf)
+            value = f"shape={lti.shape}, lti {low:.3g} to {high:.3g}"
+        joints = f"; per joint {', '.join(self.actuated_joints)}" if self.actuated_joints else ""
+        return f"Transmission({value}{joints})"
+
     @property
     def per_joint(self) -> bool:
         """bool: Whether ``input`` and ``output`` have an axis of actuated joints."""

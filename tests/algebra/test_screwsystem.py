@@ -347,7 +347,7 @@ def test_readable_basis_is_remembered_by_value_and_handed_out_as_a_fresh_array(r
                 S.revolute_twist([0, 1, 0], [0, 0, 0]),
                 S.prismatic_twist([0, 0, 1]),
             ],
-            "2R1T",
+            "1T2R",  # translations first, whichever count is larger
         ),
         ([S.revolute_twist(e, [1, 2, 3]) for e in np.eye(3)], "3R"),
         (np.eye(6), "3T3R"),

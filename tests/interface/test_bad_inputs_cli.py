@@ -539,7 +539,7 @@ def test_the_coarsest_rtol_keeps_every_catalog_platform_consistent(capsys, name)
 @pytest.mark.parametrize("name", ["h4", "quattro", "v4", "veloce", "ragnar", "mcgill_smg", "peppermill", "planar_3rrp"])
 def test_the_finest_rtol_keeps_every_catalog_platform_consistent(capsys, name):
     # MIN_FLOAT_RTOL = 1e-12: at the default pose every robot keeps its nominal platform and the verdict
-    # it has at the default rtol (at 1e-16 the H4 read a 3R1T platform, the McGill SMG a 0-DOF one)
+    # it has at the default rtol (at 1e-16 the H4 read a 1T3R platform, the McGill SMG a 0-DOF one)
     status, out, err = run(capsys, ["analyze", name, "--rtol", "1e-12", "--json", "--no-superbracket"])
     assert status == 0 and err == ""
     fine = json.loads(out)

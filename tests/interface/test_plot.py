@@ -89,7 +89,7 @@ def test_map_contour_levels_and_loci(tmp_path):
     assert len(actuation.get_xdata()) == 3
     assert constraint.get_color() != actuation.get_color()
     assert ax.get_xlabel() == "x" and ax.get_ylabel() == "phi (deg)"
-    assert ax.get_title() == "lti at z = -800, y = 0"
+    assert ax.get_title() == r"$\eta$, local transmission index at z = -800, y = 0"  # the symbol, not the key
     # contour labels: one text per labelled level segment, each a level's value
     assert {t.get_text() for t in ax.texts} <= {"0.5", "0.7", "0.9"} and ax.texts
 
@@ -99,7 +99,7 @@ def test_map_shows_the_units_of_the_map():
     m.units = {"x": "mm", "y": "mm", "z": "mm", "phi": "rad"}
     ax = plot_map(m, levels=3)
     assert (ax.get_xlabel(), ax.get_ylabel()) == ("x (mm)", "phi (rad)")
-    assert ax.get_title() == "lti at z = -800 mm, y = 0 mm"
+    assert ax.get_title() == r"$\eta$, local transmission index at z = -800 mm, y = 0 mm"
     assert plot_map(m, levels=3, degrees=("phi",)).get_ylabel() == "phi (deg)"
 
 

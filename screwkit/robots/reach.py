@@ -1,0 +1,145 @@
+"""Which poses a mechanism reaches, why the others are out of reach, and random reachable poses
+(what :class:`~screwkit.robots.mechanism.Mechanism`'s ``reachable``, ``unreachable_reasons`` and
+``random_poses`` do).
+
+Examples
+--------
+>>> v4 = load_mechanism("v4")
+>>> reachable_poses(v4, np.array([[0, 0, -750, 0], [0, 0, -3000, 0]]), {}).tolist()
+[True, False]
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from ..exceptions import ScrewkitTypeError, ScrewkitValueError, UnreachablePoseError
+from .graph_kinematics import GraphKinematics
+
+__all__ = ["MAX_REJECTION_ROUNDS", "random_reachable_poses", "reachable_poses", "unreachable_reasons"]
+
+Array = np.ndarray
+
+#: Rounds of redrawing in :func:`random_reachable_poses` before a mostly unreachable workspace is refused.
+MAX_REJECTION_ROUNDS = 50
+
+
+def reachable_poses(robot: Any, poses: Array, options: dict[str, Any]) -> Array:
+    """Which poses ``(m, n)`` (API units) the inverse kinematics accepts, ``(m,)`` bool: the family's
+    vectorised ``reachable`` hook when it has one and no option changes the inverse kinematics'
+    domain, else one batch call of the inverse kinematics, halved where a batch is refused.
+
+    Parameters
+    ----------
+    robot : Mechanism
+    poses : numpy.ndarray, shape (m, n)
+    options : dict
+        Inverse-kinematics options (a working mode).
+
+    Returns
+    -------
+    numpy.ndarray of bool, shape (m,)
+
+    Examples
+    --------
+    >>> reachable_poses(load_mechanism("h4"), np.zeros((0, 4)), {}).shape
+    (0,)
+    """
+    if len(poses) == 0:
+        return np.zeros(0, dtype=bool)
+    test = robot.family_protocol.reachable
+    if test is not None and set(options) <= {"working_mode"}:
+        return np.asarray(test(robot.parameters, poses), dtype=bool).reshape(len(poses))
+    return _reachable_by_halving(robot, poses, options)
+
+
+def _reachable_by_halving(robot: Any, poses: Array, options: dict[str, Any]) -> Array:
+    """:func:`reachable_poses` by the inverse kinematics alone."""
+    try:
+        robot.configuration(poses, **options)
+        return np.ones(len(poses), dtype=bool)
+    except UnreachablePoseError:
+        if len(poses) == 1:
+            return np.zeros(1, dtype=bool)
+    half = len(poses) // 2
+    halves = (poses[:half], poses[half:])
+    return np.concatenate([_reachable_by_halving(robot, part, options) for part in halves])
+
+
+def unreachable_reasons(robot: Any, poses: Array, options: dict[str, Any]) -> Array:
+    """Why each pose ``(m, n)`` is out of reach (an empty string where it is reachable): a graph
+    mechanism's continuation reasons, else the inverse kinematics' message for that pose.
+
+    Parameters
+    ----------
+    robot : Mechanism
+    poses : numpy.ndarray, shape (m, n)
+    options : dict
+        Inverse-kinematics options (a working mode).
+
+    Returns
+    -------
+    numpy.ndarray of str, shape (m,)
+
+    Examples
+    --------
+    >>> unreachable_reasons(load_mechanism("h4"), np.array([[0, 0, -750, 0]]), {}).tolist()
+    ['']
+    """
+    if isinstance(robot.parameters, GraphKinematics) and not options:
+        return np.asarray(robot.parameters.solve(np.asarray(poses, dtype=float)).reasons, dtype=object)
+    out = np.full(len(poses), "", dtype=object)
+    for index in np.flatnonzero(~reachable_poses(robot, poses, options)):
+        try:
+            robot.configuration(poses[index], **options)
+        except UnreachablePoseError as error:
+            out[index] = str(error)
+    return out
+
+
+def random_reachable_poses(robot: Any, rng: np.random.Generator, count: int) -> Array:
+    """Poses drawn uniformly in the reachable part of the workspace box (rejection), ``(count, n)``.
+
+    Parameters
+    ----------
+    robot : Mechanism
+    rng : numpy.random.Generator
+    count : int
+        In ``0..10**7``.
+
+    Returns
+    -------
+    numpy.ndarray, shape (count, n)
+
+    Raises
+    ------
+    ScrewkitTypeError
+        If ``rng`` is not a numpy Generator.
+    ScrewkitValueError
+        If ``count`` is out of range, or fewer than 1 draw in :data:`MAX_REJECTION_ROUNDS` is
+        reachable.
+
+    Examples
+    --------
+    >>> random_reachable_poses(load_mechanism("h4"), np.random.default_rng(0), 2).shape
+    (2, 4)
+    """
+    if not isinstance(rng, np.random.Generator):
+        raise ScrewkitTypeError(f"Expected `rng` to be a numpy.random.Generator, got {type(rng).__name__}.")
+    if isinstance(count, bool) or not isinstance(count, int | np.integer) or not 0 <= count <= 10**7:
+        raise ScrewkitValueError(f"Expected `count` to be an integer in 0..10**7, got {count!r}.")
+    low, high = zip(*(robot.workspace[c] for c in robot.pose_names), strict=True)
+    kept = np.empty((0, len(low)))
+    for _ in range(MAX_REJECTION_ROUNDS):
+        if len(kept) >= count:
+            return kept[:count]
+        draws = rng.uniform(low, high, size=(count - len(kept), len(low)))
+        kept = np.concatenate([kept, draws[reachable_poses(robot, draws, {})]])
+    if len(kept) >= count:
+        return kept[:count]
+    raise ScrewkitValueError(
+        f"{robot.source}: [workspace]: only {len(kept)} of the poses drawn in {MAX_REJECTION_ROUNDS} "
+        f"rounds are reachable, {count} wanted: the workspace box is mostly out of reach."
+    )
