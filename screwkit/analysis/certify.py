@@ -39,9 +39,10 @@ from typing import Any
 import numpy as np
 
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
+from ..robots.angles import angle_factor
 from .enclosures import FourLimbModel
 from .intervals import Enclosure, mean_value
-from .poses import _angle_factor, _check_mechanism, _options
+from .poses import _check_mechanism, _options
 
 __all__ = [
     "DEFAULT_MAX_BOXES",
@@ -494,7 +495,7 @@ def certify(
     True
     """
     _check_mechanism(mechanism)
-    factor = _angle_factor(angles)
+    factor = angle_factor(angles)
     options = _options(mode)
     model = FourLimbModel.of(mechanism, options)
     chosen = _checked_kinds(kinds)
@@ -644,7 +645,7 @@ def _certificate(
             if label not in factors:
                 api = np.array([pose[n] for n in mechanism.pose_names]) * np.array(
                     [
-                        _angle_factor(angles) if n in mechanism.angle_names else 1.0
+                        angle_factor(angles) if n in mechanism.angle_names else 1.0
                         for n in mechanism.pose_names
                     ]
                 )

@@ -417,7 +417,8 @@ class Mechanism(Generic[P, C]):
         ------
         ScrewkitValueError
             If ``count`` is not a non-negative integer, or fewer than 1 draw in
-            :data:`~screwkit.robots.reach.MAX_REJECTION_ROUNDS` is reachable (the workspace box is mostly out of reach).
+            :data:`~screwkit.robots.reach.MAX_REJECTION_ROUNDS` is reachable (the workspace box is
+            mostly out of reach).
 
         Examples
         --------
