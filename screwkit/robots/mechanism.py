@@ -28,7 +28,8 @@ from ..exceptions import (
 from ..graphs.jointtable import JointTable
 from .angles import pose_text, poses_in_radians
 from .families import Family, families
-from .graph_kinematics import displacement_coordinates, forward_posed, kinematics_of
+from .graph_kinematics import kinematics_of
+from .pose_conversions import displacement_coordinates, forward_posed
 from .reach import random_reachable_poses, reachable_poses, unreachable_reasons
 from .toml_fields import (
     MAX_ANGLE_DEGREES,

@@ -58,6 +58,7 @@ from .generic_poses import (
     _samples,
     generic_samples,
 )
+from .reach import failures_by_index
 from .transmission import Transmission, wrench_transmission
 
 __all__ = ["PosedMechanism"]
@@ -244,29 +245,21 @@ class PosedMechanism:
 
     @functools.cached_property
     def failures(self) -> dict[tuple[int, ...], str]:
-        """Why each unreachable pose is out of reach: batch index → reason (empty when all are
-        reachable)."""
+        """Why each unreachable pose is out of reach: batch index → reason."""
         if self._failures is not None:
             return dict(self._failures)
-        flat = self.poses.reshape(-1, self.poses.shape[-1])
-        reasons = self.mechanism.unreachable_reasons(flat, **self.options)
-        shape = self.shape
-        return {
-            tuple(int(i) for i in np.unravel_index(k, shape)) if shape else (): str(reasons[k])
-            for k in np.flatnonzero(reasons != "")
-        }
+        return failures_by_index(self.mechanism, self.poses, self.options)
 
     @functools.cached_property
     def reachable(self) -> Array:
-        """Per pose: whether the inverse kinematics reaches it (shape ``shape``; the reasons in
-        :attr:`failures`)."""
-        if self._failures is not None:
-            out = np.ones(self.shape, dtype=bool)
-            for index in self._failures:
-                out[index] = False
-            return out
-        flat = self.poses.reshape(-1, self.poses.shape[-1])
-        return np.asarray(self.mechanism.reachable(flat, **self.options)).reshape(self.shape)
+        """Per pose: whether the inverse kinematics reaches it (the reasons in :attr:`failures`)."""
+        out = np.ones(self.shape, dtype=bool)
+        if self._failures is None:
+            flat = self.poses.reshape(-1, self.poses.shape[-1])
+            return np.asarray(self.mechanism.reachable(flat, **self.options)).reshape(self.shape)
+        for index in self._failures:
+            out[index] = False
+        return out
 
     @functools.cached_property
     def configuration(self) -> Any:
@@ -458,7 +451,6 @@ class PosedMechanism:
         )
         one.__dict__["joints"] = self.joints[index]  # the batch's row: no new inverse kinematics
         return one
-
 
     @functools.cached_property
     def graph(self) -> nx.MultiDiGraph:

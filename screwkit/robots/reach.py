@@ -16,9 +16,14 @@ from typing import Any
 import numpy as np
 
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError, UnreachablePoseError
-from .graph_kinematics import GraphKinematics
 
-__all__ = ["MAX_REJECTION_ROUNDS", "random_reachable_poses", "reachable_poses", "unreachable_reasons"]
+__all__ = [
+    "MAX_REJECTION_ROUNDS",
+    "failures_by_index",
+    "random_reachable_poses",
+    "reachable_poses",
+    "unreachable_reasons",
+]
 
 Array = np.ndarray
 
@@ -69,8 +74,10 @@ def _reachable_by_halving(robot: Any, poses: Array, options: dict[str, Any]) -> 
 
 
 def unreachable_reasons(robot: Any, poses: Array, options: dict[str, Any]) -> Array:
-    """Why each pose ``(m, n)`` is out of reach (an empty string where it is reachable): a graph
-    mechanism's continuation reasons, else the inverse kinematics' message for that pose.
+    """Why each pose ``(m, n)`` is out of reach (an empty string where it is reachable): the family
+    parameters' own ``unreachable_reasons(poses)`` when they have one (a graph mechanism's
+    continuation, :meth:`screwkit.robots.graph_kinematics.GraphKinematics.unreachable_reasons`), else
+    the inverse kinematics' message for that pose.
 
     Parameters
     ----------
@@ -88,8 +95,9 @@ def unreachable_reasons(robot: Any, poses: Array, options: dict[str, Any]) -> Ar
     >>> unreachable_reasons(load_mechanism("h4"), np.array([[0, 0, -750, 0]]), {}).tolist()
     ['']
     """
-    if isinstance(robot.parameters, GraphKinematics) and not options:
-        return np.asarray(robot.parameters.solve(np.asarray(poses, dtype=float)).reasons, dtype=object)
+    own = getattr(robot.parameters, "unreachable_reasons", None)
+    if callable(own) and not options:
+        return np.asarray(own(np.asarray(poses, dtype=float)), dtype=object)
     out = np.full(len(poses), "", dtype=object)
     for index in np.flatnonzero(~reachable_poses(robot, poses, options)):
         try:
@@ -97,6 +105,34 @@ def unreachable_reasons(robot: Any, poses: Array, options: dict[str, Any]) -> Ar
         except UnreachablePoseError as error:
             out[index] = str(error)
     return out
+
+
+def failures_by_index(robot: Any, poses: Array, options: dict[str, Any]) -> dict[tuple[int, ...], str]:
+    """Why each unreachable pose of a batch ``(..., n)`` is out of reach, by batch index.
+
+    Parameters
+    ----------
+    robot : Mechanism
+    poses : numpy.ndarray, shape (..., n)
+    options : dict
+        Inverse-kinematics options (a working mode).
+
+    Returns
+    -------
+    dict
+        Batch index → reason (only the unreachable poses).
+
+    Examples
+    --------
+    >>> list(failures_by_index(load_mechanism("v4"), np.array([[0, 0, -750, 0], [0, 0, -3000, 0]]), {}))
+    [(1,)]
+    """
+    shape = poses.shape[:-1]
+    reasons = unreachable_reasons(robot, poses.reshape(-1, poses.shape[-1]), options)
+    return {
+        tuple(int(i) for i in np.unravel_index(k, shape)) if shape else (): str(reasons[k])
+        for k in np.flatnonzero(reasons != "")
+    }
 
 
 def random_reachable_poses(robot: Any, rng: np.random.Generator, count: int) -> Array:
