@@ -342,8 +342,9 @@ class Mechanism(Generic[P, C]):
         """
         if len(poses) == 0:
             return np.zeros(0, dtype=bool)
-        test = self.family_protocol.reachable
-        if test is not None and set(options) <= {"working_mode"}:
+        protocol = self.family_protocol  # its reach test holds in every working mode
+        test, modes = protocol.reachable, protocol.working_modes
+        if test is not None and set(options) <= ({modes.option} if modes is not None else set()):
             return np.asarray(test(self.parameters, poses), dtype=bool).reshape(len(poses))
         return self._reachable_by_halving(poses, options)
 

@@ -22,7 +22,10 @@ from ....core.jacobians import schoenflies_basis
 from ....graphs.jointtable import JointSpec, JointTable
 from .configuration import FourLimbConfiguration, _require
 
-__all__ = ["PAPER_002_LEGS", "SUBPLATFORMS", "application_points", "joints", "twist_basis"]
+__all__ = [
+    "PAPER_002_LEGS", "SUBPLATFORMS", "actuated_values", "application_points", "joints", "twist_basis",
+    "working_mode_of",
+]
 
 
 #: Paper 002's H4 legs l1..l4 as paper 004's limbs (1-based): (1, 4, 2, 3).
@@ -184,3 +187,47 @@ def application_points(config: FourLimbConfiguration) -> np.ndarray:
     """
     _require(config, FourLimbConfiguration, "config")
     return np.asarray(config.b)
+
+
+def actuated_values(config: FourLimbConfiguration) -> np.ndarray:
+    """The actuated angles ``θ_i`` (Eq. 2) in the order of the joints ``A1..A4`` (the family's
+    ``actuated_values`` hook, :class:`screwkit.robots.families.Family`).
+
+    Parameters
+    ----------
+    config : FourLimbConfiguration
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 4)
+
+    Examples
+    --------
+    >>> actuated_values(load_mechanism("h4").configuration()).shape
+    (4,)
+    """
+    _require(config, FourLimbConfiguration, "config")
+    return np.asarray(config.theta)
+
+
+def working_mode_of(config: FourLimbConfiguration) -> np.ndarray:
+    """The working mode a configuration is in, read from its geometry: the signs of
+    ``h_i = b w_i·(u_i × v_i)`` (paper 004, Eq. 8), which change only at a serial singularity of
+    limb ``i``. The paper's mode, ``h_i < 0`` for every limb, has the elbows ``B_i`` out, farther
+    from the base's centre than the actuated joints ``A_i`` (``tests/robots/test_testing.py``).
+
+    Parameters
+    ----------
+    config : FourLimbConfiguration
+
+    Returns
+    -------
+    numpy.ndarray of int, shape (..., 4)
+
+    Examples
+    --------
+    >>> working_mode_of(load_mechanism("h4").configuration()).tolist()
+    [-1, -1, -1, -1]
+    """
+    _require(config, FourLimbConfiguration, "config")
+    return np.sign(config.h).astype(int)

@@ -77,11 +77,11 @@ array([0., 0.])
 
 from __future__ import annotations
 
-from .. import Family
+from .. import Family, WorkingModes
 from .configuration import McGillConfiguration
 from .joints import joints, twist_basis
 from .kinematics import inverse_kinematics
-from .parameters import McGillParameters
+from .parameters import DEFAULT_MODE, McGillParameters
 
 __all__ = ["FAMILY"]
 
@@ -97,5 +97,9 @@ FAMILY: Family[McGillParameters, McGillConfiguration] = Family(
     angle_names=("phi",),
     parameter_kinds=dict.fromkeys(
         ("l0", "l1", "l2", "l3", "radius", "b4", "b5", "proximal_width", "distal_width"), "length"
+    ),
+    actuated_values=lambda config: config.actuated,
+    working_modes=WorkingModes(
+        "mode", DEFAULT_MODE, "(pan_I, elbow_I, pan_II, elbow_II): sgn κ_J and sgn sin θ_J3 per leg"
     ),
 )
