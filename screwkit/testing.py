@@ -7,8 +7,9 @@ check and robot; :meth:`FamilyReport.raise_if_failed` raises listing the failure
 ``closure``
     First-order closure of the inverse kinematics: every row of ``twist_basis`` (the platform's
     nominal twists) lies in the twist system of every limb (the span of its joint screws, its
-    closed sub-loops solved by the analysis core). A wrong row, or joint screws that do not follow
-    the configuration, leave it out of some limb's system.
+    closed sub-loops solved by the analysis core) and in the platform's twist system (reciprocal to
+    every constraint wrench: the motions the closed chains allow to first order). A wrong row, or
+    joint screws that do not follow the configuration, leave it out.
 ``jacobian``
     ``B⁻¹A`` of the wrench analysis (:attr:`screwkit.robots.posed.PosedMechanism.jacobians`; paper 004
     Eqs. 6-8) equals the derivative of the actuated joints' values by the pose coordinates, taken by
@@ -44,7 +45,7 @@ from typing import Any
 
 import numpy as np
 
-from .exceptions import ScrewkitTypeError, ScrewkitValueError, UnreachablePoseError
+from .exceptions import ScrewkitError, ScrewkitTypeError, ScrewkitValueError, UnreachablePoseError
 from .robots.catalog import list_mechanisms, load_mechanism
 from .robots.families import Family, families
 from .robots.mechanism import Mechanism
@@ -246,16 +247,23 @@ def check_family(subject: Any, poses: Any = None, *, samples: int = 8, seed: int
 
 
 def _checks(mechanism: Mechanism[Any, Any], poses: Array, rng: np.random.Generator) -> list[Check]:
-    """The five checks on one robot at ``poses``."""
+    """The five checks on one robot at ``poses``; a screwkit error raised inside a check fails it."""
     posed = mechanism.at(poses)
     scale = _scales(mechanism)
-    return [
-        _closure(mechanism, posed),
-        _jacobian(mechanism, posed, poses, scale),
-        _rank(mechanism, posed),
-        _reachability(mechanism, rng),
-        _branch(mechanism, poses),
-    ]
+    runs = {
+        "closure": lambda: _closure(mechanism, posed),
+        "jacobian": lambda: _jacobian(mechanism, posed, poses, scale),
+        "rank": lambda: _rank(mechanism, posed),
+        "reachability": lambda: _reachability(mechanism, rng),
+        "branch": lambda: _branch(mechanism, poses),
+    }
+    checks = []
+    for name, run in runs.items():
+        try:
+            checks.append(run())
+        except ScrewkitError as error:
+            checks.append(Check(name, mechanism.name, "fail", float("nan"), float("nan"), f"raised: {error}"))
+    return checks
 
 
 def _scales(mechanism: Mechanism[Any, Any]) -> Array:
@@ -281,15 +289,18 @@ def _closure(mechanism: Mechanism[Any, Any], posed: Any) -> Check:
         analysis = one.analysis
         length = float(np.asarray(analysis.length_scale))
         basis = _dimensionless(np.asarray(one.twist_basis, dtype=float), length)
-        for limb in analysis.limbs:
-            system = _dimensionless(np.asarray(limb.twist_system.basis, dtype=float), length)
+        systems = [("the platform", analysis.platform_twists)] + [
+            (f"limb {limb.actuated_joint}", limb.twist_system) for limb in analysis.limbs
+        ]
+        for label, twists in systems:
+            system = _dimensionless(np.asarray(twists.basis, dtype=float).reshape(-1, 6), length)
             frame, *_ = np.linalg.svd(system.T, full_matrices=False)  # orthonormal columns
             residual = basis - (basis @ frame) @ frame.T
             gap = float(np.max(np.linalg.norm(residual, axis=-1) / np.linalg.norm(basis, axis=-1)))
             if gap > worst:
-                worst, where = gap, f"pose {index}, limb {limb.actuated_joint}"
+                worst, where = gap, f"pose {index}, {label}"
     status = "pass" if worst <= CLOSURE_TOLERANCE else "fail"
-    detail = f"largest relative distance of a nominal twist from a limb's twist system {worst:.3g}"
+    detail = f"largest relative distance of a nominal twist from a twist system {worst:.3g}"
     return Check(
         "closure",
         mechanism.name,
@@ -397,7 +408,9 @@ def _reachability(mechanism: Mechanism[Any, Any], rng: np.random.Generator) -> C
         )
     low, high = np.array([mechanism.workspace[n] for n in mechanism.pose_names]).T
     centre, half = (low + high) / 2, (high - low) / 2
-    draws = centre + half * rng.uniform(-1.5, 1.5, size=(48, len(low)))  # two thirds in the box per coordinate
+    draws = centre + half * rng.uniform(
+        -1.5, 1.5, size=(48, len(low))
+    )  # two thirds in the box per coordinate
     said = np.asarray(family.reachable(mechanism.parameters, draws), dtype=bool)
     accepted = np.zeros(len(draws), dtype=bool)
     for index, pose in enumerate(draws):
