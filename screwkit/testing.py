@@ -211,10 +211,10 @@ def check_family(subject: Any, poses: Any = None, *, samples: int = 8, seed: int
     >>> report = check_family(load_mechanism("h4"), samples=2)
     >>> report.passed, len(report.checks)
     (True, 5)
-    >>> check_family(3)
+    >>> check_family(3)  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    screwkit.exceptions.ScrewkitTypeError: Expected `subject` to be a Mechanism, a Family or a family name, got int.
+    screwkit.exceptions.ScrewkitTypeError: Expected `subject` to be a Mechanism, a Family or a ... got int.
     """
     if isinstance(subject, Mechanism):
         mechanisms = [subject]

@@ -11,7 +11,6 @@ import pytest
 
 from screwkit.core.jacobians import schoenflies_basis
 from screwkit.exceptions import ScrewkitTypeError, ScrewkitValueError
-from screwkit.graphs.jointtable import JointTable
 from screwkit.robots.catalog import load_mechanism
 from screwkit.robots.families import families
 from screwkit.testing import check_family
@@ -106,7 +105,7 @@ def test_a_repeated_twist_row_fails_rank(broken):
 
     report = check_family(broken("h4", twist_basis=repeated), samples=2)
     assert _status(report)["rank"] == "fail"
-    with pytest.raises(ScrewkitValueError, match="fails .* checks?: .*rank: fail"):
+    with pytest.raises(ScrewkitValueError, match=r"fails .* checks?: .*rank: fail"):
         report.raise_if_failed()
 
 

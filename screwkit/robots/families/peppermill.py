@@ -589,7 +589,6 @@ def twist_basis(config: PeppermillConfiguration) -> np.ndarray:
     """
     return schoenflies_basis(config.platform_point, config.platform_axis)
 
-
 #: The family (:mod:`screwkit.robots.families`).
 FAMILY: Family[PeppermillParameters, PeppermillConfiguration] = Family(
     "peppermill", PeppermillParameters.from_mapping, inverse_kinematics, joints, twist_basis,
