@@ -214,7 +214,7 @@ def working_mode_of(config: FourLimbConfiguration) -> np.ndarray:
     """The working mode a configuration is in, read from its geometry: the signs of
     ``h_i = b w_i·(u_i × v_i)`` (paper 004, Eq. 8), which change only at a serial singularity of
     limb ``i``. The paper's mode, ``h_i < 0`` for every limb, has the elbows ``B_i`` out, farther
-    from the base's centre than the actuated joints ``A_i`` (``tests/robots/test_testing.py``).
+    from the base's centre than the actuated joints ``A_i`` (``tests/test_testing.py``).
 
     Parameters
     ----------
