@@ -13,6 +13,8 @@ notes (2015), not from the family's code.
   i.e. the three parallelograms' rods are parallel to one plane.
 """
 
+import ast
+import re
 from pathlib import Path
 
 import numpy as np
@@ -112,3 +114,26 @@ def test_regular_over_the_workspace(rng):
     poses = DELTA.random_poses(rng, 500)
     assert abs(rod_determinant(poses)).min() > 0.05  # the rods stay far from coplanar in the box
     assert set(DELTA.at(poses).verdicts.tolist()) == {"regular"}
+
+
+def _counts(path):
+    """(lines, code lines) of a module: code lines are neither blank, comments nor docstrings."""
+    text = path.read_text(encoding="utf-8")
+    docstrings = set()
+    for node in ast.walk(ast.parse(text)):
+        if isinstance(node, ast.Module | ast.ClassDef | ast.FunctionDef) and ast.get_docstring(node) is not None:
+            docstrings.update(range(node.body[0].lineno, node.body[0].end_lineno + 1))
+    lines = text.splitlines()
+    code = [n for n, line in enumerate(lines, 1) if line.strip() and not line.strip().startswith("#")
+            and n not in docstrings]
+    return len(lines), len(code)
+
+
+def test_contributing_states_the_worked_examples_sizes():
+    repo = Path(__file__).resolve().parents[2]
+    text = (repo / "CONTRIBUTING.md").read_text(encoding="utf-8")
+    stated = re.search(r"families/delta\.py` \((\d+) lines, (\d+) of them code.*?delta\.toml` \((\d+) lines", text, re.S)
+    assert stated, "CONTRIBUTING's worked example states the Delta's sizes"
+    module = _counts(repo / "screwkit" / "robots" / "families" / "delta.py")
+    toml_lines = len((repo / "mechanisms" / "delta.toml").read_text(encoding="utf-8").splitlines())
+    assert tuple(map(int, stated.groups())) == (*module, toml_lines)
