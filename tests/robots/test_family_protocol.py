@@ -2,6 +2,8 @@
 map axes, actuated values; read by the generic code instead of special cases on family names."""
 
 import dataclasses
+import itertools
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -84,3 +86,20 @@ def test_register_checks_the_optional_fields(changes, error, match):
     with pytest.raises(error, match=match):
         register(_family(**changes))
     assert "odd" not in families()
+
+
+@pytest.mark.parametrize("name", ["delta", "h4", "mcgill_smg", "peppermill", "planar_3rrp"])
+def test_the_mode_read_back_is_the_mode_the_inverse_kinematics_was_given(name):
+    """WorkingModes.of reads the mode from the configuration's geometry: for every mode that reaches
+    the default pose, it returns that mode (and the default mode is among them)."""
+    mechanism = load_mechanism(Path(__file__).resolve().parents[2] / "mechanisms" / f"{name}.toml")
+    modes = mechanism.family_protocol.working_modes
+    reached = []
+    for mode in itertools.product(modes.values, repeat=len(modes.default)):
+        options = modes.options(mode)
+        if not mechanism.reachable(mechanism.default_pose[None], **options)[0]:
+            continue
+        found = modes.of(mechanism.configuration(**options))
+        assert np.asarray(found).tolist() == list(mode), mode
+        reached.append(mode)
+    assert modes.default in reached and len(reached) > 1
