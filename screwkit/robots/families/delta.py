@@ -23,11 +23,11 @@ parallelogram's short sides are parallel to ``u_i``, of width ``parallelogram_wi
 
 Examples
 --------
->>> delta = FAMILY.parameters({"base_radius": 164.0, "platform_radius": 22.0, "arm_length": 524.0,
+>>> delta = FAMILY.parameters({"base_radius": 163.68, "platform_radius": 43.88, "arm_length": 524.0,
 ...     "rod_length": 1244.0, "parallelogram_width": 131.0})
 >>> config = FAMILY.inverse_kinematics(delta, [0.0, 0.0, -1000.0])
 >>> np.round(np.degrees(config.theta), 2).tolist()
-[-5.74, -5.74, -5.74]
+[-7.35, -7.35, -7.35]
 """
 
 from __future__ import annotations
@@ -146,7 +146,7 @@ class DeltaConfiguration:
 
     Examples
     --------
-    >>> config = inverse_kinematics(DeltaParameters(164, 22, 524, 1244, 131), [[0, 0, -1000]])
+    >>> config = inverse_kinematics(DeltaParameters(163.68, 43.88, 524, 1244, 131), [[0, 0, -1000]])
     >>> config.b.shape
     (1, 3, 3)
     """
@@ -184,7 +184,7 @@ def reachable(params: DeltaParameters, poses: Any) -> np.ndarray:
 
     Examples
     --------
-    >>> reachable(DeltaParameters(164, 22, 524, 1244, 131), [[0, 0, -1000], [0, 0, -3000]]).tolist()
+    >>> reachable(DeltaParameters(163.68, 43.88, 524, 1244, 131), [[0, 0, -1000], [0, 0, -3000]]).tolist()
     [True, False]
     """
     rho, _, k_term, _ = _closure(params, as_array(poses, "poses", (3,)))
@@ -214,7 +214,7 @@ def inverse_kinematics(params: DeltaParameters, poses: Any, mode: Any = DEFAULT_
 
     Examples
     --------
-    >>> inverse_kinematics(DeltaParameters(164, 22, 524, 1244, 131), [0, 0, -3000])
+    >>> inverse_kinematics(DeltaParameters(163.68, 43.88, 524, 1244, 131), [0, 0, -3000])
     Traceback (most recent call last):
     ...
     screwkit.exceptions.UnreachablePoseError: Expected every leg to reach the poses: leg 1 cannot reach ...
@@ -257,7 +257,7 @@ def joints(config: DeltaConfiguration) -> JointTable:
 
     Examples
     --------
-    >>> table = joints(inverse_kinematics(DeltaParameters(164, 22, 524, 1244, 131), [0, 0, -1000]))
+    >>> table = joints(inverse_kinematics(DeltaParameters(163.68, 43.88, 524, 1244, 131), [0, 0, -1000]))
     >>> len(table.specs), table.dof
     (15, 3)
     """
@@ -287,7 +287,7 @@ def twist_basis(config: DeltaConfiguration) -> np.ndarray:
 
     Examples
     --------
-    >>> twist_basis(inverse_kinematics(DeltaParameters(164, 22, 524, 1244, 131), [0, 0, -1000]))[2]
+    >>> twist_basis(inverse_kinematics(DeltaParameters(163.68, 43.88, 524, 1244, 131), [0, 0, -1000]))[2]
     array([0., 0., 0., 0., 0., 1.])
     """
     return np.broadcast_to(np.eye(6)[3:], (*config.pose.shape[:-1], 3, 6))
