@@ -86,7 +86,7 @@ CATALOG_CASES = [
     (setter(["mechanism", "kind"], "snapshot"), r"field `kind`: expected 'family' here, got 'snapshot'"),
     (setter(["mechanism", "name"], 5), r"\[mechanism\]: field `name`: expected a non-empty string, got 5"),
     (setter(["mechanism", "name"], ""), r"field `name`: expected a non-empty string, got ''"),
-    (setter(["mechanism", "family"], "five_bar"), r"field `family`: expected one of \['four_limb', .*got 'five_bar'"),
+    (setter(["mechanism", "family"], "five_bar"), r"field `family`: expected one of \[[^]]*'four_limb'[^]]*\], got 'five_bar'"),
     (setter(["mechanism", "family"], 4), r"field `family`: expected a non-empty string, got 4"),
     *[
         (setter(["mechanism", "length_unit"], unit), rf"field `length_unit`: expected one of \['km', 'm', .*got {expected}")
@@ -366,7 +366,7 @@ def test_unreadable_paths(path, error, message):
 
 # --- the command line -----------------------------------------------------------------------------
 CLI_CASES = [
-    (["analyze", "h5"], 2, r"unknown mechanism 'h5': expected one of \['h4'"),
+    (["analyze", "h5"], 2, r"unknown mechanism 'h5': expected one of \[[^]]*'h4'[^]]*\] or a path"),
     (["analyze", "h4", "--pose", "1", "2"], 2, r"--pose expects 4 finite numbers \(X Y Z PHI\), got 1\.0 2\.0"),
     (["analyze", "h4", "--pose", "0", "0", "-750", "nan"], 2, r"--pose expects 4 finite numbers"),
     (["analyze", "h4", "--pose", "0", "0", "-750", "inf"], 2, r"--pose expects 4 finite numbers"),

@@ -27,6 +27,7 @@ LAYERS = (
     "core",
     "gca",
     "robots",
+    "testing",
     "analysis",
     "papers",
     "interface",

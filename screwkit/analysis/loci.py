@@ -87,8 +87,8 @@ class Locus:
 def loci(
     mechanism: Any,
     *,
-    x: Any = ("z", -1000.0, -550.0, 50),
-    y: Any = ("phi", -math.pi / 4, math.pi / 4, 50),
+    x: Any = None,
+    y: Any = None,
     fixed: Any = None,
     mode: Any = None,
     angles: str = "rad",

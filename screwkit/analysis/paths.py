@@ -209,7 +209,7 @@ def check_path(
         )
     scale = _scale(mechanism, angles)
     first, last = _pose(mechanism, start, "start", angles), _pose(mechanism, end, "end", angles)
-    options = _options(mode)
+    options = _options(mechanism, mode)
     t = np.linspace(0.0, 1.0, int(samples))
     a, b = first * scale, last * scale
 

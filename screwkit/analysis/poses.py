@@ -20,7 +20,7 @@ import numpy as np
 
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
 
-__all__ = ["CHUNK", "MAX_MAP_POSES"]
+__all__ = ["CHUNK", "DEFAULT_AXIS_COUNT", "MAX_MAP_POSES"]
 
 Array = np.ndarray
 
@@ -30,20 +30,14 @@ CHUNK = 4096
 #: The most poses one map, sweep or surface slice may hold: its grid of poses is built whole (32 bytes
 #: a pose, 3.2 GB at the bound), though the analysis runs in chunks (the command line caps at 2e6).
 MAX_MAP_POSES = 10**8
+#: Values along a map's default axis (:func:`screwkit.analysis.workspace.grid_map` without ``x``/``y``).
+DEFAULT_AXIS_COUNT = 50
 
 
-def _options(mode: Any) -> dict[str, Any]:
-    """Inverse-kinematics options from ``mode``: None, a mapping of options, or a working mode."""
-    if mode is None:
-        return {}
-    if isinstance(mode, Mapping):
-        return dict(mode)
-    if isinstance(mode, str | bytes):
-        raise ScrewkitTypeError(
-            f"Expected `mode` to be None, a mapping of inverse-kinematics options or a working mode "
-            f"(a sequence of signs), got {mode!r}."
-        )
-    return {"working_mode": tuple(mode)}
+def _options(mechanism: Any, mode: Any) -> dict[str, Any]:
+    """Inverse-kinematics options from ``mode``: None, a mapping of options, or a working mode of the
+    mechanism's family (:meth:`screwkit.robots.families.Family.mode_options`)."""
+    return dict(mechanism.family_protocol.mode_options(mode))
 
 
 def _check_mechanism(mechanism: Any) -> None:
@@ -134,6 +128,12 @@ def _as_dict(mechanism: Any, pose: Array) -> dict[str, float]:
 
 
 def _axis(mechanism: Any, axis: Any, what: str, angles: str) -> tuple[str, Array]:
+    if axis is None:  # the family's default map axis, over the workspace, 50 values
+        name = mechanism.family_protocol.default_map_axes[0 if what == "x" else 1]
+        low, high = np.array(mechanism.workspace[name]) / _scale(mechanism, angles)[
+            mechanism.pose_names.index(name)
+        ]
+        axis = (name, float(low), float(high), DEFAULT_AXIS_COUNT)
     if not isinstance(axis, Sequence) or isinstance(axis, str) or len(axis) != 4:
         raise ScrewkitValueError(f"Expected `{what}` to be (name, low, high, count), got {axis!r}.")
     name, low, high, count = axis
@@ -189,7 +189,7 @@ class _Slice:
         base = _pose(mechanism, given, "fixed", angles)
         names = mechanism.pose_names
         rest = {n: float(v) for n, v in zip(names, base, strict=True) if n not in (x_name, y_name)}
-        return cls(mechanism, x_name, x_values, y_name, y_values, rest, angles, _options(mode))
+        return cls(mechanism, x_name, x_values, y_name, y_values, rest, angles, _options(mechanism, mode))
 
     def poses(self, x_values: Array | None = None, y_values: Array | None = None) -> Array:
         """User-unit poses on the grid ``(ny, nx, n)``."""

@@ -78,7 +78,7 @@ def evaluate(
     _check_mechanism(mechanism)
     name = Q.quantity(quantity)
     array = np.asarray(poses, dtype=float).reshape(-1, len(mechanism.pose_names))
-    options = _options(mode)
+    options = _options(mechanism, mode)
     ok = mechanism.reachable(array, **options)
     integer = name == "verdict"
     out = np.full(len(array), -1 if integer else np.nan, dtype=np.int64 if integer else float)
@@ -332,8 +332,8 @@ def grid_map(
     mechanism: Any,
     quantity: str,
     *,
-    x: Any = ("z", -1000.0, -550.0, 50),
-    y: Any = ("phi", -math.pi / 4, math.pi / 4, 50),
+    x: Any = None,
+    y: Any = None,
     fixed: Any = None,
     mode: Any = None,
     chunk: int | None = None,
@@ -352,8 +352,10 @@ def grid_map(
     quantity : str
         See :data:`~screwkit.analysis.quantities.QUANTITIES` (``"detA"``/``"detB"`` and ``"condition"`` =
         ``"condition:0"`` too).
-    x, y : tuple (name, low, high, count)
-        The axes (user units: angles in radians unless ``angles="deg"``).
+    x, y : tuple (name, low, high, count), optional
+        The axes (user units: angles in radians unless ``angles="deg"``); default: the family's
+        default map axes (:attr:`screwkit.robots.families.Family.default_map_axes`) over the workspace,
+        :data:`~screwkit.analysis.poses.DEFAULT_AXIS_COUNT` values each.
     fixed : dict, optional
         The other coordinates (default: the default pose), e.g. ``{"x": 0.0, "y": 0.0}``.
     mode : mapping or sequence, optional
@@ -471,8 +473,8 @@ def sweep(
     mechanisms: Sequence[Any],
     quantity: str,
     *,
-    x: Any = ("z", -1000.0, -550.0, 50),
-    y: Any = ("phi", -math.pi / 4, math.pi / 4, 50),
+    x: Any = None,
+    y: Any = None,
     fixed: Any = None,
     mode: Any = None,
     chunk: int | None = None,

@@ -169,9 +169,11 @@ def run_list(args: argparse.Namespace) -> int:
     Examples
     --------
     >>> from screwkit.interface.cli_parser import get_parser
-    >>> run_list(get_parser().parse_args(["list"]))  # doctest: +ELLIPSIS
-    h4           H4           family four_limb, lengths in mm
-    ...0
+    >>> import contextlib, io
+    >>> with contextlib.redirect_stdout(io.StringIO()) as out:
+    ...     status = run_list(get_parser().parse_args(["list"]))
+    >>> status, "h4           H4           family four_limb, lengths in mm" in out.getvalue().splitlines()
+    (0, True)
     """
     entries = []
     for name in list_mechanisms():

@@ -31,6 +31,7 @@ Examples
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 from dataclasses import dataclass, field
 from typing import Any
@@ -322,6 +323,17 @@ def _twist_basis(configuration: GraphConfiguration) -> Array:
     return basis.reshape(*configuration.shape, *basis.shape[-2:])
 
 
+def _actuated_values(configuration: GraphConfiguration) -> Array:
+    """The actuated joints' values (radians, graph lengths; from the reference), name order."""
+    kinematics = configuration.kinematics
+    model = kinematics.model
+    columns = [model.joints[name][2][0] for name in kinematics.actuated]
+    values = configuration.state.theta[:, columns]
+    sliding = np.array([np.linalg.norm(model.columns[c].row[:3]) < 1e-12 for c in columns], dtype=bool)
+    values = np.where(sliding, values * model.length, values)
+    return values.reshape(*configuration.shape, len(columns))
+
+
 def _reachable(kinematics: GraphKinematics, poses: Array) -> Array:
     array = np.asarray(poses, dtype=float)
     return kinematics.solve(array.reshape(-1, array.shape[-1])).reached.reshape(array.shape[:-1])
@@ -359,6 +371,7 @@ def graph_family(coordinates: TaskCoordinates) -> Family[GraphKinematics, GraphC
         pose_names=coordinates.names,
         angle_names=coordinates.angle_names,
         reachable=_reachable,
+        actuated_values=_actuated_values,
     )
 
 
@@ -439,7 +452,10 @@ def graph_kinematics(
     coordinates = task_coordinates(model, link=link, point=point, rotations=rotations)
     offsets = np.zeros(len(coordinates.names)) if angle_offsets is None else np.asarray(angle_offsets, float)
     complete = rotations and _is_complete(model, coordinates)
-    return GraphKinematics(graph, model, coordinates, complete, offsets, JointTable.from_graph(graph))
+    reference = JointTable.from_graph(graph)
+    if rotations and reference.dof is None:  # the platform's freedoms: as many as its coordinates
+        reference = dataclasses.replace(reference, dof=len(coordinates.names))
+    return GraphKinematics(graph, model, coordinates, complete, offsets, reference)
 
 
 _KINEMATICS: dict[int, tuple[Any, GraphKinematics]] = {}

@@ -54,8 +54,9 @@ def reachable_poses(robot: Any, poses: Array, options: dict[str, Any]) -> Array:
     """
     if len(poses) == 0:
         return np.zeros(0, dtype=bool)
-    test = robot.family_protocol.reachable
-    if test is not None and set(options) <= {"working_mode"}:
+    protocol = robot.family_protocol  # its reach test holds in every working mode
+    test, modes = protocol.reachable, protocol.working_modes
+    if test is not None and set(options) <= ({modes.option} if modes is not None else set()):
         return np.asarray(test(robot.parameters, poses), dtype=bool).reshape(len(poses))
     return _reachable_by_halving(robot, poses, options)
 

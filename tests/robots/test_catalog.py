@@ -219,7 +219,7 @@ def test_catalog_entry_round_trip():
 @pytest.mark.parametrize(
     ("change", "message"),
     [
-        (lambda d: d["mechanism"].update(family="six_limb"), r"c\.toml: \[mechanism\]: field `family`: expected one of \['four_limb', .*\], got 'six_limb'"),
+        (lambda d: d["mechanism"].update(family="six_limb"), r"c\.toml: \[mechanism\]: field `family`: expected one of \[[^]]*'four_limb'[^]]*\], got 'six_limb'"),
         (lambda d: d["mechanism"].update(length_unit=3), r"\[mechanism\]: field `length_unit`: expected one of \[.km., .m., .*\], got 3"),
         (lambda d: d["mechanism"].update(sources="paper"), r"field `sources`: expected a list of strings"),
         (lambda d: d["parameters"].update(rod_length=800.0), r"\[parameters\.rod_length\]: expected a table with `value`, `unit` and `source`"),
@@ -248,5 +248,5 @@ def test_error_malformed_toml(tmp_path):
 
 
 def test_error_unknown_mechanism():
-    with pytest.raises(CatalogError, match=r"unknown mechanism 'h5': expected one of \['h4'"):
+    with pytest.raises(CatalogError, match=r"unknown mechanism 'h5': expected one of \[[^]]*'h4'[^]]*\] or a path"):
         load_mechanism("h5")

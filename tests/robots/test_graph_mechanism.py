@@ -284,3 +284,11 @@ def test_the_report_of_a_graph_mechanisms_pose():
     assert report.verdict.global_order == alone.global_order
     assert report.pose_names == ("x", "y", "phi") and report.jacobians.type == "regular"
     assert np.allclose(report.pose, [0.6, 0.45, 0.1])
+
+
+def test_graph_mechanisms_pass_the_family_conformance_checks():
+    from screwkit.testing import check_family
+
+    for robot in (sk.mechanism(gough_stewart(*gough_stewart_points())), sk.mechanism("examples/planar_3rpr.toml")):
+        report = check_family(robot)
+        assert report.passed, [str(check) for check in report.failures]

@@ -15,9 +15,26 @@ A family is four functions and the names of its pose coordinates, generic over i
     The platform's nominal twists ``(..., dof, 6)``, one per pose coordinate (the columns of
     ``A`` in :func:`screwkit.core.jacobians.jacobians_from_wrenches`).
 
-Optionally ``reachable(parameters, poses)``: which poses ``(..., n)`` the inverse kinematics
-accepts in every working mode, ``(...,)`` bool, vectorised (without it,
-:meth:`screwkit.robots.mechanism.Mechanism.reachable` bisects the batch around the refused poses).
+Optional knowledge of a family (each a field of :class:`Family`, None or empty when absent; the
+page ``docs/families.md`` describes each):
+
+``reachable(parameters, poses)``
+    Which poses ``(..., n)`` the inverse kinematics accepts in every working mode, ``(...,)`` bool,
+    vectorised (without it, :meth:`screwkit.robots.mechanism.Mechanism.reachable` bisects the batch
+    around the refused poses).
+``application_points(configuration)``
+    Where the actuation wrenches act on the actuated links ``(..., k, 3)``.
+``actuated_values(configuration)``
+    The actuated joints' values ``(..., k)`` (radians, lengths), in the order of the joint table's
+    actuated joints: what :func:`screwkit.testing.check_family` differentiates to check ``B⁻¹A``.
+``working_modes``
+    A :class:`WorkingModes`: the inverse kinematics' keyword that picks a working mode, its default
+    and accepted values, what it means, and optionally how to read it back from a configuration.
+``map_axes``
+    The two pose coordinates a map spans by default (:func:`screwkit.analysis.workspace.grid_map`);
+    default: the first two pose coordinates.
+``parameter_kinds``
+    What unit each catalog parameter takes (length, angle or number).
 
 The registry is the package itself: every public module (or subpackage) of this package is one
 family, named after it, which declares its :class:`Family` as the module attribute ``FAMILY``
@@ -54,13 +71,90 @@ import numpy as np
 from ...exceptions import ScrewkitTypeError, ScrewkitValueError
 from ...graphs.jointtable import JointTable
 
-__all__ = ["FAMILY_ATTRIBUTE", "Family", "Registry", "families", "register"]
+__all__ = ["FAMILY_ATTRIBUTE", "Family", "Registry", "WorkingModes", "families", "register"]
 
 #: The module attribute under which a family's module declares its :class:`Family`.
 FAMILY_ATTRIBUTE = "FAMILY"
 
 P = TypeVar("P")
 C = TypeVar("C")
+
+
+@dataclass(frozen=True)
+class WorkingModes:
+    """A family's working modes: how its inverse kinematics is told which branch to take.
+
+    A working mode is a tuple of ``size`` signs (one per limb for the families shipped here), passed
+    to the inverse kinematics as the keyword ``option``; the sign ``values`` each entry may take,
+    the ``default`` the inverse kinematics uses when none is given, and ``meaning``, the documented
+    geometric reading of the default (what :func:`screwkit.testing.check_family` checks through
+    ``of``).
+
+    Attributes
+    ----------
+    option : str
+        The inverse kinematics' keyword argument, e.g. ``"working_mode"``.
+    default : tuple of int
+        The mode used when none is given.
+    meaning : str
+        What the signs mean, in a sentence (e.g. ``"sign of h_i (paper 004, Eq. 8); -1: elbows out"``).
+    values : tuple of int, optional
+        The values each entry may take (default ``(-1, 1)``).
+    of : callable or None, optional
+        ``of(configuration) -> (..., size) int``: the mode a configuration is in, read from its
+        geometry (not from the keyword the inverse kinematics was given), or None.
+
+    Examples
+    --------
+    >>> modes = families()["four_limb"].working_modes
+    >>> modes.option, modes.default
+    ('working_mode', (-1, -1, -1, -1))
+    >>> modes.options((1, 1, 1, 1))
+    {'working_mode': (1, 1, 1, 1)}
+    """
+
+    option: str
+    default: tuple[int, ...]
+    meaning: str
+    values: tuple[int, ...] = (-1, 1)
+    of: Callable[[Any], np.ndarray] | None = None
+
+    def options(self, mode: Any) -> dict[str, tuple[int, ...]]:
+        """The inverse-kinematics keyword arguments that select ``mode``.
+
+        Parameters
+        ----------
+        mode : sequence of int
+            A working mode: ``len(default)`` entries among :attr:`values`.
+
+        Returns
+        -------
+        dict
+            ``{option: mode}``.
+
+        Raises
+        ------
+        ScrewkitValueError
+            If ``mode`` is not ``len(default)`` entries among :attr:`values`.
+
+        Examples
+        --------
+        >>> families()["planar_3rrp"].working_modes.options([1, -1, 1])
+        {'working_mode': (1, -1, 1)}
+        >>> families()["planar_3rrp"].working_modes.options([1, 0, 1])
+        Traceback (most recent call last):
+        ...
+        screwkit.exceptions.ScrewkitValueError: Expected `mode` to be 3 values among (-1, 1) ...
+        """
+        values = tuple(mode) if isinstance(mode, list | tuple | np.ndarray) else None
+        if values is None or len(values) != len(self.default) or not all(
+            v in self.values for v in values
+        ):
+            raise ScrewkitValueError(
+                f"Expected `mode` to be {len(self.default)} values among {self.values} ({self.meaning}), "
+                f"got {mode!r}."
+            )
+        return {self.option: tuple(int(v) for v in values)}
 
 
 @dataclass(frozen=True)
@@ -95,6 +189,13 @@ class Family(Generic[P, C]):
         actuation wrenches act on the actuated links, in the order of the actuated joints
         (:func:`screwkit.robots.transmission.wrench_transmission`'s ``input_points``); None: found
         from the joint axes.
+    actuated_values : callable or None
+        ``actuated_values(configuration) -> (..., k)``, the actuated joints' values in the order of
+        the joint table's actuated joints (angles in radians, lengths in the file's unit).
+    working_modes : WorkingModes or None
+        The inverse kinematics' working-mode option, its default and meaning (None: one mode).
+    map_axes : tuple of two str, or None
+        The pose coordinates a map spans by default (None: the first two; see :attr:`default_map_axes`).
 
     Examples
     --------
@@ -112,6 +213,69 @@ class Family(Generic[P, C]):
     parameter_kinds: Mapping[str, str] = field(default_factory=dict)
     reachable: Callable[[P, np.ndarray], np.ndarray] | None = None
     application_points: Callable[[C], np.ndarray] | None = None
+    actuated_values: Callable[[C], np.ndarray] | None = None
+    working_modes: WorkingModes | None = None
+    map_axes: tuple[str, str] | None = None
+
+    @property
+    def default_map_axes(self) -> tuple[str, str]:
+        """The two pose coordinates a map spans by default: :attr:`map_axes`, else the first two pose
+        coordinates (the only one of a one-coordinate family, twice: a map needs two families of
+        more coordinates).
+
+        Returns
+        -------
+        tuple of two str
+
+        Examples
+        --------
+        >>> families()["four_limb"].default_map_axes
+        ('z', 'phi')
+        """
+        if self.map_axes is not None:
+            return self.map_axes
+        names = self.pose_names
+        return (names[0], names[1 if len(names) > 1 else 0])
+
+    def mode_options(self, mode: Any) -> dict[str, Any]:
+        """Inverse-kinematics options from ``mode``: None (no option), a mapping of options (as
+        given), or a working mode (the keyword of :attr:`working_modes`).
+
+        Parameters
+        ----------
+        mode : None, mapping or sequence of int
+
+        Returns
+        -------
+        dict
+            Keyword arguments for the inverse kinematics.
+
+        Raises
+        ------
+        ScrewkitTypeError
+            If ``mode`` is a string, or a working mode of a family that has none.
+        ScrewkitValueError
+            If the working mode is malformed (:meth:`WorkingModes.options`).
+
+        Examples
+        --------
+        >>> families()["mcgill_smg"].mode_options((1, 1, -1, -1))
+        {'mode': (1, 1, -1, -1)}
+        >>> families()["four_limb"].mode_options(None)
+        {}
+        """
+        if mode is None:
+            return {}
+        if isinstance(mode, Mapping):
+            return dict(mode)
+        if isinstance(mode, str | bytes) or self.working_modes is None:
+            raise ScrewkitTypeError(
+                f"Expected `mode` to be None, a mapping of inverse-kinematics options or a working mode "
+                f"of the family {self.name!r} "
+                f"({'it has none' if self.working_modes is None else self.working_modes.meaning}), "
+                f"got {mode!r}."
+            )
+        return self.working_modes.options(mode)
 
     def joint_table(self, configuration: C) -> JointTable:
         """``joints(configuration)``, checked to be a :class:`~screwkit.graphs.jointtable.JointTable`
@@ -202,7 +366,7 @@ def _checked(family: Any) -> Family[Any, Any]:
         names = getattr(family, attribute)
         if not isinstance(names, tuple) or not all(isinstance(n, str) for n in names):
             raise ScrewkitTypeError(f"Expected `family.{attribute}` to be a tuple of str, got {names!r}.")
-    for attribute in ("reachable", "application_points"):  # the optional hooks
+    for attribute in ("reachable", "application_points", "actuated_values"):  # the optional hooks
         hook = getattr(family, attribute)
         if hook is not None and not callable(hook):
             raise ScrewkitTypeError(
@@ -219,7 +383,48 @@ def _checked(family: Any) -> Family[Any, Any]:
             f"Expected `family.angle_names` to be some of the pose coordinates {family.pose_names}, "
             f"got {family.angle_names}."
         )
+    _check_modes(family)
+    axes = family.map_axes
+    if axes is not None and (
+        not isinstance(axes, tuple) or len(axes) != 2 or len(set(axes)) != 2
+        or not set(axes) <= set(family.pose_names)
+    ):
+        raise ScrewkitValueError(
+            f"Expected `family.map_axes` to be None or two different pose coordinates of "
+            f"{family.pose_names}, got {axes!r}."
+        )
     return family
+
+
+def _check_modes(family: Family[Any, Any]) -> None:
+    """The checks of :func:`register` on ``family.working_modes``."""
+    modes = family.working_modes
+    if modes is None:
+        return
+    if not isinstance(modes, WorkingModes):
+        raise ScrewkitTypeError(
+            f"Expected `family.working_modes` to be a WorkingModes or None, got {type(modes).__name__}."
+        )
+    if not isinstance(modes.option, str) or not modes.option.isidentifier():
+        raise ScrewkitTypeError(
+            f"Expected `family.working_modes.option` to be an identifier, got {modes.option!r}."
+        )
+    if not isinstance(modes.meaning, str) or not modes.meaning:
+        raise ScrewkitTypeError(
+            f"Expected `family.working_modes.meaning` to be a sentence, got {modes.meaning!r}."
+        )
+    if modes.of is not None and not callable(modes.of):
+        raise ScrewkitTypeError(
+            f"Expected `family.working_modes.of` to be callable or None, got {type(modes.of).__name__}."
+        )
+    if (
+        not isinstance(modes.default, tuple) or not modes.default
+        or not isinstance(modes.values, tuple) or not set(modes.default) <= set(modes.values)
+    ):
+        raise ScrewkitValueError(
+            f"Expected `family.working_modes.default` to be a non-empty tuple of values among "
+            f"{modes.values!r}, got {modes.default!r}."
+        )
 
 
 class Registry(MutableMapping[str, Family[Any, Any]]):

@@ -86,7 +86,7 @@ from ..two_limb import (
     parameters_from_mapping,
     wrap_angle,
 )
-from . import Family
+from . import Family, WorkingModes
 
 __all__ = [
     "ASSEMBLY_MODES",
@@ -589,10 +589,12 @@ def twist_basis(config: PeppermillConfiguration) -> np.ndarray:
     """
     return schoenflies_basis(config.platform_point, config.platform_axis)
 
-
 #: The family (:mod:`screwkit.robots.families`).
 FAMILY: Family[PeppermillParameters, PeppermillConfiguration] = Family(
     "peppermill", PeppermillParameters.from_mapping, inverse_kinematics, joints, twist_basis,
     pose_names=("x", "y", "z", "phi"), angle_names=("phi",),
     parameter_kinds=dict.fromkeys(("r1", "r2", "l1", "l2", "b0", "p1", "p2"), "length"),
+    actuated_values=lambda config: config.actuated[..., [0, 2, 1, 3]],  # the table's 1.slide, 1.turn, ...
+    working_modes=WorkingModes("mode", DEFAULT_MODE, "sgn sin λ_i per limb (λ_i, Eq. 27)",
+                               of=lambda config: np.sign(np.sin(config.passive)).astype(int)),
 )

@@ -108,10 +108,10 @@ True
 
 from __future__ import annotations
 
-from .. import Family
+from .. import Family, WorkingModes
 from .configuration import FourLimbConfiguration
-from .joints import application_points, joints, twist_basis
-from .kinematics import inverse_kinematics, reachable
+from .joints import actuated_values, application_points, joints, twist_basis, working_mode_of
+from .kinematics import _DEFAULT_WORKING_MODE, inverse_kinematics, reachable
 from .parameters import FourLimbParameters
 
 __all__ = ["FAMILY"]
@@ -134,4 +134,12 @@ FAMILY: Family[FourLimbParameters, FourLimbConfiguration] = Family(
     | {"alpha": "angle", "beta": "angle", "platform_kind": "number"},
     reachable=reachable,
     application_points=application_points,
+    actuated_values=actuated_values,
+    working_modes=WorkingModes(
+        "working_mode",
+        _DEFAULT_WORKING_MODE,
+        "the signs of h_i (paper 004, Eq. 8) per limb; -1, the paper's, has the elbows out",
+        of=working_mode_of,
+    ),
+    map_axes=("z", "phi"),
 )

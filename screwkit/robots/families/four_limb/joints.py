@@ -22,7 +22,16 @@ from ....core.jacobians import schoenflies_basis
 from ....graphs.jointtable import JointSpec, JointTable
 from .configuration import FourLimbConfiguration, _require
 
-__all__ = ["PAPER_002_LEGS", "SUBPLATFORMS", "application_points", "joints", "twist_basis"]
+__all__ = [
+    "PAPER_002_LEGS",
+    "SUBPLATFORMS",
+    "actuated_values",
+    "application_points",
+    "joints",
+    "parallelogram_legs",
+    "twist_basis",
+    "working_mode_of",
+]
 
 
 #: Paper 002's H4 legs l1..l4 as paper 004's limbs (1-based): (1, 4, 2, 3).
@@ -79,30 +88,86 @@ def joints(config: FourLimbConfiguration) -> JointTable:
     for (link, _), limbs in zip(SUBPLATFORMS, config.subplatform_limbs, strict=True):
         for limb in limbs:
             limb_platform[limb] = link
-    # rows in the order of the joints' names (the analysis core's canonical order, so that it
-    # need not permute them): A1..A4, R_I, R_II, then S<i>m, S<i>n, S<i>p, S<i>q per limb, written
-    # into one array
-    batch = config.batch_shape
-    screws = np.empty((*batch, 4 + 2 + 4 * 4 * 3, 6))
-    # the revolute twists (u; a × u) written in place: S.revolute_twist's operations without its
-    # checks (the axes are the base frames' unit vectors and the platform's unit joint axis)
-    screws[..., :4, :3] = config.u
-    screws[..., :4, 3:] = cross(config.a, config.u)
     axis = config.platform_joint_axis
-    specs = [JointSpec(f"A{i}", "R", "base", f"arm{i}", 1, True) for i in range(1, 5)]
+    middle = []  # R_I, R_II: between the actuated joints and the spheres in the order of the names
     for k, (link, name) in enumerate(SUBPLATFORMS):
         point, pitch = config.platform_joint_points[..., k, :], config.platform_joint_pitches[k]
-        if pitch:
-            screws[..., 4 + k, :] = S.helical_twist(axis, point, pitch)
-        else:
-            screws[..., 4 + k, :3] = axis
-            screws[..., 4 + k, 3:] = cross(point, axis)
-        specs.append(JointSpec(name, "H" if pitch else "R", link, "end_effector", 1, False))
-    spheres = screws[..., 6:, :].reshape(*batch, 4, 4, 3, 6)  # a view: limb, corner m n p q, axis
-    _sphere_twists(config.elbow_corners, spheres[..., :2, :, :])
-    _sphere_twists(config.platform_corners, spheres[..., 2:, :, :])
-    for limb in range(4):
-        i, platform = limb + 1, limb_platform[limb]
+        screw = (
+            S.helical_twist(axis, point, pitch)
+            if pitch
+            else np.concatenate([np.broadcast_to(axis, point.shape), cross(point, axis)], axis=-1)
+        )
+        middle.append((JointSpec(name, "H" if pitch else "R", link, "end_effector", 1, False), screw))
+    screws, specs = parallelogram_legs(
+        config.batch_shape,
+        config.a,
+        config.u,
+        config.elbow_corners,
+        config.platform_corners,
+        [limb_platform[limb] for limb in range(4)],
+        middle,
+    )
+    return JointTable("base", "end_effector", tuple(specs), screws, dof=4, mobility=4)
+
+
+def parallelogram_legs(
+    batch: tuple[int, ...],
+    a: np.ndarray,
+    u: np.ndarray,
+    elbow_corners: np.ndarray,
+    platform_corners: np.ndarray,
+    platform_links: list[str],
+    middle: list[tuple[JointSpec, np.ndarray]],
+) -> tuple[np.ndarray, list[JointSpec]]:
+    """The joints of ``n`` legs ``R–(4S)`` (paper 002, §4.1, Fig. 2), shared by the families with
+    parallelogram legs (this one and :mod:`screwkit.robots.families.delta`): per leg ``i`` an actuated
+    revolute joint ``A<i>`` (``base`` → ``arm<i>``, axis ``u_i`` through ``A_i``: the screw
+    ``(u_i; a_i × u_i)``) and two rods ``rod<i>a``, ``rod<i>b`` with spherical joints ``S<i>m``,
+    ``S<i>n`` on the arm and ``S<i>p``, ``S<i>q`` on the leg's platform link.
+
+    Parameters
+    ----------
+    batch : tuple of int
+        The batch shape.
+    a, u : numpy.ndarray, shape (..., n, 3)
+        The actuated joints' points and unit axes.
+    elbow_corners, platform_corners : numpy.ndarray, shape (..., n, 2, 3)
+        The sphere centres ``m, n`` on the arms and ``p, q`` on the platform links.
+    platform_links : list of str
+        The link each leg's rods end on.
+    middle : list of (JointSpec, numpy.ndarray (..., 6))
+        Joints whose names sort between ``A<i>`` and ``S<i>...`` (the platform's own joints), with
+        their screws.
+
+    Returns
+    -------
+    screws : numpy.ndarray, shape (..., n + len(middle) + 12 n, 6)
+        Read-only, rows in the order of the joints' names (the analysis core's canonical order).
+    specs : list of JointSpec
+
+    Examples
+    --------
+    >>> config = load_mechanism("h4").configuration()
+    >>> screws, specs = parallelogram_legs((), config.a, config.u, config.elbow_corners,
+    ...     config.platform_corners, ["b_I", "b_II", "b_II", "b_I"], [])
+    >>> screws.shape, specs[4].name
+    ((52, 6), 'S1m')
+    """
+    n, m = len(platform_links), len(middle)
+    screws = np.empty((*batch, n + m + 4 * n * 3, 6))
+    # the revolute twists (u; a × u) written in place: S.revolute_twist's operations without its
+    # checks (the axes are unit vectors of the base frames)
+    screws[..., :n, :3] = u
+    screws[..., :n, 3:] = cross(a, u)
+    specs = [JointSpec(f"A{i}", "R", "base", f"arm{i}", 1, True) for i in range(1, n + 1)]
+    for k, (spec, screw) in enumerate(middle):
+        screws[..., n + k, :] = screw
+        specs.append(spec)
+    spheres = screws[..., n + m :, :].reshape(*batch, n, 4, 3, 6)  # a view: leg, corner m n p q, axis
+    _sphere_twists(elbow_corners, spheres[..., :2, :, :])
+    _sphere_twists(platform_corners, spheres[..., 2:, :, :])
+    for limb, platform in enumerate(platform_links):
+        i = limb + 1
         specs += [
             JointSpec(f"S{i}m", "S", f"arm{i}", f"rod{i}a", 3, False),
             JointSpec(f"S{i}n", "S", f"arm{i}", f"rod{i}b", 3, False),
@@ -110,7 +175,7 @@ def joints(config: FourLimbConfiguration) -> JointTable:
             JointSpec(f"S{i}q", "S", f"rod{i}b", platform, 3, False),
         ]
     screws.flags.writeable = False  # fresh: the table takes it without a copy
-    return JointTable("base", "end_effector", tuple(specs), screws, dof=4, mobility=4)
+    return screws, specs
 
 
 def _sphere_twists(centres: np.ndarray, out: np.ndarray) -> None:
@@ -184,3 +249,47 @@ def application_points(config: FourLimbConfiguration) -> np.ndarray:
     """
     _require(config, FourLimbConfiguration, "config")
     return np.asarray(config.b)
+
+
+def actuated_values(config: FourLimbConfiguration) -> np.ndarray:
+    """The actuated angles ``θ_i`` (Eq. 2) in the order of the joints ``A1..A4`` (the family's
+    ``actuated_values`` hook, :class:`screwkit.robots.families.Family`).
+
+    Parameters
+    ----------
+    config : FourLimbConfiguration
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 4)
+
+    Examples
+    --------
+    >>> actuated_values(load_mechanism("h4").configuration()).shape
+    (4,)
+    """
+    _require(config, FourLimbConfiguration, "config")
+    return np.asarray(config.theta)
+
+
+def working_mode_of(config: FourLimbConfiguration) -> np.ndarray:
+    """The working mode a configuration is in, read from its geometry: the signs of
+    ``h_i = b w_i·(u_i × v_i)`` (paper 004, Eq. 8), which change only at a serial singularity of
+    limb ``i``. The paper's mode, ``h_i < 0`` for every limb, has the elbows ``B_i`` out, farther
+    from the base's centre than the actuated joints ``A_i`` (``tests/test_testing.py``).
+
+    Parameters
+    ----------
+    config : FourLimbConfiguration
+
+    Returns
+    -------
+    numpy.ndarray of int, shape (..., 4)
+
+    Examples
+    --------
+    >>> working_mode_of(load_mechanism("h4").configuration()).tolist()
+    [-1, -1, -1, -1]
+    """
+    _require(config, FourLimbConfiguration, "config")
+    return np.sign(config.h).astype(int)

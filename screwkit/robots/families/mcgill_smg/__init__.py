@@ -74,16 +74,49 @@ array([0., 0.])
 ['regular']
 """
 
-
 from __future__ import annotations
 
-from .. import Family
-from .configuration import McGillConfiguration
+import numpy as np
+
+from .. import Family, WorkingModes
+from .configuration import _SIGN, McGillConfiguration
 from .joints import joints, twist_basis
 from .kinematics import inverse_kinematics
-from .parameters import McGillParameters
+from .parameters import DEFAULT_MODE, McGillParameters
 
-__all__ = ["FAMILY"]
+__all__ = ["FAMILY", "working_mode_of"]
+
+
+def working_mode_of(config: McGillConfiguration) -> np.ndarray:
+    """The working mode ``(pan_I, elbow_I, pan_II, elbow_II)`` a configuration is in, read from its
+    joint angles: ``pan_J = sgn κ_J`` with ``κ_J = s(J) l1 + l2 cos θ_J2 + l3 cos(θ_J2 + θ_J3)`` (the
+    signed horizontal reach of the two-link problem of
+    :func:`~screwkit.robots.families.mcgill_smg.kinematics.inverse_kinematics`) and
+    ``elbow_J = sgn sin θ_J3``.
+
+    Parameters
+    ----------
+    config : McGillConfiguration
+
+    Returns
+    -------
+    numpy.ndarray of int, shape (..., 4)
+
+    Examples
+    --------
+    >>> from screwkit.robots.families.mcgill_smg.parameters import McGillParameters
+    >>> p = McGillParameters(600, 100, 600, 282.843, 200, -50, -50, 80, 60)
+    >>> working_mode_of(FAMILY.inverse_kinematics(p, [0.0, 0.0, -600.0, 0.0], mode=(1, -1, -1, 1))).tolist()
+    [1, -1, -1, 1]
+    """
+    params, angles = config.params, config.joint_angles
+    reach = (
+        _SIGN * params.l1
+        + params.l2 * np.cos(angles[..., 1])
+        + params.l3 * np.cos(angles[..., 1] + angles[..., 2])
+    )
+    modes = np.stack([np.sign(reach), np.sign(np.sin(angles[..., 2]))], axis=-1)
+    return modes.reshape(*modes.shape[:-2], 4).astype(int)
 
 
 #: The family (:mod:`screwkit.robots.families`).
@@ -97,5 +130,12 @@ FAMILY: Family[McGillParameters, McGillConfiguration] = Family(
     angle_names=("phi",),
     parameter_kinds=dict.fromkeys(
         ("l0", "l1", "l2", "l3", "radius", "b4", "b5", "proximal_width", "distal_width"), "length"
+    ),
+    actuated_values=lambda config: config.actuated,
+    working_modes=WorkingModes(
+        "mode",
+        DEFAULT_MODE,
+        "(pan_I, elbow_I, pan_II, elbow_II): sgn κ_J and sgn sin θ_J3 per leg",
+        of=working_mode_of,
     ),
 )

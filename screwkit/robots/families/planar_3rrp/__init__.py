@@ -76,12 +76,38 @@ array([ -3.557, 116.443, -123.557])
 
 from __future__ import annotations
 
-from .. import Family
+import numpy as np
+
+from .. import Family, WorkingModes
 from .configuration import Planar3RRPConfiguration
 from .joints import joints, twist_basis
 from .parameters import Planar3RRPParameters
 
-__all__ = ["FAMILY"]
+__all__ = ["FAMILY", "working_mode_of"]
+
+
+def working_mode_of(config: Planar3RRPConfiguration) -> np.ndarray:
+    """The working mode a configuration is in, read from its geometry: ``σ_k`` of
+    ``γ_k = -(Q_k - M_k)·b_k + σ_k sqrt(l_k² - h_k²)`` (module docstring) is the sign of
+    ``(A_k - M_k)·b_k``, the elbow's side of the foot of the perpendicular from ``M_k`` to the guide.
+
+    Parameters
+    ----------
+    config : Planar3RRPConfiguration
+
+    Returns
+    -------
+    numpy.ndarray of int, shape (..., 3)
+
+    Examples
+    --------
+    >>> from screwkit.robots.families.planar_3rrp.parameters import EXAMPLE_PARAMETERS
+    >>> config = FAMILY.inverse_kinematics(EXAMPLE_PARAMETERS, [0.0, 0.0, 0.0], (1, -1, 1))
+    >>> working_mode_of(config).tolist()
+    [1, -1, 1]
+    """
+    along = np.sum((config.elbow_points - config.base_points) * config.guide_directions, axis=-1)
+    return np.sign(along).astype(int)
 
 
 #: The family (:mod:`screwkit.robots.families`).
@@ -95,4 +121,9 @@ FAMILY: Family[Planar3RRPParameters, Planar3RRPConfiguration] = Family(
     angle_names=("phi",),
     parameter_kinds=dict.fromkeys(("base_points", "link_lengths", "platform_points"), "length")
     | {"guide_angles": "angle"},
+    actuated_values=lambda config: config.joint_angles,
+    working_modes=WorkingModes(
+        "working_mode", (1, 1, 1), "σ_k per limb: the side of its guide's foot point the elbow is on",
+        of=working_mode_of,
+    ),
 )
