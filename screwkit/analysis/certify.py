@@ -496,7 +496,7 @@ def certify(
     """
     _check_mechanism(mechanism)
     factor = angle_factor(angles)
-    options = _options(mode)
+    options = _options(mechanism, mode)
     model = FourLimbModel.of(mechanism, options)
     chosen = _checked_kinds(kinds)
     if (
@@ -735,7 +735,7 @@ def certify_path(
     [('singular', 'constraint', 0.5)]
     """
     _check_mechanism(mechanism)
-    options = _options(mode)
+    options = _options(mechanism, mode)
     model = FourLimbModel.of(mechanism, options)
     chosen = _checked_kinds(kinds)
     a, b = np.asarray(start, dtype=float), np.asarray(end, dtype=float)

@@ -41,15 +41,16 @@ def _options(mechanism: Any, mode: Any) -> dict[str, Any]:
 
 
 def _check_mechanism(mechanism: Any) -> None:
-    """Maps and paths run over a catalog mechanism's pose coordinates; a twist graph has none."""
+    """Maps and paths run over a mechanism's pose coordinates; a twist graph gets them from
+    :func:`screwkit.mechanism`."""
     if not all(hasattr(mechanism, name) for name in ("at", "pose_names", "angle_names", "default_pose")):
         hint = (
-            " (a twist graph is one configuration: analyse it with screwkit.analyze or classify)"
+            " (a twist graph is one configuration: screwkit.mechanism(graph) gives its motion)"
             if hasattr(mechanism, "edges")
             else ""
         )
         raise ScrewkitTypeError(
-            f"Expected `mechanism` to be a catalog Mechanism (screwkit.load_mechanism), got "
+            f"Expected `mechanism` to be a Mechanism (screwkit.load_mechanism or screwkit.mechanism), got "
             f"{type(mechanism).__name__}{hint}."
         )
 

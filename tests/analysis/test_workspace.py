@@ -531,10 +531,11 @@ def test_angles_are_radians_by_default_like_the_rest_of_the_api():
     lambda g: W.evaluate(g, [[0, 0, 0, 0]], "verdict"),
     lambda g: LO.loci(g, x=("z", -900, -600, 3), y=("phi", -0.5, 0.5, 3)),
 ])
-def test_a_twist_graph_is_refused_with_a_pointer_to_analyze(call):
+def test_a_twist_graph_is_refused_with_a_pointer_to_its_mechanism(call):
     graph = H4.twist_graph()
-    with pytest.raises(sk.ScrewkitTypeError, match=r"Expected `mechanism` to be a catalog Mechanism .* got "
-                                                   r"MultiDiGraph \(a twist graph is one configuration"):
+    with pytest.raises(sk.ScrewkitTypeError, match=r"Expected `mechanism` to be a Mechanism .* got "
+                                                   r"MultiDiGraph \(a twist graph is one configuration: "
+                                                   r"screwkit.mechanism\(graph\) gives its motion"):
         call(graph)
 
 
