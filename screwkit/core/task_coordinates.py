@@ -103,12 +103,15 @@ def _named_basis(basis: Array, prefix: str, single: str | None) -> tuple[list[st
     return names, np.array(directions)
 
 
-def _orthonormal_rows(matrix: Array, rtol: float) -> Array:
-    """An orthonormal basis of the row space of ``matrix (m, k)``, ``(rank, k)``."""
+def _orthonormal_rows(matrix: Array, rtol: float, scale: float | None = None) -> Array:
+    """An orthonormal basis of the row space of ``matrix (m, k)``, ``(rank, k)``: the singular values
+    above ``rtol`` times ``scale`` (default: the largest singular value; give the scale of the rows
+    the matrix was taken from, so that a part of them that is only round-off is rank 0)."""
     if matrix.size == 0:
         return np.zeros((0, matrix.shape[1]))
     _, sigma, vt = np.linalg.svd(matrix, full_matrices=False)
-    rank = int(np.sum(sigma > rtol * max(sigma[0], 1e-300))) if sigma.size else 0
+    size = (sigma[0] if sigma.size else 0.0) if scale is None else scale
+    rank = int(np.sum(sigma > rtol * max(size, 1e-300)))
     return vt[:rank]
 
 
@@ -188,12 +191,12 @@ def task_coordinates(
     omega, velocity = system[:, :3], system[:, 3:] + np.cross(system[:, :3], -local)  # v + ω × (−c)
     # velocities of the point: v(c) = v + ω × c
     if not rotations:
-        translations = _orthonormal_rows(velocity, rtol)
+        translations = _orthonormal_rows(velocity, rtol, scale=1.0)
         names, directions = _named_basis(translations, "t", None)
         return TaskCoordinates(tuple(names), ("translation",) * len(names), directions, link, centre)
-    rotation_basis = _orthonormal_rows(omega, rtol)
+    rotation_basis = _orthonormal_rows(omega, rtol, scale=1.0)  # the system's rows are unit
     without_rotation = _null_space(omega.T, rtol)  # combinations of the twists with ω = 0
-    translations = _orthonormal_rows((velocity.T @ without_rotation).T, rtol)
+    translations = _orthonormal_rows((velocity.T @ without_rotation).T, rtol, scale=1.0)
     t_names, t_directions = _named_basis(translations, "t", None)
     r_names, r_directions = _named_basis(rotation_basis, "r", "phi")
     kinds = ("translation",) * len(t_names) + ("rotation",) * len(r_names)
