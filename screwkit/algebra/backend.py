@@ -38,6 +38,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
+from .numbers import numbers_only
 
 __all__ = [
     "DEFAULT_RTOL",
@@ -342,7 +343,7 @@ def as_array(
             array.flat[i] = v
     else:
         try:
-            array = np.array(_numbers_only(value, name), dtype=float)
+            array = np.array(numbers_only(value, name), dtype=float)
         except ScrewkitTypeError:  # None, strings, booleans: refused by name
             raise
         except OverflowError as err:  # a Python integer beyond every float
@@ -365,36 +366,6 @@ def as_array(
             f"Expected `{name}` to have shape {_describe_shape(shape)}, got {array.shape}."
         )
     return array
-
-
-def _numbers_only(value: Any, name: str) -> Any:
-    """``value`` as an array if it holds numbers; refuses None, strings and booleans by name (numpy
-    would read None as NaN, ``'1'`` as 1.0 and ``True`` as 1.0)."""
-    if value is None:
-        raise ScrewkitTypeError(f"Expected `{name}` to be an array of numbers, got None.")
-    if isinstance(value, bool | np.bool_):
-        raise ScrewkitTypeError(f"Expected `{name}` to be an array of numbers, got the boolean {value!r}.")
-    if isinstance(value, int | float) or (isinstance(value, np.ndarray) and value.dtype.kind in "fiu"):
-        return value  # the common cases, checked without a copy
-    raw = np.asarray(value)  # a ragged list raises ValueError: the caller's message
-    if raw.dtype.kind not in "fiuO":
-        what = {"b": "booleans", "U": "strings", "S": "strings", "c": "complex numbers"}.get(
-            raw.dtype.kind, f"dtype {raw.dtype}"
-        )
-        raise ScrewkitTypeError(f"Expected `{name}` to be an array of real numbers, got {what}: {_excerpt(raw)}.")
-    if raw.dtype.kind == "O":
-        for index, item in enumerate(raw.flat):
-            if item is None or isinstance(item, str | bytes | bool | np.bool_ | complex):
-                got = "None" if item is None else f"{type(item).__name__} {item!r}"
-                raise ScrewkitTypeError(
-                    f"Expected `{name}` to be an array of real numbers, got {got} at flat index {index}."
-                )
-    return raw
-
-
-def _excerpt(array: Array) -> str:
-    text = repr(array.tolist())
-    return text if len(text) <= 80 else text[:77] + "..."
 
 
 def _checked_sympy(value: Any, name: str) -> sympy.Expr:

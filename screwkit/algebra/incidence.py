@@ -208,5 +208,6 @@ def point_on_line(
     lv = _numeric(line, "line", "point_on_line", (6,))
     if np.any(zero_vectors(lv)):
         raise DegenerateGeometryError("Expected `line` to be a non-zero line, got zeros.")
-    result = np.linalg.norm(join_point_line(x, unit_rows(lv, checked_length_scale(length_scale))), axis=-1) <= rtol
+    unit_lines = unit_rows(lv, checked_length_scale(length_scale))
+    result = np.linalg.norm(join_point_line(x, unit_lines), axis=-1) <= rtol
     return bool(result) if np.ndim(result) == 0 else result

@@ -8,8 +8,8 @@ the coordinates, the answer is the same in millimetres and in metres. When ``len
 it is taken from the data: the largest ``|s0| / |s|`` over rows whose direction is not round-off
 (``|s| > 1e-9 |s0|``; a length in the data's own unit, kept within [1e-100, 1e100] like a given
 one), or 1 if every row is a couple. Rows are scaled by powers of two before any square
-(:func:`unit_rows`), so a decision is the same for screws of any finite magnitude, 1e-300 or 1e300. Symbolic rows
-have their generic rank and null spaces (:mod:`screwkit.algebra.symbolic`). Part of the
+(:func:`unit_rows`), so a decision is the same for screws of any finite magnitude, 1e-300 or
+1e300. Symbolic rows have their generic rank and null spaces (:mod:`screwkit.algebra.symbolic`). Part of the
 numeric/symbolic backend (:mod:`screwkit.algebra.backend`).
 
 Examples
@@ -213,6 +213,11 @@ def characteristic_length(rows: Array, length_scale: float | None) -> float | No
     """
     if is_symbolic(rows):
         return length_scale
+    return _numeric_length(rows, length_scale)
+
+
+def _numeric_length(rows: Array, length_scale: float | None) -> float:
+    """:func:`characteristic_length` of numeric rows."""
     if length_scale is None:
         return _derived_length(np.asarray(rows, dtype=float))
     return checked_length_scale(length_scale)
@@ -259,7 +264,7 @@ def screw_singular_values(rows: Array, *, length_scale: float | None = None) -> 
     array([1., 1.])
     """
     rows = np.asarray(rows, dtype=float)
-    return np.linalg.svd(unit_rows(rows, characteristic_length(rows, length_scale)), compute_uv=False)
+    return np.linalg.svd(unit_rows(rows, _numeric_length(rows, length_scale)), compute_uv=False)
 
 
 def screw_rank(rows: Array, *, rtol: float = DEFAULT_RTOL, length_scale: float | None = None) -> Any:
@@ -336,7 +341,7 @@ def screw_nullspace(
         return matrix_nullspace(rows @ SWAP.astype(int), rtol=rtol)
     if rows.shape[0] == 0:
         return np.eye(6)
-    length = characteristic_length(rows, length_scale)
+    length = _numeric_length(rows, length_scale)
     basis = matrix_nullspace(unit_rows(rows, length) @ SWAP, rtol=rtol)
     # In scaled coordinates x' = (x_s; x_m / L); reciprocity a∘x = L (a'∘x') is preserved.
     basis[:, 3:] *= length
