@@ -326,7 +326,7 @@ FILE_CONTENT_CASES = [
     ("# " + "x" * (MAX_FILE_BYTES + 10), rf"expected a file of at most {MAX_FILE_BYTES} bytes, got a larger one"),
     ("", r"\[mechanism\]: expected a table \[mechanism\], got nothing"),
     ("mechanism = 5\n", r"\[mechanism\]: expected a table \[mechanism\], got int"),
-    ("[mechanism]\nkind = 5\n", r"field `kind`: expected 'family' here, got 5"),
+    ("[mechanism]\nkind = 5\n", r"field `kind`: expected 'family' \(a catalog entry\) or 'snapshot' \(a snapshot file\), got 5"),
 ]
 
 

@@ -38,6 +38,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
+from .numbers import numbers_only
 
 __all__ = [
     "DEFAULT_RTOL",
@@ -342,7 +343,9 @@ def as_array(
             array.flat[i] = v
     else:
         try:
-            array = np.array(value, dtype=float)
+            array = np.array(numbers_only(value, name), dtype=float)
+        except ScrewkitTypeError:  # None, strings, booleans: refused by name
+            raise
         except OverflowError as err:  # a Python integer beyond every float
             raise ScrewkitValueError(
                 f"Expected `{name}` to hold finite numbers, got an integer too large for a float ({err})."

@@ -23,7 +23,8 @@ from ..exceptions import DegenerateGeometryError, ScrewkitTypeError
 from . import backend as B
 from .checks import checked_length_scale
 from .projective import join_point_line
-from .ranks import scale_moments
+from .ranks import unit_rows
+from .zero_tests import _binary_exponents, zero_vectors
 
 __all__ = ["are_collinear", "are_coplanar", "is_at_infinity", "lines_intersect", "point_on_line"]
 
@@ -69,8 +70,9 @@ def _numeric(value: Any, name: str, test: str, shape: tuple[int, ...]) -> Array:
 
 def _unit_points(p: Array, length_scale: float) -> Array:
     checked_length_scale(length_scale)
-    scaled = np.array(p, dtype=float)
+    scaled = np.ldexp(p, -_binary_exponents(p))  # exact; no square overflows below
     scaled[..., :3] /= length_scale
+    scaled = np.ldexp(scaled, -_binary_exponents(scaled))
     size = np.linalg.norm(scaled, axis=-1, keepdims=True)
     if np.any(size == 0):
         raise DegenerateGeometryError("Expected non-zero points, got (0, 0, 0, 0).")
@@ -165,13 +167,11 @@ def lines_intersect(
     """
     a = _numeric(first, "first", "lines_intersect", (6,))
     b = _numeric(second, "second", "lines_intersect", (6,))
-    scaled_a, _ = scale_moments(a, length_scale)
-    scaled_b, _ = scale_moments(b, length_scale)
-    for name, values in (("first", scaled_a), ("second", scaled_b)):
-        if np.any(np.linalg.norm(values, axis=-1) == 0):
+    length = checked_length_scale(length_scale)
+    for name, values in (("first", a), ("second", b)):
+        if np.any(zero_vectors(values)):
             raise DegenerateGeometryError(f"Expected `{name}` to be a non-zero line, got zeros.")
-    scaled_a /= np.linalg.norm(scaled_a, axis=-1, keepdims=True)
-    scaled_b /= np.linalg.norm(scaled_b, axis=-1, keepdims=True)
+    scaled_a, scaled_b = unit_rows(a, length), unit_rows(b, length)
     product = B.dot(scaled_a[..., :3], scaled_b[..., 3:]) + B.dot(
         scaled_a[..., 3:], scaled_b[..., :3]
     )
@@ -205,9 +205,9 @@ def point_on_line(
     (True, False)
     """
     x = _unit_points(_numeric(point, "point", "point_on_line", (4,)), length_scale)
-    lv, _ = scale_moments(_numeric(line, "line", "point_on_line", (6,)), length_scale)
-    size = np.linalg.norm(lv, axis=-1, keepdims=True)
-    if np.any(size == 0):
+    lv = _numeric(line, "line", "point_on_line", (6,))
+    if np.any(zero_vectors(lv)):
         raise DegenerateGeometryError("Expected `line` to be a non-zero line, got zeros.")
-    result = np.linalg.norm(join_point_line(x, lv / size), axis=-1) <= rtol
+    unit_lines = unit_rows(lv, checked_length_scale(length_scale))
+    result = np.linalg.norm(join_point_line(x, unit_lines), axis=-1) <= rtol
     return bool(result) if np.ndim(result) == 0 else result

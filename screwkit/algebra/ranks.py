@@ -6,8 +6,10 @@ normalised to unit length (row scaling does not change a rank). The rank is then
 singular values above ``rtol`` times the largest one. With ``length_scale`` given in the same unit as
 the coordinates, the answer is the same in millimetres and in metres. When ``length_scale`` is None
 it is taken from the data: the largest ``|s0| / |s|`` over rows whose direction is not round-off
-(``|s| > 1e-9 |s0|``; a length in the data's own unit), or 1 if every row is a couple. Symbolic rows
-have their generic rank and null spaces (:mod:`screwkit.algebra.symbolic`). Part of the
+(``|s| > 1e-9 |s0|``; a length in the data's own unit, kept within [1e-100, 1e100] like a given
+one), or 1 if every row is a couple. Rows are scaled by powers of two before any square
+(:func:`unit_rows`), so a decision is the same for screws of any finite magnitude, 1e-300 or
+1e300. Symbolic rows have their generic rank and null spaces (:mod:`screwkit.algebra.symbolic`). Part of the
 numeric/symbolic backend (:mod:`screwkit.algebra.backend`).
 
 Examples
@@ -27,8 +29,8 @@ import numpy as np
 from ..exceptions import DegenerateGeometryError
 from .backend import DEFAULT_RTOL, is_symbolic, sympy_module
 from .branch_values import zeros
-from .checks import checked_length_scale, checked_rtol
-from .zero_tests import _binary_exponents, zero_vectors
+from .checks import MIN_LENGTH_SCALE, checked_length_scale, checked_rtol
+from .zero_tests import _binary_exponents, _norms, zero_vectors
 
 __all__ = [
     "characteristic_length",
@@ -39,6 +41,7 @@ __all__ = [
     "screw_nullspace",
     "screw_rank",
     "screw_singular_values",
+    "unit_rows",
     "unit_screws",
 ]
 
@@ -104,13 +107,53 @@ def unit_screws(screws: Array, length_scale: float) -> Array:
         if np.any(zero_vectors(screws)):
             raise DegenerateGeometryError("Expected non-zero screws, got the zero screw.")
         return screws
-    scaled = np.array(screws, dtype=float)
-    scaled[..., 3:] /= length_scale
-    largest = np.max(np.abs(scaled), axis=-1, keepdims=True)
-    if np.any(largest == 0):
+    screws = np.asarray(screws, dtype=float)
+    if np.any(zero_vectors(screws)):
         raise DegenerateGeometryError("Expected non-zero screws, got the zero screw.")
-    scaled = np.ldexp(scaled, -np.frexp(largest)[1])  # exact: the norm neither underflows nor overflows
-    return scaled / np.linalg.norm(scaled, axis=-1, keepdims=True)
+    return unit_rows(screws, length_scale)
+
+
+def unit_rows(rows: Array, length_scale: float) -> Array:
+    """Numeric screws ``(..., 6)`` with the moment half divided by ``length_scale``, each scaled to
+    unit length (zero rows stay zero): the rows every numeric rank decision reads.
+
+    Each row is first multiplied by a power of two (exact) that brings its largest coordinate into
+    [0.5, 1), before and after the division, so no square overflows or underflows: the result is
+    the same for a screw and for that screw times any factor in the float range (1e-300 or 1e300).
+
+    Parameters
+    ----------
+    rows : numpy.ndarray, shape (..., 6)
+        Numeric screws, any finite magnitude.
+    length_scale : float
+        The characteristic length, in [1e-100, 1e100] (:func:`characteristic_length`).
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 6)
+
+    Examples
+    --------
+    >>> unit_rows(np.array([[0.0, 0, 3e200, 0, 0, 4e200], [0.0] * 6]), 1.0)
+    array([[0. , 0. , 0.6, 0. , 0. , 0.8],
+           [0. , 0. , 0. , 0. , 0. , 0. ]])
+    """
+    scaled = np.ldexp(rows, -_binary_exponents(rows))
+    scaled[..., 3:] /= length_scale
+    scaled = np.ldexp(scaled, -_binary_exponents(scaled))
+    lengths = np.linalg.norm(scaled, axis=-1, keepdims=True)
+    return scaled / np.where(lengths > 0, lengths, 1.0)
+
+
+def _derived_length(rows: Array) -> float:
+    """The largest ``|s0| / |s|`` over rows whose direction is not round-off, within
+    [MIN_LENGTH_SCALE, 1 / MIN_LENGTH_SCALE]; 1 without such a row (module docstring)."""
+    directions, moments = _norms(rows[..., :3]), _norms(rows[..., 3:])  # no square overflows
+    has_direction = directions > DEFAULT_RTOL * moments  # a couple's round-off direction is not one
+    ratios = moments[has_direction] / directions[has_direction]
+    if not (ratios.size and ratios.max() > 0):
+        return 1.0
+    return float(np.clip(ratios.max(), MIN_LENGTH_SCALE, 1 / MIN_LENGTH_SCALE))
 
 
 def scale_moments(rows: Array, length_scale: float | None) -> tuple[Array, float]:
@@ -134,11 +177,7 @@ def scale_moments(rows: Array, length_scale: float | None) -> tuple[Array, float
     500.0
     """
     if length_scale is None:
-        directions = np.linalg.norm(rows[..., :3], axis=-1)
-        moments = np.linalg.norm(rows[..., 3:], axis=-1)
-        has_direction = directions > DEFAULT_RTOL * moments  # a couple's round-off direction is not one
-        ratios = moments[has_direction] / directions[has_direction]
-        length = float(ratios.max()) if ratios.size and ratios.max() > 0 else 1.0
+        length = _derived_length(np.asarray(rows, dtype=float))
     else:
         checked = checked_length_scale(length_scale, allow_none=True)  # its message mentions None
         assert checked is not None  # None took the branch above
@@ -174,7 +213,14 @@ def characteristic_length(rows: Array, length_scale: float | None) -> float | No
     """
     if is_symbolic(rows):
         return length_scale
-    return scale_moments(rows, length_scale)[1]
+    return _numeric_length(rows, length_scale)
+
+
+def _numeric_length(rows: Array, length_scale: float | None) -> float:
+    """:func:`characteristic_length` of numeric rows."""
+    if length_scale is None:
+        return _derived_length(np.asarray(rows, dtype=float))
+    return checked_length_scale(length_scale)
 
 
 def _independent_rows(rows: Array, rtol: float, length_scale: float | None) -> Array:
@@ -217,10 +263,8 @@ def screw_singular_values(rows: Array, *, length_scale: float | None = None) -> 
     >>> screw_singular_values(np.array([[1.0, 0, 0, 0, 0, 0], [0, 1.0, 0, 0, 0, 0]]))
     array([1., 1.])
     """
-    scaled, _ = scale_moments(np.asarray(rows, dtype=float), length_scale)
-    lengths = np.linalg.norm(scaled, axis=-1, keepdims=True)
-    safe = np.where(lengths > 0, lengths, 1.0)
-    return np.linalg.svd(scaled / safe, compute_uv=False)
+    rows = np.asarray(rows, dtype=float)
+    return np.linalg.svd(unit_rows(rows, _numeric_length(rows, length_scale)), compute_uv=False)
 
 
 def screw_rank(rows: Array, *, rtol: float = DEFAULT_RTOL, length_scale: float | None = None) -> Any:
@@ -297,10 +341,8 @@ def screw_nullspace(
         return matrix_nullspace(rows @ SWAP.astype(int), rtol=rtol)
     if rows.shape[0] == 0:
         return np.eye(6)
-    scaled, length = scale_moments(rows, length_scale)
-    lengths = np.linalg.norm(scaled, axis=-1, keepdims=True)
-    scaled = scaled / np.where(lengths > 0, lengths, 1.0)
-    basis = matrix_nullspace(scaled @ SWAP, rtol=rtol)
+    length = _numeric_length(rows, length_scale)
+    basis = matrix_nullspace(unit_rows(rows, length) @ SWAP, rtol=rtol)
     # In scaled coordinates x' = (x_s; x_m / L); reciprocity a∘x = L (a'∘x') is preserved.
     basis[:, 3:] *= length
     return basis

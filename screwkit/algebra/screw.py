@@ -312,13 +312,27 @@ def reciprocal_product(a: Any, b: Any) -> Any:
     -------
     float, numpy.ndarray of shape (...), or sympy expression
 
+    Raises
+    ------
+    ScrewkitValueError
+        If a numeric product overflows the float range (screws of size 1e200 each).
+
     Examples
     --------
     >>> float(reciprocal_product([0, 0, 1, 0, 0, 0], [1, 0, 0, 0, 0, 1]))
     1.0
     """
     a_arr, b_arr = B.promote(_screws(a, "a"), _screws(b, "b"))
-    return B.dot(a_arr[..., :3], b_arr[..., 3:]) + B.dot(a_arr[..., 3:], b_arr[..., :3])
+    if a_arr.dtype == object:
+        return B.dot(a_arr[..., :3], b_arr[..., 3:]) + B.dot(a_arr[..., 3:], b_arr[..., :3])
+    with np.errstate(over="ignore", invalid="ignore"):  # refused below
+        product = B.dot(a_arr[..., :3], b_arr[..., 3:]) + B.dot(a_arr[..., 3:], b_arr[..., :3])
+    if not np.all(np.isfinite(product)):
+        raise ScrewkitValueError(
+            "Expected screws `a` and `b` whose reciprocal product is a float, got a product that "
+            "overflows the float range (|a| |b| beyond 1e308): scale the screws first."
+        )
+    return product
 
 
 def pitch(screws: Any) -> Any:

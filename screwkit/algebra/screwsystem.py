@@ -28,9 +28,10 @@ import numpy as np
 
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
 from . import backend as B
-from .ranks import _independent_rows, characteristic_length, scale_moments, screw_nullspace, screw_rank
+from .ranks import _independent_rows, characteristic_length, screw_nullspace, screw_rank, unit_rows
 from .readable import _COUPLES, _about, _axes_centre, _numeric_readable, _symbolic_readable
 from .screwvalue import Screw
+from .zero_tests import _binary_exponents
 
 __all__ = ["ScrewSystem"]
 
@@ -437,13 +438,16 @@ class ScrewSystem:
     def _readable_about(self, near: Array | None) -> Array:
         """:meth:`readable_basis` of a numeric system (what :func:`_readable` remembers)."""
         length = float(self.length_scale or 1.0)
-        origin = _axes_centre(self.basis, length, self.rtol)
+        # each row times a power of two (exact; the same span): no square below overflows or underflows
+        rows = np.ldexp(self.basis, -_binary_exponents(self.basis))
+        origin = _axes_centre(rows, length, self.rtol)
         if np.linalg.norm(origin) > 10.0 * length:
             # far from the frame's origin the moments dwarf the length scale and every rank decision
             # below would judge rounding: decide about a point among the axes, then move back
-            local = ScrewSystem(_about(self.basis, origin), rtol=self.rtol, length_scale=self.length_scale)
+            local = ScrewSystem(_about(rows, origin), rtol=self.rtol, length_scale=self.length_scale)
             return _about(_numeric_readable(local, np.zeros(3) if near is None else near - origin), -origin)
-        return _numeric_readable(self, np.zeros(3) if near is None else near)
+        system = ScrewSystem.from_independent(rows, rtol=self.rtol, length_scale=self.length_scale)
+        return _numeric_readable(system, np.zeros(3) if near is None else near)
 
     def pitch_range(self) -> tuple[float, float]:
         """Least and greatest pitch of the screws of ``self`` with a non-zero direction.
@@ -473,7 +477,7 @@ class ScrewSystem:
         if self.is_symbolic:
             raise ScrewkitTypeError("pitch_range is numeric; substitute values into the system first.")
         length = float(self.length_scale or 1.0)
-        scaled, _ = scale_moments(self.basis, length)
+        scaled = unit_rows(self.basis, length)  # the same span, no square overflows
         if scaled.shape[0]:
             scaled = np.linalg.qr(scaled.T)[0].T  # orthonormal basis of the same span
         dirs, mom = scaled[:, :3], scaled[:, 3:]

@@ -241,7 +241,7 @@ def norm(a: Array) -> Array:
         if isinstance(squares, np.ndarray):
             return np.vectorize(lambda v: sp.sqrt(v), otypes=[object])(squares)
         return sp.sqrt(squares)
-    return np.linalg.norm(a, axis=-1)
+    return _norms(a)
 
 
 def is_zero(value: Any, *, atol: float) -> Any:

@@ -332,6 +332,28 @@ def _parse_bracket(content: str, text: str) -> tuple[tuple[str, ...], tuple[int,
     return tuple(labels), tuple(kinds)
 
 
+#: The most digits a coefficient of a parsed bracket polynomial may have (numerator or denominator):
+#: far beyond any expansion's, and below Python's limit on converting text to integers.
+_MAX_COEFFICIENT_DIGITS = 1000
+
+
+def _coefficient(digits: str, text: str) -> Fraction:
+    """The coefficient ``p`` or ``p/q`` read by :func:`parse_terms`, refused by name when too long
+    or with a zero denominator."""
+    numerator, _, denominator = digits.partition("/")
+    excerpt = text if len(text) <= 60 else text[:57] + "..."
+    if max(len(numerator), len(denominator)) > _MAX_COEFFICIENT_DIGITS:
+        raise ScrewkitValueError(
+            f"Expected `text` to hold coefficients of at most {_MAX_COEFFICIENT_DIGITS} digits, got one of "
+            f"{max(len(numerator), len(denominator))} digits in {excerpt!r}."
+        )
+    if denominator and int(denominator) == 0:
+        raise ScrewkitValueError(
+            f"Expected `text` to hold coefficients with non-zero denominators, got {digits!r}."
+        )
+    return Fraction(int(numerator), int(denominator or 1))
+
+
 def parse_terms(text: Any) -> list[ParsedTerm]:
     """Parse a sum of (dotted) bracket monomials with integer or rational coefficients.
 
@@ -371,7 +393,7 @@ def parse_terms(text: Any) -> list[ParsedTerm]:
                 f'Expected `text` to be a sum of bracket monomials like "[abcd][efgh] - '
                 f'2[abce][dfgh]", got {text!r} (cannot read it from position {position}).'
             )
-        coefficient = Fraction(match["coefficient"] or 1)
+        coefficient = _coefficient(match["coefficient"] or "1", text)
         if match["sign"] == "-":
             coefficient = -coefficient
         brackets = [

@@ -159,6 +159,16 @@ class Joint:
             raise ScrewkitTypeError(
                 f"Joint {self.name!r}: expected `{flag}` to be True or False, got {value!r}."
             )
+        if bool(self.virtual) != self.type.startswith("v"):
+            raise ScrewkitValueError(
+                f"Joint {self.name!r}: expected `virtual` = True exactly for the virtual types vR, vP, "
+                f"vH, got type {self.type!r} with virtual = {bool(self.virtual)}."
+            )
+        if self.actuated and self.virtual:
+            raise ScrewkitValueError(
+                f"Joint {self.name!r}: expected a virtual joint (a member of an equivalent chain, "
+                "which no motor drives) not to be actuated, got actuated = True."
+            )
         if self.actuated and rows.shape[0] != 1:
             raise ScrewkitValueError(
                 f"Joint {self.name!r}: only one-degree-of-freedom joints can be actuated, "
@@ -210,19 +220,30 @@ class Joint:
         -------
         Joint
 
+        Raises
+        ------
+        ScrewkitTypeError
+            For data that is not a dict, or flags that are not booleans.
+        ScrewkitValueError
+            For missing fields or screws that are not numbers (texts are not evaluated).
+
         Examples
         --------
         >>> joint = revolute("R1", [0, 0, 1], [1, 0, 0])
         >>> Joint.from_dict(joint.to_dict()).screws
         array([[ 0.,  0.,  1.,  0., -1.,  0.]])
         """
+        if not isinstance(data, dict):
+            raise ScrewkitTypeError(
+                f"Expected `data` to be a dict of joint fields, got {type(data).__name__}."
+            )
         missing = {"name", "type", "screws"} - set(data)
         if missing:
             raise ScrewkitValueError(
                 f"Expected joint data with fields {sorted(missing)}, got {sorted(data)}."
             )
-        try:
-            screws = np.array(data["screws"], dtype=float)
+        try:  # numbers only: a text (a symbolic joint's, or "1") is not evaluated
+            screws = B.as_array(data["screws"], "screws", (6,), symbolic=False)
         except (TypeError, ValueError) as err:
             raise ScrewkitValueError(
                 f"Joint {data['name']!r}: expected numeric screws, got {data['screws']!r} "
@@ -232,8 +253,8 @@ class Joint:
             name=data["name"],
             type=data["type"],
             screws=screws,
-            actuated=bool(data.get("actuated", False)),
-            virtual=bool(data.get("virtual", False)),
+            actuated=data.get("actuated", False),
+            virtual=data.get("virtual", False),
             geometry=dict(data.get("geometry", {})),
         )
 

@@ -15,6 +15,7 @@ Examples
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 from typing import Any
 
@@ -22,8 +23,8 @@ import numpy as np
 
 from ..algebra import backend as B
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
-from .joints import Joint
-from .twistgraph import check_twist_graph, graph_anchor, twist_graph
+from .joints import JOINT_TYPES, Joint
+from .twistgraph import check_link_name, check_twist_graph, graph_anchor, twist_graph
 
 __all__ = ["MAX_SCREW_MAGNITUDE", "JointSpec", "JointTable"]
 
@@ -65,6 +66,33 @@ class JointSpec:
     child: Any
     dof: int
     actuated: bool = False
+
+
+@functools.lru_cache(maxsize=256)
+def _check_specs(specs: tuple[JointSpec, ...], types: tuple[tuple[type, ...], ...]) -> None:
+    """Refuse joints a twist graph would refuse (names, types, links, flags), once per structure."""
+    names: set[str] = set()
+    for spec in specs:
+        if not isinstance(spec.name, str) or not spec.name:
+            raise ScrewkitTypeError(f"Expected joint names to be non-empty strings, got {spec.name!r}.")
+        if spec.name in names:
+            raise ScrewkitValueError(f"Duplicate joint name {spec.name!r}: joint names must be unique.")
+        names.add(spec.name)
+        if spec.type not in JOINT_TYPES:
+            raise ScrewkitValueError(
+                f"Joint {spec.name!r}: expected `type` to be one of {sorted(JOINT_TYPES)}, got {spec.type!r}."
+            )
+        check_link_name(spec.parent, f"the parent link of joint {spec.name!r}")
+        check_link_name(spec.child, f"the child link of joint {spec.name!r}")
+        if not isinstance(spec.actuated, bool | np.bool_):
+            raise ScrewkitTypeError(
+                f"Joint {spec.name!r}: expected `actuated` to be True or False, got {spec.actuated!r}."
+            )
+        if spec.actuated and (spec.dof != 1 or spec.type.startswith("v")):
+            raise ScrewkitValueError(
+                f"Joint {spec.name!r}: expected an actuated joint to be a one-freedom joint that is not "
+                f"virtual, got a {spec.type} joint with {spec.dof} freedom(s)."
+            )
 
 
 #: Largest screw coordinate a :class:`JointTable` takes (a point 1e100 length units away): beyond it
@@ -113,15 +141,30 @@ class JointTable:
     mobility: int | None = None
 
     def __post_init__(self) -> None:
+        check_link_name(self.base, "the table's base link")
+        check_link_name(self.platform, "the table's platform link")
+        if not (isinstance(self.specs, tuple) and all(isinstance(spec, JointSpec) for spec in self.specs)):
+            raise ScrewkitTypeError(f"Expected `specs` to be a tuple of JointSpec, got {self.specs!r}.")
+        # the flags' and links' types join the key: JointSpec(actuated=0) == JointSpec(actuated=False)
+        types = tuple((type(s.actuated), type(s.parent), type(s.child)) for s in self.specs)
+        try:
+            hash(self.specs)
+        except TypeError:  # an unhashable link: checked (and refused) without the cache
+            _check_specs.__wrapped__(self.specs, types)
+        _check_specs(self.specs, types)
         rows = sum(spec.dof for spec in self.specs)
         _refuse_symbolic(self.screws)
         given = self.screws
         owned = isinstance(given, np.ndarray) and given.dtype == float and given.base is None
         # a read-only float array owning its data (another table's, or from_rows') is kept as is
-        screws = given if owned and not given.flags.writeable else np.array(given, dtype=float)
+        screws = given if owned and not given.flags.writeable else B.as_array(given, "screws")
         if screws.ndim < 2 or screws.shape[-2:] != (rows, 6):
             raise ScrewkitValueError(
                 f"Expected `screws` of shape (..., {rows}, 6) for the table's joints, got {screws.shape}."
+            )
+        if screws.size == 0 and rows:  # an empty batch: the posed path refuses it too
+            raise ScrewkitValueError(
+                f"Expected `screws` to hold at least one configuration, got batch shape {screws.shape[:-2]}."
             )
         largest = np.maximum(screws.max(), -screws.min()) if screws.size else 0.0  # NaN or inf propagate
         if not np.isfinite(largest):
@@ -187,11 +230,18 @@ class JointTable:
         >>> JointTable.from_rows("B", "E", [("B", "E", "R", "R", [[0, 0, 1.0, 0, 0, 0]], False)]).specs[0]
         JointSpec(name='R', type='R', parent='B', child='E', dof=1, actuated=False)
         """
+        for row in rows:
+            if not (isinstance(row, tuple | list) and len(row) == 6):
+                raise ScrewkitTypeError(
+                    f"Expected `rows` of (parent, child, name, type, screws, actuated), got {row!r}."
+                )
         _refuse_symbolic(*(screws for *_, screws, _ in rows))
-        arrays = [np.asarray(screws, dtype=float) for *_, screws, _ in rows]
+        arrays = [
+            B.as_array(screws, f"screws of joint {name!r}", (None, 6)) for _, _, name, _, screws, _ in rows
+        ]
         batch = np.broadcast_shapes(*(a.shape[:-2] for a in arrays)) if arrays else ()
         specs = tuple(
-            JointSpec(name, kind, parent, child, array.shape[-2], bool(actuated))
+            JointSpec(name, kind, parent, child, array.shape[-2], actuated)
             for (parent, child, name, kind, _, actuated), array in zip(rows, arrays, strict=True)
         )
         stacked = (
@@ -282,7 +332,7 @@ class JointTable:
 
         Examples
         --------
-        >>> table = JointTable.from_rows("B", "E", [("B", "E", "R", "R", [[0, 0, 1.0, 0, 0, 0]], 0)])
+        >>> table = JointTable.from_rows("B", "E", [("B", "E", "R", "R", [[0, 0, 1.0, 0, 0, 0]], False)])
         >>> table.joint_screws("R")
         array([[0., 0., 1., 0., 0., 0.]])
         """
@@ -312,7 +362,7 @@ class JointTable:
 
         Examples
         --------
-        >>> table = JointTable.from_rows("B", "E", [("B", "E", "R", "R", [[0, 0, 1.0, 0, 0, 0]], 0)])
+        >>> table = JointTable.from_rows("B", "E", [("B", "E", "R", "R", [[0, 0, 1.0, 0, 0, 0]], False)])
         >>> sorted(table.graph().edges(keys=True))
         [('B', 'E', 'R')]
         """

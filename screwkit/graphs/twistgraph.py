@@ -38,6 +38,7 @@ from .joints import Joint
 
 __all__ = [
     "add_joint",
+    "check_link_name",
     "check_twist_graph",
     "from_data",
     "graph_anchor",
@@ -47,6 +48,48 @@ __all__ = [
 ]
 
 Array = np.ndarray
+
+
+def check_link_name(value: Any, what: str) -> None:
+    """Refuse a value that cannot name a link: a link name is any hashable value but None, a
+    boolean (``True`` would be the link ``1``) or a float NaN (never equal to itself). Strings are
+    the names files and reports use; integers and tuples work too.
+
+    Parameters
+    ----------
+    value : object
+        The candidate link name.
+    what : str
+        What it is, for the message (e.g. "the base link", "the parent of joint 'R'").
+
+    Raises
+    ------
+    TwistGraphError
+        Naming ``what``, the rule and the value given.
+
+    Examples
+    --------
+    >>> check_link_name("ground", "the base link"), check_link_name(("leg", 1), "a link")
+    (None, None)
+    >>> check_link_name(["B"], "the base link")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    screwkit.exceptions.TwistGraphError: Expected the base link to be a hashable ..., got list ['B'].
+    """
+    try:
+        hash(value)
+        usable = not (
+            value is None
+            or isinstance(value, bool | np.bool_)
+            or (isinstance(value, float | np.floating) and value != value)
+        )
+    except TypeError:  # unhashable: a list, a dict, an array
+        usable = False
+    if not usable:
+        raise TwistGraphError(
+            f"Expected {what} to be a hashable link name (a str, an int, a tuple) other than None, a "
+            f"boolean or NaN, got {type(value).__name__} {value!r}."
+        )
 
 
 def twist_graph(
@@ -71,6 +114,13 @@ def twist_graph(
     -------
     networkx.MultiDiGraph
 
+    Raises
+    ------
+    TwistGraphError
+        For a link that is not a link name (:func:`check_link_name`), ``joints`` that are not
+        ``(parent, child, Joint)`` triples, or a graph that breaks the schema
+        (:func:`check_twist_graph`).
+
     Examples
     --------
     >>> from screwkit.graphs.joints import revolute
@@ -78,9 +128,16 @@ def twist_graph(
     >>> G.graph["base"], list(G.edges(keys=True))
     ('B', [('B', 'E', 'R')])
     """
+    check_link_name(base, "the base link")
+    check_link_name(platform, "the platform link")
     graph = nx.MultiDiGraph(base=base, platform=platform)
     if dof is not None:
         graph.graph["dof"] = dof
+    if isinstance(joints, str | bytes) or not isinstance(joints, Iterable):
+        raise TwistGraphError(
+            "Expected `joints` to be an iterable of (parent, child, Joint) triples, got "
+            f"{type(joints).__name__}."
+        )
     for item in joints:
         if not (isinstance(item, tuple) and len(item) == 3):
             raise TwistGraphError(f"Expected joints as (parent, child, Joint) triples, got {item!r}.")
@@ -104,7 +161,8 @@ def add_joint(graph: nx.MultiDiGraph, parent: Any, child: Any, joint: Joint) -> 
     Raises
     ------
     TwistGraphError
-        If the value is not a Joint, or a joint of that name exists.
+        If the value is not a Joint, a link is not a link name (:func:`check_link_name`), or a
+        joint of that name exists.
 
     Examples
     --------
@@ -116,6 +174,8 @@ def add_joint(graph: nx.MultiDiGraph, parent: Any, child: Any, joint: Joint) -> 
     """
     if not isinstance(joint, Joint):
         raise TwistGraphError(f"Edge {parent!r} → {child!r}: expected a Joint, got {type(joint).__name__}.")
+    check_link_name(parent, f"the parent link of joint {joint.name!r}")
+    check_link_name(child, f"the child link of joint {joint.name!r}")
     if any(key == joint.name for _, _, key in graph.edges(keys=True)):
         raise TwistGraphError(f"Duplicate joint name {joint.name!r}: joint names must be unique.")
     if parent == child:
@@ -150,12 +210,15 @@ def check_twist_graph(graph: Any, *, joint_key: str = "joint") -> None:
     for role, meaning in (("base", "the fixed link"), ("platform", "the end effector")):
         if role not in graph.graph:
             raise TwistGraphError(f"Expected graph attribute {role!r} naming {meaning}, got none.")
+        check_link_name(graph.graph[role], f"graph attribute {role!r}")
         if graph.graph[role] not in graph:
             raise TwistGraphError(
                 f"Expected the {role} link {graph.graph[role]!r} to be a node of the graph, got no such node."
             )
     if graph.graph["base"] == graph.graph["platform"]:
         raise TwistGraphError(f"Expected base and platform to differ, got {graph.graph['base']!r} for both.")
+    for node in graph:
+        check_link_name(node, "every node of the graph")
     names: dict[str, tuple[Any, Any]] = {}
     for u, v, key, data in graph.edges(keys=True, data=True):
         joint = data.get(joint_key)

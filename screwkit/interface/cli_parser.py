@@ -17,6 +17,9 @@ from ._cli_io import UsageError, pose_coordinates
 
 __all__ = ["get_parser"]
 
+#: Values per map axis given as ``LO HI`` when ``--grid`` is not given.
+_MAP_GRID = 50
+
 
 #: What the command line takes for a negative number: any decimal form ``float`` reads after a minus
 #: sign (argparse's own pattern misses exponents, so ``--pose 0 0 -7.5e2 0`` read ``-7.5e2`` as an
@@ -27,16 +30,76 @@ _NEGATIVE_NUMBER = re.compile(
 )
 
 
+class _Once(argparse.Action):
+    """The ``store`` action of every option with a value, refusing the option given twice (argparse
+    keeps the last and drops the first silently) and recording which options were given, so that
+    :func:`_refuse_what_does_not_apply` can tell a given option from its default."""
+
+    def __call__(self, parser: argparse.ArgumentParser, namespace: argparse.Namespace, values: Any,
+                 option_string: str | None = None) -> None:
+        given = vars(namespace).setdefault(_GIVEN, set())
+        if self.dest in given:
+            parser.error(f"{option_string} given twice; give it once")
+        given.add(self.dest)
+        setattr(namespace, self.dest, values)
+
+
+#: The namespace attribute naming the options given on the command line (removed after the checks).
+_GIVEN = "_given_options"
+
+
 class _Parser(argparse.ArgumentParser):
-    """argparse with one-line errors (the usage is in ``--help``) and negative numbers in any
-    decimal form."""
+    """argparse with one-line errors (the usage is in ``--help``), negative numbers in any
+    decimal form, and options with a value given at most once."""
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         super().__init__(*args, **kwargs)
         self._negative_number_matcher = _NEGATIVE_NUMBER
+        self.register("action", None, _Once)  # the default action (argparse registers None and "store")
+        self.register("action", "store", _Once)
 
     def error(self, message: str) -> NoReturn:
         raise UsageError(f"{self.prog}: error: {message} (see --help)")
+
+
+class _CommandParser(_Parser):
+    """The top-level parser: after parsing, options that do not apply to the subcommand's mode are
+    refused (:func:`_refuse_what_does_not_apply`), never ignored."""
+
+    def parse_known_args(self, args: Any = None, namespace: Any = None) -> Any:
+        parsed, rest = super().parse_known_args(args, namespace)
+        given: set[str] = getattr(parsed, _GIVEN, set())
+        if hasattr(parsed, _GIVEN):
+            delattr(parsed, _GIVEN)
+        _refuse_what_does_not_apply(parsed, given)
+        return parsed, rest
+
+
+def _refuse_what_does_not_apply(args: argparse.Namespace, given: set[str]) -> None:
+    """Refuse an option the subcommand's mode would ignore, naming it and the mode; fill the
+    defaults that depend on the mode.
+
+    ``screw``: ``--point`` belongs to ``--revolute`` (a prismatic direction or Plücker coordinates
+    carry no point). ``map``: ``--grid`` sets N for the axes given as ``LO HI``; with every axis
+    given as ``LO HI N`` (or none) it would set nothing. (``analyze`` and ``graph`` refuse
+    ``--pose`` for a snapshot and ``--latex`` with ``--no-superbracket`` once the file is read.)
+    """
+    command = getattr(args, "command", None)
+    if command == "screw" and args.point is not None and args.revolute is None:
+        mode = "--prismatic" if args.prismatic is not None else "--plucker"
+        raise UsageError(
+            f"screwkit screw: error: --point applies to --revolute only; {mode} carries no point "
+            "(drop --point, or give the screw with --revolute)"
+        )
+    if command == "map":
+        ranges = [values for values in (getattr(args, name) for name in pose_coordinates()) if values]
+        if "grid" in given and not any(len(values) == 2 for values in ranges):
+            raise UsageError(
+                "screwkit map: error: --grid sets N for the axes given as LO HI, and no axis is (each "
+                "gives its N as LO HI N, or is fixed); drop --grid"
+            )
+        if args.grid is None:
+            args.grid = _MAP_GRID
 
 
 
@@ -54,7 +117,7 @@ def get_parser() -> argparse.ArgumentParser:
     >>> get_parser().prog
     'screwkit'
     """
-    parser = _Parser(
+    parser = _CommandParser(
         prog="screwkit",
         description="Find and explain the singularities of parallel robots with screw theory "
         "and Grassmann-Cayley algebra.",
@@ -205,7 +268,8 @@ def _add_workspace_commands(commands: Any) -> None:
             help=f"{name}: LO HI [N] for an axis, or one value",
         )
     mapping.add_argument(
-        "--grid", type=int, default=50, metavar="N", help="values per axis given as LO HI (default 50)"
+        "--grid", type=int, default=None, metavar="N",
+        help=f"values per axis given as LO HI (default {_MAP_GRID})",
     )
     mapping.add_argument("--out", required=True, metavar="FILE", help="FILE.png, FILE.npz or FILE.json")
     mapping.add_argument(

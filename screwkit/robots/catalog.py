@@ -73,6 +73,7 @@ from .toml_fields import (
     _strings,
     _table,
     _vector,
+    file_kind,
     load_toml,
 )
 
@@ -195,14 +196,18 @@ def mechanism_from_mapping(data: Mapping[str, Any], *, source: str = "<mapping>"
     """
     if not isinstance(data, Mapping):
         raise CatalogError(f"{source}: expected a mapping of TOML tables, got {type(data).__name__}.")
+    kind = file_kind(data)  # first: a file of another kind fails on its kind, not on a field it has
+    if kind == "snapshot":
+        message = "expected 'family' here, got 'snapshot'; a snapshot file loads with load_snapshot"
+        raise _error(source, "[mechanism]", f"field `kind`: {message}.")
+    if kind not in ("family", None):
+        expected = "'family' (a catalog entry) or 'snapshot' (a snapshot file)"
+        raise _error(source, "[mechanism]", f"field `kind`: expected {expected}, got {kind!r}.")
     _check_keys(data, ("mechanism", "parameters", "pose", "workspace", "expected"), source, "top level")
     header = _table(data, "mechanism", source)
     _check_keys(
         header, ("kind", "name", "family", "length_unit", "sources", "description"), source, "[mechanism]"
     )
-    kind = header.get("kind", "family")
-    if kind != "family":
-        raise _error(source, "[mechanism]", f"field `kind`: expected 'family' here, got {kind!r}.")
     name = _name(header, "name", source, "[mechanism]")
     family_name = _string(header, "family", source, "[mechanism]")
     known = families()

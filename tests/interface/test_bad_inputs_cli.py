@@ -169,7 +169,7 @@ TRIAL_CASES = [
     (header(dof=3.5), r"\[mechanism\]: field `dof`: expected an integer in 0\.\.6, got 3\.5"),
     (header(dof=10**30), r"field `dof`: expected an integer in 0\.\.6, got 1000000000000000000000000000000"),
     (header(length_unit="\u03bcm"), r"field `length_unit`: expected one of \['km', 'm', .*got 'μm'"),
-    (header(kind="Snapshot"), r"top level: unknown field `joints`"),
+    (header(kind="Snapshot"), r"\[mechanism\]: field `kind`: expected 'family' \(a catalog entry\) or 'snapshot' \(a snapshot file\), got 'Snapshot'"),
     (lambda d: d["joints"].__setitem__(0, {"name": "U", "type": "U", "parent": "base", "child": "cylinder1",
                                            "first_axis": [0, 0, 1.0], "second_axis": [1e-17, 0, 1.0], "center": [0, 0, 0.0]}),
      r"joint 'U': Universal joint 'U': expected two non-parallel axes, got parallel axes"),
