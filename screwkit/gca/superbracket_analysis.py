@@ -63,7 +63,9 @@ class SuperbracketAnalysis:
         Per condition: True when it takes one non-zero magnitude (within :data:`INCIDENCE_RTOL`) on
         every generic sample and at the pose: a structural factor of this mechanism that never vanishes
         (e.g. the planar mechanisms' constraint couples and force, the same lines at every pose),
-        reported as such rather than as a singularity condition.
+        reported as such rather than as a singularity condition. The JSON field
+        ``never_vanishes`` of each condition (:meth:`to_dict`), the report's text and the LaTeX
+        (:meth:`to_latex`) all say so.
     """
 
     diagram: WrenchDiagram
@@ -74,6 +76,25 @@ class SuperbracketAnalysis:
     collinear: tuple[str, ...] = ()
     vanishing: tuple[bool, ...] = ()
     constant: tuple[bool, ...] = ()
+
+    def to_latex(self) -> str:
+        """The factored superbracket and its conditions as a LaTeX ``align*`` block, the factors
+        that never vanish said so (:func:`screwkit.gca.conditions.latex`).
+
+        Returns
+        -------
+        str
+
+        Examples
+        --------
+        >>> diagram, sampler = load_mechanism("planar_3rrp").wrench_diagram()
+        >>> rows = superbracket_analysis(diagram, sampler).to_latex().splitlines()
+        >>> print(rows[2].split("&")[0])
+        \\text{never vanishes}:\\quad [hijg] \\neq 0
+        """
+        from .conditions import latex
+
+        return latex(self.simplification.factored, self.conditions, self.diagram.line_text(), self.constant)
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready summary.
