@@ -375,7 +375,7 @@ def latex(
         The superbracket's argument, e.g. ``"[ab, cd, ef, gh, ij, kj]"``, printed on the left.
     never_vanishes : sequence of bool, optional
         Per condition: True for a factor that does not vanish on the mechanism's workspace
-        (:attr:`screwkit.gca.superbracket_analysis.SuperbracketAnalysis.never_vanishes`), written
+        (:attr:`screwkit.gca.superbracket_analysis.SuperbracketAnalysis.constant`), written
         ``\\text{never vanishes}: factor \\neq 0`` instead of a labelled condition.
 
     Returns

@@ -140,8 +140,14 @@ def generic_reference(
         except ScrewkitError as err:  # e.g. a joint whose centre is not defined
             first = first or (str(err),)
             continue
-        if not candidate.degenerate:
-            return candidate, ()
+        if not candidate.degenerate:  # its directions orient the points at infinity from now on
+            points = tuple(
+                replace(p, orientation=tuple(float(x) for x in candidate.coordinates[p.label][:3]))
+                if p.at_infinity
+                else p
+                for p in candidate.points
+            )
+            return replace(candidate, points=points), ()
         first = first or candidate.degenerate
     if not analyses:
         return None, ("no generic configuration of the mechanism could be reached to choose its diagram",)
