@@ -482,4 +482,3 @@ def _recipe(key: tuple[str, ...], batch: _Batch, cache: dict[tuple[str, ...], Ar
     value = np.where(np.isfinite(value).all(axis=-1, keepdims=True), value, np.nan)
     cache[key] = value
     return value
-

@@ -437,12 +437,19 @@ class AnalysisReport:
                 f"  monomials: 24 in the expansion, {len(simplification.survivors)} not structurally zero"
             )
             out.append(f"  {self.superbracket_note}")
-            out += ["", "conditions"]
             result = self.superbracket
-            for condition, label, value, vanishes, constant in zip(
+            if result.representation:
+                out.append(
+                    "  the diagram does not hold at this pose ("
+                    + "; ".join(result.representation)
+                    + "): the factored form is the design's, found at generic configurations, and each "
+                    "condition is evaluated where its points exist"
+                )
+            out += ["", "conditions"]
+            for index, (condition, label, value, vanishes, constant) in enumerate(zip(
                 result.conditions, result.labels, result.values, result.vanishing, result.constant,
                 strict=True,
-            ):
+            )):
                 if constant:
                     out.append(
                         f"  {condition.factor} never vanishes on this mechanism: the same value on "
@@ -452,9 +459,12 @@ class AnalysisReport:
                     out.append(f"    vector form: {condition.expression}   (here: {value:.6g})")
                     continue
                 flag = "  <- vanishes at this pose" if vanishes else ""
+                if vanishes and result.representation:  # the ranks decide there, not the factor
+                    flag += " (where the diagram does not hold: the verdict below decides)"
                 out.append(f"  {label} singularity when {condition.factor} = 0{flag}")
                 out.append(f"    {condition.statement}")
-                out.append(f"    vector form: {condition.expression} = 0   (here: {value:.6g})")
+                here = f"{value:.6g}" if math.isfinite(value) else "not defined: " + result.undefined[index]
+                out.append(f"    vector form: {condition.expression} = 0   (here: {here})")
         out += ["", "verdict", *("  " + line for line in str(self.verdict).splitlines())]
         grassmann, _ = self.grassmann()
         if grassmann is not None:
