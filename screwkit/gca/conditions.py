@@ -377,7 +377,12 @@ def conditions(
     return tuple(found)
 
 
-def latex(factored: FactoredForm, found: Sequence[Condition], lines: str = "") -> str:
+def latex(
+    factored: FactoredForm,
+    found: Sequence[Condition],
+    lines: str = "",
+    never_vanishes: Sequence[bool] | None = None,
+) -> str:
     """The factored superbracket and its conditions as one LaTeX ``align*`` block (amsmath).
 
     Parameters
@@ -387,6 +392,10 @@ def latex(factored: FactoredForm, found: Sequence[Condition], lines: str = "") -
         Its conditions (:func:`conditions`).
     lines : str, default ""
         The superbracket's argument, e.g. ``"[ab, cd, ef, gh, ij, kj]"``, printed on the left.
+    never_vanishes : sequence of bool, optional
+        Per condition: True for a factor that does not vanish on the mechanism's workspace
+        (:attr:`screwkit.gca.superbracket_analysis.SuperbracketAnalysis.constant`), written
+        ``\\text{never vanishes}: factor \\neq 0`` instead of a labelled condition.
 
     Returns
     -------
@@ -404,7 +413,14 @@ def latex(factored: FactoredForm, found: Sequence[Condition], lines: str = "") -
     """
     left = lines.replace(", ", ",\\,")
     rows = [rf"{left} &= {factored.to_latex()}" + " \\\\"]
-    for c in found:
+    flags = [False] * len(found) if never_vanishes is None else list(never_vanishes)
+    for c, never in zip(found, flags, strict=True):
+        if never:
+            rows.append(
+                rf"\text{{never vanishes}}:\quad {c.factor_latex().removesuffix(' = 0')} \neq 0 "
+                rf"&\iff {sympy.latex(c.expression)} \neq 0" + " \\\\"
+            )
+            continue
         head = rf"\text{{{c.label}}}:\quad " if c.label else ""
         rows.append(
             rf"{head}{c.factor_latex()} &\iff {c.to_latex()} "

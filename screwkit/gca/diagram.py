@@ -48,7 +48,7 @@ Examples
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -83,12 +83,20 @@ class DiagramPoint:
         ``("normals", branch, branch)`` or ``("foot", line)``.
     at_infinity : bool
     description : str
+    orientation : tuple of float, optional
+        For a point at infinity: its direction at the diagram's reference configuration
+        (:func:`screwkit.gca.diagram_placement.generic_reference`). A direction is a projective
+        point, defined up to sign; the diagram's points are carried with the sign that makes a
+        positive dot product with this one, so a condition's value is a continuous function of the
+        pose and changes sign only at its zeros (where the direction stays within 90° of the
+        reference's). None: the sign of the first clearly non-zero component.
     """
 
     label: str
     key: tuple[str, ...]
     at_infinity: bool
     description: str
+    orientation: tuple[float, ...] | None = field(default=None, compare=False)
 
 
 @dataclass(frozen=True, eq=False)

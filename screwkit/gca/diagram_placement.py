@@ -26,7 +26,7 @@ from ..core.wrenches import wrench_analysis
 from ..exceptions import DegenerateGeometryError, ScrewkitError, ScrewkitValueError
 from .diagram import INCIDENCE_RTOL, DiagramPoint, WrenchDiagram, require_instance
 from .diagram_lines import lines_at
-from .diagram_points import diagram_points
+from .diagram_points import batch_diagram_points, diagram_points
 from .diagram_recipes import wrench_diagram
 
 __all__ = [
@@ -60,7 +60,8 @@ def diagram_at(reference: WrenchDiagram, analysis: WrenchAnalysis) -> WrenchDiag
     -------
     WrenchDiagram
         The reference's points and lines, with this pose's coordinates, and ``degenerate``
-        reasons where the representation fails here.
+        reasons where the representation fails here (the coordinates are then those of the points
+        that exist here, evaluated on every line of the mechanism).
 
     Examples
     --------
@@ -79,7 +80,10 @@ def diagram_at(reference: WrenchDiagram, analysis: WrenchAnalysis) -> WrenchDiag
             coordinates = diagram_points(reference.points, analysis, lines=lines)
         except DegenerateGeometryError as err:
             problems.append(str(err))
-    if coordinates:  # each line is the join of its two points (the recipes keep their incidences)
+    if problems:  # the points that exist here all the same (the design's conditions use them)
+        found = batch_diagram_points(reference.points, analysis)
+        coordinates = {k: v[0] for k, v in found.items() if np.isfinite(v[0]).all()}
+    else:  # each line is the join of its two points (the recipes keep their incidences)
         scale = float(analysis.length_scale)
         for (first, second), (name, _, wrench, _) in zip(reference.lines, lines, strict=True):
             join = P.join_unchecked(coordinates[first], coordinates[second])
@@ -90,7 +94,6 @@ def diagram_at(reference: WrenchDiagram, analysis: WrenchAnalysis) -> WrenchDiag
     return WrenchDiagram(
         reference.points, reference.lines, reference.line_names, reference.roles, coordinates, tuple(problems)
     )
-
 
 
 #: Generic configurations whose diagrams are tried before a mechanism is said to have none.
@@ -140,8 +143,14 @@ def generic_reference(
         except ScrewkitError as err:  # e.g. a joint whose centre is not defined
             first = first or (str(err),)
             continue
-        if not candidate.degenerate:
-            return candidate, ()
+        if not candidate.degenerate:  # its directions orient the points at infinity from now on
+            points = tuple(
+                replace(p, orientation=tuple(float(x) for x in candidate.coordinates[p.label][:3]))
+                if p.at_infinity
+                else p
+                for p in candidate.points
+            )
+            return replace(candidate, points=points), ()
         first = first or candidate.degenerate
     if not analyses:
         return None, ("no generic configuration of the mechanism could be reached to choose its diagram",)
@@ -321,4 +330,3 @@ def graph_sampler(
         )
 
     return sampler
-

@@ -130,7 +130,17 @@ def batch_diagram_points(
     """
     batch = _Batch.create(analysis, lines)
     cache: dict[tuple[str, ...], Array] = {}
-    return {point.label: _recipe(point.key, batch, cache) for point in points}
+    return {point.label: _oriented(_recipe(point.key, batch, cache), point.orientation) for point in points}
+
+
+def _oriented(value: Array, orientation: tuple[float, ...] | None) -> Array:
+    """Points at infinity ``(n, 4)`` with the sign making a non-negative dot product with the
+    reference direction (:attr:`DiagramPoint.orientation`), unchanged without one."""
+    if orientation is None:
+        return value
+    with np.errstate(invalid="ignore"):
+        flip = value[:, :3] @ np.asarray(orientation, dtype=float) < 0
+    return np.where(flip[:, None], -value, value) + 0.0
 
 
 class _Batch:
@@ -472,4 +482,3 @@ def _recipe(key: tuple[str, ...], batch: _Batch, cache: dict[tuple[str, ...], Ar
     value = np.where(np.isfinite(value).all(axis=-1, keepdims=True), value, np.nan)
     cache[key] = value
     return value
-

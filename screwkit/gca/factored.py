@@ -258,6 +258,29 @@ class FactoredForm:
     substitutions: tuple[tuple[Bracket, Bracket], ...] = ()
     parts: tuple[tuple[DottedSum, int], ...] = ()
 
+    def __post_init__(self) -> None:
+        # Equal brackets written alike (the first one's order), the signs of the permutations in the
+        # coefficient: so ``coefficient × ∏ factor ** multiplicity`` is the form's value (a factor
+        # [bacd] merged into [abcd]² would otherwise lose a sign).
+        first: dict[tuple[str, ...], Bracket] = {}
+        sign = 1
+
+        def alike(bracket: Bracket) -> Bracket:
+            nonlocal sign
+            known = first.setdefault(bracket.sorted_labels, bracket)
+            sign *= bracket.sign * known.sign
+            return known
+
+        common = tuple(alike(b) for b in self.common)
+        rest = self.rest
+        if not self.parts and len(rest.terms) == 1 and not any(any(d) for d in rest.terms[0].dots):
+            term = rest.terms[0]
+            labels = tuple(alike(Bracket(b)).labels for b in term.brackets)
+            rest = DottedSum((DottedMonomial(labels, term.dots, term.coefficient),))
+        object.__setattr__(self, "common", common)
+        object.__setattr__(self, "rest", rest)
+        object.__setattr__(self, "coefficient", sign * self.coefficient)
+
     @property
     def factors(self) -> tuple[Bracket | DottedSum, ...]:
         """The distinct non-constant factors: each common bracket, then the rest unless it is 1
@@ -269,7 +292,8 @@ class FactoredForm:
 
     @property
     def multiplicities(self) -> tuple[int, ...]:
-        """How often each of :attr:`factors` divides the form (2 for a squared factor)."""
+        """How often each of :attr:`factors` divides the form (2 for a squared factor):
+        ``coefficient × ∏ factor ** multiplicity`` is the form's value on any points."""
         return tuple(multiplicity for _, multiplicity in self._powers())
 
     def _powers(self) -> list[tuple[Bracket | DottedSum, int]]:

@@ -12,6 +12,7 @@ Examples
 from __future__ import annotations
 
 import itertools
+import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
@@ -19,7 +20,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..algebra import backend as B
-from ..exceptions import ScrewkitTypeError, ScrewkitValueError
+from ..exceptions import ScrewkitError, ScrewkitTypeError, ScrewkitValueError
 from .diagram import INCIDENCE_RTOL, WrenchDiagram, require_instance
 from .simplify import Simplification, simplify_superbracket
 
@@ -52,18 +53,24 @@ class SuperbracketAnalysis:
         roles of the lines whose points its vector form uses (:func:`screwkit.gca.conditions.label`;
         the evidence is in each condition's ``evidence``).
     values : tuple of float
-        Each condition's vector form at the diagram's pose.
+        Each condition's vector form at the diagram's pose (NaN where one of its points does not
+        exist there: :attr:`undefined`).
     collinear : tuple of str
         Triples of labels found collinear on every sample (declared to the factoring step).
     vanishing : tuple of bool
         Per condition: True when it vanishes at the pose, i.e. its value there is at most
         :data:`VANISHING_RTOL` times its median size on the generic samples (a singular pose keeps
         the factored form of a regular one; these factors are the ones that vanish).
+    undefined : tuple of str
+        Per condition: why it has no value at the pose (a point of the diagram that does not exist
+        there, e.g. on a limb at a serial singularity), or "".
     constant : tuple of bool
         Per condition: True when it takes one non-zero magnitude (within :data:`INCIDENCE_RTOL`) on
         every generic sample and at the pose: a structural factor of this mechanism that never vanishes
         (e.g. the planar mechanisms' constraint couples and force, the same lines at every pose),
-        reported as such rather than as a singularity condition.
+        reported as such rather than as a singularity condition. The JSON field
+        ``never_vanishes`` of each condition (:meth:`to_dict`), the report's text and the LaTeX
+        (:meth:`to_latex`) all say so.
     """
 
     diagram: WrenchDiagram
@@ -74,6 +81,39 @@ class SuperbracketAnalysis:
     collinear: tuple[str, ...] = ()
     vanishing: tuple[bool, ...] = ()
     constant: tuple[bool, ...] = ()
+    undefined: tuple[str, ...] = ()
+
+    @property
+    def representation(self) -> tuple[str, ...]:
+        """Why the diagram's representation does not hold at the pose (its ``degenerate`` reasons):
+        the factored form is still the design's, derived at generic configurations, and every
+        condition whose points exist at the pose is evaluated there (:attr:`undefined` says which
+        are not). Empty at a pose where the representation holds.
+
+        Returns
+        -------
+        tuple of str
+        """
+        return tuple(self.diagram.degenerate)
+
+    def to_latex(self) -> str:
+        """The factored superbracket and its conditions as a LaTeX ``align*`` block, the factors
+        that never vanish said so (:func:`screwkit.gca.conditions.latex`).
+
+        Returns
+        -------
+        str
+
+        Examples
+        --------
+        >>> diagram, sampler = load_mechanism("planar_3rrp").wrench_diagram()
+        >>> rows = superbracket_analysis(diagram, sampler).to_latex().splitlines()
+        >>> print(rows[2].split("&")[0])
+        \\text{never vanishes}:\\quad [hijg] \\neq 0
+        """
+        from .conditions import latex
+
+        return latex(self.simplification.factored, self.conditions, self.diagram.line_text(), self.constant)
 
     def __repr__(self) -> str:
         """One line: the superbracket, its factored form and each condition's label.
@@ -111,17 +151,25 @@ class SuperbracketAnalysis:
         """
         return {
             "superbracket": self.diagram.line_text(),
+            "representation_at_pose": list(self.representation),
             "simplification": self.simplification.to_dict(),
             "conditions": [
                 {
                     **c.to_dict(),
                     "label": label,
-                    "value_at_pose": value,
+                    "value_at_pose": None if math.isnan(value) else value,
+                    "undefined_at_pose": reason,
                     "vanishes_at_pose": vanishes,
                     "never_vanishes": constant,
                 }
-                for c, label, value, vanishes, constant in zip(
-                    self.conditions, self.labels, self.values, self.vanishing, self.constant, strict=True
+                for c, label, value, vanishes, constant, reason in zip(
+                    self.conditions,
+                    self.labels,
+                    self.values,
+                    self.vanishing,
+                    self.constant,
+                    self.undefined,
+                    strict=True,
                 )
             ],
         }
@@ -145,7 +193,7 @@ def superbracket_analysis(
     Parameters
     ----------
     diagram : WrenchDiagram
-        A diagram whose representation holds at its pose.
+        A diagram of the mechanism at the pose (its representation may fail there: ``degenerate``).
     sampler : callable
         ``rng -> {label: point}``: the diagram's recipes at random poses of the same mechanism
         (:meth:`screwkit.robots.mechanism.Mechanism.wrench_diagram`), on which zeros are confirmed.
@@ -163,7 +211,10 @@ def superbracket_analysis(
     Raises
     ------
     ScrewkitValueError
-        If the diagram is degenerate at its pose (its reasons are given).
+        If the diagram is degenerate at its pose and the sampler gives no generic configuration
+        (its reasons are given). A diagram degenerate at its pose alone is factored all the same:
+        the factored form is the design's, and the conditions are evaluated where their points
+        exist (:attr:`SuperbracketAnalysis.undefined`, :attr:`SuperbracketAnalysis.representation`).
 
     Examples
     --------
@@ -175,13 +226,16 @@ def superbracket_analysis(
     require_instance(diagram, WrenchDiagram, "diagram")
     if not callable(sampler):
         raise ScrewkitTypeError(f"Expected `sampler` to be callable, got {type(sampler).__name__}.")
-    if diagram.degenerate:
-        raise ScrewkitValueError(
-            "The wrench diagram is degenerate at this pose, so no factorization is claimed: "
-            + "; ".join(diagram.degenerate)
-        )
     generator = np.random.default_rng(rng)
-    drawn = [_centred(sampler(generator)) for _ in range(2 * n_samples)]
+    try:  # the factored form is the design's: derived at generic configurations, whatever the pose
+        drawn = [_centred(sampler(generator)) for _ in range(2 * n_samples)]
+    except (ScrewkitError, StopIteration, KeyError) as err:
+        if not diagram.degenerate:
+            raise
+        raise ScrewkitValueError(
+            "The wrench diagram is degenerate at this pose and no generic configuration was sampled, "
+            "so no factorization is claimed: " + "; ".join(diagram.degenerate)
+        ) from err
     # the zero tests of the expansion compare brackets of homogeneous points (x, 1) with products of
     # their norms, which is not free of the length unit: they get the samples in units of the
     # diagram's own size (one factor for all, diag(1/L, 1/L, 1/L, 1), which multiplies every bracket,
@@ -217,18 +271,30 @@ def superbracket_analysis(
         roles=diagram.roles,
     )
     labels = tuple(c.label for c in found)
-    values = tuple(float(c.evaluate(_centred(diagram.coordinates))) for c in found)
+    at_pose = _centred(diagram.coordinates)  # the points that exist at the pose
+    missing = [sorted(set(c.vectors) - set(at_pose)) for c in found]
+    values = tuple(
+        float(c.evaluate(at_pose)) if not gone else math.nan for c, gone in zip(found, missing, strict=True)
+    )
+    undefined = tuple(
+        f"the diagram has no point {', '.join(gone)} at this pose" if gone else "" for gone in missing
+    )
     on_samples = [np.array([float(c.evaluate(sample)) for sample in drawn]) for c in found]
     typical = [B.median(np.abs(v)) for v in on_samples]
-    vanishing = tuple(abs(v) <= VANISHING_RTOL * size for v, size in zip(values, typical, strict=True))
+    vanishing = tuple(bool(abs(v) <= VANISHING_RTOL * size) for v, size in zip(values, typical, strict=True))
     # the magnitude: a point at infinity is a direction up to sign, so a structural factor may flip sign
     constant = tuple(
         size > 0
-        and bool(np.all(np.abs(np.abs(np.append(sampled, value)) - size) <= INCIDENCE_RTOL * size))
+        and bool(
+            np.all(
+                np.abs(np.abs(sampled if math.isnan(value) else np.append(sampled, value)) - size)
+                <= INCIDENCE_RTOL * size
+            )
+        )
         for sampled, value, size in zip(on_samples, values, typical, strict=True)
     )
     return SuperbracketAnalysis(
-        diagram, simplification, found, labels, values, collinear, vanishing, constant
+        diagram, simplification, found, labels, values, collinear, vanishing, constant, undefined
     )
 
 

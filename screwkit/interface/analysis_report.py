@@ -18,6 +18,7 @@ Examples
 
 from __future__ import annotations
 
+import math
 from collections import Counter
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
@@ -36,6 +37,7 @@ from ..robots.angles import pose_text
 
 if TYPE_CHECKING:  # the diagram and GCA stack loads when a report is made, not on `import screwkit`
     from ..gca.diagram import WrenchDiagram
+    from ..gca.grassmann import GrassmannClass
     from ..gca.superbracket_analysis import SuperbracketAnalysis
 
 __all__ = ["AnalysisReport", "describe_twist", "describe_wrench"]
@@ -258,6 +260,56 @@ class AnalysisReport:
             "global_order": self.analysis.global_wrenches.order,
         }
 
+    def wrench_lines(self) -> Array:
+        """The platform's wrenches as rows: each leg's constraint wrenches (readable basis), then
+        each limb's actuation wrench (none for a limb at a serial singularity).
+
+        Returns
+        -------
+        numpy.ndarray, shape (n, 6)
+
+        Examples
+        --------
+        >>> from screwkit.interface.report import analyze
+        >>> analyze("h4", superbracket=False).wrench_lines().shape
+        (6, 6)
+        """
+        legs = sorted(self.analysis.compound_legs, key=lambda leg: leg.name)
+        systems = [leg.constraint_wrenches for leg in legs] or [self.analysis.constraint_wrenches]
+        rows = [w for system in systems for w in system.readable_basis()]
+        rows += [limb.actuation_wrench for limb in self.analysis.limbs if limb.actuation_wrench is not None]
+        return np.array(rows, dtype=float).reshape(-1, 6)
+
+    def grassmann(self) -> tuple[GrassmannClass | None, str]:
+        """The Grassmann-geometry class of the wrench lines (:meth:`wrench_lines`) at a singular
+        pose (:func:`screwkit.gca.grassmann.grassmann_class`, at the analysis' rank tolerance).
+
+        Returns
+        -------
+        found : GrassmannClass or None
+            None at a regular pose, or when a wrench is not a line (a non-zero finite pitch).
+        note : str
+            Why there is no class, or "" when there is one.
+
+        Examples
+        --------
+        >>> from screwkit.interface.report import analyze
+        >>> analyze("h4", superbracket=False).grassmann()
+        (None, 'regular pose: the wrench lines are independent')
+        """
+        from ..exceptions import ScrewkitValueError
+        from ..gca.grassmann import grassmann_class
+
+        if not self.verdict.is_singular:
+            return None, "regular pose: the wrench lines are independent"
+        rows = self.wrench_lines()
+        if not len(rows):
+            return None, "no wrench acts on the platform"
+        try:
+            return grassmann_class(rows, rtol=self.analysis.rtol), ""
+        except ScrewkitValueError as err:
+            return None, f"no Grassmann class: {err}"
+
     def jacobian_summary(self) -> dict[str, Any] | None:
         """The Gosselin–Angeles type, ``det A``, ``det B``, closeness, ``A``, ``B`` (None: snapshot).
 
@@ -304,6 +356,7 @@ class AnalysisReport:
         dict
             ``mechanism``, ``pose``, ``twist_graph`` (:meth:`graph_summary`), ``wrenches``
             (:meth:`wrenches`), ``diagram``, ``superbracket``, ``superbracket_note``, ``verdict``,
+            ``grassmann`` (the wrench lines' Grassmann class at a singular pose, else None),
             ``jacobians`` (:meth:`jacobian_summary`) and ``transmission``: the output of
             ``screwkit analyze --json``.
 
@@ -313,6 +366,7 @@ class AnalysisReport:
         >>> list(analyze("v4", superbracket=False).to_dict())[:3]
         ['mechanism', 'pose', 'twist_graph']
         """
+        grassmann, _ = self.grassmann()
         return {
             "mechanism": {"name": self.name, "source": self.source, "length_unit": self.length_unit},
             "pose": None
@@ -324,6 +378,7 @@ class AnalysisReport:
             "superbracket": None if self.superbracket is None else self.superbracket.to_dict(),
             "superbracket_note": self.superbracket_note,
             "verdict": self.verdict.to_dict(),
+            "grassmann": None if grassmann is None else grassmann.to_dict(),
             "jacobians": self.jacobian_summary(),
             "transmission": self.transmission,
         }
@@ -380,12 +435,19 @@ class AnalysisReport:
                 f"  monomials: 24 in the expansion, {len(simplification.survivors)} not structurally zero"
             )
             out.append(f"  {self.superbracket_note}")
-            out += ["", "conditions"]
             result = self.superbracket
-            for condition, label, value, vanishes, constant in zip(
+            if result.representation:
+                out.append(
+                    "  the diagram does not hold at this pose ("
+                    + "; ".join(result.representation)
+                    + "): the factored form is the design's, found at generic configurations, and each "
+                    "condition is evaluated where its points exist"
+                )
+            out += ["", "conditions"]
+            for index, (condition, label, value, vanishes, constant) in enumerate(zip(
                 result.conditions, result.labels, result.values, result.vanishing, result.constant,
                 strict=True,
-            ):
+            )):
                 if constant:
                     out.append(
                         f"  {condition.factor} never vanishes on this mechanism: the same value on "
@@ -395,10 +457,16 @@ class AnalysisReport:
                     out.append(f"    vector form: {condition.expression}   (here: {value:.6g})")
                     continue
                 flag = "  <- vanishes at this pose" if vanishes else ""
+                if vanishes and result.representation:  # the ranks decide there, not the factor
+                    flag += " (where the diagram does not hold: the verdict below decides)"
                 out.append(f"  {label} singularity when {condition.factor} = 0{flag}")
                 out.append(f"    {condition.statement}")
-                out.append(f"    vector form: {condition.expression} = 0   (here: {value:.6g})")
+                here = f"{value:.6g}" if math.isfinite(value) else "not defined: " + result.undefined[index]
+                out.append(f"    vector form: {condition.expression} = 0   (here: {here})")
         out += ["", "verdict", *("  " + line for line in str(self.verdict).splitlines())]
+        grassmann, _ = self.grassmann()
+        if grassmann is not None:
+            out += ["", *str(grassmann).splitlines()]
         if self.pose is not None or self.jacobians is not None:
             out += ["", *self._jacobian_lines()]
         if self.transmission is not None:

@@ -89,10 +89,7 @@ def _latex(report: Any) -> str:
     """The superbracket's conditions in LaTeX, or a LaTeX comment saying why there are none."""
     if report.superbracket is None:
         return f"% no superbracket conditions: {report.superbracket_note}"
-    from ..gca.conditions import latex
-
-    result = report.superbracket
-    return latex(result.simplification.factored, result.conditions, result.diagram.line_text())
+    return str(report.superbracket.to_latex())
 
 
 

@@ -340,10 +340,8 @@ def _finish(
     progress: Callable[[str], None],
 ) -> AnalysisReport:
     result = None
-    if diagram.degenerate:
-        note = "no factorization: " + "; ".join(diagram.degenerate)
-    elif sampler is None:
-        note = "not computed"
+    if sampler is None:  # not asked for, or the mechanism has no diagram (the reasons)
+        note = "no factorization: " + "; ".join(diagram.degenerate) if diagram.degenerate else "not computed"
     else:
         try:
             from ..gca.superbracket_analysis import superbracket_analysis

@@ -124,7 +124,11 @@ def test_h4_factors_vanish_exactly_where_the_labels_say(h4_result, rng):
         assert classify(graph).labels == () and min(values) > 1e-6
 
 
-def test_h4_degenerate_representation_is_reported_not_factored():
+def _no_generic_configuration(rng):
+    raise ScrewkitValueError("no generic pose gives this mechanism a wrench diagram to sample.")
+
+
+def test_h4_degenerate_representation_is_reported_and_still_factored():
     # paper 002 case (b), found in test_h4: s12 ∥ z, where the leg L_I has two constraint couples
     # and the limb of A1 is at a serial singularity: the generic diagram has no lines there
     h4 = load_mechanism("h4")
@@ -134,9 +138,17 @@ def test_h4_degenerate_representation_is_reported_not_factored():
     assert any("the limb of A1 is at a serial singularity here" in reason for reason in diagram.degenerate)
     assert any("leg through A1, A4 is not one line here" in reason for reason in diagram.degenerate)
     with pytest.raises(ScrewkitValueError, match="The wrench diagram is degenerate at this pose"):
-        superbracket_analysis(diagram, lambda rng: {})
+        superbracket_analysis(diagram, _no_generic_configuration)
+    # the factored form is the design's (issue 21 item 1): the report still gives it, evaluates the
+    # factor whose points exist and says which point the other lacks (b, on the limb of A1)
     report = analyze("h4", case_b_pose())
-    assert report.superbracket is None and "serial singularity here" in report.superbracket_note
+    result = report.superbracket
+    assert str(result.simplification.factored) == "-[gikj][a b d ḟ][c g ḣ j]"
+    assert any("serial singularity here" in reason for reason in result.representation)
+    assert np.isnan(result.values[1]) and "no point b" in result.undefined[1]
+    assert np.isfinite(result.values[0]) and result.undefined[0] == ""
+    assert "the diagram does not hold at this pose" in str(report)
+    assert report.to_dict()["superbracket"]["conditions"][1]["value_at_pose"] is None
     # the ranks decide what the pose is: an actuation and serial singularity, not a constraint one
     assert report.verdict.labels == ("actuation", "serial") and report.verdict.constraint_order == 2
 

@@ -5,8 +5,8 @@ determinants, an exact integer 6×6 determinant, a literal implementation of the
 definition, hand derivations written out in the test) or re-derived from gca.md / paper 002.
 """
 
-
 import numpy as np
+import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
@@ -90,3 +90,29 @@ def test_collect_factors_leaves_an_irreducible_sum_whole():
     poly = superbracket_expansion(["ab", "cd", "ef", "gh", "ij", "kl"])  # the general 6-6 platform
     f = collect_factors(poly)
     assert f.parts == () and len(f.factors) == 1 and f.expand() == poly
+
+
+@given(
+    orders=st.lists(st.permutations("abcd"), min_size=2, max_size=3),
+    negate=st.booleans(),
+)
+def test_coefficient_times_factors_is_the_value(orders, negate):
+    """coefficient × ∏ factor ** multiplicity equals the polynomial on random points, also when a
+    bracket divides it several times written in different orders ([abcd][bacd] = −[abcd]²; the
+    factors once merged them and lost the sign)."""
+    from screwkit.gca import BracketMonomial
+
+    head = BracketMonomial([Bracket("".join(o)) for o in orders], -1 if negate else 1)
+    poly = head * (Bracket("efgh") - Bracket("efgi"))
+    form = collect_factors(poly, finite="abcdefghi", infinite="", collinear=[])
+    points = {k: v for k, v in zip("abcdefghi", np.random.default_rng(7).normal(size=(9, 4)), strict=True)}
+    product = float(form.coefficient)
+    for factor, multiplicity in zip(form.factors, form.multiplicities, strict=True):
+        product *= float(factor.evaluate(points)) ** multiplicity
+    expected = float(np.prod([np.linalg.det(np.stack([points[x] for x in o])) for o in orders]))
+    expected *= (-1 if negate else 1) * (
+        np.linalg.det(np.stack([points[x] for x in "efgh"]))
+        - np.linalg.det(np.stack([points[x] for x in "efgi"]))
+    )
+    assert product == pytest.approx(expected, rel=1e-9)
+    assert float(form.evaluate(points)) == pytest.approx(expected, rel=1e-9)
