@@ -26,5 +26,5 @@ def rng():
 @pytest.fixture(scope="session")
 def executed_notebooks(tmp_path_factory):
     """The folder where ``tests/test_notebooks.py`` leaves each notebook as it ran; the docs build
-    (``tests/test_docs_site.py``) renders these copies instead of executing the notebooks again."""
+    (``tests/test_site.py``) renders these copies instead of executing the notebooks again."""
     return tmp_path_factory.mktemp("executed_notebooks", numbered=False)

@@ -5,7 +5,7 @@ docstring, a summary table of every name in its ``__all__``, and the full entry 
 function and class defined there and of every constant it lists. A function or class listed by a
 module that re-exports it (``screwkit`` re-exports the main API) links to the entry in the module
 that defines it; one defined in a module whose ``__all__`` does not list it is documented in full
-at the first public module that lists it. ``tests/test_docs_site.py`` checks the built site against
+at the first public module that lists it. ``tests/test_site.py`` checks the built site against
 every ``__all__``, independently of this file.
 """
 
