@@ -21,3 +21,10 @@ settings.load_profile("screwkit")
 def rng():
     """A seeded generator: tests are repeatable."""
     return np.random.default_rng(20261121)
+
+
+@pytest.fixture(scope="session")
+def executed_notebooks(tmp_path_factory):
+    """The folder where ``tests/test_notebooks.py`` leaves each notebook as it ran; the docs build
+    (``tests/test_site.py``) renders these copies instead of executing the notebooks again."""
+    return tmp_path_factory.mktemp("executed_notebooks", numbered=False)

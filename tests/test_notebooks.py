@@ -2,7 +2,8 @@
 
 Each notebook is executed in a fresh Python kernel by nbclient, in the ``notebooks/`` folder, with
 the package as installed; an error or a failed ``assert`` in any cell fails the test, with the
-cell's traceback. Notebooks are committed without outputs, which is checked too.
+cell's traceback. Notebooks are committed without outputs, which is checked too. Each executed
+notebook is saved for the docs build of the same session (``executed_notebooks`` in conftest.py).
 """
 
 from pathlib import Path
@@ -39,7 +40,7 @@ def test_notebook_is_committed_without_outputs(name):
 
 
 @pytest.mark.parametrize("name", EXPECTED)
-def test_notebook_runs(name, monkeypatch):
+def test_notebook_runs(name, monkeypatch, executed_notebooks):
     monkeypatch.setenv("MPLBACKEND", "Agg")  # no display; figures are still drawn
     # the kernel imports this checkout's package (a worktree's, not another checkout's install)
     monkeypatch.setenv("PYTHONPATH", str(NOTEBOOKS.parent))
@@ -54,3 +55,4 @@ def test_notebook_runs(name, monkeypatch):
         client.execute()
     except CellExecutionError as err:
         pytest.fail(f"{name} failed:\n{err}", pytrace=False)
+    nbformat.write(notebook, executed_notebooks / name)

@@ -1,7 +1,7 @@
 """Projective geometry of P3: homogeneous points, planes and Plücker lines.
 
 Conventions (``gca.md`` §1; screws: :mod:`screwkit.algebra.screw`)
----------------------------------------------------------
+------------------------------------------------------------------
 * A point is ``(x, y, z, w)``, weight last: finite ``(r, 1)``, at infinity ``(d, 0)``. Any non-zero
   multiple is the same point.
 * A plane is ``(n, δ)``: the points with ``n·x + δ w = 0``. The plane at infinity is ``(0, 0, 0, 1)``.

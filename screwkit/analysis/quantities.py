@@ -4,7 +4,7 @@ Quantities (:data:`QUANTITIES`)
 -------------------------------
 ``"verdict"``
     The core's code per pose: bit 1 constraint, 2 actuation, 4 serial (0 regular,
-    :attr:`screwkit.core.singularity.SingularityReport.codes`); ``-1`` where the pose is out of reach.
+    :attr:`screwkit.core.verdicts.SingularityReport.codes`); ``-1`` where the pose is out of reach.
 ``"closeness"``, ``"closeness:constraint"``, ``"closeness:actuation"``, ``"closeness:serial"``
     The core's closeness measures (:mod:`screwkit.core.singularity`), ``"closeness"`` their minimum.
 ``"det_A"``, ``"det_B"``

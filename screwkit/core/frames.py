@@ -231,9 +231,9 @@ def empty(batch: tuple[int, ...]) -> tuple[Array, Array]:
 
     Returns
     -------
-    rows : numpy.ndarray, shape (*batch, 6, 6)
+    rows : numpy.ndarray, shape ``batch + (6, 6)``
         Zeros.
-    order : numpy.ndarray of int, shape batch
+    order : numpy.ndarray of int, shape ``batch``
         Zeros.
 
     Examples

@@ -1,6 +1,6 @@
 """Bracket algebra: :class:`Bracket`, :class:`BracketMonomial`, :class:`BracketPolynomial` (exact
 rational coefficients, canonical forms) and their evaluation on points, batched floats or exact sympy
-(the bracket itself is :func:`screwkit.algebra.projective.bracket_unchecked`).
+(the bracket itself is :func:`screwkit.algebra.projective.bracket`).
 
 Examples
 --------

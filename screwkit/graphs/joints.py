@@ -6,18 +6,18 @@ twist system at the current configuration (rows ``(dof, 6)``, conventions in
 chain derived by :func:`screwkit.graphs.reduction.equivalent_twist_graph`, paper 002 Fig. 2b–3), and the
 geometric data it was built from (kept for reports and for saving graphs).
 
-=========  ======  =================================================================================
-type       dof     twists (paper 002 §3; Hunt 1978)
-=========  ======  =================================================================================
-``R``      1       zero-pitch screw on the axis
-``P``      1       infinite-pitch screw ``(0; d)``
-``H``      1       screw of pitch h on the axis (h = lead / 2π)
-``C``      2       the R and the P of one axis
-``U``      2       two zero-pitch screws through the centre
-``S``      3       three zero-pitch screws through the centre
-``Pa``     1       planar parallelogram Π: the coupler translates along ``hinge × rod`` (paper 004 §2)
-``virtual``k       any screws (an equivalent chain's member); type ``"vR"``/``"vP"``/``"vH"`` by pitch
-=========  ======  =================================================================================
+===========  ======  =================================================================================
+type         dof     twists (paper 002 §3; Hunt 1978)
+===========  ======  =================================================================================
+``R``        1       zero-pitch screw on the axis
+``P``        1       infinite-pitch screw ``(0; d)``
+``H``        1       screw of pitch h on the axis (h = lead / 2π)
+``C``        2       the R and the P of one axis
+``U``        2       two zero-pitch screws through the centre
+``S``        3       three zero-pitch screws through the centre
+``Pa``       1       planar parallelogram Π: the coupler translates along ``hinge × rod`` (paper 004 §2)
+``virtual``  k       any screws (an equivalent chain's member); type ``"vR"``/``"vP"``/``"vH"`` by pitch
+===========  ======  =================================================================================
 
 Examples
 --------

@@ -47,9 +47,11 @@ of Table 2 / Eq. (12). They are the paper's own quantities; screwkit's general J
 the wrench systems (:func:`screwkit.core.jacobians.jacobians_from_wrenches`), and the tests check that the
 two agree up to row scaling.
 
-Where paper 004 is wrong here (numbered as in :mod:`screwkit.robots.families.four_limb`, whose items 1-3
-and 6 concern the model; each is checked in ``tests/robots/test_families_four_limb.py``)
-----------------------------------------------------------------------------------------------------
+Where paper 004 is wrong here
+-----------------------------
+Numbered as in :mod:`screwkit.robots.families.four_limb`, whose items 1-3 and 6 concern the model;
+each is checked in ``tests/robots/test_families_four_limb.py``.
+
 4. Table 2, Veloce, printed ``hφ/(2π) (w_13 × w_24)ᵀk``: it would make every pose with ``φ = 0``
    singular. Laplace expansion with the corrected ``s_i`` gives ``|A| = -h/(2π) (w_13 × w_24)ᵀk``.
    The Quattro/H4/V4 entry ``2r (w_14 × w_23)ᵀs`` (Eq. 12) is right, factor 2 and sign included.
@@ -59,7 +61,8 @@ and 6 concern the model; each is checked in ``tests/robots/test_families_four_li
    Eq. 15 takes ``|cos μ_i|`` anyway). Eq. (13) likewise: as printed it gives σ = 180° at the
    spiral's ``φ = 0`` pose where Sec. 5.1 says σ = 0; :func:`force_pressure_angle` returns the
    acute angle.
-7. Sec. 5.1 says the Quattro "encounters Type-2 singularity when |φ| = π/2 at the end points" of
+
+7. Sec. 5.1 says the Quattro "encounters Type-2 singularity when ``|φ| = π/2`` at the end points" of
    the spiral (Eqs. 17-18). Only approximately: ``|A|`` changes sign at ``φ = -88.3°`` and at
    ``φ = +90°`` we find σ = 88.3° (ζ = 0.03).
 
@@ -434,8 +437,9 @@ def transmission(
     The batched entry point for maps (workspace grids, trajectories): inverse kinematics (Eq. 3) and
     the indices in one pass. With numba (the ``fast`` extra) one fused compiled loop
     (:mod:`screwkit.papers._lti_numba`) for batches of :data:`screwkit.algebra.compiled.COMPILED_MIN_BATCH`
-    poses or more (or once it is loaded), else the numpy path (:func:`screwkit.robots.families.four_limb.
-    inverse_kinematics` then :func:`transmission_indices`; a single pose never loads numba);
+    poses or more (or once it is loaded), else the numpy path
+    (:func:`screwkit.robots.families.four_limb.kinematics.inverse_kinematics` then
+    :func:`transmission_indices`; a single pose never loads numba);
     ``SCREWKIT_NUMBA=0`` forces numpy. The two agree to round-off (``tests/papers/test_paper_004.py``).
 
     Parameters

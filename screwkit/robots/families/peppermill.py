@@ -36,7 +36,7 @@ factors of ``det A`` (second-kind singularities separate them), in the order of
 :data:`ASSEMBLY_MODES`.
 
 Where paper 000 is garbled or wrong (each item is demonstrated in the tests)
----------------------------------------------------------------------------
+----------------------------------------------------------------------------
 1. Eq. (3): the third expression ``O_1A_1 = d_2 j`` should read ``O_2A_2 = d_2 j``.
 2. Eq. (13) prints ``-b0 k`` for both limbs; it is ``-o_i``: ``+b0 k`` for limb 1 (as Eqs. 17,
    29, 34a and 35 use) and ``-b0 k`` for limb 2.

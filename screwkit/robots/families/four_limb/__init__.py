@@ -52,7 +52,7 @@ sub-platform (short sides parallel to the actuated axis, as in paper 002, Sec. 4
 is not given by paper 004; it does not enter the kinematics. Its default, 100 mm, is *our choice*.
 
 Where paper 004 is garbled or wrong (each is checked in ``tests/robots/test_families_four_limb.py``)
----------------------------------------------------------------------------------------------
+----------------------------------------------------------------------------------------------------
 1. Table 1, ``s_i`` of Quattro/H4/V4, printed ``sgn(cos η_i) r s``: differentiating ``c_i`` gives
    ``∂c_i/∂φ = σ_i r ∂(R(φ) i)/∂φ``; Eq. (4) writes this as ``r s_i`` and calls ``s_i`` a unit
    vector, so the correct entry is ``s_i = σ_i s`` with ``s = ∂(R(φ) i)/∂φ`` (the printed ``r`` is
@@ -68,6 +68,7 @@ Where paper 004 is garbled or wrong (each is checked in ``tests/robots/test_fami
    (first sign) or 0.811 (second), against the paper's 0.872. With the right-handed ``R_y``,
    ``s = ∂(R_y(φ) i)/∂φ = -R_y(φ) k``; Table 1's ``s = R_y(φ) k`` corresponds to measuring ``φ``
    about ``-j``. The indices are even in ``φ``, so Table 4 cannot tell the two apart.
+
 6. Ragnar (text after Table 4): "``u_i`` parallel to the x-z plane" with ``u_i = R_z(α_i) i`` means
    ``u_i = ±i``, i.e. ``α = 0``, ``β = π`` (the arms then point away from the x axis). With these
    horizontal axes all four parallelogram couples ``u_i × w_i`` are normal to ``i``: nothing
@@ -80,6 +81,7 @@ Where paper 004 is garbled or wrong (each is checked in ``tests/robots/test_fami
    sub-platform of the screw pair may only turn about one axis ``n_I`` (``n_II``), and the end
    effector, joined to both by joints of axis ``k``, only about ``span(n_I, k) ∩ span(n_II, k) = k``.
    Paper 004 does not print ``ε``; ``mechanisms/ragnar.toml`` says where its value comes from.
+
 Items 4, 5 and 7 (Table 2, Eqs. 11 and 13, Sec. 5.1) concern the Jacobians and the transmission
 indices of Sec. 4, which live in :mod:`screwkit.papers.paper_004` with the rest of that erratum list.
 

@@ -42,7 +42,7 @@ classification (Sec. 4) are paper 003's analysis of this model: they live beside
 check them (``tests/paper_003.py``); the joint table below is what screwkit analyses.
 
 Where paper 003 is wrong about the model (its errata 1-5 on the analysis: ``tests/paper_003.py``)
-----------------------------------------------------------------------------------------------
+-------------------------------------------------------------------------------------------------
 6. Sec. 4.2, second case (all ``b_i`` parallel): ``b_k`` turn together with the platform, so it
    never happens unless the guides are parallel in the platform, and then it happens at *every*
    pose. Such parameters are rejected (:class:`Planar3RRPParameters`).
