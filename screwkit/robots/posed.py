@@ -574,14 +574,14 @@ class PosedMechanism:
         Raises
         ------
         ScrewkitValueError
-            On a batch (index it first), or if the mechanism has no wrench diagram of six lines (the
-            reasons found at generic poses).
+            On a batch (index it first), or if the mechanism has no wrench diagram of six lines at
+            generic poses (a diagram that degenerates only at this pose is still factored there).
         """
         from ..gca.superbracket_analysis import superbracket_analysis
 
         self._one("superbracket")
         diagram, sampler = self.diagram_and_sampler()
-        if diagram.degenerate:
+        if sampler is _no_sampler:
             raise ScrewkitValueError(
                 f"Expected a wrench diagram of six lines for the superbracket of {self.mechanism.name}, "
                 f"got none: {'; '.join(diagram.degenerate)}."

@@ -151,6 +151,10 @@ def test_h4_degenerate_representation_is_reported_and_still_factored():
     assert report.to_dict()["superbracket"]["conditions"][1]["value_at_pose"] is None
     # the ranks decide what the pose is: an actuation and serial singularity, not a constraint one
     assert report.verdict.labels == ("actuation", "serial") and report.verdict.constraint_order == 2
+    # the posed mechanism's superbracket is the same design's factored form there
+    posed = h4.at([case_b_pose()])[0].superbracket
+    assert str(posed.simplification.factored) == "-[gikj][a b d ḟ][c g ḣ j]"
+    assert np.isnan(posed.values[1]) and np.isfinite(posed.values[0])
 
 
 # beyond SMGs (custom twist graphs) ----------------------------------------------------------------

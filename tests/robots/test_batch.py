@@ -189,10 +189,13 @@ def test_a_pose_gives_its_diagram_and_superbracket_as_the_report_does():
 
 def test_error_a_pose_without_a_superbracket_says_why(monkeypatch):
     # no catalog robot lacks a diagram: give the pose one with the reasons a generic pose would find
+    # (no diagram at generic poses: no sampler; a diagram degenerate only at the pose is factored)
+    from screwkit.robots.generic_poses import _no_sampler
+
     pose = sk.load_mechanism("planar_3rrp").at()[0]
-    diagram, sampler = pose.diagram_and_sampler()
+    diagram, _ = pose.diagram_and_sampler()
     degenerate = dataclasses.replace(diagram, degenerate=("limb I: a constraint couple, not a line",))
-    monkeypatch.setattr(type(pose), "diagram_and_sampler", lambda self: (degenerate, sampler))
+    monkeypatch.setattr(type(pose), "diagram_and_sampler", lambda self: (degenerate, _no_sampler))
     with pytest.raises(ScrewkitValueError, match=r"Expected a wrench diagram of six lines for the superbracket "
                        r"of Planar 3-RRP, got none: limb I: a constraint couple, not a line\."):
         _ = pose.superbracket
