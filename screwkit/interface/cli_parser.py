@@ -278,7 +278,7 @@ def _add_workspace_commands(commands: Any) -> None:
     mapping.add_argument("--no-progress", action="store_true", help="no progress line on stderr")
     path = commands.add_parser(
         "path",
-        help="check a straight path in pose space for singularities (the first crossing, refined)",
+        help="check a straight path in pose space for singularities (every crossing, refined)",
         description="Check the straight path between two poses: samples through the core, sign changes "
         "of det A, closeness minima and the reach edge refined by root finding. Lengths in the catalog "
         "file's unit, angles in DEGREES.",
