@@ -1,6 +1,7 @@
 """The interpreter of bracket factors: the known patterns of ``gca.md`` §5 turned into a vector form
 and a geometric statement (:func:`vector_form`): one bracket by the kinds of its points, two
-planes and a line (``[P ẋ][Q ẏ]``), four planes through one point, the superbracket itself, and
+planes and a line (``[P ẋ][Q ẏ]``), one bracket of combined points (``[a b (c − d)(e − f)]``,
+:mod:`~screwkit.gca.combined_brackets`), four planes through one point, the superbracket itself, and
 the generic form (the expansion with every bracket replaced by its form) for any other factor.
 
 Examples
@@ -25,6 +26,7 @@ import sympy
 
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
 from .brackets import Bracket, BracketPolynomial
+from .combined_brackets import combined_bracket, combined_bracket_form
 from .dotted import DottedMonomial, DottedSum
 from .exact_proofs import is_superbracket, prove_proportional
 from .notation import join_labels
@@ -334,6 +336,11 @@ def vector_form(
         if found is not None:
             return found
     polynomial = bracket_polynomial(factor)
+    combined = combined_bracket(polynomial)
+    if combined is not None:
+        found = combined_bracket_form(combined, types)
+        if found is not None:
+            return found
     found = _four_planes(polynomial, types)
     if found is not None:
         return found
