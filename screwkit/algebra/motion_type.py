@@ -4,6 +4,14 @@
 labelled translations first, ``"3T1R"`` (a Schoenflies motion), ``"3T"``, ``"1T2R"``: the one-word
 summary of a platform's twist system (:mod:`screwkit.algebra.screwsystem`), batched over poses.
 
+A single freedom that is not a translation (``r = 1``) is a rotation only when some screw of the
+system has pitch zero. Its direction ``s`` is fixed (the directions of ``T`` span one line) and its
+moment is fixed up to the translations ``V`` of ``T``; the pitch ``h = s·s0 / s·s`` (Ball 1900, §13;
+Hunt, *Kinematic Geometry of Mechanisms*, 1978, §5.3) changes by ``s·v / s·s`` with ``v ∈ V``. So the
+freedom is a rotation when ``s`` is not perpendicular to ``V`` or ``h = 0``, else a helical motion
+``"H"`` of pitch ``h``: ``"1H (pitch 5 mm/rad)"``, ``"2T1H (pitch …)"``. Two or more freedoms beyond
+the translations are labelled ``"R"`` (the pitches within such a system form a range, not one value).
+
 Examples
 --------
 >>> from screwkit.algebra.screw import prismatic_twist
@@ -28,19 +36,49 @@ __all__ = ["motion_type"]
 Array = np.ndarray
 
 
-def _motion_label(translations: int, rotations: int) -> str:
-    """``"3T1R"``, ``"1T2R"``, ``"3T"``, ``"2R"``: translations first, a zero count left out."""
+def _motion_label(translations: int, rotations: int, pitch: float, unit: str) -> str:
+    """``"3T1R"``, ``"1T2R"``, ``"3T"``, ``"2R"``, ``"1H (pitch 5 mm/rad)"``: translations first, a zero
+    count left out; ``pitch`` NaN for a rotation."""
+    if not np.isnan(pitch):
+        return f"{translations or ''}{'T' if translations else ''}1H (pitch {pitch:.6g} {unit}/rad)"
     parts = [(translations, "T"), (rotations, "R")]
     return "".join(f"{n}{kind}" for n, kind in parts if n) or "0"
 
 
-def motion_type(twists: Any, *, rtol: float = B.DEFAULT_RTOL, length_scale: float | None = None) -> Any:
+def _helical_pitch(rows: Array, rtol: float, length: float) -> float:
+    """The pitch of a system's one freedom beyond its translations (module docstring), NaN when that
+    freedom is a rotation. ``rows`` (k, 6) numeric, with exactly one such freedom."""
+    directions, moments = rows[:, :3], rows[:, 3:] / length
+    u, sigma, vt = np.linalg.svd(directions, full_matrices=True)
+    rank = int(np.sum(sigma > rtol * sigma[0])) if sigma.size and sigma[0] > 0 else 0
+    s = vt[0]  # the one direction (unit), the moment that goes with it, and the translations V
+    s0 = (u[:, 0] @ moments) / sigma[0]
+    translations = u[:, rank:].T @ moments
+    size = np.linalg.norm(translations, axis=1).max(initial=0.0)
+    if size > 0 and np.linalg.matrix_rank(translations, tol=rtol * size) > 0:
+        _, t_sigma, t_vt = np.linalg.svd(translations)
+        spanned = t_vt[: int(np.sum(t_sigma > rtol * t_sigma[0]))]
+        if np.linalg.norm(spanned @ s) > rtol:
+            return float("nan")
+    pitch = float(s @ s0)
+    return pitch * length if abs(pitch) > rtol else float("nan")
+
+
+def motion_type(
+    twists: Any,
+    *,
+    rtol: float = B.DEFAULT_RTOL,
+    length_scale: float | None = None,
+    length_unit: str = "length units",
+) -> Any:
     """The motion type of a twist system: its numbers of translations and other freedoms.
 
     ``t = dim(T ∩ translations) = order(T) + 3 − order(T + translations)`` and ``r = order(T) − t``
     (the freedoms that are not translations: rotations or screws). Labelled ``"3T1R"`` (a
     Schoenflies motion), ``"3T"``, ``"1T2R"``, ``"3T3R"``: always translations first (the one
-    spelling used across screwkit); ``"0"`` for the 0-system.
+    spelling used across screwkit); ``"0"`` for the 0-system. One freedom beyond the translations
+    whose screws all have the same nonzero pitch is helical: ``"1H (pitch 5 mm/rad)"``,
+    ``"2T1H (pitch …)"`` (module docstring; numeric systems).
 
     Parameters
     ----------
@@ -48,7 +86,11 @@ def motion_type(twists: Any, *, rtol: float = B.DEFAULT_RTOL, length_scale: floa
         A system, or generators (numeric, batched over leading axes; or one symbolic ``(k, 6)``
         array, decided generically).
     rtol, length_scale
-        As in :func:`screwkit.algebra.ranks.screw_rank` (a ScrewSystem uses its own).
+        As in :func:`screwkit.algebra.ranks.screw_rank` (a ScrewSystem uses its own). A row whose
+        direction is below ``rtol`` times its moment gives no length scale
+        (:func:`~screwkit.algebra.ranks.characteristic_length`).
+    length_unit : str, default "length units"
+        The unit of the coordinates' lengths, named in a helical freedom's pitch.
 
     Returns
     -------
@@ -62,6 +104,8 @@ def motion_type(twists: Any, *, rtol: float = B.DEFAULT_RTOL, length_scale: floa
     ('3T1R', '1T1R')
     >>> motion_type(np.stack([np.array(schoenflies[:3]), np.array(schoenflies[1:])]))
     array(['3T', '2T1R'], dtype='<U4')
+    >>> motion_type([[0, 0, 1, 0, 0, 5]], length_unit="mm")  # a screw freedom of pitch 5 mm/rad
+    '1H (pitch 5 mm/rad)'
     """
     if isinstance(twists, ScrewSystem):
         rows, rtol, length_scale = twists.basis, twists.rtol, twists.length_scale
@@ -69,12 +113,17 @@ def motion_type(twists: Any, *, rtol: float = B.DEFAULT_RTOL, length_scale: floa
         rows = twists.coords.reshape(1, 6)
     else:
         rows = _rows_batched(twists)
-    length_scale = characteristic_length(rows, length_scale) if rows.size else 1.0
+    length_scale = characteristic_length(rows, length_scale, rtol=rtol) if rows.size else 1.0
     couples = np.broadcast_to(_COUPLES, (*rows.shape[:-2], 3, 6))
     stacked = np.concatenate(B.promote(rows, np.asarray(couples, dtype=float)), axis=-2)
     order = np.asarray(screw_rank(rows, rtol=rtol, length_scale=length_scale))
     translations = order + 3 - np.asarray(screw_rank(stacked, rtol=rtol, length_scale=length_scale))
-    labels = np.vectorize(_motion_label, otypes=[str])(translations, order - translations)
+    pitch = np.full(order.shape, np.nan)
+    if not B.is_symbolic(rows):
+        for index in np.ndindex(order.shape):
+            if order[index] - translations[index] == 1:
+                pitch[index] = _helical_pitch(np.asarray(rows[index], dtype=float), rtol, float(length_scale))
+    labels = np.vectorize(_motion_label, otypes=[str])(translations, order - translations, pitch, length_unit)
     return str(labels) if labels.ndim == 0 else labels
 
 

@@ -145,11 +145,11 @@ def unit_rows(rows: Array, length_scale: float) -> Array:
     return scaled / np.where(lengths > 0, lengths, 1.0)
 
 
-def _derived_length(rows: Array) -> float:
-    """The largest ``|s0| / |s|`` over rows whose direction is not round-off, within
+def _derived_length(rows: Array, rtol: float = DEFAULT_RTOL) -> float:
+    """The largest ``|s0| / |s|`` over rows whose direction is not round-off at ``rtol``, within
     [MIN_LENGTH_SCALE, 1 / MIN_LENGTH_SCALE]; 1 without such a row (module docstring)."""
     directions, moments = _norms(rows[..., :3]), _norms(rows[..., 3:])  # no square overflows
-    has_direction = directions > DEFAULT_RTOL * moments  # a couple's round-off direction is not one
+    has_direction = directions > rtol * moments  # a couple's round-off direction is not one
     ratios = moments[has_direction] / directions[has_direction]
     if not (ratios.size and ratios.max() > 0):
         return 1.0
@@ -187,9 +187,15 @@ def scale_moments(rows: Array, length_scale: float | None) -> tuple[Array, float
     return scaled, length
 
 
-def characteristic_length(rows: Array, length_scale: float | None) -> float | None:
+def characteristic_length(
+    rows: Array, length_scale: float | None, *, rtol: float = DEFAULT_RTOL
+) -> float | None:
     """The length a numeric rank decision on ``rows`` uses (:func:`scale_moments`); symbolic rows
     keep ``length_scale`` as given (their decisions are exact and need none).
+
+    A row whose direction is below ``rtol`` times its moment is a couple at that tolerance and
+    gives no length (``[1e-8, 0, 0, 0, 0, 1]`` at ``rtol=1e-6`` is a translation, not an axis 1e8
+    away).
 
     Parameters
     ----------
@@ -197,6 +203,8 @@ def characteristic_length(rows: Array, length_scale: float | None) -> float | No
         The screws.
     length_scale : float or None
         The caller's length (None: derived from the rows).
+    rtol : float, default 1e-9
+        The tolerance of the rank decisions the length serves.
 
     Returns
     -------
@@ -210,16 +218,19 @@ def characteristic_length(rows: Array, length_scale: float | None) -> float | No
     500.0
     >>> characteristic_length(np.array([[sympy.Symbol("a"), 0, 0, 0, 0, 1]], dtype=object), None) is None
     True
+    >>> near_couple = np.array([[1e-8, 0, 0, 0, 0, 1.0]])
+    >>> characteristic_length(near_couple, None), characteristic_length(near_couple, None, rtol=1e-6)
+    (100000000.0, 1.0)
     """
     if is_symbolic(rows):
         return length_scale
-    return _numeric_length(rows, length_scale)
+    return _numeric_length(rows, length_scale, checked_rtol(rtol))
 
 
-def _numeric_length(rows: Array, length_scale: float | None) -> float:
+def _numeric_length(rows: Array, length_scale: float | None, rtol: float = DEFAULT_RTOL) -> float:
     """:func:`characteristic_length` of numeric rows."""
     if length_scale is None:
-        return _derived_length(np.asarray(rows, dtype=float))
+        return _derived_length(np.asarray(rows, dtype=float), rtol)
     return checked_length_scale(length_scale)
 
 
