@@ -120,9 +120,10 @@ def motion_type(
     translations = order + 3 - np.asarray(screw_rank(stacked, rtol=rtol, length_scale=length_scale))
     pitch = np.full(order.shape, np.nan)
     if not B.is_symbolic(rows):
+        length = float(length_scale or 1.0)
         for index in np.ndindex(order.shape):
             if order[index] - translations[index] == 1:
-                pitch[index] = _helical_pitch(np.asarray(rows[index], dtype=float), rtol, float(length_scale))
+                pitch[index] = _helical_pitch(np.asarray(rows[index], dtype=float), rtol, length)
     labels = np.vectorize(_motion_label, otypes=[str])(translations, order - translations, pitch, length_unit)
     return str(labels) if labels.ndim == 0 else labels
 

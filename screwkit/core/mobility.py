@@ -1,13 +1,15 @@
 """The mobility of a mechanism and the nominal ``dof`` of its analysis, read at generic configurations.
 
-A pose may be singular, so a mechanism's mobility is not read off the analysed pose: it is the most
-common order of the platform's twist system over a few generic configurations reached by moving
-the mechanism along its own twists (:func:`screwkit.core.motion.generic_configurations`,
-:func:`generic_mobility`). The nominal ``dof`` of every analysis is that mobility, with no more
-actuators than it (:func:`resolve_dof`); :func:`settled_dof` checks a first analysis against it at
-no cost where the pose is regular with one actuator per freedom. :func:`generic_analyses` gives the
-wrench analyses at generic configurations (the structural facts of wrench diagrams are decided
-there).
+A pose may be singular, so a mechanism's mobility is not read off the analysed pose: it is the
+platform's order where the mechanism's *finite* motion takes it (:mod:`screwkit.core.finite_mobility`:
+a linkage in line, mobile to first order only, reads 0; a rounded overconstrained linkage moves at
+its data precision ``rtol``), or, where that is undecided, the most common order over a few generic
+configurations reached by moving the mechanism along its own twists
+(:func:`screwkit.core.motion.generic_configurations`, :func:`generic_mobility`). The nominal ``dof``
+of every analysis is that mobility, with no more actuators than it (:func:`resolve_dof`);
+:func:`settled_dof` checks a first analysis against it at no cost where the pose is regular with one
+actuator per freedom. :func:`generic_analyses` gives the wrench analyses at generic configurations
+(the structural facts of wrench diagrams are decided there).
 
 Examples
 --------
@@ -27,6 +29,7 @@ import numpy as np
 
 from ..algebra import backend as B
 from ..exceptions import ScrewkitValueError, TwistGraphError
+from .finite_mobility import MobilityReading, check_stated_dof, mobility_reading
 from .motion import generic_configurations
 from .wrench_systems import WrenchAnalysis, analyze_table
 
@@ -97,13 +100,17 @@ def generic_mobility(
     rtol: float = B.DEFAULT_RTOL,
     length_scale: float | None = None,
 ) -> int | None:
-    """The platform's freedoms at generic configurations of the graph's mechanism.
+    """The platform's freedoms along the finite motion of the graph's mechanism.
 
-    The most common order of the platform's twist system over :data:`MOBILITY_SAMPLES` configurations
-    reached from the graph's own by :func:`generic_configurations` (so a singular analysed pose does not
-    decide it: a stretched limb loses a freedom there, a constraint singularity gains one), each
-    decided with ``rtol`` and ``length_scale`` (:func:`~screwkit.core.wrench_systems.analyze_table`). 0 for a
-    mechanism whose loops admit no joint motion; None when Newton's method closed no loop.
+    The finite mobility of :func:`~screwkit.core.finite_mobility.mobility_reading` (the platform's
+    order where small steps along the first-order freedoms, closed again by Newton's method at the
+    data precision ``rtol``, move the mechanism: a singular analysed pose does not decide it, a
+    stretched limb loses a freedom there, a constraint singularity gains one; 0 when every step falls
+    back, as for a linkage in line). Where that is undecided: the most common order of the platform's
+    twist system over :data:`MOBILITY_SAMPLES` configurations reached from the graph's own by
+    :func:`generic_configurations`, each decided with ``rtol`` and ``length_scale``
+    (:func:`~screwkit.core.wrench_systems.analyze_table`); 0 for a mechanism whose loops admit no
+    joint motion; None when Newton's method closed no loop.
 
     Parameters
     ----------
@@ -134,6 +141,23 @@ def generic_mobility(
     >>> generic_mobility(fourbar)
     1
     """
+    return _finite_or_moved(
+        mobility_reading(graph, joint_key=joint_key, rtol=rtol, length_scale=length_scale),
+        graph, joint_key, rtol, length_scale,
+    )
+
+
+def _finite_or_moved(
+    reading: MobilityReading,
+    graph: nx.MultiDiGraph,
+    joint_key: str,
+    rtol: float,
+    length_scale: float | None,
+) -> int | None:
+    """The reading's finite mobility; where undecided, the generic configurations'
+    (:func:`generic_mobility`)."""
+    if reading.finite is not None:
+        return reading.finite
     try:
         table = generic_configurations(graph, np.random.default_rng(MOBILITY_SEED), MOBILITY_SAMPLES,
                                        joint_key=joint_key)
@@ -228,10 +252,12 @@ def settled_dof(
     A first analysis that is regular for its ``dof`` confirms it (:func:`_regular_for`: no generic
     configuration needed, the common case costs nothing). Otherwise the mobility is the graph's
     ``mobility`` attribute when it has one (a catalog family's graphs do:
-    :attr:`screwkit.graphs.jointtable.JointTable.mobility`), else computed at generic configurations
-    (:func:`generic_mobility`, 0.03–0.2 s, with the analysis's ``rtol`` and the given
-    ``length_scale``; where no loop could be closed, the platform's most common order over the
-    analysed poses stands in for it).
+    :attr:`screwkit.graphs.jointtable.JointTable.mobility`), else computed (:func:`generic_mobility`,
+    0.03–0.2 s, with the analysis's ``rtol`` as the data precision and the given ``length_scale``;
+    where no loop could be closed, the platform's most common order over the analysed poses stands
+    in for it). A stated ``dof`` equal to the finite mobility is accepted where the instantaneous one
+    differs (a linkage in line, rigid, stated ``dof=0``); one that contradicts a finite motion is
+    refused with both numbers (:func:`~screwkit.core.finite_mobility.check_stated_dof`).
 
     Parameters
     ----------
@@ -254,7 +280,8 @@ def settled_dof(
     Raises
     ------
     TwistGraphError
-        A ``dof`` other than the mobility, or more actuators than it (:func:`resolve_dof`).
+        A ``dof`` other than the mobility (naming the finite and instantaneous mobility), or more
+        actuators than it (:func:`resolve_dof`).
 
     Examples
     --------
@@ -272,11 +299,13 @@ def settled_dof(
     known = graph.graph.get("mobility")  # a catalog family's (JointTable.mobility)
     if known is not None and not B.is_dof(known):
         raise TwistGraphError(f"Expected graph attribute 'mobility' to be an integer in 0..6, got {known!r}.")
-    mobility = (
-        int(known)
-        if known is not None
-        else generic_mobility(graph, joint_key=joint_key, rtol=rtol, length_scale=length_scale)
-    )
+    if known is not None:
+        mobility: int | None = int(known)
+    else:
+        reading = mobility_reading(graph, joint_key=joint_key, rtol=rtol, length_scale=length_scale)
+        if reading.differs:  # else resolve_dof's message says it all (with the actuated joints)
+            check_stated_dof(stated, reading)
+        mobility = _finite_or_moved(reading, graph, joint_key, rtol, length_scale)
     if mobility is None:
         mobility = int(np.bincount(np.asarray(analysis.platform_order).ravel()).argmax())
     return resolve_dof(stated, mobility, actuated)

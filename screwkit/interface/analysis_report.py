@@ -28,6 +28,7 @@ import numpy as np
 
 from ..algebra import backend as B
 from ..algebra.motion_type import motion_type
+from ..core.finite_mobility import MobilityReading
 from ..core.jacobian_matrices import Jacobians
 from ..core.singularity import SingularityReport
 from ..core.wrenches import WrenchAnalysis
@@ -83,6 +84,10 @@ class AnalysisReport:
         ``analysis.length_scale``).
     angle_names : tuple of str
         The pose coordinates that are angles (shown in degrees).
+    mobility : MobilityReading or None
+        The instantaneous and finite mobility at the configuration
+        (:func:`screwkit.core.finite_mobility.mobility_reading`; a graph's report), shown when they
+        differ or the finite one is undecided; None when not read.
     """
 
     name: str
@@ -102,6 +107,7 @@ class AnalysisReport:
     transmission: dict[str, Any] | None = None
     given_length_scale: float | None = None
     angle_names: tuple[str, ...] = ()
+    mobility: MobilityReading | None = None
 
     def graph_summary(self) -> dict[str, Any]:
         """Links, joints by type, actuated joints, loops; and the equivalent graph's virtual joints.
@@ -346,6 +352,8 @@ class AnalysisReport:
             ),
             *(f"  {leg}: {kind}" for leg, kind in wrenches["leg_motion_types"].items()),
         ]
+        if self.mobility is not None and (self.mobility.differs or self.mobility.finite is None):
+            out += ["", str(self.mobility)]
         out += ["", f"wrench systems (platform twist system of order {wrenches['platform_twist_order']})"]
         for item in wrenches["constraint"]:
             out.append(f"  constraint ({item['leg']}): {_line_text(item, unit)}")
