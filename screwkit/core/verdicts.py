@@ -51,6 +51,7 @@ regular (dof 1): constraint order 5/5, global order 6/6
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Any
 
 import numpy as np
@@ -59,6 +60,7 @@ from ..algebra import screwvalue as S
 from ..algebra.display import ScrewArray, html_section, html_table, number_text
 from ..algebra.screwsystem import ScrewSystem
 from ..exceptions import ScrewkitTypeError
+from .finite_mobility import MobilityReading, mobility_reading
 from .wrench_systems import WrenchAnalysis
 
 __all__ = ["LABELS", "SerialSingularity", "SingularityReport", "classify_analysis"]
@@ -121,6 +123,27 @@ class SingularityReport:
     def dof(self) -> int:
         """Nominal mobility."""
         return self.analysis.dof
+
+    @cached_property
+    def mobility(self) -> MobilityReading:
+        """The instantaneous and finite mobility at this pose (one pose), at the analysis's ``rtol``
+        and length scale (:func:`~screwkit.core.finite_mobility.mobility_reading`).
+
+        Examples
+        --------
+        >>> from screwkit.core.singularity import classify
+        >>> from screwkit.graphs.joints import revolute
+        >>> from screwkit.graphs.twistgraph import twist_graph
+        >>> flat = twist_graph("ground", "link", [  # sides 1, 2, 3: a triangle in line, rigid
+        ...     ("ground", "link", revolute("A", [0, 0, 1], [0, 0, 0])),
+        ...     ("link", "other", revolute("B", [0, 0, 1], [1, 0, 0])),
+        ...     ("other", "ground", revolute("C", [0, 0, 1], [3, 0, 0]))])
+        >>> reading = classify(flat, dof=0).mobility
+        >>> reading.instantaneous, reading.finite
+        (1, 0)
+        """
+        return mobility_reading(self.analysis.graph, rtol=self.analysis.rtol,
+                                length_scale=float(self.analysis.length_scale))
 
     @property
     def nominal_constraint_order(self) -> int:

@@ -136,3 +136,12 @@ def test_readings_do_not_depend_on_the_frame_or_the_length_unit(angle, axis, shi
                     [g[:3, :3] @ [0, 0, 1]] * 3)
     reading = mobility_reading(triangle)
     assert (reading.instantaneous, reading.finite) == (1, 0)
+
+
+def test_classify_result_carries_both_mobilities_at_its_rtol():
+    from screwkit.core.singularity import classify
+
+    assert (classify(loop(FLAT_TRIANGLE), dof=0).mobility.instantaneous,
+            classify(loop(FLAT_TRIANGLE), dof=0).mobility.finite) == (1, 0)
+    reading = classify(bennett(1.0, 6), dof=1, rtol=1e-5).mobility  # rounded: mobile at its precision
+    assert (reading.instantaneous, reading.finite, reading.rtol) == (1, 1, 1e-5)
