@@ -160,16 +160,17 @@ class AnalysisReport:
         scale = self.analysis.length_scale
         platform = self.analysis.platform_twists
         legs = sorted(self.analysis.compound_legs, key=lambda leg: leg.name)  # each view built once
+        unit = self.length_unit or "length units"  # a helical freedom's pitch names it
         return {
             "platform_twist_order": platform.order,
             "platform_twists": {
-                "motion_type": motion_type(platform),
+                "motion_type": motion_type(platform, length_unit=unit),
                 "basis": [
                     describe_twist(t, length_scale=scale)
                     for t in platform.readable_basis(near=self.analysis.reference_point)
                 ],
             },
-            "leg_motion_types": {leg.name: motion_type(leg.twist_system) for leg in legs},
+            "leg_motion_types": {leg.name: motion_type(leg.twist_system, length_unit=unit) for leg in legs},
             "constraint": [
                 {"leg": leg.name, **describe_wrench(w, length_scale=scale)}
                 for leg in legs

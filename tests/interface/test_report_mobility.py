@@ -25,3 +25,12 @@ def test_a_moving_fourbar_report_has_no_mobility_line():
     report = analyze(fourbar([[0, 0, 0], [1, 0, 0], [3, 2, 0], [3, 0, 0]]), superbracket=False)
     assert (report.mobility.instantaneous, report.mobility.finite) == (1, 1)
     assert "mobility: instantaneous" not in str(report)
+
+
+def test_a_screw_freedom_reads_1h_with_its_pitch_in_the_report_unit():
+    from screwkit.graphs.joints import helical
+
+    graph = twist_graph("B", "E", [("B", "E", helical("H", [0, 0, 1], [10, 0, 0], 5.0, actuated=True))])
+    graph.graph["length_unit"] = "mm"
+    text = str(analyze(graph, superbracket=False))
+    assert "platform twist system: 1H (pitch 5 mm/rad) (order 1)" in text  # not "1R"
