@@ -68,8 +68,10 @@ NEWTON_ITERATIONS = 60
 SEED = 20261128
 #: A corrected step ``θ`` has moved when ``|θ| > MOVED · h`` and fallen back when ``|θ| < BACK · h``.
 MOVED, BACK = 0.5, 0.1
-#: The closure residual accepted is ``max(rtol, RESIDUAL_FLOOR) · h``.
+#: The closure residual accepted is ``max(rtol, RESIDUAL_FLOOR) · h``; a joint value beyond
+#: ``DIVERGED`` (or not finite) ends that step's Newton iterations unclosed.
 RESIDUAL_FLOOR = 1e-11
+DIVERGED = 1e3
 
 
 @dataclass(frozen=True)
@@ -183,19 +185,22 @@ def mobility_reading(
                                "the loops admit no first-order joint motion")
     directions = np.random.default_rng(SEED).standard_normal((SAMPLES, freedoms)) @ null.T
     start = STEP * directions / np.linalg.norm(directions, axis=1, keepdims=True)
-    theta = start.copy()
+    theta, alive = start.copy(), np.ones(SAMPLES, dtype=bool)  # alive: finite, not diverged
     tolerance = max(rtol, RESIDUAL_FLOOR) * STEP
     for _ in range(NEWTON_ITERATIONS):
-        state = model.state(theta)
+        if not np.any(alive):
+            break
+        state = model.state(theta[alive])
         residual = model.loop_residual(state)
         if residual.shape[1] == 0 or np.max(np.abs(residual)) < tolerance:
             break
-        theta = theta - np.einsum("bij,bj->bi", _truncated_pinv(model.loop_jacobian(state), rtol), residual)
-    state = model.state(theta)
-    residual = model.loop_residual(state)
-    closed = (np.max(np.abs(residual), axis=1) if residual.shape[1] else np.zeros(SAMPLES)) < tolerance
-    closed &= np.all(np.isfinite(theta), axis=1)
-    distance = np.linalg.norm(np.where(np.isfinite(theta), theta, 0.0), axis=1) / STEP
+        theta[alive] -= np.einsum("bij,bj->bi", _truncated_pinv(model.loop_jacobian(state), rtol), residual)
+        alive &= np.all(np.abs(theta) < DIVERGED, axis=1)  # NaN compares False
+    closed = np.zeros(SAMPLES, dtype=bool)
+    if np.any(alive):
+        residual = model.loop_residual(model.state(theta[alive]))
+        closed[alive] = (np.max(np.abs(residual), axis=1) if residual.shape[1] else 0.0) < tolerance
+    distance = np.linalg.norm(np.where(alive[:, None], theta, 0.0), axis=1) / STEP
     moved, back = closed & (distance > MOVED), closed & (distance < BACK)
     orders = _platform_orders(model, model.state(np.vstack([np.zeros((1, n)), theta[moved]])), table, rtol,
                               length_scale)
@@ -208,8 +213,10 @@ def mobility_reading(
         finite, why = 0, f"all {steps} fell back to the reference under Newton's method: it is isolated"
     else:
         finite = None
-        why = (f"of {steps}, {counts[1]} fell back and {counts[2]} did not close (Newton's method): "
-               "neither a motion nor an isolated configuration is shown")
+        between = SAMPLES - sum(counts)
+        why = (f"of {steps}, {counts[1]} fell back, {counts[2]} did not close (Newton's method) and "
+               f"{between} closed {BACK}-{MOVED} steps away: neither a motion nor an isolated "
+               "configuration is shown")
     return MobilityReading(orders[0], finite, freedoms, *counts, rtol, why)
 
 

@@ -145,3 +145,15 @@ def test_classify_result_carries_both_mobilities_at_its_rtol():
             classify(loop(FLAT_TRIANGLE), dof=0).mobility.finite) == (1, 0)
     reading = classify(bennett(1.0, 6), dof=1, rtol=1e-5).mobility  # rounded: mobile at its precision
     assert (reading.instantaneous, reading.finite, reading.rtol) == (1, 1, 1e-5)
+
+
+def test_steps_newton_cannot_close_leave_the_finite_mobility_undecided(monkeypatch):
+    import screwkit.core.finite_mobility as finite_mobility
+
+    # one Newton iteration cannot bring a step of the flat triangle back (it converges only
+    # linearly at the singular reference): neither a motion nor isolation is shown
+    monkeypatch.setattr(finite_mobility, "NEWTON_ITERATIONS", 1)
+    reading = mobility_reading(loop(FLAT_TRIANGLE))
+    assert (reading.instantaneous, reading.finite, reading.moved) == (1, None, 0)
+    assert "undecided" in str(reading) and "did not close" in reading.why
+    check_stated_dof(1, reading)  # refutes nothing
