@@ -45,23 +45,19 @@ def _motion_label(translations: int, rotations: int, pitch: float, unit: str) ->
     return "".join(f"{n}{kind}" for n, kind in parts if n) or "0"
 
 
-def _helical_pitch(rows: Array, rtol: float, length: float) -> float:
-    """The pitch of a system's one freedom beyond its translations (module docstring), NaN when that
-    freedom is a rotation. ``rows`` (k, 6) numeric, with exactly one such freedom."""
-    directions, moments = rows[:, :3], rows[:, 3:] / length
-    u, sigma, vt = np.linalg.svd(directions, full_matrices=True)
-    rank = int(np.sum(sigma > rtol * sigma[0])) if sigma.size and sigma[0] > 0 else 0
-    s = vt[0]  # the one direction (unit), the moment that goes with it, and the translations V
-    s0 = (u[:, 0] @ moments) / sigma[0]
-    translations = u[:, rank:].T @ moments
-    size = np.linalg.norm(translations, axis=1).max(initial=0.0)
-    if size > 0 and np.linalg.matrix_rank(translations, tol=rtol * size) > 0:
-        _, t_sigma, t_vt = np.linalg.svd(translations)
-        spanned = t_vt[: int(np.sum(t_sigma > rtol * t_sigma[0]))]
-        if np.linalg.norm(spanned @ s) > rtol:
-            return float("nan")
-    pitch = float(s @ s0)
-    return pitch * length if abs(pitch) > rtol else float("nan")
+def _helical_pitches(rows: Array, rtol: float, length: float) -> Array:
+    """The pitch of each system's one freedom beyond its translations (module docstring), NaN where
+    that freedom is a rotation; ``rows`` (N, k, 6) numeric, each with exactly one such freedom."""
+    u, sigma, vt = np.linalg.svd(rows[..., :3])  # the directions span one line: s = vt[0]
+    moments = rows[..., 3:] / length
+    s = vt[:, 0]
+    s0 = np.einsum("nk,nkj->nj", u[:, :, 0], moments) / sigma[:, :1]
+    translations = np.einsum("nki,nkj->nij", u[:, :, 1:], moments)  # combinations with no direction
+    along = np.abs(np.einsum("nij,nj->ni", translations, s)).max(axis=1, initial=0.0)
+    size = np.linalg.norm(translations, axis=2).max(axis=1, initial=0.0)
+    pitch = np.einsum("ni,ni->n", s, s0)
+    rotation = (along > rtol * np.maximum(size, 1.0)) | (np.abs(pitch) <= rtol)
+    return np.where(rotation, np.nan, pitch * length)
 
 
 def motion_type(
@@ -119,11 +115,10 @@ def motion_type(
     order = np.asarray(screw_rank(rows, rtol=rtol, length_scale=length_scale))
     translations = order + 3 - np.asarray(screw_rank(stacked, rtol=rtol, length_scale=length_scale))
     pitch = np.full(order.shape, np.nan)
-    if not B.is_symbolic(rows):
-        length = float(length_scale or 1.0)
-        for index in np.ndindex(order.shape):
-            if order[index] - translations[index] == 1:
-                pitch[index] = _helical_pitch(np.asarray(rows[index], dtype=float), rtol, length)
+    one = (order - translations == 1) & (not B.is_symbolic(rows))
+    if np.any(one):
+        batch = np.broadcast_to(np.asarray(rows, dtype=float), (*order.shape, *rows.shape[-2:]))
+        pitch[one] = _helical_pitches(batch[one], rtol, float(length_scale or 1.0))
     labels = np.vectorize(_motion_label, otypes=[str])(translations, order - translations, pitch, length_unit)
     return str(labels) if labels.ndim == 0 else labels
 
