@@ -18,7 +18,7 @@ Expected values are hand derivations:
 
 import numpy as np
 import pytest
-from hypothesis import given
+from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from screwkit.algebra.rigid_motions import rotation_matrix
@@ -124,6 +124,7 @@ def test_an_out_of_range_data_precision_is_refused_naming_rtol(rtol):
         mobility_reading(loop(FOURBAR), rtol=rtol)
 
 
+@settings(max_examples=12)  # each example closes two linkages' loops: keep the test to seconds
 @given(angle=st.floats(-3.0, 3.0), axis=st.sampled_from([(1, 0, 0), (0, 0, 1), (0.6, 0, 0.8)]),
        shift=st.tuples(*[st.floats(-20.0, 20.0)] * 3), unit=st.sampled_from([1e-3, 1.0, 1e3]))
 def test_readings_do_not_depend_on_the_frame_or_the_length_unit(angle, axis, shift, unit):
