@@ -39,7 +39,7 @@ from typing import Any
 import numpy as np
 
 from ..exceptions import ScrewkitValueError
-from .intervals import Enclosure
+from .intervals import Enclosure, Values
 
 __all__ = ["COVERED", "FourLimbModel"]
 
@@ -90,7 +90,7 @@ def _times(x: Enclosure | None, c: _Constant) -> Enclosure | None:
         return None
     if c.spread == 0.0:
         return x * c.value
-    return x * Enclosure.constant(c.value, x, relative=c.spread / abs(c.value))
+    return x * type(x).constant(c.value, x, relative=c.spread / abs(c.value))
 
 
 def _sum(*terms: Enclosure | None) -> Enclosure | None:
@@ -279,7 +279,7 @@ class FourLimbModel:
                     c_i[k],
                     None
                     if a_rows[i][k].value == 0 and a_rows[i][k].spread == 0
-                    else -Enclosure.constant(a_rows[i][k].value, x, relative=_relative(a_rows[i][k])),
+                    else -type(x).constant(a_rows[i][k].value, x, relative=_relative(a_rows[i][k])),
                 )
                 for k in range(3)
             ]
@@ -315,6 +315,55 @@ class FourLimbModel:
         return out
 
 
+    def values(self, poses: Any, *, singular: bool = True) -> dict[str, Array]:
+        """Every function of :meth:`functions` at poses, in floats: the same closed forms as
+        :meth:`evaluate` (inverse kinematics included), one numpy operation per step over the batch
+        (:class:`~screwkit.analysis.intervals.Values`; rounded to nearest, not enclosed).
+
+        Parameters
+        ----------
+        poses : array_like, shape (m, 4)
+            ``x, y, z, φ`` (API units: radians).
+        singular : bool, default True
+            Also the constraint and actuation functions.
+
+        Returns
+        -------
+        dict of str to numpy.ndarray, shape (m,)
+            NaN for the constraint and actuation functions where a limb does not reach the pose
+            (its ``serial:i`` function negative).
+
+        Raises
+        ------
+        ScrewkitValueError
+            If ``poses`` is not an ``(m, 4)`` array of finite numbers.
+
+        Examples
+        --------
+        >>> model = FourLimbModel.of(load_mechanism("quattro"))
+        >>> values = model.values([[100.0, 100.0, -750.0, 0.0], [0.0, 0.0, -5000.0, 0.0]])
+        >>> bool(values["serial:1"][0] > 0 > values["serial:1"][1]), bool(np.isnan(values["actuation"][1]))
+        (True, True)
+        """
+        array = np.asarray(poses, dtype=float) if _numeric(poses) else None
+        if array is None or array.ndim != 2 or array.shape[1] != 4 or not np.isfinite(array).all():
+            raise ScrewkitValueError(
+                f"Expected `poses` to be an (m, 4) array of finite numbers (x, y, z, phi), got "
+                f"{getattr(array, 'shape', type(poses).__name__)}."
+            )
+        found = self.evaluate(Values.variables(array), singular=singular)  # type: ignore[arg-type]
+        return {name: np.asarray(value, dtype=float) for name, value in found.items()}
+
+
+def _numeric(value: Any) -> bool:
+    """Whether ``value`` converts to a float array (no object arrays of text)."""
+    try:
+        np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        return False
+    return True
+
+
 def _scaled_by(x: Enclosure | None, value: float) -> Enclosure | None:
     return None if x is None else x * value
 
@@ -331,7 +380,7 @@ def _divided(x: Enclosure | None, value: float) -> Enclosure | None:
     mantissa, _ = np.frexp(value)
     if mantissa == 0.5:
         return x * (1.0 / value)
-    return x * Enclosure.constant(value, x).reciprocal()
+    return x * type(x).constant(value, x).reciprocal()
 
 
 def _cross_constant(w: Vector, u: list[_Constant]) -> Vector:
