@@ -26,6 +26,7 @@ import numpy as np
 from ..exceptions import ScrewkitError
 from .poses import CHUNK
 from .quantities import KINDS, conditions_of
+from .quantities import values as quantity_values
 
 __all__ = ["ACCEPT", "MAX_STEPS", "XTOL"]
 
@@ -53,38 +54,68 @@ class _Samples:
     det_B: Array | None
 
 
-def _measure(mechanism: Any, poses: Array, options: dict[str, Any], rtol: Any) -> _Samples:
+def _measure(
+    mechanism: Any, poses: Array, options: dict[str, Any], rtol: Any, client: Any = None
+) -> _Samples:
     """Codes, closeness, det A and det B at API-unit poses ``(..., n)`` (NaN / -1 where out of
-    reach), through the core in batches of :data:`~screwkit.analysis.poses.CHUNK` poses."""
+    reach), through the core in chunks of :data:`~screwkit.analysis.poses.CHUNK` poses, in process
+    or on a Dask ``client`` (the chunks submitted at once; the same numbers)."""
     shape = poses.shape[:-1]
     flat = poses.reshape(-1, poses.shape[-1])
-    ok = mechanism.reachable(flat, **options)
-    codes = np.full(len(flat), -1, dtype=np.int64)
-    closeness = {k: np.full(len(flat), np.nan) for k in KINDS}
-    dets: dict[str, Array | None] = {"det_A": np.full(len(flat), np.nan), "det_B": np.full(len(flat), np.nan)}
-    where = np.flatnonzero(ok)
-    for start in range(0, len(where), CHUNK):
-        part = where[start : start + CHUNK]
-        posed = mechanism.at(flat[part], rtol=rtol, **options)
-        _ = posed.joints  # det A and det B need the joint table too: build it once per batch
-        codes[part] = posed.codes
-        for k in KINDS:
-            closeness[k][part] = posed.closeness[k]
-        for name, values in dets.items():
-            if values is None:
-                continue
-            try:
-                values[part] = getattr(posed.jacobians, name)
-            except ScrewkitError:  # no square Jacobian for this mechanism: no sign to follow
-                dets[name] = None
-    det_a, det_b = dets["det_A"], dets["det_B"]
+    pieces = [flat[i : i + CHUNK] for i in range(0, len(flat), CHUNK)]
+    if client is None:
+        parts = [_measured_chunk(mechanism, piece, options, rtol) for piece in pieces]
+    else:
+        futures = [client.submit(_measured_chunk, mechanism, p, options, rtol, pure=False) for p in pieces]
+        parts = [future.result() for future in futures]
+    if not parts:
+        parts = [_measured_chunk(mechanism, flat, options, rtol)]
+    return _samples([np.concatenate([p[n] for p in parts]) for n in range(1, 6)], shape)
+
+
+def _samples(columns: list[Array], shape: tuple[int, ...]) -> _Samples:
+    """:class:`_Samples` of shape ``shape`` from the flat ``ok, codes, closeness (m, 3), det A, det B``
+    of :func:`_measured_chunk` (a determinant NaN at every reachable pose: the mechanism has none)."""
+    ok, codes, closeness, det_a, det_b = columns
+
+    def det(values: Array) -> Array | None:
+        return None if ok.any() and np.isnan(values[ok]).all() else values.reshape(shape)
+
     return _Samples(
         ok.reshape(shape),
         codes.reshape(shape),
-        {k: v.reshape(shape) for k, v in closeness.items()},
-        None if det_a is None else det_a.reshape(shape),
-        None if det_b is None else det_b.reshape(shape),
+        {k: closeness[:, i].reshape(shape) for i, k in enumerate(KINDS)},
+        det(det_a),
+        det(det_b),
     )
+
+
+def _measured_chunk(
+    mechanism: Any, poses: Array, options: dict[str, Any], rtol: Any, quantity: str | None = None
+) -> tuple[Array, Array, Array, Array, Array, Array]:
+    """One chunk of :func:`_measure` at flat poses ``(m, n)``: ``(values, ok, codes, closeness (m, 3),
+    det A, det B)``, one posed batch for all (a module-level function, so a Dask worker can run
+    it). ``values`` is ``quantity`` (:func:`screwkit.analysis.quantities.values`) over the chunk, the
+    codes when None; the determinants NaN where the mechanism has no square Jacobian."""
+    ok = mechanism.reachable(poses, **options)
+    codes = np.full(len(poses), -1, dtype=np.int64)
+    closeness = np.full((len(poses), len(KINDS)), np.nan)
+    det_a, det_b = np.full(len(poses), np.nan), np.full(len(poses), np.nan)
+    integer = quantity in (None, "verdict")
+    values = np.full(len(poses), -1 if integer else np.nan, dtype=np.int64 if integer else float)
+    if ok.any():
+        posed = mechanism.at(poses[ok], rtol=rtol, **options)
+        _ = posed.joints  # det A and det B need the joint table too: build it once per batch
+        codes[ok] = posed.codes
+        for i, k in enumerate(KINDS):
+            closeness[ok, i] = posed.closeness[k]
+        for name, det in (("det_A", det_a), ("det_B", det_b)):
+            try:
+                det[ok] = getattr(posed.jacobians, name)
+            except ScrewkitError:  # no square Jacobian for this mechanism: no sign to follow
+                pass
+        values[ok] = codes[ok] if quantity is None else quantity_values(posed, quantity)
+    return values, ok, codes, closeness, det_a, det_b
 
 
 @dataclass(frozen=True)
@@ -138,6 +169,7 @@ def _refine(
     rtol: Any,
     *,
     keep_edges: bool = False,
+    client: Any = None,
 ) -> list[_Root]:
     """Refine every bracket at once and keep the roots the core labels singular or whose closeness
     is below :data:`ACCEPT` (and, with ``keep_edges``, the reach edges that are no singularity, as
@@ -149,7 +181,8 @@ def _refine(
     golden-section search whose steps are replaced by the apex of the ``|s (t − t₀)|`` fit through
     the bracket when that lands inside (a closeness measure vanishes like the distance to a simple
     root, design of :mod:`screwkit.core.singularity`). Stops when every bracket is narrower than
-    :data:`XTOL` or after :data:`MAX_STEPS` steps.
+    :data:`XTOL` or after :data:`MAX_STEPS` steps. With a Dask ``client`` each step's batch runs
+    on the cluster (:func:`_measure`).
     """
     if not brackets:
         return []
@@ -163,7 +196,7 @@ def _refine(
 
     def score(t: Array, which: Array = everyone) -> Array:
         """Per bracket ``which``: det A, ±1 reachability, or its kind's closeness (inf out of reach)."""
-        s = _measure(mechanism, along(lines[which], t[which]), options, rtol)
+        s = _measure(mechanism, along(lines[which], t[which]), options, rtol, client)
         det_a = np.zeros(len(which)) if s.det_A is None else np.nan_to_num(s.det_A)
         det_b = np.zeros(len(which)) if s.det_B is None else np.nan_to_num(s.det_B)
         det = np.where(is_det_b[which], det_b, det_a)
@@ -232,7 +265,7 @@ def _refine(
         np.where(is_det, np.where(np.abs(fa) <= np.abs(fb), a, b), m),
     )
     t = np.where(method == "sample", a, t)
-    final = _measure(mechanism, along(lines, t), options, rtol)
+    final = _measure(mechanism, along(lines, t), options, rtol, client)
     poses = along(lines, t)
     roots = []
     for k in range(len(brackets)):
