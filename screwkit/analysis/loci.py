@@ -167,7 +167,10 @@ def _slice_loci(
             return start[which] + s[:, None] * (stop[which] - start[which])
 
         brackets = _brackets(u, samples)
-        for root in _refine(mechanism, along, brackets, grid.options, rtol, keep_edges=True, client=client):
+        refined = _refine(
+            mechanism, along, brackets, u, samples, grid.options, rtol, keep_edges=True, client=client
+        )
+        for root in refined:
             kind = "reach" if root.kind == "unreachable" else root.kind
             found.append((root.pose / scale, kind, root.closeness))
     names = mechanism.pose_names
