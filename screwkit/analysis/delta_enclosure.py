@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 
@@ -24,12 +24,21 @@ from .limb_enclosures import (
     _cross,
     _cross_constant,
     _dot,
-    _parallelogram_limb,
     _relative,
     _sum,
 )
 
 __all__ = ["DeltaModel"]
+
+_DELTA_STATEMENTS = {
+    "constraint": "(n_1 x n_2).n_3 = 0, n_i = w_i x u_i: the parallelograms' constraint couples are "
+    "dependent, the platform may turn (Clavel 1990: each parallelogram keeps its orientation)",
+    "actuation": "det[w_1; w_2; w_3] = 0 (Williams 2015, velocity kinematics): the rods' forces are "
+    "dependent",
+    "serial": "P_i^2 + Q_i^2 - K_i^2 = 0 (Williams 2015, inverse kinematics; h_i = sigma_i (b/l) sqrt "
+    "of it): leg {i} at its reach, det B = 0",
+}
+
 
 @dataclass(frozen=True)
 class DeltaModel(_ClosedFormModel):
@@ -74,6 +83,7 @@ class DeltaModel(_ClosedFormModel):
     working_mode: tuple[int, int, int]
     base: tuple[list[list[_Constant]], ...]
     limbs: int = 3
+    statements: ClassVar[dict[str, str]] = _DELTA_STATEMENTS
 
     @classmethod
     def of(cls, mechanism: Any, options: Mapping[str, Any] | None = None) -> DeltaModel:
@@ -132,26 +142,8 @@ class DeltaModel(_ClosedFormModel):
             base,
         )
 
-    def functions(self) -> dict[str, str]:
-        """Each certified function's name and statement (what its vanishing means).
-
-        Returns
-        -------
-        dict of str to str
-            ``"constraint"``, ``"actuation"``, ``"serial:1"`` .. ``"serial:3"``.
-
-        Examples
-        --------
-        >>> sorted(DeltaModel.of(load_mechanism("delta")).functions())
-        ['actuation', 'constraint', 'serial:1', 'serial:2', 'serial:3']
-        """
-        out = {"constraint": _DELTA_STATEMENTS["constraint"], "actuation": _DELTA_STATEMENTS["actuation"]}
-        for i in range(3):
-            out[f"serial:{i + 1}"] = _DELTA_STATEMENTS["serial"].format(i=i + 1)
-        return out
-
     def evaluate(self, pose: list[Enclosure], *, singular: bool = True) -> dict[str, Enclosure]:
-        """Enclose every function of :meth:`functions` over a batch of boxes of pose space.
+        """Enclose every function of ``functions()`` over a batch of boxes of pose space.
 
         Parameters
         ----------
@@ -171,22 +163,17 @@ class DeltaModel(_ClosedFormModel):
         >>> bool(model.evaluate(at)["actuation"].excludes_zero()[0])
         True
         """
-        offsets, u_rows, j_rows, k_rows = self.base
-        out: dict[str, Enclosure] = {}
-        rods: list[Vector | None] = []
-        for i in range(3):
-            d: Vector = [
+        offsets, u_rows, _, _ = self.base
+        ds: list[Vector] = [
+            [
                 _sum(pose[k], None if offsets[i][k].value == 0 else type(pose[k]).constant(
                     offsets[i][k].value, pose[k], relative=_relative(offsets[i][k])))
                 for k in range(3)
             ]
-            g, rod_vector = _parallelogram_limb(
-                d, j_rows[i], k_rows[i], self.arm, self.rod, float(self.working_mode[i]), singular
-            )
-            out[f"serial:{i + 1}"] = g
-            rods.append(rod_vector)
+            for i in range(3)
+        ]
+        out, w = self._limb_functions(ds, singular)
         if singular:
-            w = [r for r in rods if r is not None]
             actuation = _dot(_cross(w[0], w[1]), w[2])
             normals = [_cross_constant(rod_i, u_rows[i]) for i, rod_i in enumerate(w)]
             constraint = _dot(_cross(normals[0], normals[1]), normals[2])
@@ -195,12 +182,4 @@ class DeltaModel(_ClosedFormModel):
         return out
 
 
-_DELTA_STATEMENTS = {
-    "constraint": "(n_1 x n_2).n_3 = 0, n_i = w_i x u_i: the parallelograms' constraint couples are "
-    "dependent, the platform may turn (Clavel 1990: each parallelogram keeps its orientation)",
-    "actuation": "det[w_1; w_2; w_3] = 0 (Williams 2015, velocity kinematics): the rods' forces are "
-    "dependent",
-    "serial": "P_i^2 + Q_i^2 - K_i^2 = 0 (Williams 2015, inverse kinematics; h_i = sigma_i (b/l) sqrt "
-    "of it): leg {i} at its reach, det B = 0",
-}
 

@@ -35,7 +35,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 
@@ -50,7 +50,6 @@ from .limb_enclosures import (
     _cross,
     _cross_constant,
     _dot,
-    _parallelogram_limb,
     _relative,
     _scaled_by,
     _sum,
@@ -112,6 +111,7 @@ class FourLimbModel(_ClosedFormModel):
     subplatforms: tuple[tuple[int, int], tuple[int, int]]
     base: tuple[list[list[_Constant]], ...]  # a, u, F j, F k: (4 rows of 3 constants) each
     limbs: int = 4
+    statements: ClassVar[dict[str, str]] = _STATEMENTS
 
     @classmethod
     def of(cls, mechanism: Any, options: Mapping[str, Any] | None = None) -> FourLimbModel:
@@ -184,26 +184,8 @@ class FourLimbModel(_ClosedFormModel):
             base,
         )
 
-    def functions(self) -> dict[str, str]:
-        """Each certified function's name and statement (what its vanishing means).
-
-        Returns
-        -------
-        dict of str to str
-            ``"constraint"``, ``"actuation"``, ``"serial:1"`` .. ``"serial:4"``.
-
-        Examples
-        --------
-        >>> FourLimbModel.of(load_mechanism("h4")).functions()["serial:2"][:24]
-        'P_i^2 + Q_i^2 - K_i^2 = '
-        """
-        out = {"constraint": _STATEMENTS["constraint"], "actuation": _STATEMENTS["actuation"]}
-        for i in range(4):
-            out[f"serial:{i + 1}"] = _STATEMENTS["serial"].format(i=i + 1)
-        return out
-
     def evaluate(self, pose: list[Enclosure], *, singular: bool = True) -> dict[str, Enclosure]:
-        """Enclose every function of :meth:`functions` over a batch of boxes of pose space.
+        """Enclose every function of ``functions()`` over a batch of boxes of pose space.
 
         Parameters
         ----------
@@ -227,12 +209,11 @@ class FourLimbModel(_ClosedFormModel):
         """
         x, y, z, phi = pose
         cos, sin = phi.cos_sin()
-        r, b, rod = self.radius, self.arm, self.rod
+        r = self.radius
         bar: Vector = [cos, sin, None]  # R_z(φ) i
         s: Vector = [-sin, cos, None]  # its derivative R_z(φ) j
-        a_rows, u_rows, j_rows, k_rows = self.base
-        out: dict[str, Enclosure] = {}
-        rods: list[Vector | None] = []
+        a_rows, u_rows, _, _ = self.base
+        ds: list[Vector] = []
         for i in range(4):
             sc, ss = _SGN_COS_ETA[i], _SGN_SIN_ETA[i]
             c_i = [
@@ -240,7 +221,7 @@ class FourLimbModel(_ClosedFormModel):
                 _sum(_scaled_by(bar[1], sc * r), y + ss * self.offset),
                 _sum(_scaled_by(bar[2], sc * r), z),
             ]
-            d = [
+            ds.append([
                 _sum(
                     c_i[k],
                     None
@@ -248,14 +229,9 @@ class FourLimbModel(_ClosedFormModel):
                     else -type(x).constant(a_rows[i][k].value, x, relative=_relative(a_rows[i][k])),
                 )
                 for k in range(3)
-            ]
-            g, rod_vector = _parallelogram_limb(
-                d, j_rows[i], k_rows[i], b, rod, float(self.working_mode[i]), singular
-            )
-            out[f"serial:{i + 1}"] = g
-            rods.append(rod_vector)
+            ])
+        out, w = self._limb_functions(ds, singular)
         if singular:
-            w = [rod_i for rod_i in rods if rod_i is not None]
             (i1, i2), (j1, j2) = self.subplatforms
             det_a = _dot(_cross(_cross(w[i1], w[i2]), _cross(w[j1], w[j2])), s)
             assert det_a is not None
@@ -285,7 +261,7 @@ def model_of(mechanism: Any, options: Mapping[str, Any] | None = None) -> FourLi
     Raises
     ------
     ScrewkitValueError
-        For a mechanism outside :data:`COVERED`.
+        When certification does not cover the mechanism, naming what is missing.
 
     Examples
     --------

@@ -17,7 +17,7 @@ Examples
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 
@@ -95,10 +95,49 @@ class _ClosedFormModel:
     (:class:`~screwkit.analysis.enclosures.FourLimbModel`,
     :class:`~screwkit.analysis.delta_enclosure.DeltaModel`):
     ``pose_names``, ``limbs`` (the reach functions ``serial:1`` .. ``serial:<limbs>``),
-    ``functions()``, ``evaluate()`` over enclosures and :meth:`values` in floats."""
+    :meth:`functions` (from the model's ``statements``), ``evaluate()`` over enclosures and
+    :meth:`values` in floats."""
 
     pose_names: tuple[str, ...]
     limbs: int
+    arm: float
+    rod: float
+    working_mode: tuple[int, ...]
+    base: tuple[list[list[_Constant]], ...]  # per limb: a point, u, F j, F k
+    statements: ClassVar[dict[str, str]]  # "constraint", "actuation", "serial" ({i}: the limb)
+
+    def _limb_functions(self, ds: list[Vector], singular: bool) -> tuple[dict[str, Enclosure], list[Vector]]:
+        """Each limb's reach function ``serial:i`` from its ``d_i`` and, with ``singular``, the unit
+        rods (:func:`_parallelogram_limb` in the limb's branch)."""
+        _, _, j_rows, k_rows = self.base
+        out: dict[str, Enclosure] = {}
+        rods: list[Vector] = []
+        for i, d in enumerate(ds):
+            mode = float(self.working_mode[i])
+            g, rod_vector = _parallelogram_limb(d, j_rows[i], k_rows[i], self.arm, self.rod, mode, singular)
+            out[f"serial:{i + 1}"] = g
+            if rod_vector is not None:
+                rods.append(rod_vector)
+        return out, rods
+
+    def functions(self) -> dict[str, str]:
+        """Each certified function's name and statement (what its vanishing means).
+
+        Returns
+        -------
+        dict of str to str
+            ``"constraint"``, ``"actuation"``, ``"serial:1"`` .. ``"serial:<limbs>"``.
+
+        Examples
+        --------
+        >>> from screwkit.analysis.enclosures import FourLimbModel
+        >>> FourLimbModel.of(load_mechanism("h4")).functions()["serial:2"][:24]
+        'P_i^2 + Q_i^2 - K_i^2 = '
+        """
+        out = {"constraint": self.statements["constraint"], "actuation": self.statements["actuation"]}
+        for i in range(self.limbs):
+            out[f"serial:{i + 1}"] = self.statements["serial"].format(i=i + 1)
+        return out
 
     def evaluate(self, pose: list[Enclosure], *, singular: bool = True) -> dict[str, Enclosure]:
         """The model's functions over boxes (each model writes its own)."""
