@@ -88,3 +88,18 @@ def test_loop_closure_mechanisms_are_refused_naming_the_missing_enclosure():
     with pytest.raises(sk.ScrewkitValueError, match="interval-Newton enclosure of its loop equations") as info:
         sk.certify(robot, {robot.pose_names[0]: (-1.0, 1.0)})
     assert "\n" not in str(info.value)
+
+
+def test_certified_path_encloses_the_independent_coplanarity():
+    # along y = 0 at z = -1000 the independent model's rods become coplanar at one x: the certified
+    # path has exactly one crossing, actuation, whose enclosure holds that x's path parameter
+    root = coplanar_root_on_x(DELTA, -1000.0)
+    check = sk.check_path(DELTA, {"x": 1000.0, "y": 0.0, "z": -1000.0}, {"x": 1170.0, "y": 0.0, "z": -1000.0},
+                          certify=True)
+    (crossing,) = check.crossings
+    t = (root[0] - 1000.0) / 170.0
+    assert crossing.kind == "actuation" and crossing.enclosure[0] <= t <= crossing.enclosure[1]
+    assert crossing.enclosure[1] - crossing.enclosure[0] < 1e-5 and check.certified_free is False
+    free = sk.check_path(DELTA, {"x": -300.0, "y": -300.0, "z": -1150.0}, {"x": 300.0, "y": 300.0, "z": -850.0},
+                         certify=True)
+    assert free.certified_free and not free.crossings
