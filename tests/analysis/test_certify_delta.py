@@ -7,9 +7,12 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import screwkit as sk
-from screwkit.analysis.enclosures import DeltaModel
+from screwkit.analysis.delta_enclosure import DeltaModel
+from screwkit.robots.catalog import load_toml, mechanism_from_mapping
 from tests.delta_geometry import RADIAL, coplanar_root_on_x, dimensions, elbows, rod_determinant
 
 DELTA = sk.load_mechanism("delta")
@@ -103,3 +106,36 @@ def test_certified_path_encloses_the_independent_coplanarity():
     free = sk.check_path(DELTA, {"x": -300.0, "y": -300.0, "z": -1150.0}, {"x": 300.0, "y": 300.0, "z": -850.0},
                          certify=True)
     assert free.certified_free and not free.crossings
+
+
+def delta_in_metres():
+    """The Delta with every length in metres (lengths / 1000)."""
+    data = load_toml(DELTA.source)
+    data["mechanism"]["length_unit"] = "m"
+    for entry in data["parameters"].values():
+        entry["value"] /= 1000.0
+        entry["unit"] = "m"
+    for key in ("x", "y", "z"):
+        data["pose"][key] /= 1000.0
+        data["workspace"][key] = [v / 1000.0 for v in data["workspace"][key]]
+    data.pop("expected", None)
+    return mechanism_from_mapping(data, source="delta in metres")
+
+
+METRES = delta_in_metres()
+
+
+@settings(max_examples=6, deadline=None)
+@given(x=st.floats(900.0, 1150.0), y=st.floats(-200.0, 150.0), z=st.floats(-1100.0, -900.0))
+def test_certificate_is_invariant_under_the_length_unit(x, y, z):
+    # the same region in mm and in m: the same boxes, statuses and witness labels
+    region = {"x": (x, x + 40.0), "y": (y, y + 50.0), "z": z}
+    in_mm = sk.certify(DELTA, region, resolution=4.0)
+    in_m = sk.certify(METRES, {"x": (x / 1e3, (x + 40.0) / 1e3), "y": (y / 1e3, (y + 50.0) / 1e3), "z": z / 1e3},
+                      resolution=4e-3)
+    assert [b.status for b in in_mm.boxes] == [b.status for b in in_m.boxes]
+    for mm, m in zip(in_mm.boxes, in_m.boxes, strict=True):
+        assert mm.bounds["x"] == pytest.approx(tuple(1e3 * v for v in m.bounds["x"]), rel=1e-12)
+        if mm.witness is not None:
+            assert mm.witness.label == m.witness.label
+            assert mm.witness.pose["x"] == pytest.approx(1e3 * m.witness.pose["x"], rel=1e-9)
