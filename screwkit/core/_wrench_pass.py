@@ -67,7 +67,8 @@ def canonical(table: JointTable) -> JointTable:
 
 
 def checked_dof(dof: Any, table: JointTable, top: Topology) -> int:
-    """The nominal mobility: ``dof``, else the table's, else the number of actuated joints.
+    """The nominal mobility: ``dof``, else the table's, else the number of actuated joints (at most 6:
+    a first guess, settled by :func:`screwkit.core.mobility.settled_dof`).
 
     Parameters
     ----------
@@ -84,7 +85,7 @@ def checked_dof(dof: Any, table: JointTable, top: Topology) -> int:
     TwistGraphError
         If it is not an integer in 0..6.
     """
-    nominal = dof if dof is not None else (table.dof if table.dof is not None else len(top.limbs))
+    nominal = dof if dof is not None else (table.dof if table.dof is not None else min(len(top.limbs), 6))
     if not B.is_dof(nominal):
         raise TwistGraphError(f"Expected `dof` to be an integer in 0..6, got {nominal!r}.")
     return int(nominal)

@@ -154,6 +154,25 @@ class SingularityReport:
         return _same_kind(6 - np.asarray(self.global_order))
 
     @property
+    def redundancy(self) -> Any:
+        """The degree of actuation redundancy per pose: the actuated joints minus the freedoms they
+        drive, ``n − (order(W^c + W^a) − order(W^c))`` (:mod:`screwkit.core.redundancy`): ``n − dof``
+        at a regular pose, more at a singular one; 0 for a non-redundant mechanism at a regular pose.
+
+        Examples
+        --------
+        >>> from screwkit.graphs.joints import prismatic
+        >>> from screwkit.graphs.twistgraph import twist_graph
+        >>> from screwkit.core.wrenches import wrench_analysis
+        >>> slide = twist_graph("B", "E", [("B", "E", prismatic("P1", [1, 0, 0], actuated=True)),
+        ...                                ("B", "E", prismatic("P2", [1, 0, 0], actuated=True))])
+        >>> classify_analysis(wrench_analysis(slide)).redundancy
+        1
+        """
+        driven = np.asarray(self.global_order) - np.asarray(self.constraint_order)
+        return _same_kind(len(self.actuated_joints) - driven)
+
+    @property
     def serial_flags(self) -> Array:
         """``(..., n_actuated)``: True where that limb is serially singular (joint order:
         :attr:`actuated_joints`)."""
@@ -258,6 +277,7 @@ class SingularityReport:
         -------
         dict
             ``verdict``, ``labels``, ``dof``, the orders and freedoms gained, lost and uncontrolled,
+            the degree of actuation redundancy,
             the serial limbs and the closeness measures (JSON-ready).
 
         Examples
@@ -281,6 +301,7 @@ class SingularityReport:
             "gained_dof": int(self.gained_dof),
             "lost_dof": int(self.lost_dof),
             "uncontrolled_dof": int(self.uncontrolled_dof),
+            "redundancy": int(self.redundancy),
             "uncontrolled_twists": [S.Screw(t).to_dict() for t in self.uncontrolled_twists],
             "serial": [
                 {
@@ -381,6 +402,12 @@ class SingularityReport:
                 )
         if not self.actuation_assessed:
             lines.append("  no actuated joint: mobility analysis only, actuation not assessed")
+        elif len(self.actuated_joints) > self.dof:
+            lines.append(
+                f"  redundantly actuated: {len(self.actuated_joints)} actuated joints for {self.dof} "
+                f"freedom(s); degree of redundancy {self.redundancy} here "
+                f"({len(self.actuated_joints) - self.dof} at a regular pose)"
+            )
         if self.lost_dof:
             lines.append(
                 f"  the platform has {self.lost_dof} DOF fewer than nominal"

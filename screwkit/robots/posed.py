@@ -324,6 +324,13 @@ class PosedMechanism:
         return self.singularities.codes
 
     @property
+    def redundancy(self) -> Any:
+        """The degree of actuation redundancy per pose, the actuated joints minus the freedoms they drive
+        (:attr:`SingularityReport.redundancy <screwkit.core.verdicts.SingularityReport.redundancy>`; an int
+        for one pose)."""
+        return self.singularities.redundancy
+
+    @property
     def closeness(self) -> dict[str, Array]:
         """The closeness measures per pose (:mod:`screwkit.core.singularity`)."""
         return self.singularities.closeness
