@@ -50,7 +50,12 @@ unit-free matrices, in the spirit of :mod:`screwkit.core.verdicts`'s closeness m
   rotation the mutual moment over ``L``. ``Â`` does not change under rigid motions or changes of
   unit (it does depend on the choice of ``L``, as any conditioning of a dimensionally
   inhomogeneous Jacobian does; the *zero* decision does not).
-* closeness ``"direct"`` = σ_dof(Â) / σ_1(Â) (0 if there are fewer actuation rows than ``dof``);
+* closeness ``"direct"`` = σ_dof(Â) / σ_1(Â) (0 if there are fewer actuation rows than ``dof``). For a
+  redundantly actuated mechanism (``n > dof`` rows, :mod:`screwkit.core.redundancy`) ``Â`` is
+  ``n × dof`` and σ_dof its smallest singular value: 0 exactly where ``rank A < dof``, where the
+  platform keeps a twist of the basis with *all* the actuators locked (the redundant robot's actuation
+  singularity; Gosselin & Angeles' type 2 for a non-square ``A``). It is the inverse condition number
+  of ``Â``, so it does not change when the rows are permuted or the basis rotated orthonormally;
 * closeness ``"inverse"`` = min_j ``|B_jj| / (N(w_j) N($_j) L)``, the smallest limb transmission
   (equal to :mod:`screwkit.core.verdicts`'s ``"serial"`` closeness), 0 for a limb in ``serial_limbs``.
 

@@ -160,3 +160,24 @@ def test_actuator_flags_that_leave_the_platform_uncontrolled_are_refused():
                                    ("L", "E", revolute("R", z, [1, 0, 0]))])
     report = classify(under)
     assert report.dof == 2 and report.labels == ("actuation",) and report.redundancy == 0
+
+
+def test_the_direct_closeness_of_a_non_square_A_is_zero_only_where_all_actuators_fail():
+    # at the five-bar's actuation singularity (distal links in line) its 2x2 A is singular; the 3x2 A of
+    # the robot with the third leg is not: its smallest singular value, normalised, stays away from 0
+    a1, a2, a3 = np.zeros(3), np.array([1.0, 0, 0]), np.array([0.5, -0.5, 0])
+    b1 = np.array([np.cos(2.0), np.sin(2.0), 0.0])
+    t2 = next(t for t in np.linspace(0.0, 1.6, 160001)
+              if np.linalg.norm(a2 + np.array([np.cos(t), np.sin(t), 0]) - b1) < 2.4)
+    b2 = a2 + np.array([np.cos(t2), np.sin(t2), 0.0])
+    c = (b1 + b2) / 2
+    two = sk.mechanism(five_bar(c, [(a1, b1), (a2, b2)])).at()[0].jacobians
+    three = sk.mechanism(five_bar(c, [(a1, b1), (a2, b2), (a3, elbow(a3, c, 1))])).at()[0]
+    assert two.type == "direct" and two.closeness["direct"] < 1e-6
+    assert three.jacobians.type == "regular" and three.jacobians.closeness["direct"] > 0.05
+    hat = three.jacobians.A  # rows: unit forces; independent check of the rank of the 3x2 matrix
+    assert np.linalg.matrix_rank(hat, tol=1e-9 * np.abs(hat).max()) == 2
+    with pytest.raises(sk.ScrewkitValueError, match=r"redundantly actuated: no platform twist comes from one"):
+        _ = three.wrench_transmission
+    with pytest.raises(sk.ScrewkitValueError, match=r"3 actuated joints, 2 twists in the basis; redundantly"):
+        three.jacobians.kinematic_jacobian()
