@@ -63,7 +63,9 @@ def canonical(table: JointTable) -> JointTable:
     rows = [r for k in order for r in range(starts[k], starts[k + 1])]
     specs = tuple(table.specs[k] for k in order)
     screws = np.ascontiguousarray(table.screws[..., rows, :])
-    return JointTable(table.base, table.platform, specs, screws, table.dof, table.anchor, table.mobility)
+    return JointTable(
+        table.base, table.platform, specs, screws, table.dof, table.anchor, table.mobility, table.free
+    )
 
 
 def checked_dof(dof: Any, table: JointTable, top: Topology) -> int:
@@ -367,4 +369,5 @@ def wrench_pass(
         actuated_twists=actuated_screws(top, screws),
         frames=frames,
         closeness_factors=closeness_factors,
+        free=table.free,
     )

@@ -338,7 +338,8 @@ def jacobians_from_wrenches(
     twist_basis : array_like, shape (..., dof, 6)
         Unit-rate twists of the platform, user frame, one per degree of freedom of the analysis
         (e.g. :func:`schoenflies_basis`); they define the columns of ``A`` and the meaning of
-        ``χ̇``.
+        ``χ̇``. For a point task (``analysis.free = 3``) one per freedom of the point: the twists
+        giving the point unit velocities (rows ``dof − 3``).
     rtol : float, optional
         Tolerance of the type decisions (closeness ``≤ rtol``); default the analysis's ``rtol``.
     basis_rtol : float, default 1e-6
@@ -389,7 +390,7 @@ def jacobians_from_wrenches(
         raise ScrewkitTypeError(f"Expected `analysis` to be a WrenchAnalysis, got {type(analysis).__name__}.")
     tolerance = analysis.rtol if rtol is None else checked_rtol(rtol, "rtol")
     basis_tolerance = checked_rtol(basis_rtol, "basis_rtol")
-    dof, batch = analysis.dof, analysis.shape
+    dof, batch = analysis.dof - analysis.free, analysis.shape  # a point task: the point's freedoms
     raw = B.as_array(twist_basis, "twist_basis", (None, 6), symbolic=False)
     if raw.ndim < 2 or raw.shape[-2] != dof:
         raise ScrewkitValueError(

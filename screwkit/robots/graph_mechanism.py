@@ -8,7 +8,8 @@ reference configuration, so each pose stays in the working and assembly mode of 
 
 Its coordinates, inverse and forward kinematics are those of
 :mod:`screwkit.robots.graph_kinematics`; ``task=(link, point)`` makes the coordinates those of a point
-of a link (the five-bar's end point), whose orientation stays free.
+of a link (the five-bar's end point), whose orientation stays free; verdicts and Jacobians then
+refer to the point's freedoms (:mod:`screwkit.robots.point_task`).
 
 Examples
 --------
