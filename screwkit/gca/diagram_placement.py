@@ -28,6 +28,7 @@ from .diagram import INCIDENCE_RTOL, DiagramPoint, WrenchDiagram, require_instan
 from .diagram_lines import lines_at
 from .diagram_points import batch_diagram_points, diagram_points
 from .diagram_recipes import wrench_diagram
+from .redundant_conditions import MORE_LINES
 
 __all__ = [
     "REFERENCE_TRIES",
@@ -101,7 +102,7 @@ REFERENCE_TRIES = 3
 
 
 def generic_reference(
-    analyses: Sequence[WrenchAnalysis],
+    analyses: Sequence[WrenchAnalysis], *, more_lines: bool = False
 ) -> tuple[WrenchDiagram | None, tuple[str, ...]]:
     """The diagram of a mechanism at a generic configuration, or why the mechanism has none.
 
@@ -116,6 +117,9 @@ def generic_reference(
     ----------
     analyses : sequence of WrenchAnalysis
         Single-pose analyses of the mechanism at generic configurations.
+    more_lines : bool, default False
+        Accept a diagram of more than six lines (a redundantly actuated mechanism's, analysed by its
+        six-line subsets: :mod:`screwkit.gca.redundant_conditions`).
 
     Returns
     -------
@@ -143,7 +147,8 @@ def generic_reference(
         except ScrewkitError as err:  # e.g. a joint whose centre is not defined
             first = first or (str(err),)
             continue
-        if not candidate.degenerate:  # its directions orient the points at infinity from now on
+        if not [r for r in candidate.degenerate if not (more_lines and MORE_LINES in r)]:
+            # its directions orient the points at infinity from now on
             points = tuple(
                 replace(p, orientation=tuple(float(x) for x in candidate.coordinates[p.label][:3]))
                 if p.at_infinity

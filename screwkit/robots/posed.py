@@ -519,9 +519,12 @@ class PosedMechanism:
 
         from ..gca.diagram_placement import ReplaySampler, diagram_at, generic_reference
         from ..gca.diagram_recipes import wrench_diagram
+        from ..gca.redundant_conditions import MORE_LINES
 
         analyses, first, stream = self._draws
         reference, reasons = generic_reference(analyses)
+        if reference is None and any(MORE_LINES in reason for reason in reasons):  # redundant actuation
+            reference, reasons = generic_reference(analyses, more_lines=True)
         if reference is None:  # a property of the mechanism, found at generic poses: say so
             diagram = wrench_diagram(self.analysis)
             return replace(diagram, coordinates={}, degenerate=reasons), _no_sampler
@@ -550,11 +553,15 @@ class PosedMechanism:
         interpreted (:func:`screwkit.gca.superbracket_analysis.superbracket_analysis`; what
         :func:`screwkit.interface.report.analyze` shows; one pose only).
 
+        A redundantly actuated mechanism's diagram has more than six lines: its superbracket is
+        then the :class:`~screwkit.gca.redundant_conditions.RedundantSuperbracket` of its six-line
+        subsets.
+
         Raises
         ------
         ScrewkitValueError
-            On a batch (index it first), or if the mechanism has no wrench diagram of six lines at
-            generic poses (a diagram that degenerates only at this pose is still factored there).
+            On a batch (index it first), or if the mechanism has no wrench diagram of six lines (or
+            more) at generic poses (a diagram that degenerates only at this pose is still factored there).
         """
         from ..gca.superbracket_analysis import superbracket_analysis
 
