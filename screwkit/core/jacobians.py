@@ -28,6 +28,15 @@ so that ``B_jj ≥ 0``. For the four-limb SMGs of paper 004 this gives exactly `
 ``B_paper = D B`` with ``D = diag(sgn h_i) = −I`` in the paper's working mode (its rows
 ``e_i = [w_iᵀ, r w_iᵀs_i]`` have unit ``w_i``; Eqs. 6–8).
 
+Point tasks and redundant actuation
+-----------------------------------
+For a point task (:mod:`screwkit.robots.point_task`: the platform a task link on a spherical joint
+at the point, ``analysis.free = 3``) the basis has one twist per freedom of the point
+(``dof − free`` rows) and every ``w_j`` is a force through the point, so ``A_jk = f_j · e_k``: for the
+planar five-bar the rows of ``A`` are the distal links' directions and ``B_jj = ((B_j − A_j) × u_j)·z``
+(Gosselin & Angeles 1990). A redundantly actuated mechanism (:mod:`screwkit.core.redundancy`) has
+more rows than columns; its direct closeness is below.
+
 Serial singularities (no actuation wrench)
 ------------------------------------------
 Where the actuated twist is reciprocal to the whole passive wrench system of its limb,

@@ -4,12 +4,14 @@ the legs; a planar five-bar locked at its actuators moves iff its loop equations
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
 
 import screwkit as sk
 from screwkit.core.singularity import classify
 from screwkit.exceptions import TwistGraphError
 from screwkit.graphs.joints import prismatic, revolute, spherical, universal
 from screwkit.graphs.twistgraph import twist_graph
+from tests.strategies import rigid_motions, unit_factors
 
 
 def ups_legs(bases, tops):
@@ -181,3 +183,19 @@ def test_the_direct_closeness_of_a_non_square_A_is_zero_only_where_all_actuators
         _ = three.wrench_transmission
     with pytest.raises(sk.ScrewkitValueError, match=r"3 actuated joints, 2 twists in the basis; redundantly"):
         three.jacobians.kinematic_jacobian()
+
+
+@settings(max_examples=8, deadline=None)
+@given(motion=rigid_motions(), unit=unit_factors)
+def test_verdicts_and_redundancy_follow_rigid_motions_and_units(motion, unit):
+    rotation, translation = motion
+    rng = np.random.default_rng(11)
+    angles = np.sort(rng.uniform(0, 2 * np.pi, 7))
+    radii = rng.uniform(0.8, 1.2, (2, 7))
+    bases = radii[0, :, None] * circle(1.0, angles, 0.0)
+    tops = radii[1, :, None] * circle(0.5, angles, 1.0)  # six legs meet the z axis: singular ...
+    moved = tops.copy()
+    moved[6] = moved[6] + 0.3 * np.array([-np.sin(angles[6]), np.cos(angles[6]), 0.0])  # ... held by one
+    for top, labels, redundancy in ((tops, ("actuation",), 2), (moved, (), 1)):
+        report = classify(ups_legs(unit * (bases @ rotation.T + translation), unit * (top @ rotation.T + translation)))
+        assert report.labels == labels and report.redundancy == redundancy
