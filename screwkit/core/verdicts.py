@@ -171,11 +171,11 @@ class SingularityReport:
 
         Examples
         --------
+        >>> from screwkit.core.wrenches import wrench_analysis
         >>> from screwkit.graphs.joints import prismatic
         >>> from screwkit.graphs.twistgraph import twist_graph
-        >>> from screwkit.core.wrenches import wrench_analysis
-        >>> slide = twist_graph("B", "E", [("B", "E", prismatic("P1", [1, 0, 0], actuated=True)),
-        ...                                ("B", "E", prismatic("P2", [1, 0, 0], actuated=True))])
+        >>> pair = [prismatic(f"P{i}", [1, 0, 0], actuated=True) for i in (1, 2)]  # two on one slide
+        >>> slide = twist_graph("B", "E", [("B", "E", joint) for joint in pair])
         >>> classify_analysis(wrench_analysis(slide)).redundancy
         1
         """

@@ -34,16 +34,13 @@ from __future__ import annotations
 import itertools
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, replace
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 
 from ..algebra.projective import join_unchecked
 from ..exceptions import ScrewkitError, ScrewkitValueError
 from .diagram import WrenchDiagram, require_instance
-
-if TYPE_CHECKING:
-    from .conditions import Condition
 
 __all__ = ["MORE_LINES", "RedundantSuperbracket", "redundant_superbracket", "six_line_subsets"]
 
@@ -130,6 +127,15 @@ def _subset_diagram(diagram: WrenchDiagram, subset: tuple[int, ...]) -> WrenchDi
     )
 
 
+def _joined(name: str, doc: str) -> Any:
+    """A property joining an attribute of every subset's analysis, subset by subset."""
+
+    def joined(self: RedundantSuperbracket) -> tuple[Any, ...]:
+        return tuple(item for analysis in self.analyses for item in getattr(analysis, name))
+
+    return property(joined, doc=doc)
+
+
 @dataclass(frozen=True, eq=False)
 class RedundantSuperbracket:
     """The superbrackets of a redundantly actuated mechanism's six-line subsets (module docstring).
@@ -149,38 +155,12 @@ class RedundantSuperbracket:
     subsets: tuple[tuple[int, ...], ...]
     analyses: tuple[Any, ...]
 
-    def _joined(self, name: str) -> tuple[Any, ...]:
-        return tuple(item for analysis in self.analyses for item in getattr(analysis, name))
-
-    @property
-    def conditions(self) -> tuple[Condition, ...]:
-        """Every subset's conditions, subset by subset (:attr:`subset_of`)."""
-        return self._joined("conditions")
-
-    @property
-    def labels(self) -> tuple[str, ...]:
-        """Per condition, its label (as a six-line mechanism's)."""
-        return self._joined("labels")
-
-    @property
-    def values(self) -> tuple[float, ...]:
-        """Per condition, its value at the pose."""
-        return self._joined("values")
-
-    @property
-    def vanishing(self) -> tuple[bool, ...]:
-        """Per condition, whether it vanishes at the pose."""
-        return self._joined("vanishing")
-
-    @property
-    def constant(self) -> tuple[bool, ...]:
-        """Per condition, whether it never vanishes on the mechanism."""
-        return self._joined("constant")
-
-    @property
-    def undefined(self) -> tuple[str, ...]:
-        """Per condition, why it has no value at the pose, or ""."""
-        return self._joined("undefined")
+    conditions = _joined("conditions", "Every subset's conditions, subset by subset (:attr:`subset_of`).")
+    labels = _joined("labels", "Per condition, its label (as a six-line mechanism's).")
+    values = _joined("values", "Per condition, its value at the pose.")
+    vanishing = _joined("vanishing", "Per condition, whether it vanishes at the pose.")
+    constant = _joined("constant", "Per condition, whether it never vanishes on the mechanism.")
+    undefined = _joined("undefined", 'Per condition, why it has no value at the pose, or "".')
 
     @property
     def subset_of(self) -> tuple[int, ...]:
