@@ -102,7 +102,7 @@ REFERENCE_TRIES = 3
 
 
 def generic_reference(
-    analyses: Sequence[WrenchAnalysis], *, more_lines: bool = False
+    analyses: Sequence[WrenchAnalysis],
 ) -> tuple[WrenchDiagram | None, tuple[str, ...]]:
     """The diagram of a mechanism at a generic configuration, or why the mechanism has none.
 
@@ -116,10 +116,9 @@ def generic_reference(
     Parameters
     ----------
     analyses : sequence of WrenchAnalysis
-        Single-pose analyses of the mechanism at generic configurations.
-    more_lines : bool, default False
-        Accept a diagram of more than six lines (a redundantly actuated mechanism's, analysed by its
-        six-line subsets: :mod:`screwkit.gca.redundant_conditions`).
+        Single-pose analyses of the mechanism at generic configurations. A diagram whose only
+        failure is more than six lines (a redundantly actuated mechanism's) holds: it is analysed by
+        its six-line subsets (:mod:`screwkit.gca.redundant_conditions`).
 
     Returns
     -------
@@ -147,7 +146,8 @@ def generic_reference(
         except ScrewkitError as err:  # e.g. a joint whose centre is not defined
             first = first or (str(err),)
             continue
-        if not [r for r in candidate.degenerate if not (more_lines and MORE_LINES in r)]:
+        more = len(candidate.lines) > 6  # redundant actuation: its six-line subsets
+        if not [r for r in candidate.degenerate if not (more and MORE_LINES in r)]:
             # its directions orient the points at infinity from now on
             points = tuple(
                 replace(p, orientation=tuple(float(x) for x in candidate.coordinates[p.label][:3]))

@@ -519,12 +519,9 @@ class PosedMechanism:
 
         from ..gca.diagram_placement import ReplaySampler, diagram_at, generic_reference
         from ..gca.diagram_recipes import wrench_diagram
-        from ..gca.redundant_conditions import MORE_LINES
 
         analyses, first, stream = self._draws
         reference, reasons = generic_reference(analyses)
-        if reference is None and any(MORE_LINES in reason for reason in reasons):  # redundant actuation
-            reference, reasons = generic_reference(analyses, more_lines=True)
         if reference is None:  # a property of the mechanism, found at generic poses: say so
             diagram = wrench_diagram(self.analysis)
             return replace(diagram, coordinates={}, degenerate=reasons), _no_sampler

@@ -87,3 +87,11 @@ def test_the_report_shows_the_subsets_conditions():
     assert "redundantly actuated: singular where all 3 superbrackets" in text
     assert "degree of redundancy 1" in text and text.count("actuation singularity when") >= 6
     assert report.to_dict()["superbracket"]["redundant"] is True
+
+
+def test_a_redundant_twist_graph_gets_its_conditions_in_the_report():
+    c = np.array([0.5, 1.5, 0.0])
+    graph = five_bar(c, [(A1, elbow(A1, c, 1)), (A2, elbow(A2, c, -1)), (A3, elbow(A3, c, 1))])
+    report = sk.analyze(graph)
+    assert isinstance(report.superbracket, RedundantSuperbracket) and len(report.superbracket.subsets) == 3
+    assert report.verdict.redundancy == 1 and not report.superbracket.singular
