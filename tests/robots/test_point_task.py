@@ -5,6 +5,7 @@ B_ii = ((B_i − A_i) × u_i)·z; serial where A_i, B_i, C are in line, actuatio
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
 
 import screwkit as sk
 from screwkit.core.singularity import label_table
@@ -12,6 +13,7 @@ from screwkit.graphs.joints import revolute
 from screwkit.graphs.jointtable import JointTable
 from screwkit.graphs.twistgraph import twist_graph
 from screwkit.robots.point_task import TASK_JOINT, with_task_point
+from tests.strategies import rigid_motions, unit_factors
 
 A1, A2 = np.zeros(3), np.array([1.0, 0.0, 0.0])
 PROXIMAL, DISTAL = 1.0, 1.2
@@ -126,3 +128,30 @@ def test_the_report_of_a_point_task_measures_the_point():
     c = np.array([0.55, 1.65, 0.0])
     hand_a, hand_b = hand_jacobians(elbow(A1, c, 1), elbow(A2, c, -1), c)
     np.testing.assert_allclose(report.jacobians.kinematic_jacobian(), np.linalg.solve(hand_a, hand_b), atol=1e-9)
+
+
+@settings(max_examples=6, deadline=None)
+@given(motion=rigid_motions(), unit=unit_factors)
+def test_point_task_verdicts_follow_rigid_motions_and_units(motion, unit):
+    rotation, translation = motion
+
+    def moved(p):
+        return unit * (rotation @ p + translation)
+
+    def verdict(b1, b2, c):
+        axis = rotation @ np.array([0.0, 0.0, 1.0])
+        graph = twist_graph("ground", "distal1", [
+            ("ground", "proximal1", revolute("A1", axis, moved(A1), actuated=True)),
+            ("proximal1", "distal1", revolute("B1", axis, moved(b1))),
+            ("ground", "proximal2", revolute("A2", axis, moved(A2), actuated=True)),
+            ("proximal2", "distal2", revolute("B2", axis, moved(b2))),
+            ("distal2", "distal1", revolute("C", axis, moved(c))),
+        ])
+        table = with_task_point(JointTable.from_graph(graph), "distal1", moved(c), 2)
+        return label_table(table[None])[0].labels
+
+    direction = np.array([0.5, 1.6, 0.0]) / np.linalg.norm([0.5, 1.6, 0.0])
+    c = (PROXIMAL + DISTAL) * direction  # leg 1 stretched
+    assert verdict(PROXIMAL * direction, elbow(A2, c, -1), c) == ("serial",)
+    c = np.array([0.5, 1.6, 0.0])
+    assert verdict(elbow(A1, c, 1), elbow(A2, c, -1), c) == ()
