@@ -199,3 +199,11 @@ def test_verdicts_and_redundancy_follow_rigid_motions_and_units(motion, unit):
     for top, labels, redundancy in ((tops, ("actuation",), 2), (moved, (), 1)):
         report = classify(ups_legs(unit * (bases @ rotation.T + translation), unit * (top @ rotation.T + translation)))
         assert report.labels == labels and report.redundancy == redundancy
+
+
+def test_a_graph_mechanism_with_actuators_that_drive_nothing_is_refused():
+    z = [0, 0, 1]
+    coaxial = twist_graph("B", "E", [("B", "L", revolute("A1", z, [0, 0, 0], actuated=True)),
+                                     ("L", "E", revolute("A2", z, [0, 0, 0], actuated=True))])
+    with pytest.raises(TwistGraphError, match=r"^Expected the `actuated` joints to drive the mechanism's 1 "):
+        sk.mechanism(coaxial)
