@@ -48,6 +48,7 @@ from ..exceptions import ScrewkitTypeError, ScrewkitValueError, UnreachablePoseE
 from ..graphs.jointtable import JointTable
 from ..graphs.twistgraph import check_twist_graph, graph_frame
 from .families import Family
+from .point_task import with_task_point
 
 __all__ = [
     "MAX_CACHED_POSES",
@@ -84,6 +85,9 @@ class GraphKinematics:
         Added to the rotation coordinates (a catalog robot's default angles; zeros for a graph).
     reference : JointTable
         The graph's joint table (names, types, actuation, dof).
+    point_task : bool
+        True when the coordinates are a point's alone (``rotations=False``): the analysis measures the
+        point (:func:`screwkit.robots.point_task.with_task_point`).
     """
 
     graph: nx.MultiDiGraph = field(repr=False)
@@ -92,6 +96,7 @@ class GraphKinematics:
     complete: bool
     angle_offsets: Array
     reference: JointTable = field(repr=False)
+    point_task: bool = False
     _cache: dict[bytes, tuple[Array, dict[str, Array]]] = field(default_factory=dict, repr=False)
 
     @functools.cached_property
@@ -314,8 +319,14 @@ def _inverse_kinematics(kinematics: GraphKinematics, poses: Any) -> GraphConfigu
 
 
 def _joints(configuration: GraphConfiguration) -> JointTable:
-    kinematics = configuration.kinematics
-    return kinematics.model.joint_table(configuration.state, kinematics.reference, configuration.shape)
+    kinematics, shape = configuration.kinematics, configuration.shape
+    table = kinematics.model.joint_table(configuration.state, kinematics.reference, shape)
+    if not kinematics.point_task:
+        return table
+    link, point = kinematics.coordinates.link, kinematics.coordinates.point
+    moved = kinematics.model.displacement(configuration.state, link)
+    points = (moved[:, :3, :3] @ point + moved[:, :3, 3]).reshape(*shape, 3)
+    return with_task_point(table, link, points, len(kinematics.coordinates.names))
 
 
 def _twist_basis(configuration: GraphConfiguration) -> Array:
@@ -455,7 +466,7 @@ def graph_kinematics(
     reference = JointTable.from_graph(graph)
     if rotations and reference.dof is None:  # the platform's freedoms: as many as its coordinates
         reference = dataclasses.replace(reference, dof=len(coordinates.names))
-    return GraphKinematics(graph, model, coordinates, complete, offsets, reference)
+    return GraphKinematics(graph, model, coordinates, complete, offsets, reference, not rotations)
 
 
 _KINEMATICS: dict[int, tuple[Any, GraphKinematics]] = {}
