@@ -54,6 +54,7 @@ import numpy as np
 
 from ..exceptions import ScrewkitValueError
 from .kinematic_model import KinematicModel, KinematicState
+from .kinematic_tasks import PoseTask
 
 __all__ = ["FINAL_TOLERANCE", "MAX_STEP", "ClosedConfigurations", "close_loops"]
 
@@ -130,9 +131,58 @@ def _equations(model: KinematicModel, task: Any, state: KinematicState, target: 
     return residual, jacobian
 
 
+class _LoopsAndTask:
+    """The equations Newton's method solves: the loops' and the task's, over the whole model."""
+
+    def __init__(self, model: KinematicModel, task: Any):
+        self.model, self.task = model, task
+
+    def state(self, theta: Array, offsets: dict[str, Array], target: Array) -> KinematicState:
+        return self.model.state(theta, offsets)
+
+    def equations(self, state: KinematicState, target: Array) -> tuple[Array, Array]:
+        return _equations(self.model, self.task, state, target)
+
+    def correction(self, jacobian: Array, residual: Array) -> Array:
+        return _solve_step(jacobian, residual)
+
+
+class _PinnedLoops(_LoopsAndTask):
+    """The same configurations when the task fixes its link's whole pose: that link placed where the
+    target says (:meth:`~screwkit.core.kinematic_tasks.PoseTask.displacement`), the loops of the
+    model pinned there (:meth:`~screwkit.core.kinematic_model.KinematicModel.pinned_model`) close
+    each part between the base and the link on its own, so the correction is solved block by block
+    (blocks of one shape in one batched call): the same minimum-norm step per block, as each
+    block's equations hold only its own joint variables."""
+
+    def __init__(self, model: KinematicModel, task: Any):
+        super().__init__(model, task)
+        self.pinned = model.pinned_model(task.coordinates.link)
+        shapes: dict[tuple[int, int], list[tuple[Array, Array]]] = {}
+        for rows, columns in self.pinned.blocks:
+            shapes.setdefault((rows.size, columns.size), []).append((rows, columns))
+        self.groups = [
+            (np.array([r for r, _ in blocks]), np.array([c for _, c in blocks])) for blocks in shapes.values()
+        ]
+
+    def state(self, theta: Array, offsets: dict[str, Array], target: Array) -> KinematicState:
+        return self.pinned.state(theta, offsets, self.task.displacement(target))
+
+    def equations(self, state: KinematicState, target: Array) -> tuple[Array, Array]:
+        return self.pinned.loop_residual(state), self.pinned.loop_jacobian(state)
+
+    def correction(self, jacobian: Array, residual: Array) -> Array:
+        count = jacobian.shape[0]
+        out = np.zeros((count, self.model.size))
+        for rows, columns in self.groups:
+            blocks = jacobian[:, rows[:, :, None], columns[:, None, :]]  # (B, blocks, rows, columns)
+            step = _solve_step(blocks.reshape(-1, *blocks.shape[2:]), residual[:, rows].reshape(-1, rows.shape[1]))
+            out[:, columns.ravel()] = step.reshape(count, -1)
+        return out
+
+
 def _continue(
-    model: KinematicModel,
-    task: Any,
+    system: _LoopsAndTask,
     targets: Array,
     theta: Array,
     offsets: dict[str, Array],
@@ -143,6 +193,7 @@ def _continue(
     """One continuation of a chunk, each pose in equal steps of at most ``step_length`` (a pose whose
     way is done rests); returns theta, offsets, the residual at the targets (inf where non-finite)
     and the fraction of the way where each pose was lost (NaN if not)."""
+    model, task = system.model, system.task
     count = targets.shape[0]
     lost_at = np.full(count, np.nan)
     active = np.ones(count, dtype=bool)
@@ -171,8 +222,8 @@ def _continue(
             rows = np.flatnonzero(working)
             if rows.size == 0:
                 break
-            state = model.state(theta[rows], {k: v[rows] for k, v in offsets.items()})
-            residual, jacobian = _equations(model, task, state, target[rows])
+            state = system.state(theta[rows], {k: v[rows] for k, v in offsets.items()}, target[rows])
+            residual, jacobian = system.equations(state, target[rows])
             size = np.max(np.abs(residual), axis=1, initial=0.0)
             residual_size[rows] = size
             need = size > tolerance[rows]
@@ -180,7 +231,7 @@ def _continue(
             rows = rows[need]
             if rows.size == 0:
                 break
-            correction = _solve_step(jacobian[need], residual[need])
+            correction = system.correction(jacobian[need], residual[need])
             length = np.max(np.abs(correction), axis=1, initial=0.0)
             correction *= np.minimum(1.0, MAX_CORRECTION / np.maximum(length, 1e-300))[:, None]
             theta[rows] += correction
@@ -195,11 +246,11 @@ def _continue(
             turned = np.flatnonzero(np.max(np.abs(theta[:, spherical]), axis=1) > RECENTRE_ANGLE)
             if turned.size:
                 sub = {k: v[turned] for k, v in offsets.items()}
-                new_theta, new_offsets = model.recentred(model.state(theta[turned], sub))
+                new_theta, new_offsets = model.recentred(system.state(theta[turned], sub, target[turned]))
                 theta[turned] = new_theta
                 for key, value in new_offsets.items():
                     offsets.setdefault(key, np.tile(np.eye(4), (count, 1, 1)))[turned] = value
-    state = model.state(theta, offsets)
+    state = model.state(theta, offsets)  # the loops and the task of the whole model, as checked
     residual, _ = _equations(model, task, state, targets)
     size = np.max(np.abs(residual), axis=1, initial=0.0)
     size[~active] = np.maximum(size[~active], LOST_TOLERANCE)  # a lost pose is never accepted
@@ -266,6 +317,8 @@ def _close_chunk(
     model: KinematicModel, task: Any, targets: Array
 ) -> tuple[Array, dict[str, Array], Array, Array]:
     count = len(targets)
+    fixes_pose = isinstance(task, PoseTask) and task.fixes_pose and task.coordinates.link != model.base
+    system = (_PinnedLoops if fixes_pose else _LoopsAndTask)(model, task)
 
     def begin(rows: Array) -> tuple[Array, dict[str, Array], Array]:
         """The reference configuration for ``rows`` poses, and the task's values there."""
@@ -275,15 +328,12 @@ def _close_chunk(
 
     everything = np.ones(count, dtype=bool)
     theta, offsets, start = begin(everything)
-    theta, offsets, residual, lost_at = _continue(
-        model, task, targets, theta, offsets, start, MAX_STEP, JUMP_LIMIT
-    )
+    theta, offsets, residual, lost_at = _continue(system, targets, theta, offsets, start, MAX_STEP, JUMP_LIMIT)
     missed = ~(residual < FINAL_TOLERANCE)
     if np.any(missed):  # again, in shorter steps
         retry_theta, retry_offsets, retry_start = begin(missed)
         again = _continue(  # the steps are short: the corrections may be what they need
-            model,
-            task,
+            system,
             targets[missed],
             retry_theta,
             retry_offsets,
