@@ -68,6 +68,14 @@ NEWTON_ITERATIONS = 10
 #: way stop, and of the last step.
 STEP_TOLERANCE = 1e-6
 LAST_STEP_TOLERANCE = 1e-12
+#: A Newton correction shorter than this (radians, characteristic lengths), from a residual below
+#: :data:`LOST_TOLERANCE`, ends its step's iterations without evaluating the equations again, on
+#: the way and at the last step: Newton's
+#: method converges quadratically, so the residual after it is of the order of its square, far
+#: below the step's tolerance (and the end of each continuation evaluates the loops and the task
+#: again: a pose above :data:`FINAL_TOLERANCE` there is never accepted).
+STEP_CONVERGED = 1e-3
+LAST_STEP_CONVERGED = 1e-6
 #: The residual below which a configuration is accepted (characteristic lengths, radians).
 FINAL_TOLERANCE = 1e-9
 #: A step whose Newton iterations end above this residual has lost the mechanism.
@@ -215,6 +223,7 @@ def _continue(
         previous = theta.copy()
         theta[ahead] += secant[ahead]
         tolerance = np.where(step >= own, LAST_STEP_TOLERANCE, STEP_TOLERANCE)
+        converged = np.where(step >= own, LAST_STEP_CONVERGED, STEP_CONVERGED)
         corrected = np.zeros(count)  # the corrections after each pose's first iteration
         first = np.ones(count, dtype=bool)
         working = active & moving
@@ -237,6 +246,7 @@ def _continue(
             theta[rows] += correction
             corrected[rows] += np.where(first[rows], 0.0, np.minimum(length, MAX_CORRECTION))
             first[rows] = False
+            working[rows[(length < converged[rows]) & (size[need] <= LOST_TOLERANCE)]] = False
         bad = ~np.isfinite(residual_size) | ~np.all(np.isfinite(theta), axis=1)
         newly = active & moving & (bad | (residual_size > LOST_TOLERANCE) | (corrected > jump_limit))
         lost_at[newly] = np.minimum(1.0, step / own[newly])
