@@ -59,7 +59,7 @@ class BatchedProduct:
     joints : dict
         Joint name → ``(parent, child, column indices)``.
     order : list
-        The links, roots first, each after its tree parent.
+        The links, each after its tree parent.
     tree : dict
         Link → ``(tree joint reaching it, traversed forward)``.
     roots : list
@@ -74,8 +74,8 @@ class BatchedProduct:
         self.hinges = [i for i, column in enumerate(columns) if column.hinge is not None]
         for i, column in enumerate(columns):
             if column.hinge is not None:  # R(a, θ) w − w = (sin θ [a]× + (1 − cos θ) [a]×²) w
-                k = _hat(column.hinge)
-                coefficients[1, i], coefficients[2, i] = k @ column.rod, k @ k @ column.rod
+                axis = _hat(column.hinge)
+                coefficients[1, i], coefficients[2, i] = axis @ column.rod, axis @ axis @ column.rod
                 continue
             w, v = column.row[:3], column.row[3:]
             size = float(np.sqrt(w @ w))
@@ -83,17 +83,17 @@ class BatchedProduct:
                 coefficients[0, i] = v
                 continue
             w, v = w / size, v / size
-            k = _hat(w)
+            axis = _hat(w)
             moment = np.cross(w, v)
-            rotation_k[i] = k
-            coefficients[:, i] = [w * (w @ v), -k @ moment, -k @ k @ moment]
+            rotation_k[i] = axis
+            coefficients[:, i] = [w * (w @ v), -axis @ moment, -axis @ axis @ moment]
         # the upper 3 × 4 block (R | p) of exp(ŝ θ), row by row, per column, from (1, θ, sin θ, 1 − cos θ)
-        self.exponential = np.zeros((n, 4, 3, 4))
-        self.exponential[:, 0, :, :3] = np.eye(3)
-        self.exponential[:, 2, :, :3] = rotation_k
-        self.exponential[:, 3, :, :3] = rotation_k @ rotation_k
-        self.exponential[:, 1:, :, 3] = np.swapaxes(coefficients, 0, 1)
-        self.exponential = self.exponential.reshape(n, 4, 12)
+        exponential = np.zeros((n, 4, 3, 4))
+        exponential[:, 0, :, :3] = np.eye(3)
+        exponential[:, 2, :, :3] = rotation_k
+        exponential[:, 3, :, :3] = rotation_k @ rotation_k
+        exponential[:, 1:, :, 3] = np.swapaxes(coefficients, 0, 1)
+        self.exponential = exponential.reshape(n, 4, 12)
         self.hinge_axes = np.array([columns[i].hinge for i in self.hinges]).reshape(-1, 3)
         self.hinge_rods = np.array([columns[i].rod for i in self.hinges]).reshape(-1, 3)
         names = list(joints)
@@ -127,20 +127,20 @@ class BatchedProduct:
             )
         self.column_parent = np.array([self.link_index[column.parent] for column in columns], dtype=int)
 
-    def evaluate(
-        self, theta: Array, offsets: dict[str, Array], pinned: Array | None = None
-    ) -> tuple[Array, Array, Array]:
-        """Link displacements ``(B, links, 4, 4)`` (order of ``order``), joint displacements
-        ``(B, joints, 4, 4)`` and current screws ``(B, n, 6)`` at ``theta (B, n)``; ``pinned`` places
-        the second root (``(B, 4, 4)``)."""
+    def joint_motions(
+        self, theta: Array, offsets: dict[str, Array], *, screws: bool = True
+    ) -> tuple[Array, Array]:
+        """Joint displacements ``(B, joints, 4, 4)`` and, with ``screws``, every screw carried by its
+        joint's motion before it ``(B, n, 6)`` (else the reference screws) at ``theta (B, n)``."""
         count, n = theta.shape
         basis = np.stack([np.ones_like(theta), theta, np.sin(theta), 1.0 - np.cos(theta)], axis=-1)
         steps = np.zeros((count, n, 4, 4))  # (column, batch) matrix products: one BLAS call per column
-        steps[..., :3, :] = np.swapaxes(np.swapaxes(basis, 0, 1) @ self.exponential, 0, 1).reshape(count, n, 3, 4)
+        upper = np.swapaxes(np.swapaxes(basis, 0, 1) @ self.exponential, 0, 1)
+        steps[..., :3, :] = upper.reshape(count, n, 3, 4)
         steps[..., 3, 3] = 1.0
         translation = steps[..., :3, 3]
         rows = np.broadcast_to(self.rows, (count, n, 6)).copy()
-        if self.hinges:  # the Π's twist turns with its rods: (0; a × R(a, θ) w)
+        if self.hinges and screws:  # the Π's twist turns with its rods: (0; a × R(a, θ) w)
             rows[:, self.hinges, 3:] = _cross(self.hinge_axes, self.hinge_rods + translation[:, self.hinges])
         having, cols = self.positions[0] if self.positions else (np.zeros(0, int), np.zeros(0, int))
         motions = np.empty((count, len(self.joint_index), 4, 4))
@@ -148,13 +148,25 @@ class BatchedProduct:
         motions[:, having] = steps[:, cols]  # a joint's first screw, where the joint has no offset
         if offsets:  # the offset turns the joint's screws and comes before them
             turned = np.array([self.joint_index[key] for key in offsets])
-            first = np.searchsorted(having, turned)
+            first = cols[np.searchsorted(having, turned)]
             stacked = np.stack(list(offsets.values()), axis=1)
-            rows[:, cols[first]] = _adjoint(stacked, rows[:, cols[first]])
-            motions[:, turned] = stacked @ steps[:, cols[first]]
+            if screws:
+                rows[:, first] = _adjoint(stacked, rows[:, first])
+            motions[:, turned] = stacked @ steps[:, first]
         for having, cols in self.positions[1:]:  # each further screw carried by the motion before it
-            rows[:, cols] = _adjoint(motions[:, having], rows[:, cols])
+            if screws:
+                rows[:, cols] = _adjoint(motions[:, having], rows[:, cols])
             motions[:, having] = motions[:, having] @ steps[:, cols]
+        return motions, rows
+
+    def evaluate(
+        self, theta: Array, offsets: dict[str, Array], pinned: Array | None = None
+    ) -> tuple[Array, Array, Array]:
+        """Link displacements ``(B, links, 4, 4)`` (order of ``order``), joint displacements
+        ``(B, joints, 4, 4)`` and current screws ``(B, n, 6)`` at ``theta (B, n)``; ``pinned`` places
+        the second root (``(B, 4, 4)``)."""
+        count = theta.shape[0]
+        motions, rows = self.joint_motions(theta, offsets)
         links = np.empty((count, len(self.link_index), 4, 4))
         links[:, self.roots[0]] = np.eye(4)
         if len(self.roots) > 1:

@@ -224,7 +224,8 @@ class KinematicModel:
         parts = nx.Graph()
         for key, (u, v, _) in self.joints.items():
             parts.add_node(("joint", key))
-            parts.add_edges_from((("joint", key), ("link", link)) for link in (u, v) if link not in self.roots)
+            ends = [("link", link) for link in (u, v) if link not in self.roots]
+            parts.add_edges_from((("joint", key), end) for end in ends)
         blocks = []
         for part in nx.connected_components(parts):
             keys = {name for kind, name in part if kind == "joint"}
@@ -472,12 +473,14 @@ class KinematicModel:
         """
         return np.einsum("c,bck->bkc", self.paths[link], state.current)
 
-    def recentred(self, state: KinematicState) -> tuple[Array, dict[str, Array]]:
+    def recentred(self, theta: Array, offsets: dict[str, Array]) -> tuple[Array, dict[str, Array]]:
         """Joint values and offsets with every spherical joint's angles folded into its offset.
 
         Parameters
         ----------
-        state : KinematicState
+        theta : numpy.ndarray, shape (B, n)
+        offsets : dict
+            Spherical joint name → rotation offsets ``(B, 4, 4)`` (those not given: none).
 
         Returns
         -------
@@ -491,15 +494,16 @@ class KinematicModel:
         >>> from screwkit.graphs.joints import spherical
         >>> from screwkit.graphs.twistgraph import twist_graph
         >>> model = KinematicModel(twist_graph("B", "E", [("B", "E", spherical("S", [0, 0, 0]))], dof=3))
-        >>> theta, offsets = model.recentred(model.state(np.array([[0.1, 0.2, 0.3]])))
+        >>> theta, offsets = model.recentred(np.array([[0.1, 0.2, 0.3]]), {})
         >>> theta.tolist(), offsets["S"].shape
         ([[0.0, 0.0, 0.0]], (1, 4, 4))
         """
-        theta = state.theta.copy()
-        offsets = dict(state.offsets)
+        motions, _ = self._product.joint_motions(theta, offsets, screws=False)
+        theta = theta.copy()
+        offsets = dict(offsets)
         for key, kind in self.types.items():
             if kind == "S":
-                offsets[key] = state.motions[key]
+                offsets[key] = motions[:, self._product.joint_index[key]]
                 theta[:, self.joints[key][2]] = 0.0
         return theta, offsets
 

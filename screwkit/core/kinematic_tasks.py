@@ -90,7 +90,8 @@ class PoseTask:
         #: True when the task's values fix the link's whole pose (three independent translation
         #: directions and three rotation directions): :meth:`displacement` then gives it.
         self.fixes_pose = bool(
-            len(moves) == 3 == len(turns) and np.linalg.matrix_rank(moves) == 3 == np.linalg.matrix_rank(turns)
+            len(moves) == 3 == len(turns)
+            and np.linalg.matrix_rank(moves) == 3 == np.linalg.matrix_rank(turns)
         )
 
     def displacement(self, values: Array) -> Array:
@@ -125,7 +126,8 @@ class PoseTask:
         """
         if not self.fixes_pose:
             raise ScrewkitValueError(
-                f"Expected a task that fixes the link's whole pose, got the coordinates {self.coordinates.names}."
+                "Expected a task that fixes the link's whole pose, got the coordinates "
+                f"{self.coordinates.names}."
             )
         values = np.asarray(values, dtype=float)
         position = np.linalg.solve(self.directions[self.translation], values[:, self.translation].T).T
@@ -296,7 +298,7 @@ class PoseTask:
         g = state.links[self.coordinates.link]
         position = np.einsum("bij,j->bi", g[:, :3, :3], self.local) + g[:, :3, 3]
         log_rate = _left_jacobian_inverse(rotation_log(g[:, :3, :3]))  # per unit ω
-        moved = np.concatenate([-hat(position), np.broadcast_to(np.eye(3), position.shape + (3,))], axis=-1)
+        moved = np.concatenate([-hat(position), np.broadcast_to(np.eye(3), (*position.shape, 3))], axis=-1)
         turned = np.concatenate([log_rate, np.zeros_like(log_rate)], axis=-1)
         return np.where(
             self.translation[None, :, None],

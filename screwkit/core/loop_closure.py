@@ -87,9 +87,6 @@ MAX_CORRECTION = 0.5
 #: loop equations (another assembly or working mode), and the pose is taken again in steps
 #: :data:`RETRY_REFINEMENT` times shorter.
 JUMP_LIMIT = 0.2
-#: A spherical joint's angles are folded into its offset once one exceeds this (radians), far from
-#: the gimbal lock of its three exponentials at π/2.
-RECENTRE_ANGLE = 0.3
 #: Poses solved together (bounds the memory of the batched Jacobians).
 CHUNK = 1024
 #: Refinements of the step tried for the poses the first continuation could not reach.
@@ -151,8 +148,9 @@ class _LoopsAndTask:
     def equations(self, state: KinematicState, target: Array) -> tuple[Array, Array]:
         return _equations(self.model, self.task, state, target)
 
-    def correction(self, jacobian: Array, residual: Array) -> Array:
-        return _solve_step(jacobian, residual)
+    def correction(self, jacobian: Any, residual: Array, need: Array) -> Array:
+        """The correction of the rows ``need`` of the equations' residual and Jacobian."""
+        return _solve_step(jacobian[need], residual[need])
 
 
 class _PinnedLoops(_LoopsAndTask):
@@ -169,22 +167,32 @@ class _PinnedLoops(_LoopsAndTask):
         shapes: dict[tuple[int, int], list[tuple[Array, Array]]] = {}
         for rows, columns in self.pinned.blocks:
             shapes.setdefault((rows.size, columns.size), []).append((rows, columns))
-        self.groups = [
-            (np.array([r for r, _ in blocks]), np.array([c for _, c in blocks])) for blocks in shapes.values()
-        ]
+        self.groups = []  # (equation rows (k, 6 l), columns (k, c), the loops' signs (k, l, c))
+        for blocks in shapes.values():
+            rows, columns = np.array([r for r, _ in blocks]), np.array([c for _, c in blocks])
+            loops = self.pinned.incidence[rows[:, ::6] // 6]  # (k, l, n)
+            signs = np.take_along_axis(loops, columns[:, None, :], axis=2)
+            self.groups.append((rows, columns, signs))
 
     def state(self, theta: Array, offsets: dict[str, Array], target: Array) -> KinematicState:
         return self.pinned.state(theta, offsets, self.task.displacement(target))
 
-    def equations(self, state: KinematicState, target: Array) -> tuple[Array, Array]:
-        return self.pinned.loop_residual(state), self.pinned.loop_jacobian(state)
+    def equations(self, state: KinematicState, target: Array) -> tuple[Array, Any]:
+        """The loops' residual and, per group of blocks, their Jacobians ``(B, k, 6 l, c)`` (the
+        blocks of :meth:`~screwkit.core.kinematic_model.KinematicModel.loop_jacobian`)."""
+        blocks = []
+        for _, columns, signs in self.groups:
+            screws = np.swapaxes(state.current[:, columns], -1, -2)  # (B, k, 6, c)
+            jacobian = signs[None, :, :, None, :] * screws[:, :, None]  # (B, k, l, 6, c)
+            blocks.append(jacobian.reshape(*jacobian.shape[:2], -1, jacobian.shape[-1]))
+        return self.pinned.loop_residual(state), blocks
 
-    def correction(self, jacobian: Array, residual: Array) -> Array:
-        count = jacobian.shape[0]
+    def correction(self, jacobian: Any, residual: Array, need: Array) -> Array:
+        count = int(need.sum())
         out = np.zeros((count, self.model.size))
-        for rows, columns in self.groups:
-            blocks = jacobian[:, rows[:, :, None], columns[:, None, :]]  # (B, blocks, rows, columns)
-            step = _solve_step(blocks.reshape(-1, *blocks.shape[2:]), residual[:, rows].reshape(-1, rows.shape[1]))
+        for (rows, columns, _), blocks in zip(self.groups, jacobian, strict=True):
+            flat = residual[need][:, rows].reshape(-1, rows.shape[1])
+            step = _solve_step(blocks[need].reshape(-1, *blocks.shape[2:]), flat)
             out[:, columns.ravel()] = step.reshape(count, -1)
         return out
 
@@ -213,13 +221,11 @@ def _continue(
     own = np.clip(np.ceil(way / step_length), 1, MAX_STEPS)
     steps = int(np.max(own, initial=1))
     previous = theta.copy()  # the joint values one step back: the secant predicts the next step's
-    extrapolated = np.ones(model.size, dtype=bool)
-    extrapolated[spherical] = False  # (a spherical joint's angles restart at its offset)
     for step in range(1, steps + 1):
         moving = step <= own
         target = start + (targets - start) * np.minimum(1.0, step / own)[:, None]
         ahead = active & moving & (step > 1)
-        secant = np.where(extrapolated, theta - previous, 0.0)
+        secant = theta - previous
         previous = theta.copy()
         theta[ahead] += secant[ahead]
         tolerance = np.where(step >= own, LAST_STEP_TOLERANCE, STEP_TOLERANCE)
@@ -240,7 +246,7 @@ def _continue(
             rows = rows[need]
             if rows.size == 0:
                 break
-            correction = system.correction(jacobian[need], residual[need])
+            correction = system.correction(jacobian, residual, need)
             length = np.max(np.abs(correction), axis=1, initial=0.0)
             correction *= np.minimum(1.0, MAX_CORRECTION / np.maximum(length, 1e-300))[:, None]
             theta[rows] += correction
@@ -252,14 +258,18 @@ def _continue(
         lost_at[newly] = np.minimum(1.0, step / own[newly])
         active &= ~newly
         theta[~np.all(np.isfinite(theta), axis=1)] = 0.0  # frozen and flagged, never propagated
-        if spherical.size:  # fold the spherical joints' angles into their offsets before they grow
-            turned = np.flatnonzero(np.max(np.abs(theta[:, spherical]), axis=1) > RECENTRE_ANGLE)
-            if turned.size:
-                sub = {k: v[turned] for k, v in offsets.items()}
-                new_theta, new_offsets = model.recentred(system.state(theta[turned], sub, target[turned]))
-                theta[turned] = new_theta
-                for key, value in new_offsets.items():
-                    offsets.setdefault(key, np.tile(np.eye(4), (count, 1, 1)))[turned] = value
+        turned = np.flatnonzero(active & moving)
+        if spherical.size and turned.size:
+            # every step folds the spherical joints' angles into their offsets (far from the gimbal
+            # lock of their three exponentials at π/2), and their angles in this step, taken again
+            # from the new offset, are the secant of the group: M_next = M (M_before⁻¹ M)
+            increment = theta[np.ix_(turned, spherical)] - previous[np.ix_(turned, spherical)]
+            turned_offsets = {k: v[turned] for k, v in offsets.items()}
+            new_theta, new_offsets = model.recentred(theta[turned], turned_offsets)
+            theta[turned] = new_theta
+            previous[np.ix_(turned, spherical)] = -increment
+            for key, value in new_offsets.items():
+                offsets.setdefault(key, np.tile(np.eye(4), (count, 1, 1)))[turned] = value
     state = model.state(theta, offsets)  # the loops and the task of the whole model, as checked
     residual, _ = _equations(model, task, state, targets)
     size = np.max(np.abs(residual), axis=1, initial=0.0)
@@ -338,7 +348,9 @@ def _close_chunk(
 
     everything = np.ones(count, dtype=bool)
     theta, offsets, start = begin(everything)
-    theta, offsets, residual, lost_at = _continue(system, targets, theta, offsets, start, MAX_STEP, JUMP_LIMIT)
+    theta, offsets, residual, lost_at = _continue(
+        system, targets, theta, offsets, start, MAX_STEP, JUMP_LIMIT
+    )
     missed = ~(residual < FINAL_TOLERANCE)
     if np.any(missed):  # again, in shorter steps
         retry_theta, retry_offsets, retry_start = begin(missed)
