@@ -287,13 +287,13 @@ class PoseTask:
 
         Examples
         --------
+        >>> from screwkit.core.task_coordinates import task_coordinates
         >>> from screwkit.graphs.joints import revolute
         >>> from screwkit.graphs.twistgraph import twist_graph
-        >>> from screwkit.core.task_coordinates import task_coordinates
-        >>> model = KinematicModel(twist_graph("B", "E", [("B", "E", revolute("R", [0, 0, 1], [0, 0, 0]))]))
-        >>> task = PoseTask(model, task_coordinates(model, point=[1, 0, 0]))
-        >>> task.twist_rates(model.state(np.zeros((1, 1))))[0].tolist()  # phi: the rate about z
-        [[0.0, 0.0, 1.0, 0.0, 0.0, 0.0]]
+        >>> crank = KinematicModel(twist_graph("B", "E", [("B", "E", revolute("R", [0, 0, 1], [0, 0, 0]))]))
+        >>> point = PoseTask(crank, task_coordinates(crank, point=[1, 0, 0], rotations=False))
+        >>> point.coordinates.names, point.twist_rates(crank.state(np.zeros((1, 1))))[0, -1].tolist()
+        (('y',), [0.0, 0.0, 1.0, 0.0, 1.0, 0.0])
         """
         g = state.links[self.coordinates.link]
         position = np.einsum("bij,j->bi", g[:, :3, :3], self.local) + g[:, :3, 3]

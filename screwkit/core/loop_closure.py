@@ -68,14 +68,6 @@ NEWTON_ITERATIONS = 10
 #: way stop, and of the last step.
 STEP_TOLERANCE = 1e-6
 LAST_STEP_TOLERANCE = 1e-12
-#: A Newton correction shorter than this (radians, characteristic lengths), from a residual below
-#: :data:`LOST_TOLERANCE`, ends its step's iterations without evaluating the equations again, on
-#: the way and at the last step: Newton's
-#: method converges quadratically, so the residual after it is of the order of its square, far
-#: below the step's tolerance (and the end of each continuation evaluates the loops and the task
-#: again: a pose above :data:`FINAL_TOLERANCE` there is never accepted).
-STEP_CONVERGED = 1e-3
-LAST_STEP_CONVERGED = 1e-6
 #: The residual below which a configuration is accepted (characteristic lengths, radians).
 FINAL_TOLERANCE = 1e-9
 #: A step whose Newton iterations end above this residual has lost the mechanism.
@@ -87,6 +79,9 @@ MAX_CORRECTION = 0.5
 #: loop equations (another assembly or working mode), and the pose is taken again in steps
 #: :data:`RETRY_REFINEMENT` times shorter.
 JUMP_LIMIT = 0.2
+#: A spherical joint's angles are folded into its offset once one exceeds this (radians), far from
+#: the gimbal lock of its three exponentials at π/2.
+RECENTRE_ANGLE = 0.3
 #: Poses solved together (bounds the memory of the batched Jacobians).
 CHUNK = 1024
 #: Refinements of the step tried for the poses the first continuation could not reach.
@@ -128,12 +123,8 @@ def _solve_step(jacobian: Array, residual: Array) -> Array:
     return -np.einsum("bji,bj->bi", jacobian, multipliers)
 
 
-def _equations(model: KinematicModel, task: Any, state: KinematicState, target: Array) -> tuple[Array, Array]:
-    residual = np.concatenate(
-        [model.loop_residual(state), task.difference(task.values(state), target)], axis=1
-    )
-    jacobian = np.concatenate([model.loop_jacobian(state), task.jacobian(state)], axis=1)
-    return residual, jacobian
+def _residual(model: KinematicModel, task: Any, state: KinematicState, target: Array) -> Array:
+    return np.concatenate([model.loop_residual(state), task.difference(task.values(state), target)], axis=1)
 
 
 class _LoopsAndTask:
@@ -146,7 +137,8 @@ class _LoopsAndTask:
         return self.model.state(theta, offsets)
 
     def equations(self, state: KinematicState, target: Array) -> tuple[Array, Array]:
-        return _equations(self.model, self.task, state, target)
+        jacobian = np.concatenate([self.model.loop_jacobian(state), self.task.jacobian(state)], axis=1)
+        return _residual(self.model, self.task, state, target), jacobian
 
     def correction(self, jacobian: Any, residual: Array, need: Array) -> Array:
         """The correction of the rows ``need`` of the equations' residual and Jacobian."""
@@ -221,15 +213,16 @@ def _continue(
     own = np.clip(np.ceil(way / step_length), 1, MAX_STEPS)
     steps = int(np.max(own, initial=1))
     previous = theta.copy()  # the joint values one step back: the secant predicts the next step's
+    extrapolated = np.ones(model.size, dtype=bool)
+    extrapolated[spherical] = False  # (a spherical joint's angles restart at its offset)
     for step in range(1, steps + 1):
         moving = step <= own
         target = start + (targets - start) * np.minimum(1.0, step / own)[:, None]
         ahead = active & moving & (step > 1)
-        secant = theta - previous
+        secant = np.where(extrapolated, theta - previous, 0.0)
         previous = theta.copy()
         theta[ahead] += secant[ahead]
         tolerance = np.where(step >= own, LAST_STEP_TOLERANCE, STEP_TOLERANCE)
-        converged = np.where(step >= own, LAST_STEP_CONVERGED, STEP_CONVERGED)
         corrected = np.zeros(count)  # the corrections after each pose's first iteration
         first = np.ones(count, dtype=bool)
         working = active & moving
@@ -252,26 +245,21 @@ def _continue(
             theta[rows] += correction
             corrected[rows] += np.where(first[rows], 0.0, np.minimum(length, MAX_CORRECTION))
             first[rows] = False
-            working[rows[(length < converged[rows]) & (size[need] <= LOST_TOLERANCE)]] = False
         bad = ~np.isfinite(residual_size) | ~np.all(np.isfinite(theta), axis=1)
         newly = active & moving & (bad | (residual_size > LOST_TOLERANCE) | (corrected > jump_limit))
         lost_at[newly] = np.minimum(1.0, step / own[newly])
         active &= ~newly
         theta[~np.all(np.isfinite(theta), axis=1)] = 0.0  # frozen and flagged, never propagated
-        turned = np.flatnonzero(active & moving)
-        if spherical.size and turned.size:
-            # every step folds the spherical joints' angles into their offsets (far from the gimbal
-            # lock of their three exponentials at π/2), and their angles in this step, taken again
-            # from the new offset, are the secant of the group: M_next = M (M_before⁻¹ M)
-            increment = theta[np.ix_(turned, spherical)] - previous[np.ix_(turned, spherical)]
-            turned_offsets = {k: v[turned] for k, v in offsets.items()}
-            new_theta, new_offsets = model.recentred(theta[turned], turned_offsets)
-            theta[turned] = new_theta
-            previous[np.ix_(turned, spherical)] = -increment
-            for key, value in new_offsets.items():
-                offsets.setdefault(key, np.tile(np.eye(4), (count, 1, 1)))[turned] = value
+        if spherical.size:  # fold the spherical joints' angles into their offsets before they grow
+            turned = np.flatnonzero(np.max(np.abs(theta[:, spherical]), axis=1) > RECENTRE_ANGLE)
+            if turned.size:
+                sub = {k: v[turned] for k, v in offsets.items()}
+                new_theta, new_offsets = model.recentred(theta[turned], sub)
+                theta[turned] = new_theta
+                for key, value in new_offsets.items():
+                    offsets.setdefault(key, np.tile(np.eye(4), (count, 1, 1)))[turned] = value
     state = model.state(theta, offsets)  # the loops and the task of the whole model, as checked
-    residual, _ = _equations(model, task, state, targets)
+    residual = _residual(model, task, state, targets)
     size = np.max(np.abs(residual), axis=1, initial=0.0)
     size[~active] = np.maximum(size[~active], LOST_TOLERANCE)  # a lost pose is never accepted
     return theta, offsets, np.where(np.isfinite(size), size, np.inf), lost_at
