@@ -248,6 +248,11 @@ class KinematicModel:
         KinematicModel
             Its columns, joints and scaled frame are this model's.
 
+        Raises
+        ------
+        ScrewkitValueError
+            If ``link`` is the base or not a link of the graph.
+
         Examples
         --------
         >>> from screwkit.graphs.joints import revolute
@@ -258,6 +263,10 @@ class KinematicModel:
         >>> pinned.closing, [rows.size for rows, _ in pinned.blocks]  # the arm closes on its end link
         (['R2'], [6])
         """
+        if link == self.base or link not in self.paths:
+            raise ScrewkitValueError(
+                f"Expected a link of the graph other than the base for link, got {link!r}."
+            )
         if link not in self._pinned_models:
             graph, joint_key = self._source
             self._pinned_models[link] = KinematicModel(graph, joint_key, pinned=link)

@@ -115,13 +115,13 @@ class PoseTask:
 
         Examples
         --------
+        >>> from screwkit.core.task_coordinates import task_coordinates
         >>> from screwkit.graphs.joints import revolute
         >>> from screwkit.graphs.twistgraph import twist_graph
-        >>> from screwkit.core.task_coordinates import task_coordinates
-        >>> model = KinematicModel(twist_graph("B", "E", [("B", "E", revolute("R", [0, 0, 1], [0, 0, 0]))]))
-        >>> task = PoseTask(model, task_coordinates(model, point=[1, 0, 0]), complete=True)
-        >>> state = model.state(np.array([[0.7]]))
-        >>> bool(np.allclose(task.displacement(task.values(state)), state.links["E"]))
+        >>> hinge = KinematicModel(twist_graph("B", "E", [("B", "E", revolute("R", [0, 0, 1], [2, 0, 0]))]))
+        >>> held = PoseTask(hinge, task_coordinates(hinge, point=[1, 0, 0]), complete=True)
+        >>> turned = hinge.state(np.array([[0.7]]))  # about the hinge at x = 2
+        >>> bool(np.allclose(held.displacement(held.values(turned)), turned.links["E"]))
         True
         """
         if not self.fixes_pose:

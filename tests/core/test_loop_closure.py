@@ -306,6 +306,9 @@ def test_pinning_the_platform_closes_each_leg_on_its_own():
     for _, columns in pinned.blocks:
         legs = {model.columns[c].joint[1:] for c in columns}
         assert len(legs) == 1 and {model.columns[c].joint[0] for c in columns} == {"U", "P", "S"}
+    for wrong in ("base", "nowhere"):
+        with pytest.raises(ScrewkitValueError, match="other than the base for link"):
+            model.pinned_model(wrong)
     task = PoseTask(model, task_coordinates(model))
     pose = np.array([[0.04, -0.02, 1.05, 0.1, -0.1, 0.2]])
     closed = close_loops(model, task, task.scaled_targets(pose))
