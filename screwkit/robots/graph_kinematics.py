@@ -241,7 +241,10 @@ class GraphKinematics:
 
         The joint rates closing the loops with that coordinate's rate 1 and the others' (and, for a
         complete task, the left-out directions') 0, minimum-norm (internal motions at rest), carried
-        to the link along its tree path.
+        to the link along its tree path. When the task fixes the link's whole pose, its rates say
+        the twist alone (:meth:`~screwkit.core.kinematic_tasks.PoseTask.twist_rates`, inverted): the
+        same twists wherever the loops let the link move so, and the coordinates' own directions at
+        a pose where they do not.
 
         Parameters
         ----------
@@ -259,18 +262,26 @@ class GraphKinematics:
         array([0., 0., 1.])
         """
         model, task = self.model, self.task
+        count = len(self.coordinates.names)
+        unit = np.where(task.translation[:count], 1.0 / model.length, 1.0)
+        if task.fixes_pose:  # the task's rates say the link's twist: (B, 6, 6) inverted, no loop needed
+            twists = np.swapaxes(np.linalg.inv(task.twist_rates(state))[..., :count] * unit, -1, -2)
+            return self._unscaled_twists(twists)
         loops, rows = model.loop_jacobian(state), task.jacobian(state)
         jacobian = np.concatenate([loops, rows], axis=1)
-        count = len(self.coordinates.names)
         rates = np.zeros((jacobian.shape[1], count))
-        unit = np.where(task.translation[:count], 1.0 / model.length, 1.0)
         rates[loops.shape[1] + np.arange(count), np.arange(count)] = unit
         # the minimum-norm joint rates by the pseudo-inverse (singular values below 1e-12 of the
         # largest dropped: the dependent loop equations of an overconstrained mechanism)
         left, sigma, right = np.linalg.svd(jacobian, full_matrices=False)
         inverse = np.where(sigma > 1e-12 * sigma[:, :1], 1.0 / np.where(sigma > 0, sigma, 1.0), 0.0)
         joint_rates = np.swapaxes(right, -1, -2) @ (inverse[..., None] * (np.swapaxes(left, -1, -2) @ rates))
-        twists = np.swapaxes(model.link_jacobian(state, self.coordinates.link) @ joint_rates, -1, -2)
+        return self._unscaled_twists(
+            np.swapaxes(model.link_jacobian(state, self.coordinates.link) @ joint_rates, -1, -2)
+        )
+
+    def _unscaled_twists(self, twists: Array) -> Array:
+        model = self.model
         omega = twists[..., :3]  # (B, n, 3); the velocity at the scaled origin back in graph lengths
         return np.concatenate([omega, twists[..., 3:] * model.length + np.cross(model.point, omega)], axis=-1)
 
