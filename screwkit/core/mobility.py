@@ -6,10 +6,11 @@ a linkage in line, mobile to first order only, reads 0; a rounded overconstraine
 its data precision ``rtol``), or, where that is undecided, the most common order over a few generic
 configurations reached by moving the mechanism along its own twists
 (:func:`screwkit.core.motion.generic_configurations`, :func:`generic_mobility`). The nominal ``dof``
-of every analysis is that mobility, with no more actuators than it (:func:`resolve_dof`);
-:func:`settled_dof` checks a first analysis against it at no cost where the pose is regular with one
-actuator per freedom. :func:`generic_analyses` gives the wrench analyses at generic configurations
-(the structural facts of wrench diagrams are decided there).
+of every analysis is that mobility, its actuators checked (:func:`resolve_dof`; more actuators than
+freedoms is redundant actuation, :mod:`screwkit.core.redundancy`); :func:`settled_dof` checks a
+first analysis against it at no cost where the pose is regular with one actuator per freedom.
+:func:`generic_analyses` gives the wrench analyses at generic configurations (the structural facts
+of wrench diagrams are decided there).
 
 Examples
 --------
@@ -31,6 +32,7 @@ from ..algebra import backend as B
 from ..exceptions import ScrewkitValueError, TwistGraphError
 from .finite_mobility import MobilityReading, check_stated_dof, mobility_reading
 from .motion import generic_configurations
+from .redundancy import generic_driven_freedoms
 from .wrench_systems import WrenchAnalysis, analyze_table
 
 __all__ = ["generic_analyses", "generic_mobility", "resolve_dof", "settled_dof"]
@@ -170,13 +172,15 @@ def _finite_or_moved(
     return int(np.bincount(orders).argmax())
 
 
-def resolve_dof(stated: int | None, mobility: int, actuated: tuple[str, ...] | list[str]) -> int:
+def resolve_dof(
+    stated: int | None, mobility: int, actuated: tuple[str, ...] | list[str], *, driven: int | None = None
+) -> int:
     """The nominal ``dof`` of an analysis: the mechanism's mobility, with its actuators checked.
 
     screwkit analyses mechanisms whose nominal ``dof`` is the platform's mobility at generic
-    configurations and whose actuators are no more than that (non-redundant actuation). Fewer
-    actuators than ``dof`` is an under-actuated mechanism (uncontrolled freedoms: an actuation
-    singularity everywhere, a non-square Jacobian); no actuator at all, a mobility analysis.
+    configurations. Fewer actuators than ``dof`` is an under-actuated mechanism (uncontrolled
+    freedoms: an actuation singularity everywhere, a non-square Jacobian); more is a redundantly
+    actuated one (:mod:`screwkit.core.redundancy`); no actuator at all, a mobility analysis.
 
     Parameters
     ----------
@@ -186,6 +190,10 @@ def resolve_dof(stated: int | None, mobility: int, actuated: tuple[str, ...] | l
         :func:`generic_mobility`.
     actuated : sequence of str
         The actuated joints.
+    driven : int, optional
+        The freedoms the actuators drive at generic configurations
+        (:func:`screwkit.core.redundancy.generic_driven_freedoms`); given, at least as many actuators
+        as the mobility must drive all of it.
 
     Returns
     -------
@@ -195,17 +203,24 @@ def resolve_dof(stated: int | None, mobility: int, actuated: tuple[str, ...] | l
     Raises
     ------
     TwistGraphError
-        A stated ``dof`` other than the mobility, or more actuators than the mobility (naming both
-        numbers and the actuated joints).
+        A stated ``dof`` other than the mobility (naming both numbers and the actuated joints);
+        actuated joints on a mechanism that cannot move, or ``actuated`` flags that leave the
+        platform uncontrolled at generic configurations (``driven`` below the mobility).
 
     Examples
     --------
     >>> resolve_dof(None, 3, ["A1", "A2", "A3"]), resolve_dof(2, 2, ["A1"]), resolve_dof(None, 4, [])
     (3, 2, 4)
+    >>> resolve_dof(None, 2, ["A1", "A2", "A3"], driven=2)  # redundantly actuated
+    2
     >>> resolve_dof(2, 3, ["A1", "A2", "A3"])  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
     screwkit.exceptions.TwistGraphError: Expected `dof` to equal the mechanism's mobility, 3 (...), ...
+    >>> resolve_dof(None, 1, ["A1", "A2"], driven=0)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    screwkit.exceptions.TwistGraphError: Expected the `actuated` joints to drive the mechanism's 1 ...
     """
     names = f"{len(actuated)} actuated joint(s)" + (f": {', '.join(sorted(actuated))}" if actuated else "")
     if stated is not None and stated != mobility:
@@ -215,11 +230,17 @@ def resolve_dof(stated: int | None, mobility: int, actuated: tuple[str, ...] | l
             "A `dof` other than the mobility would label every pose falsely (constraint singularities "
             "for a dof below it, lost freedoms above it): omit `dof` to use the mobility."
         )
-    if len(actuated) > mobility:
+    if actuated and mobility == 0:
         raise TwistGraphError(
-            f"Expected at most as many actuated joints as the mechanism's mobility, {mobility} (the "
-            f"platform's freedoms at generic configurations), got {names}: screwkit analyses "
-            "non-redundantly actuated mechanisms; fix the `actuated` flags."
+            f"Expected no `actuated` joint on a mechanism that cannot move (mobility 0 at generic "
+            f"configurations), got {names}: an actuator there drives nothing; fix the `actuated` flags."
+        )
+    if driven is not None and len(actuated) >= mobility > driven:
+        raise TwistGraphError(
+            f"Expected the `actuated` joints to drive the mechanism's {mobility} freedom(s) at generic "
+            f"configurations, got {names} driving {driven} (screwkit.core.redundancy): with them locked "
+            "the platform still moves everywhere; fix the `actuated` flags (or the design, singular at "
+            "every configuration)."
         )
     return mobility
 
@@ -280,8 +301,8 @@ def settled_dof(
     Raises
     ------
     TwistGraphError
-        A ``dof`` other than the mobility (naming the finite and instantaneous mobility), or more
-        actuators than it (:func:`resolve_dof`).
+        A ``dof`` other than the mobility (naming the finite and instantaneous mobility where they
+        differ), or actuators that do not drive it (:func:`resolve_dof`).
 
     Examples
     --------
@@ -308,4 +329,9 @@ def settled_dof(
         mobility = _finite_or_moved(reading, graph, joint_key, rtol, length_scale)
     if mobility is None:
         mobility = int(np.bincount(np.asarray(analysis.platform_order).ravel()).argmax())
-    return resolve_dof(stated, mobility, actuated)
+    driven = (  # redundant actuation: the actuators must drive every freedom (screwkit.core.redundancy)
+        generic_driven_freedoms(graph, mobility, joint_key=joint_key, rtol=rtol, length_scale=length_scale)
+        if len(actuated) > mobility > 0
+        else None
+    )
+    return resolve_dof(stated, mobility, actuated, driven=driven)

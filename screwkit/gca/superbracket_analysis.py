@@ -22,6 +22,7 @@ import numpy as np
 from ..algebra import backend as B
 from ..exceptions import ScrewkitError, ScrewkitTypeError, ScrewkitValueError
 from .diagram import INCIDENCE_RTOL, WrenchDiagram, require_instance
+from .redundant_conditions import RedundantSuperbracket, redundant_superbracket
 from .simplify import Simplification, simplify_superbracket
 
 if TYPE_CHECKING:  # conditions are sympy expressions: that module (and sympy) loads on first use
@@ -181,8 +182,11 @@ def superbracket_analysis(
     *,
     n_samples: int = 6,
     rng: int = 0,
-) -> SuperbracketAnalysis:
+) -> SuperbracketAnalysis | RedundantSuperbracket:
     """Expand, simplify and factor a diagram's superbracket; interpret and label each factor.
+
+    A diagram of more than six lines (a redundantly actuated mechanism's) is analysed by its six-line
+    subsets (:func:`screwkit.gca.redundant_conditions.redundant_superbracket`).
 
     Two orderings are simplified (gca.md §6): the diagram's own (lines grouped by leg, shared
     points last, as in paper 002 Fig. 4c) and the one with the fewest surviving monomials over all
@@ -206,7 +210,7 @@ def superbracket_analysis(
 
     Returns
     -------
-    SuperbracketAnalysis
+    SuperbracketAnalysis or RedundantSuperbracket
 
     Raises
     ------
@@ -226,6 +230,8 @@ def superbracket_analysis(
     require_instance(diagram, WrenchDiagram, "diagram")
     if not callable(sampler):
         raise ScrewkitTypeError(f"Expected `sampler` to be callable, got {type(sampler).__name__}.")
+    if len(diagram.lines) > 6:  # redundant actuation: the six-line subsets
+        return redundant_superbracket(diagram, sampler, superbracket_analysis, n_samples=n_samples, rng=rng)
     generator = np.random.default_rng(rng)
     try:  # the factored form is the design's: derived at generic configurations, whatever the pose
         drawn = [_centred(sampler(generator)) for _ in range(2 * n_samples)]

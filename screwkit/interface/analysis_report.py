@@ -39,6 +39,7 @@ from .screw_descriptions import describe_twist, describe_wrench
 if TYPE_CHECKING:  # the diagram and GCA stack loads when a report is made, not on `import screwkit`
     from ..gca.diagram import WrenchDiagram
     from ..gca.grassmann import GrassmannClass
+    from ..gca.redundant_conditions import RedundantSuperbracket
     from ..gca.superbracket_analysis import SuperbracketAnalysis
 
 __all__ = ["AnalysisReport"]
@@ -64,7 +65,8 @@ class AnalysisReport:
     analysis : WrenchAnalysis
     verdict : SingularityReport
     diagram : WrenchDiagram
-    superbracket : SuperbracketAnalysis or None
+    superbracket : SuperbracketAnalysis, RedundantSuperbracket or None
+        (a redundantly actuated mechanism's: the superbrackets of its six-line subsets)
         None when not computed, when the mechanism has no diagram, or when its diagram does not
         exist at the pose (e.g. a limb at a serial singularity); ``superbracket_note`` says which.
     superbracket_note : str
@@ -100,7 +102,7 @@ class AnalysisReport:
     analysis: WrenchAnalysis
     verdict: SingularityReport
     diagram: WrenchDiagram
-    superbracket: SuperbracketAnalysis | None
+    superbracket: SuperbracketAnalysis | RedundantSuperbracket | None
     superbracket_note: str
     jacobians: Jacobians | None = None
     jacobians_note: str = _SNAPSHOT_JACOBIANS
@@ -366,11 +368,16 @@ class AnalysisReport:
         if self.superbracket is None:
             out.append(f"  {self.superbracket_note}")
         else:
-            simplification = self.superbracket.simplification
-            out.append(f"  {self.diagram.line_text()} = {simplification.factored}")
-            out.append(
-                f"  monomials: 24 in the expansion, {len(simplification.survivors)} not structurally zero"
-            )
+            from ..gca.redundant_conditions import RedundantSuperbracket as Redundant
+
+            if isinstance(self.superbracket, Redundant):  # redundant actuation: the six-line subsets
+                out.append(f"  {self.superbracket.statement()}")
+            else:
+                simplification = self.superbracket.simplification
+                out.append(f"  {self.diagram.line_text()} = {simplification.factored}")
+                out.append(
+                    f"  monomials: 24 in the expansion, {len(simplification.survivors)} not structurally zero"
+                )
             out.append(f"  {self.superbracket_note}")
             result = self.superbracket
             if result.representation:
@@ -455,7 +462,13 @@ class AnalysisReport:
                 for c, label, constant in zip(result.conditions, result.labels, result.constant, strict=True)
                 if not constant
             )
-            superbracket = f"{self.diagram.line_text()} = {self.superbracket.simplification.factored}"
+            from ..gca.redundant_conditions import RedundantSuperbracket as Redundant
+
+            superbracket = (
+                result.statement()
+                if isinstance(result, Redundant)
+                else f"{self.diagram.line_text()} = {result.simplification.factored}"
+            )
             superbracket += f"; {found}" if found else ""
         return "\n".join(
             [
