@@ -270,6 +270,7 @@ def superbracket_analysis(
         lines=diagram.lines,
         roles=diagram.roles,
     )
+    found = _checked_kinds(found, in_lengths[-1], diagram, collinear)
     labels = tuple(c.label for c in found)
     at_pose = _centred(diagram.coordinates)  # the points that exist at the pose
     missing = [sorted(set(c.vectors) - set(at_pose)) for c in found]
@@ -296,6 +297,23 @@ def superbracket_analysis(
     return SuperbracketAnalysis(
         diagram, simplification, found, labels, values, collinear, vanishing, constant, undefined
     )
+
+
+def _checked_kinds(
+    found: tuple[Condition, ...], sample: Mapping[str, Array], diagram: WrenchDiagram, collinear: tuple[str, ...]
+) -> tuple[Condition, ...]:
+    """Each condition labelled by what happens at its zeros (:func:`~screwkit.gca.factor_kinds.vanishing_kind`:
+    the constraint lines' order drops, or the six lines are dependent with the constraint lines
+    independent), the roles' label kept where no zero was reached; the evidence says both."""
+    from dataclasses import replace
+
+    from .factor_kinds import vanishing_kind
+
+    checked = []
+    for c in found:
+        kind, evidence = vanishing_kind(c, sample, diagram.lines, diagram.roles, collinear=collinear)
+        checked.append(replace(c, label=kind or c.label, evidence=f"{c.evidence}; {evidence}"))
+    return tuple(checked)
 
 
 def _centred(points: Mapping[str, Array]) -> dict[str, Array]:
