@@ -10,12 +10,12 @@ drops; an actuation factor vanishes where the actuation wrenches become dependen
 constraint system keeps its order. Which lines a factor's points lie on suggests the kind
 (:func:`screwkit.gca.conditions.label`); this module checks it at points of the factor's zero set:
 each point of the factor not declared collinear with others is moved, in turn, along a random
-direction until the factor vanishes (a real root of the polynomial the factor is along that line),
-and the rank of the diagram's constraint lines is read there. The moved configuration may leave the
-mechanism's own incidences (the factorization holds on those), so what is read is the rank of the
-constraint lines, a function of their points alone: dropping at every zero reached, the factor is a
-constraint factor; kept, the superbracket's zeros it stands for leave the constraint system of full
-order, i.e. the actuation wrenches become dependent.
+direction until the factor vanishes (a real root of the polynomial the factor is along that line,
+fitted to its values), and the rank of the diagram's constraint lines is read there. The moved
+configuration may leave the mechanism's own incidences (the factorization holds on those), so what
+is read is the rank of the constraint lines, a function of their points alone: dropping at every
+zero reached, the factor is a constraint factor; kept, the superbracket's zeros it stands for leave
+the constraint system of full order, i.e. the actuation wrenches become dependent.
 
 Examples
 --------
@@ -25,8 +25,8 @@ Examples
 ...     ["actuation"] * 3 + ["constraint"] * 3)
 >>> rng = np.random.default_rng(0)
 >>> sample = {x: np.r_[rng.normal(size=3), 1.0 if x in "ace" else 0.0] for x in "abcdefghi"}
->>> kind, evidence = vanishing_kind(condition(Bracket("aghi"), finite="a", infinite="ghi"), sample, lines, roles)
->>> kind
+>>> couples = condition(Bracket("aghi"), finite="a", infinite="ghi")
+>>> vanishing_kind(couples, sample, lines, roles)[0]
 'constraint'
 """
 
@@ -66,8 +66,8 @@ def _rows(points: Mapping[str, Array], lines: Sequence[tuple[str, str]]) -> Arra
     return np.array(rows)
 
 
-def _smallest(rows: Array) -> float:
-    return float(np.linalg.svd(rows, compute_uv=False)[-1]) if len(rows) else 1.0
+def _rank(points: Mapping[str, Array], lines: Sequence[tuple[str, str]]) -> int:
+    return int(np.linalg.matrix_rank(_rows(points, lines), tol=RANK_RTOL)) if lines else 0
 
 
 def _degree(found: Condition, label: str) -> int:
@@ -76,14 +76,17 @@ def _degree(found: Condition, label: str) -> int:
     return max(sum(label in b.labels for b in m.brackets) for m in poly.terms)
 
 
-def _zero_along(found: Condition, sample: Mapping[str, Array], label: str, rng: np.random.Generator) -> dict[str, Array] | None:
+def _zero_along(
+    found: Condition, sample: Mapping[str, Array], label: str, rng: np.random.Generator
+) -> dict[str, Array] | None:
     """``sample`` with point ``label`` moved along a random direction onto the factor's zero set
     (two directions tried: along one the factor may be constant)."""
     degree = _degree(found, label)
     ts = np.linspace(-3.0, 3.0, 4 * degree + 5)
     for direction in rng.normal(size=(2 if degree else 0, 3)):
         step = np.r_[direction, 0.0]
-        values = np.asarray(found.evaluate({**sample, label: sample[label] + ts[:, None] * step}), dtype=float)
+        moved = {**sample, label: sample[label] + ts[:, None] * step}
+        values = np.asarray(found.evaluate(moved), dtype=float)
         scale = float(np.max(np.abs(values)))
         if not np.isfinite(scale) or scale == 0:
             continue
@@ -143,8 +146,10 @@ def vanishing_kind(
     ...     ["actuation"] * 3 + ["constraint"] * 3)
     >>> rng = np.random.default_rng(0)
     >>> sample = {x: np.r_[rng.normal(size=3), 1.0 if x in "ace" else 0.0] for x in "abcdefghi"}
-    >>> print(vanishing_kind(condition(Bracket("abdf"), finite="a", infinite="bdf"), sample, lines, roles)[1])
-    at zeros of the factor (point moved: rank of the 3 constraint lines gh, gi, hi) b: rank 3, d: rank 3, f: rank 3: the constraint system keeps its order, the actuation wrenches are dependent
+    >>> legs = condition(Bracket("abdf"), finite="a", infinite="bdf")
+    >>> kind, evidence = vanishing_kind(legs, sample, lines, roles)
+    >>> kind, evidence.split(": ")[1]
+    ('actuation', 'the constraint lines gh, gi, hi keep rank 3, the actuation wrenches are dependent')
     """
     if len(roles) != len(lines):
         raise ScrewkitValueError(
@@ -158,14 +163,13 @@ def vanishing_kind(
     for point in [x for x in found.vectors if x not in fixed]:
         zero = _zero_along(found, sample, point, generator)
         if zero is not None:
-            ranks[point] = int(np.linalg.matrix_rank(_rows(zero, constraint), tol=RANK_RTOL)) if constraint else 0
+            ranks[point] = _rank(zero, constraint)
     if not ranks:
         return "", "no zero of the factor was reached by moving one of its points"
-    moved = ", ".join(f"{x}: rank {k}" for x, k in ranks.items())
-    where = f"at zeros of the factor (point moved: rank of the {len(constraint)} constraint lines {names}) {moved}"
-    generic = int(np.linalg.matrix_rank(_rows(sample, constraint), tol=RANK_RTOL)) if constraint else 0
+    generic = _rank(sample, constraint)
+    where = f"zeros reached by moving {', '.join(ranks)}: the constraint lines {names}"
     if all(k < generic for k in ranks.values()):
-        return "constraint", f"{where}: the constraint system's order drops"
+        return "constraint", f"{where} drop from rank {generic} to {', '.join(map(str, ranks.values()))}"
     if all(k == generic for k in ranks.values()):
-        return "actuation", f"{where}: the constraint system keeps its order, the actuation wrenches are dependent"
-    return "", f"{where}: some zeros drop the constraint system's order, some do not"
+        return "actuation", f"{where} keep rank {generic}, the actuation wrenches are dependent"
+    return "", f"{where} drop rank at some zeros, not at others"

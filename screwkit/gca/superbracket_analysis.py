@@ -300,11 +300,15 @@ def superbracket_analysis(
 
 
 def _checked_kinds(
-    found: tuple[Condition, ...], sample: Mapping[str, Array], diagram: WrenchDiagram, collinear: tuple[str, ...]
+    found: tuple[Condition, ...],
+    sample: Mapping[str, Array],
+    diagram: WrenchDiagram,
+    collinear: tuple[str, ...],
 ) -> tuple[Condition, ...]:
-    """Each condition labelled by what happens at its zeros (:func:`~screwkit.gca.factor_kinds.vanishing_kind`:
-    the constraint lines' order drops, or the six lines are dependent with the constraint lines
-    independent), the roles' label kept where no zero was reached; the evidence says both."""
+    """Each condition labelled by what happens at its zeros
+    (:func:`~screwkit.gca.factor_kinds.vanishing_kind`: the constraint lines lose rank, or keep it
+    while the actuation wrenches become dependent), the roles' label kept where that does not decide;
+    the evidence says both."""
     from dataclasses import replace
 
     from .factor_kinds import vanishing_kind
