@@ -1,7 +1,9 @@
 """The interpreter of bracket factors: the known patterns of ``gca.md`` §5 turned into a vector form
 and a geometric statement (:func:`vector_form`): one bracket by the kinds of its points, two
-planes and a line (``[P ẋ][Q ẏ]``), four planes through one point, the superbracket itself, and
-the generic form (the expansion with every bracket replaced by its form) for any other factor.
+planes and a line (``[P ẋ][Q ẏ]``), one bracket of differences of points (the 3-UPU's
+``[abce] − [abcf] − [abde] + [abdf]``: three leg directions parallel to one plane), four planes
+through one point, the superbracket itself, and the generic form (the expansion with every bracket
+replaced by its form) for any other factor.
 
 Examples
 --------
@@ -24,7 +26,7 @@ import numpy as np
 import sympy
 
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
-from .brackets import Bracket, BracketPolynomial
+from .brackets import Bracket, BracketMonomial, BracketPolynomial
 from .dotted import DottedMonomial, DottedSum
 from .exact_proofs import is_superbracket, prove_proportional
 from .notation import join_labels
@@ -298,6 +300,68 @@ def _four_planes(poly: BracketPolynomial, types: PointKinds) -> tuple[sympy.Expr
     return None
 
 
+def _differences(poly: BracketPolynomial, types: PointKinds) -> tuple[sympy.Expr, str] | None:
+    """A factor that is one bracket with differences of finite points in some slots, e.g. the
+    3-UPU's ``[abce] − [abcf] − [abde] + [abdf] = [a b (c − d) (e − f)]``: the bracket is
+    multilinear, and ``c − d`` (weights 1) is the point at infinity of line cd, its direction
+    (``gca.md`` §5.1, the table read with those points). None if ``poly`` is not of that form."""
+    terms = poly.terms
+    k = len(terms).bit_length() - 1
+    if (
+        not 1 <= k <= 3
+        or len(terms) != 2**k
+        or any(len(m.brackets) != 1 or abs(m.coefficient) != 1 for m in terms)
+    ):
+        return None
+    first = terms[0].brackets[0].labels
+    common = set.intersection(*(set(m.brackets[0].labels) for m in terms))
+    slots = [s for s, x in enumerate(first) if x not in common]
+    if len(slots) != k:
+        return None
+    rest = {x for m in terms for x in m.brackets[0].labels} - common
+    partners: dict[str, str] = {}
+    for s in slots:
+        apart = [y for y in rest if not any({first[s], y} <= set(m.brackets[0].labels) for m in terms)]
+        if len(apart) != 1 or not {first[s], *apart} <= types.finite:  # one partner, both finite
+            return None
+        partners[first[s]] = apart[0]
+    candidate = BracketPolynomial(
+        BracketMonomial(
+            [Bracket([partners[x] if s in chosen else x for s, x in enumerate(first)])],
+            terms[0].coefficient * (-1) ** len(chosen),
+        )
+        for r in range(k + 1)
+        for chosen in itertools.combinations(slots, r)
+    )
+    if candidate != poly:
+        return None
+    v = {x: sympy.Symbol(x) for x in rest | common}
+    directions = [
+        (VectorDiff(v[x], v[partners[x]]), join_labels([x, partners[x]])) for x in first if x in partners
+    ]
+    finite = [x for x in first if x in common and x in types.finite]
+    if len(finite) == 3:
+        p, q, r = (v[x] for x in finite)
+        ((d, name),) = directions
+        return (
+            VectorDot(VectorCross(VectorDiff(q, p), VectorDiff(r, p)), d),
+            f"the direction of line {name} is parallel to plane {join_labels(finite)}",
+        )
+    if len(finite) == 2:
+        p, q = (v[x] for x in finite)
+        directions.insert(0, (VectorDiff(q, p), join_labels(finite)))
+    lines = [f"line {name}" for _, name in directions]
+    if len(finite) == 2 and k == 2:
+        lines = [f"lines {directions[0][1]}", *(name for _, name in directions[1:])]
+    directions += [(v[x], f"direction {x}") for x in first if x in types.infinite]
+    if len(directions) != 3:  # no finite point: four points at infinity, always coplanar
+        return None
+    (d1, _), (d2, _), (d3, _) = directions
+    names = lines + [f"direction {x}" for x in first if x in types.infinite]
+    statement = f"the directions of {_listing(names)} are parallel to one plane"
+    return VectorDot(VectorCross(d1, d2), d3), statement
+
+
 def vector_form(
     factor: Factor, types: PointKinds, lines: Sequence[tuple[str, ...]] | None = None
 ) -> tuple[sympy.Expr | None, str]:
@@ -334,7 +398,7 @@ def vector_form(
         if found is not None:
             return found
     polynomial = bracket_polynomial(factor)
-    found = _four_planes(polynomial, types)
+    found = _differences(polynomial, types) or _four_planes(polynomial, types)
     if found is not None:
         return found
     products = []
