@@ -38,7 +38,6 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..exceptions import ScrewkitValueError
-from .condition_patterns import bracket_polynomial
 from .notation import join_labels
 
 if TYPE_CHECKING:
@@ -72,6 +71,8 @@ def _rank(points: Mapping[str, Array], lines: Sequence[tuple[str, str]]) -> int:
 
 def _degree(found: Condition, label: str) -> int:
     """The factor's degree in one point: the most times it occurs in a monomial."""
+    from .condition_patterns import bracket_polynomial  # symbolic: a Condition has loaded it already
+
     poly = bracket_polynomial(found.factor)
     return max(sum(label in b.labels for b in m.brackets) for m in poly.terms)
 
