@@ -157,7 +157,7 @@ def vanishing_kind(
             f"Expected `roles` to give one role per line ({len(lines)}), got {len(roles)}."
         )
     constraint = [line for line, role in zip(lines, roles, strict=True) if role == "constraint"]
-    names = ", ".join(join_labels(line) for line in constraint) or "none"
+    names = ", ".join(join_labels(line) for line in constraint)
     fixed = {x for triple in collinear for x in triple}
     generator = np.random.default_rng(rng)
     ranks = {}
@@ -167,6 +167,8 @@ def vanishing_kind(
             ranks[point] = _rank(zero, constraint)
     if not ranks:
         return "", "no zero of the factor was reached by moving one of its points"
+    if not constraint:
+        return "actuation", f"zeros reached by moving {', '.join(ranks)}; the diagram has no constraint line"
     generic = _rank(sample, constraint)
     where = f"zeros reached by moving {', '.join(ranks)}: the constraint lines {names}"
     if all(k < generic for k in ranks.values()):
