@@ -19,15 +19,17 @@ the constraint system of full order, i.e. the actuation wrenches become dependen
 
 Examples
 --------
->>> from screwkit.gca import Bracket
->>> from screwkit.gca.conditions import condition
->>> lines, roles = [("a", "b"), ("c", "d"), ("e", "f"), ("g", "h"), ("g", "i"), ("h", "i")], (
-...     ["actuation"] * 3 + ["constraint"] * 3)
->>> rng = np.random.default_rng(0)
->>> sample = {x: np.r_[rng.normal(size=3), 1.0 if x in "ace" else 0.0] for x in "abcdefghi"}
->>> couples = condition(Bracket("aghi"), finite="a", infinite="ghi")
->>> vanishing_kind(couples, sample, lines, roles)[0]
-'constraint'
+Three constraint forces through the vertices of a triangle whose sides are the actuation lines:
+``[pqru]`` uses points of constraint lines only, yet where it vanishes the constraint forces stay
+independent (tests/gca/test_factor_kinds.py):
+
+>>> from screwkit.gca import Bracket, condition
+>>> rng = np.random.default_rng(1)
+>>> points = {x: np.r_[rng.normal(size=3), 1.0 if x in "pqr" else 0.0] for x in "pqruvw"}
+>>> triangle = [("p", "q"), ("q", "r"), ("r", "p"), ("p", "u"), ("q", "v"), ("r", "w")]
+>>> factor = condition(Bracket("pqru"), finite="pqr", infinite="uvw")
+>>> vanishing_kind(factor, points, triangle, ["actuation"] * 3 + ["constraint"] * 3)[0]
+'actuation'
 """
 
 from __future__ import annotations

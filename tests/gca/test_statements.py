@@ -25,6 +25,14 @@ def finite(v):
     return np.r_[v, 1.0]
 
 
+def assert_zero_then_not(c, text, points, moved, scale=1.0):
+    """The factor (numpy) and the condition vanish on the built geometry, not once perturbed, where the
+    vector form times the proved constant is the bracket sum."""
+    assert abs(bracket_sum(text, points)) < 1e-12 * scale and abs(c.evaluate(points)) < 1e-12 * scale
+    assert abs(bracket_sum(text, moved)) > 1e-3 * scale
+    assert float(c.constant) * c.evaluate(moved) == pytest.approx(bracket_sum(text, moved), rel=1e-10)
+
+
 def test_three_leg_directions_parallel_to_one_plane():
     """The 3-UPU's [abce] − [abcf] − [abde] + [abdf] = [a b (c − d) (e − f)] (multilinearity): with
     a, b, …, f the legs' end points, zero iff the leg directions b − a, d − c, f − e are parallel to
@@ -40,12 +48,8 @@ def test_three_leg_directions_parallel_to_one_plane():
         top: finite(base[bottom] + legs[top]) for bottom, top in zip("ace", "bdf", strict=True)
     }
     scale = np.prod([np.linalg.norm(legs[x]) for x in "bdf"])
-    assert abs(bracket_sum(text, points)) < 1e-12 * scale
-    assert abs(c.evaluate(points)) < 1e-12 * scale
     moved = points | {"f": points["f"] + np.r_[0.05 * np.cross(u, v), 0.0]}
-    assert abs(bracket_sum(text, moved)) > 1e-3 * scale
-    # the vector form times the proved constant is the bracket sum, on the moved configuration too
-    assert float(c.constant) * c.evaluate(moved) == pytest.approx(bracket_sum(text, moved), rel=1e-10)
+    assert_zero_then_not(c, text, points, moved, scale)
 
 
 def test_a_line_parallel_to_a_plane_through_three_points():
@@ -60,11 +64,8 @@ def test_a_line_parallel_to_a_plane_through_three_points():
         "a": finite(a),
         "b": finite(a + 0.8 * (plane["e"] - plane["c"]) - 0.3 * (plane["f"] - plane["c"])),
     }
-    assert abs(bracket_sum(text, points)) < 1e-12 and abs(c.evaluate(points)) < 1e-12
     normal = np.cross(plane["e"] - plane["c"], plane["f"] - plane["c"])
-    moved = points | {"b": points["b"] + np.r_[0.1 * normal, 0.0]}
-    assert abs(bracket_sum(text, moved)) > 1e-3
-    assert float(c.constant) * c.evaluate(moved) == pytest.approx(bracket_sum(text, moved), rel=1e-10)
+    assert_zero_then_not(c, text, points, points | {"b": points["b"] + np.r_[0.1 * normal, 0.0]})
 
 
 def test_a_leg_direction_and_two_directions_parallel_to_one_plane():
@@ -76,10 +77,7 @@ def test_a_leg_direction_and_two_directions_parallel_to_one_plane():
     u, v, g, cpoint = (rng.normal(size=3) for _ in range(4))
     points = {"g": finite(g), "c": finite(cpoint), "d": finite(cpoint + 0.6 * u - 1.2 * v),
               "u": np.r_[u, 0.0], "v": np.r_[v, 0.0]}
-    assert abs(bracket_sum(text, points)) < 1e-12 and abs(c.evaluate(points)) < 1e-12
-    moved = points | {"d": points["d"] + np.r_[0.1 * np.cross(u, v), 0.0]}
-    assert abs(bracket_sum(text, moved)) > 1e-3
-    assert float(c.constant) * c.evaluate(moved) == pytest.approx(bracket_sum(text, moved), rel=1e-10)
+    assert_zero_then_not(c, text, points, points | {"d": points["d"] + np.r_[0.1 * np.cross(u, v), 0.0]})
 
 
 @pytest.mark.parametrize(
