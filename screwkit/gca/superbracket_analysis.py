@@ -261,7 +261,7 @@ def superbracket_analysis(
         for search in (False, True)
     ]
     simplification = min(candidates, key=lambda c: (len(c.factored.rest.terms), len(c.survivors)))
-    from .conditions import conditions
+    from .conditions import conditions, given_couples
 
     found = conditions(
         simplification.factored,
@@ -271,6 +271,7 @@ def superbracket_analysis(
         roles=diagram.roles,
     )
     found = _checked_kinds(found, in_lengths[-1], diagram, collinear)
+    found = given_couples(found, diagram.lines, diagram.roles, diagram.infinite)
     labels = tuple(c.label for c in found)
     at_pose = _centred(diagram.coordinates)  # the points that exist at the pose
     missing = [sorted(set(c.vectors) - set(at_pose)) for c in found]

@@ -6,6 +6,7 @@ vanish, a perturbation does not. Brackets are evaluated here with numpy determin
 import numpy as np
 import pytest
 
+import screwkit as sk
 from screwkit.gca import BracketPolynomial
 from screwkit.gca.conditions import condition
 
@@ -91,3 +92,31 @@ def test_a_leg_direction_and_two_directions_parallel_to_one_plane():
 def test_other_sums_keep_the_generic_statement(text):
     c = condition(BracketPolynomial.parse(text), finite="abcdefgh", infinite="")
     assert c.statement.startswith("the bracket expression")
+
+
+def test_schoenflies_actuation_condition_given_the_couples():
+    """The Ragnar's actuation factor (four actuation lines, two couples ij, kj normal to the rotation
+    axis j) is proportional to the 4×4 determinant of the actuation lines (s; m) on the translations
+    and the rotation about j, rows (s_x, s_y, s_z, j·m) (the reciprocal product ω·m + v·s with
+    twists (0; e_x), (0; e_y), (0; e_z), (j; 0)), computed here: it vanishes exactly where a
+    translation with a rotation about an axis parallel to j does no work on the four lines."""
+    diagram, sampler = sk.load_mechanism("ragnar").wrench_diagram()
+    result = sk.superbracket_analysis(diagram, sampler)
+    (actuation,) = (c for c in result.conditions if c.label == "actuation")
+    assert actuation.statement.startswith(
+        "a translation combined with a rotation about an axis parallel to j does no work on any of the "
+        "actuation lines ab, cd, ef, gh"
+    )
+    rng = np.random.default_rng(4)
+    ratios = []
+    for _ in range(5):
+        points = sampler(rng)
+        j = points["j"][:3] / np.linalg.norm(points["j"][:3])
+        rows = []
+        for (p, q), role in zip(diagram.lines, diagram.roles, strict=True):
+            if role == "actuation":
+                a, b = points[p], points[q]
+                s, m = a[3] * b[:3] - b[3] * a[:3], np.cross(a[:3], b[:3])
+                rows.append([*s, j @ m])
+        ratios.append(actuation.evaluate(points) / np.linalg.det(np.array(rows)))
+    assert np.allclose(ratios, ratios[0], rtol=1e-8, atol=0) and abs(ratios[0]) > 1e-6
