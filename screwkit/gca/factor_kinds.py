@@ -118,7 +118,8 @@ def vanishing_kind(
     found : Condition
         The factor's condition (:func:`screwkit.gca.conditions.condition`).
     sample : mapping of str to numpy.ndarray, shape (4,)
-        A generic configuration of the diagram's points (finite of weight 1), of order-one size.
+        A generic configuration of the diagram's points (finite of weight 1, in units of the
+        diagram's size; the directions' lengths do not matter).
     lines : sequence of pairs of labels
         The diagram's six lines.
     roles : sequence of str
@@ -162,6 +163,8 @@ def vanishing_kind(
     names = ", ".join(join_labels(line) for line in constraint)
     fixed = {x for triple in collinear for x in triple}
     generator = np.random.default_rng(rng)
+    # directions of unit length (the same projective points), so a step of order one moves them alike
+    sample = {x: p / np.linalg.norm(p[:3]) if p[3] == 0 and np.any(p[:3]) else p for x, p in sample.items()}
     ranks = {}
     for point in [x for x in found.vectors if x not in fixed]:
         zero = _zero_along(found, sample, point, generator)
