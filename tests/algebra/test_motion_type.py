@@ -57,14 +57,22 @@ def test_a_single_row_sets_its_own_length():
         # translations across the axis leave the pitch: (z; m + v) with v ⟂ z has z·(m + v) = z·m
         ([S.helical_twist([0, 0, 1], [1, 0, 0], 5.0), S.prismatic_twist([1, 0, 0])], "1T1H (pitch 5 mm/rad)"),
         (
-            [S.helical_twist([0, 1, 0], [0, 0, 3], 2.0), S.prismatic_twist([1, 0, 0]), S.prismatic_twist([0, 0, 1])],
+            [
+                S.helical_twist([0, 1, 0], [0, 0, 3], 2.0),
+                S.prismatic_twist([1, 0, 0]),
+                S.prismatic_twist([0, 0, 1]),
+            ],
             "2T1H (pitch 2 mm/rad)",
         ),
         # a translation along the axis: helix − 5 × translation is a pure rotation (a cylindrical pair)
         ([S.helical_twist([0, 0, 1], [1, 0, 0], 5.0), S.prismatic_twist([0, 0, 1])], "1T1R"),
         # a translation with a component along the axis, (1, 0, 1): helix − 5√2 × it is a rotation
         (
-            [S.helical_twist([0, 0, 1], [1, 0, 0], 5.0), S.prismatic_twist([1, 0, 1]), S.prismatic_twist([0, 1, 0])],
+            [
+                S.helical_twist([0, 0, 1], [1, 0, 0], 5.0),
+                S.prismatic_twist([1, 0, 1]),
+                S.prismatic_twist([0, 1, 0]),
+            ],
             "2T1R",
         ),
         # all three translations: any moment, so the rotation is free (a helix + 3T is 3T1R)
