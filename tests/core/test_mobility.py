@@ -2,13 +2,16 @@
 coordinates (Bennett 1903; Sarrus) are mobile at a loose rtol, rigid at the default; a stated dof
 is then accepted; a tolerance out of range is refused naming `rtol`."""
 
+import numpy as np
 import pytest
 
+from screwkit.algebra.motion_type import motion_type
 from screwkit.core.mobility import generic_mobility
 from screwkit.core.singularity import classify
 from screwkit.exceptions import ScrewkitError, TwistGraphError
-from screwkit.graphs.joints import revolute
+from screwkit.graphs.joints import prismatic, revolute, universal
 from screwkit.graphs.twistgraph import twist_graph
+from tests.mechanisms import UPU_ANGLES, tsai_3upu
 from tests.overconstrained import bennett, bennett_angles, bennett_loop_error, sarrus
 
 
@@ -81,3 +84,34 @@ def test_rtol_is_a_precision_in_any_unit():
     metres = bennett(decimals=6)
     millimetres = bennett(decimals=3, scale=1000.0)
     assert [generic_mobility(g, rtol=1e-4) for g in (metres, millimetres)] == [1, 1]
+
+
+def rounded_tsai_3upu(position, decimals):
+    """Tsai's 3-UPU (tests.mechanisms.tsai_3upu) with its platform joints' axes and centres rounded
+    to ``decimals`` (the base joints exact): the inner axes are then parallel only to the data's
+    precision."""
+    joints = []
+    for i, angle in enumerate(UPU_ANGLES, start=1):
+        radial = np.array([np.cos(angle), np.sin(angle), 0.0])
+        a, c = radial, np.asarray(position, float) + 0.5 * radial
+        u = np.cross([0.0, 0, 1], radial)
+        d = (c - a) / np.linalg.norm(c - a)
+        w = np.cross(u, d) / np.linalg.norm(np.cross(u, d))
+        joints += [
+            ("base", f"lower{i}", universal(f"Ub{i}", u, w, a)),
+            (f"lower{i}", f"upper{i}", prismatic(f"P{i}", d, actuated=True)),
+            (f"upper{i}", "platform", universal(f"Up{i}", *(np.round(v, decimals) for v in (w, u, c)))),
+        ]
+    return twist_graph("base", "platform", joints)
+
+
+def test_a_rounded_3upu_translates_at_its_data_precision():
+    # Tsai's 3-UPU translates (each leg's constraint is a couple normal to its two U's parallel inner
+    # and outer axes; three such couples leave 3T). Rounded, the inner axes are skew by ~1e-6: at
+    # 1e-9 that is a different (rotating) 3-DOF mechanism; at 1e-4 it is Tsai's.
+    graph = rounded_tsai_3upu([0.1, 0.05, 0.8], 6)
+    exact = classify(tsai_3upu([0.1, 0.05, 0.8]))
+    rounded = classify(graph, rtol=1e-4, dof=3)
+    assert motion_type(exact.analysis.platform_twists) == "3T"
+    assert (rounded.dof, motion_type(rounded.analysis.platform_twists)) == (3, "3T")
+    assert motion_type(classify(graph).analysis.platform_twists) != "3T"
