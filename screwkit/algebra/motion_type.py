@@ -4,14 +4,6 @@
 labelled translations first, ``"3T1R"`` (a Schoenflies motion), ``"3T"``, ``"1T2R"``: the one-word
 summary of a platform's twist system (:mod:`screwkit.algebra.screwsystem`), batched over poses.
 
-A single freedom that is not a translation (``r = 1``) is a rotation only when some screw of the
-system has pitch zero. Its direction ``s`` is fixed (the directions of ``T`` span one line) and its
-moment is fixed up to the translations ``V`` of ``T``; the pitch ``h = s·s0 / s·s`` (Ball 1900, §13;
-Hunt, *Kinematic Geometry of Mechanisms*, 1978, §5.3) changes by ``s·v / s·s`` with ``v ∈ V``. So the
-freedom is a rotation when ``s`` is not perpendicular to ``V`` or ``h = 0``, else a helical motion
-``"H"`` of pitch ``h``: ``"1H (pitch 5 mm/rad)"``, ``"2T1H (pitch …)"``. Two or more freedoms beyond
-the translations are labelled ``"R"`` (the pitches within such a system form a range, not one value).
-
 Examples
 --------
 >>> from screwkit.algebra.screw import prismatic_twist
@@ -26,7 +18,7 @@ from typing import Any
 import numpy as np
 
 from . import backend as B
-from .ranks import characteristic_length, screw_rank
+from .ranks import characteristic_length, screw_rank, unit_rows
 from .readable import _COUPLES
 from .screwsystem import ScrewSystem, _rows
 from .screwvalue import Screw
@@ -36,28 +28,15 @@ __all__ = ["motion_type"]
 Array = np.ndarray
 
 
-def _motion_label(translations: int, rotations: int, pitch: float, unit: str) -> str:
-    """``"3T1R"``, ``"1T2R"``, ``"3T"``, ``"2R"``, ``"1H (pitch 5 mm/rad)"``: translations first, a zero
-    count left out; ``pitch`` NaN for a rotation."""
-    if not np.isnan(pitch):
-        return f"{translations or ''}{'T' if translations else ''}1H (pitch {pitch:.6g} {unit}/rad)"
+def _motion_label(translations: int, rotations: int, pitch: float, length_unit: str) -> str:
+    """``"3T1R"``, ``"1T2R"``, ``"3T"``, ``"2R"``, ``"1H (pitch 5 mm/rad)"``: translations first, a
+    zero count left out, a helical freedom (a finite ``pitch``) with its pitch."""
+    if np.isfinite(pitch):
+        unit = f" {length_unit}/rad" if length_unit else "/rad"
+        kind = f"{translations}T1H" if translations else "1H"
+        return f"{kind} (pitch {pitch:.4g}{unit})"
     parts = [(translations, "T"), (rotations, "R")]
     return "".join(f"{n}{kind}" for n, kind in parts if n) or "0"
-
-
-def _helical_pitches(rows: Array, rtol: float, length: float) -> Array:
-    """The pitch of each system's one freedom beyond its translations (module docstring), NaN where
-    that freedom is a rotation; ``rows`` (N, k, 6) numeric, each with exactly one such freedom."""
-    u, sigma, vt = np.linalg.svd(rows[..., :3])  # the directions span one line: s = vt[0]
-    moments = rows[..., 3:] / length
-    s = vt[:, 0]
-    s0 = np.einsum("nk,nkj->nj", u[:, :, 0], moments) / sigma[:, :1]
-    translations = np.einsum("nki,nkj->nij", u[:, :, 1:], moments)  # combinations with no direction
-    along = np.abs(np.einsum("nij,nj->ni", translations, s)).max(axis=1, initial=0.0)
-    size = np.linalg.norm(translations, axis=2).max(axis=1, initial=0.0)
-    pitch = np.einsum("ni,ni->n", s, s0)
-    rotation = (along > rtol * np.maximum(size, 1.0)) | (np.abs(pitch) <= rtol)
-    return np.where(rotation, np.nan, pitch * length)
 
 
 def motion_type(
@@ -65,28 +44,30 @@ def motion_type(
     *,
     rtol: float = B.DEFAULT_RTOL,
     length_scale: float | None = None,
-    length_unit: str = "length units",
+    length_unit: str = "",
 ) -> Any:
-    """The motion type of a twist system: its numbers of translations and other freedoms.
+    """The motion type of a twist system: its numbers of translations, rotations and screw motions.
 
     ``t = dim(T ∩ translations) = order(T) + 3 − order(T + translations)`` and ``r = order(T) − t``
-    (the freedoms that are not translations: rotations or screws). Labelled ``"3T1R"`` (a
-    Schoenflies motion), ``"3T"``, ``"1T2R"``, ``"3T3R"``: always translations first (the one
-    spelling used across screwkit); ``"0"`` for the 0-system. One freedom beyond the translations
-    whose screws all have the same nonzero pitch is helical: ``"1H (pitch 5 mm/rad)"``,
-    ``"2T1H (pitch …)"`` (module docstring; numeric systems).
+    (the freedoms that are not translations). Labelled ``"3T1R"`` (a Schoenflies motion), ``"3T"``,
+    ``"1T2R"``, ``"3T3R"``: always translations first (the one spelling used across screwkit); ``"0"``
+    for the 0-system. When ``r = 1`` the one other freedom is a screw motion ``(u; m)`` of unit
+    direction ``u`` and pitch ``h = u · m`` (``h = s·s0 / s·s``: Hunt 1978, *Kinematic Geometry of
+    Mechanisms*, §5), defined modulo the system's translations: adding a translation ``v`` changes
+    it by ``u · v``, so a translation with a component along ``u`` makes it a rotation. A pitch above
+    ``rtol`` times the length scale is a helical freedom, labelled ``"1H (pitch 5 mm/rad)"`` or
+    ``"2T1H (pitch 5 mm/rad)"`` (the pitch in the coordinates' length unit per radian); with ``r ≥ 2``
+    the system holds screws of many pitches and its freedoms are counted as ``R``.
 
     Parameters
     ----------
     twists : ScrewSystem or array_like, shape (..., k, 6)
         A system, or generators (numeric, batched over leading axes; or one symbolic ``(k, 6)``
-        array, decided generically).
+        array, decided generically; a symbolic helical freedom is counted as ``R``).
     rtol, length_scale
-        As in :func:`screwkit.algebra.ranks.screw_rank` (a ScrewSystem uses its own). A row whose
-        direction is below ``rtol`` times its moment gives no length scale
-        (:func:`~screwkit.algebra.ranks.characteristic_length`).
-    length_unit : str, default "length units"
-        The unit of the coordinates' lengths, named in a helical freedom's pitch.
+        As in :func:`screwkit.algebra.ranks.screw_rank` (a ScrewSystem uses its own).
+    length_unit : str, optional
+        The coordinates' length unit, written in a pitch (``"mm"``: ``"pitch 5 mm/rad"``).
 
     Returns
     -------
@@ -94,13 +75,13 @@ def motion_type(
 
     Examples
     --------
-    >>> from screwkit.algebra.screw import prismatic_twist, revolute_twist
+    >>> from screwkit.algebra.screw import helical_twist, prismatic_twist, revolute_twist
     >>> schoenflies = [*(prismatic_twist(e) for e in np.eye(3)), revolute_twist([0, 0, 1], [1, 2, 0])]
     >>> motion_type(schoenflies), motion_type(ScrewSystem.span(schoenflies[2:]))
     ('3T1R', '1T1R')
     >>> motion_type(np.stack([np.array(schoenflies[:3]), np.array(schoenflies[1:])]))
     array(['3T', '2T1R'], dtype='<U4')
-    >>> motion_type([[0, 0, 1, 0, 0, 5]], length_unit="mm")  # a screw freedom of pitch 5 mm/rad
+    >>> motion_type([helical_twist([0, 0, 1], [1, 0, 0], 5.0)], length_unit="mm")
     '1H (pitch 5 mm/rad)'
     """
     if isinstance(twists, ScrewSystem):
@@ -109,19 +90,45 @@ def motion_type(
         rows = twists.coords.reshape(1, 6)
     else:
         rows = _rows_batched(twists)
-    length_scale = characteristic_length(rows, length_scale, rtol=rtol) if rows.size else 1.0
+    length_scale = characteristic_length(rows, length_scale, rtol) if rows.size else 1.0
     couples = np.broadcast_to(_COUPLES, (*rows.shape[:-2], 3, 6))
     stacked = np.concatenate(B.promote(rows, np.asarray(couples, dtype=float)), axis=-2)
     order = np.asarray(screw_rank(rows, rtol=rtol, length_scale=length_scale))
     translations = order + 3 - np.asarray(screw_rank(stacked, rtol=rtol, length_scale=length_scale))
-    pitch = np.full(order.shape, np.nan)
-    one = (order - translations == 1) & (not B.is_symbolic(rows))
-    if np.any(one):
-        batch = np.broadcast_to(np.asarray(rows, dtype=float), (*order.shape, *rows.shape[-2:]))
-        pitch[one] = _helical_pitches(batch[one], rtol, float(length_scale or 1.0))
-    labels = np.vectorize(_motion_label, otypes=[str])(translations, order - translations, pitch, length_unit)
+    pitches = np.full(order.shape, np.inf)
+    if rows.dtype != object and rows.size:
+        assert length_scale is not None  # numeric rows have a length (characteristic_length)
+        for index in np.ndindex(order.shape):
+            if order[index] - translations[index] != 1:
+                continue
+            pitches[index] = _helical_pitch(
+                rows[index], int(translations[index]), rtol=rtol, length_scale=length_scale
+            )
+    label = np.vectorize(_motion_label, otypes=[str])
+    labels = label(translations, order - translations, pitches, length_unit)
     return str(labels) if labels.ndim == 0 else labels
 
+
+def _helical_pitch(rows: Array, translations: int, *, rtol: float, length_scale: float) -> float:
+    """The pitch of the one non-translational freedom of ``rows`` ``(k, 6)`` modulo the system's
+    ``translations`` (:func:`motion_type`), or inf when it is zero at ``rtol`` (a rotation).
+
+    In scaled coordinates (moments over ``length_scale``, rows of unit size): the directions
+    ``D = U Σ Vᵀ`` have rank 1; ``c = U₀ / σ₀`` gives the system's screw ``(v₀; m)`` of unit
+    direction ``v₀``; the combinations in the left null space of ``D`` are the translations, whose
+    first ``translations`` principal directions are ``Q``. Adding a translation ``q`` changes the
+    pitch by ``v₀ · q``: a translation with a component along ``v₀`` makes a pure rotation of the
+    system (pitch 0), else the pitch is ``h = v₀ · m``."""
+    scaled = unit_rows(rows, length_scale)
+    u, values, vt = np.linalg.svd(scaled[:, :3], full_matrices=True)
+    axis = vt[0]
+    if translations:
+        cancelling = u[:, 1:]  # the combinations whose directions cancel (rank 1: all but the first)
+        _, _, shifts = np.linalg.svd(cancelling.T @ scaled[:, 3:])
+        if np.linalg.norm(shifts[:translations] @ axis) > rtol:
+            return np.inf
+    pitch = float(axis @ ((u[:, 0] / values[0]) @ scaled[:, 3:]))
+    return pitch * length_scale if abs(pitch) > rtol else np.inf
 
 def _rows_batched(twists: Any) -> Array:
     if isinstance(twists, list | tuple) and twists and all(isinstance(s, Screw) for s in twists):

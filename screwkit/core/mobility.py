@@ -29,6 +29,7 @@ import networkx as nx
 import numpy as np
 
 from ..algebra import backend as B
+from ..algebra.checks import checked_rtol
 from ..exceptions import ScrewkitValueError, TwistGraphError
 from .finite_mobility import MobilityReading, check_stated_dof, mobility_reading
 from .motion import generic_configurations
@@ -77,7 +78,7 @@ def generic_analyses(
     >>> [a.global_order for a in generic_analyses(graph, np.random.default_rng(1), 2)]
     [6, 6]
     """
-    table = generic_configurations(graph, rng, count)
+    table = generic_configurations(graph, rng, count, rtol=max(checked_rtol(rtol), B.DEFAULT_RTOL))
     batch = analyze_table(table, dof=graph.graph.get("dof"), rtol=rtol, length_scale=length_scale)
     out = []
     for i in range(len(batch)):
@@ -114,12 +115,20 @@ def generic_mobility(
     (:func:`~screwkit.core.wrench_systems.analyze_table`); 0 for a mechanism whose loops admit no
     joint motion; None when Newton's method closed no loop.
 
+    ``rtol`` is also the data's precision (docs/data-precision.md): joint rates whose loop-closure singular
+    value is at most ``rtol`` times the largest are motions, and loops closed to ``rtol``
+    characteristic lengths are closed, so an overconstrained linkage given with rounded coordinates
+    (a Bennett linkage to 6 decimals) is mobile at an ``rtol`` above its rounding (1e-4), rigid at
+    the default 1e-9. This is the first-order (instantaneous) count moved along: a linkage rigid but
+    mobile to first order reads its first-order freedoms here.
+
     Parameters
     ----------
     graph : networkx.MultiDiGraph
         A twist graph of the mechanism (numbers).
     joint_key : str, default "joint"
     rtol : float, default 1e-9
+        Relative tolerance of every decision, and the data's precision (above).
     length_scale : float, optional
         As in :func:`~screwkit.core.wrench_systems.analyze_table`.
 
@@ -127,6 +136,11 @@ def generic_mobility(
     -------
     int or None
         The mobility (0 to 6), None when no loop could be closed.
+
+    Raises
+    ------
+    ScrewkitValueError
+        An ``rtol`` outside [0, 0.1] (naming it).
 
     Examples
     --------
@@ -143,7 +157,7 @@ def generic_mobility(
     >>> generic_mobility(fourbar)
     1
     """
-    return _finite_or_moved(
+    return _finite_or_moved(  # mobility_reading refuses an out-of-range rtol (one line naming it)
         mobility_reading(graph, joint_key=joint_key, rtol=rtol, length_scale=length_scale),
         graph, joint_key, rtol, length_scale,
     )
@@ -157,12 +171,13 @@ def _finite_or_moved(
     length_scale: float | None,
 ) -> int | None:
     """The reading's finite mobility; where undecided, the generic configurations'
-    (:func:`generic_mobility`)."""
+    (:func:`generic_mobility`, their loops closed to ``rtol``, floored at 1e-9)."""
     if reading.finite is not None:
         return reading.finite
+    precision = max(rtol, B.DEFAULT_RTOL)
     try:
         table = generic_configurations(graph, np.random.default_rng(MOBILITY_SEED), MOBILITY_SAMPLES,
-                                       joint_key=joint_key)
+                                       joint_key=joint_key, rtol=precision)
     except ScrewkitValueError as err:
         if "admit no joint motion" in str(err):
             return 0

@@ -267,7 +267,7 @@ def superbracket_analysis(
         for search in (False, True)
     ]
     simplification = min(candidates, key=lambda c: (len(c.factored.rest.terms), len(c.survivors)))
-    from .conditions import conditions
+    from .conditions import conditions, given_couples
 
     found = conditions(
         simplification.factored,
@@ -276,6 +276,8 @@ def superbracket_analysis(
         lines=diagram.lines,
         roles=diagram.roles,
     )
+    found = _checked_kinds(found, in_lengths[-1], diagram, collinear)
+    found = given_couples(found, diagram.lines, diagram.roles, diagram.infinite)
     labels = tuple(c.label for c in found)
     at_pose = _centred(diagram.coordinates)  # the points that exist at the pose
     missing = [sorted(set(c.vectors) - set(at_pose)) for c in found]
@@ -302,6 +304,27 @@ def superbracket_analysis(
     return SuperbracketAnalysis(
         diagram, simplification, found, labels, values, collinear, vanishing, constant, undefined
     )
+
+
+def _checked_kinds(
+    found: tuple[Condition, ...],
+    sample: Mapping[str, Array],
+    diagram: WrenchDiagram,
+    collinear: tuple[str, ...],
+) -> tuple[Condition, ...]:
+    """Each condition labelled by what happens at its zeros
+    (:func:`~screwkit.gca.factor_kinds.vanishing_kind`: the constraint lines lose rank, or keep it
+    while the actuation wrenches become dependent), the roles' label kept where that does not decide;
+    the evidence says both."""
+    from dataclasses import replace
+
+    from .factor_kinds import vanishing_kind
+
+    checked = []
+    for c in found:
+        kind, evidence = vanishing_kind(c, sample, diagram.lines, diagram.roles, collinear=collinear)
+        checked.append(replace(c, label=kind or c.label, evidence=f"{c.evidence}; {evidence}"))
+    return tuple(checked)
 
 
 def _centred(points: Mapping[str, Array]) -> dict[str, Array]:

@@ -162,7 +162,7 @@ class AnalysisReport:
         scale = self.analysis.length_scale
         platform = self.analysis.platform_twists
         legs = sorted(self.analysis.compound_legs, key=lambda leg: leg.name)  # each view built once
-        unit = self.length_unit or "length units"  # a helical freedom's pitch names it
+        unit = self.length_unit  # a helical freedom's pitch names it
         return {
             "platform_twist_order": platform.order,
             "platform_twists": {
