@@ -15,6 +15,7 @@ import screwkit
 import screwkit.robots.families as families
 
 SYMBOLIC_MODULES = {  # sympy expressions all the way down
+    "screwkit.gca.combined_brackets",
     "screwkit.gca.conditions",
     "screwkit.gca.condition_patterns",
     "screwkit.gca.exact_proofs",

@@ -14,6 +14,8 @@ the contractions of ω by the 3-vectors span the 4-dimensional space ⟨s₁, �
 decomposable multivector; Marcus, *Finite Dimensional Multilinear Algebra* II, 1975, §4.1, Thm 1.3).
 The slots are that space's reduced row-echelon basis (exact rationals), so they read as single
 labels and differences; the candidate is then checked by expanding it back (exact arithmetic).
+Like :mod:`~screwkit.gca.vector_forms`, whose forms it returns, this module is symbolic by nature:
+importing it imports sympy.
 
 Examples
 --------
