@@ -37,6 +37,7 @@ Examples
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import networkx as nx
 import numpy as np
@@ -111,6 +112,54 @@ class ModesAtPose:
     def meets(self) -> bool:
         """True when the pose lies where two or more operation modes meet."""
         return len(self.modes) > 1
+
+    def to_dict(self) -> dict[str, Any]:
+        """The modes as JSON-ready data.
+
+        Returns
+        -------
+        dict
+            ``meets`` (bool), ``first_order`` and ``modes``: per mode its ``mobility``,
+            ``motion_type``, ``constraint_order``, ``reached`` and ``verdict`` (the pose's, in that mode).
+
+        Examples
+        --------
+        >>> from screwkit.graphs.joints import prismatic
+        >>> from screwkit.graphs.twistgraph import twist_graph
+        >>> slider = twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))])
+        >>> modes_at(slider).to_dict()["modes"][0]["motion_type"]
+        '1T'
+        """
+        return {
+            "meets": self.meets,
+            "first_order": self.first_order,
+            "modes": [
+                {"mobility": m.mobility, "motion_type": m.motion_type, "constraint_order": m.constraint_order,
+                 "reached": m.reached, "verdict": m.at_pose.verdict}
+                for m in self.modes
+            ],
+        }
+
+    def lines(self) -> list[str]:
+        """The report's lines: :meth:`describe`, then the pose's verdict in each mode where modes meet.
+
+        Returns
+        -------
+        list of str
+
+        Examples
+        --------
+        >>> from screwkit.graphs.joints import prismatic
+        >>> from screwkit.graphs.twistgraph import twist_graph
+        >>> slider = twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))])
+        >>> modes_at(slider).lines()
+        ['one operation mode through this pose: 1T']
+        """
+        out = [self.describe()]
+        if self.meets:
+            out += [f"  in the {m.motion_type} mode: {str(m.at_pose).splitlines()[0]}"
+                    for m in self.modes]
+        return out
 
     def describe(self) -> str:
         """One line: the modes through the pose.

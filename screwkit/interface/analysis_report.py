@@ -29,6 +29,7 @@ import numpy as np
 from ..algebra import backend as B
 from ..algebra.motion_type import motion_type
 from ..core.jacobian_matrices import Jacobians
+from ..core.mode_transitions import ModesAtPose
 from ..core.singularity import SingularityReport
 from ..core.wrenches import WrenchAnalysis
 from ..graphs.loops import fundamental_loops
@@ -83,6 +84,9 @@ class AnalysisReport:
         ``analysis.length_scale``).
     angle_names : tuple of str
         The pose coordinates that are angles (shown in degrees).
+    modes_at_pose : ModesAtPose or None
+        The operation modes through the pose (:func:`screwkit.core.mode_transitions.modes_at`; None
+        where not tested): where several meet, the report says so and gives the pose's verdict in each.
     """
 
     name: str
@@ -102,6 +106,7 @@ class AnalysisReport:
     transmission: dict[str, Any] | None = None
     given_length_scale: float | None = None
     angle_names: tuple[str, ...] = ()
+    modes_at_pose: ModesAtPose | None = None
 
     def graph_summary(self) -> dict[str, Any]:
         """Links, joints by type, actuated joints, loops; and the equivalent graph's virtual joints.
@@ -309,6 +314,7 @@ class AnalysisReport:
             "grassmann": None if grassmann is None else grassmann.to_dict(),
             "jacobians": self.jacobian_summary(),
             "transmission": self.transmission,
+            "modes_at_pose": None if self.modes_at_pose is None else self.modes_at_pose.to_dict(),
         }
 
     def __str__(self) -> str:
@@ -392,6 +398,8 @@ class AnalysisReport:
                 here = f"{value:.6g}" if math.isfinite(value) else "not defined: " + result.undefined[index]
                 out.append(f"    vector form: {condition.expression} = 0   (here: {here})")
         out += ["", "verdict", *("  " + line for line in str(self.verdict).splitlines())]
+        if self.modes_at_pose is not None and self.modes_at_pose.meets:
+            out += ["", *self.modes_at_pose.lines()]
         grassmann, _ = self.grassmann()
         if grassmann is not None:
             out += ["", *str(grassmann).splitlines()]

@@ -43,6 +43,7 @@ from ..algebra import backend as B
 from ..algebra.checks import checked_length_scale, checked_rtol
 from ..core.jacobian_matrices import Jacobians
 from ..core.jacobians import jacobians_from_wrenches
+from ..core.mode_transitions import ModesAtPose, modes_at
 from ..core.verdicts import classify_analysis
 from ..core.wrench_systems import WrenchAnalysis
 from ..core.wrenches import wrench_analysis
@@ -230,8 +231,18 @@ def _graph_report(
         progress=progress,
     )
     return dataclasses.replace(
-        report, given_length_scale=length_scale, transmission=transmission, pose_names=coordinates
+        report, given_length_scale=length_scale, transmission=transmission, pose_names=coordinates,
+        modes_at_pose=_modes_at_pose(graph, rtol, length_scale),
     )
+
+
+def _modes_at_pose(graph: nx.MultiDiGraph, rtol: float, length_scale: float | None) -> ModesAtPose | None:
+    """The operation modes through a graph's configuration (None where the test cannot run: a mechanism
+    that cannot move there, or loops Newton's method does not close again)."""
+    try:
+        return modes_at(graph, rtol=rtol, length_scale=length_scale)
+    except ScrewkitError:
+        return None
 
 
 def _graph_jacobians(
