@@ -22,16 +22,10 @@ of the first-order motions): the answer is what the steps found.
 
 Examples
 --------
->>> from screwkit.graphs.joints import revolute
->>> from screwkit.graphs.twistgraph import twist_graph
->>> fourbar = twist_graph("ground", "coupler", [
-...     ("ground", "crank", revolute("A", [0, 0, 1], [0, 0, 0], actuated=True)),
-...     ("crank", "coupler", revolute("B", [0, 0, 1], [1, 0, 0])),
-...     ("ground", "rocker", revolute("D", [0, 0, 1], [3, 0, 0])),
-...     ("rocker", "coupler", revolute("C", [0, 0, 1], [3, 2, 0]))], dof=1)
->>> result = modes_at(fourbar)
->>> result.meets, [mode.motion_type for mode in result.modes]
-(False, ['1T1R'])
+>>> h4 = load_mechanism("h4").twist_graph()
+>>> result = modes_at(h4)
+>>> result.meets, [(mode.mobility, mode.motion_type) for mode in result.modes]
+(False, [(4, '3T1R')])
 """
 
 from __future__ import annotations
