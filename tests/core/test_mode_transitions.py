@@ -15,12 +15,15 @@ Expected values are hand derivations from the geometry, checked by rank computat
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from screwkit.core.mobility import generic_mobility
 from screwkit.core.mode_transitions import modes_at
 from screwkit.core.motion import generic_configurations
 from screwkit.exceptions import ScrewkitValueError
-from tests.mechanisms import bennett, bennett_axes, bennett_links, tsai_3upu
+from tests.mechanisms import bennett, bennett_axes, bennett_links, moved, tsai_3upu
+from tests.strategies import rigid_motions
 
 
 def leg_screws(graph, leg):
@@ -106,3 +109,12 @@ def test_bennett_linkage_moves_with_one_freedom():
             assert length == pytest.approx(links[k][0], abs=1e-8)
             assert twist == pytest.approx(min(links[k][1], np.pi - links[k][1]), abs=1e-8)
         assert not np.allclose(moved[2][0], axes[2][0], atol=1e-3)  # a configuration away from the start
+
+
+@settings(max_examples=4, deadline=None)
+@given(rigid_motions(), st.sampled_from([1.0, 1000.0]))
+def test_modes_at_same_in_any_frame_and_length_unit(motion, factor):
+    rotation, translation = motion
+    result = modes_at(moved(tsai_3upu((0.1, 0.05, 0.0)), rotation, translation, factor))
+    assert result.meets and result.first_order == 4
+    assert sorted(mode.motion_type for mode in result.modes) == ["2T1R", "3T"]
