@@ -104,7 +104,19 @@ class ModesAtPose:
 
     @property
     def meets(self) -> bool:
-        """True when the pose lies where two or more operation modes meet."""
+        """True when the pose lies where two or more operation modes meet.
+
+        Returns
+        -------
+        bool
+
+        Examples
+        --------
+        >>> from screwkit.graphs.joints import prismatic
+        >>> from screwkit.graphs.twistgraph import twist_graph
+        >>> modes_at(twist_graph("B", "E", [("B", "E", prismatic("P", [0, 0, 1], actuated=True))])).meets
+        False
+        """
         return len(self.modes) > 1
 
     def to_dict(self) -> dict[str, Any]:
