@@ -10,9 +10,14 @@ test). Single-threaded BLAS. Times are this process's CPU time (the machine is s
   0.8 mm (1/1000 of its width), and its ratio to the map without loci (the issue's target: <= 10x);
 * ``certify 3-D``: the box x, y in [-400, 400], z in [-900, -600] at phi = 0 and 45 deg, to 1/100
   of each width (seconds, boxes);
-* ``conditions``: the closed-form conditions (the four reach functions, det A, paper 002's Eq. 6)
-  at points, as double intervals, against one batched numpy SVD of 6 x 6 matrices of the same
-  count (poses/s, ratio).
+* ``Delta``: certify the Delta's slice x in [900, 1200], y in [-60, 60] at z = -1000 mm (the rods'
+  coplanarity near x = 1143.5 mm) to 0.3 mm, and its workspace box to 1/100 of each width (seconds,
+  boxes);
+* ``conditions``: the closed-form conditions (the four reach functions, det A, paper 002's Eq. 6;
+  inverse kinematics included) at 100,000 poses, in floats
+  (:meth:`~screwkit.analysis.enclosures.FourLimbModel.values`, the issue's target: >= 2x) and as
+  double intervals at points, against one batched numpy SVD of 6 x 6 matrices of the same count
+  (the wrench matrices' shape; poses/s, ratio).
 """
 
 import os
@@ -64,15 +69,26 @@ def main() -> None:
         result = certify(quattro, region, resolution={"x": 8, "y": 8, "z": 3}, angles="deg")
         print(f"certify 3-D (x, y, z at phi = {phi:g} deg, 1/100): {clock() - start:.1f} s, "
               f"{result.evaluated} boxes; " + ", ".join(f"{k} {v:.2%}" for k, v in result.fractions.items()))
+    delta = sk.load_mechanism("delta")
+    for region, resolution in (
+        ({"x": (900, 1200), "y": (-60, 60), "z": -1000}, 0.3),
+        ({"x": (-300, 300), "y": (-300, 300), "z": (-1150, -850)}, {"x": 6, "y": 6, "z": 3}),
+    ):
+        start = clock()
+        result = certify(delta, region, resolution=resolution)
+        print(f"Delta {region}: {clock() - start:.2f} s, {result.evaluated} boxes; "
+              + ", ".join(f"{k} {v:.2%}" for k, v in result.fractions.items()))
     model = FourLimbModel.of(quattro)
     count = 100_000
     poses = np.asarray(quattro.random_poses(np.random.default_rng(0), count))
     points = Enclosure.variables(poses, poses, gradient=False)
-    conditions = best_of(3, lambda: model.evaluate(points), clock)
+    floats = best_of(3, lambda: model.values(poses), clock)
+    intervals = best_of(3, lambda: model.evaluate(points), clock)
     matrices = np.random.default_rng(1).normal(size=(count, 6, 6))
     svd = best_of(3, lambda: np.linalg.svd(matrices, compute_uv=False), clock)
-    print(f"conditions at points (intervals): {count / conditions:,.0f} poses/s; batched 6x6 SVD "
-          f"{count / svd:,.0f} poses/s; ratio {svd / conditions:.2f}")
+    print(f"batched 6x6 SVD {count / svd:,.0f} poses/s; conditions at poses (kinematics included) in "
+          f"floats {count / floats:,.0f} poses/s (ratio {svd / floats:.2f}), as intervals "
+          f"{count / intervals:,.0f} poses/s (ratio {svd / intervals:.2f})")
 
 
 if __name__ == "__main__":

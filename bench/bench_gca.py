@@ -10,7 +10,12 @@ Two groups:
   ("GCA": ordering search, expansion, zeros, factoring, statements, exact proofs, labels);
 * diagrams built from their points (gca level): the H4 of paper 002, Tsai's 3-UPU, the 3-RPS, the
   octahedral 3-3 and a general 6-6 Gough–Stewart: :func:`screwkit.gca.simplify_superbracket` then
-  :func:`screwkit.gca.conditions.conditions` with the lines' roles.
+  :func:`screwkit.gca.conditions.conditions` with the lines' roles;
+* twist graphs of the tests (three to six legs: Tsai's 3-UPU, the 6-UPS Gough–Stewart):
+  ``sk.graph_diagram`` (the diagram chosen at generic configurations, reached by moving the
+  mechanism, and its sampler) then ``superbracket_analysis``, the whole "diagram → factored, stated
+  conditions" of issue 21's speed target (≤ 1 s up to six legs), each factor's kind checked at its
+  zeros (:func:`screwkit.gca.factor_kinds.vanishing_kind`).
 
 The first call of a process pays for imports (sympy is imported on the first condition); the
 figure reported is the best of the repeats after one warm-up call.
@@ -27,12 +32,23 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from _timing import best_of
 
+from screwkit.core.wrenches import wrench_analysis
 from screwkit.gca import simplify_superbracket
 from screwkit.gca.conditions import conditions
+from screwkit.gca.diagram_placement import graph_diagram
 from screwkit.gca.superbracket_analysis import superbracket_analysis
 from screwkit.robots.catalog import list_mechanisms, load_mechanism
+from tests.mechanisms import gough_stewart, gough_stewart_points, rotation_about, tsai_3upu
 
 Z = np.array([0.0, 0.0, 1.0])
+
+
+GRAPHS = {
+    "3-UPU (3 legs)": tsai_3upu([0.05, 0.1, 1.0]),
+    "6-UPS (6 legs)": gough_stewart(
+        *gough_stewart_points(rotation_about([0.2, 1.0, 0.1], 0.1), [0.05, 0.02, 1.0])
+    ),
+}
 
 
 def h4_sampler(rng):
@@ -114,6 +130,16 @@ def main(argv=None):
         gca = best_of(args.repeats, lambda d=diagram, s=drawn: catalog_chain(d, s))
         labels = ", ".join(result.labels)
         print(f"{name:16s} | {sampling:8.3f} | {gca:7.3f} | {result.simplification.factored}  [{labels}]")
+    print(f"\n{'twist graph':16s} | {'diagram':>8} | {'GCA':>7} | factored form and labels")
+    for name, graph in GRAPHS.items():
+        analysis = wrench_analysis(graph)
+        seconds = best_of(args.repeats, lambda a=analysis: graph_diagram(a))
+        diagram, sampler = graph_diagram(analysis)
+        result = superbracket_analysis(diagram, sampler)
+        gca = best_of(args.repeats, lambda d=diagram, s=sampler: superbracket_analysis(d, s))
+        powers = [f"^{c.multiplicity}" if c.multiplicity > 1 else "" for c in result.conditions]
+        labels = ", ".join(c.label + power for c, power in zip(result.conditions, powers, strict=True))
+        print(f"{name:16s} | {seconds:8.3f} | {gca:7.3f} | {result.simplification.factored}  [{labels}]")
 
 
 if __name__ == "__main__":

@@ -10,7 +10,8 @@ machine is shared; the load average is printed beside them):
   core itself (:func:`screwkit.core.singularity.classify_chunks`), poses/s;
 * ``verdict map``, ``closeness map``: :func:`screwkit.analysis.workspace.grid_map` of ``"verdict"`` and
   ``"closeness"`` over a 100 × 100 grid of the same box (z × phi at x = y = 0, plus
-  reachability), poses/s and the ratio to ``core``;
+  reachability), without and with the slice's loci (the maps' default), poses/s and the ratios to
+  ``core`` and to the verdict map without loci;
 * ``condition:0 / :1 map``: the same grid for the superbracket's two factors (paper 002 Eqs. 6, 7):
   the diagram's points over each chunk from the batched core and the factors' vector forms on them
   (the superbracket factored once before timing), poses/s and the ratio to ``core``;
@@ -75,6 +76,7 @@ def main():
             fixed={"x": 0, "y": 0},
             chunk=args.chunk,
             progress=False,
+            angles="deg",
         )
         seconds, cpu_seconds = time.perf_counter() - start, cpu() - start_cpu
         count = side**2
@@ -88,12 +90,23 @@ def main():
     poses = np.stack([np.zeros_like(z), np.zeros_like(z), z, phi], axis=-1).reshape(-1, 4)
     core = best_of(args.repeats, lambda: h4.at(poses).singularities, clock=cpu)
     print(f"core, 10,000 poses:          {len(poses) / core:10.0f} poses/s")
-    grid = {"x": ("z", -1000, -550, 100), "y": ("phi", -45, 45, 100), "fixed": {"x": 0, "y": 0}}
+    grid = {
+        "x": ("z", -1000, -550, 100), "y": ("phi", -45, 45, 100), "fixed": {"x": 0, "y": 0}, "angles": "deg"
+    }
     diagram, conditions, _, _ = conditions_of(h4, {})
+    plain = best_of(args.repeats, lambda: W.grid_map(h4, "verdict", **grid, loci=False), clock=cpu)
     for quantity in ("verdict", "closeness", "condition:0", "condition:1"):
-        mapped = best_of(args.repeats, lambda q=quantity: W.grid_map(h4, q, **grid), clock=cpu)
+        rates = []
+        for loci in (False, True):
+            mapped = best_of(
+                args.repeats, lambda q=quantity, f=loci: W.grid_map(h4, q, **grid, loci=f), clock=cpu
+            )
+            rates.append(
+                f"{len(poses) / mapped:7.0f} poses/s ({core / mapped:.2f} x the core, "
+                f"{plain / mapped:.2f} x the verdict map without loci)"
+            )
         label = f"{quantity} map, 100 x 100:"
-        print(f"{label:29s}{len(poses) / mapped:10.0f} poses/s  ({core / mapped:.2f} x the core's rate)")
+        print(f"{label:29s} without loci {rates[0]}; with loci {rates[1]}")
     few = h4.at(poses[:: len(poses) // 200])
 
     def one_at_a_time():
@@ -105,9 +118,12 @@ def main():
 
     start_pose = {"x": 300, "y": 300, "z": -800, "phi": -80}
     end_pose = {"x": 300, "y": 300, "z": -800, "phi": 0}
-    path = best_of(args.repeats, lambda: sk.check_path(h4, start_pose, end_pose), clock=cpu)
-    print(f"path, 200 samples, refined:  {path:8.2f} s  ({sk.check_path(h4, start_pose, end_pose)})")
-    slice_ = {"x": ("z", -1100, -450, 30), "y": ("phi", -90, 90, 30), "fixed": {"x": 300, "y": 300}}
+    checked = sk.check_path(h4, start_pose, end_pose, angles="deg")
+    path = best_of(args.repeats, lambda: sk.check_path(h4, start_pose, end_pose, angles="deg"), clock=cpu)
+    print(f"path, 200 samples, refined:  {path:8.2f} s  ({checked})")
+    slice_ = {
+        "x": ("z", -1100, -450, 30), "y": ("phi", -90, 90, 30), "fixed": {"x": 300, "y": 300}, "angles": "deg"
+    }
     loci_time = best_of(1, lambda: sk.loci(h4, **slice_), clock=cpu)
     found = sk.loci(h4, **slice_)
     counts = ", ".join(f"{lo.kind} {len(lo.points)}" for lo in found)

@@ -7,7 +7,12 @@ singular values above ``rtol`` times the largest one. With ``length_scale`` give
 the coordinates, the answer is the same in millimetres and in metres. When ``length_scale`` is None
 it is taken from the data: the largest ``|s0| / |s|`` over rows whose direction is not round-off
 (``|s| > 1e-9 |s0|``; a length in the data's own unit, kept within [1e-100, 1e100] like a given
-one), or 1 if every row is a couple. Rows are scaled by powers of two before any square
+one), or 1 if every row is a couple, leaving out the rows whose ratio is more than ``1 / rtol``
+above the next smaller one (their direction is round-off at ``rtol``: ``(1e-8, 0, 0; 0, 0, 1)``
+is a translation at ``rtol = 1e-6``, not a rotation about an axis 1e8 away). When the next
+smaller ratio is 0 (an axis through the origin, which carries no length) the comparison is with
+the data's unit 1: at a loose ``rtol`` give ``length_scale`` (the mechanism's size) when axes lie
+far from the origin. Rows are scaled by powers of two before any square
 (:func:`unit_rows`), so a decision is the same for screws of any finite magnitude, 1e-300 or
 1e300. Symbolic rows have their generic rank and null spaces (:mod:`screwkit.algebra.symbolic`). Part of the
 numeric/symbolic backend (:mod:`screwkit.algebra.backend`).
@@ -145,18 +150,32 @@ def unit_rows(rows: Array, length_scale: float) -> Array:
     return scaled / np.where(lengths > 0, lengths, 1.0)
 
 
-def _derived_length(rows: Array) -> float:
-    """The largest ``|s0| / |s|`` over rows whose direction is not round-off, within
-    [MIN_LENGTH_SCALE, 1 / MIN_LENGTH_SCALE]; 1 without such a row (module docstring)."""
+def _derived_length(rows: Array, rtol: float = DEFAULT_RTOL) -> float:
+    """The characteristic length of numeric rows (module docstring): the largest ``|s0| / |s|``
+    below the first gap of ``1 / rtol`` in the sorted ratios, within [MIN_LENGTH_SCALE,
+    1 / MIN_LENGTH_SCALE]; 1 without such a row.
+
+    A row whose ratio exceeds the next smaller one (or the data's unit 1, when that one is 0: an
+    axis through the origin gives no length) by more than ``1 / rtol`` has a direction that is
+    round-off at ``rtol`` relative to the other rows: a translation ``(1e-8, 0, 0; 0, 0, 1)`` is a
+    couple at ``rtol = 1e-6``, not a rotation 1e8 away, and must not set the length (a single
+    such row does: there is nothing to compare it with)."""
     directions, moments = _norms(rows[..., :3]), _norms(rows[..., 3:])  # no square overflows
     has_direction = directions > DEFAULT_RTOL * moments  # a couple's round-off direction is not one
-    ratios = moments[has_direction] / directions[has_direction]
-    if not (ratios.size and ratios.max() > 0):
+    ratios = np.sort(moments[has_direction] / directions[has_direction], axis=None)
+    if not (ratios.size and ratios[-1] > 0):
         return 1.0
-    return float(np.clip(ratios.max(), MIN_LENGTH_SCALE, 1 / MIN_LENGTH_SCALE))
+    references = np.where(ratios[:-1] > 0, ratios[:-1], 1.0)
+    gaps = np.flatnonzero(ratios[1:] * rtol > references)
+    length = ratios[gaps[0]] if gaps.size else ratios[-1]
+    if length == 0:
+        return 1.0
+    return float(np.clip(length, MIN_LENGTH_SCALE, 1 / MIN_LENGTH_SCALE))
 
 
-def scale_moments(rows: Array, length_scale: float | None) -> tuple[Array, float]:
+def scale_moments(
+    rows: Array, length_scale: float | None, rtol: float = DEFAULT_RTOL
+) -> tuple[Array, float]:
     """Divide the moment half of screws ``(..., 6)`` by a characteristic length.
 
     Parameters
@@ -164,6 +183,9 @@ def scale_moments(rows: Array, length_scale: float | None) -> tuple[Array, float
     rows : numpy.ndarray, shape (..., 6)
     length_scale : float or None
         The characteristic length; None derives it from the data (see the module docstring).
+    rtol : float, default 1e-9
+        The tolerance of the decisions the length serves (a derived length ignores directions
+        that are round-off at it).
 
     Returns
     -------
@@ -177,7 +199,7 @@ def scale_moments(rows: Array, length_scale: float | None) -> tuple[Array, float
     500.0
     """
     if length_scale is None:
-        length = _derived_length(np.asarray(rows, dtype=float))
+        length = _derived_length(np.asarray(rows, dtype=float), checked_rtol(rtol))
     else:
         checked = checked_length_scale(length_scale, allow_none=True)  # its message mentions None
         assert checked is not None  # None took the branch above
@@ -187,7 +209,9 @@ def scale_moments(rows: Array, length_scale: float | None) -> tuple[Array, float
     return scaled, length
 
 
-def characteristic_length(rows: Array, length_scale: float | None) -> float | None:
+def characteristic_length(
+    rows: Array, length_scale: float | None, rtol: float = DEFAULT_RTOL
+) -> float | None:
     """The length a numeric rank decision on ``rows`` uses (:func:`scale_moments`); symbolic rows
     keep ``length_scale`` as given (their decisions are exact and need none).
 
@@ -197,6 +221,9 @@ def characteristic_length(rows: Array, length_scale: float | None) -> float | No
         The screws.
     length_scale : float or None
         The caller's length (None: derived from the rows).
+    rtol : float, default 1e-9
+        The tolerance of the decisions the length serves: a derived length ignores a row whose
+        direction is round-off at it relative to the other rows (module docstring).
 
     Returns
     -------
@@ -213,13 +240,13 @@ def characteristic_length(rows: Array, length_scale: float | None) -> float | No
     """
     if is_symbolic(rows):
         return length_scale
-    return _numeric_length(rows, length_scale)
+    return _numeric_length(rows, length_scale, checked_rtol(rtol))
 
 
-def _numeric_length(rows: Array, length_scale: float | None) -> float:
+def _numeric_length(rows: Array, length_scale: float | None, rtol: float = DEFAULT_RTOL) -> float:
     """:func:`characteristic_length` of numeric rows."""
     if length_scale is None:
-        return _derived_length(np.asarray(rows, dtype=float))
+        return _derived_length(np.asarray(rows, dtype=float), rtol)
     return checked_length_scale(length_scale)
 
 
@@ -297,7 +324,7 @@ def screw_rank(rows: Array, *, rtol: float = DEFAULT_RTOL, length_scale: float |
         return symbolic_bases.generic_rank(rows.reshape(-1, rows.shape[-1])) if rows.size else 0
     if rows.shape[-2] == 0:
         return 0 if rows.ndim == 2 else np.zeros(rows.shape[:-2], dtype=int)
-    values = screw_singular_values(rows, length_scale=length_scale)
+    values = screw_singular_values(rows, length_scale=_numeric_length(rows, length_scale, rtol))
     largest = values[..., :1]
     counted = (values > rtol * largest) & (largest > 0)
     result = counted.sum(axis=-1)
@@ -341,7 +368,7 @@ def screw_nullspace(
         return matrix_nullspace(rows @ SWAP.astype(int), rtol=rtol)
     if rows.shape[0] == 0:
         return np.eye(6)
-    length = _numeric_length(rows, length_scale)
+    length = _numeric_length(rows, length_scale, rtol)
     basis = matrix_nullspace(unit_rows(rows, length) @ SWAP, rtol=rtol)
     # In scaled coordinates x' = (x_s; x_m / L); reciprocity a∘x = L (a'∘x') is preserved.
     basis[:, 3:] *= length

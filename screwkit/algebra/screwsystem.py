@@ -68,7 +68,7 @@ class ScrewSystem:
 
     def __post_init__(self) -> None:
         rows = B.as_array(self.basis, "basis", (6,)).reshape(-1, 6)
-        length = characteristic_length(rows, self.length_scale)
+        length = characteristic_length(rows, self.length_scale, self.rtol)
         object.__setattr__(self, "length_scale", length)
         rank = screw_rank(rows, rtol=self.rtol, length_scale=length)
         if rank != rows.shape[0]:
@@ -113,7 +113,7 @@ class ScrewSystem:
         1
         """
         rows = _rows(screws, "screws")
-        length_scale = characteristic_length(rows, length_scale)
+        length_scale = characteristic_length(rows, length_scale, rtol)
         basis = _independent_rows(rows, rtol, length_scale) if rows.shape[0] else rows
         # independent by construction: _independent_rows took the (generic) rank of these very rows
         return cls.from_independent(basis, rtol=rtol, length_scale=length_scale)

@@ -40,7 +40,7 @@ import numpy as np
 
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
 from ..robots.angles import angle_factor
-from .enclosures import FourLimbModel
+from .enclosures import DeltaModel, FourLimbModel, model_of
 from .intervals import Enclosure, mean_value
 from .poses import _check_mechanism, _options
 
@@ -273,7 +273,7 @@ def _real(value: Any, what: str) -> float:
 class _Problem:
     """A paving problem in API units: pose = base + coef · u over boxes in ``u``."""
 
-    model: FourLimbModel
+    model: FourLimbModel | DeltaModel
     base: Array  # (4,) pose at u = 0
     coef_lo: Array  # (4, k) enclosure of the affine map
     coef_hi: Array
@@ -307,7 +307,7 @@ def _half_width(lo: float, hi: float) -> float:
 
 
 def _functions(problem: _Problem) -> list[str]:
-    names = [f"serial:{i}" for i in range(1, 5)]
+    names = [f"serial:{i}" for i in range(1, problem.model.limbs + 1)]
     return names + [k for k in ("constraint", "actuation") if k in problem.kinds]
 
 
@@ -338,7 +338,8 @@ def _step(problem: _Problem, lo: Array, hi: Array) -> tuple[Array, Array, Array,
     the same answer)."""
     names = _functions(problem)
     enc = _enclose(problem, lo, hi)
-    reach = [enc[f"serial:{i}"] for i in range(1, 5)]
+    limbs = problem.model.limbs
+    reach = [enc[f"serial:{i}"] for i in range(1, limbs + 1)]
     reachable = np.all([g.lo > 0 for g in reach], axis=0)
     unreachable = np.any([g.hi < 0 for g in reach], axis=0)
     clear = reachable.copy()
@@ -359,7 +360,7 @@ def _step(problem: _Problem, lo: Array, hi: Array) -> tuple[Array, Array, Array,
         signs = _signs(problem, points.reshape(-1, k))
         count = fractions.shape[0]
         others_positive = {
-            i: np.all([reach[j].lo[look] > 0 for j in range(4) if j != i], axis=0) for i in range(4)
+            i: np.all([reach[j].lo[look] > 0 for j in range(limbs) if j != i], axis=0) for i in range(limbs)
         }
         for index, name in enumerate(names):
             if name.startswith("serial:"):
@@ -497,7 +498,7 @@ def certify(
     _check_mechanism(mechanism)
     factor = angle_factor(angles)
     options = _options(mechanism, mode)
-    model = FourLimbModel.of(mechanism, options)
+    model = model_of(mechanism, options)
     chosen = _checked_kinds(kinds)
     if (
         isinstance(max_boxes, bool)
@@ -736,7 +737,7 @@ def certify_path(
     """
     _check_mechanism(mechanism)
     options = _options(mechanism, mode)
-    model = FourLimbModel.of(mechanism, options)
+    model = model_of(mechanism, options)
     chosen = _checked_kinds(kinds)
     a, b = np.asarray(start, dtype=float), np.asarray(end, dtype=float)
     step = _real(resolution, "resolution")

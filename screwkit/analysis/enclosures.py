@@ -1,5 +1,6 @@
 """Enclosures of the singularity conditions of the four-limb robots with a nacelle articulated
-about vertical axes (Quattro, H4) over boxes of pose space, in closed form.
+about vertical axes (Quattro, H4) and of the Delta robot over boxes of pose space, in closed form
+(:class:`DeltaModel` for the Delta: the same limbs, its own statements; :func:`model_of` picks).
 
 The certified functions (each vanishes exactly on one kind of singular set, in the working mode
 ``m``, the signs of ``h_i``):
@@ -34,25 +35,38 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 
 from ..exceptions import ScrewkitValueError
+from .delta_enclosure import DeltaModel
 from .intervals import Enclosure
+from .limb_enclosures import (
+    Vector,
+    _ClosedFormModel,
+    _Constant,
+    _constants,
+    _cross,
+    _cross_constant,
+    _dot,
+    _relative,
+    _scaled_by,
+    _sum,
+)
 
-__all__ = ["COVERED", "FourLimbModel"]
+__all__ = ["COVERED", "FourLimbModel", "model_of"]
 
 Array = np.ndarray
 
-#: What certification covers: the four-limb family with a nacelle articulated about vertical axes.
-#: (``articulated_y``, the V4, is left out until its constraint condition, Eq. (6) with the axis
-#: ``y``, is checked against the twist graph's labels; the screw pair, Veloce and Ragnar, has
-#: another constraint condition.)
-COVERED = "the four_limb family with platform_kind articulated_z (Quattro, H4)"
-
-#: Relative size of the enclosure of a constant computed by trigonometry.
-_CONSTANT_SPREAD = 1e-15
+#: What certification covers: the four-limb family with a nacelle articulated about vertical axes,
+#: and the Delta. Left out: the V4 (``articulated_y``): Eq. (6) with the axis ``y`` vanishes at V4
+#: poses the core finds regular (e.g. x, y, z, phi = 503.5, -492, -352, 0.2 rad: constraint
+#: closeness 0.79), so the V4's constraint condition is another one, not written here; the screw
+#: pair (Veloce, Ragnar) has another constraint condition too; the McGill SMG, the Peppermill and
+#: the planar 3-RRP have no enclosure written; mechanisms from ``screwkit.mechanism`` (loop-closure
+#: kinematics) would need an interval-Newton (Krawczyk) enclosure of their loop equations.
+COVERED = "the four_limb family with platform_kind articulated_z (Quattro, H4) and the delta family (Delta)"
 
 _SGN_COS_ETA = (1.0, -1.0, -1.0, 1.0)  # paper 004, Table 1: sgn(cos eta_i), eta_i = (2i - 1) pi/4
 _SGN_SIN_ETA = (1.0, 1.0, -1.0, -1.0)  # sgn(sin eta_i)
@@ -66,67 +80,8 @@ _STATEMENTS = {
     "limb {i} at its reach, det B = 0",
 }
 
-Vector = list[Enclosure | None]
-
-
 @dataclass(frozen=True)
-class _Constant:
-    """A float constant and the bound of its error (0: exact)."""
-
-    value: float
-    spread: float
-
-
-def _constants(array: Array, exact: bool) -> list[list[_Constant]]:
-    """Rows of constants; ``exact=False``: each nonzero entry enclosed within 1e-15 of the
-    array's largest entry (computed by trigonometry)."""
-    spread = 0.0 if exact else _CONSTANT_SPREAD * float(np.max(np.abs(array)))
-    return [[_Constant(float(v), 0.0 if v == 0.0 else spread) for v in row] for row in np.atleast_2d(array)]
-
-
-def _times(x: Enclosure | None, c: _Constant) -> Enclosure | None:
-    """``x · c`` (None stands for an exact zero)."""
-    if x is None or (c.value == 0.0 and c.spread == 0.0):
-        return None
-    if c.spread == 0.0:
-        return x * c.value
-    return x * Enclosure.constant(c.value, x, relative=c.spread / abs(c.value))
-
-
-def _sum(*terms: Enclosure | None) -> Enclosure | None:
-    out = None
-    for t in terms:
-        if t is not None:
-            out = t if out is None else out + t
-    return out
-
-
-def _mul(a: Enclosure | None, b: Enclosure | None) -> Enclosure | None:
-    return None if a is None or b is None else a * b
-
-
-def _sub(a: Enclosure | None, b: Enclosure | None) -> Enclosure | None:
-    return _sum(a, None if b is None else -b)
-
-
-def _cross(a: Vector, b: Vector) -> Vector:
-    return [
-        _sub(_mul(a[1], b[2]), _mul(a[2], b[1])),
-        _sub(_mul(a[2], b[0]), _mul(a[0], b[2])),
-        _sub(_mul(a[0], b[1]), _mul(a[1], b[0])),
-    ]
-
-
-def _dot(a: Vector, b: Vector) -> Enclosure | None:
-    return _sum(*(_mul(x, y) for x, y in zip(a, b, strict=True)))
-
-
-def _dot_constant(a: Vector, row: list[_Constant]) -> Enclosure | None:
-    return _sum(*(_times(x, c) for x, c in zip(a, row, strict=True)))
-
-
-@dataclass(frozen=True)
-class FourLimbModel:
+class FourLimbModel(_ClosedFormModel):
     """The closed-form model of a four-limb robot with an articulated nacelle, for enclosures.
 
     Attributes
@@ -141,6 +96,8 @@ class FourLimbModel:
         The signs ``m_i`` of ``h_i``.
     subplatforms : tuple of two pairs of int
         0-based limbs of sub-platforms I and II.
+    limbs : int
+        4.
     """
 
     name: str
@@ -153,6 +110,8 @@ class FourLimbModel:
     working_mode: tuple[int, int, int, int]
     subplatforms: tuple[tuple[int, int], tuple[int, int]]
     base: tuple[list[list[_Constant]], ...]  # a, u, F j, F k: (4 rows of 3 constants) each
+    limbs: int = 4
+    statements: ClassVar[dict[str, str]] = _STATEMENTS
 
     @classmethod
     def of(cls, mechanism: Any, options: Mapping[str, Any] | None = None) -> FourLimbModel:
@@ -188,10 +147,17 @@ class FourLimbModel:
         params: Any = getattr(mechanism, "parameters", None)
         kind = getattr(params, "platform_kind", None)
         if getattr(mechanism, "family", None) != "four_limb" or kind != "articulated_z":
+            family = getattr(mechanism, "family", None)
+            missing = (
+                "no closed-form kinematics to enclose: a loop-closure mechanism would need an "
+                "interval-Newton enclosure of its loop equations, not written"
+                if family in (None, "loop_closure")
+                else "no enclosure of its conditions written"
+            )
             raise ScrewkitValueError(
                 f"Expected `mechanism` among what certification covers ({COVERED}), got "
-                f"{getattr(mechanism, 'name', type(mechanism).__name__)} (family "
-                f"{getattr(mechanism, 'family', None)!r}, platform {kind!r})."
+                f"{getattr(mechanism, 'name', type(mechanism).__name__)} (family {family!r}, platform "
+                f"{kind!r}: {missing})."
             )
         given = dict(options or {})
         unknown = sorted(set(given) - {"working_mode"})
@@ -218,26 +184,8 @@ class FourLimbModel:
             base,
         )
 
-    def functions(self) -> dict[str, str]:
-        """Each certified function's name and statement (what its vanishing means).
-
-        Returns
-        -------
-        dict of str to str
-            ``"constraint"``, ``"actuation"``, ``"serial:1"`` .. ``"serial:4"``.
-
-        Examples
-        --------
-        >>> FourLimbModel.of(load_mechanism("h4")).functions()["serial:2"][:24]
-        'P_i^2 + Q_i^2 - K_i^2 = '
-        """
-        out = {"constraint": _STATEMENTS["constraint"], "actuation": _STATEMENTS["actuation"]}
-        for i in range(4):
-            out[f"serial:{i + 1}"] = _STATEMENTS["serial"].format(i=i + 1)
-        return out
-
     def evaluate(self, pose: list[Enclosure], *, singular: bool = True) -> dict[str, Enclosure]:
-        """Enclose every function of :meth:`functions` over a batch of boxes of pose space.
+        """Enclose every function of ``functions()`` over a batch of boxes of pose space.
 
         Parameters
         ----------
@@ -261,12 +209,11 @@ class FourLimbModel:
         """
         x, y, z, phi = pose
         cos, sin = phi.cos_sin()
-        r, b, rod = self.radius, self.arm, self.rod
+        r = self.radius
         bar: Vector = [cos, sin, None]  # R_z(φ) i
         s: Vector = [-sin, cos, None]  # its derivative R_z(φ) j
-        a_rows, u_rows, j_rows, k_rows = self.base
-        out: dict[str, Enclosure] = {}
-        rods: list[Vector] = []
+        a_rows, u_rows, _, _ = self.base
+        ds: list[Vector] = []
         for i in range(4):
             sc, ss = _SGN_COS_ETA[i], _SGN_SIN_ETA[i]
             c_i = [
@@ -274,40 +221,22 @@ class FourLimbModel:
                 _sum(_scaled_by(bar[1], sc * r), y + ss * self.offset),
                 _sum(_scaled_by(bar[2], sc * r), z),
             ]
-            d = [
+            ds.append([
                 _sum(
                     c_i[k],
                     None
                     if a_rows[i][k].value == 0 and a_rows[i][k].spread == 0
-                    else -Enclosure.constant(a_rows[i][k].value, x, relative=_relative(a_rows[i][k])),
+                    else -type(x).constant(a_rows[i][k].value, x, relative=_relative(a_rows[i][k])),
                 )
                 for k in range(3)
-            ]
-            big_p = _dot_constant(d, j_rows[i])
-            big_q = _dot_constant(d, k_rows[i])
-            squared = _sum(*(None if e is None else e.square() for e in d))
-            assert squared is not None and big_p is not None and big_q is not None
-            big_k = _divided(squared + (b * b - rod * rod), 2.0 * b)
-            assert big_k is not None
-            rho2 = big_p.square() + big_q.square()
-            g = rho2 - big_k.square()
-            out[f"serial:{i + 1}"] = g
-            if not singular:
-                continue
-            root = g.sqrt()
-            m = float(self.working_mode[i])
-            inv = rho2.reciprocal()
-            cos_t = (big_p * big_k + big_q * root * m) * inv
-            sin_t = (big_q * big_k - big_p * root * m) * inv
-            v = [_sum(_times(cos_t, j_rows[i][k]), _times(sin_t, k_rows[i][k])) for k in range(3)]
-            # w_i = (c_i - a_i - b v_i) / l = (d_i - b v_i) / l
-            rods.append([_divided(_sum(d[k], _scaled_by(v[k], -b)), rod) for k in range(3)])
+            ])
+        out, w = self._limb_functions(ds, singular)
         if singular:
             (i1, i2), (j1, j2) = self.subplatforms
-            det_a = _dot(_cross(_cross(rods[i1], rods[i2]), _cross(rods[j1], rods[j2])), s)
+            det_a = _dot(_cross(_cross(w[i1], w[i2]), _cross(w[j1], w[j2])), s)
             assert det_a is not None
             out["actuation"] = det_a * (2.0 * r)
-            normals = [_cross_constant(w, u_rows[i]) for i, w in enumerate(rods)]
+            normals = [_cross_constant(rod_i, u_rows[i]) for i, rod_i in enumerate(w)]
             s_one, s_two = _cross(normals[i1], normals[i2]), _cross(normals[j1], normals[j2])
             constraint = _cross(s_one, s_two)[2]
             assert constraint is not None
@@ -315,29 +244,35 @@ class FourLimbModel:
         return out
 
 
-def _scaled_by(x: Enclosure | None, value: float) -> Enclosure | None:
-    return None if x is None else x * value
+def model_of(mechanism: Any, options: Mapping[str, Any] | None = None) -> FourLimbModel | DeltaModel:
+    """The closed-form model certification encloses for a mechanism, or a one-line refusal
+    naming what is covered (:data:`COVERED`) and what is missing.
 
+    Parameters
+    ----------
+    mechanism : Mechanism
+    options : mapping, optional
+        Inverse-kinematics options (a working mode).
 
-def _relative(c: _Constant) -> float:
-    return 0.0 if c.value == 0 else c.spread / abs(c.value)
+    Returns
+    -------
+    FourLimbModel or DeltaModel
 
+    Raises
+    ------
+    ScrewkitValueError
+        When certification does not cover the mechanism, naming what is missing.
 
-def _divided(x: Enclosure | None, value: float) -> Enclosure | None:
-    """``x / value`` for a positive float: a product when ``1/value`` is exact (a power of two),
-    else by the enclosure of ``1/value``."""
-    if x is None:
-        return None
-    mantissa, _ = np.frexp(value)
-    if mantissa == 0.5:
-        return x * (1.0 / value)
-    return x * Enclosure.constant(value, x).reciprocal()
+    Examples
+    --------
+    >>> type(model_of(load_mechanism("delta"))).__name__
+    'DeltaModel'
+    >>> model_of(load_mechanism("veloce"))
+    Traceback (most recent call last):
+    ...
+    screwkit.exceptions.ScrewkitValueError: Expected `mechanism` among what certification covers ...
+    """
+    if getattr(mechanism, "family", None) == "delta":
+        return DeltaModel.of(mechanism, options)
+    return FourLimbModel.of(mechanism, options)
 
-
-def _cross_constant(w: Vector, u: list[_Constant]) -> Vector:
-    """``w × u`` for a constant ``u``."""
-    return [
-        _sub(_times(w[1], u[2]), _times(w[2], u[1])),
-        _sub(_times(w[2], u[0]), _times(w[0], u[2])),
-        _sub(_times(w[0], u[1]), _times(w[1], u[0])),
-    ]

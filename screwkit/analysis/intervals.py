@@ -28,6 +28,9 @@ Examples
 >>> f = x[0] * x[0] - x[1] * 2.0
 >>> bool(f.lo[0] <= -2.0 and f.hi[0] >= 3.0)
 True
+
+:class:`Values` runs the same closed forms on plain floats (rounded to nearest, no enclosure), one
+numpy operation per step over the whole batch: the fast route for maps and benchmarks.
 """
 
 from __future__ import annotations
@@ -37,7 +40,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["TRIG_ULPS", "Enclosure", "mean_value"]
+__all__ = ["TRIG_ULPS", "Enclosure", "Values", "mean_value"]
 
 Array = np.ndarray
 
@@ -353,3 +356,118 @@ def mean_value(at_centre: Enclosure, over_box: Enclosure, radius: Array) -> Encl
     lo = np.maximum(_down(at_centre.lo - spread), over_box.lo)
     hi = np.minimum(_up(at_centre.hi + spread), over_box.hi)
     return Enclosure(lo, hi)
+
+
+class Values(np.ndarray):
+    """Float values over a batch of poses with the operations of :class:`Enclosure` (``+ - *``,
+    :meth:`square`, :meth:`sqrt`, :meth:`reciprocal`, :meth:`cos_sin`, :meth:`constant`), so that
+    a closed form written for enclosures evaluates at points as a few numpy operations over the
+    batch: rounded to nearest, not enclosed (certification uses :class:`Enclosure`).
+
+    Examples
+    --------
+    >>> x, y = Values.variables(np.array([[3.0, 4.0], [-1.0, 0.0]]))
+    >>> (x.square() + y.square()).sqrt().tolist()
+    [5.0, 1.0]
+    """
+
+    @classmethod
+    def variables(cls, points: Array) -> list[Values]:
+        """The coordinates of points ``(B, k)``, one :class:`Values` per coordinate.
+
+        Parameters
+        ----------
+        points : numpy.ndarray, shape (B, k)
+
+        Returns
+        -------
+        list of Values
+
+        Examples
+        --------
+        >>> [v.tolist() for v in Values.variables(np.array([[1.0, 2.0]]))]
+        [[1.0], [2.0]]
+        """
+        array = np.asarray(points, dtype=float)
+        return [np.ascontiguousarray(array[:, j]).view(cls) for j in range(array.shape[1])]
+
+    @classmethod
+    def constant(cls, value: float, like: Values, *, relative: float = 0.0) -> Values:
+        """The constant ``value`` (``like`` and ``relative`` are read by :meth:`Enclosure.constant`
+        only: a float is exact here).
+
+        Parameters
+        ----------
+        value : float
+        like : Values
+        relative : float, default 0
+
+        Returns
+        -------
+        Values
+            Of shape ``()`` (it broadcasts).
+
+        Examples
+        --------
+        >>> float(Values.constant(0.5, Values.variables(np.zeros((2, 1)))[0]))
+        0.5
+        """
+        return np.asarray(float(value)).view(cls)
+
+    def square(self) -> Values:
+        """``x²``.
+
+        Returns
+        -------
+        Values
+
+        Examples
+        --------
+        >>> Values.variables(np.array([[-3.0]]))[0].square().tolist()
+        [9.0]
+        """
+        return np.multiply(self, self).view(Values)
+
+    def reciprocal(self) -> Values:
+        """``1 / x`` (inf where ``x`` is 0).
+
+        Returns
+        -------
+        Values
+
+        Examples
+        --------
+        >>> Values.variables(np.array([[4.0]]))[0].reciprocal().tolist()
+        [0.25]
+        """
+        with np.errstate(divide="ignore"):
+            return np.divide(1.0, self).view(Values)
+
+    def sqrt(self) -> Values:
+        """``√x``, NaN where ``x < 0`` (a pose out of reach in the closed forms).
+
+        Returns
+        -------
+        Values
+
+        Examples
+        --------
+        >>> Values.variables(np.array([[4.0], [-1.0]]))[0].sqrt().tolist()
+        [2.0, nan]
+        """
+        with np.errstate(invalid="ignore"):
+            return np.sqrt(self).view(Values)
+
+    def cos_sin(self) -> tuple[Values, Values]:
+        """``(cos x, sin x)``.
+
+        Returns
+        -------
+        tuple of Values
+
+        Examples
+        --------
+        >>> [v.tolist() for v in Values.variables(np.array([[0.0]]))[0].cos_sin()]
+        [[1.0], [0.0]]
+        """
+        return np.cos(self).view(Values), np.sin(self).view(Values)

@@ -22,7 +22,7 @@ from typing import Any
 import numpy as np
 
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
-from .poses import _axis, _Slice
+from .poses import _axis, _check_client, _Slice
 from .quantities import KINDS
 from .roots import _brackets, _factor, _measure, _refine, _Samples
 
@@ -93,6 +93,7 @@ def loci(
     mode: Any = None,
     angles: str = "rad",
     rtol: float | None = None,
+    client: Any = None,
 ) -> tuple[Locus, ...]:
     """The singular curves of a 2-D slice: along every grid row and column, det A and det B sign
     changes, closeness minima and reach edges, refined onto the surface (module docstring).
@@ -101,6 +102,9 @@ def loci(
     ----------
     mechanism, x, y, fixed, mode, angles, rtol
         As in :func:`~screwkit.analysis.workspace.grid_map`.
+    client : dask.distributed.Client, optional
+        Measure the grid and run each refinement step's batch on this cluster (the same loci as
+        in process).
 
     Returns
     -------
@@ -115,7 +119,8 @@ def loci(
     []
     """
     grid = _Slice.create(mechanism, x, y, fixed, mode, angles)
-    found, _ = _slice_loci(mechanism, grid, rtol)
+    _check_client(client)
+    found, _ = _slice_loci(mechanism, grid, rtol, client=client)
     return found
 
 
@@ -134,14 +139,18 @@ def _transposed(samples: _Samples) -> _Samples:
     )
 
 
-def _slice_loci(mechanism: Any, grid: _Slice, rtol: Any) -> tuple[tuple[Locus, ...], tuple[str, ...]]:
-    """The loci of a slice (the grid measured once, searched along its rows and columns) and the
-    kinds whose singular set holds every reachable pose of the grid (the slice lies inside it)."""
+def _slice_loci(
+    mechanism: Any, grid: _Slice, rtol: Any, *, measured: _Samples | None = None, client: Any = None
+) -> tuple[tuple[Locus, ...], tuple[str, ...]]:
+    """The loci of a slice (the grid measured once, or given as ``measured`` by the map that
+    measured it, searched along its rows and columns) and the kinds whose singular set holds every
+    reachable pose of the grid (the slice lies inside it)."""
     user = grid.poses()
     scale = grid.scale
     rows = user * scale  # (ny, nx, n): lines along x
     columns = np.swapaxes(rows, 0, 1)  # (nx, ny, n): lines along y
-    measured = _measure(mechanism, rows, grid.options, rtol)
+    if measured is None:
+        measured = _measure(mechanism, rows, grid.options, rtol, client)
     reachable_codes = measured.codes[measured.ok]
     inside = tuple(
         kind for bit, kind in enumerate(KINDS)
@@ -158,7 +167,10 @@ def _slice_loci(mechanism: Any, grid: _Slice, rtol: Any) -> tuple[tuple[Locus, .
             return start[which] + s[:, None] * (stop[which] - start[which])
 
         brackets = _brackets(u, samples)
-        for root in _refine(mechanism, along, brackets, grid.options, rtol, keep_edges=True):
+        refined = _refine(
+            mechanism, along, brackets, u, samples, grid.options, rtol, keep_edges=True, client=client
+        )
+        for root in refined:
             kind = "reach" if root.kind == "unreachable" else root.kind
             found.append((root.pose / scale, kind, root.closeness))
     names = mechanism.pose_names

@@ -218,7 +218,7 @@ def check_path(
 
     measured = _measure(mechanism, (a + t[:, None] * (b - a))[None], options, rtol)
     runs = _runs(t, measured.codes[0], measured.ok[0])
-    roots = _refine(mechanism, along, _brackets(t, measured), options, rtol, keep_edges=True)
+    roots = _refine(mechanism, along, _brackets(t, measured), t, measured, options, rtol, keep_edges=True)
     if not measured.ok[0, 0]:
         roots.append(_Root(0, 0.0, a, "unreachable", math.nan))
     step = 1.0 / (len(t) - 1)

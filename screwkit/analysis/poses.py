@@ -55,6 +55,14 @@ def _check_mechanism(mechanism: Any) -> None:
         )
 
 
+def _check_client(client: Any) -> None:
+    """``client`` is None or a dask.distributed Client (anything with ``submit`` and ``gather``)."""
+    if client is not None and not (hasattr(client, "submit") and hasattr(client, "gather")):
+        raise ScrewkitTypeError(
+            f"Expected `client` to be a dask.distributed Client, got {type(client).__name__}."
+        )
+
+
 def _scale(mechanism: Any, angles: str) -> Array:
     """Per pose coordinate: API value = user value × scale (radians for angles;
     :func:`screwkit.robots.angles.angle_factor`, the API's one angle convention)."""

@@ -26,6 +26,7 @@ import numpy as np
 from ..exceptions import ScrewkitError
 from .poses import CHUNK
 from .quantities import KINDS, conditions_of
+from .quantities import values as quantity_values
 
 __all__ = ["ACCEPT", "MAX_STEPS", "XTOL"]
 
@@ -53,38 +54,68 @@ class _Samples:
     det_B: Array | None
 
 
-def _measure(mechanism: Any, poses: Array, options: dict[str, Any], rtol: Any) -> _Samples:
+def _measure(
+    mechanism: Any, poses: Array, options: dict[str, Any], rtol: Any, client: Any = None
+) -> _Samples:
     """Codes, closeness, det A and det B at API-unit poses ``(..., n)`` (NaN / -1 where out of
-    reach), through the core in batches of :data:`~screwkit.analysis.poses.CHUNK` poses."""
+    reach), through the core in chunks of :data:`~screwkit.analysis.poses.CHUNK` poses, in process
+    or on a Dask ``client`` (the chunks submitted at once; the same numbers)."""
     shape = poses.shape[:-1]
     flat = poses.reshape(-1, poses.shape[-1])
-    ok = mechanism.reachable(flat, **options)
-    codes = np.full(len(flat), -1, dtype=np.int64)
-    closeness = {k: np.full(len(flat), np.nan) for k in KINDS}
-    dets: dict[str, Array | None] = {"det_A": np.full(len(flat), np.nan), "det_B": np.full(len(flat), np.nan)}
-    where = np.flatnonzero(ok)
-    for start in range(0, len(where), CHUNK):
-        part = where[start : start + CHUNK]
-        posed = mechanism.at(flat[part], rtol=rtol, **options)
-        _ = posed.joints  # det A and det B need the joint table too: build it once per batch
-        codes[part] = posed.codes
-        for k in KINDS:
-            closeness[k][part] = posed.closeness[k]
-        for name, values in dets.items():
-            if values is None:
-                continue
-            try:
-                values[part] = getattr(posed.jacobians, name)
-            except ScrewkitError:  # no square Jacobian for this mechanism: no sign to follow
-                dets[name] = None
-    det_a, det_b = dets["det_A"], dets["det_B"]
+    pieces = [flat[i : i + CHUNK] for i in range(0, len(flat), CHUNK)]
+    if client is None:
+        parts = [_measured_chunk(mechanism, piece, options, rtol) for piece in pieces]
+    else:
+        futures = [client.submit(_measured_chunk, mechanism, p, options, rtol, pure=False) for p in pieces]
+        parts = [future.result() for future in futures]
+    if not parts:
+        parts = [_measured_chunk(mechanism, flat, options, rtol)]
+    return _samples([np.concatenate([p[n] for p in parts]) for n in range(1, 6)], shape)
+
+
+def _samples(columns: list[Array], shape: tuple[int, ...]) -> _Samples:
+    """:class:`_Samples` of shape ``shape`` from the flat ``ok, codes, closeness (m, 3), det A, det B``
+    of :func:`_measured_chunk` (a determinant NaN at every reachable pose: the mechanism has none)."""
+    ok, codes, closeness, det_a, det_b = columns
+
+    def det(values: Array) -> Array | None:
+        return None if ok.any() and np.isnan(values[ok]).all() else values.reshape(shape)
+
     return _Samples(
         ok.reshape(shape),
         codes.reshape(shape),
-        {k: v.reshape(shape) for k, v in closeness.items()},
-        None if det_a is None else det_a.reshape(shape),
-        None if det_b is None else det_b.reshape(shape),
+        {k: closeness[:, i].reshape(shape) for i, k in enumerate(KINDS)},
+        det(det_a),
+        det(det_b),
     )
+
+
+def _measured_chunk(
+    mechanism: Any, poses: Array, options: dict[str, Any], rtol: Any, quantity: str | None = None
+) -> tuple[Array, Array, Array, Array, Array, Array]:
+    """One chunk of :func:`_measure` at flat poses ``(m, n)``: ``(values, ok, codes, closeness (m, 3),
+    det A, det B)``, one posed batch for all (a module-level function, so a Dask worker can run
+    it). ``values`` is ``quantity`` (:func:`screwkit.analysis.quantities.values`) over the chunk, the
+    codes when None; the determinants NaN where the mechanism has no square Jacobian."""
+    ok = mechanism.reachable(poses, **options)
+    codes = np.full(len(poses), -1, dtype=np.int64)
+    closeness = np.full((len(poses), len(KINDS)), np.nan)
+    det_a, det_b = np.full(len(poses), np.nan), np.full(len(poses), np.nan)
+    integer = quantity in (None, "verdict")
+    values = np.full(len(poses), -1 if integer else np.nan, dtype=np.int64 if integer else float)
+    if ok.any():
+        posed = mechanism.at(poses[ok], rtol=rtol, **options)
+        _ = posed.joints  # det A and det B need the joint table too: build it once per batch
+        codes[ok] = posed.codes
+        for i, k in enumerate(KINDS):
+            closeness[ok, i] = posed.closeness[k]
+        for name, det in (("det_A", det_a), ("det_B", det_b)):
+            try:
+                det[ok] = getattr(posed.jacobians, name)
+            except ScrewkitError:  # no square Jacobian for this mechanism: no sign to follow
+                pass
+        values[ok] = codes[ok] if quantity is None else quantity_values(posed, quantity)
+    return values, ok, codes, closeness, det_a, det_b
 
 
 @dataclass(frozen=True)
@@ -98,10 +129,10 @@ class _Root:
     closeness: float
 
 
-def _brackets(t: Array, samples: _Samples) -> list[tuple[int, float, float, str]]:
-    """``(line, t_low, t_high, method)`` intervals holding a candidate root, from each line's
-    samples: det A and det B sign changes, closeness minima, reach edges and samples labelled
-    singular."""
+def _brackets(t: Array, samples: _Samples) -> list[tuple[int, float, float, str, int, int, int]]:
+    """``(line, t_low, t_high, method, i_low, i_middle, i_high)`` intervals holding a candidate root,
+    from each line's samples: det A and det B sign changes, closeness minima, reach edges and
+    samples labelled singular; ``i_*`` are the samples at the ends and in the middle (-1: none)."""
     out = []
     ok = samples.ok
     both = ok[:, :-1] & ok[:, 1:]
@@ -112,7 +143,7 @@ def _brackets(t: Array, samples: _Samples) -> list[tuple[int, float, float, str]
         with np.errstate(invalid="ignore"):
             change = both & (np.sign(det[:, :-1]) != np.sign(det[:, 1:]))
         for line, i in zip(*np.nonzero(change), strict=True):
-            out.append((int(line), float(t[i]), float(t[i + 1]), name))
+            out.append((int(line), float(t[i]), float(t[i + 1]), name, int(i), -1, int(i) + 1))
     for kind in KINDS:
         c = np.where(ok, samples.closeness[kind], np.inf)
         left = np.concatenate([np.full((len(c), 1), np.inf), c[:, :-1]], axis=1)
@@ -120,24 +151,27 @@ def _brackets(t: Array, samples: _Samples) -> list[tuple[int, float, float, str]
         minimum = ok & (c <= left) & (c <= right) & ((c < left) | (c < right))
         for line, i in zip(*np.nonzero(minimum), strict=True):
             low, high = max(i - 1, 0), min(i + 1, len(t) - 1)
-            out.append((int(line), float(t[low]), float(t[high]), "min:" + kind))
+            out.append((int(line), float(t[low]), float(t[high]), "min:" + kind, int(low), int(i), int(high)))
     edge = ok[:, :-1] != ok[:, 1:]
     for line, i in zip(*np.nonzero(edge), strict=True):
-        out.append((int(line), float(t[i]), float(t[i + 1]), "edge"))
+        out.append((int(line), float(t[i]), float(t[i + 1]), "edge", int(i), -1, int(i) + 1))
     singular = ok & (samples.codes > 0)
     for line, i in zip(*np.nonzero(singular), strict=True):
-        out.append((int(line), float(t[i]), float(t[i]), "sample"))
+        out.append((int(line), float(t[i]), float(t[i]), "sample", int(i), int(i), int(i)))
     return out
 
 
 def _refine(
     mechanism: Any,
     along: Callable[[Array, Array], Array],
-    brackets: list[tuple[int, float, float, str]],
+    brackets: list[tuple[int, float, float, str, int, int, int]],
+    t_samples: Array,
+    samples: _Samples,
     options: dict[str, Any],
     rtol: Any,
     *,
     keep_edges: bool = False,
+    client: Any = None,
 ) -> list[_Root]:
     """Refine every bracket at once and keep the roots the core labels singular or whose closeness
     is below :data:`ACCEPT` (and, with ``keep_edges``, the reach edges that are no singularity, as
@@ -149,7 +183,10 @@ def _refine(
     golden-section search whose steps are replaced by the apex of the ``|s (t − t₀)|`` fit through
     the bracket when that lands inside (a closeness measure vanishes like the distance to a simple
     root, design of :mod:`screwkit.core.singularity`). Stops when every bracket is narrower than
-    :data:`XTOL` or after :data:`MAX_STEPS` steps.
+    :data:`XTOL` or after :data:`MAX_STEPS` steps. With a Dask ``client`` each step's batch runs
+    on the cluster (:func:`_measure`). What the lines' ``samples`` already say is read, not
+    measured again: the brackets' ends and middles that are samples, and the final pose of a
+    bracket that never left its samples (a closeness minimum proved too shallow at once).
     """
     if not brackets:
         return []
@@ -161,9 +198,9 @@ def _refine(
     is_min = np.char.startswith(method.astype(str), "min:")
     everyone = np.arange(len(brackets))
 
-    def score(t: Array, which: Array = everyone) -> Array:
-        """Per bracket ``which``: det A, ±1 reachability, or its kind's closeness (inf out of reach)."""
-        s = _measure(mechanism, along(lines[which], t[which]), options, rtol)
+    def scored(s: _Samples, which: Array) -> Array:
+        """Per bracket ``which`` from its measured samples ``s`` (flat): det A or det B, ±1
+        reachability, or its kind's closeness (inf out of reach)."""
         det_a = np.zeros(len(which)) if s.det_A is None else np.nan_to_num(s.det_A)
         det_b = np.zeros(len(which)) if s.det_B is None else np.nan_to_num(s.det_B)
         det = np.where(is_det_b[which], det_b, det_a)
@@ -171,15 +208,31 @@ def _refine(
             np.arange(len(which)), kind_index[which]
         ]
         values = np.where(is_edge[which], np.where(s.ok, 1.0, -1.0), np.where(s.ok, closeness, np.inf))
+        return np.where(is_det[which], det, values)
+
+    def score(t: Array, which: Array = everyone) -> Array:
         out = np.full(len(t), np.nan)
-        out[which] = np.where(is_det[which], det, values)
+        if len(which):
+            measured = _measure(mechanism, along(lines[which], t[which]), options, rtol, client)
+            out[which] = scored(measured, which)
         return out
+
+    index = np.array([b[4:7] for b in brackets])  # (B, 3): the samples at the ends and the middle
+    known = _at_samples(samples, lines[:, None], index)
+
+    def sampled(column: int) -> Array:
+        return scored(_flat(known, column), everyone)
 
     a = np.array([b[1] for b in brackets])
     b = np.array([b[2] for b in brackets])
-    fa, fb = score(a), score(b)
-    m = 0.5 * (a + b)
-    fm = score(m)
+    fa, fb = sampled(0), sampled(2)
+    # a minimum's middle is its sample (inside the bracket: not at a line's end), else the midpoint
+    middle_known = (index[:, 1] >= 0) & (
+        ((index[:, 0] < index[:, 1]) & (index[:, 1] < index[:, 2])) | (method == "sample")
+    )
+    m = np.where(middle_known, t_samples[np.maximum(index[:, 1], 0)], 0.5 * (a + b))
+    fm = score(m, np.flatnonzero(~middle_known))
+    fm[middle_known] = sampled(1)[middle_known]
     side = np.zeros(len(a))  # Illinois: which end was kept last
     for step in range(MAX_STEPS):
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
@@ -232,7 +285,14 @@ def _refine(
         np.where(is_det, np.where(np.abs(fa) <= np.abs(fb), a, b), m),
     )
     t = np.where(method == "sample", a, t)
-    final = _measure(mechanism, along(lines, t), options, rtol)
+    # a bracket whose final parameter is its middle sample: read, not measured again
+    stayed = middle_known & (t == t_samples[np.maximum(index[:, 1], 0)])
+    moved = np.flatnonzero(~stayed)
+    final = _merged(
+        _flat(known, 1),
+        moved,
+        _measure(mechanism, along(lines[moved], t[moved]), options, rtol, client) if moved.size else None,
+    )
     poses = along(lines, t)
     roots = []
     for k in range(len(brackets)):
@@ -248,6 +308,53 @@ def _refine(
         elif keep_edges and method[k] == "edge":
             roots.append(_Root(int(lines[k]), float(t[k]), poses[k], "unreachable", math.nan))
     return roots
+
+
+def _at_samples(samples: _Samples, lines: Array, index: Array) -> _Samples:
+    """The samples at ``(lines, index)`` (broadcast; index -1 reads a placeholder, never used)."""
+    where = (lines, np.maximum(index, 0))
+    return _Samples(
+        samples.ok[where],
+        samples.codes[where],
+        {k: v[where] for k, v in samples.closeness.items()},
+        None if samples.det_A is None else samples.det_A[where],
+        None if samples.det_B is None else samples.det_B[where],
+    )
+
+
+def _flat(samples: _Samples, column: int) -> _Samples:
+    """One column of ``(B, 3)`` samples (:func:`_at_samples`)."""
+    return _Samples(
+        samples.ok[:, column],
+        samples.codes[:, column],
+        {k: v[:, column] for k, v in samples.closeness.items()},
+        None if samples.det_A is None else samples.det_A[:, column],
+        None if samples.det_B is None else samples.det_B[:, column],
+    )
+
+
+def _merged(known: _Samples, rest: Array, measured: _Samples | None) -> _Samples:
+    """Per bracket: ``measured`` (in order) at the brackets ``rest``, ``known`` elsewhere."""
+    if measured is None:
+        return known
+
+    def merge(old: Array | None, new: Array | None) -> Array | None:
+        if old is None or new is None:  # no square Jacobian: no determinant anywhere
+            return None
+        out = old.copy()
+        out[rest] = new
+        return out
+
+    ok, codes = merge(known.ok, measured.ok), merge(known.codes, measured.codes)
+    assert ok is not None and codes is not None
+    closeness = {k: merge(v, measured.closeness[k]) for k, v in known.closeness.items()}
+    return _Samples(
+        ok,
+        codes,
+        {k: v for k, v in closeness.items() if v is not None},
+        merge(known.det_A, measured.det_A),
+        merge(known.det_B, measured.det_B),
+    )
 
 
 def _factor(mechanism: Any, poses: Array, kind: str, options: dict[str, Any], rtol: Any) -> str | None:

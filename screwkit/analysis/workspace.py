@@ -40,7 +40,7 @@ import numpy as np
 
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
 from . import quantities as Q
-from .poses import CHUNK, _as_dict, _check_mechanism, _options, _Slice, _units
+from .poses import CHUNK, _as_dict, _check_client, _check_mechanism, _options, _Slice, _units
 
 __all__ = ["CHUNK", "WorkspaceMap", "evaluate", "grid_map", "sweep"]
 
@@ -88,22 +88,19 @@ def evaluate(
 
 
 def _run_chunks(
-    function: Callable[..., tuple[Array, Array]],
+    function: Callable[..., tuple[Array, ...]],
     jobs: Sequence[tuple[Any, Array, tuple[Any, ...]]],
     chunk: int | None,
     client: Any,
     progress: Any,
-) -> list[tuple[Array, Array]]:
-    """``function(mechanism, poses[chunk], *args)`` over chunks of each job's batch, in process or
-    on a Dask client (every chunk of every job submitted at once), with an optional progress line;
-    per job, the parts joined in order."""
+) -> list[tuple[Array, ...]]:
+    """``function(mechanism, poses[chunk], *args)`` (a tuple of arrays along the chunk) over chunks
+    of each job's batch, in process or on a Dask client (every chunk of every job submitted at
+    once), with an optional progress line; per job, each array's parts joined in order."""
     size = CHUNK if chunk is None else chunk
     if isinstance(size, bool) or not isinstance(size, int | np.integer) or size < 1:
         raise ScrewkitValueError(f"Expected `chunk` to be a positive integer, got {chunk!r}.")
-    if client is not None and not (hasattr(client, "submit") and hasattr(client, "gather")):
-        raise ScrewkitTypeError(
-            f"Expected `client` to be a dask.distributed Client, got {type(client).__name__}."
-        )
+    _check_client(client)
     tasks = [
         (job, mechanism, poses[i : i + size], args)
         for job, (mechanism, poses, args) in enumerate(jobs)
@@ -125,12 +122,20 @@ def _run_chunks(
     out = []
     for job in range(len(jobs)):
         parts = [r for (owner, _, _, _), r in zip(tasks, results, strict=True) if owner == job]
-        out.append((np.concatenate([p[0] for p in parts]), np.concatenate([p[1] for p in parts])))
+        out.append(tuple(np.concatenate([p[n] for p in parts]) for n in range(len(parts[0]))))
     return out
 
 
-def _chunk_values(mechanism: Any, poses: Array, quantity: str, mode: Any, rtol: Any) -> tuple[Array, Array]:
-    """One chunk of a map (a module-level function, so a Dask worker can run it)."""
+def _chunk_values(
+    mechanism: Any, poses: Array, quantity: str, mode: Any, rtol: Any, loci: bool
+) -> tuple[Array, ...]:
+    """One chunk of a map (a module-level function, so a Dask worker can run it): ``(values,
+    reachable)``, and with ``loci`` the samples the loci search reads, from the same posed batch
+    (:func:`screwkit.analysis.roots._measured_chunk`: the grid goes through the core once)."""
+    if loci:
+        from .roots import _measured_chunk
+
+        return _measured_chunk(mechanism, poses, _options(mechanism, mode), rtol, quantity)
     return evaluate(mechanism, poses, quantity, mode=mode, rtol=rtol)
 
 
@@ -363,15 +368,17 @@ def grid_map(
     chunk : int, optional
         Poses per chunk (default :data:`CHUNK`): bounds the memory.
     client : dask.distributed.Client, optional
-        Run the chunks on this cluster (results identical to the in-process run).
+        Run the chunks (and the loci's refinement batches) on this cluster (results identical to
+        the in-process run).
     progress : bool, optional
         Show a progress bar (tqdm if installed); default: on a terminal, for large maps.
     angles : {"deg", "rad"}
     rtol : float, optional
         The core's relative tolerance.
     loci : bool, default True
-        Find the singular curves and the reach boundary of the slice
-        (:attr:`WorkspaceMap.loci`, in process; about the cost of two more maps of the grid).
+        Find the singular curves and the reach boundary of the slice (:attr:`WorkspaceMap.loci`):
+        the map's chunks also return the samples the search reads (one pass through the core),
+        then the refinement's batches run in process or on ``client``.
 
     Returns
     -------
@@ -392,9 +399,9 @@ def grid_map(
     True
     """
     _check_flag(loci, "loci")
-    name, grid, job = _map_job(mechanism, quantity, x, y, fixed, mode, angles, rtol)
-    ((values, ok),) = _run_chunks(_chunk_values, [job], chunk, client, progress)
-    return _assembled(mechanism, name, grid, values, ok, rtol if loci else False)
+    name, grid, job = _map_job(mechanism, quantity, x, y, fixed, mode, angles, rtol, loci)
+    (columns,) = _run_chunks(_chunk_values, [job], chunk, client, progress)
+    return _assembled(mechanism, name, grid, columns, rtol, client)
 
 
 def _check_flag(value: Any, name: str) -> None:
@@ -403,28 +410,37 @@ def _check_flag(value: Any, name: str) -> None:
 
 
 def _map_job(
-    mechanism: Any, quantity: Any, x: Any, y: Any, fixed: Any, mode: Any, angles: str, rtol: Any
+    mechanism: Any, quantity: Any, x: Any, y: Any, fixed: Any, mode: Any, angles: str, rtol: Any,
+    loci: bool,
 ) -> tuple[str, _Slice, tuple[Any, Array, tuple[Any, ...]]]:
-    """A map's quantity, slice and chunk job (its API-unit poses, flattened)."""
+    """A map's quantity, slice and chunk job (its API-unit poses, flattened; with ``loci`` the
+    chunks also return the loci's samples)."""
     name = Q.quantity(quantity)
     grid = _Slice.create(mechanism, x, y, fixed, mode, angles)
     if name in Q.CONTRIBUTED or name.startswith("condition:"):  # refuse before the map
         Q.values(mechanism.at(None, **grid.options), name)
     user = grid.poses()
     flat = user.reshape(-1, user.shape[-1]) * grid.scale
-    return name, grid, (mechanism, flat, (name, grid.options, rtol))
+    return name, grid, (mechanism, flat, (name, grid.options, rtol, loci))
 
 
 def _assembled(
-    mechanism: Any, name: str, grid: _Slice, values: Array, ok: Array, loci_rtol: Any
+    mechanism: Any, name: str, grid: _Slice, columns: tuple[Array, ...], rtol: Any, client: Any
 ) -> WorkspaceMap:
-    """The map from its flat values: extrema over the reachable poses and where they occur, and
-    the slice's loci (found with the core's tolerance ``loci_rtol``; none when it is False)."""
+    """The map from its chunks' flat columns: extrema over the reachable poses and where they
+    occur, and, when the chunks measured the loci's samples too, the slice's loci (refined with the
+    core's tolerance ``rtol``, on the Dask ``client`` if given)."""
     from .loci import _slice_loci
+    from .roots import _samples
 
-    found, inside = ((), ()) if loci_rtol is False else _slice_loci(mechanism, grid, loci_rtol)
+    values, ok = columns[:2]
     user = grid.poses()
     shape = user.shape[:2]
+    found: tuple[Any, ...] = ()
+    inside: tuple[str, ...] = ()
+    if len(columns) > 2:
+        measured = _samples(list(columns[1:]), shape)
+        found, inside = _slice_loci(mechanism, grid, rtol, measured=measured, client=client)
     values, ok = values.reshape(shape), ok.reshape(shape)
     minimum = maximum = float("nan")
     argmin: dict[str, float] = {}
@@ -529,9 +545,9 @@ def sweep(
             f"Expected `mechanisms` to be a non-empty sequence of mechanisms, got {mechanisms!r}."
         )
     _check_flag(loci, "loci")
-    prepared = [_map_job(m, quantity, x, y, fixed, mode, angles, rtol) for m in mechanisms]
+    prepared = [_map_job(m, quantity, x, y, fixed, mode, angles, rtol, loci) for m in mechanisms]
     results = _run_chunks(_chunk_values, [job for _, _, job in prepared], chunk, client, progress)
     return tuple(
-        _assembled(mechanism, name, grid, values, ok, rtol if loci else False)
-        for mechanism, (name, grid, _), (values, ok) in zip(mechanisms, prepared, results, strict=True)
+        _assembled(mechanism, name, grid, columns, rtol, client)
+        for mechanism, (name, grid, _), columns in zip(mechanisms, prepared, results, strict=True)
     )

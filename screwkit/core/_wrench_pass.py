@@ -63,11 +63,14 @@ def canonical(table: JointTable) -> JointTable:
     rows = [r for k in order for r in range(starts[k], starts[k + 1])]
     specs = tuple(table.specs[k] for k in order)
     screws = np.ascontiguousarray(table.screws[..., rows, :])
-    return JointTable(table.base, table.platform, specs, screws, table.dof, table.anchor, table.mobility)
+    return JointTable(
+        table.base, table.platform, specs, screws, table.dof, table.anchor, table.mobility, table.free
+    )
 
 
 def checked_dof(dof: Any, table: JointTable, top: Topology) -> int:
-    """The nominal mobility: ``dof``, else the table's, else the number of actuated joints.
+    """The nominal mobility: ``dof``, else the table's, else the number of actuated joints (at most 6:
+    a first guess, settled by :func:`screwkit.core.mobility.settled_dof`).
 
     Parameters
     ----------
@@ -84,7 +87,7 @@ def checked_dof(dof: Any, table: JointTable, top: Topology) -> int:
     TwistGraphError
         If it is not an integer in 0..6.
     """
-    nominal = dof if dof is not None else (table.dof if table.dof is not None else len(top.limbs))
+    nominal = dof if dof is not None else (table.dof if table.dof is not None else min(len(top.limbs), 6))
     if not B.is_dof(nominal):
         raise TwistGraphError(f"Expected `dof` to be an integer in 0..6, got {nominal!r}.")
     return int(nominal)
@@ -366,4 +369,5 @@ def wrench_pass(
         actuated_twists=actuated_screws(top, screws),
         frames=frames,
         closeness_factors=closeness_factors,
+        free=table.free,
     )

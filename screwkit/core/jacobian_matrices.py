@@ -74,7 +74,9 @@ def _require_square(A: Array) -> None:
     if A.shape[-1] != A.shape[-2]:
         raise ScrewkitValueError(
             f"Expected a square A for A⁻¹B and det A, got A of shape {A.shape[-2:]} "
-            f"({A.shape[-2]} actuated joints, {A.shape[-1]} twists in the basis)."
+            f"({A.shape[-2]} actuated joints, {A.shape[-1]} twists in the basis"
+            + ("; redundantly actuated: B⁻¹A gives the joint rates" if A.shape[-2] > A.shape[-1] else "")
+            + ")."
         )
 
 

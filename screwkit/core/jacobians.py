@@ -28,6 +28,15 @@ so that ``B_jj ≥ 0``. For the four-limb SMGs of paper 004 this gives exactly `
 ``B_paper = D B`` with ``D = diag(sgn h_i) = −I`` in the paper's working mode (its rows
 ``e_i = [w_iᵀ, r w_iᵀs_i]`` have unit ``w_i``; Eqs. 6–8).
 
+Point tasks and redundant actuation
+-----------------------------------
+For a point task (:mod:`screwkit.robots.point_task`: the platform a task link on a spherical joint
+at the point, ``analysis.free = 3``) the basis has one twist per freedom of the point
+(``dof − free`` rows) and every ``w_j`` is a force through the point, so ``A_jk = f_j · e_k``: for the
+planar five-bar the rows of ``A`` are the distal links' directions and ``B_jj = ((B_j − A_j) × u_j)·z``
+(Gosselin & Angeles 1990). A redundantly actuated mechanism (:mod:`screwkit.core.redundancy`) has
+more rows than columns; its direct closeness is below.
+
 Serial singularities (no actuation wrench)
 ------------------------------------------
 Where the actuated twist is reciprocal to the whole passive wrench system of its limb,
@@ -50,7 +59,12 @@ unit-free matrices, in the spirit of :mod:`screwkit.core.verdicts`'s closeness m
   rotation the mutual moment over ``L``. ``Â`` does not change under rigid motions or changes of
   unit (it does depend on the choice of ``L``, as any conditioning of a dimensionally
   inhomogeneous Jacobian does; the *zero* decision does not).
-* closeness ``"direct"`` = σ_dof(Â) / σ_1(Â) (0 if there are fewer actuation rows than ``dof``);
+* closeness ``"direct"`` = σ_dof(Â) / σ_1(Â) (0 if there are fewer actuation rows than ``dof``). For a
+  redundantly actuated mechanism (``n > dof`` rows, :mod:`screwkit.core.redundancy`) ``Â`` is
+  ``n × dof`` and σ_dof its smallest singular value: 0 exactly where ``rank A < dof``, where the
+  platform keeps a twist of the basis with *all* the actuators locked (the redundant robot's actuation
+  singularity; Gosselin & Angeles' type 2 for a non-square ``A``). It is the inverse condition number
+  of ``Â``, so it does not change when the rows are permuted or the basis rotated orthonormally;
 * closeness ``"inverse"`` = min_j ``|B_jj| / (N(w_j) N($_j) L)``, the smallest limb transmission
   (equal to :mod:`screwkit.core.verdicts`'s ``"serial"`` closeness), 0 for a limb in ``serial_limbs``.
 
@@ -333,7 +347,8 @@ def jacobians_from_wrenches(
     twist_basis : array_like, shape (..., dof, 6)
         Unit-rate twists of the platform, user frame, one per degree of freedom of the analysis
         (e.g. :func:`schoenflies_basis`); they define the columns of ``A`` and the meaning of
-        ``χ̇``.
+        ``χ̇``. For a point task (``analysis.free = 3``) one per freedom of the point: the twists
+        giving the point unit velocities (rows ``dof − 3``).
     rtol : float, optional
         Tolerance of the type decisions (closeness ``≤ rtol``); default the analysis's ``rtol``.
     basis_rtol : float, default 1e-6
@@ -384,7 +399,7 @@ def jacobians_from_wrenches(
         raise ScrewkitTypeError(f"Expected `analysis` to be a WrenchAnalysis, got {type(analysis).__name__}.")
     tolerance = analysis.rtol if rtol is None else checked_rtol(rtol, "rtol")
     basis_tolerance = checked_rtol(basis_rtol, "basis_rtol")
-    dof, batch = analysis.dof, analysis.shape
+    dof, batch = analysis.dof - analysis.free, analysis.shape  # a point task: the point's freedoms
     raw = B.as_array(twist_basis, "twist_basis", (None, 6), symbolic=False)
     if raw.ndim < 2 or raw.shape[-2] != dof:
         raise ScrewkitValueError(

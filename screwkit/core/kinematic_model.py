@@ -53,10 +53,11 @@ from typing import Any
 import networkx as nx
 import numpy as np
 
-from ..algebra.rigid_motions import adjoint, exp_screw, rotation_log, rotation_matrix
+from ..algebra.rigid_motions import rotation_log
 from ..exceptions import ScrewkitValueError
 from ..graphs.jointtable import JointTable
 from ..graphs.twistgraph import graph_frame
+from ._batched_poe import BatchedProduct, rigid_inverse
 
 __all__ = ["JointColumn", "KinematicModel", "KinematicState"]
 
@@ -113,6 +114,9 @@ class KinematicState:
     motions: dict[str, Array] = field(repr=False)
 
 
+_ROOTS = object()  # the node joined to the base (and the pinned link) that the spanning forest grows from
+
+
 def _unit(v: Array) -> Array:
     return v / np.linalg.norm(v)
 
@@ -126,6 +130,9 @@ class KinematicModel:
         A numeric twist graph at its reference configuration.
     joint_key : str, default "joint"
         The edge attribute holding the joints.
+    pinned : hashable, optional
+        A link placed from outside (:meth:`state`'s ``pinned``), like the base: the spanning forest
+        then grows from both, and each loop stays within the limbs that it closes.
 
     Attributes
     ----------
@@ -146,7 +153,12 @@ class KinematicModel:
     incidence : numpy.ndarray, shape (loops, n)
         Each loop's signed columns (+1 along its direction of travel).
     paths : dict
-        Link → ``(n,)`` signed columns of its tree path from the base.
+        Link → ``(n,)`` signed columns of its tree path from the base (or the pinned link).
+    roots : list
+        The base, and the pinned link if any.
+    blocks : list of tuple
+        ``(equation rows, columns)`` of each part of the graph that the roots separate: the loop
+        equations of :meth:`loop_jacobian` that involve only those joint variables.
 
     Examples
     --------
@@ -158,9 +170,12 @@ class KinematicModel:
     [1.0, 1.0]
     """
 
-    def __init__(self, graph: nx.MultiDiGraph, joint_key: str = "joint"):
+    def __init__(self, graph: nx.MultiDiGraph, joint_key: str = "joint", *, pinned: Any = None):
         self.point, self.length = graph_frame(graph, joint_key=joint_key)
+        self._source = (graph, joint_key)
+        self._pinned_models: dict[Any, KinematicModel] = {}
         self.base = graph.graph["base"]
+        self.roots = [self.base] if pinned is None else [self.base, pinned]
         self.platform = graph.graph["platform"]
         self.columns: list[JointColumn] = []
         self.joints: dict[str, tuple[Any, Any, list[int]]] = {}
@@ -182,8 +197,11 @@ class KinematicModel:
             for name in ("point", "center"):
                 if name in joint.geometry:
                     self.joint_points[key] = np.asarray(joint.geometry[name], dtype=float)
-        tree = nx.bfs_tree(nx.Graph(graph.to_undirected()), self.base)
-        self.order = list(nx.topological_sort(tree))  # links, base first
+        undirected = nx.Graph(graph.to_undirected())
+        undirected.add_edges_from((_ROOTS, root) for root in self.roots)
+        tree = nx.bfs_tree(undirected, _ROOTS)
+        tree.remove_node(_ROOTS)
+        self.order = list(nx.topological_sort(tree))  # links, each after its tree parent
         chosen: dict[Any, tuple[str, bool]] = {}  # link → (tree joint reaching it, traversed forward)
         for parent, child in tree.edges():
             key = next(k for u, v, k in graph.edges(keys=True) if {u, v} == {parent, child})
@@ -199,6 +217,60 @@ class KinematicModel:
             signs[indices] += 1.0
             rows.append(signs)
         self.incidence = np.array(rows).reshape(len(rows), self.size)
+        self._product = BatchedProduct(self.columns, self.joints, self.order, self.tree, self.roots)
+        self.blocks = self._blocks()
+
+    def _blocks(self) -> list[tuple[Array, Array]]:
+        parts = nx.Graph()
+        for key, (u, v, _) in self.joints.items():
+            parts.add_node(("joint", key))
+            ends = [("link", link) for link in (u, v) if link not in self.roots]
+            parts.add_edges_from((("joint", key), end) for end in ends)
+        blocks = []
+        for part in nx.connected_components(parts):
+            keys = {name for kind, name in part if kind == "joint"}
+            loops = [i for i, key in enumerate(self.closing) if key in keys]
+            if loops:
+                rows = np.array([6 * i + k for i in loops for k in range(6)])
+                blocks.append((rows, np.array(sorted(c for key in keys for c in self.joints[key][2]))))
+        return blocks
+
+    def pinned_model(self, link: Any) -> KinematicModel:
+        """The same mechanism with ``link`` placed from outside (the parameter ``pinned``), built once.
+
+        Parameters
+        ----------
+        link : hashable
+            A link of the graph other than the base.
+
+        Returns
+        -------
+        KinematicModel
+            Its columns, joints and scaled frame are this model's.
+
+        Raises
+        ------
+        ScrewkitValueError
+            If ``link`` is the base or not a link of the graph.
+
+        Examples
+        --------
+        >>> from screwkit.graphs.joints import revolute
+        >>> from screwkit.graphs.twistgraph import twist_graph
+        >>> arm = twist_graph("B", "E", [("B", "L", revolute("R1", [0, 0, 1], [0, 0, 0])),
+        ...                              ("L", "E", revolute("R2", [0, 0, 1], [1, 0, 0]))])
+        >>> pinned = KinematicModel(arm).pinned_model("E")
+        >>> pinned.closing, [rows.size for rows, _ in pinned.blocks]  # the arm closes on its end link
+        (['R2'], [6])
+        """
+        if link == self.base or link not in self.paths:
+            raise ScrewkitValueError(
+                f"Expected a link of the graph other than the base for link, got {link!r}."
+            )
+        if link not in self._pinned_models:
+            graph, joint_key = self._source
+            self._pinned_models[link] = KinematicModel(graph, joint_key, pinned=link)
+        return self._pinned_models[link]
 
     @property
     def size(self) -> int:
@@ -208,7 +280,7 @@ class KinematicModel:
     def _path(self, link: Any) -> Array:
         """The tree joints' columns from the base to ``link``, signed by the direction of travel."""
         signs = np.zeros(self.size)
-        while link != self.base:
+        while link not in self.roots:
             key, forward = self.tree[link]
             u, v, indices = self.joints[key]
             signs[indices] = 1.0 if forward else -1.0
@@ -296,23 +368,9 @@ class KinematicModel:
         g[:, :3, 3] = self.point - rotation @ self.point + self.length * g[:, :3, 3]
         return g
 
-    def _joint_motion(self, key: str, theta: Array, offset: Array | None) -> tuple[Array, list[Array]]:
-        """The joint's displacement in the reference frame and, per screw, the displacement before it."""
-        g = np.tile(np.eye(4), (theta.shape[0], 1, 1)) if offset is None else offset
-        before = []
-        for index in self.joints[key][2]:
-            column = self.columns[index]
-            before.append(g)
-            if column.hinge is not None:  # the coupler's circular translation R(a, φ) w − w
-                assert column.rod is not None
-                step = np.tile(np.eye(4), (theta.shape[0], 1, 1))
-                step[:, :3, 3] = rotation_matrix(column.hinge, theta[:, index]) @ column.rod - column.rod
-            else:
-                step = exp_screw(column.row, theta[:, index])
-            g = g @ step
-        return g, before
-
-    def state(self, theta: Array, offsets: dict[str, Array] | None = None) -> KinematicState:
+    def state(
+        self, theta: Array, offsets: dict[str, Array] | None = None, pinned: Array | None = None
+    ) -> KinematicState:
         """Link displacements (from the tree) and the current screws at joint values ``theta``.
 
         Parameters
@@ -320,6 +378,8 @@ class KinematicModel:
         theta : numpy.ndarray, shape (B, n)
         offsets : dict, optional
             Spherical joint name → rotation offsets ``(B, 4, 4)`` (default: none).
+        pinned : numpy.ndarray, shape (B, 4, 4), optional
+            The pinned link's displacements (scaled frame), for a model built with one.
 
         Returns
         -------
@@ -335,30 +395,14 @@ class KinematicModel:
         array([2., 0., 0.])
         """
         offsets = dict(offsets or {})
-        count = theta.shape[0]
-        links = {self.base: np.tile(np.eye(4), (count, 1, 1))}
-        motions, befores = {}, {}
-        for key in self.joints:
-            motions[key], befores[key] = self._joint_motion(key, theta, offsets.get(key))
-        for link in self.order[1:]:
-            key, forward = self.tree[link]
-            u, v, _ = self.joints[key]
-            g = motions[key]
-            links[link] = links[u] @ g if forward else links[v] @ np.linalg.inv(g)
-        current = np.empty((count, self.size, 6))
-        for key, (u, _, indices) in self.joints.items():
-            for index, before in zip(indices, befores[key], strict=True):
-                column = self.columns[index]
-                carry = links[u] @ before
-                if column.hinge is not None:  # the Π's twist turns with its rods
-                    assert column.rod is not None
-                    turned = rotation_matrix(column.hinge, theta[:, index]) @ column.rod
-                    direction = np.cross(column.hinge, turned)
-                    row = np.concatenate([np.zeros_like(direction), direction], axis=-1)
-                    current[:, index] = adjoint(carry, row)
-                else:
-                    current[:, index] = adjoint(carry, np.broadcast_to(column.row, (count, 6)))
-        return KinematicState(theta, offsets, links, current, motions)
+        links, motions, current = self._product.evaluate(theta, offsets, pinned)
+        return KinematicState(
+            theta,
+            offsets,
+            {link: links[:, i] for link, i in self._product.link_index.items()},
+            current,
+            {key: motions[:, j] for key, j in self._product.joint_index.items()},
+        )
 
     def loop_residual(self, state: KinematicState) -> Array:
         """How far each loop is from closing: ``(B, 6 L)``, rotation vector then translation (scaled).
@@ -379,12 +423,15 @@ class KinematicModel:
         >>> model.loop_residual(model.state(np.zeros((1, 1)))).shape  # no loop
         (1, 0)
         """
-        out = []
-        for key in self.closing:
-            u, v, _ = self.joints[key]
-            closed = state.links[u] @ state.motions[key] @ np.linalg.inv(state.links[v])
-            out.append(np.concatenate([rotation_log(closed[:, :3, :3]), closed[:, :3, 3]], axis=-1))
-        return np.concatenate(out, axis=1) if out else np.zeros((state.theta.shape[0], 0))
+        if not self.closing:
+            return np.zeros((state.theta.shape[0], 0))
+        ends = [self.joints[key][:2] for key in self.closing]
+        before = np.stack([state.links[u] for u, _ in ends], axis=1)
+        motion = np.stack([state.motions[key] for key in self.closing], axis=1)
+        after = np.stack([state.links[v] for _, v in ends], axis=1)
+        closed = before @ motion @ rigid_inverse(after)
+        residual = np.concatenate([rotation_log(closed[..., :3, :3]), closed[..., :3, 3]], axis=-1)
+        return residual.reshape(state.theta.shape[0], -1)
 
     def loop_jacobian(self, state: KinematicState) -> Array:
         """The Jacobian of :meth:`loop_residual` in the joint variables: ``(B, 6 L, n)``.
@@ -435,12 +482,14 @@ class KinematicModel:
         """
         return np.einsum("c,bck->bkc", self.paths[link], state.current)
 
-    def recentred(self, state: KinematicState) -> tuple[Array, dict[str, Array]]:
+    def recentred(self, theta: Array, offsets: dict[str, Array]) -> tuple[Array, dict[str, Array]]:
         """Joint values and offsets with every spherical joint's angles folded into its offset.
 
         Parameters
         ----------
-        state : KinematicState
+        theta : numpy.ndarray, shape (B, n)
+        offsets : dict
+            Spherical joint name → rotation offsets ``(B, 4, 4)`` (those not given: none).
 
         Returns
         -------
@@ -454,15 +503,16 @@ class KinematicModel:
         >>> from screwkit.graphs.joints import spherical
         >>> from screwkit.graphs.twistgraph import twist_graph
         >>> model = KinematicModel(twist_graph("B", "E", [("B", "E", spherical("S", [0, 0, 0]))], dof=3))
-        >>> theta, offsets = model.recentred(model.state(np.array([[0.1, 0.2, 0.3]])))
+        >>> theta, offsets = model.recentred(np.array([[0.1, 0.2, 0.3]]), {})
         >>> theta.tolist(), offsets["S"].shape
         ([[0.0, 0.0, 0.0]], (1, 4, 4))
         """
-        theta = state.theta.copy()
-        offsets = dict(state.offsets)
+        motions, _ = self._product.joint_motions(theta, offsets, screws=False)
+        theta = theta.copy()
+        offsets = dict(offsets)
         for key, kind in self.types.items():
             if kind == "S":
-                offsets[key] = state.motions[key]
+                offsets[key] = motions[:, self._product.joint_index[key]]
                 theta[:, self.joints[key][2]] = 0.0
         return theta, offsets
 

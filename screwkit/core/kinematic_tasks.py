@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from ..algebra.rigid_motions import hat, rotation_log
+from ..algebra.rigid_motions import hat, rotation_log, rotation_matrix
 from ..exceptions import ScrewkitValueError
 from .kinematic_model import KinematicModel, KinematicState
 from .task_coordinates import TaskCoordinates
@@ -86,6 +86,59 @@ class PoseTask:
         self.directions = directions
         self.translation = translation
         self.local = model.to_scaled_points(coordinates.point)
+        moves, turns = directions[translation], directions[~translation]
+        #: True when the task's values fix the link's whole pose (three independent translation
+        #: directions and three rotation directions): :meth:`displacement` then gives it.
+        self.fixes_pose = bool(
+            len(moves) == 3 == len(turns)
+            and np.linalg.matrix_rank(moves) == 3 == np.linalg.matrix_rank(turns)
+        )
+
+    def displacement(self, values: Array) -> Array:
+        """The link's displacement ``(B, 4, 4)`` (scaled frame) at which the task takes ``values``
+        ``(B, 6)``, for a task that :attr:`fixes_pose`: the rotation ``exp([φ]×)`` of the rotation
+        vector ``φ`` and the translation that puts the task's point at its position.
+
+        Parameters
+        ----------
+        values : numpy.ndarray, shape (B, 6)
+            The task's scaled values.
+
+        Returns
+        -------
+        numpy.ndarray, shape (B, 4, 4)
+
+        Raises
+        ------
+        ScrewkitValueError
+            If the task does not fix the link's pose.
+
+        Examples
+        --------
+        >>> from screwkit.core.task_coordinates import task_coordinates
+        >>> from screwkit.graphs.joints import revolute
+        >>> from screwkit.graphs.twistgraph import twist_graph
+        >>> hinge = KinematicModel(twist_graph("B", "E", [("B", "E", revolute("R", [0, 0, 1], [2, 0, 0]))]))
+        >>> held = PoseTask(hinge, task_coordinates(hinge, point=[1, 0, 0]), complete=True)
+        >>> turned = hinge.state(np.array([[0.7]]))  # about the hinge at x = 2
+        >>> bool(np.allclose(held.displacement(held.values(turned)), turned.links["E"]))
+        True
+        """
+        if not self.fixes_pose:
+            raise ScrewkitValueError(
+                "Expected a task that fixes the link's whole pose, got the coordinates "
+                f"{self.coordinates.names}."
+            )
+        values = np.asarray(values, dtype=float)
+        position = np.linalg.solve(self.directions[self.translation], values[:, self.translation].T).T
+        vector = np.linalg.solve(self.directions[~self.translation], values[:, ~self.translation].T).T
+        angle = np.linalg.norm(vector, axis=1)
+        axis = np.where(angle[:, None] > 0, vector / np.where(angle > 0, angle, 1.0)[:, None], 0.0)
+        out = np.zeros((len(values), 4, 4))
+        out[:, :3, :3] = rotation_matrix(axis, angle)
+        out[:, :3, 3] = position - out[:, :3, :3] @ self.local
+        out[:, 3, 3] = 1.0
+        return out
 
     def scaled_targets(self, values: Array) -> Array:
         """Coordinates ``(B, n)`` in the graph's unit → the task's scaled values ``(B, m)`` (with a
@@ -216,17 +269,41 @@ class PoseTask:
         >>> task.coordinates.names, task.jacobian(model.state(np.zeros((1, 1))))[0, :, 0].tolist()
         (('phi',), [1.0])
         """
-        g = state.links[self.coordinates.link]
         twist = self.model.link_jacobian(state, self.coordinates.link)  # (B, 6, columns)
-        omega, velocity = twist[:, :3], twist[:, 3:]
+        return self.twist_rates(state) @ twist
+
+    def twist_rates(self, state: KinematicState) -> Array:
+        """The task's rates per unit twist of its link, ``(B, m, 6)``: the point's velocity
+        ``v + ω × p`` along the translation directions, the rotation vector's rate ``J_l(φ)⁻¹ ω``
+        along the rotation directions (twists ``(ω; v)`` spatial, scaled frame).
+
+        Parameters
+        ----------
+        state : KinematicState
+
+        Returns
+        -------
+        numpy.ndarray, shape (B, m, 6)
+
+        Examples
+        --------
+        >>> from screwkit.core.task_coordinates import task_coordinates
+        >>> from screwkit.graphs.joints import revolute
+        >>> from screwkit.graphs.twistgraph import twist_graph
+        >>> crank = KinematicModel(twist_graph("B", "E", [("B", "E", revolute("R", [0, 0, 1], [0, 0, 0]))]))
+        >>> point = PoseTask(crank, task_coordinates(crank, point=[1, 0, 0], rotations=False))
+        >>> point.coordinates.names, point.twist_rates(crank.state(np.zeros((1, 1))))[0, -1].tolist()
+        (('y',), [0.0, 0.0, 1.0, 0.0, 1.0, 0.0])
+        """
+        g = state.links[self.coordinates.link]
         position = np.einsum("bij,j->bi", g[:, :3, :3], self.local) + g[:, :3, 3]
-        point_velocity = velocity - hat(position) @ omega  # v + ω × p
-        log_rate = _left_jacobian_inverse(rotation_log(g[:, :3, :3])) @ omega
-        directions = self.directions
+        log_rate = _left_jacobian_inverse(rotation_log(g[:, :3, :3]))  # per unit ω
+        moved = np.concatenate([-hat(position), np.broadcast_to(np.eye(3), (*position.shape, 3))], axis=-1)
+        turned = np.concatenate([log_rate, np.zeros_like(log_rate)], axis=-1)
         return np.where(
             self.translation[None, :, None],
-            np.einsum("nk,bkc->bnc", directions, point_velocity),
-            np.einsum("nk,bkc->bnc", directions, log_rate),
+            np.einsum("nk,bkc->bnc", self.directions, moved),
+            np.einsum("nk,bkc->bnc", self.directions, turned),
         )
 
 

@@ -54,6 +54,7 @@ import numpy as np
 
 from ..exceptions import ScrewkitValueError
 from .kinematic_model import KinematicModel, KinematicState
+from .kinematic_tasks import PoseTask
 
 __all__ = ["FINAL_TOLERANCE", "MAX_STEP", "ClosedConfigurations", "close_loops"]
 
@@ -122,17 +123,74 @@ def _solve_step(jacobian: Array, residual: Array) -> Array:
     return -np.einsum("bji,bj->bi", jacobian, multipliers)
 
 
-def _equations(model: KinematicModel, task: Any, state: KinematicState, target: Array) -> tuple[Array, Array]:
-    residual = np.concatenate(
-        [model.loop_residual(state), task.difference(task.values(state), target)], axis=1
-    )
-    jacobian = np.concatenate([model.loop_jacobian(state), task.jacobian(state)], axis=1)
-    return residual, jacobian
+def _residual(model: KinematicModel, task: Any, state: KinematicState, target: Array) -> Array:
+    return np.concatenate([model.loop_residual(state), task.difference(task.values(state), target)], axis=1)
+
+
+class _LoopsAndTask:
+    """The equations Newton's method solves: the loops' and the task's, over the whole model."""
+
+    def __init__(self, model: KinematicModel, task: Any):
+        self.model, self.task = model, task
+
+    def state(self, theta: Array, offsets: dict[str, Array], target: Array) -> KinematicState:
+        return self.model.state(theta, offsets)
+
+    def equations(self, state: KinematicState, target: Array) -> tuple[Array, Array]:
+        jacobian = np.concatenate([self.model.loop_jacobian(state), self.task.jacobian(state)], axis=1)
+        return _residual(self.model, self.task, state, target), jacobian
+
+    def correction(self, jacobian: Any, residual: Array, need: Array) -> Array:
+        """The correction of the rows ``need`` of the equations' residual and Jacobian."""
+        return _solve_step(jacobian[need], residual[need])
+
+
+class _PinnedLoops(_LoopsAndTask):
+    """The same configurations when the task fixes its link's whole pose: that link placed where the
+    target says (:meth:`~screwkit.core.kinematic_tasks.PoseTask.displacement`), the loops of the
+    model pinned there (:meth:`~screwkit.core.kinematic_model.KinematicModel.pinned_model`) close
+    each part between the base and the link on its own, so the correction is solved block by block
+    (blocks of one shape in one batched call): the same minimum-norm step per block, as each
+    block's equations hold only its own joint variables."""
+
+    def __init__(self, model: KinematicModel, task: Any):
+        super().__init__(model, task)
+        self.pinned = model.pinned_model(task.coordinates.link)
+        shapes: dict[tuple[int, int], list[tuple[Array, Array]]] = {}
+        for rows, columns in self.pinned.blocks:
+            shapes.setdefault((rows.size, columns.size), []).append((rows, columns))
+        self.groups = []  # (equation rows (k, 6 l), columns (k, c), the loops' signs (k, l, c))
+        for blocks in shapes.values():
+            rows, columns = np.array([r for r, _ in blocks]), np.array([c for _, c in blocks])
+            loops = self.pinned.incidence[rows[:, ::6] // 6]  # (k, l, n)
+            signs = np.take_along_axis(loops, columns[:, None, :], axis=2)
+            self.groups.append((rows, columns, signs))
+
+    def state(self, theta: Array, offsets: dict[str, Array], target: Array) -> KinematicState:
+        return self.pinned.state(theta, offsets, self.task.displacement(target))
+
+    def equations(self, state: KinematicState, target: Array) -> tuple[Array, Any]:
+        """The loops' residual and, per group of blocks, their Jacobians ``(B, k, 6 l, c)`` (the
+        blocks of :meth:`~screwkit.core.kinematic_model.KinematicModel.loop_jacobian`)."""
+        blocks = []
+        for _, columns, signs in self.groups:
+            screws = np.swapaxes(state.current[:, columns], -1, -2)  # (B, k, 6, c)
+            jacobian = signs[None, :, :, None, :] * screws[:, :, None]  # (B, k, l, 6, c)
+            blocks.append(jacobian.reshape(*jacobian.shape[:2], -1, jacobian.shape[-1]))
+        return self.pinned.loop_residual(state), blocks
+
+    def correction(self, jacobian: Any, residual: Array, need: Array) -> Array:
+        count = int(need.sum())
+        out = np.zeros((count, self.model.size))
+        for (rows, columns, _), blocks in zip(self.groups, jacobian, strict=True):
+            flat = residual[need][:, rows].reshape(-1, rows.shape[1])
+            step = _solve_step(blocks[need].reshape(-1, *blocks.shape[2:]), flat)
+            out[:, columns.ravel()] = step.reshape(count, -1)
+        return out
 
 
 def _continue(
-    model: KinematicModel,
-    task: Any,
+    system: _LoopsAndTask,
     targets: Array,
     theta: Array,
     offsets: dict[str, Array],
@@ -143,6 +201,7 @@ def _continue(
     """One continuation of a chunk, each pose in equal steps of at most ``step_length`` (a pose whose
     way is done rests); returns theta, offsets, the residual at the targets (inf where non-finite)
     and the fraction of the way where each pose was lost (NaN if not)."""
+    model, task = system.model, system.task
     count = targets.shape[0]
     lost_at = np.full(count, np.nan)
     active = np.ones(count, dtype=bool)
@@ -171,8 +230,8 @@ def _continue(
             rows = np.flatnonzero(working)
             if rows.size == 0:
                 break
-            state = model.state(theta[rows], {k: v[rows] for k, v in offsets.items()})
-            residual, jacobian = _equations(model, task, state, target[rows])
+            state = system.state(theta[rows], {k: v[rows] for k, v in offsets.items()}, target[rows])
+            residual, jacobian = system.equations(state, target[rows])
             size = np.max(np.abs(residual), axis=1, initial=0.0)
             residual_size[rows] = size
             need = size > tolerance[rows]
@@ -180,7 +239,7 @@ def _continue(
             rows = rows[need]
             if rows.size == 0:
                 break
-            correction = _solve_step(jacobian[need], residual[need])
+            correction = system.correction(jacobian, residual, need)
             length = np.max(np.abs(correction), axis=1, initial=0.0)
             correction *= np.minimum(1.0, MAX_CORRECTION / np.maximum(length, 1e-300))[:, None]
             theta[rows] += correction
@@ -195,12 +254,12 @@ def _continue(
             turned = np.flatnonzero(np.max(np.abs(theta[:, spherical]), axis=1) > RECENTRE_ANGLE)
             if turned.size:
                 sub = {k: v[turned] for k, v in offsets.items()}
-                new_theta, new_offsets = model.recentred(model.state(theta[turned], sub))
+                new_theta, new_offsets = model.recentred(theta[turned], sub)
                 theta[turned] = new_theta
                 for key, value in new_offsets.items():
                     offsets.setdefault(key, np.tile(np.eye(4), (count, 1, 1)))[turned] = value
-    state = model.state(theta, offsets)
-    residual, _ = _equations(model, task, state, targets)
+    state = model.state(theta, offsets)  # the loops and the task of the whole model, as checked
+    residual = _residual(model, task, state, targets)
     size = np.max(np.abs(residual), axis=1, initial=0.0)
     size[~active] = np.maximum(size[~active], LOST_TOLERANCE)  # a lost pose is never accepted
     return theta, offsets, np.where(np.isfinite(size), size, np.inf), lost_at
@@ -266,6 +325,8 @@ def _close_chunk(
     model: KinematicModel, task: Any, targets: Array
 ) -> tuple[Array, dict[str, Array], Array, Array]:
     count = len(targets)
+    fixes_pose = isinstance(task, PoseTask) and task.fixes_pose and task.coordinates.link != model.base
+    system = (_PinnedLoops if fixes_pose else _LoopsAndTask)(model, task)
 
     def begin(rows: Array) -> tuple[Array, dict[str, Array], Array]:
         """The reference configuration for ``rows`` poses, and the task's values there."""
@@ -276,14 +337,13 @@ def _close_chunk(
     everything = np.ones(count, dtype=bool)
     theta, offsets, start = begin(everything)
     theta, offsets, residual, lost_at = _continue(
-        model, task, targets, theta, offsets, start, MAX_STEP, JUMP_LIMIT
+        system, targets, theta, offsets, start, MAX_STEP, JUMP_LIMIT
     )
     missed = ~(residual < FINAL_TOLERANCE)
     if np.any(missed):  # again, in shorter steps
         retry_theta, retry_offsets, retry_start = begin(missed)
         again = _continue(  # the steps are short: the corrections may be what they need
-            model,
-            task,
+            system,
             targets[missed],
             retry_theta,
             retry_offsets,

@@ -1,13 +1,16 @@
 """The mobility of a mechanism and the nominal ``dof`` of its analysis, read at generic configurations.
 
-A pose may be singular, so a mechanism's mobility is not read off the analysed pose: it is the most
-common order of the platform's twist system over a few generic configurations reached by moving
-the mechanism along its own twists (:func:`screwkit.core.motion.generic_configurations`,
-:func:`generic_mobility`). The nominal ``dof`` of every analysis is that mobility, with no more
-actuators than it (:func:`resolve_dof`); :func:`settled_dof` checks a first analysis against it at
-no cost where the pose is regular with one actuator per freedom. :func:`generic_analyses` gives the
-wrench analyses at generic configurations (the structural facts of wrench diagrams are decided
-there).
+A pose may be singular, so a mechanism's mobility is not read off the analysed pose: it is the
+platform's order where the mechanism's *finite* motion takes it (:mod:`screwkit.core.finite_mobility`:
+a linkage in line, mobile to first order only, reads 0; a rounded overconstrained linkage moves at
+its data precision ``rtol``), or, where that is undecided, the most common order over a few generic
+configurations reached by moving the mechanism along its own twists
+(:func:`screwkit.core.motion.generic_configurations`, :func:`generic_mobility`). The nominal ``dof``
+of every analysis is that mobility, its actuators checked (:func:`resolve_dof`; more actuators than
+freedoms is redundant actuation, :mod:`screwkit.core.redundancy`); :func:`settled_dof` checks a
+first analysis against it at no cost where the pose is regular with one actuator per freedom.
+:func:`generic_analyses` gives the wrench analyses at generic configurations (the structural facts
+of wrench diagrams are decided there).
 
 Examples
 --------
@@ -26,8 +29,11 @@ import networkx as nx
 import numpy as np
 
 from ..algebra import backend as B
+from ..algebra.checks import checked_rtol
 from ..exceptions import ScrewkitValueError, TwistGraphError
+from .finite_mobility import MobilityReading, check_stated_dof, mobility_reading
 from .motion import generic_configurations
+from .redundancy import generic_driven_freedoms
 from .wrench_systems import WrenchAnalysis, analyze_table
 
 __all__ = ["generic_analyses", "generic_mobility", "resolve_dof", "settled_dof"]
@@ -72,7 +78,7 @@ def generic_analyses(
     >>> [a.global_order for a in generic_analyses(graph, np.random.default_rng(1), 2)]
     [6, 6]
     """
-    table = generic_configurations(graph, rng, count)
+    table = generic_configurations(graph, rng, count, rtol=max(checked_rtol(rtol), B.DEFAULT_RTOL))
     batch = analyze_table(table, dof=graph.graph.get("dof"), rtol=rtol, length_scale=length_scale)
     out = []
     for i in range(len(batch)):
@@ -97,13 +103,24 @@ def generic_mobility(
     rtol: float = B.DEFAULT_RTOL,
     length_scale: float | None = None,
 ) -> int | None:
-    """The platform's freedoms at generic configurations of the graph's mechanism.
+    """The platform's freedoms along the finite motion of the graph's mechanism.
 
-    The most common order of the platform's twist system over :data:`MOBILITY_SAMPLES` configurations
-    reached from the graph's own by :func:`generic_configurations` (so a singular analysed pose does not
-    decide it: a stretched limb loses a freedom there, a constraint singularity gains one), each
-    decided with ``rtol`` and ``length_scale`` (:func:`~screwkit.core.wrench_systems.analyze_table`). 0 for a
-    mechanism whose loops admit no joint motion; None when Newton's method closed no loop.
+    The finite mobility of :func:`~screwkit.core.finite_mobility.mobility_reading` (the platform's
+    order where small steps along the first-order freedoms, closed again by Newton's method at the
+    data precision ``rtol``, move the mechanism: a singular analysed pose does not decide it, a
+    stretched limb loses a freedom there, a constraint singularity gains one; 0 when every step falls
+    back, as for a linkage in line). Where that is undecided: the most common order of the platform's
+    twist system over :data:`MOBILITY_SAMPLES` configurations reached from the graph's own by
+    :func:`generic_configurations`, each decided with ``rtol`` and ``length_scale``
+    (:func:`~screwkit.core.wrench_systems.analyze_table`); 0 for a mechanism whose loops admit no
+    joint motion; None when Newton's method closed no loop.
+
+    ``rtol`` is also the data's precision (docs/data-precision.md): joint rates whose loop-closure singular
+    value is at most ``rtol`` times the largest are motions, and loops closed to ``rtol``
+    characteristic lengths are closed, so an overconstrained linkage given with rounded coordinates
+    (a Bennett linkage to 6 decimals) is mobile at an ``rtol`` above its rounding (1e-4), rigid at
+    the default 1e-9. This is the first-order (instantaneous) count moved along: a linkage rigid but
+    mobile to first order reads its first-order freedoms here.
 
     Parameters
     ----------
@@ -111,6 +128,7 @@ def generic_mobility(
         A twist graph of the mechanism (numbers).
     joint_key : str, default "joint"
     rtol : float, default 1e-9
+        Relative tolerance of every decision, and the data's precision (above).
     length_scale : float, optional
         As in :func:`~screwkit.core.wrench_systems.analyze_table`.
 
@@ -118,6 +136,11 @@ def generic_mobility(
     -------
     int or None
         The mobility (0 to 6), None when no loop could be closed.
+
+    Raises
+    ------
+    ScrewkitValueError
+        An ``rtol`` outside [0, 0.1] (naming it).
 
     Examples
     --------
@@ -134,9 +157,27 @@ def generic_mobility(
     >>> generic_mobility(fourbar)
     1
     """
+    return _finite_or_moved(  # mobility_reading refuses an out-of-range rtol (one line naming it)
+        mobility_reading(graph, joint_key=joint_key, rtol=rtol, length_scale=length_scale),
+        graph, joint_key, rtol, length_scale,
+    )
+
+
+def _finite_or_moved(
+    reading: MobilityReading,
+    graph: nx.MultiDiGraph,
+    joint_key: str,
+    rtol: float,
+    length_scale: float | None,
+) -> int | None:
+    """The reading's finite mobility; where undecided, the generic configurations'
+    (:func:`generic_mobility`, their loops closed to ``rtol``, floored at 1e-9)."""
+    if reading.finite is not None:
+        return reading.finite
+    precision = max(rtol, B.DEFAULT_RTOL)
     try:
         table = generic_configurations(graph, np.random.default_rng(MOBILITY_SEED), MOBILITY_SAMPLES,
-                                       joint_key=joint_key)
+                                       joint_key=joint_key, rtol=precision)
     except ScrewkitValueError as err:
         if "admit no joint motion" in str(err):
             return 0
@@ -146,13 +187,15 @@ def generic_mobility(
     return int(np.bincount(orders).argmax())
 
 
-def resolve_dof(stated: int | None, mobility: int, actuated: tuple[str, ...] | list[str]) -> int:
+def resolve_dof(
+    stated: int | None, mobility: int, actuated: tuple[str, ...] | list[str], *, driven: int | None = None
+) -> int:
     """The nominal ``dof`` of an analysis: the mechanism's mobility, with its actuators checked.
 
     screwkit analyses mechanisms whose nominal ``dof`` is the platform's mobility at generic
-    configurations and whose actuators are no more than that (non-redundant actuation). Fewer
-    actuators than ``dof`` is an under-actuated mechanism (uncontrolled freedoms: an actuation
-    singularity everywhere, a non-square Jacobian); no actuator at all, a mobility analysis.
+    configurations. Fewer actuators than ``dof`` is an under-actuated mechanism (uncontrolled
+    freedoms: an actuation singularity everywhere, a non-square Jacobian); more is a redundantly
+    actuated one (:mod:`screwkit.core.redundancy`); no actuator at all, a mobility analysis.
 
     Parameters
     ----------
@@ -162,6 +205,10 @@ def resolve_dof(stated: int | None, mobility: int, actuated: tuple[str, ...] | l
         :func:`generic_mobility`.
     actuated : sequence of str
         The actuated joints.
+    driven : int, optional
+        The freedoms the actuators drive at generic configurations
+        (:func:`screwkit.core.redundancy.generic_driven_freedoms`); given, at least as many actuators
+        as the mobility must drive all of it.
 
     Returns
     -------
@@ -171,17 +218,24 @@ def resolve_dof(stated: int | None, mobility: int, actuated: tuple[str, ...] | l
     Raises
     ------
     TwistGraphError
-        A stated ``dof`` other than the mobility, or more actuators than the mobility (naming both
-        numbers and the actuated joints).
+        A stated ``dof`` other than the mobility (naming both numbers and the actuated joints);
+        actuated joints on a mechanism that cannot move, or ``actuated`` flags that leave the
+        platform uncontrolled at generic configurations (``driven`` below the mobility).
 
     Examples
     --------
     >>> resolve_dof(None, 3, ["A1", "A2", "A3"]), resolve_dof(2, 2, ["A1"]), resolve_dof(None, 4, [])
     (3, 2, 4)
+    >>> resolve_dof(None, 2, ["A1", "A2", "A3"], driven=2)  # redundantly actuated
+    2
     >>> resolve_dof(2, 3, ["A1", "A2", "A3"])  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
     screwkit.exceptions.TwistGraphError: Expected `dof` to equal the mechanism's mobility, 3 (...), ...
+    >>> resolve_dof(None, 1, ["A1", "A2"], driven=0)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    screwkit.exceptions.TwistGraphError: Expected the `actuated` joints to drive the mechanism's 1 ...
     """
     names = f"{len(actuated)} actuated joint(s)" + (f": {', '.join(sorted(actuated))}" if actuated else "")
     if stated is not None and stated != mobility:
@@ -191,11 +245,17 @@ def resolve_dof(stated: int | None, mobility: int, actuated: tuple[str, ...] | l
             "A `dof` other than the mobility would label every pose falsely (constraint singularities "
             "for a dof below it, lost freedoms above it): omit `dof` to use the mobility."
         )
-    if len(actuated) > mobility:
+    if actuated and mobility == 0:
         raise TwistGraphError(
-            f"Expected at most as many actuated joints as the mechanism's mobility, {mobility} (the "
-            f"platform's freedoms at generic configurations), got {names}: screwkit analyses "
-            "non-redundantly actuated mechanisms; fix the `actuated` flags."
+            f"Expected no `actuated` joint on a mechanism that cannot move (mobility 0 at generic "
+            f"configurations), got {names}: an actuator there drives nothing; fix the `actuated` flags."
+        )
+    if driven is not None and len(actuated) >= mobility > driven:
+        raise TwistGraphError(
+            f"Expected the `actuated` joints to drive the mechanism's {mobility} freedom(s) at generic "
+            f"configurations, got {names} driving {driven} (screwkit.core.redundancy): with them locked "
+            "the platform still moves everywhere; fix the `actuated` flags (or the design, singular at "
+            "every configuration)."
         )
     return mobility
 
@@ -228,10 +288,12 @@ def settled_dof(
     A first analysis that is regular for its ``dof`` confirms it (:func:`_regular_for`: no generic
     configuration needed, the common case costs nothing). Otherwise the mobility is the graph's
     ``mobility`` attribute when it has one (a catalog family's graphs do:
-    :attr:`screwkit.graphs.jointtable.JointTable.mobility`), else computed at generic configurations
-    (:func:`generic_mobility`, 0.03–0.2 s, with the analysis's ``rtol`` and the given
-    ``length_scale``; where no loop could be closed, the platform's most common order over the
-    analysed poses stands in for it).
+    :attr:`screwkit.graphs.jointtable.JointTable.mobility`), else computed (:func:`generic_mobility`,
+    0.03–0.2 s, with the analysis's ``rtol`` as the data precision and the given ``length_scale``;
+    where no loop could be closed, the platform's most common order over the analysed poses stands
+    in for it). A stated ``dof`` equal to the finite mobility is accepted where the instantaneous one
+    differs (a linkage in line, rigid, stated ``dof=0``); one that contradicts a finite motion is
+    refused with both numbers (:func:`~screwkit.core.finite_mobility.check_stated_dof`).
 
     Parameters
     ----------
@@ -254,7 +316,8 @@ def settled_dof(
     Raises
     ------
     TwistGraphError
-        A ``dof`` other than the mobility, or more actuators than it (:func:`resolve_dof`).
+        A ``dof`` other than the mobility (naming the finite and instantaneous mobility where they
+        differ), or actuators that do not drive it (:func:`resolve_dof`).
 
     Examples
     --------
@@ -272,11 +335,18 @@ def settled_dof(
     known = graph.graph.get("mobility")  # a catalog family's (JointTable.mobility)
     if known is not None and not B.is_dof(known):
         raise TwistGraphError(f"Expected graph attribute 'mobility' to be an integer in 0..6, got {known!r}.")
-    mobility = (
-        int(known)
-        if known is not None
-        else generic_mobility(graph, joint_key=joint_key, rtol=rtol, length_scale=length_scale)
-    )
+    if known is not None:
+        mobility: int | None = int(known)
+    else:
+        reading = mobility_reading(graph, joint_key=joint_key, rtol=rtol, length_scale=length_scale)
+        if reading.differs:  # else resolve_dof's message says it all (with the actuated joints)
+            check_stated_dof(stated, reading)
+        mobility = _finite_or_moved(reading, graph, joint_key, rtol, length_scale)
     if mobility is None:
         mobility = int(np.bincount(np.asarray(analysis.platform_order).ravel()).argmax())
-    return resolve_dof(stated, mobility, actuated)
+    driven = (  # redundant actuation: the actuators must drive every freedom (screwkit.core.redundancy)
+        generic_driven_freedoms(graph, mobility, joint_key=joint_key, rtol=rtol, length_scale=length_scale)
+        if len(actuated) > mobility > 0
+        else None
+    )
+    return resolve_dof(stated, mobility, actuated, driven=driven)

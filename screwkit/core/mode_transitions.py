@@ -30,6 +30,7 @@ Examples
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 from typing import Any
 
@@ -67,7 +68,8 @@ class ModeAtPose:
     mobility : int
         The platform's freedoms in this mode (the order of its twist system next to the pose).
     motion_type : str
-        Its motion type there (e.g. ``"3T"``, ``"2T1R"``).
+        Its motion type there (e.g. ``"3T"``, ``"2T1R"``, ``"1H"``: a helical freedom's pitch, which
+        varies along a mode, left out).
     constraint_order : int
         The order of the constraint wrench system there.
     reached : int
@@ -249,7 +251,8 @@ def modes_at(
     classes: dict[tuple[int, str, int], list[int]] = {}
     for i in range(len(batch)):
         one = batch[i]
-        key = (int(one.platform_order), str(motion_type(one.platform_twists)), int(one.constraint_order))
+        kind = re.sub(r"\s*\(pitch[^)]*\)", "", str(motion_type(one.platform_twists)))  # pitch varies
+        key = (int(one.platform_order), kind, int(one.constraint_order))
         classes.setdefault(key, []).append(i)
     modes = []
     for (mobility, kind, order), members in sorted(classes.items(), key=lambda item: -len(item[1])):

@@ -79,7 +79,12 @@ def _damped_solve(jacobian: Array, vectors: Array) -> Array:
 
 
 def generic_configurations(
-    graph: nx.MultiDiGraph, rng: np.random.Generator, count: int, *, joint_key: str = "joint"
+    graph: nx.MultiDiGraph,
+    rng: np.random.Generator,
+    count: int,
+    *,
+    joint_key: str = "joint",
+    rtol: float = 1e-9,
 ) -> JointTable:
     """``count`` random configurations of the graph's mechanism, reached by moving it (module docstring).
 
@@ -91,6 +96,10 @@ def generic_configurations(
     count : int
         Configurations wanted; those whose loops Newton's method could not close are dropped.
     joint_key : str
+    rtol : float, default 1e-9
+        The data's precision, relative: loop-closure rates whose singular value is at most ``rtol``
+        times the largest are motions, and a loop closed to ``rtol`` characteristic lengths is closed
+        (an overconstrained linkage given with rounded coordinates moves at its data's precision).
 
     Returns
     -------
@@ -112,7 +121,7 @@ def generic_configurations(
     model = KinematicModel(graph, joint_key)
     n = model.size
     theta = np.zeros((count, n))
-    null = _null_space(model.loop_jacobian(model.state(theta[:1]))[0])
+    null = _null_space(model.loop_jacobian(model.state(theta[:1]))[0], rtol)
     if null.shape[1] == 0:
         raise ScrewkitValueError(
             "Expected a mechanism that can move (to reach generic configurations), got one whose loops "
@@ -131,7 +140,7 @@ def generic_configurations(
                 break
             theta = theta - np.einsum("bji,bj->bi", jacobian, _damped_linear(jacobian, residual))
         residual = model.loop_residual(model.state(theta))
-        ok &= (np.max(np.abs(residual), axis=1) if residual.shape[1] else np.zeros(count)) < 1e-9
+        ok &= (np.max(np.abs(residual), axis=1) if residual.shape[1] else np.zeros(count)) < max(rtol, 1e-9)
     if not np.any(ok):
         raise ScrewkitValueError("Expected loops that close again after a small motion, got none in "
                                  f"{count} tries (Newton's method did not converge).")

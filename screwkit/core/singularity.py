@@ -212,6 +212,7 @@ def label_table(
             table.dof,
             None if anchor is None else anchor[start : start + chunk],
             table.mobility,
+            table.free,
         )
         for start in range(0, max(len(flat), 1), chunk)
     )

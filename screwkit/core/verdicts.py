@@ -6,7 +6,10 @@ From a :class:`~screwkit.core.wrench_systems.WrenchAnalysis` (paper 002 §4–5;
 * **constraint singularity**: the mechanism's constraint wrench system ``W^c`` falls below its
   nominal order ``6 − dof``; the platform gains ``6 − dof − order(W^c)`` freedoms even with every
   actuator locked (paper 002 §5.3, condition 1);
-* **actuation singularity**: ``W^c`` is nominal but the global system ``W^c + W^a`` is below 6;
+* **actuation singularity**: ``W^c`` is nominal but the global system ``W^c + W^a`` is below 6
+  (below ``6 − free`` for a task that leaves ``free`` freedoms undriven: 3 for a point task, whose
+  rotations about the point stay free, :mod:`screwkit.robots.point_task`; a redundantly actuated
+  mechanism with all its actuation wrenches, :mod:`screwkit.core.redundancy`);
   with the actuators locked the platform keeps an uncontrolled twist (paper 002 §5.3, condition 2);
 * **serial (limb) singularity**: an actuated joint's twist lies in the span of the other twists of
   its limb, so its actuation wrench is reciprocal to it: the actuator cannot move the platform
@@ -51,6 +54,7 @@ regular (dof 1): constraint order 5/5, global order 6/6
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Any
 
 import numpy as np
@@ -59,6 +63,7 @@ from ..algebra import screwvalue as S
 from ..algebra.display import ScrewArray, html_section, html_table, number_text
 from ..algebra.screwsystem import ScrewSystem
 from ..exceptions import ScrewkitTypeError
+from .finite_mobility import MobilityReading, mobility_reading
 from .wrench_systems import WrenchAnalysis
 
 __all__ = ["LABELS", "SerialSingularity", "SingularityReport", "classify_analysis"]
@@ -122,6 +127,27 @@ class SingularityReport:
         """Nominal mobility."""
         return self.analysis.dof
 
+    @cached_property
+    def mobility(self) -> MobilityReading:
+        """The instantaneous and finite mobility at this pose (one pose), at the analysis's ``rtol``
+        and length scale (:func:`~screwkit.core.finite_mobility.mobility_reading`).
+
+        Examples
+        --------
+        >>> from screwkit.core.singularity import classify
+        >>> from screwkit.graphs.joints import revolute
+        >>> from screwkit.graphs.twistgraph import twist_graph
+        >>> flat = twist_graph("ground", "link", [  # sides 1, 2, 3: a triangle in line, rigid
+        ...     ("ground", "link", revolute("A", [0, 0, 1], [0, 0, 0])),
+        ...     ("link", "other", revolute("B", [0, 0, 1], [1, 0, 0])),
+        ...     ("other", "ground", revolute("C", [0, 0, 1], [3, 0, 0]))])
+        >>> reading = classify(flat, dof=0).mobility
+        >>> reading.instantaneous, reading.finite
+        (1, 0)
+        """
+        return mobility_reading(self.analysis.graph, rtol=self.analysis.rtol,
+                                length_scale=float(self.analysis.length_scale))
+
     @property
     def nominal_constraint_order(self) -> int:
         """``6 − dof``."""
@@ -138,6 +164,12 @@ class SingularityReport:
         return self.analysis.global_order
 
     @property
+    def nominal_global_order(self) -> int:
+        """``6 − free``: 6, or 3 for a point task (its free rotations about the point are not driven;
+        :attr:`JointTable.free <screwkit.graphs.jointtable.JointTable.free>`)."""
+        return 6 - self.analysis.free
+
+    @property
     def gained_dof(self) -> Any:
         """Freedoms the platform gains from the loss of constraints (``nominal − order(W^c)``, ≥ 0)."""
         return _same_kind(np.maximum(self.nominal_constraint_order - np.asarray(self.constraint_order), 0))
@@ -150,8 +182,28 @@ class SingularityReport:
 
     @property
     def uncontrolled_dof(self) -> Any:
-        """``6 − order(W^c + W^a)``: the freedoms left with all actuators locked."""
-        return _same_kind(6 - np.asarray(self.global_order))
+        """``6 − free − order(W^c + W^a)``: the freedoms left with all actuators locked (beyond a point
+        task's free rotations)."""
+        return _same_kind(self.nominal_global_order - np.asarray(self.global_order))
+
+    @property
+    def redundancy(self) -> Any:
+        """The degree of actuation redundancy per pose: the actuated joints minus the freedoms they
+        drive, ``n − (order(W^c + W^a) − order(W^c))`` (:mod:`screwkit.core.redundancy`): ``n − dof``
+        at a regular pose, more at a singular one; 0 for a non-redundant mechanism at a regular pose.
+
+        Examples
+        --------
+        >>> from screwkit.core.wrenches import wrench_analysis
+        >>> from screwkit.graphs.joints import prismatic
+        >>> from screwkit.graphs.twistgraph import twist_graph
+        >>> pair = [prismatic(f"P{i}", [1, 0, 0], actuated=True) for i in (1, 2)]  # two on one slide
+        >>> slide = twist_graph("B", "E", [("B", "E", joint) for joint in pair])
+        >>> classify_analysis(wrench_analysis(slide)).redundancy
+        1
+        """
+        driven = np.asarray(self.global_order) - np.asarray(self.constraint_order)
+        return _same_kind(len(self.actuated_joints) - driven)
 
     @property
     def serial_flags(self) -> Array:
@@ -176,8 +228,9 @@ class SingularityReport:
 
     @property
     def actuation(self) -> Any:
-        """True where the constraint system is nominal but the global system is below 6."""
-        return _same_kind(~np.asarray(self.constraint) & (np.asarray(self.global_order) < 6))
+        """True where the constraint system is nominal but the global system is below its nominal order."""
+        below = np.asarray(self.global_order) < self.nominal_global_order
+        return _same_kind(~np.asarray(self.constraint) & below)
 
     @property
     def actuation_assessed(self) -> bool:
@@ -196,7 +249,7 @@ class SingularityReport:
         constraint = np.asarray(self.constraint_order) < self.nominal_constraint_order
         if not self.actuation_assessed:
             return constraint * 1
-        actuation = ~constraint & (np.asarray(self.global_order) < 6)
+        actuation = ~constraint & (np.asarray(self.global_order) < self.nominal_global_order)
         lost = np.asarray(self.constraint_order) > self.nominal_constraint_order
         serial = np.asarray(self.analysis.serial).any(axis=-1) | lost
         return constraint * 1 + actuation * 2 + serial * 4
@@ -235,8 +288,9 @@ class SingularityReport:
 
     @property
     def uncontrolled_twists(self) -> ScrewArray:
-        """A readable basis ``(uncontrolled_dof, 6)`` of the twists left with the actuators locked
-        (user frame; one pose): an array that prints its rows as screws, rounding noise as 0."""
+        """A readable basis ``(6 − order(W^c + W^a), 6)`` of the twists left with the actuators locked
+        (user frame; one pose; for a point task its free rotations about the point too): an array
+        that prints its rows as screws, rounding noise as 0."""
         self._require_single("uncontrolled_twists")
         system = self.analysis.uncontrolled_twists
         return ScrewArray(system.readable_basis() if system.order else np.zeros((0, 6)))
@@ -258,6 +312,7 @@ class SingularityReport:
         -------
         dict
             ``verdict``, ``labels``, ``dof``, the orders and freedoms gained, lost and uncontrolled,
+            the degree of actuation redundancy,
             the serial limbs and the closeness measures (JSON-ready).
 
         Examples
@@ -278,9 +333,11 @@ class SingularityReport:
             "constraint_order": int(self.constraint_order),
             "nominal_constraint_order": self.nominal_constraint_order,
             "global_order": int(self.global_order),
+            "nominal_global_order": self.nominal_global_order,
             "gained_dof": int(self.gained_dof),
             "lost_dof": int(self.lost_dof),
             "uncontrolled_dof": int(self.uncontrolled_dof),
+            "redundancy": int(self.redundancy),
             "uncontrolled_twists": [S.Screw(t).to_dict() for t in self.uncontrolled_twists],
             "serial": [
                 {
@@ -315,8 +372,14 @@ class SingularityReport:
             return f"SingularityReport(shape={self.shape}: {self._tally()})"
         return (
             f"SingularityReport({self.verdict!r}, dof={self.dof}, constraint {self.constraint_order}/"
-            f"{self.nominal_constraint_order}, global {self.global_order}/6)"
+            f"{self.nominal_constraint_order}, global {self.global_order}/{self.nominal_global_order})"
         )
+
+    def _dof_text(self) -> str:
+        free = self.analysis.free
+        if not free:
+            return f"dof {self.dof}"
+        return f"dof {self.dof}: the task point's {self.dof - free} and {free} free rotations about it"
 
     def _tally(self) -> str:
         codes = np.asarray(self.codes).ravel()
@@ -345,7 +408,7 @@ class SingularityReport:
         orders = [
             ("nominal mobility (dof)", self.dof),
             ("constraint order", f"{self.constraint_order} / {self.nominal_constraint_order}"),
-            ("global order", f"{self.global_order} / 6"),
+            ("global order", f"{self.global_order} / {self.nominal_global_order}"),
             (
                 "freedoms gained / lost / uncontrolled",
                 f"{self.gained_dof} / {self.lost_dof} / {self.uncontrolled_dof}",
@@ -364,14 +427,14 @@ class SingularityReport:
 
     def __str__(self) -> str:
         if not self.single:
-            return f"{np.asarray(self.codes).size} poses (dof {self.dof}): {self._tally()}"
+            return f"{np.asarray(self.codes).size} poses ({self._dof_text()}): {self._tally()}"
         lines = [
-            f"{self.verdict} (dof {self.dof}): constraint order {self.constraint_order}/"
-            f"{self.nominal_constraint_order}, global order {self.global_order}/6"
+            f"{self.verdict} ({self._dof_text()}): constraint order {self.constraint_order}/"
+            f"{self.nominal_constraint_order}, global order {self.global_order}/{self.nominal_global_order}"
         ]
         if self.gained_dof:
             lines.append(f"  the platform gains {self.gained_dof} DOF (constraints lost)")
-            extra = 6 - int(self.gained_dof) - int(self.global_order)
+            extra = self.nominal_global_order - int(self.gained_dof) - int(self.global_order)
             if extra > 0 and self.actuation_assessed:
                 # the label follows Zlatanov-Bonev-Gosselin (actuation needs a nominal W^c); say what
                 # the actuation wrenches lose on top of the constraint singularity
@@ -381,6 +444,12 @@ class SingularityReport:
                 )
         if not self.actuation_assessed:
             lines.append("  no actuated joint: mobility analysis only, actuation not assessed")
+        elif len(self.actuated_joints) > self.dof:
+            lines.append(
+                f"  redundantly actuated: {len(self.actuated_joints)} actuated joints for {self.dof} "
+                f"freedom(s); degree of redundancy {self.redundancy} here "
+                f"({len(self.actuated_joints) - self.dof} at a regular pose)"
+            )
         if self.lost_dof:
             lines.append(
                 f"  the platform has {self.lost_dof} DOF fewer than nominal"
@@ -393,7 +462,8 @@ class SingularityReport:
             )
         if self.uncontrolled_dof and self.actuation_assessed:
             lines.append(f"  uncontrolled with actuators locked: {self.uncontrolled_dof} twist(s)")
-            lines.extend(f"    {S.Screw(t)}" for t in self.uncontrolled_twists)
+            if not self.analysis.free:  # a point task's list holds its free rotations too
+                lines.extend(f"    {S.Screw(t)}" for t in self.uncontrolled_twists)
         for item in self.serial:
             lines.append(f"  serial singularity of the limb of {item.actuated_joint!r}")
         measures = ", ".join(f"{k} {v:.3g}" for k, v in self.closeness.items())

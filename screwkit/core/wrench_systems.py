@@ -161,6 +161,10 @@ class WrenchAnalysis:
         :attr:`actuation_rows`: ``B_jj = branch_j ∘ $_j`` (:mod:`screwkit.core.jacobians`). Equal to
         the actuation wrench except in a compound leg analysed as a whole (:func:`analyze_table`);
         where no leg is, the very array :attr:`actuation_rows`.
+    free : int
+        Platform freedoms no actuator is meant to drive (:attr:`JointTable.free
+        <screwkit.graphs.jointtable.JointTable.free>`: 3 for a point task); the global system's
+        nominal order is ``6 − free``.
     closeness_factors : dict of str to numpy.ndarray, shape (..., 21)
         ``"constraint"``, ``"actuation"``: triangular factors (:func:`screwkit.core._closing.triangular`,
         :func:`~screwkit.core._closing.packed`) with the singular values of the matrices the closeness
@@ -183,19 +187,21 @@ class WrenchAnalysis:
     branch_rows: Array = field(repr=False)
     frames: dict[str, Frame] = field(repr=False)
     closeness_factors: dict[str, Array] = field(repr=False)
+    free: int = 0
 
     @functools.cached_property
     def closeness(self) -> dict[str, Any]:
         """The closeness measures (:mod:`screwkit.core.singularity`), computed on first use: the
         labels need only orders and serial flags, so a batch pays for the two 6×6 SVDs per pose
         only when its closeness is asked. ``constraint`` is ``σ_(6 − dof) / σ_1`` and ``actuation``
-        ``σ_6 / σ_1`` of :attr:`closeness_factors` (six rows with the singular values of the stacked
-        legs' constraint wrenches, and of those stacked with the actuation wrenches apart from
-        their legs; :func:`analyze_table`), ``serial`` the smallest transmission."""
+        ``σ_(6 − free) / σ_1`` (:attr:`free`) of :attr:`closeness_factors` (six rows with the
+        singular values of the stacked legs' constraint wrenches, and of those stacked with the
+        actuation wrenches apart from their legs; :func:`analyze_table`), ``serial`` the smallest
+        transmission."""
         factors, transmissions = self.closeness_factors, self.transmissions
         values = {
             "constraint": _singular_ratios(factors["constraint"], 6 - self.dof),
-            "actuation": _singular_ratios(factors["actuation"], 6),
+            "actuation": _singular_ratios(factors["actuation"], 6 - self.free),
             "serial": np.min(transmissions, axis=-1) if transmissions.shape[-1] else np.ones(self.shape),
         }
         return {k: scalar(v) for k, v in values.items()}

@@ -210,6 +210,7 @@ def wrench_analysis(
         table.dof,
         None if table.anchor is None else table.anchor[None],
         table.mobility,
+        table.free,
     )
     stated = dof if dof is not None else table.dof
     analysis = analyze_table(one, dof=stated, rtol=rtol, length_scale=length_scale)[0]

@@ -36,7 +36,14 @@ superbracket_analysis, each import only earlier ones:
   :mod:`~screwkit.gca.conditions` (symbolic: they import sympy), and the wrench diagrams of
   mechanisms, :mod:`~screwkit.gca.diagram` and the modules named there, up to
   :mod:`~screwkit.gca.superbracket_analysis` (they import the wrench core). This ``__init__``
-  imports neither group.
+  imports neither group; it loads on first use the names of theirs users reach for: the condition
+  interpreter :func:`~screwkit.gca.conditions.condition` (a bracket factor → its statement, vector
+  form and proved constant, a :class:`~screwkit.gca.conditions.Condition`), the diagram of any
+  mechanism with its generic-configuration sampler
+  (:func:`~screwkit.gca.diagram_placement.graph_diagram`,
+  :func:`~screwkit.gca.diagram_placement.graph_sampler`) and what happens where a factor vanishes
+  (:func:`~screwkit.gca.factor_kinds.vanishing_kind`). The diagram's points at any pose are
+  ``screwkit.diagram_points`` (here the name is its module's, :mod:`~screwkit.gca.diagram_points`).
 
 Labels are short strings: a letter followed by letters or digits (``"a"``, ``"r1"``). A bracket may
 be written ``"gikj"`` (single letters) or ``"r1 r2 r3 r4"`` (separated by spaces).
@@ -75,7 +82,12 @@ Examples
 BracketPolynomial('[gikj][abdf] - [abdh][cgfj]')
 >>> Bracket("bacd") == -Bracket("abcd")
 True
+>>> import screwkit.gca as gca
+>>> print(gca.condition(Bracket("gikj"), finite="g", infinite="ijk").statement)
+i, k and j are collinear in the plane at infinity (the directions i, k, j are parallel to one plane)
 """
+
+from typing import Any
 
 from .brackets import Bracket, BracketMonomial, BracketPolynomial
 from .dotted import DottedMonomial, DottedSum
@@ -95,10 +107,33 @@ from .simplify import (
 )
 from .zeros import drop_zero_subsums, structural_zeros
 
+#: Names of the symbolic and the diagram modules, loaded on first use (``gca.condition``).
+_LAZY = {
+    "Condition": "conditions",
+    "condition": "conditions",
+    "graph_diagram": "diagram_placement",
+    "graph_sampler": "diagram_placement",
+    "vanishing_kind": "factor_kinds",
+}
+
+
+def __getattr__(name: str) -> Any:
+    if name not in _LAZY:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    from importlib import import_module  # the module caches itself in sys.modules
+
+    return getattr(import_module(f".{_LAZY[name]}", __name__), name)
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_LAZY))
+
+
 __all__ = [
     "Bracket",
     "BracketMonomial",
     "BracketPolynomial",
+    "Condition",
     "DottedMonomial",
     "DottedSum",
     "FactoredForm",
@@ -108,10 +143,14 @@ __all__ = [
     "best_ordering",
     "check_proportional",
     "collect_factors",
+    "condition",
     "drop_zero_subsums",
+    "graph_diagram",
+    "graph_sampler",
     "simplify_superbracket",
     "structural_zeros",
     "superbracket",
     "superbracket_expansion",
     "superbracket_grouped",
+    "vanishing_kind",
 ]

@@ -39,6 +39,7 @@ from fractions import Fraction
 import sympy
 
 from .brackets import BracketMonomial, BracketPolynomial
+from .notation import join_labels
 from .vector_forms import PointKinds, VectorCross, VectorDiff, VectorDot
 
 __all__ = ["CombinedBracket", "CombinedPoint", "combined_bracket", "combined_bracket_form"]
@@ -244,7 +245,7 @@ def _statement(
         (p, pn), (q, qn), (r, rn) = finite
         (u, un), = infinite
         form = VectorDot(VectorCross(VectorDiff(q, p), VectorDiff(r, p)), u)
-        return form, f"{direction(un)} is parallel to plane {pn}{qn}{rn}"
+        return form, f"{direction(un)} is parallel to plane {join_labels([pn, qn, rn])}"
     return None
 
 

@@ -73,6 +73,7 @@ __all__ = [
     "Condition",
     "condition",
     "conditions",
+    "given_couples",
     "label",
     "latex",
 ]
@@ -375,6 +376,74 @@ def conditions(
         kind, evidence = ("", "") if roles is None else label(c.vectors, lines or (), roles)
         found.append(replace(c, multiplicity=multiplicity, label=kind, evidence=evidence))
     return tuple(found)
+
+
+def given_couples(
+    found: Sequence[Condition], lines: Sequence[Sequence[str]], roles: Sequence[str], infinite: Any
+) -> tuple[Condition, ...]:
+    """The actuation condition given the constraints, in words, where the constraints are two couples
+    normal to one direction: the constraint lines are two lines at infinity ``ij``, ``kj`` through a
+    common point j (the Schönflies-motion generators' couples, normal to the rotation axis j).
+
+    Where the constraint factors do not vanish the two couples span every couple normal to j, so the
+    six lines are dependent exactly when the actuation lines and those couples are: when a twist
+    reciprocal to them, i.e. a translation with a rotation about an axis parallel to j (ω ∥ j), does
+    no work on any actuation line (paper 002 §5.3; the factor is then proportional to the 4×4
+    determinant of the actuation lines on the translations and the rotation about j, checked in
+    tests/gca/test_statements.py). A single actuation factor (multiplicity 1) that only had the
+    generic statement gets this one; every other condition is returned unchanged.
+
+    Parameters
+    ----------
+    found : sequence of Condition
+        The labelled conditions of one superbracket (:func:`conditions`).
+    lines : sequence of pairs of labels
+    roles : sequence of str
+        ``"constraint"`` or ``"actuation"`` per line.
+    infinite : str or sequence of str
+        The labels of the points at infinity.
+
+    Returns
+    -------
+    tuple of Condition
+
+    Examples
+    --------
+    >>> from screwkit.gca import BracketPolynomial, collect_factors
+    >>> ragnar = [(1, "abef", "cdhj"), (-1, "abhf", "cdej"), (1, "abed", "fghj"), (-1, "abeh", "fgdj")]
+    >>> text = " ".join(f"{'+-'[s < 0]} [gikj][{p}][{q}]" for s, p, q in ragnar)  # the catalog Ragnar's
+    >>> f = collect_factors(BracketPolynomial.parse(text))
+    >>> lines = ["ab", "cd", "ef", "gh", "ij", "kj"]
+    >>> roles = ["actuation"] * 4 + ["constraint"] * 2
+    >>> found = conditions(f, finite="aceg", infinite="bdfhijk", lines=lines, roles=roles)
+    >>> print(given_couples(found, lines, roles, "bdfhijk")[1].statement)  # doctest: +NORMALIZE_WHITESPACE
+    a translation combined with a rotation about an axis parallel to j does no work on any of the
+    actuation lines ab, cd, ef, gh (with the couples normal to j, spanned by ij, kj, they are
+    linearly dependent)
+    """
+    pairs = _line_pairs(lines) or []
+    couples = [line for line, role in zip(pairs, roles, strict=True) if role == "constraint"]
+    at_infinity = set(infinite)
+    common = set.intersection(*(set(line) for line in couples)) if couples else set()
+    actuation = [c for c in found if c.label == "actuation"]
+    if (
+        len(couples) != 2
+        or not all(set(line) <= at_infinity for line in couples)
+        or len(common) != 1
+        or len(actuation) != 1
+        or actuation[0].multiplicity != 1
+        or not actuation[0].statement.startswith("the bracket expression")
+        or any(c.label != "constraint" for c in found if c is not actuation[0])
+    ):
+        return tuple(found)
+    (j,) = common
+    driven = [join_labels(line) for line, role in zip(pairs, roles, strict=True) if role == "actuation"]
+    statement = (
+        f"a translation combined with a rotation about an axis parallel to {j} does no work on any of "
+        f"the actuation lines {', '.join(driven)} (with the couples normal to {j}, spanned by "
+        f"{', '.join(join_labels(line) for line in couples)}, they are linearly dependent)"
+    )
+    return tuple(replace(c, statement=statement) if c is actuation[0] else c for c in found)
 
 
 def latex(

@@ -28,6 +28,7 @@ from .diagram import INCIDENCE_RTOL, DiagramPoint, WrenchDiagram, require_instan
 from .diagram_lines import lines_at
 from .diagram_points import batch_diagram_points, diagram_points
 from .diagram_recipes import wrench_diagram
+from .redundant_conditions import MORE_LINES
 
 __all__ = [
     "REFERENCE_TRIES",
@@ -115,7 +116,9 @@ def generic_reference(
     Parameters
     ----------
     analyses : sequence of WrenchAnalysis
-        Single-pose analyses of the mechanism at generic configurations.
+        Single-pose analyses of the mechanism at generic configurations. A diagram whose only
+        failure is more than six lines (a redundantly actuated mechanism's) holds: it is analysed by
+        its six-line subsets (:mod:`screwkit.gca.redundant_conditions`).
 
     Returns
     -------
@@ -143,7 +146,9 @@ def generic_reference(
         except ScrewkitError as err:  # e.g. a joint whose centre is not defined
             first = first or (str(err),)
             continue
-        if not candidate.degenerate:  # its directions orient the points at infinity from now on
+        more = len(candidate.lines) > 6  # redundant actuation: its six-line subsets
+        if not [r for r in candidate.degenerate if not (more and MORE_LINES in r)]:
+            # its directions orient the points at infinity from now on
             points = tuple(
                 replace(p, orientation=tuple(float(x) for x in candidate.coordinates[p.label][:3]))
                 if p.at_infinity

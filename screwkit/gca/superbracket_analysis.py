@@ -22,6 +22,7 @@ import numpy as np
 from ..algebra import backend as B
 from ..exceptions import ScrewkitError, ScrewkitTypeError, ScrewkitValueError
 from .diagram import INCIDENCE_RTOL, WrenchDiagram, require_instance
+from .redundant_conditions import RedundantSuperbracket, redundant_superbracket
 from .simplify import Simplification, simplify_superbracket
 
 if TYPE_CHECKING:  # conditions are sympy expressions: that module (and sympy) loads on first use
@@ -181,8 +182,11 @@ def superbracket_analysis(
     *,
     n_samples: int = 6,
     rng: int = 0,
-) -> SuperbracketAnalysis:
+) -> SuperbracketAnalysis | RedundantSuperbracket:
     """Expand, simplify and factor a diagram's superbracket; interpret and label each factor.
+
+    A diagram of more than six lines (a redundantly actuated mechanism's) is analysed by its six-line
+    subsets (:func:`screwkit.gca.redundant_conditions.redundant_superbracket`).
 
     Two orderings are simplified (gca.md §6): the diagram's own (lines grouped by leg, shared
     points last, as in paper 002 Fig. 4c) and the one with the fewest surviving monomials over all
@@ -206,7 +210,7 @@ def superbracket_analysis(
 
     Returns
     -------
-    SuperbracketAnalysis
+    SuperbracketAnalysis or RedundantSuperbracket
 
     Raises
     ------
@@ -226,6 +230,8 @@ def superbracket_analysis(
     require_instance(diagram, WrenchDiagram, "diagram")
     if not callable(sampler):
         raise ScrewkitTypeError(f"Expected `sampler` to be callable, got {type(sampler).__name__}.")
+    if len(diagram.lines) > 6:  # redundant actuation: the six-line subsets
+        return redundant_superbracket(diagram, sampler, superbracket_analysis, n_samples=n_samples, rng=rng)
     generator = np.random.default_rng(rng)
     try:  # the factored form is the design's: derived at generic configurations, whatever the pose
         drawn = [_centred(sampler(generator)) for _ in range(2 * n_samples)]
@@ -261,7 +267,7 @@ def superbracket_analysis(
         for search in (False, True)
     ]
     simplification = min(candidates, key=lambda c: (len(c.factored.rest.terms), len(c.survivors)))
-    from .conditions import conditions
+    from .conditions import conditions, given_couples
 
     found = conditions(
         simplification.factored,
@@ -270,6 +276,8 @@ def superbracket_analysis(
         lines=diagram.lines,
         roles=diagram.roles,
     )
+    found = _checked_kinds(found, in_lengths[-1], diagram, collinear)
+    found = given_couples(found, diagram.lines, diagram.roles, diagram.infinite)
     labels = tuple(c.label for c in found)
     at_pose = _centred(diagram.coordinates)  # the points that exist at the pose
     missing = [sorted(set(c.vectors) - set(at_pose)) for c in found]
@@ -296,6 +304,27 @@ def superbracket_analysis(
     return SuperbracketAnalysis(
         diagram, simplification, found, labels, values, collinear, vanishing, constant, undefined
     )
+
+
+def _checked_kinds(
+    found: tuple[Condition, ...],
+    sample: Mapping[str, Array],
+    diagram: WrenchDiagram,
+    collinear: tuple[str, ...],
+) -> tuple[Condition, ...]:
+    """Each condition labelled by what happens at its zeros
+    (:func:`~screwkit.gca.factor_kinds.vanishing_kind`: the constraint lines lose rank, or keep it
+    while the actuation wrenches become dependent), the roles' label kept where that does not decide;
+    the evidence says both."""
+    from dataclasses import replace
+
+    from .factor_kinds import vanishing_kind
+
+    checked = []
+    for c in found:
+        kind, evidence = vanishing_kind(c, sample, diagram.lines, diagram.roles, collinear=collinear)
+        checked.append(replace(c, label=kind or c.label, evidence=f"{c.evidence}; {evidence}"))
+    return tuple(checked)
 
 
 def _centred(points: Mapping[str, Array]) -> dict[str, Array]:

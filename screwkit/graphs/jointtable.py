@@ -16,7 +16,7 @@ Examples
 from __future__ import annotations
 
 import functools
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -122,6 +122,10 @@ class JointTable:
         The mechanism's mobility at generic configurations when it is known (a catalog family's,
         checked by the catalog's facts; graph attribute ``mobility``): the ``dof`` check
         (:func:`screwkit.core.mobility.settled_dof`) takes it instead of computing it. None: computed.
+    free : int, default 0
+        Freedoms of the platform that no actuator is meant to drive: 3 for a point task, whose
+        platform is a task link on a spherical joint at the point (its rotations stay free;
+        :mod:`screwkit.robots.point_task`). The global wrench system's nominal order is ``6 − free``.
 
     Examples
     --------
@@ -139,8 +143,11 @@ class JointTable:
     dof: int | None = None
     anchor: Array | None = None
     mobility: int | None = None
+    free: int = 0
 
     def __post_init__(self) -> None:
+        if not (isinstance(self.free, int | np.integer) and 0 <= self.free <= 6):
+            raise ScrewkitValueError(f"Expected `free` to be an integer in 0..6, got {self.free!r}.")
         check_link_name(self.base, "the table's base link")
         check_link_name(self.platform, "the table's platform link")
         if not (isinstance(self.specs, tuple) and all(isinstance(spec, JointSpec) for spec in self.specs)):
@@ -277,7 +284,7 @@ class JointTable:
         check_twist_graph(graph, joint_key=joint_key)
         joints = list(graph.edges(keys=True, data=joint_key))  # any order: the core sorts by name
         rows = [(u, v, key, joint.type, joint.screws, joint.actuated) for u, v, key, joint in joints]
-        return cls.from_rows(
+        table = cls.from_rows(
             graph.graph["base"],
             graph.graph["platform"],
             rows,
@@ -285,6 +292,8 @@ class JointTable:
             anchor=graph_anchor(graph, joint_key=joint_key),
             mobility=graph.graph.get("mobility"),
         )
+        free = graph.graph.get("free", 0)  # a point task's (screwkit.robots.point_task)
+        return replace(table, free=free) if free else table
 
     def __repr__(self) -> str:
         """One line: base, platform, the joints by type and the batch shape.
@@ -316,7 +325,9 @@ class JointTable:
     def __getitem__(self, index: Any) -> JointTable:
         anchor = None if self.anchor is None else self.anchor[index]
         screws = self.screws[index]
-        return JointTable(self.base, self.platform, self.specs, screws, self.dof, anchor, self.mobility)
+        return JointTable(
+            self.base, self.platform, self.specs, screws, self.dof, anchor, self.mobility, self.free
+        )
 
     def joint_screws(self, name: str) -> Array:
         """The screws of one joint over the batch, ``(..., dof_j, 6)``.
@@ -386,6 +397,8 @@ class JointTable:
         graph = twist_graph(one.base, one.platform, joints, dof=one.dof)
         if one.mobility is not None:
             graph.graph["mobility"] = one.mobility
+        if one.free:
+            graph.graph["free"] = one.free
         if one.anchor is not None:
             graph.graph["anchor"] = one.anchor.tolist()
         return graph

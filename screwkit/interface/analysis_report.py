@@ -28,6 +28,7 @@ import numpy as np
 
 from ..algebra import backend as B
 from ..algebra.motion_type import motion_type
+from ..core.finite_mobility import MobilityReading
 from ..core.jacobian_matrices import Jacobians
 from ..core.mode_transitions import ModesAtPose
 from ..core.singularity import SingularityReport
@@ -39,6 +40,7 @@ from .screw_descriptions import describe_twist, describe_wrench
 if TYPE_CHECKING:  # the diagram and GCA stack loads when a report is made, not on `import screwkit`
     from ..gca.diagram import WrenchDiagram
     from ..gca.grassmann import GrassmannClass
+    from ..gca.redundant_conditions import RedundantSuperbracket
     from ..gca.superbracket_analysis import SuperbracketAnalysis
 
 __all__ = ["AnalysisReport"]
@@ -64,7 +66,8 @@ class AnalysisReport:
     analysis : WrenchAnalysis
     verdict : SingularityReport
     diagram : WrenchDiagram
-    superbracket : SuperbracketAnalysis or None
+    superbracket : SuperbracketAnalysis, RedundantSuperbracket or None
+        (a redundantly actuated mechanism's: the superbrackets of its six-line subsets)
         None when not computed, when the mechanism has no diagram, or when its diagram does not
         exist at the pose (e.g. a limb at a serial singularity); ``superbracket_note`` says which.
     superbracket_note : str
@@ -84,6 +87,10 @@ class AnalysisReport:
         ``analysis.length_scale``).
     angle_names : tuple of str
         The pose coordinates that are angles (shown in degrees).
+    mobility : MobilityReading or None
+        The instantaneous and finite mobility at the configuration
+        (:func:`screwkit.core.finite_mobility.mobility_reading`; a graph's report), shown when they
+        differ or the finite one is undecided; None when not read.
     modes_at_pose : ModesAtPose or None
         The operation modes through the pose (:func:`screwkit.core.mode_transitions.modes_at`; None
         where not tested): where several meet, the report says so and gives the pose's verdict in each.
@@ -99,13 +106,14 @@ class AnalysisReport:
     analysis: WrenchAnalysis
     verdict: SingularityReport
     diagram: WrenchDiagram
-    superbracket: SuperbracketAnalysis | None
+    superbracket: SuperbracketAnalysis | RedundantSuperbracket | None
     superbracket_note: str
     jacobians: Jacobians | None = None
     jacobians_note: str = _SNAPSHOT_JACOBIANS
     transmission: dict[str, Any] | None = None
     given_length_scale: float | None = None
     angle_names: tuple[str, ...] = ()
+    mobility: MobilityReading | None = None
     modes_at_pose: ModesAtPose | None = None
 
     def graph_summary(self) -> dict[str, Any]:
@@ -159,16 +167,17 @@ class AnalysisReport:
         scale = self.analysis.length_scale
         platform = self.analysis.platform_twists
         legs = sorted(self.analysis.compound_legs, key=lambda leg: leg.name)  # each view built once
+        unit = self.length_unit  # a helical freedom's pitch names it
         return {
             "platform_twist_order": platform.order,
             "platform_twists": {
-                "motion_type": motion_type(platform),
+                "motion_type": motion_type(platform, length_unit=unit),
                 "basis": [
                     describe_twist(t, length_scale=scale)
                     for t in platform.readable_basis(near=self.analysis.reference_point)
                 ],
             },
-            "leg_motion_types": {leg.name: motion_type(leg.twist_system) for leg in legs},
+            "leg_motion_types": {leg.name: motion_type(leg.twist_system, length_unit=unit) for leg in legs},
             "constraint": [
                 {"leg": leg.name, **describe_wrench(w, length_scale=scale)}
                 for leg in legs
@@ -352,6 +361,8 @@ class AnalysisReport:
             ),
             *(f"  {leg}: {kind}" for leg, kind in wrenches["leg_motion_types"].items()),
         ]
+        if self.mobility is not None and (self.mobility.differs or self.mobility.finite is None):
+            out += ["", str(self.mobility)]
         out += ["", f"wrench systems (platform twist system of order {wrenches['platform_twist_order']})"]
         for item in wrenches["constraint"]:
             out.append(f"  constraint ({item['leg']}): {_line_text(item, unit)}")
@@ -363,11 +374,16 @@ class AnalysisReport:
         if self.superbracket is None:
             out.append(f"  {self.superbracket_note}")
         else:
-            simplification = self.superbracket.simplification
-            out.append(f"  {self.diagram.line_text()} = {simplification.factored}")
-            out.append(
-                f"  monomials: 24 in the expansion, {len(simplification.survivors)} not structurally zero"
-            )
+            from ..gca.redundant_conditions import RedundantSuperbracket as Redundant
+
+            if isinstance(self.superbracket, Redundant):  # redundant actuation: the six-line subsets
+                out.append(f"  {self.superbracket.statement()}")
+            else:
+                simplification = self.superbracket.simplification
+                out.append(f"  {self.diagram.line_text()} = {simplification.factored}")
+                out.append(
+                    f"  monomials: 24 in the expansion, {len(simplification.survivors)} not structurally zero"
+                )
             out.append(f"  {self.superbracket_note}")
             result = self.superbracket
             if result.representation:
@@ -454,7 +470,13 @@ class AnalysisReport:
                 for c, label, constant in zip(result.conditions, result.labels, result.constant, strict=True)
                 if not constant
             )
-            superbracket = f"{self.diagram.line_text()} = {self.superbracket.simplification.factored}"
+            from ..gca.redundant_conditions import RedundantSuperbracket as Redundant
+
+            superbracket = (
+                result.statement()
+                if isinstance(result, Redundant)
+                else f"{self.diagram.line_text()} = {result.simplification.factored}"
+            )
             superbracket += f"; {found}" if found else ""
         return "\n".join(
             [

@@ -41,6 +41,7 @@ import numpy as np
 
 from ..algebra import backend as B
 from ..algebra.checks import checked_length_scale, checked_rtol
+from ..core.finite_mobility import mobility_reading
 from ..core.jacobian_matrices import Jacobians
 from ..core.jacobians import jacobians_from_wrenches
 from ..core.mode_transitions import ModesAtPose, modes_at
@@ -232,6 +233,7 @@ def _graph_report(
     )
     return dataclasses.replace(
         report, given_length_scale=length_scale, transmission=transmission, pose_names=coordinates,
+        mobility=mobility_reading(graph, rtol=rtol, length_scale=length_scale),
         modes_at_pose=_modes_at_pose(graph, rtol, length_scale),
     )
 

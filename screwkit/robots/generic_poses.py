@@ -64,7 +64,9 @@ def _concatenated(tables: Sequence[JointTable]) -> JointTable:
     first = tables[0]
     anchor = None if first.anchor is None else np.concatenate([t.anchor for t in tables])
     screws = np.concatenate([t.screws for t in tables])
-    return JointTable(first.base, first.platform, first.specs, screws, first.dof, anchor, first.mobility)
+    return JointTable(
+        first.base, first.platform, first.specs, screws, first.dof, anchor, first.mobility, first.free
+    )
 
 
 class _PoseAnalyses(Sequence[WrenchAnalysis]):

@@ -48,6 +48,7 @@ from ..exceptions import ScrewkitTypeError, ScrewkitValueError, UnreachablePoseE
 from ..graphs.jointtable import JointTable
 from ..graphs.twistgraph import check_twist_graph, graph_frame
 from .families import Family
+from .point_task import with_task_point
 
 __all__ = [
     "MAX_CACHED_POSES",
@@ -84,6 +85,9 @@ class GraphKinematics:
         Added to the rotation coordinates (a catalog robot's default angles; zeros for a graph).
     reference : JointTable
         The graph's joint table (names, types, actuation, dof).
+    point_task : bool
+        True when the coordinates are a point's alone (``rotations=False``): the analysis measures the
+        point (:func:`screwkit.robots.point_task.with_task_point`).
     """
 
     graph: nx.MultiDiGraph = field(repr=False)
@@ -92,6 +96,7 @@ class GraphKinematics:
     complete: bool
     angle_offsets: Array
     reference: JointTable = field(repr=False)
+    point_task: bool = False
     _cache: dict[bytes, tuple[Array, dict[str, Array]]] = field(default_factory=dict, repr=False)
 
     @functools.cached_property
@@ -236,7 +241,10 @@ class GraphKinematics:
 
         The joint rates closing the loops with that coordinate's rate 1 and the others' (and, for a
         complete task, the left-out directions') 0, minimum-norm (internal motions at rest), carried
-        to the link along its tree path.
+        to the link along its tree path. When the task fixes the link's whole pose, its rates say
+        the twist alone (:meth:`~screwkit.core.kinematic_tasks.PoseTask.twist_rates`, inverted): the
+        same twists wherever the loops let the link move so, and the coordinates' own directions at
+        a pose where they do not.
 
         Parameters
         ----------
@@ -254,18 +262,26 @@ class GraphKinematics:
         array([0., 0., 1.])
         """
         model, task = self.model, self.task
+        count = len(self.coordinates.names)
+        unit = np.where(task.translation[:count], 1.0 / model.length, 1.0)
+        if task.fixes_pose:  # the task's rates say the link's twist: (B, 6, 6) inverted, no loop needed
+            twists = np.swapaxes(np.linalg.inv(task.twist_rates(state))[..., :count] * unit, -1, -2)
+            return self._unscaled_twists(twists)
         loops, rows = model.loop_jacobian(state), task.jacobian(state)
         jacobian = np.concatenate([loops, rows], axis=1)
-        count = len(self.coordinates.names)
         rates = np.zeros((jacobian.shape[1], count))
-        unit = np.where(task.translation[:count], 1.0 / model.length, 1.0)
         rates[loops.shape[1] + np.arange(count), np.arange(count)] = unit
         # the minimum-norm joint rates by the pseudo-inverse (singular values below 1e-12 of the
         # largest dropped: the dependent loop equations of an overconstrained mechanism)
         left, sigma, right = np.linalg.svd(jacobian, full_matrices=False)
         inverse = np.where(sigma > 1e-12 * sigma[:, :1], 1.0 / np.where(sigma > 0, sigma, 1.0), 0.0)
         joint_rates = np.swapaxes(right, -1, -2) @ (inverse[..., None] * (np.swapaxes(left, -1, -2) @ rates))
-        twists = np.swapaxes(model.link_jacobian(state, self.coordinates.link) @ joint_rates, -1, -2)
+        return self._unscaled_twists(
+            np.swapaxes(model.link_jacobian(state, self.coordinates.link) @ joint_rates, -1, -2)
+        )
+
+    def _unscaled_twists(self, twists: Array) -> Array:
+        model = self.model
         omega = twists[..., :3]  # (B, n, 3); the velocity at the scaled origin back in graph lengths
         return np.concatenate([omega, twists[..., 3:] * model.length + np.cross(model.point, omega)], axis=-1)
 
@@ -314,8 +330,14 @@ def _inverse_kinematics(kinematics: GraphKinematics, poses: Any) -> GraphConfigu
 
 
 def _joints(configuration: GraphConfiguration) -> JointTable:
-    kinematics = configuration.kinematics
-    return kinematics.model.joint_table(configuration.state, kinematics.reference, configuration.shape)
+    kinematics, shape = configuration.kinematics, configuration.shape
+    table = kinematics.model.joint_table(configuration.state, kinematics.reference, shape)
+    if not kinematics.point_task:
+        return table
+    link, point = kinematics.coordinates.link, kinematics.coordinates.point
+    moved = kinematics.model.displacement(configuration.state, link)
+    points = (moved[:, :3, :3] @ point + moved[:, :3, 3]).reshape(*shape, 3)
+    return with_task_point(table, link, points, len(kinematics.coordinates.names))
 
 
 def _twist_basis(configuration: GraphConfiguration) -> Array:
@@ -455,7 +477,7 @@ def graph_kinematics(
     reference = JointTable.from_graph(graph)
     if rotations and reference.dof is None:  # the platform's freedoms: as many as its coordinates
         reference = dataclasses.replace(reference, dof=len(coordinates.names))
-    return GraphKinematics(graph, model, coordinates, complete, offsets, reference)
+    return GraphKinematics(graph, model, coordinates, complete, offsets, reference, not rotations)
 
 
 _KINEMATICS: dict[int, tuple[Any, GraphKinematics]] = {}

@@ -8,7 +8,8 @@ reference configuration, so each pose stays in the working and assembly mode of 
 
 Its coordinates, inverse and forward kinematics are those of
 :mod:`screwkit.robots.graph_kinematics`; ``task=(link, point)`` makes the coordinates those of a point
-of a link (the five-bar's end point), whose orientation stays free.
+of a link (the five-bar's end point), whose orientation stays free; verdicts and Jacobians then
+refer to the point's freedoms (:mod:`screwkit.robots.point_task`).
 
 Examples
 --------
@@ -38,6 +39,8 @@ import networkx as nx
 import numpy as np
 
 from ..algebra import backend as B
+from ..core.mobility import resolve_dof
+from ..core.redundancy import generic_driven_freedoms
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
 from ..graphs.twistgraph import check_twist_graph
 from .graph_kinematics import GraphKinematics, graph_family, graph_kinematics
@@ -138,6 +141,9 @@ def mechanism(
         the workspace is malformed.
     ScrewkitTypeError
         If ``graph_or_file`` is none of the above.
+    TwistGraphError
+        If more actuated joints than the platform's freedoms leave it uncontrolled at generic
+        configurations (:func:`screwkit.core.mobility.resolve_dof`).
 
     Examples
     --------
@@ -188,6 +194,9 @@ def mechanism(
             f"freedoms at the reference configuration, got {len(names)} ({', '.join(names)}): the reference "
             "is singular, or dof is not the mechanism's."
         )
+    if task is None and len(kinematics.actuated) > len(names):  # redundant: the actuators must drive it
+        driven = generic_driven_freedoms(graph, len(names))
+        resolve_dof(None, len(names), kinematics.actuated, driven=driven)
     reference = kinematics.coordinates.reference_values()
     box = (
         _default_workspace(kinematics, reference)

@@ -58,6 +58,7 @@ from .generic_poses import (
     _samples,
     generic_samples,
 )
+from .pose_batch import checked_poses, flat_index, joint_table_of
 from .reach import failures_by_index
 from .transmission import Transmission, wrench_transmission
 
@@ -67,16 +68,6 @@ Array = np.ndarray
 
 #: Poses taken through the inverse kinematics, joint table and analysis core at once.
 CHUNK = 512
-def _checked_poses(mechanism: Any, poses: Any) -> Array:
-    names = mechanism.pose_names
-    if poses is None:
-        return np.asarray(mechanism.default_pose, dtype=float)[None]
-    array = B.as_array(poses, "poses", (len(names),), symbolic=False).astype(float)
-    if array.ndim == 1:
-        array = array[None]
-    if array.size == 0:  # an empty batch: the analysis core reshapes over a batch of at least one pose
-        raise ScrewkitValueError(f"Expected `poses` to hold at least one pose, got shape {array.shape}.")
-    return array
 
 
 @dataclass(frozen=True, eq=False)
@@ -145,10 +136,10 @@ class PosedMechanism:
         """
         if failures:  # the unreached poses' NaN coordinates are part of the answer
             missing = np.isnan(np.asarray(poses, dtype=float))
-            array = _checked_poses(mechanism, np.where(missing, 0.0, poses))
+            array = checked_poses(mechanism, np.where(missing, 0.0, poses))
             array[missing.reshape(array.shape)] = np.nan
         else:
-            array = _checked_poses(mechanism, poses)
+            array = checked_poses(mechanism, poses)
         array.flags.writeable = False
         tolerance = B.DEFAULT_RTOL if rtol is None else checked_rtol(rtol)
         length = checked_length_scale(length_scale, allow_none=True)
@@ -316,7 +307,7 @@ class PosedMechanism:
             # the report's table, asked only by a per-pose view, is this object's (held weakly: a
             # reference cycle would keep every chunk of a map alive until the cyclic GC runs)
             owner = weakref.ref(self)
-            source = functools.partial(_joint_table, owner, self.mechanism, self.poses, self.options)
+            source = functools.partial(joint_table_of, owner, self.mechanism, self.poses, self.options)
             return classify_chunks(pieces, source, self.shape, rtol=self.rtol, length_scale=self.length_scale)
         except ScrewkitError:
             _ = self.configuration  # raises the whole batch's message (the failing pose's index)
@@ -331,6 +322,13 @@ class PosedMechanism:
     def codes(self) -> Array:
         """Per pose: bit 1 constraint, 2 actuation, 4 serial (:attr:`SingularityReport.codes`)."""
         return self.singularities.codes
+
+    @property
+    def redundancy(self) -> Any:
+        """The degree of actuation redundancy per pose, the actuated joints minus the freedoms they drive
+        (:attr:`SingularityReport.redundancy <screwkit.core.verdicts.SingularityReport.redundancy>`; an int
+        for one pose)."""
+        return self.singularities.redundancy
 
     @property
     def closeness(self) -> dict[str, Array]:
@@ -426,28 +424,9 @@ class PosedMechanism:
             raise ScrewkitIndexError(
                 f"Expected a batch to index, got one pose (shape ()) at {self.poses.tolist()}."
             )
-        parts = index if isinstance(index, tuple) else (index,)
-        if not all(isinstance(i, int | np.integer) and not isinstance(i, bool) for i in parts):
-            raise ScrewkitValueError(  # numpy's IndexError for a string is not an index out of range
-                f"Expected `index` to pick one pose of the batch of shape {self.shape}, got {index!r}."
-            )
-        try:
-            flat = np.arange(int(np.prod(self.shape))).reshape(self.shape)[index]
-        except IndexError as err:  # out of range: an IndexError too, so a for loop stops there
-            raise ScrewkitIndexError(
-                f"Expected `index` to pick one pose of the batch of shape {self.shape}, got {index!r} "
-                "(out of range)."
-            ) from err
-        except (TypeError, ValueError) as err:
-            raise ScrewkitValueError(
-                f"Expected `index` to pick one pose of the batch of shape {self.shape}, got {index!r}."
-            ) from err
-        if np.ndim(flat) != 0:
-            raise ScrewkitValueError(
-                f"Expected `index` to pick one pose of the batch of shape {self.shape}, got {index!r}."
-            )
+        flat = flat_index(self.shape, index)
         one = PosedMechanism(
-            self.mechanism, self.poses[index], self.rtol, self.length_scale, self.options, (self, int(flat))
+            self.mechanism, self.poses[index], self.rtol, self.length_scale, self.options, (self, flat)
         )
         one.__dict__["joints"] = self.joints[index]  # the batch's row: no new inverse kinematics
         return one
@@ -571,11 +550,15 @@ class PosedMechanism:
         interpreted (:func:`screwkit.gca.superbracket_analysis.superbracket_analysis`; what
         :func:`screwkit.interface.report.analyze` shows; one pose only).
 
+        A redundantly actuated mechanism's diagram has more than six lines: its superbracket is
+        then the :class:`~screwkit.gca.redundant_conditions.RedundantSuperbracket` of its six-line
+        subsets.
+
         Raises
         ------
         ScrewkitValueError
-            On a batch (index it first), or if the mechanism has no wrench diagram of six lines at
-            generic poses (a diagram that degenerates only at this pose is still factored there).
+            On a batch (index it first), or if the mechanism has no wrench diagram of six lines (or
+            more) at generic poses (a diagram that degenerates only at this pose is still factored there).
         """
         from ..gca.superbracket_analysis import superbracket_analysis
 
@@ -588,13 +571,3 @@ class PosedMechanism:
             )
         return superbracket_analysis(diagram, sampler)
 
-
-def _joint_table(
-    posed: weakref.ref[PosedMechanism], mechanism: Any, poses: Array, options: dict[str, Any]
-) -> JointTable:
-    """The joint table of a posed batch: its own (cached) while it lives, else computed again at
-    its poses (inverse kinematics, then the family's joints)."""
-    alive = posed()
-    if alive is not None:
-        return alive.joints
-    return mechanism.family_protocol.joint_table(mechanism.configuration(poses, **options))

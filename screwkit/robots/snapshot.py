@@ -249,14 +249,15 @@ def _check_precision(entries: list[Any], source: str) -> None:
 
 
 def check_dof(graph: nx.MultiDiGraph, *, joint_key: str = "joint") -> None:
-    """Refuse a twist graph whose ``dof`` is below its number of actuators (at load time).
+    """Refuse a twist graph with actuated joints and ``dof = 0`` (at load time).
 
-    screwkit analyses non-redundantly actuated mechanisms whose nominal ``dof`` is the platform's
-    mobility at generic configurations (:func:`screwkit.core.mobility.resolve_dof`). A ``dof`` below the
-    number of actuated joints contradicts that whatever the mobility, and is refused here without
-    computing it; the rest (``dof`` equal to the mobility, actuators no more than it) is checked when
-    the graph is analysed (:func:`screwkit.core.mobility.settled_dof`). A graph without ``dof`` or without
-    actuated joints passes.
+    screwkit analyses mechanisms whose nominal ``dof`` is the platform's mobility at generic
+    configurations, with as many actuators as freedoms, fewer (under-actuated) or more (redundantly
+    actuated, :mod:`screwkit.core.redundancy`). An actuator on a mechanism stated to have no freedom
+    drives nothing, and is refused here without computing the mobility; the rest (``dof`` equal to
+    the mobility, the actuators driving it) is checked when the graph is analysed
+    (:func:`screwkit.core.mobility.settled_dof`). A graph without ``dof`` or without actuated joints
+    passes.
 
     Parameters
     ----------
@@ -268,17 +269,17 @@ def check_dof(graph: nx.MultiDiGraph, *, joint_key: str = "joint") -> None:
     Raises
     ------
     TwistGraphError
-        Naming both numbers.
+        Naming the actuated joints.
 
     Examples
     --------
     >>> from screwkit.graphs.twistgraph import twist_graph
     >>> from screwkit.graphs.joints import prismatic
     >>> P = [prismatic(f"P{i}", [1, i, 0], actuated=True) for i in range(2)]
-    >>> check_dof(twist_graph("B", "E", [("B", "L", P[0]), ("L", "E", P[1])], dof=1))
+    >>> check_dof(twist_graph("B", "E", [("B", "L", P[0]), ("L", "E", P[1])], dof=0))  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    screwkit.exceptions.TwistGraphError: Expected `dof` to be at least the number of actuated joints (2: ...
+    screwkit.exceptions.TwistGraphError: Expected no actuated joint with dof = 0 (nothing to drive), got 2:...
     """
     dof = graph.graph.get("dof")
     actuated = sorted(
@@ -286,11 +287,10 @@ def check_dof(graph: nx.MultiDiGraph, *, joint_key: str = "joint") -> None:
         for *_, data in graph.edges(data=True)
         if getattr(data[joint_key], "actuated", False)
     )
-    if is_dof(dof) and dof < len(actuated):
+    if is_dof(dof) and dof == 0 and actuated:
         raise TwistGraphError(
-            f"Expected `dof` to be at least the number of actuated joints ({len(actuated)}: "
-            f"{', '.join(actuated)}), got dof = {dof}; screwkit analyses non-redundantly actuated "
-            "mechanisms: fix `dof` (the mechanism's mobility) or the `actuated` flags."
+            f"Expected no actuated joint with dof = 0 (nothing to drive), got {len(actuated)}: "
+            f"{', '.join(actuated)}; fix `dof` (the mechanism's mobility) or the `actuated` flags."
         )
 
 

@@ -364,7 +364,13 @@ def wrench_transmission(
     if n != dof:
         raise ScrewkitValueError(
             f"Expected a square A (one actuator per twist of the basis) for the output transmission, got "
-            f"A of shape {(n, dof)}."
+            f"A of shape {(n, dof)}"
+            + (
+                " (redundantly actuated: no platform twist comes from one actuator alone, so OTI_j does not "
+                "exist)."
+                if n > dof
+                else "."
+            )
         )
     wrenches = np.asarray(jacobians.wrenches)
     # what the driven link receives: the wrench, or in a compound leg analysed as a whole its part

@@ -265,3 +265,25 @@ def test_enclosed_functions_are_paper_002_equations_6_and_7(mechanism, params):
         for name, expected in (("constraint", eq6_constraint(g)), ("actuation", -eq7_actuation(g))):
             e = values[name]
             assert e.lo[k] - 1e-13 * abs(expected) <= expected <= e.hi[k] + 1e-13 * abs(expected)
+
+
+@pytest.mark.parametrize(("mechanism", "params"), [(H4_M, H4), (QUATTRO_M, QUATTRO)])
+def test_float_route_is_paper_002_equations_6_and_7_and_the_core_det_a(mechanism, params):
+    # the same closed forms in floats (the fast route): paper 002's Eq. (6), minus Eq. (7) on the
+    # independent model, the core's det A, the reach functions' sign the core's reachability, and
+    # NaN for the singularity functions out of reach
+    model = FourLimbModel.of(mechanism)
+    rng = np.random.default_rng(11)
+    poses = np.asarray(mechanism.random_poses(rng, 20))
+    far = poses[:5] + np.array([0.0, 0.0, -3000.0, 0.0])
+    values = model.values(np.vstack([poses, far]))
+    for k, pose in enumerate(poses):
+        g = geometry(params, pose)
+        assert values["constraint"][k] == pytest.approx(eq6_constraint(g), rel=1e-9, abs=1e-9)
+        assert values["actuation"][k] == pytest.approx(-eq7_actuation(g), rel=1e-9)
+    assert np.allclose(values["actuation"][:20], mechanism.at(poses).jacobians.det_A, rtol=1e-9)
+    reach = np.all([values[f"serial:{i}"] >= 0 for i in range(1, 5)], axis=0)
+    assert reach.tolist() == mechanism.reachable(np.vstack([poses, far])).tolist() == [True] * 20 + [False] * 5
+    assert np.isnan(values["actuation"][20:]).all() and np.isnan(values["constraint"][20:]).all()
+    with pytest.raises(sk.ScrewkitValueError, match="`poses`"):
+        model.values([[0.0, 0.0, -750.0]])

@@ -94,3 +94,27 @@ def test_path_reports_every_crossing():
     assert [c.kind for c in check.crossings] == ["actuation", "constraint", "actuation"]
     assert check.crossing is check.crossings[0]
     assert len(str(check).splitlines()) == 3
+
+
+def test_loci_on_a_dask_local_cluster_are_the_in_process_loci():
+    # the map's chunks (samples for the loci included) and every refinement step on an in-process
+    # LocalCluster: the same values and the same loci, point for point, as the plain path
+    distributed = pytest.importorskip("distributed")
+    slice_ = {"x": ("x", -400, 400, 12), "y": ("y", -400, 400, 11), "fixed": {"z": -750, "phi": 90}}
+    plain = grid_map(QUATTRO_M, "closeness", angles="deg", **slice_)
+    alone = sk.loci(QUATTRO_M, angles="deg", **slice_)
+    with (
+        distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=False, dashboard_address=None)
+        as cluster,
+        distributed.Client(cluster) as client,
+    ):
+        remote = grid_map(QUATTRO_M, "closeness", angles="deg", chunk=25, client=client, **slice_)
+        remote_alone = sk.loci(QUATTRO_M, angles="deg", client=client, **slice_)
+    assert {locus.kind for locus in plain.loci} >= {"constraint", "actuation"}
+    np.testing.assert_array_equal(remote.values, plain.values)
+    for found in (remote.loci, alone, remote_alone):
+        assert [(lo.kind, lo.factor) for lo in found] == [(lo.kind, lo.factor) for lo in plain.loci]
+        for mine, theirs in zip(found, plain.loci, strict=True):
+            np.testing.assert_array_equal(mine.points, theirs.points)
+    with pytest.raises(sk.ScrewkitTypeError, match="`client`"):
+        sk.loci(QUATTRO_M, angles="deg", client=object(), **slice_)

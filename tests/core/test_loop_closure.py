@@ -8,13 +8,13 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from screwkit.algebra.rigid_motions import rotation_log, rotation_matrix
+from screwkit.algebra.rigid_motions import exp_screw, rotation_log, rotation_matrix
 from screwkit.core.kinematic_model import KinematicModel
 from screwkit.core.kinematic_tasks import JointTask, PoseTask
 from screwkit.core.loop_closure import close_loops
 from screwkit.core.task_coordinates import task_coordinates
 from screwkit.exceptions import ScrewkitValueError
-from screwkit.graphs.joints import helical, prismatic, revolute, spherical
+from screwkit.graphs.joints import helical, parallelogram, prismatic, revolute, spherical
 from screwkit.graphs.twistgraph import twist_graph
 
 from ..mechanisms import gough_stewart, gough_stewart_points, moved, planar_3rpr
@@ -295,3 +295,75 @@ def test_spherical_joints_turn_past_the_gimbal_lock_of_their_angles():
     assert closed.reached.all()
     rotation = model.displacement(model.state(closed.theta, closed.offsets), "E")[0, :3, :3]
     assert np.allclose(rotation, rotation_matrix(np.array([0.0, 1.0, 0.0]), np.radians(150)), atol=1e-9)
+
+
+def test_pinning_the_platform_closes_each_leg_on_its_own():
+    # a 6-UPS with its platform placed from outside: six loops base-leg-platform, each of one leg's
+    # six variables (U 2, P 1, S 3), closing at the configuration the whole model reaches
+    model = gs_model()
+    pinned = model.pinned_model("platform")
+    assert sorted((rows.size, columns.size) for rows, columns in pinned.blocks) == [(6, 6)] * 6
+    for _, columns in pinned.blocks:
+        legs = {model.columns[c].joint[1:] for c in columns}
+        assert len(legs) == 1 and {model.columns[c].joint[0] for c in columns} == {"U", "P", "S"}
+    for wrong in ("base", "nowhere"):
+        with pytest.raises(ScrewkitValueError, match="other than the base for link"):
+            model.pinned_model(wrong)
+    task = PoseTask(model, task_coordinates(model))
+    pose = np.array([[0.04, -0.02, 1.05, 0.1, -0.1, 0.2]])
+    closed = close_loops(model, task, task.scaled_targets(pose))
+    state = model.state(closed.theta, closed.offsets)
+    platform = state.links["platform"]
+    assert np.allclose(task.displacement(task.values(state)), platform, atol=1e-12)
+    assert np.abs(pinned.loop_residual(pinned.state(closed.theta, closed.offsets, platform))).max() < 1e-12
+
+
+def test_the_joint_motions_are_the_product_of_their_screws_exponentials():
+    # a chain R - Π - P - S with a spherical offset: each link's displacement by hand, from
+    # exp_screw and Rodrigues' formula one joint at a time (the model evaluates all joints at once)
+    chain = twist_graph("B", "E", [
+        ("B", "L1", revolute("R", [0, 0, 1], [0.5, 0, 0])),
+        ("L1", "L2", parallelogram("Pa", [1, 0, 0], [0, 0, -1])),
+        ("L2", "L3", prismatic("P", [0, 1, 0])),
+        ("L3", "E", spherical("S", [0.2, 0.1, -0.3])),
+    ], dof=6)
+    model = KinematicModel(chain)
+    theta = np.random.default_rng(4).uniform(-1, 1, (3, model.size))
+    offset = np.tile(np.eye(4), (3, 1, 1))
+    offset[:, :3, :3] = rotation_matrix(np.array([0.6, 0.0, 0.8]), np.array([0.3, -0.7, 1.1]))
+    offset[:, :3, 3] = [0.1, -0.2, 0.05]
+    state = model.state(theta, {"S": offset})
+    expected = np.tile(np.eye(4), (3, 1, 1))
+    for key, link in [("R", "L1"), ("Pa", "L2"), ("P", "L3"), ("S", "E")]:
+        motion = offset.copy() if key == "S" else np.tile(np.eye(4), (3, 1, 1))
+        for index in model.joints[key][2]:
+            column = model.columns[index]
+            if column.hinge is None:
+                step = exp_screw(column.row, theta[:, index])
+            else:  # the coupler's circular translation
+                step = np.tile(np.eye(4), (3, 1, 1))
+                step[:, :3, 3] = rotation_matrix(column.hinge, theta[:, index]) @ column.rod - column.rod
+            motion = motion @ step
+        expected = expected @ motion
+        assert np.abs(state.links[link] - expected).max() < 1e-12
+
+
+def test_the_twist_basis_of_a_pose_fixing_task_is_the_loops_minimum_norm_solution():
+    from screwkit.robots.graph_kinematics import graph_kinematics
+
+    kinematics = graph_kinematics(gough_stewart(*gough_stewart_points()))
+    assert kinematics.task.fixes_pose
+    closed = kinematics.solve(np.array([[0.03, -0.05, 1.02, 0.1, 0.05, -0.1]]))
+    model, task = kinematics.model, kinematics.task
+    state = model.state(closed.theta, closed.offsets)
+    # independently: joint rates closing the loops with unit coordinate rates, by least squares
+    jacobian = np.concatenate([model.loop_jacobian(state), task.jacobian(state)], axis=1)[0]
+    loops = model.loop_jacobian(state).shape[1]
+    rates = np.zeros((jacobian.shape[0], 6))
+    rates[loops + np.arange(6), np.arange(6)] = np.where(task.translation, 1.0 / model.length, 1.0)
+    joint_rates = np.linalg.lstsq(jacobian, rates, rcond=None)[0]
+    twists = (model.link_jacobian(state, "platform")[0] @ joint_rates).T
+    twists = np.concatenate(
+        [twists[:, :3], twists[:, 3:] * model.length + np.cross(model.point, twists[:, :3])], axis=1
+    )
+    assert np.abs(kinematics.twist_basis(state)[0] - twists).max() < 1e-9

@@ -1,0 +1,139 @@
+"""The batch bookkeeping of a posed mechanism: poses checked, an index resolved to one pose of the
+batch, the batch's joint table computed again (:class:`screwkit.robots.posed.PosedMechanism`).
+
+Examples
+--------
+>>> flat_index((2, 3), (1, 2))
+5
+"""
+
+from __future__ import annotations
+
+import weakref
+from typing import Any
+
+import numpy as np
+
+from ..algebra import backend as B
+from ..exceptions import ScrewkitIndexError, ScrewkitValueError
+from ..graphs.jointtable import JointTable
+
+__all__ = ["checked_poses", "flat_index", "joint_table_of"]
+
+Array = np.ndarray
+
+
+def checked_poses(mechanism: Any, poses: Any) -> Array:
+    """Poses ``(m, n)`` as floats (a single pose as a batch of one; None: the default pose).
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+    poses : array_like, shape (..., n), or None
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., n)
+
+    Raises
+    ------
+    ScrewkitValueError
+        A wrong last axis, or an empty batch.
+
+    Examples
+    --------
+    >>> checked_poses(load_mechanism("h4"), [0, 0, -750, 0]).shape
+    (1, 4)
+    """
+    names = mechanism.pose_names
+    if poses is None:
+        return np.asarray(mechanism.default_pose, dtype=float)[None]
+    array = B.as_array(poses, "poses", (len(names),), symbolic=False).astype(float)
+    if array.ndim == 1:
+        array = array[None]
+    if array.size == 0:  # an empty batch: the analysis core reshapes over a batch of at least one pose
+        raise ScrewkitValueError(f"Expected `poses` to hold at least one pose, got shape {array.shape}.")
+    return array
+
+
+def flat_index(shape: tuple[int, ...], index: Any) -> int:
+    """The flat (C order) position of the one pose ``index`` picks in a batch of ``shape``.
+
+    Parameters
+    ----------
+    shape : tuple of int
+        The batch shape (not ``()``).
+    index : int or tuple of int
+        One integer per batch axis.
+
+    Returns
+    -------
+    int
+
+    Raises
+    ------
+    ScrewkitIndexError
+        If the index is out of range (an IndexError too, so a for loop stops there).
+    ScrewkitValueError
+        If the index does not pick one pose.
+
+    Examples
+    --------
+    >>> flat_index((4,), -1)
+    3
+    >>> flat_index((4,), 4)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    screwkit.exceptions.ScrewkitIndexError: Expected `index` to pick one pose ... got 4 (out of range).
+    """
+    parts = index if isinstance(index, tuple) else (index,)
+    if not all(isinstance(i, int | np.integer) and not isinstance(i, bool) for i in parts):
+        raise ScrewkitValueError(  # numpy's IndexError for a string is not an index out of range
+            f"Expected `index` to pick one pose of the batch of shape {shape}, got {index!r}."
+        )
+    try:
+        flat = np.arange(int(np.prod(shape))).reshape(shape)[index]
+    except IndexError as err:
+        raise ScrewkitIndexError(
+            f"Expected `index` to pick one pose of the batch of shape {shape}, got {index!r} (out of range)."
+        ) from err
+    except (TypeError, ValueError) as err:
+        raise ScrewkitValueError(
+            f"Expected `index` to pick one pose of the batch of shape {shape}, got {index!r}."
+        ) from err
+    if np.ndim(flat) != 0:
+        raise ScrewkitValueError(
+            f"Expected `index` to pick one pose of the batch of shape {shape}, got {index!r}."
+        )
+    return int(flat)
+
+
+def joint_table_of(
+    posed: weakref.ref[Any], mechanism: Any, poses: Array, options: dict[str, Any]
+) -> JointTable:
+    """The joint table of a posed batch: its own (cached) while it lives, else computed again at
+    its poses (inverse kinematics, then the family's joints).
+
+    Parameters
+    ----------
+    posed : weakref.ref to PosedMechanism
+    mechanism : Mechanism
+    poses : numpy.ndarray, shape (..., n)
+    options : dict
+        Inverse-kinematics options.
+
+    Returns
+    -------
+    JointTable
+
+    Examples
+    --------
+    >>> h4 = load_mechanism("h4")
+    >>> poses = np.array([[0.0, 0.0, -750.0, 0.0]])
+    >>> joint_table_of(weakref.ref(h4.at(poses)), h4, poses, {}).batch_shape
+    (1,)
+    """
+    alive = posed()
+    if alive is not None:
+        return alive.joints
+    return mechanism.family_protocol.joint_table(mechanism.configuration(poses, **options))

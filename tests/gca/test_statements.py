@@ -1,0 +1,122 @@
+"""More statements (issue 21 item 6): factors the interpreter used to call "the bracket expression …
+vanishes", each tested on a configuration built by hand: the statement's geometry makes the factor
+vanish, a perturbation does not. Brackets are evaluated here with numpy determinants of 4×4 rows
+(gca.md §1: [pqrs] = det of the rows p, q, r, s), independently of screwkit's evaluator."""
+
+import numpy as np
+import pytest
+
+import screwkit as sk
+from screwkit.gca import BracketPolynomial
+from screwkit.gca.conditions import condition
+
+
+def bracket_sum(text, points):
+    """A sum of single brackets with ±1 coefficients, e.g. '[abce] - [abcf]', with numpy."""
+    total, sign = 0.0, 1.0
+    for token in text.replace("[", " [").split():
+        if token in "+-":
+            sign = -1.0 if token == "-" else 1.0
+            continue
+        total += sign * np.linalg.det(np.array([points[x] for x in token.strip("[]")]))
+    return total
+
+
+def finite(v):
+    return np.r_[v, 1.0]
+
+
+def assert_zero_then_not(c, text, points, moved, scale=1.0):
+    """The factor (numpy) and the condition vanish on the built geometry, not once perturbed, where the
+    vector form times the proved constant is the bracket sum."""
+    assert abs(bracket_sum(text, points)) < 1e-12 * scale and abs(c.evaluate(points)) < 1e-12 * scale
+    assert abs(bracket_sum(text, moved)) > 1e-3 * scale
+    assert float(c.constant) * c.evaluate(moved) == pytest.approx(bracket_sum(text, moved), rel=1e-10)
+
+
+def test_three_leg_directions_parallel_to_one_plane():
+    """The 3-UPU's [abce] − [abcf] − [abde] + [abdf] = [a b (c − d) (e − f)] (multilinearity): with
+    a, b, …, f the legs' end points, zero iff the leg directions b − a, d − c, f − e are parallel to
+    one plane (gca.md §5.1: [p q u v] = −(q − p)·(u × v))."""
+    text = "[abce] - [abcf] - [abde] + [abdf]"
+    c = condition(BracketPolynomial.parse(text), finite="abcdef", infinite="")
+    assert c.statement == "the directions of lines ab, cd and ef are parallel to one plane"
+    rng = np.random.default_rng(7)
+    base = {x: rng.normal(size=3) for x in "ace"}
+    u, v = rng.normal(size=3), rng.normal(size=3)  # the plane the three legs are parallel to
+    legs = {"b": 1.3 * u - 0.4 * v, "d": -0.7 * u + 0.9 * v, "f": 0.2 * u + 1.1 * v}
+    points = {x: finite(base[x]) for x in "ace"} | {
+        top: finite(base[bottom] + legs[top]) for bottom, top in zip("ace", "bdf", strict=True)
+    }
+    scale = np.prod([np.linalg.norm(legs[x]) for x in "bdf"])
+    moved = points | {"f": points["f"] + np.r_[0.05 * np.cross(u, v), 0.0]}
+    assert_zero_then_not(c, text, points, moved, scale)
+
+
+def test_a_line_parallel_to_a_plane_through_three_points():
+    """[acef] − [bcef] = [(a − b) c e f]: zero iff line ab is parallel to plane cef."""
+    text = "[acef] - [bcef]"
+    c = condition(BracketPolynomial.parse(text), finite="abcef", infinite="")
+    assert c.statement == "the direction of line ab is parallel to plane cef"
+    rng = np.random.default_rng(8)
+    plane = {x: rng.normal(size=3) for x in "cef"}
+    a = rng.normal(size=3)
+    points = {x: finite(p) for x, p in plane.items()} | {
+        "a": finite(a),
+        "b": finite(a + 0.8 * (plane["e"] - plane["c"]) - 0.3 * (plane["f"] - plane["c"])),
+    }
+    normal = np.cross(plane["e"] - plane["c"], plane["f"] - plane["c"])
+    assert_zero_then_not(c, text, points, points | {"b": points["b"] + np.r_[0.1 * normal, 0.0]})
+
+
+def test_a_leg_direction_and_two_directions_parallel_to_one_plane():
+    """[gcuv] − [gduv] = [g (c − d) u v]: zero iff line cd is parallel to the plane of u and v."""
+    text = "[gcuv] - [gduv]"
+    c = condition(BracketPolynomial.parse(text), finite="gcd", infinite="uv")
+    assert c.statement == "the direction of line cd, the direction u and the direction v are parallel to one plane"
+    rng = np.random.default_rng(9)
+    u, v, g, cpoint = (rng.normal(size=3) for _ in range(4))
+    points = {"g": finite(g), "c": finite(cpoint), "d": finite(cpoint + 0.6 * u - 1.2 * v),
+              "u": np.r_[u, 0.0], "v": np.r_[v, 0.0]}
+    assert_zero_then_not(c, text, points, points | {"d": points["d"] + np.r_[0.1 * np.cross(u, v), 0.0]})
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        "[abce] - [abcf] + [abde] + [abdf]",  # signs not those of a product of differences
+        "[abce] - [abcf] - [abde]",  # not 2^k terms
+        "[abcd][efgh] - [abce][dfgh]",  # products of brackets
+    ],
+)
+def test_other_sums_keep_the_generic_statement(text):
+    c = condition(BracketPolynomial.parse(text), finite="abcdefgh", infinite="")
+    assert c.statement.startswith("the bracket expression")
+
+
+def test_schoenflies_actuation_condition_given_the_couples():
+    """The Ragnar's actuation factor (four actuation lines, two couples ij, kj normal to the rotation
+    axis j) is proportional to the 4×4 determinant of the actuation lines (s; m) on the translations
+    and the rotation about j, rows (s_x, s_y, s_z, j·m) (the reciprocal product ω·m + v·s with
+    twists (0; e_x), (0; e_y), (0; e_z), (j; 0)), computed here: it vanishes exactly where a
+    translation with a rotation about an axis parallel to j does no work on the four lines."""
+    diagram, sampler = sk.load_mechanism("ragnar").wrench_diagram()
+    result = sk.superbracket_analysis(diagram, sampler)
+    (actuation,) = (c for c in result.conditions if c.label == "actuation")
+    assert actuation.statement.startswith(
+        "a translation combined with a rotation about an axis parallel to j does no work on any of the "
+        "actuation lines ab, cd, ef, gh"
+    )
+    rng = np.random.default_rng(4)
+    ratios = []
+    for _ in range(5):
+        points = sampler(rng)
+        j = points["j"][:3] / np.linalg.norm(points["j"][:3])
+        rows = []
+        for (p, q), role in zip(diagram.lines, diagram.roles, strict=True):
+            if role == "actuation":
+                a, b = points[p], points[q]
+                s, m = a[3] * b[:3] - b[3] * a[:3], np.cross(a[:3], b[:3])
+                rows.append([*s, j @ m])
+        ratios.append(actuation.evaluate(points) / np.linalg.det(np.array(rows)))
+    assert np.allclose(ratios, ratios[0], rtol=1e-8, atol=0) and abs(ratios[0]) > 1e-6
