@@ -179,6 +179,47 @@ def moved(graph, rotation=None, translation=(0.0, 0.0, 0.0), factor=1.0, joint_k
     return result
 
 
+# Bennett's overconstrained 4R linkage ---------------------------------------------------------
+def dh_transform(theta, length, twist):
+    """Denavit-Hartenberg ``Rz(θ) Tx(a) Rx(α)`` (4, 4)."""
+    c, s, ca, sa = np.cos(theta), np.sin(theta), np.cos(twist), np.sin(twist)
+    return np.array([[c, -s * ca, s * sa, length * c], [s, c * ca, -c * sa, length * s],
+                     [0.0, sa, ca, 0.0], [0.0, 0.0, 0.0, 1.0]])
+
+
+BENNETT_TWISTS = np.deg2rad([40.0, 75.0])
+
+
+def bennett_links(alpha=BENNETT_TWISTS[0], beta=BENNETT_TWISTS[1], length=1.0, bennett=True):
+    """Bennett's link lengths and twists ``[(a, α), (b, β), (a, α), (b, β)]``, with
+    ``a / sin α = b / sin β`` (Bennett 1903) unless ``bennett`` is False (then ``b`` is 1.3 times it)."""
+    other = length * np.sin(beta) / np.sin(alpha) * (1.0 if bennett else 1.3)
+    return [(length, alpha), (other, beta), (length, alpha), (other, beta)]
+
+
+def bennett_axes(theta, links):
+    """The four joint axes (direction, point) of the loop ``T1 T2 T3 T4 = I``, joint i on the z axis of
+    frame i-1, at joint angles ``(θ, φ, -θ, -φ)`` with ``tan(θ/2) tan(φ/2) = sin((β+α)/2) /
+    sin((β-α)/2)`` (Bennett's closure, in this DH convention; the tests check the loop closes)."""
+    (_, alpha), (_, beta) = links[0], links[1]
+    phi = 2.0 * np.arctan(np.sin((beta + alpha) / 2) / (np.sin((beta - alpha) / 2) * np.tan(theta / 2)))
+    frame, axes = np.eye(4), []
+    for angle, (length, twist) in zip((theta, phi, -theta, -phi), links, strict=True):
+        axes.append((frame[:3, 2].copy(), frame[:3, 3].copy()))
+        frame = frame @ dh_transform(angle, length, twist)
+    return axes, frame
+
+
+def bennett(theta=0.9, links=None):
+    """Bennett's 4R linkage at joint angle ``theta``: ground - L1 - coupler - L3 - ground (with
+    ``links`` that break Bennett's condition: four lines of no closed linkage, a rigid 4R)."""
+    axes, _ = bennett_axes(theta, bennett_links() if links is None else links)
+    links_of = [("ground", "L1"), ("L1", "coupler"), ("coupler", "L3"), ("L3", "ground")]
+    return twist_graph("ground", "coupler", [
+        (u, v, revolute(f"R{i}", axis, point, actuated=i == 1))
+        for i, ((u, v), (axis, point)) in enumerate(zip(links_of, axes, strict=True), start=1)])
+
+
 # other topologies ------------------------------------------------------------------------------
 def wheatstone_bridge():
     """A bridge: base - x, base - y, x - y, x - platform, y - platform (not series-parallel)."""

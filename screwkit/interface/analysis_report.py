@@ -30,6 +30,7 @@ from ..algebra import backend as B
 from ..algebra.motion_type import motion_type
 from ..core.finite_mobility import MobilityReading
 from ..core.jacobian_matrices import Jacobians
+from ..core.mode_transitions import ModesAtPose
 from ..core.singularity import SingularityReport
 from ..core.wrenches import WrenchAnalysis
 from ..graphs.loops import fundamental_loops
@@ -90,6 +91,9 @@ class AnalysisReport:
         The instantaneous and finite mobility at the configuration
         (:func:`screwkit.core.finite_mobility.mobility_reading`; a graph's report), shown when they
         differ or the finite one is undecided; None when not read.
+    modes_at_pose : ModesAtPose or None
+        The operation modes through the pose (:func:`screwkit.core.mode_transitions.modes_at`; None
+        where not tested): where several meet, the report says so and gives the pose's verdict in each.
     """
 
     name: str
@@ -110,6 +114,7 @@ class AnalysisReport:
     given_length_scale: float | None = None
     angle_names: tuple[str, ...] = ()
     mobility: MobilityReading | None = None
+    modes_at_pose: ModesAtPose | None = None
 
     def graph_summary(self) -> dict[str, Any]:
         """Links, joints by type, actuated joints, loops; and the equivalent graph's virtual joints.
@@ -318,6 +323,7 @@ class AnalysisReport:
             "grassmann": None if grassmann is None else grassmann.to_dict(),
             "jacobians": self.jacobian_summary(),
             "transmission": self.transmission,
+            "modes_at_pose": None if self.modes_at_pose is None else self.modes_at_pose.to_dict(),
         }
 
     def __str__(self) -> str:
@@ -408,6 +414,8 @@ class AnalysisReport:
                 here = f"{value:.6g}" if math.isfinite(value) else "not defined: " + result.undefined[index]
                 out.append(f"    vector form: {condition.expression} = 0   (here: {here})")
         out += ["", "verdict", *("  " + line for line in str(self.verdict).splitlines())]
+        if self.modes_at_pose is not None and self.modes_at_pose.meets:
+            out += ["", *self.modes_at_pose.lines()]
         grassmann, _ = self.grassmann()
         if grassmann is not None:
             out += ["", *str(grassmann).splitlines()]

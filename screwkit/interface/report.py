@@ -44,6 +44,7 @@ from ..algebra.checks import checked_length_scale, checked_rtol
 from ..core.finite_mobility import mobility_reading
 from ..core.jacobian_matrices import Jacobians
 from ..core.jacobians import jacobians_from_wrenches
+from ..core.mode_transitions import ModesAtPose, modes_at
 from ..core.verdicts import classify_analysis
 from ..core.wrench_systems import WrenchAnalysis
 from ..core.wrenches import wrench_analysis
@@ -233,7 +234,17 @@ def _graph_report(
     return dataclasses.replace(
         report, given_length_scale=length_scale, transmission=transmission, pose_names=coordinates,
         mobility=mobility_reading(graph, rtol=rtol, length_scale=length_scale),
+        modes_at_pose=_modes_at_pose(graph, rtol, length_scale),
     )
+
+
+def _modes_at_pose(graph: nx.MultiDiGraph, rtol: float, length_scale: float | None) -> ModesAtPose | None:
+    """The operation modes through a graph's configuration (None where the test cannot run: a mechanism
+    that cannot move there, or loops Newton's method does not close again)."""
+    try:
+        return modes_at(graph, rtol=rtol, length_scale=length_scale)
+    except ScrewkitError:
+        return None
 
 
 def _graph_jacobians(

@@ -1,0 +1,262 @@
+"""Whether a configuration lies where operation modes meet, and the pose analysed in each mode.
+
+A mechanism with several operation modes (Tsai's 3-UPU translates in one and moves in the plane of
+its base in another) has configurations that belong to two modes at once: there its loop-closure
+equations have more instantaneous solutions than either mode has freedoms (Zlatanov, Bonev &
+Gosselin, "Constraint singularities as C-space singularities", ARK 2002: such a pose is a singular
+point of the configuration space, where its branches cross). Which modes meet at a pose is read
+by leaving it (a local test by moving and re-closing the loops, not a higher-order expansion):
+
+1. the joint motions the loops allow to first order at the pose (the null space of the
+   loop-closure matrix of :class:`~screwkit.core.kinematic_model.KinematicModel`);
+2. :data:`TRIES` random small steps (:data:`STEP`) in that space, each followed by Newton's method
+   on the loop-closure equations (the minimum-norm correction), which brings a step that is not
+   tangent to any branch back onto the nearest one;
+3. every configuration reached is classified by its platform's twist system (mobility and motion
+   type) and the order of its constraint wrench system: each distinct class is one mode through
+   the pose, the most frequently reached first.
+
+Two modes of the same motion type, mobility and constraint order are not told apart, and a mode
+reached by none of the random steps is missed (a branch whose tangent directions are a thin subset
+of the first-order motions): the answer is what the steps found.
+
+Examples
+--------
+>>> h4 = load_mechanism("h4").twist_graph()
+>>> result = modes_at(h4)
+>>> result.meets, [(mode.mobility, mode.motion_type) for mode in result.modes]
+(False, [(4, '3T1R')])
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from typing import Any
+
+import networkx as nx
+import numpy as np
+
+from ..algebra import backend as B
+from ..algebra.motion_type import motion_type
+from ..exceptions import ScrewkitValueError
+from ..graphs.jointtable import JointTable
+from .kinematic_model import KinematicModel
+from .motion import CLOSURE_TOL, NEWTON_ITERATIONS, _damped_linear, _null_space
+from .singularity import SingularityReport, classify
+from .wrench_systems import WrenchAnalysis, analyze_table
+
+__all__ = ["ModeAtPose", "ModesAtPose", "modes_at"]
+
+Array = np.ndarray
+
+#: Random steps taken from the pose, and their size (radians or characteristic lengths, largest
+#: joint variable): small enough to stay next to the pose, large enough that the modes' ranks differ
+#: far above the rank tolerance.
+TRIES = 16
+STEP = 0.05
+#: The seed of those steps (fixed: the same pose always gets the same answer).
+SEED = 20261128
+
+
+@dataclass(frozen=True)
+class ModeAtPose:
+    """One operation mode through a pose.
+
+    Attributes
+    ----------
+    mobility : int
+        The platform's freedoms in this mode (the order of its twist system next to the pose).
+    motion_type : str
+        Its motion type there (e.g. ``"3T"``, ``"2T1R"``, ``"1H"``: a helical freedom's pitch, which
+        varies along a mode, left out).
+    constraint_order : int
+        The order of the constraint wrench system there.
+    reached : int
+        How many of the random steps landed in this mode.
+    nearby : WrenchAnalysis
+        The wrench analysis of one configuration of this mode next to the pose.
+    at_pose : SingularityReport
+        The pose itself analysed as a configuration of this mode (``dof`` = this mode's mobility).
+    """
+
+    mobility: int
+    motion_type: str
+    constraint_order: int
+    reached: int
+    nearby: WrenchAnalysis
+    at_pose: SingularityReport
+
+
+@dataclass(frozen=True)
+class ModesAtPose:
+    """The operation modes through one pose (:func:`modes_at`).
+
+    Attributes
+    ----------
+    modes : tuple of ModeAtPose
+        Each mode reached, the most often reached first.
+    first_order : int
+        The joint motions the loops allow to first order at the pose (the loop-closure matrix's
+        nullity): more than any one mode's where modes meet.
+    """
+
+    modes: tuple[ModeAtPose, ...]
+    first_order: int
+
+    @property
+    def meets(self) -> bool:
+        """True when the pose lies where two or more operation modes meet.
+
+        Returns
+        -------
+        bool
+
+        Examples
+        --------
+        >>> from screwkit.graphs.joints import prismatic
+        >>> from screwkit.graphs.twistgraph import twist_graph
+        >>> modes_at(twist_graph("B", "E", [("B", "E", prismatic("P", [0, 0, 1], actuated=True))])).meets
+        False
+        """
+        return len(self.modes) > 1
+
+    def to_dict(self) -> dict[str, Any]:
+        """The modes as JSON-ready data.
+
+        Returns
+        -------
+        dict
+            ``meets`` (bool), ``first_order`` and ``modes``: per mode its ``mobility``,
+            ``motion_type``, ``constraint_order``, ``reached`` and ``verdict`` (the pose's, in that mode).
+
+        Examples
+        --------
+        >>> from screwkit.graphs.joints import prismatic
+        >>> from screwkit.graphs.twistgraph import twist_graph
+        >>> slider = twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))])
+        >>> modes_at(slider).to_dict()["modes"][0]["motion_type"]
+        '1T'
+        """
+        return {
+            "meets": self.meets,
+            "first_order": self.first_order,
+            "modes": [
+                {"mobility": m.mobility, "motion_type": m.motion_type, "constraint_order": m.constraint_order,
+                 "reached": m.reached, "verdict": m.at_pose.verdict}
+                for m in self.modes
+            ],
+        }
+
+    def lines(self) -> list[str]:
+        """The report's lines: :meth:`describe`, then the pose's verdict in each mode where modes meet.
+
+        Returns
+        -------
+        list of str
+
+        Examples
+        --------
+        >>> from screwkit.graphs.joints import prismatic
+        >>> from screwkit.graphs.twistgraph import twist_graph
+        >>> slider = twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))])
+        >>> modes_at(slider).lines()
+        ['one operation mode through this pose: 1T']
+        """
+        out = [self.describe()]
+        if self.meets:
+            out += [f"  in the {m.motion_type} mode: {str(m.at_pose).splitlines()[0]}"
+                    for m in self.modes]
+        return out
+
+    def describe(self) -> str:
+        """One line: the modes through the pose.
+
+        Returns
+        -------
+        str
+
+        Examples
+        --------
+        >>> from screwkit.graphs.joints import prismatic
+        >>> from screwkit.graphs.twistgraph import twist_graph
+        >>> slider = twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))])
+        >>> modes_at(slider).describe()
+        'one operation mode through this pose: 1T'
+        """
+        types = [mode.motion_type for mode in self.modes]
+        if not self.meets:
+            return f"one operation mode through this pose: {types[0]}"
+        return f"this pose lies where {len(types)} operation modes meet: {' and '.join(types)}"
+
+
+def modes_at(
+    graph: nx.MultiDiGraph,
+    *,
+    joint_key: str = "joint",
+    rtol: float = B.DEFAULT_RTOL,
+    length_scale: float | None = None,
+) -> ModesAtPose:
+    """The operation modes through the graph's configuration (module docstring).
+
+    Parameters
+    ----------
+    graph : networkx.MultiDiGraph
+        A twist graph (numbers) at the pose to test.
+    joint_key : str, default "joint"
+    rtol : float, default 1e-9
+    length_scale : float, optional
+        As in :func:`~screwkit.core.wrench_systems.analyze_table` (every rank decision).
+
+    Returns
+    -------
+    ModesAtPose
+
+    Raises
+    ------
+    ScrewkitValueError
+        If the loops admit no joint motion at the pose, or no step could be closed again.
+
+    Examples
+    --------
+    >>> from screwkit.graphs.joints import revolute
+    >>> from screwkit.graphs.twistgraph import twist_graph
+    >>> arm = twist_graph("B", "E", [("B", "L", revolute("A", [0, 0, 1], [0, 0, 0], actuated=True)),
+    ...                              ("L", "E", revolute("R", [0, 0, 1], [1, 0, 0]))])
+    >>> modes_at(arm).modes[0].mobility
+    2
+    """
+    model = KinematicModel(graph, joint_key)
+    reference = JointTable.from_graph(graph, joint_key=joint_key)
+    null = _null_space(model.loop_jacobian(model.state(np.zeros((1, model.size))))[0])
+    if null.shape[1] == 0:
+        raise ScrewkitValueError("Expected a pose the mechanism can move from (to find its operation "
+                                 "modes), got one whose loops admit no joint motion.")
+    direction = np.random.default_rng(SEED).standard_normal((TRIES, null.shape[1])) @ null.T
+    theta = STEP * direction / np.max(np.abs(direction), axis=1, keepdims=True)
+    for _ in range(NEWTON_ITERATIONS):
+        state = model.state(theta)
+        residual = model.loop_residual(state)
+        if residual.shape[1] == 0 or np.max(np.abs(residual)) < CLOSURE_TOL:
+            break
+        jacobian = model.loop_jacobian(state)
+        theta = theta - np.einsum("bji,bj->bi", jacobian, _damped_linear(jacobian, residual))
+    residual = model.loop_residual(model.state(theta))
+    closed = (np.max(np.abs(residual), axis=1) < 1e-9) if residual.shape[1] else np.ones(TRIES, bool)
+    if not np.any(closed):
+        raise ScrewkitValueError(f"Expected loops that close again after a small step, got none in {TRIES} "
+                                 "tries (Newton's method did not converge).")
+    table = model.joint_table(model.state(theta[closed]), reference)
+    batch = analyze_table(table, dof=0, rtol=rtol, length_scale=length_scale)
+    classes: dict[tuple[int, str, int], list[int]] = {}
+    for i in range(len(batch)):
+        one = batch[i]
+        kind = re.sub(r"\s*\(pitch[^)]*\)", "", str(motion_type(one.platform_twists)))  # pitch varies
+        key = (int(one.platform_order), kind, int(one.constraint_order))
+        classes.setdefault(key, []).append(i)
+    modes = []
+    for (mobility, kind, order), members in sorted(classes.items(), key=lambda item: -len(item[1])):
+        at_pose = classify(graph, dof=mobility, joint_key=joint_key, rtol=rtol, length_scale=length_scale)
+        assert isinstance(at_pose, SingularityReport)  # a graph of numbers
+        modes.append(ModeAtPose(mobility, kind, order, len(members), batch[members[0]], at_pose))
+    return ModesAtPose(tuple(modes), int(null.shape[1]))
