@@ -15,9 +15,25 @@ The certified functions (each vanishes exactly on one kind of singular set, in t
   Table 2; ``w_i`` the unit rods, ``s = ∂(R(φ) i)/∂φ``), with the rods from the closed-form inverse
   kinematics ``cos θ_i = (P_i K_i + m_i Q_i √g_i)/(P_i² + Q_i²)``,
   ``sin θ_i = (Q_i K_i - m_i P_i √g_i)/(P_i² + Q_i²)``.
-* **constraint**: paper 002's Eq. (6), ``(s_I × s_II)·e = 0`` with ``s_I = n_I1 × n_I2``,
-  ``n_i = w_i × F_i i`` (the normal of limb ``i``'s parallelogram) and ``e`` the axis of the
-  nacelle's revolute joints (``z``).
+* **constraint**, nacelle axis ``e = k`` (Quattro, H4): paper 002's Eq. (6),
+  ``(s_I × s_II)·e = 0`` with ``s_I = n_I1 × n_I2``, ``n_i = w_i × F_i i`` (the couple of limb
+  ``i``'s parallelogram). Derivation: sub-platform I, held by the couples ``n_I1``, ``n_I2``, may
+  turn about ``s_I``; with ``R_I`` (axis ``e``) its branch lets the end effector turn about
+  ``span(s_I, e)`` only, i.e. it exerts the couple ``c_I = s_I × e``; the two couples
+  ``c_I, c_II`` (both normal to ``e``) are dependent iff
+  ``c_I × c_II = e [e·(s_I × s_II)]`` vanishes (the identity ``(a × e) × (b × e) = e [e·(a × b)]``).
+* **constraint**, nacelle axis ``e = j`` (V4, whose sub-platforms each hold one limb ``p`` with
+  its actuated axis ``u_p ∥ e``: limbs 4 and 3): then ``n_p·e = 0`` and
+  ``c = (n_q × n_p) × e = (n_q·e) n_p`` (``q`` the sub-platform's other limb), so Eq. (6) factors
+  as ``(n_qI·e)(n_qII·e) e·(n_pI × n_pII)``. The first two factors are *not* singular: where
+  ``n_q·e = (w_q × u_q)·e`` vanishes (limbs 1, 2 with ``u = i``: their rod horizontal) the couple
+  ``n_q`` is normal to ``e`` as well, so the branch holds the end effector by **two** couples normal
+  to ``e`` (one more, not one less; the sub-platform gains a turn about ``e`` that ``R_I`` undoes).
+  The V4's constraint condition is the last factor, ``e·(n_pI × n_pII) = 0``: the couples of the
+  limbs whose axes are along the nacelle's are parallel, i.e. the rods ``w_3``, ``w_4`` and ``j`` are
+  coplanar (``det[w_3, w_4, j] = 0``). Its zeros are singular or limits of singular poses (where
+  also some ``n_q·e = 0``: a set of lower dimension); where it is nonzero no constraint singularity
+  exists, which is what a free box needs.
 
 Everything is evaluated with :class:`~screwkit.analysis.intervals.Enclosure` (outward rounding,
 gradients for the mean-value form). Constants computed by the base frames' trigonometry are
@@ -59,14 +75,16 @@ __all__ = ["COVERED", "FourLimbModel", "model_of"]
 
 Array = np.ndarray
 
-#: What certification covers: the four-limb family with a nacelle articulated about vertical axes,
-#: and the Delta. Left out: the V4 (``articulated_y``): Eq. (6) with the axis ``y`` vanishes at V4
-#: poses the core finds regular (e.g. x, y, z, phi = 503.5, -492, -352, 0.2 rad: constraint
-#: closeness 0.79), so the V4's constraint condition is another one, not written here; the screw
-#: pair (Veloce, Ragnar) has another constraint condition too; the McGill SMG, the Peppermill and
-#: the planar 3-RRP have no enclosure written; mechanisms from ``screwkit.mechanism`` (loop-closure
-#: kinematics) would need an interval-Newton (Krawczyk) enclosure of their loop equations.
-COVERED = "the four_limb family with platform_kind articulated_z (Quattro, H4) and the delta family (Delta)"
+#: What certification covers: the four-limb family with a nacelle articulated about vertical axes
+#: (Quattro, H4) or about ``j`` with one actuated axis along ``j`` per sub-platform (V4), and the
+#: Delta. Left out: the screw pair (Veloce, Ragnar) has another constraint condition, not written;
+#: the McGill SMG, the Peppermill and the planar 3-RRP have no enclosure written; mechanisms from
+#: ``screwkit.mechanism`` (loop-closure kinematics) would need an interval-Newton (Krawczyk)
+#: enclosure of their loop equations.
+COVERED = (
+    "the four_limb family with platform_kind articulated_z (Quattro, H4) or articulated_y with one "
+    "actuated axis along j per sub-platform (V4), and the delta family (Delta)"
+)
 
 _SGN_COS_ETA = (1.0, -1.0, -1.0, 1.0)  # paper 004, Table 1: sgn(cos eta_i), eta_i = (2i - 1) pi/4
 _SGN_SIN_ETA = (1.0, 1.0, -1.0, -1.0)  # sgn(sin eta_i)
@@ -74,6 +92,10 @@ _SGN_SIN_ETA = (1.0, 1.0, -1.0, -1.0)  # sgn(sin eta_i)
 _STATEMENTS = {
     "constraint": "(s_I x s_II).e = 0, s_I = n_I1 x n_I2, n_i = w_i x u_i (paper 002, Eq. 6): the "
     "constraint moments of the two sub-platforms are dependent",
+    "constraint_along_axis": "e.(n_{p} x n_{q}) = 0, n_i = w_i x u_i, e = j (paper 002's Eq. 6 "
+    "divided by its two non-singular factors (n_k.e)): the couples of limbs {p} and {q}, whose "
+    "actuated axes lie along the nacelle's, are parallel; the sub-platforms' constraint moments are "
+    "dependent",
     "actuation": "det A = 2r ((w_I1 x w_I2) x (w_II1 x w_II2)).s = 0 (paper 004, Eq. 12): the "
     "actuation forces and the constraint moments are dependent",
     "serial": "P_i^2 + Q_i^2 - K_i^2 = 0 (paper 004, Eq. 3; h_i = m_i (b/l) sqrt of it, Eq. 8): "
@@ -96,6 +118,9 @@ class FourLimbModel(_ClosedFormModel):
         The signs ``m_i`` of ``h_i``.
     subplatforms : tuple of two pairs of int
         0-based limbs of sub-platforms I and II.
+    axis_limbs : tuple of two int, or None
+        For a nacelle articulated about ``j`` (V4): the 0-based limb of each sub-platform whose
+        actuated axis lies along ``j`` (the constraint condition's limbs); None for ``k``.
     limbs : int
         4.
     """
@@ -110,6 +135,7 @@ class FourLimbModel(_ClosedFormModel):
     working_mode: tuple[int, int, int, int]
     subplatforms: tuple[tuple[int, int], tuple[int, int]]
     base: tuple[list[list[_Constant]], ...]  # a, u, F j, F k: (4 rows of 3 constants) each
+    axis_limbs: tuple[int, int] | None = None
     limbs: int = 4
     statements: ClassVar[dict[str, str]] = _STATEMENTS
 
@@ -146,14 +172,27 @@ class FourLimbModel(_ClosedFormModel):
 
         params: Any = getattr(mechanism, "parameters", None)
         kind = getattr(params, "platform_kind", None)
-        if getattr(mechanism, "family", None) != "four_limb" or kind != "articulated_z":
-            family = getattr(mechanism, "family", None)
-            missing = (
-                "no closed-form kinematics to enclose: a loop-closure mechanism would need an "
-                "interval-Newton enclosure of its loop equations, not written"
-                if family in (None, "loop_closure")
-                else "no enclosure of its conditions written"
-            )
+        family = getattr(mechanism, "family", None)
+        axis_limbs = _axis_limbs(params) if family == "four_limb" and kind == "articulated_y" else None
+        if family != "four_limb" or kind not in ("articulated_z", "articulated_y") or axis_limbs == ():
+            if family in (None, "loop_closure"):
+                missing = (
+                    "no closed-form kinematics to enclose: a loop-closure mechanism would need an "
+                    "interval-Newton enclosure of its loop equations, not written"
+                )
+            elif kind == "screw_pair":
+                missing = (
+                    "no enclosure of its conditions written: the screw pair's constraint condition "
+                    "(a helical joint between the sub-platforms) is not derived"
+                )
+            elif kind == "articulated_y":
+                missing = (
+                    "no enclosure of its conditions written: without an actuated axis along j in each "
+                    "sub-platform paper 002's Eq. (6) does not factor and its non-singular zeros are "
+                    "not separated"
+                )
+            else:
+                missing = "no enclosure of its conditions written"
             raise ScrewkitValueError(
                 f"Expected `mechanism` among what certification covers ({COVERED}), got "
                 f"{getattr(mechanism, 'name', type(mechanism).__name__)} (family {family!r}, platform "
@@ -182,7 +221,27 @@ class FourLimbModel(_ClosedFormModel):
             mode,
             params.subplatform_limbs,
             base,
+            axis_limbs or None,
         )
+
+    def functions(self) -> dict[str, str]:
+        """Each certified function's name and statement (what its vanishing means); the V4's
+        constraint statement names its two limbs.
+
+        Returns
+        -------
+        dict of str to str
+
+        Examples
+        --------
+        >>> FourLimbModel.of(load_mechanism("v4")).functions()["constraint"][:22]
+        'e.(n_4 x n_3) = 0, n_i'
+        """
+        out = super().functions()
+        if self.axis_limbs is not None:
+            p, q = (i + 1 for i in self.axis_limbs)
+            out["constraint"] = self.statements["constraint_along_axis"].format(p=p, q=q)
+        return out
 
     def evaluate(self, pose: list[Enclosure], *, singular: bool = True) -> dict[str, Enclosure]:
         """Enclose every function of ``functions()`` over a batch of boxes of pose space.
@@ -210,8 +269,12 @@ class FourLimbModel(_ClosedFormModel):
         x, y, z, phi = pose
         cos, sin = phi.cos_sin()
         r = self.radius
-        bar: Vector = [cos, sin, None]  # R_z(φ) i
-        s: Vector = [-sin, cos, None]  # its derivative R_z(φ) j
+        if self.axis_limbs is None:
+            bar: Vector = [cos, sin, None]  # R_z(φ) i
+            s: Vector = [-sin, cos, None]  # its derivative R_z(φ) j
+        else:
+            bar = [cos, None, -sin]  # R_y(φ) i
+            s = [-sin, None, -cos]  # its derivative -R_y(φ) k
         a_rows, u_rows, _, _ = self.base
         ds: list[Vector] = []
         for i in range(4):
@@ -237,11 +300,28 @@ class FourLimbModel(_ClosedFormModel):
             assert det_a is not None
             out["actuation"] = det_a * (2.0 * r)
             normals = [_cross_constant(rod_i, u_rows[i]) for i, rod_i in enumerate(w)]
-            s_one, s_two = _cross(normals[i1], normals[i2]), _cross(normals[j1], normals[j2])
-            constraint = _cross(s_one, s_two)[2]
+            if self.axis_limbs is None:
+                s_one, s_two = _cross(normals[i1], normals[i2]), _cross(normals[j1], normals[j2])
+                constraint = _cross(s_one, s_two)[2]
+            else:  # e·(n_pI × n_pII), e = j: Eq. (6) without its non-singular factors (module docstring)
+                p_one, p_two = self.axis_limbs
+                constraint = _cross(normals[p_one], normals[p_two])[1]
             assert constraint is not None
             out["constraint"] = constraint
         return out
+
+
+def _axis_limbs(params: Any) -> tuple[int, int] | tuple[()]:
+    """The 0-based limb of each sub-platform whose actuated axis is along ``j`` (to 1e-12), or
+    ``()`` when some sub-platform has none or two."""
+    from ..robots.families.four_limb.configuration import base_frames
+
+    u = base_frames(params).u
+    along = np.linalg.norm(np.cross(u, [0.0, 1.0, 0.0]), axis=-1) < 1e-12
+    found = [[i for i in limbs if along[i]] for limbs in params.subplatform_limbs]
+    if any(len(limbs) != 1 for limbs in found):
+        return ()
+    return found[0][0], found[1][0]
 
 
 def model_of(mechanism: Any, options: Mapping[str, Any] | None = None) -> FourLimbModel | DeltaModel:
