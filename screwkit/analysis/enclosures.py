@@ -77,7 +77,8 @@ Array = np.ndarray
 
 #: What certification covers: the four-limb family with a nacelle articulated about vertical axes
 #: (Quattro, H4) or about ``j`` with one actuated axis along ``j`` per sub-platform (V4), and the
-#: Delta. Left out: the screw pair (Veloce, Ragnar) has another constraint condition, not written;
+#: Delta. Left out: the screw pair (Veloce, Ragnar): enclosure not written (docs/certify.md says
+#: what was derived and measured);
 #: the McGill SMG, the Peppermill and the planar 3-RRP have no enclosure written; mechanisms from
 #: ``screwkit.mechanism`` (loop-closure kinematics) would need an interval-Newton (Krawczyk)
 #: enclosure of their loop equations.
@@ -182,8 +183,8 @@ class FourLimbModel(_ClosedFormModel):
                 )
             elif kind == "screw_pair":
                 missing = (
-                    "no enclosure of its conditions written: the screw pair's constraint condition "
-                    "(a helical joint between the sub-platforms) is not derived"
+                    "no enclosure of its conditions written for the screw pair: its platform points, "
+                    "det A with the helical joint's lead and a test model are not written"
                 )
             elif kind == "articulated_y":
                 missing = (

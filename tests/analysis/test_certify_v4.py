@@ -14,7 +14,6 @@ branch holds the end effector by two couples instead of one. The V4's condition 
 from __future__ import annotations
 
 import numpy as np
-import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -65,7 +64,7 @@ def couples(pose, scale=1.0):
     R_II): each branch's twists are the sub-platform's (reciprocal to its limbs' couples n_i = w_i x u_i)
     and R_I's; the branch's wrenches are their reciprocal (null space, SVD). Returns the two couples'
     unit moments (a branch of rank 2 gives its first)."""
-    c, w, phi, small_r = geometry(pose, scale)
+    _, w, phi, small_r = geometry(pose, scale)
     p = np.asarray(pose[:3], dtype=float)
     bar = np.array([np.cos(phi), 0.0, -np.sin(phi)])
     out = []
