@@ -1,5 +1,5 @@
-"""Enclosures of the singularity conditions of the four-limb robots with a nacelle articulated
-about vertical axes (Quattro, H4) and of the Delta robot over boxes of pose space, in closed form
+"""Enclosures of the singularity conditions of the four-limb robots with an articulated nacelle
+(Quattro, H4, V4) or a screw pair (Ragnar) and of the Delta robot over boxes of pose space, in closed form
 (:class:`DeltaModel` for the Delta: the same limbs, its own statements; :func:`model_of` picks).
 
 The certified functions (each vanishes exactly on one kind of singular set, in the working mode
@@ -34,6 +34,12 @@ The certified functions (each vanishes exactly on one kind of singular set, in t
   coplanar (``det[w_3, w_4, j] = 0``). Its zeros are singular or limits of singular poses (where
   also some ``n_q·e = 0``: a set of lower dimension); where it is nonzero no constraint singularity
   exists, which is what a free box needs.
+* **screw pair** (Ragnar): ``c_i = r R_z(γ_i) i + mod(i, 2) (hφ/2π) k + p`` (Table 1), so
+  ``det A = det[w_i, mod(i, 2) (h/2π) w_i·k]`` (Eq. 7 with ``∂c_i/∂φ``), and the constraint is
+  Eq. (6) with ``e = k``: the helical joint's twist ``(k; q × k + pitch k)`` differs from a revolute
+  one by a translation every branch already has, so the branch's couple is ``s × k`` as above. Not
+  when a sub-platform holds two parallel actuated axes (Veloce: ``s_I ∥ u_1``, Eq. (6) factors and its
+  zeros are not read by the core's closeness; refused).
 
 Everything is evaluated with :class:`~screwkit.analysis.intervals.Enclosure` (outward rounding,
 gradients for the mean-value form). Constants computed by the base frames' trigonometry are
@@ -59,6 +65,7 @@ from ..exceptions import ScrewkitValueError
 from .delta_enclosure import DeltaModel
 from .intervals import Enclosure
 from .limb_enclosures import (
+    _CONSTANT_SPREAD,
     Vector,
     _ClosedFormModel,
     _Constant,
@@ -66,6 +73,7 @@ from .limb_enclosures import (
     _cross,
     _cross_constant,
     _dot,
+    _mul,
     _relative,
     _scaled_by,
     _sum,
@@ -83,9 +91,12 @@ Array = np.ndarray
 #: ``screwkit.mechanism`` (loop-closure kinematics) would need an interval-Newton (Krawczyk)
 #: enclosure of their loop equations.
 COVERED = (
-    "the four_limb family with platform_kind articulated_z (Quattro, H4) or articulated_y with one "
-    "actuated axis along j per sub-platform (V4), and the delta family (Delta)"
+    "the four_limb family with platform_kind articulated_z (Quattro, H4), articulated_y with one "
+    "actuated axis along j per sub-platform (V4) or screw_pair without parallel axes in a sub-platform "
+    "(Ragnar), and the delta family (Delta)"
 )
+
+PLATFORMS = ("articulated_z", "articulated_y", "screw_pair")
 
 _SGN_COS_ETA = (1.0, -1.0, -1.0, 1.0)  # paper 004, Table 1: sgn(cos eta_i), eta_i = (2i - 1) pi/4
 _SGN_SIN_ETA = (1.0, 1.0, -1.0, -1.0)  # sgn(sin eta_i)
@@ -99,6 +110,8 @@ _STATEMENTS = {
     "dependent",
     "actuation": "det A = 2r ((w_I1 x w_I2) x (w_II1 x w_II2)).s = 0 (paper 004, Eq. 12): the "
     "actuation forces and the constraint moments are dependent",
+    "actuation_screw_pair": "det A = det[w_i, mod(i, 2) (h/2pi) w_i.k] = 0 (paper 004, Eq. 7 with Table "
+    "1's screw-pair row): the actuation forces and the constraint moments are dependent",
     "serial": "P_i^2 + Q_i^2 - K_i^2 = 0 (paper 004, Eq. 3; h_i = m_i (b/l) sqrt of it, Eq. 8): "
     "limb {i} at its reach, det B = 0",
 }
@@ -137,6 +150,8 @@ class FourLimbModel(_ClosedFormModel):
     subplatforms: tuple[tuple[int, int], tuple[int, int]]
     base: tuple[list[list[_Constant]], ...]  # a, u, F j, F k: (4 rows of 3 constants) each
     axis_limbs: tuple[int, int] | None = None
+    rise: float | None = None  # screw pair: h/(2π), sub-platform I's rise per radian
+    radial: tuple[list[_Constant], ...] = ()  # screw pair: c_i - p at φ = 0, r R_z(γ_i) i
     limbs: int = 4
     statements: ClassVar[dict[str, str]] = _STATEMENTS
 
@@ -175,7 +190,8 @@ class FourLimbModel(_ClosedFormModel):
         kind = getattr(params, "platform_kind", None)
         family = getattr(mechanism, "family", None)
         axis_limbs = _axis_limbs(params) if family == "four_limb" and kind == "articulated_y" else None
-        if family != "four_limb" or kind not in ("articulated_z", "articulated_y") or axis_limbs == ():
+        parallel = kind == "screw_pair" and _parallel_axes(params)
+        if family != "four_limb" or kind not in PLATFORMS or axis_limbs == () or parallel:
             if family in (None, "loop_closure"):
                 missing = (
                     "no closed-form kinematics to enclose: a loop-closure mechanism would need an "
@@ -183,8 +199,10 @@ class FourLimbModel(_ClosedFormModel):
                 )
             elif kind == "screw_pair":
                 missing = (
-                    "no enclosure of its conditions written for the screw pair: its platform points, "
-                    "det A with the helical joint's lead and a test model are not written"
+                    "no enclosure written for a screw pair whose sub-platform holds two parallel "
+                    "actuated axes: paper 002's Eq. (6) then factors into (n_I1 x n_I2).u_I1 and "
+                    "(n_II1 x n_II2).u_II1, whose zeros the core's constraint closeness does not flag; "
+                    "not certified before an independent rank check settles them"
                 )
             elif kind == "articulated_y":
                 missing = (
@@ -218,11 +236,13 @@ class FourLimbModel(_ClosedFormModel):
             float(params.arm_length),
             float(params.rod_length),
             float(params.platform_radius),
-            float(params.platform_offset),
+            float(params.platform_offset or 0.0),
             mode,
             params.subplatform_limbs,
             base,
             axis_limbs or None,
+            None if params.lead is None else float(params.lead) / (2.0 * np.pi),
+            tuple(_constants(_radial(params), exact=False)) if kind == "screw_pair" else (),
         )
 
     def functions(self) -> dict[str, str]:
@@ -239,6 +259,8 @@ class FourLimbModel(_ClosedFormModel):
         'e.(n_4 x n_3) = 0, n_i'
         """
         out = super().functions()
+        if self.rise is not None:
+            out["actuation"] = self.statements["actuation_screw_pair"]
         if self.axis_limbs is not None:
             p, q = (i + 1 for i in self.axis_limbs)
             out["constraint"] = self.statements["constraint_along_axis"].format(p=p, q=q)
@@ -267,6 +289,8 @@ class FourLimbModel(_ClosedFormModel):
         >>> bool(values["serial:1"].lo[0] > 0 and values["actuation"].excludes_zero()[0])
         True
         """
+        if self.rise is not None:
+            return self._screw_pair(pose, singular)
         x, y, z, phi = pose
         cos, sin = phi.cos_sin()
         r = self.radius
@@ -276,7 +300,7 @@ class FourLimbModel(_ClosedFormModel):
         else:
             bar = [cos, None, -sin]  # R_y(φ) i
             s = [-sin, None, -cos]  # its derivative -R_y(φ) k
-        a_rows, u_rows, _, _ = self.base
+        a_rows = self.base[0]
         ds: list[Vector] = []
         for i in range(4):
             sc, ss = _SGN_COS_ETA[i], _SGN_SIN_ETA[i]
@@ -300,16 +324,71 @@ class FourLimbModel(_ClosedFormModel):
             det_a = _dot(_cross(_cross(w[i1], w[i2]), _cross(w[j1], w[j2])), s)
             assert det_a is not None
             out["actuation"] = det_a * (2.0 * r)
-            normals = [_cross_constant(rod_i, u_rows[i]) for i, rod_i in enumerate(w)]
-            if self.axis_limbs is None:
-                s_one, s_two = _cross(normals[i1], normals[i2]), _cross(normals[j1], normals[j2])
-                constraint = _cross(s_one, s_two)[2]
-            else:  # e·(n_pI × n_pII), e = j: Eq. (6) without its non-singular factors (module docstring)
-                p_one, p_two = self.axis_limbs
-                constraint = _cross(normals[p_one], normals[p_two])[1]
-            assert constraint is not None
-            out["constraint"] = constraint
+            out["constraint"] = self._constraint(w)
         return out
+
+    def _screw_pair(self, pose: list[Enclosure], singular: bool) -> dict[str, Enclosure]:
+        """The screw pair's functions: ``c_i = r R_z(γ_i) i + mod(i, 2) (hφ/2π) k + p`` (Table 1),
+        det A = det[w_i, mod(i, 2) (h/2π) w_i·k] (Eq. 7 with ``∂c_i/∂φ``), expanded along its last
+        column, and Eq. (6) with ``e = k``."""
+        x, y, z, phi = pose
+        assert self.rise is not None
+        lead = type(phi).constant(self.rise, phi, relative=_CONSTANT_SPREAD)  # h/(2π), rounded
+        rise = phi * lead
+        (i1, i2), _ = self.subplatforms
+        a_rows = self.base[0]
+        ds: list[Vector] = []
+        for i in range(4):
+            c_i = [x, y, _sum(z, rise if i in (i1, i2) else None)]
+            ds.append([_sum(c_i[k], _constant_of(x, self.radial[i][k]), _constant_of(x, a_rows[i][k], -1.0))
+                       for k in range(3)])
+        out, w = self._limb_functions(ds, singular)
+        if singular:
+            terms = []
+            for i in (i1, i2):  # cofactors of the last column, (-1)^(i + 3) (0-based row i)
+                rest = [w[k] for k in range(4) if k != i]
+                minor = _mul(w[i][2], _dot(_cross(rest[0], rest[1]), rest[2]))
+                terms.append(_mul(minor, lead if i % 2 else -lead))
+            actuation = _sum(*terms)
+            assert actuation is not None
+            out["actuation"] = actuation
+            out["constraint"] = self._constraint(w)
+        return out
+
+    def _constraint(self, w: list[Vector]) -> Enclosure:
+        """The constraint function from the unit rods (module docstring)."""
+        u_rows = self.base[1]
+        (i1, i2), (j1, j2) = self.subplatforms
+        normals = [_cross_constant(rod_i, u_rows[i]) for i, rod_i in enumerate(w)]
+        if self.axis_limbs is None:  # Eq. (6) with e = k
+            s_one, s_two = _cross(normals[i1], normals[i2]), _cross(normals[j1], normals[j2])
+            constraint = _cross(s_one, s_two)[2]
+        else:  # e·(n_pI × n_pII), e = j: Eq. (6) without its non-singular factors (module docstring)
+            p_one, p_two = self.axis_limbs
+            constraint = _cross(normals[p_one], normals[p_two])[1]
+        assert constraint is not None
+        return constraint
+
+
+def _radial(params: Any) -> Array:
+    """``r R_z(γ_i) i``, ``γ_i = (2i - 1)π/4`` (paper 004, Table 1, screw pair)."""
+    gamma = (2 * np.arange(1, 5) - 1) * np.pi / 4
+    return float(params.platform_radius) * np.stack([np.cos(gamma), np.sin(gamma), np.zeros(4)], -1)
+
+
+def _parallel_axes(params: Any) -> bool:
+    """Whether some sub-platform holds two parallel actuated axes (to 1e-12)."""
+    from ..robots.families.four_limb.configuration import base_frames
+
+    u = base_frames(params).u
+    return any(float(np.linalg.norm(np.cross(u[i], u[j]))) < 1e-12 for i, j in params.subplatform_limbs)
+
+
+def _constant_of(like: Enclosure, c: _Constant, sign: float = 1.0) -> Enclosure | None:
+    """The enclosure of ``sign c`` shaped like ``like`` (None for an exact zero)."""
+    if c.value == 0 and c.spread == 0:
+        return None
+    return type(like).constant(sign * c.value, like, relative=_relative(c))
 
 
 def _axis_limbs(params: Any) -> tuple[int, int] | tuple[()]:
