@@ -12,7 +12,7 @@ from hypothesis import strategies as st
 
 import screwkit as sk
 from screwkit.analysis.delta_enclosure import DeltaModel
-from screwkit.robots.catalog import load_toml, mechanism_from_mapping
+from tests.analysis.certify_checks import in_metres
 from tests.delta_geometry import RADIAL, coplanar_root_on_x, dimensions, elbows, rod_determinant
 
 DELTA = sk.load_mechanism("delta")
@@ -108,21 +108,7 @@ def test_certified_path_encloses_the_independent_coplanarity():
     assert free.certified_free and not free.crossings
 
 
-def delta_in_metres():
-    """The Delta with every length in metres (lengths / 1000)."""
-    data = load_toml(DELTA.source)
-    data["mechanism"]["length_unit"] = "m"
-    for entry in data["parameters"].values():
-        entry["value"] /= 1000.0
-        entry["unit"] = "m"
-    for key in ("x", "y", "z"):
-        data["pose"][key] /= 1000.0
-        data["workspace"][key] = [v / 1000.0 for v in data["workspace"][key]]
-    data.pop("expected", None)
-    return mechanism_from_mapping(data, source="delta in metres")
-
-
-METRES = delta_in_metres()
+METRES = in_metres(DELTA)
 
 
 @settings(max_examples=6, deadline=None)

@@ -16,7 +16,7 @@ from hypothesis import strategies as st
 
 import screwkit as sk
 from screwkit.analysis.enclosures import FourLimbModel
-from screwkit.robots.catalog import load_toml, mechanism_from_mapping
+from tests.analysis.certify_checks import assert_same_facts, in_metres, zeros_along
 
 RAGNAR = sk.load_mechanism("ragnar")
 K = np.array([0.0, 0.0, 1.0])
@@ -106,21 +106,10 @@ def test_independent_singular_set_in_no_free_box_witnesses_vanish_free_poses_reg
         assert sin_between([w.pose["x"], w.pose["y"], w.pose["z"], w.pose["phi"]]) < 1e-6
     found = 0
     for x in np.linspace(-450.0, 450.0, 5):  # the independent singular set: zeros of |sin| along y
-        ys = np.linspace(-685.0, 685.0, 275)
-        values = np.array([sin_between([x, y, -575.0, 0.0]) if geometry([x, y, -575.0, 0.0]) else 9.0 for y in ys])
-        for k in np.flatnonzero((values[1:-1] < values[:-2]) & (values[1:-1] < values[2:]) & (values[1:-1] < 0.05)):
-            low, high = ys[k], ys[k + 2]
-            for _ in range(50):  # ternary search of the V-shaped |sin|
-                m1, m2 = low + (high - low) / 3, high - (high - low) / 3
-                if sin_between([x, m1, -575.0, 0.0]) < sin_between([x, m2, -575.0, 0.0]):
-                    high = m2
-                else:
-                    low = m1
-            y = (low + high) / 2
-            if sin_between([x, y, -575.0, 0.0]) > 1e-6:
-                continue  # a minimum that is no zero
+        line = np.stack([np.full(275, x), np.linspace(-685.0, 685.0, 275), np.full(275, -575.0), np.zeros(275)], -1)
+        for zero in zeros_along(lambda pose: sin_between(pose) if geometry(pose) else None, line):
             found += 1
-            assert not any(b.bounds["x"][0] <= x <= b.bounds["x"][1] and b.bounds["y"][0] <= y <= b.bounds["y"][1]
+            assert not any(b.bounds["x"][0] <= x <= b.bounds["x"][1] and b.bounds["y"][0] <= zero[1] <= b.bounds["y"][1]
                            for b in free)
     assert found >= 8  # two curves, near y = -330 and y = +330
     rng = np.random.default_rng(3)
@@ -139,42 +128,13 @@ def test_the_veloce_is_refused_naming_its_parallel_axes():
     assert "Ragnar" in str(info.value) and "\n" not in str(info.value)
 
 
-def ragnar_in_metres():
-    """The Ragnar with every length in metres (the lead too: a length per turn)."""
-    data = load_toml(RAGNAR.source)
-    data["mechanism"]["length_unit"] = "m"
-    for entry in data["parameters"].values():
-        if entry["unit"] == "mm":
-            entry["value"] = (np.asarray(entry["value"], dtype=float) / 1000.0).tolist()
-            entry["unit"] = "m"
-    for key in ("x", "y", "z"):
-        data["pose"][key] /= 1000.0
-        data["workspace"][key] = [v / 1000.0 for v in data["workspace"][key]]
-    data.pop("expected", None)
-    return mechanism_from_mapping(data, source="ragnar in metres")
-
-
-METRES = ragnar_in_metres()
+METRES = in_metres(RAGNAR)
 
 
 @settings(max_examples=4, deadline=None)
 @given(x=st.floats(-450.0, 400.0), y=st.floats(-420.0, 250.0), phi=st.floats(-3.0, 3.0))
 def test_certificate_is_invariant_under_the_length_unit(x, y, phi):
-    # as for the V4 (tests/analysis/test_certify_v4.py): the pavings may differ where rounding splits
-    # a box in one unit only, the facts agree
     in_mm = sk.certify(RAGNAR, {"x": (x, x + 50.0), "y": (y, y + 100.0), "z": -575.0, "phi": phi}, resolution=4.0)
     in_m = sk.certify(METRES, {"x": (x / 1e3, (x + 50.0) / 1e3), "y": (y / 1e3, (y + 100.0) / 1e3), "z": -0.575,
                                "phi": phi}, resolution=4e-3)
-    for mine, mine_scale, other, other_scale in ((in_mm, 1.0, in_m, 1e3), (in_m, 1e3, in_mm, 1.0)):
-        for box in mine.boxes:
-            if box.witness is not None:
-                pose = {n: box.witness.pose[n] * mine_scale for n in ("x", "y")}
-                assert not any(
-                    b.status == "free"
-                    and all(b.bounds[n][0] * other_scale <= pose[n] <= b.bounds[n][1] * other_scale for n in "xy")
-                    for b in other.boxes
-                )
-    labels = [{b.witness.label for b in c.boxes if b.witness is not None} for c in (in_mm, in_m)]
-    assert labels[0] == labels[1]
-    margin = sum(c.fractions[k] for c in (in_mm, in_m) for k in ("singular", "undecided"))
-    assert abs(in_mm.fractions["free"] - in_m.fractions["free"]) <= margin
+    assert_same_facts(in_mm, in_m)

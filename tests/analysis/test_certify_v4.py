@@ -19,7 +19,7 @@ from hypothesis import strategies as st
 
 import screwkit as sk
 from screwkit.analysis.enclosures import FourLimbModel
-from screwkit.robots.catalog import load_toml, mechanism_from_mapping
+from tests.analysis.certify_checks import assert_same_facts, in_metres, zeros_along
 
 V4 = sk.load_mechanism("v4")
 J = np.array([0.0, 1.0, 0.0])
@@ -132,23 +132,11 @@ def test_independent_constraint_singularities_lie_in_no_free_box_and_witnesses_v
     certificate = sk.certify(V4, region, resolution=2.0)
     free = [b for b in certificate.boxes if b.status == "free"]
     found = 0
-    for y in np.linspace(570.0, 610.0, 9):  # the independent singular set: minima of |sin| along x
-        xs = np.linspace(-200.0, 200.0, 201)
-        values = np.array([independent_closeness([x, y, -250.0, 0.0]) if geometry([x, y, -250.0, 0.0]) else 9.0
-                           for x in xs])
-        for k in np.flatnonzero((values[1:-1] < values[:-2]) & (values[1:-1] < values[2:]) & (values[1:-1] < 0.05)):
-            low, high = xs[k], xs[k + 2]
-            for _ in range(50):  # ternary search of the V-shaped |sin|
-                m1, m2 = low + (high - low) / 3, high - (high - low) / 3
-                if independent_closeness([m1, y, -250.0, 0.0]) < independent_closeness([m2, y, -250.0, 0.0]):
-                    high = m2
-                else:
-                    low = m1
-            x = (low + high) / 2
-            if independent_closeness([x, y, -250.0, 0.0]) > 1e-6:
-                continue  # a minimum that is no zero (the curve's tip passes near this line)
+    for y in np.linspace(570.0, 610.0, 9):  # the independent singular set: zeros of |sin| along x
+        line = np.stack([np.linspace(-200.0, 200.0, 201), np.full(201, y), np.full(201, -250.0), np.zeros(201)], -1)
+        for zero in zeros_along(lambda pose: independent_closeness(pose) if geometry(pose) else None, line):
             found += 1
-            assert not any(b.bounds["x"][0] <= x <= b.bounds["x"][1] and b.bounds["y"][0] <= y <= b.bounds["y"][1]
+            assert not any(b.bounds["x"][0] <= zero[0] <= b.bounds["x"][1] and b.bounds["y"][0] <= y <= b.bounds["y"][1]
                            for b in free)
     assert found >= 12
     witnesses = [b.witness for b in certificate.boxes if b.status == "singular" and b.witness.label == "constraint"]
@@ -185,49 +173,14 @@ def test_actuation_witnesses_make_the_independent_det_a_vanish():
         assert abs(det_a([w.pose[n] for n in ("x", "y", "z", "phi")])) < 1e-7 * scale
 
 
-def v4_in_metres():
-    """The V4 with every length in metres."""
-    data = load_toml(V4.source)
-    data["mechanism"]["length_unit"] = "m"
-    for entry in data["parameters"].values():
-        if entry["unit"] == "mm":
-            entry["value"] /= 1000.0
-            entry["unit"] = "m"
-    for key in ("x", "y", "z"):
-        data["pose"][key] /= 1000.0
-        data["workspace"][key] = [v / 1000.0 for v in data["workspace"][key]]
-    data.pop("expected", None)
-    return mechanism_from_mapping(data, source="v4 in metres")
-
-
-METRES = v4_in_metres()
-
-
-def _free_boxes_hold(certificate, pose, scale):
-    """Whether some free box of ``certificate`` holds ``pose`` (x, y given in mm, boxes' units mm / scale)."""
-    return any(
-        b.status == "free" and all(b.bounds[n][0] * scale <= pose[n] <= b.bounds[n][1] * scale for n in ("x", "y"))
-        for b in certificate.boxes
-    )
+METRES = in_metres(V4)
 
 
 @settings(max_examples=4, deadline=None)
 @given(x=st.floats(-200.0, 150.0), y=st.floats(520.0, 580.0), phi=st.floats(-0.3, 0.3))
 def test_certificate_is_invariant_under_the_length_unit(x, y, phi):
-    # the same region in mm and in m: rounding may split a box in one unit that the other proves free at
-    # once (the pavings differ there), but the facts agree: no witness of one lies in a free box of the
-    # other, the same singular sets are met, and the free volumes differ by less than what either
-    # leaves singular or undecided
     region = {"x": (x, x + 50.0), "y": (y, y + 50.0), "z": -250.0, "phi": phi}
     in_mm = sk.certify(V4, region, resolution=4.0)
     in_m = sk.certify(METRES, {"x": (x / 1e3, (x + 50.0) / 1e3), "y": (y / 1e3, (y + 50.0) / 1e3), "z": -0.25,
                                "phi": phi}, resolution=4e-3)
-    for mine, mine_scale, other, other_scale in ((in_mm, 1.0, in_m, 1e3), (in_m, 1e3, in_mm, 1.0)):
-        for box in mine.boxes:
-            if box.witness is not None:
-                pose = {n: box.witness.pose[n] * mine_scale for n in ("x", "y")}
-                assert not _free_boxes_hold(other, pose, other_scale)
-    labels = [{b.witness.label for b in c.boxes if b.witness is not None} for c in (in_mm, in_m)]
-    assert labels[0] == labels[1]
-    margin = sum(c.fractions[k] for c in (in_mm, in_m) for k in ("singular", "undecided"))
-    assert abs(in_mm.fractions["free"] - in_m.fractions["free"]) <= margin
+    assert_same_facts(in_mm, in_m)
