@@ -1,5 +1,5 @@
-"""Enclosures of the singularity conditions of the four-limb robots with a nacelle articulated
-about vertical axes (Quattro, H4) and of the Delta robot over boxes of pose space, in closed form
+"""Enclosures of the singularity conditions of the four-limb robots with an articulated nacelle
+(Quattro, H4, V4) or a screw pair (Ragnar) and of the Delta robot over boxes of pose space, in closed form
 (:class:`DeltaModel` for the Delta: the same limbs, its own statements; :func:`model_of` picks).
 
 The certified functions (each vanishes exactly on one kind of singular set, in the working mode
@@ -15,9 +15,31 @@ The certified functions (each vanishes exactly on one kind of singular set, in t
   Table 2; ``w_i`` the unit rods, ``s = ∂(R(φ) i)/∂φ``), with the rods from the closed-form inverse
   kinematics ``cos θ_i = (P_i K_i + m_i Q_i √g_i)/(P_i² + Q_i²)``,
   ``sin θ_i = (Q_i K_i - m_i P_i √g_i)/(P_i² + Q_i²)``.
-* **constraint**: paper 002's Eq. (6), ``(s_I × s_II)·e = 0`` with ``s_I = n_I1 × n_I2``,
-  ``n_i = w_i × F_i i`` (the normal of limb ``i``'s parallelogram) and ``e`` the axis of the
-  nacelle's revolute joints (``z``).
+* **constraint**, nacelle axis ``e = k`` (Quattro, H4): paper 002's Eq. (6),
+  ``(s_I × s_II)·e = 0`` with ``s_I = n_I1 × n_I2``, ``n_i = w_i × F_i i`` (the couple of limb
+  ``i``'s parallelogram). Derivation: sub-platform I, held by the couples ``n_I1``, ``n_I2``, may
+  turn about ``s_I``; with ``R_I`` (axis ``e``) its branch lets the end effector turn about
+  ``span(s_I, e)`` only, i.e. it exerts the couple ``c_I = s_I × e``; the two couples
+  ``c_I, c_II`` (both normal to ``e``) are dependent iff
+  ``c_I × c_II = e [e·(s_I × s_II)]`` vanishes (the identity ``(a × e) × (b × e) = e [e·(a × b)]``).
+* **constraint**, nacelle axis ``e = j`` (V4, whose sub-platforms each hold one limb ``p`` with
+  its actuated axis ``u_p ∥ e``: limbs 4 and 3): then ``n_p·e = 0`` and
+  ``c = (n_q × n_p) × e = (n_q·e) n_p`` (``q`` the sub-platform's other limb), so Eq. (6) factors
+  as ``(n_qI·e)(n_qII·e) e·(n_pI × n_pII)``. The first two factors are *not* singular: where
+  ``n_q·e = (w_q × u_q)·e`` vanishes (limbs 1, 2 with ``u = i``: their rod horizontal) the couple
+  ``n_q`` is normal to ``e`` as well, so the branch holds the end effector by **two** couples normal
+  to ``e`` (one more, not one less; the sub-platform gains a turn about ``e`` that ``R_I`` undoes).
+  The V4's constraint condition is the last factor, ``e·(n_pI × n_pII) = 0``: the couples of the
+  limbs whose axes are along the nacelle's are parallel, i.e. the rods ``w_3``, ``w_4`` and ``j`` are
+  coplanar (``det[w_3, w_4, j] = 0``). Its zeros are singular or limits of singular poses (where
+  also some ``n_q·e = 0``: a set of lower dimension); where it is nonzero no constraint singularity
+  exists, which is what a free box needs.
+* **screw pair** (Ragnar): ``c_i = r R_z(γ_i) i + mod(i, 2) (hφ/2π) k + p`` (Table 1), so
+  ``det A = det[w_i, mod(i, 2) (h/2π) w_i·k]`` (Eq. 7 with ``∂c_i/∂φ``), and the constraint is
+  Eq. (6) with ``e = k``: the helical joint's twist ``(k; q × k + pitch k)`` differs from a revolute
+  one by a translation every branch already has, so the branch's couple is ``s × k`` as above. Not
+  when a sub-platform holds two parallel actuated axes (Veloce: ``s_I ∥ u_1``, Eq. (6) factors and its
+  zeros are not read by the core's closeness; refused).
 
 Everything is evaluated with :class:`~screwkit.analysis.intervals.Enclosure` (outward rounding,
 gradients for the mean-value form). Constants computed by the base frames' trigonometry are
@@ -43,6 +65,7 @@ from ..exceptions import ScrewkitValueError
 from .delta_enclosure import DeltaModel
 from .intervals import Enclosure
 from .limb_enclosures import (
+    _CONSTANT_SPREAD,
     Vector,
     _ClosedFormModel,
     _Constant,
@@ -50,6 +73,7 @@ from .limb_enclosures import (
     _cross,
     _cross_constant,
     _dot,
+    _mul,
     _relative,
     _scaled_by,
     _sum,
@@ -59,14 +83,20 @@ __all__ = ["COVERED", "FourLimbModel", "model_of"]
 
 Array = np.ndarray
 
-#: What certification covers: the four-limb family with a nacelle articulated about vertical axes,
-#: and the Delta. Left out: the V4 (``articulated_y``): Eq. (6) with the axis ``y`` vanishes at V4
-#: poses the core finds regular (e.g. x, y, z, phi = 503.5, -492, -352, 0.2 rad: constraint
-#: closeness 0.79), so the V4's constraint condition is another one, not written here; the screw
-#: pair (Veloce, Ragnar) has another constraint condition too; the McGill SMG, the Peppermill and
-#: the planar 3-RRP have no enclosure written; mechanisms from ``screwkit.mechanism`` (loop-closure
-#: kinematics) would need an interval-Newton (Krawczyk) enclosure of their loop equations.
-COVERED = "the four_limb family with platform_kind articulated_z (Quattro, H4) and the delta family (Delta)"
+#: What certification covers: the four-limb family with a nacelle articulated about vertical axes
+#: (Quattro, H4) or about ``j`` with one actuated axis along ``j`` per sub-platform (V4), and the
+#: Delta. Left out: the screw pair (Veloce, Ragnar): enclosure not written (docs/certify.md says
+#: what was derived and measured);
+#: the McGill SMG, the Peppermill and the planar 3-RRP have no enclosure written; mechanisms from
+#: ``screwkit.mechanism`` (loop-closure kinematics) would need an interval-Newton (Krawczyk)
+#: enclosure of their loop equations.
+COVERED = (
+    "the four_limb family with platform_kind articulated_z (Quattro, H4), articulated_y with one "
+    "actuated axis along j per sub-platform (V4) or screw_pair without parallel axes in a sub-platform "
+    "(Ragnar), and the delta family (Delta)"
+)
+
+PLATFORMS = ("articulated_z", "articulated_y", "screw_pair")
 
 _SGN_COS_ETA = (1.0, -1.0, -1.0, 1.0)  # paper 004, Table 1: sgn(cos eta_i), eta_i = (2i - 1) pi/4
 _SGN_SIN_ETA = (1.0, 1.0, -1.0, -1.0)  # sgn(sin eta_i)
@@ -74,8 +104,14 @@ _SGN_SIN_ETA = (1.0, 1.0, -1.0, -1.0)  # sgn(sin eta_i)
 _STATEMENTS = {
     "constraint": "(s_I x s_II).e = 0, s_I = n_I1 x n_I2, n_i = w_i x u_i (paper 002, Eq. 6): the "
     "constraint moments of the two sub-platforms are dependent",
+    "constraint_along_axis": "e.(n_{p} x n_{q}) = 0, n_i = w_i x u_i, e = j (paper 002's Eq. 6 "
+    "divided by its two non-singular factors (n_k.e)): the couples of limbs {p} and {q}, whose "
+    "actuated axes lie along the nacelle's, are parallel; the sub-platforms' constraint moments are "
+    "dependent",
     "actuation": "det A = 2r ((w_I1 x w_I2) x (w_II1 x w_II2)).s = 0 (paper 004, Eq. 12): the "
     "actuation forces and the constraint moments are dependent",
+    "actuation_screw_pair": "det A = det[w_i, mod(i, 2) (h/2pi) w_i.k] = 0 (paper 004, Eq. 7 with Table "
+    "1's screw-pair row): the actuation forces and the constraint moments are dependent",
     "serial": "P_i^2 + Q_i^2 - K_i^2 = 0 (paper 004, Eq. 3; h_i = m_i (b/l) sqrt of it, Eq. 8): "
     "limb {i} at its reach, det B = 0",
 }
@@ -96,6 +132,9 @@ class FourLimbModel(_ClosedFormModel):
         The signs ``m_i`` of ``h_i``.
     subplatforms : tuple of two pairs of int
         0-based limbs of sub-platforms I and II.
+    axis_limbs : tuple of two int, or None
+        For a nacelle articulated about ``j`` (V4): the 0-based limb of each sub-platform whose
+        actuated axis lies along ``j`` (the constraint condition's limbs); None for ``k``.
     limbs : int
         4.
     """
@@ -110,6 +149,9 @@ class FourLimbModel(_ClosedFormModel):
     working_mode: tuple[int, int, int, int]
     subplatforms: tuple[tuple[int, int], tuple[int, int]]
     base: tuple[list[list[_Constant]], ...]  # a, u, F j, F k: (4 rows of 3 constants) each
+    axis_limbs: tuple[int, int] | None = None
+    rise: float | None = None  # screw pair: h/(2π), sub-platform I's rise per radian
+    radial: tuple[list[_Constant], ...] = ()  # screw pair: c_i - p at φ = 0, r R_z(γ_i) i
     limbs: int = 4
     statements: ClassVar[dict[str, str]] = _STATEMENTS
 
@@ -146,14 +188,30 @@ class FourLimbModel(_ClosedFormModel):
 
         params: Any = getattr(mechanism, "parameters", None)
         kind = getattr(params, "platform_kind", None)
-        if getattr(mechanism, "family", None) != "four_limb" or kind != "articulated_z":
-            family = getattr(mechanism, "family", None)
-            missing = (
-                "no closed-form kinematics to enclose: a loop-closure mechanism would need an "
-                "interval-Newton enclosure of its loop equations, not written"
-                if family in (None, "loop_closure")
-                else "no enclosure of its conditions written"
-            )
+        family = getattr(mechanism, "family", None)
+        axis_limbs = _axis_limbs(params) if family == "four_limb" and kind == "articulated_y" else None
+        parallel = kind == "screw_pair" and _parallel_axes(params)
+        if family != "four_limb" or kind not in PLATFORMS or axis_limbs == () or parallel:
+            if family in (None, "loop_closure"):
+                missing = (
+                    "no closed-form kinematics to enclose: a loop-closure mechanism would need an "
+                    "interval-Newton enclosure of its loop equations, not written"
+                )
+            elif kind == "screw_pair":
+                missing = (
+                    "no enclosure written for a screw pair whose sub-platform holds two parallel "
+                    "actuated axes: paper 002's Eq. (6) then factors into (n_I1 x n_I2).u_I1 and "
+                    "(n_II1 x n_II2).u_II1, whose zeros the core's constraint closeness does not flag; "
+                    "not certified before an independent rank check settles them"
+                )
+            elif kind == "articulated_y":
+                missing = (
+                    "no enclosure of its conditions written: without an actuated axis along j in each "
+                    "sub-platform paper 002's Eq. (6) does not factor and its non-singular zeros are "
+                    "not separated"
+                )
+            else:
+                missing = "no enclosure of its conditions written"
             raise ScrewkitValueError(
                 f"Expected `mechanism` among what certification covers ({COVERED}), got "
                 f"{getattr(mechanism, 'name', type(mechanism).__name__)} (family {family!r}, platform "
@@ -178,11 +236,35 @@ class FourLimbModel(_ClosedFormModel):
             float(params.arm_length),
             float(params.rod_length),
             float(params.platform_radius),
-            float(params.platform_offset),
+            float(params.platform_offset or 0.0),
             mode,
             params.subplatform_limbs,
             base,
+            axis_limbs or None,
+            None if params.lead is None else float(params.lead) / (2.0 * np.pi),
+            tuple(_constants(_radial(params), exact=False)) if kind == "screw_pair" else (),
         )
+
+    def functions(self) -> dict[str, str]:
+        """Each certified function's name and statement (what its vanishing means); the V4's
+        constraint statement names its two limbs.
+
+        Returns
+        -------
+        dict of str to str
+
+        Examples
+        --------
+        >>> FourLimbModel.of(load_mechanism("v4")).functions()["constraint"][:22]
+        'e.(n_4 x n_3) = 0, n_i'
+        """
+        out = super().functions()
+        if self.rise is not None:
+            out["actuation"] = self.statements["actuation_screw_pair"]
+        if self.axis_limbs is not None:
+            p, q = (i + 1 for i in self.axis_limbs)
+            out["constraint"] = self.statements["constraint_along_axis"].format(p=p, q=q)
+        return out
 
     def evaluate(self, pose: list[Enclosure], *, singular: bool = True) -> dict[str, Enclosure]:
         """Enclose every function of ``functions()`` over a batch of boxes of pose space.
@@ -207,12 +289,18 @@ class FourLimbModel(_ClosedFormModel):
         >>> bool(values["serial:1"].lo[0] > 0 and values["actuation"].excludes_zero()[0])
         True
         """
+        if self.rise is not None:
+            return self._screw_pair(pose, singular)
         x, y, z, phi = pose
         cos, sin = phi.cos_sin()
         r = self.radius
-        bar: Vector = [cos, sin, None]  # R_z(φ) i
-        s: Vector = [-sin, cos, None]  # its derivative R_z(φ) j
-        a_rows, u_rows, _, _ = self.base
+        if self.axis_limbs is None:
+            bar: Vector = [cos, sin, None]  # R_z(φ) i
+            s: Vector = [-sin, cos, None]  # its derivative R_z(φ) j
+        else:
+            bar = [cos, None, -sin]  # R_y(φ) i
+            s = [-sin, None, -cos]  # its derivative -R_y(φ) k
+        a_rows = self.base[0]
         ds: list[Vector] = []
         for i in range(4):
             sc, ss = _SGN_COS_ETA[i], _SGN_SIN_ETA[i]
@@ -236,12 +324,84 @@ class FourLimbModel(_ClosedFormModel):
             det_a = _dot(_cross(_cross(w[i1], w[i2]), _cross(w[j1], w[j2])), s)
             assert det_a is not None
             out["actuation"] = det_a * (2.0 * r)
-            normals = [_cross_constant(rod_i, u_rows[i]) for i, rod_i in enumerate(w)]
+            out["constraint"] = self._constraint(w)
+        return out
+
+    def _screw_pair(self, pose: list[Enclosure], singular: bool) -> dict[str, Enclosure]:
+        """The screw pair's functions: ``c_i = r R_z(γ_i) i + mod(i, 2) (hφ/2π) k + p`` (Table 1),
+        det A = det[w_i, mod(i, 2) (h/2π) w_i·k] (Eq. 7 with ``∂c_i/∂φ``), expanded along its last
+        column, and Eq. (6) with ``e = k``."""
+        x, y, z, phi = pose
+        assert self.rise is not None
+        lead = type(phi).constant(self.rise, phi, relative=_CONSTANT_SPREAD)  # h/(2π), rounded
+        rise = phi * lead
+        (i1, i2), _ = self.subplatforms
+        a_rows = self.base[0]
+        ds: list[Vector] = []
+        for i in range(4):
+            c_i = [x, y, _sum(z, rise if i in (i1, i2) else None)]
+            ds.append([_sum(c_i[k], _constant_of(x, self.radial[i][k]), _constant_of(x, a_rows[i][k], -1.0))
+                       for k in range(3)])
+        out, w = self._limb_functions(ds, singular)
+        if singular:
+            terms = []
+            for i in (i1, i2):  # cofactors of the last column, (-1)^(i + 3) (0-based row i)
+                rest = [w[k] for k in range(4) if k != i]
+                minor = _mul(w[i][2], _dot(_cross(rest[0], rest[1]), rest[2]))
+                terms.append(_mul(minor, lead if i % 2 else -lead))
+            actuation = _sum(*terms)
+            assert actuation is not None
+            out["actuation"] = actuation
+            out["constraint"] = self._constraint(w)
+        return out
+
+    def _constraint(self, w: list[Vector]) -> Enclosure:
+        """The constraint function from the unit rods (module docstring)."""
+        u_rows = self.base[1]
+        (i1, i2), (j1, j2) = self.subplatforms
+        normals = [_cross_constant(rod_i, u_rows[i]) for i, rod_i in enumerate(w)]
+        if self.axis_limbs is None:  # Eq. (6) with e = k
             s_one, s_two = _cross(normals[i1], normals[i2]), _cross(normals[j1], normals[j2])
             constraint = _cross(s_one, s_two)[2]
-            assert constraint is not None
-            out["constraint"] = constraint
-        return out
+        else:  # e·(n_pI × n_pII), e = j: Eq. (6) without its non-singular factors (module docstring)
+            p_one, p_two = self.axis_limbs
+            constraint = _cross(normals[p_one], normals[p_two])[1]
+        assert constraint is not None
+        return constraint
+
+
+def _radial(params: Any) -> Array:
+    """``r R_z(γ_i) i``, ``γ_i = (2i - 1)π/4`` (paper 004, Table 1, screw pair)."""
+    gamma = (2 * np.arange(1, 5) - 1) * np.pi / 4
+    return float(params.platform_radius) * np.stack([np.cos(gamma), np.sin(gamma), np.zeros(4)], -1)
+
+
+def _parallel_axes(params: Any) -> bool:
+    """Whether some sub-platform holds two parallel actuated axes (to 1e-12)."""
+    from ..robots.families.four_limb.configuration import base_frames
+
+    u = base_frames(params).u
+    return any(float(np.linalg.norm(np.cross(u[i], u[j]))) < 1e-12 for i, j in params.subplatform_limbs)
+
+
+def _constant_of(like: Enclosure, c: _Constant, sign: float = 1.0) -> Enclosure | None:
+    """The enclosure of ``sign c`` shaped like ``like`` (None for an exact zero)."""
+    if c.value == 0 and c.spread == 0:
+        return None
+    return type(like).constant(sign * c.value, like, relative=_relative(c))
+
+
+def _axis_limbs(params: Any) -> tuple[int, int] | tuple[()]:
+    """The 0-based limb of each sub-platform whose actuated axis is along ``j`` (to 1e-12), or
+    ``()`` when some sub-platform has none or two."""
+    from ..robots.families.four_limb.configuration import base_frames
+
+    u = base_frames(params).u
+    along = np.linalg.norm(np.cross(u, [0.0, 1.0, 0.0]), axis=-1) < 1e-12
+    found = [[i for i in limbs if along[i]] for limbs in params.subplatform_limbs]
+    if any(len(limbs) != 1 for limbs in found):
+        return ()
+    return found[0][0], found[1][0]
 
 
 def model_of(mechanism: Any, options: Mapping[str, Any] | None = None) -> FourLimbModel | DeltaModel:

@@ -295,11 +295,12 @@ def _add_workspace_commands(commands: Any) -> None:
     path.add_argument(
         "--certify",
         action="store_true",
-        help="also prove the path free, or enclose each crossing (Quattro, H4, Delta)",
+        help="also prove the path free, or enclose each crossing (Quattro, H4, V4, Ragnar, Delta)",
     )
     certify = commands.add_parser(
         "certify",
-        help="prove a box of poses free of singularities, or find them with a witness (Quattro, H4, Delta)",
+        help="prove a box of poses free of singularities, or find them with a witness "
+        "(Quattro, H4, V4, Ragnar, Delta)",
         description="Pave a box of the pose space into boxes proved free, singular (with a witness) or "
         "undecided, by interval arithmetic. Give ranges (LO HI) and fixed values (one value; default: the "
         "default pose). Lengths in the catalog file's unit, angles in DEGREES.",

@@ -12,7 +12,7 @@ from hypothesis import strategies as st
 
 import screwkit as sk
 from screwkit.analysis.delta_enclosure import DeltaModel
-from screwkit.robots.catalog import load_toml, mechanism_from_mapping
+from tests.analysis.certify_checks import in_metres
 from tests.delta_geometry import RADIAL, coplanar_root_on_x, dimensions, elbows, rod_determinant
 
 DELTA = sk.load_mechanism("delta")
@@ -75,7 +75,7 @@ def test_float_route_is_the_independent_rod_determinant_and_the_core():
     np.testing.assert_allclose(values["actuation"], DELTA.at(poses).jacobians.det_A, rtol=1e-9)
 
 
-@pytest.mark.parametrize(("name", "missing"), [("v4", "no enclosure"), ("veloce", "no enclosure"),
+@pytest.mark.parametrize(("name", "missing"), [("mcgill_smg", "no enclosure"), ("veloce", "screw pair"),
                                                ("planar_3rrp", "no enclosure")])
 def test_what_is_not_covered_is_refused_naming_what_is_missing(name, missing):
     with pytest.raises(sk.ScrewkitValueError, match=missing) as info:
@@ -108,21 +108,7 @@ def test_certified_path_encloses_the_independent_coplanarity():
     assert free.certified_free and not free.crossings
 
 
-def delta_in_metres():
-    """The Delta with every length in metres (lengths / 1000)."""
-    data = load_toml(DELTA.source)
-    data["mechanism"]["length_unit"] = "m"
-    for entry in data["parameters"].values():
-        entry["value"] /= 1000.0
-        entry["unit"] = "m"
-    for key in ("x", "y", "z"):
-        data["pose"][key] /= 1000.0
-        data["workspace"][key] = [v / 1000.0 for v in data["workspace"][key]]
-    data.pop("expected", None)
-    return mechanism_from_mapping(data, source="delta in metres")
-
-
-METRES = delta_in_metres()
+METRES = in_metres(DELTA)
 
 
 @settings(max_examples=6, deadline=None)
