@@ -110,7 +110,7 @@ class DeltaModel(_ClosedFormModel):
         >>> DeltaModel.of(load_mechanism("delta")).working_mode
         (1, 1, 1)
         """
-        from ..robots.families.delta import DEFAULT_MODE
+        from ..robots.families.delta import ACTUATED_AXES, DEFAULT_MODE, RADIAL_DIRECTIONS
 
         if getattr(mechanism, "family", None) != "delta":
             raise ScrewkitValueError(
@@ -124,9 +124,7 @@ class DeltaModel(_ClosedFormModel):
                 f"Expected `mode` to give only a mode of three signs (+1 or -1), got {options!r}."
             )
         params = mechanism.parameters
-        gamma = 2.0 * np.pi * np.arange(3) / 3.0
-        radial = np.stack([np.cos(gamma), np.sin(gamma), np.zeros(3)], axis=-1)
-        axes = np.stack([-np.sin(gamma), np.cos(gamma), np.zeros(3)], axis=-1)  # u_i = k × r_i
+        radial, axes = RADIAL_DIRECTIONS, ACTUATED_AXES  # the catalog's leg layout, u_i = k × r_i
         base = (
             _constants((params.platform_radius - params.base_radius) * radial, exact=False),
             _constants(axes, exact=False),

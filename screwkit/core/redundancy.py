@@ -93,7 +93,7 @@ def generic_driven_freedoms(
     """
     try:
         table = generic_configurations(
-            graph, np.random.default_rng(DRIVEN_SEED), DRIVEN_SAMPLES, joint_key=joint_key
+            graph, np.random.default_rng(DRIVEN_SEED), DRIVEN_SAMPLES, joint_key=joint_key, rtol=rtol
         )
     except ScrewkitValueError:
         return None

@@ -245,6 +245,12 @@ def graph_diagram(
     sampler : callable or None
         None when there is no diagram.
 
+    Raises
+    ------
+    ScrewkitTypeError
+        If ``analysis`` is not a :class:`~screwkit.core.wrench_systems.WrenchAnalysis` (build one
+        from a twist graph with :func:`~screwkit.core.wrenches.wrench_analysis`).
+
     Examples
     --------
     >>> from screwkit.core.wrenches import wrench_analysis
@@ -254,6 +260,7 @@ def graph_diagram(
     """
     from ..core.mobility import generic_analyses
 
+    require_instance(analysis, WrenchAnalysis, "analysis")
     graph = analysis.graph
     try:
         analyses = generic_analyses(

@@ -39,7 +39,7 @@ from typing import Any
 import numpy as np
 
 from ..algebra.projective import join_unchecked
-from ..exceptions import ScrewkitError, ScrewkitValueError
+from ..exceptions import ScrewkitError, ScrewkitTypeError, ScrewkitValueError
 from .diagram import WrenchDiagram, require_instance
 
 __all__ = ["MORE_LINES", "RedundantSuperbracket", "redundant_superbracket", "six_line_subsets"]
@@ -176,13 +176,15 @@ class RedundantSuperbracket:
     @property
     def singular(self) -> bool:
         """True when every subset has a vanishing condition at the pose: the lines span fewer than six.
+        Also True when no subset is left: every subset's superbracket is identically zero on the
+        mechanism, so its lines span fewer than six everywhere (an architecturally singular design).
 
         Examples
         --------
         >>> RedundantSuperbracket(None, (), ()).singular
-        False
+        True
         """
-        return bool(self.analyses) and all(any(a.vanishing) for a in self.analyses)
+        return all(any(a.vanishing) for a in self.analyses)
 
     def statement(self) -> str:
         """The mechanism's actuation singularity in words: every subset's superbracket vanishes.
@@ -193,11 +195,14 @@ class RedundantSuperbracket:
 
         Examples
         --------
-        >>> RedundantSuperbracket(None, (), ()).statement()
-        'no six-line subset has a superbracket that is not identically zero'
+        >>> RedundantSuperbracket(None, (), ()).statement()  # doctest: +ELLIPSIS
+        'no six-line subset has a superbracket that is not identically zero: the lines span fewer ...'
         """
         if not self.analyses:
-            return "no six-line subset has a superbracket that is not identically zero"
+            return (
+                "no six-line subset has a superbracket that is not identically zero: the lines span "
+                "fewer than six at every configuration (an architecturally singular design)"
+            )
         parts = [f"{a.diagram.line_text()} = {a.simplification.factored}" for a in self.analyses]
         constraint = self.diagram.roles.count("constraint")
         return (
@@ -277,7 +282,10 @@ def redundant_superbracket(
     Raises
     ------
     ScrewkitValueError
-        A diagram of six lines or fewer, or no generic configuration sampled.
+        A diagram of six lines or fewer, ``n_samples`` not an integer >= 1, or no generic
+        configuration sampled.
+    ScrewkitTypeError
+        If ``analyse`` is not callable.
 
     Examples
     --------
@@ -292,6 +300,10 @@ def redundant_superbracket(
             f"Expected a wrench diagram of more than six lines, got {len(diagram.lines)}: "
             "use screwkit.gca.superbracket_analysis.superbracket_analysis."
         )
+    if not callable(analyse):
+        raise ScrewkitTypeError(f"Expected `analyse` to be callable, got {type(analyse).__name__}.")
+    if isinstance(n_samples, bool) or not isinstance(n_samples, int) or n_samples < 1:
+        raise ScrewkitValueError(f"Expected `n_samples` to be an integer >= 1, got {n_samples!r}.")
     generator = np.random.default_rng(rng)
     try:
         drawn = [dict(sampler(generator)) for _ in range(2 * n_samples)]

@@ -230,6 +230,8 @@ def superbracket_analysis(
     require_instance(diagram, WrenchDiagram, "diagram")
     if not callable(sampler):
         raise ScrewkitTypeError(f"Expected `sampler` to be callable, got {type(sampler).__name__}.")
+    if isinstance(n_samples, bool) or not isinstance(n_samples, int) or n_samples < 1:
+        raise ScrewkitValueError(f"Expected `n_samples` to be an integer >= 1, got {n_samples!r}.")
     if len(diagram.lines) > 6:  # redundant actuation: the six-line subsets
         return redundant_superbracket(diagram, sampler, superbracket_analysis, n_samples=n_samples, rng=rng)
     generator = np.random.default_rng(rng)

@@ -95,3 +95,40 @@ def test_a_redundant_twist_graph_gets_its_conditions_in_the_report():
     report = sk.analyze(graph)
     assert isinstance(report.superbracket, RedundantSuperbracket) and len(report.superbracket.subsets) == 3
     assert report.verdict.redundancy == 1 and not report.superbracket.singular
+
+
+def redundant_diagram():
+    """The three-leg five-bar's seven-line diagram and sampler at a regular pose."""
+    return sk.graph_diagram(sk.wrench_analysis(three_leg_graph()))
+
+
+def three_leg_graph():
+    c = np.array([0.5, 1.2, 0.0])
+    return five_bar(c, [(a, elbow(a, c, sign)) for a, sign in ((A1, 1), (A2, -1), (A3, 1))])
+
+
+@pytest.mark.parametrize("n_samples", [0, -1, 2.5, True])
+def test_the_number_of_samples_must_be_a_positive_integer(n_samples):
+    """Zero samples once made every subset 'identically zero' and the robot 'not singular'."""
+    diagram, sampler = redundant_diagram()
+    assert len(diagram.lines) == 7
+    with pytest.raises(sk.ScrewkitValueError, match=r"Expected `n_samples` to be an integer >= 1, got "):
+        sk.superbracket_analysis(diagram, sampler, n_samples=n_samples)
+
+
+def test_analyse_must_be_callable():
+    from screwkit.gca.redundant_conditions import redundant_superbracket
+
+    diagram, sampler = redundant_diagram()
+    with pytest.raises(sk.ScrewkitTypeError, match=r"Expected `analyse` to be callable, got NoneType"):
+        redundant_superbracket(diagram, sampler, None)
+
+
+def test_no_subset_left_means_singular_everywhere():
+    empty = RedundantSuperbracket(None, (), ())
+    assert empty.singular and "architecturally singular" in empty.statement()
+
+
+def test_graph_diagram_names_its_argument():
+    with pytest.raises(sk.ScrewkitTypeError, match=r"`analysis`.*WrenchAnalysis"):
+        sk.graph_diagram(three_leg_graph())

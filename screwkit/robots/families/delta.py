@@ -55,8 +55,10 @@ __all__ = [
 ]
 
 _GAMMA = 2 * np.pi * np.arange(3) / 3
-_RADIAL = np.stack([np.cos(_GAMMA), np.sin(_GAMMA), np.zeros(3)], axis=-1)  # r_i
-_AXES = np.stack([-np.sin(_GAMMA), np.cos(_GAMMA), np.zeros(3)], axis=-1)  # u_i = k × r_i
+#: The legs' radial directions r_i (legs at 0°, 120°, 240° about z), rows (3, 3).
+RADIAL_DIRECTIONS = np.stack([np.cos(_GAMMA), np.sin(_GAMMA), np.zeros(3)], axis=-1)
+#: The actuated axes u_i = k × r_i, rows (3, 3).
+ACTUATED_AXES = np.stack([-np.sin(_GAMMA), np.cos(_GAMMA), np.zeros(3)], axis=-1)
 _K = np.array([0.0, 0.0, 1.0])
 #: The elbows-out mode (module docstring).
 DEFAULT_MODE = (1, 1, 1)
@@ -163,9 +165,9 @@ class DeltaConfiguration:
 
 def _closure(params: DeltaParameters, pose: np.ndarray) -> tuple[np.ndarray, ...]:
     """``ρ_i``, ``ψ_i``, ``K_i`` and ``C_i`` of the module docstring."""
-    c = pose[..., None, :] + params.platform_radius * _RADIAL
-    d = c - params.base_radius * _RADIAL
-    p_term, q_term = np.sum(d * _RADIAL, axis=-1), -d[..., 2]
+    c = pose[..., None, :] + params.platform_radius * RADIAL_DIRECTIONS
+    d = c - params.base_radius * RADIAL_DIRECTIONS
+    p_term, q_term = np.sum(d * RADIAL_DIRECTIONS, axis=-1), -d[..., 2]
     k_term = (np.sum(d * d, axis=-1) + params.arm_length**2 - params.rod_length**2) / (2 * params.arm_length)
     return np.hypot(p_term, q_term), np.arctan2(q_term, p_term), k_term, c
 
@@ -234,13 +236,14 @@ def inverse_kinematics(params: DeltaParameters, poses: Any, mode: Any = DEFAULT_
         )
     delta = np.arccos(np.clip(k_term / rho, -1.0, 1.0))
     theta = psi - np.array(signs, dtype=float) * delta
-    v = np.cos(theta)[..., None] * _RADIAL - np.sin(theta)[..., None] * _K
-    a = np.broadcast_to(params.base_radius * _RADIAL, c.shape)
+    v = np.cos(theta)[..., None] * RADIAL_DIRECTIONS - np.sin(theta)[..., None] * _K
+    a = np.broadcast_to(params.base_radius * RADIAL_DIRECTIONS, c.shape)
     b = a + params.arm_length * v
     w = (c - b) / params.rod_length
-    elbow_velocity = -np.cos(theta)[..., None] * _K - np.sin(theta)[..., None] * _RADIAL  # u_i × v_i
+    # u_i × v_i
+    elbow_velocity = -np.cos(theta)[..., None] * _K - np.sin(theta)[..., None] * RADIAL_DIRECTIONS
     h = params.arm_length * np.sum(w * elbow_velocity, axis=-1)
-    return DeltaConfiguration(params, pose, theta, h, a, np.broadcast_to(_AXES, c.shape), b, c)
+    return DeltaConfiguration(params, pose, theta, h, a, np.broadcast_to(ACTUATED_AXES, c.shape), b, c)
 
 
 def joints(config: DeltaConfiguration) -> JointTable:
