@@ -17,8 +17,9 @@ built in Python and catalog robots are treated alike:
 3. the joints' screws are those the model carries to the new configuration;
 4. only configurations in the reference's operation mode are kept
    (:func:`screwkit.core.operation_modes.reference_mode_indices`: the platform's motion type and the
-   constraint order as at the reference, or the most frequent class where the reference lies where
-   modes meet): a 3-UPU drawn from its base plane reaches its translational and its turning modes.
+   constraint order as at the reference; where the reference lies where modes meet, the rule of
+   :func:`~screwkit.core.operation_modes.reference_mode_indices`): a 3-UPU drawn from its base
+   plane reaches its translational and its turning modes.
 
 All configurations of a batch are moved together (arrays with a leading batch axis), and the
 result is a :class:`~screwkit.graphs.jointtable.JointTable` over the batch: the analysis core takes it as is.

@@ -61,6 +61,11 @@ def _key(analysis: WrenchAnalysis) -> tuple[str, int]:
     return label, int(analysis.constraint_order)
 
 
+def _rotations(label: str) -> int:
+    """The freedoms other than translations in a motion type label (``"2T1R"``: 1, ``"1H"``: 1)."""
+    return sum(int(part[:-1] or 1) for part in label.replace("T", "T ").split() if part[-1] in "RH")
+
+
 def operation_modes(
     analysis: WrenchAnalysis, reference: WrenchAnalysis | None = None
 ) -> list[OperationMode]:
@@ -113,15 +118,22 @@ def reference_mode_indices(analysis: WrenchAnalysis, reference: WrenchAnalysis) 
     -------
     numpy.ndarray of int
         Sorted indices: the reference's class, or, where the reference lies in none of the batch's
-        classes (at a configuration where modes meet), the largest class.
+        classes (at a configuration where modes meet), the class whose global wrench system has the
+        highest order (a mode singular throughout has no diagram to analyse), then the fewest freedoms
+        other than translations (a convention, not derived: Tsai's 3-UPU, designed to translate, is
+        analysed in its 3T mode), then the largest.
 
     Examples
     --------
-    >>> from screwkit.core.motion import generic_configurations
-    >>> from screwkit.core.wrench_systems import analyze_table
-    >>> graph = load_mechanism("planar_3rrp").twist_graph()
-    >>> batch = analyze_table(generic_configurations(graph, np.random.default_rng(0), 3))
-    >>> reference_mode_indices(batch, batch[1]).tolist()
-    [0, 1, 2]
+    >>> from screwkit.core import motion, wrench_systems
+    >>> h4 = load_mechanism("h4").twist_graph()
+    >>> draws = wrench_systems.analyze_table(motion.generic_configurations(h4, np.random.default_rng(1), 2))
+    >>> reference_mode_indices(draws, draws[1]).tolist()
+    [0, 1]
     """
-    return np.array(operation_modes(analysis, reference)[0].indices, dtype=int)
+    modes = operation_modes(analysis, reference)
+    if not modes[0].reference:  # fullest global wrench system, then fewest freedoms not translations
+        order = np.asarray(analysis.global_order)
+        modes = sorted(modes, key=lambda mode: (-int(np.min(order[list(mode.indices)])),
+                                                _rotations(mode.motion_type)))
+    return np.array(modes[0].indices, dtype=int)

@@ -90,6 +90,9 @@ class AnalysisReport:
         The instantaneous and finite mobility at the configuration
         (:func:`screwkit.core.finite_mobility.mobility_reading`; a graph's report), shown when they
         differ or the finite one is undecided; None when not read.
+    operation_modes : tuple of OperationMode
+        The modes reached from the configuration (:func:`screwkit.core.motion.reached_operation_modes`;
+        a graph's report), shown when more than one: "2 operation modes: 3T (this one) and 2T1R".
     """
 
     name: str
@@ -110,6 +113,7 @@ class AnalysisReport:
     given_length_scale: float | None = None
     angle_names: tuple[str, ...] = ()
     mobility: MobilityReading | None = None
+    operation_modes: tuple[Any, ...] = ()
 
     def graph_summary(self) -> dict[str, Any]:
         """Links, joints by type, actuated joints, loops; and the equivalent graph's virtual joints.
@@ -357,6 +361,10 @@ class AnalysisReport:
         ]
         if self.mobility is not None and (self.mobility.differs or self.mobility.finite is None):
             out += ["", str(self.mobility)]
+        if len(self.operation_modes) > 1:  # screwkit.core.motion.reached_operation_modes
+            names = [m.motion_type + (" (this one)" if m.reference else "") for m in self.operation_modes]
+            meet = "" if self.operation_modes[0].reference else " meet at this configuration"
+            out += ["", f"{len(names)} operation modes{meet}: {', '.join(names[:-1])} and {names[-1]}"]
         out += ["", f"wrench systems (platform twist system of order {wrenches['platform_twist_order']})"]
         for item in wrenches["constraint"]:
             out.append(f"  constraint ({item['leg']}): {_line_text(item, unit)}")

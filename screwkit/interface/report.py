@@ -44,6 +44,7 @@ from ..algebra.checks import checked_length_scale, checked_rtol
 from ..core.finite_mobility import mobility_reading
 from ..core.jacobian_matrices import Jacobians
 from ..core.jacobians import jacobians_from_wrenches
+from ..core.motion import reached_operation_modes
 from ..core.verdicts import classify_analysis
 from ..core.wrench_systems import WrenchAnalysis
 from ..core.wrenches import wrench_analysis
@@ -233,6 +234,7 @@ def _graph_report(
     return dataclasses.replace(
         report, given_length_scale=length_scale, transmission=transmission, pose_names=coordinates,
         mobility=mobility_reading(graph, rtol=rtol, length_scale=length_scale),
+        operation_modes=tuple(reached_operation_modes(graph)),
     )
 
 
