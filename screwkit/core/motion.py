@@ -14,7 +14,12 @@ built in Python and catalog robots are treated alike:
    method (Gauss–Newton with the pseudo-inverse, the minimum-norm correction) on the loop-closure
    equations brings every loop back together; a few such steps move the mechanism well away from
    where it started;
-3. the joints' screws are those the model carries to the new configuration.
+3. the joints' screws are those the model carries to the new configuration;
+4. only configurations in the reference's operation mode are kept
+   (:func:`screwkit.core.operation_modes.reference_mode_indices`: the platform's motion type and the
+   constraint order as at the reference; where the reference lies where modes meet, the rule of
+   :func:`~screwkit.core.operation_modes.reference_mode_indices`): a 3-UPU drawn from its base
+   plane reaches its translational and its turning modes.
 
 All configurations of a batch are moved together (arrays with a leading batch axis), and the
 result is a :class:`~screwkit.graphs.jointtable.JointTable` over the batch: the analysis core takes it as is.
@@ -38,11 +43,14 @@ from __future__ import annotations
 import networkx as nx
 import numpy as np
 
+from ..algebra import backend as B
 from ..exceptions import ScrewkitValueError
 from ..graphs.jointtable import JointTable
 from .kinematic_model import KinematicModel
+from .operation_modes import OperationMode, operation_modes, reference_mode_indices
+from .wrench_systems import analyze_table
 
-__all__ = ["generic_configurations"]
+__all__ = ["generic_configurations", "reached_operation_modes"]
 
 Array = np.ndarray
 
@@ -85,6 +93,7 @@ def generic_configurations(
     *,
     joint_key: str = "joint",
     rtol: float = 1e-9,
+    same_mode: bool = True,
 ) -> JointTable:
     """``count`` random configurations of the graph's mechanism, reached by moving it (module docstring).
 
@@ -100,11 +109,15 @@ def generic_configurations(
         The data's precision, relative: loop-closure rates whose singular value is at most ``rtol``
         times the largest are motions, and a loop closed to ``rtol`` characteristic lengths is closed
         (an overconstrained linkage given with rounded coordinates moves at its data's precision).
+    same_mode : bool, default True
+        Keep only the configurations in the reference's operation mode (module docstring, step 4);
+        False keeps every mode reached.
 
     Returns
     -------
     JointTable
-        Batch shape ``(k,)`` with ``k <= count``, the graph's joints (same names, types, actuation).
+        Batch shape ``(k,)`` with ``k <= count`` (fewer where other modes were reached), the graph's
+        joints (same names, types, actuation).
 
     Raises
     ------
@@ -144,4 +157,53 @@ def generic_configurations(
     if not np.any(ok):
         raise ScrewkitValueError("Expected loops that close again after a small motion, got none in "
                                  f"{count} tries (Newton's method did not converge).")
-    return model.joint_table(model.state(theta[ok]), JointTable.from_graph(graph, joint_key=joint_key))
+    reference = JointTable.from_graph(graph, joint_key=joint_key)
+    table = model.joint_table(model.state(theta[ok]), reference)
+    if not same_mode:
+        return table
+    rank_rtol = max(rtol, B.DEFAULT_RTOL)
+    kept = reference_mode_indices(analyze_table(table, rtol=rank_rtol, views=False),
+                                  analyze_table(reference, rtol=rank_rtol, views=False))
+    return model.joint_table(model.state(theta[ok][kept]), reference)
+
+
+#: Configurations drawn by :func:`reached_operation_modes`, and its random seed (the list is reproducible).
+MODE_DRAWS = 12
+MODE_SEED = 20
+
+
+def reached_operation_modes(graph: nx.MultiDiGraph, *, joint_key: str = "joint") -> list[OperationMode]:
+    """The operation modes the mechanism reaches by moving from its reference configuration.
+
+    :data:`MODE_DRAWS` configurations are drawn by :func:`generic_configurations` (every mode kept)
+    and grouped by :func:`~screwkit.core.operation_modes.operation_modes`. Only the modes within
+    the draws' reach (three steps of :data:`STEP`) are found: from a generic configuration of one
+    mode that mode alone; from a configuration where modes meet, each of them.
+
+    Parameters
+    ----------
+    graph : networkx.MultiDiGraph
+        A twist graph at its reference configuration.
+    joint_key : str
+
+    Returns
+    -------
+    list of OperationMode
+        The reference's mode first (marked ``reference``; none is where the reference lies where
+        modes meet), then by decreasing number of draws.
+
+    Raises
+    ------
+    ScrewkitValueError
+        As :func:`generic_configurations`.
+
+    Examples
+    --------
+    >>> graph = load_mechanism("planar_3rrp").twist_graph()
+    >>> [(mode.motion_type, mode.reference) for mode in reached_operation_modes(graph)]
+    [('2T1R', True)]
+    """
+    table = generic_configurations(graph, np.random.default_rng(MODE_SEED), MODE_DRAWS,
+                                   joint_key=joint_key, same_mode=False)
+    reference = analyze_table(JointTable.from_graph(graph, joint_key=joint_key), views=False)
+    return operation_modes(analyze_table(table, views=False), reference)

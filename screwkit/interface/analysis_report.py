@@ -94,6 +94,9 @@ class AnalysisReport:
     modes_at_pose : ModesAtPose or None
         The operation modes through the pose (:func:`screwkit.core.mode_transitions.modes_at`; None
         where not tested): where several meet, the report says so and gives the pose's verdict in each.
+    operation_modes : tuple of OperationMode
+        The modes reached from the configuration (:func:`screwkit.core.motion.reached_operation_modes`;
+        a graph's report), shown when more than one: "2 operation modes: 3T (this one) and 2T1R".
     """
 
     name: str
@@ -115,6 +118,7 @@ class AnalysisReport:
     angle_names: tuple[str, ...] = ()
     mobility: MobilityReading | None = None
     modes_at_pose: ModesAtPose | None = None
+    operation_modes: tuple[Any, ...] = ()
 
     def graph_summary(self) -> dict[str, Any]:
         """Links, joints by type, actuated joints, loops; and the equivalent graph's virtual joints.
@@ -363,6 +367,11 @@ class AnalysisReport:
         ]
         if self.mobility is not None and (self.mobility.differs or self.mobility.finite is None):
             out += ["", str(self.mobility)]
+        meeting = self.modes_at_pose is not None and self.modes_at_pose.meets  # said below, per mode
+        if len(self.operation_modes) > 1 and not meeting:  # screwkit.core.motion.reached_operation_modes
+            names = [m.motion_type + (" (this one)" if m.reference else "") for m in self.operation_modes]
+            meet = "" if self.operation_modes[0].reference else " meet at this configuration"
+            out += ["", f"{len(names)} operation modes{meet}: {', '.join(names[:-1])} and {names[-1]}"]
         out += ["", f"wrench systems (platform twist system of order {wrenches['platform_twist_order']})"]
         for item in wrenches["constraint"]:
             out.append(f"  constraint ({item['leg']}): {_line_text(item, unit)}")

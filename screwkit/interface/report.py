@@ -45,6 +45,7 @@ from ..core.finite_mobility import mobility_reading
 from ..core.jacobian_matrices import Jacobians
 from ..core.jacobians import jacobians_from_wrenches
 from ..core.mode_transitions import ModesAtPose, modes_at
+from ..core.motion import reached_operation_modes
 from ..core.verdicts import classify_analysis
 from ..core.wrench_systems import WrenchAnalysis
 from ..core.wrenches import wrench_analysis
@@ -235,6 +236,7 @@ def _graph_report(
         report, given_length_scale=length_scale, transmission=transmission, pose_names=coordinates,
         mobility=mobility_reading(graph, rtol=rtol, length_scale=length_scale),
         modes_at_pose=_modes_at_pose(graph, rtol, length_scale),
+        operation_modes=tuple(reached_operation_modes(graph)),
     )
 
 

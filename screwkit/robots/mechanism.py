@@ -484,6 +484,22 @@ class Mechanism(Generic[P, C]):
         """
         return self._one(pose, {}, angles).diagram_and_sampler()
 
+    @property
+    def operation_modes(self) -> list[Any]:
+        """The operation modes reached from the default pose, its own first (`reached_operation_modes`).
+
+        Returns
+        -------
+        list of OperationMode
+
+        Examples
+        --------
+        >>> [mode.motion_type for mode in load_mechanism("h4").operation_modes]
+        ['3T1R']
+        """
+        from ..core.motion import reached_operation_modes
+        return reached_operation_modes(self.twist_graph())
+
     def twist_graph(self, pose: Any = None, *, angles: str = "rad", **options: Any) -> nx.MultiDiGraph:
         """The twist graph of the physical mechanism at one pose (default: the default pose).
 

@@ -1,0 +1,139 @@
+"""Operation modes: generic configurations grouped by the platform's motion type and constraint order.
+
+A mechanism may move in several operation modes: Tsai's 3-UPU translates (3T) in one and turns
+(2T1R, its platform parallel to the base plane moving in it, and beyond) in others; the modes meet at
+transition configurations, which are singularities of the configuration space (Zlatanov, Bonev &
+Gosselin 2002, *Constraint singularities as C-space singularities*). Two generic configurations lie
+in the same mode only if the platform's twist system has the same motion type there
+(:func:`screwkit.algebra.motion_type.motion_type`: translations and other freedoms,
+``t = order(T) + 3 − order(T + translations)``) and the constraint wrench system the same order; this
+module groups a batch of configurations by that pair. It is a necessary condition, not a proof that
+two configurations share a mode: two modes of the same motion type and constraint order read as one.
+
+Examples
+--------
+>>> from screwkit.core.motion import generic_configurations
+>>> from screwkit.core.wrench_systems import analyze_table
+>>> graph = load_mechanism("planar_3rrp").twist_graph()
+>>> table = generic_configurations(graph, np.random.default_rng(0), 4)
+>>> [(mode.motion_type, len(mode.indices)) for mode in operation_modes(analyze_table(table))]
+[('2T1R', 4)]
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..algebra.motion_type import motion_type
+from .wrench_systems import WrenchAnalysis
+
+__all__ = ["OperationMode", "operation_modes", "reference_mode_indices"]
+
+
+@dataclass(frozen=True)
+class OperationMode:
+    """One class of configurations of a batch (module docstring).
+
+    Attributes
+    ----------
+    motion_type : str
+        The platform's motion type, e.g. ``"3T"`` (a helical freedom's pitch left out: it varies
+        along a mode).
+    constraint_order : int
+        The order of the constraint wrench system.
+    indices : tuple of int
+        The batch entries in this class.
+    reference : bool
+        True if the reference configuration (when one was given) has this motion type and
+        constraint order.
+    """
+
+    motion_type: str
+    constraint_order: int
+    indices: tuple[int, ...]
+    reference: bool = False
+
+
+def _key(analysis: WrenchAnalysis) -> tuple[str, int]:
+    label = str(motion_type(analysis.platform_twists)).split(" (pitch")[0]
+    return label, int(analysis.constraint_order)
+
+
+def _rotations(label: str) -> int:
+    """The freedoms other than translations in a motion type label (``"2T1R"``: 1, ``"1H"``: 1)."""
+    return sum(int(part[:-1] or 1) for part in label.replace("T", "T ").split() if part[-1] in "RH")
+
+
+def operation_modes(
+    analysis: WrenchAnalysis, reference: WrenchAnalysis | None = None
+) -> list[OperationMode]:
+    """The classes of a batch of configurations by motion type and constraint order.
+
+    Parameters
+    ----------
+    analysis : WrenchAnalysis
+        A batch ``(n,)`` of configurations (e.g. :func:`~screwkit.core.motion.generic_configurations`'
+        analysed).
+    reference : WrenchAnalysis, optional
+        One configuration (shape ``()``): the class with its motion type and constraint order comes
+        first and is marked ``reference``.
+
+    Returns
+    -------
+    list of OperationMode
+        The reference's class first (if any), then by decreasing size, ties by first entry.
+
+    Examples
+    --------
+    >>> from screwkit.core.motion import generic_configurations
+    >>> from screwkit.core.wrench_systems import analyze_table
+    >>> graph = load_mechanism("planar_3rrp").twist_graph()
+    >>> batch = analyze_table(generic_configurations(graph, np.random.default_rng(0), 3))
+    >>> [(mode.motion_type, mode.reference) for mode in operation_modes(batch, batch[0])]
+    [('2T1R', True)]
+    """
+    classes: dict[tuple[str, int], list[int]] = {}
+    for index in range(int(analysis.shape[0])):
+        classes.setdefault(_key(analysis[index]), []).append(index)
+    own = None if reference is None else _key(reference)
+    modes = [
+        OperationMode(key[0], key[1], tuple(indices), key == own) for key, indices in classes.items()
+    ]
+    return sorted(modes, key=lambda mode: (not mode.reference, -len(mode.indices), mode.indices[0]))
+
+
+def reference_mode_indices(analysis: WrenchAnalysis, reference: WrenchAnalysis) -> np.ndarray:
+    """Batch entries in the reference configuration's class (all entries if none is).
+
+    Parameters
+    ----------
+    analysis : WrenchAnalysis
+        A batch ``(n,)``.
+    reference : WrenchAnalysis
+        One configuration.
+
+    Returns
+    -------
+    numpy.ndarray of int
+        Sorted indices: the reference's class, or, where the reference lies in none of the batch's
+        classes (at a configuration where modes meet), the class whose global wrench system has the
+        highest order (a mode singular throughout has no diagram to analyse), then the fewest freedoms
+        other than translations (a convention, not derived: Tsai's 3-UPU, designed to translate, is
+        analysed in its 3T mode), then the largest.
+
+    Examples
+    --------
+    >>> from screwkit.core import motion, wrench_systems
+    >>> h4 = load_mechanism("h4").twist_graph()
+    >>> draws = wrench_systems.analyze_table(motion.generic_configurations(h4, np.random.default_rng(1), 2))
+    >>> reference_mode_indices(draws, draws[1]).tolist()
+    [0, 1]
+    """
+    modes = operation_modes(analysis, reference)
+    if not modes[0].reference:  # fullest global wrench system, then fewest freedoms not translations
+        order = np.asarray(analysis.global_order)
+        modes = sorted(modes, key=lambda mode: (-int(np.min(order[list(mode.indices)])),
+                                                _rotations(mode.motion_type)))
+    return np.array(modes[0].indices, dtype=int)
