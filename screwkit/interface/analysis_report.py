@@ -403,10 +403,16 @@ class AnalysisReport:
                     "condition is evaluated where its points exist"
                 )
             out += ["", "conditions"]
+            # a redundant mechanism's conditions hold subset by subset: one alone is not a singularity
+            subsets = getattr(result, "subset_of", None)
+            said: set[str] = set()
             for index, (condition, label, value, vanishes, constant) in enumerate(zip(
                 result.conditions, result.labels, result.values, result.vanishing, result.constant,
                 strict=True,
             )):
+                if constant and str(condition.factor) in said:
+                    continue  # the same structural factor in another subset
+                said.add(str(condition.factor))
                 if constant:
                     out.append(
                         f"  {condition.factor} never vanishes on this mechanism: the same value on "
@@ -418,7 +424,13 @@ class AnalysisReport:
                 flag = "  <- vanishes at this pose" if vanishes else ""
                 if vanishes and result.representation:  # the ranks decide there, not the factor
                     flag += " (where the diagram does not hold: the verdict below decides)"
-                out.append(f"  {label} singularity when {condition.factor} = 0{flag}")
+                if subsets is None:
+                    out.append(f"  {label} singularity when {condition.factor} = 0{flag}")
+                else:
+                    out.append(
+                        f"  subset {subsets[index] + 1}: {label} factor {condition.factor} = 0 (singular "
+                        f"only where every subset has a vanishing factor){flag}"
+                    )
                 out.append(f"    {condition.statement}")
                 here = f"{value:.6g}" if math.isfinite(value) else "not defined: " + result.undefined[index]
                 out.append(f"    vector form: {condition.expression} = 0   (here: {here})")
