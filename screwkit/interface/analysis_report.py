@@ -404,7 +404,7 @@ class AnalysisReport:
                 )
             out += ["", "conditions"]
             # a redundant mechanism's conditions hold subset by subset: one alone is not a singularity
-            subsets = getattr(result, "subset_of", None)
+            subsets = result.subset_of if isinstance(result, Redundant) else None
             said: set[str] = set()
             for index, (condition, label, value, vanishes, constant) in enumerate(zip(
                 result.conditions, result.labels, result.values, result.vanishing, result.constant,
