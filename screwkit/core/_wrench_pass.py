@@ -18,6 +18,7 @@ array([2., 2., 2.])
 from __future__ import annotations
 
 import itertools
+from collections.abc import Callable, Iterable
 from typing import Any
 
 import numpy as np
@@ -36,7 +37,9 @@ from ._compound_legs import apart_from_legs, compound_legs, coupled_limbs, leg_o
 from ._program import Evaluation, Frame, Request, limb_frame, stacked
 from .line_search import LINE_RTOL, line_search, nearest_lines
 
-__all__ = ["actuated_screws", "canonical", "checked_dof", "checked_lengths", "scalar", "wrench_pass"]
+__all__ = [
+    "actuated_screws", "canonical", "checked_dof", "checked_kept", "checked_lengths", "scalar", "wrench_pass"
+]
 
 Array = np.ndarray
 
@@ -171,8 +174,54 @@ def scalar(value: Any) -> Any:
     return array.item() if array.ndim == 0 else value
 
 
+def checked_kept(keys: Iterable[str], top: Topology) -> tuple[str, ...]:
+    """The frames a lean pass keeps (``kept`` of :func:`wrench_pass`): each ``"constraint"``,
+    ``"leg{k}:W"`` of a leg or, for a series-parallel tree, ``"node{i}"`` of a node.
+
+    Parameters
+    ----------
+    keys : iterable of str
+    top : Topology
+
+    Returns
+    -------
+    tuple of str
+        Without repeats, in order.
+
+    Raises
+    ------
+    ScrewkitValueError
+        Naming a key that is none of these.
+
+    Examples
+    --------
+    >>> from screwkit.graphs.jointtable import JointSpec
+    >>> top = topology("B", "E", (JointSpec("R1", "R", "B", "E", 1, True),))
+    >>> checked_kept(["node0", "constraint", "node0"], top)
+    ('node0', 'constraint')
+    >>> checked_kept(["node1"], top)
+    Traceback (most recent call last):
+    ...
+    screwkit.exceptions.ScrewkitValueError: Expected `kept` to name frames among [...], got 'node1'.
+    """
+    legs = 1 if top.network else len(top.legs)
+    nodes = 0 if top.network else len(top.nodes)
+    allowed = ["constraint", *(f"leg{k}:W" for k in range(legs)), *(f"node{i}" for i in range(nodes))]
+    keys = tuple(dict.fromkeys(keys))
+    for key in keys:
+        if key not in allowed:
+            raise ScrewkitValueError(f"Expected `kept` to name frames among {allowed}, got {key!r}.")
+    return keys
+
+
 def wrench_pass(
-    table: JointTable, *, dof: Any, rtol: float, length_scale: Any, views: bool
+    table: JointTable,
+    *,
+    dof: Any,
+    rtol: float,
+    length_scale: Any,
+    views: bool,
+    kept: Callable[[Topology], Iterable[str]] | None = None,
 ) -> dict[str, Any]:
     """The wrench systems of a joint table over its batch: the fields of a
     :class:`~screwkit.core.wrench_systems.WrenchAnalysis` (the one pass under
@@ -186,6 +235,8 @@ def wrench_pass(
         Already checked.
     length_scale : float, array_like or None
     views : bool
+    kept : callable, optional
+        Without the views: ``kept(topology)`` names further frames to keep.
 
     Returns
     -------
@@ -205,6 +256,7 @@ def wrench_pass(
     batch = table.batch_shape
     screws = table.screws
     given_length = checked_lengths(length_scale, batch)
+    wanted = () if views or kept is None else checked_kept(kept(top), top)
     if given_length is None:  # the frame's own length, with the scaled screws in the same pass
         centre, length, scaled = scaled_frame(screws, table.anchor)
         assert scaled is not None
@@ -223,6 +275,7 @@ def wrench_pass(
             *(("sum", tuple(plan.siblings)) for plan in top.limbs),
             *(("passive", tuple(plan.siblings)) for plan in top.limbs),
             *((("twists", i) for i in range(len(top.nodes))) if views else ()),
+            *(("twists", int(key[4:])) for key in wanted if key.startswith("node")),
         )
         requests = tuple(dict.fromkeys(requests))
     core = Evaluation(top, scaled, rtol, requests)
@@ -343,6 +396,9 @@ def wrench_pass(
     if views and not top.network:  # every node's twists, for the per-pose series-parallel tree
         for index in range(len(top.nodes)):
             frames[f"node{index}"] = core.twists(index)
+    if wanted:  # what kept() named, out of the frames computed above or in the program
+        known = {"constraint": constraint, **{f"leg{k}:W": w for k, w in enumerate(leg_wrenches)}}
+        frames.update({key: known[key] if key in known else core.twists(int(key[4:])) for key in wanted})
     if views:
         for k, (twist_frame, wrench_frame) in enumerate(zip(leg_twists, leg_wrenches, strict=True)):
             frames[f"leg{k}:T"] = twist_frame

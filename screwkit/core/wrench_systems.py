@@ -40,7 +40,7 @@ Examples
 from __future__ import annotations
 
 import functools
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field, replace
 from typing import Any
 
@@ -428,6 +428,7 @@ def analyze_table(
     rtol: float = B.DEFAULT_RTOL,
     length_scale: float | None = None,
     views: bool = True,
+    kept: Callable[[Topology], Iterable[str]] | None = None,
 ) -> WrenchAnalysis:
     """The wrench systems of a mechanism over a batch of configurations (the one core).
 
@@ -451,6 +452,12 @@ def analyze_table(
         actuation wrenches and the frames the Jacobians need (the platform's twists, each limb's
         passive wrenches): less memory for large batches, the other views recomputed for the one
         pose that asks.
+    kept : callable, optional
+        With ``views=False``: ``kept(topology)`` (the :class:`~screwkit.graphs.topology.Topology` the
+        pass runs on) names per-pose frames to keep besides, by their key in
+        :attr:`WrenchAnalysis.frames`: ``"constraint"``, ``"leg{k}:W"``, ``"node{i}"`` (a
+        series-parallel tree's node twists), each the same bits as with the views, at the cost of
+        those frames only.
 
     Returns
     -------
@@ -460,6 +467,8 @@ def analyze_table(
     ------
     TwistGraphError
         If an actuated joint lies on no base-to-platform path, or ``dof`` is invalid.
+    ScrewkitValueError
+        If ``kept`` names a frame the topology does not have.
 
     Examples
     --------
@@ -468,8 +477,13 @@ def analyze_table(
     >>> table = JointTable.from_rows("B", "E", [("B", "E", "R", "R", [[line]] * 3, True)])
     >>> analyze_table(table).constraint_order
     array([5, 5, 5])
+    >>> sorted(analyze_table(table, views=False, kept=lambda top: ["constraint"]).frames)
+    ['constraint', 'limb0:passive', 'platform']
     """
     if not isinstance(table, JointTable):
         raise ScrewkitTypeError(f"Expected `table` to be a JointTable, got {type(table).__name__}.")
     rtol = checked_rtol(rtol)
-    return WrenchAnalysis(**wrench_pass(table, dof=dof, rtol=rtol, length_scale=length_scale, views=views))
+    if kept is not None and not callable(kept):
+        raise ScrewkitTypeError(f"Expected `kept` to be callable, got {type(kept).__name__}.")
+    fields = wrench_pass(table, dof=dof, rtol=rtol, length_scale=length_scale, views=views, kept=kept)
+    return WrenchAnalysis(**fields)

@@ -15,6 +15,7 @@ array([[0., 0., 1., 0.]])
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Mapping
 
 import numpy as np
@@ -26,12 +27,14 @@ from ..core import frames as F
 from ..core.wrench_systems import WrenchAnalysis, analyze_table
 from ..exceptions import DegenerateGeometryError
 from ..graphs.jointtable import JointTable
+from ..graphs.topology import Topology
 from .diagram import INCIDENCE_RTOL, DiagramPoint, axis_key
 from .diagram_lines import Line, basis_names, leg_name
 
 __all__ = [
     "batch_diagram_points",
     "diagram_points",
+    "frames_read",
     "joint_centre",
     "meet_points",
 ]
@@ -107,7 +110,9 @@ def batch_diagram_points(
         A diagram's points (their recipes).
     analysis : WrenchAnalysis
         Of shape ``(n,)`` (or one pose, taken as a batch of one), e.g.
-        :func:`screwkit.core.wrench_systems.analyze_table` of a family's joint table.
+        :func:`screwkit.core.wrench_systems.analyze_table` of a family's joint table; one without
+        its views should keep the frames the recipes read (``kept``: :func:`frames_read`), else
+        they are computed again (those frames only).
     lines : list of (name, role, wrench, joints), optional
         At one pose: the only lines the recipes may use (default: every line of the mechanism).
 
@@ -128,7 +133,7 @@ def batch_diagram_points(
     array([[0., 0., 1., 0.],
            [0., 0., 1., 0.]])
     """
-    batch = _Batch.create(analysis, lines)
+    batch = _Batch.create(analysis, lines, points)
     cache: dict[tuple[str, ...], Array] = {}
     return {point.label: _oriented(_recipe(point.key, batch, cache), point.orientation) for point in points}
 
@@ -170,13 +175,16 @@ class _Batch:
         }
 
     @classmethod
-    def create(cls, analysis: WrenchAnalysis, lines: list[Line] | None) -> _Batch:
+    def create(
+        cls, analysis: WrenchAnalysis, lines: list[Line] | None, points: tuple[DiagramPoint, ...]
+    ) -> _Batch:
         frames: Mapping[str, tuple[Array, Array]] = analysis.frames
-        if "constraint" not in frames:  # analysed without its views: the same kernels again, with them
-            table = analysis.table[None] if analysis.single else analysis.table
-            frames = _frames_with_views(table, analysis)
-        elif analysis.single:
+        if analysis.single:
             frames = {k: (rows[None], np.asarray(order)[None]) for k, (rows, order) in frames.items()}
+        missing = [key for key in frames_read(points, analysis.topology) if key not in frames]
+        if missing:  # analysed without them (the core's lean pass): the same kernels again, those only
+            table = analysis.table[None] if analysis.single else analysis.table
+            frames = {**frames, **_frames_kept(table, analysis, missing)}
         given = None if lines is None else {name: np.asarray(w, dtype=float)[None] for name, _, w, _ in lines}
         return cls(analysis, frames, given)
 
@@ -195,21 +203,16 @@ class _Batch:
         """A constraint line (:func:`screwkit.gca.diagram_lines.select_lines`' names): the element
         of its leg's (or the mechanism's) readable basis at each pose, as the per-pose views give
         it (the same frame conversion, pose by pose, without building the views)."""
-        sources = [
-            (f"constraint of the {leg_name(self.topology, k)}", f"leg{k}:W")
-            for k in range(len(self.topology.legs))
-            if not self.topology.network
-        ] + [("constraint wrench", "constraint")]
-        for prefix, key in sources:
-            if not name.startswith(prefix):
-                continue
-            out = self.nan(6)
-            for i, basis in enumerate(self._readable_bases(key)):
-                names = basis_names(prefix, len(basis))
-                if name in names:
-                    out[i] = basis[names.index(name)]
-            return out
-        return self.nan(6)
+        source = _constraint_source(self.topology, name)
+        if source is None:
+            return self.nan(6)
+        prefix, key = source
+        out = self.nan(6)
+        for i, basis in enumerate(self._readable_bases(key)):
+            names = basis_names(prefix, len(basis))
+            if name in names:
+                out[i] = basis[names.index(name)]
+        return out
 
     def _readable_bases(self, key: str) -> list[Array]:
         """The readable basis of a system (a frame) at each pose, as the per-pose views give it."""
@@ -230,10 +233,122 @@ class _Batch:
         return np.asarray(self.table.joint_screws(name), dtype=float)
 
 
-def _frames_with_views(table: JointTable, analysis: WrenchAnalysis) -> dict[str, tuple[Array, Array]]:
-    """The per-pose frames of an analysis that kept none (the same core, with its views)."""
+def _frames_kept(
+    table: JointTable, analysis: WrenchAnalysis, keys: list[str]
+) -> dict[str, tuple[Array, Array]]:
+    """The per-pose frames ``keys`` of an analysis that did not keep them (the same core, lean,
+    keeping those)."""
     length = analysis.length_scale  # given back: the same lengths, the same bits
-    return analyze_table(table, dof=analysis.dof, rtol=analysis.rtol, length_scale=length).frames
+    again = analyze_table(
+        table, dof=analysis.dof, rtol=analysis.rtol, length_scale=length, views=False, kept=lambda _: keys
+    )
+    return {key: again.frames[key] for key in keys}
+
+
+def _constraint_source(top: Topology, name: str) -> tuple[str, str] | None:
+    """The system a constraint line's name is read from: its names' prefix and its frame's key
+    (a compound leg's ``leg{k}:W``, else the mechanism's ``constraint``); None for other names."""
+    legs = () if top.network else range(len(top.legs))
+    sources = [(f"constraint of the {leg_name(top, k)}", f"leg{k}:W") for k in legs]
+    sources.append(("constraint wrench", "constraint"))
+    return next(((prefix, key) for prefix, key in sources if name.startswith(prefix)), None)
+
+
+def _branches(top: Topology, first: str, second: str) -> tuple[tuple[int, ...], list[str]] | None:
+    """The branches (child nodes) of the first parallel node below the root's parallel level that
+    holds a branch named ``first`` and one named ``second`` (a branch is named by its first
+    actuated joint, else its first joint), with their names; None if there is none."""
+    if top.network or top.root is None:
+        return None
+    actuated = set(top.actuated)
+
+    def name(index: int) -> str:
+        joints = top.nodes[index].joints
+        return (sorted(j for j in joints if j in actuated) or sorted(joints))[0]
+
+    def nested(index: int, outer: bool) -> list[int]:  # parallel nodes below the first one
+        node = top.nodes[index]
+        found = [index] if node.kind == "parallel" and not outer else []
+        return found + [
+            k for child in node.children for k in nested(child, outer and node.kind != "parallel")
+        ]
+
+    for index in nested(top.root, True):
+        children = top.nodes[index].children
+        names = [name(c) for c in children]
+        if first in names and second in names:
+            return children, names
+    return None
+
+
+def _branches_read(names: list[str], first: str, second: str) -> list[int]:
+    """The branches whose constraint couples :func:`_branch_pair` reads, by position: the two
+    named and those between them (where a couple between would part them)."""
+    a, b = names.index(first), names.index(second)
+    return [a, b, *range(a + 1, b)]
+
+
+def _lines_read(key: tuple[str, ...]) -> list[str]:
+    """The names of the mechanism's lines a recipe (:attr:`DiagramPoint.key`) reads (:func:`_recipe`)."""
+    kind = key[0]
+    if kind in ("meet", "direction", "foot", "free"):
+        return [key[1]]
+    if kind == "couples":
+        return [key[1], key[2]]
+    if kind == "perp":
+        return [key[1], *_lines_read(key[2:])]
+    return []
+
+
+def frames_read(points: tuple[DiagramPoint, ...], topology: Topology) -> tuple[str, ...]:
+    """The per-pose frames of an analysis that the points' recipes read (by their key in
+    :attr:`screwkit.core.wrench_systems.WrenchAnalysis.frames`): what a lean pass keeps
+    (``kept`` of :func:`screwkit.core.wrench_systems.analyze_table`) so that
+    :func:`batch_diagram_points` needs no second pass.
+
+    The constraint lines' systems (a compound leg's ``"leg{k}:W"``, the mechanism's
+    ``"constraint"``) and the twist frames ``"node{i}"`` of the branches whose constraint couples
+    the ``normals`` recipes cross; actuation lines and joint axes need none.
+
+    Parameters
+    ----------
+    points : tuple of DiagramPoint
+        A diagram's points (their recipes).
+    topology : Topology
+        The topology the analysis runs on (``analysis.topology``, or the argument ``kept`` is called with).
+
+    Returns
+    -------
+    tuple of str
+        Without repeats, in the order the recipes read them.
+
+    Examples
+    --------
+    >>> from screwkit.core.wrench_systems import analyze_table
+    >>> delta = load_mechanism("delta")
+    >>> diagram, _ = delta.wrench_diagram()
+    >>> analysis = analyze_table(delta.joints([[0, 0, -800]]), views=False)
+    >>> frames_read(diagram.points, analysis.topology)
+    ('leg0:W', 'leg1:W', 'leg2:W')
+    """
+    return _frames_read(points, topology)
+
+
+@functools.lru_cache(maxsize=64)
+def _frames_read(points: tuple[DiagramPoint, ...], topology: Topology) -> tuple[str, ...]:
+    """:func:`frames_read`, once per diagram and topology (asked for every chunk of a map)."""
+    keys: list[str] = []
+    for point in points:
+        if point.key[0] == "normals":
+            found = _branches(topology, point.key[1], point.key[2])
+            if found is not None:
+                children, names = found
+                keys += [f"node{children[k]}" for k in _branches_read(names, point.key[1], point.key[2])]
+        for name in _lines_read(point.key):
+            source = _constraint_source(topology, name)
+            if source is not None:
+                keys.append(source[1])
+    return tuple(dict.fromkeys(keys))
 
 
 def _finite(points: Array) -> Array:
@@ -399,41 +514,23 @@ def _branch_pair(batch: _Batch, first: str, second: str) -> Array:
     ``reciprocal``) where that has order 1 and infinite pitch; its moment's
     direction is frame- and unit-free.
     """
-    top = batch.topology
-    if top.network or top.root is None:
+    found = _branches(batch.topology, first, second)
+    if found is None:
         return batch.nan(3)
-    actuated = set(top.actuated)
-
-    def name(index: int) -> str:
-        joints = top.nodes[index].joints
-        return (sorted(j for j in joints if j in actuated) or sorted(joints))[0]
-
-    def nested(index: int, outer: bool) -> list[int]:  # parallel nodes below the first one
-        node = top.nodes[index]
-        found = [index] if node.kind == "parallel" and not outer else []
-        return found + [
-            k for child in node.children for k in nested(child, outer and node.kind != "parallel")
-        ]
-
-    for index in nested(top.root, True):
-        children = top.nodes[index].children
-        names = [name(c) for c in children]
-        if first not in names or second not in names:
-            continue
-        moments, couple = [], []
-        for child in children:
-            rows, order = F.reciprocal(*batch.frames[f"node{child}"])  # the core's kernel, scaled frame
-            wrench = rows[:, 0]
-            moments.append(_units(wrench[:, 3:]))
-            size = np.linalg.norm(wrench, axis=-1)
-            couple.append((order == 1) & (np.linalg.norm(wrench[:, :3], axis=-1) <= B.DEFAULT_RTOL * size))
-        a, b = names.index(first), names.index(second)
-        between = np.zeros(batch.count, dtype=bool)
-        for k in range(a + 1, b):
-            between |= couple[k]
-        ok = couple[a] & couple[b] & ~between
-        return np.where(ok[:, None], B.cross(moments[a], moments[b]), np.nan)
-    return batch.nan(3)
+    children, names = found
+    a, b = names.index(first), names.index(second)
+    moments, couple = {}, {}
+    for k in _branches_read(names, first, second):
+        rows, order = F.reciprocal(*batch.frames[f"node{children[k]}"])  # the core's kernel, scaled frame
+        wrench = rows[:, 0]
+        moments[k] = _units(wrench[:, 3:])
+        size = np.linalg.norm(wrench, axis=-1)
+        couple[k] = (order == 1) & (np.linalg.norm(wrench[:, :3], axis=-1) <= B.DEFAULT_RTOL * size)
+    between = np.zeros(batch.count, dtype=bool)
+    for k in range(a + 1, b):
+        between |= couple[k]
+    ok = couple[a] & couple[b] & ~between
+    return np.where(ok[:, None], B.cross(moments[a], moments[b]), np.nan)
 
 
 def _recipe(key: tuple[str, ...], batch: _Batch, cache: dict[tuple[str, ...], Array]) -> Array:

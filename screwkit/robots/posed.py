@@ -295,23 +295,34 @@ class PosedMechanism:
             return label_table(  # the family's dof
                 self.joints, rtol=self.rtol, length_scale=self.length_scale, chunk=CHUNK
             )
-        flat = self.poses.reshape(-1, self.poses.shape[-1])
-        if self._failures:
-            _ = self.configuration  # names the first pose out of reach
         try:
-            protocol, configuration = self.mechanism.family_protocol, self.mechanism.configuration
-            pieces = (
-                protocol.joint_table(configuration(flat[start : start + CHUNK], **self.options))
-                for start in range(0, max(len(flat), 1), CHUNK)
-            )
             # the report's table, asked only by a per-pose view, is this object's (held weakly: a
             # reference cycle would keep every chunk of a map alive until the cyclic GC runs)
             owner = weakref.ref(self)
             source = functools.partial(joint_table_of, owner, self.mechanism, self.poses, self.options)
-            return classify_chunks(pieces, source, self.shape, rtol=self.rtol, length_scale=self.length_scale)
+            return classify_chunks(
+                self._table_chunks(), source, self.shape, rtol=self.rtol, length_scale=self.length_scale
+            )
         except ScrewkitError:
             _ = self.configuration  # raises the whole batch's message (the failing pose's index)
             raise
+
+    def _table_chunks(self) -> Iterator[JointTable]:
+        """The batch's joint table, flattened, in chunks of :data:`CHUNK` poses: slices of
+        :attr:`joints` once computed, else each chunk through the inverse kinematics and the
+        family's joints in turn (the whole table never held)."""
+        if "joints" in self.__dict__ or self.shape == ():
+            table, shape = (self.joints[None], (1,)) if self.shape == () else (self.joints, self.shape)
+            count = int(np.prod(shape))
+            for start in range(0, count, CHUNK):
+                yield table[np.unravel_index(np.arange(start, min(start + CHUNK, count)), shape)]
+            return
+        if self._failures:
+            _ = self.configuration  # names the first pose out of reach
+        flat = self.poses.reshape(-1, self.poses.shape[-1])
+        protocol, configuration = self.mechanism.family_protocol, self.mechanism.configuration
+        for start in range(0, max(len(flat), 1), CHUNK):
+            yield protocol.joint_table(configuration(flat[start : start + CHUNK], **self.options))
 
     @property
     def verdicts(self) -> Array:
@@ -354,9 +365,11 @@ class PosedMechanism:
     def diagram_points(self, points: tuple[Any, ...]) -> tuple[dict[str, Array], Array]:
         """A wrench diagram's points at every pose of the batch, in the core's chunks.
 
-        The joint table goes through the analysis core :data:`CHUNK` poses at a time with the
-        per-pose frames the points' recipes read (:func:`screwkit.gca.diagram_points.batch_diagram_points`),
-        so that only the points are kept.
+        The joint table goes through the analysis core :data:`CHUNK` poses at a time, lean (as for
+        the verdicts, without the per-pose views) keeping only the frames the points' recipes read
+        (:func:`screwkit.gca.diagram_points.frames_read`: a few branches' twists, the legs'
+        constraint systems), then the recipes over the chunk
+        (:func:`screwkit.gca.diagram_points.batch_diagram_points`): one wrench pass, only the points kept.
 
         Parameters
         ----------
@@ -365,11 +378,16 @@ class PosedMechanism:
 
         Returns
         -------
-        values : dict of str to numpy.ndarray, shape (m, 4)
-            Per label, the point's homogeneous coordinates over the batch of ``m`` poses (shape
-            ``(m,)``; NaN where it does not exist); shape ``(4,)`` for one pose.
-        exists : numpy.ndarray of bool, shape (m,)
+        values : dict of str to numpy.ndarray, shape (..., 4)
+            Per label, the point's homogeneous coordinates over the batch (its :attr:`shape`; NaN
+            where it does not exist); shape ``(4,)`` for one pose.
+        exists : numpy.ndarray of bool, shape (...)
             Where every point exists; shape ``()`` for one pose.
+
+        Raises
+        ------
+        UnreachablePoseError
+            Naming the first pose out of reach.
 
         Examples
         --------
@@ -379,19 +397,23 @@ class PosedMechanism:
         >>> len(values) == len(diagram.points), exists.tolist()
         (True, [True, True])
         """
-        from ..gca.diagram_points import batch_diagram_points
+        from ..gca.diagram_points import batch_diagram_points, frames_read
 
-        one = self.shape == ()
-        table, rtol, length = (self.joints[None] if one else self.joints), self.rtol, self.length_scale
-        parts = [
-            batch_diagram_points(points, analyze_table(table[i : i + CHUNK], rtol=rtol, length_scale=length))
-            for i in range(0, len(table), CHUNK)
-        ]
+        kept, length = functools.partial(frames_read, points), self.length_scale
+        try:
+            parts = [
+                batch_diagram_points(
+                    points, analyze_table(table, rtol=self.rtol, length_scale=length, views=False, kept=kept)
+                )
+                for table in self._table_chunks()
+            ]
+        except ScrewkitError:
+            _ = self.configuration  # raises the whole batch's message (the failing pose's index)
+            raise
         values = {p.label: np.concatenate([part[p.label] for part in parts]) for p in points}
+        values = {label: value.reshape(*self.shape, 4) for label, value in values.items()}
         exists = np.all([np.isfinite(v).all(axis=-1) for v in values.values()], axis=0)
-        if one:
-            return {label: value[0] for label, value in values.items()}, np.asarray(exists, dtype=bool)[0]
-        return values, np.asarray(exists, dtype=bool).reshape(len(self))
+        return values, np.asarray(exists, dtype=bool).reshape(self.shape)
 
     def __getitem__(self, index: Any) -> PosedMechanism:
         """One pose of the batch: a posed mechanism of shape ``()`` with its row of the joint table.
