@@ -167,6 +167,7 @@ class _Batch:
         self.count = len(self.length_scale)
         self.given = given
         self.bases: dict[str, list[Array]] = {}
+        self.axes: dict[str, tuple[Array, Array, Array, Array]] = {}
         rows = np.asarray(analysis.actuation_rows, dtype=float).reshape(self.count, -1, 6)
         serial = np.asarray(analysis.serial, dtype=bool).reshape(self.count, -1)
         self.actuation = {
@@ -231,6 +232,13 @@ class _Batch:
     def joint_screws(self, name: str) -> Array:
         """``(n, dof_j, 6)``."""
         return np.asarray(self.table.joint_screws(name), dtype=float)
+
+    def scaled_axes(self, name: str) -> tuple[Array, Array, Array, Array]:
+        """:func:`_scaled_axes` of a joint's first axis over the batch (once per joint: two lines
+        may meet it)."""
+        if name not in self.axes:
+            self.axes[name] = _scaled_axes(self.joint_screws(name)[:, 0], self.length_scale[:, None])
+        return self.axes[name]
 
 
 def _frames_kept(
@@ -439,21 +447,31 @@ def meet_points(line: Array, screw: Array, length_scale: Array) -> Array:
     >>> meet_points(x_axis, np.array([0, 0, 1.0, 0, -2.0, 0]), np.array(1.0)) + 0.0
     array([2., 0., 0., 1.])
     """
-    axis, origin = _axis_lines(screw)
     length = np.asarray(length_scale, dtype=float)[..., None]
+    return _meet(line, _scaled_axes(screw, length), length)
 
-    def scaled(rows: Array) -> Array:
-        return _units(np.concatenate([rows[..., :3], rows[..., 3:] / length], axis=-1))
 
-    a, b = scaled(line), scaled(axis)
-    product = np.einsum("...i,...i", a[..., :3], b[..., 3:]) + np.einsum("...i,...i", a[..., 3:], b[..., :3])
-    cross = B.cross(_units(line[..., :3]), _units(axis[..., :3]))
-    parallel = np.linalg.norm(cross, axis=-1) < INCIDENCE_RTOL
+def _scaled_axes(screw: Array, length: Array) -> tuple[Array, Array, Array, Array]:
+    """What :func:`meet_points` reads of joint axes (once per joint over a batch): the axes with
+    their moments divided by ``length`` ``(..., 1)``, those rows unit, the unit directions, and the
+    axes' points nearest the origin divided by ``length``."""
+    axis, origin = _axis_lines(screw)
+    divided = np.concatenate([axis[..., :3], axis[..., 3:] / length], axis=-1)
+    return divided, _units(divided), _units(axis[..., :3]), origin / length
+
+
+def _meet(line: Array, axes: tuple[Array, Array, Array, Array], length: Array) -> Array:
+    """:func:`meet_points` of lines and :func:`_scaled_axes`."""
+    axis, b, direction, origin = axes
     # the meet in lengths divided by length_scale: the test of a line lying in the plane compares
     # the point with a product of two moments, not invariant under a change of unit otherwise (a
     # 1 m mechanism written in picometres lost every meet point)
-    line, axis = (np.concatenate([rows[..., :3], rows[..., 3:] / length], axis=-1) for rows in (line, axis))
-    point, in_plane = _meet_plane_through_axis(line, axis, origin / length)
+    divided = np.concatenate([line[..., :3], line[..., 3:] / length], axis=-1)
+    a = _units(divided)
+    product = np.einsum("...i,...i", a[..., :3], b[..., 3:]) + np.einsum("...i,...i", a[..., 3:], b[..., :3])
+    cross = B.cross(_units(line[..., :3]), direction)
+    parallel = np.linalg.norm(cross, axis=-1) < INCIDENCE_RTOL
+    point, in_plane = _meet_plane_through_axis(divided, axis, origin)
     with np.errstate(invalid="ignore"):
         skew = ~(np.abs(product) <= INCIDENCE_RTOL)
         missing = skew | parallel | in_plane | ~(np.abs(point[..., 3]) >= 1e-12)
@@ -540,7 +558,7 @@ def _recipe(key: tuple[str, ...], batch: _Batch, cache: dict[tuple[str, ...], Ar
     kind = key[0]
     value: Array
     if kind == "meet":
-        value = meet_points(batch.wrench(key[1]), batch.joint_screws(key[2])[:, 0], batch.length_scale)
+        value = _meet(batch.wrench(key[1]), batch.scaled_axes(key[2]), batch.length_scale[:, None])
     elif kind == "direction":
         value = _infinite(_canonical_directions(batch.wrench(key[1])[:, :3]))
     elif kind == "axis":
