@@ -3,9 +3,10 @@
 Run: ``python bench/bench_workspace.py [--side 1000] [--chunk 4096] [--repeats 5] [--conditions-only]``
 from the repository root (prints a table; not a test). Single-threaded BLAS.
 
-Figures (rates in poses per second of this process's CPU time, since the machine is shared: the
-median of ``--repeats`` rounds, each round timing every compared function once in turn, so that a
-change of load weighs on all alike; the load average is printed before and after):
+Figures (rates in poses per second of this process's CPU time, since the machine is shared; the
+first section the median of ``--repeats`` rounds, each round timing every compared function once in
+turn so that a change of load weighs on all alike, the load average printed before and after; the
+other sections best of ``--repeats``):
 
 * ``condition maps vs the core`` (issue 21: a condition map at ≥ 0.5× the core's rate): per
   mechanism, the core on the map's reachable poses (``m.at(poses).singularities``), the verdict
