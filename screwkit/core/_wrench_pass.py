@@ -37,9 +37,7 @@ from ._compound_legs import apart_from_legs, compound_legs, coupled_limbs, leg_o
 from ._program import Evaluation, Frame, Request, limb_frame, stacked
 from .line_search import LINE_RTOL, line_search, nearest_lines
 
-__all__ = [
-    "actuated_screws", "canonical", "checked_dof", "checked_kept", "checked_lengths", "scalar", "wrench_pass"
-]
+__all__ = ["actuated_screws", "canonical", "checked_dof", "checked_lengths", "scalar", "wrench_pass"]
 
 Array = np.ndarray
 
@@ -174,7 +172,7 @@ def scalar(value: Any) -> Any:
     return array.item() if array.ndim == 0 else value
 
 
-def checked_kept(keys: Iterable[str], top: Topology) -> tuple[str, ...]:
+def _checked_kept(keys: Iterable[str], top: Topology) -> tuple[str, ...]:
     """The frames a lean pass keeps (``kept`` of :func:`wrench_pass`): each ``"constraint"``,
     ``"leg{k}:W"`` of a leg or, for a series-parallel tree, ``"node{i}"`` of a node.
 
@@ -197,9 +195,9 @@ def checked_kept(keys: Iterable[str], top: Topology) -> tuple[str, ...]:
     --------
     >>> from screwkit.graphs.jointtable import JointSpec
     >>> top = topology("B", "E", (JointSpec("R1", "R", "B", "E", 1, True),))
-    >>> checked_kept(["node0", "constraint", "node0"], top)
+    >>> _checked_kept(["node0", "constraint", "node0"], top)
     ('node0', 'constraint')
-    >>> checked_kept(["node1"], top)
+    >>> _checked_kept(["node1"], top)
     Traceback (most recent call last):
     ...
     screwkit.exceptions.ScrewkitValueError: Expected `kept` to name frames among [...], got 'node1'.
@@ -256,7 +254,7 @@ def wrench_pass(
     batch = table.batch_shape
     screws = table.screws
     given_length = checked_lengths(length_scale, batch)
-    wanted = () if views or kept is None else checked_kept(kept(top), top)
+    wanted = () if views or kept is None else _checked_kept(kept(top), top)
     if given_length is None:  # the frame's own length, with the scaled screws in the same pass
         centre, length, scaled = scaled_frame(screws, table.anchor)
         assert scaled is not None
