@@ -644,13 +644,13 @@ def _certificate(
             label = name.split(":")[0]
             pose = user_pose(zero)
             if label not in factors:
-                api = np.array([pose[n] for n in mechanism.pose_names]) * np.array(
-                    [
-                        angle_factor(angles) if n in mechanism.angle_names else 1.0
-                        for n in mechanism.pose_names
-                    ]
-                )
-                factors[label] = _factor(mechanism, api[None], label, options, None)
+                # the witness, else the box's centre: where a factor's point degenerates at the zero
+                # (the Veloce's s_I = 0) the diagram is read beside it
+                centre = user_pose(0.5 * (decided[i][0] + decided[i][1]))
+                unit = np.array([angle_factor(angles) if n in mechanism.angle_names else 1.0
+                                 for n in mechanism.pose_names])
+                api = np.array([[at[n] for n in mechanism.pose_names] for at in (pose, centre)]) * unit
+                factors[label] = _factor(mechanism, api, label, options, None)
             witness = Witness(
                 pose, label, factors[label], statements[name], (user_pose(bracket[0]), user_pose(bracket[1]))
             )
