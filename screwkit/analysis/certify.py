@@ -40,8 +40,9 @@ import numpy as np
 
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
 from ..robots.angles import angle_factor
-from .enclosures import DeltaModel, FourLimbModel, model_of
+from .enclosures import model_of
 from .intervals import Enclosure, mean_value
+from .limb_enclosures import _ClosedFormModel
 from .poses import _check_mechanism, _options
 
 __all__ = [
@@ -273,7 +274,7 @@ def _real(value: Any, what: str) -> float:
 class _Problem:
     """A paving problem in API units: pose = base + coef · u over boxes in ``u``."""
 
-    model: FourLimbModel | DeltaModel
+    model: _ClosedFormModel
     base: Array  # (4,) pose at u = 0
     coef_lo: Array  # (4, k) enclosure of the affine map
     coef_hi: Array

@@ -86,6 +86,8 @@ from .limb_enclosures import (
     _scaled_by,
     _sum,
 )
+from .mcgill_enclosure import McGillModel
+from .peppermill_enclosure import PeppermillModel
 
 __all__ = ["COVERED", "FourLimbModel", "model_of"]
 
@@ -425,7 +427,7 @@ def _axis_limbs(params: Any) -> tuple[int, int] | tuple[()]:
     return found[0][0], found[1][0]
 
 
-def model_of(mechanism: Any, options: Mapping[str, Any] | None = None) -> FourLimbModel | DeltaModel:
+def model_of(mechanism: Any, options: Mapping[str, Any] | None = None) -> _ClosedFormModel:
     """The closed-form model certification encloses for a mechanism, or a one-line refusal
     naming what is covered (:data:`COVERED`) and what is missing.
 
@@ -437,7 +439,7 @@ def model_of(mechanism: Any, options: Mapping[str, Any] | None = None) -> FourLi
 
     Returns
     -------
-    FourLimbModel or DeltaModel
+    FourLimbModel, DeltaModel, McGillModel or PeppermillModel
 
     Raises
     ------
@@ -451,7 +453,12 @@ def model_of(mechanism: Any, options: Mapping[str, Any] | None = None) -> FourLi
     >>> model_of(load_mechanism("veloce")).parallel_axes     # u_3 = -u_1, u_4 = -u_2
     (True, True)
     """
-    if getattr(mechanism, "family", None) == "delta":
+    family = getattr(mechanism, "family", None)
+    if family == "mcgill_smg":
+        return McGillModel.of(mechanism, options)
+    if family == "peppermill":
+        return PeppermillModel.of(mechanism, options)
+    if family == "delta":
         return DeltaModel.of(mechanism, options)
     return FourLimbModel.of(mechanism, options)
 

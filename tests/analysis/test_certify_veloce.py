@@ -121,7 +121,7 @@ def test_built_pose_makes_the_factor_vanish_and_the_constraint_order_drop():
     # sub-platform I held by one couple (a 5-system); its branch, with the helical joint, spans all 6
     # twists and exerts nothing: the end effector keeps one couple, it gains a freedom
     assert subplatforms == [5, 4] and branches == [6, 5] and constraint == 1
-    assert systems(BUILT + [10.0, 0.0, 0.0, 0.0]) == ([4, 4], [5, 5], 2)
+    assert systems(BUILT + np.array([10.0, 0.0, 0.0, 0.0])) == ([4, 4], [5, 5], 2)
     assert VELOCE.at(BUILT[None]).codes[0] & 1  # the core's verdict: constraint
 
 
@@ -129,7 +129,7 @@ def test_solved_generic_zero_is_constraint_singular_only():
     assert abs(lambdas(SOLVED)[0]) < 1e-12 and 398.0 < SOLVED[0] < 399.0
     assert abs(MODEL.det_a(SOLVED)) > 0.05  # not an actuation singularity there
     assert systems(SOLVED) == ([5, 4], [6, 5], 1)
-    assert systems(SOLVED + [1.0, 0.0, 0.0, 0.0])[2] == 2
+    assert systems(SOLVED + np.array([1.0, 0.0, 0.0, 0.0]))[2] == 2
     assert VELOCE.at(SOLVED[None]).codes[0] == 1  # the core: constraint, nothing else
 
 
@@ -141,7 +141,7 @@ def test_solved_generic_zero_is_constraint_singular_only():
     "where the branch loses it, so the closeness reads 1.0 at 1e-3 mm from a constraint singularity",
 )
 def test_core_constraint_closeness_falls_near_the_constraint_singularity():
-    near = SOLVED + [1e-3, 0.0, 0.0, 0.0]
+    near = SOLVED + np.array([1e-3, 0.0, 0.0, 0.0])
     assert abs(lambdas(near)[0]) < 1e-5 and systems(near)[2] == 2  # regular, 1e-3 mm from the singular set
     assert VELOCE.at(near[None]).singularities.closeness["constraint"][0] < 1e-2
 

@@ -1,0 +1,214 @@
+"""Certification of the two-limb Schönflies-motion generators: the McGill SMG (paper 001) and the
+Peppermill (paper 000). Checked against independent models written here: each leg's inverse kinematics
+by the law of cosines (circle intersection for the Peppermill), det A as the determinant of the 4 x 4
+matrix of the velocity relations (McGill: the rows [f_J, -s R f_J.m], [d_J, -s R d_J.m] with
+m = de(phi)/dphi, from eliminating the passive rates of each leg, paper 001 Eqs. 7-16; Peppermill:
+the rows [a_i, 0], [v_i, (p_i/2pi) v_i.k] of Eq. 44), numpy's determinant rather than a factored form.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+import screwkit as sk
+from screwkit.analysis.enclosures import model_of
+
+K = np.array([0.0, 0.0, 1.0])
+MCGILL = sk.load_mechanism("mcgill_smg")
+MILL = sk.load_mechanism("peppermill")
+SMG = MCGILL.parameters
+
+
+def e_of(angle):
+    return np.array([-np.sin(angle), np.cos(angle), 0.0])
+
+
+def mcgill_legs(pose, mode=(1, 1, -1, -1)):
+    """Per leg: (e_J, distal direction d_J, cos theta_J2, |O_J3 - O_J0| horizontal), None out of reach."""
+    x, y, z, phi = pose
+    out = []
+    for index, sign in enumerate((1.0, -1.0)):
+        pan, elbow = mode[2 * index], mode[2 * index + 1]
+        wrist = np.array([x, y, z]) - sign * SMG.radius * e_of(phi) - (SMG.b4 + SMG.b5) * K
+        pan_point = np.array([0.0, -sign * SMG.l0 / 2, 0.0])
+        offset = (wrist - pan_point) * [1.0, 1.0, 0.0]
+        e = pan * offset / np.linalg.norm(offset)
+        shoulder = pan_point + sign * SMG.l1 * e
+        along, height = (wrist - shoulder) @ e, wrist[2]
+        cosine = (along**2 + height**2 - SMG.l2**2 - SMG.l3**2) / (2 * SMG.l2 * SMG.l3)
+        if abs(cosine) > 1:
+            return None
+        distal = elbow * np.arccos(cosine)
+        proximal = np.arctan2(height, along) - np.arctan2(SMG.l3 * np.sin(distal), SMG.l2 + SMG.l3 * np.cos(distal))
+        direction = np.cos(proximal + distal) * e + np.sin(proximal + distal) * K
+        out.append((e, direction, np.cos(proximal), np.linalg.norm(offset)))
+    return out
+
+
+def mcgill_det_a(pose):
+    m = np.array([-np.cos(pose[3]), -np.sin(pose[3]), 0.0])
+    rows = []
+    for (e, d, _, _), sign in zip(mcgill_legs(pose), (1.0, -1.0), strict=True):
+        f = np.cross(e, K)
+        rows += [np.r_[f, -sign * SMG.radius * f @ m], np.r_[d, -sign * SMG.radius * d @ m]]
+    return np.linalg.det(np.array(rows))
+
+
+def mill_rods(pose, mode=(1, 1)):
+    """The unit distal links v_1, v_2 (branch sgn sin lambda_i = mode_i), None out of reach."""
+    p = MILL.parameters
+    x, y, z, phi = pose
+    leads = np.array([p.p1, p.p2]) / (2 * np.pi)
+    # limb i in its plane (x_i, y_i): limb 1 (j, k), o_1 = -b0 k; limb 2 (k, i), o_2 = b0 k
+    targets = [np.array([y, z + leads[0] * phi + p.b0]), np.array([z + leads[1] * phi - p.b0, x])]
+    rods = []
+    for i, (target, r, length) in enumerate(zip(targets, (p.r1, p.r2), (p.l1, p.l2), strict=True)):
+        distance = np.linalg.norm(target)
+        along = (distance**2 + r**2 - length**2) / (2 * distance)
+        if r**2 - along**2 < 0:
+            return None
+        unit = target / distance
+        normal = np.array([-unit[1], unit[0]])
+        for side in (1.0, -1.0):
+            elbow = along * unit + side * np.sqrt(r**2 - along**2) * normal
+            v = (target - elbow) / length
+            if np.sign(elbow[0] * v[1] - elbow[1] * v[0]) == mode[i]:  # sin lambda = u x v
+                rods.append(v)
+                break
+    v_one = np.array([0.0, rods[0][0], rods[0][1]])  # x_1 = j, y_1 = k
+    v_two = np.array([rods[1][1], 0.0, rods[1][0]])  # x_2 = k, y_2 = i
+    return v_one, v_two
+
+
+def mill_det_a(pose):
+    p = MILL.parameters
+    v_one, v_two = mill_rods(pose)
+    rows = [[1.0, 0, 0, 0], [0, 1.0, 0, 0], np.r_[v_one, p.p1 / (2 * np.pi) * v_one[2]],
+            np.r_[v_two, p.p2 / (2 * np.pi) * v_two[2]]]
+    return np.linalg.det(np.array(rows))
+
+
+def sign_changes(function, points):
+    """Zeros of ``function`` along the polyline ``points (m, n)`` where it changes sign between two
+    reachable samples (``function`` None out of reach), each refined by 60 bisection steps."""
+    values = [function(q) for q in points]
+    found = []
+    for k in range(len(points) - 1):
+        a, b = values[k], values[k + 1]
+        if a is None or b is None or a * b >= 0:
+            continue
+        low, high = points[k], points[k + 1]
+        for _ in range(60):
+            middle = 0.5 * (low + high)
+            if np.sign(function(middle)) == np.sign(a):
+                low = middle
+            else:
+                high = middle
+        found.append(0.5 * (low + high))
+    return found
+
+
+def in_a_free_box(certificate, point, names):
+    return any(b.status == "free" and all(b.bounds[n][0] <= point[n] <= b.bounds[n][1] for n in names)
+               for b in certificate.boxes)
+
+
+def reachable_poses(mechanism, low, span, count, seed):
+    poses = np.asarray(low) + np.random.default_rng(seed).uniform(size=(8 * count, 4)) * np.asarray(span)
+    poses = poses[mechanism.reachable(poses)][:count]
+    assert len(poses) == count
+    return poses
+
+
+def test_mcgill_functions_are_the_independent_kinematics():
+    poses = reachable_poses(MCGILL, [-600.0, -600.0, -1200.0, -3.0], [1200.0, 1200.0, 800.0, 6.0], 300, 1)
+    values = model_of(MCGILL).values(poses)
+    legs = [mcgill_legs(pose) for pose in poses]
+    det_a = np.array([mcgill_det_a(pose) for pose in poses])
+    assert det_a.min() < 0 < det_a.max()
+    # the enclosed actuation function is det[phi_I, phi_II, k x e(phi)] = -det A / (2R)
+    np.testing.assert_allclose(values["actuation"], -det_a / (2 * SMG.radius), rtol=1e-9,
+                               atol=1e-12 * np.abs(det_a).max())
+    np.testing.assert_allclose(values["serial:2"], [leg[0][3] ** 2 for leg in legs], rtol=1e-12)
+    flat = np.array([[(c2 * d[0:2] @ e[0:2]) ** 2 for e, d, c2, _ in leg] for leg in legs])
+    parallel = np.array([np.cross(leg[0][0], leg[1][0])[2] ** 2 for leg in legs])
+    np.testing.assert_allclose(values["constraint"], flat.sum(axis=1) + parallel, rtol=1e-9, atol=1e-14)
+
+
+def test_mcgill_slice_certified_with_the_independent_actuation_surface_in_no_free_box():
+    region = {"x": (-300.0, 300.0), "y": (-300.0, 300.0), "z": -800.0, "phi": 0.3}
+    certificate = sk.certify(MCGILL, region, resolution=4.0)
+    assert {"free", "singular", "undecided"} <= {b.status for b in certificate.boxes}
+    assert certificate.fractions["free"] > 0.95
+    witnesses = [b.witness for b in certificate.boxes if b.witness is not None]
+    assert {w.label for w in witnesses} == {"actuation"} and witnesses[0].factor == "[a b d ḟ][c g ḣ i]"
+    scale = abs(mcgill_det_a([30.0, -20.0, -800.0, 0.3]))
+    for w in witnesses[::10]:
+        assert abs(mcgill_det_a([w.pose[n] for n in MCGILL.pose_names])) < 1e-6 * scale
+    found = 0
+    for x in np.linspace(-140.0, 140.0, 8):  # two curves near y = -290 and y = +290 mm
+        line = np.stack([np.full(61, x), np.linspace(-300.0, 300.0, 61), np.full(61, -800.0), np.full(61, 0.3)], -1)
+        for zero in sign_changes(lambda pose: mcgill_det_a(pose) if mcgill_legs(pose) else None, line):
+            found += 1
+            assert not in_a_free_box(certificate, {"x": x, "y": zero[1]}, ("x", "y"))
+    assert found >= 8
+
+
+def test_mcgill_catalog_workspace_certified_free():
+    # paper 001, Sec. 4.2: "it is necessary to have a Cartesian workspace free of parallel singularities"
+    certificate = sk.certify(MCGILL, dict(MCGILL.workspace), resolution={"x": 10, "y": 10, "z": 10, "phi": 0.05})
+    assert certificate.certified_free and certificate.totals["free"] > 100
+
+
+def test_mcgill_constraint_zero_where_both_distal_links_are_vertical_in_parallel_planes():
+    # x = y = 0, phi = 0: both legs in the plane x = 0; O_J3 - O_J1 = (-150 mm along e_J, w): the distal
+    # link is vertical (down) when w = -sqrt(l2^2 - 150^2) - l3
+    height = -np.sqrt(SMG.l2**2 - 150.0**2) - SMG.l3 + SMG.b4 + SMG.b5
+    pose = np.array([0.0, 0.0, height, 0.0])
+    legs = mcgill_legs(pose)
+    assert all(abs(d[2] + 1.0) < 1e-12 for _, d, _, _ in legs)
+    model = model_of(MCGILL)
+    assert abs(model.values(pose[None])["constraint"][0]) < 1e-20
+    assert MCGILL.at(pose[None]).codes[0] & 1  # the core's verdict: constraint
+    aside = pose + np.array([1.0, 0.0, 0.0, 0.0])  # the legs' planes no longer parallel
+    assert model.values(aside[None])["constraint"][0] > 1e-8 and not MCGILL.at(aside[None]).codes[0] & 1
+    certificate = sk.certify(MCGILL, {"x": (-2.0, 2.0), "y": (-2.0, 2.0), "z": height, "phi": 0.0},
+                             kinds=("constraint",), resolution=0.5)
+    assert not in_a_free_box(certificate, {"x": 0.0, "y": 0.0}, ("x", "y"))
+
+
+def test_peppermill_functions_are_the_independent_kinematics():
+    poses = reachable_poses(MILL, [-600.0, -600.0, -700.0, -6.0], [1200.0, 1200.0, 700.0, 12.0], 300, 2)
+    values = model_of(MILL).values(poses)
+    det_a = np.array([mill_det_a(pose) for pose in poses])
+    assert det_a.min() < 0 < det_a.max()
+    np.testing.assert_allclose(values["actuation"], det_a, rtol=1e-9, atol=1e-12 * np.abs(det_a).max())
+    assert (values["constraint"] == 1.0).all()
+    # no constraint singularity: each limb exerts the couple along a_i x k (module docstring); the core
+    # reads the constraint system nominal at every one of these poses
+    assert not (MILL.at(poses).codes & 1).any()
+
+
+def test_peppermill_slice_certified_with_the_independent_actuation_surface_in_no_free_box():
+    region = {"x": 30.0, "y": (-600.0, 600.0), "z": (-700.0, 0.0), "phi": 0.5}
+    certificate = sk.certify(MILL, region, resolution=5.0)
+    assert {"free", "singular", "undecided", "unreachable"} <= {b.status for b in certificate.boxes}
+    witnesses = [b.witness for b in certificate.boxes if b.witness is not None]
+    actuation = [w for w in witnesses if w.label == "actuation"]
+    assert len(actuation) > 20 and actuation[0].factor == "[abfd][eghi] - [abfh][ecdi]"
+    for w in actuation[::10]:
+        v_one, v_two = mill_rods([w.pose[n] for n in MILL.pose_names])
+        assert min(abs(v_one[2]), abs(v_two[2])) < 1e-6  # a distal link horizontal (paper 000, Eq. 48)
+    found = 0
+    for y in np.linspace(200.0, 580.0, 6):  # the surface meets this slice for y in [154, 600] mm
+        line = np.stack([np.full(141, 30.0), np.full(141, y), np.linspace(-700.0, 0.0, 141), np.full(141, 0.5)], -1)
+        for zero in sign_changes(lambda pose: mill_det_a(pose) if mill_rods(pose) else None, line):
+            found += 1
+            assert not in_a_free_box(certificate, {"y": y, "z": zero[2]}, ("y", "z"))
+    assert found >= 5
+
+
+def test_peppermill_catalog_workspace_certified_free():
+    # paper 000 names no workspace; the catalog's box, every turn of phi in [-2 pi, 2 pi]
+    certificate = sk.certify(MILL, dict(MILL.workspace), resolution={"x": 10, "y": 10, "z": 10, "phi": 0.1})
+    assert certificate.certified_free
