@@ -9,9 +9,13 @@ the rows [a_i, 0], [v_i, (p_i/2pi) v_i.k] of Eq. 44), numpy's determinant rather
 from __future__ import annotations
 
 import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import screwkit as sk
 from screwkit.analysis.enclosures import model_of
+from tests.analysis.certify_checks import assert_same_facts, in_metres
 
 K = np.array([0.0, 0.0, 1.0])
 MCGILL = sk.load_mechanism("mcgill_smg")
@@ -46,9 +50,13 @@ def mcgill_legs(pose, mode=(1, 1, -1, -1)):
 
 
 def mcgill_det_a(pose):
+    return mcgill_det_a_in(pose, (1, 1, -1, -1))
+
+
+def mcgill_det_a_in(pose, mode):
     m = np.array([-np.cos(pose[3]), -np.sin(pose[3]), 0.0])
     rows = []
-    for (e, d, _, _), sign in zip(mcgill_legs(pose), (1.0, -1.0), strict=True):
+    for (e, d, _, _), sign in zip(mcgill_legs(pose, mode), (1.0, -1.0), strict=True):
         f = np.cross(e, K)
         rows += [np.r_[f, -sign * SMG.radius * f @ m], np.r_[d, -sign * SMG.radius * d @ m]]
     return np.linalg.det(np.array(rows))
@@ -212,3 +220,27 @@ def test_peppermill_catalog_workspace_certified_free():
     # paper 000 names no workspace; the catalog's box, every turn of phi in [-2 pi, 2 pi]
     certificate = sk.certify(MILL, dict(MILL.workspace), resolution={"x": 10, "y": 10, "z": 10, "phi": 0.1})
     assert certificate.certified_free
+
+
+@settings(max_examples=3, deadline=None)
+@given(x=st.floats(-300.0, 200.0), y=st.floats(-300.0, 200.0), phi=st.floats(-0.8, 0.8),
+       name=st.sampled_from(["mcgill_smg", "peppermill"]))
+def test_certificate_is_invariant_under_the_length_unit(x, y, phi, name):
+    mechanism = MCGILL if name == "mcgill_smg" else MILL
+    z = -800.0 if name == "mcgill_smg" else -450.0
+    in_mm = sk.certify(mechanism, {"x": (x, x + 100.0), "y": (y, y + 100.0), "z": z, "phi": phi}, resolution=4.0)
+    in_m = sk.certify(in_metres(mechanism), {"x": (x / 1e3, (x + 100.0) / 1e3), "y": (y / 1e3, (y + 100.0) / 1e3),
+                                             "z": z / 1e3, "phi": phi}, resolution=4e-3)
+    assert_same_facts(in_mm, in_m)
+
+
+def test_working_modes_reach_the_models_and_bad_modes_are_one_line_errors():
+    poses = reachable_poses(MCGILL, [-300.0, -300.0, -900.0, -0.5], [600.0, 600.0, 200.0, 1.0], 50, 3)
+    mode = (1, -1, -1, 1)
+    values = model_of(MCGILL, {"mode": mode}).values(poses)
+    det_a = np.array([mcgill_det_a_in(pose, mode) for pose in poses])
+    np.testing.assert_allclose(values["actuation"], -det_a / (2 * SMG.radius), rtol=1e-9)
+    for mechanism, bad in ((MCGILL, (1, 1)), (MILL, (1, 1, 1))):
+        with pytest.raises(sk.ScrewkitValueError, match="`mode`") as info:
+            sk.certify(mechanism, {"x": (-1.0, 1.0)}, mode=bad)
+        assert "\n" not in str(info.value)

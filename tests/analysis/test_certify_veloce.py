@@ -20,10 +20,12 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import screwkit as sk
 from screwkit.analysis.enclosures import FourLimbModel
-from tests.analysis.certify_checks import ScrewPairGeometry
+from tests.analysis.certify_checks import ScrewPairGeometry, assert_same_facts, in_metres
 
 VELOCE = sk.load_mechanism("veloce")
 MODEL = ScrewPairGeometry(VELOCE, [0.0, 0.0, -750.0, 0.0])
@@ -186,3 +188,13 @@ def test_catalog_workspace_slice_is_free_of_constraint_and_actuation_singulariti
                              resolution=10.0)
     assert {b.witness.label for b in certificate.boxes if b.witness is not None} == {"serial"}
     assert certificate.fractions["free"] > 0.8
+
+
+@settings(max_examples=3, deadline=None)
+@given(x=st.floats(300.0, 420.0), z=st.floats(-300.0, -240.0))
+def test_certificate_is_invariant_under_the_length_unit(x, z):
+    region = {"x": (x, x + 60.0), "y": -545.2, "z": (z, z + 40.0), "phi": -1.8}
+    in_mm = sk.certify(VELOCE, region, resolution=4.0)
+    in_m = sk.certify(in_metres(VELOCE), {"x": (x / 1e3, (x + 60.0) / 1e3), "y": -0.5452,
+                                           "z": (z / 1e3, (z + 40.0) / 1e3), "phi": -1.8}, resolution=4e-3)
+    assert_same_facts(in_mm, in_m, names=("x", "z"))
