@@ -1,6 +1,8 @@
 """Enclosures of the singularity conditions of the four-limb robots with an articulated nacelle
-(Quattro, H4, V4) or a screw pair (Ragnar) and of the Delta robot over boxes of pose space, in closed form
-(:class:`DeltaModel` for the Delta: the same limbs, its own statements; :func:`model_of` picks).
+(Quattro, H4, V4) or a screw pair (Ragnar, Veloce) over boxes of pose space, in closed form;
+:func:`model_of` picks the model of a mechanism (:class:`DeltaModel` for the Delta: the same limbs,
+its own statements; :class:`~screwkit.analysis.mcgill_enclosure.McGillModel`,
+:class:`~screwkit.analysis.peppermill_enclosure.PeppermillModel` for the two-limb SMGs).
 
 The certified functions (each vanishes exactly on one kind of singular set, in the working mode
 ``m``, the signs of ``h_i``):
@@ -95,14 +97,13 @@ Array = np.ndarray
 
 #: What certification covers: the four-limb family with a nacelle articulated about vertical axes
 #: (Quattro, H4), about ``j`` with one actuated axis along ``j`` per sub-platform (V4) or a screw
-#: pair (Ragnar, Veloce), and the Delta. Left out:
-#: the McGill SMG, the Peppermill and the planar 3-RRP have no enclosure written; mechanisms from
-#: ``screwkit.mechanism`` (loop-closure kinematics) would need an interval-Newton (Krawczyk)
-#: enclosure of their loop equations.
+#: pair (Ragnar, Veloce), the Delta, the McGill SMG and the Peppermill. Left out: the planar 3-RRP
+#: (no enclosure written) and mechanisms from ``screwkit.mechanism`` (loop-closure kinematics would
+#: need an interval-Newton (Krawczyk) enclosure of their loop equations).
 COVERED = (
     "the four_limb family with platform_kind articulated_z (Quattro, H4), articulated_y with one "
-    "actuated axis along j per sub-platform (V4) or screw_pair (Ragnar, Veloce), and the delta family "
-    "(Delta)"
+    "actuated axis along j per sub-platform (V4) or screw_pair (Ragnar, Veloce), and the delta "
+    "(Delta), mcgill_smg (McGill SMG) and peppermill (Peppermill) families"
 )
 
 PLATFORMS = ("articulated_z", "articulated_y", "screw_pair")
