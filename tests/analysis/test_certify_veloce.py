@@ -198,3 +198,15 @@ def test_certificate_is_invariant_under_the_length_unit(x, z):
     in_m = sk.certify(in_metres(VELOCE), {"x": (x / 1e3, (x + 60.0) / 1e3), "y": -0.5452,
                                            "z": (z / 1e3, (z + 40.0) / 1e3), "phi": -1.8}, resolution=4e-3)
     assert_same_facts(in_mm, in_m, names=("x", "z"))
+
+
+def test_certified_path_encloses_the_solved_constraint_crossing():
+    start, end = np.array([300.0, -545.2, -226.3, -1.8]), np.array([500.0, -545.2, -226.3, -1.8])
+    check = sk.check_path(VELOCE, start, end, certify=True)
+    constraint = [c for c in check.crossings if c.kind == "constraint"]
+    assert len(constraint) == 1 and not check.certified_free
+    low, high = constraint[0].enclosure
+    assert low <= (SOLVED[0] - 300.0) / 200.0 <= high and high - low < 1e-5
+    for crossing in (c for c in check.crossings if c.kind == "actuation"):  # det A changes sign there
+        t_low, t_high = crossing.enclosure
+        assert MODEL.det_a(start + t_low * (end - start)) * MODEL.det_a(start + t_high * (end - start)) <= 0
