@@ -39,9 +39,8 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any, ClassVar
 
-from ..exceptions import ScrewkitValueError
 from .intervals import Enclosure
-from .limb_enclosures import _ClosedFormModel, _divided
+from .limb_enclosures import _ClosedFormModel, _divided, _family_mode
 
 __all__ = ["McGillModel"]
 
@@ -116,21 +115,10 @@ class McGillModel(_ClosedFormModel):
         """
         from ..robots.families.mcgill_smg.parameters import DEFAULT_MODE
 
-        if getattr(mechanism, "family", None) != "mcgill_smg":
-            raise ScrewkitValueError(
-                f"Expected `mechanism` of the mcgill_smg family, got "
-                f"{getattr(mechanism, 'name', mechanism)!r}."
-            )
-        given = dict(options or {})
-        mode = given.pop("mode", DEFAULT_MODE)
-        signs = isinstance(mode, tuple | list) and len(mode) == 4 and all(m in (-1, 1) for m in mode)
-        if given or not signs:
-            raise ScrewkitValueError(
-                f"Expected `mode` to give only a mode of four signs (+1 or -1), got {options!r}."
-            )
+        mode = _family_mode(mechanism, options, "mcgill_smg", DEFAULT_MODE)
         p = mechanism.parameters
         lengths = (float(p.l0), float(p.l1), float(p.l2), float(p.l3), float(p.radius), float(p.b4 + p.b5))
-        return cls(mechanism.name, tuple(mechanism.pose_names), lengths, tuple(int(m) for m in mode))  # type: ignore[arg-type]
+        return cls(mechanism.name, tuple(mechanism.pose_names), lengths, mode)  # type: ignore[arg-type]
 
     def functions(self) -> dict[str, str]:
         """Each certified function's name and statement.
@@ -151,18 +139,20 @@ class McGillModel(_ClosedFormModel):
         return out
 
     def evaluate(self, pose: list[Enclosure], *, singular: bool = True) -> dict[str, Enclosure]:
-        """Enclose every function of :meth:`functions` over a batch of boxes of pose space.
+        """The legs' reach and pan functions and, with ``singular``, ``det[φ_I, φ_II, k × e(φ)]`` and
+        the flat-parallelogram function, enclosed over a batch of boxes of the plate's poses.
 
         Parameters
         ----------
         pose : list of 4 Enclosure
-            ``x, y, z, φ`` (radians) over the boxes.
+            The plate's ``x, y, z`` and ``φ`` (radians) over the boxes.
         singular : bool, default True
-            Also the constraint and actuation functions.
+            Also ``actuation`` and ``constraint`` (else ``serial:1`` .. ``serial:4`` only).
 
         Returns
         -------
         dict of str to Enclosure
+            By the names of :meth:`functions`.
 
         Examples
         --------

@@ -32,9 +32,8 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from ..exceptions import ScrewkitValueError
 from .intervals import Enclosure
-from .limb_enclosures import _ClosedFormModel, _divided
+from .limb_enclosures import _ClosedFormModel, _divided, _family_mode
 
 __all__ = ["PeppermillModel"]
 
@@ -110,18 +109,7 @@ class PeppermillModel(_ClosedFormModel):
         """
         from ..robots.families.peppermill import DEFAULT_MODE
 
-        if getattr(mechanism, "family", None) != "peppermill":
-            raise ScrewkitValueError(
-                f"Expected `mechanism` of the peppermill family, got "
-                f"{getattr(mechanism, 'name', mechanism)!r}."
-            )
-        given = dict(options or {})
-        mode = given.pop("mode", DEFAULT_MODE)
-        signs = isinstance(mode, tuple | list) and len(mode) == 2 and all(m in (-1, 1) for m in mode)
-        if given or not signs:
-            raise ScrewkitValueError(
-                f"Expected `mode` to give only a mode of two signs (+1 or -1), got {options!r}."
-            )
+        mode = _family_mode(mechanism, options, "peppermill", DEFAULT_MODE)
         p = mechanism.parameters
         return cls(
             mechanism.name,
@@ -130,18 +118,19 @@ class PeppermillModel(_ClosedFormModel):
             (float(p.l1), float(p.l2)),
             (float(p.p1) / (2.0 * np.pi), float(p.p2) / (2.0 * np.pi)),
             float(p.b0),
-            (int(mode[0]), int(mode[1])),
+            (mode[0], mode[1]),
         )
 
     def evaluate(self, pose: list[Enclosure], *, singular: bool = True) -> dict[str, Enclosure]:
-        """Enclose every function of :meth:`functions` over a batch of boxes of pose space.
+        """Each limb's reach function ``ρ_i² - K_i²`` and, with ``singular``, det A (Eq. 48) and the
+        constant constraint function, enclosed over a batch of boxes of pose space.
 
         Parameters
         ----------
         pose : list of 4 Enclosure
-            ``x, y, z, φ`` (radians) over the boxes.
+            ``x, y, z, φ`` over the boxes (``φ`` in radians: it moves the nuts, Eq. 11).
         singular : bool, default True
-            Also the constraint and actuation functions.
+            Also ``actuation`` and ``constraint``.
 
         Returns
         -------

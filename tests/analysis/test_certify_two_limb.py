@@ -121,6 +121,18 @@ def in_a_free_box(certificate, point, names):
                for b in certificate.boxes)
 
 
+def surface_outside_free_boxes(certificate, function, lines, names):
+    """The zeros of the independent ``function`` along ``lines`` (sign changes): asserts none lies in a
+    free box of ``certificate`` (over the coordinates ``names``) and returns how many were found."""
+    found = 0
+    for line in lines:
+        for zero in sign_changes(function, line):
+            found += 1
+            point = dict(zip(("x", "y", "z", "phi"), zero, strict=True))
+            assert not in_a_free_box(certificate, point, names)
+    return found
+
+
 def reachable_poses(mechanism, low, span, count, seed):
     poses = np.asarray(low) + np.random.default_rng(seed).uniform(size=(8 * count, 4)) * np.asarray(span)
     poses = poses[mechanism.reachable(poses)][:count]
@@ -153,13 +165,11 @@ def test_mcgill_slice_certified_with_the_independent_actuation_surface_in_no_fre
     scale = abs(mcgill_det_a([30.0, -20.0, -800.0, 0.3]))
     for w in witnesses[::10]:
         assert abs(mcgill_det_a([w.pose[n] for n in MCGILL.pose_names])) < 1e-6 * scale
-    found = 0
-    for x in np.linspace(-140.0, 140.0, 8):  # two curves near y = -290 and y = +290 mm
-        line = np.stack([np.full(61, x), np.linspace(-300.0, 300.0, 61), np.full(61, -800.0), np.full(61, 0.3)], -1)
-        for zero in sign_changes(lambda pose: mcgill_det_a(pose) if mcgill_legs(pose) else None, line):
-            found += 1
-            assert not in_a_free_box(certificate, {"x": x, "y": zero[1]}, ("x", "y"))
-    assert found >= 8
+    lines = [np.stack([np.full(61, x), np.linspace(-300.0, 300.0, 61), np.full(61, -800.0), np.full(61, 0.3)], -1)
+             for x in np.linspace(-140.0, 140.0, 8)]  # two curves near y = -290 and y = +290 mm
+    zeros = surface_outside_free_boxes(certificate, lambda pose: mcgill_det_a(pose) if mcgill_legs(pose) else None,
+                                       lines, ("x", "y"))
+    assert zeros >= 8
 
 
 def test_mcgill_catalog_workspace_certified_free():
@@ -207,13 +217,11 @@ def test_peppermill_slice_certified_with_the_independent_actuation_surface_in_no
     for w in actuation[::10]:
         v_one, v_two = mill_rods([w.pose[n] for n in MILL.pose_names])
         assert min(abs(v_one[2]), abs(v_two[2])) < 1e-6  # a distal link horizontal (paper 000, Eq. 48)
-    found = 0
-    for y in np.linspace(200.0, 580.0, 6):  # the surface meets this slice for y in [154, 600] mm
-        line = np.stack([np.full(141, 30.0), np.full(141, y), np.linspace(-700.0, 0.0, 141), np.full(141, 0.5)], -1)
-        for zero in sign_changes(lambda pose: mill_det_a(pose) if mill_rods(pose) else None, line):
-            found += 1
-            assert not in_a_free_box(certificate, {"y": y, "z": zero[2]}, ("y", "z"))
-    assert found >= 5
+    lines = [np.stack([np.full(141, 30.0), np.full(141, y), np.linspace(-700.0, 0.0, 141), np.full(141, 0.5)], -1)
+             for y in np.linspace(200.0, 580.0, 6)]  # the surface meets this slice for y in [154, 600] mm
+    zeros = surface_outside_free_boxes(certificate, lambda pose: mill_det_a(pose) if mill_rods(pose) else None,
+                                       lines, ("y", "z"))
+    assert zeros >= 5
 
 
 def test_peppermill_catalog_workspace_certified_free():
