@@ -165,6 +165,13 @@ def test_mcgill_slice_certified_with_the_independent_actuation_surface_in_no_fre
     scale = abs(mcgill_det_a([30.0, -20.0, -800.0, 0.3]))
     for w in witnesses[::10]:
         assert abs(mcgill_det_a([w.pose[n] for n in MCGILL.pose_names])) < 1e-6 * scale
+    # paper 001's Eq. (22), phi_I = +-phi_II, is not what vanishes here: the witnesses' phi_J are far
+    # from parallel (phi_J = f_J x d_J), the singularity is det[phi_I, phi_II, k x e(phi)] = 0
+    sines = []
+    for w in witnesses:
+        (e_one, d_one, _, _), (e_two, d_two, _, _) = mcgill_legs([w.pose[n] for n in MCGILL.pose_names])
+        sines.append(np.linalg.norm(np.cross(np.cross(np.cross(e_one, K), d_one), np.cross(np.cross(e_two, K), d_two))))
+    assert min(sines) > 0.1
     lines = [np.stack([np.full(61, x), np.linspace(-300.0, 300.0, 61), np.full(61, -800.0), np.full(61, 0.3)], -1)
              for x in np.linspace(-140.0, 140.0, 8)]  # two curves near y = -290 and y = +290 mm
     zeros = surface_outside_free_boxes(certificate, lambda pose: mcgill_det_a(pose) if mcgill_legs(pose) else None,
