@@ -159,6 +159,8 @@ def test_enclosed_functions_are_the_independent_factors_and_det_a():
     np.testing.assert_allclose(values["constraint"], independent, rtol=1e-9, atol=1e-12)
     det_a = np.array([MODEL.det_a(pose) for pose in poses])
     np.testing.assert_allclose(values["actuation"], det_a, rtol=1e-9, atol=1e-12 * np.abs(det_a).max())
+    np.testing.assert_allclose(values["actuation"], VELOCE.at(poses).jacobians.det_A, rtol=1e-9,
+                               atol=1e-12 * np.abs(det_a).max())  # the core's det A
 
 
 def test_slice_with_the_constraint_surface_certified_and_located():
