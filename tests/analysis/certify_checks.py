@@ -116,3 +116,32 @@ class ScrewPairGeometry:
         """det A, rows ``[w_i, w_i·∂c_i/∂φ]``, ``∂c_i/∂φ = mod(i, 2) (h/2π) k`` (paper 004, Eq. 7, Table 1)."""
         _, w = self.geometry(pose)
         return np.linalg.det(np.hstack([w, (self.ODD * self.rise * w[:, 2])[:, None]]))
+
+
+# Screw systems from joint screws (rows (w; v), ordered as twists; wrenches (f; m)), independent of
+# screwkit's wrench code: the rank computations of the certification tests.
+
+
+def revolute(axis, point):
+    return np.concatenate([axis, np.cross(point, axis)])
+
+
+def reciprocal(rows):
+    """An orthonormal basis of the screws reciprocal to ``rows`` (the null space of ``rows`` with their
+    halves swapped: (w; v).(f; m) -> v.f + w.m), rank decided at 1e-9 of the largest singular value."""
+    swapped = np.hstack([rows[:, 3:], rows[:, :3]])
+    _, values, vt = np.linalg.svd(swapped)
+    rank = int(np.sum(values > 1e-9 * values[0]))
+    return vt[rank:]
+
+
+def order(rows):
+    if len(rows) == 0:
+        return 0
+    values = np.linalg.svd(rows, compute_uv=False)
+    return int(np.sum(values > 1e-9 * values[0]))
+
+
+def intersection(one, two):
+    """The screws in both spans: reciprocal to the reciprocals of both."""
+    return reciprocal(np.vstack([reciprocal(one), reciprocal(two)]))

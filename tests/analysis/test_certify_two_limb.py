@@ -15,7 +15,14 @@ from hypothesis import strategies as st
 
 import screwkit as sk
 from screwkit.analysis.enclosures import model_of
-from tests.analysis.certify_checks import assert_same_facts, in_metres
+from tests.analysis.certify_checks import (
+    assert_same_facts,
+    in_metres,
+    intersection,
+    order,
+    reciprocal,
+    revolute,
+)
 
 K = np.array([0.0, 0.0, 1.0])
 MCGILL = sk.load_mechanism("mcgill_smg")
@@ -185,10 +192,53 @@ def test_mcgill_catalog_workspace_certified_free():
     assert certificate.certified_free and certificate.totals["free"] > 100
 
 
+def mcgill_constraint_orders(pose):
+    """From the joint screws (in metres): each leg's constraint order and the plate's. Leg J: the pan
+    joint (k through O_J0), the proximal and distal parallelograms (each the intersection of its two
+    chains of revolute joints about f_J through the corners O, O + w k, O' + w k, O'), the wrist joint
+    (k through O_J4)."""
+    config = MCGILL.configuration(np.array([pose]))
+    metre = 1e-3
+    legs = []
+    for leg in range(2):
+        f = config.tilt_axis[0, leg]
+
+        def parallelogram(start, end, width, f=f):
+            one = np.array([revolute(f, start * metre), revolute(f, end * metre)])
+            two = np.array([revolute(f, (start + width * K) * metre), revolute(f, (end + width * K) * metre)])
+            return intersection(one, two)
+
+        twists = np.vstack([
+            revolute(K, config.pan_point[0, leg] * metre),
+            parallelogram(config.shoulder[0, leg], config.elbow[0, leg], SMG.proximal_width),
+            parallelogram(config.elbow[0, leg], config.wrist[0, leg], SMG.distal_width),
+            revolute(K, config.wrist_joint[0, leg] * metre),
+        ])
+        legs.append(reciprocal(twists))
+    return [len(w) for w in legs], order(np.vstack(legs))
+
+
+def distal_vertical_height(y):
+    """z at which leg I's distal link is vertical (down) for x = 0, phi = 0: O_I3 - O_I1 is then
+    (u, w) = (|y - R + l0/2| - l1, ...) in the leg's plane, with w = -sqrt(l2^2 - u^2) - l3."""
+    along = abs(y - SMG.radius + SMG.l0 / 2) - SMG.l1
+    return -np.sqrt(SMG.l2**2 - along**2) - SMG.l3 + SMG.b4 + SMG.b5
+
+
+def test_mcgill_constraint_orders_from_the_joint_screws():
+    # both distal links vertical, legs' planes parallel (x = 0): the plate keeps one couple
+    assert mcgill_constraint_orders([0.0, 0.0, distal_vertical_height(0.0), 0.0]) == ([1, 1], 1)
+    # leg I flat only: leg II still exerts both couples, nothing is singular
+    one_flat = [0.0, -20.0, distal_vertical_height(-20.0), 0.0]
+    assert mcgill_constraint_orders(one_flat) == ([1, 2], 2)
+    assert model_of(MCGILL).values([one_flat])["constraint"][0] > 1e-4  # the enclosed function: not 0
+    assert mcgill_constraint_orders([30.0, -20.0, -790.0, 0.17]) == ([2, 2], 2)
+
+
 def test_mcgill_constraint_zero_where_both_distal_links_are_vertical_in_parallel_planes():
     # x = y = 0, phi = 0: both legs in the plane x = 0; O_J3 - O_J1 = (-150 mm along e_J, w): the distal
     # link is vertical (down) when w = -sqrt(l2^2 - 150^2) - l3
-    height = -np.sqrt(SMG.l2**2 - 150.0**2) - SMG.l3 + SMG.b4 + SMG.b5
+    height = distal_vertical_height(0.0)
     pose = np.array([0.0, 0.0, height, 0.0])
     legs = mcgill_legs(pose)
     assert all(abs(d[2] + 1.0) < 1e-12 for _, d, _, _ in legs)

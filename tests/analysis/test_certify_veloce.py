@@ -25,7 +25,15 @@ from hypothesis import strategies as st
 
 import screwkit as sk
 from screwkit.analysis.enclosures import FourLimbModel
-from tests.analysis.certify_checks import ScrewPairGeometry, assert_same_facts, in_metres
+from tests.analysis.certify_checks import (
+    ScrewPairGeometry,
+    assert_same_facts,
+    in_metres,
+    intersection,
+    order,
+    reciprocal,
+    revolute,
+)
 
 VELOCE = sk.load_mechanism("veloce")
 MODEL = ScrewPairGeometry(VELOCE, [0.0, 0.0, -750.0, 0.0])
@@ -38,31 +46,6 @@ METRE = 1e-3  # the screw computations in metres (moments and forces of one size
 # c_1 - b_1 = 400 sqrt(3) u_1 - 400 e_r (|.| = 800 = l), c_3 - b_3 = 400 sqrt(3) u_1 + 400 e_r: the
 # rods' projections on that plane are antiparallel, so n_1 = n_3 = k/2 and lambda_I = 0.
 BUILT = np.array([200 * np.sqrt(6), -200 * np.sqrt(6), -300.0, 0.0])
-
-
-def revolute(axis, point):
-    return np.concatenate([axis, np.cross(point, axis)])
-
-
-def reciprocal(rows):
-    """An orthonormal basis of the screws reciprocal to ``rows`` (the null space of ``rows`` with their
-    halves swapped: (w; v).(f; m) -> v.f + w.m), rank decided at 1e-9 of the largest singular value."""
-    swapped = np.hstack([rows[:, 3:], rows[:, :3]])
-    _, values, vt = np.linalg.svd(swapped)
-    rank = int(np.sum(values > 1e-9 * values[0]))
-    return vt[rank:]
-
-
-def order(rows):
-    if len(rows) == 0:
-        return 0
-    values = np.linalg.svd(rows, compute_uv=False)
-    return int(np.sum(values > 1e-9 * values[0]))
-
-
-def intersection(one, two):
-    """The screws in both spans: reciprocal to the reciprocals of both."""
-    return reciprocal(np.vstack([reciprocal(one), reciprocal(two)]))
 
 
 def systems(pose):
