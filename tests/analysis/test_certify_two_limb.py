@@ -264,6 +264,34 @@ def test_peppermill_functions_are_the_independent_kinematics():
     assert not (MILL.at(poses).codes & 1).any()
 
 
+def mill_constraint_systems(pose):
+    """From the joint screws (in metres): each limb's constraint wrenches. Limb i: the C joint along a_i
+    through o_i (a turn and a slide), the R joints about a_i through B_i and P_i, the H joint about k
+    through C with pitch -p_i/2pi."""
+    config, p, metre = MILL.configuration(np.array([pose])), MILL.parameters, 1e-3
+    out = []
+    for i, lead in enumerate((p.p1, p.p2)):
+        a = config.drive_axis[0, i]
+        twists = np.vstack([
+            revolute(a, config.drive_point[0, i] * metre), np.r_[np.zeros(3), a],
+            revolute(a, config.elbow[0, i] * metre), revolute(a, config.wrist[0, i] * metre),
+            np.r_[K, np.cross(config.platform_point[0] * metre, K) - lead / (2 * np.pi) * metre * K],
+        ])
+        out.append(reciprocal(twists))
+    return out
+
+
+def test_peppermill_constraint_from_the_joint_screws_never_loses_a_couple():
+    aligned = [30.0, np.sqrt(650.0**2 - 500.0**2), -550.0, 0.0]  # limb 1's links aligned: |q_1| = r + l
+    for pose, orders in (([30.0, -20.0, -450.0, 0.5], [1, 1]), (aligned, [2, 1])):
+        systems = mill_constraint_systems(pose)
+        assert [len(w) for w in systems] == orders and order(np.vstack(systems)) >= 2
+        for w, a in zip(systems, MILL.configuration(np.array([pose])).drive_axis[0], strict=True):
+            couple = np.r_[np.zeros(3), np.cross(a, K)]  # the couple along a_i x k is in the limb's system
+            assert order(np.vstack([w, couple])) == len(w)
+    assert MILL.at(np.array([aligned])).codes[0] == 4  # serial only, as the reach function says
+
+
 def test_peppermill_slice_certified_with_the_independent_actuation_surface_in_no_free_box():
     region = {"x": 30.0, "y": (-600.0, 600.0), "z": (-700.0, 0.0), "phi": 0.5}
     certificate = sk.certify(MILL, region, resolution=5.0)
