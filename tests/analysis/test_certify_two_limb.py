@@ -15,14 +15,8 @@ from hypothesis import strategies as st
 
 import screwkit as sk
 from screwkit.analysis.enclosures import model_of
-from tests.analysis.certify_checks import (
-    assert_same_facts,
-    in_metres,
-    intersection,
-    order,
-    reciprocal,
-    revolute,
-)
+from tests.analysis import certify_checks as screws
+from tests.analysis.certify_checks import assert_same_facts, in_metres
 
 K = np.array([0.0, 0.0, 1.0])
 MCGILL = sk.load_mechanism("mcgill_smg")
@@ -204,18 +198,18 @@ def mcgill_constraint_orders(pose):
         f = config.tilt_axis[0, leg]
 
         def parallelogram(start, end, width, f=f):
-            one = np.array([revolute(f, start * metre), revolute(f, end * metre)])
-            two = np.array([revolute(f, (start + width * K) * metre), revolute(f, (end + width * K) * metre)])
-            return intersection(one, two)
+            one = np.array([screws.revolute(f, start * metre), screws.revolute(f, end * metre)])
+            two = np.array([screws.revolute(f, (start + width * K) * metre), screws.revolute(f, (end + width * K) * metre)])
+            return screws.intersection(one, two)
 
         twists = np.vstack([
-            revolute(K, config.pan_point[0, leg] * metre),
+            screws.revolute(K, config.pan_point[0, leg] * metre),
             parallelogram(config.shoulder[0, leg], config.elbow[0, leg], SMG.proximal_width),
             parallelogram(config.elbow[0, leg], config.wrist[0, leg], SMG.distal_width),
-            revolute(K, config.wrist_joint[0, leg] * metre),
+            screws.revolute(K, config.wrist_joint[0, leg] * metre),
         ])
-        legs.append(reciprocal(twists))
-    return [len(w) for w in legs], order(np.vstack(legs))
+        legs.append(screws.reciprocal(twists))
+    return [len(w) for w in legs], screws.order(np.vstack(legs))
 
 
 def distal_vertical_height(y):
@@ -273,11 +267,11 @@ def mill_constraint_systems(pose):
     for i, lead in enumerate((p.p1, p.p2)):
         a = config.drive_axis[0, i]
         twists = np.vstack([
-            revolute(a, config.drive_point[0, i] * metre), np.r_[np.zeros(3), a],
-            revolute(a, config.elbow[0, i] * metre), revolute(a, config.wrist[0, i] * metre),
+            screws.revolute(a, config.drive_point[0, i] * metre), np.r_[np.zeros(3), a],
+            screws.revolute(a, config.elbow[0, i] * metre), screws.revolute(a, config.wrist[0, i] * metre),
             np.r_[K, np.cross(config.platform_point[0] * metre, K) - lead / (2 * np.pi) * metre * K],
         ])
-        out.append(reciprocal(twists))
+        out.append(screws.reciprocal(twists))
     return out
 
 
@@ -285,10 +279,10 @@ def test_peppermill_constraint_from_the_joint_screws_never_loses_a_couple():
     aligned = [30.0, np.sqrt(650.0**2 - 500.0**2), -550.0, 0.0]  # limb 1's links aligned: |q_1| = r + l
     for pose, orders in (([30.0, -20.0, -450.0, 0.5], [1, 1]), (aligned, [2, 1])):
         systems = mill_constraint_systems(pose)
-        assert [len(w) for w in systems] == orders and order(np.vstack(systems)) >= 2
+        assert [len(w) for w in systems] == orders and screws.order(np.vstack(systems)) >= 2
         for w, a in zip(systems, MILL.configuration(np.array([pose])).drive_axis[0], strict=True):
             couple = np.r_[np.zeros(3), np.cross(a, K)]  # the couple along a_i x k is in the limb's system
-            assert order(np.vstack([w, couple])) == len(w)
+            assert screws.order(np.vstack([w, couple])) == len(w)
     assert MILL.at(np.array([aligned])).codes[0] == 4  # serial only, as the reach function says
 
 
