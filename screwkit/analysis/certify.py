@@ -40,8 +40,9 @@ import numpy as np
 
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
 from ..robots.angles import angle_factor
-from .enclosures import DeltaModel, FourLimbModel, model_of
+from .enclosures import model_of
 from .intervals import Enclosure, mean_value
+from .limb_enclosures import _ClosedFormModel
 from .poses import _check_mechanism, _options
 
 __all__ = [
@@ -273,7 +274,7 @@ def _real(value: Any, what: str) -> float:
 class _Problem:
     """A paving problem in API units: pose = base + coef · u over boxes in ``u``."""
 
-    model: FourLimbModel | DeltaModel
+    model: _ClosedFormModel
     base: Array  # (4,) pose at u = 0
     coef_lo: Array  # (4, k) enclosure of the affine map
     coef_hi: Array
@@ -644,13 +645,13 @@ def _certificate(
             label = name.split(":")[0]
             pose = user_pose(zero)
             if label not in factors:
-                api = np.array([pose[n] for n in mechanism.pose_names]) * np.array(
-                    [
-                        angle_factor(angles) if n in mechanism.angle_names else 1.0
-                        for n in mechanism.pose_names
-                    ]
-                )
-                factors[label] = _factor(mechanism, api[None], label, options, None)
+                # the witness, else the box's centre: where a factor's point degenerates at the zero
+                # (the Veloce's s_I = 0) the diagram is read beside it
+                centre = user_pose(0.5 * (decided[i][0] + decided[i][1]))
+                unit = np.array([angle_factor(angles) if n in mechanism.angle_names else 1.0
+                                 for n in mechanism.pose_names])
+                api = np.array([[at[n] for n in mechanism.pose_names] for at in (pose, centre)]) * unit
+                factors[label] = _factor(mechanism, api, label, options, None)
             witness = Witness(
                 pose, label, factors[label], statements[name], (user_pose(bracket[0]), user_pose(bracket[1]))
             )

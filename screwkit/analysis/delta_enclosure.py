@@ -14,7 +14,6 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from ..exceptions import ScrewkitValueError
 from .intervals import Enclosure
 from .limb_enclosures import (
     Vector,
@@ -24,6 +23,7 @@ from .limb_enclosures import (
     _cross,
     _cross_constant,
     _dot,
+    _family_mode,
     _relative,
     _sum,
 )
@@ -112,17 +112,7 @@ class DeltaModel(_ClosedFormModel):
         """
         from ..robots.families.delta import ACTUATED_AXES, DEFAULT_MODE, RADIAL_DIRECTIONS
 
-        if getattr(mechanism, "family", None) != "delta":
-            raise ScrewkitValueError(
-                f"Expected `mechanism` of the delta family, got {getattr(mechanism, 'name', mechanism)!r}."
-            )
-        given = dict(options or {})
-        mode = given.pop("mode", DEFAULT_MODE)
-        signs = isinstance(mode, tuple | list) and len(mode) == 3 and all(m in (-1, 1) for m in mode)
-        if given or not signs:
-            raise ScrewkitValueError(
-                f"Expected `mode` to give only a mode of three signs (+1 or -1), got {options!r}."
-            )
+        mode = _family_mode(mechanism, options, "delta", DEFAULT_MODE)
         params = mechanism.parameters
         radial, axes = RADIAL_DIRECTIONS, ACTUATED_AXES  # the catalog's leg layout, u_i = k × r_i
         base = (
@@ -136,7 +126,7 @@ class DeltaModel(_ClosedFormModel):
             tuple(mechanism.pose_names),
             float(params.arm_length),
             float(params.rod_length),
-            (int(mode[0]), int(mode[1]), int(mode[2])),
+            (mode[0], mode[1], mode[2]),
             base,
         )
 

@@ -1,6 +1,8 @@
 """Enclosures of the singularity conditions of the four-limb robots with an articulated nacelle
-(Quattro, H4, V4) or a screw pair (Ragnar) and of the Delta robot over boxes of pose space, in closed form
-(:class:`DeltaModel` for the Delta: the same limbs, its own statements; :func:`model_of` picks).
+(Quattro, H4, V4) or a screw pair (Ragnar, Veloce) over boxes of pose space, in closed form;
+:func:`model_of` picks the model of a mechanism (:class:`DeltaModel` for the Delta: the same limbs,
+its own statements; :class:`~screwkit.analysis.mcgill_enclosure.McGillModel`,
+:class:`~screwkit.analysis.peppermill_enclosure.PeppermillModel` for the two-limb SMGs).
 
 The certified functions (each vanishes exactly on one kind of singular set, in the working mode
 ``m``, the signs of ``h_i``):
@@ -37,9 +39,16 @@ The certified functions (each vanishes exactly on one kind of singular set, in t
 * **screw pair** (Ragnar): ``c_i = r R_z(γ_i) i + mod(i, 2) (hφ/2π) k + p`` (Table 1), so
   ``det A = det[w_i, mod(i, 2) (h/2π) w_i·k]`` (Eq. 7 with ``∂c_i/∂φ``), and the constraint is
   Eq. (6) with ``e = k``: the helical joint's twist ``(k; q × k + pitch k)`` differs from a revolute
-  one by a translation every branch already has, so the branch's couple is ``s × k`` as above. Not
-  when a sub-platform holds two parallel actuated axes (Veloce: ``s_I ∥ u_1``, Eq. (6) factors and its
-  zeros are not read by the core's closeness; refused).
+  one by a translation every branch already has, so the branch's couple is ``s × k`` as above.
+* **a sub-platform with two parallel actuated axes** (Veloce: ``u_3 = -u_1``, ``u_4 = -u_2``): its
+  couples ``n_a``, ``n_b`` are both normal to ``u_a``, so ``s = n_a × n_b = λ u_a`` with
+  ``λ = (n_a × n_b)·u_a`` and Eq. (6) factors as ``λ_I λ_II (u_I × u_II)·k``. Every factor is singular
+  (unlike the V4's): where ``λ_I = 0`` the couples of sub-platform I are parallel, its twist system
+  is a 5-system, its branch (with the helical or revolute joint about ``k``, ``n_a·k ≠ 0``) a
+  6-system exerting no couple, and the end effector keeps one couple: a constraint singularity
+  (paper 002, Sec. 5.3, case (c)). The enclosed function is ``λ_I λ_II`` (the constant
+  ``(u_I × u_II)·k`` dropped; ``λ_I (u_I × s_II)·k`` when only sub-platform I has parallel axes).
+  ``tests/analysis/test_certify_veloce.py`` checks it by a rank computation from the joint screws.
 
 Everything is evaluated with :class:`~screwkit.analysis.intervals.Enclosure` (outward rounding,
 gradients for the mean-value form). Constants computed by the base frames' trigonometry are
@@ -73,27 +82,28 @@ from .limb_enclosures import (
     _cross,
     _cross_constant,
     _dot,
+    _dot_constant,
     _mul,
     _relative,
     _scaled_by,
     _sum,
 )
+from .mcgill_enclosure import McGillModel
+from .peppermill_enclosure import PeppermillModel
 
 __all__ = ["COVERED", "FourLimbModel", "model_of"]
 
 Array = np.ndarray
 
 #: What certification covers: the four-limb family with a nacelle articulated about vertical axes
-#: (Quattro, H4) or about ``j`` with one actuated axis along ``j`` per sub-platform (V4), and the
-#: Delta. Left out: the screw pair (Veloce, Ragnar): enclosure not written (docs/certify.md says
-#: what was derived and measured);
-#: the McGill SMG, the Peppermill and the planar 3-RRP have no enclosure written; mechanisms from
-#: ``screwkit.mechanism`` (loop-closure kinematics) would need an interval-Newton (Krawczyk)
-#: enclosure of their loop equations.
+#: (Quattro, H4), about ``j`` with one actuated axis along ``j`` per sub-platform (V4) or a screw
+#: pair (Ragnar, Veloce), the Delta, the McGill SMG and the Peppermill. Left out: the planar 3-RRP
+#: (no enclosure written) and mechanisms from ``screwkit.mechanism`` (loop-closure kinematics would
+#: need an interval-Newton (Krawczyk) enclosure of their loop equations).
 COVERED = (
     "the four_limb family with platform_kind articulated_z (Quattro, H4), articulated_y with one "
-    "actuated axis along j per sub-platform (V4) or screw_pair without parallel axes in a sub-platform "
-    "(Ragnar), and the delta family (Delta)"
+    "actuated axis along j per sub-platform (V4) or screw_pair (Ragnar, Veloce), and the delta "
+    "(Delta), mcgill_smg (McGill SMG) and peppermill (Peppermill) families"
 )
 
 PLATFORMS = ("articulated_z", "articulated_y", "screw_pair")
@@ -104,6 +114,10 @@ _SGN_SIN_ETA = (1.0, 1.0, -1.0, -1.0)  # sgn(sin eta_i)
 _STATEMENTS = {
     "constraint": "(s_I x s_II).e = 0, s_I = n_I1 x n_I2, n_i = w_i x u_i (paper 002, Eq. 6): the "
     "constraint moments of the two sub-platforms are dependent",
+    "constraint_paired": "(n_{a} x n_{b}).u_{a} (n_{c} x n_{d}).u_{c} = 0, n_i = w_i x u_i (paper 002, Eq. 6 "
+    "over the constant (u_{a} x u_{c}).k: each sub-platform's actuated axes are parallel, s_I = "
+    "[(n_{a} x n_{b}).u_{a}] u_{a}): the couples of limbs {a} and {b} (or {c} and {d}) are parallel, "
+    "that sub-platform's branch exerts no constraint moment (paper 002, Sec. 5.3, case (c))",
     "constraint_along_axis": "e.(n_{p} x n_{q}) = 0, n_i = w_i x u_i, e = j (paper 002's Eq. 6 "
     "divided by its two non-singular factors (n_k.e)): the couples of limbs {p} and {q}, whose "
     "actuated axes lie along the nacelle's, are parallel; the sub-platforms' constraint moments are "
@@ -152,6 +166,7 @@ class FourLimbModel(_ClosedFormModel):
     axis_limbs: tuple[int, int] | None = None
     rise: float | None = None  # screw pair: h/(2π), sub-platform I's rise per radian
     radial: tuple[list[_Constant], ...] = ()  # screw pair: c_i - p at φ = 0, r R_z(γ_i) i
+    parallel_axes: tuple[bool, bool] = (False, False)  # per sub-platform: its two actuated axes parallel
     limbs: int = 4
     statements: ClassVar[dict[str, str]] = _STATEMENTS
 
@@ -178,7 +193,7 @@ class FourLimbModel(_ClosedFormModel):
         --------
         >>> FourLimbModel.of(load_mechanism("h4")).working_mode
         (-1, -1, -1, -1)
-        >>> FourLimbModel.of(load_mechanism("veloce"))
+        >>> FourLimbModel.of(load_mechanism("delta"))
         Traceback (most recent call last):
         ...
         screwkit.exceptions.ScrewkitValueError: Expected `mechanism` among what certification covers ...
@@ -190,19 +205,11 @@ class FourLimbModel(_ClosedFormModel):
         kind = getattr(params, "platform_kind", None)
         family = getattr(mechanism, "family", None)
         axis_limbs = _axis_limbs(params) if family == "four_limb" and kind == "articulated_y" else None
-        parallel = kind == "screw_pair" and _parallel_axes(params)
-        if family != "four_limb" or kind not in PLATFORMS or axis_limbs == () or parallel:
+        if family != "four_limb" or kind not in PLATFORMS or axis_limbs == ():
             if family in (None, "loop_closure"):
                 missing = (
                     "no closed-form kinematics to enclose: a loop-closure mechanism would need an "
                     "interval-Newton enclosure of its loop equations, not written"
-                )
-            elif kind == "screw_pair":
-                missing = (
-                    "no enclosure written for a screw pair whose sub-platform holds two parallel "
-                    "actuated axes: paper 002's Eq. (6) then factors into (n_I1 x n_I2).u_I1 and "
-                    "(n_II1 x n_II2).u_II1, whose zeros the core's constraint closeness does not flag; "
-                    "not certified before an independent rank check settles them"
                 )
             elif kind == "articulated_y":
                 missing = (
@@ -243,6 +250,7 @@ class FourLimbModel(_ClosedFormModel):
             axis_limbs or None,
             None if params.lead is None else float(params.lead) / (2.0 * np.pi),
             tuple(_constants(_radial(params), exact=False)) if kind == "screw_pair" else (),
+            _parallel_axes(params) if axis_limbs is None else (False, False),
         )
 
     def functions(self) -> dict[str, str]:
@@ -264,6 +272,9 @@ class FourLimbModel(_ClosedFormModel):
         if self.axis_limbs is not None:
             p, q = (i + 1 for i in self.axis_limbs)
             out["constraint"] = self.statements["constraint_along_axis"].format(p=p, q=q)
+        elif any(self.parallel_axes):
+            (a, b), (c, d) = ((i + 1 for i in pair) for pair in self.subplatforms)
+            out["constraint"] = self.statements["constraint_paired"].format(a=a, b=b, c=c, d=d)
         return out
 
     def evaluate(self, pose: list[Enclosure], *, singular: bool = True) -> dict[str, Enclosure]:
@@ -362,7 +373,19 @@ class FourLimbModel(_ClosedFormModel):
         normals = [_cross_constant(rod_i, u_rows[i]) for i, rod_i in enumerate(w)]
         if self.axis_limbs is None:  # Eq. (6) with e = k
             s_one, s_two = _cross(normals[i1], normals[i2]), _cross(normals[j1], normals[j2])
-            constraint = _cross(s_one, s_two)[2]
+            one, two = self.parallel_axes
+            if one or two:  # s = λ u_a for a sub-platform with parallel axes (module docstring)
+                lam_one = _dot_constant(s_one, u_rows[i1]) if one else None
+                lam_two = _dot_constant(s_two, u_rows[j1]) if two else None
+                if one and two:
+                    constraint = _mul(lam_one, lam_two)
+                elif one:  # λ_I (u_I × s_II)·k = -λ_I (s_II × u_I)·k
+                    constraint = _mul(lam_one, _cross_constant(s_two, u_rows[i1])[2])
+                    constraint = None if constraint is None else -constraint
+                else:  # λ_II (s_I × u_II)·k
+                    constraint = _mul(_cross_constant(s_one, u_rows[j1])[2], lam_two)
+            else:
+                constraint = _cross(s_one, s_two)[2]
         else:  # e·(n_pI × n_pII), e = j: Eq. (6) without its non-singular factors (module docstring)
             p_one, p_two = self.axis_limbs
             constraint = _cross(normals[p_one], normals[p_two])[1]
@@ -376,12 +399,13 @@ def _radial(params: Any) -> Array:
     return float(params.platform_radius) * np.stack([np.cos(gamma), np.sin(gamma), np.zeros(4)], -1)
 
 
-def _parallel_axes(params: Any) -> bool:
-    """Whether some sub-platform holds two parallel actuated axes (to 1e-12)."""
+def _parallel_axes(params: Any) -> tuple[bool, bool]:
+    """Per sub-platform, whether its two actuated axes are parallel (to 1e-12)."""
     from ..robots.families.four_limb.configuration import base_frames
 
     u = base_frames(params).u
-    return any(float(np.linalg.norm(np.cross(u[i], u[j]))) < 1e-12 for i, j in params.subplatform_limbs)
+    one, two = (float(np.linalg.norm(np.cross(u[i], u[j]))) < 1e-12 for i, j in params.subplatform_limbs)
+    return one, two
 
 
 def _constant_of(like: Enclosure, c: _Constant, sign: float = 1.0) -> Enclosure | None:
@@ -404,7 +428,7 @@ def _axis_limbs(params: Any) -> tuple[int, int] | tuple[()]:
     return found[0][0], found[1][0]
 
 
-def model_of(mechanism: Any, options: Mapping[str, Any] | None = None) -> FourLimbModel | DeltaModel:
+def model_of(mechanism: Any, options: Mapping[str, Any] | None = None) -> _ClosedFormModel:
     """The closed-form model certification encloses for a mechanism, or a one-line refusal
     naming what is covered (:data:`COVERED`) and what is missing.
 
@@ -416,7 +440,7 @@ def model_of(mechanism: Any, options: Mapping[str, Any] | None = None) -> FourLi
 
     Returns
     -------
-    FourLimbModel or DeltaModel
+    FourLimbModel, DeltaModel, McGillModel or PeppermillModel
 
     Raises
     ------
@@ -427,12 +451,15 @@ def model_of(mechanism: Any, options: Mapping[str, Any] | None = None) -> FourLi
     --------
     >>> type(model_of(load_mechanism("delta"))).__name__
     'DeltaModel'
-    >>> model_of(load_mechanism("veloce"))
-    Traceback (most recent call last):
-    ...
-    screwkit.exceptions.ScrewkitValueError: Expected `mechanism` among what certification covers ...
+    >>> model_of(load_mechanism("veloce")).parallel_axes     # u_3 = -u_1, u_4 = -u_2
+    (True, True)
     """
-    if getattr(mechanism, "family", None) == "delta":
+    family = getattr(mechanism, "family", None)
+    if family == "mcgill_smg":
+        return McGillModel.of(mechanism, options)
+    if family == "peppermill":
+        return PeppermillModel.of(mechanism, options)
+    if family == "delta":
         return DeltaModel.of(mechanism, options)
     return FourLimbModel.of(mechanism, options)
 

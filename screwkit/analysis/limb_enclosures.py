@@ -49,6 +49,29 @@ def _constants(array: Array, exact: bool) -> list[list[_Constant]]:
     return [[_Constant(float(v), 0.0 if v == 0.0 else spread) for v in row] for row in np.atleast_2d(array)]
 
 
+_COUNTS = {2: "two", 3: "three", 4: "four"}
+
+
+def _family_mode(
+    mechanism: Any, options: Any, family: str, default: tuple[int, ...]
+) -> tuple[int, ...]:
+    """The working mode in ``options`` (``{"mode": signs}``, else ``default``) of a mechanism of
+    ``family``, checked: as many signs (+1 or -1) as ``default``, nothing else in ``options``."""
+    if getattr(mechanism, "family", None) != family:
+        raise ScrewkitValueError(
+            f"Expected `mechanism` of the {family} family, got {getattr(mechanism, 'name', mechanism)!r}."
+        )
+    given = dict(options or {})
+    mode = given.pop("mode", default)
+    count = len(default)
+    signs = isinstance(mode, tuple | list) and len(mode) == count and all(m in (-1, 1) for m in mode)
+    if given or not signs:
+        raise ScrewkitValueError(
+            f"Expected `mode` to give only a mode of {_COUNTS[count]} signs (+1 or -1), got {options!r}."
+        )
+    return tuple(int(m) for m in mode)
+
+
 def _times(x: Enclosure | None, c: _Constant) -> Enclosure | None:
     """``x · c`` (None stands for an exact zero)."""
     if x is None or (c.value == 0.0 and c.spread == 0.0):

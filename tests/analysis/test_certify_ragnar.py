@@ -5,49 +5,22 @@ translation (the sub-platform, held by two couples, translates freely), so each 
 c = s x k as with revolute joints. Checked against an independent model written here: its own inverse
 kinematics (circle-sphere intersection), each branch's couple as the reciprocal of its twists *with the
 helical joint's pitch* (SVD), det A from paper 004's Eq. (7) with Table 1's screw-pair row
-differentiated. The Veloce (two parallel axes per sub-platform) stays refused."""
+differentiated (tests/analysis/certify_checks.py). The Veloce: tests/analysis/test_certify_veloce.py."""
 
 from __future__ import annotations
 
 import numpy as np
-import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import screwkit as sk
 from screwkit.analysis.enclosures import FourLimbModel
-from tests.analysis.certify_checks import assert_same_facts, in_metres, zeros_along
+from tests.analysis.certify_checks import ScrewPairGeometry, assert_same_facts, in_metres, zeros_along
 
 RAGNAR = sk.load_mechanism("ragnar")
-K = np.array([0.0, 0.0, 1.0])
-GAMMA = (2 * np.arange(1, 5) - 1) * np.pi / 4
-ODD = np.array([1.0, 0.0, 1.0, 0.0])  # mod(i, 2): limbs 1, 3 on sub-platform I
-_FRAMES = RAGNAR.configuration(np.array([[0.0, 0.0, -575.0, 0.0]]))
-A_POINTS, AXES = _FRAMES.a[0], _FRAMES.u[0]  # the base's constant points and axes (parameters)
-ARM, ROD, RADIUS, RISE = 375.0, 800.0, 100.0, 20.0 / (2 * np.pi)
-
-
-def geometry(pose):
-    """Platform points and unit rods (branch h_i < 0: w_i . (u_i x v_i) < 0), or None out of reach."""
-    p, phi = np.asarray(pose[:3], dtype=float), float(pose[3])
-    c = p + RADIUS * np.stack([np.cos(GAMMA), np.sin(GAMMA), np.zeros(4)], -1) + (ODD * RISE * phi)[:, None] * K
-    rods = []
-    for i in range(4):
-        u, a = AXES[i], A_POINTS[i]
-        height = (c[i] - a) @ u
-        centre, radius2 = c[i] - height * u, ROD**2 - height**2
-        d = np.linalg.norm(centre - a)
-        along = (d**2 + ARM**2 - radius2) / (2 * d)
-        if radius2 < 0 or ARM**2 - along**2 < 0:
-            return None
-        e1 = (centre - a) / d
-        for side in (1.0, -1.0):
-            elbow = a + along * e1 + side * np.sqrt(ARM**2 - along**2) * np.cross(u, e1)
-            w = (c[i] - elbow) / ROD
-            if w @ np.cross(u, (elbow - a) / ARM) < 0:
-                rods.append(w)
-                break
-    return c, np.array(rods)
+MODEL = ScrewPairGeometry(RAGNAR, [0.0, 0.0, -575.0, 0.0])
+K, AXES, RISE = MODEL.K, MODEL.axes, MODEL.rise
+geometry, det_a = MODEL.geometry, MODEL.det_a
 
 
 def couples(pose):
@@ -68,12 +41,6 @@ def couples(pose):
 
 def sin_between(pose):
     return float(np.linalg.norm(np.cross(*couples(pose))))
-
-
-def det_a(pose):
-    """det A, rows [w_i, w_i . dc_i/dphi], dc_i/dphi = mod(i, 2) (h/2pi) k (paper 004, Eq. 7, Table 1)."""
-    _, w = geometry(pose)
-    return np.linalg.det(np.hstack([w, (ODD * RISE * w[:, 2])[:, None]]))
 
 
 def test_core_closeness_is_the_independent_couples_angle_and_det_a_agrees():
@@ -120,12 +87,6 @@ def test_independent_singular_set_in_no_free_box_witnesses_vanish_free_poses_reg
             pose = [xy[0], xy[1], -575.0, 0.0]
             assert geometry(pose) is not None
             assert np.linalg.matrix_rank(np.vstack(couples(pose)), tol=1e-9) == 2 and abs(det_a(pose)) > 1e-9
-
-
-def test_the_veloce_is_refused_naming_its_parallel_axes():
-    with pytest.raises(sk.ScrewkitValueError, match="two parallel actuated axes") as info:
-        sk.certify(sk.load_mechanism("veloce"), {"x": (-1.0, 1.0)})
-    assert "Ragnar" in str(info.value) and "\n" not in str(info.value)
 
 
 METRES = in_metres(RAGNAR)
