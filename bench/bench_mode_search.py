@@ -20,19 +20,16 @@ from pathlib import Path  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))  # tests.mechanisms
 
+from _timing import best_of  # noqa: E402  (bench/ is the script folder)
+
 import screwkit as sk  # noqa: E402
 from screwkit.core.mode_search import find_operation_modes  # noqa: E402
 from tests.mechanisms import gough_stewart, gough_stewart_points, tsai_3upu  # noqa: E402
 
 
-def best(call, repeats):
+def cpu_time(call, repeats):
     """The least CPU time of ``repeats`` calls (seconds)."""
-    times = []
-    for _ in range(repeats):
-        start = time.process_time()
-        call()
-        times.append(time.process_time() - start)
-    return min(times)
+    return best_of(repeats, call, clock=time.process_time)
 
 
 def main():
@@ -51,13 +48,13 @@ def main():
     print(f"{'mechanism':26s} {'search':>9s} {'no assembly':>12s}  closed  modes")
     for name, graph in graphs.items():
         found = find_operation_modes(graph)
-        whole = best(lambda graph=graph: find_operation_modes(graph), args.repeats)
-        local = best(lambda graph=graph: find_operation_modes(graph, assemblies=0), args.repeats)
+        whole = cpu_time(lambda graph=graph: find_operation_modes(graph), args.repeats)
+        local = cpu_time(lambda graph=graph: find_operation_modes(graph, assemblies=0), args.repeats)
         print(f"{name:26s} {whole * 1e3:6.1f} ms {local * 1e3:9.1f} ms  {found.closed:2d}/{found.assemblies}"
               f"   {', '.join(found.names())}")
     graph = tsai_3upu((0.1, 0.05, 0.8))
     graph.graph["dof"] = 3
-    report = best(lambda: sk.analyze(graph, superbracket=False), args.repeats)
+    report = cpu_time(lambda: sk.analyze(graph, superbracket=False), args.repeats)
     print(f"{'analyze 3-UPU graph (no superbracket)':40s} {report * 1e3:8.1f} ms")
 
 

@@ -2,8 +2,8 @@
 assembling it at random.
 
 A mechanism's operation modes are the components of its configuration space on which the platform
-keeps one kind of motion (Tsai's 3-UPU translates in one, turns about a point-free set of screws in
-another, moves in its base plane in a third). Moving the mechanism from its reference configuration
+keeps one kind of motion (Tsai's 3-UPU translates in one, turns with its position following its
+orientation in another, moves in its base plane in a third). Moving the mechanism from its reference configuration
 (:func:`~screwkit.core.motion.generic_configurations`) stays in the reference's mode unless the
 reference lies where modes meet; the other modes are found here globally:
 
@@ -22,8 +22,10 @@ reference lies where modes meet; the other modes are found here globally:
 It is a search, not a proof: a mode whose basin of attraction no draw falls in is missed, and two
 modes of the same motion type and constraint order read as one (Tsai's 3-UPU has two translational
 modes, the platform as assembled and turned half a turn about the vertical; they read as one 3T).
-The joints have no limits here: a slider may run through zero and beyond. The draws are seeded, so
-the same mechanism always gets the same answer.
+The joints have no limits here: a slider may run through zero and beyond, and a parallelogram built
+of two rods between spherical joints (the catalog's Delta-like robots) may stop being one, a mode the
+real robot's joint ranges exclude. The draws are seeded, so the same mechanism always gets the same
+answer.
 
 Examples
 --------
@@ -116,8 +118,8 @@ class OperationModes(Sequence[OperationMode]):
 
         Examples
         --------
-        >>> find_operation_modes(load_mechanism("h4").twist_graph()).names()
-        ['3T1R (this one)']
+        >>> find_operation_modes(load_mechanism("delta").twist_graph()).names()  # its rods: 2 S-S each
+        ['3T (this one)', '3R']
         """
         return [mode.motion_type + (" (this one)" if mode.reference else "") for mode in self.modes]
 
@@ -130,11 +132,9 @@ class OperationModes(Sequence[OperationMode]):
 
         Examples
         --------
-        >>> from screwkit.graphs.joints import prismatic
-        >>> from screwkit.graphs.twistgraph import twist_graph
-        >>> slider = twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))])
-        >>> find_operation_modes(slider).describe().split(" (")[0]
-        'one operation mode: 1T'
+        >>> found = find_operation_modes(load_mechanism("planar_3rrp").twist_graph())
+        >>> found.describe().split(" (found")[0]
+        'one operation mode: 2T1R (this one)'
         """
         names = self.names()
         listed = names[0] if len(names) == 1 else f"{', '.join(names[:-1])} and {names[-1]}"
@@ -236,7 +236,7 @@ def find_operation_modes(
     Examples
     --------
     >>> [mode.motion_type for mode in find_operation_modes(load_mechanism("h4").twist_graph())]
-    ['3T1R']
+    ['3T1R', '1T3R']
     """
     if isinstance(assemblies, bool) or not isinstance(assemblies, int | np.integer) or assemblies < 0:
         raise ScrewkitValueError(f"Expected `assemblies` to be a non-negative integer, got {assemblies!r}.")
