@@ -3,9 +3,9 @@ assembling it at random.
 
 A mechanism's operation modes are the components of its configuration space on which the platform
 keeps one kind of motion (Tsai's 3-UPU translates in one, turns with its position following its
-orientation in another, moves in its base plane in a third). Moving the mechanism from its reference configuration
-(:func:`~screwkit.core.motion.generic_configurations`) stays in the reference's mode unless the
-reference lies where modes meet; the other modes are found here globally:
+orientation in another, moves in its base plane in a third). Moving the mechanism from its reference
+configuration (:func:`~screwkit.core.motion.generic_configurations`) stays in the reference's mode
+unless the reference lies where modes meet; the other modes are found here globally:
 
 1. :data:`REACHED` configurations reached by moving the mechanism from its reference (every mode
    kept), so the reference's own mode is always among those found;
