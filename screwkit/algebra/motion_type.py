@@ -32,7 +32,7 @@ def _motion_label(translations: int, rotations: int, pitch: float, length_unit: 
     """``"3T1R"``, ``"1T2R"``, ``"3T"``, ``"2R"``, ``"1H (pitch 5 mm/rad)"``: translations first, a
     zero count left out, a helical freedom (a finite ``pitch``) with its pitch."""
     if np.isfinite(pitch):
-        unit = f" {length_unit}/rad" if length_unit else "/rad"
+        unit = f" {length_unit or 'length units'}/rad"  # no unit given: said, not left blank
         kind = f"{translations}T1H" if translations else "1H"
         return f"{kind} (pitch {pitch:.4g}{unit})"
     parts = [(translations, "T"), (rotations, "R")]
@@ -67,7 +67,8 @@ def motion_type(
     rtol, length_scale
         As in :func:`screwkit.algebra.ranks.screw_rank` (a ScrewSystem uses its own).
     length_unit : str, optional
-        The coordinates' length unit, written in a pitch (``"mm"``: ``"pitch 5 mm/rad"``).
+        The coordinates' length unit, written in a pitch (``"mm"``: ``"pitch 5 mm/rad"``; none given:
+        ``"pitch 5 length units/rad"``).
 
     Returns
     -------

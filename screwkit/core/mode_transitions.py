@@ -42,7 +42,7 @@ from ..algebra.motion_type import motion_type
 from ..exceptions import ScrewkitValueError
 from ..graphs.jointtable import JointTable
 from .kinematic_model import KinematicModel
-from .motion import CLOSURE_TOL, NEWTON_ITERATIONS, _damped_linear, _null_space
+from .motion import _null_space, newton_closure
 from .singularity import SingularityReport, classify
 from .wrench_systems import WrenchAnalysis, analyze_table
 
@@ -233,16 +233,10 @@ def modes_at(
         raise ScrewkitValueError("Expected a pose the mechanism can move from (to find its operation "
                                  "modes), got one whose loops admit no joint motion.")
     direction = np.random.default_rng(SEED).standard_normal((TRIES, null.shape[1])) @ null.T
-    theta = STEP * direction / np.max(np.abs(direction), axis=1, keepdims=True)
-    for _ in range(NEWTON_ITERATIONS):
-        state = model.state(theta)
-        residual = model.loop_residual(state)
-        if residual.shape[1] == 0 or np.max(np.abs(residual)) < CLOSURE_TOL:
-            break
-        jacobian = model.loop_jacobian(state)
-        theta = theta - np.einsum("bji,bj->bi", jacobian, _damped_linear(jacobian, residual))
-    residual = model.loop_residual(model.state(theta))
-    closed = (np.max(np.abs(residual), axis=1) < 1e-9) if residual.shape[1] else np.ones(TRIES, bool)
+    theta, residual = newton_closure(
+        model, STEP * direction / np.max(np.abs(direction), axis=1, keepdims=True)
+    )
+    closed = residual < 1e-9
     if not np.any(closed):
         raise ScrewkitValueError(f"Expected loops that close again after a small step, got none in {TRIES} "
                                  "tries (Newton's method did not converge).")

@@ -47,10 +47,10 @@ from ..algebra import backend as B
 from ..exceptions import ScrewkitValueError
 from ..graphs.jointtable import JointTable
 from .kinematic_model import KinematicModel
-from .operation_modes import OperationMode, operation_modes, reference_mode_indices
+from .operation_modes import reference_mode_indices
 from .wrench_systems import analyze_table
 
-__all__ = ["generic_configurations", "reached_operation_modes"]
+__all__ = ["generic_configurations", "moved_configurations", "newton_closure"]
 
 Array = np.ndarray
 
@@ -132,6 +132,92 @@ def generic_configurations(
     ((3,), False)
     """
     model = KinematicModel(graph, joint_key)
+    theta = moved_configurations(model, rng, count, rtol)
+    reference = JointTable.from_graph(graph, joint_key=joint_key)
+    table = model.joint_table(model.state(theta), reference)
+    if not same_mode:
+        return table
+    rank_rtol = max(rtol, B.DEFAULT_RTOL)
+    kept = reference_mode_indices(analyze_table(table, rtol=rank_rtol, views=False),
+                                  analyze_table(reference, rtol=rank_rtol, views=False))
+    return model.joint_table(model.state(theta[kept]), reference)
+
+
+def newton_closure(
+    model: KinematicModel, theta: Array, iterations: int = NEWTON_ITERATIONS, largest_step: float = np.inf
+) -> tuple[Array, Array]:
+    """Joint values ``(B, n)`` moved onto the loop-closure equations by Gauss–Newton's minimum-norm
+    correction (Nocedal & Wright, *Numerical Optimization*, 2006, §10.3), at most ``iterations``
+    times or until every loop is closed to :data:`CLOSURE_TOL`; and each row's largest residual.
+
+    Parameters
+    ----------
+    model : KinematicModel
+    theta : numpy.ndarray, shape (B, n)
+    iterations : int, default :data:`NEWTON_ITERATIONS`
+    largest_step : float, optional
+        A correction whose largest joint variable exceeds this (radians or characteristic lengths)
+        is shortened to it, keeping its direction (a step bound, as a trust region's: Nocedal &
+        Wright §4.1): far from the solution set the full step overshoots, and without the bound most
+        random assemblies of a spatial linkage stall at a nonzero residual.
+
+    Returns
+    -------
+    theta : numpy.ndarray, shape (B, n)
+    residual : numpy.ndarray, shape (B,)
+        Zero for a mechanism without loops.
+
+    Examples
+    --------
+    >>> model = KinematicModel(load_mechanism("planar_3rrp").twist_graph())
+    >>> theta, residual = newton_closure(model, np.full((2, model.size), 0.1))
+    >>> bool(np.all(residual < CLOSURE_TOL))
+    True
+    """
+    for _ in range(iterations):
+        state = model.state(theta)
+        residual = model.loop_residual(state)
+        if residual.shape[1] == 0 or np.max(np.abs(residual)) < CLOSURE_TOL:
+            break
+        jacobian = model.loop_jacobian(state)
+        step = np.einsum("bji,bj->bi", jacobian, _damped_linear(jacobian, residual))
+        largest = np.max(np.abs(step), axis=1, keepdims=True)
+        theta = theta - step * np.minimum(1.0, largest_step / np.where(largest > 0, largest, 1.0))
+    residual = model.loop_residual(model.state(theta))
+    return theta, (np.max(np.abs(residual), axis=1) if residual.shape[1] else np.zeros(theta.shape[0]))
+
+
+def moved_configurations(
+    model: KinematicModel, rng: np.random.Generator, count: int, rtol: float = 1e-9
+) -> Array:
+    """Joint values of ``count`` configurations reached by moving the mechanism from its reference:
+    :data:`STEPS` random steps of :data:`STEP` along the motions its loops allow, each closed again
+    (module docstring, step 2); those that did not close are dropped.
+
+    Parameters
+    ----------
+    model : KinematicModel
+    rng : numpy.random.Generator
+    count : int
+    rtol : float, default 1e-9
+        As in :func:`generic_configurations`.
+
+    Returns
+    -------
+    numpy.ndarray, shape (k, n)
+        ``k <= count``.
+
+    Raises
+    ------
+    ScrewkitValueError
+        If the mechanism cannot move, or no loop could be closed.
+
+    Examples
+    --------
+    >>> model = KinematicModel(load_mechanism("planar_3rrp").twist_graph())
+    >>> moved_configurations(model, np.random.default_rng(0), 3).shape
+    (3, 9)
+    """
     n = model.size
     theta = np.zeros((count, n))
     null = _null_space(model.loop_jacobian(model.state(theta[:1]))[0], rtol)
@@ -146,64 +232,10 @@ def generic_configurations(
         direction = rng.standard_normal((count, n))
         direction = direction - np.einsum("bji,bj->bi", jacobian, _damped_solve(jacobian, direction))
         theta = theta + STEP * direction / np.max(np.abs(direction), axis=1, keepdims=True)
-        for _ in range(NEWTON_ITERATIONS):
-            state = model.state(theta)
-            residual, jacobian = model.loop_residual(state), model.loop_jacobian(state)
-            if residual.shape[1] == 0 or np.max(np.abs(residual)) < CLOSURE_TOL:
-                break
-            theta = theta - np.einsum("bji,bj->bi", jacobian, _damped_linear(jacobian, residual))
-        residual = model.loop_residual(model.state(theta))
-        ok &= (np.max(np.abs(residual), axis=1) if residual.shape[1] else np.zeros(count)) < max(rtol, 1e-9)
+        theta, residual = newton_closure(model, theta)
+        ok &= residual < max(rtol, 1e-9)
     if not np.any(ok):
         raise ScrewkitValueError("Expected loops that close again after a small motion, got none in "
                                  f"{count} tries (Newton's method did not converge).")
-    reference = JointTable.from_graph(graph, joint_key=joint_key)
-    table = model.joint_table(model.state(theta[ok]), reference)
-    if not same_mode:
-        return table
-    rank_rtol = max(rtol, B.DEFAULT_RTOL)
-    kept = reference_mode_indices(analyze_table(table, rtol=rank_rtol, views=False),
-                                  analyze_table(reference, rtol=rank_rtol, views=False))
-    return model.joint_table(model.state(theta[ok][kept]), reference)
+    return theta[ok]
 
-
-#: Configurations drawn by :func:`reached_operation_modes`, and its random seed (the list is reproducible).
-MODE_DRAWS = 12
-MODE_SEED = 20
-
-
-def reached_operation_modes(graph: nx.MultiDiGraph, *, joint_key: str = "joint") -> list[OperationMode]:
-    """The operation modes the mechanism reaches by moving from its reference configuration.
-
-    :data:`MODE_DRAWS` configurations are drawn by :func:`generic_configurations` (every mode kept)
-    and grouped by :func:`~screwkit.core.operation_modes.operation_modes`. Only the modes within
-    the draws' reach (three steps of :data:`STEP`) are found: from a generic configuration of one
-    mode that mode alone; from a configuration where modes meet, each of them.
-
-    Parameters
-    ----------
-    graph : networkx.MultiDiGraph
-        A twist graph at its reference configuration.
-    joint_key : str
-
-    Returns
-    -------
-    list of OperationMode
-        The reference's mode first (marked ``reference``; none is where the reference lies where
-        modes meet), then by decreasing number of draws.
-
-    Raises
-    ------
-    ScrewkitValueError
-        As :func:`generic_configurations`.
-
-    Examples
-    --------
-    >>> graph = load_mechanism("planar_3rrp").twist_graph()
-    >>> [(mode.motion_type, mode.reference) for mode in reached_operation_modes(graph)]
-    [('2T1R', True)]
-    """
-    table = generic_configurations(graph, np.random.default_rng(MODE_SEED), MODE_DRAWS,
-                                   joint_key=joint_key, same_mode=False)
-    reference = analyze_table(JointTable.from_graph(graph, joint_key=joint_key), views=False)
-    return operation_modes(analyze_table(table, views=False), reference)

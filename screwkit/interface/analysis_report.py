@@ -30,6 +30,7 @@ from ..algebra import backend as B
 from ..algebra.motion_type import motion_type
 from ..core.finite_mobility import MobilityReading
 from ..core.jacobian_matrices import Jacobians
+from ..core.mode_search import OperationModes
 from ..core.mode_transitions import ModesAtPose
 from ..core.singularity import SingularityReport
 from ..core.wrenches import WrenchAnalysis
@@ -94,9 +95,9 @@ class AnalysisReport:
     modes_at_pose : ModesAtPose or None
         The operation modes through the pose (:func:`screwkit.core.mode_transitions.modes_at`; None
         where not tested): where several meet, the report says so and gives the pose's verdict in each.
-    operation_modes : tuple of OperationMode
-        The modes reached from the configuration (:func:`screwkit.core.motion.reached_operation_modes`;
-        a graph's report), shown when more than one: "2 operation modes: 3T (this one) and 2T1R".
+    operation_modes : OperationModes or None
+        The modes found (:func:`screwkit.core.mode_search.find_operation_modes`; a graph's report),
+        shown when more than one: "3 operation modes: 3T (this one), 3R and 2T1R (found in ...)".
     """
 
     name: str
@@ -118,7 +119,7 @@ class AnalysisReport:
     angle_names: tuple[str, ...] = ()
     mobility: MobilityReading | None = None
     modes_at_pose: ModesAtPose | None = None
-    operation_modes: tuple[Any, ...] = ()
+    operation_modes: OperationModes | None = None
 
     def graph_summary(self) -> dict[str, Any]:
         """Links, joints by type, actuated joints, loops; and the equivalent graph's virtual joints.
@@ -303,8 +304,8 @@ class AnalysisReport:
             ``mechanism``, ``pose``, ``twist_graph`` (:meth:`graph_summary`), ``wrenches``
             (:meth:`wrenches`), ``diagram``, ``superbracket``, ``superbracket_note``, ``verdict``,
             ``grassmann`` (the wrench lines' Grassmann class at a singular pose, else None),
-            ``jacobians`` (:meth:`jacobian_summary`) and ``transmission``: the output of
-            ``screwkit analyze --json``.
+            ``jacobians`` (:meth:`jacobian_summary`), ``transmission``, ``modes_at_pose`` and
+            ``operation_modes`` (a graph's; else None): the output of ``screwkit analyze --json``.
 
         Examples
         --------
@@ -328,6 +329,7 @@ class AnalysisReport:
             "jacobians": self.jacobian_summary(),
             "transmission": self.transmission,
             "modes_at_pose": None if self.modes_at_pose is None else self.modes_at_pose.to_dict(),
+            "operation_modes": None if self.operation_modes is None else self.operation_modes.to_dict(),
         }
 
     def __str__(self) -> str:
@@ -367,11 +369,8 @@ class AnalysisReport:
         ]
         if self.mobility is not None and (self.mobility.differs or self.mobility.finite is None):
             out += ["", str(self.mobility)]
-        meeting = self.modes_at_pose is not None and self.modes_at_pose.meets  # said below, per mode
-        if len(self.operation_modes) > 1 and not meeting:  # screwkit.core.motion.reached_operation_modes
-            names = [m.motion_type + (" (this one)" if m.reference else "") for m in self.operation_modes]
-            meet = "" if self.operation_modes[0].reference else " meet at this configuration"
-            out += ["", f"{len(names)} operation modes{meet}: {', '.join(names[:-1])} and {names[-1]}"]
+        if self.operation_modes is not None and len(self.operation_modes) > 1:
+            out += ["", self.operation_modes.describe()]  # where they meet: the modes_at lines below
         out += ["", f"wrench systems (platform twist system of order {wrenches['platform_twist_order']})"]
         for item in wrenches["constraint"]:
             out.append(f"  constraint ({item['leg']}): {_line_text(item, unit)}")

@@ -44,8 +44,8 @@ from ..algebra.checks import checked_length_scale, checked_rtol
 from ..core.finite_mobility import mobility_reading
 from ..core.jacobian_matrices import Jacobians
 from ..core.jacobians import jacobians_from_wrenches
+from ..core.mode_search import OperationModes, find_operation_modes
 from ..core.mode_transitions import ModesAtPose, modes_at
-from ..core.motion import reached_operation_modes
 from ..core.verdicts import classify_analysis
 from ..core.wrench_systems import WrenchAnalysis
 from ..core.wrenches import wrench_analysis
@@ -236,8 +236,17 @@ def _graph_report(
         report, given_length_scale=length_scale, transmission=transmission, pose_names=coordinates,
         mobility=mobility_reading(graph, rtol=rtol, length_scale=length_scale),
         modes_at_pose=_modes_at_pose(graph, rtol, length_scale),
-        operation_modes=tuple(reached_operation_modes(graph)),
+        operation_modes=_operation_modes(graph, rtol),
     )
+
+
+def _operation_modes(graph: nx.MultiDiGraph, rtol: float) -> OperationModes | None:
+    """The operation modes found from a graph's configuration (None where the search cannot run: a
+    mechanism that cannot move there)."""
+    try:
+        return find_operation_modes(graph, rtol=rtol)
+    except ScrewkitError:
+        return None
 
 
 def _modes_at_pose(graph: nx.MultiDiGraph, rtol: float, length_scale: float | None) -> ModesAtPose | None:

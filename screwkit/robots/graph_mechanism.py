@@ -40,8 +40,9 @@ import numpy as np
 
 from ..algebra import backend as B
 from ..core.mobility import resolve_dof
+from ..core.motion import moved_configurations
 from ..core.redundancy import generic_driven_freedoms
-from ..exceptions import ScrewkitTypeError, ScrewkitValueError
+from ..exceptions import ScrewkitTypeError, ScrewkitValueError, TwistGraphError
 from ..graphs.twistgraph import check_twist_graph
 from .graph_kinematics import GraphKinematics, graph_family, graph_kinematics
 from .mechanism import Mechanism
@@ -53,6 +54,60 @@ Array = np.ndarray
 #: The default workspace box about the reference: ± this many characteristic lengths, ± this angle.
 WORKSPACE_LENGTHS = 0.5
 WORKSPACE_ANGLE = np.pi / 6
+
+
+#: Configurations (reached by moving the mechanism, seeded) on which a point task's actuators are checked.
+POINT_TASK_SAMPLES = 6
+POINT_TASK_SEED = 19
+
+
+def _rank(matrix: Array) -> int:
+    sigma = np.linalg.svd(matrix, compute_uv=False)
+    return int(np.sum(sigma > B.DEFAULT_RTOL * max(float(sigma[0]) if sigma.size else 0.0, 1.0)))
+
+
+def _point_freedoms(loops: Array, velocity: Array, held: list[int]) -> int:
+    """The point's freedoms at one configuration with the joint variables ``held`` fixed: the rank of
+    its velocities over the joint rates that keep the loops closed (scaled units)."""
+    rows = np.vstack([loops, np.eye(loops.shape[1])[held]])
+    _, sigma, vt = np.linalg.svd(rows)
+    rates = vt[int(np.sum(sigma > B.DEFAULT_RTOL * max(float(sigma[0]), 1.0))):]
+    return _rank(velocity @ rates.T) if len(rates) else 0
+
+
+def _check_point_task_actuation(kinematics: GraphKinematics, freedoms: int) -> None:
+    """Refuse a point task's actuated joints that drive none of the point's freedoms, or that together
+    leave it moving, at generic configurations (as :func:`~screwkit.core.mobility.resolve_dof` for a
+    platform). Read from the joint rates: an actuator drives ``f − f_held`` freedoms, ``f`` the point's
+    first-order freedoms with the loops closed and ``f_held`` those left with the actuator held."""
+    model, coordinates = kinematics.model, kinematics.coordinates
+    try:
+        theta = moved_configurations(model, np.random.default_rng(POINT_TASK_SEED), POINT_TASK_SAMPLES)
+    except ScrewkitValueError:  # no generic configuration: the reference's verdicts say what is wrong
+        return
+    state = model.state(theta)
+    g = state.links[coordinates.link]
+    centre = g[:, :3, :3] @ model.to_scaled_points(coordinates.point) + g[:, :3, 3]
+    twists = model.link_jacobian(state, coordinates.link)  # (B, 6, n): v + ω × c is the point's velocity
+    velocity = twists[:, 3:] - np.cross(centre[:, None, :], np.swapaxes(twists[:, :3], 1, 2)).swapaxes(1, 2)
+    loops = model.loop_jacobian(state)
+    columns = {name: model.joints[name][2] for name in kinematics.actuated}
+
+    def driven(names: list[str]) -> int:  # the most common count over the configurations
+        held = [column for name in names for column in columns[name]]
+        counts = [_point_freedoms(loops[b], velocity[b], []) - _point_freedoms(loops[b], velocity[b], held)
+                  for b in range(len(velocity))]
+        return int(np.bincount(counts).argmax())
+
+    idle = [name for name in kinematics.actuated if driven([name]) == 0]
+    if idle:
+        raise TwistGraphError(
+            f"Expected every `actuated` joint to drive the task point, got {', '.join(idle)} driving none "
+            f"of its {freedoms} freedom(s) at generic configurations (held, the point moves as before); "
+            "fix the `actuated` flags."
+        )
+    if len(kinematics.actuated) >= freedoms:
+        resolve_dof(None, freedoms, kinematics.actuated, driven=driven(list(kinematics.actuated)))
 
 
 def _checked_point(value: Any, argument: str) -> Array:
@@ -143,7 +198,8 @@ def mechanism(
         If ``graph_or_file`` is none of the above.
     TwistGraphError
         If more actuated joints than the platform's freedoms leave it uncontrolled at generic
-        configurations (:func:`screwkit.core.mobility.resolve_dof`).
+        configurations (:func:`screwkit.core.mobility.resolve_dof`); with a point task, if an actuated
+        joint drives none of the point's freedoms there, or the actuated joints leave it uncontrolled.
 
     Examples
     --------
@@ -197,6 +253,8 @@ def mechanism(
     if task is None and len(kinematics.actuated) > len(names):  # redundant: the actuators must drive it
         driven = generic_driven_freedoms(graph, len(names))
         resolve_dof(None, len(names), kinematics.actuated, driven=driven)
+    elif task is not None and kinematics.actuated:
+        _check_point_task_actuation(kinematics, len(names))
     reference = kinematics.coordinates.reference_values()
     box = (
         _default_workspace(kinematics, reference)

@@ -485,20 +485,20 @@ class Mechanism(Generic[P, C]):
         return self._one(pose, {}, angles).diagram_and_sampler()
 
     @property
-    def operation_modes(self) -> list[Any]:
-        """The operation modes reached from the default pose, its own first (`reached_operation_modes`).
+    def operation_modes(self) -> Any:
+        """The operation modes found from the default pose, its own first (an `OperationModes` search).
 
         Returns
         -------
-        list of OperationMode
+        OperationModes
 
         Examples
         --------
-        >>> [mode.motion_type for mode in load_mechanism("h4").operation_modes]
-        ['3T1R']
+        >>> [mode.motion_type for mode in load_mechanism("planar_3rrp").operation_modes]
+        ['2T1R']
         """
-        from ..core.motion import reached_operation_modes
-        return reached_operation_modes(self.twist_graph())
+        from ..core.mode_search import find_operation_modes
+        return find_operation_modes(self.twist_graph())
 
     def twist_graph(self, pose: Any = None, *, angles: str = "rad", **options: Any) -> nx.MultiDiGraph:
         """The twist graph of the physical mechanism at one pose (default: the default pose).

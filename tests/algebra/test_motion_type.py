@@ -92,7 +92,7 @@ def test_helical_freedoms_are_labelled_with_their_pitch(generators, expected):
 def test_helical_labels_are_batched():
     helix = np.array([S.helical_twist([0, 0, 1], [1, 0, 0], 5.0)])
     hinge = np.array([S.revolute_twist([0, 0, 1], [1, 0, 0])])
-    assert motion_type(np.stack([helix, hinge])).tolist() == ["1H (pitch 5/rad)", "1R"]
+    assert motion_type(np.stack([helix, hinge])).tolist() == ["1H (pitch 5 length units/rad)", "1R"]
 
 
 @settings(max_examples=40, deadline=None)
@@ -110,7 +110,7 @@ def test_helical_pitch_is_invariant_under_frame_and_unit(motion, unit, pitch, tr
     label = motion_type(moved)
     kind, _, rest = label.partition(" (pitch ")
     assert kind == f"{translations}T1H" * bool(translations) + "1H" * (not translations)
-    assert float(rest.removesuffix("/rad)")) == pytest.approx(pitch * unit, rel=1e-3)  # 4 digits shown
+    assert float(rest.removesuffix(" length units/rad)")) == pytest.approx(pitch * unit, rel=1e-3)  # 4 digits shown
 
 
 @pytest.mark.parametrize("unit", [1.0, 1000.0])

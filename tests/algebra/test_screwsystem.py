@@ -351,7 +351,7 @@ def test_readable_basis_is_remembered_by_value_and_handed_out_as_a_fresh_array(r
         ),
         ([S.revolute_twist(e, [1, 2, 3]) for e in np.eye(3)], "3R"),
         (np.eye(6), "3T3R"),
-        ([S.helical_twist([0, 0, 1], [0, 0, 0], 0.5)], "1H (pitch 0.5/rad)"),
+        ([S.helical_twist([0, 0, 1], [0, 0, 0], 0.5)], "1H (pitch 0.5 length units/rad)"),
     ],
 )
 def test_motion_type_known_values(generators, expected):

@@ -207,3 +207,34 @@ def test_a_graph_mechanism_with_actuators_that_drive_nothing_is_refused():
                                      ("L", "E", revolute("A2", z, [0, 0, 0], actuated=True))])
     with pytest.raises(TwistGraphError, match=r"^Expected the `actuated` joints to drive the mechanism's 1 "):
         sk.mechanism(coaxial)
+
+
+def planar_rpr(platform_points, base_points):
+    """A planar n-RPR (docs/redundancy.md): R at the base point, actuated P, R at the platform point."""
+    joints = []
+    for i, (a, c) in enumerate(zip(base_points, platform_points, strict=True), start=1):
+        joints += [("base", f"cylinder{i}", revolute(f"A{i}", [0, 0, 1], a)),
+                   (f"cylinder{i}", f"piston{i}", prismatic(f"P{i}", np.subtract(c, a), actuated=True)),
+                   (f"piston{i}", "platform", revolute(f"C{i}", [0, 0, 1], c))]
+    return twist_graph("base", "platform", joints)
+
+
+@pytest.mark.parametrize("point", [(0.575, 0.425, 0.0), (0.2, 0.9, 0.0)])
+def test_the_direct_closeness_of_the_4rpr_equals_the_hand_computed_one(point):
+    # by hand (screwkit.core.jacobians' Â, its normalisation written out): leg i's actuation wrench is
+    # the unit force along it, u_i through A_i; the coordinates' twists are the translations along x
+    # and y (Â entries: cosines u_i·x, u_i·y) and the rotation about z through the platform point P
+    # (Â entry: the mutual moment over the characteristic length, z·((A_i − P) × u_i) / L)
+    from screwkit.graphs.twistgraph import graph_frame
+
+    base = np.array([[0, 0, 0], [1, 0, 0], [0.5, 1, 0], [1, 1, 0]], dtype=float)
+    platform = np.array([[0.4, 0.3, 0], [0.7, 0.35, 0], [0.55, 0.55, 0], [0.65, 0.5, 0]])
+    graph = planar_rpr(platform, base)
+    jacobians = sk.mechanism(graph, platform_point=point).at()[0].jacobians
+    _, length = graph_frame(graph)
+    u = (platform - base) / np.linalg.norm(platform - base, axis=1, keepdims=True)
+    moments = np.cross(base - np.asarray(point), u)[:, 2] / length
+    hat = np.column_stack([u[:, 0], u[:, 1], moments])
+    sigma = np.linalg.svd(hat, compute_uv=False)
+    assert jacobians.closeness["direct"] == pytest.approx(sigma[-1] / sigma[0], rel=1e-9)
+    assert 0.01 < sigma[-1] / sigma[0] < 1  # a value that says something: neither 0 nor 1

@@ -34,3 +34,7 @@ def test_a_screw_freedom_reads_1h_with_its_pitch_in_the_report_unit():
     graph.graph["length_unit"] = "mm"
     text = str(analyze(graph, superbracket=False))
     assert "platform twist system: 1H (pitch 5 mm/rad) (order 1)" in text  # not "1R"
+    # a graph without a unit: the pitch says so (a catalog robot's reads its unit, e.g. mm)
+    del graph.graph["length_unit"]
+    text = str(analyze(graph, superbracket=False))
+    assert "platform twist system: 1H (pitch 5 length units/rad) (order 1)" in text

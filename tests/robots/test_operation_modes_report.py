@@ -24,12 +24,28 @@ def _mode_lines(z):
     return [line for line in str(sk.analyze(graph)).splitlines() if "operation modes" in line]
 
 
-def test_report_says_where_modes_meet_and_is_silent_in_one_mode():
+def test_report_says_where_modes_meet_and_lists_the_modes_found():
     # the two modes' motion types are checked against the platform twists' rank in
     # tests/core/test_operation_modes.py; here the report names them
-    # where they meet, the modes found by leaving the pose say it once, with the verdict in each mode
-    # (screwkit.core.mode_transitions); the reached-modes line would repeat it and is left out
-    (line,) = _mode_lines(0.0)
-    assert line.startswith("this pose lies where 2 operation modes meet: ")
-    assert sorted(line.split(": ")[1].split(" and ")) == ["2T1R", "3T"]
-    assert _mode_lines(0.8) == []
+    # where they meet, the modes found by leaving the pose say it, with the verdict in each mode
+    # (screwkit.core.mode_transitions), after the modes the search found (screwkit.core.mode_search)
+    found, meeting = _mode_lines(0.0)
+    assert found.startswith("3 operation modes (this configuration lies where some meet): ")
+    assert meeting.startswith("this pose lies where 2 operation modes meet: ")
+    assert sorted(meeting.split(": ")[1].split(" and ")) == ["2T1R", "3T"]
+    # in one mode, the modes found, this one first; the search's extent said
+    (line,) = _mode_lines(0.8)
+    assert line.startswith("3 operation modes: 3T (this one), ")
+    assert sorted(line.split(": ")[1].split(" (found")[0].replace(" and", ",").split(", ")) == [
+        "2T1R", "3R", "3T (this one)"]
+    assert "random assemblies" in line and line.endswith("others may exist)")
+
+
+def test_report_json_has_the_modes_found():
+    graph = tsai_3upu([0.1, 0.05, 0.8])
+    graph.graph["dof"] = 3
+    data = sk.analyze(graph, superbracket=False).to_dict()["operation_modes"]
+    assert (data["modes"][0]["motion_type"], data["modes"][0]["reference"]) == ("3T", True)
+    assert sorted(mode["motion_type"] for mode in data["modes"]) == ["2T1R", "3R", "3T"]
+    assert data["complete"] is False and data["closed"] <= data["assemblies"]
+    assert sk.analyze("h4", superbracket=False).to_dict()["operation_modes"] is None  # a graph's only

@@ -155,3 +155,46 @@ def test_point_task_verdicts_follow_rigid_motions_and_units(motion, unit):
     assert verdict(PROXIMAL * direction, elbow(A2, c, -1), c) == ("serial",)
     c = np.array([0.5, 1.6, 0.0])
     assert verdict(elbow(A1, c, 1), elbow(A2, c, -1), c) == ()
+
+
+def five_bar_with_tool(actuated):
+    """The five-bar with a tool link hinged to distal link 1 about z through the end point C: turning
+    the tool moves no point of the task (C), so an actuator there drives none of its two freedoms."""
+    z, c = [0, 0, 1], [0.5, 1.8, 0.0]
+    return twist_graph("ground", "tool", [
+        ("ground", "proximal1", revolute("A1", z, A1, actuated="A1" in actuated)),
+        ("proximal1", "distal1", revolute("B1", z, [0.0, 1.0, 0.0])),
+        ("ground", "proximal2", revolute("A2", z, A2, actuated="A2" in actuated)),
+        ("proximal2", "distal2", revolute("B2", z, [1.0, 1.0, 0.0])),
+        ("distal2", "distal1", revolute("C", z, c, actuated="C" in actuated)),
+        ("distal1", "tool", revolute("T", z, c, actuated="T" in actuated)),
+    ])
+
+
+def test_point_task_refuses_an_actuator_that_drives_none_of_its_freedoms():
+    point = ("tool", [0.5, 1.8, 0.0])
+    assert sk.mechanism(five_bar_with_tool({"A1", "A2"}), task=point).actuated == ("A1", "A2")
+    for actuated in ({"A1", "A2", "T"}, {"A1", "T"}):
+        with pytest.raises(sk.TwistGraphError) as error:
+            sk.mechanism(five_bar_with_tool(actuated), task=point)
+        message = str(error.value)
+        assert "\n" not in message and "`actuated`" in message
+        assert message.startswith("Expected every `actuated` joint to drive the task point, got T driving none "
+                                  "of its 2 freedom(s)")
+
+
+def test_point_task_refuses_actuators_that_leave_the_point_uncontrolled():
+    # a copy of leg 1 (A1', B1' where A1, B1 are) actuated with A1: each alone holds B1 (one freedom of
+    # the point), both together still one, so the point keeps a freedom with them held
+    z, c = [0, 0, 1], [0.5, 1.8, 0.0]
+    graph = twist_graph("ground", "distal1", [
+        ("ground", "proximal1", revolute("A1", z, A1, actuated=True)),
+        ("proximal1", "distal1", revolute("B1", z, [0.0, 1.0, 0.0])),
+        ("ground", "copy1", revolute("A1'", z, A1, actuated=True)),
+        ("copy1", "distal1", revolute("B1'", z, [0.0, 1.0, 0.0])),
+        ("ground", "proximal2", revolute("A2", z, A2)),
+        ("proximal2", "distal2", revolute("B2", z, [1.0, 1.0, 0.0])),
+        ("distal2", "distal1", revolute("C", z, c)),
+    ])
+    with pytest.raises(sk.TwistGraphError, match=r"`actuated` joints to drive the mechanism's 2 freedom\(s\)"):
+        sk.mechanism(graph, task=("distal1", c))

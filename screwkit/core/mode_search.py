@@ -1,0 +1,253 @@
+"""The operation modes of a linkage: its reference's, those reached by moving it, and those found by
+assembling it at random.
+
+A mechanism's operation modes are the components of its configuration space on which the platform
+keeps one kind of motion (Tsai's 3-UPU translates in one, turns with its position following its
+orientation in another, moves in its base plane in a third). Moving the mechanism from its reference
+configuration (:func:`~screwkit.core.motion.generic_configurations`) stays in the reference's mode
+unless the reference lies where modes meet; the other modes are found here globally:
+
+1. :data:`REACHED` configurations reached by moving the mechanism from its reference (every mode
+   kept), so the reference's own mode is always among those found;
+2. :data:`ASSEMBLIES` random assemblies: every joint variable drawn at random (angles uniform in
+   ``[-π, π]``, slider travels uniform in ``±`` :data:`TRAVEL` characteristic lengths) and the loops
+   closed by Gauss–Newton's minimum-norm correction on the loop-closure equations of
+   :class:`~screwkit.core.kinematic_model.KinematicModel` (Nocedal & Wright, *Numerical
+   Optimization*, 2006, §10.3), which lands each draw on a nearby point of *some* component of the
+   configuration space, a generic point of it with probability one;
+3. every closed configuration classified by its platform's motion type and the order of its
+   constraint wrench system (:func:`~screwkit.core.operation_modes.operation_modes`), each class one
+   mode, the reference's first.
+
+It is a search, not a proof: a mode whose basin of attraction no draw falls in is missed, and two
+modes of the same motion type and constraint order read as one (Tsai's 3-UPU has two translational
+modes, the platform as assembled and turned half a turn about the vertical; they read as one 3T).
+The joints have no limits here: a slider may run through zero and beyond, and a parallelogram built
+of two rods between spherical joints (the catalog's Delta-like robots) may stop being one, a mode the
+real robot's joint ranges exclude. The draws are seeded, so the same mechanism always gets the same
+answer.
+
+Examples
+--------
+>>> found = find_operation_modes(load_mechanism("planar_3rrp").twist_graph())
+>>> [mode.motion_type for mode in found], found.closed, found.assemblies
+(['2T1R'], 24, 24)
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator, Sequence
+from dataclasses import dataclass
+from typing import Any, overload
+
+import networkx as nx
+import numpy as np
+
+from ..algebra import backend as B
+from ..exceptions import ScrewkitValueError
+from ..graphs.jointtable import JointTable
+from .kinematic_model import KinematicModel
+from .motion import moved_configurations, newton_closure
+from .operation_modes import OperationMode, operation_modes
+from .wrench_systems import analyze_table
+
+__all__ = ["OperationModes", "find_operation_modes"]
+
+#: Configurations reached by moving the mechanism from its reference, and random assemblies tried.
+REACHED = 12
+ASSEMBLIES = 24
+#: A slider's random travel, in characteristic lengths either way.
+TRAVEL = 2.0
+#: Gauss–Newton iterations closing a random assembly (far from the solution set: more than a step
+#: of :func:`~screwkit.core.motion.generic_configurations` needs), and the largest change of a joint
+#: variable per iteration (radians or characteristic lengths; :func:`~screwkit.core.motion.newton_closure`).
+ASSEMBLY_ITERATIONS = 60
+ASSEMBLY_STEP = 0.5
+#: The seed of the draws (fixed: the same mechanism always gets the same answer).
+SEED = 20
+
+
+@dataclass(frozen=True, eq=False)
+class OperationModes(Sequence[OperationMode]):
+    """The operation modes found (:func:`find_operation_modes`): a sequence of :class:`OperationMode`.
+
+    Attributes
+    ----------
+    modes : tuple of OperationMode
+        The reference's mode first (marked ``reference``; none is where the reference lies where
+        modes meet), then by decreasing number of configurations; each mode's ``indices`` are rows of
+        ``table``.
+    table : JointTable
+        Every configuration classified, batch shape ``(k,)``: those reached from the reference, then
+        the random assemblies that closed.
+    assemblies : int
+        Random assemblies tried.
+    closed : int
+        Those whose loops closed.
+    reached : int
+        Configurations reached by moving the mechanism from its reference.
+    """
+
+    modes: tuple[OperationMode, ...]
+    table: JointTable
+    assemblies: int
+    closed: int
+    reached: int
+
+    @overload
+    def __getitem__(self, index: int) -> OperationMode: ...
+
+    @overload
+    def __getitem__(self, index: slice) -> Sequence[OperationMode]: ...
+
+    def __getitem__(self, index: int | slice) -> OperationMode | Sequence[OperationMode]:
+        return self.modes[index]
+
+    def __len__(self) -> int:
+        return len(self.modes)
+
+    def __iter__(self) -> Iterator[OperationMode]:
+        return iter(self.modes)
+
+    def names(self) -> list[str]:
+        """Each mode's motion type, the reference's marked "(this one)".
+
+        Returns
+        -------
+        list of str
+
+        Examples
+        --------
+        >>> find_operation_modes(load_mechanism("delta").twist_graph()).names()  # its rods: 2 S-S each
+        ['3T (this one)', '3R']
+        """
+        return [mode.motion_type + (" (this one)" if mode.reference else "") for mode in self.modes]
+
+    def describe(self) -> str:
+        """One line: the modes found, and how (a search: others may exist).
+
+        Returns
+        -------
+        str
+
+        Examples
+        --------
+        >>> found = find_operation_modes(load_mechanism("planar_3rrp").twist_graph())
+        >>> found.describe().split(" (found")[0]
+        'one operation mode: 2T1R (this one)'
+        """
+        names = self.names()
+        listed = names[0] if len(names) == 1 else f"{', '.join(names[:-1])} and {names[-1]}"
+        count = "one operation mode" if len(names) == 1 else f"{len(names)} operation modes"
+        meet = "" if self.modes[0].reference else " (this configuration lies where some meet)"
+        return (f"{count}{meet}: {listed} (found in {self.closed} random assemblies of {self.assemblies} "
+                f"and {self.reached} configurations reached from this one; others may exist)")
+
+    def to_dict(self) -> dict[str, Any]:
+        """The modes as JSON-ready data.
+
+        Returns
+        -------
+        dict
+            ``modes`` (per mode its ``motion_type``, ``constraint_order``, ``reference`` and
+            ``configurations``: how many of those classified fell in it), ``assemblies``, ``closed``,
+            ``reached`` and ``complete`` (always False: a search cannot rule other modes out).
+
+        Examples
+        --------
+        >>> found = find_operation_modes(load_mechanism("planar_3rrp").twist_graph())
+        >>> found.to_dict()["modes"]
+        [{'motion_type': '2T1R', 'constraint_order': 3, 'reference': True, 'configurations': 36}]
+        """
+        return {
+            "modes": [{"motion_type": mode.motion_type, "constraint_order": mode.constraint_order,
+                       "reference": mode.reference, "configurations": len(mode.indices)}
+                      for mode in self.modes],
+            "assemblies": self.assemblies,
+            "closed": self.closed,
+            "reached": self.reached,
+            "complete": False,
+        }
+
+
+def random_assemblies(model: KinematicModel, rng: np.random.Generator, count: int, rtol: float) -> np.ndarray:
+    """Joint values of random assemblies whose loops closed (module docstring, step 2).
+
+    Parameters
+    ----------
+    model : KinematicModel
+    rng : numpy.random.Generator
+    count : int
+        Assemblies tried.
+    rtol : float
+        A loop closed to ``max(rtol, 1e-9)`` characteristic lengths is closed (the data's precision).
+
+    Returns
+    -------
+    numpy.ndarray, shape (k, n)
+        ``k <= count`` rows, those that closed.
+
+    Examples
+    --------
+    >>> model = KinematicModel(load_mechanism("planar_3rrp").twist_graph())
+    >>> random_assemblies(model, np.random.default_rng(0), 4, 1e-9).shape
+    (4, 9)
+    """
+    if count == 0:
+        return np.zeros((0, model.size))
+    slider = np.array([not np.any(column.row[:3]) for column in model.columns])
+    theta = rng.uniform(-1.0, 1.0, (count, model.size)) * np.where(slider, TRAVEL, np.pi)
+    with np.errstate(all="ignore"):  # a draw that runs off is dropped below, not propagated
+        theta, residual = newton_closure(model, theta, ASSEMBLY_ITERATIONS, ASSEMBLY_STEP)
+    closed = np.isfinite(residual) & (residual < max(rtol, 1e-9)) & np.all(np.isfinite(theta), axis=1)
+    return theta[closed]
+
+
+def find_operation_modes(
+    graph: nx.MultiDiGraph,
+    *,
+    joint_key: str = "joint",
+    rtol: float = B.DEFAULT_RTOL,
+    assemblies: int = ASSEMBLIES,
+) -> OperationModes:
+    """The operation modes of the graph's mechanism, its reference's first (module docstring).
+
+    Parameters
+    ----------
+    graph : networkx.MultiDiGraph
+        A twist graph at its reference configuration.
+    joint_key : str, default "joint"
+    rtol : float, default 1e-9
+        The data's precision (as in :func:`~screwkit.core.motion.generic_configurations`) and the
+        rank tolerance of the classification.
+    assemblies : int, default 24
+        Random assemblies tried.
+
+    Returns
+    -------
+    OperationModes
+
+    Raises
+    ------
+    ScrewkitValueError
+        If ``assemblies`` is not a non-negative integer; as
+        :func:`~screwkit.core.motion.generic_configurations` (a mechanism that cannot move).
+
+    Examples
+    --------
+    >>> [mode.motion_type for mode in find_operation_modes(load_mechanism("h4").twist_graph())]
+    ['3T1R', '1T3R']
+    """
+    if isinstance(assemblies, bool) or not isinstance(assemblies, int | np.integer) or assemblies < 0:
+        raise ScrewkitValueError(f"Expected `assemblies` to be a non-negative integer, got {assemblies!r}.")
+    rng = np.random.default_rng(SEED)
+    model = KinematicModel(graph, joint_key)
+    reached = moved_configurations(model, rng, REACHED, rtol)
+    found = random_assemblies(model, rng, assemblies, rtol)
+    reference = JointTable.from_graph(graph, joint_key=joint_key)
+    # spherical joints' angles folded into their offsets: three screws never read at a gimbal lock
+    table = model.joint_table(model.state(*model.recentred(np.concatenate([reached, found]), {})), reference)
+    rank_rtol = max(rtol, B.DEFAULT_RTOL)
+    modes = operation_modes(analyze_table(table, rtol=rank_rtol, views=False),
+                            analyze_table(reference, rtol=rank_rtol, views=False))
+    return OperationModes(tuple(modes), table, int(assemblies), len(found), len(reached))

@@ -1,0 +1,150 @@
+"""The global search for operation modes (screwkit.core.mode_search).
+
+Tsai's 3-UPU (tests.mechanisms.tsai_3upu), derived by hand: in leg i the inner U axis w_i is
+normal to the base's outer axis u_i and to the platform's, R u_i (R the platform's rotation from the
+reference), and the leg C_i − A_i is normal to w_i. So wherever R u_i is not parallel to u_i,
+
+    (p + R c_i − a_i) · (u_i × R u_i) = 0,   i = 1, 2, 3,
+
+three equations on the platform's six coordinates (p its displacement). Their solution sets:
+
+* R = I (or R a half turn about z, which maps every horizontal u_i to −u_i): no equation, p free:
+  the platform translates, **3T**;
+* R a rotation about z (or a half turn about a horizontal axis): every u_i × R u_i is vertical, the
+  equations all say the platform lies in the base plane: x, y and the turn about z, **2T1R**;
+* any other R: three linear equations in p with a generically invertible matrix, one p per R: the
+  orientation is free and the position follows it, a twist system with no translation, **3R**.
+
+So the linkage has (at least) three kinds of operation mode, not the two of the issue's wording
+("3T and 3R"): the planar one is the mode met in the base plane (tests/core/test_mode_transitions.py).
+Each configuration the search classifies is checked here by the platform's twists computed from its
+joint screws by SVDs written in this file: the rank of their angular parts (rotations) and the
+translations they contain (t = order + 3 − rank(twists with the three translations)).
+"""
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from screwkit.core.mode_search import find_operation_modes
+from screwkit.exceptions import ScrewkitValueError
+from screwkit.graphs.joints import revolute
+from screwkit.graphs.twistgraph import twist_graph
+from tests.mechanisms import moved, planar_3rpr, tsai_3upu
+from tests.strategies import rigid_motions
+
+SWAP = np.block([[np.zeros((3, 3)), np.eye(3)], [np.eye(3), np.zeros((3, 3))]])
+TRANSLATIONS = np.hstack([np.zeros((3, 3)), np.eye(3)])
+
+
+def _null(rows, tol=1e-8):
+    _, sigma, vt = np.linalg.svd(rows)
+    return vt[int(np.sum(sigma > tol * sigma[0])):]
+
+
+def platform_kind(table, index, legs, names):
+    """(order, translations, rotations' rank) of the platform's twists at one configuration: each
+    leg's wrenches are reciprocal to its joint screws, the platform's twists to every leg's."""
+    wrenches = []
+    for leg in legs:
+        screws = np.vstack([table.joint_screws(name.format(leg))[index].reshape(-1, 6) for name in names])
+        wrenches.append(_null(screws @ SWAP))
+    twists = _null(np.vstack(wrenches) @ SWAP)
+    order = len(twists)
+    translations = order + 3 - np.linalg.matrix_rank(np.vstack([twists, TRANSLATIONS]), tol=1e-8)
+    return order, int(translations), int(np.linalg.matrix_rank(twists[:, :3], tol=1e-8))
+
+
+UPU_LEGS, UPU_NAMES = (1, 2, 3), ("Ub{}", "P{}", "Up{}")
+#: (order, translations, rank of the angular parts) of each motion type, from the derivation above
+EXPECTED = {"3T": (3, 3, 0), "2T1R": (3, 2, 1), "3R": (3, 0, 3)}
+
+
+def test_3upu_from_a_generic_configuration_finds_its_three_kinds_of_mode():
+    found = find_operation_modes(tsai_3upu([0.1, 0.05, 0.8]))
+    assert found[0].motion_type == "3T" and found[0].reference
+    assert sorted(mode.motion_type for mode in found) == ["2T1R", "3R", "3T"]
+    for mode in found:
+        for index in mode.indices:
+            assert platform_kind(found.table, index, UPU_LEGS, UPU_NAMES) == EXPECTED[mode.motion_type]
+    # the 3R mode's platform is turned: its outer U axes are no longer parallel to the base's
+    turned = found.modes[[mode.motion_type for mode in found].index("3R")].indices[0]
+    base_axis = found.table.joint_screws("Ub1")[turned][0, :3]
+    platform_axis = found.table.joint_screws("Up1")[turned][1, :3]
+    assert np.linalg.norm(np.cross(base_axis, platform_axis)) > 1e-3
+    assert found.closed <= found.assemblies and found.reached == 12
+    assert found.describe().startswith("3 operation modes: 3T (this one), ")
+    assert found.describe().endswith("others may exist)")
+
+
+def test_where_modes_meet_none_is_the_reference_s():
+    found = find_operation_modes(tsai_3upu([0.1, 0.05, 0.0]))
+    assert sorted(mode.motion_type for mode in found) == ["2T1R", "3R", "3T"]
+    assert not any(mode.reference for mode in found)
+    assert "(this configuration lies where some meet)" in found.describe()
+
+
+def test_a_planar_linkage_has_one_mode():
+    # every assembly of a linkage whose axes are all parallel to z moves in the plane normal to z
+    # (x, y and turns about z): one mode, 2T1R, whatever the assembly
+    base = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.8, 1.7, 0.0]]
+    platform = [[0.9, 0.7, 0.0], [1.3, 0.6, 0.0], [1.0, 1.1, 0.0]]
+    found = find_operation_modes(planar_3rpr(base, platform))
+    assert [(mode.motion_type, mode.reference) for mode in found] == [("2T1R", True)]
+    assert found.closed > 0
+    for index in range(len(found.table)):
+        assert platform_kind(found.table, index, (1, 2, 3), ("Ra{}", "P{}", "Rc{}")) == (3, 2, 1)
+    assert found.describe().startswith("one operation mode: 2T1R (this one) (found in ")
+
+
+def test_the_search_is_seeded():
+    first, second = (find_operation_modes(tsai_3upu([0.3, -0.2, 0.5])) for _ in range(2))
+    assert first.to_dict() == second.to_dict()
+    assert np.array_equal(first.table.screws, second.table.screws)
+
+
+@settings(max_examples=4, deadline=None)
+@given(rigid_motions(), st.sampled_from([1e-3, 1.0, 1000.0]))
+def test_same_modes_in_any_frame_and_length_unit(motion, factor):
+    rotation, translation = motion
+    found = find_operation_modes(moved(tsai_3upu([0.1, 0.05, 0.8]), rotation, translation, factor))
+    assert (found[0].motion_type, found[0].reference) == ("3T", True)
+    assert sorted(mode.motion_type for mode in found) == ["2T1R", "3R", "3T"]
+
+
+def test_without_assemblies_only_the_reference_s_mode_is_reached():
+    # three steps of 0.25 from a generic translating configuration stay in the 3T mode
+    found = find_operation_modes(tsai_3upu([0.1, 0.05, 0.8]), assemblies=0)
+    assert [(mode.motion_type, mode.reference) for mode in found] == [("3T", True)]
+    assert found.closed == 0 and "found in 0 random assemblies of 0 and 12 configurations" in found.describe()
+
+
+def test_to_dict_counts_every_configuration():
+    found = find_operation_modes(tsai_3upu([0.1, 0.05, 0.8]))
+    data = found.to_dict()
+    assert sum(mode["configurations"] for mode in data["modes"]) == found.closed + found.reached
+    assert data["complete"] is False
+
+
+def test_bad_assemblies_and_a_rigid_linkage_are_refused():
+    with pytest.raises(ScrewkitValueError, match=r"`assemblies` to be a non-negative integer, got -1\."):
+        find_operation_modes(tsai_3upu([0.1, 0.05, 0.8]), assemblies=-1)
+    with pytest.raises(ScrewkitValueError, match=r"`assemblies` to be a non-negative integer, got 2\.5\."):
+        find_operation_modes(tsai_3upu([0.1, 0.05, 0.8]), assemblies=2.5)
+    triangle = twist_graph("A", "C", [
+        ("A", "B", revolute("R1", [0, 0, 1], [0, 0, 0])),
+        ("B", "C", revolute("R2", [0, 0, 1], [1, 0, 0])),
+        ("C", "A", revolute("R3", [0, 0, 1], [0, 1, 0]))])
+    with pytest.raises(ScrewkitValueError, match="can move"):
+        find_operation_modes(triangle)
+
+
+def test_modes_are_reachable_at_the_top_level():
+    import screwkit as sk
+    from screwkit.core import mode_search, mode_transitions, operation_modes
+
+    assert sk.find_operation_modes is find_operation_modes and sk.OperationModes is mode_search.OperationModes
+    assert sk.modes_at is mode_transitions.modes_at and sk.ModesAtPose is mode_transitions.ModesAtPose
+    assert sk.OperationMode is operation_modes.OperationMode
+    assert {"find_operation_modes", "modes_at", "OperationModes", "OperationMode", "ModesAtPose"} <= set(sk.__all__)
