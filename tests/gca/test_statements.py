@@ -120,3 +120,75 @@ def test_schoenflies_actuation_condition_given_the_couples():
                 rows.append([*s, j @ m])
         ratios.append(actuation.evaluate(points) / np.linalg.det(np.array(rows)))
     assert np.allclose(ratios, ratios[0], rtol=1e-8, atol=0) and abs(ratios[0]) > 1e-6
+
+
+def plane_through(p, u, v):
+    """Plane coordinates (n, −n·p) of the plane through finite p spanned by directions u, v
+    (π·x = 0 for the points x of the plane), by hand."""
+    n = np.cross(u, v)
+    return np.r_[n, -n @ p]
+
+
+def test_leg_planes_and_platform_plane_through_one_point_at_a_singular_3prs_pose():
+    """A 3-PRS (tests/mechanisms_extra.py) at a tilt where the 6×6 determinant of its lines vanishes,
+    found by bisection on that determinant alone: the report names the vanishing factor with the
+    four-planes statement (each leg's plane holds its rod force and its constraint force through the
+    sphere centre, gca.md §5.2), and the four planes, computed here from the geometry, share a point
+    there (det of their coordinates ≈ 0) and not 0.05 rad away. The diagram's points at infinity
+    (rod directions, R axes) once kept the pattern from being recognised: it read "the six lines are
+    linearly dependent"."""
+    from tests import mechanisms as M
+    from tests import mechanisms_extra as X
+
+    tilt = X.singular_three_prs_tilt()
+    determinants = []
+    for angle in (tilt, tilt + 0.05):
+        graph, _ = X.three_prs(M.rotation_about(X.PRS_TILT_AXIS, angle), X.PRS_POSITION, drop=X.PRS_DROP)
+        result = sk.analyze(graph).superbracket
+        (c,) = result.conditions
+        assert c.statement.startswith(
+            "planes abg, ace, cdh and efi pass through one point (possibly at infinity); abg is the plane "
+            "of lines ab and ag, cdh is the plane of lines cd and ch, efi is the plane of lines ef and ei"
+        )
+        assert [tuple(line) for line in result.diagram.lines] == [tuple(x) for x in ["ab", "cd", "ef", "ag", "ch", "ei"]]
+        p = {x: v[:3] / (v[3] or 1.0) for x, v in result.diagram.coordinates.items()}
+        planes = [plane_through(p[o], p[u], p[v]) for o, u, v in ["abg", "cdh", "efi"]]
+        planes.append(plane_through(p["a"], p["c"] - p["a"], p["e"] - p["a"]))
+        unit_planes = [q / np.linalg.norm(q[:3]) for q in planes]
+        determinants.append(np.linalg.det(np.array(unit_planes)))
+        assert result.vanishing == ((angle == tilt),)
+    assert abs(determinants[0]) < 1e-12 and abs(determinants[1]) > 1e-4
+
+
+@pytest.mark.parametrize("seed", [0, 1])
+def test_four_planes_with_points_at_infinity_vanish_where_built_concurrent(seed):
+    """The 3-RPS/3-PRS diagram [ab, cd, ef, ag, ch, ei] (centres a, c, e; directions b, d, f, g, h, i)
+    built with its leg planes a + ⟨b, g⟩, … and platform plane ace through one point X: the factor
+    and the 6×6 determinant of the lines (numpy) vanish; turning one R axis out of its plane does not."""
+    from screwkit.gca import simplify_superbracket
+    from screwkit.gca.conditions import conditions
+
+    lines = ["ab", "cd", "ef", "ag", "ch", "ei"]
+    rng = np.random.default_rng(seed)
+
+    def sampler(r):
+        return {x: np.r_[r.normal(size=3), 1.0 if x in "ace" else 0.0] for x in "abcdefghi"}
+
+    result = simplify_superbracket(lines, sampler, finite="ace", infinite="bdfghi")
+    (c,) = conditions(result.factored, finite="ace", infinite="bdfghi", lines=lines)
+    centres = {x: rng.normal(size=3) for x in "ace"}
+    common = centres["a"] + 0.7 * (centres["c"] - centres["a"]) - 0.4 * (centres["e"] - centres["a"])
+    points = {x: finite(v) for x, v in centres.items()}
+    for centre, leg, axis in ["abg", "cdh", "efi"]:
+        direction = rng.normal(size=3)
+        points[leg] = np.r_[direction, 0.0]
+        points[axis] = np.r_[(common - centres[centre]) + 0.8 * direction, 0.0]
+
+    def six_by_six(pts):
+        rows = [np.r_[pts[q][:3] * pts[p][3] - pts[p][:3] * pts[q][3], np.cross(pts[p][:3], pts[q][:3])] for p, q in lines]
+        return np.linalg.det(np.array(rows))
+
+    moved = points | {"i": points["i"] + np.r_[0.3 * np.cross(points["f"][:3], points["i"][:3]), 0.0]}
+    scale = abs(c.evaluate(moved))
+    assert scale > 1e-6 and abs(six_by_six(moved)) > 1e-6
+    assert abs(c.evaluate(points)) < 1e-12 * scale and abs(six_by_six(points)) < 1e-12 * abs(six_by_six(moved))
