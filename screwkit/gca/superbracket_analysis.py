@@ -270,6 +270,7 @@ def superbracket_analysis(
     ]
     simplification = min(candidates, key=lambda c: (len(c.factored.rest.terms), len(c.survivors)))
     from .conditions import conditions, given_couples
+    from .design_factors import with_design_splits
 
     found = conditions(
         simplification.factored,
@@ -280,6 +281,7 @@ def superbracket_analysis(
     )
     found = _checked_kinds(found, in_lengths[-1], diagram, collinear)
     found = given_couples(found, diagram.lines, diagram.roles, diagram.infinite)
+    found = with_design_splits(found, drawn, diagram.finite, diagram.infinite)
     labels = tuple(c.label for c in found)
     at_pose = _centred(diagram.coordinates)  # the points that exist at the pose
     missing = [sorted(set(c.vectors) - set(at_pose)) for c in found]

@@ -192,3 +192,42 @@ def test_four_planes_with_points_at_infinity_vanish_where_built_concurrent(seed)
     scale = abs(c.evaluate(moved))
     assert scale > 1e-6 and abs(six_by_six(moved)) > 1e-6
     assert abs(c.evaluate(points)) < 1e-12 * scale and abs(six_by_six(points)) < 1e-12 * abs(six_by_six(moved))
+
+
+def test_peppermill_factor_is_the_distal_links_horizontal_as_paper_000_eq_48():
+    """The Peppermill's actuation factor F = [abfd][eghi] − [abfh][ecdi] does not split in the bracket
+    ring, but on the mechanism lines cd, gh are reciprocal to the plate's helical joints (axis ei,
+    pitches p₁, p₂ per turn): by hand, [eghi] = p₂ (i·h)/2π and [ecdi] = p₁ (i·d)/2π with
+    [abfd] = −(b × f)·d, b = x, f = y the elbow axes, i = z. So F = v₁z v₂z (p₂ − p₁)/2π with
+    v₁ = d, v₂ = h the distal links: paper 000's det A, Eq. (48), whose zeros (a distal link
+    horizontal) the statement names. Checked with numpy determinants on fresh configurations, and at
+    the pose where the paper's det A vanishes (found by bisection on Eq. 48, tests/paper_000.py)."""
+    from tests import paper_000 as paper
+
+    m = sk.load_mechanism("peppermill")
+    diagram, sampler = m.wrench_diagram()
+    result = sk.superbracket_analysis(diagram, sampler)
+    (actuation,) = (c for c in result.conditions if c.label == "actuation")
+    assert str(actuation.factor) == "[abfd][eghi] - [abfh][ecdi]"
+    assert actuation.statement.endswith(
+        "on this mechanism it is a constant multiple of [abfd][abfh] (the same ratio on all 12 sampled "
+        "configurations: a relation of the design that is no incidence of the diagram, checked numerically), "
+        "i.e. of ((b × f)·d) · ((b × f)·h), so it vanishes exactly where b, f and d are collinear in the plane "
+        "at infinity (the directions b, f, d are parallel to one plane) or where b, f and h are collinear in "
+        "the plane at infinity (the directions b, f, h are parallel to one plane)"
+    )
+    p1, p2 = m.parameters.p1, m.parameters.p2
+    rng = np.random.default_rng(11)
+    for _ in range(5):
+        points = sampler(rng)
+        np.testing.assert_allclose([points[x] for x in "bfi"], [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0]], atol=1e-12)
+        v1, v2 = points["d"][:3] / np.linalg.norm(points["d"][:3]), points["h"][:3] / np.linalg.norm(points["h"][:3])
+        moved = points | {"d": np.r_[v1, 0.0], "h": np.r_[v2, 0.0]}
+        det_a = v1[2] * v2[2] * (p2 - p1) / (2 * np.pi)  # paper 000, Eq. (48)
+        b = {x: np.linalg.det(np.array([moved[y] for y in x])) for x in ["abfd", "eghi", "abfh", "ecdi"]}
+        assert b["abfd"] * b["eghi"] - b["abfh"] * b["ecdi"] == pytest.approx(det_a, rel=1e-9)
+
+    pose = paper.locate_direct_singularity(m.parameters, [0.0, 150.0, -150.0, 0.0], [0.0, 300.0, -150.0, 0.0])
+    at_pose = sk.analyze("peppermill", pose).superbracket
+    assert at_pose.vanishing == (False, True) and at_pose.constant == (True, False)
+    assert abs(at_pose.values[1]) < 1e-12 * abs(result.values[1])
