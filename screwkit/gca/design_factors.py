@@ -35,7 +35,6 @@ Examples
 
 from __future__ import annotations
 
-import itertools
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any
@@ -143,17 +142,48 @@ def split_on_configurations(
         if magnitude > 0 and np.all(np.abs(v) > 1e-12 * magnitude):
             if np.ptp(np.abs(v)) > PROPORTION_RTOL * magnitude:  # a constant one is no condition
                 varying.append((b, v))
+    if not varying or not np.all(np.abs(values) > 1e-12 * size):
+        return None
+    # |factor / product| is one number iff log|factor| − Σ log|bracket| is constant over the samples:
+    # with each row centred over the samples, iff the centred logs add up (searched by broadcasting)
+    logs = np.log(np.abs(np.array([v for _, v in varying])))
+    logs -= logs.mean(axis=1, keepdims=True)
+    target = np.log(np.abs(values))
+    target -= target.mean()
     for count in range(1, MAX_BRACKETS + 1):
-        found = []
-        for chosen in itertools.combinations_with_replacement(range(len(varying)), count):
+        hits = [
+            chosen
+            for chosen in _sums_matching(logs, target, count)
+            if np.ptp(np.sign(values) * np.prod([np.sign(varying[k][1]) for k in chosen], axis=0)) == 0
+        ]
+        if hits:  # the product on the fewest points reads simplest (the Peppermill: [abfd][abfh])
+            chosen = min(hits, key=lambda c: (len({x for k in c for x in varying[k][0].labels}), c))
             product = np.prod([varying[k][1] for k in chosen], axis=0)
-            ratio = values / product
-            middle = float(np.median(ratio))
-            if middle != 0 and np.ptp(ratio) <= PROPORTION_RTOL * abs(middle):
-                found.append(DesignSplit(tuple(varying[k][0] for k in chosen), middle, len(samples)))
-        if found:  # the product on the fewest points reads simplest (the Peppermill: [abfd][abfh])
-            return min(found, key=lambda split: len({x for b in split.brackets for x in b.labels}))
+            ratio = float(np.median(values / product))
+            return DesignSplit(tuple(varying[k][0] for k in chosen), ratio, len(samples))
     return None
+
+
+def _sums_matching(logs: np.ndarray, target: np.ndarray, count: int) -> list[tuple[int, ...]]:
+    """Index tuples i ≤ j ≤ … (``count`` of them) whose rows of ``logs`` add up to ``target`` within
+    :data:`PROPORTION_RTOL` (``logs``: one centred row per bracket, one column per sample)."""
+    k = len(logs)
+    found: list[tuple[int, ...]] = []
+    if count == 1:
+        close = np.max(np.abs(logs - target), axis=1) <= PROPORTION_RTOL
+        return [(int(i),) for i in np.flatnonzero(close)]
+    for first in range(k):  # one broadcast per first index keeps memory at k^(count-1) rows
+        rest = target - logs[first]
+        if count == 2:
+            close = np.max(np.abs(logs[first:] - rest), axis=1) <= PROPORTION_RTOL
+            found += [(first, first + int(j)) for j in np.flatnonzero(close)]
+        else:
+            pairs = logs[first:, None, :] + logs[None, first:, :]
+            close = np.max(np.abs(pairs - rest), axis=2) <= PROPORTION_RTOL
+            rows, columns = np.nonzero(close)
+            pairs_found = zip(rows.tolist(), columns.tolist(), strict=True)
+            found += [(first, first + i, first + j) for i, j in pairs_found if i <= j]
+    return found
 
 
 def with_design_splits(
@@ -184,8 +214,8 @@ def with_design_splits(
     >>> from screwkit.gca.superbracket_analysis import superbracket_analysis
     >>> diagram, sampler = load_mechanism("peppermill").wrench_diagram()
     >>> actuation = superbracket_analysis(diagram, sampler).conditions[1]
-    >>> print(actuation.statement.split("; ")[1][:88])
-    on this mechanism it is a constant multiple of [abfd][abfh] (the same ratio on all 12 sampled
+    >>> print(actuation.statement.split("; ")[1][:59])
+    on this mechanism it is a constant multiple of [abfd][abfh]
     """
     from .condition_patterns import bracket_polynomial
     from .conditions import condition
