@@ -28,7 +28,7 @@ from ..exceptions import ScrewkitTypeError, ScrewkitValueError
 from .brackets import Bracket, BracketPolynomial
 from .combined_brackets import combined_bracket, combined_bracket_form
 from .dotted import DottedMonomial, DottedSum
-from .exact_proofs import is_superbracket, prove_proportional
+from .exact_proofs import is_irreducible_in_points, is_superbracket, prove_proportional
 from .notation import join_labels
 from .vector_forms import PointKinds, VectorCross, VectorDiff, VectorDot, vector_sum
 
@@ -380,6 +380,12 @@ def vector_form(
             f"the six lines {_listing([join_labels(line) for line in lines])} are linearly dependent "
             "(they belong to one linear line complex): no factor of the superbracket is simpler"
         )
+        if is_irreducible_in_points(polynomial, types):
+            statement += (
+                f" (it is irreducible in the coordinates of its {len(polynomial.labels)} points taken free, "
+                "proved exactly: no split of them into two groups factors it); which complex, or which "
+                "smaller Grassmann class, is read from the lines at the pose (sk.grassmann_class)"
+            )
     elif lines is not None:
         labels = set(polynomial.labels)
         involved = [join_labels(line) for line in lines if labels & set(line)]
