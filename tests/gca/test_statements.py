@@ -231,3 +231,21 @@ def test_peppermill_factor_is_the_distal_links_horizontal_as_paper_000_eq_48():
     at_pose = sk.analyze("peppermill", pose).superbracket
     assert at_pose.vanishing == (False, True) and at_pose.constant == (True, False)
     assert abs(at_pose.values[1]) < 1e-12 * abs(result.values[1])
+
+
+def test_general_gough_stewart_at_a_singular_pose_names_its_factor_and_the_complex():
+    """The general 6-6 platform turned about z to where the 6×6 determinant of its leg lines vanishes
+    (bisection on that determinant, tests/mechanisms_extra.py): its one factor, the superbracket
+    itself, vanishes there (and not 0.05 rad away) with the linear-complex statement, and the lines'
+    Grassmann class is a linear complex read at the pose (rank 5: classes 5a or 5b)."""
+    from tests import mechanisms as M
+    from tests import mechanisms_extra as X
+
+    angle = X.singular_gough_stewart_angle()
+    for turn, singular in ((angle, True), (angle + 0.05, False)):
+        report = sk.analyze(M.gough_stewart(*M.gough_stewart_points(M.rotation_z(turn))))
+        (c,) = report.superbracket.conditions
+        assert c.statement.startswith("the six lines ab, cd, ef, gh, ij and kl are linearly dependent")
+        assert report.superbracket.vanishing == (singular,)
+        grassmann, _ = report.grassmann()
+        assert (grassmann is not None and grassmann.name in ("5a", "5b")) == singular
