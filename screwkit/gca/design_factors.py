@@ -237,5 +237,5 @@ def with_design_splits(
             f"incidence of the diagram, checked numerically), i.e. of {forms}, so it vanishes exactly "
             f"where {where}"
         )
-        out.append(replace(c, statement=statement))
+        out.append(replace(c, statement=statement, split=split.brackets))
     return tuple(out)

@@ -249,3 +249,28 @@ def test_general_gough_stewart_at_a_singular_pose_names_its_factor_and_the_compl
         assert report.superbracket.vanishing == (singular,)
         grassmann, _ = report.grassmann()
         assert (grassmann is not None and grassmann.name in ("5a", "5b")) == singular
+
+
+def test_the_report_says_which_distal_link_is_horizontal():
+    """At the paper's second-kind pose of limb 1 (y moves limb 1 only; bisection on Eq. 48), the
+    report's line for the split factor says [abfd] (d: limb 1's distal link) vanishes and [abfh] does
+    not; the JSON has the same; at a regular pose nothing vanishes. The distal link directions are
+    read from the diagram here: d horizontal (|d_z| < 1e-9), h not."""
+    import json
+
+    from tests import paper_000 as paper
+
+    m = sk.load_mechanism("peppermill")
+    pose = paper.locate_direct_singularity(m.parameters, [0.0, 150.0, -150.0, 0.0], [0.0, 300.0, -150.0, 0.0])
+    report = sk.analyze("peppermill", pose)
+    result = report.superbracket
+    d, h = (result.diagram.coordinates[x][:3] for x in "dh")
+    assert abs(d[2]) < 1e-9 * np.linalg.norm(d) and abs(h[2]) > 0.1 * np.linalg.norm(h)
+    line = result.split_at_pose[1]
+    assert line.startswith("here [abfd] = ") and "(vanishes), [abfh] = " in line and line.count("(vanishes)") == 1
+    assert "    " + line in str(report).splitlines()
+    printed = json.loads(json.dumps(report.to_dict()))["superbracket"]["conditions"]
+    assert [c["split_on_mechanism"] for c in printed] == [[], ["[abfd]", "[abfh]"]]
+    assert [c["split_at_pose"] for c in printed] == ["", line]
+    regular = sk.analyze("peppermill").superbracket.split_at_pose[1]
+    assert regular.startswith("here [abfd] = ") and "vanishes" not in regular
