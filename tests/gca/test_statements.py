@@ -5,10 +5,14 @@ vanish, a perturbation does not. Brackets are evaluated here with numpy determin
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import screwkit as sk
 from screwkit.gca import BracketPolynomial
 from screwkit.gca.conditions import condition
+
+from ..strategies import rotations, unit_factors
 
 
 def bracket_sum(text, points):
@@ -274,3 +278,69 @@ def test_the_report_says_which_distal_link_is_horizontal():
     assert [c["split_at_pose"] for c in printed] == ["", line]
     regular = sk.analyze("peppermill").superbracket.split_at_pose[1]
     assert regular.startswith("here [abfd] = ") and "vanishes" not in regular
+
+
+def _expanded_value(factor, points):
+    """A factor's expansion on points, each bracket a numpy determinant of 4×4 rows (the monomials
+    read from the printed expansion: ±coefficient followed by brackets)."""
+    from screwkit.gca.condition_patterns import bracket_polynomial
+
+    total = 0.0
+    for monomial in bracket_polynomial(factor).terms:
+        value = float(monomial.coefficient)
+        for bracket in monomial.brackets:
+            value *= np.linalg.det(np.array([points[x] for x in bracket.labels]))
+        total += value
+    return total
+
+
+FACTORS = {  # factor text, finite, infinite, lines
+    "3-RPS/3-PRS four planes": ("[abcd][aghe][cfei] - [abhd][agce][cfei] + [abcg][dche][afei] - [abch][dage][cfei]",
+                                "ace", "bdfghi", ["ab", "cd", "ef", "ag", "ch", "ei"]),
+    "Peppermill actuation": ("[abfd][eghi] - [abfh][ecdi]", "aceg", "bdfhi", None),
+    "general 6-6": (None, "abcdefghijkl", "", ["ab", "cd", "ef", "gh", "ij", "kl"]),
+}
+STATEMENTS = {"3-RPS/3-PRS four planes": "planes abg, ace, cdh and efi pass through one point",
+              "Peppermill actuation": "the bracket expression",  # generic here: no mechanism, no couples
+              "general 6-6": "the six lines ab, cd, ef, gh, ij and kl are linearly dependent"}
+
+
+@pytest.mark.parametrize("name", list(FACTORS))
+@settings(max_examples=15, deadline=None)
+@given(seed=st.integers(0, 2**32 - 1))
+def test_vector_form_times_constant_is_the_factor(name, seed):
+    """The statement's vector form times its proved constant equals the factor's bracket expansion
+    (numpy determinants) on random points of the declared kinds."""
+    from screwkit.gca import superbracket_expansion
+
+    text, finite_labels, infinite_labels, lines = FACTORS[name]
+    factor = superbracket_expansion(lines) if text is None else BracketPolynomial.parse(text)
+    c = _conditions_cache(name, factor, finite_labels, infinite_labels, lines)
+    assert c.statement.startswith(STATEMENTS[name])
+    rng = np.random.default_rng(seed)
+    points = {x: np.r_[rng.normal(size=3), 1.0] for x in finite_labels}
+    points |= {x: np.r_[rng.normal(size=3), 0.0] for x in infinite_labels}
+    expected = _expanded_value(factor, points)
+    assert float(c.constant) * c.evaluate(points) == pytest.approx(expected, rel=1e-8, abs=1e-10)
+
+
+_CACHE: dict = {}
+
+
+def _conditions_cache(name, factor, finite_labels, infinite_labels, lines):
+    if name not in _CACHE:
+        _CACHE[name] = condition(factor, finite=finite_labels, infinite=infinite_labels, lines=lines)
+    return _CACHE[name]
+
+
+@settings(max_examples=3, deadline=None)
+@given(rotation=rotations(), translation=st.lists(st.floats(-2, 2), min_size=3, max_size=3), factor=unit_factors)
+def test_the_3prs_statement_is_frame_and_unit_free(rotation, translation, factor):
+    """The same 3-PRS moved rigidly and described in another length unit reads the same statement."""
+    from tests import mechanisms as M
+    from tests import mechanisms_extra as X
+
+    graph, _ = X.three_prs(M.rotation_about([1, 0.3, 0], 0.2), [0.02, 0.03, 1.0])
+    moved = M.moved(graph, rotation, np.array(translation), factor)
+    (c,) = sk.analyze(moved).superbracket.conditions
+    assert c.statement.startswith("planes abg, ace, cdh and efi pass through one point (possibly at infinity)")
