@@ -10,9 +10,9 @@ set on this mechanism is then the union of theirs, each with its own statement.
 Example: the Peppermill (paper 000), diagram ``[ab, cd, ef, gh, ib, if]``, with ``i`` the plate's
 vertical axis, ``b``, ``f`` the horizontal elbow axes and ``d``, ``h`` the distal links. Its
 actuation factor is ``F = [abfd][eghi] − [abfh][ecdi]``. Lines cd and gh are reciprocal to the
-plate's helical joints (pitches p₁, p₂, axis through e along i), so on the mechanism
-``[eghi] = p₂ (i·h)`` and ``[ecdi] = p₁ (i·d)`` (for unit i), while ``[abfd] = −(b × f)·d`` with
-``b × f ∥ i``. Hence ``F ∝ (p₁ − p₂)[abfd][abfh]``, zero exactly where a distal link is horizontal:
+plate's helical joints (pitches p₁, p₂ per turn, axis through e along i), so on the mechanism
+``[eghi] = −p₂ (i·h)/2π`` and ``[ecdi] = −p₁ (i·d)/2π`` (unit i), while ``[abfd] = −(b × f)·d`` with
+``b × f = i``. Hence ``F = (p₂ − p₁)/2π · [abfd][abfh]``, zero exactly where a distal link is horizontal:
 paper 000's Eq. (48), ``det A = v₁z v₂z (p₂ − p₁)/2π``.
 
 :func:`split_on_configurations` finds such a product (at most :data:`MAX_BRACKETS` brackets) by

@@ -201,7 +201,7 @@ def test_four_planes_with_points_at_infinity_vanish_where_built_concurrent(seed)
 def test_peppermill_factor_is_the_distal_links_horizontal_as_paper_000_eq_48():
     """The Peppermill's actuation factor F = [abfd][eghi] − [abfh][ecdi] does not split in the bracket
     ring, but on the mechanism lines cd, gh are reciprocal to the plate's helical joints (axis ei,
-    pitches p₁, p₂ per turn): by hand, [eghi] = p₂ (i·h)/2π and [ecdi] = p₁ (i·d)/2π with
+    pitches p₁, p₂ per turn): by hand, [eghi] = −p₂ (i·h)/2π and [ecdi] = −p₁ (i·d)/2π with
     [abfd] = −(b × f)·d, b = x, f = y the elbow axes, i = z. So F = v₁z v₂z (p₂ − p₁)/2π with
     v₁ = d, v₂ = h the distal links: paper 000's det A, Eq. (48), whose zeros (a distal link
     horizontal) the statement names. Checked with numpy determinants on fresh configurations, and at
@@ -229,6 +229,10 @@ def test_peppermill_factor_is_the_distal_links_horizontal_as_paper_000_eq_48():
         moved = points | {"d": np.r_[v1, 0.0], "h": np.r_[v2, 0.0]}
         det_a = v1[2] * v2[2] * (p2 - p1) / (2 * np.pi)  # paper 000, Eq. (48)
         b = {x: np.linalg.det(np.array([moved[y] for y in x])) for x in ["abfd", "eghi", "abfh", "ecdi"]}
+        # the hand derivation's steps, then the factor
+        assert b["eghi"] == pytest.approx(-p2 * v2[2] / (2 * np.pi), rel=1e-9)
+        assert b["ecdi"] == pytest.approx(-p1 * v1[2] / (2 * np.pi), rel=1e-9)
+        assert b["abfd"] == pytest.approx(-v1[2], rel=1e-9) and b["abfh"] == pytest.approx(-v2[2], rel=1e-9)
         assert b["abfd"] * b["eghi"] - b["abfh"] * b["ecdi"] == pytest.approx(det_a, rel=1e-9)
 
     pose = paper.locate_direct_singularity(m.parameters, [0.0, 150.0, -150.0, 0.0], [0.0, 300.0, -150.0, 0.0])
