@@ -156,3 +156,4 @@ def test_a_general_three_upu_states_its_actuation_factor():
     # plane (z = 0) the three legs are horizontal, and the factor vanishes there
     lowered = sk.analyze(general_three_upu([0.1, 0.05, 0.0])).superbracket
     assert lowered.vanishing[[c.label for c in lowered.conditions].index("actuation")]
+    assert not report.superbracket.vanishing[[c.label for c in report.superbracket.conditions].index("actuation")]
