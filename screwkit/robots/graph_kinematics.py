@@ -34,7 +34,7 @@ from __future__ import annotations
 import dataclasses
 import functools
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, cast
 
 import networkx as nx
 import numpy as np
@@ -72,7 +72,8 @@ PURE_MOTION_STEP = 0.2
 def _pose_keys(poses: Array) -> list[bytes]:
     """Each pose's coordinates as bytes ``(m, n)`` → ``m`` keys (one call for the batch)."""
     rows = np.ascontiguousarray(poses, dtype=float)
-    return rows.view(np.dtype((np.void, rows.dtype.itemsize * rows.shape[1]))).ravel().tolist()
+    whole = rows.view(np.dtype((np.void, rows.dtype.itemsize * rows.shape[1])))  # a pose per item
+    return cast(list[bytes], whole.ravel().tolist())
 
 
 class _SolvedPoses:
