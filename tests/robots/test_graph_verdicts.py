@@ -1,0 +1,59 @@
+"""The verdict path of a graph mechanism over poses (screwkit.robots.graph_kinematics): what it keeps
+between the reach test and the analysis gives what solving again would."""
+
+import numpy as np
+
+import screwkit as sk
+from screwkit.robots import graph_kinematics as GK
+from screwkit.robots.catalog import load_mechanism
+from screwkit.robots.graph_kinematics import kinematics_of
+
+from ..mechanisms import gough_stewart, gough_stewart_points
+
+
+def _gough_stewart_poses(count, seed):
+    rng = np.random.default_rng(seed)
+    return np.column_stack(
+        [rng.uniform(-0.15, 0.15, (count, 2)), rng.uniform(0.9, 1.1, count), rng.uniform(-0.2, 0.2, (count, 3))]
+    )
+
+
+def test_solved_poses_are_read_back_as_solved(monkeypatch):
+    graph = gough_stewart(*gough_stewart_points())
+    poses = _gough_stewart_poses(30, 5)
+    poses[7] = poses[2]  # a pose asked twice in one batch
+    monkeypatch.setattr(GK, "MAX_CACHED_POSES", 16)  # the second batch overflows it: emptied, refilled
+    kinematics = sk.mechanism(graph).parameters
+    kinematics.solve(poses[:12])
+    asked = np.concatenate([poses[::-1], poses[:5]])  # known, new, and known again within the batch
+    again = kinematics.solve(asked)
+    fresh = sk.mechanism(graph).parameters.solve(asked)  # nothing remembered
+    assert again.reached.tolist() == fresh.reached.tolist()
+    reached = fresh.reached
+    np.testing.assert_array_equal(again.theta[reached], fresh.theta[reached])
+    assert set(again.offsets) == set(fresh.offsets) == {f"S{i}" for i in range(1, 7)}
+    for name, value in fresh.offsets.items():
+        np.testing.assert_array_equal(again.offsets[name][reached], value[reached])
+    third = kinematics.solve(asked)  # everything reached is now remembered
+    np.testing.assert_array_equal(third.theta[reached], fresh.theta[reached])
+
+
+def test_a_pose_out_of_reach_is_never_remembered():
+    kinematics = kinematics_of(load_mechanism("h4"))
+    poses = np.array([[0.0, 0.0, -3000.0, 0.0], [10.0, 0.0, -750.0, 0.1]])
+    for _ in range(2):  # asked again: solved again, and out of reach again with its reason
+        closed = kinematics.solve(poses)
+        assert closed.reached.tolist() == [False, True]
+        assert "do not close" in closed.reasons[0]
+
+
+def test_forward_kinematics_remembers_its_poses():
+    robot = sk.mechanism(gough_stewart(*gough_stewart_points()))
+    kinematics = robot.parameters
+    values = np.random.default_rng(3).uniform(-0.05, 0.05, (6, 6))
+    poses, closed = kinematics.forward(values)
+    assert closed.reached.all()
+    remembered = kinematics.solve(poses)  # read back, not solved from the coordinates
+    np.testing.assert_array_equal(remembered.theta, closed.theta)
+    for name, value in closed.offsets.items():
+        np.testing.assert_array_equal(remembered.offsets[name], value)
