@@ -213,6 +213,10 @@ class ProgramBuilder:
                     self.slots[key] = self._op(RECIPROCAL, wrenches, 0)
             elif node.kind == "joint":
                 self.slots[key] = self._span(self.generators(index))
+            elif (split := self._limb_leg(index)) is not None:  # the limb's locked twists and one screw
+                joint, siblings = split
+                parts = [self.generators(joint)[0], (SLOT_ROWS, self.request(("sum", siblings)), 6)]
+                self.slots[key] = self._sourced(EXTEND, parts)
             else:
                 self.slots[key] = self._chain_sum(node.children)
         return self.slots[key]
@@ -244,9 +248,50 @@ class ProgramBuilder:
                 self.slots[key] = self._sourced(ROD, [g for c in node.children for g in self.generators(c)])
             elif node.kind == "series" and self._joint_and_node(node.children):
                 self.slots[key] = self._contract(node.children)
+            elif (split := self._limb_leg(index)) is not None:  # the limb's passive wrenches less one
+                joint, siblings = split
+                locked = self.request(("sum", siblings))  # the fallback's twists (as _contract's)
+                parts = [self.generators(joint)[0], (SLOT_ROWS, self.request(("passive", siblings)), 6)]
+                if self.ops[locked][0] != RECIPROCAL:
+                    parts.append((SLOT_ROWS, locked, 6))
+                self.slots[key] = self._sourced(CONTRACT, parts)
             else:
                 self.slots[key] = self._op(RECIPROCAL, self.twists(index), 0)
         return self.slots[key]
+
+    def _limb_leg(self, index: int) -> tuple[int, tuple[int, ...]] | None:
+        """A leg whose twists and wrenches come from its limb's (decided once, from the structure):
+        a series node of three or more members, with six or more freedoms in all (so that it
+        generically has no constraint wrench), one member a limb's actuated joint of one freedom
+        and the others that limb's siblings (a UPS leg: its S and U). Its twists are then the
+        :data:`EXTEND` of the limb's locked twists by the joint's screw and its wrenches the
+        :data:`CONTRACT` of the limb's passive wrenches, frames the limb needs anyway, instead of a
+        span of all its screws and a reciprocal (paper 002 Eq. 1 with Eq. 3: the same systems).
+        Returns the joint's node and the siblings, or None.
+
+        Parameters
+        ----------
+        index : int
+            A tree node.
+
+        Returns
+        -------
+        tuple or None
+        """
+        node = self.top.nodes[index]
+        if node.kind != "series" or len(node.children) < 3 or sum(map(self.bound, node.children)) < 6:
+            return None
+        for plan in self.top.limbs:
+            rest = [c for c in node.children if c not in plan.siblings]
+            actuated = self.top.nodes[rest[0]] if len(rest) == 1 else None
+            if (
+                actuated is not None
+                and len(plan.siblings) == len(node.children) - 1
+                and actuated.joint == plan.index
+                and self.top.specs[plan.index].dof == 1
+            ):
+                return rest[0], plan.siblings
+        return None
 
     def _is_rod(self, node: Node) -> bool:
         """A chain of exactly two spherical joints (a rod with a ball at each end)."""
