@@ -153,7 +153,9 @@ def actuated_screws(top: Topology, screws: Array) -> Array:
     """
     columns = [top.columns[plan.index] for plan in top.limbs]
     signs = np.array([float(plan.sign) for plan in top.limbs])
-    return screws[..., columns, :] * signs[:, None]
+    gathered = screws[..., columns, :]  # a new array: signed in place (no second one)
+    gathered *= signs[:, None]
+    return gathered
 
 
 def scalar(value: Any) -> Any:
