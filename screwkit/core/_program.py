@@ -53,7 +53,6 @@ __all__ = [
     "ProgramBuilder",
     "Request",
     "frame_program",
-    "limb_frame",
     "run_program",
     "stacked",
 ]
@@ -213,9 +212,8 @@ class ProgramBuilder:
                     self.slots[key] = self._op(RECIPROCAL, wrenches, 0)
             elif node.kind == "joint":
                 self.slots[key] = self._span(self.generators(index))
-            elif (split := self._limb_leg(index)) is not None:  # the limb's locked twists and one screw
-                joint, siblings = split
-                parts = [self.generators(joint)[0], (SLOT_ROWS, self.request(("sum", siblings)), 6)]
+            elif (leg := self._limb_leg(index)) is not None:  # the limb's locked twists and its screw
+                parts = [self.generators(leg[0])[0], (SLOT_ROWS, self.request(("sum", leg[1])), 6)]
                 self.slots[key] = self._sourced(EXTEND, parts)
             else:
                 self.slots[key] = self._chain_sum(node.children)
@@ -248,49 +246,27 @@ class ProgramBuilder:
                 self.slots[key] = self._sourced(ROD, [g for c in node.children for g in self.generators(c)])
             elif node.kind == "series" and self._joint_and_node(node.children):
                 self.slots[key] = self._contract(node.children)
-            elif (split := self._limb_leg(index)) is not None:  # the limb's passive wrenches less one
-                joint, siblings = split
-                locked = self.request(("sum", siblings))  # the fallback's twists (as _contract's)
-                parts = [self.generators(joint)[0], (SLOT_ROWS, self.request(("passive", siblings)), 6)]
-                if self.ops[locked][0] != RECIPROCAL:
-                    parts.append((SLOT_ROWS, locked, 6))
-                self.slots[key] = self._sourced(CONTRACT, parts)
+            elif (leg := self._limb_leg(index)) is not None:  # the limb's passive wrenches, less one
+                passive, locked = self.request(("passive", leg[1])), self.request(("sum", leg[1]))
+                parts = [self.generators(leg[0])[0], (SLOT_ROWS, passive, 6), (SLOT_ROWS, locked, 6)]
+                self.slots[key] = self._sourced(CONTRACT, parts)  # (the fallback spans the sum, as EXTEND)
             else:
                 self.slots[key] = self._op(RECIPROCAL, self.twists(index), 0)
         return self.slots[key]
 
     def _limb_leg(self, index: int) -> tuple[int, tuple[int, ...]] | None:
-        """A leg whose twists and wrenches come from its limb's (decided once, from the structure):
-        a series node of three or more members, with six or more freedoms in all (so that it
-        generically has no constraint wrench), one member a limb's actuated joint of one freedom
-        and the others that limb's siblings (a UPS leg: its S and U). Its twists are then the
-        :data:`EXTEND` of the limb's locked twists by the joint's screw and its wrenches the
-        :data:`CONTRACT` of the limb's passive wrenches, frames the limb needs anyway, instead of a
-        span of all its screws and a reciprocal (paper 002 Eq. 1 with Eq. 3: the same systems).
-        Returns the joint's node and the siblings, or None.
-
-        Parameters
-        ----------
-        index : int
-            A tree node.
-
-        Returns
-        -------
-        tuple or None
-        """
+        """``(actuated joint's node, siblings)`` of a limb whose leg this series node of six or more
+        freedoms is, made of that 1-dof joint and the siblings (a UPS leg), else None: its twists are
+        then the EXTEND of the limb's locked twists, its wrenches the CONTRACT of the limb's passive
+        wrenches (paper 002 Eq. 1 with Eq. 3), frames the limb needs anyway (no span of all its screws)."""
         node = self.top.nodes[index]
-        if node.kind != "series" or len(node.children) < 3 or sum(map(self.bound, node.children)) < 6:
-            return None
-        for plan in self.top.limbs:
-            rest = [c for c in node.children if c not in plan.siblings]
-            actuated = self.top.nodes[rest[0]] if len(rest) == 1 else None
-            if (
-                actuated is not None
-                and len(plan.siblings) == len(node.children) - 1
-                and actuated.joint == plan.index
-                and self.top.specs[plan.index].dof == 1
-            ):
-                return rest[0], plan.siblings
+        if node.kind == "series" and len(node.children) >= 3 and sum(map(self.bound, node.children)) >= 6:
+            for plan in self.top.limbs:
+                rest = [c for c in node.children if c not in plan.siblings]
+                if len(rest) == 1 == len(node.children) - len(plan.siblings) and plan.index == (
+                    self.top.nodes[rest[0]].joint
+                ) and self.top.specs[plan.index].dof == 1:
+                    return rest[0], plan.siblings
         return None
 
     def _is_rod(self, node: Node) -> bool:
@@ -621,19 +597,3 @@ def stacked(frames: list[Frame]) -> Frame:
     """
     return np.stack([rows for rows, _ in frames], axis=-3), np.stack([order for _, order in frames], axis=-1)
 
-
-def limb_frame(frame: Frame, k: int) -> Frame:
-    """Limb ``k``'s frame from :func:`stacked` frames.
-
-    Parameters
-    ----------
-    frame : tuple of numpy.ndarray
-        Stacked frames.
-    k : int
-        A limb.
-
-    Returns
-    -------
-    tuple of numpy.ndarray
-    """
-    return frame[0][..., k, :, :], frame[1][..., k]
