@@ -52,7 +52,9 @@ from typing import Any
 
 import numpy as np
 
+from ..algebra.compiled import compiled_kernels
 from ..exceptions import ScrewkitValueError
+from ._batched_poe import KERNELS
 from .kinematic_model import KinematicModel, KinematicState
 from .kinematic_tasks import PoseTask
 
@@ -144,6 +146,37 @@ class _LoopsAndTask:
         """The correction of the rows ``need`` of the equations' residual and Jacobian."""
         return _solve_step(jacobian[need], residual[need])
 
+    def newton(
+        self, theta: Array, offsets: dict[str, Array], target: Array, tolerance: Array, working: Array
+    ) -> tuple[Array, Array]:
+        """The corrector of one continuation step: Newton iterations on the poses ``working`` until
+        their largest residual is within ``tolerance`` (at most :data:`NEWTON_ITERATIONS`, each
+        correction scaled down to :data:`MAX_CORRECTION`). Updates ``theta`` in place; returns, for
+        the poses ``working``, the last residual size and the sum of the corrections after the
+        first (the predictor's own correction), the measure of a jump to another branch."""
+        rows = np.flatnonzero(working)
+        sizes, corrected, first = np.zeros(rows.size), np.zeros(rows.size), np.ones(rows.size, dtype=bool)
+        place = np.arange(rows.size)  # the working poses still iterating, as positions in ``rows``
+        for _ in range(NEWTON_ITERATIONS):  # only the poses not yet within the tolerance
+            if place.size == 0:
+                break
+            at = rows[place]
+            state = self.state(theta[at], {k: v[at] for k, v in offsets.items()}, target[at])
+            residual, jacobian = self.equations(state, target[at])
+            size = np.max(np.abs(residual), axis=1, initial=0.0)
+            sizes[place] = size
+            need = size > tolerance[at]
+            place = place[need]
+            if place.size == 0:
+                break
+            correction = self.correction(jacobian, residual, need)
+            length = np.max(np.abs(correction), axis=1, initial=0.0)
+            correction *= np.minimum(1.0, MAX_CORRECTION / np.maximum(length, 1e-300))[:, None]
+            theta[rows[place]] += correction
+            corrected[place] += np.where(first[place], 0.0, np.minimum(length, MAX_CORRECTION))
+            first[place] = False
+        return sizes, corrected
+
 
 class _PinnedLoops(_LoopsAndTask):
     """The same configurations when the task fixes its link's whole pose: that link placed where the
@@ -165,6 +198,31 @@ class _PinnedLoops(_LoopsAndTask):
             loops = self.pinned.incidence[rows[:, ::6] // 6]  # (k, l, n)
             signs = np.take_along_axis(loops, columns[:, None, :], axis=2)
             self.groups.append((rows, columns, signs))
+        product = self.pinned._product
+        self.loops = np.array(  # (u, v, joint) of each loop, for the compiled corrector
+            [[product.link_index[self.pinned.joints[key][0]], product.link_index[self.pinned.joints[key][1]],
+              product.joint_index[key]] for key in self.pinned.closing],
+            dtype=np.int64,
+        ).reshape(-1, 3)
+        self.kernel_blocks = _kernel_blocks(self.pinned)
+
+    def newton(
+        self, theta: Array, offsets: dict[str, Array], target: Array, tolerance: Array, working: Array
+    ) -> tuple[Array, Array]:
+        kernels = compiled_kernels(KERNELS, int(working.sum()))
+        if kernels is None:
+            return super().newton(theta, offsets, target, tolerance, working)
+        keys = list(offsets)
+        count = len(theta)
+        stacked = np.stack([offsets[key] for key in keys], axis=1) if keys else np.zeros((count, 0, 4, 4))
+        solved = np.ascontiguousarray(theta)
+        sizes, corrected = kernels.pinned_newton(
+            solved, np.ascontiguousarray(stacked), self.task.displacement(target), tolerance, working,
+            NEWTON_ITERATIONS, MAX_CORRECTION, self.pinned._product.kernel_arrays(keys), self.loops,
+            self.kernel_blocks,
+        )
+        theta[:] = solved
+        return sizes[working], corrected[working]
 
     def state(self, theta: Array, offsets: dict[str, Array], target: Array) -> KinematicState:
         return self.pinned.state(theta, offsets, self.task.displacement(target))
@@ -187,6 +245,27 @@ class _PinnedLoops(_LoopsAndTask):
             step = _solve_step(blocks[need].reshape(-1, *blocks.shape[2:]), flat)
             out[:, columns.ravel()] = step.reshape(count, -1)
         return out
+
+
+def _kernel_blocks(pinned: KinematicModel) -> tuple[Array, ...]:
+    """The blocks of a pinned model for :func:`screwkit.core._newton_numba.pinned_newton`: per block its
+    loops, per column of it the loops (local, ascending) that hold the column and their signs."""
+    block_ptr, block_loops, column_ptr, column_index = [0], [], [0], []
+    entry_ptr, entry_loop, entry_sign = [0], [], []
+    for rows, columns in pinned.blocks:
+        loops = rows[::6] // 6
+        block_loops.extend(loops)
+        block_ptr.append(len(block_loops))
+        for column in columns:
+            column_index.append(column)
+            for local, loop in enumerate(loops):
+                if pinned.incidence[loop, column] != 0.0:
+                    entry_loop.append(local)
+                    entry_sign.append(pinned.incidence[loop, column])
+            entry_ptr.append(len(entry_loop))
+        column_ptr.append(len(column_index))
+    whole = (block_ptr, block_loops, column_ptr, column_index, entry_ptr, entry_loop)
+    return (*(np.array(part, dtype=np.int64) for part in whole), np.array(entry_sign, dtype=float))
 
 
 def _continue(
@@ -223,28 +302,9 @@ def _continue(
         previous = theta.copy()
         theta[ahead] += secant[ahead]
         tolerance = np.where(step >= own, LAST_STEP_TOLERANCE, STEP_TOLERANCE)
-        corrected = np.zeros(count)  # the corrections after each pose's first iteration
-        first = np.ones(count, dtype=bool)
         working = active & moving
-        for _ in range(NEWTON_ITERATIONS):  # only the poses not yet within the tolerance
-            rows = np.flatnonzero(working)
-            if rows.size == 0:
-                break
-            state = system.state(theta[rows], {k: v[rows] for k, v in offsets.items()}, target[rows])
-            residual, jacobian = system.equations(state, target[rows])
-            size = np.max(np.abs(residual), axis=1, initial=0.0)
-            residual_size[rows] = size
-            need = size > tolerance[rows]
-            working[rows[~need]] = False
-            rows = rows[need]
-            if rows.size == 0:
-                break
-            correction = system.correction(jacobian, residual, need)
-            length = np.max(np.abs(correction), axis=1, initial=0.0)
-            correction *= np.minimum(1.0, MAX_CORRECTION / np.maximum(length, 1e-300))[:, None]
-            theta[rows] += correction
-            corrected[rows] += np.where(first[rows], 0.0, np.minimum(length, MAX_CORRECTION))
-            first[rows] = False
+        corrected = np.zeros(count)  # the corrections after each pose's first iteration
+        residual_size[working], corrected[working] = system.newton(theta, offsets, target, tolerance, working)
         bad = ~np.isfinite(residual_size) | ~np.all(np.isfinite(theta), axis=1)
         newly = active & moving & (bad | (residual_size > LOST_TOLERANCE) | (corrected > jump_limit))
         lost_at[newly] = np.minimum(1.0, step / own[newly])
