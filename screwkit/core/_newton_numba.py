@@ -112,22 +112,16 @@ def _evaluate_pose(  # pragma: no cover - compiled
     column_parent: Array,
     steps: Array,
     rows: Array,
+    work: Array,
     links: Array,
     motions: Array,
     current: Array,
 ) -> None:
-    """One pose of :func:`evaluate` into ``links``, ``motions``, ``current`` (``steps``, ``rows``: work)."""
+    """One pose of :func:`evaluate` into ``links``, ``motions``, ``current`` (``steps``, ``rows``,
+    ``work (3, 4, 4)``: scratch)."""
     n = theta.shape[0]
     for i in range(n):
-        t = theta[i]
-        b1, b2, b3 = t, math.sin(t), 1.0 - math.cos(t)
-        for e in range(12):
-            value = exponential[i, 0, e] + b1 * exponential[i, 1, e] + b2 * exponential[i, 2, e]
-            steps[i, e // 4, e % 4] = value + b3 * exponential[i, 3, e]
-        steps[i, 3, 0] = 0.0
-        steps[i, 3, 1] = 0.0
-        steps[i, 3, 2] = 0.0
-        steps[i, 3, 3] = 1.0
+        _step_into(exponential, i, theta[i], steps[i])
         for k in range(6):
             rows[i, k] = reference_rows[i, k]
     for h in range(hinges.shape[0]):  # the Π's twist turns with its rods: (0; a × R(a, θ) w)
@@ -140,7 +134,7 @@ def _evaluate_pose(  # pragma: no cover - compiled
         rows[i, 4] = a2 * w0 - a0 * w2
         rows[i, 5] = a0 * w1 - a1 * w0
     turned = np.empty(6)
-    scratch = np.empty((4, 4))
+    scratch = work[0]
     for j in range(joint_ptr.shape[0] - 1):
         first, last = joint_ptr[j], joint_ptr[j + 1]
         motion = motions[j]
@@ -153,17 +147,17 @@ def _evaluate_pose(  # pragma: no cover - compiled
         slot = offset_slot[j]
         if slot >= 0:
             _adjoint_into(offsets[slot], rows[c], turned)
-            rows[c] = turned
+            rows[c, :] = turned
             _compose(offsets[slot], steps[c], motion)
         else:
             motion[:, :] = steps[c]
         for q in range(first + 1, last):
             c = joint_columns[q]
             _adjoint_into(motion, rows[c], turned)
-            rows[c] = turned
+            rows[c, :] = turned
             _compose(motion, steps[c], scratch)
             motion[:, :] = scratch
-    inverse = np.empty((4, 4))
+    inverse = work[1]
     links[roots[0], :, :] = 0.0
     for k in range(4):
         links[roots[0], k, k] = 1.0
@@ -212,25 +206,23 @@ def evaluate(  # pragma: no cover - compiled
     current = np.empty((count, n, 6))
     steps = np.empty((n, 4, 4))
     rows = np.empty((n, 6))
+    work = np.empty((3, 4, 4))
     for p in range(count):
         _evaluate_pose(
             theta[p], offsets[p], pinned[min(p, pinned.shape[0] - 1)], exponential, reference_rows, hinges,
-            hinge_axes, hinge_rods,
-            joint_ptr, joint_columns, offset_slot, tree, roots, column_parent, steps, rows, links[p],
-            motions[p], current[p],
+            hinge_axes, hinge_rods, joint_ptr, joint_columns, offset_slot, tree, roots, column_parent, steps,
+            rows, work, links[p], motions[p], current[p],
         )
     return links, motions, current
 
 
 @njit(cache=True, inline="always")
 def _loop_residual_into(  # pragma: no cover - compiled
-    links: Array, motions: Array, loops: Array, out: Array
+    links: Array, motions: Array, loops: Array, work: Array, out: Array
 ) -> None:
     """Each loop ``(u, v, joint)``'s ``links[u] motions[joint] links[v]⁻¹`` as rotation vector and
-    translation into ``out (6 L)``."""
-    step = np.empty((4, 4))
-    inverse = np.empty((4, 4))
-    closed = np.empty((4, 4))
+    translation into ``out (6 L)`` (``work (3, 4, 4)``: scratch)."""
+    step, inverse, closed = work[0], work[1], work[2]
     vector = np.empty(3)
     for loop in range(loops.shape[0]):
         _compose(links[loops[loop, 0]], motions[loops[loop, 2]], step)
@@ -249,8 +241,9 @@ def loop_residual(links: Array, motions: Array, loops: Array) -> Array:  # pragm
     ``(u, v, joint)``: the closing joint and its links."""
     count = links.shape[0]
     out = np.zeros((count, 6 * loops.shape[0]))
+    work = np.empty((3, 4, 4))
     for p in range(count):
-        _loop_residual_into(links[p], motions[p], loops, out[p])
+        _loop_residual_into(links[p], motions[p], loops, work, out[p])
     return out
 
 
@@ -258,73 +251,66 @@ def loop_residual(links: Array, motions: Array, loops: Array) -> Array:  # pragm
 def _block_correction(  # pragma: no cover - compiled
     current: Array,
     residual: Array,
-    block_loops: Array,
-    column_ptr: Array,
-    column_index: Array,
-    entry_ptr: Array,
-    entry_loop: Array,
-    entry_sign: Array,
+    block: int,
+    blocks: tuple,
     gram: Array,
-    lower: Array,
     solution: Array,
     out: Array,
 ) -> None:
-    """The minimum-norm correction ``−Jᵀ (J Jᵀ + λ I)⁻¹ F`` of one block's columns into ``out (n)``;
-    the block's loops ``block_loops`` (global loop ids), its columns ``column_index[column_ptr[0] :
-    column_ptr[1]]`` with, per column, its loops (local) and signs in ``entry_*``."""
-    loops = block_loops.shape[0]
-    size = 6 * loops
-    g = gram[:size, :size]
-    g[:, :] = 0.0
-    for q in range(column_ptr[0], column_ptr[1]):
-        c = column_index[q]
-        screw = current[c]
-        for e in range(entry_ptr[q], entry_ptr[q + 1]):
+    """The minimum-norm correction ``−Jᵀ (J Jᵀ + λ I)⁻¹ F`` of block ``block``'s columns into ``out``
+    (:func:`pinned_newton`'s ``blocks``); ``gram``, ``solution``: scratch. ``J Jᵀ`` is summed column by
+    column: a column ``c`` held by loops ``i, j`` with signs ``σᵢ, σⱼ`` adds ``σᵢ σⱼ s_c s_cᵀ`` (its
+    current screw's outer product) to the loops' 6 × 6 block; then Cholesky ``J Jᵀ + λ I = L Lᵀ``
+    (Golub & Van Loan, *Matrix Computations*, 4th ed., 2013, Alg. 4.2.1) in ``gram``'s lower triangle."""
+    block_ptr, block_loops, column_ptr, column_index, entry_ptr, entry_loop, entry_sign = blocks
+    first_loop = block_ptr[block]
+    size = 6 * (block_ptr[block + 1] - first_loop)
+    for i in range(size):
+        for j in range(i + 1):
+            gram[i, j] = 0.0
+    for q in range(column_ptr[block], column_ptr[block + 1]):
+        screw = current[column_index[q]]
+        for e in range(entry_ptr[q], entry_ptr[q + 1]):  # loops ascending: i ≤ j, the lower triangle
             i, si = entry_loop[e], entry_sign[e]
-            for f in range(e, entry_ptr[q + 1]):
+            for f in range(entry_ptr[q], e + 1):
                 j, sign = entry_loop[f], si * entry_sign[f]
                 for a in range(6):
                     scaled = sign * screw[a]
-                    for b in range(6):
-                        g[6 * i + a, 6 * j + b] += scaled * screw[b]
-    for i in range(size):  # the blocks above the diagonal (i < j) mirrored below it
-        for j in range(6 * (i // 6 + 1), size):
-            g[j, i] = g[i, j]
+                    top = 6 if i != j else a + 1
+                    for b in range(top):
+                        gram[6 * i + a, 6 * j + b] += scaled * screw[b]
     trace = 0.0
     for i in range(size):
-        trace += g[i, i]
+        trace += gram[i, i]
     damping = 1e-13 * (trace + 1.0)
-    low = lower[:size, :size]
-    for j in range(size):  # Cholesky: G + λ I = L Lᵀ (Golub & Van Loan §4.2.5)
-        total = g[j, j] + damping
+    for j in range(size):
+        total = gram[j, j] + damping
         for k in range(j):
-            total -= low[j, k] * low[j, k]
+            total -= gram[j, k] * gram[j, k]
         pivot = math.sqrt(total) if total > 0.0 else 1e-300
-        low[j, j] = pivot
+        gram[j, j] = pivot
         for i in range(j + 1, size):
-            value = g[i, j]
+            value = gram[i, j]
             for k in range(j):
-                value -= low[i, k] * low[j, k]
-            low[i, j] = value / pivot
-    y = solution[:size]
+                value -= gram[i, k] * gram[j, k]
+            gram[i, j] = value / pivot
     for i in range(size):
-        loop, k = block_loops[i // 6], i % 6
-        value = residual[6 * loop + k]
+        value = residual[6 * block_loops[first_loop + i // 6] + i % 6]
         for m in range(i):
-            value -= low[i, m] * y[m]
-        y[i] = value / low[i, i]
+            value -= gram[i, m] * solution[m]
+        solution[i] = value / gram[i, i]
     for i in range(size - 1, -1, -1):
-        value = y[i]
+        value = solution[i]
         for m in range(i + 1, size):
-            value -= low[m, i] * y[m]
-        y[i] = value / low[i, i]
-    for q in range(column_ptr[0], column_ptr[1]):
+            value -= gram[m, i] * solution[m]
+        solution[i] = value / gram[i, i]
+    for q in range(column_ptr[block], column_ptr[block + 1]):
         c = column_index[q]
         total = 0.0
         for e in range(entry_ptr[q], entry_ptr[q + 1]):
             i, sign = entry_loop[e], entry_sign[e]
             for a in range(6):
-                total += sign * current[c, a] * y[6 * i + a]
+                total += sign * current[c, a] * solution[6 * i + a]
         out[c] = -total
 
 
@@ -337,33 +323,41 @@ def pinned_newton(  # pragma: no cover - compiled
     working: Array,
     iterations: int,
     max_correction: float,
+    recentre_angle: float,
     model: tuple,
     loops: Array,
     blocks: tuple,
-) -> tuple[Array, Array]:
+) -> tuple[Array, Array, Array]:
     """The Newton corrector of one continuation step on the loops of a model pinned to its platform,
     pose by pose where ``working``: at most ``iterations`` corrections, each the blocks' minimum-norm
     correction scaled down to ``max_correction`` at most, until the largest residual is within
-    ``tolerance``. Updates ``theta (B, n)`` in place; returns the last residual size (B,) and the sum
-    of the corrections after each pose's first (B,). ``model`` holds :func:`evaluate`'s arrays,
-    ``blocks`` ``(block_ptr, block_loops, column_ptr, column_index, entry_ptr, entry_loop,
-    entry_sign)`` (block ``b``'s loops ``block_loops[block_ptr[b] : block_ptr[b + 1]]``, its
-    columns ``column_ptr[b] … column_ptr[b + 1]``)."""
+    ``tolerance``; then, once a spherical joint's angle exceeds ``recentre_angle``, every spherical
+    joint's angles folded into its offset
+    (:meth:`screwkit.core.kinematic_model.KinematicModel.recentred`).
+
+    Updates ``theta (B, n)`` and ``offsets (B, K, 4, 4)`` in place; returns the last residual size
+    (B,), the sum of the corrections after each pose's first (B,) and the evaluations of the model
+    (B,). ``model`` holds :func:`evaluate`'s arrays; ``blocks`` is ``(block_ptr, block_loops,
+    column_ptr, column_index, entry_ptr, entry_loop, entry_sign)``: block ``b``'s loops
+    ``block_loops[block_ptr[b] : block_ptr[b + 1]]``, its columns ``column_index[column_ptr[b] :
+    column_ptr[b + 1]]``, column ``q``'s loops (local to its block, ascending) and signs
+    ``entry_*[entry_ptr[q] : entry_ptr[q + 1]]``."""
     (exponential, reference_rows, hinges, hinge_axes, hinge_rods, joint_ptr, joint_columns, offset_slot,
      tree, roots, column_parent, n_links) = model
-    block_ptr, block_loops, column_ptr, column_index, entry_ptr, entry_loop, entry_sign = blocks
+    block_ptr = blocks[0]
     count, n = theta.shape
     sizes = np.zeros(count)
     corrected = np.zeros(count)
+    evaluations = np.zeros(count, dtype=np.int64)
     steps = np.empty((n, 4, 4))
     rows = np.empty((n, 6))
+    work = np.empty((3, 4, 4))
     links = np.empty((n_links, 4, 4))
     motions = np.empty((joint_ptr.shape[0] - 1, 4, 4))
     current = np.empty((n, 6))
     residual = np.empty(6 * loops.shape[0])
     largest = 6 * int(np.max(block_ptr[1:] - block_ptr[:-1]))
     gram = np.empty((largest, largest))
-    lower = np.empty((largest, largest))
     solution = np.empty(largest)
     correction = np.empty(n)
     for p in range(count):
@@ -374,9 +368,10 @@ def pinned_newton(  # pragma: no cover - compiled
             _evaluate_pose(
                 theta[p], offsets[p], pinned[p], exponential, reference_rows, hinges, hinge_axes,
                 hinge_rods, joint_ptr, joint_columns, offset_slot, tree, roots, column_parent, steps, rows,
-                links, motions, current,
+                work, links, motions, current,
             )
-            _loop_residual_into(links, motions, loops, residual)
+            evaluations[p] += 1
+            _loop_residual_into(links, motions, loops, work, residual)
             size = 0.0
             for k in range(residual.shape[0]):
                 value = abs(residual[k])
@@ -387,11 +382,7 @@ def pinned_newton(  # pragma: no cover - compiled
                 break
             correction[:] = 0.0
             for b in range(block_ptr.shape[0] - 1):
-                _block_correction(
-                    current, residual, block_loops[block_ptr[b]:block_ptr[b + 1]],
-                    column_ptr[b:b + 2], column_index, entry_ptr, entry_loop, entry_sign, gram, lower,
-                    solution, correction,
-                )
+                _block_correction(current, residual, b, blocks, gram, solution, correction)
             length = 0.0
             for k in range(n):
                 value = abs(correction[k])
@@ -403,4 +394,53 @@ def pinned_newton(  # pragma: no cover - compiled
             if not first:
                 corrected[p] += min(length, max_correction)
             first = False
-    return sizes, corrected
+        _recentre(
+            theta[p], offsets[p], exponential, joint_ptr, joint_columns, offset_slot, recentre_angle, work
+        )
+    return sizes, corrected, evaluations
+
+
+@njit(cache=True, inline="always")
+def _step_into(exponential: Array, i: int, t: float, out: Array) -> None:  # pragma: no cover - compiled
+    """``exp(ŝᵢ t)`` of column ``i`` from its coefficients (:func:`evaluate`)."""
+    b1, b2, b3 = t, math.sin(t), 1.0 - math.cos(t)
+    for e in range(12):
+        value = exponential[i, 0, e] + b1 * exponential[i, 1, e] + b2 * exponential[i, 2, e]
+        out[e // 4, e % 4] = value + b3 * exponential[i, 3, e]
+    out[3, 0] = 0.0
+    out[3, 1] = 0.0
+    out[3, 2] = 0.0
+    out[3, 3] = 1.0
+
+
+@njit(cache=True)
+def _recentre(  # pragma: no cover - compiled
+    theta: Array,
+    offsets: Array,
+    exponential: Array,
+    joint_ptr: Array,
+    joint_columns: Array,
+    offset_slot: Array,
+    recentre_angle: float,
+    work: Array,
+) -> None:
+    """One pose's spherical joints' angles folded into their offsets (offset × the product of the
+    joint's exponentials), when one of them exceeds ``recentre_angle``."""
+    largest = 0.0
+    for j in range(offset_slot.shape[0]):
+        if offset_slot[j] >= 0:
+            for q in range(joint_ptr[j], joint_ptr[j + 1]):
+                largest = max(largest, abs(theta[joint_columns[q]]))
+    if not largest > recentre_angle:
+        return
+    step, product = work[0], work[1]
+    for j in range(offset_slot.shape[0]):
+        slot = offset_slot[j]
+        if slot < 0:
+            continue
+        for q in range(joint_ptr[j], joint_ptr[j + 1]):
+            c = joint_columns[q]
+            _step_into(exponential, c, theta[c], step)
+            _compose(offsets[slot], step, product)
+            offsets[slot, :, :] = product
+            theta[c] = 0.0

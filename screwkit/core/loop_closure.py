@@ -46,6 +46,7 @@ Examples
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 from typing import Any
@@ -147,13 +148,15 @@ class _LoopsAndTask:
         return _solve_step(jacobian[need], residual[need])
 
     def newton(
-        self, theta: Array, offsets: dict[str, Array], target: Array, tolerance: Array, working: Array
+        self, theta: Array, offsets: Array, target: Array, tolerance: Array, working: Array
     ) -> tuple[Array, Array]:
         """The corrector of one continuation step: Newton iterations on the poses ``working`` until
         their largest residual is within ``tolerance`` (at most :data:`NEWTON_ITERATIONS`, each
-        correction scaled down to :data:`MAX_CORRECTION`). Updates ``theta`` in place; returns, for
-        the poses ``working``, the last residual size and the sum of the corrections after the
-        first (the predictor's own correction), the measure of a jump to another branch."""
+        correction scaled down to :data:`MAX_CORRECTION`), then the spherical joints' angles of a
+        pose folded into their ``offsets (B, K, 4, 4)`` (:attr:`spherical` order) once one exceeds
+        :data:`RECENTRE_ANGLE`. Updates ``theta`` and ``offsets`` in place; returns, for the poses
+        ``working``, the last residual size and the sum of the corrections after the first (the
+        predictor's own correction), the measure of a jump to another branch."""
         rows = np.flatnonzero(working)
         sizes, corrected, first = np.zeros(rows.size), np.zeros(rows.size), np.ones(rows.size, dtype=bool)
         place = np.arange(rows.size)  # the working poses still iterating, as positions in ``rows``
@@ -161,7 +164,7 @@ class _LoopsAndTask:
             if place.size == 0:
                 break
             at = rows[place]
-            state = self.state(theta[at], {k: v[at] for k, v in offsets.items()}, target[at])
+            state = self.state(theta[at], self.offsets_of(offsets[at]), target[at])
             residual, jacobian = self.equations(state, target[at])
             size = np.max(np.abs(residual), axis=1, initial=0.0)
             sizes[place] = size
@@ -175,7 +178,28 @@ class _LoopsAndTask:
             theta[rows[place]] += correction
             corrected[place] += np.where(first[place], 0.0, np.minimum(length, MAX_CORRECTION))
             first[place] = False
+        spherical = self.spherical_columns
+        if spherical.size:  # fold the spherical joints' angles into their offsets before they grow
+            turned = rows[np.max(np.abs(theta[rows][:, spherical]), axis=1) > RECENTRE_ANGLE]
+            if turned.size:
+                new_theta, new_offsets = self.model.recentred(theta[turned], self.offsets_of(offsets[turned]))
+                theta[turned] = new_theta
+                offsets[turned] = np.stack([new_offsets[key] for key in self.spherical], axis=1)
         return sizes, corrected
+
+    @functools.cached_property
+    def spherical(self) -> list[str]:
+        """The spherical joints, in the order of the offsets' second axis."""
+        return [key for key, kind in self.model.types.items() if kind == "S"]
+
+    @functools.cached_property
+    def spherical_columns(self) -> Array:
+        """Their columns."""
+        return np.array([i for key in self.spherical for i in self.model.joints[key][2]], dtype=int)
+
+    def offsets_of(self, stacked: Array) -> dict[str, Array]:
+        """The offsets ``(B, K, 4, 4)`` as the model's dict (views)."""
+        return {key: stacked[:, k] for k, key in enumerate(self.spherical)}
 
 
 class _PinnedLoops(_LoopsAndTask):
@@ -205,46 +229,21 @@ class _PinnedLoops(_LoopsAndTask):
             dtype=np.int64,
         ).reshape(-1, 3)
         self.kernel_blocks = _kernel_blocks(self.pinned)
+        self.kernel_model = product.kernel_arrays(self.spherical)
 
     def newton(
-        self, theta: Array, offsets: dict[str, Array], target: Array, tolerance: Array, working: Array
+        self, theta: Array, offsets: Array, target: Array, tolerance: Array, working: Array
     ) -> tuple[Array, Array]:
         kernels = compiled_kernels(KERNELS, int(working.sum()))
         if kernels is None:
             return super().newton(theta, offsets, target, tolerance, working)
-        keys = list(offsets)
-        count = len(theta)
-        stacked = np.stack([offsets[key] for key in keys], axis=1) if keys else np.zeros((count, 0, 4, 4))
-        solved = np.ascontiguousarray(theta)
-        sizes, corrected = kernels.pinned_newton(
-            solved, np.ascontiguousarray(stacked), self.task.displacement(target), tolerance, working,
-            NEWTON_ITERATIONS, MAX_CORRECTION, self.pinned._product.kernel_arrays(keys), self.loops,
-            self.kernel_blocks,
+        solved, turned = np.ascontiguousarray(theta), np.ascontiguousarray(offsets)
+        sizes, corrected, _ = kernels.pinned_newton(
+            solved, turned, self.task.displacement(target), tolerance, working, NEWTON_ITERATIONS,
+            MAX_CORRECTION, RECENTRE_ANGLE, self.kernel_model, self.loops, self.kernel_blocks,
         )
-        theta[:] = solved
+        theta[:], offsets[:] = solved, turned
         return sizes[working], corrected[working]
-
-    def state(self, theta: Array, offsets: dict[str, Array], target: Array) -> KinematicState:
-        return self.pinned.state(theta, offsets, self.task.displacement(target))
-
-    def equations(self, state: KinematicState, target: Array) -> tuple[Array, Any]:
-        """The loops' residual and, per group of blocks, their Jacobians ``(B, k, 6 l, c)`` (the
-        blocks of :meth:`~screwkit.core.kinematic_model.KinematicModel.loop_jacobian`)."""
-        blocks = []
-        for _, columns, signs in self.groups:
-            screws = np.swapaxes(state.current[:, columns], -1, -2)  # (B, k, 6, c)
-            jacobian = signs[None, :, :, None, :] * screws[:, :, None]  # (B, k, l, 6, c)
-            blocks.append(jacobian.reshape(*jacobian.shape[:2], -1, jacobian.shape[-1]))
-        return self.pinned.loop_residual(state), blocks
-
-    def correction(self, jacobian: Any, residual: Array, need: Array) -> Array:
-        count = int(need.sum())
-        out = np.zeros((count, self.model.size))
-        for (rows, columns, _), blocks in zip(self.groups, jacobian, strict=True):
-            flat = residual[need][:, rows].reshape(-1, rows.shape[1])
-            step = _solve_step(blocks[need].reshape(-1, *blocks.shape[2:]), flat)
-            out[:, columns.ravel()] = step.reshape(count, -1)
-        return out
 
 
 def _kernel_blocks(pinned: KinematicModel) -> tuple[Array, ...]:
@@ -272,11 +271,11 @@ def _continue(
     system: _LoopsAndTask,
     targets: Array,
     theta: Array,
-    offsets: dict[str, Array],
+    offsets: Array,
     start: Array,
     step_length: float,
     jump_limit: float,
-) -> tuple[Array, dict[str, Array], Array, Array]:
+) -> tuple[Array, Array, Array, Array]:
     """One continuation of a chunk, each pose in equal steps of at most ``step_length`` (a pose whose
     way is done rests); returns theta, offsets, the residual at the targets (inf where non-finite)
     and the fraction of the way where each pose was lost (NaN if not)."""
@@ -285,15 +284,12 @@ def _continue(
     lost_at = np.full(count, np.nan)
     active = np.ones(count, dtype=bool)
     residual_size = np.zeros(count)
-    spherical = np.array(
-        [i for key, kind in model.types.items() if kind == "S" for i in model.joints[key][2]], dtype=int
-    )
     way = np.max(np.abs(targets - start), axis=1, initial=0.0)
     own = np.clip(np.ceil(way / step_length), 1, MAX_STEPS)
     steps = int(np.max(own, initial=1))
     previous = theta.copy()  # the joint values one step back: the secant predicts the next step's
     extrapolated = np.ones(model.size, dtype=bool)
-    extrapolated[spherical] = False  # (a spherical joint's angles restart at its offset)
+    extrapolated[system.spherical_columns] = False  # (a spherical joint's angles restart at its offset)
     for step in range(1, steps + 1):
         moving = step <= own
         target = start + (targets - start) * np.minimum(1.0, step / own)[:, None]
@@ -310,15 +306,7 @@ def _continue(
         lost_at[newly] = np.minimum(1.0, step / own[newly])
         active &= ~newly
         theta[~np.all(np.isfinite(theta), axis=1)] = 0.0  # frozen and flagged, never propagated
-        if spherical.size:  # fold the spherical joints' angles into their offsets before they grow
-            turned = np.flatnonzero(np.max(np.abs(theta[:, spherical]), axis=1) > RECENTRE_ANGLE)
-            if turned.size:
-                sub = {k: v[turned] for k, v in offsets.items()}
-                new_theta, new_offsets = model.recentred(theta[turned], sub)
-                theta[turned] = new_theta
-                for key, value in new_offsets.items():
-                    offsets.setdefault(key, np.tile(np.eye(4), (count, 1, 1)))[turned] = value
-    state = model.state(theta, offsets)  # the loops and the task of the whole model, as checked
+    state = model.state(theta, system.offsets_of(offsets))  # the whole model's loops and task, as checked
     residual = _residual(model, task, state, targets)
     size = np.max(np.abs(residual), axis=1, initial=0.0)
     size[~active] = np.maximum(size[~active], LOST_TOLERANCE)  # a lost pose is never accepted
@@ -388,11 +376,12 @@ def _close_chunk(
     fixes_pose = isinstance(task, PoseTask) and task.fixes_pose and task.coordinates.link != model.base
     system = (_PinnedLoops if fixes_pose else _LoopsAndTask)(model, task)
 
-    def begin(rows: Array) -> tuple[Array, dict[str, Array], Array]:
+    def begin(rows: Array) -> tuple[Array, Array, Array]:
         """The reference configuration for ``rows`` poses, and the task's values there."""
         theta = np.zeros((int(rows.sum()), model.size))
         values = task.values(model.state(theta[:1]))
-        return theta, {}, np.repeat(values, len(theta), axis=0)
+        offsets = np.tile(np.eye(4), (len(theta), len(system.spherical), 1, 1))
+        return theta, offsets, np.repeat(values, len(theta), axis=0)
 
     everything = np.ones(count, dtype=bool)
     theta, offsets, start = begin(everything)
@@ -411,9 +400,7 @@ def _close_chunk(
             MAX_STEP / RETRY_REFINEMENT,
             math.inf,
         )
-        theta[missed] = again[0]
-        for key in set(offsets) | set(again[1]):  # a joint turned in either pass (identity if not)
-            offsets.setdefault(key, np.tile(np.eye(4), (count, 1, 1)))[missed] = again[1].get(key, np.eye(4))
+        theta[missed], offsets[missed] = again[0], again[1]
         residual[missed], lost_at[missed] = again[2], again[3]
     reasons = np.full(count, "", dtype=object)
     for index in np.flatnonzero(~(residual < FINAL_TOLERANCE)):
@@ -427,4 +414,4 @@ def _close_chunk(
             )
         else:
             reasons[index] = "Newton's method gave non-finite joint values on the way to the pose"
-    return theta, offsets, residual, reasons
+    return theta, system.offsets_of(offsets), residual, reasons
