@@ -327,17 +327,18 @@ def pinned_newton(  # pragma: no cover - compiled
     model: tuple,
     loops: Array,
     blocks: tuple,
-) -> tuple[Array, Array, Array]:
+    unfolded: Array,
+) -> tuple[Array, Array, Array, Array]:
     """The Newton corrector of one continuation step on the loops of a model pinned to its platform,
     pose by pose where ``working``: at most ``iterations`` corrections, each the blocks' minimum-norm
     correction scaled down to ``max_correction`` at most, until the largest residual is within
-    ``tolerance``; then, once a spherical joint's angle exceeds ``recentre_angle``, every spherical
+    ``tolerance[p, 0]`` or the last correction within ``tolerance[p, 1]``; then, once a spherical joint's angle exceeds ``recentre_angle``, every spherical
     joint's angles folded into its offset
     (:meth:`screwkit.core.kinematic_model.KinematicModel.recentred`).
 
     Updates ``theta (B, n)`` and ``offsets (B, K, 4, 4)`` in place; returns the last residual size
-    (B,), the sum of the corrections after each pose's first (B,) and the evaluations of the model
-    (B,). ``model`` holds :func:`evaluate`'s arrays; ``blocks`` is ``(block_ptr, block_loops,
+    (B,), the sum of the corrections after each pose's first (B,), the first's (B,) and the
+    evaluations of the model (B,), and writes the joint values before the fold into ``unfolded (B, n)``. ``model`` holds :func:`evaluate`'s arrays; ``blocks`` is ``(block_ptr, block_loops,
     column_ptr, column_index, entry_ptr, entry_loop, entry_sign)``: block ``b``'s loops
     ``block_loops[block_ptr[b] : block_ptr[b + 1]]``, its columns ``column_index[column_ptr[b] :
     column_ptr[b + 1]]``, column ``q``'s loops (local to its block, ascending) and signs
@@ -348,6 +349,7 @@ def pinned_newton(  # pragma: no cover - compiled
     count, n = theta.shape
     sizes = np.zeros(count)
     corrected = np.zeros(count)
+    leading = np.zeros(count)
     evaluations = np.zeros(count, dtype=np.int64)
     steps = np.empty((n, 4, 4))
     rows = np.empty((n, 6))
@@ -378,7 +380,7 @@ def pinned_newton(  # pragma: no cover - compiled
                 if not value <= size:  # (a NaN stays)
                     size = value
             sizes[p] = size
-            if not size > tolerance[p]:
+            if not size > tolerance[p, 0]:
                 break
             correction[:] = 0.0
             for b in range(block_ptr.shape[0] - 1):
@@ -391,13 +393,18 @@ def pinned_newton(  # pragma: no cover - compiled
             scale = min(1.0, max_correction / max(length, 1e-300))
             for k in range(n):
                 theta[p, k] += correction[k] * scale
-            if not first:
+            if first:
+                leading[p] = min(length, max_correction)
+            else:
                 corrected[p] += min(length, max_correction)
             first = False
+            if not length > tolerance[p, 1]:  # a correction this small: converged
+                break
+        unfolded[p] = theta[p]
         _recentre(
             theta[p], offsets[p], exponential, joint_ptr, joint_columns, offset_slot, recentre_angle, work
         )
-    return sizes, corrected, evaluations
+    return sizes, corrected, leading, evaluations
 
 
 @njit(cache=True, inline="always")

@@ -71,6 +71,12 @@ NEWTON_ITERATIONS = 10
 #: way stop, and of the last step.
 STEP_TOLERANCE = 1e-6
 LAST_STEP_TOLERANCE = 1e-12
+#: The Newton correction (radians, characteristic lengths) below which the iterations of a step on
+#: the way, and of the last step, stop without evaluating the model again: Newton's method converges
+#: quadratically, so the residual left is of the order of the correction's square (the last step's
+#: is then checked, :data:`FINAL_TOLERANCE`).
+STEP_CORRECTION = 1e-4
+LAST_STEP_CORRECTION = 1e-7
 #: The residual below which a configuration is accepted (characteristic lengths, radians).
 FINAL_TOLERANCE = 1e-9
 #: A step whose Newton iterations end above this residual has lost the mechanism.
@@ -149,16 +155,18 @@ class _LoopsAndTask:
 
     def newton(
         self, theta: Array, offsets: Array, target: Array, tolerance: Array, working: Array
-    ) -> tuple[Array, Array]:
+    ) -> tuple[Array, Array, Array, Array]:
         """The corrector of one continuation step: Newton iterations on the poses ``working`` until
-        their largest residual is within ``tolerance`` (at most :data:`NEWTON_ITERATIONS`, each
-        correction scaled down to :data:`MAX_CORRECTION`), then the spherical joints' angles of a
+        their largest residual is within ``tolerance[:, 0]`` or their last correction within
+        ``tolerance[:, 1]`` (at most :data:`NEWTON_ITERATIONS`, each correction scaled down to
+        :data:`MAX_CORRECTION`), then the spherical joints' angles of a
         pose folded into their ``offsets (B, K, 4, 4)`` (:attr:`spherical` order) once one exceeds
         :data:`RECENTRE_ANGLE`. Updates ``theta`` and ``offsets`` in place; returns, for the poses
-        ``working``, the last residual size and the sum of the corrections after the first (the
-        predictor's own correction), the measure of a jump to another branch."""
+        ``working``, the last residual size, the sum of the corrections after the first (the
+        predictor's own correction), the first correction, and the joint values before the fold."""
         rows = np.flatnonzero(working)
         sizes, corrected, first = np.zeros(rows.size), np.zeros(rows.size), np.ones(rows.size, dtype=bool)
+        leading = np.zeros(rows.size)
         place = np.arange(rows.size)  # the working poses still iterating, as positions in ``rows``
         for _ in range(NEWTON_ITERATIONS):  # only the poses not yet within the tolerance
             if place.size == 0:
@@ -168,7 +176,7 @@ class _LoopsAndTask:
             residual, jacobian = self.equations(state, target[at])
             size = np.max(np.abs(residual), axis=1, initial=0.0)
             sizes[place] = size
-            need = size > tolerance[at]
+            need = size > tolerance[at, 0]
             place = place[need]
             if place.size == 0:
                 break
@@ -176,16 +184,19 @@ class _LoopsAndTask:
             length = np.max(np.abs(correction), axis=1, initial=0.0)
             correction *= np.minimum(1.0, MAX_CORRECTION / np.maximum(length, 1e-300))[:, None]
             theta[rows[place]] += correction
-            corrected[place] += np.where(first[place], 0.0, np.minimum(length, MAX_CORRECTION))
+            clipped = np.minimum(length, MAX_CORRECTION)
+            leading[place] = np.where(first[place], clipped, leading[place])
+            corrected[place] += np.where(first[place], 0.0, clipped)
             first[place] = False
-        spherical = self.spherical_columns
+            place = place[length > tolerance[rows[place], 1]]  # a correction this small: converged
+        spherical, unfolded = self.spherical_columns, theta[rows]
         if spherical.size:  # fold the spherical joints' angles into their offsets before they grow
-            turned = rows[np.max(np.abs(theta[rows][:, spherical]), axis=1) > RECENTRE_ANGLE]
+            turned = rows[np.max(np.abs(unfolded[:, spherical]), axis=1) > RECENTRE_ANGLE]
             if turned.size:
                 new_theta, new_offsets = self.model.recentred(theta[turned], self.offsets_of(offsets[turned]))
                 theta[turned] = new_theta
                 offsets[turned] = np.stack([new_offsets[key] for key in self.spherical], axis=1)
-        return sizes, corrected
+        return sizes, corrected, leading, unfolded
 
     @functools.cached_property
     def spherical(self) -> list[str]:
@@ -233,17 +244,18 @@ class _PinnedLoops(_LoopsAndTask):
 
     def newton(
         self, theta: Array, offsets: Array, target: Array, tolerance: Array, working: Array
-    ) -> tuple[Array, Array]:
+    ) -> tuple[Array, Array, Array, Array]:
         kernels = compiled_kernels(KERNELS, int(working.sum()))
         if kernels is None:
             return super().newton(theta, offsets, target, tolerance, working)
         solved, turned = np.ascontiguousarray(theta), np.ascontiguousarray(offsets)
-        sizes, corrected, _ = kernels.pinned_newton(
+        unfolded = np.empty_like(solved)
+        sizes, corrected, leading, _ = kernels.pinned_newton(
             solved, turned, self.task.displacement(target), tolerance, working, NEWTON_ITERATIONS,
-            MAX_CORRECTION, RECENTRE_ANGLE, self.kernel_model, self.loops, self.kernel_blocks,
+            MAX_CORRECTION, RECENTRE_ANGLE, self.kernel_model, self.loops, self.kernel_blocks, unfolded,
         )
         theta[:], offsets[:] = solved, turned
-        return sizes[working], corrected[working]
+        return sizes[working], corrected[working], leading[working], unfolded[working]
 
 
 def _kernel_blocks(pinned: KinematicModel) -> tuple[Array, ...]:
@@ -275,6 +287,7 @@ def _continue(
     start: Array,
     step_length: float,
     jump_limit: float,
+    spherical_secant: bool,
 ) -> tuple[Array, Array, Array, Array]:
     """One continuation of a chunk, each pose in equal steps of at most ``step_length`` (a pose whose
     way is done rests); returns theta, offsets, the residual at the targets (inf where non-finite)
@@ -287,20 +300,26 @@ def _continue(
     way = np.max(np.abs(targets - start), axis=1, initial=0.0)
     own = np.clip(np.ceil(way / step_length), 1, MAX_STEPS)
     steps = int(np.max(own, initial=1))
-    previous = theta.copy()  # the joint values one step back: the secant predicts the next step's
+    previous = theta.copy()  # each pose's joint values one step back, and the secant from them
+    secant = np.zeros_like(theta)  # (a spherical joint's taken before its angles fold into its offset)
     extrapolated = np.ones(model.size, dtype=bool)
-    extrapolated[system.spherical_columns] = False  # (a spherical joint's angles restart at its offset)
+    extrapolated[system.spherical_columns] = spherical_secant
     for step in range(1, steps + 1):
         moving = step <= own
         target = start + (targets - start) * np.minimum(1.0, step / own)[:, None]
         ahead = active & moving & (step > 1)
-        secant = np.where(extrapolated, theta - previous, 0.0)
-        previous = theta.copy()
-        theta[ahead] += secant[ahead]
-        tolerance = np.where(step >= own, LAST_STEP_TOLERANCE, STEP_TOLERANCE)
+        theta[ahead] += np.where(extrapolated, secant[ahead], 0.0)
+        last = (step >= own)[:, None]
+        tolerance = np.where(last, [LAST_STEP_TOLERANCE, LAST_STEP_CORRECTION], [STEP_TOLERANCE, STEP_CORRECTION])
         working = active & moving
-        corrected = np.zeros(count)  # the corrections after each pose's first iteration
-        residual_size[working], corrected[working] = system.newton(theta, offsets, target, tolerance, working)
+        corrected = np.zeros(count)  # the corrections the predictor left, the measure of a jump
+        residual_size[working], corrected[working], leading, unfolded = system.newton(
+            theta, offsets, target, tolerance, working
+        )
+        if spherical_secant:  # the whole way from the predicted values counts
+            corrected[working] += np.where(ahead[working], leading, 0.0)
+        secant[working] = unfolded - previous[working]
+        previous[working] = theta[working]
         bad = ~np.isfinite(residual_size) | ~np.all(np.isfinite(theta), axis=1)
         newly = active & moving & (bad | (residual_size > LOST_TOLERANCE) | (corrected > jump_limit))
         lost_at[newly] = np.minimum(1.0, step / own[newly])
@@ -386,7 +405,7 @@ def _close_chunk(
     everything = np.ones(count, dtype=bool)
     theta, offsets, start = begin(everything)
     theta, offsets, residual, lost_at = _continue(
-        system, targets, theta, offsets, start, MAX_STEP, JUMP_LIMIT
+        system, targets, theta, offsets, start, MAX_STEP, JUMP_LIMIT, True
     )
     missed = ~(residual < FINAL_TOLERANCE)
     if np.any(missed):  # again, in shorter steps
@@ -399,6 +418,7 @@ def _close_chunk(
             retry_start,
             MAX_STEP / RETRY_REFINEMENT,
             math.inf,
+            False,
         )
         theta[missed], offsets[missed] = again[0], again[1]
         residual[missed], lost_at[missed] = again[2], again[3]
