@@ -332,17 +332,18 @@ def pinned_newton(  # pragma: no cover - compiled
     """The Newton corrector of one continuation step on the loops of a model pinned to its platform,
     pose by pose where ``working``: at most ``iterations`` corrections, each the blocks' minimum-norm
     correction scaled down to ``max_correction`` at most, until the largest residual is within
-    ``tolerance[p, 0]`` or the last correction within ``tolerance[p, 1]``; then, once a spherical joint's angle exceeds ``recentre_angle``, every spherical
-    joint's angles folded into its offset
+    ``tolerance[p, 0]`` or the last correction within ``tolerance[p, 1]``; then, once a spherical
+    joint's angle exceeds ``recentre_angle``, every spherical joint's angles folded into its offset
     (:meth:`screwkit.core.kinematic_model.KinematicModel.recentred`).
 
-    Updates ``theta (B, n)`` and ``offsets (B, K, 4, 4)`` in place; returns the last residual size
-    (B,), the sum of the corrections after each pose's first (B,), the first's (B,) and the
-    evaluations of the model (B,), and writes the joint values before the fold into ``unfolded (B, n)``. ``model`` holds :func:`evaluate`'s arrays; ``blocks`` is ``(block_ptr, block_loops,
-    column_ptr, column_index, entry_ptr, entry_loop, entry_sign)``: block ``b``'s loops
-    ``block_loops[block_ptr[b] : block_ptr[b + 1]]``, its columns ``column_index[column_ptr[b] :
-    column_ptr[b + 1]]``, column ``q``'s loops (local to its block, ascending) and signs
-    ``entry_*[entry_ptr[q] : entry_ptr[q + 1]]``."""
+    Updates ``theta (B, n)`` and ``offsets (B, K, 4, 4)`` in place and writes the joint values before
+    the fold into ``unfolded (B, n)``; returns the last residual size (B,), the sum of the
+    corrections after each pose's first (B,), the first's (B,) and the evaluations of the model (B,).
+    ``model`` holds :func:`evaluate`'s arrays; ``blocks`` is ``(block_ptr, block_loops, column_ptr,
+    column_index, entry_ptr, entry_loop, entry_sign)``: block ``b``'s loops ``block_loops[block_ptr[b]
+    : block_ptr[b + 1]]``, its columns ``column_index[column_ptr[b] : column_ptr[b + 1]]``, column
+    ``q``'s loops (local to its block, ascending) and signs ``entry_*[entry_ptr[q] : entry_ptr[q +
+    1]]``."""
     (exponential, reference_rows, hinges, hinge_axes, hinge_rods, joint_ptr, joint_columns, offset_slot,
      tree, roots, column_parent, n_links) = model
     block_ptr = blocks[0]

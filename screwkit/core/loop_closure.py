@@ -77,6 +77,8 @@ LAST_STEP_TOLERANCE = 1e-12
 #: is then checked, :data:`FINAL_TOLERANCE`).
 STEP_CORRECTION = 1e-4
 LAST_STEP_CORRECTION = 1e-7
+STEP_TOLERANCES = np.array([STEP_TOLERANCE, STEP_CORRECTION])
+LAST_TOLERANCES = np.array([LAST_STEP_TOLERANCE, LAST_STEP_CORRECTION])
 #: The residual below which a configuration is accepted (characteristic lengths, radians).
 FINAL_TOLERANCE = 1e-9
 #: A step whose Newton iterations end above this residual has lost the mechanism.
@@ -115,6 +117,9 @@ class ClosedConfigurations:
         The largest loop or task residual (characteristic lengths, radians).
     reasons : numpy.ndarray of str, shape (B,)
         Why a pose was not reached (empty where it was).
+    state : KinematicState or None
+        The whole model at ``theta`` and ``offsets`` (where the loops and the task were checked), when
+        :func:`close_loops` made it.
     """
 
     theta: Array
@@ -122,6 +127,7 @@ class ClosedConfigurations:
     reached: Array
     residual: Array
     reasons: Array
+    state: KinematicState | None = None
 
 
 def _solve_step(jacobian: Array, residual: Array) -> Array:
@@ -288,10 +294,10 @@ def _continue(
     step_length: float,
     jump_limit: float,
     spherical_secant: bool,
-) -> tuple[Array, Array, Array, Array]:
+) -> tuple[Array, Array, Array, Array, KinematicState]:
     """One continuation of a chunk, each pose in equal steps of at most ``step_length`` (a pose whose
-    way is done rests); returns theta, offsets, the residual at the targets (inf where non-finite)
-    and the fraction of the way where each pose was lost (NaN if not)."""
+    way is done rests); returns theta, offsets, the residual at the targets (inf where non-finite),
+    the fraction of the way where each pose was lost (NaN if not) and the whole model's state there."""
     model, task = system.model, system.task
     count = targets.shape[0]
     lost_at = np.full(count, np.nan)
@@ -309,8 +315,8 @@ def _continue(
         target = start + (targets - start) * np.minimum(1.0, step / own)[:, None]
         ahead = active & moving & (step > 1)
         theta[ahead] += np.where(extrapolated, secant[ahead], 0.0)
-        last = (step >= own)[:, None]
-        tolerance = np.where(last, [LAST_STEP_TOLERANCE, LAST_STEP_CORRECTION], [STEP_TOLERANCE, STEP_CORRECTION])
+        last = (step >= own)[:, None]  # (residual, correction) tolerances
+        tolerance = np.where(last, LAST_TOLERANCES, STEP_TOLERANCES)
         working = active & moving
         corrected = np.zeros(count)  # the corrections the predictor left, the measure of a jump
         residual_size[working], corrected[working], leading, unfolded = system.newton(
@@ -329,7 +335,7 @@ def _continue(
     residual = _residual(model, task, state, targets)
     size = np.max(np.abs(residual), axis=1, initial=0.0)
     size[~active] = np.maximum(size[~active], LOST_TOLERANCE)  # a lost pose is never accepted
-    return theta, offsets, np.where(np.isfinite(size), size, np.inf), lost_at
+    return theta, offsets, np.where(np.isfinite(size), size, np.inf), lost_at, state
 
 
 def close_loops(
@@ -377,20 +383,45 @@ def close_loops(
     out_offsets: dict[str, list[Array]] = {}
     residual = np.zeros(len(targets))
     reasons = np.full(len(targets), "", dtype=object)
+    states = []
     for begin in range(0, len(targets), CHUNK):
         chunk = slice(begin, begin + CHUNK)
         result = _close_chunk(model, task, targets[chunk])
         out_theta[chunk], residual[chunk], reasons[chunk] = result[0], result[2], result[3]
+        states.append(result[4])
         for key, value in result[1].items():
             out_offsets.setdefault(key, []).append(value)
     reached = residual < FINAL_TOLERANCE
     offsets = {key: np.concatenate(parts) for key, parts in out_offsets.items()}
-    return ClosedConfigurations(out_theta, offsets, reached, residual, reasons)
+    chunks = np.array_split(np.arange(len(targets)), np.arange(CHUNK, len(targets), CHUNK))
+    state = _merged(states, chunks, len(targets))
+    return ClosedConfigurations(out_theta, offsets, reached, residual, reasons, state)
+
+
+def _merged(states: list[KinematicState], rows: list[Array], count: int) -> KinematicState:
+    """One state of ``count`` rows whose rows ``rows[i]`` are ``states[i]``'s (a later one's win)."""
+    if len(states) == 1:
+        return states[0]
+
+    def merged(parts: list[Array]) -> Array:
+        out = np.empty((count, *parts[0].shape[1:]))
+        for part, where in zip(parts, rows, strict=True):
+            out[where] = part
+        return out
+
+    first = states[0]
+    return KinematicState(
+        merged([state.theta for state in states]),
+        {key: merged([state.offsets[key] for state in states]) for key in first.offsets},
+        {link: merged([state.links[link] for state in states]) for link in first.links},
+        merged([state.current for state in states]),
+        {key: merged([state.motions[key] for state in states]) for key in first.motions},
+    )
 
 
 def _close_chunk(
     model: KinematicModel, task: Any, targets: Array
-) -> tuple[Array, dict[str, Array], Array, Array]:
+) -> tuple[Array, dict[str, Array], Array, Array, KinematicState]:
     count = len(targets)
     fixes_pose = isinstance(task, PoseTask) and task.fixes_pose and task.coordinates.link != model.base
     system = (_PinnedLoops if fixes_pose else _LoopsAndTask)(model, task)
@@ -404,7 +435,7 @@ def _close_chunk(
 
     everything = np.ones(count, dtype=bool)
     theta, offsets, start = begin(everything)
-    theta, offsets, residual, lost_at = _continue(
+    theta, offsets, residual, lost_at, state = _continue(
         system, targets, theta, offsets, start, MAX_STEP, JUMP_LIMIT, True
     )
     missed = ~(residual < FINAL_TOLERANCE)
@@ -422,6 +453,7 @@ def _close_chunk(
         )
         theta[missed], offsets[missed] = again[0], again[1]
         residual[missed], lost_at[missed] = again[2], again[3]
+        state = _merged([state, again[4]], [np.arange(count), np.flatnonzero(missed)], count)
     reasons = np.full(count, "", dtype=object)
     for index in np.flatnonzero(~(residual < FINAL_TOLERANCE)):
         where = lost_at[index]
@@ -434,4 +466,4 @@ def _close_chunk(
             )
         else:
             reasons[index] = "Newton's method gave non-finite joint values on the way to the pose"
-    return theta, system.offsets_of(offsets), residual, reasons
+    return theta, system.offsets_of(offsets), residual, reasons, state
