@@ -53,9 +53,9 @@ from typing import Any
 import networkx as nx
 import numpy as np
 
-from ..algebra.rigid_motions import rotation_log
+from ..algebra.rigid_motions import hat, rotation_log
 from ..exceptions import ScrewkitValueError
-from ..graphs.jointtable import JointTable
+from ..graphs.jointtable import JointSpec, JointTable
 from ..graphs.twistgraph import graph_frame
 from ._batched_poe import BatchedProduct, rigid_inverse
 
@@ -172,6 +172,7 @@ class KinematicModel:
 
     def __init__(self, graph: nx.MultiDiGraph, joint_key: str = "joint", *, pinned: Any = None):
         self.point, self.length = graph_frame(graph, joint_key=joint_key)
+        self._point_hat = hat(self.point)
         self._source = (graph, joint_key)
         self._pinned_models: dict[Any, KinematicModel] = {}
         self.base = graph.graph["base"]
@@ -316,9 +317,14 @@ class KinematicModel:
         >>> model.unscaled(model.columns[0].row) + 0.0
         array([ 0.,  0.,  1.,  0., -5.,  0.])
         """
+        rows = np.asarray(rows, dtype=float)
         s, s0 = rows[..., :3], rows[..., 3:]
-        finite = np.linalg.norm(s, axis=-1, keepdims=True) > 1e-12
-        return np.concatenate([s, np.where(finite, s0 * self.length + np.cross(self.point, s), s0)], axis=-1)
+        out = np.empty(rows.shape)
+        out[..., :3] = s
+        moment = s0 * self.length + s @ self._point_hat.T  # s0 L + p × s
+        finite = np.einsum("...i,...i->...", s, s) > 1e-24
+        out[..., 3:] = np.where(finite[..., None], moment, s0)
+        return out
 
     def to_scaled_points(self, points: Array) -> Array:
         """Points ``(..., 3)`` of the graph's frame in the scaled frame.
@@ -549,27 +555,23 @@ class KinematicModel:
         (3,)
         """
         shape = (state.theta.shape[0],) if shape is None else tuple(shape)
-        rows = self.unscaled(state.current).reshape(*shape, self.size, 6)
+        rows = self.unscaled(state.current.reshape(*shape, self.size, 6))  # a new array: the table's
         specs = {spec.name: spec for spec in reference.specs}
         if set(specs) != set(self.joints):
             raise ScrewkitValueError(
                 f"Expected the joint table of the model's graph, got joints {sorted(specs)[:5]} ..."
             )
-        table_rows = [
-            (u, v, key, specs[key].type, rows[..., indices, :], specs[key].actuated)
+        ordered = tuple(  # the columns run joint by joint in this order (the model's)
+            JointSpec(key, specs[key].type, u, v, len(indices), specs[key].actuated)
             for key, (u, v, indices) in self.joints.items()
-        ]
+        )
         anchor = None
         if reference.anchor is not None:  # it moves with the platform
             g = state.links[self.platform]
             local = self.to_scaled_points(np.asarray(reference.anchor))
             anchor = (np.einsum("bij,j->bi", g[:, :3, :3], local) + g[:, :3, 3]) * self.length + self.point
             anchor = anchor.reshape(*shape, 3)
-        return JointTable.from_rows(
-            reference.base,
-            reference.platform,
-            table_rows,
-            dof=reference.dof,
-            anchor=anchor,
-            mobility=reference.mobility,
+        rows.flags.writeable = False  # (a read-only array that owns its data: the table keeps it)
+        return JointTable(
+            reference.base, reference.platform, ordered, rows, reference.dof, anchor, reference.mobility
         )

@@ -46,13 +46,16 @@ Examples
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
+from ..algebra.compiled import compiled_kernels
 from ..exceptions import ScrewkitValueError
+from ._batched_poe import KERNELS
 from .kinematic_model import KinematicModel, KinematicState
 from .kinematic_tasks import PoseTask
 
@@ -68,6 +71,14 @@ NEWTON_ITERATIONS = 10
 #: way stop, and of the last step.
 STEP_TOLERANCE = 1e-6
 LAST_STEP_TOLERANCE = 1e-12
+#: The Newton correction (radians, characteristic lengths) below which the iterations of a step on
+#: the way, and of the last step, stop without evaluating the model again: Newton's method converges
+#: quadratically, so the residual left is of the order of the correction's square (the last step's
+#: is then checked, :data:`FINAL_TOLERANCE`).
+STEP_CORRECTION = 1e-4
+LAST_STEP_CORRECTION = 1e-7
+STEP_TOLERANCES = np.array([STEP_TOLERANCE, STEP_CORRECTION])
+LAST_TOLERANCES = np.array([LAST_STEP_TOLERANCE, LAST_STEP_CORRECTION])
 #: The residual below which a configuration is accepted (characteristic lengths, radians).
 FINAL_TOLERANCE = 1e-9
 #: A step whose Newton iterations end above this residual has lost the mechanism.
@@ -106,6 +117,9 @@ class ClosedConfigurations:
         The largest loop or task residual (characteristic lengths, radians).
     reasons : numpy.ndarray of str, shape (B,)
         Why a pose was not reached (empty where it was).
+    state : KinematicState or None
+        The whole model at ``theta`` and ``offsets`` (where the loops and the task were checked), when
+        :func:`close_loops` made it.
     """
 
     theta: Array
@@ -113,6 +127,7 @@ class ClosedConfigurations:
     reached: Array
     residual: Array
     reasons: Array
+    state: KinematicState | None = None
 
 
 def _solve_step(jacobian: Array, residual: Array) -> Array:
@@ -144,6 +159,65 @@ class _LoopsAndTask:
         """The correction of the rows ``need`` of the equations' residual and Jacobian."""
         return _solve_step(jacobian[need], residual[need])
 
+    def newton(
+        self, theta: Array, offsets: Array, target: Array, tolerance: Array, working: Array
+    ) -> tuple[Array, Array, Array, Array]:
+        """The corrector of one continuation step: Newton iterations on the poses ``working`` until
+        their largest residual is within ``tolerance[:, 0]`` or their last correction within
+        ``tolerance[:, 1]`` (at most :data:`NEWTON_ITERATIONS`, each correction scaled down to
+        :data:`MAX_CORRECTION`), then the spherical joints' angles of a
+        pose folded into their ``offsets (B, K, 4, 4)`` (:attr:`spherical` order) once one exceeds
+        :data:`RECENTRE_ANGLE`. Updates ``theta`` and ``offsets`` in place; returns, for the poses
+        ``working``, the last residual size, the sum of the corrections after the first (the
+        predictor's own correction), the first correction, and the joint values before the fold."""
+        rows = np.flatnonzero(working)
+        sizes, corrected, first = np.zeros(rows.size), np.zeros(rows.size), np.ones(rows.size, dtype=bool)
+        leading = np.zeros(rows.size)
+        place = np.arange(rows.size)  # the working poses still iterating, as positions in ``rows``
+        for _ in range(NEWTON_ITERATIONS):  # only the poses not yet within the tolerance
+            if place.size == 0:
+                break
+            at = rows[place]
+            state = self.state(theta[at], self.offsets_of(offsets[at]), target[at])
+            residual, jacobian = self.equations(state, target[at])
+            size = np.max(np.abs(residual), axis=1, initial=0.0)
+            sizes[place] = size
+            need = size > tolerance[at, 0]
+            place = place[need]
+            if place.size == 0:
+                break
+            correction = self.correction(jacobian, residual, need)
+            length = np.max(np.abs(correction), axis=1, initial=0.0)
+            correction *= np.minimum(1.0, MAX_CORRECTION / np.maximum(length, 1e-300))[:, None]
+            theta[rows[place]] += correction
+            clipped = np.minimum(length, MAX_CORRECTION)
+            leading[place] = np.where(first[place], clipped, leading[place])
+            corrected[place] += np.where(first[place], 0.0, clipped)
+            first[place] = False
+            place = place[length > tolerance[rows[place], 1]]  # a correction this small: converged
+        spherical, unfolded = self.spherical_columns, theta[rows]
+        if spherical.size:  # fold the spherical joints' angles into their offsets before they grow
+            turned = rows[np.max(np.abs(unfolded[:, spherical]), axis=1) > RECENTRE_ANGLE]
+            if turned.size:
+                new_theta, new_offsets = self.model.recentred(theta[turned], self.offsets_of(offsets[turned]))
+                theta[turned] = new_theta
+                offsets[turned] = np.stack([new_offsets[key] for key in self.spherical], axis=1)
+        return sizes, corrected, leading, unfolded
+
+    @functools.cached_property
+    def spherical(self) -> list[str]:
+        """The spherical joints, in the order of the offsets' second axis."""
+        return [key for key, kind in self.model.types.items() if kind == "S"]
+
+    @functools.cached_property
+    def spherical_columns(self) -> Array:
+        """Their columns."""
+        return np.array([i for key in self.spherical for i in self.model.joints[key][2]], dtype=int)
+
+    def offsets_of(self, stacked: Array) -> dict[str, Array]:
+        """The offsets ``(B, K, 4, 4)`` as the model's dict (views)."""
+        return {key: stacked[:, k] for k, key in enumerate(self.spherical)}
+
 
 class _PinnedLoops(_LoopsAndTask):
     """The same configurations when the task fixes its link's whole pose: that link placed where the
@@ -165,104 +239,103 @@ class _PinnedLoops(_LoopsAndTask):
             loops = self.pinned.incidence[rows[:, ::6] // 6]  # (k, l, n)
             signs = np.take_along_axis(loops, columns[:, None, :], axis=2)
             self.groups.append((rows, columns, signs))
+        product = self.pinned._product
+        self.loops = np.array(  # (u, v, joint) of each loop, for the compiled corrector
+            [[product.link_index[self.pinned.joints[key][0]], product.link_index[self.pinned.joints[key][1]],
+              product.joint_index[key]] for key in self.pinned.closing],
+            dtype=np.int64,
+        ).reshape(-1, 3)
+        self.kernel_blocks = _kernel_blocks(self.pinned)
+        self.kernel_model = product.kernel_arrays(self.spherical)
 
-    def state(self, theta: Array, offsets: dict[str, Array], target: Array) -> KinematicState:
-        return self.pinned.state(theta, offsets, self.task.displacement(target))
+    def newton(
+        self, theta: Array, offsets: Array, target: Array, tolerance: Array, working: Array
+    ) -> tuple[Array, Array, Array, Array]:
+        kernels = compiled_kernels(KERNELS, int(working.sum()))
+        if kernels is None:
+            return super().newton(theta, offsets, target, tolerance, working)
+        solved, turned = np.ascontiguousarray(theta), np.ascontiguousarray(offsets)
+        unfolded = np.empty_like(solved)
+        sizes, corrected, leading, _ = kernels.pinned_newton(
+            solved, turned, self.task.displacement(target), tolerance, working, NEWTON_ITERATIONS,
+            MAX_CORRECTION, RECENTRE_ANGLE, self.kernel_model, self.loops, self.kernel_blocks, unfolded,
+        )
+        theta[:], offsets[:] = solved, turned
+        return sizes[working], corrected[working], leading[working], unfolded[working]
 
-    def equations(self, state: KinematicState, target: Array) -> tuple[Array, Any]:
-        """The loops' residual and, per group of blocks, their Jacobians ``(B, k, 6 l, c)`` (the
-        blocks of :meth:`~screwkit.core.kinematic_model.KinematicModel.loop_jacobian`)."""
-        blocks = []
-        for _, columns, signs in self.groups:
-            screws = np.swapaxes(state.current[:, columns], -1, -2)  # (B, k, 6, c)
-            jacobian = signs[None, :, :, None, :] * screws[:, :, None]  # (B, k, l, 6, c)
-            blocks.append(jacobian.reshape(*jacobian.shape[:2], -1, jacobian.shape[-1]))
-        return self.pinned.loop_residual(state), blocks
 
-    def correction(self, jacobian: Any, residual: Array, need: Array) -> Array:
-        count = int(need.sum())
-        out = np.zeros((count, self.model.size))
-        for (rows, columns, _), blocks in zip(self.groups, jacobian, strict=True):
-            flat = residual[need][:, rows].reshape(-1, rows.shape[1])
-            step = _solve_step(blocks[need].reshape(-1, *blocks.shape[2:]), flat)
-            out[:, columns.ravel()] = step.reshape(count, -1)
-        return out
+def _kernel_blocks(pinned: KinematicModel) -> tuple[Array, ...]:
+    """The blocks of a pinned model for :func:`screwkit.core._newton_numba.pinned_newton`: per block its
+    loops, per column of it the loops (local, ascending) that hold the column and their signs."""
+    block_ptr, block_loops, column_ptr, column_index = [0], [], [0], []
+    entry_ptr, entry_loop, entry_sign = [0], [], []
+    for rows, columns in pinned.blocks:
+        loops = rows[::6] // 6
+        block_loops.extend(loops)
+        block_ptr.append(len(block_loops))
+        for column in columns:
+            column_index.append(column)
+            for local, loop in enumerate(loops):
+                if pinned.incidence[loop, column] != 0.0:
+                    entry_loop.append(local)
+                    entry_sign.append(pinned.incidence[loop, column])
+            entry_ptr.append(len(entry_loop))
+        column_ptr.append(len(column_index))
+    whole = (block_ptr, block_loops, column_ptr, column_index, entry_ptr, entry_loop)
+    return (*(np.array(part, dtype=np.int64) for part in whole), np.array(entry_sign, dtype=float))
 
 
 def _continue(
     system: _LoopsAndTask,
     targets: Array,
     theta: Array,
-    offsets: dict[str, Array],
+    offsets: Array,
     start: Array,
     step_length: float,
     jump_limit: float,
-) -> tuple[Array, dict[str, Array], Array, Array]:
+    spherical_secant: bool,
+) -> tuple[Array, Array, Array, Array, KinematicState]:
     """One continuation of a chunk, each pose in equal steps of at most ``step_length`` (a pose whose
-    way is done rests); returns theta, offsets, the residual at the targets (inf where non-finite)
-    and the fraction of the way where each pose was lost (NaN if not)."""
+    way is done rests); returns theta, offsets, the residual at the targets (inf where non-finite),
+    the fraction of the way where each pose was lost (NaN if not) and the whole model's state there."""
     model, task = system.model, system.task
     count = targets.shape[0]
     lost_at = np.full(count, np.nan)
     active = np.ones(count, dtype=bool)
     residual_size = np.zeros(count)
-    spherical = np.array(
-        [i for key, kind in model.types.items() if kind == "S" for i in model.joints[key][2]], dtype=int
-    )
     way = np.max(np.abs(targets - start), axis=1, initial=0.0)
     own = np.clip(np.ceil(way / step_length), 1, MAX_STEPS)
     steps = int(np.max(own, initial=1))
-    previous = theta.copy()  # the joint values one step back: the secant predicts the next step's
+    previous = theta.copy()  # each pose's joint values one step back, and the secant from them
+    secant = np.zeros_like(theta)  # (a spherical joint's taken before its angles fold into its offset)
     extrapolated = np.ones(model.size, dtype=bool)
-    extrapolated[spherical] = False  # (a spherical joint's angles restart at its offset)
+    extrapolated[system.spherical_columns] = spherical_secant
     for step in range(1, steps + 1):
         moving = step <= own
         target = start + (targets - start) * np.minimum(1.0, step / own)[:, None]
         ahead = active & moving & (step > 1)
-        secant = np.where(extrapolated, theta - previous, 0.0)
-        previous = theta.copy()
-        theta[ahead] += secant[ahead]
-        tolerance = np.where(step >= own, LAST_STEP_TOLERANCE, STEP_TOLERANCE)
-        corrected = np.zeros(count)  # the corrections after each pose's first iteration
-        first = np.ones(count, dtype=bool)
+        theta[ahead] += np.where(extrapolated, secant[ahead], 0.0)
+        last = (step >= own)[:, None]  # (residual, correction) tolerances
+        tolerance = np.where(last, LAST_TOLERANCES, STEP_TOLERANCES)
         working = active & moving
-        for _ in range(NEWTON_ITERATIONS):  # only the poses not yet within the tolerance
-            rows = np.flatnonzero(working)
-            if rows.size == 0:
-                break
-            state = system.state(theta[rows], {k: v[rows] for k, v in offsets.items()}, target[rows])
-            residual, jacobian = system.equations(state, target[rows])
-            size = np.max(np.abs(residual), axis=1, initial=0.0)
-            residual_size[rows] = size
-            need = size > tolerance[rows]
-            working[rows[~need]] = False
-            rows = rows[need]
-            if rows.size == 0:
-                break
-            correction = system.correction(jacobian, residual, need)
-            length = np.max(np.abs(correction), axis=1, initial=0.0)
-            correction *= np.minimum(1.0, MAX_CORRECTION / np.maximum(length, 1e-300))[:, None]
-            theta[rows] += correction
-            corrected[rows] += np.where(first[rows], 0.0, np.minimum(length, MAX_CORRECTION))
-            first[rows] = False
+        corrected = np.zeros(count)  # the corrections the predictor left, the measure of a jump
+        residual_size[working], corrected[working], leading, unfolded = system.newton(
+            theta, offsets, target, tolerance, working
+        )
+        if spherical_secant:  # the whole way from the predicted values counts
+            corrected[working] += np.where(ahead[working], leading, 0.0)
+        secant[working] = unfolded - previous[working]
+        previous[working] = theta[working]
         bad = ~np.isfinite(residual_size) | ~np.all(np.isfinite(theta), axis=1)
         newly = active & moving & (bad | (residual_size > LOST_TOLERANCE) | (corrected > jump_limit))
         lost_at[newly] = np.minimum(1.0, step / own[newly])
         active &= ~newly
         theta[~np.all(np.isfinite(theta), axis=1)] = 0.0  # frozen and flagged, never propagated
-        if spherical.size:  # fold the spherical joints' angles into their offsets before they grow
-            turned = np.flatnonzero(np.max(np.abs(theta[:, spherical]), axis=1) > RECENTRE_ANGLE)
-            if turned.size:
-                sub = {k: v[turned] for k, v in offsets.items()}
-                new_theta, new_offsets = model.recentred(theta[turned], sub)
-                theta[turned] = new_theta
-                for key, value in new_offsets.items():
-                    offsets.setdefault(key, np.tile(np.eye(4), (count, 1, 1)))[turned] = value
-    state = model.state(theta, offsets)  # the loops and the task of the whole model, as checked
+    state = model.state(theta, system.offsets_of(offsets))  # the whole model's loops and task, as checked
     residual = _residual(model, task, state, targets)
     size = np.max(np.abs(residual), axis=1, initial=0.0)
     size[~active] = np.maximum(size[~active], LOST_TOLERANCE)  # a lost pose is never accepted
-    return theta, offsets, np.where(np.isfinite(size), size, np.inf), lost_at
+    return theta, offsets, np.where(np.isfinite(size), size, np.inf), lost_at, state
 
 
 def close_loops(
@@ -310,34 +383,60 @@ def close_loops(
     out_offsets: dict[str, list[Array]] = {}
     residual = np.zeros(len(targets))
     reasons = np.full(len(targets), "", dtype=object)
+    states = []
     for begin in range(0, len(targets), CHUNK):
         chunk = slice(begin, begin + CHUNK)
         result = _close_chunk(model, task, targets[chunk])
         out_theta[chunk], residual[chunk], reasons[chunk] = result[0], result[2], result[3]
+        states.append(result[4])
         for key, value in result[1].items():
             out_offsets.setdefault(key, []).append(value)
     reached = residual < FINAL_TOLERANCE
     offsets = {key: np.concatenate(parts) for key, parts in out_offsets.items()}
-    return ClosedConfigurations(out_theta, offsets, reached, residual, reasons)
+    chunks = np.array_split(np.arange(len(targets)), np.arange(CHUNK, len(targets), CHUNK))
+    state = _merged(states, chunks, len(targets))
+    return ClosedConfigurations(out_theta, offsets, reached, residual, reasons, state)
+
+
+def _merged(states: list[KinematicState], rows: list[Array], count: int) -> KinematicState:
+    """One state of ``count`` rows whose rows ``rows[i]`` are ``states[i]``'s (a later one's win)."""
+    if len(states) == 1:
+        return states[0]
+
+    def merged(parts: list[Array]) -> Array:
+        out = np.empty((count, *parts[0].shape[1:]))
+        for part, where in zip(parts, rows, strict=True):
+            out[where] = part
+        return out
+
+    first = states[0]
+    return KinematicState(
+        merged([state.theta for state in states]),
+        {key: merged([state.offsets[key] for state in states]) for key in first.offsets},
+        {link: merged([state.links[link] for state in states]) for link in first.links},
+        merged([state.current for state in states]),
+        {key: merged([state.motions[key] for state in states]) for key in first.motions},
+    )
 
 
 def _close_chunk(
     model: KinematicModel, task: Any, targets: Array
-) -> tuple[Array, dict[str, Array], Array, Array]:
+) -> tuple[Array, dict[str, Array], Array, Array, KinematicState]:
     count = len(targets)
     fixes_pose = isinstance(task, PoseTask) and task.fixes_pose and task.coordinates.link != model.base
     system = (_PinnedLoops if fixes_pose else _LoopsAndTask)(model, task)
 
-    def begin(rows: Array) -> tuple[Array, dict[str, Array], Array]:
+    def begin(rows: Array) -> tuple[Array, Array, Array]:
         """The reference configuration for ``rows`` poses, and the task's values there."""
         theta = np.zeros((int(rows.sum()), model.size))
         values = task.values(model.state(theta[:1]))
-        return theta, {}, np.repeat(values, len(theta), axis=0)
+        offsets = np.tile(np.eye(4), (len(theta), len(system.spherical), 1, 1))
+        return theta, offsets, np.repeat(values, len(theta), axis=0)
 
     everything = np.ones(count, dtype=bool)
     theta, offsets, start = begin(everything)
-    theta, offsets, residual, lost_at = _continue(
-        system, targets, theta, offsets, start, MAX_STEP, JUMP_LIMIT
+    theta, offsets, residual, lost_at, state = _continue(
+        system, targets, theta, offsets, start, MAX_STEP, JUMP_LIMIT, True
     )
     missed = ~(residual < FINAL_TOLERANCE)
     if np.any(missed):  # again, in shorter steps
@@ -350,11 +449,11 @@ def _close_chunk(
             retry_start,
             MAX_STEP / RETRY_REFINEMENT,
             math.inf,
+            False,
         )
-        theta[missed] = again[0]
-        for key in set(offsets) | set(again[1]):  # a joint turned in either pass (identity if not)
-            offsets.setdefault(key, np.tile(np.eye(4), (count, 1, 1)))[missed] = again[1].get(key, np.eye(4))
+        theta[missed], offsets[missed] = again[0], again[1]
         residual[missed], lost_at[missed] = again[2], again[3]
+        state = _merged([state, again[4]], [np.arange(count), np.flatnonzero(missed)], count)
     reasons = np.full(count, "", dtype=object)
     for index in np.flatnonzero(~(residual < FINAL_TOLERANCE)):
         where = lost_at[index]
@@ -367,4 +466,4 @@ def _close_chunk(
             )
         else:
             reasons[index] = "Newton's method gave non-finite joint values on the way to the pose"
-    return theta, offsets, residual, reasons
+    return theta, system.offsets_of(offsets), residual, reasons, state
