@@ -79,13 +79,35 @@ def _pose_keys(poses: Array) -> list[bytes]:
 class _SolvedPoses:
     """Solved configurations remembered by pose (:func:`_pose_keys`): the joint values and every
     spherical joint's offset in arrays, a slot per pose; emptied when :data:`MAX_CACHED_POSES`
-    would be exceeded."""
+    would be exceeded. The last continuation's whole model state is kept too (:attr:`recent`, its
+    row per pose), until the next one or another pose is remembered: a map asks which poses of a
+    chunk are reachable, then analyses them, at the configurations the continuation checked."""
 
     def __init__(self) -> None:
         self.slots: dict[bytes, int] = {}
         self.used = 0  # rows written (a pose solved again gets a new row)
         self.theta = np.zeros((0, 0))
         self.offsets: dict[str, Array] = {}
+        self.recent: tuple[dict[bytes, int], KinematicState] | None = None
+
+    def recent_state(self, keys: list[bytes]) -> KinematicState | None:
+        """The last continuation's state at these poses (all remembered), None if it lacks one."""
+        if self.recent is None:
+            return None
+        rows, state = self.recent
+        get = rows.get
+        found = np.fromiter((get(key, -1) for key in keys), dtype=np.int64, count=len(keys))
+        if found.size and found.min() < 0:
+            return None
+        if np.array_equal(found, np.arange(len(state.theta))):
+            return state
+        return KinematicState(
+            state.theta[found],
+            {k: v[found] for k, v in state.offsets.items()},
+            {k: v[found] for k, v in state.links.items()},
+            state.current[found],
+            {k: v[found] for k, v in state.motions.items()},
+        )
 
     def slots_of(self, keys: list[bytes]) -> Array:
         """Each key's slot, -1 where it was not solved."""
@@ -94,6 +116,7 @@ class _SolvedPoses:
 
     def add(self, keys: list[bytes], theta: Array, offsets: dict[str, Array]) -> None:
         """Remember ``theta (k, n)`` and ``offsets`` (name → ``(k, 4, 4)``, every spherical joint)."""
+        self.recent = None  # (its poses' rows may now be another solution's)
         if self.used + len(keys) > MAX_CACHED_POSES:
             self.slots.clear()
             self.used = 0
@@ -191,19 +214,22 @@ class GraphKinematics:
         reached = np.ones(len(poses), dtype=bool)
         residual = np.zeros(len(poses))
         reasons = np.full(len(poses), "", dtype=object)
-        if missing.size:
-            solved = close_loops(self.model, self.task, self._targets(poses[missing]))
-            theta[missing] = solved.theta
-            for key, value in offsets.items():
-                value[missing] = solved.offsets.get(key, np.eye(4))
-            reached[missing], residual[missing], reasons[missing] = (
-                solved.reached,
-                solved.residual,
-                solved.reasons,
-            )
-            fresh = missing[solved.reached]
-            self._cache.add([keys[i] for i in fresh], theta[fresh], {k: v[fresh] for k, v in offsets.items()})
-        return ClosedConfigurations(theta, offsets, reached, residual, reasons)
+        if not missing.size:
+            state = self._cache.recent_state(keys)
+            return ClosedConfigurations(theta, offsets, reached, residual, reasons, state)
+        solved = close_loops(self.model, self.task, self._targets(poses[missing]))
+        theta[missing] = solved.theta
+        for key, value in offsets.items():
+            value[missing] = solved.offsets.get(key, np.eye(4))
+        reached[missing], residual[missing] = solved.reached, solved.residual
+        reasons[missing] = solved.reasons
+        fresh = missing[solved.reached]
+        self._cache.add([keys[i] for i in fresh], theta[fresh], {k: v[fresh] for k, v in offsets.items()})
+        if solved.state is not None:
+            rows = dict(zip([keys[i] for i in missing], range(missing.size), strict=True))
+            self._cache.recent = (rows, solved.state)
+        state = solved.state if missing.size == len(poses) else None
+        return ClosedConfigurations(theta, offsets, reached, residual, reasons, state)
 
     def unreachable_reasons(self, poses: Array) -> Array:
         """Why each pose ``(m, n)`` is out of reach (empty where it is reached).
@@ -369,7 +395,8 @@ def _inverse_kinematics(kinematics: GraphKinematics, poses: Any) -> GraphConfigu
             f"Pose {tuple(int(i) for i in index)} = {flat[first].tolist()} is out of reach: "
             f"{closed.reasons[first]}."
         )
-    return GraphConfiguration(kinematics, kinematics.model.state(closed.theta, closed.offsets), shape)
+    state = closed.state if closed.state is not None else kinematics.model.state(closed.theta, closed.offsets)
+    return GraphConfiguration(kinematics, state, shape)
 
 
 def _joints(configuration: GraphConfiguration) -> JointTable:

@@ -57,3 +57,28 @@ def test_forward_kinematics_remembers_its_poses():
     np.testing.assert_array_equal(remembered.theta, closed.theta)
     for name, value in closed.offsets.items():
         np.testing.assert_array_equal(remembered.offsets[name], value)
+
+
+def _assert_same_state(state, expected):
+    np.testing.assert_array_equal(state.theta, expected.theta)
+    np.testing.assert_array_equal(state.current, expected.current)
+    assert set(state.links) == set(expected.links)
+    for link, value in expected.links.items():
+        np.testing.assert_array_equal(state.links[link], value)
+
+
+def test_the_continuations_state_is_the_models_at_the_solved_configurations():
+    robot = sk.mechanism(gough_stewart(*gough_stewart_points()))
+    kinematics, model = robot.parameters, robot.parameters.model
+    poses = _gough_stewart_poses(40, 9)
+    fresh = kinematics.solve(poses)  # all solved now: the continuation's state, row for row
+    assert fresh.state is not None
+    _assert_same_state(fresh.state, model.state(fresh.theta, fresh.offsets))
+    again = kinematics.solve(poses[::3])  # remembered: the same rows of that state
+    _assert_same_state(again.state, model.state(again.theta, again.offsets))
+    assert kinematics.solve(poses).state is fresh.state  # the whole batch again: the state itself
+    kinematics.remember(poses, fresh)  # another solution may now stand for a pose: none kept
+    assert kinematics.solve(poses[5:7]).state is None
+    closed = kinematics.solve(poses[5:7])
+    expected = model.joint_table(model.state(closed.theta, closed.offsets), kinematics.reference)
+    np.testing.assert_array_equal(robot.at(poses[5:7]).joints.screws, expected.screws)  # evaluated again
