@@ -90,6 +90,9 @@ class _SolvedPoses:
         self.offsets: dict[str, Array] = {}
         self.recent: tuple[dict[bytes, int], KinematicState] | None = None
 
+    def __reduce__(self) -> tuple[type, tuple[()]]:
+        return _SolvedPoses, ()  # a copy (a Dask worker's) starts empty: what it remembers stays here
+
     def recent_state(self, keys: list[bytes]) -> KinematicState | None:
         """The last continuation's state at these poses (all remembered), None if it lacks one."""
         if self.recent is None:

@@ -1,6 +1,8 @@
 """The verdict path of a graph mechanism over poses (screwkit.robots.graph_kinematics): what it keeps
 between the reach test and the analysis gives what solving again would."""
 
+import pickle
+
 import numpy as np
 
 import screwkit as sk
@@ -82,3 +84,13 @@ def test_the_continuations_state_is_the_models_at_the_solved_configurations():
     closed = kinematics.solve(poses[5:7])
     expected = model.joint_table(model.state(closed.theta, closed.offsets), kinematics.reference)
     np.testing.assert_array_equal(robot.at(poses[5:7]).joints.screws, expected.screws)  # evaluated again
+
+
+def test_a_pickled_graph_mechanism_leaves_what_it_remembers_behind():
+    robot = sk.mechanism(gough_stewart(*gough_stewart_points()))
+    poses = _gough_stewart_poses(20, 4)
+    solved = robot.parameters.solve(poses)
+    copy = pickle.loads(pickle.dumps(robot))  # as a Dask client sends it to a worker
+    assert len(pickle.dumps(robot)) < 200_000  # not the 20 configurations and their model state
+    again = copy.parameters.solve(poses)  # solved again there, to the same configurations
+    np.testing.assert_array_equal(again.theta, solved.theta)
