@@ -76,12 +76,17 @@ def _pose_keys(poses: Array) -> list[bytes]:
     return cast(list[bytes], whole.ravel().tolist())
 
 
+def _rows_of(index: dict[bytes, int], keys: list[bytes]) -> Array:
+    """Each key's row in ``index``, -1 where it has none."""
+    get = index.get
+    return np.fromiter((get(key, -1) for key in keys), dtype=np.int64, count=len(keys))
+
+
 class _SolvedPoses:
-    """Solved configurations remembered by pose (:func:`_pose_keys`): the joint values and every
-    spherical joint's offset in arrays, a slot per pose; emptied when :data:`MAX_CACHED_POSES`
-    would be exceeded. The last continuation's whole model state is kept too (:attr:`recent`, its
-    row per pose), until the next one or another pose is remembered: a map asks which poses of a
-    chunk are reachable, then analyses them, at the configurations the continuation checked."""
+    """Solved configurations remembered by pose (:func:`_pose_keys`): joint values and spherical
+    offsets in arrays, a slot per pose, emptied when :data:`MAX_CACHED_POSES` would be exceeded; and
+    the last continuation's model state (:attr:`recent`, a row per pose) until another pose is
+    remembered: a map asks which poses of a chunk are reachable, then analyses them there."""
 
     def __init__(self) -> None:
         self.slots: dict[bytes, int] = {}
@@ -90,32 +95,26 @@ class _SolvedPoses:
         self.offsets: dict[str, Array] = {}
         self.recent: tuple[dict[bytes, int], KinematicState] | None = None
 
-    def __reduce__(self) -> tuple[type, tuple[()]]:
-        return _SolvedPoses, ()  # a copy (a Dask worker's) starts empty: what it remembers stays here
+    def __getstate__(self) -> dict[str, Any]:
+        """A copy (a Dask worker's) gets the remembered poses, not the last continuation's state."""
+        used, offsets = self.used, {key: value[: self.used] for key, value in self.offsets.items()}
+        return dict(slots=self.slots, used=used, theta=self.theta[:used], offsets=offsets, recent=None)
 
     def recent_state(self, keys: list[bytes]) -> KinematicState | None:
         """The last continuation's state at these poses (all remembered), None if it lacks one."""
         if self.recent is None:
             return None
-        rows, state = self.recent
-        get = rows.get
-        found = np.fromiter((get(key, -1) for key in keys), dtype=np.int64, count=len(keys))
+        index, state = self.recent
+        found = _rows_of(index, keys)
         if found.size and found.min() < 0:
             return None
         if np.array_equal(found, np.arange(len(state.theta))):
             return state
-        return KinematicState(
-            state.theta[found],
-            {k: v[found] for k, v in state.offsets.items()},
-            {k: v[found] for k, v in state.links.items()},
-            state.current[found],
-            {k: v[found] for k, v in state.motions.items()},
-        )
 
-    def slots_of(self, keys: list[bytes]) -> Array:
-        """Each key's slot, -1 where it was not solved."""
-        get = self.slots.get
-        return np.fromiter((get(key, -1) for key in keys), dtype=np.int64, count=len(keys))
+        def picked(value: Any) -> Any:  # an array's rows, or each of a dict's arrays'
+            return {k: v[found] for k, v in value.items()} if isinstance(value, dict) else value[found]
+
+        return KinematicState(**{f.name: picked(getattr(state, f.name)) for f in dataclasses.fields(state)})
 
     def add(self, keys: list[bytes], theta: Array, offsets: dict[str, Array]) -> None:
         """Remember ``theta (k, n)`` and ``offsets`` (name → ``(k, 4, 4)``, every spherical joint)."""
@@ -206,7 +205,7 @@ class GraphKinematics:
         [True, False]
         """
         keys = _pose_keys(poses)
-        slots = self._cache.slots_of(keys)
+        slots = _rows_of(self._cache.slots, keys)
         known, missing = np.flatnonzero(slots >= 0), np.flatnonzero(slots < 0)
         theta = np.empty((len(poses), self.model.size))
         offsets = {key: np.empty((len(poses), 4, 4)) for key, kind in self.model.types.items() if kind == "S"}
