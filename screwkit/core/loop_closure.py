@@ -248,6 +248,28 @@ class _PinnedLoops(_LoopsAndTask):
         self.kernel_blocks = _kernel_blocks(self.pinned)
         self.kernel_model = product.kernel_arrays(self.spherical)
 
+    def state(self, theta: Array, offsets: dict[str, Array], target: Array) -> KinematicState:
+        return self.pinned.state(theta, offsets, self.task.displacement(target))
+
+    def equations(self, state: KinematicState, target: Array) -> tuple[Array, Any]:
+        """The loops' residual and, per group of blocks, their Jacobians ``(B, k, 6 l, c)`` (the
+        blocks of :meth:`~screwkit.core.kinematic_model.KinematicModel.loop_jacobian`)."""
+        blocks = []
+        for _, columns, signs in self.groups:
+            screws = np.swapaxes(state.current[:, columns], -1, -2)  # (B, k, 6, c)
+            jacobian = signs[None, :, :, None, :] * screws[:, :, None]  # (B, k, l, 6, c)
+            blocks.append(jacobian.reshape(*jacobian.shape[:2], -1, jacobian.shape[-1]))
+        return self.pinned.loop_residual(state), blocks
+
+    def correction(self, jacobian: Any, residual: Array, need: Array) -> Array:
+        count = int(need.sum())
+        out = np.zeros((count, self.model.size))
+        for (rows, columns, _), blocks in zip(self.groups, jacobian, strict=True):
+            flat = residual[need][:, rows].reshape(-1, rows.shape[1])
+            step = _solve_step(blocks[need].reshape(-1, *blocks.shape[2:]), flat)
+            out[:, columns.ravel()] = step.reshape(count, -1)
+        return out
+
     def newton(
         self, theta: Array, offsets: Array, target: Array, tolerance: Array, working: Array
     ) -> tuple[Array, Array, Array, Array]:
