@@ -25,6 +25,24 @@ whose path leaves the mechanism's reach, runs into a singularity where Newton's 
 converging, or gives non-finite values is flagged with the reason and the residual — never returned
 as a configuration. All poses of a batch move together (arrays with a leading batch axis).
 
+The predictor-corrector follows Allgower & Georg, *Introduction to Numerical Continuation Methods*,
+2003, Chs. 2-3 (the Moore-Penrose Newton corrector): the secant of the last two steps predicts each
+step (every joint variable, a spherical joint's angles taken before they fold into its offset),
+Newton's method corrects it, and
+a step is trusted when its corrections stay small: the whole way the corrector goes from the
+predicted values (from the previous configuration on a first step, whose first correction is the
+tangent step) is at most :data:`JUMP_LIMIT`, else the pose is taken again in shorter steps. The
+minimum-norm correction lies in the row space of the equations' Jacobian, the orthogonal
+complement of its null space, so an internal motion (a rod's spin about its own axis) never enters
+the measure at first order. A step's iterations stop once the residual is within its tolerance or
+the last correction is small enough that Newton's quadratic convergence leaves a residual of its
+square (the last step's is then checked on the whole model).
+
+When the task fixes its link's whole pose, a step's Newton iterations run in a compiled kernel when
+numba is installed (:mod:`screwkit.core._newton_numba`: the model, the loops' residual and the
+block-by-block correction, pose by pose), else in numpy over the batch (:class:`_PinnedLoops`); the
+two agree to round-off (:func:`screwkit.algebra.compiled.compiled_kernels` chooses).
+
 Examples
 --------
 >>> from screwkit.graphs.joints import revolute
@@ -77,7 +95,7 @@ LAST_STEP_TOLERANCE = 1e-12
 #: is then checked, :data:`FINAL_TOLERANCE`).
 STEP_CORRECTION = 1e-4
 LAST_STEP_CORRECTION = 1e-7
-STEP_TOLERANCES = np.array([STEP_TOLERANCE, STEP_CORRECTION])
+STEP_TOLERANCES = np.array([STEP_TOLERANCE, STEP_CORRECTION])  # (residual, correction)
 LAST_TOLERANCES = np.array([LAST_STEP_TOLERANCE, LAST_STEP_CORRECTION])
 #: The residual below which a configuration is accepted (characteristic lengths, radians).
 FINAL_TOLERANCE = 1e-9
@@ -85,10 +103,12 @@ FINAL_TOLERANCE = 1e-9
 LOST_TOLERANCE = 1e-3
 #: The largest Newton correction taken at once (radians, characteristic lengths).
 MAX_CORRECTION = 0.5
-#: The largest correction Newton's method may make after a step's first (tangent) iteration, in
-#: radians or characteristic lengths: beyond it the step may have jumped to another branch of the
-#: loop equations (another assembly or working mode), and the pose is taken again in steps
-#: :data:`RETRY_REFINEMENT` times shorter.
+#: The largest correction Newton's method may make from a step's predicted values (after a first
+#: step's first, tangent, iteration), in radians or characteristic lengths: beyond it the step may
+#: have jumped to another branch of the loop equations (another assembly or working mode), and the
+#: pose is taken again in steps :data:`RETRY_REFINEMENT` times shorter, without the spherical
+#: joints' secant (whose overshoot near a leg's serial singularity once took Ragnar poses to the
+#: other elbow branch when the retry accepted any correction) and without the measure.
 JUMP_LIMIT = 0.2
 #: A spherical joint's angles are folded into its offset once one exceeds this (radians), far from
 #: the gimbal lock of its three exponentials at π/2.
