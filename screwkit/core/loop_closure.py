@@ -260,11 +260,6 @@ class _PinnedLoops(_LoopsAndTask):
             signs = np.take_along_axis(loops, columns[:, None, :], axis=2)
             self.groups.append((rows, columns, signs))
         product = self.pinned._product
-        self.loops = np.array(  # (u, v, joint) of each loop, for the compiled corrector
-            [[product.link_index[self.pinned.joints[key][0]], product.link_index[self.pinned.joints[key][1]],
-              product.joint_index[key]] for key in self.pinned.closing],
-            dtype=np.int64,
-        ).reshape(-1, 3)
         self.kernel_blocks = _kernel_blocks(self.pinned)
         self.kernel_model = product.kernel_arrays(self.spherical)
 
@@ -300,7 +295,8 @@ class _PinnedLoops(_LoopsAndTask):
         unfolded = np.empty_like(solved)
         sizes, corrected, leading, _ = kernels.pinned_newton(
             solved, turned, self.task.displacement(target), tolerance, working, NEWTON_ITERATIONS,
-            MAX_CORRECTION, RECENTRE_ANGLE, self.kernel_model, self.loops, self.kernel_blocks, unfolded,
+            MAX_CORRECTION, RECENTRE_ANGLE, self.kernel_model, self.pinned._loops, self.kernel_blocks,
+            unfolded,
         )
         theta[:], offsets[:] = solved, turned
         return sizes[working], corrected[working], leading[working], unfolded[working]
@@ -435,29 +431,34 @@ def close_loops(
             out_offsets.setdefault(key, []).append(value)
     reached = residual < FINAL_TOLERANCE
     offsets = {key: np.concatenate(parts) for key, parts in out_offsets.items()}
-    chunks = np.array_split(np.arange(len(targets)), np.arange(CHUNK, len(targets), CHUNK))
-    state = _merged(states, chunks, len(targets))
+    state = _concatenated(states)
     return ClosedConfigurations(out_theta, offsets, reached, residual, reasons, state)
 
 
-def _merged(states: list[KinematicState], rows: list[Array], count: int) -> KinematicState:
-    """One state of ``count`` rows whose rows ``rows[i]`` are ``states[i]``'s (a later one's win)."""
+def _replace_rows(state: KinematicState, rows: Array, other: KinematicState) -> None:
+    """``state``'s rows ``rows`` set to ``other``'s, in place."""
+    state.theta[rows] = other.theta
+    state.current[rows] = other.current
+    pairs = ((state.offsets, other.offsets), (state.links, other.links), (state.motions, other.motions))
+    for mine, theirs in pairs:
+        for key, value in mine.items():
+            value[rows] = theirs[key]
+
+
+def _concatenated(states: list[KinematicState]) -> KinematicState:
+    """The states of consecutive chunks as one."""
     if len(states) == 1:
         return states[0]
 
-    def merged(parts: list[Array]) -> Array:
-        out = np.empty((count, *parts[0].shape[1:]))
-        for part, where in zip(parts, rows, strict=True):
-            out[where] = part
-        return out
+    def joined(parts: list[dict[Any, Array]]) -> dict[Any, Array]:
+        return {key: np.concatenate([part[key] for part in parts]) for key in parts[0]}
 
-    first = states[0]
     return KinematicState(
-        merged([state.theta for state in states]),
-        {key: merged([state.offsets[key] for state in states]) for key in first.offsets},
-        {link: merged([state.links[link] for state in states]) for link in first.links},
-        merged([state.current for state in states]),
-        {key: merged([state.motions[key] for state in states]) for key in first.motions},
+        np.concatenate([state.theta for state in states]),
+        joined([state.offsets for state in states]),
+        joined([state.links for state in states]),
+        np.concatenate([state.current for state in states]),
+        joined([state.motions for state in states]),
     )
 
 
@@ -495,7 +496,7 @@ def _close_chunk(
         )
         theta[missed], offsets[missed] = again[0], again[1]
         residual[missed], lost_at[missed] = again[2], again[3]
-        state = _merged([state, again[4]], [np.arange(count), np.flatnonzero(missed)], count)
+        _replace_rows(state, missed, again[4])
     reasons = np.full(count, "", dtype=object)
     for index in np.flatnonzero(~(residual < FINAL_TOLERANCE)):
         where = lost_at[index]
