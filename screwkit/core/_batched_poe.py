@@ -199,7 +199,7 @@ class BatchedProduct:
         if kernels is not None:
             keys = list(offsets)
             stacked = np.stack([offsets[key] for key in keys], axis=1) if keys else np.zeros((count, 0, 4, 4))
-            return kernels.evaluate(  # type: ignore[no-any-return]
+            return kernels.evaluate(
                 np.ascontiguousarray(theta, dtype=float),
                 np.ascontiguousarray(stacked, dtype=float),
                 np.zeros((1, 4, 4)) if pinned is None else np.ascontiguousarray(pinned, dtype=float),

@@ -444,7 +444,7 @@ class KinematicModel:
             return np.zeros((state.theta.shape[0], 0))
         kernels = compiled_kernels(KERNELS, state.theta.shape[0])
         if kernels is not None and state.stacked is not None:
-            return kernels.loop_residual(*state.stacked, self._loops)  # type: ignore[no-any-return]
+            return kernels.loop_residual(*state.stacked, self._loops)
         ends = [self.joints[key][:2] for key in self.closing]
         before = np.stack([state.links[u] for u, _ in ends], axis=1)
         motion = np.stack([state.motions[key] for key in self.closing], axis=1)

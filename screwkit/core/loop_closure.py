@@ -305,8 +305,13 @@ class _PinnedLoops(_LoopsAndTask):
 def _kernel_blocks(pinned: KinematicModel) -> tuple[Array, ...]:
     """The blocks of a pinned model for :func:`screwkit.core._newton_numba.pinned_newton`: per block its
     loops, per column of it the loops (local, ascending) that hold the column and their signs."""
-    block_ptr, block_loops, column_ptr, column_index = [0], [], [0], []
-    entry_ptr, entry_loop, entry_sign = [0], [], []
+    block_ptr: list[int] = [0]
+    column_ptr: list[int] = [0]
+    entry_ptr: list[int] = [0]
+    block_loops: list[int] = []
+    column_index: list[int] = []
+    entry_loop: list[int] = []
+    entry_sign: list[float] = []
     for rows, columns in pinned.blocks:
         loops = rows[::6] // 6
         block_loops.extend(loops)
