@@ -203,7 +203,7 @@ class BatchedProduct:
                 np.ascontiguousarray(theta, dtype=float),
                 np.ascontiguousarray(stacked, dtype=float),
                 np.zeros((1, 4, 4)) if pinned is None else np.ascontiguousarray(pinned, dtype=float),
-                *self.kernel_arrays(keys),
+                self.kernel_arrays(keys),
             )
         return self.evaluate_numpy(theta, offsets, pinned)
 

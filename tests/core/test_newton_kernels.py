@@ -78,7 +78,7 @@ def test_the_compiled_product_of_exponentials_and_loop_residual_equal_the_numpy_
         theta,
         np.stack([offsets[key] for key in keys], axis=1) if keys else np.zeros((POSES, 0, 4, 4)),
         np.zeros((1, 4, 4)) if placed is None else placed,
-        *product.kernel_arrays(keys),
+        product.kernel_arrays(keys),
     )
     twins = product.evaluate_numpy(theta, offsets, placed)
     for compiled_part, numpy_part in zip(ours, twins, strict=True):
