@@ -92,7 +92,9 @@ LAST_STEP_TOLERANCE = 1e-12
 #: The Newton correction (radians, characteristic lengths) below which the iterations of a step on
 #: the way, and of the last step, stop without evaluating the model again: Newton's method converges
 #: quadratically, so the residual left is of the order of the correction's square (the last step's
-#: is then checked, :data:`FINAL_TOLERANCE`).
+#: is then checked, :data:`FINAL_TOLERANCE`). Such a step reports the residual before its last
+#: correction, which :data:`LOST_TOLERANCE` judges: the corrections stay well below it (measured:
+#: 1e-3 on the way left 24 of 2,000 H4 poses flagged as lost, 1e-2 over half).
 STEP_CORRECTION = 1e-4
 LAST_STEP_CORRECTION = 1e-7
 STEP_TOLERANCES = np.array([STEP_TOLERANCE, STEP_CORRECTION])  # (residual, correction)
