@@ -1,24 +1,28 @@
 """Speed of loop-closure kinematics against the catalog's closed forms (screwkit.core.loop_closure).
 
 Run: ``python bench/bench_loop_closure.py [--poses 2000] [--side 200] [--repeats 2]`` from the
-repository root (prints a table; not a test). Single-threaded BLAS. Rates in poses per second of this
-process's CPU time (the machine may be shared; the load average is printed), best of ``--repeats``,
-the two sides of each ratio measured in the same run:
+repository root (prints a table; not a test; ``--side 0`` measures the first ratio only).
+Single-threaded BLAS. Rates in poses per second of this process's CPU time (the machine may be
+shared; the load average is printed), the two sides of each ratio measured in the same run:
 
 * ``H4 closed form``: ``load_mechanism("h4").at(poses).verdicts`` on ``--poses`` random reachable poses
   (closed-form inverse kinematics, joint table, verdicts);
 * ``H4 loop closure``: the same poses and verdicts through ``screwkit.mechanism(h4 twist graph)``
   (loop-closure inverse kinematics continued from the reference configuration; the verdicts are
-  checked equal to the closed form's), and the ratio of the rates (the issue's target: >= 0.3);
-* ``H4 catalog map``: ``grid_map(h4, "verdict")`` over ``--side``² poses (x, y at z = -750 mm);
+  checked equal to the closed form's), and the ratio of the rates (the issue's target: >= 0.3). Each
+  of ``--repeats`` repeats draws fresh poses (none read from the mechanism's cache of solved poses)
+  and times the two sides in turn; the medians are printed. Both mechanisms are built once, outside
+  the timing (the graph's build time is printed);
+* ``H4 catalog map``: ``grid_map(h4, "verdict")`` over ``--side``² poses (x, y at z = -750 mm), best
+  of ``--repeats``;
 * ``6-UPS graph map``: ``grid_map`` of a Gough-Stewart platform built as a twist graph over the same
   number of poses (x, y at the reference height), and the ratio to the H4 catalog map (target >= 0.3).
 
-Measured with ``--poses 1000 --side 60`` on a shared 2-core machine (load average 6-7), both sides of
-each ratio in one run: H4 loop closure 1,140-1,240 poses/s against the closed form's 67,700-74,600
-(ratio 0.017; 0.007 before the batched model and the limb-by-limb solve of a pinned platform); 6-UPS
-graph map 1,950-2,100 poses/s against the H4 catalog map's 14,400-15,300 (ratio 0.136-0.138; 0.047
-before). Both below the target: see docs/mechanisms.md ("Speed") for what dominates.
+Measured with ``--poses 1000 --side 0 --repeats 5..7`` on a shared 2-core machine (load average
+6-9): H4 loop closure 6,400-7,000 poses/s against the closed form's 63,600-89,500 (ratio 0.10; the
+same bench on the code before the compiled continuation: 966 against 66,600, ratio 0.014). Earlier,
+with ``--side 60``: 6-UPS graph map 1,950-2,100 poses/s against the H4 catalog map's 14,400-15,300
+(ratio 0.136-0.138). Both below the target: see docs/mechanisms.md ("Speed") for what dominates.
 """
 
 import os

@@ -131,6 +131,7 @@ class BatchedProduct:
                 ([self.link_index[link] for link in links], parents, keys, np.array(forwards, dtype=bool))
             )
         self.column_parent = np.array([self.link_index[column.parent] for column in columns], dtype=int)
+        self._kernel_arrays: dict[tuple[str, ...], tuple] = {}
         self.joint_ptr = np.cumsum([0] + [len(joints[key][2]) for key in names]).astype(np.int64)
         self.joint_columns = np.array([c for key in names for c in joints[key][2]], dtype=np.int64)
         self.tree = np.array(  # (child, parent, joint, forward), level by level
@@ -142,14 +143,18 @@ class BatchedProduct:
     def kernel_arrays(self, offset_keys: list[str]) -> tuple:
         """The model's arrays for the compiled :func:`screwkit.core._newton_numba.evaluate`, the
         offsets of the joints ``offset_keys`` stacked in that order."""
-        slot = np.full(len(self.joint_index), -1, dtype=np.int64)
-        for k, key in enumerate(offset_keys):
-            slot[self.joint_index[key]] = k
-        return (
-            self.exponential, self.rows, np.array(self.hinges, dtype=np.int64), self.hinge_axes,
-            self.hinge_rods, self.joint_ptr, self.joint_columns, slot, self.tree,
-            np.array(self.roots, dtype=np.int64), self.column_parent.astype(np.int64), len(self.link_index),
-        )
+        keys = tuple(offset_keys)
+        if keys not in self._kernel_arrays:
+            slot = np.full(len(self.joint_index), -1, dtype=np.int64)
+            for k, key in enumerate(keys):
+                slot[self.joint_index[key]] = k
+            self._kernel_arrays[keys] = (
+                self.exponential, self.rows, np.array(self.hinges, dtype=np.int64), self.hinge_axes,
+                self.hinge_rods, self.joint_ptr, self.joint_columns, slot, self.tree,
+                np.array(self.roots, dtype=np.int64), self.column_parent.astype(np.int64),
+                len(self.link_index),
+            )
+        return self._kernel_arrays[keys]
 
     def joint_motions(
         self, theta: Array, offsets: dict[str, Array], *, screws: bool = True
@@ -194,11 +199,11 @@ class BatchedProduct:
         if kernels is not None:
             keys = list(offsets)
             stacked = np.stack([offsets[key] for key in keys], axis=1) if keys else np.zeros((count, 0, 4, 4))
-            return kernels.evaluate(  # type: ignore[no-any-return]
+            return kernels.evaluate(
                 np.ascontiguousarray(theta, dtype=float),
                 np.ascontiguousarray(stacked, dtype=float),
                 np.zeros((1, 4, 4)) if pinned is None else np.ascontiguousarray(pinned, dtype=float),
-                *self.kernel_arrays(keys),
+                self.kernel_arrays(keys),
             )
         return self.evaluate_numpy(theta, offsets, pinned)
 

@@ -99,17 +99,7 @@ def _evaluate_pose(  # pragma: no cover - compiled
     theta: Array,
     offsets: Array,
     pinned: Array,
-    exponential: Array,
-    reference_rows: Array,
-    hinges: Array,
-    hinge_axes: Array,
-    hinge_rods: Array,
-    joint_ptr: Array,
-    joint_columns: Array,
-    offset_slot: Array,
-    tree: Array,
-    roots: Array,
-    column_parent: Array,
+    model: tuple,
     steps: Array,
     rows: Array,
     work: Array,
@@ -119,6 +109,8 @@ def _evaluate_pose(  # pragma: no cover - compiled
 ) -> None:
     """One pose of :func:`evaluate` into ``links``, ``motions``, ``current`` (``steps``, ``rows``,
     ``work (3, 4, 4)``: scratch)."""
+    (exponential, reference_rows, hinges, hinge_axes, hinge_rods, joint_ptr, joint_columns, offset_slot,
+     tree, roots, column_parent, _) = model
     n = theta.shape[0]
     for i in range(n):
         _step_into(exponential, i, theta[i], steps[i])
@@ -176,30 +168,18 @@ def _evaluate_pose(  # pragma: no cover - compiled
 
 @njit(cache=True)
 def evaluate(  # pragma: no cover - compiled
-    theta: Array,
-    offsets: Array,
-    pinned: Array,
-    exponential: Array,
-    reference_rows: Array,
-    hinges: Array,
-    hinge_axes: Array,
-    hinge_rods: Array,
-    joint_ptr: Array,
-    joint_columns: Array,
-    offset_slot: Array,
-    tree: Array,
-    roots: Array,
-    column_parent: Array,
-    n_links: int,
+    theta: Array, offsets: Array, pinned: Array, model: tuple
 ) -> tuple[Array, Array, Array]:
     """Link displacements ``(B, links, 4, 4)``, joint displacements ``(B, joints, 4, 4)`` and current
     screws ``(B, n, 6)`` at ``theta (B, n)``, with the spherical joints' rotation ``offsets (B, K, 4,
     4)`` (joint ``j``'s in slot ``offset_slot[j]``, none where −1) and the pinned root's displacements
-    ``pinned (B, 4, 4)`` (read when ``roots`` has two links). The model's arrays are
-    :class:`screwkit.core._batched_poe.BatchedProduct`'s: per column the coefficients of its
-    exponential ``(n, 4, 12)`` and reference screw, the Π hinges, each joint's columns
-    (``joint_columns[joint_ptr[j] : joint_ptr[j + 1]]``, in order), the tree's edges ``(child, parent,
-    joint, forward)`` each after its parent's, the roots and each column's parent link."""
+    ``pinned (B, 4, 4)`` (read when ``roots`` has two links). ``model`` holds
+    :meth:`screwkit.core._batched_poe.BatchedProduct.kernel_arrays`: per column the coefficients of
+    its exponential ``(n, 4, 12)`` and reference screw, the Π hinges, each joint's columns
+    (``joint_columns[joint_ptr[j] : joint_ptr[j + 1]]``, in order), the spherical joints' offset slots,
+    the tree's edges ``(child, parent, joint, forward)`` each after its parent's, the roots, each
+    column's parent link and the number of links."""
+    joint_ptr, n_links = model[5], model[11]
     count, n = theta.shape
     links = np.empty((count, n_links, 4, 4))
     motions = np.empty((count, joint_ptr.shape[0] - 1, 4, 4))
@@ -209,9 +189,8 @@ def evaluate(  # pragma: no cover - compiled
     work = np.empty((3, 4, 4))
     for p in range(count):
         _evaluate_pose(
-            theta[p], offsets[p], pinned[min(p, pinned.shape[0] - 1)], exponential, reference_rows, hinges,
-            hinge_axes, hinge_rods, joint_ptr, joint_columns, offset_slot, tree, roots, column_parent, steps,
-            rows, work, links[p], motions[p], current[p],
+            theta[p], offsets[p], pinned[min(p, pinned.shape[0] - 1)], model, steps, rows, work, links[p],
+            motions[p], current[p],
         )
     return links, motions, current
 
@@ -344,8 +323,8 @@ def pinned_newton(  # pragma: no cover - compiled
     : block_ptr[b + 1]]``, its columns ``column_index[column_ptr[b] : column_ptr[b + 1]]``, column
     ``q``'s loops (local to its block, ascending) and signs ``entry_*[entry_ptr[q] : entry_ptr[q +
     1]]``."""
-    (exponential, reference_rows, hinges, hinge_axes, hinge_rods, joint_ptr, joint_columns, offset_slot,
-     tree, roots, column_parent, n_links) = model
+    exponential, joint_ptr, joint_columns, offset_slot = model[0], model[5], model[6], model[7]
+    n_links = model[11]
     block_ptr = blocks[0]
     count, n = theta.shape
     sizes = np.zeros(count)
@@ -368,11 +347,7 @@ def pinned_newton(  # pragma: no cover - compiled
             continue
         first = True
         for _ in range(iterations):
-            _evaluate_pose(
-                theta[p], offsets[p], pinned[p], exponential, reference_rows, hinges, hinge_axes,
-                hinge_rods, joint_ptr, joint_columns, offset_slot, tree, roots, column_parent, steps, rows,
-                work, links, motions, current,
-            )
+            _evaluate_pose(theta[p], offsets[p], pinned[p], model, steps, rows, work, links, motions, current)
             evaluations[p] += 1
             _loop_residual_into(links, motions, loops, work, residual)
             size = 0.0

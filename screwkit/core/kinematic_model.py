@@ -53,11 +53,12 @@ from typing import Any
 import networkx as nx
 import numpy as np
 
+from ..algebra.compiled import compiled_kernels
 from ..algebra.rigid_motions import hat, rotation_log
 from ..exceptions import ScrewkitValueError
 from ..graphs.jointtable import JointSpec, JointTable
 from ..graphs.twistgraph import graph_frame
-from ._batched_poe import BatchedProduct, rigid_inverse
+from ._batched_poe import KERNELS, BatchedProduct, rigid_inverse
 
 __all__ = ["JointColumn", "KinematicModel", "KinematicState"]
 
@@ -105,6 +106,9 @@ class KinematicState:
         Every joint screw at these joint values.
     motions : dict
         Joint name → its relative displacement ``(B, 4, 4)``.
+    stacked : tuple of numpy.ndarray or None
+        The arrays ``links`` and ``motions`` view, ``(B, links, 4, 4)`` and ``(B, joints, 4, 4)``
+        (the model's link and joint order), when the state was evaluated at once.
     """
 
     theta: Array
@@ -112,6 +116,7 @@ class KinematicState:
     links: dict[Any, Array]
     current: Array
     motions: dict[str, Array] = field(repr=False)
+    stacked: tuple[Array, Array] | None = field(default=None, repr=False)
 
 
 _ROOTS = object()  # the node joined to the base (and the pinned link) that the spanning forest grows from
@@ -219,6 +224,11 @@ class KinematicModel:
             rows.append(signs)
         self.incidence = np.array(rows).reshape(len(rows), self.size)
         self._product = BatchedProduct(self.columns, self.joints, self.order, self.tree, self.roots)
+        links, joints = self._product.link_index, self._product.joint_index
+        self._loops = np.array(  # (u, v, joint) of each loop, for the compiled residual
+            [[links[self.joints[key][0]], links[self.joints[key][1]], joints[key]] for key in self.closing],
+            dtype=np.int64,
+        ).reshape(-1, 3)
         self.blocks = self._blocks()
 
     def _blocks(self) -> list[tuple[Array, Array]]:
@@ -408,6 +418,7 @@ class KinematicModel:
             {link: links[:, i] for link, i in self._product.link_index.items()},
             current,
             {key: motions[:, j] for key, j in self._product.joint_index.items()},
+            (links, motions),
         )
 
     def loop_residual(self, state: KinematicState) -> Array:
@@ -431,6 +442,9 @@ class KinematicModel:
         """
         if not self.closing:
             return np.zeros((state.theta.shape[0], 0))
+        kernels = compiled_kernels(KERNELS, state.theta.shape[0])
+        if kernels is not None and state.stacked is not None:
+            return kernels.loop_residual(*state.stacked, self._loops)
         ends = [self.joints[key][:2] for key in self.closing]
         before = np.stack([state.links[u] for u, _ in ends], axis=1)
         motion = np.stack([state.motions[key] for key in self.closing], axis=1)
