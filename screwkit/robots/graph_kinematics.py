@@ -111,10 +111,11 @@ class _SolvedPoses:
         if np.array_equal(found, np.arange(len(state.theta))):
             return state
 
-        def picked(value: Any) -> Any:  # an array's rows, or each of a dict's arrays'
-            return {k: v[found] for k, v in value.items()} if isinstance(value, dict) else value[found]
+        def rows(arrays: dict[Any, Array]) -> dict[Any, Array]:
+            return {key: value[found] for key, value in arrays.items()}
 
-        return KinematicState(**{f.name: picked(getattr(state, f.name)) for f in dataclasses.fields(state)})
+        theta, current = state.theta[found], state.current[found]  # (no stacked arrays: optional)
+        return KinematicState(theta, rows(state.offsets), rows(state.links), current, rows(state.motions))
 
     def add(self, keys: list[bytes], theta: Array, offsets: dict[str, Array]) -> None:
         """Remember ``theta (k, n)`` and ``offsets`` (name → ``(k, 4, 4)``, every spherical joint)."""
@@ -137,8 +138,7 @@ class _SolvedPoses:
 
 def _grown(kept: Array, shape: tuple[int, ...]) -> Array:
     out = np.empty(shape)
-    if len(kept):
-        out[: len(kept)] = kept
+    out[: len(kept)] = kept.reshape(-1, *shape[1:])  # (an empty start has no columns yet)
     return out
 
 
