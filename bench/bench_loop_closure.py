@@ -20,9 +20,11 @@ shared; the load average is printed), the two sides of each ratio measured in th
 
 Measured with ``--poses 1000 --side 0 --repeats 5..7`` on a shared 2-core machine (load average
 6-9): H4 loop closure 6,400-7,000 poses/s against the closed form's 63,600-89,500 (ratio 0.10; the
-same bench on the code before the compiled continuation: 966 against 66,600, ratio 0.014). Earlier,
-with ``--side 60``: 6-UPS graph map 1,950-2,100 poses/s against the H4 catalog map's 14,400-15,300
-(ratio 0.136-0.138). Both below the target: see docs/mechanisms.md ("Speed") for what dominates.
+same bench on the code before the compiled continuation: 966 against 66,600, ratio 0.014). With
+``--side 60 --repeats 5`` (load 3.1): 6-UPS graph map 12,100 poses/s against the H4 catalog map's
+29,300 (ratio 0.41; 0.16 on the code before the compiled continuation and the graph verdict path, the
+two maps timed in turn at the same load). The H4 ratio stays below the target: see docs/mechanisms.md
+("Speed") for what dominates.
 """
 
 import os
