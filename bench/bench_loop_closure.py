@@ -19,10 +19,11 @@ shared; the load average is printed), the two sides of each ratio measured in th
   number of poses (x, y at the reference height), and the ratio to the H4 catalog map (target >= 0.3).
 
 Measured with ``--poses 1000 --side 0 --repeats 5..7`` on a shared 2-core machine (load average
-6-9): H4 loop closure 6,400-7,000 poses/s against the closed form's 63,600-89,500 (ratio 0.10; the
-same bench on the code before the compiled continuation: 966 against 66,600, ratio 0.014). Earlier,
-with ``--side 60``: 6-UPS graph map 1,950-2,100 poses/s against the H4 catalog map's 14,400-15,300
-(ratio 0.136-0.138). Both below the target: see docs/mechanisms.md ("Speed") for what dominates.
+2.6-9): H4 loop closure 6,400-7,800 poses/s against the closed form's 63,600-78,900 (ratio
+0.099-0.104; the same bench on the code before the compiled continuation, in the same minutes:
+966-1,408 against 66,600-90,700, ratio 0.014-0.017). With ``--side 60`` (load 2.7-2.9): 6-UPS graph
+map 10,100-10,400 poses/s against the H4 catalog map's 27,300-28,500 (ratio 0.354-0.381; before:
+4,638 against 28,239, ratio 0.164). See docs/mechanisms.md ("Speed") for what dominates the H4.
 """
 
 import os
