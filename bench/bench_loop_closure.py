@@ -19,12 +19,13 @@ shared; the load average is printed), the two sides of each ratio measured in th
   number of poses (x, y at the reference height), and the ratio to the H4 catalog map (target >= 0.3).
 
 Measured with ``--poses 1000 --side 0 --repeats 5..7`` on a shared 2-core machine (load average
-6-9): H4 loop closure 6,400-7,000 poses/s against the closed form's 63,600-89,500 (ratio 0.10; the
-same bench on the code before the compiled continuation: 966 against 66,600, ratio 0.014). With
-``--side 60 --repeats 5`` (load 3.1): 6-UPS graph map 12,100 poses/s against the H4 catalog map's
-29,300 (ratio 0.41; 0.16 on the code before the compiled continuation and the graph verdict path, the
-two maps timed in turn at the same load). The H4 ratio stays below the target: see docs/mechanisms.md
-("Speed") for what dominates.
+2.6-9): H4 loop closure 6,400-7,800 poses/s against the closed form's 63,600-78,900 (ratio
+0.099-0.104; the same bench on the code before the compiled continuation, in the same minutes:
+966-1,408 against 66,600-90,700, ratio 0.014-0.017). With ``--side 60 --repeats 5`` (load 3.1), with
+the graph verdict path (core/_program.py's UPS legs, robots/graph_kinematics.py's remembered poses and
+model states) as well: 6-UPS graph map 12,100 poses/s against the H4 catalog map's 29,300 (ratio
+0.41; the compiled continuation alone: 0.354-0.381 at load 2.7-2.9; before both: 4,638 against
+28,239, ratio 0.164). See docs/mechanisms.md ("Speed") for what dominates the H4.
 """
 
 import os

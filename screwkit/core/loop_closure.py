@@ -28,10 +28,10 @@ as a configuration. All poses of a batch move together (arrays with a leading ba
 The predictor-corrector follows Allgower & Georg, *Introduction to Numerical Continuation Methods*,
 2003, Chs. 2-3 (the Moore-Penrose Newton corrector): the secant of the last two steps predicts each
 step (every joint variable, a spherical joint's angles taken before they fold into its offset),
-Newton's method corrects it, and
-a step is trusted when its corrections stay small: the whole way the corrector goes from the
-predicted values (from the previous configuration on a first step, whose first correction is the
-tangent step) is at most :data:`JUMP_LIMIT`, else the pose is taken again in shorter steps. The
+Newton's method corrects it, and a step is trusted when its corrections stay small: the whole way
+the corrector goes from the predicted values (from the previous configuration on a first step,
+whose first correction is the tangent step) is at most :data:`JUMP_LIMIT`, else the pose is taken
+again in shorter steps. The
 minimum-norm correction lies in the row space of the equations' Jacobian, the orthogonal
 complement of its null space, so an internal motion (a rod's spin about its own axis) never enters
 the measure at first order. A step's iterations stop once the residual is within its tolerance or
@@ -187,11 +187,11 @@ class _LoopsAndTask:
         """The corrector of one continuation step: Newton iterations on the poses ``working`` until
         their largest residual is within ``tolerance[:, 0]`` or their last correction within
         ``tolerance[:, 1]`` (at most :data:`NEWTON_ITERATIONS`, each correction scaled down to
-        :data:`MAX_CORRECTION`), then the spherical joints' angles of a
-        pose folded into their ``offsets (B, K, 4, 4)`` (:attr:`spherical` order) once one exceeds
-        :data:`RECENTRE_ANGLE`. Updates ``theta`` and ``offsets`` in place; returns, for the poses
-        ``working``, the last residual size, the sum of the corrections after the first (the
-        predictor's own correction), the first correction, and the joint values before the fold."""
+        :data:`MAX_CORRECTION`), then the spherical joints' angles of a pose folded into their
+        ``offsets (B, K, 4, 4)`` (:attr:`spherical` order) once one exceeds :data:`RECENTRE_ANGLE`.
+        Updates ``theta`` and ``offsets`` in place; returns, for the poses ``working``, the last
+        residual size, the sum of the corrections after the first (the predictor's own correction),
+        the first correction, and the joint values before the fold."""
         rows = np.flatnonzero(working)
         sizes, corrected, first = np.zeros(rows.size), np.zeros(rows.size), np.ones(rows.size, dtype=bool)
         leading = np.zeros(rows.size)
@@ -452,10 +452,10 @@ def _replace_rows(state: KinematicState, rows: Array, other: KinematicState) -> 
             value[rows] = theirs[key]
 
 
-def _concatenated(states: list[KinematicState]) -> KinematicState:
-    """The states of consecutive chunks as one."""
-    if len(states) == 1:
-        return states[0]
+def _concatenated(states: list[KinematicState]) -> KinematicState | None:
+    """The states of consecutive chunks as one (None for no chunk)."""
+    if len(states) <= 1:
+        return states[0] if states else None
 
     def joined(parts: list[dict[Any, Array]]) -> dict[Any, Array]:
         return {key: np.concatenate([part[key] for part in parts]) for key in parts[0]}
