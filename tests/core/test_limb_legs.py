@@ -2,11 +2,16 @@
 wrenches from its limb's frames (screwkit.core._program.ProgramBuilder._limb_leg): the same systems
 as the generic span of all its screws and its reciprocal, checked against that path here."""
 
+import importlib.util
+
 import numpy as np
 import pytest
 
 import screwkit as sk
+from screwkit.algebra import compiled as C
+from screwkit.algebra import reference_frame as RF
 from screwkit.core import _program as PR
+from screwkit.core._wrench_pass import canonical
 from screwkit.core.wrench_systems import analyze_table
 from screwkit.graphs.joints import prismatic, spherical, universal
 from screwkit.graphs.jointtable import JointTable
@@ -135,3 +140,28 @@ def test_at_and_near_a_legs_singularity_the_ranks_are_the_generic_paths(tilt):
     np.testing.assert_allclose(shortcut.transmissions, generic.transmissions, rtol=1e-12, atol=1e-15)
     verdicts = _both_ways(lambda: sk.classify(graph).verdict)
     assert verdicts[0] == verdicts[1] and (verdicts[0] == "regular") != singular
+
+
+@pytest.mark.skipif(importlib.util.find_spec("numba") is None, reason="numba is not installed (the `fast` extra)")
+def test_the_compiled_and_numpy_programs_agree_bit_for_bit_on_these_legs(monkeypatch):
+    from screwkit.core import _frames_numba
+
+    tables = [JointTable.from_graph(_gough_stewart_with_leg_one_singular(t)) for t in (0.0, 1e-9, 3e-9, 1e-2)]
+    screws = np.stack([t.screws for t in tables] + [t.screws for t in tables[-1:]])
+    table = canonical(JointTable(tables[0].base, tables[0].platform, tables[0].specs, screws))
+    top = topology(table.base, table.platform, table.specs)
+    centre, length = RF.mechanism_frame(table.screws, table.anchor)
+    scaled = RF.unit_scaled(table.screws, centre, length)
+    requests = (
+        *(("twists", i) for i in range(len(top.nodes))),  # the legs' EXTEND too
+        *(("wrenches", i) for i in top.legs),
+        *(("passive", tuple(plan.siblings)) for plan in top.limbs),
+    )
+    program = PR.frame_program(top, requests)
+    monkeypatch.setitem(C._compiled, "screwkit.core._frames_numba", _frames_numba)
+    compiled = PR.run_program(program, scaled, 1e-9, requests)
+    monkeypatch.setitem(C._compiled, "screwkit.core._frames_numba", None)
+    stepwise = PR.run_program(program, scaled, 1e-9, requests)
+    np.testing.assert_array_equal(compiled[1], stepwise[1])
+    np.testing.assert_array_equal(compiled[0], stepwise[0])
+    assert compiled[1][:, len(top.nodes)].tolist() == [1, 1, 0, 0, 0]  # leg 1's wrench: at, within, beyond
