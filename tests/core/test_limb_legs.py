@@ -6,6 +6,7 @@ import importlib.util
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
 
 import screwkit as sk
 from screwkit.algebra import compiled as C
@@ -19,7 +20,8 @@ from screwkit.graphs.topology import topology
 from screwkit.graphs.twistgraph import twist_graph
 from screwkit.robots.catalog import load_mechanism
 
-from ..mechanisms import GS_BASE, Z, gough_stewart, gough_stewart_points, tsai_3upu, unit
+from ..mechanisms import GS_BASE, Z, gough_stewart, gough_stewart_points, moved, tsai_3upu, unit
+from ..strategies import rigid_motions, unit_factors
 
 FIELDS = (
     "platform_order", "constraint_order", "global_order", "serial", "transmissions", "actuation_rows",
@@ -165,3 +167,13 @@ def test_the_compiled_and_numpy_programs_agree_bit_for_bit_on_these_legs(monkeyp
     np.testing.assert_array_equal(compiled[1], stepwise[1])
     np.testing.assert_array_equal(compiled[0], stepwise[0])
     assert compiled[1][:, len(top.nodes)].tolist() == [1, 1, 0, 0, 0]  # leg 1's wrench: at, within, beyond
+
+
+@settings(max_examples=10, deadline=None)
+@given(motion=rigid_motions(), factor=unit_factors)
+def test_a_legs_wrench_follows_rigid_motions_and_units(motion, factor):
+    for tilt, order in ((0.0, 1), (1e-2, 0)):  # at a leg's singularity (a wrench) and away from it (none)
+        graph = moved(_gough_stewart_with_leg_one_singular(tilt), *motion, factor=factor)
+        analysis = analyze_table(JointTable.from_graph(graph)[None], views=True)
+        assert analysis.frames["leg0:W"][1].tolist() == [order]
+        assert analysis.constraint_order.tolist() == [order]
