@@ -53,7 +53,6 @@ __all__ = [
     "ProgramBuilder",
     "Request",
     "frame_program",
-    "limb_frame",
     "run_program",
     "stacked",
 ]
@@ -213,6 +212,9 @@ class ProgramBuilder:
                     self.slots[key] = self._op(RECIPROCAL, wrenches, 0)
             elif node.kind == "joint":
                 self.slots[key] = self._span(self.generators(index))
+            elif (leg := self._limb_leg(index)) is not None:  # the limb's locked twists and its screw
+                parts = [self.generators(leg[0])[0], (SLOT_ROWS, self.request(("sum", leg[1])), 6)]
+                self.slots[key] = self._sourced(EXTEND, parts)
             else:
                 self.slots[key] = self._chain_sum(node.children)
         return self.slots[key]
@@ -244,9 +246,28 @@ class ProgramBuilder:
                 self.slots[key] = self._sourced(ROD, [g for c in node.children for g in self.generators(c)])
             elif node.kind == "series" and self._joint_and_node(node.children):
                 self.slots[key] = self._contract(node.children)
+            elif (leg := self._limb_leg(index)) is not None:  # the limb's passive wrenches, less one
+                passive, locked = self.request(("passive", leg[1])), self.request(("sum", leg[1]))
+                parts = [self.generators(leg[0])[0], (SLOT_ROWS, passive, 6), (SLOT_ROWS, locked, 6)]
+                self.slots[key] = self._sourced(CONTRACT, parts)  # (the fallback spans the sum, as EXTEND)
             else:
                 self.slots[key] = self._op(RECIPROCAL, self.twists(index), 0)
         return self.slots[key]
+
+    def _limb_leg(self, index: int) -> tuple[int, tuple[int, ...]] | None:
+        """``(actuated joint's node, siblings)`` of a limb whose leg this series node of six or more
+        freedoms is, made of that 1-dof joint and the siblings (a UPS leg), else None: its twists are
+        then the EXTEND of the limb's locked twists, its wrenches the CONTRACT of the limb's passive
+        wrenches (paper 002 Eq. 1 with Eq. 3), frames the limb needs anyway (no span of all its screws)."""
+        node = self.top.nodes[index]
+        if node.kind == "series" and len(node.children) >= 3 and sum(map(self.bound, node.children)) >= 6:
+            for plan in self.top.limbs:
+                rest = [c for c in node.children if c not in plan.siblings]
+                if len(rest) == 1 == len(node.children) - len(plan.siblings) and plan.index == (
+                    self.top.nodes[rest[0]].joint
+                ) and self.top.specs[plan.index].dof == 1:
+                    return rest[0], plan.siblings
+        return None
 
     def _is_rod(self, node: Node) -> bool:
         """A chain of exactly two spherical joints (a rod with a ball at each end)."""
@@ -576,19 +597,3 @@ def stacked(frames: list[Frame]) -> Frame:
     """
     return np.stack([rows for rows, _ in frames], axis=-3), np.stack([order for _, order in frames], axis=-1)
 
-
-def limb_frame(frame: Frame, k: int) -> Frame:
-    """Limb ``k``'s frame from :func:`stacked` frames.
-
-    Parameters
-    ----------
-    frame : tuple of numpy.ndarray
-        Stacked frames.
-    k : int
-        A limb.
-
-    Returns
-    -------
-    tuple of numpy.ndarray
-    """
-    return frame[0][..., k, :, :], frame[1][..., k]
