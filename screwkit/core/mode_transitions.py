@@ -30,7 +30,6 @@ Examples
 
 from __future__ import annotations
 
-import re
 from dataclasses import dataclass
 from typing import Any
 
@@ -38,11 +37,11 @@ import networkx as nx
 import numpy as np
 
 from ..algebra import backend as B
-from ..algebra.motion_type import motion_type
 from ..exceptions import ScrewkitValueError
 from ..graphs.jointtable import JointTable
 from .kinematic_model import KinematicModel
 from .motion import _null_space, newton_closure
+from .operation_modes import _key
 from .singularity import SingularityReport, classify
 from .wrench_systems import WrenchAnalysis, analyze_table
 
@@ -245,8 +244,7 @@ def modes_at(
     classes: dict[tuple[int, str, int], list[int]] = {}
     for i in range(len(batch)):
         one = batch[i]
-        kind = re.sub(r"\s*\(pitch[^)]*\)", "", str(motion_type(one.platform_twists)))  # pitch varies
-        key = (int(one.platform_order), kind, int(one.constraint_order))
+        key = (int(one.platform_order), *_key(one))  # read at the closure's precision, pitch left out
         classes.setdefault(key, []).append(i)
     modes = []
     for (mobility, kind, order), members in sorted(classes.items(), key=lambda item: -len(item[1])):

@@ -56,8 +56,18 @@ class OperationMode:
     reference: bool = False
 
 
+#: Configurations closed by Newton's method to a residual of 1e-9 carry their twists to about that, so
+#: their motion type is read at this tolerance (or the analysis' own, if looser): a pitch of 1e-9 lengths
+#: is round-off, not a helical freedom (Tsai's 3-UPU seen in a half-turned frame once read one of 16
+#: planar configurations "2T1H", pitch -1.4e-9 against a threshold of 7.9e-10).
+CLOSED_RTOL = 1e-6
+
+
 def _key(analysis: WrenchAnalysis) -> tuple[str, int]:
-    label = str(motion_type(analysis.platform_twists)).split(" (pitch")[0]
+    """A closed configuration's motion type (its pitch left out) and constraint order."""
+    twists = analysis.platform_twists  # its rows: a screw system would be read at its own rtol
+    rtol = max(CLOSED_RTOL, analysis.rtol)
+    label = str(motion_type(twists.basis, rtol=rtol, length_scale=twists.length_scale)).split(" (pitch")[0]
     return label, int(analysis.constraint_order)
 
 
