@@ -53,8 +53,11 @@ __all__ = [
     "ProgramBuilder",
     "Request",
     "frame_program",
+    "is_parallelogram",
+    "is_rod",
     "limb_frame",
     "run_program",
+    "spanned_spines",
     "stacked",
 ]
 
@@ -85,6 +88,109 @@ class Program:
     sources: Array
     slots: dict[Request, int]
     last_use: tuple[int, ...]
+
+
+def is_rod(top: Topology, node: Node) -> bool:
+    """A chain of exactly two spherical joints (a rod with a ball at each end).
+
+    Parameters
+    ----------
+    top : Topology
+    node : Node
+        One of its nodes.
+
+    Returns
+    -------
+    bool
+
+    Examples
+    --------
+    >>> from screwkit.graphs.jointtable import JointSpec
+    >>> from screwkit.graphs.topology import topology
+    >>> balls = (JointSpec("S1", "S", "B", "L", 3, False), JointSpec("S2", "S", "L", "E", 3, False))
+    >>> top = topology("B", "E", balls)
+    >>> is_rod(top, top.nodes[top.root])
+    True
+    """
+    members = [top.nodes[c] for c in node.children]
+    return node.kind == "series" and len(members) == 2 and all(
+        child.kind == "joint"
+        and child.joint is not None
+        and top.specs[child.joint].type == "S"
+        and top.specs[child.joint].dof == 3
+        for child in members
+    )
+
+
+def is_parallelogram(top: Topology, node: Node) -> bool:
+    """Two rods in parallel: a parallelogram, whose frames have a closed form (:data:`PARALLELOGRAM`).
+
+    Parameters
+    ----------
+    top : Topology
+    node : Node
+        One of its nodes.
+
+    Returns
+    -------
+    bool
+
+    Examples
+    --------
+    >>> from screwkit.graphs.jointtable import JointSpec
+    >>> from screwkit.graphs.topology import topology
+    >>> balls = (JointSpec("S1", "S", "B", "L", 3, False), JointSpec("S2", "S", "L", "E", 3, False))
+    >>> top = topology("B", "E", balls)
+    >>> is_parallelogram(top, top.nodes[top.root])
+    False
+    """
+    return node.kind == "parallel" and len(node.children) == 2 and all(
+        is_rod(top, top.nodes[c]) for c in node.children
+    )
+
+
+def spanned_spines(top: Topology) -> tuple[tuple[int, tuple[tuple[int, tuple[int, ...]], ...]], ...]:
+    """Per leg, the parallel nodes on its series spine whose wrench frame is the span of their
+    branches' (paper 002 Eq. 2; parallelograms left out): ``((leg position, ((node, branches), ...)),
+    ...)`` for the legs that have any.
+
+    A series chain's wrench system is the intersection of its members' (Eq. 1), so the leg's lies in
+    each such node's: where the branches' constraint systems become dependent the node's, and the
+    leg's, can lose order although each branch keeps its own (the Veloce's sub-platforms); the
+    constraint closeness weighs the leg by them (:mod:`screwkit.core._leg_weights`).
+
+    Parameters
+    ----------
+    top : Topology
+        A series-parallel tree (none for a network).
+
+    Returns
+    -------
+    tuple
+
+    Examples
+    --------
+    >>> from screwkit.graphs.jointtable import JointSpec
+    >>> from screwkit.graphs.topology import topology
+    >>> spanned_spines(topology("B", "E", (JointSpec("R1", "R", "B", "E", 1, True),)))
+    ()
+    """
+    if top.network or top.root is None:
+        return ()
+    found = []
+    for position, leg in enumerate(top.legs):
+        nodes: list[tuple[int, tuple[int, ...]]] = []
+        stack = [leg] if leg != top.root else []
+        while stack:
+            index = stack.pop()
+            node = top.nodes[index]
+            if node.kind == "series":
+                stack.extend(c for c in node.children if top.nodes[c].kind != "joint")
+            elif node.kind == "parallel" and not is_parallelogram(top, node):
+                nodes.append((index, tuple(node.children)))
+        if nodes:
+            found.append((position, tuple(sorted(nodes))))
+    return tuple(found)
 
 
 class ProgramBuilder:
@@ -232,32 +338,19 @@ class ProgramBuilder:
         key = ("wrenches", index)
         if key not in self.slots:
             node = self.top.nodes[index]
-            if node.kind == "parallel" and len(node.children) == 2 and all(
-                self._is_rod(self.top.nodes[c]) for c in node.children
-            ):  # two rods: a parallelogram's wrenches and twists in closed form where it is one
+            if is_parallelogram(self.top, node):  # a parallelogram's wrenches and twists in closed form
                 rods = [(SLOT_ROWS, self.wrenches(c), 6) for c in node.children]
                 self.slots[key] = self._sourced(PARALLELOGRAM, rods)
                 self.slots[("twists", index)] = self._op(COMPANION, self.slots[key], 0)
             elif node.kind == "parallel":
                 self.slots[key] = self._span([(SLOT_ROWS, self.wrenches(c), 6) for c in node.children])
-            elif self._is_rod(node):  # closed form: the line through the two centres
+            elif is_rod(self.top, node):  # closed form: the line through the two centres
                 self.slots[key] = self._sourced(ROD, [g for c in node.children for g in self.generators(c)])
             elif node.kind == "series" and self._joint_and_node(node.children):
                 self.slots[key] = self._contract(node.children)
             else:
                 self.slots[key] = self._op(RECIPROCAL, self.twists(index), 0)
         return self.slots[key]
-
-    def _is_rod(self, node: Node) -> bool:
-        """A chain of exactly two spherical joints (a rod with a ball at each end)."""
-        kinds = [self.top.nodes[c] for c in node.children]
-        return node.kind == "series" and len(kinds) == 2 and all(
-            child.kind == "joint"
-            and child.joint is not None
-            and self.top.specs[child.joint].type == "S"
-            and self.top.specs[child.joint].dof == 3
-            for child in kinds
-        )
 
     def request(self, request: Request) -> int:
         """The slot computing a request (:data:`Request`), recorded on first use.

@@ -34,7 +34,8 @@ from . import _limbs as LK
 from . import _residuals as R
 from . import frames as F
 from ._compound_legs import apart_from_legs, compound_legs, coupled_limbs, leg_of, leg_residuals
-from ._program import Evaluation, Frame, Request, limb_frame, stacked
+from ._leg_weights import weighted_legs
+from ._program import Evaluation, Frame, Request, limb_frame, spanned_spines, stacked
 from .line_search import LINE_RTOL, line_search, nearest_lines
 
 __all__ = ["actuated_screws", "canonical", "checked_dof", "checked_lengths", "scalar", "wrench_pass"]
@@ -274,6 +275,7 @@ def wrench_pass(
             *(("passive", tuple(plan.siblings)) for plan in top.limbs),
             *((("twists", i) for i in range(len(top.nodes))) if views else ()),
             *(("twists", int(key[4:])) for key in wanted if key.startswith("node")),
+            *(("wrenches", i) for _, nodes in spanned_spines(top) for n, c in nodes for i in (n, *c)),
         )
         requests = tuple(dict.fromkeys(requests))
     core = Evaluation(top, scaled, rtol, requests)
@@ -384,6 +386,9 @@ def wrench_pass(
         constraint[0], wrench_rows, legs, apart, serial, centre, length, rtol
     )
     global_frame = (global_rows, global_order)
+    if not top.network and spanned_spines(top):  # legs weighed by their branches' independence
+        weighted = weighted_legs(core, legs, spanned_spines(top))
+        constraint_factor = CK.packed(CK.triangular(np.reshape(weighted, (*batch, -1, 6))))
     closeness_factors = {"constraint": constraint_factor, "actuation": actuation_factor}
     if locked_legs is not None:  # where a compound leg was analysed as a whole
         locked_legs.add_to(global_frame, constraint, wrench_rows, rtol)
