@@ -15,7 +15,12 @@ from typing import Any
 
 import numpy as np
 
+from ..algebra.compiled import compiled_kernels
+
 Array = np.ndarray
+
+#: The compiled twins of :meth:`BatchedProduct.evaluate` and the continuation's corrector.
+KERNELS = "screwkit.core._newton_numba"
 
 
 def _hat(w: Array) -> Array:
@@ -126,6 +131,30 @@ class BatchedProduct:
                 ([self.link_index[link] for link in links], parents, keys, np.array(forwards, dtype=bool))
             )
         self.column_parent = np.array([self.link_index[column.parent] for column in columns], dtype=int)
+        self._kernel_arrays: dict[tuple[str, ...], tuple] = {}
+        self.joint_ptr = np.cumsum([0] + [len(joints[key][2]) for key in names]).astype(np.int64)
+        self.joint_columns = np.array([c for key in names for c in joints[key][2]], dtype=np.int64)
+        self.tree = np.array(  # (child, parent, joint, forward), level by level
+            [[c, p, k, f] for children, parents, keys, forwards in self.levels
+             for c, p, k, f in zip(children, parents, keys, forwards, strict=True)],
+            dtype=np.int64,
+        ).reshape(-1, 4)
+
+    def kernel_arrays(self, offset_keys: list[str]) -> tuple:
+        """The model's arrays for the compiled :func:`screwkit.core._newton_numba.evaluate`, the
+        offsets of the joints ``offset_keys`` stacked in that order."""
+        keys = tuple(offset_keys)
+        if keys not in self._kernel_arrays:
+            slot = np.full(len(self.joint_index), -1, dtype=np.int64)
+            for k, key in enumerate(keys):
+                slot[self.joint_index[key]] = k
+            self._kernel_arrays[keys] = (
+                self.exponential, self.rows, np.array(self.hinges, dtype=np.int64), self.hinge_axes,
+                self.hinge_rods, self.joint_ptr, self.joint_columns, slot, self.tree,
+                np.array(self.roots, dtype=np.int64), self.column_parent.astype(np.int64),
+                len(self.link_index),
+            )
+        return self._kernel_arrays[keys]
 
     def joint_motions(
         self, theta: Array, offsets: dict[str, Array], *, screws: bool = True
@@ -165,6 +194,23 @@ class BatchedProduct:
         """Link displacements ``(B, links, 4, 4)`` (order of ``order``), joint displacements
         ``(B, joints, 4, 4)`` and current screws ``(B, n, 6)`` at ``theta (B, n)``; ``pinned`` places
         the second root (``(B, 4, 4)``)."""
+        count = theta.shape[0]
+        kernels = compiled_kernels(KERNELS, count)
+        if kernels is not None:
+            keys = list(offsets)
+            stacked = np.stack([offsets[key] for key in keys], axis=1) if keys else np.zeros((count, 0, 4, 4))
+            return kernels.evaluate(
+                np.ascontiguousarray(theta, dtype=float),
+                np.ascontiguousarray(stacked, dtype=float),
+                np.zeros((1, 4, 4)) if pinned is None else np.ascontiguousarray(pinned, dtype=float),
+                self.kernel_arrays(keys),
+            )
+        return self.evaluate_numpy(theta, offsets, pinned)
+
+    def evaluate_numpy(
+        self, theta: Array, offsets: dict[str, Array], pinned: Array | None = None
+    ) -> tuple[Array, Array, Array]:
+        """:meth:`evaluate` with numpy over the batch (the compiled kernel's twin)."""
         count = theta.shape[0]
         motions, rows = self.joint_motions(theta, offsets)
         links = np.empty((count, len(self.link_index), 4, 4))

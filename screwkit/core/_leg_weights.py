@@ -1,7 +1,7 @@
 """Legs weighed by how independent their inner branches are: the constraint closeness near a leg's
 own loss of order (private).
 
-A leg with parallel branches on its series spine (:func:`screwkit.core._program.spanned_spines`:
+A leg with parallel branches on its series spine (:func:`spanned_spines`:
 the Veloce's and the H4's sub-platforms, each held by two limbs) has the wrench system the sum of
 its branches' (paper 002 Eq. 2), cut down by the joints in series after it (Eq. 1). Its frame is
 orthonormal, so it keeps unit rows up to the very pose where the branches' systems become
@@ -24,13 +24,15 @@ True
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Sequence
 
 import numpy as np
 
-from ._program import Evaluation
+from ..graphs.topology import Topology
+from ._program import Evaluation, ProgramBuilder
 
-__all__ = ["TAPER", "weighted_legs", "weighted_rows"]
+__all__ = ["TAPER", "spanned_spines", "weighted_legs", "weighted_rows"]
 
 Array = np.ndarray
 
@@ -92,9 +94,12 @@ def weighted_rows(rows: Array, spans: Sequence[tuple[Array, Array]]) -> Array:
     return np.einsum("...ij,...jk->...ik", root, rows)
 
 
-def weighted_legs(core: Evaluation, legs: Array, spines: Sequence[tuple[int, Sequence[tuple[int, Sequence[int]]]]]) -> Array:
+Spines = Sequence[tuple[int, Sequence[tuple[int, Sequence[int]]]]]
+
+
+def weighted_legs(core: Evaluation, legs: Array, spines: Spines) -> Array:
     """The legs' stacked frames ``(..., L, 6, 6)`` with the legs of ``spines``
-    (:func:`~screwkit.core._program.spanned_spines`) weighed (:func:`weighted_rows`).
+    (:func:`spanned_spines`) weighed (:func:`weighted_rows`).
 
     Parameters
     ----------
@@ -128,3 +133,49 @@ def weighted_legs(core: Evaluation, legs: Array, spines: Sequence[tuple[int, Seq
         ]
         out[..., position, :, :] = weighted_rows(out[..., position, :, :], spans)
     return out
+
+
+@functools.lru_cache(maxsize=256)
+def spanned_spines(top: Topology) -> tuple[tuple[int, tuple[tuple[int, tuple[int, ...]], ...]], ...]:
+    """Per leg, the parallel nodes on its series spine whose wrench frame is the span of their
+    branches' (paper 002 Eq. 2; parallelograms, which have a closed form, left out):
+    ``((leg position, ((node, branches), ...)), ...)`` for the legs that have any.
+
+    A series chain's wrench system is the intersection of its members' (Eq. 1), so the leg's lies
+    in each such node's (what :func:`weighted_rows` needs).
+
+    Parameters
+    ----------
+    top : Topology
+        A series-parallel tree (none for a network).
+
+    Returns
+    -------
+    tuple
+
+    Examples
+    --------
+    >>> from screwkit.graphs.jointtable import JointSpec
+    >>> from screwkit.graphs.topology import topology
+    >>> spanned_spines(topology("B", "E", (JointSpec("R1", "R", "B", "E", 1, True),)))
+    ()
+    """
+    if top.network or top.root is None:
+        return ()
+    builder = ProgramBuilder(top)
+    found = []
+    for position, leg in enumerate(top.legs):
+        nodes: list[tuple[int, tuple[int, ...]]] = []
+        stack = [leg] if leg != top.root else []
+        while stack:
+            index = stack.pop()
+            node = top.nodes[index]
+            if node.kind == "series":
+                stack.extend(c for c in node.children if top.nodes[c].kind != "joint")
+            elif node.kind == "parallel" and not (
+                len(node.children) == 2 and all(builder._is_rod(top.nodes[c]) for c in node.children)
+            ):
+                nodes.append((index, tuple(node.children)))
+        if nodes:
+            found.append((position, tuple(sorted(nodes))))
+    return tuple(found)

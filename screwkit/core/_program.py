@@ -53,11 +53,7 @@ __all__ = [
     "ProgramBuilder",
     "Request",
     "frame_program",
-    "is_parallelogram",
-    "is_rod",
-    "limb_frame",
     "run_program",
-    "spanned_spines",
     "stacked",
 ]
 
@@ -88,109 +84,6 @@ class Program:
     sources: Array
     slots: dict[Request, int]
     last_use: tuple[int, ...]
-
-
-def is_rod(top: Topology, node: Node) -> bool:
-    """A chain of exactly two spherical joints (a rod with a ball at each end).
-
-    Parameters
-    ----------
-    top : Topology
-    node : Node
-        One of its nodes.
-
-    Returns
-    -------
-    bool
-
-    Examples
-    --------
-    >>> from screwkit.graphs.jointtable import JointSpec
-    >>> from screwkit.graphs.topology import topology
-    >>> balls = (JointSpec("S1", "S", "B", "L", 3, False), JointSpec("S2", "S", "L", "E", 3, False))
-    >>> top = topology("B", "E", balls)
-    >>> is_rod(top, top.nodes[top.root])
-    True
-    """
-    members = [top.nodes[c] for c in node.children]
-    return node.kind == "series" and len(members) == 2 and all(
-        child.kind == "joint"
-        and child.joint is not None
-        and top.specs[child.joint].type == "S"
-        and top.specs[child.joint].dof == 3
-        for child in members
-    )
-
-
-def is_parallelogram(top: Topology, node: Node) -> bool:
-    """Two rods in parallel: a parallelogram, whose frames have a closed form (:data:`PARALLELOGRAM`).
-
-    Parameters
-    ----------
-    top : Topology
-    node : Node
-        One of its nodes.
-
-    Returns
-    -------
-    bool
-
-    Examples
-    --------
-    >>> from screwkit.graphs.jointtable import JointSpec
-    >>> from screwkit.graphs.topology import topology
-    >>> balls = (JointSpec("S1", "S", "B", "L", 3, False), JointSpec("S2", "S", "L", "E", 3, False))
-    >>> top = topology("B", "E", balls)
-    >>> is_parallelogram(top, top.nodes[top.root])
-    False
-    """
-    return node.kind == "parallel" and len(node.children) == 2 and all(
-        is_rod(top, top.nodes[c]) for c in node.children
-    )
-
-
-def spanned_spines(top: Topology) -> tuple[tuple[int, tuple[tuple[int, tuple[int, ...]], ...]], ...]:
-    """Per leg, the parallel nodes on its series spine whose wrench frame is the span of their
-    branches' (paper 002 Eq. 2; parallelograms left out): ``((leg position, ((node, branches), ...)),
-    ...)`` for the legs that have any.
-
-    A series chain's wrench system is the intersection of its members' (Eq. 1), so the leg's lies in
-    each such node's: where the branches' constraint systems become dependent the node's, and the
-    leg's, can lose order although each branch keeps its own (the Veloce's sub-platforms); the
-    constraint closeness weighs the leg by them (:mod:`screwkit.core._leg_weights`).
-
-    Parameters
-    ----------
-    top : Topology
-        A series-parallel tree (none for a network).
-
-    Returns
-    -------
-    tuple
-
-    Examples
-    --------
-    >>> from screwkit.graphs.jointtable import JointSpec
-    >>> from screwkit.graphs.topology import topology
-    >>> spanned_spines(topology("B", "E", (JointSpec("R1", "R", "B", "E", 1, True),)))
-    ()
-    """
-    if top.network or top.root is None:
-        return ()
-    found = []
-    for position, leg in enumerate(top.legs):
-        nodes: list[tuple[int, tuple[int, ...]]] = []
-        stack = [leg] if leg != top.root else []
-        while stack:
-            index = stack.pop()
-            node = top.nodes[index]
-            if node.kind == "series":
-                stack.extend(c for c in node.children if top.nodes[c].kind != "joint")
-            elif node.kind == "parallel" and not is_parallelogram(top, node):
-                nodes.append((index, tuple(node.children)))
-        if nodes:
-            found.append((position, tuple(sorted(nodes))))
-    return tuple(found)
 
 
 class ProgramBuilder:
@@ -319,6 +212,9 @@ class ProgramBuilder:
                     self.slots[key] = self._op(RECIPROCAL, wrenches, 0)
             elif node.kind == "joint":
                 self.slots[key] = self._span(self.generators(index))
+            elif (leg := self._limb_leg(index)) is not None:  # the limb's locked twists and its screw
+                parts = [self.generators(leg[0])[0], (SLOT_ROWS, self.request(("sum", leg[1])), 6)]
+                self.slots[key] = self._sourced(EXTEND, parts)
             else:
                 self.slots[key] = self._chain_sum(node.children)
         return self.slots[key]
@@ -338,19 +234,51 @@ class ProgramBuilder:
         key = ("wrenches", index)
         if key not in self.slots:
             node = self.top.nodes[index]
-            if is_parallelogram(self.top, node):  # a parallelogram's wrenches and twists in closed form
+            if node.kind == "parallel" and len(node.children) == 2 and all(
+                self._is_rod(self.top.nodes[c]) for c in node.children
+            ):  # two rods: a parallelogram's wrenches and twists in closed form where it is one
                 rods = [(SLOT_ROWS, self.wrenches(c), 6) for c in node.children]
                 self.slots[key] = self._sourced(PARALLELOGRAM, rods)
                 self.slots[("twists", index)] = self._op(COMPANION, self.slots[key], 0)
             elif node.kind == "parallel":
                 self.slots[key] = self._span([(SLOT_ROWS, self.wrenches(c), 6) for c in node.children])
-            elif is_rod(self.top, node):  # closed form: the line through the two centres
+            elif self._is_rod(node):  # closed form: the line through the two centres
                 self.slots[key] = self._sourced(ROD, [g for c in node.children for g in self.generators(c)])
             elif node.kind == "series" and self._joint_and_node(node.children):
                 self.slots[key] = self._contract(node.children)
+            elif (leg := self._limb_leg(index)) is not None:  # the limb's passive wrenches, less one
+                passive, locked = self.request(("passive", leg[1])), self.request(("sum", leg[1]))
+                parts = [self.generators(leg[0])[0], (SLOT_ROWS, passive, 6), (SLOT_ROWS, locked, 6)]
+                self.slots[key] = self._sourced(CONTRACT, parts)  # (the fallback spans the sum, as EXTEND)
             else:
                 self.slots[key] = self._op(RECIPROCAL, self.twists(index), 0)
         return self.slots[key]
+
+    def _limb_leg(self, index: int) -> tuple[int, tuple[int, ...]] | None:
+        """``(actuated joint's node, siblings)`` of a limb whose leg this series node of six or more
+        freedoms is, made of that 1-dof joint and the siblings (a UPS leg), else None: its twists are
+        then the EXTEND of the limb's locked twists, its wrenches the CONTRACT of the limb's passive
+        wrenches (paper 002 Eq. 1 with Eq. 3), frames the limb needs anyway (no span of all its screws)."""
+        node = self.top.nodes[index]
+        if node.kind == "series" and len(node.children) >= 3 and sum(map(self.bound, node.children)) >= 6:
+            for plan in self.top.limbs:
+                rest = [c for c in node.children if c not in plan.siblings]
+                if len(rest) == 1 == len(node.children) - len(plan.siblings) and plan.index == (
+                    self.top.nodes[rest[0]].joint
+                ) and self.top.specs[plan.index].dof == 1:
+                    return rest[0], plan.siblings
+        return None
+
+    def _is_rod(self, node: Node) -> bool:
+        """A chain of exactly two spherical joints (a rod with a ball at each end)."""
+        kinds = [self.top.nodes[c] for c in node.children]
+        return node.kind == "series" and len(kinds) == 2 and all(
+            child.kind == "joint"
+            and child.joint is not None
+            and self.top.specs[child.joint].type == "S"
+            and self.top.specs[child.joint].dof == 3
+            for child in kinds
+        )
 
     def request(self, request: Request) -> int:
         """The slot computing a request (:data:`Request`), recorded on first use.
@@ -669,19 +597,3 @@ def stacked(frames: list[Frame]) -> Frame:
     """
     return np.stack([rows for rows, _ in frames], axis=-3), np.stack([order for _, order in frames], axis=-1)
 
-
-def limb_frame(frame: Frame, k: int) -> Frame:
-    """Limb ``k``'s frame from :func:`stacked` frames.
-
-    Parameters
-    ----------
-    frame : tuple of numpy.ndarray
-        Stacked frames.
-    k : int
-        A limb.
-
-    Returns
-    -------
-    tuple of numpy.ndarray
-    """
-    return frame[0][..., k, :, :], frame[1][..., k]

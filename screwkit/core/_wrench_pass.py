@@ -34,13 +34,32 @@ from . import _limbs as LK
 from . import _residuals as R
 from . import frames as F
 from ._compound_legs import apart_from_legs, compound_legs, coupled_limbs, leg_of, leg_residuals
-from ._leg_weights import weighted_legs
-from ._program import Evaluation, Frame, Request, limb_frame, spanned_spines, stacked
+from ._leg_weights import spanned_spines, weighted_legs
+from ._program import Evaluation, Frame, Request, stacked
 from .line_search import LINE_RTOL, line_search, nearest_lines
 
-__all__ = ["actuated_screws", "canonical", "checked_dof", "checked_lengths", "scalar", "wrench_pass"]
+__all__ = [
+    "actuated_screws", "canonical", "checked_dof", "checked_lengths", "limb_frame", "scalar", "wrench_pass",
+]
 
 Array = np.ndarray
+
+
+def limb_frame(frame: Frame, k: int) -> Frame:
+    """Limb ``k``'s frame from :func:`~screwkit.core._program.stacked` frames.
+
+    Parameters
+    ----------
+    frame : tuple of numpy.ndarray
+        Stacked frames.
+    k : int
+        A limb.
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+    """
+    return frame[0][..., k, :, :], frame[1][..., k]
 
 
 def canonical(table: JointTable) -> JointTable:
@@ -155,7 +174,9 @@ def actuated_screws(top: Topology, screws: Array) -> Array:
     """
     columns = [top.columns[plan.index] for plan in top.limbs]
     signs = np.array([float(plan.sign) for plan in top.limbs])
-    return screws[..., columns, :] * signs[:, None]
+    gathered = screws[..., columns, :]  # a new array: signed in place (no second one)
+    gathered *= signs[:, None]
+    return gathered
 
 
 def scalar(value: Any) -> Any:

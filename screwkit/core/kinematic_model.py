@@ -53,11 +53,12 @@ from typing import Any
 import networkx as nx
 import numpy as np
 
-from ..algebra.rigid_motions import rotation_log
+from ..algebra.compiled import compiled_kernels
+from ..algebra.rigid_motions import hat, rotation_log
 from ..exceptions import ScrewkitValueError
-from ..graphs.jointtable import JointTable
+from ..graphs.jointtable import JointSpec, JointTable
 from ..graphs.twistgraph import graph_frame
-from ._batched_poe import BatchedProduct, rigid_inverse
+from ._batched_poe import KERNELS, BatchedProduct, rigid_inverse
 
 __all__ = ["JointColumn", "KinematicModel", "KinematicState"]
 
@@ -105,6 +106,9 @@ class KinematicState:
         Every joint screw at these joint values.
     motions : dict
         Joint name → its relative displacement ``(B, 4, 4)``.
+    stacked : tuple of numpy.ndarray or None
+        The arrays ``links`` and ``motions`` view, ``(B, links, 4, 4)`` and ``(B, joints, 4, 4)``
+        (the model's link and joint order), when the state was evaluated at once.
     """
 
     theta: Array
@@ -112,6 +116,7 @@ class KinematicState:
     links: dict[Any, Array]
     current: Array
     motions: dict[str, Array] = field(repr=False)
+    stacked: tuple[Array, Array] | None = field(default=None, repr=False)
 
 
 _ROOTS = object()  # the node joined to the base (and the pinned link) that the spanning forest grows from
@@ -172,6 +177,7 @@ class KinematicModel:
 
     def __init__(self, graph: nx.MultiDiGraph, joint_key: str = "joint", *, pinned: Any = None):
         self.point, self.length = graph_frame(graph, joint_key=joint_key)
+        self._point_hat = hat(self.point)
         self._source = (graph, joint_key)
         self._pinned_models: dict[Any, KinematicModel] = {}
         self.base = graph.graph["base"]
@@ -218,6 +224,11 @@ class KinematicModel:
             rows.append(signs)
         self.incidence = np.array(rows).reshape(len(rows), self.size)
         self._product = BatchedProduct(self.columns, self.joints, self.order, self.tree, self.roots)
+        links, joints = self._product.link_index, self._product.joint_index
+        self._loops = np.array(  # (u, v, joint) of each loop, for the compiled residual
+            [[links[self.joints[key][0]], links[self.joints[key][1]], joints[key]] for key in self.closing],
+            dtype=np.int64,
+        ).reshape(-1, 3)
         self.blocks = self._blocks()
 
     def _blocks(self) -> list[tuple[Array, Array]]:
@@ -316,9 +327,14 @@ class KinematicModel:
         >>> model.unscaled(model.columns[0].row) + 0.0
         array([ 0.,  0.,  1.,  0., -5.,  0.])
         """
+        rows = np.asarray(rows, dtype=float)
         s, s0 = rows[..., :3], rows[..., 3:]
-        finite = np.linalg.norm(s, axis=-1, keepdims=True) > 1e-12
-        return np.concatenate([s, np.where(finite, s0 * self.length + np.cross(self.point, s), s0)], axis=-1)
+        out = np.empty(rows.shape)
+        out[..., :3] = s
+        moment = s0 * self.length + s @ self._point_hat.T  # s0 L + p × s
+        finite = np.einsum("...i,...i->...", s, s) > 1e-24
+        out[..., 3:] = np.where(finite[..., None], moment, s0)
+        return out
 
     def to_scaled_points(self, points: Array) -> Array:
         """Points ``(..., 3)`` of the graph's frame in the scaled frame.
@@ -402,6 +418,7 @@ class KinematicModel:
             {link: links[:, i] for link, i in self._product.link_index.items()},
             current,
             {key: motions[:, j] for key, j in self._product.joint_index.items()},
+            (links, motions),
         )
 
     def loop_residual(self, state: KinematicState) -> Array:
@@ -425,6 +442,9 @@ class KinematicModel:
         """
         if not self.closing:
             return np.zeros((state.theta.shape[0], 0))
+        kernels = compiled_kernels(KERNELS, state.theta.shape[0])
+        if kernels is not None and state.stacked is not None:
+            return kernels.loop_residual(*state.stacked, self._loops)
         ends = [self.joints[key][:2] for key in self.closing]
         before = np.stack([state.links[u] for u, _ in ends], axis=1)
         motion = np.stack([state.motions[key] for key in self.closing], axis=1)
@@ -549,27 +569,23 @@ class KinematicModel:
         (3,)
         """
         shape = (state.theta.shape[0],) if shape is None else tuple(shape)
-        rows = self.unscaled(state.current).reshape(*shape, self.size, 6)
+        rows = self.unscaled(state.current.reshape(*shape, self.size, 6))  # a new array: the table's
         specs = {spec.name: spec for spec in reference.specs}
         if set(specs) != set(self.joints):
             raise ScrewkitValueError(
                 f"Expected the joint table of the model's graph, got joints {sorted(specs)[:5]} ..."
             )
-        table_rows = [
-            (u, v, key, specs[key].type, rows[..., indices, :], specs[key].actuated)
+        ordered = tuple(  # the columns run joint by joint in this order (the model's)
+            JointSpec(key, specs[key].type, u, v, len(indices), specs[key].actuated)
             for key, (u, v, indices) in self.joints.items()
-        ]
+        )
         anchor = None
         if reference.anchor is not None:  # it moves with the platform
             g = state.links[self.platform]
             local = self.to_scaled_points(np.asarray(reference.anchor))
             anchor = (np.einsum("bij,j->bi", g[:, :3, :3], local) + g[:, :3, 3]) * self.length + self.point
             anchor = anchor.reshape(*shape, 3)
-        return JointTable.from_rows(
-            reference.base,
-            reference.platform,
-            table_rows,
-            dof=reference.dof,
-            anchor=anchor,
-            mobility=reference.mobility,
+        rows.flags.writeable = False  # (a read-only array that owns its data: the table keeps it)
+        return JointTable(
+            reference.base, reference.platform, ordered, rows, reference.dof, anchor, reference.mobility
         )

@@ -25,6 +25,24 @@ whose path leaves the mechanism's reach, runs into a singularity where Newton's 
 converging, or gives non-finite values is flagged with the reason and the residual — never returned
 as a configuration. All poses of a batch move together (arrays with a leading batch axis).
 
+The predictor-corrector follows Allgower & Georg, *Introduction to Numerical Continuation Methods*,
+2003, Chs. 2-3 (the Moore-Penrose Newton corrector): the secant of the last two steps predicts each
+step (every joint variable, a spherical joint's angles taken before they fold into its offset),
+Newton's method corrects it, and a step is trusted when its corrections stay small: the whole way
+the corrector goes from the predicted values (from the previous configuration on a first step,
+whose first correction is the tangent step) is at most :data:`JUMP_LIMIT`, else the pose is taken
+again in shorter steps. The
+minimum-norm correction lies in the row space of the equations' Jacobian, the orthogonal
+complement of its null space, so an internal motion (a rod's spin about its own axis) never enters
+the measure at first order. A step's iterations stop once the residual is within its tolerance or
+the last correction is small enough that Newton's quadratic convergence leaves a residual of its
+square (the last step's is then checked on the whole model).
+
+When the task fixes its link's whole pose, a step's Newton iterations run in a compiled kernel when
+numba is installed (:mod:`screwkit.core._newton_numba`: the model, the loops' residual and the
+block-by-block correction, pose by pose), else in numpy over the batch (:class:`_PinnedLoops`); the
+two agree to round-off (:func:`screwkit.algebra.compiled.compiled_kernels` chooses).
+
 Examples
 --------
 >>> from screwkit.graphs.joints import revolute
@@ -46,13 +64,16 @@ Examples
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
+from ..algebra.compiled import compiled_kernels
 from ..exceptions import ScrewkitValueError
+from ._batched_poe import KERNELS
 from .kinematic_model import KinematicModel, KinematicState
 from .kinematic_tasks import PoseTask
 
@@ -68,16 +89,28 @@ NEWTON_ITERATIONS = 10
 #: way stop, and of the last step.
 STEP_TOLERANCE = 1e-6
 LAST_STEP_TOLERANCE = 1e-12
+#: The Newton correction (radians, characteristic lengths) below which the iterations of a step on
+#: the way, and of the last step, stop without evaluating the model again: Newton's method converges
+#: quadratically, so the residual left is of the order of the correction's square (the last step's
+#: is then checked, :data:`FINAL_TOLERANCE`). Such a step reports the residual before its last
+#: correction, which :data:`LOST_TOLERANCE` judges: the corrections stay well below it (measured:
+#: 1e-3 on the way left 24 of 2,000 H4 poses flagged as lost, 1e-2 over half).
+STEP_CORRECTION = 1e-4
+LAST_STEP_CORRECTION = 1e-7
+STEP_TOLERANCES = np.array([STEP_TOLERANCE, STEP_CORRECTION])  # (residual, correction)
+LAST_TOLERANCES = np.array([LAST_STEP_TOLERANCE, LAST_STEP_CORRECTION])
 #: The residual below which a configuration is accepted (characteristic lengths, radians).
 FINAL_TOLERANCE = 1e-9
 #: A step whose Newton iterations end above this residual has lost the mechanism.
 LOST_TOLERANCE = 1e-3
 #: The largest Newton correction taken at once (radians, characteristic lengths).
 MAX_CORRECTION = 0.5
-#: The largest correction Newton's method may make after a step's first (tangent) iteration, in
-#: radians or characteristic lengths: beyond it the step may have jumped to another branch of the
-#: loop equations (another assembly or working mode), and the pose is taken again in steps
-#: :data:`RETRY_REFINEMENT` times shorter.
+#: The largest correction Newton's method may make from a step's predicted values (after a first
+#: step's first, tangent, iteration), in radians or characteristic lengths: beyond it the step may
+#: have jumped to another branch of the loop equations (another assembly or working mode), and the
+#: pose is taken again in steps :data:`RETRY_REFINEMENT` times shorter, without the spherical
+#: joints' secant (whose overshoot near a leg's serial singularity once took Ragnar poses to the
+#: other elbow branch when the retry accepted any correction) and without the measure.
 JUMP_LIMIT = 0.2
 #: A spherical joint's angles are folded into its offset once one exceeds this (radians), far from
 #: the gimbal lock of its three exponentials at π/2.
@@ -106,6 +139,9 @@ class ClosedConfigurations:
         The largest loop or task residual (characteristic lengths, radians).
     reasons : numpy.ndarray of str, shape (B,)
         Why a pose was not reached (empty where it was).
+    state : KinematicState or None
+        The whole model at ``theta`` and ``offsets`` (where the loops and the task were checked), when
+        :func:`close_loops` made it.
     """
 
     theta: Array
@@ -113,6 +149,7 @@ class ClosedConfigurations:
     reached: Array
     residual: Array
     reasons: Array
+    state: KinematicState | None = None
 
 
 def _solve_step(jacobian: Array, residual: Array) -> Array:
@@ -144,6 +181,65 @@ class _LoopsAndTask:
         """The correction of the rows ``need`` of the equations' residual and Jacobian."""
         return _solve_step(jacobian[need], residual[need])
 
+    def newton(
+        self, theta: Array, offsets: Array, target: Array, tolerance: Array, working: Array
+    ) -> tuple[Array, Array, Array, Array]:
+        """The corrector of one continuation step: Newton iterations on the poses ``working`` until
+        their largest residual is within ``tolerance[:, 0]`` or their last correction within
+        ``tolerance[:, 1]`` (at most :data:`NEWTON_ITERATIONS`, each correction scaled down to
+        :data:`MAX_CORRECTION`), then the spherical joints' angles of a pose folded into their
+        ``offsets (B, K, 4, 4)`` (:attr:`spherical` order) once one exceeds :data:`RECENTRE_ANGLE`.
+        Updates ``theta`` and ``offsets`` in place; returns, for the poses ``working``, the last
+        residual size, the sum of the corrections after the first (the predictor's own correction),
+        the first correction, and the joint values before the fold."""
+        rows = np.flatnonzero(working)
+        sizes, corrected, first = np.zeros(rows.size), np.zeros(rows.size), np.ones(rows.size, dtype=bool)
+        leading = np.zeros(rows.size)
+        place = np.arange(rows.size)  # the working poses still iterating, as positions in ``rows``
+        for _ in range(NEWTON_ITERATIONS):  # only the poses not yet within the tolerance
+            if place.size == 0:
+                break
+            at = rows[place]
+            state = self.state(theta[at], self.offsets_of(offsets[at]), target[at])
+            residual, jacobian = self.equations(state, target[at])
+            size = np.max(np.abs(residual), axis=1, initial=0.0)
+            sizes[place] = size
+            need = size > tolerance[at, 0]
+            place = place[need]
+            if place.size == 0:
+                break
+            correction = self.correction(jacobian, residual, need)
+            length = np.max(np.abs(correction), axis=1, initial=0.0)
+            correction *= np.minimum(1.0, MAX_CORRECTION / np.maximum(length, 1e-300))[:, None]
+            theta[rows[place]] += correction
+            clipped = np.minimum(length, MAX_CORRECTION)
+            leading[place] = np.where(first[place], clipped, leading[place])
+            corrected[place] += np.where(first[place], 0.0, clipped)
+            first[place] = False
+            place = place[length > tolerance[rows[place], 1]]  # a correction this small: converged
+        spherical, unfolded = self.spherical_columns, theta[rows]
+        if spherical.size:  # fold the spherical joints' angles into their offsets before they grow
+            turned = rows[np.max(np.abs(unfolded[:, spherical]), axis=1) > RECENTRE_ANGLE]
+            if turned.size:
+                new_theta, new_offsets = self.model.recentred(theta[turned], self.offsets_of(offsets[turned]))
+                theta[turned] = new_theta
+                offsets[turned] = np.stack([new_offsets[key] for key in self.spherical], axis=1)
+        return sizes, corrected, leading, unfolded
+
+    @functools.cached_property
+    def spherical(self) -> list[str]:
+        """The spherical joints, in the order of the offsets' second axis."""
+        return [key for key, kind in self.model.types.items() if kind == "S"]
+
+    @functools.cached_property
+    def spherical_columns(self) -> Array:
+        """Their columns."""
+        return np.array([i for key in self.spherical for i in self.model.joints[key][2]], dtype=int)
+
+    def offsets_of(self, stacked: Array) -> dict[str, Array]:
+        """The offsets ``(B, K, 4, 4)`` as the model's dict (views)."""
+        return {key: stacked[:, k] for k, key in enumerate(self.spherical)}
+
 
 class _PinnedLoops(_LoopsAndTask):
     """The same configurations when the task fixes its link's whole pose: that link placed where the
@@ -165,6 +261,9 @@ class _PinnedLoops(_LoopsAndTask):
             loops = self.pinned.incidence[rows[:, ::6] // 6]  # (k, l, n)
             signs = np.take_along_axis(loops, columns[:, None, :], axis=2)
             self.groups.append((rows, columns, signs))
+        product = self.pinned._product
+        self.kernel_blocks = _kernel_blocks(self.pinned)
+        self.kernel_model = product.kernel_arrays(self.spherical)
 
     def state(self, theta: Array, offsets: dict[str, Array], target: Array) -> KinematicState:
         return self.pinned.state(theta, offsets, self.task.displacement(target))
@@ -188,81 +287,100 @@ class _PinnedLoops(_LoopsAndTask):
             out[:, columns.ravel()] = step.reshape(count, -1)
         return out
 
+    def newton(
+        self, theta: Array, offsets: Array, target: Array, tolerance: Array, working: Array
+    ) -> tuple[Array, Array, Array, Array]:
+        kernels = compiled_kernels(KERNELS, int(working.sum()))
+        if kernels is None:
+            return super().newton(theta, offsets, target, tolerance, working)
+        solved, turned = np.ascontiguousarray(theta), np.ascontiguousarray(offsets)
+        unfolded = np.empty_like(solved)
+        sizes, corrected, leading, _ = kernels.pinned_newton(
+            solved, turned, self.task.displacement(target), tolerance, working, NEWTON_ITERATIONS,
+            MAX_CORRECTION, RECENTRE_ANGLE, self.kernel_model, self.pinned._loops, self.kernel_blocks,
+            unfolded,
+        )
+        theta[:], offsets[:] = solved, turned
+        return sizes[working], corrected[working], leading[working], unfolded[working]
+
+
+def _kernel_blocks(pinned: KinematicModel) -> tuple[Array, ...]:
+    """The blocks of a pinned model for :func:`screwkit.core._newton_numba.pinned_newton`: per block its
+    loops, per column of it the loops (local, ascending) that hold the column and their signs."""
+    block_ptr: list[int] = [0]
+    column_ptr: list[int] = [0]
+    entry_ptr: list[int] = [0]
+    block_loops: list[int] = []
+    column_index: list[int] = []
+    entry_loop: list[int] = []
+    entry_sign: list[float] = []
+    for rows, columns in pinned.blocks:
+        loops = rows[::6] // 6
+        block_loops.extend(loops)
+        block_ptr.append(len(block_loops))
+        for column in columns:
+            column_index.append(column)
+            for local, loop in enumerate(loops):
+                if pinned.incidence[loop, column] != 0.0:
+                    entry_loop.append(local)
+                    entry_sign.append(pinned.incidence[loop, column])
+            entry_ptr.append(len(entry_loop))
+        column_ptr.append(len(column_index))
+    whole = (block_ptr, block_loops, column_ptr, column_index, entry_ptr, entry_loop)
+    return (*(np.array(part, dtype=np.int64) for part in whole), np.array(entry_sign, dtype=float))
+
 
 def _continue(
     system: _LoopsAndTask,
     targets: Array,
     theta: Array,
-    offsets: dict[str, Array],
+    offsets: Array,
     start: Array,
     step_length: float,
     jump_limit: float,
-) -> tuple[Array, dict[str, Array], Array, Array]:
+    spherical_secant: bool,
+) -> tuple[Array, Array, Array, Array, KinematicState]:
     """One continuation of a chunk, each pose in equal steps of at most ``step_length`` (a pose whose
-    way is done rests); returns theta, offsets, the residual at the targets (inf where non-finite)
-    and the fraction of the way where each pose was lost (NaN if not)."""
+    way is done rests); returns theta, offsets, the residual at the targets (inf where non-finite),
+    the fraction of the way where each pose was lost (NaN if not) and the whole model's state there."""
     model, task = system.model, system.task
     count = targets.shape[0]
     lost_at = np.full(count, np.nan)
     active = np.ones(count, dtype=bool)
     residual_size = np.zeros(count)
-    spherical = np.array(
-        [i for key, kind in model.types.items() if kind == "S" for i in model.joints[key][2]], dtype=int
-    )
     way = np.max(np.abs(targets - start), axis=1, initial=0.0)
     own = np.clip(np.ceil(way / step_length), 1, MAX_STEPS)
     steps = int(np.max(own, initial=1))
-    previous = theta.copy()  # the joint values one step back: the secant predicts the next step's
+    previous = theta.copy()  # each pose's joint values one step back, and the secant from them
+    secant = np.zeros_like(theta)  # (a spherical joint's taken before its angles fold into its offset)
     extrapolated = np.ones(model.size, dtype=bool)
-    extrapolated[spherical] = False  # (a spherical joint's angles restart at its offset)
+    extrapolated[system.spherical_columns] = spherical_secant
     for step in range(1, steps + 1):
         moving = step <= own
         target = start + (targets - start) * np.minimum(1.0, step / own)[:, None]
         ahead = active & moving & (step > 1)
-        secant = np.where(extrapolated, theta - previous, 0.0)
-        previous = theta.copy()
-        theta[ahead] += secant[ahead]
-        tolerance = np.where(step >= own, LAST_STEP_TOLERANCE, STEP_TOLERANCE)
-        corrected = np.zeros(count)  # the corrections after each pose's first iteration
-        first = np.ones(count, dtype=bool)
+        theta[ahead] += np.where(extrapolated, secant[ahead], 0.0)
+        last = (step >= own)[:, None]  # (residual, correction) tolerances
+        tolerance = np.where(last, LAST_TOLERANCES, STEP_TOLERANCES)
         working = active & moving
-        for _ in range(NEWTON_ITERATIONS):  # only the poses not yet within the tolerance
-            rows = np.flatnonzero(working)
-            if rows.size == 0:
-                break
-            state = system.state(theta[rows], {k: v[rows] for k, v in offsets.items()}, target[rows])
-            residual, jacobian = system.equations(state, target[rows])
-            size = np.max(np.abs(residual), axis=1, initial=0.0)
-            residual_size[rows] = size
-            need = size > tolerance[rows]
-            working[rows[~need]] = False
-            rows = rows[need]
-            if rows.size == 0:
-                break
-            correction = system.correction(jacobian, residual, need)
-            length = np.max(np.abs(correction), axis=1, initial=0.0)
-            correction *= np.minimum(1.0, MAX_CORRECTION / np.maximum(length, 1e-300))[:, None]
-            theta[rows] += correction
-            corrected[rows] += np.where(first[rows], 0.0, np.minimum(length, MAX_CORRECTION))
-            first[rows] = False
+        corrected = np.zeros(count)  # the corrections the predictor left, the measure of a jump
+        residual_size[working], corrected[working], leading, unfolded = system.newton(
+            theta, offsets, target, tolerance, working
+        )
+        if spherical_secant:  # the whole way from the predicted values counts
+            corrected[working] += np.where(ahead[working], leading, 0.0)
+        secant[working] = unfolded - previous[working]
+        previous[working] = theta[working]
         bad = ~np.isfinite(residual_size) | ~np.all(np.isfinite(theta), axis=1)
         newly = active & moving & (bad | (residual_size > LOST_TOLERANCE) | (corrected > jump_limit))
         lost_at[newly] = np.minimum(1.0, step / own[newly])
         active &= ~newly
         theta[~np.all(np.isfinite(theta), axis=1)] = 0.0  # frozen and flagged, never propagated
-        if spherical.size:  # fold the spherical joints' angles into their offsets before they grow
-            turned = np.flatnonzero(np.max(np.abs(theta[:, spherical]), axis=1) > RECENTRE_ANGLE)
-            if turned.size:
-                sub = {k: v[turned] for k, v in offsets.items()}
-                new_theta, new_offsets = model.recentred(theta[turned], sub)
-                theta[turned] = new_theta
-                for key, value in new_offsets.items():
-                    offsets.setdefault(key, np.tile(np.eye(4), (count, 1, 1)))[turned] = value
-    state = model.state(theta, offsets)  # the loops and the task of the whole model, as checked
+    state = model.state(theta, system.offsets_of(offsets))  # the whole model's loops and task, as checked
     residual = _residual(model, task, state, targets)
     size = np.max(np.abs(residual), axis=1, initial=0.0)
     size[~active] = np.maximum(size[~active], LOST_TOLERANCE)  # a lost pose is never accepted
-    return theta, offsets, np.where(np.isfinite(size), size, np.inf), lost_at
+    return theta, offsets, np.where(np.isfinite(size), size, np.inf), lost_at, state
 
 
 def close_loops(
@@ -310,34 +428,65 @@ def close_loops(
     out_offsets: dict[str, list[Array]] = {}
     residual = np.zeros(len(targets))
     reasons = np.full(len(targets), "", dtype=object)
+    states = []
     for begin in range(0, len(targets), CHUNK):
         chunk = slice(begin, begin + CHUNK)
         result = _close_chunk(model, task, targets[chunk])
         out_theta[chunk], residual[chunk], reasons[chunk] = result[0], result[2], result[3]
+        states.append(result[4])
         for key, value in result[1].items():
             out_offsets.setdefault(key, []).append(value)
     reached = residual < FINAL_TOLERANCE
     offsets = {key: np.concatenate(parts) for key, parts in out_offsets.items()}
-    return ClosedConfigurations(out_theta, offsets, reached, residual, reasons)
+    state = _concatenated(states)
+    return ClosedConfigurations(out_theta, offsets, reached, residual, reasons, state)
+
+
+def _replace_rows(state: KinematicState, rows: Array, other: KinematicState) -> None:
+    """``state``'s rows ``rows`` set to ``other``'s, in place."""
+    state.theta[rows] = other.theta
+    state.current[rows] = other.current
+    pairs = ((state.offsets, other.offsets), (state.links, other.links), (state.motions, other.motions))
+    for mine, theirs in pairs:
+        for key, value in mine.items():
+            value[rows] = theirs[key]
+
+
+def _concatenated(states: list[KinematicState]) -> KinematicState | None:
+    """The states of consecutive chunks as one (None for no chunk)."""
+    if len(states) <= 1:
+        return states[0] if states else None
+
+    def joined(parts: list[dict[Any, Array]]) -> dict[Any, Array]:
+        return {key: np.concatenate([part[key] for part in parts]) for key in parts[0]}
+
+    return KinematicState(
+        np.concatenate([state.theta for state in states]),
+        joined([state.offsets for state in states]),
+        joined([state.links for state in states]),
+        np.concatenate([state.current for state in states]),
+        joined([state.motions for state in states]),
+    )
 
 
 def _close_chunk(
     model: KinematicModel, task: Any, targets: Array
-) -> tuple[Array, dict[str, Array], Array, Array]:
+) -> tuple[Array, dict[str, Array], Array, Array, KinematicState]:
     count = len(targets)
     fixes_pose = isinstance(task, PoseTask) and task.fixes_pose and task.coordinates.link != model.base
     system = (_PinnedLoops if fixes_pose else _LoopsAndTask)(model, task)
 
-    def begin(rows: Array) -> tuple[Array, dict[str, Array], Array]:
+    def begin(rows: Array) -> tuple[Array, Array, Array]:
         """The reference configuration for ``rows`` poses, and the task's values there."""
         theta = np.zeros((int(rows.sum()), model.size))
         values = task.values(model.state(theta[:1]))
-        return theta, {}, np.repeat(values, len(theta), axis=0)
+        offsets = np.tile(np.eye(4), (len(theta), len(system.spherical), 1, 1))
+        return theta, offsets, np.repeat(values, len(theta), axis=0)
 
     everything = np.ones(count, dtype=bool)
     theta, offsets, start = begin(everything)
-    theta, offsets, residual, lost_at = _continue(
-        system, targets, theta, offsets, start, MAX_STEP, JUMP_LIMIT
+    theta, offsets, residual, lost_at, state = _continue(
+        system, targets, theta, offsets, start, MAX_STEP, JUMP_LIMIT, True
     )
     missed = ~(residual < FINAL_TOLERANCE)
     if np.any(missed):  # again, in shorter steps
@@ -350,11 +499,11 @@ def _close_chunk(
             retry_start,
             MAX_STEP / RETRY_REFINEMENT,
             math.inf,
+            False,
         )
-        theta[missed] = again[0]
-        for key in set(offsets) | set(again[1]):  # a joint turned in either pass (identity if not)
-            offsets.setdefault(key, np.tile(np.eye(4), (count, 1, 1)))[missed] = again[1].get(key, np.eye(4))
+        theta[missed], offsets[missed] = again[0], again[1]
         residual[missed], lost_at[missed] = again[2], again[3]
+        _replace_rows(state, missed, again[4])
     reasons = np.full(count, "", dtype=object)
     for index in np.flatnonzero(~(residual < FINAL_TOLERANCE)):
         where = lost_at[index]
@@ -367,4 +516,4 @@ def _close_chunk(
             )
         else:
             reasons[index] = "Newton's method gave non-finite joint values on the way to the pose"
-    return theta, offsets, residual, reasons
+    return theta, system.offsets_of(offsets), residual, reasons, state

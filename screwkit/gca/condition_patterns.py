@@ -28,7 +28,7 @@ from ..exceptions import ScrewkitTypeError, ScrewkitValueError
 from .brackets import Bracket, BracketPolynomial
 from .combined_brackets import combined_bracket, combined_bracket_form
 from .dotted import DottedMonomial, DottedSum
-from .exact_proofs import is_superbracket, prove_proportional
+from .exact_proofs import is_irreducible_in_points, is_superbracket, prove_proportional
 from .notation import join_labels
 from .vector_forms import PointKinds, VectorCross, VectorDiff, VectorDot, vector_sum
 
@@ -211,7 +211,13 @@ def _triples(degrees: dict[str, int], allowed: set[tuple[str, ...]]) -> Any:
 
 
 def _collinear_point(p: np.ndarray, q: np.ndarray, finite: bool, t: float) -> np.ndarray | None:
-    """A point of line pq with the weight of its kind (1 finite, 0 infinite), or None."""
+    """A point of line pq with the weight of its kind (1 finite, 0 infinite), or None.
+
+    The point at infinity of a line through one finite and one infinite point is the infinite one
+    (a multiple of it: the plane of the three points then degenerates, as for three collinear
+    points, e.g. a 3-PRS leg whose rod turns parallel to its R axis)."""
+    if not finite and (p[3] == 0) != (q[3] == 0):
+        return (1 + t) * (p if p[3] == 0 else q)
     point = p + t * q if p[3] == 0 or q[3] == 0 else p + t * (q - p) if finite else p - q
     if finite:
         return None if point[3] == 0 else point / point[3]
@@ -248,7 +254,9 @@ def _plane_vector(triple: Sequence[str], points: Mapping[str, np.ndarray]) -> np
     return np.array([(-1) ** (k + 1) * np.linalg.det(np.delete(rows, k, axis=1)) for k in range(4)])
 
 
-def _four_planes(poly: BracketPolynomial, types: PointKinds) -> tuple[sympy.Expr, str] | None:
+def _four_planes(
+    poly: BracketPolynomial, types: PointKinds, lines: Sequence[tuple[str, ...]] | None = None
+) -> tuple[sympy.Expr, str] | None:
     """``det[π₁; π₂; π₃; π₄]``, zero iff four planes share a point (``gca.md`` §5.2, four-plane
     pattern; the octahedral Gough–Stewart platform), recognised among the ways of grouping the
     factor's twelve letters into four planes: screened on two random float configurations, the
@@ -296,8 +304,22 @@ def _four_planes(poly: BracketPolynomial, types: PointKinds) -> tuple[sympy.Expr
         except ScrewkitValueError:
             continue
         names = [join_labels(t) for t in candidate]
-        return expr, f"planes {_listing(names)} pass through one point (possibly at infinity)"
+        statement = f"planes {_listing(names)} pass through one point (possibly at infinity)"
+        return expr, statement + _spanning_lines(candidate, lines or ())
     return None
+
+
+def _spanning_lines(planes: Sequence[tuple[str, ...]], lines: Sequence[tuple[str, ...]]) -> str:
+    """Which of the planes are spanned by two lines of the diagram through a common point (e.g. a
+    3-RPS leg's force and constraint force through its sphere centre), in words, or ""."""
+    spans = []
+    for plane in planes:
+        inside = [line for line in lines if set(line) <= set(plane)]
+        pairs = [(x, y) for x, y in itertools.combinations(inside, 2) if set(x) | set(y) == set(plane)]
+        if pairs:
+            x, y = pairs[0]
+            spans.append(f"{join_labels(plane)} is the plane of lines {join_labels(x)} and {join_labels(y)}")
+    return "; " + ", ".join(spans) if spans else ""
 
 
 def vector_form(
@@ -341,7 +363,7 @@ def vector_form(
         found = combined_bracket_form(combined, types)
         if found is not None:
             return found
-    found = _four_planes(polynomial, types)
+    found = _four_planes(polynomial, types, lines)
     if found is not None:
         return found
     products = []
@@ -358,6 +380,12 @@ def vector_form(
             f"the six lines {_listing([join_labels(line) for line in lines])} are linearly dependent "
             "(they belong to one linear line complex): no factor of the superbracket is simpler"
         )
+        if is_irreducible_in_points(polynomial, types):
+            statement += (
+                f" (it is irreducible in the coordinates of its {len(polynomial.labels)} points taken free, "
+                "proved exactly: no split of them into two groups factors it); which complex, or which "
+                "smaller Grassmann class, is read from the lines at the pose (sk.grassmann_class)"
+            )
     elif lines is not None:
         labels = set(polynomial.labels)
         involved = [join_labels(line) for line in lines if labels & set(line)]

@@ -61,6 +61,7 @@ import sympy
 
 from ..algebra import backend as B
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
+from .brackets import Bracket
 from .condition_patterns import Factor, bracket_polynomial, vector_form
 from .dotted import DottedMonomial
 from .exact_proofs import prove_proportional
@@ -107,6 +108,10 @@ class Condition:
         and roles were given (:func:`label`), else empty.
     evidence : str, default ""
         Which lines and roles the factor involves, the reason for ``label``.
+    split : tuple of Bracket, default ()
+        The brackets whose product the factor is a constant multiple of on the mechanism's sampled
+        configurations (:mod:`screwkit.gca.design_factors`), if any: it vanishes where one of them
+        does.
     """
 
     factor: Factor
@@ -117,6 +122,7 @@ class Condition:
     multiplicity: int = 1
     label: str = ""
     evidence: str = ""
+    split: tuple[Bracket, ...] = ()
 
     def evaluate(self, points: Mapping[str, Any]) -> Any:
         """The vector form on points ``(..., 4)`` (their first three coordinates), vectorised.
@@ -178,6 +184,7 @@ class Condition:
             "multiplicity": self.multiplicity,
             "label": self.label,
             "evidence": self.evidence,
+            "split_on_mechanism": [str(b) for b in self.split],
         }
 
     def to_latex(self) -> str:

@@ -20,6 +20,7 @@ import random
 from collections.abc import Mapping, Sequence
 from fractions import Fraction
 
+import numpy as np
 import sympy
 
 from ..algebra import projective as P
@@ -30,6 +31,7 @@ from .vector_forms import PointKinds, form_value
 __all__ = [
     "PROOF_CHECKS",
     "PROOF_RANGE",
+    "is_irreducible_in_points",
     "is_superbracket",
     "prove_proportional",
     "random_configuration",
@@ -235,3 +237,89 @@ def is_superbracket(poly: BracketPolynomial, lines: Sequence[tuple[str, ...]], t
             return False
     return True
 
+
+
+#: The prime of :func:`is_irreducible_in_points`' modular arithmetic (products of two residues fit in
+#: 64 bits).
+_PRIME = 2_147_483_647
+#: Coordinates of its configurations: integers in [−50, 50], so that every 4×4 bracket (at most
+#: 4!·50³ in size) is exact in floating point before it is reduced modulo the prime.
+_SPLIT_RANGE = 50
+
+
+def _residues(poly: BracketPolynomial, points: Mapping[str, np.ndarray]) -> np.ndarray:
+    """``poly`` modulo :data:`_PRIME` on a batch of integer configurations ``{label: (n, 4)}``."""
+    brackets: dict[tuple[str, ...], np.ndarray] = {}
+    total = np.zeros(len(next(iter(points.values()))), dtype=np.int64)
+    for monomial in poly.terms:
+        coefficient, keys = monomial.canonical
+        scale = coefficient.numerator * pow(coefficient.denominator, -1, _PRIME) % _PRIME
+        value = np.full_like(total, scale)
+        for key in keys:
+            if key not in brackets:
+                rows = np.stack([points[x] for x in key], axis=1).astype(float)
+                brackets[key] = np.rint(np.linalg.det(rows)).astype(np.int64) % _PRIME
+            value = value * brackets[key] % _PRIME
+        total = (total + value) % _PRIME
+    return total
+
+
+def is_irreducible_in_points(poly: BracketPolynomial, types: PointKinds, seed: int = 0) -> bool:
+    """Whether ``poly`` is proved irreducible as a polynomial in the coordinates of its points.
+
+    A bracket polynomial has degree at most 1 in each point's coordinates, and degrees add under
+    products, so a factorization ``poly = g·h`` splits the points into two groups S, S' (g in the
+    points of S, h in those of S'). Then ``f(x_S, x_S') f(y_S, y_S') = f(x_S, y_S') f(y_S, x_S')``
+    for any two configurations x, y. One pair of integer configurations at which this fails
+    (modulo a prime: a non-zero residue is a non-zero integer) refutes every factorization along
+    that split; refuting all ``2^(n−1) − 1`` splits proves irreducibility, over any field. The
+    points are free (no incidence of a diagram is imposed).
+
+    Parameters
+    ----------
+    poly : BracketPolynomial
+    types : PointKinds
+        The finite and infinite labels.
+    seed : int, default 0
+
+    Returns
+    -------
+    bool
+        True when proved; False when some split is not refuted in three tries (the polynomial
+        then factors along it, or the configurations were unlucky), when it has fewer than two
+        points, or when a monomial does not use every point exactly once (not attempted).
+
+    Examples
+    --------
+    >>> from screwkit.gca import superbracket_expansion
+    >>> lines = ["ab", "cd", "ef", "gh", "ij", "kl"]
+    >>> is_irreducible_in_points(superbracket_expansion(lines), PointKinds("abcdefghijkl", ""))
+    True
+    >>> free = PointKinds("abcdefgh", "")
+    >>> is_irreducible_in_points(BracketPolynomial.parse("[abcd][efgh]"), free)
+    False
+    >>> is_irreducible_in_points(BracketPolynomial.parse("[abcd][efgh] - [abce][dfgh]"), free)
+    True
+    """
+    labels = sorted(poly.labels)
+    if len(labels) < 2 or any(sorted(x for b in m.brackets for x in b.labels) != labels for m in poly.terms):
+        return False  # only a polynomial linear in every one of its points (the superbracket's form)
+    rng = np.random.default_rng(seed)
+    # split k: the labels whose bit is set take x, the others y; the last label always takes y
+    splits = np.arange(1, 2 ** (len(labels) - 1))
+    takes_x = (splits[:, None] >> np.arange(len(labels))) & 1 == 1
+    for _ in range(3):
+        x, y = ({z: _random_point(rng, z in types.infinite) for z in labels} for _ in range(2))
+        mixed, swapped = (
+            {z: np.where(mask[:, k, None], first[z], second[z]) for k, z in enumerate(labels)}
+            for mask, first, second in ((takes_x, x, y), (takes_x, y, x))
+        )
+        plain = _residues(poly, {z: np.stack([x[z], y[z]]) for z in labels})
+        refuted = (plain[0] * plain[1] - _residues(poly, mixed) * _residues(poly, swapped)) % _PRIME != 0
+        if plain[0] and plain[1] and refuted.all():
+            return True
+    return False
+
+
+def _random_point(rng: np.random.Generator, infinite: bool) -> np.ndarray:
+    return np.r_[rng.integers(-_SPLIT_RANGE, _SPLIT_RANGE + 1, size=3), 0 if infinite else 1]

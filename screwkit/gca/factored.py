@@ -180,6 +180,22 @@ def _dotted(item: DottedMonomial, places: tuple[tuple[int, int], tuple[int, int]
     return DottedMonomial(item.brackets, dots, item.coefficient)
 
 
+def _written_as(item: DottedMonomial, swapped: DottedMonomial, rules: _Interchange) -> list[Bracket]:
+    """The brackets of the term of ``swapped``'s expansion that stands for ``item``.
+
+    That is ``swapped``'s own brackets, unless one of them is zero (a letter repeated by the
+    exchange): the exchange then pairs ``item`` with another term of the expansion, the one equal to
+    ``item`` up to equal brackets and sign (e.g. a 3-RPS whose exchange c ↔ h writes ``[cefc]``).
+    """
+    if any(k for row in item.dots for k in row) or all(len(set(b)) == 4 for b in swapped.brackets):
+        return [Bracket(b) for b in swapped.brackets]
+    key = rules.canonical(item.expand())
+    for term in swapped.expand().terms:
+        if rules.canonical(BracketPolynomial([term])) in (key, -1 * key):
+            return list(term.brackets)
+    return [Bracket(b) for b in swapped.brackets]
+
+
 def _pair_dotted(
     items: list[DottedMonomial], rules: _Interchange
 ) -> tuple[list[DottedMonomial], list[tuple[Bracket, Bracket]]]:
@@ -214,7 +230,7 @@ def _pair_dotted(
                 if canonical(dotted) != forms[i] + forms[j]:
                     continue
                 old = [Bracket(b) for b in items[j].brackets]
-                for pair in rules.differences(old, [Bracket(b) for b in swapped.brackets]):
+                for pair in rules.differences(old, _written_as(items[j], swapped, rules)):
                     if pair not in substitutions:
                         substitutions.append(pair)
                 items[i] = dotted

@@ -161,6 +161,9 @@ class RedundantSuperbracket:
     vanishing = _joined("vanishing", "Per condition, whether it vanishes at the pose.")
     constant = _joined("constant", "Per condition, whether it never vanishes on the mechanism.")
     undefined = _joined("undefined", 'Per condition, why it has no value at the pose, or "".')
+    split_at_pose = _joined(
+        "split_at_pose", 'Per condition, which brackets of its split vanish at the pose, or "".'
+    )
 
     @property
     def subset_of(self) -> tuple[int, ...]:

@@ -65,6 +65,11 @@ class SuperbracketAnalysis:
     undefined : tuple of str
         Per condition: why it has no value at the pose (a point of the diagram that does not exist
         there, e.g. on a limb at a serial singularity), or "".
+    split_at_pose : tuple of str
+        Per condition that splits on the mechanism (:attr:`Condition.split
+        <screwkit.gca.conditions.Condition.split>`), which of its brackets vanish at the pose, e.g.
+        "here [abfd] = 1.4e-10 (vanishes), [abfh] = -0.61" (each relative to its median size on the
+        generic samples, as :attr:`vanishing`); "" for the others.
     constant : tuple of bool
         Per condition: True when it takes one non-zero magnitude (within :data:`INCIDENCE_RTOL`) on
         every generic sample and at the pose: a structural factor of this mechanism that never vanishes
@@ -83,6 +88,7 @@ class SuperbracketAnalysis:
     vanishing: tuple[bool, ...] = ()
     constant: tuple[bool, ...] = ()
     undefined: tuple[str, ...] = ()
+    split_at_pose: tuple[str, ...] = ()
 
     @property
     def representation(self) -> tuple[str, ...]:
@@ -162,14 +168,16 @@ class SuperbracketAnalysis:
                     "undefined_at_pose": reason,
                     "vanishes_at_pose": vanishes,
                     "never_vanishes": constant,
+                    "split_at_pose": split,
                 }
-                for c, label, value, vanishes, constant, reason in zip(
+                for c, label, value, vanishes, constant, reason, split in zip(
                     self.conditions,
                     self.labels,
                     self.values,
                     self.vanishing,
                     self.constant,
                     self.undefined,
+                    self.split_at_pose or ("",) * len(self.conditions),
                     strict=True,
                 )
             ],
@@ -270,6 +278,7 @@ def superbracket_analysis(
     ]
     simplification = min(candidates, key=lambda c: (len(c.factored.rest.terms), len(c.survivors)))
     from .conditions import conditions, given_couples
+    from .design_factors import with_design_splits
 
     found = conditions(
         simplification.factored,
@@ -280,6 +289,7 @@ def superbracket_analysis(
     )
     found = _checked_kinds(found, in_lengths[-1], diagram, collinear)
     found = given_couples(found, diagram.lines, diagram.roles, diagram.infinite)
+    found = with_design_splits(found, drawn, diagram.finite, diagram.infinite)
     labels = tuple(c.label for c in found)
     at_pose = _centred(diagram.coordinates)  # the points that exist at the pose
     missing = [sorted(set(c.vectors) - set(at_pose)) for c in found]
@@ -303,9 +313,27 @@ def superbracket_analysis(
         )
         for sampled, value, size in zip(on_samples, values, typical, strict=True)
     )
+    split_at_pose = tuple(_split_at_pose(c.split, at_pose, drawn) for c in found)
     return SuperbracketAnalysis(
-        diagram, simplification, found, labels, values, collinear, vanishing, constant, undefined
+        diagram, simplification, found, labels, values, collinear, vanishing, constant, undefined,
+        split_at_pose,
     )
+
+
+def _split_at_pose(
+    split: tuple[Any, ...], at_pose: Mapping[str, Array], drawn: list[dict[str, Array]]
+) -> str:
+    """Which brackets of a split factor vanish at the pose, in words ("" if none split it or a point
+    is missing there)."""
+    if not split or any(x not in at_pose for b in split for x in b.labels):
+        return ""
+    parts = []
+    for bracket in dict.fromkeys(split):
+        value = float(bracket.evaluate(at_pose))
+        size = B.median(np.abs([float(bracket.evaluate(sample)) for sample in drawn]))
+        vanishes = abs(value) <= VANISHING_RTOL * size
+        parts.append(f"{bracket} = {value:.6g}" + (" (vanishes)" if vanishes else ""))
+    return "here " + ", ".join(parts)
 
 
 def _checked_kinds(

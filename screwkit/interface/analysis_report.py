@@ -430,7 +430,7 @@ class AnalysisReport:
                         f"  subset {subsets[index] + 1}: {label} factor {condition.factor} = 0 (singular "
                         f"only where every subset has a vanishing factor){flag}"
                     )
-                out.append(f"    {condition.statement}")
+                out += [f"    {text}" for text in (condition.statement, result.split_at_pose[index]) if text]
                 here = f"{value:.6g}" if math.isfinite(value) else "not defined: " + result.undefined[index]
                 out.append(f"    vector form: {condition.expression} = 0   (here: {here})")
         out += ["", "verdict", *("  " + line for line in str(self.verdict).splitlines())]

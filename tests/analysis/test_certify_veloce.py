@@ -20,7 +20,6 @@ how independent the sub-platform's limbs' couples are).
 from __future__ import annotations
 
 import numpy as np
-import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 

@@ -144,4 +144,16 @@ def general_three_upu(position):
 def test_a_general_three_upu_states_its_actuation_factor():
     report = sk.analyze(general_three_upu([0.1, 0.05, 0.8]))
     statements = {c.label: c.statement for c in report.superbracket.conditions}
-    assert statements["actuation"] == "the directions of lines ab, cd and ef are parallel to one plane"
+    # on this design (a translating platform parallel to the base) the factor is a constant multiple
+    # of [abce]: the leg directions are parallel to one plane only with the platform in the base plane
+    assert statements["actuation"].startswith("the directions of lines ab, cd and ef are parallel to one plane; ")
+    assert statements["actuation"].endswith(
+        "on this mechanism it is a constant multiple of [abce] (the same ratio on all 12 sampled configurations: "
+        "a relation of the design that is no incidence of the diagram, checked numerically), i.e. of "
+        "((b − a) × (c − a))·(e − a), so it vanishes exactly where a, b, c and e are coplanar"
+    )
+    # a, c, e are the base U centres and b a platform one: with the platform lowered into the base
+    # plane (z = 0) the three legs are horizontal, and the factor vanishes there
+    lowered = sk.analyze(general_three_upu([0.1, 0.05, 0.0])).superbracket
+    assert lowered.vanishing[[c.label for c in lowered.conditions].index("actuation")]
+    assert not report.superbracket.vanishing[[c.label for c in report.superbracket.conditions].index("actuation")]

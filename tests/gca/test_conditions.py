@@ -336,6 +336,11 @@ def test_squared_factor_is_one_condition_with_multiplicity_two():
         # 3-RPS: base joints a, b, c, sphere centres p, q, r, R-axis directions u, v, w; constraint
         # forces through the sphere centres along the R axes; leg planes apu, … and the platform
         ("3-RPS", ["ap", "bq", "cr", "pu", "qv", "rw"], "abcpqr", "uvw", ["apu", "bqv", "crw", "pqr"]),
+        # the same pencils written from the sphere centres a, c, e with the leg directions b, d, f and
+        # the R axes g, h, i at infinity (a 3-RPS or 3-PRS twist graph's diagram): each leg plane holds
+        # one finite point, and its degenerate position (g onto the point at infinity of ab) is b itself
+        ("3-RPS/3-PRS from the centres", ["ab", "cd", "ef", "ag", "ch", "ei"], "ace", "bdfghi",
+         ["abg", "ace", "cdh", "efi"]),
     ],
 )
 def test_four_planes_through_one_point(name, lines, finite, infinite, planes):

@@ -20,8 +20,11 @@ from screwkit.gca import (
 from ..gca_references import (
     H4_DECLARED,
     build,
+    generic_points,
     h4_sampler,
+    module_terms,
     polynomials,
+    reference_value,
     stacked,
 )
 
@@ -56,6 +59,24 @@ def test_collect_factors_uses_the_declared_incidences():
     factored = collect_factors(p, **H4_DECLARED)
     samples = stacked(h4_sampler, 20, seed=21)
     np.testing.assert_allclose(factored.evaluate(samples), p.evaluate(samples), rtol=1e-12)
+
+
+def test_collect_factors_pairs_a_term_whose_exchange_repeats_a_letter():
+    """A 3-RPS superbracket (a, c, e the sphere centres; b, d, f the leg directions; g, h, i the R
+    axes) once stopped with StopIteration: exchanging c and h in ``[abcg][dche][afei]`` writes the
+    zero bracket [cefc], and the term it pairs with is another one of that dotted expansion. The
+    factored form must equal the polynomial (numpy determinants on random points)."""
+    poly = BracketPolynomial.parse(
+        "[abcd][efac][ghei] - [abcd][efah][gcei] - [abcd][efgc][ahei] + [abcd][efgh][acei] "
+        "- [abce][dfag][chei] + [abce][dagc][fhei] - [abce][dagh][fcei] + [abcf][deag][chei] "
+        "+ [abcg][defc][ahei] - [abcg][defh][acei] + [abde][cfag][chei] + [abde][cagh][fcei] "
+        "- [abdf][ceag][chei] + [abdg][cefh][acei]"
+    )
+    factored = collect_factors(poly, finite="ace", infinite="bdfghi")
+    assert factored.expand() == poly
+    points = generic_points(np.random.default_rng(5), (8,), labels="abcdefghi", infinite="bdfghi")
+    expected = np.asarray(reference_value(module_terms(poly), points), dtype=float)
+    np.testing.assert_allclose(factored.evaluate(points), expected, rtol=1e-10)
 
 
 # products of sums and powers (collect_factors, step 4) ---------------------------------------------
