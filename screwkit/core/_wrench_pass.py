@@ -34,6 +34,7 @@ from . import _limbs as LK
 from . import _residuals as R
 from . import frames as F
 from ._compound_legs import apart_from_legs, compound_legs, coupled_limbs, leg_of, leg_residuals
+from ._leg_weights import spanned_spines, weighted_legs
 from ._program import Evaluation, Frame, Request, stacked
 from .line_search import LINE_RTOL, line_search, nearest_lines
 
@@ -295,6 +296,7 @@ def wrench_pass(
             *(("passive", tuple(plan.siblings)) for plan in top.limbs),
             *((("twists", i) for i in range(len(top.nodes))) if views else ()),
             *(("twists", int(key[4:])) for key in wanted if key.startswith("node")),
+            *(("wrenches", i) for _, nodes in spanned_spines(top) for n, c in nodes for i in (n, *c)),
         )
         requests = tuple(dict.fromkeys(requests))
     core = Evaluation(top, scaled, rtol, requests)
@@ -405,6 +407,9 @@ def wrench_pass(
         constraint[0], wrench_rows, legs, apart, serial, centre, length, rtol
     )
     global_frame = (global_rows, global_order)
+    if not top.network and spanned_spines(top):  # legs weighed by their branches' independence
+        weighted = weighted_legs(core, legs, spanned_spines(top))
+        constraint_factor = CK.packed(CK.triangular(np.reshape(weighted, (*batch, -1, 6))))
     closeness_factors = {"constraint": constraint_factor, "actuation": actuation_factor}
     if locked_legs is not None:  # where a compound leg was analysed as a whole
         locked_legs.add_to(global_frame, constraint, wrench_rows, rtol)

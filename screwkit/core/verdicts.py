@@ -31,7 +31,11 @@ changes of unit; 0 at the singularity; computed when first asked,
 :attr:`~screwkit.core.wrench_systems.WrenchAnalysis.closeness`: the labels do not need them):
 
 * ``constraint``: σ_c0 / σ_1 of orthonormal bases of the compound legs' constraint systems,
-  stacked, with ``c0 = 6 − dof`` (about the reference point, moments over the length);
+  stacked, with ``c0 = 6 − dof`` (about the reference point, moments over the length); a leg
+  with parallel branches on its spine (the Veloce's and the H4's sub-platforms, the McGill SMG's
+  parallelograms) weighed by how independent its branches' systems are
+  (:mod:`screwkit.core._leg_weights`: unchanged while their span is well conditioned, falling to 0
+  where the leg loses order; an orthonormal basis alone keeps unit rows up to that pose);
 * ``actuation``: σ_6 / σ_1 of those bases stacked with the unit actuation wrenches (the wrench of
   a limb whose actuator shares a link with others, less its part in its compound leg's constraint
   system: otherwise the H4 near a vertical parallelogram plane would look near-singular,

@@ -102,9 +102,16 @@ def test_core_constraint_closeness_is_the_independent_couples_angle_and_eq6_is_n
     poses = poses[V4.reachable(poses)][:2000]
     assert len(poses) == 2000
     closeness = V4.at(poses).singularities.closeness["constraint"]
-    # the core's closeness is tan(theta/2), theta the angle between the independent couples (<= 90 deg)
+    # the core's closeness is tan(theta/2), theta the angle between the independent couples (<= 90 deg),
+    # where the limbs under each couple's sub-platform are far from dependent; where two of them come
+    # within a tenth (core _leg_weights.TAPER) the leg's couple is weighed by that span: 7 % of these
+    # poses, at most 0.2 % lower there (the couple needs little of the weak direction; it would fall to
+    # 0 only where the sub-platform loses its couple)
     cosines = np.array([abs(np.dot(*couples(pose))) for pose in poses])
-    np.testing.assert_allclose(closeness, np.sqrt((1 - cosines) / (1 + cosines)), atol=1e-9)
+    half_angle = np.sqrt((1 - cosines) / (1 + cosines))
+    equal = np.abs(closeness - half_angle) <= 1e-9
+    assert equal.mean() > 0.9
+    assert np.all(closeness[~equal] <= half_angle[~equal]) and np.all(closeness >= 0.998 * half_angle)
     # the enclosed function vanishes with them: its sign is the sign of j . (n_4 x n_3)
     values = FourLimbModel.of(V4).values(poses)["constraint"]
     rods = V4.configuration(poses).w

@@ -12,14 +12,14 @@ rods' chains), each sub-platform's (the intersection of its limbs'), each branch
 revolute joint about k), the constraint wrench system of the end effector as the span of the branches'
 reciprocals (null spaces under the reciprocal product), and its order. At a pose built so that
 lambda_I = 0 the order drops from 2 to 1: the zeros are constraint singular, the derivation holds and the
-core's verdict agrees; the core's constraint *closeness* does not see them (1.0 at 1e-3 mm from one):
-a defect of the measure, recorded as a strict xfail below.
+core's verdict agrees, and its constraint closeness falls linearly to 0 at them (it once read 1.0 at 1e-3
+mm from one: each leg's orthonormal frame kept a unit couple up to the drop; the closeness now also reads
+how independent the sub-platform's limbs' couples are).
 """
 
 from __future__ import annotations
 
 import numpy as np
-import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -118,17 +118,26 @@ def test_solved_generic_zero_is_constraint_singular_only():
     assert VELOCE.at(SOLVED[None]).codes[0] == 1  # the core: constraint, nothing else
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="core defect: the constraint closeness is sigma_c0/sigma_1 of the compound legs' constraint "
-    "frames stacked (core/_wrench_pass.py passes core.wrenches(leg) to core/_closing.py closing()), each "
-    "leg's frame orthonormal (core.frames.reciprocal): branch I's couple keeps unit length up to the pose "
-    "where the branch loses it, so the closeness reads 1.0 at 1e-3 mm from a constraint singularity",
-)
-def test_core_constraint_closeness_falls_near_the_constraint_singularity():
-    near = SOLVED + np.array([1e-3, 0.0, 0.0, 0.0])
-    assert abs(lambdas(near)[0]) < 1e-5 and systems(near)[2] == 2  # regular, 1e-3 mm from the singular set
-    assert VELOCE.at(near[None]).singularities.closeness["constraint"][0] < 1e-2
+def test_core_constraint_closeness_falls_linearly_to_the_constraint_singularity():
+    # the closeness reads the gap of sub-platform I's span of its limbs' couples (core branch_gap):
+    # proportional to the distance from the zero of lambda_I (a simple zero), 1 -> 1e-3 mm
+    offsets = np.array([1e-3, 1e-2, 1e-1, 1.0])
+    near = SOLVED + offsets[:, None] * np.array([1.0, 0.0, 0.0, 0.0])
+    assert all(systems(pose)[2] == 2 for pose in near)  # regular at every one of them
+    closeness = VELOCE.at(near).singularities.closeness["constraint"]
+    assert closeness[0] < 1e-4
+    np.testing.assert_allclose(closeness[:-1] / closeness[1:], 0.1, rtol=0.05)  # linear in the distance
+
+
+def test_map_loci_find_the_constraint_surface_of_the_slice():
+    # a sampled map once drew only the actuation locus here; each constraint point found lies on
+    # lambda_I = 0 of the independent model (a sign change of lambda_I across 0.5 mm in x)
+    found = sk.loci(VELOCE, x=("x", 300, 560, 60), y=("z", -300, -200, 30), fixed={"y": -545.2, "phi": -1.8})
+    (constraint,) = [locus for locus in found if locus.kind == "constraint"]
+    assert len(constraint.points) > 20
+    for x, z in constraint.points:
+        below, above = (lambdas([x + dx, -545.2, z, -1.8])[0] for dx in (-0.5, 0.5))
+        assert below * above < 0
 
 
 def test_enclosed_functions_are_the_independent_factors_and_det_a():
