@@ -58,7 +58,7 @@ from ..algebra.rigid_motions import hat, rotation_log
 from ..exceptions import ScrewkitValueError
 from ..graphs.jointtable import JointSpec, JointTable
 from ..graphs.twistgraph import graph_frame
-from ._batched_poe import KERNELS, BatchedProduct, rigid_inverse
+from ._batched_poe import KERNELS, BatchedProduct, orthonormal_axes, rigid_inverse
 
 __all__ = ["JointColumn", "KinematicModel", "KinematicState"]
 
@@ -126,18 +126,6 @@ def _unit(v: Array) -> Array:
     return v / np.linalg.norm(v)
 
 
-
-def _orthonormal_axes(rows: Array) -> Array:
-    """A spherical joint's three screws ``(..., 3, 6)`` (lines through its centre) recombined into
-    lines along orthonormal directions through that centre: the same 3-system, written as a catalog
-    writes a ball. Its carried axes (a rotation offset times three axes) drift from orthogonal, and
-    the scaled frame's length (the axes' root-mean-square distance from the reference point) reads
-    the basis: ``Σ |(c − p) × s_i|²`` is ``2 |c − p|²`` only over orthonormal ``s_i``. The rows are
-    ``R⁻ᵀ`` times the given ones, ``R`` the triangle of the directions' QR factorization (a linear
-    combination of lines through ``c`` is one through ``c``)."""
-    directions = np.swapaxes(rows[..., :3], -1, -2)
-    triangle = np.linalg.qr(directions)[1]
-    return np.linalg.solve(np.swapaxes(triangle, -1, -2), rows)
 
 class KinematicModel:
     """The product-of-exponentials model of a twist graph about its scaled frame (module docstring).
@@ -585,7 +573,7 @@ class KinematicModel:
         rows = self.unscaled(state.current.reshape(*shape, self.size, 6))  # a new array: the table's
         for key, (_, _, indices) in self.joints.items():  # a ball's axes orthonormal, as a catalog's
             if self.types[key] == "S":
-                rows[..., indices, :] = _orthonormal_axes(rows[..., indices, :])
+                rows[..., indices, :] = orthonormal_axes(rows[..., indices, :])
         specs = {spec.name: spec for spec in reference.specs}
         if set(specs) != set(self.joints):
             raise ScrewkitValueError(
