@@ -52,7 +52,12 @@ for _name in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS", "NUM
 
 import argparse  # noqa: E402
 import resource  # noqa: E402
+import sys  # noqa: E402
 import time  # noqa: E402
+from pathlib import Path  # noqa: E402
+
+# this checkout's screwkit (not an installed one) and the tests' mechanisms
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 import numpy as np  # noqa: E402
 from _timing import best_of, interleaved_medians  # noqa: E402  (bench/ is the script folder)
@@ -61,6 +66,7 @@ import screwkit as sk  # noqa: E402
 from screwkit import workspace as W  # noqa: E402
 from screwkit.analysis.quantities import conditions_of  # noqa: E402
 from screwkit.gca.diagram_points import diagram_points  # noqa: E402
+from tests.mechanisms import tsai_3upu  # noqa: E402
 
 
 def poses_of(posed):
@@ -71,6 +77,10 @@ def h4_graph():
     return sk.mechanism(sk.load_mechanism("h4").twist_graph(), platform_point=[0, 0, -750])
 
 
+def tsai_graph():
+    return sk.mechanism(tsai_3upu([0.1, 0.05, 1.0]))
+
+
 #: The condition maps compared with the core: name, mechanism, the grid's x and y axes (degrees for
 #: angles) and its fixed coordinates.
 CONDITION_MAPS = (
@@ -79,6 +89,7 @@ CONDITION_MAPS = (
      {"x": 0, "y": 0}),
     ("Delta", lambda: sk.load_mechanism("delta"), ("x", -300, 300, 20), ("z", -1150, -850, 20), {"y": 0}),
     ("H4 graph", h4_graph, ("z", -800, -700, 30), ("phi", -20, 20, 30), {"x": 0, "y": 0}),
+    ("3-UPU graph", tsai_graph, ("x", -0.2, 0.2, 30), ("z", 0.8, 1.1, 30), {"y": 0}),
 )
 
 
