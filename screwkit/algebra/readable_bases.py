@@ -30,6 +30,7 @@ array([[[ 0. ,  0. ,  0. ,  0. ,  0. ,  1. ]],
 
 from __future__ import annotations
 
+import functools
 from typing import Any
 
 import numpy as np
@@ -102,8 +103,13 @@ def readable_bases(rows: Any, orders: Any, *, rtol: float, length_scale: Any) ->
     if RTOL_RANGE[0] <= rtol <= RTOL_RANGE[1]:
         for order in (1, 2, 3):  # a system of couples has at most three
             index = np.flatnonzero(orders == order)
+            if order == 1 and index.size:  # one couple: in closed form where its first coordinate is clear
+                basis, taken = _one_couple(rows[index, 0], rtol, length[index])
+                found[index[taken], 0] = basis[taken]
+                done[index[taken]] = True
+                index = index[~taken]
             if index.size:
-                basis, taken = _couple_bases(rows[index, :order], rtol, length[index])
+                basis, taken = _couples(rows[index, :order], rtol, length[index])
                 found[index[taken], :order] = basis[taken]
                 done[index[taken]] = True
     for i in np.flatnonzero(~done):
@@ -112,10 +118,46 @@ def readable_bases(rows: Any, orders: Any, *, rtol: float, length_scale: Any) ->
     return found
 
 
-def _couple_bases(rows: Array, rtol: float, length: Array) -> tuple[Array, Array]:
+def _one_couple(rows: Array, rtol: float, length: Array) -> tuple[Array, Array]:
+    """The readable bases ``(p, 6)`` of systems of one couple ``(p, 6)``, and where they are those
+    of ``readable_basis``: the SVD's unit moment ``−sign(m₁) m / |m|`` (module docstring) where
+    its first coordinate is clear, the frame's axis it lies along within ``1e3 rtol``, else that."""
+    scaled = np.ldexp(rows, -_binary_exponents(rows))  # as readable_basis: each row times a power of 2
+    directions, moments = scaled[:, :3], scaled[:, 3:]
+    size = np.sqrt(np.einsum("pi,pi->p", moments, moments))
+    # the unit row's direction (its size bounds every rank decision the directions enter)
+    direction = np.linalg.norm(directions, axis=-1)
+    spread = direction / np.hypot(size / length, direction)
+    clear = (size > 0) & (np.abs(moments[:, 0]) >= CLEAR * size) & _svd_of_a_row_is_householder()
+    with np.errstate(invalid="ignore", divide="ignore"):
+        vector = -np.sign(moments[:, :1]) * moments / size[:, None]
+    squares = vector**2
+    gaps = np.sqrt(squares @ (1.0 - np.eye(3)))  # |e − v (v·e)| for the frame's axes e
+    threshold = 1e3 * rtol
+    inside = gaps <= threshold
+    along = inside.any(axis=-1)
+    couple = np.where(along[:, None], np.eye(3)[np.argmax(inside, axis=-1)], vector)
+    taken = clear & np.all((gaps * MARGIN <= threshold) | (gaps > MARGIN * threshold), axis=-1)
+    taken &= (spread + ROUND_OFF) <= rtol / MARGIN
+    taken &= spread + np.where(along, gaps.min(axis=-1), 0.0) + ROUND_OFF <= min(threshold, 1e-3) / MARGIN
+    couple = couple / np.linalg.norm(couple, axis=-1)[:, None]
+    return np.concatenate([np.zeros_like(couple), couple], axis=-1), taken
+
+
+@functools.lru_cache(maxsize=1)
+def _svd_of_a_row_is_householder() -> bool:
+    """Whether numpy's SVD of a row ``a`` ``(1 × 3)`` gives ``vt = −sign(a₁) a / |a|`` (LAPACK's
+    Householder reflector ``a / β`` with ``β = −sign(a₁) |a|``; the ``1 × 1`` singular value's sign
+    goes to ``u``), checked once on rows of every sign pattern; else one couple takes the steps."""
+    rows = np.random.default_rng(0).normal(size=(64, 1, 3))
+    expected = -np.sign(rows[:, :, :1]) * rows / np.linalg.norm(rows, axis=-1, keepdims=True)
+    return bool(np.allclose(np.linalg.svd(rows)[2][:, :1], expected, rtol=0.0, atol=1e-12))
+
+
+def _couples(rows: Array, rtol: float, length: Array) -> tuple[Array, Array]:
     """The readable bases ``(p, k, 6)`` of systems of ``k`` couples, and where the batch's
     decisions are those of ``readable_basis`` (False: a direction that is not round-off, or a
-    decision near its threshold)."""
+    decision near its threshold): the method's steps, on the same arrays in the same order."""
     order = rows.shape[1]
     lengths = length[:, None, None]
     scaled = np.ldexp(rows, -_binary_exponents(rows))  # as readable_basis: each row times a power of 2
@@ -123,23 +165,14 @@ def _couple_bases(rows: Array, rtol: float, length: Array) -> tuple[Array, Array
     # the directions of the unit rows: their Frobenius norm bounds the singular values (no finite
     # candidate, no axes centre: the eigenvalues of Σ(|s|² I − s sᵀ) are at most its square)
     spread = np.linalg.norm(scaled[..., :3] / np.where(sizes > 0, sizes, 1.0)[..., None], axis=(-2, -1))
-    moments = scaled[..., 3:]
-    first = np.abs(moments[:, 0, 0]) / np.linalg.norm(moments[:, 0], axis=-1)
-    single = (first >= CLEAR) if order == 1 else np.zeros(len(rows), dtype=bool)
-    taken = (sizes > 0).all(axis=-1) & (spread**2 <= rtol / MARGIN) & (spread <= 1e3 * rtol / MARGIN)
-    orthonormal = np.empty((len(rows), order, 3))
-    conditioning = np.ones(len(rows))  # largest over least singular value of the unit rows
-    # one couple with a clear first coordinate: the SVD of its own moment (module docstring)
-    orthonormal[single] = np.linalg.svd(moments[single])[2][:, :order]
-    # else the couple subsystem (self.reciprocal() + couples).reciprocal(), as readable_basis takes it
-    chain = ~single
-    reciprocal, values, decided = _null_space(scaled[chain], order, rtol, length[chain])
-    couples, _, decided_again = _null_space(reciprocal, 6 - order, rtol, length[chain])
-    orthonormal[chain] = np.linalg.svd(couples[..., 3:])[2][:, :order]
-    taken[chain] &= decided & decided_again
-    conditioning[chain] = values[:, 0] / values[:, -1]
+    # the couple subsystem (self.reciprocal() + couples).reciprocal(), as readable_basis takes it
+    reciprocal, values, decided = _null_space(scaled, order, rtol, length)
+    couples, _, decided_again = _null_space(reciprocal, 6 - order, rtol, length)
+    orthonormal = np.linalg.svd(couples[..., 3:])[2][:, :order]
     # the couples lie in the reciprocal rows' span within the rows' directions (and round-off)
     # over their conditioning: the sum with the couples adds no dimension to the reciprocal
+    conditioning = values[:, 0] / values[:, -1]
+    taken = (sizes > 0).all(axis=-1) & decided & decided_again
     taken &= (spread + ROUND_OFF) * conditioning <= rtol / MARGIN
     axes, placed = _axis_first(orthonormal, rtol)
     taken &= placed
