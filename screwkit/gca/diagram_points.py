@@ -167,6 +167,7 @@ class _Batch:
         self.count = len(self.length_scale)
         self.given = given
         self.bases: dict[str, tuple[Array, Array]] = {}
+        self.lines: dict[str, Array] = {}
         self.axes: dict[str, tuple[Array, Array, Array, Array]] = {}
         rows = np.asarray(analysis.actuation_rows, dtype=float).reshape(self.count, -1, 6)
         serial = np.asarray(analysis.serial, dtype=bool).reshape(self.count, -1)
@@ -207,14 +208,16 @@ class _Batch:
         source = _constraint_source(self.topology, name)
         if source is None:
             return self.nan(6)
-        prefix, key = source
-        bases, orders = self._readable_bases(key)
-        out = self.nan(6)
-        for order in np.unique(orders):
-            names = basis_names(prefix, int(order))
-            if name in names:
-                out[orders == order] = bases[orders == order, names.index(name)]
-        return out
+        if name not in self.lines:  # a line may be read by several recipes
+            prefix, key = source
+            bases, orders = self._readable_bases(key)
+            out = self.nan(6)
+            for order in np.unique(orders):
+                names = basis_names(prefix, int(order))
+                if name in names:
+                    out[orders == order] = bases[orders == order, names.index(name)]
+            self.lines[name] = out
+        return self.lines[name]
 
     def _readable_bases(self, key: str) -> tuple[Array, Array]:
         """The readable basis of a system (a frame) at each pose, ``(n, m, 6)`` (NaN after its
@@ -222,7 +225,7 @@ class _Batch:
         if key not in self.bases:
             rows, orders = self.frames[key]
             orders = np.asarray(orders).astype(int)
-            moved = F.from_scaled(rows, self.reference_point, self.length_scale)
+            moved = F.from_scaled(rows[:, : orders.max(initial=0)], self.reference_point, self.length_scale)
             found = readable_bases(moved, orders, rtol=self.rtol, length_scale=self.length_scale)
             self.bases[key] = (found, orders)
         return self.bases[key]
