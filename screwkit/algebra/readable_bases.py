@@ -53,6 +53,8 @@ MARGIN = 4.0
 ROUND_OFF = 1e-13
 #: The least first coordinate of a single couple's unit moment whose sign the null spaces keep.
 CLEAR = 1e-6
+#: ``|e − v (v·e)|² = Σ_{j ≠ i} v_j²`` for the frame's axes ``e_i`` and a unit ``v``: the squares' sums.
+_OTHER_AXES = 1.0 - np.eye(3)
 
 
 def readable_bases(rows: Any, orders: Any, *, rtol: float, length_scale: Any) -> Array:
@@ -122,23 +124,21 @@ def _one_couple(rows: Array, rtol: float, length: Array) -> tuple[Array, Array]:
     """The readable bases ``(p, 6)`` of systems of one couple ``(p, 6)``, and where they are those
     of ``readable_basis``: the SVD's unit moment ``−sign(m₁) m / |m|`` (module docstring) where
     its first coordinate is clear, the frame's axis it lies along within ``1e3 rtol``, else that."""
-    scaled = np.ldexp(rows, -_binary_exponents(rows))  # as readable_basis: each row times a power of 2
-    directions, moments = scaled[:, :3], scaled[:, 3:]
-    size = np.sqrt(np.einsum("pi,pi->p", moments, moments))
+    directions, moments = rows[:, :3], rows[:, 3:]
+    size = np.hypot(np.hypot(moments[:, 0], moments[:, 1]), moments[:, 2])  # no square overflows
+    direction = np.hypot(np.hypot(directions[:, 0], directions[:, 1]), directions[:, 2])
     # the unit row's direction (its size bounds every rank decision the directions enter)
-    direction = np.linalg.norm(directions, axis=-1)
-    spread = direction / np.hypot(size / length, direction)
+    whole = np.hypot(size / length, direction)
+    spread = direction / np.where(whole > 0, whole, 1.0)
     clear = (size > 0) & (np.abs(moments[:, 0]) >= CLEAR * size) & _svd_of_a_row_is_householder()
-    with np.errstate(invalid="ignore", divide="ignore"):
-        vector = -np.sign(moments[:, :1]) * moments / size[:, None]
-    squares = vector**2
-    gaps = np.sqrt(squares @ (1.0 - np.eye(3)))  # |e − v (v·e)| for the frame's axes e
+    vector = moments * (-np.sign(moments[:, :1]) / np.where(size > 0, size, 1.0)[:, None])
+    gaps = np.sqrt((vector * vector) @ _OTHER_AXES)  # |e − v (v·e)| for the frame's axes e
     threshold = 1e3 * rtol
     inside = gaps <= threshold
     along = inside.any(axis=-1)
-    couple = np.where(along[:, None], np.eye(3)[np.argmax(inside, axis=-1)], vector)
+    couple = np.where(along[:, None], inside, vector)  # the axis itself (at most one within 1e3 rtol)
     taken = clear & np.all((gaps * MARGIN <= threshold) | (gaps > MARGIN * threshold), axis=-1)
-    taken &= (spread + ROUND_OFF) <= rtol / MARGIN
+    taken &= spread + ROUND_OFF <= rtol / MARGIN
     taken &= spread + np.where(along, gaps.min(axis=-1), 0.0) + ROUND_OFF <= min(threshold, 1e-3) / MARGIN
     couple = couple / np.linalg.norm(couple, axis=-1)[:, None]
     return np.concatenate([np.zeros_like(couple), couple], axis=-1), taken
