@@ -12,12 +12,14 @@ For a system of couples ``readable_basis`` takes (its docstring's steps 1 and 4)
 subsystem as the reciprocal of the reciprocal (two null spaces of unit rows), its moments
 orthonormalised by an SVD, the frame's axes in their span first (Gram–Schmidt after them), each
 row a unit couple. The batch takes those steps on the same arrays in the same order, with numpy's
-batched linear algebra. For one couple (a Delta's or a 3-UPU's leg) the reciprocal of the
-reciprocal is the couple itself up to sign and round-off, and the SVD of a ``1 × 3`` row gives the
-same vector for ``a`` and ``-a`` (its Householder reflector is ``a / β`` with ``β`` of the sign
-opposite to ``a``'s first coordinate): the batch skips the two null spaces there, where that first
-coordinate is clearly non-zero (round-off decides its sign otherwise: the null spaces are then
-taken).
+batched linear algebra (the same LAPACK calls matrix by matrix: the same bits, tested). For one
+couple (a Delta's or a 3-UPU's leg) the reciprocal of the reciprocal is the couple itself up to
+sign and round-off, and the SVD of a ``1 × 3`` row ``a`` reduces it by one Householder reflector,
+whose first row is ``a / β`` with ``β = −sign(a₁) |a|`` (Golub and Van Loan, *Matrix
+Computations*, 4th ed., 2013, §5.1.2; LAPACK's ``dlarfg``), the ``1 × 1`` singular value's sign
+going to ``u``: ``vt = −sign(a₁) a / |a|``, the same for ``a`` and ``−a``. The batch takes that
+closed form (checked once against numpy's SVD) where the first coordinate is clearly non-zero;
+where round-off decides its sign, the null spaces are taken.
 
 Examples
 --------

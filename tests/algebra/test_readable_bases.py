@@ -64,7 +64,13 @@ def couples(rng, count, order, moments=None, directions=1e-16):
 @pytest.mark.parametrize("order", [1, 2, 3])
 def test_couples_in_general_position(order):
     rng = np.random.default_rng(order)
-    assert assert_same_bases(*couples(rng, 300, order)) == 0  # all over the batch
+    rows, orders, lengths = couples(rng, 300, order)
+    assert assert_same_bases(rows, orders, lengths) == 0  # all over the batch
+    if order > 1:  # the method's own steps over the batch: the same LAPACK calls, the same bits
+        expected = per_system(rows, orders, RTOL, lengths)
+        np.testing.assert_array_equal(
+            RB.readable_bases(rows, orders, rtol=RTOL, length_scale=lengths), expected
+        )
 
 
 def test_one_couple_near_a_frame_axis_and_with_a_first_coordinate_round_off_decides():
@@ -156,3 +162,13 @@ def test_zero_order_systems_and_padding():
 def test_bad_arrays_are_refused_by_name(rows, orders, lengths, match):
     with pytest.raises(ScrewkitValueError, match=match):
         RB.readable_bases(rows, orders, rtol=RTOL, length_scale=lengths)
+
+
+@pytest.mark.parametrize("factor", [1e-200, 1e200])
+def test_couples_of_any_magnitude(factor):
+    # the method scales each row by a power of two before any square; the batch's closed form
+    # takes its sizes without squares: the same bases for rows of 1e-200 or 1e200
+    rng = np.random.default_rng(9)
+    for order in (1, 2):
+        rows, orders, lengths = couples(rng, 40, order)
+        assert assert_same_bases(rows * factor, orders, lengths) == 0
