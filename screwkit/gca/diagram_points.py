@@ -584,7 +584,8 @@ def _recipe(key: tuple[str, ...], batch: _Batch, cache: dict[tuple[str, ...], Ar
         # two couple lines that coincide here meet everywhere along it: any point of it will do
         with np.errstate(invalid="ignore"):
             apart = np.linalg.norm(cross, axis=-1) >= INCIDENCE_RTOL
-        value = _infinite(_canonical_directions(np.where(apart[:, None], cross, _free(first)[0])))
+        meet = cross if apart.all() else np.where(apart[:, None], cross, _free(first)[0])
+        value = _infinite(_canonical_directions(meet))
     elif kind == "free":
         value = _infinite(_free(batch.wrench(key[1])[:, 3:])[int(key[2]) - 1])
     elif kind == "perp":
