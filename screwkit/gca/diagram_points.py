@@ -223,8 +223,7 @@ class _Batch:
         """The readable basis of a system (a frame) at each pose, ``(n, m, 6)`` (NaN after its
         order), and its orders: what the per-pose views give (:func:`readable_bases`)."""
         if key not in self.bases:
-            rows, orders = self.frames[key]
-            orders = np.asarray(orders).astype(int)
+            rows, orders = self.frames[key][0], np.asarray(self.frames[key][1]).astype(int)
             moved = F.from_scaled(rows[:, : orders.max(initial=0)], self.reference_point, self.length_scale)
             found = readable_bases(moved, orders, rtol=self.rtol, length_scale=self.length_scale)
             self.bases[key] = (found, orders)
