@@ -13,7 +13,8 @@ other sections best of ``--repeats``):
   map and a ``"condition:1"`` map (:func:`screwkit.analysis.workspace.grid_map`, loci off), and the
   ratios condition map / core and condition map / verdict map. The H4 and the Quattro on
   100 × 100 grids (z × phi at x = y = 0), the Delta on 20 × 20 (x × z at y = 0), the H4 as a graph
-  mechanism (:func:`screwkit.mechanism`, kinematics by loop closure) on 30 × 30. Measured on
+  mechanism (:func:`screwkit.mechanism`, kinematics by loop closure) on 30 × 30, Tsai's 3-UPU as a
+  graph mechanism on 30 × 30 (x × z at y = 0). Measured on
   2026-11-28 (5 rounds; load 2.9–3.6 on 2 cores shared by seven sessions), condition map / core,
   before → after: H4 0.33× → **0.59×**, Quattro 0.31× → **0.59×**, H4 graph 0.58× → **0.76×**,
   Delta 0.004× → 0.005×. Before, each chunk went through the core with every per-pose view and
@@ -22,9 +23,13 @@ other sections best of ``--repeats``):
   verdicts, and a joint's axis is computed once per chunk. What is left: the
   recipes' numpy arithmetic over each 512-pose chunk (~2.9 ms of ~8 ms a chunk: the meets of
   actuation lines with joint axes ~1.2 ms, the branches' constraint couples ~1.1 ms), against
-  ~4.3 ms for the wrench pass itself. The Delta (constraint lines: each leg's readable basis
-  taken pose by pose, :meth:`screwkit.algebra.screwsystem.ScrewSystem.readable_basis`, ~0.8 ms a
-  system) stays near 0.005× the core: that per-pose basis is what dominates there;
+  ~4.3 ms for the wrench pass itself. The Delta and the 3-UPU read their legs' constraint lines,
+  each leg's readable basis (:meth:`screwkit.algebra.screwsystem.ScrewSystem.readable_basis`,
+  ~0.8 ms a system), taken pose by pose before, over the batch now
+  (:func:`screwkit.algebra.readable_bases.readable_bases`), and a map no longer evaluates the
+  default pose through the core's one-pose path before its poses (~3 ms a map): measured the same
+  day (load 2.6–4.9; the same bench on the commit before, then on this one, 5 rounds each), Delta
+  0.004× → **0.52–0.59×** (~400 → ~60,000 poses/s), 3-UPU graph 0.013× → **0.60×**;
 * ``core``: ``h4.at(poses).singularities`` over 10,000 poses of the catalog box, chunked by the
   core itself (:func:`screwkit.core.singularity.classify_chunks`), poses/s;
 * ``verdict map``, ``closeness map``: :func:`screwkit.analysis.workspace.grid_map` of ``"verdict"`` and
