@@ -28,8 +28,9 @@ other sections best of ``--repeats``):
   ~0.8 ms a system), taken pose by pose before, over the batch now
   (:func:`screwkit.algebra.readable_bases.readable_bases`), and a map no longer evaluates the
   default pose through the core's one-pose path before its poses (~3 ms a map): measured the same
-  day (load 2.6–4.9; the same bench on the commit before, then on this one, 5 rounds each), Delta
-  0.004× → **0.52–0.59×** (~400 → ~60,000 poses/s), 3-UPU graph 0.013× → **0.60×**;
+  day (load 0.4–4.9; the same bench on the commit before, then on this one, 5 rounds each), Delta
+  0.004–0.005× → **0.52–0.59×** (~400 → 56,000–73,000 poses/s), 3-UPU graph 0.013× → **0.60–0.61×**
+  (~450 → ~24,000 poses/s); at load 0.6 the H4 0.61× → 0.62–0.65×, the H4 graph 0.76× → 0.80×;
 * ``core``: ``h4.at(poses).singularities`` over 10,000 poses of the catalog box, chunked by the
   core itself (:func:`screwkit.core.singularity.classify_chunks`), poses/s;
 * ``verdict map``, ``closeness map``: :func:`screwkit.analysis.workspace.grid_map` of ``"verdict"`` and
