@@ -13,7 +13,8 @@ other sections best of ``--repeats``):
   map and a ``"condition:1"`` map (:func:`screwkit.analysis.workspace.grid_map`, loci off), and the
   ratios condition map / core and condition map / verdict map. The H4 and the Quattro on
   100 × 100 grids (z × phi at x = y = 0), the Delta on 20 × 20 (x × z at y = 0), the H4 as a graph
-  mechanism (:func:`screwkit.mechanism`, kinematics by loop closure) on 30 × 30. Measured on
+  mechanism (:func:`screwkit.mechanism`, kinematics by loop closure) on 30 × 30, Tsai's 3-UPU as a
+  graph mechanism on 30 × 30 (x × z at y = 0). Measured on
   2026-11-28 (5 rounds; load 2.9–3.6 on 2 cores shared by seven sessions), condition map / core,
   before → after: H4 0.33× → **0.59×**, Quattro 0.31× → **0.59×**, H4 graph 0.58× → **0.76×**,
   Delta 0.004× → 0.005×. Before, each chunk went through the core with every per-pose view and
@@ -22,9 +23,14 @@ other sections best of ``--repeats``):
   verdicts, and a joint's axis is computed once per chunk. What is left: the
   recipes' numpy arithmetic over each 512-pose chunk (~2.9 ms of ~8 ms a chunk: the meets of
   actuation lines with joint axes ~1.2 ms, the branches' constraint couples ~1.1 ms), against
-  ~4.3 ms for the wrench pass itself. The Delta (constraint lines: each leg's readable basis
-  taken pose by pose, :meth:`screwkit.algebra.screwsystem.ScrewSystem.readable_basis`, ~0.8 ms a
-  system) stays near 0.005× the core: that per-pose basis is what dominates there;
+  ~4.3 ms for the wrench pass itself. The Delta and the 3-UPU read their legs' constraint lines,
+  each leg's readable basis (:meth:`screwkit.algebra.screwsystem.ScrewSystem.readable_basis`,
+  ~0.8 ms a system), taken pose by pose before, over the batch now
+  (:func:`screwkit.algebra.readable_bases.readable_bases`), and a map no longer evaluates the
+  default pose through the core's one-pose path before its poses (~3 ms a map): measured the same
+  day (load 0.4–4.9; the same bench on the commit before, then on this one, 5 rounds each), Delta
+  0.004–0.005× → **0.52–0.59×** (~400 → 56,000–73,000 poses/s), 3-UPU graph 0.013× → **0.60–0.61×**
+  (~450 → ~24,000 poses/s); at load 0.6 the H4 0.61× → 0.62–0.65×, the H4 graph 0.76× → 0.80×;
 * ``core``: ``h4.at(poses).singularities`` over 10,000 poses of the catalog box, chunked by the
   core itself (:func:`screwkit.core.singularity.classify_chunks`), poses/s;
 * ``verdict map``, ``closeness map``: :func:`screwkit.analysis.workspace.grid_map` of ``"verdict"`` and
@@ -52,7 +58,12 @@ for _name in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS", "NUM
 
 import argparse  # noqa: E402
 import resource  # noqa: E402
+import sys  # noqa: E402
 import time  # noqa: E402
+from pathlib import Path  # noqa: E402
+
+# this checkout's screwkit (not an installed one) and the tests' mechanisms
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 import numpy as np  # noqa: E402
 from _timing import best_of, interleaved_medians  # noqa: E402  (bench/ is the script folder)
@@ -61,6 +72,7 @@ import screwkit as sk  # noqa: E402
 from screwkit import workspace as W  # noqa: E402
 from screwkit.analysis.quantities import conditions_of  # noqa: E402
 from screwkit.gca.diagram_points import diagram_points  # noqa: E402
+from tests.mechanisms import tsai_3upu  # noqa: E402
 
 
 def poses_of(posed):
@@ -71,6 +83,10 @@ def h4_graph():
     return sk.mechanism(sk.load_mechanism("h4").twist_graph(), platform_point=[0, 0, -750])
 
 
+def tsai_graph():
+    return sk.mechanism(tsai_3upu([0.1, 0.05, 1.0]))
+
+
 #: The condition maps compared with the core: name, mechanism, the grid's x and y axes (degrees for
 #: angles) and its fixed coordinates.
 CONDITION_MAPS = (
@@ -79,6 +95,7 @@ CONDITION_MAPS = (
      {"x": 0, "y": 0}),
     ("Delta", lambda: sk.load_mechanism("delta"), ("x", -300, 300, 20), ("z", -1150, -850, 20), {"y": 0}),
     ("H4 graph", h4_graph, ("z", -800, -700, 30), ("phi", -20, 20, 30), {"x": 0, "y": 0}),
+    ("3-UPU graph", tsai_graph, ("x", -0.2, 0.2, 30), ("z", 0.8, 1.1, 30), {"y": 0}),
 )
 
 

@@ -118,7 +118,7 @@ def unit_screws(screws: Array, length_scale: float) -> Array:
     return unit_rows(screws, length_scale)
 
 
-def unit_rows(rows: Array, length_scale: float) -> Array:
+def unit_rows(rows: Array, length_scale: float | Array) -> Array:
     """Numeric screws ``(..., 6)`` with the moment half divided by ``length_scale``, each scaled to
     unit length (zero rows stay zero): the rows every numeric rank decision reads.
 
@@ -130,8 +130,9 @@ def unit_rows(rows: Array, length_scale: float) -> Array:
     ----------
     rows : numpy.ndarray, shape (..., 6)
         Numeric screws, any finite magnitude.
-    length_scale : float
-        The characteristic length, in [1e-100, 1e100] (:func:`characteristic_length`).
+    length_scale : float or numpy.ndarray
+        The characteristic length, in [1e-100, 1e100] (:func:`characteristic_length`); an array
+        (one length per system, shape ``(..., 1, 1)`` for rows ``(..., k, 6)``) broadcasts.
 
     Returns
     -------

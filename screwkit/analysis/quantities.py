@@ -45,8 +45,8 @@ from ..core.verdicts import LABELS
 from ..exceptions import DegenerateGeometryError, ScrewkitTypeError, ScrewkitValueError
 
 __all__ = [
-    "CONTRIBUTED", "KINDS", "QUANTITIES", "QuantityDisplay", "conditions_of", "display", "quantity",
-    "register_quantity", "values", "verdict_name",
+    "CONTRIBUTED", "KINDS", "QUANTITIES", "QuantityDisplay", "checked_condition", "conditions_of", "display",
+    "quantity", "register_quantity", "values", "verdict_name",
 ]
 
 Array = np.ndarray
@@ -288,6 +288,43 @@ def register_quantity(
 
 
 
+def checked_condition(mechanism: Any, options: Mapping[str, Any], index: int) -> tuple[Any, tuple[Any, ...]]:
+    """The wrench diagram and the superbracket's conditions (:func:`conditions_of`), refusing a
+    condition index out of range: what a map of ``"condition:K"`` checks before its poses.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+    options : mapping
+        Inverse-kinematics options (a working mode).
+    index : int
+        The ``K`` of ``"condition:K"``.
+
+    Returns
+    -------
+    diagram : WrenchDiagram
+    conditions : tuple of Condition
+
+    Raises
+    ------
+    ScrewkitValueError
+        For ``K`` out of range, or a degenerate wrench diagram.
+
+    Examples
+    --------
+    >>> _, conditions = checked_condition(load_mechanism("h4"), {}, 1)
+    >>> len(conditions)
+    2
+    """
+    diagram, conditions, _, _ = conditions_of(mechanism, options)
+    if not 0 <= index < len(conditions):
+        raise ScrewkitValueError(
+            f"Expected `quantity` 'condition:K' with K in 0..{len(conditions) - 1} (the superbracket's "
+            f"factors at the default pose), got K = {index}."
+        )
+    return diagram, conditions
+
+
 def _condition_values(mechanism: Any, index: int, posed: Any) -> Array:
     """The ``index``-th superbracket condition at every pose of ``posed``, as one batch: the
     diagram's points over the batch (:meth:`screwkit.robots.posed.PosedMechanism.diagram_points`)
@@ -299,12 +336,7 @@ def _condition_values(mechanism: Any, index: int, posed: Any) -> Array:
     DegenerateGeometryError
         Where a point of the diagram does not exist at a pose (naming the point and the pose).
     """
-    diagram, conditions, _, _ = conditions_of(mechanism, posed.options)
-    if not 0 <= index < len(conditions):
-        raise ScrewkitValueError(
-            f"Expected `quantity` 'condition:K' with K in 0..{len(conditions) - 1} (the superbracket's "
-            f"factors at the default pose), got K = {index}."
-        )
+    diagram, conditions = checked_condition(mechanism, posed.options, index)
     points, exists = posed.diagram_points(diagram.points)
     if not exists.all():
         i = int(np.argmin(exists))

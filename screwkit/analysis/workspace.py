@@ -417,7 +417,9 @@ def _map_job(
     chunks also return the loci's samples)."""
     name = Q.quantity(quantity)
     grid = _Slice.create(mechanism, x, y, fixed, mode, angles)
-    if name in Q.CONTRIBUTED or name.startswith("condition:"):  # refuse before the map
+    if name.startswith("condition:"):  # refuse before the map (factored once per mechanism)
+        Q.checked_condition(mechanism, grid.options, int(name.split(":")[1]))
+    elif name in Q.CONTRIBUTED:
         Q.values(mechanism.at(None, **grid.options), name)
     user = grid.poses()
     flat = user.reshape(-1, user.shape[-1]) * grid.scale

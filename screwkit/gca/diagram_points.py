@@ -22,7 +22,7 @@ import numpy as np
 
 from ..algebra import backend as B
 from ..algebra import screw as S
-from ..algebra.screwsystem import ScrewSystem
+from ..algebra.readable_bases import readable_bases
 from ..core import frames as F
 from ..core.wrench_systems import WrenchAnalysis, analyze_table
 from ..exceptions import DegenerateGeometryError
@@ -101,8 +101,8 @@ def batch_diagram_points(
     Each recipe is evaluated over the leading axis at once from the batched core's arrays: the
     actuation wrenches, the joint screws, the series-parallel nodes' twist frames (the branches'
     constraint couples), the reference point. A constraint line of a leg is an element of its
-    readable basis (:meth:`screwkit.algebra.screwsystem.ScrewSystem.readable_basis`), taken pose by pose,
-    and only for the points that use one.
+    readable basis (:meth:`screwkit.algebra.screwsystem.ScrewSystem.readable_basis`), taken over the
+    batch (:func:`screwkit.algebra.readable_bases.readable_bases`), and only for the points that use one.
 
     Parameters
     ----------
@@ -166,7 +166,8 @@ class _Batch:
         self.length_scale = np.asarray(analysis.length_scale, dtype=float).reshape(-1)
         self.count = len(self.length_scale)
         self.given = given
-        self.bases: dict[str, list[Array]] = {}
+        self.bases: dict[str, tuple[Array, Array]] = {}
+        self.lines: dict[str, Array] = {}
         self.axes: dict[str, tuple[Array, Array, Array, Array]] = {}
         rows = np.asarray(analysis.actuation_rows, dtype=float).reshape(self.count, -1, 6)
         serial = np.asarray(analysis.serial, dtype=bool).reshape(self.count, -1)
@@ -203,30 +204,29 @@ class _Batch:
     def _constraint_line(self, name: str) -> Array:
         """A constraint line (:func:`screwkit.gca.diagram_lines.select_lines`' names): the element
         of its leg's (or the mechanism's) readable basis at each pose, as the per-pose views give
-        it (the same frame conversion, pose by pose, without building the views)."""
+        it (the same frame conversion, over the batch, without building the views)."""
         source = _constraint_source(self.topology, name)
         if source is None:
             return self.nan(6)
-        prefix, key = source
-        out = self.nan(6)
-        for i, basis in enumerate(self._readable_bases(key)):
-            names = basis_names(prefix, len(basis))
-            if name in names:
-                out[i] = basis[names.index(name)]
-        return out
+        if name not in self.lines:  # a line may be read by several recipes
+            prefix, key = source
+            bases, orders = self._readable_bases(key)
+            out = self.nan(6)
+            for order in np.unique(orders):
+                names = basis_names(prefix, int(order))
+                if name in names:
+                    out[orders == order] = bases[orders == order, names.index(name)]
+            self.lines[name] = out
+        return self.lines[name]
 
-    def _readable_bases(self, key: str) -> list[Array]:
-        """The readable basis of a system (a frame) at each pose, as the per-pose views give it."""
+    def _readable_bases(self, key: str) -> tuple[Array, Array]:
+        """The readable basis of a system (a frame) at each pose, ``(n, m, 6)`` (NaN after its
+        order), and its orders: what the per-pose views give (:func:`readable_bases`)."""
         if key not in self.bases:
-            rows, orders = self.frames[key]
-            self.bases[key] = [
-                ScrewSystem.from_independent(
-                    F.from_scaled(rows[i, : int(orders[i])], self.reference_point[i], self.length_scale[i]),
-                    rtol=self.rtol,
-                    length_scale=float(self.length_scale[i]),
-                ).readable_basis()
-                for i in range(self.count)
-            ]
+            rows, orders = self.frames[key][0], np.asarray(self.frames[key][1]).astype(int)
+            moved = F.from_scaled(rows[:, : orders.max(initial=0)], self.reference_point, self.length_scale)
+            found = readable_bases(moved, orders, rtol=self.rtol, length_scale=self.length_scale)
+            self.bases[key] = (found, orders)
         return self.bases[key]
 
     def joint_screws(self, name: str) -> Array:
@@ -583,7 +583,8 @@ def _recipe(key: tuple[str, ...], batch: _Batch, cache: dict[tuple[str, ...], Ar
         # two couple lines that coincide here meet everywhere along it: any point of it will do
         with np.errstate(invalid="ignore"):
             apart = np.linalg.norm(cross, axis=-1) >= INCIDENCE_RTOL
-        value = _infinite(_canonical_directions(np.where(apart[:, None], cross, _free(first)[0])))
+        meet = cross if apart.all() else np.where(apart[:, None], cross, _free(first)[0])
+        value = _infinite(_canonical_directions(meet))
     elif kind == "free":
         value = _infinite(_free(batch.wrench(key[1])[:, 3:])[int(key[2]) - 1])
     elif kind == "perp":
