@@ -40,7 +40,7 @@ import numpy as np
 
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
 from ..robots.angles import angle_factor
-from .enclosures import DeltaModel, FourLimbModel, model_of
+from .enclosures import model_of
 from .intervals import Enclosure, mean_value
 from .poses import _check_mechanism, _options
 
@@ -273,7 +273,7 @@ def _real(value: Any, what: str) -> float:
 class _Problem:
     """A paving problem in API units: pose = base + coef · u over boxes in ``u``."""
 
-    model: FourLimbModel | DeltaModel
+    model: Any  # what screwkit.analysis.enclosures.model_of gives
     base: Array  # (4,) pose at u = 0
     coef_lo: Array  # (4, k) enclosure of the affine map
     coef_hi: Array
@@ -307,8 +307,11 @@ def _half_width(lo: float, hi: float) -> float:
 
 
 def _functions(problem: _Problem) -> list[str]:
+    """The functions enclosed: the reach functions and those of the requested kinds that the model
+    has (a kind it has none of cannot occur: e.g. a planar mechanism's constraint wrenches)."""
     names = [f"serial:{i}" for i in range(1, problem.model.limbs + 1)]
-    return names + [k for k in ("constraint", "actuation") if k in problem.kinds]
+    has = problem.model.functions()
+    return names + [k for k in ("constraint", "actuation") if k in problem.kinds and k in has]
 
 
 def _enclose(problem: _Problem, lo: Array, hi: Array) -> dict[str, Enclosure]:
@@ -344,7 +347,7 @@ def _step(problem: _Problem, lo: Array, hi: Array) -> tuple[Array, Array, Array,
     unreachable = np.any([g.hi < 0 for g in reach], axis=0)
     clear = reachable.copy()
     for kind in ("constraint", "actuation"):
-        if kind in problem.kinds:
+        if kind in enc:
             clear &= enc[kind].excludes_zero()
     small = np.all(hi - lo <= problem.resolution, axis=1)
     status = np.where(clear, 0, np.where(unreachable, 3, np.where(small, 2, -1)))

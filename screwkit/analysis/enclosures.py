@@ -63,6 +63,7 @@ import numpy as np
 
 from ..exceptions import ScrewkitValueError
 from .delta_enclosure import DeltaModel
+from .planar_3rrp_enclosure import Planar3RRPModel
 from .intervals import Enclosure
 from .limb_enclosures import (
     _CONSTANT_SPREAD,
@@ -404,7 +405,9 @@ def _axis_limbs(params: Any) -> tuple[int, int] | tuple[()]:
     return found[0][0], found[1][0]
 
 
-def model_of(mechanism: Any, options: Mapping[str, Any] | None = None) -> FourLimbModel | DeltaModel:
+def model_of(
+    mechanism: Any, options: Mapping[str, Any] | None = None
+) -> FourLimbModel | DeltaModel | Planar3RRPModel:
     """The closed-form model certification encloses for a mechanism, or a one-line refusal
     naming what is covered (:data:`COVERED`) and what is missing.
 
@@ -434,5 +437,7 @@ def model_of(mechanism: Any, options: Mapping[str, Any] | None = None) -> FourLi
     """
     if getattr(mechanism, "family", None) == "delta":
         return DeltaModel.of(mechanism, options)
+    if getattr(mechanism, "family", None) == "planar_3rrp":
+        return Planar3RRPModel.of(mechanism, options)
     return FourLimbModel.of(mechanism, options)
 

@@ -75,8 +75,7 @@ def test_float_route_is_the_independent_rod_determinant_and_the_core():
     np.testing.assert_allclose(values["actuation"], DELTA.at(poses).jacobians.det_A, rtol=1e-9)
 
 
-@pytest.mark.parametrize(("name", "missing"), [("mcgill_smg", "no enclosure"), ("veloce", "screw pair"),
-                                               ("planar_3rrp", "no enclosure")])
+@pytest.mark.parametrize(("name", "missing"), [("mcgill_smg", "no enclosure"), ("veloce", "screw pair")])
 def test_what_is_not_covered_is_refused_naming_what_is_missing(name, missing):
     with pytest.raises(sk.ScrewkitValueError, match=missing) as info:
         sk.certify(sk.load_mechanism(name), {"x": (-1.0, 1.0)})
