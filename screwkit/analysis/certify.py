@@ -320,14 +320,22 @@ def _enclose(problem: _Problem, lo: Array, hi: Array) -> dict[str, Enclosure]:
     centre = np.clip(centre, lo, hi)
     radius = np.nextafter(np.maximum(centre - lo, hi - centre), np.inf)
     singular = any(k in problem.kinds for k in ("constraint", "actuation"))
+    if hasattr(problem.model, "evaluate_points"):  # it encloses boxes in its own centred forms
+        found = problem.model.evaluate(_poses(problem, lo, hi, False), singular=singular)
+        return {name: found[name] for name in _functions(problem)}
     over = problem.model.evaluate(_poses(problem, lo, hi, True), singular=singular)
     at = problem.model.evaluate(_poses(problem, centre, centre, False), singular=singular)
     return {name: mean_value(at[name], over[name], radius) for name in _functions(problem)}
 
 
-def _signs(problem: _Problem, points: Array) -> dict[str, Array]:
-    """Certified signs (+1, -1, 0 unknown) of the functions at points ``(P, k)``."""
-    values = problem.model.evaluate(_poses(problem, points, points, False))
+def _signs(problem: _Problem, points: Array, boxes: tuple[Array, Array]) -> dict[str, Array]:
+    """Certified signs (+1, -1, 0 unknown) of the functions at points ``(P, k)``, each in its box
+    (``(P, k)`` bounds: a loop-closure model evaluates a point on its box's branch)."""
+    poses = _poses(problem, points, points, False)
+    if hasattr(problem.model, "evaluate_points"):
+        values = problem.model.evaluate_points(poses, _poses(problem, boxes[0], boxes[1], False))
+    else:
+        values = problem.model.evaluate(poses)
     return {
         name: np.where(values[name].lo > 0, 1, np.where(values[name].hi < 0, -1, 0))
         for name in _functions(problem)
@@ -360,7 +368,8 @@ def _step(problem: _Problem, lo: Array, hi: Array) -> tuple[Array, Array, Array,
         corners = np.array(np.meshgrid(*([[0.0, 1.0]] * k), indexing="ij")).reshape(k, -1).T
         fractions = np.vstack([np.full((1, k), 0.5), corners])  # the centre and the corners
         points = lo[look, None, :] + fractions[None] * (hi - lo)[look, None, :]  # (L, P, k)
-        signs = _signs(problem, points.reshape(-1, k))
+        signs = _signs(problem, points.reshape(-1, k), (np.repeat(lo[look], fractions.shape[0], axis=0),
+                                                          np.repeat(hi[look], fractions.shape[0], axis=0)))
         count = fractions.shape[0]
         others_positive = {
             i: np.all([reach[j].lo[look] > 0 for j in range(limbs) if j != i], axis=0) for i in range(limbs)
@@ -383,17 +392,17 @@ def _step(problem: _Problem, lo: Array, hi: Array) -> tuple[Array, Array, Array,
         proved = look[which[look] >= 0]
         status[proved] = 1
         if proved.size:
-            zero[proved] = _refined(problem, bracket[proved], which[proved])
+            zero[proved] = _refined(problem, bracket[proved], which[proved], (lo[proved], hi[proved]))
     return status, which, bracket, zero
 
 
-def _refined(problem: _Problem, bracket: Array, which: Array) -> Array:
-    """Bisection on each bracket's segment (its function positive at the first end)."""
+def _refined(problem: _Problem, bracket: Array, which: Array, boxes: tuple[Array, Array]) -> Array:
+    """Bisection on each bracket's segment (its function positive at the first end) in its box."""
     names = _functions(problem)
     plus, minus = bracket[:, 0].copy(), bracket[:, 1].copy()
     for _ in range(WITNESS_STEPS):
         middle = 0.5 * (plus + minus)
-        signs = _signs(problem, middle)
+        signs = _signs(problem, middle, boxes)
         value = np.choose(which, [signs[n] for n in names])
         positive, negative = value == 1, value == -1
         plus = np.where(positive[:, None], middle, plus)

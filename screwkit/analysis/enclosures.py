@@ -63,6 +63,7 @@ import numpy as np
 
 from ..exceptions import ScrewkitValueError
 from .delta_enclosure import DeltaModel
+from .loop_closure_enclosure import LoopClosureModel
 from .planar_3rrp_enclosure import Planar3RRPModel
 from .intervals import Enclosure
 from .limb_enclosures import (
@@ -407,7 +408,7 @@ def _axis_limbs(params: Any) -> tuple[int, int] | tuple[()]:
 
 def model_of(
     mechanism: Any, options: Mapping[str, Any] | None = None
-) -> FourLimbModel | DeltaModel | Planar3RRPModel:
+) -> Any:
     """The closed-form model certification encloses for a mechanism, or a one-line refusal
     naming what is covered (:data:`COVERED`) and what is missing.
 
@@ -439,5 +440,7 @@ def model_of(
         return DeltaModel.of(mechanism, options)
     if getattr(mechanism, "family", None) == "planar_3rrp":
         return Planar3RRPModel.of(mechanism, options)
+    if getattr(mechanism, "family", None) == "loop_closure":
+        return LoopClosureModel.of(mechanism, options)
     return FourLimbModel.of(mechanism, options)
 

@@ -59,13 +59,16 @@ def _up(x: Array) -> Array:
 def _product(alo: Array, ahi: Array, blo: Array, bhi: Array) -> tuple[Array, Array]:
     """``[alo, ahi] · [blo, bhi]`` rounded outward (broadcasting); NaN (0 · ∞) is the whole line."""
     with np.errstate(invalid="ignore", over="ignore"):
-        candidates = np.stack(np.broadcast_arrays(alo * blo, alo * bhi, ahi * blo, ahi * bhi))
-    if np.isnan(candidates).any():
-        bad = np.isnan(candidates).any(axis=0)
-        candidates = np.where(bad, 0.0, candidates)
-        lo, hi = _down(candidates.min(axis=0)), _up(candidates.max(axis=0))
-        return np.where(bad, -np.inf, lo), np.where(bad, np.inf, hi)
-    return _down(candidates.min(axis=0)), _up(candidates.max(axis=0))
+        p1, p2, p3, p4 = alo * blo, alo * bhi, ahi * blo, ahi * bhi
+    lo = np.minimum(np.minimum(p1, p2), np.minimum(p3, p4))  # NaN (0 · ∞) propagates
+    hi = np.maximum(np.maximum(p1, p2), np.maximum(p3, p4))
+    if np.isnan(lo).any():
+        bad = np.isnan(lo)
+        corners = [np.where(np.isnan(q), 0.0, q) for q in (p1, p2, p3, p4)]
+        lo = np.minimum(np.minimum(corners[0], corners[1]), np.minimum(corners[2], corners[3]))
+        hi = np.maximum(np.maximum(corners[0], corners[1]), np.maximum(corners[2], corners[3]))
+        return np.where(bad, -np.inf, _down(lo)), np.where(bad, np.inf, _up(hi))
+    return _down(lo), _up(hi)
 
 
 def _scaled(lo: Array, hi: Array, c: float) -> tuple[Array, Array]:
