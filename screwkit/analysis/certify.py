@@ -67,7 +67,8 @@ STATUSES = ("free", "singular", "undecided", "unreachable")
 DEFAULT_MAX_BOXES = 200_000
 #: ... and the most a caller may ask for (memory: ~1 kB a box in a level).
 MAX_BOXES = 10**7
-#: Bisection steps refining a witness's segment (the bracket shrinks by 2**-WITNESS_STEPS).
+#: Bisection steps refining a witness's segment (the bracket shrinks by 2**-WITNESS_STEPS; a model
+#: may ask for fewer: ``witness_steps``).
 WITNESS_STEPS = 30
 #: Where a box is split (a fraction of its width, off the middle: a symmetric region's plane of
 #: symmetry, often singular, then falls inside boxes, where a sign change shows it, not on edges).
@@ -400,7 +401,7 @@ def _refined(problem: _Problem, bracket: Array, which: Array, boxes: tuple[Array
     """Bisection on each bracket's segment (its function positive at the first end) in its box."""
     names = _functions(problem)
     plus, minus = bracket[:, 0].copy(), bracket[:, 1].copy()
-    for _ in range(WITNESS_STEPS):
+    for _ in range(getattr(problem.model, "witness_steps", WITNESS_STEPS)):
         middle = 0.5 * (plus + minus)
         signs = _signs(problem, middle, boxes)
         value = np.choose(which, [signs[n] for n in names])

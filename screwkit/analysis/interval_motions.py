@@ -26,7 +26,7 @@ Examples
 --------
 >>> r = [Enclosure(np.array([0.0]), np.array([0.0])), None, Enclosure(np.array([0.3]), np.array([0.3]))]
 >>> rotation = rodrigues(r)
->>> bool(rotation[1][1] is not None and abs(rotation[2][2].lo[0] - np.cos(0.3)) < 1e-14)
+>>> bool(abs(rotation[0][0].lo[0] - np.cos(0.3)) < 1e-14 and rotation[2][2].lo[0] <= 1.0 <= rotation[2][2].hi[0])
 True
 """
 

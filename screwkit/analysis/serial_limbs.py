@@ -14,7 +14,7 @@ Examples
 --------
 >>> from screwkit.graphs.joints import prismatic
 >>> from screwkit.graphs.twistgraph import twist_graph
->>> m = mechanism(twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))]))
+>>> m = sk.mechanism(twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))]))
 >>> [len(limb.factors) for limb in limbs_of(m)]
 [1]
 """
@@ -170,7 +170,7 @@ def limbs_of(mechanism: Any) -> list[Limb]:
     --------
     >>> from screwkit.graphs.joints import prismatic
     >>> from screwkit.graphs.twistgraph import twist_graph
-    >>> m = mechanism(twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))]))
+    >>> m = sk.mechanism(twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))]))
     >>> limbs_of(m)[0].factors[0].screw[3:]
     ((1.0, 1.0), None, None)
     """
@@ -258,7 +258,7 @@ def grouped(limbs: list[Limb]) -> list[Group]:
     --------
     >>> from screwkit.graphs.joints import prismatic
     >>> from screwkit.graphs.twistgraph import twist_graph
-    >>> m = mechanism(twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))]))
+    >>> m = sk.mechanism(twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))]))
     >>> grouped(limbs_of(m))[0].members
     (0,)
     """
@@ -301,7 +301,7 @@ def platform_constants(model: Any, coordinates: Any) -> dict[str, Any]:
     --------
     >>> from screwkit.graphs.joints import prismatic
     >>> from screwkit.graphs.twistgraph import twist_graph
-    >>> m = mechanism(twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))]))
+    >>> m = sk.mechanism(twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))]))
     >>> platform_constants(m.parameters.model, m.parameters.coordinates)["axes"]
     [0]
     """
@@ -380,7 +380,7 @@ def evaluate_group(
     --------
     >>> from screwkit.graphs.joints import prismatic
     >>> from screwkit.graphs.twistgraph import twist_graph
-    >>> m = mechanism(twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))]))
+    >>> m = sk.mechanism(twist_graph("B", "E", [("B", "E", prismatic("P", [1, 0, 0], actuated=True))]))
     >>> group = grouped(limbs_of(m))[0]
     >>> constants = platform_constants(m.parameters.model, m.parameters.coordinates)
     >>> pose = m.parameters.task.unscaled(np.array([[0.5]])) + 0.0      # x at half a char. length
