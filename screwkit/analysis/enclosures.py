@@ -63,8 +63,6 @@ import numpy as np
 
 from ..exceptions import ScrewkitValueError
 from .delta_enclosure import DeltaModel
-from .loop_closure_enclosure import LoopClosureModel
-from .planar_3rrp_enclosure import Planar3RRPModel
 from .intervals import Enclosure
 from .limb_enclosures import (
     _CONSTANT_SPREAD,
@@ -80,6 +78,8 @@ from .limb_enclosures import (
     _scaled_by,
     _sum,
 )
+from .loop_closure_enclosure import LoopClosureModel
+from .planar_3rrp_enclosure import Planar3RRPModel
 
 __all__ = ["COVERED", "FourLimbModel", "model_of"]
 

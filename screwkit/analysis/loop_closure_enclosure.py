@@ -1,5 +1,6 @@
 """Enclosures of a loop-closure mechanism's kinematics and actuation condition over boxes of pose
-space, by the Krawczyk operator on its loop equations (:class:`LoopClosureModel`).
+space (:class:`LoopClosureModel`). One algorithm: the Krawczyk operator on the loop equations, then
+the actuation determinant over the joint boxes it proves.
 
 A mechanism from :func:`screwkit.mechanism` has no closed form: its joint values at a pose are found
 by continuation from the reference configuration (:mod:`screwkit.core.loop_closure`). Certification
@@ -40,12 +41,15 @@ enclosed from their box's ``X`` (the same branch).
 Examples
 --------
 >>> from screwkit.graphs.joints import prismatic, revolute
->>> z, legs = [0, 0, 1], [([0, 0, 0], [0.4, 0.3, 0]), ([1, 0, 0], [0.6, 0.3, 0]), ([0.5, 0.8, 0], [0.5, 0.5, 0])]
->>> rpr = sk.mechanism(sk.twist_graph("base", "platform", [edge for i, (a, c) in enumerate(legs) for edge in (
-...     ("base", f"leg{i}", revolute(f"A{i}", z, a)),
-...     (f"leg{i}", f"rod{i}", prismatic(f"P{i}", np.subtract(c, a) / np.linalg.norm(np.subtract(c, a)),
-...                                      actuated=True)),
-...     (f"rod{i}", "platform", revolute(f"C{i}", z, c)))]))
+>>> z = [0, 0, 1]
+>>> legs = [([0, 0, 0], [0.4, 0.3, 0]), ([1, 0, 0], [0.6, 0.3, 0]), ([0.5, 0.8, 0], [0.5, 0.5, 0])]
+>>> edges = []
+>>> for i, (a, c) in enumerate(legs):
+...     d = np.subtract(c, a) / np.linalg.norm(np.subtract(c, a))
+...     edges += [("base", f"leg{i}", revolute(f"A{i}", z, a)),
+...               (f"leg{i}", f"rod{i}", prismatic(f"P{i}", d, actuated=True)),
+...               (f"rod{i}", "platform", revolute(f"C{i}", z, c))]
+>>> rpr = sk.mechanism(sk.twist_graph("base", "platform", edges))
 >>> model = LoopClosureModel.of(rpr)
 >>> model.dimension, model.limbs, sorted(model.functions())
 (3, 3, ['actuation', 'serial:1', 'serial:2', 'serial:3'])
@@ -54,7 +58,6 @@ Examples
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -88,8 +91,6 @@ _STATEMENTS = {
     "serial": "limb {i}'s loop closure not proved unique and regular over the box (Krawczyk): at its "
     "reach or serial singular",
 }
-
-
 
 
 def _refuse(mechanism: Any, reason: str) -> ScrewkitValueError:
@@ -161,7 +162,9 @@ class LoopClosureModel:
         if getattr(mechanism, "family", None) != "loop_closure":
             raise _refuse(mechanism, f"family {getattr(mechanism, 'family', None)!r}, not loop_closure")
         if options:
-            raise ScrewkitValueError(f"Expected no `mode` for a loop-closure mechanism, got {dict(options)!r}.")
+            raise ScrewkitValueError(
+                f"Expected no `mode` for a loop-closure mechanism, got {dict(options)!r}."
+            )
         kinematics = mechanism.parameters
         model, coordinates = kinematics.model, kinematics.coordinates
         if kinematics.point_task or not kinematics.complete:
@@ -173,7 +176,9 @@ class LoopClosureModel:
             raise _refuse(mechanism, f"coordinates {coordinates.names} are not along the base axes")
         odd = sorted({kind for kind in model.types.values() if kind not in COVERED_JOINTS})
         if odd:
-            raise _refuse(mechanism, f"joints of type {', '.join(odd)}: no product of exponentials to enclose")
+            raise _refuse(
+                mechanism, f"joints of type {', '.join(odd)}: no product of exponentials to enclose"
+            )
         try:
             limbs = limbs_of(mechanism)
         except ScrewkitValueError as error:
@@ -194,13 +199,24 @@ class LoopClosureModel:
             count += size
             zeros = np.zeros((size, d))
             turns = {j: np.zeros((1, 3)) for f in group.factors for j in f.joints}
-            residual, _, twists = evaluate_group(group, zeros, zeros, np.repeat(pose, size, 0), np.repeat(pose, size, 0),
-                                                 platform, turns, twists=True)
+            residual, _, twists = evaluate_group(
+                group,
+                zeros,
+                zeros,
+                np.repeat(pose, size, 0),
+                np.repeat(pose, size, 0),
+                platform,
+                turns,
+                twists=True,
+            )
             live = tuple(j for j, e in enumerate(residual) if e is not None)
             moving = {j for t in twists for j, e in enumerate(t) if e is not None}
             if len(live) != d or not moving <= set(live):
-                raise _refuse(mechanism, f"a limb through {group.columns.shape[1]} joint variables for {len(live)} "
-                              "loop equations: an internal motion or a missing freedom")
+                raise _refuse(
+                    mechanism,
+                    f"a limb through {group.columns.shape[1]} joint variables for {len(live)} "
+                    "loop equations: an internal motion or a missing freedom",
+                )
             lives.add(live)
         if len(lives) != 1 or count != len(next(iter(lives))):
             raise _refuse(mechanism, f"{count} limbs for loop equations {sorted(lives)} per limb")
@@ -216,12 +232,15 @@ class LoopClosureModel:
         Examples
         --------
         >>> from screwkit.graphs.joints import prismatic, revolute
-        >>> z, legs = [0, 0, 1], [([0, 0, 0], [0.4, 0.3, 0]), ([1, 0, 0], [0.6, 0.3, 0]), ([0.5, 0.8, 0], [0.5, 0.5, 0])]
-        >>> rpr = sk.mechanism(sk.twist_graph("base", "platform", [edge for i, (a, c) in enumerate(legs) for edge in (
-        ...     ("base", f"leg{i}", revolute(f"A{i}", z, a)),
-        ...     (f"leg{i}", f"rod{i}", prismatic(f"P{i}", np.subtract(c, a) / np.linalg.norm(np.subtract(c, a)),
-        ...                                      actuated=True)),
-        ...     (f"rod{i}", "platform", revolute(f"C{i}", z, c)))]))
+        >>> z = [0, 0, 1]
+        >>> legs = [([0, 0, 0], [0.4, 0.3, 0]), ([1, 0, 0], [0.6, 0.3, 0]), ([0.5, 0.8, 0], [0.5, 0.5, 0])]
+        >>> edges = []
+        >>> for i, (a, c) in enumerate(legs):
+        ...     d = np.subtract(c, a) / np.linalg.norm(np.subtract(c, a))
+        ...     edges += [("base", f"leg{i}", revolute(f"A{i}", z, a)),
+        ...               (f"leg{i}", f"rod{i}", prismatic(f"P{i}", d, actuated=True)),
+        ...               (f"rod{i}", "platform", revolute(f"C{i}", z, c))]
+        >>> rpr = sk.mechanism(sk.twist_graph("base", "platform", edges))
         >>> sorted(LoopClosureModel.of(rpr).functions())[:2]
         ['actuation', 'serial:1']
         """
@@ -249,12 +268,15 @@ class LoopClosureModel:
         Examples
         --------
         >>> from screwkit.graphs.joints import prismatic, revolute
-        >>> z, legs = [0, 0, 1], [([0, 0, 0], [0.4, 0.3, 0]), ([1, 0, 0], [0.6, 0.3, 0]), ([0.5, 0.8, 0], [0.5, 0.5, 0])]
-        >>> rpr = sk.mechanism(sk.twist_graph("base", "platform", [edge for i, (a, c) in enumerate(legs) for edge in (
-        ...     ("base", f"leg{i}", revolute(f"A{i}", z, a)),
-        ...     (f"leg{i}", f"rod{i}", prismatic(f"P{i}", np.subtract(c, a) / np.linalg.norm(np.subtract(c, a)),
-        ...                                      actuated=True)),
-        ...     (f"rod{i}", "platform", revolute(f"C{i}", z, c)))]))
+        >>> z = [0, 0, 1]
+        >>> legs = [([0, 0, 0], [0.4, 0.3, 0]), ([1, 0, 0], [0.6, 0.3, 0]), ([0.5, 0.8, 0], [0.5, 0.5, 0])]
+        >>> edges = []
+        >>> for i, (a, c) in enumerate(legs):
+        ...     d = np.subtract(c, a) / np.linalg.norm(np.subtract(c, a))
+        ...     edges += [("base", f"leg{i}", revolute(f"A{i}", z, a)),
+        ...               (f"leg{i}", f"rod{i}", prismatic(f"P{i}", d, actuated=True)),
+        ...               (f"rod{i}", "platform", revolute(f"C{i}", z, c))]
+        >>> rpr = sk.mechanism(sk.twist_graph("base", "platform", edges))
         >>> model = LoopClosureModel.of(rpr)
         >>> centre = np.array([0.45, 0.37, 0.0])
         >>> box = Enclosure.variables((centre - 0.001)[None], (centre + 0.001)[None], gradient=False)
@@ -284,12 +306,15 @@ class LoopClosureModel:
         Examples
         --------
         >>> from screwkit.graphs.joints import prismatic, revolute
-        >>> z, legs = [0, 0, 1], [([0, 0, 0], [0.4, 0.3, 0]), ([1, 0, 0], [0.6, 0.3, 0]), ([0.5, 0.8, 0], [0.5, 0.5, 0])]
-        >>> rpr = sk.mechanism(sk.twist_graph("base", "platform", [edge for i, (a, c) in enumerate(legs) for edge in (
-        ...     ("base", f"leg{i}", revolute(f"A{i}", z, a)),
-        ...     (f"leg{i}", f"rod{i}", prismatic(f"P{i}", np.subtract(c, a) / np.linalg.norm(np.subtract(c, a)),
-        ...                                      actuated=True)),
-        ...     (f"rod{i}", "platform", revolute(f"C{i}", z, c)))]))
+        >>> z = [0, 0, 1]
+        >>> legs = [([0, 0, 0], [0.4, 0.3, 0]), ([1, 0, 0], [0.6, 0.3, 0]), ([0.5, 0.8, 0], [0.5, 0.5, 0])]
+        >>> edges = []
+        >>> for i, (a, c) in enumerate(legs):
+        ...     d = np.subtract(c, a) / np.linalg.norm(np.subtract(c, a))
+        ...     edges += [("base", f"leg{i}", revolute(f"A{i}", z, a)),
+        ...               (f"leg{i}", f"rod{i}", prismatic(f"P{i}", d, actuated=True)),
+        ...               (f"rod{i}", "platform", revolute(f"C{i}", z, c))]
+        >>> rpr = sk.mechanism(sk.twist_graph("base", "platform", edges))
         >>> model = LoopClosureModel.of(rpr)
         >>> centre = np.array([0.45, 0.37, 0.0])
         >>> box = Enclosure.variables((centre - 0.001)[None], (centre + 0.001)[None], gradient=False)
@@ -340,13 +365,15 @@ class LoopClosureModel:
             values[np.ix_(rows, group.columns[i])] = part
 
     def _turns(self, turns: Array) -> dict[str, Array]:
-        return {name: turns[:, 3 * i: 3 * i + 3] for i, name in enumerate(self._spherical)}
+        return {name: turns[:, 3 * i : 3 * i + 3] for i, name in enumerate(self._spherical)}
 
     def _functions_over(
         self, xlo: Array, xhi: Array, proved: Array, turns: Array, lo: Array, hi: Array, singular: bool
     ) -> dict[str, Enclosure]:
         out = {
-            f"serial:{k + 1}": Enclosure(np.where(proved[:, k], 1.0, -np.inf), np.where(proved[:, k], 1.0, np.inf))
+            f"serial:{k + 1}": Enclosure(
+                np.where(proved[:, k], 1.0, -np.inf), np.where(proved[:, k], 1.0, np.inf)
+            )
             for k in range(self.limbs)
         }
         if singular:
@@ -379,15 +406,21 @@ class LoopClosureModel:
         closed = self.kinematics.solve(0.5 * (lo + hi))
         theta, offsets = model.recentred(closed.theta, closed.offsets)
         turns = np.concatenate(
-            [rotation_log(offsets[key][:, :3, :3]) for key in self._spherical] or [np.zeros((len(lo), 0))], axis=1
+            [rotation_log(offsets[key][:, :3, :3]) for key in self._spherical] or [np.zeros((len(lo), 0))],
+            axis=1,
         )
         xlo, xhi = np.full(theta.shape, -np.inf), np.full(theta.shape, np.inf)
         proved = np.zeros((len(lo), self.limbs), dtype=bool)
         rows = np.flatnonzero(closed.reached)
         for group in self._groups:
             size = len(group.members)
-            a, b, ok = self._inflate(group, self._stacked(group, theta[rows]), np.tile(lo[rows], (size, 1)),
-                                     np.tile(hi[rows], (size, 1)), self._turns(turns[rows]))
+            a, b, ok = self._inflate(
+                group,
+                self._stacked(group, theta[rows]),
+                np.tile(lo[rows], (size, 1)),
+                np.tile(hi[rows], (size, 1)),
+                self._turns(turns[rows]),
+            )
             self._unstack(group, xlo, rows, a)
             self._unstack(group, xhi, rows, b)
             for i, member in enumerate(group.members):
@@ -416,9 +449,18 @@ class LoopClosureModel:
         for _ in range(INFLATIONS):
             if not active.size:
                 break
-            jacobian, trace = self._jacobian(group, a[active], b[active], lo[active], hi[active], turns,
-                                             (active, len(y) // len(group.members)))
-            k_lo, k_hi, ok = krawczyk((f_lo[active], f_hi[active]), jacobian, y[active], (a[active], b[active]))
+            jacobian, trace = self._jacobian(
+                group,
+                a[active],
+                b[active],
+                lo[active],
+                hi[active],
+                turns,
+                (active, len(y) // len(group.members)),
+            )
+            k_lo, k_hi, ok = krawczyk(
+                (f_lo[active], f_hi[active]), jacobian, y[active], (a[active], b[active])
+            )
             ok &= trace.lo > 0  # the closure is a rotation by less than π/2: not a spurious zero at π
             done = active[ok]
             out_lo[done] = np.maximum(k_lo[ok], a[done])
@@ -426,7 +468,9 @@ class LoopClosureModel:
             proved[done] = True
             rest, k_lo, k_hi = active[~ok], k_lo[~ok], k_hi[~ok]
             # drop the boxes whose K(X) is no longer finite or grows past twice X (no contraction)
-            finite = np.all(np.isfinite(k_lo) & np.isfinite(k_hi) & (k_hi - k_lo <= 2.0 * (b[rest] - a[rest])), axis=1)
+            finite = np.all(
+                np.isfinite(k_lo) & np.isfinite(k_hi) & (k_hi - k_lo <= 2.0 * (b[rest] - a[rest])), axis=1
+            )
             rest, k_lo, k_hi = rest[finite], k_lo[finite], k_hi[finite]
             centre = y[rest]
             a[rest] = centre - 1.5 * np.maximum(centre - np.minimum(k_lo, a[rest]), 0.0) - floor[rest]
@@ -449,10 +493,18 @@ class LoopClosureModel:
         return np.stack([r.lo for r in live], axis=1), np.stack([r.hi for r in live], axis=1)  # type: ignore[union-attr]
 
     def _jacobian(
-        self, group: Group, a: Array, b: Array, lo: Array, hi: Array, turns: dict[str, Array],
+        self,
+        group: Group,
+        a: Array,
+        b: Array,
+        lo: Array,
+        hi: Array,
+        turns: dict[str, Array],
         rows: tuple[Array, int] | None = None,
     ) -> tuple[tuple[Array, Array], Enclosure]:
-        residual, trace, _ = evaluate_group(group, a, b, lo, hi, self._platform, turns, gradient=True, rows=rows)
+        residual, trace, _ = evaluate_group(
+            group, a, b, lo, hi, self._platform, turns, gradient=True, rows=rows
+        )
         live = [residual[j] for j in self._live]
         return (np.stack([r.glo for r in live], axis=1), np.stack([r.ghi for r in live], axis=1)), trace  # type: ignore[union-attr,misc]
 
@@ -465,9 +517,9 @@ class LoopClosureModel:
         centre = np.clip(0.5 * (lo + hi), lo, hi)
         radius = np.where(hi > lo, np.nextafter(np.maximum(centre - lo, hi - centre), np.inf), 0.0)
         offsets = self._turns(turns)
-        rows: list[Vector | None] = [None] * self.limbs
-        centres: list[Vector | None] = [None] * self.limbs
-        derivatives: list[list[tuple[Array, Array] | None] | None] = [None] * self.limbs
+        rows: list[Vector] = [[] for _ in range(self.limbs)]
+        centres: list[Vector] = [[] for _ in range(self.limbs)]
+        derivatives: list[list[tuple[Array, Array] | None]] = [[] for _ in range(self.limbs)]
         for group in self._groups:
             size = len(group.members)
             a, b = self._stacked(group, xlo), self._stacked(group, xhi)
@@ -480,29 +532,40 @@ class LoopClosureModel:
             slopes: list[tuple[Array, Array] | None] = [None] * len(at_centre)  # ∂c/∂u over U, (g B, n)
             over: Vector = [None] * len(at_centre)
             if radius.max() > 0:
-                _, _, twists = evaluate_group(group, a, b, *tile, self._platform, offsets, gradient=True, twists=True)
+                _, _, twists = evaluate_group(
+                    group, a, b, *tile, self._platform, offsets, gradient=True, twists=True
+                )
                 over = self._wrench(group, twists)
-                residual, _, _ = evaluate_group(group, a, b, *tile, self._platform, offsets, gradient=True,
-                                                pose_gradient=True)
+                residual, _, _ = evaluate_group(
+                    group, a, b, *tile, self._platform, offsets, gradient=True, pose_gradient=True
+                )
                 live = [residual[j] for j in self._live]
                 d = a.shape[1]
-                glo = np.stack([r.glo for r in live], axis=1)  # type: ignore[union-attr]
-                ghi = np.stack([r.ghi for r in live], axis=1)  # type: ignore[union-attr]
+                glo = np.stack([_gradient(r)[0] for r in live], axis=1)
+                ghi = np.stack([_gradient(r)[1] for r in live], axis=1)
                 rates = implicit_rates((glo[..., :d], ghi[..., :d]), (glo[..., d:], ghi[..., d:]))
                 sides = np.tile(radius, (size, 1))
                 for i, c in enumerate(over):
                     if c is not None:
-                        r_lo, r_hi = interval_matrix_vector(np.swapaxes(rates[0], 1, 2), np.swapaxes(rates[1], 1, 2),
-                                                            c.glo, c.ghi)  # type: ignore[arg-type]
+                        r_lo, r_hi = interval_matrix_vector(
+                            np.swapaxes(rates[0], 1, 2), np.swapaxes(rates[1], 1, 2), *_gradient(c)
+                        )
                         with np.errstate(invalid="ignore"):
-                            total = np.nextafter((np.maximum(np.abs(r_lo), np.abs(r_hi)) * sides).sum(axis=1)
-                                                 * (1.0 + 2.0**-40), np.inf)
+                            total = np.nextafter(
+                                (np.maximum(np.abs(r_lo), np.abs(r_hi)) * sides).sum(axis=1)
+                                * (1.0 + 2.0**-40),
+                                np.inf,
+                            )
                         spread[i] = np.where(np.isnan(total), np.inf, total)
                         slopes[i] = (r_lo, r_hi)
             for m, member in enumerate(group.members):
                 part = slice(m * len(lo), (m + 1) * len(lo))
-                rows[member] = [_centred(c, e, s, part) for c, e, s in zip(at_centre, over, spread, strict=True)]
-                centres[member] = [None if c is None else Enclosure(c.lo[part], c.hi[part]) for c in at_centre]
+                rows[member] = [
+                    _centred(c, e, s, part) for c, e, s in zip(at_centre, over, spread, strict=True)
+                ]
+                centres[member] = [
+                    None if c is None else Enclosure(c.lo[part], c.hi[part]) for c in at_centre
+                ]
                 derivatives[member] = [None if s is None else (s[0][part], s[1][part]) for s in slopes]
         # the mean-value form in the pose, D(u_c) + Σ_l ∂D/∂u_l(U) [-r_l, r_l] with
         # ∂D/∂u_l = Σ_k det(W with row k := ∂c_k/∂u_l) (D is linear in each row), intersected with
@@ -512,23 +575,29 @@ class LoopClosureModel:
         value = determinant(centres)
         assert value is not None
         width = np.zeros(count)
-        minors = [cofactors([rows[j] for j in range(d) if j != k]) for k in range(d)] if radius.max() > 0 else []
-        for l in range(lo.shape[1] if radius.max() > 0 else 0):
-            slope: Enclosure | None = None  # ∂D/∂u_l over U, signed
+        minors = (
+            [cofactors([rows[j] for j in range(d) if j != k]) for k in range(d)] if radius.max() > 0 else []
+        )
+        for axis in range(lo.shape[1] if radius.max() > 0 else 0):
+            slope: Enclosure | None = None  # ∂D/∂u over U along this axis, signed
             for k in range(d):  # minors[k]·t = det[rows other than k; t]
-                rate = [None if s is None else Enclosure(s[0][:, l], s[1][:, l]) for s in derivatives[k]]  # type: ignore[union-attr]
+                rate = [
+                    None if s is None else Enclosure(s[0][:, axis], s[1][:, axis]) for s in derivatives[k]
+                ]
                 term = _dot_rows(minors[k], rate)
                 if term is not None:
                     term = term * (-1.0 if (d - 1 - k) % 2 else 1.0)  # row k moved last
                     slope = term if slope is None else slope + term
             if slope is not None:
                 with np.errstate(invalid="ignore"):
-                    size = np.nextafter(np.maximum(np.abs(slope.lo), np.abs(slope.hi)) * radius[:, l], np.inf)
+                    size = np.maximum(np.abs(slope.lo), np.abs(slope.hi)) * radius[:, axis]
+                    size = np.nextafter(size, np.inf)
                     width = np.nextafter(width + size, np.inf)
         width = np.where(np.isnan(width), np.inf, np.nextafter(width * (1.0 + 2.0**-40), np.inf))
         zero = np.zeros(count)
-        middle = np.moveaxis(np.array([[zero if e is None else 0.5 * (e.lo + e.hi) for e in row]
-                                       for row in centres]), -1, 0)  # type: ignore[union-attr]
+        middle = np.moveaxis(
+            np.array([[zero if e is None else 0.5 * (e.lo + e.hi) for e in row] for row in centres]), -1, 0
+        )
         usable = np.all(np.isfinite(middle), axis=(1, 2))
         middle = np.where(usable[:, None, None], middle, np.eye(d))
         with np.errstate(invalid="ignore", over="ignore"):
@@ -538,15 +607,19 @@ class LoopClosureModel:
         scale = determinant([[Enclosure(p[:, i, j], p[:, i, j]) for j in range(d)] for i in range(d)])
         assert turned is not None and scale is not None
         direct = turned * scale.reciprocal()
-        return Enclosure(np.maximum(np.nextafter(value.lo - width, -np.inf), direct.lo),
-                         np.minimum(np.nextafter(value.hi + width, np.inf), direct.hi))
+        return Enclosure(
+            np.maximum(np.nextafter(value.lo - width, -np.inf), direct.lo),
+            np.minimum(np.nextafter(value.hi + width, np.inf), direct.hi),
+        )
 
     def _wrench(self, group: Group, twists: list[Vector]) -> Vector:
         passive = [[t[j] for j in self._live] for i, t in enumerate(twists) if i != group.actuated]
         return cofactors(passive)
 
 
-def _centred(at_centre: Enclosure | None, over: Enclosure | None, spread: Array | None, part: slice) -> Enclosure | None:
+def _centred(
+    at_centre: Enclosure | None, over: Enclosure | None, spread: Array | None, part: slice
+) -> Enclosure | None:
     """One member's entry of a wrench: its value at the centre pose widened by ``spread`` (the
     mean-value theorem in the pose), intersected with its direct enclosure over the joint box."""
     if at_centre is None:
@@ -556,6 +629,12 @@ def _centred(at_centre: Enclosure | None, over: Enclosure | None, spread: Array 
     lo = np.maximum(np.nextafter(at_centre.lo[part] - spread[part], -np.inf), over.lo[part])
     hi = np.minimum(np.nextafter(at_centre.hi[part] + spread[part], np.inf), over.hi[part])
     return Enclosure(lo, hi)
+
+
+def _gradient(e: Enclosure | None) -> tuple[Array, Array]:
+    """An enclosure's gradient bounds (it has them)."""
+    assert e is not None and e.glo is not None and e.ghi is not None
+    return e.glo, e.ghi
 
 
 def _times(row: Any, p: Array) -> Vector:

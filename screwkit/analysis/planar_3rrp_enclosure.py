@@ -102,11 +102,14 @@ class Planar3RRPModel(_ClosedFormModel):
         """
         if getattr(mechanism, "family", None) != "planar_3rrp":
             raise ScrewkitValueError(
-                f"Expected `mechanism` of the planar_3rrp family, got {getattr(mechanism, 'name', mechanism)!r}."
+                "Expected `mechanism` of the planar_3rrp family, got "
+                f"{getattr(mechanism, 'name', mechanism)!r}."
             )
         given = dict(options or {})
         mode = given.pop("working_mode", (1, 1, 1))
-        signs = isinstance(mode, tuple | list | np.ndarray) and len(mode) == 3 and all(m in (-1, 1) for m in mode)
+        signs = (
+            isinstance(mode, tuple | list | np.ndarray) and len(mode) == 3 and all(m in (-1, 1) for m in mode)
+        )
         if given or not signs:
             raise ScrewkitValueError(
                 f"Expected `mode` to give only a working_mode of three signs (+1 or -1), got {options!r}."

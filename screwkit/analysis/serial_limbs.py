@@ -176,7 +176,10 @@ def limbs_of(mechanism: Any) -> list[Limb]:
     """
     kinematics = mechanism.parameters
     model = kinematics.model
-    raw = {key: np.asarray(joint.screws, dtype=float) for _, _, key, joint in kinematics.graph.edges(keys=True, data="joint")}
+    raw = {
+        key: np.asarray(joint.screws, dtype=float)
+        for _, _, key, joint in kinematics.graph.edges(keys=True, data="joint")
+    }
     actuated = {spec.name for spec in kinematics.reference.specs if spec.actuated}
     point = [_one_box(v) for v in model.point]
     inverse_length = Enclosure.constant(model.length, Enclosure(np.ones(1), np.ones(1))).reciprocal()
@@ -190,7 +193,9 @@ def limbs_of(mechanism: Any) -> list[Limb]:
             joint_factors = []
             if model.types[key] == "S":
                 centre = model.to_scaled_points(model.joint_points[key])
-                joint_factors.append(Factor(1.0, joints=(key,), centre=tuple(constant_of(_one_box(c)) for c in centre)))
+                joint_factors.append(
+                    Factor(1.0, joints=(key,), centre=tuple(constant_of(_one_box(c)) for c in centre))
+                )
             for k in range(len(indices)):
                 w, v = _scaled_screw(raw[key][k], point, inverse_length)
                 screw = tuple(constant_of(x) for x in (*w, *v))
@@ -226,8 +231,13 @@ def _scaled_screw(raw: Array, point: Vector, inverse_length: Enclosure) -> tuple
 
 
 def _signature(limb: Limb) -> tuple[Any, ...]:
-    return (limb.actuated, len(limb.columns)) + tuple(
-        (f.sign, f.variable, bool(f.joints), f.constants is not None and "v" in f.constants) for f in limb.factors
+    return (
+        limb.actuated,
+        len(limb.columns),
+        *tuple(
+            (f.sign, f.variable, bool(f.joints), f.constants is not None and "v" in f.constants)
+            for f in limb.factors
+        ),
     )
 
 
@@ -240,7 +250,10 @@ def _merged(values: list[Any]) -> Any:
         return type(first)(_merged([v[i] for v in values]) for i in range(len(first)))
     if all(v is None for v in values):
         return None
-    return (np.array([0.0 if v is None else v[0] for v in values]), np.array([0.0 if v is None else v[1] for v in values]))
+    return (
+        np.array([0.0 if v is None else v[0] for v in values]),
+        np.array([0.0 if v is None else v[1] for v in values]),
+    )
 
 
 def grouped(limbs: list[Limb]) -> list[Group]:
@@ -271,15 +284,24 @@ def grouped(limbs: list[Limb]) -> list[Group]:
         factors = []
         for position, factor in enumerate(chosen[0].factors):
             parts = [limb.factors[position] for limb in chosen]
-            factors.append(Factor(
-                factor.sign,
-                factor.variable,
-                None if factor.constants is None else _merged([p.constants for p in parts]),
-                _merged([list(p.screw) for p in parts]) if factor.screw else (),
-                tuple(j for p in parts for j in p.joints),
-                _merged([list(p.centre) for p in parts]) if factor.centre else (),
-            ))
-        out.append(Group(tuple(members), np.array([limb.columns for limb in chosen]), tuple(factors), chosen[0].actuated))
+            factors.append(
+                Factor(
+                    factor.sign,
+                    factor.variable,
+                    None if factor.constants is None else _merged([p.constants for p in parts]),
+                    _merged([list(p.screw) for p in parts]) if factor.screw else (),
+                    tuple(j for p in parts for j in p.joints),
+                    _merged([list(p.centre) for p in parts]) if factor.centre else (),
+                )
+            )
+        out.append(
+            Group(
+                tuple(members),
+                np.array([limb.columns for limb in chosen]),
+                tuple(factors),
+                chosen[0].actuated,
+            )
+        )
     return out
 
 
@@ -333,9 +355,11 @@ def _platform(constants: dict[str, Any], pose: list[Enclosure], dims: int | None
         else:
             turn[axis] = value
     one = lifted((1.0, 1.0), batch, dims)
-    rotation = rodrigues(turn) if any(t is not None for t in turn) else [
-        [one if i == j else None for j in range(3)] for i in range(3)
-    ]
+    rotation = (
+        rodrigues(turn)
+        if any(t is not None for t in turn)
+        else [[one if i == j else None for j in range(3)] for i in range(3)]
+    )
     local = [lifted(c, batch, dims) for c in constants["local"]]
     return rotation, subtract(position, applied(rotation, local))
 
@@ -345,8 +369,17 @@ def _negated(v: Vector) -> Vector:
 
 
 def evaluate_group(
-    group: Group, a: Array, b: Array, lo: Array, hi: Array, platform: dict[str, Any], turns: dict[str, Array],
-    *, gradient: bool = False, pose_gradient: bool = False, twists: bool = False,
+    group: Group,
+    a: Array,
+    b: Array,
+    lo: Array,
+    hi: Array,
+    platform: dict[str, Any],
+    turns: dict[str, Array],
+    *,
+    gradient: bool = False,
+    pose_gradient: bool = False,
+    twists: bool = False,
     rows: tuple[Array, int] | None = None,
 ) -> tuple[Vector, Enclosure, list[Vector]]:
     """A group's loop residuals (6 each, exact zeros None), the traces of ``R_k R(u)ᵀ`` and, with
@@ -384,7 +417,8 @@ def evaluate_group(
     >>> group = grouped(limbs_of(m))[0]
     >>> constants = platform_constants(m.parameters.model, m.parameters.coordinates)
     >>> pose = m.parameters.task.unscaled(np.array([[0.5]])) + 0.0      # x at half a char. length
-    >>> residual, _, _ = evaluate_group(group, np.array([[0.5]]), np.array([[0.5]]), pose, pose, constants, {})
+    >>> half = np.array([[0.5]])
+    >>> residual, _, _ = evaluate_group(group, half, half, pose, pose, constants, {})
     >>> float(abs(residual[3].lo[0])) < 1e-12
     True
     """

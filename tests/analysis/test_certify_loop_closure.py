@@ -76,8 +76,11 @@ def test_rpr_singular_curve_lies_in_no_free_box(rpr_certificate):
             curve.append((bisect(lambda x, y=y: rpr_det(x, y), xs[i], xs[i + 1]), y))
     assert len(curve) >= 15 and all(abs(x - 0.5) < 1e-9 for x, _ in curve)
     for x, y in curve:
-        holding = [b for b in rpr_certificate.boxes
-                   if b.bounds["x"][0] <= x <= b.bounds["x"][1] and b.bounds["y"][0] <= y <= b.bounds["y"][1]]
+        holding = [
+            b
+            for b in rpr_certificate.boxes
+            if b.bounds["x"][0] <= x <= b.bounds["x"][1] and b.bounds["y"][0] <= y <= b.bounds["y"][1]
+        ]
         assert holding and all(b.status != "free" for b in holding)
     assert rpr_certificate.fractions["free"] > 0.5
 
@@ -139,9 +142,11 @@ def sps_leg_platform():
     base, ends = gough_stewart_points()
     joints = []
     for i, (a, c) in enumerate(zip(base, ends, strict=True), start=1):
-        joints += [("base", f"lower{i}", spherical(f"Sa{i}", a)),
-                   (f"lower{i}", f"upper{i}", sk.prismatic(f"P{i}", unit(c - a), actuated=True)),
-                   (f"upper{i}", "platform", spherical(f"Sc{i}", c))]
+        joints += [
+            ("base", f"lower{i}", spherical(f"Sa{i}", a)),
+            (f"lower{i}", f"upper{i}", sk.prismatic(f"P{i}", unit(c - a), actuated=True)),
+            (f"upper{i}", "platform", spherical(f"Sc{i}", c)),
+        ]
     return sk.twist_graph("base", "platform", joints)
 
 
@@ -150,8 +155,10 @@ def sps_leg_platform():
     [
         (lambda: sk.mechanism(sk.load_mechanism("h4").twist_graph()), "is not inside one serial limb"),
         (lambda: sk.mechanism(sps_leg_platform()), "an internal motion"),
-        (lambda: sk.mechanism(planar_3rpr(BASE, PLATFORM), task=("platform", [0.5, 0.4, 0.0])),
-         "do not fix the platform's whole pose"),
+        (
+            lambda: sk.mechanism(planar_3rpr(BASE, PLATFORM), task=("platform", [0.5, 0.4, 0.0])),
+            "do not fix the platform's whole pose",
+        ),
     ],
     ids=["parallelograms", "spinning legs", "point task"],
 )
@@ -184,4 +191,5 @@ def test_certificate_is_invariant_under_a_translation_and_the_length_unit():
         assert witnesses and {w.label for w in witnesses} == {"actuation"}
         assert all(abs(w.pose["x"] - (0.5 * scale + shift)) < 1e-6 * scale for w in witnesses)
     assert abs(here.fractions["free"] - there.fractions["free"]) <= sum(
-        c.fractions[k] for c in (here, there) for k in ("singular", "undecided"))
+        c.fractions[k] for c in (here, there) for k in ("singular", "undecided")
+    )

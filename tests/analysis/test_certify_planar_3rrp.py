@@ -82,8 +82,11 @@ def test_the_independent_singular_curve_lies_in_no_free_box(certificate):
     curve = singular_curve()
     assert len(curve) >= 20  # the curve crosses the slice
     for x, y in curve:
-        holding = [b for b in certificate.boxes
-                   if b.bounds["x"][0] <= x <= b.bounds["x"][1] and b.bounds["y"][0] <= y <= b.bounds["y"][1]]
+        holding = [
+            b
+            for b in certificate.boxes
+            if b.bounds["x"][0] <= x <= b.bounds["x"][1] and b.bounds["y"][0] <= y <= b.bounds["y"][1]
+        ]
         assert holding and all(b.status != "free" for b in holding)
     assert certificate.fractions["free"] > 0.9
     assert certificate.totals["unreachable"] == 0  # the whole square is reached at phi = 0.8
@@ -121,7 +124,9 @@ def test_float_route_is_the_hand_derivation_and_the_family():
     poses = np.column_stack([rng.uniform(-0.3, 0.3, (200, 2)), rng.uniform(-1, 1, 200)])
     values = model.values(poses)
     margin = reach_margin(RRP.parameters, poses) * RRP.parameters.link_lengths**2
-    np.testing.assert_allclose(np.column_stack([values[f"serial:{k}"] for k in (1, 2, 3)]), margin, atol=1e-14)
+    np.testing.assert_allclose(
+        np.column_stack([values[f"serial:{k}"] for k in (1, 2, 3)]), margin, atol=1e-14
+    )
     line = np.column_stack([np.full(300, 0.1), np.linspace(-0.3, 0.3, 300), np.full(300, PHI)])
     det = model.values(line)["actuation"]
     gaps = np.array([concurrency_gap(p) for p in line])
@@ -129,7 +134,9 @@ def test_float_route_is_the_hand_derivation_and_the_family():
 
 
 def test_working_mode_and_bad_mode():
-    other = sk.certify(RRP, {"x": (-0.05, 0.05), "y": (-0.05, 0.05), "phi": 0.0}, mode={"working_mode": (1, -1, 1)})
+    other = sk.certify(
+        RRP, {"x": (-0.05, 0.05), "y": (-0.05, 0.05), "phi": 0.0}, mode={"working_mode": (1, -1, 1)}
+    )
     assert other.totals["free"] >= 1
     with pytest.raises(sk.ScrewkitValueError, match="working_mode"):
         Planar3RRPModel.of(RRP, {"working_mode": (1, 2, 1)})
