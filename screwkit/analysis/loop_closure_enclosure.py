@@ -63,6 +63,7 @@ from typing import Any
 import numpy as np
 
 from ..algebra.rigid_motions import rotation_log
+from ..core.loop_closure import close_loops
 from ..exceptions import ScrewkitValueError
 from .interval_motions import Vector, cofactors, determinant
 from .intervals import Enclosure
@@ -403,7 +404,8 @@ class LoopClosureModel:
     def _prove(self, lo: Array, hi: Array) -> tuple[Array, Array, Array, Array]:
         """The Krawczyk proof per limb from the continuation's joint values at the boxes' centres."""
         model = self.kinematics.model
-        closed = self.kinematics.solve(0.5 * (lo + hi))
+        kinematics = self.kinematics  # its coordinates' angle offsets are zero (of())
+        closed = close_loops(model, kinematics.task, kinematics.task.scaled_targets(0.5 * (lo + hi)))
         theta, offsets = model.recentred(closed.theta, closed.offsets)
         turns = np.concatenate(
             [rotation_log(offsets[key][:, :3, :3]) for key in self._spherical] or [np.zeros((len(lo), 0))],
