@@ -95,7 +95,8 @@ def main() -> None:
             return found["gough"]
 
         seconds = best_of(args.repeats, gough_proof, clock)
-        print(f"6-UPS graph {label}: {seconds:.2f} s ({found['gough'].evaluated} boxes: {found['gough'].totals})")
+        done = found["gough"]
+        print(f"6-UPS graph {label}: {seconds:.2f} s ({done.evaluated} boxes: {done.totals})")
 
     model = LoopClosureModel.of(gough)
     centres = gough.default_pose + np.random.default_rng(0).uniform(-0.02, 0.02, (256, 6))

@@ -48,6 +48,7 @@ __all__ = [
     "compose",
     "constant_of",
     "determinant",
+    "identity",
     "lifted",
     "rodrigues",
     "screw_exponential",
@@ -118,6 +119,27 @@ def lifted(value: Any, batch: Any, dims: int | None) -> Scalar:
         return Enclosure(lo, hi)
     zero = np.zeros((batch, dims))
     return Enclosure(lo, hi, zero, zero)
+
+
+def identity(like: Enclosure) -> Matrix:
+    """The 3 × 3 identity in the shape of ``like``: exact ones, exact zeros (None).
+
+    Parameters
+    ----------
+    like : Enclosure
+
+    Returns
+    -------
+    list of 3 lists of 3 Enclosure or None
+
+    Examples
+    --------
+    >>> eye = identity(Enclosure(np.zeros(2), np.ones(2)))
+    >>> eye[0][0].lo.tolist(), eye[0][1]
+    ([1.0, 1.0], None)
+    """
+    one = Enclosure.constant(1.0, like)
+    return [[one if i == j else None for j in range(3)] for i in range(3)]
 
 
 def _negated(x: Scalar) -> Scalar:
@@ -243,9 +265,7 @@ def screw_exponential(
     batch = len(theta.lo) if members is None else members
     dims = None if theta.glo is None else theta.glo.shape[1]
     if "v" in constants:
-        one = Enclosure.constant(1.0, theta)
-        identity: Matrix = [[one if i == j else None for j in range(3)] for i in range(3)]
-        return identity, [_mul(theta, lifted(c, batch, dims)) for c in constants["v"]]
+        return identity(theta), [_mul(theta, lifted(c, batch, dims)) for c in constants["v"]]
     cos, sin = theta.cos_sin()
     versine = cos * -1.0 + 1.0
 
@@ -318,7 +338,7 @@ def compose(a: tuple[Matrix, Vector] | None, b: tuple[Matrix, Vector]) -> tuple[
     Examples
     --------
     >>> one = Enclosure(np.array([1.0]), np.array([1.0]))
-    >>> eye = [[one if i == j else None for j in range(3)] for i in range(3)]
+    >>> eye = identity(one)
     >>> _, p = compose((eye, [one, None, None]), (eye, [None, one, None]))
     >>> [None if x is None else float(x.lo[0]) for x in p]
     [1.0, 1.0, None]
@@ -344,7 +364,7 @@ def adjoint(g: tuple[Matrix, Vector] | None, w: Vector, v: Vector) -> Vector:
     Examples
     --------
     >>> one = Enclosure(np.array([1.0]), np.array([1.0]))
-    >>> eye = [[one if i == j else None for j in range(3)] for i in range(3)]
+    >>> eye = identity(one)
     >>> s = adjoint((eye, [one, None, None]), [None, None, one], [None] * 3)   # z axis moved to x = 1
     >>> [None if x is None else float(x.lo[0]) for x in s]
     [None, None, 1.0, None, -1.0, None]
@@ -431,7 +451,7 @@ def transposed_product(a: Matrix, b: Matrix) -> Matrix:
     Examples
     --------
     >>> one = Enclosure(np.array([1.0]), np.array([1.0]))
-    >>> eye = [[one if i == j else None for j in range(3)] for i in range(3)]
+    >>> eye = identity(one)
     >>> transposed_product(eye, eye)[0][1] is None
     True
     """
@@ -449,12 +469,12 @@ def applied(a: Matrix, v: Vector) -> Vector:
     Returns
     -------
     list of Enclosure or None
+        (exact zeros stay None)
 
     Examples
     --------
-    >>> one = Enclosure(np.array([1.0]), np.array([1.0]))
-    >>> eye = [[one if i == j else None for j in range(3)] for i in range(3)]
-    >>> applied(eye, [None, one, None])[1].lo.tolist()
+    >>> two = Enclosure(np.array([2.0]), np.array([2.0]))
+    >>> applied(identity(two), [None, two, None])[1].lo.tolist()
     [1.0]
     """
     return _apply(a, v)

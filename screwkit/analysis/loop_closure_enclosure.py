@@ -40,16 +40,7 @@ enclosed from their box's ``X`` (the same branch).
 
 Examples
 --------
->>> from screwkit.graphs.joints import prismatic, revolute
->>> z = [0, 0, 1]
->>> legs = [([0, 0, 0], [0.4, 0.3, 0]), ([1, 0, 0], [0.6, 0.3, 0]), ([0.5, 0.8, 0], [0.5, 0.5, 0])]
->>> edges = []
->>> for i, (a, c) in enumerate(legs):
-...     d = np.subtract(c, a) / np.linalg.norm(np.subtract(c, a))
-...     edges += [("base", f"leg{i}", revolute(f"A{i}", z, a)),
-...               (f"leg{i}", f"rod{i}", prismatic(f"P{i}", d, actuated=True)),
-...               (f"rod{i}", "platform", revolute(f"C{i}", z, c))]
->>> rpr = sk.mechanism(sk.twist_graph("base", "platform", edges))
+>>> rpr = sk.mechanism("examples/planar_3rpr.toml")  # a planar 3-RPR snapshot
 >>> model = LoopClosureModel.of(rpr)
 >>> model.dimension, model.limbs, sorted(model.functions())
 (3, 3, ['actuation', 'serial:1', 'serial:2', 'serial:3'])
@@ -224,25 +215,17 @@ class LoopClosureModel:
         return list(next(iter(lives)))
 
     def functions(self) -> dict[str, str]:
-        """Each certified function's name and statement (no constraint function: module docstring).
+        """The functions enclosed, with what their vanishing (or their proof failing) means: the
+        limbs' closures and the actuation determinant; no limb has a constraint wrench.
 
         Returns
         -------
         dict of str to str
+            ``"actuation"``, ``"serial:1"`` .. ``"serial:<limbs>"``.
 
         Examples
         --------
-        >>> from screwkit.graphs.joints import prismatic, revolute
-        >>> z = [0, 0, 1]
-        >>> legs = [([0, 0, 0], [0.4, 0.3, 0]), ([1, 0, 0], [0.6, 0.3, 0]), ([0.5, 0.8, 0], [0.5, 0.5, 0])]
-        >>> edges = []
-        >>> for i, (a, c) in enumerate(legs):
-        ...     d = np.subtract(c, a) / np.linalg.norm(np.subtract(c, a))
-        ...     edges += [("base", f"leg{i}", revolute(f"A{i}", z, a)),
-        ...               (f"leg{i}", f"rod{i}", prismatic(f"P{i}", d, actuated=True)),
-        ...               (f"rod{i}", "platform", revolute(f"C{i}", z, c))]
-        >>> rpr = sk.mechanism(sk.twist_graph("base", "platform", edges))
-        >>> sorted(LoopClosureModel.of(rpr).functions())[:2]
+        >>> sorted(LoopClosureModel.of(sk.mechanism("examples/planar_3rpr.toml")).functions())[:2]
         ['actuation', 'serial:1']
         """
         out = {"actuation": _STATEMENTS["actuation"]}
@@ -268,18 +251,9 @@ class LoopClosureModel:
 
         Examples
         --------
-        >>> from screwkit.graphs.joints import prismatic, revolute
-        >>> z = [0, 0, 1]
-        >>> legs = [([0, 0, 0], [0.4, 0.3, 0]), ([1, 0, 0], [0.6, 0.3, 0]), ([0.5, 0.8, 0], [0.5, 0.5, 0])]
-        >>> edges = []
-        >>> for i, (a, c) in enumerate(legs):
-        ...     d = np.subtract(c, a) / np.linalg.norm(np.subtract(c, a))
-        ...     edges += [("base", f"leg{i}", revolute(f"A{i}", z, a)),
-        ...               (f"leg{i}", f"rod{i}", prismatic(f"P{i}", d, actuated=True)),
-        ...               (f"rod{i}", "platform", revolute(f"C{i}", z, c))]
-        >>> rpr = sk.mechanism(sk.twist_graph("base", "platform", edges))
+        >>> rpr = sk.mechanism("examples/planar_3rpr.toml")  # a planar 3-RPR snapshot
         >>> model = LoopClosureModel.of(rpr)
-        >>> centre = np.array([0.45, 0.37, 0.0])
+        >>> centre = np.array([0.55, 0.4, 0.0])
         >>> box = Enclosure.variables((centre - 0.001)[None], (centre + 0.001)[None], gradient=False)
         >>> values = model.evaluate(box)
         >>> bool(values["serial:1"].lo[0] > 0 and values["actuation"].excludes_zero()[0])
@@ -306,21 +280,12 @@ class LoopClosureModel:
 
         Examples
         --------
-        >>> from screwkit.graphs.joints import prismatic, revolute
-        >>> z = [0, 0, 1]
-        >>> legs = [([0, 0, 0], [0.4, 0.3, 0]), ([1, 0, 0], [0.6, 0.3, 0]), ([0.5, 0.8, 0], [0.5, 0.5, 0])]
-        >>> edges = []
-        >>> for i, (a, c) in enumerate(legs):
-        ...     d = np.subtract(c, a) / np.linalg.norm(np.subtract(c, a))
-        ...     edges += [("base", f"leg{i}", revolute(f"A{i}", z, a)),
-        ...               (f"leg{i}", f"rod{i}", prismatic(f"P{i}", d, actuated=True)),
-        ...               (f"rod{i}", "platform", revolute(f"C{i}", z, c))]
-        >>> rpr = sk.mechanism(sk.twist_graph("base", "platform", edges))
-        >>> model = LoopClosureModel.of(rpr)
-        >>> centre = np.array([0.45, 0.37, 0.0])
-        >>> box = Enclosure.variables((centre - 0.001)[None], (centre + 0.001)[None], gradient=False)
-        >>> at = model.evaluate_points(Enclosure.variables(centre[None], centre[None], gradient=False), box)
-        >>> float(at["actuation"].hi[0] - at["actuation"].lo[0]) < 1e-4 * float(abs(at["actuation"].lo[0]))
+        >>> model = LoopClosureModel.of(sk.mechanism("examples/planar_3rpr.toml"))
+        >>> point = np.array([[0.5505, 0.3995, 0.0002]])
+        >>> box = Enclosure.variables(np.array([[0.549, 0.399, -0.001]]), np.array([[0.551, 0.401, 0.001]]),
+        ...                           gradient=False)
+        >>> d = model.evaluate_points(Enclosure.variables(point, point, gradient=False), box)["actuation"]
+        >>> float(d.hi[0] - d.lo[0]) < 1e-4 * float(abs(d.lo[0]))  # the point's D, sign certified
         True
         """
         plo, phi = np.stack([p.lo for p in points], axis=1), np.stack([p.hi for p in points], axis=1)

@@ -41,6 +41,7 @@ from .limb_enclosures import _ClosedFormModel, _Constant, _constants, _relative
 __all__ = ["Planar3RRPModel"]
 
 _STATEMENTS = {
+    "constraint": "none: every limb's twists are planar, its planarity wrenches never change",
     "actuation": "det[n_k, A_k x n_k] = 0 (paper 003, Sec. 4.2): the three actuation lines (through "
     "the elbows, normal to the guides) are concurrent or parallel, a direct singularity",
     "serial": "l_k^2 - h_k^2 = 0, h_k the distance from M_k to the guide (paper 003, Eqs. 11a-12): "
@@ -142,9 +143,8 @@ class Planar3RRPModel(_ClosedFormModel):
         >>> Planar3RRPModel.of(load_mechanism("planar_3rrp")).functions()["serial:2"][:18]
         'l_k^2 - h_k^2 = 0,'
         """
-        out = {"actuation": self.statements["actuation"]}
-        for i in range(self.limbs):
-            out[f"serial:{i + 1}"] = self.statements["serial"].format(i=i + 1)
+        out = super().functions()
+        del out["constraint"]  # a planar mechanism's planarity wrenches never change (module docstring)
         return out
 
     def evaluate(self, pose: list[Enclosure], *, singular: bool = True) -> dict[str, Enclosure]:

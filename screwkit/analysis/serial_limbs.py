@@ -36,6 +36,7 @@ from .interval_motions import (
     compose,
     constant_of,
     exponential_constants,
+    identity,
     lifted,
     rodrigues,
     screw_exponential,
@@ -354,12 +355,7 @@ def _platform(constants: dict[str, Any], pose: list[Enclosure], dims: int | None
             position[axis] = (value if origin is None else value - origin) * inverse_length
         else:
             turn[axis] = value
-    one = lifted((1.0, 1.0), batch, dims)
-    rotation = (
-        rodrigues(turn)
-        if any(t is not None for t in turn)
-        else [[one if i == j else None for j in range(3)] for i in range(3)]
-    )
+    rotation = rodrigues(turn) if any(t is not None for t in turn) else identity(inverse_length)
     local = [lifted(c, batch, dims) for c in constants["local"]]
     return rotation, subtract(position, applied(rotation, local))
 
