@@ -138,7 +138,9 @@ def identity(like: Enclosure) -> Matrix:
     >>> eye[0][0].lo.tolist(), eye[0][1]
     ([1.0, 1.0], None)
     """
-    one = Enclosure.constant(1.0, like)
+    ones = np.ones_like(like.lo)
+    zero = None if like.glo is None else np.zeros_like(like.glo)
+    one = Enclosure(ones, ones, zero, zero)
     return [[one if i == j else None for j in range(3)] for i in range(3)]
 
 
@@ -475,7 +477,7 @@ def applied(a: Matrix, v: Vector) -> Vector:
     --------
     >>> two = Enclosure(np.array([2.0]), np.array([2.0]))
     >>> applied(identity(two), [None, two, None])[1].lo.tolist()
-    [1.0]
+    [2.0]
     """
     return _apply(a, v)
 
