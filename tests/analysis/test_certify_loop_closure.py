@@ -193,3 +193,16 @@ def test_certificate_is_invariant_under_a_translation_and_the_length_unit():
     assert abs(here.fractions["free"] - there.fractions["free"]) <= sum(
         c.fractions[k] for c in (here, there) for k in ("singular", "undecided")
     )
+
+
+def test_dask_local_cluster_gives_the_same_loop_closure_certificate():
+    # each box's proof depends on the box alone (the continuation from the reference at its centre),
+    # so a cluster's chunks give the in-process paving, witness for witness
+    distributed = pytest.importorskip("dask.distributed")
+    region = {"x": (0.47, 0.53), "y": (0.35, 0.39), "phi": 0.0}
+    here = sk.certify(RPR, region, resolution=0.02)
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=False,
+                                  dashboard_address=None) as cluster, distributed.Client(cluster) as client:
+        there = sk.certify(RPR, region, resolution=0.02, client=client)
+    assert [b.to_dict() for b in here.boxes] == [b.to_dict() for b in there.boxes]
+    assert here.totals["singular"] >= 1
