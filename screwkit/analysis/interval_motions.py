@@ -85,9 +85,9 @@ def constant_of(enclosure: Scalar) -> Constant:
     return float(enclosure.lo[0]), float(enclosure.hi[0])
 
 
-def lifted(value: Any, batch: Any, dims: int | None) -> Scalar:
-    """A constant ``(lo, hi)`` or a values-only enclosure as an enclosure of ``batch`` boxes, with a
-    zero gradient of ``dims`` coordinates (None: values only).
+def lifted(value: Any, batch: Any) -> Scalar:
+    """A constant ``(lo, hi)`` or a values-only enclosure as a *fixed* enclosure of ``batch`` boxes:
+    no gradient arrays, a zero gradient wherever it meets an enclosure that has one.
 
     Parameters
     ----------
@@ -95,7 +95,6 @@ def lifted(value: Any, batch: Any, dims: int | None) -> Scalar:
         Arrays: one constant per member of a group.
     batch : int or numpy.ndarray of int
         The number of boxes, or each box's member (the index into the arrays).
-    dims : int or None
 
     Returns
     -------
@@ -103,8 +102,9 @@ def lifted(value: Any, batch: Any, dims: int | None) -> Scalar:
 
     Examples
     --------
-    >>> lifted((1.0, 1.0), 2, 3).glo.shape
-    (2, 3)
+    >>> c = lifted((1.0, 1.0), 2)
+    >>> c.lo.tolist(), c.fixed
+    ([1.0, 1.0], True)
     """
     if value is None:
         return None
@@ -114,11 +114,7 @@ def lifted(value: Any, batch: Any, dims: int | None) -> Scalar:
     else:  # one constant, or one per member
         lo = np.atleast_1d(np.asarray(value[0], float))[members if np.ndim(value[0]) else 0 * members]
         hi = np.atleast_1d(np.asarray(value[1], float))[members if np.ndim(value[1]) else 0 * members]
-    batch = len(members)
-    if dims is None:
-        return Enclosure(lo, hi)
-    zero = np.zeros((batch, dims))
-    return Enclosure(lo, hi, zero, zero)
+    return Enclosure(lo, hi, fixed=True)  # a zero gradient wherever it meets one
 
 
 def identity(like: Enclosure) -> Matrix:
@@ -139,8 +135,7 @@ def identity(like: Enclosure) -> Matrix:
     ([1.0, 1.0], None)
     """
     ones = np.ones_like(like.lo)
-    zero = None if like.glo is None else np.zeros_like(like.glo)
-    one = Enclosure(ones, ones, zero, zero)
+    one = Enclosure(ones, ones, fixed=True)
     return [[one if i == j else None for j in range(3)] for i in range(3)]
 
 
@@ -265,25 +260,24 @@ def screw_exponential(
     [1.0, -1.0]
     """
     batch = len(theta.lo) if members is None else members
-    dims = None if theta.glo is None else theta.glo.shape[1]
     if "v" in constants:
-        return identity(theta), [_mul(theta, lifted(c, batch, dims)) for c in constants["v"]]
+        return identity(theta), [_mul(theta, lifted(c, batch)) for c in constants["v"]]
     cos, sin = theta.cos_sin()
     versine = cos * -1.0 + 1.0
 
     def lift(m: Any) -> Any:
         if isinstance(m, list):
             return [lift(x) for x in m]
-        return lifted(m, batch, dims)
+        return lifted(m, batch)
 
     rotation = _identity_plus(
         _scaled_matrix(sin, lift(constants["K"])), _scaled_matrix(versine, lift(constants["K2"]))
     )
     translation = [
         _sum(
-            _mul(theta, lifted(c0, batch, dims)),
-            _mul(sin, lifted(b1, batch, dims)),
-            _mul(versine, lifted(b2, batch, dims)),
+            _mul(theta, lifted(c0, batch)),
+            _mul(sin, lifted(b1, batch)),
+            _mul(versine, lifted(b2, batch)),
         )
         for c0, b1, b2 in zip(constants["c0"], constants["b1"], constants["b2"], strict=True)
     ]

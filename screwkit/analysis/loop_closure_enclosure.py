@@ -70,7 +70,7 @@ COVERED_JOINTS = ("R", "P", "H", "C", "U", "S")
 #: Rounds of epsilon inflation before a box is left unproved.
 INFLATIONS = 5
 #: Krawczyk iterations narrowing a point's joint values from its box's.
-POINT_ITERATIONS = 2
+POINT_ITERATIONS = 3
 #: Boxes whose verified joint values are remembered (points are evaluated within their box).
 MEMO_BOXES = 65536
 #: Bisection steps refining a witness (each a Krawczyk enclosure at the points): the bracket
@@ -473,7 +473,10 @@ class LoopClosureModel:
             group, a, b, lo, hi, self._platform, turns, gradient=True, rows=rows
         )
         live = [residual[j] for j in self._live]
-        return (np.stack([r.glo for r in live], axis=1), np.stack([r.ghi for r in live], axis=1)), trace  # type: ignore[union-attr,misc]
+        d = a.shape[1]
+        glo = np.stack([_gradient(r, d)[0] for r in live], axis=1)
+        ghi = np.stack([_gradient(r, d)[1] for r in live], axis=1)
+        return (glo, ghi), trace
 
     def _condition(self, xlo: Array, xhi: Array, lo: Array, hi: Array, turns: Array) -> Enclosure:
         """``D`` over the pose boxes (module docstring): each wrench row as a function of the pose,
@@ -508,14 +511,14 @@ class LoopClosureModel:
                 )
                 live = [residual[j] for j in self._live]
                 d = a.shape[1]
-                glo = np.stack([_gradient(r)[0] for r in live], axis=1)
-                ghi = np.stack([_gradient(r)[1] for r in live], axis=1)
+                glo = np.stack([_gradient(r, d + lo.shape[1])[0] for r in live], axis=1)
+                ghi = np.stack([_gradient(r, d + lo.shape[1])[1] for r in live], axis=1)
                 rates = implicit_rates((glo[..., :d], ghi[..., :d]), (glo[..., d:], ghi[..., d:]))
                 sides = np.tile(radius, (size, 1))
                 for i, c in enumerate(over):
                     if c is not None:
                         r_lo, r_hi = interval_matrix_vector(
-                            np.swapaxes(rates[0], 1, 2), np.swapaxes(rates[1], 1, 2), *_gradient(c)
+                            np.swapaxes(rates[0], 1, 2), np.swapaxes(rates[1], 1, 2), *_gradient(c, d)
                         )
                         with np.errstate(invalid="ignore"):
                             total = np.nextafter(
@@ -598,9 +601,12 @@ def _centred(
     return Enclosure(lo, hi)
 
 
-def _gradient(e: Enclosure | None) -> tuple[Array, Array]:
-    """An enclosure's gradient bounds (it has them)."""
-    assert e is not None and e.glo is not None and e.ghi is not None
+def _gradient(e: Enclosure | None, dims: int) -> tuple[Array, Array]:
+    """An enclosure's gradient bounds (zero for a fixed one)."""
+    assert e is not None
+    if e.glo is None or e.ghi is None:
+        zero = np.zeros((len(e.lo), dims))
+        return zero, zero
     return e.glo, e.ghi
 
 

@@ -339,24 +339,23 @@ def platform_constants(model: Any, coordinates: Any) -> dict[str, Any]:
     }
 
 
-def _platform(constants: dict[str, Any], pose: list[Enclosure], dims: int | None) -> tuple[Matrix, Vector]:
+def _platform(constants: dict[str, Any], pose: list[Enclosure]) -> tuple[Matrix, Vector]:
     """The platform's displacement at poses (scaled frame): the rotation ``exp([r]×)`` of the rotation
-    coordinates, the point at its coordinates (the others held at the reference); constants carry a
-    zero gradient of ``dims`` coordinates."""
+    coordinates, the point at its coordinates (the others held at the reference); constants fixed."""
     batch = len(pose[0].lo)
-    position: Vector = [lifted(c, batch, dims) for c in constants["local"]]
+    position: Vector = [lifted(c, batch) for c in constants["local"]]
     turn: Vector = [None, None, None]
-    scale = lifted((constants["length"], constants["length"]), batch, dims)
+    scale = lifted((constants["length"], constants["length"]), batch)
     assert scale is not None
     inverse_length = scale.reciprocal()
     for value, axis, translation in zip(pose, constants["axes"], constants["translation"], strict=True):
         if translation:
-            origin = lifted(constants["point"][axis], batch, dims)
+            origin = lifted(constants["point"][axis], batch)
             position[axis] = (value if origin is None else value - origin) * inverse_length
         else:
             turn[axis] = value
     rotation = rodrigues(turn) if any(t is not None for t in turn) else identity(inverse_length)
-    local = [lifted(c, batch, dims) for c in constants["local"]]
+    local = [lifted(c, batch) for c in constants["local"]]
     return rotation, subtract(position, applied(rotation, local))
 
 
@@ -429,8 +428,8 @@ def evaluate_group(
         joint = Enclosure.variables(np.hstack([a, lo]), np.hstack([b, hi]))
         theta, pose = joint[:d], joint[d:]
     else:
-        theta, zero = Enclosure.variables(a, b), np.zeros((len(a), d))
-        pose = [Enclosure(lo[:, i], hi[:, i], zero, zero) for i in range(n)]
+        theta = Enclosure.variables(a, b)
+        pose = [Enclosure(lo[:, i], hi[:, i], fixed=True) for i in range(n)]
     g: tuple[Matrix, Vector] | None = None
     out: list[Vector] = [[] for _ in range(a.shape[1])]
     for factor in group.factors:
@@ -438,8 +437,8 @@ def evaluate_group(
             r = np.concatenate([turns[joint] for joint in factor.joints])
             r = r if rows is None else r[rows[0]]
             turn = rodrigues([Enclosure(r[:, i], r[:, i]) for i in range(3)])
-            rotation = [[lifted(x, batch, dims) for x in row] for row in turn]
-            centre = [lifted(c, batch, dims) for c in factor.centre]
+            rotation = [[lifted(x, batch) for x in row] for row in turn]
+            centre = [lifted(c, batch) for c in factor.centre]
             shift = subtract(centre, applied(rotation, centre))
             if factor.sign < 0:
                 rotation = [[rotation[j][i] for j in range(3)] for i in range(3)]
@@ -448,18 +447,18 @@ def evaluate_group(
             continue
         value = theta[factor.variable] if factor.sign > 0 else -theta[factor.variable]
         if twists:
-            w = [lifted(c, batch, dims) for c in factor.screw[:3]]
-            v = [lifted(c, batch, dims) for c in factor.screw[3:]]
+            w = [lifted(c, batch) for c in factor.screw[:3]]
+            v = [lifted(c, batch) for c in factor.screw[3:]]
             twist = adjoint(g, w, v)
             out[factor.variable] = twist if factor.sign > 0 else _negated(twist)
         g = compose(g, screw_exponential(factor.constants, value, batch))
     assert g is not None
     if pose_gradient:
-        rotation_p, position_p = _platform(platform, pose, dims)
+        rotation_p, position_p = _platform(platform, pose)
     else:  # constant in the joint variables: values, then a zero gradient
-        rotation_p, position_p = _platform(platform, [Enclosure(p.lo, p.hi) for p in pose], None)
-        rotation_p = [[lifted(x, len(a), dims) for x in row] for row in rotation_p]
-        position_p = [lifted(x, len(a), dims) for x in position_p]
+        rotation_p, position_p = _platform(platform, [Enclosure(p.lo, p.hi) for p in pose])
+        rotation_p = [[lifted(x, len(a)) for x in row] for row in rotation_p]
+        position_p = [lifted(x, len(a)) for x in position_p]
     m = transposed_product(g[0], rotation_p)
     skew = subtract([m[2][1], m[0][2], m[1][0]], [m[1][2], m[2][0], m[0][1]])
     trace = m[0][0] + m[1][1] + m[2][2]  # type: ignore[operator]
