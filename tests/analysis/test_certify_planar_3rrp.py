@@ -8,9 +8,12 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import screwkit as sk
 from screwkit.analysis.planar_3rrp_enclosure import Planar3RRPModel
+from tests.analysis.certify_checks import assert_same_facts
 
 RRP = sk.load_mechanism("planar_3rrp")
 PHI = 0.8  # the slice: the whole square reachable, a direct-singular curve across it
@@ -140,3 +143,37 @@ def test_working_mode_and_bad_mode():
     assert other.totals["free"] >= 1
     with pytest.raises(sk.ScrewkitValueError, match="working_mode"):
         Planar3RRPModel.of(RRP, {"working_mode": (1, 2, 1)})
+
+
+def in_millimetres(mechanism):
+    """The catalog 3-RRP (lengths in m) with every length in mm."""
+    from screwkit.robots.catalog import load_toml, mechanism_from_mapping
+
+    data = load_toml(mechanism.source)
+    data["mechanism"]["length_unit"] = "mm"
+    for entry in data["parameters"].values():
+        if entry["unit"] == "m":
+            entry["value"] = (np.asarray(entry["value"], dtype=float) * 1000.0).tolist()
+            entry["unit"] = "mm"
+    for key in ("x", "y"):
+        data["pose"][key] *= 1000.0
+        data["workspace"][key] = [v * 1000.0 for v in data["workspace"][key]]
+    data.pop("expected", None)
+    return mechanism_from_mapping(data, source=f"{mechanism.name} in mm")
+
+
+RRP_MM = in_millimetres(RRP)
+
+
+@settings(max_examples=5, deadline=None)
+@given(x=st.floats(-0.3, 0.2), y=st.floats(-0.3, 0.2))
+def test_certificate_is_invariant_under_the_length_unit(x, y):
+    # the same region in m and in mm: the same facts (tests/analysis/certify_checks.assert_same_facts),
+    # and every actuation witness (in m) on the independent concurrency curve
+    region = {"x": (x, x + 0.1), "y": (y, y + 0.1), "phi": PHI}
+    in_m = sk.certify(RRP, region, resolution=0.01)
+    in_mm = sk.certify(RRP_MM, {"x": (1e3 * x, 1e3 * (x + 0.1)), "y": (1e3 * y, 1e3 * (y + 0.1)), "phi": PHI},
+                       resolution=10.0)
+    assert_same_facts(in_mm, in_m)
+    for w in (b.witness for b in in_m.boxes if b.witness is not None and b.witness.label == "actuation"):
+        assert abs(concurrency_gap((w.pose["x"], w.pose["y"], PHI))) < 1e-7
