@@ -44,14 +44,18 @@ from .limb_enclosures import _cross, _dot, _mul, _sub, _sum
 __all__ = [
     "SERIES_TERMS",
     "adjoint",
+    "applied",
     "cofactors",
     "compose",
     "constant_of",
     "determinant",
+    "exponential_constants",
     "identity",
     "lifted",
     "rodrigues",
     "screw_exponential",
+    "subtract",
+    "transposed_product",
 ]
 
 Scalar = Enclosure | None
