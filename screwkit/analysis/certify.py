@@ -42,7 +42,6 @@ from ..exceptions import ScrewkitTypeError, ScrewkitValueError
 from ..robots.angles import angle_factor
 from .enclosures import model_of
 from .intervals import Enclosure, mean_value
-from .limb_enclosures import _ClosedFormModel
 from .poses import _check_mechanism, _options
 
 __all__ = [
@@ -68,7 +67,8 @@ STATUSES = ("free", "singular", "undecided", "unreachable")
 DEFAULT_MAX_BOXES = 200_000
 #: ... and the most a caller may ask for (memory: ~1 kB a box in a level).
 MAX_BOXES = 10**7
-#: Bisection steps refining a witness's segment (the bracket shrinks by 2**-WITNESS_STEPS).
+#: Bisection steps refining a witness's segment (the bracket shrinks by 2**-WITNESS_STEPS; a model
+#: may ask for fewer: ``witness_steps``).
 WITNESS_STEPS = 30
 #: Where a box is split (a fraction of its width, off the middle: a symmetric region's plane of
 #: symmetry, often singular, then falls inside boxes, where a sign change shows it, not on edges).
@@ -274,7 +274,7 @@ def _real(value: Any, what: str) -> float:
 class _Problem:
     """A paving problem in API units: pose = base + coef · u over boxes in ``u``."""
 
-    model: _ClosedFormModel
+    model: Any  # what screwkit.analysis.enclosures.model_of gives
     base: Array  # (4,) pose at u = 0
     coef_lo: Array  # (4, k) enclosure of the affine map
     coef_hi: Array
@@ -308,8 +308,11 @@ def _half_width(lo: float, hi: float) -> float:
 
 
 def _functions(problem: _Problem) -> list[str]:
+    """The functions enclosed: the reach functions and those of the requested kinds that the model
+    has (a kind it has none of cannot occur: e.g. a planar mechanism's constraint wrenches)."""
     names = [f"serial:{i}" for i in range(1, problem.model.limbs + 1)]
-    return names + [k for k in ("constraint", "actuation") if k in problem.kinds]
+    has = problem.model.functions()
+    return names + [k for k in ("constraint", "actuation") if k in problem.kinds and k in has]
 
 
 def _enclose(problem: _Problem, lo: Array, hi: Array) -> dict[str, Enclosure]:
@@ -318,14 +321,22 @@ def _enclose(problem: _Problem, lo: Array, hi: Array) -> dict[str, Enclosure]:
     centre = np.clip(centre, lo, hi)
     radius = np.nextafter(np.maximum(centre - lo, hi - centre), np.inf)
     singular = any(k in problem.kinds for k in ("constraint", "actuation"))
+    if hasattr(problem.model, "evaluate_points"):  # it encloses boxes in its own centred forms
+        found = problem.model.evaluate(_poses(problem, lo, hi, False), singular=singular)
+        return {name: found[name] for name in _functions(problem)}
     over = problem.model.evaluate(_poses(problem, lo, hi, True), singular=singular)
     at = problem.model.evaluate(_poses(problem, centre, centre, False), singular=singular)
     return {name: mean_value(at[name], over[name], radius) for name in _functions(problem)}
 
 
-def _signs(problem: _Problem, points: Array) -> dict[str, Array]:
-    """Certified signs (+1, -1, 0 unknown) of the functions at points ``(P, k)``."""
-    values = problem.model.evaluate(_poses(problem, points, points, False))
+def _signs(problem: _Problem, points: Array, boxes: tuple[Array, Array]) -> dict[str, Array]:
+    """Certified signs (+1, -1, 0 unknown) of the functions at points ``(P, k)``, each in its box
+    (``(P, k)`` bounds: a loop-closure model evaluates a point on its box's branch)."""
+    poses = _poses(problem, points, points, False)
+    if hasattr(problem.model, "evaluate_points"):
+        values = problem.model.evaluate_points(poses, _poses(problem, boxes[0], boxes[1], False))
+    else:
+        values = problem.model.evaluate(poses)
     return {
         name: np.where(values[name].lo > 0, 1, np.where(values[name].hi < 0, -1, 0))
         for name in _functions(problem)
@@ -345,7 +356,7 @@ def _step(problem: _Problem, lo: Array, hi: Array) -> tuple[Array, Array, Array,
     unreachable = np.any([g.hi < 0 for g in reach], axis=0)
     clear = reachable.copy()
     for kind in ("constraint", "actuation"):
-        if kind in problem.kinds:
+        if kind in enc:
             clear &= enc[kind].excludes_zero()
     small = np.all(hi - lo <= problem.resolution, axis=1)
     status = np.where(clear, 0, np.where(unreachable, 3, np.where(small, 2, -1)))
@@ -358,7 +369,8 @@ def _step(problem: _Problem, lo: Array, hi: Array) -> tuple[Array, Array, Array,
         corners = np.array(np.meshgrid(*([[0.0, 1.0]] * k), indexing="ij")).reshape(k, -1).T
         fractions = np.vstack([np.full((1, k), 0.5), corners])  # the centre and the corners
         points = lo[look, None, :] + fractions[None] * (hi - lo)[look, None, :]  # (L, P, k)
-        signs = _signs(problem, points.reshape(-1, k))
+        signs = _signs(problem, points.reshape(-1, k), (np.repeat(lo[look], fractions.shape[0], axis=0),
+                                                          np.repeat(hi[look], fractions.shape[0], axis=0)))
         count = fractions.shape[0]
         others_positive = {
             i: np.all([reach[j].lo[look] > 0 for j in range(limbs) if j != i], axis=0) for i in range(limbs)
@@ -381,17 +393,17 @@ def _step(problem: _Problem, lo: Array, hi: Array) -> tuple[Array, Array, Array,
         proved = look[which[look] >= 0]
         status[proved] = 1
         if proved.size:
-            zero[proved] = _refined(problem, bracket[proved], which[proved])
+            zero[proved] = _refined(problem, bracket[proved], which[proved], (lo[proved], hi[proved]))
     return status, which, bracket, zero
 
 
-def _refined(problem: _Problem, bracket: Array, which: Array) -> Array:
-    """Bisection on each bracket's segment (its function positive at the first end)."""
+def _refined(problem: _Problem, bracket: Array, which: Array, boxes: tuple[Array, Array]) -> Array:
+    """Bisection on each bracket's segment (its function positive at the first end) in its box."""
     names = _functions(problem)
     plus, minus = bracket[:, 0].copy(), bracket[:, 1].copy()
-    for _ in range(WITNESS_STEPS):
+    for _ in range(getattr(problem.model, "witness_steps", WITNESS_STEPS)):
         middle = 0.5 * (plus + minus)
-        signs = _signs(problem, middle)
+        signs = _signs(problem, middle, boxes)
         value = np.choose(which, [signs[n] for n in names])
         positive, negative = value == 1, value == -1
         plus = np.where(positive[:, None], middle, plus)

@@ -88,8 +88,10 @@ from .limb_enclosures import (
     _scaled_by,
     _sum,
 )
+from .loop_closure_enclosure import LoopClosureModel
 from .mcgill_enclosure import McGillModel
 from .peppermill_enclosure import PeppermillModel
+from .planar_3rrp_enclosure import Planar3RRPModel
 
 __all__ = ["COVERED", "FourLimbModel", "model_of"]
 
@@ -97,13 +99,14 @@ Array = np.ndarray
 
 #: What certification covers: the four-limb family with a nacelle articulated about vertical axes
 #: (Quattro, H4), about ``j`` with one actuated axis along ``j`` per sub-platform (V4) or a screw
-#: pair (Ragnar, Veloce), the Delta, the McGill SMG and the Peppermill. Left out: the planar 3-RRP
-#: (no enclosure written) and mechanisms from ``screwkit.mechanism`` (loop-closure kinematics would
-#: need an interval-Newton (Krawczyk) enclosure of their loop equations).
+#: pair (Ragnar, Veloce), the Delta, the McGill SMG, the Peppermill, the planar 3-RRP, and mechanisms
+#: from ``screwkit.mechanism`` whose limbs are serial chains of lower pairs (a Krawczyk enclosure of
+#: their loop equations: :mod:`screwkit.analysis.loop_closure_enclosure`, which names what it refuses).
 COVERED = (
     "the four_limb family with platform_kind articulated_z (Quattro, H4), articulated_y with one "
-    "actuated axis along j per sub-platform (V4) or screw_pair (Ragnar, Veloce), and the delta "
-    "(Delta), mcgill_smg (McGill SMG) and peppermill (Peppermill) families"
+    "actuated axis along j per sub-platform (V4) or screw_pair (Ragnar, Veloce), the delta "
+    "(Delta), mcgill_smg (McGill SMG), peppermill (Peppermill) and planar_3rrp (planar 3-RRP) "
+    "families, and twist-graph mechanisms whose limbs are serial chains of R, P, H, C, U and S joints"
 )
 
 PLATFORMS = ("articulated_z", "articulated_y", "screw_pair")
@@ -428,7 +431,7 @@ def _axis_limbs(params: Any) -> tuple[int, int] | tuple[()]:
     return found[0][0], found[1][0]
 
 
-def model_of(mechanism: Any, options: Mapping[str, Any] | None = None) -> _ClosedFormModel:
+def model_of(mechanism: Any, options: Mapping[str, Any] | None = None) -> Any:
     """The closed-form model certification encloses for a mechanism, or a one-line refusal
     naming what is covered (:data:`COVERED`) and what is missing.
 
@@ -461,5 +464,9 @@ def model_of(mechanism: Any, options: Mapping[str, Any] | None = None) -> _Close
         return PeppermillModel.of(mechanism, options)
     if family == "delta":
         return DeltaModel.of(mechanism, options)
+    if family == "planar_3rrp":
+        return Planar3RRPModel.of(mechanism, options)
+    if family == "loop_closure":
+        return LoopClosureModel.of(mechanism, options)
     return FourLimbModel.of(mechanism, options)
 

@@ -59,13 +59,16 @@ def _up(x: Array) -> Array:
 def _product(alo: Array, ahi: Array, blo: Array, bhi: Array) -> tuple[Array, Array]:
     """``[alo, ahi] · [blo, bhi]`` rounded outward (broadcasting); NaN (0 · ∞) is the whole line."""
     with np.errstate(invalid="ignore", over="ignore"):
-        candidates = np.stack(np.broadcast_arrays(alo * blo, alo * bhi, ahi * blo, ahi * bhi))
-    if np.isnan(candidates).any():
-        bad = np.isnan(candidates).any(axis=0)
-        candidates = np.where(bad, 0.0, candidates)
-        lo, hi = _down(candidates.min(axis=0)), _up(candidates.max(axis=0))
-        return np.where(bad, -np.inf, lo), np.where(bad, np.inf, hi)
-    return _down(candidates.min(axis=0)), _up(candidates.max(axis=0))
+        p1, p2, p3, p4 = alo * blo, alo * bhi, ahi * blo, ahi * bhi
+    lo = np.minimum(np.minimum(p1, p2), np.minimum(p3, p4))  # NaN (0 · ∞) propagates
+    hi = np.maximum(np.maximum(p1, p2), np.maximum(p3, p4))
+    if np.isnan(lo).any():
+        bad = np.isnan(lo)
+        corners = [np.where(np.isnan(q), 0.0, q) for q in (p1, p2, p3, p4)]
+        lo = np.minimum(np.minimum(corners[0], corners[1]), np.minimum(corners[2], corners[3]))
+        hi = np.maximum(np.maximum(corners[0], corners[1]), np.maximum(corners[2], corners[3]))
+        return np.where(bad, -np.inf, _down(lo)), np.where(bad, np.inf, _up(hi))
+    return _down(lo), _up(hi)
 
 
 def _scaled(lo: Array, hi: Array, c: float) -> tuple[Array, Array]:
@@ -84,12 +87,15 @@ class Enclosure:
     ----------
     lo, hi : numpy.ndarray, shape (B,)
     glo, ghi : numpy.ndarray, shape (B, k), or None
+    fixed : bool
+        A constant (no gradient arrays, a zero gradient where it meets an enclosure with one).
     """
 
     lo: Array
     hi: Array
     glo: Array | None = None
     ghi: Array | None = None
+    fixed: bool = False  # a constant: its gradient is zero (combined with one that has a gradient)
 
     @classmethod
     def variables(cls, lo: Array, hi: Array, *, gradient: bool = True) -> list[Enclosure]:
@@ -157,16 +163,20 @@ class Enclosure:
         if not isinstance(other, Enclosure):
             c = float(other)
             return Enclosure(_down(self.lo + c), _up(self.hi + c), self.glo, self.ghi)
-        glo = ghi = None
+        lo, hi = _down(self.lo + other.lo), _up(self.hi + other.hi)
+        if other.fixed and self.glo is not None:
+            return Enclosure(lo, hi, self.glo, self.ghi)
+        if self.fixed and other.glo is not None:
+            return Enclosure(lo, hi, other.glo, other.ghi)
         if self.glo is not None and other.glo is not None:
-            glo, ghi = _down(self.glo + other.glo), _up(self.ghi + other.ghi)  # type: ignore[operator]
-        return Enclosure(_down(self.lo + other.lo), _up(self.hi + other.hi), glo, ghi)
+            return Enclosure(lo, hi, _down(self.glo + other.glo), _up(self.ghi + other.ghi))  # type: ignore[operator]
+        return Enclosure(lo, hi, fixed=self.fixed and other.fixed)
 
     __radd__ = __add__
 
     def __neg__(self) -> Enclosure:
         if self.glo is None:
-            return Enclosure(-self.hi, -self.lo)
+            return Enclosure(-self.hi, -self.lo, fixed=self.fixed)
         return Enclosure(-self.hi, -self.lo, -self.ghi, -self.glo)  # type: ignore[operator]
 
     def __sub__(self, other: Any) -> Enclosure:
@@ -180,12 +190,18 @@ class Enclosure:
             c = float(other)
             lo, hi = _scaled(self.lo, self.hi, c)
             if self.glo is None:
-                return Enclosure(lo, hi)
+                return Enclosure(lo, hi, fixed=self.fixed)
             glo, ghi = _scaled(self.glo, self.ghi, c)  # type: ignore[arg-type]
             return Enclosure(lo, hi, glo, ghi)
         lo, hi = _product(self.lo, self.hi, other.lo, other.hi)
+        if other.fixed and self.glo is not None:  # d(a c) = c da
+            glo, ghi = _product(other.lo[:, None], other.hi[:, None], self.glo, self.ghi)  # type: ignore[arg-type]
+            return Enclosure(lo, hi, glo, ghi)
+        if self.fixed and other.glo is not None:
+            glo, ghi = _product(self.lo[:, None], self.hi[:, None], other.glo, other.ghi)  # type: ignore[arg-type]
+            return Enclosure(lo, hi, glo, ghi)
         if self.glo is None or other.glo is None:
-            return Enclosure(lo, hi)
+            return Enclosure(lo, hi, fixed=self.fixed and other.fixed)
         # d(ab) = a db + b da
         alo, ahi = _product(self.lo[:, None], self.hi[:, None], other.glo, other.ghi)  # type: ignore[arg-type]
         blo, bhi = _product(other.lo[:, None], other.hi[:, None], self.glo, self.ghi)  # type: ignore[arg-type]
@@ -211,7 +227,7 @@ class Enclosure:
         lo = np.where(straddles, 0.0, np.minimum(low2, _down(self.hi * self.hi)))
         hi = np.maximum(high2, _up(self.lo * self.lo))
         if self.glo is None:
-            return Enclosure(lo, hi)
+            return Enclosure(lo, hi, fixed=self.fixed)
         glo, ghi = _product(self.lo[:, None], self.hi[:, None], self.glo, self.ghi)  # type: ignore[arg-type]
         return Enclosure(lo, hi, _down(2.0 * glo), _up(2.0 * ghi))
 
@@ -233,7 +249,7 @@ class Enclosure:
             lo = np.where(safe, _down(1.0 / self.hi), -np.inf)
             hi = np.where(safe, _up(1.0 / self.lo), np.inf)
         if self.glo is None:
-            return Enclosure(lo, hi)
+            return Enclosure(lo, hi, fixed=self.fixed)
         # d(1/x) = -dx / x²
         inv2 = Enclosure(lo, hi).square()
         glo, ghi = _product(inv2.lo[:, None], inv2.hi[:, None], -self.ghi, -self.glo)  # type: ignore[operator]
@@ -256,7 +272,7 @@ class Enclosure:
         lo = np.maximum(lo, 0.0)
         hi = _up(np.sqrt(np.maximum(self.hi, 0.0)))
         if self.glo is None:
-            return Enclosure(lo, hi)
+            return Enclosure(lo, hi, fixed=self.fixed)
         # d√x = dx / (2 √x)
         half = Enclosure(lo, hi) * 2.0
         inv = half.reciprocal()
@@ -278,7 +294,7 @@ class Enclosure:
         """
         cos, sin = _trig_range(np.cos, self.lo, self.hi, 0.0), _trig_range(np.sin, self.lo, self.hi, 0.5)
         if self.glo is None:
-            return Enclosure(*cos), Enclosure(*sin)
+            return Enclosure(*cos, fixed=self.fixed), Enclosure(*sin, fixed=self.fixed)
         # d cos = -sin dx, d sin = cos dx
         cglo, cghi = _product(-sin[1][:, None], -sin[0][:, None], self.glo, self.ghi)  # type: ignore[arg-type]
         sglo, sghi = _product(cos[0][:, None], cos[1][:, None], self.glo, self.ghi)  # type: ignore[arg-type]

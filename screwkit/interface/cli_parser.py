@@ -295,17 +295,19 @@ def _add_workspace_commands(commands: Any) -> None:
     path.add_argument(
         "--certify",
         action="store_true",
-        help="also prove the path free, or enclose each crossing (Quattro, H4, V4, Ragnar, Delta)",
+        help="also prove the path free, or enclose each crossing (docs/certify.md: coverage)",
     )
     certify = commands.add_parser(
         "certify",
         help="prove a box of poses free of singularities, or find them with a witness "
-        "(Quattro, H4, V4, Ragnar, Delta)",
+        "(catalog robots; snapshots of platforms on serial limbs)",
         description="Pave a box of the pose space into boxes proved free, singular (with a witness) or "
         "undecided, by interval arithmetic. Give ranges (LO HI) and fixed values (one value; default: the "
         "default pose). Lengths in the catalog file's unit, angles in DEGREES.",
     )
-    certify.add_argument("mechanism", help="a catalog name (e.g. quattro) or a .toml file")
+    certify.add_argument(
+        "mechanism", help="a catalog name (e.g. quattro) or a .toml file (catalog or snapshot)"
+    )
     for name in pose_coordinates():
         certify.add_argument(
             f"--{name}", nargs="+", type=float, metavar="V", help=f"{name}: LO HI, or one value"

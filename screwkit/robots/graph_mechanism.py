@@ -79,7 +79,8 @@ def _check_point_task_actuation(kinematics: GraphKinematics, freedoms: int) -> N
     """Refuse a point task's actuated joints that drive none of the point's freedoms, or that together
     leave it moving, at generic configurations (as :func:`~screwkit.core.mobility.resolve_dof` for a
     platform). Read from the joint rates: an actuator drives ``f − f_held`` freedoms, ``f`` the point's
-    first-order freedoms with the loops closed and ``f_held`` those left with the actuator held."""
+    first-order freedoms with the loops closed and the other actuators held, ``f_held`` those left with
+    it held too."""
     model, coordinates = kinematics.model, kinematics.coordinates
     try:
         theta = moved_configurations(model, np.random.default_rng(POINT_TASK_SEED), POINT_TASK_SAMPLES)
@@ -93,13 +94,18 @@ def _check_point_task_actuation(kinematics: GraphKinematics, freedoms: int) -> N
     loops = model.loop_jacobian(state)
     columns = {name: model.joints[name][2] for name in kinematics.actuated}
 
-    def driven(names: list[str]) -> int:  # the most common count over the configurations
-        held = [column for name in names for column in columns[name]]
-        counts = [_point_freedoms(loops[b], velocity[b], []) - _point_freedoms(loops[b], velocity[b], held)
+    def driven(names: list[str], others: tuple[str, ...] = ()) -> int:  # the most common count
+        kept = [column for name in others for column in columns[name]]
+        held = kept + [column for name in names for column in columns[name]]
+        counts = [_point_freedoms(loops[b], velocity[b], kept) - _point_freedoms(loops[b], velocity[b], held)
                   for b in range(len(velocity))]
         return int(np.bincount(counts).argmax())
 
-    idle = [name for name in kinematics.actuated if driven([name]) == 0]
+    # an actuator drives nothing when holding it removes no freedom of the point, whether the others
+    # are free or held (either alone misreads: with the others free a 3-RPR's leg removes none of the
+    # point's 2 freedoms of the platform's 3; with the others held a duplicated actuator removes none)
+    idle = [name for name in kinematics.actuated if driven([name]) == 0
+            and driven([name], tuple(other for other in kinematics.actuated if other != name)) == 0]
     if idle:
         raise TwistGraphError(
             f"Expected every `actuated` joint to drive the task point, got {', '.join(idle)} driving none "

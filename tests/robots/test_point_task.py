@@ -13,6 +13,7 @@ from screwkit.graphs.joints import revolute
 from screwkit.graphs.jointtable import JointTable
 from screwkit.graphs.twistgraph import twist_graph
 from screwkit.robots.point_task import TASK_JOINT, with_task_point
+from tests.mechanisms import planar_3rpr
 from tests.strategies import rigid_motions, unit_factors
 
 A1, A2 = np.zeros(3), np.array([1.0, 0.0, 0.0])
@@ -198,3 +199,13 @@ def test_point_task_refuses_actuators_that_leave_the_point_uncontrolled():
     ])
     with pytest.raises(sk.TwistGraphError, match=r"`actuated` joints to drive the mechanism's 2 freedom\(s\)"):
         sk.mechanism(graph, task=("distal1", c))
+
+
+def test_a_point_task_of_a_platform_with_more_freedoms_keeps_every_actuator():
+    # a 3-RPR's platform point has 2 of the platform's 3 freedoms: any one leg held leaves it moving
+    # in the plane, yet each leg drives it (the other two held, the point moves with that leg alone),
+    # so the three legs are a redundant actuation of the point, not an idle one
+    base = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.5, 0.8, 0.0]])
+    platform = np.array([[0.4, 0.3, 0.0], [0.6, 0.3, 0.0], [0.5, 0.5, 0.0]])
+    robot = sk.mechanism(planar_3rpr(base, platform), task=("platform", [0.5, 0.4, 0.0]))
+    assert robot.actuated == ("P1", "P2", "P3") and robot.coordinates == ("x", "y")
