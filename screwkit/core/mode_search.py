@@ -44,10 +44,12 @@ import networkx as nx
 import numpy as np
 
 from ..algebra import backend as B
+from ..algebra.checks import checked_rtol
 from ..exceptions import ScrewkitValueError
 from ..graphs.jointtable import JointTable
+from ..graphs.twistgraph import check_twist_graph
 from .kinematic_model import KinematicModel
-from .motion import moved_configurations, newton_closure
+from .motion import _null_space, moved_configurations, newton_closure
 from .operation_modes import OperationMode, operation_modes
 from .wrench_systems import analyze_table
 
@@ -56,6 +58,12 @@ __all__ = ["OperationModes", "find_operation_modes"]
 #: Configurations reached by moving the mechanism from its reference, and random assemblies tried.
 REACHED = 12
 ASSEMBLIES = 24
+#: At most this many random assemblies (each a Gauss–Newton run over the whole model).
+MAX_ASSEMBLIES = 10_000
+#: How far a candidate mode's configurations are moved to check it (largest joint change).
+NEARBY = 0.05
+#: How many of a candidate mode's configurations are moved to check it (one staying in it suffices).
+RECHECKED = 3
 #: A slider's random travel, in characteristic lengths either way.
 TRAVEL = 2.0
 #: Gauss–Newton iterations closing a random assembly (far from the solution set: more than a step
@@ -219,7 +227,8 @@ def find_operation_modes(
     joint_key : str, default "joint"
     rtol : float, default 1e-9
         The data's precision (as in :func:`~screwkit.core.motion.generic_configurations`) and the
-        rank tolerance of the classification.
+        rank tolerance of the classification (the motion type at least 1e-6: closed configurations
+        carry round-off of the closure's size).
     assemblies : int, default 24
         Random assemblies tried.
 
@@ -229,8 +238,10 @@ def find_operation_modes(
 
     Raises
     ------
+    TwistGraphError
+        If ``graph`` is not a twist graph with joints under ``joint_key``.
     ScrewkitValueError
-        If ``assemblies`` is not a non-negative integer; as
+        If ``assemblies`` is not an integer in [0, 10000] or ``rtol`` not in [0, 0.1]; as
         :func:`~screwkit.core.motion.generic_configurations` (a mechanism that cannot move).
 
     Examples
@@ -238,16 +249,56 @@ def find_operation_modes(
     >>> [mode.motion_type for mode in find_operation_modes(load_mechanism("h4").twist_graph())]
     ['3T1R', '1T3R']
     """
-    if isinstance(assemblies, bool) or not isinstance(assemblies, int | np.integer) or assemblies < 0:
-        raise ScrewkitValueError(f"Expected `assemblies` to be a non-negative integer, got {assemblies!r}.")
+    if (isinstance(assemblies, bool) or not isinstance(assemblies, int | np.integer)
+            or not 0 <= assemblies <= MAX_ASSEMBLIES):
+        raise ScrewkitValueError(
+            f"Expected `assemblies` to be an integer in [0, {MAX_ASSEMBLIES}], got {assemblies!r}."
+        )
+    check_twist_graph(graph, joint_key=joint_key)
+    rank_rtol = max(checked_rtol(rtol), B.DEFAULT_RTOL)  # 0 would count round-off as rank
     rng = np.random.default_rng(SEED)
     model = KinematicModel(graph, joint_key)
-    reached = moved_configurations(model, rng, REACHED, rtol)
-    found = random_assemblies(model, rng, assemblies, rtol)
+    reached = moved_configurations(model, rng, REACHED, rank_rtol)
+    found = random_assemblies(model, rng, assemblies, rank_rtol)
     reference = JointTable.from_graph(graph, joint_key=joint_key)
+    theta = np.concatenate([reached, found])
+    table, modes = _classified(model, reference, theta, rank_rtol)
+    kept = [modes[0]]
+    for mode in modes[1:]:  # a class met away from a singular configuration: moved, it stays itself
+        members = theta[list(mode.indices[:RECHECKED])]
+        moved = _moved_nearby(model, members, rng, rank_rtol)
+        both = np.concatenate([members, moved])
+        again = _classified(model, reference, both, rank_rtol)[1]
+        if any(other.motion_type == mode.motion_type and other.constraint_order == mode.constraint_order
+               and any(i >= len(members) for i in other.indices) for other in again):
+            kept.append(mode)
+    return OperationModes(tuple(kept), table, int(assemblies), len(found), len(reached))
+
+
+def _classified(
+    model: KinematicModel, reference: JointTable, theta: np.ndarray, rtol: float
+) -> tuple[JointTable, list[OperationMode]]:
+    """The joint table of closed configurations and their classes (the reference's first)."""
     # spherical joints' angles folded into their offsets: three screws never read at a gimbal lock
-    table = model.joint_table(model.state(*model.recentred(np.concatenate([reached, found]), {})), reference)
-    rank_rtol = max(rtol, B.DEFAULT_RTOL)
-    modes = operation_modes(analyze_table(table, rtol=rank_rtol, views=False),
-                            analyze_table(reference, rtol=rank_rtol, views=False))
-    return OperationModes(tuple(modes), table, int(assemblies), len(found), len(reached))
+    table = model.joint_table(model.state(*model.recentred(theta, {})), reference)
+    modes = operation_modes(analyze_table(table, rtol=rtol, views=False),
+                            analyze_table(reference, rtol=rtol, views=False))
+    return table, modes
+
+
+def _moved_nearby(
+    model: KinematicModel, theta: np.ndarray, rng: np.random.Generator, rtol: float
+) -> np.ndarray:
+    """Each closed configuration moved by :data:`NEARBY` along a random motion of its loops and closed
+    again (those that close): a configuration that only lies near a singular one (within a loose
+    ``rtol``: a planar 3-RRP once read "1T1R" at one random assembly of 24) reads its mode once moved."""
+    moved = []
+    for row in theta:
+        null = _null_space(model.loop_jacobian(model.state(row[None]))[0])
+        if null.shape[1]:
+            direction = null @ rng.standard_normal(null.shape[1])
+            moved.append(row + NEARBY * direction / np.max(np.abs(direction)))
+    if not moved:
+        return np.zeros((0, theta.shape[1]))
+    closed, residual = newton_closure(model, np.array(moved))
+    return closed[np.isfinite(residual) & (residual < max(rtol, 1e-9))]  # as random_assemblies

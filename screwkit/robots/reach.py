@@ -52,6 +52,13 @@ def reachable_poses(robot: Any, poses: Array, options: dict[str, Any]) -> Array:
     >>> reachable_poses(load_mechanism("h4"), np.zeros((0, 4)), {}).shape
     (0,)
     """
+    names = tuple(robot.pose_names)
+    shape = np.shape(poses)
+    if len(shape) != 2 or shape[1] != len(names):
+        raise ScrewkitValueError(
+            f"Expected `poses` of shape (m, {len(names)}) (coordinates {', '.join(names)}; one pose as "
+            f"[pose]), got shape {shape}."
+        )
     if len(poses) == 0:
         return np.zeros(0, dtype=bool)
     protocol = robot.family_protocol  # its reach test holds in every working mode

@@ -28,9 +28,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from screwkit.core.mode_search import find_operation_modes
-from screwkit.exceptions import ScrewkitValueError
+from screwkit.exceptions import ScrewkitTypeError, ScrewkitValueError, TwistGraphError
 from screwkit.graphs.joints import revolute
 from screwkit.graphs.twistgraph import twist_graph
+from screwkit.robots.catalog import load_mechanism
 from tests.mechanisms import moved, planar_3rpr, tsai_3upu
 from tests.strategies import rigid_motions
 
@@ -128,9 +129,9 @@ def test_to_dict_counts_every_configuration():
 
 
 def test_bad_assemblies_and_a_rigid_linkage_are_refused():
-    with pytest.raises(ScrewkitValueError, match=r"`assemblies` to be a non-negative integer, got -1\."):
+    with pytest.raises(ScrewkitValueError, match=r"`assemblies` to be an integer in \[0, 10000\], got -1\."):
         find_operation_modes(tsai_3upu([0.1, 0.05, 0.8]), assemblies=-1)
-    with pytest.raises(ScrewkitValueError, match=r"`assemblies` to be a non-negative integer, got 2\.5\."):
+    with pytest.raises(ScrewkitValueError, match=r"`assemblies` to be an integer in \[0, 10000\], got 2\.5\."):
         find_operation_modes(tsai_3upu([0.1, 0.05, 0.8]), assemblies=2.5)
     triangle = twist_graph("A", "C", [
         ("A", "B", revolute("R1", [0, 0, 1], [0, 0, 0])),
@@ -148,3 +149,27 @@ def test_modes_are_reachable_at_the_top_level():
     assert sk.modes_at is mode_transitions.modes_at and sk.ModesAtPose is mode_transitions.ModesAtPose
     assert sk.OperationMode is operation_modes.OperationMode
     assert {"find_operation_modes", "modes_at", "OperationModes", "OperationMode", "ModesAtPose"} <= set(sk.__all__)
+
+
+def test_a_configuration_near_a_singular_one_is_no_mode_at_a_loose_rtol():
+    # at rtol = 1e-3 one random assembly of the planar 3-RRP lies within 1e-3 of a singular
+    # configuration and once read "1T1R"; moved by 0.05 it reads 2T1R: a planar linkage has one mode
+    graph = load_mechanism("planar_3rrp").twist_graph()
+    for rtol in (1e-9, 1e-5, 1e-3):
+        assert find_operation_modes(graph, rtol=rtol).names() == ["2T1R (this one)"]
+
+
+@pytest.mark.parametrize(
+    ("arguments", "error", "message"),
+    [
+        ({"rtol": float("nan")}, ScrewkitValueError, r"`rtol` to be a number in \[0, 0.1\], got nan"),
+        ({"rtol": "a"}, ScrewkitTypeError, r"`rtol` to be a number"),
+        ({"assemblies": 10**8}, ScrewkitValueError, r"`assemblies` to be an integer in \[0, 10000\]"),
+        ({"joint_key": "nope"}, TwistGraphError, r"expected attribute 'nope' holding a Joint"),
+    ],
+)
+def test_bad_arguments_are_named(arguments, error, message):
+    with pytest.raises(error, match=message):
+        find_operation_modes(load_mechanism("planar_3rrp").twist_graph(), **arguments)
+    with pytest.raises(TwistGraphError, match=r"Expected a networkx\.MultiDiGraph, got str"):
+        find_operation_modes("x")

@@ -304,3 +304,14 @@ def test_graph_closeness_equals_the_closed_forms_whatever_a_balls_axes():
     closed, looped = catalog.at(poses).singularities.closeness, graph.at(poses).singularities.closeness
     for kind in ("constraint", "actuation", "serial"):
         np.testing.assert_allclose(looped[kind], closed[kind], rtol=0, atol=1e-9)
+
+
+@pytest.mark.parametrize("name", list_mechanisms())
+def test_reachable_refuses_a_single_pose_not_in_a_batch(name):
+    # one pose of shape (n,) was read as n poses of one coordinate (McGill SMG, Peppermill) or raised
+    # a numpy reshape error (the others)
+    robot = load_mechanism(name)
+    pose = np.asarray(robot.reference_pose, dtype=float)
+    with pytest.raises(ScrewkitValueError, match=r"`poses` of shape \(m, \d\)"):
+        robot.reachable(pose)
+    assert robot.reachable(pose[None]).tolist() == [True]
