@@ -82,7 +82,8 @@ def readable_bases(rows: Any, orders: Any, *, rtol: float, length_scale: Any) ->
     Raises
     ------
     ScrewkitValueError
-        For arrays of other shapes, orders outside ``[0, m]`` or an ``rtol`` out of range.
+        For arrays of other shapes, orders outside ``[0, m]``, rows that are not finite, a length
+        scale that is not positive and finite, or an ``rtol`` out of range.
 
     Examples
     --------
@@ -102,6 +103,10 @@ def readable_bases(rows: Any, orders: Any, *, rtol: float, length_scale: Any) ->
         )
     if not (np.issubdtype(orders.dtype, np.integer) and np.all((orders >= 0) & (orders <= rows.shape[1]))):
         raise ScrewkitValueError(f"Expected `orders` to be integers in [0, {rows.shape[1]}], got {orders}.")
+    if not np.isfinite(rows).all():
+        raise ScrewkitValueError("Expected finite `rows`, got NaN or infinite entries.")
+    if not (np.isfinite(length).all() and np.all(length > 0)):
+        raise ScrewkitValueError(f"Expected `length_scale` to be positive and finite, got {length}.")
     found = np.full(rows.shape, np.nan)
     done = orders == 0
     if RTOL_RANGE[0] <= rtol <= RTOL_RANGE[1]:

@@ -172,3 +172,17 @@ def test_couples_of_any_magnitude(factor):
     for order in (1, 2):
         rows, orders, lengths = couples(rng, 40, order)
         assert assert_same_bases(rows * factor, orders, lengths) == 0
+
+
+@pytest.mark.parametrize(
+    ("rows", "length", "message"),
+    [
+        (np.full((1, 2, 6), np.nan), [1.0], r"finite `rows`"),
+        (np.ones((1, 2, 6)), [0.0], r"`length_scale` to be positive and finite"),
+        (np.ones((1, 2, 6)), [np.nan], r"`length_scale` to be positive and finite"),
+        (np.ones((1, 2, 6)), [-1.0], r"`length_scale` to be positive and finite"),
+    ],
+)
+def test_rows_and_lengths_that_a_screw_system_refuses_are_refused(rows, length, message):
+    with pytest.raises(ScrewkitValueError, match=message):
+        RB.readable_bases(rows, [2], rtol=1e-9, length_scale=length)
