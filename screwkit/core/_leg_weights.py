@@ -62,6 +62,10 @@ def weighted_rows(rows: Array, spans: Sequence[tuple[Array, Array]]) -> Array:
     each direction shrunk by the norm of the coordinates it needs (exactly ``Q`` when every weight is
     1, for then ``C Cᵀ = I``).
 
+    The leg's rows must lie in each span's first ``order`` directions (a series chain's wrench
+    system lies in each of its members': :func:`spanned_spines`); the weights of the directions beyond
+    it are 0 and what a row has along them is left out.
+
     Parameters
     ----------
     rows : numpy.ndarray, shape (..., 6, 6)

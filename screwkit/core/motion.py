@@ -167,6 +167,11 @@ def newton_closure(
     residual : numpy.ndarray, shape (B,)
         Zero for a mechanism without loops.
 
+    Raises
+    ------
+    ScrewkitValueError
+        If ``theta`` is not of shape ``(B, n)``, ``n`` the model's joint variables.
+
     Examples
     --------
     >>> model = KinematicModel(load_mechanism("planar_3rrp").twist_graph())
@@ -174,6 +179,13 @@ def newton_closure(
     >>> bool(np.all(residual < CLOSURE_TOL))
     True
     """
+    theta = np.asarray(theta, dtype=float)
+    if theta.ndim != 2 or theta.shape[1] != model.size:
+        raise ScrewkitValueError(
+            f"Expected `theta` of shape (B, {model.size}) (the model's joint variables), got {theta.shape}."
+        )
+    if len(theta) == 0:
+        return theta.copy(), np.zeros(0)
     for _ in range(iterations):
         state = model.state(theta)
         residual = model.loop_residual(state)
@@ -210,7 +222,8 @@ def moved_configurations(
     Raises
     ------
     ScrewkitValueError
-        If the mechanism cannot move, or no loop could be closed.
+        If ``count`` is not a non-negative integer, the mechanism cannot move, or no loop could be
+        closed.
 
     Examples
     --------
@@ -219,6 +232,10 @@ def moved_configurations(
     (3, 9)
     """
     n = model.size
+    if isinstance(count, bool) or not isinstance(count, int | np.integer) or count < 0:
+        raise ScrewkitValueError(f"Expected `count` to be a non-negative integer, got {count!r}.")
+    if count == 0:
+        return np.zeros((0, n))
     theta = np.zeros((count, n))
     null = _null_space(model.loop_jacobian(model.state(theta[:1]))[0], rtol)
     if null.shape[1] == 0:

@@ -13,6 +13,7 @@ from screwkit.core._batched_poe import orthonormal_axes
 from screwkit.core.kinematic_model import KinematicModel
 from screwkit.core.kinematic_tasks import JointTask, PoseTask
 from screwkit.core.loop_closure import close_loops
+from screwkit.core.motion import moved_configurations, newton_closure
 from screwkit.core.task_coordinates import task_coordinates
 from screwkit.exceptions import ScrewkitValueError
 from screwkit.graphs.joints import helical, parallelogram, prismatic, revolute, spherical
@@ -382,3 +383,16 @@ def test_a_balls_axes_come_out_orthonormal_through_its_centre_spanning_the_same_
     np.testing.assert_allclose(out[:, :3] @ out[:, :3].T, np.eye(3), atol=1e-9)
     np.testing.assert_allclose(out[:, 3:], np.cross(centre, out[:, :3]), atol=1e-9 * 10)
     assert np.linalg.matrix_rank(np.vstack([rows, out]), tol=1e-8) == 3
+
+
+def test_newton_closure_and_moved_configurations_on_edge_sizes():
+    model = KinematicModel(planar_3rpr(
+        np.array([[0, 0, 0], [1, 0, 0], [0.5, 0.8, 0.0]]), np.array([[0.4, 0.3, 0], [0.6, 0.3, 0], [0.5, 0.5, 0.0]])
+    ))
+    theta, residual = newton_closure(model, np.zeros((0, model.size)))
+    assert theta.shape == (0, model.size) and residual.shape == (0,)
+    with pytest.raises(ScrewkitValueError, match=r"`theta` of shape \(B, 9\)"):
+        newton_closure(model, np.zeros(model.size))
+    assert moved_configurations(model, np.random.default_rng(0), 0).shape == (0, model.size)
+    with pytest.raises(ScrewkitValueError, match="`count` to be a non-negative integer, got -1"):
+        moved_configurations(model, np.random.default_rng(0), -1)
