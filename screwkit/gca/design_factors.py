@@ -82,12 +82,28 @@ class DesignSplit:
 
 
 def _stacked(samples: Sequence[Mapping[str, Any]], labels: set[str]) -> dict[str, np.ndarray]:
-    missing = sorted(labels - set(samples[0]))
-    if missing:
-        raise ScrewkitValueError(
-            f"Expected `samples` to hold the points {', '.join(missing)}, got none for them."
-        )
-    return {x: np.stack([np.asarray(s[x], dtype=float) for s in samples]) for x in labels}
+    for index, sample in enumerate(samples):
+        if not isinstance(sample, Mapping):
+            raise ScrewkitTypeError(
+                f"Expected `samples[{index}]` to map labels to points, got {type(sample).__name__}."
+            )
+        missing = sorted(labels - set(sample))
+        if missing:
+            raise ScrewkitValueError(
+                f"Expected `samples[{index}]` to hold the points {', '.join(missing)}, got none for them."
+            )
+    stacked = {}
+    for x in labels:
+        try:
+            stacked[x] = np.stack([np.asarray(s[x], dtype=float) for s in samples])
+        except (TypeError, ValueError):
+            stacked[x] = np.zeros(0)
+        if stacked[x].shape != (len(samples), 4):
+            raise ScrewkitValueError(
+                f"Expected `samples` to give point {x!r} as 4 homogeneous numbers in each sample, got "
+                f"{[np.shape(s[x]) for s in samples][:3]}."
+            )
+    return stacked
 
 
 def split_on_configurations(
@@ -112,9 +128,10 @@ def split_on_configurations(
     Raises
     ------
     ScrewkitTypeError
-        If ``factor`` is not a BracketPolynomial.
+        If ``factor`` is not a BracketPolynomial, or ``samples`` not a sequence of mappings.
     ScrewkitValueError
-        If there are fewer than three samples, or a sample lacks a label of the factor.
+        If there are fewer than three samples, a sample lacks a label of the factor, or a point is not
+        four homogeneous numbers.
 
     Examples
     --------
@@ -125,6 +142,10 @@ def split_on_configurations(
     """
     if not isinstance(factor, BracketPolynomial):
         raise ScrewkitTypeError(f"Expected `factor` to be a BracketPolynomial, got {type(factor).__name__}.")
+    if not isinstance(samples, Sequence) or isinstance(samples, str):
+        raise ScrewkitTypeError(
+            f"Expected `samples` to be a sequence of mappings, got {type(samples).__name__}."
+        )
     if len(samples) < 3:
         raise ScrewkitValueError(f"Expected at least three `samples`, got {len(samples)}.")
     if len(factor.terms) < 2:

@@ -76,3 +76,18 @@ def test_a_product_of_two_brackets():
 def test_bad_input(call, error, match):
     with pytest.raises(error, match=match):
         call(ratio_samples(np.random.default_rng(0), 2.0))
+
+
+def test_bad_samples_are_named():
+    factor = BracketPolynomial.parse("[abcd][abef] - [abce][abdf]")
+    rng = np.random.default_rng(1)
+    good = [{x: np.r_[rng.normal(size=3), 1.0] for x in "abcdef"} for _ in range(4)]
+    lacking = [*good[:3], {k: v for k, v in good[0].items() if k != "e"}]
+    with pytest.raises(ScrewkitValueError, match=r"`samples\[3\]` to hold the points e"):
+        split_on_configurations(factor, lacking)
+    with pytest.raises(ScrewkitTypeError, match="`samples` to be a sequence of mappings, got generator"):
+        split_on_configurations(factor, (s for s in good))
+    with pytest.raises(ScrewkitValueError, match="point 'a' as 4 homogeneous numbers"):
+        split_on_configurations(factor, [dict(good[0], a=np.zeros(3))] * 3)
+    with pytest.raises(ScrewkitTypeError, match=r"`samples\[0\]` to map labels to points, got int"):
+        split_on_configurations(factor, [1, 2, 3])
