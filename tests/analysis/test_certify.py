@@ -243,7 +243,8 @@ def test_path_inside_a_singular_set_is_reported_as_such():
         (lambda: C.certify(QUATTRO_M, {"x": 0.0}), r"`region` to give at least one range"),
         (lambda: C.certify(QUATTRO_M, {"x": (0.0, 1.0)}, max_boxes=0), r"`max_boxes` to be an integer"),
         (lambda: C.certify(QUATTRO_M, {"x": (0.0, math.inf)}), r"`region\['x'\]\[1\]` to be finite"),
-        (lambda: C.certify(sk.load_mechanism("planar_3rrp"), {"x": (0.0, 1.0)}), r"`mechanism` among what"),
+        (lambda: C.certify(sk.mechanism(sk.load_mechanism("h4").twist_graph(), platform_point=[0, 0, -750]),
+                           {"x": (0.0, 1.0)}), r"`mechanism` among what"),
         (lambda: C.certify(QUATTRO_M, {"x": (0.0, 1.0)}, resolution={"q": 1}), r"`resolution` over"),
     ],
 )
