@@ -72,6 +72,7 @@ from typing import Any
 import numpy as np
 
 from ..algebra.compiled import compiled_kernels
+from ..algebra.rigid_motions import rotation_log, rotation_matrix
 from ..exceptions import ScrewkitValueError
 from ._batched_poe import KERNELS
 from .kinematic_model import KinematicModel, KinematicState
@@ -181,6 +182,11 @@ class _LoopsAndTask:
         """The correction of the rows ``need`` of the equations' residual and Jacobian."""
         return _solve_step(jacobian[need], residual[need])
 
+    def tangent(self, start: Array, target: Array) -> Array | None:
+        """The tangent (Euler) predictor of a first step from the reference configuration to
+        ``target`` (None: the first step has none, Newton's first correction is its tangent step)."""
+        return None
+
     def newton(
         self, theta: Array, offsets: Array, target: Array, tolerance: Array, working: Array
     ) -> tuple[Array, Array, Array, Array]:
@@ -287,6 +293,55 @@ class _PinnedLoops(_LoopsAndTask):
             out[:, columns.ravel()] = step.reshape(count, -1)
         return out
 
+    def tangent(self, start: Array, target: Array) -> Array | None:
+        """The tangent (Euler) predictor ``−J⁺ F`` of a first step from the reference configuration
+        to ``target``: ``F``, the pinned loops' residual at the reference joint values with the link
+        moved by ``D = displacement(target)``, is that of ``D``, of ``D⁻¹`` or zero per loop (the
+        links on the pinned link's side of the tree all move by ``D`` there,
+        :attr:`_reference_tangent`), and ``J⁺`` the minimum-norm solve at the reference configuration,
+        the same for every pose. One matrix product per pose instead of an evaluation of the model:
+        Newton's method then starts at an ``O(h²)`` error (Allgower & Georg 2003, §2.2)."""
+        if self._reference_tangent is None or np.any(start != self._reference_tangent[2]):
+            return None
+        kinds, solve, _ = self._reference_tangent
+        moved = self.task.displacement(target)
+        forward = _pose_residual(moved)
+        residual = np.zeros((len(target), kinds.size, 6))
+        residual[:, kinds > 0] = forward[:, None]
+        residual[:, kinds < 0] = -_pose_residual_inverse(moved, forward)[:, None]
+        return residual.reshape(len(target), -1) @ solve
+
+    @functools.cached_property
+    def _reference_tangent(self) -> tuple[Array, Array, Array] | None:
+        """Per pinned loop whether its residual at the reference joint values is that of the link's
+        displacement ``D`` (1), of ``D⁻¹`` (−1) or zero (0), read off one generic ``D``; the
+        minimum-norm solve ``−J⁺`` there as a ``(6 L, n)`` matrix (the correction is linear in the
+        residual); the task's reference values. None if a loop's residual is none of these (then no
+        tangent predictor)."""
+        model, spherical = self.model, len(self.spherical)
+        theta = np.zeros((1, model.size))
+        offsets = np.tile(np.eye(4), (1, spherical, 1, 1))
+        values = self.task.values(model.state(theta))
+        if not np.allclose(self.task.displacement(values), np.eye(4), rtol=0.0, atol=1e-12):
+            return None
+        probe = np.eye(4)[None].copy()  # a generic displacement: no loop's residual is D's by chance
+        probe[0, :3, :3] = rotation_matrix(np.array([0.48, -0.6, 0.64]), np.array(0.37))
+        probe[0, :3, 3] = [0.3, -0.2, 0.5]
+        loops = self.pinned.loop_residual(self.pinned.state(theta, self.offsets_of(offsets), probe))
+        loops = loops.reshape(-1, 6)
+        forward = _pose_residual(probe)[0]
+        backward = -_pose_residual_inverse(probe, _pose_residual(probe))[0]
+        kinds = np.zeros(len(loops), dtype=int)
+        for kind, expected in ((1, forward), (-1, backward)):
+            kinds[np.all(np.abs(loops - expected) < 1e-12, axis=1)] = kind
+        if np.any((kinds == 0) & np.any(np.abs(loops) > 1e-12, axis=1)):
+            return None
+        _, blocks = self.equations(self.state(theta, self.offsets_of(offsets), values), values)
+        size = 6 * len(loops)
+        tiled = [np.repeat(block, size, axis=0) for block in blocks]
+        solve = self.correction(tiled, np.eye(size), np.ones(size, dtype=bool))
+        return kinds, solve, values[0]
+
     def newton(
         self, theta: Array, offsets: Array, target: Array, tolerance: Array, working: Array
     ) -> tuple[Array, Array, Array, Array]:
@@ -302,6 +357,17 @@ class _PinnedLoops(_LoopsAndTask):
         )
         theta[:], offsets[:] = solved, turned
         return sizes[working], corrected[working], leading[working], unfolded[working]
+
+
+def _pose_residual(moved: Array) -> Array:
+    """A displacement's loop residual: rotation vector, then translation ``(B, 6)``."""
+    return np.concatenate([rotation_log(moved[:, :3, :3]), moved[:, :3, 3]], axis=1)
+
+
+def _pose_residual_inverse(moved: Array, forward: Array) -> Array:
+    """Minus its inverse's, ``(φ, Rᵀ p)``, from its own (``forward``)."""
+    back = np.einsum("bji,bj->bi", moved[:, :3, :3], moved[:, :3, 3])
+    return np.concatenate([forward[:, :3], back], axis=1)
 
 
 def _kernel_blocks(pinned: KinematicModel) -> tuple[Array, ...]:
@@ -360,6 +426,10 @@ def _continue(
         target = start + (targets - start) * np.minimum(1.0, step / own)[:, None]
         ahead = active & moving & (step > 1)
         theta[ahead] += np.where(extrapolated, secant[ahead], 0.0)
+        tangent = system.tangent(start, target) if step == 1 and spherical_secant else None
+        if tangent is not None:  # the first step's predictor: the tangent at the reference configuration
+            theta += tangent
+            ahead = active & moving
         last = (step >= own)[:, None]  # (residual, correction) tolerances
         tolerance = np.where(last, LAST_TOLERANCES, STEP_TOLERANCES)
         working = active & moving
