@@ -9,6 +9,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from screwkit.algebra.rigid_motions import exp_screw, rotation_log, rotation_matrix
+from screwkit.core import loop_closure
 from screwkit.core._batched_poe import orthonormal_axes
 from screwkit.core.kinematic_model import KinematicModel
 from screwkit.core.kinematic_tasks import JointTask, PoseTask
@@ -318,6 +319,28 @@ def test_pinning_the_platform_closes_each_leg_on_its_own():
     platform = state.links["platform"]
     assert np.allclose(task.displacement(task.values(state)), platform, atol=1e-12)
     assert np.abs(pinned.loop_residual(pinned.state(closed.theta, closed.offsets, platform))).max() < 1e-12
+
+
+def test_the_first_steps_predictor_is_the_tangent_of_the_path():
+    # a 6-UPS moved along a straight line of its task space: the predictor from the reference
+    # configuration is the Euler step of the solution path, its error against the configurations the
+    # corrector closes to 1e-12 falls as the step's square (ratio 4 for half the step), where a wrong
+    # residual or sign would leave an error of the step's own order (ratio 2)
+    model = gs_model()
+    task = PoseTask(model, task_coordinates(model))
+    system = loop_closure._PinnedLoops(model, task)
+    start = task.values(model.state(np.zeros((1, model.size))))  # the reference's scaled values
+    direction = np.array([[0.5, -0.3, 0.4, 0.6, -0.5, 0.7]])
+    errors = []
+    for length in (0.04, 0.02, 0.01):
+        targets = start + length * direction
+        closed = close_loops(model, task, targets)
+        assert closed.reached.all()
+        predicted = system.tangent(start, targets)
+        errors.append(np.abs(predicted - closed.theta).max())
+    ratios = np.array(errors[:-1]) / np.array(errors[1:])
+    assert np.all((ratios > 3.5) & (ratios < 4.5)), ratios
+    assert errors[-1] < 1e-3
 
 
 def test_the_joint_motions_are_the_product_of_their_screws_exponentials():
