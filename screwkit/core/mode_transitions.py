@@ -39,6 +39,7 @@ import numpy as np
 from ..algebra import backend as B
 from ..exceptions import ScrewkitValueError
 from ..graphs.jointtable import JointTable
+from ..graphs.twistgraph import check_twist_graph
 from .kinematic_model import KinematicModel
 from .motion import _null_space, newton_closure
 from .operation_modes import _key
@@ -213,6 +214,8 @@ def modes_at(
 
     Raises
     ------
+    TwistGraphError
+        If ``graph`` is not a twist graph with joints under ``joint_key``.
     ScrewkitValueError
         If the loops admit no joint motion at the pose, or no step could be closed again.
 
@@ -225,6 +228,7 @@ def modes_at(
     >>> modes_at(arm).modes[0].mobility
     2
     """
+    check_twist_graph(graph, joint_key=joint_key)
     model = KinematicModel(graph, joint_key)
     reference = JointTable.from_graph(graph, joint_key=joint_key)
     null = _null_space(model.loop_jacobian(model.state(np.zeros((1, model.size))))[0])

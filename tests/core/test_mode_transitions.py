@@ -21,7 +21,7 @@ from hypothesis import strategies as st
 from screwkit.core.mobility import generic_mobility
 from screwkit.core.mode_transitions import modes_at
 from screwkit.core.motion import generic_configurations
-from screwkit.exceptions import ScrewkitValueError
+from screwkit.exceptions import ScrewkitValueError, TwistGraphError
 from tests.mechanisms import bennett, bennett_axes, bennett_links, moved, tsai_3upu
 from tests.strategies import rigid_motions
 
@@ -132,3 +132,8 @@ def test_a_pitch_of_round_off_is_no_helical_mode():
     ])
     result = modes_at(moved(tsai_3upu((0.1, 0.05, 0.0)), rotation, np.zeros(3), 1.0))
     assert sorted(mode.motion_type for mode in result.modes) == ["2T1R", "3T"]
+
+
+def test_not_a_twist_graph_is_refused_by_name():
+    with pytest.raises(TwistGraphError, match=r"Expected a networkx\.MultiDiGraph, got NoneType"):
+        modes_at(None)
