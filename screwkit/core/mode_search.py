@@ -49,7 +49,7 @@ from ..exceptions import ScrewkitValueError
 from ..graphs.jointtable import JointTable
 from ..graphs.twistgraph import check_twist_graph
 from .kinematic_model import KinematicModel
-from .motion import _null_space, moved_configurations, newton_closure
+from .motion import _null_space, _with_free, moved_configurations, newton_closure
 from .operation_modes import OperationMode, operation_modes
 from .wrench_systems import analyze_table
 
@@ -280,7 +280,7 @@ def _classified(
 ) -> tuple[JointTable, list[OperationMode]]:
     """The joint table of closed configurations and their classes (the reference's first)."""
     # spherical joints' angles folded into their offsets: three screws never read at a gimbal lock
-    table = model.joint_table(model.state(*model.recentred(theta, {})), reference)
+    table = _with_free(model.joint_table(model.state(*model.recentred(theta, {})), reference), reference)
     modes = operation_modes(analyze_table(table, rtol=rtol, views=False),
                             analyze_table(reference, rtol=rtol, views=False))
     return table, modes

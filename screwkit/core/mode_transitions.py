@@ -46,7 +46,7 @@ from ..exceptions import ScrewkitValueError
 from ..graphs.jointtable import JointTable
 from ..graphs.twistgraph import check_twist_graph
 from .kinematic_model import KinematicModel
-from .motion import _null_space, newton_closure, tangent_error
+from .motion import _null_space, _with_free, newton_closure, tangent_error
 from .operation_modes import CLOSED_RTOL, _key
 from .singularity import SingularityReport, classify
 from .wrench_systems import WrenchAnalysis, analyze_table
@@ -262,7 +262,7 @@ def modes_at(
         raise ScrewkitValueError(f"Expected loops that close again after a small step, got none in {TRIES} "
                                  "tries (Newton's method did not converge, or only next to a singular "
                                  "configuration).")
-    table = model.joint_table(model.state(theta[closed]), reference)
+    table = _with_free(model.joint_table(model.state(theta[closed]), reference), reference)
     batch = analyze_table(table, dof=0, rtol=rtol, length_scale=length_scale)
     classes: dict[tuple[int, str, int], list[int]] = {}
     for i in range(len(batch)):

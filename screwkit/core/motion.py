@@ -40,6 +40,8 @@ Examples
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import networkx as nx
 import numpy as np
 
@@ -138,7 +140,7 @@ def generic_configurations(
     if not same_mode:
         return table
     rank_rtol = max(rtol, B.DEFAULT_RTOL)
-    kept = reference_mode_indices(analyze_table(table, rtol=rank_rtol, views=False),
+    kept = reference_mode_indices(analyze_table(_with_free(table, reference), rtol=rank_rtol, views=False),
                                   analyze_table(reference, rtol=rank_rtol, views=False))
     return model.joint_table(model.state(theta[kept]), reference)
 
@@ -254,6 +256,14 @@ def tangent_error(model: KinematicModel, theta: Array) -> Array:
     with np.errstate(divide="ignore", invalid="ignore"):
         error = residual / smallest**2
     return np.where(residual == 0.0, 0.0, np.where(np.isfinite(smallest), error, np.inf))
+
+
+def _with_free(table: JointTable, reference: JointTable) -> JointTable:
+    """A moved configurations' joint table with the reference's free rotations (a point task's,
+    :attr:`JointTable.free <screwkit.graphs.jointtable.JointTable.free>`), which
+    :meth:`~screwkit.core.kinematic_model.KinematicModel.joint_table` does not carry: their operation
+    modes are read as the reference's (:func:`screwkit.core.operation_modes.operation_modes`)."""
+    return replace(table, free=reference.free) if reference.free != table.free else table
 
 
 def _checked_theta(model: KinematicModel, theta: Array) -> Array:

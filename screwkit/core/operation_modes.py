@@ -64,11 +64,27 @@ CLOSED_RTOL = 1e-6
 
 
 def _key(analysis: WrenchAnalysis) -> tuple[str, int]:
-    """A closed configuration's motion type (its pitch left out) and constraint order."""
+    """A closed configuration's motion type (its pitch left out) and constraint order; for a point task
+    (``free`` rotations about the point, :mod:`screwkit.robots.point_task`) the point's motion type."""
     twists = analysis.platform_twists  # its rows: a screw system would be read at its own rtol
     rtol = max(CLOSED_RTOL, analysis.rtol)
     label = str(motion_type(twists.basis, rtol=rtol, length_scale=twists.length_scale)).split(" (pitch")[0]
+    if analysis.free:
+        label = _point_label(label)
     return label, int(analysis.constraint_order)
+
+
+def _point_label(label: str) -> str:
+    """The motion type of a point task's point from its task link's (``"2T3R"``: ``"2T"``).
+
+    The task link's twists are the measured link's and every rotation about the point, so the
+    translations among them are the velocities the point can have (a twist ``(ω; v_P)`` at the point
+    less the rotation ``ω`` about it is the translation ``v_P``): the point's freedoms, all
+    translations; the rotations in the label are the three free ones (and the link's own, which the
+    task leaves free).
+    """
+    translations = label.split("T")[0] if "T" in label else "0"
+    return f"{translations}T" if translations != "0" else "0"
 
 
 def _rotations(label: str) -> int:
