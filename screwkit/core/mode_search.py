@@ -17,11 +17,19 @@ unless the reference lies where modes meet; the other modes are found here globa
    configuration space, a generic point of it with probability one;
 3. every closed configuration classified by its platform's motion type and the order of its
    constraint wrench system (:func:`~screwkit.core.operation_modes.operation_modes`), each class one
-   mode, the reference's first.
+   mode, the reference's first;
+4. a class other than the reference's is kept only if a configuration of it, moved by :data:`NEARBY`
+   and closed again, still reads it (at a loose ``rtol`` a configuration near a singular one can
+   read a class of its own);
+5. a mode without rotations keeps its platform's orientation, so configurations of such a class
+   whose platforms are turned from each other (by more than :data:`TURN_TOL`) lie in different
+   modes: Tsai's 3-UPU translates with its platform as assembled and with it turned half a turn
+   about the vertical, two components of its configuration space with one motion type, read "3T"
+   and "3T (turned 180° about (0, 0, 1))". Each such mode carries its turn from the reference.
 
 It is a search, not a proof: a mode whose basin of attraction no draw falls in is missed, and two
-modes of the same motion type and constraint order read as one (Tsai's 3-UPU has two translational
-modes, the platform as assembled and turned half a turn about the vertical; they read as one 3T).
+modes of the same motion type and constraint order read as one, unless they are modes without
+rotations whose platforms are turned from each other (step 5).
 The joints have no limits here: a slider may run through zero and beyond, and a parallelogram built
 of two rods between spherical joints (the catalog's Delta-like robots) may stop being one, a mode the
 real robot's joint ranges exclude. The draws are seeded, so the same mechanism always gets the same
@@ -45,6 +53,7 @@ import numpy as np
 
 from ..algebra import backend as B
 from ..algebra.checks import checked_rtol
+from ..algebra.rigid_motions import rotation_log
 from ..exceptions import ScrewkitValueError
 from ..graphs.jointtable import JointTable
 from ..graphs.twistgraph import check_twist_graph
@@ -64,6 +73,9 @@ MAX_ASSEMBLIES = 10_000
 NEARBY = 0.05
 #: How many of a candidate mode's configurations are moved to check it (one staying in it suffices).
 RECHECKED = 3
+#: Two configurations of a mode without rotations whose platforms' orientations differ by more than
+#: this (radians; or ten times ``rtol``, if more) lie in different modes (module docstring, step 5).
+TURN_TOL = 1e-3
 #: A slider's random travel, in characteristic lengths either way.
 TRAVEL = 2.0
 #: Gauss–Newton iterations closing a random assembly (far from the solution set: more than a step
@@ -118,7 +130,8 @@ class OperationModes(Sequence[OperationMode]):
         return iter(self.modes)
 
     def names(self) -> list[str]:
-        """Each mode's motion type, the reference's marked "(this one)".
+        """Each mode's name (:attr:`OperationMode.name`: its motion type, and a translational mode's
+        turn from the reference), the reference's marked "(this one)".
 
         Returns
         -------
@@ -129,7 +142,7 @@ class OperationModes(Sequence[OperationMode]):
         >>> find_operation_modes(load_mechanism("delta").twist_graph()).names()  # its rods: 2 S-S each
         ['3T (this one)', '3R']
         """
-        return [mode.motion_type + (" (this one)" if mode.reference else "") for mode in self.modes]
+        return [mode.name + (" (this one)" if mode.reference else "") for mode in self.modes]
 
     def describe(self) -> str:
         """One line: the modes found, and how (a search: others may exist).
@@ -157,19 +170,23 @@ class OperationModes(Sequence[OperationMode]):
         Returns
         -------
         dict
-            ``modes`` (per mode its ``motion_type``, ``constraint_order``, ``reference`` and
-            ``configurations``: how many of those classified fell in it), ``assemblies``, ``closed``,
-            ``reached`` and ``complete`` (always False: a search cannot rule other modes out).
+            ``modes`` (per mode its ``motion_type``, ``constraint_order``, ``reference``,
+            ``configurations``: how many of those classified fell in it, and ``turn``: a mode without
+            rotations' turn from the reference as a rotation vector, radians, else None),
+            ``assemblies``, ``closed``, ``reached`` and ``complete`` (always False: a search cannot
+            rule other modes out).
 
         Examples
         --------
         >>> found = find_operation_modes(load_mechanism("planar_3rrp").twist_graph())
-        >>> found.to_dict()["modes"]
-        [{'motion_type': '2T1R', 'constraint_order': 3, 'reference': True, 'configurations': 36}]
+        >>> found.to_dict()["modes"]  # doctest: +NORMALIZE_WHITESPACE
+        [{'motion_type': '2T1R', 'constraint_order': 3, 'reference': True, 'configurations': 36,
+          'turn': None}]
         """
         return {
             "modes": [{"motion_type": mode.motion_type, "constraint_order": mode.constraint_order,
-                       "reference": mode.reference, "configurations": len(mode.indices)}
+                       "reference": mode.reference, "configurations": len(mode.indices),
+                       "turn": None if mode.turn is None else list(mode.turn)}
                       for mode in self.modes],
             "assemblies": self.assemblies,
             "closed": self.closed,
@@ -272,7 +289,40 @@ def find_operation_modes(
         if any(other.motion_type == mode.motion_type and other.constraint_order == mode.constraint_order
                and any(i >= len(members) for i in other.indices) for other in again):
             kept.append(mode)
+    if not reference.free:  # a point task's task link has no orientation of its own
+        kept = _by_orientation(kept, model, theta, rank_rtol)
     return OperationModes(tuple(kept), table, int(assemblies), len(found), len(reached))
+
+
+def _by_orientation(
+    modes: list[OperationMode], model: KinematicModel, theta: np.ndarray, rtol: float
+) -> list[OperationMode]:
+    """Each mode without rotations split by its platform's orientation (module docstring, step 5),
+    the reference's first, then by decreasing number of configurations."""
+    state = model.state(*model.recentred(theta, {}))
+    rotations = model.displacement(state, model.platform)[:, :3, :3]
+    tolerance = max(TURN_TOL, 10 * rtol)
+    out = []
+    for mode in modes:
+        if any(kind in mode.motion_type for kind in "RH"):
+            out.append(mode)
+            continue
+        groups: list[list[int]] = []  # configurations whose platforms keep one orientation
+        for i in mode.indices:
+            for group in groups:
+                if np.linalg.norm(rotation_log(rotations[group[0]].T @ rotations[i])) < tolerance:
+                    group.append(i)
+                    break
+            else:
+                groups.append([i])
+        for group in groups:
+            turn = rotation_log(rotations[group[0]])
+            turned = bool(np.linalg.norm(turn) >= tolerance)
+            out.append(OperationMode(mode.motion_type, mode.constraint_order, tuple(group),
+                                     mode.reference and not turned,
+                                     (float(turn[0]), float(turn[1]), float(turn[2])) if turned
+                                     else (0.0, 0.0, 0.0)))
+    return sorted(out, key=lambda mode: (not mode.reference, -len(mode.indices), mode.indices[0]))
 
 
 def _classified(

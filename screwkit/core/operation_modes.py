@@ -48,12 +48,41 @@ class OperationMode:
     reference : bool
         True if the reference configuration (when one was given) has this motion type and
         constraint order.
+    turn : tuple of float, optional
+        For a mode without rotations, whose platform keeps one orientation, that orientation from
+        the reference's: a rotation vector (radians, the graph's frame); None otherwise
+        (:func:`screwkit.core.mode_search.find_operation_modes` sets it).
     """
 
     motion_type: str
     constraint_order: int
     indices: tuple[int, ...]
     reference: bool = False
+    turn: tuple[float, float, float] | None = None
+
+    @property
+    def name(self) -> str:
+        """The motion type, and a turned translational mode's turn.
+
+        Returns
+        -------
+        str
+            ``"3T"``, or ``"3T (turned 180° about (0, 0, 1))"`` for a mode whose platform keeps an
+            orientation other than the reference's.
+
+        Examples
+        --------
+        >>> OperationMode("3T", 3, (0,), turn=(0.0, 0.0, -np.pi)).name
+        '3T (turned 180° about (0, 0, 1))'
+        """
+        if self.turn is None or np.linalg.norm(self.turn) == 0.0:
+            return self.motion_type
+        angle = float(np.linalg.norm(self.turn))
+        direction = np.asarray(self.turn) / angle
+        if np.pi - angle < 1e-6:  # a half turn about a and about −a are one: its largest component > 0
+            direction = direction * np.sign(direction[np.argmax(np.abs(direction))])
+        axis = ", ".join(f"{value + 0.0:.4g}" for value in np.round(direction, 12))
+        return f"{self.motion_type} (turned {np.degrees(angle):.4g}° about ({axis}))"
 
 
 #: Configurations closed by Newton's method to a residual of 1e-9 carry their twists to about that, so

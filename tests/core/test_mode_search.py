@@ -67,10 +67,28 @@ UPU_LEGS, UPU_NAMES = (1, 2, 3), ("Ub{}", "P{}", "Up{}")
 EXPECTED = {"3T": (3, 3, 0), "2T1R": (3, 2, 1), "3R": (3, 0, 3)}
 
 
+def joint_centre(table, index, name):
+    """The centre of a universal joint: the point nearest both its axes (least squares on p × s = s0
+    written out, as for tests/core/test_motion.py's spherical joints)."""
+    rows = table.joint_screws(name)[index].reshape(-1, 6)
+    system = np.concatenate([np.array([[0, s[2], -s[1]], [-s[2], 0, s[0]], [s[1], -s[0], 0]]) for s in rows[:, :3]])
+    return np.linalg.lstsq(system, -np.concatenate(rows[:, 3:]), rcond=None)[0]
+
+
 def test_3upu_from_a_generic_configuration_finds_its_three_kinds_of_mode():
     found = find_operation_modes(tsai_3upu([0.1, 0.05, 0.8]))
     assert found[0].motion_type == "3T" and found[0].reference
-    assert sorted(mode.motion_type for mode in found) == ["2T1R", "3R", "3T"]
+    assert sorted(mode.motion_type for mode in found) == ["2T1R", "3R", "3T", "3T"]
+    # the two translational modes (module docstring: R = I, and R a half turn about z) are two
+    # components: the platform keeps its orientation in each, so they are told apart by it; the
+    # platform's triangle of U centres, read from the joint screws, is the reference's, or turned by π
+    turned = next(mode for mode in found if mode.motion_type == "3T" and not mode.reference)
+    assert found[0].turn == (0.0, 0.0, 0.0) and turned.name == "3T (turned 180° about (0, 0, 1))"
+    reference_side = joint_centre(found.table, 0, "Up2") - joint_centre(found.table, 0, "Up1")
+    for mode, sign in ((found[0], 1.0), (turned, -1.0)):
+        for index in mode.indices:
+            side = joint_centre(found.table, index, "Up2") - joint_centre(found.table, index, "Up1")
+            assert np.allclose(side, sign * reference_side, atol=1e-8)
     for mode in found:
         for index in mode.indices:
             assert platform_kind(found.table, index, UPU_LEGS, UPU_NAMES) == EXPECTED[mode.motion_type]
@@ -80,7 +98,7 @@ def test_3upu_from_a_generic_configuration_finds_its_three_kinds_of_mode():
     platform_axis = found.table.joint_screws("Up1")[turned][1, :3]
     assert np.linalg.norm(np.cross(base_axis, platform_axis)) > 1e-3
     assert found.closed <= found.assemblies and found.reached == 12
-    assert found.describe().startswith("3 operation modes: 3T (this one), ")
+    assert found.describe().startswith("4 operation modes: 3T (this one), ")
     assert found.describe().endswith("others may exist)")
 
 
@@ -116,7 +134,10 @@ def test_same_modes_in_any_frame_and_length_unit(motion, factor):
     rotation, translation = motion
     found = find_operation_modes(moved(tsai_3upu([0.1, 0.05, 0.8]), rotation, translation, factor))
     assert (found[0].motion_type, found[0].reference) == ("3T", True)
-    assert sorted(mode.motion_type for mode in found) == ["2T1R", "3R", "3T"]
+    assert sorted(mode.motion_type for mode in found) == ["2T1R", "3R", "3T", "3T"]
+    turn = next(mode.turn for mode in found if mode.motion_type == "3T" and not mode.reference)
+    assert np.linalg.norm(turn) == pytest.approx(np.pi, abs=1e-6)  # half a turn about the frame's z
+    assert abs(np.dot(turn, rotation @ [0.0, 0.0, 1.0])) == pytest.approx(np.pi, abs=1e-6)
 
 
 def test_without_assemblies_only_the_reference_s_mode_is_reached():
