@@ -62,7 +62,7 @@ from .motion import _null_space, _with_free, moved_configurations, newton_closur
 from .operation_modes import OperationMode, operation_modes
 from .wrench_systems import analyze_table
 
-__all__ = ["OperationModes", "find_operation_modes"]
+__all__ = ["OperationModes", "find_operation_modes", "random_assemblies"]
 
 #: Configurations reached by moving the mechanism from its reference, and random assemblies tried.
 REACHED = 12
@@ -76,6 +76,10 @@ RECHECKED = 3
 #: Two configurations of a mode without rotations whose platforms' orientations differ by more than
 #: this (radians; or ten times ``rtol``, if more) lie in different modes (module docstring, step 5).
 TURN_TOL = 1e-3
+#: The loop-closure residual (characteristic lengths) at which an assembly is closed, whatever the data's
+#: precision: Gauss–Newton closes the loops of rounded data too (an overconstrained linkage given rounded
+#: is a rigid structure whose configurations are exact solutions of its equations).
+CLOSED = 1e-9
 #: A slider's random travel, in characteristic lengths either way.
 TRAVEL = 2.0
 #: Gauss–Newton iterations closing a random assembly (far from the solution set: more than a step
@@ -195,7 +199,9 @@ class OperationModes(Sequence[OperationMode]):
         }
 
 
-def random_assemblies(model: KinematicModel, rng: np.random.Generator, count: int, rtol: float) -> np.ndarray:
+def random_assemblies(
+    model: KinematicModel, rng: np.random.Generator, count: int, tolerance: float = CLOSED
+) -> np.ndarray:
     """Joint values of random assemblies whose loops closed (module docstring, step 2).
 
     Parameters
@@ -204,8 +210,11 @@ def random_assemblies(model: KinematicModel, rng: np.random.Generator, count: in
     rng : numpy.random.Generator
     count : int
         Assemblies tried.
-    rtol : float
-        A loop closed to ``max(rtol, 1e-9)`` characteristic lengths is closed (the data's precision).
+    tolerance : float, default :data:`CLOSED`
+        The largest loop-closure residual (characteristic lengths) of an assembly taken as closed:
+        the loop closure's own, whatever the data's precision (a loose ``rtol`` would take an
+        assembly that Gauss–Newton left short of closing as one: at rtol 0.1, a Ragnar assembly
+        at a residual of 0.044 characteristic lengths).
 
     Returns
     -------
@@ -215,7 +224,7 @@ def random_assemblies(model: KinematicModel, rng: np.random.Generator, count: in
     Examples
     --------
     >>> model = KinematicModel(load_mechanism("planar_3rrp").twist_graph())
-    >>> random_assemblies(model, np.random.default_rng(0), 4, 1e-9).shape
+    >>> random_assemblies(model, np.random.default_rng(0), 4).shape
     (4, 9)
     """
     if count == 0:
@@ -224,7 +233,7 @@ def random_assemblies(model: KinematicModel, rng: np.random.Generator, count: in
     theta = rng.uniform(-1.0, 1.0, (count, model.size)) * np.where(slider, TRAVEL, np.pi)
     with np.errstate(all="ignore"):  # a draw that runs off is dropped below, not propagated
         theta, residual = newton_closure(model, theta, ASSEMBLY_ITERATIONS, ASSEMBLY_STEP)
-    closed = np.isfinite(residual) & (residual < max(rtol, 1e-9)) & np.all(np.isfinite(theta), axis=1)
+    closed = np.isfinite(residual) & (residual < tolerance) & np.all(np.isfinite(theta), axis=1)
     return theta[closed]
 
 
@@ -245,7 +254,8 @@ def find_operation_modes(
     rtol : float, default 1e-9
         The data's precision (as in :func:`~screwkit.core.motion.generic_configurations`) and the
         rank tolerance of the classification (the motion type at least 1e-6: closed configurations
-        carry round-off of the closure's size).
+        carry round-off of the closure's size). A random assembly is closed at the loop closure's
+        own :data:`CLOSED`, whatever ``rtol``.
     assemblies : int, default 24
         Random assemblies tried.
 
@@ -276,14 +286,14 @@ def find_operation_modes(
     rng = np.random.default_rng(SEED)
     model = KinematicModel(graph, joint_key)
     reached = moved_configurations(model, rng, REACHED, rank_rtol)
-    found = random_assemblies(model, rng, assemblies, rank_rtol)
+    found = random_assemblies(model, rng, assemblies)
     reference = JointTable.from_graph(graph, joint_key=joint_key)
     theta = np.concatenate([reached, found])
     table, modes = _classified(model, reference, theta, rank_rtol)
     kept = [modes[0]]
     for mode in modes[1:]:  # a class met away from a singular configuration: moved, it stays itself
         members = theta[list(mode.indices[:RECHECKED])]
-        moved = _moved_nearby(model, members, rng, rank_rtol)
+        moved = _moved_nearby(model, members, rng)
         both = np.concatenate([members, moved])
         again = _classified(model, reference, both, rank_rtol)[1]
         if any(other.motion_type == mode.motion_type and other.constraint_order == mode.constraint_order
@@ -337,11 +347,12 @@ def _classified(
 
 
 def _moved_nearby(
-    model: KinematicModel, theta: np.ndarray, rng: np.random.Generator, rtol: float
+    model: KinematicModel, theta: np.ndarray, rng: np.random.Generator
 ) -> np.ndarray:
     """Each closed configuration moved by :data:`NEARBY` along a random motion of its loops and closed
-    again (those that close): a configuration that only lies near a singular one (within a loose
-    ``rtol``: a planar 3-RRP once read "1T1R" at one random assembly of 24) reads its mode once moved."""
+    again (those that close to :data:`CLOSED`): a configuration that only lies near a singular one
+    (within a loose ``rtol``: a planar 3-RRP once read "1T1R" at one random assembly of 24) reads its
+    mode once moved."""
     moved = []
     for row in theta:
         null = _null_space(model.loop_jacobian(model.state(row[None]))[0])
@@ -351,4 +362,4 @@ def _moved_nearby(
     if not moved:
         return np.zeros((0, theta.shape[1]))
     closed, residual = newton_closure(model, np.array(moved))
-    return closed[np.isfinite(residual) & (residual < max(rtol, 1e-9))]  # as random_assemblies
+    return closed[np.isfinite(residual) & (residual < CLOSED)]  # as random_assemblies

@@ -247,3 +247,31 @@ def test_the_delta_s_1t2r_class_at_a_loose_rtol_is_its_3r_mode():
         readings.append([operation_modes(analyze_table(table, rtol=rtol))[0].motion_type for rtol in (1e-9, 1e-3)])
     assert readings[0] == ["3R", "1T2R"] and readings[-1] == ["3R", "3R"]
     assert all(at_1e9 == "3R" for at_1e9, _ in readings) and turn > 1e-2
+
+
+def test_a_loose_rtol_takes_no_unclosed_assembly_as_closed():
+    # The Ragnar's data close exactly; of 200 random assemblies Gauss–Newton leaves one at a residual
+    # of 0.044 characteristic lengths (a stall, no configuration of the linkage). The data's precision
+    # (rtol 0.1) must not make it closed: assemblies are closed at the loop closure's own 1e-9.
+    from screwkit.core.mode_search import SEED, random_assemblies
+
+    graph = load_mechanism("ragnar").twist_graph()
+    model = KinematicModel(graph)
+    rows = random_assemblies(model, np.random.default_rng(SEED), 200)
+    residual = np.max(np.abs(model.loop_residual(model.state(rows))), axis=1)
+    assert 190 <= len(rows) < 200 and np.all(residual < 1e-9)
+    # the search draws the same assemblies at any rtol: it must close the same ones (the McGill SMG's
+    # 300 assemblies: 287 close, and rtol 0.1 took 4 more, stalled, as closed)
+    smg = load_mechanism("mcgill_smg").twist_graph()
+    assert find_operation_modes(smg, rtol=0.1, assemblies=300).closed == find_operation_modes(
+        smg, assemblies=300).closed == 287
+
+
+def test_rounded_data_close_at_the_loop_closure_s_tolerance():
+    # Bennett's linkage of 100 mm links given to 0.01 mm (tests/overconstrained.py; mobile at rtol 1e-3
+    # only, tests/core/test_mobility.py) is a rigid structure at 1e-9 whose assemblies are exact
+    # solutions of its loop equations: Gauss–Newton closes them to round-off
+    from tests.overconstrained import bennett as rounded_bennett
+
+    found = find_operation_modes(rounded_bennett(decimals=2, scale=100.0), rtol=1e-3)
+    assert found.closed > 0 and len(found) >= 1
