@@ -236,14 +236,18 @@ def tangent_error(model: KinematicModel, theta: Array) -> Array:
     Raises
     ------
     ScrewkitValueError
-        If ``theta`` is not of shape ``(B, n)``, ``n`` the model's joint variables.
+        If ``theta`` is not of shape ``(B, n)`` (``n`` the model's joint variables).
 
     Examples
     --------
-    >>> model = KinematicModel(load_mechanism("planar_3rrp").twist_graph())
-    >>> theta, _ = newton_closure(model, np.full((2, model.size), 0.1))
-    >>> bool(np.all(tangent_error(model, theta) < 1e-12))
-    True
+    The H4 at its reference (closed exactly) and with one joint moved off it:
+
+    >>> h4 = KinematicModel(load_mechanism("h4").twist_graph())
+    >>> off = np.zeros((2, h4.size))
+    >>> off[1, 0] = 1e-6
+    >>> error = tangent_error(h4, off)
+    >>> float(error[0]), bool(1e-7 < error[1] < 1e-2)
+    (0.0, True)
     """
     theta = _checked_theta(model, theta)
     if len(theta) == 0 or not model.closing:
