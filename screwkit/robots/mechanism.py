@@ -29,13 +29,9 @@ from ..graphs.jointtable import JointTable
 from .angles import pose_text, poses_in_radians
 from .families import Family, families
 from .graph_kinematics import kinematics_of
-from .pose_conversions import displacement_coordinates, forward_posed
+from .pose_conversions import forward_posed
+from .pose_reader import check_pose_range, displacements_as_coordinates
 from .reach import random_reachable_poses, reachable_poses, unreachable_reasons
-from .toml_fields import (
-    MAX_ANGLE_DEGREES,
-    MAX_ANGLE_RADIANS,
-    MAX_COORDINATE,
-)
 
 if TYPE_CHECKING:
     from ..core.jacobian_matrices import Jacobians
@@ -323,36 +319,16 @@ class Mechanism(Generic[P, C]):
         from .posed import PosedMechanism
 
         self._check_options(options)
-        coordinates = self._coordinates_of(poses)  # 4×4 displacements carry no angle unit
+        coordinates = displacements_as_coordinates(self, poses)  # 4×4 displacements carry no angle unit
         if coordinates is poses:
             coordinates = poses_in_radians(poses, self.pose_names, self.angle_names, angles)
         self.check_pose_range(coordinates)
         poses = coordinates
         return PosedMechanism.create(self, poses, rtol=rtol, length_scale=length_scale, options=options)
 
-    def _coordinates_of(self, poses: Any) -> Any:
-        """Poses as coordinates: ``(..., 4, 4)`` rigid displacements of the platform relative to the
-        reference configuration (rotating about the platform point) converted; a 2-D ``(4, 4)``
-        array is four poses of a four-coordinate robot, one displacement otherwise."""
-        if poses is None or isinstance(poses, str):
-            return poses
-        try:
-            array = np.asarray(poses, dtype=float)
-        except (TypeError, ValueError):
-            return poses  # the callee names it
-        displacement = array.shape[-2:] == (4, 4) and (array.ndim > 2 or len(self.pose_names) != 4)
-        if not displacement:
-            return poses
-        if not np.all(np.isfinite(array)):
-            raise ScrewkitValueError("Expected finite `poses` (4×4 displacements), got NaN or infinity.")
-        flat = array.reshape(-1, 4, 4)
-        return displacement_coordinates(kinematics_of(self), flat).reshape(*array.shape[:-2], -1)
-
     def check_pose_range(self, poses: Any, argument: str = "poses") -> None:
-        """Refuse pose coordinates beyond :data:`MAX_COORDINATE` and angles beyond
-        :data:`MAX_ANGLE_RADIANS` (the radian form of the degrees rule, :data:`MAX_ANGLE_DEGREES`).
-
-        Shapes, types and NaN are left to the callee, which names them; this check only bounds sizes.
+        """Refuse pose coordinates and angles beyond their bounds
+        (:func:`screwkit.robots.pose_reader.check_pose_range`).
 
         Parameters
         ----------
@@ -373,29 +349,7 @@ class Mechanism(Generic[P, C]):
         ...
         screwkit.exceptions.ScrewkitValueError: Expected the angle `phi` of `poses` to be at most 17453.3 ...
         """
-        if poses is None or isinstance(poses, str):
-            return
-        with np.errstate(all="ignore"):
-            try:
-                values = np.abs(np.asarray(poses, dtype=float))
-            except (TypeError, ValueError):  # not numeric: the callee names it
-                return
-        size = np.nanmax(values, initial=0.0)
-        if np.isfinite(size) and size > MAX_COORDINATE:
-            raise ScrewkitValueError(
-                f"Expected pose coordinates up to {MAX_COORDINATE:g} in size ({self.length_unit}, "
-                f"radians), got {size:g}."
-            )
-        if values.ndim == 0 or values.shape[-1] != len(self.pose_names):
-            return
-        for name in self.angle_names:
-            angle = np.nanmax(values[..., self.pose_names.index(name)], initial=0.0)
-            if np.isfinite(angle) and angle > MAX_ANGLE_RADIANS:
-                raise ScrewkitValueError(
-                    f"Expected the angle `{name}` of `{argument}` to be at most {MAX_ANGLE_RADIANS:g} rad "
-                    f"({MAX_ANGLE_DEGREES:g} degrees) in magnitude (beyond it a double no longer holds the "
-                    f"angle to the analysis's precision), got {angle:g} rad."
-                )
+        check_pose_range(self, poses, argument)
 
     def random_poses(self, rng: np.random.Generator, count: int) -> Array:
         """Poses drawn uniformly in the *reachable* part of the operational workspace (radians),
