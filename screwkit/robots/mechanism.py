@@ -23,14 +23,13 @@ import numpy as np
 
 from ..exceptions import (
     ScrewkitTypeError,
-    ScrewkitValueError,
 )
 from ..graphs.jointtable import JointTable
-from .angles import pose_text, poses_in_radians
+from .angles import pose_text
 from .families import Family, families
 from .graph_kinematics import kinematics_of
-from .pose_conversions import forward_posed
-from .pose_reader import check_pose_range, displacements_as_coordinates
+from .pose_conversions import displacements_as_coordinates, forward_posed
+from .pose_reader import check_pose_range, pose_array, read_poses
 from .reach import random_reachable_poses, reachable_poses, unreachable_reasons
 
 if TYPE_CHECKING:
@@ -187,7 +186,7 @@ class Mechanism(Generic[P, C]):
         >>> load_mechanism("v4").unreachable_reasons(np.array([[0, 0, -750, 0], [0, 0, -3000, 0]]))[1][:30]
         'Pose (x, y, z, phi) = (0, 0, -'
         """
-        return unreachable_reasons(self, poses, options)
+        return unreachable_reasons(self, pose_array(self, poses), options)
 
     @property
     def pose_names(self) -> tuple[str, ...]:
@@ -222,10 +221,9 @@ class Mechanism(Generic[P, C]):
         >>> load_mechanism("h4").configuration().theta.shape
         (4,)
         """
-        pose = poses_in_radians(pose, self.pose_names, self.angle_names, angles, argument="pose")
+        pose = read_poses(self, pose, "pose", angles=angles)
         chosen = self.default_pose if pose is None else pose
         self._check_options(options)
-        self.check_pose_range(pose, "pose")
         return self.family_protocol.inverse_kinematics(self.parameters, chosen, **options)
 
     def _check_options(self, options: Mapping[str, Any]) -> None:
@@ -320,10 +318,7 @@ class Mechanism(Generic[P, C]):
 
         self._check_options(options)
         coordinates = displacements_as_coordinates(self, poses)  # 4×4 displacements carry no angle unit
-        if coordinates is poses:
-            coordinates = poses_in_radians(poses, self.pose_names, self.angle_names, angles)
-        self.check_pose_range(coordinates)
-        poses = coordinates
+        poses = read_poses(self, coordinates, angles=angles if coordinates is poses else "rad")
         return PosedMechanism.create(self, poses, rtol=rtol, length_scale=length_scale, options=options)
 
     def check_pose_range(self, poses: Any, argument: str = "poses") -> None:
@@ -409,7 +404,7 @@ class Mechanism(Generic[P, C]):
         >>> load_mechanism("v4").reachable(np.array([[0, 0, -750, 0], [0, 0, -3000, 0]]))
         array([ True, False])
         """
-        return reachable_poses(self, poses, options)
+        return reachable_poses(self, pose_array(self, poses), options)
 
     def wrench_diagram(
         self, pose: Any = None, *, angles: str = "rad"
@@ -545,10 +540,5 @@ class Mechanism(Generic[P, C]):
 
     def _one(self, pose: Any, options: dict[str, Any], angles: str) -> Any:
         """One pose through the composer (:meth:`at`)."""
-        chosen = None if pose is None else np.asarray(pose, dtype=float)
-        if chosen is not None and chosen.ndim != 1:
-            raise ScrewkitValueError(
-                f"Expected one pose of shape ({len(self.pose_names)},), got {chosen.shape}; "
-                "use at() for batches."
-            )
+        chosen = None if pose is None else pose_array(self, pose, "pose", one=True)
         return self.at(chosen, angles=angles, **options)[0]

@@ -14,9 +14,9 @@ from typing import Any
 
 import numpy as np
 
-from ..algebra import backend as B
 from ..exceptions import ScrewkitIndexError, ScrewkitValueError
 from ..graphs.jointtable import JointTable
+from .pose_reader import pose_array
 
 __all__ = ["checked_poses", "flat_index", "joint_table_of"]
 
@@ -37,18 +37,17 @@ def checked_poses(mechanism: Any, poses: Any) -> Array:
 
     Raises
     ------
-    ScrewkitValueError
-        A wrong last axis, or an empty batch.
+    ScrewkitTypeError, ScrewkitValueError
+        As :func:`~screwkit.robots.pose_reader.pose_array`, or an empty batch.
 
     Examples
     --------
     >>> checked_poses(load_mechanism("h4"), [0, 0, -750, 0]).shape
     (1, 4)
     """
-    names = mechanism.pose_names
     if poses is None:
         return np.asarray(mechanism.default_pose, dtype=float)[None]
-    array = B.as_array(poses, "poses", (len(names),), symbolic=False).astype(float)
+    array = pose_array(mechanism, poses)
     if array.ndim == 1:
         array = array[None]
     if array.size == 0:  # an empty batch: the analysis core reshapes over a batch of at least one pose

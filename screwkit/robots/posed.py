@@ -129,10 +129,10 @@ class PosedMechanism:
 
         Examples
         --------
-        >>> PosedMechanism.create(load_mechanism("h4"), [0, 0, -750])
+        >>> PosedMechanism.create(load_mechanism("h4"), [0, 0, -750])  # doctest: +ELLIPSIS
         Traceback (most recent call last):
         ...
-        screwkit.exceptions.ScrewkitValueError: Expected `poses` to have shape (..., 4), got (3,).
+        screwkit.exceptions.ScrewkitValueError: Expected `poses` to have shape (..., 4), got (3,) ...
         """
         if failures:  # the unreached poses' NaN coordinates are part of the answer
             missing = np.isnan(np.asarray(poses, dtype=float))
