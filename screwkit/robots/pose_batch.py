@@ -1,5 +1,6 @@
 """The batch bookkeeping of a posed mechanism: poses checked, an index resolved to one pose of the
-batch, the batch's joint table computed again (:class:`screwkit.robots.posed.PosedMechanism`).
+batch, the batch's joint table computed again, its text and HTML forms
+(:class:`screwkit.robots.posed.PosedMechanism`).
 
 Examples
 --------
@@ -14,11 +15,13 @@ from typing import Any
 
 import numpy as np
 
+from ..algebra.display import html_section, html_table, number_text
 from ..exceptions import ScrewkitIndexError, ScrewkitValueError
 from ..graphs.jointtable import JointTable
+from .angles import pose_scale, pose_text
 from .pose_reader import pose_array
 
-__all__ = ["checked_poses", "flat_index", "joint_table_of"]
+__all__ = ["batch_html", "batch_repr", "checked_poses", "flat_index", "joint_table_of"]
 
 Array = np.ndarray
 
@@ -136,3 +139,62 @@ def joint_table_of(
     if alive is not None:
         return alive.joints
     return mechanism.family_protocol.joint_table(mechanism.configuration(poses, **options))
+
+
+def batch_repr(posed: Any) -> str:
+    """A posed mechanism in one line: the mechanism, the pose with its units (a batch: its shape), ``rtol``.
+
+    Parameters
+    ----------
+    posed : PosedMechanism
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> batch_repr(load_mechanism("h4").at([[30, -20, -750, 0.3], [0, 0, -800, 0.1]]))
+    "PosedMechanism('H4', shape=(2,), rtol=1e-09)"
+    """
+    length = "" if posed.length_scale is None else f", length_scale={posed.length_scale:g}"
+    m = posed.mechanism
+    where = (
+        f" at {pose_text(posed.poses, m.pose_names, m.angle_names, m.length_unit)}"
+        if posed.shape == ()
+        else f", shape={posed.shape}"
+    )
+    return f"PosedMechanism({m.name!r}{where}, rtol={posed.rtol:g}{length})"
+
+
+def batch_html(posed: Any) -> str:
+    """A posed mechanism for Jupyter: the poses with their units and each pose's verdict as a table
+    (the first 20 of a batch); one pose adds its singularity report.
+
+    Parameters
+    ----------
+    posed : PosedMechanism
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> "<table" in batch_html(load_mechanism("h4").at([[0, 0, -750, 0]]))
+    True
+    """
+    m = posed.mechanism
+    flat = posed.poses.reshape(-1, len(m.pose_names))
+    scale = pose_scale(m.pose_names, m.angle_names, "deg")
+    verdicts = np.asarray(posed.verdicts).reshape(-1) if posed.shape != () else [posed.singularity.verdict]
+    header = [f"{n} ({'deg' if n in m.angle_names else m.length_unit})" for n in m.pose_names]
+    rows = [
+        [*(number_text(v, 6) for v in pose / scale), verdict]
+        for pose, verdict in zip(flat[:20], verdicts, strict=False)
+    ]
+    more = f"<p>… {len(flat)} poses in all</p>" if len(flat) > 20 else ""
+    body = html_table([*header, "verdict"], rows) + more
+    if posed.shape == ():
+        body += posed.singularity._repr_html_()
+    return html_section(f"{m.name} at {len(flat)} pose(s)", body)

@@ -39,7 +39,6 @@ import numpy as np
 
 from ..algebra import backend as B
 from ..algebra.checks import checked_length_scale, checked_rtol
-from ..algebra.display import html_section, html_table, number_text
 from ..core.jacobian_matrices import Jacobians
 from ..core.jacobians import jacobians_from_wrenches
 from ..core.singularity import classify_chunks, label_table
@@ -47,7 +46,6 @@ from ..core.verdicts import SingularityReport
 from ..core.wrench_systems import WrenchAnalysis, analyze_table
 from ..exceptions import ScrewkitError, ScrewkitIndexError, ScrewkitValueError, UnreachablePoseError
 from ..graphs.jointtable import JointTable
-from .angles import pose_scale, pose_text
 from .generic_poses import (
     GENERIC_DRAWS,
     SAMPLES,
@@ -58,7 +56,7 @@ from .generic_poses import (
     _samples,
     generic_samples,
 )
-from .pose_batch import checked_poses, flat_index, joint_table_of
+from .pose_batch import batch_html, batch_repr, checked_poses, flat_index, joint_table_of
 from .reach import failures_by_index
 from .transmission import Transmission, wrench_transmission
 
@@ -202,14 +200,7 @@ class PosedMechanism:
         >>> posed[0]
         PosedMechanism('H4' at x = 30 mm, y = -20 mm, z = -750 mm, phi = 17.19 deg, rtol=1e-09)
         """
-        length = "" if self.length_scale is None else f", length_scale={self.length_scale:g}"
-        m = self.mechanism
-        where = (
-            f" at {pose_text(self.poses, m.pose_names, m.angle_names, m.length_unit)}"
-            if self.shape == ()
-            else f", shape={self.shape}"
-        )
-        return f"PosedMechanism({m.name!r}{where}, rtol={self.rtol:g}{length})"
+        return batch_repr(self)
 
     def _repr_html_(self) -> str:
         """Jupyter: the poses with their units and each pose's verdict as a table (the first 20 of a
@@ -219,20 +210,7 @@ class PosedMechanism:
         -------
         str
         """
-        m = self.mechanism
-        flat = self.poses.reshape(-1, len(m.pose_names))
-        scale = pose_scale(m.pose_names, m.angle_names, "deg")
-        verdicts = np.asarray(self.verdicts).reshape(-1) if self.shape != () else [self.singularity.verdict]
-        header = [f"{n} ({'deg' if n in m.angle_names else m.length_unit})" for n in m.pose_names]
-        rows = [
-            [*(number_text(v, 6) for v in pose / scale), verdict]
-            for pose, verdict in zip(flat[:20], verdicts, strict=False)
-        ]
-        more = f"<p>… {len(flat)} poses in all</p>" if len(flat) > 20 else ""
-        body = html_table([*header, "verdict"], rows) + more
-        if self.shape == ():
-            body += self.singularity._repr_html_()
-        return html_section(f"{m.name} at {len(flat)} pose(s)", body)
+        return batch_html(self)
 
     @functools.cached_property
     def failures(self) -> dict[tuple[int, ...], str]:
