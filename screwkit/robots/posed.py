@@ -42,7 +42,7 @@ from ..algebra.checks import checked_length_scale, checked_rtol
 from ..core.jacobian_matrices import Jacobians
 from ..core.jacobians import jacobians_from_wrenches
 from ..core.singularity import classify_chunks, label_table
-from ..core.verdicts import SingularityReport
+from ..core.verdicts import LABELS, SingularityReport
 from ..core.wrench_systems import WrenchAnalysis, analyze_table
 from ..exceptions import ScrewkitError, ScrewkitIndexError, ScrewkitValueError, UnreachablePoseError
 from ..graphs.jointtable import JointTable
@@ -56,7 +56,16 @@ from .generic_poses import (
     _samples,
     generic_samples,
 )
-from .pose_batch import batch_html, batch_repr, checked_poses, flat_index, joint_table_of
+from .pose_batch import (
+    UNREACHABLE,
+    batch_html,
+    batch_repr,
+    checked_poses,
+    joint_table_of,
+    one_pose,
+    per_pose,
+    reachable_part,
+)
 from .reach import failures_by_index
 from .transmission import Transmission, wrench_transmission
 
@@ -235,7 +244,8 @@ class PosedMechanism:
         """The family's configuration over the batch (inverse kinematics)."""
         if self._failures:  # known out of reach (e.g. by the forward kinematics): no configuration
             index, reason = next(iter(self._failures.items()))
-            raise UnreachablePoseError(f"Pose {index} is out of reach: {reason}.")
+            where = f"Pose {index}" if index else "The pose"
+            raise UnreachablePoseError(f"{where} is out of reach: {reason.rstrip('.')}.")
         try:
             return self.mechanism.configuration(self.poses, **self.options)
         except ScrewkitError:
@@ -265,7 +275,10 @@ class PosedMechanism:
         Unless the joint table is already there, each chunk of :data:`CHUNK` poses goes through
         the inverse kinematics, its joint table and the core in turn, so memory stays bounded by
         the chunk and the results; the whole table is computed only if a per-pose view asks. One
-        pose (shape ``()``): its :attr:`singularity`.
+        pose (shape ``()``): its :attr:`singularity`. It needs every pose reached (else
+        :class:`~screwkit.exceptions.UnreachablePoseError` naming the first out of reach); the per-pose
+        views (:attr:`verdicts`, :attr:`codes`, :attr:`closeness`, :attr:`redundancy`, indexing) mark
+        a pose out of reach instead.
         """
         if self.shape == ():
             return self.singularity
@@ -303,30 +316,49 @@ class PosedMechanism:
             yield protocol.joint_table(configuration(flat[start : start + CHUNK], **self.options))
 
     @property
+    def failures_known(self) -> bool:
+        """Whether some poses are known to be out of reach from the start (e.g. by the forward kinematics)."""
+        return bool(self._failures)
+
+    @functools.cached_property
+    def reached_part(self) -> tuple[Array, PosedMechanism | None] | None:
+        """None when every pose is reached, else the flat mask of those that are and the posed mechanism
+        at them (:func:`~screwkit.robots.pose_batch.reachable_part`): what the per-pose views read."""
+        return reachable_part(self)
+
+    @property
     def verdicts(self) -> Array:
-        """``"regular"``, ``"constraint singularity"``, ... per pose (an object array)."""
-        return np.asarray(self.singularities.verdict)
+        """``"regular"``, ``"constraint singularity"``, ... per pose (an object array), ``"unreachable"``
+        where a pose is out of reach (the reason in :attr:`failures`)."""
+        return per_pose(self, lambda p: np.asarray(p.singularities.verdict), UNREACHABLE, object)
 
     @property
     def codes(self) -> Array:
-        """Per pose: bit 1 constraint, 2 actuation, 4 serial (:attr:`SingularityReport.codes`)."""
-        return self.singularities.codes
+        """Per pose: bit 1 constraint, 2 actuation, 4 serial (:attr:`SingularityReport.codes`), ``-1`` out
+        of reach."""
+        return per_pose(self, lambda p: p.singularities.codes, -1, np.int64)
 
     @property
     def redundancy(self) -> Any:
         """The degree of actuation redundancy per pose, the actuated joints minus the freedoms they drive
         (:attr:`SingularityReport.redundancy <screwkit.core.verdicts.SingularityReport.redundancy>`; an int
-        for one pose)."""
-        return self.singularities.redundancy
+        for one pose), ``-1`` out of reach."""
+        out = per_pose(self, lambda p: p.singularities.redundancy, -1, np.int64)
+        return int(out) if self.shape == () else out
 
     @property
     def closeness(self) -> dict[str, Array]:
-        """The closeness measures per pose (:mod:`screwkit.core.singularity`)."""
-        return self.singularities.closeness
+        """The closeness measures per pose (:mod:`screwkit.core.singularity`), NaN out of reach."""
+        if self.reached_part is None:
+            return self.singularities.closeness
+        return {k: per_pose(self, lambda p, k=k: p.singularities.closeness[k], np.nan, float) for k in LABELS}
 
     @functools.cached_property
     def jacobians(self) -> Jacobians:
-        """``A χ̇ = B θ̇`` per pose over the family's nominal twists (one pose: from its :attr:`analysis`)."""
+        """``A χ̇ = B θ̇`` per pose over the family's nominal twists (one pose: from its :attr:`analysis`).
+        Over a batch they need every pose reached: a pose out of reach raises
+        :class:`~screwkit.exceptions.UnreachablePoseError` naming it (``posed.poses[posed.reachable]``
+        are those reached)."""
         analysis = self.analysis if self.shape == () else self.singularities.analysis
         return jacobians_from_wrenches(analysis, self.twist_basis, rtol=self.rtol)
 
@@ -424,12 +456,7 @@ class PosedMechanism:
             raise ScrewkitIndexError(
                 f"Expected a batch to index, got one pose (shape ()) at {self.poses.tolist()}."
             )
-        flat = flat_index(self.shape, index)
-        one = PosedMechanism(
-            self.mechanism, self.poses[index], self.rtol, self.length_scale, self.options, (self, flat)
-        )
-        one.__dict__["joints"] = self.joints[index]  # the batch's row: no new inverse kinematics
-        return one
+        return one_pose(self, index)
 
     @functools.cached_property
     def graph(self) -> nx.MultiDiGraph:
