@@ -315,7 +315,9 @@ def one_pose(posed: Any, index: Any) -> Any:
         one.__dict__["joints"] = table[index]
         return one
     mask, reached = posed.reached_part
-    if not mask[flat]:  # out of reach: its views raise with the reason
+    if not mask[flat]:  # out of reach: its views raise the reason (its own inverse kinematics' message)
+        if not posed.failures_known:
+            return type(posed)(**fields)
         reason = posed.failures[tuple(int(i) for i in np.unravel_index(flat, posed.shape))]
         return type(posed)(**fields, _failures={(): reason})
     row = int(np.count_nonzero(mask[:flat]))  # its row among the reached poses

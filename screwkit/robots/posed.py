@@ -496,10 +496,10 @@ class PosedMechanism:
         """
         self._one("diagram_and_sampler()")
         mechanism, rtol = self.mechanism, self.rtol
+        own = [] if "analysis" in self.__dict__ else [self.joints[None]]  # first: a pose out of reach says so
         stream = np.random.default_rng(0)
         generic = _reachable_table(mechanism, np.random.default_rng(2026), GENERIC_DRAWS)
         sampled = _reachable_table(mechanism, stream, 2 * SAMPLES)
-        own = [] if "analysis" in self.__dict__ else [self.joints[None]]
         tables = [*own, *(t for t in (generic, sampled) if t is not None)]
         if not tables:  # this pose analysed already, no random pose reachable
             return [], None, stream

@@ -605,3 +605,40 @@ def test_quantity_constants_have_one_home():
     sources = [pathlib.Path(m.__file__).read_text(encoding="utf-8")
                for m in (sk, quantities, sk.workspace)]
     assert sum(s.count('("lti", "kappa", "zeta")') for s in sources) == 1
+
+
+# the wrench-based transmission index over poses, for a graph mechanism (issue 19) ----------------------
+def _planar_3rpr_output_transmission(base, platform, pose):
+    """A 3-RPR's wrench-based LTI, derived by hand: each prismatic actuator's input transmission is 1
+    (its force lies along its own sliding); with the other two legs held, the platform turns about the
+    meet P of their lines, so leg j's output transmission is the cosine between the leg and the
+    velocity of its platform joint C_j, which is normal to C_j − P (Wang, Wu & Liu 2010's pressure
+    angle). The LTI is the least of them."""
+    centre = platform.mean(axis=0)
+    c, s = np.cos(pose[2]), np.sin(pose[2])
+    moved = (platform - centre) @ np.array([[c, s, 0], [-s, c, 0], [0, 0, 1]]) + [pose[0], pose[1], 0]
+    legs = (moved - base) / np.linalg.norm(moved - base, axis=1)[:, None]
+    cosines = []
+    for j in range(3):
+        k, m = [i for i in range(3) if i != j]
+        a, _ = np.linalg.solve(np.array([legs[k, :2], -legs[m, :2]]).T, base[m, :2] - base[k, :2])
+        arm = moved[j, :2] - (base[k, :2] + a * legs[k, :2])
+        cosines.append(abs(legs[j, :2] @ [-arm[1], arm[0]]) / np.linalg.norm(arm))
+    return min(cosines)
+
+
+def test_a_graph_mechanisms_map_of_the_wrench_based_transmission_index():
+    from ..mechanisms import PLANAR_BASE, PLANAR_PLATFORM, planar_3rpr
+
+    robot = sk.mechanism(planar_3rpr(PLANAR_BASE, PLANAR_PLATFORM))
+    x0, y0, _ = robot.reference_pose
+    result = W.grid_map(robot, "wrench_lti", x=("x", x0 - 0.1, x0 + 0.1, 3), y=("y", y0, y0 + 0.1, 2),
+                        fixed={"phi": 0.2}, loci=False)
+    expected = [[_planar_3rpr_output_transmission(PLANAR_BASE, PLANAR_PLATFORM, (x, y, 0.2))
+                 for x in result.x_values] for y in result.y_values]
+    np.testing.assert_allclose(result.values, expected, rtol=1e-9)
+    # paper 004's LTI is defined on the four-limb geometry: refused, naming the index that applies
+    with pytest.raises(sk.ScrewkitValueError, match=r"Expected a four-limb mechanism for quantity 'lti' "
+                       r"\(paper 004's index.*got family 'loop_closure'; the wrench-based index of any "
+                       r"mechanism is quantity 'wrench_lti'\.$"):
+        W.grid_map(robot, "lti", x=("x", x0 - 0.1, x0 + 0.1, 2), y=("y", y0, y0 + 0.1, 2), loci=False)
