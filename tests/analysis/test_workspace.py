@@ -642,3 +642,38 @@ def test_a_graph_mechanisms_map_of_the_wrench_based_transmission_index():
                        r"\(paper 004's index.*got family 'loop_closure'; the wrench-based index of any "
                        r"mechanism is quantity 'wrench_lti'\.$"):
         W.grid_map(robot, "lti", x=("x", x0 - 0.1, x0 + 0.1, 2), y=("y", y0, y0 + 0.1, 2), loci=False)
+
+
+# maps and paths over poses partly out of reach of a graph mechanism ----------------------------------
+def _five_bar_end_point():
+    """A five-bar (base joints A1 = (0, 0), A2 = (1, 0); proximal links of length 1; distal links of
+    length √0.89 meeting at C = (0.5, 1.8)) whose task is the point C: it reaches the points within
+    1 + √0.89 of both base joints."""
+    from screwkit.graphs.joints import revolute
+
+    graph = sk.twist_graph("ground", "distal1", [
+        ("ground", "proximal1", revolute("A1", [0, 0, 1], [0, 0, 0], actuated=True)),
+        ("proximal1", "distal1", revolute("B1", [0, 0, 1], [0, 1, 0])),
+        ("ground", "proximal2", revolute("A2", [0, 0, 1], [1, 0, 0], actuated=True)),
+        ("proximal2", "distal2", revolute("B2", [0, 0, 1], [1, 1, 0])),
+        ("distal2", "distal1", revolute("C", [0, 0, 1], [0.5, 1.8, 0]))], dof=2)
+    return sk.mechanism(graph, task=("distal1", [0.5, 1.8, 0]))
+
+
+FIVE_BAR_REACH = 1.0 + np.sqrt(0.89)
+
+
+def test_a_graph_mechanisms_map_and_path_over_poses_out_of_reach():
+    robot = _five_bar_end_point()
+    result = W.grid_map(robot, "verdict", x=("x", 0.3, 0.7, 3), y=("y", 1.6, 2.0, 3), loci=False)
+    xs, ys = np.meshgrid(result.x_values, [1.6, 1.8, 2.0])
+    within = (np.hypot(xs, ys) < FIVE_BAR_REACH) & (np.hypot(xs - 1.0, ys) < FIVE_BAR_REACH)
+    assert 0 < within.sum() < within.size
+    np.testing.assert_array_equal(result.reachable, within)
+    assert (result.values[~within] == -1).all() and (result.values[within] == 0).all()
+    closeness = W.grid_map(robot, "closeness", x=("x", 0.3, 0.7, 3), y=("y", 1.6, 2.0, 3), loci=False)
+    assert np.isnan(closeness.values[~within]).all() and np.isfinite(closeness.values[within]).all()
+    # straight up from C the path leaves the reach where C is 1 + √0.89 from both base joints
+    path = PA.check_path(robot, [0.5, 1.8], [0.5, 4.0], samples=30)
+    edge = np.sqrt(FIVE_BAR_REACH**2 - 0.25)
+    assert abs(path.crossing.pose["y"] - edge) < 1e-6 and path.crossing.kind in ("unreachable", "serial")
