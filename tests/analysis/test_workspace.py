@@ -677,3 +677,18 @@ def test_a_graph_mechanisms_map_and_path_over_poses_out_of_reach():
     path = PA.check_path(robot, [0.5, 1.8], [0.5, 4.0], samples=30)
     edge = np.sqrt(FIVE_BAR_REACH**2 - 0.25)
     assert abs(path.crossing.pose["y"] - edge) < 1e-6 and path.crossing.kind in ("unreachable", "serial")
+
+
+def test_a_paths_dict_keeps_the_reference_value_of_what_it_leaves_out():
+    # the documented fill: a dict's missing coordinates take the reference pose's values (here a graph
+    # mechanism's reference configuration), shown in the result; an array must give every coordinate
+    from ..mechanisms import PLANAR_BASE, PLANAR_PLATFORM, planar_3rpr
+
+    robot = sk.mechanism(planar_3rpr(PLANAR_BASE, PLANAR_PLATFORM))
+    x0, y0, phi0 = robot.reference_pose.tolist()
+    path = PA.check_path(robot, {"x": x0 - 0.05}, {"x": x0 + 0.05}, samples=5)
+    assert path.start == {"x": x0 - 0.05, "y": y0, "phi": phi0}
+    assert path.end == {"x": x0 + 0.05, "y": y0, "phi": phi0}
+    with pytest.raises(sk.ScrewkitValueError, match=r"Expected `end` to have shape \(3,\), got \(2,\) "
+                       r"\(one pose of coordinates x, y, phi\)\.$"):
+        PA.check_path(robot, [x0, y0, phi0], [x0, y0])
