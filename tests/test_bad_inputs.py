@@ -382,10 +382,10 @@ CLI_CASES = [
     (["analyse", "h4"], 2, r"invalid choice: 'analyse'"),
     (["analyze", "h4", "--bogus"], 2, r"unrecognized arguments: --bogus"),
     (["screw", "--revolute", "0", "0", "1"], 2, r"--revolute needs --point X Y Z"),
-    (["screw", "--plucker", "0", "0", "0", "0", "0", "0"], 1, r"zero screw"),
-    (["screw", "--prismatic", "0", "0", "0"], 1, r"non-zero"),
+    (["screw", "--plucker", "0", "0", "0", "0", "0", "0"], 2, r"--plucker: .*zero screw"),
+    (["screw", "--prismatic", "0", "0", "0"], 2, r"--prismatic: .*non-zero"),
     (["screw", "--plucker", "1", "2"], 2, r"argument --plucker: expected 6 arguments"),
-    (["screw", "--revolute", "0", "0", "1", "--point", "nan", "0", "0"], 1, r"finite"),
+    (["screw", "--revolute", "0", "0", "1", "--point", "nan", "0", "0"], 2, r"--revolute: .*finite"),
     (["screw"], 2, r"one of the arguments --revolute --prismatic --plucker is required"),
     (["list", "--bogus"], 2, r"unrecognized arguments: --bogus"),
 ]

@@ -242,9 +242,9 @@ def run_screw(args: argparse.Namespace) -> int:
             screw = Screw.prismatic(args.prismatic)
         else:
             screw = Screw(args.plucker)
+        described = screw.to_dict()  # the zero screw has no pitch
     except ScrewkitError as err:
         raise UsageError(f"screwkit screw: error: {option}: {err}") from err
-    described = screw.to_dict()
     if args.json:
         print_text(json_text(described))
         return 0
