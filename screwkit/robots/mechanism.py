@@ -328,21 +328,21 @@ class Mechanism(Generic[P, C]):
         Parameters
         ----------
         poses : array_like or None
-            Poses ``(..., n)`` in the file's length unit and radians (None: the default pose).
+            In the file's length unit and radians.
         argument : str, optional
-            The argument's name, for the error message.
+            Named by the message.
 
         Raises
         ------
         ScrewkitValueError
-            Naming the argument, the angle coordinate, the bound and the value.
+            Beyond a bound.
 
         Examples
         --------
-        >>> load_mechanism("h4").check_pose_range([0, 0, -750, 1e5])  # doctest: +ELLIPSIS
+        >>> load_mechanism("h4").check_pose_range([[0, 0, -750, 0], [0, 0, 1e101, 0]])  # doctest: +ELLIPSIS
         Traceback (most recent call last):
         ...
-        screwkit.exceptions.ScrewkitValueError: Expected the angle `phi` of `poses` to be at most 17453.3 ...
+        screwkit.exceptions.ScrewkitValueError: Expected pose coordinates up to 1e+100 in size ... got 1e+101.
         """
         check_pose_range(self, poses, argument)
 

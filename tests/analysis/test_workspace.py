@@ -649,15 +649,9 @@ def _five_bar_end_point():
     """A five-bar (base joints A1 = (0, 0), A2 = (1, 0); proximal links of length 1; distal links of
     length √0.89 meeting at C = (0.5, 1.8)) whose task is the point C: it reaches the points within
     1 + √0.89 of both base joints."""
-    from screwkit.graphs.joints import revolute
+    from ..robots.test_graph_mechanism import five_bar
 
-    graph = sk.twist_graph("ground", "distal1", [
-        ("ground", "proximal1", revolute("A1", [0, 0, 1], [0, 0, 0], actuated=True)),
-        ("proximal1", "distal1", revolute("B1", [0, 0, 1], [0, 1, 0])),
-        ("ground", "proximal2", revolute("A2", [0, 0, 1], [1, 0, 0], actuated=True)),
-        ("proximal2", "distal2", revolute("B2", [0, 0, 1], [1, 1, 0])),
-        ("distal2", "distal1", revolute("C", [0, 0, 1], [0.5, 1.8, 0]))], dof=2)
-    return sk.mechanism(graph, task=("distal1", [0.5, 1.8, 0]))
+    return sk.mechanism(five_bar(), task=("distal1", [0.5, 1.8, 0]))
 
 
 FIVE_BAR_REACH = 1.0 + np.sqrt(0.89)

@@ -105,15 +105,9 @@ def test_one_pose_answers_as_the_batch_and_as_a_pose_alone():
 
 # a pose out of reach in a batch: the reached poses get their verdicts, it gets the marker ------------
 def _five_bar_point_task():
-    from screwkit.graphs.joints import revolute
+    from .test_graph_mechanism import five_bar
 
-    five_bar = sk.twist_graph("ground", "distal1", [
-        ("ground", "proximal1", revolute("A1", [0, 0, 1], [0, 0, 0], actuated=True)),
-        ("proximal1", "distal1", revolute("B1", [0, 0, 1], [0, 1, 0])),
-        ("ground", "proximal2", revolute("A2", [0, 0, 1], [1, 0, 0], actuated=True)),
-        ("proximal2", "distal2", revolute("B2", [0, 0, 1], [1, 1, 0])),
-        ("distal2", "distal1", revolute("C", [0, 0, 1], [0.5, 1.8, 0]))], dof=2)
-    return sk.mechanism(five_bar, task=("distal1", [0.5, 1.8, 0]))
+    return sk.mechanism(five_bar(), task=("distal1", [0.5, 1.8, 0]))
 
 
 # the V4 (catalog, closed-form IK) and a five-bar's end point (a graph, loop closure), each with one pose
