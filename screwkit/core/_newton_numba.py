@@ -365,7 +365,7 @@ def pinned_newton(  # pragma: no cover - compiled
             if not size > tolerance[p, 0]:
                 break
             correction[:] = 0.0
-            if first or not tolerance[p, 2] > 0.0:  # else a simplified Newton step: the step's first factors
+            if first or before > tolerance[p, 3]:  # else a simplified Newton step: the last factors again
                 frozen[:, :] = current
                 for b in range(block_ptr.shape[0] - 1):
                     _block_factor(frozen, b, blocks, grams[b])
