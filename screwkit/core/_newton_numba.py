@@ -315,7 +315,11 @@ def pinned_newton(  # pragma: no cover - compiled
     """The Newton corrector of one continuation step on the loops of a model pinned to its platform,
     pose by pose where ``working``: at most ``iterations`` corrections, each the blocks' minimum-norm
     correction scaled down to ``max_correction`` at most, until the largest residual is within
-    ``tolerance[p, 0]`` or the last correction within ``tolerance[p, 1]``; then, once a spherical
+    ``tolerance[p, 0]``, the last correction within ``tolerance[p, 1]`` or, the corrections contracting
+    at ``Θ = |Δθₖ| / |Δθₖ₋₁| < 1/2``, the error estimate ``Θ / (1 − Θ) |Δθₖ|`` within
+    ``tolerance[p, 2]`` (the residual before the last correction times ``Θ`` then reported); after a
+    correction within ``tolerance[p, 3]``, the next solves with the last Cholesky factors and the
+    screws they were made at (simplified Newton); then, once a spherical
     joint's angle exceeds ``recentre_angle``, every spherical joint's angles folded into its offset
     (:meth:`screwkit.core.kinematic_model.KinematicModel.recentred`).
 

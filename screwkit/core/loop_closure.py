@@ -38,7 +38,11 @@ minimum-norm correction lies in the row space of the equations' Jacobian, the or
 complement of its null space, so an internal motion (a rod's spin about its own axis) never enters
 the measure at first order. A step's iterations stop once the residual is within its tolerance or
 the last correction is small enough that Newton's quadratic convergence leaves a residual of its
-square (the last step's is then checked on the whole model).
+square (the last step's is then checked on the whole model); a step on the way also stops once the
+error that the corrector's contraction ``Θ = |Δθₖ| / |Δθₖ₋₁|`` leaves, ``Θ / (1 − Θ) |Δθₖ|``, is
+within :data:`STEP_ERROR` (the a-posteriori bound of a contraction; Deuflhard, *Newton Methods for
+Nonlinear Problems*, 2004, Ch. 2). After a correction within :data:`REUSE_CORRECTION` (on a step on
+the way: after the first) an iteration solves with the last factorisation (simplified Newton, ibid.).
 
 When the task fixes its link's whole pose, a step's Newton iterations run in a compiled kernel when
 numba is installed (:mod:`screwkit.core._newton_numba`: the model, the loops' residual and the
@@ -111,23 +115,18 @@ LAST_STEP_TOLERANCE = 1e-12
 STEP_CORRECTION = 1e-4
 LAST_STEP_CORRECTION = 1e-7
 #: The error left in the joint values (radians, characteristic lengths) at which the iterations of a
-#: step on the way also stop, estimated from the corrector's contraction ``Θ = |Δθₖ| / |Δθₖ₋₁| < 1/2``
-#: as ``Θ / (1 − Θ) |Δθₖ|`` (Deuflhard, *Newton Methods for Nonlinear Problems*, 2004, §2.1.2:
-#: the a-posteriori error estimate of a contracting Newton sequence); the step then reports its
-#: residual before the last correction times ``Θ``. The next step's predictor errs by far more
-#: (its first correction is ~1e-2), so the rest is corrected there. Measured on 2,000 H4 poses: model
-#: evaluations per pose 8.6 -> 7.2 (2 of 3 evaluations of a step on the way), the same poses
-#: reached. Not used on the last step, nor on a retry (whose short steps near a singularity converge
-#: slowly: there the estimate at 1e-3 once lost a V4 pose the retry otherwise reaches).
+#: step on the way also stop, ``Θ / (1 − Θ) |Δθₖ|`` for a contraction ``Θ = |Δθₖ| / |Δθₖ₋₁| < 1/2``
+#: (module docstring; the step then reports its residual before the last correction times ``Θ``): the
+#: next step's predictor errs by far more (~1e-2). Measured on 2,000 H4 poses: 8.6 -> 7.3 model
+#: evaluations per pose, the same poses reached. Not on the last step, nor on a retry (whose short
+#: steps near a singularity converge slowly: the estimate there once lost a V4 pose).
 STEP_ERROR = 1e-3
 #: The Newton correction (radians, characteristic lengths) after which the next iteration solves with
-#: the factorisation of the last instead of the Jacobian at its own point (the simplified Newton
-#: method, Deuflhard 2004, §2.1.4: the chord steps then contract at a rate of the order of the
-#: distance from the factorised point, here ≤ 1e-4); on a step on the way, always after the first.
-#: Measured on 2,000 H4 poses: ~8.7 -> ~7.5 us per model evaluation, the same evaluations per pose.
+#: the last factorisation (simplified Newton: its steps contract at a rate of the order of the distance
+#: from the factorised point); on a step on the way, always after the first. Measured on 2,000 H4
+#: poses: 8.7 -> 7.8 us per model evaluation, the same evaluations per pose.
 REUSE_CORRECTION = 1e-4
-#: The tolerances of a step on the way, of a retry's step on the way, of a last step: (residual,
-#: correction, error, reuse), the columns of ``newton``'s ``tolerance``.
+#: (residual, correction, error, reuse) of a step on the way, of a retry's, of a last step.
 STEP_TOLERANCES = np.array([STEP_TOLERANCE, STEP_CORRECTION, STEP_ERROR, math.inf])
 RETRY_TOLERANCES = np.array([STEP_TOLERANCE, STEP_CORRECTION, 0.0, REUSE_CORRECTION])
 LAST_TOLERANCES = np.array([LAST_STEP_TOLERANCE, LAST_STEP_CORRECTION, 0.0, REUSE_CORRECTION])
@@ -228,9 +227,11 @@ class _LoopsAndTask:
         self, theta: Array, offsets: Array, target: Array, tolerance: Array, working: Array
     ) -> tuple[Array, Array, Array, Array]:
         """The corrector of one continuation step: Newton iterations on the poses ``working`` until
-        their largest residual is within ``tolerance[:, 0]`` or their last correction within
-        ``tolerance[:, 1]`` (at most :data:`NEWTON_ITERATIONS`, each correction scaled down to
-        :data:`MAX_CORRECTION`), then the spherical joints' angles of a pose folded into their
+        their largest residual is within ``tolerance[:, 0]``, their last correction within
+        ``tolerance[:, 1]`` or the error the contraction estimates within ``tolerance[:, 2]`` (at most
+        :data:`NEWTON_ITERATIONS`, each correction scaled down to :data:`MAX_CORRECTION`, the last
+        factorisation used again after a correction within ``tolerance[:, 3]``: module docstring),
+        then the spherical joints' angles of a pose folded into their
         ``offsets (B, K, 4, 4)`` (:attr:`spherical` order) once one exceeds :data:`RECENTRE_ANGLE`.
         Updates ``theta`` and ``offsets`` in place; returns, for the poses ``working``, the last
         residual size, the sum of the corrections after the first (the predictor's own correction),
