@@ -130,11 +130,12 @@ class SolvedPoses:
         Parameters
         ----------
         keys : list of bytes
-            From :func:`pose_keys`.
+            The poses' keys (:func:`pose_keys`).
 
         Returns
         -------
         KinematicState or None
+            Its rows in the order of ``keys``.
 
         Examples
         --------
