@@ -7,7 +7,7 @@ finds its row; any other pose is solved.
 
 Examples
 --------
->>> cache = SolvedPoses()
+>>> cache = SolvedPoses(capacity=100)
 >>> keys = pose_keys(np.array([[0.0, 1.0], [2.0, 3.0]]))
 >>> cache.add(keys, np.zeros((2, 5)), {"S": identities(2)})
 >>> cache.rows(pose_keys(np.array([[2.0, 3.0], [4.0, 5.0]]))).tolist()
@@ -22,12 +22,9 @@ import numpy as np
 
 from ..core.kinematic_model import KinematicState
 
-__all__ = ["MAX_CACHED_POSES", "SolvedPoses", "identities", "pose_keys"]
+__all__ = ["SolvedPoses", "identities", "pose_keys"]
 
 Array = np.ndarray
-
-#: Solved poses remembered per mechanism (a map asks which poses are reachable, then analyses them).
-MAX_CACHED_POSES = 16384
 
 
 def pose_keys(poses: Array) -> list[bytes]:
@@ -79,19 +76,25 @@ def identities(count: int) -> Array:
 
 class SolvedPoses:
     """Solved configurations remembered by pose (:func:`pose_keys`): joint values and spherical
-    offsets in arrays, a slot per pose, emptied when :data:`MAX_CACHED_POSES` would be exceeded; and
-    the last continuation's model state (:attr:`recent`, a row per pose) until another pose is
-    remembered: a map asks which poses of a chunk are reachable, then analyses them there.
+    offsets in arrays, a slot per pose, emptied when ``capacity`` would be exceeded; and the last
+    continuation's model state (:attr:`recent`, a row per pose) until another pose is remembered: a
+    map asks which poses of a chunk are reachable, then analyses them there.
+
+    Parameters
+    ----------
+    capacity : int
+        The most poses remembered.
 
     Examples
     --------
-    >>> cache = SolvedPoses()
+    >>> cache = SolvedPoses(capacity=100)
     >>> cache.add(pose_keys(np.ones((1, 2))), np.zeros((1, 3)), {})
     >>> cache.used, cache.rows(pose_keys(np.ones((1, 2)))).tolist()
     (1, [0])
     """
 
-    def __init__(self) -> None:
+    def __init__(self, capacity: int) -> None:
+        self.capacity = capacity
         self.slots: dict[bytes, int] = {}
         self.used = 0  # rows written (a pose solved again gets a new row)
         self.theta = np.zeros((0, 0))
@@ -101,7 +104,8 @@ class SolvedPoses:
     def __getstate__(self) -> dict[str, Any]:
         """A copy (a Dask worker's) gets the remembered poses, not the last continuation's state."""
         used, offsets = self.used, {key: value[: self.used] for key, value in self.offsets.items()}
-        return dict(slots=self.slots, used=used, theta=self.theta[:used], offsets=offsets, recent=None)
+        kept = dict(slots=self.slots, used=used, theta=self.theta[:used], offsets=offsets, recent=None)
+        return dict(kept, capacity=self.capacity)
 
     def rows(self, keys: list[bytes]) -> Array:
         """Each pose's row in :attr:`theta`, -1 where it is not remembered.
@@ -117,7 +121,7 @@ class SolvedPoses:
 
         Examples
         --------
-        >>> SolvedPoses().rows(pose_keys(np.zeros((2, 3)))).tolist()
+        >>> SolvedPoses(capacity=100).rows(pose_keys(np.zeros((2, 3)))).tolist()
         [-1, -1]
         """
         if not self.slots:
@@ -139,7 +143,7 @@ class SolvedPoses:
 
         Examples
         --------
-        >>> SolvedPoses().recent_state(pose_keys(np.zeros((1, 3)))) is None
+        >>> SolvedPoses(capacity=100).recent_state(pose_keys(np.zeros((1, 3)))) is None
         True
         """
         if self.recent is None:
@@ -171,18 +175,18 @@ class SolvedPoses:
 
         Examples
         --------
-        >>> cache = SolvedPoses()
+        >>> cache = SolvedPoses(capacity=100)
         >>> cache.add(pose_keys(np.zeros((2, 1))), np.zeros((2, 3)), {"S": identities(2)})
         >>> cache.used  # (the same pose twice: one key, the later row)
         2
         """
         self.recent = None  # (its poses' rows may now be another solution's)
-        if self.used + len(keys) > MAX_CACHED_POSES:
+        if self.used + len(keys) > self.capacity:
             self.slots.clear()
             self.used = 0
         used, end = self.used, self.used + len(keys)
         if end > len(self.theta):  # grown by doubling (the rows in use copied)
-            size = max(min(2 * end, MAX_CACHED_POSES), end, 256)
+            size = max(min(2 * end, self.capacity), end, 256)
             self.theta = _grown(self.theta[:used], (size, theta.shape[1]))
             old = self.offsets
             self.offsets = {k: _grown(old.get(k, v[:0])[:used], (size, 4, 4)) for k, v in offsets.items()}

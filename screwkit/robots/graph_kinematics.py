@@ -47,7 +47,7 @@ from ..core.task_coordinates import TaskCoordinates, task_coordinates
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError, UnreachablePoseError
 from ..graphs.jointtable import JointTable
 from ..graphs.twistgraph import check_twist_graph, graph_frame
-from ._solved_poses import MAX_CACHED_POSES, SolvedPoses, identities, pose_keys
+from ._solved_poses import SolvedPoses, identities, pose_keys
 from .families import Family
 from .point_task import with_task_point
 
@@ -63,6 +63,8 @@ __all__ = [
 
 Array = np.ndarray
 
+#: Solved poses remembered per mechanism (a map asks which poses are reachable, then analyses them).
+MAX_CACHED_POSES = 16384
 #: The small motion (characteristic lengths, radians) in each coordinate that decides whether the
 #: coordinates fix the platform's whole pose.
 PURE_MOTION_STEP = 0.2
@@ -96,7 +98,7 @@ class GraphKinematics:
     angle_offsets: Array
     reference: JointTable = field(repr=False)
     point_task: bool = False
-    _cache: SolvedPoses = field(default_factory=lambda: SolvedPoses(), repr=False)
+    _cache: SolvedPoses = field(default_factory=lambda: SolvedPoses(MAX_CACHED_POSES), repr=False)
 
     @functools.cached_property
     def task(self) -> PoseTask:
