@@ -107,30 +107,31 @@ def orthonormal_axes(rows: Array) -> Array:
     True
     """
     rows = np.asarray(rows, dtype=float)
-    d = [[rows[..., i, j] for j in range(3)] for i in range(3)]  # d[i][j]: axis i, component j
-    first_alone = (d[0][1] == 0.0) & (d[0][2] == 0.0)  # no first reflection (LAPACK's tau = 0)
-    r00 = np.where(first_alone, d[0][0], -np.copysign(np.sqrt(_dot(d[0], d[0])), d[0][0]))
-    q0 = [x / r00 for x in d[0]]
-    r01, r02 = _dot(q0, d[1]), _dot(q0, d[2])
-    e1 = [d[1][j] - r01 * q0[j] for j in range(3)]
-    # the second axis after the first reflection I − 2 u uᵀ / uᵀu, u = d₀ − r₀₀ e₀: its components 1, 2
-    u = [d[0][0] - r00, d[0][1], d[0][2]]
-    uu = _dot(u, u)
-    factor = np.where(first_alone, 0.0, 2.0 * _dot(u, d[1]) / np.where(first_alone, 1.0, uu))
-    below1, below2 = d[1][1] - factor * u[1], d[1][2] - factor * u[2]
-    second_alone = below2 == 0.0
-    r11 = np.where(second_alone, below1, -np.copysign(np.sqrt(_dot(e1, e1)), below1))
-    q1 = [x / r11 for x in e1]
-    r12 = _dot(q1, d[2])
-    sign = np.where(first_alone == second_alone, 1.0, -1.0)  # det Q: −1 per reflection
-    q2 = [sign * (q0[1] * q1[2] - q0[2] * q1[1]), sign * (q0[2] * q1[0] - q0[0] * q1[2]),
-          sign * (q0[0] * q1[1] - q0[1] * q1[0])]
-    r22 = _dot(q2, d[2])
-    out = np.empty(rows.shape)
-    out[..., 0, :] = rows[..., 0, :] / r00[..., None]
-    out[..., 1, :] = (rows[..., 1, :] - r01[..., None] * out[..., 0, :]) / r11[..., None]
-    third = rows[..., 2, :] - r02[..., None] * out[..., 0, :] - r12[..., None] * out[..., 1, :]
-    out[..., 2, :] = third / r22[..., None]
+    with np.errstate(divide="ignore", invalid="ignore"):  # (dependent axes: NaN rows, as compiled)
+        d = [[rows[..., i, j] for j in range(3)] for i in range(3)]  # d[i][j]: axis i, component j
+        first_alone = (d[0][1] == 0.0) & (d[0][2] == 0.0)  # no first reflection (LAPACK's tau = 0)
+        r00 = np.where(first_alone, d[0][0], -np.copysign(np.sqrt(_dot(d[0], d[0])), d[0][0]))
+        q0 = [x / r00 for x in d[0]]
+        r01, r02 = _dot(q0, d[1]), _dot(q0, d[2])
+        e1 = [d[1][j] - r01 * q0[j] for j in range(3)]
+        # the second axis after the first reflection I − 2 u uᵀ / uᵀu, u = d₀ − r₀₀ e₀: its components 1, 2
+        u = [d[0][0] - r00, d[0][1], d[0][2]]
+        uu = _dot(u, u)
+        factor = np.where(first_alone, 0.0, 2.0 * _dot(u, d[1]) / np.where(first_alone, 1.0, uu))
+        below1, below2 = d[1][1] - factor * u[1], d[1][2] - factor * u[2]
+        second_alone = below2 == 0.0
+        r11 = np.where(second_alone, below1, -np.copysign(np.sqrt(_dot(e1, e1)), below1))
+        q1 = [x / r11 for x in e1]
+        r12 = _dot(q1, d[2])
+        sign = np.where(first_alone == second_alone, 1.0, -1.0)  # det Q: −1 per reflection
+        q2 = [sign * (q0[1] * q1[2] - q0[2] * q1[1]), sign * (q0[2] * q1[0] - q0[0] * q1[2]),
+              sign * (q0[0] * q1[1] - q0[1] * q1[0])]
+        r22 = _dot(q2, d[2])
+        out = np.empty(rows.shape)
+        out[..., 0, :] = rows[..., 0, :] / r00[..., None]
+        out[..., 1, :] = (rows[..., 1, :] - r01[..., None] * out[..., 0, :]) / r11[..., None]
+        third = rows[..., 2, :] - r02[..., None] * out[..., 0, :] - r12[..., None] * out[..., 1, :]
+        out[..., 2, :] = third / r22[..., None]
     return out
 
 

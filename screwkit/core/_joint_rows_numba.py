@@ -19,7 +19,7 @@ __all__ = ["joint_rows"]
 Array = np.ndarray
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, error_model="numpy", inline="always")
 def _ball(out: Array, p: int, i: int, j: int, k: int) -> None:  # pragma: no cover - compiled
     """:func:`screwkit.core._joint_rows.orthonormal_axes` on rows ``i, j, k`` of pose ``p``, in place."""
     a0, a1, a2 = out[p, i, 0], out[p, i, 1], out[p, i, 2]
@@ -50,7 +50,7 @@ def _ball(out: Array, p: int, i: int, j: int, k: int) -> None:  # pragma: no cov
         out[p, i, m], out[p, j, m] = first, second
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def joint_rows(  # pragma: no cover - compiled
     current: Array, length: float, point: Array, balls: Array, couple: float, out: Array
 ) -> None:

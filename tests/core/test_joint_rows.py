@@ -90,3 +90,22 @@ def test_joint_rows_compiled_and_numpy_agree_bit_for_bit():
     np.testing.assert_array_equal(compiled, numpy_rows)
     np.testing.assert_array_equal(joint_rows(current, length, point, columns), numpy_rows)  # (300: compiled)
     assert joint_rows(current[None], length, point, columns).shape == (1, *current.shape)
+
+
+def test_a_ball_with_dependent_axes_gives_rows_the_table_refuses_on_both_paths():
+    from screwkit.exceptions import ScrewkitValueError
+    from screwkit.graphs.jointtable import JointSpec, JointTable
+
+    current = np.zeros((1, 3, 6))
+    current[0, :, :3] = [[1.0, 0, 0], [1.0, 0, 0], [0, 0, 1.0]]  # two axes along x: no 3-system
+    numpy_rows = unscaled_screws(current, 1.0, np.zeros(3))
+    numpy_rows[:, [[0, 1, 2]]] = orthonormal_axes(numpy_rows[:, [[0, 1, 2]]])  # (no warning raised)
+    assert np.isnan(numpy_rows[0, 1:]).all() and np.isfinite(numpy_rows[0, 0]).all()
+    if HAS_NUMBA:
+        from screwkit.core import _joint_rows_numba
+
+        compiled = np.empty(current.shape)
+        _joint_rows_numba.joint_rows(current, 1.0, np.zeros(3), np.array([[0, 1, 2]]), COUPLE_SQUARED_NORM, compiled)
+        np.testing.assert_array_equal(compiled, numpy_rows)
+    with pytest.raises(ScrewkitValueError, match="`screws` to hold finite numbers"):  # as a model's joint_table builds it
+        JointTable("B", "E", (JointSpec("S", "S", "B", "E", 3, False),), numpy_rows)
