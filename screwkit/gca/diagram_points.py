@@ -143,7 +143,17 @@ def batch_diagram_points(
     """
     batch = _Batch.create(analysis, lines, points)
     cache: dict[tuple[str, ...], Array] = {}
-    return {point.label: _oriented(_recipe(point.key, batch, cache), point.orientation) for point in points}
+    return {point.label: _carried(_recipe(point.key, batch, cache), point) for point in points}
+
+
+def _carried(value: Array, point: DiagramPoint) -> Array:
+    """A point's values with the orientation fixed at the reference configuration: a ``normals``
+    point (oriented and scaled by its branches' couples, :func:`_branch_pair`) times its constant
+    :attr:`DiagramPoint.sign` (a flip per pose would lose the sign of its value), another point at
+    infinity by its :attr:`DiagramPoint.orientation` (:func:`_oriented`)."""
+    if point.key[0] == "normals":
+        return point.sign * value + 0.0
+    return _oriented(value, point.orientation)
 
 
 def _oriented(value: Array, orientation: tuple[float, ...] | None) -> Array:
@@ -373,8 +383,11 @@ def _branch_pair(batch: _Batch, first: str, second: str) -> Array:
     constraint couples of one parallel node there.
 
     A branch's constraint couple is the reciprocal of its twist system (the core's frame kernel
-    ``reciprocal``) where that has order 1 and infinite pitch; its moment's
-    direction is frame- and unit-free.
+    ``reciprocal``) where that has order 1 and infinite pitch; its moment's direction ``n`` is
+    frame- and unit-free, taken unit and oriented by the branch's joints (:func:`_couple_sides`).
+    The cross product keeps its magnitude (the sine of the angle between the two couples): paper
+    002's ``s_m^12 = n^1 × n^2`` (Eq. 6), which vanishes where the two couples are parallel (its
+    case (c)); a unit direction would not.
     """
     found = _branches(batch.topology, first, second)
     if found is None:
@@ -392,7 +405,27 @@ def _branch_pair(batch: _Batch, first: str, second: str) -> Array:
     for k in range(a + 1, b):
         between |= couple[k]
     ok = couple[a] & couple[b] & ~between
-    return np.where(ok[:, None], B.cross(moments[a], moments[b]), np.nan)
+    n_a, n_b = (_couple_sides(batch, batch.topology.nodes[children[k]].joints, moments[k]) for k in (a, b))
+    return np.where(ok[:, None], B.cross(n_a, n_b), np.nan)
+
+
+def _couple_sides(batch: _Batch, joints: tuple[str, ...], moment: Array) -> Array:
+    """A branch's unit couple moments ``(n, 3)`` with a sign that follows the branch's joints over
+    the motion: that of the normal ``(c_2 − c_1) × (c_3 − c_1)`` of the plane through the centres of
+    its first three joints that have one (spherical, universal: by name), e.g. a parallelogram's
+    plane, to which its couple is normal (paper 002 §5.1: ``n^i`` normal to the plane ``Π_i``).
+    Where the branch has no such three centres, or their plane's normal is not along the couple
+    (|cos| < 1/2), the canonical sign (first clearly non-zero component positive): continuous up
+    to sign only."""
+    centred = [j for j in sorted(joints) if batch.joint_screws(j).shape[1] >= 2][:3]
+    canonical = _canonical_directions(moment)
+    if len(centred) < 3:
+        return canonical
+    c1, c2, c3 = (_joint_centres(batch.joint_screws(j)) for j in centred)
+    normal = _units(B.cross(c2 - c1, c3 - c1))
+    along = np.einsum("...i,...i", moment, normal)
+    with np.errstate(invalid="ignore"):
+        return np.where((np.abs(along) >= 0.5)[:, None], np.sign(along)[:, None] * moment, canonical)
 
 
 def _recipe(key: tuple[str, ...], batch: _Batch, cache: dict[tuple[str, ...], Array]) -> Array:
@@ -409,11 +442,8 @@ def _recipe(key: tuple[str, ...], batch: _Batch, cache: dict[tuple[str, ...], Ar
         name, index = (key[1], "") if key[1] in {s.name for s in batch.table.specs} else axis_key(key[1])
         screw = batch.joint_screws(name)[:, int(index) - 1 if index else 0]
         value = _infinite(_canonical_directions(screw[:, :3]))
-    elif kind == "normals":
-        direction = _branch_pair(batch, key[1], key[2])
-        with np.errstate(invalid="ignore"):
-            small = ~(np.linalg.norm(direction, axis=-1) >= INCIDENCE_RTOL)
-        value = np.where(small[:, None], np.nan, _infinite(_canonical_directions(direction)))
+    elif kind == "normals":  # oriented and scaled by the branches' couples: no canonical sign, no unit
+        value = _infinite(_branch_pair(batch, key[1], key[2]))
     elif kind == "foot":  # nearest the reference point: frame-covariant
         nearest, direction = _finite_axes(batch.wrench(key[1]))
         offset = batch.reference_point - nearest
@@ -433,7 +463,7 @@ def _recipe(key: tuple[str, ...], batch: _Batch, cache: dict[tuple[str, ...], Ar
         value = _infinite(_free(batch.wrench(key[1])[:, 3:])[int(key[2]) - 1])
     elif kind == "perp":
         moment = batch.wrench(key[1])[:, 3:]
-        cross = B.cross(moment, _recipe(key[2:], batch, cache)[:, :3])
+        cross = B.cross(moment, _units(_recipe(key[2:], batch, cache)[:, :3]))
         with np.errstate(invalid="ignore"):
             small = ~(np.linalg.norm(cross, axis=-1) >= INCIDENCE_RTOL * np.linalg.norm(moment, axis=-1))
         value = np.where(small[:, None], np.nan, _infinite(_canonical_directions(cross)))
