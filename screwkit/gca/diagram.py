@@ -118,7 +118,8 @@ class WrenchDiagram:
     roles : tuple of str
         ``"actuation"`` or ``"constraint"`` per line.
     coordinates : dict
-        ``{label: (x, y, z, w)}`` at this pose, finite points of weight 1, directions unit.
+        ``{label: (x, y, z, w)}`` at this pose, finite points of weight 1, directions unit
+        (a ``normals`` point: ``n_a × n_b`` of unit couples, its magnitude kept).
     degenerate : tuple of str
         Why the representation fails at this pose (empty when it holds).
     """

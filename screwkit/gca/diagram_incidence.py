@@ -147,14 +147,22 @@ def _meet(line: Array, axes: tuple[Array, Array, Array, Array], length: Array) -
 
 def _joint_centres(screws: Array) -> Array:
     """The common point ``(..., 3)`` of joints' first two axes ``(..., k, 6)`` (a spherical or
-    universal joint's centre), NaN where they are parallel (no single point)."""
-    first, _ = _axis_lines(screws[..., 0, :])
-    second, origin = _axis_lines(screws[..., 1, :])
-    point, in_plane = _meet_plane_through_axis(first, second, origin)
-    with np.errstate(invalid="ignore"):
-        missing = in_plane | (np.abs(point[..., 3]) <= B.DEFAULT_RTOL * np.linalg.norm(point, axis=-1))
+    universal joint's centre), NaN where they are parallel (no single point).
+
+    The point of the first axis nearest the second, in closed form: with ``p`` the first axis's
+    point nearest the origin (``s_1 × m_1 / |s_1|²``) and ``n = s_1 × s_2``, ``p + t s_1`` where
+    ``t = ((m_2 − p × s_2)·n) / |n|²`` (the moment ``m_2 = q × s_2 + h s_2`` of the second about
+    ``p``, along the common normal; the pitch term drops out).
+    """
+    s1, m1, s2, m2 = screws[..., 0, :3], screws[..., 0, 3:], screws[..., 1, :3], screws[..., 1, 3:]
+    normal = B.cross(s1, s2)
+    size = np.einsum("...i,...i", normal, normal)
+    first, second = np.einsum("...i,...i", s1, s1), np.einsum("...i,...i", s2, s2)
     with np.errstate(invalid="ignore", divide="ignore"):
-        return np.where(missing[..., None], np.nan, point[..., :3] / point[..., 3:])
+        nearest = B.cross(s1, m1) / first[..., None]
+        along = np.einsum("...i,...i", m2 - B.cross(nearest, s2), normal) / size
+        parallel = ~(size > B.DEFAULT_RTOL**2 * first * second)
+    return np.where(parallel[..., None], np.nan, nearest + along[..., None] * s1)
 
 
 def joint_centre(screws: Array) -> Array:

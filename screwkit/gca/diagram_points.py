@@ -72,7 +72,8 @@ def diagram_points(
     Returns
     -------
     dict of str to numpy.ndarray, shape (4,)
-        ``{label: point}``, finite points of weight 1, directions unit.
+        ``{label: point}``, finite points of weight 1, directions unit (a
+        ``normals`` point: ``n_a × n_b`` of unit couples, its magnitude kept).
 
     Raises
     ------
@@ -127,8 +128,9 @@ def batch_diagram_points(
     Returns
     -------
     dict of str to numpy.ndarray, shape (n, 4)
-        ``{label: points}``, finite points of weight 1, directions unit; a row of NaN where the
-        recipe has no point at that pose.
+        ``{label: points}``, finite points of weight 1, directions unit (a ``normals`` point:
+        ``n_a × n_b`` of unit couples, its magnitude kept); a row of NaN where the recipe has no
+        point at that pose.
 
     Examples
     --------
@@ -418,14 +420,15 @@ def _couple_sides(batch: _Batch, joints: tuple[str, ...], moment: Array) -> Arra
     (|cos| < 1/2), the canonical sign (first clearly non-zero component positive): continuous up
     to sign only."""
     centred = [j for j in sorted(joints) if batch.joint_screws(j).shape[1] >= 2][:3]
-    canonical = _canonical_directions(moment)
     if len(centred) < 3:
-        return canonical
+        return _canonical_directions(moment)
     c1, c2, c3 = (_joint_centres(batch.joint_screws(j)) for j in centred)
-    normal = _units(B.cross(c2 - c1, c3 - c1))
-    along = np.einsum("...i,...i", moment, normal)
+    normal = B.cross(c2 - c1, c3 - c1)
+    along = np.einsum("...i,...i", moment, normal)  # |n| = 1: along² ≥ |normal|² / 4 is |cos| ≥ 1/2
     with np.errstate(invalid="ignore"):
-        return np.where((np.abs(along) >= 0.5)[:, None], np.sign(along)[:, None] * moment, canonical)
+        clear = along**2 >= 0.25 * np.einsum("...i,...i", normal, normal)
+        oriented = np.sign(along)[:, None] * moment
+    return oriented if clear.all() else np.where(clear[:, None], oriented, _canonical_directions(moment))
 
 
 def _recipe(key: tuple[str, ...], batch: _Batch, cache: dict[tuple[str, ...], Array]) -> Array:
