@@ -85,11 +85,17 @@ def test_veloce_report_names_the_constraint_factor_at_its_singular_pose():
     assert not any(regular.constant) and not any(regular.vanishing)
 
 
-def test_veloce_path_crossing_carries_the_constraint_factor():
+def test_veloce_path_crossing_and_locus_carry_the_constraint_factor():
     check = sk.check_path(VELOCE, START, END)
     (constraint,) = [c for c in check.crossings if c.kind == "constraint"]
     assert constraint.factor == "[gikj]"
     assert abs(constraint.parameter - (SOLVED[0] - START[0]) / (END[0] - START[0])) < 1e-3
+    found = sk.loci(VELOCE, x=("x", 300, 560, 14), y=("z", -300, -200, 6), fixed={"y": -545.2, "phi": -1.8})
+    (locus,) = [locus for locus in found if locus.kind == "constraint"]
+    assert locus.factor == "[gikj]" and len(locus.points) > 3
+    for x, z in locus.points:  # on the independent Eq. (6)'s zero: a sign change across 1 mm in x
+        below, above = (veloce_equation_6([x + dx, -545.2, z, -1.8]) for dx in (-0.5, 0.5))
+        assert below * above < 0
 
 
 def test_quattro_constraint_factor_is_equation_6_with_one_sign_across_a_constraint_crossing():
