@@ -12,8 +12,8 @@ polynomial of ``gca.md`` §2.1 with constant exactly +1 (:func:`superbracket_exp
 
 The package has four layers; its modules, in import order notation → brackets → dotted → zeros →
 expansion → factoring → factored → simplify → vector_forms → exact_proofs → condition_patterns →
-conditions and diagram → diagram_lines → diagram_points → diagram_recipes → diagram_placement →
-superbracket_analysis, each import only earlier ones:
+conditions and diagram → diagram_lines → diagram_incidence → diagram_points → diagram_recipes →
+diagram_placement → superbracket_analysis, each import only earlier ones:
 
 * exact bracket algebra: :mod:`~screwkit.gca.notation` (labels, signs, printed and parsed text),
   :mod:`~screwkit.gca.brackets` (:class:`Bracket`, :class:`BracketMonomial`, :class:`BracketPolynomial`:

@@ -89,7 +89,12 @@ class DiagramPoint:
         point, defined up to sign; the diagram's points are carried with the sign that makes a
         positive dot product with this one, so a condition's value is a continuous function of the
         pose and changes sign only at its zeros (where the direction stays within 90° of the
-        reference's). None: the sign of the first clearly non-zero component.
+        reference's). None: the sign of the first clearly non-zero component. Not used by a
+        ``normals`` point, which its branches' couples orient (see ``sign``).
+    sign : int, default 1
+        For a ``normals`` point ``n_a × n_b``, carried continuously with its magnitude (each couple
+        oriented by its branch's joints): the constant ±1 it is multiplied by, fixed once so that at
+        the reference configuration its first clearly non-zero component is positive.
     """
 
     label: str
@@ -97,6 +102,7 @@ class DiagramPoint:
     at_infinity: bool
     description: str
     orientation: tuple[float, ...] | None = field(default=None, compare=False)
+    sign: int = field(default=1, compare=False)
 
 
 @dataclass(frozen=True, eq=False)
@@ -112,7 +118,8 @@ class WrenchDiagram:
     roles : tuple of str
         ``"actuation"`` or ``"constraint"`` per line.
     coordinates : dict
-        ``{label: (x, y, z, w)}`` at this pose, finite points of weight 1, directions unit.
+        ``{label: (x, y, z, w)}`` at this pose, finite points of weight 1, directions unit
+        (a ``normals`` point: ``n_a × n_b`` of unit couples, its magnitude kept).
     degenerate : tuple of str
         Why the representation fails at this pose (empty when it holds).
     """

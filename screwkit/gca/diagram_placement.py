@@ -150,12 +150,10 @@ def generic_reference(
         if not [r for r in candidate.degenerate if not (more and MORE_LINES in r)]:
             # its directions orient the points at infinity from now on
             points = tuple(
-                replace(p, orientation=tuple(float(x) for x in candidate.coordinates[p.label][:3]))
-                if p.at_infinity
-                else p
-                for p in candidate.points
+                _oriented_at_reference(p, candidate.coordinates[p.label]) for p in candidate.points
             )
-            return replace(candidate, points=points), ()
+            coordinates = {p.label: p.sign * candidate.coordinates[p.label] + 0.0 for p in points}
+            return replace(candidate, points=points, coordinates=coordinates), ()
         first = first or candidate.degenerate
     if not analyses:
         return None, ("no generic configuration of the mechanism could be reached to choose its diagram",)
@@ -164,6 +162,20 @@ def generic_reference(
         f"the mechanism has no wrench diagram (at {tried} generic configurations): {reason}"
         for reason in first
     )
+
+
+def _oriented_at_reference(point: DiagramPoint, value: Any) -> DiagramPoint:
+    """A point with its orientation fixed at the reference configuration, where it is ``value``: a
+    point at infinity's direction there (:attr:`DiagramPoint.orientation`), or for a ``normals``
+    point the constant sign that makes its first clearly non-zero component positive there
+    (:attr:`DiagramPoint.sign`)."""
+    if not point.at_infinity:
+        return point
+    direction = np.asarray(value, dtype=float)[:3]
+    if point.key[0] == "normals":
+        first = direction[np.argmax(np.abs(direction) > 1e-9 * np.abs(direction).max())]
+        return replace(point, sign=-1 if first < 0 else 1)
+    return replace(point, orientation=tuple(float(x) for x in direction))
 
 
 class ReplaySampler:

@@ -1,7 +1,7 @@
 """A wrench diagram's points at poses: each recipe (:attr:`~screwkit.gca.diagram.DiagramPoint.key`)
 evaluated over a batch at once from the batched core's arrays (:func:`batch_diagram_points`; one
-pose, :func:`diagram_points`, is a batch of one), with the incidence arithmetic the recipes use
-(where a line meets a joint axis, a joint's centre, canonical directions).
+pose, :func:`diagram_points`, is a batch of one); the incidence arithmetic they use is
+:mod:`screwkit.gca.diagram_incidence`.
 
 Examples
 --------
@@ -21,7 +21,6 @@ from collections.abc import Mapping
 import numpy as np
 
 from ..algebra import backend as B
-from ..algebra import screw as S
 from ..algebra.readable_bases import readable_bases
 from ..core import frames as F
 from ..core.wrench_systems import WrenchAnalysis, analyze_table
@@ -29,14 +28,23 @@ from ..exceptions import DegenerateGeometryError
 from ..graphs.jointtable import JointTable
 from ..graphs.topology import Topology
 from .diagram import INCIDENCE_RTOL, DiagramPoint, axis_key
+from .diagram_incidence import (
+    _canonical_directions,
+    _finite,
+    _finite_axes,
+    _free,
+    _infinite,
+    _joint_centres,
+    _meet,
+    _scaled_axes,
+    _units,
+)
 from .diagram_lines import Line, basis_names, leg_name
 
 __all__ = [
     "batch_diagram_points",
     "diagram_points",
     "frames_read",
-    "joint_centre",
-    "meet_points",
 ]
 
 Array = np.ndarray
@@ -64,7 +72,8 @@ def diagram_points(
     Returns
     -------
     dict of str to numpy.ndarray, shape (4,)
-        ``{label: point}``, finite points of weight 1, directions unit.
+        ``{label: point}``, finite points of weight 1, directions unit (a
+        ``normals`` point: ``n_a × n_b`` of unit couples, its magnitude kept).
 
     Raises
     ------
@@ -119,8 +128,9 @@ def batch_diagram_points(
     Returns
     -------
     dict of str to numpy.ndarray, shape (n, 4)
-        ``{label: points}``, finite points of weight 1, directions unit; a row of NaN where the
-        recipe has no point at that pose.
+        ``{label: points}``, finite points of weight 1, directions unit (a ``normals`` point:
+        ``n_a × n_b`` of unit couples, its magnitude kept); a row of NaN where the recipe has no
+        point at that pose.
 
     Examples
     --------
@@ -135,7 +145,17 @@ def batch_diagram_points(
     """
     batch = _Batch.create(analysis, lines, points)
     cache: dict[tuple[str, ...], Array] = {}
-    return {point.label: _oriented(_recipe(point.key, batch, cache), point.orientation) for point in points}
+    return {point.label: _carried(_recipe(point.key, batch, cache), point) for point in points}
+
+
+def _carried(value: Array, point: DiagramPoint) -> Array:
+    """A point's values with the orientation fixed at the reference configuration: a ``normals``
+    point (oriented and scaled by its branches' couples, :func:`_branch_pair`) times its constant
+    :attr:`DiagramPoint.sign` (a flip per pose would lose the sign of its value), another point at
+    infinity by its :attr:`DiagramPoint.orientation` (:func:`_oriented`)."""
+    if point.key[0] == "normals":
+        return point.sign * value + 0.0
+    return _oriented(value, point.orientation)
 
 
 def _oriented(value: Array, orientation: tuple[float, ...] | None) -> Array:
@@ -359,178 +379,17 @@ def _frames_read(points: tuple[DiagramPoint, ...], topology: Topology) -> tuple[
     return tuple(dict.fromkeys(keys))
 
 
-def _finite(points: Array) -> Array:
-    return np.concatenate([points, np.ones((*points.shape[:-1], 1))], axis=-1)
-
-
-def _infinite(directions: Array) -> Array:
-    return np.concatenate([directions, np.zeros((*directions.shape[:-1], 1))], axis=-1)
-
-
-def _units(v: Array) -> Array:
-    with np.errstate(invalid="ignore", divide="ignore"):
-        return v / np.linalg.norm(v, axis=-1, keepdims=True)
-
-
-def _canonical_directions(v: Array) -> Array:
-    """Unit directions ``(..., 3)`` with a fixed sign (first clearly non-zero component positive)."""
-    u = _units(v)
-    k = np.argmax(np.abs(u) > 1e-9, axis=-1)[..., None]
-    return np.where(np.take_along_axis(u, k, axis=-1) < 0, -u, u)
-
-
-def _free(moment: Array) -> tuple[Array, Array]:
-    """Two unit directions ``(..., 3)`` normal to ``moment`` and to each other (the coordinate axis
-    least aligned with it first): points of the couple line ``(0; moment)`` with no structural
-    meaning."""
-    m = _units(moment)
-    axis = np.eye(3)[np.argmin(np.nan_to_num(np.abs(m), nan=0.0), axis=-1)]
-    first = _units(B.cross(m, axis))
-    return first, B.cross(m, first)
-
-
-def _finite_axes(screws: Array) -> tuple[Array, Array]:
-    """:func:`screwkit.algebra.screw.axis` over a batch ``(..., 6)``, NaN where the pitch is infinite
-    (``s = 0``) or the screw is missing (NaN)."""
-    bad = ~np.isfinite(screws).all(axis=-1) | np.all(screws[..., :3] == 0, axis=-1)
-    safe = np.where(bad[..., None], np.array([0.0, 0.0, 1.0, 0.0, 0.0, 0.0]), screws)
-    point, direction = S.axis(safe)
-    return np.where(bad[..., None], np.nan, point), np.where(bad[..., None], np.nan, direction)
-
-
-def _axis_lines(screws: Array) -> tuple[Array, Array]:
-    """The axes ``(s; r × s)`` of screws ``(..., 6)`` and their points ``r`` nearest the origin."""
-    nearest, _ = _finite_axes(screws)
-    return np.concatenate([screws[..., :3], B.cross(nearest, screws[..., :3])], axis=-1), nearest
-
-
-def _meet_plane_through_axis(line: Array, axis: Array, origin: Array) -> tuple[Array, Array]:
-    """Where lines ``(..., 6)`` meet the planes that contain the axes ``(..., 6)`` (through their
-    points ``origin``) and are normal to the planes of line and axis: ``(n × m − δ s, n·s)``
-    (:func:`screwkit.algebra.projective.meet_line_plane`), and where the line lies in that plane instead."""
-    normal = B.cross(B.cross(line[..., :3], axis[..., :3]), axis[..., :3])
-    plane = np.concatenate([normal, -np.einsum("...i,...i", normal, origin)[..., None]], axis=-1)
-    s, m, delta = line[..., :3], line[..., 3:], plane[..., 3:]
-    point = np.concatenate(
-        [B.cross(normal, m) - delta * s, np.einsum("...i,...i", normal, s)[..., None]], axis=-1
-    )
-    size = np.linalg.norm(line, axis=-1) * np.linalg.norm(plane, axis=-1)
-    with np.errstate(invalid="ignore"):
-        in_plane = np.all(normal == 0, axis=-1) | (np.linalg.norm(point, axis=-1) <= B.DEFAULT_RTOL * size)
-    return point, in_plane
-
-
-def meet_points(line: Array, screw: Array, length_scale: Array) -> Array:
-    """Where finite lines meet joint axes, NaN where they are skew, parallel or meet at infinity.
-
-    The line meets the plane that contains the axis and is normal to the plane of both; they meet
-    when ``L ∘ A = 0`` after scaling moments by ``length_scale``
-    (:func:`screwkit.algebra.incidence.lines_intersect`).
-
-    Parameters
-    ----------
-    line : numpy.ndarray, shape (..., 6)
-        Finite lines ``(s; r × s)``.
-    screw : numpy.ndarray, shape (..., 6)
-        Joint screws of finite pitch; their axes are used.
-    length_scale : numpy.ndarray, shape (...)
-        The mechanism's characteristic length (the incidence test is unit-free).
-
-    Returns
-    -------
-    numpy.ndarray, shape (..., 4)
-        The meeting points, weight 1; rows of NaN where there is none.
-
-    Examples
-    --------
-    >>> x_axis = np.array([1.0, 0, 0, 0, 0, 0])  # the x axis, and the z axis through (2, 0, 0)
-    >>> meet_points(x_axis, np.array([0, 0, 1.0, 0, -2.0, 0]), np.array(1.0)) + 0.0
-    array([2., 0., 0., 1.])
-    """
-    length = np.asarray(length_scale, dtype=float)[..., None]
-    return _meet(line, _scaled_axes(screw, length), length)
-
-
-def _scaled_axes(screw: Array, length: Array) -> tuple[Array, Array, Array, Array]:
-    """What :func:`meet_points` reads of joint axes (once per joint over a batch): the axes with
-    their moments divided by ``length`` ``(..., 1)``, those rows unit, the unit directions, and the
-    axes' points nearest the origin divided by ``length``."""
-    axis, origin = _axis_lines(screw)
-    divided = np.concatenate([axis[..., :3], axis[..., 3:] / length], axis=-1)
-    return divided, _units(divided), _units(axis[..., :3]), origin / length
-
-
-def _meet(line: Array, axes: tuple[Array, Array, Array, Array], length: Array) -> Array:
-    """:func:`meet_points` of lines and :func:`_scaled_axes`."""
-    axis, b, direction, origin = axes
-    # the meet in lengths divided by length_scale: the test of a line lying in the plane compares
-    # the point with a product of two moments, not invariant under a change of unit otherwise (a
-    # 1 m mechanism written in picometres lost every meet point)
-    divided = np.concatenate([line[..., :3], line[..., 3:] / length], axis=-1)
-    a = _units(divided)
-    product = np.einsum("...i,...i", a[..., :3], b[..., 3:]) + np.einsum("...i,...i", a[..., 3:], b[..., :3])
-    cross = B.cross(_units(line[..., :3]), direction)
-    parallel = np.linalg.norm(cross, axis=-1) < INCIDENCE_RTOL
-    point, in_plane = _meet_plane_through_axis(divided, axis, origin)
-    with np.errstate(invalid="ignore"):
-        skew = ~(np.abs(product) <= INCIDENCE_RTOL)
-        missing = skew | parallel | in_plane | ~(np.abs(point[..., 3]) >= 1e-12)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        meet = point / point[..., 3:]
-    meet = np.concatenate([meet[..., :3] * length, meet[..., 3:]], axis=-1)
-    return np.where(missing[..., None], np.nan, meet)
-
-
-def _joint_centres(screws: Array) -> Array:
-    """The common point ``(..., 3)`` of joints' first two axes ``(..., k, 6)`` (a spherical or
-    universal joint's centre), NaN where they are parallel (no single point)."""
-    first, _ = _axis_lines(screws[..., 0, :])
-    second, origin = _axis_lines(screws[..., 1, :])
-    point, in_plane = _meet_plane_through_axis(first, second, origin)
-    with np.errstate(invalid="ignore"):
-        missing = in_plane | (np.abs(point[..., 3]) <= B.DEFAULT_RTOL * np.linalg.norm(point, axis=-1))
-    with np.errstate(invalid="ignore", divide="ignore"):
-        return np.where(missing[..., None], np.nan, point[..., :3] / point[..., 3:])
-
-
-def joint_centre(screws: Array) -> Array:
-    """The centre of one spherical or universal joint: the common point of its first two axes.
-
-    Parameters
-    ----------
-    screws : array_like, shape (k, 6)
-        The joint's screws (``k >= 2``).
-
-    Returns
-    -------
-    numpy.ndarray, shape (3,)
-
-    Raises
-    ------
-    DegenerateGeometryError
-        Where its first two axes are parallel (no single point).
-
-    Examples
-    --------
-    >>> joint_centre([[1.0, 0, 0, 0, 3.0, 0], [0, 1.0, 0, -3.0, 0, 0]])  # axes x, y through (0, 0, 3)
-    array([0., 0., 3.])
-    """
-    centre = _joint_centres(np.asarray(screws, dtype=float)[None])[0]
-    if not np.isfinite(centre).all():
-        raise DegenerateGeometryError(
-            "Expected the joint's first two axes to meet at one point, got parallel axes."
-        )
-    return centre
-
-
 def _branch_pair(batch: _Batch, first: str, second: str) -> Array:
     """``n(first) × n(second)`` over the batch (the ``normals`` recipe of
     :mod:`screwkit.gca.diagram_recipes`), NaN where the two branches are not consecutive single
     constraint couples of one parallel node there.
 
     A branch's constraint couple is the reciprocal of its twist system (the core's frame kernel
-    ``reciprocal``) where that has order 1 and infinite pitch; its moment's
-    direction is frame- and unit-free.
+    ``reciprocal``) where that has order 1 and infinite pitch; its moment's direction ``n`` is
+    frame- and unit-free, taken unit and oriented by the branch's joints (:func:`_couple_sides`).
+    The cross product keeps its magnitude (the sine of the angle between the two couples): paper
+    002's ``s_m^12 = n^1 × n^2`` (Eq. 6), which vanishes where the two couples are parallel (its
+    case (c)); a unit direction would not.
     """
     found = _branches(batch.topology, first, second)
     if found is None:
@@ -548,7 +407,28 @@ def _branch_pair(batch: _Batch, first: str, second: str) -> Array:
     for k in range(a + 1, b):
         between |= couple[k]
     ok = couple[a] & couple[b] & ~between
-    return np.where(ok[:, None], B.cross(moments[a], moments[b]), np.nan)
+    n_a, n_b = (_couple_sides(batch, batch.topology.nodes[children[k]].joints, moments[k]) for k in (a, b))
+    return np.where(ok[:, None], B.cross(n_a, n_b), np.nan)
+
+
+def _couple_sides(batch: _Batch, joints: tuple[str, ...], moment: Array) -> Array:
+    """A branch's unit couple moments ``(n, 3)`` with a sign that follows the branch's joints over
+    the motion: that of the normal ``(c_2 − c_1) × (c_3 − c_1)`` of the plane through the centres of
+    its first three joints that have one (spherical, universal: by name), e.g. a parallelogram's
+    plane, to which its couple is normal (paper 002 §5.1: ``n^i`` normal to the plane ``Π_i``).
+    Where the branch has no such three centres, or their plane's normal is not along the couple
+    (|cos| < 1/2), the canonical sign (first clearly non-zero component positive): continuous up
+    to sign only."""
+    centred = [j for j in sorted(joints) if batch.joint_screws(j).shape[1] >= 2][:3]
+    if len(centred) < 3:
+        return _canonical_directions(moment)
+    c1, c2, c3 = (_joint_centres(batch.joint_screws(j)) for j in centred)
+    normal = B.cross(c2 - c1, c3 - c1)
+    along = np.einsum("...i,...i", moment, normal)  # |n| = 1: along² ≥ |normal|² / 4 is |cos| ≥ 1/2
+    with np.errstate(invalid="ignore"):
+        clear = along**2 >= 0.25 * np.einsum("...i,...i", normal, normal)
+        oriented = np.sign(along)[:, None] * moment
+    return oriented if clear.all() else np.where(clear[:, None], oriented, _canonical_directions(moment))
 
 
 def _recipe(key: tuple[str, ...], batch: _Batch, cache: dict[tuple[str, ...], Array]) -> Array:
@@ -565,11 +445,8 @@ def _recipe(key: tuple[str, ...], batch: _Batch, cache: dict[tuple[str, ...], Ar
         name, index = (key[1], "") if key[1] in {s.name for s in batch.table.specs} else axis_key(key[1])
         screw = batch.joint_screws(name)[:, int(index) - 1 if index else 0]
         value = _infinite(_canonical_directions(screw[:, :3]))
-    elif kind == "normals":
-        direction = _branch_pair(batch, key[1], key[2])
-        with np.errstate(invalid="ignore"):
-            small = ~(np.linalg.norm(direction, axis=-1) >= INCIDENCE_RTOL)
-        value = np.where(small[:, None], np.nan, _infinite(_canonical_directions(direction)))
+    elif kind == "normals":  # oriented and scaled by the branches' couples: no canonical sign, no unit
+        value = _infinite(_branch_pair(batch, key[1], key[2]))
     elif kind == "foot":  # nearest the reference point: frame-covariant
         nearest, direction = _finite_axes(batch.wrench(key[1]))
         offset = batch.reference_point - nearest
@@ -589,7 +466,7 @@ def _recipe(key: tuple[str, ...], batch: _Batch, cache: dict[tuple[str, ...], Ar
         value = _infinite(_free(batch.wrench(key[1])[:, 3:])[int(key[2]) - 1])
     elif kind == "perp":
         moment = batch.wrench(key[1])[:, 3:]
-        cross = B.cross(moment, _recipe(key[2:], batch, cache)[:, :3])
+        cross = B.cross(moment, _units(_recipe(key[2:], batch, cache)[:, :3]))
         with np.errstate(invalid="ignore"):
             small = ~(np.linalg.norm(cross, axis=-1) >= INCIDENCE_RTOL * np.linalg.norm(moment, axis=-1))
         value = np.where(small[:, None], np.nan, _infinite(_canonical_directions(cross)))

@@ -24,8 +24,9 @@ from ..core.wrench_systems import WrenchAnalysis
 from ..exceptions import DegenerateGeometryError
 from ..graphs.reduction import SeriesParallelNode
 from .diagram import FINITE_KINDS, INCIDENCE_RTOL, DiagramPoint, WrenchDiagram, axis_key, require_instance
+from .diagram_incidence import joint_centre, meet_points
 from .diagram_lines import Line, select_lines
-from .diagram_points import diagram_points, joint_centre, meet_points
+from .diagram_points import diagram_points
 
 __all__ = [
     "wrench_diagram",

@@ -34,6 +34,13 @@ def typical(values):
     return np.median(np.abs(values[:GENERIC]))
 
 
+def assert_equal_up_to_one_sign(values, expected, **tolerances):
+    """``values == ±expected`` with one sign for every pose: a condition carried continuously over
+    the motion (paper 002's Eq. 6 changes sign only at its zeros, and so must the condition)."""
+    sign = np.sign(np.sum(values * expected))
+    np.testing.assert_allclose(values, sign * expected, **tolerances)
+
+
 @pytest.fixture(scope="module")
 def h4_poses():
     """Random catalog poses and poses at 1e-12 … 1e-4 (relative) on both sides of roots of
@@ -47,27 +54,26 @@ def test_condition_maps_are_paper_002_equations_6_and_7_near_their_zeros(h4_pose
     first, ok_first = W.evaluate(H4_MECHANISM, h4_poses, "condition:0")
     second, ok_second = W.evaluate(H4_MECHANISM, h4_poses, "condition:1")
     assert ok_first.all() and ok_second.all()
-    eq6, eq7, s12, s34 = paper_002_conditions(H4_MECHANISM.configuration(h4_poses))
+    eq6, eq7, _, _ = paper_002_conditions(H4_MECHANISM.configuration(h4_poses))
     assert np.abs(eq6).min() < 1e-10 * typical(eq6)  # the batch reaches each zero
     assert np.abs(eq7).min() < 1e-10 * typical(eq7)
-    # [gikj] = (i × k)·j with i, k the unit directions of s12, s34 (paper 002 Eq. 6 over |s12||s34|);
-    # the actuation factor is Eq. (7) itself (unit actuation directions): equal up to sign, to
-    # round-off of the equations' own size (1e-12 of their typical value) at the zeros
-    norms = np.linalg.norm(s12, axis=-1) * np.linalg.norm(s34, axis=-1)
-    for value, equation in ((first * norms, eq6), (second, eq7)):
-        np.testing.assert_allclose(np.abs(value), np.abs(equation), rtol=1e-9, atol=1e-12 * typical(equation))
+    # [gikj] = (i × k)·j with i, k the points s12 = n1 × n2, s34 = n3 × n4 of unit plane normals, each
+    # oriented by its parallelogram over the motion: paper 002 Eq. (6) itself; the actuation factor is
+    # Eq. (7) itself (unit actuation directions): equal with one sign over all poses (continuous, a
+    # sign change only at the zeros), to round-off of the equations' own size (1e-12 of their typical
+    # value) at the zeros
+    for value, equation in ((first, eq6), (second, eq7)):
+        assert_equal_up_to_one_sign(value, equation, rtol=1e-9, atol=1e-12 * typical(equation))
 
 
 def test_condition_product_is_the_six_by_six_determinant_of_the_wrench_lines(h4_poses):
     # the superbracket -[gikj][a b d ḟ][c g ḣ j] is the 6×6 determinant of the diagram's lines,
-    # which are the paper's six wrenches (Eq. 4) with the couples divided by |s12|, |s34|
+    # which are the paper's six wrenches (Eq. 4), the couples (0; z × s12), (0; z × s34) included
     first, _ = W.evaluate(H4_MECHANISM, h4_poses, "condition:0")
     second, _ = W.evaluate(H4_MECHANISM, h4_poses, "condition:1")
     configurations = [H4_MECHANISM.configuration(pose) for pose in h4_poses]
     six = np.array([np.linalg.det(paper_wrench_matrix(cfg)) for cfg in configurations])
-    _, _, s12, s34 = paper_002_conditions(H4_MECHANISM.configuration(h4_poses))
-    expected = np.abs(six) / (np.linalg.norm(s12, axis=-1) * np.linalg.norm(s34, axis=-1))
-    np.testing.assert_allclose(np.abs(first * second), expected, rtol=1e-9, atol=1e-12 * typical(expected))
+    assert_equal_up_to_one_sign(first * second, six, rtol=1e-9, atol=1e-12 * typical(six))
 
 
 @pytest.mark.parametrize("name", ["h4", "mcgill_smg", "peppermill", "planar_3rrp", "ragnar"])
@@ -121,8 +127,7 @@ def test_cli_condition_map_is_paper_002_equation_6(tmp_path, capsys):
     poses = np.stack([np.full_like(z, 300.0), np.full_like(z, 300.0), z, np.radians(phi)], axis=-1)
     values = np.array(printed["values"], dtype=float)
     reached = np.isfinite(values)
-    eq6, _, s12, s34 = paper_002_conditions(H4_MECHANISM.configuration(poses[reached]))
+    eq6, _, _, _ = paper_002_conditions(H4_MECHANISM.configuration(poses[reached]))
     assert (eq6 > 0).any() and (eq6 < 0).any()
-    norms = np.linalg.norm(s12, axis=-1) * np.linalg.norm(s34, axis=-1)
-    np.testing.assert_allclose(np.abs(values[reached]) * norms, np.abs(eq6), rtol=1e-9, atol=1e-12)
+    assert_equal_up_to_one_sign(values[reached], eq6, rtol=1e-9, atol=1e-12)
     assert "written to" in capsys.readouterr().out

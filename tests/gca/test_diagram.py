@@ -60,13 +60,15 @@ def test_h4_diagram_is_paper_figure_4c(h4_result):
     assert "meets the axis of R_II" in described["e"] and "meets the axis of R_II" in described["g"]
     assert described["j"] == "the point at infinity of the axis of R_I"
     assert not diagram.degenerate
-    # the diagram's lines are the paper's wrenches with unit directions: L(a, b) = ±τ0^1 and
-    # L(i, j) = (0; î × z) = ∓τ∞I / |s12|, so |superbracket| = |det(paper's six wrenches)| / (|s12| |s34|),
-    # and test_h4 shows det(paper's six wrenches) = ±Eq. 6 × Eq. 7
+    # the diagram's lines are the paper's wrenches with unit directions: L(a, b) = ±τ0^1 and, i being
+    # ±s12 = ±n1 × n2 (unit plane normals), L(i, j) = (0; i × z) = ∓τ∞I, so |superbracket| =
+    # |det(paper's six wrenches)|, and test_h4 shows det(paper's six wrenches) = ±Eq. 6 × Eq. 7
     cfg = inverse_kinematics(H4, np.array([30.0, -20.0, -750.0, 0.3]))
     eq6, eq7, s12, s34 = paper_002_conditions(cfg)
+    np.testing.assert_allclose(np.abs(diagram.coordinates["i"][:3]), np.abs(s12), rtol=1e-9)
+    np.testing.assert_allclose(np.abs(diagram.coordinates["k"][:3]), np.abs(s34), rtol=1e-9)
     value = six_by_six(diagram.coordinates, diagram.lines)
-    assert abs(value) == pytest.approx(abs(eq6 * eq7) / (np.linalg.norm(s12) * np.linalg.norm(s34)), rel=1e-8)
+    assert abs(value) == pytest.approx(abs(eq6 * eq7), rel=1e-8)
 
 
 def test_h4_superbracket_is_equation_5(h4_result):
@@ -99,13 +101,14 @@ def test_h4_conditions_are_equations_6_and_7(h4_result, rng):
     ratios = []
     for pose in random_poses(rng, 12):
         cfg = inverse_kinematics(H4, pose)
-        eq6, eq7, s12, s34 = paper_002_conditions(cfg)
+        eq6, eq7, _, _ = paper_002_conditions(cfg)
         points = diagram_points(diagram.points, wrench_analysis(h4.twist_graph(pose)))
-        # i, k are unit directions of s12, s34 (up to sign); b, d, f, h unit directions of w_i
-        norms = np.linalg.norm(s12) * np.linalg.norm(s34)
-        ratios.append([abs(result.conditions[0].evaluate(points)) * norms / abs(eq6),
-                       abs(result.conditions[1].evaluate(points)) / abs(eq7)])
-    np.testing.assert_allclose(ratios, 1.0, rtol=1e-8)
+        # i, k are s12, s34 of the parallelograms' oriented unit normals (one sign fixed at the
+        # reference configuration); b, d, f, h unit directions of w_i
+        ratios.append([result.conditions[0].evaluate(points) / eq6, result.conditions[1].evaluate(points) / eq7])
+    # one sign per condition at every pose: the conditions are Eqs. (6) and (7), continuous
+    np.testing.assert_allclose(np.abs(ratios), 1.0, rtol=1e-8)
+    assert (np.sign(ratios) == np.sign(ratios[0])).all()
 
 
 def test_h4_factors_vanish_exactly_where_the_labels_say(h4_result, rng):
