@@ -41,6 +41,9 @@ Array = np.ndarray
 
 #: Singular values below this fraction of a block's largest are taken as zero (its rank).
 RANK_TOLERANCE = 1e-8
+#: A step whose null spaces turned by more than ``arccos(1 / MAX_TURN)`` (60°) from the last trusted
+#: step's is taken again in shorter steps: the border must stay transversal to them for the sign to hold.
+MAX_TURN = 2.0
 
 
 def _jacobian_blocks(system: Any, theta: Array, offsets: Array, target: Array) -> list[Array]:
@@ -69,11 +72,12 @@ def _orthonormal(basis: Array) -> Array:
     return q * np.where(np.diagonal(r, axis1=-2, axis2=-1) < 0, -1.0, 1.0)[..., None, :]
 
 
-def _null_spaces(bordered: Array, rows: int, columns: int) -> tuple[Array, Array]:
+def _null_spaces(bordered: Array, rows: int, columns: int) -> tuple[Array, Array, Array]:
     """The left null space ``(…, m, m − r)`` and null space ``(…, n, n − r)`` of the block ``J`` of a
     bordered matrix, oriented as its border ``L``, ``N``: the solutions ``X`` of ``J X + L Y = 0``,
     ``Nᵀ X = I`` (so ``J X = 0`` and ``det(Nᵀ X) > 0``; Allgower & Georg 2003, §2.1, compute the tangent
-    the same way) and their transposed twins."""
+    the same way) and their transposed twins; and how far they turned from the border ``(…)``: the
+    largest length of a column of ``X`` (``1/cos`` of its angle to the border's span)."""
     size = bordered.shape[-1]
     right_size, left_size = size - rows, size - columns  # n − r, m − r
     unit = np.zeros((*bordered.shape[:-2], size, right_size))
@@ -83,7 +87,11 @@ def _null_spaces(bordered: Array, rows: int, columns: int) -> tuple[Array, Array
     unit_left[..., columns:, :] = np.eye(left_size)
     transposed = np.swapaxes(bordered, -1, -2)
     left = np.linalg.solve(transposed, unit_left)[..., :rows, :] if left_size else unit_left[..., :rows, :]
-    return _orthonormal(left) if left_size else left, _orthonormal(right) if right_size else right
+    turned = np.maximum(
+        np.linalg.norm(left, axis=-2).max(axis=-1, initial=1.0),
+        np.linalg.norm(right, axis=-2).max(axis=-1, initial=1.0),
+    )
+    return _orthonormal(left) if left_size else left, _orthonormal(right) if right_size else right, turned
 
 
 class Orientations:
@@ -106,22 +114,20 @@ class Orientations:
 
     Examples
     --------
+    >>> from screwkit.core.loop_closure import KinematicModel, PoseTask, _LoopsAndTask
+    >>> from screwkit.core.task_coordinates import task_coordinates
     >>> from screwkit.graphs.joints import revolute
     >>> from screwkit.graphs.twistgraph import twist_graph
-    >>> from screwkit.core.kinematic_model import KinematicModel
-    >>> from screwkit.core.kinematic_tasks import PoseTask
-    >>> from screwkit.core.task_coordinates import task_coordinates
-    >>> from screwkit.core.loop_closure import _LoopsAndTask
-    >>> arm = twist_graph("B", "E", [
-    ...     ("B", "L", revolute("R1", [0, 0, 1], [0, 0, 0], actuated=True)),
-    ...     ("L", "E", revolute("R2", [0, 0, 1], [1, 0, 0], actuated=True))], dof=2)
-    >>> model = KinematicModel(arm)
-    >>> task = PoseTask(model, task_coordinates(model, point=[1, 1, 0], rotations=False))
+    >>> hinge = dict(actuated=True)  # a 2R arm of links 2 long, its end point at (2, 2) at the reference
+    >>> legs = [("B", "L", revolute("R1", [0, 0, 1], [0, 0, 0], **hinge)),
+    ...         ("L", "E", revolute("R2", [0, 0, 1], [2, 0, 0], **hinge))]
+    >>> model = KinematicModel(twist_graph("B", "E", legs, dof=2))
+    >>> task = PoseTask(model, task_coordinates(model, point=[2, 2, 0], rotations=False))
     >>> system = _LoopsAndTask(model, task)
-    >>> start = np.zeros((1, 2))  # the reference: the end point at (1, 1), the elbow at (1, 0)
+    >>> start = np.zeros((1, 2))  # the reference: the elbow at (2, 0)
     >>> offsets = np.zeros((1, 0, 4, 4))
     >>> modes = Orientations(system, start, offsets, system.task.values(model.state(start)))
-    >>> other = np.array([[np.pi / 2, np.pi]])  # the same end point, the elbow at (0, 1)
+    >>> other = np.array([[np.pi / 2, np.pi]])  # the same end point, the elbow at (0, 2)
     >>> modes.kept(system, other, offsets, system.task.values(model.state(other)), np.array([True])).tolist()
     [False]
     >>> modes.changed.tolist()
@@ -192,8 +198,10 @@ class Orientations:
         flipped, updates = [], []
         for block, sign, (left, right) in zip(blocks, self.signs, self.null_spaces, strict=True):
             bordered = _bordered(block, left[at], right[at])
-            flipped.append(np.sign(np.linalg.det(bordered)) != sign[at])
-            updates.append(_null_spaces(bordered, block.shape[-2], block.shape[-1]))
+            new_left, new_right, turned = _null_spaces(bordered, block.shape[-2], block.shape[-1])
+            # a sign read with a border the null spaces have turned far from is not trusted either
+            flipped.append((np.sign(np.linalg.det(bordered)) != sign[at]) | ~(turned < MAX_TURN))
+            updates.append((new_left, new_right))
         good = ~np.any(np.concatenate(flipped, axis=1), axis=1)
         kept[at] = good
         for (new_left, new_right), (left, right) in zip(updates, self.null_spaces, strict=True):
