@@ -29,6 +29,14 @@ model states) as well: 6-UPS graph map 12,100 poses/s against the H4 catalog map
 step's tangent predictor, steps of 0.35 and retries from the last trusted step (model evaluations per
 H4 pose 11.4 -> 8.6), ``--poses 2000 --side 0 --repeats 5`` at load 0.4: 7,523 poses/s against the
 closed form's 46,062 (ratio 0.163; the code before, in the same minute: 6,643 against 45,417, 0.146).
+
+With steps on the way stopped by the corrector's contraction (Θ / (1 − Θ) |Δθ| ≤ 1e-3) and simplified
+Newton iterations (model evaluations per H4 pose 8.6 -> 7.3, ~8.8 -> ~7.8 µs each), the continuation's
+system built once per task, and the graph verdict path's compiled joint table (wp-verdictpath),
+``--poses 2000 --side 0 --repeats 5`` at load 5.3-7, the three versions alternated twice in the same
+minutes: 9,547-9,754 poses/s against the closed form's 39,482-41,274 (ratio 0.236-0.242); the loop
+closure's changes alone 0.195-0.198; b9f8382 0.164-0.172. With ``--side 60 --repeats 3`` (load 7):
+the 6-UPS graph map 0.681 of the H4 catalog map (b9f8382 0.585, the same minute).
 """
 
 import os

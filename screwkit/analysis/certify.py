@@ -48,6 +48,7 @@ __all__ = [
     "DEFAULT_MAX_BOXES",
     "KINDS",
     "MAX_BOXES",
+    "RESOLUTION_DIVISIONS",
     "STATUSES",
     "Certificate",
     "CertifiedBox",
@@ -61,6 +62,8 @@ Array = np.ndarray
 
 #: The kinds of singularity a certificate can exclude.
 KINDS = ("constraint", "actuation", "serial")
+#: A range is split down to this fraction of its width unless ``resolution`` says otherwise.
+RESOLUTION_DIVISIONS = 256.0
 #: A box's status.
 STATUSES = ("free", "singular", "undecided", "unreachable")
 #: Boxes evaluated by default before a run stops (the rest returned undecided) ...
@@ -476,8 +479,12 @@ def certify(
     kinds : sequence of str, default all of :data:`KINDS`
         The singularities to exclude (reach is always required of a free box).
     resolution : float or mapping, optional
-        The box width below which a box is not split (absolute, in the coordinates' units; one
-        value for all, or per coordinate); default 1/256 of each range.
+        The box width below which a box is not split (absolute, in the coordinates' units): a
+        mapping per coordinate (those it leaves out: the default); or one number, which applies to
+        every range when the ranges are all lengths or all angles, and to the lengths only when they
+        mix both (a length and an angle do not compare: each angle range then gets the default).
+        Default: 1/:data:`RESOLUTION_DIVISIONS` of each range. :attr:`Certificate.resolution` holds
+        the widths used.
     client : dask.distributed.Client, optional
         Evaluate the boxes on this cluster (the same result).
     angles : {"rad", "deg"}
@@ -559,7 +566,7 @@ def certify(
             f"Expected `region` to give at least one range (lo, hi), got {dict(region)!r}."
         )
     free = [names.index(n) for n in ranges]
-    step = _resolutions(resolution, ranges)
+    step = _resolutions(resolution, ranges, mechanism.angle_names)
     for i in free:
         base[i] = 0.0
     # the box in API units (radians), rounded outward so that it holds the box the caller gave
@@ -604,20 +611,27 @@ def certify(
     )
 
 
-def _resolutions(resolution: Any, ranges: Mapping[str, tuple[float, float]]) -> dict[str, float]:
+def _resolutions(
+    resolution: Any, ranges: Mapping[str, tuple[float, float]], angle_names: Sequence[str]
+) -> dict[str, float]:
+    """Per range, the width below which a box is not split (user units): what a mapping gives, the
+    others 1/:data:`RESOLUTION_DIVISIONS` of their range; one number for every range when the ranges
+    are all lengths or all angles, else for the lengths only (a length and an angle do not compare:
+    each angle range then gets the default)."""
+    out = {n: (hi - lo) / RESOLUTION_DIVISIONS for n, (lo, hi) in ranges.items()}
     if resolution is None:
-        return {n: (hi - lo) / 256.0 for n, (lo, hi) in ranges.items()}
+        return out
     if isinstance(resolution, Mapping):
         unknown = [k for k in resolution if k not in ranges]
         if unknown:
             raise ScrewkitValueError(
                 f"Expected `resolution` over the region's ranges {list(ranges)}, got {unknown}."
             )
-        out = {n: (hi - lo) / 256.0 for n, (lo, hi) in ranges.items()}
         out.update({n: _real(v, f"resolution[{n!r}]") for n, v in resolution.items()})
     else:
         value = _real(resolution, "resolution")
-        out = dict.fromkeys(ranges, value)
+        lengths = [n for n in ranges if n not in angle_names]
+        out.update(dict.fromkeys(lengths if lengths else ranges, value))
     bad = {n: v for n, v in out.items() if not v > 0}
     if bad:
         raise ScrewkitValueError(f"Expected `resolution` > 0, got {bad}.")

@@ -168,8 +168,12 @@ def check_path(
     ----------
     mechanism : Mechanism
     start, end : dict or array_like
-        User units (angles in radians unless ``angles="deg"``); a dict's missing coordinates take
-        the default pose.
+        User units (angles in radians unless ``angles="deg"``). An array gives every coordinate of
+        ``mechanism.coordinates`` (fewer or more are refused). A dict gives some: by design, the
+        coordinates it leaves out keep their value at the reference pose (``mechanism.reference_pose``:
+        a catalog robot's default pose, a graph mechanism's reference configuration), at both ends,
+        so a path moves only what is given; :attr:`PathCheck.start` and ``end`` hold the whole poses
+        used.
     samples : int, default 200
     mode, angles, rtol
         As in :func:`~screwkit.analysis.workspace.grid_map`.

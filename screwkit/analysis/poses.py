@@ -19,6 +19,7 @@ from typing import Any
 import numpy as np
 
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
+from ..robots.pose_reader import pose_array
 
 __all__ = ["CHUNK", "DEFAULT_AXIS_COUNT", "MAX_MAP_POSES"]
 
@@ -102,18 +103,7 @@ def _pose(mechanism: Any, pose: Any, what: str, angles: str) -> Array:
                 out[i] = _finite(pose[name], f"{what}[{name!r}]")
         _check_angles(mechanism, dict(zip(names, out, strict=True)), what, angles)
         return out
-    try:
-        array = np.asarray(pose, dtype=float)
-    except (TypeError, ValueError) as err:
-        raise ScrewkitTypeError(
-            f"Expected `{what}` to be a dict over {list(names)} or {len(names)} numbers, got {pose!r}."
-        ) from err
-    if array.shape != (len(names),):
-        raise ScrewkitValueError(
-            f"Expected `{what}` to have shape ({len(names)},) ({', '.join(names)}), got {array.shape}."
-        )
-    if not np.isfinite(array).all():
-        raise ScrewkitValueError(f"Expected `{what}` to be finite, got {array.tolist()}.")
+    array = pose_array(mechanism, pose, what, one=True)  # real numbers, finite, one per coordinate
     _check_angles(mechanism, dict(zip(names, array, strict=True)), what, angles)
     return array
 

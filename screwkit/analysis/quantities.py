@@ -15,6 +15,13 @@ Quantities (:data:`QUANTITIES`)
     and force index ``ζ`` (Eq. 15) (:func:`screwkit.papers.paper_004.transmission`; four-limb
     families). A paper's quantity is registered by name (:func:`register_quantity`; ``import
     screwkit`` registers paper 004's), so that the maps call no paper.
+``"wrench_lti"``
+    The wrench-based local transmission index of any mechanism, a catalog robot or a graph (the
+    report's "LTI (wrench-based)"): the least input and output transmission over the actuated joints,
+    from the actuation wrenches and the platform twists
+    (:attr:`screwkit.robots.posed.PosedMechanism.wrench_transmission`,
+    :func:`screwkit.robots.transmission.wrench_transmission`). Paper 004's ``"lti"`` is defined on the
+    four-limb geometry only.
 ``"condition:K"``
     The vector form of the K-th factor of the superbracket (:mod:`screwkit.gca.conditions`), factored
     once at the default pose and evaluated on the wrench diagram's points over the whole batch
@@ -63,6 +70,7 @@ QUANTITIES = (
     "lti",
     "kappa",
     "zeta",
+    "wrench_lti",
 )
 #: The kinds of singularity, by bit of the core's codes.
 KINDS = LABELS  # the verdict codes' bits, as the core defines them
@@ -198,6 +206,9 @@ _DISPLAY: dict[str, QuantityDisplay] = {
     "lti": QuantityDisplay("local transmission index", "$\\eta$", meaning="in [0, 1]; 0 at a singularity"),
     "kappa": QuantityDisplay("motion transmission index", "$\\kappa$", meaning="in [0, 1]"),
     "zeta": QuantityDisplay("force transmission index", "$\\zeta$", meaning="in [0, 1]"),
+    "wrench_lti": QuantityDisplay(
+        "local transmission index (wrench-based)", "LTI", meaning="in [0, 1]; 0 at a singularity"
+    ),
 }
 
 
@@ -436,6 +447,8 @@ def values(posed: Any, quantity: str) -> Array:
         return np.asarray(posed.closeness[quantity.split(":")[1]], dtype=float)
     if quantity in ("det_A", "det_B"):
         return np.asarray(getattr(posed.jacobians, quantity), dtype=float)
+    if quantity == "wrench_lti":
+        return np.asarray(posed.wrench_transmission.lti, dtype=float)
     if quantity in CONTRIBUTED:
         if quantity not in _REGISTERED:  # only when screwkit's own __init__ did not run to its end
             raise ScrewkitValueError(f"Expected quantity {quantity!r} to be registered (register_quantity).")

@@ -39,6 +39,7 @@ from typing import Any
 import numpy as np
 
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
+from ..robots.pose_reader import pose_array
 from . import quantities as Q
 from .poses import CHUNK, _as_dict, _check_client, _check_mechanism, _options, _Slice, _units
 
@@ -77,7 +78,7 @@ def evaluate(
     """
     _check_mechanism(mechanism)
     name = Q.quantity(quantity)
-    array = np.asarray(poses, dtype=float).reshape(-1, len(mechanism.pose_names))
+    array = pose_array(mechanism, poses).reshape(-1, len(mechanism.pose_names))
     options = _options(mechanism, mode)
     ok = mechanism.reachable(array, **options)
     integer = name == "verdict"

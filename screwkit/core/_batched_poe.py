@@ -223,36 +223,3 @@ class BatchedProduct:
                 moved = np.where(forwards[:, None, None], moved, rigid_inverse(moved))
             links[:, children] = links[:, parents] @ moved
         return links, motions, _adjoint(links[:, self.column_parent], rows)
-
-
-def orthonormal_axes(rows: Array) -> Array:
-    """A spherical joint's three screws ``(..., 3, 6)`` (lines through its centre) recombined into
-    lines along orthonormal directions through that centre: the same 3-system, written as a catalog
-    writes a ball.
-
-    The model carries a ball's axes as a rotation offset times three axes, which drift from
-    orthogonal, and the scaled frame's length (the axes' root-mean-square distance from the reference
-    point) reads the basis: ``Σ |(c − p) × s_i|²`` is ``2 |c − p|²`` only over orthonormal ``s_i``.
-    The rows are ``R⁻ᵀ`` times the given ones, ``R`` the triangle of the directions' QR factorization
-    (a linear combination of lines through ``c`` is a line through ``c``).
-
-    Parameters
-    ----------
-    rows : numpy.ndarray, shape (..., 3, 6)
-
-    Returns
-    -------
-    numpy.ndarray, shape (..., 3, 6)
-
-    Examples
-    --------
-    >>> centre, axes = np.array([0.0, 0, 2]), np.array([[1.0, 0, 0], [0.6, 0.8, 0], [0, 0, 1]])
-    >>> out = orthonormal_axes(np.hstack([axes, np.cross(centre, axes)]))
-    >>> bool(np.allclose(out[:, :3] @ out[:, :3].T, np.eye(3)))       # orthonormal directions
-    True
-    >>> bool(np.allclose(out[:, 3:], np.cross(centre, out[:, :3])))  # through the same centre
-    True
-    """
-    directions = np.swapaxes(rows[..., :3], -1, -2)
-    triangle = np.linalg.qr(directions)[1]
-    return np.linalg.solve(np.swapaxes(triangle, -1, -2), rows)

@@ -227,23 +227,16 @@ def loop_residual(links: Array, motions: Array, loops: Array) -> Array:  # pragm
 
 
 @njit(cache=True)
-def _block_correction(  # pragma: no cover - compiled
-    current: Array,
-    residual: Array,
-    block: int,
-    blocks: tuple,
-    gram: Array,
-    solution: Array,
-    out: Array,
+def _block_factor(  # pragma: no cover - compiled
+    current: Array, block: int, blocks: tuple, gram: Array
 ) -> None:
-    """The minimum-norm correction ``−Jᵀ (J Jᵀ + λ I)⁻¹ F`` of block ``block``'s columns into ``out``
-    (:func:`pinned_newton`'s ``blocks``); ``gram``, ``solution``: scratch. ``J Jᵀ`` is summed column by
-    column: a column ``c`` held by loops ``i, j`` with signs ``σᵢ, σⱼ`` adds ``σᵢ σⱼ s_c s_cᵀ`` (its
-    current screw's outer product) to the loops' 6 × 6 block; then Cholesky ``J Jᵀ + λ I = L Lᵀ``
-    (Golub & Van Loan, *Matrix Computations*, 4th ed., 2013, Alg. 4.2.1) in ``gram``'s lower triangle."""
-    block_ptr, block_loops, column_ptr, column_index, entry_ptr, entry_loop, entry_sign = blocks
-    first_loop = block_ptr[block]
-    size = 6 * (block_ptr[block + 1] - first_loop)
+    """The Cholesky factor of block ``block``'s ``J Jᵀ + λ I`` into ``gram``'s lower triangle
+    (:func:`pinned_newton`'s ``blocks``). ``J Jᵀ`` is summed column by column: a column ``c`` held by
+    loops ``i, j`` with signs ``σᵢ, σⱼ`` adds ``σᵢ σⱼ s_c s_cᵀ`` (its current screw's outer product) to
+    the loops' 6 × 6 block; then ``J Jᵀ + λ I = L Lᵀ`` (Golub & Van Loan, *Matrix Computations*, 4th
+    ed., 2013, Alg. 4.2.1)."""
+    block_ptr, _, column_ptr, column_index, entry_ptr, entry_loop, entry_sign = blocks
+    size = 6 * (block_ptr[block + 1] - block_ptr[block])
     for i in range(size):
         for j in range(i + 1):
             gram[i, j] = 0.0
@@ -273,6 +266,17 @@ def _block_correction(  # pragma: no cover - compiled
             for k in range(j):
                 value -= gram[i, k] * gram[j, k]
             gram[i, j] = value / pivot
+
+
+@njit(cache=True)
+def _block_solve(  # pragma: no cover - compiled
+    current: Array, residual: Array, block: int, blocks: tuple, gram: Array, solution: Array, out: Array
+) -> None:
+    """The minimum-norm correction ``−Jᵀ (J Jᵀ + λ I)⁻¹ F`` of block ``block``'s columns into ``out``,
+    from the factor :func:`_block_factor` left in ``gram`` (``solution``: scratch)."""
+    block_ptr, block_loops, column_ptr, column_index, entry_ptr, entry_loop, entry_sign = blocks
+    first_loop = block_ptr[block]
+    size = 6 * (block_ptr[block + 1] - first_loop)
     for i in range(size):
         value = residual[6 * block_loops[first_loop + i // 6] + i % 6]
         for m in range(i):
@@ -311,7 +315,11 @@ def pinned_newton(  # pragma: no cover - compiled
     """The Newton corrector of one continuation step on the loops of a model pinned to its platform,
     pose by pose where ``working``: at most ``iterations`` corrections, each the blocks' minimum-norm
     correction scaled down to ``max_correction`` at most, until the largest residual is within
-    ``tolerance[p, 0]`` or the last correction within ``tolerance[p, 1]``; then, once a spherical
+    ``tolerance[p, 0]``, the last correction within ``tolerance[p, 1]`` or, the corrections contracting
+    at ``Θ = |Δθₖ| / |Δθₖ₋₁| < 1/2``, the error estimate ``Θ / (1 − Θ) |Δθₖ|`` within
+    ``tolerance[p, 2]`` (the residual before the last correction times ``Θ`` then reported); after a
+    correction within ``tolerance[p, 3]``, the next solves with the last Cholesky factors and the
+    screws they were made at (simplified Newton); then, once a spherical
     joint's angle exceeds ``recentre_angle``, every spherical joint's angles folded into its offset
     (:meth:`screwkit.core.kinematic_model.KinematicModel.recentred`).
 
@@ -339,13 +347,15 @@ def pinned_newton(  # pragma: no cover - compiled
     current = np.empty((n, 6))
     residual = np.empty(6 * loops.shape[0])
     largest = 6 * int(np.max(block_ptr[1:] - block_ptr[:-1]))
-    gram = np.empty((largest, largest))
+    grams = np.empty((block_ptr.shape[0] - 1, largest, largest))
+    frozen = np.empty((n, 6))  # the screws the factors were made at
     solution = np.empty(largest)
     correction = np.empty(n)
     for p in range(count):
         if not working[p]:
             continue
         first = True
+        before = math.inf
         for _ in range(iterations):
             _evaluate_pose(theta[p], offsets[p], pinned[p], model, steps, rows, work, links, motions, current)
             evaluations[p] += 1
@@ -359,8 +369,12 @@ def pinned_newton(  # pragma: no cover - compiled
             if not size > tolerance[p, 0]:
                 break
             correction[:] = 0.0
+            if first or before > tolerance[p, 3]:  # else a simplified Newton step: the last factors again
+                frozen[:, :] = current
+                for b in range(block_ptr.shape[0] - 1):
+                    _block_factor(frozen, b, blocks, grams[b])
             for b in range(block_ptr.shape[0] - 1):
-                _block_correction(current, residual, b, blocks, gram, solution, correction)
+                _block_solve(frozen, residual, b, blocks, grams[b], solution, correction)
             length = 0.0
             for k in range(n):
                 value = abs(correction[k])
@@ -373,9 +387,15 @@ def pinned_newton(  # pragma: no cover - compiled
                 leading[p] = min(length, max_correction)
             else:
                 corrected[p] += min(length, max_correction)
-            first = False
             if not length > tolerance[p, 1]:  # a correction this small: converged
                 break
+            if not first and length < 0.5 * before:  # contracting: the error left is about Θ/(1 − Θ) |Δθ|
+                contraction = length / before
+                if contraction / (1.0 - contraction) * length <= tolerance[p, 2]:
+                    sizes[p] = size * contraction
+                    break
+            before = length
+            first = False
         unfolded[p] = theta[p]
         _recentre(
             theta[p], offsets[p], exponential, joint_ptr, joint_columns, offset_slot, recentre_angle, work

@@ -54,11 +54,12 @@ import networkx as nx
 import numpy as np
 
 from ..algebra.compiled import compiled_kernels
-from ..algebra.rigid_motions import hat, rotation_log
+from ..algebra.rigid_motions import rotation_log
 from ..exceptions import ScrewkitValueError
 from ..graphs.jointtable import JointSpec, JointTable
 from ..graphs.twistgraph import graph_frame
-from ._batched_poe import KERNELS, BatchedProduct, orthonormal_axes, rigid_inverse
+from ._batched_poe import KERNELS, BatchedProduct, rigid_inverse
+from ._joint_rows import joint_rows, unscaled_screws
 
 __all__ = ["JointColumn", "KinematicModel", "KinematicState"]
 
@@ -178,7 +179,6 @@ class KinematicModel:
 
     def __init__(self, graph: nx.MultiDiGraph, joint_key: str = "joint", *, pinned: Any = None):
         self.point, self.length = graph_frame(graph, joint_key=joint_key)
-        self._point_hat = hat(self.point)
         self._source = (graph, joint_key)
         self._pinned_models: dict[Any, KinematicModel] = {}
         self.base = graph.graph["base"]
@@ -328,14 +328,7 @@ class KinematicModel:
         >>> model.unscaled(model.columns[0].row) + 0.0
         array([ 0.,  0.,  1.,  0., -5.,  0.])
         """
-        rows = np.asarray(rows, dtype=float)
-        s, s0 = rows[..., :3], rows[..., 3:]
-        out = np.empty(rows.shape)
-        out[..., :3] = s
-        moment = s0 * self.length + s @ self._point_hat.T  # s0 L + p × s
-        finite = np.einsum("...i,...i->...", s, s) > 1e-24
-        out[..., 3:] = np.where(finite[..., None], moment, s0)
-        return out
+        return unscaled_screws(rows, self.length, self.point)
 
     def to_scaled_points(self, points: Array) -> Array:
         """Points ``(..., 3)`` of the graph's frame in the scaled frame.
@@ -570,10 +563,13 @@ class KinematicModel:
         (3,)
         """
         shape = (state.theta.shape[0],) if shape is None else tuple(shape)
-        rows = self.unscaled(state.current.reshape(*shape, self.size, 6))  # a new array: the table's
-        for key, (_, _, indices) in self.joints.items():  # a ball's axes orthonormal, as a catalog's
-            if self.types[key] == "S":
-                rows[..., indices, :] = orthonormal_axes(rows[..., indices, :])
+        balls = [indices for key, (_, _, indices) in self.joints.items() if self.types[key] == "S"]
+        rows = joint_rows(  # a new array, the table's: a ball's axes orthonormal, as a catalog's
+            state.current.reshape(*shape, self.size, 6),
+            self.length,
+            self.point,
+            np.array(balls, dtype=np.int64).reshape(-1, 3),
+        )
         specs = {spec.name: spec for spec in reference.specs}
         if set(specs) != set(self.joints):
             raise ScrewkitValueError(

@@ -15,6 +15,7 @@ Examples
 
 from __future__ import annotations
 
+import functools
 from typing import Any
 
 import numpy as np
@@ -74,6 +75,9 @@ class PoseTask:
 
     def __init__(self, model: KinematicModel, coordinates: TaskCoordinates, *, complete: bool = False):
         self.model = model
+        #: What a solver prepares once for this task (:func:`~screwkit.core.loop_closure.close_loops`
+        #: keeps its system of equations here, built on the first call).
+        self.prepared: dict[str, Any] = {}
         self.coordinates = coordinates
         translation = np.array([k == "translation" for k in coordinates.kinds], dtype=bool)
         directions = coordinates.directions.reshape(-1, 3)
@@ -130,8 +134,8 @@ class PoseTask:
                 f"{self.coordinates.names}."
             )
         values = np.asarray(values, dtype=float)
-        position = np.linalg.solve(self.directions[self.translation], values[:, self.translation].T).T
-        vector = np.linalg.solve(self.directions[~self.translation], values[:, ~self.translation].T).T
+        position = values[:, self.translation] @ self._inverses[0].T
+        vector = values[:, ~self.translation] @ self._inverses[1].T
         angle = np.linalg.norm(vector, axis=1)
         axis = np.where(angle[:, None] > 0, vector / np.where(angle > 0, angle, 1.0)[:, None], 0.0)
         out = np.zeros((len(values), 4, 4))
@@ -139,6 +143,12 @@ class PoseTask:
         out[:, :3, 3] = position - out[:, :3, :3] @ self.local
         out[:, 3, 3] = 1.0
         return out
+
+    @functools.cached_property
+    def _inverses(self) -> tuple[Array, Array]:
+        """The inverses of the translation and of the rotation directions (rows), for :meth:`displacement`."""
+        directions = self.directions
+        return np.linalg.inv(directions[self.translation]), np.linalg.inv(directions[~self.translation])
 
     def scaled_targets(self, values: Array) -> Array:
         """Coordinates ``(B, n)`` in the graph's unit → the task's scaled values ``(B, m)`` (with a
@@ -332,6 +342,8 @@ class JointTask:
 
     def __init__(self, model: KinematicModel, joints: Any):
         self.model = model
+        #: What a solver prepares once for this task (as :attr:`PoseTask.prepared`).
+        self.prepared: dict[str, Any] = {}
         self.columns = []
         self.sliding = []
         for name in joints:

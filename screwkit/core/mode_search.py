@@ -17,11 +17,19 @@ unless the reference lies where modes meet; the other modes are found here globa
    configuration space, a generic point of it with probability one;
 3. every closed configuration classified by its platform's motion type and the order of its
    constraint wrench system (:func:`~screwkit.core.operation_modes.operation_modes`), each class one
-   mode, the reference's first.
+   mode, the reference's first;
+4. a class other than the reference's is kept only if a configuration of it, moved by :data:`NEARBY`
+   and closed again, still reads it (at a loose ``rtol`` a configuration near a singular one can
+   read a class of its own);
+5. a mode without rotations keeps its platform's orientation, so configurations of such a class
+   whose platforms are turned from each other (by more than :data:`TURN_TOL`) lie in different
+   modes: Tsai's 3-UPU translates with its platform as assembled and with it turned half a turn
+   about the vertical, two components of its configuration space with one motion type, read "3T"
+   and "3T (turned 180° about (0, 0, 1))". Each such mode carries its turn from the reference.
 
 It is a search, not a proof: a mode whose basin of attraction no draw falls in is missed, and two
-modes of the same motion type and constraint order read as one (Tsai's 3-UPU has two translational
-modes, the platform as assembled and turned half a turn about the vertical; they read as one 3T).
+modes of the same motion type and constraint order read as one, unless they are modes without
+rotations whose platforms are turned from each other (step 5).
 The joints have no limits here: a slider may run through zero and beyond, and a parallelogram built
 of two rods between spherical joints (the catalog's Delta-like robots) may stop being one, a mode the
 real robot's joint ranges exclude. The draws are seeded, so the same mechanism always gets the same
@@ -45,15 +53,16 @@ import numpy as np
 
 from ..algebra import backend as B
 from ..algebra.checks import checked_rtol
+from ..algebra.rigid_motions import rotation_log
 from ..exceptions import ScrewkitValueError
 from ..graphs.jointtable import JointTable
 from ..graphs.twistgraph import check_twist_graph
 from .kinematic_model import KinematicModel
-from .motion import _null_space, moved_configurations, newton_closure
+from .motion import _null_space, _with_free, moved_configurations, newton_closure
 from .operation_modes import OperationMode, operation_modes
 from .wrench_systems import analyze_table
 
-__all__ = ["OperationModes", "find_operation_modes"]
+__all__ = ["OperationModes", "find_operation_modes", "random_assemblies"]
 
 #: Configurations reached by moving the mechanism from its reference, and random assemblies tried.
 REACHED = 12
@@ -64,6 +73,13 @@ MAX_ASSEMBLIES = 10_000
 NEARBY = 0.05
 #: How many of a candidate mode's configurations are moved to check it (one staying in it suffices).
 RECHECKED = 3
+#: Two configurations of a mode without rotations whose platforms' orientations differ by more than
+#: this (radians; or ten times ``rtol``, if more) lie in different modes (module docstring, step 5).
+TURN_TOL = 1e-3
+#: The loop-closure residual (characteristic lengths) at which an assembly is closed, whatever the data's
+#: precision: Gauss–Newton closes the loops of rounded data too (an overconstrained linkage given rounded
+#: is a rigid structure whose configurations are exact solutions of its equations).
+CLOSED = 1e-9
 #: A slider's random travel, in characteristic lengths either way.
 TRAVEL = 2.0
 #: Gauss–Newton iterations closing a random assembly (far from the solution set: more than a step
@@ -118,7 +134,8 @@ class OperationModes(Sequence[OperationMode]):
         return iter(self.modes)
 
     def names(self) -> list[str]:
-        """Each mode's motion type, the reference's marked "(this one)".
+        """Each mode's name (:attr:`OperationMode.name`: its motion type, and a translational mode's
+        turn from the reference), the reference's marked "(this one)".
 
         Returns
         -------
@@ -129,7 +146,7 @@ class OperationModes(Sequence[OperationMode]):
         >>> find_operation_modes(load_mechanism("delta").twist_graph()).names()  # its rods: 2 S-S each
         ['3T (this one)', '3R']
         """
-        return [mode.motion_type + (" (this one)" if mode.reference else "") for mode in self.modes]
+        return [mode.name + (" (this one)" if mode.reference else "") for mode in self.modes]
 
     def describe(self) -> str:
         """One line: the modes found, and how (a search: others may exist).
@@ -157,19 +174,23 @@ class OperationModes(Sequence[OperationMode]):
         Returns
         -------
         dict
-            ``modes`` (per mode its ``motion_type``, ``constraint_order``, ``reference`` and
-            ``configurations``: how many of those classified fell in it), ``assemblies``, ``closed``,
-            ``reached`` and ``complete`` (always False: a search cannot rule other modes out).
+            ``modes`` (per mode its ``motion_type``, ``constraint_order``, ``reference``,
+            ``configurations``: how many of those classified fell in it, and ``turn``: a mode without
+            rotations' turn from the reference as a rotation vector, radians, else None),
+            ``assemblies``, ``closed``, ``reached`` and ``complete`` (always False: a search cannot
+            rule other modes out).
 
         Examples
         --------
         >>> found = find_operation_modes(load_mechanism("planar_3rrp").twist_graph())
-        >>> found.to_dict()["modes"]
-        [{'motion_type': '2T1R', 'constraint_order': 3, 'reference': True, 'configurations': 36}]
+        >>> found.to_dict()["modes"]  # doctest: +NORMALIZE_WHITESPACE
+        [{'motion_type': '2T1R', 'constraint_order': 3, 'reference': True, 'configurations': 36,
+          'turn': None}]
         """
         return {
             "modes": [{"motion_type": mode.motion_type, "constraint_order": mode.constraint_order,
-                       "reference": mode.reference, "configurations": len(mode.indices)}
+                       "reference": mode.reference, "configurations": len(mode.indices),
+                       "turn": None if mode.turn is None else list(mode.turn)}
                       for mode in self.modes],
             "assemblies": self.assemblies,
             "closed": self.closed,
@@ -178,7 +199,9 @@ class OperationModes(Sequence[OperationMode]):
         }
 
 
-def random_assemblies(model: KinematicModel, rng: np.random.Generator, count: int, rtol: float) -> np.ndarray:
+def random_assemblies(
+    model: KinematicModel, rng: np.random.Generator, count: int, tolerance: float = CLOSED
+) -> np.ndarray:
     """Joint values of random assemblies whose loops closed (module docstring, step 2).
 
     Parameters
@@ -187,8 +210,11 @@ def random_assemblies(model: KinematicModel, rng: np.random.Generator, count: in
     rng : numpy.random.Generator
     count : int
         Assemblies tried.
-    rtol : float
-        A loop closed to ``max(rtol, 1e-9)`` characteristic lengths is closed (the data's precision).
+    tolerance : float, default :data:`CLOSED`
+        The largest loop-closure residual (characteristic lengths) of an assembly taken as closed:
+        the loop closure's own, whatever the data's precision (a loose ``rtol`` would take an
+        assembly that Gauss–Newton left short of closing as one: at rtol 0.1, a Ragnar assembly
+        at a residual of 0.044 characteristic lengths).
 
     Returns
     -------
@@ -198,7 +224,7 @@ def random_assemblies(model: KinematicModel, rng: np.random.Generator, count: in
     Examples
     --------
     >>> model = KinematicModel(load_mechanism("planar_3rrp").twist_graph())
-    >>> random_assemblies(model, np.random.default_rng(0), 4, 1e-9).shape
+    >>> random_assemblies(model, np.random.default_rng(0), 4).shape
     (4, 9)
     """
     if count == 0:
@@ -207,7 +233,7 @@ def random_assemblies(model: KinematicModel, rng: np.random.Generator, count: in
     theta = rng.uniform(-1.0, 1.0, (count, model.size)) * np.where(slider, TRAVEL, np.pi)
     with np.errstate(all="ignore"):  # a draw that runs off is dropped below, not propagated
         theta, residual = newton_closure(model, theta, ASSEMBLY_ITERATIONS, ASSEMBLY_STEP)
-    closed = np.isfinite(residual) & (residual < max(rtol, 1e-9)) & np.all(np.isfinite(theta), axis=1)
+    closed = np.isfinite(residual) & (residual < tolerance) & np.all(np.isfinite(theta), axis=1)
     return theta[closed]
 
 
@@ -228,7 +254,8 @@ def find_operation_modes(
     rtol : float, default 1e-9
         The data's precision (as in :func:`~screwkit.core.motion.generic_configurations`) and the
         rank tolerance of the classification (the motion type at least 1e-6: closed configurations
-        carry round-off of the closure's size).
+        carry round-off of the closure's size). A random assembly is closed at the loop closure's
+        own :data:`CLOSED`, whatever ``rtol``.
     assemblies : int, default 24
         Random assemblies tried.
 
@@ -259,20 +286,53 @@ def find_operation_modes(
     rng = np.random.default_rng(SEED)
     model = KinematicModel(graph, joint_key)
     reached = moved_configurations(model, rng, REACHED, rank_rtol)
-    found = random_assemblies(model, rng, assemblies, rank_rtol)
+    found = random_assemblies(model, rng, assemblies)
     reference = JointTable.from_graph(graph, joint_key=joint_key)
     theta = np.concatenate([reached, found])
     table, modes = _classified(model, reference, theta, rank_rtol)
     kept = [modes[0]]
     for mode in modes[1:]:  # a class met away from a singular configuration: moved, it stays itself
         members = theta[list(mode.indices[:RECHECKED])]
-        moved = _moved_nearby(model, members, rng, rank_rtol)
+        moved = _moved_nearby(model, members, rng)
         both = np.concatenate([members, moved])
         again = _classified(model, reference, both, rank_rtol)[1]
         if any(other.motion_type == mode.motion_type and other.constraint_order == mode.constraint_order
                and any(i >= len(members) for i in other.indices) for other in again):
             kept.append(mode)
+    if not reference.free:  # a point task's task link has no orientation of its own
+        kept = _by_orientation(kept, model, theta, rank_rtol)
     return OperationModes(tuple(kept), table, int(assemblies), len(found), len(reached))
+
+
+def _by_orientation(
+    modes: list[OperationMode], model: KinematicModel, theta: np.ndarray, rtol: float
+) -> list[OperationMode]:
+    """Each mode without rotations split by its platform's orientation (module docstring, step 5),
+    the reference's first, then by decreasing number of configurations."""
+    state = model.state(*model.recentred(theta, {}))
+    rotations = model.displacement(state, model.platform)[:, :3, :3]
+    tolerance = max(TURN_TOL, 10 * rtol)
+    out = []
+    for mode in modes:
+        if any(kind in mode.motion_type for kind in "RH"):
+            out.append(mode)
+            continue
+        groups: list[list[int]] = []  # configurations whose platforms keep one orientation
+        for i in mode.indices:
+            for group in groups:
+                if np.linalg.norm(rotation_log(rotations[group[0]].T @ rotations[i])) < tolerance:
+                    group.append(i)
+                    break
+            else:
+                groups.append([i])
+        for group in groups:
+            turn = rotation_log(rotations[group[0]])
+            turned = bool(np.linalg.norm(turn) >= tolerance)
+            out.append(OperationMode(mode.motion_type, mode.constraint_order, tuple(group),
+                                     mode.reference and not turned,
+                                     (float(turn[0]), float(turn[1]), float(turn[2])) if turned
+                                     else (0.0, 0.0, 0.0)))
+    return sorted(out, key=lambda mode: (not mode.reference, -len(mode.indices), mode.indices[0]))
 
 
 def _classified(
@@ -280,18 +340,19 @@ def _classified(
 ) -> tuple[JointTable, list[OperationMode]]:
     """The joint table of closed configurations and their classes (the reference's first)."""
     # spherical joints' angles folded into their offsets: three screws never read at a gimbal lock
-    table = model.joint_table(model.state(*model.recentred(theta, {})), reference)
+    table = _with_free(model.joint_table(model.state(*model.recentred(theta, {})), reference), reference)
     modes = operation_modes(analyze_table(table, rtol=rtol, views=False),
                             analyze_table(reference, rtol=rtol, views=False))
     return table, modes
 
 
 def _moved_nearby(
-    model: KinematicModel, theta: np.ndarray, rng: np.random.Generator, rtol: float
+    model: KinematicModel, theta: np.ndarray, rng: np.random.Generator
 ) -> np.ndarray:
     """Each closed configuration moved by :data:`NEARBY` along a random motion of its loops and closed
-    again (those that close): a configuration that only lies near a singular one (within a loose
-    ``rtol``: a planar 3-RRP once read "1T1R" at one random assembly of 24) reads its mode once moved."""
+    again (those that close to :data:`CLOSED`): a configuration that only lies near a singular one
+    (within a loose ``rtol``: a planar 3-RRP once read "1T1R" at one random assembly of 24) reads its
+    mode once moved."""
     moved = []
     for row in theta:
         null = _null_space(model.loop_jacobian(model.state(row[None]))[0])
@@ -301,4 +362,4 @@ def _moved_nearby(
     if not moved:
         return np.zeros((0, theta.shape[1]))
     closed, residual = newton_closure(model, np.array(moved))
-    return closed[np.isfinite(residual) & (residual < max(rtol, 1e-9))]  # as random_assemblies
+    return closed[np.isfinite(residual) & (residual < CLOSED)]  # as random_assemblies

@@ -40,6 +40,8 @@ Examples
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import networkx as nx
 import numpy as np
 
@@ -50,7 +52,7 @@ from .kinematic_model import KinematicModel
 from .operation_modes import reference_mode_indices
 from .wrench_systems import analyze_table
 
-__all__ = ["generic_configurations", "moved_configurations", "newton_closure"]
+__all__ = ["generic_configurations", "moved_configurations", "newton_closure", "tangent_error"]
 
 Array = np.ndarray
 
@@ -138,17 +140,22 @@ def generic_configurations(
     if not same_mode:
         return table
     rank_rtol = max(rtol, B.DEFAULT_RTOL)
-    kept = reference_mode_indices(analyze_table(table, rtol=rank_rtol, views=False),
+    kept = reference_mode_indices(analyze_table(_with_free(table, reference), rtol=rank_rtol, views=False),
                                   analyze_table(reference, rtol=rank_rtol, views=False))
     return model.joint_table(model.state(theta[kept]), reference)
 
 
 def newton_closure(
-    model: KinematicModel, theta: Array, iterations: int = NEWTON_ITERATIONS, largest_step: float = np.inf
+    model: KinematicModel,
+    theta: Array,
+    iterations: int = NEWTON_ITERATIONS,
+    largest_step: float = np.inf,
+    *,
+    tolerance: float = CLOSURE_TOL,
 ) -> tuple[Array, Array]:
     """Joint values ``(B, n)`` moved onto the loop-closure equations by Gauss–Newton's minimum-norm
     correction (Nocedal & Wright, *Numerical Optimization*, 2006, §10.3), at most ``iterations``
-    times or until every loop is closed to :data:`CLOSURE_TOL`; and each row's largest residual.
+    times or until every loop is closed to ``tolerance``; and each row's largest residual.
 
     Parameters
     ----------
@@ -160,6 +167,9 @@ def newton_closure(
         is shortened to it, keeping its direction (a step bound, as a trust region's: Nocedal &
         Wright §4.1): far from the solution set the full step overshoots, and without the bound most
         random assemblies of a spatial linkage stall at a nonzero residual.
+    tolerance : float, default :data:`CLOSURE_TOL`
+        The largest residual (characteristic lengths) at which the iterations stop; 0 runs all of
+        them (to round-off, where a configuration's first-order motions are read: :func:`tangent_error`).
 
     Returns
     -------
@@ -179,17 +189,13 @@ def newton_closure(
     >>> bool(np.all(residual < CLOSURE_TOL))
     True
     """
-    theta = np.asarray(theta, dtype=float)
-    if theta.ndim != 2 or theta.shape[1] != model.size:
-        raise ScrewkitValueError(
-            f"Expected `theta` of shape (B, {model.size}) (the model's joint variables), got {theta.shape}."
-        )
+    theta = _checked_theta(model, theta)
     if len(theta) == 0:
         return theta.copy(), np.zeros(0)
     for _ in range(iterations):
         state = model.state(theta)
         residual = model.loop_residual(state)
-        if residual.shape[1] == 0 or np.max(np.abs(residual)) < CLOSURE_TOL:
+        if residual.shape[1] == 0 or np.max(np.abs(residual)) < tolerance:
             break
         jacobian = model.loop_jacobian(state)
         step = np.einsum("bji,bj->bi", jacobian, _damped_linear(jacobian, residual))
@@ -197,6 +203,81 @@ def newton_closure(
         theta = theta - step * np.minimum(1.0, largest_step / np.where(largest > 0, largest, 1.0))
     residual = model.loop_residual(model.state(theta))
     return theta, (np.max(np.abs(residual), axis=1) if residual.shape[1] else np.zeros(theta.shape[0]))
+
+
+def tangent_error(model: KinematicModel, theta: Array) -> Array:
+    """How far the first-order motions read at nearly closed configurations may turn from the true ones:
+    ``‖F‖ / σ²`` per configuration (``F`` the loop residual, ``σ`` the smallest nonzero singular value of
+    the loop-closure matrix ``J``, both scaled).
+
+    A configuration closed to a residual ``F`` lies about ``‖J⁺F‖ <= ‖F‖ / σ`` from a true one (one
+    Gauss–Newton step), where the loop-closure matrix differs by about that much times its Lipschitz
+    constant (about 1 in characteristic lengths: its columns are unit screws, their derivatives Lie
+    brackets of them); by Wedin's theorem (P.-Å. Wedin, "Perturbation bounds in connection with
+    singular value decomposition", BIT 12, 1972) the null space (the joint rates the loops allow, hence
+    the platform's twists) then turns by at most that difference over the gap ``σ``. Away from any
+    singular configuration ``σ`` is of order one and the error is the residual's size; next to a
+    configuration where operation modes meet ``σ`` is small (the branch's distance from it) and a
+    residual of 1e-11 can turn the twists by a few per cent (a 3-UPU configuration 1.7e-5 from its
+    transition set, closed to 7e-12, read a helical freedom of pitch -0.016).
+
+    Parameters
+    ----------
+    model : KinematicModel
+    theta : numpy.ndarray, shape (B, n)
+        Joint values (e.g. :func:`newton_closure`'s).
+
+    Returns
+    -------
+    numpy.ndarray, shape (B,)
+        Zero for a mechanism without loops; infinite where the loops admit every joint motion to
+        first order but do not close.
+
+    Raises
+    ------
+    ScrewkitValueError
+        If ``theta`` is not of shape ``(B, n)`` (``n`` the model's joint variables).
+
+    Examples
+    --------
+    The H4 at its reference (closed exactly) and with one joint moved off it:
+
+    >>> h4 = KinematicModel(load_mechanism("h4").twist_graph())
+    >>> off = np.zeros((2, h4.size))
+    >>> off[1, 0] = 1e-6
+    >>> error = tangent_error(h4, off)
+    >>> float(error[0]), bool(1e-7 < error[1] < 1e-2)
+    (0.0, True)
+    """
+    theta = _checked_theta(model, theta)
+    if len(theta) == 0 or not model.closing:
+        return np.zeros(len(theta))
+    state = model.state(theta)
+    residual = np.linalg.norm(model.loop_residual(state), axis=1)
+    sigma = np.linalg.svd(model.loop_jacobian(state), compute_uv=False)
+    nonzero = sigma > 1e-9 * np.maximum(sigma[:, :1], 1.0)  # the rank rule of _null_space
+    smallest = np.min(np.where(nonzero, sigma, np.inf), axis=1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        error = residual / smallest**2
+    return np.where(residual == 0.0, 0.0, np.where(np.isfinite(smallest), error, np.inf))
+
+
+def _with_free(table: JointTable, reference: JointTable) -> JointTable:
+    """A moved configurations' joint table with the reference's free rotations (a point task's,
+    :attr:`JointTable.free <screwkit.graphs.jointtable.JointTable.free>`), which
+    :meth:`~screwkit.core.kinematic_model.KinematicModel.joint_table` does not carry: their operation
+    modes are read as the reference's (:func:`screwkit.core.operation_modes.operation_modes`)."""
+    return replace(table, free=reference.free) if reference.free != table.free else table
+
+
+def _checked_theta(model: KinematicModel, theta: Array) -> Array:
+    """``theta`` as floats of shape ``(B, n)``, or a ScrewkitValueError naming it."""
+    theta = np.asarray(theta, dtype=float)
+    if theta.ndim != 2 or theta.shape[1] != model.size:
+        raise ScrewkitValueError(
+            f"Expected `theta` of shape (B, {model.size}) (the model's joint variables), got {theta.shape}."
+        )
+    return theta
 
 
 def moved_configurations(

@@ -48,12 +48,41 @@ class OperationMode:
     reference : bool
         True if the reference configuration (when one was given) has this motion type and
         constraint order.
+    turn : tuple of float, optional
+        For a mode without rotations, whose platform keeps one orientation, that orientation from
+        the reference's: a rotation vector (radians, the graph's frame); None otherwise
+        (:func:`screwkit.core.mode_search.find_operation_modes` sets it).
     """
 
     motion_type: str
     constraint_order: int
     indices: tuple[int, ...]
     reference: bool = False
+    turn: tuple[float, float, float] | None = None
+
+    @property
+    def name(self) -> str:
+        """The motion type, and a turned translational mode's turn.
+
+        Returns
+        -------
+        str
+            ``"3T"``, or ``"3T (turned 180° about (0, 0, 1))"`` for a mode whose platform keeps an
+            orientation other than the reference's.
+
+        Examples
+        --------
+        >>> OperationMode("3T", 3, (0,), turn=(0.0, 0.0, -np.pi)).name
+        '3T (turned 180° about (0, 0, 1))'
+        """
+        if self.turn is None or np.linalg.norm(self.turn) == 0.0:
+            return self.motion_type
+        angle = float(np.linalg.norm(self.turn))
+        direction = np.asarray(self.turn) / angle
+        if np.pi - angle < 1e-6:  # a half turn about a and about −a are one: its largest component > 0
+            direction = direction * np.sign(direction[np.argmax(np.abs(direction))])
+        axis = ", ".join(f"{value + 0.0:.4g}" for value in np.round(direction, 12))
+        return f"{self.motion_type} (turned {np.degrees(angle):.4g}° about ({axis}))"
 
 
 #: Configurations closed by Newton's method to a residual of 1e-9 carry their twists to about that, so
@@ -64,11 +93,27 @@ CLOSED_RTOL = 1e-6
 
 
 def _key(analysis: WrenchAnalysis) -> tuple[str, int]:
-    """A closed configuration's motion type (its pitch left out) and constraint order."""
+    """A closed configuration's motion type (its pitch left out) and constraint order; for a point task
+    (``free`` rotations about the point, :mod:`screwkit.robots.point_task`) the point's motion type."""
     twists = analysis.platform_twists  # its rows: a screw system would be read at its own rtol
     rtol = max(CLOSED_RTOL, analysis.rtol)
     label = str(motion_type(twists.basis, rtol=rtol, length_scale=twists.length_scale)).split(" (pitch")[0]
+    if analysis.free:
+        label = _point_label(label)
     return label, int(analysis.constraint_order)
+
+
+def _point_label(label: str) -> str:
+    """The motion type of a point task's point from its task link's (``"2T3R"``: ``"2T"``).
+
+    The task link's twists are the measured link's and every rotation about the point, so the
+    translations among them are the velocities the point can have (a twist ``(ω; v_P)`` at the point
+    less the rotation ``ω`` about it is the translation ``v_P``): the point's freedoms, all
+    translations; the rotations in the label are the three free ones (and the link's own, which the
+    task leaves free).
+    """
+    translations = label.split("T")[0] if "T" in label else "0"
+    return f"{translations}T" if translations != "0" else "0"
 
 
 def _rotations(label: str) -> int:

@@ -97,7 +97,8 @@ class AnalysisReport:
         where not tested): where several meet, the report says so and gives the pose's verdict in each.
     operation_modes : OperationModes or None
         The modes found (:func:`screwkit.core.mode_search.find_operation_modes`; a graph's report),
-        shown when more than one: "3 operation modes: 3T (this one), 3R and 2T1R (found in ...)".
+        shown when more than one: "4 operation modes: 3T (this one), 3R, 2T1R and 3T (turned 180°
+        about (0, 0, 1)) (found in ...)".
     """
 
     name: str

@@ -1,7 +1,11 @@
 """The ``screwkit`` command line: a thin layer over the public API (docs/architecture.md §7).
 
-``main(argv=None) -> int`` returns the exit status: 0 success, 1 analysis error (e.g. a pose out of
-reach), 2 usage error (unknown mechanism, malformed arguments). Errors are one line on stderr.
+``main(argv=None) -> int`` returns the exit status, the same rule for every command: 0 success; 2 bad
+input (a malformed command line, an unknown mechanism, or a value the analysis refuses as an argument:
+a plain :class:`~screwkit.exceptions.ScrewkitValueError` or :class:`~screwkit.exceptions.ScrewkitTypeError`,
+e.g. a condition index out of range, a quantity the mechanism does not have, a zero screw direction);
+1 the analysis could not be done (a pose out of reach, a degenerate geometry, a malformed or unreadable
+file, an output that cannot be written). Errors are one line on stderr.
 One ``run_*`` function per command; each prints text by default and JSON with ``--json``: the parser
 in :mod:`screwkit.interface.cli_parser`, the commands on one configuration in
 :mod:`screwkit.interface.cli_mechanism`, those over the pose space in :mod:`screwkit.interface.cli_workspace`.
@@ -44,13 +48,18 @@ import os
 import sys
 from collections.abc import Sequence
 
-from ..exceptions import ScrewkitError
+from ..exceptions import ScrewkitError, ScrewkitTypeError, ScrewkitValueError
 from ._cli_io import UsageError, error_reason
 from .cli_mechanism import run_analyze, run_graph, run_list, run_screw
 from .cli_parser import get_parser
 from .cli_workspace import run_certify, run_map, run_path, run_table4
 
-__all__ = ["console", "main"]
+__all__ = ["BAD_INPUT", "console", "main"]
+
+#: The errors that refuse an argument's type or value (exit status 2, as a usage error); their
+#: subclasses say the analysis could not be done (a pose out of reach, a degenerate geometry, a
+#: malformed file: exit status 1).
+BAD_INPUT = (ScrewkitValueError, ScrewkitTypeError)
 
 
 def console() -> int:
@@ -85,7 +94,7 @@ def console() -> int:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Run the command line; returns the exit status (0 ok, 1 analysis error, 2 usage error).
+    """Run the command line; returns the exit status (0 ok, 1 analysis error, 2 usage error or bad input).
 
     Parameters
     ----------
@@ -97,7 +106,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     int
         0 on success (also when no command is given: the help is printed; and when the reader of
         standard output closed the pipe), 1 for an analysis error or an output that cannot be
-        written, 2 for a malformed command line; each error is one line on standard error.
+        written, 2 for a malformed command line or a value refused as an argument (:data:`BAD_INPUT`);
+        each error is one line on standard error.
         ``--version`` and ``--help`` exit (:class:`SystemExit`, status 0) as argparse does.
 
     Examples
@@ -138,7 +148,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         if source and source.endswith(".toml") and source not in message:
             message = f"{source}: {message}"  # an analysis error of a file names the file
         print(f"screwkit {args.command}: error: {message}", file=sys.stderr)
-        return 1
+        return 2 if type(err) in BAD_INPUT else 1
     except OSError as err:  # writing the output (standard output on a full disk, ...)
         sys.stdout = open(os.devnull, "w")  # the final flush stays silent
         reason = error_reason(err)

@@ -15,6 +15,7 @@ from typing import Any
 
 from ..algebra.checks import MAX_RTOL, MIN_FLOAT_RTOL, MIN_LENGTH_SCALE
 from ..algebra.screwvalue import Screw
+from ..exceptions import ScrewkitError
 from ..graphs.reduction import equivalent_twist_graph
 from ..robots.catalog import list_mechanisms, load_mechanism
 from ..robots.snapshot import load_snapshot
@@ -230,15 +231,20 @@ def run_screw(args: argparse.Namespace) -> int:
                 f"{MAX_COORDINATE:g} times the direction (the axis's distance and pitch in range), "
                 f"got {' '.join(map(str, args.plucker))}"
             )
-    if args.revolute is not None:
-        if args.point is None:
-            raise UsageError("screwkit screw: error: --revolute needs --point X Y Z")
-        screw = Screw.revolute(args.revolute, args.point)
-    elif args.prismatic is not None:
-        screw = Screw.prismatic(args.prismatic)
-    else:
-        screw = Screw(args.plucker)
-    described = screw.to_dict()
+    if args.revolute is not None and args.point is None:
+        raise UsageError("screwkit screw: error: --revolute needs --point X Y Z")
+    given = [name for name in ("revolute", "prismatic") if getattr(args, name) is not None]
+    option = f"--{given[0]}" if given else "--plucker"
+    try:  # the screw is the command's whole input: whatever is refused in it is bad input (exit 2)
+        if args.revolute is not None:
+            screw = Screw.revolute(args.revolute, args.point)
+        elif args.prismatic is not None:
+            screw = Screw.prismatic(args.prismatic)
+        else:
+            screw = Screw(args.plucker)
+        described = screw.to_dict()  # the zero screw has no pitch
+    except ScrewkitError as err:
+        raise UsageError(f"screwkit screw: error: {option}: {err}") from err
     if args.json:
         print_text(json_text(described))
         return 0

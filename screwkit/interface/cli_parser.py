@@ -313,7 +313,9 @@ def _add_workspace_commands(commands: Any) -> None:
             f"--{name}", nargs="+", type=float, metavar="V", help=f"{name}: LO HI, or one value"
         )
     certify.add_argument("--resolution", type=float, default=None, metavar="R",
-                         help="smallest box width, in the coordinates' units (default: 1/256 of each range)")
+                         help="smallest box width, in the coordinates' units: of the length ranges "
+                              "when lengths and angles are both ranged (angles then 1/256 of their "
+                              "range), else of every range (default: 1/256 of each range)")
     certify.add_argument("--kinds", nargs="+", default=["constraint", "actuation", "serial"],
                          metavar="K", help="kinds to exclude (default: constraint actuation serial)")
     certify.add_argument("--max-boxes", type=int, default=200_000, metavar="N",

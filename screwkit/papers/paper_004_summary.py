@@ -60,8 +60,9 @@ def map_values(posed: PosedMechanism, quantity: str) -> np.ndarray:
     """
     if not _is_four_limb(getattr(posed.mechanism, "parameters", None)):
         raise ScrewkitValueError(
-            f"Expected a four-limb mechanism for quantity {quantity!r} (paper 004), got family "
-            f"{posed.mechanism.family!r}."
+            f"Expected a four-limb mechanism for quantity {quantity!r} (paper 004's index, defined on the "
+            f"four-limb geometry: Eqs. 15-16), got family {posed.mechanism.family!r}; the wrench-based "
+            "index of any mechanism is quantity 'wrench_lti'."
         )
     return np.asarray(getattr(transmission(posed), MAP_QUANTITIES[quantity]), dtype=float)
 

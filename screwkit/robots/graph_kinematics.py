@@ -34,7 +34,7 @@ from __future__ import annotations
 import dataclasses
 import functools
 from dataclasses import dataclass, field
-from typing import Any, cast
+from typing import Any
 
 import networkx as nx
 import numpy as np
@@ -47,6 +47,7 @@ from ..core.task_coordinates import TaskCoordinates, task_coordinates
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError, UnreachablePoseError
 from ..graphs.jointtable import JointTable
 from ..graphs.twistgraph import check_twist_graph, graph_frame
+from ._solved_poses import SolvedPoses, identities, pose_keys
 from .families import Family
 from .point_task import with_task_point
 
@@ -67,79 +68,6 @@ MAX_CACHED_POSES = 16384
 #: The small motion (characteristic lengths, radians) in each coordinate that decides whether the
 #: coordinates fix the platform's whole pose.
 PURE_MOTION_STEP = 0.2
-
-
-def _pose_keys(poses: Array) -> list[bytes]:
-    """Each pose's coordinates as bytes ``(m, n)`` → ``m`` keys (one call for the batch)."""
-    rows = np.ascontiguousarray(poses, dtype=float)
-    whole = rows.view(np.dtype((np.void, rows.dtype.itemsize * rows.shape[1])))  # a pose per item
-    return cast(list[bytes], whole.ravel().tolist())
-
-
-def _rows_of(index: dict[bytes, int], keys: list[bytes]) -> Array:
-    """Each key's row in ``index``, -1 where it has none."""
-    get = index.get
-    return np.fromiter((get(key, -1) for key in keys), dtype=np.int64, count=len(keys))
-
-
-class _SolvedPoses:
-    """Solved configurations remembered by pose (:func:`_pose_keys`): joint values and spherical
-    offsets in arrays, a slot per pose, emptied when :data:`MAX_CACHED_POSES` would be exceeded; and
-    the last continuation's model state (:attr:`recent`, a row per pose) until another pose is
-    remembered: a map asks which poses of a chunk are reachable, then analyses them there."""
-
-    def __init__(self) -> None:
-        self.slots: dict[bytes, int] = {}
-        self.used = 0  # rows written (a pose solved again gets a new row)
-        self.theta = np.zeros((0, 0))
-        self.offsets: dict[str, Array] = {}
-        self.recent: tuple[dict[bytes, int], KinematicState] | None = None
-
-    def __getstate__(self) -> dict[str, Any]:
-        """A copy (a Dask worker's) gets the remembered poses, not the last continuation's state."""
-        used, offsets = self.used, {key: value[: self.used] for key, value in self.offsets.items()}
-        return dict(slots=self.slots, used=used, theta=self.theta[:used], offsets=offsets, recent=None)
-
-    def recent_state(self, keys: list[bytes]) -> KinematicState | None:
-        """The last continuation's state at these poses (all remembered), None if it lacks one."""
-        if self.recent is None:
-            return None
-        index, state = self.recent
-        found = _rows_of(index, keys)
-        if found.size and found.min() < 0:
-            return None
-        if np.array_equal(found, np.arange(len(state.theta))):
-            return state
-
-        def rows(arrays: dict[Any, Array]) -> dict[Any, Array]:
-            return {key: value[found] for key, value in arrays.items()}
-
-        theta, current = state.theta[found], state.current[found]  # (no stacked arrays: optional)
-        return KinematicState(theta, rows(state.offsets), rows(state.links), current, rows(state.motions))
-
-    def add(self, keys: list[bytes], theta: Array, offsets: dict[str, Array]) -> None:
-        """Remember ``theta (k, n)`` and ``offsets`` (name → ``(k, 4, 4)``, every spherical joint)."""
-        self.recent = None  # (its poses' rows may now be another solution's)
-        if self.used + len(keys) > MAX_CACHED_POSES:
-            self.slots.clear()
-            self.used = 0
-        used, end = self.used, self.used + len(keys)
-        if end > len(self.theta):  # grown by doubling (the rows in use copied)
-            size = max(min(2 * end, MAX_CACHED_POSES), end, 256)
-            self.theta = _grown(self.theta[:used], (size, theta.shape[1]))
-            old = self.offsets
-            self.offsets = {k: _grown(old.get(k, v[:0])[:used], (size, 4, 4)) for k, v in offsets.items()}
-        self.theta[used:end] = theta
-        for key, value in offsets.items():
-            self.offsets[key][used:end] = value
-        self.slots.update(zip(keys, range(used, end), strict=True))
-        self.used = end
-
-
-def _grown(kept: Array, shape: tuple[int, ...]) -> Array:
-    out = np.empty(shape)
-    out[: len(kept)] = kept.reshape(-1, *shape[1:])  # (an empty start has no columns yet)
-    return out
 
 
 @dataclass(frozen=True, eq=False)
@@ -170,7 +98,7 @@ class GraphKinematics:
     angle_offsets: Array
     reference: JointTable = field(repr=False)
     point_task: bool = False
-    _cache: _SolvedPoses = field(default_factory=lambda: _SolvedPoses(), repr=False)
+    _cache: SolvedPoses = field(default_factory=lambda: SolvedPoses(MAX_CACHED_POSES), repr=False)
 
     @functools.cached_property
     def task(self) -> PoseTask:
@@ -204,34 +132,45 @@ class GraphKinematics:
         >>> h4.solve(np.array([[0, 0, -750, 0.1], [0, 0, -3000, 0]])).reached.tolist()
         [True, False]
         """
-        keys = _pose_keys(poses)
-        slots = _rows_of(self._cache.slots, keys)
+        keys = pose_keys(poses)
+        cache = self._cache
+        slots = cache.rows(keys)
         known, missing = np.flatnonzero(slots >= 0), np.flatnonzero(slots < 0)
-        theta = np.empty((len(poses), self.model.size))
-        offsets = {key: np.empty((len(poses), 4, 4)) for key, kind in self.model.types.items() if kind == "S"}
-        if known.size:
-            theta[known] = self._cache.theta[slots[known]]
+        spherical = [key for key, kind in self.model.types.items() if kind == "S"]
+        if not known.size:  # every pose new: the continuation's own arrays
+            solved = close_loops(self.model, self.task, self._targets(poses))
+            given = solved.offsets
+            offsets = {key: given[key] if key in given else identities(len(poses)) for key in spherical}
+            closed = dataclasses.replace(solved, offsets=offsets)
+        else:
+            theta = np.empty((len(poses), self.model.size))
+            offsets = {key: np.empty((len(poses), 4, 4)) for key in spherical}
+            theta[known] = cache.theta[slots[known]]
             for key, value in offsets.items():
-                value[known] = self._cache.offsets[key][slots[known]]
-        reached = np.ones(len(poses), dtype=bool)
-        residual = np.zeros(len(poses))
-        reasons = np.full(len(poses), "", dtype=object)
-        if not missing.size:
-            state = self._cache.recent_state(keys)
-            return ClosedConfigurations(theta, offsets, reached, residual, reasons, state)
-        solved = close_loops(self.model, self.task, self._targets(poses[missing]))
-        theta[missing] = solved.theta
-        for key, value in offsets.items():
-            value[missing] = solved.offsets.get(key, np.eye(4))
-        reached[missing], residual[missing] = solved.reached, solved.residual
-        reasons[missing] = solved.reasons
+                value[known] = cache.offsets[key][slots[known]]
+            reached = np.ones(len(poses), dtype=bool)
+            residual = np.zeros(len(poses))
+            reasons = np.full(len(poses), "", dtype=object)
+            if not missing.size:
+                state = cache.recent_state(keys)
+                return ClosedConfigurations(theta, offsets, reached, residual, reasons, state)
+            solved = close_loops(self.model, self.task, self._targets(poses[missing]))
+            theta[missing] = solved.theta
+            for key, value in offsets.items():
+                value[missing] = solved.offsets.get(key, np.eye(4))
+            reached[missing], residual[missing] = solved.reached, solved.residual
+            reasons[missing] = solved.reasons
+            closed = ClosedConfigurations(theta, offsets, reached, residual, reasons)
         fresh = missing[solved.reached]
-        self._cache.add([keys[i] for i in fresh], theta[fresh], {k: v[fresh] for k, v in offsets.items()})
+        if fresh.size == len(poses):  # (every row: no copy before the cache's own)
+            cache.add(keys, closed.theta, offsets)
+        else:
+            rows = {key: value[fresh] for key, value in offsets.items()}
+            cache.add([keys[i] for i in fresh], closed.theta[fresh], rows)
         if solved.state is not None:
-            rows = dict(zip([keys[i] for i in missing], range(missing.size), strict=True))
-            self._cache.recent = (rows, solved.state)
-        state = solved.state if missing.size == len(poses) else None
-        return ClosedConfigurations(theta, offsets, reached, residual, reasons, state)
+            asked = keys if missing.size == len(poses) else [keys[i] for i in missing]
+            cache.recent = (dict(zip(asked, range(missing.size), strict=True)), solved.state)
+        return closed
 
     def unreachable_reasons(self, poses: Array) -> Array:
         """Why each pose ``(m, n)`` is out of reach (empty where it is reached).
@@ -267,7 +206,7 @@ class GraphKinematics:
         >>> closed = h4.solve(np.array([[0, 0, -750, 0.1]]))
         >>> h4.remember(np.array([[0, 0, -750, 0.1]]), closed)
         """
-        keys = _pose_keys(poses)
+        keys = pose_keys(poses)
         rows = np.flatnonzero(closed.reached)
         offsets = {
             key: closed.offsets.get(key, np.broadcast_to(np.eye(4), (len(closed.theta), 4, 4)))[rows]

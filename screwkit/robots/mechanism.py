@@ -23,19 +23,14 @@ import numpy as np
 
 from ..exceptions import (
     ScrewkitTypeError,
-    ScrewkitValueError,
 )
 from ..graphs.jointtable import JointTable
-from .angles import pose_text, poses_in_radians
+from .angles import pose_text
 from .families import Family, families
 from .graph_kinematics import kinematics_of
-from .pose_conversions import displacement_coordinates, forward_posed
+from .pose_conversions import displacements_as_coordinates, forward_posed
+from .pose_reader import check_pose_range, pose_array, read_poses
 from .reach import random_reachable_poses, reachable_poses, unreachable_reasons
-from .toml_fields import (
-    MAX_ANGLE_DEGREES,
-    MAX_ANGLE_RADIANS,
-    MAX_COORDINATE,
-)
 
 if TYPE_CHECKING:
     from ..core.jacobian_matrices import Jacobians
@@ -191,7 +186,7 @@ class Mechanism(Generic[P, C]):
         >>> load_mechanism("v4").unreachable_reasons(np.array([[0, 0, -750, 0], [0, 0, -3000, 0]]))[1][:30]
         'Pose (x, y, z, phi) = (0, 0, -'
         """
-        return unreachable_reasons(self, poses, options)
+        return unreachable_reasons(self, pose_array(self, poses), options)
 
     @property
     def pose_names(self) -> tuple[str, ...]:
@@ -226,10 +221,9 @@ class Mechanism(Generic[P, C]):
         >>> load_mechanism("h4").configuration().theta.shape
         (4,)
         """
-        pose = poses_in_radians(pose, self.pose_names, self.angle_names, angles, argument="pose")
+        pose = read_poses(self, pose, "pose", angles=angles)
         chosen = self.default_pose if pose is None else pose
         self._check_options(options)
-        self.check_pose_range(pose, "pose")
         return self.family_protocol.inverse_kinematics(self.parameters, chosen, **options)
 
     def _check_options(self, options: Mapping[str, Any]) -> None:
@@ -323,79 +317,34 @@ class Mechanism(Generic[P, C]):
         from .posed import PosedMechanism
 
         self._check_options(options)
-        coordinates = self._coordinates_of(poses)  # 4×4 displacements carry no angle unit
-        if coordinates is poses:
-            coordinates = poses_in_radians(poses, self.pose_names, self.angle_names, angles)
-        self.check_pose_range(coordinates)
-        poses = coordinates
+        coordinates = displacements_as_coordinates(self, poses)  # 4×4 displacements carry no angle unit
+        poses = read_poses(self, coordinates, angles=angles if coordinates is poses else "rad")
         return PosedMechanism.create(self, poses, rtol=rtol, length_scale=length_scale, options=options)
 
-    def _coordinates_of(self, poses: Any) -> Any:
-        """Poses as coordinates: ``(..., 4, 4)`` rigid displacements of the platform relative to the
-        reference configuration (rotating about the platform point) converted; a 2-D ``(4, 4)``
-        array is four poses of a four-coordinate robot, one displacement otherwise."""
-        if poses is None or isinstance(poses, str):
-            return poses
-        try:
-            array = np.asarray(poses, dtype=float)
-        except (TypeError, ValueError):
-            return poses  # the callee names it
-        displacement = array.shape[-2:] == (4, 4) and (array.ndim > 2 or len(self.pose_names) != 4)
-        if not displacement:
-            return poses
-        if not np.all(np.isfinite(array)):
-            raise ScrewkitValueError("Expected finite `poses` (4×4 displacements), got NaN or infinity.")
-        flat = array.reshape(-1, 4, 4)
-        return displacement_coordinates(kinematics_of(self), flat).reshape(*array.shape[:-2], -1)
-
     def check_pose_range(self, poses: Any, argument: str = "poses") -> None:
-        """Refuse pose coordinates beyond :data:`MAX_COORDINATE` and angles beyond
-        :data:`MAX_ANGLE_RADIANS` (the radian form of the degrees rule, :data:`MAX_ANGLE_DEGREES`).
-
-        Shapes, types and NaN are left to the callee, which names them; this check only bounds sizes.
+        """Refuse pose coordinates and angles beyond their bounds
+        (:func:`screwkit.robots.pose_reader.check_pose_range`).
 
         Parameters
         ----------
         poses : array_like or None
-            Poses ``(..., n)`` in the file's length unit and radians (None: the default pose).
+            In the file's length unit and radians.
         argument : str, optional
-            The argument's name, for the error message.
+            Named by the message.
 
         Raises
         ------
         ScrewkitValueError
-            Naming the argument, the angle coordinate, the bound and the value.
+            Beyond a bound.
 
         Examples
         --------
-        >>> load_mechanism("h4").check_pose_range([0, 0, -750, 1e5])  # doctest: +ELLIPSIS
+        >>> load_mechanism("h4").check_pose_range([[0, 0, -750, 0], [0, 0, 1e101, 0]])  # doctest: +ELLIPSIS
         Traceback (most recent call last):
         ...
-        screwkit.exceptions.ScrewkitValueError: Expected the angle `phi` of `poses` to be at most 17453.3 ...
+        screwkit.exceptions.ScrewkitValueError: Expected pose coordinates up to 1e+100 in size ... got 1e+101.
         """
-        if poses is None or isinstance(poses, str):
-            return
-        with np.errstate(all="ignore"):
-            try:
-                values = np.abs(np.asarray(poses, dtype=float))
-            except (TypeError, ValueError):  # not numeric: the callee names it
-                return
-        size = np.nanmax(values, initial=0.0)
-        if np.isfinite(size) and size > MAX_COORDINATE:
-            raise ScrewkitValueError(
-                f"Expected pose coordinates up to {MAX_COORDINATE:g} in size ({self.length_unit}, "
-                f"radians), got {size:g}."
-            )
-        if values.ndim == 0 or values.shape[-1] != len(self.pose_names):
-            return
-        for name in self.angle_names:
-            angle = np.nanmax(values[..., self.pose_names.index(name)], initial=0.0)
-            if np.isfinite(angle) and angle > MAX_ANGLE_RADIANS:
-                raise ScrewkitValueError(
-                    f"Expected the angle `{name}` of `{argument}` to be at most {MAX_ANGLE_RADIANS:g} rad "
-                    f"({MAX_ANGLE_DEGREES:g} degrees) in magnitude (beyond it a double no longer holds the "
-                    f"angle to the analysis's precision), got {angle:g} rad."
-                )
+        check_pose_range(self, poses, argument)
 
     def random_poses(self, rng: np.random.Generator, count: int) -> Array:
         """Poses drawn uniformly in the *reachable* part of the operational workspace (radians),
@@ -455,7 +404,7 @@ class Mechanism(Generic[P, C]):
         >>> load_mechanism("v4").reachable(np.array([[0, 0, -750, 0], [0, 0, -3000, 0]]))
         array([ True, False])
         """
-        return reachable_poses(self, poses, options)
+        return reachable_poses(self, pose_array(self, poses), options)
 
     def wrench_diagram(
         self, pose: Any = None, *, angles: str = "rad"
@@ -591,10 +540,5 @@ class Mechanism(Generic[P, C]):
 
     def _one(self, pose: Any, options: dict[str, Any], angles: str) -> Any:
         """One pose through the composer (:meth:`at`)."""
-        chosen = None if pose is None else np.asarray(pose, dtype=float)
-        if chosen is not None and chosen.ndim != 1:
-            raise ScrewkitValueError(
-                f"Expected one pose of shape ({len(self.pose_names)},), got {chosen.shape}; "
-                "use at() for batches."
-            )
+        chosen = None if pose is None else pose_array(self, pose, "pose", one=True)
         return self.at(chosen, angles=angles, **options)[0]

@@ -21,7 +21,7 @@ from ..algebra.rigid_motions import rotation_log
 from ..exceptions import ScrewkitValueError
 from .graph_kinematics import GraphKinematics, kinematics_of
 
-__all__ = ["displacement_coordinates", "forward_posed"]
+__all__ = ["displacement_coordinates", "displacements_as_coordinates", "forward_posed"]
 
 Array = np.ndarray
 
@@ -86,6 +86,52 @@ def displacement_coordinates(kinematics: GraphKinematics, displacements: Array) 
                 f"{size[bad]:.3g} along a direction the motion does not have."
             )
     return values
+
+
+def displacements_as_coordinates(mechanism: Any, poses: Any, argument: str = "poses") -> Any:
+    """Poses as coordinates: ``(..., 4, 4)`` rigid displacements of the platform relative to the
+    reference configuration (rotating about the platform point) converted; a 2-D ``(4, 4)`` array
+    is four poses of a four-coordinate robot, one displacement otherwise. Anything else is returned
+    as it is.
+
+    Parameters
+    ----------
+    mechanism : Mechanism
+    poses : array_like or None
+    argument : str, optional
+        The argument's name, for the error messages.
+
+    Returns
+    -------
+    numpy.ndarray or the input
+        Coordinates ``(..., n)`` for displacements, else ``poses`` itself.
+
+    Raises
+    ------
+    ScrewkitTypeError
+        If a displacement holds something other than real numbers.
+    ScrewkitValueError
+        If a displacement is not finite.
+
+    Examples
+    --------
+    >>> shift = np.eye(4)[None].copy()
+    >>> shift[0, 2, 3] = -50.0
+    >>> displacements_as_coordinates(load_mechanism("h4"), shift).round(9).tolist()
+    [[0.0, 0.0, -800.0, 0.0]]
+    """
+    if poses is None or isinstance(poses, str):
+        return poses
+    try:
+        shape = np.shape(poses)
+    except ValueError:  # ragged: the callee names it
+        return poses
+    displacement = shape[-2:] == (4, 4) and (len(shape) > 2 or len(mechanism.pose_names) != 4)
+    if not displacement:
+        return poses
+    array = B.as_array(poses, argument, (4, 4), symbolic=False).astype(float)
+    flat = array.reshape(-1, 4, 4)
+    return displacement_coordinates(kinematics_of(mechanism), flat).reshape(*array.shape[:-2], -1)
 
 
 def forward_posed(robot: Any, values: Any, *, rtol: float | None, length_scale: float | None) -> Any:

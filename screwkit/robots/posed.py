@@ -39,15 +39,13 @@ import numpy as np
 
 from ..algebra import backend as B
 from ..algebra.checks import checked_length_scale, checked_rtol
-from ..algebra.display import html_section, html_table, number_text
 from ..core.jacobian_matrices import Jacobians
 from ..core.jacobians import jacobians_from_wrenches
 from ..core.singularity import classify_chunks, label_table
-from ..core.verdicts import SingularityReport
+from ..core.verdicts import LABELS, SingularityReport
 from ..core.wrench_systems import WrenchAnalysis, analyze_table
 from ..exceptions import ScrewkitError, ScrewkitIndexError, ScrewkitValueError, UnreachablePoseError
 from ..graphs.jointtable import JointTable
-from .angles import pose_scale, pose_text
 from .generic_poses import (
     GENERIC_DRAWS,
     SAMPLES,
@@ -58,7 +56,16 @@ from .generic_poses import (
     _samples,
     generic_samples,
 )
-from .pose_batch import checked_poses, flat_index, joint_table_of
+from .pose_batch import (
+    UNREACHABLE,
+    batch_html,
+    batch_repr,
+    checked_poses,
+    joint_table_of,
+    one_pose,
+    per_pose,
+    reachable_part,
+)
 from .reach import failures_by_index
 from .transmission import Transmission, wrench_transmission
 
@@ -129,10 +136,10 @@ class PosedMechanism:
 
         Examples
         --------
-        >>> PosedMechanism.create(load_mechanism("h4"), [0, 0, -750])
+        >>> PosedMechanism.create(load_mechanism("h4"), [0, 0, -750])  # doctest: +ELLIPSIS
         Traceback (most recent call last):
         ...
-        screwkit.exceptions.ScrewkitValueError: Expected `poses` to have shape (..., 4), got (3,).
+        screwkit.exceptions.ScrewkitValueError: Expected `poses` to have shape (..., 4), got (3,) ...
         """
         if failures:  # the unreached poses' NaN coordinates are part of the answer
             missing = np.isnan(np.asarray(poses, dtype=float))
@@ -202,14 +209,7 @@ class PosedMechanism:
         >>> posed[0]
         PosedMechanism('H4' at x = 30 mm, y = -20 mm, z = -750 mm, phi = 17.19 deg, rtol=1e-09)
         """
-        length = "" if self.length_scale is None else f", length_scale={self.length_scale:g}"
-        m = self.mechanism
-        where = (
-            f" at {pose_text(self.poses, m.pose_names, m.angle_names, m.length_unit)}"
-            if self.shape == ()
-            else f", shape={self.shape}"
-        )
-        return f"PosedMechanism({m.name!r}{where}, rtol={self.rtol:g}{length})"
+        return batch_repr(self)
 
     def _repr_html_(self) -> str:
         """Jupyter: the poses with their units and each pose's verdict as a table (the first 20 of a
@@ -219,20 +219,7 @@ class PosedMechanism:
         -------
         str
         """
-        m = self.mechanism
-        flat = self.poses.reshape(-1, len(m.pose_names))
-        scale = pose_scale(m.pose_names, m.angle_names, "deg")
-        verdicts = np.asarray(self.verdicts).reshape(-1) if self.shape != () else [self.singularity.verdict]
-        header = [f"{n} ({'deg' if n in m.angle_names else m.length_unit})" for n in m.pose_names]
-        rows = [
-            [*(number_text(v, 6) for v in pose / scale), verdict]
-            for pose, verdict in zip(flat[:20], verdicts, strict=False)
-        ]
-        more = f"<p>… {len(flat)} poses in all</p>" if len(flat) > 20 else ""
-        body = html_table([*header, "verdict"], rows) + more
-        if self.shape == ():
-            body += self.singularity._repr_html_()
-        return html_section(f"{m.name} at {len(flat)} pose(s)", body)
+        return batch_html(self)
 
     @functools.cached_property
     def failures(self) -> dict[tuple[int, ...], str]:
@@ -257,7 +244,8 @@ class PosedMechanism:
         """The family's configuration over the batch (inverse kinematics)."""
         if self._failures:  # known out of reach (e.g. by the forward kinematics): no configuration
             index, reason = next(iter(self._failures.items()))
-            raise UnreachablePoseError(f"Pose {index} is out of reach: {reason}.")
+            where = f"Pose {index}" if index else "The pose"
+            raise UnreachablePoseError(f"{where} is out of reach: {reason.rstrip('.')}.")
         try:
             return self.mechanism.configuration(self.poses, **self.options)
         except ScrewkitError:
@@ -287,7 +275,10 @@ class PosedMechanism:
         Unless the joint table is already there, each chunk of :data:`CHUNK` poses goes through
         the inverse kinematics, its joint table and the core in turn, so memory stays bounded by
         the chunk and the results; the whole table is computed only if a per-pose view asks. One
-        pose (shape ``()``): its :attr:`singularity`.
+        pose (shape ``()``): its :attr:`singularity`. It needs every pose reached (else
+        :class:`~screwkit.exceptions.UnreachablePoseError` naming the first out of reach); the per-pose
+        views (:attr:`verdicts`, :attr:`codes`, :attr:`closeness`, :attr:`redundancy`, indexing) mark
+        a pose out of reach instead.
         """
         if self.shape == ():
             return self.singularity
@@ -325,30 +316,49 @@ class PosedMechanism:
             yield protocol.joint_table(configuration(flat[start : start + CHUNK], **self.options))
 
     @property
+    def failures_known(self) -> bool:
+        """Whether some poses are known to be out of reach from the start (e.g. by the forward kinematics)."""
+        return bool(self._failures)
+
+    @functools.cached_property
+    def reached_part(self) -> tuple[Array, PosedMechanism | None] | None:
+        """None when every pose is reached, else the flat mask of those that are and the posed mechanism
+        at them (:func:`~screwkit.robots.pose_batch.reachable_part`): what the per-pose views read."""
+        return reachable_part(self)
+
+    @property
     def verdicts(self) -> Array:
-        """``"regular"``, ``"constraint singularity"``, ... per pose (an object array)."""
-        return np.asarray(self.singularities.verdict)
+        """``"regular"``, ``"constraint singularity"``, ... per pose (an object array), ``"unreachable"``
+        where a pose is out of reach (the reason in :attr:`failures`)."""
+        return per_pose(self, lambda p: np.asarray(p.singularities.verdict), UNREACHABLE, object)
 
     @property
     def codes(self) -> Array:
-        """Per pose: bit 1 constraint, 2 actuation, 4 serial (:attr:`SingularityReport.codes`)."""
-        return self.singularities.codes
+        """Per pose: bit 1 constraint, 2 actuation, 4 serial (:attr:`SingularityReport.codes`), ``-1`` out
+        of reach."""
+        return per_pose(self, lambda p: p.singularities.codes, -1, np.int64)
 
     @property
     def redundancy(self) -> Any:
         """The degree of actuation redundancy per pose, the actuated joints minus the freedoms they drive
         (:attr:`SingularityReport.redundancy <screwkit.core.verdicts.SingularityReport.redundancy>`; an int
-        for one pose)."""
-        return self.singularities.redundancy
+        for one pose), ``-1`` out of reach."""
+        out = per_pose(self, lambda p: p.singularities.redundancy, -1, np.int64)
+        return int(out) if self.shape == () else out
 
     @property
     def closeness(self) -> dict[str, Array]:
-        """The closeness measures per pose (:mod:`screwkit.core.singularity`)."""
-        return self.singularities.closeness
+        """The closeness measures per pose (:mod:`screwkit.core.singularity`), NaN out of reach."""
+        if self.reached_part is None:
+            return self.singularities.closeness
+        return {k: per_pose(self, lambda p, k=k: p.singularities.closeness[k], np.nan, float) for k in LABELS}
 
     @functools.cached_property
     def jacobians(self) -> Jacobians:
-        """``A χ̇ = B θ̇`` per pose over the family's nominal twists (one pose: from its :attr:`analysis`)."""
+        """``A χ̇ = B θ̇`` per pose over the family's nominal twists (one pose: from its :attr:`analysis`).
+        Over a batch they need every pose reached: a pose out of reach raises
+        :class:`~screwkit.exceptions.UnreachablePoseError` naming it (``posed.poses[posed.reachable]``
+        are those reached)."""
         analysis = self.analysis if self.shape == () else self.singularities.analysis
         return jacobians_from_wrenches(analysis, self.twist_basis, rtol=self.rtol)
 
@@ -446,12 +456,7 @@ class PosedMechanism:
             raise ScrewkitIndexError(
                 f"Expected a batch to index, got one pose (shape ()) at {self.poses.tolist()}."
             )
-        flat = flat_index(self.shape, index)
-        one = PosedMechanism(
-            self.mechanism, self.poses[index], self.rtol, self.length_scale, self.options, (self, flat)
-        )
-        one.__dict__["joints"] = self.joints[index]  # the batch's row: no new inverse kinematics
-        return one
+        return one_pose(self, index)
 
     @functools.cached_property
     def graph(self) -> nx.MultiDiGraph:
@@ -491,10 +496,10 @@ class PosedMechanism:
         """
         self._one("diagram_and_sampler()")
         mechanism, rtol = self.mechanism, self.rtol
+        own = [] if "analysis" in self.__dict__ else [self.joints[None]]  # first: a pose out of reach says so
         stream = np.random.default_rng(0)
         generic = _reachable_table(mechanism, np.random.default_rng(2026), GENERIC_DRAWS)
         sampled = _reachable_table(mechanism, stream, 2 * SAMPLES)
-        own = [] if "analysis" in self.__dict__ else [self.joints[None]]
         tables = [*own, *(t for t in (generic, sampled) if t is not None)]
         if not tables:  # this pose analysed already, no random pose reachable
             return [], None, stream

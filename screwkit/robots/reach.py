@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from ..exceptions import ScrewkitTypeError, ScrewkitValueError, UnreachablePoseError
+from ..exceptions import CatalogError, ScrewkitTypeError, ScrewkitValueError, UnreachablePoseError
 
 __all__ = [
     "MAX_REJECTION_ROUNDS",
@@ -162,8 +162,10 @@ def random_reachable_poses(robot: Any, rng: np.random.Generator, count: int) -> 
     ScrewkitTypeError
         If ``rng`` is not a numpy Generator.
     ScrewkitValueError
-        If ``count`` is out of range, or fewer than 1 draw in :data:`MAX_REJECTION_ROUNDS` is
-        reachable.
+        If ``count`` is out of range.
+    CatalogError
+        If fewer than 1 draw in :data:`MAX_REJECTION_ROUNDS` is reachable (the file's workspace box
+        is mostly out of reach).
 
     Examples
     --------
@@ -183,7 +185,7 @@ def random_reachable_poses(robot: Any, rng: np.random.Generator, count: int) -> 
         kept = np.concatenate([kept, draws[reachable_poses(robot, draws, {})]])
     if len(kept) >= count:
         return kept[:count]
-    raise ScrewkitValueError(
+    raise CatalogError(
         f"{robot.source}: [workspace]: only {len(kept)} of the poses drawn in {MAX_REJECTION_ROUNDS} "
         f"rounds are reachable, {count} wanted: the workspace box is mostly out of reach."
     )

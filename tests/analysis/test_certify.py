@@ -288,3 +288,17 @@ def test_float_route_is_paper_002_equations_6_and_7_and_the_core_det_a(mechanism
     assert np.isnan(values["actuation"][20:]).all() and np.isnan(values["constraint"][20:]).all()
     with pytest.raises(sk.ScrewkitValueError, match="`poses`"):
         model.values([[0.0, 0.0, -750.0]])
+
+
+def test_a_scalar_resolution_applies_to_lengths_and_angles_get_their_default():
+    # a length and an angle do not compare: a scalar resolution of 4 mm once also bounded phi's boxes at
+    # 4 rad, wider than its whole range, so phi was never split; now the lengths take it and each angle
+    # range its default, 1/RESOLUTION_DIVISIONS of its width
+    region = {"x": 150.0, "y": (-100.0, 100.0), "z": -800.0, "phi": (-math.pi / 3, math.pi / 3)}
+    result = C.certify(QUATTRO_M, region, resolution=4.0, max_boxes=200)
+    assert result.resolution == {"y": 4.0, "phi": (2 * math.pi / 3) / C.RESOLUTION_DIVISIONS}
+    assert min(b.bounds["phi"][1] - b.bounds["phi"][0] for b in result.boxes) < math.pi / 3
+    # ranges of one kind all take the number; a mapping gives each its own
+    assert C.certify(QUATTRO_M, {**region, "y": 0.0}, resolution=0.5, max_boxes=5).resolution == {"phi": 0.5}
+    given = C.certify(QUATTRO_M, region, resolution={"phi": 0.1}, max_boxes=5).resolution
+    assert given == {"y": 200.0 / C.RESOLUTION_DIVISIONS, "phi": 0.1}

@@ -605,3 +605,84 @@ def test_quantity_constants_have_one_home():
     sources = [pathlib.Path(m.__file__).read_text(encoding="utf-8")
                for m in (sk, quantities, sk.workspace)]
     assert sum(s.count('("lti", "kappa", "zeta")') for s in sources) == 1
+
+
+# the wrench-based transmission index over poses, for a graph mechanism (issue 19) ----------------------
+def _planar_3rpr_output_transmission(base, platform, pose):
+    """A 3-RPR's wrench-based LTI, derived by hand: each prismatic actuator's input transmission is 1
+    (its force lies along its own sliding); with the other two legs held, the platform turns about the
+    meet P of their lines, so leg j's output transmission is the cosine between the leg and the
+    velocity of its platform joint C_j, which is normal to C_j − P (Wang, Wu & Liu 2010's pressure
+    angle). The LTI is the least of them."""
+    centre = platform.mean(axis=0)
+    c, s = np.cos(pose[2]), np.sin(pose[2])
+    moved = (platform - centre) @ np.array([[c, s, 0], [-s, c, 0], [0, 0, 1]]) + [pose[0], pose[1], 0]
+    legs = (moved - base) / np.linalg.norm(moved - base, axis=1)[:, None]
+    cosines = []
+    for j in range(3):
+        k, m = [i for i in range(3) if i != j]
+        a, _ = np.linalg.solve(np.array([legs[k, :2], -legs[m, :2]]).T, base[m, :2] - base[k, :2])
+        arm = moved[j, :2] - (base[k, :2] + a * legs[k, :2])
+        cosines.append(abs(legs[j, :2] @ [-arm[1], arm[0]]) / np.linalg.norm(arm))
+    return min(cosines)
+
+
+def test_a_graph_mechanisms_map_of_the_wrench_based_transmission_index():
+    from ..mechanisms import PLANAR_BASE, PLANAR_PLATFORM, planar_3rpr
+
+    robot = sk.mechanism(planar_3rpr(PLANAR_BASE, PLANAR_PLATFORM))
+    x0, y0, _ = robot.reference_pose
+    result = W.grid_map(robot, "wrench_lti", x=("x", x0 - 0.1, x0 + 0.1, 3), y=("y", y0, y0 + 0.1, 2),
+                        fixed={"phi": 0.2}, loci=False)
+    expected = [[_planar_3rpr_output_transmission(PLANAR_BASE, PLANAR_PLATFORM, (x, y, 0.2))
+                 for x in result.x_values] for y in result.y_values]
+    np.testing.assert_allclose(result.values, expected, rtol=1e-9)
+    # paper 004's LTI is defined on the four-limb geometry: refused, naming the index that applies
+    with pytest.raises(sk.ScrewkitValueError, match=r"Expected a four-limb mechanism for quantity 'lti' "
+                       r"\(paper 004's index.*got family 'loop_closure'; the wrench-based index of any "
+                       r"mechanism is quantity 'wrench_lti'\.$"):
+        W.grid_map(robot, "lti", x=("x", x0 - 0.1, x0 + 0.1, 2), y=("y", y0, y0 + 0.1, 2), loci=False)
+
+
+# maps and paths over poses partly out of reach of a graph mechanism ----------------------------------
+def _five_bar_end_point():
+    """A five-bar (base joints A1 = (0, 0), A2 = (1, 0); proximal links of length 1; distal links of
+    length √0.89 meeting at C = (0.5, 1.8)) whose task is the point C: it reaches the points within
+    1 + √0.89 of both base joints."""
+    from ..robots.test_graph_mechanism import five_bar
+
+    return sk.mechanism(five_bar(), task=("distal1", [0.5, 1.8, 0]))
+
+
+FIVE_BAR_REACH = 1.0 + np.sqrt(0.89)
+
+
+def test_a_graph_mechanisms_map_and_path_over_poses_out_of_reach():
+    robot = _five_bar_end_point()
+    result = W.grid_map(robot, "verdict", x=("x", 0.3, 0.7, 3), y=("y", 1.6, 2.0, 3), loci=False)
+    xs, ys = np.meshgrid(result.x_values, [1.6, 1.8, 2.0])
+    within = (np.hypot(xs, ys) < FIVE_BAR_REACH) & (np.hypot(xs - 1.0, ys) < FIVE_BAR_REACH)
+    assert 0 < within.sum() < within.size
+    np.testing.assert_array_equal(result.reachable, within)
+    assert (result.values[~within] == -1).all() and (result.values[within] == 0).all()
+    closeness = W.grid_map(robot, "closeness", x=("x", 0.3, 0.7, 3), y=("y", 1.6, 2.0, 3), loci=False)
+    assert np.isnan(closeness.values[~within]).all() and np.isfinite(closeness.values[within]).all()
+    # straight up from C the path leaves the reach where C is 1 + √0.89 from both base joints
+    path = PA.check_path(robot, [0.5, 1.8], [0.5, 4.0], samples=30)
+    edge = np.sqrt(FIVE_BAR_REACH**2 - 0.25)
+    assert abs(path.crossing.pose["y"] - edge) < 1e-6 and path.crossing.kind in ("unreachable", "serial")
+
+
+def test_a_paths_dict_keeps_the_reference_value_of_what_it_leaves_out():
+    # the documented fill: a dict's missing coordinates take the reference pose's values (here a graph
+    # mechanism's reference configuration), shown in the result; an array must give every coordinate
+    from ..mechanisms import PLANAR_BASE, PLANAR_PLATFORM, planar_3rpr
+
+    robot = sk.mechanism(planar_3rpr(PLANAR_BASE, PLANAR_PLATFORM))
+    x0, y0, phi0 = robot.reference_pose.tolist()
+    path = PA.check_path(robot, {"x": x0 - 0.05}, {"x": x0 + 0.05}, samples=5)
+    assert path.start == {"x": x0 - 0.05, "y": y0, "phi": phi0}
+    assert path.end == {"x": x0 + 0.05, "y": y0, "phi": phi0}
+    with pytest.raises(sk.ScrewkitValueError, match=r"Expected `end` to have shape \(3,\), got \(2,\) "
+                       r"\(one pose of coordinates x, y, phi\)\.$"):
+        PA.check_path(robot, [x0, y0, phi0], [x0, y0])

@@ -10,7 +10,7 @@ from hypothesis import strategies as st
 
 from screwkit.algebra.rigid_motions import exp_screw, rotation_log, rotation_matrix
 from screwkit.core import loop_closure
-from screwkit.core._batched_poe import orthonormal_axes
+from screwkit.core._joint_rows import orthonormal_axes
 from screwkit.core.kinematic_model import KinematicModel
 from screwkit.core.kinematic_tasks import JointTask, PoseTask
 from screwkit.core.loop_closure import close_loops

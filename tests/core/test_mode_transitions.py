@@ -15,14 +15,14 @@ Expected values are hand derivations from the geometry, checked by rank computat
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from screwkit.core.mobility import generic_mobility
 from screwkit.core.mode_transitions import modes_at
 from screwkit.core.motion import generic_configurations
 from screwkit.exceptions import ScrewkitValueError, TwistGraphError
-from tests.mechanisms import bennett, bennett_axes, bennett_links, moved, tsai_3upu
+from tests.mechanisms import UPU_ANGLES, Z, bennett, bennett_axes, bennett_links, moved, tsai_3upu
 from tests.strategies import rigid_motions
 
 
@@ -111,8 +111,20 @@ def test_bennett_linkage_moves_with_one_freedom():
         assert not np.allclose(moved[2][0], axes[2][0], atol=1e-3)  # a configuration away from the start
 
 
+# Frames in which a step of modes_at once ended between the two branches: closed to 7e-12 but 1.7e-5
+# from the transition set, its twists read "2T1H" (pitch -0.016, and -1.5e-6 in the second frame)
+TURNED = np.array([[-0.33528188644529466, -0.42991190899217, 0.8383088972022144],
+                   [0.42991190899217, 0.7219509357057997, 0.5421831765558836],
+                   [-0.8383088972022144, 0.5421831765558836, -0.057232822151094265]])
+TURNED_AGAIN = np.array([[-0.4030964372318595, -0.37306472673008767, 0.8356649878753963],
+                         [0.37306472673008767, 0.7668345457936953, 0.5222906174221227],
+                         [-0.8356649878753963, 0.5222906174221227, -0.16993098302555465]])
+
+
 @settings(max_examples=4, deadline=None)
 @given(rigid_motions(), st.sampled_from([1.0, 1000.0]))
+@example((TURNED, np.zeros(3)), 1.0)
+@example((TURNED_AGAIN, np.zeros(3)), 1.0)
 def test_modes_at_same_in_any_frame_and_length_unit(motion, factor):
     rotation, translation = motion
     result = modes_at(moved(tsai_3upu((0.1, 0.05, 0.0)), rotation, translation, factor))
@@ -137,3 +149,43 @@ def test_a_pitch_of_round_off_is_no_helical_mode():
 def test_not_a_twist_graph_is_refused_by_name():
     with pytest.raises(TwistGraphError, match=r"Expected a networkx\.MultiDiGraph, got NoneType"):
         modes_at(None)
+
+
+def meeting_positions(axis, platform_radius=0.5):
+    """Where Tsai's 3-UPU's turning (3R) mode meets its translating one (R = I), approached by turns
+    about ``axis``: the positions p solving p · m_i = (1 − ρ) r_i · k, m_i = k − (k · u_i) u_i
+    (module docstring of tests/core/test_mode_search.py: (p + R c_i − a_i) · (u_i × R u_i) = 0 with
+    R = exp(θ k̂), divided by sin θ, as θ → 0; base radius 1, c_i = ρ r_i)."""
+    k = np.asarray(axis, dtype=float) / np.linalg.norm(axis)
+    rows, values = [], []
+    for angle in UPU_ANGLES:
+        r = np.array([np.cos(angle), np.sin(angle), 0.0])
+        u = np.cross(Z, r)
+        rows.append(k - (k @ u) * u)
+        values.append((1 - platform_radius) * (r @ k))
+    return np.linalg.solve(np.array(rows), values)
+
+
+def test_which_modes_pass_through_the_3upu_in_its_base_plane():
+    # Derivation (the 3-UPU's three kinds of mode: tests/core/test_mode_search.py). The 3T mode
+    # (R = I) and the 2T1R mode (R about z, p_z = 0) contain (R = I, p0 = (0.1, 0.05, 0)). The 3R
+    # mode reaches R = I only in the limit of its equations divided by sin θ, R = exp(θ k̂):
+    #     (p − (1 − ρ) r_i) · (k − (k · u_i) u_i) = 0,   i = 1, 2, 3.
+    # At p0 (horizontal, r_i ⊥ u_i) the left side is s_i (k_h · r_i), s_i = p0 · r_i − (1 − ρ) ≠ 0:
+    # only k = ±z, the axis of the planar mode itself. Next to it, k = (ε g, 1), p_z = ε q, the
+    # equations to first order in ε read q + s_i (g · r_i) = 0: a 3 × 3 system in (q, g) whose
+    # matrix [1, s_i r_i] is invertible, so g = 0 (implicit function theorem): the solutions next
+    # to (R = I, p0) are those of the planar mode, and the 3R mode does not pass through the pose.
+    p0 = np.array([0.1, 0.05, 0.0])
+    radial = np.array([[np.cos(a), np.sin(a), 0.0] for a in UPU_ANGLES])
+    s = radial @ p0 - 0.5
+    assert np.all(np.abs(s) > 0.3)
+    matrix = np.column_stack([np.ones(3), s[:, None] * radial[:, :2]])
+    assert abs(np.linalg.det(matrix)) > 0.1 * np.prod(np.abs(s))
+    assert sorted(mode.motion_type for mode in modes_at(tsai_3upu(p0)).modes) == ["2T1R", "3T"]
+    # the control: where the derivation says the 3R mode meets the 3T mode (turns about k), the
+    # search finds both, with one more first-order motion (the turn about k)
+    for axis in ([1.0, 1.0, 1.0], [0.3, -0.2, 1.0]):
+        result = modes_at(tsai_3upu(meeting_positions(axis)))
+        assert result.first_order == 4
+        assert sorted(mode.motion_type for mode in result.modes) == ["3R", "3T"]

@@ -9,8 +9,9 @@ moved four-bar its link lengths.
 import numpy as np
 import pytest
 
+from screwkit.core.kinematic_model import KinematicModel
 from screwkit.core.mobility import generic_analyses
-from screwkit.core.motion import generic_configurations
+from screwkit.core.motion import generic_configurations, newton_closure, tangent_error
 from screwkit.exceptions import ScrewkitValueError
 from screwkit.graphs.joints import revolute
 from screwkit.graphs.twistgraph import twist_graph
@@ -96,3 +97,44 @@ def test_error_a_structure_that_cannot_move():
     ], dof=1)
     with pytest.raises(ScrewkitValueError, match="Expected a mechanism that can move"):
         generic_configurations(triangle, np.random.default_rng(0), 2)
+
+
+def _null(matrix, tol=1e-9):
+    """Orthonormal null-space basis (columns), by an SVD written here."""
+    _, sigma, vt = np.linalg.svd(matrix)
+    return vt[int(np.sum(sigma > tol * sigma[0])):].T
+
+
+@pytest.mark.parametrize("angle", [1e-2, 1e-4])
+def test_tangent_error_bounds_how_far_the_first_order_motions_turn(angle):
+    # Tsai's 3-UPU in its base plane: turned by `angle` about z it is a configuration of its planar
+    # mode `angle` (in joint-space terms, the loop-closure matrix's smallest nonzero singular value)
+    # from where the planar and translating modes meet. Pushed off it by delta along the direction
+    # of that singular value, the loops open by sigma * delta, and the joint rates they allow turn by
+    # about delta / sigma (measured here as the sine of the largest principal angle between the null
+    # spaces): tangent_error = |F| / sigma^2 must bound that turn, within a small factor
+    model = KinematicModel(M.tsai_3upu((0.1, 0.05, 0.0)))
+    start = np.zeros((1, model.size))
+    state = model.state(start)
+    allowed = _null(model.loop_jacobian(state)[0])
+    platform = model.link_jacobian(state, "platform")[0] @ allowed  # the platform's twists (scaled)
+    about_z = allowed @ np.linalg.lstsq(platform, [0, 0, 1.0, 0, 0, 0], rcond=None)[0]
+    turned, residual = newton_closure(model, start + angle * about_z / np.max(np.abs(about_z)), tolerance=0.0)
+    assert residual[0] < 1e-15
+    _, sigma, vt = np.linalg.svd(model.loop_jacobian(model.state(turned))[0])
+    assert sigma[-1] < angle  # next to the transition set
+    assert tangent_error(model, turned)[0] < 1e-8  # closed to round-off: far below any rank tolerance
+    rates = _null(model.loop_jacobian(model.state(turned))[0])
+    for delta in (1e-12, 1e-10, 1e-8):
+        off = turned + delta * vt[len(sigma) - 1]  # the normal direction of the smallest sigma
+        moved_rates = _null(model.loop_jacobian(model.state(off))[0])
+        turn = np.linalg.norm(moved_rates - rates @ (rates.T @ moved_rates), 2)
+        error = tangent_error(model, off)[0]
+        assert error == pytest.approx(delta / sigma[-1], rel=1e-3)  # |F| = sigma delta
+        assert error / 10 < turn <= error
+
+
+def test_tangent_error_refuses_theta_of_the_wrong_shape():
+    model = KinematicModel(M.tsai_3upu((0.1, 0.05, 0.5)))
+    with pytest.raises(ScrewkitValueError, match=r"`theta` of shape \(B, 15\)"):
+        tangent_error(model, np.zeros(model.size))

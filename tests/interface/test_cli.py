@@ -115,7 +115,15 @@ def test_no_command_prints_help(capsys):
         (["analyze", "h4", "--latex", "--no-superbracket"], 2, "--latex prints the superbracket's conditions"),
         (["analyze", "h4", "--latex", "--json"], 2, "argument --json: not allowed with argument --latex"),
         (["screw", "--revolute", "0", "0", "1"], 2, "screwkit screw: error: --revolute needs --point X Y Z"),
-        (["screw", "--prismatic", "0", "0", "0"], 1, "Expected `direction` to be a non-zero direction"),
+        (["screw", "--prismatic", "0", "0", "0"], 2, "--prismatic: Expected `direction` to be a non-zero direction"),
+        (["screw", "--revolute", "0", "0", "0", "--point", "0", "0", "0"], 2,
+         "screwkit screw: error: --revolute: Expected `direction` to be a non-zero direction"),
+        # one rule in every command (issue 19): a value the analysis refuses as an argument is bad input
+        # (2, as argparse's usage errors), an analysis that cannot be done is 1
+        (["map", "h4", "--quantity", "condition:99", "--z", "-800", "-700", "--phi", "0", "10", "--out", "m.json"],
+         2, "screwkit map: error: Expected `quantity` 'condition:K' with K in 0..1"),
+        (["map", "examples/planar_3rpr.toml", "--quantity", "lti", "--x", "0.5", "0.6", "--y", "0.35", "0.45",
+          "--out", "m.json"], 2, "quantity 'wrench_lti'"),
     ],
 )
 def test_bad_arguments_exit_non_zero_with_one_line(argv, status, message, capsys):

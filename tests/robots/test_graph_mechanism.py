@@ -128,8 +128,9 @@ def test_forward_out_of_reach_is_flagged_not_returned():
     posed = load_mechanism("h4").forward(np.array([[0.1, 0, 0, 0], [3.0, -3.0, 0.0, 0.0]]))
     assert posed.reachable.tolist() == [True, False]
     assert np.isnan(posed.poses[1]).all() and "do not close" in posed.failures[(1,)]
+    assert posed.verdicts.tolist() == ["regular", "unreachable"] and posed.codes.tolist() == [0, -1]
     with pytest.raises(UnreachablePoseError, match=r"Pose \(1,\) is out of reach: the loops"):
-        _ = posed.verdicts
+        _ = posed.singularities
 
 
 def test_catalog_forward_matches_its_inverse_kinematics():
@@ -243,8 +244,11 @@ def test_unreachable_poses_of_a_batch_are_flagged_with_their_reason():
     posed = robot.at(poses)
     assert posed.reachable.tolist() == [True, False, True]
     assert list(posed.failures) == [(1,)] and "do not close" in posed.failures[(1,)]
+    # the reached poses get their verdicts, the one out of reach the marker (the core's report over the
+    # whole batch still names it)
+    assert posed.verdicts.tolist() == ["regular", "unreachable", "regular"]
     with pytest.raises(UnreachablePoseError, match=r"Pose \(1,\)"):
-        _ = posed.verdicts
+        _ = posed.singularities
     assert robot.at(poses[posed.reachable]).verdicts.tolist() == ["regular", "regular"]
 
 

@@ -13,7 +13,7 @@ from screwkit.graphs.joints import revolute
 from screwkit.graphs.jointtable import JointTable
 from screwkit.graphs.twistgraph import twist_graph
 from screwkit.robots.point_task import TASK_JOINT, with_task_point
-from tests.mechanisms import planar_3rpr
+from tests.mechanisms import planar_3rpr, tsai_3upu
 from tests.strategies import rigid_motions, unit_factors
 
 A1, A2 = np.zeros(3), np.array([1.0, 0.0, 0.0])
@@ -209,3 +209,26 @@ def test_a_point_task_of_a_platform_with_more_freedoms_keeps_every_actuator():
     platform = np.array([[0.4, 0.3, 0.0], [0.6, 0.3, 0.0], [0.5, 0.5, 0.0]])
     robot = sk.mechanism(planar_3rpr(base, platform), task=("platform", [0.5, 0.4, 0.0]))
     assert robot.actuated == ("P1", "P2", "P3") and robot.coordinates == ("x", "y")
+
+
+def test_a_point_task_s_operation_mode_is_the_point_s_translations():
+    # the five-bar's end point C moves with velocity A⁻¹B θ̇ (the hand Jacobians): both invertible at
+    # this pose, so the point has the two translations of its plane and nothing else (a point has no
+    # rotation); the task link's 2T3R (the point's two translations and the three free rotations
+    # about it) is no motion type of the point
+    c0 = np.array([0.5, 1.6, 0.0])
+    hand_a, hand_b = hand_jacobians(elbow(A1, c0, 1), elbow(A2, c0, -1), c0)
+    assert np.linalg.matrix_rank(np.linalg.solve(hand_a, hand_b)) == 2
+    m = sk.mechanism(five_bar(elbow(A1, c0, 1), elbow(A2, c0, -1), c0), task=("distal1", c0))
+    assert m.operation_modes.names() == ["2T (this one)"]
+    assert sk.modes_at(m.twist_graph()).describe() == "one operation mode through this pose: 2T"
+    # a 3-RPR's platform point: the platform's three planar freedoms move the point in its plane
+    base = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.5, 0.8, 0.0]])
+    platform = np.array([[0.4, 0.3, 0.0], [0.6, 0.3, 0.0], [0.5, 0.5, 0.0]])
+    robot = sk.mechanism(planar_3rpr(base, platform), task=("platform", [0.5, 0.4, 0.0]))
+    assert robot.operation_modes.names() == ["2T (this one)"]
+    # Tsai's 3-UPU (three kinds of mode, tests/core/test_mode_search.py) with its platform's centre as
+    # the task: the point translates freely in the 3T mode, follows the free orientation with three
+    # velocities in the 3R mode (p a function of R), and stays in the base plane in the planar mode
+    upu = sk.mechanism(tsai_3upu([0.1, 0.05, 0.8]), task=("platform", [0.1, 0.05, 0.8]))
+    assert upu.operation_modes.names() == ["3T (this one)", "2T"]

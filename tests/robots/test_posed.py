@@ -101,3 +101,49 @@ def test_one_pose_answers_as_the_batch_and_as_a_pose_alone():
     assert one_exists.shape == () and bool(one_exists) == exists[1]
     for label, value in values.items():
         np.testing.assert_array_equal(one_values[label], value[1], err_msg=label)
+
+
+# a pose out of reach in a batch: the reached poses get their verdicts, it gets the marker ------------
+def _five_bar_point_task():
+    from .test_graph_mechanism import five_bar
+
+    return sk.mechanism(five_bar(), task=("distal1", [0.5, 1.8, 0]))
+
+
+# the V4 (catalog, closed-form IK) and a five-bar's end point (a graph, loop closure), each with one pose
+# beyond reach: z = -3000 mm is farther than the V4's arms and rods reach (paper 004's Eq. 3 has no
+# real root); (5, 5) is 5.6 from the five-bar's base joints, whose two links reach 1 + 1.8 at most
+MIXED = [
+    ("v4", [[0.0, 0.0, -750.0, 0.0], [0.0, 0.0, -3000.0, 0.0], [0.0, 0.0, -800.0, 0.2]]),
+    ("five_bar", [[0.5, 1.8], [5.0, 5.0], [0.55, 1.75]]),
+]
+
+
+@pytest.mark.parametrize(("name", "poses"), MIXED, ids=[name for name, _ in MIXED])
+def test_a_batch_with_a_pose_out_of_reach_marks_it_and_answers_for_the_others(name, poses):
+    robot = _five_bar_point_task() if name == "five_bar" else sk.load_mechanism(name)
+    posed = robot.at(poses)
+    assert posed.reachable.tolist() == [True, False, True] and list(posed.failures) == [(1,)]
+    # each reached pose answers as it does alone (an independent batch of the reached poses)
+    alone = robot.at([poses[0], poses[2]])
+    assert posed.verdicts.tolist() == [alone.verdicts[0], "unreachable", alone.verdicts[1]]
+    assert posed.codes.tolist() == [alone.codes[0], -1, alone.codes[1]]
+    assert posed.redundancy.tolist() == [0, -1, 0]
+    for kind, values in posed.closeness.items():
+        assert np.isnan(values[1])
+        np.testing.assert_array_equal(values[[0, 2]], alone.closeness[kind])
+    # indexing: a reached pose is analysed, the one out of reach says why when asked
+    assert posed[2].singularity.verdict == alone[1].singularity.verdict
+    np.testing.assert_array_equal(posed[2].jacobians.A, alone[1].jacobians.A)
+    assert posed[1].verdicts.tolist() == "unreachable" and not posed[1].reachable
+    with pytest.raises(sk.UnreachablePoseError, match=r"^Pose .* is out of reach.*[^.]\.$"):
+        _ = posed[1].singularity
+    # the whole batch's Jacobians need every pose: refused naming the pose
+    with pytest.raises(sk.UnreachablePoseError, match=r"\(1,\)"):
+        _ = posed.jacobians
+
+
+def test_a_batch_out_of_reach_everywhere_is_all_markers():
+    posed = sk.load_mechanism("v4").at([[0.0, 0.0, -3000.0, 0.0], [0.0, 0.0, -4000.0, 0.0]])
+    assert posed.verdicts.tolist() == ["unreachable", "unreachable"] and posed.codes.tolist() == [-1, -1]
+    assert all(np.isnan(values).all() for values in posed.closeness.values())
