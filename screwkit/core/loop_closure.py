@@ -89,6 +89,7 @@ from ._closure_parts import (
     replace_rows,
     rows_replaced,
 )
+from ._working_modes import Orientations, unreached_reasons
 from .kinematic_model import KinematicModel, KinematicState
 from .kinematic_tasks import PoseTask
 
@@ -427,10 +428,12 @@ def _continue(
     jump_limit: float,
     spherical_secant: bool,
     step_tolerances: Array,
+    modes: Orientations,
 ) -> tuple[Array, Array, Array, Array, KinematicState, tuple[Array, Array, Array]]:
     """One continuation of a chunk, each pose in equal steps of at most ``step_length`` (a pose whose
-    way is done rests); returns theta, offsets, the residual at the targets (inf where non-finite),
-    the fraction of the way where each pose was lost (NaN if not), the whole model's state there,
+    way is done rests; a step trusted only where it kept the orientations ``modes``); returns theta,
+    offsets, the residual at the targets (inf where non-finite), the fraction of the way where each
+    pose was lost (NaN if not), the whole model's state there,
     and each pose's last accepted step: its theta, offsets and fraction of the way."""
     model, task = system.model, system.task
     count = targets.shape[0]
@@ -467,6 +470,7 @@ def _continue(
         previous[working] = theta[working]
         bad = ~np.isfinite(residual_size) | ~np.all(np.isfinite(theta), axis=1)
         newly = active & moving & (bad | (residual_size > LOST_TOLERANCE) | (corrected > jump_limit))
+        newly |= ~modes.kept(system, theta, offsets, target, active & moving & ~newly)
         lost_at[newly] = np.minimum(1.0, step / own[newly])
         active &= ~newly
         trusted = active & moving
@@ -564,11 +568,14 @@ def _close_chunk(
 
     everything = np.ones(count, dtype=bool)
     theta, offsets, start = begin(everything)
+    modes = Orientations(system, theta, offsets, start)
     theta, offsets, residual, lost_at, state, kept = _continue(
-        system, targets, theta, offsets, start, MAX_STEP, JUMP_LIMIT, True, STEP_TOLERANCES
+        system, targets, theta, offsets, start, MAX_STEP, JUMP_LIMIT, True, STEP_TOLERANCES, modes
     )
-    missed = ~(residual < FINAL_TOLERANCE)
-    if np.any(missed):  # again, in shorter steps, from the last step each pose was trusted at
+    missed, changed = ~(residual < FINAL_TOLERANCE), np.full(count, "", dtype=object)
+    for refinement in (RETRY_REFINEMENT, RETRY_REFINEMENT**2):  # again, in shorter steps, from the
+        if not np.any(missed):  # last step each pose was trusted at; the second time only the poses
+            break  # whose orientation a step would have changed (a leg grazing its singularity)
         fraction = kept[2][missed]
         retry_start = start[missed] + (targets[missed] - start[missed]) * fraction[:, None]
         again = _continue(  # the steps are short: the corrections may be what they need
@@ -577,24 +584,17 @@ def _close_chunk(
             kept[0][missed],
             kept[1][missed],
             retry_start,
-            MAX_STEP / RETRY_REFINEMENT,
+            MAX_STEP / refinement,
             math.inf,
             False,
             RETRY_TOLERANCES,
+            modes := Orientations(system, kept[0][missed], kept[1][missed], retry_start),
         )
-        theta[missed], offsets[missed] = again[0], again[1]
+        theta[missed], offsets[missed], changed[missed] = again[0], again[1], modes.changed
         residual[missed], lost_at[missed] = again[2], fraction + (1.0 - fraction) * again[3]
         replace_rows(state, missed, again[4])
-    reasons = np.full(count, "", dtype=object)
-    for index in np.flatnonzero(~(residual < FINAL_TOLERANCE)):
-        where = lost_at[index]
-        if np.isfinite(residual[index]):
-            at = f"{100 * where:.0f}% of the way from the start" if np.isfinite(where) else "the end"
-            reasons[index] = (
-                f"the loops and the task do not close at {at} (residual {residual[index]:.1e} "
-                "characteristic lengths): the pose is out of the mechanism's reach, or past a "
-                "singularity where the continuation from the reference configuration stops"
-            )
-        else:
-            reasons[index] = "Newton's method gave non-finite joint values on the way to the pose"
+        kept[0][missed], kept[1][missed] = again[5][:2]
+        kept[2][missed] = fraction + (1.0 - fraction) * again[5][2]
+        missed = ~(residual < FINAL_TOLERANCE) & (changed != "")
+    reasons = unreached_reasons(residual, ~(residual < FINAL_TOLERANCE), lost_at, changed)
     return theta, system.offsets_of(offsets), residual, reasons, state

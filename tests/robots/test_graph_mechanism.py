@@ -14,7 +14,7 @@ from screwkit.robots.graph_kinematics import kinematics_of
 
 from ..mechanisms import gough_stewart, gough_stewart_points
 
-POSES_PER_ROBOT = 600
+POSES_PER_ROBOT = 2000
 
 
 def _relative_gap(reference, ours):
