@@ -3,22 +3,23 @@ batch continues most of its poses from an already solved pose of the same batch 
 reference configuration.
 
 A batch's poses are far from the reference configuration (an H4 pose takes 2.5 continuation steps from
-it) but near each other. :func:`close_seeded` solves a few *seed* poses spread over the batch from the
-reference (farthest-point sampling in the continuation's own step measure, the largest scaled task
-coordinate difference: Gonzalez, *Theoretical Computer Science* 38, 1985, whose greedy choice covers the
-batch within twice the best radius), then every other pose from its nearest solved seed: the seed's
-closed configuration and its task values are the start of that pose's straight way, the orientation of
-the seed's equations (:meth:`~screwkit.core._working_modes.Orientations.taken`) the one each step must
-keep. A pose reached along reference → seed → pose is in the working and assembly mode connected to the
-reference along that path (every step of both ways kept its orientation). A pose whose way from its
-seed fails is taken again from the reference (and its retries), so every pose reached from the
-reference alone is still reached.
+it) but near each other. :func:`close_seeded` solves a few *seed* poses spread over the batch's poses
+farther than one step from the reference, from the reference (farthest-point sampling in the
+continuation's own step measure, the largest scaled task coordinate difference: Gonzalez, *Theoretical
+Computer Science* 38, 1985, whose greedy choice covers them within twice the best radius), then every
+other far pose from its nearest solved seed: the seed's closed configuration and its task values are the
+start of that pose's straight way, the orientation of the seed's equations
+(:meth:`~screwkit.core._working_modes.Orientations.taken`) the one each step must keep. A pose reached
+along reference → seed → pose is in the working and assembly mode connected to the reference along that
+path (every step of both ways kept its orientation). A pose whose way from its seed fails is taken again
+from the reference (and its retries), so every pose reached from the reference alone is still reached.
 
-Determinism: the seeds are a function of the batch (the sampling starts at its first pose, ties go to
+Determinism: the seeds are a function of the batch (the sampling starts at its first far pose, ties go to
 the first), so one batch gives one result; the same pose in another batch (or another chunk of
 :data:`~screwkit.core.loop_closure.CHUNK` poses) comes from another seed, to the same configuration
 within the closure's tolerance (the configurations agree to round-off, ~1e-11, not bit for bit).
-Batches smaller than :data:`MIN_BATCH` are solved from the reference alone.
+Batches with fewer than :data:`MIN_BATCH` poses farther than one step from the reference are solved
+from it alone (a map near the reference configuration: a step per pose either way).
 
 Examples
 --------
@@ -27,8 +28,8 @@ Examples
 >>> from screwkit.robots.graph_kinematics import kinematics_of
 >>> h4 = load_mechanism("h4")
 >>> kinematics = kinematics_of(h4)
->>> poses = h4.random_poses(np.random.default_rng(1), MIN_BATCH)
->>> closed = kinematics.solve(poses)  # seeded: the batch has MIN_BATCH poses
+>>> poses = h4.random_poses(np.random.default_rng(1), 2 * MIN_BATCH)
+>>> closed = kinematics.solve(poses)  # seeded: most poses are several steps from the reference
 >>> alone = kinematics.solve(poses[:5])  # from the reference alone
 >>> columns = [kinematics.model.joints[name][2][0] for name in kinematics.actuated]
 >>> bool(np.allclose(closed.theta[:5, columns], alone.theta[:, columns], rtol=0.0, atol=1e-9))
@@ -52,9 +53,11 @@ Array = np.ndarray
 
 #: Batches with fewer poses are solved from the reference configuration alone.
 MIN_BATCH = 256
-#: Poses per seed. Measured on 2,000 random H4 poses (chunks of 1,024): 128 seeds 147 µs per pose, 96 seeds
-#: 141, 256 seeds 180 (a seed costs a pose's way from the reference, ~200 µs), against 208 from the
-#: reference alone; 32 seeds then 200 from them, then the rest, 163.
+#: Poses per seed (the closure's time per H4 pose, CPU, with the working-mode check of every step, load < 1).
+#: 2,000 poses in one batch: 96 seeds 140-143 µs, 128 seeds 146-148, 256 seeds 179-181 (a seed costs a
+#: pose's way from the reference), against 201-213 from the reference alone; 32 seeds, 200 more poses from
+#: them, then the rest from all, 160-166. Batches of 512 (as the verdicts take them): 16 per seed 173-203,
+#: 8 per seed 174-204, 4 per seed 209-242, against 208-276 from the reference alone.
 POSES_PER_SEED = 16
 
 
@@ -115,8 +118,9 @@ def close_seeded(
     from_reference: Callable[[Array], tuple[Array, dict[str, Array], Array, Array, KinematicState]],
     from_starts: Callable[..., tuple[Any, ...]],
     tolerance: float,
+    step_length: float,
 ) -> tuple[Array, dict[str, Array], Array, Array, KinematicState]:
-    """A chunk's configurations, most poses continued from a solved seed pose nearby (module docstring).
+    """A chunk's configurations, its far poses mostly continued from a solved seed nearby (module docstring).
 
     Parameters
     ----------
@@ -132,6 +136,8 @@ def close_seeded(
         configurations, as the loop closure's; theta, offsets and the residual first, the state fifth.
     tolerance : float
         The residual below which a pose is reached.
+    step_length : float
+        The continuation's longest step: a pose within one step of the reference is solved from it.
 
     Returns
     -------
@@ -143,24 +149,27 @@ def close_seeded(
     --------
     See the module docstring.
     """
-    count = len(targets)
-    if count < MIN_BATCH:
+    model, count = system.model, len(targets)
+    reference = system.task.values(model.state(np.zeros((1, model.size))))
+    far = np.flatnonzero(np.max(np.abs(targets - reference), axis=1) > step_length)
+    if far.size < MIN_BATCH:  # (a map's poses near the reference: one step each anyway)
         return from_reference(targets)
-    seeds = seed_rows(targets, count // POSES_PER_SEED)
-    first = from_reference(targets[seeds])
-    solved = np.flatnonzero(first[2] < tolerance)
-    rest = np.setdiff1d(np.arange(count), seeds)
+    seeds = far[seed_rows(targets[far], far.size // POSES_PER_SEED)]
+    rest = np.setdiff1d(far, seeds)
+    first_rows = np.setdiff1d(np.arange(count), rest)  # the seeds and the poses near the reference
+    first = from_reference(targets[first_rows])
+    solved = np.flatnonzero((first[2] < tolerance) & np.isin(first_rows, seeds))
     if not solved.size:
         return from_reference(targets)
-    distance = np.max(np.abs(targets[rest][:, None] - targets[seeds[solved]][None]), axis=2)
+    distance = np.max(np.abs(targets[rest][:, None] - targets[first_rows[solved]][None]), axis=2)
     near = np.argmin(distance, axis=1)  # (ties: the first seed)
-    seed_offsets = _stacked(system, first[1], len(seeds))[solved]
-    modes = Orientations(system, first[0][solved], seed_offsets, targets[seeds[solved]]).taken(near)
-    starts = targets[seeds[solved]][near]
+    seed_offsets = _stacked(system, first[1], len(first_rows))[solved]
+    modes = Orientations(system, first[0][solved], seed_offsets, targets[first_rows[solved]]).taken(near)
+    starts = targets[first_rows[solved]][near]
     theta, offsets, residual, _, state, _ = from_starts(
         targets[rest], first[0][solved][near], seed_offsets[near], starts, modes=modes
     )
-    order = np.argsort(np.concatenate([seeds, rest]))
+    order = np.argsort(np.concatenate([first_rows, rest]))
     state = _taken_state(cast(KinematicState, concatenated([first[4], state])), order)
     theta = np.concatenate([first[0], theta])[order]
     residual = np.concatenate([first[2], residual])[order]

@@ -537,7 +537,7 @@ def close_loops(
     reference = functools.partial(_close_chunk, model, task)
     for begin in range(0, len(targets), CHUNK):
         chunk = slice(begin, begin + CHUNK)
-        result = close_seeded(system, targets[chunk], reference, steps, FINAL_TOLERANCE)
+        result = close_seeded(system, targets[chunk], reference, steps, FINAL_TOLERANCE, MAX_STEP)
         out_theta[chunk], residual[chunk], reasons[chunk] = result[0], result[2], result[3]
         states.append(result[4])
         for key, value in result[1].items():

@@ -34,7 +34,7 @@ def _single_joints(kinematics):
 def _gough_stewart_poses(rng):
     mechanism = sk.mechanism(gough_stewart(*gough_stewart_points()))
     reference = np.asarray(mechanism.reference_pose, dtype=float)
-    spread = np.array([0.15, 0.15, 0.1, 0.2, 0.2, 0.3])  # characteristic lengths (the unit) and radians
+    spread = np.array([0.5, 0.5, 0.3, 0.5, 0.5, 0.8])  # characteristic lengths (the unit) and radians
     return mechanism, reference + rng.uniform(-spread, spread, (POSES, 6))
 
 
@@ -55,6 +55,9 @@ def test_seeded_configurations_are_those_from_the_reference(name):
         poses = mechanism.random_poses(rng, POSES)
     kinematics = kinematics_of(mechanism)
     targets = kinematics._targets(poses)
+    model = kinematics.model
+    reference = kinematics.task.values(model.state(np.zeros((1, model.size))))
+    assert np.sum(np.max(np.abs(targets - reference), axis=1) > MAX_STEP) >= _seeded_starts.MIN_BATCH  # seeded
     seeded = close_loops(kinematics.model, kinematics.task, targets)
     theta, reached = _from_reference_alone(kinematics, targets)
     assert reached.sum() > 0.9 * POSES
@@ -83,10 +86,11 @@ def test_poses_whose_way_from_their_seed_fails_are_taken_from_the_reference():
 
     reference = functools.partial(_close_chunk, model, task)
     theta, offsets, residual, reasons, state = _seeded_starts.close_seeded(
-        system, targets, reference, from_starts, FINAL_TOLERANCE
+        system, targets, reference, from_starts, FINAL_TOLERANCE, MAX_STEP
     )
-    seeds = POSES // _seeded_starts.POSES_PER_SEED
-    assert failed == [POSES - seeds]
+    reference_values = task.values(model.state(np.zeros((1, model.size))))
+    far = int(np.sum(np.max(np.abs(targets - reference_values), axis=1) > MAX_STEP))
+    assert failed == [far - far // _seeded_starts.POSES_PER_SEED] and far >= _seeded_starts.MIN_BATCH
     alone, reached = _from_reference_alone(kinematics, targets)
     assert np.array_equal(residual < FINAL_TOLERANCE, reached) and reached.all()
     columns = _single_joints(kinematics)
