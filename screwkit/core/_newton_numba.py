@@ -533,17 +533,16 @@ def bordered_orientation(  # pragma: no cover - compiled
                     value -= factors[i, k] * vector[k]
                 vector[i] = value / factors[i, i]
             new_right[p, :, column] = vector[:n]
-        for column in range(a):  # Bᵀ y = e, Bᵀ = Uᵀ Lᵀ P: forward with Uᵀ, back with Lᵀ, then y = Pᵀ w
+        for column in range(a):  # Bᵀ y = e, Bᵀ = Uᵀ Lᵀ P: forward with Uᵀ, back with Lᵀ (by the rows of U
+            vector[:] = 0.0  # and L, Uᵀ's and Lᵀ's columns), then y = Pᵀ w
+            vector[n + column] = 1.0
             for i in range(size):
-                value = 1.0 if i == n + column else 0.0
-                for k in range(i):
-                    value -= factors[k, i] * vector[k]
-                vector[i] = value / factors[i, i]
-            for i in range(size - 1, -1, -1):
-                value = vector[i]
+                vector[i] /= factors[i, i]
                 for k in range(i + 1, size):
-                    value -= factors[k, i] * vector[k]
-                vector[i] = value
+                    vector[k] -= factors[i, k] * vector[i]
+            for i in range(size - 1, 0, -1):
+                for k in range(i):
+                    vector[k] -= factors[i, k] * vector[i]
             for i in range(size):
                 if order[i] < m:
                     new_left[p, order[i], column] = vector[i]

@@ -65,7 +65,8 @@ def _jacobian_blocks(system: Any, theta: Array, offsets: Array, target: Array) -
     )[2]
     blocks = []
     for _, columns, signs in system.groups:  # as ``equations``: (B, k, l, 6, c) -> (B, k, 6 l, c)
-        jacobian = signs[None, :, :, None, :] * np.swapaxes(screws[:, columns], -1, -2)[:, :, None]
+        screw_rows = np.swapaxes(screws[:, columns], -1, -2)[:, :, None]
+        jacobian = np.multiply(signs[None, :, :, None, :], screw_rows, order="C")  # (reshaped: a view)
         blocks.append(jacobian.reshape(*jacobian.shape[:2], -1, jacobian.shape[-1]))
     return blocks
 
