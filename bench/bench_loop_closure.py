@@ -37,6 +37,13 @@ system built once per task, and the graph verdict path's compiled joint table (w
 minutes: 9,547-9,754 poses/s against the closed form's 39,482-41,274 (ratio 0.236-0.242); the loop
 closure's changes alone 0.195-0.198; b9f8382 0.164-0.172. With ``--side 60 --repeats 3`` (load 7):
 the 6-UPS graph map 0.681 of the H4 catalog map (b9f8382 0.585, the same minute).
+
+With the working-mode check of every step (wp-branches) and seeded starts (core/_seeded_starts.py: a
+chunk's far poses continued from 1 in 16 of them solved from the reference), ``--poses 2000 --side 60
+--repeats 3`` at load 6.2, alternated twice with the code before seeded starts (main f0c0e09): H4 loop
+closure 3,972-4,028 poses/s, ratio 0.105-0.109 (before: 3,331-3,438, ratio 0.091-0.096); the 6-UPS graph
+map 0.601-0.613 of the H4 catalog map (before: 0.612-0.626; its poses are within one step of the
+reference and are not seeded).
 """
 
 import os

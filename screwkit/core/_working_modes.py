@@ -31,6 +31,7 @@ between two legs' singularities.
 
 from __future__ import annotations
 
+import copy
 from typing import Any
 
 import numpy as np
@@ -184,6 +185,28 @@ class Orientations:
             self.null_spaces.append((np.repeat(left, copies, axis=0), np.repeat(right, copies, axis=0)))
         self.names = self._block_names(system, blocks)
         self.changed = np.full(len(theta), "", dtype=object)
+
+    def taken(self, index: Array) -> Orientations:
+        """The orientations of the poses ``index`` (an integer array, repeats allowed), as new starts.
+
+        Parameters
+        ----------
+        index : numpy.ndarray of int, shape (C,)
+
+        Returns
+        -------
+        Orientations
+            Each pose's signs and oriented null spaces copied, none refused yet.
+
+        Examples
+        --------
+        See :mod:`screwkit.core._seeded_starts`.
+        """
+        out = copy.copy(self)
+        out.signs = [sign[index] for sign in self.signs]
+        out.null_spaces = [(left[index], right[index]) for left, right in self.null_spaces]
+        out.changed = np.full(len(index), "", dtype=object)
+        return out
 
     @staticmethod
     def _block_names(system: Any, blocks: list[Array]) -> list[list[str]]:

@@ -23,7 +23,8 @@ overconstrained loop leave it solvable; Nocedal & Wright, *Numerical Optimizatio
 §10.3), so that each pose stays in the working and assembly mode connected to the start. A pose
 whose path leaves the mechanism's reach, runs into a singularity where Newton's method stops
 converging, or gives non-finite values is flagged with the reason and the residual — never returned
-as a configuration. All poses of a batch move together (arrays with a leading batch axis).
+as a configuration. All poses of a batch move together (arrays with a leading batch axis); a large
+batch continues most of its poses from its own poses solved nearby (:mod:`screwkit.core._seeded_starts`).
 
 The predictor-corrector follows Allgower & Georg, *Introduction to Numerical Continuation Methods*,
 2003, Chs. 2-3 (the Moore-Penrose Newton corrector): the secant of the last two steps predicts each
@@ -89,6 +90,7 @@ from ._closure_parts import (
     replace_rows,
     rows_replaced,
 )
+from ._seeded_starts import close_seeded
 from ._working_modes import Orientations, unreached_reasons
 from .kinematic_model import KinematicModel, KinematicState
 from .kinematic_tasks import PoseTask
@@ -529,10 +531,13 @@ def close_loops(
     out_offsets: dict[str, list[Array]] = {}
     residual = np.zeros(len(targets))
     reasons = np.full(len(targets), "", dtype=object)
-    states = []
+    states, system = [], _system(model, task)  # a large chunk's poses mostly from solved ones nearby
+    steps = functools.partial(_continue, system, step_length=MAX_STEP, jump_limit=JUMP_LIMIT,
+                              spherical_secant=True, step_tolerances=STEP_TOLERANCES)
+    reference = functools.partial(_close_chunk, model, task)
     for begin in range(0, len(targets), CHUNK):
         chunk = slice(begin, begin + CHUNK)
-        result = _close_chunk(model, task, targets[chunk])
+        result = close_seeded(system, targets[chunk], reference, steps, FINAL_TOLERANCE, MAX_STEP)
         out_theta[chunk], residual[chunk], reasons[chunk] = result[0], result[2], result[3]
         states.append(result[4])
         for key, value in result[1].items():
@@ -578,17 +583,10 @@ def _close_chunk(
             break  # whose orientation a step would have changed (a leg grazing its singularity)
         fraction = kept[2][missed]
         retry_start = start[missed] + (targets[missed] - start[missed]) * fraction[:, None]
+        modes = Orientations(system, kept[0][missed], kept[1][missed], retry_start)
         again = _continue(  # the steps are short: the corrections may be what they need
-            system,
-            targets[missed],
-            kept[0][missed],
-            kept[1][missed],
-            retry_start,
-            MAX_STEP / refinement,
-            math.inf,
-            False,
-            RETRY_TOLERANCES,
-            modes := Orientations(system, kept[0][missed], kept[1][missed], retry_start),
+            system, targets[missed], kept[0][missed], kept[1][missed], retry_start, MAX_STEP / refinement,
+            math.inf, False, RETRY_TOLERANCES, modes,
         )
         theta[missed], offsets[missed], changed[missed] = again[0], again[1], modes.changed
         residual[missed], lost_at[missed] = again[2], fraction + (1.0 - fraction) * again[3]

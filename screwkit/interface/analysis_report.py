@@ -384,6 +384,7 @@ class AnalysisReport:
             out.append(f"  {self.superbracket_note}")
         else:
             from ..gca.redundant_conditions import RedundantSuperbracket as Redundant
+            from ..gca.superbracket_analysis import VANISHING_RTOL
 
             if isinstance(self.superbracket, Redundant):  # redundant actuation: the six-line subsets
                 out.append(f"  {self.superbracket.statement()}")
@@ -422,7 +423,12 @@ class AnalysisReport:
                     out.append(f"    vector form: {condition.expression}   (here: {value:.6g})")
                     continue
                 flag = "  <- vanishes at this pose" if vanishes else ""
-                if vanishes and result.representation:  # the ranks decide there, not the factor
+                if vanishes and not self.verdict.is_singular:  # (the ranks' rtol is the finer test)
+                    flag = (
+                        f"  <- near zero here (within {VANISHING_RTOL:g} of its size), but the verdict, "
+                        "at its rank tolerance, reads regular: close to this singularity, not at it"
+                    )
+                elif vanishes and result.representation:  # the ranks decide there, not the factor
                     flag += " (where the diagram does not hold: the verdict below decides)"
                 if subsets is None:
                     out.append(f"  {label} singularity when {condition.factor} = 0{flag}")

@@ -181,6 +181,8 @@ class SolvedPoses:
         2
         """
         self.recent = None  # (its poses' rows may now be another solution's)
+        if not keys:  # (a batch that reached nothing: nothing to remember, nor columns to size by)
+            return
         if self.used + len(keys) > self.capacity:
             self.slots.clear()
             self.used = 0

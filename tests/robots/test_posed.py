@@ -147,3 +147,14 @@ def test_a_batch_out_of_reach_everywhere_is_all_markers():
     posed = sk.load_mechanism("v4").at([[0.0, 0.0, -3000.0, 0.0], [0.0, 0.0, -4000.0, 0.0]])
     assert posed.verdicts.tolist() == ["unreachable", "unreachable"] and posed.codes.tolist() == [-1, -1]
     assert all(np.isnan(values).all() for values in posed.closeness.values())
+
+
+def test_a_fresh_graph_mechanism_whose_first_batch_reaches_nothing_answers_with_markers():
+    # (a reviewer's finding: the remembered-poses cache, still empty, was sized from the batch's
+    # solutions and raised numpy's broadcast error when there were none)
+    h4 = sk.load_mechanism("h4")
+    graph = sk.mechanism(h4.twist_graph([0.0, 0.0, -750.0, 0.0]))
+    assert graph.reachable([[0.0, 0.0, 0.0, 0.0]]).tolist() == [False]
+    posed = sk.mechanism(h4.twist_graph([0.0, 0.0, -750.0, 0.0])).at([[0.0, 0.0, 1e9, 0.0], [0.0, 0.0, 0.0, 0.0]])
+    assert posed.verdicts.tolist() == ["unreachable", "unreachable"] and posed.codes.tolist() == [-1, -1]
+    assert not posed.reachable.any() and len(posed.failures) == 2
