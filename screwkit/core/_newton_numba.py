@@ -20,7 +20,7 @@ import math
 import numpy as np
 from numba import njit
 
-__all__ = ["evaluate", "loop_residual", "pinned_newton"]
+__all__ = ["bordered_orientation", "evaluate", "loop_residual", "pinned_newton"]
 
 Array = np.ndarray
 
@@ -447,3 +447,112 @@ def _recentre(  # pragma: no cover - compiled
             _compose(offsets[slot], step, product)
             offsets[slot, :, :] = product
             theta[c] = 0.0
+
+
+@njit(cache=True)
+def _oriented_columns(columns: Array) -> None:  # pragma: no cover - compiled
+    """``columns (d, p)`` replaced in place by the orthonormal basis of their span that modified
+    Gram-Schmidt gives: the ``Q`` of their QR factorisation with ``R``'s diagonal positive (Golub & Van
+    Loan 2013, Alg. 5.2.6), the factor :func:`numpy.linalg.qr` gives once its signs are moved into ``Q``."""
+    for j in range(columns.shape[1]):
+        for i in range(j):
+            dot = 0.0
+            for k in range(columns.shape[0]):
+                dot += columns[k, i] * columns[k, j]
+            for k in range(columns.shape[0]):
+                columns[k, j] -= dot * columns[k, i]
+        size = 0.0
+        for k in range(columns.shape[0]):
+            size += columns[k, j] * columns[k, j]
+        size = math.sqrt(size)
+        for k in range(columns.shape[0]):
+            columns[k, j] /= size
+
+
+@njit(cache=True)
+def bordered_orientation(  # pragma: no cover - compiled
+    blocks: Array, left: Array, right: Array
+) -> tuple[Array, Array, Array, Array]:
+    """Per block ``J (P, m, n)`` with borders ``L (P, m, a)``, ``N (P, n, c)`` (``m + c = n + a``): the
+    sign of ``det [[J, L], [Nᵀ, 0]]`` from its LU factorisation with partial pivoting (the pivots'
+    signs times the permutation's parity; Golub & Van Loan 2013, Alg. 3.4.1), and from the same
+    factors the left null space and null space the border carries to ``J``, the solutions ``X`` of
+    ``J X + L Y = 0``, ``Nᵀ X = I`` and of their transposed twin, orthonormalised with their
+    orientation (:func:`_oriented_columns`), and how far they turned from the border: the largest
+    length of a column of ``X`` (at least 1). The numpy twin is
+    ``screwkit.core._working_modes``' (``numpy.linalg.det``, ``solve``, ``qr``)."""
+    count, m, n = blocks.shape
+    a, c = left.shape[2], right.shape[2]
+    size = m + c
+    signs = np.zeros(count)
+    new_left = np.empty((count, m, a))
+    new_right = np.empty((count, n, c))
+    turned = np.ones(count)
+    factors = np.empty((size, size))
+    order = np.empty(size, dtype=np.int64)
+    vector = np.empty(size)
+    for p in range(count):
+        factors[:, :] = 0.0
+        factors[:m, :n] = blocks[p]
+        factors[:m, n:] = left[p]
+        factors[m:, :n] = right[p].T
+        sign = 1.0
+        for i in range(size):
+            order[i] = i
+        for k in range(size):
+            pivot = k
+            for i in range(k + 1, size):
+                if abs(factors[i, k]) > abs(factors[pivot, k]):
+                    pivot = i
+            if pivot != k:
+                sign = -sign
+                order[k], order[pivot] = order[pivot], order[k]
+                for j in range(size):
+                    factors[k, j], factors[pivot, j] = factors[pivot, j], factors[k, j]
+            if factors[k, k] == 0.0:
+                sign = 0.0
+                continue
+            if factors[k, k] < 0.0:
+                sign = -sign
+            for i in range(k + 1, size):
+                multiplier = factors[i, k] / factors[k, k]
+                factors[i, k] = multiplier
+                if multiplier != 0.0:  # (the loops' Jacobian is sparse: a column is in one or two loops)
+                    for j in range(k + 1, size):
+                        factors[i, j] -= multiplier * factors[k, j]
+        signs[p] = sign
+        for column in range(c):  # (P B) x = P e: forward with L, back with U
+            for i in range(size):
+                value = 1.0 if order[i] == m + column else 0.0
+                for k in range(i):
+                    value -= factors[i, k] * vector[k]
+                vector[i] = value
+            for i in range(size - 1, -1, -1):
+                value = vector[i]
+                for k in range(i + 1, size):
+                    value -= factors[i, k] * vector[k]
+                vector[i] = value / factors[i, i]
+            new_right[p, :, column] = vector[:n]
+        for column in range(a):  # Bᵀ y = e, Bᵀ = Uᵀ Lᵀ P: forward with Uᵀ, back with Lᵀ (by the rows of U
+            vector[:] = 0.0  # and L, Uᵀ's and Lᵀ's columns), then y = Pᵀ w
+            vector[n + column] = 1.0
+            for i in range(size):
+                vector[i] /= factors[i, i]
+                for k in range(i + 1, size):
+                    vector[k] -= factors[i, k] * vector[i]
+            for i in range(size - 1, 0, -1):
+                for k in range(i):
+                    vector[k] -= factors[i, k] * vector[i]
+            for i in range(size):
+                if order[i] < m:
+                    new_left[p, order[i], column] = vector[i]
+        for basis in (new_left[p], new_right[p]):
+            for j in range(basis.shape[1]):
+                length = 0.0
+                for k in range(basis.shape[0]):
+                    length += basis[k, j] * basis[k, j]
+                length = math.sqrt(length)
+                if not length <= turned[p]:  # (a NaN stays)
+                    turned[p] = length
+            _oriented_columns(basis)
+    return signs, new_left, new_right, turned

@@ -36,6 +36,9 @@ from typing import Any
 
 import numpy as np
 
+from ..algebra.compiled import compiled_kernels
+from ._batched_poe import KERNELS
+
 __all__ = ["Orientations", "unreached_reasons"]
 
 Array = np.ndarray
@@ -48,12 +51,25 @@ MAX_TURN = 2.0
 
 
 def _jacobian_blocks(system: Any, theta: Array, offsets: Array, target: Array) -> list[Array]:
-    """The equations' Jacobian at the configurations, as groups of blocks ``(B, k, rows, columns)``."""
-    state = system.state(theta, system.offsets_of(offsets), target)
-    _, jacobian = system.equations(state, target)
-    if isinstance(jacobian, np.ndarray):  # one system: one block
-        return [jacobian[:, None]]
-    return list(jacobian)
+    """The equations' Jacobian at the configurations, as groups of blocks ``(B, k, rows, columns)``
+    (a pinned system's screws from the compiled corrector's product of exponentials when compiled)."""
+    kernels = compiled_kernels(KERNELS, len(theta)) if hasattr(system, "kernel_model") else None
+    if kernels is None:
+        state = system.state(theta, system.offsets_of(offsets), target)
+        _, jacobian = system.equations(state, target)
+        if isinstance(jacobian, np.ndarray):  # one system: one block
+            return [jacobian[:, None]]
+        return list(jacobian)
+    placed = np.ascontiguousarray(system.task.displacement(target))
+    screws = kernels.evaluate(
+        np.ascontiguousarray(theta), np.ascontiguousarray(offsets), placed, system.kernel_model
+    )[2]
+    blocks = []
+    for _, columns, signs in system.groups:  # as ``equations``: (B, k, l, 6, c) -> (B, k, 6 l, c)
+        screw_rows = np.swapaxes(screws[:, columns], -1, -2)[:, :, None]
+        jacobian = np.multiply(signs[None, :, :, None, :], screw_rows, order="C")  # (reshaped: a view)
+        blocks.append(jacobian.reshape(*jacobian.shape[:2], -1, jacobian.shape[-1]))
+    return blocks
 
 
 def _bordered(block: Array, left: Array, right: Array) -> Array:
@@ -93,6 +109,23 @@ def _null_spaces(bordered: Array, rows: int, columns: int) -> tuple[Array, Array
         np.linalg.norm(right, axis=-2).max(axis=-1, initial=1.0),
     )
     return _orthonormal(left) if left_size else left, _orthonormal(right) if right_size else right, turned
+
+
+def _carried(block: Array, left: Array, right: Array) -> tuple[Array, Array, Array, Array]:
+    """Per block ``J (B, k, m, n)`` bordered by ``L``, ``N``: the sign of the bordered determinant
+    ``(B, k)``, the null spaces carried to ``J`` and how far they turned (:func:`_null_spaces`), by the
+    compiled LU (:func:`screwkit.core._newton_numba.bordered_orientation`) when compiled."""
+    kernels = compiled_kernels(KERNELS, block.shape[0] * block.shape[1])
+    if kernels is None or block.shape[0] * block.shape[1] == 0:
+        bordered = _bordered(block, left, right)
+        new_left, new_right, turned = _null_spaces(bordered, block.shape[-2], block.shape[-1])
+        return np.sign(np.linalg.det(bordered)), new_left, new_right, turned
+    count = block.shape[0] * block.shape[1]
+    flat = [np.ascontiguousarray(array.reshape(count, *array.shape[2:])) for array in (block, left, right)]
+    signs, new_left, new_right, turned = kernels.bordered_orientation(*flat)
+    shape = block.shape[:2]
+    new_left, new_right = new_left.reshape(left.shape), new_right.reshape(right.shape)
+    return signs.reshape(shape), new_left, new_right, turned.reshape(shape)
 
 
 class Orientations:
@@ -220,10 +253,9 @@ class Orientations:
         blocks = _jacobian_blocks(system, theta[at], offsets[at], target[at])
         flipped, updates = [], []
         for block, sign, (left, right) in zip(blocks, self.signs, self.null_spaces, strict=True):
-            bordered = _bordered(block, left[at], right[at])
-            new_left, new_right, turned = _null_spaces(bordered, block.shape[-2], block.shape[-1])
+            signs, new_left, new_right, turned = _carried(block, left[at], right[at])
             # a sign read with a border the null spaces have turned far from is not trusted either
-            flipped.append((np.sign(np.linalg.det(bordered)) != sign[at]) | ~(turned < MAX_TURN))
+            flipped.append((signs != sign[at]) | ~(turned < MAX_TURN))
             updates.append((new_left, new_right))
         good = ~np.any(np.concatenate(flipped, axis=1), axis=1)
         kept[at] = good
