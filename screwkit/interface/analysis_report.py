@@ -18,7 +18,6 @@ Examples
 
 from __future__ import annotations
 
-import math
 from collections import Counter
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
@@ -36,6 +35,7 @@ from ..core.singularity import SingularityReport
 from ..core.wrenches import WrenchAnalysis
 from ..graphs.loops import fundamental_loops
 from ..robots.angles import pose_text
+from ._report_conditions import condition_lines
 from .screw_descriptions import describe_twist, describe_wrench
 
 if TYPE_CHECKING:  # the diagram and GCA stack loads when a report is made, not on `import screwkit`
@@ -384,7 +384,6 @@ class AnalysisReport:
             out.append(f"  {self.superbracket_note}")
         else:
             from ..gca.redundant_conditions import RedundantSuperbracket as Redundant
-            from ..gca.superbracket_analysis import VANISHING_RTOL
 
             if isinstance(self.superbracket, Redundant):  # redundant actuation: the six-line subsets
                 out.append(f"  {self.superbracket.statement()}")
@@ -403,43 +402,7 @@ class AnalysisReport:
                     + "): the factored form is the design's, found at generic configurations, and each "
                     "condition is evaluated where its points exist"
                 )
-            out += ["", "conditions"]
-            # a redundant mechanism's conditions hold subset by subset: one alone is not a singularity
-            subsets = result.subset_of if isinstance(result, Redundant) else None
-            said: set[str] = set()
-            for index, (condition, label, value, vanishes, constant) in enumerate(zip(
-                result.conditions, result.labels, result.values, result.vanishing, result.constant,
-                strict=True,
-            )):
-                if constant and str(condition.factor) in said:
-                    continue  # the same structural factor in another subset
-                said.add(str(condition.factor))
-                if constant:
-                    out.append(
-                        f"  {condition.factor} never vanishes on this mechanism: the same value on "
-                        "every generic configuration (a structural factor, not a singularity condition)"
-                    )
-                    out.append(f"    {condition.statement} (never, for this mechanism)")
-                    out.append(f"    vector form: {condition.expression}   (here: {value:.6g})")
-                    continue
-                flag = "  <- vanishes at this pose" if vanishes else ""
-                if vanishes and not self.verdict.is_singular:  # (the ranks' rtol is the finer test)
-                    flag = (
-                        f"  <- near zero here (within {VANISHING_RTOL:g} of its size), but the verdict, "
-                        "at its rank tolerance, reads regular: close to this singularity, not at it"
-                    )
-                elif vanishes and result.representation:  # the ranks decide there, not the factor
-                    flag += " (where the diagram does not hold: the verdict below decides)"
-                if subsets is None:
-                    out.append(f"  {label} singularity when {condition.factor} = 0{flag}")
-                else:
-                    out.append(
-                        f"  subset {subsets[index] + 1}: {label} factor {condition.factor} = 0 (singular "
-                        f"only where every subset has a vanishing factor){flag}"
-                    )
-                out += [f"    {text}" for text in (condition.statement, result.split_at_pose[index]) if text]
-                here = f"{value:.6g}" if math.isfinite(value) else "not defined: " + result.undefined[index]
-                out.append(f"    vector form: {condition.expression} = 0   (here: {here})")
+            out += ["", "conditions", *condition_lines(result, self.verdict.is_singular)]
         out += ["", "verdict", *("  " + line for line in str(self.verdict).splitlines())]
         if self.modes_at_pose is not None and self.modes_at_pose.meets:
             out += ["", *self.modes_at_pose.lines()]
