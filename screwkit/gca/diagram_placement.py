@@ -167,8 +167,8 @@ def generic_reference(
 def _oriented_at_reference(point: DiagramPoint, value: Any) -> DiagramPoint:
     """A point with its orientation fixed at the reference configuration, where it is ``value``: a
     point at infinity's direction there (:attr:`DiagramPoint.orientation`), or for one the joints
-    orient (a ``normals`` point, an actuation line's direction) the constant sign that makes its first clearly non-zero component positive there
-    (:attr:`DiagramPoint.sign`)."""
+    orient (a ``normals`` point, an actuation line's direction) the constant sign that makes its
+    first clearly non-zero component positive there (:attr:`DiagramPoint.sign`)."""
     if not point.at_infinity:
         return point
     direction = np.asarray(value, dtype=float)[:3]
