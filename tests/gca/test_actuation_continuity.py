@@ -17,6 +17,8 @@ import pytest
 import screwkit as sk
 from screwkit.analysis import quantities as Q
 from screwkit.analysis import workspace as W
+from screwkit.core.wrench_systems import analyze_table
+from screwkit.gca import diagram_points as DP
 
 #: Regular poses where the reference-fixed orientation flipped an actuation direction (a reviewer's
 #: bisection), with the direction of the segment it was found on.
@@ -82,3 +84,23 @@ def test_actuation_condition_changes_sign_only_at_its_zeros_on_random_segments(n
         for i in np.flatnonzero(np.sign(values[:-1]) * np.sign(values[1:]) < 0):
             jumps += bisected_jumps(mechanism, condition, poses[i], poses[i + 1], np.median(np.abs(values)))
     assert jumps == 0
+
+
+@pytest.mark.parametrize("name", ["delta", "h4", "quattro", "ragnar", "v4", "veloce"])
+def test_positive_work_rule_orients_as_the_rod_rule_up_to_one_sign(name, monkeypatch):
+    # The fallback (w ∘ $_a > 0 on the actuated joint) changes sign only at the limb's serial
+    # singularity; where a rod orients the line too, the two agree up to one sign over the motion,
+    # which the reference's constant sign absorbs.
+    mechanism = sk.load_mechanism(name)
+    poses = mechanism.random_poses(np.random.default_rng(3), 60)
+    poses = poses[mechanism.reachable(poses)]
+    points = mechanism.at(None)[0].diagram.points
+    analysis = analyze_table(mechanism.joints(poses))
+    by_rods = DP.batch_diagram_points(points, analysis)
+    monkeypatch.setattr(DP, "_rods", lambda batch, actuated: [])
+    by_work = DP.batch_diagram_points(points, analysis)
+    directions = [p.label for p in points if p.key[0] == "direction" and p.key[1].startswith("actuation ")]
+    assert len(directions) >= 3 and len(poses) > 20
+    for label in directions:
+        along = np.einsum("ij,ij->i", by_rods[label], by_work[label])
+        assert np.all(np.abs(np.abs(along) - 1.0) < 1e-12) and len(set(np.sign(along))) == 1
