@@ -90,11 +90,13 @@ class DiagramPoint:
         positive dot product with this one, so a condition's value is a continuous function of the
         pose and changes sign only at its zeros (where the direction stays within 90° of the
         reference's). None: the sign of the first clearly non-zero component. Not used by a
-        ``normals`` point, which its branches' couples orient (see ``sign``).
+        ``normals`` point or an actuation line's direction, which the joints orient (see ``sign``).
     sign : int, default 1
         For a ``normals`` point ``n_a × n_b``, carried continuously with its magnitude (each couple
-        oriented by its branch's joints): the constant ±1 it is multiplied by, fixed once so that at
-        the reference configuration its first clearly non-zero component is positive.
+        oriented by its branch's joints), and an actuation line's direction (oriented by its limb's
+        joints, :func:`screwkit.gca.diagram_points._actuation_sides`): the constant ±1 it is
+        multiplied by, fixed once so that at the reference configuration its first clearly
+        non-zero component is positive.
     """
 
     label: str

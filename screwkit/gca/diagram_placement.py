@@ -26,7 +26,7 @@ from ..core.wrenches import wrench_analysis
 from ..exceptions import DegenerateGeometryError, ScrewkitError, ScrewkitValueError
 from .diagram import INCIDENCE_RTOL, DiagramPoint, WrenchDiagram, require_instance
 from .diagram_lines import lines_at
-from .diagram_points import batch_diagram_points, diagram_points
+from .diagram_points import _joint_carried, batch_diagram_points, diagram_points
 from .diagram_recipes import wrench_diagram
 from .redundant_conditions import MORE_LINES
 
@@ -166,13 +166,13 @@ def generic_reference(
 
 def _oriented_at_reference(point: DiagramPoint, value: Any) -> DiagramPoint:
     """A point with its orientation fixed at the reference configuration, where it is ``value``: a
-    point at infinity's direction there (:attr:`DiagramPoint.orientation`), or for a ``normals``
-    point the constant sign that makes its first clearly non-zero component positive there
-    (:attr:`DiagramPoint.sign`)."""
+    point at infinity's direction there (:attr:`DiagramPoint.orientation`), or for one the joints
+    orient (a ``normals`` point, an actuation line's direction) the constant sign that makes its
+    first clearly non-zero component positive there (:attr:`DiagramPoint.sign`)."""
     if not point.at_infinity:
         return point
     direction = np.asarray(value, dtype=float)[:3]
-    if point.key[0] == "normals":
+    if _joint_carried(point.key):
         first = direction[np.argmax(np.abs(direction) > 1e-9 * np.abs(direction).max())]
         return replace(point, sign=-1 if first < 0 else 1)
     return replace(point, orientation=tuple(float(x) for x in direction))

@@ -48,6 +48,7 @@ __all__ = [
 ]
 
 Array = np.ndarray
+ACTUATION = "actuation "  # an actuation line's name: this prefix and its actuated joint
 
 
 def diagram_points(
@@ -148,12 +149,34 @@ def batch_diagram_points(
     return {point.label: _carried(_recipe(point.key, batch, cache), point) for point in points}
 
 
+def _joint_carried(key: tuple[str, ...]) -> bool:
+    """Whether a recipe's point at infinity is oriented by the mechanism's joints over the motion
+    (then carried times its constant :attr:`DiagramPoint.sign`): a ``normals`` point
+    (:func:`_branch_pair`) and an actuation line's direction (:func:`_actuation_sides`).
+
+    Parameters
+    ----------
+    key : tuple of str
+        A recipe (:attr:`DiagramPoint.key`).
+
+    Returns
+    -------
+    bool
+
+    Examples
+    --------
+    >>> _joint_carried(("direction", "actuation A1")), _joint_carried(("axis", "A1"))
+    (True, False)
+    """
+    return key[0] == "normals" or (key[0] == "direction" and key[1].startswith(ACTUATION))
+
+
 def _carried(value: Array, point: DiagramPoint) -> Array:
-    """A point's values with the orientation fixed at the reference configuration: a ``normals``
-    point (oriented and scaled by its branches' couples, :func:`_branch_pair`) times its constant
-    :attr:`DiagramPoint.sign` (a flip per pose would lose the sign of its value), another point at
-    infinity by its :attr:`DiagramPoint.orientation` (:func:`_oriented`)."""
-    if point.key[0] == "normals":
+    """A point's values with the orientation fixed at the reference configuration: a point the
+    joints orient (:func:`_joint_carried`) times its constant :attr:`DiagramPoint.sign` (a flip per
+    pose would lose the sign of its value), another point at infinity by its
+    :attr:`DiagramPoint.orientation` (:func:`_oriented`)."""
+    if _joint_carried(point.key):
         return point.sign * value + 0.0
     return _oriented(value, point.orientation)
 
@@ -192,7 +215,7 @@ class _Batch:
         rows = np.asarray(analysis.actuation_rows, dtype=float).reshape(self.count, -1, 6)
         serial = np.asarray(analysis.serial, dtype=bool).reshape(self.count, -1)
         self.actuation = {
-            f"actuation {plan.actuated_joint}": np.where(serial[:, k, None], np.nan, rows[:, k])
+            f"{ACTUATION}{plan.actuated_joint}": np.where(serial[:, k, None], np.nan, rows[:, k])
             for k, plan in enumerate(self.topology.limbs)
         }
 
@@ -431,6 +454,47 @@ def _couple_sides(batch: _Batch, joints: tuple[str, ...], moment: Array) -> Arra
     return oriented if clear.all() else np.where(clear[:, None], oriented, _canonical_directions(moment))
 
 
+def _actuation_sides(batch: _Batch, name: str) -> Array:
+    """An actuation line's unit direction ``(n, 3)`` with a sign that follows its limb's joints over
+    the motion (NaN where the line is not one, e.g. at the limb's serial singularity).
+
+    Two rules, per pose. Along a rod: where two centred joints of the limb (spherical, universal)
+    joined by one link (the first's child the second's parent, e.g. a parallelogram's rod or a
+    Delta's distal rod) have centres on a line parallel to the wrench, the direction from the first
+    centre to the second (the rod's length is constant, so this never vanishes). Else: the sign
+    making the wrench do positive work on its actuated joint's twist, the reciprocal product
+    ``w ∘ $_a = f·v + m·ω > 0`` (Ball's virtual coefficient, Hunt, *Kinematic Geometry of
+    Mechanisms*, §4), which vanishes only where the actuated joint's twist is reciprocal to it,
+    the limb's serial singularity.
+    """
+    wrench = batch.wrench(name)
+    joint = name[len(ACTUATION):]
+    direction = _units(wrench[:, :3])
+    actuated = batch.joint_screws(joint)[:, 0]
+    work = np.einsum("...i,...i", wrench[:, :3], actuated[:, 3:]) + np.einsum(
+        "...i,...i", wrench[:, 3:], actuated[:, :3]
+    )
+    with np.errstate(invalid="ignore"):
+        side = np.sign(work)
+        for first, second in _rods(batch, joint):
+            rod = _joint_centres(batch.joint_screws(second)) - _joint_centres(batch.joint_screws(first))
+            along = np.einsum("...i,...i", rod, direction)
+            parallel = np.linalg.norm(B.cross(_units(rod), direction), axis=-1) <= INCIDENCE_RTOL
+            side = np.where(parallel & (along != 0), np.sign(along), side)
+    return np.where((side != 0)[:, None], side[:, None] * direction, np.nan)
+
+
+def _rods(batch: _Batch, actuated: str) -> list[tuple[str, str]]:
+    """The pairs of centred joints (two or more axes) of the actuated joint's limb joined by one
+    link, the first's child being the second's parent (base to platform), in table order."""
+    limb = next((plan for plan in batch.topology.limbs if plan.actuated_joint == actuated), None)
+    if limb is None:
+        return []
+    specs = {spec.name: spec for spec in batch.table.specs}
+    centred = [j for j in limb.joints if batch.joint_screws(j).shape[1] >= 2]
+    return [(a, b) for a in centred for b in centred if specs[a].child == specs[b].parent]
+
+
 def _recipe(key: tuple[str, ...], batch: _Batch, cache: dict[tuple[str, ...], Array]) -> Array:
     """One recipe (:attr:`DiagramPoint.key`) over the batch, ``(n, 4)``, NaN where it has no point."""
     if key in cache:
@@ -439,6 +503,8 @@ def _recipe(key: tuple[str, ...], batch: _Batch, cache: dict[tuple[str, ...], Ar
     value: Array
     if kind == "meet":
         value = _meet(batch.wrench(key[1]), batch.scaled_axes(key[2]), batch.length_scale[:, None])
+    elif kind == "direction" and _joint_carried(key):
+        value = _infinite(_actuation_sides(batch, key[1]))
     elif kind == "direction":
         value = _infinite(_canonical_directions(batch.wrench(key[1])[:, :3]))
     elif kind == "axis":
