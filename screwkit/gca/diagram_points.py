@@ -212,6 +212,7 @@ class _Batch:
         self.bases: dict[str, tuple[Array, Array]] = {}
         self.lines: dict[str, Array] = {}
         self.axes: dict[str, tuple[Array, Array, Array, Array]] = {}
+        self.centres: dict[str, Array] = {}
         rows = np.asarray(analysis.actuation_rows, dtype=float).reshape(self.count, -1, 6)
         serial = np.asarray(analysis.serial, dtype=bool).reshape(self.count, -1)
         self.actuation = {
@@ -275,6 +276,13 @@ class _Batch:
     def joint_screws(self, name: str) -> Array:
         """``(n, dof_j, 6)``."""
         return np.asarray(self.table.joint_screws(name), dtype=float)
+
+    def centre(self, name: str) -> Array:
+        """:func:`_joint_centres` of a joint over the batch, ``(n, 3)`` (once per joint: the couples'
+        sides, the actuation lines' rods and the ``centre`` points read the same joints)."""
+        if name not in self.centres:
+            self.centres[name] = _joint_centres(self.joint_screws(name))
+        return self.centres[name]
 
     def scaled_axes(self, name: str) -> tuple[Array, Array, Array, Array]:
         """:func:`_scaled_axes` of a joint's first axis over the batch (once per joint: two lines
@@ -445,7 +453,7 @@ def _couple_sides(batch: _Batch, joints: tuple[str, ...], moment: Array) -> Arra
     centred = [j for j in sorted(joints) if batch.joint_screws(j).shape[1] >= 2][:3]
     if len(centred) < 3:
         return _canonical_directions(moment)
-    c1, c2, c3 = (_joint_centres(batch.joint_screws(j)) for j in centred)
+    c1, c2, c3 = (batch.centre(j) for j in centred)
     normal = B.cross(c2 - c1, c3 - c1)
     along = np.einsum("...i,...i", moment, normal)  # |n| = 1: along² ≥ |normal|² / 4 is |cos| ≥ 1/2
     with np.errstate(invalid="ignore"):
@@ -476,11 +484,15 @@ def _actuation_sides(batch: _Batch, name: str) -> Array:
     )
     with np.errstate(invalid="ignore"):
         side = np.sign(work)
-        for first, second in _rods(batch, joint):
-            rod = _joint_centres(batch.joint_screws(second)) - _joint_centres(batch.joint_screws(first))
+        found = np.zeros(len(side), dtype=bool)  # (the first rod along the line decides: a
+        for first, second in _rods(batch, joint):  # parallelogram's two rods agree)
+            rod = batch.centre(second) - batch.centre(first)
             along = np.einsum("...i,...i", rod, direction)
             parallel = np.linalg.norm(B.cross(_units(rod), direction), axis=-1) <= INCIDENCE_RTOL
-            side = np.where(parallel & (along != 0), np.sign(along), side)
+            decides = parallel & (along != 0) & ~found
+            side, found = np.where(decides, np.sign(along), side), found | decides
+            if found.all():
+                break
     return np.where((side != 0)[:, None], side[:, None] * direction, np.nan)
 
 
@@ -519,7 +531,7 @@ def _recipe(key: tuple[str, ...], batch: _Batch, cache: dict[tuple[str, ...], Ar
         along = np.einsum("...i,...i", offset, direction) / np.einsum("...i,...i", direction, direction)
         value = _finite(nearest + direction * along[:, None])
     elif kind == "centre":
-        value = _finite(_joint_centres(batch.joint_screws(key[1])))
+        value = _finite(batch.centre(key[1]))
     elif kind == "couples":
         first, second = batch.wrench(key[1])[:, 3:], batch.wrench(key[2])[:, 3:]
         cross = B.cross(_units(first), _units(second))
