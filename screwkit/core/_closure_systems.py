@@ -119,7 +119,8 @@ class _LoopsAndTask:
             going = length > tolerance[rows[place], 1]  # a correction this small: converged
             contraction = length / before[place]  # the error left is about Θ/(1 − Θ) |Δθ| (module docstring)
             settled = going & ~first[place] & (contraction < 0.5)
-            settled &= contraction / (1.0 - contraction) * length <= tolerance[rows[place], 2]
+            error = np.divide(contraction, 1.0 - contraction, out=np.full_like(length, np.inf), where=settled)
+            settled &= error * length <= tolerance[rows[place], 2]
             sizes[place[settled]] *= contraction[settled]
             before[place], first[place] = length, False
             place = place[going & ~settled]
@@ -147,7 +148,28 @@ class _LoopsAndTask:
         return {key: stacked[:, k] for k, key in enumerate(self.spherical)}
 
 
-class _PinnedLoops(_LoopsAndTask):
+class _GroupedBlocks(_LoopsAndTask):
+    """Equations whose Jacobian comes as groups of independent blocks of one shape, ``(B, k, rows,
+    columns)`` per group, with ``groups`` of ``(equation rows (k, r), columns (k, c), ...)``: the
+    minimum-norm correction solved block by block (blocks of one shape in one batched call)."""
+
+    groups: list[tuple[Array, ...]]
+
+    def with_rows(self, jacobian: Any, rows: Array, other: Any, index: Array) -> Any:
+        pairs = zip(jacobian, other, strict=True)
+        return [rows_replaced(mine, rows, theirs, index) for mine, theirs in pairs]
+
+    def correction(self, jacobian: Any, residual: Array, need: Array) -> Array:
+        count = int(need.sum())
+        out = np.zeros((count, self.model.size))
+        for (rows, columns, *_), blocks in zip(self.groups, jacobian, strict=True):
+            flat = residual[need][:, rows].reshape(-1, rows.shape[1])
+            step = _solve_step(blocks[need].reshape(-1, *blocks.shape[2:]), flat)
+            out[:, columns.ravel()] = step.reshape(count, -1)
+        return out
+
+
+class _PinnedLoops(_GroupedBlocks):
     """The same configurations when the task fixes its link's whole pose: that link placed where the
     target says (:meth:`~screwkit.core.kinematic_tasks.PoseTask.displacement`), the loops of the
     model pinned there (:meth:`~screwkit.core.kinematic_model.KinematicModel.pinned_model`) close
@@ -183,19 +205,6 @@ class _PinnedLoops(_LoopsAndTask):
             jacobian = signs[None, :, :, None, :] * screws[:, :, None]  # (B, k, l, 6, c)
             blocks.append(jacobian.reshape(*jacobian.shape[:2], -1, jacobian.shape[-1]))
         return self.pinned.loop_residual(state), blocks
-
-    def with_rows(self, jacobian: Any, rows: Array, other: Any, index: Array) -> Any:
-        pairs = zip(jacobian, other, strict=True)
-        return [rows_replaced(mine, rows, theirs, index) for mine, theirs in pairs]
-
-    def correction(self, jacobian: Any, residual: Array, need: Array) -> Array:
-        count = int(need.sum())
-        out = np.zeros((count, self.model.size))
-        for (rows, columns, _), blocks in zip(self.groups, jacobian, strict=True):
-            flat = residual[need][:, rows].reshape(-1, rows.shape[1])
-            step = _solve_step(blocks[need].reshape(-1, *blocks.shape[2:]), flat)
-            out[:, columns.ravel()] = step.reshape(count, -1)
-        return out
 
     def tangent(self, start: Array, target: Array) -> Array | None:
         """The tangent (Euler) predictor ``−J⁺ F`` of a first step from the reference configuration

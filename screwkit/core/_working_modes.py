@@ -231,7 +231,8 @@ class Orientations:
         Parameters
         ----------
         system : object
-            As in the constructor.
+            As in the constructor; one with ``last_blocks(rows)`` gives the Jacobian blocks at the values
+            its last corrector left (``screwkit.core._rod_closure._RodLoops``), the step being checked.
         theta, offsets, target : numpy.ndarray
             The configurations of all the poses, ``(B, n)``, ``(B, K, 4, 4)`` and ``(B, k)``.
         rows : numpy.ndarray of bool, shape (B,)
@@ -250,7 +251,10 @@ class Orientations:
         at = np.flatnonzero(rows)
         if at.size == 0:
             return kept
-        blocks = _jacobian_blocks(system, theta[at], offsets[at], target[at])
+        if hasattr(system, "last_blocks"):  # its corrector's own Jacobian at these values (the rods')
+            blocks = system.last_blocks(at)
+        else:
+            blocks = _jacobian_blocks(system, theta[at], offsets[at], target[at])
         flipped, updates = [], []
         for block, sign, (left, right) in zip(blocks, self.signs, self.null_spaces, strict=True):
             signs, new_left, new_right, turned = _carried(block, left[at], right[at])

@@ -85,6 +85,7 @@ from ._closure_systems import (
     _PinnedLoops,
     _residual,
 )
+from ._rod_closure import _RodLoops, rods_of
 from ._seeded_starts import close_seeded
 from ._working_modes import Orientations, unreached_reasons
 from .kinematic_model import KinematicModel, KinematicState
@@ -245,6 +246,8 @@ def close_loops(
     model: KinematicModel,
     task: Any,
     targets: Array,
+    *,
+    rods: bool = True,
 ) -> ClosedConfigurations:
     """Joint values closing the loops and the task at each target, by continuation (module docstring).
 
@@ -254,6 +257,10 @@ def close_loops(
     task : PoseTask or JointTask
     targets : numpy.ndarray, shape (B, k)
         The task's scaled values (``task.scaled_targets``), reached from the reference configuration.
+    rods : bool, default True
+        When the task places the platform and rods (binary links between two balls) close every loop,
+        solve the rods' distance equations on the other joints and place the rods after
+        (:mod:`screwkit.core._rod_closure`); False solves every loop's six equations.
 
     Returns
     -------
@@ -286,10 +293,10 @@ def close_loops(
     out_offsets: dict[str, list[Array]] = {}
     residual = np.zeros(len(targets))
     reasons = np.full(len(targets), "", dtype=object)
-    states, system = [], _system(model, task)  # a large chunk's poses mostly from solved ones nearby
+    states, system = [], _system(model, task, rods)  # a large chunk's poses mostly from solved ones nearby
     steps = functools.partial(_continue, system, step_length=MAX_STEP, jump_limit=JUMP_LIMIT,
                               spherical_secant=True, step_tolerances=STEP_TOLERANCES)
-    reference = functools.partial(_close_chunk, model, task)
+    reference = functools.partial(_close_chunk, model, task, rods=rods)
     for begin in range(0, len(targets), CHUNK):
         chunk = slice(begin, begin + CHUNK)
         result = close_seeded(system, targets[chunk], reference, steps, FINAL_TOLERANCE, MAX_STEP)
@@ -303,21 +310,29 @@ def close_loops(
     return ClosedConfigurations(out_theta, offsets, reached, residual, reasons, state)
 
 
-def _system(model: KinematicModel, task: Any) -> _LoopsAndTask:
-    """The equations of ``task`` on ``model``, built once per task (kept in ``task.prepared``)."""
+def _system(model: KinematicModel, task: Any, rods: bool = True) -> _LoopsAndTask:
+    """The equations of ``task`` on ``model``, built once per task (kept in ``task.prepared``): with
+    ``rods``, a pinned model's rods replaced by their distance equations when they close all its loops
+    (:mod:`screwkit.core._rod_closure`)."""
     prepared = getattr(task, "prepared", {})
-    system = prepared.get("loop_closure")
+    name = "loop_closure" if rods else "loop_closure_with_rods"
+    system = prepared.get(name)
     if system is None or system.model is not model:
         fixes_pose = isinstance(task, PoseTask) and task.fixes_pose and task.coordinates.link != model.base
-        system = prepared["loop_closure"] = (_PinnedLoops if fixes_pose else _LoopsAndTask)(model, task)
+        found = rods_of(model.pinned_model(task.coordinates.link)) if fixes_pose and rods else None
+        if found is not None:
+            system = _RodLoops(model, task, found)
+        else:
+            system = (_PinnedLoops if fixes_pose else _LoopsAndTask)(model, task)
+        prepared[name] = system
     return system
 
 
 def _close_chunk(
-    model: KinematicModel, task: Any, targets: Array
+    model: KinematicModel, task: Any, targets: Array, *, rods: bool = True
 ) -> tuple[Array, dict[str, Array], Array, Array, KinematicState]:
     count = len(targets)
-    system = _system(model, task)
+    system = _system(model, task, rods)
 
     def begin(rows: Array) -> tuple[Array, Array, Array]:
         """The reference configuration for ``rows`` poses, and the task's values there."""

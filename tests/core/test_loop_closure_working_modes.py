@@ -9,7 +9,7 @@ import pytest
 from screwkit.core._working_modes import Orientations
 from screwkit.core.kinematic_model import KinematicModel
 from screwkit.core.kinematic_tasks import PoseTask
-from screwkit.core.loop_closure import _LoopsAndTask
+from screwkit.core.loop_closure import _LoopsAndTask, close_loops
 from screwkit.core.task_coordinates import task_coordinates
 from screwkit.robots.catalog import load_mechanism
 from screwkit.robots.families.four_limb.kinematics import inverse_kinematics
@@ -63,10 +63,12 @@ def ragnar():
     return load_mechanism("ragnar")
 
 
-def test_ragnar_poses_near_a_leg_singularity_keep_the_working_mode_or_are_flagged(ragnar):
+@pytest.mark.parametrize("rods", [True, False])
+def test_ragnar_poses_near_a_leg_singularity_keep_the_working_mode_or_are_flagged(ragnar, rods):
+    # rods=True: the rods' distance equations (screwkit.core._rod_closure, the default); False: every loop
     poses = np.array(RAGNAR_POSES_NEAR_A_FOLD)
     kinematics = kinematics_of(ragnar)
-    closed = kinematics.solve(poses)
+    closed = close_loops(kinematics.model, kinematics.task, kinematics._targets(poses), rods=rods)
     # the closed form's working mode (-1, -1, -1, -1) (paper 004 Eq. 8), its actuated angles from Eq. 3
     expected = inverse_kinematics(ragnar.parameters, poses).theta
     columns = [kinematics.model.joints[name][2][0] for name in kinematics.actuated]
@@ -74,17 +76,21 @@ def test_ragnar_poses_near_a_leg_singularity_keep_the_working_mode_or_are_flagge
     angles = reference + closed.theta[:, columns]
     gap = np.abs((angles - expected + np.pi) % (2 * np.pi) - np.pi).max(axis=1)
     assert np.all(gap[closed.reached] < 1e-9), gap
-    # the ones not reached: each leaves the reach somewhere on the straight way from the reference (so no
-    # path along it stays in the working mode), and says why
+    # every pose whose straight way from the reference stays in reach (the closed form at 4,001 points of
+    # it) is reached; the others may be flagged, each with its reason
     way = np.linspace(0, 1, 4001)[:, None]
-    for pose, reason in zip(poses[~closed.reached], closed.reasons[~closed.reached], strict=True):
-        assert not ragnar.reachable(ragnar.default_pose + way * (pose - ragnar.default_pose)).all()
+    stays = np.array([ragnar.reachable(ragnar.default_pose + way * (pose - ragnar.default_pose)).all()
+                      for pose in poses])
+    assert 5 <= stays.sum() <= 8 and np.all(closed.reached[stays])
+    for reason in closed.reasons[~closed.reached]:
         assert "working or assembly mode" in reason or "do not close" in reason
         assert "residual" in reason
-    assert closed.reached.sum() >= 7  # those whose way stays in reach are all reached
 
 
-def test_a_refused_step_names_the_joints_of_the_leg_group(ragnar):
-    closed = kinematics_of(ragnar).solve(np.array(RAGNAR_POSES_NEAR_A_FOLD[3:4]))
+@pytest.mark.parametrize(("rods", "pose", "joints"), [(True, 8, "A2, A4, R_II"), (False, 3, "A1, A3")])
+def test_a_refused_step_names_the_joints_of_the_leg_group(ragnar, rods, pose, joints):
+    kinematics = kinematics_of(ragnar)
+    targets = kinematics._targets(np.array(RAGNAR_POSES_NEAR_A_FOLD[pose : pose + 1]))
+    closed = close_loops(kinematics.model, kinematics.task, targets, rods=rods)
     assert not closed.reached[0]
-    assert "working or assembly mode" in closed.reasons[0] and "A1, A3" in closed.reasons[0]
+    assert "working or assembly mode" in closed.reasons[0] and joints in closed.reasons[0]

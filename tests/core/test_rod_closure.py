@@ -1,0 +1,112 @@
+"""The loop closure with rods replaced by their distance equations (screwkit.core._rod_closure) gives the
+configurations of the loop closure over every loop's six equations, its Jacobian is the derivative of its
+equations, and its compiled and numpy correctors agree."""
+
+import numpy as np
+import pytest
+
+import screwkit as sk
+from screwkit.core import _rod_closure
+from screwkit.core._rod_closure import _RodLoops, rods_of
+from screwkit.core.loop_closure import LAST_TOLERANCES, _system, close_loops
+from screwkit.robots.catalog import load_mechanism
+from screwkit.robots.graph_kinematics import kinematics_of
+from tests.mechanisms import gough_stewart, gough_stewart_points
+
+ROD_ROBOTS = ["h4", "quattro", "ragnar", "veloce", "delta", "v4"]
+
+
+def _pinned(kinematics):
+    return kinematics.model.pinned_model(kinematics.task.coordinates.link)
+
+
+@pytest.mark.parametrize(("name", "count"), [("h4", 8), ("delta", 6), ("ragnar", 8), ("quattro", 8)])
+def test_rods_are_the_links_between_two_balls(name, count):
+    kinematics = kinematics_of(load_mechanism(name))
+    rods = rods_of(_pinned(kinematics))
+    assert rods is not None and len(rods.names) == count
+    model = kinematics.model
+    for pair, centres, length in zip(rods.joints, rods.centres, rods.lengths, strict=True):
+        assert all(model.types[key] == "S" for key in pair)
+        # each ball's centre lies on its three rotation axes: (c × s = s0) for every screw of the joint
+        for key, centre in zip(pair, centres, strict=True):
+            for column in model.joints[key][2]:
+                row = model.columns[column].row
+                np.testing.assert_allclose(np.cross(centre, row[:3]), row[3:], atol=1e-12)
+        assert length == pytest.approx(np.linalg.norm(centres[1] - centres[0]))
+
+
+def test_mechanisms_whose_loops_no_rod_closes_keep_every_equation():
+    for graph in (gough_stewart(*gough_stewart_points()),):
+        kinematics = kinematics_of(sk.mechanism(graph))
+        assert rods_of(_pinned(kinematics)) is None
+        assert not isinstance(_system(kinematics.model, kinematics.task), _RodLoops)
+    planar = kinematics_of(sk.mechanism("examples/planar_3rpr.toml"))
+    assert not isinstance(_system(planar.model, planar.task), _RodLoops)
+
+
+@pytest.mark.parametrize("name", ROD_ROBOTS)
+def test_the_rods_equations_give_every_loops_configurations(name):
+    robot = load_mechanism(name)
+    kinematics = kinematics_of(robot)
+    assert isinstance(_system(kinematics.model, kinematics.task), _RodLoops)
+    poses = robot.random_poses(np.random.default_rng(21), 300)
+    targets = kinematics._targets(poses)
+    rods = close_loops(kinematics.model, kinematics.task, targets)
+    every = close_loops(kinematics.model, kinematics.task, targets, rods=False)
+    both = rods.reached & every.reached
+    assert both.mean() > 0.97
+    columns = [kinematics.model.joints[key][2][0] for key in kinematics.actuated]
+    np.testing.assert_allclose(rods.theta[both][:, columns], every.theta[both][:, columns], rtol=0, atol=1e-9)
+    # the whole model's loops close at the rods' configurations (the balls placed back)
+    state = kinematics.model.state(rods.theta[both], {key: value[both] for key, value in rods.offsets.items()})
+    assert np.abs(kinematics.model.loop_residual(state)).max() < 1e-9
+
+
+def test_the_rods_jacobian_is_the_derivative_of_their_equations():
+    robot = load_mechanism("h4")
+    kinematics = kinematics_of(robot)
+    system = _system(kinematics.model, kinematics.task)
+    rng = np.random.default_rng(4)
+    theta = np.zeros((5, kinematics.model.size))
+    theta[:, system.remaining] = rng.uniform(-0.3, 0.3, (5, system.remaining.size))
+    target = kinematics._targets(robot.random_poses(rng, 5))
+    residual, blocks = system.equations(system.state(theta, {}, target), target)
+    jacobian = system._jacobian(system.state(theta, {}, target))
+    step = 1e-6
+    for column, position in zip(system.remaining, range(system.remaining.size), strict=True):
+        moved = [theta.copy(), theta.copy()]
+        moved[0][:, column] += step
+        moved[1][:, column] -= step
+        ahead, behind = (system.equations(system.state(m, {}, target), target)[0] for m in moved)
+        np.testing.assert_allclose(jacobian[:, :, position], (ahead - behind) / (2 * step), atol=1e-8)
+    # two blocks: legs 1 and 4 on the platform's half turning about R_I, legs 2 and 3 on R_II's; 4 rods, 3
+    # variables each (the two arms and the hinge)
+    assert residual.shape == (5, 8) and [block.shape[1:] for block in blocks] == [(2, 4, 3)]
+
+
+def test_compiled_and_numpy_correctors_agree(monkeypatch):
+    pytest.importorskip("numba")
+    robot = load_mechanism("ragnar")
+    kinematics = kinematics_of(robot)
+    system = _system(kinematics.model, kinematics.task)
+    far = robot.random_poses(np.random.default_rng(8), 400)  # (>= the compiled paths' batch)
+    poses = robot.default_pose + 0.05 * (far - robot.default_pose)  # Newton's basin from the reference
+    target = kinematics._targets(poses)
+    runs = []
+    for compiled in (True, False):
+        if not compiled:
+            monkeypatch.setattr(_rod_closure, "compiled_kernels", lambda name, size: None)
+        theta = np.zeros((len(poses), kinematics.model.size))
+        offsets = np.tile(np.eye(4), (len(poses), len(system.spherical), 1, 1))
+        tolerance = np.tile(LAST_TOLERANCES, (len(poses), 1))
+        working = np.ones(len(poses), dtype=bool)
+        sizes = system.newton(theta, offsets, target, tolerance, working)[0]
+        runs.append((theta, offsets, sizes, system.last_blocks(np.arange(len(poses)))))
+    (theta, offsets, sizes, blocks), (theta_np, offsets_np, sizes_np, blocks_np) = runs
+    converged = (sizes < 1e-6) & (sizes_np < 1e-6)  # (the size before a last correction of at most 1e-7)
+    assert converged.mean() > 0.9
+    np.testing.assert_allclose(theta[converged], theta_np[converged], rtol=0, atol=1e-11)
+    np.testing.assert_allclose(offsets[converged], offsets_np[converged], rtol=0, atol=1e-11)
+    for block, twin in zip(blocks, blocks_np, strict=True):
+        np.testing.assert_allclose(block[converged], twin[converged], rtol=0, atol=1e-10)
