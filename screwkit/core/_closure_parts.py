@@ -12,7 +12,7 @@ from ..algebra.rigid_motions import rotation_log
 from .kinematic_model import KinematicModel, KinematicState
 
 __all__ = [
-    "concatenated",
+    "assembled",
     "kernel_blocks",
     "pose_residual",
     "pose_residual_inverse",
@@ -71,24 +71,57 @@ def replace_rows(state: KinematicState, rows: Array, other: KinematicState) -> N
     """``state``'s rows ``rows`` set to ``other``'s, in place."""
     state.theta[rows] = other.theta
     state.current[rows] = other.current
-    pairs = ((state.offsets, other.offsets), (state.links, other.links), (state.motions, other.motions))
+    pairs = [(state.offsets, other.offsets)]
+    if state.stacked is not None and other.stacked is not None:  # (the dicts view these arrays)
+        state.stacked[0][rows], state.stacked[1][rows] = other.stacked
+    else:
+        pairs += [(state.links, other.links), (state.motions, other.motions)]
     for mine, theirs in pairs:
         for key, value in mine.items():
             value[rows] = theirs[key]
 
 
-def concatenated(states: list[KinematicState]) -> KinematicState | None:
-    """The states of consecutive chunks as one (None for no chunk)."""
-    if len(states) <= 1:
-        return states[0] if states else None
-
-    def joined(parts: list[dict[Any, Array]]) -> dict[Any, Array]:
-        return {key: np.concatenate([part[key] for part in parts]) for key in parts[0]}
-
+def viewed_state(
+    theta: Array,
+    offsets: dict[str, Array],
+    links: Array,
+    current: Array,
+    motions: Array,
+    like: KinematicState,
+) -> KinematicState:
+    """A state whose link and joint dicts view the arrays ``links (B, links, 4, 4)`` and ``motions (B,
+    joints, 4, 4)``, their keys in the order of ``like``'s (that of its own stacked arrays)."""
     return KinematicState(
-        np.concatenate([state.theta for state in states]),
-        joined([state.offsets for state in states]),
-        joined([state.links for state in states]),
-        np.concatenate([state.current for state in states]),
-        joined([state.motions for state in states]),
+        theta,
+        offsets,
+        {key: links[:, i] for i, key in enumerate(like.links)},
+        current,
+        {key: motions[:, j] for j, key in enumerate(like.motions)},
+        (links, motions),
     )
+
+
+def assembled(count: int, parts: list[tuple[Any, KinematicState]]) -> KinematicState | None:
+    """One state of ``count`` poses from ``parts`` of ``(rows, state)``: each part's poses written at its
+    rows (an index or a slice; together they cover every pose), once (None for no part)."""
+    if not parts:
+        return None
+    like = parts[0][1]
+    if len(parts) == 1 and len(like.theta) == count:  # (one part of every pose: itself)
+        return like
+
+    def empty(array: Array) -> Array:
+        return np.empty((count, *array.shape[1:]), dtype=array.dtype)
+
+    offsets = {key: empty(value) for key, value in like.offsets.items()}
+    if all(state.stacked is not None for _, state in parts):
+        links, motions = like.stacked  # type: ignore[misc]
+        theta, current = empty(like.theta), empty(like.current)
+        state = viewed_state(theta, offsets, empty(links), current, empty(motions), like)
+    else:
+        by_link = {key: empty(value) for key, value in like.links.items()}
+        by_joint = {key: empty(value) for key, value in like.motions.items()}
+        state = KinematicState(empty(like.theta), offsets, by_link, empty(like.current), by_joint)
+    for rows, part in parts:
+        replace_rows(state, rows, part)
+    return state

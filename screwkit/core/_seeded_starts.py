@@ -43,7 +43,7 @@ from typing import Any, cast
 
 import numpy as np
 
-from ._closure_parts import concatenated, replace_rows
+from ._closure_parts import assembled, replace_rows
 from ._working_modes import Orientations
 from .kinematic_model import KinematicState
 
@@ -99,17 +99,6 @@ def _stacked(system: Any, offsets: dict[str, Array], count: int) -> Array:
     if not system.spherical:
         return np.zeros((count, 0, 4, 4))
     return np.stack([offsets[key] for key in system.spherical], axis=1)
-
-
-def _taken_state(state: KinematicState, index: Array) -> KinematicState:
-    """The rows ``index`` of ``state``."""
-
-    def rows(part: dict[Any, Array]) -> dict[Any, Array]:
-        return {key: value[index] for key, value in part.items()}
-
-    return KinematicState(
-        state.theta[index], rows(state.offsets), rows(state.links), state.current[index], rows(state.motions)
-    )
 
 
 def close_seeded(
@@ -170,7 +159,7 @@ def close_seeded(
         targets[rest], first[0][solved][near], seed_offsets[near], starts, modes=modes
     )
     order = np.argsort(np.concatenate([first_rows, rest]))
-    state = _taken_state(cast(KinematicState, concatenated([first[4], state])), order)
+    state = cast(KinematicState, assembled(count, [(first_rows, first[4]), (rest, state)]))
     theta = np.concatenate([first[0], theta])[order]
     residual = np.concatenate([first[2], residual])[order]
     reasons = np.concatenate([first[3], np.full(len(rest), "", dtype=object)])[order]

@@ -47,8 +47,14 @@ the way: after the first) an iteration solves with the last factorisation (simpl
 
 When the task fixes its link's whole pose, a step's Newton iterations run in a compiled kernel when
 numba is installed (:mod:`screwkit.core._newton_numba`: the model, the loops' residual and the
-block-by-block correction, pose by pose), else in numpy over the batch (:class:`_PinnedLoops`); the
-two agree to round-off (:func:`screwkit.algebra.compiled.compiled_kernels` chooses).
+block-by-block correction, pose by pose), else in numpy over the batch (``_PinnedLoops``); the
+two agree to round-off (:func:`screwkit.algebra.compiled.compiled_kernels` chooses). When, moreover,
+every loop is closed by a *rod* (a binary link between two spherical joints: the distal links of a
+Delta, an H4, a Ragnar), each rod's six loop equations and its balls' six angles give way to one
+equation, the distance between its balls' centres (Merlet, *Parallel Robots*, 2nd ed., 2006, §3.1),
+on the other joints (an H4 leg group: 4 equations in 3 variables instead of 24 in 27); the rods are
+placed back after every step and the whole model's loops checked as for any mechanism
+(:mod:`screwkit.core._rod_closure`; ``close_loops(..., rods=False)`` solves every loop's equations).
 
 Examples
 --------
@@ -79,7 +85,7 @@ from typing import Any
 import numpy as np
 
 from ..exceptions import ScrewkitValueError
-from ._closure_parts import concatenated, replace_rows
+from ._closure_parts import assembled, replace_rows
 from ._closure_systems import (
     _LoopsAndTask,
     _PinnedLoops,
@@ -301,12 +307,12 @@ def close_loops(
         chunk = slice(begin, begin + CHUNK)
         result = close_seeded(system, targets[chunk], reference, steps, FINAL_TOLERANCE, MAX_STEP)
         out_theta[chunk], residual[chunk], reasons[chunk] = result[0], result[2], result[3]
-        states.append(result[4])
+        states.append((chunk, result[4]))
         for key, value in result[1].items():
             out_offsets.setdefault(key, []).append(value)
     reached = residual < FINAL_TOLERANCE
     offsets = {key: np.concatenate(parts) for key, parts in out_offsets.items()}
-    state = concatenated(states)
+    state = assembled(len(targets), states)
     return ClosedConfigurations(out_theta, offsets, reached, residual, reasons, state)
 
 
