@@ -226,6 +226,85 @@ def loop_residual(links: Array, motions: Array, loops: Array) -> Array:  # pragm
     return out
 
 
+@njit(cache=True, inline="always")
+def damped_cholesky(gram: Array, size: int) -> None:  # pragma: no cover - compiled
+    """The Cholesky factor of ``gram[:size, :size] + λ I`` into its lower triangle (read from it), with
+    Levenberg's ``λ = 1e-13 (trace + 1)`` that keeps dependent equations solvable (Golub & Van Loan,
+    *Matrix Computations*, 4th ed., 2013, Alg. 4.2.1)."""
+    trace = 0.0
+    for i in range(size):
+        trace += gram[i, i]
+    damping = 1e-13 * (trace + 1.0)
+    for j in range(size):
+        total = gram[j, j] + damping
+        for k in range(j):
+            total -= gram[j, k] * gram[j, k]
+        pivot = math.sqrt(total) if total > 0.0 else 1e-300
+        gram[j, j] = pivot
+        for i in range(j + 1, size):
+            value = gram[i, j]
+            for k in range(j):
+                value -= gram[i, k] * gram[j, k]
+            gram[i, j] = value / pivot
+
+
+@njit(cache=True, inline="always")
+def cholesky_solve(factor: Array, size: int, solution: Array) -> None:  # pragma: no cover - compiled
+    """``solution[:size]`` replaced by ``(L Lᵀ)⁻¹ solution`` with the factor :func:`damped_cholesky` left."""
+    for i in range(size):
+        value = solution[i]
+        for m in range(i):
+            value -= factor[i, m] * solution[m]
+        solution[i] = value / factor[i, i]
+    for i in range(size - 1, -1, -1):
+        value = solution[i]
+        for m in range(i + 1, size):
+            value -= factor[m, i] * solution[m]
+        solution[i] = value / factor[i, i]
+
+
+@njit(cache=True, inline="always")
+def took_correction(  # pragma: no cover - compiled
+    theta: Array,
+    correction: Array,
+    sign: float,
+    max_correction: float,
+    tolerance: Array,
+    first: bool,
+    before: float,
+    size: float,
+    p: int,
+    sizes: Array,
+    leading: Array,
+    corrected: Array,
+) -> tuple[bool, float]:
+    """One Newton correction taken: ``theta += sign × correction``, scaled down to ``max_correction``
+    at most, its length added to pose ``p``'s ``leading`` (the first) or ``corrected`` (the others);
+    returns whether the iterations stop (the correction within ``tolerance[1]``, or contracting at
+    ``Θ < 1/2`` with the error estimate ``Θ / (1 − Θ) |Δθ|`` within ``tolerance[2]``, the residual
+    ``size`` before it times ``Θ`` then written into ``sizes[p]``) and its length."""
+    length = 0.0
+    for k in range(theta.shape[0]):
+        value = abs(correction[k])
+        if not value <= length:
+            length = value
+    scale = min(1.0, max_correction / max(length, 1e-300))
+    for k in range(theta.shape[0]):
+        theta[k] += sign * correction[k] * scale
+    if first:
+        leading[p] = min(length, max_correction)
+    else:
+        corrected[p] += min(length, max_correction)
+    if not length > tolerance[1]:  # a correction this small: converged
+        return True, length
+    if not first and length < 0.5 * before:  # contracting: the error left is about Θ/(1 − Θ) |Δθ|
+        contraction = length / before
+        if contraction / (1.0 - contraction) * length <= tolerance[2]:
+            sizes[p] = size * contraction
+            return True, length
+    return False, length
+
+
 @njit(cache=True)
 def _block_factor(  # pragma: no cover - compiled
     current: Array, block: int, blocks: tuple, gram: Array
@@ -251,21 +330,7 @@ def _block_factor(  # pragma: no cover - compiled
                     top = 6 if i != j else a + 1
                     for b in range(top):
                         gram[6 * i + a, 6 * j + b] += scaled * screw[b]
-    trace = 0.0
-    for i in range(size):
-        trace += gram[i, i]
-    damping = 1e-13 * (trace + 1.0)
-    for j in range(size):
-        total = gram[j, j] + damping
-        for k in range(j):
-            total -= gram[j, k] * gram[j, k]
-        pivot = math.sqrt(total) if total > 0.0 else 1e-300
-        gram[j, j] = pivot
-        for i in range(j + 1, size):
-            value = gram[i, j]
-            for k in range(j):
-                value -= gram[i, k] * gram[j, k]
-            gram[i, j] = value / pivot
+    damped_cholesky(gram, size)
 
 
 @njit(cache=True)
@@ -278,15 +343,8 @@ def _block_solve(  # pragma: no cover - compiled
     first_loop = block_ptr[block]
     size = 6 * (block_ptr[block + 1] - first_loop)
     for i in range(size):
-        value = residual[6 * block_loops[first_loop + i // 6] + i % 6]
-        for m in range(i):
-            value -= gram[i, m] * solution[m]
-        solution[i] = value / gram[i, i]
-    for i in range(size - 1, -1, -1):
-        value = solution[i]
-        for m in range(i + 1, size):
-            value -= gram[m, i] * solution[m]
-        solution[i] = value / gram[i, i]
+        solution[i] = residual[6 * block_loops[first_loop + i // 6] + i % 6]
+    cholesky_solve(gram, size, solution)
     for q in range(column_ptr[block], column_ptr[block + 1]):
         c = column_index[q]
         total = 0.0
@@ -375,26 +433,12 @@ def pinned_newton(  # pragma: no cover - compiled
                     _block_factor(frozen, b, blocks, grams[b])
             for b in range(block_ptr.shape[0] - 1):
                 _block_solve(frozen, residual, b, blocks, grams[b], solution, correction)
-            length = 0.0
-            for k in range(n):
-                value = abs(correction[k])
-                if not value <= length:
-                    length = value
-            scale = min(1.0, max_correction / max(length, 1e-300))
-            for k in range(n):
-                theta[p, k] += correction[k] * scale
-            if first:
-                leading[p] = min(length, max_correction)
-            else:
-                corrected[p] += min(length, max_correction)
-            if not length > tolerance[p, 1]:  # a correction this small: converged
+            stop, before = took_correction(
+                theta[p], correction, 1.0, max_correction, tolerance[p], first, before, size, p, sizes,
+                leading, corrected,
+            )
+            if stop:
                 break
-            if not first and length < 0.5 * before:  # contracting: the error left is about Θ/(1 − Θ) |Δθ|
-                contraction = length / before
-                if contraction / (1.0 - contraction) * length <= tolerance[p, 2]:
-                    sizes[p] = size * contraction
-                    break
-            before = length
             first = False
         unfolded[p] = theta[p]
         _recentre(

@@ -17,7 +17,7 @@ import math
 import numpy as np
 from numba import njit
 
-from ._newton_numba import _evaluate_pose
+from ._newton_numba import _evaluate_pose, cholesky_solve, damped_cholesky, took_correction
 
 __all__ = ["rod_newton"]
 
@@ -182,7 +182,6 @@ def rod_newton(  # pragma: no cover - compiled
             if not size > tolerance[p, 0]:
                 break
             _rods_jacobian(current, points, lengths, signs, jacobian)
-            trace = 0.0
             for i in range(m):
                 value = 0.0
                 for r in range(rods):
@@ -193,49 +192,15 @@ def rod_newton(  # pragma: no cover - compiled
                     for r in range(rods):
                         total += jacobian[r, i] * jacobian[r, j]
                     normal[i, j] = total
-                trace += normal[i, i]
-            damping = 1e-13 * (trace + 1.0)
-            for j in range(m):  # Cholesky, lower triangle
-                total = normal[j, j] + damping
-                for k in range(j):
-                    total -= normal[j, k] * normal[j, k]
-                pivot = math.sqrt(total) if total > 0.0 else 1e-300
-                normal[j, j] = pivot
-                for i in range(j + 1, m):
-                    value = normal[i, j]
-                    for k in range(j):
-                        value -= normal[i, k] * normal[j, k]
-                    normal[i, j] = value / pivot
-            for i in range(m):
-                value = solution[i]
-                for k in range(i):
-                    value -= normal[i, k] * solution[k]
-                solution[i] = value / normal[i, i]
-            for i in range(m - 1, -1, -1):
-                value = solution[i]
-                for k in range(i + 1, m):
-                    value -= normal[k, i] * solution[k]
-                solution[i] = value / normal[i, i]
-            length = 0.0
-            for i in range(m):
-                if not abs(solution[i]) <= length:
-                    length = abs(solution[i])
-            scale = min(1.0, max_correction / max(length, 1e-300))
-            for i in range(m):
-                theta[p, i] -= solution[i] * scale
+            damped_cholesky(normal, m)
+            cholesky_solve(normal, m, solution)
             stale = True
-            if first:
-                leading[p] = min(length, max_correction)
-            else:
-                corrected[p] += min(length, max_correction)
-            if not length > tolerance[p, 1]:
+            stop, before = took_correction(
+                theta[p], solution, -1.0, max_correction, tolerance[p], first, before, size, p, sizes,
+                leading, corrected,
+            )
+            if stop:
                 break
-            if not first and length < 0.5 * before:
-                contraction = length / before
-                if contraction / (1.0 - contraction) * length <= tolerance[p, 2]:
-                    sizes[p] = size * contraction
-                    break
-            before = length
             first = False
         if stale:
             _evaluate_pose(theta[p], offsets, placed[p], model, steps, rows, work, links, motions, current)
