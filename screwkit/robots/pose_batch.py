@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 
 from ..algebra.display import html_section, html_table, number_text
+from ..core.jacobian_matrices import UNREACHABLE, Jacobians
 from ..exceptions import ScrewkitIndexError, ScrewkitValueError, UnreachablePoseError
 from ..graphs.jointtable import JointTable
 from .angles import pose_scale, pose_text
@@ -31,11 +32,14 @@ __all__ = [
     "one_pose",
     "per_pose",
     "reachable_part",
+    "reached_jacobians",
+    "reached_transmission",
+    "scattered",
 ]
 
-#: The verdict of a pose out of reach in a batch's per-pose views (``verdicts``; its code is ``-1``,
-#: its closeness NaN, its redundancy ``-1``).
-UNREACHABLE = "unreachable"
+# UNREACHABLE ("unreachable", screwkit.core.jacobian_matrices): the verdict of a pose out of reach in a
+# batch's per-pose views (``verdicts``; its code is ``-1``, its closeness NaN, its redundancy ``-1``) and
+# the Gosselin-Angeles type of its Jacobians.
 
 Array = np.ndarray
 
@@ -324,3 +328,112 @@ def one_pose(posed: Any, index: Any) -> Any:
     one = type(posed)(**fields, _batch=(reached, row))
     one.__dict__["joints"] = reached.joints[row]
     return one
+
+
+def scattered(values: Any, mask: Array, shape: tuple[int, ...], fill: Any) -> Array:
+    """Values of the reached poses of a batch (a first axis over them) put back at their poses, ``fill``
+    at the poses out of reach.
+
+    Parameters
+    ----------
+    values : array_like, shape (k, ...)
+        One row per reached pose, in the batch's flat (C) order.
+    mask : numpy.ndarray of bool, shape (m,)
+        The flat mask of the reached poses (``k`` of them).
+    shape : tuple of int
+        The batch shape (``m`` poses).
+    fill : object
+        The value at a pose out of reach (NaN, False, ``-1``).
+
+    Returns
+    -------
+    numpy.ndarray, shape (*shape, ...)
+
+    Examples
+    --------
+    >>> scattered(np.array([[1.0, 2.0]]), np.array([False, True]), (2,), np.nan).tolist()
+    [[nan, nan], [1.0, 2.0]]
+    """
+    rows = np.asarray(values)
+    out = np.full((mask.size, *rows.shape[1:]), fill, dtype=np.result_type(rows, np.asarray(fill)))
+    out[mask] = rows
+    return out.reshape(*shape, *rows.shape[1:])
+
+
+def _reached(posed: Any, view: str) -> tuple[Array, Any]:
+    """The flat mask of a partial batch's reached poses and the posed mechanism at them."""
+    mask, reached = posed.reached_part
+    if reached is None:
+        raise UnreachablePoseError(
+            f"Expected some pose of the batch in reach for `{view}`, got none of {mask.size} "
+            f"(posed.failures has the reasons)."
+        )
+    return mask, reached
+
+
+def reached_jacobians(posed: Any) -> Jacobians:
+    """The Jacobians of a batch some of whose poses are out of reach: each reached pose's as in a batch
+    of the reached poses alone, NaN matrices and closeness at the others (type ``"unreachable"``, no
+    serial flag, no analysis: it covers the reached poses only, ``posed[i].jacobians.analysis`` has a
+    pose's).
+
+    Parameters
+    ----------
+    posed : PosedMechanism
+        A batch with a pose out of reach (:func:`reachable_part` not None).
+
+    Returns
+    -------
+    Jacobians
+        Over the batch's shape.
+
+    Raises
+    ------
+    UnreachablePoseError
+        If no pose of the batch is in reach.
+
+    Examples
+    --------
+    >>> reached_jacobians(load_mechanism("v4").at([[0, 0, -750, 0], [0, 0, -3000, 0]])).types.tolist()
+    ['regular', 'unreachable']
+    """
+    mask, reached = _reached(posed, "jacobians")
+    jac, shape = reached.jacobians, posed.shape
+
+    def spread(value: Any, fill: Any = np.nan) -> Any:
+        return None if value is None else scattered(value, mask, shape, fill)
+
+    closeness = {key: spread(value) for key, value in jac.closeness.items()}
+    return Jacobians(spread(jac.A), spread(jac.B), closeness, jac.rtol, spread(jac.wrenches),
+                     spread(jac.twist_basis), jac.actuated_joints, spread(jac.serial, False))
+
+
+def reached_transmission(posed: Any) -> Any:
+    """The wrench-based transmission of a batch some of whose poses are out of reach: each reached
+    pose's as in a batch of the reached poses alone, NaN at the others
+    (:attr:`Transmission.reachable <screwkit.robots.transmission.Transmission.reachable>` False there).
+
+    Parameters
+    ----------
+    posed : PosedMechanism
+        A batch with a pose out of reach (:func:`reachable_part` not None).
+
+    Returns
+    -------
+    Transmission
+        Over the batch's shape.
+
+    Raises
+    ------
+    UnreachablePoseError
+        If no pose of the batch is in reach.
+
+    Examples
+    --------
+    >>> reached_transmission(load_mechanism("v4").at([[0, 0, -750, 0], [0, 0, -3000, 0]])).reachable.tolist()
+    [True, False]
+    """
+    mask, reached = _reached(posed, "wrench_transmission")
+    value, shape = reached.wrench_transmission, posed.shape
+    parts = (scattered(getattr(value, name), mask, shape, np.nan) for name in ("input", "output", "lti"))
+    return type(value)(*parts, value.actuated_joints)

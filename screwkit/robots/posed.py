@@ -30,7 +30,7 @@ from __future__ import annotations
 
 import functools
 import weakref
-from collections.abc import Callable, Iterable, Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -44,18 +44,15 @@ from ..core.jacobians import jacobians_from_wrenches
 from ..core.singularity import classify_chunks, label_table
 from ..core.verdicts import LABELS, SingularityReport
 from ..core.wrench_systems import WrenchAnalysis, analyze_table
-from ..exceptions import ScrewkitError, ScrewkitIndexError, ScrewkitValueError, UnreachablePoseError
-from ..graphs.jointtable import JointTable
-from .generic_poses import (
-    GENERIC_DRAWS,
-    SAMPLES,
-    _concatenated,
-    _no_sampler,
-    _PoseAnalyses,
-    _reachable_table,
-    _samples,
-    generic_samples,
+from ..exceptions import (
+    ScrewkitError,
+    ScrewkitIndexError,
+    ScrewkitTypeError,
+    ScrewkitValueError,
+    UnreachablePoseError,
 )
+from ..graphs.jointtable import JointTable
+from .generic_poses import _no_sampler
 from .pose_batch import (
     UNREACHABLE,
     batch_html,
@@ -65,8 +62,12 @@ from .pose_batch import (
     one_pose,
     per_pose,
     reachable_part,
+    reached_jacobians,
+    reached_transmission,
 )
+from .pose_diagram import diagram_points_over_batch, generic_draws, pose_diagram_and_sampler
 from .reach import failures_by_index
+from .report_composer import report_composer
 from .transmission import Transmission, wrench_transmission
 
 __all__ = ["PosedMechanism"]
@@ -356,9 +357,11 @@ class PosedMechanism:
     @functools.cached_property
     def jacobians(self) -> Jacobians:
         """``A χ̇ = B θ̇`` per pose over the family's nominal twists (one pose: from its :attr:`analysis`).
-        Over a batch they need every pose reached: a pose out of reach raises
-        :class:`~screwkit.exceptions.UnreachablePoseError` naming it (``posed.poses[posed.reachable]``
-        are those reached)."""
+        A pose out of reach has NaN matrices, closeness and determinants and the type ``"unreachable"``;
+        the others get what a batch of the reached poses alone gives
+        (:func:`~screwkit.robots.pose_batch.reached_jacobians`)."""
+        if self.shape != () and self.reached_part is not None:
+            return reached_jacobians(self)
         analysis = self.analysis if self.shape == () else self.singularities.analysis
         return jacobians_from_wrenches(analysis, self.twist_basis, rtol=self.rtol)
 
@@ -367,7 +370,10 @@ class PosedMechanism:
         """Input/output transmission per actuated joint and their LTI, from the actuation wrenches and
         the nominal twists, for any family (:func:`screwkit.robots.transmission.wrench_transmission`;
         the input at the points the family's optional ``application_points`` hook gives, e.g. the
-        elbows of the four-limb family)."""
+        elbows of the four-limb family). NaN at a pose out of reach
+        (:func:`~screwkit.robots.pose_batch.reached_transmission`)."""
+        if self.shape != () and self.reached_part is not None:
+            return reached_transmission(self)
         hook = self.mechanism.family_protocol.application_points
         points = None if hook is None else hook(self.configuration)
         return wrench_transmission(self.jacobians, input_points=points)
@@ -407,23 +413,7 @@ class PosedMechanism:
         >>> len(values) == len(diagram.points), exists.tolist()
         (True, [True, True])
         """
-        from ..gca.diagram_points import batch_diagram_points, frames_read
-
-        kept, length = functools.partial(frames_read, points), self.length_scale
-        try:
-            parts = [
-                batch_diagram_points(
-                    points, analyze_table(table, rtol=self.rtol, length_scale=length, views=False, kept=kept)
-                )
-                for table in self._table_chunks()
-            ]
-        except ScrewkitError:
-            _ = self.configuration  # raises the whole batch's message (the failing pose's index)
-            raise
-        values = {p.label: np.concatenate([part[p.label] for part in parts]) for p in points}
-        values = {label: value.reshape(*self.shape, 4) for label, value in values.items()}
-        exists = np.all([np.isfinite(v).all(axis=-1) for v in values.values()], axis=0)
-        return values, np.asarray(exists, dtype=bool).reshape(self.shape)
+        return diagram_points_over_batch(self, points)
 
     def __getitem__(self, index: Any) -> PosedMechanism:
         """One pose of the batch: a posed mechanism of shape ``()`` with its row of the joint table.
@@ -486,44 +476,22 @@ class PosedMechanism:
 
     @functools.cached_property
     def _draws(self) -> tuple[Sequence[WrenchAnalysis], WrenchAnalysis | None, np.random.Generator]:
-        """The random workspace poses a wrench diagram is chosen at (:data:`GENERIC_DRAWS`, seed
-        2026) and the first batch of its sampler's (``2 *`` :data:`SAMPLES`, seed 0) through the
-        core as one batch, with this pose unless its analysis is already computed (one pass instead
-        of three; a pose's result does not depend on the batch it is in, ``tests/robots/test_batch.py``):
-        the per-pose analyses at the generic draws, the batch at the samples (None if none is
-        reachable) and the samples' generator, where the next batch is drawn from. (61 poses of
-        four limbs stay below :data:`screwkit.algebra.compiled.COMPILED_MIN_BATCH`: no numba import.)
-        """
+        """The generic draws, this pose and the first samples through the core as one batch
+        (:func:`~screwkit.robots.pose_diagram.generic_draws`; one pose only)."""
         self._one("diagram_and_sampler()")
-        mechanism, rtol = self.mechanism, self.rtol
-        own = [] if "analysis" in self.__dict__ else [self.joints[None]]  # first: a pose out of reach says so
-        stream = np.random.default_rng(0)
-        generic = _reachable_table(mechanism, np.random.default_rng(2026), GENERIC_DRAWS)
-        sampled = _reachable_table(mechanism, stream, 2 * SAMPLES)
-        tables = [*own, *(t for t in (generic, sampled) if t is not None)]
-        if not tables:  # this pose analysed already, no random pose reachable
-            return [], None, stream
-        batch = analyze_table(_concatenated(tables), rtol=rtol, length_scale=self.length_scale)
-        if own:
-            self.__dict__["analysis"] = self._with_graph(batch[0])
-        start = len(own)
-        analyses: Sequence[WrenchAnalysis] = []
-        if generic is not None:
-            analyses = _PoseAnalyses(batch[start : start + len(generic)], generic, mechanism.name)
-            start += len(generic)
-        return analyses, (None if sampled is None else batch[start:]), stream
+        return generic_draws(self)
 
     def diagram_and_sampler(self) -> tuple[Any, Callable[[np.random.Generator], dict[str, Array]]]:
         """The wrench diagram at this pose and a sampler of its recipes at generic poses (one pose only).
 
         Which lines make the diagram and which points they share is decided at a generic (random,
-        seeded) workspace pose of :data:`GENERIC_DRAWS` drawn as one batch
+        seeded) workspace pose of :data:`~screwkit.robots.generic_poses.GENERIC_DRAWS` drawn as one batch
         (:func:`screwkit.gca.diagram_placement.generic_reference`); the diagram is then placed at this pose
         (:func:`screwkit.gca.diagram_placement.diagram_at`), where lines that coincide still appear. When the
         mechanism has no diagram (e.g. a wrench system not spanned by lines), the reasons found at
         the generic poses are given as ``degenerate``. The sampler
         replays recipes evaluated at random workspace poses, drawn and analysed as one batch
-        (:func:`generic_samples`).
+        (:func:`~screwkit.robots.generic_poses.generic_samples`).
 
         Returns
         -------
@@ -542,27 +510,7 @@ class PosedMechanism:
         >>> len(diagram.points) > 0
         True
         """
-        from dataclasses import replace
-
-        from ..gca.diagram_placement import ReplaySampler, diagram_at, generic_reference
-        from ..gca.diagram_recipes import wrench_diagram
-
-        analyses, first, stream = self._draws
-        reference, reasons = generic_reference(analyses)
-        if reference is None:  # a property of the mechanism, found at generic poses: say so
-            diagram = wrench_diagram(self.analysis)
-            return replace(diagram, coordinates={}, degenerate=reasons), _no_sampler
-        diagram = diagram_at(reference, self.analysis)
-        mechanism, rtol = self.mechanism, self.rtol
-        pending = [first]
-
-        def produce(_: np.random.Generator) -> Iterable[dict[str, Array]]:
-            # the first batch analysed with the generic draws, the next ones drawn on from its stream
-            if pending:
-                return _samples(diagram.points, pending.pop(), SAMPLES)
-            return generic_samples(mechanism, diagram.points, stream, SAMPLES, rtol, self.length_scale)
-
-        return diagram, ReplaySampler(produce)
+        return pose_diagram_and_sampler(self)
 
     @functools.cached_property
     def diagram(self) -> Any:
@@ -598,3 +546,55 @@ class PosedMechanism:
             )
         return superbracket_analysis(diagram, sampler)
 
+
+    def report(self, *, superbracket: bool = True, progress: Callable[[str], None] | None = None) -> Any:
+        """The whole analysis of this pose as one report: what ``sk.analyze(posed[i])`` returns
+        (:func:`screwkit.interface.report.analyze`), for a catalog robot and for a graph or snapshot
+        mechanism (``sk.mechanism(graph).at(poses)[i]``) alike.
+
+        The report is composed by the interface, a layer above this one: the robots may not import it
+        (docs/architecture.md §2), so this method calls the composer that ``import screwkit`` registers
+        (:mod:`screwkit.robots.report_composer`, dependency inversion).
+
+        Parameters
+        ----------
+        superbracket : bool, default True
+            Also expand and factor the superbracket (skip for speed).
+        progress : callable, optional
+            Called with the name of each stage as it starts (:data:`screwkit.interface.report.STAGES`).
+
+        Returns
+        -------
+        AnalysisReport
+
+        Raises
+        ------
+        ScrewkitValueError
+            On a batch (index it first: ``posed[i]``).
+        UnreachablePoseError
+            If this pose is out of reach (with the reason, :attr:`failures`).
+        ScrewkitTypeError
+            If ``superbracket`` is not a bool or ``progress`` not callable.
+
+        Examples
+        --------
+        >>> posed = load_mechanism("h4").at([[0, 0, -750, 0], [30, -20, -750, 0.3]])
+        >>> report = posed[1].report(superbracket=False)
+        >>> report.verdict.verdict, report.pose.tolist()
+        ('regular', [30.0, -20.0, -750.0, 0.3])
+        >>> posed.report()  # doctest: +ELLIPSIS
+        Traceback (most recent call last):
+        ...
+        screwkit.exceptions.ScrewkitValueError: Expected one pose of a posed mechanism (index the batch: ...
+        """
+        if self.shape != ():
+            raise ScrewkitValueError(
+                "Expected one pose of a posed mechanism (index the batch: posed[i]), got a batch of shape "
+                f"{self.shape}."
+            )
+        if not isinstance(superbracket, bool | np.bool_):
+            raise ScrewkitTypeError(f"Expected `superbracket` to be True or False, got {superbracket!r}.")
+        if progress is not None and not callable(progress):
+            raise ScrewkitTypeError(f"Expected `progress` to be callable, got {type(progress).__name__}.")
+        _ = self.joints  # a pose out of reach raises its reason here, before any stage starts
+        return report_composer()(self, superbracket=bool(superbracket), progress=progress)
