@@ -139,10 +139,10 @@ for _name in _CONTRIBUTED:
 
 
 def _pose_report(posed: Any, **options: Any) -> Any:
-    """One pose's report, for ``posed[i].report()`` (the interface imported on first use)."""
-    from .interface.report import pose_report
+    """One pose's report, for ``posed[i].report()``: ``analyze(posed, ...)`` (imported on first use)."""
+    from .interface.report import analyze
 
-    return pose_report(posed, **options)
+    return analyze(posed, **options)
 
 
 # the posed mechanism (screwkit.robots) reports through the interface, which stands above it

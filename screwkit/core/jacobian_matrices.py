@@ -78,9 +78,16 @@ def _safe_divide(numerator: Array, denominator: Array) -> Array:
 def _closeness(matrix: Array) -> Array:
     """``σ_min / σ_max`` over a batch of matrices ``(..., m, n)`` (0 for a zero matrix, NaN for a matrix
     of a pose out of reach, NaN)."""
-    missing = np.isnan(matrix).any(axis=(-2, -1))
-    values = np.linalg.svd(np.where(missing[..., None, None], 0.0, matrix), compute_uv=False)
+    missing, filled = _filled(matrix)
+    values = np.linalg.svd(filled, compute_uv=False)
     return np.where(missing, np.nan, _safe_divide(values[..., -1], values[..., 0]))
+
+
+def _filled(matrix: Array) -> tuple[Array, Array]:
+    """Where a batch of matrices ``(..., m, n)`` is NaN (a pose out of reach), and the matrices with an
+    identity there (so that numpy's linear algebra neither warns nor fails; its results replaced by NaN)."""
+    missing = np.isnan(matrix).any(axis=(-2, -1))
+    return missing, np.where(missing[..., None, None], np.eye(*matrix.shape[-2:]), matrix)
 
 
 def _require_square(A: Array) -> None:
@@ -258,7 +265,8 @@ class Jacobians:
         4.0
         """
         _require_square(self.A)
-        return _plain(np.linalg.det(self.A))
+        missing, filled = _filled(self.A)
+        return _plain(np.where(missing, np.nan, np.linalg.det(filled)))
 
     @property
     def det_B(self) -> Any:
@@ -274,7 +282,8 @@ class Jacobians:
             raise ScrewkitValueError(f"Expected a square B for det B, got B of shape {self.B.shape[-2:]}.")
         if self.serial is not None:  # diagonal: the product, exactly
             return _plain(np.prod(np.diagonal(self.B, axis1=-2, axis2=-1), axis=-1))
-        return _plain(np.linalg.det(self.B))
+        missing, filled = _filled(self.B)
+        return _plain(np.where(missing, np.nan, np.linalg.det(filled)))
 
     def kinematic_jacobian(self) -> Array:
         """``J = A⁻¹B`` with ``χ̇ = J θ̇`` (paper 004 Eq. 9), per pose; independent of the row scaling;
@@ -312,7 +321,9 @@ class Jacobians:
                 f"(first batch indices {indices}): A is singular there (direct closeness <= rtol "
                 f"{self.rtol:g})."
             )
-        return np.linalg.solve(self.A, self.B)
+        missing, filled = _filled(self.A)
+        out = missing[..., None, None]
+        return np.where(out, np.nan, np.linalg.solve(filled, np.where(out, 0.0, self.B)))
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dictionary (arrays as nested lists).

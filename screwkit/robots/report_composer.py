@@ -31,7 +31,7 @@ def register_report_composer(composer: Callable[..., Any]) -> None:
     ----------
     composer : callable
         ``composer(posed, *, superbracket, progress) -> AnalysisReport`` for a posed mechanism of one
-        pose (:func:`screwkit.interface.report.pose_report`'s signature).
+        pose (``import screwkit`` registers :func:`screwkit.interface.report.analyze`).
 
     Returns
     -------
