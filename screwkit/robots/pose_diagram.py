@@ -21,7 +21,7 @@ from typing import Any
 import numpy as np
 
 from ..core.wrench_systems import WrenchAnalysis, analyze_table
-from ..exceptions import ScrewkitError
+from ..exceptions import ScrewkitError, ScrewkitValueError
 from .generic_poses import (
     GENERIC_DRAWS,
     SAMPLES,
@@ -33,7 +33,7 @@ from .generic_poses import (
     generic_samples,
 )
 
-__all__ = ["diagram_points_over_batch", "generic_draws", "pose_diagram_and_sampler"]
+__all__ = ["diagram_points_over_batch", "generic_draws", "pose_diagram_and_sampler", "pose_superbracket"]
 
 Array = np.ndarray
 
@@ -126,6 +126,40 @@ def pose_diagram_and_sampler(posed: Any) -> tuple[Any, Callable[[np.random.Gener
         return generic_samples(mechanism, diagram.points, stream, SAMPLES, rtol, length)
 
     return diagram, ReplaySampler(produce)
+
+
+def pose_superbracket(posed: Any) -> Any:
+    """The superbracket of one pose's wrench diagram, factored on its generic samples (what
+    :attr:`PosedMechanism.superbracket <screwkit.robots.posed.PosedMechanism.superbracket>` is).
+
+    Parameters
+    ----------
+    posed : PosedMechanism
+        One pose (shape ``()``).
+
+    Returns
+    -------
+    SuperbracketAnalysis or RedundantSuperbracket
+
+    Raises
+    ------
+    ScrewkitValueError
+        If the mechanism has no wrench diagram of six lines (or more) at generic poses.
+
+    Examples
+    --------
+    >>> pose_superbracket(load_mechanism("h4").at()[0]).simplification.factored.to_dict()["text"]
+    '-[gikj][a b d ḟ][c g ḣ j]'
+    """
+    from ..gca.superbracket_analysis import superbracket_analysis
+
+    diagram, sampler = posed.diagram_and_sampler()
+    if sampler is _no_sampler:
+        raise ScrewkitValueError(
+            f"Expected a wrench diagram of six lines for the superbracket of {posed.mechanism.name}, "
+            f"got none: {'; '.join(diagram.degenerate)}."
+        )
+    return superbracket_analysis(diagram, sampler)
 
 
 def diagram_points_over_batch(posed: Any, points: tuple[Any, ...]) -> tuple[dict[str, Array], Array]:

@@ -47,12 +47,10 @@ from ..core.wrench_systems import WrenchAnalysis, analyze_table
 from ..exceptions import (
     ScrewkitError,
     ScrewkitIndexError,
-    ScrewkitTypeError,
     ScrewkitValueError,
     UnreachablePoseError,
 )
 from ..graphs.jointtable import JointTable
-from .generic_poses import _no_sampler
 from .pose_batch import (
     UNREACHABLE,
     batch_html,
@@ -65,7 +63,12 @@ from .pose_batch import (
     reached_jacobians,
     reached_transmission,
 )
-from .pose_diagram import diagram_points_over_batch, generic_draws, pose_diagram_and_sampler
+from .pose_diagram import (
+    diagram_points_over_batch,
+    generic_draws,
+    pose_diagram_and_sampler,
+    pose_superbracket,
+)
 from .reach import failures_by_index
 from .report_composer import report_composer
 from .transmission import Transmission, wrench_transmission
@@ -224,14 +227,20 @@ class PosedMechanism:
 
     @functools.cached_property
     def failures(self) -> dict[tuple[int, ...], str]:
-        """Why each unreachable pose is out of reach: batch index → reason."""
+        """Why each pose not reached is out of reach: batch index → reason (the closed form's condition;
+        for a graph mechanism the continuation's: its way left the reach, met a singularity or would
+        change working mode, with the residual). Not a proof that the pose lies outside the workspace;
+        for a graph mechanism it may depend on the batch (:attr:`reachable`)."""
         if self._failures is not None:
             return dict(self._failures)
         return failures_by_index(self.mechanism, self.poses, self.options)
 
     @functools.cached_property
     def reachable(self) -> Array:
-        """Per pose: whether the inverse kinematics reaches it (the reasons in :attr:`failures`)."""
+        """Per pose: whether the inverse kinematics found it in the reference's working and assembly
+        mode (the reasons in :attr:`failures`). A graph mechanism's continuation continues a large
+        batch's far poses from solved poses of its own, so a pose may be reached in a batch and not
+        alone (never the reverse; docs/mechanisms.md, "What `reachable` means")."""
         out = np.ones(self.shape, dtype=bool)
         if self._failures is None:
             flat = self.poses.reshape(-1, self.poses.shape[-1])
@@ -276,10 +285,10 @@ class PosedMechanism:
         Unless the joint table is already there, each chunk of :data:`CHUNK` poses goes through
         the inverse kinematics, its joint table and the core in turn, so memory stays bounded by
         the chunk and the results; the whole table is computed only if a per-pose view asks. One
-        pose (shape ``()``): its :attr:`singularity`. It needs every pose reached (else
-        :class:`~screwkit.exceptions.UnreachablePoseError` naming the first out of reach); the per-pose
-        views (:attr:`verdicts`, :attr:`codes`, :attr:`closeness`, :attr:`redundancy`, indexing) mark
-        a pose out of reach instead.
+        pose (shape ``()``): its :attr:`singularity`. The one whole-batch view that needs every pose
+        reached (its wrench systems; else :class:`~screwkit.exceptions.UnreachablePoseError` naming the
+        first out of reach): the per-pose views (:attr:`verdicts`, :attr:`codes`, :attr:`closeness`,
+        :attr:`redundancy`, :attr:`jacobians`, :attr:`wrench_transmission`) mark a pose out of reach.
         """
         if self.shape == ():
             return self.singularity
@@ -535,17 +544,8 @@ class PosedMechanism:
             On a batch (index it first), or if the mechanism has no wrench diagram of six lines (or
             more) at generic poses (a diagram that degenerates only at this pose is still factored there).
         """
-        from ..gca.superbracket_analysis import superbracket_analysis
-
         self._one("superbracket")
-        diagram, sampler = self.diagram_and_sampler()
-        if sampler is _no_sampler:
-            raise ScrewkitValueError(
-                f"Expected a wrench diagram of six lines for the superbracket of {self.mechanism.name}, "
-                f"got none: {'; '.join(diagram.degenerate)}."
-            )
-        return superbracket_analysis(diagram, sampler)
-
+        return pose_superbracket(self)
 
     def report(self, *, superbracket: bool = True, progress: Callable[[str], None] | None = None) -> Any:
         """The whole analysis of this pose as one report: what ``sk.analyze(posed[i])`` returns
@@ -554,7 +554,8 @@ class PosedMechanism:
 
         The report is composed by the interface, a layer above this one: the robots may not import it
         (docs/architecture.md §2), so this method calls the composer that ``import screwkit`` registers
-        (:mod:`screwkit.robots.report_composer`, dependency inversion).
+        (:mod:`screwkit.robots.report_composer`, dependency inversion): ``analyze`` itself, which checks
+        the arguments.
 
         Parameters
         ----------
@@ -587,14 +588,6 @@ class PosedMechanism:
         ...
         screwkit.exceptions.ScrewkitValueError: Expected one pose of a posed mechanism (index the batch: ...
         """
-        if self.shape != ():
-            raise ScrewkitValueError(
-                "Expected one pose of a posed mechanism (index the batch: posed[i]), got a batch of shape "
-                f"{self.shape}."
-            )
-        if not isinstance(superbracket, bool | np.bool_):
-            raise ScrewkitTypeError(f"Expected `superbracket` to be True or False, got {superbracket!r}.")
-        if progress is not None and not callable(progress):
-            raise ScrewkitTypeError(f"Expected `progress` to be callable, got {type(progress).__name__}.")
-        _ = self.joints  # a pose out of reach raises its reason here, before any stage starts
-        return report_composer()(self, superbracket=bool(superbracket), progress=progress)
+        if self.shape == ():  # (a batch: refused by the composer, as analyze refuses it)
+            _ = self.joints  # a pose out of reach raises its reason here, before any stage starts
+        return report_composer()(self, superbracket=superbracket, progress=progress)
