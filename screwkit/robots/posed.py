@@ -305,7 +305,13 @@ class PosedMechanism:
                 self._table_chunks(), source, self.shape, rtol=self.rtol, length_scale=self.length_scale
             )
         except ScrewkitError:
-            _ = self.configuration  # raises the whole batch's message (the failing pose's index)
+            try:
+                _ = self.configuration  # the whole batch's message (the failing pose's index)
+            except UnreachablePoseError as err:
+                raise UnreachablePoseError(
+                    f"{str(err).rstrip('.')}; the whole batch's singularities need every pose in reach (the "
+                    "per-pose views mark it: posed.verdicts, codes, closeness, jacobians)."
+                ) from err
             raise
 
     def _table_chunks(self) -> Iterator[JointTable]:

@@ -56,6 +56,9 @@ def test_the_jacobians_of_a_partial_batch_are_those_of_its_reached_poses_and_nan
     data = out.to_dict()
     assert data["type"] == "unreachable" and data["A"][0][0] is None and data["closeness"]["direct"] is None
     assert "2 unreachable" in repr(jac)
+    # the core's report over the whole batch (wrench systems) needs every pose, and says where to look
+    with pytest.raises(UnreachablePoseError, match=r"\(1,\).*the per-pose views mark it: posed.verdicts"):
+        _ = posed.singularities
 
 
 @pytest.mark.parametrize("name", ["h4", "h4 graph"])
