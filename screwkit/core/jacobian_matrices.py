@@ -56,7 +56,11 @@ def _plain(value: Any) -> Any:
 def _json(value: Any) -> Any:
     """Nested lists, NaN (a pose out of reach) as None."""
     array = np.asarray(value, dtype=float)
-    return np.where(np.isnan(array), None, array).tolist() if np.isnan(array).any() else array.tolist()
+    if not np.isnan(array).any():
+        return array.tolist()
+    out = array.astype(object)
+    out[np.isnan(array)] = None
+    return out.tolist()
 
 
 def _read_only(value: Any) -> Array:

@@ -11,12 +11,14 @@ Examples
 from __future__ import annotations
 
 import weakref
+from dataclasses import fields
 from typing import Any
 
 import numpy as np
 
 from ..algebra.display import html_section, html_table, number_text
-from ..core.jacobian_matrices import UNREACHABLE, Jacobians
+from ..core.jacobian_matrices import UNREACHABLE
+from ..core.wrench_systems import WrenchAnalysis
 from ..exceptions import ScrewkitIndexError, ScrewkitValueError, UnreachablePoseError
 from ..graphs.jointtable import JointTable
 from .angles import pose_scale, pose_text
@@ -32,8 +34,7 @@ __all__ = [
     "one_pose",
     "per_pose",
     "reachable_part",
-    "reached_jacobians",
-    "reached_transmission",
+    "reached_view",
     "scattered",
 ]
 
@@ -371,20 +372,24 @@ def _reached(posed: Any, view: str) -> tuple[Array, Any]:
     return mask, reached
 
 
-def reached_jacobians(posed: Any) -> Jacobians:
-    """The Jacobians of a batch some of whose poses are out of reach: each reached pose's as in a batch
-    of the reached poses alone, NaN matrices and closeness at the others (type ``"unreachable"``, no
-    serial flag, no analysis: it covers the reached poses only, ``posed[i].jacobians.analysis`` has a
-    pose's).
+def reached_view(posed: Any, view: str) -> Any:
+    """A whole-batch view of a batch some of whose poses are out of reach: each reached pose's value as
+    in a batch of the reached poses alone, NaN (False for a flag) at the others; what covers the reached
+    poses only is left out (the Jacobians' ``analysis``: ``posed[i]`` has a pose's).
 
     Parameters
     ----------
     posed : PosedMechanism
         A batch with a pose out of reach (:func:`reachable_part` not None).
+    view : {"jacobians", "wrench_transmission"}
+        The view: a frozen dataclass of arrays over the batch
+        (:class:`~screwkit.core.jacobian_matrices.Jacobians`, whose type reads ``"unreachable"`` at a
+        pose out of reach, or :class:`~screwkit.robots.transmission.Transmission`, whose ``reachable``
+        is False there).
 
     Returns
     -------
-    Jacobians
+    Jacobians or Transmission
         Over the batch's shape.
 
     Raises
@@ -394,46 +399,27 @@ def reached_jacobians(posed: Any) -> Jacobians:
 
     Examples
     --------
-    >>> reached_jacobians(load_mechanism("v4").at([[0, 0, -750, 0], [0, 0, -3000, 0]])).types.tolist()
+    >>> posed = load_mechanism("v4").at([[0, 0, -750, 0], [0, 0, -3000, 0]])
+    >>> reached_view(posed, "jacobians").types.tolist()
     ['regular', 'unreachable']
-    """
-    mask, reached = _reached(posed, "jacobians")
-    jac, shape = reached.jacobians, posed.shape
-
-    def spread(value: Any, fill: Any = np.nan) -> Any:
-        return None if value is None else scattered(value, mask, shape, fill)
-
-    closeness = {key: spread(value) for key, value in jac.closeness.items()}
-    return Jacobians(spread(jac.A), spread(jac.B), closeness, jac.rtol, spread(jac.wrenches),
-                     spread(jac.twist_basis), jac.actuated_joints, spread(jac.serial, False))
-
-
-def reached_transmission(posed: Any) -> Any:
-    """The wrench-based transmission of a batch some of whose poses are out of reach: each reached
-    pose's as in a batch of the reached poses alone, NaN at the others
-    (:attr:`Transmission.reachable <screwkit.robots.transmission.Transmission.reachable>` False there).
-
-    Parameters
-    ----------
-    posed : PosedMechanism
-        A batch with a pose out of reach (:func:`reachable_part` not None).
-
-    Returns
-    -------
-    Transmission
-        Over the batch's shape.
-
-    Raises
-    ------
-    UnreachablePoseError
-        If no pose of the batch is in reach.
-
-    Examples
-    --------
-    >>> reached_transmission(load_mechanism("v4").at([[0, 0, -750, 0], [0, 0, -3000, 0]])).reachable.tolist()
+    >>> reached_view(posed, "wrench_transmission").reachable.tolist()
     [True, False]
     """
-    mask, reached = _reached(posed, "wrench_transmission")
-    value, shape = reached.wrench_transmission, posed.shape
-    parts = (scattered(getattr(value, name), mask, shape, np.nan) for name in ("input", "output", "lti"))
-    return type(value)(*parts, value.actuated_joints)
+    mask, reached = posed.reached_part
+    if reached is None:
+        raise UnreachablePoseError(
+            f"Expected some pose of the batch in reach for `{view}`, got none of {mask.size} "
+            f"(posed.failures has the reasons)."
+        )
+    value = getattr(reached, view)
+
+    def spread(item: Any) -> Any:
+        if isinstance(item, WrenchAnalysis):  # the reached poses' only
+            return None
+        if isinstance(item, dict):
+            return {key: spread(np.asarray(entry)) for key, entry in item.items()}
+        if isinstance(item, np.ndarray):
+            return scattered(item, mask, posed.shape, False if item.dtype == bool else np.nan)
+        return item
+
+    return type(value)(**{f.name: spread(getattr(value, f.name)) for f in fields(value)})

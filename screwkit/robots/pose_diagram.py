@@ -42,14 +42,13 @@ def generic_draws(posed: Any) -> tuple[Sequence[WrenchAnalysis], WrenchAnalysis 
     """The random workspace poses a wrench diagram is chosen at (:data:`GENERIC_DRAWS`, seed 2026) and
     the first batch of its sampler's (``2 *`` :data:`SAMPLES`, seed 0) through the core as one batch,
     with the pose unless its analysis is already computed (one pass instead of three; a pose's result
-    does not depend on the batch it is in, ``tests/robots/test_batch.py``). The pose's analysis is
-    kept on it. (61 poses of four limbs stay below
-    :data:`screwkit.algebra.compiled.COMPILED_MIN_BATCH`: no numba import.)
+    does not depend on the batch it is in, ``tests/robots/test_batch.py``). (61 poses of four limbs
+    stay below :data:`screwkit.algebra.compiled.COMPILED_MIN_BATCH`: no numba import.)
 
     Parameters
     ----------
     posed : PosedMechanism
-        One pose (shape ``()``).
+        One pose (shape ``()``): its analysis, from this batch, is kept on it.
 
     Returns
     -------
@@ -174,19 +173,19 @@ def diagram_points_over_batch(posed: Any, points: tuple[Any, ...]) -> tuple[dict
 
     Returns
     -------
-    values : dict of str to numpy.ndarray, shape (..., 4)
-    exists : numpy.ndarray of bool, shape (...)
+    tuple
+        The points' values by label ``(..., 4)`` and where all exist ``(...)``, as the method's.
 
     Raises
     ------
     UnreachablePoseError
-        Naming the first pose out of reach.
+        As the method.
 
     Examples
     --------
-    >>> h4 = load_mechanism("h4")
-    >>> values, exists = diagram_points_over_batch(h4.at([[0, 0, -750, 0]]), h4.at()[0].diagram.points)
-    >>> exists.tolist()
+    >>> v4 = load_mechanism("v4")
+    >>> points = v4.at()[0].diagram.points
+    >>> diagram_points_over_batch(v4.at([[0, 0, -750, 0]]), points)[1].tolist()
     [True]
     """
     from ..gca.diagram_points import batch_diagram_points, frames_read

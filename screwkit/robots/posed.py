@@ -60,8 +60,7 @@ from .pose_batch import (
     one_pose,
     per_pose,
     reachable_part,
-    reached_jacobians,
-    reached_transmission,
+    reached_view,
 )
 from .pose_diagram import (
     diagram_points_over_batch,
@@ -374,9 +373,9 @@ class PosedMechanism:
         """``A χ̇ = B θ̇`` per pose over the family's nominal twists (one pose: from its :attr:`analysis`).
         A pose out of reach has NaN matrices, closeness and determinants and the type ``"unreachable"``;
         the others get what a batch of the reached poses alone gives
-        (:func:`~screwkit.robots.pose_batch.reached_jacobians`)."""
+        (:func:`~screwkit.robots.pose_batch.reached_view`)."""
         if self.shape != () and self.reached_part is not None:
-            return reached_jacobians(self)
+            return reached_view(self, "jacobians")
         analysis = self.analysis if self.shape == () else self.singularities.analysis
         return jacobians_from_wrenches(analysis, self.twist_basis, rtol=self.rtol)
 
@@ -386,9 +385,9 @@ class PosedMechanism:
         the nominal twists, for any family (:func:`screwkit.robots.transmission.wrench_transmission`;
         the input at the points the family's optional ``application_points`` hook gives, e.g. the
         elbows of the four-limb family). NaN at a pose out of reach
-        (:func:`~screwkit.robots.pose_batch.reached_transmission`)."""
+        (:func:`~screwkit.robots.pose_batch.reached_view`)."""
         if self.shape != () and self.reached_part is not None:
-            return reached_transmission(self)
+            return reached_view(self, "wrench_transmission")
         hook = self.mechanism.family_protocol.application_points
         points = None if hook is None else hook(self.configuration)
         return wrench_transmission(self.jacobians, input_points=points)

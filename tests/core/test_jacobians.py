@@ -603,7 +603,7 @@ def test_result_is_read_only_and_serialisable():
 
 
 def test_a_pose_out_of_reach_is_typed_unreachable_never_regular():
-    # a batch's pose out of reach has NaN matrices (screwkit.robots.pose_batch.reached_jacobians): its
+    # a batch's pose out of reach has NaN matrices (screwkit.robots.pose_batch.reached_view): its
     # type says so, its closeness and determinants are NaN, and no singularity is claimed there
     A = np.stack([np.eye(2), np.full((2, 2), np.nan), np.diag([1.0, 0.0])])
     B = np.stack([np.diag([2.0, 3.0]), np.full((2, 2), np.nan), np.eye(2)])
