@@ -229,12 +229,13 @@ class Jacobians:
         Examples
         --------
         >>> classify_jacobians(np.stack([np.eye(2), np.zeros((2, 2))]), np.eye(2)).types
-        array(['regular', 'direct'], dtype='<U11')
+        array(['regular', 'direct'], dtype='<U8')
         >>> Jacobians(np.full((2, 2), np.nan), np.full((2, 2), np.nan)).type
         'unreachable'
         """
         index = 2 * self.direct.astype(int) + self.inverse.astype(int)
-        return np.asarray(np.where(self.reached, np.asarray(GOSSELIN_ANGELES_TYPES)[index], UNREACHABLE))
+        types, reached = np.asarray(np.asarray(GOSSELIN_ANGELES_TYPES)[index]), self.reached
+        return types if reached.all() else np.asarray(np.where(reached, types, UNREACHABLE))
 
     @property
     def type(self) -> Any:

@@ -348,7 +348,8 @@ def scattered(values: Any, mask: Array, shape: tuple[int, ...], fill: Any) -> Ar
 
     Returns
     -------
-    numpy.ndarray, shape (*shape, ...)
+    numpy.ndarray
+        Of shape ``shape + values.shape[1:]``.
 
     Examples
     --------

@@ -567,7 +567,7 @@ class PosedMechanism:
         superbracket : bool, default True
             Also expand and factor the superbracket (skip for speed).
         progress : callable, optional
-            Called with the name of each stage as it starts (:data:`screwkit.interface.report.STAGES`).
+            Called with the name of each stage as it starts (``screwkit.interface.report.STAGES``).
 
         Returns
         -------
