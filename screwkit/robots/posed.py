@@ -11,11 +11,12 @@ nominal twists) → ``wrench_transmission`` (input/output transmission from the 
 any family: :mod:`screwkit.robots.transmission`). :meth:`PosedMechanism.diagram_points` evaluates a
 wrench diagram's points over the batch. The composer hands its results on: maps, loci and paths
 (:mod:`screwkit.analysis`), paper 004's indices (:func:`screwkit.papers.paper_004.transmission`) and
-the report (:func:`screwkit.interface.report.analyze` of one pose) read them; it calls none of them.
+the report (:func:`screwkit.interface.report.analyze` of one pose) read them; it calls none of them
+(``posed[i].report()`` calls the composer registered in :mod:`screwkit.robots.report_composer`).
 
 Indexing gives a :class:`PosedMechanism` of shape ``()`` (one pose, its row of the batch's joint table):
 only there are the per-pose views, its graph, wrench analysis (a batch of one through the same
-kernels), verdict, Jacobians, wrench diagram and superbracket (generic samples drawn as one batch).
+kernels), verdict, Jacobians, wrench diagram, superbracket (generic samples drawn as one batch), report.
 
 Examples
 --------
