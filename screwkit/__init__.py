@@ -50,6 +50,7 @@ from .graphs.jointtable import JointTable
 from .graphs.loops import fundamental_loops, loop_closure_matrix
 from .graphs.reduction import equivalent_twist_graph, platform_twist_system, series_parallel_tree
 from .graphs.twistgraph import twist_graph
+from .robots.report_composer import register_report_composer
 from .version import __version__
 
 #: Names loaded on first use (the catalog and its families, the generic analysis, the projective
@@ -135,6 +136,17 @@ def _paper_004_map_values(posed: Any, quantity: str) -> Any:
 # the maps (screwkit.analysis) read paper 004's indices by name: the papers stand above them
 for _name in _CONTRIBUTED:
     register_quantity(_name, functools.partial(_paper_004_map_values, quantity=_name))
+
+
+def _pose_report(posed: Any, **options: Any) -> Any:
+    """One pose's report, for ``posed[i].report()``: ``analyze(posed, ...)`` (imported on first use)."""
+    from .interface.report import analyze
+
+    return analyze(posed, **options)
+
+
+# the posed mechanism (screwkit.robots) reports through the interface, which stands above it
+register_report_composer(_pose_report)
 
 
 def __getattr__(name: str) -> Any:

@@ -35,17 +35,32 @@ from ..algebra.checks import checked_rtol
 from ..exceptions import DegenerateGeometryError, ScrewkitTypeError, ScrewkitValueError
 from .wrench_systems import WrenchAnalysis
 
-__all__ = ["GOSSELIN_ANGELES_TYPES", "Jacobians", "classify_jacobians", "gosselin_angeles_label"]
+__all__ = [
+    "GOSSELIN_ANGELES_TYPES", "UNREACHABLE", "Jacobians", "classify_jacobians", "gosselin_angeles_label"
+]
 
 Array = np.ndarray
 
 #: The four Gosselin–Angeles types, indexed by ``2 * direct + inverse``.
 GOSSELIN_ANGELES_TYPES = ("regular", "inverse", "direct", "combined")
+#: The type of a pose out of reach in a batch (its matrices and closeness NaN; a posed batch's marker,
+#: :attr:`screwkit.robots.posed.PosedMechanism.jacobians`), never one of the four types.
+UNREACHABLE = "unreachable"
 
 
 def _plain(value: Any) -> Any:
     array = np.asarray(value)
     return float(array) if array.ndim == 0 else array
+
+
+def _json(value: Any) -> Any:
+    """Nested lists, NaN (a pose out of reach) as None."""
+    array = np.asarray(value, dtype=float)
+    if not np.isnan(array).any():
+        return array.tolist()
+    out = array.astype(object)
+    out[np.isnan(array)] = None
+    return out.tolist()
 
 
 def _read_only(value: Any) -> Array:
@@ -65,9 +80,18 @@ def _safe_divide(numerator: Array, denominator: Array) -> Array:
 
 
 def _closeness(matrix: Array) -> Array:
-    """``σ_min / σ_max`` over a batch of matrices ``(..., m, n)`` (0 for a zero matrix)."""
-    values = np.linalg.svd(matrix, compute_uv=False)
-    return _safe_divide(values[..., -1], values[..., 0])
+    """``σ_min / σ_max`` over a batch of matrices ``(..., m, n)`` (0 for a zero matrix, NaN for a matrix
+    of a pose out of reach, NaN)."""
+    missing, filled = _filled(matrix)
+    values = np.linalg.svd(filled, compute_uv=False)
+    return np.where(missing, np.nan, _safe_divide(values[..., -1], values[..., 0]))
+
+
+def _filled(matrix: Array) -> tuple[Array, Array]:
+    """Where a batch of matrices ``(..., m, n)`` is NaN (a pose out of reach), and the matrices with an
+    identity there (so that numpy's linear algebra neither warns nor fails; its results replaced by NaN)."""
+    missing = np.isnan(matrix).any(axis=(-2, -1))
+    return missing, np.where(missing[..., None, None], np.eye(*matrix.shape[-2:]), matrix)
 
 
 def _require_square(A: Array) -> None:
@@ -84,7 +108,8 @@ def _require_square(A: Array) -> None:
 class Jacobians:
     """Forward and inverse Jacobians ``A χ̇ = B θ̇`` over a batch of poses (shape ``()`` for one).
 
-    Index it (``jac[3]``) for one pose. Built from a wrench analysis
+    Index it (``jac[3]``) for one pose. A pose out of reach in a posed batch has NaN matrices,
+    closeness and determinants, the type :data:`UNREACHABLE` and no serial flag. Built from a wrench analysis
     (:func:`~screwkit.core.jacobians.jacobians_from_wrenches`) it also holds the rows ``w_j``, the
     twist basis, the actuated joints, the serial flags and the analysis; built from given matrices
     (:func:`classify_jacobians`) those are None (no actuated joints).
@@ -175,26 +200,42 @@ class Jacobians:
         )
 
     @property
+    def reached(self) -> Array:
+        """True where the pose is in reach (its closeness measures are numbers, not NaN).
+
+        Examples
+        --------
+        >>> classify_jacobians(np.eye(2), np.eye(2)).reached
+        array(True)
+        """
+        return np.asarray(~(np.isnan(self.closeness["direct"]) | np.isnan(self.closeness["inverse"])))
+
+    @property
     def direct(self) -> Array:
-        """True where ``A`` is rank-deficient (direct-kinematic, parallel, second kind)."""
+        """True where ``A`` is rank-deficient (direct-kinematic, parallel, second kind); False out of
+        reach."""
         return np.asarray(self.closeness["direct"]) <= self.rtol
 
     @property
     def inverse(self) -> Array:
-        """True where ``B`` is rank-deficient (inverse-kinematic, serial, first kind)."""
+        """True where ``B`` is rank-deficient (inverse-kinematic, serial, first kind); False out of reach."""
         return np.asarray(self.closeness["inverse"]) <= self.rtol
 
     @property
     def types(self) -> Array:
-        """Gosselin–Angeles type per pose, an array of str of the batch shape.
+        """Gosselin–Angeles type per pose, an array of str of the batch shape; :data:`UNREACHABLE`
+        at a pose out of reach (NaN closeness).
 
         Examples
         --------
         >>> classify_jacobians(np.stack([np.eye(2), np.zeros((2, 2))]), np.eye(2)).types
         array(['regular', 'direct'], dtype='<U8')
+        >>> Jacobians(np.full((2, 2), np.nan), np.full((2, 2), np.nan)).type
+        'unreachable'
         """
         index = 2 * self.direct.astype(int) + self.inverse.astype(int)
-        return np.asarray(np.asarray(GOSSELIN_ANGELES_TYPES)[index])
+        types, reached = np.asarray(np.asarray(GOSSELIN_ANGELES_TYPES)[index]), self.reached
+        return types if reached.all() else np.asarray(np.where(reached, types, UNREACHABLE))
 
     @property
     def type(self) -> Any:
@@ -215,7 +256,8 @@ class Jacobians:
 
     @property
     def det_A(self) -> Any:
-        """``det A`` per pose (from wrenches, unit: length to the number of rotations in the basis).
+        """``det A`` per pose (from wrenches, unit: length to the number of rotations in the basis; NaN
+        out of reach).
 
         Raises
         ------
@@ -228,11 +270,13 @@ class Jacobians:
         4.0
         """
         _require_square(self.A)
-        return _plain(np.linalg.det(self.A))
+        missing, filled = _filled(self.A)
+        return _plain(np.where(missing, np.nan, np.linalg.det(filled)))
 
     @property
     def det_B(self) -> Any:
-        """``det B`` per pose (from wrenches ``Π_j B_jj``, paper 004 Eq. 10 up to the row scaling).
+        """``det B`` per pose (from wrenches ``Π_j B_jj``, paper 004 Eq. 10 up to the row scaling; NaN
+        out of reach).
 
         Examples
         --------
@@ -243,10 +287,12 @@ class Jacobians:
             raise ScrewkitValueError(f"Expected a square B for det B, got B of shape {self.B.shape[-2:]}.")
         if self.serial is not None:  # diagonal: the product, exactly
             return _plain(np.prod(np.diagonal(self.B, axis1=-2, axis2=-1), axis=-1))
-        return _plain(np.linalg.det(self.B))
+        missing, filled = _filled(self.B)
+        return _plain(np.where(missing, np.nan, np.linalg.det(filled)))
 
     def kinematic_jacobian(self) -> Array:
-        """``J = A⁻¹B`` with ``χ̇ = J θ̇`` (paper 004 Eq. 9), per pose; independent of the row scaling.
+        """``J = A⁻¹B`` with ``χ̇ = J θ̇`` (paper 004 Eq. 9), per pose; independent of the row scaling;
+        NaN at a pose out of reach.
 
         Returns
         -------
@@ -280,7 +326,9 @@ class Jacobians:
                 f"(first batch indices {indices}): A is singular there (direct closeness <= rtol "
                 f"{self.rtol:g})."
             )
-        return np.linalg.solve(self.A, self.B)
+        missing, filled = _filled(self.A)
+        out = missing[..., None, None]
+        return np.where(out, np.nan, np.linalg.solve(filled, np.where(out, 0.0, self.B)))
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dictionary (arrays as nested lists).
@@ -288,7 +336,8 @@ class Jacobians:
         Returns
         -------
         dict
-            ``type`` (a list over a batch), ``A``, ``B``; from wrenches ``wrenches``,
+            ``type`` (a list over a batch), ``A``, ``B`` (NaN out of reach as None); from wrenches
+            ``wrenches``,
             ``twist_basis``, ``actuated_joints``; ``closeness``, ``rtol``; from wrenches
             ``serial_limbs`` (one pose) or ``serial`` (a batch).
 
@@ -299,14 +348,14 @@ class Jacobians:
         """
         result: dict[str, Any] = {
             "type": self.type if self.single else self.types.tolist(),
-            "A": self.A.tolist(),
-            "B": self.B.tolist(),
+            "A": _json(self.A),
+            "B": _json(self.B),
         }
         if self.wrenches is not None and self.twist_basis is not None:
-            result["wrenches"] = self.wrenches.tolist()
-            result["twist_basis"] = self.twist_basis.tolist()
+            result["wrenches"] = _json(self.wrenches)
+            result["twist_basis"] = _json(self.twist_basis)
             result["actuated_joints"] = list(self.actuated_joints)
-        result["closeness"] = {k: np.asarray(v).tolist() for k, v in self.closeness.items()}
+        result["closeness"] = {k: _json(v) for k, v in self.closeness.items()}
         result["rtol"] = self.rtol
         if self.serial is not None:
             if self.single:
@@ -347,6 +396,8 @@ class Jacobians:
                 f"Jacobians over a batch of shape {self.shape}: {n} actuated joint(s), dof {dof}; "
                 f"{self._tally()}"
             )
+        if self.type == UNREACHABLE:
+            return f"unreachable: the pose is out of reach, no Jacobians (A {n}x{dof}, B {n}x{n} NaN)"
         head = "regular" if self.type == "regular" else f"{self.type} singularity"
         lines = [
             f"{head} (Gosselin-Angeles): A {n}x{dof}, B {n}x{self.B.shape[-1]}; closeness direct "

@@ -11,11 +11,14 @@ Examples
 from __future__ import annotations
 
 import weakref
+from dataclasses import fields
 from typing import Any
 
 import numpy as np
 
 from ..algebra.display import html_section, html_table, number_text
+from ..core.jacobian_matrices import UNREACHABLE
+from ..core.wrench_systems import WrenchAnalysis
 from ..exceptions import ScrewkitIndexError, ScrewkitValueError, UnreachablePoseError
 from ..graphs.jointtable import JointTable
 from .angles import pose_scale, pose_text
@@ -31,11 +34,13 @@ __all__ = [
     "one_pose",
     "per_pose",
     "reachable_part",
+    "reached_view",
+    "scattered",
 ]
 
-#: The verdict of a pose out of reach in a batch's per-pose views (``verdicts``; its code is ``-1``,
-#: its closeness NaN, its redundancy ``-1``).
-UNREACHABLE = "unreachable"
+# UNREACHABLE ("unreachable", screwkit.core.jacobian_matrices): the verdict of a pose out of reach in a
+# batch's per-pose views (``verdicts``; its code is ``-1``, its closeness NaN, its redundancy ``-1``) and
+# the Gosselin-Angeles type of its Jacobians.
 
 Array = np.ndarray
 
@@ -324,3 +329,98 @@ def one_pose(posed: Any, index: Any) -> Any:
     one = type(posed)(**fields, _batch=(reached, row))
     one.__dict__["joints"] = reached.joints[row]
     return one
+
+
+def scattered(values: Any, mask: Array, shape: tuple[int, ...], fill: Any) -> Array:
+    """Values of the reached poses of a batch (a first axis over them) put back at their poses, ``fill``
+    at the poses out of reach.
+
+    Parameters
+    ----------
+    values : array_like, shape (k, ...)
+        One row per reached pose, in the batch's flat (C) order.
+    mask : numpy.ndarray of bool, shape (m,)
+        The flat mask of the reached poses (``k`` of them).
+    shape : tuple of int
+        The batch shape (``m`` poses).
+    fill : object
+        The value at a pose out of reach (NaN, False, ``-1``).
+
+    Returns
+    -------
+    numpy.ndarray
+        Of shape ``shape + values.shape[1:]``.
+
+    Examples
+    --------
+    >>> scattered(np.array([[1.0, 2.0]]), np.array([False, True]), (2,), np.nan).tolist()
+    [[nan, nan], [1.0, 2.0]]
+    """
+    rows = np.asarray(values)
+    out = np.full((mask.size, *rows.shape[1:]), fill, dtype=np.result_type(rows, np.asarray(fill)))
+    out[mask] = rows
+    return out.reshape(*shape, *rows.shape[1:])
+
+
+def _reached(posed: Any, view: str) -> tuple[Array, Any]:
+    """The flat mask of a partial batch's reached poses and the posed mechanism at them."""
+    mask, reached = posed.reached_part
+    if reached is None:
+        raise UnreachablePoseError(
+            f"Expected some pose of the batch in reach for `{view}`, got none of {mask.size} "
+            f"(posed.failures has the reasons)."
+        )
+    return mask, reached
+
+
+def reached_view(posed: Any, view: str) -> Any:
+    """A whole-batch view of a batch some of whose poses are out of reach: each reached pose's value as
+    in a batch of the reached poses alone, NaN (False for a flag) at the others; what covers the reached
+    poses only is left out (the Jacobians' ``analysis``: ``posed[i]`` has a pose's).
+
+    Parameters
+    ----------
+    posed : PosedMechanism
+        A batch with a pose out of reach (:func:`reachable_part` not None).
+    view : {"jacobians", "wrench_transmission"}
+        The view: a frozen dataclass of arrays over the batch
+        (:class:`~screwkit.core.jacobian_matrices.Jacobians`, whose type reads ``"unreachable"`` at a
+        pose out of reach, or :class:`~screwkit.robots.transmission.Transmission`, whose ``reachable``
+        is False there).
+
+    Returns
+    -------
+    Jacobians or Transmission
+        Over the batch's shape.
+
+    Raises
+    ------
+    UnreachablePoseError
+        If no pose of the batch is in reach.
+
+    Examples
+    --------
+    >>> posed = load_mechanism("v4").at([[0, 0, -750, 0], [0, 0, -3000, 0]])
+    >>> reached_view(posed, "jacobians").types.tolist()
+    ['regular', 'unreachable']
+    >>> reached_view(posed, "wrench_transmission").reachable.tolist()
+    [True, False]
+    """
+    mask, reached = posed.reached_part
+    if reached is None:
+        raise UnreachablePoseError(
+            f"Expected some pose of the batch in reach for `{view}`, got none of {mask.size} "
+            f"(posed.failures has the reasons)."
+        )
+    value = getattr(reached, view)
+
+    def spread(item: Any) -> Any:
+        if isinstance(item, WrenchAnalysis):  # the reached poses' only
+            return None
+        if isinstance(item, dict):
+            return {key: spread(np.asarray(entry)) for key, entry in item.items()}
+        if isinstance(item, np.ndarray):
+            return scattered(item, mask, posed.shape, False if item.dtype == bool else np.nan)
+        return item
+
+    return type(value)(**{f.name: spread(getattr(value, f.name)) for f in fields(value)})

@@ -11,11 +11,12 @@ nominal twists) → ``wrench_transmission`` (input/output transmission from the 
 any family: :mod:`screwkit.robots.transmission`). :meth:`PosedMechanism.diagram_points` evaluates a
 wrench diagram's points over the batch. The composer hands its results on: maps, loci and paths
 (:mod:`screwkit.analysis`), paper 004's indices (:func:`screwkit.papers.paper_004.transmission`) and
-the report (:func:`screwkit.interface.report.analyze` of one pose) read them; it calls none of them.
+the report (:func:`screwkit.interface.report.analyze` of one pose) read them; it calls none of them
+(``posed[i].report()`` calls the composer registered in :mod:`screwkit.robots.report_composer`).
 
 Indexing gives a :class:`PosedMechanism` of shape ``()`` (one pose, its row of the batch's joint table):
 only there are the per-pose views, its graph, wrench analysis (a batch of one through the same
-kernels), verdict, Jacobians, wrench diagram and superbracket (generic samples drawn as one batch).
+kernels), verdict, Jacobians, wrench diagram, superbracket (generic samples drawn as one batch), report.
 
 Examples
 --------
@@ -30,7 +31,7 @@ from __future__ import annotations
 
 import functools
 import weakref
-from collections.abc import Callable, Iterable, Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -44,18 +45,13 @@ from ..core.jacobians import jacobians_from_wrenches
 from ..core.singularity import classify_chunks, label_table
 from ..core.verdicts import LABELS, SingularityReport
 from ..core.wrench_systems import WrenchAnalysis, analyze_table
-from ..exceptions import ScrewkitError, ScrewkitIndexError, ScrewkitValueError, UnreachablePoseError
-from ..graphs.jointtable import JointTable
-from .generic_poses import (
-    GENERIC_DRAWS,
-    SAMPLES,
-    _concatenated,
-    _no_sampler,
-    _PoseAnalyses,
-    _reachable_table,
-    _samples,
-    generic_samples,
+from ..exceptions import (
+    ScrewkitError,
+    ScrewkitIndexError,
+    ScrewkitValueError,
+    UnreachablePoseError,
 )
+from ..graphs.jointtable import JointTable
 from .pose_batch import (
     UNREACHABLE,
     batch_html,
@@ -65,8 +61,16 @@ from .pose_batch import (
     one_pose,
     per_pose,
     reachable_part,
+    reached_view,
+)
+from .pose_diagram import (
+    diagram_points_over_batch,
+    generic_draws,
+    pose_diagram_and_sampler,
+    pose_superbracket,
 )
 from .reach import failures_by_index
+from .report_composer import report_composer
 from .transmission import Transmission, wrench_transmission
 
 __all__ = ["PosedMechanism"]
@@ -223,14 +227,20 @@ class PosedMechanism:
 
     @functools.cached_property
     def failures(self) -> dict[tuple[int, ...], str]:
-        """Why each unreachable pose is out of reach: batch index → reason."""
+        """Why each pose not reached is out of reach: batch index → reason (the closed form's condition;
+        for a graph mechanism the continuation's: its way left the reach, met a singularity or would
+        change working mode, with the residual). Not a proof that the pose lies outside the workspace;
+        for a graph mechanism it may depend on the batch (:attr:`reachable`)."""
         if self._failures is not None:
             return dict(self._failures)
         return failures_by_index(self.mechanism, self.poses, self.options)
 
     @functools.cached_property
     def reachable(self) -> Array:
-        """Per pose: whether the inverse kinematics reaches it (the reasons in :attr:`failures`)."""
+        """Per pose: whether the inverse kinematics found it in the reference's working and assembly
+        mode (the reasons in :attr:`failures`). A graph mechanism's continuation continues a large
+        batch's far poses from solved poses of its own, so a pose may be reached in a batch and not
+        alone (never the reverse; docs/mechanisms.md, "What `reachable` means")."""
         out = np.ones(self.shape, dtype=bool)
         if self._failures is None:
             flat = self.poses.reshape(-1, self.poses.shape[-1])
@@ -275,10 +285,10 @@ class PosedMechanism:
         Unless the joint table is already there, each chunk of :data:`CHUNK` poses goes through
         the inverse kinematics, its joint table and the core in turn, so memory stays bounded by
         the chunk and the results; the whole table is computed only if a per-pose view asks. One
-        pose (shape ``()``): its :attr:`singularity`. It needs every pose reached (else
-        :class:`~screwkit.exceptions.UnreachablePoseError` naming the first out of reach); the per-pose
-        views (:attr:`verdicts`, :attr:`codes`, :attr:`closeness`, :attr:`redundancy`, indexing) mark
-        a pose out of reach instead.
+        pose (shape ``()``): its :attr:`singularity`. The one whole-batch view that needs every pose
+        reached (its wrench systems; else :class:`~screwkit.exceptions.UnreachablePoseError` naming the
+        first out of reach): the per-pose views (:attr:`verdicts`, :attr:`codes`, :attr:`closeness`,
+        :attr:`redundancy`, :attr:`jacobians`, :attr:`wrench_transmission`) mark a pose out of reach.
         """
         if self.shape == ():
             return self.singularity
@@ -295,7 +305,13 @@ class PosedMechanism:
                 self._table_chunks(), source, self.shape, rtol=self.rtol, length_scale=self.length_scale
             )
         except ScrewkitError:
-            _ = self.configuration  # raises the whole batch's message (the failing pose's index)
+            try:
+                _ = self.configuration  # the whole batch's message (the failing pose's index)
+            except UnreachablePoseError as err:
+                raise UnreachablePoseError(
+                    f"{str(err).rstrip('.')}; the whole batch's singularities need every pose in reach (the "
+                    "per-pose views mark it: posed.verdicts, codes, closeness, jacobians)."
+                ) from err
             raise
 
     def _table_chunks(self) -> Iterator[JointTable]:
@@ -356,9 +372,11 @@ class PosedMechanism:
     @functools.cached_property
     def jacobians(self) -> Jacobians:
         """``A χ̇ = B θ̇`` per pose over the family's nominal twists (one pose: from its :attr:`analysis`).
-        Over a batch they need every pose reached: a pose out of reach raises
-        :class:`~screwkit.exceptions.UnreachablePoseError` naming it (``posed.poses[posed.reachable]``
-        are those reached)."""
+        A pose out of reach has NaN matrices, closeness and determinants and the type ``"unreachable"``;
+        the others get what a batch of the reached poses alone gives
+        (:func:`~screwkit.robots.pose_batch.reached_view`)."""
+        if self.shape != () and self.reached_part is not None:
+            return reached_view(self, "jacobians")
         analysis = self.analysis if self.shape == () else self.singularities.analysis
         return jacobians_from_wrenches(analysis, self.twist_basis, rtol=self.rtol)
 
@@ -367,7 +385,10 @@ class PosedMechanism:
         """Input/output transmission per actuated joint and their LTI, from the actuation wrenches and
         the nominal twists, for any family (:func:`screwkit.robots.transmission.wrench_transmission`;
         the input at the points the family's optional ``application_points`` hook gives, e.g. the
-        elbows of the four-limb family)."""
+        elbows of the four-limb family). NaN at a pose out of reach
+        (:func:`~screwkit.robots.pose_batch.reached_view`)."""
+        if self.shape != () and self.reached_part is not None:
+            return reached_view(self, "wrench_transmission")
         hook = self.mechanism.family_protocol.application_points
         points = None if hook is None else hook(self.configuration)
         return wrench_transmission(self.jacobians, input_points=points)
@@ -407,23 +428,7 @@ class PosedMechanism:
         >>> len(values) == len(diagram.points), exists.tolist()
         (True, [True, True])
         """
-        from ..gca.diagram_points import batch_diagram_points, frames_read
-
-        kept, length = functools.partial(frames_read, points), self.length_scale
-        try:
-            parts = [
-                batch_diagram_points(
-                    points, analyze_table(table, rtol=self.rtol, length_scale=length, views=False, kept=kept)
-                )
-                for table in self._table_chunks()
-            ]
-        except ScrewkitError:
-            _ = self.configuration  # raises the whole batch's message (the failing pose's index)
-            raise
-        values = {p.label: np.concatenate([part[p.label] for part in parts]) for p in points}
-        values = {label: value.reshape(*self.shape, 4) for label, value in values.items()}
-        exists = np.all([np.isfinite(v).all(axis=-1) for v in values.values()], axis=0)
-        return values, np.asarray(exists, dtype=bool).reshape(self.shape)
+        return diagram_points_over_batch(self, points)
 
     def __getitem__(self, index: Any) -> PosedMechanism:
         """One pose of the batch: a posed mechanism of shape ``()`` with its row of the joint table.
@@ -486,44 +491,22 @@ class PosedMechanism:
 
     @functools.cached_property
     def _draws(self) -> tuple[Sequence[WrenchAnalysis], WrenchAnalysis | None, np.random.Generator]:
-        """The random workspace poses a wrench diagram is chosen at (:data:`GENERIC_DRAWS`, seed
-        2026) and the first batch of its sampler's (``2 *`` :data:`SAMPLES`, seed 0) through the
-        core as one batch, with this pose unless its analysis is already computed (one pass instead
-        of three; a pose's result does not depend on the batch it is in, ``tests/robots/test_batch.py``):
-        the per-pose analyses at the generic draws, the batch at the samples (None if none is
-        reachable) and the samples' generator, where the next batch is drawn from. (61 poses of
-        four limbs stay below :data:`screwkit.algebra.compiled.COMPILED_MIN_BATCH`: no numba import.)
-        """
+        """The generic draws, this pose and the first samples through the core as one batch
+        (:func:`~screwkit.robots.pose_diagram.generic_draws`; one pose only)."""
         self._one("diagram_and_sampler()")
-        mechanism, rtol = self.mechanism, self.rtol
-        own = [] if "analysis" in self.__dict__ else [self.joints[None]]  # first: a pose out of reach says so
-        stream = np.random.default_rng(0)
-        generic = _reachable_table(mechanism, np.random.default_rng(2026), GENERIC_DRAWS)
-        sampled = _reachable_table(mechanism, stream, 2 * SAMPLES)
-        tables = [*own, *(t for t in (generic, sampled) if t is not None)]
-        if not tables:  # this pose analysed already, no random pose reachable
-            return [], None, stream
-        batch = analyze_table(_concatenated(tables), rtol=rtol, length_scale=self.length_scale)
-        if own:
-            self.__dict__["analysis"] = self._with_graph(batch[0])
-        start = len(own)
-        analyses: Sequence[WrenchAnalysis] = []
-        if generic is not None:
-            analyses = _PoseAnalyses(batch[start : start + len(generic)], generic, mechanism.name)
-            start += len(generic)
-        return analyses, (None if sampled is None else batch[start:]), stream
+        return generic_draws(self)
 
     def diagram_and_sampler(self) -> tuple[Any, Callable[[np.random.Generator], dict[str, Array]]]:
         """The wrench diagram at this pose and a sampler of its recipes at generic poses (one pose only).
 
         Which lines make the diagram and which points they share is decided at a generic (random,
-        seeded) workspace pose of :data:`GENERIC_DRAWS` drawn as one batch
+        seeded) workspace pose of :data:`~screwkit.robots.generic_poses.GENERIC_DRAWS` drawn as one batch
         (:func:`screwkit.gca.diagram_placement.generic_reference`); the diagram is then placed at this pose
         (:func:`screwkit.gca.diagram_placement.diagram_at`), where lines that coincide still appear. When the
         mechanism has no diagram (e.g. a wrench system not spanned by lines), the reasons found at
         the generic poses are given as ``degenerate``. The sampler
         replays recipes evaluated at random workspace poses, drawn and analysed as one batch
-        (:func:`generic_samples`).
+        (:func:`~screwkit.robots.generic_poses.generic_samples`).
 
         Returns
         -------
@@ -542,27 +525,7 @@ class PosedMechanism:
         >>> len(diagram.points) > 0
         True
         """
-        from dataclasses import replace
-
-        from ..gca.diagram_placement import ReplaySampler, diagram_at, generic_reference
-        from ..gca.diagram_recipes import wrench_diagram
-
-        analyses, first, stream = self._draws
-        reference, reasons = generic_reference(analyses)
-        if reference is None:  # a property of the mechanism, found at generic poses: say so
-            diagram = wrench_diagram(self.analysis)
-            return replace(diagram, coordinates={}, degenerate=reasons), _no_sampler
-        diagram = diagram_at(reference, self.analysis)
-        mechanism, rtol = self.mechanism, self.rtol
-        pending = [first]
-
-        def produce(_: np.random.Generator) -> Iterable[dict[str, Array]]:
-            # the first batch analysed with the generic draws, the next ones drawn on from its stream
-            if pending:
-                return _samples(diagram.points, pending.pop(), SAMPLES)
-            return generic_samples(mechanism, diagram.points, stream, SAMPLES, rtol, self.length_scale)
-
-        return diagram, ReplaySampler(produce)
+        return pose_diagram_and_sampler(self)
 
     @functools.cached_property
     def diagram(self) -> Any:
@@ -587,14 +550,50 @@ class PosedMechanism:
             On a batch (index it first), or if the mechanism has no wrench diagram of six lines (or
             more) at generic poses (a diagram that degenerates only at this pose is still factored there).
         """
-        from ..gca.superbracket_analysis import superbracket_analysis
-
         self._one("superbracket")
-        diagram, sampler = self.diagram_and_sampler()
-        if sampler is _no_sampler:
-            raise ScrewkitValueError(
-                f"Expected a wrench diagram of six lines for the superbracket of {self.mechanism.name}, "
-                f"got none: {'; '.join(diagram.degenerate)}."
-            )
-        return superbracket_analysis(diagram, sampler)
+        return pose_superbracket(self)
 
+    def report(self, *, superbracket: bool = True, progress: Callable[[str], None] | None = None) -> Any:
+        """The whole analysis of this pose as one report: what ``sk.analyze(posed[i])`` returns
+        (:func:`screwkit.interface.report.analyze`), for a catalog robot and for a graph or snapshot
+        mechanism (``sk.mechanism(graph).at(poses)[i]``) alike.
+
+        The report is composed by the interface, a layer above this one: the robots may not import it
+        (docs/architecture.md §2), so this method calls the composer that ``import screwkit`` registers
+        (:mod:`screwkit.robots.report_composer`, dependency inversion): ``analyze`` itself, which checks
+        the arguments.
+
+        Parameters
+        ----------
+        superbracket : bool, default True
+            Also expand and factor the superbracket (skip for speed).
+        progress : callable, optional
+            Called with the name of each stage as it starts (``screwkit.interface.report.STAGES``).
+
+        Returns
+        -------
+        AnalysisReport
+
+        Raises
+        ------
+        ScrewkitValueError
+            On a batch (index it first: ``posed[i]``).
+        UnreachablePoseError
+            If this pose is out of reach (with the reason, :attr:`failures`).
+        ScrewkitTypeError
+            If ``superbracket`` is not a bool or ``progress`` not callable.
+
+        Examples
+        --------
+        >>> posed = load_mechanism("h4").at([[0, 0, -750, 0], [30, -20, -750, 0.3]])
+        >>> report = posed[1].report(superbracket=False)
+        >>> report.verdict.verdict, report.pose.tolist()
+        ('regular', [30.0, -20.0, -750.0, 0.3])
+        >>> posed.report()  # doctest: +ELLIPSIS
+        Traceback (most recent call last):
+        ...
+        screwkit.exceptions.ScrewkitValueError: Expected one pose of a posed mechanism (index the batch: ...
+        """
+        if self.shape == ():  # (a batch: refused by the composer, as analyze refuses it)
+            _ = self.joints  # a pose out of reach raises its reason here, before any stage starts
+        return report_composer()(self, superbracket=superbracket, progress=progress)

@@ -20,6 +20,7 @@ from screwkit.analysis import workspace as W
 from screwkit.core.wrench_systems import analyze_table
 from screwkit.exceptions import ScrewkitTypeError, ScrewkitValueError
 from screwkit.gca import diagram_points as DP
+from screwkit.robots import pose_diagram as PD
 from screwkit.robots import posed as P
 
 from ..mechanisms import gough_stewart, gough_stewart_points, tsai_3upu
@@ -92,7 +93,7 @@ def test_a_map_chunk_runs_one_wrench_pass_per_core_chunk(monkeypatch):
     def refused(*args, **kwargs):
         raise AssertionError("a second wrench pass")
 
-    monkeypatch.setattr(P, "analyze_table", counted)
+    monkeypatch.setattr(PD, "analyze_table", counted)  # (the batch's diagram points: robots.pose_diagram)
     monkeypatch.setattr(DP, "analyze_table", refused)
     poses = reachable_poses(h4, P.CHUNK + 10, 5)
     h4.at(poses).diagram_points(diagram.points)

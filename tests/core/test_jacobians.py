@@ -17,7 +17,7 @@ from hypothesis import given, settings
 
 from screwkit.algebra import screw as S
 from screwkit.algebra.screwvalue import Screw
-from screwkit.core.jacobian_matrices import GOSSELIN_ANGELES_TYPES
+from screwkit.core.jacobian_matrices import GOSSELIN_ANGELES_TYPES, Jacobians
 from screwkit.core.jacobians import (
     jacobians_from_wrenches,
     jacobians_over_poses,
@@ -600,3 +600,20 @@ def test_result_is_read_only_and_serialisable():
     data = result.to_dict()
     assert data["type"] == "regular" and len(data["A"]) == 4 and data["actuated_joints"][0] == "A1"
     assert nx.utils.graphs_equal(result.analysis.graph, analysis.graph)
+
+
+def test_a_pose_out_of_reach_is_typed_unreachable_never_regular():
+    # a batch's pose out of reach has NaN matrices (screwkit.robots.pose_batch.reached_view): its
+    # type says so, its closeness and determinants are NaN, and no singularity is claimed there
+    A = np.stack([np.eye(2), np.full((2, 2), np.nan), np.diag([1.0, 0.0])])
+    B = np.stack([np.diag([2.0, 3.0]), np.full((2, 2), np.nan), np.eye(2)])
+    jac = Jacobians(A, B)
+    assert jac.types.tolist() == ["regular", "unreachable", "direct"]
+    assert jac.reached.tolist() == [True, False, True]
+    assert np.isnan(jac.closeness["direct"][1]) and np.isnan(jac.closeness["inverse"][1])
+    assert jac.closeness["direct"][2] == 0.0 and jac.closeness["inverse"][0] == pytest.approx(2 / 3)
+    det_a, det_b = jac.det_A, jac.det_B
+    assert det_a[0] == 1.0 and np.isnan(det_a[1]) and det_a[2] == 0.0
+    assert det_b[0] == 6.0 and np.isnan(det_b[1]) and det_b[2] == 1.0
+    assert jac.direct.tolist() == [False, False, True] and jac.inverse.tolist() == [False, False, False]
+    assert jac[1].type == "unreachable" and jac[1].to_dict()["B"] == [[None, None], [None, None]]
