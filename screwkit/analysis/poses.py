@@ -222,3 +222,18 @@ class _Slice:
             f"{self.mechanism.name}: {axis(self.x_name, self.x_values)} x {axis(self.y_name, self.y_values)}"
             f"{', ' + fixed if fixed else ''}{mode}"
         )
+
+
+def reached_batch(mechanism: Any, poses: Array, ok: Array, rtol: Any, options: dict[str, Any]) -> Any:
+    """The mechanism at the poses ``ok`` marks reachable, one posed batch, ``ok`` narrowed in place to
+    the poses that batch reaches: a graph mechanism's continuation may reach a pose in a larger batch
+    only (through a seed of that batch, docs/mechanisms.md, "What reachable means"), and a map must
+    then mark it out of reach, not read the sub-batch's marker as a verdict. None if no pose is left."""
+    while ok.any():
+        posed = mechanism.at(poses[ok], rtol=rtol, **options)
+        again = np.asarray(posed.reachable, dtype=bool).reshape(-1)
+        if again.all():
+            return posed
+        ok[np.flatnonzero(ok)[~again]] = False
+    return None
+

@@ -24,7 +24,7 @@ from typing import Any
 import numpy as np
 
 from ..exceptions import ScrewkitError
-from .poses import CHUNK
+from .poses import CHUNK, reached_batch
 from .quantities import KINDS, conditions_of
 from .quantities import values as quantity_values
 
@@ -97,14 +97,14 @@ def _measured_chunk(
     det A, det B)``, one posed batch for all (a module-level function, so a Dask worker can run
     it). ``values`` is ``quantity`` (:func:`screwkit.analysis.quantities.values`) over the chunk, the
     codes when None; the determinants NaN where the mechanism has no square Jacobian."""
-    ok = mechanism.reachable(poses, **options)
+    ok = np.array(mechanism.reachable(poses, **options), dtype=bool)  # (narrowed by reached_batch)
     codes = np.full(len(poses), -1, dtype=np.int64)
     closeness = np.full((len(poses), len(KINDS)), np.nan)
     det_a, det_b = np.full(len(poses), np.nan), np.full(len(poses), np.nan)
     integer = quantity in (None, "verdict")
     values = np.full(len(poses), -1 if integer else np.nan, dtype=np.int64 if integer else float)
-    if ok.any():
-        posed = mechanism.at(poses[ok], rtol=rtol, **options)
+    posed = reached_batch(mechanism, poses, ok, rtol, options)
+    if posed is not None:
         _ = posed.joints  # det A and det B need the joint table too: build it once per batch
         codes[ok] = posed.codes
         for i, k in enumerate(KINDS):

@@ -41,7 +41,7 @@ import numpy as np
 from ..exceptions import ScrewkitTypeError, ScrewkitValueError
 from ..robots.pose_reader import pose_array
 from . import quantities as Q
-from .poses import CHUNK, _as_dict, _check_client, _check_mechanism, _options, _Slice, _units
+from .poses import CHUNK, _as_dict, _check_client, _check_mechanism, _options, _Slice, _units, reached_batch
 
 __all__ = ["CHUNK", "WorkspaceMap", "evaluate", "grid_map", "sweep"]
 
@@ -80,11 +80,12 @@ def evaluate(
     name = Q.quantity(quantity)
     array = pose_array(mechanism, poses).reshape(-1, len(mechanism.pose_names))
     options = _options(mechanism, mode)
-    ok = mechanism.reachable(array, **options)
+    ok = np.array(mechanism.reachable(array, **options), dtype=bool)  # (narrowed by reached_batch)
     integer = name == "verdict"
     out = np.full(len(array), -1 if integer else np.nan, dtype=np.int64 if integer else float)
-    if ok.any():
-        out[ok] = Q.values(mechanism.at(array[ok], rtol=rtol, **options), name)
+    posed = reached_batch(mechanism, array, ok, rtol, options)
+    if posed is not None:
+        out[ok] = Q.values(posed, name)
     return out, ok
 
 

@@ -14,12 +14,12 @@ arms, the platform's own joints) from one equation per rod,
 with ``q_a``, ``q_b`` the centres carried by the links at the rod's ends, ``(ω_c; v_c)`` the current screw
 of joint variable ``c`` and ``σ`` its sign on each end link's tree path (the velocity of a point ``q`` of
 a link is ``v + ω × q``; Murray, Li & Sastry, *A Mathematical Introduction to Robotic Manipulation*, 1994,
-Eq. 2.58). The minimum-norm Newton correction, the continuation, its steps and the working-mode check
-of every step are the loop closure's, on these equations (an H4 leg's block is 4 rods × 3 joint
-variables against 24 loop equations × 27 variables with the balls' angles). Once a step's equations
-are solved each rod is placed back: turned by the least rotation that takes its reference direction to
-``q_b − q_a`` (its spin kept at the reference's), its balls' motions are the relative displacements of
-the links they join, written as their offsets with zero angles (the form
+Eq. 2.58). The minimum-norm Newton correction, the continuation, its steps and the working-mode check of
+every step are the loop closure's, on these equations (an H4 half-platform's block, its two legs, is 4
+rods × 3 joint variables against 24 loop equations × 27 variables with the balls' angles). Once a step's
+equations are solved each rod is placed back: turned by the least rotation that takes its reference
+direction to ``q_b − q_a`` (its spin kept at the reference's), its balls' motions are the relative
+displacements of the links they join, written as their offsets with zero angles (the form
 :meth:`~screwkit.core.kinematic_model.KinematicModel.recentred` gives); the whole model's loops and task
 are then checked as for any mechanism, so a pose is reached only where every loop closes.
 
@@ -100,8 +100,9 @@ def rods_of(model: KinematicModel) -> RodLinks | None:
     """The rods of a pinned model, if they close all its loops (module docstring).
 
     A rod is a link other than the roots with exactly two joints, both spherical, between two links
-    that are not rods; the model qualifies when every loop is closed by one of a rod's two joints and
-    each rod closes exactly one (the rod hangs from the tree by the other).
+    that are not rods; the model qualifies when every loop is closed by one of a rod's two joints,
+    each rod closes exactly one (the rod hangs from the tree by the other), no rod joins the base to
+    the placed platform or either to itself, and every spherical joint is a rod's.
 
     Parameters
     ----------
@@ -111,8 +112,8 @@ def rods_of(model: KinematicModel) -> RodLinks | None:
     Returns
     -------
     RodLinks or None
-        None when the model has no rod, or a loop that no rod closes (the Gough–Stewart platform's
-        legs, a five-bar).
+        None when the model does not qualify: no rod, a loop that no rod closes (the Gough–Stewart
+        platform's legs, a five-bar), a ball elsewhere in a leg.
 
     Examples
     --------
@@ -130,6 +131,8 @@ def rods_of(model: KinematicModel) -> RodLinks | None:
     rod_joints = {key for keys in rods.values() for key in keys}
     if not rods or any(key not in rod_joints for key in model.closing):
         return None
+    if any(kind == "S" and key not in rod_joints for key, kind in model.types.items()):
+        return None  # (another ball's angles would fold into offsets the rods' equations do not carry)
     joints, ends, centres, lengths = [], [], [], []
     for rod, keys in rods.items():
         if sum(key in model.closing for key in keys) != 1:
@@ -138,8 +141,8 @@ def rods_of(model: KinematicModel) -> RodLinks | None:
         for key in keys:
             u, v, _ = model.joints[key]
             others.append(v if u == rod else u)
-        if any(other in rods for other in others):
-            return None
+        if any(other in rods for other in others) or all(other in model.roots for other in others):
+            return None  # (a rod between two placed links has no joint variable to solve for)
         pair = np.array([_ball_centre(model, key) for key in keys])
         length = float(np.linalg.norm(pair[1] - pair[0]))
         if not length > 1e-9:
@@ -300,9 +303,10 @@ class _RodLoops(_GroupedBlocks):
 
     def _ball_motions(self, links: Array) -> Array:
         """The balls' motions ``(P, 2R, 4, 4)`` (offsets, their angles zero): each rod turned by the
-        least rotation from its reference direction to its ends' (Rodrigues' formula with ``k = u₀ × u``:
-        ``R = I + [k]× + [k]×² / (1 + u₀·u)``), a ball's motion the relative displacement ``D_u⁻¹ D_v``
-        of the links it joins."""
+        least rotation from its reference direction ``u₀`` to its ends' ``u``, about ``k = u₀ × u``
+        (Rodrigues' formula ``R = I + sin θ [a]× + (1 − cos θ) [a]×²``, Murray, Li & Sastry 1994, Eq.
+        2.14, with ``sin θ a = k`` and ``1 − cos θ = |k|² / (1 + cos θ)``: ``R = I + [k]× + [k]×² / (1 +
+        u₀·u)``), a ball's motion the relative displacement ``D_u⁻¹ D_v`` of the links it joins."""
         centres = self._centres(links)  # (P, R, 2, 3)
         gap = centres[:, :, 1] - centres[:, :, 0]
         direction = gap / np.linalg.norm(gap, axis=-1, keepdims=True)

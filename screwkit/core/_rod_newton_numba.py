@@ -6,8 +6,9 @@ Jacobian (the formulas of :mod:`screwkit.core._rod_closure`), and the minimum-no
 correction, here in its column form ``−(JᵀJ + λ I)⁻¹ Jᵀ g`` (equal to ``−Jᵀ (J Jᵀ + λ I)⁻¹ g``, the
 push-through identity; the matrix is the joint variables' size, a few per leg) by a Cholesky
 factorisation (Golub & Van Loan, *Matrix Computations*, 4th ed., 2013, Alg. 4.2.1). The numpy twin
-solves block by block, so the two agree to round-off, not bit for bit
-(``tests/core/test_rod_closure.py``).
+solves block by block, each with Levenberg's ``λ`` from its own block's trace where this takes it from
+the whole ``JᵀJ`` (``λ ≈ 1e-13`` times the trace: the corrections differ at that level), so the two
+agree to round-off, not bit for bit (``tests/core/test_rod_closure.py``).
 """
 
 from __future__ import annotations
@@ -17,7 +18,8 @@ import math
 import numpy as np
 from numba import njit
 
-from ._newton_numba import _evaluate_pose, cholesky_solve, damped_cholesky, took_correction
+from ._newton_numba import _evaluate_pose
+from ._newton_steps_numba import cholesky_solve, damped_cholesky, took_correction
 
 __all__ = ["rod_newton"]
 

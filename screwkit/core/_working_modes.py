@@ -32,6 +32,7 @@ between two legs' singularities.
 from __future__ import annotations
 
 import copy
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -223,7 +224,15 @@ class Orientations:
             for _, columns, _ in groups
         ]
 
-    def kept(self, system: Any, theta: Array, offsets: Array, target: Array, rows: Array) -> Array:
+    def kept(
+        self,
+        system: Any,
+        theta: Array,
+        offsets: Array,
+        target: Array,
+        rows: Array,
+        blocks: Callable[[Array], list[Array]] | None = None,
+    ) -> Array:
         """Whether each of the poses ``rows`` (bool mask) kept every block's orientation since its last
         trusted step; the bases of those that did become their new configuration's, and
         :attr:`changed` names the block of those that did not.
@@ -231,12 +240,15 @@ class Orientations:
         Parameters
         ----------
         system : object
-            As in the constructor; one with ``last_blocks(rows)`` gives the Jacobian blocks at the values
-            its last corrector left (``screwkit.core._rod_closure._RodLoops``), the step being checked.
+            As in the constructor.
         theta, offsets, target : numpy.ndarray
             The configurations of all the poses, ``(B, n)``, ``(B, K, 4, 4)`` and ``(B, k)``.
         rows : numpy.ndarray of bool, shape (B,)
             The poses to check.
+        blocks : callable, optional
+            ``blocks(index)``: the Jacobian blocks at ``theta`` of the poses ``index`` (integer positions),
+            when the corrector that left ``theta`` has them (the rods',
+            ``screwkit.core._rod_closure._RodLoops.last_blocks``); default: evaluated here.
 
         Returns
         -------
@@ -251,12 +263,12 @@ class Orientations:
         at = np.flatnonzero(rows)
         if at.size == 0:
             return kept
-        if hasattr(system, "last_blocks"):  # its corrector's own Jacobian at these values (the rods')
-            blocks = system.last_blocks(at)
+        if blocks is None:
+            jacobians = _jacobian_blocks(system, theta[at], offsets[at], target[at])
         else:
-            blocks = _jacobian_blocks(system, theta[at], offsets[at], target[at])
+            jacobians = blocks(at)
         flipped, updates = [], []
-        for block, sign, (left, right) in zip(blocks, self.signs, self.null_spaces, strict=True):
+        for block, sign, (left, right) in zip(jacobians, self.signs, self.null_spaces, strict=True):
             signs, new_left, new_right, turned = _carried(block, left[at], right[at])
             # a sign read with a border the null spaces have turned far from is not trusted either
             flipped.append((signs != sign[at]) | ~(turned < MAX_TURN))

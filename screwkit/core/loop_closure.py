@@ -234,7 +234,8 @@ def _continue(
         previous[working] = theta[working]
         bad = ~np.isfinite(residual_size) | ~np.all(np.isfinite(theta), axis=1)
         newly = active & moving & (bad | (residual_size > LOST_TOLERANCE) | (corrected > jump_limit))
-        newly |= ~modes.kept(system, theta, offsets, target, active & moving & ~newly)
+        checked = active & moving & ~newly  # (the rods' corrector hands its own final Jacobian)
+        newly |= ~modes.kept(system, theta, offsets, target, checked, getattr(system, "last_blocks", None))
         lost_at[newly] = np.minimum(1.0, step / own[newly])
         active &= ~newly
         trusted = active & moving
@@ -321,7 +322,7 @@ def _system(model: KinematicModel, task: Any, rods: bool = True) -> _LoopsAndTas
     ``rods``, a pinned model's rods replaced by their distance equations when they close all its loops
     (:mod:`screwkit.core._rod_closure`)."""
     prepared = getattr(task, "prepared", {})
-    name = "loop_closure" if rods else "loop_closure_with_rods"
+    name = "loop_closure" if rods else "loop_closure_every_loop"
     system = prepared.get(name)
     if system is None or system.model is not model:
         fixes_pose = isinstance(task, PoseTask) and task.fixes_pose and task.coordinates.link != model.base

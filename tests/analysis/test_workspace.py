@@ -686,3 +686,27 @@ def test_a_paths_dict_keeps_the_reference_value_of_what_it_leaves_out():
     with pytest.raises(sk.ScrewkitValueError, match=r"Expected `end` to have shape \(3,\), got \(2,\) "
                        r"\(one pose of coordinates x, y, phi\)\.$"):
         PA.check_path(robot, [x0, y0, phi0], [x0, y0])
+
+
+def test_a_pose_its_own_batch_does_not_reach_is_marked_out_of_reach():
+    # a graph mechanism may reach a pose in a larger batch only (seeded starts): the map's batch of the
+    # reachable poses is then the judge. Here `reachable` claims every pose; the batch reaches two of three
+    catalog = sk.load_mechanism("v4")
+
+    class Overreaching:  # the V4 whose reach test says yes to every pose
+        def __getattr__(self, name):
+            return getattr(catalog, name)
+
+        def reachable(self, poses, **options):
+            return np.ones(len(poses), dtype=bool)
+
+    v4 = Overreaching()
+    poses = np.array([[0.0, 0.0, -750.0, 0.0], [0.0, 0.0, -5000.0, 0.0], [30.0, -20.0, -750.0, 0.3]])
+    expected = catalog.at(poses[[0, 2]]).codes
+    for measure in (
+        lambda: W.evaluate(v4, poses, "verdict"),
+        lambda: RT._measured_chunk(v4, poses, {}, None)[:2],
+    ):
+        values, reachable = measure()
+        assert reachable.tolist() == [True, False, True]
+        assert values.tolist() == [int(expected[0]), -1, int(expected[1])]

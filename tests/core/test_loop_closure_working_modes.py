@@ -81,7 +81,11 @@ def test_ragnar_poses_near_a_leg_singularity_keep_the_working_mode_or_are_flagge
     way = np.linspace(0, 1, 4001)[:, None]
     stays = np.array([ragnar.reachable(ragnar.default_pose + way * (pose - ragnar.default_pose)).all()
                       for pose in poses])
-    assert 5 <= stays.sum() <= 8 and np.all(closed.reached[stays])
+    assert stays.sum() == 6 and np.all(closed.reached[stays])
+    if rods:  # the rods' continuation: reached exactly where the straight way stays in reach
+        assert np.array_equal(closed.reached, stays)
+    else:  # every loop's equations get through one pose more (pose 7, in the closed form's mode)
+        assert closed.reached.sum() >= 7
     for reason in closed.reasons[~closed.reached]:
         assert "working or assembly mode" in reason or "do not close" in reason
         assert "residual" in reason
