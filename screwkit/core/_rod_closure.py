@@ -306,7 +306,10 @@ class _RodLoops(_GroupedBlocks):
         least rotation from its reference direction ``u₀`` to its ends' ``u``, about ``k = u₀ × u``
         (Rodrigues' formula ``R = I + sin θ [a]× + (1 − cos θ) [a]×²``, Murray, Li & Sastry 1994, Eq.
         2.14, with ``sin θ a = k`` and ``1 − cos θ = |k|² / (1 + cos θ)``: ``R = I + [k]× + [k]×² / (1 +
-        u₀·u)``), a ball's motion the relative displacement ``D_u⁻¹ D_v`` of the links it joins."""
+        u₀·u)``), a ball's motion the relative rotation of the links it joins (that of ``D_u⁻¹ D_v``)
+        about its centre: where the rod's ends are not its length apart (a pose out of reach, Newton
+        stopped short) the rod's closing ball then leaves that gap in its loop's residual, which the
+        whole model's check reads, instead of a translation no ball can make."""
         centres = self._centres(links)  # (P, R, 2, 3)
         gap = centres[:, :, 1] - centres[:, :, 0]
         direction = gap / np.linalg.norm(gap, axis=-1, keepdims=True)
@@ -322,4 +325,7 @@ class _RodLoops(_GroupedBlocks):
         rods[..., :3, :3], rods[..., 3, 3] = rotation, 1.0
         rods[..., :3, 3] = centres[:, :, 0] - np.einsum("brij,rj->bri", rotation, self.rods.centres[:, 0])
         moved = np.where(self.from_rod, rods[:, self.joint_rods], links[:, self.joint_links])
-        return rigid_inverse(moved[:, :, 0]) @ moved[:, :, 1]  # (P, 2R, 4, 4)
+        motions = rigid_inverse(moved[:, :, 0]) @ moved[:, :, 1]  # (P, 2R, 4, 4)
+        centres = self.rods.centres.reshape(-1, 3)  # a ball turns about its centre: (R, c − R c)
+        motions[..., :3, 3] = centres - np.einsum("bjik,jk->bji", motions[..., :3, :3], centres)
+        return motions

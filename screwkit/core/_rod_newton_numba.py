@@ -112,12 +112,14 @@ def _ball_motions_into(  # pragma: no cover - compiled
         start = rods[joint_rods[j]] if from_rod[j, 0] else links[joint_links[j, 0]]
         end = rods[joint_rods[j]] if from_rod[j, 1] else links[joint_links[j, 1]]
         motion = out[j]
-        for i in range(3):  # start⁻¹ end = (Rₛᵀ Rₑ, Rₛᵀ (pₑ − pₛ))
+        for i in range(3):  # the rotation of start⁻¹ end, Rₛᵀ Rₑ
             for k in range(3):
                 motion[i, k] = start[0, i] * end[0, k] + start[1, i] * end[1, k] + start[2, i] * end[2, k]
-            motion[i, 3] = (start[0, i] * (end[0, 3] - start[0, 3]) + start[1, i] * (end[1, 3] - start[1, 3])
-                            + start[2, i] * (end[2, 3] - start[2, 3]))
             motion[3, i] = 0.0
+        centre = centres[j // 2, j % 2]  # a ball turns about its centre: (R, c − R c)
+        for i in range(3):
+            turned = motion[i, 0] * centre[0] + motion[i, 1] * centre[1] + motion[i, 2] * centre[2]
+            motion[i, 3] = centre[i] - turned
         motion[3, 3] = 1.0
 
 
