@@ -217,6 +217,7 @@ class _RodLoops(_GroupedBlocks):
         )[None, :, :, None, None]
         self.joint_links = np.array([[index.get(link, 0) for link in pair] for pair in ends], dtype=np.int64)
         self.rod_columns = np.array(sorted(rod_columns), dtype=np.int64)
+        self._last = np.empty((0, len(rods.names), self.remaining.size))  # (the corrector's last Jacobian)
         self.remaining_model = self.product.kernel_arrays([])  # (not `kernel_model`: the whole model's)
 
     def state(self, theta: Array, offsets: dict[str, Array], target: Array) -> Any:

@@ -362,17 +362,6 @@ def scattered(values: Any, mask: Array, shape: tuple[int, ...], fill: Any) -> Ar
     return out.reshape(*shape, *rows.shape[1:])
 
 
-def _reached(posed: Any, view: str) -> tuple[Array, Any]:
-    """The flat mask of a partial batch's reached poses and the posed mechanism at them."""
-    mask, reached = posed.reached_part
-    if reached is None:
-        raise UnreachablePoseError(
-            f"Expected some pose of the batch in reach for `{view}`, got none of {mask.size} "
-            f"(posed.failures has the reasons)."
-        )
-    return mask, reached
-
-
 def reached_view(posed: Any, view: str) -> Any:
     """A whole-batch view of a batch some of whose poses are out of reach: each reached pose's value as
     in a batch of the reached poses alone, NaN (False for a flag) at the others; what covers the reached

@@ -5,6 +5,7 @@ equations, and its compiled and numpy correctors agree."""
 import networkx as nx
 import numpy as np
 import pytest
+from hypothesis import given, settings
 
 import screwkit as sk
 from screwkit.core import _rod_closure
@@ -13,7 +14,8 @@ from screwkit.core.loop_closure import LAST_TOLERANCES, _system, close_loops
 from screwkit.graphs.joints import spherical
 from screwkit.robots.catalog import load_mechanism
 from screwkit.robots.graph_kinematics import graph_kinematics, kinematics_of
-from tests.mechanisms import gough_stewart, gough_stewart_points
+from tests.mechanisms import gough_stewart, gough_stewart_points, moved
+from tests.strategies import rigid_motions, unit_factors
 
 ROD_ROBOTS = ["h4", "quattro", "ragnar", "veloce", "delta", "v4"]
 
@@ -39,10 +41,9 @@ def test_rods_are_the_links_between_two_balls(name, count):
 
 
 def test_mechanisms_whose_loops_no_rod_closes_keep_every_equation():
-    for graph in (gough_stewart(*gough_stewart_points()),):
-        kinematics = kinematics_of(sk.mechanism(graph))
-        assert rods_of(_pinned(kinematics)) is None
-        assert not isinstance(_system(kinematics.model, kinematics.task), _RodLoops)
+    kinematics = kinematics_of(sk.mechanism(gough_stewart(*gough_stewart_points())))
+    assert rods_of(_pinned(kinematics)) is None
+    assert not isinstance(_system(kinematics.model, kinematics.task), _RodLoops)
     planar = kinematics_of(sk.mechanism("examples/planar_3rpr.toml"))
     assert not isinstance(_system(planar.model, planar.task), _RodLoops)
 
@@ -177,3 +178,25 @@ def test_poses_just_out_of_reach_are_flagged_not_closed_by_a_stretched_ball():
         targets = kinematics._targets(start + steps[:, None] * direction)
         closed = close_loops(kinematics.model, kinematics.task, targets)
         assert closed.reached.tolist() == [True, False, False, False, False], (direction, closed.residual)
+
+
+@settings(max_examples=8, deadline=None)
+@given(motion=rigid_motions(), factor=unit_factors)
+def test_the_rods_closure_is_invariant_under_frame_and_unit(motion, factor):
+    # the Delta moved rigidly and described in another unit: the same arm angles at the moved poses
+    # (its coordinates then run along the moved frame's axes, from the moved platform point)
+    rotation, translation = motion
+    delta = load_mechanism("delta")
+    graph = delta.twist_graph()
+    point = np.asarray(delta.default_pose, dtype=float)
+    poses = delta.random_poses(np.random.default_rng(2), 12)
+    here = graph_kinematics(graph, point=point)
+    there = graph_kinematics(moved(graph, rotation, translation, factor), point=(rotation @ point + translation) * factor)
+    assert isinstance(_system(there.model, there.task), _RodLoops)
+    closed = close_loops(here.model, here.task, here._targets(poses))
+    moved_poses = (poses - point) @ rotation.T * factor + (rotation @ point + translation) * factor
+    other = close_loops(there.model, there.task, there._targets(moved_poses))
+    assert np.array_equal(closed.reached, other.reached) and closed.reached.sum() >= 10
+    columns = [here.model.joints[key][2][0] for key in here.actuated]
+    np.testing.assert_allclose(closed.theta[closed.reached][:, columns], other.theta[other.reached][:, columns],
+                               rtol=0, atol=1e-9)
